@@ -1,0 +1,25 @@
+// lever/constraint.hpp: MuJoCo 2.2.2's soft joint limits.
+//
+// A limited joint within `margin` of a stop gets one constraint row. Its impedance comes from
+// solimplimit, its reference acceleration from solreflimit, its regularizer from dof_invweight0
+// (frozen at qpos0 by set_const()). The rows are solved exactly: the result is the unique
+// minimizer MuJoCo's Newton solver converges to.
+#pragma once
+
+#include <lever/data.hpp>
+#include <lever/model.hpp>
+
+namespace lever {
+
+/// Instantiate the limit rows at data.qpos with their impedance, R, D, K, B (MuJoCo's
+/// mj_makeConstraint for joint limits). @pre kinematics().
+void make_constraint(const Model& model, Data& data);
+
+/// efc_vel and efc_aref at data.qvel (MuJoCo's mj_referenceConstraint).
+void reference_constraint(const Model& model, Data& data);
+
+/// Solve the rows: efc_force, efc_state, qfrc_constraint and qacc (MuJoCo's mj_fwdConstraint).
+/// @pre qacc_smooth, efc_aref and the factor of M are current.
+void solve_constraint(const Model& model, Data& data);
+
+}  // namespace lever

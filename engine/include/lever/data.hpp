@@ -1,0 +1,136 @@
+// lever/data.hpp: the state of a simulation, its outputs and its workspace.
+//
+// Data is sized once from a Model and never reallocates: forward() and step() allocate nothing.
+// Fields are grouped by the stage that writes them, as in MuJoCo's mjdata.h, and keep mjData's
+// names and meanings. Everything in it is expressed in the world frame unless a comment says
+// otherwise. One Model can serve many Data (one per thread).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <lever/model.hpp>
+#include <lever/spatial.hpp>
+
+namespace lever {
+
+/// Kinds of warning, as MuJoCo's mjtWarning for the ones lever can raise.
+enum class Warning : int {
+  kInertia = 0,  ///< a pivot of M's factorization was below 1e-15 (M near singular)
+  kBadQpos,      ///< qpos had NaN or |x| > 1e10: the state was reset
+  kBadQvel,      ///< qvel had NaN or |x| > 1e10: the state was reset
+  kBadQacc,      ///< qacc had NaN or |x| > 1e10: the state was reset
+  kBadCtrl,      ///< ctrl had NaN or |x| > 1e10: all controls were treated as zero this call
+  kCount
+};
+
+/// Human-readable name of a warning kind.
+const char* warning_name(Warning w);
+
+/// The record of one kind of warning (MuJoCo's mjWarningStat).
+struct WarningStat {
+  int number = 0;    ///< how many times it happened since the last reset
+  int lastinfo = 0;  ///< the index (dof, actuator) involved the last time
+};
+
+/// A joint-limit constraint row's state after the solve.
+enum class ConstraintState : int { kSatisfied = 0, kActive = 1 };
+
+struct Data {
+  explicit Data(const Model& model);
+
+  // ---- state (inputs) ------------------------------------------------------------------------
+  double time = 0.0;                 ///< s
+  Eigen::VectorXd qpos;              ///< (nq) joint positions, rad or m
+  Eigen::VectorXd qvel;              ///< (nv) joint velocities
+  Eigen::VectorXd ctrl;              ///< (nu) motor commands, before clamping (never modified)
+  Eigen::VectorXd qfrc_applied;      ///< (nv) user-applied joint forces
+
+  // ---- position stage: kinematics() ------------------------------------------------------------
+  std::vector<Eigen::Vector3d> xpos;    ///< (nbody) body frame origins
+  std::vector<Eigen::Vector4d> xquat;   ///< (nbody) body orientations (w, x, y, z)
+  std::vector<Eigen::Matrix3d> xmat;    ///< (nbody) body rotations (local -> world)
+  std::vector<Eigen::Vector3d> xipos;   ///< (nbody) centres of mass
+  std::vector<Eigen::Matrix3d> ximat;   ///< (nbody) principal axes of inertia
+  std::vector<Eigen::Vector3d> site_xpos;  ///< (nsite)
+  std::vector<Eigen::Matrix3d> site_xmat;  ///< (nsite)
+  std::vector<Transform> Xup;           ///< (nv) ^i X_lambda(i): parent link -> link i coordinates
+  std::vector<Eigen::Vector3d> link_xpos;  ///< (nv) link frame origins (on the joint axis)
+  std::vector<Eigen::Vector4d> link_xquat; ///< (nv) link orientations
+  std::vector<Eigen::Matrix3d> link_xmat;  ///< (nv) link rotations
+
+  // ---- position stage: crba(), factor_mass() --------------------------------------------------
+  Eigen::MatrixXd M;       ///< (nv x nv) joint-space inertia, full and symmetric, armature included
+  Eigen::MatrixXd qLD;     ///< (nv x nv) M = L^T D L: D on the diagonal, L below it (unit diagonal implied)
+  Eigen::VectorXd qLDiagInv;  ///< (nv) 1 / D
+
+  // ---- position stage: actuator transmission ---------------------------------------------------
+  Eigen::VectorXd actuator_length;  ///< (nu) gear * qpos of the driven joint
+
+  // ---- position stage: joint-limit rows (make_constraint) -----------------------------------
+  int nefc = 0;                      ///< active rows: joints within `margin` of a stop
+  std::vector<int> efc_id;           ///< (nefc) joint id
+  std::vector<int> efc_dof;          ///< (nefc) the joint's dof
+  std::vector<double> efc_sign;      ///< (nefc) +1 lower stop, -1 upper stop: efc_J = sign * e_dof
+  Eigen::VectorXd efc_pos;           ///< (nefc) signed distance to the stop (< 0 past it)
+  Eigen::VectorXd efc_margin;        ///< (nefc)
+  Eigen::VectorXd efc_diagApprox;    ///< (nefc) R * imp / (1 - imp), MuJoCo's final value
+  Eigen::VectorXd efc_R;             ///< (nefc) regularizer
+  Eigen::VectorXd efc_D;             ///< (nefc) 1 / R
+  Eigen::VectorXd efc_imp;           ///< (nefc) impedance from solimp
+  Eigen::VectorXd efc_K;             ///< (nefc) stiffness of the reference dynamics
+  Eigen::VectorXd efc_B;             ///< (nefc) damping of the reference dynamics
+
+  // ---- velocity stage ------------------------------------------------------------------------
+  Eigen::VectorXd actuator_velocity;  ///< (nu)
+  Eigen::VectorXd qfrc_passive;       ///< (nv) joint springs and damping
+  Eigen::VectorXd qfrc_bias;          ///< (nv) C(q, qvel) qvel + g(q): M qacc + qfrc_bias = tau
+  Eigen::VectorXd efc_vel;            ///< (nefc) J qvel
+  Eigen::VectorXd efc_aref;           ///< (nefc) reference acceleration
+
+  // ---- acceleration stage --------------------------------------------------------------------
+  Eigen::VectorXd actuator_force;   ///< (nu) after ctrl clamping, gain and force clamping
+  Eigen::VectorXd qfrc_actuator;    ///< (nv)
+  Eigen::VectorXd qfrc_smooth;      ///< (nv) passive - bias + applied + actuator
+  Eigen::VectorXd qacc_smooth;      ///< (nv) M^-1 qfrc_smooth
+  Eigen::VectorXd efc_b;            ///< (nefc) J qacc_smooth - aref
+  Eigen::VectorXd efc_force;        ///< (nefc) constraint force of each row
+  std::vector<ConstraintState> efc_state;  ///< (nefc)
+  Eigen::VectorXd qfrc_constraint;  ///< (nv) J^T efc_force
+  Eigen::VectorXd qacc;             ///< (nv) joint accelerations
+  Eigen::VectorXd qfrc_inverse;     ///< (nv) inverse(): force that produces qacc
+
+  // ---- other ---------------------------------------------------------------------------------
+  std::array<double, 2> energy{0.0, 0.0};  ///< compute_energy(): potential, kinetic (J)
+  std::array<WarningStat, static_cast<int>(Warning::kCount)> warning{};
+
+  // ---- workspace (preallocated; contents are meaningless between calls) ------------------------
+  struct Workspace {
+    std::vector<Motion> v, a;        ///< (nv) link velocities, accelerations (link coordinates)
+    std::vector<Force> f;            ///< (nv) link forces
+    std::vector<RigidInertia> IC;    ///< (nv) composite inertias
+    std::vector<Motion> c;           ///< (nv) velocity-product accelerations
+    Eigen::MatrixXd LD2;             ///< (nv x nv) factor of M + h diag(damping) (Euler)
+    Eigen::VectorXd LD2DiagInv;      ///< (nv)
+    Eigen::VectorXd vec1, vec2, vec3;  ///< (nv) scratch
+    Eigen::MatrixXd MinvJ;           ///< (nv x nefc_max) M^-1 J^T
+    Eigen::MatrixXd A;               ///< (nefc_max x nefc_max) J M^-1 J^T + R
+    Eigen::VectorXd lcp_f, lcp_w, lcp_rhs;  ///< (nefc_max) constraint solve
+    std::vector<int> lcp_active;     ///< (nefc_max)
+    Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages
+    std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
+  } work;
+
+  int nefc_max = 0;  ///< 2 * njnt: the most limit rows a model can have
+  int nq = 0, nv = 0, nu = 0;  ///< sizes of the model this Data was built for (checked on use)
+};
+
+/// Reset the state as MuJoCo's mj_resetData: qpos = qpos0; qvel, ctrl, qfrc_applied, qacc,
+/// time and warnings zero.
+void reset(const Model& model, Data& data);
+
+}  // namespace lever

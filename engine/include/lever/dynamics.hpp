@@ -1,0 +1,49 @@
+// lever/dynamics.hpp: joint-space dynamics. M(q) qacc + qfrc_bias(q, qvel) = tau.
+//
+// crba() and rnea() are Featherstone's composite-rigid-body and recursive Newton-Euler
+// algorithms (Rigid Body Dynamics Algorithms, tables 6.2 and 5.1); factor_mass() is his
+// LTDL factorization exploiting branch-induced sparsity (section 6.5).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <lever/data.hpp>
+#include <lever/model.hpp>
+
+namespace lever {
+
+/// Joint-space inertia M(q) into data.M, full and symmetric, with dof_armature added on the
+/// diagonal (as MuJoCo's mj_crb). @pre kinematics().
+void crba(const Model& model, Data& data);
+
+/// Factor M = L^T D L into data.qLD / data.qLDiagInv (MuJoCo's mj_factorM). @pre crba().
+void factor_mass(const Model& model, Data& data);
+
+/// x = M^-1 x in place, with the factor from factor_mass() (MuJoCo's mj_solveM).
+void solve_mass(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x);
+
+/// tau = M(q) qacc + C(q, qvel) qvel + g(q) by recursive Newton-Euler, at data.qpos/data.qvel.
+/// M here includes armature, so tau = data.M * qacc + data.qfrc_bias exactly in exact arithmetic.
+/// Passive, actuator and constraint forces are not included. @pre kinematics().
+void rnea(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc,
+          Eigen::Ref<Eigen::VectorXd> tau);
+
+/// qfrc_bias = C(q, qvel) qvel + g(q) (MuJoCo's mj_rne with flg_acc = 0). @pre kinematics().
+void bias(const Model& model, Data& data);
+
+/// Joint springs and damping into qfrc_passive (MuJoCo's mj_passive).
+void passive(const Model& model, Data& data);
+
+/// Motor transmission lengths and velocities (MuJoCo's mj_transmission and the velocity stage).
+void transmission(const Model& model, Data& data);
+
+/// Motor forces (MuJoCo's mj_fwdActuation): ctrl clamped to ctrlrange where ctrllimited (data.ctrl
+/// itself is not changed), force = gear-free gain * ctrl, clamped to forcerange where
+/// forcelimited, then qfrc_actuator = moment^T actuator_force.
+void actuation(const Model& model, Data& data);
+
+/// Potential (gravity and joint springs) and kinetic energy into data.energy.
+/// @pre kinematics() and crba().
+void compute_energy(const Model& model, Data& data);
+
+}  // namespace lever

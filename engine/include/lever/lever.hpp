@@ -1,0 +1,12 @@
+// lever/lever.hpp: everything a lesson needs, in one include.
+#pragma once
+
+#include <lever/constraint.hpp>
+#include <lever/data.hpp>
+#include <lever/dynamics.hpp>
+#include <lever/error.hpp>
+#include <lever/forward.hpp>
+#include <lever/kinematics.hpp>
+#include <lever/model.hpp>
+#include <lever/spatial.hpp>
+#include <lever/version.hpp>

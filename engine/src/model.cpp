@@ -1,0 +1,21 @@
+// Name lookups of the Model.
+#include <lever/model.hpp>
+
+namespace lever {
+
+namespace {
+int find_name(const std::vector<std::string>& names, const std::string& n) {
+  for (size_t i = 0; i < names.size(); ++i) {
+    if (names[i] == n) return static_cast<int>(i);
+  }
+  return -1;
+}
+}  // namespace
+
+int Model::body(const std::string& n) const { return find_name(body_name, n); }
+int Model::joint(const std::string& n) const { return find_name(jnt_name, n); }
+int Model::site(const std::string& n) const { return find_name(site_name, n); }
+int Model::actuator(const std::string& n) const { return find_name(actuator_name, n); }
+int Model::geom(const std::string& n) const { return find_name(geom_name, n); }
+
+}  // namespace lever

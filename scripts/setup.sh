@@ -1,0 +1,33 @@
+#!/usr/bin/env bash
+# Install the Debian packages lever needs, only those that are missing.
+# Idempotent: prints nothing and changes nothing when everything is present.
+set -euo pipefail
+
+packages=(
+  build-essential cmake
+  libeigen3-dev        # engine (header-only linear algebra)
+  libtinyxml2-dev      # mjcf_lite
+  catch2               # tests (Catch2 2.13)
+  libmujoco-dev        # the reference: tests, benchmarks and `lever diff` only
+  libbenchmark-dev     # bench/
+  liborocos-kdl-dev    # bench/ peer
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "setup: installing ${missing[*]}"
+sudo_cmd=()
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null 2>&1 || { echo "setup: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+  sudo_cmd=(sudo)
+fi
+export DEBIAN_FRONTEND=noninteractive
+"${sudo_cmd[@]}" apt-get update -qq
+"${sudo_cmd[@]}" apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
