@@ -1,0 +1,194 @@
+#include "cli.hpp"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace lever::cli {
+
+namespace {
+bool contains(const std::vector<std::string>& list, const std::string& s) {
+  for (const auto& x : list) {
+    if (x == s) return true;
+  }
+  return false;
+}
+
+double parse_double(const std::string& text, const std::string& what) {
+  errno = 0;
+  char* end = nullptr;
+  const double x = std::strtod(text.c_str(), &end);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE) {
+    throw UsageError{what + ": '" + text + "' is not a number"};
+  }
+  if (!std::isfinite(x)) throw UsageError{what + ": '" + text + "' is not a finite number"};
+  return x;
+}
+}  // namespace
+
+Args::Args(const std::vector<std::string>& argv, const std::vector<std::string>& valued,
+           const std::vector<std::string>& switches) {
+  for (size_t i = 0; i < argv.size(); ++i) {
+    const std::string& a = argv[i];
+    if (a.rfind("--", 0) == 0 && a.size() > 2) {
+      std::string name = a.substr(2), value;
+      const size_t eq = name.find('=');
+      const bool inline_value = eq != std::string::npos;
+      if (inline_value) {
+        value = name.substr(eq + 1);
+        name = name.substr(0, eq);
+      }
+      if (contains(valued, name)) {
+        if (!inline_value) {
+          if (i + 1 >= argv.size()) throw UsageError{"option --" + name + " needs a value"};
+          value = argv[++i];
+        }
+        values_[name] = value;
+      } else if (contains(switches, name)) {
+        if (inline_value) throw UsageError{"option --" + name + " takes no value"};
+        values_[name] = "";
+      } else {
+        throw UsageError{"unknown option --" + name};
+      }
+    } else {
+      positional_.push_back(a);
+    }
+  }
+}
+
+bool Args::has(const std::string& name) const { return values_.count(name) > 0; }
+
+std::string Args::get(const std::string& name, const std::string& fallback) const {
+  const auto it = values_.find(name);
+  return it == values_.end() ? fallback : it->second;
+}
+
+double Args::get_double(const std::string& name, double fallback) const {
+  return has(name) ? parse_double(get(name), "--" + name) : fallback;
+}
+
+long Args::get_long(const std::string& name, long fallback) const {
+  if (!has(name)) return fallback;
+  const std::string text = get(name);
+  char* end = nullptr;
+  errno = 0;
+  const long x = std::strtol(text.c_str(), &end, 10);
+  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE) {
+    throw UsageError{"--" + name + ": '" + text + "' is not a whole number"};
+  }
+  return x;
+}
+
+Eigen::VectorXd Args::get_vector(const std::string& name, int n,
+                                 const Eigen::VectorXd& fallback) const {
+  if (!has(name)) return fallback;
+  std::vector<double> xs;
+  std::stringstream ss(get(name));
+  std::string item;
+  while (std::getline(ss, item, ',')) xs.push_back(parse_double(item, "--" + name));
+  if (static_cast<int>(xs.size()) != n) {
+    throw UsageError{"--" + name + " needs " + std::to_string(n) + " comma-separated numbers, got " +
+                     std::to_string(xs.size())};
+  }
+  return Eigen::Map<Eigen::VectorXd>(xs.data(), n);
+}
+
+std::string json_escape(const std::string& s) {
+  std::string out;
+  for (const char ch : s) {
+    switch (ch) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      case '\r': out += "\\r"; break;
+      default:
+        if (static_cast<unsigned char>(ch) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof buf, "\\u%04x", ch);
+          out += buf;
+        } else {
+          out += ch;
+        }
+    }
+  }
+  return out;
+}
+
+void Json::separator() {
+  if (after_key_) {
+    after_key_ = false;
+    return;
+  }
+  if (!first_.empty()) {
+    if (!first_.back()) std::fputc(',', out_);
+    first_.back() = false;
+  }
+}
+
+Json& Json::begin_object() {
+  separator();
+  std::fputc('{', out_);
+  first_.push_back(true);
+  return *this;
+}
+Json& Json::end_object() {
+  first_.pop_back();
+  std::fputc('}', out_);
+  return *this;
+}
+Json& Json::begin_array() {
+  separator();
+  std::fputc('[', out_);
+  first_.push_back(true);
+  return *this;
+}
+Json& Json::end_array() {
+  first_.pop_back();
+  std::fputc(']', out_);
+  return *this;
+}
+Json& Json::key(const std::string& k) {
+  separator();
+  std::fprintf(out_, "\"%s\":", json_escape(k).c_str());
+  after_key_ = true;
+  return *this;
+}
+Json& Json::value(double x) {
+  separator();
+  if (std::isfinite(x)) {
+    std::fprintf(out_, "%.17g", x);
+  } else {
+    std::fputs("null", out_);
+  }
+  return *this;
+}
+Json& Json::value(int x) {
+  separator();
+  std::fprintf(out_, "%d", x);
+  return *this;
+}
+Json& Json::value(long x) {
+  separator();
+  std::fprintf(out_, "%ld", x);
+  return *this;
+}
+Json& Json::value(bool x) {
+  separator();
+  std::fputs(x ? "true" : "false", out_);
+  return *this;
+}
+Json& Json::value(const std::string& s) {
+  separator();
+  std::fprintf(out_, "\"%s\"", json_escape(s).c_str());
+  return *this;
+}
+Json& Json::values(const Eigen::Ref<const Eigen::VectorXd>& v) {
+  begin_array();
+  for (Eigen::Index i = 0; i < v.size(); ++i) value(v[i]);
+  return end_array();
+}
+void Json::newline() { std::fputc('\n', out_); }
+
+}  // namespace lever::cli
