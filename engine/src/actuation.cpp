@@ -1,2 +1,56 @@
-// stub: being written
-#include <lever/lever.hpp>
+// Motors on joints: transmission, clamping and the joint forces they produce
+// (MuJoCo 2.2.2's mj_transmission and mj_fwdActuation for gain-only, stateless motors).
+//
+// Order, as MuJoCo: ctrl clamped to ctrlrange (on a copy; data.ctrl is never changed), force =
+// gain * ctrl with gain 1, force clamped to forcerange, then the gear carries it to the joint.
+// Clamping is silent here; `lever check` reports it.
+#include <lever/dynamics.hpp>
+
+#include <algorithm>
+
+#include "internal.hpp"
+
+namespace lever {
+
+namespace {
+double clamp(double x, const std::array<double, 2>& range) {
+  if (x < range[0]) return range[0];
+  if (x > range[1]) return range[1];
+  return x;  // NaN passes through, as mju_clip
+}
+}  // namespace
+
+void transmission(const Model& model, Data& data) {
+  for (int a = 0; a < model.nu; ++a) {
+    const int j = model.actuator_trnid[a];
+    const double gear = model.actuator_gear[a][0];  // a joint transmission uses gear[0] only
+    data.actuator_length[a] = gear * data.qpos[model.jnt_qposadr[j]];
+    data.actuator_velocity[a] = gear * data.qvel[model.jnt_dofadr[j]];
+  }
+}
+
+void actuation(const Model& model, Data& data) {
+  data.qfrc_actuator.setZero();
+  if (model.nu == 0) return;
+
+  // the clamped controls; one bad control zeroes them all (MuJoCo's mjWARN_BADCTRL)
+  Eigen::VectorXd& force = data.actuator_force;
+  bool bad = false;
+  for (int a = 0; a < model.nu; ++a) {
+    force[a] = model.actuator_ctrllimited[a] ? clamp(data.ctrl[a], model.actuator_ctrlrange[a])
+                                              : data.ctrl[a];
+    if (!bad && is_bad(force[a])) {
+      bad = true;
+      record_warning(data, Warning::kBadCtrl, a);
+    }
+  }
+  if (bad) force.setZero();
+
+  for (int a = 0; a < model.nu; ++a) {
+    if (model.actuator_forcelimited[a]) force[a] = clamp(force[a], model.actuator_forcerange[a]);
+    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    data.qfrc_actuator[dof] += model.actuator_gear[a][0] * force[a];
+  }
+}
+
+}  // namespace lever

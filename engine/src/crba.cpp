@@ -1,2 +1,102 @@
-// stub: being written
-#include <lever/lever.hpp>
+// Composite-rigid-body algorithm and the LTDL factorization of the joint-space inertia.
+//
+// crba() is Featherstone's Table 6.2 (HandC without the bias): composite inertias accumulated
+// from the leaves, then each column of M by carrying the force IC_i S_i up the ancestors.
+// factor_mass() and solve_mass() are his LTDL factorization and solves (section 6.5), which keep
+// M's branch-induced sparsity: row i of L is non-zero only at i's ancestors.
+//   lambda(i) = model.dof_parentid[i] (-1: the world), S_i = model.link_S[i],
+//   Xup[i] = ^i X_lambda(i), IC_i = composite inertia of the subtree rooted at link i.
+#include <lever/data.hpp>
+#include <lever/dynamics.hpp>
+
+#include "internal.hpp"
+
+namespace lever {
+
+void crba(const Model& model, Data& data) {
+  auto& IC = data.work.IC;
+  Eigen::MatrixXd& H = data.M;
+  const int n = model.nv;
+
+  // composite inertias, leaves to root: IC_lambda += Xup^T IC_i Xup
+  for (int i = 0; i < n; ++i) IC[i] = model.link_inertia[i];
+  for (int i = n - 1; i >= 0; --i) {
+    const int lambda = model.dof_parentid[i];
+    if (lambda >= 0) IC[lambda] += IC[i].expressed_in_parent(data.Xup[i]);
+  }
+
+  // columns: the force that accelerating joint i needs, seen by each ancestor j
+  H.setZero();
+  for (int i = 0; i < n; ++i) {
+    Force F = IC[i] * model.link_S[i];
+    H(i, i) = model.link_S[i].dot(F) + model.dof_armature[i];  // armature: rotor inertia of the motor
+    for (int j = i; model.dof_parentid[j] >= 0;) {
+      F = data.Xup[j].apply_transpose(F);
+      j = model.dof_parentid[j];
+      H(i, j) = H(j, i) = model.link_S[j].dot(F);
+    }
+  }
+}
+
+namespace {
+
+// In-place LTDL factorization of H: on return D is on the diagonal and L (unit diagonal implied)
+// below it. Returns the first dof whose pivot was not positive, or -1.
+int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
+  constexpr double kMinPivot = 1e-15;  // as MuJoCo's mjMINVAL: keep the solve finite
+  int bad = -1;
+  for (int k = model.nv - 1; k >= 0; --k) {
+    if (H(k, k) < kMinPivot) {
+      bad = k;
+      H(k, k) = kMinPivot;
+    }
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+      const double a = H(k, i) / H(k, k);
+      for (int j = i; j >= 0; j = model.dof_parentid[j]) H(i, j) -= a * H(k, j);
+      H(k, i) = a;
+    }
+  }
+  for (int k = 0; k < model.nv; ++k) diag_inverse[k] = 1.0 / H(k, k);
+  return bad;
+}
+
+// x = (L^T D L)^-1 x with a factor from ltdl().
+void ltdl_solve(const Model& model, const Eigen::MatrixXd& LD, const Eigen::VectorXd& diag_inverse,
+                Eigen::Ref<Eigen::VectorXd> x) {
+  const int n = model.nv;
+  // x <- L^-T x, leaves to root
+  for (int k = n - 1; k >= 0; --k) {
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= LD(k, i) * x[k];
+  }
+  // x <- D^-1 x
+  for (int k = 0; k < n; ++k) x[k] *= diag_inverse[k];
+  // x <- L^-1 x, root to leaves
+  for (int k = 0; k < n; ++k) {
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[k] -= LD(k, i) * x[i];
+  }
+}
+
+}  // namespace
+
+void factor_mass(const Model& model, Data& data) {
+  data.qLD = data.M;
+  const int bad = ltdl(model, data.qLD, data.qLDiagInv);
+  if (bad >= 0) record_warning(data, Warning::kInertia, bad);
+}
+
+void solve_mass(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x) {
+  ltdl_solve(model, data.qLD, data.qLDiagInv, x);
+}
+
+void factor_mass_damped(const Model& model, Data& data, double h) {
+  // M + h diag(damping): the matrix of the Euler step's implicit damping
+  data.work.LD2 = data.M;
+  for (int i = 0; i < model.nv; ++i) data.work.LD2(i, i) += h * model.dof_damping[i];
+  ltdl(model, data.work.LD2, data.work.LD2DiagInv);
+}
+
+void solve_mass_damped(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x) {
+  ltdl_solve(model, data.work.LD2, data.work.LD2DiagInv, x);
+}
+
+}  // namespace lever

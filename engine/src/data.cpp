@@ -69,8 +69,10 @@ Data::Data(const Model& model)
   work.vec1 = work.vec2 = work.vec3 = Eigen::VectorXd::Zero(nv);
   work.MinvJ = Eigen::MatrixXd::Zero(nv, nefc_max);
   work.A = Eigen::MatrixXd::Zero(nefc_max, nefc_max);
-  work.lcp_f = work.lcp_w = work.lcp_rhs = Eigen::VectorXd::Zero(nefc_max);
+  work.L = Eigen::MatrixXd::Zero(nefc_max, nefc_max);
+  work.lcp_f = work.lcp_w = Eigen::VectorXd::Zero(nefc_max);
   work.lcp_active.assign(nefc_max, 0);
+  work.lcp_index.assign(nefc_max, 0);
   work.rk_qpos0 = work.rk_dq = Eigen::VectorXd::Zero(nq);
   work.rk_qvel0 = work.rk_dv = Eigen::VectorXd::Zero(nv);
   for (int i = 0; i < 4; ++i) {

@@ -1,3 +1,60 @@
-// stub: being written
-#include <lever/lever.hpp>
-namespace lever { void forward(const Model&, Data&) {} void step(const Model&, Data&) {} void inverse(const Model&, Data&) {} }
+// The forward pipeline and inverse dynamics, stage by stage as MuJoCo 2.2.2's mj_forward and
+// mj_inverse: position (kinematics, M, limit rows, transmission), velocity (passive, bias,
+// reference accelerations), acceleration (motors, smooth dynamics, constraint solve).
+#include <lever/constraint.hpp>
+#include <lever/dynamics.hpp>
+#include <lever/forward.hpp>
+#include <lever/kinematics.hpp>
+
+namespace lever {
+
+namespace {
+
+void position_stage(const Model& model, Data& data) {
+  kinematics(model, data);
+  crba(model, data);
+  factor_mass(model, data);
+  make_constraint(model, data);
+  transmission(model, data);
+}
+
+void velocity_stage(const Model& model, Data& data) {
+  passive(model, data);
+  bias(model, data);
+  reference_constraint(model, data);
+}
+
+}  // namespace
+
+void forward(const Model& model, Data& data) {
+  position_stage(model, data);
+  velocity_stage(model, data);
+
+  // acceleration stage: the unconstrained acceleration, then the limit forces
+  actuation(model, data);
+  data.qfrc_smooth = data.qfrc_passive - data.qfrc_bias + data.qfrc_applied + data.qfrc_actuator;
+  data.qacc_smooth = data.qfrc_smooth;
+  solve_mass(model, data, data.qacc_smooth);
+  solve_constraint(model, data);
+}
+
+void inverse(const Model& model, Data& data) {
+  position_stage(model, data);
+  velocity_stage(model, data);
+
+  // limit forces implied by the given qacc: f = -D (J qacc - a_ref) where that pushes into the stop
+  data.qfrc_constraint.setZero();
+  for (int r = 0; r < data.nefc; ++r) {
+    const double jar = data.efc_sign[r] * data.qacc[data.efc_dof[r]] - data.efc_aref[r];
+    const bool active = jar < 0;
+    data.efc_force[r] = active ? -data.efc_D[r] * jar : 0.0;
+    data.efc_state[r] = active ? ConstraintState::kActive : ConstraintState::kSatisfied;
+    data.qfrc_constraint[data.efc_dof[r]] += data.efc_sign[r] * data.efc_force[r];
+  }
+
+  // M qacc + bias (armature included) is what every force together must supply
+  rnea(model, data, data.qacc, data.qfrc_inverse);
+  data.qfrc_inverse -= data.qfrc_passive + data.qfrc_constraint;
+}
+
+}  // namespace lever

@@ -1,3 +1,256 @@
-// stub: being written
-#include <lever/lever.hpp>
-namespace lever { void set_const(Model&) {} }
+// set_const(): check a model's parameters, derive lever's link tree from them, and compute the
+// constants MuJoCo's mj_setConst freezes at qpos0 (engine_setconst.c).
+#include <lever/dynamics.hpp>
+#include <lever/error.hpp>
+#include <lever/kinematics.hpp>
+#include <lever/model.hpp>
+
+#include <cmath>
+#include <string>
+
+namespace lever {
+
+namespace {
+
+template <typename T>
+void require_size(const std::vector<T>& v, int n, const char* name) {
+  if (static_cast<int>(v.size()) != n) {
+    throw ModelError("model array " + std::string(name) + " has " + std::to_string(v.size()) +
+                     " entries where " + std::to_string(n) + " are needed.");
+  }
+}
+
+#define LEVER_REQUIRE_SIZE(field, n) require_size(model.field, n, #field)
+
+void check_sizes(const Model& model) {
+  if (model.nbody < 1 || model.nv < 0 || model.njnt < 0 || model.nu < 0 || model.nsite < 0 ||
+      model.ngeom < 0) {
+    throw ModelError("model sizes must be non-negative and include the world body.");
+  }
+  if (model.nq != model.njnt || model.nv != model.njnt) {
+    throw ModelError("lever supports hinge and slide joints only, so nq == nv == njnt; got nq = " +
+                     std::to_string(model.nq) + ", nv = " + std::to_string(model.nv) +
+                     ", njnt = " + std::to_string(model.njnt) + ".");
+  }
+  const int nb = model.nbody, nj = model.njnt, nv = model.nv;
+  LEVER_REQUIRE_SIZE(body_name, nb);
+  LEVER_REQUIRE_SIZE(body_parentid, nb);
+  LEVER_REQUIRE_SIZE(body_jntnum, nb);
+  LEVER_REQUIRE_SIZE(body_jntadr, nb);
+  LEVER_REQUIRE_SIZE(body_dofnum, nb);
+  LEVER_REQUIRE_SIZE(body_dofadr, nb);
+  LEVER_REQUIRE_SIZE(body_pos, nb);
+  LEVER_REQUIRE_SIZE(body_quat, nb);
+  LEVER_REQUIRE_SIZE(body_ipos, nb);
+  LEVER_REQUIRE_SIZE(body_iquat, nb);
+  LEVER_REQUIRE_SIZE(body_mass, nb);
+  LEVER_REQUIRE_SIZE(body_inertia, nb);
+  LEVER_REQUIRE_SIZE(jnt_type, nj);
+  LEVER_REQUIRE_SIZE(jnt_qposadr, nj);
+  LEVER_REQUIRE_SIZE(jnt_dofadr, nj);
+  LEVER_REQUIRE_SIZE(jnt_bodyid, nj);
+  LEVER_REQUIRE_SIZE(jnt_limited, nj);
+  LEVER_REQUIRE_SIZE(jnt_solref, nj);
+  LEVER_REQUIRE_SIZE(jnt_solimp, nj);
+  LEVER_REQUIRE_SIZE(jnt_pos, nj);
+  LEVER_REQUIRE_SIZE(jnt_axis, nj);
+  LEVER_REQUIRE_SIZE(jnt_stiffness, nj);
+  LEVER_REQUIRE_SIZE(jnt_range, nj);
+  LEVER_REQUIRE_SIZE(jnt_margin, nj);
+  LEVER_REQUIRE_SIZE(dof_bodyid, nv);
+  LEVER_REQUIRE_SIZE(dof_jntid, nv);
+  LEVER_REQUIRE_SIZE(dof_parentid, nv);
+  LEVER_REQUIRE_SIZE(dof_armature, nv);
+  LEVER_REQUIRE_SIZE(dof_damping, nv);
+  LEVER_REQUIRE_SIZE(site_bodyid, model.nsite);
+  LEVER_REQUIRE_SIZE(site_pos, model.nsite);
+  LEVER_REQUIRE_SIZE(site_quat, model.nsite);
+  LEVER_REQUIRE_SIZE(actuator_trnid, model.nu);
+  LEVER_REQUIRE_SIZE(actuator_gear, model.nu);
+  LEVER_REQUIRE_SIZE(actuator_ctrllimited, model.nu);
+  LEVER_REQUIRE_SIZE(actuator_forcelimited, model.nu);
+  LEVER_REQUIRE_SIZE(actuator_ctrlrange, model.nu);
+  LEVER_REQUIRE_SIZE(actuator_forcerange, model.nu);
+  if (model.qpos0.size() != model.nq || model.qpos_spring.size() != model.nq) {
+    throw ModelError("qpos0 and qpos_spring must have nq entries.");
+  }
+}
+
+#undef LEVER_REQUIRE_SIZE
+
+// Parents precede children, joints and dofs follow the body tree, indices are in range.
+void check_tree(const Model& model) {
+  for (int b = 1; b < model.nbody; ++b) {
+    const int p = model.body_parentid[b];
+    if (p < 0 || p >= b) {
+      throw ModelError("body " + std::to_string(b) + " ('" + model.body_name[b] +
+                       "') must come after its parent (parent id " + std::to_string(p) + ").");
+    }
+  }
+  int next_joint = 0;
+  for (int b = 0; b < model.nbody; ++b) {
+    if (model.body_jntnum[b] == 0) continue;
+    if (model.body_jntadr[b] != next_joint || model.body_dofadr[b] != next_joint ||
+        model.body_dofnum[b] != model.body_jntnum[b]) {
+      throw ModelError("the joints and dofs of body '" + model.body_name[b] +
+                       "' are not numbered in body order.");
+    }
+    for (int k = 0; k < model.body_jntnum[b]; ++k, ++next_joint) {
+      const int j = next_joint;
+      if (model.jnt_bodyid[j] != b || model.jnt_qposadr[j] != j || model.jnt_dofadr[j] != j ||
+          model.dof_jntid[j] != j || model.dof_bodyid[j] != b) {
+        throw ModelError("joint " + std::to_string(j) + " is not wired to body '" +
+                         model.body_name[b] + "' consistently.");
+      }
+    }
+  }
+  if (next_joint != model.njnt) throw ModelError("some joints belong to no body.");
+  for (int j = 0; j < model.njnt; ++j) {
+    if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
+      throw ModelError("joint " + std::to_string(j) + " is neither a hinge nor a slide.");
+    }
+    if (std::abs(model.jnt_axis[j].norm() - 1.0) > 1e-10) {
+      throw ModelError("joint " + std::to_string(j) + "'s axis is not a unit vector.");
+    }
+  }
+  for (int s = 0; s < model.nsite; ++s) {
+    if (model.site_bodyid[s] < 0 || model.site_bodyid[s] >= model.nbody) {
+      throw ModelError("site " + std::to_string(s) + " names no body.");
+    }
+  }
+  for (int a = 0; a < model.nu; ++a) {
+    if (model.actuator_trnid[a] < 0 || model.actuator_trnid[a] >= model.njnt) {
+      throw ModelError("actuator " + std::to_string(a) + " names no joint.");
+    }
+  }
+}
+
+// A pose (position, quaternion) composed with another: a then b.
+struct Pose {
+  Eigen::Vector3d pos = Eigen::Vector3d::Zero();
+  Quat quat = Quat(1, 0, 0, 0);
+  Pose then(const Eigen::Vector3d& p, const Quat& q) const {
+    return Pose{pos + quat_to_mat(quat) * p, quat_mul(quat, q)};
+  }
+};
+
+// The link tree: one link per dof, frames on the joint anchors; bodies hang from their last link.
+void build_links(Model& model) {
+  const int nv = model.nv;
+  model.link_tree_pos.assign(nv, Eigen::Vector3d::Zero());
+  model.link_tree_quat.assign(nv, Quat(1, 0, 0, 0));
+  model.link_Xtree.assign(nv, Transform{});
+  model.link_type.assign(nv, JointType::kHinge);
+  model.link_axis.assign(nv, Eigen::Vector3d::UnitZ());
+  model.link_S.assign(nv, Motion::Zero());
+  model.link_inertia.assign(nv, RigidInertia{});
+  model.body_link.assign(model.nbody, -1);
+  model.body_offset_pos.assign(model.nbody, Eigen::Vector3d::Zero());
+  model.body_offset_quat.assign(model.nbody, Quat(1, 0, 0, 0));
+
+  for (int b = 1; b < model.nbody; ++b) {
+    const int p = model.body_parentid[b];
+    // the body's frame before its joints move, relative to the parent's link
+    Pose frame = Pose{model.body_offset_pos[p], model.body_offset_quat[p]}.then(
+        model.body_pos[b], model.body_quat[b]);
+    int link = model.body_link[p];
+    for (int k = 0; k < model.body_jntnum[b]; ++k) {
+      const int j = model.body_jntadr[b] + k;
+      const int i = model.jnt_dofadr[j];
+      if (model.dof_parentid[i] != link) {
+        throw ModelError("dof " + std::to_string(i) + "'s parent must be dof " +
+                         std::to_string(link) + ", the previous dof on its path to the world.");
+      }
+      // link i sits on joint j's anchor, with the body's orientation
+      const Pose tree = frame.then(model.jnt_pos[j], Quat(1, 0, 0, 0));
+      model.link_tree_pos[i] = tree.pos;
+      model.link_tree_quat[i] = tree.quat;
+      model.link_Xtree[i].E = quat_to_mat(tree.quat).transpose();
+      model.link_Xtree[i].r = tree.pos;
+      model.link_type[i] = model.jnt_type[j];
+      model.link_axis[i] = model.jnt_axis[j];
+      if (model.jnt_type[j] == JointType::kHinge) {
+        model.link_S[i] << model.jnt_axis[j], Eigen::Vector3d::Zero();
+      } else {
+        model.link_S[i] << Eigen::Vector3d::Zero(), model.jnt_axis[j];
+      }
+      // seen from link i, the body's frame is back at minus the anchor
+      frame = Pose{-model.jnt_pos[j], Quat(1, 0, 0, 0)};
+      link = i;
+    }
+    model.body_link[b] = link;
+    model.body_offset_pos[b] = frame.pos;
+    model.body_offset_quat[b] = frame.quat;
+
+    // the body's mass, in its link's frame
+    if (link >= 0 && model.body_mass[b] > 0) {
+      const Pose com = frame.then(model.body_ipos[b], model.body_iquat[b]);
+      const Eigen::Matrix3d R = quat_to_mat(com.quat);
+      const Eigen::Matrix3d Ic = R * model.body_inertia[b].asDiagonal() * R.transpose();
+      model.link_inertia[link] += RigidInertia::from_com(model.body_mass[b], com.pos, Ic);
+    }
+  }
+}
+
+// Mass, positive inertia and the triangle inequality for every body that moves.
+void check_mass(const Model& model) {
+  for (int b = 1; b < model.nbody; ++b) {
+    const double m = model.body_mass[b];
+    const Eigen::Vector3d& I = model.body_inertia[b];
+    if (!std::isfinite(m) || m < 0 || !I.allFinite() || (I.array() < 0).any()) {
+      throw ModelError("body '" + model.body_name[b] + "' has a negative or non-finite mass or inertia.");
+    }
+  }
+  for (int i = 0; i < model.nv; ++i) {
+    const RigidInertia& I = model.link_inertia[i];
+    // a link with no mass of its own is fine if a descendant carries mass; M checks the rest
+    if (!(I.m >= 0)) throw ModelError("link " + std::to_string(i) + " has negative mass.");
+  }
+}
+
+}  // namespace
+
+void set_const(Model& model) {
+  check_sizes(model);
+  check_tree(model);
+  build_links(model);
+  check_mass(model);
+
+  // subtree masses, leaves to root
+  model.body_subtreemass.assign(model.body_mass.begin(), model.body_mass.end());
+  for (int b = model.nbody - 1; b > 0; --b) {
+    model.body_subtreemass[model.body_parentid[b]] += model.body_subtreemass[b];
+  }
+
+  // constants at qpos0: diag of M and of M^-1, and the bodies' mean inverse inertias
+  Data data(model);
+  data.qpos = model.qpos0;
+  kinematics(model, data);
+  crba(model, data);
+  factor_mass(model, data);
+  model.dof_M0.resize(model.nv);
+  model.dof_invweight0.resize(model.nv);
+  Eigen::VectorXd x(model.nv);
+  for (int i = 0; i < model.nv; ++i) {
+    model.dof_M0[i] = data.M(i, i);
+    x.setZero();
+    x[i] = 1.0;
+    solve_mass(model, data, x);
+    model.dof_invweight0[i] = x[i];
+  }
+  model.body_invweight0.assign(model.nbody, {0.0, 0.0});
+  Eigen::MatrixXd jacp(3, model.nv), jacr(3, model.nv), Minv_Jt(model.nv, 3);
+  for (int b = 1; b < model.nbody; ++b) {
+    jac_point(model, data, b, data.xipos[b], jacp, jacr);
+    std::array<double, 2> weight{0.0, 0.0};
+    for (int part = 0; part < 2; ++part) {
+      const Eigen::MatrixXd& J = part == 0 ? jacp : jacr;
+      Minv_Jt = J.transpose();
+      for (int c = 0; c < 3; ++c) solve_mass(model, data, Minv_Jt.col(c));
+      weight[part] = (J * Minv_Jt).trace() / 3.0;
+    }
+    model.body_invweight0[b] = weight;
+  }
+}
+
+}  // namespace lever

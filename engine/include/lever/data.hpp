@@ -119,8 +119,10 @@ struct Data {
     Eigen::VectorXd vec1, vec2, vec3;  ///< (nv) scratch
     Eigen::MatrixXd MinvJ;           ///< (nv x nefc_max) M^-1 J^T
     Eigen::MatrixXd A;               ///< (nefc_max x nefc_max) J M^-1 J^T + R
-    Eigen::VectorXd lcp_f, lcp_w, lcp_rhs;  ///< (nefc_max) constraint solve
-    std::vector<int> lcp_active;     ///< (nefc_max)
+    Eigen::MatrixXd L;               ///< (nefc_max x nefc_max) Cholesky factor of A's active part
+    Eigen::VectorXd lcp_f, lcp_w;    ///< (nefc_max) row forces and complementary residuals
+    std::vector<int> lcp_active;     ///< (nefc_max) 1 for rows in the active set
+    std::vector<int> lcp_index;      ///< (nefc_max) the active rows, in order
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
   } work;
