@@ -1,0 +1,62 @@
+// lever/batch.hpp: many independent states at once, one const Model, one Data per thread.
+//
+// A batch is a set of states stored as matrix columns: qpos is nq x N, qvel is nv x N, ctrl is
+// nu x N (or nu x 0: no control), so state k is column k and its numbers are contiguous
+// (Eigen's default column-major order). The runner splits the N columns into `threads()`
+// contiguous blocks; the calling thread evaluates the first block and, when threads() > 1, one
+// std::thread per further block is started for the call and joined before it returns.
+//
+// Cost: per state, exactly what forward() or step() costs on its own (nothing is allocated: the
+// Data of each thread was built by the constructor). Per call with threads() > 1, starting and
+// joining the threads (tens of microseconds), so give each call thousands of states, not a few.
+// The results do not depend on the number of threads: lever keeps no warm start between states.
+//
+//   lever::BatchRunner runner(model, 2);
+//   Eigen::MatrixXd qpos(model.nq, n), qvel(model.nv, n), ctrl(model.nu, n), qacc(model.nv, n);
+//   ...  // fill the states
+//   runner.forward(qpos, qvel, ctrl, qacc);  // qacc.col(k) = forward() at state k
+//   runner.step(qpos, qvel, ctrl, 10);       // every state advanced by 10 steps, in place
+#pragma once
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <vector>
+
+#include <lever/data.hpp>
+#include <lever/model.hpp>
+
+namespace lever {
+
+class BatchRunner {
+ public:
+  /// One Data per thread, built here (the only allocations the runner makes besides the threads
+  /// themselves). The model must outlive the runner and stay unchanged while it is used.
+  /// Throws StateError if threads < 1.
+  explicit BatchRunner(const Model& model, int threads = 1);
+
+  int threads() const { return static_cast<int>(data_.size()); }
+  const Model& model() const { return *model_; }
+
+  /// The Data thread t works in (t = 0 is the calling thread): set qfrc_applied there to apply
+  /// the same force to every state of that thread's block, or read its warnings after a call.
+  Data& data(int t) { return *data_.at(static_cast<std::size_t>(t)); }
+
+  /// qacc.col(k) = data.qacc after forward() at state k (qpos.col(k), qvel.col(k), ctrl.col(k)).
+  /// ctrl may have no columns: every control is zero then. Throws StateError on a size mismatch.
+  void forward(const Eigen::Ref<const Eigen::MatrixXd>& qpos,
+               const Eigen::Ref<const Eigen::MatrixXd>& qvel,
+               const Eigen::Ref<const Eigen::MatrixXd>& ctrl, Eigen::Ref<Eigen::MatrixXd> qacc);
+
+  /// Advance every state by `nstep` calls of step() (the model's integrator), in place. Controls
+  /// are held constant over the steps. A state that step() resets (NaN or huge values) comes back
+  /// reset, as from step(). Throws StateError on a size mismatch or nstep < 0.
+  void step(Eigen::Ref<Eigen::MatrixXd> qpos, Eigen::Ref<Eigen::MatrixXd> qvel,
+            const Eigen::Ref<const Eigen::MatrixXd>& ctrl, int nstep = 1);
+
+ private:
+  const Model* model_;
+  std::vector<std::unique_ptr<Data>> data_;  // one per thread, each its own allocation
+};
+
+}  // namespace lever
