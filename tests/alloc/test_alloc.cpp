@@ -1,0 +1,323 @@
+// Once Data is built, evaluating and stepping allocate nothing (lever/data.hpp's promise).
+//
+// This executable replaces the global operator new/delete with counting versions. Eigen does not
+// allocate through operator new but through malloc, so on glibc (without a sanitizer, which has
+// its own malloc) malloc, calloc, realloc and the aligned variants are replaced as well, counting
+// and then forwarding to glibc's own (__libc_malloc, ...). A test first proves that both counters
+// see what they should: a std::vector and an Eigen::VectorXd.
+#include <catch2/catch.hpp>
+
+#include <lever/batch.hpp>
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+
+#include <test_models.hpp>
+
+#include <atomic>
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <limits>
+#include <new>
+#include <random>
+#include <string>
+#include <vector>
+
+#ifdef LEVER_ALLOC_HAVE_MUJOCO
+#include <mujoco/from_mujoco.hpp>
+#endif
+
+// ---- counting allocation functions ------------------------------------------------------------
+
+namespace {
+std::atomic<long> g_new_calls{0};     // operator new, every form
+std::atomic<long> g_malloc_calls{0};  // malloc, calloc, realloc, aligned forms
+}  // namespace
+
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+#define LEVER_ALLOC_SANITIZER 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+#define LEVER_ALLOC_SANITIZER 1
+#endif
+#endif
+
+#if defined(__GLIBC__) && !defined(LEVER_ALLOC_SANITIZER)
+#define LEVER_ALLOC_COUNTS_MALLOC 1
+extern "C" {
+void* __libc_malloc(std::size_t size);
+void* __libc_calloc(std::size_t count, std::size_t size);
+void* __libc_realloc(void* ptr, std::size_t size);
+void* __libc_memalign(std::size_t alignment, std::size_t size);
+void __libc_free(void* ptr);
+
+void* malloc(std::size_t size) noexcept {
+  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  return __libc_malloc(size);
+}
+void* calloc(std::size_t count, std::size_t size) noexcept {
+  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  return __libc_calloc(count, size);
+}
+void* realloc(void* ptr, std::size_t size) noexcept {
+  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  return __libc_realloc(ptr, size);
+}
+void free(void* ptr) noexcept { __libc_free(ptr); }
+void* memalign(std::size_t alignment, std::size_t size) noexcept {
+  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  return __libc_memalign(alignment, size);
+}
+void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
+  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  return __libc_memalign(alignment, size);
+}
+int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept {
+  g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
+  void* p = __libc_memalign(alignment, size);
+  if (p == nullptr) return ENOMEM;
+  *out = p;
+  return 0;
+}
+}  // extern "C"
+#endif
+
+namespace {
+void* counted_new(std::size_t size) {
+  g_new_calls.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* counted_new(std::size_t size, std::align_val_t alignment) {
+  g_new_calls.fetch_add(1, std::memory_order_relaxed);
+  const auto a = static_cast<std::size_t>(alignment);
+  const std::size_t rounded = (size + a - 1) / a * a;  // aligned_alloc wants a multiple
+  if (void* p = std::aligned_alloc(a, rounded == 0 ? a : rounded)) return p;
+  throw std::bad_alloc();
+}
+}  // namespace
+
+void* operator new(std::size_t size) { return counted_new(size); }
+void* operator new[](std::size_t size) { return counted_new(size); }
+void* operator new(std::size_t size, std::align_val_t a) { return counted_new(size, a); }
+void* operator new[](std::size_t size, std::align_val_t a) { return counted_new(size, a); }
+void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
+  try { return counted_new(size); } catch (...) { return nullptr; }
+}
+void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
+  try { return counted_new(size); } catch (...) { return nullptr; }
+}
+void* operator new(std::size_t size, std::align_val_t a, const std::nothrow_t&) noexcept {
+  try { return counted_new(size, a); } catch (...) { return nullptr; }
+}
+void* operator new[](std::size_t size, std::align_val_t a, const std::nothrow_t&) noexcept {
+  try { return counted_new(size, a); } catch (...) { return nullptr; }
+}
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
+void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
+
+// ---- helpers ---------------------------------------------------------------------------------------
+
+namespace {
+
+struct Allocations {
+  long news = 0, mallocs = 0;
+};
+
+// The allocations `fn` makes. Nothing else may run between the two readings.
+template <class Fn>
+Allocations count(Fn&& fn) {
+  const long n0 = g_new_calls.load(), m0 = g_malloc_calls.load();
+  fn();
+  return {g_new_calls.load() - n0, g_malloc_calls.load() - m0};
+}
+
+lever::Model load(const std::string& path, std::string& how) {
+  try {
+    how = "mjcf_lite";
+    return lever::mjcf::load_file(path);
+  } catch (const lever::Error& e) {
+#ifdef LEVER_ALLOC_HAVE_MUJOCO
+    how = std::string("from_mujoco (mjcf_lite: ") + e.what() + ")";
+    const auto mj = lever::test::mujoco_load(path);
+    return lever::test::from_mujoco(mj.get());
+#else
+    throw;
+#endif
+  }
+}
+
+struct NamedState {
+  std::string name;
+  Eigen::VectorXd qpos, qvel, ctrl;
+};
+
+// Inside the ranges; every limited joint past its lower stop; past its upper stop; alternating
+// (so several rows are active and the limit solve pivots); controls beyond their ranges; a NaN
+// control; and a NaN velocity (step() resets the state).
+std::vector<NamedState> states_for(const lever::Model& m) {
+  std::mt19937_64 rng(lever::test::seed_for(m.name));
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  NamedState inside{"inside the ranges", m.qpos0, Eigen::VectorXd(m.nv), Eigen::VectorXd(m.nu)};
+  for (int j = 0; j < m.njnt; ++j) {
+    const int a = m.jnt_qposadr[j];
+    if (m.jnt_limited[j]) {
+      const double mid = 0.5 * (m.jnt_range[j][0] + m.jnt_range[j][1]);
+      inside.qpos[a] = mid + 0.3 * (m.jnt_range[j][1] - m.jnt_range[j][0]) * u(rng);
+    } else {
+      inside.qpos[a] += u(rng);
+    }
+  }
+  for (int i = 0; i < m.nv; ++i) inside.qvel[i] = u(rng);
+  for (int a = 0; a < m.nu; ++a) inside.ctrl[a] = u(rng);
+
+  std::vector<NamedState> states{inside};
+  auto past = [&](const std::string& name, auto side_of) {
+    NamedState s = inside;
+    s.name = name;
+    for (int j = 0; j < m.njnt; ++j) {
+      if (!m.jnt_limited[j]) continue;
+      const int side = side_of(j);
+      s.qpos[m.jnt_qposadr[j]] = side == 0 ? m.jnt_range[j][0] - 0.01 : m.jnt_range[j][1] + 0.01;
+    }
+    states.push_back(s);
+  };
+  past("every limited joint past its lower stop", [](int) { return 0; });
+  past("every limited joint past its upper stop", [](int) { return 1; });
+  past("alternate stops", [](int j) { return j % 2; });
+
+  NamedState wild = inside;
+  wild.name = "controls beyond their ranges";
+  for (int a = 0; a < m.nu; ++a) wild.ctrl[a] = 1e3 * (a % 2 ? 1 : -1);
+  states.push_back(wild);
+  if (m.nu > 0) {
+    NamedState bad = inside;
+    bad.name = "a NaN control";
+    bad.ctrl[0] = std::numeric_limits<double>::quiet_NaN();
+    states.push_back(bad);
+  }
+  if (m.nv > 0) {
+    NamedState bad = inside;
+    bad.name = "a NaN velocity";
+    bad.qvel[0] = std::numeric_limits<double>::quiet_NaN();
+    states.push_back(bad);
+  }
+  return states;
+}
+
+void set_state(lever::Data& d, const NamedState& s) {
+  d.qpos = s.qpos;
+  d.qvel = s.qvel;
+  d.ctrl = s.ctrl;
+}
+
+}  // namespace
+
+TEST_CASE("the counting allocator sees operator new and Eigen's allocations", "[alloc]") {
+  const Allocations a = count([] {
+    std::vector<double> v(100, 1.0);
+    REQUIRE(v.size() == 100);
+  });
+  CHECK(a.news >= 1);
+#ifdef LEVER_ALLOC_COUNTS_MALLOC
+  const Allocations b = count([] {
+    Eigen::VectorXd x = Eigen::VectorXd::Ones(100);
+    REQUIRE(x.sum() == 100.0);
+  });
+  CHECK(b.mallocs >= 1);
+#else
+  WARN("malloc is not counted here (sanitizer or not glibc): Eigen's allocations are invisible");
+#endif
+}
+
+TEST_CASE("forward, step, inverse, jac_site and compute_energy allocate nothing", "[alloc]") {
+  const std::vector<std::string> files = lever::test::all_model_files();
+  REQUIRE(!files.empty());
+  for (const std::string& path : files) {
+    std::string how;
+    const lever::Model base = load(path, how);
+    const std::string model_name = std::filesystem::path(path).filename().string();
+    INFO("model " << model_name << " loaded by " << how);
+    for (const lever::Integrator integrator : {lever::Integrator::kEuler, lever::Integrator::kRK4}) {
+      lever::Model m = base;
+      m.opt.integrator = integrator;
+      INFO("integrator " << (integrator == lever::Integrator::kEuler ? "Euler" : "RK4"));
+      lever::Data d(m);  // the only allocations allowed
+      Eigen::MatrixXd jacp(3, m.nv), jacr(3, m.nv);
+      int rows_seen = 0;
+      for (const NamedState& s : states_for(m)) {
+        INFO("state: " << s.name);
+        set_state(d, s);
+        Allocations a = count([&] { lever::forward(m, d); });
+        rows_seen = std::max(rows_seen, d.nefc);
+        CHECK(a.news == 0);
+        CHECK(a.mallocs == 0);
+
+        a = count([&] { lever::compute_energy(m, d); });
+        CHECK(a.news == 0);
+        CHECK(a.mallocs == 0);
+
+        for (int site = 0; site < m.nsite; ++site) {
+          a = count([&] { lever::jac_site(m, d, site, jacp, jacr); });
+          CHECK(a.news == 0);
+          CHECK(a.mallocs == 0);
+        }
+
+        set_state(d, s);
+        d.qacc.setConstant(0.5);
+        a = count([&] { lever::inverse(m, d); });
+        CHECK(a.news == 0);
+        CHECK(a.mallocs == 0);
+
+        set_state(d, s);
+        a = count([&] {
+          for (int k = 0; k < 5; ++k) lever::step(m, d);
+        });
+        CHECK(a.news == 0);
+        CHECK(a.mallocs == 0);
+      }
+      // the limited models must really have exercised the limit rows
+      bool limited = false;
+      for (int j = 0; j < m.njnt; ++j) limited = limited || m.jnt_limited[j];
+      if (limited) CHECK(rows_seen >= 1);
+    }
+  }
+}
+
+TEST_CASE("BatchRunner allocates nothing on one thread", "[alloc]") {
+  for (const std::string& path : lever::test::all_model_files()) {
+    std::string how;
+    const lever::Model m = load(path, how);
+    INFO("model " << path << " loaded by " << how);
+    const std::vector<NamedState> states = states_for(m);
+    const auto n = static_cast<Eigen::Index>(states.size());
+    Eigen::MatrixXd qpos(m.nq, n), qvel(m.nv, n), ctrl(m.nu, n), qacc(m.nv, n);
+    for (Eigen::Index k = 0; k < n; ++k) {
+      qpos.col(k) = states[static_cast<std::size_t>(k)].qpos;
+      qvel.col(k) = states[static_cast<std::size_t>(k)].qvel;
+      ctrl.col(k) = states[static_cast<std::size_t>(k)].ctrl;
+    }
+    const Eigen::MatrixXd no_ctrl(m.nu, 0);
+    lever::BatchRunner runner(m, 1);
+    Allocations a = count([&] { runner.forward(qpos, qvel, ctrl, qacc); });
+    CHECK(a.news == 0);
+    CHECK(a.mallocs == 0);
+    a = count([&] { runner.forward(qpos, qvel, no_ctrl, qacc); });
+    CHECK(a.news == 0);
+    CHECK(a.mallocs == 0);
+    a = count([&] { runner.step(qpos, qvel, ctrl, 3); });
+    CHECK(a.news == 0);
+    CHECK(a.mallocs == 0);
+  }
+}
