@@ -1,11 +1,12 @@
 // Composite-rigid-body algorithm and the LTDL factorization of the joint-space inertia.
 //
-// crba() is Featherstone's Table 6.2 (HandC without the bias): composite inertias accumulated
-// from the leaves, then each column of M by carrying the force IC_i S_i up the ancestors.
+// crba() is Featherstone's composite-rigid-body algorithm (RBDA 2008, section 6.2) with every
+// quantity in absolute coordinates (see kinematics.cpp), where it needs no coordinate transforms:
+//   IC_b = I_b + sum of IC over b's children           (composite inertia of b's subtree)
+//   H_ij = S_j . (IC_body(i) S_i)   for j = i and each ancestor dof j of i
 // factor_mass() and solve_mass() are his LTDL factorization and solves (section 6.5), which keep
 // M's branch-induced sparsity: row i of L is non-zero only at i's ancestors.
-//   lambda(i) = model.dof_parentid[i] (-1: the world), S_i = model.link_S[i],
-//   Xup[i] = ^i X_lambda(i), IC_i = composite inertia of the subtree rooted at link i.
+//   lambda(i) = model.dof_parentid[i] (-1: the world), S_i = data.cdof[i], I_b = data.cinert[b].
 #include <lever/data.hpp>
 #include <lever/dynamics.hpp>
 
@@ -14,26 +15,23 @@
 namespace lever {
 
 void crba(const Model& model, Data& data) {
-  auto& IC = data.work.IC;
+  auto& IC = data.work.crb;
   Eigen::MatrixXd& H = data.M;
-  const int n = model.nv;
 
-  // composite inertias, leaves to root: IC_lambda += Xup^T IC_i Xup
-  for (int i = 0; i < n; ++i) IC[i] = model.link_inertia[i];
-  for (int i = n - 1; i >= 0; --i) {
-    const int lambda = model.dof_parentid[i];
-    if (lambda >= 0) IC[lambda] += IC[i].expressed_in_parent(data.Xup[i]);
+  // composite inertias, leaves to root (bodies on the world stop there: nothing above them moves)
+  for (int b = 1; b < model.nbody; ++b) IC[b] = data.cinert[b];
+  for (int b = model.nbody - 1; b > 0; --b) {
+    const int parent = model.body_parentid[b];
+    if (parent > 0) IC[parent] += IC[b];
   }
 
-  // columns: the force that accelerating joint i needs, seen by each ancestor j
+  // columns: the force that accelerating joint i needs, seen by i and by each of its ancestors
   H.setZero();
-  for (int i = 0; i < n; ++i) {
-    Force F = IC[i] * model.link_S[i];
-    H(i, i) = model.link_S[i].dot(F) + model.dof_armature[i];  // armature: rotor inertia of the motor
-    for (int j = i; model.dof_parentid[j] >= 0;) {
-      F = data.Xup[j].apply_transpose(F);
-      j = model.dof_parentid[j];
-      H(i, j) = H(j, i) = model.link_S[j].dot(F);
+  for (int i = 0; i < model.nv; ++i) {
+    const Force F = IC[model.dof_bodyid[i]] * data.cdof[i];
+    H(i, i) = data.cdof[i].dot(F) + model.dof_armature[i];  // armature: rotor inertia of the motor
+    for (int j = model.dof_parentid[i]; j >= 0; j = model.dof_parentid[j]) {
+      H(i, j) = H(j, i) = data.cdof[j].dot(F);
     }
   }
 }

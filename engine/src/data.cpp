@@ -32,10 +32,13 @@ Data::Data(const Model& model)
   ximat.assign(nbody, Eigen::Matrix3d::Identity());
   site_xpos.assign(nsite, Eigen::Vector3d::Zero());
   site_xmat.assign(nsite, Eigen::Matrix3d::Identity());
-  Xup.assign(nv, Transform{});
-  link_xpos.assign(nv, Eigen::Vector3d::Zero());
-  link_xquat.assign(nv, Eigen::Vector4d(1, 0, 0, 0));
-  link_xmat.assign(nv, Eigen::Matrix3d::Identity());
+  xanchor.assign(model.njnt, Eigen::Vector3d::Zero());
+  xaxis.assign(model.njnt, Eigen::Vector3d::Zero());
+  subtree_com.assign(nbody, Eigen::Vector3d::Zero());
+  cdof.assign(nv, Motion::Zero());
+  cinert.assign(nbody, RigidInertia{});
+  cvel.assign(nbody, Motion::Zero());
+  cdof_dot.assign(nv, Motion::Zero());
 
   M = Eigen::MatrixXd::Zero(nv, nv);
   qLD = Eigen::MatrixXd::Zero(nv, nv);
@@ -59,11 +62,9 @@ Data::Data(const Model& model)
     *v = Eigen::VectorXd::Zero(nv);
   }
 
-  work.v.assign(nv, Motion::Zero());
-  work.a.assign(nv, Motion::Zero());
-  work.f.assign(nv, Force::Zero());
-  work.c.assign(nv, Motion::Zero());
-  work.IC.assign(nv, RigidInertia{});
+  work.crb.assign(nbody, RigidInertia{});
+  work.cacc.assign(nbody, Motion::Zero());
+  work.cfrc.assign(nbody, Force::Zero());
   work.LD2 = Eigen::MatrixXd::Zero(nv, nv);
   work.LD2DiagInv = Eigen::VectorXd::Zero(nv);
   work.vec1 = work.vec2 = work.vec3 = Eigen::VectorXd::Zero(nv);

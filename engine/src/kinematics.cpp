@@ -1,10 +1,15 @@
-// Forward kinematics and site Jacobians.
+// Forward kinematics, the spatial quantities every algorithm shares, and point Jacobians.
 //
-// Each link's pose relative to its parent link is its constant tree pose followed by its joint's
-// motion (Featherstone's Xup = XJ Xtree); world poses compose these from the root outwards, as
-// MuJoCo's mj_kinematics does. Bodies and sites then hang from their link by constant offsets.
-// Orientations are carried as quaternions and normalized at every link, so that xquat matches
-// MuJoCo's (same composition order, same sign) and xmat stays orthonormal.
+// Poses compose from the root outwards, body by body, joint by joint, as MuJoCo's mj_kinematics:
+// a body starts at its parent's frame moved by (body_pos, body_quat); a hinge then turns it about
+// the joint's axis through the joint's anchor, a slide moves it along the axis. Orientations are
+// quaternions (normalized once per body, so xquat has MuJoCo's sign and xmat stays orthonormal).
+//
+// Then, as MuJoCo's mj_comPos, the quantities the dynamics needs, in absolute coordinates (world
+// axes, origin at the subtree centre of mass of the body's world child, c):
+//   cdof_i   = [a; a x (c - p)] for a hinge with world axis a through anchor p, [0; a] for a slide,
+//              i.e. the joint's motion subspace S_i (Featherstone's s_i in absolute coordinates);
+//   cinert_b = the body's spatial inertia about c.
 #include <lever/kinematics.hpp>
 
 #include <cmath>
@@ -13,90 +18,118 @@ namespace lever {
 
 namespace {
 
-// Pose of link i relative to its parent link at joint displacement theta = qpos - qpos0.
-struct RelativePose {
-  Quat quat;
-  Eigen::Matrix3d R;
-  Eigen::Vector3d pos;
-};
+// Body poses, joint anchors and axes; then inertial frames and sites.
+void poses(const Model& model, Data& data) {
+  for (int b = 1; b < model.nbody; ++b) {
+    const int p = model.body_parentid[b];
+    Eigen::Vector3d pos = data.xpos[p] + rotate(data.xmat[p], model.body_pos[b]);
+    Quat quat = model.body_rotated[b] ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
+    // the frame's rotation matrix, kept current while joints turn it
+    Eigen::Matrix3d R = model.body_rotated[b] ? quat_to_mat(quat) : data.xmat[p];
 
-RelativePose joint_pose(const Model& model, int i, double theta) {
-  RelativePose rel;
-  const Eigen::Vector3d& axis = model.link_axis[i];
-  const Eigen::Matrix3d tree_R = model.link_Xtree[i].E.transpose();
-  if (model.link_type[i] == JointType::kHinge) {
-    // rotation about the axis through the link origin; the origin does not move
-    const double s = std::sin(0.5 * theta), c = std::cos(0.5 * theta);
-    rel.quat = quat_mul(model.link_tree_quat[i], Quat(c, axis.x() * s, axis.y() * s, axis.z() * s));
-    rel.pos = model.link_tree_pos[i];
-  } else {
-    // translation along the axis, expressed in the parent link's frame
-    rel.quat = model.link_tree_quat[i];
-    rel.pos = model.link_tree_pos[i] + tree_R * (axis * theta);
+    for (int k = 0; k < model.body_jntnum[b]; ++k) {
+      const int j = model.body_jntadr[b] + k;
+      const int qadr = model.jnt_qposadr[j];
+      const double theta = data.qpos[qadr] - model.qpos0[qadr];
+      const Eigen::Vector3d& axis = model.jnt_axis[j];
+      data.xaxis[j] = rotate(R, axis);
+      data.xanchor[j] = model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(R, model.jnt_pos[j])) : pos;
+      if (model.jnt_type[j] == JointType::kSlide) {
+        pos += data.xaxis[j] * theta;
+        continue;
+      }
+      const double s = std::sin(0.5 * theta), c = std::cos(0.5 * theta);
+      quat = quat_mul(quat, Quat(c, axis[0] * s, axis[1] * s, axis[2] * s));
+      R = quat_to_mat(quat);
+      // the anchor stays where it is: the frame's origin swings around it
+      if (model.jnt_offset[j]) pos = data.xanchor[j] - rotate(R, model.jnt_pos[j]);
+    }
+
+    data.xquat[b] = quat_normalized(quat);
+    data.xmat[b] = quat_to_mat(data.xquat[b]);
+    data.xpos[b] = pos;
+    data.xipos[b] = pos + rotate(data.xmat[b], model.body_ipos[b]);
+    if (model.body_irotated[b]) {
+      data.ximat[b].noalias() = data.xmat[b] * model.body_imat[b];
+    } else {
+      data.ximat[b] = data.xmat[b];
+    }
   }
-  rel.R = quat_to_mat(rel.quat);
-  return rel;
+
+  for (int s = 0; s < model.nsite; ++s) {
+    const int b = model.site_bodyid[s];
+    data.site_xpos[s] = data.xpos[b] + rotate(data.xmat[b], model.site_pos[s]);
+    if (model.site_rotated[s]) {
+      data.site_xmat[s].noalias() = data.xmat[b] * model.site_mat[s];
+    } else {
+      data.site_xmat[s] = data.xmat[b];
+    }
+  }
+}
+
+// Subtree centres of mass, body inertias and joint motion subspaces in absolute coordinates.
+void com_quantities(const Model& model, Data& data) {
+  // mass-weighted positions, summed leaves to root
+  for (int b = 0; b < model.nbody; ++b) data.subtree_com[b] = model.body_mass[b] * data.xipos[b];
+  for (int b = model.nbody - 1; b > 0; --b) {
+    data.subtree_com[model.body_parentid[b]] += data.subtree_com[b];
+  }
+  for (int b = 0; b < model.nbody; ++b) {
+    const double m = model.body_subtreemass[b];
+    data.subtree_com[b] = m < 1e-15 ? data.xipos[b] : Eigen::Vector3d(data.subtree_com[b] / m);
+  }
+
+  // each body's inertia about its tree's centre of mass, world axes: I_world = R diag(I) R^T
+  for (int b = 1; b < model.nbody; ++b) {
+    const Eigen::Matrix3d& R = data.ximat[b];
+    const Eigen::Vector3d& d = model.body_inertia[b];
+    Eigen::Matrix3d Iw;
+    for (int row = 0; row < 3; ++row) {
+      for (int col = row; col < 3; ++col) {
+        Iw(row, col) = Iw(col, row) =
+            R(row, 0) * d[0] * R(col, 0) + R(row, 1) * d[1] * R(col, 1) + R(row, 2) * d[2] * R(col, 2);
+      }
+    }
+    const Eigen::Vector3d c = data.xipos[b] - data.subtree_com[model.body_rootid[b]];
+    data.cinert[b] = RigidInertia::from_com(model.body_mass[b], c, Iw);
+  }
+
+  // each dof's motion subspace
+  for (int i = 0; i < model.nv; ++i) {
+    const int j = model.dof_jntid[i];
+    const Eigen::Vector3d& axis = data.xaxis[j];
+    if (model.jnt_type[j] == JointType::kHinge) {
+      const Eigen::Vector3d to_origin =
+          data.subtree_com[model.body_rootid[model.dof_bodyid[i]]] - data.xanchor[j];
+      data.cdof[i].head<3>() = axis;
+      data.cdof[i].tail<3>() = cross(axis, to_origin);
+    } else {
+      data.cdof[i].head<3>().setZero();
+      data.cdof[i].tail<3>() = axis;
+    }
+  }
 }
 
 }  // namespace
 
 void kinematics(const Model& model, Data& data) {
-  // links, root to leaves: Xup and world poses
-  for (int i = 0; i < model.nv; ++i) {
-    const int lambda = model.dof_parentid[i];
-    const int qadr = model.jnt_qposadr[model.dof_jntid[i]];
-    const RelativePose rel = joint_pose(model, i, data.qpos[qadr] - model.qpos0[qadr]);
-
-    // ^i X_lambda: rotate parent coordinates into link i's, origin at rel.pos
-    data.Xup[i].E = rel.R.transpose();
-    data.Xup[i].r = rel.pos;
-
-    if (lambda < 0) {
-      data.link_xquat[i] = quat_normalized(rel.quat);
-      data.link_xpos[i] = rel.pos;
-    } else {
-      data.link_xquat[i] = quat_normalized(quat_mul(data.link_xquat[lambda], rel.quat));
-      data.link_xpos[i] = data.link_xpos[lambda] + data.link_xmat[lambda] * rel.pos;
-    }
-    data.link_xmat[i] = quat_to_mat(data.link_xquat[i]);
-  }
-
-  // bodies: a constant offset from their link (the world frame for bodies welded to it)
-  for (int b = 1; b < model.nbody; ++b) {
-    const int link = model.body_link[b];
-    if (link < 0) {
-      data.xquat[b] = quat_normalized(model.body_offset_quat[b]);
-      data.xpos[b] = model.body_offset_pos[b];
-    } else {
-      data.xquat[b] = quat_normalized(quat_mul(data.link_xquat[link], model.body_offset_quat[b]));
-      data.xpos[b] = data.link_xpos[link] + data.link_xmat[link] * model.body_offset_pos[b];
-    }
-    data.xmat[b] = quat_to_mat(data.xquat[b]);
-    data.xipos[b] = data.xpos[b] + data.xmat[b] * model.body_ipos[b];
-    data.ximat[b] = quat_to_mat(quat_mul(data.xquat[b], model.body_iquat[b]));
-  }
-
-  // sites
-  for (int s = 0; s < model.nsite; ++s) {
-    const int b = model.site_bodyid[s];
-    data.site_xpos[s] = data.xpos[b] + data.xmat[b] * model.site_pos[s];
-    data.site_xmat[s] = quat_to_mat(quat_mul(data.xquat[b], model.site_quat[s]));
-  }
+  poses(model, data);
+  com_quantities(model, data);
 }
 
 void jac_point(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
                Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr) {
   jacp.setZero();
   jacr.setZero();
-  // every joint between the body and the world moves the point: walk the links to the root
-  for (int i = model.body_link[body]; i >= 0; i = model.dof_parentid[i]) {
-    const Eigen::Vector3d axis = data.link_xmat[i] * model.link_axis[i];
-    if (model.link_type[i] == JointType::kHinge) {
-      jacr.col(i) = axis;
-      jacp.col(i) = axis.cross(point - data.link_xpos[i]);
-    } else {
-      jacp.col(i) = axis;
-    }
+  const Eigen::Vector3d offset = point - data.subtree_com[model.body_rootid[body]];
+  // the dofs between the body and the world: start at the nearest body that has any
+  int b = body;
+  while (b > 0 && model.body_dofnum[b] == 0) b = model.body_parentid[b];
+  if (b == 0) return;
+  for (int i = model.body_dofadr[b] + model.body_dofnum[b] - 1; i >= 0; i = model.dof_parentid[i]) {
+    const Motion& S = data.cdof[i];
+    jacr.col(i) = S.head<3>();
+    jacp.col(i) = S.tail<3>() + cross(S.head<3>(), offset);  // the point's velocity per unit rate
   }
 }
 

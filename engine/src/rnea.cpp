@@ -1,7 +1,9 @@
-// Recursive Newton-Euler inverse dynamics: Featherstone's Table 5.1, symbol for symbol.
-//
-//   lambda(i) = model.dof_parentid[i] (-1: the world), S_i = model.link_S[i],
-//   Xup[i] = ^i X_lambda(i) from kinematics(), I_i = model.link_inertia[i] (link coordinates).
+// Recursive Newton-Euler inverse dynamics: Featherstone's recursion (RBDA 2008, section 5.3) with
+// every quantity in absolute coordinates (see kinematics.cpp), where no transforms are needed:
+//   v_b = v_parent + S_i qd_i                       velocity, over the dofs i of body b
+//   a_b = a_parent + Sdot_i qd_i + S_i qdd_i        Sdot_i = v x S_i, v the velocity before dof i
+//   f_b = I_b a_b + v_b x* I_b v_b                  net force on body b
+//   f_parent += f_b  (leaves to root);  tau_i = S_i . f_body(i)
 // Gravity enters as a fictitious upward acceleration of the world, a_0 = -a_g, so the result
 // includes the gravity torques (MuJoCo's qfrc_bias does too).
 #include <lever/data.hpp>
@@ -11,38 +13,40 @@ namespace lever {
 
 namespace {
 
-// tau = ID(q, qd, qdd) without armature; qdd == nullptr means zero acceleration.
+// tau = ID(q, qd, qdd) without armature; qdd == nullptr means zero acceleration. Also leaves the
+// body velocities and the derivatives of the motion subspaces in data (cvel, cdof_dot).
 void newton_euler(const Model& model, Data& data, const double* qdd, Eigen::Ref<Eigen::VectorXd> tau) {
-  auto& v = data.work.v;
-  auto& a = data.work.a;
-  auto& f = data.work.f;
-  Motion a_world;
-  a_world << 0.0, 0.0, 0.0, -model.opt.gravity;
+  auto& v = data.cvel;
+  auto& a = data.work.cacc;
+  auto& f = data.work.cfrc;
+  v[0].setZero();
+  a[0] << 0.0, 0.0, 0.0, -model.opt.gravity;
 
-  // forward pass: velocity, acceleration and the net force each link needs, root to leaves
-  for (int i = 0; i < model.nv; ++i) {
-    const int lambda = model.dof_parentid[i];
-    const Motion& S = model.link_S[i];
-    const Transform& X = data.Xup[i];
-    const Motion vJ = S * data.qvel[i];
-    if (lambda < 0) {
-      v[i] = vJ;
-      a[i] = X.apply(a_world);
-    } else {
-      v[i] = X.apply(v[lambda]) + vJ;
-      a[i] = X.apply(a[lambda]) + cross_motion(v[i], vJ);
+  // forward pass: velocity, acceleration and the net force each body needs, root to leaves
+  for (int b = 1; b < model.nbody; ++b) {
+    const int parent = model.body_parentid[b];
+    Motion vb = v[parent];
+    Motion ab = a[parent];
+    for (int k = 0; k < model.body_dofnum[b]; ++k) {
+      const int i = model.body_dofadr[b] + k;
+      const Motion& S = data.cdof[i];
+      data.cdof_dot[i] = cross_motion(vb, S);  // S moves with the body carrying it
+      vb += S * data.qvel[i];
+      ab += data.cdof_dot[i] * data.qvel[i];
+      if (qdd != nullptr) ab += S * qdd[i];
     }
-    if (qdd != nullptr) a[i] += S * qdd[i];
-    const RigidInertia& I = model.link_inertia[i];
-    f[i] = I * a[i] + cross_force(v[i], I * v[i]);
+    v[b] = vb;
+    a[b] = ab;
+    const RigidInertia& I = data.cinert[b];
+    f[b] = I * ab + cross_force(vb, I * vb);
   }
 
   // backward pass: each joint transmits the force of its whole subtree
-  for (int i = model.nv - 1; i >= 0; --i) {
-    tau[i] = model.link_S[i].dot(f[i]);
-    const int lambda = model.dof_parentid[i];
-    if (lambda >= 0) f[lambda] += data.Xup[i].apply_transpose(f[i]);
+  for (int b = model.nbody - 1; b > 0; --b) {
+    const int parent = model.body_parentid[b];
+    if (parent > 0) f[parent] += f[b];
   }
+  for (int i = 0; i < model.nv; ++i) tau[i] = data.cdof[i].dot(f[model.dof_bodyid[i]]);
 }
 
 }  // namespace

@@ -105,6 +105,20 @@ void check_tree(const Model& model) {
     }
   }
   if (next_joint != model.njnt) throw ModelError("some joints belong to no body.");
+  // each dof's parent is the previous dof on its path to the world
+  std::vector<int> last_dof(model.nbody, -1);
+  for (int b = 1; b < model.nbody; ++b) {
+    int previous = last_dof[model.body_parentid[b]];
+    for (int k = 0; k < model.body_dofnum[b]; ++k) {
+      const int i = model.body_dofadr[b] + k;
+      if (model.dof_parentid[i] != previous) {
+        throw ModelError("dof " + std::to_string(i) + "'s parent must be dof " +
+                         std::to_string(previous) + ", the previous dof on its path to the world.");
+      }
+      previous = i;
+    }
+    last_dof[b] = previous;
+  }
   for (int j = 0; j < model.njnt; ++j) {
     if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
       throw ModelError("joint " + std::to_string(j) + " is neither a hinge nor a slide.");
@@ -125,74 +139,42 @@ void check_tree(const Model& model) {
   }
 }
 
-// A pose (position, quaternion) composed with another: a then b.
-struct Pose {
-  Eigen::Vector3d pos = Eigen::Vector3d::Zero();
-  Quat quat = Quat(1, 0, 0, 0);
-  Pose then(const Eigen::Vector3d& p, const Quat& q) const {
-    return Pose{pos + quat_to_mat(quat) * p, quat_mul(quat, q)};
-  }
-};
+bool is_identity(const Quat& q) { return q[0] == 1.0 && q[1] == 0.0 && q[2] == 0.0 && q[3] == 0.0; }
 
-// The link tree: one link per dof, frames on the joint anchors; bodies hang from their last link.
-void build_links(Model& model) {
-  const int nv = model.nv;
-  model.link_tree_pos.assign(nv, Eigen::Vector3d::Zero());
-  model.link_tree_quat.assign(nv, Quat(1, 0, 0, 0));
-  model.link_Xtree.assign(nv, Transform{});
-  model.link_type.assign(nv, JointType::kHinge);
-  model.link_axis.assign(nv, Eigen::Vector3d::UnitZ());
-  model.link_S.assign(nv, Motion::Zero());
-  model.link_inertia.assign(nv, RigidInertia{});
-  model.body_link.assign(model.nbody, -1);
-  model.body_offset_pos.assign(model.nbody, Eigen::Vector3d::Zero());
-  model.body_offset_quat.assign(model.nbody, Quat(1, 0, 0, 0));
-
+// Each body's world child, and the subtree masses (summed leaves to root).
+void build_tree_sums(Model& model) {
+  model.body_rootid.assign(model.nbody, 0);
   for (int b = 1; b < model.nbody; ++b) {
     const int p = model.body_parentid[b];
-    // the body's frame before its joints move, relative to the parent's link
-    Pose frame = Pose{model.body_offset_pos[p], model.body_offset_quat[p]}.then(
-        model.body_pos[b], model.body_quat[b]);
-    int link = model.body_link[p];
-    for (int k = 0; k < model.body_jntnum[b]; ++k) {
-      const int j = model.body_jntadr[b] + k;
-      const int i = model.jnt_dofadr[j];
-      if (model.dof_parentid[i] != link) {
-        throw ModelError("dof " + std::to_string(i) + "'s parent must be dof " +
-                         std::to_string(link) + ", the previous dof on its path to the world.");
-      }
-      // link i sits on joint j's anchor, with the body's orientation
-      const Pose tree = frame.then(model.jnt_pos[j], Quat(1, 0, 0, 0));
-      model.link_tree_pos[i] = tree.pos;
-      model.link_tree_quat[i] = tree.quat;
-      model.link_Xtree[i].E = quat_to_mat(tree.quat).transpose();
-      model.link_Xtree[i].r = tree.pos;
-      model.link_type[i] = model.jnt_type[j];
-      model.link_axis[i] = model.jnt_axis[j];
-      if (model.jnt_type[j] == JointType::kHinge) {
-        model.link_S[i] << model.jnt_axis[j], Eigen::Vector3d::Zero();
-      } else {
-        model.link_S[i] << Eigen::Vector3d::Zero(), model.jnt_axis[j];
-      }
-      // seen from link i, the body's frame is back at minus the anchor
-      frame = Pose{-model.jnt_pos[j], Quat(1, 0, 0, 0)};
-      link = i;
-    }
-    model.body_link[b] = link;
-    model.body_offset_pos[b] = frame.pos;
-    model.body_offset_quat[b] = frame.quat;
-
-    // the body's mass, in its link's frame
-    if (link >= 0 && model.body_mass[b] > 0) {
-      const Pose com = frame.then(model.body_ipos[b], model.body_iquat[b]);
-      const Eigen::Matrix3d R = quat_to_mat(com.quat);
-      const Eigen::Matrix3d Ic = R * model.body_inertia[b].asDiagonal() * R.transpose();
-      model.link_inertia[link] += RigidInertia::from_com(model.body_mass[b], com.pos, Ic);
-    }
+    model.body_rootid[b] = p == 0 ? b : model.body_rootid[p];
+  }
+  model.body_subtreemass.assign(model.body_mass.begin(), model.body_mass.end());
+  for (int b = model.nbody - 1; b > 0; --b) {
+    model.body_subtreemass[model.body_parentid[b]] += model.body_subtreemass[b];
   }
 }
 
-// Mass, positive inertia and the triangle inequality for every body that moves.
+// Rotation matrices of the constant quaternions, and whether each is the identity.
+void build_rotations(Model& model) {
+  model.body_rotated.resize(model.nbody);
+  model.body_imat.resize(model.nbody);
+  model.body_irotated.resize(model.nbody);
+  for (int b = 0; b < model.nbody; ++b) {
+    model.body_rotated[b] = !is_identity(model.body_quat[b]);
+    model.body_imat[b] = quat_to_mat(quat_normalized(model.body_iquat[b]));
+    model.body_irotated[b] = !is_identity(model.body_iquat[b]);
+  }
+  model.site_mat.resize(model.nsite);
+  model.site_rotated.resize(model.nsite);
+  for (int s = 0; s < model.nsite; ++s) {
+    model.site_mat[s] = quat_to_mat(quat_normalized(model.site_quat[s]));
+    model.site_rotated[s] = !is_identity(model.site_quat[s]);
+  }
+  model.jnt_offset.resize(model.njnt);
+  for (int j = 0; j < model.njnt; ++j) model.jnt_offset[j] = !model.jnt_pos[j].isZero(0.0);
+}
+
+// Non-negative, finite masses and inertias.
 void check_mass(const Model& model) {
   for (int b = 1; b < model.nbody; ++b) {
     const double m = model.body_mass[b];
@@ -201,11 +183,6 @@ void check_mass(const Model& model) {
       throw ModelError("body '" + model.body_name[b] + "' has a negative or non-finite mass or inertia.");
     }
   }
-  for (int i = 0; i < model.nv; ++i) {
-    const RigidInertia& I = model.link_inertia[i];
-    // a link with no mass of its own is fine if a descendant carries mass; M checks the rest
-    if (!(I.m >= 0)) throw ModelError("link " + std::to_string(i) + " has negative mass.");
-  }
 }
 
 }  // namespace
@@ -213,14 +190,9 @@ void check_mass(const Model& model) {
 void set_const(Model& model) {
   check_sizes(model);
   check_tree(model);
-  build_links(model);
   check_mass(model);
-
-  // subtree masses, leaves to root
-  model.body_subtreemass.assign(model.body_mass.begin(), model.body_mass.end());
-  for (int b = model.nbody - 1; b > 0; --b) {
-    model.body_subtreemass[model.body_parentid[b]] += model.body_subtreemass[b];
-  }
+  build_tree_sums(model);
+  build_rotations(model);
 
   // constants at qpos0: diag of M and of M^-1, and the bodies' mean inverse inertias
   Data data(model);

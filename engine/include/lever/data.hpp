@@ -58,10 +58,13 @@ struct Data {
   std::vector<Eigen::Matrix3d> ximat;   ///< (nbody) principal axes of inertia
   std::vector<Eigen::Vector3d> site_xpos;  ///< (nsite)
   std::vector<Eigen::Matrix3d> site_xmat;  ///< (nsite)
-  std::vector<Transform> Xup;           ///< (nv) ^i X_lambda(i): parent link -> link i coordinates
-  std::vector<Eigen::Vector3d> link_xpos;  ///< (nv) link frame origins (on the joint axis)
-  std::vector<Eigen::Vector4d> link_xquat; ///< (nv) link orientations
-  std::vector<Eigen::Matrix3d> link_xmat;  ///< (nv) link rotations
+  std::vector<Eigen::Vector3d> xanchor;     ///< (njnt) joint anchors
+  std::vector<Eigen::Vector3d> xaxis;       ///< (njnt) joint axes (unit)
+  // Spatial quantities below are in absolute coordinates: world axes, origin at the centre of mass
+  // of the subtree hanging from the body's world child (MuJoCo's "c-frame").
+  std::vector<Eigen::Vector3d> subtree_com; ///< (nbody) centre of mass of each body's subtree
+  std::vector<Motion> cdof;                 ///< (nv) motion subspace of each dof
+  std::vector<RigidInertia> cinert;         ///< (nbody) spatial inertia of each body
 
   // ---- position stage: crba(), factor_mass() --------------------------------------------------
   Eigen::MatrixXd M;       ///< (nv x nv) joint-space inertia, full and symmetric, armature included
@@ -86,6 +89,8 @@ struct Data {
   Eigen::VectorXd efc_B;             ///< (nefc) damping of the reference dynamics
 
   // ---- velocity stage ------------------------------------------------------------------------
+  std::vector<Motion> cvel;           ///< (nbody) spatial velocity of each body
+  std::vector<Motion> cdof_dot;       ///< (nv) time derivative of cdof
   Eigen::VectorXd actuator_velocity;  ///< (nu)
   Eigen::VectorXd qfrc_passive;       ///< (nv) joint springs and damping
   Eigen::VectorXd qfrc_bias;          ///< (nv) C(q, qvel) qvel + g(q): M qacc + qfrc_bias = tau
@@ -110,10 +115,9 @@ struct Data {
 
   // ---- workspace (preallocated; contents are meaningless between calls) ------------------------
   struct Workspace {
-    std::vector<Motion> v, a;        ///< (nv) link velocities, accelerations (link coordinates)
-    std::vector<Force> f;            ///< (nv) link forces
-    std::vector<RigidInertia> IC;    ///< (nv) composite inertias
-    std::vector<Motion> c;           ///< (nv) velocity-product accelerations
+    std::vector<RigidInertia> crb;   ///< (nbody) composite inertias
+    std::vector<Motion> cacc;        ///< (nbody) body accelerations
+    std::vector<Force> cfrc;         ///< (nbody) body forces
     Eigen::MatrixXd LD2;             ///< (nv x nv) factor of M + h diag(damping) (Euler)
     Eigen::VectorXd LD2DiagInv;      ///< (nv)
     Eigen::VectorXd vec1, vec2, vec3;  ///< (nv) scratch

@@ -5,18 +5,18 @@
 // Quaternions are (w, x, y, z); 3-vectors and 3x3 matrices are expressed in the frame named in
 // each field's comment. Index 0 of every body array is the world body.
 //
-// The model has three parts:
+// The model has two parts:
 //   1. the parameters, filled by a compiler (mjcf_lite) or by hand;
-//   2. the constants that `set_const()` derives from them at qpos0, as MuJoCo's mj_setConst does
-//      (`dof_invweight0`, `dof_M0`, `body_invweight0`, `body_subtreemass`);
-//   3. lever's own link tree (`link_*`, `body_link`, ...), which `set_const()` also derives, so the
-//      algorithms can walk one degree of freedom per link, as in Featherstone's tables.
+//   2. what `set_const()` derives from them: the constants MuJoCo's mj_setConst freezes at qpos0
+//      (`dof_invweight0`, `dof_M0`, `body_invweight0`, `body_subtreemass`), and a few constant
+//      rotation matrices and flags that spare the algorithms repeated work.
 // After editing any parameter, call `lever::set_const(model)` before evaluating it again.
 #pragma once
 
 #include <Eigen/Core>
 
 #include <array>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -143,22 +143,14 @@ struct Model {
   std::vector<double> body_subtreemass;               ///< kg, this body and all below it
   std::vector<std::array<double, 2>> body_invweight0; ///< (translational, rotational) at qpos0
 
-  // ---- set_const: lever's link tree, one link per dof (Featherstone's numbering) -------------
-  // Link i moves with dof i; its parent link is dof_parentid[i] (-1: the world), always < i.
-  // Link i's frame has the orientation of its body after the body's joints up to and including
-  // joint i, and its origin on joint i's anchor, so that the joint turns or slides about the
-  // frame's own origin (Featherstone's jcalc).
-  std::vector<Eigen::Vector3d> link_tree_pos;   ///< link i's origin in its parent link's frame
-                                                ///< at q = qpos0 (welded bodies between included)
-  std::vector<Eigen::Vector4d> link_tree_quat;  ///< link i's orientation in its parent's at qpos0
-  std::vector<Transform> link_Xtree;            ///< the same as a Plücker transform ^i X_lambda(i)
-  std::vector<JointType> link_type;             ///< joint type of link i
-  std::vector<Eigen::Vector3d> link_axis;       ///< unit joint axis, link frame
-  std::vector<Motion> link_S;                   ///< motion subspace [axis; 0] or [0; axis]
-  std::vector<RigidInertia> link_inertia;       ///< bodies rigidly attached to link i, link frame
-  std::vector<int> body_link;  ///< the link whose frame carries body b (-1: the world frame)
-  std::vector<Eigen::Vector3d> body_offset_pos;   ///< body b's origin in its link's frame
-  std::vector<Eigen::Vector4d> body_offset_quat;  ///< body b's orientation in its link's frame
+  // ---- set_const: constant rotations, so kinematics() does not rebuild them every call ------
+  // A flag is 0 where the rotation is the identity, which lets kinematics() skip the product.
+  std::vector<uint8_t> body_rotated;       ///< body_quat is not the identity
+  std::vector<Eigen::Matrix3d> body_imat;  ///< rotation of body_iquat
+  std::vector<uint8_t> body_irotated;      ///< body_iquat is not the identity
+  std::vector<Eigen::Matrix3d> site_mat;   ///< rotation of site_quat
+  std::vector<uint8_t> site_rotated;       ///< site_quat is not the identity
+  std::vector<uint8_t> jnt_offset;         ///< jnt_pos is not zero (the anchor is off the origin)
 
   // ---- names ---------------------------------------------------------------------------------
   /// Index of the named object, or -1. Linear search: meant for set-up code, not inner loops.

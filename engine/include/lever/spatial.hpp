@@ -2,11 +2,11 @@
 // (2008), chapter 2, and the quaternion helpers the kinematics needs.
 //
 // Conventions, as in the book and in MuJoCo:
-//   Motion m = [angular; linear]   (omega; v at the frame origin)
+//   Motion m = [angular; linear]   (omega; v of the body point at the frame origin)
 //   Force  f = [moment;  force]    (n about the frame origin; f)
-//   Transform X = ^B X_A = rot(E) xlt(r): maps motion vectors from A coordinates to B coordinates;
-//     E rotates A coordinates into B coordinates, r is B's origin expressed in A.
 //   Quaternions are (w, x, y, z), as in MuJoCo.
+// lever's algorithms express every spatial vector in one frame (see data.hpp), so no coordinate
+// transforms appear in them.
 #pragma once
 
 #include <Eigen/Core>
@@ -25,53 +25,40 @@ inline Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
   return s;
 }
 
-/// Plücker coordinate transform ^B X_A = rot(E) xlt(r) (Featherstone eq. 2.24).
-struct Transform {
-  Eigen::Matrix3d E = Eigen::Matrix3d::Identity();  ///< A coordinates -> B coordinates
-  Eigen::Vector3d r = Eigen::Vector3d::Zero();      ///< B's origin, A coordinates
+/// R v for a 3x3 rotation R, written out (the compiler schedules it better than a generic product).
+inline Eigen::Vector3d rotate(const Eigen::Matrix3d& R, const Eigen::Vector3d& v) {
+  return Eigen::Vector3d(R(0, 0) * v[0] + R(0, 1) * v[1] + R(0, 2) * v[2],
+                         R(1, 0) * v[0] + R(1, 1) * v[1] + R(1, 2) * v[2],
+                         R(2, 0) * v[0] + R(2, 1) * v[1] + R(2, 2) * v[2]);
+}
 
-  /// X m: the motion vector m (A coordinates) in B coordinates.
-  Motion apply(const Motion& m) const {
-    Motion out;
-    const Eigen::Vector3d w = m.head<3>();
-    out.head<3>().noalias() = E * w;
-    out.tail<3>().noalias() = E * (m.tail<3>() - r.cross(w));
-    return out;
-  }
+/// R^T v.
+inline Eigen::Vector3d rotate_back(const Eigen::Matrix3d& R, const Eigen::Vector3d& v) {
+  return Eigen::Vector3d(R(0, 0) * v[0] + R(1, 0) * v[1] + R(2, 0) * v[2],
+                         R(0, 1) * v[0] + R(1, 1) * v[1] + R(2, 1) * v[2],
+                         R(0, 2) * v[0] + R(1, 2) * v[1] + R(2, 2) * v[2]);
+}
 
-  /// X^T f = ^A X_B^* f: the force f (B coordinates) in A coordinates.
-  Force apply_transpose(const Force& f) const {
-    Force out;
-    out.tail<3>().noalias() = E.transpose() * f.tail<3>();
-    out.head<3>().noalias() = E.transpose() * f.head<3>();
-    out.head<3>() += r.cross(out.tail<3>());
-    return out;
-  }
-
-  /// ^B X_C = ^B X_A * ^A X_C.
-  Transform operator*(const Transform& A_X_C) const {
-    Transform out;
-    out.E.noalias() = E * A_X_C.E;
-    out.r = A_X_C.r + A_X_C.E.transpose() * r;
-    return out;
-  }
-};
+/// a x b.
+inline Eigen::Vector3d cross(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+  return Eigen::Vector3d(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
+                         a[0] * b[1] - a[1] * b[0]);
+}
 
 /// Spatial inertia of a rigid body (or of a rigid assembly) about a frame's origin, in that frame
 /// (Featherstone eq. 2.63): mass m, first moment h = m c, rotational inertia I about the origin.
 struct RigidInertia {
   double m = 0.0;
   Eigen::Vector3d h = Eigen::Vector3d::Zero();
-  Eigen::Matrix3d I = Eigen::Matrix3d::Zero();
+  Eigen::Matrix3d I = Eigen::Matrix3d::Zero();  ///< symmetric
 
-  /// The momentum I v of a body moving with v.
+  /// The momentum I v of a body moving with v: [I w + h x v; m v - h x w].
   Force operator*(const Motion& v) const {
-    Force out;
     const Eigen::Vector3d w = v.head<3>();
     const Eigen::Vector3d lin = v.tail<3>();
-    out.head<3>().noalias() = I * w;
-    out.head<3>() += h.cross(lin);
-    out.tail<3>() = m * lin - h.cross(w);
+    Force out;
+    out.head<3>() = rotate(I, w) + cross(h, lin);
+    out.tail<3>() = m * lin - cross(h, w);
     return out;
   }
 
@@ -82,27 +69,19 @@ struct RigidInertia {
     return *this;
   }
 
-  /// X^T I X, where I is expressed in B coordinates and X = ^B X_A: the same inertia in A
-  /// coordinates (Featherstone eq. 2.66, in its compact form).
-  RigidInertia expressed_in_parent(const Transform& X) const {
-    RigidInertia out;
-    out.m = m;
-    const Eigen::Vector3d hA = X.E.transpose() * h;  // first moment about B's origin, A axes
-    out.h = hA + m * X.r;
-    const Eigen::Matrix3d IA = X.E.transpose() * I * X.E;  // about B's origin, A axes
-    // shift from B's origin to A's origin (B's origin sits at r in A): I + r x h x + (h + m r) x r x
-    const Eigen::Matrix3d rx = skew(X.r);
-    out.I = IA - rx * skew(hA) - skew(out.h) * rx;
-    return out;
-  }
-
-  /// A body of mass m, centre of mass c and rotational inertia Ic about c, all in this frame.
+  /// A body of mass m, centre of mass c and rotational inertia Ic about c, all in this frame:
+  /// the parallel-axis theorem, I = Ic + m (|c|^2 1 - c c^T).
   static RigidInertia from_com(double mass, const Eigen::Vector3d& c, const Eigen::Matrix3d& Ic) {
     RigidInertia out;
     out.m = mass;
     out.h = mass * c;
-    const Eigen::Matrix3d cx = skew(c);
-    out.I = Ic - mass * cx * cx;
+    const double c2 = c.squaredNorm();
+    for (int row = 0; row < 3; ++row) {
+      for (int col = row; col < 3; ++col) {
+        const double shift = mass * ((row == col ? c2 : 0.0) - c[row] * c[col]);
+        out.I(row, col) = out.I(col, row) = Ic(row, col) + shift;
+      }
+    }
     return out;
   }
 
@@ -117,19 +96,19 @@ struct RigidInertia {
 
 /// v x m: the derivative of motion vector m moving with velocity v (Featherstone eq. 2.31).
 inline Motion cross_motion(const Motion& v, const Motion& m) {
-  Motion out;
   const Eigen::Vector3d w = v.head<3>();
-  out.head<3>() = w.cross(m.head<3>());
-  out.tail<3>() = w.cross(m.tail<3>()) + v.tail<3>().cross(m.head<3>());
+  Motion out;
+  out.head<3>() = cross(w, m.head<3>());
+  out.tail<3>() = cross(w, m.tail<3>()) + cross(v.tail<3>(), m.head<3>());
   return out;
 }
 
 /// v x* f: the derivative of force vector f moving with velocity v (Featherstone eq. 2.32).
 inline Force cross_force(const Motion& v, const Force& f) {
-  Force out;
   const Eigen::Vector3d w = v.head<3>();
-  out.head<3>() = w.cross(f.head<3>()) + v.tail<3>().cross(f.tail<3>());
-  out.tail<3>() = w.cross(f.tail<3>());
+  Force out;
+  out.head<3>() = cross(w, f.head<3>()) + cross(v.tail<3>(), f.tail<3>());
+  out.tail<3>() = cross(w, f.tail<3>());
   return out;
 }
 
