@@ -1,0 +1,293 @@
+// The timed operations: lever, MuJoCo 2.2.2 and Orocos KDL on the same model and state.
+//
+// Every benchmark is named <operation>/<model>/<peer>. An operation's peers compute the same
+// quantity from the same state. Where a peer needs earlier stages (MuJoCo's mj_rne needs
+// mj_kinematics, mj_comPos and mj_comVel; lever's bias() needs kinematics()), they run once before
+// the timing loop; the *_from_q operations time the whole chain from the state instead.
+// bench/report.cpp (kOperations) says what each operation times for each peer.
+#include "benchmarks.hpp"
+
+#include <benchmark/benchmark.h>
+
+#include <lever/batch.hpp>
+#include <lever/lever.hpp>
+
+#include <array>
+#include <functional>
+#include <memory>
+#include <thread>
+
+namespace lever::bench {
+
+namespace {
+
+using Fn = std::function<void(benchmark::State&)>;
+
+void add(const std::string& op, const Fixture& f, const char* peer, Fn fn) {
+  benchmark::RegisterBenchmark((op + "/" + f.name + "/" + peer).c_str(), std::move(fn))
+      ->Unit(benchmark::kNanosecond);
+}
+
+// ---- lever ------------------------------------------------------------------------------------
+
+Data lever_data(const Model& m, const State& s) {
+  Data d(m);
+  d.qpos = s.qpos;
+  d.qvel = s.qvel;
+  d.qacc = s.qacc;
+  d.ctrl = s.ctrl;
+  return d;
+}
+
+// prepare(m, d) once, then op(m, d) timed
+template <class Prepare, class Op>
+Fn lever_fn(const Fixture* f, const State* s, Prepare prepare, Op op) {
+  return [f, s, prepare, op](benchmark::State& st) {
+    const Model& m = f->model;
+    Data d = lever_data(m, *s);
+    prepare(m, d);
+    for (auto _ : st) {
+      op(m, d);
+      benchmark::ClobberMemory();
+    }
+  };
+}
+
+void register_lever(const Fixture& f) {
+  const auto nothing = [](const Model&, Data&) {};
+  const auto kin = [](const Model& m, Data& d) { kinematics(m, d); };
+  const State* s = &f.state;
+  const int site = f.site;
+
+  add("fk", f, "lever", lever_fn(&f, s, nothing, kin));
+  if (site >= 0) {
+    // the Jacobians live outside Data, sized once
+    auto jac = std::make_shared<std::array<Eigen::MatrixXd, 2>>();
+    (*jac)[0].resize(3, f.model.nv);
+    (*jac)[1].resize(3, f.model.nv);
+    add("jac_site", f, "lever", lever_fn(&f, s, kin, [site, jac](const Model& m, Data& d) {
+          jac_site(m, d, site, (*jac)[0], (*jac)[1]);
+        }));
+  }
+  const auto bias_op = [](const Model& m, Data& d) { bias(m, d); };
+  const auto rnea_op = [](const Model& m, Data& d) { rnea(m, d, d.qacc, d.qfrc_inverse); };
+  const auto crba_op = [](const Model& m, Data& d) { crba(m, d); };
+  add("bias", f, "lever", lever_fn(&f, s, kin, bias_op));
+  add("bias_from_q", f, "lever", lever_fn(&f, s, nothing, [](const Model& m, Data& d) {
+        kinematics(m, d);
+        bias(m, d);
+      }));
+  add("rnea", f, "lever", lever_fn(&f, s, kin, rnea_op));
+  add("rnea_from_q", f, "lever", lever_fn(&f, s, nothing, [](const Model& m, Data& d) {
+        kinematics(m, d);
+        rnea(m, d, d.qacc, d.qfrc_inverse);
+      }));
+  add("crba", f, "lever", lever_fn(&f, s, kin, crba_op));
+  add("crba_factor", f, "lever", lever_fn(&f, s, kin, [](const Model& m, Data& d) {
+        crba(m, d);
+        factor_mass(m, d);
+      }));
+  add("crba_from_q", f, "lever", lever_fn(&f, s, nothing, [](const Model& m, Data& d) {
+        kinematics(m, d);
+        crba(m, d);
+      }));
+  add("inverse", f, "lever", lever_fn(&f, s, nothing, [](const Model& m, Data& d) { inverse(m, d); }));
+
+  const auto forward_op = [](const Model& m, Data& d) { forward(m, d); };
+  // a step moves the state: put it back before each one (two copies of nv numbers, every peer)
+  const auto step_op = [](const State* state) {
+    return [state](const Model& m, Data& d) {
+      d.qpos = state->qpos;
+      d.qvel = state->qvel;
+      step(m, d);
+    };
+  };
+  add("forward", f, "lever", lever_fn(&f, s, nothing, forward_op));
+  add("step", f, "lever", lever_fn(&f, s, nothing, step_op(s)));
+  if (f.limit) {
+    const State* l = &*f.limit;
+    add("forward_limit", f, "lever", lever_fn(&f, l, nothing, forward_op));
+    add("step_limit", f, "lever", lever_fn(&f, l, nothing, step_op(l)));
+  }
+}
+
+// ---- MuJoCo 2.2.2 -------------------------------------------------------------------------------
+
+template <class Prepare, class Op>
+Fn mujoco_fn(const Fixture* f, const State* s, Prepare prepare, Op op) {
+  return [f, s, prepare, op](benchmark::State& st) {
+    const mjModel* m = f->mj.get();
+    MjDataPtr data = mujoco_data(*f, *s);
+    mjData* d = data.get();
+    prepare(m, d);
+    for (auto _ : st) {
+      op(m, d);
+      benchmark::ClobberMemory();
+    }
+  };
+}
+
+void register_mujoco(const Fixture& f) {
+  const auto nothing = [](const mjModel*, mjData*) {};
+  const auto kin = [](const mjModel* m, mjData* d) {
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+  };
+  const auto kin_vel = [](const mjModel* m, mjData* d) {
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+    mj_comVel(m, d);
+  };
+  const State* s = &f.state;
+  const int site = f.site;
+
+  add("fk", f, "mujoco", mujoco_fn(&f, s, nothing, [](const mjModel* m, mjData* d) { mj_kinematics(m, d); }));
+  if (site >= 0) {
+    auto jac = std::make_shared<std::vector<mjtNum>>(6 * static_cast<std::size_t>(f.mj->nv));
+    add("jac_site", f, "mujoco", mujoco_fn(&f, s, kin, [site, jac](const mjModel* m, mjData* d) {
+          mj_jacSite(m, d, jac->data(), jac->data() + 3 * m->nv, site);
+        }));
+  }
+  add("bias", f, "mujoco", mujoco_fn(&f, s, kin_vel, [](const mjModel* m, mjData* d) {
+        mj_rne(m, d, 0, d->qfrc_bias);
+      }));
+  add("bias_from_q", f, "mujoco", mujoco_fn(&f, s, nothing, [kin_vel](const mjModel* m, mjData* d) {
+        kin_vel(m, d);
+        mj_rne(m, d, 0, d->qfrc_bias);
+      }));
+  add("rnea", f, "mujoco", mujoco_fn(&f, s, kin_vel, [](const mjModel* m, mjData* d) {
+        mj_rne(m, d, 1, d->qfrc_inverse);
+      }));
+  add("rnea_from_q", f, "mujoco", mujoco_fn(&f, s, nothing, [kin_vel](const mjModel* m, mjData* d) {
+        kin_vel(m, d);
+        mj_rne(m, d, 1, d->qfrc_inverse);
+      }));
+  add("crba", f, "mujoco", mujoco_fn(&f, s, kin, [](const mjModel* m, mjData* d) { mj_crb(m, d); }));
+  add("crba_factor", f, "mujoco", mujoco_fn(&f, s, kin, [](const mjModel* m, mjData* d) {
+        mj_crb(m, d);
+        mj_factorM(m, d);
+      }));
+  add("crba_from_q", f, "mujoco", mujoco_fn(&f, s, nothing, [kin](const mjModel* m, mjData* d) {
+        kin(m, d);
+        mj_crb(m, d);
+      }));
+  add("inverse", f, "mujoco", mujoco_fn(&f, s, nothing, [](const mjModel* m, mjData* d) { mj_inverse(m, d); }));
+
+  const auto forward_op = [](const mjModel* m, mjData* d) { mj_forward(m, d); };
+  const auto step_op = [](const State* state) {
+    return [state](const mjModel* m, mjData* d) {
+      mju_copy(d->qpos, state->qpos.data(), m->nq);
+      mju_copy(d->qvel, state->qvel.data(), m->nv);
+      mj_step(m, d);
+    };
+  };
+  add("forward", f, "mujoco", mujoco_fn(&f, s, nothing, forward_op));
+  add("step", f, "mujoco", mujoco_fn(&f, s, nothing, step_op(s)));
+  if (f.limit) {
+    const State* l = &*f.limit;
+    add("forward_limit", f, "mujoco", mujoco_fn(&f, l, nothing, forward_op));
+    add("step_limit", f, "mujoco", mujoco_fn(&f, l, nothing, step_op(l)));
+  }
+}
+
+// ---- Orocos KDL ---------------------------------------------------------------------------------
+
+void register_kdl(const Fixture& f) {
+  if (!f.chain) return;
+  const Fixture* fp = &f;
+  auto kdl_fn = [fp](int (KdlPeer::*op)()) -> Fn {
+    return [fp, op](benchmark::State& st) {
+      KdlPeer peer(*fp->chain);
+      const State& s = fp->state;
+      const std::vector<double> tau(static_cast<std::size_t>(s.qvel.size()), 0.5);
+      peer.set_state(s.qpos.data(), s.qvel.data(), s.qacc.data(), tau.data());
+      for (auto _ : st) benchmark::DoNotOptimize((peer.*op)());
+    };
+  };
+  add("fk", f, "kdl", kdl_fn(&KdlPeer::fk));
+  add("jac_site", f, "kdl", kdl_fn(&KdlPeer::jacobian));
+  add("bias_from_q", f, "kdl", kdl_fn(&KdlPeer::rne_bias));
+  add("rnea_from_q", f, "kdl", kdl_fn(&KdlPeer::rne));
+  add("crba_from_q", f, "kdl", kdl_fn(&KdlPeer::mass));
+  add("forward", f, "kdl", kdl_fn(&KdlPeer::forward_dynamics));
+}
+
+// ---- batches: states per second ------------------------------------------------------------------
+
+struct Batch {
+  Eigen::MatrixXd qpos, qvel, ctrl;
+};
+
+void register_batch(const Fixture& f, int states) {
+  const Fixture* fp = &f;
+  auto batch = std::make_shared<Batch>();
+  batch->qpos.resize(f.model.nq, states);
+  batch->qvel.resize(f.model.nv, states);
+  batch->ctrl.resize(f.model.nu, states);
+  for (int k = 0; k < states; ++k) {
+    const State s = random_state(f.model, 1000003ull * static_cast<unsigned long long>(k + 1));
+    batch->qpos.col(k) = s.qpos;
+    batch->qvel.col(k) = s.qvel;
+    batch->ctrl.col(k) = s.ctrl;
+  }
+  for (const int threads : {1, 2}) {
+    const std::string suffix = "/threads:" + std::to_string(threads);
+    benchmark::RegisterBenchmark(
+        ("batch_forward/" + f.name + "/lever" + suffix).c_str(),
+        [fp, batch, threads](benchmark::State& st) {
+          BatchRunner runner(fp->model, threads);
+          Eigen::MatrixXd qacc(fp->model.nv, batch->qpos.cols());
+          for (auto _ : st) {
+            runner.forward(batch->qpos, batch->qvel, batch->ctrl, qacc);
+            benchmark::ClobberMemory();
+          }
+          st.SetItemsProcessed(st.iterations() * batch->qpos.cols());
+        })
+        ->Unit(benchmark::kMicrosecond)
+        ->UseRealTime();
+
+    // MuJoCo the same way: one mjData per thread, contiguous blocks, threads started per call
+    benchmark::RegisterBenchmark(
+        ("batch_forward/" + f.name + "/mujoco" + suffix).c_str(),
+        [fp, batch, threads](benchmark::State& st) {
+          const mjModel* m = fp->mj.get();
+          const auto n = static_cast<int>(batch->qpos.cols());
+          std::vector<MjDataPtr> data;
+          for (int t = 0; t < threads; ++t) data.emplace_back(mj_makeData(m), mj_deleteData);
+          Eigen::MatrixXd qacc(m->nv, n);
+          auto block = [&](int t) {
+            mjData* d = data[static_cast<std::size_t>(t)].get();
+            for (int k = t * n / threads; k < (t + 1) * n / threads; ++k) {
+              mju_copy(d->qpos, batch->qpos.col(k).data(), m->nq);
+              mju_copy(d->qvel, batch->qvel.col(k).data(), m->nv);
+              if (m->nu > 0) mju_copy(d->ctrl, batch->ctrl.col(k).data(), m->nu);
+              mj_forward(m, d);
+              mju_copy(qacc.col(k).data(), d->qacc, m->nv);
+            }
+          };
+          for (auto _ : st) {
+            std::vector<std::thread> pool;
+            for (int t = 1; t < threads; ++t) pool.emplace_back(block, t);
+            block(0);
+            for (std::thread& th : pool) th.join();
+            benchmark::ClobberMemory();
+          }
+          st.SetItemsProcessed(st.iterations() * n);
+        })
+        ->Unit(benchmark::kMicrosecond)
+        ->UseRealTime();
+  }
+}
+
+}  // namespace
+
+void register_benchmarks(const std::vector<std::unique_ptr<Fixture>>& fixtures, int batch_states) {
+  for (const auto& f : fixtures) {
+    register_lever(*f);
+    register_mujoco(*f);
+    register_kdl(*f);
+  }
+  for (const auto& f : fixtures) register_batch(*f, batch_states);
+}
+
+}  // namespace lever::bench

@@ -1,0 +1,206 @@
+#include "check.hpp"
+
+#include <lever/batch.hpp>
+#include <lever/lever.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <string>
+
+namespace lever::bench {
+
+namespace {
+
+// max |a - b| / max |b| (absolute where b is all zero)
+template <class A, class B>
+double rel_error(const A& a, const B& b, std::size_t n) {
+  double diff = 0, scale = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    diff = std::max(diff, std::abs(a[i] - b[i]));
+    scale = std::max(scale, std::abs(b[i]));
+  }
+  return scale > 0 ? diff / scale : diff;
+}
+
+std::vector<double> flat(const Eigen::MatrixXd& m) {  // row-major copy
+  std::vector<double> out;
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    for (Eigen::Index c = 0; c < m.cols(); ++c) out.push_back(m(r, c));
+  }
+  return out;
+}
+
+struct Table {
+  std::ostream& out;
+  bool ok = true;
+  void row(const std::string& what, const std::string& model, const std::string& quantity,
+           double error, double tolerance) {
+    const bool pass = error <= tolerance;  // NaN fails
+    ok = ok && pass;
+    char buf[64];
+    std::snprintf(buf, sizeof buf, "%.2e", error);
+    out << "| " << what << " | " << model << " | " << quantity << " | " << buf << " | "
+        << tolerance << " | " << (pass ? "ok" : "**FAIL**") << " |\n";
+  }
+};
+
+// 1. lever against KDL on random states
+void check_kdl(const Fixture& f, Table& table) {
+  constexpr double kTol = 1e-9;
+  constexpr int kStates = 25;
+  const Model& m = f.model;
+  KdlPeer kdl(*f.chain);
+  Data d(m);
+  const auto nv = static_cast<std::size_t>(m.nv);
+  Eigen::MatrixXd jacp(3, m.nv), jacr(3, m.nv);
+  Eigen::VectorXd tau(m.nv), tau_rnea(m.nv), qacc(m.nv), zero = Eigen::VectorXd::Zero(m.nv);
+  std::mt19937_64 rng(12345);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  double e_mass = 0, e_grav = 0, e_bias = 0, e_rne = 0, e_fd = 0, e_pos = 0, e_rot = 0, e_jac = 0;
+  for (int k = 0; k < kStates; ++k) {
+    State s = random_state(m, 777 + static_cast<unsigned long long>(k));
+    for (int j = 0; j < m.njnt; ++j) {  // anywhere in the range, not only its middle
+      const int a = m.jnt_qposadr[j];
+      if (m.jnt_limited[j]) s.qpos[a] = m.jnt_range[j][0] + 0.5 * (u(rng) + 1) * (m.jnt_range[j][1] - m.jnt_range[j][0]);
+    }
+    for (int i = 0; i < m.nv; ++i) tau[i] = 5 * u(rng);
+    kdl.set_state(s.qpos.data(), s.qvel.data(), s.qacc.data(), tau.data());
+
+    d.qpos = s.qpos;
+    d.qvel = s.qvel;
+    kinematics(m, d);
+    crba(m, d);
+    kdl.mass();
+    e_mass = std::max(e_mass, rel_error(kdl.mass_matrix(), flat(d.M), nv * nv));
+
+    bias(m, d);
+    kdl.rne_bias();
+    e_bias = std::max(e_bias, rel_error(kdl.torques(), d.qfrc_bias, nv));
+
+    rnea(m, d, s.qacc, tau_rnea);
+    kdl.rne();
+    e_rne = std::max(e_rne, rel_error(kdl.torques(), tau_rnea, nv));
+
+    // forward dynamics: qacc = M^-1 (tau - bias)
+    factor_mass(m, d);
+    qacc = tau - d.qfrc_bias;
+    solve_mass(m, d, qacc);
+    kdl.forward_dynamics();
+    e_fd = std::max(e_fd, rel_error(kdl.qddot(), qacc, nv));
+
+    if (f.site >= 0) {
+      kdl.fk();
+      const std::array<double, 12> tip = kdl.tip_frame();
+      e_pos = std::max(e_pos, rel_error(tip.data(), d.site_xpos[static_cast<std::size_t>(f.site)], 3));
+      e_rot = std::max(e_rot, rel_error(tip.data() + 3, flat(d.site_xmat[static_cast<std::size_t>(f.site)]), 9));
+      jac_site(m, d, f.site, jacp, jacr);
+      Eigen::MatrixXd jac(6, m.nv);
+      jac << jacp, jacr;
+      kdl.jacobian();
+      e_jac = std::max(e_jac, rel_error(kdl.jacobian_matrix(), flat(jac), 6 * nv));
+    }
+
+    d.qvel = zero;
+    bias(m, d);
+    kdl.gravity();
+    e_grav = std::max(e_grav, rel_error(kdl.torques(), d.qfrc_bias, nv));
+  }
+  const std::string what = "KDL bridge (" + std::to_string(kStates) + " states)";
+  table.row(what, f.name, "M (JntToMass, armature as KDL joint inertia)", e_mass, kTol);
+  table.row(what, f.name, "gravity torques (JntToGravity)", e_grav, kTol);
+  table.row(what, f.name, "bias C qdot + g (RNE, qddot = 0)", e_bias, kTol);
+  table.row(what, f.name, "inverse dynamics (RNE)", e_rne, kTol);
+  table.row(what, f.name, "forward dynamics (ChainFdSolver_RNE)", e_fd, kTol);
+  if (f.site >= 0) {
+    table.row(what, f.name, "tip position (FK)", e_pos, kTol);
+    table.row(what, f.name, "tip rotation (FK)", e_rot, kTol);
+    table.row(what, f.name, "tip Jacobian", e_jac, kTol);
+  }
+}
+
+// 2. lever against MuJoCo on the timed states
+void check_mujoco(const Fixture& f, const State& s, const std::string& label, Table& table) {
+  const Model& m = f.model;
+  const mjModel* mj = f.mj.get();
+  Data d(m);
+  d.qpos = s.qpos;
+  d.qvel = s.qvel;
+  d.ctrl = s.ctrl;
+  forward(m, d);
+  MjDataPtr md = mujoco_data(f, s);
+  mj_forward(mj, md.get());
+  std::vector<mjtNum> M(static_cast<std::size_t>(mj->nv * mj->nv));
+  mj_fullM(mj, M.data(), md->qM);
+  const auto nv = static_cast<std::size_t>(m.nv);
+  const std::string what = "lever = MuJoCo (" + label + ", " + std::to_string(d.nefc) + " limit rows)";
+  table.row(what, f.name, "M", rel_error(flat(d.M), M, nv * nv), 1e-9);
+  table.row(what, f.name, "qfrc_bias", rel_error(d.qfrc_bias, md->qfrc_bias, nv), 1e-9);
+  table.row(what, f.name, "qacc", rel_error(d.qacc, md->qacc, nv), 1e-6);
+  if (d.nefc != md->nefc) table.row(what, f.name, "nefc differs", 1.0, 0.0);
+}
+
+// 3. the batch API against one state at a time
+void check_batch(const Fixture& f, Table& table) {
+  const Model& m = f.model;
+  constexpr int kStates = 37;  // odd, so the blocks differ in size
+  constexpr int kSteps = 3;
+  Eigen::MatrixXd qpos(m.nq, kStates), qvel(m.nv, kStates), ctrl(m.nu, kStates);
+  for (int k = 0; k < kStates; ++k) {
+    // every third state with its first limited joint past the stop: limit rows in the batch
+    State s = random_state(m, 99 + static_cast<unsigned long long>(k));
+    if (k % 3 == 0 && f.limit_joint >= 0) s.qpos[m.jnt_qposadr[f.limit_joint]] = m.jnt_range[f.limit_joint][0] - 1e-3;
+    qpos.col(k) = s.qpos;
+    qvel.col(k) = s.qvel;
+    ctrl.col(k) = s.ctrl;
+  }
+  // one state at a time
+  Eigen::MatrixXd qacc_ref(m.nv, kStates), qpos_ref = qpos, qvel_ref = qvel;
+  Data d(m);
+  for (int k = 0; k < kStates; ++k) {
+    d.qpos = qpos.col(k);
+    d.qvel = qvel.col(k);
+    d.ctrl = ctrl.col(k);
+    forward(m, d);
+    qacc_ref.col(k) = d.qacc;
+    for (int i = 0; i < kSteps; ++i) step(m, d);
+    qpos_ref.col(k) = d.qpos;
+    qvel_ref.col(k) = d.qvel;
+  }
+  for (const int threads : {1, 2}) {
+    BatchRunner runner(m, threads);
+    Eigen::MatrixXd qacc(m.nv, kStates), p = qpos, v = qvel;
+    runner.forward(qpos, qvel, ctrl, qacc);
+    runner.step(p, v, ctrl, kSteps);
+    const std::string what = "BatchRunner, " + std::to_string(threads) + " thread(s), " +
+                             std::to_string(kStates) + " states";
+    table.row(what, f.name, "qacc = forward() (exact)", (qacc - qacc_ref).cwiseAbs().maxCoeff(), 0.0);
+    table.row(what, f.name, "state after 3 step() (exact)",
+              std::max((p - qpos_ref).cwiseAbs().maxCoeff(), (v - qvel_ref).cwiseAbs().maxCoeff()), 0.0);
+  }
+}
+
+}  // namespace
+
+bool run_checks(const std::vector<std::unique_ptr<Fixture>>& fixtures, std::ostream& out) {
+  out << "| check | model | quantity | max rel. error | tolerance | |\n";
+  out << "|---|---|---|---:|---:|---|\n";
+  Table table{out};
+  for (const auto& f : fixtures) {
+    if (f->chain) {
+      check_kdl(*f, table);
+    } else {
+      out << "| KDL bridge | " << f->name << " | not a serial chain (" << f->kdl_note
+          << "): no KDL peer | | | |\n";
+    }
+  }
+  for (const auto& f : fixtures) {
+    check_mujoco(*f, f->state, "timed state", table);
+    if (f->limit) check_mujoco(*f, *f->limit, "timed limit state", table);
+  }
+  for (const auto& f : fixtures) check_batch(*f, table);
+  return table.ok;
+}
+
+}  // namespace lever::bench

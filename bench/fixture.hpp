@@ -1,0 +1,65 @@
+// One model for every peer: lever's Model, MuJoCo's mjModel and (for a serial chain) the KDL
+// chain, with the state every peer is timed on.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <Eigen/Core>
+
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <lever/model.hpp>
+
+#include "kdl_peer.hpp"
+
+namespace lever::bench {
+
+using MjModelPtr = std::unique_ptr<mjModel, void (*)(mjModel*)>;
+using MjDataPtr = std::unique_ptr<mjData, void (*)(mjData*)>;
+
+/// A state: what forward() reads, plus the acceleration inverse dynamics is given.
+struct State {
+  Eigen::VectorXd qpos, qvel, qacc, ctrl;
+};
+
+struct Fixture {
+  std::string name;    ///< the file's stem: "arm2"
+  std::string path;
+  std::string loader;  ///< how lever's model was made: "mjcf_lite" or "from_mujoco"
+  Model model;
+  MjModelPtr mj{nullptr, mj_deleteModel};
+  int site = -1;  ///< the site of the Jacobian, the FK tip and the KDL chain's tip ("ee", else the last)
+
+  State state;                 ///< no joint near a stop: no limit row
+  std::optional<State> limit;  ///< the same, with one joint 1 mrad past its lower stop
+  int limit_joint = -1;        ///< that joint (the first limited one: the shoulder)
+
+  std::optional<ChainSpec> chain;  ///< KDL's chain, when the model is a serial chain
+  std::string kdl_note;            ///< why there is no chain, if there is none
+};
+
+/// The *.xml files in a directory, as paths.
+std::vector<std::string> model_files(const std::string& dir);
+
+/// Load a model for every peer and draw its state (seeded by the model's name).
+/// Throws std::runtime_error if MuJoCo cannot load it.
+std::unique_ptr<Fixture> make_fixture(const std::string& path);
+
+/// A random state with every limited joint well inside its range (the middle 60%), qvel and
+/// qacc in [-1, 1], ctrl in the middle half of each ctrlrange.
+State random_state(const Model& model, unsigned long long seed);
+
+/// The KDL description of a serial chain (link i's parent is link i-1), its tip on `site`
+/// (which must hang from the last link). Throws std::invalid_argument otherwise.
+ChainSpec chain_spec(const Model& model, int site);
+
+/// A fresh mjData for the fixture's model, holding `s`.
+MjDataPtr mujoco_data(const Fixture& f, const State& s);
+
+/// Copy a state into MuJoCo's mjData (qpos, qvel, qacc, ctrl).
+void set_mujoco_state(const mjModel* m, mjData* d, const State& s);
+
+}  // namespace lever::bench
