@@ -26,3 +26,24 @@ test: build
 
 clean:
 	rm -rf $(BUILD) $(BUILD).configure.log
+
+# make bench: lever against MuJoCo 2.2.2 and Orocos KDL (bench/), built in Release in its own
+# folder, run with repetitions and random interleaving; writes docs/performance.md. Run it on a quiet
+# machine (`uptime`): the ratios are only as good as the load allows.
+BENCH_BUILD ?= build-bench
+BENCH_REPETITIONS ?= 10
+BENCH_MIN_TIME ?= 0.05
+BENCH_FLAGS ?=
+.PHONY: bench
+bench: setup
+	@cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DLEVER_BUILD_BENCH=ON > $(BENCH_BUILD).configure.log || (cat $(BENCH_BUILD).configure.log; exit 1)
+	@cmake --build $(BENCH_BUILD) -j $(JOBS) --target lever_bench lever_bench_report
+	@$(BENCH_BUILD)/bench/lever_bench --check > $(BENCH_BUILD)/bench-check.md || (cat $(BENCH_BUILD)/bench-check.md; exit 1)
+	$(BENCH_BUILD)/bench/lever_bench --benchmark_repetitions=$(BENCH_REPETITIONS) \
+	  --benchmark_min_time=$(BENCH_MIN_TIME) --benchmark_enable_random_interleaving=true \
+	  --benchmark_display_aggregates_only=true \
+	  --benchmark_out=$(BENCH_BUILD)/bench.json --benchmark_out_format=json \
+	  --benchmark_context=lever_commit=$$(git rev-parse --short HEAD 2>/dev/null || echo unknown)$$(git diff --quiet HEAD -- engine 2>/dev/null || echo +uncommitted-engine-changes) \
+	  $(BENCH_FLAGS)
+	@$(BENCH_BUILD)/bench/lever_bench_report $(BENCH_BUILD)/bench.json --check $(BENCH_BUILD)/bench-check.md > docs/performance.md
+	@echo "bench: wrote docs/performance.md"
