@@ -1,0 +1,610 @@
+// The compiler: ModelSpec -> Model; see compiler.hpp. The steps and their order follow MuJoCo
+// 2.2.2's mjCModel::TryCompile and mjCBody/mjCGeom/mjCJoint/mjCSite/mjCActuator::Compile
+// (user_model.cc, user_objects.cc), so that the same input gives the same numbers and the first
+// error found is the one MuJoCo would report.
+#include "compiler.hpp"
+
+#include <algorithm>
+#include <map>
+
+#include "inertia.hpp"
+#include "orientation.hpp"
+
+namespace lever::mjcf::detail {
+
+namespace {
+
+// ---- compiled pieces, before they are copied into the Model ------------------------------------
+
+struct BodyNode {
+  const BodySpec* spec;
+  int parent;
+};
+
+struct CompiledBody {
+  Vec3 pos{};
+  Quat quat{1, 0, 0, 0};
+  BodyInertia inertial;
+  bool explicit_inertial = false;
+  int first_joint = -1, first_geom = -1, first_site = -1;
+};
+
+struct CompiledGeom {
+  const GeomSpec* spec;
+  int body;
+  Vec3 size{}, pos{};
+  Quat quat{1, 0, 0, 0};
+  double mass = 0;
+  Vec3 inertia{};
+};
+
+struct CompiledJoint {
+  const JointSpec* spec;
+  int body;
+  Vec3 axis{};
+  std::array<double, 2> range{};
+  bool limited = false;
+  double ref = 0, springref = 0;
+};
+
+struct CompiledSite {
+  const SiteSpec* spec;
+  int body;
+  Quat quat{1, 0, 0, 0};
+};
+
+struct CompiledMotor {
+  const MotorSpec* spec;
+  int joint = -1;
+  bool ctrllimited = false, forcelimited = false;
+};
+
+std::string show3(const Vec3& v) { return show(v[0]) + " " + show(v[1]) + " " + show(v[2]); }
+
+// which attribute a degenerate orientation came from, and a message a student can act on
+[[noreturn]] void fail_orientation(const Place& at, const std::string& reason) {
+  struct Known {
+    const char* reason;
+    const char* attribute;
+    const char* message;
+  };
+  static const Known known[] = {
+      {"axisangle too small", "axisangle", "the axis of 'axisangle' has zero length"},
+      {"xaxis too small", "xyaxes", "the x axis of 'xyaxes' has zero length"},
+      {"yaxis too small", "xyaxes", "the y axis of 'xyaxes' is zero or parallel to the x axis"},
+      {"cross(xaxis, yaxis) too small", "xyaxes", "the axes of 'xyaxes' are parallel"},
+      {"zaxis too small", "zaxis", "'zaxis' has zero length"},
+      {"inertia must have positive eigenvalues", "fullinertia",
+       "'fullinertia' is not positive definite (a principal moment is below 1e-14)"},
+  };
+  for (const Known& k : known) {
+    if (reason == k.reason) fail(at, k.attribute, k.message);
+  }
+  fail(at, "", reason);
+}
+
+// how many sizes each geom type uses, and what they mean
+int sizes_used(GeomType type) {
+  switch (type) {
+    case GeomType::kSphere: return 1;
+    case GeomType::kCapsule:
+    case GeomType::kCylinder: return 2;
+    case GeomType::kEllipsoid:
+    case GeomType::kBox: return 3;
+  }
+  return 3;
+}
+
+const char* type_name(GeomType type) {
+  switch (type) {
+    case GeomType::kSphere: return "sphere";
+    case GeomType::kCapsule: return "capsule";
+    case GeomType::kCylinder: return "cylinder";
+    case GeomType::kEllipsoid: return "ellipsoid";
+    case GeomType::kBox: return "box";
+  }
+  return "geom";
+}
+
+const char* size_meaning(GeomType type) {
+  switch (type) {
+    case GeomType::kSphere: return "a positive radius: size=\"r\"";
+    case GeomType::kCapsule:
+    case GeomType::kCylinder:
+      return "a positive radius and half-length: size=\"r h\" (or size=\"r\" with fromto)";
+    case GeomType::kEllipsoid: return "three positive semi-axes: size=\"a b c\"";
+    case GeomType::kBox: return "three positive half-sizes: size=\"x y z\"";
+  }
+  return "";
+}
+
+// resolve limited="auto" (mujoco: checklimited); `what` names the range in messages
+bool resolve_limited(Limited limited, const std::array<double, 2>& range, bool autolimits,
+                     const Place& at, const std::string& range_attribute,
+                     const std::string& limited_attribute) {
+  if (limited != Limited::kAuto) return limited == Limited::kTrue;
+  const bool has_range = !(range[0] == 0 && range[1] == 0);
+  if (has_range && !autolimits) {
+    fail(at, range_attribute, "'" + range_attribute + "' is given but '" + limited_attribute +
+                                  "' is not, and compiler/autolimits is false: set " +
+                                  limited_attribute + "=\"true\" or \"false\", or remove "
+                                  "autolimits=\"false\"");
+  }
+  return has_range;
+}
+
+// ---- the compiler ------------------------------------------------------------------------------
+
+class Compiler {
+ public:
+  explicit Compiler(const ModelSpec& spec) : spec_(spec), c_(spec.compiler) {}
+
+  Model run() {
+    flatten(spec_.world, 0);
+    check_names();
+    for (size_t id = 0; id < bodies_.size(); ++id) compile_body(static_cast<int>(id));
+    for (const MotorSpec& m : spec_.motors) motors_.push_back(compile_motor(m));
+    check_moving_bodies();
+    scale_total_mass();
+    return assemble();
+  }
+
+ private:
+  // ---- structure ----------------------------------------------------------------------------
+
+  // bodies depth-first, pre-order (world = 0); joints, geoms and sites in body order
+  void flatten(const BodySpec& b, int parent) {
+    const int id = static_cast<int>(nodes_.size());
+    nodes_.push_back({&b, parent});
+    bodies_.emplace_back();
+    for (const BodySpec& child : b.children) flatten(child, id);
+  }
+
+  static void check_unique(const std::vector<std::pair<const Place*, std::string>>& items,
+                           const std::string& kind) {
+    std::map<std::string, int> first_line;
+    for (const auto& [place, name] : items) {
+      if (name.empty()) continue;  // empty names may repeat, as in mujoco
+      const auto [it, inserted] = first_line.emplace(name, place->line);
+      if (!inserted) {
+        const std::string where = it->second > 0 ? " (also at line " + std::to_string(it->second) +
+                                                       ")"
+                                                 : " (it names the world body)";
+        fail(*place, "name", "duplicate " + kind + " name '" + name + "'" + where);
+      }
+    }
+  }
+
+  void check_names() {
+    std::vector<std::pair<const Place*, std::string>> bodies, joints, geoms, sites, motors;
+    const Place world{"worldbody", "world", 0};
+    bodies.push_back({&world, "world"});
+    for (size_t i = 1; i < nodes_.size(); ++i) {
+      bodies.push_back({&nodes_[i].spec->at, nodes_[i].spec->at.name});
+    }
+    for (const BodyNode& n : nodes_) {
+      for (const JointSpec& j : n.spec->joints) joints.push_back({&j.at, j.at.name});
+      for (const GeomSpec& g : n.spec->geoms) geoms.push_back({&g.at, g.at.name});
+      for (const SiteSpec& s : n.spec->sites) sites.push_back({&s.at, s.at.name});
+    }
+    for (const MotorSpec& m : spec_.motors) motors.push_back({&m.at, m.at.name});
+    check_unique(bodies, "body");
+    check_unique(joints, "joint");
+    check_unique(geoms, "geom");
+    check_unique(sites, "site");
+    check_unique(motors, "motor");
+  }
+
+  // ---- bodies ---------------------------------------------------------------------------------
+
+  void compile_body(int id) {
+    const BodySpec& b = *nodes_[static_cast<size_t>(id)].spec;
+    CompiledBody& out = bodies_[static_cast<size_t>(id)];
+    out.pos = b.pos;
+    out.quat = b.orientation.quat;
+    normalize(out.quat.data(), 4);
+    if (const char* reason = apply_alternatives(b.orientation, c_.degree, c_.eulerseq, out.quat, nullptr)) {
+      fail_orientation(b.at, reason);
+    }
+    const bool has_inertial = id > 0 && b.inertial.has_value();
+    if (has_inertial) read_inertial(*b.inertial, out);
+
+    out.first_geom = static_cast<int>(geoms_.size());
+    for (const GeomSpec& g : b.geoms) geoms_.push_back(compile_geom(g, id));
+    if (id > 0) infer_inertia(id, has_inertial, out);
+    if (id > 0) check_inertia(b, out);
+
+    out.first_joint = static_cast<int>(joints_.size());
+    for (const JointSpec& j : b.joints) joints_.push_back(compile_joint(j, id));
+    out.first_site = static_cast<int>(sites_.size());
+    for (const SiteSpec& s : b.sites) sites_.push_back(compile_site(s, id));
+  }
+
+  void read_inertial(const InertialSpec& in, CompiledBody& out) {
+    out.explicit_inertial = true;
+    out.inertial.ipos = in.pos;
+    out.inertial.mass = in.mass;
+    out.inertial.inertia = in.diaginertia;
+    out.inertial.iquat = in.orientation.quat;
+    normalize(out.inertial.iquat.data(), 4);
+    if (const char* reason = apply_alternatives(in.orientation, c_.degree, c_.eulerseq,
+                                         out.inertial.iquat, &out.inertial.inertia)) {
+      fail_orientation(in.at, reason);
+    }
+  }
+
+  // mass from geoms when inertiafromgeom says so (mjCBody::GeomFrame); a body with no mass
+  // source takes its own frame as inertial frame, with zero mass (mujoco copies pos and quat)
+  void infer_inertia(int id, bool has_inertial, CompiledBody& out) {
+    const bool from_geoms = c_.inertiafromgeom == InertiaFromGeom::kTrue ||
+                            (c_.inertiafromgeom == InertiaFromGeom::kAuto && !has_inertial);
+    std::vector<MassElement> parts;
+    for (size_t g = static_cast<size_t>(out.first_geom); from_geoms && g < geoms_.size(); ++g) {
+      const CompiledGeom& geom = geoms_[g];
+      const int group = geom.spec->group;
+      if (group >= c_.inertiagrouprange[0] && group <= c_.inertiagrouprange[1]) {
+        parts.push_back({geom.pos, geom.quat, geom.mass, geom.inertia});
+      }
+    }
+    if (parts.size() == 1) {
+      // one geom: its frame and its unsorted moments become the body's
+      out.inertial = BodyInertia{parts[0].pos, parts[0].quat, parts[0].mass, parts[0].inertia};
+      out.explicit_inertial = false;
+    } else if (parts.size() > 1) {
+      if (auto reason = combine(parts, out.inertial)) {
+        fail(nodes_[static_cast<size_t>(id)].spec->at, "", *reason + " (inferred from its geoms)");
+      }
+      out.explicit_inertial = false;
+    } else if (!has_inertial) {
+      out.inertial = BodyInertia{out.pos, out.quat, 0, {0, 0, 0}};
+    }
+  }
+
+  // bounds and the triangle inequality, for every body but the world
+  void check_inertia(const BodySpec& b, CompiledBody& out) {
+    BodyInertia& in = out.inertial;
+    in.mass = std::max(in.mass, c_.boundmass);
+    for (double& moment : in.inertia) moment = std::max(moment, c_.boundinertia);
+    const Place& at = out.explicit_inertial ? b.inertial->at : b.at;
+    if (in.mass < 0 || in.inertia[0] < 0 || in.inertia[1] < 0 || in.inertia[2] < 0) {
+      fail(at, "", "mass and inertia must not be negative (mass " + show(in.mass) +
+                       ", principal moments " + show3(in.inertia) + ")");
+    }
+    const Vec3& i = in.inertia;
+    if (i[0] + i[1] < i[2] || i[0] + i[2] < i[1] || i[1] + i[2] < i[0]) {
+      if (c_.balanceinertia) {
+        const double mean = (i[0] + i[1] + i[2]) / 3.0;
+        in.inertia = {mean, mean, mean};
+        return;
+      }
+      const std::string attribute =
+          !out.explicit_inertial ? "" : (b.inertial->orientation.fullinertia ? "fullinertia"
+                                                                             : "diaginertia");
+      fail(at, attribute, "principal moments " + show3(i) + (out.explicit_inertial ? "" :
+                          " (inferred from its geoms)") + " violate the triangle inequality "
+                          "A + B >= C; fix them or set <compiler balanceinertia=\"true\">");
+    }
+  }
+
+  // ---- geoms, joints, sites ---------------------------------------------------------------------
+
+  CompiledGeom compile_geom(const GeomSpec& g, int body) {
+    CompiledGeom out{&g, body, g.size, g.pos, g.orientation.quat, 0, {}};
+    normalize(out.quat.data(), 4);
+    if (g.fromto) {
+      apply_fromto(g, out);
+    } else if (const char* reason = apply_alternatives(g.orientation, c_.degree, c_.eulerseq, out.quat,
+                                                nullptr)) {
+      fail_orientation(g.at, reason);
+    }
+    for (int k = 0; k < sizes_used(g.type); ++k) {
+      if (!(out.size[static_cast<size_t>(k)] > 0)) {
+        fail(g.at, "size", std::string("a ") + type_name(g.type) + " needs " +
+                               size_meaning(g.type) + "; it has size \"" + show3(out.size) + "\"");
+      }
+    }
+    out.mass = geom_mass(g.type, out.size, g.density, g.mass);
+    out.inertia = geom_inertia(g.type, out.size, out.mass);
+    return out;
+  }
+
+  // a segment geom: centre, length and orientation (+z points from `to` back to `from`)
+  void apply_fromto(const GeomSpec& g, CompiledGeom& out) {
+    if (g.type == GeomType::kSphere) {
+      fail(g.at, "fromto", "fromto needs a capsule, cylinder, ellipsoid or box, not a sphere");
+    }
+    if (g.pos[0] != 0 || g.pos[1] != 0 || g.pos[2] != 0) {
+      fail(g.at, "pos", "a geom with fromto takes its position from fromto; remove pos");
+    }
+    const Vec6& f = *g.fromto;
+    Vec3 v{f[0] - f[3], f[1] - f[4], f[2] - f[5]};
+    out.size[1] = normalize(v.data(), 3) / 2;
+    if (out.size[1] < kCompilerEps) fail(g.at, "fromto", "the two points of fromto coincide");
+    if (g.type == GeomType::kEllipsoid || g.type == GeomType::kBox) {
+      out.size[2] = out.size[1];
+      out.size[1] = out.size[0];
+    }
+    out.pos = {(f[0] + f[3]) / 2, (f[1] + f[4]) / 2, (f[2] + f[5]) / 2};
+    out.quat = z_to_quat(v);
+  }
+
+  CompiledJoint compile_joint(const JointSpec& j, int body) {
+    CompiledJoint out{&j, body, j.axis, j.range, false, j.ref, j.springref};
+    out.limited = resolve_limited(j.limited, j.range, c_.autolimits, j.at, "range", "limited");
+    const bool hinge = j.type == JointType::kHinge;
+    if (out.limited) {
+      if (j.range[0] >= j.range[1]) {
+        fail(j.at, "range", "a limited joint needs range lower < upper; it has range \"" +
+                                show(j.range[0]) + " " + show(j.range[1]) + "\"");
+      }
+      // only a limited hinge's range is in degrees, and a zero bound stays exactly zero
+      for (double& bound : out.range) {
+        if (c_.degree && hinge && bound != 0) bound = joint_radians(bound);
+      }
+    }
+    if (normalize(out.axis.data(), 3) < kCompilerEps) {
+      fail(j.at, "axis", "axis \"" + show3(j.axis) + "\" is too short to give a direction");
+    }
+    if (c_.degree && hinge) {
+      out.ref = joint_radians(j.ref);
+      out.springref = joint_radians(j.springref);
+    }
+    return out;
+  }
+
+  CompiledSite compile_site(const SiteSpec& s, int body) {
+    // a site applies its alternative before normalizing (mjCSite::Compile)
+    CompiledSite out{&s, body, s.orientation.quat};
+    if (const char* reason = apply_alternatives(s.orientation, c_.degree, c_.eulerseq, out.quat, nullptr)) {
+      fail_orientation(s.at, reason);
+    }
+    normalize(out.quat.data(), 4);
+    if (!(s.size[0] > 0)) {
+      fail(s.at, "size", "a site needs a positive radius: size=\"r\"; it has size \"" +
+                             show3(s.size) + "\"");
+    }
+    return out;
+  }
+
+  // ---- motors ---------------------------------------------------------------------------------
+
+  CompiledMotor compile_motor(const MotorSpec& m) {
+    CompiledMotor out{&m};
+    out.forcelimited = resolve_limited(m.forcelimited, m.forcerange, c_.autolimits, m.at,
+                                       "forcerange", "forcelimited");
+    out.ctrllimited = resolve_limited(m.ctrllimited, m.ctrlrange, c_.autolimits, m.at,
+                                      "ctrlrange", "ctrllimited");
+    check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
+    check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, m.ctrlrange);
+    if (m.joint.empty()) fail(m.at, "joint", "attribute 'joint' is empty: name the joint to drive");
+    std::vector<std::string_view> names;
+    for (size_t j = 0; j < joints_.size(); ++j) {
+      if (joints_[j].spec->at.name == m.joint) out.joint = static_cast<int>(j);
+      names.push_back(joints_[j].spec->at.name);
+    }
+    if (out.joint < 0) {
+      fail(m.at, "joint", "unknown joint '" + m.joint + "'" + did_you_mean(m.joint, names));
+    }
+    return out;
+  }
+
+  static void check_range(const Place& at, const std::string& attribute, const std::string& flag,
+                          bool limited, const std::array<double, 2>& range) {
+    if (limited && range[0] >= range[1]) {
+      fail(at, attribute, "with " + flag + " the " + attribute + " needs lower < upper; it is \"" +
+                              show(range[0]) + " " + show(range[1]) + "\"");
+    }
+  }
+
+  // ---- whole-model checks -------------------------------------------------------------------
+
+  static bool has_mass(const BodyInertia& in) {
+    return in.mass >= 1e-15 && in.inertia[0] >= 1e-15 && in.inertia[1] >= 1e-15 &&
+           in.inertia[2] >= 1e-15;
+  }
+
+  // a body that moves needs mass and inertia, unless a jointless child carries them (mujoco)
+  void check_moving_bodies() const {
+    for (size_t id = 1; id < nodes_.size(); ++id) {
+      const BodySpec& b = *nodes_[id].spec;
+      const CompiledBody& out = bodies_[id];
+      if (b.joints.empty() || has_mass(out.inertial)) continue;
+      bool carried = false;
+      for (size_t child = id + 1; child < nodes_.size(); ++child) {
+        if (nodes_[child].parent == static_cast<int>(id) && nodes_[child].spec->joints.empty() &&
+            has_mass(bodies_[child].inertial)) {
+          carried = true;
+        }
+      }
+      if (carried) continue;
+      const std::string state = "it has mass " + show(out.inertial.mass) + " and principal "
+                                "moments " + show3(out.inertial.inertia);
+      if (out.explicit_inertial) {
+        const std::string attribute = out.inertial.mass < 1e-15 ? "mass" : "diaginertia";
+        fail(b.inertial->at, attribute, "a body with joints needs positive mass and inertia; " +
+                                            state);
+      }
+      fail(b.at, "", "a body with joints needs positive mass and inertia; " + state +
+                         (b.geoms.empty() ? " (give it an <inertial> or a geom)" : ""));
+    }
+  }
+
+  // compiler/settotalmass scales every body, static ones included (mj_setTotalmass)
+  void scale_total_mass() {
+    if (!(c_.settotalmass > 0)) return;
+    double total = 0;
+    for (size_t id = 1; id < bodies_.size(); ++id) total += bodies_[id].inertial.mass;
+    const double scale = std::max(1e-15, c_.settotalmass / std::max(1e-15, total));
+    for (size_t id = 1; id < bodies_.size(); ++id) {
+      bodies_[id].inertial.mass *= scale;
+      for (double& moment : bodies_[id].inertial.inertia) moment *= scale;
+    }
+  }
+
+  // ---- the Model --------------------------------------------------------------------------------
+
+  Model assemble() const;
+  void assemble_bodies(Model& m) const;
+  void assemble_joints(Model& m) const;
+  void assemble_geoms_and_sites(Model& m) const;
+  void assemble_motors(Model& m) const;
+
+  const ModelSpec& spec_;
+  const CompilerSpec& c_;
+  std::vector<BodyNode> nodes_;
+  std::vector<CompiledBody> bodies_;
+  std::vector<CompiledGeom> geoms_;
+  std::vector<CompiledJoint> joints_;
+  std::vector<CompiledSite> sites_;
+  std::vector<CompiledMotor> motors_;
+};
+
+Eigen::Vector3d eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
+Eigen::Vector4d eigen(const Quat& q) { return {q[0], q[1], q[2], q[3]}; }
+
+Model Compiler::assemble() const {
+  Model m;
+  m.name = spec_.name;
+  m.opt = spec_.opt;
+  m.compiler.inertiagrouprange = c_.inertiagrouprange;
+  m.compiler.inertia_from_geoms_allowed = c_.inertiafromgeom != InertiaFromGeom::kFalse;
+  m.nbody = static_cast<int>(nodes_.size());
+  m.njnt = static_cast<int>(joints_.size());
+  m.nq = m.nv = m.njnt;  // hinge and slide joints: one coordinate and one dof each
+  m.ngeom = static_cast<int>(geoms_.size());
+  m.nsite = static_cast<int>(sites_.size());
+  m.nu = static_cast<int>(motors_.size());
+  assemble_bodies(m);
+  assemble_joints(m);
+  assemble_geoms_and_sites(m);
+  assemble_motors(m);
+  return m;
+}
+
+void Compiler::assemble_bodies(Model& m) const {
+  const size_t n = nodes_.size();
+  m.body_name.assign(n, "");
+  m.body_parentid.assign(n, 0);
+  m.body_rootid.assign(n, 0);
+  m.body_jntnum.assign(n, 0);
+  m.body_jntadr.assign(n, -1);
+  m.body_dofnum.assign(n, 0);
+  m.body_dofadr.assign(n, -1);
+  m.body_geomnum.assign(n, 0);
+  m.body_geomadr.assign(n, -1);
+  m.body_pos.assign(n, Eigen::Vector3d::Zero());
+  m.body_quat.assign(n, Eigen::Vector4d(1, 0, 0, 0));
+  m.body_ipos.assign(n, Eigen::Vector3d::Zero());
+  m.body_iquat.assign(n, Eigen::Vector4d(1, 0, 0, 0));
+  m.body_mass.assign(n, 0.0);
+  m.body_inertia.assign(n, Eigen::Vector3d::Zero());
+  m.body_explicit_inertial.assign(n, false);
+  m.body_line.assign(n, 0);
+  m.body_name[0] = "world";
+  for (size_t id = 1; id < n; ++id) {
+    const BodySpec& b = *nodes_[id].spec;
+    const CompiledBody& c = bodies_[id];
+    const int parent = nodes_[id].parent;
+    m.body_name[id] = b.at.name;
+    m.body_line[id] = b.at.line;
+    m.body_parentid[id] = parent;
+    m.body_rootid[id] = parent == 0 ? static_cast<int>(id) : m.body_rootid[static_cast<size_t>(parent)];
+    m.body_jntnum[id] = m.body_dofnum[id] = static_cast<int>(b.joints.size());
+    if (!b.joints.empty()) m.body_jntadr[id] = m.body_dofadr[id] = c.first_joint;
+    m.body_pos[id] = eigen(c.pos);
+    m.body_quat[id] = eigen(c.quat);
+    m.body_ipos[id] = eigen(c.inertial.ipos);
+    m.body_iquat[id] = eigen(c.inertial.iquat);
+    m.body_mass[id] = c.inertial.mass;
+    m.body_inertia[id] = eigen(c.inertial.inertia);
+    m.body_explicit_inertial[id] = c.explicit_inertial;
+  }
+  for (size_t id = 0; id < n; ++id) {
+    m.body_geomnum[id] = static_cast<int>(nodes_[id].spec->geoms.size());
+    if (m.body_geomnum[id] > 0) m.body_geomadr[id] = bodies_[id].first_geom;
+  }
+}
+
+void Compiler::assemble_joints(Model& m) const {
+  const Eigen::Index n = static_cast<Eigen::Index>(joints_.size());
+  m.qpos0 = Eigen::VectorXd::Zero(n);
+  m.qpos_spring = Eigen::VectorXd::Zero(n);
+  for (const CompiledJoint& c : joints_) {
+    const JointSpec& s = *c.spec;
+    const int id = static_cast<int>(m.jnt_name.size());  // one qpos and one dof per joint
+    m.jnt_name.push_back(s.at.name);
+    m.jnt_type.push_back(s.type);
+    m.jnt_qposadr.push_back(id);
+    m.jnt_dofadr.push_back(id);
+    m.jnt_bodyid.push_back(c.body);
+    m.jnt_limited.push_back(c.limited);
+    m.jnt_solref.push_back(s.solref);
+    m.jnt_solimp.push_back(s.solimp);
+    m.jnt_pos.push_back(eigen(s.pos));
+    m.jnt_axis.push_back(eigen(c.axis));
+    m.jnt_stiffness.push_back(s.stiffness);
+    m.jnt_range.push_back(c.range);
+    m.jnt_margin.push_back(s.margin);
+    m.qpos0[id] = c.ref;
+    m.qpos_spring[id] = c.springref;
+    m.dof_bodyid.push_back(c.body);
+    m.dof_jntid.push_back(id);
+    m.dof_armature.push_back(s.armature);
+    m.dof_damping.push_back(s.damping);
+  }
+  // a dof's parent is the previous dof of its body, else the last dof of the nearest ancestor
+  // that has one (mujoco's body "lastdof", carried down the tree in body order)
+  std::vector<int> last_dof(nodes_.size(), -1);
+  m.dof_parentid.assign(joints_.size(), -1);
+  for (size_t body = 1; body < nodes_.size(); ++body) {
+    last_dof[body] = last_dof[static_cast<size_t>(nodes_[body].parent)];
+    const int first = bodies_[body].first_joint;
+    for (size_t k = 0; k < nodes_[body].spec->joints.size(); ++k) {
+      const int dof = first + static_cast<int>(k);
+      m.dof_parentid[static_cast<size_t>(dof)] = last_dof[body];
+      last_dof[body] = dof;
+    }
+  }
+}
+
+void Compiler::assemble_geoms_and_sites(Model& m) const {
+  for (const CompiledGeom& g : geoms_) {
+    m.geom_name.push_back(g.spec->at.name);
+    m.geom_type.push_back(g.spec->type);
+    m.geom_bodyid.push_back(g.body);
+    m.geom_contype.push_back(g.spec->contype);
+    m.geom_conaffinity.push_back(g.spec->conaffinity);
+    m.geom_group.push_back(g.spec->group);
+    m.geom_size.push_back(eigen(g.size));
+    m.geom_pos.push_back(eigen(g.pos));
+    m.geom_quat.push_back(eigen(g.quat));
+    const std::array<double, 4>& c = g.spec->rgba;
+    m.geom_rgba.push_back(Eigen::Vector4d(c[0], c[1], c[2], c[3]));
+    m.geom_mass.push_back(g.mass);
+  }
+  for (const CompiledSite& s : sites_) {
+    m.site_name.push_back(s.spec->at.name);
+    m.site_bodyid.push_back(s.body);
+    m.site_pos.push_back(eigen(s.spec->pos));
+    m.site_quat.push_back(eigen(s.quat));
+    m.site_size.push_back(eigen(s.spec->size));
+  }
+}
+
+void Compiler::assemble_motors(Model& m) const {
+  for (const CompiledMotor& a : motors_) {
+    m.actuator_name.push_back(a.spec->at.name);
+    m.actuator_trnid.push_back(a.joint);
+    m.actuator_gear.push_back(a.spec->gear);
+    m.actuator_ctrllimited.push_back(a.ctrllimited);
+    m.actuator_forcelimited.push_back(a.forcelimited);
+    m.actuator_ctrlrange.push_back(a.spec->ctrlrange);
+    m.actuator_forcerange.push_back(a.spec->forcerange);
+  }
+}
+
+}  // namespace
+
+Model compile(const ModelSpec& spec) { return Compiler(spec).run(); }
+
+}  // namespace lever::mjcf::detail

@@ -1,0 +1,133 @@
+// Default classes and attribute inheritance; see defaults.hpp.
+#include "defaults.hpp"
+
+namespace lever::mjcf::detail {
+
+namespace {
+
+const char* const kOrientations[] = {"quat", "axisangle", "xyaxes", "zaxis", "euler",
+                                     "fullinertia"};
+
+// mujoco refuses two orientation forms written on one element (inherited ones do not count)
+void check_one_orientation(const Element& e) {
+  std::vector<std::string_view> found;
+  for (const char* name : kOrientations) {
+    if (e.find(name)) found.push_back(name);
+  }
+  if (found.size() > 1) {
+    fail(e.place(), found[1], "more than one orientation (" + quoted_list(found, "and") +
+                                  "); give only one");
+  }
+}
+
+// lever refuses values that 2.2.2 accepts but that cannot describe a real machine
+void check_physical(const Element& e, const Attribute& a, const Value& v) {
+  double sum_of_squares = 0;
+  for (const double x : v.numbers) sum_of_squares += x * x;
+  if (a.name == "quat" && sum_of_squares < 1e-14) {
+    // mujoco 2.2.2 keeps such a quaternion unnormalized (a zero quat then means "world frame")
+    fail(e.place(), a.name, "quaternion '" + a.value + "' has (nearly) zero length");
+  }
+  const bool must_not_be_negative =
+      (a.name == "mass" || a.name == "density" || a.name == "diaginertia");
+  for (const double x : v.numbers) {
+    if (must_not_be_negative && x < 0) {
+      fail(e.place(), a.name, "attribute '" + a.name + "' must not be negative (found " + show(x) +
+                                  ")");
+    }
+  }
+}
+
+}  // namespace
+
+const Value* AttrSet::find(std::string_view name) const {
+  const auto it = values_.find(name);
+  return it == values_.end() ? nullptr : &it->second;
+}
+
+void AttrSet::apply(const Element& e, const ElementRule& rule) {
+  check_one_orientation(e);
+  for (const Attribute& a : e.attributes) {
+    const AttributeRule* r = find_attribute(rule, a.name);
+    if (!r) continue;  // the reader has already refused it
+    Value v = parse_value(e, a, *r);
+    check_physical(e, a, v);
+    if (r->partial) {
+      // the unwritten tail keeps the inherited numbers, or the built-in ones
+      const Value* old = find(a.name);
+      std::vector<double> full = old ? old->numbers : default_numbers(*r);
+      for (size_t i = 0; i < v.numbers.size(); ++i) full[i] = v.numbers[i];
+      v.numbers = full;
+    }
+    values_[a.name] = std::move(v);
+  }
+}
+
+const AttrSet& DefaultClass::prototype(std::string_view tag) const {
+  if (tag == "joint") return joint;
+  if (tag == "geom") return geom;
+  if (tag == "site") return site;
+  return motor;
+}
+
+AttrSet& DefaultClass::prototype(std::string_view tag) {
+  return const_cast<AttrSet&>(static_cast<const DefaultClass&>(*this).prototype(tag));
+}
+
+DefaultClasses::DefaultClasses() { classes_.push_back(DefaultClass{"main", {}, {}, {}, {}}); }
+
+int DefaultClasses::find(std::string_view name) const {
+  for (size_t i = 0; i < classes_.size(); ++i) {
+    if (classes_[i].name == name) return static_cast<int>(i);
+  }
+  return -1;
+}
+
+void DefaultClasses::read_section(const Element& section) {
+  // a top-level <default> re-enters (and renames) the top-level class, as in mujoco 2.2.2
+  const Attribute* name = section.find("class");
+  const std::string new_name = name ? name->value : "main";
+  const int other = find(new_name);
+  if (other > 0) {
+    // mujoco would silently keep two classes of that name and use the first
+    fail(section.place(), "class", "default class '" + new_name + "' is defined twice");
+  }
+  classes_[0].name = new_name;
+  read(section, 0);
+}
+
+void DefaultClasses::read(const Element& section, int id) {
+  // the class's own element defaults first, whatever their position among nested classes
+  for (const Element& child : section.children) {
+    if (child.tag == "default") continue;
+    classes_[static_cast<size_t>(id)].prototype(child.tag).apply(child,
+                                                                 *find_rule("default", child.tag));
+  }
+  for (const Element& child : section.children) {
+    if (child.tag != "default") continue;
+    const std::string name = child.find("class")->value;
+    if (name.empty()) fail(child.place(), "class", "a nested default class needs a name");
+    if (find(name) >= 0) {
+      fail(child.place(), "class", "default class '" + name + "' is defined twice");
+    }
+    DefaultClass copy = classes_[static_cast<size_t>(id)];
+    copy.name = name;
+    classes_.push_back(std::move(copy));
+    read(child, static_cast<int>(classes_.size()) - 1);
+  }
+}
+
+int DefaultClasses::choose(const Element& e, std::string_view attribute, int fallback) const {
+  const Attribute* a = e.find(attribute);
+  if (!a) return fallback;
+  const int id = find(a->value);
+  if (id < 0) {
+    std::vector<std::string_view> names;
+    for (const DefaultClass& c : classes_) names.push_back(c.name);
+    fail(e.place(), attribute, "unknown default class '" + a->value + "'" +
+                                   did_you_mean(a->value, names));
+  }
+  return id;
+}
+
+}  // namespace lever::mjcf::detail

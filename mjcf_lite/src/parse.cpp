@@ -1,0 +1,274 @@
+// Element tree -> ModelSpec; see parse.hpp. Follows mujoco 2.2.2's xml_native_reader.cc: sections
+// are read in a fixed order (so <compiler> applies to the whole model wherever it is written), a
+// joint, geom or site takes its class from its own `class` or else from the nearest enclosing
+// `childclass`, a motor from its own `class` or else the top-level class.
+#include "parse.hpp"
+
+#include <algorithm>
+
+#include "defaults.hpp"
+#include "schema.hpp"
+
+namespace lever::mjcf::detail {
+
+namespace {
+
+// typed reads of an attribute set; what was neither written nor inherited comes from the schema
+class Fields {
+ public:
+  Fields(const AttrSet& set, std::string_view parent, std::string_view tag)
+      : set_(set), parent_(parent), tag_(tag) {}
+
+  bool has(std::string_view name) const { return set_.has(name); }
+
+  std::vector<double> numbers(std::string_view name) const {
+    if (const Value* v = set_.find(name)) return v->numbers;
+    return default_numbers(attribute_rule(parent_, tag_, name));
+  }
+
+  template <size_t N>
+  std::array<double, N> array(std::string_view name) const {
+    const std::vector<double> v = numbers(name);
+    std::array<double, N> out{};
+    std::copy_n(v.begin(), std::min(N, v.size()), out.begin());
+    return out;
+  }
+
+  template <size_t N>
+  std::optional<std::array<double, N>> maybe(std::string_view name) const {
+    if (!has(name)) return std::nullopt;
+    return array<N>(name);
+  }
+
+  double real(std::string_view name) const { return array<1>(name)[0]; }
+  int integer(std::string_view name) const { return static_cast<int>(real(name)); }
+
+  std::string word(std::string_view name) const {
+    if (const Value* v = set_.find(name)) return v->text;
+    return std::string(attribute_rule(parent_, tag_, name).default_value);
+  }
+
+  Limited limited(std::string_view name) const {
+    const std::string w = word(name);
+    return w == "true" ? Limited::kTrue : (w == "false" ? Limited::kFalse : Limited::kAuto);
+  }
+
+  Orientation orientation() const {
+    Orientation o;
+    o.quat = array<4>("quat");
+    o.axisangle = maybe<4>("axisangle");
+    o.xyaxes = maybe<6>("xyaxes");
+    o.zaxis = maybe<3>("zaxis");
+    o.euler = maybe<3>("euler");
+    o.fullinertia = maybe<6>("fullinertia");
+    return o;
+  }
+
+ private:
+  const AttrSet& set_;
+  std::string_view parent_, tag_;
+};
+
+// the attributes an element writes, over a copy of its class prototype (or over nothing)
+AttrSet resolve(const Element& e, std::string_view parent, const AttrSet& prototype = {}) {
+  AttrSet set = prototype;
+  set.apply(e, *find_rule(parent, e.tag));
+  return set;
+}
+
+GeomType geom_type(const std::string& w) {
+  if (w == "capsule") return GeomType::kCapsule;
+  if (w == "ellipsoid") return GeomType::kEllipsoid;
+  if (w == "cylinder") return GeomType::kCylinder;
+  if (w == "box") return GeomType::kBox;
+  return GeomType::kSphere;
+}
+
+// ---- one element each ------------------------------------------------------------------------
+
+JointSpec read_joint(const Element& e, const AttrSet& set) {
+  const Fields f(set, "body", "joint");
+  JointSpec j;
+  j.at = e.place();
+  j.type = f.word("type") == "slide" ? JointType::kSlide : JointType::kHinge;
+  j.pos = f.array<3>("pos");
+  j.axis = f.array<3>("axis");
+  j.range = f.array<2>("range");
+  j.limited = f.limited("limited");
+  j.damping = f.real("damping");
+  j.stiffness = f.real("stiffness");
+  j.springref = f.real("springref");
+  j.armature = f.real("armature");
+  j.ref = f.real("ref");
+  j.margin = f.real("margin");
+  j.solref = f.array<2>("solreflimit");
+  j.solimp = f.array<5>("solimplimit");
+  return j;
+}
+
+GeomSpec read_geom(const Element& e, const AttrSet& set) {
+  const Fields f(set, "body", "geom");
+  GeomSpec g;
+  g.at = e.place();
+  g.type = geom_type(f.word("type"));
+  g.size = f.array<3>("size");
+  g.fromto = f.maybe<6>("fromto");
+  g.pos = f.array<3>("pos");
+  g.orientation = f.orientation();
+  g.density = f.real("density");
+  if (f.has("mass")) g.mass = f.real("mass");
+  g.group = f.integer("group");
+  g.contype = f.integer("contype");
+  g.conaffinity = f.integer("conaffinity");
+  g.rgba = f.array<4>("rgba");
+  return g;
+}
+
+SiteSpec read_site(const Element& e, const AttrSet& set) {
+  const Fields f(set, "body", "site");
+  SiteSpec s;
+  s.at = e.place();
+  s.pos = f.array<3>("pos");
+  s.orientation = f.orientation();
+  s.size = f.array<3>("size");
+  return s;
+}
+
+InertialSpec read_inertial(const Element& e) {
+  const AttrSet set = resolve(e, "body");
+  const Fields f(set, "body", "inertial");
+  InertialSpec i;
+  i.at = e.place();
+  i.pos = f.array<3>("pos");
+  i.mass = f.real("mass");
+  i.diaginertia = f.array<3>("diaginertia");
+  i.orientation = f.orientation();
+  return i;
+}
+
+MotorSpec read_motor(const Element& e, const DefaultClasses& classes) {
+  // childclass never reaches actuators: a motor without class uses the top-level class
+  const int cls = classes.choose(e, "class", 0);
+  const AttrSet set = resolve(e, "actuator", classes.at(cls).motor);
+  const Fields f(set, "actuator", "motor");
+  MotorSpec m;
+  m.at = e.place();
+  m.joint = f.word("joint");
+  m.gear = f.array<6>("gear");
+  m.ctrlrange = f.array<2>("ctrlrange");
+  m.forcerange = f.array<2>("forcerange");
+  m.ctrllimited = f.limited("ctrllimited");
+  m.forcelimited = f.limited("forcelimited");
+  return m;
+}
+
+// ---- the body tree -------------------------------------------------------------------------
+
+struct TreeReader {
+  const DefaultClasses& classes;
+  bool ignore_inertials;
+
+  // the children of a <body> or <worldbody>; `active` is the class childclass selected
+  void read_contents(const Element& e, int active, BodySpec& body) const {
+    for (const Element& child : e.children) {
+      if (child.tag == "inertial") {
+        if (!ignore_inertials) body.inertial = read_inertial(child);
+      } else if (child.tag == "body") {
+        body.children.push_back(read_body(child, active));
+      } else {
+        const int cls = classes.choose(child, "class", active);
+        const AttrSet set = resolve(child, e.tag, classes.at(cls).prototype(child.tag));
+        if (child.tag == "joint") body.joints.push_back(read_joint(child, set));
+        if (child.tag == "geom") body.geoms.push_back(read_geom(child, set));
+        if (child.tag == "site") body.sites.push_back(read_site(child, set));
+      }
+    }
+  }
+
+  BodySpec read_body(const Element& e, int parent_active) const {
+    const int active = classes.choose(e, "childclass", parent_active);
+    const AttrSet set = resolve(e, "body");
+    const Fields f(set, "body", "body");
+    BodySpec b;
+    b.at = e.place();
+    b.pos = f.array<3>("pos");
+    b.orientation = f.orientation();
+    read_contents(e, active, b);
+    return b;
+  }
+};
+
+// ---- sections ------------------------------------------------------------------------------
+
+std::vector<const Element*> sections(const Element& root, std::string_view tag) {
+  std::vector<const Element*> out;
+  for (const Element& child : root.children) {
+    if (child.tag == tag) out.push_back(&child);
+  }
+  return out;
+}
+
+CompilerSpec read_compiler(const Element& root) {
+  // every <compiler> is applied in order over the same settings
+  AttrSet set;
+  for (const Element* e : sections(root, "compiler")) set.apply(*e, *find_rule("mujoco", "compiler"));
+  const Fields f(set, "mujoco", "compiler");
+  CompilerSpec c;
+  c.degree = f.word("angle") == "degree";
+  c.autolimits = f.word("autolimits") == "true";
+  const std::string ifg = f.word("inertiafromgeom");
+  c.inertiafromgeom = ifg == "true" ? InertiaFromGeom::kTrue
+                                    : (ifg == "false" ? InertiaFromGeom::kFalse
+                                                      : InertiaFromGeom::kAuto);
+  const std::array<double, 2> groups = f.array<2>("inertiagrouprange");
+  c.inertiagrouprange = {static_cast<int>(groups[0]), static_cast<int>(groups[1])};
+  c.eulerseq = f.word("eulerseq");
+  c.boundmass = f.real("boundmass");
+  c.boundinertia = f.real("boundinertia");
+  c.balanceinertia = f.word("balanceinertia") == "true";
+  c.settotalmass = f.real("settotalmass");
+  return c;
+}
+
+Options read_option(const Element& root) {
+  AttrSet set;
+  for (const Element* e : sections(root, "option")) {
+    set.apply(*e, *find_rule("mujoco", "option"));
+    const Attribute* timestep = e->find("timestep");
+    if (timestep && !(set.find("timestep")->numbers[0] > 0)) {
+      // mujoco 2.2.2 loads any timestep, and the first step then misbehaves
+      fail(e->place(), "timestep", "timestep must be positive (found " + timestep->value + ")");
+    }
+  }
+  const Fields f(set, "mujoco", "option");
+  Options o;
+  o.timestep = f.real("timestep");
+  const Vec3 g = f.array<3>("gravity");
+  o.gravity = Eigen::Vector3d(g[0], g[1], g[2]);
+  o.integrator = f.word("integrator") == "RK4" ? Integrator::kRK4 : Integrator::kEuler;
+  return o;
+}
+
+}  // namespace
+
+ModelSpec parse_model(const Element& root, bool ignore_inertials) {
+  ModelSpec spec;
+  const AttrSet root_set = resolve(root, "");
+  spec.name = Fields(root_set, "", "mujoco").word("model");
+  spec.compiler = read_compiler(root);
+  spec.opt = read_option(root);
+  DefaultClasses classes;
+  for (const Element* e : sections(root, "default")) classes.read_section(*e);
+  const TreeReader tree{classes, ignore_inertials};
+  spec.world.at = Place{"worldbody", "world", 0};
+  for (const Element* e : sections(root, "worldbody")) {
+    if (spec.world.at.line == 0) spec.world.at.line = e->line;
+    tree.read_contents(*e, 0, spec.world);
+  }
+  for (const Element* e : sections(root, "actuator")) {
+    for (const Element& motor : e->children) spec.motors.push_back(read_motor(motor, classes));
+  }
+  return spec;
+}
+
+}  // namespace lever::mjcf::detail

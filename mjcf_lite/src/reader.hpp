@@ -1,0 +1,38 @@
+// XML to an element tree with line numbers, checked against the schema table. No physics here:
+// after read_document() the structure is known to be valid (known elements in allowed places,
+// known and supported attributes, required ones present); values are checked later.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "problem.hpp"
+
+namespace lever::mjcf::detail {
+
+struct Attribute {
+  std::string name;
+  std::string value;
+  int line = 0;
+};
+
+struct Element {
+  std::string tag;
+  int line = 0;
+  std::vector<Attribute> attributes;  ///< in document order
+  std::vector<Element> children;      ///< in document order
+
+  /// The attribute called `name`, or nullptr.
+  const Attribute* find(std::string_view name) const;
+  /// Where this element is, for error messages.
+  Place place() const;
+};
+
+/// Deepest element nesting lever accepts (tinyxml2 itself stops at 100).
+constexpr int kMaxDepth = 100;
+
+/// Parse MJCF text and validate its structure; throws Problem.
+Element read_document(const std::string& xml);
+
+}  // namespace lever::mjcf::detail

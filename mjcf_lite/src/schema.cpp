@@ -1,0 +1,446 @@
+// The MJCF subset as a table; see schema.hpp. Built-in defaults are MuJoCo 2.2.2's, except
+// compiler/autolimits, which defaults to true as in MuJoCo 3.
+#include "schema.hpp"
+
+#include <algorithm>
+#include <sstream>
+
+namespace lever::mjcf::detail {
+
+namespace {
+
+// ---- attribute constructors, so that each table row reads as one line ------------------------
+
+AttributeRule real(std::string_view name, int count, std::string_view def,
+                   std::string_view meaning) {
+  AttributeRule r;
+  r.name = name;
+  r.kind = ValueKind::kReal;
+  r.count = count;
+  r.default_value = def;
+  r.meaning = meaning;
+  return r;
+}
+
+// a vector that may be given in part: the missing tail keeps the inherited (class) values
+AttributeRule partial(std::string_view name, int count, std::string_view def,
+                      std::string_view meaning) {
+  AttributeRule r = real(name, count, def, meaning);
+  r.partial = true;
+  return r;
+}
+
+AttributeRule integer(std::string_view name, int count, std::string_view def,
+                      std::string_view meaning) {
+  AttributeRule r = real(name, count, def, meaning);
+  r.kind = ValueKind::kInteger;
+  return r;
+}
+
+AttributeRule keyword(std::string_view name, std::string_view def, std::string_view accepted,
+                      std::string_view refused, std::string_view meaning) {
+  AttributeRule r;
+  r.name = name;
+  r.kind = ValueKind::kKeyword;
+  r.default_value = def;
+  r.keywords = accepted;
+  r.unsupported_keywords = refused;
+  r.meaning = meaning;
+  return r;
+}
+
+AttributeRule text(std::string_view name, std::string_view def, std::string_view meaning) {
+  AttributeRule r;
+  r.name = name;
+  r.kind = ValueKind::kText;
+  r.default_value = def;
+  r.meaning = meaning;
+  return r;
+}
+
+AttributeRule required(AttributeRule r) {
+  r.required = true;
+  return r;
+}
+
+std::vector<AttributeRule> join(std::vector<AttributeRule> a, const std::vector<AttributeRule>& b) {
+  a.insert(a.end(), b.begin(), b.end());
+  return a;
+}
+
+// ---- attribute groups shared by several elements -----------------------------------------------
+
+const char* const kAngleNote = " (degrees unless <compiler angle=\"radian\">)";
+
+std::vector<AttributeRule> naming(std::string_view what) {
+  return {text("name", "", what), text("class", "", "default class (else the body's childclass)")};
+}
+
+// the orientation alternatives to `quat`; at most one orientation per element
+std::vector<AttributeRule> alternatives() {
+  return {real("axisangle", 4, "", "rotation axis and angle; the angle in degrees unless radian"),
+          real("xyaxes", 6, "", "x and y axes of the frame (y is orthogonalized)"),
+          real("zaxis", 3, "", "z axis of the frame (minimal rotation from +z)"),
+          real("euler", 3, "", "Euler angles in compiler/eulerseq order; degrees unless radian")};
+}
+
+std::vector<AttributeRule> joint_attributes() {
+  return {
+      keyword("type", "hinge", "hinge slide", "free ball", "joint type"),
+      real("pos", 3, "0 0 0", "anchor, body frame"),
+      real("axis", 3, "0 0 1", "axis, body frame; normalized, must not be zero"),
+      real("range", 2, "0 0", "lower and upper limit: rad/m; hinge in degrees unless radian"),
+      keyword("limited", "auto", "false true auto", "",
+              "auto: limited if range is given (compiler/autolimits)"),
+      real("damping", 1, "0", "N m s/rad or N s/m"),
+      real("stiffness", 1, "0", "spring stiffness, N m/rad or N/m"),
+      real("springref", 1, "0", "spring rest position (qpos_spring); hinge in degrees unless radian"),
+      real("armature", 1, "0", "rotor inertia added to the mass matrix diagonal"),
+      real("ref", 1, "0", "reference position (qpos0); hinge in degrees unless radian"),
+      real("margin", 1, "0", "limit activation margin"),
+      partial("solreflimit", 2, "0.02 1", "limit solref (timeconst, dampratio)"),
+      partial("solimplimit", 5, "0.9 0.95 0.001 0.5 2", "limit solimp (d0, dmax, width, mid, power)"),
+  };
+}
+
+std::vector<AttributeRule> geom_attributes() {
+  return join(
+      {
+          keyword("type", "sphere", "sphere capsule ellipsoid cylinder box", "plane hfield mesh",
+                  "shape"),
+          partial("size", 3, "0 0 0",
+                  "sphere r; capsule, cylinder r, half-length; ellipsoid, box half-sizes"),
+          real("fromto", 6, "", "segment end points; sets pos, quat and the length"),
+          real("pos", 3, "0 0 0", "centre, body frame"),
+          real("quat", 4, "1 0 0 0", "orientation (w x y z), normalized; must not be zero"),
+      },
+      join(alternatives(),
+           {
+               real("density", 1, "1000", "kg/m^3, for the mass inferred from the volume"),
+               real("mass", 1, "", "kg; overrides density"),
+               integer("group", 1, "0", "group; compiler/inertiagrouprange selects mass"),
+               integer("contype", 1, "1", "contact type bits (stored; lever has no contacts)"),
+               integer("conaffinity", 1, "1", "contact affinity bits (stored)"),
+               real("rgba", 4, "0.5 0.5 0.5 1", "colour"),
+           }));
+}
+
+std::vector<AttributeRule> site_attributes() {
+  return join({real("pos", 3, "0 0 0", "position, body frame"),
+               real("quat", 4, "1 0 0 0", "orientation (w x y z); must not be zero")},
+              join(alternatives(),
+                   {partial("size", 3, "0.005 0.005 0.005", "sphere radius (first number)")}));
+}
+
+std::vector<AttributeRule> motor_class_attributes() {
+  return {
+      partial("gear", 6, "1 0 0 0 0 0", "gear ratio (only the first number acts on a joint)"),
+      real("ctrlrange", 2, "0 0", "control range (never converted from degrees)"),
+      keyword("ctrllimited", "auto", "false true auto", "", "auto: limited if ctrlrange is given"),
+      real("forcerange", 2, "0 0", "force range"),
+      keyword("forcelimited", "auto", "false true auto", "",
+              "auto: limited if forcerange is given"),
+  };
+}
+
+const char* const kUnsupportedJointAttributes =
+    "group springdamper solreffriction solimpfriction frictionloss user";
+const char* const kUnsupportedGeomAttributes =
+    "condim priority material friction solmix solref solimp margin gap hfield mesh fitscale "
+    "fluidshape fluidcoef user shellinertia";
+const char* const kUnsupportedSiteAttributes = "type group material fromto rgba user";
+const char* const kOtherActuators =
+    "general position velocity intvelocity damper cylinder muscle adhesion";
+
+std::vector<ElementRule> build() {
+  std::vector<ElementRule> s;
+  s.push_back({"mujoco", "", '!', {text("model", "MuJoCo Model", "model name")}, "",
+               "size visual statistic custom asset contact equality tendon sensor keyframe include",
+               "the root element"});
+  s.push_back({"compiler", "mujoco", '*',
+               {
+                   keyword("angle", "degree", "radian degree", "",
+                           "unit of euler, axisangle and hinge range/ref/springref"),
+                   keyword("autolimits", "true", "false true", "",
+                           "a range alone makes a joint or motor limited (lever: default true)"),
+                   keyword("inertiafromgeom", "auto", "false true auto", "",
+                           "infer body mass from geoms: auto = when a body has no <inertial>"),
+                   integer("inertiagrouprange", 2, "0 5", "geom groups that contribute mass"),
+                   {"eulerseq", ValueKind::kEulerSeq, 1, false, false, "xyz", "", "",
+                    "euler axis order: lower case rotating, upper case fixed axes"},
+                   real("boundmass", 1, "0", "lower bound on every body mass"),
+                   real("boundinertia", 1, "0", "lower bound on every principal moment"),
+                   keyword("balanceinertia", "false", "false true", "",
+                           "replace an inertia violating A + B >= C by the mean moment"),
+                   real("settotalmass", 1, "-1", "if > 0, scale all masses to this total"),
+                   keyword("coordinate", "local", "local", "global", "frames are local"),
+               },
+               "strippath fitaabb meshdir texturedir discardvisual convexhull usethread "
+               "fusestatic exactmeshinertia",
+               "lengthrange", "compiler settings; apply to the whole model wherever written"});
+  s.push_back({"option", "mujoco", '*',
+               {
+                   real("timestep", 1, "0.002", "s; must be positive"),
+                   real("gravity", 3, "0 0 -9.81", "m/s^2, world frame"),
+                   keyword("integrator", "Euler", "Euler RK4", "implicit", "integrator"),
+               },
+               "apirate impratio tolerance noslip_tolerance mpr_tolerance wind magnetic density "
+               "viscosity o_margin o_solref o_solimp collision cone jacobian solver iterations "
+               "noslip_iterations mpr_iterations",
+               "flag", "simulation options"});
+  s.push_back({"default", "mujoco", '*', {text("class", "main", "class name (top level: main)")},
+               "", "mesh material camera light pair equality tendon general position velocity "
+               "intvelocity damper cylinder muscle adhesion",
+               "default class: attribute values that elements of the class start from"});
+  s.push_back({"default", "default", '*', {required(text("class", "", "class name"))}, "",
+               "mesh material camera light pair equality tendon general position velocity "
+               "intvelocity damper cylinder muscle adhesion",
+               "nested class: starts as a copy of its parent"});
+  s.push_back({"joint", "default", '?', joint_attributes(), kUnsupportedJointAttributes, "",
+               "joint defaults of the class"});
+  s.push_back({"geom", "default", '?', geom_attributes(), kUnsupportedGeomAttributes, "",
+               "geom defaults of the class"});
+  s.push_back({"site", "default", '?', site_attributes(), kUnsupportedSiteAttributes, "",
+               "site defaults of the class"});
+  s.push_back({"motor", "default", '?', motor_class_attributes(), "cranklength user group", "",
+               "motor defaults of the class"});
+  s.push_back({"worldbody", "mujoco", '*', {}, "", "camera light composite",
+               "the world body: static geoms, sites and the body tree; takes no attributes"});
+  const std::vector<AttributeRule> body = join(
+      {text("name", "", "body name"),
+       text("childclass", "", "default class for everything inside this body"),
+       real("pos", 3, "0 0 0", "position in the parent frame"),
+       real("quat", 4, "1 0 0 0", "orientation in the parent frame; must not be zero")},
+      alternatives());
+  s.push_back({"body", "worldbody", '*', body, "mocap user", "", "a body fixed to the world "
+               "unless it has joints"});
+  s.push_back({"body", "body", '*', body, "mocap user", "freejoint camera light composite",
+               "a child body"});
+  s.push_back({"inertial", "body", '?',
+               join({required(real("pos", 3, "", "centre of mass, body frame")),
+                     real("quat", 4, "1 0 0 0", "principal axes; must not be zero"),
+                     required(real("mass", 1, "", "kg; must not be negative")),
+                     real("diaginertia", 3, "0 0 0", "principal moments, kg m^2 (not sorted)"),
+                     real("fullinertia", 6, "", "Ixx Iyy Izz Ixy Ixz Iyz; diagonalized")},
+                    alternatives()),
+               "", "", "explicit mass and inertia of the body (else inferred from geoms)"});
+  s.push_back({"joint", "body", '*', join(naming("joint name"), joint_attributes()),
+               kUnsupportedJointAttributes, "", "a joint between the body and its parent"});
+  s.push_back({"geom", "body", '*', join(naming("geom name"), geom_attributes()),
+               kUnsupportedGeomAttributes, "", "a shape; gives the body mass unless <inertial>"});
+  s.push_back({"geom", "worldbody", '*', join(naming("geom name"), geom_attributes()),
+               kUnsupportedGeomAttributes, "", "a static shape (no mass)"});
+  s.push_back({"site", "body", '*', join(naming("site name"), site_attributes()),
+               kUnsupportedSiteAttributes, "", "a named frame: no mass, no collision"});
+  s.push_back({"site", "worldbody", '*', join(naming("site name"), site_attributes()),
+               kUnsupportedSiteAttributes, "", "a named frame fixed to the world"});
+  s.push_back({"actuator", "mujoco", '*', {}, "", kOtherActuators, "actuators"});
+  s.push_back({"motor", "actuator", '*',
+               join({text("name", "", "motor name"),
+                     text("class", "", "default class (else the top-level class)"),
+                     required(text("joint", "", "the joint it drives"))},
+                    motor_class_attributes()),
+               "group lengthrange cranklength user jointinparent tendon slidersite cranksite site "
+               "refsite",
+               "", "a torque (hinge) or force (slide) motor: force = gear * ctrl"});
+  return s;
+}
+
+// every element tag of MJCF 2.2.2, supported or not
+const char* const kAllMjcfElements =
+    "mujoco compiler lengthrange option flag size visual global quality headlight map scale rgba "
+    "statistic default mesh material joint geom site camera light pair equality tendon general "
+    "motor position velocity intvelocity damper cylinder muscle adhesion custom numeric text tuple "
+    "element asset texture hfield skin bone worldbody body inertial freejoint composite pin "
+    "contact exclude connect weld distance spatial fixed pulley actuator sensor touch "
+    "accelerometer velocimeter gyro force torque magnetometer rangefinder jointpos jointvel "
+    "tendonpos tendonvel actuatorpos actuatorvel actuatorfrc ballquat ballangvel jointlimitpos "
+    "jointlimitvel jointlimitfrc tendonlimitpos tendonlimitvel tendonlimitfrc framepos framequat "
+    "framexaxis frameyaxis framezaxis framelinvel frameangvel framelinacc frameangacc subtreecom "
+    "subtreelinvel subtreeangmom clock user keyframe key include";
+
+}  // namespace
+
+const std::vector<ElementRule>& schema() {
+  static const std::vector<ElementRule> table = build();
+  return table;
+}
+
+const ElementRule* find_rule(std::string_view parent, std::string_view tag) {
+  for (const ElementRule& r : schema()) {
+    if (r.parent == parent && r.tag == tag) return &r;
+  }
+  return nullptr;
+}
+
+const AttributeRule* find_attribute(const ElementRule& element, std::string_view name) {
+  for (const AttributeRule& a : element.attributes) {
+    if (a.name == name) return &a;
+  }
+  return nullptr;
+}
+
+const AttributeRule& attribute_rule(std::string_view parent, std::string_view tag,
+                                    std::string_view name) {
+  static const AttributeRule missing;
+  const ElementRule* e = find_rule(parent, tag);
+  const AttributeRule* a = e ? find_attribute(*e, name) : nullptr;
+  return a ? *a : missing;
+}
+
+std::vector<std::string_view> words(std::string_view list) {
+  std::vector<std::string_view> out;
+  size_t i = 0;
+  while (i < list.size()) {
+    while (i < list.size() && list[i] == ' ') ++i;
+    size_t j = i;
+    while (j < list.size() && list[j] != ' ') ++j;
+    if (j > i) out.push_back(list.substr(i, j - i));
+    i = j;
+  }
+  return out;
+}
+
+bool has_word(std::string_view list, std::string_view word) {
+  for (const std::string_view w : words(list)) {
+    if (w == word) return true;
+  }
+  return false;
+}
+
+bool is_known_mjcf_element(std::string_view tag) { return has_word(kAllMjcfElements, tag); }
+
+// ---- docs/mjcf-subset.md -------------------------------------------------------------------
+
+namespace {
+
+const char* const kIntroduction = R"(# The MJCF subset lever reads
+
+Generated from the schema table in `mjcf_lite/src/schema.cpp` by `lever model --schema`;
+do not edit by hand. To regenerate:
+
+    build/tools/lever/lever model --schema > docs/mjcf-subset.md
+
+`lever::mjcf::load_file()` reads this subset of MJCF and compiles it the way MuJoCo 2.2.2 does
+(defaults and classes, frames, orientation forms, inertia inferred from geoms, joint and motor
+wiring), so that every compiled number agrees with MuJoCo's to 1e-12. Anything else is refused
+with an error that names it and says whether it is valid MJCF that lever does not support or not
+MJCF at all (with a suggestion for typos). Nothing is silently ignored.
+
+## Deliberate differences from MuJoCo 2.2.2
+
+* `compiler/autolimits` defaults to `true`, as in MuJoCo 3: a `range` alone makes a joint
+  limited, a `ctrlrange` alone makes a motor control-limited.
+* Refused although MuJoCo 2.2.2 accepts them (they are almost certainly mistakes):
+  * non-finite numbers (`nan`, `inf`) in any attribute;
+  * `option/timestep` that is zero or negative;
+  * a number list that ends in a blank with fewer numbers than the maximum, e.g. `pos="1 2 "`
+    (MuJoCo 2.2.2 reads the last number twice and loads `1 2 2`);
+  * a quaternion of (near) zero length, e.g. `quat="0 0 0 0"` (MuJoCo stores it unnormalized);
+  * an integer attribute that is not a whole integer, e.g. `group="1.7"` (MuJoCo reads 1);
+  * a negative `mass`, `density` or inertia anywhere (MuJoCo clamps some to 0 silently);
+  * a `compiler/eulerseq` with letters other than x, y, z, X, Y, Z, even if no `euler` uses it;
+  * two default classes with the same name, also when a top-level `<default class=...>`
+    renames the main class.
+
+Value rules: numbers are decimal (`1`, `-.5`, `1e-3`); a list must have the stated count
+("1-3" marks a partial vector whose missing numbers keep the class's values); keywords are
+case-sensitive. Names are unique per kind (body, joint, geom, site, motor).
+
+)";
+
+const char* multiplicity_text(char m) {
+  switch (m) {
+    case '!': return "exactly one";
+    case '?': return "at most one";
+    default: return "any number";
+  }
+}
+
+std::string value_text(const AttributeRule& a) {
+  switch (a.kind) {
+    case ValueKind::kReal:
+      if (a.count == 1) return "real";
+      return (a.partial ? "1-" : "") + std::to_string(a.count) + " reals";
+    case ValueKind::kInteger:
+      return a.count == 1 ? "integer" : std::to_string(a.count) + " integers";
+    case ValueKind::kKeyword: {
+      std::string s;
+      for (const std::string_view w : words(a.keywords)) s += (s.empty() ? "" : " \\| ") +
+                                                              std::string(w);
+      return s;
+    }
+    case ValueKind::kEulerSeq: return "3 of xyzXYZ";
+    case ValueKind::kText: return "text";
+  }
+  return "";
+}
+
+std::string code_list(std::string_view list, std::string_view open, std::string_view close) {
+  std::string s;
+  for (const std::string_view w : words(list)) {
+    s += (s.empty() ? "" : ", ") + std::string(open) + std::string(w) + std::string(close);
+  }
+  return s;
+}
+
+void describe(std::ostringstream& md, const ElementRule& e) {
+  md << "## `<" << e.tag << ">`";
+  if (!e.parent.empty()) md << " in `<" << e.parent << ">`";
+  md << " (" << multiplicity_text(e.multiplicity) << ")\n\n" << e.meaning << ".\n\n";
+  if (!e.attributes.empty()) {
+    md << "| attribute | value | default | meaning |\n|---|---|---|---|\n";
+    for (const AttributeRule& a : e.attributes) {
+      md << "| `" << a.name << "` | " << value_text(a) << " | ";
+      if (a.required) {
+        md << "required";
+      } else if (a.default_value.empty()) {
+        md << "unset";
+      } else {
+        md << "`" << a.default_value << "`";
+      }
+      md << " | " << a.meaning;
+      if (!a.unsupported_keywords.empty()) {
+        md << "; refused: " << code_list(a.unsupported_keywords, "`", "`");
+      }
+      md << " |\n";
+    }
+    md << "\n";
+  }
+  std::vector<std::string_view> children;
+  for (const ElementRule& c : schema()) {
+    if (c.parent == e.tag && std::find(children.begin(), children.end(), c.tag) == children.end()) {
+      children.push_back(c.tag);
+    }
+  }
+  for (size_t i = 0; i < children.size(); ++i) {
+    md << (i == 0 ? "Children: `<" : ", `<") << children[i] << ">`";
+  }
+  if (!children.empty()) md << ".\n\n";
+  if (!e.unsupported_attributes.empty() || !e.unsupported_children.empty()) {
+    md << "Valid MJCF that lever refuses:";
+    if (!e.unsupported_attributes.empty()) {
+      md << " attributes " << code_list(e.unsupported_attributes, "`", "`");
+    }
+    if (!e.unsupported_children.empty()) {
+      md << (e.unsupported_attributes.empty() ? "" : ";") << " elements "
+         << code_list(e.unsupported_children, "`<", ">`");
+    }
+    md << ".\n\n";
+  }
+}
+
+}  // namespace
+
+std::string markdown() {
+  std::ostringstream md;
+  md << kIntroduction;
+  for (const ElementRule& e : schema()) describe(md, e);
+  std::string out = md.str();
+  while (out.size() > 1 && out[out.size() - 1] == '\n' && out[out.size() - 2] == '\n') {
+    out.pop_back();
+  }
+  return out;
+}
+
+}  // namespace lever::mjcf::detail

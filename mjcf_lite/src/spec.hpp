@@ -1,0 +1,111 @@
+// The model as written, after defaults: one typed record per element, in document order, before
+// any frame, inertia or limit is computed. parse.cpp fills it, compiler.cpp compiles it.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <lever/model.hpp>
+
+#include "problem.hpp"
+
+namespace lever::mjcf::detail {
+
+using Vec3 = std::array<double, 3>;
+using Quat = std::array<double, 4>;  // (w, x, y, z)
+using Vec6 = std::array<double, 6>;
+
+enum class Limited { kFalse, kTrue, kAuto };
+enum class InertiaFromGeom { kFalse, kTrue, kAuto };
+
+/// `quat` and the alternatives written or inherited; MuJoCo keeps them side by side and lets the
+/// alternatives win (compiler.cpp applies its priority).
+struct Orientation {
+  Quat quat{1, 0, 0, 0};
+  std::optional<std::array<double, 4>> axisangle;
+  std::optional<Vec6> xyaxes;
+  std::optional<Vec3> zaxis;
+  std::optional<Vec3> euler;
+  std::optional<Vec6> fullinertia;  // <inertial> only
+};
+
+struct JointSpec {
+  Place at;
+  JointType type = JointType::kHinge;
+  Vec3 pos{}, axis{0, 0, 1};
+  std::array<double, 2> range{};
+  Limited limited = Limited::kAuto;
+  double damping = 0, stiffness = 0, springref = 0, armature = 0, ref = 0, margin = 0;
+  std::array<double, 2> solref{};
+  std::array<double, 5> solimp{};
+};
+
+struct GeomSpec {
+  Place at;
+  GeomType type = GeomType::kSphere;
+  Vec3 size{};
+  std::optional<Vec6> fromto;
+  Vec3 pos{};
+  Orientation orientation;
+  double density = 1000;
+  std::optional<double> mass;
+  int group = 0, contype = 1, conaffinity = 1;
+  std::array<double, 4> rgba{};
+};
+
+struct SiteSpec {
+  Place at;
+  Vec3 pos{};
+  Orientation orientation;
+  Vec3 size{};
+};
+
+struct InertialSpec {
+  Place at;
+  Vec3 pos{};
+  double mass = 0;
+  Vec3 diaginertia{};
+  Orientation orientation;
+};
+
+struct BodySpec {
+  Place at;
+  Vec3 pos{};
+  Orientation orientation;
+  std::optional<InertialSpec> inertial;
+  std::vector<JointSpec> joints;
+  std::vector<GeomSpec> geoms;
+  std::vector<SiteSpec> sites;
+  std::vector<BodySpec> children;
+};
+
+struct MotorSpec {
+  Place at;
+  std::string joint;
+  Vec6 gear{};
+  std::array<double, 2> ctrlrange{}, forcerange{};
+  Limited ctrllimited = Limited::kAuto, forcelimited = Limited::kAuto;
+};
+
+struct CompilerSpec {
+  bool degree = true;
+  bool autolimits = true;  // lever: true, as in MuJoCo 3 (2.2.2: false)
+  InertiaFromGeom inertiafromgeom = InertiaFromGeom::kAuto;
+  std::array<int, 2> inertiagrouprange{0, 5};
+  std::string eulerseq = "xyz";
+  double boundmass = 0, boundinertia = 0;
+  bool balanceinertia = false;
+  double settotalmass = -1;
+};
+
+struct ModelSpec {
+  std::string name;
+  CompilerSpec compiler;
+  Options opt;
+  BodySpec world;  ///< the world body: its geoms, sites and child bodies
+  std::vector<MotorSpec> motors;
+};
+
+}  // namespace lever::mjcf::detail

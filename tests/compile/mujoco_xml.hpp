@@ -1,0 +1,36 @@
+// MuJoCo's side of the compile tests: load MJCF text with mj_loadXML and compare its compiled
+// mjModel with a lever::Model field by field.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <lever/model.hpp>
+
+namespace lever::test {
+
+using MjModelHandle = std::unique_ptr<mjModel, void (*)(mjModel*)>;
+
+/// MuJoCo's compiled model of MJCF text, or null with MuJoCo's message in `error`. Unless the text
+/// says otherwise, autolimits is set to true first, since that is lever's (and MuJoCo 3's) default.
+MjModelHandle mujoco_compile(const std::string& xml, std::string* error);
+
+/// The file's text.
+std::string read_text(const std::string& path);
+
+/// The text without any <inertial .../> element (to compare inertia inferred from geoms).
+std::string without_inertials(const std::string& xml);
+
+/// Every difference between lever's compiled model and MuJoCo's beyond the agreement bound
+/// |a - b| <= 1e-12 max(1, |b|) (quaternions up to sign), each as "field[index]: lever .. vs
+/// mujoco ..". Covers the parameters (set_const's outputs are compared separately).
+std::vector<std::string> compare_parameters(const Model& ours, const mjModel& theirs);
+
+/// The same for what set_const derives: dof_invweight0, dof_M0, body_subtreemass,
+/// body_invweight0.
+std::vector<std::string> compare_constants(const Model& ours, const mjModel& theirs);
+
+}  // namespace lever::test
