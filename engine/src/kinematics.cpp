@@ -24,14 +24,19 @@ void poses(const Model& model, Data& data) {
     const int p = model.body_parentid[b];
     Eigen::Vector3d pos = data.xpos[p] + rotate(data.xmat[p], model.body_pos[b]);
     Quat quat = model.body_rotated[b] ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
-    // the frame's rotation matrix, kept current while joints turn it
+    // the frame's rotation matrix, rebuilt only when a joint needs it after a hinge turned it
     Eigen::Matrix3d R = model.body_rotated[b] ? quat_to_mat(quat) : data.xmat[p];
+    bool R_current = true;
 
     for (int k = 0; k < model.body_jntnum[b]; ++k) {
       const int j = model.body_jntadr[b] + k;
       const int qadr = model.jnt_qposadr[j];
       const double theta = data.qpos[qadr] - model.qpos0[qadr];
       const Eigen::Vector3d& axis = model.jnt_axis[j];
+      if (!R_current) {
+        R = quat_to_mat(quat);
+        R_current = true;
+      }
       data.xaxis[j] = rotate(R, axis);
       data.xanchor[j] = model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(R, model.jnt_pos[j])) : pos;
       if (model.jnt_type[j] == JointType::kSlide) {
@@ -40,9 +45,13 @@ void poses(const Model& model, Data& data) {
       }
       const double s = std::sin(0.5 * theta), c = std::cos(0.5 * theta);
       quat = quat_mul(quat, Quat(c, axis[0] * s, axis[1] * s, axis[2] * s));
-      R = quat_to_mat(quat);
+      R_current = false;
       // the anchor stays where it is: the frame's origin swings around it
-      if (model.jnt_offset[j]) pos = data.xanchor[j] - rotate(R, model.jnt_pos[j]);
+      if (model.jnt_offset[j]) {
+        R = quat_to_mat(quat);
+        R_current = true;
+        pos = data.xanchor[j] - rotate(R, model.jnt_pos[j]);
+      }
     }
 
     data.xquat[b] = quat_normalized(quat);
@@ -83,13 +92,15 @@ void com_quantities(const Model& model, Data& data) {
   for (int b = 1; b < model.nbody; ++b) {
     const Eigen::Matrix3d& R = data.ximat[b];
     const Eigen::Vector3d& d = model.body_inertia[b];
+    // column k of R scaled by the principal moment about it
+    const Eigen::Matrix3d RD = R * d.asDiagonal();
     Eigen::Matrix3d Iw;
-    for (int row = 0; row < 3; ++row) {
-      for (int col = row; col < 3; ++col) {
-        Iw(row, col) = Iw(col, row) =
-            R(row, 0) * d[0] * R(col, 0) + R(row, 1) * d[1] * R(col, 1) + R(row, 2) * d[2] * R(col, 2);
-      }
-    }
+    Iw(0, 0) = RD(0, 0) * R(0, 0) + RD(0, 1) * R(0, 1) + RD(0, 2) * R(0, 2);
+    Iw(1, 1) = RD(1, 0) * R(1, 0) + RD(1, 1) * R(1, 1) + RD(1, 2) * R(1, 2);
+    Iw(2, 2) = RD(2, 0) * R(2, 0) + RD(2, 1) * R(2, 1) + RD(2, 2) * R(2, 2);
+    Iw(0, 1) = Iw(1, 0) = RD(0, 0) * R(1, 0) + RD(0, 1) * R(1, 1) + RD(0, 2) * R(1, 2);
+    Iw(0, 2) = Iw(2, 0) = RD(0, 0) * R(2, 0) + RD(0, 1) * R(2, 1) + RD(0, 2) * R(2, 2);
+    Iw(1, 2) = Iw(2, 1) = RD(1, 0) * R(2, 0) + RD(1, 1) * R(2, 1) + RD(1, 2) * R(2, 2);
     const Eigen::Vector3d c = data.xipos[b] - data.subtree_com[model.body_rootid[b]];
     data.cinert[b] = RigidInertia::from_com(model.body_mass[b], c, Iw);
   }

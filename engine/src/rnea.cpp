@@ -27,12 +27,18 @@ void newton_euler(const Model& model, Data& data, const double* qdd, Eigen::Ref<
     const int parent = model.body_parentid[b];
     Motion vb = v[parent];
     Motion ab = a[parent];
+    bool moving = parent > 0;  // the world does not move: its children's first Sdot is zero
     for (int k = 0; k < model.body_dofnum[b]; ++k) {
       const int i = model.body_dofadr[b] + k;
       const Motion& S = data.cdof[i];
-      data.cdof_dot[i] = cross_motion(vb, S);  // S moves with the body carrying it
+      if (moving) {
+        data.cdof_dot[i] = cross_motion(vb, S);  // S moves with the body carrying it
+        ab += data.cdof_dot[i] * data.qvel[i];
+      } else {
+        data.cdof_dot[i].setZero();
+        moving = true;
+      }
       vb += S * data.qvel[i];
-      ab += data.cdof_dot[i] * data.qvel[i];
       if (qdd != nullptr) ab += S * qdd[i];
     }
     v[b] = vb;

@@ -12,6 +12,8 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <cmath>
+
 namespace lever {
 
 using Vector6d = Eigen::Matrix<double, 6, 1>;
@@ -75,13 +77,13 @@ struct RigidInertia {
     RigidInertia out;
     out.m = mass;
     out.h = mass * c;
-    const double c2 = c.squaredNorm();
-    for (int row = 0; row < 3; ++row) {
-      for (int col = row; col < 3; ++col) {
-        const double shift = mass * ((row == col ? c2 : 0.0) - c[row] * c[col]);
-        out.I(row, col) = out.I(col, row) = Ic(row, col) + shift;
-      }
-    }
+    const Eigen::Vector3d& mc = out.h;
+    out.I(0, 0) = Ic(0, 0) + (mc[1] * c[1] + mc[2] * c[2]);
+    out.I(1, 1) = Ic(1, 1) + (mc[0] * c[0] + mc[2] * c[2]);
+    out.I(2, 2) = Ic(2, 2) + (mc[0] * c[0] + mc[1] * c[1]);
+    out.I(0, 1) = out.I(1, 0) = Ic(0, 1) - mc[0] * c[1];
+    out.I(0, 2) = out.I(2, 0) = Ic(0, 2) - mc[0] * c[2];
+    out.I(1, 2) = out.I(2, 1) = Ic(1, 2) - mc[1] * c[2];
     return out;
   }
 
@@ -136,8 +138,10 @@ inline Eigen::Matrix3d quat_to_mat(const Quat& q) {
 
 /// q / |q|, or the identity for a (near) zero quaternion.
 inline Quat quat_normalized(const Quat& q) {
-  const double n = q.norm();
-  return n < 1e-15 ? Quat(1, 0, 0, 0) : Quat(q / n);
+  const double n = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (n < 1e-15) return Quat(1, 0, 0, 0);
+  const double inv = 1.0 / n;
+  return Quat(q[0] * inv, q[1] * inv, q[2] * inv, q[3] * inv);
 }
 
 /// Rotation by angle (rad) about a unit axis.
