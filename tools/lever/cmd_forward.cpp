@@ -1,14 +1,230 @@
-// lever forward: not written yet.
+// lever forward: everything the engine computes at one state.
+//
+//   lever forward MODEL [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]
+//
+// Runs lever::forward() (MuJoCo's mj_forward) at the given state, then the site Jacobians
+// (mj_jacSite) and the energy (mj_energyPos + mj_energyVel). Omitted vectors are qpos0 and zeros.
+//
+// --json: one object keyed by mjData's names and laid out as mjData stores them, row-major and
+// flattened: xpos (nbody x 3), xquat (nbody x 4, w x y z), xmat (nbody x 9), xipos, site_xpos
+// (nsite x 3), site_xmat (nsite x 9), the nv vectors, actuator_force (nu), the nefc live limit
+// rows (efc_id = joint id, efc_pos, efc_force, efc_aref, efc_R, efc_D), and
+//   M          nv x nv, full and symmetric (MuJoCo's mj_fullM of qM)
+//   site_jacp  nsite x 3 x nv (mj_jacSite's jacp for each site, one after the other)
+//   site_jacr  nsite x 3 x nv
+//   energy     [potential, kinetic] in J
+// Numbers are printed with 17 significant digits, so they compare exactly.
+// Without --json: readable tables with names and units.
+// Exit 0; bad input (a list with the wrong count, text that is not a number, NaN) exits 2.
 #include <cstdio>
+#include <string>
+
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "forward_state.hpp"
 
 namespace lever::cli {
 
-int cmd_forward(const std::vector<std::string>&) {
-  std::fprintf(stderr, "lever forward: not available yet\n");
-  return kBadInput;
+namespace {
+
+const char* const kUsage =
+    "usage: lever forward MODEL [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]\n"
+    "  --qpos LIST   joint positions, nq numbers (default: qpos0)\n"
+    "  --qvel LIST   joint velocities, nv numbers (default: zeros)\n"
+    "  --ctrl LIST   motor commands, nu numbers (default: zeros); clamped to ctrlrange as in MuJoCo\n"
+    "  --json        one JSON object keyed by mjData's names (arrays flattened row-major)\n";
+
+// Everything forward() leaves in data, plus what the command adds: site Jacobians and energy.
+struct Evaluation {
+  Eigen::MatrixXd jacp, jacr;  // (3 * nsite) x nv: site s occupies rows 3s .. 3s+2
+};
+
+Evaluation evaluate(const Model& model, Data& data) {
+  forward(model, data);
+  compute_energy(model, data);
+  Evaluation e{Eigen::MatrixXd::Zero(3 * model.nsite, model.nv),
+               Eigen::MatrixXd::Zero(3 * model.nsite, model.nv)};
+  Eigen::MatrixXd jp(3, model.nv), jr(3, model.nv);
+  for (int s = 0; s < model.nsite; ++s) {
+    jac_site(model, data, s, jp, jr);
+    e.jacp.middleRows(3 * s, 3) = jp;
+    e.jacr.middleRows(3 * s, 3) = jr;
+  }
+  return e;
+}
+
+// ---- json ------------------------------------------------------------------------------------
+
+template <int N>
+void rows(Json& json, const char* key, const std::vector<Eigen::Matrix<double, N, 1>>& v) {
+  json.key(key).begin_array();
+  for (const auto& row : v) {
+    for (int i = 0; i < N; ++i) json.value(row[i]);
+  }
+  json.end_array();
+}
+
+// 3x3 matrices row by row, as mjData's xmat.
+void matrices(Json& json, const char* key, const std::vector<Eigen::Matrix3d>& v) {
+  json.key(key).begin_array();
+  for (const auto& m : v) {
+    for (int r = 0; r < 3; ++r) {
+      for (int c = 0; c < 3; ++c) json.value(m(r, c));
+    }
+  }
+  json.end_array();
+}
+
+// A matrix row by row, flattened.
+void row_major(Json& json, const char* key, const Eigen::MatrixXd& m) {
+  json.key(key).begin_array();
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    for (Eigen::Index c = 0; c < m.cols(); ++c) json.value(m(r, c));
+  }
+  json.end_array();
+}
+
+void print_json(const Model& model, const Data& data, const Evaluation& e) {
+  Json json(stdout);
+  json.begin_object();
+  json.key("model").value(model.name);
+  json.key("time").value(data.time);
+  json.key("nq").value(model.nq);
+  json.key("nv").value(model.nv);
+  json.key("nu").value(model.nu);
+  json.key("nbody").value(model.nbody);
+  json.key("nsite").value(model.nsite);
+  json.key("qpos").values(data.qpos);
+  json.key("qvel").values(data.qvel);
+  json.key("ctrl").values(data.ctrl);
+  rows(json, "xpos", data.xpos);
+  rows(json, "xquat", data.xquat);
+  matrices(json, "xmat", data.xmat);
+  rows(json, "xipos", data.xipos);
+  rows(json, "site_xpos", data.site_xpos);
+  matrices(json, "site_xmat", data.site_xmat);
+  json.key("qfrc_bias").values(data.qfrc_bias);
+  json.key("qfrc_passive").values(data.qfrc_passive);
+  json.key("actuator_force").values(data.actuator_force);
+  json.key("qfrc_actuator").values(data.qfrc_actuator);
+  json.key("qacc_smooth").values(data.qacc_smooth);
+  json.key("qacc").values(data.qacc);
+  json.key("qfrc_constraint").values(data.qfrc_constraint);
+  json.key("nefc").value(data.nefc);
+  json.key("efc_id").begin_array();
+  for (int r = 0; r < data.nefc; ++r) json.value(data.efc_id[r]);
+  json.end_array();
+  json.key("efc_pos").values(data.efc_pos.head(data.nefc));
+  json.key("efc_force").values(data.efc_force.head(data.nefc));
+  json.key("efc_aref").values(data.efc_aref.head(data.nefc));
+  json.key("efc_R").values(data.efc_R.head(data.nefc));
+  json.key("efc_D").values(data.efc_D.head(data.nefc));
+  row_major(json, "M", data.M);
+  row_major(json, "site_jacp", e.jacp);
+  row_major(json, "site_jacr", e.jacr);
+  json.key("energy").begin_array().value(data.energy[0]).value(data.energy[1]).end_array();
+  json.end_object();
+  json.newline();
+}
+
+// ---- text ------------------------------------------------------------------------------------
+
+void print_text(const std::string& path, const Model& model, const Data& data,
+                const Evaluation& e) {
+  std::printf("model %s (%s) at time %g s\n\n", model.name.c_str(), path.c_str(), data.time);
+
+  std::printf("joints: position, velocity, acceleration, and the joint forces (N m or N) that\n"
+              "make up M qacc = qfrc_passive - qfrc_bias + qfrc_actuator + qfrc_constraint\n");
+  std::printf("  %-10s %-7s %12s %12s %12s %12s %12s %12s %12s %12s\n", "joint", "units", "qpos",
+              "qvel", "qacc_smooth", "qacc", "qfrc_bias", "qfrc_passive", "qfrc_actuator",
+              "qfrc_constr.");
+  for (int j = 0; j < model.njnt; ++j) {
+    const int q = model.jnt_qposadr[j], v = model.jnt_dofadr[j];
+    const char* units = model.jnt_type[j] == JointType::kHinge ? "rad,N m" : "m,N";
+    std::printf("  %-10s %-7s %12.6g %12.6g %12.6g %12.6g %12.6g %12.6g %12.6g %12.6g\n",
+                label_of(model.jnt_name[j], j).c_str(), units, data.qpos[q] + 0.0,
+                data.qvel[v] + 0.0, data.qacc_smooth[v] + 0.0, data.qacc[v] + 0.0,
+                data.qfrc_bias[v] + 0.0, data.qfrc_passive[v] + 0.0, data.qfrc_actuator[v] + 0.0,
+                data.qfrc_constraint[v] + 0.0);  // + 0.0: no "-0"
+  }
+
+  if (model.nu > 0) {
+    std::printf("\nmotors: ctrl as commanded, actuator_force after clamping to ctrlrange/forcerange\n");
+    std::printf("  %-10s %-10s %12s %12s %8s\n", "motor", "joint", "ctrl", "force", "units");
+    for (int a = 0; a < model.nu; ++a) {
+      const int j = model.actuator_trnid[a];
+      const bool clamped = data.ctrl[a] != data.actuator_force[a];  // the gain is 1
+      std::printf("  %-10s %-10s %12.6g %12.6g %8s%s\n", label_of(model.actuator_name[a], a).c_str(),
+                  label_of(model.jnt_name[j], j).c_str(), data.ctrl[a], data.actuator_force[a],
+                  joint_units(model, j).force, clamped ? "  (clamped)" : "");
+    }
+  }
+
+  std::printf("\nbodies: frame origin xpos and centre of mass xipos (m), orientation xquat (w x y z)\n");
+  for (int b = 1; b < model.nbody; ++b) {
+    std::printf("  %-10s xpos %-32s xipos %-32s xquat %s\n",
+                label_of(model.body_name[b], b).c_str(), vec_text(data.xpos[b]).c_str(),
+                vec_text(data.xipos[b]).c_str(), vec_text(data.xquat[b]).c_str());
+  }
+
+  if (model.nsite > 0) {
+    std::printf("\nsites: site_xpos (m); jacp (m per unit of qvel) and jacr (rad/s per unit of qvel),\n"
+                "one row per world axis x, y, z, one column per dof\n");
+    for (int s = 0; s < model.nsite; ++s) {
+      std::printf("  %-10s site_xpos %s\n", label_of(model.site_name[s], s).c_str(),
+                  vec_text(data.site_xpos[s]).c_str());
+      for (int r = 0; r < 3; ++r) {
+        std::printf("  %-10s %s  %-32s %s  %s\n", "", r == 0 ? "jacp" : "    ",
+                    vec_text(e.jacp.row(3 * s + r).transpose()).c_str(), r == 0 ? "jacr" : "    ",
+                    vec_text(e.jacr.row(3 * s + r).transpose()).c_str());
+      }
+    }
+  }
+
+  std::printf("\nM: joint-space inertia, full and symmetric, armature included (kg m^2 for hinges)\n");
+  for (int r = 0; r < model.nv; ++r) std::printf("  %s\n", vec_text(data.M.row(r).transpose(), "%.6g").c_str());
+
+  std::printf("\njoint-limit rows: nefc %d\n", data.nefc);
+  if (data.nefc > 0) {
+    std::printf("  %-10s %-6s %12s %12s %12s %12s %12s\n", "joint", "stop", "efc_pos", "efc_force",
+                "efc_aref", "efc_R", "efc_D");
+  }
+  for (int r = 0; r < data.nefc; ++r) {
+    const int j = data.efc_id[r];
+    std::printf("  %-10s %-6s %12.6g %12.6g %12.6g %12.6g %12.6g\n",
+                label_of(model.jnt_name[j], j).c_str(), data.efc_sign[r] > 0 ? "lower" : "upper",
+                data.efc_pos[r], data.efc_force[r], data.efc_aref[r], data.efc_R[r], data.efc_D[r]);
+  }
+  if (data.nefc > 0) {
+    std::printf("  (efc_pos < 0: past the stop; efc_force > 0 pushes back; efc_pos in rad or m)\n");
+  }
+
+  std::printf("\nenergy: potential %.6g J, kinetic %.6g J\n", data.energy[0], data.energy[1]);
+}
+
+}  // namespace
+
+int cmd_forward(const std::vector<std::string>& argv) {
+  const Args args(argv, {"qpos", "qvel", "ctrl"}, {"json", "help"});
+  if (args.has("help")) {
+    std::fputs(kUsage, stdout);
+    return kOk;
+  }
+  if (args.positional().size() != 1) throw UsageError{std::string("expects one MODEL\n") + kUsage};
+  const std::string path = args.positional()[0];
+  const Model model = mjcf::load_file(path);
+  Data data(model);
+  set_state_from_args(args, model, data);
+  const Evaluation e = evaluate(model, data);
+  if (args.has("json")) {
+    print_json(model, data, e);
+  } else {
+    print_text(path, model, data, e);
+  }
+  return kOk;
 }
 
 }  // namespace lever::cli

@@ -1,14 +1,486 @@
-// lever simulate: not written yet.
+// lever simulate: step a model from a start state and print, save or plot the trajectory.
+//
+//   lever simulate MODEL [--steps N | --duration T] [--qpos ..] [--qvel ..]
+//                        [--ctrl .. | --torque ..] [--gravity-compensation]
+//                        [--json] [--csv FILE] [--plot FILE.svg]
+//
+// The controller is lesson 5.1's lab: before every step,
+//     ctrl[a] = torque[a] + (gravity compensation ? qfrc_bias[dof of a] / gear[a] : 0),
+// where qfrc_bias is that of the current state. The loop is therefore
+//     forward (the current state's qfrc_bias) -> set ctrl -> forward (the row) -> step,
+// and the recorded trajectory has one row per state visited: the start state and the state after
+// every step (N + 1 rows for N steps). Each row holds the state at its time and what forward()
+// computes there under the ctrl the controller chose: the forces and accelerations that act
+// during the step that starts at that row.
+//
+// Clamping is silent in the physics (as in MuJoCo); this command counts, per motor, the steps
+// whose command was clamped to ctrlrange (or its force to forcerange) and reports it on stderr.
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+#include <lever/plot.hpp>
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "forward_state.hpp"
 
 namespace lever::cli {
 
-int cmd_simulate(const std::vector<std::string>&) {
-  std::fprintf(stderr, "lever simulate: not available yet\n");
-  return kBadInput;
+namespace {
+
+const char* const kUsage =
+    "usage: lever simulate MODEL [--steps N | --duration T] [--qpos ..] [--qvel ..]\n"
+    "                            [--ctrl .. | --torque ..] [--gravity-compensation]\n"
+    "                            [--json] [--csv FILE] [--plot FILE.svg]\n"
+    "  --steps N               number of steps of the model's timestep\n"
+    "  --duration T            simulated time in s, rounded to whole steps (default: 1 s)\n"
+    "  --qpos LIST             start positions, nq numbers (default: qpos0)\n"
+    "  --qvel LIST             start velocities, nv numbers (default: zeros)\n"
+    "  --ctrl LIST             constant motor commands, nu numbers (default: zeros)\n"
+    "  --torque LIST           the same as --ctrl, under the name lesson 5.1's lab gives it\n"
+    "  --gravity-compensation  add qfrc_bias of the current state to every command (the lab's\n"
+    "                          gc switch): ctrl = torque + qfrc_bias[dof] / gear, before each step\n"
+    "  --json                  one JSON line per state (start, then after each step): time qpos\n"
+    "                          qvel qacc qfrc_bias qfrc_constraint ctrl actuator_force\n"
+    "  --csv FILE              the trajectory as CSV with a header row ('-': standard output)\n"
+    "  --plot FILE.svg         joint angles over time and the site trail in the x-z plane\n"
+    "Without --json, a short table of the run is printed. Steps whose command was clamped are\n"
+    "counted per motor and reported on stderr.\n";
+
+// ---- the controller ------------------------------------------------------------------------
+
+struct Controller {
+  Eigen::VectorXd torque;             // (nu) the constant part, in ctrl units
+  bool gravity_compensation = false;  // add qfrc_bias / gear
+};
+
+// The lab's controller: data.qfrc_bias must be that of the current state.
+void apply(const Model& model, const Controller& c, Data& data) {
+  for (int a = 0; a < model.nu; ++a) {
+    data.ctrl[a] = c.torque[a];
+    if (c.gravity_compensation) {
+      const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+      data.ctrl[a] += data.qfrc_bias[dof] / model.actuator_gear[a][0];
+    }
+  }
+}
+
+// Run `steps` steps; call on_row(k, data) for the start state (k = 0) and after each step, with
+// every forward quantity evaluated at that state under that state's ctrl. Returns, per motor, the
+// number of steps whose command was clamped.
+std::vector<long> run(const Model& model, Data& data, const Controller& c, long steps,
+                      const std::function<void(long, const Data&)>& on_row) {
+  std::vector<long> clamped(model.nu, 0);
+  for (long k = 0;; ++k) {
+    if (c.gravity_compensation) forward(model, data);  // qfrc_bias of the current state
+    apply(model, c, data);
+    forward(model, data);  // the row: everything at this state under this ctrl
+    on_row(k, data);
+    if (k == steps) break;
+    for (int a = 0; a < model.nu; ++a) {
+      // the gain of a motor is 1, so any difference is ctrlrange or forcerange clamping
+      if (data.actuator_force[a] != data.ctrl[a]) ++clamped[a];
+    }
+    step(model, data);  // recomputes the same forward(), then integrates
+  }
+  return clamped;
+}
+
+// ---- CSV -----------------------------------------------------------------------------------
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (const char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return out + "\"";
+}
+
+void csv_header(std::FILE* out, const Model& m) {
+  std::string h = "time";
+  auto per_joint = [&](const char* what) {
+    for (int j = 0; j < m.njnt; ++j) {
+      h.append(",").append(csv_field(std::string(what) + "[" + label_of(m.jnt_name[j], j) + "]"));
+    }
+  };
+  auto per_motor = [&](const char* what) {
+    for (int a = 0; a < m.nu; ++a) {
+      h.append(",").append(csv_field(std::string(what) + "[" + label_of(m.actuator_name[a], a) + "]"));
+    }
+  };
+  per_joint("qpos");
+  per_joint("qvel");
+  per_joint("qacc");
+  per_joint("qfrc_bias");
+  per_motor("ctrl");
+  per_motor("actuator_force");
+  per_joint("qfrc_constraint");
+  std::fprintf(out, "%s\n", h.c_str());
+}
+
+void csv_row(std::FILE* out, const Model& m, const Data& d) {
+  std::fprintf(out, "%.17g", d.time);
+  auto per_dof = [&](const Eigen::VectorXd& v, bool qpos) {
+    for (int j = 0; j < m.njnt; ++j) {
+      std::fprintf(out, ",%.17g", v[qpos ? m.jnt_qposadr[j] : m.jnt_dofadr[j]]);
+    }
+  };
+  per_dof(d.qpos, true);
+  per_dof(d.qvel, false);
+  per_dof(d.qacc, false);
+  per_dof(d.qfrc_bias, false);
+  for (int a = 0; a < m.nu; ++a) std::fprintf(out, ",%.17g", d.ctrl[a]);
+  for (int a = 0; a < m.nu; ++a) std::fprintf(out, ",%.17g", d.actuator_force[a]);
+  per_dof(d.qfrc_constraint, false);
+  std::fputc('\n', out);
+}
+
+void json_row(const Data& d) {
+  Json json(stdout);
+  json.begin_object();
+  json.key("time").value(d.time);
+  json.key("qpos").values(d.qpos);
+  json.key("qvel").values(d.qvel);
+  json.key("qacc").values(d.qacc);
+  json.key("qfrc_bias").values(d.qfrc_bias);
+  json.key("qfrc_constraint").values(d.qfrc_constraint);
+  json.key("ctrl").values(d.ctrl);
+  json.key("actuator_force").values(d.actuator_force);
+  json.end_object();
+  json.newline();
+}
+
+// ---- the plot ------------------------------------------------------------------------------
+
+// What the plot needs, recorded while the simulation runs (every `stride`-th row, and the last).
+struct PlotRecord {
+  std::vector<int> sites;  // the trail: the site named "ee", or every site
+  std::vector<double> time;
+  std::vector<std::vector<double>> qpos;             // [joint][row]
+  std::vector<std::vector<double>> site_x, site_z;   // [trail site][row]
+  std::vector<Eigen::Vector3d> start_body, end_body; // body origins at the first and last row
+  std::vector<Eigen::Vector3d> start_site, end_site; // site positions at the first and last row
+
+  void add(const Model& m, const Data& d) {
+    time.push_back(d.time);
+    for (int j = 0; j < m.njnt; ++j) qpos[j].push_back(d.qpos[m.jnt_qposadr[j]]);
+    for (size_t i = 0; i < sites.size(); ++i) {
+      site_x[i].push_back(d.site_xpos[sites[i]].x());
+      site_z[i].push_back(d.site_xpos[sites[i]].z());
+    }
+  }
+};
+
+// The arm drawn as segments: each body's origin to its parent's (bodies hanging from the world
+// start at their own origin), and each site to its body's origin.
+void add_skeleton(plot::Chart& chart, const Model& m, const std::vector<Eigen::Vector3d>& body,
+                  const std::vector<Eigen::Vector3d>& site, const std::string& label,
+                  const std::string& color, bool dashed) {
+  bool labelled = false;  // one legend entry for all the segments
+  auto segment = [&](const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
+    plot::Series s;
+    s.label = labelled ? "" : label;
+    s.x = {a.x(), b.x()};
+    s.y = {a.z(), b.z()};
+    s.color = color;
+    s.dashed = dashed;
+    chart.series.push_back(s);
+    labelled = true;
+  };
+  for (int b = 1; b < m.nbody; ++b) {
+    if (m.body_parentid[b] != 0) segment(body[m.body_parentid[b]], body[b]);
+  }
+  for (int s = 0; s < m.nsite; ++s) segment(body[m.site_bodyid[s]], site[s]);
+}
+
+// Fix the chart's ranges to its data with a margin, and extra room at the top for the legend
+// (the charts draw it inside the plotting area, top right).
+void leave_room_for_legend(plot::Chart& chart, int entries) {
+  double xlo = 1e300, xhi = -1e300, ylo = 1e300, yhi = -1e300;
+  for (const plot::Series& s : chart.series) {
+    for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
+      if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      xlo = std::min(xlo, s.x[i]);
+      xhi = std::max(xhi, s.x[i]);
+      ylo = std::min(ylo, s.y[i]);
+      yhi = std::max(yhi, s.y[i]);
+    }
+  }
+  for (const plot::RefLine& l : chart.lines) {
+    if (l.axis == plot::RefLine::Axis::kHorizontal) {
+      ylo = std::min(ylo, l.at);
+      yhi = std::max(yhi, l.at);
+    }
+  }
+  if (!(xlo <= xhi && ylo <= yhi)) return;  // no data: the chart's defaults
+  const double xspan = std::max(xhi - xlo, 1e-3), yspan = std::max(yhi - ylo, 0.1);
+  const double legend = 0.07 * entries + 0.04;  // of the height, per legend line
+  chart.xrange = {{xlo - 0.03 * xspan, xhi + 0.03 * xspan}};
+  chart.yrange = {{ylo - 0.05 * yspan, yhi + yspan * legend / (1 - legend)}};
+}
+
+std::string describe(const Model& m, const Controller& c, const Eigen::VectorXd& qpos0) {
+  std::string s = m.name + ": ctrl = " + vec_text(c.torque, "%g");
+  if (c.gravity_compensation) s += " + gravity compensation";
+  return s + ", start qpos = " + vec_text(qpos0, "%g");
+}
+
+plot::Figure make_figure(const Model& m, const PlotRecord& r, const std::string& title) {
+  plot::Figure fig;
+  fig.title = title;
+
+  // joint angles over time, with any joint stop the trace comes near
+  plot::Chart angles;
+  angles.title = "joint positions";
+  angles.xlabel = "time (s)";
+  bool all_hinges = true;
+  for (int j = 0; j < m.njnt; ++j) all_hinges = all_hinges && m.jnt_type[j] == JointType::kHinge;
+  angles.ylabel = all_hinges ? "angle (rad)" : "qpos (rad or m)";
+  angles.width = 600;
+  angles.height = 420;
+  for (int j = 0; j < m.njnt; ++j) {
+    plot::Series s;
+    s.label = label_of(m.jnt_name[j], j) + " (" + joint_units(m, j).pos + ")";
+    s.x = r.time;
+    s.y = r.qpos[j];
+    s.dashed = j % 2 == 1;
+    angles.series.push_back(s);
+    if (!m.jnt_limited[j] || s.y.empty()) continue;
+    const auto [lo, hi] = m.jnt_range[j];
+    const double near = 0.1 * (hi - lo);
+    const auto [min_it, max_it] = std::minmax_element(s.y.begin(), s.y.end());
+    char text[96];
+    if (*min_it < lo + near) {
+      std::snprintf(text, sizeof text, "%s stop %g", label_of(m.jnt_name[j], j).c_str(), lo);
+      angles.lines.push_back({plot::RefLine::Axis::kHorizontal, lo, text, "#888888"});
+    }
+    if (*max_it > hi - near) {
+      std::snprintf(text, sizeof text, "%s stop %g", label_of(m.jnt_name[j], j).c_str(), hi);
+      angles.lines.push_back({plot::RefLine::Axis::kHorizontal, hi, text, "#888888"});
+    }
+  }
+  leave_room_for_legend(angles, static_cast<int>(angles.series.size()));
+  fig.charts.push_back(angles);
+
+  // the trail in the x-z plane, the arm at the start and at the end, and the first joint
+  plot::Chart trail;
+  trail.title = r.sites.size() == 1 ? std::string("trail of site ").append(label_of(m.site_name[r.sites[0]], r.sites[0]))
+                                    : "trails of the sites";
+  trail.xlabel = "x (m)";
+  trail.ylabel = "z (m)";
+  trail.equal_aspect = true;
+  trail.width = 460;
+  trail.height = 420;
+  add_skeleton(trail, m, r.start_body, r.start_site, "arm at start", "#999999", true);
+  add_skeleton(trail, m, r.end_body, r.end_site, "arm at end", "#222222", false);
+  const char* const kTrailColors[] = {"#E69F00", "#009E73", "#CC79A7", "#56B4E9"};
+  for (size_t i = 0; i < r.sites.size(); ++i) {
+    plot::Series s;
+    s.label = std::string("trail of ").append(label_of(m.site_name[r.sites[i]], r.sites[i]));
+    s.x = r.site_x[i];
+    s.y = r.site_z[i];
+    s.color = kTrailColors[i % 4];
+    trail.series.push_back(s);
+  }
+  if (m.nv > 0) {
+    // the first joint's anchor (the shoulder), where the arm is fixed to the world
+    plot::Series s;
+    s.label = label_of(m.jnt_name[m.dof_jntid[0]], m.dof_jntid[0]) + " axis";
+    s.style = plot::Series::Style::kPoints;
+    s.point_radius = 4.5;
+    s.color = "#0072B2";
+    s.x = {r.start_body[m.dof_bodyid[0]].x()};
+    s.y = {r.start_body[m.dof_bodyid[0]].z()};
+    trail.series.push_back(s);
+  }
+  leave_room_for_legend(trail, 4);
+  fig.charts.push_back(trail);
+  return fig;
+}
+
+// ---- the text summary ----------------------------------------------------------------------
+
+void print_summary_row(const Model& m, const Data& d) {
+  std::printf("  %8.3f", d.time);
+  for (int j = 0; j < m.njnt; ++j) std::printf(" %11.5f", d.qpos[m.jnt_qposadr[j]]);
+  for (int a = 0; a < m.nu; ++a) std::printf(" %11.4f", d.actuator_force[a]);
+  std::printf("\n");
+}
+
+void print_summary_header(const Model& m) {
+  std::printf("  %8s", "time (s)");
+  for (int j = 0; j < m.njnt; ++j) {
+    std::printf(" %11s", std::string("q ").append(label_of(m.jnt_name[j], j)).substr(0, 11).c_str());
+  }
+  for (int a = 0; a < m.nu; ++a) {
+    std::printf(" %11s", std::string("f ").append(label_of(m.actuator_name[a], a)).substr(0, 11).c_str());
+  }
+  std::printf("\n  (q: qpos in rad or m; f: actuator_force in N m or N)\n");
+}
+
+// The lab's readouts at the last state.
+void print_readouts(const Model& m, const Data& d) {
+  std::printf("\nat t = %g s (the last state):\n", d.time);
+  std::printf("  %-10s %12s %12s %12s %12s %15s\n", "joint", "qpos", "qvel", "qfrc_bias",
+              "actuator_force", "qfrc_constraint");
+  for (int j = 0; j < m.njnt; ++j) {
+    const int v = m.jnt_dofadr[j];
+    std::string force = "-";
+    for (int a = 0; a < m.nu; ++a) {
+      if (m.actuator_trnid[a] != j) continue;
+      char buf[32];
+      std::snprintf(buf, sizeof buf, "%.6g", d.actuator_force[a]);
+      force = buf;
+    }
+    std::printf("  %-10s %12.6g %12.6g %12.6g %12s %15.6g\n", label_of(m.jnt_name[j], j).c_str(),
+                d.qpos[m.jnt_qposadr[j]], d.qvel[v], d.qfrc_bias[v], force.c_str(),
+                d.qfrc_constraint[v]);
+  }
+}
+
+struct FileCloser {
+  void operator()(std::FILE* f) const {
+    if (f && f != stdout) std::fclose(f);
+  }
+};
+
+}  // namespace
+
+int cmd_simulate(const std::vector<std::string>& argv) {
+  const Args args(argv, {"steps", "duration", "qpos", "qvel", "ctrl", "torque", "csv", "plot"},
+                  {"gravity-compensation", "json", "help"});
+  if (args.has("help")) {
+    std::fputs(kUsage, stdout);
+    return kOk;
+  }
+  if (args.positional().size() != 1) throw UsageError{std::string("expects one MODEL\n") + kUsage};
+  if (args.has("steps") && args.has("duration")) throw UsageError{"give --steps or --duration, not both"};
+  if (args.has("ctrl") && args.has("torque")) {
+    throw UsageError{"--torque is --ctrl under the lab's name: give one of them"};
+  }
+  if (args.has("json") && args.get("csv") == "-") {
+    throw UsageError{"--json and --csv - both write to standard output: give a file to --csv"};
+  }
+  for (const char* file : {"csv", "plot"}) {
+    if (args.has(file) && args.get(file).empty()) throw UsageError{std::string("--") + file + " needs a file name"};
+  }
+
+  const Model model = mjcf::load_file(args.positional()[0]);
+  Data data(model);
+  set_state_from_args(args, model, data);  // --qpos, --qvel (and --ctrl, replaced below)
+
+  long steps = 0;
+  if (args.has("steps")) {
+    steps = args.get_long("steps", 0);
+    if (steps < 0) throw UsageError{"--steps must not be negative"};
+  } else {
+    const double duration = args.get_double("duration", 1.0);
+    if (duration < 0) throw UsageError{"--duration must not be negative"};
+    steps = std::lround(duration / model.opt.timestep);
+  }
+
+  Controller controller;
+  controller.torque = args.get_vector(args.has("torque") ? "torque" : "ctrl", model.nu,
+                                      Eigen::VectorXd::Zero(model.nu));
+  controller.gravity_compensation = args.has("gravity-compensation");
+  if (controller.gravity_compensation) {
+    for (int a = 0; a < model.nu; ++a) {
+      if (model.actuator_gear[a][0] == 0) {
+        throw UsageError{std::string("motor ").append(label_of(model.actuator_name[a], a)) +
+                         " has gear 0: gravity compensation cannot be expressed as its ctrl"};
+      }
+    }
+  }
+
+  std::unique_ptr<std::FILE, FileCloser> csv;
+  if (args.has("csv")) {
+    const std::string path = args.get("csv");
+    csv.reset(path == "-" ? stdout : std::fopen(path.c_str(), "w"));
+    if (!csv) throw std::runtime_error(std::string("cannot open '").append(path) + "' for writing");
+    csv_header(csv.get(), model);
+  }
+
+  PlotRecord record;
+  const bool plotting = args.has("plot");
+  if (plotting) plot::write_file(args.get("plot"), "");  // fail now rather than after the run
+  const long rows = steps + 1;
+  const long stride = std::max(1L, (rows + 1999) / 2000);  // at most about 2000 points a trace
+  if (plotting) {
+    for (int s = 0; s < model.nsite; ++s) {
+      if (model.site_name[s] == "ee") record.sites = {s};
+    }
+    if (record.sites.empty()) {
+      for (int s = 0; s < model.nsite; ++s) record.sites.push_back(s);
+    }
+    record.qpos.resize(model.njnt);
+    record.site_x.resize(record.sites.size());
+    record.site_z.resize(record.sites.size());
+  }
+
+  const bool text = !args.has("json") && !(csv && csv.get() == stdout);
+  const long every = std::max(1L, steps / 10);
+  const Eigen::VectorXd start_qpos = data.qpos;
+  if (text) {
+    std::printf("%s, %ld steps of %g s (%g s)\n", describe(model, controller, start_qpos).c_str(),
+                steps, model.opt.timestep, static_cast<double>(steps) * model.opt.timestep);
+    print_summary_header(model);
+  }
+
+  const std::vector<long> clamped = run(model, data, controller, steps, [&](long k, const Data& d) {
+    if (args.has("json")) json_row(d);
+    if (csv) csv_row(csv.get(), model, d);
+    if (text && (k % every == 0 || k == steps)) print_summary_row(model, d);
+    if (plotting) {
+      if (k == 0) {
+        record.start_body = d.xpos;
+        record.start_site = d.site_xpos;
+      }
+      if (k == steps) {
+        record.end_body = d.xpos;
+        record.end_site = d.site_xpos;
+      }
+      if (k % stride == 0 || k == steps) record.add(model, d);
+    }
+  });
+  if (text) print_readouts(model, data);
+  if (csv && csv.get() != stdout && std::ferror(csv.get())) {
+    throw std::runtime_error(std::string("cannot write '").append(args.get("csv")) + "'");
+  }
+  csv.reset();
+
+  if (plotting) {
+    plot::write_file(args.get("plot"), plot::to_svg(make_figure(model, record,
+                                                                describe(model, controller, start_qpos))));
+  }
+
+  // what the physics does silently: clamped commands, and states reset after a blow-up
+  long total = 0;
+  for (const long n : clamped) total += n;
+  if (total > 0) {
+    std::string line = "lever simulate: commands clamped to ctrlrange/forcerange in";
+    for (int a = 0; a < model.nu; ++a) {
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "%s %s %ld of %ld steps", a ? "," : "",
+                    label_of(model.actuator_name[a], a).c_str(), clamped[a], steps);
+      line += buf;
+    }
+    std::fprintf(stderr, "%s\n", line.c_str());
+  }
+  int status = kOk;
+  for (int w = 0; w < static_cast<int>(Warning::kCount); ++w) {
+    if (data.warning[w].number == 0) continue;
+    std::fprintf(stderr, "lever simulate: warning %s raised %d times (last index %d)\n",
+                 warning_name(static_cast<Warning>(w)), data.warning[w].number,
+                 data.warning[w].lastinfo);
+    status = kFindings;
+  }
+  return status;
 }
 
 }  // namespace lever::cli
