@@ -88,6 +88,17 @@ std::string did_you_mean(std::string_view typo, const std::vector<std::string_vi
       choice = c;
     }
   }
+  // an abbreviation ("deg" for "degree") is close too, if it abbreviates only one candidate
+  if (choice.empty() && t.size() >= 3) {
+    int matches = 0;
+    for (const std::string_view c : candidates) {
+      if (lower(c).rfind(t, 0) == 0) {
+        choice = c;
+        ++matches;
+      }
+    }
+    if (matches != 1) choice = {};
+  }
   if (choice.empty() || choice == typo) return "";
   return " (did you mean '" + std::string(choice) + "'?)";
 }

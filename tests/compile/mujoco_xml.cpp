@@ -27,7 +27,8 @@ std::string with_autolimits(const std::string& xml) {
 
 MjModelHandle mujoco_compile(const std::string& xml, std::string* error) {
   mju_user_warning = quiet;
-  const std::string text = with_autolimits(xml);
+  // mujoco's file system refuses an empty file; a blank one is just as empty to the XML parser
+  const std::string text = xml.empty() ? std::string(" ") : with_autolimits(xml);
   auto vfs = std::make_unique<mjVFS>();
   mj_defaultVFS(vfs.get());
   const char* name = "model.xml";

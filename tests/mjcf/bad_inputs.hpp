@@ -1,0 +1,539 @@
+// The bad-input corpus: MJCF texts that must each be refused with one ParseError that names the
+// line, element and attribute, with a key phrase of the problem. tests/mjcf checks lever's error;
+// tests/compile checks what MuJoCo 2.2.2 does with the same text (`mujoco` column).
+//
+// Every text starts on the line of <mujoco>, so `line` counts from it.
+#pragma once
+
+namespace lever::test {
+
+/// What MuJoCo 2.2.2 does with a bad input.
+enum class MuJoCo {
+  kRejects,  ///< it refuses it too
+  kAccepts,  ///< it loads it; lever refuses on purpose (see `why`)
+};
+
+struct BadInput {
+  const char* id;
+  const char* xml;
+  int line;               ///< 0: the error has no line (empty input)
+  const char* element;    ///< "" when the problem is the XML itself
+  const char* attribute;  ///< "" when the element as a whole is at fault
+  const char* phrase;     ///< must appear in the message
+  MuJoCo mujoco;
+  const char* why;  ///< for kAccepts: why lever refuses what MuJoCo 2.2.2 accepts
+};
+
+// clang-format off
+inline const BadInput kBadInputs[] = {
+  // ---- malformed XML (tinyxml2's line: the element left open) -----------------------------
+  {"xml-unclosed", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+  </worldbody>
+</mujoco>)", 3, "", "", "malformed XML", MuJoCo::kRejects, ""},
+  {"xml-empty", "", 0, "", "", "empty", MuJoCo::kRejects, ""},
+  {"xml-text-only", "this is not xml", 1, "", "", "malformed XML", MuJoCo::kRejects, ""},
+  {"xml-repeated-attribute", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" size="0.2"/>
+  </worldbody>
+</mujoco>)", 3, "", "", "cannot read an attribute", MuJoCo::kRejects, ""},
+  {"root-not-mujoco", R"(<model>
+</model>)", 1, "model", "", "root element must be <mujoco>", MuJoCo::kRejects, ""},
+
+  // ---- not MJCF: unknown elements and attributes, with suggestions -------------------------
+  {"unknown-element", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <bodyy/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "bodyy", "", "did you mean 'body'?", MuJoCo::kRejects, ""},
+  {"unknown-attribute", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="elbow" rnage="-1 1"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "rnage", "unknown attribute 'rnage' (did you mean 'range'?)",
+   MuJoCo::kRejects, ""},
+  {"unknown-attribute-on-body", R"(<mujoco>
+  <worldbody>
+    <body name="b" class="x">
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 3, "body", "class", "unknown attribute 'class'", MuJoCo::kRejects, ""},
+  {"name-inside-default", R"(<mujoco>
+  <default>
+    <joint name="j"/>
+  </default>
+</mujoco>)", 3, "joint", "name", "not allowed on <joint> inside <default>", MuJoCo::kRejects, ""},
+  {"joint-inside-default-motor", R"(<mujoco>
+  <default>
+    <motor joint="j"/>
+  </default>
+</mujoco>)", 3, "motor", "joint", "not allowed on <motor> inside <default>", MuJoCo::kRejects,
+   ""},
+  {"joint-in-worldbody", R"(<mujoco>
+  <worldbody>
+    <joint name="j"/>
+  </worldbody>
+</mujoco>)", 3, "joint", "", "the world body cannot move", MuJoCo::kRejects, ""},
+  {"worldbody-attribute", R"(<mujoco>
+  <worldbody name="w">
+  </worldbody>
+</mujoco>)", 2, "worldbody", "name", "takes no attributes", MuJoCo::kRejects, ""},
+  {"two-inertials", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <inertial pos="0 0 0" mass="1" diaginertia="1 1 1"/>
+      <inertial pos="0 0 0" mass="1" diaginertia="1 1 1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 5, "inertial", "", "only one <inertial>", MuJoCo::kRejects, ""},
+  {"body-at-top-level", R"(<mujoco>
+  <body name="b"/>
+</mujoco>)", 2, "body", "", "it belongs in <worldbody> or <body>", MuJoCo::kRejects, ""},
+
+  // ---- valid MJCF that lever does not support ------------------------------------------------
+  {"unsupported-element", R"(<mujoco>
+  <tendon/>
+</mujoco>)", 2, "tendon", "", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
+   "valid MJCF outside lever's subset"},
+  {"unsupported-attribute", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" frictionloss="0.1"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "frictionloss", "valid MJCF but not supported by lever",
+   MuJoCo::kAccepts, "valid MJCF outside lever's subset"},
+  {"unsupported-joint-type", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" type="ball"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "type", "'ball' is valid MJCF but not supported", MuJoCo::kAccepts,
+   "valid MJCF outside lever's subset"},
+  {"unsupported-geom-type", R"(<mujoco>
+  <worldbody>
+    <geom type="plane" size="1 1 0.1"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "type", "'plane' is valid MJCF but not supported", MuJoCo::kAccepts,
+   "valid MJCF outside lever's subset"},
+  {"unsupported-integrator", R"(<mujoco>
+  <option integrator="implicit"/>
+</mujoco>)", 2, "option", "integrator", "'implicit' is valid MJCF but not supported",
+   MuJoCo::kAccepts, "valid MJCF outside lever's subset"},
+  {"unsupported-global-coordinates", R"(<mujoco>
+  <compiler coordinate="global"/>
+</mujoco>)", 2, "compiler", "coordinate", "'global' is valid MJCF but not supported",
+   MuJoCo::kAccepts, "valid MJCF outside lever's subset (removed in MuJoCo 2.3.4)"},
+  {"unsupported-freejoint", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <freejoint/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "freejoint", "", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
+   "valid MJCF outside lever's subset"},
+  {"unsupported-actuator", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <position joint="j" kp="10"/>
+  </actuator>
+</mujoco>)", 9, "position", "", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
+   "valid MJCF outside lever's subset"},
+
+  // ---- number lists ------------------------------------------------------------------------
+  {"too-few-numbers", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" pos="1 2"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "pos", "has 2 numbers; expected 3", MuJoCo::kRejects, ""},
+  {"too-many-numbers", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" pos="1 2 3 4"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "pos", "has 4 numbers; expected 3", MuJoCo::kRejects, ""},
+  {"too-many-sizes", R"(<mujoco>
+  <worldbody>
+    <geom type="box" size="0.1 0.1 0.1 0.1"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "size", "expected 1 to 3 numbers", MuJoCo::kRejects, ""},
+  {"range-one-number", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" range="1"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "range", "has 1 number; expected 2", MuJoCo::kRejects, ""},
+  {"not-a-number", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" pos="a b c"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "pos", "'a' is not a number", MuJoCo::kRejects, ""},
+  {"commas", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" pos="1,2,3"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "pos", "'1,2,3' is not a number", MuJoCo::kRejects, ""},
+  {"empty-value", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" pos=""/>
+  </worldbody>
+</mujoco>)", 3, "geom", "pos", "is empty", MuJoCo::kRejects, ""},
+  {"overflow", R"(<mujoco>
+  <option timestep="1e400"/>
+</mujoco>)", 2, "option", "timestep", "too large", MuJoCo::kRejects, ""},
+  {"nan", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" pos="nan 0 0"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "pos", "'nan' is not a finite number", MuJoCo::kAccepts,
+   "MuJoCo stores the NaN and only prints a warning"},
+  {"infinity", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" damping="inf"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "damping", "'inf' is not a finite number", MuJoCo::kAccepts,
+   "MuJoCo stores the infinity"},
+  {"trailing-blank-exact", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" pos="1 2 "/>
+  </worldbody>
+</mujoco>)", 3, "geom", "pos", "ends in a blank", MuJoCo::kAccepts,
+   "MuJoCo 2.2.2 reads the last number twice and loads pos (1, 2, 2)"},
+  {"trailing-blank-partial", R"(<mujoco>
+  <worldbody>
+    <geom type="capsule" size="0.1 "/>
+  </worldbody>
+</mujoco>)", 3, "geom", "size", "ends in a blank", MuJoCo::kAccepts,
+   "MuJoCo 2.2.2 reads the last number twice and makes a capsule of half-length 0.1"},
+  {"integer-with-fraction", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" group="1.7"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "group", "'1.7' is not an integer", MuJoCo::kAccepts,
+   "MuJoCo reads integers with sscanf(\"%d\") and loads group 1"},
+  {"integer-not-a-number", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" contype="abc"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "contype", "'abc' is not an integer", MuJoCo::kRejects, ""},
+
+  // ---- keywords --------------------------------------------------------------------------------
+  {"bad-joint-type", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" type="hing"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "type", "invalid value 'hing' for attribute 'type'; expected 'hinge' or "
+   "'slide' (did you mean 'hinge'?)", MuJoCo::kRejects, ""},
+  {"bad-boolean", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" limited="yes" range="0 1"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "limited", "invalid value 'yes'", MuJoCo::kRejects, ""},
+  {"bad-angle-unit", R"(<mujoco>
+  <compiler angle="deg"/>
+</mujoco>)", 2, "compiler", "angle", "did you mean 'degree'?", MuJoCo::kRejects, ""},
+  {"keyword-case", R"(<mujoco>
+  <option integrator="rk4"/>
+</mujoco>)", 2, "option", "integrator", "did you mean 'RK4'?", MuJoCo::kRejects, ""},
+  {"eulerseq-length", R"(<mujoco>
+  <compiler eulerseq="xy"/>
+</mujoco>)", 2, "compiler", "eulerseq", "3 letters", MuJoCo::kRejects, ""},
+  {"eulerseq-letter-unused", R"(<mujoco>
+  <compiler eulerseq="xya"/>
+</mujoco>)", 2, "compiler", "eulerseq", "3 letters", MuJoCo::kAccepts,
+   "MuJoCo checks the letters only when an euler angle is converted"},
+
+  // ---- required attributes and references ----------------------------------------------------
+  {"motor-without-joint", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <motor name="m"/>
+  </actuator>
+</mujoco>)", 9, "motor", "joint", "missing required attribute 'joint'", MuJoCo::kRejects, ""},
+  {"motor-unknown-joint", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="elbow"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <motor name="m" joint="elbw"/>
+  </actuator>
+</mujoco>)", 9, "motor", "joint", "unknown joint 'elbw' (did you mean 'elbow'?)",
+   MuJoCo::kRejects, ""},
+  {"inertial-without-mass", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <inertial pos="0 0 0" diaginertia="1 1 1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "inertial", "mass", "missing required attribute 'mass'", MuJoCo::kRejects, ""},
+  {"unknown-class", R"(<mujoco>
+  <default>
+    <default class="arm"/>
+  </default>
+  <worldbody>
+    <geom class="amr" size="0.1"/>
+  </worldbody>
+</mujoco>)", 6, "geom", "class", "unknown default class 'amr' (did you mean 'arm'?)",
+   MuJoCo::kRejects, ""},
+  {"unknown-childclass", R"(<mujoco>
+  <worldbody>
+    <body name="b" childclass="nosuch">
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 3, "body", "childclass", "unknown default class 'nosuch'", MuJoCo::kRejects, ""},
+  {"class-defined-twice", R"(<mujoco>
+  <default>
+    <default class="a"/>
+    <default class="a"/>
+  </default>
+</mujoco>)", 4, "default", "class", "defined twice", MuJoCo::kRejects, ""},
+  {"nested-class-without-name", R"(<mujoco>
+  <default>
+    <default>
+    </default>
+  </default>
+</mujoco>)", 3, "default", "class", "missing required attribute 'class'", MuJoCo::kRejects, ""},
+
+  // ---- names ---------------------------------------------------------------------------------
+  {"duplicate-joint-name", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <joint name="j" axis="0 1 0"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 5, "joint", "name", "duplicate joint name 'j' (also at line 4)", MuJoCo::kRejects,
+   ""},
+  {"duplicate-body-name", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <geom size="0.1"/>
+    </body>
+    <body name="b">
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 6, "body", "name", "duplicate body name 'b'", MuJoCo::kRejects, ""},
+  {"body-named-world", R"(<mujoco>
+  <worldbody>
+    <body name="world">
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 3, "body", "name", "it names the world body", MuJoCo::kRejects, ""},
+
+  // ---- mass and inertia ----------------------------------------------------------------------
+  {"negative-mass", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <inertial pos="0 0 0" mass="-1" diaginertia="1 1 1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 5, "inertial", "mass", "must not be negative", MuJoCo::kRejects, ""},
+  {"negative-mass-static", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <inertial pos="0 0 0" mass="-1" diaginertia="1 1 1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "inertial", "mass", "must not be negative", MuJoCo::kAccepts,
+   "MuJoCo clamps the mass of a static body to 0 (boundmass) without a word"},
+  {"zero-mass-moving", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <inertial pos="0 0 0" mass="0" diaginertia="1 1 1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 5, "inertial", "mass", "needs positive mass and inertia", MuJoCo::kRejects, ""},
+  {"massless-moving-body", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+    </body>
+  </worldbody>
+</mujoco>)", 3, "body", "", "needs positive mass and inertia", MuJoCo::kRejects, ""},
+  {"negative-density", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1" density="-1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 5, "geom", "density", "must not be negative", MuJoCo::kRejects, ""},
+  {"triangle-inequality", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <inertial pos="0 0 0" mass="1" diaginertia="0.1 0.1 0.5"/>
+    </body>
+  </worldbody>
+</mujoco>)", 5, "inertial", "diaginertia", "triangle inequality", MuJoCo::kRejects, ""},
+  {"fullinertia-not-positive", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <inertial pos="0 0 0" mass="1" fullinertia="1 1 1 2 0 0"/>
+    </body>
+  </worldbody>
+</mujoco>)", 5, "inertial", "fullinertia", "not positive definite", MuJoCo::kRejects, ""},
+
+  // ---- joints and motors ---------------------------------------------------------------------
+  {"range-reversed", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" range="1 -1"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "range", "needs range lower < upper", MuJoCo::kRejects, ""},
+  {"limited-without-range", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" limited="true"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "range", "needs range lower < upper", MuJoCo::kRejects, ""},
+  {"range-without-limited-autolimits-off", R"(<mujoco>
+  <compiler autolimits="false"/>
+  <worldbody>
+    <body name="b">
+      <joint name="j" range="-1 1"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 5, "joint", "range", "autolimits is false", MuJoCo::kRejects, ""},
+  {"zero-axis", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" axis="0 0 0"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "axis", "too short", MuJoCo::kRejects, ""},
+  {"ctrlrange-reversed", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <motor joint="j" ctrlrange="1 -1"/>
+  </actuator>
+</mujoco>)", 9, "motor", "ctrlrange", "needs lower < upper", MuJoCo::kRejects, ""},
+  {"timestep-zero", R"(<mujoco>
+  <option timestep="0"/>
+</mujoco>)", 2, "option", "timestep", "must be positive", MuJoCo::kAccepts,
+   "MuJoCo 2.2.2 does not check the timestep"},
+  {"timestep-negative", R"(<mujoco>
+  <option timestep="-0.001"/>
+</mujoco>)", 2, "option", "timestep", "must be positive", MuJoCo::kAccepts,
+   "MuJoCo 2.2.2 does not check the timestep"},
+
+  // ---- geoms, sites and orientations ---------------------------------------------------------
+  {"geom-without-size", R"(<mujoco>
+  <worldbody>
+    <geom type="sphere"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "size", "a sphere needs a positive radius", MuJoCo::kRejects, ""},
+  {"capsule-one-size", R"(<mujoco>
+  <worldbody>
+    <geom type="capsule" size="0.1"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "size", "a capsule needs a positive radius and half-length",
+   MuJoCo::kRejects, ""},
+  {"fromto-and-pos", R"(<mujoco>
+  <worldbody>
+    <geom type="capsule" size="0.1" fromto="0 0 0 1 0 0" pos="1 0 0"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "pos", "remove pos", MuJoCo::kRejects, ""},
+  {"fromto-on-sphere", R"(<mujoco>
+  <worldbody>
+    <geom type="sphere" size="0.1" fromto="0 0 0 1 0 0"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "fromto", "not a sphere", MuJoCo::kRejects, ""},
+  {"fromto-points-coincide", R"(<mujoco>
+  <worldbody>
+    <geom type="capsule" size="0.1" fromto="1 0 0 1 0 0"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "fromto", "coincide", MuJoCo::kRejects, ""},
+  {"two-orientations", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" quat="1 0 0 0" euler="0 0 30"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "euler", "more than one orientation", MuJoCo::kRejects, ""},
+  {"zero-quaternion", R"(<mujoco>
+  <worldbody>
+    <body name="b" quat="0 0 0 0">
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 3, "body", "quat", "zero length", MuJoCo::kAccepts,
+   "MuJoCo stores (0,0,0,0); the body then ends up aligned with the world, not its parent"},
+  {"xyaxes-parallel", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" xyaxes="1 0 0 2 0 0"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "xyaxes", "parallel", MuJoCo::kRejects, ""},
+  {"zaxis-zero", R"(<mujoco>
+  <worldbody>
+    <site zaxis="0 0 0"/>
+  </worldbody>
+</mujoco>)", 3, "site", "zaxis", "zero length", MuJoCo::kRejects, ""},
+  {"site-zero-size", R"(<mujoco>
+  <worldbody>
+    <site size="0"/>
+  </worldbody>
+</mujoco>)", 3, "site", "size", "positive radius", MuJoCo::kRejects, ""},
+
+  // ---- structure -----------------------------------------------------------------------------
+  {"text-inside-element", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1">hello</geom>
+  </worldbody>
+</mujoco>)", 3, "geom", "", "unexpected text", MuJoCo::kAccepts,
+   "MuJoCo ignores text inside elements; lever never drops input silently"},
+};
+// clang-format on
+
+}  // namespace lever::test
