@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <sstream>
 #include <string>
 
@@ -21,7 +22,7 @@ inline double allowed(double reference) { return kAgreement * std::max(1.0, std:
 /// infinitely far unless both are NaN.
 inline double excess(double ours, double reference) {
   if (std::isnan(ours) || std::isnan(reference)) {
-    return (std::isnan(ours) && std::isnan(reference)) ? 0.0 : INFINITY;
+    return (std::isnan(ours) && std::isnan(reference)) ? 0.0 : std::numeric_limits<double>::infinity();
   }
   return std::abs(ours - reference) / allowed(reference);
 }
