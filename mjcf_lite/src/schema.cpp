@@ -3,6 +3,7 @@
 #include "schema.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <sstream>
 
 namespace lever::mjcf::detail {
@@ -69,8 +70,6 @@ std::vector<AttributeRule> join(std::vector<AttributeRule> a, const std::vector<
 }
 
 // ---- attribute groups shared by several elements -----------------------------------------------
-
-const char* const kAngleNote = " (degrees unless <compiler angle=\"radian\">)";
 
 std::vector<AttributeRule> naming(std::string_view what) {
   return {text("name", "", what), text("class", "", "default class (else the body's childclass)")};
@@ -164,7 +163,7 @@ std::vector<ElementRule> build() {
                    keyword("autolimits", "true", "false true", "",
                            "a range alone makes a joint or motor limited (lever: default true)"),
                    keyword("inertiafromgeom", "auto", "false true auto", "",
-                           "infer body mass from geoms: auto = when a body has no <inertial>"),
+                           "infer body mass from geoms: auto = when a body has no `<inertial>`"),
                    integer("inertiagrouprange", 2, "0 5", "geom groups that contribute mass"),
                    {"eulerseq", ValueKind::kEulerSeq, 1, false, false, "xyz", "", "",
                     "euler axis order: lower case rotating, upper case fixed axes"},
@@ -227,7 +226,7 @@ std::vector<ElementRule> build() {
   s.push_back({"joint", "body", '*', join(naming("joint name"), joint_attributes()),
                kUnsupportedJointAttributes, "", "a joint between the body and its parent"});
   s.push_back({"geom", "body", '*', join(naming("geom name"), geom_attributes()),
-               kUnsupportedGeomAttributes, "", "a shape; gives the body mass unless <inertial>"});
+               kUnsupportedGeomAttributes, "", "a shape; gives the body mass unless `<inertial>`"});
   s.push_back({"geom", "worldbody", '*', join(naming("geom name"), geom_attributes()),
                kUnsupportedGeomAttributes, "", "a static shape (no mass)"});
   s.push_back({"site", "body", '*', join(naming("site name"), site_attributes()),
@@ -387,7 +386,12 @@ std::string code_list(std::string_view list, std::string_view open, std::string_
 void describe(std::ostringstream& md, const ElementRule& e) {
   md << "## `<" << e.tag << ">`";
   if (!e.parent.empty()) md << " in `<" << e.parent << ">`";
-  md << " (" << multiplicity_text(e.multiplicity) << ")\n\n" << e.meaning << ".\n\n";
+  md << " (" << multiplicity_text(e.multiplicity) << ")\n\n";
+  // the meaning as a sentence
+  if (!e.meaning.empty()) {
+    md << static_cast<char>(std::toupper(static_cast<unsigned char>(e.meaning[0])))
+       << e.meaning.substr(1) << ".\n\n";
+  }
   if (!e.attributes.empty()) {
     md << "| attribute | value | default | meaning |\n|---|---|---|---|\n";
     for (const AttributeRule& a : e.attributes) {

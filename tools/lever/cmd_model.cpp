@@ -47,7 +47,7 @@ std::string pair(const std::array<double, 2>& r) {
 }
 
 std::string label(const std::string& name, int id) {
-  return name.empty() ? "#" + std::to_string(id) : name;
+  return name.empty() ? std::string("#").append(std::to_string(id)) : name;
 }
 
 void print_options(std::FILE* out, const Model& m) {
