@@ -65,14 +65,16 @@ int main(int argc, char** argv) try {
   }
 
   std::printf("arm3, arm horizontal: gravity torque of each joint (N m)\n");
-  std::printf("  %-9s %10s %10s %12s %16s %16s\n", "joint", "by hand", "qfrc_bias", "motor limit",
-              "limit / gravity", "random poses max");
+  std::printf("  %-9s %10s %10s %12s %8s %11s\n", "joint", "by hand", "qfrc_bias", "motor limit",
+              "ratio", "random max");
   for (int a = 0; a < model.nu; ++a) {
     const int j = model.actuator_trnid[a];  // each motor drives one joint, in joint order
     const double limit = model.actuator_ctrlrange[a][1] * model.actuator_gear[a][0];
-    std::printf("  %-9s %10.3f %10.3f %12.4g %16.2f %16.3f\n", model.jnt_name[j].c_str(),
+    std::printf("  %-9s %10.3f %10.3f %12.4g %8.2f %11.3f\n", model.jnt_name[j].c_str(),
                 by_hand[j], by_bias[j], limit, limit / by_bias[j], largest[j]);
   }
+  std::printf("  (ratio: motor limit / qfrc_bias; random max: the largest |qfrc_bias| over 1000 random "
+              "poses at rest)\n");
   const double shoulder_limit = model.actuator_ctrlrange[0][1];
   std::printf("shoulder torque ratio: by hand %.2f, by qfrc_bias %.2f (|difference| %.1e N m in the "
               "torque)\n",
