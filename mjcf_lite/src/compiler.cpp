@@ -5,6 +5,7 @@
 #include "compiler.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "inertia.hpp"
@@ -26,7 +27,7 @@ struct CompiledBody {
   Quat quat{1, 0, 0, 0};
   BodyInertia inertial;
   bool explicit_inertial = false;
-  int first_joint = -1, first_geom = -1, first_site = -1;
+  int first_joint = -1, first_geom = -1;
 };
 
 struct CompiledGeom {
@@ -60,6 +61,18 @@ struct CompiledMotor {
 };
 
 std::string show3(const Vec3& v) { return show(v[0]) + " " + show(v[1]) + " " + show(v[2]); }
+
+// finite input can still overflow (a huge density, fromto or settotalmass): refuse the result
+template <class... Arrays>
+void require_finite(const Place& at, const char* what, const Arrays&... arrays) {
+  const auto finite = [](const auto& a) {
+    return std::all_of(a.begin(), a.end(), [](double x) { return std::isfinite(x); });
+  };
+  if (!(finite(arrays) && ...)) {
+    fail(at, "", std::string("the numbers are too large: the compiled ") + what +
+                     " is not finite");
+  }
+}
 
 // which attribute a degenerate orientation came from, and a message a student can act on
 [[noreturn]] void fail_orientation(const Place& at, const std::string& reason) {
@@ -213,10 +226,11 @@ class Compiler {
     for (const GeomSpec& g : b.geoms) geoms_.push_back(compile_geom(g, id));
     if (id > 0) infer_inertia(id, has_inertial, out);
     if (id > 0) check_inertia(b, out);
+    require_finite(b.at, "body", out.quat, out.inertial.ipos, out.inertial.iquat,
+                   std::array<double, 1>{out.inertial.mass}, out.inertial.inertia);
 
     out.first_joint = static_cast<int>(joints_.size());
     for (const JointSpec& j : b.joints) joints_.push_back(compile_joint(j, id));
-    out.first_site = static_cast<int>(sites_.size());
     for (const SiteSpec& s : b.sites) sites_.push_back(compile_site(s, id));
   }
 
@@ -305,6 +319,8 @@ class Compiler {
     }
     out.mass = geom_mass(g.type, out.size, g.density, g.mass);
     out.inertia = geom_inertia(g.type, out.size, out.mass);
+    require_finite(g.at, "geom", out.size, out.pos, out.quat, std::array<double, 1>{out.mass},
+                   out.inertia);
     return out;
   }
 
@@ -349,6 +365,7 @@ class Compiler {
       out.ref = joint_radians(j.ref);
       out.springref = joint_radians(j.springref);
     }
+    require_finite(j.at, "joint", out.axis, out.range, std::array<double, 2>{out.ref, out.springref});
     return out;
   }
 
@@ -436,8 +453,10 @@ class Compiler {
     for (size_t id = 1; id < bodies_.size(); ++id) total += bodies_[id].inertial.mass;
     const double scale = std::max(1e-15, c_.settotalmass / std::max(1e-15, total));
     for (size_t id = 1; id < bodies_.size(); ++id) {
-      bodies_[id].inertial.mass *= scale;
-      for (double& moment : bodies_[id].inertial.inertia) moment *= scale;
+      BodyInertia& in = bodies_[id].inertial;
+      in.mass *= scale;
+      for (double& moment : in.inertia) moment *= scale;
+      require_finite(nodes_[id].spec->at, "body", std::array<double, 1>{in.mass}, in.inertia);
     }
   }
 

@@ -71,7 +71,10 @@ const AttrSet& DefaultClass::prototype(std::string_view tag) const {
 }
 
 AttrSet& DefaultClass::prototype(std::string_view tag) {
-  return const_cast<AttrSet&>(static_cast<const DefaultClass&>(*this).prototype(tag));
+  if (tag == "joint") return joint;
+  if (tag == "geom") return geom;
+  if (tag == "site") return site;
+  return motor;
 }
 
 DefaultClasses::DefaultClasses() { classes_.push_back(DefaultClass{"main", {}, {}, {}, {}}); }

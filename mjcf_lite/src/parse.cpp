@@ -172,7 +172,9 @@ struct TreeReader {
   void read_contents(const Element& e, int active, BodySpec& body) const {
     for (const Element& child : e.children) {
       if (child.tag == "inertial") {
-        if (!ignore_inertials) body.inertial = read_inertial(child);
+        // read (and so checked) even when it is to be ignored
+        InertialSpec inertial = read_inertial(child);
+        if (!ignore_inertials) body.inertial = std::move(inertial);
       } else if (child.tag == "body") {
         body.children.push_back(read_body(child, active));
       } else {

@@ -110,8 +110,6 @@ std::string misplaced(std::string_view tag, std::string_view parent) {
     return message + ": the world body has no mass; put <inertial> in a <body>";
   }
   const std::vector<std::string_view> homes = parents_of(tag);
-  std::vector<std::string_view> quoted;
-  for (const std::string_view h : homes) quoted.push_back(h);
   if (!homes.empty()) {
     std::string where;
     for (size_t i = 0; i < homes.size(); ++i) {

@@ -248,6 +248,13 @@ const Case kCases[] = {
       <site name="c" xyaxes="1 1 0 -1 1 0.1"/><site name="d" zaxis="0 -1 0.001"/></body>
   </worldbody>
 </mujoco>)"},
+  {"inertial-fullinertia-beats-diaginertia", R"(<mujoco>
+  <worldbody>
+    <body name="b"><joint/>
+      <inertial pos="0 0 0" mass="1" diaginertia="5 5 5" fullinertia="0.2 0.3 0.4 0.01 0 0"/>
+    </body>
+  </worldbody>
+</mujoco>)"},
   {"geom-mass-attribute", R"(<mujoco>
   <worldbody>
     <body name="b"><joint/>

@@ -497,6 +497,12 @@ inline const BadInput kBadInputs[] = {
     <geom type="capsule" size="0.1" fromto="1 0 0 1 0 0"/>
   </worldbody>
 </mujoco>)", 3, "geom", "fromto", "coincide", MuJoCo::kRejects, ""},
+  {"fromto-overflows", R"(<mujoco>
+  <worldbody>
+    <geom type="capsule" size="0.1" fromto="-1e308 0 0 1e308 0 0"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "", "too large", MuJoCo::kAccepts,
+   "MuJoCo stores an infinite half-length"},
   {"two-orientations", R"(<mujoco>
   <worldbody>
     <geom size="0.1" quat="1 0 0 0" euler="0 0 30"/>
