@@ -141,7 +141,8 @@ void register_mujoco(const Fixture& f) {
   const State* s = &f.state;
   const int site = f.site;
 
-  add("fk", f, "mujoco", mujoco_fn(&f, s, nothing, [](const mjModel* m, mjData* d) { mj_kinematics(m, d); }));
+  // lever's kinematics() also computes what mj_comPos does (subtree centres of mass, cinert, cdof)
+  add("fk", f, "mujoco", mujoco_fn(&f, s, nothing, kin));
   if (site >= 0) {
     auto jac = std::make_shared<std::vector<mjtNum>>(6 * static_cast<std::size_t>(f.mj->nv));
     add("jac_site", f, "mujoco", mujoco_fn(&f, s, kin, [site, jac](const mjModel* m, mjData* d) {

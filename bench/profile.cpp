@@ -1,7 +1,8 @@
 // lever_bench_profile: one lever operation in a loop, on the benchmark's state, for a profiler.
 //
 //   lever_bench_profile MODEL.xml OPERATION [ITERATIONS]
-//   operations: fk jac_site bias rnea crba crba_factor inverse forward forward_limit step step_limit
+//   operations: fk jac_site bias rnea crba crba_factor inverse forward forward_limit step step_limit,
+//   and MuJoCo's counterparts as mujoco:<operation> (bias is mj_rne alone, bias_vel adds mj_comVel)
 //
 // Under callgrind only the loop is measured (loading the model is not):
 //   valgrind --tool=callgrind --instr-atstart=no build-bench/bench/lever_bench_profile
@@ -15,6 +16,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <vector>
 
 #include "fixture.hpp"
 
@@ -40,7 +42,7 @@ int main(int argc, char** argv) {
     return 2;
   }
   const lever::Model& m = f->model;
-  const bool limit = op == "forward_limit" || op == "step_limit";
+  const bool limit = op.ends_with("forward_limit") || op.ends_with("step_limit");
   if (limit && !f->limit) {
     std::fprintf(stderr, "%s has no limited joint\n", f->name.c_str());
     return 2;
@@ -68,12 +70,40 @@ int main(int argc, char** argv) {
       {"step", [&] { d.qpos = s.qpos; d.qvel = s.qvel; lever::step(m, d); }},
       {"step_limit", [&] { d.qpos = s.qpos; d.qvel = s.qvel; lever::step(m, d); }},
   };
-  const auto it = ops.find(op);
-  if (it == ops.end() || (op == "jac_site" && site < 0)) {
+  // MuJoCo's counterparts, to compare instruction counts under callgrind ("mujoco:forward")
+  lever::bench::MjDataPtr md = lever::bench::mujoco_data(*f, s);
+  const mjModel* mm = f->mj.get();
+  mjData* mdp = md.get();
+  mj_kinematics(mm, mdp);
+  mj_comPos(mm, mdp);
+  mj_comVel(mm, mdp);
+  std::vector<mjtNum> jac(6 * static_cast<std::size_t>(mm->nv));
+  auto restore = [&] {
+    mju_copy(mdp->qpos, s.qpos.data(), mm->nq);
+    mju_copy(mdp->qvel, s.qvel.data(), mm->nv);
+  };
+  const std::map<std::string, std::function<void()>> mujoco_ops = {
+      {"mujoco:fk", [&] { mj_kinematics(mm, mdp); mj_comPos(mm, mdp); }},
+      {"mujoco:jac_site", [&] { mj_jacSite(mm, mdp, jac.data(), jac.data() + 3 * mm->nv, site); }},
+      {"mujoco:bias", [&] { mj_rne(mm, mdp, 0, mdp->qfrc_bias); }},
+      {"mujoco:bias_vel", [&] { mj_comVel(mm, mdp); mj_rne(mm, mdp, 0, mdp->qfrc_bias); }},
+      {"mujoco:rnea", [&] { mj_rne(mm, mdp, 1, mdp->qfrc_inverse); }},
+      {"mujoco:crba", [&] { mj_crb(mm, mdp); }},
+      {"mujoco:crba_factor", [&] { mj_crb(mm, mdp); mj_factorM(mm, mdp); }},
+      {"mujoco:inverse", [&] { mj_inverse(mm, mdp); }},
+      {"mujoco:forward", [&] { mj_forward(mm, mdp); }},
+      {"mujoco:forward_limit", [&] { mj_forward(mm, mdp); }},
+      {"mujoco:step", [&] { restore(); mj_step(mm, mdp); }},
+      {"mujoco:step_limit", [&] { restore(); mj_step(mm, mdp); }},
+  };
+  const std::function<void()>* found = nullptr;
+  if (const auto it = ops.find(op); it != ops.end()) found = &it->second;
+  if (const auto it = mujoco_ops.find(op); it != mujoco_ops.end()) found = &it->second;
+  if (found == nullptr || (op.ends_with("jac_site") && site < 0)) {
     std::fprintf(stderr, "unknown operation '%s'\n", op.c_str());
     return 2;
   }
-  const std::function<void()>& fn = it->second;
+  const std::function<void()>& fn = *found;
 
   const auto start = std::chrono::steady_clock::now();
   CALLGRIND_START_INSTRUMENTATION;

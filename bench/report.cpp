@@ -249,7 +249,7 @@ struct Operation {
 };
 
 const Operation kOperations[] = {
-    {"fk", "`kinematics` (links, bodies, sites)", "`mj_kinematics`", "`ChainFkSolverPos_recursive` (tip frame)"},
+    {"fk", "`kinematics` (bodies, sites, com-frame inertias and dof axes)", "`mj_kinematics` + `mj_comPos`", "`ChainFkSolverPos_recursive` (tip frame)"},
     {"jac_site", "`jac_site` (kinematics done)", "`mj_jacSite` (kinematics, comPos done)", "`ChainJntToJacSolver` (from q)"},
     {"bias", "`bias` (kinematics done)", "`mj_rne(flg_acc=0)` alone (kinematics, comPos, comVel done)", ""},
     {"bias_from_q", "`kinematics` + `bias`", "`mj_kinematics` + `mj_comPos` + `mj_comVel` + `mj_rne(0)`", "`ChainIdSolver_RNE`, qddot = 0"},
@@ -467,7 +467,9 @@ int main(int argc, char** argv) {
   for (const Operation& op : kOperations) {
     out << "| " << op.name << " | " << op.lever << " | " << op.mujoco << " | " << (*op.kdl ? op.kdl : "—") << " |\n";
   }
-  out << "\nNotes. `mj_kinematics` also places geoms; `mj_forward` and `mj_step` also run collision "
+  out << "\nNotes. lever's `kinematics` does the work of `mj_kinematics` and `mj_comPos` together (poses, "
+         "then subtree centres of mass, body inertias and dof axes in MuJoCo's com-based frame), and "
+         "its `bias` that of `mj_comVel` and `mj_rne`; `mj_kinematics` also places geoms; `mj_forward` and `mj_step` also run collision "
          "detection (nothing collides in these models), sensors and MuJoCo's iterative constraint "
          "solver, which lever replaces with an exact solve of the limit rows. KDL's forward dynamics "
          "has no passive forces, motors or limits, and KDL's solvers always start from q (they "
