@@ -1,0 +1,59 @@
+// lever/diff/report.hpp: for each compared quantity, the largest difference between lever and
+// MuJoCo, its ratio to the agreement bound, and where it was seen.
+#pragma once
+
+#include <functional>
+#include <string>
+#include <vector>
+
+namespace lever::diff {
+
+/// The worst comparison of one quantity.
+struct Extreme {
+  std::string quantity;
+  long compared = 0;          ///< values compared
+  long beyond = 0;            ///< values beyond the bound
+  double max_abs_diff = 0.0;  ///< largest |lever - mujoco|
+  double max_ratio = 0.0;     ///< largest |lever - mujoco| / (1e-12 max(1, |mujoco|))
+  double max_abs_mujoco = 0.0;  ///< largest |mujoco|: the quantity's scale
+  // where the largest ratio was seen (state < 0: nothing compared yet)
+  int state = -1;             ///< state, or step of a trajectory
+  int index = -1;             ///< element of the quantity's flattened array
+  std::string element;        ///< that element in words ("body 'link2', z")
+  double lever = 0.0, mujoco = 0.0;
+
+  bool pass() const { return max_ratio <= 1.0; }
+};
+
+/// Names element i of a quantity's flattened array; called only when it is worth printing.
+using Labeler = std::function<std::string(int)>;
+
+class Report {
+ public:
+  /// Compare n values of `quantity` at `state`.
+  void compare(const std::string& quantity, int state, const double* lever, const double* mujoco,
+               int n, const Labeler& label);
+  /// Compare one value.
+  void compare(const std::string& quantity, int state, double lever, double mujoco,
+               const std::string& element = "");
+  /// List a quantity before anything is compared, so tables keep a fixed order.
+  void declare(const std::string& quantity) { entry(quantity); }
+  /// Fold another report in (its extremes keep their own state numbers).
+  void merge(const Report& other);
+
+  const std::vector<Extreme>& quantities() const { return extremes_; }
+  const Extreme* find(const std::string& quantity) const;
+  bool pass() const;
+  /// The first comparisons beyond the bound, each described in full (state, quantity, index,
+  /// both values, ratio).
+  const std::vector<std::string>& failures() const { return failures_; }
+
+ private:
+  Extreme& entry(const std::string& quantity);
+  void record(Extreme& e, int state, int index, double lever, double mujoco, const Labeler& label);
+
+  std::vector<Extreme> extremes_;
+  std::vector<std::string> failures_;
+};
+
+}  // namespace lever::diff

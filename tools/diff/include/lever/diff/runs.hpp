@@ -1,0 +1,53 @@
+// lever/diff/runs.hpp: the differential runs: random states, lockstep trajectories, free runs.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include <lever/diff/report.hpp>
+#include <lever/diff/twin.hpp>
+
+namespace lever::diff {
+
+/// The seed of a model's random states: derived from the file name (test::seed_for).
+std::uint64_t default_seed(const std::string& file);
+
+/// Model constants, then `states` random states drawn with `seed` (test::random_state), each
+/// compared with compare_state().
+Report random_states(Twin& twin, int states, std::uint64_t seed);
+
+/// The control a run applies.
+enum class Control {
+  kZero,    ///< no torque
+  kSmooth,  ///< test::smooth_control: sinusoids across each motor's whole span
+};
+
+/// How much a run exercised the limits.
+struct RunStats {
+  int steps = 0;
+  int constrained_steps = 0;  ///< steps that started with at least one limit row (MuJoCo's)
+  int max_rows = 0;           ///< most limit rows at once
+};
+
+/// From rest (qpos0), `seconds` of `integrator` in lockstep: at each step lever starts from
+/// MuJoCo's own state, both take one step, and qpos, qvel (after the step) and qacc,
+/// qfrc_constraint (of the step's forward pass) are compared. The step number is the state.
+Report lockstep(Twin& twin, Integrator integrator, double seconds, Control control,
+                RunStats* stats = nullptr);
+
+/// lever and MuJoCo each running on its own from rest (qpos0) with the model's integrator,
+/// compared at every step (qpos, qvel, qacc, qfrc_constraint, actuator_force). With nudge != 0,
+/// a second MuJoCo run starting from qpos0 + nudge is compared with the first in the same way:
+/// the dynamics' own sensitivity to a last-bit change, the yardstick for lever's difference.
+struct FreeRun {
+  Report lever_vs_mujoco;
+  Report nudged_vs_mujoco;  ///< empty without a nudge
+  RunStats stats;
+};
+FreeRun free_run(Twin& twin, double seconds, Control control, double nudge = 0.0);
+
+/// The quantities a free run compares, in order.
+const std::vector<std::string>& free_run_quantities();
+
+}  // namespace lever::diff

@@ -1,0 +1,58 @@
+// lever/diff/twin.hpp: one model file loaded into lever and into MuJoCo 2.2.2, side by side.
+#pragma once
+
+#include <mujoco/mujoco.h>
+
+#include <string>
+
+#include <lever/data.hpp>
+#include <lever/model.hpp>
+
+#include "mujoco/from_mujoco.hpp"
+#include "random_state.hpp"
+
+namespace lever::diff {
+
+/// Where lever's Model comes from. MuJoCo always compiles the file itself.
+enum class Path {
+  kLoader,  ///< lever::mjcf::load_file: what users get (compiler and engine together)
+  kEngine,  ///< from_mujoco: MuJoCo's compiled parameters (the engine alone)
+};
+
+/// "loader" or "engine".
+const char* path_name(Path path);
+/// One line saying what the path compares.
+const char* path_description(Path path);
+
+/// lever and MuJoCo on the same model file. MuJoCo's energy computation is switched on.
+class Twin {
+ public:
+  /// Throws (lever::Error, std::runtime_error) if either side cannot load the file, or if the
+  /// two compiled models differ in their sizes.
+  Twin(const std::string& file, Path path);
+
+  const std::string& file() const { return file_; }
+  Path path() const { return path_; }
+
+  /// Use this integrator on both sides.
+  void set_integrator(Integrator integrator);
+
+  /// Write the same state into both; MuJoCo's warm start is cleared, as after mj_resetData.
+  void set_state(const test::State& s);
+  /// Copy MuJoCo's current state (time, qpos, qvel, ctrl, qfrc_applied) into lever.
+  void follow_mujoco();
+  /// Reset both as mj_resetData does.
+  void reset();
+
+  lever::Model model;
+  lever::Data data;
+  test::MjModelPtr m;
+  test::MjDataPtr d;
+
+ private:
+  Twin(const std::string& file, Path path, test::MjModelPtr mj);
+  std::string file_;
+  Path path_;
+};
+
+}  // namespace lever::diff

@@ -1,0 +1,97 @@
+#include <lever/diff/report.hpp>
+
+#include <cmath>
+#include <limits>
+
+#include "tolerance.hpp"
+
+namespace lever::diff {
+
+namespace {
+constexpr std::size_t kFailuresKept = 20;  // enough to see a pattern, short enough to read
+}  // namespace
+
+Extreme& Report::entry(const std::string& quantity) {
+  for (Extreme& e : extremes_) {
+    if (e.quantity == quantity) return e;
+  }
+  Extreme fresh;
+  fresh.quantity = quantity;
+  extremes_.push_back(fresh);
+  return extremes_.back();
+}
+
+const Extreme* Report::find(const std::string& quantity) const {
+  for (const Extreme& e : extremes_) {
+    if (e.quantity == quantity) return &e;
+  }
+  return nullptr;
+}
+
+void Report::record(Extreme& e, int state, int index, double lever, double mujoco,
+                    const Labeler& label) {
+  ++e.compared;
+  const double ratio = test::excess(lever, mujoco);
+  const double diff = std::isnan(lever) || std::isnan(mujoco)
+                          ? std::numeric_limits<double>::infinity()
+                          : std::abs(lever - mujoco);
+  if (diff > e.max_abs_diff) e.max_abs_diff = diff;
+  if (std::abs(mujoco) > e.max_abs_mujoco) e.max_abs_mujoco = std::abs(mujoco);
+  const bool beyond = !(ratio <= 1.0);
+  if (beyond) ++e.beyond;
+  if (ratio > e.max_ratio || e.state < 0) {
+    e.max_ratio = ratio;
+    e.state = state;
+    e.index = index;
+    e.element = label ? label(index) : "";
+    e.lever = lever;
+    e.mujoco = mujoco;
+  }
+  if (beyond && failures_.size() < kFailuresKept) {
+    std::string where = label ? label(index) : "";
+    failures_.push_back("state " + std::to_string(state) + ": " +
+                        test::describe(e.quantity, index, lever, mujoco) +
+                        (where.empty() ? "" : " [" + where + "]"));
+  }
+}
+
+void Report::compare(const std::string& quantity, int state, const double* lever,
+                     const double* mujoco, int n, const Labeler& label) {
+  Extreme& e = entry(quantity);
+  for (int i = 0; i < n; ++i) record(e, state, i, lever[i], mujoco[i], label);
+}
+
+void Report::compare(const std::string& quantity, int state, double lever, double mujoco,
+                     const std::string& element) {
+  record(entry(quantity), state, 0, lever, mujoco, [&](int) { return element; });
+}
+
+void Report::merge(const Report& other) {
+  for (const Extreme& o : other.extremes_) {
+    Extreme& e = entry(o.quantity);
+    e.compared += o.compared;
+    e.beyond += o.beyond;
+    if (o.max_abs_diff > e.max_abs_diff) e.max_abs_diff = o.max_abs_diff;
+    if (o.max_abs_mujoco > e.max_abs_mujoco) e.max_abs_mujoco = o.max_abs_mujoco;
+    if (o.max_ratio > e.max_ratio || (e.state < 0 && o.state >= 0)) {
+      const Extreme totals = e;  // counts and maxima stay merged; the location is o's
+      e = o;
+      e.compared = totals.compared;
+      e.beyond = totals.beyond;
+      e.max_abs_diff = totals.max_abs_diff;
+      e.max_abs_mujoco = totals.max_abs_mujoco;
+    }
+  }
+  for (const std::string& f : other.failures_) {
+    if (failures_.size() < kFailuresKept) failures_.push_back(f);
+  }
+}
+
+bool Report::pass() const {
+  for (const Extreme& e : extremes_) {
+    if (!e.pass()) return false;
+  }
+  return true;
+}
+
+}  // namespace lever::diff

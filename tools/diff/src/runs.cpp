@@ -1,0 +1,126 @@
+#include <lever/diff/runs.hpp>
+
+#include <cmath>
+#include <random>
+
+#include <lever/diff/compare.hpp>
+#include <lever/forward.hpp>
+
+#include "test_models.hpp"
+
+namespace lever::diff {
+
+namespace {
+
+int steps_for(const Model& model, double seconds) {
+  return static_cast<int>(std::lround(seconds / model.opt.timestep));
+}
+
+void apply_control(const Model& model, Control control, double time, mjData* d) {
+  Eigen::Map<Eigen::VectorXd> ctrl(d->ctrl, model.nu);
+  if (control == Control::kSmooth) {
+    test::smooth_control(model, time, ctrl);
+  } else {
+    ctrl.setZero();
+  }
+}
+
+void count(RunStats& stats, int nefc) {
+  ++stats.steps;
+  if (nefc > 0) ++stats.constrained_steps;
+  if (nefc > stats.max_rows) stats.max_rows = nefc;
+}
+
+// qpos, qvel (state after the step) and qacc, qfrc_constraint, actuator_force (its forward pass)
+// of `ours` against MuJoCo's `d`.
+void compare_trajectory_point(const Model& model, int k, const double* qpos, const double* qvel,
+                              const double* qacc, const double* qfrc_constraint,
+                              const double* actuator_force, const mjData* d, Report& r,
+                              bool with_actuators) {
+  const Labeler dof = [&model](int i) {
+    return "dof " + std::to_string(i) + " (joint '" + model.jnt_name[model.dof_jntid[i]] + "')";
+  };
+  r.compare("qpos", k, qpos, d->qpos, model.nq, dof);
+  r.compare("qvel", k, qvel, d->qvel, model.nv, dof);
+  r.compare("qacc", k, qacc, d->qacc, model.nv, dof);
+  r.compare("qfrc_constraint", k, qfrc_constraint, d->qfrc_constraint, model.nv, dof);
+  if (with_actuators) {
+    r.compare("actuator_force", k, actuator_force, d->actuator_force, model.nu,
+              [&model](int a) { return "actuator '" + model.actuator_name[a] + "'"; });
+  }
+}
+
+}  // namespace
+
+std::uint64_t default_seed(const std::string& file) { return test::seed_for(file); }
+
+Report random_states(Twin& twin, int states, std::uint64_t seed) {
+  Report report;
+  compare_model_constants(twin, report);
+  std::mt19937_64 rng(seed);
+  for (int k = 0; k < states; ++k) {
+    const test::State s = test::random_state(twin.model, rng);
+    const Eigen::VectorXd qacc = test::random_qacc(twin.model, rng);
+    compare_state(twin, s, qacc, k, report);
+  }
+  return report;
+}
+
+Report lockstep(Twin& twin, Integrator integrator, double seconds, Control control,
+                RunStats* stats) {
+  Report report;
+  RunStats local;
+  const Integrator own = twin.model.opt.integrator;
+  twin.set_integrator(integrator);
+  twin.reset();
+  const int steps = steps_for(twin.model, seconds);
+  for (int k = 0; k < steps; ++k) {
+    apply_control(twin.model, control, twin.d->time, twin.d.get());
+    twin.follow_mujoco();
+    step(twin.model, twin.data);
+    mj_step(twin.m.get(), twin.d.get());
+    count(local, twin.d->nefc);
+    const Data& data = twin.data;
+    compare_trajectory_point(twin.model, k, data.qpos.data(), data.qvel.data(), data.qacc.data(),
+                             data.qfrc_constraint.data(), data.actuator_force.data(),
+                             twin.d.get(), report, false);
+  }
+  twin.set_integrator(own);
+  if (stats) *stats = local;
+  return report;
+}
+
+FreeRun free_run(Twin& twin, double seconds, Control control, double nudge) {
+  FreeRun run;
+  twin.reset();
+  test::MjDataPtr nudged = test::mujoco_data(twin.m.get());
+  for (int i = 0; i < twin.model.nq; ++i) nudged->qpos[i] += nudge;
+  const int steps = steps_for(twin.model, seconds);
+  for (int k = 0; k < steps; ++k) {
+    Eigen::Map<Eigen::VectorXd> ctrl(twin.data.ctrl.data(), twin.model.nu);
+    apply_control(twin.model, control, twin.d->time, twin.d.get());
+    apply_control(twin.model, control, nudged->time, nudged.get());
+    if (control == Control::kSmooth) test::smooth_control(twin.model, twin.data.time, ctrl);
+    step(twin.model, twin.data);
+    mj_step(twin.m.get(), twin.d.get());
+    count(run.stats, twin.d->nefc);
+    const Data& data = twin.data;
+    compare_trajectory_point(twin.model, k, data.qpos.data(), data.qvel.data(), data.qacc.data(),
+                             data.qfrc_constraint.data(), data.actuator_force.data(),
+                             twin.d.get(), run.lever_vs_mujoco, true);
+    if (nudge == 0.0) continue;
+    mj_step(twin.m.get(), nudged.get());
+    compare_trajectory_point(twin.model, k, nudged->qpos, nudged->qvel, nudged->qacc,
+                             nudged->qfrc_constraint, nudged->actuator_force, twin.d.get(),
+                             run.nudged_vs_mujoco, true);
+  }
+  return run;
+}
+
+const std::vector<std::string>& free_run_quantities() {
+  static const std::vector<std::string> names{"qpos", "qvel", "qacc", "qfrc_constraint",
+                                              "actuator_force"};
+  return names;
+}
+
+}  // namespace lever::diff

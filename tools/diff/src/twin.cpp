@@ -1,0 +1,85 @@
+#include <lever/diff/twin.hpp>
+
+#include <stdexcept>
+
+#include <lever/mjcf.hpp>
+
+namespace lever::diff {
+
+namespace {
+
+Model lever_model(const std::string& file, Path path, const mjModel* m) {
+  return path == Path::kLoader ? mjcf::load_file(file) : test::from_mujoco(m);
+}
+
+// The two compiled models must at least have the same shape for any comparison to mean anything.
+void check_sizes(const Model& model, const mjModel* m) {
+  const std::pair<const char*, std::pair<int, int>> sizes[] = {
+      {"nq", {model.nq, m->nq}},         {"nv", {model.nv, m->nv}},
+      {"nu", {model.nu, m->nu}},         {"nbody", {model.nbody, m->nbody}},
+      {"njnt", {model.njnt, m->njnt}},   {"nsite", {model.nsite, m->nsite}}};
+  for (const auto& [name, pair] : sizes) {
+    if (pair.first != pair.second) {
+      throw std::runtime_error(std::string("lever and MuJoCo compile different models: ") + name +
+                               " is " + std::to_string(pair.first) + " in lever and " +
+                               std::to_string(pair.second) + " in MuJoCo");
+    }
+  }
+}
+
+}  // namespace
+
+const char* path_name(Path path) { return path == Path::kLoader ? "loader" : "engine"; }
+
+const char* path_description(Path path) {
+  return path == Path::kLoader
+             ? "lever::mjcf::load_file compiles the file (what users get)"
+             : "from_mujoco copies MuJoCo's compiled parameters (the engine alone)";
+}
+
+Twin::Twin(const std::string& file, Path path) : Twin(file, path, test::mujoco_load(file)) {}
+
+Twin::Twin(const std::string& file, Path path, test::MjModelPtr mj)
+    : model(lever_model(file, path, mj.get())),
+      data(model),
+      m(std::move(mj)),
+      d(test::mujoco_data(m.get())),
+      file_(file),
+      path_(path) {
+  check_sizes(model, m.get());
+  m->opt.enableflags |= mjENBL_ENERGY;
+}
+
+void Twin::set_integrator(Integrator integrator) {
+  model.opt.integrator = integrator;
+  m->opt.integrator = integrator == Integrator::kRK4 ? mjINT_RK4 : mjINT_EULER;
+}
+
+void Twin::set_state(const test::State& s) {
+  test::apply(s, data);
+  d->time = s.time;
+  for (int i = 0; i < m->nq; ++i) d->qpos[i] = s.qpos[i];
+  for (int i = 0; i < m->nv; ++i) {
+    d->qvel[i] = s.qvel[i];
+    d->qfrc_applied[i] = s.qfrc_applied[i];
+    d->qacc_warmstart[i] = 0.0;
+  }
+  for (int a = 0; a < m->nu; ++a) d->ctrl[a] = s.ctrl[a];
+}
+
+void Twin::follow_mujoco() {
+  data.time = d->time;
+  for (int i = 0; i < m->nq; ++i) data.qpos[i] = d->qpos[i];
+  for (int i = 0; i < m->nv; ++i) {
+    data.qvel[i] = d->qvel[i];
+    data.qfrc_applied[i] = d->qfrc_applied[i];
+  }
+  for (int a = 0; a < m->nu; ++a) data.ctrl[a] = d->ctrl[a];
+}
+
+void Twin::reset() {
+  lever::reset(model, data);
+  mj_resetData(m.get(), d.get());
+}
+
+}  // namespace lever::diff
