@@ -1,0 +1,72 @@
+// Energy conservation: with no damping, no limits and idle motors, a model is a conservative
+// system (gravity and joint springs are potential forces; armature is a constant rotor inertia).
+// RK4's energy error is O(h^4), so instead of a fixed tolerance the test shows the drift shrink by
+// about 2^4 = 16 when the timestep halves: a missing or wrong term (in M, the bias or the
+// springs) leaves an error that does not shrink with h.
+#include <cmath>
+
+#include "property_models.hpp"
+
+namespace lever::test {
+
+namespace {
+
+constexpr double kSeconds = 1.0;
+constexpr double kTimestep = 0.001;
+constexpr int kStartStates = 3;
+// halving h divides an h^4 drift by 16; accept an order between 3.5 and 4.5
+constexpr double kLeastRatio = 11.3, kMostRatio = 22.7;
+
+// The model without damping, limits or motors' effect, integrated with RK4.
+Model conservative_variant(Model model) {
+  for (double& b : model.dof_damping) b = 0.0;
+  for (int j = 0; j < model.njnt; ++j) model.jnt_limited[j] = false;
+  model.opt.integrator = Integrator::kRK4;
+  set_const(model);
+  return model;
+}
+
+double total_energy(const Model& model, Data& data) {
+  forward(model, data);
+  compute_energy(model, data);
+  return data.energy[0] + data.energy[1];
+}
+
+// Largest |E(t) - E(0)| over kSeconds with timestep h, from s (motors idle, nothing applied).
+double energy_drift(Model model, const State& s, double h) {
+  model.opt.timestep = h;
+  Data data(model);
+  apply(s, data);
+  data.ctrl.setZero();
+  data.qfrc_applied.setZero();
+  const double e0 = total_energy(model, data);
+  double drift = 0.0;
+  const long steps = std::lround(kSeconds / h);
+  for (long k = 0; k < steps; ++k) {
+    step(model, data);
+    drift = std::max(drift, std::abs(total_energy(model, data) - e0));
+  }
+  return drift;
+}
+
+}  // namespace
+
+TEST_CASE("property: RK4 conserves energy, with a drift that shrinks as h^4",
+          "[property][energy]") {
+  for (const ModelCase& c : every_model()) {
+    const Model model = conservative_variant(c.model);
+    std::mt19937_64 rng(c.seed);
+    for (int k = 0; k < kStartStates; ++k) {
+      const State s = random_state(model, rng);
+      const double coarse = energy_drift(model, s, kTimestep);
+      const double fine = energy_drift(model, s, kTimestep / 2);
+      INFO(c.name << ", seed " << c.seed << ", start state " << k << ": drift " << coarse
+                  << " J at h = " << kTimestep << ", " << fine << " J at h / 2 (ratio "
+                  << coarse / fine << ")");
+      CHECK(coarse / fine >= kLeastRatio);
+      CHECK(coarse / fine <= kMostRatio);
+    }
+  }
+}
+
+}  // namespace lever::test
