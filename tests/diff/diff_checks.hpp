@@ -1,0 +1,59 @@
+// Shared by the diff tests: which paths are compared, and how a report becomes assertions.
+#pragma once
+
+#include <catch2/catch.hpp>
+
+#include <algorithm>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <lever/diff/report.hpp>
+#include <lever/diff/twin.hpp>
+
+#include "tolerance.hpp"
+
+namespace lever::test {
+
+/// Both paths for every model: (a) lever's own loader, what users get, and (b) MuJoCo's compiled
+/// parameters copied into lever, the engine alone.
+inline std::vector<diff::Path> paths_to_compare() {
+  return {diff::Path::kLoader, diff::Path::kEngine};
+}
+
+/// "arm2.xml, loader path, seed 123": enough to rerun one case with `lever diff`.
+inline std::string context(const std::string& file, diff::Path path, std::uint64_t seed) {
+  return std::filesystem::path(file).filename().string() + ", " + diff::path_name(path) +
+         " path, seed " + std::to_string(seed);
+}
+
+/// One assertion per quantity: its worst value within the bound. On failure the message names
+/// the state, the quantity, the element and both values, and lists the first values beyond the
+/// bound (the caller's INFO names the model, path and seed). `only` restricts the check to some
+/// quantities.
+inline void check_within_bound(const diff::Report& report,
+                               const std::vector<std::string>& only = {}) {
+  for (const diff::Extreme& e : report.quantities()) {
+    const bool wanted = only.empty() || std::find(only.begin(), only.end(), e.quantity) != only.end();
+    if (!wanted) continue;
+    INFO("state " << e.state << ": " << describe(e.quantity, e.index, e.lever, e.mujoco) << " ["
+                  << e.element << "]; " << e.beyond << " of " << e.compared
+                  << " values beyond the bound");
+    std::string first_failures;
+    int listed = 0;
+    for (const std::string& f : report.failures()) {
+      const bool this_quantity = f.find(": " + e.quantity + "[") != std::string::npos;
+      if (this_quantity && !e.pass() && listed++ < 5) first_failures += "\n  " + f;
+    }
+    INFO("first values beyond the bound:" << first_failures);
+    CHECK(e.max_ratio <= 1.0);
+  }
+}
+
+/// Whether a model has any limited joint (so its runs must produce limit rows).
+inline bool has_limits(const Model& model) {
+  return std::any_of(model.jnt_limited.begin(), model.jnt_limited.end(), [](bool b) { return b; });
+}
+
+}  // namespace lever::test

@@ -1,0 +1,41 @@
+// Every quantity lever shares with MuJoCo 2.2.2, on 1000 random states per model.
+#include <catch2/catch.hpp>
+
+#include <lever/diff/runs.hpp>
+
+#include "diff_checks.hpp"
+#include "test_models.hpp"
+
+namespace lever::test {
+
+namespace {
+
+constexpr int kStates = 1000;
+
+void compare_every_model_on(diff::Path path) {
+  REQUIRE(mj_version() == 222);
+  for (const std::string& file : all_model_files()) {
+    const std::uint64_t seed = diff::default_seed(file);
+    const std::string where = context(file, path, seed);
+    INFO(where);
+    diff::Twin twin(file, path);
+    const diff::Report report = diff::random_states(twin, kStates, seed);
+    check_within_bound(report);
+    // the states must reach the stops, or the limit rows were never compared
+    if (has_limits(twin.model)) CHECK(report.find("efc_force")->compared >= kStates / 10);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("diff: every quantity agrees with MuJoCo on random states, lever's loader",
+          "[diff][loader]") {
+  compare_every_model_on(diff::Path::kLoader);
+}
+
+TEST_CASE("diff: every quantity agrees with MuJoCo on random states, MuJoCo's compiled model",
+          "[diff][engine]") {
+  compare_every_model_on(diff::Path::kEngine);
+}
+
+}  // namespace lever::test
