@@ -47,3 +47,13 @@ bench: setup
 	  $(BENCH_FLAGS)
 	@$(BENCH_BUILD)/bench/lever_bench_report $(BENCH_BUILD)/bench.json --check $(BENCH_BUILD)/bench-check.md > docs/performance.md
 	@echo "bench: wrote docs/performance.md"
+
+# make agreement: lever against MuJoCo 2.2.2 on every model (random states, lockstep trajectories,
+# free runs); writes docs/agreement.md. Quantities beyond the 1e-12 bound are written into the
+# document as FAIL without stopping it (lever diff exits 1); a model that cannot be loaded stops it.
+.PHONY: agreement
+agreement: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target lever_cli
+	@$(LEVER) diff --markdown models/*.xml tests/models/*.xml > docs/agreement.md; status=$$?; \
+	  [ $$status -le 1 ] || exit $$status; \
+	  echo "wrote docs/agreement.md (lever diff: exit status $$status)"

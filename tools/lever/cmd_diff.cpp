@@ -30,6 +30,7 @@ int cmd_diff(const std::vector<std::string>&) {
 
 #include <sys/utsname.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cstdlib>
 #include <ctime>
@@ -169,10 +170,11 @@ int exit_status(const std::vector<ModelResult>& results) {
 
 // ---- text -----------------------------------------------------------------------------------
 
-std::string where(const Extreme& e) {
+// "state 17: lever ... vs mujoco ..., body 'link2' #2, z" (`unit` names what the number counts)
+std::string where(const Extreme& e, const char* unit = "state") {
   if (e.state < 0 || e.max_abs_diff == 0.0) return "";
   char buf[160];
-  std::snprintf(buf, sizeof buf, "state %d: lever %.17g vs mujoco %.17g", e.state, e.lever,
+  std::snprintf(buf, sizeof buf, "%s %d: lever %.17g vs mujoco %.17g", unit, e.state, e.lever,
                 e.mujoco);
   return std::string(buf) + (e.element.empty() ? "" : ", " + e.element);
 }
@@ -181,8 +183,7 @@ void print_table(const Report& report, const char* state_word) {
   std::printf("    %-34s %9s %14s %10s  %s\n", "quantity", "compared", "largest |diff|",
               "ratio", "worst at");
   for (const Extreme& e : report.quantities()) {
-    std::string at = where(e);
-    if (!at.empty() && std::string(state_word) != "state") at.replace(0, 5, state_word);
+    const std::string at = where(e, state_word);
     std::printf("    %-34s %9ld %14.2e %10.3g  %s%s\n", e.quantity.c_str(), e.compared,
                 e.max_abs_diff, e.max_ratio, e.pass() ? "" : "FAIL  ", at.c_str());
   }
@@ -330,49 +331,104 @@ std::string today() {
 
 std::string base_name(const std::string& file) { return file.substr(file.find_last_of('/') + 1); }
 
-std::string cell(const Extreme* e) {
-  if (!e) return "–";
-  char buf[64];
-  std::snprintf(buf, sizeof buf, "%.1e (%.2g)%s", e->max_abs_diff, e->max_ratio,
-                e->pass() ? "" : " **FAIL**");
-  return buf;
+std::string ratio_text(double ratio, bool fail) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, ratio == 0.0 ? "0" : "%.2g", ratio);
+  return fail ? std::string("**") + buf + "**" : std::string(buf);
 }
 
-// Every quantity of a model's reports, in first-seen order across its paths.
-std::vector<std::string> quantity_names(const ModelResult& m, Report PathResult::*which) {
+std::string cell(const Extreme* e) {
+  if (!e || e->compared == 0) return "–";
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.1e (", e->max_abs_diff);
+  return buf + ratio_text(e->max_ratio, !e->pass()) + ")";
+}
+
+// Every quantity of some reports, in first-seen order.
+std::vector<std::string> quantity_names(const std::vector<const Report*>& reports) {
   std::vector<std::string> names;
-  for (const PathResult& p : m.paths) {
-    for (const Extreme& e : (p.*which).quantities()) {
-      bool seen = false;
-      for (const auto& n : names) seen = seen || n == e.quantity;
-      if (!seen) names.push_back(e.quantity);
+  for (const Report* r : reports) {
+    for (const Extreme& e : r->quantities()) {
+      if (std::find(names.begin(), names.end(), e.quantity) == names.end()) {
+        names.push_back(e.quantity);
+      }
     }
   }
   return names;
 }
 
-void markdown_table(const ModelResult& m, Report PathResult::*which) {
+// The reports `which` of every loaded path of a model.
+std::vector<const Report*> reports_of(const ModelResult& m, Report PathResult::*which) {
+  std::vector<const Report*> reports;
+  for (const PathResult& p : m.paths) {
+    if (p.loaded()) reports.push_back(&(p.*which));
+  }
+  return reports;
+}
+
+// Worst ratio of a quantity over some reports (-1: never compared).
+double worst_ratio(const std::vector<const Report*>& reports, const std::string& quantity) {
+  double worst = -1.0;
+  for (const Report* r : reports) {
+    const Extreme* e = r->find(quantity);
+    if (e && e->compared > 0) worst = std::max(worst, e->max_ratio);
+  }
+  return worst;
+}
+
+// Quantity x model: the worst ratio to the bound over both paths.
+void markdown_matrix(const std::vector<ModelResult>& results, Report PathResult::*which) {
+  std::vector<const Report*> all;
+  std::printf("| quantity |");
+  for (const ModelResult& m : results) {
+    std::printf(" %s |", base_name(m.file).c_str());
+    for (const Report* r : reports_of(m, which)) all.push_back(r);
+  }
+  std::printf("\n|---|");
+  for (std::size_t i = 0; i < results.size(); ++i) std::printf("---|");
+  std::printf("\n");
+  for (const std::string& q : quantity_names(all)) {
+    std::printf("| %s |", q.c_str());
+    for (const ModelResult& m : results) {
+      const double worst = worst_ratio(reports_of(m, which), q);
+      std::printf(" %s |", worst < 0 ? "–" : ratio_text(worst, worst > 1.0).c_str());
+    }
+    std::printf("\n");
+  }
+}
+
+// One model's reports `which`: a column per path, then where each miss was.
+void markdown_model_table(const ModelResult& m, Report PathResult::*which) {
   std::printf("| quantity |");
   for (const PathResult& p : m.paths) std::printf(" %s: largest \\|diff\\| (ratio) |", diff::path_name(p.path));
   std::printf("\n|---|");
   for (std::size_t i = 0; i < m.paths.size(); ++i) std::printf("---|");
   std::printf("\n");
-  for (const std::string& q : quantity_names(m, which)) {
+  for (const std::string& q : quantity_names(reports_of(m, which))) {
     std::printf("| %s |", q.c_str());
     for (const PathResult& p : m.paths) {
       std::printf(" %s |", p.loaded() ? cell((p.*which).find(q)).c_str() : "not loaded");
     }
     std::printf("\n");
   }
+  for (const PathResult& p : m.paths) {
+    if (!p.loaded()) continue;
+    for (const Extreme& e : (p.*which).quantities()) {
+      if (e.pass()) continue;
+      std::printf("\n- beyond the bound (%s path): %s, %ld of %ld values; worst at %s\n",
+                  diff::path_name(p.path), e.quantity.c_str(), e.beyond, e.compared,
+                  where(e, which == &PathResult::random ? "state" : "step").c_str());
+    }
+  }
 }
 
 void markdown_summary(const std::vector<ModelResult>& results) {
-  std::printf("| model | path | worst ratio, random states | worst ratio, lockstep | verdict |\n");
-  std::printf("|---|---|---|---|---|\n");
+  std::printf("| model | path | seed | worst ratio, random states | worst ratio, lockstep | verdict |\n");
+  std::printf("|---|---|---|---|---|---|\n");
   for (const ModelResult& m : results) {
     for (const PathResult& p : m.paths) {
       if (!p.loaded()) {
-        std::printf("| %s | %s | – | – | not loaded: %s |\n", base_name(m.file).c_str(),
+        std::printf("| %s | %s | – | – | – | not loaded: %s |\n", base_name(m.file).c_str(),
                     diff::path_name(p.path), p.error.c_str());
         continue;
       }
@@ -386,27 +442,37 @@ void markdown_summary(const std::vector<ModelResult>& results) {
           if (e.max_ratio >= worst_lockstep) worst_lockstep = e.max_ratio, lockstep_at = e.quantity;
         }
       }
-      std::printf("| %s | %s | %.2g (%s) | %.2g (%s) | %s |\n", base_name(m.file).c_str(),
-                  diff::path_name(p.path), worst_random, random_at.c_str(), worst_lockstep,
-                  lockstep_at.c_str(), p.pass() ? "PASS" : "**FAIL**");
+      std::printf("| %s | %s | %llu | %s (%s) | %s (%s) | %s |\n", base_name(m.file).c_str(),
+                  diff::path_name(p.path), static_cast<unsigned long long>(p.seed),
+                  ratio_text(worst_random, worst_random > 1).c_str(), random_at.c_str(),
+                  ratio_text(worst_lockstep, worst_lockstep > 1).c_str(), lockstep_at.c_str(),
+                  p.pass() ? "PASS" : "**FAIL**");
     }
   }
 }
 
 void markdown_free_runs(const std::vector<ModelResult>& results) {
-  std::printf("| model | path | quantity | lever vs MuJoCo | MuJoCo vs MuJoCo(qpos0 + 1e-15) | largest \\|MuJoCo\\| |\n");
-  std::printf("|---|---|---|---|---|---|\n");
+  const std::vector<std::string>& quantities = diff::free_run_quantities();
+  std::printf("| model | path |");
+  for (const std::string& q : quantities) std::printf(" %s |", q.c_str());
+  std::printf("\n|---|---|");
+  for (std::size_t i = 0; i < quantities.size(); ++i) std::printf("---|");
+  std::printf("\n");
   for (const ModelResult& m : results) {
     for (const PathResult& p : m.paths) {
       if (!p.loaded()) continue;
-      for (const std::string& q : diff::free_run_quantities()) {
+      std::printf("| %s | %s |", base_name(m.file).c_str(), diff::path_name(p.path));
+      for (const std::string& q : quantities) {
         const Extreme* ours = p.free.lever_vs_mujoco.find(q);
         const Extreme* noise = p.free.nudged_vs_mujoco.find(q);
-        if (!ours || !noise) continue;
-        std::printf("| %s | %s | %s | %.1e | %.1e | %.3g |\n", base_name(m.file).c_str(),
-                    diff::path_name(p.path), q.c_str(), ours->max_abs_diff, noise->max_abs_diff,
+        if (!ours || !noise) {
+          std::printf(" – |");
+          continue;
+        }
+        std::printf(" %.1e / %.1e (of %.2g) |", ours->max_abs_diff, noise->max_abs_diff,
                     ours->max_abs_mujoco);
       }
+      std::printf("\n");
     }
   }
 }
@@ -423,51 +489,52 @@ void print_markdown(const std::vector<ModelResult>& results, const Options& o) {
 #endif
               mj_version());
   std::printf(
-      "Every value is compared against the bound |lever − MuJoCo| ≤ 1e-12 · max(1, |MuJoCo|). "
-      "Each cell gives the largest |difference| seen and, in brackets, the largest ratio of a "
-      "difference to its bound (≤ 1 passes; 0 means bit-identical). Both engines run in the same "
-      "process on the same inputs; nothing here is a stored number.\n\n"
+      "Every value is compared against the bound |lever − MuJoCo| ≤ 1e-12 · max(1, |MuJoCo|); a "
+      "*ratio* is a difference divided by its bound (≤ 1 passes, 0 means bit-identical, **bold** "
+      "is beyond the bound). Both engines run in the same process on the same inputs; nothing "
+      "here is a stored number.\n\n"
       "Two paths per model: **loader** compiles the file with lever's own `lever::mjcf::load_file` "
       "(what users get: compiler and engine together); **engine** copies MuJoCo's compiled "
       "parameters into a lever Model (`from_mujoco`: the engine alone).\n\n"
-      "Random states: %d per model, seeded from the file name (seed printed per model); qpos "
-      "inside the ranges, past a stop by up to 10 mrad (5 mm on slides), inside margins and "
-      "exactly on stops; qvel, ctrl (up to 3x its range) and qfrc_applied random. Per state: "
-      "forward, energy, site Jacobians, inverse dynamics at the forward qacc and at a random "
-      "qacc, and one Euler and one RK4 step. Lockstep: %.0f s from rest under a sinusoidal "
-      "control sweeping each motor's whole range; at every step lever starts from MuJoCo's own "
-      "state.\n\n",
+      "Random states: %d per model, seeded from the file name; qpos inside the ranges, past a "
+      "stop by up to 10 mrad (5 mm on slides), inside margins and exactly on stops; qvel, ctrl "
+      "(up to 3x its range) and qfrc_applied random. Per state: forward, energy, site Jacobians, "
+      "inverse dynamics at the forward qacc and at a random qacc, and one Euler and one RK4 step. "
+      "Lockstep: %.0f s from rest under a sinusoidal control sweeping each motor's whole range; at "
+      "every step lever starts from MuJoCo's own state and both take one step.\n\n",
       o.states, kTrajectorySeconds);
   std::printf("## Summary\n\n");
   markdown_summary(results);
-  std::printf("\n## Free runs: lever's divergence against the dynamics' own noise floor\n\n");
+  std::printf("\n## Random states: worst ratio to the bound, quantity × model (both paths)\n\n");
+  markdown_matrix(results, &PathResult::random);
+  std::printf("\n## Lockstep trajectories: worst ratio to the bound (both paths)\n\nEuler:\n\n");
+  markdown_matrix(results, &PathResult::lockstep_euler);
+  std::printf("\nRK4:\n\n");
+  markdown_matrix(results, &PathResult::lockstep_rk4);
+  std::printf("\n## Free runs: lever's divergence beside the dynamics' own noise floor\n\n");
   std::printf(
-      "%.0f s from rest under the same control, lever and MuJoCo each running on its own. Beside "
-      "lever's difference from MuJoCo stands MuJoCo's difference from itself when the initial "
-      "qpos is nudged by 1e-15: the stiff limit impacts amplify any last-bit difference, so this "
-      "is a report, not a 1e-12 assertion (the tests hold lever within 100x of MuJoCo's own "
-      "sensitivity plus the bound).\n\n",
+      "%.0f s from rest under the same control, lever and MuJoCo each running on its own. Each "
+      "cell: the largest |lever − MuJoCo| / the largest |MuJoCo − MuJoCo started from qpos0 + "
+      "1e-15| (of the largest |value|). The stiff limit impacts amplify any last-bit difference, "
+      "so this is a report, not a 1e-12 assertion; the tests hold lever within 100x of MuJoCo's "
+      "own sensitivity plus the bound.\n\n",
       kTrajectorySeconds);
   markdown_free_runs(results);
-  std::printf("\n## Per model\n");
+  std::printf("\n## Per model: largest differences\n");
   for (const ModelResult& m : results) {
-    std::printf("\n### %s\n\n", base_name(m.file).c_str());
+    std::printf("\n### %s\n", base_name(m.file).c_str());
     for (const PathResult& p : m.paths) {
-      if (p.loaded()) {
-        std::printf("- %s path: seed %llu; lockstep steps with limit rows: Euler %d of %d, RK4 %d of %d\n",
-                    diff::path_name(p.path), static_cast<unsigned long long>(p.seed),
-                    p.stats_euler.constrained_steps, p.stats_euler.steps,
-                    p.stats_rk4.constrained_steps, p.stats_rk4.steps);
-      } else {
-        std::printf("- %s path: not loaded: %s\n", diff::path_name(p.path), p.error.c_str());
-      }
+      if (!p.loaded()) continue;
+      std::printf("\n%s path: lockstep steps with limit rows: Euler %d of %d, RK4 %d of %d.\n",
+                  diff::path_name(p.path), p.stats_euler.constrained_steps, p.stats_euler.steps,
+                  p.stats_rk4.constrained_steps, p.stats_rk4.steps);
     }
     std::printf("\nRandom states:\n\n");
-    markdown_table(m, &PathResult::random);
+    markdown_model_table(m, &PathResult::random);
     std::printf("\nLockstep, Euler:\n\n");
-    markdown_table(m, &PathResult::lockstep_euler);
+    markdown_model_table(m, &PathResult::lockstep_euler);
     std::printf("\nLockstep, RK4:\n\n");
-    markdown_table(m, &PathResult::lockstep_rk4);
+    markdown_model_table(m, &PathResult::lockstep_rk4);
   }
 }
 
