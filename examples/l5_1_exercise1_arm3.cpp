@@ -23,8 +23,8 @@ namespace {
 
 // The hand calculation's numbers: arm2's two links and the exercise's wrist link.
 constexpr double G = 9.81;
-constexpr double L1 = 0.5, L2 = 0.4, L3 = 0.15;  // link lengths (m)
-constexpr double M1 = 1.0, M2 = 0.8, M3 = 0.3;   // link masses (kg)
+constexpr double L1 = 0.5, L2 = 0.4, L3 = 0.15;          // link lengths (m)
+constexpr double M1 = 1.0, M2 = 0.8, M3 = 0.3;           // link masses (kg)
 constexpr double C1 = L1 / 2, C2 = L2 / 2, C3 = L3 / 2;  // thin rods: centre of mass mid-link
 
 // Gravity torque of each joint with the whole arm horizontal, where every cosine is 1: the joint
@@ -70,20 +70,22 @@ int main(int argc, char** argv) try {
   for (int a = 0; a < model.nu; ++a) {
     const int j = model.actuator_trnid[a];  // each motor drives one joint, in joint order
     const double limit = model.actuator_ctrlrange[a][1] * model.actuator_gear[a][0];
-    std::printf("  %-9s %10.3f %10.3f %12.4g %8.2f %11.3f\n", model.jnt_name[j].c_str(),
-                by_hand[j], by_bias[j], limit, limit / by_bias[j], largest[j]);
+    std::printf("  %-9s %10.3f %10.3f %12.4g %8.2f %11.3f\n", model.jnt_name[j].c_str(), by_hand[j],
+                by_bias[j], limit, limit / by_bias[j], largest[j]);
   }
-  std::printf("  (ratio: motor limit / qfrc_bias; random max: the largest |qfrc_bias| over 1000 random "
-              "poses at rest)\n");
+  std::printf(
+      "  (ratio: motor limit / qfrc_bias; random max: the largest |qfrc_bias| over 1000 random "
+      "poses at rest)\n");
   const double shoulder_limit = model.actuator_ctrlrange[0][1];
-  std::printf("shoulder torque ratio: by hand %.2f, by qfrc_bias %.2f (|difference| %.1e N m in the "
-              "torque)\n",
-              shoulder_limit / by_hand[0], shoulder_limit / by_bias[0],
-              std::abs(by_hand[0] - by_bias[0]));
-  std::printf("without the wrist (arm2) the hand formula gives %.2f: the 0.3 kg link at the end of "
-              "the arm costs the shoulder %.3f N m\n",
-              shoulder_limit / arm2_shoulder_torque_horizontal(),
-              by_hand[0] - arm2_shoulder_torque_horizontal());
+  std::printf(
+      "shoulder torque ratio: by hand %.2f, by qfrc_bias %.2f (|difference| %.1e N m in the "
+      "torque)\n",
+      shoulder_limit / by_hand[0], shoulder_limit / by_bias[0], std::abs(by_hand[0] - by_bias[0]));
+  std::printf(
+      "without the wrist (arm2) the hand formula gives %.2f: the 0.3 kg link at the end of "
+      "the arm costs the shoulder %.3f N m\n",
+      shoulder_limit / arm2_shoulder_torque_horizontal(),
+      by_hand[0] - arm2_shoulder_torque_horizontal());
   return 0;
 } catch (const lever::Error& e) {
   std::fprintf(stderr, "%s\n", e.what());

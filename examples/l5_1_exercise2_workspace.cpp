@@ -114,35 +114,35 @@ int main(int argc, char** argv) try {
   const Eigen::Vector2d hi(model.jnt_range[0][1], model.jnt_range[1][1]);
   std::map<std::pair<int, int>, bool> cells;  // (x, z) cell -> some pose holds there
   long poses = 0, holding = 0;
-  const Reach coarse = search(model, data, lo, hi, kSamples, ee, shoulder,
-                              [&](const Eigen::Vector3d& tip, bool holds) {
-                                const std::pair<int, int> cell{
-                                    static_cast<int>(std::floor(tip.x() / kCell)),
-                                    static_cast<int>(std::floor(tip.z() / kCell))};
-                                cells[cell] = cells[cell] || holds;
-                                ++poses;
-                                holding += holds;
-                              });
+  const Reach coarse = search(
+      model, data, lo, hi, kSamples, ee, shoulder, [&](const Eigen::Vector3d& tip, bool holds) {
+        const std::pair<int, int> cell{static_cast<int>(std::floor(tip.x() / kCell)),
+                                       static_cast<int>(std::floor(tip.z() / kCell))};
+        cells[cell] = cells[cell] || holds;
+        ++poses;
+        holding += holds;
+      });
 
   // (3): refine around the best sample, one coarse step either side, 50 times finer
   const Eigen::Vector2d step = (hi - lo) / (kSamples - 1);
-  const Reach best = search(model, data, (coarse.q - step).cwiseMax(lo),
-                            (coarse.q + step).cwiseMin(hi), 101, ee, shoulder,
-                            [](const Eigen::Vector3d&, bool) {});
+  const Reach best =
+      search(model, data, (coarse.q - step).cwiseMax(lo), (coarse.q + step).cwiseMin(hi), 101, ee,
+             shoulder, [](const Eigen::Vector3d&, bool) {});
   const Reach farthest = best.distance > coarse.distance ? best : coarse;
   evaluate(model, data, farthest.q, ee, shoulder);
   const double tau_shoulder = data.qfrc_bias[0];
 
-  std::printf("arm2 with the shoulder motor limited to %g N m (elbow %g N m), %d x %d poses over "
-              "the joint ranges\n",
-              kShoulderLimit, model.actuator_ctrlrange[model.actuator("elbow")][1], kSamples,
-              kSamples);
+  std::printf(
+      "arm2 with the shoulder motor limited to %g N m (elbow %g N m), %d x %d poses over "
+      "the joint ranges\n",
+      kShoulderLimit, model.actuator_ctrlrange[model.actuator("elbow")][1], kSamples, kSamples);
   std::printf("  holdable: %.1f%% of the sampled poses\n", 100.0 * holding / poses);
   std::printf("  farthest horizontal distance from the shoulder among holdable poses: %.3f m\n",
               farthest.distance);
-  std::printf("    pose: shoulder %.4f rad, elbow %.4f rad; tip at x = %.3f m, z = %.3f m from the "
-              "shoulder; shoulder gravity torque %.3f N m\n",
-              farthest.q[0], farthest.q[1], farthest.tip.x(), farthest.tip.z(), tau_shoulder);
+  std::printf(
+      "    pose: shoulder %.4f rad, elbow %.4f rad; tip at x = %.3f m, z = %.3f m from the "
+      "shoulder; shoulder gravity torque %.3f N m\n",
+      farthest.q[0], farthest.q[1], farthest.tip.x(), farthest.tip.z(), tau_shoulder);
 
   // the map: holdable cells over the unholdable ones, the shoulder, and the farthest pose
   lever::plot::Chart map;

@@ -25,8 +25,8 @@ namespace {
 
 // The hand calculation's numbers: what the model claims, written down independently of it.
 constexpr double G = 9.81;
-constexpr double L1 = 0.5, L2 = 0.4;  // link lengths (m)
-constexpr double M1 = 1.0, M2 = 0.8;  // link masses (kg)
+constexpr double L1 = 0.5, L2 = 0.4;   // link lengths (m)
+constexpr double M1 = 1.0, M2 = 0.8;   // link masses (kg)
 constexpr double C1 = 0.25, C2 = 0.2;  // centre-of-mass distance from each joint (m)
 
 // x rounded to a number of decimals, as numpy's round: printed with %g it shows no trailing zeros.
@@ -122,18 +122,20 @@ void motor_sizing(const lever::Model& model, lever::Data& data) {
   // a point mass m_p at the tip adds g m_p (L1 + L2) at the shoulder and g m_p L2 at the elbow
   const Eigen::Vector2d payload((limit[0] - tau_g[0]) / (G * (L1 + L2)),
                                 (limit[1] - tau_g[1]) / (G * L2));
-  std::printf("  largest point payload at the tip, arm horizontal: shoulder allows %.2f kg, "
-              "elbow allows %.2f kg -> %.2f kg\n",
-              payload[0], payload[1], payload.minCoeff());
+  std::printf(
+      "  largest point payload at the tip, arm horizontal: shoulder allows %.2f kg, "
+      "elbow allows %.2f kg -> %.2f kg\n",
+      payload[0], payload[1], payload.minCoeff());
 
-  const Eigen::MatrixXd& mass = data.M;  // full and symmetric, armature included
+  const Eigen::MatrixXd& mass = data.M;                   // full and symmetric, armature included
   const double acc = (limit[0] - tau_g[0]) / mass(0, 0);  // elbow held rigid: qacc_elbow = 0
   const double elbow = mass(1, 0) * acc + tau_g[1];       // elbow torque that keeps it rigid
   std::printf("  M(q) at this pose: [%s, %s] kg m^2\n", vec(mass.row(0).transpose(), 4).c_str(),
               vec(mass.row(1).transpose(), 4).c_str());
-  std::printf("  spare shoulder torque %.2f N m gives %.1f rad/s^2 with the elbow rigid, "
-              "which needs %.2f N m at the elbow\n",
-              limit[0] - tau_g[0], acc, elbow);
+  std::printf(
+      "  spare shoulder torque %.2f N m gives %.1f rad/s^2 with the elbow rigid, "
+      "which needs %.2f N m at the elbow\n",
+      limit[0] - tau_g[0], acc, elbow);
 }
 
 void inferred_inertia(const lever::Model& model, const std::string& path) {
@@ -151,9 +153,10 @@ void inferred_inertia(const lever::Model& model, const std::string& path) {
   lever::Data explicit_data(model), inferred_data(inferred);  // both at qpos0: arm horizontal
   lever::forward(model, explicit_data);
   lever::forward(inferred, inferred_data);
-  std::printf("  gravity torque at the horizontal pose: explicit %.3f N m, from geoms %.3f N m "
-              "(shoulder)\n",
-              explicit_data.qfrc_bias[0], inferred_data.qfrc_bias[0]);
+  std::printf(
+      "  gravity torque at the horizontal pose: explicit %.3f N m, from geoms %.3f N m "
+      "(shoulder)\n",
+      explicit_data.qfrc_bias[0], inferred_data.qfrc_bias[0]);
 }
 
 // A body with a 1 kg collision geom and a 2 kg geom that collides with nothing, in group 3.
@@ -169,35 +172,41 @@ void visual_geom_mass() {
     return std::pair{m.body_mass[m.body("b")], m.compiler.inertiagrouprange};
   };
   const auto [default_mass, default_range] = body_mass("");
-  std::printf("  1 kg collision geom + 2 kg non-colliding geom in group 3, default inertiagrouprange"
-              " (%d %d): body mass %.3f kg\n",
-              default_range[0], default_range[1], default_mass);
+  std::printf(
+      "  1 kg collision geom + 2 kg non-colliding geom in group 3, default inertiagrouprange"
+      " (%d %d): body mass %.3f kg\n",
+      default_range[0], default_range[1], default_mass);
   const auto [narrow_mass, narrow_range] = body_mass("<compiler inertiagrouprange='0 2'/>");
-  std::printf("  1 kg collision geom + 2 kg non-colliding geom in group 3, inertiagrouprange=\"%d %d\":"
-              " body mass %.3f kg\n",
-              narrow_range[0], narrow_range[1], narrow_mass);
+  std::printf(
+      "  1 kg collision geom + 2 kg non-colliding geom in group 3, inertiagrouprange=\"%d %d\":"
+      " body mass %.3f kg\n",
+      narrow_range[0], narrow_range[1], narrow_mass);
 }
 
 void joint_stop(const lever::Model& model, lever::Data& data) {
   lever::reset(model, data);
-  const long steps = std::lround(60.0 / model.opt.timestep);  // damping is light: let the elbow settle
+  // damping is light: give the elbow a minute to settle
+  const long steps = std::lround(60.0 / model.opt.timestep);
   for (long i = 0; i < steps; ++i) lever::step(model, data);
   const double lo = model.jnt_range[0][0];
-  // every constraint row in lever is a joint limit; after step() they describe the last step's start
-  std::printf("  after 60 s with zero torque: shoulder at %.5f rad, stop at %g rad -> %.2f mrad past "
-              "the stop\n",
-              data.qpos[0], lo, 1000 * (lo - data.qpos[0]));
-  std::printf("  active limit rows: %d; qfrc_constraint[shoulder] = %.4f N m, gravity torque "
-              "qfrc_bias[shoulder] = %.4f N m\n",
-              data.nefc, data.qfrc_constraint[0], data.qfrc_bias[0]);
+  // every constraint row in lever is a joint limit; after step(), as after MuJoCo's mj_step,
+  // the rows and forces describe the start of the last step
+  std::printf(
+      "  after 60 s with zero torque: shoulder at %.5f rad, stop at %g rad -> %.2f mrad past "
+      "the stop\n",
+      data.qpos[0], lo, 1000 * (lo - data.qpos[0]));
+  std::printf(
+      "  active limit rows: %d; qfrc_constraint[shoulder] = %.4f N m, gravity torque "
+      "qfrc_bias[shoulder] = %.4f N m\n",
+      data.nefc, data.qfrc_constraint[0], data.qfrc_bias[0]);
 }
 
 void clamping(const lever::Model& model, lever::Data& data) {
   lever::reset(model, data);
   data.ctrl << 100.0, -100.0;
   lever::forward(model, data);
-  std::printf("  ctrl = %s: actuator_force = %s N m (no warning is raised)\n", vec(data.ctrl).c_str(),
-              vec(data.actuator_force).c_str());
+  std::printf("  ctrl = %s: actuator_force = %s N m (no warning is raised)\n",
+              vec(data.ctrl).c_str(), vec(data.actuator_force).c_str());
 }
 
 }  // namespace

@@ -63,8 +63,8 @@ struct Printed {
 std::vector<Printed> numbers_in(const std::string& line) {
   static const std::regex number(R"((?:^|[\s(\[,=>"])(-?\d+(?:\.(\d+))?(?:e([-+]?\d+))?))");
   std::vector<Printed> out;
-  for (auto it = std::sregex_iterator(line.begin(), line.end(), number); it != std::sregex_iterator();
-       ++it) {
+  for (auto it = std::sregex_iterator(line.begin(), line.end(), number);
+       it != std::sregex_iterator(); ++it) {
     const std::smatch& m = *it;
     const int decimals = m[2].matched ? static_cast<int>(m[2].length()) : 0;
     const int exponent = m[3].matched ? std::stoi(m[3].str()) : 0;
@@ -122,7 +122,8 @@ std::vector<double> link_lengths(const lever::Model& model) {
   for (int j = 0; j < model.njnt; ++j) points.push_back(data.xpos[model.jnt_bodyid[j]]);
   points.push_back(data.site_xpos[model.site("ee")]);
   std::vector<double> lengths;
-  for (size_t i = 0; i + 1 < points.size(); ++i) lengths.push_back((points[i + 1] - points[i]).norm());
+  for (size_t i = 0; i + 1 < points.size(); ++i)
+    lengths.push_back((points[i + 1] - points[i]).norm());
   return lengths;
 }
 
@@ -213,8 +214,8 @@ TEST_CASE("l5_1_two_link prints lesson 5.1's output, every number as lever compu
   const double seconds = 60.0;
   for (long i = 0; i < std::lround(seconds / model.opt.timestep); ++i) lever::step(model, data);
   const double lo = model.jnt_range[0][0];
-  check_line(out, "after 60 s with zero torque:",
-             {seconds, data.qpos[0], lo, 1000 * (lo - data.qpos[0])});
+  check_line(
+      out, "after 60 s with zero torque:", {seconds, data.qpos[0], lo, 1000 * (lo - data.qpos[0])});
   check_line(out, "active limit rows:",
              {static_cast<double>(data.nefc), data.qfrc_constraint[0], data.qfrc_bias[0]});
 
@@ -291,7 +292,8 @@ TEST_CASE("l5_1_exercise2_workspace: the map exists and the farthest reach is re
   auto holds = [&]() {
     for (int a = 0; a < model.nu; ++a) {
       const double need = data.qfrc_bias[model.jnt_dofadr[model.actuator_trnid[a]]];
-      if (need < model.actuator_ctrlrange[a][0] || need > model.actuator_ctrlrange[a][1]) return false;
+      if (need < model.actuator_ctrlrange[a][0] || need > model.actuator_ctrlrange[a][1])
+        return false;
     }
     return true;
   };
@@ -316,8 +318,10 @@ TEST_CASE("l5_1_exercise2_workspace: the map exists and the farthest reach is re
   double best = 0.0;
   for (int i = 0; i < n; ++i) {
     for (int k = 0; k < n; ++k) {
-      const double q1 = model.jnt_range[0][0] + (model.jnt_range[0][1] - model.jnt_range[0][0]) * i / (n - 1);
-      const double q2 = model.jnt_range[1][0] + (model.jnt_range[1][1] - model.jnt_range[1][0]) * k / (n - 1);
+      const double q1 =
+          model.jnt_range[0][0] + (model.jnt_range[0][1] - model.jnt_range[0][0]) * i / (n - 1);
+      const double q2 =
+          model.jnt_range[1][0] + (model.jnt_range[1][1] - model.jnt_range[1][0]) * k / (n - 1);
       data.qpos << q1, q2;
       data.qvel.setZero();
       lever::forward(model, data);

@@ -16,8 +16,8 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
-#include <limits>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <regex>
 #include <sstream>
@@ -53,8 +53,8 @@ std::string arm2() { return lever::test::model_path("models/arm2.xml"); }
 std::map<std::string, std::vector<double>> parse_flat_json(const std::string& text) {
   static const std::regex member(R"re("(\w+)":(\[[^\]]*\]|[-+0-9.eE]+|null|true|false|"[^"]*"))re");
   std::map<std::string, std::vector<double>> out;
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), member); it != std::sregex_iterator();
-       ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), member);
+       it != std::sregex_iterator(); ++it) {
     const std::string key = (*it)[1].str();
     std::string value = (*it)[2].str();
     if (value.front() == '"') continue;
@@ -117,7 +117,7 @@ TEST_CASE("lever forward --json: mjData's names and layouts, as the engine compu
   lever::Data data(model);
   data.qpos << -1.3, 0.2;  // past the shoulder's lower stop
   data.qvel << 0.5, -0.3;
-  data.ctrl << 30, -2;     // the shoulder's command is clamped to 25
+  data.ctrl << 30, -2;  // the shoulder's command is clamped to 25
   lever::forward(model, data);
   lever::compute_energy(model, data);
   REQUIRE(data.nefc == 1);
@@ -139,8 +139,10 @@ TEST_CASE("lever forward --json: mjData's names and layouts, as the engine compu
   }
   check_equal(json, "nefc", {1.0});
   check_equal(json, "efc_id", {static_cast<double>(data.efc_id[0])});
-  for (const auto& [key, v] : {std::pair{"efc_pos", &data.efc_pos}, {"efc_force", &data.efc_force},
-                               {"efc_aref", &data.efc_aref}, {"efc_R", &data.efc_R},
+  for (const auto& [key, v] : {std::pair{"efc_pos", &data.efc_pos},
+                               {"efc_force", &data.efc_force},
+                               {"efc_aref", &data.efc_aref},
+                               {"efc_R", &data.efc_R},
                                {"efc_D", &data.efc_D}}) {
     check_equal(json, key, {(*v)[0]});
   }
@@ -235,13 +237,14 @@ TEST_CASE("lever simulate: the lab's controller, one row per state, clamping rep
 
 TEST_CASE("lever forward and simulate refuse bad input with exit status 2", "[packaging][cli]") {
   const std::string model = " '" + arm2() + "'";
-  for (const std::string& bad : std::vector<std::string>{"forward" + model + " --qpos 1,2,3", "forward" + model + " --qpos nan,0",
-        "forward" + model + " --ctrl x,0", "forward" + model + " --qvel 1,inf",
-        "forward" + model + " --unknown", "forward", "forward no-such-model.xml",
-        "simulate" + model + " --steps 5 --duration 1", "simulate" + model + " --steps -1",
-        "simulate" + model + " --duration -1", "simulate" + model + " --ctrl 1,1 --torque 1,1",
-        "simulate" + model + " --qpos 0.6", "simulate" + model + " --json --csv -",
-        "simulate" + model + " --steps 1 --csv /no/such/dir/x.csv"}) {
+  for (const std::string& bad : std::vector<std::string>{
+           "forward" + model + " --qpos 1,2,3", "forward" + model + " --qpos nan,0",
+           "forward" + model + " --ctrl x,0", "forward" + model + " --qvel 1,inf",
+           "forward" + model + " --unknown", "forward", "forward no-such-model.xml",
+           "simulate" + model + " --steps 5 --duration 1", "simulate" + model + " --steps -1",
+           "simulate" + model + " --duration -1", "simulate" + model + " --ctrl 1,1 --torque 1,1",
+           "simulate" + model + " --qpos 0.6", "simulate" + model + " --json --csv -",
+           "simulate" + model + " --steps 1 --csv /no/such/dir/x.csv"}) {
     INFO("lever " << bad);
     const Run r = run(lever_command() + " " + bad + " 2>/dev/null");
     CHECK(r.status == 2);

@@ -34,7 +34,8 @@ const char* const kUsage =
     "usage: lever forward MODEL [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]\n"
     "  --qpos LIST   joint positions, nq numbers (default: qpos0)\n"
     "  --qvel LIST   joint velocities, nv numbers (default: zeros)\n"
-    "  --ctrl LIST   motor commands, nu numbers (default: zeros); clamped to ctrlrange as in MuJoCo\n"
+    "  --ctrl LIST   motor commands, nu numbers (default: zeros); clamped to ctrlrange as in "
+    "MuJoCo\n"
     "  --json        one JSON object keyed by mjData's names (arrays flattened row-major)\n";
 
 // Everything forward() leaves in data, plus what the command adds: site Jacobians and energy.
@@ -136,8 +137,9 @@ void print_text(const std::string& path, const Model& model, const Data& data,
                 const Evaluation& e) {
   std::printf("model %s (%s) at time %g s\n\n", model.name.c_str(), path.c_str(), data.time);
 
-  std::printf("joints: position, velocity, acceleration, and the joint forces (N m or N) that\n"
-              "make up M qacc = qfrc_passive - qfrc_bias + qfrc_actuator + qfrc_constraint\n");
+  std::printf(
+      "joints: position, velocity, acceleration, and the joint forces (N m or N) that\n"
+      "make up M qacc = qfrc_passive - qfrc_bias + qfrc_actuator + qfrc_constraint\n");
   std::printf("  %-10s %-7s %12s %12s %12s %12s %12s %12s %12s %12s\n", "joint", "units", "qpos",
               "qvel", "qacc_smooth", "qacc", "qfrc_bias", "qfrc_passive", "qfrc_actuator",
               "qfrc_constr.");
@@ -152,18 +154,21 @@ void print_text(const std::string& path, const Model& model, const Data& data,
   }
 
   if (model.nu > 0) {
-    std::printf("\nmotors: ctrl as commanded, actuator_force after clamping to ctrlrange/forcerange\n");
+    std::printf(
+        "\nmotors: ctrl as commanded, actuator_force after clamping to ctrlrange/forcerange\n");
     std::printf("  %-10s %-10s %12s %12s %8s\n", "motor", "joint", "ctrl", "force", "units");
     for (int a = 0; a < model.nu; ++a) {
       const int j = model.actuator_trnid[a];
       const bool clamped = data.ctrl[a] != data.actuator_force[a];  // the gain is 1
-      std::printf("  %-10s %-10s %12.6g %12.6g %8s%s\n", label_of(model.actuator_name[a], a).c_str(),
+      std::printf("  %-10s %-10s %12.6g %12.6g %8s%s\n",
+                  label_of(model.actuator_name[a], a).c_str(),
                   label_of(model.jnt_name[j], j).c_str(), data.ctrl[a], data.actuator_force[a],
                   joint_units(model, j).force, clamped ? "  (clamped)" : "");
     }
   }
 
-  std::printf("\nbodies: frame origin xpos and centre of mass xipos (m), orientation xquat (w x y z)\n");
+  std::printf(
+      "\nbodies: frame origin xpos and centre of mass xipos (m), orientation xquat (w x y z)\n");
   for (int b = 1; b < model.nbody; ++b) {
     std::printf("  %-10s xpos %-32s xipos %-32s xquat %s\n",
                 label_of(model.body_name[b], b).c_str(), vec_text(data.xpos[b]).c_str(),
@@ -171,8 +176,9 @@ void print_text(const std::string& path, const Model& model, const Data& data,
   }
 
   if (model.nsite > 0) {
-    std::printf("\nsites: site_xpos (m); jacp (m per unit of qvel) and jacr (rad/s per unit of qvel),\n"
-                "one row per world axis x, y, z, one column per dof\n");
+    std::printf(
+        "\nsites: site_xpos (m); jacp (m per unit of qvel) and jacr (rad/s per unit of qvel),\n"
+        "one row per world axis x, y, z, one column per dof\n");
     for (int s = 0; s < model.nsite; ++s) {
       std::printf("  %-10s site_xpos %s\n", label_of(model.site_name[s], s).c_str(),
                   vec_text(data.site_xpos[s]).c_str());
@@ -184,8 +190,10 @@ void print_text(const std::string& path, const Model& model, const Data& data,
     }
   }
 
-  std::printf("\nM: joint-space inertia, full and symmetric, armature included (kg m^2 for hinges)\n");
-  for (int r = 0; r < model.nv; ++r) std::printf("  %s\n", vec_text(data.M.row(r).transpose(), "%.6g").c_str());
+  std::printf(
+      "\nM: joint-space inertia, full and symmetric, armature included (kg m^2 for hinges)\n");
+  for (int r = 0; r < model.nv; ++r)
+    std::printf("  %s\n", vec_text(data.M.row(r).transpose(), "%.6g").c_str());
 
   std::printf("\njoint-limit rows: nefc %d\n", data.nefc);
   if (data.nefc > 0) {

@@ -46,7 +46,7 @@ const char* const kUsage =
     "  --ctrl LIST             constant motor commands, nu numbers (default: zeros)\n"
     "  --torque LIST           the same as --ctrl, under the name lesson 5.1's lab gives it\n"
     "  --gravity-compensation  add qfrc_bias of the current state to every command (the lab's\n"
-    "                          gc switch): ctrl = torque + qfrc_bias[dof] / gear, before each step\n"
+    "                          gc switch): ctrl = torque + qfrc_bias[dof] / gear, every step\n"
     "  --json                  one JSON line per state (start, then after each step): time qpos\n"
     "                          qvel qacc qfrc_bias qfrc_constraint ctrl actuator_force\n"
     "  --csv FILE              the trajectory as CSV with a header row ('-': standard output)\n"
@@ -111,7 +111,8 @@ void csv_header(std::FILE* out, const Model& m) {
   };
   auto per_motor = [&](const char* what) {
     for (int a = 0; a < m.nu; ++a) {
-      h.append(",").append(csv_field(std::string(what) + "[" + label_of(m.actuator_name[a], a) + "]"));
+      h.append(",").append(
+          csv_field(std::string(what) + "[" + label_of(m.actuator_name[a], a) + "]"));
     }
   };
   per_joint("qpos");
@@ -162,10 +163,10 @@ void json_row(const Data& d) {
 struct PlotRecord {
   std::vector<int> sites;  // the trail: the site named "ee", or every site
   std::vector<double> time;
-  std::vector<std::vector<double>> qpos;             // [joint][row]
-  std::vector<std::vector<double>> site_x, site_z;   // [trail site][row]
-  std::vector<Eigen::Vector3d> start_body, end_body; // body origins at the first and last row
-  std::vector<Eigen::Vector3d> start_site, end_site; // site positions at the first and last row
+  std::vector<std::vector<double>> qpos;              // [joint][row]
+  std::vector<std::vector<double>> site_x, site_z;    // [trail site][row]
+  std::vector<Eigen::Vector3d> start_body, end_body;  // body origins at the first and last row
+  std::vector<Eigen::Vector3d> start_site, end_site;  // site positions at the first and last row
 
   void add(const Model& m, const Data& d) {
     time.push_back(d.time);
@@ -270,8 +271,10 @@ plot::Figure make_figure(const Model& m, const PlotRecord& r, const std::string&
 
   // the trail in the x-z plane, the arm at the start and at the end, and the first joint
   plot::Chart trail;
-  trail.title = r.sites.size() == 1 ? std::string("trail of site ").append(label_of(m.site_name[r.sites[0]], r.sites[0]))
-                                    : "trails of the sites";
+  trail.title =
+      r.sites.size() == 1
+          ? std::string("trail of site ").append(label_of(m.site_name[r.sites[0]], r.sites[0]))
+          : "trails of the sites";
   trail.xlabel = "x (m)";
   trail.ylabel = "z (m)";
   trail.equal_aspect = true;
@@ -316,10 +319,12 @@ void print_summary_row(const Model& m, const Data& d) {
 void print_summary_header(const Model& m) {
   std::printf("  %8s", "time (s)");
   for (int j = 0; j < m.njnt; ++j) {
-    std::printf(" %11s", std::string("q ").append(label_of(m.jnt_name[j], j)).substr(0, 11).c_str());
+    std::printf(" %11s",
+                std::string("q ").append(label_of(m.jnt_name[j], j)).substr(0, 11).c_str());
   }
   for (int a = 0; a < m.nu; ++a) {
-    std::printf(" %11s", std::string("f ").append(label_of(m.actuator_name[a], a)).substr(0, 11).c_str());
+    std::printf(" %11s",
+                std::string("f ").append(label_of(m.actuator_name[a], a)).substr(0, 11).c_str());
   }
   std::printf("\n  (q: qpos in rad or m; f: actuator_force in N m or N)\n");
 }
@@ -360,7 +365,9 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     return kOk;
   }
   if (args.positional().size() != 1) throw UsageError{std::string("expects one MODEL\n") + kUsage};
-  if (args.has("steps") && args.has("duration")) throw UsageError{"give --steps or --duration, not both"};
+  if (args.has("steps") && args.has("duration")) {
+    throw UsageError{"give --steps or --duration, not both"};
+  }
   if (args.has("ctrl") && args.has("torque")) {
     throw UsageError{"--torque is --ctrl under the lab's name: give one of them"};
   }
@@ -368,7 +375,9 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     throw UsageError{"--json and --csv - both write to standard output: give a file to --csv"};
   }
   for (const char* file : {"csv", "plot"}) {
-    if (args.has(file) && args.get(file).empty()) throw UsageError{std::string("--") + file + " needs a file name"};
+    if (args.has(file) && args.get(file).empty()) {
+      throw UsageError{std::string("--") + file + " needs a file name"};
+    }
   }
 
   const Model model = mjcf::load_file(args.positional()[0]);
@@ -455,8 +464,9 @@ int cmd_simulate(const std::vector<std::string>& argv) {
   csv.reset();
 
   if (plotting) {
-    plot::write_file(args.get("plot"), plot::to_svg(make_figure(model, record,
-                                                                describe(model, controller, start_qpos))));
+    plot::write_file(
+        args.get("plot"),
+        plot::to_svg(make_figure(model, record, describe(model, controller, start_qpos))));
   }
 
   // what the physics does silently: clamped commands, and states reset after a blow-up
