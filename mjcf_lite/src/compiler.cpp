@@ -1,7 +1,7 @@
 // The compiler: ModelSpec -> Model; see compiler.hpp. The steps and their order follow MuJoCo
 // 2.2.2's mjCModel::TryCompile and mjCBody/mjCGeom/mjCJoint/mjCSite/mjCActuator::Compile
-// (user_model.cc, user_objects.cc), so that the same input gives the same numbers and the first
-// error found is the one MuJoCo would report.
+// (user_model.cc, user_objects.cc), so that the same input gives the same numbers, and checks
+// run in MuJoCo's order.
 #include "compiler.hpp"
 
 #include <algorithm>
@@ -69,8 +69,7 @@ void require_finite(const Place& at, const char* what, const Arrays&... arrays) 
     return std::all_of(a.begin(), a.end(), [](double x) { return std::isfinite(x); });
   };
   if (!(finite(arrays) && ...)) {
-    fail(at, "", std::string("the numbers are too large: the compiled ") + what +
-                     " is not finite");
+    fail(at, "", std::string("the numbers are too large: the compiled ") + what + " is not finite");
   }
 }
 
@@ -99,49 +98,61 @@ void require_finite(const Place& at, const char* what, const Arrays&... arrays) 
 // how many sizes each geom type uses, and what they mean
 int sizes_used(GeomType type) {
   switch (type) {
-    case GeomType::kSphere: return 1;
+    case GeomType::kSphere:
+      return 1;
     case GeomType::kCapsule:
-    case GeomType::kCylinder: return 2;
+    case GeomType::kCylinder:
+      return 2;
     case GeomType::kEllipsoid:
-    case GeomType::kBox: return 3;
+    case GeomType::kBox:
+      return 3;
   }
   return 3;
 }
 
 const char* type_name(GeomType type) {
   switch (type) {
-    case GeomType::kSphere: return "sphere";
-    case GeomType::kCapsule: return "capsule";
-    case GeomType::kCylinder: return "cylinder";
-    case GeomType::kEllipsoid: return "ellipsoid";
-    case GeomType::kBox: return "box";
+    case GeomType::kSphere:
+      return "sphere";
+    case GeomType::kCapsule:
+      return "capsule";
+    case GeomType::kCylinder:
+      return "cylinder";
+    case GeomType::kEllipsoid:
+      return "ellipsoid";
+    case GeomType::kBox:
+      return "box";
   }
   return "geom";
 }
 
 const char* size_meaning(GeomType type) {
   switch (type) {
-    case GeomType::kSphere: return "a positive radius: size=\"r\"";
+    case GeomType::kSphere:
+      return "a positive radius: size=\"r\"";
     case GeomType::kCapsule:
     case GeomType::kCylinder:
       return "a positive radius and half-length: size=\"r h\" (or size=\"r\" with fromto)";
-    case GeomType::kEllipsoid: return "three positive semi-axes: size=\"a b c\"";
-    case GeomType::kBox: return "three positive half-sizes: size=\"x y z\"";
+    case GeomType::kEllipsoid:
+      return "three positive semi-axes: size=\"a b c\"";
+    case GeomType::kBox:
+      return "three positive half-sizes: size=\"x y z\"";
   }
   return "";
 }
 
-// resolve limited="auto" (mujoco: checklimited); `what` names the range in messages
+// resolve limited="auto" (mujoco: checklimited); the attribute names are for the message
 bool resolve_limited(Limited limited, const std::array<double, 2>& range, bool autolimits,
                      const Place& at, const std::string& range_attribute,
                      const std::string& limited_attribute) {
   if (limited != Limited::kAuto) return limited == Limited::kTrue;
   const bool has_range = !(range[0] == 0 && range[1] == 0);
   if (has_range && !autolimits) {
-    fail(at, range_attribute, "'" + range_attribute + "' is given but '" + limited_attribute +
-                                  "' is not, and compiler/autolimits is false: set " +
-                                  limited_attribute + "=\"true\" or \"false\", or remove "
-                                  "autolimits=\"false\"");
+    fail(at, range_attribute,
+         "'" + range_attribute + "' is given but '" + limited_attribute +
+             "' is not, and compiler/autolimits is false: set " + limited_attribute +
+             "=\"true\" or \"false\", or remove "
+             "autolimits=\"false\"");
   }
   return has_range;
 }
@@ -180,9 +191,9 @@ class Compiler {
       if (name.empty()) continue;  // empty names may repeat, as in mujoco
       const auto [it, inserted] = first_line.emplace(name, place->line);
       if (!inserted) {
-        const std::string where = it->second > 0 ? " (also at line " + std::to_string(it->second) +
-                                                       ")"
-                                                 : " (it names the world body)";
+        const std::string where = it->second > 0
+                                      ? " (also at line " + std::to_string(it->second) + ")"
+                                      : " (it names the world body)";
         fail(*place, "name", "duplicate " + kind + " name '" + name + "'" + where);
       }
     }
@@ -216,7 +227,8 @@ class Compiler {
     out.pos = b.pos;
     out.quat = b.orientation.quat;
     normalize(out.quat.data(), 4);
-    if (const char* reason = apply_alternatives(b.orientation, c_.degree, c_.eulerseq, out.quat, nullptr)) {
+    if (const char* reason =
+            apply_alternatives(b.orientation, c_.degree, c_.eulerseq, out.quat, nullptr)) {
       fail_orientation(b.at, reason);
     }
     const bool has_inertial = id > 0 && b.inertial.has_value();
@@ -242,7 +254,7 @@ class Compiler {
     out.inertial.iquat = in.orientation.quat;
     normalize(out.inertial.iquat.data(), 4);
     if (const char* reason = apply_alternatives(in.orientation, c_.degree, c_.eulerseq,
-                                         out.inertial.iquat, &out.inertial.inertia)) {
+                                                out.inertial.iquat, &out.inertial.inertia)) {
       fail_orientation(in.at, reason);
     }
   }
@@ -281,8 +293,9 @@ class Compiler {
     for (double& moment : in.inertia) moment = std::max(moment, c_.boundinertia);
     const Place& at = out.explicit_inertial ? b.inertial->at : b.at;
     if (in.mass < 0 || in.inertia[0] < 0 || in.inertia[1] < 0 || in.inertia[2] < 0) {
-      fail(at, "", "mass and inertia must not be negative (mass " + show(in.mass) +
-                       ", principal moments " + show3(in.inertia) + ")");
+      fail(at, "",
+           "mass and inertia must not be negative (mass " + show(in.mass) + ", principal moments " +
+               show3(in.inertia) + ")");
     }
     const Vec3& i = in.inertia;
     if (i[0] + i[1] < i[2] || i[0] + i[2] < i[1] || i[1] + i[2] < i[0]) {
@@ -292,11 +305,14 @@ class Compiler {
         return;
       }
       const std::string attribute =
-          !out.explicit_inertial ? "" : (b.inertial->orientation.fullinertia ? "fullinertia"
-                                                                             : "diaginertia");
-      fail(at, attribute, "principal moments " + show3(i) + (out.explicit_inertial ? "" :
-                          " (inferred from its geoms)") + " violate the triangle inequality "
-                          "A + B >= C; fix them or set <compiler balanceinertia=\"true\">");
+          !out.explicit_inertial
+              ? ""
+              : (b.inertial->orientation.fullinertia ? "fullinertia" : "diaginertia");
+      fail(at, attribute,
+           "principal moments " + show3(i) +
+               (out.explicit_inertial ? "" : " (inferred from its geoms)") +
+               " violate the triangle inequality "
+               "A + B >= C; fix them or set <compiler balanceinertia=\"true\">");
     }
   }
 
@@ -307,14 +323,15 @@ class Compiler {
     normalize(out.quat.data(), 4);
     if (g.fromto) {
       apply_fromto(g, out);
-    } else if (const char* reason = apply_alternatives(g.orientation, c_.degree, c_.eulerseq, out.quat,
-                                                nullptr)) {
+    } else if (const char* reason =
+                   apply_alternatives(g.orientation, c_.degree, c_.eulerseq, out.quat, nullptr)) {
       fail_orientation(g.at, reason);
     }
     for (int k = 0; k < sizes_used(g.type); ++k) {
       if (!(out.size[static_cast<size_t>(k)] > 0)) {
-        fail(g.at, "size", std::string("a ") + type_name(g.type) + " needs " +
-                               size_meaning(g.type) + "; it has size \"" + show3(out.size) + "\"");
+        fail(g.at, "size",
+             std::string("a ") + type_name(g.type) + " needs " + size_meaning(g.type) +
+                 "; it has size \"" + show3(out.size) + "\"");
       }
     }
     out.mass = geom_mass(g.type, out.size, g.density, g.mass);
@@ -350,8 +367,9 @@ class Compiler {
     const bool hinge = j.type == JointType::kHinge;
     if (out.limited) {
       if (j.range[0] >= j.range[1]) {
-        fail(j.at, "range", "a limited joint needs range lower < upper; it has range \"" +
-                                show(j.range[0]) + " " + show(j.range[1]) + "\"");
+        fail(j.at, "range",
+             "a limited joint needs range lower < upper; it has range \"" + show(j.range[0]) + " " +
+                 show(j.range[1]) + "\"");
       }
       // only a limited hinge's range is in degrees, and a zero bound stays exactly zero
       for (double& bound : out.range) {
@@ -365,20 +383,22 @@ class Compiler {
       out.ref = joint_radians(j.ref);
       out.springref = joint_radians(j.springref);
     }
-    require_finite(j.at, "joint", out.axis, out.range, std::array<double, 2>{out.ref, out.springref});
+    require_finite(j.at, "joint", out.axis, out.range,
+                   std::array<double, 2>{out.ref, out.springref});
     return out;
   }
 
   CompiledSite compile_site(const SiteSpec& s, int body) {
     // a site applies its alternative before normalizing (mjCSite::Compile)
     CompiledSite out{&s, body, s.orientation.quat};
-    if (const char* reason = apply_alternatives(s.orientation, c_.degree, c_.eulerseq, out.quat, nullptr)) {
+    if (const char* reason =
+            apply_alternatives(s.orientation, c_.degree, c_.eulerseq, out.quat, nullptr)) {
       fail_orientation(s.at, reason);
     }
     normalize(out.quat.data(), 4);
     if (!(s.size[0] > 0)) {
-      fail(s.at, "size", "a site needs a positive radius: size=\"r\"; it has size \"" +
-                             show3(s.size) + "\"");
+      fail(s.at, "size",
+           "a site needs a positive radius: size=\"r\"; it has size \"" + show3(s.size) + "\"");
     }
     return out;
   }
@@ -389,8 +409,8 @@ class Compiler {
     CompiledMotor out{&m};
     out.forcelimited = resolve_limited(m.forcelimited, m.forcerange, c_.autolimits, m.at,
                                        "forcerange", "forcelimited");
-    out.ctrllimited = resolve_limited(m.ctrllimited, m.ctrlrange, c_.autolimits, m.at,
-                                      "ctrlrange", "ctrllimited");
+    out.ctrllimited = resolve_limited(m.ctrllimited, m.ctrlrange, c_.autolimits, m.at, "ctrlrange",
+                                      "ctrllimited");
     check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
     check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, m.ctrlrange);
     if (m.joint.empty()) fail(m.at, "joint", "attribute 'joint' is empty: name the joint to drive");
@@ -408,8 +428,9 @@ class Compiler {
   static void check_range(const Place& at, const std::string& attribute, const std::string& flag,
                           bool limited, const std::array<double, 2>& range) {
     if (limited && range[0] >= range[1]) {
-      fail(at, attribute, "with " + flag + " the " + attribute + " needs lower < upper; it is \"" +
-                              show(range[0]) + " " + show(range[1]) + "\"");
+      fail(at, attribute,
+           "with " + flag + " the " + attribute + " needs lower < upper; it is \"" +
+               show(range[0]) + " " + show(range[1]) + "\"");
     }
   }
 
@@ -434,15 +455,18 @@ class Compiler {
         }
       }
       if (carried) continue;
-      const std::string state = "it has mass " + show(out.inertial.mass) + " and principal "
-                                "moments " + show3(out.inertial.inertia);
+      const std::string state = "it has mass " + show(out.inertial.mass) +
+                                " and principal "
+                                "moments " +
+                                show3(out.inertial.inertia);
       if (out.explicit_inertial) {
         const std::string attribute = out.inertial.mass < 1e-15 ? "mass" : "diaginertia";
-        fail(b.inertial->at, attribute, "a body with joints needs positive mass and inertia; " +
-                                            state);
+        fail(b.inertial->at, attribute,
+             "a body with joints needs positive mass and inertia; " + state);
       }
-      fail(b.at, "", "a body with joints needs positive mass and inertia; " + state +
-                         (b.geoms.empty() ? " (give it an <inertial> or a geom)" : ""));
+      fail(b.at, "",
+           "a body with joints needs positive mass and inertia; " + state +
+               (b.geoms.empty() ? " (give it an <inertial> or a geom)" : ""));
     }
   }
 
@@ -527,7 +551,8 @@ void Compiler::assemble_bodies(Model& m) const {
     m.body_name[id] = b.at.name;
     m.body_line[id] = b.at.line;
     m.body_parentid[id] = parent;
-    m.body_rootid[id] = parent == 0 ? static_cast<int>(id) : m.body_rootid[static_cast<size_t>(parent)];
+    m.body_rootid[id] =
+        parent == 0 ? static_cast<int>(id) : m.body_rootid[static_cast<size_t>(parent)];
     m.body_jntnum[id] = m.body_dofnum[id] = static_cast<int>(b.joints.size());
     if (!b.joints.empty()) m.body_jntadr[id] = m.body_dofadr[id] = c.first_joint;
     m.body_pos[id] = eigen(c.pos);

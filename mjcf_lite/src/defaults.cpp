@@ -5,8 +5,8 @@ namespace lever::mjcf::detail {
 
 namespace {
 
-const char* const kOrientations[] = {"quat", "axisangle", "xyaxes", "zaxis", "euler",
-                                     "fullinertia"};
+const char* const kOrientations[] = {"quat",  "axisangle", "xyaxes",
+                                     "zaxis", "euler",     "fullinertia"};
 
 // mujoco refuses two orientation forms written on one element (inherited ones do not count)
 void check_one_orientation(const Element& e) {
@@ -15,8 +15,8 @@ void check_one_orientation(const Element& e) {
     if (e.find(name)) found.push_back(name);
   }
   if (found.size() > 1) {
-    fail(e.place(), found[1], "more than one orientation (" + quoted_list(found, "and") +
-                                  "); give only one");
+    fail(e.place(), found[1],
+         "more than one orientation (" + quoted_list(found, "and") + "); give only one");
   }
 }
 
@@ -32,8 +32,8 @@ void check_physical(const Element& e, const Attribute& a, const Value& v) {
       (a.name == "mass" || a.name == "density" || a.name == "diaginertia");
   for (const double x : v.numbers) {
     if (must_not_be_negative && x < 0) {
-      fail(e.place(), a.name, "attribute '" + a.name + "' must not be negative (found " + show(x) +
-                                  ")");
+      fail(e.place(), a.name,
+           "attribute '" + a.name + "' must not be negative (found " + show(x) + ")");
     }
   }
 }
@@ -127,8 +127,8 @@ int DefaultClasses::choose(const Element& e, std::string_view attribute, int fal
   if (id < 0) {
     std::vector<std::string_view> names;
     for (const DefaultClass& c : classes_) names.push_back(c.name);
-    fail(e.place(), attribute, "unknown default class '" + a->value + "'" +
-                                   did_you_mean(a->value, names));
+    fail(e.place(), attribute,
+         "unknown default class '" + a->value + "'" + did_you_mean(a->value, names));
   }
   return id;
 }

@@ -1,9 +1,8 @@
 // Error messages of mjcf_lite: the public ParseError, "did you mean" suggestions, number display.
-#include <lever/mjcf.hpp>
-
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <lever/mjcf.hpp>
 #include <utility>
 
 #include "problem.hpp"

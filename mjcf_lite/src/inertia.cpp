@@ -8,11 +8,16 @@ double geom_volume(GeomType type, const Vec3& size) {
   const double r = size[0];
   const double h = 2 * size[1];  // full height of a capsule's or cylinder's cylindrical part
   switch (type) {
-    case GeomType::kSphere: return 4 * kPi * r * r * r / 3;
-    case GeomType::kCapsule: return kPi * (r * r * h + 4 * r * r * r / 3);
-    case GeomType::kCylinder: return kPi * r * r * h;
-    case GeomType::kEllipsoid: return 4 * kPi * size[0] * size[1] * size[2] / 3;
-    case GeomType::kBox: return size[0] * size[1] * size[2] * 8;
+    case GeomType::kSphere:
+      return 4 * kPi * r * r * r / 3;
+    case GeomType::kCapsule:
+      return kPi * (r * r * h + 4 * r * r * r / 3);
+    case GeomType::kCylinder:
+      return kPi * r * r * h;
+    case GeomType::kEllipsoid:
+      return 4 * kPi * size[0] * size[1] * size[2] / 3;
+    case GeomType::kBox:
+      return size[0] * size[1] * size[2] * 8;
   }
   return 0;
 }
@@ -75,8 +80,12 @@ Sym6 rotated_inertia(const Vec3& moments, const Quat& q) {
 
 // inertia of a point mass m at offset d (the parallel-axis term)
 Sym6 point_inertia(double m, const Vec3& d) {
-  return {m * (d[1] * d[1] + d[2] * d[2]), m * (d[0] * d[0] + d[2] * d[2]),
-          m * (d[0] * d[0] + d[1] * d[1]), -m * d[0] * d[1], -m * d[0] * d[2], -m * d[1] * d[2]};
+  return {m * (d[1] * d[1] + d[2] * d[2]),
+          m * (d[0] * d[0] + d[2] * d[2]),
+          m * (d[0] * d[0] + d[1] * d[1]),
+          -m * d[0] * d[1],
+          -m * d[0] * d[2],
+          -m * d[1] * d[2]};
 }
 
 }  // namespace
@@ -87,7 +96,8 @@ std::optional<std::string> combine(const std::vector<MassElement>& parts, BodyIn
   Vec3 moment{};
   for (const MassElement& p : parts) {
     mass += p.mass;
-    for (int k = 0; k < 3; ++k) moment[static_cast<size_t>(k)] += p.mass * p.pos[static_cast<size_t>(k)];
+    for (int k = 0; k < 3; ++k)
+      moment[static_cast<size_t>(k)] += p.mass * p.pos[static_cast<size_t>(k)];
   }
   if (mass < 1e-15) return "body mass is too small, cannot compute center of mass";
   const Vec3 com{moment[0] / mass, moment[1] / mass, moment[2] / mass};
@@ -96,7 +106,8 @@ std::optional<std::string> combine(const std::vector<MassElement>& parts, BodyIn
   Sym6 total{};
   for (const MassElement& p : parts) {
     const Sym6 own = rotated_inertia(p.inertia, p.quat);
-    const Sym6 shift = point_inertia(p.mass, {p.pos[0] - com[0], p.pos[1] - com[1], p.pos[2] - com[2]});
+    const Sym6 shift =
+        point_inertia(p.mass, {p.pos[0] - com[0], p.pos[1] - com[1], p.pos[2] - com[2]});
     for (size_t j = 0; j < 6; ++j) total[j] = total[j] + own[j] + shift[j];
   }
 

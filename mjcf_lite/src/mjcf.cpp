@@ -1,9 +1,8 @@
 // The public entry points of mjcf_lite: read, validate, parse, compile, set_const. Every stage
 // reports bad input by throwing a detail::Problem; it becomes a ParseError here, with the file.
-#include <lever/mjcf.hpp>
-
 #include <filesystem>
 #include <fstream>
+#include <lever/mjcf.hpp>
 #include <sstream>
 
 #include "compiler.hpp"
@@ -33,8 +32,7 @@ std::string read_file(const std::string& path) {
 
 }  // namespace
 
-Model load_string(const std::string& xml, const std::string& filename,
-                  const LoadOptions& options) {
+Model load_string(const std::string& xml, const std::string& filename, const LoadOptions& options) {
   // build everything into locals: the caller gets a complete model or an exception
   Model model;
   try {
@@ -47,8 +45,8 @@ Model load_string(const std::string& xml, const std::string& filename,
   try {
     set_const(model);
   } catch (const Error& e) {
-    throw ParseError(filename, 0, "", "", std::string("the compiled model is inconsistent: ") +
-                                              e.what());
+    throw ParseError(filename, 0, "", "",
+                     std::string("the compiled model is inconsistent: ") + e.what());
   }
   return model;
 }

@@ -107,8 +107,7 @@ const char* from_fullinertia(const Vec6& f, Quat& q, Vec3* inertia) {
   return nullptr;
 }
 
-const char* from_euler(Vec3 angles, bool degree, const std::string& sequence,
-                                      Quat& q) {
+const char* from_euler(Vec3 angles, bool degree, const std::string& sequence, Quat& q) {
   if (degree) {
     for (double& a : angles) a = frame_radians(a);
   }
@@ -201,8 +200,8 @@ bool jacobi_step(const Mat3& d, Quat& q) {
   constexpr double kEps = 1e-12;
   if (std::fabs(d[3 * r + c]) < kEps) return false;
   const double tau = (d[4 * c] - d[4 * r]) / (2 * d[3 * r + c]);
-  const double t = tau >= 0 ? 1.0 / (tau + std::sqrt(1 + tau * tau))
-                            : -1.0 / (-tau + std::sqrt(1 + tau * tau));
+  const double t =
+      tau >= 0 ? 1.0 / (tau + std::sqrt(1 + tau * tau)) : -1.0 / (-tau + std::sqrt(1 + tau * tau));
   const double cosine = 1.0 / std::sqrt(1 + t * t);
   if (cosine > 1.0 - kEps) return false;
   Quat u{0, 0, 0, 0};

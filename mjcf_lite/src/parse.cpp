@@ -213,15 +213,16 @@ std::vector<const Element*> sections(const Element& root, std::string_view tag) 
 CompilerSpec read_compiler(const Element& root) {
   // every <compiler> is applied in order over the same settings
   AttrSet set;
-  for (const Element* e : sections(root, "compiler")) set.apply(*e, *find_rule("mujoco", "compiler"));
+  for (const Element* e : sections(root, "compiler"))
+    set.apply(*e, *find_rule("mujoco", "compiler"));
   const Fields f(set, "mujoco", "compiler");
   CompilerSpec c;
   c.degree = f.word("angle") == "degree";
   c.autolimits = f.word("autolimits") == "true";
   const std::string ifg = f.word("inertiafromgeom");
-  c.inertiafromgeom = ifg == "true" ? InertiaFromGeom::kTrue
-                                    : (ifg == "false" ? InertiaFromGeom::kFalse
-                                                      : InertiaFromGeom::kAuto);
+  c.inertiafromgeom = ifg == "true"
+                          ? InertiaFromGeom::kTrue
+                          : (ifg == "false" ? InertiaFromGeom::kFalse : InertiaFromGeom::kAuto);
   const std::array<double, 2> groups = f.array<2>("inertiagrouprange");
   c.inertiagrouprange = {static_cast<int>(groups[0]), static_cast<int>(groups[1])};
   c.eulerseq = f.word("eulerseq");

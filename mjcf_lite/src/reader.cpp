@@ -28,17 +28,22 @@ namespace {
 
 std::string describe_xml_error(tinyxml2::XMLError id) {
   switch (id) {
-    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: return "the document is empty";
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
+      return "the document is empty";
     case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
       return "a closing tag does not match its opening tag (an element left open?)";
     case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
       return "cannot read an attribute (repeated, or its value not in quotes?)";
-    case tinyxml2::XML_ERROR_PARSING_TEXT: return "cannot read text (is this an XML file?)";
-    case tinyxml2::XML_ERROR_PARSING_ELEMENT: return "cannot read an element";
-    case tinyxml2::XML_ERROR_PARSING_COMMENT: return "cannot read a comment";
+    case tinyxml2::XML_ERROR_PARSING_TEXT:
+      return "cannot read text (is this an XML file?)";
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
+      return "cannot read an element";
+    case tinyxml2::XML_ERROR_PARSING_COMMENT:
+      return "cannot read a comment";
     case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
       return "elements are nested more than " + std::to_string(kMaxDepth) + " levels deep";
-    default: return "cannot parse the XML";
+    default:
+      return "cannot parse the XML";
   }
 }
 
@@ -62,8 +67,8 @@ Element convert(const tinyxml2::XMLElement& x, int depth) {
   e.tag = x.Value();
   e.line = x.GetLineNum();
   if (depth > kMaxDepth) {
-    fail(e.place(), "", "elements are nested more than " + std::to_string(kMaxDepth) +
-                            " levels deep");
+    fail(e.place(), "",
+         "elements are nested more than " + std::to_string(kMaxDepth) + " levels deep");
   }
   for (const tinyxml2::XMLAttribute* a = x.FirstAttribute(); a; a = a->Next()) {
     e.attributes.push_back({a->Name(), a->Value(), a->GetLineNum()});
@@ -73,8 +78,10 @@ Element convert(const tinyxml2::XMLElement& x, int depth) {
       e.children.push_back(convert(*child, depth + 1));
     } else if (n->ToText() && !is_blank(n->Value())) {
       // MJCF carries everything in attributes; text would be silently dropped
-      fail(e.place(), "", "unexpected text inside <" + e.tag + ">: MJCF elements take attributes "
-                          "only");
+      fail(e.place(), "",
+           "unexpected text inside <" + e.tag +
+               ">: MJCF elements take attributes "
+               "only");
     }
   }
   return e;
@@ -102,7 +109,8 @@ std::vector<std::string_view> parents_of(std::string_view tag) {
 
 // why an element that MJCF knows cannot be here
 std::string misplaced(std::string_view tag, std::string_view parent) {
-  std::string message = "<" + std::string(tag) + "> is not allowed in <" + std::string(parent) + ">";
+  std::string message =
+      "<" + std::string(tag) + "> is not allowed in <" + std::string(parent) + ">";
   if (parent == "worldbody" && (tag == "joint" || tag == "freejoint")) {
     return message + ": the world body cannot move; put the joint in a <body>";
   }
@@ -113,8 +121,8 @@ std::string misplaced(std::string_view tag, std::string_view parent) {
   if (!homes.empty()) {
     std::string where;
     for (size_t i = 0; i < homes.size(); ++i) {
-      where += (i == 0 ? "<" : (i + 1 == homes.size() ? " or <" : ", <")) + std::string(homes[i]) +
-               ">";
+      where +=
+          (i == 0 ? "<" : (i + 1 == homes.size() ? " or <" : ", <")) + std::string(homes[i]) + ">";
     }
     message += "; it belongs in " + where;
   }
@@ -136,8 +144,9 @@ std::string misplaced(std::string_view tag, std::string_view parent) {
       candidates.push_back(w);
     }
   }
-  fail(e.place(), "", "unknown element <" + e.tag + "> in <" + std::string(parent) + ">" +
-                          did_you_mean(e.tag, candidates));
+  fail(e.place(), "",
+       "unknown element <" + e.tag + "> in <" + std::string(parent) + ">" +
+           did_you_mean(e.tag, candidates));
 }
 
 // whether `name` is an attribute of the same tag somewhere else (e.g. joint name outside default)
@@ -153,15 +162,16 @@ bool known_elsewhere(std::string_view tag, std::string_view name) {
 void check_attribute(const Element& e, const ElementRule& rule, const Attribute& a) {
   if (find_attribute(rule, a.name)) return;
   if (has_word(rule.unsupported_attributes, a.name)) {
-    fail(e.place(), a.name, "attribute '" + a.name + "' is valid MJCF but not supported by lever" +
-                                kDocs);
+    fail(e.place(), a.name,
+         "attribute '" + a.name + "' is valid MJCF but not supported by lever" + kDocs);
   }
   if (rule.attributes.empty() && rule.unsupported_attributes.empty()) {
     fail(e.place(), a.name, "<" + e.tag + "> takes no attributes (found '" + a.name + "')");
   }
   if (known_elsewhere(e.tag, a.name)) {
-    fail(e.place(), a.name, "attribute '" + a.name + "' is not allowed on <" + e.tag +
-                                "> inside <" + std::string(rule.parent) + ">");
+    fail(e.place(), a.name,
+         "attribute '" + a.name + "' is not allowed on <" + e.tag + "> inside <" +
+             std::string(rule.parent) + ">");
   }
   std::vector<std::string_view> candidates;
   for (const AttributeRule& r : rule.attributes) candidates.push_back(r.name);
@@ -186,8 +196,9 @@ void validate(const Element& e, const ElementRule& rule) {
     if (!child_rule) fail_element(child, e.tag);
     const auto [it, first] = first_line.emplace(child.tag, child.line);
     if (!first && child_rule->multiplicity != '*') {
-      fail(child.place(), "", "<" + e.tag + "> can have only one <" + child.tag +
-                                  "> (the first is at line " + std::to_string(it->second) + ")");
+      fail(child.place(), "",
+           "<" + e.tag + "> can have only one <" + child.tag + "> (the first is at line " +
+               std::to_string(it->second) + ")");
     }
     validate(child, *child_rule);
   }
@@ -198,8 +209,9 @@ void check_root(const Element& root) {
     fail(root.place(), "", "this is URDF (<robot>); lever reads MJCF (<mujoco>) only");
   }
   if (root.tag != "mujoco") {
-    fail(root.place(), "", "the root element must be <mujoco>, not <" + root.tag + ">" +
-                               did_you_mean(root.tag, {"mujoco"}));
+    fail(root.place(), "",
+         "the root element must be <mujoco>, not <" + root.tag + ">" +
+             did_you_mean(root.tag, {"mujoco"}));
   }
 }
 

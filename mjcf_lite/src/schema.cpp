@@ -93,12 +93,14 @@ std::vector<AttributeRule> joint_attributes() {
               "auto: limited if range is given (compiler/autolimits)"),
       real("damping", 1, "0", "N m s/rad or N s/m"),
       real("stiffness", 1, "0", "spring stiffness, N m/rad or N/m"),
-      real("springref", 1, "0", "spring rest position (qpos_spring); hinge in degrees unless radian"),
+      real("springref", 1, "0",
+           "spring rest position (qpos_spring); hinge in degrees unless radian"),
       real("armature", 1, "0", "rotor inertia added to the mass matrix diagonal"),
       real("ref", 1, "0", "reference position (qpos0); hinge in degrees unless radian"),
       real("margin", 1, "0", "limit activation margin"),
       partial("solreflimit", 2, "0.02 1", "limit solref (timeconst, dampratio)"),
-      partial("solimplimit", 5, "0.9 0.95 0.001 0.5 2", "limit solimp (d0, dmax, width, mid, power)"),
+      partial("solimplimit", 5, "0.9 0.95 0.001 0.5 2",
+              "limit solimp (d0, dmax, width, mid, power)"),
   };
 }
 
@@ -151,6 +153,9 @@ const char* const kUnsupportedSiteAttributes = "type group material fromto rgba 
 const char* const kOtherActuators =
     "general position velocity intvelocity damper cylinder muscle adhesion";
 
+// one row per element: tag, parent, multiplicity, attributes, refused attributes, refused
+// children, meaning
+// clang-format off
 std::vector<ElementRule> build() {
   std::vector<ElementRule> s;
   s.push_back({"mujoco", "", '!', {text("model", "MuJoCo Model", "model name")}, "",
@@ -244,6 +249,7 @@ std::vector<ElementRule> build() {
                "", "a torque (hinge) or force (slide) motor: force = gear * ctrl"});
   return s;
 }
+// clang-format on
 
 // every element tag of MJCF 2.2.2, supported or not
 const char* const kAllMjcfElements =
@@ -350,9 +356,12 @@ case-sensitive. Names are unique per kind (body, joint, geom, site, motor).
 
 const char* multiplicity_text(char m) {
   switch (m) {
-    case '!': return "exactly one";
-    case '?': return "at most one";
-    default: return "any number";
+    case '!':
+      return "exactly one";
+    case '?':
+      return "at most one";
+    default:
+      return "any number";
   }
 }
 
@@ -365,12 +374,14 @@ std::string value_text(const AttributeRule& a) {
       return a.count == 1 ? "integer" : std::to_string(a.count) + " integers";
     case ValueKind::kKeyword: {
       std::string s;
-      for (const std::string_view w : words(a.keywords)) s += (s.empty() ? "" : " \\| ") +
-                                                              std::string(w);
+      for (const std::string_view w : words(a.keywords))
+        s += (s.empty() ? "" : " \\| ") + std::string(w);
       return s;
     }
-    case ValueKind::kEulerSeq: return "3 of xyzXYZ";
-    case ValueKind::kText: return "text";
+    case ValueKind::kEulerSeq:
+      return "3 of xyzXYZ";
+    case ValueKind::kText:
+      return "text";
   }
   return "";
 }

@@ -3,11 +3,10 @@
 #pragma once
 
 #include <array>
+#include <lever/model.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <lever/model.hpp>
 
 #include "problem.hpp"
 

@@ -127,10 +127,11 @@ Value read_numbers(const Element& e, const Attribute& a, const AttributeRule& ru
                                  : "";
   if (!rule.partial && n < rule.count) fail(e.place(), a.name, found + note);
   if (quirk) {
-    fail(e.place(), a.name, "attribute '" + a.name + "' ends in a blank after " +
-                                std::to_string(n) + " of up to " + std::to_string(rule.count) +
-                                " numbers; MuJoCo 2.2.2 would repeat the last number. Remove "
-                                "the blank");
+    fail(e.place(), a.name,
+         "attribute '" + a.name + "' ends in a blank after " + std::to_string(n) + " of up to " +
+             std::to_string(rule.count) +
+             " numbers; MuJoCo 2.2.2 would repeat the last number. Remove "
+             "the blank");
   }
   return v;
 }
@@ -138,23 +139,27 @@ Value read_numbers(const Element& e, const Attribute& a, const AttributeRule& ru
 Value read_keyword(const Element& e, const Attribute& a, const AttributeRule& rule) {
   if (has_word(rule.keywords, a.value)) return Value{{}, a.value, a.line};
   if (has_word(rule.unsupported_keywords, a.value)) {
-    fail(e.place(), a.name, std::string(a.name) + " '" + a.value +
-                                "' is valid MJCF but not supported by lever (see "
-                                "docs/mjcf-subset.md)");
+    fail(e.place(), a.name,
+         std::string(a.name) + " '" + a.value +
+             "' is valid MJCF but not supported by lever (see "
+             "docs/mjcf-subset.md)");
   }
   std::vector<std::string_view> all = words(rule.keywords);
   for (const std::string_view w : words(rule.unsupported_keywords)) all.push_back(w);
-  fail(e.place(), a.name, "invalid value '" + a.value + "' for attribute '" + a.name +
-                              "'; expected " + quoted_list(words(rule.keywords), "or") +
-                              did_you_mean(a.value, all));
+  fail(e.place(), a.name,
+       "invalid value '" + a.value + "' for attribute '" + a.name + "'; expected " +
+           quoted_list(words(rule.keywords), "or") + did_you_mean(a.value, all));
 }
 
 Value read_euler_sequence(const Element& e, const Attribute& a) {
   bool ok = a.value.size() == 3;
   for (const char c : a.value) ok = ok && std::string_view("xyzXYZ").find(c) != std::string::npos;
   if (!ok) {
-    fail(e.place(), a.name, "attribute '" + a.name + "' must be 3 letters from x, y, z (rotating "
-                            "axes) and X, Y, Z (fixed axes); found '" + a.value + "'");
+    fail(e.place(), a.name,
+         "attribute '" + a.name +
+             "' must be 3 letters from x, y, z (rotating "
+             "axes) and X, Y, Z (fixed axes); found '" +
+             a.value + "'");
   }
   return Value{{}, a.value, a.line};
 }
@@ -164,10 +169,14 @@ Value read_euler_sequence(const Element& e, const Attribute& a) {
 Value parse_value(const Element& e, const Attribute& a, const AttributeRule& rule) {
   switch (rule.kind) {
     case ValueKind::kReal:
-    case ValueKind::kInteger: return read_numbers(e, a, rule);
-    case ValueKind::kKeyword: return read_keyword(e, a, rule);
-    case ValueKind::kEulerSeq: return read_euler_sequence(e, a);
-    case ValueKind::kText: break;
+    case ValueKind::kInteger:
+      return read_numbers(e, a, rule);
+    case ValueKind::kKeyword:
+      return read_keyword(e, a, rule);
+    case ValueKind::kEulerSeq:
+      return read_euler_sequence(e, a);
+    case ValueKind::kText:
+      break;
   }
   return Value{{}, a.value, a.line};
 }

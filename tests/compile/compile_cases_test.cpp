@@ -2,7 +2,6 @@
 // corner cases that the model files may not reach, and MuJoCo's verdict on the bad inputs of
 // tests/mjcf.
 #include <catch2/catch.hpp>
-
 #include <lever/mjcf.hpp>
 
 #include "bad_inputs.hpp"
@@ -32,7 +31,8 @@ void compare(const std::string& name, const std::string& xml) {
 // the lesson's demonstration: a 1 kg colliding geom and a 2 kg non-colliding geom in group 3
 std::string visual_geom_model(const char* compiler) {
   return std::string(R"(<mujoco>
-  )") + compiler + R"(
+  )") + compiler +
+         R"(
   <worldbody>
     <body name="b" pos="0 0 1">
       <joint name="j" axis="0 1 0"/>
@@ -126,7 +126,8 @@ const Case kCases[] = {
     <body name="a">
       <body name="a1" pos="0 0 -0.1"><joint name="a1"/><geom size="0.05"/></body>
       <body name="a2" pos="0 0 0.1"><joint name="a2" type="slide"/><geom size="0.05"/>
-        <body name="a21"><joint name="a21a"/><joint name="a21b" axis="1 0 0"/><geom size="0.05"/></body>
+        <body name="a21"><joint name="a21a"/><joint name="a21b" axis="1 0 0"/>
+          <geom size="0.05"/></body>
       </body>
       <joint name="a"/>
       <geom size="0.1"/>
@@ -235,7 +236,8 @@ const Case kCases[] = {
   {"bounds-and-total-mass", R"(<mujoco>
   <compiler boundmass="0.5" boundinertia="0.01" balanceinertia="true" settotalmass="7"/>
   <worldbody>
-    <body name="light"><joint/><inertial pos="0 0 0" mass="0.1" diaginertia="0.001 0.002 0.1"/></body>
+    <body name="light"><joint/>
+      <inertial pos="0 0 0" mass="0.1" diaginertia="0.001 0.002 0.1"/></body>
     <body name="static"><inertial pos="0 0 0" mass="2" diaginertia="1 1 1"/></body>
     <body name="geoms"><joint/><geom type="box" size="0.01 0.2 0.3"/></body>
   </worldbody>
@@ -302,7 +304,8 @@ const Case kCases[] = {
   {"sections-repeated", R"(<mujoco model="repeated">
   <worldbody><body name="a"><joint name="a"/><geom size="0.1"/></body></worldbody>
   <actuator><motor joint="a"/></actuator>
-  <worldbody><site name="s" pos="1 0 0"/><body name="b"><joint name="b"/><geom size="0.2"/></body></worldbody>
+  <worldbody><site name="s" pos="1 0 0"/>
+    <body name="b"><joint name="b"/><geom size="0.2"/></body></worldbody>
   <actuator><motor joint="b"/></actuator>
 </mujoco>)"},
 };

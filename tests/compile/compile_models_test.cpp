@@ -1,9 +1,7 @@
 // Every model of the repository (models/ and tests/models/), compiled by mjcf_lite and by
 // MuJoCo 2.2.2, must agree field by field to |a - b| <= 1e-12 max(1, |b|) (quaternions up to sign).
 #include <catch2/catch.hpp>
-
 #include <filesystem>
-
 #include <lever/mjcf.hpp>
 
 #include "mujoco_xml.hpp"
@@ -79,7 +77,8 @@ TEST_CASE("every model without its <inertial> elements infers inertia as MuJoCo 
   for (const std::string& path : all_model_files()) {
     DYNAMIC_SECTION(file_name(path)) {
       const std::string xml = lever::test::read_text(path);
-      const Pair removed = compile_both(file_name(path), lever::test::without_inertials(xml), false);
+      const Pair removed =
+          compile_both(file_name(path), lever::test::without_inertials(xml), false);
       const Pair ignored = compile_both(file_name(path), xml, true);
       INFO("lever: " << removed.our_error << "\nmujoco: " << removed.their_error);
       REQUIRE(removed.ours_loaded == static_cast<bool>(removed.theirs));

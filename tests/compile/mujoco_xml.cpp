@@ -61,8 +61,8 @@ class Differences {
  public:
   void integer(const std::string& field, int index, int ours, int theirs) {
     if (ours != theirs) {
-      add(field + "[" + std::to_string(index) + "]: lever " + std::to_string(ours) +
-          " vs mujoco " + std::to_string(theirs));
+      add(field + "[" + std::to_string(index) + "]: lever " + std::to_string(ours) + " vs mujoco " +
+          std::to_string(theirs));
     }
   }
 
@@ -198,7 +198,8 @@ void compare_geoms_sites(Differences& d, const Model& o, const mjModel& m) {
 
 void compare_actuators(Differences& d, const Model& o, const mjModel& m) {
   for (int a = 0; a < o.nu; ++a) {
-    d.integer("actuator_trnid", 2 * a, o.actuator_trnid[static_cast<size_t>(a)], m.actuator_trnid[2 * a]);
+    d.integer("actuator_trnid", 2 * a, o.actuator_trnid[static_cast<size_t>(a)],
+              m.actuator_trnid[2 * a]);
     d.integer("actuator_trnid", 2 * a + 1, -1, m.actuator_trnid[2 * a + 1]);
     d.integer("actuator_trntype", a, mjTRN_JOINT, m.actuator_trntype[a]);
     d.integer("actuator_gaintype", a, mjGAIN_FIXED, m.actuator_gaintype[a]);

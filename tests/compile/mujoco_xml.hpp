@@ -4,11 +4,10 @@
 
 #include <mujoco/mujoco.h>
 
+#include <lever/model.hpp>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <lever/model.hpp>
 
 namespace lever::test {
 

@@ -1,10 +1,9 @@
 // Every bad input is refused with one ParseError that names its line, element, attribute and
 // problem (see bad_inputs.hpp).
-#include <catch2/catch.hpp>
-
-#include <lever/mjcf.hpp>
-
 #include "bad_inputs.hpp"
+
+#include <catch2/catch.hpp>
+#include <lever/mjcf.hpp>
 
 using lever::mjcf::ParseError;
 using lever::test::kBadInputs;

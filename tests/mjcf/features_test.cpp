@@ -1,12 +1,9 @@
 // The parser's features, each checked against a value computed by hand in the test: angle units,
 // orientation forms, default classes and childclass, limits, the joint and dof tree, options.
-#include <catch2/catch.hpp>
-
 #include <Eigen/Geometry>
-
-#include <numbers>
-
+#include <catch2/catch.hpp>
 #include <lever/mjcf.hpp>
+#include <numbers>
 
 #include "test_models.hpp"
 
@@ -58,7 +55,8 @@ TEST_CASE("angles are in degrees by default, converted as MuJoCo converts them",
   CHECK(m.jnt_range[2] == std::array<double, 2>{-90, 90});
   CHECK(m.qpos0[2] == 2);
 
-  const Model r = body_with(R"(<joint range="-1.2 2.4" ref="0.5"/>)", R"(<compiler angle="radian"/>)");
+  const Model r =
+      body_with(R"(<joint range="-1.2 2.4" ref="0.5"/>)", R"(<compiler angle="radian"/>)");
   CHECK(r.jnt_range[0] == std::array<double, 2>{-1.2, 2.4});
   CHECK(r.qpos0[0] == 0.5);
 }
@@ -97,14 +95,13 @@ TEST_CASE("eulerseq: lower case rotates with the body, upper case about fixed ax
   const std::string body = R"(<body name="r" euler="30 45 60"><geom size="0.1"/></body>)";
   const Model intrinsic = body_with(body, R"(<compiler eulerseq="zyx"/>)");
   const Model extrinsic = body_with(body, R"(<compiler eulerseq="ZYX"/>)");
-  CHECK(near(rotation(intrinsic.body_quat[2]), about(ez, 30) * about(ey, 45) * about(ex, 60),
-             1e-14));
-  CHECK(near(rotation(extrinsic.body_quat[2]), about(ex, 60) * about(ey, 45) * about(ez, 30),
-             1e-14));
+  CHECK(
+      near(rotation(intrinsic.body_quat[2]), about(ez, 30) * about(ey, 45) * about(ex, 60), 1e-14));
+  CHECK(
+      near(rotation(extrinsic.body_quat[2]), about(ex, 60) * about(ey, 45) * about(ez, 30), 1e-14));
 }
 
-TEST_CASE("fromto places, sizes and turns a geom; +z points from `to` back to `from`",
-          "[mjcf]") {
+TEST_CASE("fromto places, sizes and turns a geom; +z points from `to` back to `from`", "[mjcf]") {
   const Model m = lever::mjcf::load_string(R"(<mujoco>
   <worldbody>
     <geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.025"/>
@@ -232,8 +229,8 @@ TEST_CASE("joint parameters, solref/solimp defaults and partial values", "[mjcf]
   const Model m = body_with(R"(<joint name="a" pos="0.1 0 0" axis="0 0 2" stiffness="10"
         armature="0.2" damping="0.3" margin="0.01" solreflimit="0.05"/>
       <joint name="b" type="slide" axis="3 4 0" solimplimit="0.8 0.9"/>)");
-  CHECK(m.jnt_type == std::vector<lever::JointType>{lever::JointType::kHinge,
-                                                    lever::JointType::kSlide});
+  CHECK(m.jnt_type ==
+        std::vector<lever::JointType>{lever::JointType::kHinge, lever::JointType::kSlide});
   CHECK(m.jnt_pos[0] == Eigen::Vector3d(0.1, 0, 0));
   CHECK(m.jnt_axis[0] == Eigen::Vector3d(0, 0, 1));
   CHECK(m.jnt_axis[1] == Eigen::Vector3d(0.6, 0.8, 0));

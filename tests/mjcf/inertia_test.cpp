@@ -2,10 +2,8 @@
 // of mass, explicit <inertial>, inertiafromgeom, inertiagrouprange, bounds and settotalmass. Every
 // expected value is computed here from the textbook formula.
 #include <catch2/catch.hpp>
-
-#include <numbers>
-
 #include <lever/mjcf.hpp>
+#include <numbers>
 
 #include "test_models.hpp"
 
@@ -73,10 +71,10 @@ TEST_CASE("a single geom's mass and inertia follow its solid-body formula", "[mj
     const double spheres = kDensity * 4.0 / 3.0 * pi * r * r * r;
     // each hemisphere's centre of mass is 3r/8 beyond its flat face, h/2 from the centre
     const double d = h / 2 + 3 * r / 8;
-    const double hemisphere_own = 2.0 / 5.0 * r * r * (spheres / 2) -
-                                  (spheres / 2) * (3 * r / 8) * (3 * r / 8);
-    const double across = cylinder * (3 * r * r + h * h) / 12 +
-                          2 * (hemisphere_own + spheres / 2 * d * d);
+    const double hemisphere_own =
+        2.0 / 5.0 * r * r * (spheres / 2) - (spheres / 2) * (3 * r / 8) * (3 * r / 8);
+    const double across =
+        cylinder * (3 * r * r + h * h) / 12 + 2 * (hemisphere_own + spheres / 2 * d * d);
     const double along = cylinder * r * r / 2 + 2.0 / 5.0 * spheres * r * r;
     const Model model = body_with(R"(<geom type="capsule" size="0.025 0.25"/>)");
     check_close(model.body_mass[1], cylinder + spheres);
@@ -130,7 +128,8 @@ TEST_CASE("explicit <inertial>: diaginertia as given, fullinertia diagonalized",
   // the geom's own mass is still known, although it does not count
   check_close(diag.geom_mass[0], kDensity * 4.0 / 3.0 * pi * 0.001);
 
-  const Model full = body_with(R"(<inertial pos="0 0 0" mass="1" fullinertia="0.1 0.2 0.3 0 0 0"/>)");
+  const Model full =
+      body_with(R"(<inertial pos="0 0 0" mass="1" fullinertia="0.1 0.2 0.3 0 0 0"/>)");
   check_close(full.body_inertia[1], {0.3, 0.2, 0.1});
   // the principal frame maps its x axis onto the body's z axis (the 0.3 moment)
   const Eigen::Vector4d q = full.body_iquat[1];
@@ -175,8 +174,9 @@ TEST_CASE("a body without mass takes its own frame as inertial frame", "[mjcf][i
 }
 
 TEST_CASE("boundmass, boundinertia, balanceinertia and settotalmass", "[mjcf][inertia]") {
-  const Model bounded = body_with(R"(<inertial pos="0 0 0" mass="0.1" diaginertia="0.01 0.02 0.02"/>)",
-                                  R"(<compiler boundmass="0.5" boundinertia="0.015"/>)");
+  const Model bounded =
+      body_with(R"(<inertial pos="0 0 0" mass="0.1" diaginertia="0.01 0.02 0.02"/>)",
+                R"(<compiler boundmass="0.5" boundinertia="0.015"/>)");
   CHECK(bounded.body_mass[1] == 0.5);
   CHECK(bounded.body_inertia[1] == Eigen::Vector3d(0.015, 0.02, 0.02));
 

@@ -2,12 +2,10 @@
 // and mutated copies of a real model, deep nesting, binary junk. Also: docs/mjcf-subset.md is
 // what schema_markdown() generates.
 #include <catch2/catch.hpp>
-
 #include <fstream>
+#include <lever/mjcf.hpp>
 #include <random>
 #include <sstream>
-
-#include <lever/mjcf.hpp>
 
 #include "test_models.hpp"
 

@@ -9,10 +9,9 @@
 // masses from the geoms. --schema: the supported MJCF subset as Markdown (docs/mjcf-subset.md).
 // Exit 0; a model that cannot be loaded prints the error and exits 2.
 #include <cstdio>
+#include <lever/mjcf.hpp>
 #include <string>
 #include <vector>
-
-#include <lever/mjcf.hpp>
 
 #include "cli.hpp"
 #include "commands.hpp"
@@ -52,8 +51,7 @@ std::string label(const std::string& name, int id) {
 
 void print_options(std::FILE* out, const Model& m) {
   std::fprintf(out, "options: timestep %g s, integrator %s, gravity %s m/s^2\n", m.opt.timestep,
-               m.opt.integrator == Integrator::kRK4 ? "RK4" : "Euler",
-               vec(m.opt.gravity).c_str());
+               m.opt.integrator == Integrator::kRK4 ? "RK4" : "Euler", vec(m.opt.gravity).c_str());
   std::fprintf(out, "  inertiagrouprange %d %d, inertia from geoms %s\n",
                m.compiler.inertiagrouprange[0], m.compiler.inertiagrouprange[1],
                m.compiler.inertia_from_geoms_allowed ? "allowed" : "off (inertiafromgeom=false)");
@@ -70,8 +68,8 @@ void print_joints(std::FILE* out, const Model& m) {
                  label(m.jnt_name[j], j).c_str(), hinge ? "hinge" : "slide",
                  label(m.body_name[m.jnt_bodyid[j]], m.jnt_bodyid[j]).c_str(),
                  vec(m.jnt_axis[j]).c_str(), pair(m.jnt_range[j]).c_str(), hinge ? "rad" : "m",
-                 m.jnt_limited[j] ? "yes" : "no", m.dof_damping[dof],
-                 hinge ? "N m s/rad" : "N s/m", m.dof_armature[dof], m.jnt_stiffness[j]);
+                 m.jnt_limited[j] ? "yes" : "no", m.dof_damping[dof], hinge ? "N m s/rad" : "N s/m",
+                 m.dof_armature[dof], m.jnt_stiffness[j]);
   }
 }
 
@@ -109,9 +107,8 @@ void print_bodies(std::FILE* out, const Model& m) {
                  "  %-12s parent %-10s mass %g kg  principal moments %s kg m^2  centre of mass %s"
                  "  %s\n",
                  label(m.body_name[b], b).c_str(),
-                 label(m.body_name[m.body_parentid[b]], m.body_parentid[b]).c_str(),
-                 m.body_mass[b], vec(m.body_inertia[b]).c_str(), vec(m.body_ipos[b]).c_str(),
-                 source);
+                 label(m.body_name[m.body_parentid[b]], m.body_parentid[b]).c_str(), m.body_mass[b],
+                 vec(m.body_inertia[b]).c_str(), vec(m.body_ipos[b]).c_str(), source);
   }
 }
 
@@ -178,8 +175,12 @@ void print_model_json(Json& json, const Model& m) {
   json.begin_object();
   json.key("model").value(m.name);
   json.key("source").value(m.source);
-  for (const auto& [key, n] : {std::pair{"nq", m.nq}, {"nv", m.nv}, {"nu", m.nu},
-                               {"nbody", m.nbody}, {"njnt", m.njnt}, {"nsite", m.nsite},
+  for (const auto& [key, n] : {std::pair{"nq", m.nq},
+                               {"nv", m.nv},
+                               {"nu", m.nu},
+                               {"nbody", m.nbody},
+                               {"njnt", m.njnt},
+                               {"nsite", m.nsite},
                                {"ngeom", m.ngeom}}) {
     json.key(key).value(n);
   }

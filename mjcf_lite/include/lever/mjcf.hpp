@@ -9,10 +9,9 @@
 // complete Model or throws; never half a model.
 #pragma once
 
-#include <string>
-
 #include <lever/error.hpp>
 #include <lever/model.hpp>
+#include <string>
 
 namespace lever::mjcf {
 
@@ -26,12 +25,12 @@ class ParseError : public Error {
   ParseError(std::string file, int line, std::string element, std::string attribute,
              std::string problem, std::string element_name = "");
 
-  const std::string& file() const { return file_; }            ///< as given to the loader
-  int line() const { return line_; }                           ///< 1-based; 0 if none applies
-  const std::string& element() const { return element_; }      ///< e.g. "joint"; "" if none
+  const std::string& file() const { return file_; }                  ///< as given to the loader
+  int line() const { return line_; }                                 ///< 1-based; 0 if none applies
+  const std::string& element() const { return element_; }            ///< e.g. "joint"; "" if none
   const std::string& element_name() const { return element_name_; }  ///< its name=; "" if none
-  const std::string& attribute() const { return attribute_; }  ///< e.g. "range"; "" if none
-  const std::string& problem() const { return problem_; }      ///< the message without location
+  const std::string& attribute() const { return attribute_; }        ///< e.g. "range"; "" if none
+  const std::string& problem() const { return problem_; }  ///< the message without location
 
  private:
   std::string file_, element_, element_name_, attribute_, problem_;
