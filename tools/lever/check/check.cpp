@@ -1,0 +1,97 @@
+// The six checks in order, and the findings: every claim that does not check out.
+#include "check.hpp"
+
+#include <cmath>
+
+#include "format.hpp"
+
+namespace lever::check {
+
+namespace {
+
+constexpr double kKinematicsTolerance = 1e-9;  // m: beyond rounding error, something is wrong
+constexpr double kGravityTolerance = 1e-9;     // N m per N m of the largest torque
+
+const char* torque_unit(bool hinge) { return hinge ? "N m" : "N"; }
+
+void kinematics_findings(const Kinematics& k, std::vector<std::string>& findings) {
+  for (const SiteKinematics& s : k.sites) {
+    if (s.max_error_transforms > kKinematicsTolerance) {
+      findings.push_back("site " + s.site + ": site_xpos differs from the chain of transforms by " +
+                         fmt::sci(s.max_error_transforms) + " m");
+    }
+    if (s.planar && s.planar->max_error > kKinematicsTolerance) {
+      findings.push_back("site " + s.site + ": site_xpos differs from the planar formula by " +
+                         fmt::sci(s.planar->max_error) + " m");
+    }
+  }
+}
+
+void budget_findings(const TorqueBudget& b, std::vector<std::string>& findings) {
+  double scale = 1.0;
+  for (const JointBudget& j : b.joints) scale = std::max(scale, std::abs(j.worst_torque));
+  if (b.formula_max_error > kGravityTolerance * scale) {
+    findings.push_back("qfrc_bias at rest differs from the gravity formula dV/dq by " +
+                       fmt::sci(b.formula_max_error) + " N m");
+  }
+  for (const JointBudget& j : b.joints) {
+    if (!j.actuated() || !j.loaded || !(j.ratio < 1.0)) continue;
+    const char* unit = torque_unit(j.hinge);
+    findings.push_back("joint " + j.joint + ": its motor cannot hold its own arm: the worst-case "
+                       "gravity torque is " + fmt::fixed(j.worst_torque, 3) + " " + unit +
+                       " (at q = " + fmt::list(j.worst_pose, 4) + ") and the motor limit " +
+                       fmt::general(j.limit) + " " + unit + " (ratio " + fmt::fixed(j.ratio, 2) +
+                       ")");
+  }
+}
+
+void inertia_findings(const Inertia& in, const Structure& s, std::vector<std::string>& findings) {
+  for (const std::string& body : in.bodies_without_inertial) {
+    findings.push_back("body " + body + " has no <inertial>: its mass and inertia were inferred "
+                       "from its geoms at their density");
+  }
+  for (const VisualMass& v : in.visual_mass) {
+    findings.push_back("geom " + v.geom + " does not collide but adds " + fmt::fixed(v.mass, 3) +
+                       " kg to body " + v.body + " (group " + std::to_string(v.group) +
+                       " lies inside inertiagrouprange " +
+                       std::to_string(in.inertiagrouprange[0]) + " " +
+                       std::to_string(in.inertiagrouprange[1]) + ")");
+  }
+  for (const BodyInfo& b : s.bodies) {
+    const Eigen::Vector3d& I = b.principal;  // ascending
+    if (b.mass > 0 && I[0] + I[1] < I[2] * (1.0 - 1e-12)) {
+      findings.push_back("body " + b.name + ": principal moments " + fmt::list(I, 5) +
+                         " violate the triangle inequality (no rigid body has them)");
+    }
+  }
+}
+
+void clamping_findings(const Clamping& c, std::vector<std::string>& findings) {
+  for (const std::string& motor : c.unbounded) {
+    findings.push_back("motor " + motor + " has ctrllimited=\"false\": it accepts any command "
+                       "(nothing bounds the request, so nothing reports when it is too large)");
+  }
+}
+
+}  // namespace
+
+Report run_check(const Inputs& inputs) {
+  const Model& model = inputs.model;
+  Report report;
+  report.model = model.name;
+  report.source = model.source;
+  report.structure = check_structure(model);
+  report.kinematics = check_kinematics(model);
+  report.budget = check_torque_budget(model);
+  report.inertia = check_inertia(inputs, report.budget);
+  report.stops = check_soft_stops(model);
+  report.clamping = check_clamping(model);
+
+  kinematics_findings(report.kinematics, report.findings);
+  budget_findings(report.budget, report.findings);
+  inertia_findings(report.inertia, report.structure, report.findings);
+  clamping_findings(report.clamping, report.findings);
+  return report;
+}
+
+}  // namespace lever::check

@@ -1,0 +1,199 @@
+// `lever check --json`: the report as one JSON object, sections as keys, numbers at full precision
+// (infinite and undefined figures, such as an unbounded motor's limit, as null).
+#include "../cli.hpp"
+#include "check.hpp"
+
+namespace lever::check {
+
+namespace {
+
+using cli::Json;
+
+void pair(Json& j, const std::array<double, 2>& r) {
+  j.begin_array().value(r[0]).value(r[1]).end_array();
+}
+
+void matrix(Json& j, const Eigen::MatrixXd& M) {
+  j.begin_array();
+  for (Eigen::Index r = 0; r < M.rows(); ++r) j.values(M.row(r).transpose());
+  j.end_array();
+}
+
+void strings(Json& j, const std::vector<std::string>& list) {
+  j.begin_array();
+  for (const std::string& s : list) j.value(s);
+  j.end_array();
+}
+
+void structure(Json& j, const Structure& s) {
+  j.key("joints").begin_array();
+  for (const JointInfo& x : s.joints) {
+    j.begin_object().key("name").value(x.name).key("type").value(x.hinge ? "hinge" : "slide");
+    j.key("axis").values(x.axis).key("range");
+    pair(j, x.range);
+    j.key("limited").value(x.limited).key("damping").value(x.damping);
+    j.key("armature").value(x.armature).key("stiffness").value(x.stiffness);
+    j.key("qpos0").value(x.qpos0).end_object();
+  }
+  j.end_array().key("motors").begin_array();
+  for (const MotorInfo& m : s.motors) {
+    j.begin_object().key("name").value(m.name).key("joint").value(m.joint);
+    j.key("gear").value(m.gear).key("ctrlrange");
+    pair(j, m.ctrlrange);
+    j.key("ctrllimited").value(m.ctrllimited).key("forcerange");
+    pair(j, m.forcerange);
+    j.key("forcelimited").value(m.forcelimited).key("joint_torque");
+    pair(j, m.joint_torque);
+    j.end_object();
+  }
+  j.end_array().key("sites").begin_array();
+  for (size_t i = 0; i < s.sites.size(); ++i) {
+    j.begin_object().key("name").value(s.sites[i]).key("body").value(s.site_bodies[i]).end_object();
+  }
+  j.end_array().key("bodies").begin_array();
+  for (const BodyInfo& b : s.bodies) {
+    j.begin_object().key("name").value(b.name).key("mass").value(b.mass);
+    j.key("principal_moments").values(b.principal);
+    j.key("explicit_inertial").value(b.explicit_inertial).end_object();
+  }
+  j.end_array();
+}
+
+void kinematics(Json& j, const Kinematics& k) {
+  j.key("poses").value(k.poses).key("sites").begin_array();
+  for (const SiteKinematics& s : k.sites) {
+    j.begin_object().key("site").value(s.site);
+    j.key("max_error_transforms").value(s.max_error_transforms).key("planar");
+    if (!s.planar) {
+      j.begin_object().end_object();
+    } else {
+      const PlanarChain& c = *s.planar;
+      j.begin_object().key("joints");
+      strings(j, c.joints);
+      j.key("normal").values(c.normal).key("u").values(c.u).key("w").values(c.w);
+      j.key("origin").values(c.origin);
+      j.key("lengths").values(Eigen::Map<const Eigen::VectorXd>(c.lengths.data(), c.lengths.size()));
+      j.key("angles0").values(Eigen::Map<const Eigen::VectorXd>(c.angles0.data(), c.angles0.size()));
+      j.key("offset").value(c.offset).key("max_error").value(c.max_error).end_object();
+    }
+    j.end_object();
+  }
+  j.end_array();
+}
+
+void budget(Json& j, const TorqueBudget& b) {
+  j.key("formula_poses").value(b.formula_poses).key("formula_max_error").value(b.formula_max_error);
+  j.key("search").value(b.search).key("evaluations").value(b.evaluations);
+  j.key("gravity").value(b.gravity).key("joints").begin_array();
+  for (const JointBudget& x : b.joints) {
+    j.begin_object().key("joint").value(x.joint).key("worst_gravity_torque").value(x.worst_torque);
+    j.key("worst_pose").values(x.worst_pose).key("loaded").value(x.loaded);
+    j.key("motors");
+    strings(j, x.motors);
+    j.key("torque_range");
+    pair(j, x.torque_range);
+    j.key("motor_limit").value(x.limit).key("ratio").value(x.ratio);
+    j.key("spare_torque").value(x.spare).key("acceleration").value(x.acceleration);
+    j.key("rigid_torques").values(x.rigid_torques).end_object();
+  }
+  j.end_array().key("payload").begin_array();
+  for (const SitePayload& p : b.payload) {
+    j.begin_object().key("site").value(p.site);
+    j.key("per_joint").values(Eigen::Map<const Eigen::VectorXd>(p.per_joint.data(), p.per_joint.size()));
+    j.key("min").value(p.min).key("binding_joint").value(p.binding_joint).end_object();
+  }
+  j.end_array().key("mass_matrices").begin_array();
+  for (const PoseInertia& p : b.poses) {
+    j.begin_object().key("qpos").values(p.q).key("M");
+    matrix(j, p.M);
+    j.key("joints").begin_array();
+    for (const int k : p.joints) j.value(b.joints[k].joint);
+    j.end_array().end_object();
+  }
+  j.end_array();
+}
+
+void inertia(Json& j, const Inertia& in) {
+  j.key("inferred_available").value(in.inferred_available);
+  j.key("inferred_error").value(in.inferred_error).key("bodies").begin_array();
+  for (const BodyInertia& b : in.bodies) {
+    j.begin_object().key("name").value(b.name).key("explicit_inertial").value(b.explicit_inertial);
+    j.key("mass").value(b.mass).key("principal_moments").values(b.principal);
+    if (in.inferred_available) {
+      j.key("inferred_mass").value(b.inferred_mass);
+      j.key("inferred_principal_moments").values(b.inferred_principal);
+    }
+    j.end_object();
+  }
+  j.end_array().key("gravity_torque_at_worst_pose").begin_array();
+  for (const JointTorqueInferred& t : in.torques) {
+    j.begin_object().key("joint").value(t.joint).key("explicit").value(t.explicit_torque);
+    j.key("from_geoms").value(t.inferred_torque).end_object();
+  }
+  j.end_array().key("inertiagrouprange").begin_array();
+  j.value(in.inertiagrouprange[0]).value(in.inertiagrouprange[1]).end_array();
+  j.key("bodies_without_inertial");
+  strings(j, in.bodies_without_inertial);
+  j.key("visual_geoms_with_mass").begin_array();
+  for (const VisualMass& v : in.visual_mass) {
+    j.begin_object().key("geom").value(v.geom).key("body").value(v.body);
+    j.key("group").value(v.group).key("mass").value(v.mass).end_object();
+  }
+  j.end_array().key("demo").begin_object();
+  j.key("default_range").begin_array().value(in.demo_default_range[0]).value(in.demo_default_range[1]).end_array();
+  j.key("default_mass").value(in.demo_default_mass);
+  j.key("narrow_range").begin_array().value(in.demo_narrow_range[0]).value(in.demo_narrow_range[1]).end_array();
+  j.key("narrow_mass").value(in.demo_narrow_mass).end_object();
+}
+
+void stops(Json& j, const SoftStops& st) {
+  j.key("settle_qvel").value(st.settle_qvel).key("settle_time").value(st.settle_time);
+  j.key("relax_qvel").value(st.relax_qvel).key("relax_bound").value(st.relax_bound).key("time_bound").value(st.time_bound);
+  j.key("runs").value(st.runs).key("stops").begin_array();
+  for (const StopRest& s : st.stops) {
+    j.begin_object().key("joint").value(s.joint).key("side").value(s.upper ? "upper" : "lower");
+    j.key("stop").value(s.stop).key("margin").value(s.margin).key("loadable").value(s.loadable);
+    if (s.loadable) {
+      j.key("from_qpos0").value(s.from_qpos0).key("start").values(s.start);
+      j.key("time").value(s.time).key("relax_time").value(s.relax_time).key("settled").value(s.settled).key("max_qvel").value(s.max_qvel);
+      j.key("rests_on_stop").value(s.rests_on_stop).key("qpos").value(s.q);
+      j.key("past_stop").value(s.past).key("rows").value(s.rows);
+      j.key("qfrc_constraint").value(s.qfrc_constraint).key("qfrc_bias").value(s.qfrc_bias);
+      j.key("qfrc_passive").value(s.qfrc_passive);
+      j.key("final_qpos").values(s.final_qpos).key("warnings").value(s.warnings);
+    }
+    j.end_object();
+  }
+  j.end_array();
+}
+
+void clamping(Json& j, const Clamping& c) {
+  j.key("ctrl").values(c.ctrl).key("actuator_force").values(c.actuator_force);
+  j.key("warnings").value(c.warnings).key("unbounded");
+  strings(j, c.unbounded);
+}
+
+}  // namespace
+
+void write_json(std::FILE* out, const Report& r) {
+  Json j(out);
+  j.begin_object().key("model").value(r.model).key("source").value(r.source);
+  j.key("structure").begin_object();
+  structure(j, r.structure);
+  j.end_object().key("kinematics").begin_object();
+  kinematics(j, r.kinematics);
+  j.end_object().key("torque_budget").begin_object();
+  budget(j, r.budget);
+  j.end_object().key("inertia").begin_object();
+  inertia(j, r.inertia);
+  j.end_object().key("soft_stops").begin_object();
+  stops(j, r.stops);
+  j.end_object().key("clamping").begin_object();
+  clamping(j, r.clamping);
+  j.end_object().key("findings");
+  strings(j, r.findings);
+  j.key("exit_status").value(r.exit_status()).end_object();
+  j.newline();
+}
+
+}  // namespace lever::check

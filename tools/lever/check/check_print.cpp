@@ -1,0 +1,352 @@
+// The text of `lever check`: lesson 5.1's Output block, section by section, with the same
+// wording and digits where the lesson has a line for it, and a line per joint, site and stop.
+#include <cmath>
+#include <sstream>
+
+#include "check.hpp"
+#include "format.hpp"
+
+namespace lever::check {
+
+namespace {
+
+using fmt::fixed;
+using fmt::general;
+
+const char* torque_unit(bool hinge) { return hinge ? "N m" : "N"; }
+const char* position_unit(bool hinge) { return hinge ? "rad" : "m"; }
+
+std::string bool_text(bool b) { return b ? "true" : "false"; }
+
+std::string range_text(const std::array<double, 2>& r) {
+  return std::string("[") + general(r[0]) + " " + general(r[1]) + "]";
+}
+
+std::string pose_text(const Eigen::VectorXd& q) { return "q = " + fmt::list(q, 4); }
+
+std::string names(const std::vector<std::string>& list) {
+  std::string out;
+  for (size_t i = 0; i < list.size(); ++i) {
+    if (i) out += ", ";
+    out += list[i];
+  }
+  return out;
+}
+
+// ---- (1) ---------------------------------------------------------------------------------------
+
+void print_structure(std::ostream& out, const Structure& s) {
+  out << "(1) what the compiled model contains:\n";
+  for (const JointInfo& j : s.joints) {
+    out << "  joint " << j.name << (j.hinge ? "" : " (slide)") << " axis " << fmt::list(j.axis)
+        << " range " << (j.limited ? range_text(j.range) + " " + position_unit(j.hinge) : "-")
+        << " limited " << bool_text(j.limited) << " damping " << general(j.damping)
+        << (j.hinge ? " N m s/rad" : " N s/m");
+    if (j.armature != 0) out << " armature " << general(j.armature);
+    if (j.stiffness != 0) out << " stiffness " << general(j.stiffness);
+    if (j.qpos0 != 0) out << " qpos0 " << general(j.qpos0);
+    out << "\n";
+  }
+  for (const MotorInfo& m : s.motors) {
+    out << "  motor " << m.name;
+    if (m.name != m.joint) out << " (joint " << m.joint << ")";
+    out << " gear " << general(m.gear) << " ctrlrange " << range_text(m.ctrlrange);
+    const bool plain = m.gear == 1.0 && !m.forcelimited;
+    if (plain) out << " N m";
+    out << " ctrllimited " << bool_text(m.ctrllimited);
+    if (m.forcelimited) out << " forcerange " << range_text(m.forcerange) << " forcelimited true";
+    if (!plain) out << ": joint torque " << range_text(m.joint_torque);
+    out << "\n";
+  }
+  std::vector<std::string> sites;
+  for (size_t i = 0; i < s.sites.size(); ++i) sites.push_back(s.sites[i] + " (on " + s.site_bodies[i] + ")");
+  out << "  sites: " << (sites.empty() ? "none" : names(sites)) << "\n";
+  for (const BodyInfo& b : s.bodies) {
+    out << "  body " << b.name << " mass " << fixed(b.mass, 3) << " kg, principal moments "
+        << fmt::list(b.principal, 5) << " kg m^2"
+        << (b.explicit_inertial ? " (<inertial>)" : b.mass > 0 ? " (from its geoms)" : "") << "\n";
+  }
+}
+
+// ---- (2) ---------------------------------------------------------------------------------------
+
+std::string planar_description(const PlanarChain& c) {
+  std::vector<std::string> links;
+  for (size_t k = 0; k < c.lengths.size(); ++k) {
+    std::string link = general(c.lengths[k]) + " m";
+    if (std::abs(c.angles0[k]) > 1e-12) link += " at " + general(c.angles0[k]) + " rad";
+    links.push_back(link);
+  }
+  return "a planar chain (" + names(c.joints) + " about " + fmt::list(c.normal, 6) +
+         "; links " + names(links) + " from " + fmt::list(c.origin, 6) + ")";
+}
+
+void print_kinematics(std::ostream& out, const Kinematics& k) {
+  out << "(2) forward kinematics of every site:\n";
+  if (k.sites.empty()) out << "  the model has no sites\n";
+  const std::string poses = std::to_string(k.poses) + " random poses within the joint ranges";
+  for (const SiteKinematics& s : k.sites) {
+    if (s.planar) {
+      out << "  site " << s.site << ", " << planar_description(*s.planar) << ":\n"
+          << "    " << poses << ": max |site_xpos - formula| = " << fmt::sci(s.planar->max_error)
+          << " m\n"
+          << "    the same poses, against a chain of transforms from the model's numbers: "
+          << fmt::sci(s.max_error_transforms) << " m\n";
+    } else {
+      out << "  site " << s.site << ": " << poses
+          << ": max |site_xpos - chain of transforms| = " << fmt::sci(s.max_error_transforms)
+          << " m\n";
+    }
+  }
+  out << "  (figures near 1e-16 are rounding error; they are lever's own, so their digits differ "
+         "from the lesson's MuJoCo run)\n";
+}
+
+// ---- (3) ---------------------------------------------------------------------------------------
+
+std::string ratio_text(const JointBudget& j) {
+  if (!j.actuated()) return j.joint + " unactuated";
+  if (std::isinf(j.limit)) return j.joint + " unbounded";
+  if (!j.loaded) return j.joint + " - (gravity does not load it)";
+  return j.joint + " " + fixed(j.ratio, 2) + " (" + general(j.limit) + " " +
+         torque_unit(j.hinge) + ")";
+}
+
+void print_worst_torques(std::ostream& out, const TorqueBudget& b) {
+  out << "  worst-case gravity torque over the joint ranges:\n";
+  for (const JointBudget& j : b.joints) {
+    out << "    " << j.joint << " " << fixed(j.worst_torque, 3) << " " << torque_unit(j.hinge);
+    out << (j.loaded ? " at " + pose_text(j.worst_pose) : " (gravity does not load it)") << "\n";
+  }
+  out << "    (searched: " << b.search << "; " << b.evaluations << " evaluations of qfrc_bias)\n";
+  std::vector<std::string> torques, ratios;
+  for (const JointBudget& j : b.joints) {
+    torques.push_back(j.joint + " " + fixed(j.worst_torque, 3) + " " + torque_unit(j.hinge));
+    ratios.push_back(ratio_text(j));
+  }
+  out << fmt::wrap("  gravity torque, worst pose:", torques, "    ") << "\n";
+  out << fmt::wrap("  motor limit / gravity torque:", ratios, "    ") << "\n";
+}
+
+std::string payload_text(const JointBudget& j, double kg) {
+  if (std::isnan(kg)) return j.joint + " unactuated";
+  if (std::isinf(kg)) return j.joint + (std::isinf(j.limit) ? " unbounded" : " does not carry it");
+  return j.joint + " allows " + fixed(kg, 2) + " kg";
+}
+
+void print_payloads(std::ostream& out, const TorqueBudget& b) {
+  for (const SitePayload& p : b.payload) {
+    std::vector<std::string> items;
+    for (size_t j = 0; j < b.joints.size(); ++j) items.push_back(payload_text(b.joints[j], p.per_joint[j]));
+    const std::string tail =
+        p.binding_joint >= 0 ? " -> " + fixed(p.min, 2) + " kg" : " -> no motor limits it";
+    out << fmt::wrap("  largest point payload at " + p.site + ", at the worst pose:",
+                     items, "    ", tail)
+        << "\n";
+  }
+}
+
+void print_mass_matrices(std::ostream& out, const TorqueBudget& b) {
+  for (const PoseInertia& p : b.poses) {
+    std::vector<std::string> joints;
+    for (const int j : p.joints) joints.push_back(b.joints[j].joint);
+    const std::string where = b.poses.size() == 1 ? "this pose" : pose_text(p.q) + " (worst for " + names(joints) + ")";
+    if (p.M.rows() <= 4) {
+      out << "  M(q) at " << where << ": " << fmt::matrix(p.M, 4) << " kg m^2\n";
+    } else {
+      out << "  M(q) at " << where << ", diagonal (the whole matrix is in --json): "
+          << fmt::list(p.M.diagonal(), 4) << "\n";
+    }
+  }
+}
+
+void print_spare(std::ostream& out, const TorqueBudget& b) {
+  for (size_t i = 0; i < b.joints.size(); ++i) {
+    const JointBudget& j = b.joints[i];
+    if (!j.actuated() || std::isinf(j.limit)) continue;
+    const std::string acc_unit = j.hinge ? " rad/s^2" : " m/s^2";
+    std::string head = "  spare " + j.joint + " torque " + fixed(j.spare, 2) + " " +
+                       torque_unit(j.hinge) + " gives " + fixed(std::abs(j.acceleration), 1) +
+                       acc_unit;
+    if (b.joints.size() == 1) {
+      out << head << "\n";
+      continue;
+    }
+    std::vector<std::string> needs;
+    for (size_t k = 0; k < b.joints.size(); ++k) {
+      if (k == i) continue;
+      const JointBudget& o = b.joints[k];
+      const double need = std::abs(j.rigid_torques[k]);
+      std::string text = fixed(need, 2) + " " + torque_unit(o.hinge);
+      text = b.joints.size() == 2 ? text + " at the " + o.joint : o.joint + " " + text;
+      if (o.actuated() && need > std::max(o.torque_range[1], -o.torque_range[0])) {
+        text += " (beyond its motor)";
+      }
+      needs.push_back(text);
+    }
+    const std::string rigid = b.joints.size() == 2 ? "the " + b.joints[1 - i].joint : "the other joints";
+    out << fmt::wrap(head + " with " + rigid + " rigid, which needs", needs, "    ") << "\n";
+  }
+}
+
+void print_budget(std::ostream& out, const TorqueBudget& b) {
+  out << "(3) gravity torque and motor sizing:\n";
+  out << "  " << b.formula_poses << " random poses at rest: max |qfrc_bias - formula| = "
+      << fmt::sci(b.formula_max_error) << " N m (formula: dV/dq)\n";
+  if (b.joints.empty()) return;
+  print_worst_torques(out, b);
+  print_payloads(out, b);
+  print_mass_matrices(out, b);
+  print_spare(out, b);
+}
+
+// ---- (4) ---------------------------------------------------------------------------------------
+
+void print_body_inertia(std::ostream& out, const BodyInertia& b, bool inferred) {
+  out << "  " << b.name << ": ";
+  if (b.mass == 0 && !b.explicit_inertial) {
+    out << "no mass (no <inertial>, no geom counted)\n";
+    return;
+  }
+  if (!b.explicit_inertial) {
+    out << "no <inertial>: " << fixed(b.mass, 3) << " kg, " << fmt::list(b.principal, 5)
+        << " kg m^2, all from its geoms\n";
+    return;
+  }
+  out << "explicit " << fixed(b.mass, 3) << " kg, principal moments " << fmt::list(b.principal, 5);
+  if (inferred) {
+    out << " | from geoms " << fixed(b.inferred_mass, 3) << " kg, "
+        << fmt::list(b.inferred_principal, 5);
+  }
+  out << " kg m^2\n";
+}
+
+void print_inertia(std::ostream& out, const Inertia& in, const TorqueBudget& b) {
+  out << "(4) explicit inertias versus inertias inferred from the geoms:\n";
+  if (!in.inferred_available) {
+    out << "  the model cannot be inferred from its geoms: " << in.inferred_error << "\n";
+  }
+  for (const BodyInertia& body : in.bodies) print_body_inertia(out, body, in.inferred_available);
+  for (size_t j = 0; j < in.torques.size(); ++j) {
+    const char* unit = torque_unit(b.joints[j].hinge);
+    out << "  gravity torque at the worst pose: explicit " << fixed(in.torques[j].explicit_torque, 3)
+        << " " << unit << ", from geoms " << fixed(in.torques[j].inferred_torque, 3) << " " << unit
+        << " (" << in.torques[j].joint << ")\n";
+  }
+  const auto range = [](const std::array<int, 2>& r) {
+    return std::to_string(r[0]) + " " + std::to_string(r[1]);
+  };
+  out << "  1 kg collision geom + 2 kg non-colliding geom in group 3, default inertiagrouprange ("
+      << range(in.demo_default_range) << "): body mass " << fixed(in.demo_default_mass, 3) << " kg\n";
+  out << "  1 kg collision geom + 2 kg non-colliding geom in group 3, inertiagrouprange=\""
+      << range(in.demo_narrow_range) << "\": body mass " << fixed(in.demo_narrow_mass, 3) << " kg\n";
+  if (in.bodies_without_inertial.empty()) {
+    out << "  every body with mass has an explicit <inertial>, so no geom adds mass unseen\n";
+  }
+}
+
+// ---- (5) ---------------------------------------------------------------------------------------
+
+std::string milli(const StopRest& s, double x) {
+  return fixed(1000 * x, 2) + (s.hinge ? " mrad" : " mm");
+}
+
+std::string past_text(const StopRest& s) {
+  if (s.past >= 0) return milli(s, s.past) + " past the stop";
+  return milli(s, -s.past) + " short of the stop (inside its margin of " + milli(s, s.margin) +
+         ", where the limit already acts)";
+}
+
+void print_stop(std::ostream& out, const StopRest& s) {
+  const char* unit = position_unit(s.hinge);
+  out << "  " << s.joint << ", " << (s.upper ? "upper" : "lower") << " stop " << general(s.stop)
+      << " " << unit;
+  if (!s.loadable) {
+    out << ": gravity does not push the joint into it at any pose tried (nothing rests on it)\n";
+    return;
+  }
+  out << (s.from_qpos0 ? ", falling from qpos0 (the lesson's run):\n"
+                       : ", from " + pose_text(s.start) + ":\n");
+  out << "    after " << fixed(s.time, 1) << " s with zero torque";
+  if (!s.settled) {
+    out << " (did not settle: max |qvel| " << fmt::sci(s.max_qvel) << " at the end)";
+  }
+  if (!s.rests_on_stop) {
+    out << ": " << s.joint << " at " << fixed(s.q, 5) << " " << unit
+        << ", off the stop: with the other joints free, gravity does not hold it there\n";
+    return;
+  }
+  out << ": " << s.joint << " at " << fixed(s.q, 5) << " " << unit << ", stop at "
+      << general(s.stop) << " " << unit << " -> " << past_text(s) << "\n";
+  const char* tu = torque_unit(s.hinge);
+  out << "    active limit rows: " << s.rows << "; qfrc_constraint[" << s.joint
+      << "] = " << fixed(s.qfrc_constraint, 4) << " " << tu << ", gravity torque qfrc_bias["
+      << s.joint << "] = " << fixed(s.qfrc_bias, 4) << " " << tu;
+  if (std::abs(s.qfrc_passive) > 1e-9) {  // a spring shares the load: constraint = bias - passive
+    out << ", spring qfrc_passive[" << s.joint << "] = " << fixed(s.qfrc_passive, 4) << " " << tu;
+  }
+  out << "\n";
+}
+
+void print_stops(std::ostream& out, const SoftStops& st) {
+  out << "(5) joint stops are soft constraints (zero torque: relaxed, polished by a static solve, "
+         "then run until every |qvel| < "
+      << general(st.settle_qvel) << " for " << general(st.settle_time) << " s):\n";
+  if (st.stops.empty()) out << "  no joint is limited\n";
+  for (const StopRest& s : st.stops) print_stop(out, s);
+}
+
+// ---- (6) ---------------------------------------------------------------------------------------
+
+void print_clamping(std::ostream& out, const Clamping& c, const TorqueBudget& b) {
+  out << "(6) commands beyond ctrlrange are clamped:\n";
+  if (c.ctrl.size() == 0) {
+    out << "  the model has no motors\n";
+    return;
+  }
+  out << "  ctrl = " << fmt::list(c.ctrl) << ": actuator_force = " << fmt::list(c.actuator_force)
+      << (c.newton_metres ? " N m" : "")
+      << (c.warnings == 0 ? " (no warning is raised)"
+                          : " (" + std::to_string(c.warnings) + " engine warnings)")
+      << "\n";
+  for (const std::string& m : c.unbounded) {
+    out << "  motor " << m << " has ctrllimited=\"false\": any command goes through\n";
+  }
+  const JointBudget* tightest = nullptr;
+  for (const JointBudget& j : b.joints) {
+    if (j.actuated() && j.loaded && std::isfinite(j.ratio) && (!tightest || j.ratio < tightest->ratio)) {
+      tightest = &j;
+    }
+  }
+  if (tightest && tightest->ratio >= 1.0) {
+    out << "  every motor can hold its own arm: the smallest motor limit / gravity torque is "
+        << fixed(tightest->ratio, 2) << " (" << tightest->joint << ")\n";
+  }
+}
+
+void print_findings(std::ostream& out, const Report& r) {
+  if (r.findings.empty()) {
+    out << "findings: none: every claim checks out (exit status 0)\n";
+    return;
+  }
+  out << "findings (" << r.findings.size() << "):\n";
+  for (const std::string& f : r.findings) out << "  - " << f << "\n";
+  out << "exit status " << r.exit_status() << "\n";
+}
+
+}  // namespace
+
+std::string to_text(const Report& r) {
+  std::ostringstream out;
+  out << "lever check " << r.source << " (model \"" << r.model << "\")\n";
+  print_structure(out, r.structure);
+  print_kinematics(out, r.kinematics);
+  print_budget(out, r.budget);
+  print_inertia(out, r.inertia, r.budget);
+  print_stops(out, r.stops);
+  print_clamping(out, r.clamping, r.budget);
+  print_findings(out, r);
+  return out.str();
+}
+
+}  // namespace lever::check

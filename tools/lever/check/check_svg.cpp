@@ -1,0 +1,45 @@
+// `lever check --svg`: the torque budget as grouped bars, one group per joint: the worst-case
+// gravity torque, the motor limit on the side that holds the arm, and the spare torque left.
+#include <algorithm>
+#include <cmath>
+
+#include <lever/plot.hpp>
+
+#include "check.hpp"
+#include "format.hpp"
+
+namespace lever::check {
+
+namespace {
+
+const char* kGravityColor = "#d62728";
+const char* kLimitColor = "#1f77b4";
+const char* kSpareColor = "#2ca02c";
+
+plot::BarChart::Group joint_group(const JointBudget& j) {
+  const bool sized = j.actuated() && std::isfinite(j.limit);
+  std::string label = j.joint;
+  if (!j.actuated()) label += " (no motor)";
+  else if (!sized) label += " (unbounded)";
+  else if (j.loaded) label += " x" + fmt::fixed(j.ratio, 2);
+  return {label,
+          {{"worst-case gravity torque |tau_g|", std::abs(j.worst_torque), kGravityColor},
+           {"motor limit", sized ? j.limit : 0.0, kLimitColor},
+           {"spare torque (limit - |tau_g|)", sized ? j.spare : 0.0, kSpareColor}}};
+}
+
+}  // namespace
+
+std::string torque_budget_svg(const Report& r) {
+  plot::BarChart chart;
+  chart.title = r.model + ": torque budget, each joint at its worst pose (x: limit / gravity)";
+  const bool any_slide = std::any_of(r.budget.joints.begin(), r.budget.joints.end(),
+                                     [](const JointBudget& j) { return !j.hinge; });
+  chart.ylabel = any_slide ? "torque (N m) or force (N)" : "torque (N m)";
+  for (const JointBudget& j : r.budget.joints) chart.groups.push_back(joint_group(j));
+  chart.width = std::max(640, 140 + 90 * static_cast<int>(chart.groups.size()));
+  chart.height = 420;
+  return plot::to_svg(chart);
+}
+
+}  // namespace lever::check

@@ -1,0 +1,44 @@
+// (6) Commands beyond ctrlrange are clamped, silently: command every motor well beyond its range
+// (+-100 alternating in sign, as the lesson does, or 4 times the bound where 100 is inside it),
+// run forward(), and read actuator_force and the engine's warnings.
+#include <cmath>
+
+#include <lever/data.hpp>
+#include <lever/forward.hpp>
+
+#include "check.hpp"
+#include "util.hpp"
+
+namespace lever::check {
+
+namespace {
+
+double overdrive(const Model& model, int a) {
+  const double sign = a % 2 == 0 ? 1.0 : -1.0;
+  if (!model.actuator_ctrllimited[a]) return 100.0 * sign;
+  const double bound = model.actuator_ctrlrange[a][sign > 0 ? 1 : 0];
+  return std::abs(bound) < 100.0 ? 100.0 * sign : 4.0 * bound;
+}
+
+}  // namespace
+
+Clamping check_clamping(const Model& model) {
+  Clamping result;
+  Data data(model);
+  for (int a = 0; a < model.nu; ++a) {
+    data.ctrl[a] = overdrive(model, a);
+    if (!model.actuator_ctrllimited[a]) result.unbounded.push_back(motor_label(model, a));
+  }
+  result.newton_metres = model.nu > 0;
+  for (int a = 0; a < model.nu; ++a) {
+    const bool plain = is_hinge(model, model.actuator_trnid[a]) && std::abs(model.actuator_gear[a][0]) == 1.0;
+    result.newton_metres = result.newton_metres && plain;
+  }
+  forward(model, data);
+  result.ctrl = data.ctrl;
+  result.actuator_force = data.actuator_force;
+  for (const WarningStat& w : data.warning) result.warnings += w.number;
+  return result;
+}
+
+}  // namespace lever::check

@@ -1,0 +1,54 @@
+// (1) What the compiled model contains: joints, motors, sites, bodies.
+#include "check.hpp"
+#include "util.hpp"
+
+namespace lever::check {
+
+namespace {
+
+JointInfo joint_info(const Model& model, int j) {
+  JointInfo info;
+  info.name = joint_label(model, j);
+  info.hinge = model.jnt_type[j] == JointType::kHinge;
+  info.axis = model.jnt_axis[j];
+  info.range = model.jnt_range[j];
+  info.limited = model.jnt_limited[j];
+  const int dof = model.jnt_dofadr[j];
+  info.damping = model.dof_damping[dof];
+  info.armature = model.dof_armature[dof];
+  info.stiffness = model.jnt_stiffness[j];
+  info.qpos0 = model.qpos0[model.jnt_qposadr[j]];
+  return info;
+}
+
+MotorInfo motor_info(const Model& model, int a) {
+  MotorInfo info;
+  info.name = motor_label(model, a);
+  info.joint = joint_label(model, model.actuator_trnid[a]);
+  info.gear = model.actuator_gear[a][0];
+  info.ctrlrange = model.actuator_ctrlrange[a];
+  info.forcerange = model.actuator_forcerange[a];
+  info.ctrllimited = model.actuator_ctrllimited[a];
+  info.forcelimited = model.actuator_forcelimited[a];
+  info.joint_torque = motor_torque_range(model, a);
+  return info;
+}
+
+}  // namespace
+
+Structure check_structure(const Model& model) {
+  Structure s;
+  for (int j = 0; j < model.njnt; ++j) s.joints.push_back(joint_info(model, j));
+  for (int a = 0; a < model.nu; ++a) s.motors.push_back(motor_info(model, a));
+  for (int i = 0; i < model.nsite; ++i) {
+    s.sites.push_back(site_label(model, i));
+    s.site_bodies.push_back(body_label(model, model.site_bodyid[i]));
+  }
+  for (int b = 1; b < model.nbody; ++b) {
+    s.bodies.push_back({body_label(model, b), model.body_mass[b], sorted_moments(model.body_inertia[b]),
+                        model.body_explicit_inertial[b]});
+  }
+  return s;
+}
+
+}  // namespace lever::check
