@@ -377,6 +377,12 @@ int main(int argc, char** argv) {
   if (const Json* load = context->find("load_avg"); load != nullptr && load->kind == Json::Kind::kArray) {
     out << "| load average at start | ";
     for (std::size_t i = 0; i < load->array.size(); ++i) out << (i ? ", " : "") << fmt("%.2f", load->array[i].number);
+    const double cpus = context->num("num_cpus", 1);
+    if (!load->array.empty() && load->array[0].number > cpus) {
+      out << " (**busy**: more runnable tasks than the " << context->str("num_cpus")
+          << " CPUs, so absolute times are inflated and the 2-thread batch figures mean little; the "
+             "interleaved ratios suffer less)";
+    }
     out << " |\n";
   }
   out << "| compiler | " << context->str("compiler") << " |\n";
