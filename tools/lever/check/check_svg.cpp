@@ -21,24 +21,27 @@ plot::BarChart::Group joint_group(const JointBudget& j) {
   std::string label = j.joint;
   if (!j.actuated()) label += " (no motor)";
   else if (!sized) label += " (unbounded)";
-  else if (j.loaded) label += " x" + fmt::fixed(j.ratio, 2);
+  else if (j.loaded) label.append(" ").append(fmt::fixed(j.ratio, 2)).append("x");
   return {label,
-          {{"worst-case gravity torque |tau_g|", std::abs(j.worst_torque), kGravityColor},
+          {{"worst gravity torque", std::abs(j.worst_torque), kGravityColor},
            {"motor limit", sized ? j.limit : 0.0, kLimitColor},
-           {"spare torque (limit - |tau_g|)", sized ? j.spare : 0.0, kSpareColor}}};
+           {"spare torque", sized ? j.spare : 0.0, kSpareColor}}};
 }
 
 }  // namespace
 
 std::string torque_budget_svg(const Report& r) {
   plot::BarChart chart;
-  chart.title = r.model + ": torque budget, each joint at its worst pose (x: limit / gravity)";
+  chart.title = r.model + ": torque budget at each joint's worst pose";
   const bool any_slide = std::any_of(r.budget.joints.begin(), r.budget.joints.end(),
                                      [](const JointBudget& j) { return !j.hinge; });
   chart.ylabel = any_slide ? "torque (N m) or force (N)" : "torque (N m)";
   for (const JointBudget& j : r.budget.joints) chart.groups.push_back(joint_group(j));
-  chart.width = std::max(640, 140 + 90 * static_cast<int>(chart.groups.size()));
+  const int groups = static_cast<int>(chart.groups.size());
+  chart.width = std::max(640, 140 + (groups <= 8 ? 100 : 75) * groups);
   chart.height = 420;
+  const std::string key = " (Nx: limit / gravity)";  // explains the labels, where it fits
+  if (9.0 * double(chart.title.size() + key.size()) < chart.width) chart.title += key;
   return plot::to_svg(chart);
 }
 
