@@ -10,12 +10,10 @@
 // (the lesson measured 4.4e-16 m and 2.7e-15 N m). The bound 1e-13 (in m, N m, kg m^2) sits two
 // orders above that and many orders below any wrong term.
 #include <catch2/catch.hpp>
-
 #include <cmath>
-#include <random>
-
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
+#include <random>
 
 #include "random_state.hpp"
 #include "test_models.hpp"
@@ -49,7 +47,8 @@ TwoLink parameters(const Model& model) {
   p.m2 = model.body_mass[link2];
   p.c1 = model.body_ipos[link1].x();
   p.c2 = model.body_ipos[link2].x();
-  p.I1 = model.body_inertia[link1].y();  // the hinges turn about -y; the principal axes are the body's
+  p.I1 =
+      model.body_inertia[link1].y();  // the hinges turn about -y; the principal axes are the body's
   p.I2 = model.body_inertia[link2].y();
   p.g = -model.opt.gravity.z();
   p.shoulder = model.body_pos[link1];
@@ -73,8 +72,8 @@ Eigen::Matrix2d mass_matrix(const TwoLink& p, double q2) {
   const double c = std::cos(q2);
   const double m22 = p.I2 + p.m2 * p.c2 * p.c2;
   const double m12 = m22 + p.m2 * p.L1 * p.c2 * c;
-  const double m11 = p.I1 + p.m1 * p.c1 * p.c1 + p.I2 +
-                     p.m2 * (p.L1 * p.L1 + p.c2 * p.c2 + 2 * p.L1 * p.c2 * c);
+  const double m11 =
+      p.I1 + p.m1 * p.c1 * p.c1 + p.I2 + p.m2 * (p.L1 * p.L1 + p.c2 * p.c2 + 2 * p.L1 * p.c2 * c);
   Eigen::Matrix2d M;
   M << m11, m12, m12, m22;
   return M;
@@ -107,7 +106,8 @@ TEST_CASE("analytic: arm2's tip, gravity torque and M agree with the closed form
     INFO("seed " << seed_for("arm2.xml") << ", pose " << k << ": q = (" << q1 << ", " << q2 << ")");
 
     const Eigen::Vector3d formula_tip = tip(p, q1, q2);
-    INFO("site_xpos " << data.site_xpos[ee].transpose() << " vs formula " << formula_tip.transpose());
+    INFO("site_xpos " << data.site_xpos[ee].transpose() << " vs formula "
+                      << formula_tip.transpose());
     CHECK((data.site_xpos[ee] - formula_tip).cwiseAbs().maxCoeff() <= kBound);
 
     // at rest, qfrc_bias is the gravity torque (M qacc + qfrc_bias = tau)
@@ -141,7 +141,8 @@ TEST_CASE("analytic: the lesson's motor sizing, computed by the engine", "[analy
     CHECK(std::abs(tau[1] - (data.M(1, 0) * qdd1 + tau_g[1])) <= kBound);
   }
 
-  SECTION("a point payload at the tip of the lesson's size loads the shoulder exactly to its limit") {
+  SECTION(
+      "a point payload at the tip of the lesson's size loads the shoulder exactly to its limit") {
     // m_p = (limit_1 - tau_g1) / (g (L1 + L2)); add it to link2 at the tip and recompile
     const double payload = (limit[0] - tau_g[0]) / (p.g * (p.L1 + p.L2));
     Model loaded = model;
@@ -199,7 +200,7 @@ TEST_CASE("analytic: arm2.xml makes the lesson's claims", "[analytic][arm2][less
   CHECK(digits((15.0 - tau_g[1]) / (p.g * p.L2), 2) == 342);
   CHECK(digits(data.M(0, 0), 3) == 486);  // M11, kg m^2
   const double qdd1 = (25.0 - tau_g[0]) / data.M(0, 0);
-  CHECK(digits(qdd1, 1) == 351);  // rad/s^2
+  CHECK(digits(qdd1, 1) == 351);                            // rad/s^2
   CHECK(digits(data.M(1, 0) * qdd1 + tau_g[1], 2) == 587);  // N m at the elbow
 }
 

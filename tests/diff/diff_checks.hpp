@@ -1,16 +1,14 @@
 // Shared by the diff tests: which paths are compared, and how a report becomes assertions.
 #pragma once
 
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cstdint>
 #include <filesystem>
-#include <string>
-#include <vector>
-
 #include <lever/diff/report.hpp>
 #include <lever/diff/twin.hpp>
+#include <string>
+#include <vector>
 
 #include "tolerance.hpp"
 
@@ -35,7 +33,8 @@ inline std::string context(const std::string& file, diff::Path path, std::uint64
 inline void check_within_bound(const diff::Report& report,
                                const std::vector<std::string>& only = {}) {
   for (const diff::Extreme& e : report.quantities()) {
-    const bool wanted = only.empty() || std::find(only.begin(), only.end(), e.quantity) != only.end();
+    const bool wanted =
+        only.empty() || std::find(only.begin(), only.end(), e.quantity) != only.end();
     if (!wanted) continue;
     INFO("state " << e.state << ": " << describe(e.quantity, e.index, e.lever, e.mujoco) << " ["
                   << e.element << "]; " << e.beyond << " of " << e.compared

@@ -4,11 +4,9 @@
 // (section 19.3 of the MuJoCo note measured 1e-11 in qacc for MuJoCo against itself with the warm
 // start switched off). The yardstick is MuJoCo's own sensitivity: the same MuJoCo run with its
 // initial qpos nudged by 1e-15.
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cstdio>
-
 #include <lever/diff/runs.hpp>
 
 #include "diff_checks.hpp"

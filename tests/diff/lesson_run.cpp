@@ -2,9 +2,7 @@
 // (no resynchronisation), and still agree to the bound at every step; the arm ends resting on its
 // shoulder stop, slightly past it, with the same limit force and the same depth as MuJoCo's.
 #include <catch2/catch.hpp>
-
 #include <cmath>
-
 #include <lever/diff/runs.hpp>
 
 #include "diff_checks.hpp"
@@ -47,7 +45,8 @@ TEST_CASE("diff: lesson 5.1, arm2 falls onto its shoulder stop and rests there a
     CHECK(twin.data.efc_id[0] == shoulder);
     CHECK(twin.data.efc_sign[0] > 0);
     for (int i = 0; i < twin.model.nv; ++i) {
-      INFO(describe("qfrc_constraint", i, twin.data.qfrc_constraint[i], twin.d->qfrc_constraint[i]));
+      INFO(
+          describe("qfrc_constraint", i, twin.data.qfrc_constraint[i], twin.d->qfrc_constraint[i]));
       CHECK(agrees(twin.data.qfrc_constraint[i], twin.d->qfrc_constraint[i]));
     }
 

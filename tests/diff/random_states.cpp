@@ -1,6 +1,5 @@
 // Every quantity lever shares with MuJoCo 2.2.2, on 1000 random states per model.
 #include <catch2/catch.hpp>
-
 #include <lever/diff/runs.hpp>
 
 #include "diff_checks.hpp"

@@ -3,7 +3,6 @@
 // state, and one lever step must equal one MuJoCo step: qpos and qvel after it, qacc and
 // qfrc_constraint of its forward pass.
 #include <catch2/catch.hpp>
-
 #include <lever/diff/runs.hpp>
 
 #include "diff_checks.hpp"
@@ -35,7 +34,8 @@ void lockstep_every_model(Integrator integrator) {
 
 }  // namespace
 
-TEST_CASE("diff: lockstep trajectories, one Euler step equals one MuJoCo step", "[diff][lockstep]") {
+TEST_CASE("diff: lockstep trajectories, one Euler step equals one MuJoCo step",
+          "[diff][lockstep]") {
   lockstep_every_model(Integrator::kEuler);
 }
 

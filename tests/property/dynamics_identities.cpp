@@ -36,8 +36,8 @@ TEST_CASE("property: rnea(q, qd, qdd) == M qdd + qfrc_bias", "[property][rnea]")
       rnea(c.model, data, qdd, tau);
       const Eigen::VectorXd expected = data.M * qdd + data.qfrc_bias;
       for (int i = 0; i < c.model.nv; ++i) {
-        const double magnitude = (data.M.row(i).cwiseAbs() * qdd.cwiseAbs()).value() +
-                                 std::abs(data.qfrc_bias[i]);
+        const double magnitude =
+            (data.M.row(i).cwiseAbs() * qdd.cwiseAbs()).value() + std::abs(data.qfrc_bias[i]);
         INFO(c.name << ", seed " << c.seed << ", state " << k << ", dof " << i << ": rnea "
                     << tau[i] << " vs M qdd + bias " << expected[i]);
         CHECK(close(tau[i], expected[i], magnitude));
@@ -86,7 +86,8 @@ TEST_CASE("property: 1/2 qvel' M qvel is the sum of the bodies' kinetic energies
             data.ximat[b] * model.body_inertia[b].asDiagonal() * data.ximat[b].transpose();
         bodies += 0.5 * model.body_mass[b] * v.squaredNorm() + 0.5 * w.dot(inertia * w);
       }
-      for (int i = 0; i < model.nv; ++i) bodies += 0.5 * model.dof_armature[i] * data.qvel[i] * data.qvel[i];
+      for (int i = 0; i < model.nv; ++i)
+        bodies += 0.5 * model.dof_armature[i] * data.qvel[i] * data.qvel[i];
       INFO(c.name << ", seed " << c.seed << ", state " << k << ": 1/2 v'Mv " << data.energy[1]
                   << " vs bodies " << bodies);
       // a sum of non-negative terms: no cancellation, the result itself is the scale

@@ -53,10 +53,10 @@ TEST_CASE("property: site Jacobians equal central differences of site_xpos and s
           evaluate_moved(model, moved, data.qpos, i, -kStep);
           const Eigen::Vector3d dp = (p_plus - moved.site_xpos[s]) / (2 * kStep);
           const Eigen::Vector3d dr = rotation_vector(R_plus, moved.site_xmat[s]) / (2 * kStep);
-          INFO(c.name << ", seed " << c.seed << ", state " << k << ", site '"
-                      << model.site_name[s] << "', dof " << i << "\n jacp " << jacp.col(i).transpose()
-                      << "\n   fd " << dp.transpose() << "\n jacr " << jacr.col(i).transpose()
-                      << "\n   fd " << dr.transpose());
+          INFO(c.name << ", seed " << c.seed << ", state " << k << ", site '" << model.site_name[s]
+                      << "', dof " << i << "\n jacp " << jacp.col(i).transpose() << "\n   fd "
+                      << dp.transpose() << "\n jacr " << jacr.col(i).transpose() << "\n   fd "
+                      << dr.transpose());
           const double scale = std::max(1.0, data.site_xpos[s].norm());
           CHECK((jacp.col(i) - dp).cwiseAbs().maxCoeff() <= kBound * scale);
           CHECK((jacr.col(i) - dr).cwiseAbs().maxCoeff() <= kBound);

@@ -1,16 +1,14 @@
 // Shared by the property tests: every model, loaded by lever's own loader, with its seed.
 #pragma once
 
-#include <catch2/catch.hpp>
-
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <cstdint>
 #include <filesystem>
-#include <string>
-#include <vector>
-
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
+#include <string>
+#include <vector>
 
 #include "random_state.hpp"
 #include "test_models.hpp"
@@ -31,8 +29,8 @@ struct ModelCase {
 inline std::vector<ModelCase> every_model() {
   std::vector<ModelCase> cases;
   for (const std::string& file : all_model_files()) {
-    cases.push_back({std::filesystem::path(file).filename().string(), seed_for(file),
-                     mjcf::load_file(file)});
+    cases.push_back(
+        {std::filesystem::path(file).filename().string(), seed_for(file), mjcf::load_file(file)});
   }
   return cases;
 }

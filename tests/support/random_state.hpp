@@ -7,15 +7,13 @@
 #pragma once
 
 #include <Eigen/Core>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <numbers>
-#include <random>
-
 #include <lever/data.hpp>
 #include <lever/model.hpp>
+#include <numbers>
+#include <random>
 
 namespace lever::test {
 

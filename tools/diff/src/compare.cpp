@@ -1,11 +1,9 @@
 #include <lever/diff/compare.hpp>
-
-#include <string>
-#include <vector>
-
 #include <lever/dynamics.hpp>
 #include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
+#include <string>
+#include <vector>
 
 namespace lever::diff {
 
@@ -112,10 +110,12 @@ void compare_kinematics(const Twin& t, int k, Report& r) {
   const Data& data = t.data;
   const mjData* d = t.d.get();
   const int nb = model.nbody, ns = model.nsite;
-  r.compare("xpos", k, flat(data.xpos).data(), d->xpos, 3 * nb, per_object(model.body_name, "body", 3));
+  r.compare("xpos", k, flat(data.xpos).data(), d->xpos, 3 * nb,
+            per_object(model.body_name, "body", 3));
   r.compare("xquat", k, quaternions_signed_like(data.xquat, d->xquat).data(), d->xquat, 4 * nb,
             per_object(model.body_name, "body", 4));
-  r.compare("xmat", k, flat(data.xmat).data(), d->xmat, 9 * nb, per_object(model.body_name, "body", 9));
+  r.compare("xmat", k, flat(data.xmat).data(), d->xmat, 9 * nb,
+            per_object(model.body_name, "body", 9));
   r.compare("xipos", k, flat(data.xipos).data(), d->xipos, 3 * nb,
             per_object(model.body_name, "body", 3));
   r.compare("ximat", k, flat(data.ximat).data(), d->ximat, 9 * nb,
@@ -152,9 +152,9 @@ void compare_limit_rows(const Twin& t, int k, Report& r) {
   const Data& data = t.data;
   const mjModel* m = t.m.get();
   const mjData* d = t.d.get();
-  for (const char* q : {"nefc", "efc_id", "efc_J", "efc_pos", "efc_margin", "efc_imp", "efc_K",
-                        "efc_B", "efc_R", "efc_D", "efc_diagApprox", "efc_vel", "efc_aref",
-                        "efc_b", "efc_force"}) {
+  for (const char* q :
+       {"nefc", "efc_id", "efc_J", "efc_pos", "efc_margin", "efc_imp", "efc_K", "efc_B", "efc_R",
+        "efc_D", "efc_diagApprox", "efc_vel", "efc_aref", "efc_b", "efc_force"}) {
     r.declare(q);
   }
   r.compare("nefc", k, data.nefc, d->nefc);
@@ -223,7 +223,8 @@ void compare_model_constants(const Twin& t, Report& r) {
   const Model& model = t.model;
   const mjModel* m = t.m.get();
   std::vector<double> body_invweight0;
-  for (const auto& w : model.body_invweight0) body_invweight0.insert(body_invweight0.end(), w.begin(), w.end());
+  for (const auto& w : model.body_invweight0)
+    body_invweight0.insert(body_invweight0.end(), w.begin(), w.end());
   // model constants: the "state" number 0 stands for qpos0
   r.compare("dof_invweight0", 0, model.dof_invweight0.data(), m->dof_invweight0, model.nv,
             per_dof(model));
@@ -233,8 +234,8 @@ void compare_model_constants(const Twin& t, Report& r) {
               return "body " + quoted(model.body_name, i / 2) +
                      (i % 2 ? ", rotational" : ", translational");
             });
-  r.compare("body_subtreemass", 0, model.body_subtreemass.data(), m->body_subtreemass,
-            model.nbody, [&model](int i) { return "body " + quoted(model.body_name, i); });
+  r.compare("body_subtreemass", 0, model.body_subtreemass.data(), m->body_subtreemass, model.nbody,
+            [&model](int i) { return "body " + quoted(model.body_name, i); });
 }
 
 void compare_forward(Twin& t, const test::State& s, int k, Report& r) {

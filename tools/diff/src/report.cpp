@@ -1,6 +1,5 @@
-#include <lever/diff/report.hpp>
-
 #include <cmath>
+#include <lever/diff/report.hpp>
 #include <limits>
 
 #include "tolerance.hpp"

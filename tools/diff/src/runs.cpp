@@ -1,10 +1,8 @@
-#include <lever/diff/runs.hpp>
-
 #include <cmath>
-#include <random>
-
 #include <lever/diff/compare.hpp>
+#include <lever/diff/runs.hpp>
 #include <lever/forward.hpp>
+#include <random>
 
 #include "test_models.hpp"
 
@@ -82,8 +80,8 @@ Report lockstep(Twin& twin, Integrator integrator, double seconds, Control contr
     count(local, twin.d->nefc);
     const Data& data = twin.data;
     compare_trajectory_point(twin.model, k, data.qpos.data(), data.qvel.data(), data.qacc.data(),
-                             data.qfrc_constraint.data(), data.actuator_force.data(),
-                             twin.d.get(), report, false);
+                             data.qfrc_constraint.data(), data.actuator_force.data(), twin.d.get(),
+                             report, false);
   }
   twin.set_integrator(own);
   if (stats) *stats = local;
@@ -106,8 +104,8 @@ FreeRun free_run(Twin& twin, double seconds, Control control, double nudge) {
     count(run.stats, twin.d->nefc);
     const Data& data = twin.data;
     compare_trajectory_point(twin.model, k, data.qpos.data(), data.qvel.data(), data.qacc.data(),
-                             data.qfrc_constraint.data(), data.actuator_force.data(),
-                             twin.d.get(), run.lever_vs_mujoco, true);
+                             data.qfrc_constraint.data(), data.actuator_force.data(), twin.d.get(),
+                             run.lever_vs_mujoco, true);
     if (nudge == 0.0) continue;
     mj_step(twin.m.get(), nudged.get());
     compare_trajectory_point(twin.model, k, nudged->qpos, nudged->qvel, nudged->qacc,

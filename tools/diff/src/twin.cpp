@@ -1,8 +1,6 @@
 #include <lever/diff/twin.hpp>
-
-#include <stdexcept>
-
 #include <lever/mjcf.hpp>
+#include <stdexcept>
 
 namespace lever::diff {
 
@@ -15,9 +13,9 @@ Model lever_model(const std::string& file, Path path, const mjModel* m) {
 // The two compiled models must at least have the same shape for any comparison to mean anything.
 void check_sizes(const Model& model, const mjModel* m) {
   const std::pair<const char*, std::pair<int, int>> sizes[] = {
-      {"nq", {model.nq, m->nq}},         {"nv", {model.nv, m->nv}},
-      {"nu", {model.nu, m->nu}},         {"nbody", {model.nbody, m->nbody}},
-      {"njnt", {model.njnt, m->njnt}},   {"nsite", {model.nsite, m->nsite}}};
+      {"nq", {model.nq, m->nq}},       {"nv", {model.nv, m->nv}},
+      {"nu", {model.nu, m->nu}},       {"nbody", {model.nbody, m->nbody}},
+      {"njnt", {model.njnt, m->njnt}}, {"nsite", {model.nsite, m->nsite}}};
   for (const auto& [name, pair] : sizes) {
     if (pair.first != pair.second) {
       throw std::runtime_error(std::string("lever and MuJoCo compile different models: ") + name +

@@ -6,7 +6,6 @@
 #pragma once
 
 #include <Eigen/Core>
-
 #include <lever/diff/report.hpp>
 #include <lever/diff/twin.hpp>
 

@@ -11,15 +11,15 @@ namespace lever::diff {
 /// The worst comparison of one quantity.
 struct Extreme {
   std::string quantity;
-  long compared = 0;          ///< values compared
-  long beyond = 0;            ///< values beyond the bound
-  double max_abs_diff = 0.0;  ///< largest |lever - mujoco|
-  double max_ratio = 0.0;     ///< largest |lever - mujoco| / (1e-12 max(1, |mujoco|))
+  long compared = 0;            ///< values compared
+  long beyond = 0;              ///< values beyond the bound
+  double max_abs_diff = 0.0;    ///< largest |lever - mujoco|
+  double max_ratio = 0.0;       ///< largest |lever - mujoco| / (1e-12 max(1, |mujoco|))
   double max_abs_mujoco = 0.0;  ///< largest |mujoco|: the quantity's scale
   // where the largest ratio was seen (state < 0: nothing compared yet)
-  int state = -1;             ///< state, or step of a trajectory
-  int index = -1;             ///< element of the quantity's flattened array
-  std::string element;        ///< that element in words ("body 'link2', z")
+  int state = -1;       ///< state, or step of a trajectory
+  int index = -1;       ///< element of the quantity's flattened array
+  std::string element;  ///< that element in words ("body 'link2', z")
   double lever = 0.0, mujoco = 0.0;
 
   bool pass() const { return max_ratio <= 1.0; }

@@ -2,11 +2,10 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
-#include <vector>
-
 #include <lever/diff/report.hpp>
 #include <lever/diff/twin.hpp>
+#include <string>
+#include <vector>
 
 namespace lever::diff {
 

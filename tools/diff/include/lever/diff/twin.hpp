@@ -3,10 +3,9 @@
 
 #include <mujoco/mujoco.h>
 
-#include <string>
-
 #include <lever/data.hpp>
 #include <lever/model.hpp>
+#include <string>
 
 #include "mujoco/from_mujoco.hpp"
 #include "random_state.hpp"
