@@ -346,7 +346,9 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   * a negative `mass`, `density` or inertia anywhere (MuJoCo clamps some to 0 silently);
   * a `compiler/eulerseq` with letters other than x, y, z, X, Y, Z, even if no `euler` uses it;
   * two default classes with the same name, also when a top-level `<default class=...>`
-    renames the main class.
+    renames the main class;
+  * text inside an element (MuJoCo ignores it);
+  * finite numbers whose compiled result overflows (e.g. a `fromto` of 1e308).
 
 Value rules: numbers are decimal (`1`, `-.5`, `1e-3`); a list must have the stated count
 ("1-3" marks a partial vector whose missing numbers keep the class's values); keywords are
