@@ -20,6 +20,7 @@ namespace {
 struct BodyNode {
   const BodySpec* spec;
   int parent;
+  std::vector<int> children;
 };
 
 struct CompiledBody {
@@ -179,7 +180,8 @@ class Compiler {
   // bodies depth-first, pre-order (world = 0); joints, geoms and sites in body order
   void flatten(const BodySpec& b, int parent) {
     const int id = static_cast<int>(nodes_.size());
-    nodes_.push_back({&b, parent});
+    nodes_.push_back({&b, parent, {}});
+    if (id > 0) nodes_[static_cast<size_t>(parent)].children.push_back(id);
     bodies_.emplace_back();
     for (const BodySpec& child : b.children) flatten(child, id);
   }
@@ -448,11 +450,9 @@ class Compiler {
       const CompiledBody& out = bodies_[id];
       if (b.joints.empty() || has_mass(out.inertial)) continue;
       bool carried = false;
-      for (size_t child = id + 1; child < nodes_.size(); ++child) {
-        if (nodes_[child].parent == static_cast<int>(id) && nodes_[child].spec->joints.empty() &&
-            has_mass(bodies_[child].inertial)) {
-          carried = true;
-        }
+      for (const int child : nodes_[id].children) {
+        const size_t c = static_cast<size_t>(child);
+        carried = carried || (nodes_[c].spec->joints.empty() && has_mass(bodies_[c].inertial));
       }
       if (carried) continue;
       const std::string state = "it has mass " + show(out.inertial.mass) +

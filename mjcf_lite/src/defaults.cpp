@@ -15,7 +15,7 @@ void check_one_orientation(const Element& e) {
     if (e.find(name)) found.push_back(name);
   }
   if (found.size() > 1) {
-    fail(e.place(), found[1],
+    fail(e.place(*e.find(found[1])), found[1],
          "more than one orientation (" + quoted_list(found, "and") + "); give only one");
   }
 }
@@ -26,13 +26,13 @@ void check_physical(const Element& e, const Attribute& a, const Value& v) {
   for (const double x : v.numbers) sum_of_squares += x * x;
   if (a.name == "quat" && sum_of_squares < 1e-14) {
     // mujoco 2.2.2 keeps such a quaternion unnormalized (a zero quat then means "world frame")
-    fail(e.place(), a.name, "quaternion '" + a.value + "' has (nearly) zero length");
+    fail(e.place(a), a.name, "quaternion '" + a.value + "' has (nearly) zero length");
   }
   const bool must_not_be_negative =
       (a.name == "mass" || a.name == "density" || a.name == "diaginertia");
   for (const double x : v.numbers) {
     if (must_not_be_negative && x < 0) {
-      fail(e.place(), a.name,
+      fail(e.place(a), a.name,
            "attribute '" + a.name + "' must not be negative (found " + show(x) + ")");
     }
   }
@@ -127,7 +127,7 @@ int DefaultClasses::choose(const Element& e, std::string_view attribute, int fal
   if (id < 0) {
     std::vector<std::string_view> names;
     for (const DefaultClass& c : classes_) names.push_back(c.name);
-    fail(e.place(), attribute,
+    fail(e.place(*a), attribute,
          "unknown default class '" + a->value + "'" + did_you_mean(a->value, names));
   }
   return id;

@@ -22,6 +22,12 @@ Place Element::place() const {
   return Place{tag, n ? n->value : "", line};
 }
 
+Place Element::place(const Attribute& a) const {
+  Place p = place();
+  if (a.line > 0) p.line = a.line;
+  return p;
+}
+
 namespace {
 
 // ---- tinyxml2 -> Element -------------------------------------------------------------------
@@ -162,21 +168,21 @@ bool known_elsewhere(std::string_view tag, std::string_view name) {
 void check_attribute(const Element& e, const ElementRule& rule, const Attribute& a) {
   if (find_attribute(rule, a.name)) return;
   if (has_word(rule.unsupported_attributes, a.name)) {
-    fail(e.place(), a.name,
+    fail(e.place(a), a.name,
          "attribute '" + a.name + "' is valid MJCF but not supported by lever" + kDocs);
   }
   if (rule.attributes.empty() && rule.unsupported_attributes.empty()) {
-    fail(e.place(), a.name, "<" + e.tag + "> takes no attributes (found '" + a.name + "')");
+    fail(e.place(a), a.name, "<" + e.tag + "> takes no attributes (found '" + a.name + "')");
   }
   if (known_elsewhere(e.tag, a.name)) {
-    fail(e.place(), a.name,
+    fail(e.place(a), a.name,
          "attribute '" + a.name + "' is not allowed on <" + e.tag + "> inside <" +
              std::string(rule.parent) + ">");
   }
   std::vector<std::string_view> candidates;
   for (const AttributeRule& r : rule.attributes) candidates.push_back(r.name);
   for (const std::string_view w : words(rule.unsupported_attributes)) candidates.push_back(w);
-  fail(e.place(), a.name, "unknown attribute '" + a.name + "'" + did_you_mean(a.name, candidates));
+  fail(e.place(a), a.name, "unknown attribute '" + a.name + "'" + did_you_mean(a.name, candidates));
 }
 
 void check_required(const Element& e, const ElementRule& rule) {

@@ -27,6 +27,8 @@ struct Element {
   const Attribute* find(std::string_view name) const;
   /// Where this element is, for error messages.
   Place place() const;
+  /// Where one of its attributes is (its own line, for elements written over several lines).
+  Place place(const Attribute& a) const;
 };
 
 /// Deepest element nesting lever accepts (tinyxml2 itself stops at 100).

@@ -79,7 +79,7 @@ std::string expected(const AttributeRule& rule) {
 }
 
 double read_real(const Element& e, const Attribute& a, const std::string& t) {
-  const Place at = e.place();
+  const Place at = e.place(a);
   if (names_non_finite(t)) {
     fail(at, a.name, "attribute '" + a.name + "': '" + t + "' is not a finite number");
   }
@@ -94,12 +94,12 @@ double read_real(const Element& e, const Attribute& a, const std::string& t) {
 
 double read_integer(const Element& e, const Attribute& a, const std::string& t) {
   if (!is_integer(t)) {
-    fail(e.place(), a.name, "attribute '" + a.name + "': '" + t + "' is not an integer");
+    fail(e.place(a), a.name, "attribute '" + a.name + "': '" + t + "' is not an integer");
   }
   errno = 0;
   const long v = std::strtol(t.c_str(), nullptr, 10);
   if (errno == ERANGE || v < INT_MIN || v > INT_MAX) {
-    fail(e.place(), a.name, "attribute '" + a.name + "': '" + t + "' is out of range");
+    fail(e.place(a), a.name, "attribute '" + a.name + "': '" + t + "' is out of range");
   }
   return static_cast<double>(v);
 }
@@ -109,7 +109,7 @@ Value read_numbers(const Element& e, const Attribute& a, const AttributeRule& ru
   v.line = a.line;
   const std::vector<std::string> list = tokens(a.value);
   if (list.empty()) {
-    fail(e.place(), a.name, "attribute '" + a.name + "' is empty; expected " + expected(rule));
+    fail(e.place(a), a.name, "attribute '" + a.name + "' is empty; expected " + expected(rule));
   }
   for (const std::string& t : list) {
     v.numbers.push_back(rule.kind == ValueKind::kInteger ? read_integer(e, a, t)
@@ -118,16 +118,16 @@ Value read_numbers(const Element& e, const Attribute& a, const AttributeRule& ru
   const int n = static_cast<int>(v.numbers.size());
   const std::string found = "attribute '" + a.name + "' has " + std::to_string(n) + " number" +
                             (n == 1 ? "" : "s") + "; expected " + expected(rule);
-  if (n > rule.count) fail(e.place(), a.name, found);
+  if (n > rule.count) fail(e.place(a), a.name, found);
   // mujoco 2.2.2 reads the last number once more when the list ends in a blank (see top)
   const bool trailing_blank = is_blank(a.value.back());
   const bool quirk = trailing_blank && (rule.partial ? n < rule.count : n + 1 == rule.count);
   const std::string note = quirk ? " (the list ends in a blank, which MuJoCo 2.2.2 would fill by "
                                    "repeating the last number; remove the blank)"
                                  : "";
-  if (!rule.partial && n < rule.count) fail(e.place(), a.name, found + note);
+  if (!rule.partial && n < rule.count) fail(e.place(a), a.name, found + note);
   if (quirk) {
-    fail(e.place(), a.name,
+    fail(e.place(a), a.name,
          "attribute '" + a.name + "' ends in a blank after " + std::to_string(n) + " of up to " +
              std::to_string(rule.count) +
              " numbers; MuJoCo 2.2.2 would repeat the last number. Remove "
@@ -139,14 +139,14 @@ Value read_numbers(const Element& e, const Attribute& a, const AttributeRule& ru
 Value read_keyword(const Element& e, const Attribute& a, const AttributeRule& rule) {
   if (has_word(rule.keywords, a.value)) return Value{{}, a.value, a.line};
   if (has_word(rule.unsupported_keywords, a.value)) {
-    fail(e.place(), a.name,
+    fail(e.place(a), a.name,
          std::string(a.name) + " '" + a.value +
              "' is valid MJCF but not supported by lever (see "
              "docs/mjcf-subset.md)");
   }
   std::vector<std::string_view> all = words(rule.keywords);
   for (const std::string_view w : words(rule.unsupported_keywords)) all.push_back(w);
-  fail(e.place(), a.name,
+  fail(e.place(a), a.name,
        "invalid value '" + a.value + "' for attribute '" + a.name + "'; expected " +
            quoted_list(words(rule.keywords), "or") + did_you_mean(a.value, all));
 }
@@ -155,7 +155,7 @@ Value read_euler_sequence(const Element& e, const Attribute& a) {
   bool ok = a.value.size() == 3;
   for (const char c : a.value) ok = ok && std::string_view("xyzXYZ").find(c) != std::string::npos;
   if (!ok) {
-    fail(e.place(), a.name,
+    fail(e.place(a), a.name,
          "attribute '" + a.name +
              "' must be 3 letters from x, y, z (rotating "
              "axes) and X, Y, Z (fixed axes); found '" +

@@ -60,3 +60,24 @@ TEST_CASE("a missing file is a ParseError without a line", "[mjcf][errors]") {
     CHECK_THAT(e.problem(), Catch::Contains("no such file"));
   }
 }
+
+TEST_CASE("an attribute's own line is reported when an element spans lines", "[mjcf][errors]") {
+  const char* xml = R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="elbow"
+             range="-1 1"
+             damping="fast"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)";
+  try {
+    lever::mjcf::load_string(xml, "multi.xml");
+    FAIL("loaded");
+  } catch (const ParseError& e) {
+    CHECK(e.line() == 6);
+    CHECK(e.attribute() == "damping");
+    CHECK(e.element_name() == "elbow");
+  }
+}
