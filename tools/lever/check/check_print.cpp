@@ -98,8 +98,10 @@ void print_kinematics(std::ostream& out, const Kinematics& k) {
           << " m\n";
     }
   }
-  out << "  (figures near 1e-16 are rounding error; they are lever's own, so their digits differ "
-         "from the lesson's MuJoCo run)\n";
+  if (!k.sites.empty()) {
+    out << "  (figures near 1e-16 are rounding error; they are lever's own, so their digits differ "
+           "from the lesson's MuJoCo run)\n";
+  }
 }
 
 // ---- (3) ---------------------------------------------------------------------------------------
@@ -119,12 +121,8 @@ void print_worst_torques(std::ostream& out, const TorqueBudget& b) {
     out << (j.loaded ? " at " + pose_text(j.worst_pose) : " (gravity does not load it)") << "\n";
   }
   out << "    (searched: " << b.search << "; " << b.evaluations << " evaluations of qfrc_bias)\n";
-  std::vector<std::string> torques, ratios;
-  for (const JointBudget& j : b.joints) {
-    torques.push_back(j.joint + " " + fixed(j.worst_torque, 3) + " " + torque_unit(j.hinge));
-    ratios.push_back(ratio_text(j));
-  }
-  out << fmt::wrap("  gravity torque, worst pose:", torques, "    ") << "\n";
+  std::vector<std::string> ratios;
+  for (const JointBudget& j : b.joints) ratios.push_back(ratio_text(j));
   out << fmt::wrap("  motor limit / gravity torque:", ratios, "    ") << "\n";
 }
 
@@ -164,6 +162,11 @@ void print_spare(std::ostream& out, const TorqueBudget& b) {
   for (size_t i = 0; i < b.joints.size(); ++i) {
     const JointBudget& j = b.joints[i];
     if (!j.actuated() || std::isinf(j.limit)) continue;
+    if (j.spare < 0) {
+      out << "  spare " << j.joint << " torque " << fixed(j.spare, 2) << " " << torque_unit(j.hinge)
+          << ": the motor cannot hold the arm up at its worst pose, let alone accelerate it\n";
+      continue;
+    }
     const std::string acc_unit = j.hinge ? " rad/s^2" : " m/s^2";
     std::string head = "  spare " + j.joint + " torque " + fixed(j.spare, 2) + " " +
                        torque_unit(j.hinge) + " gives " + fixed(std::abs(j.acceleration), 1) +

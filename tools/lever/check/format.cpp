@@ -52,11 +52,11 @@ std::string sci(double x) {
   return printf_string("%.1e", x);
 }
 
-std::string rounded(double x, int decimals) {
+std::string rounded(double x, int decimals, bool keep_small) {
   std::string out;
   if (special(x, out)) return out;
   const double scale = std::pow(10.0, decimals);
-  if (x != 0.0 && std::round(x * scale) == 0.0) return printf_string("%.2g", x);
+  if (keep_small && x != 0.0 && std::round(x * scale) == 0.0) return printf_string("%.2g", x);
   out = printf_string("%.*f", std::round(x * scale) / scale, decimals);
   if (out.find('.') != std::string::npos) {
     out.erase(out.find_last_not_of('0') + 1);
@@ -88,7 +88,7 @@ std::string matrix(const Eigen::MatrixXd& M, int decimals) {
   for (Eigen::Index r = 0; r < M.rows(); ++r) {
     out += r ? ", [" : "[";
     for (Eigen::Index c = 0; c < M.cols(); ++c) {
-      std::string x = rounded(M(r, c), decimals);
+      std::string x = rounded(M(r, c), decimals, false);
       if (x.find_first_of(".en") == std::string::npos) x += ".0";  // Python writes floats so
       if (c) out += ", ";
       out += x;

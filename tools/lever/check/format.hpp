@@ -18,9 +18,9 @@ std::string general(double x);
 std::string sci(double x);
 
 /// Rounded to `decimals` and written without trailing zeros, as numpy prints np.round(x, d):
-/// 0.0208333 -> "0.02083", 0.0001 -> "0.0001". A non-zero value that would round to 0 keeps
-/// two significant digits.
-std::string rounded(double x, int decimals);
+/// 0.0208333 -> "0.02083", 0.0001 -> "0.0001". With `keep_small`, a non-zero value that would
+/// round to 0 keeps two significant digits instead (a small principal moment stays visible).
+std::string rounded(double x, int decimals, bool keep_small = true);
 
 /// "[a b c]" with each entry written by general().
 std::string list(const Eigen::VectorXd& v);

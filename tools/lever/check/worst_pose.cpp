@@ -136,7 +136,8 @@ double ascend(const Model& model, GravityProbe& probe, int i, Eigen::VectorXd& q
   return best;
 }
 
-// Put coordinates back to 0, qpos0 or a range end wherever that loses nothing.
+// Put coordinates back to 0, qpos0 or a range end (in that order of preference) wherever that
+// loses nothing; a coordinate never moves to a less preferred one.
 void simplify(const Model& model, GravityProbe& probe, int i, Eigen::VectorXd& q, double best) {
   const int dof = model.jnt_dofadr[i];
   const double keep = best * (1.0 - kTie);
@@ -144,7 +145,8 @@ void simplify(const Model& model, GravityProbe& probe, int i, Eigen::VectorXd& q
     const int adr = model.jnt_qposadr[j];
     const auto box = joint_box(model, j);
     for (const double value : {0.0, model.qpos0[adr], box[0], box[1]}) {
-      if (value < box[0] || value > box[1] || value == q[adr]) continue;
+      if (value < box[0] || value > box[1]) continue;
+      if (value == q[adr]) break;
       Eigen::VectorXd trial = q;
       trial[adr] = value;
       if (std::abs(probe(trial)[dof]) >= keep) {
