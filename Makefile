@@ -19,7 +19,7 @@ build: configure
 	@cmake --build $(BUILD) -j $(JOBS)
 
 demo: build
-	$(LEVER) model models/arm2.xml
+	$(LEVER) check models/arm2.xml
 
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
