@@ -1,6 +1,8 @@
 // MuJoCo loading and field-by-field comparison for the compile tests; see mujoco_xml.hpp.
 #include "mujoco_xml.hpp"
 
+#include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <regex>
 #include <sstream>
@@ -15,6 +17,12 @@ namespace {
 // from the error buffer instead
 void quiet(const char*) {}
 
+// an error outside the compiler (which catches its own) would otherwise wait for Enter
+[[noreturn]] void fatal(const char* message) {
+  std::fprintf(stderr, "MuJoCo error: %s\n", message);
+  std::abort();
+}
+
 // an extra first <compiler>: later ones override it, so the file's own settings stand
 std::string with_autolimits(const std::string& xml) {
   const size_t root = xml.find("<mujoco");
@@ -27,6 +35,7 @@ std::string with_autolimits(const std::string& xml) {
 
 MjModelHandle mujoco_compile(const std::string& xml, std::string* error) {
   mju_user_warning = quiet;
+  mju_user_error = fatal;
   // mujoco's file system refuses an empty file; a blank one is just as empty to the XML parser
   const std::string text = xml.empty() ? std::string(" ") : with_autolimits(xml);
   auto vfs = std::make_unique<mjVFS>();
