@@ -22,9 +22,9 @@ namespace {
 // The two-link arm as the lesson names it, read from the compiled model.
 struct TwoLink {
   double L1, L2, m1, m2, c1, c2, I1, I2, g;
-  double r1, r2;                // capsule radii of the two links (m), for the inferred masses
-  double limit1, limit2;        // motor limits (N m)
-  double lower1;                // the shoulder's lower stop (rad)
+  double r1, r2;          // capsule radii of the two links (m), for the inferred masses
+  double limit1, limit2;  // motor limits (N m)
+  double lower1;          // the shoulder's lower stop (rad)
 };
 
 TwoLink parameters(const Model& model) {
@@ -140,15 +140,16 @@ TEST_CASE("check arm2: (3) gravity torque and motor sizing, the lesson's numbers
   const double tau1 = p.g * (p.m1 * p.c1 + p.m2 * (p.L1 + p.c2)), tau2 = p.g * p.m2 * p.c2;
   contains(out, "    shoulder " + format("%.3f", tau1) + " N m at q = [0 0]\n");
   contains(out, "    elbow " + format("%.3f", tau2) + " N m at q = [0 0]\n");
-  contains(out, "motor limit / gravity torque: shoulder " + format("%.2f", p.limit1 / tau1) +
-                    " (" + format("%g", p.limit1) + " N m), elbow " + format("%.2f", p.limit2 / tau2));
+  contains(out, "motor limit / gravity torque: shoulder " + format("%.2f", p.limit1 / tau1) + " (" +
+                    format("%g", p.limit1) + " N m), elbow " + format("%.2f", p.limit2 / tau2));
   const double pay1 = (p.limit1 - tau1) / (p.g * (p.L1 + p.L2));
   const double pay2 = (p.limit2 - tau2) / (p.g * p.L2);
   contains(out, "shoulder allows " + format("%.2f", pay1) + " kg, elbow allows " +
-                    format("%.2f", pay2) + " kg -> " + format("%.2f", std::min(pay1, pay2)) + " kg");
+                    format("%.2f", pay2) + " kg -> " + format("%.2f", std::min(pay1, pay2)) +
+                    " kg");
   // M(q) at q = 0: M11 = I1 + I2 + m1 c1^2 + m2 (L1^2 + c2^2 + 2 L1 c2), ...
-  const double M11 = p.I1 + p.I2 + p.m1 * p.c1 * p.c1 +
-                     p.m2 * (p.L1 * p.L1 + p.c2 * p.c2 + 2 * p.L1 * p.c2);
+  const double M11 =
+      p.I1 + p.I2 + p.m1 * p.c1 * p.c1 + p.m2 * (p.L1 * p.L1 + p.c2 * p.c2 + 2 * p.L1 * p.c2);
   const double M12 = p.I2 + p.m2 * (p.c2 * p.c2 + p.L1 * p.c2);
   const double M22 = p.I2 + p.m2 * p.c2 * p.c2;
   contains(out, "M(q) at this pose: [[" + python_round4(M11) + ", " + python_round4(M12) + "], [" +
@@ -169,10 +170,12 @@ TEST_CASE("check arm2: (4) explicit versus inferred inertia, and the visual geom
   contains(out, "link2: explicit " + format("%.3f", p.m2) + " kg");
   contains(out, "from geoms " + format("%.3f", inferred2) + " kg");
   // the inferred principal moments, from the engine's own inference
-  const Model inferred = mjcf::load_file(model_path("models/arm2.xml"), {.infer_inertia_from_geoms = true});
+  const Model inferred =
+      mjcf::load_file(model_path("models/arm2.xml"), {.infer_inertia_from_geoms = true});
   Eigen::Vector3d I = inferred.body_inertia[inferred.body("link1")];
   std::sort(I.data(), I.data() + 3);
-  contains(out, "[" + format("%.5f", I[0]) + " " + format("%.5f", I[1]) + " " + format("%.5f", I[2]) + "] kg m^2");
+  contains(out, "[" + format("%.5f", I[0]) + " " + format("%.5f", I[1]) + " " +
+                    format("%.5f", I[2]) + "] kg m^2");
   // capsules' centres of mass at the middle of each link
   const double tau_explicit = p.g * (p.m1 * p.c1 + p.m2 * (p.L1 + p.c2));
   const double tau_inferred = p.g * (inferred1 * p.L1 / 2 + inferred2 * (p.L1 + p.L2 / 2));
@@ -195,13 +198,14 @@ TEST_CASE("check arm2: (5) the shoulder rests on its soft stop", "[check][arm2]"
   const double gravity = p.g * (p.m1 * p.c1 + p.m2 * p.L1) * std::cos(q1);
   CHECK(std::abs(data.qfrc_constraint[0] - gravity) < 1e-9);
   contains(out, "active limit rows: 1; qfrc_constraint[shoulder] = " + format("%.4f", gravity) +
-                    " N m, gravity torque qfrc_bias[shoulder] = " + format("%.4f", gravity) + " N m");
+                    " N m, gravity torque qfrc_bias[shoulder] = " + format("%.4f", gravity) +
+                    " N m");
 }
 
 TEST_CASE("check arm2: (6) commands beyond ctrlrange are clamped silently", "[check][arm2]") {
   const TwoLink& p = arm2().p;
-  contains(arm2().text.out, "ctrl = [100 -100]: actuator_force = [" + format("%g", p.limit1) +
-                                " " + format("%g", -p.limit2) + "] N m (no warning is raised)");
+  contains(arm2().text.out, "ctrl = [100 -100]: actuator_force = [" + format("%g", p.limit1) + " " +
+                                format("%g", -p.limit2) + "] N m (no warning is raised)");
 }
 
 TEST_CASE("check arm2: --json parses and agrees with the text", "[check][arm2][json]") {
@@ -218,7 +222,8 @@ TEST_CASE("check arm2: --json parses and agrees with the text", "[check][arm2][j
     contains(out, name + " " + format("%.3f", joints[j]["worst_gravity_torque"].number) + " N m");
     contains(out, name + " " + format("%.2f", joints[j]["ratio"].number));
   }
-  contains(out, "-> " + format("%.2f", report["torque_budget"]["payload"][0]["min"].number) + " kg");
+  contains(out,
+           "-> " + format("%.2f", report["torque_budget"]["payload"][0]["min"].number) + " kg");
   const json::Value& M = report["torque_budget"]["mass_matrices"][0]["M"];
   contains(out, "[[" + python_round4(M[0][0].number) + ", " + python_round4(M[0][1].number));
   const json::Value& stop = report["soft_stops"]["stops"][0];

@@ -52,7 +52,8 @@ TEST_CASE("check: every model loads, exits 0 or 1, and --json agrees with the te
       for (const json::Value& finding : report["findings"].array) {
         CHECK(text.out.find(finding.string) != std::string::npos);
       }
-      CHECK(report["torque_budget"]["joints"].size() == static_cast<size_t>(mjcf::load_file(file).njnt));
+      CHECK(report["torque_budget"]["joints"].size() ==
+            static_cast<size_t>(mjcf::load_file(file).njnt));
     }
   }
 }
@@ -103,8 +104,10 @@ TEST_CASE("check: --help, usage errors and --svg", "[check]") {
   CHECK(run_lever("check").status == 2);
   CHECK(run_lever("check --no-such-option " + quoted(model_path("models/arm2.xml"))).status == 2);
 
-  const std::string svg = (std::filesystem::temp_directory_path() / "lever_check_arm2.svg").string();
-  CHECK(run_lever("check --svg " + quoted(svg) + " " + quoted(model_path("models/arm2.xml"))).status == 0);
+  const std::string svg =
+      (std::filesystem::temp_directory_path() / "lever_check_arm2.svg").string();
+  CHECK(run_lever("check --svg " + quoted(svg) + " " + quoted(model_path("models/arm2.xml")))
+            .status == 0);
   const std::string picture = read(svg);
   CHECK(picture.rfind("<?xml", 0) == 0);
   const Model model = mjcf::load_file(model_path("models/arm2.xml"));

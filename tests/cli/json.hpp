@@ -23,7 +23,8 @@ struct Value {
 
   const Value& operator[](const std::string& key) const {
     const auto it = object.find(key);
-    if (kind != Kind::kObject || it == object.end()) throw std::runtime_error("no key '" + key + "'");
+    if (kind != Kind::kObject || it == object.end())
+      throw std::runtime_error("no key '" + key + "'");
     return it->second;
   }
   const Value& operator[](size_t i) const {
@@ -125,15 +126,22 @@ class Parser {
         if (i_ >= s_.size()) fail("bad escape");
         const char e = s_[i_++];
         switch (e) {
-          case 'n': c = '\n'; break;
-          case 't': c = '\t'; break;
-          case 'r': c = '\r'; break;
+          case 'n':
+            c = '\n';
+            break;
+          case 't':
+            c = '\t';
+            break;
+          case 'r':
+            c = '\r';
+            break;
           case 'u':
             if (i_ + 4 > s_.size()) fail("bad \\u escape");
             c = static_cast<char>(std::stoi(s_.substr(i_, 4), nullptr, 16));
             i_ += 4;
             break;
-          default: c = e;
+          default:
+            c = e;
         }
       }
       out += c;

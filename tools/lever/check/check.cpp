@@ -37,8 +37,10 @@ void budget_findings(const TorqueBudget& b, std::vector<std::string>& findings) 
   for (const JointBudget& j : b.joints) {
     if (!j.actuated() || !j.loaded || !(j.ratio < 1.0)) continue;
     const char* unit = torque_unit(j.hinge);
-    findings.push_back("joint " + j.joint + ": its motor cannot hold its own arm: the worst-case "
-                       "gravity torque is " + fmt::fixed(j.worst_torque, 3) + " " + unit +
+    findings.push_back("joint " + j.joint +
+                       ": its motor cannot hold its own arm: the worst-case "
+                       "gravity torque is " +
+                       fmt::fixed(j.worst_torque, 3) + " " + unit +
                        " (at q = " + fmt::list(j.worst_pose, 4) + ") and the motor limit " +
                        fmt::general(j.limit) + " " + unit + " (ratio " + fmt::fixed(j.ratio, 2) +
                        ")");
@@ -47,15 +49,15 @@ void budget_findings(const TorqueBudget& b, std::vector<std::string>& findings) 
 
 void inertia_findings(const Inertia& in, const Structure& s, std::vector<std::string>& findings) {
   for (const std::string& body : in.bodies_without_inertial) {
-    findings.push_back("body " + body + " has no <inertial>: its mass and inertia were inferred "
+    findings.push_back("body " + body +
+                       " has no <inertial>: its mass and inertia were inferred "
                        "from its geoms at their density");
   }
   for (const VisualMass& v : in.visual_mass) {
     findings.push_back("geom " + v.geom + " does not collide but adds " + fmt::fixed(v.mass, 3) +
                        " kg to body " + v.body + " (group " + std::to_string(v.group) +
-                       " lies inside inertiagrouprange " +
-                       std::to_string(in.inertiagrouprange[0]) + " " +
-                       std::to_string(in.inertiagrouprange[1]) + ")");
+                       " lies inside inertiagrouprange " + std::to_string(in.inertiagrouprange[0]) +
+                       " " + std::to_string(in.inertiagrouprange[1]) + ")");
   }
   for (const BodyInfo& b : s.bodies) {
     const Eigen::Vector3d& I = b.principal;  // ascending
@@ -68,7 +70,8 @@ void inertia_findings(const Inertia& in, const Structure& s, std::vector<std::st
 
 void clamping_findings(const Clamping& c, std::vector<std::string>& findings) {
   for (const std::string& motor : c.unbounded) {
-    findings.push_back("motor " + motor + " has ctrllimited=\"false\": it accepts any command "
+    findings.push_back("motor " + motor +
+                       " has ctrllimited=\"false\": it accepts any command "
                        "(nothing bounds the request, so nothing reports when it is too large)");
   }
 }

@@ -4,7 +4,8 @@
 // against an independent calculation and collects what does not check out as findings:
 //   (1) structure: what the compiled model contains;
 //   (2) forward kinematics of every site against a chain of transforms built from the model's own
-//       numbers, and against the closed-form planar formula where the site hangs from a planar chain;
+//       numbers, and against the closed-form planar formula where the site hangs from a planar
+//       chain;
 //   (3) the torque budget: worst-case gravity torque per joint, motor limit over it, payloads,
 //       M(q) and the acceleration the spare torque gives;
 //   (4) explicit inertias against those inferred from the geoms, and geoms that add mass unseen;
@@ -52,7 +53,7 @@ struct BodyInfo {
   std::string name;
   double mass = 0.0;
   Eigen::Vector3d principal = Eigen::Vector3d::Zero();  ///< principal moments, ascending
-  bool explicit_inertial = false;                        ///< from <inertial>, not from geoms
+  bool explicit_inertial = false;                       ///< from <inertial>, not from geoms
 };
 
 struct Structure {
@@ -66,15 +67,15 @@ struct Structure {
 
 /// A site that hangs from a chain of hinges with parallel axes: the closed-form planar formula.
 struct PlanarChain {
-  std::vector<std::string> joints;    ///< root to tip
-  std::vector<int> joint_ids;         ///< the same, as joint indices
-  std::vector<double> signs;          ///< +1 where a joint's axis is along normal, -1 against
-  Eigen::Vector3d normal, u, w;       ///< rotation axis and the in-plane basis (w = normal x u)
-  Eigen::Vector3d origin;             ///< first joint's anchor at qpos0, world frame
-  std::vector<double> lengths;        ///< in-plane length of each link (last: to the site), m
-  std::vector<double> angles0;        ///< its in-plane direction at qpos0, from u towards w, rad
-  double offset = 0.0;                ///< constant component along the normal, m
-  double max_error = 0.0;             ///< max |site_xpos - formula| over the poses, m
+  std::vector<std::string> joints;  ///< root to tip
+  std::vector<int> joint_ids;       ///< the same, as joint indices
+  std::vector<double> signs;        ///< +1 where a joint's axis is along normal, -1 against
+  Eigen::Vector3d normal, u, w;     ///< rotation axis and the in-plane basis (w = normal x u)
+  Eigen::Vector3d origin;           ///< first joint's anchor at qpos0, world frame
+  std::vector<double> lengths;      ///< in-plane length of each link (last: to the site), m
+  std::vector<double> angles0;      ///< its in-plane direction at qpos0, from u towards w, rad
+  double offset = 0.0;              ///< constant component along the normal, m
+  double max_error = 0.0;           ///< max |site_xpos - formula| over the poses, m
 };
 
 struct SiteKinematics {
@@ -93,9 +94,9 @@ struct Kinematics {
 struct JointBudget {
   std::string joint;
   bool hinge = true;
-  double worst_torque = 0.0;      ///< qfrc_bias at rest at the worst pose (signed)
-  Eigen::VectorXd worst_pose;     ///< qpos where |qfrc_bias| of this joint is largest
-  bool loaded = true;             ///< false: gravity never loads this joint
+  double worst_torque = 0.0;   ///< qfrc_bias at rest at the worst pose (signed)
+  Eigen::VectorXd worst_pose;  ///< qpos where |qfrc_bias| of this joint is largest
+  bool loaded = true;          ///< false: gravity never loads this joint
   std::vector<std::string> motors;
   std::array<double, 2> torque_range{0.0, 0.0};  ///< joint torque the motors can produce
   double limit = 0.0;             ///< the bound on the side that holds the arm up (kInf: none)
@@ -132,7 +133,7 @@ struct TorqueBudget {
   std::vector<PoseInertia> poses;
 };
 
-// ---- (4) inertia ---------------------------------------------------------------------------------
+// ---- (4) inertia --------------------------------------------------------------------------------
 
 struct BodyInertia {
   std::string name;
@@ -166,43 +167,43 @@ struct Inertia {
   std::array<int, 2> demo_default_range{0, 5}, demo_narrow_range{0, 2};
 };
 
-// ---- (5) soft stops --------------------------------------------------------------------------------
+// ---- (5) soft stops -----------------------------------------------------------------------------
 
 struct StopRest {
   std::string joint;
   int joint_id = -1;
   bool hinge = true;
-  bool upper = false;            ///< which stop
-  double stop = 0.0;             ///< its position
-  double margin = 0.0;           ///< the joint's limit margin: the row acts this far before it
-  bool loadable = false;         ///< gravity pushes the joint into it at some pose tried
-  bool from_qpos0 = false;       ///< started from qpos0 (the lesson's run)
-  Eigen::VectorXd start;         ///< qpos the run started from
-  double time = 0.0;             ///< simulated seconds in all
-  double relax_time = 0.0;       ///< of which relaxing (quenched, undamped), to settle sooner
+  bool upper = false;       ///< which stop
+  double stop = 0.0;        ///< its position
+  double margin = 0.0;      ///< the joint's limit margin: the row acts this far before it
+  bool loadable = false;    ///< gravity pushes the joint into it at some pose tried
+  bool from_qpos0 = false;  ///< started from qpos0 (the lesson's run)
+  Eigen::VectorXd start;    ///< qpos the run started from
+  double time = 0.0;        ///< simulated seconds in all
+  double relax_time = 0.0;  ///< of which relaxing (quenched, undamped), to settle sooner
   bool settled = false;
-  double max_qvel = 0.0;         ///< at the end
-  bool rests_on_stop = false;    ///< a limit row of this joint holds it at the end
-  double q = 0.0;                ///< final position of the joint
-  double past = 0.0;             ///< how far past the stop (rad or m; > 0: past it)
-  int rows = 0;                  ///< limit rows at the end (data.nefc)
+  double max_qvel = 0.0;       ///< at the end
+  bool rests_on_stop = false;  ///< a limit row of this joint holds it at the end
+  double q = 0.0;              ///< final position of the joint
+  double past = 0.0;           ///< how far past the stop (rad or m; > 0: past it)
+  int rows = 0;                ///< limit rows at the end (data.nefc)
   double qfrc_constraint = 0.0, qfrc_bias = 0.0;  ///< of this joint, at the end
-  double qfrc_passive = 0.0;     ///< its spring (and damping), at the end
+  double qfrc_passive = 0.0;                      ///< its spring (and damping), at the end
   Eigen::VectorXd final_qpos;
-  int warnings = 0;              ///< engine warnings during the run
+  int warnings = 0;  ///< engine warnings during the run
 };
 
 struct SoftStops {
-  double settle_qvel = 1e-6;     ///< rad/s (or m/s)
-  double settle_time = 1.0;      ///< s the velocities must stay below it
-  double relax_qvel = 1e-3;      ///< rad/s (or m/s): relaxed enough to finish with a static solve
-  double relax_bound = 30.0;     ///< s of relaxation, at most
-  double time_bound = 120.0;     ///< s with the model's own damping, at most
-  int runs = 0;                  ///< simulations (stops that start from the same pose share one)
+  double settle_qvel = 1e-6;  ///< rad/s (or m/s)
+  double settle_time = 1.0;   ///< s the velocities must stay below it
+  double relax_qvel = 1e-3;   ///< rad/s (or m/s): relaxed enough to finish with a static solve
+  double relax_bound = 30.0;  ///< s of relaxation, at most
+  double time_bound = 120.0;  ///< s with the model's own damping, at most
+  int runs = 0;               ///< simulations (stops that start from the same pose share one)
   std::vector<StopRest> stops;
 };
 
-// ---- (6) clamping -----------------------------------------------------------------------------------
+// ---- (6) clamping -------------------------------------------------------------------------------
 
 struct Clamping {
   Eigen::VectorXd ctrl, actuator_force;
@@ -211,7 +212,7 @@ struct Clamping {
   bool newton_metres = false;  ///< every motor drives a hinge with gear 1: forces are in N m
 };
 
-// ---- the report ------------------------------------------------------------------------------------
+// ---- the report ---------------------------------------------------------------------------------
 
 struct Report {
   std::string model, source;

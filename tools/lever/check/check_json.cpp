@@ -72,8 +72,10 @@ void kinematics(Json& j, const Kinematics& k) {
       strings(j, c.joints);
       j.key("normal").values(c.normal).key("u").values(c.u).key("w").values(c.w);
       j.key("origin").values(c.origin);
-      j.key("lengths").values(Eigen::Map<const Eigen::VectorXd>(c.lengths.data(), c.lengths.size()));
-      j.key("angles0").values(Eigen::Map<const Eigen::VectorXd>(c.angles0.data(), c.angles0.size()));
+      j.key("lengths").values(
+          Eigen::Map<const Eigen::VectorXd>(c.lengths.data(), c.lengths.size()));
+      j.key("angles0").values(
+          Eigen::Map<const Eigen::VectorXd>(c.angles0.data(), c.angles0.size()));
       j.key("offset").value(c.offset).key("max_error").value(c.max_error).end_object();
     }
     j.end_object();
@@ -99,7 +101,8 @@ void budget(Json& j, const TorqueBudget& b) {
   j.end_array().key("payload").begin_array();
   for (const SitePayload& p : b.payload) {
     j.begin_object().key("site").value(p.site);
-    j.key("per_joint").values(Eigen::Map<const Eigen::VectorXd>(p.per_joint.data(), p.per_joint.size()));
+    j.key("per_joint")
+        .values(Eigen::Map<const Eigen::VectorXd>(p.per_joint.data(), p.per_joint.size()));
     j.key("min").value(p.min).key("binding_joint").value(p.binding_joint).end_object();
   }
   j.end_array().key("mass_matrices").begin_array();
@@ -140,22 +143,42 @@ void inertia(Json& j, const Inertia& in) {
     j.key("group").value(v.group).key("mass").value(v.mass).end_object();
   }
   j.end_array().key("demo").begin_object();
-  j.key("default_range").begin_array().value(in.demo_default_range[0]).value(in.demo_default_range[1]).end_array();
+  j.key("default_range")
+      .begin_array()
+      .value(in.demo_default_range[0])
+      .value(in.demo_default_range[1])
+      .end_array();
   j.key("default_mass").value(in.demo_default_mass);
-  j.key("narrow_range").begin_array().value(in.demo_narrow_range[0]).value(in.demo_narrow_range[1]).end_array();
+  j.key("narrow_range")
+      .begin_array()
+      .value(in.demo_narrow_range[0])
+      .value(in.demo_narrow_range[1])
+      .end_array();
   j.key("narrow_mass").value(in.demo_narrow_mass).end_object();
 }
 
 void stops(Json& j, const SoftStops& st) {
   j.key("settle_qvel").value(st.settle_qvel).key("settle_time").value(st.settle_time);
-  j.key("relax_qvel").value(st.relax_qvel).key("relax_bound").value(st.relax_bound).key("time_bound").value(st.time_bound);
+  j.key("relax_qvel")
+      .value(st.relax_qvel)
+      .key("relax_bound")
+      .value(st.relax_bound)
+      .key("time_bound")
+      .value(st.time_bound);
   j.key("runs").value(st.runs).key("stops").begin_array();
   for (const StopRest& s : st.stops) {
     j.begin_object().key("joint").value(s.joint).key("side").value(s.upper ? "upper" : "lower");
     j.key("stop").value(s.stop).key("margin").value(s.margin).key("loadable").value(s.loadable);
     if (s.loadable) {
       j.key("from_qpos0").value(s.from_qpos0).key("start").values(s.start);
-      j.key("time").value(s.time).key("relax_time").value(s.relax_time).key("settled").value(s.settled).key("max_qvel").value(s.max_qvel);
+      j.key("time")
+          .value(s.time)
+          .key("relax_time")
+          .value(s.relax_time)
+          .key("settled")
+          .value(s.settled)
+          .key("max_qvel")
+          .value(s.max_qvel);
       j.key("rests_on_stop").value(s.rests_on_stop).key("qpos").value(s.q);
       j.key("past_stop").value(s.past).key("rows").value(s.rows);
       j.key("qfrc_constraint").value(s.qfrc_constraint).key("qfrc_bias").value(s.qfrc_bias);

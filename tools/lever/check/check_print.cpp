@@ -59,12 +59,16 @@ void print_structure(std::ostream& out, const Structure& s) {
     out << "\n";
   }
   std::vector<std::string> sites;
-  for (size_t i = 0; i < s.sites.size(); ++i) sites.push_back(s.sites[i] + " (on " + s.site_bodies[i] + ")");
+  for (size_t i = 0; i < s.sites.size(); ++i)
+    sites.push_back(s.sites[i] + " (on " + s.site_bodies[i] + ")");
   out << "  sites: " << (sites.empty() ? "none" : names(sites)) << "\n";
   for (const BodyInfo& b : s.bodies) {
     out << "  body " << b.name << " mass " << fixed(b.mass, 3) << " kg, principal moments "
         << fmt::list(b.principal, 5) << " kg m^2"
-        << (b.explicit_inertial ? " (<inertial>)" : b.mass > 0 ? " (from its geoms)" : "") << "\n";
+        << (b.explicit_inertial ? " (<inertial>)"
+            : b.mass > 0        ? " (from its geoms)"
+                                : "")
+        << "\n";
   }
 }
 
@@ -77,8 +81,8 @@ std::string planar_description(const PlanarChain& c) {
     if (std::abs(c.angles0[k]) > 1e-12) link += " at " + general(c.angles0[k]) + " rad";
     links.push_back(link);
   }
-  return "a planar chain (" + names(c.joints) + " about " + fmt::list(c.normal, 6) +
-         "; links " + names(links) + " from " + fmt::list(c.origin, 6) + ")";
+  return "a planar chain (" + names(c.joints) + " about " + fmt::list(c.normal, 6) + "; links " +
+         names(links) + " from " + fmt::list(c.origin, 6) + ")";
 }
 
 void print_kinematics(std::ostream& out, const Kinematics& k) {
@@ -110,8 +114,8 @@ std::string ratio_text(const JointBudget& j) {
   if (!j.actuated()) return j.joint + " unactuated";
   if (std::isinf(j.limit)) return j.joint + " unbounded";
   if (!j.loaded) return j.joint + " - (gravity does not load it)";
-  return j.joint + " " + fixed(j.ratio, 2) + " (" + general(j.limit) + " " +
-         torque_unit(j.hinge) + ")";
+  return j.joint + " " + fixed(j.ratio, 2) + " (" + general(j.limit) + " " + torque_unit(j.hinge) +
+         ")";
 }
 
 void print_worst_torques(std::ostream& out, const TorqueBudget& b) {
@@ -135,11 +139,12 @@ std::string payload_text(const JointBudget& j, double kg) {
 void print_payloads(std::ostream& out, const TorqueBudget& b) {
   for (const SitePayload& p : b.payload) {
     std::vector<std::string> items;
-    for (size_t j = 0; j < b.joints.size(); ++j) items.push_back(payload_text(b.joints[j], p.per_joint[j]));
+    for (size_t j = 0; j < b.joints.size(); ++j)
+      items.push_back(payload_text(b.joints[j], p.per_joint[j]));
     const std::string tail =
         p.binding_joint >= 0 ? " -> " + fixed(p.min, 2) + " kg" : " -> no motor limits it";
-    out << fmt::wrap("  largest point payload at " + p.site + ", at the worst pose:",
-                     items, "    ", tail)
+    out << fmt::wrap("  largest point payload at " + p.site + ", at the worst pose:", items, "    ",
+                     tail)
         << "\n";
   }
 }
@@ -148,12 +153,13 @@ void print_mass_matrices(std::ostream& out, const TorqueBudget& b) {
   for (const PoseInertia& p : b.poses) {
     std::vector<std::string> joints;
     for (const int j : p.joints) joints.push_back(b.joints[j].joint);
-    const std::string where = b.poses.size() == 1 ? "this pose" : pose_text(p.q) + " (worst for " + names(joints) + ")";
+    const std::string where =
+        b.poses.size() == 1 ? "this pose" : pose_text(p.q) + " (worst for " + names(joints) + ")";
     if (p.M.rows() <= 4) {
       out << "  M(q) at " << where << ": " << fmt::matrix(p.M, 4) << " kg m^2\n";
     } else {
-      out << "  M(q) at " << where << ", diagonal (the whole matrix is in --json): "
-          << fmt::list(p.M.diagonal(), 4) << "\n";
+      out << "  M(q) at " << where
+          << ", diagonal (the whole matrix is in --json): " << fmt::list(p.M.diagonal(), 4) << "\n";
     }
   }
 }
@@ -187,15 +193,17 @@ void print_spare(std::ostream& out, const TorqueBudget& b) {
       }
       needs.push_back(text);
     }
-    const std::string rigid = b.joints.size() == 2 ? "the " + b.joints[1 - i].joint : "the other joints";
+    const std::string rigid =
+        b.joints.size() == 2 ? "the " + b.joints[1 - i].joint : "the other joints";
     out << fmt::wrap(head + " with " + rigid + " rigid, which needs", needs, "    ") << "\n";
   }
 }
 
 void print_budget(std::ostream& out, const TorqueBudget& b) {
   out << "(3) gravity torque and motor sizing:\n";
-  out << "  " << b.formula_poses << " random poses at rest: max |qfrc_bias - formula| = "
-      << fmt::sci(b.formula_max_error) << " N m (formula: dV/dq)\n";
+  out << "  " << b.formula_poses
+      << " random poses at rest: max |qfrc_bias - formula| = " << fmt::sci(b.formula_max_error)
+      << " N m (formula: dV/dq)\n";
   if (b.joints.empty()) return;
   print_worst_torques(out, b);
   print_payloads(out, b);
@@ -232,17 +240,20 @@ void print_inertia(std::ostream& out, const Inertia& in, const TorqueBudget& b) 
   for (const BodyInertia& body : in.bodies) print_body_inertia(out, body, in.inferred_available);
   for (size_t j = 0; j < in.torques.size(); ++j) {
     const char* unit = torque_unit(b.joints[j].hinge);
-    out << "  gravity torque at the worst pose: explicit " << fixed(in.torques[j].explicit_torque, 3)
-        << " " << unit << ", from geoms " << fixed(in.torques[j].inferred_torque, 3) << " " << unit
-        << " (" << in.torques[j].joint << ")\n";
+    out << "  gravity torque at the worst pose: explicit "
+        << fixed(in.torques[j].explicit_torque, 3) << " " << unit << ", from geoms "
+        << fixed(in.torques[j].inferred_torque, 3) << " " << unit << " (" << in.torques[j].joint
+        << ")\n";
   }
   const auto range = [](const std::array<int, 2>& r) {
     return std::to_string(r[0]) + " " + std::to_string(r[1]);
   };
   out << "  1 kg collision geom + 2 kg non-colliding geom in group 3, default inertiagrouprange ("
-      << range(in.demo_default_range) << "): body mass " << fixed(in.demo_default_mass, 3) << " kg\n";
+      << range(in.demo_default_range) << "): body mass " << fixed(in.demo_default_mass, 3)
+      << " kg\n";
   out << "  1 kg collision geom + 2 kg non-colliding geom in group 3, inertiagrouprange=\""
-      << range(in.demo_narrow_range) << "\": body mass " << fixed(in.demo_narrow_mass, 3) << " kg\n";
+      << range(in.demo_narrow_range) << "\": body mass " << fixed(in.demo_narrow_mass, 3)
+      << " kg\n";
   if (in.bodies_without_inertial.empty()) {
     out << "  every body with mass has an explicit <inertial>, so no geom adds mass unseen\n";
   }
@@ -317,7 +328,8 @@ void print_clamping(std::ostream& out, const Clamping& c, const TorqueBudget& b)
   }
   const JointBudget* tightest = nullptr;
   for (const JointBudget& j : b.joints) {
-    if (j.actuated() && j.loaded && std::isfinite(j.ratio) && (!tightest || j.ratio < tightest->ratio)) {
+    if (j.actuated() && j.loaded && std::isfinite(j.ratio) &&
+        (!tightest || j.ratio < tightest->ratio)) {
       tightest = &j;
     }
   }

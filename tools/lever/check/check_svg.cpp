@@ -19,9 +19,12 @@ const char* kSpareColor = "#2ca02c";
 plot::BarChart::Group joint_group(const JointBudget& j) {
   const bool sized = j.actuated() && std::isfinite(j.limit);
   std::string label = j.joint;
-  if (!j.actuated()) label += " (no motor)";
-  else if (!sized) label += " (unbounded)";
-  else if (j.loaded) label.append(" ").append(fmt::fixed(j.ratio, 2)).append("x");
+  if (!j.actuated())
+    label += " (no motor)";
+  else if (!sized)
+    label += " (unbounded)";
+  else if (j.loaded)
+    label.append(" ").append(fmt::fixed(j.ratio, 2)).append("x");
   return {label,
           {{"worst gravity torque", std::abs(j.worst_torque), kGravityColor},
            {"motor limit", sized ? j.limit : 0.0, kLimitColor},

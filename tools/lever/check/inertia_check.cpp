@@ -19,13 +19,15 @@ std::string demo_xml(const std::string& compiler_attributes) {
   return "<mujoco model=\"visual_geom_mass\"><compiler" + compiler_attributes +
          "/><worldbody><body name=\"b\"><joint type=\"slide\" axis=\"0 0 1\"/>"
          "<geom type=\"box\" size=\"0.05 0.05 0.05\" mass=\"1\"/>"
-         "<geom type=\"sphere\" size=\"0.05\" mass=\"2\" contype=\"0\" conaffinity=\"0\" group=\"3\"/>"
+         "<geom type=\"sphere\" size=\"0.05\" mass=\"2\" contype=\"0\" conaffinity=\"0\" "
+         "group=\"3\"/>"
          "</body></worldbody></mujoco>";
 }
 
 void run_demo(Inertia& result) {
   const Model wide = mjcf::load_string(demo_xml(""), "visual_geom_mass");
-  const Model narrow = mjcf::load_string(demo_xml(" inertiagrouprange=\"0 2\""), "visual_geom_mass");
+  const Model narrow =
+      mjcf::load_string(demo_xml(" inertiagrouprange=\"0 2\""), "visual_geom_mass");
   result.demo_default_mass = wide.body_mass[1];
   result.demo_default_range = wide.compiler.inertiagrouprange;
   result.demo_narrow_mass = narrow.body_mass[1];
@@ -78,14 +80,15 @@ Inertia check_inertia(const Inputs& inputs, const TorqueBudget& budget) {
       body.inferred_principal = sorted_moments(inputs.inferred->body_inertia[b]);
     }
     result.bodies.push_back(body);
-    if (!body.explicit_inertial && body.mass > 0) result.bodies_without_inertial.push_back(body.name);
+    if (!body.explicit_inertial && body.mass > 0)
+      result.bodies_without_inertial.push_back(body.name);
   }
   if (inputs.inferred) {
     for (int j = 0; j < model.njnt; ++j) {
       const JointBudget& joint = budget.joints[j];
-      result.torques.push_back({joint.joint, joint.worst_torque,
-                                gravity_torque(*inputs.inferred, joint.worst_pose,
-                                               model.jnt_dofadr[j])});
+      result.torques.push_back(
+          {joint.joint, joint.worst_torque,
+           gravity_torque(*inputs.inferred, joint.worst_pose, model.jnt_dofadr[j])});
     }
   }
   find_visual_mass(model, result);

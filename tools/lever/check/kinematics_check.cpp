@@ -25,10 +25,9 @@ constexpr double kParallel = 1e-9;  // |a x n| below this: the axes are parallel
 void plane_basis(const Model& model, const Eigen::Vector3d& n, Eigen::Vector3d& u,
                  Eigen::Vector3d& w) {
   const double g = model.opt.gravity.norm();
-  const Eigen::Vector3d candidates[] = {g > 0 ? Eigen::Vector3d(-model.opt.gravity / g)
-                                              : Eigen::Vector3d::UnitZ(),
-                                        Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(),
-                                        Eigen::Vector3d::UnitY()};
+  const Eigen::Vector3d candidates[] = {
+      g > 0 ? Eigen::Vector3d(-model.opt.gravity / g) : Eigen::Vector3d::UnitZ(),
+      Eigen::Vector3d::UnitZ(), Eigen::Vector3d::UnitX(), Eigen::Vector3d::UnitY()};
   for (const Eigen::Vector3d& up : candidates) {
     w = up - up.dot(n) * n;
     if (w.norm() > 1e-6) break;

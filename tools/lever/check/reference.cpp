@@ -20,7 +20,8 @@ ReferencePose reference_pose(const Model& model, const Eigen::VectorXd& qpos) {
     const int parent = model.body_parentid[b];
     Eigen::Matrix3d R = pose.body_R[parent] * quat_to_mat(quat_normalized(model.body_quat[b]));
     Eigen::Vector3d p = pose.body_p[parent] + pose.body_R[parent] * model.body_pos[b];
-    for (int j = model.body_jntadr[b]; j >= 0 && j < model.body_jntadr[b] + model.body_jntnum[b]; ++j) {
+    for (int j = model.body_jntadr[b]; j >= 0 && j < model.body_jntadr[b] + model.body_jntnum[b];
+         ++j) {
       const Eigen::Vector3d anchor = p + R * model.jnt_pos[j];
       const Eigen::Vector3d axis = (R * model.jnt_axis[j]).normalized();
       const int adr = model.jnt_qposadr[j];
@@ -84,7 +85,8 @@ std::vector<int> joint_path(const Model& model, int body) {
 std::array<double, 2> joint_box(const Model& model, int joint) {
   if (model.jnt_limited[joint]) return model.jnt_range[joint];
   const double q0 = model.qpos0[model.jnt_qposadr[joint]];
-  const double reach = model.jnt_type[joint] == JointType::kHinge ? std::numbers::pi : kUnlimitedSlide;
+  const double reach =
+      model.jnt_type[joint] == JointType::kHinge ? std::numbers::pi : kUnlimitedSlide;
   return {q0 - reach, q0 + reach};
 }
 

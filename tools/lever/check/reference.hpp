@@ -16,10 +16,10 @@ namespace lever::check {
 
 /// World poses of every body, and world anchor and axis of every joint, at one qpos.
 struct ReferencePose {
-  std::vector<Eigen::Matrix3d> body_R;     ///< (nbody) body frame -> world
-  std::vector<Eigen::Vector3d> body_p;     ///< (nbody) body frame origin
-  std::vector<Eigen::Vector3d> jnt_anchor; ///< (njnt)
-  std::vector<Eigen::Vector3d> jnt_axis;   ///< (njnt) unit
+  std::vector<Eigen::Matrix3d> body_R;      ///< (nbody) body frame -> world
+  std::vector<Eigen::Vector3d> body_p;      ///< (nbody) body frame origin
+  std::vector<Eigen::Vector3d> jnt_anchor;  ///< (njnt)
+  std::vector<Eigen::Vector3d> jnt_axis;    ///< (njnt) unit
 };
 
 /// Compose the transforms from the world outwards: each body's pos/quat in its parent, then each

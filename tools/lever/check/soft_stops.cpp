@@ -141,7 +141,8 @@ void polish(const Model& model, Data& data) {
     for (int i = 0; i < model.nv; ++i) {
       Eigen::VectorXd dq = Eigen::VectorXd::Zero(model.nq);
       dq[i] = h;
-      J.col(i) = (net_force_at_rest(model, data, q + dq) - net_force_at_rest(model, data, q - dq)) / (2 * h);
+      J.col(i) = (net_force_at_rest(model, data, q + dq) - net_force_at_rest(model, data, q - dq)) /
+                 (2 * h);
     }
     const Eigen::VectorXd step_dq = J.completeOrthogonalDecomposition().solve(-force);
     bool improved = false;
@@ -258,7 +259,8 @@ SoftStops check_soft_stops(const Model& model) {
       rest.from_qpos0 = rests_on(lesson[0], j, upper);
       rest.loadable = rest.from_qpos0 || choose_start(model, probe, j, rest);
       if (rest.from_qpos0) rest.start = model.qpos0;
-      run_of_stop.push_back(rest.loadable && !rest.from_qpos0 ? find_or_add_run(runs, rest.start) : 0);
+      run_of_stop.push_back(rest.loadable && !rest.from_qpos0 ? find_or_add_run(runs, rest.start)
+                                                              : 0);
       result.stops.push_back(rest);
     }
   }

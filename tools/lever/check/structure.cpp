@@ -45,8 +45,8 @@ Structure check_structure(const Model& model) {
     s.site_bodies.push_back(body_label(model, model.site_bodyid[i]));
   }
   for (int b = 1; b < model.nbody; ++b) {
-    s.bodies.push_back({body_label(model, b), model.body_mass[b], sorted_moments(model.body_inertia[b]),
-                        model.body_explicit_inertial[b]});
+    s.bodies.push_back({body_label(model, b), model.body_mass[b],
+                        sorted_moments(model.body_inertia[b]), model.body_explicit_inertial[b]});
   }
   return s;
 }

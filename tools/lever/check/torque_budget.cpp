@@ -69,8 +69,9 @@ void size_motor(const Eigen::MatrixXd& M, const Eigen::VectorXd& tau_g, int dof,
 void add_payloads(const Model& model, const Data& data, int j, TorqueBudget& result) {
   const JointBudget& budget = result.joints[j];
   const int dof = model.jnt_dofadr[j];
-  const Eigen::Vector3d down =
-      result.gravity > 0 ? Eigen::Vector3d(model.opt.gravity / result.gravity) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d down = result.gravity > 0
+                                   ? Eigen::Vector3d(model.opt.gravity / result.gravity)
+                                   : Eigen::Vector3d::Zero();
   Eigen::MatrixXd jacp(3, model.nv), jacr(3, model.nv);
   for (int s = 0; s < model.nsite; ++s) {
     jac_site(model, data, s, jacp, jacr);
@@ -109,7 +110,8 @@ TorqueBudget check_torque_budget(const Model& model) {
   result.evaluations = probe.evaluations() - before;
 
   for (int s = 0; s < model.nsite; ++s) {
-    result.payload.push_back({site_label(model, s), std::vector<double>(model.njnt, kInf), kInf, -1});
+    result.payload.push_back(
+        {site_label(model, s), std::vector<double>(model.njnt, kInf), kInf, -1});
   }
   Data data(model);
   for (int j = 0; j < model.njnt; ++j) {

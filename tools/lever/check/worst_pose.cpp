@@ -18,7 +18,7 @@ namespace {
 constexpr long kSampleBudget = 2000;  // grid points or random samples
 constexpr int kStartsPerJoint = 3;
 constexpr int kMaxSweeps = 100;
-constexpr double kTie = 1e-12;  // relative: a pose this close to the best counts as a tie
+constexpr double kTie = 1e-12;      // relative: a pose this close to the best counts as a tie
 constexpr double kUnloaded = 1e-9;  // N m: below this, gravity does not load the joint
 
 struct Candidate {
@@ -217,10 +217,10 @@ std::vector<WorstPose> worst_gravity_poses(const Model& model, GravityProbe& pro
     candidates.push_back({q, probe(q), false});
   }
   how = "all joints at 0, qpos0, each range end, " + how +
-        ", then coordinate ascent from the best " + std::to_string(kStartsPerJoint) +
-        " of them";
+        ", then coordinate ascent from the best " + std::to_string(kStartsPerJoint) + " of them";
   std::vector<WorstPose> worst;
-  for (int i = 0; i < model.njnt; ++i) worst.push_back(worst_for_joint(model, probe, candidates, i));
+  for (int i = 0; i < model.njnt; ++i)
+    worst.push_back(worst_for_joint(model, probe, candidates, i));
   return worst;
 }
 
