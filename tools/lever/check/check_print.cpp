@@ -282,6 +282,7 @@ void print_stop(std::ostream& out, const StopRest& s) {
   out << (s.from_qpos0 ? ", falling from qpos0 (the lesson's run):\n"
                        : ", from " + pose_text(s.start) + ":\n");
   out << "    after " << fixed(s.time, 1) << " s with zero torque";
+  if (s.warnings > 0) out << " (" << s.warnings << " engine warnings: a state was reset)";
   if (!s.settled) {
     out << " (did not settle: max |qvel| " << fmt::sci(s.max_qvel) << " at the end)";
   }
@@ -328,9 +329,13 @@ void print_clamping(std::ostream& out, const Clamping& c, const TorqueBudget& b)
   }
   const JointBudget* tightest = nullptr;
   for (const JointBudget& j : b.joints) {
-    if (j.actuated() && j.loaded && std::isfinite(j.ratio) &&
-        (!tightest || j.ratio < tightest->ratio)) {
-      tightest = &j;
+    if (!j.actuated() || !j.loaded || !std::isfinite(j.ratio)) continue;
+    if (!tightest || j.ratio < tightest->ratio) tightest = &j;
+    if (j.ratio < 1.0) {  // the clamp is where this shows: the motor saturates holding the arm
+      out << "  warning: the " << j.joint << " motor cannot hold its own arm: its limit "
+          << general(j.limit) << " " << torque_unit(j.hinge) << " is below the worst-case gravity "
+          << "torque " << fixed(std::abs(j.worst_torque), 3) << " " << torque_unit(j.hinge)
+          << " (ratio " << fixed(j.ratio, 2) << "); commands beyond it are clamped silently\n";
     }
   }
   if (tightest && tightest->ratio >= 1.0) {
