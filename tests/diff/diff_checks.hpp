@@ -36,9 +36,10 @@ inline void check_within_bound(const diff::Report& report,
     const bool wanted =
         only.empty() || std::find(only.begin(), only.end(), e.quantity) != only.end();
     if (!wanted) continue;
-    INFO("state " << e.state << ": " << describe(e.quantity, e.index, e.lever, e.mujoco) << " ["
-                  << e.element << "]; " << e.beyond << " of " << e.compared
-                  << " values beyond the bound");
+    INFO("state " << e.state << ": " << e.quantity << "[" << e.index << "] [" << e.element
+                  << "]: lever " << e.lever << " vs mujoco " << e.mujoco << ", " << e.max_ratio
+                  << " of the bound (element-wise " << e.max_elementwise_ratio << "); "
+                  << e.beyond << " of " << e.compared << " values beyond the bound");
     std::string first_failures;
     int listed = 0;
     for (const std::string& f : report.failures()) {

@@ -1,3 +1,4 @@
+#include <algorithm>
 #include <cmath>
 #include <lever/diff/report.hpp>
 #include <limits>
@@ -28,9 +29,10 @@ const Extreme* Report::find(const std::string& quantity) const {
 }
 
 void Report::record(Extreme& e, int state, int index, double lever, double mujoco,
-                    const Labeler& label) {
+                    double magnitude, const Labeler& label) {
   ++e.compared;
-  const double ratio = test::excess(lever, mujoco);
+  const double ratio = test::excess(lever, mujoco, magnitude);
+  e.max_elementwise_ratio = std::max(e.max_elementwise_ratio, test::excess(lever, mujoco));
   const double diff = std::isnan(lever) || std::isnan(mujoco)
                           ? std::numeric_limits<double>::infinity()
                           : std::abs(lever - mujoco);
@@ -49,7 +51,7 @@ void Report::record(Extreme& e, int state, int index, double lever, double mujoc
   if (beyond && failures_.size() < kFailuresKept) {
     std::string where = label ? label(index) : "";
     failures_.push_back("state " + std::to_string(state) + ": " +
-                        test::describe(e.quantity, index, lever, mujoco) +
+                        test::describe(e.quantity, index, lever, mujoco, magnitude) +
                         (where.empty() ? "" : " [" + where + "]"));
   }
 }
@@ -57,12 +59,13 @@ void Report::record(Extreme& e, int state, int index, double lever, double mujoc
 void Report::compare(const std::string& quantity, int state, const double* lever,
                      const double* mujoco, int n, const Labeler& label) {
   Extreme& e = entry(quantity);
-  for (int i = 0; i < n; ++i) record(e, state, i, lever[i], mujoco[i], label);
+  const double scale = test::magnitude(mujoco, n);  // the quantity's magnitude in this state
+  for (int i = 0; i < n; ++i) record(e, state, i, lever[i], mujoco[i], scale, label);
 }
 
 void Report::compare(const std::string& quantity, int state, double lever, double mujoco,
                      const std::string& element) {
-  record(entry(quantity), state, 0, lever, mujoco, [&](int) { return element; });
+  record(entry(quantity), state, 0, lever, mujoco, mujoco, [&](int) { return element; });
 }
 
 void Report::merge(const Report& other) {
@@ -72,6 +75,7 @@ void Report::merge(const Report& other) {
     e.beyond += o.beyond;
     if (o.max_abs_diff > e.max_abs_diff) e.max_abs_diff = o.max_abs_diff;
     if (o.max_abs_mujoco > e.max_abs_mujoco) e.max_abs_mujoco = o.max_abs_mujoco;
+    const double elementwise = std::max(e.max_elementwise_ratio, o.max_elementwise_ratio);
     if (o.max_ratio > e.max_ratio || (e.state < 0 && o.state >= 0)) {
       const Extreme totals = e;  // counts and maxima stay merged; the location is o's
       e = o;
@@ -80,6 +84,7 @@ void Report::merge(const Report& other) {
       e.max_abs_diff = totals.max_abs_diff;
       e.max_abs_mujoco = totals.max_abs_mujoco;
     }
+    e.max_elementwise_ratio = elementwise;
   }
   for (const std::string& f : other.failures_) {
     if (failures_.size() < kFailuresKept) failures_.push_back(f);

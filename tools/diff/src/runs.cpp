@@ -64,6 +64,66 @@ Report random_states(Twin& twin, int states, std::uint64_t seed) {
   return report;
 }
 
+namespace {
+
+// A MuJoCo data at state s, as Twin::set_state writes it.
+void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s) {
+  d->time = s.time;
+  for (int i = 0; i < m->nq; ++i) d->qpos[i] = s.qpos[i];
+  for (int i = 0; i < m->nv; ++i) {
+    d->qvel[i] = s.qvel[i];
+    d->qfrc_applied[i] = s.qfrc_applied[i];
+    d->qacc_warmstart[i] = 0.0;
+  }
+  for (int a = 0; a < m->nu; ++a) d->ctrl[a] = s.ctrl[a];
+}
+
+std::vector<double> full_mass_matrix(const mjModel* m, const mjData* d) {
+  std::vector<double> M(static_cast<std::size_t>(m->nv) * m->nv);
+  mj_fullM(m, M.data(), d->qM);
+  return M;
+}
+
+}  // namespace
+
+const std::vector<std::string>& self_noise_quantities() {
+  static const std::vector<std::string> names{"M",    "qfrc_bias",       "qacc_smooth",
+                                              "qacc", "qfrc_constraint", "efc_force"};
+  return names;
+}
+
+Report mujoco_self_noise(const Twin& twin, int states, std::uint64_t seed) {
+  const mjModel* m = twin.m.get();
+  test::MjModelPtr moved(mj_copyModel(nullptr, m), mj_deleteModel);
+  const double offset[3] = {0.37, 0.21, 0.3};  // any offset will do: it only changes the rounding
+  for (int b = 1; b < m->nbody; ++b) {
+    if (m->body_parentid[b] != 0) continue;
+    for (int c = 0; c < 3; ++c) moved->body_pos[3 * b + c] += offset[c];
+  }
+  test::MjDataPtr d = test::mujoco_data(m), e = test::mujoco_data(moved.get());
+  const Labeler none;
+  Report report;
+  for (const std::string& q : self_noise_quantities()) report.declare(q);
+  std::mt19937_64 rng(seed);  // the same draws as random_states()
+  for (int k = 0; k < states; ++k) {
+    const test::State s = test::random_state(twin.model, rng);
+    test::random_qacc(twin.model, rng);
+    set_mujoco_state(m, d.get(), s);
+    set_mujoco_state(moved.get(), e.get(), s);
+    mj_forward(m, d.get());
+    mj_forward(moved.get(), e.get());
+    const int nv = m->nv;
+    report.compare("M", k, full_mass_matrix(moved.get(), e.get()).data(),
+                   full_mass_matrix(m, d.get()).data(), nv * nv, none);
+    report.compare("qfrc_bias", k, e->qfrc_bias, d->qfrc_bias, nv, none);
+    report.compare("qacc_smooth", k, e->qacc_smooth, d->qacc_smooth, nv, none);
+    report.compare("qacc", k, e->qacc, d->qacc, nv, none);
+    report.compare("qfrc_constraint", k, e->qfrc_constraint, d->qfrc_constraint, nv, none);
+    if (e->nefc == d->nefc) report.compare("efc_force", k, e->efc_force, d->efc_force, d->nefc, none);
+  }
+  return report;
+}
+
 Report lockstep(Twin& twin, Integrator integrator, double seconds, Control control,
                 RunStats* stats) {
   Report report;

@@ -14,7 +14,12 @@ struct Extreme {
   long compared = 0;            ///< values compared
   long beyond = 0;              ///< values beyond the bound
   double max_abs_diff = 0.0;    ///< largest |lever - mujoco|
-  double max_ratio = 0.0;       ///< largest |lever - mujoco| / (1e-12 max(1, |mujoco|))
+  /// largest |lever - mujoco| / (1e-12 max(1, |mujoco|)), |mujoco| the quantity's magnitude in
+  /// that state (its largest element): the verdict
+  double max_ratio = 0.0;
+  /// the same with |mujoco| each element's own value: reported, stricter than the bound where a
+  /// small element sits beside large ones (see tests/support/tolerance.hpp)
+  double max_elementwise_ratio = 0.0;
   double max_abs_mujoco = 0.0;  ///< largest |mujoco|: the quantity's scale
   // where the largest ratio was seen (state < 0: nothing compared yet)
   int state = -1;       ///< state, or step of a trajectory
@@ -50,7 +55,8 @@ class Report {
 
  private:
   Extreme& entry(const std::string& quantity);
-  void record(Extreme& e, int state, int index, double lever, double mujoco, const Labeler& label);
+  void record(Extreme& e, int state, int index, double lever, double mujoco, double magnitude,
+              const Labeler& label);
 
   std::vector<Extreme> extremes_;
   std::vector<std::string> failures_;
