@@ -6,10 +6,11 @@ namespace lever {
 const char* warning_name(Warning w) {
   switch (w) {
     case Warning::kInertia: return "mass matrix is too close to singular";
-    case Warning::kBadQpos: return "qpos is NaN or larger than 1e10: state reset";
-    case Warning::kBadQvel: return "qvel is NaN or larger than 1e10: state reset";
-    case Warning::kBadQacc: return "qacc is NaN or larger than 1e10: state reset";
+    case Warning::kBadQpos: return "qpos is NaN or larger than 1e10 (step resets the state)";
+    case Warning::kBadQvel: return "qvel is NaN or larger than 1e10 (step resets the state)";
+    case Warning::kBadQacc: return "qacc is NaN or larger than 1e10 (step resets the state)";
     case Warning::kBadCtrl: return "ctrl is NaN or larger than 1e10: controls set to zero";
+    case Warning::kBadQfrcApplied: return "qfrc_applied is NaN or larger than 1e10";
     case Warning::kCount: break;
   }
   return "unknown warning";
@@ -80,6 +81,24 @@ Data::Data(const Model& model)
     work.rk_qvel[i] = Eigen::VectorXd::Zero(nv);
     work.rk_qacc[i] = Eigen::VectorXd::Zero(nv);
   }
+}
+
+int warning_count(const Data& data) {
+  int n = 0;
+  for (const WarningStat& w : data.warning) n += w.number;
+  return n;
+}
+
+std::string warning_text(const Data& data) {
+  std::string text;
+  for (int k = 0; k < static_cast<int>(Warning::kCount); ++k) {
+    const WarningStat& w = data.warning[k];
+    if (w.number == 0) continue;
+    text += std::string(warning_name(static_cast<Warning>(k))) + " (" + std::to_string(w.number) +
+            (w.number == 1 ? " time" : " times") + ", last at index " + std::to_string(w.lastinfo) +
+            ")\n";
+  }
+  return text;
 }
 
 void reset(const Model& model, Data& data) {

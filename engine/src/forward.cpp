@@ -6,9 +6,29 @@
 #include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
 
+#include "internal.hpp"
+
 namespace lever {
 
 namespace {
+
+// Record a warning if any element of x is bad (NaN or beyond 1e10); true if one was.
+bool record_if_bad(Data& data, const Eigen::VectorXd& x, Warning kind) {
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    if (is_bad(x[i])) {
+      record_warning(data, kind, static_cast<int>(i));
+      return true;
+    }
+  }
+  return false;
+}
+
+// The state forward() and inverse() read: warn about what cannot give finite results.
+void check_inputs(Data& data) {
+  record_if_bad(data, data.qpos, Warning::kBadQpos);
+  record_if_bad(data, data.qvel, Warning::kBadQvel);
+  record_if_bad(data, data.qfrc_applied, Warning::kBadQfrcApplied);
+}
 
 void position_stage(const Model& model, Data& data) {
   kinematics(model, data);
@@ -27,6 +47,7 @@ void velocity_stage(const Model& model, Data& data) {
 }  // namespace
 
 void forward(const Model& model, Data& data) {
+  check_inputs(data);
   position_stage(model, data);
   velocity_stage(model, data);
 
@@ -36,9 +57,12 @@ void forward(const Model& model, Data& data) {
   data.qacc_smooth = data.qfrc_smooth;
   solve_mass(model, data, data.qacc_smooth);
   solve_constraint(model, data);
+  record_if_bad(data, data.qacc, Warning::kBadQacc);
 }
 
 void inverse(const Model& model, Data& data) {
+  check_inputs(data);
+  record_if_bad(data, data.qacc, Warning::kBadQacc);
   position_stage(model, data);
   velocity_stage(model, data);
 

@@ -174,6 +174,76 @@ void build_rotations(Model& model) {
   for (int j = 0; j < model.njnt; ++j) model.jnt_offset[j] = !model.jnt_pos[j].isZero(0.0);
 }
 
+template <typename Vector>
+bool finite(const Vector& v) {
+  for (const double x : v) {
+    if (!std::isfinite(x)) return false;
+  }
+  return true;
+}
+
+[[noreturn]] void reject(const std::string& what, const std::string& name, const std::string& why) {
+  throw ModelError(what + " '" + name + "' " + why + ".");
+}
+
+// Finite numbers everywhere, a positive timestep, valid quaternions, ranges with lo < hi where
+// they are used, and no negative armature, damping or stiffness (each would make the model gain
+// energy from nothing; MuJoCo 2.2.2 accepts them silently).
+void check_parameters(const Model& model) {
+  if (!(model.opt.timestep > 0) || !std::isfinite(model.opt.timestep)) {
+    throw ModelError("the timestep must be a positive number of seconds; it is " +
+                     std::to_string(model.opt.timestep) + ".");
+  }
+  if (!model.opt.gravity.allFinite()) throw ModelError("gravity must be finite.");
+  for (int b = 1; b < model.nbody; ++b) {
+    const std::string& n = model.body_name[b];
+    if (!model.body_pos[b].allFinite() || !model.body_ipos[b].allFinite()) {
+      reject("body", n, "has a non-finite position");
+    }
+    for (const Quat* q : {&model.body_quat[b], &model.body_iquat[b]}) {
+      if (!q->allFinite() || q->norm() < 1e-10) reject("body", n, "has a zero or non-finite quaternion");
+    }
+  }
+  for (int j = 0; j < model.njnt; ++j) {
+    const std::string& n = model.jnt_name[j];
+    const int d = model.jnt_dofadr[j];
+    if (!model.jnt_pos[j].allFinite()) reject("joint", n, "has a non-finite anchor");
+    if (!finite(model.jnt_solref[j]) || !finite(model.jnt_solimp[j]) ||
+        !std::isfinite(model.jnt_margin[j])) {
+      reject("joint", n, "has non-finite limit parameters");
+    }
+    if (model.jnt_limited[j] && !(model.jnt_range[j][0] < model.jnt_range[j][1] && finite(model.jnt_range[j]))) {
+      reject("joint", n, "is limited but its range is not finite with lo < hi");
+    }
+    if (!(model.dof_armature[d] >= 0) || !(model.dof_damping[d] >= 0) ||
+        !(model.jnt_stiffness[j] >= 0) || !std::isfinite(model.dof_armature[d]) ||
+        !std::isfinite(model.dof_damping[d]) || !std::isfinite(model.jnt_stiffness[j])) {
+      reject("joint", n, "needs finite, non-negative armature, damping and stiffness");
+    }
+  }
+  if (!model.qpos0.allFinite() || !model.qpos_spring.allFinite()) {
+    throw ModelError("qpos0 and qpos_spring must be finite.");
+  }
+  for (int s = 0; s < model.nsite; ++s) {
+    if (!model.site_pos[s].allFinite() || !model.site_quat[s].allFinite() ||
+        model.site_quat[s].norm() < 1e-10) {
+      reject("site", model.site_name[s], "has a non-finite position or a zero quaternion");
+    }
+  }
+  for (int a = 0; a < model.nu; ++a) {
+    const std::string& n = model.actuator_name[a];
+    if (!finite(model.actuator_gear[a])) reject("actuator", n, "has a non-finite gear");
+    const auto& c = model.actuator_ctrlrange[a];
+    const auto& f = model.actuator_forcerange[a];
+    if (model.actuator_ctrllimited[a] && !(c[0] < c[1] && finite(c))) {
+      reject("actuator", n, "is ctrllimited but its ctrlrange is not finite with lo < hi");
+    }
+    if (model.actuator_forcelimited[a] && !(f[0] < f[1] && finite(f))) {
+      reject("actuator", n, "is forcelimited but its forcerange is not finite with lo < hi");
+    }
+  }
+}
+
 // Non-negative, finite masses and inertias.
 void check_mass(const Model& model) {
   for (int b = 1; b < model.nbody; ++b) {
@@ -190,6 +260,7 @@ void check_mass(const Model& model) {
 void set_const(Model& model) {
   check_sizes(model);
   check_tree(model);
+  check_parameters(model);
   check_mass(model);
   build_tree_sums(model);
   build_rotations(model);

@@ -18,13 +18,17 @@
 
 namespace lever {
 
-/// Kinds of warning, as MuJoCo's mjtWarning for the ones lever can raise.
+/// Kinds of warning, as MuJoCo's mjtWarning for the ones lever can raise ("bad" means NaN or
+/// |x| > 1e10, MuJoCo's mju_isBad). step() resets the state on a bad qpos, qvel or qacc, as
+/// mj_step does; forward() and inverse() evaluate what they are given and record the warning, so a
+/// NaN in their outputs is never silent.
 enum class Warning : int {
-  kInertia = 0,  ///< a pivot of M's factorization was below 1e-15 (M near singular)
-  kBadQpos,      ///< qpos had NaN or |x| > 1e10: the state was reset
-  kBadQvel,      ///< qvel had NaN or |x| > 1e10: the state was reset
-  kBadQacc,      ///< qacc had NaN or |x| > 1e10: the state was reset
-  kBadCtrl,      ///< ctrl had NaN or |x| > 1e10: all controls were treated as zero this call
+  kInertia = 0,     ///< a pivot of M's factorization was below 1e-15 (M near singular)
+  kBadQpos,         ///< qpos was bad (step: the state was reset)
+  kBadQvel,         ///< qvel was bad (step: the state was reset)
+  kBadQacc,         ///< qacc was bad (step: the state was reset)
+  kBadCtrl,         ///< ctrl was bad: every control was treated as zero for that evaluation
+  kBadQfrcApplied,  ///< qfrc_applied was bad (lever's own; MuJoCo does not check it)
   kCount
 };
 
@@ -138,5 +142,12 @@ struct Data {
 /// Reset the state as MuJoCo's mj_resetData: qpos = qpos0; qvel, ctrl, qfrc_applied, qacc,
 /// time and warnings zero.
 void reset(const Model& model, Data& data);
+
+/// Total number of warnings recorded since the last reset (0: nothing went wrong).
+int warning_count(const Data& data);
+
+/// One line per kind of warning recorded, e.g. "qvel is NaN or larger than 1e10: state reset
+/// (2 times, last at index 1)"; empty when there is none.
+std::string warning_text(const Data& data);
 
 }  // namespace lever
