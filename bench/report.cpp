@@ -284,7 +284,8 @@ void target_ratio(std::vector<Verdict>& out, const Results& r, const std::string
   const bool met = strict ? ratio < max_ratio : ratio <= max_ratio;
   std::string measured = fmt("%.1f ns", l->median) + " vs " + fmt("%.1f ns", p->median) + ": " +
                          fmt("%.3f", ratio) + " (" + fmt("%.1fx", p->median / l->median) + " faster)";
-  std::string status = met ? "met" : "**missed** by " + fmt("%.2fx", ratio / max_ratio);
+  const double by = ratio / max_ratio;
+  std::string status = met ? "met" : "**missed** by " + fmt(by < 1.01 ? "%.3fx" : "%.2fx", by);
   out.push_back({text, measured, status});
 }
 
