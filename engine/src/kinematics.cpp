@@ -20,41 +20,45 @@ namespace {
 
 // Body poses, joint anchors and axes; then inertial frames and sites.
 void poses(const Model& model, Data& data) {
+  Eigen::Matrix3d turned;  // the body's rotation after a hinge, when a later joint needs it
   for (int b = 1; b < model.nbody; ++b) {
     const int p = model.body_parentid[b];
     Eigen::Vector3d pos = data.xpos[p] + rotate(data.xmat[p], model.body_pos[b]);
-    Quat quat = model.body_rotated[b] ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
-    // the frame's rotation matrix, rebuilt only when a joint needs it after a hinge turned it
-    Eigen::Matrix3d R = model.body_rotated[b] ? quat_to_mat(quat) : data.xmat[p];
-    bool R_current = true;
+    Quat quat = data.xquat[p];
+    const Eigen::Matrix3d* R = &data.xmat[p];  // the frame's current rotation
+    if (model.body_rotated[b]) {
+      quat = quat_mul(quat, model.body_quat[b]);
+      turned = quat_to_mat(quat);
+      R = &turned;
+    }
 
     for (int k = 0; k < model.body_jntnum[b]; ++k) {
       const int j = model.body_jntadr[b] + k;
       const int qadr = model.jnt_qposadr[j];
       const double theta = data.qpos[qadr] - model.qpos0[qadr];
       const Eigen::Vector3d& axis = model.jnt_axis[j];
-      if (!R_current) {
-        R = quat_to_mat(quat);
-        R_current = true;
+      if (R == nullptr) {
+        turned = quat_to_mat(quat);
+        R = &turned;
       }
-      data.xaxis[j] = rotate(R, axis);
-      data.xanchor[j] = model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(R, model.jnt_pos[j])) : pos;
+      data.xaxis[j] = rotate(*R, axis);
+      data.xanchor[j] = model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(*R, model.jnt_pos[j])) : pos;
       if (model.jnt_type[j] == JointType::kSlide) {
         pos += data.xaxis[j] * theta;
         continue;
       }
       const double s = std::sin(0.5 * theta), c = std::cos(0.5 * theta);
       quat = quat_mul(quat, Quat(c, axis[0] * s, axis[1] * s, axis[2] * s));
-      R_current = false;
+      R = nullptr;  // stale until a later joint asks for it
       // the anchor stays where it is: the frame's origin swings around it
       if (model.jnt_offset[j]) {
-        R = quat_to_mat(quat);
-        R_current = true;
-        pos = data.xanchor[j] - rotate(R, model.jnt_pos[j]);
+        turned = quat_to_mat(quat);
+        R = &turned;
+        pos = data.xanchor[j] - rotate(turned, model.jnt_pos[j]);
       }
     }
 
-    data.xquat[b] = quat_normalized(quat);
+    data.xquat[b] = quat_renormalized(quat);
     data.xmat[b] = quat_to_mat(data.xquat[b]);
     data.xpos[b] = pos;
     data.xipos[b] = pos + rotate(data.xmat[b], model.body_ipos[b]);

@@ -144,6 +144,15 @@ inline Quat quat_normalized(const Quat& q) {
   return Quat(q[0] * inv, q[1] * inv, q[2] * inv, q[3] * inv);
 }
 
+/// q / |q| for a q whose norm is already 1 to within rounding (a product of unit quaternions):
+/// one Newton step for 1/sqrt(|q|^2) about 1, exact to rounding there and free of sqrt and
+/// division. Use quat_normalized() for an arbitrary quaternion.
+inline Quat quat_renormalized(const Quat& q) {
+  const double n2 = q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3];
+  const double inv = 1.5 - 0.5 * n2;
+  return Quat(q[0] * inv, q[1] * inv, q[2] * inv, q[3] * inv);
+}
+
 /// Rotation by angle (rad) about a unit axis.
 Quat quat_from_axis_angle(const Eigen::Vector3d& axis, double angle);
 

@@ -40,8 +40,8 @@ struct RunStats {
 };
 
 /// From rest (qpos0), `seconds` of `integrator` in lockstep: at each step lever starts from
-/// MuJoCo's own state, both take one step, and qpos, qvel (after the step) and qacc,
-/// qfrc_constraint (of the step's forward pass) are compared. The step number is the state.
+/// MuJoCo's own state; qacc and qfrc_constraint of the forward pass at that state are compared,
+/// then both take one step and qpos, qvel after it are compared. The step number is the state.
 Report lockstep(Twin& twin, Integrator integrator, double seconds, Control control,
                 RunStats* stats = nullptr);
 
