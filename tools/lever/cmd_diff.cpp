@@ -539,7 +539,9 @@ void print_markdown(const std::vector<ModelResult>& results, const Options& o) {
       "(up to 3x its range) and qfrc_applied random. Per state: forward, energy, site Jacobians, "
       "inverse dynamics at the forward qacc and at a random qacc, and one Euler and one RK4 step. "
       "Lockstep: %.0f s from rest under a sinusoidal control sweeping each motor's whole range; at "
-      "every step lever starts from MuJoCo's own state and both take one step.\n\n",
+      "every step lever starts from MuJoCo's own state, the forward pass at that state is compared "
+      "(qacc, qfrc_constraint), then both take one step and the state after it is compared (qpos, "
+      "qvel).\n\n",
       o.states, kTrajectorySeconds);
   std::printf("## Summary\n\n");
   markdown_summary(results);
