@@ -2,6 +2,7 @@
 // constants MuJoCo's mj_setConst freezes at qpos0 (engine_setconst.c).
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
+#include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
 #include <lever/model.hpp>
 
@@ -182,8 +183,9 @@ bool finite(const Vector& v) {
   return true;
 }
 
-[[noreturn]] void reject(const std::string& what, const std::string& name, const std::string& why) {
-  throw ModelError(what + " '" + name + "' " + why + ".");
+[[noreturn]] void reject(const std::string& what, int index, const std::string& name,
+                         const std::string& why) {
+  throw ModelError(what + " '" + name + "' " + why + ".", what, index);
 }
 
 // Finite numbers everywhere, a positive timestep, valid quaternions, ranges with lo < hi where
@@ -198,27 +200,27 @@ void check_parameters(const Model& model) {
   for (int b = 1; b < model.nbody; ++b) {
     const std::string& n = model.body_name[b];
     if (!model.body_pos[b].allFinite() || !model.body_ipos[b].allFinite()) {
-      reject("body", n, "has a non-finite position");
+      reject("body", b, n, "has a non-finite position");
     }
     for (const Quat* q : {&model.body_quat[b], &model.body_iquat[b]}) {
-      if (!q->allFinite() || q->norm() < 1e-10) reject("body", n, "has a zero or non-finite quaternion");
+      if (!q->allFinite() || q->norm() < 1e-10) reject("body", b, n, "has a zero or non-finite quaternion");
     }
   }
   for (int j = 0; j < model.njnt; ++j) {
     const std::string& n = model.jnt_name[j];
     const int d = model.jnt_dofadr[j];
-    if (!model.jnt_pos[j].allFinite()) reject("joint", n, "has a non-finite anchor");
+    if (!model.jnt_pos[j].allFinite()) reject("joint", j, n, "has a non-finite anchor");
     if (!finite(model.jnt_solref[j]) || !finite(model.jnt_solimp[j]) ||
         !std::isfinite(model.jnt_margin[j])) {
-      reject("joint", n, "has non-finite limit parameters");
+      reject("joint", j, n, "has non-finite limit parameters");
     }
     if (model.jnt_limited[j] && !(model.jnt_range[j][0] < model.jnt_range[j][1] && finite(model.jnt_range[j]))) {
-      reject("joint", n, "is limited but its range is not finite with lo < hi");
+      reject("joint", j, n, "is limited but its range is not finite with lo < hi");
     }
     if (!(model.dof_armature[d] >= 0) || !(model.dof_damping[d] >= 0) ||
         !(model.jnt_stiffness[j] >= 0) || !std::isfinite(model.dof_armature[d]) ||
         !std::isfinite(model.dof_damping[d]) || !std::isfinite(model.jnt_stiffness[j])) {
-      reject("joint", n, "needs finite, non-negative armature, damping and stiffness");
+      reject("joint", j, n, "needs finite, non-negative armature, damping and stiffness");
     }
   }
   if (!model.qpos0.allFinite() || !model.qpos_spring.allFinite()) {
@@ -227,19 +229,19 @@ void check_parameters(const Model& model) {
   for (int s = 0; s < model.nsite; ++s) {
     if (!model.site_pos[s].allFinite() || !model.site_quat[s].allFinite() ||
         model.site_quat[s].norm() < 1e-10) {
-      reject("site", model.site_name[s], "has a non-finite position or a zero quaternion");
+      reject("site", s, model.site_name[s], "has a non-finite position or a zero quaternion");
     }
   }
   for (int a = 0; a < model.nu; ++a) {
     const std::string& n = model.actuator_name[a];
-    if (!finite(model.actuator_gear[a])) reject("actuator", n, "has a non-finite gear");
+    if (!finite(model.actuator_gear[a])) reject("actuator", a, n, "has a non-finite gear");
     const auto& c = model.actuator_ctrlrange[a];
     const auto& f = model.actuator_forcerange[a];
     if (model.actuator_ctrllimited[a] && !(c[0] < c[1] && finite(c))) {
-      reject("actuator", n, "is ctrllimited but its ctrlrange is not finite with lo < hi");
+      reject("actuator", a, n, "is ctrllimited but its ctrlrange is not finite with lo < hi");
     }
     if (model.actuator_forcelimited[a] && !(f[0] < f[1] && finite(f))) {
-      reject("actuator", n, "is forcelimited but its forcerange is not finite with lo < hi");
+      reject("actuator", a, n, "is forcelimited but its forcerange is not finite with lo < hi");
     }
   }
 }
@@ -250,8 +252,60 @@ void check_mass(const Model& model) {
     const double m = model.body_mass[b];
     const Eigen::Vector3d& I = model.body_inertia[b];
     if (!std::isfinite(m) || m < 0 || !I.allFinite() || (I.array() < 0).any()) {
-      throw ModelError("body '" + model.body_name[b] + "' has a negative or non-finite mass or inertia.");
+      throw ModelError(
+          "body '" + model.body_name[b] + "' has a negative or non-finite mass or inertia.", "body",
+          b);
     }
+  }
+}
+
+// The model evaluated once at qpos0, at rest and without control: every number must be finite and
+// the acceleration within MuJoCo's 1e10 (mju_isBad). Finite parameters can still overflow (an
+// offset of 1e300, a gravity of 1e308); such a model would give NaN on its first evaluation, or
+// be reset by every step (mj_step's mj_checkAcc). MuJoCo 2.2.2 loads it; lever says which object
+// overflows instead.
+void check_at_qpos0(const Model& model, Data& data) {
+  data.qpos = model.qpos0;
+  data.qvel.setZero();
+  data.ctrl.setZero();
+  data.qfrc_applied.setZero();
+  forward(model, data);
+  compute_energy(model, data);
+  const char* const too_large = "gives non-finite numbers at qpos0: its numbers are too large";
+  // first the bodies' own frames (so that the body at fault is named, not its parent, whose
+  // subtree quantities include it), then what combines several bodies
+  for (int b = 1; b < model.nbody; ++b) {
+    const bool ok = data.xpos[b].allFinite() && data.xmat[b].allFinite() &&
+                    data.xipos[b].allFinite() && data.ximat[b].allFinite();
+    if (!ok) reject("body", b, model.body_name[b], too_large);
+  }
+  for (int b = 1; b < model.nbody; ++b) {
+    const RigidInertia& c = data.cinert[b];
+    const bool ok = data.subtree_com[b].allFinite() && std::isfinite(c.m) && c.h.allFinite() &&
+                    c.I.allFinite() && finite(model.body_invweight0[b]);
+    if (!ok) reject("body", b, model.body_name[b], too_large);
+  }
+  for (int j = 0; j < model.njnt; ++j) {
+    const int d = model.jnt_dofadr[j];
+    const bool ok = data.xanchor[j].allFinite() && data.xaxis[j].allFinite() &&
+                    data.cdof[d].allFinite() && data.M.row(d).allFinite() &&
+                    std::isfinite(data.qfrc_bias[d]) && std::isfinite(data.qfrc_passive[d]) &&
+                    std::isfinite(model.dof_invweight0[d]) && std::isfinite(model.dof_M0[d]);
+    if (!ok) reject("joint", j, model.jnt_name[j], too_large);
+    if (!(std::abs(data.qacc[d]) <= 1e10)) {
+      reject("joint", j, model.jnt_name[j],
+             "accelerates at more than 1e10 at rest at qpos0 (MuJoCo's limit for a diverged "
+             "state, which every step would reset): its masses, inertias or gravity are out of "
+             "scale");
+    }
+  }
+  for (int s = 0; s < model.nsite; ++s) {
+    if (!data.site_xpos[s].allFinite() || !data.site_xmat[s].allFinite()) {
+      reject("site", s, model.site_name[s], too_large);
+    }
+  }
+  if (!std::isfinite(data.energy[0])) {
+    throw ModelError("the model's potential energy at qpos0 is not finite: its numbers are too large.");
   }
 }
 
@@ -294,6 +348,7 @@ void set_const(Model& model) {
     }
     model.body_invweight0[b] = weight;
   }
+  check_at_qpos0(model, data);
 }
 
 }  // namespace lever
