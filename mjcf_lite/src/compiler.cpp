@@ -164,13 +164,19 @@ class Compiler {
  public:
   explicit Compiler(const ModelSpec& spec) : spec_(spec), c_(spec.compiler) {}
 
-  Model run() {
+  Model run(Locations* where) {
     flatten(spec_.world, 0);
     check_names();
     for (size_t id = 0; id < bodies_.size(); ++id) compile_body(static_cast<int>(id));
     for (const MotorSpec& m : spec_.motors) motors_.push_back(compile_motor(m));
     check_moving_bodies();
     scale_total_mass();
+    if (where) {
+      for (const BodyNode& n : nodes_) where->body.push_back(n.spec->at);
+      for (const CompiledJoint& j : joints_) where->joint.push_back(j.spec->at);
+      for (const CompiledSite& s : sites_) where->site.push_back(s.spec->at);
+      for (const CompiledMotor& m : motors_) where->actuator.push_back(m.spec->at);
+    }
     return assemble();
   }
 
@@ -649,6 +655,8 @@ void Compiler::assemble_motors(Model& m) const {
 
 }  // namespace
 
-Model compile(const ModelSpec& spec) { return Compiler(spec).run(); }
+Model compile(const ModelSpec& spec, Locations* where) {
+  return Compiler(spec).run(where);
+}
 
 }  // namespace lever::mjcf::detail

@@ -77,10 +77,17 @@ int typo_budget(size_t length) { return length <= 3 ? 1 : (length <= 6 ? 2 : 3);
 }  // namespace
 
 std::string did_you_mean(std::string_view typo, const std::vector<std::string_view>& candidates) {
+  // a typo is a short word: no suggestion for long ones, so that the O(n m) edit distance stays
+  // cheap whatever the input (a 4 KiB name against 1000 others)
+  constexpr size_t kLongest = 64;
+  if (typo.size() > kLongest) return "";
   const std::string t = lower(typo);
   int best = typo_budget(t.size()) + 1;
   std::string_view choice;
   for (const std::string_view c : candidates) {
+    // the edit distance is at least the difference in length
+    const size_t gap = c.size() > t.size() ? c.size() - t.size() : t.size() - c.size();
+    if (gap >= static_cast<size_t>(best)) continue;
     const int d = edit_distance(t, lower(c));
     if (d < best) {
       best = d;

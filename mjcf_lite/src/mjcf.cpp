@@ -20,8 +20,19 @@ std::string read_file(const std::string& path) {
   if (!std::filesystem::exists(path, ec)) {
     throw ParseError(path, 0, "", "", "cannot open the model: no such file");
   }
+  if (std::filesystem::is_directory(path, ec)) {
+    throw ParseError(path, 0, "", "", "cannot open the model: it is a directory, not a file");
+  }
   if (!std::filesystem::is_regular_file(path, ec)) {
     throw ParseError(path, 0, "", "", "cannot open the model: not a regular file");
+  }
+  // the size limit before reading, so that a huge file is never read into memory
+  const std::uintmax_t size = std::filesystem::file_size(path, ec);
+  if (!ec && size > Limits::kDocumentBytes) {
+    throw ParseError(path, 0, "", "",
+                     "the file is " + std::to_string(size) + " bytes long; lever accepts at most " +
+                         std::to_string(Limits::kDocumentBytes) +
+                         " (a limit, see docs/reliability.md)");
   }
   std::ifstream in(path, std::ios::binary);
   std::ostringstream text;
@@ -35,18 +46,30 @@ std::string read_file(const std::string& path) {
 Model load_string(const std::string& xml, const std::string& filename, const LoadOptions& options) {
   // build everything into locals: the caller gets a complete model or an exception
   Model model;
+  detail::Locations where;
   try {
     const detail::Element root = detail::read_document(xml);
     const detail::ModelSpec spec = detail::parse_model(root, options.infer_inertia_from_geoms);
-    model = detail::compile(spec);
+    model = detail::compile(spec, &where);
   } catch (const detail::Problem& p) {
     throw ParseError(filename, p.where.line, p.where.tag, p.attribute, p.message, p.where.name);
   }
   try {
     set_const(model);
+  } catch (const ModelError& e) {
+    // located at the element the object came from, when set_const names one
+    const std::vector<detail::Place>* places = nullptr;
+    if (e.object() == "body") places = &where.body;
+    if (e.object() == "joint") places = &where.joint;
+    if (e.object() == "site") places = &where.site;
+    if (e.object() == "actuator") places = &where.actuator;
+    if (places && e.index() >= 0 && e.index() < static_cast<int>(places->size())) {
+      const detail::Place& at = (*places)[static_cast<size_t>(e.index())];
+      throw ParseError(filename, at.line, at.tag, "", e.what(), at.name);
+    }
+    throw ParseError(filename, 0, "", "", std::string("the compiled model is invalid: ") + e.what());
   } catch (const Error& e) {
-    throw ParseError(filename, 0, "", "",
-                     std::string("the compiled model is inconsistent: ") + e.what());
+    throw ParseError(filename, 0, "", "", std::string("the compiled model is invalid: ") + e.what());
   }
   return model;
 }

@@ -78,6 +78,13 @@ Element convert(const tinyxml2::XMLElement& x, int depth) {
   }
   for (const tinyxml2::XMLAttribute* a = x.FirstAttribute(); a; a = a->Next()) {
     e.attributes.push_back({a->Name(), a->Value(), a->GetLineNum()});
+    const Attribute& added = e.attributes.back();
+    if (added.value.size() > Limits::kAttributeBytes) {
+      fail(e.place(added), added.name,
+           "attribute '" + added.name + "' is " + std::to_string(added.value.size()) +
+               " bytes long; lever accepts at most " + std::to_string(Limits::kAttributeBytes) +
+               " (a limit, see docs/reliability.md)");
+    }
   }
   for (const tinyxml2::XMLNode* n = x.FirstChild(); n; n = n->NextSibling()) {
     if (const tinyxml2::XMLElement* child = n->ToElement()) {
@@ -193,20 +200,46 @@ void check_required(const Element& e, const ElementRule& rule) {
   }
 }
 
-void validate(const Element& e, const ElementRule& rule) {
+// How many elements of each limited kind the document has so far (see Limits).
+struct Counts {
+  int bodies = 0, joints = 0, geoms = 0, sites = 0, motors = 0, classes = 0;
+
+  // count `e`, a child of `parent`; refuse it if it is one too many
+  void add(const Element& e, std::string_view parent) {
+    const bool in_body = parent == "body" || parent == "worldbody";
+    if (e.tag == "body") bump(e, bodies, Limits::kBodies, "bodies");
+    if (in_body && e.tag == "joint") bump(e, joints, Limits::kJoints, "joints");
+    if (in_body && e.tag == "geom") bump(e, geoms, Limits::kGeoms, "geoms");
+    if (in_body && e.tag == "site") bump(e, sites, Limits::kSites, "sites");
+    if (parent == "actuator") bump(e, motors, Limits::kMotors, "motors");
+    if (e.tag == "default") bump(e, classes, Limits::kClasses, "default classes");
+  }
+
+  static void bump(const Element& e, int& count, int limit, const char* what) {
+    if (++count > limit) {
+      fail(e.place(), "",
+           "more than " + std::to_string(limit) + " " + what + ": lever accepts at most " +
+               std::to_string(limit) + " (a limit that bounds memory and time, see " +
+               "docs/reliability.md)");
+    }
+  }
+};
+
+void validate(const Element& e, const ElementRule& rule, Counts& counts) {
   for (const Attribute& a : e.attributes) check_attribute(e, rule, a);
   check_required(e, rule);
   std::map<std::string, int> first_line;
   for (const Element& child : e.children) {
     const ElementRule* child_rule = find_rule(e.tag, child.tag);
     if (!child_rule) fail_element(child, e.tag);
+    counts.add(child, e.tag);
     const auto [it, first] = first_line.emplace(child.tag, child.line);
     if (!first && child_rule->multiplicity != '*') {
       fail(child.place(), "",
            "<" + e.tag + "> can have only one <" + child.tag + "> (the first is at line " +
                std::to_string(it->second) + ")");
     }
-    validate(child, *child_rule);
+    validate(child, *child_rule, counts);
   }
 }
 
@@ -221,9 +254,28 @@ void check_root(const Element& root) {
   }
 }
 
+// Limits checked on the raw text, before tinyxml2 builds a tree of it.
+void check_size(const std::string& xml) {
+  if (xml.size() > Limits::kDocumentBytes) {
+    fail(Place{}, "",
+         "the document is " + std::to_string(xml.size()) + " bytes long; lever accepts at most " +
+             std::to_string(Limits::kDocumentBytes) + " (a limit, see docs/reliability.md)");
+  }
+  int tags = 0, line = 1;
+  for (const char c : xml) {
+    if (c == '\n') ++line;
+    if (c == '<' && ++tags > Limits::kTags) {
+      fail(Place{"", "", line}, "",
+           "more than " + std::to_string(Limits::kTags) +
+               " tags: lever accepts at most that many (a limit, see docs/reliability.md)");
+    }
+  }
+}
+
 }  // namespace
 
 Element read_document(const std::string& xml) {
+  check_size(xml);
   tinyxml2::XMLDocument doc;
   if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) fail_xml(doc);
   const tinyxml2::XMLElement* first = doc.RootElement();
@@ -234,7 +286,8 @@ Element read_document(const std::string& xml) {
   }
   Element root = convert(*first, 1);
   check_root(root);
-  validate(root, *find_rule("", "mujoco"));
+  Counts counts;
+  validate(root, *find_rule("", "mujoco"), counts);
   return root;
 }
 

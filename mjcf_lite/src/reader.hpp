@@ -7,6 +7,8 @@
 #include <string_view>
 #include <vector>
 
+#include <lever/mjcf.hpp>
+
 #include "problem.hpp"
 
 namespace lever::mjcf::detail {
@@ -32,7 +34,7 @@ struct Element {
 };
 
 /// Deepest element nesting lever accepts (tinyxml2 itself stops at 100).
-constexpr int kMaxDepth = 100;
+constexpr int kMaxDepth = Limits::kDepth;
 
 /// Parse MJCF text and validate its structure; throws Problem.
 Element read_document(const std::string& xml);

@@ -532,6 +532,62 @@ inline const BadInput kBadInputs[] = {
   </worldbody>
 </mujoco>)", 3, "site", "size", "positive radius", MuJoCo::kRejects, ""},
 
+  // ---- joint parameters that would make energy from nothing ---------------------------------
+  {"joint-negative-damping", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" damping="-0.1"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "damping", "must not be negative", MuJoCo::kAccepts,
+   "negative damping feeds energy into the joint; MuJoCo simulates it until it blows up"},
+  {"joint-negative-armature", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" armature="-0.01"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "joint", "armature", "must not be negative", MuJoCo::kAccepts,
+   "negative rotor inertia can make M indefinite"},
+  {"default-negative-stiffness", R"(<mujoco>
+  <default>
+    <joint stiffness="-5"/>
+  </default>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 3, "joint", "stiffness", "must not be negative", MuJoCo::kAccepts,
+   "a negative spring pushes the joint away from springref, without bound"},
+
+  // ---- numbers that overflow once compiled (set_const's check at qpos0, located) -------------
+  {"body-offsets-overflow", R"(<mujoco>
+  <worldbody>
+    <body name="far" pos="1e308 0 0">
+      <geom size="0.1"/>
+      <body name="farther" pos="1e308 0 0">
+        <joint name="j"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>)", 5, "body", "", "numbers are too large", MuJoCo::kAccepts,
+   "MuJoCo places the body at infinity and every output is NaN"},
+  {"gravity-out-of-scale", R"(<mujoco>
+  <option gravity="0 0 -1e300"/>
+  <worldbody>
+    <body name="b" pos="0 0 1">
+      <joint name="j" axis="0 1 0"/>
+      <geom size="0.1" pos="0.5 0 0"/>
+    </body>
+  </worldbody>
+</mujoco>)", 5, "joint", "", "more than 1e10", MuJoCo::kAccepts,
+   "the acceleration at rest is beyond 1e10, so every mj_step would reset the state"},
+
   // ---- structure -----------------------------------------------------------------------------
   {"text-inside-element", R"(<mujoco>
   <worldbody>

@@ -11,6 +11,7 @@
 
 #include <lever/error.hpp>
 #include <lever/model.hpp>
+#include <cstddef>
 #include <string>
 
 namespace lever::mjcf {
@@ -35,6 +36,22 @@ class ParseError : public Error {
  private:
   std::string file_, element_, element_name_, attribute_, problem_;
   int line_;
+};
+
+/// What one load accepts at most (docs/reliability.md). Each bounds the memory and time of a load
+/// and of the Data it leads to (Data holds nv x nv and 2 njnt x 2 njnt matrices); beyond a limit
+/// the load throws a ParseError that names the limit and the element where it was reached.
+struct Limits {
+  static constexpr std::size_t kDocumentBytes = std::size_t{8} << 20;  ///< 8 MiB of MJCF text
+  static constexpr int kTags = 200000;         ///< '<' in the text: tags, comments, declarations
+  static constexpr int kDepth = 100;           ///< element nesting (tinyxml2's own limit too)
+  static constexpr std::size_t kAttributeBytes = 4096;  ///< one attribute value
+  static constexpr int kBodies = 10000;        ///< <body> elements (the world body not counted)
+  static constexpr int kJoints = 1000;         ///< <joint> elements in bodies (so nq = nv <= 1000)
+  static constexpr int kGeoms = 10000;         ///< <geom> elements in bodies
+  static constexpr int kSites = 10000;         ///< <site> elements in bodies
+  static constexpr int kMotors = 1000;         ///< <motor> elements
+  static constexpr int kClasses = 1000;        ///< <default> elements (default classes)
 };
 
 struct LoadOptions {
