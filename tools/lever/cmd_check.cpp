@@ -81,6 +81,11 @@ int cmd_check(const std::vector<std::string>& argv) {
   } else {
     std::fputs(check::to_text(report).c_str(), stdout);
   }
+  for (const std::string& f : report.findings) {
+    if (f.find("engine warnings") != std::string::npos) {
+      std::fprintf(stderr, "lever check: warning: %s\n", f.c_str());
+    }
+  }
   return report.exit_status();
 }
 

@@ -15,7 +15,10 @@
 //   energy     [potential, kinetic] in J
 // Numbers are printed with 17 significant digits, so they compare exactly.
 // Without --json: readable tables with names and units.
-// Exit 0; bad input (a list with the wrong count, text that is not a number, NaN) exits 2.
+// Exit 0; 1 when the evaluation raised an engine warning (a state that is NaN or beyond 1e10, an
+// acceleration that blows up) or gave a number that is not finite (printed as n/a, or null in
+// JSON), each said on stderr; bad input (a list with the wrong count, text that is not a number,
+// NaN or inf) exits 2.
 #include <cstdio>
 #include <string>
 
@@ -146,11 +149,12 @@ void print_text(const std::string& path, const Model& model, const Data& data,
   for (int j = 0; j < model.njnt; ++j) {
     const int q = model.jnt_qposadr[j], v = model.jnt_dofadr[j];
     const char* units = model.jnt_type[j] == JointType::kHinge ? "rad,N m" : "m,N";
-    std::printf("  %-10s %-7s %12.6g %12.6g %12.6g %12.6g %12.6g %12.6g %12.6g %12.6g\n",
-                label_of(model.jnt_name[j], j).c_str(), units, data.qpos[q] + 0.0,
-                data.qvel[v] + 0.0, data.qacc_smooth[v] + 0.0, data.qacc[v] + 0.0,
-                data.qfrc_bias[v] + 0.0, data.qfrc_passive[v] + 0.0, data.qfrc_actuator[v] + 0.0,
-                data.qfrc_constraint[v] + 0.0);  // + 0.0: no "-0"
+    std::printf("  %-10s %-7s %12s %12s %12s %12s %12s %12s %12s %12s\n",
+                label_of(model.jnt_name[j], j).c_str(), units, num(data.qpos[q]).c_str(),
+                num(data.qvel[v]).c_str(), num(data.qacc_smooth[v]).c_str(),
+                num(data.qacc[v]).c_str(), num(data.qfrc_bias[v]).c_str(),
+                num(data.qfrc_passive[v]).c_str(), num(data.qfrc_actuator[v]).c_str(),
+                num(data.qfrc_constraint[v]).c_str());
   }
 
   if (model.nu > 0) {
@@ -160,10 +164,10 @@ void print_text(const std::string& path, const Model& model, const Data& data,
     for (int a = 0; a < model.nu; ++a) {
       const int j = model.actuator_trnid[a];
       const bool clamped = data.ctrl[a] != data.actuator_force[a];  // the gain is 1
-      std::printf("  %-10s %-10s %12.6g %12.6g %8s%s\n",
-                  label_of(model.actuator_name[a], a).c_str(),
-                  label_of(model.jnt_name[j], j).c_str(), data.ctrl[a], data.actuator_force[a],
-                  joint_units(model, j).force, clamped ? "  (clamped)" : "");
+      std::printf("  %-10s %-10s %12s %12s %8s%s\n", label_of(model.actuator_name[a], a).c_str(),
+                  label_of(model.jnt_name[j], j).c_str(), num(data.ctrl[a]).c_str(),
+                  num(data.actuator_force[a]).c_str(), joint_units(model, j).force,
+                  clamped ? "  (clamped)" : "");
     }
   }
 
@@ -202,15 +206,17 @@ void print_text(const std::string& path, const Model& model, const Data& data,
   }
   for (int r = 0; r < data.nefc; ++r) {
     const int j = data.efc_id[r];
-    std::printf("  %-10s %-6s %12.6g %12.6g %12.6g %12.6g %12.6g\n",
-                label_of(model.jnt_name[j], j).c_str(), data.efc_sign[r] > 0 ? "lower" : "upper",
-                data.efc_pos[r], data.efc_force[r], data.efc_aref[r], data.efc_R[r], data.efc_D[r]);
+    std::printf("  %-10s %-6s %12s %12s %12s %12s %12s\n", label_of(model.jnt_name[j], j).c_str(),
+                data.efc_sign[r] > 0 ? "lower" : "upper", num(data.efc_pos[r]).c_str(),
+                num(data.efc_force[r]).c_str(), num(data.efc_aref[r]).c_str(),
+                num(data.efc_R[r]).c_str(), num(data.efc_D[r]).c_str());
   }
   if (data.nefc > 0) {
     std::printf("  (efc_pos < 0: past the stop; efc_force > 0 pushes back; efc_pos in rad or m)\n");
   }
 
-  std::printf("\nenergy: potential %.6g J, kinetic %.6g J\n", data.energy[0], data.energy[1]);
+  std::printf("\nenergy: potential %s J, kinetic %s J\n", num(data.energy[0]).c_str(),
+              num(data.energy[1]).c_str());
 }
 
 }  // namespace
@@ -232,7 +238,14 @@ int cmd_forward(const std::vector<std::string>& argv) {
   } else {
     print_text(path, model, data, e);
   }
-  return kOk;
+  // a bad state is evaluated as given, never silently: the engine's warnings, and any number
+  // that came out non-finite, are said on stderr and make the exit status 1
+  WarningLog warnings;
+  warnings.collect(data);
+  warnings.print("forward");
+  const bool finite = outputs_finite(data) && e.jacp.allFinite() && e.jacr.allFinite();
+  if (!finite) print_non_finite("forward");
+  return warnings.count() > 0 || !finite ? kFindings : kOk;
 }
 
 }  // namespace lever::cli

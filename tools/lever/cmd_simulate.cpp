@@ -72,25 +72,35 @@ void apply(const Model& model, const Controller& c, Data& data) {
   }
 }
 
+// What a run reports besides its rows.
+struct RunLog {
+  std::vector<long> clamped;  // per motor, the steps whose command was clamped
+  WarningLog warnings;        // the engine's warnings over the whole run
+  long non_finite_rows = 0;   // rows holding a number that is not finite
+};
+
 // Run `steps` steps; call on_row(k, data) for the start state (k = 0) and after each step, with
-// every forward quantity evaluated at that state under that state's ctrl. Returns, per motor, the
-// number of steps whose command was clamped.
-std::vector<long> run(const Model& model, Data& data, const Controller& c, long steps,
-                      const std::function<void(long, const Data&)>& on_row) {
-  std::vector<long> clamped(model.nu, 0);
+// every forward quantity evaluated at that state under that state's ctrl.
+RunLog run(const Model& model, Data& data, const Controller& c, long steps,
+           const std::function<void(long, const Data&)>& on_row) {
+  RunLog log;
+  log.clamped.assign(static_cast<size_t>(model.nu), 0);
   for (long k = 0;; ++k) {
     if (c.gravity_compensation) forward(model, data);  // qfrc_bias of the current state
     apply(model, c, data);
     forward(model, data);  // the row: everything at this state under this ctrl
+    log.warnings.collect(data);
+    if (!outputs_finite(data)) ++log.non_finite_rows;
     on_row(k, data);
     if (k == steps) break;
     for (int a = 0; a < model.nu; ++a) {
       // the gain of a motor is 1, so any difference is ctrlrange or forcerange clamping
-      if (data.actuator_force[a] != data.ctrl[a]) ++clamped[a];
+      if (data.actuator_force[a] != data.ctrl[a]) ++log.clamped[static_cast<size_t>(a)];
     }
-    step(model, data);  // recomputes the same forward(), then integrates
+    step(model, data);  // recomputes the same forward(), then integrates (or resets a bad state)
+    log.warnings.collect(data);
   }
-  return clamped;
+  return log;
 }
 
 // ---- CSV -----------------------------------------------------------------------------------
@@ -125,19 +135,22 @@ void csv_header(std::FILE* out, const Model& m) {
   std::fprintf(out, "%s\n", h.c_str());
 }
 
+// A CSV number in full precision; a number that is not finite is an empty field.
+std::string csv_number(double x) { return std::isfinite(x) ? num(x, "%.17g") : std::string(); }
+
 void csv_row(std::FILE* out, const Model& m, const Data& d) {
-  std::fprintf(out, "%.17g", d.time);
+  std::fprintf(out, "%s", csv_number(d.time).c_str());
   auto per_dof = [&](const Eigen::VectorXd& v, bool qpos) {
     for (int j = 0; j < m.njnt; ++j) {
-      std::fprintf(out, ",%.17g", v[qpos ? m.jnt_qposadr[j] : m.jnt_dofadr[j]]);
+      std::fprintf(out, ",%s", csv_number(v[qpos ? m.jnt_qposadr[j] : m.jnt_dofadr[j]]).c_str());
     }
   };
   per_dof(d.qpos, true);
   per_dof(d.qvel, false);
   per_dof(d.qacc, false);
   per_dof(d.qfrc_bias, false);
-  for (int a = 0; a < m.nu; ++a) std::fprintf(out, ",%.17g", d.ctrl[a]);
-  for (int a = 0; a < m.nu; ++a) std::fprintf(out, ",%.17g", d.actuator_force[a]);
+  for (int a = 0; a < m.nu; ++a) std::fprintf(out, ",%s", csv_number(d.ctrl[a]).c_str());
+  for (int a = 0; a < m.nu; ++a) std::fprintf(out, ",%s", csv_number(d.actuator_force[a]).c_str());
   per_dof(d.qfrc_constraint, false);
   std::fputc('\n', out);
 }
@@ -311,8 +324,8 @@ plot::Figure make_figure(const Model& m, const PlotRecord& r, const std::string&
 
 void print_summary_row(const Model& m, const Data& d) {
   std::printf("  %8.3f", d.time);
-  for (int j = 0; j < m.njnt; ++j) std::printf(" %11.5f", d.qpos[m.jnt_qposadr[j]]);
-  for (int a = 0; a < m.nu; ++a) std::printf(" %11.4f", d.actuator_force[a]);
+  for (int j = 0; j < m.njnt; ++j) std::printf(" %11s", num(d.qpos[m.jnt_qposadr[j]], "%.5f").c_str());
+  for (int a = 0; a < m.nu; ++a) std::printf(" %11s", num(d.actuator_force[a], "%.4f").c_str());
   std::printf("\n");
 }
 
@@ -339,13 +352,11 @@ void print_readouts(const Model& m, const Data& d) {
     std::string force = "-";
     for (int a = 0; a < m.nu; ++a) {
       if (m.actuator_trnid[a] != j) continue;
-      char buf[32];
-      std::snprintf(buf, sizeof buf, "%.6g", d.actuator_force[a]);
-      force = buf;
+      force = num(d.actuator_force[a]);
     }
-    std::printf("  %-10s %12.6g %12.6g %12.6g %12s %15.6g\n", label_of(m.jnt_name[j], j).c_str(),
-                d.qpos[m.jnt_qposadr[j]], d.qvel[v], d.qfrc_bias[v], force.c_str(),
-                d.qfrc_constraint[v]);
+    std::printf("  %-10s %12s %12s %12s %12s %15s\n", label_of(m.jnt_name[j], j).c_str(),
+                num(d.qpos[m.jnt_qposadr[j]]).c_str(), num(d.qvel[v]).c_str(),
+                num(d.qfrc_bias[v]).c_str(), force.c_str(), num(d.qfrc_constraint[v]).c_str());
   }
 }
 
@@ -384,14 +395,26 @@ int cmd_simulate(const std::vector<std::string>& argv) {
   Data data(model);
   set_state_from_args(args, model, data);  // --qpos, --qvel (and --ctrl, replaced below)
 
+  // one run is bounded: a mistyped --steps or --duration must not run for days
+  constexpr long kMaxSteps = 10'000'000;
   long steps = 0;
   if (args.has("steps")) {
     steps = args.get_long("steps", 0);
     if (steps < 0) throw UsageError{"--steps must not be negative"};
+    if (steps > kMaxSteps) {
+      throw UsageError{"--steps " + std::to_string(steps) + " is more than one run's limit of " +
+                       std::to_string(kMaxSteps) + " steps"};
+    }
   } else {
     const double duration = args.get_double("duration", 1.0);
     if (duration < 0) throw UsageError{"--duration must not be negative"};
-    steps = std::lround(duration / model.opt.timestep);
+    const double whole_steps = std::round(duration / model.opt.timestep);
+    if (!(whole_steps <= static_cast<double>(kMaxSteps))) {
+      throw UsageError{"--duration " + num(duration, "%g") + " s is more than one run's limit of " +
+                       std::to_string(kMaxSteps) + " steps of " + num(model.opt.timestep, "%g") +
+                       " s"};
+    }
+    steps = static_cast<long>(whole_steps);
   }
 
   Controller controller;
@@ -441,7 +464,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     print_summary_header(model);
   }
 
-  const std::vector<long> clamped = run(model, data, controller, steps, [&](long k, const Data& d) {
+  const RunLog log = run(model, data, controller, steps, [&](long k, const Data& d) {
     if (args.has("json")) json_row(d);
     if (csv) csv_row(csv.get(), model, d);
     if (text && (k % every == 0 || k == steps)) print_summary_row(model, d);
@@ -471,26 +494,21 @@ int cmd_simulate(const std::vector<std::string>& argv) {
 
   // what the physics does silently: clamped commands, and states reset after a blow-up
   long total = 0;
-  for (const long n : clamped) total += n;
+  for (const long n : log.clamped) total += n;
   if (total > 0) {
     std::string line = "lever simulate: commands clamped to ctrlrange/forcerange in";
     for (int a = 0; a < model.nu; ++a) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "%s %s %ld of %ld steps", a ? "," : "",
-                    label_of(model.actuator_name[a], a).c_str(), clamped[a], steps);
+                    label_of(model.actuator_name[a], a).c_str(), log.clamped[static_cast<size_t>(a)],
+                    steps);
       line += buf;
     }
     std::fprintf(stderr, "%s\n", line.c_str());
   }
-  int status = kOk;
-  for (int w = 0; w < static_cast<int>(Warning::kCount); ++w) {
-    if (data.warning[w].number == 0) continue;
-    std::fprintf(stderr, "lever simulate: warning %s raised %d times (last index %d)\n",
-                 warning_name(static_cast<Warning>(w)), data.warning[w].number,
-                 data.warning[w].lastinfo);
-    status = kFindings;
-  }
-  return status;
+  log.warnings.print("simulate");
+  if (log.non_finite_rows > 0) print_non_finite("simulate");
+  return log.warnings.count() > 0 || log.non_finite_rows > 0 ? kFindings : kOk;
 }
 
 }  // namespace lever::cli

@@ -4,6 +4,8 @@
 
 #include <Eigen/Core>
 
+#include <array>
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -40,16 +42,89 @@ inline JointUnits joint_units(const Model& model, int joint) {
   return {"m", "m/s", "m/s^2", "N"};
 }
 
+/// What text output prints for a number that is not finite (JSON prints null): never "nan" or
+/// "inf", so that a blow-up cannot pass for a value; the command says so on stderr.
+inline constexpr const char* kNonFinite = "n/a";
+
+/// One number with a printf format ("%.6g"), or kNonFinite.
+inline std::string num(double x, const char* fmt = "%.6g") {
+  if (!std::isfinite(x)) return kNonFinite;
+  char buf[48];
+  std::snprintf(buf, sizeof buf, fmt, x + 0.0);  // + 0.0: no "-0"
+  return buf;
+}
+
 /// "(a, b, c)" with %.6g numbers, for readable tables.
 inline std::string vec_text(const Eigen::Ref<const Eigen::VectorXd>& v, const char* fmt = "%.6g") {
   std::string s = "(";
   for (Eigen::Index i = 0; i < v.size(); ++i) {
-    char buf[48];
-    std::snprintf(buf, sizeof buf, fmt, v[i] + 0.0);  // + 0.0: no "-0"
     if (i > 0) s += ", ";
-    s += buf;
+    s += num(v[i], fmt);
   }
   return s + ")";
+}
+
+/// Whether every number forward() leaves in data (and the energy) is finite.
+inline bool outputs_finite(const Data& d) {
+  const auto all = [](const auto& list) {
+    for (const auto& x : list) {
+      if (!x.allFinite()) return false;
+    }
+    return true;
+  };
+  return d.qpos.allFinite() && d.qvel.allFinite() && d.ctrl.allFinite() && all(d.xpos) &&
+         all(d.xquat) && all(d.xmat) && all(d.xipos) && all(d.site_xpos) && all(d.site_xmat) &&
+         d.M.allFinite() && d.qfrc_bias.allFinite() && d.qfrc_passive.allFinite() &&
+         d.actuator_force.allFinite() && d.qfrc_actuator.allFinite() &&
+         d.qacc_smooth.allFinite() && d.qacc.allFinite() && d.qfrc_constraint.allFinite() &&
+         d.efc_pos.head(d.nefc).allFinite() && d.efc_force.head(d.nefc).allFinite() &&
+         d.efc_aref.head(d.nefc).allFinite() && d.efc_R.head(d.nefc).allFinite() &&
+         d.efc_D.head(d.nefc).allFinite() && std::isfinite(d.energy[0]) &&
+         std::isfinite(d.energy[1]);
+}
+
+/// The engine's warnings over many evaluations. Data keeps only those since its last reset (and
+/// step() resets a bad state, as mj_step), so a command moves them here after every call.
+class WarningLog {
+ public:
+  /// Add data's warnings to the log and clear them in data.
+  void collect(Data& data) {
+    for (size_t k = 0; k < total_.size(); ++k) {
+      if (data.warning[k].number == 0) continue;
+      total_[k].number += data.warning[k].number;
+      total_[k].lastinfo = data.warning[k].lastinfo;
+      data.warning[k] = {};
+    }
+  }
+
+  int count() const {
+    int n = 0;
+    for (const WarningStat& w : total_) n += w.number;
+    return n;
+  }
+
+  /// One line on stderr per kind of warning, as warning_text() words them:
+  /// "lever forward: warning: qvel is NaN or larger than 1e10 ... (1 time, last at index 0)".
+  void print(const char* command) const {
+    for (size_t k = 0; k < total_.size(); ++k) {
+      const WarningStat& w = total_[k];
+      if (w.number == 0) continue;
+      std::fprintf(stderr, "lever %s: warning: %s (%d %s, last at index %d)\n", command,
+                   warning_name(static_cast<Warning>(k)), w.number, w.number == 1 ? "time" : "times",
+                   w.lastinfo);
+    }
+  }
+
+ private:
+  std::array<WarningStat, static_cast<size_t>(Warning::kCount)> total_{};
+};
+
+/// The line a command prints on stderr when a number it printed was not finite.
+inline void print_non_finite(const char* command) {
+  std::fprintf(stderr,
+               "lever %s: error: the results hold numbers that are not finite (printed as %s in "
+               "text, null in JSON, empty in CSV)\n",
+               command, kNonFinite);
 }
 
 }  // namespace lever::cli

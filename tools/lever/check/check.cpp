@@ -76,6 +76,23 @@ void clamping_findings(const Clamping& c, std::vector<std::string>& findings) {
   }
 }
 
+// the engine's warnings are never silent: a run that raised one (a state reset after a blow-up)
+// has not checked what it was meant to
+void warning_findings(const Report& r, std::vector<std::string>& findings) {
+  for (const StopRest& s : r.stops.stops) {
+    if (s.warnings > 0) {
+      findings.push_back("joint " + s.joint + ": the run resting on its " +
+                         (s.upper ? "upper" : "lower") + " stop raised " +
+                         std::to_string(s.warnings) +
+                         " engine warnings (a state was reset): its result is not meaningful");
+    }
+  }
+  if (r.clamping.warnings > 0) {
+    findings.push_back("evaluating the motors' commands raised " +
+                       std::to_string(r.clamping.warnings) + " engine warnings");
+  }
+}
+
 }  // namespace
 
 Report run_check(const Inputs& inputs) {
@@ -94,6 +111,7 @@ Report run_check(const Inputs& inputs) {
   budget_findings(report.budget, report.findings);
   inertia_findings(report.inertia, report.structure, report.findings);
   clamping_findings(report.clamping, report.findings);
+  warning_findings(report, report.findings);
   return report;
 }
 
