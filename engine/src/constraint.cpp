@@ -49,6 +49,8 @@ double impedance(const std::array<double, 5>& solimp, double pos, double margin)
   double y;
   if (power == 1) {
     y = x;
+  } else if (power == 2) {  // the default: spare two calls to pow
+    y = x <= mid ? x * x / mid : 1 - (1 - x) * (1 - x) / (1 - mid);
   } else if (x <= mid) {
     y = std::pow(x, power) / std::pow(mid, power - 1);
   } else {

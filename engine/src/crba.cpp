@@ -38,8 +38,9 @@ void crba(const Model& model, Data& data) {
 
 namespace {
 
-// In-place LTDL factorization of H: on return D is on the diagonal and L (unit diagonal implied)
-// below it. Returns the first dof whose pivot was not positive, or -1.
+// In-place LTDL factorization of the symmetric H, working in its upper triangle: on return D is
+// on the diagonal and L^T above it (L(k, i), i an ancestor of k, at (i, k)), so that every inner
+// loop runs down one column. Returns the first dof whose pivot was not positive, or -1.
 int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
   constexpr double kMinPivot = 1e-15;  // as MuJoCo's mjMINVAL: keep the solve finite
   int bad = -1;
@@ -48,10 +49,12 @@ int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) 
       bad = k;
       H(k, k) = kMinPivot;
     }
+    const double* Hk = &H(0, k);  // column k: H(j, k) for the ancestors j of k
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
-      const double a = H(k, i) / H(k, k);
-      for (int j = i; j >= 0; j = model.dof_parentid[j]) H(i, j) -= a * H(k, j);
-      H(k, i) = a;
+      const double a = Hk[i] / Hk[k];
+      double* Hi = &H(0, i);
+      for (int j = i; j >= 0; j = model.dof_parentid[j]) Hi[j] -= a * Hk[j];
+      H(i, k) = a;
     }
   }
   for (int k = 0; k < model.nv; ++k) diag_inverse[k] = 1.0 / H(k, k);
@@ -64,13 +67,15 @@ void ltdl_solve(const Model& model, const Eigen::MatrixXd& LD, const Eigen::Vect
   const int n = model.nv;
   // x <- L^-T x, leaves to root
   for (int k = n - 1; k >= 0; --k) {
-    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= LD(k, i) * x[k];
+    const double* Lk = &LD(0, k);
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= Lk[i] * x[k];
   }
   // x <- D^-1 x
   for (int k = 0; k < n; ++k) x[k] *= diag_inverse[k];
   // x <- L^-1 x, root to leaves
   for (int k = 0; k < n; ++k) {
-    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[k] -= LD(k, i) * x[i];
+    const double* Lk = &LD(0, k);
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[k] -= Lk[i] * x[i];
   }
 }
 

@@ -143,8 +143,11 @@ void jac_point(const Model& model, const Data& data, int body, const Eigen::Vect
   if (b == 0) return;
   for (int i = model.body_dofadr[b] + model.body_dofnum[b] - 1; i >= 0; i = model.dof_parentid[i]) {
     const Motion& S = data.cdof[i];
-    jacr.col(i) = S.head<3>();
-    jacp.col(i) = S.tail<3>() + cross(S.head<3>(), offset);  // the point's velocity per unit rate
+    const Eigen::Vector3d v = S.tail<3>() + cross(S.head<3>(), offset);  // point velocity per unit rate
+    for (int row = 0; row < 3; ++row) {
+      jacr(row, i) = S[row];
+      jacp(row, i) = v[row];
+    }
   }
 }
 

@@ -72,7 +72,8 @@ struct Data {
 
   // ---- position stage: crba(), factor_mass() --------------------------------------------------
   Eigen::MatrixXd M;       ///< (nv x nv) joint-space inertia, full and symmetric, armature included
-  Eigen::MatrixXd qLD;     ///< (nv x nv) M = L^T D L: D on the diagonal, L below it (unit diagonal implied)
+  Eigen::MatrixXd qLD;     ///< (nv x nv) M = L^T D L: D on the diagonal, L^T above it (L(k, i) at
+                           ///< (i, k); unit diagonal implied), the rest unused
   Eigen::VectorXd qLDiagInv;  ///< (nv) 1 / D
 
   // ---- position stage: actuator transmission ---------------------------------------------------
