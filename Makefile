@@ -57,3 +57,19 @@ agreement: configure
 	@$(LEVER) diff --markdown models/*.xml tests/models/*.xml > docs/agreement.md; status=$$?; \
 	  [ $$status -le 1 ] || exit $$status; \
 	  echo "wrote docs/agreement.md (lever diff: exit status $$status)"
+
+# make fuzz: the libFuzzer targets (fuzz/) built with clang++-14 under ASan+UBSan in build-fuzz,
+# each run for FUZZ_SECONDS (default 60) from a seed corpus made from the models; prints the
+# executions and findings of each, and fails on a finding. Needs clang-14 and libclang-rt-14-dev
+# (installed by scripts/setup.sh fuzz when missing).
+FUZZ_BUILD ?= build-fuzz
+FUZZ_SECONDS ?= 60
+.PHONY: fuzz fuzz-build
+fuzz-build:
+	@scripts/setup.sh fuzz
+	@CXX=clang++-14 cmake -S . -B $(FUZZ_BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo -DLEVER_FUZZ=ON \
+	  -DLEVER_SANITIZE="address;undefined" -DLEVER_BUILD_TESTS=OFF -DLEVER_BUILD_TOOLS=OFF \
+	  -DLEVER_BUILD_BENCH=OFF -DLEVER_WITH_MUJOCO=OFF > $(FUZZ_BUILD).configure.log || (cat $(FUZZ_BUILD).configure.log; exit 1)
+	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_mjcf fuzz_engine fuzz_dict
+fuzz: fuzz-build
+	@BUILD=$(FUZZ_BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) fuzz/run.sh

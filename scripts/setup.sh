@@ -13,6 +13,11 @@ packages=(
   liborocos-kdl-dev    # bench/ peer
 )
 
+# `scripts/setup.sh fuzz`: also what `make fuzz` needs (clang and its libFuzzer runtime)
+if [ "${1:-}" = "fuzz" ]; then
+  packages+=(clang-14 libclang-rt-14-dev)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
