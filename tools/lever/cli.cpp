@@ -19,8 +19,12 @@ double parse_double(const std::string& text, const std::string& what) {
   errno = 0;
   char* end = nullptr;
   const double x = std::strtod(text.c_str(), &end);
-  if (text.empty() || end != text.c_str() + text.size() || errno == ERANGE) {
+  if (text.empty() || end != text.c_str() + text.size()) {
     throw UsageError{what + ": '" + text + "' is not a number"};
+  }
+  // ERANGE: an overflow is refused; an underflow to a denormal or zero is a number (4.9e-324)
+  if (errno == ERANGE && std::isinf(x)) {
+    throw UsageError{what + ": '" + text + "' is too large for a double"};
   }
   if (!std::isfinite(x)) throw UsageError{what + ": '" + text + "' is not a finite number"};
   return x;

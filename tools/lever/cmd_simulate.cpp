@@ -89,11 +89,13 @@ RunLog run(const Model& model, Data& data, const Controller& c, long steps,
     if (c.gravity_compensation) forward(model, data);  // qfrc_bias of the current state
     apply(model, c, data);
     forward(model, data);  // the row: everything at this state under this ctrl
+    // a bad command is zeroed, not clamped: the warning says so, the clamping count does not
+    const bool bad_ctrl = data.warning[static_cast<int>(Warning::kBadCtrl)].number > 0;
     log.warnings.collect(data);
     if (!outputs_finite(data)) ++log.non_finite_rows;
     on_row(k, data);
     if (k == steps) break;
-    for (int a = 0; a < model.nu; ++a) {
+    for (int a = 0; a < model.nu && !bad_ctrl; ++a) {
       // the gain of a motor is 1, so any difference is ctrlrange or forcerange clamping
       if (data.actuator_force[a] != data.ctrl[a]) ++log.clamped[static_cast<size_t>(a)];
     }
@@ -492,7 +494,10 @@ int cmd_simulate(const std::vector<std::string>& argv) {
         plot::to_svg(make_figure(model, record, describe(model, controller, start_qpos))));
   }
 
-  // what the physics does silently: clamped commands, and states reset after a blow-up
+  // what the physics does silently: states reset after a blow-up (and other engine warnings),
+  // numbers that came out non-finite, clamped commands
+  log.warnings.print("simulate");
+  if (log.non_finite_rows > 0) print_non_finite("simulate");
   long total = 0;
   for (const long n : log.clamped) total += n;
   if (total > 0) {
@@ -506,8 +511,6 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     }
     std::fprintf(stderr, "%s\n", line.c_str());
   }
-  log.warnings.print("simulate");
-  if (log.non_finite_rows > 0) print_non_finite("simulate");
   return log.warnings.count() > 0 || log.non_finite_rows > 0 ? kFindings : kOk;
 }
 
