@@ -66,18 +66,6 @@ Report random_states(Twin& twin, int states, std::uint64_t seed) {
 
 namespace {
 
-// A MuJoCo data at state s, as Twin::set_state writes it.
-void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s) {
-  d->time = s.time;
-  for (int i = 0; i < m->nq; ++i) d->qpos[i] = s.qpos[i];
-  for (int i = 0; i < m->nv; ++i) {
-    d->qvel[i] = s.qvel[i];
-    d->qfrc_applied[i] = s.qfrc_applied[i];
-    d->qacc_warmstart[i] = 0.0;
-  }
-  for (int a = 0; a < m->nu; ++a) d->ctrl[a] = s.ctrl[a];
-}
-
 std::vector<double> full_mass_matrix(const mjModel* m, const mjData* d) {
   std::vector<double> M(static_cast<std::size_t>(m->nv) * m->nv);
   mj_fullM(m, M.data(), d->qM);

@@ -53,8 +53,7 @@ void Twin::set_integrator(Integrator integrator) {
   m->opt.integrator = integrator == Integrator::kRK4 ? mjINT_RK4 : mjINT_EULER;
 }
 
-void Twin::set_state(const test::State& s) {
-  test::apply(s, data);
+void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s) {
   d->time = s.time;
   for (int i = 0; i < m->nq; ++i) d->qpos[i] = s.qpos[i];
   for (int i = 0; i < m->nv; ++i) {
@@ -63,6 +62,11 @@ void Twin::set_state(const test::State& s) {
     d->qacc_warmstart[i] = 0.0;
   }
   for (int a = 0; a < m->nu; ++a) d->ctrl[a] = s.ctrl[a];
+}
+
+void Twin::set_state(const test::State& s) {
+  test::apply(s, data);
+  set_mujoco_state(m.get(), d.get(), s);
 }
 
 void Twin::follow_mujoco() {

@@ -23,6 +23,9 @@ const char* path_name(Path path);
 /// One line saying what the path compares.
 const char* path_description(Path path);
 
+/// Write state s into MuJoCo's data, with the warm start cleared as after mj_resetData.
+void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s);
+
 /// lever and MuJoCo on the same model file. MuJoCo's energy computation is switched on.
 class Twin {
  public:
