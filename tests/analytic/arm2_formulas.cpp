@@ -17,6 +17,7 @@
 
 #include "random_state.hpp"
 #include "test_models.hpp"
+#include "two_link.hpp"
 
 namespace lever::test {
 
@@ -24,60 +25,6 @@ namespace {
 
 constexpr double kBound = 1e-13;
 constexpr int kPoses = 1000;
-
-// The two-link arm's parameters, as the lesson names them, read from the compiled model.
-struct TwoLink {
-  double L1, L2;  // shoulder to elbow, elbow to the ee site (m)
-  double m1, m2;  // kg
-  double c1, c2;  // centre of mass from its joint (m)
-  double I1, I2;  // moment of inertia about the centre of mass, about the joint axis (kg m^2)
-  double g;       // m/s^2
-  Eigen::Vector3d shoulder;  // the shoulder axis' position in the world (m)
-};
-
-TwoLink parameters(const Model& model) {
-  const int link1 = model.body("link1"), link2 = model.body("link2"), ee = model.site("ee");
-  REQUIRE(link1 > 0);
-  REQUIRE(link2 > 0);
-  REQUIRE(ee >= 0);
-  TwoLink p;
-  p.L1 = model.body_pos[link2].x();
-  p.L2 = model.site_pos[ee].x();
-  p.m1 = model.body_mass[link1];
-  p.m2 = model.body_mass[link2];
-  p.c1 = model.body_ipos[link1].x();
-  p.c2 = model.body_ipos[link2].x();
-  p.I1 =
-      model.body_inertia[link1].y();  // the hinges turn about -y; the principal axes are the body's
-  p.I2 = model.body_inertia[link2].y();
-  p.g = -model.opt.gravity.z();
-  p.shoulder = model.body_pos[link1];
-  return p;
-}
-
-// Tip position (x, z) in the arm's plane: L1 cos q1 + L2 cos(q1 + q2), L1 sin q1 + L2 sin(q1 + q2).
-Eigen::Vector3d tip(const TwoLink& p, double q1, double q2) {
-  return p.shoulder + Eigen::Vector3d(p.L1 * std::cos(q1) + p.L2 * std::cos(q1 + q2), 0.0,
-                                      p.L1 * std::sin(q1) + p.L2 * std::sin(q1 + q2));
-}
-
-// tau_g = dV/dq with V = g [m1 c1 sin q1 + m2 (L1 sin q1 + c2 sin(q1 + q2))].
-Eigen::Vector2d gravity_torque(const TwoLink& p, double q1, double q2) {
-  const double t2 = p.g * p.m2 * p.c2 * std::cos(q1 + q2);
-  return {p.g * (p.m1 * p.c1 + p.m2 * p.L1) * std::cos(q1) + t2, t2};
-}
-
-// The 2x2 mass matrix of the two-link arm.
-Eigen::Matrix2d mass_matrix(const TwoLink& p, double q2) {
-  const double c = std::cos(q2);
-  const double m22 = p.I2 + p.m2 * p.c2 * p.c2;
-  const double m12 = m22 + p.m2 * p.L1 * p.c2 * c;
-  const double m11 =
-      p.I1 + p.m1 * p.c1 * p.c1 + p.I2 + p.m2 * (p.L1 * p.L1 + p.c2 * p.c2 + 2 * p.L1 * p.c2 * c);
-  Eigen::Matrix2d M;
-  M << m11, m12, m12, m22;
-  return M;
-}
 
 Model arm2() { return mjcf::load_file(model_path("models/arm2.xml")); }
 
@@ -95,7 +42,7 @@ void random_pose(const Model& model, Data& data, std::mt19937_64& rng) {
 TEST_CASE("analytic: arm2's tip, gravity torque and M agree with the closed forms",
           "[analytic][arm2]") {
   const Model model = arm2();
-  const TwoLink p = parameters(model);
+  const TwoLink p = two_link(model);
   const int ee = model.site("ee");
   Data data(model);
   std::mt19937_64 rng(seed_for("arm2.xml"));
@@ -123,7 +70,7 @@ TEST_CASE("analytic: arm2's tip, gravity torque and M agree with the closed form
 
 TEST_CASE("analytic: the lesson's motor sizing, computed by the engine", "[analytic][arm2]") {
   const Model model = arm2();
-  const TwoLink p = parameters(model);
+  const TwoLink p = two_link(model);
   const Eigen::Vector2d limit(model.actuator_ctrlrange[0][1], model.actuator_ctrlrange[1][1]);
   Data data(model);
   reset(model, data);  // qpos0: the arm horizontal, the largest gravity torque at both joints
@@ -171,7 +118,7 @@ TEST_CASE("analytic: the lesson's motor sizing, computed by the engine", "[analy
 // geometry, masses and motors of lesson 5.1, and the results it prints from them.
 TEST_CASE("analytic: arm2.xml makes the lesson's claims", "[analytic][arm2][lesson]") {
   const Model model = arm2();
-  const TwoLink p = parameters(model);
+  const TwoLink p = two_link(model);
   CHECK(p.L1 == 0.5);
   CHECK(p.L2 == 0.4);
   CHECK(p.m1 == 1.0);

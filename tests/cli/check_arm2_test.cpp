@@ -14,41 +14,12 @@
 #include "json.hpp"
 #include "run_lever.hpp"
 #include "test_models.hpp"
+#include "two_link.hpp"
 
 namespace lever::test {
 
 namespace {
 
-// The two-link arm as the lesson names it, read from the compiled model.
-struct TwoLink {
-  double L1, L2, m1, m2, c1, c2, I1, I2, g;
-  double r1, r2;          // capsule radii of the two links (m), for the inferred masses
-  double limit1, limit2;  // motor limits (N m)
-  double lower1;          // the shoulder's lower stop (rad)
-};
-
-TwoLink parameters(const Model& model) {
-  const int link1 = model.body("link1"), link2 = model.body("link2"), ee = model.site("ee");
-  REQUIRE((link1 > 0 && link2 > 0 && ee >= 0));
-  TwoLink p;
-  p.L1 = model.body_pos[link2].x();
-  p.L2 = model.site_pos[ee].x();
-  p.m1 = model.body_mass[link1];
-  p.m2 = model.body_mass[link2];
-  p.c1 = model.body_ipos[link1].x();
-  p.c2 = model.body_ipos[link2].x();
-  p.I1 = model.body_inertia[link1].y();
-  p.I2 = model.body_inertia[link2].y();
-  p.g = -model.opt.gravity.z();
-  p.r1 = model.geom_size[model.geom("link1")].x();
-  p.r2 = model.geom_size[model.geom("link2")].x();
-  p.limit1 = model.actuator_ctrlrange[0][1];
-  p.limit2 = model.actuator_ctrlrange[1][1];
-  p.lower1 = model.jnt_range[0][0];
-  return p;
-}
-
-// A solid capsule of radius r and cylinder length L at density 1000 (what MuJoCo infers).
 double capsule_mass(double r, double L) {
   return 1000.0 * std::numbers::pi * r * r * (L + 4.0 * r / 3.0);
 }
@@ -85,7 +56,7 @@ double shoulder_rest_angle(const Model& model, Data& data) {
 
 struct Arm2 {
   Model model = mjcf::load_file(model_path("models/arm2.xml"));
-  TwoLink p = parameters(model);
+  TwoLink p = two_link(model);
   Run text = run_lever("check " + quoted(model_path("models/arm2.xml")));
 };
 
@@ -147,11 +118,9 @@ TEST_CASE("check arm2: (3) gravity torque and motor sizing, the lesson's numbers
   contains(out, "shoulder allows " + format("%.2f", pay1) + " kg, elbow allows " +
                     format("%.2f", pay2) + " kg -> " + format("%.2f", std::min(pay1, pay2)) +
                     " kg");
-  // M(q) at q = 0: M11 = I1 + I2 + m1 c1^2 + m2 (L1^2 + c2^2 + 2 L1 c2), ...
-  const double M11 =
-      p.I1 + p.I2 + p.m1 * p.c1 * p.c1 + p.m2 * (p.L1 * p.L1 + p.c2 * p.c2 + 2 * p.L1 * p.c2);
-  const double M12 = p.I2 + p.m2 * (p.c2 * p.c2 + p.L1 * p.c2);
-  const double M22 = p.I2 + p.m2 * p.c2 * p.c2;
+  // M(q) with the arm horizontal (q2 = 0), from the lesson's closed form
+  const Eigen::Matrix2d M = mass_matrix(p, 0.0);
+  const double M11 = M(0, 0), M12 = M(0, 1), M22 = M(1, 1);
   contains(out, "M(q) at this pose: [[" + python_round4(M11) + ", " + python_round4(M12) + "], [" +
                     python_round4(M12) + ", " + python_round4(M22) + "]] kg m^2");
   const double spare = p.limit1 - tau1, acc = spare / M11, elbow = M12 * acc + tau2;
