@@ -24,6 +24,22 @@ demo: build
 test: build
 	ctest --test-dir $(BUILD) --output-on-failure -j $(JOBS)
 
+# make test-asan: the whole suite again in a Debug build (assertions on, Eigen's bounds checks
+# included; -O1, as ASan recommends, so that the MuJoCo comparisons run in minutes) with
+# AddressSanitizer and UndefinedBehaviorSanitizer (-fno-sanitize-recover=all: any finding fails
+# its test). MuJoCo, KDL
+# and tinyxml2 are Debian's prebuilt libraries, not instrumented. .ci/run runs it after make test.
+ASAN_BUILD ?= build-asan
+.PHONY: test-asan
+test-asan: setup
+	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
+	  -DLEVER_SANITIZE="address;undefined" \
+	  > $(ASAN_BUILD).configure.log || (cat $(ASAN_BUILD).configure.log; exit 1)
+	@cmake --build $(ASAN_BUILD) -j $(JOBS)
+	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1 \
+	  UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
+	  ctest --test-dir $(ASAN_BUILD) --output-on-failure -j $(JOBS)
+
 clean:
 	rm -rf $(BUILD) $(BUILD).configure.log
 
