@@ -89,3 +89,26 @@ fuzz-build:
 	@cmake --build $(FUZZ_BUILD) -j $(JOBS) --target fuzz_mjcf fuzz_engine fuzz_dict
 fuzz: fuzz-build
 	@BUILD=$(FUZZ_BUILD) FUZZ_SECONDS=$(FUZZ_SECONDS) fuzz/run.sh
+
+# make lint: clang-tidy (.clang-tidy) and cppcheck over lever's own code: engine/, mjcf_lite/,
+# tools/, tests/, examples/, fuzz/; not bench/ nor the benchmark engineer's batch and allocation
+# files. Uses the compile commands of $(BUILD). make format-check: clang-format (.clang-format)
+# would change no file of the same set; make format rewrites them.
+LINT_EXCLUDE = ^bench/|^tests/alloc/|^engine/src/batch\.cpp$$|^engine/include/lever/batch\.hpp$$
+LINT_SOURCES = $(shell git ls-files 'engine/*.cpp' 'mjcf_lite/*.cpp' 'tools/*.cpp' 'tests/*.cpp' 'examples/*.cpp' 'fuzz/*.cpp' | grep -v -E '$(LINT_EXCLUDE)')
+FORMAT_FILES = $(shell git ls-files '*.cpp' '*.hpp' '*.h' | grep -v -E '$(LINT_EXCLUDE)')
+.PHONY: lint format format-check
+lint: build
+	@scripts/setup.sh lint
+	run-clang-tidy-14 -p $(BUILD) -quiet -j $(JOBS) $(addprefix $(CURDIR)/,$(filter-out fuzz/fuzz_%.cpp,$(LINT_SOURCES)))
+	cppcheck --std=c++20 --language=c++ --enable=warning,performance,portability --inline-suppr \
+	  --suppress=missingIncludeSystem --suppress=missingInclude --quiet -j $(JOBS) --error-exitcode=1 \
+	  -I engine/include -I mjcf_lite/include -I tools/plot/include -I tools/diff/include \
+	  -I tests/support -I fuzz "-DTEST_CASE(...)=void test_case()" "-DSECTION(...)=if (true)" \
+	  "-DDYNAMIC_SECTION(...)=if (true)" $(LINT_SOURCES)
+format-check:
+	@scripts/setup.sh lint
+	@clang-format-14 --dry-run --Werror $(FORMAT_FILES) && echo "format-check: $(words $(FORMAT_FILES)) files formatted"
+format:
+	@scripts/setup.sh lint
+	clang-format-14 -i $(FORMAT_FILES)

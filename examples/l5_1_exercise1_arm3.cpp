@@ -77,6 +77,7 @@ int main(int argc, char** argv) try {
       "  (ratio: motor limit / qfrc_bias; random max: the largest |qfrc_bias| over 1000 random "
       "poses at rest)\n");
   const double shoulder_limit = model.actuator_ctrlrange[0][1];
+  // cppcheck-suppress invalidPrintfArgType_float // std::abs(double) is a double (<cmath>)
   std::printf(
       "shoulder torque ratio: by hand %.2f, by qfrc_bias %.2f (|difference| %.1e N m in the "
       "torque)\n",

@@ -14,8 +14,12 @@ packages=(
 )
 
 # `scripts/setup.sh fuzz`: also what `make fuzz` needs (clang and its libFuzzer runtime)
+# `scripts/setup.sh lint`: what `make lint` and `make format-check` need
 if [ "${1:-}" = "fuzz" ]; then
   packages+=(clang-14 libclang-rt-14-dev)
+fi
+if [ "${1:-}" = "lint" ]; then
+  packages+=(clang-tidy-14 clang-format-14 cppcheck)
 fi
 
 missing=()

@@ -17,11 +17,10 @@ const char* warning_name(Warning w) {
 }
 
 Data::Data(const Model& model)
-    : nefc_max(2 * model.njnt), nq(model.nq), nv(model.nv), nu(model.nu) {
+    : qpos(model.qpos0), nefc_max(2 * model.njnt), nq(model.nq), nv(model.nv), nu(model.nu) {
   const int nbody = model.nbody;
   const int nsite = model.nsite;
 
-  qpos = model.qpos0;
   qvel = Eigen::VectorXd::Zero(nv);
   ctrl = Eigen::VectorXd::Zero(nu);
   qfrc_applied = Eigen::VectorXd::Zero(nv);

@@ -32,7 +32,7 @@ constexpr long kMemoryBoundKb = 1L << 20;      // 1 GiB (ASan's shadow memory is
 
 const std::filesystem::path& dir() {
   static const std::filesystem::path d = [] {
-    const auto p = std::filesystem::temp_directory_path() /
+    auto p = std::filesystem::temp_directory_path() /
                    ("lever-hostile-" + std::to_string(::getpid()));
     std::filesystem::create_directories(p);
     return p;

@@ -18,8 +18,6 @@
 #include <thread>
 #include <vector>
 
-extern char** environ;
-
 namespace lever::test {
 
 struct Process {
@@ -52,6 +50,7 @@ inline Process run_process(const std::vector<std::string>& argv, double limit_se
   posix_spawn_file_actions_addopen(&actions, 1, out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
   posix_spawn_file_actions_addopen(&actions, 2, err.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0600);
   std::vector<char*> args;
+  args.reserve(argv.size() + 1);
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
 

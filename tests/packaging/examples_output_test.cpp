@@ -119,6 +119,7 @@ std::vector<double> link_lengths(const lever::Model& model) {
   lever::Data data(model);
   lever::kinematics(model, data);
   std::vector<Eigen::Vector3d> points;
+  points.reserve(static_cast<size_t>(model.njnt) + 1);
   for (int j = 0; j < model.njnt; ++j) points.push_back(data.xpos[model.jnt_bodyid[j]]);
   points.push_back(data.site_xpos[model.site("ee")]);
   std::vector<double> lengths;

@@ -41,7 +41,7 @@ Args::Args(const std::vector<std::string>& argv, const std::vector<std::string>&
       const bool inline_value = eq != std::string::npos;
       if (inline_value) {
         value = name.substr(eq + 1);
-        name = name.substr(0, eq);
+        name.resize(eq);
       }
       if (contains(valued, name)) {
         if (!inline_value) {

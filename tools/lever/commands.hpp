@@ -7,10 +7,10 @@
 
 namespace lever::cli {
 
-int cmd_model(const std::vector<std::string>& args);
-int cmd_check(const std::vector<std::string>& args);
-int cmd_forward(const std::vector<std::string>& args);
-int cmd_simulate(const std::vector<std::string>& args);
-int cmd_diff(const std::vector<std::string>& args);
+int cmd_model(const std::vector<std::string>& argv);
+int cmd_check(const std::vector<std::string>& argv);
+int cmd_forward(const std::vector<std::string>& argv);
+int cmd_simulate(const std::vector<std::string>& argv);
+int cmd_diff(const std::vector<std::string>& argv);
 
 }  // namespace lever::cli

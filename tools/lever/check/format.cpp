@@ -9,6 +9,7 @@ namespace {
 std::string printf_string(const char* format, double x, int digits = -1) {
   char buf[64];
   if (digits >= 0) {
+    // cppcheck-suppress [invalidPrintfArgType_float, wrongPrintfScanfArgNum] // format has "%.*"
     std::snprintf(buf, sizeof buf, format, digits, x);
   } else {
     std::snprintf(buf, sizeof buf, format, x);

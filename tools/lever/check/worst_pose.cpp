@@ -219,6 +219,7 @@ std::vector<WorstPose> worst_gravity_poses(const Model& model, GravityProbe& pro
   how = "all joints at 0, qpos0, each range end, " + how +
         ", then coordinate ascent from the best " + std::to_string(kStartsPerJoint) + " of them";
   std::vector<WorstPose> worst;
+  worst.reserve(static_cast<size_t>(model.njnt));
   for (int i = 0; i < model.njnt; ++i)
     worst.push_back(worst_for_joint(model, probe, candidates, i));
   return worst;
