@@ -95,7 +95,7 @@ class Bytes {
       case 3: return 1e300;
       case 4: return -1e300;
       case 5: return std::numeric_limits<double>::denorm_min();
-      case 6: return 1e10;  // MuJoCo's bound: not yet bad
+      case 6: return 1e10;                        // MuJoCo's bound: not yet bad
       case 7: return std::nextafter(1e10, 2e10);  // just bad
       case 8: return std::numeric_limits<double>::max();
       case 9: return -0.0;
@@ -200,7 +200,8 @@ int engine_model_count(const std::string& models_dir) {
   return static_cast<int>(models(models_dir).size());
 }
 
-std::string check_engine(const std::uint8_t* data, std::size_t size, const std::string& models_dir) {
+std::string check_engine(const std::uint8_t* data, std::size_t size,
+                         const std::string& models_dir) {
   const std::vector<Prepared>& all = models(models_dir);
   if (all.empty()) return "no model of models/ or tests/models/ could be loaded";
   Bytes in(data, size);

@@ -38,7 +38,7 @@ void actuation(const Model& model, Data& data) {
   bool bad = false;
   for (int a = 0; a < model.nu; ++a) {
     force[a] = model.actuator_ctrllimited[a] ? clamp(data.ctrl[a], model.actuator_ctrlrange[a])
-                                              : data.ctrl[a];
+                                             : data.ctrl[a];
     if (!bad && is_bad(force[a])) {
       bad = true;
       record_warning(data, Warning::kBadCtrl, a);

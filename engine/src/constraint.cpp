@@ -61,7 +61,8 @@ double impedance(const std::array<double, 5>& solimp, double pos, double margin)
 
 // Cholesky factor (lower, in place) of the rows/columns of A listed in idx[0..n); false if not
 // positive definite. L is written into L(0..n, 0..n).
-bool cholesky_subset(const Eigen::MatrixXd& A, const std::vector<int>& idx, int n, Eigen::MatrixXd& L) {
+bool cholesky_subset(const Eigen::MatrixXd& A, const std::vector<int>& idx, int n,
+                     Eigen::MatrixXd& L) {
   for (int c = 0; c < n; ++c) {
     for (int r = c; r < n; ++r) {
       double s = A(idx[r], idx[c]);
@@ -114,7 +115,8 @@ void make_constraint(const Model& model, Data& data) {
     data.efc_diagApprox[r] = data.efc_R[r] * imp / (1 - imp);
     // K and B use dmax, not the current impedance
     if (solref[0] > 0) {
-      data.efc_K[r] = 1 / std::max(kMinVal, dmax * dmax * solref[0] * solref[0] * solref[1] * solref[1]);
+      data.efc_K[r] =
+          1 / std::max(kMinVal, dmax * dmax * solref[0] * solref[0] * solref[1] * solref[1]);
     } else {
       data.efc_K[r] = -solref[0] / std::max(kMinVal, dmax * dmax);
     }
@@ -171,7 +173,7 @@ void solve_constraint(const Model& model, Data& data) {
     f.head(n).setZero();
     if (m > 0) {
       cholesky_subset(w.A, idx, m, w.L);  // (A + R)_SS is positive definite: R > 0
-      for (int k = 0; k < m; ++k) {  // forward substitution
+      for (int k = 0; k < m; ++k) {       // forward substitution
         double s = -data.efc_b[idx[k]];
         for (int c = 0; c < k; ++c) s -= w.L(k, c) * f[idx[c]];
         f[idx[k]] = s / w.L(k, k);

@@ -15,7 +15,8 @@ namespace {
 
 // tau = ID(q, qd, qdd) without armature; qdd == nullptr means zero acceleration. Also leaves the
 // body velocities and the derivatives of the motion subspaces in data (cvel, cdof_dot).
-void newton_euler(const Model& model, Data& data, const double* qdd, Eigen::Ref<Eigen::VectorXd> tau) {
+void newton_euler(const Model& model, Data& data, const double* qdd,
+                  Eigen::Ref<Eigen::VectorXd> tau) {
   auto& v = data.cvel;
   auto& a = data.work.cacc;
   auto& f = data.work.cfrc;

@@ -99,45 +99,34 @@ void require_finite(const Place& at, const char* what, const Arrays&... arrays) 
 // how many sizes each geom type uses, and what they mean
 int sizes_used(GeomType type) {
   switch (type) {
-    case GeomType::kSphere:
-      return 1;
+    case GeomType::kSphere: return 1;
     case GeomType::kCapsule:
-    case GeomType::kCylinder:
-      return 2;
+    case GeomType::kCylinder: return 2;
     case GeomType::kEllipsoid:
-    case GeomType::kBox:
-      return 3;
+    case GeomType::kBox: return 3;
   }
   return 3;
 }
 
 const char* type_name(GeomType type) {
   switch (type) {
-    case GeomType::kSphere:
-      return "sphere";
-    case GeomType::kCapsule:
-      return "capsule";
-    case GeomType::kCylinder:
-      return "cylinder";
-    case GeomType::kEllipsoid:
-      return "ellipsoid";
-    case GeomType::kBox:
-      return "box";
+    case GeomType::kSphere: return "sphere";
+    case GeomType::kCapsule: return "capsule";
+    case GeomType::kCylinder: return "cylinder";
+    case GeomType::kEllipsoid: return "ellipsoid";
+    case GeomType::kBox: return "box";
   }
   return "geom";
 }
 
 const char* size_meaning(GeomType type) {
   switch (type) {
-    case GeomType::kSphere:
-      return "a positive radius: size=\"r\"";
+    case GeomType::kSphere: return "a positive radius: size=\"r\"";
     case GeomType::kCapsule:
     case GeomType::kCylinder:
       return "a positive radius and half-length: size=\"r h\" (or size=\"r\" with fromto)";
-    case GeomType::kEllipsoid:
-      return "three positive semi-axes: size=\"a b c\"";
-    case GeomType::kBox:
-      return "three positive half-sizes: size=\"x y z\"";
+    case GeomType::kEllipsoid: return "three positive semi-axes: size=\"a b c\"";
+    case GeomType::kBox: return "three positive half-sizes: size=\"x y z\"";
   }
   return "";
 }
@@ -655,8 +644,6 @@ void Compiler::assemble_motors(Model& m) const {
 
 }  // namespace
 
-Model compile(const ModelSpec& spec, Locations* where) {
-  return Compiler(spec).run(where);
-}
+Model compile(const ModelSpec& spec, Locations* where) { return Compiler(spec).run(where); }
 
 }  // namespace lever::mjcf::detail

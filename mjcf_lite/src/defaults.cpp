@@ -31,8 +31,8 @@ void check_physical(const Element& e, const Attribute& a, const Value& v) {
   // negative armature, damping or stiffness makes a joint gain energy from nothing (and
   // set_const() refuses them): say so where they are written
   const bool must_not_be_negative =
-      (a.name == "mass" || a.name == "density" || a.name == "diaginertia" ||
-       a.name == "armature" || a.name == "damping" || a.name == "stiffness");
+      (a.name == "mass" || a.name == "density" || a.name == "diaginertia" || a.name == "armature" ||
+       a.name == "damping" || a.name == "stiffness");
   for (const double x : v.numbers) {
     if (must_not_be_negative && x < 0) {
       fail(e.place(a), a.name,

@@ -8,16 +8,11 @@ double geom_volume(GeomType type, const Vec3& size) {
   const double r = size[0];
   const double h = 2 * size[1];  // full height of a capsule's or cylinder's cylindrical part
   switch (type) {
-    case GeomType::kSphere:
-      return 4 * kPi * r * r * r / 3;
-    case GeomType::kCapsule:
-      return kPi * (r * r * h + 4 * r * r * r / 3);
-    case GeomType::kCylinder:
-      return kPi * r * r * h;
-    case GeomType::kEllipsoid:
-      return 4 * kPi * size[0] * size[1] * size[2] / 3;
-    case GeomType::kBox:
-      return size[0] * size[1] * size[2] * 8;
+    case GeomType::kSphere: return 4 * kPi * r * r * r / 3;
+    case GeomType::kCapsule: return kPi * (r * r * h + 4 * r * r * r / 3);
+    case GeomType::kCylinder: return kPi * r * r * h;
+    case GeomType::kEllipsoid: return 4 * kPi * size[0] * size[1] * size[2] / 3;
+    case GeomType::kBox: return size[0] * size[1] * size[2] * 8;
   }
   return 0;
 }

@@ -67,9 +67,11 @@ Model load_string(const std::string& xml, const std::string& filename, const Loa
       const detail::Place& at = (*places)[static_cast<size_t>(e.index())];
       throw ParseError(filename, at.line, at.tag, "", e.what(), at.name);
     }
-    throw ParseError(filename, 0, "", "", std::string("the compiled model is invalid: ") + e.what());
+    throw ParseError(filename, 0, "", "",
+                     std::string("the compiled model is invalid: ") + e.what());
   } catch (const Error& e) {
-    throw ParseError(filename, 0, "", "", std::string("the compiled model is invalid: ") + e.what());
+    throw ParseError(filename, 0, "", "",
+                     std::string("the compiled model is invalid: ") + e.what());
   }
   return model;
 }

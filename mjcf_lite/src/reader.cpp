@@ -34,22 +34,17 @@ namespace {
 
 std::string describe_xml_error(tinyxml2::XMLError id) {
   switch (id) {
-    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT:
-      return "the document is empty";
+    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: return "the document is empty";
     case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
       return "a closing tag does not match its opening tag (an element left open?)";
     case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
       return "cannot read an attribute (repeated, or its value not in quotes?)";
-    case tinyxml2::XML_ERROR_PARSING_TEXT:
-      return "cannot read text (is this an XML file?)";
-    case tinyxml2::XML_ERROR_PARSING_ELEMENT:
-      return "cannot read an element";
-    case tinyxml2::XML_ERROR_PARSING_COMMENT:
-      return "cannot read a comment";
+    case tinyxml2::XML_ERROR_PARSING_TEXT: return "cannot read text (is this an XML file?)";
+    case tinyxml2::XML_ERROR_PARSING_ELEMENT: return "cannot read an element";
+    case tinyxml2::XML_ERROR_PARSING_COMMENT: return "cannot read a comment";
     case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
       return "elements are nested more than " + std::to_string(kMaxDepth) + " levels deep";
-    default:
-      return "cannot parse the XML";
+    default: return "cannot parse the XML";
   }
 }
 

@@ -358,12 +358,9 @@ case-sensitive. Names are unique per kind (body, joint, geom, site, motor).
 
 const char* multiplicity_text(char m) {
   switch (m) {
-    case '!':
-      return "exactly one";
-    case '?':
-      return "at most one";
-    default:
-      return "any number";
+    case '!': return "exactly one";
+    case '?': return "at most one";
+    default: return "any number";
   }
 }
 
@@ -380,10 +377,8 @@ std::string value_text(const AttributeRule& a) {
         s += (s.empty() ? "" : " \\| ") + std::string(w);
       return s;
     }
-    case ValueKind::kEulerSeq:
-      return "3 of xyzXYZ";
-    case ValueKind::kText:
-      return "text";
+    case ValueKind::kEulerSeq: return "3 of xyzXYZ";
+    case ValueKind::kText: return "text";
   }
   return "";
 }

@@ -169,14 +169,10 @@ Value read_euler_sequence(const Element& e, const Attribute& a) {
 Value parse_value(const Element& e, const Attribute& a, const AttributeRule& rule) {
   switch (rule.kind) {
     case ValueKind::kReal:
-    case ValueKind::kInteger:
-      return read_numbers(e, a, rule);
-    case ValueKind::kKeyword:
-      return read_keyword(e, a, rule);
-    case ValueKind::kEulerSeq:
-      return read_euler_sequence(e, a);
-    case ValueKind::kText:
-      break;
+    case ValueKind::kInteger: return read_numbers(e, a, rule);
+    case ValueKind::kKeyword: return read_keyword(e, a, rule);
+    case ValueKind::kEulerSeq: return read_euler_sequence(e, a);
+    case ValueKind::kText: break;
   }
   return Value{{}, a.value, a.line};
 }

@@ -126,22 +126,15 @@ class Parser {
         if (i_ >= s_.size()) fail("bad escape");
         const char e = s_[i_++];
         switch (e) {
-          case 'n':
-            c = '\n';
-            break;
-          case 't':
-            c = '\t';
-            break;
-          case 'r':
-            c = '\r';
-            break;
+          case 'n': c = '\n'; break;
+          case 't': c = '\t'; break;
+          case 'r': c = '\r'; break;
           case 'u':
             if (i_ + 4 > s_.size()) fail("bad \\u escape");
             c = static_cast<char>(std::stoi(s_.substr(i_, 4), nullptr, 16));
             i_ += 4;
             break;
-          default:
-            c = e;
+          default: c = e;
         }
       }
       out += c;

@@ -25,7 +25,8 @@ std::string without_inertials(const std::string& xml);
 
 /// Every difference between lever's compiled model and MuJoCo's beyond the agreement bound
 /// |a - b| <= 1e-12 max(1, |b|) (quaternions up to sign), each as "field[index]: lever .. vs
-/// mujoco ..", for lever's model `o` and MuJoCo's `m`. Covers the parameters (set_const's outputs are compared separately).
+/// mujoco ..", for lever's model `o` and MuJoCo's `m`. Covers the parameters (set_const's outputs
+/// are compared separately).
 std::vector<std::string> compare_parameters(const Model& o, const mjModel& m);
 
 /// The same for what set_const derives: dof_invweight0, dof_M0, body_subtreemass,

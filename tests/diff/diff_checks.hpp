@@ -38,8 +38,8 @@ inline void check_within_bound(const diff::Report& report,
     if (!wanted) continue;
     INFO("state " << e.state << ": " << e.quantity << "[" << e.index << "] [" << e.element
                   << "]: lever " << e.lever << " vs mujoco " << e.mujoco << ", " << e.max_ratio
-                  << " of the bound (element-wise " << e.max_elementwise_ratio << "); "
-                  << e.beyond << " of " << e.compared << " values beyond the bound");
+                  << " of the bound (element-wise " << e.max_elementwise_ratio << "); " << e.beyond
+                  << " of " << e.compared << " values beyond the bound");
     std::string first_failures;
     int listed = 0;
     for (const std::string& f : report.failures()) {

@@ -51,7 +51,8 @@ TEST_CASE("fuzz_engine regressions are handled", "[hostile][fuzz]") {
     {
       INFO(f.filename().string());
       const std::string bytes = bytes_of(f);
-      CHECK(lever::fuzz::check_engine(data_of(bytes), bytes.size(), lever::test::source_dir()) == "");
+      CHECK(lever::fuzz::check_engine(data_of(bytes), bytes.size(), lever::test::source_dir()) ==
+            "");
     }
   }
 }
@@ -65,8 +66,8 @@ TEST_CASE("the fuzz checks catch what they are meant to", "[hostile][fuzz]") {
   // every model, NaN everywhere, both integrators, several steps: handled
   for (int m = 0; m < lever::fuzz::engine_model_count(lever::test::source_dir()); ++m) {
     for (const std::uint8_t flags : {0, 1, 3, 0x4f}) {
-      const std::string nan_state = std::string{static_cast<char>(m), static_cast<char>(flags)} +
-                                    std::string(64, '\0');
+      const std::string nan_state =
+          std::string{static_cast<char>(m), static_cast<char>(flags)} + std::string(64, '\0');
       CHECK(lever::fuzz::check_engine(data_of(nan_state), nan_state.size(),
                                       lever::test::source_dir()) == "");
     }

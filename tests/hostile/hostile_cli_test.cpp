@@ -32,8 +32,8 @@ constexpr long kMemoryBoundKb = 1L << 20;      // 1 GiB (ASan's shadow memory is
 
 const std::filesystem::path& dir() {
   static const std::filesystem::path d = [] {
-    auto p = std::filesystem::temp_directory_path() /
-                   ("lever-hostile-" + std::to_string(::getpid()));
+    auto p =
+        std::filesystem::temp_directory_path() / ("lever-hostile-" + std::to_string(::getpid()));
     std::filesystem::create_directories(p);
     return p;
   }();
@@ -119,15 +119,15 @@ void make_files() {
   write("truncated-in-attribute.xml", arm2.substr(0, arm2.find("pos=\"") + 7));
   write("binary.xml", junk);
   write("nul-bytes.xml", std::string("<mujoco>\0<worldbody/></mujoco>", 30));
-  write("utf16.xml", std::string("\xff\xfe<\0m\0u\0j\0o\0c\0o\0>\0<\0/\0m\0u\0j\0o\0c\0o\0>\0", 36));
+  write("utf16.xml",
+        std::string("\xff\xfe<\0m\0u\0j\0o\0c\0o\0>\0<\0/\0m\0u\0j\0o\0c\0o\0>\0", 36));
   write("utf8-bom.xml", "\xef\xbb\xbf" + arm2);
-  write("latin1-name.xml", "<mujoco model=\"bra\xe7o\">\n<worldbody>\n" + body(0, true) +
-                               "</worldbody>\n</mujoco>\n");
+  write("latin1-name.xml",
+        "<mujoco model=\"bra\xe7o\">\n<worldbody>\n" + body(0, true) + "</worldbody>\n</mujoco>\n");
   write("huge-name.xml", "<mujoco>\n<worldbody>\n<body name=\"" + std::string(1 << 20, 'x') +
                              "\"><joint/><geom size=\"0.1\"/></body>\n</worldbody>\n</mujoco>\n");
-  write("long-number-list.xml",
-        "<mujoco>\n<worldbody>\n<geom size=\"0.1\" pos=\"" + std::string(5000, '1') +
-            "\"/>\n</worldbody>\n</mujoco>\n");
+  write("long-number-list.xml", "<mujoco>\n<worldbody>\n<geom size=\"0.1\" pos=\"" +
+                                    std::string(5000, '1') + "\"/>\n</worldbody>\n</mujoco>\n");
   write("static-10000.xml", flat(Limits::kBodies, false));
   write("bodies-10001.xml", flat(Limits::kBodies + 1, false));
   write("joints-1000.xml", flat(Limits::kJoints, true));
@@ -141,7 +141,8 @@ void make_files() {
   write("size-1e308.xml",
         "<mujoco>\n<worldbody>\n<body>\n<joint/>\n<geom type=\"box\" size=\"1e308 1e308 1e308\"/>\n"
         "</body>\n</worldbody>\n</mujoco>\n");
-  write("size-1e309.xml", "<mujoco>\n<worldbody>\n<geom size=\"1e309\"/>\n</worldbody>\n</mujoco>\n");
+  write("size-1e309.xml",
+        "<mujoco>\n<worldbody>\n<geom size=\"1e309\"/>\n</worldbody>\n</mujoco>\n");
   write("denormal-mass.xml",
         "<mujoco>\n<worldbody>\n<body>\n<joint/>\n<inertial pos=\"0 0 0\" mass=\"4.9e-324\" "
         "diaginertia=\"1 1 1\"/>\n</body>\n</worldbody>\n</mujoco>\n");
@@ -153,12 +154,14 @@ void make_files() {
   write("unknown-element.xml", "<mujoco>\n<worldbody>\n<bodyy/>\n</worldbody>\n</mujoco>\n");
   write("unsupported-element.xml", "<mujoco>\n<tendon/>\n<worldbody/>\n</mujoco>\n");
   write("urdf.xml", "<robot name=\"r\">\n<link name=\"l\"/>\n</robot>\n");
-  write("big-file.xml", "<mujoco>\n<!--" + std::string(Limits::kDocumentBytes, ' ') + "-->\n</mujoco>\n");
+  write("big-file.xml",
+        "<mujoco>\n<!--" + std::string(Limits::kDocumentBytes, ' ') + "-->\n</mujoco>\n");
   std::string tags = "<mujoco>\n";
   for (int i = 0; i < Limits::kTags; ++i) tags += "<!---->";
   write("too-many-tags.xml", tags + "\n</mujoco>\n");
   write("timestep-zero.xml", "<mujoco>\n<option timestep=\"0\"/>\n<worldbody/>\n</mujoco>\n");
-  write("timestep-negative.xml", "<mujoco>\n<option timestep=\"-0.001\"/>\n<worldbody/>\n</mujoco>\n");
+  write("timestep-negative.xml",
+        "<mujoco>\n<option timestep=\"-0.001\"/>\n<worldbody/>\n</mujoco>\n");
   write("negative-damping.xml",
         "<mujoco>\n<worldbody>\n<body>\n<joint name=\"j\" damping=\"-1\"/>\n<geom size=\"0.1\"/>\n"
         "</body>\n</worldbody>\n</mujoco>\n");
@@ -186,7 +189,8 @@ void make_files() {
     const std::string from = "<body name=\"b" + std::to_string(i) + "\" pos=\"0 0 " +
                              std::to_string(i % 7) + "\"><joint ";
     const size_t at = long_names.find(from);
-    long_names.insert(at + from.size(), "name=\"" + std::string(4000, 'j') + std::to_string(i) + "\" ");
+    long_names.insert(at + from.size(),
+                      "name=\"" + std::string(4000, 'j') + std::to_string(i) + "\" ");
   }
   long_names.insert(long_names.rfind("</mujoco>"),
                     "<actuator><motor joint=\"" + std::string(4000, 'k') + "\"/></actuator>\n");
@@ -204,8 +208,11 @@ std::vector<Row> rows() {
       {"empty file", {"model", "@empty.xml"}, 2, "the document is empty", 0},
       {"blank file", {"model", "@blank.xml"}, 2, "malformed XML", -1},
       {"truncated in the middle", {"model", "@truncated-half.xml"}, 2, "malformed XML", -1},
-      {"truncated inside an attribute", {"model", "@truncated-in-attribute.xml"}, 2,
-       "malformed XML", -1},
+      {"truncated inside an attribute",
+       {"model", "@truncated-in-attribute.xml"},
+       2,
+       "malformed XML",
+       -1},
       {"binary junk", {"model", "@binary.xml"}, 2, "error:", -1},
       {"NUL byte after the root tag", {"model", "@nul-bytes.xml"}, 2, "malformed XML", -1},
       {"UTF-16 encoding", {"model", "@utf16.xml"}, 2, "error:", -1},
@@ -216,7 +223,10 @@ std::vector<Row> rows() {
       {"CDATA inside an element", {"model", "@cdata.xml"}, 2, "unexpected text", 2},
       // ---- XML: not the subset ------------------------------------------------------------
       {"unknown element", {"model", "@unknown-element.xml"}, 2, "unknown element <bodyy>", 3},
-      {"unsupported element", {"model", "@unsupported-element.xml"}, 2, "not supported by lever",
+      {"unsupported element",
+       {"model", "@unsupported-element.xml"},
+       2,
+       "not supported by lever",
        2},
       {"URDF instead of MJCF", {"model", "@urdf.xml"}, 2, "this is URDF", 1},
       {"10000 unknown attributes", {"model", "@many-attributes.xml"}, 2, "unknown attribute", 3},
@@ -231,29 +241,43 @@ std::vector<Row> rows() {
       {"200001 tags", {"model", "@too-many-tags.xml"}, 2, "more than 200000 tags", 2},
       {"10001 bodies", {"model", "@bodies-10001.xml"}, 2, "more than 10000 bodies", 10003},
       {"1001 joints", {"model", "@joints-1001.xml"}, 2, "more than 1000 joints", 1003},
-      {"1002 default classes (the main one and 1001 nested)", {"model", "@classes-1001.xml"}, 2,
-       "more than 1000 default classes", 1002},
+      {"1002 default classes (the main one and 1001 nested)",
+       {"model", "@classes-1001.xml"},
+       2,
+       "more than 1000 default classes",
+       1002},
       {"bodies nested 200 deep", {"model", "@chain-200.xml"}, 2, "nested more than 100", -1},
       {"bodies nested 30000 deep", {"model", "@chain-30000.xml"}, 2, "nested more than 100", -1},
-      {"defaults nested 150 deep", {"model", "@defaults-nested-150.xml"}, 2,
-       "nested more than 100", -1},
+      {"defaults nested 150 deep",
+       {"model", "@defaults-nested-150.xml"},
+       2,
+       "nested more than 100",
+       -1},
       {"1000 joints with 4000-byte names, a motor naming none of them",
-       {"model", "@long-names-1000-joints.xml"}, 2, "unknown joint", 1004},
+       {"model", "@long-names-1000-joints.xml"},
+       2,
+       "unknown joint",
+       1004},
       // ---- numbers ---------------------------------------------------------------------------
       {"size 1e308 overflows the mass", {"model", "@size-1e308.xml"}, 2, "too large", 5},
       {"size 1e309 is not a double", {"model", "@size-1e309.xml"}, 2, "too large for a double", 3},
       {"nan in an attribute", {"model", "@attrnan.xml"}, 2, "not a finite number", 3},
       {"-inf in an attribute", {"model", "@attrinf.xml"}, 2, "not a finite number", 2},
-      {"denormal mass on a moving body", {"model", "@denormal-mass.xml"}, 2,
-       "positive mass and inertia", 5},
+      {"denormal mass on a moving body",
+       {"model", "@denormal-mass.xml"},
+       2,
+       "positive mass and inertia",
+       5},
       {"zero timestep", {"model", "@timestep-zero.xml"}, 2, "timestep must be positive", 2},
-      {"negative timestep", {"model", "@timestep-negative.xml"}, 2, "timestep must be positive",
-       2},
+      {"negative timestep", {"model", "@timestep-negative.xml"}, 2, "timestep must be positive", 2},
       {"negative damping", {"model", "@negative-damping.xml"}, 2, "must not be negative", 4},
       {"gravity 1e300", {"model", "@gravity-1e300.xml"}, 2, "more than 1e10", 5},
       {"positions that overflow", {"model", "@offsets-overflow.xml"}, 2, "too large", 5},
       {"lever check on a broken file", {"check", "@truncated-half.xml"}, 2, "malformed XML", -1},
-      {"lever simulate on a missing file", {"simulate", "@does-not-exist.xml"}, 2, "no such file",
+      {"lever simulate on a missing file",
+       {"simulate", "@does-not-exist.xml"},
+       2,
+       "no such file",
        0},
       // ---- big or odd but valid: loads within the bounds ---------------------------------------
       {"10000 static bodies", {"model", "@static-10000.xml"}, 0, ""},
@@ -263,48 +287,76 @@ std::vector<Row> rows() {
       {"UTF-8 byte-order mark", {"forward", "@utf8-bom.xml"}, 0, ""},
       {"Latin-1 byte in the model name", {"model", "@latin1-name.xml"}, 0, ""},
       {"denormal mass on a static body", {"forward", "@denormal-static.xml"}, 0, ""},
-      {"entity declarations (billion laughs) are not expanded", {"model", "@billion-laughs.xml"},
-       0, ""},
+      {"entity declarations (billion laughs) are not expanded",
+       {"model", "@billion-laughs.xml"},
+       0,
+       ""},
       // ---- states through the command line -----------------------------------------------------
       {"--qpos nan", {"forward", arm2, "--qpos", "nan,0"}, 2, "not a finite number"},
       {"--qvel inf", {"forward", arm2, "--qvel", "0,inf"}, 2, "not a finite number"},
       {"--ctrl -infinity", {"simulate", arm2, "--ctrl", "-infinity,0"}, 2, "not a finite number"},
       {"--qpos 1e309", {"forward", arm2, "--qpos", "1e309,0"}, 2, "too large for a double"},
-      {"--qpos with three numbers for two joints", {"forward", arm2, "--qpos", "1,2,3"}, 2,
+      {"--qpos with three numbers for two joints",
+       {"forward", arm2, "--qpos", "1,2,3"},
+       2,
        "needs 2 comma-separated numbers"},
       {"--qpos empty", {"forward", arm2, "--qpos", ""}, 2, "needs 2 comma-separated numbers"},
-      {"--qpos 1e11 (bad: beyond 1e10)", {"forward", arm2, "--qpos", "1e11,0"}, 1,
+      {"--qpos 1e11 (bad: beyond 1e10)",
+       {"forward", arm2, "--qpos", "1e11,0"},
+       1,
        "warning: qpos is NaN or larger than 1e10"},
-      {"--qvel 1e300", {"forward", arm2, "--qvel", "1e300,0"}, 1,
+      {"--qvel 1e300",
+       {"forward", arm2, "--qvel", "1e300,0"},
+       1,
        "warning: qvel is NaN or larger than 1e10"},
-      {"--qvel 1e300 --json", {"forward", arm2, "--qvel", "1e300,0", "--json"}, 1,
+      {"--qvel 1e300 --json",
+       {"forward", arm2, "--qvel", "1e300,0", "--json"},
+       1,
        "warning: qvel is NaN or larger than 1e10"},
       {"--qvel 5e9 with the elbow bent: qacc blows up",
-       {"forward", arm2, "--qpos", "0,0.5", "--qvel", "0,5e9"}, 1,
+       {"forward", arm2, "--qpos", "0,0.5", "--qvel", "0,5e9"},
+       1,
        "warning: qacc is NaN or larger than 1e10"},
-      {"--ctrl 1e11 on a motor without ctrlrange", {"forward", "@unlimited.xml", "--ctrl", "1e11"},
-       1, "warning: ctrl is NaN or larger than 1e10"},
-      {"--ctrl 1e10 times gear 1e300 overflows", {"forward", "@unlimited.xml", "--ctrl", "1e10"}, 1,
+      {"--ctrl 1e11 on a motor without ctrlrange",
+       {"forward", "@unlimited.xml", "--ctrl", "1e11"},
+       1,
+       "warning: ctrl is NaN or larger than 1e10"},
+      {"--ctrl 1e10 times gear 1e300 overflows",
+       {"forward", "@unlimited.xml", "--ctrl", "1e10"},
+       1,
        "warning: qacc is NaN or larger than 1e10"},
-      {"--ctrl 1e300 on arm2 is clamped to its ctrlrange", {"forward", arm2, "--ctrl", "1e300,0"},
-       0, ""},
+      {"--ctrl 1e300 on arm2 is clamped to its ctrlrange",
+       {"forward", arm2, "--ctrl", "1e300,0"},
+       0,
+       ""},
       {"--qpos denormal", {"forward", arm2, "--qpos", "4.9e-324,-4.9e-324"}, 0, ""},
       {"simulate --qvel 1e300: reset, then a normal run",
-       {"simulate", arm2, "--qvel", "1e300,0", "--steps", "20"}, 1,
+       {"simulate", arm2, "--qvel", "1e300,0", "--steps", "20"},
+       1,
        "warning: qvel is NaN or larger than 1e10"},
-      {"simulate --qpos 1e11 --json", {"simulate", arm2, "--qpos", "1e11,0", "--steps", "5", "--json"},
-       1, "warning: qpos is NaN or larger than 1e10"},
+      {"simulate --qpos 1e11 --json",
+       {"simulate", arm2, "--qpos", "1e11,0", "--steps", "5", "--json"},
+       1,
+       "warning: qpos is NaN or larger than 1e10"},
       {"simulate --qvel 1e300 --csv -",
-       {"simulate", arm2, "--qvel", "1e300,0", "--steps", "5", "--csv", "-"}, 1,
+       {"simulate", arm2, "--qvel", "1e300,0", "--steps", "5", "--csv", "-"},
+       1,
        "warning: qvel is NaN or larger than 1e10"},
       {"simulate --ctrl 1e11 every step, gear 1e300",
-       {"simulate", "@unlimited.xml", "--ctrl", "1e11", "--steps", "5"}, 1,
+       {"simulate", "@unlimited.xml", "--ctrl", "1e11", "--steps", "5"},
+       1,
        "warning: ctrl is NaN or larger than 1e10"},
-      {"simulate --steps 99999999999", {"simulate", arm2, "--steps", "99999999999"}, 2,
+      {"simulate --steps 99999999999",
+       {"simulate", arm2, "--steps", "99999999999"},
+       2,
        "more than one run's limit"},
-      {"simulate --duration 1e300", {"simulate", arm2, "--duration", "1e300"}, 2,
+      {"simulate --duration 1e300",
+       {"simulate", arm2, "--duration", "1e300"},
+       2,
        "more than one run's limit"},
-      {"simulate --duration nan", {"simulate", arm2, "--duration", "nan"}, 2,
+      {"simulate --duration nan",
+       {"simulate", arm2, "--duration", "nan"},
+       2,
        "not a finite number"},
       {"simulate --steps -1", {"simulate", arm2, "--steps", "-1"}, 2, "must not be negative"},
   };
@@ -316,8 +368,7 @@ std::vector<Row> rows() {
 // or larger than 1e10") is text, not a number, and is not matched.
 bool prints_non_finite(const std::string& text) {
   const std::string unquoted = std::regex_replace(text, std::regex("'[^'\\n]*'"), "''");
-  static const std::regex word(
-      "(^|[^A-Za-z_])[-+]?(nan|inf|infinity|Infinity)([^A-Za-z_]|$)");
+  static const std::regex word("(^|[^A-Za-z_])[-+]?(nan|inf|infinity|Infinity)([^A-Za-z_]|$)");
   return std::regex_search(unquoted, word);
 }
 

@@ -25,7 +25,7 @@ struct Process {
   int status = -1;       ///< exit status; -1 if it did not exit normally
   int signal = 0;        ///< the signal that ended it, 0 if none
   bool timed_out = false;
-  double seconds = 0;  ///< wall time
+  double seconds = 0;   ///< wall time
   long max_rss_kb = 0;  ///< peak resident memory
 };
 
@@ -41,7 +41,8 @@ inline Process run_process(const std::vector<std::string>& argv, double limit_se
   Process p;
   static int counter = 0;
   const std::filesystem::path dir = std::filesystem::temp_directory_path();
-  const std::string stem = "lever-hostile-" + std::to_string(getpid()) + "-" + std::to_string(++counter);
+  const std::string stem =
+      "lever-hostile-" + std::to_string(getpid()) + "-" + std::to_string(++counter);
   const std::filesystem::path out = dir / (stem + ".out"), err = dir / (stem + ".err");
 
   posix_spawn_file_actions_t actions;

@@ -39,7 +39,8 @@ inline double magnitude(const double* values, int n) {
 /// infinitely far unless both are NaN.
 inline double excess(double ours, double reference, double magnitude) {
   if (std::isnan(ours) || std::isnan(reference)) {
-    return (std::isnan(ours) && std::isnan(reference)) ? 0.0 : std::numeric_limits<double>::infinity();
+    return (std::isnan(ours) && std::isnan(reference)) ? 0.0
+                                                       : std::numeric_limits<double>::infinity();
   }
   return std::abs(ours - reference) / allowed(magnitude);
 }

@@ -39,7 +39,8 @@ inline TwoLink two_link(const Model& model) {
   p.m2 = model.body_mass[link2];
   p.c1 = model.body_ipos[link1].x();
   p.c2 = model.body_ipos[link2].x();
-  p.I1 = model.body_inertia[link1].y();  // the hinges turn about -y; the principal axes are the body's
+  p.I1 =
+      model.body_inertia[link1].y();  // the hinges turn about -y; the principal axes are the body's
   p.I2 = model.body_inertia[link2].y();
   p.g = -model.opt.gravity.z();
   p.shoulder = model.body_pos[link1];

@@ -26,7 +26,9 @@ TEST_CASE("set_const refuses non-physical or inconsistent parameters", "[model]"
       {"zero timestep", [](lever::Model& m) { m.opt.timestep = 0; }, "timestep"},
       {"negative timestep", [](lever::Model& m) { m.opt.timestep = -0.002; }, "timestep"},
       {"NaN timestep", [nan](lever::Model& m) { m.opt.timestep = nan; }, "timestep"},
-      {"infinite gravity", [](lever::Model& m) { m.opt.gravity.z() = -std::numeric_limits<double>::infinity(); }, "gravity"},
+      {"infinite gravity",
+       [](lever::Model& m) { m.opt.gravity.z() = -std::numeric_limits<double>::infinity(); },
+       "gravity"},
       {"NaN mass", [nan](lever::Model& m) { m.body_mass[2] = nan; }, "mass"},
       {"negative mass", [](lever::Model& m) { m.body_mass[2] = -1; }, "mass"},
       {"negative inertia", [](lever::Model& m) { m.body_inertia[1].x() = -1e-4; }, "inertia"},
@@ -35,11 +37,23 @@ TEST_CASE("set_const refuses non-physical or inconsistent parameters", "[model]"
       {"negative damping", [](lever::Model& m) { m.dof_damping[0] = -0.1; }, "damping"},
       {"negative armature", [](lever::Model& m) { m.dof_armature[1] = -0.1; }, "armature"},
       {"negative stiffness", [](lever::Model& m) { m.jnt_stiffness[0] = -1; }, "stiffness"},
-      {"reversed range", [](lever::Model& m) { m.jnt_range[0] = {1.0, -1.0}; }, "range"},
+      {"reversed range",
+       [](lever::Model& m) {
+         m.jnt_range[0] = {1.0, -1.0};
+       },
+       "range"},
       {"NaN solref", [nan](lever::Model& m) { m.jnt_solref[1][0] = nan; }, "limit parameters"},
-      {"reversed ctrlrange", [](lever::Model& m) { m.actuator_ctrlrange[0] = {5, -5}; }, "ctrlrange"},
+      {"reversed ctrlrange",
+       [](lever::Model& m) {
+         m.actuator_ctrlrange[0] = {5, -5};
+       },
+       "ctrlrange"},
       {"NaN gear", [nan](lever::Model& m) { m.actuator_gear[1][0] = nan; }, "gear"},
-      {"axis not unit", [](lever::Model& m) { m.jnt_axis[0] = {0, -2, 0}; }, "axis"},
+      {"axis not unit",
+       [](lever::Model& m) {
+         m.jnt_axis[0] = {0, -2, 0};
+       },
+       "axis"},
       {"parent after child", [](lever::Model& m) { m.body_parentid[1] = 2; }, "parent"},
       {"qpos0 too short", [](lever::Model& m) { m.qpos0.resize(1); }, "qpos0"},
       {"motor on no joint", [](lever::Model& m) { m.actuator_trnid[0] = 7; }, "names no joint"},

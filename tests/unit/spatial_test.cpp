@@ -64,7 +64,8 @@ TEST_CASE("from_com: a point mass at c has I = m (|c|^2 1 - c c^T)", "[spatial]"
   const Eigen::Vector3d c(0.3, -0.2, 0.5);
   const double m = 2.0;
   const lever::RigidInertia I = lever::RigidInertia::from_com(m, c, Eigen::Matrix3d::Zero());
-  const Eigen::Matrix3d expected = m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+  const Eigen::Matrix3d expected =
+      m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
   CHECK((I.I - expected).norm() < kTight);
   CHECK((I.h - m * c).norm() == 0.0);
 }

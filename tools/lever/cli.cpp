@@ -92,8 +92,8 @@ Eigen::VectorXd Args::get_vector(const std::string& name, int n,
   std::string item;
   while (std::getline(ss, item, ',')) xs.push_back(parse_double(item, "--" + name));
   if (static_cast<int>(xs.size()) != n) {
-    throw UsageError{"--" + name + " needs " + std::to_string(n) + " comma-separated numbers, got " +
-                     std::to_string(xs.size())};
+    throw UsageError{"--" + name + " needs " + std::to_string(n) +
+                     " comma-separated numbers, got " + std::to_string(xs.size())};
   }
   return Eigen::Map<Eigen::VectorXd>(xs.data(), n);
 }

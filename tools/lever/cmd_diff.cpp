@@ -217,9 +217,12 @@ void print_text(const ModelResult& m) {
   std::printf("lever diff %s (MuJoCo %d.%d.%d)\n", m.file.c_str(), mj_version() / 100,
               mj_version() / 10 % 10, mj_version() % 10);
   std::printf(
-      "bound: |lever - mujoco| <= 1e-12 * max(1, |mujoco|), |mujoco| the quantity's largest element\n"
-      "ratio = |diff| / bound; element-wise = the same with each element's own |mujoco| (reported);\n"
-      "MuJoCo floor = MuJoCo against a moved copy of itself, element-wise (no engine can do better)\n");
+      "bound: |lever - mujoco| <= 1e-12 * max(1, |mujoco|), |mujoco| the quantity's largest "
+      "element\n"
+      "ratio = |diff| / bound; element-wise = the same with each element's own |mujoco| "
+      "(reported);\n"
+      "MuJoCo floor = MuJoCo against a moved copy of itself, element-wise (no engine can do "
+      "better)\n");
   for (const PathResult& p : m.paths) {
     std::printf("\npath %s: %s\n", diff::path_name(p.path), diff::path_description(p.path));
     if (!p.loaded()) {

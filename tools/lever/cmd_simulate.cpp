@@ -326,7 +326,8 @@ plot::Figure make_figure(const Model& m, const PlotRecord& r, const std::string&
 
 void print_summary_row(const Model& m, const Data& d) {
   std::printf("  %8.3f", d.time);
-  for (int j = 0; j < m.njnt; ++j) std::printf(" %11s", num(d.qpos[m.jnt_qposadr[j]], "%.5f").c_str());
+  for (int j = 0; j < m.njnt; ++j)
+    std::printf(" %11s", num(d.qpos[m.jnt_qposadr[j]], "%.5f").c_str());
   for (int a = 0; a < m.nu; ++a) std::printf(" %11s", num(d.actuator_force[a], "%.4f").c_str());
   std::printf("\n");
 }
@@ -505,8 +506,8 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     for (int a = 0; a < model.nu; ++a) {
       char buf[160];
       std::snprintf(buf, sizeof buf, "%s %s %ld of %ld steps", a ? "," : "",
-                    label_of(model.actuator_name[a], a).c_str(), log.clamped[static_cast<size_t>(a)],
-                    steps);
+                    label_of(model.actuator_name[a], a).c_str(),
+                    log.clamped[static_cast<size_t>(a)], steps);
       line += buf;
     }
     std::fprintf(stderr, "%s\n", line.c_str());

@@ -75,8 +75,8 @@ inline bool outputs_finite(const Data& d) {
   return d.qpos.allFinite() && d.qvel.allFinite() && d.ctrl.allFinite() && all(d.xpos) &&
          all(d.xquat) && all(d.xmat) && all(d.xipos) && all(d.site_xpos) && all(d.site_xmat) &&
          d.M.allFinite() && d.qfrc_bias.allFinite() && d.qfrc_passive.allFinite() &&
-         d.actuator_force.allFinite() && d.qfrc_actuator.allFinite() &&
-         d.qacc_smooth.allFinite() && d.qacc.allFinite() && d.qfrc_constraint.allFinite() &&
+         d.actuator_force.allFinite() && d.qfrc_actuator.allFinite() && d.qacc_smooth.allFinite() &&
+         d.qacc.allFinite() && d.qfrc_constraint.allFinite() &&
          d.efc_pos.head(d.nefc).allFinite() && d.efc_force.head(d.nefc).allFinite() &&
          d.efc_aref.head(d.nefc).allFinite() && d.efc_R.head(d.nefc).allFinite() &&
          d.efc_D.head(d.nefc).allFinite() && std::isfinite(d.energy[0]) &&
@@ -110,8 +110,8 @@ class WarningLog {
       const WarningStat& w = total_[k];
       if (w.number == 0) continue;
       std::fprintf(stderr, "lever %s: warning: %s (%d %s, last at index %d)\n", command,
-                   warning_name(static_cast<Warning>(k)), w.number, w.number == 1 ? "time" : "times",
-                   w.lastinfo);
+                   warning_name(static_cast<Warning>(k)), w.number,
+                   w.number == 1 ? "time" : "times", w.lastinfo);
     }
   }
 

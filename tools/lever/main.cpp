@@ -29,7 +29,8 @@ const Command kCommands[] = {
 void usage(std::FILE* out) {
   std::fprintf(out, "usage: lever <command> MODEL [options]\n\ncommands:\n");
   for (const Command& c : kCommands) std::fprintf(out, "  %-9s %s\n", c.name, c.summary);
-  std::fprintf(out, "\n`lever <command> --help` for a command's options; docs/cli.md for all of them.\n");
+  std::fprintf(
+      out, "\n`lever <command> --help` for a command's options; docs/cli.md for all of them.\n");
 }
 
 }  // namespace

@@ -48,50 +48,50 @@ struct Data {
   explicit Data(const Model& model);
 
   // ---- state (inputs) ------------------------------------------------------------------------
-  double time = 0.0;                 ///< s
-  Eigen::VectorXd qpos;              ///< (nq) joint positions, rad or m
-  Eigen::VectorXd qvel;              ///< (nv) joint velocities
-  Eigen::VectorXd ctrl;              ///< (nu) motor commands, before clamping (never modified)
-  Eigen::VectorXd qfrc_applied;      ///< (nv) user-applied joint forces
+  double time = 0.0;             ///< s
+  Eigen::VectorXd qpos;          ///< (nq) joint positions, rad or m
+  Eigen::VectorXd qvel;          ///< (nv) joint velocities
+  Eigen::VectorXd ctrl;          ///< (nu) motor commands, before clamping (never modified)
+  Eigen::VectorXd qfrc_applied;  ///< (nv) user-applied joint forces
 
   // ---- position stage: kinematics() ------------------------------------------------------------
-  std::vector<Eigen::Vector3d> xpos;    ///< (nbody) body frame origins
-  std::vector<Eigen::Vector4d> xquat;   ///< (nbody) body orientations (w, x, y, z)
-  std::vector<Eigen::Matrix3d> xmat;    ///< (nbody) body rotations (local -> world)
-  std::vector<Eigen::Vector3d> xipos;   ///< (nbody) centres of mass
-  std::vector<Eigen::Matrix3d> ximat;   ///< (nbody) principal axes of inertia
+  std::vector<Eigen::Vector3d> xpos;       ///< (nbody) body frame origins
+  std::vector<Eigen::Vector4d> xquat;      ///< (nbody) body orientations (w, x, y, z)
+  std::vector<Eigen::Matrix3d> xmat;       ///< (nbody) body rotations (local -> world)
+  std::vector<Eigen::Vector3d> xipos;      ///< (nbody) centres of mass
+  std::vector<Eigen::Matrix3d> ximat;      ///< (nbody) principal axes of inertia
   std::vector<Eigen::Vector3d> site_xpos;  ///< (nsite)
   std::vector<Eigen::Matrix3d> site_xmat;  ///< (nsite)
-  std::vector<Eigen::Vector3d> xanchor;     ///< (njnt) joint anchors
-  std::vector<Eigen::Vector3d> xaxis;       ///< (njnt) joint axes (unit)
+  std::vector<Eigen::Vector3d> xanchor;    ///< (njnt) joint anchors
+  std::vector<Eigen::Vector3d> xaxis;      ///< (njnt) joint axes (unit)
   // Spatial quantities below are in absolute coordinates: world axes, origin at the centre of mass
   // of the subtree hanging from the body's world child (MuJoCo's "c-frame").
-  std::vector<Eigen::Vector3d> subtree_com; ///< (nbody) centre of mass of each body's subtree
-  std::vector<Motion> cdof;                 ///< (nv) motion subspace of each dof
-  std::vector<RigidInertia> cinert;         ///< (nbody) spatial inertia of each body
+  std::vector<Eigen::Vector3d> subtree_com;  ///< (nbody) centre of mass of each body's subtree
+  std::vector<Motion> cdof;                  ///< (nv) motion subspace of each dof
+  std::vector<RigidInertia> cinert;          ///< (nbody) spatial inertia of each body
 
   // ---- position stage: crba(), factor_mass() --------------------------------------------------
-  Eigen::MatrixXd M;       ///< (nv x nv) joint-space inertia, full and symmetric, armature included
-  Eigen::MatrixXd qLD;     ///< (nv x nv) M = L^T D L: D on the diagonal, L^T above it (L(k, i) at
-                           ///< (i, k); unit diagonal implied), the rest unused
+  Eigen::MatrixXd M;    ///< (nv x nv) joint-space inertia, full and symmetric, armature included
+  Eigen::MatrixXd qLD;  ///< (nv x nv) M = L^T D L: D on the diagonal, L^T above it (L(k, i) at
+                        ///< (i, k); unit diagonal implied), the rest unused
   Eigen::VectorXd qLDiagInv;  ///< (nv) 1 / D
 
   // ---- position stage: actuator transmission ---------------------------------------------------
   Eigen::VectorXd actuator_length;  ///< (nu) gear * qpos of the driven joint
 
   // ---- position stage: joint-limit rows (make_constraint) -----------------------------------
-  int nefc = 0;                      ///< active rows: joints within `margin` of a stop
-  std::vector<int> efc_id;           ///< (nefc) joint id
-  std::vector<int> efc_dof;          ///< (nefc) the joint's dof
-  std::vector<double> efc_sign;      ///< (nefc) +1 lower stop, -1 upper stop: efc_J = sign * e_dof
-  Eigen::VectorXd efc_pos;           ///< (nefc) signed distance to the stop (< 0 past it)
-  Eigen::VectorXd efc_margin;        ///< (nefc)
-  Eigen::VectorXd efc_diagApprox;    ///< (nefc) R * imp / (1 - imp), MuJoCo's final value
-  Eigen::VectorXd efc_R;             ///< (nefc) regularizer
-  Eigen::VectorXd efc_D;             ///< (nefc) 1 / R
-  Eigen::VectorXd efc_imp;           ///< (nefc) impedance from solimp
-  Eigen::VectorXd efc_K;             ///< (nefc) stiffness of the reference dynamics
-  Eigen::VectorXd efc_B;             ///< (nefc) damping of the reference dynamics
+  int nefc = 0;                    ///< active rows: joints within `margin` of a stop
+  std::vector<int> efc_id;         ///< (nefc) joint id
+  std::vector<int> efc_dof;        ///< (nefc) the joint's dof
+  std::vector<double> efc_sign;    ///< (nefc) +1 lower stop, -1 upper stop: efc_J = sign * e_dof
+  Eigen::VectorXd efc_pos;         ///< (nefc) signed distance to the stop (< 0 past it)
+  Eigen::VectorXd efc_margin;      ///< (nefc)
+  Eigen::VectorXd efc_diagApprox;  ///< (nefc) R * imp / (1 - imp), MuJoCo's final value
+  Eigen::VectorXd efc_R;           ///< (nefc) regularizer
+  Eigen::VectorXd efc_D;           ///< (nefc) 1 / R
+  Eigen::VectorXd efc_imp;         ///< (nefc) impedance from solimp
+  Eigen::VectorXd efc_K;           ///< (nefc) stiffness of the reference dynamics
+  Eigen::VectorXd efc_B;           ///< (nefc) damping of the reference dynamics
 
   // ---- velocity stage ------------------------------------------------------------------------
   std::vector<Motion> cvel;           ///< (nbody) spatial velocity of each body
@@ -103,16 +103,16 @@ struct Data {
   Eigen::VectorXd efc_aref;           ///< (nefc) reference acceleration
 
   // ---- acceleration stage --------------------------------------------------------------------
-  Eigen::VectorXd actuator_force;   ///< (nu) after ctrl clamping, gain and force clamping
-  Eigen::VectorXd qfrc_actuator;    ///< (nv)
-  Eigen::VectorXd qfrc_smooth;      ///< (nv) passive - bias + applied + actuator
-  Eigen::VectorXd qacc_smooth;      ///< (nv) M^-1 qfrc_smooth
-  Eigen::VectorXd efc_b;            ///< (nefc) J qacc_smooth - aref
-  Eigen::VectorXd efc_force;        ///< (nefc) constraint force of each row
+  Eigen::VectorXd actuator_force;          ///< (nu) after ctrl clamping, gain and force clamping
+  Eigen::VectorXd qfrc_actuator;           ///< (nv)
+  Eigen::VectorXd qfrc_smooth;             ///< (nv) passive - bias + applied + actuator
+  Eigen::VectorXd qacc_smooth;             ///< (nv) M^-1 qfrc_smooth
+  Eigen::VectorXd efc_b;                   ///< (nefc) J qacc_smooth - aref
+  Eigen::VectorXd efc_force;               ///< (nefc) constraint force of each row
   std::vector<ConstraintState> efc_state;  ///< (nefc)
-  Eigen::VectorXd qfrc_constraint;  ///< (nv) J^T efc_force
-  Eigen::VectorXd qacc;             ///< (nv) joint accelerations
-  Eigen::VectorXd qfrc_inverse;     ///< (nv) inverse(): force that produces qacc
+  Eigen::VectorXd qfrc_constraint;         ///< (nv) J^T efc_force
+  Eigen::VectorXd qacc;                    ///< (nv) joint accelerations
+  Eigen::VectorXd qfrc_inverse;            ///< (nv) inverse(): force that produces qacc
 
   // ---- other ---------------------------------------------------------------------------------
   std::array<double, 2> energy{0.0, 0.0};  ///< compute_energy(): potential, kinetic (J)
@@ -120,23 +120,23 @@ struct Data {
 
   // ---- workspace (preallocated; contents are meaningless between calls) ------------------------
   struct Workspace {
-    std::vector<RigidInertia> crb;   ///< (nbody) composite inertias
-    std::vector<Motion> cacc;        ///< (nbody) body accelerations
-    std::vector<Force> cfrc;         ///< (nbody) body forces
-    Eigen::MatrixXd LD2;             ///< (nv x nv) factor of M + h diag(damping) (Euler)
-    Eigen::VectorXd LD2DiagInv;      ///< (nv)
+    std::vector<RigidInertia> crb;     ///< (nbody) composite inertias
+    std::vector<Motion> cacc;          ///< (nbody) body accelerations
+    std::vector<Force> cfrc;           ///< (nbody) body forces
+    Eigen::MatrixXd LD2;               ///< (nv x nv) factor of M + h diag(damping) (Euler)
+    Eigen::VectorXd LD2DiagInv;        ///< (nv)
     Eigen::VectorXd vec1, vec2, vec3;  ///< (nv) scratch
-    Eigen::MatrixXd MinvJ;           ///< (nv x nefc_max) M^-1 J^T
-    Eigen::MatrixXd A;               ///< (nefc_max x nefc_max) J M^-1 J^T + R
-    Eigen::MatrixXd L;               ///< (nefc_max x nefc_max) Cholesky factor of A's active part
-    Eigen::VectorXd lcp_f, lcp_w;    ///< (nefc_max) row forces and complementary residuals
-    std::vector<int> lcp_active;     ///< (nefc_max) 1 for rows in the active set
-    std::vector<int> lcp_index;      ///< (nefc_max) the active rows, in order
+    Eigen::MatrixXd MinvJ;             ///< (nv x nefc_max) M^-1 J^T
+    Eigen::MatrixXd A;                 ///< (nefc_max x nefc_max) J M^-1 J^T + R
+    Eigen::MatrixXd L;                 ///< (nefc_max x nefc_max) Cholesky factor of A's active part
+    Eigen::VectorXd lcp_f, lcp_w;      ///< (nefc_max) row forces and complementary residuals
+    std::vector<int> lcp_active;       ///< (nefc_max) 1 for rows in the active set
+    std::vector<int> lcp_index;        ///< (nefc_max) the active rows, in order
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
   } work;
 
-  int nefc_max = 0;  ///< 2 * njnt: the most limit rows a model can have
+  int nefc_max = 0;            ///< 2 * njnt: the most limit rows a model can have
   int nq = 0, nv = 0, nu = 0;  ///< sizes of the model this Data was built for (checked on use)
 };
 

@@ -10,7 +10,8 @@ namespace lever {
 
 /// Forward kinematics at data.qpos (MuJoCo's mj_kinematics and mj_comPos): writes the poses
 /// xpos, xquat, xmat, xipos, ximat, site_xpos, site_xmat, the joints' xanchor and xaxis, and the
-/// shared spatial quantities subtree_com, cdof and cinert that crba(), rnea() and the Jacobians use.
+/// shared spatial quantities subtree_com, cdof and cinert that crba(), rnea() and the Jacobians
+/// use.
 void kinematics(const Model& model, Data& data);
 
 /// Translational (jacp) and rotational (jacr) Jacobians of a site, 3 x nv each, world frame

@@ -130,9 +130,9 @@ inline Quat quat_mul(const Quat& a, const Quat& b) {
 inline Eigen::Matrix3d quat_to_mat(const Quat& q) {
   const double w = q[0], x = q[1], y = q[2], z = q[3];
   Eigen::Matrix3d R;
-  R << w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y),
-      2 * (x * y + w * z), w * w - x * x + y * y - z * z, 2 * (y * z - w * x),
-      2 * (x * z - w * y), 2 * (y * z + w * x), w * w - x * x - y * y + z * z;
+  R << w * w + x * x - y * y - z * z, 2 * (x * y - w * z), 2 * (x * z + w * y), 2 * (x * y + w * z),
+      w * w - x * x + y * y - z * z, 2 * (y * z - w * x), 2 * (x * z - w * y), 2 * (y * z + w * x),
+      w * w - x * x - y * y + z * z;
   return R;
 }
 

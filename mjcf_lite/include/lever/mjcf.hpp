@@ -9,9 +9,9 @@
 // complete Model or throws; never half a model.
 #pragma once
 
+#include <cstddef>
 #include <lever/error.hpp>
 #include <lever/model.hpp>
-#include <cstddef>
 #include <string>
 
 namespace lever::mjcf {
@@ -43,15 +43,15 @@ class ParseError : public Error {
 /// the load throws a ParseError that names the limit and the element where it was reached.
 struct Limits {
   static constexpr std::size_t kDocumentBytes = std::size_t{8} << 20;  ///< 8 MiB of MJCF text
-  static constexpr int kTags = 200000;         ///< '<' in the text: tags, comments, declarations
-  static constexpr int kDepth = 100;           ///< element nesting (tinyxml2's own limit too)
+  static constexpr int kTags = 200000;  ///< '<' in the text: tags, comments, declarations
+  static constexpr int kDepth = 100;    ///< element nesting (tinyxml2's own limit too)
   static constexpr std::size_t kAttributeBytes = 4096;  ///< one attribute value
-  static constexpr int kBodies = 10000;        ///< <body> elements (the world body not counted)
-  static constexpr int kJoints = 1000;         ///< <joint> elements in bodies (so nq = nv <= 1000)
-  static constexpr int kGeoms = 10000;         ///< <geom> elements in bodies
-  static constexpr int kSites = 10000;         ///< <site> elements in bodies
-  static constexpr int kMotors = 1000;         ///< <motor> elements
-  static constexpr int kClasses = 1000;        ///< <default> elements (default classes)
+  static constexpr int kBodies = 10000;  ///< <body> elements (the world body not counted)
+  static constexpr int kJoints = 1000;   ///< <joint> elements in bodies (so nq = nv <= 1000)
+  static constexpr int kGeoms = 10000;   ///< <geom> elements in bodies
+  static constexpr int kSites = 10000;   ///< <site> elements in bodies
+  static constexpr int kMotors = 1000;   ///< <motor> elements
+  static constexpr int kClasses = 1000;  ///< <default> elements (default classes)
 };
 
 struct LoadOptions {

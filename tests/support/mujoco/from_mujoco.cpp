@@ -154,8 +154,10 @@ Model from_mujoco(const mjModel* m) {
     model.actuator_gear.push_back(gear);
     model.actuator_ctrllimited.push_back(m->actuator_ctrllimited[a] != 0);
     model.actuator_forcelimited.push_back(m->actuator_forcelimited[a] != 0);
-    model.actuator_ctrlrange.push_back({m->actuator_ctrlrange[2 * a], m->actuator_ctrlrange[2 * a + 1]});
-    model.actuator_forcerange.push_back({m->actuator_forcerange[2 * a], m->actuator_forcerange[2 * a + 1]});
+    model.actuator_ctrlrange.push_back(
+        {m->actuator_ctrlrange[2 * a], m->actuator_ctrlrange[2 * a + 1]});
+    model.actuator_forcerange.push_back(
+        {m->actuator_forcerange[2 * a], m->actuator_forcerange[2 * a + 1]});
   }
   set_const(model);
   return model;

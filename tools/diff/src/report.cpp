@@ -28,8 +28,8 @@ const Extreme* Report::find(const std::string& quantity) const {
   return nullptr;
 }
 
-void Report::record(Extreme& e, int state, int index, double lever, double mujoco,
-                    double magnitude, const Labeler& label) {
+void Report::record(Extreme& e, int state, int index, double lever, double mujoco, double magnitude,
+                    const Labeler& label) {
   ++e.compared;
   const double ratio = test::excess(lever, mujoco, magnitude);
   e.max_elementwise_ratio = std::max(e.max_elementwise_ratio, test::excess(lever, mujoco));

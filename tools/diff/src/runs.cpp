@@ -107,7 +107,8 @@ Report mujoco_self_noise(const Twin& twin, int states, std::uint64_t seed) {
     report.compare("qacc_smooth", k, e->qacc_smooth, d->qacc_smooth, nv, none);
     report.compare("qacc", k, e->qacc, d->qacc, nv, none);
     report.compare("qfrc_constraint", k, e->qfrc_constraint, d->qfrc_constraint, nv, none);
-    if (e->nefc == d->nefc) report.compare("efc_force", k, e->efc_force, d->efc_force, d->nefc, none);
+    if (e->nefc == d->nefc)
+      report.compare("efc_force", k, e->efc_force, d->efc_force, d->nefc, none);
   }
   return report;
 }
@@ -121,7 +122,8 @@ Report lockstep(Twin& twin, Integrator integrator, double seconds, Control contr
   twin.reset();
   const int steps = steps_for(twin.model, seconds);
   const Labeler dof = [&twin](int i) {
-    return "dof " + std::to_string(i) + " (joint '" + twin.model.jnt_name[twin.model.dof_jntid[i]] + "')";
+    return "dof " + std::to_string(i) + " (joint '" + twin.model.jnt_name[twin.model.dof_jntid[i]] +
+           "')";
   };
   const int nv = twin.model.nv;
   for (int k = 0; k < steps; ++k) {

@@ -97,8 +97,8 @@ void axes(std::ostringstream& svg, const Frame& f, const std::string& xlabel,
   const double ystep = yt.size() > 1 ? yt[1] - yt[0] : 1.0;
   for (const double t : xt) {
     const double x = f.px(t);
-    svg << "<line x1=\"" << num(x) << "\" y1=\"" << num(f.top) << "\" x2=\"" << num(x)
-        << "\" y2=\"" << num(f.top + f.height) << "\" stroke=\"#e4e4e4\"/>\n";
+    svg << "<line x1=\"" << num(x) << "\" y1=\"" << num(f.top) << "\" x2=\"" << num(x) << "\" y2=\""
+        << num(f.top + f.height) << "\" stroke=\"#e4e4e4\"/>\n";
     text(svg, x, f.top + f.height + 16, tick_label(t, xstep), "middle", 11);
   }
   for (const double t : yt) {
@@ -131,8 +131,12 @@ void legend(std::ostringstream& svg, const Frame& f,
 
 // Draw a chart into svg at (x0, y0).
 void draw_chart(std::ostringstream& svg, const Chart& c, double x0, double y0) {
-  Frame f{x0 + 70, y0 + (c.title.empty() ? 14 : 34), c.width - 90.0,
-          c.height - (c.title.empty() ? 14.0 : 34.0) - 52, {}, {}};
+  Frame f{x0 + 70,
+          y0 + (c.title.empty() ? 14 : 34),
+          c.width - 90.0,
+          c.height - (c.title.empty() ? 14.0 : 34.0) - 52,
+          {},
+          {}};
   for (const Series& s : c.series) {
     for (size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
       f.x.add(s.x[i]);
@@ -155,10 +159,12 @@ void draw_chart(std::ostringstream& svg, const Chart& c, double x0, double y0) {
       f.x = Range{mid - half, mid + half};
     }
   }
-  if (!c.title.empty()) text(svg, x0 + c.width / 2.0, y0 + 20, c.title, "middle", 15, " font-weight=\"bold\"");
+  if (!c.title.empty())
+    text(svg, x0 + c.width / 2.0, y0 + 20, c.title, "middle", 15, " font-weight=\"bold\"");
   axes(svg, f, c.xlabel, c.ylabel);
 
-  const std::string clip = "clip" + std::to_string(static_cast<long>(x0)) + "_" + std::to_string(static_cast<long>(y0));
+  const std::string clip =
+      "clip" + std::to_string(static_cast<long>(x0)) + "_" + std::to_string(static_cast<long>(y0));
   svg << "<clipPath id=\"" << clip << "\"><rect x=\"" << num(f.left) << "\" y=\"" << num(f.top)
       << "\" width=\"" << num(f.width) << "\" height=\"" << num(f.height) << "\"/></clipPath>\n";
   svg << "<g clip-path=\"url(#" << clip << ")\">\n";
@@ -204,8 +210,12 @@ void draw_chart(std::ostringstream& svg, const Chart& c, double x0, double y0) {
 }
 
 void draw_bars(std::ostringstream& svg, const BarChart& c, double x0, double y0) {
-  Frame f{x0 + 70, y0 + (c.title.empty() ? 14 : 34), c.width - 90.0,
-          c.height - (c.title.empty() ? 14.0 : 34.0) - 52, {}, {}};
+  Frame f{x0 + 70,
+          y0 + (c.title.empty() ? 14 : 34),
+          c.width - 90.0,
+          c.height - (c.title.empty() ? 14.0 : 34.0) - 52,
+          {},
+          {}};
   f.y.add(0.0);
   size_t per_group = 0;
   for (const auto& g : c.groups) {
@@ -215,7 +225,8 @@ void draw_bars(std::ostringstream& svg, const BarChart& c, double x0, double y0)
   f.y.finish();
   f.y.lo = std::min(0.0, f.y.lo);
   f.x = Range{0.0, static_cast<double>(std::max<size_t>(1, c.groups.size()))};
-  if (!c.title.empty()) text(svg, x0 + c.width / 2.0, y0 + 20, c.title, "middle", 15, " font-weight=\"bold\"");
+  if (!c.title.empty())
+    text(svg, x0 + c.width / 2.0, y0 + 20, c.title, "middle", 15, " font-weight=\"bold\"");
   // y axis with grid; x axis carries the group labels instead of numbers
   const std::vector<double> yt = nice_ticks(f.y.lo, f.y.hi);
   const double ystep = yt.size() > 1 ? yt[1] - yt[0] : 1.0;

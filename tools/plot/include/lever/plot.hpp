@@ -13,11 +13,11 @@ namespace lever::plot {
 /// One data series of an x-y chart.
 struct Series {
   enum class Style { kLine, kPoints };
-  std::string label;        ///< legend entry ("" for none)
+  std::string label;  ///< legend entry ("" for none)
   std::vector<double> x, y;
-  std::string color;        ///< CSS color; "" picks the next color of the palette
+  std::string color;  ///< CSS color; "" picks the next color of the palette
   Style style = Style::kLine;
-  bool dashed = false;      ///< lines only
+  bool dashed = false;        ///< lines only
   double point_radius = 1.6;  ///< points only, in pixels
 };
 
@@ -37,7 +37,7 @@ struct Chart {
   std::vector<RefLine> lines;
   bool equal_aspect = false;  ///< one unit is the same length on both axes (maps, trails)
   std::optional<std::array<double, 2>> xrange, yrange;  ///< fixed ranges; default: the data's
-  int width = 640, height = 400;  ///< pixels
+  int width = 640, height = 400;                        ///< pixels
 };
 
 /// Grouped bars: one group per category (a joint), one bar per quantity in the group.

@@ -11,9 +11,9 @@ namespace lever::diff {
 /// The worst comparison of one quantity.
 struct Extreme {
   std::string quantity;
-  long compared = 0;            ///< values compared
-  long beyond = 0;              ///< values beyond the bound
-  double max_abs_diff = 0.0;    ///< largest |lever - mujoco|
+  long compared = 0;          ///< values compared
+  long beyond = 0;            ///< values beyond the bound
+  double max_abs_diff = 0.0;  ///< largest |lever - mujoco|
   /// largest |lever - mujoco| / (1e-12 max(1, |mujoco|)), |mujoco| the quantity's magnitude in
   /// that state (its largest element): the verdict
   double max_ratio = 0.0;

@@ -17,10 +17,11 @@ std::uint64_t default_seed(const std::string& file);
 Report random_states(Twin& twin, int states, std::uint64_t seed);
 
 /// MuJoCo against itself: the same file compiled twice, the second time with every world child
-/// moved by a fixed offset. The physics is the same (gravity is uniform, nothing touches the world),
-/// only the rounding differs. On the same random states as random_states(twin, states, seed), the
-/// dynamic quantities of the moved copy (M, qfrc_bias, qacc_smooth, qacc, qfrc_constraint,
-/// efc_force) are compared with the original's: the floor under any comparison of two engines.
+/// moved by a fixed offset. The physics is the same (gravity is uniform, nothing touches the
+/// world), only the rounding differs. On the same random states as random_states(twin, states,
+/// seed), the dynamic quantities of the moved copy (M, qfrc_bias, qacc_smooth, qacc,
+/// qfrc_constraint, efc_force) are compared with the original's: the floor under any comparison of
+/// two engines.
 Report mujoco_self_noise(const Twin& twin, int states, std::uint64_t seed);
 
 /// The quantities mujoco_self_noise() compares, in order.
