@@ -20,40 +20,36 @@ namespace {
 
 // Body poses, joint anchors and axes; then inertial frames and sites.
 void poses(const Model& model, Data& data) {
-  Eigen::Matrix3d turned;  // the body's rotation after a hinge, when a later joint needs it
+  Eigen::Matrix3d turned;  // the body's rotation, when a joint needs it as a matrix
   for (int b = 1; b < model.nbody; ++b) {
     const int p = model.body_parentid[b];
-    Eigen::Vector3d pos = data.xpos[p] + rotate(data.xmat[p], model.body_pos[b]);
-    Quat quat = data.xquat[p];
-    const Eigen::Matrix3d* R = &data.xmat[p];  // the frame's current rotation
-    if (model.body_rotated[b]) {
-      quat = quat_mul(quat, model.body_quat[b]);
-      turned = quat_to_mat(quat);
-      R = &turned;
-    }
+    const Eigen::Matrix3d& parent = data.xmat[p];
+    Eigen::Vector3d pos = data.xpos[p] + rotate(parent, model.body_pos[b]);
+    Quat quat = model.body_rotated[b] ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
 
     for (int k = 0; k < model.body_jntnum[b]; ++k) {
       const int j = model.body_jntadr[b] + k;
       const int qadr = model.jnt_qposadr[j];
       const double theta = data.qpos[qadr] - model.qpos0[qadr];
       const Eigen::Vector3d& axis = model.jnt_axis[j];
-      if (R == nullptr) {
-        turned = quat_to_mat(quat);
-        R = &turned;
+      if (k == 0) {
+        // the body's first joint: its axis and anchor are constant in the parent's frame
+        data.xaxis[j] = rotate(parent, model.jnt_axis_in_parent[j]);
+        data.xanchor[j] = model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(parent, model.jnt_pos_in_parent[j])) : pos;
+      } else {
+        turned = quat_to_mat(quat);  // the body turned by its earlier joints
+        data.xaxis[j] = rotate(turned, axis);
+        data.xanchor[j] = model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(turned, model.jnt_pos[j])) : pos;
       }
-      data.xaxis[j] = rotate(*R, axis);
-      data.xanchor[j] = model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(*R, model.jnt_pos[j])) : pos;
       if (model.jnt_type[j] == JointType::kSlide) {
         pos += data.xaxis[j] * theta;
         continue;
       }
       const double s = std::sin(0.5 * theta), c = std::cos(0.5 * theta);
       quat = quat_mul(quat, Quat(c, axis[0] * s, axis[1] * s, axis[2] * s));
-      R = nullptr;  // stale until a later joint asks for it
       // the anchor stays where it is: the frame's origin swings around it
       if (model.jnt_offset[j]) {
         turned = quat_to_mat(quat);
-        R = &turned;
         pos = data.xanchor[j] - rotate(turned, model.jnt_pos[j]);
       }
     }
@@ -67,6 +63,7 @@ void poses(const Model& model, Data& data) {
     } else {
       data.ximat[b] = data.xmat[b];
     }
+    data.subtree_com[b] = model.body_mass[b] * data.xipos[b];  // summed up in com_quantities()
   }
 
   for (int s = 0; s < model.nsite; ++s) {
@@ -82,8 +79,8 @@ void poses(const Model& model, Data& data) {
 
 // Subtree centres of mass, body inertias and joint motion subspaces in absolute coordinates.
 void com_quantities(const Model& model, Data& data) {
-  // mass-weighted positions, summed leaves to root
-  for (int b = 0; b < model.nbody; ++b) data.subtree_com[b] = model.body_mass[b] * data.xipos[b];
+  // mass-weighted positions (poses() left each body's own), summed leaves to root
+  data.subtree_com[0] = model.body_mass[0] * data.xipos[0];
   for (int b = model.nbody - 1; b > 0; --b) {
     data.subtree_com[model.body_parentid[b]] += data.subtree_com[b];
   }

@@ -172,7 +172,14 @@ void build_rotations(Model& model) {
     model.site_rotated[s] = !is_identity(model.site_quat[s]);
   }
   model.jnt_offset.resize(model.njnt);
-  for (int j = 0; j < model.njnt; ++j) model.jnt_offset[j] = !model.jnt_pos[j].isZero(0.0);
+  model.jnt_axis_in_parent.resize(model.njnt);
+  model.jnt_pos_in_parent.resize(model.njnt);
+  for (int j = 0; j < model.njnt; ++j) {
+    model.jnt_offset[j] = !model.jnt_pos[j].isZero(0.0);
+    const Eigen::Matrix3d R = quat_to_mat(quat_normalized(model.body_quat[model.jnt_bodyid[j]]));
+    model.jnt_axis_in_parent[j] = R * model.jnt_axis[j];
+    model.jnt_pos_in_parent[j] = R * model.jnt_pos[j];
+  }
 }
 
 template <typename Vector>

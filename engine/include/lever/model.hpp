@@ -151,6 +151,10 @@ struct Model {
   std::vector<Eigen::Matrix3d> site_mat;   ///< rotation of site_quat
   std::vector<uint8_t> site_rotated;       ///< site_quat is not the identity
   std::vector<uint8_t> jnt_offset;         ///< jnt_pos is not zero (the anchor is off the origin)
+  /// the first joint of each body: its axis and anchor turned by body_quat, i.e. in the frame of
+  /// the parent body (unused for a body's later joints)
+  std::vector<Eigen::Vector3d> jnt_axis_in_parent;
+  std::vector<Eigen::Vector3d> jnt_pos_in_parent;
 
   // ---- names ---------------------------------------------------------------------------------
   /// Index of the named object, or -1. Linear search: meant for set-up code, not inner loops.
