@@ -91,7 +91,8 @@ void register_lever(const Fixture& f) {
         kinematics(m, d);
         crba(m, d);
       }));
-  add("inverse", f, "lever", lever_fn(&f, s, nothing, [](const Model& m, Data& d) { inverse(m, d); }));
+  add("inverse", f, "lever",
+      lever_fn(&f, s, nothing, [](const Model& m, Data& d) { inverse(m, d); }));
 
   const auto forward_op = [](const Model& m, Data& d) { forward(m, d); };
   // a step moves the state: put it back before each one (two copies of nv numbers, every peer)
@@ -163,7 +164,8 @@ void register_mujoco(const Fixture& f) {
         kin_vel(m, d);
         mj_rne(m, d, 1, d->qfrc_inverse);
       }));
-  add("crba", f, "mujoco", mujoco_fn(&f, s, kin, [](const mjModel* m, mjData* d) { mj_crb(m, d); }));
+  add("crba", f, "mujoco",
+      mujoco_fn(&f, s, kin, [](const mjModel* m, mjData* d) { mj_crb(m, d); }));
   add("crba_factor", f, "mujoco", mujoco_fn(&f, s, kin, [](const mjModel* m, mjData* d) {
         mj_crb(m, d);
         mj_factorM(m, d);
@@ -172,7 +174,8 @@ void register_mujoco(const Fixture& f) {
         kin(m, d);
         mj_crb(m, d);
       }));
-  add("inverse", f, "mujoco", mujoco_fn(&f, s, nothing, [](const mjModel* m, mjData* d) { mj_inverse(m, d); }));
+  add("inverse", f, "mujoco",
+      mujoco_fn(&f, s, nothing, [](const mjModel* m, mjData* d) { mj_inverse(m, d); }));
 
   const auto forward_op = [](const mjModel* m, mjData* d) { mj_forward(m, d); };
   const auto step_op = [](const State* state) {
@@ -213,7 +216,8 @@ void register_kdl(const Fixture& f) {
   add("forward", f, "kdl", kdl_fn(&KdlPeer::forward_dynamics));
 }
 
-// ---- batches: states per second ------------------------------------------------------------------
+// ---- batches: states per second
+// ------------------------------------------------------------------
 
 struct Batch {
   Eigen::MatrixXd qpos, qvel, ctrl;
@@ -233,48 +237,48 @@ void register_batch(const Fixture& f, int states) {
   }
   for (const int threads : {1, 2}) {
     const std::string suffix = "/threads:" + std::to_string(threads);
-    benchmark::RegisterBenchmark(
-        ("batch_forward/" + f.name + "/lever" + suffix).c_str(),
-        [fp, batch, threads](benchmark::State& st) {
-          BatchRunner runner(fp->model, threads);
-          Eigen::MatrixXd qacc(fp->model.nv, batch->qpos.cols());
-          for (auto _ : st) {
-            runner.forward(batch->qpos, batch->qvel, batch->ctrl, qacc);
-            benchmark::ClobberMemory();
-          }
-          st.SetItemsProcessed(st.iterations() * batch->qpos.cols());
-        })
+    benchmark::RegisterBenchmark(("batch_forward/" + f.name + "/lever" + suffix).c_str(),
+                                 [fp, batch, threads](benchmark::State& st) {
+                                   BatchRunner runner(fp->model, threads);
+                                   Eigen::MatrixXd qacc(fp->model.nv, batch->qpos.cols());
+                                   for (auto _ : st) {
+                                     runner.forward(batch->qpos, batch->qvel, batch->ctrl, qacc);
+                                     benchmark::ClobberMemory();
+                                   }
+                                   st.SetItemsProcessed(st.iterations() * batch->qpos.cols());
+                                 })
         ->Unit(benchmark::kMicrosecond)
         ->UseRealTime();
 
     // MuJoCo the same way: one mjData per thread, contiguous blocks, threads started per call
-    benchmark::RegisterBenchmark(
-        ("batch_forward/" + f.name + "/mujoco" + suffix).c_str(),
-        [fp, batch, threads](benchmark::State& st) {
-          const mjModel* m = fp->mj.get();
-          const auto n = static_cast<int>(batch->qpos.cols());
-          std::vector<MjDataPtr> data;
-          for (int t = 0; t < threads; ++t) data.emplace_back(mj_makeData(m), mj_deleteData);
-          Eigen::MatrixXd qacc(m->nv, n);
-          auto block = [&](int t) {
-            mjData* d = data[static_cast<std::size_t>(t)].get();
-            for (int k = t * n / threads; k < (t + 1) * n / threads; ++k) {
-              mju_copy(d->qpos, batch->qpos.col(k).data(), m->nq);
-              mju_copy(d->qvel, batch->qvel.col(k).data(), m->nv);
-              if (m->nu > 0) mju_copy(d->ctrl, batch->ctrl.col(k).data(), m->nu);
-              mj_forward(m, d);
-              mju_copy(qacc.col(k).data(), d->qacc, m->nv);
-            }
-          };
-          for (auto _ : st) {
-            std::vector<std::thread> pool;
-            for (int t = 1; t < threads; ++t) pool.emplace_back(block, t);
-            block(0);
-            for (std::thread& th : pool) th.join();
-            benchmark::ClobberMemory();
-          }
-          st.SetItemsProcessed(st.iterations() * n);
-        })
+    benchmark::RegisterBenchmark(("batch_forward/" + f.name + "/mujoco" + suffix).c_str(),
+                                 [fp, batch, threads](benchmark::State& st) {
+                                   const mjModel* m = fp->mj.get();
+                                   const auto n = static_cast<int>(batch->qpos.cols());
+                                   std::vector<MjDataPtr> data;
+                                   for (int t = 0; t < threads; ++t)
+                                     data.emplace_back(mj_makeData(m), mj_deleteData);
+                                   Eigen::MatrixXd qacc(m->nv, n);
+                                   auto block = [&](int t) {
+                                     mjData* d = data[static_cast<std::size_t>(t)].get();
+                                     for (int k = t * n / threads; k < (t + 1) * n / threads; ++k) {
+                                       mju_copy(d->qpos, batch->qpos.col(k).data(), m->nq);
+                                       mju_copy(d->qvel, batch->qvel.col(k).data(), m->nv);
+                                       if (m->nu > 0)
+                                         mju_copy(d->ctrl, batch->ctrl.col(k).data(), m->nu);
+                                       mj_forward(m, d);
+                                       mju_copy(qacc.col(k).data(), d->qacc, m->nv);
+                                     }
+                                   };
+                                   for (auto _ : st) {
+                                     std::vector<std::thread> pool;
+                                     for (int t = 1; t < threads; ++t) pool.emplace_back(block, t);
+                                     block(0);
+                                     for (std::thread& th : pool) th.join();
+                                     benchmark::ClobberMemory();
+                                   }
+                                   st.SetItemsProcessed(st.iterations() * n);
+                                 })
         ->Unit(benchmark::kMicrosecond)
         ->UseRealTime();
   }

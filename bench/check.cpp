@@ -41,8 +41,8 @@ struct Table {
     ok = ok && pass;
     char buf[64];
     std::snprintf(buf, sizeof buf, "%.2e", error);
-    out << "| " << what << " | " << model << " | " << quantity << " | " << buf << " | "
-        << tolerance << " | " << (pass ? "ok" : "**FAIL**") << " |\n";
+    out << "| " << what << " | " << model << " | " << quantity << " | " << buf << " | " << tolerance
+        << " | " << (pass ? "ok" : "**FAIL**") << " |\n";
   }
 };
 
@@ -63,7 +63,9 @@ void check_kdl(const Fixture& f, Table& table) {
     State s = random_state(m, 777 + static_cast<unsigned long long>(k));
     for (int j = 0; j < m.njnt; ++j) {  // anywhere in the range, not only its middle
       const int a = m.jnt_qposadr[j];
-      if (m.jnt_limited[j]) s.qpos[a] = m.jnt_range[j][0] + 0.5 * (u(rng) + 1) * (m.jnt_range[j][1] - m.jnt_range[j][0]);
+      if (m.jnt_limited[j])
+        s.qpos[a] =
+            m.jnt_range[j][0] + 0.5 * (u(rng) + 1) * (m.jnt_range[j][1] - m.jnt_range[j][0]);
     }
     for (int i = 0; i < m.nv; ++i) tau[i] = 5 * u(rng);
     kdl.set_state(s.qpos.data(), s.qvel.data(), s.qacc.data(), tau.data());
@@ -93,8 +95,10 @@ void check_kdl(const Fixture& f, Table& table) {
     if (f.site >= 0) {
       kdl.fk();
       const std::array<double, 12> tip = kdl.tip_frame();
-      e_pos = std::max(e_pos, rel_error(tip.data(), d.site_xpos[static_cast<std::size_t>(f.site)], 3));
-      e_rot = std::max(e_rot, rel_error(tip.data() + 3, flat(d.site_xmat[static_cast<std::size_t>(f.site)]), 9));
+      e_pos =
+          std::max(e_pos, rel_error(tip.data(), d.site_xpos[static_cast<std::size_t>(f.site)], 3));
+      e_rot = std::max(
+          e_rot, rel_error(tip.data() + 3, flat(d.site_xmat[static_cast<std::size_t>(f.site)]), 9));
       jac_site(m, d, f.site, jacp, jacr);
       Eigen::MatrixXd jac(6, m.nv);
       jac << jacp, jacr;
@@ -134,7 +138,8 @@ void check_mujoco(const Fixture& f, const State& s, const std::string& label, Ta
   std::vector<mjtNum> M(static_cast<std::size_t>(mj->nv * mj->nv));
   mj_fullM(mj, M.data(), md->qM);
   const auto nv = static_cast<std::size_t>(m.nv);
-  const std::string what = "lever = MuJoCo (" + label + ", " + std::to_string(d.nefc) + " limit rows)";
+  const std::string what =
+      "lever = MuJoCo (" + label + ", " + std::to_string(d.nefc) + " limit rows)";
   table.row(what, f.name, "M", rel_error(flat(d.M), M, nv * nv), 1e-9);
   table.row(what, f.name, "qfrc_bias", rel_error(d.qfrc_bias, md->qfrc_bias, nv), 1e-9);
   table.row(what, f.name, "qacc", rel_error(d.qacc, md->qacc, nv), 1e-6);
@@ -150,7 +155,8 @@ void check_batch(const Fixture& f, Table& table) {
   for (int k = 0; k < kStates; ++k) {
     // every third state with its first limited joint past the stop: limit rows in the batch
     State s = random_state(m, 99 + static_cast<unsigned long long>(k));
-    if (k % 3 == 0 && f.limit_joint >= 0) s.qpos[m.jnt_qposadr[f.limit_joint]] = m.jnt_range[f.limit_joint][0] - 1e-3;
+    if (k % 3 == 0 && f.limit_joint >= 0)
+      s.qpos[m.jnt_qposadr[f.limit_joint]] = m.jnt_range[f.limit_joint][0] - 1e-3;
     qpos.col(k) = s.qpos;
     qvel.col(k) = s.qvel;
     ctrl.col(k) = s.ctrl;
@@ -175,9 +181,11 @@ void check_batch(const Fixture& f, Table& table) {
     runner.step(p, v, ctrl, kSteps);
     const std::string what = "BatchRunner, " + std::to_string(threads) + " thread(s), " +
                              std::to_string(kStates) + " states";
-    table.row(what, f.name, "qacc = forward() (exact)", (qacc - qacc_ref).cwiseAbs().maxCoeff(), 0.0);
+    table.row(what, f.name, "qacc = forward() (exact)", (qacc - qacc_ref).cwiseAbs().maxCoeff(),
+              0.0);
     table.row(what, f.name, "state after 3 step() (exact)",
-              std::max((p - qpos_ref).cwiseAbs().maxCoeff(), (v - qvel_ref).cwiseAbs().maxCoeff()), 0.0);
+              std::max((p - qpos_ref).cwiseAbs().maxCoeff(), (v - qvel_ref).cwiseAbs().maxCoeff()),
+              0.0);
   }
 }
 

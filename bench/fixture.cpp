@@ -42,7 +42,9 @@ std::vector<std::string> model_files(const std::string& dir) {
 
 State random_state(const Model& model, unsigned long long seed) {
   std::mt19937_64 rng(seed);
-  auto uniform = [&](double lo, double hi) { return std::uniform_real_distribution<double>(lo, hi)(rng); };
+  auto uniform = [&](double lo, double hi) {
+    return std::uniform_real_distribution<double>(lo, hi)(rng);
+  };
   State s;
   s.qpos = model.qpos0;
   for (int j = 0; j < model.njnt; ++j) {
@@ -63,7 +65,8 @@ State random_state(const Model& model, unsigned long long seed) {
   }
   s.ctrl.resize(model.nu);
   for (int a = 0; a < model.nu; ++a) {
-    const auto r = model.actuator_ctrllimited[a] ? model.actuator_ctrlrange[a] : std::array<double, 2>{-1, 1};
+    const auto r =
+        model.actuator_ctrllimited[a] ? model.actuator_ctrlrange[a] : std::array<double, 2>{-1, 1};
     const double mid = 0.5 * (r[0] + r[1]), half = 0.25 * (r[1] - r[0]);
     s.ctrl[a] = uniform(mid - half, mid + half);
   }
@@ -79,7 +82,9 @@ struct Pose {
   Pose operator*(const Pose& b) const { return {R * b.R, R * b.p + p}; }
 };
 
-Pose pose(const Eigen::Vector4d& quat, const Eigen::Vector3d& pos) { return {quat_to_mat(quat), pos}; }
+Pose pose(const Eigen::Vector4d& quat, const Eigen::Vector3d& pos) {
+  return {quat_to_mat(quat), pos};
+}
 Pose shift(const Eigen::Vector3d& pos) { return {Eigen::Matrix3d::Identity(), pos}; }
 
 }  // namespace
@@ -90,7 +95,8 @@ Pose shift(const Eigen::Vector3d& pos) { return {Eigen::Matrix3d::Identity(), po
 // body's orientation (before joint j moves) and its origin on joint j's anchor.
 ChainSpec chain_spec(const Model& model, int site) {
   if (model.njnt == 0) throw std::invalid_argument("no joints");
-  if (model.nq != model.nv || model.njnt != model.nv) throw std::invalid_argument("not one dof per joint");
+  if (model.nq != model.nv || model.njnt != model.nv)
+    throw std::invalid_argument("not one dof per joint");
   for (int i = 0; i < model.nv; ++i) {
     if (model.dof_parentid[i] != i - 1) {
       throw std::invalid_argument("not a serial chain (dof " + std::to_string(i) + "'s parent is " +
@@ -143,9 +149,11 @@ ChainSpec chain_spec(const Model& model, int site) {
     }
     link.mass = sum.m;
     const Eigen::Vector3d c = sum.m > 0 ? Eigen::Vector3d(sum.h / sum.m) : Eigen::Vector3d::Zero();
-    const Eigen::Matrix3d shift_back = sum.m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
+    const Eigen::Matrix3d shift_back =
+        sum.m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
     link.com = array3(c);
-    link.inertia_com = row_major(sum.I - shift_back);  // I about the origin = Ic + m (|c|^2 1 - c c^T)
+    link.inertia_com =
+        row_major(sum.I - shift_back);  // I about the origin = Ic + m (|c|^2 1 - c c^T)
     spec.links.push_back(link);
   }
   if (site >= 0) {

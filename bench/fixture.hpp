@@ -26,12 +26,13 @@ struct State {
 };
 
 struct Fixture {
-  std::string name;    ///< the file's stem: "arm2"
+  std::string name;  ///< the file's stem: "arm2"
   std::string path;
   std::string loader;  ///< how lever's model was made: "mjcf_lite" or "from_mujoco"
   Model model;
   MjModelPtr mj{nullptr, mj_deleteModel};
-  int site = -1;  ///< the site of the Jacobian, the FK tip and the KDL chain's tip ("ee", else the last)
+  int site =
+      -1;  ///< the site of the Jacobian, the FK tip and the KDL chain's tip ("ee", else the last)
 
   State state;                 ///< no joint near a stop: no limit row
   std::optional<State> limit;  ///< the same, with one joint 1 mrad past its lower stop

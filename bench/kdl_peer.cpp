@@ -82,7 +82,13 @@ struct KdlPeer::Impl {
         id_solver(chain, gravity_vec),
         dyn_param(chain, gravity_vec),
         fd_solver(chain, gravity_vec),
-        q(nj), qdot(nj), qddot(nj), zero(nj), tau(nj), torques(nj), qddot_out(nj),
+        q(nj),
+        qdot(nj),
+        qddot(nj),
+        zero(nj),
+        tau(nj),
+        torques(nj),
+        qddot_out(nj),
         H(nj),
         jac(nj),
         f_ext(chain.getNrOfSegments(), KDL::Wrench::Zero()) {}
@@ -108,7 +114,8 @@ KdlPeer::~KdlPeer() = default;
 
 int KdlPeer::nj() const { return static_cast<int>(impl_->nj); }
 
-void KdlPeer::set_state(const double* q, const double* qdot, const double* qddot, const double* tau) {
+void KdlPeer::set_state(const double* q, const double* qdot, const double* qddot,
+                        const double* tau) {
   for (unsigned int i = 0; i < impl_->nj; ++i) {
     impl_->q(i) = q[i];
     impl_->qdot(i) = qdot[i];
@@ -120,15 +127,18 @@ void KdlPeer::set_state(const double* q, const double* qdot, const double* qddot
 int KdlPeer::fk() { return impl_->fk_solver.JntToCart(impl_->q, impl_->tip); }
 int KdlPeer::jacobian() { return impl_->jac_solver.JntToJac(impl_->q, impl_->jac); }
 int KdlPeer::rne_bias() {
-  return impl_->id_solver.CartToJnt(impl_->q, impl_->qdot, impl_->zero, impl_->f_ext, impl_->torques);
+  return impl_->id_solver.CartToJnt(impl_->q, impl_->qdot, impl_->zero, impl_->f_ext,
+                                    impl_->torques);
 }
 int KdlPeer::rne() {
-  return impl_->id_solver.CartToJnt(impl_->q, impl_->qdot, impl_->qddot, impl_->f_ext, impl_->torques);
+  return impl_->id_solver.CartToJnt(impl_->q, impl_->qdot, impl_->qddot, impl_->f_ext,
+                                    impl_->torques);
 }
 int KdlPeer::mass() { return impl_->dyn_param.JntToMass(impl_->q, impl_->H); }
 int KdlPeer::gravity() { return impl_->dyn_param.JntToGravity(impl_->q, impl_->torques); }
 int KdlPeer::forward_dynamics() {
-  return impl_->fd_solver.CartToJnt(impl_->q, impl_->qdot, impl_->tau, impl_->f_ext, impl_->qddot_out);
+  return impl_->fd_solver.CartToJnt(impl_->q, impl_->qdot, impl_->tau, impl_->f_ext,
+                                    impl_->qddot_out);
 }
 
 std::vector<double> KdlPeer::torques() const {

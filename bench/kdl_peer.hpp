@@ -48,19 +48,19 @@ class KdlPeer {
   void set_state(const double* q, const double* qdot, const double* qddot, const double* tau);
 
   // The operations timed; each returns KDL's error code (0: no error).
-  int fk();            ///< ChainFkSolverPos_recursive::JntToCart: the tip frame
-  int jacobian();      ///< ChainJntToJacSolver::JntToJac: the tip's 6 x nj Jacobian
-  int rne_bias();      ///< ChainIdSolver_RNE::CartToJnt with qddot = 0: C qdot + g
-  int rne();           ///< ChainIdSolver_RNE::CartToJnt: M qddot + C qdot + g
-  int mass();          ///< ChainDynParam::JntToMass
-  int gravity();       ///< ChainDynParam::JntToGravity
+  int fk();                ///< ChainFkSolverPos_recursive::JntToCart: the tip frame
+  int jacobian();          ///< ChainJntToJacSolver::JntToJac: the tip's 6 x nj Jacobian
+  int rne_bias();          ///< ChainIdSolver_RNE::CartToJnt with qddot = 0: C qdot + g
+  int rne();               ///< ChainIdSolver_RNE::CartToJnt: M qddot + C qdot + g
+  int mass();              ///< ChainDynParam::JntToMass
+  int gravity();           ///< ChainDynParam::JntToGravity
   int forward_dynamics();  ///< ChainFdSolver_RNE::CartToJnt: qddot from tau
 
   // Results of the last calls (copied out; for the correctness check, not for timing).
-  std::vector<double> torques() const;       ///< rne_bias, rne or gravity
-  std::vector<double> mass_matrix() const;   ///< nj x nj, row-major
-  std::vector<double> qddot() const;         ///< forward_dynamics
-  std::array<double, 12> tip_frame() const;  ///< position, then the rotation row-major
+  std::vector<double> torques() const;          ///< rne_bias, rne or gravity
+  std::vector<double> mass_matrix() const;      ///< nj x nj, row-major
+  std::vector<double> qddot() const;            ///< forward_dynamics
+  std::array<double, 12> tip_frame() const;     ///< position, then the rotation row-major
   std::vector<double> jacobian_matrix() const;  ///< 6 x nj row-major: rows vx vy vz wx wy wz
 
  private:

@@ -1,14 +1,16 @@
 // lever_bench_profile: one lever operation in a loop, on the benchmark's state, for a profiler.
 //
 //   lever_bench_profile MODEL.xml OPERATION [ITERATIONS]
-//   operations: fk jac_site bias rnea crba crba_factor inverse forward forward_limit step step_limit,
-//   and MuJoCo's counterparts as mujoco:<operation> (bias is mj_rne alone, bias_vel adds mj_comVel)
+//   operations: fk jac_site bias rnea crba crba_factor inverse forward forward_limit step
+//   step_limit, and MuJoCo's counterparts as mujoco:<operation> (bias is mj_rne alone, bias_vel
+//   adds mj_comVel)
 //
 // Under callgrind only the loop is measured (loading the model is not):
 //   valgrind --tool=callgrind --instr-atstart=no build-bench/bench/lever_bench_profile
 //       models/arm2.xml forward 100000
 //   callgrind_annotate --inclusive=yes callgrind.out.<pid>
-// Under perf, give it enough iterations: perf record -g lever_bench_profile models/arm7.xml forward 20000000
+// Under perf, give it enough iterations: perf record -g lever_bench_profile models/arm7.xml forward
+// 20000000
 #include <lever/lever.hpp>
 
 #include <chrono>
@@ -63,12 +65,26 @@ int main(int argc, char** argv) {
       {"bias", [&] { lever::bias(m, d); }},
       {"rnea", [&] { lever::rnea(m, d, d.qacc, d.qfrc_inverse); }},
       {"crba", [&] { lever::crba(m, d); }},
-      {"crba_factor", [&] { lever::crba(m, d); lever::factor_mass(m, d); }},
+      {"crba_factor",
+       [&] {
+         lever::crba(m, d);
+         lever::factor_mass(m, d);
+       }},
       {"inverse", [&] { lever::inverse(m, d); }},
       {"forward", [&] { lever::forward(m, d); }},
       {"forward_limit", [&] { lever::forward(m, d); }},
-      {"step", [&] { d.qpos = s.qpos; d.qvel = s.qvel; lever::step(m, d); }},
-      {"step_limit", [&] { d.qpos = s.qpos; d.qvel = s.qvel; lever::step(m, d); }},
+      {"step",
+       [&] {
+         d.qpos = s.qpos;
+         d.qvel = s.qvel;
+         lever::step(m, d);
+       }},
+      {"step_limit",
+       [&] {
+         d.qpos = s.qpos;
+         d.qvel = s.qvel;
+         lever::step(m, d);
+       }},
   };
   // MuJoCo's counterparts, to compare instruction counts under callgrind ("mujoco:forward")
   lever::bench::MjDataPtr md = lever::bench::mujoco_data(*f, s);
@@ -83,18 +99,38 @@ int main(int argc, char** argv) {
     mju_copy(mdp->qvel, s.qvel.data(), mm->nv);
   };
   const std::map<std::string, std::function<void()>> mujoco_ops = {
-      {"mujoco:fk", [&] { mj_kinematics(mm, mdp); mj_comPos(mm, mdp); }},
+      {"mujoco:fk",
+       [&] {
+         mj_kinematics(mm, mdp);
+         mj_comPos(mm, mdp);
+       }},
       {"mujoco:jac_site", [&] { mj_jacSite(mm, mdp, jac.data(), jac.data() + 3 * mm->nv, site); }},
       {"mujoco:bias", [&] { mj_rne(mm, mdp, 0, mdp->qfrc_bias); }},
-      {"mujoco:bias_vel", [&] { mj_comVel(mm, mdp); mj_rne(mm, mdp, 0, mdp->qfrc_bias); }},
+      {"mujoco:bias_vel",
+       [&] {
+         mj_comVel(mm, mdp);
+         mj_rne(mm, mdp, 0, mdp->qfrc_bias);
+       }},
       {"mujoco:rnea", [&] { mj_rne(mm, mdp, 1, mdp->qfrc_inverse); }},
       {"mujoco:crba", [&] { mj_crb(mm, mdp); }},
-      {"mujoco:crba_factor", [&] { mj_crb(mm, mdp); mj_factorM(mm, mdp); }},
+      {"mujoco:crba_factor",
+       [&] {
+         mj_crb(mm, mdp);
+         mj_factorM(mm, mdp);
+       }},
       {"mujoco:inverse", [&] { mj_inverse(mm, mdp); }},
       {"mujoco:forward", [&] { mj_forward(mm, mdp); }},
       {"mujoco:forward_limit", [&] { mj_forward(mm, mdp); }},
-      {"mujoco:step", [&] { restore(); mj_step(mm, mdp); }},
-      {"mujoco:step_limit", [&] { restore(); mj_step(mm, mdp); }},
+      {"mujoco:step",
+       [&] {
+         restore();
+         mj_step(mm, mdp);
+       }},
+      {"mujoco:step_limit",
+       [&] {
+         restore();
+         mj_step(mm, mdp);
+       }},
   };
   const std::function<void()>* found = nullptr;
   if (const auto it = ops.find(op); it != ops.end()) found = &it->second;

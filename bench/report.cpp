@@ -7,9 +7,9 @@
 // targets of the benchmark issue are met. No dependency besides the C++ standard library: the
 // JSON reader below handles the JSON that Google Benchmark writes.
 #include <algorithm>
-#include <cstdlib>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <map>
@@ -72,7 +72,8 @@ class Parser {
     throw std::runtime_error("JSON: " + what + " at offset " + std::to_string(i_));
   }
   void space() {
-    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\n' || s_[i_] == '\r' || s_[i_] == '\t')) ++i_;
+    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\n' || s_[i_] == '\r' || s_[i_] == '\t'))
+      ++i_;
   }
   bool eat(char c) {
     space();
@@ -204,7 +205,8 @@ struct Results {
   std::map<std::string, std::vector<double>> throughput;  // run name -> items/s per repetition
   std::map<std::string, Stats> times_stats, throughput_stats;
 
-  std::optional<Stats> time(const std::string& op, const std::string& model, const std::string& peer) const {
+  std::optional<Stats> time(const std::string& op, const std::string& model,
+                            const std::string& peer) const {
     const auto it = times_stats.find(op + "/" + model + "/" + peer);
     if (it == times_stats.end()) return std::nullopt;
     return it->second;
@@ -230,7 +232,10 @@ std::string fmt(const char* format, double x) {
 std::string time_cell(const std::optional<Stats>& s) {
   if (!s) return "—";
   const double t = s->median;
-  const std::string value = t < 10 ? fmt("%.2f", t) : t < 100 ? fmt("%.1f", t) : t < 1e5 ? fmt("%.0f", t) : fmt("%.3g", t);
+  const std::string value = t < 10    ? fmt("%.2f", t)
+                            : t < 100 ? fmt("%.1f", t)
+                            : t < 1e5 ? fmt("%.0f", t)
+                                      : fmt("%.3g", t);
   return value + " ±" + fmt("%.0f", 100 * s->iqr) + "%";
 }
 
@@ -240,7 +245,8 @@ std::string ratio_cell(const std::optional<Stats>& lever, const std::optional<St
   return fmt(r < 0.1 ? "%.3f" : "%.2f", r);
 }
 
-// ---- what each operation times --------------------------------------------------------------------
+// ---- what each operation times
+// --------------------------------------------------------------------
 
 struct Operation {
   const char* name;
@@ -250,15 +256,22 @@ struct Operation {
 };
 
 const Operation kOperations[] = {
-    {"fk", "`kinematics` (bodies, sites, com-frame inertias and dof axes)", "`mj_kinematics` + `mj_comPos`", "`ChainFkSolverPos_recursive` (tip frame)"},
-    {"jac_site", "`jac_site` (kinematics done)", "`mj_jacSite` (kinematics, comPos done)", "`ChainJntToJacSolver` (from q)"},
-    {"bias", "`bias` (kinematics done)", "`mj_rne(flg_acc=0)` alone (kinematics, comPos, comVel done)", ""},
-    {"bias_from_q", "`kinematics` + `bias`", "`mj_kinematics` + `mj_comPos` + `mj_comVel` + `mj_rne(0)`", "`ChainIdSolver_RNE`, qddot = 0"},
-    {"rnea", "`rnea(qacc)` (kinematics done)", "`mj_rne(flg_acc=1)` alone (kinematics, comPos, comVel done)", ""},
-    {"rnea_from_q", "`kinematics` + `rnea(qacc)`", "`mj_kinematics` + `mj_comPos` + `mj_comVel` + `mj_rne(1)`", "`ChainIdSolver_RNE`"},
+    {"fk", "`kinematics` (bodies, sites, com-frame inertias and dof axes)",
+     "`mj_kinematics` + `mj_comPos`", "`ChainFkSolverPos_recursive` (tip frame)"},
+    {"jac_site", "`jac_site` (kinematics done)", "`mj_jacSite` (kinematics, comPos done)",
+     "`ChainJntToJacSolver` (from q)"},
+    {"bias", "`bias` (kinematics done)",
+     "`mj_rne(flg_acc=0)` alone (kinematics, comPos, comVel done)", ""},
+    {"bias_from_q", "`kinematics` + `bias`",
+     "`mj_kinematics` + `mj_comPos` + `mj_comVel` + `mj_rne(0)`", "`ChainIdSolver_RNE`, qddot = 0"},
+    {"rnea", "`rnea(qacc)` (kinematics done)",
+     "`mj_rne(flg_acc=1)` alone (kinematics, comPos, comVel done)", ""},
+    {"rnea_from_q", "`kinematics` + `rnea(qacc)`",
+     "`mj_kinematics` + `mj_comPos` + `mj_comVel` + `mj_rne(1)`", "`ChainIdSolver_RNE`"},
     {"crba", "`crba` (kinematics done)", "`mj_crb` alone (kinematics, comPos done)", ""},
     {"crba_factor", "`crba` + `factor_mass`", "`mj_crb` + `mj_factorM`", ""},
-    {"crba_from_q", "`kinematics` + `crba`", "`mj_kinematics` + `mj_comPos` + `mj_crb`", "`ChainDynParam::JntToMass`"},
+    {"crba_from_q", "`kinematics` + `crba`", "`mj_kinematics` + `mj_comPos` + `mj_crb`",
+     "`ChainDynParam::JntToMass`"},
     {"inverse", "`inverse` (whole pipeline + RNEA)", "`mj_inverse`", ""},
     {"forward", "`forward`", "`mj_forward`", "`ChainFdSolver_RNE` (M, RNE, LDL only)"},
     {"forward_limit", "`forward`, one limit row", "`mj_forward`, one limit row", ""},
@@ -266,7 +279,8 @@ const Operation kOperations[] = {
     {"step_limit", "`step`, one limit row", "`mj_step`, one limit row", ""},
 };
 
-// ---- targets --------------------------------------------------------------------------------------
+// ---- targets
+// --------------------------------------------------------------------------------------
 
 struct Verdict {
   std::string target, measured, status;
@@ -283,7 +297,8 @@ void target_ratio(std::vector<Verdict>& out, const Results& r, const std::string
   const double ratio = l->median / p->median;
   const bool met = strict ? ratio < max_ratio : ratio <= max_ratio;
   std::string measured = fmt("%.1f ns", l->median) + " vs " + fmt("%.1f ns", p->median) + ": " +
-                         fmt("%.3f", ratio) + " (" + fmt("%.1fx", p->median / l->median) + " faster)";
+                         fmt("%.3f", ratio) + " (" + fmt("%.1fx", p->median / l->median) +
+                         " faster)";
   const double by = ratio / max_ratio;
   std::string status = met ? "met" : "**missed** by " + fmt(by < 1.01 ? "%.3fx" : "%.2fx", by);
   out.push_back({text, measured, status});
@@ -336,7 +351,8 @@ int main(int argc, char** argv) {
     if (b.str("run_type") != "iteration" || b.find("error_occurred") != nullptr) continue;
     std::string name = b.str("run_name", b.str("name"));
     const std::string real_time = "/real_time";  // UseRealTime() benchmarks carry this suffix
-    if (name.size() > real_time.size() && name.compare(name.size() - real_time.size(), real_time.size(), real_time) == 0) {
+    if (name.size() > real_time.size() &&
+        name.compare(name.size() - real_time.size(), real_time.size(), real_time) == 0) {
       name.resize(name.size() - real_time.size());
     }
     if (r.times.find(name) == r.times.end()) order.push_back(name);
@@ -353,7 +369,8 @@ int main(int argc, char** argv) {
     if (parts.size() < 3) continue;
     const std::string about = context->str("model." + parts[1]);
     const int nv = about.rfind("nv=", 0) == 0 ? std::atoi(about.c_str() + 3) : 0;
-    if (std::find(by_nv.begin(), by_nv.end(), std::pair{nv, parts[1]}) == by_nv.end()) by_nv.emplace_back(nv, parts[1]);
+    if (std::find(by_nv.begin(), by_nv.end(), std::pair{nv, parts[1]}) == by_nv.end())
+      by_nv.emplace_back(nv, parts[1]);
   }
   std::sort(by_nv.begin(), by_nv.end());
   std::vector<std::string> model_order;
@@ -363,25 +380,31 @@ int main(int argc, char** argv) {
 
   std::ostream& out = std::cout;
   out << "# Performance: lever against MuJoCo 2.2.2 and Orocos KDL\n\n";
-  out << "_Generated by `make bench` (bench/report.cpp from Google Benchmark's JSON); do not edit by hand._\n\n";
+  out << "_Generated by `make bench` (bench/report.cpp from Google Benchmark's JSON); do not edit "
+         "by hand._\n\n";
   out << "Every figure is the **median CPU time of one call** over " << repetitions
       << " repetitions, run in one process with Google Benchmark's random interleaving; `±` is the "
-         "interquartile range of the repetitions over their median. **Ratios are lever's median over "
-         "the peer's** (below 1: lever is faster; 0.10 = ten times faster). Absolute times depend on "
+         "interquartile range of the repetitions over their median. **Ratios are lever's median "
+         "over "
+         "the peer's** (below 1: lever is faster; 0.10 = ten times faster). Absolute times depend "
+         "on "
          "the machine; the ratios are what the targets are about.\n\n";
 
   out << "| | |\n|---|---|\n";
   out << "| date | " << context->str("date") << " |\n";
   out << "| lever commit | " << context->str("lever_commit", "(not recorded)") << " |\n";
-  out << "| machine | " << context->str("cpu_model") << ", " << context->str("num_cpus") << " CPUs, "
-      << context->str("mhz_per_cpu") << " MHz |\n";
-  if (const Json* load = context->find("load_avg"); load != nullptr && load->kind == Json::Kind::kArray) {
+  out << "| machine | " << context->str("cpu_model") << ", " << context->str("num_cpus")
+      << " CPUs, " << context->str("mhz_per_cpu") << " MHz |\n";
+  if (const Json* load = context->find("load_avg");
+      load != nullptr && load->kind == Json::Kind::kArray) {
     out << "| load average at start | ";
-    for (std::size_t i = 0; i < load->array.size(); ++i) out << (i ? ", " : "") << fmt("%.2f", load->array[i].number);
+    for (std::size_t i = 0; i < load->array.size(); ++i)
+      out << (i ? ", " : "") << fmt("%.2f", load->array[i].number);
     const double cpus = context->num("num_cpus", 1);
     if (!load->array.empty() && load->array[0].number > cpus) {
       out << " (**busy**: more runnable tasks than the " << context->str("num_cpus")
-          << " CPUs, so absolute times are inflated and the 2-thread batch figures mean little; the "
+          << " CPUs, so absolute times are inflated and the 2-thread batch figures mean little; "
+             "the "
              "interleaved ratios suffer less)";
     }
     out << " |\n";
@@ -400,33 +423,43 @@ int main(int argc, char** argv) {
 
   // targets
   std::vector<Verdict> verdicts;
-  target_ratio(verdicts, r, "arm2 `forward` <= 1/10 of `mj_forward`", "forward", "arm2", "mujoco", 0.1);
-  target_ratio(verdicts, r, "arm2 `forward` <= 1/10 of `mj_forward`, one limit active", "forward_limit", "arm2", "mujoco", 0.1);
+  target_ratio(verdicts, r, "arm2 `forward` <= 1/10 of `mj_forward`", "forward", "arm2", "mujoco",
+               0.1);
+  target_ratio(verdicts, r, "arm2 `forward` <= 1/10 of `mj_forward`, one limit active",
+               "forward_limit", "arm2", "mujoco", 0.1);
   target_ratio(verdicts, r, "arm2 `step` <= 1/10 of `mj_step`", "step", "arm2", "mujoco", 0.1);
-  target_ratio(verdicts, r, "arm2 `step` <= 1/10 of `mj_step`, one limit active", "step_limit", "arm2", "mujoco", 0.1);
-  target_ratio(verdicts, r, "arm2 `bias` faster than `mj_rne` alone", "bias", "arm2", "mujoco", 1.0, true);
-  target_ratio(verdicts, r, "arm2 `crba` faster than `mj_crb` alone", "crba", "arm2", "mujoco", 1.0, true);
+  target_ratio(verdicts, r, "arm2 `step` <= 1/10 of `mj_step`, one limit active", "step_limit",
+               "arm2", "mujoco", 0.1);
+  target_ratio(verdicts, r, "arm2 `bias` faster than `mj_rne` alone", "bias", "arm2", "mujoco", 1.0,
+               true);
+  target_ratio(verdicts, r, "arm2 `crba` faster than `mj_crb` alone", "crba", "arm2", "mujoco", 1.0,
+               true);
   // KDL's solvers start from q, so the verdict compares lever from q too; the piece alone
   // (kinematics already done, as inside forward()) is shown beside it
   for (const std::string& model : model_order) {
-    for (const auto& [op, piece, what] : {std::tuple{"bias_from_q", "bias", " RNEA bias >= 3x faster than KDL's RNE"},
-                                         std::tuple{"crba_from_q", "crba", " CRBA >= 3x faster than KDL's JntToMass"}}) {
+    for (const auto& [op, piece, what] :
+         {std::tuple{"bias_from_q", "bias", " RNEA bias >= 3x faster than KDL's RNE"},
+          std::tuple{"crba_from_q", "crba", " CRBA >= 3x faster than KDL's JntToMass"}}) {
       target_ratio(verdicts, r, model + what, op, model, "kdl", 1.0 / 3);
       const auto l = r.time(piece, model, "lever"), k = r.time(op, model, "kdl");
       if (l && k && verdicts.back().status != "—") {
-        verdicts.back().measured += "; lever's `" + std::string(piece) + "` alone: " +
-                                    fmt("%.1f ns", l->median) + ", " + fmt("%.1fx", k->median / l->median) + " faster";
+        verdicts.back().measured += "; lever's `" + std::string(piece) +
+                                    "` alone: " + fmt("%.1f ns", l->median) + ", " +
+                                    fmt("%.1fx", k->median / l->median) + " faster";
       }
     }
   }
-  target_ratio(verdicts, r, "arm7 `forward` <= 1/4 of `mj_forward`", "forward", "arm7", "mujoco", 0.25);
+  target_ratio(verdicts, r, "arm7 `forward` <= 1/4 of `mj_forward`", "forward", "arm7", "mujoco",
+               0.25);
   if (const auto l = r.time("forward", "arm2", "lever")) {
     const double floor_ns = 60, allowed = 2 * floor_ns;
-    verdicts.push_back({"arm2 `forward` within 2x of the ~60 ns floor (<= 120 ns)", fmt("%.1f ns", l->median),
-                        l->median <= allowed ? "met" : "**missed** by " + fmt("%.2fx", l->median / allowed)});
+    verdicts.push_back(
+        {"arm2 `forward` within 2x of the ~60 ns floor (<= 120 ns)", fmt("%.1f ns", l->median),
+         l->median <= allowed ? "met" : "**missed** by " + fmt("%.2fx", l->median / allowed)});
   }
   out << "## Targets\n\n| target | measured (lever vs peer) | |\n|---|---|---|\n";
-  for (const Verdict& v : verdicts) out << "| " << v.target << " | " << v.measured << " | " << v.status << " |\n";
+  for (const Verdict& v : verdicts)
+    out << "| " << v.target << " | " << v.measured << " | " << v.status << " |\n";
   out << "\n";
 
   // the table: operation x model
@@ -440,20 +473,24 @@ int main(int argc, char** argv) {
       const auto k = r.time(op.name, model, "kdl");
       if (!l && !m && !k) continue;
       out << "| " << op.name << " | " << model << " | " << time_cell(l) << " | " << time_cell(m)
-          << " | " << time_cell(k) << " | " << ratio_cell(l, m) << " | " << ratio_cell(l, k) << " |\n";
+          << " | " << time_cell(k) << " | " << ratio_cell(l, m) << " | " << ratio_cell(l, k)
+          << " |\n";
     }
   }
   out << "\n";
 
   // batches
   bool any_batch = false;
-  for (const auto& [name, s] : r.throughput_stats) any_batch = any_batch || name.rfind("batch_forward/", 0) == 0;
+  for (const auto& [name, s] : r.throughput_stats)
+    any_batch = any_batch || name.rfind("batch_forward/", 0) == 0;
   if (any_batch) {
     out << "## Batch forward dynamics: states per second (BatchRunner)\n\n";
     out << context->str("batch_states") << " different states per call, no limit active; one Data "
-        << "(lever) or mjData (MuJoCo) per thread, the states split into contiguous blocks, threads "
+        << "(lever) or mjData (MuJoCo) per thread, the states split into contiguous blocks, "
+           "threads "
         << "started per call. Wall-clock throughput, median ± IQR.\n\n";
-    out << "| model | threads | lever (states/s) | MuJoCo (states/s) | lever/MuJoCo throughput | lever speed-up 2 vs 1 thread |\n";
+    out << "| model | threads | lever (states/s) | MuJoCo (states/s) | lever/MuJoCo throughput | "
+           "lever speed-up 2 vs 1 thread |\n";
     out << "|---|---:|---:|---:|---:|---:|\n";
     for (const std::string& model : model_order) {
       for (const int threads : {1, 2}) {
@@ -464,11 +501,16 @@ int main(int argc, char** argv) {
         if (l == r.throughput_stats.end()) continue;
         auto cell = [&](const auto& it) {
           return it == r.throughput_stats.end() ? std::string("—")
-                                                : fmt("%.3g", it->second.median) + " ±" + fmt("%.0f", 100 * it->second.iqr) + "%";
+                                                : fmt("%.3g", it->second.median) + " ±" +
+                                                      fmt("%.0f", 100 * it->second.iqr) + "%";
         };
         out << "| " << model << " | " << threads << " | " << cell(l) << " | " << cell(m) << " | "
-            << (m == r.throughput_stats.end() ? "—" : fmt("%.1fx", l->second.median / m->second.median)) << " | "
-            << (l1 == r.throughput_stats.end() ? "—" : fmt("%.2fx", l->second.median / l1->second.median)) << " |\n";
+            << (m == r.throughput_stats.end() ? "—"
+                                              : fmt("%.1fx", l->second.median / m->second.median))
+            << " | "
+            << (l1 == r.throughput_stats.end() ? "—"
+                                               : fmt("%.2fx", l->second.median / l1->second.median))
+            << " |\n";
       }
     }
     out << "\n";
@@ -476,23 +518,33 @@ int main(int argc, char** argv) {
 
   // what each operation times
   out << "## What each operation times\n\n";
-  out << "Every peer gets the same model file and the same state (qpos, qvel, qacc, ctrl drawn once per "
-         "model with a fixed seed, every joint inside its range; the `_limit` variants put the first "
+  out << "Every peer gets the same model file and the same state (qpos, qvel, qacc, ctrl drawn "
+         "once per "
+         "model with a fixed seed, every joint inside its range; the `_limit` variants put the "
+         "first "
          "limited joint, the shoulder, 1 mrad past its lower stop). Stages a peer needs before the "
          "timed call run once before the timing loop.\n\n";
   out << "| operation | lever | MuJoCo | KDL |\n|---|---|---|---|\n";
   for (const Operation& op : kOperations) {
-    out << "| " << op.name << " | " << op.lever << " | " << op.mujoco << " | " << (*op.kdl ? op.kdl : "—") << " |\n";
+    out << "| " << op.name << " | " << op.lever << " | " << op.mujoco << " | "
+        << (*op.kdl ? op.kdl : "—") << " |\n";
   }
-  out << "\nNotes. lever's `kinematics` does the work of `mj_kinematics` and `mj_comPos` together (poses, "
-         "then subtree centres of mass, body inertias and dof axes in MuJoCo's com-based frame), and "
-         "its `bias` that of `mj_comVel` and `mj_rne`; `mj_kinematics` also places geoms; `mj_forward` and `mj_step` also run collision "
+  out << "\nNotes. lever's `kinematics` does the work of `mj_kinematics` and `mj_comPos` together "
+         "(poses, "
+         "then subtree centres of mass, body inertias and dof axes in MuJoCo's com-based frame), "
+         "and "
+         "its `bias` that of `mj_comVel` and `mj_rne`; `mj_kinematics` also places geoms; "
+         "`mj_forward` and `mj_step` also run collision "
          "detection (nothing collides in these models), sensors and MuJoCo's iterative constraint "
-         "solver, which lever replaces with an exact solve of the limit rows. KDL's forward dynamics "
+         "solver, which lever replaces with an exact solve of the limit rows. KDL's forward "
+         "dynamics "
          "has no passive forces, motors or limits, and KDL's solvers always start from q (they "
-         "recompute every segment pose), so KDL is compared on the `*_from_q`, `fk`, `jac_site` and "
-         "`forward` rows. KDL's tip Jacobian and FK give one frame; lever's and MuJoCo's FK place every "
-         "body and site. lever's flags include `-ffp-contract=off` (no fused multiply-add); nothing is "
+         "recompute every segment pose), so KDL is compared on the `*_from_q`, `fk`, `jac_site` "
+         "and "
+         "`forward` rows. KDL's tip Jacobian and FK give one frame; lever's and MuJoCo's FK place "
+         "every "
+         "body and site. lever's flags include `-ffp-contract=off` (no fused multiply-add); "
+         "nothing is "
          "built with `-march=native`.\n\n";
 
   if (!check_path.empty()) {
@@ -500,7 +552,8 @@ int main(int argc, char** argv) {
     std::stringstream check_text;
     check_text << check.rdbuf();
     out << "## Checks run with these numbers (`lever_bench --check`)\n\n";
-    out << "The KDL bridge (lever's model as a KDL chain), the claim that lever and MuJoCo do the same "
+    out << "The KDL bridge (lever's model as a KDL chain), the claim that lever and MuJoCo do the "
+           "same "
            "work on the timed states, and the batch API:\n\n";
     out << check_text.str() << "\n";
   }

@@ -110,7 +110,8 @@ void BatchRunner::step(Eigen::Ref<Eigen::MatrixXd> qpos, Eigen::Ref<Eigen::Matri
   check_rows("ctrl", ctrl.rows(), m.nu);
   check_cols("qvel", qvel.cols(), n);
   if (ctrl.cols() != 0) check_cols("ctrl", ctrl.cols(), n);
-  if (nstep < 0) throw StateError("BatchRunner: nstep is " + std::to_string(nstep) + "; it must be >= 0.");
+  if (nstep < 0)
+    throw StateError("BatchRunner: nstep is " + std::to_string(nstep) + "; it must be >= 0.");
 
   const bool has_ctrl = ctrl.cols() != 0;
   run_blocks(data_, n, [&](Data& d, Eigen::Index begin, Eigen::Index end) {

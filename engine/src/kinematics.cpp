@@ -35,11 +35,14 @@ void poses(const Model& model, Data& data) {
       if (k == 0) {
         // the body's first joint: its axis and anchor are constant in the parent's frame
         data.xaxis[j] = rotate(parent, model.jnt_axis_in_parent[j]);
-        data.xanchor[j] = model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(parent, model.jnt_pos_in_parent[j])) : pos;
+        data.xanchor[j] = model.jnt_offset[j]
+                              ? Eigen::Vector3d(pos + rotate(parent, model.jnt_pos_in_parent[j]))
+                              : pos;
       } else {
         turned = quat_to_mat(quat);  // the body turned by its earlier joints
         data.xaxis[j] = rotate(turned, axis);
-        data.xanchor[j] = model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(turned, model.jnt_pos[j])) : pos;
+        data.xanchor[j] =
+            model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(turned, model.jnt_pos[j])) : pos;
       }
       if (model.jnt_type[j] == JointType::kSlide) {
         pos += data.xaxis[j] * theta;
@@ -140,7 +143,8 @@ void jac_point(const Model& model, const Data& data, int body, const Eigen::Vect
   if (b == 0) return;
   for (int i = model.body_dofadr[b] + model.body_dofnum[b] - 1; i >= 0; i = model.dof_parentid[i]) {
     const Motion& S = data.cdof[i];
-    const Eigen::Vector3d v = S.tail<3>() + cross(S.head<3>(), offset);  // point velocity per unit rate
+    const Eigen::Vector3d v =
+        S.tail<3>() + cross(S.head<3>(), offset);  // point velocity per unit rate
     for (int row = 0; row < 3; ++row) {
       jacr(row, i) = S[row];
       jacp(row, i) = v[row];

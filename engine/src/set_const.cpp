@@ -210,7 +210,8 @@ void check_parameters(const Model& model) {
       reject("body", b, n, "has a non-finite position");
     }
     for (const Quat* q : {&model.body_quat[b], &model.body_iquat[b]}) {
-      if (!q->allFinite() || q->norm() < 1e-10) reject("body", b, n, "has a zero or non-finite quaternion");
+      if (!q->allFinite() || q->norm() < 1e-10)
+        reject("body", b, n, "has a zero or non-finite quaternion");
     }
   }
   for (int j = 0; j < model.njnt; ++j) {
@@ -221,7 +222,8 @@ void check_parameters(const Model& model) {
         !std::isfinite(model.jnt_margin[j])) {
       reject("joint", j, n, "has non-finite limit parameters");
     }
-    if (model.jnt_limited[j] && !(model.jnt_range[j][0] < model.jnt_range[j][1] && finite(model.jnt_range[j]))) {
+    if (model.jnt_limited[j] &&
+        !(model.jnt_range[j][0] < model.jnt_range[j][1] && finite(model.jnt_range[j]))) {
       reject("joint", j, n, "is limited but its range is not finite with lo < hi");
     }
     if (!(model.dof_armature[d] >= 0) || !(model.dof_damping[d] >= 0) ||
@@ -312,7 +314,8 @@ void check_at_qpos0(const Model& model, Data& data) {
     }
   }
   if (!std::isfinite(data.energy[0])) {
-    throw ModelError("the model's potential energy at qpos0 is not finite: its numbers are too large.");
+    throw ModelError(
+        "the model's potential energy at qpos0 is not finite: its numbers are too large.");
   }
 }
 

@@ -38,7 +38,8 @@ std::atomic<long> g_malloc_calls{0};  // malloc, calloc, realloc, aligned forms
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
 #define LEVER_ALLOC_SANITIZER 1
 #elif defined(__has_feature)
-#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || __has_feature(memory_sanitizer)
+#if __has_feature(address_sanitizer) || __has_feature(thread_sanitizer) || \
+    __has_feature(memory_sanitizer)
 #define LEVER_ALLOC_SANITIZER 1
 #endif
 #endif
@@ -103,16 +104,32 @@ void* operator new[](std::size_t size) { return counted_new(size); }
 void* operator new(std::size_t size, std::align_val_t a) { return counted_new(size, a); }
 void* operator new[](std::size_t size, std::align_val_t a) { return counted_new(size, a); }
 void* operator new(std::size_t size, const std::nothrow_t&) noexcept {
-  try { return counted_new(size); } catch (...) { return nullptr; }
+  try {
+    return counted_new(size);
+  } catch (...) {
+    return nullptr;
+  }
 }
 void* operator new[](std::size_t size, const std::nothrow_t&) noexcept {
-  try { return counted_new(size); } catch (...) { return nullptr; }
+  try {
+    return counted_new(size);
+  } catch (...) {
+    return nullptr;
+  }
 }
 void* operator new(std::size_t size, std::align_val_t a, const std::nothrow_t&) noexcept {
-  try { return counted_new(size, a); } catch (...) { return nullptr; }
+  try {
+    return counted_new(size, a);
+  } catch (...) {
+    return nullptr;
+  }
 }
 void* operator new[](std::size_t size, std::align_val_t a, const std::nothrow_t&) noexcept {
-  try { return counted_new(size, a); } catch (...) { return nullptr; }
+  try {
+    return counted_new(size, a);
+  } catch (...) {
+    return nullptr;
+  }
 }
 void operator delete(void* p) noexcept { std::free(p); }
 void operator delete[](void* p) noexcept { std::free(p); }
@@ -127,7 +144,8 @@ void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); 
 void operator delete(void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
 void operator delete[](void* p, std::align_val_t, const std::nothrow_t&) noexcept { std::free(p); }
 
-// ---- helpers ---------------------------------------------------------------------------------------
+// ---- helpers
+// ---------------------------------------------------------------------------------------
 
 namespace {
 
@@ -249,7 +267,8 @@ TEST_CASE("forward, step, inverse, jac_site and compute_energy allocate nothing"
     const lever::Model base = load(path, how);
     const std::string model_name = std::filesystem::path(path).filename().string();
     INFO("model " << model_name << " loaded by " << how);
-    for (const lever::Integrator integrator : {lever::Integrator::kEuler, lever::Integrator::kRK4}) {
+    for (const lever::Integrator integrator :
+         {lever::Integrator::kEuler, lever::Integrator::kRK4}) {
       lever::Model m = base;
       m.opt.integrator = integrator;
       INFO("integrator " << (integrator == lever::Integrator::kEuler ? "Euler" : "RK4"));

@@ -35,8 +35,8 @@ enum class GeomType : int { kSphere = 2, kCapsule = 3, kEllipsoid = 4, kCylinder
 
 /// Simulation options (<option>).
 struct Options {
-  double timestep = 0.002;                          ///< s
-  Eigen::Vector3d gravity{0.0, 0.0, -9.81};         ///< m/s^2, world frame
+  double timestep = 0.002;                   ///< s
+  Eigen::Vector3d gravity{0.0, 0.0, -9.81};  ///< m/s^2, world frame
   Integrator integrator = Integrator::kEuler;
 };
 
@@ -63,20 +63,20 @@ struct Model {
 
   // ---- bodies (nbody) ------------------------------------------------------------------------
   std::vector<std::string> body_name{"world"};
-  std::vector<int> body_parentid{0};     ///< parent body; the world is its own parent
-  std::vector<int> body_rootid{0};       ///< the world child this body hangs from
-  std::vector<int> body_jntnum{0};       ///< joints of this body
-  std::vector<int> body_jntadr{-1};      ///< first joint, -1 if none
-  std::vector<int> body_dofnum{0};       ///< dofs of this body
-  std::vector<int> body_dofadr{-1};      ///< first dof, -1 if none
-  std::vector<int> body_geomnum{0};      ///< geoms of this body
-  std::vector<int> body_geomadr{-1};     ///< first geom, -1 if none
-  std::vector<Eigen::Vector3d> body_pos{Eigen::Vector3d::Zero()};  ///< in parent frame
+  std::vector<int> body_parentid{0};  ///< parent body; the world is its own parent
+  std::vector<int> body_rootid{0};    ///< the world child this body hangs from
+  std::vector<int> body_jntnum{0};    ///< joints of this body
+  std::vector<int> body_jntadr{-1};   ///< first joint, -1 if none
+  std::vector<int> body_dofnum{0};    ///< dofs of this body
+  std::vector<int> body_dofadr{-1};   ///< first dof, -1 if none
+  std::vector<int> body_geomnum{0};   ///< geoms of this body
+  std::vector<int> body_geomadr{-1};  ///< first geom, -1 if none
+  std::vector<Eigen::Vector3d> body_pos{Eigen::Vector3d::Zero()};       ///< in parent frame
   std::vector<Eigen::Vector4d> body_quat{Eigen::Vector4d(1, 0, 0, 0)};  ///< relative to parent
   std::vector<Eigen::Vector3d> body_ipos{Eigen::Vector3d::Zero()};  ///< centre of mass, body frame
   std::vector<Eigen::Vector4d> body_iquat{Eigen::Vector4d(1, 0, 0, 0)};  ///< principal axes
-  std::vector<double> body_mass{0.0};                                  ///< kg
-  std::vector<Eigen::Vector3d> body_inertia{Eigen::Vector3d::Zero()};  ///< principal, kg m^2
+  std::vector<double> body_mass{0.0};                                    ///< kg
+  std::vector<Eigen::Vector3d> body_inertia{Eigen::Vector3d::Zero()};    ///< principal, kg m^2
   /// lever: true where the body's mass came from <inertial>, false where it was inferred
   /// from geoms (or the body has no mass at all)
   std::vector<bool> body_explicit_inertial{false};
@@ -140,8 +140,8 @@ struct Model {
   std::vector<std::array<double, 2>> actuator_forcerange;
 
   // ---- set_const: MuJoCo's compile-time constants ---------------------------------------------
-  std::vector<double> body_subtreemass;               ///< kg, this body and all below it
-  std::vector<std::array<double, 2>> body_invweight0; ///< (translational, rotational) at qpos0
+  std::vector<double> body_subtreemass;                ///< kg, this body and all below it
+  std::vector<std::array<double, 2>> body_invweight0;  ///< (translational, rotational) at qpos0
 
   // ---- set_const: constant rotations, so kinematics() does not rebuild them every call ------
   // A flag is 0 where the rotation is the identity, which lets kinematics() skip the product.
