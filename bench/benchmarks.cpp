@@ -256,6 +256,7 @@ void register_batch(const Fixture& f, int states) {
                                    const mjModel* m = fp->mj.get();
                                    const auto n = static_cast<int>(batch->qpos.cols());
                                    std::vector<MjDataPtr> data;
+                                   data.reserve(static_cast<std::size_t>(threads));
                                    for (int t = 0; t < threads; ++t)
                                      data.emplace_back(mj_makeData(m), mj_deleteData);
                                    Eigen::MatrixXd qacc(m->nv, n);

@@ -22,7 +22,8 @@ unsigned long long seed_for(const std::string& name) {  // FNV-1a: a fixed state
 std::array<double, 9> row_major(const Eigen::Matrix3d& R) {
   std::array<double, 9> out{};
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) out[static_cast<std::size_t>(3 * r + c)] = R(r, c);
+    for (int c = 0; c < 3; ++c)
+      out[3 * static_cast<std::size_t>(r) + static_cast<std::size_t>(c)] = R(r, c);
   }
   return out;
 }

@@ -165,7 +165,8 @@ std::array<double, 12> KdlPeer::tip_frame() const {
   std::array<double, 12> out{};
   for (int i = 0; i < 3; ++i) out[static_cast<std::size_t>(i)] = impl_->tip.p(i);
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) out[static_cast<std::size_t>(3 + 3 * r + c)] = impl_->tip.M(r, c);
+    for (int c = 0; c < 3; ++c)
+      out[3 + 3 * static_cast<std::size_t>(r) + static_cast<std::size_t>(c)] = impl_->tip.M(r, c);
   }
   return out;
 }

@@ -31,11 +31,14 @@ struct Json {
   double number = 0;
   std::string string;
   std::vector<Json> array;
-  std::vector<std::pair<std::string, Json>> object;
+  // an object's members in order: keys[i] names values[i] (two vectors: a vector of pairs of an
+  // incomplete type is not allowed)
+  std::vector<std::string> keys;
+  std::vector<Json> values;
 
   const Json* find(const std::string& key) const {
-    for (const auto& [k, v] : object) {
-      if (k == key) return &v;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      if (keys[i] == key) return &values[i];
     }
     return nullptr;
   }
@@ -128,7 +131,8 @@ class Parser {
         space();
         std::string key = string_literal();
         expect(':');
-        v.object.emplace_back(std::move(key), value());
+        v.keys.push_back(std::move(key));
+        v.values.push_back(value());
       } while (eat(','));
       expect('}');
     } else if (c == '[') {
@@ -374,6 +378,7 @@ int main(int argc, char** argv) {
   }
   std::sort(by_nv.begin(), by_nv.end());
   std::vector<std::string> model_order;
+  model_order.reserve(by_nv.size());
   for (const auto& [nv, model] : by_nv) model_order.push_back(model);
   int repetitions = 0;
   for (const auto& [name, s] : r.times_stats) repetitions = std::max(repetitions, s.repetitions);

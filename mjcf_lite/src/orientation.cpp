@@ -205,7 +205,7 @@ bool jacobi_step(const Mat3& d, Quat& q) {
   const double cosine = 1.0 / std::sqrt(1 + t * t);
   if (cosine > 1.0 - kEps) return false;
   Quat u{0, 0, 0, 0};
-  double& v = u[static_cast<size_t>(k + 1)];
+  double& v = u[static_cast<size_t>(k) + 1];
   v = tau >= 0 ? -std::sqrt(0.5 - 0.5 * cosine) : std::sqrt(0.5 - 0.5 * cosine);
   if (k == 1) v = -v;
   u[0] = std::sqrt(1.0 - v * v);
@@ -229,10 +229,10 @@ Principal principal_axes(const Sym6& in) {
   // z (swap of 0 and 1) or x (swap of 1 and 2) with each swap
   for (int pass = 0; pass < 3; ++pass) {
     const int j = pass % 2;
-    if (p.moments[static_cast<size_t>(j)] < p.moments[static_cast<size_t>(j + 1)]) {
-      std::swap(p.moments[static_cast<size_t>(j)], p.moments[static_cast<size_t>(j + 1)]);
+    if (p.moments[static_cast<size_t>(j)] < p.moments[static_cast<size_t>(j) + 1]) {
+      std::swap(p.moments[static_cast<size_t>(j)], p.moments[static_cast<size_t>(j) + 1]);
       Quat turn{0.707106781186548, 0, 0, 0};  // mujoco's truncated literal, not sqrt(0.5)
-      turn[static_cast<size_t>((j + 2) % 3 + 1)] = turn[0];
+      turn[static_cast<size_t>((j + 2) % 3) + 1] = turn[0];
       p.quat = product(p.quat, turn);
       engine_normalize(p.quat);
     }

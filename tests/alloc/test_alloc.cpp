@@ -47,19 +47,22 @@ std::atomic<long> g_malloc_calls{0};  // malloc, calloc, realloc, aligned forms
 #if defined(__GLIBC__) && !defined(LEVER_ALLOC_SANITIZER)
 #define LEVER_ALLOC_COUNTS_MALLOC 1
 extern "C" {
-void* __libc_malloc(std::size_t size);
-void* __libc_calloc(std::size_t count, std::size_t size);
-void* __libc_realloc(void* ptr, std::size_t size);
+// glibc's own entry points, so the counting malloc below can forward to them (reserved names by
+// design: these are glibc's exported aliases of its allocator)
+void* __libc_malloc(std::size_t size);                     // NOLINT(bugprone-reserved-identifier)
+void* __libc_calloc(std::size_t count, std::size_t size);  // NOLINT(bugprone-reserved-identifier)
+void* __libc_realloc(void* ptr, std::size_t size);         // NOLINT(bugprone-reserved-identifier)
+// NOLINTNEXTLINE(bugprone-reserved-identifier)
 void* __libc_memalign(std::size_t alignment, std::size_t size);
-void __libc_free(void* ptr);
+void __libc_free(void* ptr);  // NOLINT(bugprone-reserved-identifier)
 
 void* malloc(std::size_t size) noexcept {
   g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
   return __libc_malloc(size);
 }
-void* calloc(std::size_t count, std::size_t size) noexcept {
+void* calloc(std::size_t nmemb, std::size_t size) noexcept {  // glibc's parameter names
   g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
-  return __libc_calloc(count, size);
+  return __libc_calloc(nmemb, size);
 }
 void* realloc(void* ptr, std::size_t size) noexcept {
   g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
@@ -74,11 +77,11 @@ void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
   g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
   return __libc_memalign(alignment, size);
 }
-int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept {
+int posix_memalign(void** memptr, std::size_t alignment, std::size_t size) noexcept {
   g_malloc_calls.fetch_add(1, std::memory_order_relaxed);
   void* p = __libc_memalign(alignment, size);
   if (p == nullptr) return ENOMEM;
-  *out = p;
+  *memptr = p;
   return 0;
 }
 }  // extern "C"

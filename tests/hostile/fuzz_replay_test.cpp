@@ -40,7 +40,7 @@ TEST_CASE("fuzz_mjcf regressions are handled", "[hostile][fuzz]") {
     {
       INFO(f.filename().string());
       const std::string bytes = bytes_of(f);
-      CHECK(lever::fuzz::check_mjcf(data_of(bytes), bytes.size()) == "");
+      CHECK(lever::fuzz::check_mjcf(data_of(bytes), bytes.size()).empty());
     }
   }
 }
@@ -51,8 +51,8 @@ TEST_CASE("fuzz_engine regressions are handled", "[hostile][fuzz]") {
     {
       INFO(f.filename().string());
       const std::string bytes = bytes_of(f);
-      CHECK(lever::fuzz::check_engine(data_of(bytes), bytes.size(), lever::test::source_dir()) ==
-            "");
+      CHECK(lever::fuzz::check_engine(data_of(bytes), bytes.size(), lever::test::source_dir())
+                .empty());
     }
   }
 }
@@ -60,16 +60,17 @@ TEST_CASE("fuzz_engine regressions are handled", "[hostile][fuzz]") {
 TEST_CASE("the fuzz checks catch what they are meant to", "[hostile][fuzz]") {
   // a model that loads passes; junk is refused cleanly (not a finding)
   const std::string arm2 = lever::test::slurp(lever::test::model_path("models/arm2.xml"));
-  CHECK(lever::fuzz::check_mjcf(data_of(arm2), arm2.size()) == "");
+  CHECK(lever::fuzz::check_mjcf(data_of(arm2), arm2.size()).empty());
   const std::string junk = "\x01\x02<mujoco";
-  CHECK(lever::fuzz::check_mjcf(data_of(junk), junk.size()) == "");
+  CHECK(lever::fuzz::check_mjcf(data_of(junk), junk.size()).empty());
   // every model, NaN everywhere, both integrators, several steps: handled
   for (int m = 0; m < lever::fuzz::engine_model_count(lever::test::source_dir()); ++m) {
     for (const std::uint8_t flags : {0, 1, 3, 0x4f}) {
       const std::string nan_state =
           std::string{static_cast<char>(m), static_cast<char>(flags)} + std::string(64, '\0');
-      CHECK(lever::fuzz::check_engine(data_of(nan_state), nan_state.size(),
-                                      lever::test::source_dir()) == "");
+      CHECK(
+          lever::fuzz::check_engine(data_of(nan_state), nan_state.size(), lever::test::source_dir())
+              .empty());
     }
   }
 }
