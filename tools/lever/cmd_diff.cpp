@@ -60,8 +60,11 @@ const char* kUsage =
     "  --trajectory   also 10 s lockstep trajectories (Euler and RK4) and a 10 s free run\n"
     "  --json         machine-readable output\n"
     "  --markdown     the agreement document for all MODELs (implies --trajectory)\n"
-    "Exit status: 0 every quantity within 1e-12 max(1, |mujoco|); 1 some are not; 2 a model\n"
-    "could not be loaded.\n";
+    "Each quantity is held to |lever - mujoco| <= 1e-12 max(1, |mujoco|), |mujoco| its largest\n"
+    "element in that state; its element-wise ratio is printed beside it, with MuJoCo's own floor\n"
+    "(MuJoCo against a copy of the model moved in space: same physics, other rounding).\n"
+    "Exit status: 0 every quantity within the bound; 1 some are not; 2 a model could not be\n"
+    "loaded.\n";
 
 struct Options {
   std::vector<std::string> files;
