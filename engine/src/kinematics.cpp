@@ -134,8 +134,14 @@ void kinematics(const Model& model, Data& data) {
 
 void jac_point(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
                Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr) {
-  jacp.setZero();
-  jacr.setZero();
+  // write through column pointers: Eigen's dynamic-size assignment on a Ref costs more than the
+  // arithmetic here
+  double* const p = jacp.data();
+  double* const r = jacr.data();
+  const Eigen::Index p_stride = jacp.outerStride(), r_stride = jacr.outerStride();
+  for (int i = 0; i < model.nv; ++i) {
+    for (int row = 0; row < 3; ++row) p[i * p_stride + row] = r[i * r_stride + row] = 0.0;
+  }
   const Eigen::Vector3d offset = point - data.subtree_com[model.body_rootid[body]];
   // the dofs between the body and the world: start at the nearest body that has any
   int b = body;
@@ -146,8 +152,8 @@ void jac_point(const Model& model, const Data& data, int body, const Eigen::Vect
     const Eigen::Vector3d v =
         S.tail<3>() + cross(S.head<3>(), offset);  // point velocity per unit rate
     for (int row = 0; row < 3; ++row) {
-      jacr(row, i) = S[row];
-      jacp(row, i) = v[row];
+      r[i * r_stride + row] = S[row];
+      p[i * p_stride + row] = v[row];
     }
   }
 }
