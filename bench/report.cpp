@@ -4,8 +4,8 @@
 //
 // For every <operation>/<model>/<peer>, the median of the repetitions' CPU times and their spread
 // (interquartile range over the median); lever's median over each peer's; and whether the
-// targets of the benchmark issue are met. No dependency besides the C++ standard library: the
-// JSON reader below handles the JSON that Google Benchmark writes.
+// targets of the benchmark issue are met. No dependency besides the C++ standard library and the
+// tests' small JSON reader (tests/support/json_reader.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -21,156 +21,11 @@
 #include <tuple>
 #include <vector>
 
+#include "json_reader.hpp"
+
 namespace {
 
-// ---- a small JSON reader ----------------------------------------------------------------------
-
-struct Json {
-  enum class Kind { kNull, kBool, kNumber, kString, kArray, kObject } kind = Kind::kNull;
-  bool boolean = false;
-  double number = 0;
-  std::string string;
-  std::vector<Json> array;
-  // an object's members in order: keys[i] names values[i] (two vectors: a vector of pairs of an
-  // incomplete type is not allowed)
-  std::vector<std::string> keys;
-  std::vector<Json> values;
-
-  const Json* find(const std::string& key) const {
-    for (std::size_t i = 0; i < keys.size(); ++i) {
-      if (keys[i] == key) return &values[i];
-    }
-    return nullptr;
-  }
-  std::string str(const std::string& key, const std::string& fallback = "") const {
-    const Json* v = find(key);
-    if (v == nullptr) return fallback;
-    if (v->kind == Kind::kString) return v->string;
-    if (v->kind == Kind::kNumber) {
-      std::ostringstream s;
-      s << v->number;
-      return s.str();
-    }
-    return fallback;
-  }
-  double num(const std::string& key, double fallback = NAN) const {
-    const Json* v = find(key);
-    return v != nullptr && v->kind == Kind::kNumber ? v->number : fallback;
-  }
-};
-
-class Parser {
- public:
-  explicit Parser(std::string text) : s_(std::move(text)) {}
-
-  Json parse() {
-    Json v = value();
-    space();
-    if (i_ != s_.size()) fail("trailing characters");
-    return v;
-  }
-
- private:
-  [[noreturn]] void fail(const std::string& what) const {
-    throw std::runtime_error("JSON: " + what + " at offset " + std::to_string(i_));
-  }
-  void space() {
-    while (i_ < s_.size() && (s_[i_] == ' ' || s_[i_] == '\n' || s_[i_] == '\r' || s_[i_] == '\t'))
-      ++i_;
-  }
-  bool eat(char c) {
-    space();
-    if (i_ < s_.size() && s_[i_] == c) {
-      ++i_;
-      return true;
-    }
-    return false;
-  }
-  void expect(char c) {
-    if (!eat(c)) fail(std::string("expected '") + c + "'");
-  }
-  std::string string_literal() {
-    expect('"');
-    std::string out;
-    while (i_ < s_.size() && s_[i_] != '"') {
-      char c = s_[i_++];
-      if (c == '\\') {
-        if (i_ >= s_.size()) fail("bad escape");
-        const char e = s_[i_++];
-        switch (e) {
-          case 'n': c = '\n'; break;
-          case 't': c = '\t'; break;
-          case 'r': c = '\r'; break;
-          case 'b': c = '\b'; break;
-          case 'f': c = '\f'; break;
-          case 'u': {  // keep ASCII, replace anything else
-            if (i_ + 4 > s_.size()) fail("bad \\u escape");
-            const unsigned long code = std::stoul(s_.substr(i_, 4), nullptr, 16);
-            i_ += 4;
-            c = code < 128 ? static_cast<char>(code) : '?';
-            break;
-          }
-          default: c = e;  // \" \\ \/
-        }
-      }
-      out += c;
-    }
-    expect('"');
-    return out;
-  }
-  Json value() {
-    space();
-    if (i_ >= s_.size()) fail("unexpected end");
-    Json v;
-    const char c = s_[i_];
-    if (c == '{') {
-      ++i_;
-      v.kind = Json::Kind::kObject;
-      if (eat('}')) return v;
-      do {
-        space();
-        std::string key = string_literal();
-        expect(':');
-        v.keys.push_back(std::move(key));
-        v.values.push_back(value());
-      } while (eat(','));
-      expect('}');
-    } else if (c == '[') {
-      ++i_;
-      v.kind = Json::Kind::kArray;
-      if (eat(']')) return v;
-      do {
-        v.array.push_back(value());
-      } while (eat(','));
-      expect(']');
-    } else if (c == '"') {
-      v.kind = Json::Kind::kString;
-      v.string = string_literal();
-    } else if (s_.compare(i_, 4, "true") == 0) {
-      v.kind = Json::Kind::kBool;
-      v.boolean = true;
-      i_ += 4;
-    } else if (s_.compare(i_, 5, "false") == 0) {
-      v.kind = Json::Kind::kBool;
-      i_ += 5;
-    } else if (s_.compare(i_, 4, "null") == 0) {
-      i_ += 4;
-    } else {
-      std::size_t used = 0;
-      v.kind = Json::Kind::kNumber;
-      try {
-        v.number = std::stod(s_.substr(i_, 40), &used);
-      } catch (const std::exception&) {
-        fail("bad value");
-      }
-      i_ += used;
-    }
-    return v;
-  }
-
-  std::string s_;
-  std::size_t i_ = 0;
-};
+using Json = lever::test::json::Value;
 
 // ---- the measurements ---------------------------------------------------------------------------
 
@@ -336,7 +191,7 @@ int main(int argc, char** argv) {
   text << in.rdbuf();
   Json root;
   try {
-    root = Parser(text.str()).parse();
+    root = lever::test::json::parse(text.str());
   } catch (const std::exception& e) {
     std::cerr << "lever_bench_report: " << json_path << ": " << e.what() << "\n";
     return 2;

@@ -10,7 +10,7 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
-#include "json.hpp"
+#include "json_reader.hpp"
 #include "run_lever.hpp"
 #include "test_models.hpp"
 

@@ -1,14 +1,17 @@
-// A small JSON reader for the tests of `lever check --json` (objects, arrays, numbers, strings,
-// true/false/null). It throws std::runtime_error on anything malformed, so "it parses" is a test.
+// A small JSON reader for the programs that read JSON lever's tools write: the tests of
+// `lever check --json` and the benchmark report (Google Benchmark's output). Objects, arrays,
+// numbers, strings, true/false/null; it throws std::runtime_error on anything malformed, so
+// "it parses" is a test. Header-only and standard C++ only.
 #pragma once
 
 #include <cctype>
 #include <cmath>
+#include <cstddef>
 #include <cstdlib>
-#include <map>
-#include <memory>
+#include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace lever::test::json {
@@ -19,25 +22,55 @@ struct Value {
   double number = NAN;
   std::string string;
   std::vector<Value> array;
-  std::map<std::string, Value> object;
+  // an object's members in the order written: keys[i] names members[i] (two vectors, because a
+  // container of pairs of a still incomplete type is not allowed)
+  std::vector<std::string> keys;
+  std::vector<Value> members;
 
-  const Value& operator[](const std::string& key) const {
-    const auto it = object.find(key);
-    if (kind != Kind::kObject || it == object.end())
-      throw std::runtime_error("no key '" + key + "'");
-    return it->second;
+  /// The member named key, or nullptr (also when this is not an object).
+  const Value* find(const std::string& key) const {
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+      if (keys[i] == key) return &members[i];
+    }
+    return nullptr;
   }
-  const Value& operator[](size_t i) const {
+  bool has(const std::string& key) const { return find(key) != nullptr; }
+
+  /// The member named key; throws if there is none.
+  const Value& operator[](const std::string& key) const {
+    const Value* v = find(key);
+    if (kind != Kind::kObject || v == nullptr) throw std::runtime_error("no key '" + key + "'");
+    return *v;
+  }
+  /// Element i of an array; throws if there is none.
+  const Value& operator[](std::size_t i) const {
     if (kind != Kind::kArray || i >= array.size()) throw std::runtime_error("no index");
     return array[i];
   }
-  bool has(const std::string& key) const { return object.count(key) > 0; }
-  size_t size() const { return kind == Kind::kArray ? array.size() : object.size(); }
+  std::size_t size() const { return kind == Kind::kArray ? array.size() : members.size(); }
+
+  /// The member named key as text (a number printed), or fallback.
+  std::string str(const std::string& key, const std::string& fallback = "") const {
+    const Value* v = find(key);
+    if (v == nullptr) return fallback;
+    if (v->kind == Kind::kString) return v->string;
+    if (v->kind == Kind::kNumber) {
+      std::ostringstream s;
+      s << v->number;
+      return s.str();
+    }
+    return fallback;
+  }
+  /// The member named key as a number, or fallback.
+  double num(const std::string& key, double fallback = NAN) const {
+    const Value* v = find(key);
+    return v != nullptr && v->kind == Kind::kNumber ? v->number : fallback;
+  }
 };
 
 class Parser {
  public:
-  explicit Parser(const std::string& text) : s_(text) {}
+  explicit Parser(std::string text) : s_(std::move(text)) {}
 
   Value document() {
     Value v = value();
@@ -47,7 +80,7 @@ class Parser {
   }
 
  private:
-  [[noreturn]] void fail(const std::string& what) {
+  [[noreturn]] void fail(const std::string& what) const {
     throw std::runtime_error("json: " + what + " at offset " + std::to_string(i_));
   }
   void skip() {
@@ -82,9 +115,9 @@ class Parser {
       if (take('}')) return v;
       do {
         skip();
-        const std::string key = string();
+        v.keys.push_back(string());
         expect(':');
-        v.object[key] = value();
+        v.members.push_back(value());
       } while (take(','));
       expect('}');
     } else if (c == '[') {
@@ -111,7 +144,7 @@ class Parser {
       char* end = nullptr;
       v.number = std::strtod(begin, &end);
       if (end == begin) fail("not a value");
-      i_ += static_cast<size_t>(end - begin);
+      i_ += static_cast<std::size_t>(end - begin);
     }
     return v;
   }
@@ -129,12 +162,16 @@ class Parser {
           case 'n': c = '\n'; break;
           case 't': c = '\t'; break;
           case 'r': c = '\r'; break;
-          case 'u':
+          case 'b': c = '\b'; break;
+          case 'f': c = '\f'; break;
+          case 'u': {  // keep ASCII, replace anything else
             if (i_ + 4 > s_.size()) fail("bad \\u escape");
-            c = static_cast<char>(std::stoi(s_.substr(i_, 4), nullptr, 16));
+            const unsigned long code = std::strtoul(s_.substr(i_, 4).c_str(), nullptr, 16);
             i_ += 4;
+            c = code < 128 ? static_cast<char>(code) : '?';
             break;
-          default: c = e;
+          }
+          default: c = e;  // \" \\ \/
         }
       }
       out += c;
@@ -144,8 +181,8 @@ class Parser {
     return out;
   }
 
-  const std::string& s_;
-  size_t i_ = 0;
+  std::string s_;
+  std::size_t i_ = 0;
 };
 
 inline Value parse(const std::string& text) { return Parser(text).document(); }
