@@ -26,6 +26,27 @@ void check_cols(const char* what, Eigen::Index cols, Eigen::Index expected) {
   }
 }
 
+// The shapes both batch calls read: one column per state, ctrl empty (zero controls) or one
+// column per state.
+void check_states(const Model& m, const Eigen::Ref<const Eigen::MatrixXd>& qpos,
+                  const Eigen::Ref<const Eigen::MatrixXd>& qvel,
+                  const Eigen::Ref<const Eigen::MatrixXd>& ctrl) {
+  check_rows("qpos", qpos.rows(), m.nq);
+  check_rows("qvel", qvel.rows(), m.nv);
+  check_rows("ctrl", ctrl.rows(), m.nu);
+  check_cols("qvel", qvel.cols(), qpos.cols());
+  if (ctrl.cols() != 0) check_cols("ctrl", ctrl.cols(), qpos.cols());
+}
+
+// State k of the batch into d (its controls stay zero when the batch has none).
+void load_state(Data& d, const Eigen::Ref<const Eigen::MatrixXd>& qpos,
+                const Eigen::Ref<const Eigen::MatrixXd>& qvel,
+                const Eigen::Ref<const Eigen::MatrixXd>& ctrl, Eigen::Index k) {
+  d.qpos = qpos.col(k);
+  d.qvel = qvel.col(k);
+  if (ctrl.cols() != 0) d.ctrl = ctrl.col(k);
+}
+
 // Run work(data, begin, end) on `threads` contiguous blocks of [0, n): block 0 on the calling
 // thread, the others on threads started here. An exception in any block is rethrown here.
 template <class Work>
@@ -80,21 +101,14 @@ void BatchRunner::forward(const Eigen::Ref<const Eigen::MatrixXd>& qpos,
                           Eigen::Ref<Eigen::MatrixXd> qacc) {
   const Model& m = *model_;
   const Eigen::Index n = qpos.cols();
-  check_rows("qpos", qpos.rows(), m.nq);
-  check_rows("qvel", qvel.rows(), m.nv);
-  check_rows("ctrl", ctrl.rows(), m.nu);
+  check_states(m, qpos, qvel, ctrl);
   check_rows("qacc", qacc.rows(), m.nv);
-  check_cols("qvel", qvel.cols(), n);
-  if (ctrl.cols() != 0) check_cols("ctrl", ctrl.cols(), n);
   check_cols("qacc", qacc.cols(), n);
 
-  const bool has_ctrl = ctrl.cols() != 0;
   run_blocks(data_, n, [&](Data& d, Eigen::Index begin, Eigen::Index end) {
-    if (!has_ctrl) d.ctrl.setZero();
+    if (ctrl.cols() == 0) d.ctrl.setZero();
     for (Eigen::Index k = begin; k < end; ++k) {
-      d.qpos = qpos.col(k);
-      d.qvel = qvel.col(k);
-      if (has_ctrl) d.ctrl = ctrl.col(k);
+      load_state(d, qpos, qvel, ctrl, k);
       lever::forward(m, d);
       qacc.col(k) = d.qacc;
     }
@@ -105,21 +119,14 @@ void BatchRunner::step(Eigen::Ref<Eigen::MatrixXd> qpos, Eigen::Ref<Eigen::Matri
                        const Eigen::Ref<const Eigen::MatrixXd>& ctrl, int nstep) {
   const Model& m = *model_;
   const Eigen::Index n = qpos.cols();
-  check_rows("qpos", qpos.rows(), m.nq);
-  check_rows("qvel", qvel.rows(), m.nv);
-  check_rows("ctrl", ctrl.rows(), m.nu);
-  check_cols("qvel", qvel.cols(), n);
-  if (ctrl.cols() != 0) check_cols("ctrl", ctrl.cols(), n);
+  check_states(m, qpos, qvel, ctrl);
   if (nstep < 0)
     throw StateError("BatchRunner: nstep is " + std::to_string(nstep) + "; it must be >= 0.");
 
-  const bool has_ctrl = ctrl.cols() != 0;
   run_blocks(data_, n, [&](Data& d, Eigen::Index begin, Eigen::Index end) {
-    if (!has_ctrl) d.ctrl.setZero();
+    if (ctrl.cols() == 0) d.ctrl.setZero();
     for (Eigen::Index k = begin; k < end; ++k) {
-      d.qpos = qpos.col(k);
-      d.qvel = qvel.col(k);
-      if (has_ctrl) d.ctrl = ctrl.col(k);
+      load_state(d, qpos, qvel, ctrl, k);
       for (int s = 0; s < nstep; ++s) lever::step(m, d);
       qpos.col(k) = d.qpos;
       qvel.col(k) = d.qvel;
