@@ -5,6 +5,7 @@
 #include <lever/data.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
+#include <lever/fields.hpp>
 #include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
 #include <lever/model.hpp>
