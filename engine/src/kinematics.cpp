@@ -148,14 +148,11 @@ void kinematics(const Model& model, Data& data) {
   com_quantities(model, data);
 }
 
-void jac_point(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
-               Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr) {
-  const EntryCheck entry(model, data, "lever::jac_point");
-  check_jacobians(model, jacp, jacr, "lever::jac_point");
-  if (body < 0 || body >= model.nbody) {
-    throw StateError("lever::jac_point: body " + std::to_string(body) + " is not in 0.." +
-                     std::to_string(model.nbody - 1) + ".");
-  }
+namespace {
+
+// The Jacobians of a point fixed to a body, once the arguments are known to fit.
+void point_jacobians(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
+                     Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr) {
   // write through column pointers: Eigen's dynamic-size assignment on a Ref costs more than the
   // arithmetic here
   double* const p = jacp.data();
@@ -180,13 +177,29 @@ void jac_point(const Model& model, const Data& data, int body, const Eigen::Vect
   }
 }
 
+}  // namespace
+
+void jac_point(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
+               Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr) {
+  const EntryCheck entry(model, data, "lever::jac_point");
+  check_jacobians(model, jacp, jacr, "lever::jac_point");
+  if (body < 0 || body >= model.nbody) {
+    throw StateError("lever::jac_point: body " + std::to_string(body) + " is not in 0.." +
+                     std::to_string(model.nbody - 1) + ".");
+  }
+  point_jacobians(model, data, body, point, jacp, jacr);
+}
+
 void jac_site(const Model& model, const Data& data, int site, Eigen::Ref<Eigen::MatrixXd> jacp,
               Eigen::Ref<Eigen::MatrixXd> jacr) {
+  // checked here, before data.site_xpos is read, and named as the caller knows it
+  const EntryCheck entry(model, data, "lever::jac_site");
+  check_jacobians(model, jacp, jacr, "lever::jac_site");
   if (site < 0 || site >= model.nsite) {
     throw StateError("lever::jac_site: site " + std::to_string(site) + " is not in 0.." +
                      std::to_string(model.nsite - 1) + ".");
   }
-  jac_point(model, data, model.site_bodyid[site], data.site_xpos[site], jacp, jacr);
+  point_jacobians(model, data, model.site_bodyid[site], data.site_xpos[site], jacp, jacr);
 }
 
 }  // namespace lever

@@ -262,7 +262,8 @@ TEST_CASE("the counting allocator sees operator new and Eigen's allocations", "[
 #endif
 }
 
-TEST_CASE("forward, step, inverse, jac_site and compute_energy allocate nothing", "[alloc]") {
+TEST_CASE("forward, step, step1, step2, inverse, jac_site and compute_energy allocate nothing",
+          "[alloc]") {
   const std::vector<std::string> files = lever::test::all_model_files();
   REQUIRE(!files.empty());
   for (const std::string& path : files) {
@@ -308,6 +309,19 @@ TEST_CASE("forward, step, inverse, jac_site and compute_energy allocate nothing"
         });
         CHECK(a.news == 0);
         CHECK(a.mallocs == 0);
+
+        // the split step, with a controller between the halves (MuJoCo's mj_step1/mj_step2)
+        set_state(d, s);
+        a = count([&] {
+          for (int k = 0; k < 5; ++k) {
+            lever::step1(m, d);
+            d.qfrc_applied = d.qfrc_bias;  // same size: Eigen copies without allocating
+            lever::step2(m, d);
+          }
+        });
+        CHECK(a.news == 0);
+        CHECK(a.mallocs == 0);
+        d.qfrc_applied.setZero();
       }
       // the limited models must really have exercised the limit rows
       bool limited = false;
