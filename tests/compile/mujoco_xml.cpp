@@ -4,9 +4,12 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <sstream>
 
+#include <lever/fields.hpp>
+#include <lever/harness/mujoco_arrays.hpp>
 #include <lever/harness/tolerance.hpp>
 
 namespace lever::test {
@@ -94,34 +97,28 @@ class Differences {
     }
   }
 
-  // a quaternion and its negative are the same rotation
-  void quats(const std::string& field, const std::vector<Eigen::Vector4d>& ours,
-             const mjtNum* theirs) {
-    for (size_t i = 0; i < ours.size(); ++i) {
+  // (n, 4) quaternions: a quaternion and its negative are the same rotation
+  void quats(const std::string& field, const FieldView& ours, const MjArray& theirs) {
+    for (int i = 0; i < ours.rows; ++i) {
       bool same = true, opposite = true;
       for (int k = 0; k < 4; ++k) {
-        same = same && agrees(ours[i][k], theirs[4 * i + k]);
-        opposite = opposite && agrees(-ours[i][k], theirs[4 * i + k]);
+        const double x = element(ours, 4 * i + k), y = element(theirs, 4 * i + k);
+        same = same && agrees(x, y);
+        opposite = opposite && agrees(-x, y);
       }
       if (same || opposite) continue;
       for (int k = 0; k < 4; ++k) {
-        add(describe(field, static_cast<int>(i) * 4 + k, ours[i][k], theirs[4 * i + k]) +
+        add(describe(field, 4 * i + k, element(ours, 4 * i + k), element(theirs, 4 * i + k)) +
             " (compared up to sign)");
       }
     }
   }
 
-  template <class T>
-  void integers(const std::string& field, const std::vector<T>& ours, const int* theirs) {
-    for (size_t i = 0; i < ours.size(); ++i) {
-      integer(field, static_cast<int>(i), static_cast<int>(ours[i]), theirs[i]);
-    }
-  }
-
-  void flags(const std::string& field, const std::vector<uint8_t>& ours, const mjtByte* theirs) {
-    for (size_t i = 0; i < ours.size(); ++i) {
-      integer(field, static_cast<int>(i), ours[i] ? 1 : 0, theirs[i]);
-    }
+  // the field table says MuJoCo has this array, with this element type and shape
+  void missing(const std::string& field) {
+    add(field +
+        ": marked `mujoco` in lever/fields.hpp, but MuJoCo's mjModel has no array of "
+        "that name, element type and width");
   }
 
   void reals(const std::string& field, const std::vector<double>& ours, const mjtNum* theirs) {
@@ -145,67 +142,47 @@ class Differences {
   void add(std::string s) { list.push_back(std::move(s)); }
 };
 
-void compare_bodies(Differences& d, const Model& o, const mjModel& m) {
-  d.integers("body_parentid", o.body_parentid, m.body_parentid);
-  d.integers("body_rootid", o.body_rootid, m.body_rootid);
-  d.integers("body_jntnum", o.body_jntnum, m.body_jntnum);
-  d.integers("body_jntadr", o.body_jntadr, m.body_jntadr);
-  d.integers("body_dofnum", o.body_dofnum, m.body_dofnum);
-  d.integers("body_dofadr", o.body_dofadr, m.body_dofadr);
-  d.integers("body_geomnum", o.body_geomnum, m.body_geomnum);
-  d.integers("body_geomadr", o.body_geomadr, m.body_geomadr);
-  d.rows("body_pos", o.body_pos, m.body_pos, 3);
-  d.quats("body_quat", o.body_quat, m.body_quat);
-  d.rows("body_ipos", o.body_ipos, m.body_ipos, 3);
-  d.quats("body_iquat", o.body_iquat, m.body_iquat);
-  d.reals("body_mass", o.body_mass, m.body_mass);
-  d.rows("body_inertia", o.body_inertia, m.body_inertia, 3);
-  d.names("body_name", o.body_name, m, mjOBJ_BODY);
+// What set_const derives (MuJoCo's mj_setConst): compared by compare_constants, not as
+// compiled parameters.
+bool is_constant(const std::string& name) {
+  return name == "body_subtreemass" || name == "body_invweight0" || name == "dof_invweight0" ||
+         name == "dof_M0";
 }
 
-void compare_joints(Differences& d, const Model& o, const mjModel& m) {
-  d.integers("jnt_type", o.jnt_type, m.jnt_type);
-  d.integers("jnt_qposadr", o.jnt_qposadr, m.jnt_qposadr);
-  d.integers("jnt_dofadr", o.jnt_dofadr, m.jnt_dofadr);
-  d.integers("jnt_bodyid", o.jnt_bodyid, m.jnt_bodyid);
-  d.rows("jnt_pos", o.jnt_pos, m.jnt_pos, 3);
-  d.rows("jnt_axis", o.jnt_axis, m.jnt_axis, 3);
-  d.flags("jnt_limited", o.jnt_limited, m.jnt_limited);
-  d.rows("jnt_range", o.jnt_range, m.jnt_range, 2);
-  d.reals("jnt_margin", o.jnt_margin, m.jnt_margin);
-  d.rows("jnt_solref", o.jnt_solref, m.jnt_solref, mjNREF);
-  d.rows("jnt_solimp", o.jnt_solimp, m.jnt_solimp, mjNIMP);
-  d.reals("jnt_stiffness", o.jnt_stiffness, m.jnt_stiffness);
-  d.names("jnt_name", o.jnt_name, m, mjOBJ_JOINT);
-  for (int i = 0; i < o.nq; ++i) {
-    d.real("qpos0", i, o.qpos0[i], m.qpos0[i]);
-    d.real("qpos_spring", i, o.qpos_spring[i], m.qpos_spring[i]);
+// Every array of Model's table that MuJoCo has, against MuJoCo's array of the same name (found
+// through MuJoCo's own MJMODEL_POINTERS), element by element. Special cases, and why:
+//   *_quat          a unit quaternion and its negative are the same rotation (up to sign);
+//   actuator_trnid  lever keeps the joint only (`own`); MuJoCo's is (nu, 2), its second column -1
+//                   for a joint transmission; the other actuator types lever fixes are checked
+//                   here too (compare_actuator_types);
+//   names, options  not arrays of the table.
+void compare_table(Differences& d, const Model& o, const mjModel& m) {
+  const std::map<std::string, MjArray> theirs = mujoco_model_arrays(&m);
+  for (const FieldView& view : model_fields(o)) {
+    const std::string name = view.info->name;
+    if (!view.info->in_mujoco || is_constant(name)) continue;
+    const auto found = theirs.find(name);
+    if (found == theirs.end() || !same_layout(view, found->second)) {
+      d.missing(name);
+      continue;
+    }
+    const MjArray& mj = found->second;
+    if (view.cols == 4 && name.ends_with("quat")) {
+      d.quats(name, view, mj);
+    } else if (view.info->scalar == Scalar::kDouble) {
+      for (long i = 0; i < view.size(); ++i) {
+        d.real(name, static_cast<int>(i), element(view, i), element(mj, i));
+      }
+    } else {
+      for (long i = 0; i < view.size(); ++i) {
+        d.integer(name, static_cast<int>(i), static_cast<int>(element(view, i)),
+                  static_cast<int>(element(mj, i)));
+      }
+    }
   }
-  d.integers("dof_bodyid", o.dof_bodyid, m.dof_bodyid);
-  d.integers("dof_jntid", o.dof_jntid, m.dof_jntid);
-  d.integers("dof_parentid", o.dof_parentid, m.dof_parentid);
-  d.reals("dof_damping", o.dof_damping, m.dof_damping);
-  d.reals("dof_armature", o.dof_armature, m.dof_armature);
 }
 
-void compare_geoms_sites(Differences& d, const Model& o, const mjModel& m) {
-  d.integers("geom_type", o.geom_type, m.geom_type);
-  d.integers("geom_bodyid", o.geom_bodyid, m.geom_bodyid);
-  d.integers("geom_group", o.geom_group, m.geom_group);
-  d.integers("geom_contype", o.geom_contype, m.geom_contype);
-  d.integers("geom_conaffinity", o.geom_conaffinity, m.geom_conaffinity);
-  d.rows("geom_size", o.geom_size, m.geom_size, 3);
-  d.rows("geom_pos", o.geom_pos, m.geom_pos, 3);
-  d.quats("geom_quat", o.geom_quat, m.geom_quat);
-  d.names("geom_name", o.geom_name, m, mjOBJ_GEOM);
-  d.integers("site_bodyid", o.site_bodyid, m.site_bodyid);
-  d.rows("site_pos", o.site_pos, m.site_pos, 3);
-  d.quats("site_quat", o.site_quat, m.site_quat);
-  d.rows("site_size", o.site_size, m.site_size, 3);
-  d.names("site_name", o.site_name, m, mjOBJ_SITE);
-}
-
-void compare_actuators(Differences& d, const Model& o, const mjModel& m) {
+void compare_actuator_types(Differences& d, const Model& o, const mjModel& m) {
   for (int a = 0; a < o.nu; ++a) {
     d.integer("actuator_trnid", 2 * a, o.actuator_trnid[static_cast<size_t>(a)],
               m.actuator_trnid[2 * a]);
@@ -214,11 +191,13 @@ void compare_actuators(Differences& d, const Model& o, const mjModel& m) {
     d.integer("actuator_gaintype", a, mjGAIN_FIXED, m.actuator_gaintype[a]);
     d.integer("actuator_biastype", a, mjBIAS_NONE, m.actuator_biastype[a]);
   }
-  d.rows("actuator_gear", o.actuator_gear, m.actuator_gear, 6);
-  d.rows("actuator_ctrlrange", o.actuator_ctrlrange, m.actuator_ctrlrange, 2);
-  d.rows("actuator_forcerange", o.actuator_forcerange, m.actuator_forcerange, 2);
-  d.flags("actuator_ctrllimited", o.actuator_ctrllimited, m.actuator_ctrllimited);
-  d.flags("actuator_forcelimited", o.actuator_forcelimited, m.actuator_forcelimited);
+}
+
+void compare_names(Differences& d, const Model& o, const mjModel& m) {
+  d.names("body_name", o.body_name, m, mjOBJ_BODY);
+  d.names("jnt_name", o.jnt_name, m, mjOBJ_JOINT);
+  d.names("geom_name", o.geom_name, m, mjOBJ_GEOM);
+  d.names("site_name", o.site_name, m, mjOBJ_SITE);
   d.names("actuator_name", o.actuator_name, m, mjOBJ_ACTUATOR);
 }
 
@@ -240,10 +219,9 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m) {
   sizes = d.count("ngeom", o.ngeom, m.ngeom) && sizes;
   sizes = d.count("nsite", o.nsite, m.nsite) && sizes;
   if (sizes) {
-    compare_bodies(d, o, m);
-    compare_joints(d, o, m);
-    compare_geoms_sites(d, o, m);
-    compare_actuators(d, o, m);
+    compare_table(d, o, m);
+    compare_actuator_types(d, o, m);
+    compare_names(d, o, m);
   }
   compare_options(d, o, m);
   return d.list;
