@@ -41,6 +41,10 @@ std::map<std::string, MjArray> mujoco_data_arrays(const mjModel* m, const mjData
   arrays[#name] = {d->name, kind_of<type>(), static_cast<int>(m->rows), static_cast<int>(cols)};
   MJDATA_POINTERS
 #undef X
+  // mjData's fixed vectors (energy[2], ...): one row of all their numbers
+#define X(type, name, rows, cols) arrays[#name] = {d->name, kind_of<type>(), 1, (rows) * (cols)};
+  MJDATA_VECTOR
+#undef X
   return arrays;
 }
 

@@ -1,9 +1,10 @@
 // Every quantity lever shares with MuJoCo 2.2.2, on 1000 random states per model.
 #include <catch2/catch.hpp>
 #include <lever/diff/runs.hpp>
+#include <lever/fields.hpp>
 
-#include "diff_checks.hpp"
 #include <lever/harness/models.hpp>
+#include "diff_checks.hpp"
 
 namespace lever::test {
 
@@ -22,6 +23,21 @@ void compare_every_model_on(diff::Path path) {
     check_within_bound(report);
     // the states must reach the stops, or the limit rows were never compared
     if (has_limits(twin.model)) CHECK(report.find("efc_force")->compared >= kStates / 10);
+    // every array of Data's field table that MuJoCo has and forward() writes was compared (the
+    // comparison is driven by the table: an array it skipped would be a hole in the proof)
+    for (const FieldInfo& info : data_field_table()) {
+      const bool forward_output = info.stage != Stage::kInverse && info.stage != Stage::kEnergy;
+      if (!info.in_mujoco || !forward_output) continue;
+      INFO(info.name);
+      const diff::Extreme* e = report.find(info.name);
+      REQUIRE(e != nullptr);
+      if (info.rows == Size::kNefc) {
+        if (has_limits(twin.model)) CHECK(e->compared > 0);
+      } else if (size_of(twin.model, info.rows) > 0) {
+        CHECK(e->compared == static_cast<long>(kStates) * size_of(twin.model, info.rows) *
+                                 (info.cols < 0 ? twin.model.nv : info.cols));
+      }
+    }
   }
 }
 

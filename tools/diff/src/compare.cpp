@@ -1,9 +1,13 @@
 #include <lever/diff/compare.hpp>
 #include <lever/dynamics.hpp>
+#include <lever/fields.hpp>
 #include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
+#include <map>
 #include <string>
 #include <vector>
+
+#include <lever/harness/mujoco_arrays.hpp>
 
 namespace lever::diff {
 
@@ -21,17 +25,6 @@ const char* axis_name(int c) { return c == 0 ? "x" : c == 1 ? "y" : c == 2 ? "z"
 
 std::string dof_label(const Model& model, int i) {
   return "dof " + std::to_string(i) + " (joint " + quoted(model.jnt_name, model.dof_jntid[i]) + ")";
-}
-
-// objects with `per` numbers each: a vector (3), a quaternion (4) or a row-major 3x3 matrix (9)
-Labeler per_object(const std::vector<std::string>& names, const char* kind, int per) {
-  return [&names, kind, per](int i) {
-    const int object = i / per, c = i % per;
-    std::string where = std::string(kind) + " " + quoted(names, object) + ", ";
-    if (per == 9) return where + "(" + std::to_string(c / 3) + ", " + std::to_string(c % 3) + ")";
-    if (per == 4) return where + "component " + std::to_string(c);
-    return where + axis_name(c);
-  };
 }
 
 Labeler per_dof(const Model& model) {
@@ -65,17 +58,42 @@ Labeler limit_row(const Model& model, const Data& data) {
   };
 }
 
-// ---- flattening lever's arrays into MuJoCo's layouts --------------------------------------
+// ---- labels chosen from the table: what a row of an array is, then which of its columns ------
 
-std::vector<double> flat(const std::vector<Eigen::Vector3d>& v) {
-  std::vector<double> out;
-  for (const auto& x : v) out.insert(out.end(), x.data(), x.data() + 3);
-  return out;
+std::string column_label(int c, int cols) {
+  switch (cols) {
+    case 1: return "";
+    case 3: return axis_name(c);
+    case 6: return std::string(c < 3 ? "angular " : "linear ") + axis_name(c % 3);
+    case 9: return "(" + std::to_string(c / 3) + ", " + std::to_string(c % 3) + ")";
+    default: return "component " + std::to_string(c);
+  }
+}
+
+Labeler row_labeler(const Model& model, const Data& data, Size rows) {
+  switch (rows) {
+    case Size::kNbody: return [&model](int i) { return "body " + quoted(model.body_name, i); };
+    case Size::kNjnt: return [&model](int i) { return "joint " + quoted(model.jnt_name, i); };
+    case Size::kNsite: return [&model](int i) { return "site " + quoted(model.site_name, i); };
+    case Size::kNu: return per_actuator(model);
+    case Size::kNq:  // hinges and slides only: coordinate i is dof i
+    case Size::kNv: return per_dof(model);
+    case Size::kNefc: return limit_row(model, data);
+    case Size::kOne: break;
+  }
+  return [](int) { return std::string(); };
+}
+
+Labeler element_labeler(const Model& model, const Data& data, const FieldView& view) {
+  const Labeler row = row_labeler(model, data, view.info->rows);
+  const int cols = view.cols;
+  return [row, cols](int i) {
+    const std::string r = row(i / cols), c = column_label(i % cols, cols);
+    return r.empty() ? c : c.empty() ? r : r + ", " + c;
+  };
 }
 
 // lever stores rotations row by row, as MuJoCo does (lever::Mat3)
-const double* flat(const std::vector<Mat3>& v) { return v.empty() ? nullptr : v[0].data(); }
-
 std::vector<double> row_major(const Eigen::MatrixXd& A) {
   std::vector<double> out;
   for (Eigen::Index r = 0; r < A.rows(); ++r) {
@@ -84,83 +102,41 @@ std::vector<double> row_major(const Eigen::MatrixXd& A) {
   return out;
 }
 
-// A unit quaternion and its negative are the same rotation: take lever's with MuJoCo's sign.
-std::vector<double> quaternions_signed_like(const std::vector<Eigen::Vector4d>& ours,
-                                            const mjtNum* theirs) {
-  std::vector<double> out;
-  for (std::size_t b = 0; b < ours.size(); ++b) {
-    const Eigen::Vector4d ref(theirs + 4 * b);
-    const double sign = ours[b].dot(ref) < 0 ? -1.0 : 1.0;
-    for (int c = 0; c < 4; ++c) out.push_back(sign * ours[b][c]);
-  }
-  return out;
+// ---- the forward outputs, driven by the field table ----------------------------------------
+
+bool compared_in_forward(const FieldInfo& info) {
+  // energy and qfrc_inverse are written by their own functions and compared by compare_energy
+  // and compare_inverse
+  return info.stage == Stage::kState || info.stage == Stage::kPosition ||
+         info.stage == Stage::kVelocity || info.stage == Stage::kAcceleration;
 }
 
-// ---- groups of quantities -------------------------------------------------------------------
-
-void compare_kinematics(const Twin& t, int k, Report& r) {
-  const Model& model = t.model;
+// Whether lever's limit rows are MuJoCo's rows (count, type, joint), row by row; reported as
+// nefc and efc_id.
+bool compare_row_identity(const Twin& t, int k, Report& r) {
   const Data& data = t.data;
   const mjData* d = t.d.get();
-  const int nb = model.nbody, ns = model.nsite;
-  r.compare("xpos", k, flat(data.xpos).data(), d->xpos, 3 * nb,
-            per_object(model.body_name, "body", 3));
-  r.compare("xquat", k, quaternions_signed_like(data.xquat, d->xquat).data(), d->xquat, 4 * nb,
-            per_object(model.body_name, "body", 4));
-  r.compare("xmat", k, flat(data.xmat), d->xmat, 9 * nb, per_object(model.body_name, "body", 9));
-  r.compare("xipos", k, flat(data.xipos).data(), d->xipos, 3 * nb,
-            per_object(model.body_name, "body", 3));
-  r.compare("ximat", k, flat(data.ximat), d->ximat, 9 * nb, per_object(model.body_name, "body", 9));
-  r.compare("site_xpos", k, flat(data.site_xpos).data(), d->site_xpos, 3 * ns,
-            per_object(model.site_name, "site", 3));
-  r.compare("site_xmat", k, flat(data.site_xmat), d->site_xmat, 9 * ns,
-            per_object(model.site_name, "site", 9));
-}
-
-void compare_smooth_dynamics(const Twin& t, int k, Report& r) {
-  const Model& model = t.model;
-  const Data& data = t.data;
-  const mjModel* m = t.m.get();
-  const mjData* d = t.d.get();
-  const int nv = model.nv;
-  std::vector<double> full_m(static_cast<std::size_t>(nv) * nv);
-  mj_fullM(m, full_m.data(), d->qM);
-  r.compare("M", k, row_major(data.M).data(), full_m.data(), nv * nv, mass_matrix(model));
-  r.compare("qfrc_bias", k, data.qfrc_bias.data(), d->qfrc_bias, nv, per_dof(model));
-  r.compare("qfrc_passive", k, data.qfrc_passive.data(), d->qfrc_passive, nv, per_dof(model));
-  r.compare("actuator_force", k, data.actuator_force.data(), d->actuator_force, model.nu,
-            per_actuator(model));
-  r.compare("qfrc_actuator", k, data.qfrc_actuator.data(), d->qfrc_actuator, nv, per_dof(model));
-  r.compare("qacc_smooth", k, data.qacc_smooth.data(), d->qacc_smooth, nv, per_dof(model));
-  r.compare("qacc", k, data.qacc.data(), d->qacc, nv, per_dof(model));
-  r.compare("qfrc_constraint", k, data.qfrc_constraint.data(), d->qfrc_constraint, nv,
-            per_dof(model));
-}
-
-// Limit rows: the same rows (count, joint, side) first; their numbers only if those agree.
-void compare_limit_rows(const Twin& t, int k, Report& r) {
-  const Model& model = t.model;
-  const Data& data = t.data;
-  const mjModel* m = t.m.get();
-  const mjData* d = t.d.get();
-  for (const char* q :
-       {"nefc", "efc_id", "efc_J", "efc_pos", "efc_margin", "efc_imp", "efc_K", "efc_B", "efc_R",
-        "efc_D", "efc_diagApprox", "efc_vel", "efc_aref", "efc_b", "efc_force"}) {
-    r.declare(q);
-  }
   r.compare("nefc", k, data.nefc, d->nefc);
-  if (data.nefc != d->nefc) return;
+  if (data.nefc != d->nefc) return false;
   bool same_rows = true;
   for (int i = 0; i < data.nefc; ++i) {
     const bool limit = d->efc_type[i] == mjCNSTR_LIMIT_JOINT;
     r.compare("efc_id", k, data.efc_id[i], limit ? d->efc_id[i] : -1, "row " + std::to_string(i));
     same_rows = same_rows && limit && data.efc_id[i] == d->efc_id[i];
   }
-  const int n = data.nefc, nv = model.nv;
-  if (!same_rows || n == 0) return;
+  return same_rows;
+}
 
+// The limit rows' own arrays, which MuJoCo holds in another layout: efc_J (lever keeps each row's
+// dof and sign, the only nonzero of a joint-limit row) and efc_KBIP (lever's efc_K, efc_B,
+// efc_imp as three arrays).
+void compare_row_layouts(const Twin& t, int k, Report& r) {
+  const Model& model = t.model;
+  const Data& data = t.data;
+  const mjData* d = t.d.get();
+  const int n = data.nefc, nv = model.nv;
   const Labeler row = limit_row(model, data);
-  if (!mj_isSparse(m)) {
+  if (!mj_isSparse(t.m.get())) {
     std::vector<double> jac(static_cast<std::size_t>(n) * nv, 0.0);
     for (int i = 0; i < n; ++i) jac[i * nv + data.efc_dof[i]] = data.efc_sign[i];
     r.compare("efc_J", k, jac.data(), d->efc_J, n * nv,
@@ -172,18 +148,82 @@ void compare_limit_rows(const Twin& t, int k, Report& r) {
     damping[i] = d->efc_KBIP[4 * i + 1];
     impedance[i] = d->efc_KBIP[4 * i + 2];
   }
-  r.compare("efc_pos", k, data.efc_pos.data(), d->efc_pos, n, row);
-  r.compare("efc_margin", k, data.efc_margin.data(), d->efc_margin, n, row);
   r.compare("efc_imp", k, data.efc_imp.data(), impedance.data(), n, row);
   r.compare("efc_K", k, data.efc_K.data(), stiffness.data(), n, row);
   r.compare("efc_B", k, data.efc_B.data(), damping.data(), n, row);
-  r.compare("efc_R", k, data.efc_R.data(), d->efc_R, n, row);
-  r.compare("efc_D", k, data.efc_D.data(), d->efc_D, n, row);
-  r.compare("efc_diagApprox", k, data.efc_diagApprox.data(), d->efc_diagApprox, n, row);
-  r.compare("efc_vel", k, data.efc_vel.data(), d->efc_vel, n, row);
-  r.compare("efc_aref", k, data.efc_aref.data(), d->efc_aref, n, row);
-  r.compare("efc_b", k, data.efc_b.data(), d->efc_b, n, row);
-  r.compare("efc_force", k, data.efc_force.data(), d->efc_force, n, row);
+}
+
+// Every array of Data's table that MuJoCo has and forward() writes, against MuJoCo's array of
+// the same name (found through MuJoCo's own MJDATA_POINTERS), element by element, in the
+// table's order. The special cases, and why they stay special:
+//   xquat      a unit quaternion and its negative are the same rotation: lever's is compared
+//              with MuJoCo's sign;
+//   M          MuJoCo keeps qM sparse (its own layout, `own` in the table): compared with the
+//              full matrix mj_fullM makes of it;
+//   efc_*      the limit rows are compared only when they are the same rows (count, type and
+//              joint, reported as nefc and efc_id); efc_J and efc_KBIP are laid out otherwise
+//              (compare_row_layouts);
+//   efc_state  lever's ConstraintState values are MuJoCo's mjtConstraintState for the states a
+//              limit row can have (0 satisfied, 1 quadratic = active): compared as integers.
+void compare_forward_outputs(const Twin& t, int k, Report& r) {
+  const Model& model = t.model;
+  const Data& data = t.data;
+  const mjModel* m = t.m.get();
+  const mjData* d = t.d.get();
+  const std::map<std::string, test::MjArray> theirs = test::mujoco_data_arrays(m, d);
+  const std::vector<FieldView> ours = data_fields(model, data);
+  // declared first, so that a state where the rows differ keeps the table's order
+  for (const FieldView& view : ours) {
+    if (compared_in_forward(*view.info) &&
+        (view.info->in_mujoco || view.info->name == std::string("M"))) {
+      r.declare(view.info->name);
+    }
+  }
+  for (const char* q : {"nefc", "efc_J", "efc_imp", "efc_K", "efc_B"}) r.declare(q);
+
+  const bool same_rows = compare_row_identity(t, k, r);
+  std::vector<double> lever_values, mujoco_values;
+  for (const FieldView& view : ours) {
+    const FieldInfo& info = *view.info;
+    const std::string name = info.name;
+    if (!compared_in_forward(info)) continue;
+    if (name == "M") {
+      const int nv = model.nv;
+      std::vector<double> full_m(static_cast<std::size_t>(nv) * nv);
+      mj_fullM(m, full_m.data(), d->qM);
+      r.compare("M", k, row_major(data.M).data(), full_m.data(), nv * nv, mass_matrix(model));
+      continue;
+    }
+    if (!info.in_mujoco) continue;
+    if (name == "efc_id") continue;  // compared by compare_row_identity
+    if (info.rows == Size::kNefc && !same_rows) continue;
+    const auto found = theirs.find(name);
+    if (found == theirs.end() || !test::same_layout(view, found->second)) {
+      // the table says MuJoCo has this array: a wrong `mujoco` flag fails the comparison
+      r.compare(name + " (not in MuJoCo's mjData with this type and shape)", k, 0.0, 1.0);
+      continue;
+    }
+    const test::MjArray& mj = found->second;
+    const long n = view.size();
+    lever_values.resize(static_cast<std::size_t>(n));
+    mujoco_values.resize(static_cast<std::size_t>(n));
+    for (long i = 0; i < n; ++i) {
+      lever_values[i] = test::element(view, i);
+      mujoco_values[i] = test::element(mj, i);
+    }
+    if (name == "xquat") {
+      for (long b = 0; b < view.rows; ++b) {
+        double dot = 0.0;
+        for (int c = 0; c < 4; ++c) dot += lever_values[4 * b + c] * mujoco_values[4 * b + c];
+        if (dot < 0) {
+          for (int c = 0; c < 4; ++c) lever_values[4 * b + c] = -lever_values[4 * b + c];
+        }
+      }
+    }
+    r.compare(name, k, lever_values.data(), mujoco_values.data(), static_cast<int>(n),
+              element_labeler(model, data, view));
+  }
+  if (same_rows && data.nefc > 0) compare_row_layouts(t, k, r);
 }
 
 void compare_energy(const Twin& t, int k, Report& r) {
@@ -234,9 +274,7 @@ void compare_forward(Twin& t, const test::State& s, int k, Report& r) {
   forward(t.model, t.data);
   compute_energy(t.model, t.data);
   mj_forward(t.m.get(), t.d.get());
-  compare_kinematics(t, k, r);
-  compare_smooth_dynamics(t, k, r);
-  compare_limit_rows(t, k, r);
+  compare_forward_outputs(t, k, r);
   compare_energy(t, k, r);
   compare_site_jacobians(t, k, r);
 }

@@ -26,7 +26,7 @@ struct MjArray {
 
 /// Every array of MJMODEL_POINTERS, by name.
 std::map<std::string, MjArray> mujoco_model_arrays(const mjModel* m);
-/// Every array of MJDATA_POINTERS, by name.
+/// Every array of MJDATA_POINTERS, by name, and MJDATA_VECTOR's fixed vectors (energy: 1 x 2).
 std::map<std::string, MjArray> mujoco_data_arrays(const mjModel* m, const mjData* d);
 
 /// Element i of MuJoCo's array as a double (kOther: NaN).

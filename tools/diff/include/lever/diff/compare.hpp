@@ -1,7 +1,8 @@
 // lever/diff/compare.hpp: every quantity lever shares with MuJoCo, compared at one state.
 //
-// Forward outputs (kinematics, M, bias, passive, motor, smooth and constrained accelerations,
-// limit rows), site Jacobians, energy, inverse dynamics, and one step of each integrator. Each
+// Forward outputs (every array of Data's field table, lever/fields.hpp, that MuJoCo has and
+// forward() writes, found in mjData by name; M through mj_fullM; the limit rows when they are the
+// same rows), site Jacobians, energy, inverse dynamics, and one step of each integrator. Each
 // function leaves both engines evaluated at the state it was given.
 #pragma once
 
