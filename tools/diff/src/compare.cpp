@@ -1,3 +1,4 @@
+#include <cstdio>
 #include <lever/diff/compare.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/fields.hpp>
@@ -61,13 +62,17 @@ Labeler limit_row(const Model& model, const Data& data) {
 // ---- labels chosen from the table: what a row of an array is, then which of its columns ------
 
 std::string column_label(int c, int cols) {
+  char text[32] = "";
   switch (cols) {
-    case 1: return "";
-    case 3: return axis_name(c);
-    case 6: return std::string(c < 3 ? "angular " : "linear ") + axis_name(c % 3);
-    case 9: return "(" + std::to_string(c / 3) + ", " + std::to_string(c % 3) + ")";
-    default: return "component " + std::to_string(c);
+    case 1: break;
+    case 3: std::snprintf(text, sizeof text, "%s", axis_name(c)); break;
+    case 6:
+      std::snprintf(text, sizeof text, "%s %s", c < 3 ? "angular" : "linear", axis_name(c % 3));
+      break;
+    case 9: std::snprintf(text, sizeof text, "(%d, %d)", c / 3, c % 3); break;
+    default: std::snprintf(text, sizeof text, "component %d", c); break;
   }
+  return text;
 }
 
 Labeler row_labeler(const Model& model, const Data& data, Size rows) {
@@ -75,6 +80,7 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNbody: return [&model](int i) { return "body " + quoted(model.body_name, i); };
     case Size::kNjnt: return [&model](int i) { return "joint " + quoted(model.jnt_name, i); };
     case Size::kNsite: return [&model](int i) { return "site " + quoted(model.site_name, i); };
+    case Size::kNgeom: return [&model](int i) { return "geom " + quoted(model.geom_name, i); };
     case Size::kNu: return per_actuator(model);
     case Size::kNq:  // hinges and slides only: coordinate i is dof i
     case Size::kNv: return per_dof(model);
