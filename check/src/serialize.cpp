@@ -1,7 +1,11 @@
 #include <lever/serialize.hpp>
 
+#include <cmath>
 #include <cstdint>
+#include <cstdio>
 #include <vector>
+
+#include <lever/error.hpp>
 
 #include <lever/fields.hpp>
 
@@ -29,15 +33,120 @@ void write_names(json::Writer& json, const char* key, const std::vector<std::str
   json.end_array();
 }
 
+// ---- CSV -------------------------------------------------------------------------------------
+
+std::string csv_field(const std::string& s) {
+  if (s.find_first_of(",\"\n") == std::string::npos) return s;
+  std::string out = "\"";
+  for (const char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+  return out + "\"";
+}
+
+std::string name_or_index(const std::vector<std::string>& names, int i) {
+  return names[i].empty() ? "#" + std::to_string(i) : names[i];
+}
+
+// The object row i of an array counted in `rows` stands for.
+std::string row_name(const Model& model, Size rows, int i) {
+  switch (rows) {
+    case Size::kNq:
+      for (int j = 0; j < model.njnt; ++j) {
+        if (model.jnt_qposadr[j] == i) return name_or_index(model.jnt_name, j);
+      }
+      break;
+    case Size::kNv: return name_or_index(model.jnt_name, model.dof_jntid[i]);
+    case Size::kNjnt: return name_or_index(model.jnt_name, i);
+    case Size::kNu: return name_or_index(model.actuator_name, i);
+    case Size::kNbody: return name_or_index(model.body_name, i);
+    case Size::kNsite: return name_or_index(model.site_name, i);
+    case Size::kNgeom: return name_or_index(model.geom_name, i);
+    case Size::kOne:
+    case Size::kNefc: break;
+  }
+  return std::to_string(i);
+}
+
+void append_number(std::string& line, double x) {
+  line += ',';
+  if (!std::isfinite(x)) return;
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.17g", x + 0.0);  // + 0.0: no "-0"
+  line += buf;
+}
+
+double element(const FieldView& v, long i) {
+  switch (v.info->scalar) {
+    case Scalar::kDouble: return static_cast<const double*>(v.data)[i];
+    case Scalar::kInt: return static_cast<const int*>(v.data)[i];
+    case Scalar::kByte: return static_cast<const uint8_t*>(v.data)[i];
+  }
+  return 0.0;
+}
+
 }  // namespace
 
-void write_model_fields(json::Writer& json, const Model& model) {
-  json.key("model").value(model.name);
-  json.key("source").value(model.source);
+CsvWriter::CsvWriter(const Model& model, std::vector<std::string> arrays) : model_(&model) {
+  const std::vector<FieldInfo>& table = data_field_table();
+  for (const std::string& name : arrays) {
+    size_t k = 0;
+    while (k < table.size() && name != table[k].name) ++k;
+    if (k == table.size()) throw StateError("CSV: Data has no array called '" + name + "'.");
+    if (table[k].rows == Size::kNefc) {
+      // the live rows change from line to line: a CSV needs fixed columns
+      throw StateError("CSV: " + name + " has one row per live limit row; it cannot be a column.");
+    }
+    columns_.push_back(k);
+  }
+}
+
+std::string CsvWriter::header() const {
+  const Data data(*model_);
+  const std::vector<FieldView> views = data_fields(*model_, data);
+  std::string line = "time";
+  for (const size_t k : columns_) {
+    const FieldView& v = views[k];
+    for (int r = 0; r < v.rows; ++r) {
+      const std::string object =
+          std::string(v.info->name) + "[" + row_name(*model_, v.info->rows, r) + "]";
+      for (int c = 0; c < v.cols; ++c) {
+        line += ',';
+        line += csv_field(v.cols == 1 ? object : object + "[" + std::to_string(c) + "]");
+      }
+    }
+  }
+  return line + "\n";
+}
+
+std::string CsvWriter::row(const Data& data) const {
+  check_fit(*model_, data, "lever::CsvWriter::row");
+  const std::vector<FieldView> views = data_fields(*model_, data);
+  std::string line;
+  append_number(line, data.time);
+  line.erase(0, 1);  // the first field has no comma before it
+  for (const size_t k : columns_) {
+    const FieldView& v = views[k];
+    for (long i = 0; i < v.size(); ++i) append_number(line, element(v, i));
+  }
+  return line + "\n";
+}
+
+const std::vector<std::string>& simulate_csv_arrays() {
+  static const std::vector<std::string> arrays = {
+      "qpos", "qvel", "qacc", "qfrc_bias", "ctrl", "actuator_force", "qfrc_constraint"};
+  return arrays;
+}
+
+void write_model_sizes(json::Writer& json, const Model& model) {
   for (Size s :
        {Size::kNq, Size::kNv, Size::kNu, Size::kNbody, Size::kNjnt, Size::kNgeom, Size::kNsite}) {
     json.key(size_name(s)).value(size_of(model, s));
   }
+}
+
+void write_model_fields(json::Writer& json, const Model& model) {
+  json.key("model").value(model.name);
+  json.key("source").value(model.source);
+  write_model_sizes(json, model);
   json.key("opt_timestep").value(model.opt.timestep);
   json.key("opt_gravity").values(model.opt.gravity);
   json.key("opt_integrator").value(static_cast<int>(model.opt.integrator));

@@ -5,14 +5,15 @@
 // Runs lever::forward() (MuJoCo's mj_forward) at the given state, then the site Jacobians
 // (mj_jacSite) and the energy (mj_energyPos + mj_energyVel). Omitted vectors are qpos0 and zeros.
 //
-// --json: one object keyed by mjData's names and laid out as mjData stores them, row-major and
-// flattened: xpos (nbody x 3), xquat (nbody x 4, w x y z), xmat (nbody x 9), xipos, site_xpos
-// (nsite x 3), site_xmat (nsite x 9), the nv vectors, actuator_force (nu), the nefc live limit
-// rows (efc_id = joint id, efc_pos, efc_force, efc_aref, efc_R, efc_D), and
+// --json: one object: the model's name and sizes (nq, nv, nu, nbody, njnt, ngeom, nsite), time,
+// nefc, then every array of Data's field table (lever/fields.hpp: qpos ... qfrc_constraint,
+// qfrc_inverse, energy) under mjData's names, laid out as mjData stores them, row-major and
+// flattened (xmat: nbody x 9; efc arrays: the nefc live limit rows), with
 //   M          nv x nv, full and symmetric (MuJoCo's mj_fullM of qM)
+//   energy     [potential, kinetic] in J
+// and what the command adds:
 //   site_jacp  nsite x 3 x nv (mj_jacSite's jacp for each site, one after the other)
 //   site_jacr  nsite x 3 x nv
-//   energy     [potential, kinetic] in J
 // Numbers are printed with 17 significant digits, so they compare exactly.
 // Without --json: readable tables with names and units.
 // Exit 0; 1 when the evaluation raised an engine warning (a state that is NaN or beyond 1e10, an
@@ -78,11 +79,7 @@ void print_json(const Model& model, const Data& data, const Evaluation& e) {
   Json json(stdout);
   json.begin_object();
   json.key("model").value(model.name);
-  json.key("nq").value(model.nq);
-  json.key("nv").value(model.nv);
-  json.key("nu").value(model.nu);
-  json.key("nbody").value(model.nbody);
-  json.key("nsite").value(model.nsite);
+  write_model_sizes(json, model);
   write_data_fields(json, model, data);
   row_major(json, "site_jacp", e.jacp);
   row_major(json, "site_jacr", e.jacr);

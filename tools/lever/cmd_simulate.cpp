@@ -21,6 +21,7 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/plot.hpp>
+#include <lever/serialize.hpp>
 
 #include "cli.hpp"
 #include "commands.hpp"
@@ -50,58 +51,6 @@ const char* const kUsage =
     "counted per motor and reported on stderr.\n";
 
 using lab::Controller;
-
-// ---- CSV -----------------------------------------------------------------------------------
-
-std::string csv_field(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string out = "\"";
-  for (const char ch : s) out += ch == '"' ? std::string("\"\"") : std::string(1, ch);
-  return out + "\"";
-}
-
-void csv_header(std::FILE* out, const Model& m) {
-  std::string h = "time";
-  auto per_joint = [&](const char* what) {
-    for (int j = 0; j < m.njnt; ++j) {
-      h.append(",").append(csv_field(std::string(what) + "[" + label_of(m.jnt_name[j], j) + "]"));
-    }
-  };
-  auto per_motor = [&](const char* what) {
-    for (int a = 0; a < m.nu; ++a) {
-      h.append(",").append(
-          csv_field(std::string(what) + "[" + label_of(m.actuator_name[a], a) + "]"));
-    }
-  };
-  per_joint("qpos");
-  per_joint("qvel");
-  per_joint("qacc");
-  per_joint("qfrc_bias");
-  per_motor("ctrl");
-  per_motor("actuator_force");
-  per_joint("qfrc_constraint");
-  std::fprintf(out, "%s\n", h.c_str());
-}
-
-// A CSV number in full precision; a number that is not finite is an empty field.
-std::string csv_number(double x) { return std::isfinite(x) ? num(x, "%.17g") : std::string(); }
-
-void csv_row(std::FILE* out, const Model& m, const Data& d) {
-  std::fprintf(out, "%s", csv_number(d.time).c_str());
-  auto per_dof = [&](const Eigen::VectorXd& v, bool qpos) {
-    for (int j = 0; j < m.njnt; ++j) {
-      std::fprintf(out, ",%s", csv_number(v[qpos ? m.jnt_qposadr[j] : m.jnt_dofadr[j]]).c_str());
-    }
-  };
-  per_dof(d.qpos, true);
-  per_dof(d.qvel, false);
-  per_dof(d.qacc, false);
-  per_dof(d.qfrc_bias, false);
-  for (int a = 0; a < m.nu; ++a) std::fprintf(out, ",%s", csv_number(d.ctrl[a]).c_str());
-  for (int a = 0; a < m.nu; ++a) std::fprintf(out, ",%s", csv_number(d.actuator_force[a]).c_str());
-  per_dof(d.qfrc_constraint, false);
-  std::fputc('\n', out);
-}
 
 void json_row(const Data& d) {
   Json json(stdout);
@@ -377,11 +326,12 @@ int cmd_simulate(const std::vector<std::string>& argv) {
   }
 
   std::unique_ptr<std::FILE, FileCloser> csv;
+  const CsvWriter csv_writer(model, simulate_csv_arrays());
   if (args.has("csv")) {
     const std::string path = args.get("csv");
     csv.reset(path == "-" ? stdout : std::fopen(path.c_str(), "w"));
     if (!csv) throw std::runtime_error(std::string("cannot open '").append(path) + "' for writing");
-    csv_header(csv.get(), model);
+    std::fputs(csv_writer.header().c_str(), csv.get());
   }
 
   PlotRecord record;
@@ -412,7 +362,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
 
   const lab::RunLog log = lab::run(model, data, controller, steps, [&](long k, const Data& d) {
     if (args.has("json")) json_row(d);
-    if (csv) csv_row(csv.get(), model, d);
+    if (csv) std::fputs(csv_writer.row(d).c_str(), csv.get());
     if (text && (k % every == 0 || k == steps)) print_summary_row(model, d);
     if (plotting) {
       if (k == 0) {

@@ -1,15 +1,21 @@
 // lever/serialize.hpp: Model and Data as JSON, every array of the field table (lever/fields.hpp)
-// under its own name, flattened row by row. Shared by `lever model --json`, `lever forward
-// --json`, the Python package and the browser build.
+// under its own name, flattened row by row; and chosen Data arrays as CSV, one line per state.
+// Shared by `lever model --json`, `lever forward --json`, `lever simulate --csv`, the Python
+// package and the browser build.
 #pragma once
 
+#include <cstddef>
 #include <string>
+#include <vector>
 
 #include <lever/data.hpp>
 #include <lever/json.hpp>
 #include <lever/model.hpp>
 
 namespace lever {
+
+/// The model's sizes nq, nv, nu, nbody, njnt, ngeom, nsite, as members of the open JSON object.
+void write_model_sizes(json::Writer& json, const Model& model);
 
 /// The model's sizes, names and every array of the table, as members of the open JSON object.
 void write_model_fields(json::Writer& json, const Model& model);
@@ -21,5 +27,28 @@ void write_data_fields(json::Writer& json, const Model& model, const Data& data)
 /// The same, each as one JSON object.
 std::string model_to_json(const Model& model);
 std::string data_to_json(const Model& model, const Data& data);
+
+/// CSV of chosen Data arrays (names of the field table), one line per state: `time`, then each
+/// array's elements in the order given, row by row. A column is named after its array and its
+/// row's object, `qpos[shoulder]` (joints for nq/nv/njnt arrays, motors for nu, bodies, sites;
+/// `#3` for an object without a name), with `[c]` appended for arrays of several columns.
+/// Numbers have 17 significant digits; a number that is not finite is an empty field.
+class CsvWriter {
+ public:
+  /// Throws StateError naming an array the table does not have.
+  CsvWriter(const Model& model, std::vector<std::string> arrays);
+  /// The header line, with its newline.
+  std::string header() const;
+  /// One line for the current state of data, with its newline.
+  std::string row(const Data& data) const;
+
+ private:
+  const Model* model_;
+  std::vector<size_t> columns_;  ///< rows of data_field_table()
+};
+
+/// The columns of `lever simulate --csv`: joint positions, velocities, accelerations, bias forces,
+/// motor commands and forces, limit forces.
+const std::vector<std::string>& simulate_csv_arrays();
 
 }  // namespace lever
