@@ -43,7 +43,7 @@ std::string csv_field(const std::string& s) {
 }
 
 std::string name_or_index(const std::vector<std::string>& names, int i) {
-  return names[i].empty() ? "#" + std::to_string(i) : names[i];
+  return names[i].empty() ? std::string(1, '#').append(std::to_string(i)) : names[i];
 }
 
 // The object row i of an array counted in `rows` stands for.
@@ -162,6 +162,19 @@ void write_data_fields(json::Writer& json, const Model& model, const Data& data)
   json.key("time").value(data.time);
   json.key("nefc").value(data.nefc);
   for (const FieldView& v : data_fields(model, data)) write_array(json, v);
+}
+
+void write_data_arrays(json::Writer& json, const Model& model, const Data& data,
+                       const std::vector<std::string>& names) {
+  const std::vector<FieldView> views = data_fields(model, data);
+  for (const std::string& name : names) {
+    const FieldView* found = nullptr;
+    for (const FieldView& v : views) {
+      if (name == v.info->name) found = &v;
+    }
+    if (found == nullptr) throw StateError("JSON: Data has no array called '" + name + "'.");
+    write_array(json, *found);
+  }
 }
 
 std::string model_to_json(const Model& model) {

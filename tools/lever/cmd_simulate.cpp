@@ -52,17 +52,14 @@ const char* const kUsage =
 
 using lab::Controller;
 
-void json_row(const Data& d) {
+// One JSON line per state: time and the lab's readouts, by their names in the field table.
+void json_row(const Model& model, const Data& d) {
+  static const std::vector<std::string> arrays = {
+      "qpos", "qvel", "qacc", "qfrc_bias", "qfrc_constraint", "ctrl", "actuator_force"};
   Json json(stdout);
   json.begin_object();
   json.key("time").value(d.time);
-  json.key("qpos").values(d.qpos);
-  json.key("qvel").values(d.qvel);
-  json.key("qacc").values(d.qacc);
-  json.key("qfrc_bias").values(d.qfrc_bias);
-  json.key("qfrc_constraint").values(d.qfrc_constraint);
-  json.key("ctrl").values(d.ctrl);
-  json.key("actuator_force").values(d.actuator_force);
+  write_data_arrays(json, model, d, arrays);
   json.end_object();
   json.newline();
 }
@@ -361,7 +358,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
   }
 
   const lab::RunLog log = lab::run(model, data, controller, steps, [&](long k, const Data& d) {
-    if (args.has("json")) json_row(d);
+    if (args.has("json")) json_row(model, d);
     if (csv) std::fputs(csv_writer.row(d).c_str(), csv.get());
     if (text && (k % every == 0 || k == steps)) print_summary_row(model, d);
     if (plotting) {

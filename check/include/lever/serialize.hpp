@@ -24,6 +24,11 @@ void write_model_fields(json::Writer& json, const Model& model);
 /// JSON object.
 void write_data_fields(json::Writer& json, const Model& model, const Data& data);
 
+/// Chosen arrays of the table (by name, in the order given), as members of the open JSON object;
+/// throws StateError naming an array the table does not have.
+void write_data_arrays(json::Writer& json, const Model& model, const Data& data,
+                       const std::vector<std::string>& names);
+
 /// The same, each as one JSON object.
 std::string model_to_json(const Model& model);
 std::string data_to_json(const Model& model, const Data& data);
