@@ -11,6 +11,8 @@ packages=(
   libmujoco-dev        # the reference: tests, benchmarks and `lever diff` only
   libbenchmark-dev     # bench/
   liborocos-kdl-dev    # bench/ peer
+  python3-dev python3-numpy python3-pybind11  # the Python package (python/), for /usr/bin/python3
+  python3-pytest       # its tests (tests/python)
 )
 
 # `scripts/setup.sh fuzz`: also what `make fuzz` needs (clang and its libFuzzer runtime)

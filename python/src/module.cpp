@@ -59,9 +59,12 @@ py::array view(const lever::FieldView& v, py::handle owner, bool writable) {
       item = sizeof(uint8_t);
       break;
   }
-  shape.push_back(v.rows);
-  strides.push_back(static_cast<py::ssize_t>(item) * v.cols);
-  if (v.cols != 1) {
+  // one row (energy): a flat array of its columns, as MuJoCo's bindings give mjData's vectors
+  if (v.info->rows != lever::Size::kOne) {
+    shape.push_back(v.rows);
+    strides.push_back(static_cast<py::ssize_t>(item) * v.cols);
+  }
+  if (v.cols != 1 || v.info->rows == lever::Size::kOne) {
     shape.push_back(v.cols);
     strides.push_back(static_cast<py::ssize_t>(item));
   }
