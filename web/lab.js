@@ -566,15 +566,16 @@
       lo -= pad;
       hi += pad;
       const left = 48 * ratio;
+      const top = 20 * ratio;  // the legend sits above the frame
       const bottom = height - 18 * ratio;
       const x = (t) => left + ((t - t0) / window_) * (width - left - 8 * ratio);
-      const y = (v) => bottom - ((v - lo) / (hi - lo)) * (bottom - 8 * ratio);
+      const y = (v) => bottom - ((v - lo) / (hi - lo)) * (bottom - top);
       g.font = 10 * ratio + 'px sans-serif';
       g.fillStyle = '#666';
       g.strokeStyle = '#ccc';
       g.lineWidth = ratio;
-      g.strokeRect(left, 8 * ratio, width - left - 8 * ratio, bottom - 8 * ratio);
-      g.fillText(hi.toPrecision(3), 2, 16 * ratio);
+      g.strokeRect(left, top, width - left - 8 * ratio, bottom - top);
+      g.fillText(hi.toPrecision(3), 2, top + 8 * ratio);
       g.fillText(lo.toPrecision(3), 2, bottom);
       g.fillText(t0.toFixed(1) + ' s', left, height - 4 * ratio);
       g.fillText(t1.toFixed(1) + ' s', width - 40 * ratio, height - 4 * ratio);
@@ -596,7 +597,9 @@
         g.stroke();
         g.setLineDash([]);
         g.fillStyle = colors[k % colors.length];
-        g.fillText(trace.spec.label || trace.spec.expr, left + 8 * ratio + k * 110 * ratio, 20 * ratio);
+        const legendX = left + k * 130 * ratio;
+        g.fillRect(legendX, top - 9 * ratio, 14 * ratio, 2 * ratio);
+        g.fillText(trace.spec.label || trace.spec.expr, legendX + 18 * ratio, top - 5 * ratio);
       });
     }
   }
