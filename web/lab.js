@@ -10,7 +10,8 @@
 // URL: ?spec=URL (default specs/5.1-lab.json), &model=URL (default models/<spec.model>.xml),
 // &paused=1 (start paused). window.lab drives the page as its controls do: lab.press(label),
 // lab.set(param or label, value), lab.run(seconds), lab.readouts(), lab.play(), lab.pause(),
-// lab.reset(), lab.errors(); lab.ready resolves when the page is built (or has shown an error).
+// lab.reset(), lab.errors(); lab.ready resolves when the page is built (or has shown an error);
+// lab.mj is web/lever.js's API itself.
 (function () {
   'use strict';
 
@@ -92,8 +93,6 @@
   const add = (a, b) => [a[0] + b[0], a[1] + b[1], a[2] + b[2]];
   const scale = (a, s) => [a[0] * s, a[1] * s, a[2] * s];
   const dot = (a, b) => a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
-  const cross = (a, b) => [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2],
-    a[0] * b[1] - a[1] * b[0]];
   const at3 = (array, i) => [array[3 * i], array[3 * i + 1], array[3 * i + 2]];
   const at4 = (array, i) => [array[4 * i], array[4 * i + 1], array[4 * i + 2], array[4 * i + 3]];
 
@@ -415,7 +414,7 @@
       // MuJoCo's free camera: it looks along `forward` at `target` from `distance`
       const forward = [Math.cos(el) * Math.cos(az), Math.cos(el) * Math.sin(az), Math.sin(el)];
       const up = [-Math.sin(el) * Math.cos(az), -Math.sin(el) * Math.sin(az), Math.cos(el)];
-      const right = cross(forward, up);
+      const right = [Math.sin(az), -Math.cos(az), 0];  // = forward x up, as mjv_updateCamera
       const focal = height / 2 / Math.tan((45 / 2) * (Math.PI / 180));  // MuJoCo's fovy: 45 deg
       return {
         project(p) {
@@ -621,6 +620,7 @@
     const mj = await window.createLever(window.createLeverModule, {
       locateFile: (path) => (path.endsWith('.wasm') ? wasmUrl : path),
     });
+    window.lab.mj = mj;
     document.getElementById('engine').textContent = 'lever ' + mj.version + ' (WebAssembly)';
     const specText = await fetchText(specUrl, 'spec');
     const spec = parseSpec(specText);

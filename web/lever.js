@@ -145,10 +145,20 @@
       mj_step(model, data) { check(data._wasm.step()); },
       mj_forward(model, data) { check(data._wasm.forward()); },
       mj_resetData(model, data) { check(data._wasm.reset()); },
-      // lever::set_const: after editing model parameters (body_mass, ...), as mj_setConst
-      mj_setConst(model, data) { check(model._wasm.set_const()); },
+      // lever::set_const after editing model parameters (body_mass, ...). As MuJoCo 2.2.2's
+      // mj_setConst, which computes its constants in `data` at qpos0, it leaves data.qpos at
+      // qpos0 (and the outputs of that pose in data); qvel, ctrl and time are kept.
+      mj_setConst(model, data) {
+        check(model._wasm.set_const());
+        data.qpos.set(model.qpos0);
+        check(data._wasm.forward());
+      },
       /** n steps in one call into wasm (the same as n calls of mj_step). */
       mj_steps(model, data, n) { check(data._wasm.steps(n)); },
+      /** `lever check` on MJCF text (lesson 5.1's six checks): its text, or its JSON. */
+      lever_check(xml, filename, json) {
+        return Module.check_model_text(xml, filename || 'model.xml', !!json);
+      },
       /** lever's warnings since the last reset, one per line ("" if none). */
       warnings(data) { return data._wasm.warnings(); },
     };

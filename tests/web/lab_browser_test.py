@@ -294,6 +294,20 @@ def case_refused_model_shows_an_error():
           ('line %d' % line) in shown[0], 'errors shown: %s' % shown)
 
 
+def case_lever_check_matches_native():
+    # lesson 5.1's six checks (lever::check) compiled to WebAssembly print what `lever check` prints
+    with open(ARM2) as f:
+        xml = f.read()
+    with Browser(LAB) as b:
+        check(b.ready, 'the page did not get ready: %s' % b.errors_shown())
+        ours = b.js('return lab.mj.lever_check(arguments[0], "models/arm2.xml");', xml)
+    native = subprocess.run([ARGS.lever, 'check', 'models/arm2.xml'], cwd=ROOT,
+                            capture_output=True, text=True)
+    check(native.returncode in (0, 1) and native.stdout, 'lever check failed: %s' % native.stderr)
+    check(ours == native.stdout, 'the browser\'s check differs from lever check:\n%s\n---\n%s'
+          % (ours, native.stdout))
+
+
 def main():
     global ARGS
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])

@@ -10,9 +10,11 @@
 
 #include <cstdint>
 #include <exception>
+#include <lever/check.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 #include <memory>
+#include <optional>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -267,10 +269,33 @@ class WasmData {
   lever::Data data_;
 };
 
+/// `lever check` on MJCF text: the six checks of lesson 5.1 as the command prints them (text) or
+/// as its JSON; section (4) loads the same text again with every mass inferred from the geoms, as
+/// check_file() does with the file. A model that cannot be loaded gives its diagnostic instead.
+std::string check_model_text(const std::string& xml, const std::string& filename, bool json) {
+  try {
+    lever::Model model = lever::mjcf::load_string(xml, filename);
+    model.source = filename;
+    std::optional<lever::Model> inferred;
+    std::string inferred_error;
+    try {
+      inferred = lever::mjcf::load_string(xml, filename, {.infer_inertia_from_geoms = true});
+    } catch (const lever::Error& e) {
+      inferred_error = e.what();
+    }
+    const lever::check::Report report =
+        lever::check::run_check({model, inferred ? &*inferred : nullptr, inferred_error});
+    return json ? lever::check::to_json(report) : lever::check::to_text(report);
+  } catch (const std::exception& e) {
+    return std::string("error: ") + e.what();
+  }
+}
+
 }  // namespace
 
 EMSCRIPTEN_BINDINGS(lever) {
   using namespace emscripten;
+  function("check_model_text", &check_model_text);
   value_object<FieldView>("FieldView")
       .field("name", &FieldView::name)
       .field("type", &FieldView::type)
