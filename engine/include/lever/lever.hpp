@@ -3,6 +3,7 @@
 
 #include <lever/constraint.hpp>
 #include <lever/data.hpp>
+#include <lever/derivatives.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
 #include <lever/forward.hpp>
