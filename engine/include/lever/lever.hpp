@@ -9,5 +9,6 @@
 #include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
 #include <lever/model.hpp>
+#include <lever/regressor.hpp>
 #include <lever/spatial.hpp>
 #include <lever/version.hpp>
