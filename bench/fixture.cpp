@@ -2,7 +2,7 @@
 
 #include <lever/mjcf.hpp>
 #include <lever/spatial.hpp>
-#include <mujoco/from_mujoco.hpp>
+#include <lever/harness/from_mujoco.hpp>
 
 #include <algorithm>
 #include <filesystem>

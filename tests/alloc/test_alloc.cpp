@@ -11,7 +11,7 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
-#include <test_models.hpp>
+#include <lever/harness/models.hpp>
 
 #include <atomic>
 #include <cerrno>
@@ -25,7 +25,7 @@
 #include <vector>
 
 #ifdef LEVER_ALLOC_HAVE_MUJOCO
-#include <mujoco/from_mujoco.hpp>
+#include <lever/harness/from_mujoco.hpp>
 #endif
 
 // ---- counting allocation functions ------------------------------------------------------------

@@ -15,8 +15,8 @@
 #include <lever/mjcf.hpp>
 #include <random>
 
-#include "random_state.hpp"
-#include "test_models.hpp"
+#include <lever/harness/random_state.hpp>
+#include <lever/harness/models.hpp>
 #include "two_link.hpp"
 
 namespace lever::test {

@@ -13,7 +13,7 @@
 
 #include "json_reader.hpp"
 #include "run_lever.hpp"
-#include "test_models.hpp"
+#include <lever/harness/models.hpp>
 #include "two_link.hpp"
 
 namespace lever::test {

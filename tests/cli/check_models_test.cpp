@@ -12,7 +12,7 @@
 
 #include "json_reader.hpp"
 #include "run_lever.hpp"
-#include "test_models.hpp"
+#include <lever/harness/models.hpp>
 
 namespace lever::test {
 

@@ -7,7 +7,7 @@
 #include <regex>
 #include <sstream>
 
-#include "tolerance.hpp"
+#include <lever/harness/tolerance.hpp>
 
 namespace lever::test {
 

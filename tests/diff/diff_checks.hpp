@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "tolerance.hpp"
+#include <lever/harness/tolerance.hpp>
 
 namespace lever::test {
 

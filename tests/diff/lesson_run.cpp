@@ -6,7 +6,7 @@
 #include <lever/diff/runs.hpp>
 
 #include "diff_checks.hpp"
-#include "test_models.hpp"
+#include <lever/harness/models.hpp>
 
 namespace lever::test {
 

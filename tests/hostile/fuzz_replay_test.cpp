@@ -10,7 +10,7 @@
 
 #include "checks.hpp"
 #include "run_process.hpp"
-#include "test_models.hpp"
+#include <lever/harness/models.hpp>
 
 namespace {
 

@@ -16,7 +16,7 @@
 #include <lever/mjcf.hpp>
 
 #include "run_process.hpp"
-#include "test_models.hpp"
+#include <lever/harness/models.hpp>
 
 namespace {
 

@@ -5,7 +5,7 @@
 #include <lever/mjcf.hpp>
 #include <numbers>
 
-#include "test_models.hpp"
+#include <lever/harness/models.hpp>
 
 namespace {
 

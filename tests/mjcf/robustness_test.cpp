@@ -7,7 +7,7 @@
 #include <random>
 #include <sstream>
 
-#include "test_models.hpp"
+#include <lever/harness/models.hpp>
 
 namespace {
 

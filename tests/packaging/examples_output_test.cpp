@@ -11,7 +11,7 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
-#include <test_models.hpp>
+#include <lever/harness/models.hpp>
 
 #include <algorithm>
 #include <array>

@@ -8,7 +8,7 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
-#include <test_models.hpp>
+#include <lever/harness/models.hpp>
 
 #include <sys/wait.h>
 

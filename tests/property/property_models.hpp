@@ -10,8 +10,8 @@
 #include <string>
 #include <vector>
 
-#include "random_state.hpp"
-#include "test_models.hpp"
+#include <lever/harness/random_state.hpp>
+#include <lever/harness/models.hpp>
 
 namespace lever::test {
 

@@ -8,7 +8,7 @@
 #include <cmath>
 #include <limits>
 
-#include "test_models.hpp"
+#include <lever/harness/models.hpp>
 
 namespace {
 

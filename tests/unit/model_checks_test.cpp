@@ -8,7 +8,7 @@
 #include <limits>
 #include <string>
 
-#include "test_models.hpp"
+#include <lever/harness/models.hpp>
 
 namespace {
 

@@ -1,4 +1,4 @@
-// Shared pieces of the `lever` command: argument parsing, number lists, JSON output.
+// Shared pieces of the `lever` command: argument parsing and number lists.
 #pragma once
 
 #include <Eigen/Core>
@@ -7,6 +7,8 @@
 #include <map>
 #include <string>
 #include <vector>
+
+#include <lever/json.hpp>
 
 namespace lever::cli {
 
@@ -38,33 +40,7 @@ class Args {
   std::map<std::string, std::string> values_;
 };
 
-/// A minimal streaming JSON writer: numbers in full double precision (%.17g), non-finite
-/// numbers as null, keys in the order written.
-class Json {
- public:
-  explicit Json(std::FILE* out) : out_(out) {}
-  Json& begin_object();
-  Json& end_object();
-  Json& begin_array();
-  Json& end_array();
-  Json& key(const std::string& k);
-  Json& value(double x);
-  Json& value(int x);
-  Json& value(long x);
-  Json& value(bool x);
-  Json& value(const std::string& s);
-  Json& value(const char* s) { return value(std::string(s)); }
-  Json& values(const Eigen::Ref<const Eigen::VectorXd>& v);  ///< as one flat array
-  void newline();
-
- private:
-  void separator();
-  std::FILE* out_;
-  std::vector<bool> first_;  // one per open container: nothing written in it yet
-  bool after_key_ = false;
-};
-
-/// JSON string escaping.
-std::string json_escape(const std::string& s);
+/// The JSON writer the commands share (lever/json.hpp).
+using Json = json::Writer;
 
 }  // namespace lever::cli

@@ -1,13 +1,14 @@
-// lever check MODEL: lesson 5.1's six checks of a robot model (see check/check.hpp).
-// Exit status: 0 when every claim checks out, 1 with findings, 2 when the model cannot be loaded.
+// lever check MODEL: lesson 5.1's six checks of a robot model (the library in check/,
+// lever/check.hpp). Exit status: 0 when every claim checks out, 1 with findings, 2 when the model
+// cannot be loaded.
 #include <cstdio>
 #include <filesystem>
 #include <string>
 
+#include <lever/check.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/plot.hpp>
 
-#include "check/check.hpp"
 #include "cli.hpp"
 #include "commands.hpp"
 
@@ -58,23 +59,13 @@ int cmd_check(const std::vector<std::string>& argv) {
   if (args.positional().size() != 1) throw UsageError{"needs exactly one MODEL file (--help)"};
   const std::string& path = args.positional()[0];
 
-  Model model;
+  check::Report report;
   try {
-    model = mjcf::load_file(path);
+    report = check::check_file(path);
   } catch (const Error& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return kBadInput;
   }
-  std::optional<Model> inferred;
-  std::string inferred_error;
-  try {
-    inferred = mjcf::load_file(path, {.infer_inertia_from_geoms = true});
-  } catch (const Error& e) {
-    inferred_error = e.what();
-  }
-
-  const check::Report report =
-      check::run_check({model, inferred ? &*inferred : nullptr, inferred_error});
   write_svg(report, args);
   if (args.has("json")) {
     check::write_json(stdout, report);

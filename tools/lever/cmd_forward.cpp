@@ -242,7 +242,7 @@ int cmd_forward(const std::vector<std::string>& argv) {
   // that came out non-finite, are said on stderr and make the exit status 1
   WarningLog warnings;
   warnings.collect(data);
-  warnings.print("forward");
+  print_warnings("forward", warnings);
   const bool finite = outputs_finite(data) && e.jacp.allFinite() && e.jacr.allFinite();
   if (!finite) print_non_finite("forward");
   return warnings.count() > 0 || !finite ? kFindings : kOk;

@@ -4,14 +4,8 @@
 //                        [--ctrl .. | --torque ..] [--gravity-compensation]
 //                        [--json] [--csv FILE] [--plot FILE.svg]
 //
-// The controller is lesson 5.1's lab: before every step,
-//     ctrl[a] = torque[a] + (gravity compensation ? qfrc_bias[dof of a] / gear[a] : 0),
-// where qfrc_bias is that of the current state. The loop is therefore
-//     forward (the current state's qfrc_bias) -> set ctrl -> forward (the row) -> step,
-// and the recorded trajectory has one row per state visited: the start state and the state after
-// every step (N + 1 rows for N steps). Each row holds the state at its time and what forward()
-// computes there under the ctrl the controller chose: the forces and accelerations that act
-// during the step that starts at that row.
+// The controller and the loop are lesson 5.1's lab (lever/lab.hpp): the trajectory has one row per
+// state visited, the start state and the state after every step (N + 1 rows for N steps).
 //
 // Clamping is silent in the physics (as in MuJoCo); this command counts, per motor, the steps
 // whose command was clamped to ctrlrange (or its force to forcerange) and reports it on stderr.
@@ -23,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include <lever/lab.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/plot.hpp>
@@ -54,56 +49,7 @@ const char* const kUsage =
     "Without --json, a short table of the run is printed. Steps whose command was clamped are\n"
     "counted per motor and reported on stderr.\n";
 
-// ---- the controller ------------------------------------------------------------------------
-
-struct Controller {
-  Eigen::VectorXd torque;             // (nu) the constant part, in ctrl units
-  bool gravity_compensation = false;  // add qfrc_bias / gear
-};
-
-// The lab's controller: data.qfrc_bias must be that of the current state.
-void apply(const Model& model, const Controller& c, Data& data) {
-  for (int a = 0; a < model.nu; ++a) {
-    data.ctrl[a] = c.torque[a];
-    if (c.gravity_compensation) {
-      const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
-      data.ctrl[a] += data.qfrc_bias[dof] / model.actuator_gear[a][0];
-    }
-  }
-}
-
-// What a run reports besides its rows.
-struct RunLog {
-  std::vector<long> clamped;  // per motor, the steps whose command was clamped
-  WarningLog warnings;        // the engine's warnings over the whole run
-  long non_finite_rows = 0;   // rows holding a number that is not finite
-};
-
-// Run `steps` steps; call on_row(k, data) for the start state (k = 0) and after each step, with
-// every forward quantity evaluated at that state under that state's ctrl.
-RunLog run(const Model& model, Data& data, const Controller& c, long steps,
-           const std::function<void(long, const Data&)>& on_row) {
-  RunLog log;
-  log.clamped.assign(static_cast<size_t>(model.nu), 0);
-  for (long k = 0;; ++k) {
-    if (c.gravity_compensation) forward(model, data);  // qfrc_bias of the current state
-    apply(model, c, data);
-    forward(model, data);  // the row: everything at this state under this ctrl
-    // a bad command is zeroed, not clamped: the warning says so, the clamping count does not
-    const bool bad_ctrl = data.warning[static_cast<int>(Warning::kBadCtrl)].number > 0;
-    log.warnings.collect(data);
-    if (!outputs_finite(data)) ++log.non_finite_rows;
-    on_row(k, data);
-    if (k == steps) break;
-    for (int a = 0; a < model.nu && !bad_ctrl; ++a) {
-      // the gain of a motor is 1, so any difference is ctrlrange or forcerange clamping
-      if (data.actuator_force[a] != data.ctrl[a]) ++log.clamped[static_cast<size_t>(a)];
-    }
-    step(model, data);  // recomputes the same forward(), then integrates (or resets a bad state)
-    log.warnings.collect(data);
-  }
-  return log;
-}
+using lab::Controller;
 
 // ---- CSV -----------------------------------------------------------------------------------
 
@@ -424,13 +370,10 @@ int cmd_simulate(const std::vector<std::string>& argv) {
   controller.torque = args.get_vector(args.has("torque") ? "torque" : "ctrl", model.nu,
                                       Eigen::VectorXd::Zero(model.nu));
   controller.gravity_compensation = args.has("gravity-compensation");
-  if (controller.gravity_compensation) {
-    for (int a = 0; a < model.nu; ++a) {
-      if (model.actuator_gear[a][0] == 0) {
-        throw UsageError{std::string("motor ").append(label_of(model.actuator_name[a], a)) +
-                         " has gear 0: gravity compensation cannot be expressed as its ctrl"};
-      }
-    }
+  try {
+    lab::validate(model, controller);
+  } catch (const StateError& e) {
+    throw UsageError{e.what()};
   }
 
   std::unique_ptr<std::FILE, FileCloser> csv;
@@ -467,7 +410,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     print_summary_header(model);
   }
 
-  const RunLog log = run(model, data, controller, steps, [&](long k, const Data& d) {
+  const lab::RunLog log = lab::run(model, data, controller, steps, [&](long k, const Data& d) {
     if (args.has("json")) json_row(d);
     if (csv) csv_row(csv.get(), model, d);
     if (text && (k % every == 0 || k == steps)) print_summary_row(model, d);
@@ -497,7 +440,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
 
   // what the physics does silently: states reset after a blow-up (and other engine warnings),
   // numbers that came out non-finite, clamped commands
-  log.warnings.print("simulate");
+  print_warnings("simulate", log.warnings);
   if (log.non_finite_rows > 0) print_non_finite("simulate");
   long total = 0;
   for (const long n : log.clamped) total += n;

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <lever/data.hpp>
+#include <lever/lab.hpp>
 #include <lever/model.hpp>
 
 #include "cli.hpp"
@@ -64,60 +65,16 @@ inline std::string vec_text(const Eigen::Ref<const Eigen::VectorXd>& v, const ch
   return s + ")";
 }
 
-/// Whether every number forward() leaves in data (and the energy) is finite.
-inline bool outputs_finite(const Data& d) {
-  const auto all = [](const auto& list) {
-    for (const auto& x : list) {
-      if (!x.allFinite()) return false;
-    }
-    return true;
-  };
-  return d.qpos.allFinite() && d.qvel.allFinite() && d.ctrl.allFinite() && all(d.xpos) &&
-         all(d.xquat) && all(d.xmat) && all(d.xipos) && all(d.site_xpos) && all(d.site_xmat) &&
-         d.M.allFinite() && d.qfrc_bias.allFinite() && d.qfrc_passive.allFinite() &&
-         d.actuator_force.allFinite() && d.qfrc_actuator.allFinite() && d.qacc_smooth.allFinite() &&
-         d.qacc.allFinite() && d.qfrc_constraint.allFinite() &&
-         d.efc_pos.head(d.nefc).allFinite() && d.efc_force.head(d.nefc).allFinite() &&
-         d.efc_aref.head(d.nefc).allFinite() && d.efc_R.head(d.nefc).allFinite() &&
-         d.efc_D.head(d.nefc).allFinite() && std::isfinite(d.energy[0]) &&
-         std::isfinite(d.energy[1]);
+using lab::outputs_finite;
+using lab::WarningLog;
+
+/// One line on stderr per kind of warning in the log:
+/// "lever forward: warning: qvel is NaN or larger than 1e10 ... (1 time, last at index 0)".
+inline void print_warnings(const char* command, const WarningLog& log) {
+  for (const std::string& line : log.lines()) {
+    std::fprintf(stderr, "lever %s: warning: %s\n", command, line.c_str());
+  }
 }
-
-/// The engine's warnings over many evaluations. Data keeps only those since its last reset (and
-/// step() resets a bad state, as mj_step), so a command moves them here after every call.
-class WarningLog {
- public:
-  /// Add data's warnings to the log and clear them in data.
-  void collect(Data& data) {
-    for (size_t k = 0; k < total_.size(); ++k) {
-      if (data.warning[k].number == 0) continue;
-      total_[k].number += data.warning[k].number;
-      total_[k].lastinfo = data.warning[k].lastinfo;
-      data.warning[k] = {};
-    }
-  }
-
-  int count() const {
-    int n = 0;
-    for (const WarningStat& w : total_) n += w.number;
-    return n;
-  }
-
-  /// One line on stderr per kind of warning, as warning_text() words them:
-  /// "lever forward: warning: qvel is NaN or larger than 1e10 ... (1 time, last at index 0)".
-  void print(const char* command) const {
-    for (size_t k = 0; k < total_.size(); ++k) {
-      const WarningStat& w = total_[k];
-      if (w.number == 0) continue;
-      std::fprintf(stderr, "lever %s: warning: %s (%d %s, last at index %d)\n", command,
-                   warning_name(static_cast<Warning>(k)), w.number,
-                   w.number == 1 ? "time" : "times", w.lastinfo);
-    }
-  }
-
- private:
-  std::array<WarningStat, static_cast<size_t>(Warning::kCount)> total_{};
-};
 
 /// The line a command prints on stderr when a number it printed was not finite.
 inline void print_non_finite(const char* command) {

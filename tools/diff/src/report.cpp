@@ -3,7 +3,7 @@
 #include <lever/diff/report.hpp>
 #include <limits>
 
-#include "tolerance.hpp"
+#include <lever/harness/tolerance.hpp>
 
 namespace lever::diff {
 

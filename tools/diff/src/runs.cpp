@@ -4,7 +4,7 @@
 #include <lever/forward.hpp>
 #include <random>
 
-#include "test_models.hpp"
+#include <lever/harness/models.hpp>
 
 namespace lever::diff {
 

@@ -18,7 +18,7 @@ struct Extreme {
   /// that state (its largest element): the verdict
   double max_ratio = 0.0;
   /// the same with |mujoco| each element's own value: reported, stricter than the bound where a
-  /// small element sits beside large ones (see tests/support/tolerance.hpp)
+  /// small element sits beside large ones (see harness/include/lever/harness/tolerance.hpp)
   double max_elementwise_ratio = 0.0;
   double max_abs_mujoco = 0.0;  ///< largest |mujoco|: the quantity's scale
   // where the largest ratio was seen (state < 0: nothing compared yet)

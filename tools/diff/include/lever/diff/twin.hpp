@@ -7,8 +7,8 @@
 #include <lever/model.hpp>
 #include <string>
 
-#include "mujoco/from_mujoco.hpp"
-#include "random_state.hpp"
+#include <lever/harness/from_mujoco.hpp>
+#include <lever/harness/random_state.hpp>
 
 namespace lever::diff {
 

@@ -29,7 +29,7 @@
 #include <lever/data.hpp>
 #include <lever/forward.hpp>
 
-#include "check.hpp"
+#include <lever/check.hpp>
 #include "reference.hpp"
 #include "util.hpp"
 #include "worst_pose.hpp"

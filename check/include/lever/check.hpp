@@ -1,4 +1,5 @@
-// lever check: lesson 5.1's six checks of a robot model, for any model of the subset.
+// lever/check.hpp: lesson 5.1's six checks of a robot model, for any model of the subset. The
+// library behind `lever check`, the Python package's `lever.check` and the browser build.
 //
 // A model is a list of claims (joints, masses, motor limits, sites); `run_check` tests each one
 // against an independent calculation and collects what does not check out as findings:
@@ -245,9 +246,20 @@ Inertia check_inertia(const Inputs& inputs, const TorqueBudget& budget);
 SoftStops check_soft_stops(const Model& model);
 Clamping check_clamping(const Model& model);
 
-// output
+/// Load a model file and run the six checks on it: the model as written, and the same file again
+/// with every mass inferred from its geoms for section (4). Throws lever::Error (mjcf::ParseError)
+/// when the file cannot be loaded as written.
+Report check_file(const std::string& path);
+
+/// Run the six checks on a model already loaded. Section (4) reloads `model.source` with inertias
+/// inferred from the geoms when the model came from a file; a model built in memory gets the
+/// reason in `inertia.inferred_error` instead.
+Report check_model(const Model& model);
+
+// ---- output (renderers: the report itself holds every number) ----------------------------------
 std::string to_text(const Report& report);
 void write_json(std::FILE* out, const Report& report);  ///< one JSON object, one line
+std::string to_json(const Report& report);              ///< the same object, as text
 std::string torque_budget_svg(const Report& report);
 
 }  // namespace lever::check

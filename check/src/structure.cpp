@@ -1,5 +1,5 @@
 // (1) What the compiled model contains: joints, motors, sites, bodies.
-#include "check.hpp"
+#include <lever/check.hpp>
 #include "util.hpp"
 
 namespace lever::check {

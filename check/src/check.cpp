@@ -1,7 +1,10 @@
 // The six checks in order, and the findings: every claim that does not check out.
-#include "check.hpp"
+#include <lever/check.hpp>
 
 #include <cmath>
+#include <optional>
+
+#include <lever/mjcf.hpp>
 
 #include "format.hpp"
 
@@ -114,5 +117,23 @@ Report run_check(const Inputs& inputs) {
   warning_findings(report, report.findings);
   return report;
 }
+
+Report check_model(const Model& model) {
+  std::optional<Model> inferred;
+  std::string inferred_error =
+      "the model was not loaded from a file, so it cannot be reloaded "
+      "with inertias inferred from its geoms";
+  if (!model.source.empty()) {
+    try {
+      inferred = mjcf::load_file(model.source, {.infer_inertia_from_geoms = true});
+      inferred_error.clear();
+    } catch (const Error& e) {
+      inferred_error = e.what();
+    }
+  }
+  return run_check({model, inferred ? &*inferred : nullptr, inferred_error});
+}
+
+Report check_file(const std::string& path) { return check_model(mjcf::load_file(path)); }
 
 }  // namespace lever::check

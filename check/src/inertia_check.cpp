@@ -7,7 +7,7 @@
 #include <lever/kinematics.hpp>
 #include <lever/mjcf.hpp>
 
-#include "check.hpp"
+#include <lever/check.hpp>
 #include "util.hpp"
 
 namespace lever::check {

@@ -1,4 +1,4 @@
-// Test support: a lever::Model copied field by field from MuJoCo's compiled mjModel.
+// lever/from_mujoco.hpp: a lever::Model copied field by field from MuJoCo's compiled mjModel.
 //
 // It lets the engine be compared with MuJoCo on exactly MuJoCo's compiled parameters, separately
 // from mjcf_lite's compiler (which has its own tests against MuJoCo's).

@@ -1,4 +1,4 @@
-#include "from_mujoco.hpp"
+#include <lever/harness/from_mujoco.hpp>
 
 #include <stdexcept>
 

@@ -13,7 +13,7 @@
 #include <lever/dynamics.hpp>
 #include <lever/kinematics.hpp>
 
-#include "check.hpp"
+#include <lever/check.hpp>
 #include "reference.hpp"
 #include "util.hpp"
 #include "worst_pose.hpp"

@@ -6,7 +6,7 @@
 #include <lever/data.hpp>
 #include <lever/forward.hpp>
 
-#include "check.hpp"
+#include <lever/check.hpp>
 #include "util.hpp"
 
 namespace lever::check {

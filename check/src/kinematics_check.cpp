@@ -10,7 +10,7 @@
 #include <lever/data.hpp>
 #include <lever/kinematics.hpp>
 
-#include "check.hpp"
+#include <lever/check.hpp>
 #include "reference.hpp"
 #include "util.hpp"
 

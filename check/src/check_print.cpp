@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "check.hpp"
+#include <lever/check.hpp>
 #include "format.hpp"
 
 namespace lever::check {

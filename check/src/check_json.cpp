@@ -1,13 +1,13 @@
 // `lever check --json`: the report as one JSON object, sections as keys, numbers at full precision
 // (infinite and undefined figures, such as an unbounded motor's limit, as null).
-#include "../cli.hpp"
-#include "check.hpp"
+#include <lever/check.hpp>
+#include <lever/json.hpp>
 
 namespace lever::check {
 
 namespace {
 
-using cli::Json;
+using Json = json::Writer;
 
 void pair(Json& j, const std::array<double, 2>& r) {
   j.begin_array().value(r[0]).value(r[1]).end_array();
@@ -198,8 +198,8 @@ void clamping(Json& j, const Clamping& c) {
 
 }  // namespace
 
-void write_json(std::FILE* out, const Report& r) {
-  Json j(out);
+namespace {
+void report(Json& j, const Report& r) {
   j.begin_object().key("model").value(r.model).key("source").value(r.source);
   j.key("structure").begin_object();
   structure(j, r.structure);
@@ -216,7 +216,20 @@ void write_json(std::FILE* out, const Report& r) {
   j.end_object().key("findings");
   strings(j, r.findings);
   j.key("exit_status").value(r.exit_status()).end_object();
+}
+}  // namespace
+
+void write_json(std::FILE* out, const Report& r) {
+  Json j(out);
+  report(j, r);
   j.newline();
+}
+
+std::string to_json(const Report& r) {
+  std::string text;
+  Json j(&text);
+  report(j, r);
+  return text;
 }
 
 }  // namespace lever::check

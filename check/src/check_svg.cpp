@@ -5,7 +5,7 @@
 
 #include <lever/plot.hpp>
 
-#include "check.hpp"
+#include <lever/check.hpp>
 #include "format.hpp"
 
 namespace lever::check {

@@ -1,0 +1,110 @@
+#include <lever/lab.hpp>
+
+#include <cmath>
+
+#include <lever/error.hpp>
+#include <lever/forward.hpp>
+
+namespace lever::lab {
+
+void validate(const Model& model, const Controller& controller) {
+  if (controller.torque.size() != model.nu) {
+    throw StateError("lab controller: torque has " + std::to_string(controller.torque.size()) +
+                     " values but the model has " + std::to_string(model.nu) + " motors.");
+  }
+  if (!controller.torque.allFinite()) {
+    throw StateError("lab controller: torque holds a value that is not finite.");
+  }
+  if (!controller.gravity_compensation) return;
+  for (int a = 0; a < model.nu; ++a) {
+    if (model.actuator_gear[a][0] == 0) {
+      const std::string name =
+          model.actuator_name[a].empty() ? "#" + std::to_string(a) : model.actuator_name[a];
+      throw StateError("lab controller: motor " + name +
+                       " has gear 0: gravity compensation cannot be expressed as its ctrl.");
+    }
+  }
+}
+
+void apply(const Model& model, const Controller& controller, Data& data) {
+  for (int a = 0; a < model.nu; ++a) {
+    data.ctrl[a] = controller.torque[a];
+    if (controller.gravity_compensation) {
+      const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+      data.ctrl[a] += data.qfrc_bias[dof] / model.actuator_gear[a][0];
+    }
+  }
+}
+
+void WarningLog::collect(Data& data) {
+  for (size_t k = 0; k < total_.size(); ++k) {
+    if (data.warning[k].number == 0) continue;
+    total_[k].number += data.warning[k].number;
+    total_[k].lastinfo = data.warning[k].lastinfo;
+    data.warning[k] = {};
+  }
+}
+
+int WarningLog::count() const {
+  int n = 0;
+  for (const WarningStat& w : total_) n += w.number;
+  return n;
+}
+
+std::vector<std::string> WarningLog::lines() const {
+  std::vector<std::string> out;
+  for (size_t k = 0; k < total_.size(); ++k) {
+    const WarningStat& w = total_[k];
+    if (w.number == 0) continue;
+    out.push_back(std::string(warning_name(static_cast<Warning>(k))) + " (" +
+                  std::to_string(w.number) + (w.number == 1 ? " time" : " times") +
+                  ", last at index " + std::to_string(w.lastinfo) + ")");
+  }
+  return out;
+}
+
+bool outputs_finite(const Data& d) {
+  const auto all = [](const auto& list) {
+    for (const auto& x : list) {
+      if (!x.allFinite()) return false;
+    }
+    return true;
+  };
+  return d.qpos.allFinite() && d.qvel.allFinite() && d.ctrl.allFinite() && all(d.xpos) &&
+         all(d.xquat) && all(d.xmat) && all(d.xipos) && all(d.site_xpos) && all(d.site_xmat) &&
+         d.M.allFinite() && d.qfrc_bias.allFinite() && d.qfrc_passive.allFinite() &&
+         d.actuator_force.allFinite() && d.qfrc_actuator.allFinite() && d.qacc_smooth.allFinite() &&
+         d.qacc.allFinite() && d.qfrc_constraint.allFinite() &&
+         d.efc_pos.head(d.nefc).allFinite() && d.efc_force.head(d.nefc).allFinite() &&
+         d.efc_aref.head(d.nefc).allFinite() && d.efc_R.head(d.nefc).allFinite() &&
+         d.efc_D.head(d.nefc).allFinite() && std::isfinite(d.energy[0]) &&
+         std::isfinite(d.energy[1]);
+}
+
+RunLog run(const Model& model, Data& data, const Controller& controller, long steps,
+           const RowCallback& on_row) {
+  validate(model, controller);
+  if (steps < 0) throw StateError("lab run: the number of steps must not be negative.");
+  RunLog log;
+  log.clamped.assign(static_cast<size_t>(model.nu), 0);
+  for (long k = 0;; ++k) {
+    if (controller.gravity_compensation) forward(model, data);  // the current state's qfrc_bias
+    apply(model, controller, data);
+    forward(model, data);  // the row: everything at this state under this ctrl
+    // a bad command is zeroed, not clamped: the warning says so, the clamping count does not
+    const bool bad_ctrl = data.warning[static_cast<int>(Warning::kBadCtrl)].number > 0;
+    log.warnings.collect(data);
+    if (!outputs_finite(data)) ++log.non_finite_rows;
+    if (on_row) on_row(k, data);
+    if (k == steps) break;
+    for (int a = 0; a < model.nu && !bad_ctrl; ++a) {
+      // the gain of a motor is 1, so any difference is ctrlrange or forcerange clamping
+      if (data.actuator_force[a] != data.ctrl[a]) ++log.clamped[static_cast<size_t>(a)];
+    }
+    step(model, data);  // recomputes the same forward(), then integrates (or resets a bad state)
+    log.warnings.collect(data);
+  }
+  return log;
+}
+
+}  // namespace lever::lab
