@@ -50,12 +50,13 @@ Motion to_body_frame(const Motion& m, const Eigen::Vector3d& c, const Eigen::Vec
 }
 
 std::string body_label(const Model& model, int b) {
-  return model.body_name[b].empty() ? "body" + std::to_string(b) : model.body_name[b];
+  return model.body_name[b].empty() ? std::string("body").append(std::to_string(b))
+                                    : model.body_name[b];
 }
 
 std::string dof_label(const Model& model, int i) {
   const std::string& joint = model.jnt_name[model.dof_jntid[i]];
-  return joint.empty() ? "dof" + std::to_string(i) : joint;
+  return joint.empty() ? std::string("dof").append(std::to_string(i)) : joint;
 }
 
 }  // namespace

@@ -27,16 +27,20 @@
 #include <lever/diff/twin.hpp>
 
 #include <lever/derivatives.hpp>
+#include <lever/harness/from_mujoco.hpp>
+#include <lever/identify.hpp>
 #include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <random>
 #include <sstream>
 #include <string>
 
+#include <lever/harness/models.hpp>
 #include "smooth_states.hpp"
-#include "test_models.hpp"
 
 namespace lever::test {
 
@@ -231,6 +235,70 @@ TEST_CASE("derivatives: d qacc agrees with MuJoCo's mj_forward differenced",
     }
     UNSCOPED_INFO(file << ": worst " << worst << " of the bound");
   }
+}
+
+}  // namespace lever::test
+
+namespace lever::test {
+
+TEST_CASE("identify: the written model loads in MuJoCo and its mj_inverse is the truth's",
+          "[derivatives][identify][mujoco]") {
+  // the truth (arm2 with link 2 twice as heavy) and the identified model both go through
+  // write_model, so MuJoCo compiles each from its own file
+  const std::string arm2 = model_path("models/arm2.xml");
+  const Model prior = mjcf::load_file(arm2);
+  Model truth = prior;
+  truth.body_mass[2] = 1.6;
+  truth.body_ipos[2] << 0.25, 0, 0;
+  truth.body_inertia[2] *= 2.0;
+  set_const(truth);
+  const auto temp = [](const char* name) {
+    return (std::filesystem::temp_directory_path() / (std::string("lever_mj_") + name)).string();
+  };
+  const std::string truth_file = temp("truth.xml"), identified_file = temp("identified.xml");
+  identify::write_model(arm2, truth, truth_file);
+
+  // noise-free data from lever's simulation of the truth: random states, forward's qacc
+  std::mt19937_64 rng(5);
+  Data data(truth);
+  identify::Trajectory t;
+  const int samples = 300;
+  t.time.setZero(samples);
+  t.qpos.resize(2, samples);
+  t.qvel.resize(2, samples);
+  t.qacc.resize(2, samples);
+  t.force.resize(2, samples);
+  for (int k = 0; k < samples; ++k) {
+    apply(smooth_state(truth, rng, true), data);
+    forward(truth, data);
+    t.qpos.col(k) = data.qpos;
+    t.qvel.col(k) = data.qvel;
+    t.qacc.col(k) = data.qacc;
+    t.force.col(k) = data.qfrc_actuator + data.qfrc_applied + data.qfrc_constraint;
+  }
+  const identify::Result r = identify::identify(prior, t);
+  REQUIRE(r.not_physical.empty());
+  identify::write_model(arm2, identify::identified_model(prior, r), identified_file);
+
+  const MjModelPtr mt = mujoco_load(truth_file), mi = mujoco_load(identified_file);
+  const MjDataPtr dt = mujoco_data(mt.get()), di = mujoco_data(mi.get());
+  for (int k = 0; k < 50; ++k) {
+    const State s = smooth_state(truth, rng, false);
+    const Eigen::VectorXd qacc = random_qacc(truth, rng);
+    for (mjData* d : {dt.get(), di.get()}) {
+      for (int i = 0; i < 2; ++i) {
+        d->qpos[i] = s.qpos[i];
+        d->qvel[i] = s.qvel[i];
+        d->qacc[i] = qacc[i];
+      }
+    }
+    mj_inverse(mt.get(), dt.get());
+    mj_inverse(mi.get(), di.get());
+    const Eigen::Map<const Eigen::Vector2d> a(dt->qfrc_inverse), b(di->qfrc_inverse);
+    CHECK((a - b).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, a.cwiseAbs().maxCoeff()));
+  }
+  std::filesystem::remove(truth_file);
+  std::filesystem::remove(identified_file);
 }
 
 }  // namespace lever::test

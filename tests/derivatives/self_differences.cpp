@@ -22,7 +22,7 @@
 
 #include "../property/property_models.hpp"
 #include "smooth_states.hpp"
-#include "tolerance.hpp"
+#include <lever/harness/tolerance.hpp>
 
 namespace lever::test {
 

@@ -10,7 +10,7 @@
 #include <lever/model.hpp>
 #include <random>
 
-#include "random_state.hpp"
+#include <lever/harness/random_state.hpp>
 
 namespace lever::test {
 
