@@ -110,6 +110,13 @@ void register_lever(const Fixture& f) {
     add("forward_limit", f, "lever", lever_fn(&f, l, nothing, forward_op));
     add("step_limit", f, "lever", lever_fn(&f, l, nothing, step_op(l)));
   }
+
+  // the step's Jacobians A and B, analytic: the same call is the peer of MuJoCo's centred and
+  // forward differences (its workspace lives outside Data, sized once)
+  auto deriv = std::make_shared<Derivatives>(f.model);
+  const auto jacobian_op = [deriv](const Model& m, Data& d) { step_derivatives(m, d, *deriv); };
+  add("step_jacobian_centred", f, "lever", lever_fn(&f, s, nothing, jacobian_op));
+  add("step_jacobian_forward", f, "lever", lever_fn(&f, s, nothing, jacobian_op));
 }
 
 // ---- MuJoCo 2.2.2 -------------------------------------------------------------------------------
@@ -191,6 +198,18 @@ void register_mujoco(const Fixture& f) {
     const State* l = &*f.limit;
     add("forward_limit", f, "mujoco", mujoco_fn(&f, l, nothing, forward_op));
     add("step_limit", f, "mujoco", mujoco_fn(&f, l, nothing, step_op(l)));
+  }
+
+  // mjd_transitionFD: A and B by centred and by forward differences of mj_step (eps 1e-6)
+  const auto nx = static_cast<std::size_t>(2 * f.mj->nv);
+  auto AB =
+      std::make_shared<std::vector<mjtNum>>(nx * nx + nx * static_cast<std::size_t>(f.mj->nu));
+  for (const int centred : {1, 0}) {
+    add(centred ? "step_jacobian_centred" : "step_jacobian_forward", f, "mujoco",
+        mujoco_fn(&f, s, nothing, [AB, nx, centred](const mjModel* m, mjData* d) {
+          mjd_transitionFD(m, d, 1e-6, static_cast<mjtByte>(centred), AB->data(),
+                           m->nu > 0 ? AB->data() + nx * nx : nullptr, nullptr, nullptr);
+        }));
   }
 }
 

@@ -136,6 +136,10 @@ const Operation kOperations[] = {
     {"forward_limit", "`forward`, one limit row", "`mj_forward`, one limit row", ""},
     {"step", "`step` (state restored each time)", "`mj_step` (state restored each time)", ""},
     {"step_limit", "`step`, one limit row", "`mj_step`, one limit row", ""},
+    {"step_jacobian_centred", "`step_derivatives` (analytic A and B)",
+     "`mjd_transitionFD`, centred", ""},
+    {"step_jacobian_forward", "`step_derivatives` (analytic A and B)",
+     "`mjd_transitionFD`, forward", ""},
 };
 
 // ---- targets

@@ -1,6 +1,7 @@
 #include <lever/lab.hpp>
 
 #include <cmath>
+#include <numbers>
 
 #include <lever/error.hpp>
 #include <lever/forward.hpp>
@@ -15,16 +16,43 @@ void validate(const Model& model, const Controller& controller) {
   if (!controller.torque.allFinite()) {
     throw StateError("lab controller: torque holds a value that is not finite.");
   }
-  if (!controller.gravity_compensation) return;
+  if (!(controller.excite >= 0.0 && controller.excite <= 1.0)) {
+    throw StateError("lab controller: excite must be a fraction of the joint ranges in [0, 1].");
+  }
+  if (!controller.gravity_compensation && controller.excite == 0.0) return;
   for (int a = 0; a < model.nu; ++a) {
     if (model.actuator_gear[a][0] == 0) {
       const std::string name =
           model.actuator_name[a].empty() ? "#" + std::to_string(a) : model.actuator_name[a];
       throw StateError("lab controller: motor " + name +
-                       " has gear 0: gravity compensation cannot be expressed as its ctrl.");
+                       " has gear 0: gravity compensation or excitation cannot be expressed as "
+                       "its ctrl.");
     }
   }
 }
+
+namespace {
+
+// The excitation's PD command for motor a: track a sum of sines inside its joint's range.
+double excitation(const Model& model, double fraction, int a, const Data& data) {
+  const int j = model.actuator_trnid[a];
+  const int q = model.jnt_qposadr[j], dof = model.jnt_dofadr[j];
+  const double mid =
+      model.jnt_limited[j] ? 0.5 * (model.jnt_range[j][0] + model.jnt_range[j][1]) : model.qpos0[q];
+  const double half =
+      model.jnt_limited[j] ? 0.5 * (model.jnt_range[j][1] - model.jnt_range[j][0]) : 1.0;
+  double ref = mid, ref_vel = 0.0;
+  for (const double hz : {0.3, 0.71, 1.3}) {
+    const double w = 2 * std::numbers::pi * (hz + 0.1 * a);
+    ref += fraction * half / 3 * std::sin(w * data.time + a);
+    ref_vel += fraction * half / 3 * w * std::cos(w * data.time + a);
+  }
+  const double wn = 2 * std::numbers::pi * 4.0;  // 4 Hz: faster than the reference's sines
+  const double kp = wn * wn * model.dof_M0[dof], kd = 2 * 0.7 * wn * model.dof_M0[dof];
+  return (kp * (ref - data.qpos[q]) + kd * (ref_vel - data.qvel[dof])) / model.actuator_gear[a][0];
+}
+
+}  // namespace
 
 void apply(const Model& model, const Controller& controller, Data& data) {
   for (int a = 0; a < model.nu; ++a) {
@@ -33,6 +61,7 @@ void apply(const Model& model, const Controller& controller, Data& data) {
       const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
       data.ctrl[a] += data.qfrc_bias[dof] / model.actuator_gear[a][0];
     }
+    if (controller.excite > 0) data.ctrl[a] += excitation(model, controller.excite, a, data);
   }
 }
 

@@ -22,6 +22,8 @@ constexpr double kMinVal = 1e-15;   // MuJoCo's mjMINVAL
 constexpr double kMinImp = 0.0001;  // mjMINIMP
 constexpr double kMaxImp = 0.9999;  // mjMAXIMP
 
+}  // namespace
+
 // solref and solimp of a joint's limit, sanitized as MuJoCo's getsolparam does.
 void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref,
                       std::array<double, 5>& solimp) {
@@ -39,25 +41,37 @@ void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref
 }
 
 // Impedance at a violation: solimp's sigmoid from d0 (at the margin) to dmax (width past it).
-double impedance(const std::array<double, 5>& solimp, double pos, double margin) {
+// With slope != nullptr, also d imp / d pos (zero on the flat parts; one-sided at their ends).
+double impedance(const std::array<double, 5>& solimp, double pos, double margin, double* slope) {
   const double d0 = solimp[0], dmax = solimp[1], width = solimp[2];
   const double mid = solimp[3], power = solimp[4];
+  if (slope != nullptr) *slope = 0.0;
   if (d0 == dmax || width <= kMinVal) return 0.5 * (d0 + dmax);
   const double x = std::abs((pos - margin) / width);
   if (x >= 1) return dmax;
   if (x <= 0) return d0;
-  double y;
+  double y, dy_dx;
   if (power == 1) {
     y = x;
+    dy_dx = 1;
   } else if (power == 2) {  // the default: spare two calls to pow
     y = x <= mid ? x * x / mid : 1 - (1 - x) * (1 - x) / (1 - mid);
+    dy_dx = x <= mid ? 2 * x / mid : 2 * (1 - x) / (1 - mid);
   } else if (x <= mid) {
     y = std::pow(x, power) / std::pow(mid, power - 1);
+    dy_dx = power * std::pow(x, power - 1) / std::pow(mid, power - 1);
   } else {
     y = 1 - std::pow(1 - x, power) / std::pow(1 - mid, power - 1);
+    dy_dx = power * std::pow(1 - x, power - 1) / std::pow(1 - mid, power - 1);
+  }
+  if (slope != nullptr) {
+    const double dx_dpos = (pos - margin < 0 ? -1.0 : 1.0) / width;
+    *slope = (dmax - d0) * dy_dx * dx_dpos;
   }
   return d0 + y * (dmax - d0);
 }
+
+namespace {
 
 // Cholesky factor (lower, in place) of the rows/columns of A listed in idx[0..n); false if not
 // positive definite. L is written into L(0..n, 0..n).
@@ -106,7 +120,7 @@ void make_constraint(const Model& model, Data& data) {
     std::array<double, 2> solref;
     std::array<double, 5> solimp;
     limit_parameters(model, data.efc_id[r], solref, solimp);
-    const double imp = impedance(solimp, data.efc_pos[r], data.efc_margin[r]);
+    const double imp = impedance(solimp, data.efc_pos[r], data.efc_margin[r], nullptr);
     const double dmax = solimp[1];
     // R is frozen at qpos0 through dof_invweight0, not the current inverse inertia
     const double invweight = model.dof_invweight0[data.efc_dof[r]];

@@ -3,6 +3,8 @@
 
 #include <Eigen/Core>
 
+#include <array>
+
 #include <lever/data.hpp>
 #include <lever/fields.hpp>
 #include <lever/model.hpp>
@@ -14,6 +16,14 @@ void factor_mass_damped(const Model& model, Data& data, double h);
 
 /// x = (M + h diag(dof_damping))^-1 x with the factor above.
 void solve_mass_damped(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x);
+
+/// A joint limit's solref and solimp, sanitized as MuJoCo's getsolparam (constraint.cpp).
+void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref,
+                      std::array<double, 5>& solimp);
+
+/// A limit row's impedance at distance pos from the stop (constraint.cpp); with slope !=
+/// nullptr, also d imp / d pos.
+double impedance(const std::array<double, 5>& solimp, double pos, double margin, double* slope);
 
 /// Record a warning of kind w about index info (MuJoCo's mj_warning).
 inline void record_warning(Data& data, Warning w, int info) {

@@ -357,3 +357,34 @@ TEST_CASE("BatchRunner allocates nothing on one thread", "[alloc]") {
     CHECK(a.mallocs == 0);
   }
 }
+
+TEST_CASE("rnea_derivatives, forward_derivatives, step_derivatives and regressor allocate nothing",
+          "[alloc][derivatives]") {
+  for (const std::string& path : lever::test::all_model_files()) {
+    std::string how;
+    const lever::Model base = load(path, how);
+    INFO("model " << std::filesystem::path(path).filename().string() << " loaded by " << how);
+    for (const lever::Integrator integrator :
+         {lever::Integrator::kEuler, lever::Integrator::kRK4}) {
+      lever::Model m = base;
+      m.opt.integrator = integrator;
+      lever::Data d(m);
+      lever::Derivatives deriv(m);  // sized once, with Data
+      const Eigen::VectorXd qacc = Eigen::VectorXd::Constant(m.nv, 0.5);
+      Eigen::MatrixXd Y(m.nv, lever::regressor_columns(m));
+      for (const NamedState& s : states_for(m)) {
+        INFO("state: " << s.name);
+        set_state(d, s);
+        Allocations a = count([&] {
+          lever::kinematics(m, d);
+          lever::rnea_derivatives(m, d, qacc, deriv);
+          lever::forward_derivatives(m, d, deriv);
+          lever::step_derivatives(m, d, deriv);
+          lever::regressor(m, d, qacc, Y);
+        });
+        CHECK(a.news == 0);
+        CHECK(a.mallocs == 0);
+      }
+    }
+  }
+}

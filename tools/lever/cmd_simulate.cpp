@@ -1,7 +1,7 @@
 // lever simulate: step a model from a start state and print, save or plot the trajectory.
 //
 //   lever simulate MODEL [--steps N | --duration T] [--qpos ..] [--qvel ..]
-//                        [--ctrl .. | --torque ..] [--gravity-compensation]
+//                        [--ctrl .. | --torque ..] [--gravity-compensation] [--excite F]
 //                        [--json] [--csv FILE] [--plot FILE.svg]
 //
 // The controller and the loop are lesson 5.1's lab (lever/lab.hpp): the trajectory has one row per
@@ -34,6 +34,7 @@ namespace {
 const char* const kUsage =
     "usage: lever simulate MODEL [--steps N | --duration T] [--qpos ..] [--qvel ..]\n"
     "                            [--ctrl .. | --torque ..] [--gravity-compensation]\n"
+    "                            [--excite F]\n"
     "                            [--json] [--csv FILE] [--plot FILE.svg]\n"
     "  --steps N               number of steps of the model's timestep\n"
     "  --duration T            simulated time in s, rounded to whole steps (default: 1 s)\n"
@@ -43,6 +44,9 @@ const char* const kUsage =
     "  --torque LIST           the same as --ctrl, under the name lesson 5.1's lab gives it\n"
     "  --gravity-compensation  add qfrc_bias of the current state to every command (the lab's\n"
     "                          gc switch): ctrl = torque + qfrc_bias[dof] / gear, every step\n"
+    "  --excite F              excitation for `lever identify`: each motor's joint tracks a sum\n"
+    "                          of three sines sweeping the fraction F of its range, PD-tracked\n"
+    "                          (added to the other commands)\n"
     "  --json                  one JSON line per state (start, then after each step): time qpos\n"
     "                          qvel qacc qfrc_bias qfrc_constraint ctrl actuator_force\n"
     "  --csv FILE              the trajectory as CSV with a header row ('-': standard output)\n"
@@ -264,7 +268,8 @@ struct FileCloser {
 }  // namespace
 
 int cmd_simulate(const std::vector<std::string>& argv) {
-  const Args args(argv, {"steps", "duration", "qpos", "qvel", "ctrl", "torque", "csv", "plot"},
+  const Args args(argv,
+                  {"steps", "duration", "qpos", "qvel", "ctrl", "torque", "excite", "csv", "plot"},
                   {"gravity-compensation", "json", "help"});
   if (args.has("help")) {
     std::fputs(kUsage, stdout);
@@ -316,6 +321,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
   controller.torque = args.get_vector(args.has("torque") ? "torque" : "ctrl", model.nu,
                                       Eigen::VectorXd::Zero(model.nu));
   controller.gravity_compensation = args.has("gravity-compensation");
+  controller.excite = args.get_double("excite", 0.0);
   try {
     lab::validate(model, controller);
   } catch (const StateError& e) {

@@ -12,5 +12,7 @@ int cmd_check(const std::vector<std::string>& argv);
 int cmd_forward(const std::vector<std::string>& argv);
 int cmd_simulate(const std::vector<std::string>& argv);
 int cmd_diff(const std::vector<std::string>& argv);
+int cmd_derivatives(const std::vector<std::string>& argv);
+int cmd_identify(const std::vector<std::string>& argv);
 
 }  // namespace lever::cli

@@ -24,11 +24,15 @@ const Command kCommands[] = {
     {"forward", lever::cli::cmd_forward, "evaluate the model at one state"},
     {"simulate", lever::cli::cmd_simulate, "step the model and print or save the trajectory"},
     {"diff", lever::cli::cmd_diff, "compare lever with MuJoCo 2.2.2 on random states"},
+    {"derivatives", lever::cli::cmd_derivatives,
+     "the step's Jacobians A, B and the dynamics' derivatives at one state"},
+    {"identify", lever::cli::cmd_identify,
+     "identify the base inertial parameters from a trajectory (CSV)"},
 };
 
 void usage(std::FILE* out) {
   std::fprintf(out, "usage: lever <command> MODEL [options]\n\ncommands:\n");
-  for (const Command& c : kCommands) std::fprintf(out, "  %-9s %s\n", c.name, c.summary);
+  for (const Command& c : kCommands) std::fprintf(out, "  %-11s %s\n", c.name, c.summary);
   std::fprintf(
       out, "\n`lever <command> --help` for a command's options; docs/cli.md for all of them.\n");
 }

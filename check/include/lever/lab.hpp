@@ -27,10 +27,17 @@ namespace lever::lab {
 struct Controller {
   Eigen::VectorXd torque;             ///< (nu) the constant part, in ctrl units
   bool gravity_compensation = false;  ///< add qfrc_bias / gear
+  /// Excitation for identification (`lever simulate --excite`), 0 for none: each motor's joint
+  /// tracks a sum of three sines (0.3, 0.71, 1.3 Hz, plus 0.1 Hz per motor index, a third of the
+  /// amplitude each) about the middle of its range, sweeping this fraction of the half range (of
+  /// +-1 rad or m for an unlimited joint), by a PD law tuned to dof_M0: natural frequency 4 Hz,
+  /// damping ratio 0.7; its command is added to the others.
+  double excite = 0.0;
 };
 
 /// Throws StateError when the controller does not fit the model: torque of the wrong size or not
-/// finite, or gravity compensation through a motor with gear 0 (it cannot be expressed as ctrl).
+/// finite, excite outside [0, 1], or gravity compensation or excitation through a motor with
+/// gear 0 (it cannot be expressed as ctrl).
 void validate(const Model& model, const Controller& controller);
 
 /// Write the controller's command into data.ctrl. data.qfrc_bias must be the current state's.

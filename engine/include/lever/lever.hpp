@@ -3,11 +3,13 @@
 
 #include <lever/constraint.hpp>
 #include <lever/data.hpp>
+#include <lever/derivatives.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
 #include <lever/fields.hpp>
 #include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
 #include <lever/model.hpp>
+#include <lever/regressor.hpp>
 #include <lever/spatial.hpp>
 #include <lever/version.hpp>

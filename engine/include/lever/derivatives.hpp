@@ -1,0 +1,93 @@
+// lever/derivatives.hpp: analytic derivatives of inverse dynamics, forward dynamics and the step.
+//
+// Carpentier and Mansard's recursions ("Analytical derivatives of rigid body dynamics algorithms",
+// RSS 2018) in lever's frame (world axes, origin at the tree's centre of mass, see kinematics.cpp),
+// then the chain rule through the passive forces, the motors, the joint-limit rows and the
+// integrators. docs/derivatives.md derives every formula and lists the points where the dynamics
+// is not differentiable (a limit row appearing, a row changing state, a clamp boundary).
+//
+// All matrices are column-per-input: dtau_dq(i, j) = d tau_i / d qpos_j. Hinge and slide joints
+// only, so nq == nv and qpos needs no tangent space. MuJoCo 2.2.2 has no analytic counterpart;
+// its mjd_transitionFD (finite differences of mj_step) returns A and B in the same layout.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <vector>
+
+#include <lever/data.hpp>
+#include <lever/model.hpp>
+#include <lever/spatial.hpp>
+
+namespace lever {
+
+using Matrix6d = Eigen::Matrix<double, 6, 6>;
+
+/// Outputs and workspace of the derivative functions, sized once from a Model (one per Data):
+/// the functions below allocate nothing.
+struct Derivatives {
+  explicit Derivatives(const Model& model);
+
+  // ---- inverse dynamics: rnea_derivatives() ---------------------------------------------------
+  Eigen::MatrixXd dtau_dq;  ///< (nv x nv) d rnea / d qpos at the given qacc
+  Eigen::MatrixXd dtau_dv;  ///< (nv x nv) d rnea / d qvel (d rnea / d qacc is data.M)
+
+  // ---- forward dynamics: forward_derivatives() --------------------------------------------------
+  Eigen::MatrixXd dqacc_dq;  ///< (nv x nv) d qacc / d qpos
+  Eigen::MatrixXd dqacc_dv;  ///< (nv x nv) d qacc / d qvel
+  Eigen::MatrixXd dqacc_du;  ///< (nv x nu) d qacc / d ctrl
+  /// d qfrc_constraint / d (qpos, qvel, ctrl) with the rows' active set held fixed
+  Eigen::MatrixXd dconstraint_dq, dconstraint_dv, dconstraint_du;
+
+  // ---- step: step_derivatives() ---------------------------------------------------------------
+  Eigen::MatrixXd A;  ///< (2nv x 2nv) d [qpos'; qvel'] / d [qpos; qvel] (mjd_transitionFD's A)
+  Eigen::MatrixXd B;  ///< (2nv x nu)  d [qpos'; qvel'] / d ctrl         (mjd_transitionFD's B)
+
+  // ---- workspace (contents meaningless between calls) ---------------------------------------
+  struct Workspace {
+    // per body: velocity, acceleration, net force, and their subtree (composite) sums
+    std::vector<Motion> v, a;
+    std::vector<Force> f, F;     ///< net force of the body; of its whole subtree
+    std::vector<Matrix6d> I, C;  ///< spatial inertia, and C_b = v x* I - I v x + (I v) xbar*
+    std::vector<Matrix6d> IC, CC;
+    // per dof: the motion subspace's time derivative and Carpentier and Mansard's Psi_ddot
+    std::vector<Motion> Sdot, Sddot;
+    Eigen::MatrixXd rhs_q, rhs_v, rhs_u;  ///< (nv x nv / nu) right-hand sides before M^-1
+    Eigen::MatrixXd tau_q, tau_v;         ///< (nv x nv) rnea derivatives at a second qacc
+    Eigen::MatrixXd MinvJ;                ///< (nv x nefc_max) M^-1 J^T of the active rows
+    Eigen::MatrixXd AR;                   ///< (nefc_max^2) Cholesky factor of (J M^-1 J^T + R)_SS
+    Eigen::VectorXd col;                  ///< (max(nv, nefc_max)) scratch
+    Eigen::VectorXd drhs_q, drhs_v;       ///< (nefc_max) d (aref - R f) / d q_c, d qd_c per row
+    std::vector<int> rows;                ///< (nefc_max) the active rows
+    Eigen::VectorXd qacc_step;            ///< (nv) the acceleration the Euler step advances with
+    Eigen::VectorXd qpos0, qvel0;         ///< (nv) the state step_derivatives() started from
+    Eigen::MatrixXd Jx, Ju;               ///< (2nv x 2nv / nu) RK4: d stage state / d (x0, u)
+    Eigen::MatrixXd Kx, Ku;               ///< (2nv x 2nv / nu) RK4: d stage slope / d (x0, u)
+  } work;
+
+  int nv = 0, nu = 0;  ///< sizes of the model this workspace was built for (checked on use)
+};
+
+/// d tau / d qpos and d tau / d qvel of tau = rnea(qpos, qvel, qacc) (armature included, so
+/// d tau / d qacc = data.M) into deriv.dtau_dq and deriv.dtau_dv, at data.qpos, data.qvel and the
+/// given qacc. Gravity is included (as in rnea); passive, motor and limit forces are not.
+/// @pre kinematics() at data.qpos (forward() or inverse() did it).
+void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc,
+                      Derivatives& deriv);
+
+/// forward() at data's state, then d qacc / d qpos, d qvel and d ctrl into deriv.dqacc_*:
+/// springs and damping, motors (zero where ctrl or force is clamped), qfrc_applied held fixed,
+/// and the limit rows with their active set held fixed (their impedance and reference
+/// acceleration differentiated). Also writes deriv.dtau_* (at data.qacc) and
+/// deriv.dconstraint_*.
+void forward_derivatives(const Model& model, Data& data, Derivatives& deriv);
+
+/// The transition Jacobians of step() at data's state, in mjd_transitionFD's layout:
+/// x = [qpos; qvel] (2nv), A = d x' / d x, B = d x' / d ctrl, into deriv.A and deriv.B. Euler
+/// (with its implicit damping) and RK4; the derivative of step's bad-state resets is not taken.
+/// data's state (time, qpos, qvel, ctrl) is left as it was; its other fields hold forward() at
+/// that state (Euler) or at RK4's last stage, and deriv.dqacc_* are those of that evaluation.
+/// Throws lever::Error for an integrator it does not differentiate yet.
+void step_derivatives(const Model& model, Data& data, Derivatives& deriv);
+
+}  // namespace lever

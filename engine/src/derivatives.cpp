@@ -1,0 +1,446 @@
+// Analytic derivatives of inverse dynamics (Carpentier and Mansard, RSS 2018), of forward
+// dynamics (the chain rule through M^-1, the passive forces, the motors and the limit rows) and
+// of the step (Euler with implicit damping, RK4). docs/derivatives.md derives each formula.
+//
+// Every spatial quantity is in lever's frame (world axes, origin at the tree's centre of mass c,
+// see kinematics.cpp). tau is a sum of dot products S_i . F, which do not depend on the frame, so
+// the derivatives may be taken with c held where it is: a frame fixed in the world. In such a
+// frame moving dof j by dq_j moves everything it carries rigidly with the spatial velocity S_j:
+//   d S_i / d q_j = S_j x S_i            (j a strict ancestor of i; 0 otherwise)
+//   d I_b / d q_j = S_j x* I_b - I_b S_j x   (j supports body b)
+// With Sdot_j = v_lambda(j) x S_j and Psi_ddot_j = a_lambda(j) x S_j + v_lambda(j) x Sdot_j (the
+// velocity and acceleration just before dof j), the net force f_b = I_b a_b + v_b x* I_b v_b of a
+// body b that dof j supports changes as
+//   d f_b / d q_j  = S_j x* f_b + I_b Psi_ddot_j + C_b Sdot_j
+//   d f_b / d qd_j = 2 I_b Sdot_j + C_b S_j,      C_b = v_b x* I_b - I_b v_b x + (I_b v_b) xbar*
+// where (f xbar*) m = m x* f. Summed over a subtree (composites IC, CC, F) and dotted with S_i,
+// the S_j x* F term cancels d S_i / d q_j when j is an ancestor of i, and for a pair (i, j) on one
+// branch, with d the deeper of the two and b(d) its body (the paper's table, in this frame):
+//   d tau_i / d q_j  = S_i . (IC Psi_ddot_j + CC Sdot_j)       + [i strictly above j] S_i . (S_j x*
+//   F) d tau_i / d qd_j = S_i . (2 IC Sdot_j + CC S_j)
+// (IC, CC, F of b(d)); pairs on different branches are zero.
+#include <lever/derivatives.hpp>
+#include <lever/dynamics.hpp>
+#include <lever/error.hpp>
+#include <lever/forward.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "internal.hpp"
+
+namespace lever {
+
+namespace {
+
+constexpr double kMinVal = 1e-15;  // MuJoCo's mjMINVAL, the floor of a limit row's R
+
+// ---- spatial cross products as 6x6 matrices (Featherstone eqs. 2.31-2.32) -------------------
+
+// v x (motion)
+Matrix6d motion_cross_matrix(const Motion& v) {
+  Matrix6d X = Matrix6d::Zero();
+  const Eigen::Matrix3d w = skew(v.head<3>());
+  X.topLeftCorner<3, 3>() = w;
+  X.bottomRightCorner<3, 3>() = w;
+  X.bottomLeftCorner<3, 3>() = skew(v.tail<3>());
+  return X;
+}
+
+// v x* (force) = -(v x)^T
+Matrix6d force_cross_matrix(const Motion& v) { return -motion_cross_matrix(v).transpose(); }
+
+// f xbar*: the matrix that maps a motion m to m x* f
+Matrix6d force_bar_matrix(const Force& f) {
+  Matrix6d X = Matrix6d::Zero();
+  X.topLeftCorner<3, 3>() = -skew(f.head<3>());
+  X.topRightCorner<3, 3>() = -skew(f.tail<3>());
+  X.bottomLeftCorner<3, 3>() = -skew(f.tail<3>());
+  return X;
+}
+
+void check_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
+  if (data.nv != model.nv || data.nu != model.nu || deriv.nv != model.nv || deriv.nu != model.nu) {
+    throw StateError("derivatives: Data or Derivatives was built for another model (nv " +
+                     std::to_string(model.nv) + ", nu " + std::to_string(model.nu) + ").");
+  }
+}
+
+// Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, data.qvel, qdd), into
+// dtau_dq and dtau_dv. Armature adds armature * qdd, which depends on neither.
+void rnea_derivatives_into(const Model& model, const Data& data, const double* qdd,
+                           Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
+                           Eigen::MatrixXd& dtau_dv) {
+  const Eigen::VectorXd& qd = data.qvel;
+
+  // forward pass, root to leaves: v, a and f of every body, Sdot and Psi_ddot of every dof
+  w.v[0].setZero();
+  w.a[0] << 0.0, 0.0, 0.0, -model.opt.gravity;  // gravity as an upward acceleration of the world
+  for (int b = 1; b < model.nbody; ++b) {
+    const int parent = model.body_parentid[b];
+    Motion vb = w.v[parent];
+    Motion ab = w.a[parent];
+    for (int k = 0; k < model.body_dofnum[b]; ++k) {
+      const int j = model.body_dofadr[b] + k;
+      const Motion& S = data.cdof[j];
+      w.Sdot[j] = cross_motion(vb, S);
+      w.Sddot[j] = cross_motion(ab, S) + cross_motion(vb, w.Sdot[j]);
+      ab += w.Sdot[j] * qd[j] + S * qdd[j];
+      vb += S * qd[j];
+    }
+    w.v[b] = vb;
+    w.a[b] = ab;
+    w.I[b] = data.cinert[b].matrix();
+    const Force h = w.I[b] * vb;  // momentum
+    w.f[b] = w.I[b] * ab + cross_force(vb, h);
+    w.C[b] =
+        force_cross_matrix(vb) * w.I[b] - w.I[b] * motion_cross_matrix(vb) + force_bar_matrix(h);
+  }
+
+  // backward pass, leaves to root: composites of I, C and f over each subtree
+  for (int b = 1; b < model.nbody; ++b) {
+    w.IC[b] = w.I[b];
+    w.CC[b] = w.C[b];
+    w.F[b] = w.f[b];
+  }
+  for (int b = model.nbody - 1; b > 0; --b) {
+    const int parent = model.body_parentid[b];
+    if (parent > 0) {
+      w.IC[parent] += w.IC[b];
+      w.CC[parent] += w.CC[b];
+      w.F[parent] += w.F[b];
+    }
+  }
+
+  // the columns: for each dof i, the pairs (i, j) with j = i or above it (d = i), then the
+  // pairs (k, i) with k strictly above i (d = i again, now the deeper one)
+  dtau_dq.setZero();
+  dtau_dv.setZero();
+  for (int i = 0; i < model.nv; ++i) {
+    const int b = model.dof_bodyid[i];
+    const Motion& Si = data.cdof[i];
+    const Force IC_Si = w.IC[b] * Si;               // IC symmetric: S_i . IC x
+    const Force CCt_Si = w.CC[b].transpose() * Si;  // S_i . CC x
+    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
+      dtau_dq(i, j) = IC_Si.dot(w.Sddot[j]) + CCt_Si.dot(w.Sdot[j]);
+      dtau_dv(i, j) = 2 * IC_Si.dot(w.Sdot[j]) + CCt_Si.dot(data.cdof[j]);
+    }
+    const Force Xq = w.IC[b] * w.Sddot[i] + w.CC[b] * w.Sdot[i] + cross_force(Si, w.F[b]);
+    const Force Xv = 2 * (w.IC[b] * w.Sdot[i]) + w.CC[b] * Si;
+    for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+      dtau_dq(k, i) = data.cdof[k].dot(Xq);
+      dtau_dv(k, i) = data.cdof[k].dot(Xv);
+    }
+  }
+}
+
+// The explicit force terms of the smooth dynamics, minus the inverse-dynamics derivatives:
+// rhs = d (qfrc_passive + qfrc_actuator) / d x - d rnea / d x, for x = qpos, qvel, ctrl.
+void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dtau_dq,
+                const Eigen::MatrixXd& dtau_dv, Derivatives::Workspace& w) {
+  w.rhs_q = -dtau_dq;
+  w.rhs_v = -dtau_dv;
+  for (int j = 0; j < model.njnt; ++j) {
+    const int d = model.jnt_dofadr[j];
+    w.rhs_q(d, d) -= model.jnt_stiffness[j];  // spring: -k (q - springref)
+    w.rhs_v(d, d) -= model.dof_damping[d];    // damper: -b qd
+  }
+
+  // motors: force = clamp(gain * clamp(ctrl)); d/dctrl is gear where neither clamp binds
+  w.rhs_u.setZero();
+  bool bad = false;  // one bad control zeroes every motor (actuation's kBadCtrl)
+  for (int a = 0; a < model.nu; ++a) bad = bad || is_bad(data.ctrl[a]);
+  if (bad) return;
+  for (int a = 0; a < model.nu; ++a) {
+    double force = data.ctrl[a];
+    if (model.actuator_ctrllimited[a]) {
+      const auto& range = model.actuator_ctrlrange[a];
+      if (force < range[0] || force > range[1]) continue;  // clamped: no sensitivity
+    }
+    if (model.actuator_forcelimited[a]) {
+      const auto& range = model.actuator_forcerange[a];
+      if (force < range[0] || force > range[1]) continue;
+    }
+    w.rhs_u(model.jnt_dofadr[model.actuator_trnid[a]], a) = model.actuator_gear[a][0];
+  }
+}
+
+// The limit rows with their active set S held fixed. Forward dynamics satisfies
+//   M qacc = f_smooth + J_S^T f_S,    J_S qacc + R_S f_S = aref_S
+// so, with G = M^-1 (d f_smooth - d M qacc) already in dqacc (one column per input),
+//   (J M^-1 J^T + R)_SS df_S = d aref_S - dR_S f_S - J_S G,   dqacc = G + M^-1 J_S^T df_S.
+// aref = -B vel - K imp (pos - margin) and R = (1 - imp) invweight0 / imp depend on qpos through
+// the impedance, and aref on qvel through vel; neither depends on ctrl.
+void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
+  auto& w = deriv.work;
+  deriv.dconstraint_dq.setZero();
+  deriv.dconstraint_dv.setZero();
+  deriv.dconstraint_du.setZero();
+  int n = 0;
+  for (int r = 0; r < data.nefc; ++r) {
+    if (data.efc_state[r] == ConstraintState::kActive) w.rows[n++] = r;
+  }
+  if (n == 0) return;
+
+  // M^-1 J^T and the Cholesky factor of (J M^-1 J^T + R)_SS (J's row r is sign_r e_dof_r)
+  for (int k = 0; k < n; ++k) {
+    auto column = w.MinvJ.col(k);
+    column.setZero();
+    column[data.efc_dof[w.rows[k]]] = data.efc_sign[w.rows[k]];
+    solve_mass(model, data, column);
+  }
+  for (int k = 0; k < n; ++k) {
+    const int rk = w.rows[k];
+    for (int l = 0; l <= k; ++l) {
+      double s = data.efc_sign[rk] * w.MinvJ(data.efc_dof[rk], l);
+      if (l == k) s += data.efc_R[rk];
+      for (int c = 0; c < l; ++c) s -= w.AR(k, c) * w.AR(l, c);
+      w.AR(k, l) = l == k ? std::sqrt(s) : s / w.AR(l, l);
+    }
+  }
+
+  // d aref / d q_dof, d R / d q_dof, d aref / d qd_dof of each active row (zero elsewhere)
+  const auto solve_column = [&](Eigen::MatrixXd& dqacc, Eigen::MatrixXd& dconstraint, int c,
+                                const double* drhs_dx) {
+    Eigen::VectorXd& df = w.col;
+    for (int k = 0; k < n; ++k) {
+      const int r = w.rows[k];
+      df[k] =
+          (drhs_dx != nullptr ? drhs_dx[k] : 0.0) - data.efc_sign[r] * dqacc(data.efc_dof[r], c);
+    }
+    for (int k = 0; k < n; ++k) {  // L y = rhs, then L^T df = y
+      for (int l = 0; l < k; ++l) df[k] -= w.AR(k, l) * df[l];
+      df[k] /= w.AR(k, k);
+    }
+    for (int k = n - 1; k >= 0; --k) {
+      for (int l = k + 1; l < n; ++l) df[k] -= w.AR(l, k) * df[l];
+      df[k] /= w.AR(k, k);
+    }
+    for (int k = 0; k < n; ++k) {
+      const int r = w.rows[k];
+      dqacc.col(c) += w.MinvJ.col(k) * df[k];
+      dconstraint(data.efc_dof[r], c) += data.efc_sign[r] * df[k];
+    }
+  };
+
+  std::array<double, 2> solref;
+  std::array<double, 5> solimp;
+  for (int c = 0; c < model.nv; ++c) {
+    for (int k = 0; k < n; ++k) {
+      const int r = w.rows[k];
+      w.drhs_q[k] = w.drhs_v[k] = 0.0;
+      if (data.efc_dof[r] != c) continue;
+      const double sign = data.efc_sign[r];  // d pos / d q_dof: pos = sign (q - stop)
+      limit_parameters(model, data.efc_id[r], solref, solimp);
+      double slope = 0.0;
+      const double imp = impedance(solimp, data.efc_pos[r], data.efc_margin[r], &slope);
+      const double dimp_dq = slope * sign;
+      const double daref_dq =
+          -data.efc_K[r] * (dimp_dq * (data.efc_pos[r] - data.efc_margin[r]) + imp * sign);
+      const double invweight = model.dof_invweight0[c];
+      const bool R_floored = (1 - imp) * invweight / imp < kMinVal;  // R = mjMINVAL: constant
+      const double dR_dq = R_floored ? 0.0 : -invweight / (imp * imp) * dimp_dq;
+      w.drhs_q[k] = daref_dq - dR_dq * data.efc_force[r];
+      w.drhs_v[k] = -data.efc_B[r] * sign;  // aref = -B sign qd - K imp (pos - margin)
+    }
+    solve_column(deriv.dqacc_dq, deriv.dconstraint_dq, c, w.drhs_q.data());
+    solve_column(deriv.dqacc_dv, deriv.dconstraint_dv, c, w.drhs_v.data());
+  }
+  for (int c = 0; c < model.nu; ++c) solve_column(deriv.dqacc_du, deriv.dconstraint_du, c, nullptr);
+}
+
+// x' = [qpos + h qvel'; qvel'] with qvel' = qvel + h qacc_step, given d qacc_step / d (q, v, u).
+void assemble_euler(const Model& model, const Eigen::MatrixXd& Dq, const Eigen::MatrixXd& Dv,
+                    const Eigen::MatrixXd& Du, Derivatives& deriv) {
+  const int nv = model.nv;
+  const double h = model.opt.timestep;
+  auto pos_q = deriv.A.topLeftCorner(nv, nv);
+  auto pos_v = deriv.A.topRightCorner(nv, nv);
+  auto vel_q = deriv.A.bottomLeftCorner(nv, nv);
+  auto vel_v = deriv.A.bottomRightCorner(nv, nv);
+  vel_q = h * Dq;
+  vel_v = h * Dv;
+  vel_v.diagonal().array() += 1.0;
+  pos_q = h * vel_q;
+  pos_q.diagonal().array() += 1.0;
+  pos_v = h * vel_v;
+  deriv.B.bottomRows(nv) = h * Du;
+  deriv.B.topRows(nv) = (h * h) * Du;
+}
+
+void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
+  auto& w = deriv.work;
+  forward_derivatives(model, data, deriv);
+  bool damped = false;
+  for (int i = 0; i < model.nv; ++i) damped = damped || model.dof_damping[i] > 0;
+  if (!damped) {
+    assemble_euler(model, deriv.dqacc_dq, deriv.dqacc_dv, deriv.dqacc_du, deriv);
+    return;
+  }
+
+  // implicit damping: (M + h B) qacc_step = qfrc_smooth + qfrc_constraint, so
+  // (M + h B) d qacc_step = d f_smooth - d M qacc_step + d qfrc_constraint, where
+  // d f_smooth - d M qacc_step is smooth_rhs() with rnea differentiated at qacc_step
+  const double h = model.opt.timestep;
+  factor_mass_damped(model, data, h);
+  w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
+  solve_mass_damped(model, data, w.qacc_step);
+  rnea_derivatives_into(model, data, w.qacc_step.data(), w, w.tau_q, w.tau_v);
+  smooth_rhs(model, data, w.tau_q, w.tau_v, w);
+  w.rhs_q += deriv.dconstraint_dq;
+  w.rhs_v += deriv.dconstraint_dv;
+  w.rhs_u += deriv.dconstraint_du;
+  for (int c = 0; c < model.nv; ++c) {
+    solve_mass_damped(model, data, w.rhs_q.col(c));
+    solve_mass_damped(model, data, w.rhs_v.col(c));
+  }
+  for (int c = 0; c < model.nu; ++c) solve_mass_damped(model, data, w.rhs_u.col(c));
+  assemble_euler(model, w.rhs_q, w.rhs_v, w.rhs_u, deriv);
+}
+
+// Classical RK4 on x = [qpos; qvel] with slope k(x) = [qvel; qacc(x)], as step(): stage i starts
+// from x_i = x_0 + h a_i k_{i-1}, and x' = x_0 + h sum_i b_i k_i. By the chain rule, with
+// F_i = d k / d x at x_i = [0 I; dqacc_dq dqacc_dv]:
+//   d k_i / d x_0 = F_i (I + h a_i d k_{i-1} / d x_0),
+//   d k_i / d u   = F_i h a_i d k_{i-1} / d u + [0; dqacc_du].
+void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
+  constexpr double kA[3] = {0.5, 0.5, 1.0};
+  constexpr double kB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
+  const int nv = model.nv;
+  const double h = model.opt.timestep;
+  auto& w = deriv.work;
+  const double time0 = data.time;
+  w.qpos0 = data.qpos;
+  w.qvel0 = data.qvel;
+
+  w.Jx.setIdentity();  // d x_0 / d x_0
+  w.Ju.setZero();
+  deriv.A.setZero();  // sum_i b_i d k_i / d x_0 until the end
+  deriv.B.setZero();
+  for (int i = 0; i < 4; ++i) {
+    if (i > 0) {
+      // x_i from the previous stage's slope (data still holds its qvel and qacc)
+      w.qacc_step = data.qacc;
+      data.qpos = w.qpos0 + (h * kA[i - 1]) * data.qvel;
+      data.qvel = w.qvel0 + (h * kA[i - 1]) * w.qacc_step;
+      data.time = time0 + kA[i - 1] * h;
+    }
+    forward_derivatives(model, data, deriv);
+
+    // K = F J: the qpos rows of the slope are J's qvel rows; its qvel rows the chain rule
+    w.Kx.topRows(nv) = w.Jx.bottomRows(nv);
+    w.Kx.bottomRows(nv).noalias() = deriv.dqacc_dq.lazyProduct(w.Jx.topRows(nv));
+    w.Kx.bottomRows(nv).noalias() += deriv.dqacc_dv.lazyProduct(w.Jx.bottomRows(nv));
+    w.Ku.topRows(nv) = w.Ju.bottomRows(nv);
+    w.Ku.bottomRows(nv) = deriv.dqacc_du;
+    w.Ku.bottomRows(nv).noalias() += deriv.dqacc_dq.lazyProduct(w.Ju.topRows(nv));
+    w.Ku.bottomRows(nv).noalias() += deriv.dqacc_dv.lazyProduct(w.Ju.bottomRows(nv));
+
+    deriv.A += kB[i] * w.Kx;
+    deriv.B += kB[i] * w.Ku;
+    if (i < 3) {
+      w.Jx = (h * kA[i]) * w.Kx;
+      w.Jx.diagonal().array() += 1.0;
+      w.Ju = (h * kA[i]) * w.Ku;
+    }
+  }
+  deriv.A *= h;
+  deriv.A.diagonal().array() += 1.0;
+  deriv.B *= h;
+
+  data.qpos = w.qpos0;
+  data.qvel = w.qvel0;
+  data.time = time0;
+}
+
+}  // namespace
+
+Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
+  const int nefc_max = 2 * model.njnt;
+  dtau_dq.setZero(nv, nv);
+  dtau_dv.setZero(nv, nv);
+  dqacc_dq.setZero(nv, nv);
+  dqacc_dv.setZero(nv, nv);
+  dqacc_du.setZero(nv, nu);
+  dconstraint_dq.setZero(nv, nv);
+  dconstraint_dv.setZero(nv, nv);
+  dconstraint_du.setZero(nv, nu);
+  A.setZero(2 * nv, 2 * nv);
+  B.setZero(2 * nv, nu);
+
+  const auto nbody = static_cast<std::size_t>(model.nbody);
+  const auto ndof = static_cast<std::size_t>(nv);
+  work.v.assign(nbody, Motion::Zero());
+  work.a.assign(nbody, Motion::Zero());
+  work.f.assign(nbody, Force::Zero());
+  work.F.assign(nbody, Force::Zero());
+  work.I.assign(nbody, Matrix6d::Zero());
+  work.C.assign(nbody, Matrix6d::Zero());
+  work.IC.assign(nbody, Matrix6d::Zero());
+  work.CC.assign(nbody, Matrix6d::Zero());
+  work.Sdot.assign(ndof, Motion::Zero());
+  work.Sddot.assign(ndof, Motion::Zero());
+  work.rhs_q.setZero(nv, nv);
+  work.rhs_v.setZero(nv, nv);
+  work.rhs_u.setZero(nv, nu);
+  work.tau_q.setZero(nv, nv);
+  work.tau_v.setZero(nv, nv);
+  work.MinvJ.setZero(nv, nefc_max);
+  work.AR.setZero(nefc_max, nefc_max);
+  work.col.setZero(std::max(nv, nefc_max));
+  work.drhs_q.setZero(nefc_max);
+  work.drhs_v.setZero(nefc_max);
+  work.rows.assign(static_cast<std::size_t>(nefc_max), 0);
+  work.qacc_step.setZero(nv);
+  work.qpos0.setZero(nv);
+  work.qvel0.setZero(nv);
+  work.Jx.setZero(2 * nv, 2 * nv);
+  work.Ju.setZero(2 * nv, nu);
+  work.Kx.setZero(2 * nv, 2 * nv);
+  work.Ku.setZero(2 * nv, nu);
+}
+
+void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc,
+                      Derivatives& deriv) {
+  check_sizes(model, data, deriv);
+  if (qacc.size() != model.nv) {
+    throw StateError("rnea_derivatives: qacc has " + std::to_string(qacc.size()) +
+                     " elements, the model has nv = " + std::to_string(model.nv) + ".");
+  }
+  rnea_derivatives_into(model, data, qacc.data(), deriv.work, deriv.dtau_dq, deriv.dtau_dv);
+}
+
+void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
+  check_sizes(model, data, deriv);
+  forward(model, data);
+  auto& w = deriv.work;
+  rnea_derivatives_into(model, data, data.qacc.data(), w, deriv.dtau_dq, deriv.dtau_dv);
+  smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
+  // the unconstrained part: M^-1 times each column
+  deriv.dqacc_dq = w.rhs_q;
+  deriv.dqacc_dv = w.rhs_v;
+  deriv.dqacc_du = w.rhs_u;
+  for (int c = 0; c < model.nv; ++c) {
+    solve_mass(model, data, deriv.dqacc_dq.col(c));
+    solve_mass(model, data, deriv.dqacc_dv.col(c));
+  }
+  for (int c = 0; c < model.nu; ++c) solve_mass(model, data, deriv.dqacc_du.col(c));
+  limit_rows(model, data, deriv);
+}
+
+void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
+  check_sizes(model, data, deriv);
+  switch (model.opt.integrator) {
+    case Integrator::kEuler: euler_derivatives(model, data, deriv); return;
+    case Integrator::kRK4: rk4_derivatives(model, data, deriv); return;
+  }
+  // an integrator added to the enum later (MuJoCo's implicit) lands here until it has its own
+  // case: its Jacobian is (M - h d qfrc_smooth / d qvel)^-1 applied to the same right-hand sides
+  throw Error("step_derivatives: integrator " +
+              std::to_string(static_cast<int>(model.opt.integrator)) +
+              " is not supported yet (Euler and RK4 are).");
+}
+
+}  // namespace lever

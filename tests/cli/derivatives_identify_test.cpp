@@ -1,0 +1,83 @@
+// lever derivatives and lever identify as a user runs them: the JSON matches the library's
+// numbers exactly (printed with 17 digits), and a run excited by `lever simulate --excite`
+// identifies the model it came from.
+#include <catch2/catch.hpp>
+
+#include <lever/derivatives.hpp>
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+
+#include <lever/harness/models.hpp>
+
+#include "json_reader.hpp"
+#include "run_lever.hpp"
+
+namespace lever::test {
+
+TEST_CASE("cli: lever derivatives --json holds the library's A and B", "[cli][derivatives]") {
+  const std::string arm2 = model_path("models/arm2.xml");
+  const Run run = run_lever("derivatives " + quoted(arm2) + " --qpos 0.6,-1.2 --qvel 0.3,-0.4 " +
+                            "--ctrl 2,40 --json");
+  REQUIRE(run.status == 0);
+  const json::Value out = json::parse(run.out);
+  const Model model = mjcf::load_file(arm2);
+  Data data(model);
+  Derivatives deriv(model);
+  data.qpos << 0.6, -1.2;
+  data.qvel << 0.3, -0.4;
+  data.ctrl << 2, 40;  // the elbow's 40 is clamped to 15: its B column is zero
+  step_derivatives(model, data, deriv);
+  const json::Value& A = out["A"];
+  const json::Value& B = out["B"];
+  REQUIRE(A.size() == 16);
+  REQUIRE(B.size() == 8);
+  for (int r = 0; r < 4; ++r) {
+    for (int c = 0; c < 4; ++c)
+      CHECK(A[static_cast<std::size_t>(4 * r + c)].number == deriv.A(r, c));
+    for (int c = 0; c < 2; ++c)
+      CHECK(B[static_cast<std::size_t>(2 * r + c)].number == deriv.B(r, c));
+    CHECK(B[static_cast<std::size_t>(2 * r + 1)].number == 0.0);
+  }
+  CHECK(run_lever("derivatives " + quoted(arm2) + " --qpos 1,2,3").status == 2);
+}
+
+TEST_CASE("cli: lever identify recovers the model an excited run came from",
+          "[cli][derivatives][identify]") {
+  const std::string arm2 = model_path("models/arm2.xml");
+  const std::string csv =
+      (std::filesystem::temp_directory_path() / "lever_cli_identify.csv").string();
+  const std::string written =
+      (std::filesystem::temp_directory_path() / "lever_cli_identified.xml").string();
+  REQUIRE(run_lever("simulate " + quoted(arm2) + " --excite 0.8 --duration 4 --csv " + quoted(csv))
+              .status == 0);
+  const Run run = run_lever("identify " + quoted(arm2) + " " + quoted(csv) + " --json " +
+                            "--write-model " + quoted(written));
+  REQUIRE(run.status == 0);  // every base parameter excited, a physical model written
+  const json::Value out = json::parse(run.out);
+  const json::Value& base = out["base"];
+  REQUIRE(base.size() == 9);
+  for (std::size_t k = 0; k < base.size(); ++k) {
+    INFO(base[k].str("name"));
+    const double prior = base[k]["prior"].number, estimate = base[k]["estimate"].number;
+    CHECK(std::abs(estimate - prior) <= 1e-8 * std::max(1.0, std::abs(prior)));
+  }
+  CHECK(out["unexcited"].size() == 0);
+  // the written model is arm2 again
+  const Model original = mjcf::load_file(arm2), identified = mjcf::load_file(written);
+  for (int b = 1; b < original.nbody; ++b) {
+    CHECK(std::abs(identified.body_mass[b] - original.body_mass[b]) <= 1e-8);
+  }
+  // a file from another model is refused with the column it lacks
+  const Run other =
+      run_lever("identify " + quoted(model_path("models/arm3.xml")) + " " + quoted(csv), true);
+  CHECK(other.status == 2);
+  CHECK_THAT(other.out, Catch::Contains("no column 'qpos[wrist]'"));
+  std::filesystem::remove(csv);
+  std::filesystem::remove(written);
+}
+
+}  // namespace lever::test

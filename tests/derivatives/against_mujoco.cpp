@@ -1,0 +1,304 @@
+// lever's analytic derivatives against MuJoCo 2.2.2 in the same process: its mjd_transitionFD
+// (centred), and its mj_inverse and mj_forward differenced here.
+//
+// MuJoCo 2.2.2 has no analytic derivatives of the dynamics in its API: mjd_transitionFD (finite
+// differences of mj_step, declared in mujoco.h) is the reference for A and B; mjd_smooth_vel
+// (d qfrc_smooth / d qvel, for its implicit integrator) is exported but not declared in its
+// public header, so it is not used. mjd_inverseFD does not exist before 2.3.
+//
+// Step and bound: centred differences with eps = 1e-5. Their error is truncation, eps^2/6 |f'''|
+// (1.7e-11 of the scale of f and its derivatives), plus rounding, rho |f| / eps, where rho is the
+// relative rounding error of MuJoCo's own output. For accelerations out of a solve with M, rho is
+// 2.2e-16 times M's conditioning: it reaches about 1e-14 on chain20 (measured: a step of 1e-6 gave
+// differences of 1e-8 of |qacc| there), i.e. 1e-9 of the scale with eps = 1e-5. The bound, 1e-8 of
+// max(1, |f|, |f'|), is ten times that. The states are kept away from every non-differentiable
+// point (limit margins, clamp edges), and so away from MuJoCo's iterative constraint solver,
+// which has no rows at these states.
+//
+// MuJoCo 2.2.2's mjd_transitionFD is not a faithful derivative of mj_step under RK4: for its qvel
+// and ctrl columns it steps with mj_stepSkip(mjSTAGE_POS / mjSTAGE_VEL), which reuses the
+// position (and velocity) stage left in mjData by the previous call, and after an RK4 step that
+// stage is RK4's last stage (qpos + h k3, qvel + h a3), not the state being differenced. Its qvel
+// and ctrl columns then differ from mj_step's own derivative by about 1e-5 relative (arm2:
+// d qpos'/d qvel = 0.00199902 from mj_step, 0.00199900 from mjd_transitionFD). Under RK4 those
+// columns are therefore compared with mj_step differenced here; its qpos columns (computed with
+// no stage skipped) are compared with lever's as usual.
+#include <catch2/catch.hpp>
+#include <lever/diff/twin.hpp>
+
+#include <lever/derivatives.hpp>
+#include <lever/harness/from_mujoco.hpp>
+#include <lever/identify.hpp>
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include <lever/harness/models.hpp>
+#include "smooth_states.hpp"
+
+namespace lever::test {
+
+namespace {
+
+constexpr double kEps = 1e-5;
+constexpr double kBound = 1e-8;
+constexpr int kStates = 20;
+
+double largest(const Eigen::MatrixXd& x) { return x.size() ? x.cwiseAbs().maxCoeff() : 0.0; }
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+void check_close(const Eigen::MatrixXd& lever, const Eigen::MatrixXd& mujoco, double value_scale,
+                 const std::string& what, double* worst) {
+  REQUIRE(lever.rows() == mujoco.rows());
+  REQUIRE(lever.cols() == mujoco.cols());
+  const double scale = std::max({1.0, value_scale, largest(mujoco)});
+  for (Eigen::Index r = 0; r < lever.rows(); ++r) {
+    for (Eigen::Index c = 0; c < lever.cols(); ++c) {
+      const double ratio = std::abs(lever(r, c) - mujoco(r, c)) / (kBound * scale);
+      *worst = std::max(*worst, ratio);
+      if (!(ratio <= 1)) {
+        std::ostringstream s;
+        s.precision(17);
+        s << what << "(" << r << ", " << c << "): lever " << lever(r, c) << " vs mujoco "
+          << mujoco(r, c) << " (" << ratio << " of the bound " << kBound * scale << ")";
+        FAIL(s.str());
+      }
+    }
+  }
+}
+
+// MuJoCo's output (n values written by eval) differenced along each element of x (size m).
+template <class Eval>
+Eigen::MatrixXd mujoco_differences(mjtNum* x, int m, int n, const mjtNum* out, Eval eval) {
+  Eigen::MatrixXd D(n, m);
+  Eigen::VectorXd plus(n), minus(n);
+  for (int c = 0; c < m; ++c) {
+    const mjtNum x0 = x[c];
+    x[c] = x0 + kEps;
+    eval();
+    for (int r = 0; r < n; ++r) plus[r] = out[r];
+    x[c] = x0 - kEps;
+    eval();
+    for (int r = 0; r < n; ++r) minus[r] = out[r];
+    x[c] = x0;
+    D.col(c) = (plus - minus) / (2 * kEps);
+  }
+  return D;
+}
+
+}  // namespace
+
+TEST_CASE("derivatives: A and B agree with MuJoCo's mjd_transitionFD (centred)",
+          "[derivatives][mujoco]") {
+  REQUIRE(mj_version() == 222);
+  for (const Integrator integrator : {Integrator::kEuler, Integrator::kRK4}) {
+    for (const std::string& file : all_model_files()) {
+      INFO(file << (integrator == Integrator::kEuler ? " Euler" : " RK4"));
+      diff::Twin twin(file, diff::Path::kEngine);
+      twin.set_integrator(integrator);
+      const Model& model = twin.model;
+      const int nv = model.nv, nu = model.nu;
+      Derivatives deriv(model);
+      RowMajor A(2 * nv, 2 * nv), B(2 * nv, std::max(nu, 1));
+      std::mt19937_64 rng(seed_for(file) + 11);
+      double worst = 0;
+      for (int k = 0; k < kStates; ++k) {
+        const State s = smooth_state(model, rng, false);
+        twin.set_state(s);
+        step_derivatives(model, twin.data, deriv);
+        REQUIRE(twin.data.nefc == 0);
+        mjd_transitionFD(twin.m.get(), twin.d.get(), kEps, 1, A.data(), nu > 0 ? B.data() : nullptr,
+                         nullptr, nullptr);
+        const double scale = std::max(s.qpos.cwiseAbs().maxCoeff(), s.qvel.cwiseAbs().maxCoeff());
+        if (integrator == Integrator::kEuler) {
+          check_close(deriv.A, A, scale, "A", &worst);
+          if (nu > 0) check_close(deriv.B, B.leftCols(nu), scale, "B", &worst);
+          continue;
+        }
+        // RK4: mjd_transitionFD's qpos columns; mj_step differenced for the rest (see the top)
+        check_close(deriv.A.leftCols(nv), A.leftCols(nv), scale, "A (qpos columns)", &worst);
+        mjData* d = twin.d.get();
+        Eigen::VectorXd next(2 * nv);
+        const Eigen::VectorXd qpos = s.qpos, qvel = s.qvel;
+        const auto step_from_state = [&] {
+          const mjtNum time = d->time;
+          mj_step(twin.m.get(), d);
+          for (int i = 0; i < nv; ++i) next[i] = d->qpos[i], next[nv + i] = d->qvel[i];
+          d->time = time;
+        };
+        const auto restore = [&] {
+          for (int i = 0; i < nv; ++i) d->qpos[i] = qpos[i], d->qvel[i] = qvel[i];
+        };
+        // mj_step moves qpos and qvel: difference one coordinate at a time from the saved state
+        Eigen::MatrixXd Av(2 * nv, nv), Bu(2 * nv, nu);
+        Eigen::VectorXd plus(2 * nv);
+        for (int c = 0; c < nv + nu; ++c) {
+          mjtNum* x = c < nv ? d->qvel + c : d->ctrl + (c - nv);
+          const mjtNum x0 = c < nv ? qvel[c] : s.ctrl[c - nv];
+          restore();
+          *x = x0 + kEps;
+          step_from_state();
+          plus = next;
+          restore();
+          *x = x0 - kEps;
+          step_from_state();
+          *x = x0;
+          restore();
+          const Eigen::VectorXd column = (plus - next) / (2 * kEps);
+          if (c < nv)
+            Av.col(c) = column;
+          else
+            Bu.col(c - nv) = column;
+        }
+        check_close(deriv.A.rightCols(nv), Av, scale, "A (qvel columns, mj_step differenced)",
+                    &worst);
+        if (nu > 0) check_close(deriv.B, Bu, scale, "B (mj_step differenced)", &worst);
+      }
+      UNSCOPED_INFO(file << ": worst " << worst << " of the bound");
+    }
+  }
+}
+
+TEST_CASE("derivatives: d rnea agrees with MuJoCo's mj_inverse differenced",
+          "[derivatives][mujoco]") {
+  for (const std::string& file : all_model_files()) {
+    INFO(file);
+    diff::Twin twin(file, diff::Path::kEngine);
+    const Model& model = twin.model;
+    const int nv = model.nv;
+    mjData* d = twin.d.get();
+    Derivatives deriv(model);
+    std::mt19937_64 rng(seed_for(file) + 13);
+    double worst = 0;
+    for (int k = 0; k < kStates; ++k) {
+      const State s = smooth_state(model, rng, false);
+      const Eigen::VectorXd qacc = random_qacc(model, rng);
+      twin.set_state(s);
+      kinematics(model, twin.data);
+      rnea_derivatives(model, twin.data, qacc, deriv);
+      // qfrc_inverse = rnea - qfrc_passive (no limit rows here): springs and damping are its
+      // only other terms
+      Eigen::MatrixXd dq = deriv.dtau_dq, dv = deriv.dtau_dv;
+      for (int j = 0; j < model.njnt; ++j) {
+        const int i = model.jnt_dofadr[j];
+        dq(i, i) += model.jnt_stiffness[j];
+        dv(i, i) += model.dof_damping[i];
+      }
+      for (int i = 0; i < nv; ++i) d->qacc[i] = qacc[i];
+      const auto inverse = [&] { mj_inverse(twin.m.get(), d); };
+      inverse();
+      REQUIRE(d->nefc == 0);
+      const double scale = largest(Eigen::Map<Eigen::VectorXd>(d->qfrc_inverse, nv));
+      check_close(dq, mujoco_differences(d->qpos, nv, nv, d->qfrc_inverse, inverse), scale,
+                  "d qfrc_inverse / d qpos", &worst);
+      check_close(dv, mujoco_differences(d->qvel, nv, nv, d->qfrc_inverse, inverse), scale,
+                  "d qfrc_inverse / d qvel", &worst);
+    }
+    UNSCOPED_INFO(file << ": worst " << worst << " of the bound");
+  }
+}
+
+TEST_CASE("derivatives: d qacc agrees with MuJoCo's mj_forward differenced",
+          "[derivatives][mujoco]") {
+  for (const std::string& file : all_model_files()) {
+    INFO(file);
+    diff::Twin twin(file, diff::Path::kEngine);
+    const Model& model = twin.model;
+    const int nv = model.nv, nu = model.nu;
+    mjData* d = twin.d.get();
+    Derivatives deriv(model);
+    std::mt19937_64 rng(seed_for(file) + 17);
+    double worst = 0;
+    for (int k = 0; k < kStates; ++k) {
+      const State s = smooth_state(model, rng, false);
+      twin.set_state(s);
+      forward_derivatives(model, twin.data, deriv);
+      const auto forward = [&] { mj_forward(twin.m.get(), d); };
+      forward();
+      REQUIRE(d->nefc == 0);
+      const double scale = largest(Eigen::Map<Eigen::VectorXd>(d->qacc, nv));
+      check_close(deriv.dqacc_dq, mujoco_differences(d->qpos, nv, nv, d->qacc, forward), scale,
+                  "d qacc / d qpos", &worst);
+      check_close(deriv.dqacc_dv, mujoco_differences(d->qvel, nv, nv, d->qacc, forward), scale,
+                  "d qacc / d qvel", &worst);
+      if (nu > 0) {
+        check_close(deriv.dqacc_du, mujoco_differences(d->ctrl, nu, nv, d->qacc, forward), scale,
+                    "d qacc / d ctrl", &worst);
+      }
+    }
+    UNSCOPED_INFO(file << ": worst " << worst << " of the bound");
+  }
+}
+
+}  // namespace lever::test
+
+namespace lever::test {
+
+TEST_CASE("identify: the written model loads in MuJoCo and its mj_inverse is the truth's",
+          "[derivatives][identify][mujoco]") {
+  // the truth (arm2 with link 2 twice as heavy) and the identified model both go through
+  // write_model, so MuJoCo compiles each from its own file
+  const std::string arm2 = model_path("models/arm2.xml");
+  const Model prior = mjcf::load_file(arm2);
+  Model truth = prior;
+  truth.body_mass[2] = 1.6;
+  truth.body_ipos[2] << 0.25, 0, 0;
+  truth.body_inertia[2] *= 2.0;
+  set_const(truth);
+  const auto temp = [](const char* name) {
+    return (std::filesystem::temp_directory_path() / (std::string("lever_mj_") + name)).string();
+  };
+  const std::string truth_file = temp("truth.xml"), identified_file = temp("identified.xml");
+  identify::write_model(arm2, truth, truth_file);
+
+  // noise-free data from lever's simulation of the truth: random states, forward's qacc
+  std::mt19937_64 rng(5);
+  Data data(truth);
+  identify::Trajectory t;
+  const int samples = 300;
+  t.time.setZero(samples);
+  t.qpos.resize(2, samples);
+  t.qvel.resize(2, samples);
+  t.qacc.resize(2, samples);
+  t.force.resize(2, samples);
+  for (int k = 0; k < samples; ++k) {
+    apply(smooth_state(truth, rng, true), data);
+    forward(truth, data);
+    t.qpos.col(k) = data.qpos;
+    t.qvel.col(k) = data.qvel;
+    t.qacc.col(k) = data.qacc;
+    t.force.col(k) = data.qfrc_actuator + data.qfrc_applied + data.qfrc_constraint;
+  }
+  const identify::Result r = identify::identify(prior, t);
+  REQUIRE(r.not_physical.empty());
+  identify::write_model(arm2, identify::identified_model(prior, r), identified_file);
+
+  const MjModelPtr mt = mujoco_load(truth_file), mi = mujoco_load(identified_file);
+  const MjDataPtr dt = mujoco_data(mt.get()), di = mujoco_data(mi.get());
+  for (int k = 0; k < 50; ++k) {
+    const State s = smooth_state(truth, rng, false);
+    const Eigen::VectorXd qacc = random_qacc(truth, rng);
+    for (mjData* d : {dt.get(), di.get()}) {
+      for (int i = 0; i < 2; ++i) {
+        d->qpos[i] = s.qpos[i];
+        d->qvel[i] = s.qvel[i];
+        d->qacc[i] = qacc[i];
+      }
+    }
+    mj_inverse(mt.get(), dt.get());
+    mj_inverse(mi.get(), di.get());
+    const Eigen::Map<const Eigen::Vector2d> a(dt->qfrc_inverse), b(di->qfrc_inverse);
+    CHECK((a - b).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, a.cwiseAbs().maxCoeff()));
+  }
+  std::filesystem::remove(truth_file);
+  std::filesystem::remove(identified_file);
+}
+
+}  // namespace lever::test

@@ -1,0 +1,181 @@
+// lever::identify: arm2 with a heavier link 2, driven along a PD-tracked sum of sines inside its
+// joint ranges, written as `lever simulate --csv` writes a trajectory, identified back from the
+// prior arm2: the base parameters to 1e-8, and a written model whose inverse dynamics is the true
+// model's on held-out states.
+#include <catch2/catch.hpp>
+
+#include <lever/identify.hpp>
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <numbers>
+#include <random>
+#include <string>
+
+#include <lever/harness/models.hpp>
+#include <lever/harness/random_state.hpp>
+#include <lever/harness/tolerance.hpp>
+
+namespace lever::test {
+
+namespace {
+
+std::string temp_path(const std::string& name) {
+  return (std::filesystem::temp_directory_path() / ("lever_identify_" + name)).string();
+}
+
+// arm2 with link 2 twice as heavy, its centre of mass further out and its inertia doubled
+Model heavy_arm2() {
+  Model truth = mjcf::load_file(model_path("models/arm2.xml"));
+  truth.body_mass[2] = 1.6;
+  truth.body_ipos[2] << 0.25, 0, 0;
+  truth.body_inertia[2] *= 2.0;
+  set_const(truth);
+  return truth;
+}
+
+// A PD-tracked sum of sines inside the joint ranges, in `lever simulate --csv`'s columns.
+void simulate_csv(const Model& model, double seconds, const std::string& path, bool with_qacc) {
+  std::ofstream out(path);
+  out << "time";
+  for (const char* what : {"qpos", "qvel", "qacc"}) {
+    if (!with_qacc && std::string(what) == "qacc") continue;
+    for (int j = 0; j < model.njnt; ++j) out << "," << what << "[" << model.jnt_name[j] << "]";
+  }
+  for (int a = 0; a < model.nu; ++a) out << ",ctrl[" << model.actuator_name[a] << "]";
+  for (int a = 0; a < model.nu; ++a) out << ",actuator_force[" << model.actuator_name[a] << "]";
+  for (int j = 0; j < model.njnt; ++j) out << ",qfrc_constraint[" << model.jnt_name[j] << "]";
+  out << "\n";
+  out.precision(17);
+  Data data(model);
+  const auto steps = static_cast<long>(seconds / model.opt.timestep);
+  for (long k = 0; k <= steps; ++k) {
+    for (int a = 0; a < model.nu; ++a) {
+      const int j = model.actuator_trnid[a];
+      const double lo = model.jnt_range[j][0], hi = model.jnt_range[j][1];
+      const double mid = 0.5 * (lo + hi), half = 0.4 * (hi - lo);
+      double ref = mid, ref_vel = 0;
+      for (const double f : {0.3, 0.71, 1.3}) {  // Hz, three sines of a third of the swing each
+        const double w = 2 * std::numbers::pi * (f + 0.1 * a);
+        ref += half / 3 * std::sin(w * data.time + a);
+        ref_vel += half / 3 * w * std::cos(w * data.time + a);
+      }
+      const int q = model.jnt_qposadr[j], d = model.jnt_dofadr[j];
+      data.ctrl[a] = 60 * (ref - data.qpos[q]) + 8 * (ref_vel - data.qvel[d]);
+    }
+    forward(model, data);
+    out << data.time;
+    for (int j = 0; j < model.njnt; ++j) out << "," << data.qpos[model.jnt_qposadr[j]];
+    for (int j = 0; j < model.njnt; ++j) out << "," << data.qvel[model.jnt_dofadr[j]];
+    if (with_qacc) {
+      for (int j = 0; j < model.njnt; ++j) out << "," << data.qacc[model.jnt_dofadr[j]];
+    }
+    for (int a = 0; a < model.nu; ++a) out << "," << data.ctrl[a];
+    for (int a = 0; a < model.nu; ++a) out << "," << data.actuator_force[a];
+    for (int j = 0; j < model.njnt; ++j) out << "," << data.qfrc_constraint[model.jnt_dofadr[j]];
+    out << "\n";
+    step(model, data);
+  }
+}
+
+}  // namespace
+
+TEST_CASE("identify: arm2 with a heavier link 2, from its simulated trajectory",
+          "[derivatives][identify]") {
+  const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
+  const Model truth = heavy_arm2();
+  const std::string csv = temp_path("heavy.csv");
+  simulate_csv(truth, 6.0, csv, true);
+
+  const identify::Trajectory data = identify::read_csv(prior, csv);
+  const identify::Result r = identify::identify(prior, data);
+  const Eigen::VectorXd expected = r.base.K * model_parameters(truth);
+  INFO("estimate " << r.estimate.transpose() << "\ntrue     " << expected.transpose());
+  CHECK((r.estimate - expected).cwiseAbs().maxCoeff() <=
+        1e-8 * std::max(1.0, expected.cwiseAbs().maxCoeff()));
+  CHECK((r.prior - expected).cwiseAbs().maxCoeff() > 0.1);  // there was something to find
+  CHECK(r.residual_rms < 1e-10);
+  CHECK(r.unexcited.empty());
+  INFO(r.not_physical);
+  REQUIRE(r.not_physical.empty());
+
+  // the written model loads and its inverse dynamics is the truth's on held-out states
+  const std::string written = temp_path("identified.xml");
+  identify::write_model(model_path("models/arm2.xml"), identify::identified_model(prior, r),
+                        written);
+  const Model identified = mjcf::load_file(written);
+  Data a(truth), b(identified);
+  std::mt19937_64 rng(99);
+  for (int k = 0; k < 50; ++k) {
+    const State s = random_state(truth, rng);
+    apply(s, a);
+    apply(s, b);
+    a.qacc = b.qacc = random_qacc(truth, rng);
+    inverse(truth, a);
+    inverse(identified, b);
+    const double scale = a.qfrc_inverse.cwiseAbs().maxCoeff();
+    CHECK((a.qfrc_inverse - b.qfrc_inverse).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, scale));
+  }
+  std::filesystem::remove(csv);
+  std::filesystem::remove(written);
+}
+
+TEST_CASE("identify: qacc differenced from qvel when the file has none",
+          "[derivatives][identify]") {
+  // The forward difference of qvel is the acceleration the Euler step applied,
+  // (M + h B)^-1 (forces), not forward()'s: M qacc_e + bias = forces - h B qacc_e. The extra
+  // h B qacc_e reads as armature h b = 4e-5 kg m^2 (h = 2 ms, b = 0.02 N m s): the armature
+  // estimates carry that, everything else is exact to rounding.
+  const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
+  const Model truth = heavy_arm2();
+  const std::string csv = temp_path("noqacc.csv");
+  simulate_csv(truth, 6.0, csv, false);
+  const identify::Trajectory data = identify::read_csv(prior, csv);
+  CHECK(data.qacc_source.find("forward differences") != std::string::npos);
+  const identify::Result r = identify::identify(prior, data);
+  const Eigen::VectorXd expected = r.base.K * model_parameters(truth);
+  const double h_b = truth.opt.timestep * 0.02;
+  for (int k = 0; k < r.base.rank; ++k) {
+    INFO(r.base.names[k] << ": " << r.estimate[k] << " vs " << expected[k]);
+    const bool armature = r.base.names[k].find("armature") != std::string::npos;
+    const double shift = armature ? h_b : 0.0;
+    CHECK(std::abs(r.estimate[k] - expected[k] - shift) <= 1e-8);
+  }
+  std::filesystem::remove(csv);
+}
+
+TEST_CASE("identify: bad trajectories get clear errors", "[derivatives][identify]") {
+  const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
+  const std::string csv = temp_path("bad.csv");
+  const auto write = [&](const std::string& text) { std::ofstream(csv) << text; };
+  const auto error_of = [&]() -> std::string {
+    try {
+      identify::identify(prior, identify::read_csv(prior, csv));
+    } catch (const Error& e) {
+      return e.what();
+    }
+    return "";
+  };
+  write("time,qpos[shoulder],qvel[shoulder]\n0,0,0\n");
+  CHECK_THAT(error_of(), Catch::Contains("no column 'qpos[elbow]'"));
+  write(
+      "time,qpos[shoulder],qpos[elbow],qvel[shoulder],qvel[elbow],qacc[shoulder],qacc[elbow],"
+      "actuator_force[shoulder],actuator_force[elbow]\n0,0,0,0,0,0,0,0,nan\n");
+  CHECK_THAT(error_of(), Catch::Contains(":2: column 'actuator_force[elbow]'"));
+  write(
+      "time,qpos[shoulder],qpos[elbow],qvel[shoulder],qvel[elbow],qacc[shoulder],qacc[elbow],"
+      "actuator_force[shoulder],actuator_force[elbow]\n0,0,0,0,0,0,0,0,0\n");
+  CHECK_THAT(error_of(), Catch::Contains("too few samples"));
+  write(
+      "time,qpos[shoulder],qpos[elbow],qvel[shoulder],qvel[elbow],qacc[shoulder],qacc[elbow],"
+      "actuator_force[shoulder],actuator_force[elbow]\n0,0,1\n");
+  CHECK_THAT(error_of(), Catch::Contains(":2: 3 fields, the header has 9"));
+  std::filesystem::remove(csv);
+  CHECK_THAT(error_of(), Catch::Contains("cannot open"));
+}
+
+}  // namespace lever::test

@@ -1,0 +1,196 @@
+// The inertial-parameter regressor: Y pi against rnea (two analytic results: the project's 1e-12),
+// the conversions to and from MJCF's <inertial>, the base parameters, and identification of arm2
+// with a heavier link 2 from its own simulated, noise-free data.
+#include <catch2/catch.hpp>
+
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+#include <lever/regressor.hpp>
+
+#include <Eigen/QR>
+
+#include <algorithm>
+#include <cmath>
+#include <random>
+#include <string>
+
+#include "../property/property_models.hpp"
+#include "smooth_states.hpp"
+#include <lever/harness/tolerance.hpp>
+
+namespace lever::test {
+
+namespace {
+
+double largest(const Eigen::MatrixXd& x) { return x.size() ? x.cwiseAbs().maxCoeff() : 0.0; }
+
+// The joint forces that explain the simulated motion, Y pi = qfrc_actuator + qfrc_applied +
+// qfrc_constraint - springs (forward's M qacc + bias = passive + actuator + applied + constraint).
+Eigen::VectorXd explained_force(const Model& model, const Data& data) {
+  Eigen::VectorXd f = data.qfrc_actuator + data.qfrc_applied + data.qfrc_constraint;
+  for (int j = 0; j < model.njnt; ++j) {
+    const int q = model.jnt_qposadr[j];
+    f[model.jnt_dofadr[j]] -= model.jnt_stiffness[j] * (data.qpos[q] - model.qpos_spring[q]);
+  }
+  return f;
+}
+
+}  // namespace
+
+TEST_CASE("regressor: Y pi equals rnea + damping qvel", "[derivatives][regressor]") {
+  for (ModelCase& c : every_model()) {
+    INFO(c.name);
+    const Model& model = c.model;
+    Data data(model);
+    const Eigen::VectorXd pi = model_parameters(model);
+    Eigen::MatrixXd Y(model.nv, regressor_columns(model));
+    Eigen::VectorXd tau(model.nv);
+    std::mt19937_64 rng(c.seed);
+    for (int k = 0; k < 100; ++k) {
+      apply(random_state(model, rng), data);
+      const Eigen::VectorXd qacc = random_qacc(model, rng);
+      kinematics(model, data);
+      regressor(model, data, qacc, Y);
+      rnea(model, data, qacc, tau);
+      for (int i = 0; i < model.nv; ++i) tau[i] += model.dof_damping[i] * data.qvel[i];
+      const Eigen::VectorXd Ypi = Y * pi;
+      CHECK((Ypi - tau).cwiseAbs().maxCoeff() <= allowed(largest(tau)));
+    }
+  }
+}
+
+TEST_CASE("regressor: parameters to and from MJCF's inertial", "[derivatives][regressor]") {
+  for (ModelCase& c : every_model()) {
+    INFO(c.name);
+    const Model& model = c.model;
+    for (int b = 1; b < model.nbody; ++b) {
+      if (model.body_mass[b] == 0) continue;
+      INFO("body " << b);
+      const InertialParameters pi = body_parameters(model, b);
+      const MjcfInertial inertial = to_inertial(pi);
+      CHECK(std::abs(inertial.mass - model.body_mass[b]) <= allowed(model.body_mass[b]));
+      CHECK((inertial.pos - model.body_ipos[b]).cwiseAbs().maxCoeff() <=
+            allowed(model.body_ipos[b].cwiseAbs().maxCoeff()));
+      // the same inertia about the centre of mass (principal axes may come in another order)
+      const auto central = [](const Eigen::Vector4d& q, const Eigen::Vector3d& d) {
+        const Eigen::Matrix3d R = quat_to_mat(quat_normalized(q));
+        return Eigen::Matrix3d(R * d.asDiagonal() * R.transpose());
+      };
+      const Eigen::Matrix3d expected = central(model.body_iquat[b], model.body_inertia[b]);
+      CHECK((central(inertial.quat, inertial.diaginertia) - expected).cwiseAbs().maxCoeff() <=
+            allowed(expected.cwiseAbs().maxCoeff()));
+      CHECK((to_parameters(inertial) - pi).cwiseAbs().maxCoeff() <=
+            allowed(pi.cwiseAbs().maxCoeff()));
+    }
+  }
+}
+
+TEST_CASE("regressor: parameters that are no rigid body are refused", "[derivatives][regressor]") {
+  MjcfInertial rod;
+  rod.mass = 1.0;
+  rod.pos << 0.25, 0, 0;
+  rod.diaginertia << 0.0001, 0.02, 0.02;
+  InertialParameters pi = to_parameters(rod);
+  CHECK_NOTHROW(to_inertial(pi));
+  InertialParameters negative = pi;
+  negative[0] = -1;
+  CHECK_THROWS_WITH(to_inertial(negative), Catch::Contains("not positive"));
+  InertialParameters flat = pi;
+  flat[4] += 1.0;  // Ixx far above Iyy + Izz
+  CHECK_THROWS_WITH(to_inertial(flat), Catch::Contains("not a rigid body"));
+  Model model = mjcf::load_file(model_path("models/arm2.xml"));
+  const Model before = model;
+  Eigen::VectorXd all = model_parameters(model);
+  all.segment<10>(10) = flat;  // link2
+  CHECK_THROWS_WITH(set_model_parameters(model, all), Catch::Contains("link2"));
+  CHECK(model.body_inertia[2] == before.body_inertia[2]);  // nothing half-written
+}
+
+TEST_CASE("regressor: the base parameters reproduce Y pi", "[derivatives][regressor]") {
+  for (ModelCase& c : every_model()) {
+    INFO(c.name);
+    const Model& model = c.model;
+    const BaseParameters base = base_parameters(model);
+    REQUIRE(base.rank > 0);
+    REQUIRE(static_cast<int>(base.names.size()) == base.rank);
+    const Eigen::VectorXd pi = model_parameters(model);
+    const Eigen::VectorXd theta = base.K * pi;
+    Data data(model);
+    Eigen::MatrixXd Y(model.nv, regressor_columns(model));
+    std::mt19937_64 rng(c.seed + 5);
+    double worst = 0;
+    for (int k = 0; k < 50; ++k) {
+      apply(random_state(model, rng), data);
+      const Eigen::VectorXd qacc = random_qacc(model, rng);
+      kinematics(model, data);
+      regressor(model, data, qacc, Y);
+      const Eigen::VectorXd full = Y * pi;
+      const Eigen::VectorXd reduced = base.base_regressor(Y) * theta;
+      worst = std::max(worst, (full - reduced).cwiseAbs().maxCoeff() / allowed(largest(full)));
+    }
+    // K comes out of a QR factorization of random data; its rounding (1e-16 times the condition
+    // of the base columns) still keeps the reproduction within the project's bound
+    INFO("worst " << worst << " of the bound");
+    CHECK(worst <= 1.0);
+  }
+}
+
+TEST_CASE("regressor: arm2's base parameters have names that say what they combine",
+          "[derivatives][regressor]") {
+  const Model model = mjcf::load_file(model_path("models/arm2.xml"));
+  const BaseParameters base = base_parameters(model);
+  // two hinges about the same axis: link1's mass and link2's inertia about other axes do not
+  // show; each dof has its armature and damping
+  CHECK(base.rank < regressor_columns(model));
+  bool armature = false, lumped = false;
+  for (const std::string& name : base.names) {
+    armature = armature || name.find("shoulder.armature") != std::string::npos;
+    lumped = lumped || name.find(" + ") != std::string::npos;
+  }
+  CHECK(armature);
+  CHECK(lumped);
+  for (const int column : base.unidentifiable) CHECK(base.K.col(column).isZero(0));
+}
+
+TEST_CASE("regressor: arm2 with a heavier link 2 is identified from its own simulated data",
+          "[derivatives][regressor][identify]") {
+  const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
+  Model truth = prior;
+  truth.body_mass[2] = 1.6;          // link 2 twice as heavy
+  truth.body_ipos[2] << 0.25, 0, 0;  // its centre of mass further out
+  truth.body_inertia[2] *= 2.0;
+  set_const(truth);
+
+  // noise-free data: the true model driven by random torques from random states
+  Data data(truth);
+  std::mt19937_64 rng(21);
+  const int samples = 200;
+  const BaseParameters base = base_parameters(prior);  // the structure is the prior's
+  Eigen::MatrixXd W(samples * prior.nv, base.rank);
+  Eigen::VectorXd target(samples * prior.nv);
+  Eigen::MatrixXd Y(prior.nv, regressor_columns(prior));
+  Data prior_data(prior);
+  for (int s = 0; s < samples; ++s) {
+    apply(smooth_state(truth, rng, true), data);
+    forward(truth, data);
+    // the regressor needs only kinematics, which is the prior's too (same joints and bodies)
+    prior_data.qpos = data.qpos;
+    prior_data.qvel = data.qvel;
+    kinematics(prior, prior_data);
+    regressor(prior, prior_data, data.qacc, Y);
+    W.middleRows(s * prior.nv, prior.nv) = base.base_regressor(Y);
+    target.segment(s * prior.nv, prior.nv) = explained_force(truth, data);
+  }
+  const Eigen::VectorXd theta = W.colPivHouseholderQr().solve(target);
+  const Eigen::VectorXd expected = base.K * model_parameters(truth);
+  const Eigen::VectorXd before = base.K * model_parameters(prior);
+  INFO("identified " << theta.transpose() << "\ntrue       " << expected.transpose());
+  for (int k = 0; k < base.rank; ++k) {
+    UNSCOPED_INFO(base.names[k] << ": prior " << before[k] << ", true " << expected[k]
+                                << ", identified " << theta[k]);
+  }
+  CHECK((theta - expected).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, largest(expected)));
+  CHECK((before - expected).cwiseAbs().maxCoeff() > 0.1);  // there was something to find
+}
+
+}  // namespace lever::test

@@ -1,0 +1,272 @@
+// The analytic derivatives against central differences of lever itself, on every model.
+//
+// Central differences with step h have two errors: truncation, h^2/6 |f'''|, and rounding, about
+// eps |f| / h (eps = 2.2e-16). With h = 1e-5 on functions whose third derivatives are of the
+// order of the function and of its first derivatives (trigonometric in qpos, quadratic in qvel,
+// linear in qacc and ctrl, with qvel up to 2 rad/s), both are about 2e-11 of that magnitude.
+// The bound, 1e-8 of max(1, |f|, |f'|) per column, is 500 times that estimate: far below any
+// missing or wrong term (which is of the order of the derivative itself), far above the
+// differencing error. The analytic-against-analytic checks use the project's 1e-12.
+#include <catch2/catch.hpp>
+
+#include <lever/derivatives.hpp>
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <random>
+#include <sstream>
+#include <string>
+
+#include "../property/property_models.hpp"
+#include "smooth_states.hpp"
+#include <lever/harness/tolerance.hpp>
+
+namespace lever::test {
+
+namespace {
+
+constexpr double kStep = 1e-5;
+constexpr double kDifferenceBound = 1e-8;
+constexpr int kStates = 40;
+
+// Largest |element|.
+double largest(const Eigen::MatrixXd& x) { return x.size() ? x.cwiseAbs().maxCoeff() : 0.0; }
+
+// Central differences of out(x) (writing into a vector) along each coordinate of x.
+Eigen::MatrixXd central_differences(Eigen::VectorXd& x, int n_out,
+                                    const std::function<void(Eigen::VectorXd&)>& out) {
+  Eigen::MatrixXd D(n_out, x.size());
+  Eigen::VectorXd plus(n_out), minus(n_out);
+  for (Eigen::Index c = 0; c < x.size(); ++c) {
+    const double x0 = x[c];
+    x[c] = x0 + kStep;
+    out(plus);
+    x[c] = x0 - kStep;
+    out(minus);
+    x[c] = x0;
+    D.col(c) = (plus - minus) / (2 * kStep);
+  }
+  return D;
+}
+
+// Every element of the analytic matrix within the bound of the differenced one; the bound's
+// scale is max(1, |f|, |f'|) over the whole matrix.
+void check_close(const Eigen::MatrixXd& analytic, const Eigen::MatrixXd& differenced,
+                 double value_scale, const std::string& what) {
+  REQUIRE(analytic.rows() == differenced.rows());
+  REQUIRE(analytic.cols() == differenced.cols());
+  const double scale = std::max({1.0, value_scale, largest(differenced)});
+  for (Eigen::Index r = 0; r < analytic.rows(); ++r) {
+    for (Eigen::Index c = 0; c < analytic.cols(); ++c) {
+      const double diff = std::abs(analytic(r, c) - differenced(r, c));
+      if (!(diff <= kDifferenceBound * scale)) {
+        std::ostringstream s;
+        s.precision(17);
+        s << what << "(" << r << ", " << c << "): analytic " << analytic(r, c) << " vs differenced "
+          << differenced(r, c) << " (|diff| " << diff << ", bound " << kDifferenceBound * scale
+          << ")";
+        FAIL(s.str());
+      }
+    }
+  }
+}
+
+// The limit rows of the current evaluation, as (joint, side, state) codes: the active set.
+std::vector<int> active_set(const Data& data) {
+  std::vector<int> rows;
+  for (int r = 0; r < data.nefc; ++r) {
+    rows.push_back(4 * data.efc_id[r] + (data.efc_sign[r] > 0 ? 0 : 2) +
+                   (data.efc_state[r] == ConstraintState::kActive ? 1 : 0));
+  }
+  return rows;
+}
+
+}  // namespace
+
+TEST_CASE("derivatives: d rnea / d qpos and d qvel match central differences",
+          "[derivatives][rnea]") {
+  for (ModelCase& c : every_model()) {
+    INFO(c.name);
+    const Model& model = c.model;
+    Data data(model);
+    Derivatives deriv(model);
+    std::mt19937_64 rng(c.seed);
+    Eigen::VectorXd tau(model.nv);
+    for (int k = 0; k < kStates; ++k) {
+      apply(random_state(model, rng), data);
+      const Eigen::VectorXd qacc = random_qacc(model, rng);
+      kinematics(model, data);
+      rnea_derivatives(model, data, qacc, deriv);
+      const Eigen::MatrixXd dq = deriv.dtau_dq, dv = deriv.dtau_dv;
+      rnea(model, data, qacc, tau);
+      const double tau_scale = largest(tau);
+
+      const auto rnea_at = [&](Eigen::VectorXd& out) {
+        kinematics(model, data);
+        rnea(model, data, qacc, out);
+      };
+      check_close(dq, central_differences(data.qpos, model.nv, rnea_at), tau_scale, "dtau_dq");
+      check_close(dv, central_differences(data.qvel, model.nv, rnea_at), tau_scale, "dtau_dv");
+    }
+  }
+}
+
+TEST_CASE("derivatives: d rnea / d qvel is linear in qvel: exact against its own halves",
+          "[derivatives][rnea]") {
+  // tau is quadratic in qvel, so d tau / d qvel (at qacc = 0, no gravity) is linear in qvel:
+  // D(v1 + v2) = D(v1) + D(v2) holds to rounding, a check between analytic results (1e-12).
+  for (ModelCase& c : every_model()) {
+    INFO(c.name);
+    Model model = c.model;
+    model.opt.gravity.setZero();
+    Data data(model);
+    Derivatives deriv(model);
+    std::mt19937_64 rng(c.seed + 1);
+    const Eigen::VectorXd zero = Eigen::VectorXd::Zero(model.nv);
+    for (int k = 0; k < 10; ++k) {
+      apply(random_state(model, rng), data);
+      kinematics(model, data);
+      const Eigen::VectorXd v1 = data.qvel, v2 = random_qacc(model, rng) / 10;
+      data.qvel = v1;
+      rnea_derivatives(model, data, zero, deriv);
+      const Eigen::MatrixXd D1 = deriv.dtau_dv;
+      data.qvel = v2;
+      rnea_derivatives(model, data, zero, deriv);
+      const Eigen::MatrixXd D2 = deriv.dtau_dv;
+      data.qvel = v1 + v2;
+      rnea_derivatives(model, data, zero, deriv);
+      const Eigen::MatrixXd sum = D1 + D2;
+      const double scale = std::max(largest(sum), largest(deriv.dtau_dv));
+      CHECK((deriv.dtau_dv - sum).cwiseAbs().maxCoeff() <= allowed(scale));
+    }
+  }
+}
+
+TEST_CASE("derivatives: d qacc / d qpos, d qvel, d ctrl match central differences of forward",
+          "[derivatives][forward]") {
+  for (ModelCase& c : every_model()) {
+    INFO(c.name);
+    const Model& model = c.model;
+    Data data(model);
+    Derivatives deriv(model);
+    std::mt19937_64 rng(c.seed);
+    int compared = 0, with_rows = 0;
+    for (int k = 0; k < kStates; ++k) {
+      apply(smooth_state(model, rng, true), data);
+      forward_derivatives(model, data, deriv);
+      const std::vector<int> rows = active_set(data);
+      const double acc_scale = largest(data.qacc);
+      bool same_rows = true;  // a row switching inside the step is a non-differentiable point
+      const auto qacc_at = [&](Eigen::VectorXd& out) {
+        forward(model, data);
+        same_rows = same_rows && active_set(data) == rows;
+        out = data.qacc;
+      };
+      const Eigen::MatrixXd dq = central_differences(data.qpos, model.nv, qacc_at);
+      const Eigen::MatrixXd dv = central_differences(data.qvel, model.nv, qacc_at);
+      const Eigen::MatrixXd du = central_differences(data.ctrl, model.nv, qacc_at);
+      if (!same_rows) continue;
+      ++compared;
+      if (!rows.empty()) ++with_rows;
+      check_close(deriv.dqacc_dq, dq, acc_scale, "dqacc_dq");
+      check_close(deriv.dqacc_dv, dv, acc_scale, "dqacc_dv");
+      check_close(deriv.dqacc_du, du, acc_scale, "dqacc_du");
+    }
+    CHECK(compared >= kStates * 3 / 4);
+    bool limited = false;
+    for (int j = 0; j < model.njnt; ++j) limited = limited || model.jnt_limited[j];
+    if (limited) CHECK(with_rows > 0);  // the limit rows' terms were exercised
+  }
+}
+
+TEST_CASE("derivatives: the step's A and B match central differences of step",
+          "[derivatives][step]") {
+  for (const Integrator integrator : {Integrator::kEuler, Integrator::kRK4}) {
+    for (ModelCase& c : every_model()) {
+      INFO(c.name << (integrator == Integrator::kEuler ? " Euler" : " RK4"));
+      Model& model = c.model;
+      model.opt.integrator = integrator;
+      Data data(model);
+      Derivatives deriv(model);
+      std::mt19937_64 rng(c.seed + 7);
+      int compared = 0;
+      for (int k = 0; k < kStates; ++k) {
+        const State s = smooth_state(model, rng, true);
+        apply(s, data);
+        forward(model, data);
+        const std::vector<int> rows = active_set(data);
+        step_derivatives(model, data, deriv);
+        // the state is left as it was
+        REQUIRE(data.qpos == s.qpos);
+        REQUIRE(data.qvel == s.qvel);
+        REQUIRE(data.time == s.time);
+
+        const int nv = model.nv;
+        Eigen::VectorXd x(2 * nv);
+        x << s.qpos, s.qvel;
+        bool same_rows = true;
+        const auto step_from = [&](const Eigen::VectorXd& x0, const Eigen::VectorXd& ctrl,
+                                   Eigen::VectorXd& out) {
+          data.qpos = x0.head(nv);
+          data.qvel = x0.tail(nv);
+          data.ctrl = ctrl;
+          data.time = s.time;
+          step(model, data);
+          same_rows = same_rows && active_set(data) == rows;  // forward of the first stage
+          out << data.qpos, data.qvel;
+        };
+        Eigen::VectorXd ctrl = s.ctrl;
+        const Eigen::MatrixXd A = central_differences(
+            x, 2 * nv, [&](Eigen::VectorXd& out) { step_from(x, s.ctrl, out); });
+        const Eigen::MatrixXd B = central_differences(
+            ctrl, 2 * nv, [&](Eigen::VectorXd& out) { step_from(x, ctrl, out); });
+        if (!same_rows) continue;
+        ++compared;
+        check_close(deriv.A, A, largest(x), "A");
+        check_close(deriv.B, B, largest(x), "B");
+      }
+      CHECK(compared >= kStates * 3 / 4);
+    }
+  }
+}
+
+TEST_CASE("derivatives: an undamped Euler step's A and B are assembled from d qacc exactly",
+          "[derivatives][step]") {
+  // x' = [q + h v + h^2 qacc; v + h qacc] without damping: A and B follow from forward's
+  // derivatives by arithmetic alone (1e-12).
+  Model model = mjcf::load_file(model_path("models/arm2.xml"));
+  for (double& b : model.dof_damping) b = 0.0;
+  set_const(model);
+  Data data(model);
+  Derivatives deriv(model);
+  std::mt19937_64 rng(3);
+  const double h = model.opt.timestep;
+  for (int k = 0; k < 20; ++k) {
+    apply(smooth_state(model, rng, true), data);
+    step_derivatives(model, data, deriv);
+    const Eigen::MatrixXd& Dq = deriv.dqacc_dq;
+    const int nv = model.nv;
+    const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(nv, nv);
+    Eigen::MatrixXd A(2 * nv, 2 * nv);
+    A << I + h * h * Dq, h * (I + h * deriv.dqacc_dv), h * Dq, I + h * deriv.dqacc_dv;
+    CHECK((deriv.A - A).cwiseAbs().maxCoeff() <= allowed(largest(A)));
+  }
+}
+
+TEST_CASE("derivatives: wrong sizes and unsupported integrators are errors", "[derivatives]") {
+  const Model arm2 = mjcf::load_file(model_path("models/arm2.xml"));
+  const Model arm3 = mjcf::load_file(model_path("models/arm3.xml"));
+  Data data(arm2);
+  Derivatives other(arm3);
+  CHECK_THROWS_AS(forward_derivatives(arm2, data, other), StateError);
+  Derivatives deriv(arm2);
+  CHECK_THROWS_AS(rnea_derivatives(arm2, data, Eigen::VectorXd::Zero(5), deriv), StateError);
+  Model odd = arm2;
+  odd.opt.integrator = static_cast<Integrator>(2);  // MuJoCo's implicit
+  CHECK_THROWS_WITH(step_derivatives(odd, data, deriv), Catch::Contains("not supported yet"));
+}
+
+}  // namespace lever::test

@@ -1,0 +1,113 @@
+// lever derivatives: the analytic derivatives of the dynamics and of one step at one state.
+//
+//   lever derivatives MODEL [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]
+//
+// Runs lever::step_derivatives (and so forward_derivatives) at the state; docs/derivatives.md
+// says what each matrix holds. --json: one object with, flattened row-major,
+//   A          2nv x 2nv  d [qpos'; qvel'] / d [qpos; qvel]   (mjd_transitionFD's A)
+//   B          2nv x nu   d [qpos'; qvel'] / d ctrl           (mjd_transitionFD's B)
+//   dqacc_dq, dqacc_dv (nv x nv), dqacc_du (nv x nu)         forward dynamics
+//   dtau_dq, dtau_dv (nv x nv)                                rnea at qacc
+//   M          nv x nv                                        d rnea / d qacc
+// Exit 0; 1 when the evaluation raised an engine warning or gave a number that is not finite;
+// bad input exits 2.
+#include <cstdio>
+#include <string>
+
+#include <lever/derivatives.hpp>
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+
+#include "cli.hpp"
+#include "commands.hpp"
+#include "forward_state.hpp"
+
+namespace lever::cli {
+
+namespace {
+
+const char* const kUsage =
+    "usage: lever derivatives MODEL [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]\n"
+    "  --qpos LIST   joint positions, nq numbers (default: qpos0)\n"
+    "  --qvel LIST   joint velocities, nv numbers (default: zeros)\n"
+    "  --ctrl LIST   motor commands, nu numbers (default: zeros)\n"
+    "  --json        one JSON object: A, B (the step's Jacobians, mjd_transitionFD's layout),\n"
+    "                dqacc_dq, dqacc_dv, dqacc_du, dtau_dq, dtau_dv, M (row-major, flattened)\n";
+
+void row_major(Json& json, const char* key, const Eigen::MatrixXd& m) {
+  json.key(key).begin_array();
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    for (Eigen::Index c = 0; c < m.cols(); ++c) json.value(m(r, c));
+  }
+  json.end_array();
+}
+
+void print_matrix(const char* title, const Eigen::MatrixXd& m) {
+  std::printf("\n%s (%d x %d)\n", title, static_cast<int>(m.rows()), static_cast<int>(m.cols()));
+  for (Eigen::Index r = 0; r < m.rows(); ++r) {
+    std::printf(" ");
+    for (Eigen::Index c = 0; c < m.cols(); ++c) std::printf(" %12s", num(m(r, c)).c_str());
+    std::printf("\n");
+  }
+}
+
+}  // namespace
+
+int cmd_derivatives(const std::vector<std::string>& argv) {
+  const Args args(argv, {"qpos", "qvel", "ctrl"}, {"json", "help"});
+  if (args.has("help")) {
+    std::fputs(kUsage, stdout);
+    return kOk;
+  }
+  if (args.positional().size() != 1) throw UsageError{std::string("expects one MODEL\n") + kUsage};
+  const std::string path = args.positional()[0];
+  const Model model = mjcf::load_file(path);
+  Data data(model);
+  Derivatives deriv(model);
+  set_state_from_args(args, model, data);
+  step_derivatives(model, data, deriv);
+
+  if (args.has("json")) {
+    Json json(stdout);
+    json.begin_object();
+    json.key("model").value(model.name);
+    json.key("nv").value(model.nv);
+    json.key("nu").value(model.nu);
+    json.key("integrator").value(model.opt.integrator == Integrator::kEuler ? "Euler" : "RK4");
+    json.key("timestep").value(model.opt.timestep);
+    json.key("qpos").values(data.qpos);
+    json.key("qvel").values(data.qvel);
+    json.key("ctrl").values(data.ctrl);
+    row_major(json, "A", deriv.A);
+    row_major(json, "B", deriv.B);
+    row_major(json, "dqacc_dq", deriv.dqacc_dq);
+    row_major(json, "dqacc_dv", deriv.dqacc_dv);
+    row_major(json, "dqacc_du", deriv.dqacc_du);
+    row_major(json, "dtau_dq", deriv.dtau_dq);
+    row_major(json, "dtau_dv", deriv.dtau_dv);
+    row_major(json, "M", data.M);
+    json.end_object();
+    json.newline();
+  } else {
+    std::printf("model %s (%s), %s integrator, timestep %g s\n", model.name.c_str(), path.c_str(),
+                model.opt.integrator == Integrator::kEuler ? "Euler" : "RK4", model.opt.timestep);
+    std::printf("state: qpos %s qvel %s ctrl %s\n", vec_text(data.qpos).c_str(),
+                vec_text(data.qvel).c_str(), vec_text(data.ctrl).c_str());
+    std::printf("limit rows: %d (their active set held fixed)\n", data.nefc);
+    print_matrix("A = d [qpos'; qvel'] / d [qpos; qvel]", deriv.A);
+    print_matrix("B = d [qpos'; qvel'] / d ctrl", deriv.B);
+    print_matrix("d qacc / d qpos", deriv.dqacc_dq);
+    print_matrix("d qacc / d qvel", deriv.dqacc_dv);
+    print_matrix("d qacc / d ctrl (0 where a clamp binds)", deriv.dqacc_du);
+    print_matrix("d rnea / d qpos at qacc", deriv.dtau_dq);
+    print_matrix("d rnea / d qvel at qacc", deriv.dtau_dv);
+  }
+  WarningLog warnings;
+  warnings.collect(data);
+  print_warnings("derivatives", warnings);
+  const bool finite = deriv.A.allFinite() && deriv.B.allFinite();
+  if (!finite) print_non_finite("derivatives");
+  return warnings.count() > 0 || !finite ? kFindings : kOk;
+}
+
+}  // namespace lever::cli

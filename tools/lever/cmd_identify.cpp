@@ -1,0 +1,115 @@
+// lever identify: the base inertial parameters (and armature, damping) of a model from a
+// trajectory.
+//
+//   lever identify PRIOR.xml DATA.csv [--write-model OUT.xml] [--json]
+//
+// DATA.csv is in `lever simulate --csv`'s columns (lever/identify.hpp's read_csv says which are
+// needed). The identification is lever::identify's; this command parses and prints.
+// --json: one object: base (name, prior, estimate, standard_error per base parameter), samples,
+// equations, residual_rms, unexcited (names), not_physical (null or why), qacc_source,
+// force_source.
+// Exit 0; 1 when some base parameter is not excited or the identified model is not physical
+// (then --write-model writes nothing); bad input exits 2.
+#include <cstdio>
+#include <limits>
+#include <string>
+
+#include <lever/identify.hpp>
+#include <lever/mjcf.hpp>
+
+#include "cli.hpp"
+#include "commands.hpp"
+#include "forward_state.hpp"
+
+namespace lever::cli {
+
+namespace {
+
+const char* const kUsage =
+    "usage: lever identify PRIOR.xml DATA.csv [--write-model OUT.xml] [--json]\n"
+    "  DATA.csv               a trajectory in `lever simulate --csv`'s columns: time, qpos[j],\n"
+    "                         qvel[j], and qacc[j] (else qvel's forward difference), "
+    "actuator_force[m]\n"
+    "                         (else ctrl[m] through the prior's motors), qfrc_constraint[j]\n"
+    "  --write-model OUT.xml  PRIOR.xml with the identified inertials, armature and damping\n"
+    "  --json                 one JSON object with every base parameter and the fit\n";
+
+}  // namespace
+
+int cmd_identify(const std::vector<std::string>& argv) {
+  const Args args(argv, {"write-model"}, {"json", "help"});
+  if (args.has("help")) {
+    std::fputs(kUsage, stdout);
+    return kOk;
+  }
+  if (args.positional().size() != 2) {
+    throw UsageError{std::string("expects PRIOR.xml and DATA.csv\n") + kUsage};
+  }
+  const std::string prior_path = args.positional()[0], data_path = args.positional()[1];
+  const Model prior = mjcf::load_file(prior_path);
+  const identify::Trajectory data = identify::read_csv(prior, data_path);
+  const identify::Result r = identify::identify(prior, data);
+
+  if (args.has("json")) {
+    Json json(stdout);
+    json.begin_object();
+    json.key("model").value(prior.name);
+    json.key("samples").value(r.samples);
+    json.key("equations").value(r.equations);
+    json.key("residual_rms").value(r.residual_rms);
+    json.key("qacc_source").value(data.qacc_source);
+    json.key("force_source").value(data.force_source);
+    json.key("base").begin_array();
+    for (int k = 0; k < r.base.rank; ++k) {
+      json.begin_object();
+      json.key("name").value(r.base.names[static_cast<std::size_t>(k)]);
+      json.key("prior").value(r.prior[k]);
+      json.key("estimate").value(r.estimate[k]);
+      json.key("standard_error").value(r.standard_error[k]);
+      json.end_object();
+    }
+    json.end_array();
+    json.key("unexcited").begin_array();
+    for (const std::string& name : r.unexcited) json.value(name);
+    json.end_array();
+    json.key("not_physical");
+    if (r.not_physical.empty()) {
+      json.value(std::numeric_limits<double>::quiet_NaN());  // written as null
+    } else {
+      json.value(r.not_physical);
+    }
+    json.end_object();
+    json.newline();
+  } else {
+    std::printf("prior %s (%s), data %s: %d samples, %d equations\n", prior.name.c_str(),
+                prior_path.c_str(), data_path.c_str(), r.samples, r.equations);
+    std::printf("qacc from %s; joint forces from %s\n\n", data.qacc_source.c_str(),
+                data.force_source.c_str());
+    std::printf("%d base parameters (SI units: kg, kg m, kg m^2, N m s/rad):\n", r.base.rank);
+    std::printf("  %14s %14s %14s  %s\n", "prior", "estimate", "std. error", "combination");
+    for (int k = 0; k < r.base.rank; ++k) {
+      std::printf("  %14s %14s %14s  %s\n", num(r.prior[k], "%.8g").c_str(),
+                  num(r.estimate[k], "%.8g").c_str(), num(r.standard_error[k], "%.3g").c_str(),
+                  r.base.names[static_cast<std::size_t>(k)].c_str());
+    }
+    std::printf("\nresidual: rms %s (N m or N)\n", num(r.residual_rms, "%.3g").c_str());
+  }
+  for (const std::string& name : r.unexcited) {
+    std::fprintf(stderr, "lever identify: warning: the data barely excites %s\n", name.c_str());
+  }
+  if (!r.not_physical.empty()) {
+    std::fprintf(stderr, "lever identify: the identified parameters are not a physical model: %s\n",
+                 r.not_physical.c_str());
+  }
+  if (args.has("write-model")) {
+    if (!r.not_physical.empty()) {
+      std::fprintf(stderr, "lever identify: no model written\n");
+    } else {
+      identify::write_model(prior_path, identify::identified_model(prior, r),
+                            args.get("write-model"));
+    }
+  }
+  return r.unexcited.empty() && r.not_physical.empty() ? kOk : kFindings;
+}
+
+}  // namespace lever::cli
