@@ -88,7 +88,7 @@ MjcfInertial to_inertial(const InertialParameters& pi) {
   const Eigen::Matrix3d Ic =
       I - m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Ic);
-  const Eigen::Vector3d d = eig.eigenvalues();  // increasing
+  const Eigen::Vector3d& d = eig.eigenvalues();  // increasing
   if (!(d[0] > 0) || d[0] + d[1] < d[2] * (1 - 1e-12)) {
     std::ostringstream s;
     s << "inertial parameters: principal moments " << d[0] << ", " << d[1] << ", " << d[2]
