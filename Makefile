@@ -29,11 +29,13 @@ test: build
 # AddressSanitizer and UndefinedBehaviorSanitizer (-fno-sanitize-recover=all: any finding fails
 # its test). MuJoCo, KDL
 # and tinyxml2 are Debian's prebuilt libraries, not instrumented. .ci/run runs it after make test.
+# The Python package is left out: an instrumented extension cannot load into Debian's
+# uninstrumented python3 (the sanitizer runtime must come first in the process).
 ASAN_BUILD ?= build-asan
 .PHONY: test-asan
 test-asan: setup
 	@cmake -S . -B $(ASAN_BUILD) -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS_DEBUG="-g -O1" \
-	  -DLEVER_SANITIZE="address;undefined" \
+	  -DLEVER_SANITIZE="address;undefined" -DLEVER_BUILD_PYTHON=OFF \
 	  > $(ASAN_BUILD).configure.log || (cat $(ASAN_BUILD).configure.log; exit 1)
 	@cmake --build $(ASAN_BUILD) -j $(JOBS)
 	ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1:detect_stack_use_after_return=1 \
@@ -111,3 +113,26 @@ format-check:
 format:
 	@scripts/setup.sh lint
 	clang-format-14 -i $(FORMAT_FILES)
+
+# make web: lever compiled to WebAssembly with Emscripten (emcmake; tests, tools and benchmarks off)
+# into build-web/: build-web/web/wasm/lever_wasm.{js,wasm}, the lab's engine (web/wasm). Emscripten's
+# JS optimizer needs Debian's node-acorn on NODE_PATH.
+# make lab: builds it and serves the lab (web/) on 127.0.0.1, printing the page's URL (LAB_PORT=0:
+# a free port). make web-bench: one lab step (forward + step) timed natively and in WebAssembly.
+WEB_BUILD ?= build-web
+LAB_PORT ?= 0
+WEB_ENV = NODE_PATH=/usr/share/nodejs
+.PHONY: web lab web-bench
+web: setup
+	@$(WEB_ENV) emcmake cmake -S . -B $(WEB_BUILD) -DCMAKE_BUILD_TYPE=Release -DLEVER_BUILD_TESTS=OFF \
+	  -DLEVER_BUILD_TOOLS=OFF -DLEVER_BUILD_BENCH=OFF -DLEVER_WITH_MUJOCO=OFF \
+	  > $(WEB_BUILD).configure.log || (cat $(WEB_BUILD).configure.log; exit 1)
+	@$(WEB_ENV) cmake --build $(WEB_BUILD) -j $(JOBS) --target lever_wasm
+	@ls -l $(WEB_BUILD)/web/wasm/lever_wasm.wasm $(WEB_BUILD)/web/wasm/lever_wasm.js
+lab: web
+	/usr/bin/python3 web/serve.py --port $(LAB_PORT) --build $(WEB_BUILD)/web/wasm
+web-bench: web build
+	@$(WEB_ENV) cmake --build $(WEB_BUILD) -j $(JOBS) --target lever_step_time
+	$(BUILD)/web/bench/lever_step_time models/arm2.xml
+	node $(WEB_BUILD)/web/bench/lever_step_time.js models/arm2.xml
+	node web/bench/js_step_time.js $(WEB_BUILD)/web/wasm models/arm2.xml

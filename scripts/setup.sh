@@ -11,6 +11,13 @@ packages=(
   libmujoco-dev        # the reference: tests, benchmarks and `lever diff` only
   libbenchmark-dev     # bench/
   liborocos-kdl-dev    # bench/ peer
+  python3-dev python3-numpy python3-pybind11  # the Python package (python/), for /usr/bin/python3
+  python3-pytest       # its tests (tests/python)
+  emscripten           # make web, tests/web: lever compiled to WebAssembly for the lab (web/)
+  node-acorn           # Emscripten's JS optimizer (NODE_PATH=/usr/share/nodejs)
+  chromium             # tests/web: the lab in a real browser, headless
+  chromium-driver      # tests/web: chromedriver, which selenium drives chromium through
+  python3-selenium     # tests/web: the browser tests (Debian's /usr/bin/python3)
 )
 
 # `scripts/setup.sh fuzz`: also what `make fuzz` needs (clang and its libFuzzer runtime)

@@ -1,6 +1,10 @@
 // Data: sized once from the Model, so that evaluating and stepping never allocate.
 #include <lever/data.hpp>
 
+#include <algorithm>
+
+#include "internal.hpp"
+
 namespace lever {
 
 const char* warning_name(Warning w) {
@@ -17,51 +21,27 @@ const char* warning_name(Warning w) {
 }
 
 Data::Data(const Model& model)
-    : qpos(model.qpos0), nefc_max(2 * model.njnt), nq(model.nq), nv(model.nv), nu(model.nu) {
-  const int nbody = model.nbody;
-  const int nsite = model.nsite;
+    : nefc_max(2 * model.njnt),
+      nq(model.nq),
+      nv(model.nv),
+      nu(model.nu),
+      nbody(model.nbody),
+      njnt(model.njnt),
+      ngeom(model.ngeom),
+      nsite(model.nsite) {
+  // every array of the field table, zero-filled at its size; then the values that are not zero
+  detail::size_data_arrays(model, *this);
+  qpos = model.qpos0;
+  for (auto& q : xquat) q = Eigen::Vector4d(1, 0, 0, 0);
+  for (auto* list : {&xmat, &ximat, &site_xmat}) {
+    for (Mat3& R : *list) R.setIdentity();
+  }
+  std::fill(efc_id.begin(), efc_id.end(), -1);
+  std::fill(efc_dof.begin(), efc_dof.end(), -1);
 
-  qvel = Eigen::VectorXd::Zero(nv);
-  ctrl = Eigen::VectorXd::Zero(nu);
-  qfrc_applied = Eigen::VectorXd::Zero(nv);
-
-  xpos.assign(nbody, Eigen::Vector3d::Zero());
-  xquat.assign(nbody, Eigen::Vector4d(1, 0, 0, 0));
-  xmat.assign(nbody, Eigen::Matrix3d::Identity());
-  xipos.assign(nbody, Eigen::Vector3d::Zero());
-  ximat.assign(nbody, Eigen::Matrix3d::Identity());
-  site_xpos.assign(nsite, Eigen::Vector3d::Zero());
-  site_xmat.assign(nsite, Eigen::Matrix3d::Identity());
-  xanchor.assign(model.njnt, Eigen::Vector3d::Zero());
-  xaxis.assign(model.njnt, Eigen::Vector3d::Zero());
-  subtree_com.assign(nbody, Eigen::Vector3d::Zero());
-  cdof.assign(nv, Motion::Zero());
+  // what is not in the table: lever's spatial inertias, and the workspace
   cinert.assign(nbody, RigidInertia{});
-  cvel.assign(nbody, Motion::Zero());
-  cdof_dot.assign(nv, Motion::Zero());
-
-  M = Eigen::MatrixXd::Zero(nv, nv);
   qLD = Eigen::MatrixXd::Zero(nv, nv);
-  qLDiagInv = Eigen::VectorXd::Zero(nv);
-  actuator_length = Eigen::VectorXd::Zero(nu);
-
-  // Limit rows: sized for the most rows the model can have; nefc says how many are live.
-  efc_id.assign(nefc_max, -1);
-  efc_dof.assign(nefc_max, -1);
-  efc_sign.assign(nefc_max, 0.0);
-  for (Eigen::VectorXd* v : {&efc_pos, &efc_margin, &efc_diagApprox, &efc_R, &efc_D, &efc_imp,
-                             &efc_K, &efc_B, &efc_vel, &efc_aref, &efc_b, &efc_force}) {
-    *v = Eigen::VectorXd::Zero(nefc_max);
-  }
-  efc_state.assign(nefc_max, ConstraintState::kSatisfied);
-
-  actuator_velocity = Eigen::VectorXd::Zero(nu);
-  actuator_force = Eigen::VectorXd::Zero(nu);
-  for (Eigen::VectorXd* v : {&qfrc_passive, &qfrc_bias, &qfrc_actuator, &qfrc_smooth, &qacc_smooth,
-                             &qfrc_constraint, &qacc, &qfrc_inverse}) {
-    *v = Eigen::VectorXd::Zero(nv);
-  }
-
   work.crb.assign(nbody, RigidInertia{});
   work.cacc.assign(nbody, Motion::Zero());
   work.cfrc.assign(nbody, Force::Zero());
@@ -101,6 +81,7 @@ std::string warning_text(const Data& data) {
 }
 
 void reset(const Model& model, Data& data) {
+  const EntryCheck entry(model, data, "lever::reset");
   data.time = 0.0;
   data.qpos = model.qpos0;
   data.qvel.setZero();

@@ -1,9 +1,12 @@
 // Potential and kinetic energy (MuJoCo's mj_energyPos and mj_energyVel).
 #include <lever/dynamics.hpp>
 
+#include "internal.hpp"
+
 namespace lever {
 
 void compute_energy(const Model& model, Data& data) {
+  const EntryCheck entry(model, data, "lever::compute_energy");
   // gravity: -m g . x_com for every body; springs: k (q - q_spring)^2 / 2
   double potential = 0.0;
   for (int b = 1; b < model.nbody; ++b) {

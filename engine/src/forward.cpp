@@ -30,6 +30,8 @@ void check_inputs(Data& data) {
   record_if_bad(data, data.qfrc_applied, Warning::kBadQfrcApplied);
 }
 
+}  // namespace
+
 void position_stage(const Model& model, Data& data) {
   kinematics(model, data);
   crba(model, data);
@@ -44,23 +46,26 @@ void velocity_stage(const Model& model, Data& data) {
   reference_constraint(model, data);
 }
 
-}  // namespace
-
-void forward(const Model& model, Data& data) {
-  check_inputs(data);
-  position_stage(model, data);
-  velocity_stage(model, data);
-
-  // acceleration stage: the unconstrained acceleration, then the limit forces
+void acceleration_stage(const Model& model, Data& data) {
+  // the unconstrained acceleration, then the limit forces
   actuation(model, data);
   data.qfrc_smooth = data.qfrc_passive - data.qfrc_bias + data.qfrc_applied + data.qfrc_actuator;
   data.qacc_smooth = data.qfrc_smooth;
   solve_mass(model, data, data.qacc_smooth);
   solve_constraint(model, data);
+}
+
+void forward(const Model& model, Data& data) {
+  const EntryCheck entry(model, data, "lever::forward");
+  check_inputs(data);
+  position_stage(model, data);
+  velocity_stage(model, data);
+  acceleration_stage(model, data);
   record_if_bad(data, data.qacc, Warning::kBadQacc);
 }
 
 void inverse(const Model& model, Data& data) {
+  const EntryCheck entry(model, data, "lever::inverse");
   check_inputs(data);
   record_if_bad(data, data.qacc, Warning::kBadQacc);
   position_stage(model, data);

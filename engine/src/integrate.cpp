@@ -79,6 +79,7 @@ void rk4(const Model& model, Data& data) {
 }  // namespace
 
 void step(const Model& model, Data& data) {
+  const EntryCheck entry(model, data, "lever::step");
   if (!check_and_reset(model, data, data.qpos, Warning::kBadQpos)) {
     check_and_reset(model, data, data.qvel, Warning::kBadQvel);
   }
@@ -89,6 +90,24 @@ void step(const Model& model, Data& data) {
     case Integrator::kEuler: euler(model, data); break;
     case Integrator::kRK4: rk4(model, data); break;
   }
+}
+
+void step1(const Model& model, Data& data) {
+  const EntryCheck entry(model, data, "lever::step1");
+  if (!check_and_reset(model, data, data.qpos, Warning::kBadQpos)) {
+    check_and_reset(model, data, data.qvel, Warning::kBadQvel);
+  }
+  position_stage(model, data);
+  velocity_stage(model, data);
+}
+
+void step2(const Model& model, Data& data) {
+  const EntryCheck entry(model, data, "lever::step2");
+  acceleration_stage(model, data);
+  if (check_and_reset(model, data, data.qacc, Warning::kBadQacc)) forward(model, data);
+  // as in MuJoCo 2.2.2, the split step integrates with Euler whatever the integrator: RK4 needs
+  // forward() at states in the middle of the step, which the caller's control is not part of
+  euler(model, data);
 }
 
 }  // namespace lever

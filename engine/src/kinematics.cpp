@@ -12,6 +12,10 @@
 //   cinert_b = the body's spatial inertia about c.
 #include <lever/kinematics.hpp>
 
+#include <lever/error.hpp>
+
+#include "internal.hpp"
+
 #include <cmath>
 
 namespace lever {
@@ -23,7 +27,7 @@ void poses(const Model& model, Data& data) {
   Eigen::Matrix3d turned;  // the body's rotation, when a joint needs it as a matrix
   for (int b = 1; b < model.nbody; ++b) {
     const int p = model.body_parentid[b];
-    const Eigen::Matrix3d& parent = data.xmat[p];
+    const Mat3& parent = data.xmat[p];
     Eigen::Vector3d pos = data.xpos[p] + rotate(parent, model.body_pos[b]);
     Quat quat = model.body_rotated[b] ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
 
@@ -94,7 +98,7 @@ void com_quantities(const Model& model, Data& data) {
 
   // each body's inertia about its tree's centre of mass, world axes: I_world = R diag(I) R^T
   for (int b = 1; b < model.nbody; ++b) {
-    const Eigen::Matrix3d& R = data.ximat[b];
+    const Mat3& R = data.ximat[b];
     const Eigen::Vector3d& d = model.body_inertia[b];
     // column k of R scaled by the principal moment about it
     const Eigen::Matrix3d RD = R * d.asDiagonal();
@@ -125,15 +129,33 @@ void com_quantities(const Model& model, Data& data) {
   }
 }
 
+void check_jacobians(const Model& model, const Eigen::Ref<Eigen::MatrixXd>& jacp,
+                     const Eigen::Ref<Eigen::MatrixXd>& jacr, const char* where) {
+  for (const auto* J : {&jacp, &jacr}) {
+    if (J->rows() != 3 || J->cols() != model.nv) {
+      throw StateError(std::string(where) + ": a Jacobian must be 3 x " + std::to_string(model.nv) +
+                       ", not " + std::to_string(J->rows()) + " x " + std::to_string(J->cols()) +
+                       ".");
+    }
+  }
+}
+
 }  // namespace
 
 void kinematics(const Model& model, Data& data) {
+  const EntryCheck entry(model, data, "lever::kinematics");
   poses(model, data);
   com_quantities(model, data);
 }
 
 void jac_point(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
                Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr) {
+  const EntryCheck entry(model, data, "lever::jac_point");
+  check_jacobians(model, jacp, jacr, "lever::jac_point");
+  if (body < 0 || body >= model.nbody) {
+    throw StateError("lever::jac_point: body " + std::to_string(body) + " is not in 0.." +
+                     std::to_string(model.nbody - 1) + ".");
+  }
   // write through column pointers: Eigen's dynamic-size assignment on a Ref costs more than the
   // arithmetic here
   double* const p = jacp.data();
@@ -160,6 +182,10 @@ void jac_point(const Model& model, const Data& data, int body, const Eigen::Vect
 
 void jac_site(const Model& model, const Data& data, int site, Eigen::Ref<Eigen::MatrixXd> jacp,
               Eigen::Ref<Eigen::MatrixXd> jacr) {
+  if (site < 0 || site >= model.nsite) {
+    throw StateError("lever::jac_site: site " + std::to_string(site) + " is not in 0.." +
+                     std::to_string(model.nsite - 1) + ".");
+  }
   jac_point(model, data, model.site_bodyid[site], data.site_xpos[site], jacp, jacr);
 }
 

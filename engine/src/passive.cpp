@@ -1,9 +1,12 @@
 // Passive joint forces: springs about springref and viscous damping (MuJoCo's mj_passive).
 #include <lever/dynamics.hpp>
 
+#include "internal.hpp"
+
 namespace lever {
 
 void passive(const Model& model, Data& data) {
+  const EntryCheck entry(model, data, "lever::passive");
   for (int j = 0; j < model.njnt; ++j) {
     const int q = model.jnt_qposadr[j];
     const int d = model.jnt_dofadr[j];

@@ -9,6 +9,8 @@
 #include <lever/data.hpp>
 #include <lever/dynamics.hpp>
 
+#include "internal.hpp"
+
 namespace lever {
 
 namespace {
@@ -58,10 +60,16 @@ void newton_euler(const Model& model, Data& data, const double* qdd,
 
 }  // namespace
 
-void bias(const Model& model, Data& data) { newton_euler(model, data, nullptr, data.qfrc_bias); }
+void bias(const Model& model, Data& data) {
+  const EntryCheck entry(model, data, "lever::bias");
+  newton_euler(model, data, nullptr, data.qfrc_bias);
+}
 
 void rnea(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc,
           Eigen::Ref<Eigen::VectorXd> tau) {
+  const EntryCheck entry(model, data, "lever::rnea");
+  check_argument_size(qacc.size(), model.nv, "lever::rnea", "qacc");
+  check_argument_size(tau.size(), model.nv, "lever::rnea", "tau");
   newton_euler(model, data, qacc.data(), tau);
   // armature is part of M (crba adds it), so it is part of M qacc here too
   for (int i = 0; i < model.nv; ++i) tau[i] += model.dof_armature[i] * qacc[i];

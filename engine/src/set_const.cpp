@@ -2,6 +2,7 @@
 // constants MuJoCo's mj_setConst freezes at qpos0 (engine_setconst.c).
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
+#include <lever/fields.hpp>
 #include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
 #include <lever/model.hpp>
@@ -23,7 +24,7 @@ void require_size(const std::vector<T>& v, int n, const char* name) {
 
 #define LEVER_REQUIRE_SIZE(field, n) require_size(model.field, n, #field)
 
-void check_sizes(const Model& model) {
+void check_sizes(Model& model) {
   if (model.nbody < 1 || model.nv < 0 || model.njnt < 0 || model.nu < 0 || model.nsite < 0 ||
       model.ngeom < 0) {
     throw ModelError("model sizes must be non-negative and include the world body.");
@@ -33,48 +34,19 @@ void check_sizes(const Model& model) {
                      std::to_string(model.nq) + ", nv = " + std::to_string(model.nv) +
                      ", njnt = " + std::to_string(model.njnt) + ".");
   }
-  const int nb = model.nbody, nj = model.njnt, nv = model.nv;
-  LEVER_REQUIRE_SIZE(body_name, nb);
-  LEVER_REQUIRE_SIZE(body_parentid, nb);
-  LEVER_REQUIRE_SIZE(body_jntnum, nb);
-  LEVER_REQUIRE_SIZE(body_jntadr, nb);
-  LEVER_REQUIRE_SIZE(body_dofnum, nb);
-  LEVER_REQUIRE_SIZE(body_dofadr, nb);
-  LEVER_REQUIRE_SIZE(body_pos, nb);
-  LEVER_REQUIRE_SIZE(body_quat, nb);
-  LEVER_REQUIRE_SIZE(body_ipos, nb);
-  LEVER_REQUIRE_SIZE(body_iquat, nb);
-  LEVER_REQUIRE_SIZE(body_mass, nb);
-  LEVER_REQUIRE_SIZE(body_inertia, nb);
-  LEVER_REQUIRE_SIZE(jnt_type, nj);
-  LEVER_REQUIRE_SIZE(jnt_qposadr, nj);
-  LEVER_REQUIRE_SIZE(jnt_dofadr, nj);
-  LEVER_REQUIRE_SIZE(jnt_bodyid, nj);
-  LEVER_REQUIRE_SIZE(jnt_limited, nj);
-  LEVER_REQUIRE_SIZE(jnt_solref, nj);
-  LEVER_REQUIRE_SIZE(jnt_solimp, nj);
-  LEVER_REQUIRE_SIZE(jnt_pos, nj);
-  LEVER_REQUIRE_SIZE(jnt_axis, nj);
-  LEVER_REQUIRE_SIZE(jnt_stiffness, nj);
-  LEVER_REQUIRE_SIZE(jnt_range, nj);
-  LEVER_REQUIRE_SIZE(jnt_margin, nj);
-  LEVER_REQUIRE_SIZE(dof_bodyid, nv);
-  LEVER_REQUIRE_SIZE(dof_jntid, nv);
-  LEVER_REQUIRE_SIZE(dof_parentid, nv);
-  LEVER_REQUIRE_SIZE(dof_armature, nv);
-  LEVER_REQUIRE_SIZE(dof_damping, nv);
-  LEVER_REQUIRE_SIZE(site_bodyid, model.nsite);
-  LEVER_REQUIRE_SIZE(site_pos, model.nsite);
-  LEVER_REQUIRE_SIZE(site_quat, model.nsite);
-  LEVER_REQUIRE_SIZE(actuator_trnid, model.nu);
-  LEVER_REQUIRE_SIZE(actuator_gear, model.nu);
-  LEVER_REQUIRE_SIZE(actuator_ctrllimited, model.nu);
-  LEVER_REQUIRE_SIZE(actuator_forcelimited, model.nu);
-  LEVER_REQUIRE_SIZE(actuator_ctrlrange, model.nu);
-  LEVER_REQUIRE_SIZE(actuator_forcerange, model.nu);
-  if (model.qpos0.size() != model.nq || model.qpos_spring.size() != model.nq) {
-    throw ModelError("qpos0 and qpos_spring must have nq entries.");
-  }
+  LEVER_REQUIRE_SIZE(body_name, model.nbody);
+  LEVER_REQUIRE_SIZE(jnt_name, model.njnt);
+  LEVER_REQUIRE_SIZE(geom_name, model.ngeom);
+  LEVER_REQUIRE_SIZE(site_name, model.nsite);
+  LEVER_REQUIRE_SIZE(actuator_name, model.nu);
+  // what set_const derives is sized here; every other array must have the size the field table
+  // gives it (lever/fields.hpp)
+  model.body_rootid.resize(model.nbody);
+  model.body_subtreemass.resize(model.nbody);
+  model.body_invweight0.resize(model.nbody);
+  model.dof_invweight0.resize(model.nv);
+  model.dof_M0.resize(model.nv);
+  check_model_sizes(model);
 }
 
 #undef LEVER_REQUIRE_SIZE

@@ -2,6 +2,8 @@
 #include <algorithm>
 #include <cctype>
 #include <charconv>
+#include <cstdio>
+#include <cstdlib>
 #include <lever/mjcf.hpp>
 #include <utility>
 
@@ -124,8 +126,17 @@ std::string quoted_list(const std::vector<std::string_view>& items, std::string_
 
 std::string show(double x) {
   char buffer[32];
+#ifdef __EMSCRIPTEN__
+  // Emscripten 3.1.6's libc++ has no floating-point to_chars: the fewest %g digits that read back
+  for (int digits = 1; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof buffer, "%.*g", digits, x);
+    if (std::strtod(buffer, nullptr) == x) break;
+  }
+  return buffer;
+#else
   const auto result = std::to_chars(buffer, buffer + sizeof buffer, x);
   return std::string(buffer, result.ptr);
+#endif
 }
 
 }  // namespace lever::mjcf::detail

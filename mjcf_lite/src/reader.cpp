@@ -1,12 +1,12 @@
-// XML -> element tree (tinyxml2), then structural validation against the schema table.
+// XML -> element tree (xml.hpp: tinyxml2 or lever's own reader), then structural validation
+// against the schema table.
 #include "reader.hpp"
-
-#include <tinyxml2.h>
 
 #include <map>
 #include <string>
 
 #include "schema.hpp"
+#include "xml.hpp"
 
 namespace lever::mjcf::detail {
 
@@ -28,72 +28,69 @@ Place Element::place(const Attribute& a) const {
   return p;
 }
 
+// ---- the checks both XML backends make (xml.hpp) ------------------------------------------
+
 namespace {
 
-// ---- tinyxml2 -> Element -------------------------------------------------------------------
-
-std::string describe_xml_error(tinyxml2::XMLError id) {
-  switch (id) {
-    case tinyxml2::XML_ERROR_EMPTY_DOCUMENT: return "the document is empty";
-    case tinyxml2::XML_ERROR_MISMATCHED_ELEMENT:
+std::string describe(XmlError error) {
+  switch (error) {
+    case XmlError::kEmptyDocument: return "the document is empty";
+    case XmlError::kMismatchedElement:
       return "a closing tag does not match its opening tag (an element left open?)";
-    case tinyxml2::XML_ERROR_PARSING_ATTRIBUTE:
+    case XmlError::kParsingAttribute:
       return "cannot read an attribute (repeated, or its value not in quotes?)";
-    case tinyxml2::XML_ERROR_PARSING_TEXT: return "cannot read text (is this an XML file?)";
-    case tinyxml2::XML_ERROR_PARSING_ELEMENT: return "cannot read an element";
-    case tinyxml2::XML_ERROR_PARSING_COMMENT: return "cannot read a comment";
-    case tinyxml2::XML_ELEMENT_DEPTH_EXCEEDED:
+    case XmlError::kParsingText: return "cannot read text (is this an XML file?)";
+    case XmlError::kParsingElement: return "cannot read an element";
+    case XmlError::kParsingComment: return "cannot read a comment";
+    case XmlError::kDepthExceeded:
       return "elements are nested more than " + std::to_string(kMaxDepth) + " levels deep";
     default: return "cannot parse the XML";
   }
 }
 
-[[noreturn]] void fail_xml(const tinyxml2::XMLDocument& doc) {
-  std::string detail = doc.ErrorStr();
-  const size_t colon = detail.find(": ", detail.find("Line number="));
-  std::string message = "malformed XML: " + describe_xml_error(doc.ErrorID());
-  if (colon != std::string::npos) message += " [" + detail.substr(colon + 2) + "]";
-  fail(Place{"", "", doc.ErrorLineNum()}, "", message);
+}  // namespace
+
+void fail_xml(XmlError error, int line, const std::string& detail) {
+  std::string message = "malformed XML: " + describe(error);
+  if (!detail.empty()) message += " [" + detail + "]";
+  fail(Place{"", "", line}, "", message);
 }
 
-bool is_blank(const char* s) {
-  for (; s && *s; ++s) {
-    if (*s != ' ' && *s != '\t' && *s != '\n' && *s != '\r') return false;
+bool is_blank(const std::string& text) {
+  for (const char c : text) {
+    if (c != ' ' && c != '\t' && c != '\n' && c != '\r') return false;
   }
   return true;
 }
 
-Element convert(const tinyxml2::XMLElement& x, int depth) {
-  Element e;
-  e.tag = x.Value();
-  e.line = x.GetLineNum();
-  if (depth > kMaxDepth) {
-    fail(e.place(), "",
-         "elements are nested more than " + std::to_string(kMaxDepth) + " levels deep");
+void check_attribute_length(const Element& e, const Attribute& a) {
+  if (a.value.size() > Limits::kAttributeBytes) {
+    fail(e.place(a), a.name,
+         "attribute '" + a.name + "' is " + std::to_string(a.value.size()) +
+             " bytes long; lever accepts at most " + std::to_string(Limits::kAttributeBytes) +
+             " (a limit, see docs/reliability.md)");
   }
-  for (const tinyxml2::XMLAttribute* a = x.FirstAttribute(); a; a = a->Next()) {
-    e.attributes.push_back({a->Name(), a->Value(), a->GetLineNum()});
-    const Attribute& added = e.attributes.back();
-    if (added.value.size() > Limits::kAttributeBytes) {
-      fail(e.place(added), added.name,
-           "attribute '" + added.name + "' is " + std::to_string(added.value.size()) +
-               " bytes long; lever accepts at most " + std::to_string(Limits::kAttributeBytes) +
-               " (a limit, see docs/reliability.md)");
-    }
-  }
-  for (const tinyxml2::XMLNode* n = x.FirstChild(); n; n = n->NextSibling()) {
-    if (const tinyxml2::XMLElement* child = n->ToElement()) {
-      e.children.push_back(convert(*child, depth + 1));
-    } else if (n->ToText() && !is_blank(n->Value())) {
-      // MJCF carries everything in attributes; text would be silently dropped
-      fail(e.place(), "",
-           "unexpected text inside <" + e.tag +
-               ">: MJCF elements take attributes "
-               "only");
-    }
-  }
-  return e;
 }
+
+void fail_depth(const Element& e) {
+  fail(e.place(), "",
+       "elements are nested more than " + std::to_string(kMaxDepth) + " levels deep");
+}
+
+void fail_text(const Element& e) {
+  // MJCF carries everything in attributes; text would be silently dropped
+  fail(e.place(), "", "unexpected text inside <" + e.tag + ">: MJCF elements take attributes only");
+}
+
+Element read_xml(const std::string& xml) {
+#ifdef LEVER_XML_READER_TINYXML2
+  return read_xml_tinyxml2(xml);
+#else
+  return read_xml_lever(xml);
+#endif
+}
+
+namespace {
 
 // ---- validation ------------------------------------------------------------------------------
 
@@ -249,7 +246,7 @@ void check_root(const Element& root) {
   }
 }
 
-// Limits checked on the raw text, before tinyxml2 builds a tree of it.
+// Limits checked on the raw text, before the XML reader builds a tree of it.
 void check_size(const std::string& xml) {
   if (xml.size() > Limits::kDocumentBytes) {
     fail(Place{}, "",
@@ -271,15 +268,7 @@ void check_size(const std::string& xml) {
 
 Element read_document(const std::string& xml) {
   check_size(xml);
-  tinyxml2::XMLDocument doc;
-  if (doc.Parse(xml.c_str(), xml.size()) != tinyxml2::XML_SUCCESS) fail_xml(doc);
-  const tinyxml2::XMLElement* first = doc.RootElement();
-  if (!first) fail(Place{}, "", "malformed XML: the document has no element");
-  if (const tinyxml2::XMLElement* second = first->NextSiblingElement()) {
-    fail(Place{second->Value(), "", second->GetLineNum()}, "",
-         "a document has one root element; this one is a second");
-  }
-  Element root = convert(*first, 1);
+  Element root = read_xml(xml);
   check_root(root);
   Counts counts;
   validate(root, *find_rule("", "mujoco"), counts);

@@ -118,7 +118,7 @@ class Differences {
     }
   }
 
-  void flags(const std::string& field, const std::vector<bool>& ours, const mjtByte* theirs) {
+  void flags(const std::string& field, const std::vector<uint8_t>& ours, const mjtByte* theirs) {
     for (size_t i = 0; i < ours.size(); ++i) {
       integer(field, static_cast<int>(i), ours[i] ? 1 : 0, theirs[i]);
     }

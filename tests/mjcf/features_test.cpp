@@ -9,6 +9,11 @@
 
 namespace {
 
+// Model stores flags as bytes (so that each is an array view); the expected values as such.
+std::vector<uint8_t> flags(std::initializer_list<bool> values) {
+  return std::vector<uint8_t>(values.begin(), values.end());
+}
+
 using lever::Model;
 using std::numbers::pi;
 
@@ -218,10 +223,10 @@ TEST_CASE("limits: a range alone makes a joint or motor limited (autolimits)", "
     <motor joint="zero" forcerange="-3 3" ctrllimited="false"/>
   </actuator>
 </mujoco>)");
-  CHECK(m.jnt_limited == std::vector<bool>{true, false, false});
+  CHECK(m.jnt_limited == flags({true, false, false}));
   CHECK(m.jnt_range[2] == std::array<double, 2>{2, -2});  // kept as written, unchecked
-  CHECK(m.actuator_ctrllimited == std::vector<bool>{true, false});
-  CHECK(m.actuator_forcelimited == std::vector<bool>{false, true});
+  CHECK(m.actuator_ctrllimited == flags({true, false}));
+  CHECK(m.actuator_forcelimited == flags({false, true}));
   CHECK(m.actuator_trnid == std::vector<int>{0, 1});
 }
 
@@ -316,9 +321,9 @@ TEST_CASE("arm2 loads from its file with what the lesson says it contains", "[mj
   CHECK(m.dof_damping == std::vector<double>{0.02, 0.02});
   CHECK(m.body_mass == std::vector<double>{0, 1.0, 0.8});
   CHECK(m.body_ipos[2] == Eigen::Vector3d(0.2, 0, 0));
-  CHECK(m.body_explicit_inertial == std::vector<bool>{false, true, true});
+  CHECK(m.body_explicit_inertial == flags({false, true, true}));
   CHECK(m.actuator_ctrlrange[1] == std::array<double, 2>{-15, 15});
-  CHECK(m.actuator_ctrllimited == std::vector<bool>{true, true});
+  CHECK(m.actuator_ctrllimited == flags({true, true}));
   CHECK(m.site_name == std::vector<std::string>{"ee"});
   // the pedestal is vertical: +z turned by pi about x, so +z points from `to` to `from`
   CHECK(near(rotation(m.geom_quat[0]) * ez, -ez));

@@ -9,6 +9,11 @@
 
 namespace {
 
+// Model stores flags as bytes (so that each is an array view); the expected values as such.
+std::vector<uint8_t> flags(std::initializer_list<bool> values) {
+  return std::vector<uint8_t>(values.begin(), values.end());
+}
+
 using lever::Model;
 using std::numbers::pi;
 
@@ -205,7 +210,7 @@ TEST_CASE("infer_inertia_from_geoms ignores every <inertial>", "[mjcf][inertia]"
   const double r1 = 0.025, h1 = 0.5, r2 = 0.02, h2 = 0.4;
   check_close(m.body_mass[1], kDensity * pi * (r1 * r1 * h1 + 4.0 / 3.0 * r1 * r1 * r1));
   check_close(m.body_mass[2], kDensity * pi * (r2 * r2 * h2 + 4.0 / 3.0 * r2 * r2 * r2));
-  CHECK(m.body_explicit_inertial == std::vector<bool>{false, false, false});
+  CHECK(m.body_explicit_inertial == flags({false, false, false}));
   CHECK(m.body_ipos[1] == Eigen::Vector3d(0.25, 0, 0));
   // the lesson prints these masses to three decimals (1.047 and 0.536 kg): its text agrees with
   // the capsule formula above to that printed precision, hence the relative 1e-3

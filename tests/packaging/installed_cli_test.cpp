@@ -92,9 +92,9 @@ std::vector<double> flat(const std::vector<V>& rows) {
   return out;
 }
 
-std::vector<double> row_major(const std::vector<Eigen::Matrix3d>& ms) {
+std::vector<double> row_major(const std::vector<lever::Mat3>& ms) {
   std::vector<double> out;
-  for (const Eigen::Matrix3d& m : ms) {
+  for (const lever::Mat3& m : ms) {
     for (int r = 0; r < 3; ++r) {
       for (int c = 0; c < 3; ++c) out.push_back(m(r, c));
     }

@@ -24,6 +24,7 @@
 
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
+#include <lever/serialize.hpp>
 
 #include "cli.hpp"
 #include "commands.hpp"
@@ -62,26 +63,6 @@ Evaluation evaluate(const Model& model, Data& data) {
 
 // ---- json ------------------------------------------------------------------------------------
 
-template <int N>
-void rows(Json& json, const char* key, const std::vector<Eigen::Matrix<double, N, 1>>& v) {
-  json.key(key).begin_array();
-  for (const auto& row : v) {
-    for (int i = 0; i < N; ++i) json.value(row[i]);
-  }
-  json.end_array();
-}
-
-// 3x3 matrices row by row, as mjData's xmat.
-void matrices(Json& json, const char* key, const std::vector<Eigen::Matrix3d>& v) {
-  json.key(key).begin_array();
-  for (const auto& m : v) {
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) json.value(m(r, c));
-    }
-  }
-  json.end_array();
-}
-
 // A matrix row by row, flattened.
 void row_major(Json& json, const char* key, const Eigen::MatrixXd& m) {
   json.key(key).begin_array();
@@ -91,45 +72,20 @@ void row_major(Json& json, const char* key, const Eigen::MatrixXd& m) {
   json.end_array();
 }
 
+// The sizes, then every array of Data (the field table, lever/fields.hpp), then the site
+// Jacobians.
 void print_json(const Model& model, const Data& data, const Evaluation& e) {
   Json json(stdout);
   json.begin_object();
   json.key("model").value(model.name);
-  json.key("time").value(data.time);
   json.key("nq").value(model.nq);
   json.key("nv").value(model.nv);
   json.key("nu").value(model.nu);
   json.key("nbody").value(model.nbody);
   json.key("nsite").value(model.nsite);
-  json.key("qpos").values(data.qpos);
-  json.key("qvel").values(data.qvel);
-  json.key("ctrl").values(data.ctrl);
-  rows(json, "xpos", data.xpos);
-  rows(json, "xquat", data.xquat);
-  matrices(json, "xmat", data.xmat);
-  rows(json, "xipos", data.xipos);
-  rows(json, "site_xpos", data.site_xpos);
-  matrices(json, "site_xmat", data.site_xmat);
-  json.key("qfrc_bias").values(data.qfrc_bias);
-  json.key("qfrc_passive").values(data.qfrc_passive);
-  json.key("actuator_force").values(data.actuator_force);
-  json.key("qfrc_actuator").values(data.qfrc_actuator);
-  json.key("qacc_smooth").values(data.qacc_smooth);
-  json.key("qacc").values(data.qacc);
-  json.key("qfrc_constraint").values(data.qfrc_constraint);
-  json.key("nefc").value(data.nefc);
-  json.key("efc_id").begin_array();
-  for (int r = 0; r < data.nefc; ++r) json.value(data.efc_id[r]);
-  json.end_array();
-  json.key("efc_pos").values(data.efc_pos.head(data.nefc));
-  json.key("efc_force").values(data.efc_force.head(data.nefc));
-  json.key("efc_aref").values(data.efc_aref.head(data.nefc));
-  json.key("efc_R").values(data.efc_R.head(data.nefc));
-  json.key("efc_D").values(data.efc_D.head(data.nefc));
-  row_major(json, "M", data.M);
+  write_data_fields(json, model, data);
   row_major(json, "site_jacp", e.jacp);
   row_major(json, "site_jacr", e.jacr);
-  json.key("energy").begin_array().value(data.energy[0]).value(data.energy[1]).end_array();
   json.end_object();
   json.newline();
 }

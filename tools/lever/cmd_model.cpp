@@ -10,6 +10,7 @@
 // Exit 0; a model that cannot be loaded prints the error and exits 2.
 #include <cstdio>
 #include <lever/mjcf.hpp>
+#include <lever/serialize.hpp>
 #include <string>
 #include <vector>
 
@@ -114,49 +115,6 @@ void print_bodies(std::FILE* out, const Model& m) {
 
 // ---- json ------------------------------------------------------------------------------------
 
-template <class V>
-void rows(Json& json, const std::string& key, const std::vector<V>& v) {
-  json.key(key).begin_array();
-  for (const V& row : v) {
-    for (Eigen::Index i = 0; i < row.size(); ++i) json.value(static_cast<double>(row[i]));
-  }
-  json.end_array();
-}
-
-template <size_t N>
-void rows(Json& json, const std::string& key, const std::vector<std::array<double, N>>& v) {
-  json.key(key).begin_array();
-  for (const auto& row : v) {
-    for (const double x : row) json.value(x);
-  }
-  json.end_array();
-}
-
-void numbers(Json& json, const std::string& key, const std::vector<double>& v) {
-  json.key(key).begin_array();
-  for (const double x : v) json.value(x);
-  json.end_array();
-}
-
-template <class T>
-void integers(Json& json, const std::string& key, const std::vector<T>& v) {
-  json.key(key).begin_array();
-  for (const T& x : v) json.value(static_cast<int>(x));
-  json.end_array();
-}
-
-void flags(Json& json, const std::string& key, const std::vector<bool>& v) {
-  json.key(key).begin_array();
-  for (const bool x : v) json.value(x ? 1 : 0);
-  json.end_array();
-}
-
-void names(Json& json, const std::string& key, const std::vector<std::string>& v) {
-  json.key(key).begin_array();
-  for (const std::string& s : v) json.value(s);
-  json.end_array();
-}
-
 // joints, motors, sites, bodies (mass, principal moments, explicit or inferred) and options
 void print_model_text(std::FILE* out, const Model& m) {
   std::fprintf(out, "model %s%s%s\n", m.name.c_str(), m.source.empty() ? "" : " from ",
@@ -170,88 +128,11 @@ void print_model_text(std::FILE* out, const Model& m) {
   print_options(out, m);
 }
 
-// one object: mjModel's field names, arrays flattened row-major, full double precision
+// one object: the sizes, names and every array of the field table (lever/fields.hpp) under
+// mjModel's names, flattened row-major, full double precision
 void print_model_json(Json& json, const Model& m) {
   json.begin_object();
-  json.key("model").value(m.name);
-  json.key("source").value(m.source);
-  for (const auto& [key, n] : {std::pair{"nq", m.nq},
-                               {"nv", m.nv},
-                               {"nu", m.nu},
-                               {"nbody", m.nbody},
-                               {"njnt", m.njnt},
-                               {"nsite", m.nsite},
-                               {"ngeom", m.ngeom}}) {
-    json.key(key).value(n);
-  }
-  names(json, "body_name", m.body_name);
-  integers(json, "body_parentid", m.body_parentid);
-  integers(json, "body_rootid", m.body_rootid);
-  integers(json, "body_jntnum", m.body_jntnum);
-  integers(json, "body_jntadr", m.body_jntadr);
-  integers(json, "body_dofnum", m.body_dofnum);
-  integers(json, "body_dofadr", m.body_dofadr);
-  integers(json, "body_geomnum", m.body_geomnum);
-  integers(json, "body_geomadr", m.body_geomadr);
-  rows(json, "body_pos", m.body_pos);
-  rows(json, "body_quat", m.body_quat);
-  rows(json, "body_ipos", m.body_ipos);
-  rows(json, "body_iquat", m.body_iquat);
-  numbers(json, "body_mass", m.body_mass);
-  rows(json, "body_inertia", m.body_inertia);
-  numbers(json, "body_subtreemass", m.body_subtreemass);
-  flags(json, "body_explicit_inertial", m.body_explicit_inertial);
-  names(json, "jnt_name", m.jnt_name);
-  integers(json, "jnt_type", m.jnt_type);
-  integers(json, "jnt_qposadr", m.jnt_qposadr);
-  integers(json, "jnt_dofadr", m.jnt_dofadr);
-  integers(json, "jnt_bodyid", m.jnt_bodyid);
-  rows(json, "jnt_pos", m.jnt_pos);
-  rows(json, "jnt_axis", m.jnt_axis);
-  flags(json, "jnt_limited", m.jnt_limited);
-  rows(json, "jnt_range", m.jnt_range);
-  numbers(json, "jnt_margin", m.jnt_margin);
-  rows(json, "jnt_solref", m.jnt_solref);
-  rows(json, "jnt_solimp", m.jnt_solimp);
-  numbers(json, "jnt_stiffness", m.jnt_stiffness);
-  json.key("qpos0").values(m.qpos0);
-  json.key("qpos_spring").values(m.qpos_spring);
-  integers(json, "dof_bodyid", m.dof_bodyid);
-  integers(json, "dof_jntid", m.dof_jntid);
-  integers(json, "dof_parentid", m.dof_parentid);
-  numbers(json, "dof_damping", m.dof_damping);
-  numbers(json, "dof_armature", m.dof_armature);
-  numbers(json, "dof_invweight0", m.dof_invweight0);
-  numbers(json, "dof_M0", m.dof_M0);
-  names(json, "geom_name", m.geom_name);
-  integers(json, "geom_type", m.geom_type);
-  integers(json, "geom_bodyid", m.geom_bodyid);
-  integers(json, "geom_contype", m.geom_contype);
-  integers(json, "geom_conaffinity", m.geom_conaffinity);
-  integers(json, "geom_group", m.geom_group);
-  rows(json, "geom_size", m.geom_size);
-  rows(json, "geom_pos", m.geom_pos);
-  rows(json, "geom_quat", m.geom_quat);
-  rows(json, "geom_rgba", m.geom_rgba);
-  numbers(json, "geom_mass", m.geom_mass);
-  names(json, "site_name", m.site_name);
-  integers(json, "site_bodyid", m.site_bodyid);
-  rows(json, "site_pos", m.site_pos);
-  rows(json, "site_quat", m.site_quat);
-  rows(json, "site_size", m.site_size);
-  names(json, "actuator_name", m.actuator_name);
-  // mjModel's actuator_trnid is (nu x 2): the joint, then -1 for a joint transmission
-  json.key("actuator_trnid").begin_array();
-  for (const int j : m.actuator_trnid) json.value(j).value(-1);
-  json.end_array();
-  rows(json, "actuator_gear", m.actuator_gear);
-  rows(json, "actuator_ctrlrange", m.actuator_ctrlrange);
-  rows(json, "actuator_forcerange", m.actuator_forcerange);
-  flags(json, "actuator_ctrllimited", m.actuator_ctrllimited);
-  flags(json, "actuator_forcelimited", m.actuator_forcelimited);
-  json.key("opt_timestep").value(m.opt.timestep);
-  json.key("opt_gravity").values(m.opt.gravity);
-  json.key("opt_integrator").value(static_cast<int>(m.opt.integrator));
+  write_model_fields(json, m);
   json.end_object();
   json.newline();
 }

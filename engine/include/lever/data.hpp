@@ -57,11 +57,11 @@ struct Data {
   // ---- position stage: kinematics() ------------------------------------------------------------
   std::vector<Eigen::Vector3d> xpos;       ///< (nbody) body frame origins
   std::vector<Eigen::Vector4d> xquat;      ///< (nbody) body orientations (w, x, y, z)
-  std::vector<Eigen::Matrix3d> xmat;       ///< (nbody) body rotations (local -> world)
+  std::vector<Mat3> xmat;                  ///< (nbody) body rotations (local -> world)
   std::vector<Eigen::Vector3d> xipos;      ///< (nbody) centres of mass
-  std::vector<Eigen::Matrix3d> ximat;      ///< (nbody) principal axes of inertia
+  std::vector<Mat3> ximat;                 ///< (nbody) principal axes of inertia
   std::vector<Eigen::Vector3d> site_xpos;  ///< (nsite)
-  std::vector<Eigen::Matrix3d> site_xmat;  ///< (nsite)
+  std::vector<Mat3> site_xmat;             ///< (nsite)
   std::vector<Eigen::Vector3d> xanchor;    ///< (njnt) joint anchors
   std::vector<Eigen::Vector3d> xaxis;      ///< (njnt) joint axes (unit)
   // Spatial quantities below are in absolute coordinates: world axes, origin at the centre of mass
@@ -134,10 +134,12 @@ struct Data {
     std::vector<int> lcp_index;        ///< (nefc_max) the active rows, in order
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
+    bool inside_entry = false;  ///< a public function has checked this Data and runs its stages
   } work;
 
-  int nefc_max = 0;            ///< 2 * njnt: the most limit rows a model can have
-  int nq = 0, nv = 0, nu = 0;  ///< sizes of the model this Data was built for (checked on use)
+  int nefc_max = 0;  ///< 2 * njnt: the most limit rows a model can have
+  /// sizes of the model this Data was built for (checked on use: lever/fields.hpp check_fit)
+  int nq = 0, nv = 0, nu = 0, nbody = 0, njnt = 0, ngeom = 0, nsite = 0;
 };
 
 /// Reset the state as MuJoCo's mj_resetData: qpos = qpos0; qvel, ctrl, qfrc_applied, qacc,

@@ -17,6 +17,17 @@ void forward(const Model& model, Data& data);
 /// the state at the start of the step (for RK4: its last stage).
 void step(const Model& model, Data& data);
 
+/// The first half of a step split around the control (MuJoCo's mj_step1): check qpos and qvel (a
+/// bad value resets the state and records a warning, as step() does), then the position and
+/// velocity stages of forward(): poses, M, limit rows, passive and bias forces. Between step1 and
+/// step2, set data.ctrl or data.qfrc_applied from what step1 computed (qfrc_bias, site_xpos, ...).
+void step1(const Model& model, Data& data);
+
+/// The second half (MuJoCo's mj_step2): motors, accelerations, the limit solve, the qacc check,
+/// then an Euler step. As in MuJoCo 2.2.2, RK4 models are advanced with Euler here (RK4 needs
+/// the controls at the middle of the step); step1 + step2 of an Euler model equals step().
+void step2(const Model& model, Data& data);
+
 /// Inverse dynamics (MuJoCo's mj_inverse): the joint force that produces data.qacc at the current
 /// qpos/qvel, given passive and limit forces: qfrc_inverse = rnea(qacc) - qfrc_passive -
 /// qfrc_constraint, where the limit forces are those implied by qacc.

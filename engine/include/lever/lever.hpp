@@ -6,6 +6,7 @@
 #include <lever/derivatives.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
+#include <lever/fields.hpp>
 #include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
 #include <lever/model.hpp>

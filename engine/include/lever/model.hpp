@@ -79,7 +79,7 @@ struct Model {
   std::vector<Eigen::Vector3d> body_inertia{Eigen::Vector3d::Zero()};    ///< principal, kg m^2
   /// lever: true where the body's mass came from <inertial>, false where it was inferred
   /// from geoms (or the body has no mass at all)
-  std::vector<bool> body_explicit_inertial{false};
+  std::vector<uint8_t> body_explicit_inertial{0};
   std::vector<int> body_line{0};  ///< lever: source line of the <body> element (0: unknown)
 
   // ---- joints (njnt) -------------------------------------------------------------------------
@@ -88,7 +88,7 @@ struct Model {
   std::vector<int> jnt_qposadr;
   std::vector<int> jnt_dofadr;
   std::vector<int> jnt_bodyid;
-  std::vector<bool> jnt_limited;
+  std::vector<uint8_t> jnt_limited;
   std::vector<std::array<double, 2>> jnt_solref;  ///< limit solref (timeconst, dampratio)
   std::vector<std::array<double, 5>> jnt_solimp;  ///< limit solimp (d0, dmax, width, mid, power)
   std::vector<Eigen::Vector3d> jnt_pos;   ///< anchor, in the body frame before this joint moves
@@ -134,8 +134,8 @@ struct Model {
   std::vector<std::string> actuator_name;
   std::vector<int> actuator_trnid;  ///< joint id
   std::vector<std::array<double, 6>> actuator_gear;
-  std::vector<bool> actuator_ctrllimited;
-  std::vector<bool> actuator_forcelimited;
+  std::vector<uint8_t> actuator_ctrllimited;
+  std::vector<uint8_t> actuator_forcelimited;
   std::vector<std::array<double, 2>> actuator_ctrlrange;
   std::vector<std::array<double, 2>> actuator_forcerange;
 
@@ -145,12 +145,12 @@ struct Model {
 
   // ---- set_const: constant rotations, so kinematics() does not rebuild them every call ------
   // A flag is 0 where the rotation is the identity, which lets kinematics() skip the product.
-  std::vector<uint8_t> body_rotated;       ///< body_quat is not the identity
-  std::vector<Eigen::Matrix3d> body_imat;  ///< rotation of body_iquat
-  std::vector<uint8_t> body_irotated;      ///< body_iquat is not the identity
-  std::vector<Eigen::Matrix3d> site_mat;   ///< rotation of site_quat
-  std::vector<uint8_t> site_rotated;       ///< site_quat is not the identity
-  std::vector<uint8_t> jnt_offset;         ///< jnt_pos is not zero (the anchor is off the origin)
+  std::vector<uint8_t> body_rotated;   ///< body_quat is not the identity
+  std::vector<Mat3> body_imat;         ///< rotation of body_iquat
+  std::vector<uint8_t> body_irotated;  ///< body_iquat is not the identity
+  std::vector<Mat3> site_mat;          ///< rotation of site_quat
+  std::vector<uint8_t> site_rotated;   ///< site_quat is not the identity
+  std::vector<uint8_t> jnt_offset;     ///< jnt_pos is not zero (the anchor is off the origin)
   /// the first joint of each body: its axis and anchor turned by body_quat, i.e. in the frame of
   /// the parent body (unused for a body's later joints)
   std::vector<Eigen::Vector3d> jnt_axis_in_parent;

@@ -19,6 +19,9 @@ namespace lever {
 using Vector6d = Eigen::Matrix<double, 6, 1>;
 using Motion = Vector6d;  ///< spatial motion vector [angular; linear]
 using Force = Vector6d;   ///< spatial force vector [moment; force]
+/// A rotation matrix, stored row by row as MuJoCo stores xmat, so that an array of them is an
+/// (n, 9) array in MuJoCo's layout (the Python and JavaScript views rely on it).
+using Mat3 = Eigen::Matrix<double, 3, 3, Eigen::RowMajor>;
 
 /// Skew-symmetric matrix of a 3-vector: skew(a) b = a x b.
 inline Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
@@ -28,14 +31,14 @@ inline Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
 }
 
 /// R v for a 3x3 rotation R, written out (the compiler schedules it better than a generic product).
-inline Eigen::Vector3d rotate(const Eigen::Matrix3d& R, const Eigen::Vector3d& v) {
+inline Eigen::Vector3d rotate(const Mat3& R, const Eigen::Vector3d& v) {
   return Eigen::Vector3d(R(0, 0) * v[0] + R(0, 1) * v[1] + R(0, 2) * v[2],
                          R(1, 0) * v[0] + R(1, 1) * v[1] + R(1, 2) * v[2],
                          R(2, 0) * v[0] + R(2, 1) * v[1] + R(2, 2) * v[2]);
 }
 
 /// R^T v.
-inline Eigen::Vector3d rotate_back(const Eigen::Matrix3d& R, const Eigen::Vector3d& v) {
+inline Eigen::Vector3d rotate_back(const Mat3& R, const Eigen::Vector3d& v) {
   return Eigen::Vector3d(R(0, 0) * v[0] + R(1, 0) * v[1] + R(2, 0) * v[2],
                          R(0, 1) * v[0] + R(1, 1) * v[1] + R(2, 1) * v[2],
                          R(0, 2) * v[0] + R(1, 2) * v[1] + R(2, 2) * v[2]);

@@ -73,15 +73,8 @@ std::vector<double> flat(const std::vector<Eigen::Vector3d>& v) {
   return out;
 }
 
-std::vector<double> flat(const std::vector<Eigen::Matrix3d>& v) {
-  std::vector<double> out;
-  for (const auto& R : v) {
-    for (int r = 0; r < 3; ++r) {
-      for (int c = 0; c < 3; ++c) out.push_back(R(r, c));
-    }
-  }
-  return out;
-}
+// lever stores rotations row by row, as MuJoCo does (lever::Mat3)
+const double* flat(const std::vector<Mat3>& v) { return v.empty() ? nullptr : v[0].data(); }
 
 std::vector<double> row_major(const Eigen::MatrixXd& A) {
   std::vector<double> out;
@@ -114,15 +107,13 @@ void compare_kinematics(const Twin& t, int k, Report& r) {
             per_object(model.body_name, "body", 3));
   r.compare("xquat", k, quaternions_signed_like(data.xquat, d->xquat).data(), d->xquat, 4 * nb,
             per_object(model.body_name, "body", 4));
-  r.compare("xmat", k, flat(data.xmat).data(), d->xmat, 9 * nb,
-            per_object(model.body_name, "body", 9));
+  r.compare("xmat", k, flat(data.xmat), d->xmat, 9 * nb, per_object(model.body_name, "body", 9));
   r.compare("xipos", k, flat(data.xipos).data(), d->xipos, 3 * nb,
             per_object(model.body_name, "body", 3));
-  r.compare("ximat", k, flat(data.ximat).data(), d->ximat, 9 * nb,
-            per_object(model.body_name, "body", 9));
+  r.compare("ximat", k, flat(data.ximat), d->ximat, 9 * nb, per_object(model.body_name, "body", 9));
   r.compare("site_xpos", k, flat(data.site_xpos).data(), d->site_xpos, 3 * ns,
             per_object(model.site_name, "site", 3));
-  r.compare("site_xmat", k, flat(data.site_xmat).data(), d->site_xmat, 9 * ns,
+  r.compare("site_xmat", k, flat(data.site_xmat), d->site_xmat, 9 * ns,
             per_object(model.site_name, "site", 9));
 }
 

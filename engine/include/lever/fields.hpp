@@ -1,0 +1,203 @@
+// lever/fields.hpp: one table of the arrays in Model and Data (name, element type, shape, stage).
+//
+// As MuJoCo's mjxmacro.h does for mjModel and mjData, each array is listed once, here, and
+// everything that has to walk over the arrays expands the table instead of keeping its own list:
+// the Data constructor (sizes), the size checks of every public function, the command line's JSON
+// and CSV dumps, the comparison with MuJoCo, and the Python and JavaScript bindings.
+//
+// Every listed array is contiguous and row-major: it is an (rows, cols) array of doubles, ints or
+// bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, nbody, njnt, ngeom,
+// nsite, nefc: the live limit rows of a Data; `one` for a single row); `cols` is a number. The last
+// column says whether MuJoCo 2.2.2's mjModel/mjData has an array of the same name, shape and
+// meaning
+// (`mujoco`) or not (`own`: lever's own, or laid out differently from MuJoCo's).
+//
+// Adding an array to Model or Data: declare the member, then add its row here. The static_asserts
+// in fields.cpp check that its element type and layout match the row.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <lever/data.hpp>
+#include <lever/model.hpp>
+
+// X(name, element type, rows, cols, origin)
+#define LEVER_MODEL_FIELDS(X)                                \
+  X(body_parentid, int, nbody, 1, mujoco)                    \
+  X(body_rootid, int, nbody, 1, mujoco)                      \
+  X(body_jntnum, int, nbody, 1, mujoco)                      \
+  X(body_jntadr, int, nbody, 1, mujoco)                      \
+  X(body_dofnum, int, nbody, 1, mujoco)                      \
+  X(body_dofadr, int, nbody, 1, mujoco)                      \
+  X(body_geomnum, int, nbody, 1, mujoco)                     \
+  X(body_geomadr, int, nbody, 1, mujoco)                     \
+  X(body_pos, double, nbody, 3, mujoco)                      \
+  X(body_quat, double, nbody, 4, mujoco)                     \
+  X(body_ipos, double, nbody, 3, mujoco)                     \
+  X(body_iquat, double, nbody, 4, mujoco)                    \
+  X(body_mass, double, nbody, 1, mujoco)                     \
+  X(body_subtreemass, double, nbody, 1, mujoco)              \
+  X(body_inertia, double, nbody, 3, mujoco)                  \
+  X(body_invweight0, double, nbody, 2, mujoco)               \
+  X(body_explicit_inertial, uint8_t, nbody, 1, own)          \
+  X(body_line, int, nbody, 1, own)                           \
+  X(jnt_type, int, njnt, 1, mujoco)                          \
+  X(jnt_qposadr, int, njnt, 1, mujoco)                       \
+  X(jnt_dofadr, int, njnt, 1, mujoco)                        \
+  X(jnt_bodyid, int, njnt, 1, mujoco)                        \
+  X(jnt_limited, uint8_t, njnt, 1, mujoco)                   \
+  X(jnt_solref, double, njnt, 2, mujoco)                     \
+  X(jnt_solimp, double, njnt, 5, mujoco)                     \
+  X(jnt_pos, double, njnt, 3, mujoco)                        \
+  X(jnt_axis, double, njnt, 3, mujoco)                       \
+  X(jnt_stiffness, double, njnt, 1, mujoco)                  \
+  X(jnt_range, double, njnt, 2, mujoco)                      \
+  X(jnt_margin, double, njnt, 1, mujoco)                     \
+  X(qpos0, double, nq, 1, mujoco)                            \
+  X(qpos_spring, double, nq, 1, mujoco)                      \
+  X(dof_bodyid, int, nv, 1, mujoco)                          \
+  X(dof_jntid, int, nv, 1, mujoco)                           \
+  X(dof_parentid, int, nv, 1, mujoco)                        \
+  X(dof_armature, double, nv, 1, mujoco)                     \
+  X(dof_damping, double, nv, 1, mujoco)                      \
+  X(dof_invweight0, double, nv, 1, mujoco)                   \
+  X(dof_M0, double, nv, 1, mujoco)                           \
+  X(geom_type, int, ngeom, 1, mujoco)                        \
+  X(geom_contype, int, ngeom, 1, mujoco)                     \
+  X(geom_conaffinity, int, ngeom, 1, mujoco)                 \
+  X(geom_bodyid, int, ngeom, 1, mujoco)                      \
+  X(geom_group, int, ngeom, 1, mujoco)                       \
+  X(geom_size, double, ngeom, 3, mujoco)                     \
+  X(geom_pos, double, ngeom, 3, mujoco)                      \
+  X(geom_quat, double, ngeom, 4, mujoco)                     \
+  X(geom_rgba, double, ngeom, 4, own) /* float in MuJoCo */  \
+  X(geom_mass, double, ngeom, 1, own)                        \
+  X(site_bodyid, int, nsite, 1, mujoco)                      \
+  X(site_size, double, nsite, 3, mujoco)                     \
+  X(site_pos, double, nsite, 3, mujoco)                      \
+  X(site_quat, double, nsite, 4, mujoco)                     \
+  X(actuator_trnid, int, nu, 1, own) /* (nu, 2) in MuJoCo */ \
+  X(actuator_ctrllimited, uint8_t, nu, 1, mujoco)            \
+  X(actuator_forcelimited, uint8_t, nu, 1, mujoco)           \
+  X(actuator_gear, double, nu, 6, mujoco)                    \
+  X(actuator_ctrlrange, double, nu, 2, mujoco)               \
+  X(actuator_forcerange, double, nu, 2, mujoco)
+
+// X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
+// or `inverse` (written by inverse() only) or `energy` (by compute_energy() only)
+#define LEVER_DATA_FIELDS(X)                                   \
+  X(qpos, double, nq, 1, state, mujoco)                        \
+  X(qvel, double, nv, 1, state, mujoco)                        \
+  X(ctrl, double, nu, 1, state, mujoco)                        \
+  X(qfrc_applied, double, nv, 1, state, mujoco)                \
+  X(qacc, double, nv, 1, acceleration, mujoco)                 \
+  X(xpos, double, nbody, 3, position, mujoco)                  \
+  X(xquat, double, nbody, 4, position, mujoco)                 \
+  X(xmat, double, nbody, 9, position, mujoco)                  \
+  X(xipos, double, nbody, 3, position, mujoco)                 \
+  X(ximat, double, nbody, 9, position, mujoco)                 \
+  X(xanchor, double, njnt, 3, position, mujoco)                \
+  X(xaxis, double, njnt, 3, position, mujoco)                  \
+  X(site_xpos, double, nsite, 3, position, mujoco)             \
+  X(site_xmat, double, nsite, 9, position, mujoco)             \
+  X(subtree_com, double, nbody, 3, position, mujoco)           \
+  X(cdof, double, nv, 6, position, mujoco)                     \
+  X(M, double, nv, -1, position, own) /* MuJoCo: qM, sparse */ \
+  X(qLDiagInv, double, nv, 1, position, mujoco)                \
+  X(actuator_length, double, nu, 1, position, mujoco)          \
+  X(efc_id, int, nefc, 1, position, mujoco)                    \
+  X(efc_pos, double, nefc, 1, position, mujoco)                \
+  X(efc_margin, double, nefc, 1, position, mujoco)             \
+  X(efc_diagApprox, double, nefc, 1, position, mujoco)         \
+  X(efc_R, double, nefc, 1, position, mujoco)                  \
+  X(efc_D, double, nefc, 1, position, mujoco)                  \
+  X(efc_sign, double, nefc, 1, position, own)                  \
+  X(efc_dof, int, nefc, 1, position, own)                      \
+  X(efc_imp, double, nefc, 1, position, own)                   \
+  X(efc_K, double, nefc, 1, position, own)                     \
+  X(efc_B, double, nefc, 1, position, own)                     \
+  X(cvel, double, nbody, 6, velocity, mujoco)                  \
+  X(cdof_dot, double, nv, 6, velocity, mujoco)                 \
+  X(actuator_velocity, double, nu, 1, velocity, mujoco)        \
+  X(qfrc_passive, double, nv, 1, velocity, mujoco)             \
+  X(qfrc_bias, double, nv, 1, velocity, mujoco)                \
+  X(efc_vel, double, nefc, 1, velocity, mujoco)                \
+  X(efc_aref, double, nefc, 1, velocity, mujoco)               \
+  X(actuator_force, double, nu, 1, acceleration, mujoco)       \
+  X(qfrc_actuator, double, nv, 1, acceleration, mujoco)        \
+  X(qfrc_smooth, double, nv, 1, acceleration, mujoco)          \
+  X(qacc_smooth, double, nv, 1, acceleration, mujoco)          \
+  X(efc_b, double, nefc, 1, acceleration, mujoco)              \
+  X(efc_force, double, nefc, 1, acceleration, mujoco)          \
+  X(efc_state, int, nefc, 1, acceleration, mujoco)             \
+  X(qfrc_constraint, double, nv, 1, acceleration, mujoco)      \
+  X(qfrc_inverse, double, nv, 1, inverse, mujoco)              \
+  X(energy, double, one, 2, energy, mujoco)
+
+namespace lever {
+
+/// The element type of an array.
+enum class Scalar : int { kDouble, kInt, kByte };
+
+/// The sizes an array's rows can be counted in.
+enum class Size : int { kOne, kNq, kNv, kNu, kNbody, kNjnt, kNgeom, kNsite, kNefc };
+
+/// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;
+/// kEnergy: compute_energy() only).
+enum class Stage : int { kState, kPosition, kVelocity, kAcceleration, kInverse, kEnergy };
+
+/// One row of the table.
+struct FieldInfo {
+  const char* name;
+  Scalar scalar;
+  Size rows;
+  int cols;        ///< -1: as many as rows counts (M is nv x nv)
+  Stage stage;     ///< Data arrays only
+  bool in_mujoco;  ///< MuJoCo 2.2.2 has an array of this name, shape and meaning
+};
+
+/// An array of a Model or Data, located: `rows x cols` elements from `data`, row-major.
+struct FieldView {
+  const FieldInfo* info = nullptr;
+  void* data = nullptr;
+  int rows = 0, cols = 0;
+
+  const double* doubles() const { return static_cast<const double*>(data); }
+  double* doubles() { return static_cast<double*>(data); }
+  long size() const { return static_cast<long>(rows) * cols; }
+};
+
+const std::vector<FieldInfo>& model_field_table();
+const std::vector<FieldInfo>& data_field_table();
+
+/// How many rows `size` counts in this model (kNefc: the most limit rows it can have).
+int size_of(const Model& model, Size size);
+/// The same for a Data (kNefc: its live rows, data.nefc).
+int size_of(const Model& model, const Data& data, Size size);
+const char* size_name(Size size);
+const char* stage_name(Stage stage);
+const char* scalar_name(Scalar scalar);
+
+/// Every array of the model (data), located. Views of a const object must not be written.
+std::vector<FieldView> model_fields(Model& model);
+std::vector<FieldView> model_fields(const Model& model);
+std::vector<FieldView> data_fields(const Model& model, Data& data);
+std::vector<FieldView> data_fields(const Model& model, const Data& data);
+
+/// One array by name; throws StateError naming it when there is no such array.
+FieldView model_field(const Model& model, std::string_view name);
+FieldView data_field(const Model& model, const Data& data, std::string_view name);
+
+/// Whether every array of the model has the size the table gives it (and the model's own
+/// counts agree with each other); throws ModelError naming the first array that does not.
+void check_model_sizes(const Model& model);
+
+/// Throws StateError unless `data` was built for a model of this model's sizes and none of its
+/// arrays was resized since (for example by assigning a vector of another length to data.qpos).
+/// `where` names the function that checks, for the message. Allocates nothing when they fit.
+void check_fit(const Model& model, const Data& data, const char* where);
+
+}  // namespace lever

@@ -1,0 +1,78 @@
+"""lever: rigid-body dynamics for robot arms, proven against MuJoCo 2.2.2.
+
+The C++ library seen from Python. Model and Data arrays are numpy views of lever's own memory
+(zero-copy): ``data.qpos[:] = q`` sets the state lever evaluates.
+
+    import lever
+    model = lever.load("models/arm2.xml")     # raises lever.ParseError with file and line
+    data = lever.Data(model)
+    data.qpos[:] = [0.6, -1.2]
+    lever.forward(model, data)                # data.qfrc_bias, data.M, data.site_xpos, ...
+    for _ in range(500):
+        lever.step(model, data)
+    report = lever.check(model)               # lesson 5.1's six checks, as a dict
+
+For programs written against MuJoCo's Python bindings, ``import lever.mujoco as mujoco``.
+"""
+
+import json as _json
+
+from ._lever import (  # noqa: F401  (the package's API)
+    Data,
+    Error,
+    Model,
+    ModelError,
+    ParseError,
+    StateError,
+    __version__,
+    actuation,
+    bias,
+    compute_energy,
+    copy_model,
+    crba,
+    data_field_table,
+    factor_mass,
+    forward,
+    inverse,
+    jac_point,
+    jac_site,
+    kinematics,
+    load,
+    load_string,
+    model_field_table,
+    passive,
+    reset,
+    rnea,
+    set_const,
+    solve_mass,
+    step,
+    step1,
+    step2,
+    transmission,
+)
+from . import _lever
+
+
+def check(model: Model) -> dict:
+    """Lesson 5.1's six checks of a model: the report `lever check --json` prints, as a dict.
+
+    Its keys are the sections (``structure``, ``kinematics``, ``torque_budget``, ``inertia``,
+    ``soft_stops``, ``clamping``), ``findings`` (the claims that do not check out) and
+    ``exit_status`` (0 when every claim checks out).
+    """
+    return _json.loads(_lever.check_json(model))
+
+
+def check_text(model: Model) -> str:
+    """The same checks as the text `lever check` prints."""
+    return _lever.check_text(model)
+
+
+def lab_run(model: Model, data: Data, torque, gravity_compensation: bool = False,
+            steps: int = 1, on_row=None) -> dict:
+    """Lesson 5.1's lab: ``ctrl = torque + (qfrc_bias / gear if gravity_compensation)``, then a
+    step, ``steps`` times. ``on_row(row, data)`` sees the start state and every state after a step.
+    Returns the clamped-step count per motor, the engine's warnings and the non-finite rows."""
+    import numpy as _np
+    return _lever.lab_run(model, data, _np.asarray(torque, dtype=float), bool(gravity_compensation),
+                          int(steps), on_row)

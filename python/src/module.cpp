@@ -1,0 +1,361 @@
+// lever._lever: the C++ library seen from Python.
+//
+// Model and Data are exposed with every array of the field table (lever/fields.hpp) as a numpy
+// array that is a zero-copy view of lever's own memory: writing into `data.qpos[:]` writes the
+// state lever evaluates, and writing into `model.body_mass[2]` changes the model (call
+// set_const afterwards, as after any parameter edit). A view keeps its Model or Data alive.
+// Functions take (model, data) as the C++ ones do; every one checks that the two belong together.
+// Errors come back as exceptions: lever.ParseError (file, line, element, attribute), ModelError,
+// StateError.
+#include <pybind11/eigen.h>
+#include <pybind11/functional.h>
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <lever/check.hpp>
+#include <lever/fields.hpp>
+#include <lever/lab.hpp>
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+#include <lever/serialize.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+namespace py = pybind11;
+
+namespace {
+
+// A Data with the model it was built for, so that Python can never pair them wrongly by accident
+// and the model outlives every Data made from it.
+struct PyData {
+  std::shared_ptr<lever::Model> model;
+  lever::Data data;
+  explicit PyData(std::shared_ptr<lever::Model> m) : model(std::move(m)), data(*model) {}
+};
+
+using ModelPtr = std::shared_ptr<lever::Model>;
+using DataPtr = std::shared_ptr<PyData>;
+
+// A numpy view of one field; `owner` keeps the memory alive. Shape (rows,) when the table gives
+// one column, else (rows, cols); MuJoCo's Python bindings use the same shapes.
+py::array view(const lever::FieldView& v, py::handle owner, bool writable) {
+  std::vector<py::ssize_t> shape, strides;
+  py::dtype dtype;
+  size_t item = 0;
+  switch (v.info->scalar) {
+    case lever::Scalar::kDouble:
+      dtype = py::dtype::of<double>();
+      item = sizeof(double);
+      break;
+    case lever::Scalar::kInt:
+      dtype = py::dtype::of<int32_t>();
+      item = sizeof(int32_t);
+      break;
+    case lever::Scalar::kByte:
+      dtype = py::dtype::of<uint8_t>();
+      item = sizeof(uint8_t);
+      break;
+  }
+  // one row (energy): a flat array of its columns, as MuJoCo's bindings give mjData's vectors
+  if (v.info->rows != lever::Size::kOne) {
+    shape.push_back(v.rows);
+    strides.push_back(static_cast<py::ssize_t>(item) * v.cols);
+  }
+  if (v.cols != 1 || v.info->rows == lever::Size::kOne) {
+    shape.push_back(v.cols);
+    strides.push_back(static_cast<py::ssize_t>(item));
+  }
+  py::array a(dtype, shape, strides, v.data, owner);
+  if (!writable) {
+    py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
+  }
+  return a;
+}
+
+lever::Model& model_of(const ModelPtr& m) {
+  if (!m) throw lever::StateError("the model is None.");
+  return *m;
+}
+
+// The pairing check Python adds on top of the C++ one: a Data is used with the model it was
+// built from (the C++ check compares sizes only).
+lever::Data& data_for(const ModelPtr& model, const DataPtr& data) {
+  if (!data) throw lever::StateError("the data is None.");
+  if (data->model != model) {
+    throw lever::StateError(
+        "this Data was made from another Model: make it with lever.Data(model) from the model "
+        "you pass with it.");
+  }
+  return data->data;
+}
+
+// Python exception classes, made once in the module
+py::object g_parse_error, g_model_error, g_state_error, g_error;
+
+}  // namespace
+
+PYBIND11_MODULE(_lever, m) {
+  m.doc() = "lever: rigid-body dynamics for robot arms, proven against MuJoCo 2.2.2";
+  m.attr("__version__") = lever::version_string();
+
+  // ---- exceptions ------------------------------------------------------------------------------
+  g_error = py::reinterpret_borrow<py::object>(
+      py::exception<lever::Error>(m, "Error", PyExc_RuntimeError));
+  g_model_error = py::reinterpret_borrow<py::object>(
+      py::exception<lever::ModelError>(m, "ModelError", PyExc_ValueError));
+  g_state_error = py::reinterpret_borrow<py::object>(
+      py::exception<lever::StateError>(m, "StateError", PyExc_ValueError));
+  g_parse_error = py::reinterpret_borrow<py::object>(
+      py::exception<lever::mjcf::ParseError>(m, "ParseError", PyExc_ValueError));
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const lever::mjcf::ParseError& e) {
+      py::object err = g_parse_error(e.what());
+      err.attr("file") = e.file();
+      err.attr("line") = e.line();
+      err.attr("element") = e.element();
+      err.attr("attribute") = e.attribute();
+      err.attr("problem") = e.problem();
+      PyErr_SetObject(g_parse_error.ptr(), err.ptr());
+    } catch (const lever::ModelError& e) {
+      PyErr_SetString(g_model_error.ptr(), e.what());
+    } catch (const lever::StateError& e) {
+      PyErr_SetString(g_state_error.ptr(), e.what());
+    } catch (const lever::Error& e) {
+      PyErr_SetString(g_error.ptr(), e.what());
+    }
+  });
+
+  // ---- the field table -------------------------------------------------------------------------
+  auto table = [](const std::vector<lever::FieldInfo>& rows, bool data) {
+    py::list out;
+    for (const lever::FieldInfo& f : rows) {
+      py::dict d;
+      d["name"] = f.name;
+      d["dtype"] = lever::scalar_name(f.scalar);
+      d["rows"] = lever::size_name(f.rows);
+      d["cols"] = f.cols < 0 ? py::object(py::str(lever::size_name(f.rows))) : py::int_(f.cols);
+      if (data) d["stage"] = lever::stage_name(f.stage);
+      d["mujoco"] = f.in_mujoco;
+      out.append(d);
+    }
+    return out;
+  };
+  m.def(
+      "model_field_table", [table] { return table(lever::model_field_table(), false); },
+      "Every array of Model: name, dtype, rows, cols, and whether MuJoCo has it.");
+  m.def(
+      "data_field_table", [table] { return table(lever::data_field_table(), true); },
+      "Every array of Data: name, dtype, rows, cols, stage, and whether MuJoCo has it.");
+
+  // ---- Model -----------------------------------------------------------------------------------
+  py::class_<lever::Model, ModelPtr> model_class(m, "Model", "A compiled model (lever::Model).");
+  model_class.def_property_readonly("name", [](const lever::Model& x) { return x.name; })
+      .def_property_readonly("source", [](const lever::Model& x) { return x.source; })
+      .def_property_readonly("nq", [](const lever::Model& x) { return x.nq; })
+      .def_property_readonly("nv", [](const lever::Model& x) { return x.nv; })
+      .def_property_readonly("nu", [](const lever::Model& x) { return x.nu; })
+      .def_property_readonly("nbody", [](const lever::Model& x) { return x.nbody; })
+      .def_property_readonly("njnt", [](const lever::Model& x) { return x.njnt; })
+      .def_property_readonly("ngeom", [](const lever::Model& x) { return x.ngeom; })
+      .def_property_readonly("nsite", [](const lever::Model& x) { return x.nsite; })
+      .def_property(
+          "timestep", [](const lever::Model& x) { return x.opt.timestep; },
+          [](lever::Model& x, double h) { x.opt.timestep = h; })
+      .def_property(
+          "gravity",
+          [](py::object self) {
+            auto& x = self.cast<lever::Model&>();
+            return py::array_t<double>({3}, {sizeof(double)}, x.opt.gravity.data(), self);
+          },
+          nullptr)
+      .def_property(
+          "integrator", [](const lever::Model& x) { return static_cast<int>(x.opt.integrator); },
+          [](lever::Model& x, int i) {
+            if (i != 0 && i != 1) {
+              throw lever::StateError("integrator " + std::to_string(i) +
+                                      " is not one lever has (0 Euler, 1 RK4).");
+            }
+            x.opt.integrator = static_cast<lever::Integrator>(i);
+          })
+      .def_property_readonly("body_name", [](const lever::Model& x) { return x.body_name; })
+      .def_property_readonly("jnt_name", [](const lever::Model& x) { return x.jnt_name; })
+      .def_property_readonly("geom_name", [](const lever::Model& x) { return x.geom_name; })
+      .def_property_readonly("site_name", [](const lever::Model& x) { return x.site_name; })
+      .def_property_readonly("actuator_name", [](const lever::Model& x) { return x.actuator_name; })
+      .def(
+          "field",
+          [](py::object self, const std::string& name) {
+            const auto& x = self.cast<const lever::Model&>();
+            return view(lever::model_field(x, name), self, true);
+          },
+          py::arg("name"), "One array of the field table, as a writable numpy view.")
+      .def("to_json", [](const lever::Model& x) { return lever::model_to_json(x); })
+      .def("__repr__", [](const lever::Model& x) {
+        return "<lever.Model '" + x.name + "' nq=" + std::to_string(x.nq) +
+               " nu=" + std::to_string(x.nu) + " nbody=" + std::to_string(x.nbody) + ">";
+      });
+  for (const lever::FieldInfo& f : lever::model_field_table()) {
+    const std::string name = f.name;
+    model_class.def_property_readonly(f.name, [name](py::object self) {
+      const auto& x = self.cast<const lever::Model&>();
+      return view(lever::model_field(x, name), self, true);
+    });
+  }
+
+  m.def(
+      "load",
+      [](const std::string& path, bool infer_inertia_from_geoms) {
+        return std::make_shared<lever::Model>(
+            lever::mjcf::load_file(path, {.infer_inertia_from_geoms = infer_inertia_from_geoms}));
+      },
+      py::arg("path"), py::arg("infer_inertia_from_geoms") = false,
+      "Load and compile an MJCF file (raises lever.ParseError with file and line).");
+  m.def(
+      "load_string",
+      [](const std::string& xml, const std::string& filename, bool infer) {
+        return std::make_shared<lever::Model>(
+            lever::mjcf::load_string(xml, filename, {.infer_inertia_from_geoms = infer}));
+      },
+      py::arg("xml"), py::arg("filename") = "<string>", py::arg("infer_inertia_from_geoms") = false,
+      "Load and compile MJCF text.");
+  m.def(
+      "set_const", [](const ModelPtr& x) { lever::set_const(model_of(x)); }, py::arg("model"),
+      "Recompute the model's derived constants after editing a parameter (MuJoCo's mj_setConst).");
+  m.def(
+      "copy_model", [](const ModelPtr& x) { return std::make_shared<lever::Model>(model_of(x)); },
+      py::arg("model"), "An independent copy of the model.");
+
+  // ---- Data ------------------------------------------------------------------------------------
+  py::class_<PyData, DataPtr> data_class(m, "Data",
+                                         "The state, outputs and workspace (lever::Data).");
+  data_class
+      .def(py::init([](const ModelPtr& x) {
+             model_of(x);
+             return std::make_shared<PyData>(x);
+           }),
+           py::arg("model"))
+      .def_property_readonly("model", [](const PyData& d) { return d.model; })
+      .def_property(
+          "time", [](const PyData& d) { return d.data.time; },
+          [](PyData& d, double t) { d.data.time = t; })
+      .def_property_readonly("nefc", [](const PyData& d) { return d.data.nefc; })
+      .def_property_readonly("warnings",
+                             [](const PyData& d) { return lever::warning_text(d.data); })
+      .def_property_readonly("warning_count",
+                             [](const PyData& d) { return lever::warning_count(d.data); })
+      .def(
+          "field",
+          [](py::object self, const std::string& name) {
+            const auto& d = self.cast<const PyData&>();
+            return view(lever::data_field(*d.model, d.data, name), self, true);
+          },
+          py::arg("name"))
+      .def("to_json", [](const PyData& d) { return lever::data_to_json(*d.model, d.data); });
+  for (const lever::FieldInfo& f : lever::data_field_table()) {
+    const std::string name = f.name;
+    data_class.def_property_readonly(f.name, [name](py::object self) {
+      const auto& d = self.cast<const PyData&>();
+      return view(lever::data_field(*d.model, d.data, name), self, true);
+    });
+  }
+
+  // ---- the engine ------------------------------------------------------------------------------
+  auto pipeline = [&m](const char* name, void (*fn)(const lever::Model&, lever::Data&),
+                       const char* doc) {
+    m.def(
+        name,
+        [fn](const ModelPtr& x, const DataPtr& d) {
+          lever::Data& data = data_for(x, d);
+          fn(*x, data);
+        },
+        py::arg("model"), py::arg("data"), doc);
+  };
+  pipeline("forward", lever::forward, "Everything at the current state (mj_forward).");
+  pipeline("step", lever::step, "One step of the model's integrator (mj_step).");
+  pipeline("step1", lever::step1, "Position and velocity stages of a split step (mj_step1).");
+  pipeline("step2", lever::step2, "Motors, accelerations, the limit solve and Euler (mj_step2).");
+  pipeline("inverse", lever::inverse, "Inverse dynamics into qfrc_inverse (mj_inverse).");
+  pipeline("kinematics", lever::kinematics, "Poses and com-frame quantities (mj_kinematics).");
+  pipeline("crba", lever::crba, "M(q) into data.M, armature included (mj_crb).");
+  pipeline("factor_mass", lever::factor_mass, "Factor M (mj_factorM).");
+  pipeline("bias", lever::bias, "qfrc_bias (mj_rne with flg_acc = 0).");
+  pipeline("passive", lever::passive, "qfrc_passive (mj_passive).");
+  pipeline("transmission", lever::transmission, "actuator_length (mj_transmission).");
+  pipeline("actuation", lever::actuation, "actuator_force and qfrc_actuator (mj_fwdActuation).");
+  pipeline("compute_energy", lever::compute_energy, "data.energy: potential, kinetic.");
+  pipeline("reset", lever::reset, "qpos = qpos0, the rest of the state zero (mj_resetData).");
+  m.def(
+      "rnea",
+      [](const ModelPtr& x, const DataPtr& d, const Eigen::VectorXd& qacc) {
+        lever::Data& data = data_for(x, d);
+        Eigen::VectorXd tau(x->nv);
+        lever::rnea(*x, data, qacc, tau);
+        return tau;
+      },
+      py::arg("model"), py::arg("data"), py::arg("qacc"),
+      "M(q) qacc + qfrc_bias by recursive Newton-Euler (armature included).");
+  m.def(
+      "solve_mass",
+      [](const ModelPtr& x, const DataPtr& d, Eigen::VectorXd v) {
+        lever::solve_mass(*x, data_for(x, d), v);
+        return v;
+      },
+      py::arg("model"), py::arg("data"), py::arg("vec"), "M^-1 vec with the current factor.");
+  m.def(
+      "jac_site",
+      [](const ModelPtr& x, const DataPtr& d, int site) {
+        Eigen::MatrixXd jacp(3, x->nv), jacr(3, x->nv);
+        lever::jac_site(*x, data_for(x, d), site, jacp, jacr);
+        return py::make_tuple(jacp, jacr);
+      },
+      py::arg("model"), py::arg("data"), py::arg("site"), "(jacp, jacr), each 3 x nv.");
+  m.def(
+      "jac_point",
+      [](const ModelPtr& x, const DataPtr& d, int body, const Eigen::Vector3d& point) {
+        Eigen::MatrixXd jacp(3, x->nv), jacr(3, x->nv);
+        lever::jac_point(*x, data_for(x, d), body, point, jacp, jacr);
+        return py::make_tuple(jacp, jacr);
+      },
+      py::arg("model"), py::arg("data"), py::arg("body"), py::arg("point"),
+      "(jacp, jacr) of a world point fixed to a body.");
+
+  // ---- the checks and the lab ------------------------------------------------------------------
+  m.def(
+      "check_json",
+      [](const ModelPtr& x) {
+        const lever::check::Report r = lever::check::check_model(model_of(x));
+        return lever::check::to_json(r);
+      },
+      py::arg("model"), "Lesson 5.1's six checks of a model, as the JSON `lever check` prints.");
+  m.def(
+      "check_text",
+      [](const ModelPtr& x) {
+        return lever::check::to_text(lever::check::check_model(model_of(x)));
+      },
+      py::arg("model"), "The same checks as the text `lever check` prints.");
+  m.def(
+      "lab_run",
+      [](const ModelPtr& x, const DataPtr& d, const Eigen::VectorXd& torque,
+         bool gravity_compensation, long steps, const py::object& on_row) {
+        lever::Data& data = data_for(x, d);
+        lever::lab::Controller c{torque, gravity_compensation};
+        lever::lab::RowCallback callback;
+        if (!on_row.is_none()) {
+          callback = [&on_row, &d](long row, const lever::Data&) { on_row(row, d); };
+        }
+        const lever::lab::RunLog log = lever::lab::run(*x, data, c, steps, callback);
+        py::dict out;
+        out["clamped"] = log.clamped;
+        out["warnings"] = log.warnings.lines();
+        out["non_finite_rows"] = log.non_finite_rows;
+        return out;
+      },
+      py::arg("model"), py::arg("data"), py::arg("torque"), py::arg("gravity_compensation"),
+      py::arg("steps"), py::arg("on_row") = py::none(),
+      "Lesson 5.1's lab: constant torque plus optional gravity compensation, `steps` steps.");
+}

@@ -1,0 +1,170 @@
+// lever.js: lever's WebAssembly build (build-web/web/wasm/lever_wasm.js) with MuJoCo's names, so
+// that the lesson's expressions run unchanged:
+//
+//   const mj = await createLever(createLeverModule, {wasmBinary});   // wasmBinary: optional
+//   const model = mj.MjModel.from_xml_string(xmlText, 'arm2.xml');   // throws mj.LoadError
+//   const data = new mj.MjData(model);
+//   data.qpos[0] = 0.6; data.qvel.fill(0);
+//   mj.mj_forward(model, data);  data.qfrc_bias[0];
+//   model.body_mass[2] = 1.6; mj.mj_setConst(model, data);           // lever::set_const
+//
+// Arrays are typed-array views onto lever's own Model and Data (Float64Array, or Int32Array for
+// ids and counts), flat in MuJoCo's row-major layout: data.xpos[3 * body + k]. Scalars
+// (data.time, data.nefc, model.opt.timestep) are read and written as numbers. A view is rebuilt
+// whenever the wasm heap has grown or mj_setConst() has run, so keeping `data.qpos` in a variable
+// across those is the one thing to avoid (as with MuJoCo's own views).
+(function (root) {
+  'use strict';
+
+  /** A model lever refuses: `message` is lever's diagnostic, `line` its line (0 if none). */
+  class LoadError extends Error {
+    constructor(message, line) {
+      super(message);
+      this.name = 'LoadError';
+      this.line = line;
+    }
+  }
+
+  /** An engine call that failed (sizes that do not match, an invalid model after an edit). */
+  class EngineError extends Error {
+    constructor(message) {
+      super(message);
+      this.name = 'EngineError';
+    }
+  }
+
+  async function createLever(createLeverModule, options) {
+    const Module = await createLeverModule(options || {});
+    const typed = {f64: 'HEAPF64', i32: 'HEAP32', u8: 'HEAPU8'};
+    const bytes = {f64: 8, i32: 4, u8: 1};
+
+    // Defines a getter (and for scalars a setter) on `target` for each field `source.fields()`
+    // lists; `generation()` tells when the addresses may have changed.
+    function attachFields(target, source, generation) {
+      let views = null;
+      let buffer = null;
+      let seen = -1;
+      function current() {
+        const heap = Module.HEAPU8.buffer;
+        const g = generation();
+        if (views && buffer === heap && seen === g) return views;
+        views = {};
+        const list = source.fields();
+        for (let i = 0; i < list.size(); i++) {
+          const f = list.get(i);
+          const heapView = Module[typed[f.type]];
+          const start = f.address / bytes[f.type];
+          const length = f.cols === 0 ? 1 : f.rows * f.cols;
+          views[f.name] = {scalar: f.cols === 0, view: heapView.subarray(start, start + length)};
+        }
+        list.delete();
+        buffer = heap;
+        seen = g;
+        return views;
+      }
+      const names = current();
+      for (const name of Object.keys(names)) {
+        const path = name.split('.');
+        let owner = target;
+        if (path.length === 2) {
+          owner = target[path[0]] || (target[path[0]] = {});
+        }
+        const key = path[path.length - 1];
+        if (names[name].scalar) {
+          Object.defineProperty(owner, key, {
+            enumerable: true,
+            get: () => current()[name].view[0],
+            set: (value) => { current()[name].view[0] = value; },
+          });
+        } else {
+          Object.defineProperty(owner, key, {enumerable: true, get: () => current()[name].view});
+        }
+      }
+    }
+
+    class MjModel {
+      constructor(wasmModel) {
+        this._wasm = wasmModel;
+        for (const size of ['nq', 'nv', 'nu', 'nbody', 'njnt', 'ngeom', 'nsite']) {
+          this[size] = wasmModel.size(size);
+        }
+        for (const kind of ['body', 'jnt', 'geom', 'site', 'actuator']) {
+          const list = wasmModel.names(kind);
+          const names = [];
+          for (let i = 0; i < list.size(); i++) names.push(list.get(i));
+          list.delete();
+          this[kind + '_names'] = names;
+        }
+        attachFields(this, wasmModel, () => wasmModel.generation());
+      }
+
+      /** Load MJCF text; throws LoadError with lever's message and line. */
+      static from_xml_string(xml, filename) {
+        const wasmModel = Module.WasmModel.load(xml, filename || 'model.xml');
+        if (!wasmModel.ok()) {
+          const error = new LoadError(wasmModel.error(), wasmModel.error_line());
+          wasmModel.delete();
+          throw error;
+        }
+        return new MjModel(wasmModel);
+      }
+
+      /** Index of a named object (kind: body, jnt, geom, site, actuator), or -1. */
+      name2id(kind, name) {
+        return this[kind + '_names'].indexOf(name);
+      }
+
+      delete() {
+        this._wasm.delete();
+      }
+    }
+
+    class MjData {
+      constructor(model) {
+        this._model = model;
+        this._wasm = new Module.WasmData(model._wasm);
+        attachFields(this, this._wasm, () => 0);
+      }
+
+      delete() {
+        this._wasm.delete();
+      }
+    }
+
+    function check(message) {
+      if (message) throw new EngineError(message);
+    }
+
+    const mj = {
+      version: Module.version,
+      Module,
+      LoadError,
+      EngineError,
+      MjModel,
+      MjData,
+      mj_step(model, data) { check(data._wasm.step()); },
+      mj_forward(model, data) { check(data._wasm.forward()); },
+      mj_resetData(model, data) { check(data._wasm.reset()); },
+      // lever::set_const after editing model parameters (body_mass, ...). As MuJoCo 2.2.2's
+      // mj_setConst, which computes its constants in `data` at qpos0, it leaves data.qpos at
+      // qpos0 (and the outputs of that pose in data); qvel, ctrl and time are kept.
+      mj_setConst(model, data) {
+        check(model._wasm.set_const());
+        data.qpos.set(model.qpos0);
+        check(data._wasm.forward());
+      },
+      /** n steps in one call into wasm (the same as n calls of mj_step). */
+      mj_steps(model, data, n) { check(data._wasm.steps(n)); },
+      /** `lever check` on MJCF text (lesson 5.1's six checks): its text, or its JSON. */
+      lever_check(xml, filename, json) {
+        return Module.check_model_text(xml, filename || 'model.xml', !!json);
+      },
+      /** lever's warnings since the last reset, one per line ("" if none). */
+      warnings(data) { return data._wasm.warnings(); },
+    };
+    return mj;
+  }
+
+  root.createLever = createLever;
+  if (typeof module !== 'undefined' && module.exports) module.exports = {createLever};
+})(typeof window !== 'undefined' ? window : globalThis);
