@@ -8,8 +8,9 @@
 //   mj.mj_forward(model, data);  data.qfrc_bias[0];
 //   model.body_mass[2] = 1.6; mj.mj_setConst(model, data);           // lever::set_const
 //
-// Arrays are typed-array views onto lever's own Model and Data (Float64Array, or Int32Array for
-// ids and counts), flat in MuJoCo's row-major layout: data.xpos[3 * body + k]. Scalars
+// Arrays are typed-array views onto lever's own Model and Data, one for each row of lever's field
+// table (engine/include/lever/fields.hpp): Float64Array, Int32Array for ids and counts, Uint8Array
+// for flags, flat in MuJoCo's row-major layout: data.xpos[3 * body + k]. Scalars
 // (data.time, data.nefc, model.opt.timestep) are read and written as numbers. A view is rebuilt
 // whenever the wasm heap has grown or mj_setConst() has run, so keeping `data.qpos` in a variable
 // across those is the one thing to avoid (as with MuJoCo's own views).
@@ -56,6 +57,11 @@
           const start = f.address / bytes[f.type];
           const length = f.cols === 0 ? 1 : f.rows * f.cols;
           views[f.name] = {scalar: f.cols === 0, view: heapView.subarray(start, start + length)};
+          if (f.live_rows) {  // efc_ arrays: as many rows as data.nefc says now
+            const nefc = f.live_rows / 4;
+            const cols = f.cols;
+            views[f.name].live = () => heapView.subarray(start, start + Module.HEAP32[nefc] * cols);
+          }
         }
         list.delete();
         buffer = heap;
@@ -77,7 +83,13 @@
             set: (value) => { current()[name].view[0] = value; },
           });
         } else {
-          Object.defineProperty(owner, key, {enumerable: true, get: () => current()[name].view});
+          Object.defineProperty(owner, key, {
+            enumerable: true,
+            get: () => {
+              const v = current()[name];
+              return v.live ? v.live() : v.view;
+            },
+          });
         }
       }
     }

@@ -3,7 +3,9 @@
 #include <lever/identify.hpp>
 #include <lever/kinematics.hpp>
 
+#ifdef LEVER_HAVE_TINYXML2
 #include <tinyxml2.h>
+#endif
 #include <Eigen/QR>
 #include <Eigen/SVD>
 
@@ -354,6 +356,12 @@ Model identified_model(const Model& prior, const Result& result) {
 
 void write_model(const std::string& prior_path, const Model& identified,
                  const std::string& out_path) {
+#ifndef LEVER_HAVE_TINYXML2
+  // the WebAssembly build reads MJCF with lever's own reader and has no XML writer
+  (void)identified;
+  throw Error(prior_path + " -> " + out_path +
+              ": writing a model needs tinyxml2, which this build of lever does not have.");
+#else
   tinyxml2::XMLDocument doc;
   if (doc.LoadFile(prior_path.c_str()) != tinyxml2::XML_SUCCESS) {
     throw Error(prior_path + ": cannot read the prior model (" + doc.ErrorStr() + ").");
@@ -424,6 +432,7 @@ void write_model(const std::string& prior_path, const Model& identified,
   if (doc.SaveFile(out_path.c_str()) != tinyxml2::XML_SUCCESS) {
     throw Error(out_path + ": cannot write the model.");
   }
+#endif
 }
 
 }  // namespace lever::identify

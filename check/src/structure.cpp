@@ -46,7 +46,7 @@ Structure check_structure(const Model& model) {
   }
   for (int b = 1; b < model.nbody; ++b) {
     s.bodies.push_back({body_label(model, b), model.body_mass[b],
-                        sorted_moments(model.body_inertia[b]), model.body_explicit_inertial[b]});
+                        sorted_moments(model.body_inertia[b]), model.body_explicit_inertial[b] != 0});
   }
   return s;
 }

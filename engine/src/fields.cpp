@@ -90,7 +90,15 @@ struct Layout<std::vector<T>> {
   static_assert(sizeof(T) == per_entry * sizeof(element));
   static void* data(const std::vector<T>& v) { return const_cast<T*>(v.data()); }
   static long entries(const std::vector<T>& v) { return static_cast<long>(v.size()) * per_entry; }
-  static void resize(std::vector<T>& v, int rows, int) { v.assign(rows, T{}); }
+  // Eigen's fixed-size types are not zeroed by T{} (their default constructor leaves the numbers
+  // uninitialized): ask for Zero() explicitly
+  static void resize(std::vector<T>& v, int rows, int) {
+    if constexpr (kEigen) {
+      v.assign(rows, T::Zero());
+    } else {
+      v.assign(rows, T{});
+    }
+  }
 };
 
 template <class C, class Element, int cols>

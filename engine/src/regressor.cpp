@@ -42,7 +42,7 @@ RigidInertia unit_inertia(int k) {
 
 // A motion vector about c with world axes, moved to the body frame (origin p, rotation R).
 Motion to_body_frame(const Motion& m, const Eigen::Vector3d& c, const Eigen::Vector3d& p,
-                     const Eigen::Matrix3d& R) {
+                     const Mat3& R) {
   Motion out;
   out.head<3>() = rotate_back(R, m.head<3>());
   out.tail<3>() = rotate_back(R, m.tail<3>() + cross(m.head<3>(), p - c));
@@ -88,7 +88,7 @@ MjcfInertial to_inertial(const InertialParameters& pi) {
   const Eigen::Matrix3d Ic =
       I - m * (c.squaredNorm() * Eigen::Matrix3d::Identity() - c * c.transpose());
   const Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig(Ic);
-  const Eigen::Vector3d d = eig.eigenvalues();  // increasing
+  const Eigen::Vector3d& d = eig.eigenvalues();  // increasing
   if (!(d[0] > 0) || d[0] + d[1] < d[2] * (1 - 1e-12)) {
     std::ostringstream s;
     s << "inertial parameters: principal moments " << d[0] << ", " << d[1] << ", " << d[2]
@@ -201,7 +201,7 @@ void regressor(const Model& model, Data& data, const Eigen::Ref<const Eigen::Vec
     // body b's block: the dofs that support it, seen in its frame
     const Eigen::Vector3d& c = data.subtree_com[model.body_rootid[b]];
     const Eigen::Vector3d& p = data.xpos[b];
-    const Eigen::Matrix3d& R = data.xmat[b];
+    const Mat3& R = data.xmat[b];
     const Motion vB = to_body_frame(vb, c, p, R), aB = to_body_frame(ab, c, p, R);
     Eigen::Matrix<double, 6, kPerBody> F;  // net force of each unit parameter
     for (int k = 0; k < kPerBody; ++k) {

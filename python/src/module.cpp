@@ -14,10 +14,12 @@
 #include <pybind11/stl.h>
 
 #include <lever/check.hpp>
+#include <lever/derivatives.hpp>
 #include <lever/fields.hpp>
 #include <lever/lab.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
+#include <lever/regressor.hpp>
 #include <lever/serialize.hpp>
 
 #include <cstdint>
@@ -323,6 +325,54 @@ PYBIND11_MODULE(_lever, m) {
       },
       py::arg("model"), py::arg("data"), py::arg("body"), py::arg("point"),
       "(jacp, jacr) of a world point fixed to a body.");
+
+  // ---- derivatives and the regressor (docs/derivatives.md) ----------------------------------------
+  m.def(
+      "step_derivatives",
+      [](const ModelPtr& x, const DataPtr& d) {
+        lever::Data& data = data_for(x, d);
+        lever::Derivatives deriv(*x);
+        lever::step_derivatives(*x, data, deriv);
+        return py::make_tuple(deriv.A, deriv.B);
+      },
+      py::arg("model"), py::arg("data"),
+      "(A, B): the step's transition Jacobians at data's state, in mjd_transitionFD's layout "
+      "(x = [qpos; qvel]); data's state is left as it was.");
+  m.def(
+      "forward_derivatives",
+      [](const ModelPtr& x, const DataPtr& d) {
+        lever::Data& data = data_for(x, d);
+        lever::Derivatives deriv(*x);
+        lever::forward_derivatives(*x, data, deriv);
+        py::dict out;
+        out["dqacc_dq"] = deriv.dqacc_dq;
+        out["dqacc_dv"] = deriv.dqacc_dv;
+        out["dqacc_du"] = deriv.dqacc_du;
+        out["dtau_dq"] = deriv.dtau_dq;
+        out["dtau_dv"] = deriv.dtau_dv;
+        return out;
+      },
+      py::arg("model"), py::arg("data"),
+      "forward() at data's state, then d qacc / d (qpos, qvel, ctrl) and d rnea / d (qpos, qvel).");
+  m.def(
+      "regressor",
+      [](const ModelPtr& x, const DataPtr& d, const Eigen::VectorXd& qacc) {
+        lever::Data& data = data_for(x, d);
+        lever::check_fit(*x, data, "lever.regressor");
+        if (qacc.size() != x->nv) throw lever::StateError("lever.regressor: qacc needs nv values.");
+        Eigen::MatrixXd Y(x->nv, lever::regressor_columns(*x));
+        lever::kinematics(*x, data);
+        lever::regressor(*x, data, qacc, Y);
+        return Y;
+      },
+      py::arg("model"), py::arg("data"), py::arg("qacc"),
+      "Y (nv x columns) with Y pi = rnea(qacc) + damping qvel at data's qpos and qvel.");
+  m.def(
+      "regressor_names", [](const ModelPtr& x) { return lever::regressor_names(model_of(x)); },
+      py::arg("model"), "What each column of the regressor (each entry of pi) is.");
+  m.def(
+      "model_parameters", [](const ModelPtr& x) { return lever::model_parameters(model_of(x)); },
+      py::arg("model"), "The model's own parameter vector pi.");
 
   // ---- the checks and the lab ------------------------------------------------------------------
   m.def(

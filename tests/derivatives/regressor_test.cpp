@@ -14,9 +14,9 @@
 #include <random>
 #include <string>
 
+#include <lever/harness/tolerance.hpp>
 #include "../property/property_models.hpp"
 #include "smooth_states.hpp"
-#include <lever/harness/tolerance.hpp>
 
 namespace lever::test {
 

@@ -20,9 +20,9 @@
 #include <sstream>
 #include <string>
 
+#include <lever/harness/tolerance.hpp>
 #include "../property/property_models.hpp"
 #include "smooth_states.hpp"
-#include <lever/harness/tolerance.hpp>
 
 namespace lever::test {
 
@@ -77,6 +77,7 @@ void check_close(const Eigen::MatrixXd& analytic, const Eigen::MatrixXd& differe
 // The limit rows of the current evaluation, as (joint, side, state) codes: the active set.
 std::vector<int> active_set(const Data& data) {
   std::vector<int> rows;
+  rows.reserve(static_cast<std::size_t>(data.nefc));
   for (int r = 0; r < data.nefc; ++r) {
     rows.push_back(4 * data.efc_id[r] + (data.efc_sign[r] > 0 ? 0 : 2) +
                    (data.efc_state[r] == ConstraintState::kActive ? 1 : 0));

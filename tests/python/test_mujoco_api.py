@@ -246,3 +246,31 @@ def test_check_report_is_structured():
     data.qpos[:] = 0
     lever.forward(model, data)
     assert joints["shoulder"]["worst_gravity_torque"] == pytest.approx(data.qfrc_bias[0], abs=1e-12)
+
+
+def test_derivatives_and_regressor_from_python():
+    model = lever.load(str(ARM2))
+    data = lever.Data(model)
+    data.qpos[:] = [0.4, 0.9]
+    data.qvel[:] = [0.3, -0.7]
+    data.ctrl[:] = [1.0, 0.5]
+    A, B = lever.step_derivatives(model, data)
+    assert A.shape == (4, 4) and B.shape == (4, 2)
+    # against central differences of the step itself (the error of a 1e-6 central difference of
+    # a smooth step is ~1e-10 of its scale; the tolerance says that, not lever's agreement bound)
+    eps = 1e-6
+    for u in range(2):
+        cols = []
+        for sign in (1, -1):
+            d = lever.Data(model)
+            d.qpos[:], d.qvel[:], d.ctrl[:] = data.qpos, data.qvel, data.ctrl
+            d.ctrl[u] += sign * eps
+            lever.step(model, d)
+            cols.append(np.concatenate([d.qpos, d.qvel]))
+        np.testing.assert_allclose(B[:, u], (cols[0] - cols[1]) / (2 * eps), atol=1e-8)
+    qacc = np.array([0.2, -1.0])
+    Y = lever.regressor(model, data, qacc)
+    pi = lever.model_parameters(model)
+    assert len(lever.regressor_names(model)) == Y.shape[1] == pi.size
+    tau = lever.rnea(model, data, qacc) + model.dof_damping * data.qvel
+    np.testing.assert_allclose(Y @ pi, tau, rtol=0, atol=1e-12 * max(1, np.abs(tau).max()))

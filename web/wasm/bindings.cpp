@@ -2,72 +2,60 @@
 // turns into MuJoCo's names (model/data objects whose arrays are typed-array views onto the wasm
 // heap, mj_step, mj_forward, mj_resetData, mj_setConst).
 //
-// Every array is handed to JavaScript as (name, element type, heap address, rows, columns), so a
-// view needs no copy: writing data.qpos[0] writes lever's Data. An address stays valid until the
-// object is deleted or, for the model, until set_const() (which may rebuild derived arrays):
-// `generation` counts those, and lever.js rebuilds its views when it changes or the heap grows.
+// Every array of the field table (lever/fields.hpp, as MuJoCo's mjxmacro.h) is handed to
+// JavaScript as (name, element type, heap address, rows, columns), so a view needs no copy:
+// writing data.qpos[0] writes lever's Data. An address stays valid until the object is deleted or,
+// for the model, until set_const() (which may rebuild derived arrays): `generation` counts those,
+// and lever.js rebuilds its views when it changes or the heap grows. The efc_ arrays have as many
+// rows as there are live limit rows (data.nefc), which lever.js reads at each access.
 #include <emscripten/bind.h>
 
 #include <cstdint>
 #include <exception>
 #include <lever/check.hpp>
+#include <lever/fields.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 #include <memory>
 #include <optional>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 namespace {
 
-/// One array as JavaScript sees it: `type` is "f64", "i32" or "u8"; rows x cols elements.
-struct FieldView {
+/// One array as JavaScript sees it: `type` is "f64", "i32" or "u8"; rows x cols elements; cols 0
+/// for a single number. `live_rows` is the address of data.nefc for the efc_ arrays, else 0.
+struct JsField {
   std::string name;
   std::string type;
   uintptr_t address = 0;
   int rows = 0;
   int cols = 0;
+  uintptr_t live_rows = 0;
 };
 
-template <typename T>
-std::string type_name() {
-  if constexpr (std::is_same_v<T, double>) return "f64";
-  if constexpr (std::is_same_v<T, int> || std::is_enum_v<T>) return "i32";
-  if constexpr (std::is_same_v<T, uint8_t>) return "u8";
-}
-
-// std::vector of scalars, of Eigen fixed-size vectors (contiguous, no padding) or of std::array
-template <typename T>
-void add(std::vector<FieldView>& out, const char* name, std::vector<T>& v) {
-  if constexpr (std::is_arithmetic_v<T> || std::is_enum_v<T>) {
-    out.push_back({name, type_name<T>(), reinterpret_cast<uintptr_t>(v.data()),
-                   static_cast<int>(v.size()), 1});
-  } else if constexpr (requires { T::RowsAtCompileTime; }) {
-    static_assert(sizeof(T) == sizeof(double) * T::RowsAtCompileTime * T::ColsAtCompileTime);
-    out.push_back({name, "f64", reinterpret_cast<uintptr_t>(v.data()), static_cast<int>(v.size()),
-                   static_cast<int>(T::RowsAtCompileTime * T::ColsAtCompileTime)});
-  } else {
-    using E = typename T::value_type;
-    static_assert(sizeof(T) == sizeof(E) * std::tuple_size_v<T>);
-    out.push_back({name, type_name<E>(), reinterpret_cast<uintptr_t>(v.data()),
-                   static_cast<int>(v.size()), static_cast<int>(std::tuple_size_v<T>)});
+const char* type_name(lever::Scalar scalar) {
+  switch (scalar) {
+    case lever::Scalar::kDouble: return "f64";
+    case lever::Scalar::kInt: return "i32";
+    default: return "u8";
   }
 }
 
-void add(std::vector<FieldView>& out, const char* name, Eigen::VectorXd& v) {
-  out.push_back(
-      {name, "f64", reinterpret_cast<uintptr_t>(v.data()), static_cast<int>(v.size()), 1});
+JsField js_field(const lever::FieldView& v) {
+  return {v.info->name,
+          type_name(v.info->scalar),
+          reinterpret_cast<uintptr_t>(v.data),
+          v.rows,
+          v.cols,
+          0};
 }
 
-template <typename T>
-void add_scalar(std::vector<FieldView>& out, const char* name, T& x) {
-  out.push_back({name, type_name<T>(), reinterpret_cast<uintptr_t>(&x), 1, 0});
+void add_number(std::vector<JsField>& out, const char* name, double& x) {
+  out.push_back({name, "f64", reinterpret_cast<uintptr_t>(&x), 1, 0, 0});
 }
-
-template <typename T, size_t N>
-void add_fixed(std::vector<FieldView>& out, const char* name, T* x) {
-  out.push_back({name, type_name<T>(), reinterpret_cast<uintptr_t>(x), 1, static_cast<int>(N)});
+void add_number(std::vector<JsField>& out, const char* name, int& x) {
+  out.push_back({name, "i32", reinterpret_cast<uintptr_t>(&x), 1, 0, 0});
 }
 
 /// A compiled model; `error`/`error_line` say why a load failed (then the model is empty).
@@ -125,65 +113,12 @@ class WasmModel {
     return {};
   }
 
-  std::vector<FieldView> fields() {
-    lever::Model& m = model_;
-    std::vector<FieldView> f;
-    add_scalar(f, "opt.timestep", m.opt.timestep);
-    add_fixed<double, 3>(f, "opt.gravity", m.opt.gravity.data());
-    add(f, "body_parentid", m.body_parentid);
-    add(f, "body_rootid", m.body_rootid);
-    add(f, "body_jntnum", m.body_jntnum);
-    add(f, "body_jntadr", m.body_jntadr);
-    add(f, "body_dofnum", m.body_dofnum);
-    add(f, "body_dofadr", m.body_dofadr);
-    add(f, "body_geomnum", m.body_geomnum);
-    add(f, "body_geomadr", m.body_geomadr);
-    add(f, "body_pos", m.body_pos);
-    add(f, "body_quat", m.body_quat);
-    add(f, "body_ipos", m.body_ipos);
-    add(f, "body_iquat", m.body_iquat);
-    add(f, "body_mass", m.body_mass);
-    add(f, "body_inertia", m.body_inertia);
-    add(f, "body_subtreemass", m.body_subtreemass);
-    add(f, "jnt_type", m.jnt_type);
-    add(f, "jnt_qposadr", m.jnt_qposadr);
-    add(f, "jnt_dofadr", m.jnt_dofadr);
-    add(f, "jnt_bodyid", m.jnt_bodyid);
-    add(f, "jnt_solref", m.jnt_solref);
-    add(f, "jnt_solimp", m.jnt_solimp);
-    add(f, "jnt_pos", m.jnt_pos);
-    add(f, "jnt_axis", m.jnt_axis);
-    add(f, "jnt_stiffness", m.jnt_stiffness);
-    add(f, "jnt_range", m.jnt_range);
-    add(f, "jnt_margin", m.jnt_margin);
-    add(f, "qpos0", m.qpos0);
-    add(f, "qpos_spring", m.qpos_spring);
-    add(f, "dof_bodyid", m.dof_bodyid);
-    add(f, "dof_jntid", m.dof_jntid);
-    add(f, "dof_parentid", m.dof_parentid);
-    add(f, "dof_armature", m.dof_armature);
-    add(f, "dof_damping", m.dof_damping);
-    add(f, "dof_invweight0", m.dof_invweight0);
-    add(f, "dof_M0", m.dof_M0);
-    add(f, "geom_type", m.geom_type);
-    add(f, "geom_bodyid", m.geom_bodyid);
-    add(f, "geom_contype", m.geom_contype);
-    add(f, "geom_conaffinity", m.geom_conaffinity);
-    add(f, "geom_group", m.geom_group);
-    add(f, "geom_size", m.geom_size);
-    add(f, "geom_pos", m.geom_pos);
-    add(f, "geom_quat", m.geom_quat);
-    add(f, "geom_rgba", m.geom_rgba);
-    add(f, "site_bodyid", m.site_bodyid);
-    add(f, "site_pos", m.site_pos);
-    add(f, "site_quat", m.site_quat);
-    add(f, "site_size", m.site_size);
-    add(f, "actuator_gear", m.actuator_gear);
-    add(f, "actuator_ctrlrange", m.actuator_ctrlrange);
-    add(f, "actuator_forcerange", m.actuator_forcerange);
-    // Not here yet: the std::vector<bool> flags (jnt_limited, actuator_ctrllimited, ...), which
-    // cannot be viewed until Model stores them as uint8_t; actuator_trnid, whose shape differs
-    // from MuJoCo's (nu x 2 there).
+  std::vector<JsField> fields() {
+    std::vector<JsField> f;
+    add_number(f, "opt.timestep", model_.opt.timestep);
+    f.push_back(
+        {"opt.gravity", "f64", reinterpret_cast<uintptr_t>(model_.opt.gravity.data()), 1, 3, 0});
+    for (const lever::FieldView& v : lever::model_fields(model_)) f.push_back(js_field(v));
     return f;
   }
 
@@ -200,39 +135,16 @@ class WasmData {
  public:
   explicit WasmData(WasmModel& model) : model_(model), data_(model.model()) {}
 
-  std::vector<FieldView> fields() {
-    lever::Data& d = data_;
-    std::vector<FieldView> f;
-    add_scalar(f, "time", d.time);
-    add_scalar(f, "nefc", d.nefc);
-    add(f, "qpos", d.qpos);
-    add(f, "qvel", d.qvel);
-    add(f, "ctrl", d.ctrl);
-    add(f, "qfrc_applied", d.qfrc_applied);
-    add(f, "xpos", d.xpos);
-    add(f, "xquat", d.xquat);
-    add(f, "xipos", d.xipos);
-    add(f, "site_xpos", d.site_xpos);
-    add(f, "xanchor", d.xanchor);
-    add(f, "xaxis", d.xaxis);
-    add(f, "subtree_com", d.subtree_com);
-    add(f, "actuator_length", d.actuator_length);
-    add(f, "actuator_velocity", d.actuator_velocity);
-    add(f, "qfrc_passive", d.qfrc_passive);
-    add(f, "qfrc_bias", d.qfrc_bias);
-    add(f, "actuator_force", d.actuator_force);
-    add(f, "qfrc_actuator", d.qfrc_actuator);
-    add(f, "qfrc_smooth", d.qfrc_smooth);
-    add(f, "qacc_smooth", d.qacc_smooth);
-    add(f, "qfrc_constraint", d.qfrc_constraint);
-    add(f, "qacc", d.qacc);
-    add(f, "qfrc_inverse", d.qfrc_inverse);
-    add_fixed<double, 2>(f, "energy", d.energy.data());
-    // M is symmetric, so its column-major storage reads the same as MuJoCo's row-major one
-    f.push_back({"qM_full", "f64", reinterpret_cast<uintptr_t>(d.M.data()),
-                 static_cast<int>(d.M.rows()), static_cast<int>(d.M.cols())});
-    // Not here yet: xmat, ximat, site_xmat (column-major in lever until issue 11 makes them
-    // row-major as MuJoCo's), and the efc_ arrays (their length changes with nefc).
+  std::vector<JsField> fields() {
+    std::vector<JsField> f;
+    add_number(f, "time", data_.time);
+    add_number(f, "nefc", data_.nefc);
+    for (const lever::FieldView& v : lever::data_fields(model_.model(), data_)) {
+      JsField js = js_field(v);
+      if (v.info->rows == lever::Size::kNefc)
+        js.live_rows = reinterpret_cast<uintptr_t>(&data_.nefc);
+      f.push_back(js);
+    }
     return f;
   }
 
@@ -296,13 +208,14 @@ std::string check_model_text(const std::string& xml, const std::string& filename
 EMSCRIPTEN_BINDINGS(lever) {
   using namespace emscripten;
   function("check_model_text", &check_model_text);
-  value_object<FieldView>("FieldView")
-      .field("name", &FieldView::name)
-      .field("type", &FieldView::type)
-      .field("address", &FieldView::address)
-      .field("rows", &FieldView::rows)
-      .field("cols", &FieldView::cols);
-  register_vector<FieldView>("FieldViews");
+  value_object<JsField>("JsField")
+      .field("name", &JsField::name)
+      .field("type", &JsField::type)
+      .field("address", &JsField::address)
+      .field("rows", &JsField::rows)
+      .field("cols", &JsField::cols)
+      .field("live_rows", &JsField::live_rows);
+  register_vector<JsField>("JsFields");
   register_vector<std::string>("Strings");
   class_<WasmModel>("WasmModel")
       .class_function("load", &WasmModel::load)
