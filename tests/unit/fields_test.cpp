@@ -247,7 +247,7 @@ TEST_CASE("every Data view has the table's size and points into its member", "[f
   }
 }
 
-TEST_CASE("Data's constructor sizes every array as the table says", "[fields]") {
+TEST_CASE("Data's constructor sizes every array as the table says, zero-filled", "[fields]") {
   for (const lever::Model& model : all_models()) {
     INFO("model " << model.name);
     const lever::Data data(model);
@@ -279,6 +279,28 @@ TEST_CASE("Data's constructor sizes every array as the table says", "[fields]") 
     CHECK(data.efc_force.size() == data.nefc_max);
     // and check_fit accepts it
     CHECK_NOTHROW(lever::check_fit(model, data, "test"));
+    // zero-filled, but for the values that mean "nothing yet": qpos0, identity rotations,
+    // no joint (-1) in the limit rows
+    for (const FieldView& view : lever::data_fields(model, full)) {
+      const std::string name = view.info->name;
+      if (name == "qpos" || name == "xquat" || name == "xmat" || name == "ximat" ||
+          name == "site_xmat" || name == "efc_id" || name == "efc_dof") {
+        continue;
+      }
+      INFO("Data::" << name);
+      for (long k = 0; k < view.size(); ++k) {
+        double x = 0.0;
+        if (view.info->scalar == Scalar::kDouble) x = static_cast<const double*>(view.data)[k];
+        if (view.info->scalar == Scalar::kInt) x = static_cast<const int*>(view.data)[k];
+        if (view.info->scalar == Scalar::kByte) x = static_cast<const uint8_t*>(view.data)[k];
+        CHECK(x == 0.0);
+      }
+    }
+    for (int b = 0; b < model.nbody; ++b) {
+      CHECK(data.xquat[b] == Eigen::Vector4d(1, 0, 0, 0));
+      CHECK(data.xmat[b] == lever::Mat3::Identity());
+    }
+    for (int r = 0; r < data.nefc_max; ++r) CHECK(data.efc_id[r] == -1);
   }
 }
 
