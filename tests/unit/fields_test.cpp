@@ -529,5 +529,7 @@ TEST_CASE("between step1 and step2 a controller sees the forces and its control 
   lever::step(model, reference);
   CHECK(same_bits(data.qpos, reference.qpos));
   CHECK(same_bits(data.qvel, reference.qvel));
-  CHECK(data.qacc.norm() < 1e-9);  // compensated: it hardly moves
+  // qfrc_applied cancels qfrc_bias exactly up to rounding through M^-1: a loose sanity bound on
+  // what the test is about (the split equals step bit for bit, above), not an agreement claim
+  CHECK(data.qacc.norm() < 1e-9);
 }
