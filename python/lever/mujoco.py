@@ -330,23 +330,6 @@ class MjModel:
         else:
             raise _missing("MODEL", name)
 
-    def body(self, key) -> _ModelObject:
-        return _ModelObject(self, "body", key)
-
-    def joint(self, key) -> _ModelObject:
-        return _ModelObject(self, "joint", key)
-
-    jnt = joint
-
-    def geom(self, key) -> _ModelObject:
-        return _ModelObject(self, "geom", key)
-
-    def site(self, key) -> _ModelObject:
-        return _ModelObject(self, "site", key)
-
-    def actuator(self, key) -> _ModelObject:
-        return _ModelObject(self, "actuator", key)
-
     def __repr__(self) -> str:
         return f"<lever.mujoco.MjModel {self._native.name!r} nq={self.nq} nu={self.nu}>"
 
@@ -409,25 +392,20 @@ class MjData:
         else:
             raise _missing("DATA", name)
 
-    def body(self, key) -> _DataObject:
-        return _DataObject(self, "body", key)
-
-    def joint(self, key) -> _DataObject:
-        return _DataObject(self, "joint", key)
-
-    jnt = joint
-
-    def geom(self, key) -> _DataObject:
-        return _DataObject(self, "geom", key)
-
-    def site(self, key) -> _DataObject:
-        return _DataObject(self, "site", key)
-
-    def actuator(self, key) -> _DataObject:
-        return _DataObject(self, "actuator", key)
-
     def __repr__(self) -> str:
         return f"<lever.mujoco.MjData time={self.time:g} nefc={self.nefc}>"
+
+
+def _add_named_access(cls, view) -> None:
+    """cls.body(key), cls.joint(key) (also cls.jnt), ...: `view(self, kind, key)` for each kind of
+    object, as MuJoCo's bindings name its accessors."""
+    for kind in ("body", "joint", "geom", "site", "actuator"):
+        setattr(cls, kind, lambda self, key, kind=kind: view(self, kind, key))
+    cls.jnt = cls.joint
+
+
+_add_named_access(MjModel, _ModelObject)
+_add_named_access(MjData, _DataObject)
 
 
 # ---- functions -----------------------------------------------------------------------------------
