@@ -1,8 +1,10 @@
-// Motors on joints: transmission, clamping and the joint forces they produce
-// (MuJoCo 2.2.2's mj_transmission and mj_fwdActuation for gain-only, stateless motors).
+// Actuators on joints: transmission, clamping and the joint forces they produce
+// (MuJoCo 2.2.2's mj_transmission and mj_fwdActuation for stateless actuators: motors, position
+// and velocity servos, and <general> with fixed or affine gain and bias).
 //
 // Order, as MuJoCo: ctrl clamped to ctrlrange (on a copy; data.ctrl is never changed), force =
-// gain * ctrl with gain 1, force clamped to forcerange, then the gear carries it to the joint.
+// gain * ctrl + bias, force clamped to forcerange, then the gear carries it to the joint. A
+// position servo is gain kp and bias -kp length - kv velocity, so it pulls length to ctrl.
 // Clamping is silent here; `lever check` reports it.
 #include <lever/dynamics.hpp>
 
@@ -49,6 +51,17 @@ void actuation(const Model& model, Data& data) {
   if (bad) force.setZero();
 
   for (int a = 0; a < model.nu; ++a) {
+    const double length = data.actuator_length[a];
+    const double velocity = data.actuator_velocity[a];
+    const auto& g = model.actuator_gainprm[a];
+    const double gain = model.actuator_gaintype[a] == GainType::kAffine
+                            ? g[0] + g[1] * length + g[2] * velocity
+                            : g[0];
+    force[a] *= gain;
+    if (model.actuator_biastype[a] == BiasType::kAffine) {
+      const auto& b = model.actuator_biasprm[a];
+      force[a] += b[0] + b[1] * length + b[2] * velocity;
+    }
     if (model.actuator_forcelimited[a]) force[a] = clamp(force[a], model.actuator_forcerange[a]);
     const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
     data.qfrc_actuator[dof] += model.actuator_gear[a][0] * force[a];

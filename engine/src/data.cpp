@@ -1,5 +1,6 @@
 // Data: sized once from the Model, so that evaluating and stepping never allocate.
 #include <lever/data.hpp>
+#include <lever/error.hpp>
 
 #include <algorithm>
 
@@ -60,6 +61,11 @@ Data::Data(const Model& model)
     work.rk_qvel[i] = Eigen::VectorXd::Zero(nv);
     work.rk_qacc[i] = Eigen::VectorXd::Zero(nv);
   }
+  work.qDeriv = Eigen::MatrixXd::Zero(nv, nv);
+  work.qLU = Eigen::PartialPivLU<Eigen::MatrixXd>(nv);
+  work.dcvel.assign(nbody, Motion::Zero());
+  work.dcacc.assign(nbody, Motion::Zero());
+  work.dcfrc.assign(nbody, Force::Zero());
 }
 
 int warning_count(const Data& data) {
@@ -90,6 +96,32 @@ void reset(const Model& model, Data& data) {
   data.qacc.setZero();
   data.nefc = 0;
   data.warning = {};
+}
+
+void reset_keyframe(const Model& model, Data& data, int key) {
+  const EntryCheck entry(model, data, "lever::reset_keyframe");
+  if (key < 0 || key >= model.nkey) {
+    throw StateError("lever::reset_keyframe: keyframe " + std::to_string(key) +
+                     " does not exist (the model has " + std::to_string(model.nkey) +
+                     " keyframes).");
+  }
+  reset(model, data);
+  data.time = model.key_time[key];
+  data.qpos = model.key_qpos.row(key).transpose();
+  data.qvel = model.key_qvel.row(key).transpose();
+  data.ctrl = model.key_ctrl.row(key).transpose();
+}
+
+void reset_keyframe(const Model& model, Data& data, const std::string& key) {
+  const int id = model.key(key);
+  if (id < 0) {
+    std::string names;
+    for (const std::string& n : model.key_name) names += (names.empty() ? "'" : ", '") + n + "'";
+    throw StateError("lever::reset_keyframe: the model has no keyframe named '" + key + "' (" +
+                     (names.empty() ? std::string("it has no named keyframes") : "it has " + names) +
+                     ").");
+  }
+  reset_keyframe(model, data, id);
 }
 
 }  // namespace lever

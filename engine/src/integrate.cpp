@@ -4,7 +4,8 @@
 // damping, treats damping implicitly: (M + h B) (v' - v) / h = f_smooth + f_constraint, where
 // f_smooth already holds the explicit -B v. So the state advances with an acceleration that is
 // stored nowhere; data.qacc keeps the forward (solver) acceleration, as in MuJoCo.
-// RK4 is the classical four-stage method on (qpos, qvel), without implicit damping.
+// RK4 is the classical four-stage method on (qpos, qvel), without implicit damping. The implicit
+// integrator (MuJoCo 2.2.2's mjINT_IMPLICIT) is in implicit.cpp.
 #include <lever/dynamics.hpp>
 #include <lever/forward.hpp>
 
@@ -89,6 +90,7 @@ void step(const Model& model, Data& data) {
   switch (model.opt.integrator) {
     case Integrator::kEuler: euler(model, data); break;
     case Integrator::kRK4: rk4(model, data); break;
+    case Integrator::kImplicit: detail::implicit_step(model, data); break;
   }
 }
 
@@ -105,9 +107,14 @@ void step2(const Model& model, Data& data) {
   const EntryCheck entry(model, data, "lever::step2");
   acceleration_stage(model, data);
   if (check_and_reset(model, data, data.qacc, Warning::kBadQacc)) forward(model, data);
-  // as in MuJoCo 2.2.2, the split step integrates with Euler whatever the integrator: RK4 needs
-  // forward() at states in the middle of the step, which the caller's control is not part of
-  euler(model, data);
+  // as in MuJoCo 2.2.2, the split step integrates RK4 models with Euler: RK4 needs forward() at
+  // states in the middle of the step, which the caller's control is not part of. Implicit stays
+  // implicit (it needs only the start of the step).
+  if (model.opt.integrator == Integrator::kImplicit) {
+    detail::implicit_step(model, data);
+  } else {
+    euler(model, data);
+  }
 }
 
 }  // namespace lever

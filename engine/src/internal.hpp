@@ -71,6 +71,9 @@ void check_argument_size(long size, long n, const char* where, const char* what)
 namespace detail {
 /// Size every array of the field table in data for the model, zero-filled (the Data constructor).
 void size_data_arrays(const Model& model, Data& data);
+
+/// MuJoCo 2.2.2's implicit step (implicit.cpp), after forward().
+void implicit_step(const Model& model, Data& data);
 }  // namespace detail
 
 /// MuJoCo's mju_isBad: NaN, or beyond +-1e10.

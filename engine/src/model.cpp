@@ -16,6 +16,7 @@ int Model::body(const std::string& n) const { return find_name(body_name, n); }
 int Model::joint(const std::string& n) const { return find_name(jnt_name, n); }
 int Model::site(const std::string& n) const { return find_name(site_name, n); }
 int Model::actuator(const std::string& n) const { return find_name(actuator_name, n); }
+int Model::key(const std::string& n) const { return find_name(key_name, n); }
 int Model::geom(const std::string& n) const { return find_name(geom_name, n); }
 
 }  // namespace lever

@@ -39,6 +39,14 @@ void check_sizes(Model& model) {
   LEVER_REQUIRE_SIZE(geom_name, model.ngeom);
   LEVER_REQUIRE_SIZE(site_name, model.nsite);
   LEVER_REQUIRE_SIZE(actuator_name, model.nu);
+  LEVER_REQUIRE_SIZE(key_name, model.nkey);
+  LEVER_REQUIRE_SIZE(key_time, model.nkey);
+  if (model.nkey < 0 || model.key_qpos.rows() != model.nkey || model.key_qpos.cols() != model.nq ||
+      model.key_qvel.rows() != model.nkey || model.key_qvel.cols() != model.nv ||
+      model.key_ctrl.rows() != model.nkey || model.key_ctrl.cols() != model.nu) {
+    throw ModelError("keyframe arrays key_qpos, key_qvel, key_ctrl must be nkey x nq, nkey x nv "
+                     "and nkey x nu (nkey = " + std::to_string(model.nkey) + ").");
+  }
   // what set_const derives is sized here; every other array must have the size the field table
   // gives it (lever/fields.hpp)
   model.body_rootid.resize(model.nbody);
@@ -223,6 +231,22 @@ void check_parameters(const Model& model) {
     }
     if (model.actuator_forcelimited[a] && !(f[0] < f[1] && finite(f))) {
       reject("actuator", a, n, "is forcelimited but its forcerange is not finite with lo < hi");
+    }
+    const int gaintype = static_cast<int>(model.actuator_gaintype[a]);
+    const int biastype = static_cast<int>(model.actuator_biastype[a]);
+    if (model.actuator_dyntype[a] != DynType::kNone || gaintype < 0 || gaintype > 1 ||
+        biastype < 0 || biastype > 1) {
+      reject("actuator", a, n,
+             "needs dyntype none, gaintype fixed or affine and biastype none or affine");
+    }
+    if (!finite(model.actuator_gainprm[a]) || !finite(model.actuator_biasprm[a])) {
+      reject("actuator", a, n, "has a non-finite gainprm or biasprm");
+    }
+  }
+  for (int k = 0; k < model.nkey; ++k) {
+    if (!std::isfinite(model.key_time[k]) || !model.key_qpos.row(k).allFinite() ||
+        !model.key_qvel.row(k).allFinite() || !model.key_ctrl.row(k).allFinite()) {
+      reject("keyframe", k, model.key_name[k], "has a non-finite time, qpos, qvel or ctrl");
     }
   }
 }

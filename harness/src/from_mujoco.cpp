@@ -44,6 +44,8 @@ Model from_mujoco(const mjModel* m) {
     model.opt.integrator = Integrator::kEuler;
   } else if (m->opt.integrator == mjINT_RK4) {
     model.opt.integrator = Integrator::kRK4;
+  } else if (m->opt.integrator == mjINT_IMPLICIT) {
+    model.opt.integrator = Integrator::kImplicit;
   } else {
     throw std::runtime_error("from_mujoco: integrator not supported by lever");
   }
@@ -142,13 +144,26 @@ Model from_mujoco(const mjModel* m) {
     model.site_size.push_back(vec3(m->site_size + 3 * s));
   }
   for (int a = 0; a < m->nu; ++a) {
+    const bool affine_or_fixed_gain =
+        m->actuator_gaintype[a] == mjGAIN_FIXED || m->actuator_gaintype[a] == mjGAIN_AFFINE;
+    const bool affine_or_no_bias =
+        m->actuator_biastype[a] == mjBIAS_NONE || m->actuator_biastype[a] == mjBIAS_AFFINE;
     if (m->actuator_trntype[a] != mjTRN_JOINT || m->actuator_dyntype[a] != mjDYN_NONE ||
-        m->actuator_gaintype[a] != mjGAIN_FIXED || m->actuator_biastype[a] != mjBIAS_NONE ||
-        m->actuator_gainprm[mjNGAIN * a] != 1.0) {
-      throw std::runtime_error("from_mujoco: only motors are supported by lever");
+        !affine_or_fixed_gain || !affine_or_no_bias) {
+      throw std::runtime_error(
+          "from_mujoco: only stateless joint actuators with affine gain and bias are supported");
     }
     model.actuator_name.push_back(name_of(m, mjOBJ_ACTUATOR, a));
     model.actuator_trnid.push_back(m->actuator_trnid[2 * a]);
+    model.actuator_dyntype.push_back(DynType::kNone);
+    model.actuator_gaintype.push_back(static_cast<GainType>(m->actuator_gaintype[a]));
+    model.actuator_biastype.push_back(static_cast<BiasType>(m->actuator_biastype[a]));
+    std::array<double, kGainParameters> gainprm;
+    std::array<double, kBiasParameters> biasprm;
+    for (int k = 0; k < kGainParameters; ++k) gainprm[k] = m->actuator_gainprm[mjNGAIN * a + k];
+    for (int k = 0; k < kBiasParameters; ++k) biasprm[k] = m->actuator_biasprm[mjNBIAS * a + k];
+    model.actuator_gainprm.push_back(gainprm);
+    model.actuator_biasprm.push_back(biasprm);
     std::array<double, 6> gear;
     for (int k = 0; k < 6; ++k) gear[k] = m->actuator_gear[6 * a + k];
     model.actuator_gear.push_back(gear);
@@ -158,6 +173,19 @@ Model from_mujoco(const mjModel* m) {
         {m->actuator_ctrlrange[2 * a], m->actuator_ctrlrange[2 * a + 1]});
     model.actuator_forcerange.push_back(
         {m->actuator_forcerange[2 * a], m->actuator_forcerange[2 * a + 1]});
+  }
+  model.nkey = m->nkey;
+  model.key_name.clear();
+  model.key_time.clear();
+  model.key_qpos.resize(m->nkey, m->nq);
+  model.key_qvel.resize(m->nkey, m->nv);
+  model.key_ctrl.resize(m->nkey, m->nu);
+  for (int k = 0; k < m->nkey; ++k) {
+    model.key_name.push_back(name_of(m, mjOBJ_KEY, k));
+    model.key_time.push_back(m->key_time[k]);
+    for (int i = 0; i < m->nq; ++i) model.key_qpos(k, i) = m->key_qpos[m->nq * k + i];
+    for (int i = 0; i < m->nv; ++i) model.key_qvel(k, i) = m->key_qvel[m->nv * k + i];
+    for (int i = 0; i < m->nu; ++i) model.key_ctrl(k, i) = m->key_ctrl[m->nu * k + i];
   }
   set_const(model);
   return model;

@@ -634,6 +634,11 @@ void Compiler::assemble_motors(Model& m) const {
   for (const CompiledMotor& a : motors_) {
     m.actuator_name.push_back(a.spec->at.name);
     m.actuator_trnid.push_back(a.joint);
+    m.actuator_dyntype.push_back(DynType::kNone);
+    m.actuator_gaintype.push_back(a.spec->gaintype);
+    m.actuator_biastype.push_back(a.spec->biastype);
+    m.actuator_gainprm.push_back(a.spec->gainprm);
+    m.actuator_biasprm.push_back(a.spec->biasprm);
     m.actuator_gear.push_back(a.spec->gear);
     m.actuator_ctrllimited.push_back(a.ctrllimited);
     m.actuator_forcelimited.push_back(a.forcelimited);

@@ -80,9 +80,15 @@ struct BodySpec {
   std::vector<BodySpec> children;
 };
 
+/// Any actuator (<motor>, <position>, <velocity>, <general>), in <general>'s terms: the shortcut
+/// elements only fill in the gain and bias types and parameters (parse.cpp).
 struct MotorSpec {
   Place at;
   std::string joint;
+  GainType gaintype = GainType::kFixed;
+  BiasType biastype = BiasType::kNone;
+  std::array<double, kGainParameters> gainprm{1};
+  std::array<double, kBiasParameters> biasprm{};
   Vec6 gear{};
   std::array<double, 2> ctrlrange{}, forcerange{};
   Limited ctrllimited = Limited::kAuto, forcelimited = Limited::kAuto;

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include <array>
 #include <cstdint>
@@ -134,6 +135,10 @@ struct Data {
     std::vector<int> lcp_index;        ///< (nefc_max) the active rows, in order
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
+    Eigen::MatrixXd qDeriv;                  ///< (nv x nv) implicit: d qfrc_smooth / d qvel
+    Eigen::PartialPivLU<Eigen::MatrixXd> qLU;  ///< implicit: LU factor of M - h qDeriv
+    std::vector<Motion> dcvel, dcacc;        ///< (nbody) implicit: d cvel, d cacc / d qvel_j
+    std::vector<Force> dcfrc;                ///< (nbody) implicit: d cfrc / d qvel_j
     bool inside_entry = false;  ///< a public function has checked this Data and runs its stages
   } work;
 
@@ -145,6 +150,13 @@ struct Data {
 /// Reset the state as MuJoCo's mj_resetData: qpos = qpos0; qvel, ctrl, qfrc_applied, qacc,
 /// time and warnings zero.
 void reset(const Model& model, Data& data);
+
+/// Reset to keyframe `key` as MuJoCo's mj_resetDataKeyframe: reset(), then time, qpos, qvel and
+/// ctrl from the keyframe. Throws StateError naming the range if `key` is not in [0, nkey).
+void reset_keyframe(const Model& model, Data& data, int key);
+
+/// The same by the keyframe's name; throws StateError listing the model's keyframes if none has it.
+void reset_keyframe(const Model& model, Data& data, const std::string& key);
 
 /// Total number of warnings recorded since the last reset (0: nothing went wrong).
 int warning_count(const Data& data);

@@ -42,6 +42,13 @@ void transmission(const Model& model, Data& data);
 /// forcelimited, then qfrc_actuator = moment^T actuator_force.
 void actuation(const Model& model, Data& data);
 
+/// D = d (qfrc_actuator + qfrc_passive - qfrc_bias) / d qvel into qDeriv (nv x nv), the matrix
+/// MuJoCo 2.2.2's implicit integrator uses (mjd_smooth_vel): affine actuator bias and gain
+/// velocity terms (with the raw ctrl; clamps ignored), joint damping, and the Coriolis and
+/// centrifugal terms of the bias force. @pre the velocity stage of forward() (cvel, cdof_dot).
+void smooth_velocity_derivative(const Model& model, Data& data,
+                                Eigen::Ref<Eigen::MatrixXd> qDeriv);
+
 /// Potential (gravity and joint springs) and kinetic energy into data.energy.
 /// @pre kinematics() and crba().
 void compute_energy(const Model& model, Data& data);

@@ -80,6 +80,11 @@
   X(site_pos, double, nsite, 3, mujoco)                      \
   X(site_quat, double, nsite, 4, mujoco)                     \
   X(actuator_trnid, int, nu, 1, own) /* (nu, 2) in MuJoCo */ \
+  X(actuator_dyntype, int, nu, 1, mujoco)                    \
+  X(actuator_gaintype, int, nu, 1, mujoco)                   \
+  X(actuator_biastype, int, nu, 1, mujoco)                   \
+  X(actuator_gainprm, double, nu, 10, mujoco)                \
+  X(actuator_biasprm, double, nu, 10, mujoco)                \
   X(actuator_ctrllimited, uint8_t, nu, 1, mujoco)            \
   X(actuator_forcelimited, uint8_t, nu, 1, mujoco)           \
   X(actuator_gear, double, nu, 6, mujoco)                    \

@@ -27,8 +27,23 @@ namespace lever {
 /// Joint types; the numeric values are MuJoCo's mjtJoint.
 enum class JointType : int { kSlide = 2, kHinge = 3 };
 
-/// Integrators; the numeric values are MuJoCo's mjtIntegrator (implicit is not supported).
-enum class Integrator : int { kEuler = 0, kRK4 = 1 };
+/// Integrators; the numeric values are MuJoCo's mjtIntegrator. kImplicit is MuJoCo 2.2.2's
+/// `implicit`: implicit in every velocity-dependent force (MuJoCo 3's `implicitfast` does not
+/// exist in 2.2.2).
+enum class Integrator : int { kEuler = 0, kRK4 = 1, kImplicit = 2 };
+
+/// Actuator gain, bias and activation-dynamics types; the numeric values are MuJoCo's mjtGain,
+/// mjtBias and mjtDyn (lever has the stateless, affine ones).
+enum class GainType : int { kFixed = 0, kAffine = 1 };
+enum class BiasType : int { kNone = 0, kAffine = 1 };
+enum class DynType : int { kNone = 0 };
+
+/// Number of gain and bias parameters per actuator (MuJoCo's mjNGAIN, mjNBIAS).
+inline constexpr int kGainParameters = 10;
+inline constexpr int kBiasParameters = 10;
+
+/// Row-major matrix, for per-keyframe arrays (key_qpos is nkey x nq, as MuJoCo's).
+using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 /// Geom types; the numeric values are MuJoCo's mjtGeom.
 enum class GeomType : int { kSphere = 2, kCapsule = 3, kEllipsoid = 4, kCylinder = 5, kBox = 6 };
@@ -60,6 +75,7 @@ struct Model {
   int njnt = 0;   ///< joints
   int ngeom = 0;  ///< geoms
   int nsite = 0;  ///< sites
+  int nkey = 0;   ///< keyframes
 
   // ---- bodies (nbody) ------------------------------------------------------------------------
   std::vector<std::string> body_name{"world"};
@@ -130,14 +146,29 @@ struct Model {
   std::vector<Eigen::Vector4d> site_quat;  ///< relative to the body
   std::vector<Eigen::Vector3d> site_size;
 
-  // ---- actuators (nu): motors with a joint transmission ----------------------------------------
+  // ---- actuators (nu): stateless actuators with a joint transmission ---------------------------
+  // force = gain * ctrl + bias, with gain = gainprm[0] (+ gainprm[1] length + gainprm[2] velocity
+  // if affine) and bias = biasprm[0] + biasprm[1] length + biasprm[2] velocity (if affine): a
+  // motor is gain 1 and no bias; a position servo gain kp and bias (0, -kp, -kv).
   std::vector<std::string> actuator_name;
   std::vector<int> actuator_trnid;  ///< joint id
+  std::vector<DynType> actuator_dyntype;
+  std::vector<GainType> actuator_gaintype;
+  std::vector<BiasType> actuator_biastype;
+  std::vector<std::array<double, kGainParameters>> actuator_gainprm;
+  std::vector<std::array<double, kBiasParameters>> actuator_biasprm;
   std::vector<std::array<double, 6>> actuator_gear;
   std::vector<uint8_t> actuator_ctrllimited;
   std::vector<uint8_t> actuator_forcelimited;
   std::vector<std::array<double, 2>> actuator_ctrlrange;
   std::vector<std::array<double, 2>> actuator_forcerange;
+
+  // ---- keyframes (nkey): named states to start from (<keyframe><key>) --------------------------
+  std::vector<std::string> key_name;
+  std::vector<double> key_time;
+  RowMatrix key_qpos;  ///< (nkey x nq)
+  RowMatrix key_qvel;  ///< (nkey x nv)
+  RowMatrix key_ctrl;  ///< (nkey x nu)
 
   // ---- set_const: MuJoCo's compile-time constants ---------------------------------------------
   std::vector<double> body_subtreemass;                ///< kg, this body and all below it
@@ -163,6 +194,7 @@ struct Model {
   int site(const std::string& n) const;
   int actuator(const std::string& n) const;
   int geom(const std::string& n) const;
+  int key(const std::string& n) const;
 };
 
 /// Derive the constants MuJoCo's mj_setConst computes (dof_invweight0, dof_M0, body_invweight0,

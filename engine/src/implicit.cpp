@@ -1,0 +1,118 @@
+// MuJoCo 2.2.2's implicit integrator (mjINT_IMPLICIT, engine_forward.c mj_implicit): the step is
+// implicit in every velocity-dependent force. With D = d qfrc_smooth / d qvel at the step's start,
+//   (M - h D) qacc_implicit = qfrc_smooth + qfrc_constraint,
+// then qvel += h qacc_implicit and qpos += h qvel (the new qvel), as in the Euler step.
+//
+// D is what MuJoCo 2.2.2's mjd_smooth_vel holds, term by term (engine_derivative.c):
+//   actuators: each affine bias contributes biasprm[2], each affine gain gainprm[2] * ctrl, times
+//              gear^2 on its dof; the raw ctrl is used and the ctrl and force clamps are ignored
+//              (so a clamped servo still damps implicitly, exactly as in MuJoCo);
+//   passive:   -damping on the diagonal (joint springs do not depend on qvel);
+//   bias:      -d qfrc_bias / d qvel: the Coriolis and centrifugal terms, differentiated through
+//              the Newton-Euler recursion below (gravity does not depend on qvel).
+// The constraint force is taken from the forward solve and held fixed, as MuJoCo does.
+#include <lever/dynamics.hpp>
+#include <lever/error.hpp>
+
+#include <string>
+
+#include "internal.hpp"
+
+namespace lever {
+
+namespace {
+
+// One column of d qfrc_bias / d qvel: the Newton-Euler recursion of rnea.cpp differentiated with
+// respect to qvel_j. cdof and cinert do not depend on qvel; cvel and cdof_dot do:
+//   dv_b = dv_parent + S_j [if j is a dof of b]          (within a body, dof by dof)
+//   dSdot_i = dv x S_i                                   (dv: before dof i is added)
+//   da_b = da_parent + dSdot_i qd_i + Sdot_j [if j is a dof of b]
+//   df_b = I_b da_b + dv_b x* I_b v_b + v_b x* I_b dv_b
+// then the forces are summed leaves to root and projected on each dof.
+void bias_velocity_column(const Model& model, Data& data, int j, Eigen::Ref<Eigen::VectorXd> out) {
+  auto& dv = data.work.dcvel;
+  auto& da = data.work.dcacc;
+  auto& df = data.work.dcfrc;
+  dv[0].setZero();
+  da[0].setZero();
+  for (int b = 1; b < model.nbody; ++b) {
+    const int parent = model.body_parentid[b];
+    Motion dvb = dv[parent];
+    Motion dab = da[parent];
+    for (int k = 0; k < model.body_dofnum[b]; ++k) {
+      const int i = model.body_dofadr[b] + k;
+      const Motion& S = data.cdof[i];
+      dab += cross_motion(dvb, S) * data.qvel[i];
+      if (i == j) {
+        dab += data.cdof_dot[i];
+        dvb += S;
+      }
+    }
+    dv[b] = dvb;
+    da[b] = dab;
+    const RigidInertia& I = data.cinert[b];
+    df[b] = I * dab + cross_force(dvb, I * data.cvel[b]) + cross_force(data.cvel[b], I * dvb);
+  }
+  for (int b = model.nbody - 1; b > 0; --b) {
+    const int parent = model.body_parentid[b];
+    if (parent > 0) df[parent] += df[b];
+  }
+  for (int i = 0; i < model.nv; ++i) out[i] = data.cdof[i].dot(df[model.dof_bodyid[i]]);
+}
+
+}  // namespace
+
+void smooth_velocity_derivative(const Model& model, Data& data,
+                                Eigen::Ref<Eigen::MatrixXd> qDeriv) {
+  const EntryCheck entry(model, data, "lever::smooth_velocity_derivative");
+  if (qDeriv.rows() != model.nv || qDeriv.cols() != model.nv) {
+    throw StateError("lever::smooth_velocity_derivative: qDeriv is " +
+                     std::to_string(qDeriv.rows()) + " x " + std::to_string(qDeriv.cols()) +
+                     " but must be nv x nv = " + std::to_string(model.nv) + " x " +
+                     std::to_string(model.nv) + ".");
+  }
+  qDeriv.setZero();
+
+  // actuators: d force / d velocity of the affine bias and gain, carried to the dof by the gear
+  for (int a = 0; a < model.nu; ++a) {
+    double force_per_velocity = 0.0;
+    if (model.actuator_biastype[a] == BiasType::kAffine) {
+      force_per_velocity = model.actuator_biasprm[a][2];
+    }
+    if (model.actuator_gaintype[a] == GainType::kAffine) {
+      force_per_velocity += model.actuator_gainprm[a][2] * data.ctrl[a];
+    }
+    const double gear = model.actuator_gear[a][0];
+    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    qDeriv(dof, dof) += gear * force_per_velocity * gear;
+  }
+
+  // joint damping
+  for (int i = 0; i < model.nv; ++i) qDeriv(i, i) -= model.dof_damping[i];
+
+  // minus the velocity derivative of the bias force, one column per dof
+  for (int j = 0; j < model.nv; ++j) {
+    Eigen::VectorXd& column = data.work.vec3;
+    bias_velocity_column(model, data, j, column);
+    qDeriv.col(j) -= column;
+  }
+}
+
+namespace detail {
+
+void implicit_step(const Model& model, Data& data) {
+  const double h = model.opt.timestep;
+  auto& w = data.work;
+  smooth_velocity_derivative(model, data, w.qDeriv);
+  w.qDeriv = data.M - h * w.qDeriv;  // M - h D, factored in place of D
+  w.qLU.compute(w.qDeriv);
+  w.vec1 = data.qfrc_smooth + data.qfrc_constraint;
+  w.vec2.noalias() = w.qLU.solve(w.vec1);
+  data.qvel += h * w.vec2;
+  data.qpos += h * data.qvel;
+  data.time += h;
+}
+
+}  // namespace detail
+
+}  // namespace lever
