@@ -104,6 +104,7 @@ int sizes_used(GeomType type) {
     case GeomType::kCylinder: return 2;
     case GeomType::kEllipsoid:
     case GeomType::kBox: return 3;
+    case GeomType::kMesh: return 0;  // its size comes from the mesh, which lever does not read
   }
   return 3;
 }
@@ -115,6 +116,7 @@ const char* type_name(GeomType type) {
     case GeomType::kCylinder: return "cylinder";
     case GeomType::kEllipsoid: return "ellipsoid";
     case GeomType::kBox: return "box";
+    case GeomType::kMesh: return "mesh";
   }
   return "geom";
 }
@@ -127,6 +129,7 @@ const char* size_meaning(GeomType type) {
       return "a positive radius and half-length: size=\"r h\" (or size=\"r\" with fromto)";
     case GeomType::kEllipsoid: return "three positive semi-axes: size=\"a b c\"";
     case GeomType::kBox: return "three positive half-sizes: size=\"x y z\"";
+    case GeomType::kMesh: return "nothing (the mesh gives its size)";
   }
   return "";
 }
@@ -159,6 +162,8 @@ class Compiler {
     for (size_t id = 0; id < bodies_.size(); ++id) compile_body(static_cast<int>(id));
     for (const MotorSpec& m : spec_.motors) motors_.push_back(compile_motor(m));
     check_moving_bodies();
+    for (const KeySpec& k : spec_.keys) check_key(k);
+    find_collision_pairs();
     scale_total_mass();
     if (where) {
       for (const BodyNode& n : nodes_) where->body.push_back(n.spec->at);
@@ -209,6 +214,13 @@ class Compiler {
       for (const SiteSpec& s : n.spec->sites) sites.push_back({&s.at, s.at.name});
     }
     for (const MotorSpec& m : spec_.motors) motors.push_back({&m.at, m.at.name});
+    std::vector<std::pair<const Place*, std::string>> keys, meshes, materials;
+    for (const KeySpec& k : spec_.keys) keys.push_back({&k.at, k.at.name});
+    for (const Place& p : spec_.assets.meshes) meshes.push_back({&p, p.name});
+    for (const Place& p : spec_.assets.materials) materials.push_back({&p, p.name});
+    check_unique(keys, "keyframe");
+    check_unique(meshes, "mesh");
+    check_unique(materials, "material");
     check_unique(bodies, "body");
     check_unique(joints, "joint");
     check_unique(geoms, "geom");
@@ -266,6 +278,7 @@ class Compiler {
       const CompiledGeom& geom = geoms_[g];
       const int group = geom.spec->group;
       if (group >= c_.inertiagrouprange[0] && group <= c_.inertiagrouprange[1]) {
+        if (geom.spec->type == GeomType::kMesh) refuse_mesh_mass(*geom.spec, id);
         parts.push_back({geom.pos, geom.quat, geom.mass, geom.inertia});
       }
     }
@@ -281,6 +294,21 @@ class Compiler {
     } else if (!has_inertial) {
       out.inertial = BodyInertia{out.pos, out.quat, 0, {0, 0, 0}};
     }
+  }
+
+  [[noreturn]] void refuse_mesh_mass(const GeomSpec& g, int body) const {
+    const std::string& body_name = nodes_[static_cast<size_t>(body)].spec->at.name;
+    std::string file;
+    for (size_t m = 0; m < spec_.assets.meshes.size(); ++m) {
+      if (spec_.assets.meshes[m].name == g.mesh) file = spec_.assets.mesh_files[m];
+    }
+    fail(g.at, "mesh",
+         "mesh geom" + (g.at.name.empty() ? std::string() : " '" + g.at.name + "'") +
+             " (mesh '" + g.mesh + "'" + (file.empty() ? "" : ", file '" + file + "'") +
+             ") would give body '" + body_name +
+             "' its mass and inertia, but lever does not compute mesh inertia (it reads no mesh "
+             "file): add an <inertial> to body '" + body_name +
+             "', or put the geom in a group outside compiler/inertiagrouprange");
   }
 
   // bounds and the triangle inequality, for every body but the world
@@ -315,7 +343,38 @@ class Compiler {
 
   // ---- geoms, joints, sites ---------------------------------------------------------------------
 
+  // a mesh geom: its asset must exist; lever keeps its frame as written (MuJoCo moves it to the
+  // mesh's centre of mass and principal axes, which needs the file) and never reads the file
+  void check_mesh(const GeomSpec& g) const {
+    if (g.type != GeomType::kMesh && !g.mesh.empty()) {
+      fail(g.at, "mesh",
+           std::string("a ") + type_name(g.type) + " geom with mesh=\"" + g.mesh +
+               "\" is fitted to the mesh by MuJoCo, which needs the mesh file; lever reads no "
+               "mesh file: give the geom its size, or make it type=\"mesh\"");
+    }
+    if (g.type != GeomType::kMesh) return;
+    if (g.mesh.empty()) fail(g.at, "mesh", "a mesh geom needs mesh=\"NAME\" naming a <mesh> asset");
+    if (g.fromto) fail(g.at, "fromto", "fromto cannot be used with a mesh geom");
+    require_asset(g.at, "mesh", g.mesh, spec_.assets.meshes);
+  }
+
+  static void require_asset(const Place& at, const char* attribute, const std::string& name,
+                            const std::vector<Place>& assets) {
+    std::vector<std::string_view> names;
+    for (const Place& a : assets) {
+      if (a.name == name) return;
+      names.push_back(a.name);
+    }
+    fail(at, attribute,
+         std::string("unknown ") + attribute + " '" + name + "'" + did_you_mean(name, names));
+  }
+
   CompiledGeom compile_geom(const GeomSpec& g, int body) {
+    check_mesh(g);
+    if (!g.material.empty()) require_asset(g.at, "material", g.material, spec_.assets.materials);
+    if (g.condim != 1 && g.condim != 3 && g.condim != 4 && g.condim != 6) {
+      fail(g.at, "condim", "condim must be 1, 3, 4 or 6 (found " + std::to_string(g.condim) + ")");
+    }
     CompiledGeom out{&g, body, g.size, g.pos, g.orientation.quat, 0, {}};
     normalize(out.quat.data(), 4);
     if (g.fromto) {
@@ -330,6 +389,11 @@ class Compiler {
              std::string("a ") + type_name(g.type) + " needs " + size_meaning(g.type) +
                  "; it has size \"" + show3(out.size) + "\"");
       }
+    }
+    if (g.type == GeomType::kMesh) {
+      out.size = {0, 0, 0};
+      require_finite(g.at, "geom", out.pos, out.quat);
+      return out;  // no mass: infer_inertia refuses a body that would need it
     }
     out.mass = geom_mass(g.type, out.size, g.density, g.mass);
     out.inertia = geom_inertia(g.type, out.size, out.mass);
@@ -465,6 +529,69 @@ class Compiler {
     }
   }
 
+  // a keyframe's lists must have the model's sizes (mjCKey::Compile); missing ones are filled in
+  // assemble_keys
+  void check_key(const KeySpec& k) const {
+    const auto check = [&](const std::optional<std::vector<double>>& v, const char* what,
+                           size_t n, const char* size) {
+      if (v && v->size() != n) {
+        fail(k.at, what,
+             std::string("keyframe ") + what + " has " + std::to_string(v->size()) +
+                 " number" + (v->size() == 1 ? "" : "s") + " but the model has " + size + " = " +
+                 std::to_string(n));
+      }
+    };
+    check(k.qpos, "qpos", joints_.size(), "nq");
+    check(k.qvel, "qvel", joints_.size(), "nv");
+    check(k.ctrl, "ctrl", motors_.size(), "nu");
+  }
+
+  // Geoms MuJoCo would test for contact (mj_contactFilter with filterparent on): compatible
+  // contype/conaffinity bits, on bodies that move relative to each other, neither body welded to
+  // the other's parent. lever computes no contacts, so each such pair is a place where MuJoCo
+  // could differ; the compiler says so instead of staying silent.
+  void find_collision_pairs() {
+    const size_t n = nodes_.size();
+    std::vector<int> weld(n, 0);
+    for (size_t b = 1; b < n; ++b) {
+      weld[b] = nodes_[b].spec->joints.empty() ? weld[static_cast<size_t>(nodes_[b].parent)]
+                                               : static_cast<int>(b);
+    }
+    const auto weld_parent = [&](int w) {
+      return w == 0 ? 0 : weld[static_cast<size_t>(nodes_[static_cast<size_t>(w)].parent)];
+    };
+    const auto label = [&](size_t g) {
+      const CompiledGeom& geom = geoms_[g];
+      const std::string& body = nodes_[static_cast<size_t>(geom.body)].spec->at.name;
+      return (geom.spec->at.name.empty() ? "geom " + std::to_string(g)
+                                         : "geom '" + geom.spec->at.name + "'") +
+             " (body '" + (geom.body == 0 ? std::string("world") : body) + "', line " +
+             std::to_string(geom.spec->at.line) + ")";
+    };
+    int pairs = 0;
+    std::string first;
+    constexpr int kListed = 10;  // the message names the first pairs and counts the rest
+    for (size_t a = 0; a < geoms_.size(); ++a) {
+      for (size_t b = a + 1; b < geoms_.size(); ++b) {
+        const GeomSpec& ga = *geoms_[a].spec;
+        const GeomSpec& gb = *geoms_[b].spec;
+        if (!(ga.contype & gb.conaffinity) && !(gb.contype & ga.conaffinity)) continue;
+        const int wa = weld[static_cast<size_t>(geoms_[a].body)];
+        const int wb = weld[static_cast<size_t>(geoms_[b].body)];
+        if (wa == wb) continue;
+        if (wa != 0 && wb != 0 && (wa == weld_parent(wb) || wb == weld_parent(wa))) continue;
+        if (++pairs <= kListed) first += (pairs == 1 ? "" : "; ") + label(a) + " and " + label(b);
+      }
+    }
+    if (pairs == 0) return;
+    warnings_.push_back(
+        std::to_string(pairs) + " geom pair" + (pairs == 1 ? "" : "s") +
+        " could collide in MuJoCo (contype/conaffinity), but lever computes no contacts, so a "
+        "motion that brings them together differs from MuJoCo's: " + first +
+        (pairs > kListed ? "; and " + std::to_string(pairs - kListed) + " more" : "") +
+        ". Set contype=\"0\" conaffinity=\"0\" on geoms that are not meant to collide.");
+  }
+
   // compiler/settotalmass scales every body, static ones included (mj_setTotalmass)
   void scale_total_mass() {
     if (!(c_.settotalmass > 0)) return;
@@ -486,6 +613,8 @@ class Compiler {
   void assemble_joints(Model& m) const;
   void assemble_geoms_and_sites(Model& m) const;
   void assemble_motors(Model& m) const;
+  void assemble_keys(Model& m) const;
+  void assemble_visual(Model& m) const;
 
   const ModelSpec& spec_;
   const CompilerSpec& c_;
@@ -495,6 +624,7 @@ class Compiler {
   std::vector<CompiledJoint> joints_;
   std::vector<CompiledSite> sites_;
   std::vector<CompiledMotor> motors_;
+  std::vector<std::string> warnings_;
 };
 
 Eigen::Vector3d eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
@@ -516,6 +646,9 @@ Model Compiler::assemble() const {
   assemble_joints(m);
   assemble_geoms_and_sites(m);
   assemble_motors(m);
+  assemble_keys(m);
+  assemble_visual(m);
+  m.warnings = warnings_;
   return m;
 }
 
@@ -644,6 +777,38 @@ void Compiler::assemble_motors(Model& m) const {
     m.actuator_forcelimited.push_back(a.forcelimited);
     m.actuator_ctrlrange.push_back(a.spec->ctrlrange);
     m.actuator_forcerange.push_back(a.spec->forcerange);
+  }
+}
+
+void Compiler::assemble_keys(Model& m) const {
+  m.nkey = static_cast<int>(spec_.keys.size());
+  m.key_qpos.resize(m.nkey, m.nq);
+  m.key_qvel.setZero(m.nkey, m.nv);
+  m.key_ctrl.setZero(m.nkey, m.nu);
+  for (int k = 0; k < m.nkey; ++k) {
+    const KeySpec& key = spec_.keys[static_cast<size_t>(k)];
+    m.key_name.push_back(key.at.name);
+    m.key_time.push_back(key.time);
+    m.key_qpos.row(k) = m.qpos0.transpose();  // an unwritten qpos is qpos0, as in mujoco
+    for (int i = 0; key.qpos && i < m.nq; ++i) m.key_qpos(k, i) = (*key.qpos)[static_cast<size_t>(i)];
+    for (int i = 0; key.qvel && i < m.nv; ++i) m.key_qvel(k, i) = (*key.qvel)[static_cast<size_t>(i)];
+    for (int i = 0; key.ctrl && i < m.nu; ++i) m.key_ctrl(k, i) = (*key.ctrl)[static_cast<size_t>(i)];
+  }
+}
+
+void Compiler::assemble_visual(Model& m) const {
+  VisualInfo& v = m.visual;
+  v.meshdir = c_.meshdir;
+  v.texturedir = c_.texturedir;
+  for (const Place& p : spec_.assets.meshes) v.mesh_name.push_back(p.name);
+  v.mesh_file = spec_.assets.mesh_files;
+  for (const Place& p : spec_.assets.materials) v.material_name.push_back(p.name);
+  for (const Place& p : spec_.assets.textures) v.texture_name.push_back(p.name);
+  v.light_name = spec_.assets.lights;
+  v.camera_name = spec_.assets.cameras;
+  for (const CompiledGeom& g : geoms_) {
+    v.geom_mesh.push_back(g.spec->mesh);
+    v.geom_material.push_back(g.spec->material);
   }
 }
 

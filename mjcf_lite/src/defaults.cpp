@@ -30,9 +30,10 @@ void check_physical(const Element& e, const Attribute& a, const Value& v) {
   }
   // negative armature, damping or stiffness makes a joint gain energy from nothing (and
   // set_const() refuses them): say so where they are written
+  // a negative servo gain pushes away from its target: MuJoCo 2.2.2 loads it, lever refuses it
   const bool must_not_be_negative =
       (a.name == "mass" || a.name == "density" || a.name == "diaginertia" || a.name == "armature" ||
-       a.name == "damping" || a.name == "stiffness");
+       a.name == "damping" || a.name == "stiffness" || a.name == "kp" || a.name == "kv");
   for (const double x : v.numbers) {
     if (must_not_be_negative && x < 0) {
       fail(e.place(a), a.name,
@@ -66,21 +67,61 @@ void AttrSet::apply(const Element& e, const ElementRule& rule) {
   }
 }
 
+namespace {
+
+bool is_actuator(std::string_view tag) {
+  return tag == "motor" || tag == "general" || tag == "position" || tag == "velocity";
+}
+
+Value word_value(const char* w) { return Value{{}, w, 0}; }
+
+}  // namespace
+
+void apply_actuator(AttrSet& set, const Element& e, const ElementRule& rule) {
+  set.apply(e, rule);
+  const std::string_view tag = e.tag;
+  if (tag == "general") return;
+  set.set("dyntype", word_value("none"));
+  set.set("gaintype", word_value("fixed"));
+  const auto numbers = [&](const char* name) {
+    const Value* v = set.find(name);
+    return v ? v->numbers : default_numbers(attribute_rule("actuator", "general", name));
+  };
+  std::vector<double> gain = numbers("gainprm");
+  if (tag == "motor") {
+    gain[0] = 1;
+    set.set("gainprm", Value{gain, "", 0});
+    set.set("biastype", word_value("none"));
+    return;
+  }
+  // position and velocity servos
+  const char* gain_name = tag == "position" ? "kp" : "kv";
+  if (const Value* k = set.find(gain_name)) gain[0] = k->numbers[0];
+  set.erase(gain_name);  // held as gainprm[0] from here on, for later elements of the class too
+  std::vector<double> bias(kBiasParameters, 0.0);
+  bias[tag == "position" ? 1 : 2] = -gain[0];
+  set.set("gainprm", Value{gain, "", 0});
+  set.set("biasprm", Value{bias, "", 0});
+  set.set("biastype", word_value("affine"));
+}
+
 const AttrSet& DefaultClass::prototype(std::string_view tag) const {
   if (tag == "joint") return joint;
   if (tag == "geom") return geom;
   if (tag == "site") return site;
-  return motor;
+  if (is_actuator(tag)) return actuator;
+  return visual_only;
 }
 
 AttrSet& DefaultClass::prototype(std::string_view tag) {
   if (tag == "joint") return joint;
   if (tag == "geom") return geom;
   if (tag == "site") return site;
-  return motor;
+  if (is_actuator(tag)) return actuator;
+  return visual_only;
 }
 
-DefaultClasses::DefaultClasses() { classes_.push_back(DefaultClass{"main", {}, {}, {}, {}}); }
+DefaultClasses::DefaultClasses() { classes_.push_back(DefaultClass{"main", {}, {}, {}, {}, {}}); }
 
 int DefaultClasses::find(std::string_view name) const {
   for (size_t i = 0; i < classes_.size(); ++i) {
@@ -106,8 +147,12 @@ void DefaultClasses::read(const Element& section, int id) {
   // the class's own element defaults first, whatever their position among nested classes
   for (const Element& child : section.children) {
     if (child.tag == "default") continue;
-    classes_[static_cast<size_t>(id)].prototype(child.tag).apply(child,
-                                                                 *find_rule("default", child.tag));
+    AttrSet& prototype = classes_[static_cast<size_t>(id)].prototype(child.tag);
+    if (is_actuator(child.tag)) {
+      apply_actuator(prototype, child, *find_rule("default", child.tag));
+    } else {
+      prototype.apply(child, *find_rule("default", child.tag));
+    }
   }
   for (const Element& child : section.children) {
     if (child.tag != "default") continue;

@@ -25,14 +25,27 @@ class AttrSet {
   /// Read the attributes written on `e`, checked by `rule`, over the current values.
   void apply(const Element& e, const ElementRule& rule);
 
+  /// Set (or remove) one value directly: what an actuator shortcut implies.
+  void set(const std::string& name, Value value) { values_[name] = std::move(value); }
+  void erase(const std::string& name) { values_.erase(name); }
+
  private:
   std::map<std::string, Value, std::less<>> values_;
 };
 
-/// One default class: a prototype per element kind.
+/// Read an actuator element (<motor>, <position>, <velocity>, <general>, in a default class or
+/// in <actuator>) over `set`, as MuJoCo 2.2.2's reader does: its attributes first, then what the
+/// shortcut implies in <general>'s terms. A motor sets gainprm[0] = 1, gain fixed, bias none; a
+/// position servo clears biasprm and sets gainprm[0] = kp (if written) and biasprm[1] = -kp, bias
+/// affine; a velocity servo the same with kv and biasprm[2]. So every kind shares one prototype
+/// per class, and a <general> of a class whose default is a <position> is a position servo.
+void apply_actuator(AttrSet& set, const Element& e, const ElementRule& rule);
+
+/// One default class: a prototype per element kind (one for every actuator kind).
 struct DefaultClass {
   std::string name;
-  AttrSet joint, geom, site, motor;
+  AttrSet joint, geom, site, actuator;
+  AttrSet visual_only;  ///< mesh, material, camera, light defaults: checked, not used
 
   const AttrSet& prototype(std::string_view tag) const;
   AttrSet& prototype(std::string_view tag);

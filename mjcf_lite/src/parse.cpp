@@ -81,6 +81,7 @@ GeomType geom_type(const std::string& w) {
   if (w == "ellipsoid") return GeomType::kEllipsoid;
   if (w == "cylinder") return GeomType::kCylinder;
   if (w == "box") return GeomType::kBox;
+  if (w == "mesh") return GeomType::kMesh;
   return GeomType::kSphere;
 }
 
@@ -121,6 +122,9 @@ GeomSpec read_geom(const Element& e, const AttrSet& set) {
   g.contype = f.integer("contype");
   g.conaffinity = f.integer("conaffinity");
   g.rgba = f.array<4>("rgba");
+  g.condim = f.integer("condim");
+  g.mesh = f.word("mesh");
+  g.material = f.word("material");
   return g;
 }
 
@@ -146,14 +150,20 @@ InertialSpec read_inertial(const Element& e) {
   return i;
 }
 
-MotorSpec read_motor(const Element& e, const DefaultClasses& classes) {
-  // childclass never reaches actuators: a motor without class uses the top-level class
+MotorSpec read_actuator(const Element& e, const DefaultClasses& classes) {
+  // childclass never reaches actuators: one without class uses the top-level class
   const int cls = classes.choose(e, "class", 0);
-  const AttrSet set = resolve(e, "actuator", classes.at(cls).motor);
-  const Fields f(set, "actuator", "motor");
+  AttrSet set = classes.at(cls).actuator;
+  apply_actuator(set, e, *find_rule("actuator", e.tag));
+  // every kind is read in <general>'s terms (apply_actuator filled in what a shortcut implies)
+  const Fields f(set, "actuator", "general");
   MotorSpec m;
   m.at = e.place();
-  m.joint = f.word("joint");
+  m.joint = Fields(set, "actuator", e.tag).word("joint");
+  m.gaintype = f.word("gaintype") == "affine" ? GainType::kAffine : GainType::kFixed;
+  m.biastype = f.word("biastype") == "affine" ? BiasType::kAffine : BiasType::kNone;
+  m.gainprm = f.array<kGainParameters>("gainprm");
+  m.biasprm = f.array<kBiasParameters>("biasprm");
   m.gear = f.array<6>("gear");
   m.ctrlrange = f.array<2>("ctrlrange");
   m.forcerange = f.array<2>("forcerange");
@@ -167,6 +177,7 @@ MotorSpec read_motor(const Element& e, const DefaultClasses& classes) {
 struct TreeReader {
   const DefaultClasses& classes;
   bool ignore_inertials;
+  AssetSpec& assets;
 
   // the children of a <body> or <worldbody>; `active` is the class childclass selected
   void read_contents(const Element& e, int active, BodySpec& body) const {
@@ -183,6 +194,8 @@ struct TreeReader {
         if (child.tag == "joint") body.joints.push_back(read_joint(child, set));
         if (child.tag == "geom") body.geoms.push_back(read_geom(child, set));
         if (child.tag == "site") body.sites.push_back(read_site(child, set));
+        if (child.tag == "light") assets.lights.push_back(child.place().name);
+        if (child.tag == "camera") assets.cameras.push_back(child.place().name);
       }
     }
   }
@@ -230,12 +243,21 @@ CompilerSpec read_compiler(const Element& root) {
   c.boundinertia = f.real("boundinertia");
   c.balanceinertia = f.word("balanceinertia") == "true";
   c.settotalmass = f.real("settotalmass");
+  c.meshdir = f.word("meshdir");
+  c.texturedir = f.word("texturedir");
   return c;
 }
 
 Options read_option(const Element& root) {
   AttrSet set;
   for (const Element* e : sections(root, "option")) {
+    const Attribute* integrator = e->find("integrator");
+    if (integrator && integrator->value == "implicitfast") {
+      fail(e->place(*integrator), "integrator",
+           "integrator 'implicitfast' is MuJoCo 3's and does not exist in MuJoCo 2.2.2, which "
+           "lever follows: use 'implicit' (implicit in every velocity-dependent force, Coriolis "
+           "terms included), 'Euler' or 'RK4'");
+    }
     set.apply(*e, *find_rule("mujoco", "option"));
     const Attribute* timestep = e->find("timestep");
     if (timestep && !(set.find("timestep")->numbers[0] > 0)) {
@@ -248,8 +270,67 @@ Options read_option(const Element& root) {
   o.timestep = f.real("timestep");
   const Vec3 g = f.array<3>("gravity");
   o.gravity = Eigen::Vector3d(g[0], g[1], g[2]);
-  o.integrator = f.word("integrator") == "RK4" ? Integrator::kRK4 : Integrator::kEuler;
+  const std::string integrator = f.word("integrator");
+  o.integrator = integrator == "RK4"        ? Integrator::kRK4
+                 : integrator == "implicit" ? Integrator::kImplicit
+                                            : Integrator::kEuler;
   return o;
+}
+
+// <keyframe><key>: the numbers as written; their counts are checked once the sizes are known
+std::vector<KeySpec> read_keys(const Element& root) {
+  std::vector<KeySpec> keys;
+  for (const Element* section : sections(root, "keyframe")) {
+    for (const Element& e : section->children) {
+      KeySpec k;
+      k.at = e.place();
+      if (const Attribute* t = e.find("time")) {
+        k.time = parse_value(e, *t, attribute_rule("keyframe", "key", "time")).numbers[0];
+      }
+      // the lists as written (an AttrSet would fill them to their maximum length)
+      for (const char* name : {"qpos", "qvel", "ctrl"}) {
+        const Attribute* a = e.find(name);
+        if (!a) continue;
+        const std::vector<double> v = parse_value(e, *a, attribute_rule("keyframe", "key", name)).numbers;
+        if (std::string_view(name) == "qpos") k.qpos = v;
+        if (std::string_view(name) == "qvel") k.qvel = v;
+        if (std::string_view(name) == "ctrl") k.ctrl = v;
+      }
+      keys.push_back(std::move(k));
+    }
+  }
+  return keys;
+}
+
+// <asset>: names (and mesh files) only; a mesh without a name is named after its file
+AssetSpec read_assets(const Element& root, const DefaultClasses& classes) {
+  AssetSpec assets;
+  for (const Element* section : sections(root, "asset")) {
+    for (const Element& e : section->children) {
+      if (e.find("class")) classes.choose(e, "class", 0);  // an unknown class is an error
+      Place at = e.place();
+      if (e.tag == "mesh") {
+        const Attribute* file = e.find("file");
+        std::string path = file ? file->value : "";
+        if (at.name.empty() && !path.empty()) {
+          // mujoco: the file name without folder and extension
+          std::string base = path.substr(path.find_last_of("/\\") == std::string::npos
+                                             ? 0
+                                             : path.find_last_of("/\\") + 1);
+          const size_t dot = base.rfind('.');
+          at.name = dot == std::string::npos ? base : base.substr(0, dot);
+        }
+        if (!file && !e.find("vertex")) {
+          fail(e.place(), "file", "a <mesh> needs a file or vertex data");
+        }
+        assets.meshes.push_back(at);
+        assets.mesh_files.push_back(path);
+      }
+      if (e.tag == "material") assets.materials.push_back(at);
+      if (e.tag == "texture") assets.textures.push_back(at);
+    }
+  }
+  return assets;
 }
 
 }  // namespace
@@ -262,15 +343,17 @@ ModelSpec parse_model(const Element& root, bool ignore_inertials) {
   spec.opt = read_option(root);
   DefaultClasses classes;
   for (const Element* e : sections(root, "default")) classes.read_section(*e);
-  const TreeReader tree{classes, ignore_inertials};
+  spec.assets = read_assets(root, classes);
+  const TreeReader tree{classes, ignore_inertials, spec.assets};
   spec.world.at = Place{"worldbody", "world", 0};
   for (const Element* e : sections(root, "worldbody")) {
     if (spec.world.at.line == 0) spec.world.at.line = e->line;
     tree.read_contents(*e, 0, spec.world);
   }
   for (const Element* e : sections(root, "actuator")) {
-    for (const Element& motor : e->children) spec.motors.push_back(read_motor(motor, classes));
+    for (const Element& a : e->children) spec.motors.push_back(read_actuator(a, classes));
   }
+  spec.keys = read_keys(root);
   return spec;
 }
 

@@ -96,6 +96,7 @@ std::vector<AttributeRule> joint_attributes() {
       real("springref", 1, "0",
            "spring rest position (qpos_spring); hinge in degrees unless radian"),
       real("armature", 1, "0", "rotor inertia added to the mass matrix diagonal"),
+      integer("group", 1, "0", "visualisation group (kept; no effect on dynamics)"),
       real("ref", 1, "0", "reference position (qpos0); hinge in degrees unless radian"),
       real("margin", 1, "0", "limit activation margin"),
       partial("solreflimit", 2, "0.02 1", "limit solref (timeconst, dampratio)"),
@@ -107,8 +108,10 @@ std::vector<AttributeRule> joint_attributes() {
 std::vector<AttributeRule> geom_attributes() {
   return join(
       {
-          keyword("type", "sphere", "sphere capsule ellipsoid cylinder box", "plane hfield mesh",
-                  "shape"),
+          keyword("type", "sphere", "sphere capsule ellipsoid cylinder box mesh", "plane hfield",
+                  "shape; a mesh geom needs no mesh file unless it must give its body mass"),
+          text("mesh", "", "mesh asset of a mesh geom (kept; its file is never read)"),
+          text("material", "", "material asset (kept; no effect on dynamics)"),
           partial("size", 3, "0 0 0",
                   "sphere r; capsule, cylinder r, half-length; ellipsoid, box half-sizes"),
           real("fromto", 6, "", "segment end points; sets pos, quat and the length"),
@@ -123,11 +126,24 @@ std::vector<AttributeRule> geom_attributes() {
                integer("contype", 1, "1", "contact type bits (stored; lever has no contacts)"),
                integer("conaffinity", 1, "1", "contact affinity bits (stored)"),
                real("rgba", 4, "0.5 0.5 0.5 1", "colour"),
+               integer("condim", 1, "3", "contact dimensionality (kept; lever computes no contacts)"),
+               partial("friction", 3, "1 0.005 0.0001", "contact friction (kept; no contacts)"),
+               partial("solref", 2, "0.02 1", "contact solref (kept; no contacts)"),
+               partial("solimp", 5, "0.9 0.95 0.001 0.5 2", "contact solimp (kept; no contacts)"),
+               real("margin", 1, "0", "contact margin (kept; no contacts)"),
+               real("gap", 1, "0", "contact gap (kept; no contacts)"),
+               integer("priority", 1, "0", "contact priority (kept; no contacts)"),
+               real("solmix", 1, "1", "contact solmix (kept; no contacts)"),
            }));
 }
 
 std::vector<AttributeRule> site_attributes() {
-  return join({real("pos", 3, "0 0 0", "position, body frame"),
+  return join({keyword("type", "sphere", "sphere capsule ellipsoid cylinder box", "",
+                       "shape (kept; a site has no mass and does not collide)"),
+               integer("group", 1, "0", "visualisation group (kept)"),
+               text("material", "", "material asset (kept)"),
+               real("rgba", 4, "0.5 0.5 0.5 1", "colour (kept)"),
+               real("pos", 3, "0 0 0", "position, body frame"),
                real("quat", 4, "1 0 0 0", "orientation (w x y z); must not be zero")},
               join(alternatives(),
                    {partial("size", 3, "0.005 0.005 0.005", "sphere radius (first number)")}));
@@ -145,13 +161,67 @@ std::vector<AttributeRule> motor_class_attributes() {
 }
 
 const char* const kUnsupportedJointAttributes =
-    "group springdamper solreffriction solimpfriction frictionloss user";
+    "springdamper solreffriction solimpfriction frictionloss user";
 const char* const kUnsupportedGeomAttributes =
-    "condim priority material friction solmix solref solimp margin gap hfield mesh fitscale "
-    "fluidshape fluidcoef user shellinertia";
-const char* const kUnsupportedSiteAttributes = "type group material fromto rgba user";
-const char* const kOtherActuators =
-    "general position velocity intvelocity damper cylinder muscle adhesion";
+    "hfield fitscale fluidshape fluidcoef user shellinertia";
+const char* const kUnsupportedSiteAttributes = "fromto user";
+const char* const kOtherActuators = "intvelocity damper cylinder muscle adhesion";
+
+// attributes every actuator kind shares, in a default class and in <actuator>
+std::vector<AttributeRule> general_class_attributes() {
+  return join(motor_class_attributes(),
+              {
+                  integer("group", 1, "0", "visualisation group (kept; no effect on dynamics)"),
+                  keyword("dyntype", "none", "none", "integrator filter muscle user",
+                          "activation dynamics: none (ctrl acts directly)"),
+                  keyword("gaintype", "fixed", "fixed affine", "muscle user",
+                          "gain: fixed = gainprm[0]; affine = gainprm[0] + gainprm[1] length + "
+                          "gainprm[2] velocity"),
+                  keyword("biastype", "none", "none affine", "muscle user",
+                          "bias: affine = biasprm[0] + biasprm[1] length + biasprm[2] velocity"),
+                  partial("gainprm", 10, "1 0 0 0 0 0 0 0 0 0", "gain parameters"),
+                  partial("biasprm", 10, "0 0 0 0 0 0 0 0 0 0", "bias parameters"),
+                  partial("dynprm", 10, "1 0 0 0 0 0 0 0 0 0",
+                          "activation-dynamics parameters (kept; dyntype none ignores them)"),
+              });
+}
+
+std::vector<AttributeRule> shortcut_class_attributes(std::string_view gain_name,
+                                                     std::string_view meaning) {
+  return join(motor_class_attributes(),
+              {integer("group", 1, "0", "visualisation group (kept; no effect on dynamics)"),
+               real(gain_name, 1, "1", meaning)});
+}
+
+std::vector<AttributeRule> actuator_wiring(std::string_view what) {
+  return {text("name", "", what), text("class", "", "default class (else the top-level class)"),
+          required(text("joint", "", "the joint it drives"))};
+}
+
+const char* const kUnsupportedActuatorAttributes =
+    "lengthrange cranklength user jointinparent tendon slidersite cranksite site refsite body "
+    "actlimited actrange";
+
+// visual-only assets and elements: read, checked by name, kept as text; no effect on dynamics
+std::vector<AttributeRule> texts(std::string_view names, std::string_view meaning) {
+  std::vector<AttributeRule> out;
+  for (const std::string_view n : words(names)) out.push_back(text(n, "", meaning));
+  return out;
+}
+
+const char* const kMeshAttributes =
+    "name class file vertex normal texcoord face refpos refquat scale smoothnormal";
+const char* const kMaterialAttributes =
+    "name class texture texrepeat texuniform emission specular shininess reflectance rgba";
+const char* const kTextureAttributes =
+    "name type file gridsize gridlayout fileright fileleft fileup filedown filefront fileback "
+    "builtin rgb1 rgb2 mark markrgb random width height hflip vflip";
+const char* const kCameraAttributes =
+    "name class fovy ipd pos quat axisangle xyaxes zaxis euler mode target user";
+const char* const kLightAttributes =
+    "name class directional castshadow active pos dir attenuation cutoff exponent ambient "
+    "diffuse specular mode target";
+const char* const kVisualOnly = "visual only: read and kept, no effect on dynamics";
 
 // one row per element: tag, parent, multiplicity, attributes, refused attributes, refused
 // children, meaning
@@ -159,8 +229,7 @@ const char* const kOtherActuators =
 std::vector<ElementRule> build() {
   std::vector<ElementRule> s;
   s.push_back({"mujoco", "", '!', {text("model", "MuJoCo Model", "model name")}, "",
-               "size visual statistic custom asset contact equality tendon sensor keyframe include",
-               "the root element"});
+               "size custom contact equality tendon sensor include", "the root element"});
   s.push_back({"compiler", "mujoco", '*',
                {
                    keyword("angle", "degree", "radian degree", "",
@@ -178,27 +247,31 @@ std::vector<ElementRule> build() {
                            "replace an inertia violating A + B >= C by the mean moment"),
                    real("settotalmass", 1, "-1", "if > 0, scale all masses to this total"),
                    keyword("coordinate", "local", "local", "global", "frames are local"),
+                   text("meshdir", "", "folder of mesh files (kept; lever reads no mesh file)"),
+                   text("texturedir", "", "folder of texture files (kept; never read)"),
                },
-               "strippath fitaabb meshdir texturedir discardvisual convexhull usethread "
-               "fusestatic exactmeshinertia",
+               "strippath fitaabb discardvisual convexhull usethread fusestatic exactmeshinertia",
                "lengthrange", "compiler settings; apply to the whole model wherever written"});
   s.push_back({"option", "mujoco", '*',
                {
                    real("timestep", 1, "0.002", "s; must be positive"),
                    real("gravity", 3, "0 0 -9.81", "m/s^2, world frame"),
-                   keyword("integrator", "Euler", "Euler RK4", "implicit", "integrator"),
+                   keyword("integrator", "Euler", "Euler RK4 implicit", "",
+                           "integrator: implicit is MuJoCo 2.2.2's (implicit in every "
+                           "velocity-dependent force); MuJoCo 3's implicitfast does not exist in "
+                           "2.2.2"),
+                   real("impratio", 1, "1",
+                        "friction-to-normal impedance ratio of contacts (kept; no contacts)"),
                },
-               "apirate impratio tolerance noslip_tolerance mpr_tolerance wind magnetic density "
+               "apirate tolerance noslip_tolerance mpr_tolerance wind magnetic density "
                "viscosity o_margin o_solref o_solimp collision cone jacobian solver iterations "
                "noslip_iterations mpr_iterations",
                "flag", "simulation options"});
   s.push_back({"default", "mujoco", '*', {text("class", "main", "class name (top level: main)")},
-               "", "mesh material camera light pair equality tendon general position velocity "
-               "intvelocity damper cylinder muscle adhesion",
+               "", "pair equality tendon intvelocity damper cylinder muscle adhesion",
                "default class: attribute values that elements of the class start from"});
   s.push_back({"default", "default", '*', {required(text("class", "", "class name"))}, "",
-               "mesh material camera light pair equality tendon general position velocity "
-               "intvelocity damper cylinder muscle adhesion",
+               "pair equality tendon intvelocity damper cylinder muscle adhesion",
                "nested class: starts as a copy of its parent"});
   s.push_back({"joint", "default", '?', joint_attributes(), kUnsupportedJointAttributes, "",
                "joint defaults of the class"});
@@ -206,9 +279,73 @@ std::vector<ElementRule> build() {
                "geom defaults of the class"});
   s.push_back({"site", "default", '?', site_attributes(), kUnsupportedSiteAttributes, "",
                "site defaults of the class"});
-  s.push_back({"motor", "default", '?', motor_class_attributes(), "cranklength user group", "",
-               "motor defaults of the class"});
-  s.push_back({"worldbody", "mujoco", '*', {}, "", "camera light composite",
+  s.push_back({"motor", "default", '?',
+               join(motor_class_attributes(),
+                    {integer("group", 1, "0", "visualisation group (kept)")}),
+               "cranklength user", "", "actuator defaults of the class, as a motor"});
+  s.push_back({"general", "default", '?', general_class_attributes(), "cranklength user actlimited "
+               "actrange", "", "actuator defaults of the class"});
+  s.push_back({"position", "default", '?',
+               shortcut_class_attributes("kp", "position gain, N m/rad or N/m"), "cranklength user",
+               "", "actuator defaults of the class, as a position servo"});
+  s.push_back({"velocity", "default", '?',
+               shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m"),
+               "cranklength user", "", "actuator defaults of the class, as a velocity servo"});
+  s.push_back({"mesh", "default", '?', texts("scale", kVisualOnly), "", "", "mesh defaults"});
+  s.push_back({"material", "default", '?',
+               texts("texture emission specular shininess reflectance rgba texrepeat texuniform",
+                     kVisualOnly),
+               "", "", "material defaults"});
+  s.push_back({"camera", "default", '?',
+               texts("fovy ipd pos quat axisangle xyaxes zaxis euler mode user", kVisualOnly), "",
+               "", "camera defaults"});
+  s.push_back({"light", "default", '?',
+               texts("pos dir directional castshadow active attenuation cutoff exponent ambient "
+                     "diffuse specular mode", kVisualOnly),
+               "", "", "light defaults"});
+  s.push_back({"asset", "mujoco", '*', {}, "", "hfield skin",
+               "assets: meshes, materials and textures (visual only; no file is read)"});
+  s.push_back({"mesh", "asset", '*', texts(kMeshAttributes, kVisualOnly), "", "",
+               "a mesh; its file is read only if a mesh geom must give a body mass, which lever "
+               "refuses (add <inertial>)"});
+  s.push_back({"material", "asset", '*', texts(kMaterialAttributes, kVisualOnly), "", "",
+               "a material"});
+  s.push_back({"texture", "asset", '*', texts(kTextureAttributes, kVisualOnly), "", "",
+               "a texture"});
+  s.push_back({"visual", "mujoco", '*', {}, "", "", "visualisation settings (kept as text)"});
+  s.push_back({"global", "visual", '?',
+               texts("fovy ipd azimuth elevation linewidth glow offwidth offheight", kVisualOnly),
+               "", "", "visual/global"});
+  s.push_back({"quality", "visual", '?',
+               texts("shadowsize offsamples numslices numstacks numquads", kVisualOnly), "", "",
+               "visual/quality"});
+  s.push_back({"headlight", "visual", '?', texts("ambient diffuse specular active", kVisualOnly),
+               "", "", "visual/headlight"});
+  s.push_back({"map", "visual", '?',
+               texts("stiffness stiffnessrot force torque alpha fogstart fogend znear zfar haze "
+                     "shadowclip shadowscale actuatortendon", kVisualOnly),
+               "", "", "visual/map"});
+  s.push_back({"scale", "visual", '?',
+               texts("forcewidth contactwidth contactheight connect com camera light selectpoint "
+                     "jointlength jointwidth actuatorlength actuatorwidth framelength framewidth "
+                     "constraint slidercrank", kVisualOnly),
+               "", "", "visual/scale"});
+  s.push_back({"rgba", "visual", '?',
+               texts("fog haze force inertia joint actuator actuatornegative actuatorpositive com "
+                     "camera light selectpoint connect contactpoint contactforce contactfriction "
+                     "contacttorque contactgap rangefinder constraint slidercrank crankbroken",
+                     kVisualOnly),
+               "", "", "visual/rgba"});
+  s.push_back({"statistic", "mujoco", '*', texts("meanmass meansize extent center", kVisualOnly),
+               "meaninertia", "", "model statistics for the viewer (kept)"});
+  s.push_back({"keyframe", "mujoco", '*', {}, "", "", "named states to start from"});
+  s.push_back({"key", "keyframe", '*',
+               {text("name", "", "keyframe name"), real("time", 1, "0", "s"),
+                partial("qpos", 1000, "", "nq numbers (default: qpos0)"),
+                partial("qvel", 1000, "", "nv numbers (default: zero)"),
+                partial("ctrl", 1000, "", "nu numbers (default: zero)")},
+               "act mpos mquat", "", "a keyframe (mj_resetDataKeyframe)"});
+  s.push_back({"worldbody", "mujoco", '*', {}, "", "composite",
                "the world body: static geoms, sites and the body tree; takes no attributes"});
   const std::vector<AttributeRule> body = join(
       {text("name", "", "body name"),
@@ -218,8 +355,14 @@ std::vector<ElementRule> build() {
       alternatives());
   s.push_back({"body", "worldbody", '*', body, "mocap user", "", "a body fixed to the world "
                "unless it has joints"});
-  s.push_back({"body", "body", '*', body, "mocap user", "freejoint camera light composite",
+  s.push_back({"body", "body", '*', body, "mocap user", "freejoint composite",
                "a child body"});
+  for (const char* parent : {"worldbody", "body"}) {
+    s.push_back({"camera", parent, '*', texts(kCameraAttributes, kVisualOnly), "", "",
+                 "a camera (kept)"});
+    s.push_back({"light", parent, '*', texts(kLightAttributes, kVisualOnly), "", "",
+                 "a light (kept)"});
+  }
   s.push_back({"inertial", "body", '?',
                join({required(real("pos", 3, "", "centre of mass, body frame")),
                      real("quat", 4, "1 0 0 0", "principal axes; must not be zero"),
@@ -240,13 +383,25 @@ std::vector<ElementRule> build() {
                kUnsupportedSiteAttributes, "", "a named frame fixed to the world"});
   s.push_back({"actuator", "mujoco", '*', {}, "", kOtherActuators, "actuators"});
   s.push_back({"motor", "actuator", '*',
-               join({text("name", "", "motor name"),
-                     text("class", "", "default class (else the top-level class)"),
-                     required(text("joint", "", "the joint it drives"))},
-                    motor_class_attributes()),
-               "group lengthrange cranklength user jointinparent tendon slidersite cranksite site "
-               "refsite",
+               join(actuator_wiring("motor name"),
+                    join(motor_class_attributes(),
+                         {integer("group", 1, "0",
+                                  "visualisation group (kept; no effect on dynamics)")})),
+               kUnsupportedActuatorAttributes,
                "", "a torque (hinge) or force (slide) motor: force = gear * ctrl"});
+  s.push_back({"general", "actuator", '*',
+               join(actuator_wiring("actuator name"), general_class_attributes()),
+               kUnsupportedActuatorAttributes, "",
+               "an actuator: force = gain * ctrl + bias (fixed or affine gain, affine bias)"});
+  s.push_back({"position", "actuator", '*',
+               join(actuator_wiring("actuator name"),
+                    shortcut_class_attributes("kp", "position gain, N m/rad or N/m")),
+               kUnsupportedActuatorAttributes, "",
+               "a position servo: force = kp (ctrl - q) (MuJoCo 2.2.2's <position> has no kv)"});
+  s.push_back({"velocity", "actuator", '*',
+               join(actuator_wiring("actuator name"),
+                    shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m")),
+               kUnsupportedActuatorAttributes, "", "a velocity servo: force = kv (ctrl - qd)"});
   return s;
 }
 // clang-format on

@@ -50,8 +50,9 @@ struct GeomSpec {
   Orientation orientation;
   double density = 1000;
   std::optional<double> mass;
-  int group = 0, contype = 1, conaffinity = 1;
+  int group = 0, contype = 1, conaffinity = 1, condim = 3;
   std::array<double, 4> rgba{};
+  std::string mesh, material;  ///< asset names, "" if none
 };
 
 struct SiteSpec {
@@ -94,6 +95,20 @@ struct MotorSpec {
   Limited ctrllimited = Limited::kAuto, forcelimited = Limited::kAuto;
 };
 
+/// A <key>: what it writes, before the sizes are known (compiler.cpp checks them).
+struct KeySpec {
+  Place at;
+  double time = 0;
+  std::optional<std::vector<double>> qpos, qvel, ctrl;
+};
+
+/// The visual-only parts of a model (assets, lights, cameras): names, for reference checks.
+struct AssetSpec {
+  std::vector<Place> meshes, materials, textures;  ///< the asset's name in Place::name
+  std::vector<std::string> mesh_files;             ///< per mesh; "" if inline
+  std::vector<std::string> lights, cameras;
+};
+
 struct CompilerSpec {
   bool degree = true;
   bool autolimits = true;  // lever: true, as in MuJoCo 3 (2.2.2: false)
@@ -103,6 +118,7 @@ struct CompilerSpec {
   double boundmass = 0, boundinertia = 0;
   bool balanceinertia = false;
   double settotalmass = -1;
+  std::string meshdir, texturedir;
 };
 
 struct ModelSpec {
@@ -111,6 +127,8 @@ struct ModelSpec {
   Options opt;
   BodySpec world;  ///< the world body: its geoms, sites and child bodies
   std::vector<MotorSpec> motors;
+  std::vector<KeySpec> keys;
+  AssetSpec assets;
 };
 
 }  // namespace lever::mjcf::detail

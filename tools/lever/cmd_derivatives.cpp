@@ -73,7 +73,7 @@ int cmd_derivatives(const std::vector<std::string>& argv) {
     json.key("model").value(model.name);
     json.key("nv").value(model.nv);
     json.key("nu").value(model.nu);
-    json.key("integrator").value(model.opt.integrator == Integrator::kEuler ? "Euler" : "RK4");
+    json.key("integrator").value(integrator_name(model.opt.integrator));
     json.key("timestep").value(model.opt.timestep);
     json.key("qpos").values(data.qpos);
     json.key("qvel").values(data.qvel);
@@ -90,7 +90,7 @@ int cmd_derivatives(const std::vector<std::string>& argv) {
     json.newline();
   } else {
     std::printf("model %s (%s), %s integrator, timestep %g s\n", model.name.c_str(), path.c_str(),
-                model.opt.integrator == Integrator::kEuler ? "Euler" : "RK4", model.opt.timestep);
+                integrator_name(model.opt.integrator), model.opt.timestep);
     std::printf("state: qpos %s qvel %s ctrl %s\n", vec_text(data.qpos).c_str(),
                 vec_text(data.qvel).c_str(), vec_text(data.ctrl).c_str());
     std::printf("limit rows: %d (their active set held fixed)\n", data.nefc);

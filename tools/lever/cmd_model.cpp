@@ -52,7 +52,7 @@ std::string label(const std::string& name, int id) {
 
 void print_options(std::FILE* out, const Model& m) {
   std::fprintf(out, "options: timestep %g s, integrator %s, gravity %s m/s^2\n", m.opt.timestep,
-               m.opt.integrator == Integrator::kRK4 ? "RK4" : "Euler", vec(m.opt.gravity).c_str());
+               integrator_name(m.opt.integrator), vec(m.opt.gravity).c_str());
   std::fprintf(out, "  inertiagrouprange %d %d, inertia from geoms %s\n",
                m.compiler.inertiagrouprange[0], m.compiler.inertiagrouprange[1],
                m.compiler.inertia_from_geoms_allowed ? "allowed" : "off (inertiafromgeom=false)");

@@ -32,6 +32,16 @@ enum class JointType : int { kSlide = 2, kHinge = 3 };
 /// exist in 2.2.2).
 enum class Integrator : int { kEuler = 0, kRK4 = 1, kImplicit = 2 };
 
+/// The integrator's name as MJCF writes it: "Euler", "RK4" or "implicit".
+constexpr const char* integrator_name(Integrator integrator) {
+  switch (integrator) {
+    case Integrator::kEuler: return "Euler";
+    case Integrator::kRK4: return "RK4";
+    case Integrator::kImplicit: return "implicit";
+  }
+  return "unknown";
+}
+
 /// Actuator gain, bias and activation-dynamics types; the numeric values are MuJoCo's mjtGain,
 /// mjtBias and mjtDyn (lever has the stateless, affine ones).
 enum class GainType : int { kFixed = 0, kAffine = 1 };
@@ -46,7 +56,16 @@ inline constexpr int kBiasParameters = 10;
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 /// Geom types; the numeric values are MuJoCo's mjtGeom.
-enum class GeomType : int { kSphere = 2, kCapsule = 3, kEllipsoid = 4, kCylinder = 5, kBox = 6 };
+/// A mesh geom (kMesh) is kept for its name, frame and material; lever reads no mesh file, so it
+/// never gives a body mass (lever::mjcf refuses a model where it would).
+enum class GeomType : int {
+  kSphere = 2,
+  kCapsule = 3,
+  kEllipsoid = 4,
+  kCylinder = 5,
+  kBox = 6,
+  kMesh = 7
+};
 
 /// Simulation options (<option>).
 struct Options {
@@ -61,11 +80,26 @@ struct CompilerInfo {
   bool inertia_from_geoms_allowed = true;      ///< inertiafromgeom was not "false"
 };
 
+/// What a model file says that changes no dynamics (assets, lights, cameras, materials), kept so
+/// that tools can show it. The engine never reads it.
+struct VisualInfo {
+  std::string meshdir, texturedir;                   ///< <compiler>, as written
+  std::vector<std::string> mesh_name, mesh_file;     ///< <asset><mesh>; file "" if inline
+  std::vector<std::string> material_name;            ///< <asset><material>
+  std::vector<std::string> texture_name;             ///< <asset><texture>
+  std::vector<std::string> light_name, camera_name;  ///< lights and cameras ("" if unnamed)
+  std::vector<std::string> geom_mesh, geom_material;  ///< (ngeom) names, "" if none
+};
+
 struct Model {
   std::string name = "MuJoCo Model";  ///< <mujoco model="...">
   std::string source;                 ///< file the model came from ("" if built in memory)
   Options opt;
   CompilerInfo compiler;
+  VisualInfo visual;
+  /// What the compiler noticed that MuJoCo would simulate and lever does not (geoms that could
+  /// collide: lever computes no contacts), one sentence each; empty for a clean model.
+  std::vector<std::string> warnings;
 
   // ---- sizes -------------------------------------------------------------------------------
   int nq = 0;     ///< generalized coordinates (hinge and slide joints only: nq == nv)

@@ -302,7 +302,7 @@ void compare_step(Twin& t, const test::State& s, Integrator integrator, int k, R
   t.set_state(s);
   step(t.model, t.data);
   mj_step(t.m.get(), t.d.get());
-  const std::string name = integrator == Integrator::kRK4 ? "RK4" : "Euler";
+  const std::string name = integrator_name(integrator);
   r.compare("qpos after one " + name + " step", k, t.data.qpos.data(), t.d->qpos, t.model.nq,
             per_dof(t.model));
   r.compare("qvel after one " + name + " step", k, t.data.qvel.data(), t.d->qvel, t.model.nv,

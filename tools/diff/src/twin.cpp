@@ -50,7 +50,9 @@ Twin::Twin(const std::string& file, Path path, test::MjModelPtr mj)
 
 void Twin::set_integrator(Integrator integrator) {
   model.opt.integrator = integrator;
-  m->opt.integrator = integrator == Integrator::kRK4 ? mjINT_RK4 : mjINT_EULER;
+  m->opt.integrator = integrator == Integrator::kRK4        ? mjINT_RK4
+                     : integrator == Integrator::kImplicit ? mjINT_IMPLICIT
+                                                           : mjINT_EULER;
 }
 
 void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s) {
