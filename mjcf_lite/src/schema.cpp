@@ -503,11 +503,30 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   * two default classes with the same name, also when a top-level `<default class=...>`
     renames the main class;
   * text inside an element (MuJoCo ignores it);
-  * finite numbers whose compiled result overflows (e.g. a `fromto` of 1e308).
+  * finite numbers whose compiled result overflows (e.g. a `fromto` of 1e308);
+  * a negative `kp` or `kv` on `<position>` or `<velocity>` (a servo that pushes away from its
+    target, or a damper that feeds energy in);
+  * `option/integrator="implicitfast"`, which is MuJoCo 3's: MuJoCo 2.2.2 rejects it too, and
+    lever's message names 2.2.2's `implicit`.
+* Kept, changing no dynamics: `<asset>` (`<mesh>`, `<material>`, `<texture>`), `<light>`,
+  `<camera>`, `<visual>`, `<statistic>`, `compiler/meshdir` and `texturedir`, and geom
+  `material`, `rgba`, `group`; geom contact parameters (`condim`, `friction`, `solref`, ...),
+  since lever computes no contacts. Their names are in `Model::visual`.
+* Mesh geoms: lever reads no mesh file. A mesh geom has no mass in lever, and a body whose
+  inertia would come from a mesh geom (no `<inertial>`, the geom in `inertiagrouprange`) is
+  refused with a message naming the geom, the mesh and the file and saying to add `<inertial>`.
+  lever keeps a mesh geom's frame as written and its size zero, where MuJoCo moves the frame to
+  the mesh's centre and principal axes and sizes it from the file; nothing in the dynamics uses
+  either.
+* Contacts: lever computes none. Geom pairs MuJoCo would test for contact (compatible
+  `contype`/`conaffinity`, on bodies that are not welded together or parent and child) are
+  listed in a warning at load (`Model::warnings`, printed by the command line), since a motion
+  that brings them together would differ from MuJoCo's.
 
 Value rules: numbers are decimal (`1`, `-.5`, `1e-3`); a list must have the stated count
 ("1-3" marks a partial vector whose missing numbers keep the class's values); keywords are
-case-sensitive. Names are unique per kind (body, joint, geom, site, motor).
+case-sensitive. Names are unique per kind (body, joint, geom, site, actuator, keyframe, mesh,
+material).
 
 )";
 

@@ -36,7 +36,8 @@ std::string with_autolimits(const std::string& xml) {
 
 }  // namespace
 
-MjModelHandle mujoco_compile(const std::string& xml, std::string* error) {
+MjModelHandle mujoco_compile(const std::string& xml, std::string* error,
+                             const std::map<std::string, std::string>& files) {
   mju_user_warning = quiet;
   mju_user_error = fatal;
   // mujoco's file system refuses an empty file; a blank one is just as empty to the XML parser
@@ -47,6 +48,11 @@ MjModelHandle mujoco_compile(const std::string& xml, std::string* error) {
   mj_makeEmptyFileVFS(vfs.get(), name, static_cast<int>(text.size()));
   const int file = mj_findFileVFS(vfs.get(), name);
   std::copy(text.begin(), text.end(), static_cast<char*>(vfs->filedata[file]));
+  for (const auto& [file_name, bytes] : files) {  // MuJoCo's VFS looks files up without folders
+    mj_makeEmptyFileVFS(vfs.get(), file_name.c_str(), static_cast<int>(bytes.size()));
+    const int f = mj_findFileVFS(vfs.get(), file_name.c_str());
+    std::copy(bytes.begin(), bytes.end(), static_cast<char*>(vfs->filedata[f]));
+  }
   char buffer[1000] = "";
   mjModel* m = mj_loadXML(name, vfs.get(), buffer, sizeof buffer);
   mj_deleteVFS(vfs.get());
@@ -155,7 +161,30 @@ bool is_constant(const std::string& name) {
 //   actuator_trnid  lever keeps the joint only (`own`); MuJoCo's is (nu, 2), its second column -1
 //                   for a joint transmission; the other actuator types lever fixes are checked
 //                   here too (compare_actuator_types);
-//   names, options  not arrays of the table.
+//   geom frames     mesh geoms' size, pos and quat are MuJoCo's fit to the mesh file;
+//   names, options  not arrays of the table; keyframes have their own rows (compare_keyframes).
+// geom_size, geom_pos, geom_quat but of mesh geoms: MuJoCo fits them to the mesh file (its size,
+// its centre and principal axes), which lever never reads; lever keeps the frame as written
+void compare_geom_frames(Differences& d, const Model& o, const FieldView& view, const MjArray& mj) {
+  const std::string name = view.info->name;
+  for (int g = 0; g < view.rows; ++g) {
+    if (o.geom_type[static_cast<size_t>(g)] == GeomType::kMesh) continue;
+    if (view.cols == 4) {
+      bool same = true, opposite = true;
+      for (int k = 0; k < 4; ++k) {
+        const double x = element(view, 4 * g + k), y = element(mj, 4 * g + k);
+        same = same && agrees(x, y);
+        opposite = opposite && agrees(-x, y);
+      }
+      if (same || opposite) continue;
+    }
+    for (int k = 0; k < view.cols; ++k) {
+      const int i = view.cols * g + k;
+      d.real(name, i, element(view, i), element(mj, i));
+    }
+  }
+}
+
 void compare_table(Differences& d, const Model& o, const mjModel& m) {
   const std::map<std::string, MjArray> theirs = mujoco_model_arrays(&m);
   for (const FieldView& view : model_fields(o)) {
@@ -167,7 +196,9 @@ void compare_table(Differences& d, const Model& o, const mjModel& m) {
       continue;
     }
     const MjArray& mj = found->second;
-    if (view.cols == 4 && name.ends_with("quat")) {
+    if (name == "geom_size" || name == "geom_pos" || name == "geom_quat") {
+      compare_geom_frames(d, o, view, mj);
+    } else if (view.cols == 4 && name.ends_with("quat")) {
       d.quats(name, view, mj);
     } else if (view.info->scalar == Scalar::kDouble) {
       for (long i = 0; i < view.size(); ++i) {
@@ -188,8 +219,18 @@ void compare_actuator_types(Differences& d, const Model& o, const mjModel& m) {
               m.actuator_trnid[2 * a]);
     d.integer("actuator_trnid", 2 * a + 1, -1, m.actuator_trnid[2 * a + 1]);
     d.integer("actuator_trntype", a, mjTRN_JOINT, m.actuator_trntype[a]);
-    d.integer("actuator_gaintype", a, mjGAIN_FIXED, m.actuator_gaintype[a]);
-    d.integer("actuator_biastype", a, mjBIAS_NONE, m.actuator_biastype[a]);
+  }
+}
+
+// keyframes are kept outside the table (their row count is nkey, not a model size)
+void compare_keyframes(Differences& d, const Model& o, const mjModel& m) {
+  if (!d.count("nkey", o.nkey, m.nkey)) return;
+  d.names("key_name", o.key_name, m, mjOBJ_KEY);
+  for (int k = 0; k < o.nkey; ++k) {
+    d.real("key_time", k, o.key_time[static_cast<size_t>(k)], m.key_time[k]);
+    for (int i = 0; i < o.nq; ++i) d.real("key_qpos", k * o.nq + i, o.key_qpos(k, i), m.key_qpos[k * m.nq + i]);
+    for (int i = 0; i < o.nv; ++i) d.real("key_qvel", k * o.nv + i, o.key_qvel(k, i), m.key_qvel[k * m.nv + i]);
+    for (int i = 0; i < o.nu; ++i) d.real("key_ctrl", k * o.nu + i, o.key_ctrl(k, i), m.key_ctrl[k * m.nu + i]);
   }
 }
 
@@ -222,6 +263,7 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m) {
     compare_table(d, o, m);
     compare_actuator_types(d, o, m);
     compare_names(d, o, m);
+    compare_keyframes(d, o, m);
   }
   compare_options(d, o, m);
   return d.list;

@@ -5,6 +5,7 @@
 #include <mujoco/mujoco.h>
 
 #include <lever/model.hpp>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,7 +16,9 @@ using MjModelHandle = std::unique_ptr<mjModel, void (*)(mjModel*)>;
 
 /// MuJoCo's compiled model of MJCF text, or null with MuJoCo's message in `error`. Unless the text
 /// says otherwise, autolimits is set to true first, since that is lever's (and MuJoCo 3's) default.
-MjModelHandle mujoco_compile(const std::string& xml, std::string* error);
+/// `files` (name -> bytes) are put beside it in MuJoCo's virtual file system, for mesh assets.
+MjModelHandle mujoco_compile(const std::string& xml, std::string* error,
+                             const std::map<std::string, std::string>& files = {});
 
 /// The file's text.
 std::string read_text(const std::string& path);

@@ -1,4 +1,4 @@
-// Trajectories in lockstep: 10 s from rest under a smooth control that sweeps every motor's
+// Trajectories in lockstep: 10 s from the model's first keyframe (else from rest) under a smooth control that sweeps every motor's
 // whole range (so the joints hit their stops). At every step lever starts from MuJoCo's own
 // state, and one lever step must equal one MuJoCo step: qpos and qvel after it, qacc and
 // qfrc_constraint of its forward pass.
@@ -18,8 +18,8 @@ void lockstep_every_model(Integrator integrator) {
   REQUIRE(mj_version() == 222);
   for (const std::string& file : all_model_files()) {
     for (const diff::Path path : paths_to_compare()) {
-      const std::string where = context(file, path, 0) + " (no randomness), " +
-                                (integrator == Integrator::kRK4 ? "RK4" : "Euler");
+      const std::string where =
+          context(file, path, 0) + " (no randomness), " + integrator_name(integrator);
       INFO(where);
       diff::Twin twin(file, path);
       diff::RunStats stats;
@@ -41,6 +41,11 @@ TEST_CASE("diff: lockstep trajectories, one Euler step equals one MuJoCo step",
 
 TEST_CASE("diff: lockstep trajectories, one RK4 step equals one MuJoCo step", "[diff][lockstep]") {
   lockstep_every_model(Integrator::kRK4);
+}
+
+TEST_CASE("diff: lockstep trajectories, one implicit step equals one MuJoCo step",
+          "[diff][lockstep]") {
+  lockstep_every_model(Integrator::kImplicit);
 }
 
 }  // namespace lever::test

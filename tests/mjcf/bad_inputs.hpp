@@ -127,10 +127,10 @@ inline const BadInput kBadInputs[] = {
   </worldbody>
 </mujoco>)", 3, "geom", "type", "'plane' is valid MJCF but not supported", MuJoCo::kAccepts,
    "valid MJCF outside lever's subset"},
-  {"unsupported-integrator", R"(<mujoco>
-  <option integrator="implicit"/>
-</mujoco>)", 2, "option", "integrator", "'implicit' is valid MJCF but not supported",
-   MuJoCo::kAccepts, "valid MJCF outside lever's subset"},
+  {"unsupported-integrator-implicitfast", R"(<mujoco>
+  <option integrator="implicitfast"/>
+</mujoco>)", 2, "option", "integrator", "does not exist in MuJoCo 2.2.2, which lever follows: use 'implicit'",
+   MuJoCo::kRejects, ""},
   {"unsupported-global-coordinates", R"(<mujoco>
   <compiler coordinate="global"/>
 </mujoco>)", 2, "compiler", "coordinate", "'global' is valid MJCF but not supported",
@@ -152,10 +152,22 @@ inline const BadInput kBadInputs[] = {
     </body>
   </worldbody>
   <actuator>
-    <position joint="j" kp="10"/>
+    <cylinder joint="j"/>
   </actuator>
-</mujoco>)", 9, "position", "", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
+</mujoco>)", 9, "cylinder", "", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
    "valid MJCF outside lever's subset"},
+  {"unsupported-dyntype", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <general joint="j" dyntype="integrator"/>
+  </actuator>
+</mujoco>)", 9, "general", "dyntype", "'integrator' is valid MJCF but not supported",
+   MuJoCo::kAccepts, "activation dynamics (an actuator state) are outside lever's subset"},
 
   // ---- number lists ------------------------------------------------------------------------
   {"too-few-numbers", R"(<mujoco>
@@ -415,6 +427,92 @@ inline const BadInput kBadInputs[] = {
     </body>
   </worldbody>
 </mujoco>)", 5, "inertial", "fullinertia", "not positive definite", MuJoCo::kRejects, ""},
+
+  // ---- servos, keyframes, assets ---------------------------------------------------------------
+  {"negative-kp", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <position joint="j" kp="-10"/>
+  </actuator>
+</mujoco>)", 9, "position", "kp", "must not be negative", MuJoCo::kAccepts,
+   "a negative servo gain pushes away from its target: MuJoCo 2.2.2 loads it without a word"},
+  {"negative-kv-in-default", R"(<mujoco>
+  <default>
+    <velocity kv="-1"/>
+  </default>
+</mujoco>)", 3, "velocity", "kv", "must not be negative", MuJoCo::kAccepts,
+   "a negative damping gain feeds energy in: MuJoCo 2.2.2 loads it without a word"},
+  {"biasprm-too-long", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <general joint="j" biastype="affine" biasprm="0 -1 -1 0 0 0 0 0 0 0 0"/>
+  </actuator>
+</mujoco>)", 9, "general", "biasprm", "has 11 numbers", MuJoCo::kRejects, ""},
+  {"key-qpos-wrong-size", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <keyframe>
+    <key name="home" qpos="0 1"/>
+  </keyframe>
+</mujoco>)", 9, "key", "qpos", "keyframe qpos has 2 numbers but the model has nq = 1",
+   MuJoCo::kRejects, ""},
+  {"key-ctrl-wrong-size", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <keyframe>
+    <key ctrl="1"/>
+  </keyframe>
+</mujoco>)", 9, "key", "ctrl", "keyframe ctrl has 1 number but the model has nu = 0",
+   MuJoCo::kRejects, ""},
+  {"mesh-needed-for-mass", R"(<mujoco>
+  <asset>
+    <mesh name="link" file="link.stl"/>
+  </asset>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom name="shell" type="mesh" mesh="link"/>
+    </body>
+  </worldbody>
+</mujoco>)", 8, "geom", "mesh", "add an <inertial> to body 'b'", MuJoCo::kRejects, ""},
+  {"mesh-unknown", R"(<mujoco>
+  <asset>
+    <mesh name="link" file="link.stl"/>
+  </asset>
+  <worldbody>
+    <body name="b">
+      <inertial pos="0 0 0" mass="1" diaginertia="1 1 1"/>
+      <joint name="j"/>
+      <geom type="mesh" mesh="lnk"/>
+    </body>
+  </worldbody>
+</mujoco>)", 9, "geom", "mesh", "unknown mesh 'lnk' (did you mean 'link'?)", MuJoCo::kRejects, ""},
+  {"material-unknown", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1" material="steel"/>
+    </body>
+  </worldbody>
+</mujoco>)", 5, "geom", "material", "unknown material 'steel'", MuJoCo::kRejects, ""},
 
   // ---- joints and motors ---------------------------------------------------------------------
   {"range-reversed", R"(<mujoco>

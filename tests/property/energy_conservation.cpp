@@ -17,10 +17,15 @@ constexpr int kStartStates = 3;
 // halving h divides an h^4 drift by 16; accept an order between 3.5 and 4.5
 constexpr double kLeastRatio = 11.3, kMostRatio = 22.7;
 
-// The model without damping, limits or motors' effect, integrated with RK4.
+// The model without damping, limits or actuators' effect, integrated with RK4.
 Model conservative_variant(Model model) {
   for (double& b : model.dof_damping) b = 0.0;
   for (int j = 0; j < model.njnt; ++j) model.jnt_limited[j] = false;
+  // actuators idle: ctrl zero is not enough, since a ctrlrange without 0 clamps it to a nonzero
+  // target, and a servo's bias (-kp q - kv qdot) acts whatever ctrl is
+  for (auto& g : model.actuator_gainprm) g.fill(0.0);
+  for (GainType& g : model.actuator_gaintype) g = GainType::kFixed;
+  for (BiasType& b : model.actuator_biastype) b = BiasType::kNone;
   model.opt.integrator = Integrator::kRK4;
   set_const(model);
   return model;

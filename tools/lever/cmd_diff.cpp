@@ -57,7 +57,8 @@ const char* kUsage =
     "  --seed S       seed of the random states (default: derived from the file name)\n"
     "  --path P       loader: lever's own MJCF loader; engine: MuJoCo's compiled model copied\n"
     "                 into lever; both (default)\n"
-    "  --trajectory   also 10 s lockstep trajectories (Euler and RK4) and a 10 s free run\n"
+    "  --trajectory   also 10 s lockstep trajectories (Euler, RK4, implicit) and a 10 s free\n"
+    "                 run, from the model's first keyframe (else from rest)\n"
     "  --json         machine-readable output\n"
     "  --markdown     the agreement document for all MODELs (implies --trajectory)\n"
     "Each quantity is held to |lever - mujoco| <= 1e-12 max(1, |mujoco|), |mujoco| its largest\n"
@@ -83,13 +84,15 @@ struct PathResult {
   Report random;
   Report self_noise;  // MuJoCo against a moved copy of itself, on the same states
   bool has_trajectories = false;
-  Report lockstep_euler, lockstep_rk4;
-  diff::RunStats stats_euler, stats_rk4;
+  Report lockstep_euler, lockstep_rk4, lockstep_implicit;
+  diff::RunStats stats_euler, stats_rk4, stats_implicit;
   diff::FreeRun free;
+  std::string start;  // the state the runs start from (a keyframe, or rest)
 
   bool loaded() const { return error.empty(); }
   bool pass() const {
-    return loaded() && random.pass() && lockstep_euler.pass() && lockstep_rk4.pass();
+    return loaded() && random.pass() && lockstep_euler.pass() && lockstep_rk4.pass() &&
+           lockstep_implicit.pass();
   }
 };
 
@@ -153,6 +156,9 @@ PathResult run_path(const std::string& file, Path path, const Options& o) {
                                              diff::Control::kSmooth, &result.stats_euler);
       result.lockstep_rk4 = diff::lockstep(twin, Integrator::kRK4, kTrajectorySeconds,
                                            diff::Control::kSmooth, &result.stats_rk4);
+      result.lockstep_implicit = diff::lockstep(twin, Integrator::kImplicit, kTrajectorySeconds,
+                                                diff::Control::kSmooth, &result.stats_implicit);
+      result.start = twin.start_name();
       result.free = diff::free_run(twin, kTrajectorySeconds, diff::Control::kSmooth, kNudge);
     }
   } catch (const std::exception& e) {
@@ -237,12 +243,16 @@ void print_text(const ModelResult& m) {
     print_table(p.random, "state", &p.self_noise);
     if (p.has_trajectories) {
       std::printf(
-          "  lockstep, Euler, %.0f s from rest, smooth control (%d of %d steps with limit rows)\n",
-          kTrajectorySeconds, p.stats_euler.constrained_steps, p.stats_euler.steps);
+          "  lockstep, Euler, %.0f s from %s, smooth control (%d of %d steps with limit rows)\n",
+          kTrajectorySeconds, p.start.c_str(), p.stats_euler.constrained_steps,
+          p.stats_euler.steps);
       print_table(p.lockstep_euler, "step");
       std::printf("  lockstep, RK4, %.0f s (%d of %d steps with limit rows)\n", kTrajectorySeconds,
                   p.stats_rk4.constrained_steps, p.stats_rk4.steps);
       print_table(p.lockstep_rk4, "step");
+      std::printf("  lockstep, implicit, %.0f s (%d of %d steps with limit rows)\n",
+                  kTrajectorySeconds, p.stats_implicit.constrained_steps, p.stats_implicit.steps);
+      print_table(p.lockstep_implicit, "step");
       std::printf("  free run, %.0f s, each engine on its own (a report, not held to the bound):\n",
                   kTrajectorySeconds);
       print_free_run(p.free);
@@ -318,6 +328,9 @@ void print_json(const std::vector<ModelResult>& results) {
         json_report(j, p.lockstep_euler);
         j.key("lockstep_rk4");
         json_report(j, p.lockstep_rk4);
+        j.key("lockstep_implicit");
+        json_report(j, p.lockstep_implicit);
+        j.key("start").value(p.start);
         j.key("free_run");
         json_free_run(j, p.free);
       }
@@ -471,7 +484,7 @@ void markdown_summary(const std::vector<ModelResult>& results) {
       for (const Extreme& e : p.random.quantities()) {
         if (e.max_ratio >= worst_random) worst_random = e.max_ratio, random_at = e.quantity;
       }
-      for (const Report* r : {&p.lockstep_euler, &p.lockstep_rk4}) {
+      for (const Report* r : {&p.lockstep_euler, &p.lockstep_rk4, &p.lockstep_implicit}) {
         for (const Extreme& e : r->quantities()) {
           if (e.max_ratio >= worst_lockstep) worst_lockstep = e.max_ratio, lockstep_at = e.quantity;
         }
@@ -543,8 +556,9 @@ void print_markdown(const std::vector<ModelResult>& results, const Options& o) {
       "Random states: %d per model, seeded from the file name; qpos inside the ranges, past a "
       "stop by up to 10 mrad (5 mm on slides), inside margins and exactly on stops; qvel, ctrl "
       "(up to 3x its range) and qfrc_applied random. Per state: forward, energy, site Jacobians, "
-      "inverse dynamics at the forward qacc and at a random qacc, and one Euler and one RK4 step. "
-      "Lockstep: %.0f s from rest under a sinusoidal control sweeping each motor's whole range; at "
+      "inverse dynamics at the forward qacc and at a random qacc, and one Euler, one RK4 and one "
+      "implicit step. "
+      "Lockstep: %.0f s from the model's first keyframe (else from rest) under a sinusoidal control sweeping each motor's whole range; at "
       "every step lever starts from MuJoCo's own state, the forward pass at that state is compared "
       "(qacc, qfrc_constraint), then both take one step and the state after it is compared (qpos, "
       "qvel).\n\n",
@@ -568,9 +582,11 @@ void print_markdown(const std::vector<ModelResult>& results, const Options& o) {
   markdown_matrix(results, &PathResult::lockstep_euler);
   std::printf("\nRK4:\n\n");
   markdown_matrix(results, &PathResult::lockstep_rk4);
+  std::printf("\nImplicit (MuJoCo 2.2.2's `implicit`):\n\n");
+  markdown_matrix(results, &PathResult::lockstep_implicit);
   std::printf("\n## Free runs: lever's divergence beside the dynamics' own noise floor\n\n");
   std::printf(
-      "%.0f s from rest under the same control, lever and MuJoCo each running on its own. Each "
+      "%.0f s from the same start under the same control, lever and MuJoCo each on its own. Each "
       "cell: the largest |lever − MuJoCo| / the largest |MuJoCo − MuJoCo started from qpos0 + "
       "1e-15| (of the largest |value|). The stiff limit impacts amplify any last-bit difference, "
       "so this is a report, not a 1e-12 assertion; the tests hold lever within 100x of MuJoCo's "
@@ -582,9 +598,12 @@ void print_markdown(const std::vector<ModelResult>& results, const Options& o) {
     std::printf("\n### %s\n", base_name(m.file).c_str());
     for (const PathResult& p : m.paths) {
       if (!p.loaded()) continue;
-      std::printf("\n%s path: lockstep steps with limit rows: Euler %d of %d, RK4 %d of %d.\n",
-                  diff::path_name(p.path), p.stats_euler.constrained_steps, p.stats_euler.steps,
-                  p.stats_rk4.constrained_steps, p.stats_rk4.steps);
+      std::printf(
+          "\n%s path: runs start from %s; lockstep steps with limit rows: Euler %d of %d, RK4 %d "
+          "of %d, implicit %d of %d.\n",
+          diff::path_name(p.path), p.start.c_str(), p.stats_euler.constrained_steps,
+          p.stats_euler.steps, p.stats_rk4.constrained_steps, p.stats_rk4.steps,
+          p.stats_implicit.constrained_steps, p.stats_implicit.steps);
     }
     std::printf("\nRandom states:\n\n");
     markdown_model_table(m, &PathResult::random);
@@ -592,6 +611,8 @@ void print_markdown(const std::vector<ModelResult>& results, const Options& o) {
     markdown_model_table(m, &PathResult::lockstep_euler);
     std::printf("\nLockstep, RK4:\n\n");
     markdown_model_table(m, &PathResult::lockstep_rk4);
+    std::printf("\nLockstep, implicit:\n\n");
+    markdown_model_table(m, &PathResult::lockstep_implicit);
   }
 }
 

@@ -86,7 +86,40 @@ void print_motors(std::FILE* out, const Model& m) {
                  m.actuator_gear[a][0], pair(m.actuator_ctrlrange[a]).c_str(),
                  m.actuator_ctrllimited[a] ? "yes" : "no", pair(m.actuator_forcerange[a]).c_str(),
                  hinge ? "N m" : "N", m.actuator_forcelimited[a] ? "yes" : "no");
+    const bool motor = m.actuator_gaintype[a] == GainType::kFixed &&
+                       m.actuator_gainprm[a][0] == 1.0 && m.actuator_biastype[a] == BiasType::kNone;
+    if (motor) continue;
+    // force = gain ctrl + bias, with gain and bias affine in the actuator's length and velocity
+    const auto& g = m.actuator_gainprm[a];
+    const auto& b = m.actuator_biasprm[a];
+    std::fprintf(out, "    force = (%g", g[0]);
+    if (m.actuator_gaintype[a] == GainType::kAffine) {
+      std::fprintf(out, " %+g length %+g velocity", g[1], g[2]);
+    }
+    std::fprintf(out, ") ctrl");
+    if (m.actuator_biastype[a] == BiasType::kAffine) {
+      std::fprintf(out, " %+g %+g length %+g velocity", b[0], b[1], b[2]);
+    }
+    if (m.actuator_biastype[a] == BiasType::kAffine && b[1] < 0 && b[1] == -g[0] &&
+        m.actuator_gaintype[a] == GainType::kFixed) {
+      std::fprintf(out, "  (position servo: kp %g, kv %g)", g[0], -b[2]);
+    }
+    std::fprintf(out, "\n");
   }
+}
+
+void print_keyframes(std::FILE* out, const Model& m) {
+  if (m.nkey == 0) return;
+  std::fprintf(out, "keyframes (%d):\n", m.nkey);
+  for (int k = 0; k < m.nkey; ++k) {
+    std::fprintf(out, "  %-12s time %g  qpos", label(m.key_name[k], k).c_str(), m.key_time[k]);
+    for (int i = 0; i < m.nq; ++i) std::fprintf(out, " %g", m.key_qpos(k, i));
+    std::fprintf(out, "\n");
+  }
+}
+
+void print_warnings(std::FILE* out, const Model& m) {
+  for (const std::string& w : m.warnings) std::fprintf(out, "warning: %s\n", w.c_str());
 }
 
 void print_sites(std::FILE* out, const Model& m) {
@@ -125,7 +158,9 @@ void print_model_text(std::FILE* out, const Model& m) {
   print_motors(out, m);
   print_sites(out, m);
   print_bodies(out, m);
+  print_keyframes(out, m);
   print_options(out, m);
+  print_warnings(out, m);
 }
 
 // one object: the sizes, names and every array of the field table (lever/fields.hpp) under

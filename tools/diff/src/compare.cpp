@@ -319,6 +319,7 @@ void compare_state(Twin& t, const test::State& s, const Eigen::VectorXd& random_
   compare_inverse(t, s, random_qacc, "at a random qacc", k, r);
   compare_step(t, s, Integrator::kEuler, k, r);
   compare_step(t, s, Integrator::kRK4, k, r);
+  compare_step(t, s, Integrator::kImplicit, k, r);
 }
 
 }  // namespace lever::diff

@@ -18,7 +18,7 @@ void apply_control(const Model& model, Control control, double time, mjData* d) 
   Eigen::Map<Eigen::VectorXd> ctrl(d->ctrl, model.nu);
   if (control == Control::kSmooth) {
     test::smooth_control(model, time, ctrl);
-  } else {
+  } else if (control == Control::kZero) {
     ctrl.setZero();
   }
 }
@@ -153,6 +153,7 @@ FreeRun free_run(Twin& twin, double seconds, Control control, double nudge) {
   FreeRun run;
   twin.reset();
   test::MjDataPtr nudged = test::mujoco_data(twin.m.get());
+  mj_copyData(nudged.get(), twin.m.get(), twin.d.get());  // the same start, a keyframe's too
   for (int i = 0; i < twin.model.nq; ++i) nudged->qpos[i] += nudge;
   const int steps = steps_for(twin.model, seconds);
   for (int k = 0; k < steps; ++k) {
@@ -160,6 +161,7 @@ FreeRun free_run(Twin& twin, double seconds, Control control, double nudge) {
     apply_control(twin.model, control, twin.d->time, twin.d.get());
     apply_control(twin.model, control, nudged->time, nudged.get());
     if (control == Control::kSmooth) test::smooth_control(twin.model, twin.data.time, ctrl);
+    if (control == Control::kZero) ctrl.setZero();
     step(twin.model, twin.data);
     mj_step(twin.m.get(), twin.d.get());
     count(run.stats, twin.d->nefc);

@@ -82,8 +82,17 @@ void Twin::follow_mujoco() {
 }
 
 void Twin::reset() {
+  if (model.nkey > 0) {
+    reset_keyframe(model, data, 0);
+    mj_resetDataKeyframe(m.get(), d.get(), 0);
+    return;
+  }
   lever::reset(model, data);
   mj_resetData(m.get(), d.get());
+}
+
+std::string Twin::start_name() const {
+  return model.nkey > 0 ? "keyframe '" + model.key_name[0] + "'" : "rest at qpos0";
 }
 
 }  // namespace lever::diff

@@ -31,6 +31,7 @@ const std::vector<std::string>& self_noise_quantities();
 enum class Control {
   kZero,    ///< no torque
   kSmooth,  ///< test::smooth_control: sinusoids across each motor's whole span
+  kKeep,    ///< ctrl as the start state has it (a keyframe's servo targets), held
 };
 
 /// How much a run exercised the limits.
@@ -48,7 +49,7 @@ Report lockstep(Twin& twin, Integrator integrator, double seconds, Control contr
 
 /// lever and MuJoCo each running on its own from rest (qpos0) with the model's integrator,
 /// compared at every step (qpos, qvel, qacc, qfrc_constraint, actuator_force). With nudge != 0,
-/// a second MuJoCo run starting from qpos0 + nudge is compared with the first in the same way:
+/// a second MuJoCo run starting from the same state with qpos + nudge is compared with the first in the same way:
 /// the dynamics' own sensitivity to a last-bit change, the yardstick for lever's difference.
 struct FreeRun {
   Report lever_vs_mujoco;

@@ -43,8 +43,11 @@ class Twin {
   void set_state(const test::State& s);
   /// Copy MuJoCo's current state (time, qpos, qvel, ctrl, qfrc_applied) into lever.
   void follow_mujoco();
-  /// Reset both as mj_resetData does.
+  /// Reset both to the start of a run: the model's first keyframe if it has one (lever's
+  /// reset_keyframe against mj_resetDataKeyframe), else as mj_resetData does.
   void reset();
+  /// The name of the state reset() starts from: "keyframe 'NAME'" or "rest at qpos0".
+  std::string start_name() const;
 
   lever::Model model;
   lever::Data data;
