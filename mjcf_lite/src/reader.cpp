@@ -178,6 +178,12 @@ void check_attribute(const Element& e, const ElementRule& rule, const Attribute&
          "attribute '" + a.name + "' is not allowed on <" + e.tag + "> inside <" +
              std::string(rule.parent) + ">");
   }
+  if (e.tag == "position" && a.name == "kv") {  // models written for MuJoCo 3 use it
+    fail(e.place(a), a.name,
+         "<position> has no 'kv' in MuJoCo 2.2.2, which lever follows (MuJoCo 3 added it): write "
+         "<general gainprm=\"KP\" biastype=\"affine\" biasprm=\"0 -KP -KV\"/> for a "
+         "position servo with damping");
+  }
   std::vector<std::string_view> candidates;
   for (const AttributeRule& r : rule.attributes) candidates.push_back(r.name);
   for (const std::string_view w : words(rule.unsupported_attributes)) candidates.push_back(w);

@@ -441,6 +441,17 @@ inline const BadInput kBadInputs[] = {
   </actuator>
 </mujoco>)", 9, "position", "kp", "must not be negative", MuJoCo::kAccepts,
    "a negative servo gain pushes away from its target: MuJoCo 2.2.2 loads it without a word"},
+  {"position-kv", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <position joint="j" kp="10" kv="1"/>
+  </actuator>
+</mujoco>)", 9, "position", "kv", "MuJoCo 3 added it", MuJoCo::kRejects, ""},
   {"negative-kv-in-default", R"(<mujoco>
   <default>
     <velocity kv="-1"/>
