@@ -323,6 +323,7 @@ AssetSpec read_assets(const Element& root, const DefaultClasses& classes) {
         if (!file && !e.find("vertex")) {
           fail(e.place(), "file", "a <mesh> needs a file or vertex data");
         }
+        if (file && path.empty()) fail(e.place(*file), "file", "a <mesh> file name is empty");
         assets.meshes.push_back(at);
         assets.mesh_files.push_back(path);
       }
