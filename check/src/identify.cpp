@@ -193,9 +193,9 @@ Trajectory read_csv(const Model& prior, const std::string& path) {
     for (int a = 0; a < nu; ++a) {
       const int d = prior.jnt_dofadr[prior.actuator_trnid[a]];
       // the row's actuator force, or its ctrl through the prior's actuator at the row's state
-      const double force = have_force ? at(r, force_col[a])
-                                      : force_from_ctrl(prior, a, at(r, ctrl_col[a]),
-                                                        t.qpos(d, k), t.qvel(d, k));
+      const double force =
+          have_force ? at(r, force_col[a])
+                     : force_from_ctrl(prior, a, at(r, ctrl_col[a]), t.qpos(d, k), t.qvel(d, k));
       t.force(d, k) += prior.actuator_gear[a][0] * force;
     }
   }

@@ -1,6 +1,7 @@
 // Analytic derivatives of inverse dynamics (Carpentier and Mansard, RSS 2018), of forward
 // dynamics (the chain rule through M^-1, the passive forces, the actuators and the limit rows) and
-// of the step (Euler with implicit damping, RK4, MuJoCo 2.2.2's implicit). docs/derivatives.md derives each formula.
+// of the step (Euler with implicit damping, RK4, MuJoCo 2.2.2's implicit). docs/derivatives.md
+// derives each formula.
 //
 // Every spatial quantity is in lever's frame (world axes, origin at the tree's centre of mass c,
 // see kinematics.cpp). tau is a sum of dot products S_i . F, which do not depend on the frame, so
@@ -505,16 +506,16 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
     throw StateError("rnea_derivatives: qacc has " + std::to_string(qacc.size()) +
                      " elements, the model has nv = " + std::to_string(model.nv) + ".");
   }
-  rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, deriv.work,
-                        deriv.dtau_dq, deriv.dtau_dv);
+  rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, deriv.work, deriv.dtau_dq,
+                        deriv.dtau_dv);
 }
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_sizes(model, data, deriv);
   forward(model, data);
   auto& w = deriv.work;
-  rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, w,
-                        deriv.dtau_dq, deriv.dtau_dv);
+  rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, w, deriv.dtau_dq,
+                        deriv.dtau_dv);
   smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
   // the unconstrained part: M^-1 times each column
   deriv.dqacc_dq = w.rhs_q;

@@ -16,8 +16,8 @@
 // which has no rows at these states.
 //
 // MuJoCo 2.2.2's mjd_transitionFD is not a faithful derivative of mj_step under RK4 (nor, for an
-// actuator whose gain is affine in velocity, under implicit: see the implicit case below): for its qvel
-// and ctrl columns it steps with mj_stepSkip(mjSTAGE_POS / mjSTAGE_VEL), which reuses the
+// actuator whose gain is affine in velocity, under implicit: see the implicit case below): for its
+// qvel and ctrl columns it steps with mj_stepSkip(mjSTAGE_POS / mjSTAGE_VEL), which reuses the
 // position (and velocity) stage left in mjData by the previous call, and after an RK4 step that
 // stage is RK4's last stage (qpos + h k3, qvel + h a3), not the state being differenced. Its qvel
 // and ctrl columns then differ from mj_step's own derivative by about 1e-5 relative (arm2:

@@ -11,8 +11,8 @@
 #include <cmath>
 #include <lever/lever.hpp>
 #include <lever/model.hpp>
-#include <vector>
 #include <random>
+#include <vector>
 
 #include <lever/harness/random_state.hpp>
 

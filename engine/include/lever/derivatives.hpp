@@ -3,8 +3,9 @@
 // Carpentier and Mansard's recursions ("Analytical derivatives of rigid body dynamics algorithms",
 // RSS 2018) in lever's frame (world axes, origin at the tree's centre of mass, see kinematics.cpp),
 // then the chain rule through the passive forces, the actuators (motors and affine servos), the
-// joint-limit rows and the integrators (Euler, RK4 and MuJoCo 2.2.2's implicit). docs/derivatives.md derives every formula and lists the points where the dynamics
-// is not differentiable (a limit row appearing, a row changing state, a clamp boundary).
+// joint-limit rows and the integrators (Euler, RK4 and MuJoCo 2.2.2's implicit).
+// docs/derivatives.md derives every formula and lists the points where the dynamics is not
+// differentiable (a limit row appearing, a row changing state, a clamp boundary).
 //
 // All matrices are column-per-input: dtau_dq(i, j) = d tau_i / d qpos_j. Hinge and slide joints
 // only, so nq == nv and qpos needs no tangent space. MuJoCo 2.2.2 has no analytic counterpart;
