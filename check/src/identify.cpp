@@ -58,6 +58,27 @@ double clamp(double x, const std::array<double, 2>& range) {
   return std::min(std::max(x, range[0]), range[1]);
 }
 
+// The force actuator a of the prior applies for a command ctrl at its joint's position q and
+// velocity qd, as actuation() computes it: ctrl clamped to ctrlrange, gain * ctrl + bias with the
+// gain and bias affine in length = gear q and velocity = gear qd (a motor: gain 1, no bias),
+// clamped to forcerange. The gear that carries it to the joint is applied by the caller.
+double force_from_ctrl(const Model& prior, int a, double ctrl, double q, double qd) {
+  if (prior.actuator_ctrllimited[a]) ctrl = clamp(ctrl, prior.actuator_ctrlrange[a]);
+  const double gear = prior.actuator_gear[a][0];
+  const double length = gear * q, velocity = gear * qd;
+  const auto& g = prior.actuator_gainprm[a];
+  const double gain = prior.actuator_gaintype[a] == GainType::kAffine
+                          ? g[0] + g[1] * length + g[2] * velocity
+                          : g[0];
+  double force = gain * ctrl;
+  if (prior.actuator_biastype[a] == BiasType::kAffine) {
+    const auto& b = prior.actuator_biasprm[a];
+    force += b[0] + b[1] * length + b[2] * velocity;
+  }
+  if (prior.actuator_forcelimited[a]) force = clamp(force, prior.actuator_forcerange[a]);
+  return force;
+}
+
 }  // namespace
 
 Trajectory read_csv(const Model& prior, const std::string& path) {
@@ -170,19 +191,20 @@ Trajectory read_csv(const Model& prior, const std::string& path) {
       if (have_constraint) t.force(d, k) += at(r, constraint_col[d]);
     }
     for (int a = 0; a < nu; ++a) {
-      double force = at(r, have_force ? force_col[a] : ctrl_col[a]);
-      if (!have_force) {  // the prior's motor: clamp ctrl, gain 1, clamp the force
-        if (prior.actuator_ctrllimited[a]) force = clamp(force, prior.actuator_ctrlrange[a]);
-        if (prior.actuator_forcelimited[a]) force = clamp(force, prior.actuator_forcerange[a]);
-      }
-      t.force(prior.jnt_dofadr[prior.actuator_trnid[a]], k) += prior.actuator_gear[a][0] * force;
+      const int d = prior.jnt_dofadr[prior.actuator_trnid[a]];
+      // the row's actuator force, or its ctrl through the prior's actuator at the row's state
+      const double force =
+          have_force ? at(r, force_col[a])
+                     : force_from_ctrl(prior, a, at(r, ctrl_col[a]), t.qpos(d, k), t.qvel(d, k));
+      t.force(d, k) += prior.actuator_gear[a][0] * force;
     }
   }
   t.qacc_source = have_qacc ? "the qacc columns"
                             : "forward differences of qvel, (qvel[k+1] - qvel[k]) / (t[k+1] - "
                               "t[k]) (the last row dropped)";
   t.force_source = have_force ? "actuator_force times gear"
-                              : "ctrl through the prior's motors (clamped, gain 1) times gear";
+                              : "ctrl through the prior's actuators (ctrl clamped, gain * ctrl + "
+                                "bias at the row's qpos and qvel, force clamped) times gear";
   if (!have_constraint) t.force_source += "; no qfrc_constraint columns: joint stops taken as zero";
   return t;
 }

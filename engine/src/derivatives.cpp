@@ -1,6 +1,7 @@
 // Analytic derivatives of inverse dynamics (Carpentier and Mansard, RSS 2018), of forward
-// dynamics (the chain rule through M^-1, the passive forces, the motors and the limit rows) and
-// of the step (Euler with implicit damping, RK4). docs/derivatives.md derives each formula.
+// dynamics (the chain rule through M^-1, the passive forces, the actuators and the limit rows) and
+// of the step (Euler with implicit damping, RK4, MuJoCo 2.2.2's implicit). docs/derivatives.md
+// derives each formula.
 //
 // Every spatial quantity is in lever's frame (world axes, origin at the tree's centre of mass c,
 // see kinematics.cpp). tau is a sum of dot products S_i . F, which do not depend on the frame, so
@@ -68,16 +69,16 @@ void check_sizes(const Model& model, const Data& data, const Derivatives& deriv)
   }
 }
 
-// Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, data.qvel, qdd), into
-// dtau_dq and dtau_dv. Armature adds armature * qdd, which depends on neither.
-void rnea_derivatives_into(const Model& model, const Data& data, const double* qdd,
-                           Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
-                           Eigen::MatrixXd& dtau_dv) {
-  const Eigen::VectorXd& qd = data.qvel;
-
+// Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
+// and dtau_dv. Armature adds armature * qdd, which depends on neither. Without gravity and with
+// qdd = 0 they are the derivatives of the velocity product terms alone (implicit_derivatives).
+void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
+                           const double* qdd, bool gravity, Derivatives::Workspace& w,
+                           Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
   // forward pass, root to leaves: v, a and f of every body, Sdot and Psi_ddot of every dof
   w.v[0].setZero();
-  w.a[0] << 0.0, 0.0, 0.0, -model.opt.gravity;  // gravity as an upward acceleration of the world
+  w.a[0].setZero();
+  if (gravity) w.a[0].tail<3>() = -model.opt.gravity;  // an upward acceleration of the world
   for (int b = 1; b < model.nbody; ++b) {
     const int parent = model.body_parentid[b];
     Motion vb = w.v[parent];
@@ -87,7 +88,8 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
       const Motion& S = data.cdof[j];
       w.Sdot[j] = cross_motion(vb, S);
       w.Sddot[j] = cross_motion(ab, S) + cross_motion(vb, w.Sdot[j]);
-      ab += w.Sdot[j] * qd[j] + S * qdd[j];
+      ab += w.Sdot[j] * qd[j];
+      if (qdd != nullptr) ab += S * qdd[j];
       vb += S * qd[j];
     }
     w.v[b] = vb;
@@ -148,22 +150,48 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
     w.rhs_v(d, d) -= model.dof_damping[d];    // damper: -b qd
   }
 
-  // motors: force = clamp(gain * clamp(ctrl)); d/dctrl is gear where neither clamp binds
+  // actuators: force = clamp_f(gain clamp_c(ctrl) + bias), gain = p0 + p1 length + p2 velocity
+  // (affine; p0 when fixed), bias = b0 + b1 length + b2 velocity (affine; 0 when none), with
+  // length = gear q and velocity = gear qd on the actuator's dof, which gets gear force. Where the
+  // force clamp binds the actuator passes on nothing; where the ctrl clamp binds it has no
+  // sensitivity to ctrl but keeps its length and velocity terms.
   w.rhs_u.setZero();
-  bool bad = false;  // one bad control zeroes every motor (actuation's kBadCtrl)
+  bool bad = false;  // one bad control zeroes every control (actuation's kBadCtrl); bias stays
   for (int a = 0; a < model.nu; ++a) bad = bad || is_bad(data.ctrl[a]);
-  if (bad) return;
   for (int a = 0; a < model.nu; ++a) {
-    double force = data.ctrl[a];
-    if (model.actuator_ctrllimited[a]) {
+    double u = bad ? 0.0 : data.ctrl[a];
+    bool ctrl_clamped = bad;
+    if (!bad && model.actuator_ctrllimited[a]) {
       const auto& range = model.actuator_ctrlrange[a];
-      if (force < range[0] || force > range[1]) continue;  // clamped: no sensitivity
+      ctrl_clamped = u < range[0] || u > range[1];
+      u = std::clamp(u, range[0], range[1]);
     }
+    const double length = data.actuator_length[a], velocity = data.actuator_velocity[a];
+    const auto& g = model.actuator_gainprm[a];
+    const auto& b = model.actuator_biasprm[a];
+    const bool affine_gain = model.actuator_gaintype[a] == GainType::kAffine;
+    const bool affine_bias = model.actuator_biastype[a] == BiasType::kAffine;
+    const double gain = affine_gain ? g[0] + g[1] * length + g[2] * velocity : g[0];
+    double force = u * gain;  // in actuation()'s order, so the clamp test sees the same number
+    if (affine_bias) force += b[0] + b[1] * length + b[2] * velocity;
     if (model.actuator_forcelimited[a]) {
       const auto& range = model.actuator_forcerange[a];
-      if (force < range[0] || force > range[1]) continue;
+      if (force < range[0] || force > range[1]) continue;  // clamped: no sensitivity
     }
-    w.rhs_u(model.jnt_dofadr[model.actuator_trnid[a]], a) = model.actuator_gear[a][0];
+    double per_length = 0.0, per_velocity = 0.0;  // d force / d length, d force / d velocity
+    if (affine_gain) {
+      per_length += g[1] * u;
+      per_velocity += g[2] * u;
+    }
+    if (affine_bias) {
+      per_length += b[1];
+      per_velocity += b[2];
+    }
+    const double gear = model.actuator_gear[a][0];
+    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    w.rhs_q(dof, dof) += gear * per_length * gear;
+    w.rhs_v(dof, dof) += gear * per_velocity * gear;
+    if (!ctrl_clamped) w.rhs_u(dof, a) = gear * gain;
   }
 }
 
@@ -287,7 +315,8 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   factor_mass_damped(model, data, h);
   w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
   solve_mass_damped(model, data, w.qacc_step);
-  rnea_derivatives_into(model, data, w.qacc_step.data(), w, w.tau_q, w.tau_v);
+  rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, w, w.tau_q,
+                        w.tau_v);
   smooth_rhs(model, data, w.tau_q, w.tau_v, w);
   w.rhs_q += deriv.dconstraint_dq;
   w.rhs_v += deriv.dconstraint_dv;
@@ -298,6 +327,67 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   }
   for (int c = 0; c < model.nu; ++c) solve_mass_damped(model, data, w.rhs_u.col(c));
   assemble_euler(model, w.rhs_q, w.rhs_v, w.rhs_u, deriv);
+}
+
+// MuJoCo 2.2.2's implicit step (implicit.cpp): K a = f with K = M - h D, D = d qfrc_smooth / d qvel
+// as smooth_velocity_derivative() holds it, f = qfrc_smooth + qfrc_constraint, then Euler's update
+// with a. Differentiating exactly that, K da = df - dM a + h dD a. D is
+//   D = D_act - diag(damping) - d c / d qvel,    D_act = diag(gear^2 (b2 + p2 ctrl)) (raw ctrl),
+// with c(q, qd) = qfrc_bias, which is gravity plus a quadratic form Q(q)(qd, qd). So
+//   d D_act a / d ctrl_k = gear^2 p2 a_dof on the actuator's dof (MuJoCo's FD misses it, see the
+//   docs), damping is constant, and (d c / d qvel) a = 2 Q(qd, a), whose derivatives are
+//   d/d qvel = d c / d qvel at velocity a, and d/d q = d/d q [2 Q(q)(qd, a)].
+// Both come from the polarisation identity 2 Q(qd, a) = (Q(qd + s a) - Q(qd - s a)) / (2 s),
+// exact for every s != 0: the gravity-free RNEA derivatives at qd + s a and qd - s a, with s
+// chosen so that s a is as large as qd (no cancellation). No finite difference is taken.
+void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
+  auto& w = deriv.work;
+  const int nv = model.nv;
+  const double h = model.opt.timestep;
+  forward_derivatives(model, data, deriv);
+
+  // the step's K, its LU factor and its acceleration a, computed as implicit_step does
+  smooth_velocity_derivative(model, data, w.D);
+  w.K = data.M - h * w.D;
+  w.lu.compute(w.K);
+  w.col.head(nv) = data.qfrc_smooth + data.qfrc_constraint;
+  w.qacc_step.noalias() = w.lu.solve(w.col.head(nv));
+
+  // df - dM a: the smooth terms with rnea differentiated at a, plus the held constraint rows
+  rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, w, w.tau_q,
+                        w.tau_v);
+  smooth_rhs(model, data, w.tau_q, w.tau_v, w);
+  w.rhs_q += deriv.dconstraint_dq;
+  w.rhs_v += deriv.dconstraint_dv;
+  w.rhs_u += deriv.dconstraint_du;
+
+  // + h dD a, D's bias part: - h d [2 Q(qd, a)] by polarisation
+  const double size_a = w.qacc_step.cwiseAbs().maxCoeff();
+  if (size_a > 0) {
+    const double size_v = data.qvel.cwiseAbs().maxCoeff();
+    const double s = (size_v > 0 ? size_v : 1.0) / size_a;
+    w.qvel_shift = data.qvel + s * w.qacc_step;
+    rnea_derivatives_into(model, data, w.qvel_shift.data(), nullptr, false, w, w.tau_q, w.tau_v);
+    w.rhs_q -= (h / (2 * s)) * w.tau_q;
+    w.rhs_v -= (h / (2 * s)) * w.tau_v;
+    w.qvel_shift = data.qvel - s * w.qacc_step;
+    rnea_derivatives_into(model, data, w.qvel_shift.data(), nullptr, false, w, w.tau_q, w.tau_v);
+    w.rhs_q += (h / (2 * s)) * w.tau_q;
+    w.rhs_v += (h / (2 * s)) * w.tau_v;
+  }
+  // + h dD a, D's actuator part: only an affine gain's p2 ctrl depends on anything (ctrl)
+  for (int a = 0; a < model.nu; ++a) {
+    if (model.actuator_gaintype[a] != GainType::kAffine) continue;
+    const double gear = model.actuator_gear[a][0];
+    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    w.rhs_u(dof, a) += h * gear * model.actuator_gainprm[a][2] * gear * w.qacc_step[dof];
+  }
+
+  // da = K^-1 (...), then Euler's update
+  w.Da_q.noalias() = w.lu.solve(w.rhs_q);
+  w.Da_v.noalias() = w.lu.solve(w.rhs_v);
+  w.Da_u.noalias() = w.lu.solve(w.rhs_u);
+  assemble_euler(model, w.Da_q, w.Da_v, w.Da_u, deriv);
 }
 
 // Classical RK4 on x = [qpos; qvel] with slope k(x) = [qvel; qacc(x)], as step(): stage i starts
@@ -400,6 +490,13 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.Ju.setZero(2 * nv, nu);
   work.Kx.setZero(2 * nv, 2 * nv);
   work.Ku.setZero(2 * nv, nu);
+  work.D.setZero(nv, nv);
+  work.K.setZero(nv, nv);
+  work.lu = Eigen::PartialPivLU<Eigen::MatrixXd>(nv);
+  work.qvel_shift.setZero(nv);
+  work.Da_q.setZero(nv, nv);
+  work.Da_v.setZero(nv, nv);
+  work.Da_u.setZero(nv, nu);
 }
 
 void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc,
@@ -409,14 +506,16 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
     throw StateError("rnea_derivatives: qacc has " + std::to_string(qacc.size()) +
                      " elements, the model has nv = " + std::to_string(model.nv) + ".");
   }
-  rnea_derivatives_into(model, data, qacc.data(), deriv.work, deriv.dtau_dq, deriv.dtau_dv);
+  rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, deriv.work, deriv.dtau_dq,
+                        deriv.dtau_dv);
 }
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_sizes(model, data, deriv);
   forward(model, data);
   auto& w = deriv.work;
-  rnea_derivatives_into(model, data, data.qacc.data(), w, deriv.dtau_dq, deriv.dtau_dv);
+  rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, w, deriv.dtau_dq,
+                        deriv.dtau_dv);
   smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
   // the unconstrained part: M^-1 times each column
   deriv.dqacc_dq = w.rhs_q;
@@ -435,12 +534,12 @@ void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   switch (model.opt.integrator) {
     case Integrator::kEuler: euler_derivatives(model, data, deriv); return;
     case Integrator::kRK4: rk4_derivatives(model, data, deriv); return;
+    case Integrator::kImplicit: implicit_derivatives(model, data, deriv); return;
   }
-  // an integrator added to the enum later (MuJoCo's implicit) lands here until it has its own
-  // case: its Jacobian is (M - h d qfrc_smooth / d qvel)^-1 applied to the same right-hand sides
+  // an integrator added to the enum later lands here until it has its own case
   throw Error("step_derivatives: integrator " +
               std::to_string(static_cast<int>(model.opt.integrator)) +
-              " is not supported yet (Euler and RK4 are).");
+              " is not supported yet (Euler, RK4 and implicit are).");
 }
 
 }  // namespace lever

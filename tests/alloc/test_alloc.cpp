@@ -272,10 +272,10 @@ TEST_CASE("forward, step, step1, step2, inverse, jac_site and compute_energy all
     const std::string model_name = std::filesystem::path(path).filename().string();
     INFO("model " << model_name << " loaded by " << how);
     for (const lever::Integrator integrator :
-         {lever::Integrator::kEuler, lever::Integrator::kRK4}) {
+         {lever::Integrator::kEuler, lever::Integrator::kRK4, lever::Integrator::kImplicit}) {
       lever::Model m = base;
       m.opt.integrator = integrator;
-      INFO("integrator " << (integrator == lever::Integrator::kEuler ? "Euler" : "RK4"));
+      INFO("integrator " << lever::integrator_name(integrator));
       lever::Data d(m);  // the only allocations allowed
       Eigen::MatrixXd jacp(3, m.nv), jacr(3, m.nv);
       int rows_seen = 0;
@@ -365,9 +365,10 @@ TEST_CASE("rnea_derivatives, forward_derivatives, step_derivatives and regressor
     const lever::Model base = load(path, how);
     INFO("model " << std::filesystem::path(path).filename().string() << " loaded by " << how);
     for (const lever::Integrator integrator :
-         {lever::Integrator::kEuler, lever::Integrator::kRK4}) {
+         {lever::Integrator::kEuler, lever::Integrator::kRK4, lever::Integrator::kImplicit}) {
       lever::Model m = base;
       m.opt.integrator = integrator;
+      INFO("integrator " << lever::integrator_name(integrator));
       lever::Data d(m);
       lever::Derivatives deriv(m);  // sized once, with Data
       const Eigen::VectorXd qacc = Eigen::VectorXd::Constant(m.nv, 0.5);

@@ -45,6 +45,39 @@ TEST_CASE("cli: lever derivatives --json holds the library's A and B", "[cli][de
   CHECK(run_lever("derivatives " + quoted(arm2) + " --qpos 1,2,3").status == 2);
 }
 
+TEST_CASE("cli: lever derivatives on panda7 (position servos, implicit integrator)",
+          "[cli][derivatives]") {
+  // at the home keyframe's pose with the servos' targets a little off it (no force clamped):
+  // the step's A and B under MuJoCo's implicit integrator, as the library computes them
+  const std::string panda7 = model_path("models/panda7.xml");
+  const std::string qpos = "0,0,0,-1.57079,0,1.57079,-0.7853";
+  const std::string ctrl = "0.001,-0.002,0.001,-1.569,0.002,1.5715,-0.786";
+  const Run run = run_lever("derivatives " + quoted(panda7) + " --qpos " + qpos +
+                            " --qvel 0.01,0,0,0,0,0,-0.01 --ctrl " + ctrl + " --json");
+  REQUIRE(run.status == 0);
+  const json::Value out = json::parse(run.out);
+  CHECK(out["integrator"].string == "implicit");
+  const Model model = mjcf::load_file(panda7);
+  Data data(model);
+  Derivatives deriv(model);
+  data.qpos << 0, 0, 0, -1.57079, 0, 1.57079, -0.7853;
+  data.qvel << 0.01, 0, 0, 0, 0, 0, -0.01;
+  data.ctrl << 0.001, -0.002, 0.001, -1.569, 0.002, 1.5715, -0.786;
+  step_derivatives(model, data, deriv);
+  const json::Value& A = out["A"];
+  const json::Value& B = out["B"];
+  REQUIRE(A.size() == 14 * 14);
+  REQUIRE(B.size() == 14 * 7);
+  for (int r = 0; r < 14; ++r) {
+    for (int c = 0; c < 14; ++c)
+      CHECK(A[static_cast<std::size_t>(14 * r + c)].number == deriv.A(r, c));
+    for (int c = 0; c < 7; ++c)
+      CHECK(B[static_cast<std::size_t>(7 * r + c)].number == deriv.B(r, c));
+  }
+  // the servos pass ctrl on (no clamp binds): d qvel'_i / d ctrl_i is positive on every joint
+  for (int i = 0; i < 7; ++i) CHECK(deriv.B(7 + i, i) > 0);
+}
+
 TEST_CASE("cli: lever identify recovers the model an excited run came from",
           "[cli][derivatives][identify]") {
   const std::string arm2 = model_path("models/arm2.xml");

@@ -15,8 +15,9 @@
 // point (limit margins, clamp edges), and so away from MuJoCo's iterative constraint solver,
 // which has no rows at these states.
 //
-// MuJoCo 2.2.2's mjd_transitionFD is not a faithful derivative of mj_step under RK4: for its qvel
-// and ctrl columns it steps with mj_stepSkip(mjSTAGE_POS / mjSTAGE_VEL), which reuses the
+// MuJoCo 2.2.2's mjd_transitionFD is not a faithful derivative of mj_step under RK4 (nor, for an
+// actuator whose gain is affine in velocity, under implicit: see the implicit case below): for its
+// qvel and ctrl columns it steps with mj_stepSkip(mjSTAGE_POS / mjSTAGE_VEL), which reuses the
 // position (and velocity) stage left in mjData by the previous call, and after an RK4 step that
 // stage is RK4's last stage (qpos + h k3, qvel + h a3), not the state being differenced. Its qvel
 // and ctrl columns then differ from mj_step's own derivative by about 1e-5 relative (arm2:
@@ -93,24 +94,78 @@ Eigen::MatrixXd mujoco_differences(mjtNum* x, int m, int n, const mjtNum* out, E
   return D;
 }
 
+// mj_step differenced here, centred, along qvel (A's right columns) and ctrl (B), each coordinate
+// stepped from the saved state s (mj_step moves qpos and qvel).
+void mj_step_differences(diff::Twin& twin, const State& s, Eigen::MatrixXd& Av,
+                         Eigen::MatrixXd& Bu) {
+  const int nv = twin.model.nv, nu = twin.model.nu;
+  mjData* d = twin.d.get();
+  Av.resize(2 * nv, nv);
+  Bu.resize(2 * nv, nu);
+  Eigen::VectorXd next(2 * nv), plus(2 * nv);
+  const auto restore = [&] {
+    for (int i = 0; i < nv; ++i) d->qpos[i] = s.qpos[i], d->qvel[i] = s.qvel[i];
+    for (int a = 0; a < nu; ++a) d->ctrl[a] = s.ctrl[a];
+    d->time = s.time;
+  };
+  const auto step_from_state = [&] {
+    mj_step(twin.m.get(), d);
+    for (int i = 0; i < nv; ++i) next[i] = d->qpos[i], next[nv + i] = d->qvel[i];
+  };
+  for (int c = 0; c < nv + nu; ++c) {
+    const auto nudge = [&](double delta) {
+      restore();
+      if (c < nv)
+        d->qvel[c] += delta;
+      else
+        d->ctrl[c - nv] += delta;
+      step_from_state();
+    };
+    nudge(kEps);
+    plus = next;
+    nudge(-kEps);
+    const Eigen::VectorXd column = (plus - next) / (2 * kEps);
+    if (c < nv)
+      Av.col(c) = column;
+    else
+      Bu.col(c - nv) = column;
+  }
+  restore();
+}
+
+// Every model, and servo_affine.xml (every term of a general actuator; tests/derivatives only).
+std::vector<std::string> derivative_model_files() {
+  std::vector<std::string> files = all_model_files();
+  files.push_back(model_path("tests/derivatives/servo_affine.xml"));
+  return files;
+}
+
 }  // namespace
 
 TEST_CASE("derivatives: A and B agree with MuJoCo's mjd_transitionFD (centred)",
           "[derivatives][mujoco]") {
   REQUIRE(mj_version() == 222);
-  for (const Integrator integrator : {Integrator::kEuler, Integrator::kRK4}) {
-    for (const std::string& file : all_model_files()) {
-      INFO(file << (integrator == Integrator::kEuler ? " Euler" : " RK4"));
+  for (const Integrator integrator :
+       {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
+    for (const std::string& file : derivative_model_files()) {
+      INFO(file << " " << integrator_name(integrator));
       diff::Twin twin(file, diff::Path::kEngine);
       twin.set_integrator(integrator);
       const Model& model = twin.model;
       const int nv = model.nv, nu = model.nu;
+      const double h = model.opt.timestep;
       Derivatives deriv(model);
+      Data probe(model);
       RowMajor A(2 * nv, 2 * nv), B(2 * nv, std::max(nu, 1));
       std::mt19937_64 rng(seed_for(file) + 11);
       double worst = 0;
+      int compared = 0, missing_columns = 0;
       for (int k = 0; k < kStates; ++k) {
         const State s = smooth_state(model, rng, false);
+        // a clamp switching inside a difference (at any RK4 stage: the stages move the state by
+        // h/2 qacc, which a stiff servo makes large) is a non-differentiable point: not compared
+        if (!differences_see_same_switches(model, probe, s, kEps)) continue;
+        ++compared;
         twin.set_state(s);
         step_derivatives(model, twin.data, deriv);
         REQUIRE(twin.data.nefc == 0);
@@ -122,45 +177,51 @@ TEST_CASE("derivatives: A and B agree with MuJoCo's mjd_transitionFD (centred)",
           if (nu > 0) check_close(deriv.B, B.leftCols(nu), scale, "B", &worst);
           continue;
         }
-        // RK4: mjd_transitionFD's qpos columns; mj_step differenced for the rest (see the top)
-        check_close(deriv.A.leftCols(nv), A.leftCols(nv), scale, "A (qpos columns)", &worst);
-        mjData* d = twin.d.get();
-        Eigen::VectorXd next(2 * nv);
-        const Eigen::VectorXd qpos = s.qpos, qvel = s.qvel;
-        const auto step_from_state = [&] {
-          const mjtNum time = d->time;
-          mj_step(twin.m.get(), d);
-          for (int i = 0; i < nv; ++i) next[i] = d->qpos[i], next[nv + i] = d->qvel[i];
-          d->time = time;
-        };
-        const auto restore = [&] {
-          for (int i = 0; i < nv; ++i) d->qpos[i] = qpos[i], d->qvel[i] = qvel[i];
-        };
-        // mj_step moves qpos and qvel: difference one coordinate at a time from the saved state
-        Eigen::MatrixXd Av(2 * nv, nv), Bu(2 * nv, nu);
-        Eigen::VectorXd plus(2 * nv);
-        for (int c = 0; c < nv + nu; ++c) {
-          mjtNum* x = c < nv ? d->qvel + c : d->ctrl + (c - nv);
-          const mjtNum x0 = c < nv ? qvel[c] : s.ctrl[c - nv];
-          restore();
-          *x = x0 + kEps;
-          step_from_state();
-          plus = next;
-          restore();
-          *x = x0 - kEps;
-          step_from_state();
-          *x = x0;
-          restore();
-          const Eigen::VectorXd column = (plus - next) / (2 * kEps);
-          if (c < nv)
-            Av.col(c) = column;
-          else
-            Bu.col(c - nv) = column;
+        Eigen::MatrixXd Av, Bu;
+        mj_step_differences(twin, s, Av, Bu);
+        if (integrator == Integrator::kRK4) {
+          // mjd_transitionFD's qpos columns; mj_step differenced for the rest (see the top)
+          check_close(deriv.A.leftCols(nv), A.leftCols(nv), scale, "A (qpos columns)", &worst);
+          check_close(deriv.A.rightCols(nv), Av, scale, "A (qvel columns, mj_step differenced)",
+                      &worst);
+          if (nu > 0) check_close(deriv.B, Bu, scale, "B (mj_step differenced)", &worst);
+          continue;
         }
-        check_close(deriv.A.rightCols(nv), Av, scale, "A (qvel columns, mj_step differenced)",
-                    &worst);
-        if (nu > 0) check_close(deriv.B, Bu, scale, "B (mj_step differenced)", &worst);
+        // implicit: A from mjd_transitionFD; B from mj_step differenced, and mjd_transitionFD's
+        // B is lever's B without the term of D's dependence on ctrl. Its ctrl columns step with
+        // mj_stepSkip(mjSTAGE_VEL), whose mj_implicitSkip reuses the LU factor of M - h D from
+        // the unperturbed step, so D's gainprm[2] ctrl is held at the unperturbed ctrl. For an
+        // actuator with an affine gain, the term it drops is d a / d ctrl_k = K^-1 h gear^2
+        // gainprm[2] a_dof e_dof, i.e. B's column k less [h^2; h] times that.
+        check_close(deriv.A, A, scale, "A", &worst);
+        if (nu == 0) continue;
+        check_close(deriv.B, Bu, scale, "B (mj_step differenced)", &worst);
+        Eigen::MatrixXd B_held_D = deriv.B;
+        for (int a = 0; a < nu; ++a) {
+          if (model.actuator_gaintype[a] != GainType::kAffine) continue;
+          const double p2 = model.actuator_gainprm[a][2];
+          if (p2 == 0) continue;
+          const double gear = model.actuator_gear[a][0];
+          const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+          Eigen::VectorXd term = Eigen::VectorXd::Zero(nv);
+          term[dof] = h * gear * p2 * gear * deriv.work.qacc_step[dof];
+          const Eigen::VectorXd da = deriv.work.lu.solve(term);
+          B_held_D.col(a).head(nv) -= h * h * da;
+          B_held_D.col(a).tail(nv) -= h * da;
+          // the dropped term is far above the bound: the two Bs are told apart
+          const double bound = kBound * std::max({1.0, scale, largest(B.leftCols(nu))});
+          if ((h * da).cwiseAbs().maxCoeff() > 100 * bound) ++missing_columns;
+        }
+        check_close(B_held_D, B.leftCols(nu), scale, "B (mjd_transitionFD, D held)", &worst);
       }
+      int velocity_gains = 0;  // actuators whose gain is affine in velocity
+      for (int a = 0; a < nu; ++a) {
+        velocity_gains +=
+            model.actuator_gaintype[a] == GainType::kAffine && model.actuator_gainprm[a][2] != 0;
+      }
+      CHECK(compared >= kStates * 3 / 4);
+      // the dropped term is real: in every compared state, every such column shows it
+      if (integrator == Integrator::kImplicit) CHECK(missing_columns == velocity_gains * compared);
       UNSCOPED_INFO(file << ": worst " << worst << " of the bound");
     }
   }
@@ -207,7 +268,7 @@ TEST_CASE("derivatives: d rnea agrees with MuJoCo's mj_inverse differenced",
 
 TEST_CASE("derivatives: d qacc agrees with MuJoCo's mj_forward differenced",
           "[derivatives][mujoco]") {
-  for (const std::string& file : all_model_files()) {
+  for (const std::string& file : derivative_model_files()) {
     INFO(file);
     diff::Twin twin(file, diff::Path::kEngine);
     const Model& model = twin.model;

@@ -38,8 +38,11 @@ Model heavy_arm2() {
   return truth;
 }
 
-// A PD-tracked sum of sines inside the joint ranges, in `lever simulate --csv`'s columns.
-void simulate_csv(const Model& model, double seconds, const std::string& path, bool with_qacc) {
+// A PD-tracked sum of sines inside the joint ranges, in `lever simulate --csv`'s columns: a motor
+// gets the PD law's torque, a servo (affine bias) the reference itself as its target.
+// Returns how many (row, actuator) pairs had the force on a forcerange edge.
+int simulate_csv(const Model& model, double seconds, const std::string& path, bool with_qacc,
+                 bool with_force = true) {
   std::ofstream out(path);
   out << "time";
   for (const char* what : {"qpos", "qvel", "qacc"}) {
@@ -47,12 +50,15 @@ void simulate_csv(const Model& model, double seconds, const std::string& path, b
     for (int j = 0; j < model.njnt; ++j) out << "," << what << "[" << model.jnt_name[j] << "]";
   }
   for (int a = 0; a < model.nu; ++a) out << ",ctrl[" << model.actuator_name[a] << "]";
-  for (int a = 0; a < model.nu; ++a) out << ",actuator_force[" << model.actuator_name[a] << "]";
+  if (with_force) {
+    for (int a = 0; a < model.nu; ++a) out << ",actuator_force[" << model.actuator_name[a] << "]";
+  }
   for (int j = 0; j < model.njnt; ++j) out << ",qfrc_constraint[" << model.jnt_name[j] << "]";
   out << "\n";
   out.precision(17);
   Data data(model);
   const auto steps = static_cast<long>(seconds / model.opt.timestep);
+  int clamped = 0;
   for (long k = 0; k <= steps; ++k) {
     for (int a = 0; a < model.nu; ++a) {
       const int j = model.actuator_trnid[a];
@@ -65,7 +71,9 @@ void simulate_csv(const Model& model, double seconds, const std::string& path, b
         ref_vel += half / 3 * w * std::cos(w * data.time + a);
       }
       const int q = model.jnt_qposadr[j], d = model.jnt_dofadr[j];
-      data.ctrl[a] = 60 * (ref - data.qpos[q]) + 8 * (ref_vel - data.qvel[d]);
+      data.ctrl[a] = model.actuator_biastype[a] == BiasType::kAffine
+                         ? ref
+                         : 60 * (ref - data.qpos[q]) + 8 * (ref_vel - data.qvel[d]);
     }
     forward(model, data);
     out << data.time;
@@ -75,11 +83,21 @@ void simulate_csv(const Model& model, double seconds, const std::string& path, b
       for (int j = 0; j < model.njnt; ++j) out << "," << data.qacc[model.jnt_dofadr[j]];
     }
     for (int a = 0; a < model.nu; ++a) out << "," << data.ctrl[a];
-    for (int a = 0; a < model.nu; ++a) out << "," << data.actuator_force[a];
+    if (with_force) {
+      for (int a = 0; a < model.nu; ++a) out << "," << data.actuator_force[a];
+    }
     for (int j = 0; j < model.njnt; ++j) out << "," << data.qfrc_constraint[model.jnt_dofadr[j]];
     out << "\n";
+    for (int a = 0; a < model.nu; ++a) {
+      const auto& f = model.actuator_forcerange[a];
+      if (model.actuator_forcelimited[a] &&
+          (data.actuator_force[a] == f[0] || data.actuator_force[a] == f[1])) {
+        ++clamped;
+      }
+    }
     step(model, data);
   }
+  return clamped;
 }
 
 }  // namespace
@@ -147,6 +165,37 @@ TEST_CASE("identify: qacc differenced from qvel when the file has none",
     CHECK(std::abs(r.estimate[k] - expected[k] - shift) <= 1e-8);
   }
   std::filesystem::remove(csv);
+}
+
+TEST_CASE("identify: ctrl columns go through the prior's servos (gain, bias, both clamps)",
+          "[derivatives][identify]") {
+  // panda7's position servos: force = kp ctrl - kp q - kv qd, clamped to +-87 / +-12 N m (the
+  // reference swings far enough that the clamp binds part of the time). Without actuator_force
+  // columns read_csv must rebuild gear * force from ctrl at each row's qpos and qvel: the same
+  // joint forces as the file that has them (a motor's gain 1 would be off by kp and the bias).
+  const Model panda = mjcf::load_file(model_path("models/panda7.xml"));
+  const std::string with = temp_path("panda_force.csv"), without = temp_path("panda_ctrl.csv");
+  const int clamped = simulate_csv(panda, 2.0, with, true, true);
+  simulate_csv(panda, 2.0, without, true, false);
+  const identify::Trajectory from_force = identify::read_csv(panda, with);
+  const identify::Trajectory from_ctrl = identify::read_csv(panda, without);
+  // both sides of the force clamp are visited, each at least a tenth of the time
+  const auto pairs = static_cast<int>(from_ctrl.time.size()) * panda.nu;
+  CHECK(clamped > pairs / 10);
+  CHECK(clamped < pairs * 9 / 10);
+  CHECK(from_ctrl.force_source.find("bias") != std::string::npos);
+  REQUIRE(from_ctrl.force.cols() == from_force.force.cols());
+  for (Eigen::Index k = 0; k < from_ctrl.force.cols(); ++k) {
+    const double scale = from_force.force.col(k).cwiseAbs().maxCoeff();
+    INFO("row " << k);
+    CHECK((from_ctrl.force.col(k) - from_force.force.col(k)).cwiseAbs().maxCoeff() <=
+          allowed(scale));
+  }
+  // and the identification from ctrl fits the prior itself to rounding
+  const identify::Result r = identify::identify(panda, from_ctrl);
+  CHECK(r.residual_rms < 1e-9);
+  std::filesystem::remove(with);
+  std::filesystem::remove(without);
 }
 
 TEST_CASE("identify: bad trajectories get clear errors", "[derivatives][identify]") {

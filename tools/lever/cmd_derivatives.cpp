@@ -30,7 +30,7 @@ const char* const kUsage =
     "usage: lever derivatives MODEL [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]\n"
     "  --qpos LIST   joint positions, nq numbers (default: qpos0)\n"
     "  --qvel LIST   joint velocities, nv numbers (default: zeros)\n"
-    "  --ctrl LIST   motor commands, nu numbers (default: zeros)\n"
+    "  --ctrl LIST   actuator commands, nu numbers (default: zeros)\n"
     "  --json        one JSON object: A, B (the step's Jacobians, mjd_transitionFD's layout),\n"
     "                dqacc_dq, dqacc_dv, dqacc_du, dtau_dq, dtau_dv, M (row-major, flattened)\n";
 

@@ -30,7 +30,7 @@ const char* const kUsage =
     "  DATA.csv               a trajectory in `lever simulate --csv`'s columns: time, qpos[j],\n"
     "                         qvel[j], and qacc[j] (else qvel's forward difference), "
     "actuator_force[m]\n"
-    "                         (else ctrl[m] through the prior's motors), qfrc_constraint[j]\n"
+    "                         (else ctrl[m] through the prior's actuators), qfrc_constraint[j]\n"
     "  --write-model OUT.xml  PRIOR.xml with the identified inertials, armature and damping\n"
     "  --json                 one JSON object with every base parameter and the fit\n";
 

@@ -31,9 +31,11 @@ struct Trajectory {
 
 /// Read a trajectory in `lever simulate --csv`'s columns: time, qpos[joint], qvel[joint], and
 /// optionally qacc[joint] (else qacc is the forward difference of qvel to the next row, the last
-/// row dropped: the acceleration a semi-implicit Euler step applied), the motor force
-/// actuator_force[motor] (else ctrl[motor], turned into a force as the prior's motors do: clamped
-/// to ctrlrange, then to forcerange), and qfrc_constraint[joint] (else zero). A joint or motor is
+/// row dropped: the acceleration a semi-implicit Euler step applied), the actuator force
+/// actuator_force[motor] (else ctrl[motor], turned into a force as the prior's actuators do at the
+/// row's qpos and qvel: ctrl clamped to ctrlrange, gain * ctrl + bias with an affine gain and bias
+/// in length = gear qpos and velocity = gear qvel, then clamped to forcerange), and
+/// qfrc_constraint[joint] (else zero). A joint or motor is
 /// named as `lever simulate` names it (its name, or #index). Other columns are ignored. Throws
 /// lever::Error naming the file, line and column for a missing column, a field that is not a finite
 /// number, a row of the wrong length, or fewer rows than the identification needs.

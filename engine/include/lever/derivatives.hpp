@@ -2,9 +2,10 @@
 //
 // Carpentier and Mansard's recursions ("Analytical derivatives of rigid body dynamics algorithms",
 // RSS 2018) in lever's frame (world axes, origin at the tree's centre of mass, see kinematics.cpp),
-// then the chain rule through the passive forces, the motors, the joint-limit rows and the
-// integrators. docs/derivatives.md derives every formula and lists the points where the dynamics
-// is not differentiable (a limit row appearing, a row changing state, a clamp boundary).
+// then the chain rule through the passive forces, the actuators (motors and affine servos), the
+// joint-limit rows and the integrators (Euler, RK4 and MuJoCo 2.2.2's implicit).
+// docs/derivatives.md derives every formula and lists the points where the dynamics is not
+// differentiable (a limit row appearing, a row changing state, a clamp boundary).
 //
 // All matrices are column-per-input: dtau_dq(i, j) = d tau_i / d qpos_j. Hinge and slide joints
 // only, so nq == nv and qpos needs no tangent space. MuJoCo 2.2.2 has no analytic counterpart;
@@ -12,6 +13,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/LU>
 
 #include <vector>
 
@@ -63,6 +65,10 @@ struct Derivatives {
     Eigen::VectorXd qpos0, qvel0;         ///< (nv) the state step_derivatives() started from
     Eigen::MatrixXd Jx, Ju;               ///< (2nv x 2nv / nu) RK4: d stage state / d (x0, u)
     Eigen::MatrixXd Kx, Ku;               ///< (2nv x 2nv / nu) RK4: d stage slope / d (x0, u)
+    Eigen::MatrixXd D, K;                 ///< (nv x nv) implicit: d qfrc_smooth / d qvel, M - h D
+    Eigen::PartialPivLU<Eigen::MatrixXd> lu;  ///< implicit: LU factor of K
+    Eigen::VectorXd qvel_shift;               ///< (nv) implicit: qvel +- s a (polarisation)
+    Eigen::MatrixXd Da_q, Da_v, Da_u;  ///< (nv x nv / nu) implicit: d a / d (qpos, qvel, ctrl)
   } work;
 
   int nv = 0, nu = 0;  ///< sizes of the model this workspace was built for (checked on use)
@@ -76,7 +82,8 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
                       Derivatives& deriv);
 
 /// forward() at data's state, then d qacc / d qpos, d qvel and d ctrl into deriv.dqacc_*:
-/// springs and damping, motors (zero where ctrl or force is clamped), qfrc_applied held fixed,
+/// springs and damping, actuators with their gain and bias (d ctrl zero where ctrl is clamped,
+/// all of an actuator's terms zero where its force is clamped), qfrc_applied held fixed,
 /// and the limit rows with their active set held fixed (their impedance and reference
 /// acceleration differentiated). Also writes deriv.dtau_* (at data.qacc) and
 /// deriv.dconstraint_*.
@@ -84,9 +91,11 @@ void forward_derivatives(const Model& model, Data& data, Derivatives& deriv);
 
 /// The transition Jacobians of step() at data's state, in mjd_transitionFD's layout:
 /// x = [qpos; qvel] (2nv), A = d x' / d x, B = d x' / d ctrl, into deriv.A and deriv.B. Euler
-/// (with its implicit damping) and RK4; the derivative of step's bad-state resets is not taken.
-/// data's state (time, qpos, qvel, ctrl) is left as it was; its other fields hold forward() at
-/// that state (Euler) or at RK4's last stage, and deriv.dqacc_* are those of that evaluation.
+/// (with its implicit damping), RK4 and implicit (K = M - h D differentiated exactly, D's
+/// dependence on qpos, qvel and ctrl included); the derivative of step's bad-state resets is not
+/// taken. data's state (time, qpos, qvel, ctrl) is left as it was; its other fields hold forward()
+/// at that state (Euler, implicit) or at RK4's last stage, and deriv.dqacc_* are those of that
+/// evaluation.
 /// Throws lever::Error for an integrator it does not differentiate yet.
 void step_derivatives(const Model& model, Data& data, Derivatives& deriv);
 
