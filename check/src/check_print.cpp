@@ -1,5 +1,6 @@
 // The text of `lever check`: lesson 5.1's Output block, section by section, with the same
 // wording and digits where the lesson has a line for it, and a line per joint, site and stop.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -413,8 +414,35 @@ void print_jacobian_at(std::ostream& out, const JacobianAt& at, const std::vecto
       << fmt::sci2(at.manipulability) << ", condition "
       << (std::isfinite(at.condition) && at.condition < 1e12 ? general(at.condition) : "inf")
       << "\n";
+  // parallel axes as groups (a planar chain has every pair parallel), collinear pairs by name
   std::vector<std::string> aligned;
-  for (const JointAlignment& a : at.aligned) aligned.push_back(alignment_text(a));
+  std::vector<std::vector<std::string>> groups;
+  const auto group_of = [&](const std::string& joint) -> int {
+    for (size_t g = 0; g < groups.size(); ++g) {
+      if (std::find(groups[g].begin(), groups[g].end(), joint) != groups[g].end()) return int(g);
+    }
+    return -1;
+  };
+  for (const JointAlignment& a : at.aligned) {
+    if (a.collinear) aligned.push_back(alignment_text(a));
+    const int g1 = group_of(a.first), g2 = group_of(a.second);
+    if (g1 < 0 && g2 < 0) {
+      groups.push_back({a.first, a.second});
+    } else if (g1 < 0) {
+      groups[g2].push_back(a.first);
+    } else if (g2 < 0) {
+      groups[g1].push_back(a.second);
+    } else if (g1 != g2) {
+      groups[g1].insert(groups[g1].end(), groups[g2].begin(), groups[g2].end());
+      groups.erase(groups.begin() + g2);
+    }
+  }
+  for (std::vector<std::string>& g : groups) {
+    std::sort(g.begin(), g.end(), [&](const std::string& x, const std::string& y) {
+      return std::find(joints.begin(), joints.end(), x) < std::find(joints.begin(), joints.end(), y);
+    });
+    aligned.push_back((g.size() == 2 ? g[0] + " and " + g[1] : "{" + names(g) + "}") + " parallel");
+  }
   out << "      aligned axes: " << (aligned.empty() ? "none" : names(aligned));
   if (at.null_motion.size()) {
     // the joints that move in the direction that moves the site least

@@ -268,10 +268,7 @@ class MjOption:
 
     @integrator.setter
     def integrator(self, value: int) -> None:
-        if int(value) == mjtIntegrator.mjINT_IMPLICIT:
-            raise NotImplementedError("lever.mujoco: the implicit integrator is MuJoCo's but "
-                                      "lever has Euler and RK4")
-        self._native.integrator = int(value)
+        self._native.integrator = int(value)  # Euler, RK4 or implicit (MuJoCo 2.2.2's)
 
     def __getattr__(self, name: str):
         if name in _mujoco_names.OPTION:

@@ -84,6 +84,9 @@ int cmd_check(const std::vector<std::string>& argv) {
   check::Report report;
   try {
     report = check::check_file(path, args.get("key"));
+  } catch (const StateError& e) {  // the only state check_file takes is --key
+    std::fprintf(stderr, "lever check: --key: %s\n", e.what());
+    return kBadInput;
   } catch (const Error& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return kBadInput;
