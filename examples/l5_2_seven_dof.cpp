@@ -114,14 +114,15 @@ int main(int argc, char** argv) {
     std::printf("    smallest armature for a stable Euler step at %g s: %.4g kg m^2 on every joint\n",
                 st.timestep, home.armature_all);
     for (size_t j = 0; j < st.joints.size(); ++j) {
-      std::printf("      %s: %.4g with the others at that value\n", st.joints[j].c_str(),
-                  home.armature_each[j]);
+      std::printf("      %s: %.4g with the others given %g x that\n", st.joints[j].c_str(),
+                  home.armature_each[j], st.ample);
     }
     for (const lever::check::StabilityRun& run : home.runs) {
-      std::printf("    simulated, %s with %s: %s\n", run.integrator.c_str(),
-                  run.armature < 0 ? "the model's armature"
-                                   : ("armature " + std::to_string(run.armature)).c_str(),
-                  run.bounded() ? "bounded" : ("blows up at step " + std::to_string(run.blowup_step)).c_str());
+      std::string outcome = run.settled ? "settles" : "does not settle";
+      if (!run.bounded()) outcome = "blows up at step " + std::to_string(run.blowup_step);
+      std::printf("    simulated %d steps, %s with armature %s: %s (|qvel| %.3g over the last tenth)\n",
+                  run.steps, run.integrator.c_str(), run.armature.c_str(), outcome.c_str(),
+                  run.final_qvel);
     }
   } catch (const lever::Error& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -438,6 +438,10 @@ void print_jacobian_at(std::ostream& out, const JacobianAt& at, const std::vecto
     }
   }
   for (std::vector<std::string>& g : groups) {
+    const bool named = g.size() == 2 && std::any_of(at.aligned.begin(), at.aligned.end(), [&](const JointAlignment& a) {
+      return a.collinear && ((a.first == g[0] && a.second == g[1]) || (a.first == g[1] && a.second == g[0]));
+    });
+    if (named) continue;  // already printed as collinear
     std::sort(g.begin(), g.end(), [&](const std::string& x, const std::string& y) {
       return std::find(joints.begin(), joints.end(), x) < std::find(joints.begin(), joints.end(), y);
     });
