@@ -9,7 +9,10 @@
 #include <Eigen/SVD>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <string>
 
 #include <lever/lever.hpp>
@@ -266,6 +269,24 @@ TEST_CASE("check panda7: servos in sections (1), (3) and (6)", "[check][panda7]"
     const auto& f = model.actuator_forcerange[a];
     CHECK(c["actuator_force"][static_cast<size_t>(a)].number ==
           Approx(std::clamp(force, f[0], f[1])).margin(1e-9));
+  }
+}
+
+TEST_CASE("check --svg writes the torque budget, the singular poses and the step's stability",
+          "[check][panda7]") {
+  const std::string svg =
+      (std::filesystem::temp_directory_path() / "lever-check-panda7.svg").string();
+  const Run run = run_lever("check --svg " + quoted(svg) + " " + quoted(model_path("models/panda7.xml")));
+  CHECK((run.status == 0 || run.status == 1));
+  const std::string stem = svg.substr(0, svg.size() - 4);
+  for (const std::string& file : {svg, stem + "-singular-poses.svg", stem + "-step-stability.svg"}) {
+    INFO(file);
+    std::ifstream in(file);
+    std::stringstream text;
+    text << in.rdbuf();
+    CHECK(text.str().find("<svg") != std::string::npos);
+    CHECK(text.str().find("panda7") != std::string::npos);
+    std::filesystem::remove(file);
   }
 }
 
