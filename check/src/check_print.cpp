@@ -411,7 +411,7 @@ void print_jacobian_at(std::ostream& out, const JacobianAt& at, const std::vecto
   out << "    " << at.where;
   if (with_pose) out << " (" << pose_text(at.q) << ")";
   out << ": sigma " << fmt::list(at.sigma, 4) << ", manipulability "
-      << fmt::sci2(at.manipulability) << ", condition "
+      << fmt::sig4(at.manipulability) << ", condition "
       << (std::isfinite(at.condition) && at.condition < 1e12 ? general(at.condition) : "inf")
       << "\n";
   // parallel axes as groups (a planar chain has every pair parallel), collinear pairs by name
@@ -496,13 +496,13 @@ void print_run(std::ostream& out, const StabilityRun& r) {
   if (!r.bounded()) {
     out << "blows up at step " << r.blowup_step << " ("
         << (r.warnings > 0 ? std::to_string(r.warnings) + " engine warnings: a state was reset"
-                           : "max |qvel| " + fmt::sci2(r.max_qvel))
+                           : "max |qvel| " + fmt::sig4(r.max_qvel))
         << ")\n";
   } else if (r.settled) {
-    out << "settles: max |qvel| " << fmt::sci2(r.max_qvel) << ", " << fmt::sci2(r.final_qvel)
+    out << "settles: max |qvel| " << fmt::sig4(r.max_qvel) << ", " << fmt::sig4(r.final_qvel)
         << " over the last tenth of " << r.steps << " steps\n";
   } else {
-    out << "does not settle: |qvel| still " << fmt::sci2(r.final_qvel)
+    out << "does not settle: |qvel| still " << fmt::sig4(r.final_qvel)
         << " over the last tenth of " << r.steps << " steps";
     if (r.saturated > 0) {
       out << ", a force on its forcerange in " << r.saturated

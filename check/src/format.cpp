@@ -53,7 +53,7 @@ std::string sci(double x) {
   return printf_string("%.1e", x);
 }
 
-std::string sci2(double x) {
+std::string sig4(double x) {
   std::string out;
   if (special(x, out)) return out;
   return drop_negative_zero(printf_string("%.4g", x));
