@@ -473,7 +473,8 @@ void print_singular(std::ostream& out, const SingularPoses& sp, const Structure&
                         : "J = jacp (3 x nv: with fewer than 6 joints the arm cannot also orient "
                           "the site, so its position is the task)")
         << ", rank " << s.rank << " at generic poses, so " << s.rank
-        << " singular values count (singular where the smallest vanishes)\n";
+        << (s.rank == 1 ? " singular value counts" : " singular values count")
+        << " (singular where the smallest vanishes)\n";
     for (const JacobianAt& at : s.states) print_jacobian_at(out, at, joints, at.where != "qpos0");
     out << "    most singular poses found:\n";
     for (const JacobianAt& at : s.worst) print_jacobian_at(out, at, joints, true);
