@@ -272,6 +272,21 @@ TEST_CASE("check panda7: servos in sections (1), (3) and (6)", "[check][panda7]"
   }
 }
 
+TEST_CASE("docs/lesson-5.2.md's block is what lever check prints for panda7", "[check][panda7]") {
+  std::ifstream in(model_path("docs/lesson-5.2.md"));
+  std::stringstream doc;
+  doc << in.rdbuf();
+  const std::string text = doc.str();
+  const size_t open = text.find("```text\n");
+  REQUIRE(open != std::string::npos);
+  const size_t start = open + 8, end = text.find("```", start);
+  const std::string block = text.substr(start, end - start);
+  const Run run = run_lever("check " + quoted(model_path("models/panda7.xml")));
+  const size_t from = run.out.find("(7) singular poses");
+  REQUIRE(from != std::string::npos);
+  CHECK(block == run.out.substr(from));
+}
+
 TEST_CASE("check --svg writes the torque budget, the singular poses and the step's stability",
           "[check][panda7]") {
   const std::string svg =
