@@ -305,7 +305,8 @@ TEST_CASE("check --svg writes the torque budget, the singular poses and the step
   }
 }
 
-TEST_CASE("--key starts forward, simulate, derivatives and check from a keyframe", "[check][key]") {
+TEST_CASE("key option: forward, simulate, derivatives and check start from a keyframe",
+          "[check][key]") {
   const std::string panda = quoted(model_path("models/panda7.xml"));
   const Model model = mjcf::load_file(model_path("models/panda7.xml"));
   const Run fwd = run_lever("forward --key home --json " + panda);
