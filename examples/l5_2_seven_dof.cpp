@@ -111,8 +111,9 @@ int main(int argc, char** argv) {
     const lever::check::StabilityAt& home = st.states.front();
     std::printf("    largest stable timestep: %s %.4g s, Euler %.4g s\n", st.integrator.c_str(),
                 home.max_dt_model, home.max_dt_euler);
-    std::printf("    smallest armature for a stable Euler step at %g s: %.4g kg m^2 on every joint\n",
-                st.timestep, home.armature_all);
+    std::printf(
+        "    smallest armature for a stable Euler step at %g s: %.4g kg m^2 on every joint\n",
+        st.timestep, home.armature_all);
     for (size_t j = 0; j < st.joints.size(); ++j) {
       std::printf("      %s: %.4g with the others given %g x that\n", st.joints[j].c_str(),
                   home.armature_each[j], st.ample);
@@ -120,9 +121,9 @@ int main(int argc, char** argv) {
     for (const lever::check::StabilityRun& run : home.runs) {
       std::string outcome = run.settled ? "settles" : "does not settle";
       if (!run.bounded()) outcome = "blows up at step " + std::to_string(run.blowup_step);
-      std::printf("    simulated %d steps, %s with armature %s: %s (|qvel| %.3g over the last tenth)\n",
-                  run.steps, run.integrator.c_str(), run.armature.c_str(), outcome.c_str(),
-                  run.final_qvel);
+      std::printf(
+          "    simulated %d steps, %s with armature %s: %s (|qvel| %.3g over the last tenth)\n",
+          run.steps, run.integrator.c_str(), run.armature.c_str(), outcome.c_str(), run.final_qvel);
     }
   } catch (const lever::Error& e) {
     std::fprintf(stderr, "%s\n", e.what());

@@ -265,7 +265,10 @@ void stability(Json& j, const StepStability& st) {
     j.key("sweep_rho_euler");
     values(j, s.sweep_rho_euler);
     j.key("rho_euler_with_armature").value(s.rho_euler_with);
-    j.key("rho_euler_each").value(s.rho_euler_each).key("stable_euler_each").value(s.stable_euler_each);
+    j.key("rho_euler_each")
+        .value(s.rho_euler_each)
+        .key("stable_euler_each")
+        .value(s.stable_euler_each);
     j.key("runs").begin_array();
     for (const StabilityRun& r : s.runs) {
       j.begin_object().key("integrator").value(r.integrator).key("armature").value(r.armature);

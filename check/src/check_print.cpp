@@ -40,8 +40,8 @@ std::string names(const std::vector<std::string>& list) {
 void print_servo(std::ostream& out, const MotorInfo& m) {
   out << "  servo " << m.name;
   if (m.name != m.joint) out << " (joint " << m.joint << ")";
-  const bool position = m.gainprm[1] == 0 && m.gainprm[2] == 0 && m.gainprm[0] == m.kp &&
-                        m.biasprm[0] == 0;
+  const bool position =
+      m.gainprm[1] == 0 && m.gainprm[2] == 0 && m.gainprm[0] == m.kp && m.biasprm[0] == 0;
   if (position) {
     out << ": force = kp (ctrl - length) - kv velocity, kp " << general(m.kp) << " kv "
         << general(m.kv);
@@ -153,7 +153,8 @@ void print_servo_sag(std::ostream& out, const TorqueBudget& b) {
   for (const JointBudget& j : b.joints) {
     if (!j.servo || !j.loaded) continue;
     std::string text = j.joint + " " + fixed(j.sag * 1000.0, 2) + " mrad";
-    if (j.target_outside) text += " (needs target " + fixed(j.hold_target, 4) + ", outside ctrlrange)";
+    if (j.target_outside)
+      text += " (needs target " + fixed(j.hold_target, 4) + ", outside ctrlrange)";
     sags.push_back(text);
   }
   if (sags.empty()) return;
@@ -406,12 +407,12 @@ std::string alignment_text(const JointAlignment& a) {
   return a.first + " and " + a.second + (a.collinear ? " collinear" : " parallel");
 }
 
-void print_jacobian_at(std::ostream& out, const JacobianAt& at, const std::vector<std::string>& joints,
-                       bool with_pose) {
+void print_jacobian_at(std::ostream& out, const JacobianAt& at,
+                       const std::vector<std::string>& joints, bool with_pose) {
   out << "    " << at.where;
   if (with_pose) out << " (" << pose_text(at.q) << ")";
-  out << ": sigma " << fmt::list(at.sigma, 4) << ", manipulability "
-      << fmt::sig4(at.manipulability) << ", condition "
+  out << ": sigma " << fmt::list(at.sigma, 4) << ", manipulability " << fmt::sig4(at.manipulability)
+      << ", condition "
       << (std::isfinite(at.condition) && at.condition < 1e12 ? general(at.condition) : "inf")
       << "\n";
   // parallel axes as groups (a planar chain has every pair parallel), collinear pairs by name
@@ -438,12 +439,16 @@ void print_jacobian_at(std::ostream& out, const JacobianAt& at, const std::vecto
     }
   }
   for (std::vector<std::string>& g : groups) {
-    const bool named = g.size() == 2 && std::any_of(at.aligned.begin(), at.aligned.end(), [&](const JointAlignment& a) {
-      return a.collinear && ((a.first == g[0] && a.second == g[1]) || (a.first == g[1] && a.second == g[0]));
-    });
+    const bool named =
+        g.size() == 2 &&
+        std::any_of(at.aligned.begin(), at.aligned.end(), [&](const JointAlignment& a) {
+          return a.collinear &&
+                 ((a.first == g[0] && a.second == g[1]) || (a.first == g[1] && a.second == g[0]));
+        });
     if (named) continue;  // already printed as collinear
     std::sort(g.begin(), g.end(), [&](const std::string& x, const std::string& y) {
-      return std::find(joints.begin(), joints.end(), x) < std::find(joints.begin(), joints.end(), y);
+      return std::find(joints.begin(), joints.end(), x) <
+             std::find(joints.begin(), joints.end(), y);
     });
     aligned.push_back((g.size() == 2 ? g[0] + " and " + g[1] : "{" + names(g) + "}") + " parallel");
   }
@@ -452,7 +457,8 @@ void print_jacobian_at(std::ostream& out, const JacobianAt& at, const std::vecto
     // the joints that move in the direction that moves the site least
     std::vector<std::string> movers;
     for (Eigen::Index i = 0; i < at.null_motion.size() && i < Eigen::Index(joints.size()); ++i) {
-      if (std::abs(at.null_motion[i]) >= 0.1) movers.push_back(joints[i] + " " + fixed(at.null_motion[i], 2));
+      if (std::abs(at.null_motion[i]) >= 0.1)
+        movers.push_back(joints[i] + " " + fixed(at.null_motion[i], 2));
     }
     out << "; least-moving joint motion: " << names(movers);
   }
@@ -490,7 +496,9 @@ std::string timestep_text(double h) {
   return std::isinf(h) ? "stable up to the search's cap" : general(h) + " s";
 }
 
-std::string armature_text(double a) { return std::isinf(a) ? "none up to the cap" : fmt::rounded(a, 4); }
+std::string armature_text(double a) {
+  return std::isinf(a) ? "none up to the cap" : fmt::rounded(a, 4);
+}
 
 void print_run(std::ostream& out, const StabilityRun& r) {
   out << "      " << r.integrator << ", armature " << r.armature << ": ";
@@ -503,8 +511,8 @@ void print_run(std::ostream& out, const StabilityRun& r) {
     out << "settles: max |qvel| " << fmt::sig4(r.max_qvel) << ", " << fmt::sig4(r.final_qvel)
         << " over the last tenth of " << r.steps << " steps\n";
   } else {
-    out << "does not settle: |qvel| still " << fmt::sig4(r.final_qvel)
-        << " over the last tenth of " << r.steps << " steps";
+    out << "does not settle: |qvel| still " << fmt::sig4(r.final_qvel) << " over the last tenth of "
+        << r.steps << " steps";
     if (r.saturated > 0) {
       out << ", a force on its forcerange in " << r.saturated
           << " steps (the clamp caps the growth: a limit cycle)";
@@ -529,8 +537,11 @@ void print_stability(std::ostream& out, const StepStability& st) {
         << ")\n";
     out << "    " << st.integrator << " rho = " << fixed(s.rho_model, 4)
         << (s.stable_model ? " stable" : " UNSTABLE");
-    if (!euler) out << "; explicit Euler rho = " << fixed(s.rho_euler, 4) << (s.stable_euler ? " stable" : " unstable");
-    out << "\n    largest stable timestep: " << st.integrator << " " << timestep_text(s.max_dt_model);
+    if (!euler)
+      out << "; explicit Euler rho = " << fixed(s.rho_euler, 4)
+          << (s.stable_euler ? " stable" : " unstable");
+    out << "\n    largest stable timestep: " << st.integrator << " "
+        << timestep_text(s.max_dt_model);
     if (!euler) out << ", Euler " << timestep_text(s.max_dt_euler);
     out << "\n";
     out << "    smallest armature for a stable Euler step at " << general(st.timestep)
@@ -543,12 +554,12 @@ void print_stability(std::ostream& out, const StepStability& st) {
         alone.push_back(st.joints[j] + " " + armature_text(s.armature_alone[j]));
         any_alone = any_alone || std::isfinite(s.armature_alone[j]);
       }
-      out << fmt::wrap("      per joint, each with the others given " + general(st.ample) +
-                           " x that:",
-                       each, "        ")
+      out << fmt::wrap(
+                 "      per joint, each with the others given " + general(st.ample) + " x that:",
+                 each, "        ")
           << "\n";
-      out << "      together (the joints couple): max(per joint, " << armature_text(s.armature_floor)
-          << ") on each joint\n";
+      out << "      together (the joints couple): max(per joint, "
+          << armature_text(s.armature_floor) << ") on each joint\n";
       if (any_alone) {
         out << fmt::wrap("      per joint alone, the others as in the model:", alone, "        ")
             << "\n";
@@ -559,7 +570,8 @@ void print_stability(std::ostream& out, const StepStability& st) {
           << fixed(s.rho_euler_with, 4) << ", per joint together " << fixed(s.rho_euler_each, 4)
           << (s.stable_euler_each ? " stable" : " UNSTABLE") << "\n";
     }
-    out << "    simulated " << (s.runs.empty() ? 0 : s.runs.front().steps) << " steps from this state:\n";
+    out << "    simulated " << (s.runs.empty() ? 0 : s.runs.front().steps)
+        << " steps from this state:\n";
     for (const StabilityRun& r : s.runs) print_run(out, r);
   }
 }

@@ -86,8 +86,8 @@ std::string step_stability_svg(const Report& r) {
     if (r.stability.integrator != "Euler") chart.series.push_back(model);
     chart.series.push_back(euler);
     chart.lines.push_back({plot::RefLine::Axis::kHorizontal, 0.0, "rho = 1"});
-    chart.lines.push_back({plot::RefLine::Axis::kVertical, std::log10(r.stability.timestep),
-                           "the model's timestep"});
+    chart.lines.push_back(
+        {plot::RefLine::Axis::kVertical, std::log10(r.stability.timestep), "the model's timestep"});
     figure.charts.push_back(chart);
   }
   return plot::to_svg(figure);

@@ -41,8 +41,13 @@ constexpr double kRankTolerance = 1e-9;  // relative to sigma_1: a singular valu
 class JacobianProbe {
  public:
   JacobianProbe(const Model& model, int site, int rows)
-      : model_(model), data_(model), site_(site), rows_(rows), jacp_(3, model.nv),
-        jacr_(3, model.nv), J_(rows, model.nv) {}
+      : model_(model),
+        data_(model),
+        site_(site),
+        rows_(rows),
+        jacp_(3, model.nv),
+        jacr_(3, model.nv),
+        J_(rows, model.nv) {}
 
   const Eigen::MatrixXd& jacobian(const Eigen::VectorXd& q) {
     data_.qpos = q;
@@ -103,7 +108,8 @@ JacobianAt evaluate(const Model& model, JacobianProbe& probe, const std::string&
   at.condition = low > 0 ? all[0] / low : kInf;
   if (rank > 0) {
     // with more joints than task rows the Jacobian has a null space even at regular poses; the
-    // motion that matters is the k-th right singular vector, the direction that moves the site least
+    // motion that matters is the k-th right singular vector, the direction that moves the site
+    // least
     at.null_motion = svd.matrixV().col(rank - 1);
     Eigen::Index big = 0;
     at.null_motion.cwiseAbs().maxCoeff(&big);
@@ -224,7 +230,8 @@ SiteSingularity check_site(const Model& model, int s, const std::vector<Eigen::V
     sigmas.push_back(probe.sigma(q));
     const Eigen::VectorXd& sv = sigmas.back();
     int r = 0;
-    for (Eigen::Index i = 0; i < sv.size(); ++i) r += sv[i] > kRankTolerance * std::max(sv[0], 1e-300);
+    for (Eigen::Index i = 0; i < sv.size(); ++i)
+      r += sv[i] > kRankTolerance * std::max(sv[0], 1e-300);
     site.rank = std::max(site.rank, r);
   }
   site.states.push_back(evaluate(model, probe, "qpos0", model.qpos0, site.rank, tol));
@@ -266,7 +273,8 @@ SingularPoses check_singular_poses(const Model& model, const std::string& key) {
   std::vector<int> keys;
   if (!key.empty()) {
     Data data(model);
-    reset_keyframe(model, data, key);  // throws, listing the keyframes, if there is none of that name
+    reset_keyframe(model, data,
+                   key);  // throws, listing the keyframes, if there is none of that name
     keys.push_back(model.key(key));
   } else {
     for (int k = 0; k < model.nkey; ++k) keys.push_back(k);

@@ -11,7 +11,8 @@
 //   - the smallest armature that keeps explicit Euler stable at the model's timestep: the same on
 //     every joint, then per joint with the others at that value, and per joint alone (the others as
 //     in the model), each by bisection;
-//   - simulations that confirm it: the model as it is, explicit Euler with the model's armature, and
+//   - simulations that confirm it: the model as it is, explicit Euler with the model's armature,
+//   and
 //     explicit Euler with `margin` times the smallest armature on every joint.
 // The bisections assume stability is monotonic in the timestep and in the armature (one boundary);
 // they report the first boundary they find.
@@ -199,9 +200,9 @@ StabilityAt check_state(const Model& model, const StepStability& cfg, const std:
   const auto euler_with = [&](const std::vector<double>& armature) {
     return judge.stable(variant(model, Integrator::kEuler, h, armature), s);
   };
-  at.armature_all = smallest_stable(
-      [&](double a) { return euler_with(std::vector<double>(model.nv, a)); }, start,
-      cfg.armature_cap);
+  at.armature_all =
+      smallest_stable([&](double a) { return euler_with(std::vector<double>(model.nv, a)); }, start,
+                      cfg.armature_cap);
   // per joint: each joint's own need, the others given `ample` times armature_all (heavy, so the
   // joint's effective inertia 1 / (M^-1)_ii is its own). The joints couple (that effective inertia
   // falls when the neighbours are light), so these needs do not hold together; the set that does:
@@ -262,9 +263,11 @@ StabilityAt check_state(const Model& model, const StepStability& cfg, const std:
       const Model per = variant(model, Integrator::kEuler, h, each);
       at.rho_euler_each = judge.rho(per, s);
       at.stable_euler_each = judge.stable(per, s);
-      if (at.armature_floor < at.armature_all) at.runs.push_back(simulate(
-          per, s, "per joint " + fmt::list(Eigen::Map<const Eigen::VectorXd>(each.data(), model.nv), 4),
-          cfg));
+      if (at.armature_floor < at.armature_all)
+        at.runs.push_back(simulate(
+            per, s,
+            "per joint " + fmt::list(Eigen::Map<const Eigen::VectorXd>(each.data(), model.nv), 4),
+            cfg));
     }
   }
   return at;
@@ -307,9 +310,10 @@ StepStability check_step_stability(const Model& model, const std::string& key) {
   if (model.nv == 0) return result;
   Data data(model);
   if (!key.empty()) {
-    reset_keyframe(model, data, key);  // throws, listing the keyframes, if there is none of that name
-    result.states.push_back(check_state(model, result, "keyframe " + key,
-                                        {data.qpos, data.qvel, data.ctrl}));
+    reset_keyframe(model, data,
+                   key);  // throws, listing the keyframes, if there is none of that name
+    result.states.push_back(
+        check_state(model, result, "keyframe " + key, {data.qpos, data.qvel, data.ctrl}));
     return result;
   }
   if (model.nkey == 0) {

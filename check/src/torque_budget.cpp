@@ -65,8 +65,8 @@ void motors_of_joint(const Model& model, int j, JointBudget& budget) {
     budget.hold_target =
         (budget.worst_torque / gear - b[0] - b[1] * gear * q) / model.actuator_gainprm[last][0];
     const auto& r = model.actuator_ctrlrange[last];
-    budget.target_outside =
-        model.actuator_ctrllimited[last] && (budget.hold_target < r[0] || budget.hold_target > r[1]);
+    budget.target_outside = model.actuator_ctrllimited[last] &&
+                            (budget.hold_target < r[0] || budget.hold_target > r[1]);
   }
 }
 

@@ -31,13 +31,15 @@ inline std::string motor_label(const Model& m, int a) {
 }
 
 /// A servo: an actuator whose force depends on the joint's state through its bias or gain
-/// (a <general> or <position>/<velocity> servo, force = gain ctrl + bias(length, velocity)): its ctrl
-/// is a target, not a force. A motor has a fixed gain and no bias: force = gain ctrl.
+/// (a <general> or <position>/<velocity> servo, force = gain ctrl + bias(length, velocity)): its
+/// ctrl is a target, not a force. A motor has a fixed gain and no bias: force = gain ctrl.
 inline bool is_servo(const Model& model, int a) {
   const auto& b = model.actuator_biasprm[a];
   const auto& g = model.actuator_gainprm[a];
-  const bool state_bias = model.actuator_biastype[a] == BiasType::kAffine && (b[1] != 0 || b[2] != 0);
-  const bool state_gain = model.actuator_gaintype[a] == GainType::kAffine && (g[1] != 0 || g[2] != 0);
+  const bool state_bias =
+      model.actuator_biastype[a] == BiasType::kAffine && (b[1] != 0 || b[2] != 0);
+  const bool state_gain =
+      model.actuator_gaintype[a] == GainType::kAffine && (g[1] != 0 || g[2] != 0);
   return state_bias || state_gain;
 }
 
@@ -52,12 +54,14 @@ inline std::array<double, 2> actuator_force_range(const Model& model, int a, dou
   double gain = g[0];
   if (model.actuator_gaintype[a] == GainType::kAffine) gain += g[1] * length + g[2] * velocity;
   double bias = 0.0;
-  if (model.actuator_biastype[a] == BiasType::kAffine) bias = b[0] + b[1] * length + b[2] * velocity;
+  if (model.actuator_biastype[a] == BiasType::kAffine)
+    bias = b[0] + b[1] * length + b[2] * velocity;
   double lo = -inf, hi = inf;
   if (gain == 0.0) {
     lo = hi = bias;
   } else if (model.actuator_ctrllimited[a]) {
-    const double x = gain * model.actuator_ctrlrange[a][0], y = gain * model.actuator_ctrlrange[a][1];
+    const double x = gain * model.actuator_ctrlrange[a][0],
+                 y = gain * model.actuator_ctrlrange[a][1];
     lo = std::min(x, y) + bias;
     hi = std::max(x, y) + bias;
   }
@@ -83,7 +87,8 @@ inline std::array<double, 2> motor_torque_range(const Model& model, int a) {
   constexpr double inf = std::numeric_limits<double>::infinity();
   if (is_servo(model, a)) {
     if (model.actuator_forcelimited[a]) return geared(model, a, model.actuator_forcerange[a]);
-    const double length = model.actuator_gear[a][0] * model.qpos0[model.jnt_qposadr[model.actuator_trnid[a]]];
+    const double length =
+        model.actuator_gear[a][0] * model.qpos0[model.jnt_qposadr[model.actuator_trnid[a]]];
     const auto range = actuator_force_range(model, a, length, 0.0);
     if (!model.actuator_ctrllimited[a]) return {-inf, inf};
     return geared(model, a, range);

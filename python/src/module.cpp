@@ -46,8 +46,9 @@ using DataPtr = std::shared_ptr<PyData>;
 // A keyframe array (nkey x n, row-major) as a writable (nkey, n) numpy view.
 py::array key_view(lever::RowMatrix& a, py::handle owner) {
   const auto item = static_cast<py::ssize_t>(sizeof(double));
-  return py::array_t<double>({static_cast<py::ssize_t>(a.rows()), static_cast<py::ssize_t>(a.cols())},
-                             {item * static_cast<py::ssize_t>(a.cols()), item}, a.data(), owner);
+  return py::array_t<double>(
+      {static_cast<py::ssize_t>(a.rows()), static_cast<py::ssize_t>(a.cols())},
+      {item * static_cast<py::ssize_t>(a.cols()), item}, a.data(), owner);
 }
 
 py::array view(const lever::FieldView& v, py::handle owner, bool writable) {
@@ -357,7 +358,8 @@ PYBIND11_MODULE(_lever, m) {
       py::arg("model"), py::arg("data"), py::arg("body"), py::arg("point"),
       "(jacp, jacr) of a world point fixed to a body.");
 
-  // ---- derivatives and the regressor (docs/derivatives.md) ----------------------------------------
+  // ---- derivatives and the regressor (docs/derivatives.md)
+  // ----------------------------------------
   m.def(
       "step_derivatives",
       [](const ModelPtr& x, const DataPtr& d) {
@@ -414,7 +416,8 @@ PYBIND11_MODULE(_lever, m) {
       },
       py::arg("model"), py::arg("key") = "",
       "Lesson 5.1's six checks and lesson 5.2's two more (singular poses, stability of the step) "
-      "of a model, as the JSON `lever check` prints; `key`: sections 7 and 8 at that keyframe only.");
+      "of a model, as the JSON `lever check` prints; `key`: sections 7 and 8 at that keyframe "
+      "only.");
   m.def(
       "check_text",
       [](const ModelPtr& x, const std::string& key) {

@@ -10,9 +10,9 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
+#include <lever/harness/models.hpp>
 #include "json_reader.hpp"
 #include "run_lever.hpp"
-#include <lever/harness/models.hpp>
 
 namespace lever::test {
 

@@ -18,9 +18,9 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
+#include <lever/harness/models.hpp>
 #include "json_reader.hpp"
 #include "run_lever.hpp"
-#include <lever/harness/models.hpp>
 
 namespace lever::test {
 
@@ -134,7 +134,8 @@ TEST_CASE("check panda7 (7): singular values, manipulability and aligned axes re
         const double manip = std::sqrt((J * J.transpose()).determinant());
         CHECK(at["manipulability"].number == Approx(manip).epsilon(1e-9));
       }
-      if (sigma[5] > 1e-9) CHECK(at["condition"].number == Approx(sigma[0] / sigma[5]).epsilon(1e-9));
+      if (sigma[5] > 1e-9)
+        CHECK(at["condition"].number == Approx(sigma[0] / sigma[5]).epsilon(1e-9));
       // aligned joints: every pair whose world axes are parallel within the tolerance, no other
       Data d(model);
       d.qpos = q;
@@ -166,15 +167,16 @@ TEST_CASE("check panda7 (7): singular values, manipulability and aligned axes re
       std::uniform_real_distribution<double> u(model.jnt_range[j][0], model.jnt_range[j][1]);
       q[j] = u(rng);
     }
-    sampled = std::min(sampled, Eigen::JacobiSVD<Eigen::MatrixXd>(jacobian(model, q, ee))
-                                    .singularValues()[5]);
+    sampled = std::min(
+        sampled, Eigen::JacobiSVD<Eigen::MatrixXd>(jacobian(model, q, ee)).singularValues()[5]);
   }
   const double worst = vec(site["worst"][0]["sigma"])[5];
   CHECK(worst <= sampled);
   CHECK(worst < 1e-3);  // the Panda has singular poses inside its ranges (aligned axes)
 }
 
-TEST_CASE("check panda7 (8): spectral radii, timesteps and armature recomputed", "[check][panda7]") {
+TEST_CASE("check panda7 (8): spectral radii, timesteps and armature recomputed",
+          "[check][panda7]") {
   const Model model = mjcf::load_file(model_path("models/panda7.xml"));
   const json::Value& st = panda_report()["step_stability"];
   CHECK(st["integrator"].string == "implicit");
@@ -200,9 +202,8 @@ TEST_CASE("check panda7 (8): spectral radii, timesteps and armature recomputed",
 
   // the largest stable timesteps: stable just below, unstable just above (rho against 1 + slack)
   const double slack = st["slack"].number;
-  for (const auto& [key, integrator] :
-       {std::pair{"max_timestep_model", Integrator::kImplicit},
-        std::pair{"max_timestep_euler", Integrator::kEuler}}) {
+  for (const auto& [key, integrator] : {std::pair{"max_timestep_model", Integrator::kImplicit},
+                                        std::pair{"max_timestep_euler", Integrator::kEuler}}) {
     INFO(key);
     const double dt = home[key].number;
     REQUIRE(std::isfinite(dt));
@@ -248,7 +249,7 @@ TEST_CASE("check panda7: servos in sections (1), (3) and (6)", "[check][panda7]"
     if (b["loaded"].boolean) {
       const double tau = std::abs(b["worst_gravity_torque"].number);
       const double limit = b["worst_gravity_torque"].number < 0 ? -model.actuator_forcerange[a][0]
-                                                                 : model.actuator_forcerange[a][1];
+                                                                : model.actuator_forcerange[a][1];
       CHECK(b["motor_limit"].number == limit);
       CHECK(b["ratio"].number == Approx(limit / tau).epsilon(1e-15));
       CHECK(b["servo_offset"].number == Approx(tau / kp).epsilon(1e-15));
@@ -265,7 +266,8 @@ TEST_CASE("check panda7: servos in sections (1), (3) and (6)", "[check][panda7]"
     const double q = model.qpos0[a];
     const double kp = model.actuator_gainprm[a][0];
     const double force = kp * target - kp * q;
-    CHECK(c["force_before_forcerange"][static_cast<size_t>(a)].number == Approx(force).margin(1e-9));
+    CHECK(c["force_before_forcerange"][static_cast<size_t>(a)].number ==
+          Approx(force).margin(1e-9));
     const auto& f = model.actuator_forcerange[a];
     CHECK(c["actuator_force"][static_cast<size_t>(a)].number ==
           Approx(std::clamp(force, f[0], f[1])).margin(1e-9));
@@ -291,10 +293,12 @@ TEST_CASE("check --svg writes the torque budget, the singular poses and the step
           "[check][panda7]") {
   const std::string svg =
       (std::filesystem::temp_directory_path() / "lever-check-panda7.svg").string();
-  const Run run = run_lever("check --svg " + quoted(svg) + " " + quoted(model_path("models/panda7.xml")));
+  const Run run =
+      run_lever("check --svg " + quoted(svg) + " " + quoted(model_path("models/panda7.xml")));
   CHECK((run.status == 0 || run.status == 1));
   const std::string stem = svg.substr(0, svg.size() - 4);
-  for (const std::string& file : {svg, stem + "-singular-poses.svg", stem + "-step-stability.svg"}) {
+  for (const std::string& file :
+       {svg, stem + "-singular-poses.svg", stem + "-step-stability.svg"}) {
     INFO(file);
     std::ifstream in(file);
     std::stringstream text;
@@ -362,10 +366,9 @@ TEST_CASE("check arm2: sections (7) and (8) for a planar 2-joint arm", "[check]"
   CHECK(std::abs(std::sin(q[1])) < 1e-6);
   const json::Value& st = report["step_stability"]["states"][0];
   CHECK(st["where"].string == "qpos0");
-  CHECK(st["rho_model"].number ==
-        Approx(radius(model, model.qpos0, Eigen::VectorXd::Zero(model.nv),
-                      Eigen::VectorXd::Zero(model.nu)))
-            .epsilon(1e-5));
+  CHECK(st["rho_model"].number == Approx(radius(model, model.qpos0, Eigen::VectorXd::Zero(model.nv),
+                                                Eigen::VectorXd::Zero(model.nu)))
+                                      .epsilon(1e-5));
 }
 
 }  // namespace lever::test

@@ -1,6 +1,6 @@
-// lever check MODEL: lesson 5.1's six checks of a robot model and lesson 5.2's two more (the library in check/,
-// lever/check.hpp). Exit status: 0 when every claim checks out, 1 with findings, 2 when the model
-// cannot be loaded.
+// lever check MODEL: lesson 5.1's six checks of a robot model and lesson 5.2's two more (the
+// library in check/, lever/check.hpp). Exit status: 0 when every claim checks out, 1 with findings,
+// 2 when the model cannot be loaded.
 #include <cstdio>
 #include <filesystem>
 #include <string>

@@ -271,10 +271,9 @@ struct FileCloser {
 }  // namespace
 
 int cmd_simulate(const std::vector<std::string>& argv) {
-  const Args args(argv,
-                  {"steps", "duration", "key", "qpos", "qvel", "ctrl", "torque", "excite", "csv",
-                   "plot"},
-                  {"gravity-compensation", "json", "help"});
+  const Args args(
+      argv, {"steps", "duration", "key", "qpos", "qvel", "ctrl", "torque", "excite", "csv", "plot"},
+      {"gravity-compensation", "json", "help"});
   if (args.has("help")) {
     std::fputs(kUsage, stdout);
     return kOk;

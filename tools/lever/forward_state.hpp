@@ -1,5 +1,6 @@
-// The state options shared by `lever forward` and `lever simulate`: --key, --qpos, --qvel, --ctrl, and
-// the units and labels both commands print. Header-only, so the command's build needs no change.
+// The state options shared by `lever forward` and `lever simulate`: --key, --qpos, --qvel, --ctrl,
+// and the units and labels both commands print. Header-only, so the command's build needs no
+// change.
 #pragma once
 
 #include <Eigen/Core>

@@ -229,13 +229,14 @@ struct Clamping {
   bool newton_metres = false;  ///< every motor drives a hinge with gear 1: forces are in N m
   // servos (ctrl is a target): the command clamped to ctrlrange, the force that target asks for at
   // qpos0 and rest (gain target + bias) and what forcerange lets through (actuator_force)
-  std::vector<uint8_t> servo;          ///< (nu) which actuators are servos
+  std::vector<uint8_t> servo;         ///< (nu) which actuators are servos
   Eigen::VectorXd target, raw_force;  ///< (nu) ctrl clamped to ctrlrange; gain target + bias
   Eigen::VectorXd qpos;               ///< the pose forward() ran at (qpos0)
   bool any_servo() const;
 };
 
-// ---- (7) singular poses --------------------------------------------------------------------------
+// ---- (7) singular poses
+// --------------------------------------------------------------------------
 
 /// Two joints whose world axes are parallel (and collinear: on one line) at a pose.
 struct JointAlignment {
@@ -249,17 +250,17 @@ struct JointAlignment {
 struct JacobianAt {
   std::string where;  ///< "qpos0", "keyframe home", "worst 1", ...
   Eigen::VectorXd q;
-  Eigen::VectorXd sigma;          ///< the task space's singular values, descending (rank of them)
-  double manipulability = 0.0;    ///< their product: sqrt(det(J J^T)) when rows == rank
-  double condition = kInf;        ///< sigma_max / sigma_min
-  Eigen::VectorXd null_motion;    ///< unit joint velocity that moves the site least (nv)
+  Eigen::VectorXd sigma;        ///< the task space's singular values, descending (rank of them)
+  double manipulability = 0.0;  ///< their product: sqrt(det(J J^T)) when rows == rank
+  double condition = kInf;      ///< sigma_max / sigma_min
+  Eigen::VectorXd null_motion;  ///< unit joint velocity that moves the site least (nv)
   std::vector<JointAlignment> aligned;
 };
 
 struct SiteSingularity {
   std::string site;
-  int rows = 6;   ///< 6: [jacp; jacr] (nv >= 6); 3: jacp (fewer joints than 6)
-  int rank = 0;   ///< its rank at generic poses: the number of singular values that count
+  int rows = 6;  ///< 6: [jacp; jacr] (nv >= 6); 3: jacp (fewer joints than 6)
+  int rank = 0;  ///< its rank at generic poses: the number of singular values that count
   std::vector<JacobianAt> states;  ///< qpos0 and each keyframe
   std::vector<JacobianAt> worst;   ///< the most singular poses found, least sigma_min first
 };
@@ -271,7 +272,8 @@ struct SingularPoses {
   std::vector<SiteSingularity> sites;
 };
 
-// ---- (8) stability of the step -------------------------------------------------------------------
+// ---- (8) stability of the step
+// -------------------------------------------------------------------
 
 /// How a simulation from a state went: it settles (|qvel| dies out), keeps moving (a limit cycle:
 /// an unstable step whose growth the forcerange clamp caps), or blows up (an engine warning, or
@@ -285,7 +287,7 @@ struct StabilityRun {
   int saturated = 0;        ///< steps where some actuator force sat on its forcerange
   int blowup_step = -1;     ///< first step with an engine warning or |qvel| > bound (-1: none)
   int warnings = 0;
-  bool settled = false;     ///< no blow-up and final_qvel <= the settle bound
+  bool settled = false;  ///< no blow-up and final_qvel <= the settle bound
   bool bounded() const { return blowup_step < 0; }
 };
 
@@ -297,14 +299,14 @@ struct StabilityAt {
   double rho_euler = 0.0;  ///< of explicit Euler's step at the same timestep
   bool stable_model = false, stable_euler = false;
   double max_dt_model = 0.0, max_dt_euler = 0.0;  ///< largest stable timestep found (kInf: cap)
-  double armature_all = 0.0;             ///< smallest armature on every joint for Euler (kInf: none)
-  std::vector<double> armature_each;     ///< per joint, the others at ample x armature_all
-  double armature_floor = kInf;          ///< the least floor t with max(each_i, t) stable together
-  std::vector<double> armature_alone;    ///< per joint, the others as in the model (kInf: none)
-  double rho_euler_with = 0.0;           ///< Euler's radius, margin x armature_all on every joint
-  double rho_euler_each = 0.0;           ///< Euler's radius, margin x armature_each per joint
+  double armature_all = 0.0;           ///< smallest armature on every joint for Euler (kInf: none)
+  std::vector<double> armature_each;   ///< per joint, the others at ample x armature_all
+  double armature_floor = kInf;        ///< the least floor t with max(each_i, t) stable together
+  std::vector<double> armature_alone;  ///< per joint, the others as in the model (kInf: none)
+  double rho_euler_with = 0.0;         ///< Euler's radius, margin x armature_all on every joint
+  double rho_euler_each = 0.0;         ///< Euler's radius, margin x armature_each per joint
   bool stable_euler_each = false;
-  std::vector<StabilityRun> runs;        ///< model as is, Euler without and with armature
+  std::vector<StabilityRun> runs;  ///< model as is, Euler without and with armature
   /// rho against the timestep (log-spaced, h/10 to 10 h), for the chart
   std::vector<double> sweep_dt, sweep_rho_model, sweep_rho_euler;
 };
@@ -312,14 +314,14 @@ struct StabilityAt {
 struct StepStability {
   double timestep = 0.0;
   std::string integrator;
-  double fd_eps = 1e-6;      ///< central-difference step on [qpos; qvel]
-  double slack = 1e-3;       ///< stable: rho <= max(1, exp(h growth)) (1 + slack)
-  double dt_cap = 1.0;       ///< s: the timestep search stops here
-  double armature_cap = 1e4; ///< kg m^2: the armature search stops here
-  double margin = 1.1;       ///< the simulation uses this times the smallest armature
-  double qvel_bound = 1e3;   ///< a run blows up past this |qvel|
-  double settle_qvel = 1e-3; ///< a run settles when |qvel| stays below this over its last tenth
-  double ample = 10.0;       ///< per joint: the other joints get this times armature_all
+  double fd_eps = 1e-6;       ///< central-difference step on [qpos; qvel]
+  double slack = 1e-3;        ///< stable: rho <= max(1, exp(h growth)) (1 + slack)
+  double dt_cap = 1.0;        ///< s: the timestep search stops here
+  double armature_cap = 1e4;  ///< kg m^2: the armature search stops here
+  double margin = 1.1;        ///< the simulation uses this times the smallest armature
+  double qvel_bound = 1e3;    ///< a run blows up past this |qvel|
+  double settle_qvel = 1e-3;  ///< a run settles when |qvel| stays below this over its last tenth
+  double ample = 10.0;        ///< per joint: the other joints get this times armature_all
   std::vector<std::string> joints;
   std::vector<StabilityAt> states;
 };
