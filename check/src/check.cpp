@@ -1,9 +1,10 @@
-// The six checks in order, and the findings: every claim that does not check out.
+// The eight checks in order, and the findings: every claim that does not check out.
 #include <lever/check.hpp>
 
 #include <cmath>
 #include <optional>
 
+#include <lever/data.hpp>
 #include <lever/mjcf.hpp>
 
 #include "format.hpp"
@@ -79,6 +80,18 @@ void clamping_findings(const Clamping& c, std::vector<std::string>& findings) {
   }
 }
 
+// the model's own step must be stable where it starts: an unstable step is a claim (the timestep,
+// the integrator) that does not check out; Euler's instability is a lesson, not a finding
+void stability_findings(const StepStability& st, std::vector<std::string>& findings) {
+  for (const StabilityAt& s : st.states) {
+    if (!s.stable_model) {
+      findings.push_back("the " + st.integrator + " step at " + s.where +
+                         " is unstable at timestep " + fmt::general(st.timestep) +
+                         " s: spectral radius " + fmt::fixed(s.rho_model, 4));
+    }
+  }
+}
+
 // the engine's warnings are never silent: a run that raised one (a state reset after a blow-up)
 // has not checked what it was meant to
 void warning_findings(const Report& r, std::vector<std::string>& findings) {
@@ -100,6 +113,10 @@ void warning_findings(const Report& r, std::vector<std::string>& findings) {
 
 Report run_check(const Inputs& inputs) {
   const Model& model = inputs.model;
+  if (!inputs.key.empty()) {  // an unknown keyframe is refused before any work, listing the keys
+    Data data(model);
+    reset_keyframe(model, data, inputs.key);
+  }
   Report report;
   report.model = model.name;
   report.source = model.source;
@@ -109,16 +126,19 @@ Report run_check(const Inputs& inputs) {
   report.inertia = check_inertia(inputs, report.budget);
   report.stops = check_soft_stops(model);
   report.clamping = check_clamping(model);
+  report.singular = check_singular_poses(model, inputs.key);
+  report.stability = check_step_stability(model, inputs.key);
 
   kinematics_findings(report.kinematics, report.findings);
   budget_findings(report.budget, report.findings);
   inertia_findings(report.inertia, report.structure, report.findings);
   clamping_findings(report.clamping, report.findings);
+  stability_findings(report.stability, report.findings);
   warning_findings(report, report.findings);
   return report;
 }
 
-Report check_model(const Model& model) {
+Report check_model(const Model& model, const std::string& key) {
   std::optional<Model> inferred;
   std::string inferred_error =
       "the model was not loaded from a file, so it cannot be reloaded "
@@ -131,9 +151,11 @@ Report check_model(const Model& model) {
       inferred_error = e.what();
     }
   }
-  return run_check({model, inferred ? &*inferred : nullptr, inferred_error});
+  return run_check({model, inferred ? &*inferred : nullptr, inferred_error, key});
 }
 
-Report check_file(const std::string& path) { return check_model(mjcf::load_file(path)); }
+Report check_file(const std::string& path, const std::string& key) {
+  return check_model(mjcf::load_file(path), key);
+}
 
 }  // namespace lever::check

@@ -44,6 +44,10 @@ void structure(Json& j, const Structure& s) {
     pair(j, m.forcerange);
     j.key("forcelimited").value(m.forcelimited).key("joint_torque");
     pair(j, m.joint_torque);
+    j.key("servo").value(m.servo).key("kp").value(m.kp).key("kv").value(m.kv);
+    j.key("gainprm").begin_array().value(m.gainprm[0]).value(m.gainprm[1]).value(m.gainprm[2]);
+    j.end_array().key("biasprm").begin_array().value(m.biasprm[0]).value(m.biasprm[1]);
+    j.value(m.biasprm[2]).end_array();
     j.end_object();
   }
   j.end_array().key("sites").begin_array();
@@ -96,7 +100,10 @@ void budget(Json& j, const TorqueBudget& b) {
     pair(j, x.torque_range);
     j.key("motor_limit").value(x.limit).key("ratio").value(x.ratio);
     j.key("spare_torque").value(x.spare).key("acceleration").value(x.acceleration);
-    j.key("rigid_torques").values(x.rigid_torques).end_object();
+    j.key("rigid_torques").values(x.rigid_torques);
+    j.key("servo").value(x.servo).key("servo_stiffness").value(x.stiffness);
+    j.key("servo_offset").value(x.sag).key("hold_target").value(x.hold_target);
+    j.key("target_outside_ctrlrange").value(x.target_outside).end_object();
   }
   j.end_array().key("payload").begin_array();
   for (const SitePayload& p : b.payload) {
@@ -194,6 +201,86 @@ void clamping(Json& j, const Clamping& c) {
   j.key("ctrl").values(c.ctrl).key("actuator_force").values(c.actuator_force);
   j.key("warnings").value(c.warnings).key("unbounded");
   strings(j, c.unbounded);
+  j.key("servo").begin_array();
+  for (const uint8_t s : c.servo) j.value(s != 0);
+  j.end_array().key("target").values(c.target).key("force_before_forcerange").values(c.raw_force);
+  j.key("qpos").values(c.qpos);
+}
+
+void jacobian_at(Json& j, const JacobianAt& at) {
+  j.begin_object().key("where").value(at.where).key("qpos").values(at.q);
+  j.key("sigma").values(at.sigma).key("manipulability").value(at.manipulability);
+  j.key("condition").value(at.condition).key("least_moving_motion").values(at.null_motion);
+  j.key("aligned").begin_array();
+  for (const JointAlignment& a : at.aligned) {
+    j.begin_object().key("joints").begin_array().value(a.first).value(a.second).end_array();
+    j.key("collinear").value(a.collinear).key("angle").value(a.angle);
+    j.key("distance").value(a.distance).end_object();
+  }
+  j.end_array().end_object();
+}
+
+void singular(Json& j, const SingularPoses& sp) {
+  j.key("search").value(sp.search).key("evaluations").value(sp.evaluations);
+  j.key("parallel_tolerance").value(sp.parallel_tolerance).key("sites").begin_array();
+  for (const SiteSingularity& s : sp.sites) {
+    j.begin_object().key("site").value(s.site).key("rows").value(s.rows).key("rank").value(s.rank);
+    j.key("states").begin_array();
+    for (const JacobianAt& at : s.states) jacobian_at(j, at);
+    j.end_array().key("worst").begin_array();
+    for (const JacobianAt& at : s.worst) jacobian_at(j, at);
+    j.end_array().end_object();
+  }
+  j.end_array();
+}
+
+void values(Json& j, const std::vector<double>& v) {
+  j.values(Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
+}
+
+void stability(Json& j, const StepStability& st) {
+  j.key("timestep").value(st.timestep).key("integrator").value(st.integrator);
+  j.key("fd_eps").value(st.fd_eps).key("slack").value(st.slack).key("dt_cap").value(st.dt_cap);
+  j.key("armature_cap").value(st.armature_cap).key("margin").value(st.margin);
+  j.key("qvel_bound").value(st.qvel_bound).key("settle_qvel").value(st.settle_qvel);
+  j.key("ample").value(st.ample).key("joints");
+  strings(j, st.joints);
+  j.key("states").begin_array();
+  for (const StabilityAt& s : st.states) {
+    j.begin_object().key("where").value(s.where).key("qpos").values(s.qpos);
+    j.key("qvel").values(s.qvel).key("ctrl").values(s.ctrl).key("growth").value(s.growth);
+    j.key("rho_model").value(s.rho_model).key("rho_euler").value(s.rho_euler);
+    j.key("stable_model").value(s.stable_model).key("stable_euler").value(s.stable_euler);
+    j.key("max_timestep_model").value(s.max_dt_model);
+    j.key("max_timestep_euler").value(s.max_dt_euler);
+    j.key("armature_all").value(s.armature_all).key("armature_each");
+    values(j, s.armature_each);
+    j.key("armature_alone");
+    values(j, s.armature_alone);
+    j.key("armature_floor").value(s.armature_floor);
+    j.key("sweep_timestep");
+    values(j, s.sweep_dt);
+    j.key("sweep_rho_model");
+    values(j, s.sweep_rho_model);
+    j.key("sweep_rho_euler");
+    values(j, s.sweep_rho_euler);
+    j.key("rho_euler_with_armature").value(s.rho_euler_with);
+    j.key("rho_euler_each")
+        .value(s.rho_euler_each)
+        .key("stable_euler_each")
+        .value(s.stable_euler_each);
+    j.key("runs").begin_array();
+    for (const StabilityRun& r : s.runs) {
+      j.begin_object().key("integrator").value(r.integrator).key("armature").value(r.armature);
+      j.key("steps").value(r.steps).key("max_qvel").value(r.max_qvel);
+      j.key("final_qvel").value(r.final_qvel).key("saturated_steps").value(r.saturated);
+      j.key("blowup_step").value(r.blowup_step).key("warnings").value(r.warnings);
+      j.key("settled").value(r.settled);
+      j.key("bounded").value(r.bounded()).end_object();
+    }
+    j.end_array().end_object();
+  }
+  j.end_array();
 }
 
 }  // namespace
@@ -213,6 +300,10 @@ void report(Json& j, const Report& r) {
   stops(j, r.stops);
   j.end_object().key("clamping").begin_object();
   clamping(j, r.clamping);
+  j.end_object().key("singular_poses").begin_object();
+  singular(j, r.singular);
+  j.end_object().key("step_stability").begin_object();
+  stability(j, r.stability);
   j.end_object().key("findings");
   strings(j, r.findings);
   j.key("exit_status").value(r.exit_status()).end_object();

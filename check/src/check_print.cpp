@@ -1,5 +1,6 @@
 // The text of `lever check`: lesson 5.1's Output block, section by section, with the same
 // wording and digits where the lesson has a line for it, and a line per joint, site and stop.
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -35,6 +36,29 @@ std::string names(const std::vector<std::string>& list) {
 
 // ---- (1) ---------------------------------------------------------------------------------------
 
+// A servo's line: its law, what ctrl means, and the torque it can give (forcerange).
+void print_servo(std::ostream& out, const MotorInfo& m) {
+  out << "  servo " << m.name;
+  if (m.name != m.joint) out << " (joint " << m.joint << ")";
+  const bool position =
+      m.gainprm[1] == 0 && m.gainprm[2] == 0 && m.gainprm[0] == m.kp && m.biasprm[0] == 0;
+  if (position) {
+    out << ": force = kp (ctrl - length) - kv velocity, kp " << general(m.kp) << " kv "
+        << general(m.kv);
+  } else {
+    out << ": force = gain ctrl + bias, gainprm [" << general(m.gainprm[0]) << " "
+        << general(m.gainprm[1]) << " " << general(m.gainprm[2]) << "] biasprm ["
+        << general(m.biasprm[0]) << " " << general(m.biasprm[1]) << " " << general(m.biasprm[2])
+        << "]";
+  }
+  if (m.gear != 1.0) out << ", gear " << general(m.gear);
+  out << "; ctrl is a target";
+  if (m.ctrllimited) out << " in ctrlrange " << range_text(m.ctrlrange);
+  if (m.forcelimited) out << ", forcerange " << range_text(m.forcerange);
+  out << ": joint torque " << range_text(m.joint_torque)
+      << (m.forcelimited ? "" : " (at qpos0, from the ctrlrange: no forcerange)") << "\n";
+}
+
 void print_structure(std::ostream& out, const Structure& s) {
   out << "(1) what the compiled model contains:\n";
   for (const JointInfo& j : s.joints) {
@@ -48,6 +72,10 @@ void print_structure(std::ostream& out, const Structure& s) {
     out << "\n";
   }
   for (const MotorInfo& m : s.motors) {
+    if (m.servo) {
+      print_servo(out, m);
+      continue;
+    }
     out << "  motor " << m.name;
     if (m.name != m.joint) out << " (joint " << m.joint << ")";
     out << " gear " << general(m.gear) << " ctrlrange " << range_text(m.ctrlrange);
@@ -118,6 +146,28 @@ std::string ratio_text(const JointBudget& j) {
          ")";
 }
 
+// Servos: the limit above is their forcerange (ctrl is a target position, not a torque); holding
+// the worst pose, a servo sits |tau| / kp off its target, and the target must lie in ctrlrange.
+void print_servo_sag(std::ostream& out, const TorqueBudget& b) {
+  std::vector<std::string> sags;
+  for (const JointBudget& j : b.joints) {
+    if (!j.servo || !j.loaded) continue;
+    std::string text = j.joint + " " + fixed(j.sag * 1000.0, 2) + " mrad";
+    if (j.target_outside)
+      text += " (needs target " + fixed(j.hold_target, 4) + ", outside ctrlrange)";
+    sags.push_back(text);
+  }
+  if (sags.empty()) return;
+  out << "  servos: the limit is the forcerange (ctrl is a target position, not a torque)\n";
+  out << fmt::wrap("  servo offset holding the worst pose, |gravity torque| / kp:", sags, "    ")
+      << "\n";
+  for (const JointBudget& j : b.joints) {
+    if (!j.servo || !j.loaded || !j.target_outside) continue;
+    out << "  " << j.joint << ": holding its worst pose needs a target beyond the ctrlrange: there "
+        << "the servo sags off the pose (the clamp, section 6)\n";
+  }
+}
+
 void print_worst_torques(std::ostream& out, const TorqueBudget& b) {
   out << "  worst-case gravity torque over the joint ranges:\n";
   for (const JointBudget& j : b.joints) {
@@ -128,6 +178,7 @@ void print_worst_torques(std::ostream& out, const TorqueBudget& b) {
   std::vector<std::string> ratios;
   for (const JointBudget& j : b.joints) ratios.push_back(ratio_text(j));
   out << fmt::wrap("  motor limit / gravity torque:", ratios, "    ") << "\n";
+  print_servo_sag(out, b);
 }
 
 std::string payload_text(const JointBudget& j, double kg) {
@@ -327,6 +378,12 @@ void print_clamping(std::ostream& out, const Clamping& c, const TorqueBudget& b)
   for (const std::string& m : c.unbounded) {
     out << "  motor " << m << " has ctrllimited=\"false\": any command goes through\n";
   }
+  if (c.any_servo()) {  // a servo's ctrl is a target: the clamp moves the target, not the force
+    out << "  servos: ctrl is a target position, clamped to ctrlrange: target = "
+        << fmt::list(c.target) << " at q = " << fmt::list(c.qpos) << ";\n"
+        << "    gain target + bias = " << fmt::list(c.raw_force)
+        << ", clamped to forcerange: actuator_force = " << fmt::list(c.actuator_force) << "\n";
+  }
   const JointBudget* tightest = nullptr;
   for (const JointBudget& j : b.joints) {
     if (!j.actuated() || !j.loaded || !std::isfinite(j.ratio)) continue;
@@ -341,6 +398,181 @@ void print_clamping(std::ostream& out, const Clamping& c, const TorqueBudget& b)
   if (tightest && tightest->ratio >= 1.0) {
     out << "  every motor can hold its own arm: the smallest motor limit / gravity torque is "
         << fixed(tightest->ratio, 2) << " (" << tightest->joint << ")\n";
+  }
+}
+
+// ---- (7) ---------------------------------------------------------------------------------------
+
+std::string alignment_text(const JointAlignment& a) {
+  return a.first + " and " + a.second + (a.collinear ? " collinear" : " parallel");
+}
+
+void print_jacobian_at(std::ostream& out, const JacobianAt& at,
+                       const std::vector<std::string>& joints, bool with_pose) {
+  out << "    " << at.where;
+  if (with_pose) out << " (" << pose_text(at.q) << ")";
+  out << ": sigma " << fmt::list(at.sigma, 4) << ", manipulability " << fmt::sig4(at.manipulability)
+      << ", condition "
+      << (std::isfinite(at.condition) && at.condition < 1e12 ? general(at.condition) : "inf")
+      << "\n";
+  // parallel axes as groups (a planar chain has every pair parallel), collinear pairs by name
+  std::vector<std::string> aligned;
+  std::vector<std::vector<std::string>> groups;
+  const auto group_of = [&](const std::string& joint) -> int {
+    for (size_t g = 0; g < groups.size(); ++g) {
+      if (std::find(groups[g].begin(), groups[g].end(), joint) != groups[g].end()) return int(g);
+    }
+    return -1;
+  };
+  for (const JointAlignment& a : at.aligned) {
+    if (a.collinear) aligned.push_back(alignment_text(a));
+    const int g1 = group_of(a.first), g2 = group_of(a.second);
+    if (g1 < 0 && g2 < 0) {
+      groups.push_back({a.first, a.second});
+    } else if (g1 < 0) {
+      groups[g2].push_back(a.first);
+    } else if (g2 < 0) {
+      groups[g1].push_back(a.second);
+    } else if (g1 != g2) {
+      groups[g1].insert(groups[g1].end(), groups[g2].begin(), groups[g2].end());
+      groups.erase(groups.begin() + g2);
+    }
+  }
+  for (std::vector<std::string>& g : groups) {
+    const bool named =
+        g.size() == 2 &&
+        std::any_of(at.aligned.begin(), at.aligned.end(), [&](const JointAlignment& a) {
+          return a.collinear &&
+                 ((a.first == g[0] && a.second == g[1]) || (a.first == g[1] && a.second == g[0]));
+        });
+    if (named) continue;  // already printed as collinear
+    std::sort(g.begin(), g.end(), [&](const std::string& x, const std::string& y) {
+      return std::find(joints.begin(), joints.end(), x) <
+             std::find(joints.begin(), joints.end(), y);
+    });
+    aligned.push_back((g.size() == 2 ? g[0] + " and " + g[1] : "{" + names(g) + "}") + " parallel");
+  }
+  out << "      aligned axes: " << (aligned.empty() ? "none" : names(aligned));
+  if (at.null_motion.size()) {
+    // the joints that move in the direction that moves the site least
+    std::vector<std::string> movers;
+    for (Eigen::Index i = 0; i < at.null_motion.size() && i < Eigen::Index(joints.size()); ++i) {
+      if (std::abs(at.null_motion[i]) >= 0.1)
+        movers.push_back(joints[i] + " " + fixed(at.null_motion[i], 2));
+    }
+    out << "; least-moving joint motion: " << names(movers);
+  }
+  out << "\n";
+}
+
+void print_singular(std::ostream& out, const SingularPoses& sp, const Structure& st) {
+  out << "(7) singular poses: the site Jacobian's singular values over the joint ranges:\n";
+  if (sp.sites.empty()) {
+    out << "  the model has no sites (or no joints)\n";
+    return;
+  }
+  std::vector<std::string> joints;
+  for (const JointInfo& j : st.joints) joints.push_back(j.name);
+  for (const SiteSingularity& s : sp.sites) {
+    out << "  site " << s.site << ": "
+        << (s.rows == 6 ? "J = [jacp; jacr] (6 x nv)"
+                        : "J = jacp (3 x nv: with fewer than 6 joints the arm cannot also orient "
+                          "the site, so its position is the task)")
+        << ", rank " << s.rank << " at generic poses, so " << s.rank
+        << (s.rank == 1 ? " singular value counts" : " singular values count")
+        << " (singular where the smallest vanishes)\n";
+    for (const JacobianAt& at : s.states) print_jacobian_at(out, at, joints, at.where != "qpos0");
+    out << "    most singular poses found:\n";
+    for (const JacobianAt& at : s.worst) print_jacobian_at(out, at, joints, true);
+  }
+  out << "    (searched: " << sp.search << "; " << sp.evaluations
+      << " Jacobians; axes parallel or collinear within " << general(sp.parallel_tolerance)
+      << " rad and m)\n";
+}
+
+// ---- (8) ---------------------------------------------------------------------------------------
+
+std::string timestep_text(double h) {
+  return std::isinf(h) ? "stable up to the search's cap" : general(h) + " s";
+}
+
+std::string armature_text(double a) {
+  return std::isinf(a) ? "none up to the cap" : fmt::rounded(a, 4);
+}
+
+void print_run(std::ostream& out, const StabilityRun& r) {
+  out << "      " << r.integrator << ", armature " << r.armature << ": ";
+  if (!r.bounded()) {
+    out << "blows up at step " << r.blowup_step << " ("
+        << (r.warnings > 0 ? std::to_string(r.warnings) + " engine warnings: a state was reset"
+                           : "max |qvel| " + fmt::sig4(r.max_qvel))
+        << ")\n";
+  } else if (r.settled) {
+    out << "settles: max |qvel| " << fmt::sig4(r.max_qvel) << ", " << fmt::sig4(r.final_qvel)
+        << " over the last tenth of " << r.steps << " steps\n";
+  } else {
+    out << "does not settle: |qvel| still " << fmt::sig4(r.final_qvel) << " over the last tenth of "
+        << r.steps << " steps";
+    if (r.saturated > 0) {
+      out << ", a force on its forcerange in " << r.saturated
+          << " steps (the clamp caps the growth: a limit cycle)";
+    }
+    out << "\n";
+  }
+}
+
+void print_stability(std::ostream& out, const StepStability& st) {
+  out << "(8) stability of the step (timestep " << general(st.timestep) << " s, integrator "
+      << st.integrator << "; rho: spectral radius of d[qpos'; qvel']/d[qpos; qvel] by central "
+      << "differences of step):\n";
+  if (st.states.empty()) {
+    out << "  the model has no joints\n";
+    return;
+  }
+  const bool euler = st.integrator == "Euler";
+  for (const StabilityAt& s : st.states) {
+    out << "  at " << s.where << ", ctrl " << fmt::list(s.ctrl, 4) << ":\n";
+    out << "    the dynamics' own growth rate max Re(lambda) = " << fixed(s.growth, 3)
+        << " 1/s; a step is stable when rho <= max(1, exp(h growth)) (1 + " << general(st.slack)
+        << ")\n";
+    out << "    " << st.integrator << " rho = " << fixed(s.rho_model, 4)
+        << (s.stable_model ? " stable" : " UNSTABLE");
+    if (!euler)
+      out << "; explicit Euler rho = " << fixed(s.rho_euler, 4)
+          << (s.stable_euler ? " stable" : " unstable");
+    out << "\n    largest stable timestep: " << st.integrator << " "
+        << timestep_text(s.max_dt_model);
+    if (!euler) out << ", Euler " << timestep_text(s.max_dt_euler);
+    out << "\n";
+    out << "    smallest armature for a stable Euler step at " << general(st.timestep)
+        << " s: the same on every joint " << armature_text(s.armature_all) << " kg m^2\n";
+    if (std::isfinite(s.armature_all) && s.armature_all > 0) {
+      std::vector<std::string> each, alone;
+      bool any_alone = false;
+      for (size_t j = 0; j < st.joints.size(); ++j) {
+        each.push_back(st.joints[j] + " " + armature_text(s.armature_each[j]));
+        alone.push_back(st.joints[j] + " " + armature_text(s.armature_alone[j]));
+        any_alone = any_alone || std::isfinite(s.armature_alone[j]);
+      }
+      out << fmt::wrap(
+                 "      per joint, each with the others given " + general(st.ample) + " x that:",
+                 each, "        ")
+          << "\n";
+      out << "      together (the joints couple): max(per joint, "
+          << armature_text(s.armature_floor) << ") on each joint\n";
+      if (any_alone) {
+        out << fmt::wrap("      per joint alone, the others as in the model:", alone, "        ")
+            << "\n";
+      } else {
+        out << "      no joint's armature alone makes it stable (the others as in the model)\n";
+      }
+      out << "    Euler rho with " << general(st.margin) << " x those: the same on every joint "
+          << fixed(s.rho_euler_with, 4) << ", per joint together " << fixed(s.rho_euler_each, 4)
+          << (s.stable_euler_each ? " stable" : " UNSTABLE") << "\n";
+    }
+    out << "    simulated " << (s.runs.empty() ? 0 : s.runs.front().steps)
+        << " steps from this state:\n";
+    for (const StabilityRun& r : s.runs) print_run(out, r);
   }
 }
 
@@ -365,6 +597,8 @@ std::string to_text(const Report& r) {
   print_inertia(out, r.inertia, r.budget);
   print_stops(out, r.stops);
   print_clamping(out, r.clamping, r.budget);
+  print_singular(out, r.singular, r.structure);
+  print_stability(out, r.stability);
   print_findings(out, r);
   return out.str();
 }

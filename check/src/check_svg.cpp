@@ -48,4 +48,49 @@ std::string torque_budget_svg(const Report& r) {
   return plot::to_svg(chart);
 }
 
+std::string singular_poses_svg(const Report& r) {
+  plot::BarChart chart;
+  chart.title = r.model + ": smallest singular value of the site Jacobian";
+  chart.ylabel = "sigma_min";
+  for (const SiteSingularity& s : r.singular.sites) {
+    const std::string site = r.singular.sites.size() > 1 ? s.site + ": " : "";
+    for (const auto* list : {&s.states, &s.worst}) {
+      for (const JacobianAt& at : *list) {
+        const double low = at.sigma.size() ? at.sigma[at.sigma.size() - 1] : 0.0;
+        chart.groups.push_back({site + at.where, {{"sigma_min", low, kLimitColor}}});
+      }
+    }
+  }
+  chart.width = std::max(640, 140 + 100 * static_cast<int>(chart.groups.size()));
+  chart.height = 420;
+  return plot::to_svg(chart);
+}
+
+std::string step_stability_svg(const Report& r) {
+  plot::Figure figure;
+  figure.title = r.model + ": spectral radius of the step against the timestep";
+  for (const StabilityAt& s : r.stability.states) {
+    plot::Chart chart;
+    chart.title = s.where;
+    chart.xlabel = "log10 timestep (s)";
+    chart.ylabel = "log10 rho";
+    plot::Series model{r.stability.integrator, {}, {}, kLimitColor};
+    plot::Series euler{"Euler", {}, {}, kGravityColor};
+    for (size_t k = 0; k < s.sweep_dt.size(); ++k) {
+      const double x = std::log10(s.sweep_dt[k]);
+      model.x.push_back(x);
+      model.y.push_back(std::log10(s.sweep_rho_model[k]));
+      euler.x.push_back(x);
+      euler.y.push_back(std::log10(s.sweep_rho_euler[k]));
+    }
+    if (r.stability.integrator != "Euler") chart.series.push_back(model);
+    chart.series.push_back(euler);
+    chart.lines.push_back({plot::RefLine::Axis::kHorizontal, 0.0, "rho = 1"});
+    chart.lines.push_back(
+        {plot::RefLine::Axis::kVertical, std::log10(r.stability.timestep), "the model's timestep"});
+    figure.charts.push_back(chart);
+  }
+  return plot::to_svg(figure);
+}
+
 }  // namespace lever::check

@@ -1,6 +1,7 @@
 // (6) Commands beyond ctrlrange are clamped, silently: command every motor well beyond its range
 // (+-100 alternating in sign, as the lesson does, or 4 times the bound where 100 is inside it),
 // run forward(), and read actuator_force and the engine's warnings.
+#include <algorithm>
 #include <cmath>
 
 #include <lever/data.hpp>
@@ -36,10 +37,32 @@ Clamping check_clamping(const Model& model) {
     result.newton_metres = result.newton_metres && plain;
   }
   forward(model, data);
+  result.qpos = data.qpos;
+  result.target = data.ctrl;
+  result.raw_force = Eigen::VectorXd::Zero(model.nu);
+  for (int a = 0; a < model.nu; ++a) {
+    result.servo.push_back(is_servo(model, a) ? 1 : 0);
+    if (model.actuator_ctrllimited[a]) {
+      const auto& r = model.actuator_ctrlrange[a];
+      result.target[a] = std::clamp(data.ctrl[a], r[0], r[1]);
+    }
+    // the force before forcerange, from the model's law (not the engine's): gain target + bias
+    const auto& g = model.actuator_gainprm[a];
+    const auto& b = model.actuator_biasprm[a];
+    const double len = data.actuator_length[a], vel = data.actuator_velocity[a];
+    double gain = g[0], bias = 0.0;
+    if (model.actuator_gaintype[a] == GainType::kAffine) gain += g[1] * len + g[2] * vel;
+    if (model.actuator_biastype[a] == BiasType::kAffine) bias = b[0] + b[1] * len + b[2] * vel;
+    result.raw_force[a] = gain * result.target[a] + bias;
+  }
   result.ctrl = data.ctrl;
   result.actuator_force = data.actuator_force;
   for (const WarningStat& w : data.warning) result.warnings += w.number;
   return result;
+}
+
+bool Clamping::any_servo() const {
+  return std::any_of(servo.begin(), servo.end(), [](uint8_t s) { return s != 0; });
 }
 
 }  // namespace lever::check

@@ -53,6 +53,12 @@ std::string sci(double x) {
   return printf_string("%.1e", x);
 }
 
+std::string sig4(double x) {
+  std::string out;
+  if (special(x, out)) return out;
+  return drop_negative_zero(printf_string("%.4g", x));
+}
+
 std::string rounded(double x, int decimals, bool keep_small) {
   std::string out;
   if (special(x, out)) return out;

@@ -17,6 +17,9 @@ std::string general(double x);
 /// printf("%.1e"): rounding-error figures.
 std::string sci(double x);
 
+/// printf("%.4g"): four significant digits, for figures that span decades.
+std::string sig4(double x);
+
 /// Rounded to `decimals` and written without trailing zeros, as numpy prints np.round(x, d):
 /// 0.0208333 -> "0.02083", 0.0001 -> "0.0001". With `keep_small`, a non-zero value that would
 /// round to 0 keeps two significant digits instead (a small principal moment stays visible).

@@ -31,6 +31,16 @@ MotorInfo motor_info(const Model& model, int a) {
   info.ctrllimited = model.actuator_ctrllimited[a];
   info.forcelimited = model.actuator_forcelimited[a];
   info.joint_torque = motor_torque_range(model, a);
+  info.servo = is_servo(model, a);
+  for (int k = 0; k < 3; ++k) {
+    info.gainprm[k] = model.actuator_gainprm[a][k];
+    info.biasprm[k] =
+        model.actuator_biastype[a] == BiasType::kAffine ? model.actuator_biasprm[a][k] : 0.0;
+  }
+  if (info.servo) {
+    info.kp = -info.biasprm[1];
+    info.kv = -info.biasprm[2];
+  }
   return info;
 }
 
@@ -46,7 +56,8 @@ Structure check_structure(const Model& model) {
   }
   for (int b = 1; b < model.nbody; ++b) {
     s.bodies.push_back({body_label(model, b), model.body_mass[b],
-                        sorted_moments(model.body_inertia[b]), model.body_explicit_inertial[b] != 0});
+                        sorted_moments(model.body_inertia[b]),
+                        model.body_explicit_inertial[b] != 0});
   }
   return s;
 }

@@ -38,12 +38,35 @@ double formula_error(const Model& model, GravityProbe& probe) {
 
 void motors_of_joint(const Model& model, int j, JointBudget& budget) {
   budget.torque_range = {0.0, 0.0};
+  int servos = 0, last = -1;
   for (int a = 0; a < model.nu; ++a) {
     if (model.actuator_trnid[a] != j) continue;
     const auto range = motor_torque_range(model, a);
     budget.motors.push_back(motor_label(model, a));
     budget.torque_range[0] += range[0];
     budget.torque_range[1] += range[1];
+    if (is_servo(model, a)) {
+      const double gear = model.actuator_gear[a][0];
+      if (model.actuator_biastype[a] == BiasType::kAffine)
+        budget.stiffness -= gear * gear * model.actuator_biasprm[a][1];
+      ++servos;
+      last = a;
+    }
+  }
+  budget.servo = servos > 0;
+  if (!budget.servo) return;
+  // holding at rest: qfrc_actuator = gear force = qfrc_bias, so the servo sits |tau| / kp off its
+  // target; with one servo, the target that holds the pose: gear (g0 ctrl + b0 + b1 gear q) = tau
+  budget.sag = budget.stiffness > 0 ? std::abs(budget.worst_torque) / budget.stiffness : kInf;
+  if (servos == 1 && model.actuator_gainprm[last][0] != 0 && model.actuator_gear[last][0] != 0) {
+    const double gear = model.actuator_gear[last][0];
+    const auto& b = model.actuator_biasprm[last];
+    const double q = budget.worst_pose[model.jnt_qposadr[j]];
+    budget.hold_target =
+        (budget.worst_torque / gear - b[0] - b[1] * gear * q) / model.actuator_gainprm[last][0];
+    const auto& r = model.actuator_ctrlrange[last];
+    budget.target_outside = model.actuator_ctrllimited[last] &&
+                            (budget.hold_target < r[0] || budget.hold_target > r[1]);
   }
 }
 

@@ -30,23 +30,70 @@ inline std::string motor_label(const Model& m, int a) {
   return label(m.actuator_name[a], "motor", a);
 }
 
-/// The joint force interval one motor can produce: gear x (ctrlrange intersected with forcerange),
-/// as actuation() clamps the command and then the force; unbounded sides are infinite.
-inline std::array<double, 2> motor_torque_range(const Model& model, int a) {
+/// A servo: an actuator whose force depends on the joint's state through its bias or gain
+/// (a <general> or <position>/<velocity> servo, force = gain ctrl + bias(length, velocity)): its
+/// ctrl is a target, not a force. A motor has a fixed gain and no bias: force = gain ctrl.
+inline bool is_servo(const Model& model, int a) {
+  const auto& b = model.actuator_biasprm[a];
+  const auto& g = model.actuator_gainprm[a];
+  const bool state_bias =
+      model.actuator_biastype[a] == BiasType::kAffine && (b[1] != 0 || b[2] != 0);
+  const bool state_gain =
+      model.actuator_gaintype[a] == GainType::kAffine && (g[1] != 0 || g[2] != 0);
+  return state_bias || state_gain;
+}
+
+/// The force interval of one actuator at actuator length `length` and velocity `velocity`:
+/// gain x ctrlrange + bias, intersected with forcerange, as actuation() clamps the command and then
+/// the force; unbounded sides are infinite.
+inline std::array<double, 2> actuator_force_range(const Model& model, int a, double length,
+                                                  double velocity) {
   constexpr double inf = std::numeric_limits<double>::infinity();
+  const auto& g = model.actuator_gainprm[a];
+  const auto& b = model.actuator_biasprm[a];
+  double gain = g[0];
+  if (model.actuator_gaintype[a] == GainType::kAffine) gain += g[1] * length + g[2] * velocity;
+  double bias = 0.0;
+  if (model.actuator_biastype[a] == BiasType::kAffine)
+    bias = b[0] + b[1] * length + b[2] * velocity;
   double lo = -inf, hi = inf;
-  if (model.actuator_ctrllimited[a]) {
-    lo = model.actuator_ctrlrange[a][0];
-    hi = model.actuator_ctrlrange[a][1];
+  if (gain == 0.0) {
+    lo = hi = bias;
+  } else if (model.actuator_ctrllimited[a]) {
+    const double x = gain * model.actuator_ctrlrange[a][0],
+                 y = gain * model.actuator_ctrlrange[a][1];
+    lo = std::min(x, y) + bias;
+    hi = std::max(x, y) + bias;
   }
   if (model.actuator_forcelimited[a]) {
     lo = std::max(lo, model.actuator_forcerange[a][0]);
     hi = std::min(hi, model.actuator_forcerange[a][1]);
   }
+  return {lo, hi};
+}
+
+/// gear x a force interval, ordered.
+inline std::array<double, 2> geared(const Model& model, int a, const std::array<double, 2>& force) {
   const double gear = model.actuator_gear[a][0];
   if (gear == 0.0) return {0.0, 0.0};
-  const double x = gear * lo, y = gear * hi;
+  const double x = gear * force[0], y = gear * force[1];
   return {std::min(x, y), std::max(x, y)};
+}
+
+/// The joint force interval one actuator can produce. A motor: gear x (gain x ctrlrange
+/// intersected with forcerange). A servo: gear x forcerange, what it can push with whatever target
+/// it is given (without a forcerange, its interval at qpos0 and rest, from the ctrlrange).
+inline std::array<double, 2> motor_torque_range(const Model& model, int a) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  if (is_servo(model, a)) {
+    if (model.actuator_forcelimited[a]) return geared(model, a, model.actuator_forcerange[a]);
+    const double length =
+        model.actuator_gear[a][0] * model.qpos0[model.jnt_qposadr[model.actuator_trnid[a]]];
+    const auto range = actuator_force_range(model, a, length, 0.0);
+    if (!model.actuator_ctrllimited[a]) return {-inf, inf};
+    return geared(model, a, range);
+  }
+  return geared(model, a, actuator_force_range(model, a, 0.0, 0.0));
 }
 
 inline bool is_hinge(const Model& m, int j) { return m.jnt_type[j] == JointType::kHinge; }

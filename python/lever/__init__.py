@@ -54,23 +54,26 @@ from ._lever import (  # noqa: F401  (the package's API)
     step1,
     step2,
     transmission,
+    reset_keyframe,
 )
 from . import _lever
 
 
-def check(model: Model) -> dict:
-    """Lesson 5.1's six checks of a model: the report `lever check --json` prints, as a dict.
+def check(model: Model, key: str = "") -> dict:
+    """Lesson 5.1's six checks of a model and lesson 5.2's two more: the report
+    `lever check --json` prints, as a dict.
 
     Its keys are the sections (``structure``, ``kinematics``, ``torque_budget``, ``inertia``,
-    ``soft_stops``, ``clamping``), ``findings`` (the claims that do not check out) and
-    ``exit_status`` (0 when every claim checks out).
+    ``soft_stops``, ``clamping``, ``singular_poses``, ``step_stability``), ``findings`` (the
+    claims that do not check out) and ``exit_status`` (0 when every claim checks out). ``key``:
+    sections 7 and 8 at that keyframe only (`lever check --key`).
     """
-    return _json.loads(_lever.check_json(model))
+    return _json.loads(_lever.check_json(model, key))
 
 
-def check_text(model: Model) -> str:
+def check_text(model: Model, key: str = "") -> str:
     """The same checks as the text `lever check` prints."""
-    return _lever.check_text(model)
+    return _lever.check_text(model, key)
 
 
 def lab_run(model: Model, data: Data, torque, gravity_compensation: bool = False,

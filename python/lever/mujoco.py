@@ -91,6 +91,8 @@ class mjtIntegrator(_enum.IntEnum):
 _MODEL_FIELDS = frozenset(f["name"] for f in _lever.model_field_table() if f["mujoco"])
 _DATA_FIELDS = frozenset(f["name"] for f in _lever.data_field_table() if f["mujoco"])
 _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite")
+# keyframe arrays lever has, as MuJoCo's (nkey rows)
+_KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl")
 
 
 def _missing(kind: str, name: str):
@@ -266,10 +268,7 @@ class MjOption:
 
     @integrator.setter
     def integrator(self, value: int) -> None:
-        if int(value) == mjtIntegrator.mjINT_IMPLICIT:
-            raise NotImplementedError("lever.mujoco: the implicit integrator is MuJoCo's but "
-                                      "lever has Euler and RK4")
-        self._native.integrator = int(value)
+        self._native.integrator = int(value)  # Euler, RK4 or implicit (MuJoCo 2.2.2's)
 
     def __getattr__(self, name: str):
         if name in _mujoco_names.OPTION:
@@ -306,7 +305,7 @@ class MjModel:
 
     @property
     def nkey(self) -> int:
-        return 0
+        return self._native.nkey
 
     @property
     def actuator_trnid(self) -> _np.ndarray:
@@ -318,12 +317,12 @@ class MjModel:
 
     def __getattr__(self, name: str):
         native = object.__getattribute__(self, "_native")
-        if name in _MODEL_FIELDS or name in _SIZES:
+        if name in _MODEL_FIELDS or name in _SIZES or name in _KEY_FIELDS:
             return getattr(native, name)
         raise _missing("MODEL", name)
 
     def __setattr__(self, name: str, value) -> None:
-        if name in _MODEL_FIELDS:
+        if name in _MODEL_FIELDS or name in _KEY_FIELDS:
             getattr(self._native, name)[...] = value
         elif name in _SIZES:
             raise AttributeError(f"MjModel.{name} cannot be set")
@@ -536,8 +535,11 @@ def mj_resetData(m: MjModel, d: MjData) -> None:
 
 
 def mj_resetDataKeyframe(m: MjModel, d: MjData, key: int) -> None:
-    _pair(m, d)
-    raise ValueError(f"keyframe {key} does not exist: this model has {m.nkey} keyframes")
+    """Reset, then time, qpos, qvel and ctrl from keyframe `key` (an index, as MuJoCo's)."""
+    model, data = _pair(m, d)
+    if not 0 <= int(key) < m.nkey:
+        raise ValueError(f"keyframe {key} does not exist: this model has {m.nkey} keyframes")
+    _lever.reset_keyframe(model, data, int(key))
 
 
 def mj_name2id(m: MjModel, type, name: str) -> int:

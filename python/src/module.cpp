@@ -43,6 +43,14 @@ using DataPtr = std::shared_ptr<PyData>;
 
 // A numpy view of one field; `owner` keeps the memory alive. Shape (rows,) when the table gives
 // one column, else (rows, cols); MuJoCo's Python bindings use the same shapes.
+// A keyframe array (nkey x n, row-major) as a writable (nkey, n) numpy view.
+py::array key_view(lever::RowMatrix& a, py::handle owner) {
+  const auto item = static_cast<py::ssize_t>(sizeof(double));
+  return py::array_t<double>(
+      {static_cast<py::ssize_t>(a.rows()), static_cast<py::ssize_t>(a.cols())},
+      {item * static_cast<py::ssize_t>(a.cols()), item}, a.data(), owner);
+}
+
 py::array view(const lever::FieldView& v, py::handle owner, bool writable) {
   std::vector<py::ssize_t> shape, strides;
   py::dtype dtype;
@@ -178,9 +186,9 @@ PYBIND11_MODULE(_lever, m) {
       .def_property(
           "integrator", [](const lever::Model& x) { return static_cast<int>(x.opt.integrator); },
           [](lever::Model& x, int i) {
-            if (i != 0 && i != 1) {
+            if (i != 0 && i != 1 && i != 2) {
               throw lever::StateError("integrator " + std::to_string(i) +
-                                      " is not one lever has (0 Euler, 1 RK4).");
+                                      " is not one lever has (0 Euler, 1 RK4, 2 implicit).");
             }
             x.opt.integrator = static_cast<lever::Integrator>(i);
           })
@@ -189,6 +197,30 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("geom_name", [](const lever::Model& x) { return x.geom_name; })
       .def_property_readonly("site_name", [](const lever::Model& x) { return x.site_name; })
       .def_property_readonly("actuator_name", [](const lever::Model& x) { return x.actuator_name; })
+      // keyframes (not in the field table: their rows are keyframes): writable row-major views
+      .def_property_readonly("nkey", [](const lever::Model& x) { return x.nkey; })
+      .def_property_readonly("key_name", [](const lever::Model& x) { return x.key_name; })
+      .def_property_readonly("key_time",
+                             [](py::object self) {
+                               auto& x = self.cast<lever::Model&>();
+                               return py::array_t<double>({x.nkey}, {sizeof(double)},
+                                                          x.key_time.data(), self);
+                             })
+      .def_property_readonly("key_qpos",
+                             [](py::object self) {
+                               auto& x = self.cast<lever::Model&>();
+                               return key_view(x.key_qpos, self);
+                             })
+      .def_property_readonly("key_qvel",
+                             [](py::object self) {
+                               auto& x = self.cast<lever::Model&>();
+                               return key_view(x.key_qvel, self);
+                             })
+      .def_property_readonly("key_ctrl",
+                             [](py::object self) {
+                               auto& x = self.cast<lever::Model&>();
+                               return key_view(x.key_ctrl, self);
+                             })
       .def(
           "field",
           [](py::object self, const std::string& name) {
@@ -326,7 +358,8 @@ PYBIND11_MODULE(_lever, m) {
       py::arg("model"), py::arg("data"), py::arg("body"), py::arg("point"),
       "(jacp, jacr) of a world point fixed to a body.");
 
-  // ---- derivatives and the regressor (docs/derivatives.md) ----------------------------------------
+  // ---- derivatives and the regressor (docs/derivatives.md)
+  // ----------------------------------------
   m.def(
       "step_derivatives",
       [](const ModelPtr& x, const DataPtr& d) {
@@ -377,17 +410,33 @@ PYBIND11_MODULE(_lever, m) {
   // ---- the checks and the lab ------------------------------------------------------------------
   m.def(
       "check_json",
-      [](const ModelPtr& x) {
-        const lever::check::Report r = lever::check::check_model(model_of(x));
+      [](const ModelPtr& x, const std::string& key) {
+        const lever::check::Report r = lever::check::check_model(model_of(x), key);
         return lever::check::to_json(r);
       },
-      py::arg("model"), "Lesson 5.1's six checks of a model, as the JSON `lever check` prints.");
+      py::arg("model"), py::arg("key") = "",
+      "Lesson 5.1's six checks and lesson 5.2's two more (singular poses, stability of the step) "
+      "of a model, as the JSON `lever check` prints; `key`: sections 7 and 8 at that keyframe "
+      "only.");
   m.def(
       "check_text",
-      [](const ModelPtr& x) {
-        return lever::check::to_text(lever::check::check_model(model_of(x)));
+      [](const ModelPtr& x, const std::string& key) {
+        return lever::check::to_text(lever::check::check_model(model_of(x), key));
       },
-      py::arg("model"), "The same checks as the text `lever check` prints.");
+      py::arg("model"), py::arg("key") = "", "The same checks as the text `lever check` prints.");
+  m.def(
+      "reset_keyframe",
+      [](const ModelPtr& x, const DataPtr& d, const py::object& key) {
+        lever::Data& data = data_for(x, d);
+        if (py::isinstance<py::str>(key)) {
+          lever::reset_keyframe(*x, data, key.cast<std::string>());
+        } else {
+          lever::reset_keyframe(*x, data, key.cast<int>());
+        }
+      },
+      py::arg("model"), py::arg("data"), py::arg("key"),
+      "Reset to a keyframe, by index or name (mj_resetDataKeyframe); an unknown one raises "
+      "lever.StateError listing the keyframes.");
   m.def(
       "lab_run",
       [](const ModelPtr& x, const DataPtr& d, const Eigen::VectorXd& torque,

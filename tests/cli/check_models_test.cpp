@@ -10,9 +10,9 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
+#include <lever/harness/models.hpp>
 #include "json_reader.hpp"
 #include "run_lever.hpp"
-#include <lever/harness/models.hpp>
 
 namespace lever::test {
 
@@ -39,7 +39,7 @@ TEST_CASE("check: every model loads, exits 0 or 1, and --json agrees with the te
       const Run text = run_lever("check " + quoted(file));
       INFO(text.out);
       CHECK((text.status == 0 || text.status == 1));
-      for (const char* section : {"(1)", "(2)", "(3)", "(4)", "(5)", "(6)"}) {
+      for (const char* section : {"(1)", "(2)", "(3)", "(4)", "(5)", "(6)", "(7)", "(8)"}) {
         CHECK(text.out.find(std::string("\n") + section + " ") != std::string::npos);
       }
       const Run data = run_lever("check --json " + quoted(file));

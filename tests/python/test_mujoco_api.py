@@ -44,7 +44,8 @@ def test_shapes_and_dtypes_are_mujocos(path):
     mujoco.mj_forward(model, data)
     sizes = {n: getattr(model, n) for n in ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite")}
     sizes["nefc"] = data.nefc
-    sizes.update(mjNREF=2, mjNIMP=5)  # mjmodel.h's lengths of solref and solimp
+    # mjmodel.h's lengths of solref, solimp, gainprm and biasprm
+    sizes.update(mjNREF=2, mjNIMP=5, mjNGAIN=10, mjNBIAS=10)
     sizes["njmax"] = data.nefc  # 2.2.2 sizes efc arrays njmax; its Python shows the live rows
     for macro, obj, names in (("MJMODEL_POINTERS", model, mujoco._MODEL_FIELDS),
                               ("MJDATA_POINTERS", data, mujoco._DATA_FIELDS)):

@@ -1,6 +1,6 @@
-// lever check MODEL: lesson 5.1's six checks of a robot model (the library in check/,
-// lever/check.hpp). Exit status: 0 when every claim checks out, 1 with findings, 2 when the model
-// cannot be loaded.
+// lever check MODEL: lesson 5.1's six checks of a robot model and lesson 5.2's two more (the
+// library in check/, lever/check.hpp). Exit status: 0 when every claim checks out, 1 with findings,
+// 2 when the model cannot be loaded.
 #include <cstdio>
 #include <filesystem>
 #include <string>
@@ -17,7 +17,7 @@ namespace lever::cli {
 namespace {
 
 const char* kHelp =
-    "usage: lever check MODEL [--json] [--svg FILE] [--plot-dir DIR]\n"
+    "usage: lever check MODEL [--key NAME] [--json] [--svg FILE] [--plot-dir DIR]\n"
     "\n"
     "Check every claim a model makes, as lesson 5.1 does for arm2, and print section by section:\n"
     "  (1) what the compiled model contains (joints, motors, sites, bodies)\n"
@@ -27,31 +27,53 @@ const char* kHelp =
     "  (4) explicit inertias against those inferred from the geoms\n"
     "  (5) soft joint stops: rest on each stop gravity can load and measure how far past it\n"
     "  (6) commands beyond ctrlrange, and motors that cannot hold their own arm\n"
+    "  (7) singular poses: the site Jacobian's singular values over the joint ranges, the most\n"
+    "      singular poses, manipulability and condition number at qpos0 and the keyframes, and\n"
+    "      which joint axes align there\n"
+    "  (8) stability of the step at each keyframe (else qpos0): spectral radius of the step's\n"
+    "      linearisation for the model's integrator and explicit Euler, the largest stable\n"
+    "      timestep, the smallest armature that keeps Euler stable, confirmed by simulation\n"
     "\n"
     "options:\n"
+    "  --key NAME      sections (7) and (8) at keyframe NAME only (besides qpos0 in (7))\n"
     "  --json          print the same content as one JSON object instead of text\n"
-    "  --svg FILE      also write the torque budget as a bar chart (SVG)\n"
-    "  --plot-dir DIR  also write it as DIR/<model>-torque-budget.svg\n"
+    "  --svg FILE      also write the torque budget as a bar chart (SVG), and beside it\n"
+    "                  FILE's stem + -singular-poses.svg and -step-stability.svg\n"
+    "  --plot-dir DIR  also write DIR/<model>-torque-budget.svg, -singular-poses.svg and\n"
+    "                  -step-stability.svg\n"
     "  --help          print this help\n"
     "\n"
     "exit status: 0 every claim checks out, 1 findings (listed at the end), 2 the model cannot be "
     "loaded\n";
+
+// FILE.svg -> FILE-<suffix>.svg
+std::string beside(const std::string& path, const std::string& suffix) {
+  std::filesystem::path p(path);
+  const std::string stem = p.stem().string() + "-" + suffix + ".svg";
+  return (p.parent_path() / stem).string();
+}
 
 void write_svg(const check::Report& report, const Args& args) {
   std::string path = args.get("svg");
   if (args.has("plot-dir")) {
     std::filesystem::create_directories(args.get("plot-dir"));
     const std::string name = report.model.empty() ? "model" : report.model;
-    const std::string in_dir = args.get("plot-dir") + "/" + name + "-torque-budget.svg";
-    plot::write_file(in_dir, check::torque_budget_svg(report));
+    const std::string in_dir = args.get("plot-dir") + "/" + name;
+    plot::write_file(in_dir + "-torque-budget.svg", check::torque_budget_svg(report));
+    plot::write_file(in_dir + "-singular-poses.svg", check::singular_poses_svg(report));
+    plot::write_file(in_dir + "-step-stability.svg", check::step_stability_svg(report));
   }
-  if (!path.empty()) plot::write_file(path, check::torque_budget_svg(report));
+  if (!path.empty()) {
+    plot::write_file(path, check::torque_budget_svg(report));
+    plot::write_file(beside(path, "singular-poses"), check::singular_poses_svg(report));
+    plot::write_file(beside(path, "step-stability"), check::step_stability_svg(report));
+  }
 }
 
 }  // namespace
 
 int cmd_check(const std::vector<std::string>& argv) {
-  const Args args(argv, {"svg", "plot-dir"}, {"json", "help"});
+  const Args args(argv, {"svg", "plot-dir", "key"}, {"json", "help"});
   if (args.has("help")) {
     std::fputs(kHelp, stdout);
     return kOk;
@@ -61,7 +83,10 @@ int cmd_check(const std::vector<std::string>& argv) {
 
   check::Report report;
   try {
-    report = check::check_file(path);
+    report = check::check_file(path, args.get("key"));
+  } catch (const StateError& e) {  // the only state check_file takes is --key
+    std::fprintf(stderr, "lever check: --key: %s\n", e.what());
+    return kBadInput;
   } catch (const Error& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return kBadInput;

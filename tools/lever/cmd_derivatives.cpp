@@ -27,7 +27,8 @@ namespace lever::cli {
 namespace {
 
 const char* const kUsage =
-    "usage: lever derivatives MODEL [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]\n"
+    "usage: lever derivatives MODEL [--key NAME] [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]\n"
+    "  --key NAME    start from keyframe NAME (its qpos, qvel, ctrl; the lists below override)\n"
     "  --qpos LIST   joint positions, nq numbers (default: qpos0)\n"
     "  --qvel LIST   joint velocities, nv numbers (default: zeros)\n"
     "  --ctrl LIST   actuator commands, nu numbers (default: zeros)\n"
@@ -54,7 +55,7 @@ void print_matrix(const char* title, const Eigen::MatrixXd& m) {
 }  // namespace
 
 int cmd_derivatives(const std::vector<std::string>& argv) {
-  const Args args(argv, {"qpos", "qvel", "ctrl"}, {"json", "help"});
+  const Args args(argv, {"key", "qpos", "qvel", "ctrl"}, {"json", "help"});
   if (args.has("help")) {
     std::fputs(kUsage, stdout);
     return kOk;

@@ -1,6 +1,6 @@
 // lever forward: everything the engine computes at one state.
 //
-//   lever forward MODEL [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]
+//   lever forward MODEL [--key NAME] [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]
 //
 // Runs lever::forward() (MuJoCo's mj_forward) at the given state, then the site Jacobians
 // (mj_jacSite) and the energy (mj_energyPos + mj_energyVel). Omitted vectors are qpos0 and zeros.
@@ -36,7 +36,8 @@ namespace lever::cli {
 namespace {
 
 const char* const kUsage =
-    "usage: lever forward MODEL [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]\n"
+    "usage: lever forward MODEL [--key NAME] [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]\n"
+    "  --key NAME    start from keyframe NAME (its qpos, qvel, ctrl; the lists below override)\n"
     "  --qpos LIST   joint positions, nq numbers (default: qpos0)\n"
     "  --qvel LIST   joint velocities, nv numbers (default: zeros)\n"
     "  --ctrl LIST   motor commands, nu numbers (default: zeros); clamped to ctrlrange as in "
@@ -175,7 +176,7 @@ void print_text(const std::string& path, const Model& model, const Data& data,
 }  // namespace
 
 int cmd_forward(const std::vector<std::string>& argv) {
-  const Args args(argv, {"qpos", "qvel", "ctrl"}, {"json", "help"});
+  const Args args(argv, {"key", "qpos", "qvel", "ctrl"}, {"json", "help"});
   if (args.has("help")) {
     std::fputs(kUsage, stdout);
     return kOk;

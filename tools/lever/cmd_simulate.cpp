@@ -32,15 +32,18 @@ namespace lever::cli {
 namespace {
 
 const char* const kUsage =
-    "usage: lever simulate MODEL [--steps N | --duration T] [--qpos ..] [--qvel ..]\n"
+    "usage: lever simulate MODEL [--steps N | --duration T] [--key NAME] [--qpos ..] [--qvel ..]\n"
     "                            [--ctrl .. | --torque ..] [--gravity-compensation]\n"
     "                            [--excite F]\n"
     "                            [--json] [--csv FILE] [--plot FILE.svg]\n"
     "  --steps N               number of steps of the model's timestep\n"
     "  --duration T            simulated time in s, rounded to whole steps (default: 1 s)\n"
+    "  --key NAME              start from keyframe NAME: its time, qpos, qvel and ctrl (the\n"
+    "                          lists below override them)\n"
     "  --qpos LIST             start positions, nq numbers (default: qpos0)\n"
     "  --qvel LIST             start velocities, nv numbers (default: zeros)\n"
-    "  --ctrl LIST             constant motor commands, nu numbers (default: zeros)\n"
+    "  --ctrl LIST             constant motor commands, nu numbers (default: zeros, or the\n"
+    "                          keyframe's with --key)\n"
     "  --torque LIST           the same as --ctrl, under the name lesson 5.1's lab gives it\n"
     "  --gravity-compensation  add qfrc_bias of the current state to every command (the lab's\n"
     "                          gc switch): ctrl = torque + qfrc_bias[dof] / gear, every step\n"
@@ -268,9 +271,9 @@ struct FileCloser {
 }  // namespace
 
 int cmd_simulate(const std::vector<std::string>& argv) {
-  const Args args(argv,
-                  {"steps", "duration", "qpos", "qvel", "ctrl", "torque", "excite", "csv", "plot"},
-                  {"gravity-compensation", "json", "help"});
+  const Args args(
+      argv, {"steps", "duration", "key", "qpos", "qvel", "ctrl", "torque", "excite", "csv", "plot"},
+      {"gravity-compensation", "json", "help"});
   if (args.has("help")) {
     std::fputs(kUsage, stdout);
     return kOk;
@@ -319,7 +322,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
 
   Controller controller;
   controller.torque = args.get_vector(args.has("torque") ? "torque" : "ctrl", model.nu,
-                                      Eigen::VectorXd::Zero(model.nu));
+                                      data.ctrl);  // zeros, or the keyframe's with --key
   controller.gravity_compensation = args.has("gravity-compensation");
   controller.excite = args.get_double("excite", 0.0);
   try {

@@ -1,5 +1,6 @@
-// The state options shared by `lever forward` and `lever simulate`: --qpos, --qvel, --ctrl, and
-// the units and labels both commands print. Header-only, so the command's build needs no change.
+// The state options shared by `lever forward` and `lever simulate`: --key, --qpos, --qvel, --ctrl,
+// and the units and labels both commands print. Header-only, so the command's build needs no
+// change.
 #pragma once
 
 #include <Eigen/Core>
@@ -18,14 +19,23 @@
 
 namespace lever::cli {
 
-/// Set data's state from --qpos, --qvel and --ctrl (comma-separated lists of nq, nv and nu
-/// numbers). An omitted list keeps what reset() gives: qpos0 and zeros. Wrong counts, text that is
-/// not a number, and non-finite numbers throw UsageError (exit 2).
+/// Set data's state from --key, then --qpos, --qvel and --ctrl (comma-separated lists of nq, nv
+/// and nu numbers). --key NAME starts from the keyframe (time, qpos, qvel, ctrl as
+/// mj_resetDataKeyframe sets them); an omitted list keeps what reset() or the keyframe gives.
+/// Wrong counts, text that is not a number, non-finite numbers and an unknown keyframe (the error
+/// lists the model's keyframes) throw UsageError (exit 2).
 inline void set_state_from_args(const Args& args, const Model& model, Data& data) {
   reset(model, data);
-  data.qpos = args.get_vector("qpos", model.nq, model.qpos0);
-  data.qvel = args.get_vector("qvel", model.nv, Eigen::VectorXd::Zero(model.nv));
-  data.ctrl = args.get_vector("ctrl", model.nu, Eigen::VectorXd::Zero(model.nu));
+  if (args.has("key")) {
+    try {
+      reset_keyframe(model, data, args.get("key"));
+    } catch (const StateError& e) {
+      throw UsageError{std::string("--key: ") + e.what()};
+    }
+  }
+  data.qpos = args.get_vector("qpos", model.nq, data.qpos);
+  data.qvel = args.get_vector("qvel", model.nv, data.qvel);
+  data.ctrl = args.get_vector("ctrl", model.nu, data.ctrl);
 }
 
 /// A name to print: the object's name, or "#index" when it has none.

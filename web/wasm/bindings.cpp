@@ -181,9 +181,10 @@ class WasmData {
   lever::Data data_;
 };
 
-/// `lever check` on MJCF text: the six checks of lesson 5.1 as the command prints them (text) or
-/// as its JSON; section (4) loads the same text again with every mass inferred from the geoms, as
-/// check_file() does with the file. A model that cannot be loaded gives its diagnostic instead.
+/// `lever check` on MJCF text: lesson 5.1's six checks and lesson 5.2's two, as the command prints
+/// them (text) or as its JSON; section (4) loads the same text again with every mass inferred from
+/// the geoms, as check_file() does with the file. A model that cannot be loaded gives its
+/// diagnostic instead.
 std::string check_model_text(const std::string& xml, const std::string& filename, bool json) {
   try {
     lever::Model model = lever::mjcf::load_string(xml, filename);

@@ -1,4 +1,5 @@
-// lever/check.hpp: lesson 5.1's six checks of a robot model, for any model of the subset. The
+// lever/check.hpp: lesson 5.1's six checks of a robot model and lesson 5.2's two more (eight), for
+// any model of the subset. The
 // library behind `lever check`, the Python package's `lever.check` and the browser build.
 //
 // A model is a list of claims (joints, masses, motor limits, sites); `run_check` tests each one
@@ -11,7 +12,11 @@
 //       M(q) and the acceleration the spare torque gives;
 //   (4) explicit inertias against those inferred from the geoms, and geoms that add mass unseen;
 //   (5) soft joint stops: rest on each stop gravity can load, measure how far past it;
-//   (6) clamping: commands beyond ctrlrange, and motors that cannot hold their own arm.
+//   (6) clamping: commands beyond ctrlrange, and motors that cannot hold their own arm;
+//   (7) singular poses: the site Jacobian's singular values over the joint ranges, at qpos0 and the
+//       keyframes, and which joint axes align there;
+//   (8) stability of the step: the spectral radius of the step's linearisation for the model's
+//       integrator and for explicit Euler, the largest stable timestep, the armature Euler needs.
 // Every number is computed by the engine (or by the independent formulas below); none is typed in.
 #pragma once
 
@@ -48,6 +53,11 @@ struct MotorInfo {
   std::array<double, 2> ctrlrange{0.0, 0.0}, forcerange{0.0, 0.0};
   bool ctrllimited = false, forcelimited = false;
   std::array<double, 2> joint_torque{0.0, 0.0};  ///< gear x (ctrlrange and forcerange)
+  /// A servo (force = gain ctrl + bias(length, velocity)): ctrl is a target position, and the
+  /// joint torque it can give is gear x forcerange (motor_torque_range in util.hpp).
+  bool servo = false;
+  double kp = 0.0, kv = 0.0;  ///< a position servo's stiffness -biasprm[1] and damping -biasprm[2]
+  std::array<double, 3> gainprm{0.0, 0.0, 0.0}, biasprm{0.0, 0.0, 0.0};  ///< first three
 };
 
 struct BodyInfo {
@@ -105,6 +115,12 @@ struct JointBudget {
   double spare = 0.0;             ///< limit - |worst_torque|
   double acceleration = 0.0;      ///< spare / M_ii, signed, the other joints held rigid
   Eigen::VectorXd rigid_torques;  ///< M_ji acceleration + tau_g,j: holding joint j rigid (nv)
+  // servos only (servo == false for motors): a position servo holds the worst pose off its target
+  bool servo = false;           ///< driven by a servo: ctrl is a target, the limit its forcerange
+  double stiffness = 0.0;       ///< sum of gear^2 kp of its servos, N m/rad
+  double sag = 0.0;             ///< |worst_torque| / stiffness: the target-to-pose offset, rad
+  double hold_target = 0.0;     ///< ctrl that holds the worst pose (one servo on the joint)
+  bool target_outside = false;  ///< that ctrl lies outside the servo's ctrlrange
   bool actuated() const { return !motors.empty(); }
 };
 
@@ -211,6 +227,103 @@ struct Clamping {
   int warnings = 0;  ///< engine warnings raised by forward() (there are none for clamping)
   std::vector<std::string> unbounded;  ///< motors with ctrllimited="false"
   bool newton_metres = false;  ///< every motor drives a hinge with gear 1: forces are in N m
+  // servos (ctrl is a target): the command clamped to ctrlrange, the force that target asks for at
+  // qpos0 and rest (gain target + bias) and what forcerange lets through (actuator_force)
+  std::vector<uint8_t> servo;         ///< (nu) which actuators are servos
+  Eigen::VectorXd target, raw_force;  ///< (nu) ctrl clamped to ctrlrange; gain target + bias
+  Eigen::VectorXd qpos;               ///< the pose forward() ran at (qpos0)
+  bool any_servo() const;
+};
+
+// ---- (7) singular poses
+// --------------------------------------------------------------------------
+
+/// Two joints whose world axes are parallel (and collinear: on one line) at a pose.
+struct JointAlignment {
+  std::string first, second;
+  bool collinear = false;
+  double angle = 0.0;     ///< between the axes (or the axis and its reverse), rad
+  double distance = 0.0;  ///< between the axis lines, m (collinear when ~0)
+};
+
+/// The site Jacobian at one pose: its singular values in the rows the arm can move in.
+struct JacobianAt {
+  std::string where;  ///< "qpos0", "keyframe home", "worst 1", ...
+  Eigen::VectorXd q;
+  Eigen::VectorXd sigma;        ///< the task space's singular values, descending (rank of them)
+  double manipulability = 0.0;  ///< their product: sqrt(det(J J^T)) when rows == rank
+  double condition = kInf;      ///< sigma_max / sigma_min
+  Eigen::VectorXd null_motion;  ///< unit joint velocity that moves the site least (nv)
+  std::vector<JointAlignment> aligned;
+};
+
+struct SiteSingularity {
+  std::string site;
+  int rows = 6;  ///< 6: [jacp; jacr] (nv >= 6); 3: jacp (fewer joints than 6)
+  int rank = 0;  ///< its rank at generic poses: the number of singular values that count
+  std::vector<JacobianAt> states;  ///< qpos0 and each keyframe
+  std::vector<JacobianAt> worst;   ///< the most singular poses found, least sigma_min first
+};
+
+struct SingularPoses {
+  std::string search;  ///< how the worst poses were searched
+  long evaluations = 0;
+  double parallel_tolerance = 1e-3;  ///< rad, and m for collinear
+  std::vector<SiteSingularity> sites;
+};
+
+// ---- (8) stability of the step
+// -------------------------------------------------------------------
+
+/// How a simulation from a state went: it settles (|qvel| dies out), keeps moving (a limit cycle:
+/// an unstable step whose growth the forcerange clamp caps), or blows up (an engine warning, or
+/// |qvel| past the bound).
+struct StabilityRun {
+  std::string integrator;
+  std::string armature;  ///< "the model's", "x on every joint" or "per joint [..]"
+  int steps = 0;
+  double max_qvel = 0.0;
+  double final_qvel = 0.0;  ///< max |qvel| over the last tenth of the run
+  int saturated = 0;        ///< steps where some actuator force sat on its forcerange
+  int blowup_step = -1;     ///< first step with an engine warning or |qvel| > bound (-1: none)
+  int warnings = 0;
+  bool settled = false;  ///< no blow-up and final_qvel <= the settle bound
+  bool bounded() const { return blowup_step < 0; }
+};
+
+struct StabilityAt {
+  std::string where;  ///< "keyframe home" or "qpos0"
+  Eigen::VectorXd qpos, qvel, ctrl;
+  double growth = 0.0;     ///< max Re(eig) of the continuous linearisation d[qvel; qacc]/dx, 1/s
+  double rho_model = 0.0;  ///< spectral radius of the model's step (its integrator)
+  double rho_euler = 0.0;  ///< of explicit Euler's step at the same timestep
+  bool stable_model = false, stable_euler = false;
+  double max_dt_model = 0.0, max_dt_euler = 0.0;  ///< largest stable timestep found (kInf: cap)
+  double armature_all = 0.0;           ///< smallest armature on every joint for Euler (kInf: none)
+  std::vector<double> armature_each;   ///< per joint, the others at ample x armature_all
+  double armature_floor = kInf;        ///< the least floor t with max(each_i, t) stable together
+  std::vector<double> armature_alone;  ///< per joint, the others as in the model (kInf: none)
+  double rho_euler_with = 0.0;         ///< Euler's radius, margin x armature_all on every joint
+  double rho_euler_each = 0.0;         ///< Euler's radius, margin x armature_each per joint
+  bool stable_euler_each = false;
+  std::vector<StabilityRun> runs;  ///< model as is, Euler without and with armature
+  /// rho against the timestep (log-spaced, h/10 to 10 h), for the chart
+  std::vector<double> sweep_dt, sweep_rho_model, sweep_rho_euler;
+};
+
+struct StepStability {
+  double timestep = 0.0;
+  std::string integrator;
+  double fd_eps = 1e-6;       ///< central-difference step on [qpos; qvel]
+  double slack = 1e-3;        ///< stable: rho <= max(1, exp(h growth)) (1 + slack)
+  double dt_cap = 1.0;        ///< s: the timestep search stops here
+  double armature_cap = 1e4;  ///< kg m^2: the armature search stops here
+  double margin = 1.1;        ///< the simulation uses this times the smallest armature
+  double qvel_bound = 1e3;    ///< a run blows up past this |qvel|
+  double settle_qvel = 1e-3;  ///< a run settles when |qvel| stays below this over its last tenth
+  double ample = 10.0;        ///< per joint: the other joints get this times armature_all
+  std::vector<std::string> joints;
+  std::vector<StabilityAt> states;
 };
 
 // ---- the report ---------------------------------------------------------------------------------
@@ -223,6 +336,8 @@ struct Report {
   Inertia inertia;
   SoftStops stops;
   Clamping clamping;
+  SingularPoses singular;
+  StepStability stability;
   std::vector<std::string> findings;  ///< claims that do not check out
   int exit_status() const { return findings.empty() ? 0 : 1; }
 };
@@ -233,9 +348,10 @@ struct Inputs {
   const Model& model;
   const Model* inferred = nullptr;
   std::string inferred_error;
+  std::string key;  ///< sections (7) and (8) at this keyframe only ("": qpos0 and every keyframe)
 };
 
-/// Run the six checks.
+/// Run the eight checks.
 Report run_check(const Inputs& inputs);
 
 // the sections, each in its own file
@@ -245,21 +361,34 @@ TorqueBudget check_torque_budget(const Model& model);
 Inertia check_inertia(const Inputs& inputs, const TorqueBudget& budget);
 SoftStops check_soft_stops(const Model& model);
 Clamping check_clamping(const Model& model);
+/// `key`: only that keyframe (besides qpos0 in (7)); "": every keyframe. An unknown key throws
+/// StateError listing the model's keyframes.
+SingularPoses check_singular_poses(const Model& model, const std::string& key = "");
+StepStability check_step_stability(const Model& model, const std::string& key = "");
 
-/// Load a model file and run the six checks on it: the model as written, and the same file again
+/// The step's linearisation d[qpos'; qvel']/d[qpos; qvel] by central differences of lever::step
+/// at (qpos, qvel, ctrl), and its spectral radius (the tools section (8) is built from).
+Eigen::MatrixXd step_linearisation(const Model& model, const Eigen::VectorXd& qpos,
+                                   const Eigen::VectorXd& qvel, const Eigen::VectorXd& ctrl,
+                                   double eps = 1e-6);
+double spectral_radius(const Eigen::MatrixXd& A);
+
+/// Load a model file and run the eight checks on it: the model as written, and the same file again
 /// with every mass inferred from its geoms for section (4). Throws lever::Error (mjcf::ParseError)
 /// when the file cannot be loaded as written.
-Report check_file(const std::string& path);
+Report check_file(const std::string& path, const std::string& key = "");
 
-/// Run the six checks on a model already loaded. Section (4) reloads `model.source` with inertias
+/// Run the eight checks on a model already loaded. Section (4) reloads `model.source` with inertias
 /// inferred from the geoms when the model came from a file; a model built in memory gets the
 /// reason in `inertia.inferred_error` instead.
-Report check_model(const Model& model);
+Report check_model(const Model& model, const std::string& key = "");
 
 // ---- output (renderers: the report itself holds every number) ----------------------------------
 std::string to_text(const Report& report);
 void write_json(std::FILE* out, const Report& report);  ///< one JSON object, one line
 std::string to_json(const Report& report);              ///< the same object, as text
 std::string torque_budget_svg(const Report& report);
+std::string singular_poses_svg(const Report& report);  ///< sigma_min at each state and worst pose
+std::string step_stability_svg(const Report& report);  ///< spectral radii, Euler and the model's
 
 }  // namespace lever::check
