@@ -563,10 +563,12 @@ class Compiler {
     const auto label = [&](size_t g) {
       const CompiledGeom& geom = geoms_[g];
       const std::string& body = nodes_[static_cast<size_t>(geom.body)].spec->at.name;
+      const std::string body_label = geom.body == 0  ? std::string("world")
+                                     : body.empty() ? "#" + std::to_string(geom.body)
+                                                    : "'" + body + "'";
       return (geom.spec->at.name.empty() ? "geom " + std::to_string(g)
                                          : "geom '" + geom.spec->at.name + "'") +
-             " (body '" + (geom.body == 0 ? std::string("world") : body) + "', line " +
-             std::to_string(geom.spec->at.line) + ")";
+             " (body " + body_label + ", line " + std::to_string(geom.spec->at.line) + ")";
     };
     int pairs = 0;
     std::string first;

@@ -98,4 +98,13 @@ Eigen::VectorXd Args::get_vector(const std::string& name, int n,
   return Eigen::Map<Eigen::VectorXd>(xs.data(), n);
 }
 
+Model load_model(const std::string& command, const std::string& path,
+                 const mjcf::LoadOptions& options) {
+  Model model = mjcf::load_file(path, options);
+  for (const std::string& w : model.warnings) {
+    std::fprintf(stderr, "lever %s: warning: %s: %s\n", command.c_str(), path.c_str(), w.c_str());
+  }
+  return model;
+}
+
 }  // namespace lever::cli

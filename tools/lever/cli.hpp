@@ -9,6 +9,8 @@
 #include <vector>
 
 #include <lever/json.hpp>
+#include <lever/mjcf.hpp>
+#include <lever/model.hpp>
 
 namespace lever::cli {
 
@@ -42,5 +44,11 @@ class Args {
 
 /// The JSON writer the commands share (lever/json.hpp).
 using Json = json::Writer;
+
+/// The model file loaded by lever::mjcf::load_file, with what the loader noticed (geom pairs
+/// MuJoCo could collide, where lever computes no contacts) written to stderr as warnings naming
+/// `command`: never a silent difference from MuJoCo.
+Model load_model(const std::string& command, const std::string& path,
+                 const mjcf::LoadOptions& options = {});
 
 }  // namespace lever::cli

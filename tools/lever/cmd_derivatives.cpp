@@ -62,7 +62,7 @@ int cmd_derivatives(const std::vector<std::string>& argv) {
   }
   if (args.positional().size() != 1) throw UsageError{std::string("expects one MODEL\n") + kUsage};
   const std::string path = args.positional()[0];
-  const Model model = mjcf::load_file(path);
+  const Model model = load_model("derivatives", path);
   Data data(model);
   Derivatives deriv(model);
   set_state_from_args(args, model, data);

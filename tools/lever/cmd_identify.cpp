@@ -46,7 +46,7 @@ int cmd_identify(const std::vector<std::string>& argv) {
     throw UsageError{std::string("expects PRIOR.xml and DATA.csv\n") + kUsage};
   }
   const std::string prior_path = args.positional()[0], data_path = args.positional()[1];
-  const Model prior = mjcf::load_file(prior_path);
+  const Model prior = load_model("identify", prior_path);
   const identify::Trajectory data = identify::read_csv(prior, data_path);
   const identify::Result r = identify::identify(prior, data);
 

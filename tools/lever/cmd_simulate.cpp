@@ -294,7 +294,7 @@ int cmd_simulate(const std::vector<std::string>& argv) {
     }
   }
 
-  const Model model = mjcf::load_file(args.positional()[0]);
+  const Model model = load_model("simulate", args.positional()[0]);
   Data data(model);
   set_state_from_args(args, model, data);  // --qpos, --qvel (and --ctrl, replaced below)
 
