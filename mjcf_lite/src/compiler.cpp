@@ -322,7 +322,8 @@ class Compiler {
     const MeshMass& mesh = mesh_mass(m, g, body);
     const Mat3 r = rotation(out.quat);
     for (size_t k = 0; k < 3; ++k) {
-      out.pos[k] += r[3 * k] * mesh.pos[0] + r[3 * k + 1] * mesh.pos[1] + r[3 * k + 2] * mesh.pos[2];
+      out.pos[k] +=
+          r[3 * k] * mesh.pos[0] + r[3 * k + 1] * mesh.pos[1] + r[3 * k + 2] * mesh.pos[2];
     }
     out.quat = compiler_product(out.quat, mesh.quat);
     out.size = mesh.aabb;
@@ -346,7 +347,8 @@ class Compiler {
     const Place& at = spec_.assets.meshes[m];
     const std::string& file = spec_.assets.mesh_files[m];
     const std::string& body_name = nodes_[static_cast<size_t>(body)].spec->at.name;
-    const std::string geom = "mesh geom" + (g.at.name.empty() ? std::string() : " '" + g.at.name + "'");
+    const std::string geom =
+        "mesh geom" + (g.at.name.empty() ? std::string() : " '" + g.at.name + "'");
     const std::string why = geom + " must give body '" + body_name + "' its mass and inertia";
     const std::string advice = "; or add an <inertial> to body '" + body_name + "'";
     const std::string mesh = "mesh '" + at.name + "' (line " + std::to_string(at.line) + ")";
@@ -354,7 +356,8 @@ class Compiler {
       fail(g.at, "mesh",
            why + ", but " + mesh +
                " gives its vertices inline, which lever does not read: put them in an STL or OBJ "
-               "file" + advice);
+               "file" +
+               advice);
     }
     const std::string path = mesh_path(spec_.model_dir, c_.meshdir, file);
     const std::string ext = file.size() >= 4 ? file.substr(file.size() - 4) : file;

@@ -168,8 +168,8 @@ double dot(const Vec3& a, const Vec3& b) { return a[0] * b[0] + a[1] * b[1] + a[
 
 // second moments of one triangle's vertices (float, in MuJoCo's order) for the pair (i, j)
 float vertex_products(const float* d, const float* e, const float* f, size_t i, size_t j) {
-  return 2 * (d[i] * d[j] + e[i] * e[j] + f[i] * f[j]) + d[i] * e[j] + d[j] * e[i] +
-         d[i] * f[j] + d[j] * f[i] + e[i] * f[j] + e[j] * f[i];
+  return 2 * (d[i] * d[j] + e[i] * e[j] + f[i] * f[j]) + d[i] * e[j] + d[j] * e[i] + d[i] * f[j] +
+         d[j] * f[i] + e[i] * f[j] + e[j] * f[i];
 }
 
 }  // namespace
@@ -188,8 +188,8 @@ TriangleMesh read_stl(const std::string& bytes, bool righthand) {
                     std::to_string(count) + ascii_hint);
   }
   if (static_cast<std::size_t>(count) * 50 != bytes.size() - 84) {
-    throw MeshError("the file has " + std::to_string(bytes.size()) + " bytes, but a binary STL of " +
-                    std::to_string(count) + " triangles has " +
+    throw MeshError("the file has " + std::to_string(bytes.size()) +
+                    " bytes, but a binary STL of " + std::to_string(count) + " triangles has " +
                     std::to_string(84 + static_cast<std::size_t>(count) * 50) + ascii_hint);
   }
   TriangleMesh m;
@@ -201,7 +201,8 @@ TriangleMesh read_stl(const std::string& bytes, bool righthand) {
       for (size_t k = 0; k < 3; ++k) {
         const float x = read_float(p + 4 * k);
         if (!std::isfinite(x)) {
-          throw MeshError("triangle " + std::to_string(i + 1) + " has a coordinate that is not finite");
+          throw MeshError("triangle " + std::to_string(i + 1) +
+                          " has a coordinate that is not finite");
         }
         if (static_cast<double>(std::fabs(x)) > 1073741824.0) {  // 2^30
           throw MeshError("triangle " + std::to_string(i + 1) +
@@ -242,8 +243,9 @@ TriangleMesh read_obj(const std::string& text, bool righthand) {
       }
     } else if (key == "f") {
       if (split) {
-        throw MeshError(where + "faces after a new group, object or material: MuJoCo 2.2.2 "
-                                "would use only the first group; lever refuses such a file");
+        throw MeshError(where +
+                        "faces after a new group, object or material: MuJoCo 2.2.2 "
+                        "would use only the first group; lever refuses such a file");
       }
       if (t.size() != 4 && t.size() != 5) {
         throw MeshError(where + "lever reads faces of 3 or 4 vertices; this one has " +
@@ -271,8 +273,9 @@ TriangleMesh read_obj(const std::string& text, bool righthand) {
     }
   }
   if (faces.empty()) {
-    throw MeshError("the file has no faces (MuJoCo would build the convex hull of its vertices, "
-                    "which lever does not)");
+    throw MeshError(
+        "the file has no faces (MuJoCo would build the convex hull of its vertices, "
+        "which lever does not)");
   }
   const long nvert = static_cast<long>(v.size() / 3);
   TriangleMesh m;
@@ -313,8 +316,8 @@ TriangleMesh read_obj(const std::string& text, bool righthand) {
   return m;
 }
 
-MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat,
-                      const Vec3& scale, double density, bool exact) {
+MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat, const Vec3& scale,
+                      double density, bool exact) {
   std::vector<float>& vert = mesh.vert;
   const std::vector<int>& face = mesh.face;
   const size_t nvert = vert.size() / 3, nface = face.size() / 3;
@@ -324,8 +327,9 @@ MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat
   // MuJoCo reports a bad face orientation before any other fault it found while processing
   const auto fault = [&](const std::string& reason) -> MeshError {
     if (!mesh.consistent) {
-      return MeshError("its faces have inconsistent orientation (two faces share an edge "
-                       "in the same direction)");
+      return MeshError(
+          "its faces have inconsistent orientation (two faces share an edge "
+          "in the same direction)");
     }
     return MeshError(reason);
   };
@@ -367,7 +371,8 @@ MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat
     if (!shell) {
       double area = 0;
       for (size_t f = 0; f < nface; ++f) {
-        const double a = area_normal_centre(normal, centre, corner(f, 0), corner(f, 1), corner(f, 2));
+        const double a =
+            area_normal_centre(normal, centre, corner(f, 0), corner(f, 1), corner(f, 2));
         for (size_t k = 0; k < 3; ++k) facecen[k] += a * centre[k];
         area += a;
       }
@@ -418,14 +423,18 @@ MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat
                        static_cast<double>(vertex_products(d, e, g, kPair[j][0], kPair[j][1]));
       }
     }
-    const Sym6 inertia{products[1] + products[2], products[0] + products[2],
-                       products[0] + products[1], -products[3],
-                       -products[4],              -products[5]};
+    const Sym6 inertia{products[1] + products[2],
+                       products[0] + products[2],
+                       products[0] + products[1],
+                       -products[3],
+                       -products[4],
+                       -products[5]};
     const Principal p = principal_axes(inertia);
     const Vec3& e = p.moments;
     if (e[2] <= 0) {
-      throw fault("a principal moment of its inertia is not positive (a flat or degenerate mesh, "
-                  "or a mesh class with geom density 0)");
+      throw fault(
+          "a principal moment of its inertia is not positive (a flat or degenerate mesh, "
+          "or a mesh class with geom density 0)");
     }
     if (e[0] + e[1] < e[2] || e[0] + e[2] < e[1] || e[1] + e[2] < e[0]) {
       throw fault("the principal moments of its inertia violate A + B >= C");

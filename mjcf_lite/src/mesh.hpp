@@ -51,8 +51,8 @@ struct MeshMass {
 /// from pyramids (|volume| per face unless `exact`, compiler/exactmeshinertia); products of
 /// inertia at `density` (the geom density of the mesh's default class); principal axes. Throws
 /// MeshError with MuJoCo's reasons (area, volume, eigenvalues, A + B >= C, face orientation).
-MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat,
-                      const Vec3& scale, double density, bool exact);
+MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat, const Vec3& scale,
+                      double density, bool exact);
 
 /// The file's path as MuJoCo 2.2.2 forms it (mjuu_makefullname): an absolute file as it is, else
 /// an absolute meshdir + file, else the model's folder + meshdir + file. `meshdir` gets a

@@ -110,8 +110,9 @@ std::vector<AttributeRule> geom_attributes() {
       {
           keyword("type", "sphere", "sphere capsule ellipsoid cylinder box mesh", "plane hfield",
                   "shape; a mesh geom needs no mesh file unless it must give its body mass"),
-          text("mesh", "", "mesh asset of a mesh geom (its file is read only if the geom must "
-                           "give its body mass)"),
+          text("mesh", "",
+               "mesh asset of a mesh geom (its file is read only if the geom must "
+               "give its body mass)"),
           text("material", "", "material asset (kept; no effect on dynamics)"),
           partial("size", 3, "0 0 0",
                   "sphere r; capsule, cylinder r, half-length; ellipsoid, box half-sizes"),
@@ -127,7 +128,8 @@ std::vector<AttributeRule> geom_attributes() {
                integer("contype", 1, "1", "contact type bits (stored; lever has no contacts)"),
                integer("conaffinity", 1, "1", "contact affinity bits (stored)"),
                real("rgba", 4, "0.5 0.5 0.5 1", "colour"),
-               integer("condim", 1, "3", "contact dimensionality (kept; lever computes no contacts)"),
+               integer("condim", 1, "3",
+                       "contact dimensionality (kept; lever computes no contacts)"),
                partial("friction", 3, "1 0.005 0.0001", "contact friction (kept; no contacts)"),
                partial("solref", 2, "0.02 1", "contact solref (kept; no contacts)"),
                partial("solimp", 5, "0.9 0.95 0.001 0.5 2", "contact solimp (kept; no contacts)"),
@@ -263,7 +265,7 @@ std::vector<ElementRule> build() {
                         "only if a mesh geom must give a body mass)"),
                    keyword("exactmeshinertia", "false", "false true", "",
                            "mesh volume and inertia: true = signed pyramid volumes; false = "
-                           "MuJoCo 2.2.2's legacy |volume| per face and box volume"),
+                           "MuJoCo 2.2.2's legacy: each face's absolute volume, the inertia box's volume"),
                    text("texturedir", "", "folder of texture files (kept; never read)"),
                },
                "strippath fitaabb discardvisual convexhull usethread fusestatic",
