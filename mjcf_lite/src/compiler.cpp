@@ -350,7 +350,8 @@ class Compiler {
     const std::string geom =
         "mesh geom" + (g.at.name.empty() ? std::string() : " '" + g.at.name + "'");
     const std::string why = geom + " must give body '" + body_name + "' its mass and inertia";
-    const std::string advice = "; or add an <inertial> to body '" + body_name + "'";
+    const std::string advice = ". Fix that, or add an <inertial> to body '" + body_name +
+                               "' (then lever does not read the mesh)";
     const std::string mesh = "mesh '" + at.name + "' (line " + std::to_string(at.line) + ")";
     if (file.empty()) {
       fail(g.at, "mesh",

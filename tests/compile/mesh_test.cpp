@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include <lever/harness/models.hpp>
+
 #include "mujoco_xml.hpp"
 
 namespace {
@@ -268,4 +270,23 @@ TEST_CASE("a mesh is read only when it must give mass", "[compile][mesh]") {
   CHECK_THROWS_WITH(lever::mjcf::load_string(needed),
                     Catch::Contains("cannot read mesh file 'absent.stl'") &&
                         Catch::Contains("add an <inertial> to body 'b'"));
+}
+
+TEST_CASE("a Menagerie-style arm without its <inertial>s takes its masses from its meshes",
+          "[compile][mesh][menagerie]") {
+  // every link's visual and collision meshes (stand-in tetrahedra, each scaled differently by
+  // its file name's length) give it mass, as in MuJoCo
+  const std::string path = lever::test::model_path("tests/menagerie/panda_style.xml");
+  const std::string xml = lever::test::without_inertials(lever::test::read_text(path));
+  const lever::Model with_inertials = lever::mjcf::load_file(path);
+  std::map<std::string, std::string> files;
+  for (const std::string& f : with_inertials.visual.mesh_file) {
+    Shape s = tetrahedron();
+    for (Vertex& p : s.v) {
+      for (float& x : p) x *= 1.0f + 0.1f * static_cast<float>(f.size() % 7);
+    }
+    files[f] = f.size() >= 4 && f.compare(f.size() - 4, 4, ".obj") == 0 ? obj_triangles(s)
+                                                                         : binary_stl(s);
+  }
+  check_against_mujoco("menagerie", xml, files, "assets/");
 }

@@ -148,6 +148,8 @@ TEST_CASE("bad mesh files are refused at the geom that needs them", "[mjcf][mesh
        "line 2: 'x' is not a finite number"},
       {"penta.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nf 1 2 3 4 5\n", "",
        "faces of 3 or 4 vertices"},
+      {"concave.obj", "v 0 0 0\nv 0.5 0.5 0\nv 2 0 0\nv 0 2 0\nf 1 2 3 4\n", "",
+       "non-convex or folded quadrilateral"},
       {"range.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n", "", "vertex index out of range"},
       {"noface.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n", "", "no faces"},
       {"twice.obj",
