@@ -285,8 +285,8 @@ TEST_CASE("a Menagerie-style arm without its <inertial>s takes its masses from i
     for (Vertex& p : s.v) {
       for (float& x : p) x *= 1.0f + 0.1f * static_cast<float>(f.size() % 7);
     }
-    files[f] = f.size() >= 4 && f.compare(f.size() - 4, 4, ".obj") == 0 ? obj_triangles(s)
-                                                                         : binary_stl(s);
+    files[f] =
+        f.size() >= 4 && f.compare(f.size() - 4, 4, ".obj") == 0 ? obj_triangles(s) : binary_stl(s);
   }
   check_against_mujoco("menagerie", xml, files, "assets/");
 }
