@@ -5,10 +5,13 @@
 #include "compiler.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include "inertia.hpp"
+#include "mesh.hpp"
 #include "orientation.hpp"
 
 namespace lever::mjcf::detail {
@@ -104,7 +107,7 @@ int sizes_used(GeomType type) {
     case GeomType::kCylinder: return 2;
     case GeomType::kEllipsoid:
     case GeomType::kBox: return 3;
-    case GeomType::kMesh: return 0;  // its size comes from the mesh, which lever does not read
+    case GeomType::kMesh: return 0;  // its size comes from the mesh
   }
   return 3;
 }
@@ -244,7 +247,9 @@ class Compiler {
     if (has_inertial) read_inertial(*b.inertial, out);
 
     out.first_geom = static_cast<int>(geoms_.size());
-    for (const GeomSpec& g : b.geoms) geoms_.push_back(compile_geom(g, id));
+    for (const GeomSpec& g : b.geoms) {
+      geoms_.push_back(compile_geom(g, id, id > 0 && gives_mass(has_inertial, g)));
+    }
     if (id > 0) infer_inertia(id, has_inertial, out);
     if (id > 0) check_inertia(b, out);
     require_finite(b.at, "body", out.quat, out.inertial.ipos, out.inertial.iquat,
@@ -268,17 +273,26 @@ class Compiler {
     }
   }
 
+  bool from_geoms(bool has_inertial) const {
+    return c_.inertiafromgeom == InertiaFromGeom::kTrue ||
+           (c_.inertiafromgeom == InertiaFromGeom::kAuto && !has_inertial);
+  }
+
+  // whether a geom of a body (not the world) enters the body's mass and inertia
+  bool gives_mass(bool has_inertial, const GeomSpec& g) const {
+    return from_geoms(has_inertial) && g.group >= c_.inertiagrouprange[0] &&
+           g.group <= c_.inertiagrouprange[1];
+  }
+
   // mass from geoms when inertiafromgeom says so (mjCBody::GeomFrame); a body with no mass
   // source takes its own frame as inertial frame, with zero mass (mujoco copies pos and quat)
   void infer_inertia(int id, bool has_inertial, CompiledBody& out) {
-    const bool from_geoms = c_.inertiafromgeom == InertiaFromGeom::kTrue ||
-                            (c_.inertiafromgeom == InertiaFromGeom::kAuto && !has_inertial);
+    const bool from_geoms = this->from_geoms(has_inertial);
     std::vector<MassElement> parts;
     for (size_t g = static_cast<size_t>(out.first_geom); from_geoms && g < geoms_.size(); ++g) {
       const CompiledGeom& geom = geoms_[g];
       const int group = geom.spec->group;
       if (group >= c_.inertiagrouprange[0] && group <= c_.inertiagrouprange[1]) {
-        if (geom.spec->type == GeomType::kMesh) refuse_mesh_mass(*geom.spec, id);
         parts.push_back({geom.pos, geom.quat, geom.mass, geom.inertia});
       }
     }
@@ -296,19 +310,91 @@ class Compiler {
     }
   }
 
-  [[noreturn]] void refuse_mesh_mass(const GeomSpec& g, int body) const {
-    const std::string& body_name = nodes_[static_cast<size_t>(body)].spec->at.name;
-    std::string file;
-    for (size_t m = 0; m < spec_.assets.meshes.size(); ++m) {
-      if (spec_.assets.meshes[m].name == g.mesh) file = spec_.assets.mesh_files[m];
+  // ---- meshes ---------------------------------------------------------------------------------
+
+  // A mesh geom that gives its body mass: read and process its mesh (once per mesh), then move
+  // the geom's frame to the mesh's centre and principal axes, size it by the mesh's bounding box
+  // and give it the mass and inertia MuJoCo 2.2.2 gives it (mjCGeom::Compile, GetVolume,
+  // SetInertia).
+  void apply_mesh(const GeomSpec& g, int body, CompiledGeom& out) {
+    size_t m = 0;
+    while (spec_.assets.meshes[m].name != g.mesh) ++m;  // check_mesh found it
+    const MeshMass& mesh = mesh_mass(m, g, body);
+    const Mat3 r = rotation(out.quat);
+    for (size_t k = 0; k < 3; ++k) {
+      out.pos[k] +=
+          r[3 * k] * mesh.pos[0] + r[3 * k + 1] * mesh.pos[1] + r[3 * k + 2] * mesh.pos[2];
     }
-    fail(g.at, "mesh",
-         "mesh geom" + (g.at.name.empty() ? std::string() : " '" + g.at.name + "'") +
-             " (mesh '" + g.mesh + "'" + (file.empty() ? "" : ", file '" + file + "'") +
-             ") would give body '" + body_name +
-             "' its mass and inertia, but lever does not compute mesh inertia (it reads no mesh "
-             "file): add an <inertial> to body '" + body_name +
-             "', or put the geom in a group outside compiler/inertiagrouprange");
+    out.quat = compiler_product(out.quat, mesh.quat);
+    out.size = mesh.aabb;
+    const Vec3& b = mesh.box;
+    const double volume = c_.exactmeshinertia ? mesh.volume : b[0] * b[1] * b[2] * 8;
+    if (g.mass) {
+      // a given mass goes only to a geom with a volume; mass 0 keeps zero inertia (mujoco)
+      if (*g.mass == 0 || !(volume > 1e-15)) return;
+      out.mass = *g.mass;
+    } else {
+      out.mass = g.density * volume;
+    }
+    out.inertia = {out.mass * (b[1] * b[1] + b[2] * b[2]) / 3,
+                   out.mass * (b[0] * b[0] + b[2] * b[2]) / 3,
+                   out.mass * (b[0] * b[0] + b[1] * b[1]) / 3};
+  }
+
+  const MeshMass& mesh_mass(size_t m, const GeomSpec& g, int body) {
+    if (mesh_cache_.size() <= m) mesh_cache_.resize(spec_.assets.meshes.size());
+    if (mesh_cache_[m]) return *mesh_cache_[m];
+    const Place& at = spec_.assets.meshes[m];
+    const std::string& file = spec_.assets.mesh_files[m];
+    const std::string& body_name = nodes_[static_cast<size_t>(body)].spec->at.name;
+    const std::string geom =
+        "mesh geom" + (g.at.name.empty() ? std::string() : " '" + g.at.name + "'");
+    const std::string why = geom + " must give body '" + body_name + "' its mass and inertia";
+    const std::string advice = ". Fix that, or add an <inertial> to body '" + body_name +
+                               "' (then lever does not read the mesh)";
+    const std::string mesh = "mesh '" + at.name + "' (line " + std::to_string(at.line) + ")";
+    if (file.empty()) {
+      fail(g.at, "mesh",
+           why + ", but " + mesh +
+               " gives its vertices inline, which lever does not read: put them in an STL or OBJ "
+               "file" +
+               advice);
+    }
+    const std::string path = mesh_path(spec_.model_dir, c_.meshdir, file);
+    const std::string ext = file.size() >= 4 ? file.substr(file.size() - 4) : file;
+    const auto is = [&ext](const char* e) {
+      return ext.size() == 4 && std::equal(ext.begin(), ext.end(), e, [](char a, char c) {
+               return std::tolower(static_cast<unsigned char>(a)) == c;
+             });
+    };
+    if (!is(".stl") && !is(".obj")) {
+      fail(g.at, "mesh",
+           why + ", but the file '" + path + "' of " + mesh +
+               " is not binary STL or OBJ, the formats lever reads (MuJoCo 2.2.2 also reads MSH)" +
+               advice);
+    }
+    const MeshSource& source = spec_.assets.mesh_sources[m];
+    const Vec3& scale = source.scale;
+    const bool righthand = scale[0] * scale[1] * scale[2] > 0;
+    constexpr std::size_t kMaxBytes = std::size_t{64} << 20;
+    std::string bytes;
+    try {
+      bytes = read_mesh_file(path, kMaxBytes);
+    } catch (const MeshError& e) {
+      fail(g.at, "mesh",
+           why + ", but lever cannot read mesh file '" + path + "' of " + mesh + ": " + e.what() +
+               advice);
+    }
+    try {
+      TriangleMesh triangles = is(".stl") ? read_stl(bytes, righthand) : read_obj(bytes, righthand);
+      mesh_cache_[m] = process_mesh(std::move(triangles), source.refpos, source.refquat, scale,
+                                    source.density, c_.exactmeshinertia);
+    } catch (const MeshError& e) {
+      fail(g.at, "mesh",
+           why + ", but mesh file '" + path + "' of " + mesh + " cannot be used: " + e.what() +
+               advice);
+    }
+    return *mesh_cache_[m];
   }
 
   // bounds and the triangle inequality, for every body but the world
@@ -343,8 +429,7 @@ class Compiler {
 
   // ---- geoms, joints, sites ---------------------------------------------------------------------
 
-  // a mesh geom: its asset must exist; lever keeps its frame as written (MuJoCo moves it to the
-  // mesh's centre of mass and principal axes, which needs the file) and never reads the file
+  // a mesh geom: its asset must exist (its file is read only if it gives its body mass)
   void check_mesh(const GeomSpec& g) const {
     if (g.type != GeomType::kMesh && !g.mesh.empty()) {
       fail(g.at, "mesh",
@@ -369,7 +454,7 @@ class Compiler {
          std::string("unknown ") + attribute + " '" + name + "'" + did_you_mean(name, names));
   }
 
-  CompiledGeom compile_geom(const GeomSpec& g, int body) {
+  CompiledGeom compile_geom(const GeomSpec& g, int body, bool gives_mass) {
     check_mesh(g);
     if (!g.material.empty()) require_asset(g.at, "material", g.material, spec_.assets.materials);
     if (g.condim != 1 && g.condim != 3 && g.condim != 4 && g.condim != 6) {
@@ -391,9 +476,13 @@ class Compiler {
       }
     }
     if (g.type == GeomType::kMesh) {
+      // a mesh geom that gives no mass keeps its frame as written, size zero and no mass: lever
+      // reads its file only when the body needs it
       out.size = {0, 0, 0};
-      require_finite(g.at, "geom", out.pos, out.quat);
-      return out;  // no mass: infer_inertia refuses a body that would need it
+      if (gives_mass) apply_mesh(g, body, out);
+      require_finite(g.at, "geom", out.size, out.pos, out.quat, std::array<double, 1>{out.mass},
+                     out.inertia);
+      return out;
     }
     out.mass = geom_mass(g.type, out.size, g.density, g.mass);
     out.inertia = geom_inertia(g.type, out.size, out.mass);
@@ -627,6 +716,7 @@ class Compiler {
   std::vector<CompiledSite> sites_;
   std::vector<CompiledMotor> motors_;
   std::vector<std::string> warnings_;
+  std::vector<std::optional<MeshMass>> mesh_cache_;  ///< per mesh, once read
 };
 
 Eigen::Vector3d eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }

@@ -49,7 +49,10 @@ Model load_string(const std::string& xml, const std::string& filename, const Loa
   detail::Locations where;
   try {
     const detail::Element root = detail::read_document(xml);
-    const detail::ModelSpec spec = detail::parse_model(root, options.infer_inertia_from_geoms);
+    detail::ModelSpec spec = detail::parse_model(root, options.infer_inertia_from_geoms);
+    // mesh files are found from the model's folder, as MuJoCo does (mjuu_getfiledir)
+    const size_t slash = filename.find_last_of("/\\");
+    spec.model_dir = slash == std::string::npos ? "" : filename.substr(0, slash + 1);
     model = detail::compile(spec, &where);
   } catch (const detail::Problem& p) {
     throw ParseError(filename, p.where.line, p.where.tag, p.attribute, p.message, p.where.name);

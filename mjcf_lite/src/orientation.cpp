@@ -16,6 +16,8 @@ Quat product(const Quat& a, const Quat& b) {
           a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]};
 }
 
+}  // namespace
+
 // the compiler's product is followed by its normalization (mjuu_mulquat)
 Quat compiler_product(const Quat& a, const Quat& b) {
   Quat q = product(a, b);
@@ -39,6 +41,8 @@ Mat3 engine_rotation(const Quat& q) {
   if (q[0] == 1 && q[1] == 0 && q[2] == 0 && q[3] == 0) return {1, 0, 0, 0, 1, 0, 0, 0, 1};
   return rotation(q);
 }
+
+namespace {
 
 Vec3 cross(const Vec3& b, const Vec3& c) {
   return {b[1] * c[2] - b[2] * c[1], b[2] * c[0] - b[0] * c[2], b[0] * c[1] - b[1] * c[0]};

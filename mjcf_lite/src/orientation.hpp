@@ -31,6 +31,15 @@ inline double joint_radians(double degrees) { return degrees * (kPi / 180.0); }
 /// The compiler's rotation matrix of a quaternion (mjuu_quat2mat).
 Mat3 rotation(const Quat& q);
 
+/// The compiler's quaternion product, normalized (mjuu_mulquat).
+Quat compiler_product(const Quat& a, const Quat& b);
+
+/// The engine's quaternion normalization (mju_normalize4): tiny -> identity.
+void engine_normalize(Quat& q);
+
+/// The engine's rotation matrix (mju_quat2Mat): exactly the identity for (1, 0, 0, 0).
+Mat3 engine_rotation(const Quat& q);
+
 /// The minimal rotation taking +z onto the unit vector v (mjuu_z2quat).
 Quat z_to_quat(const Vec3& v);
 

@@ -245,6 +245,7 @@ CompilerSpec read_compiler(const Element& root) {
   c.settotalmass = f.real("settotalmass");
   c.meshdir = f.word("meshdir");
   c.texturedir = f.word("texturedir");
+  c.exactmeshinertia = f.word("exactmeshinertia") == "true";
   return c;
 }
 
@@ -302,14 +303,38 @@ std::vector<KeySpec> read_keys(const Element& root) {
   return keys;
 }
 
-// <asset>: names (and mesh files) only; a mesh without a name is named after its file
+// what a <mesh> says about its shape, over its class's mesh defaults (scale); MuJoCo computes a
+// mesh's inertia at the geom density of the mesh's class
+MeshSource read_mesh_source(const Element& e, const DefaultClass& cls) {
+  AttrSet set = cls.visual_only;  // the class's mesh defaults live with the other visual ones
+  set.apply(e, *find_rule("asset", "mesh"));
+  const Fields f(set, "asset", "mesh");
+  MeshSource m;
+  m.refpos = f.array<3>("refpos");
+  m.refquat = f.array<4>("refquat");
+  const Quat& q = m.refquat;
+  if (q[0] == 0 && q[1] == 0 && q[2] == 0 && q[3] == 0) {
+    fail(e.place(), "refquat", "refquat is zero; a rotation needs a nonzero quaternion");
+  }
+  m.scale = f.array<3>("scale");
+  if (const Value* density = cls.geom.find("density")) {
+    m.density = density->numbers[0];
+  } else {
+    m.density = default_numbers(attribute_rule("body", "geom", "density"))[0];
+  }
+  return m;
+}
+
+// <asset>: names and mesh files (read later, only if needed); a mesh without a name is named
+// after its file
 AssetSpec read_assets(const Element& root, const DefaultClasses& classes) {
   AssetSpec assets;
   for (const Element* section : sections(root, "asset")) {
     for (const Element& e : section->children) {
-      if (e.find("class")) classes.choose(e, "class", 0);  // an unknown class is an error
+      const int cls = classes.choose(e, "class", 0);  // an unknown class is an error
       Place at = e.place();
       if (e.tag == "mesh") {
+        assets.mesh_sources.push_back(read_mesh_source(e, classes.at(cls)));
         const Attribute* file = e.find("file");
         std::string path = file ? file->value : "";
         if (at.name.empty() && !path.empty()) {

@@ -110,7 +110,9 @@ std::vector<AttributeRule> geom_attributes() {
       {
           keyword("type", "sphere", "sphere capsule ellipsoid cylinder box mesh", "plane hfield",
                   "shape; a mesh geom needs no mesh file unless it must give its body mass"),
-          text("mesh", "", "mesh asset of a mesh geom (kept; its file is never read)"),
+          text("mesh", "",
+               "mesh asset of a mesh geom (its file is read only if the geom must "
+               "give its body mass)"),
           text("material", "", "material asset (kept; no effect on dynamics)"),
           partial("size", 3, "0 0 0",
                   "sphere r; capsule, cylinder r, half-length; ellipsoid, box half-sizes"),
@@ -126,7 +128,8 @@ std::vector<AttributeRule> geom_attributes() {
                integer("contype", 1, "1", "contact type bits (stored; lever has no contacts)"),
                integer("conaffinity", 1, "1", "contact affinity bits (stored)"),
                real("rgba", 4, "0.5 0.5 0.5 1", "colour"),
-               integer("condim", 1, "3", "contact dimensionality (kept; lever computes no contacts)"),
+               integer("condim", 1, "3",
+                       "contact dimensionality (kept; lever computes no contacts)"),
                partial("friction", 3, "1 0.005 0.0001", "contact friction (kept; no contacts)"),
                partial("solref", 2, "0.02 1", "contact solref (kept; no contacts)"),
                partial("solimp", 5, "0.9 0.95 0.001 0.5 2", "contact solimp (kept; no contacts)"),
@@ -209,8 +212,19 @@ std::vector<AttributeRule> texts(std::string_view names, std::string_view meanin
   return out;
 }
 
-const char* const kMeshAttributes =
-    "name class file vertex normal texcoord face refpos refquat scale smoothnormal";
+const char* const kVisualOnly = "visual only: read and kept, no effect on dynamics";
+const char* const kMeshAttributes = "name class file vertex normal texcoord face smoothnormal";
+
+// the <mesh> attributes that change its mass properties (used only when lever reads the file)
+std::vector<AttributeRule> mesh_attributes() {
+  std::vector<AttributeRule> out = texts(kMeshAttributes, kVisualOnly);
+  out.push_back(real("refpos", 3, "0 0 0", "reference position: subtracted from the vertices"));
+  out.push_back(real("refquat", 4, "1 0 0 0",
+                     "reference orientation: the vertices are rotated by its inverse; must not be "
+                     "zero"));
+  out.push_back(real("scale", 3, "1 1 1", "scale of the vertices (after refpos and refquat)"));
+  return out;
+}
 const char* const kMaterialAttributes =
     "name class texture texrepeat texuniform emission specular shininess reflectance rgba";
 const char* const kTextureAttributes =
@@ -221,7 +235,6 @@ const char* const kCameraAttributes =
 const char* const kLightAttributes =
     "name class directional castshadow active pos dir attenuation cutoff exponent ambient "
     "diffuse specular mode target";
-const char* const kVisualOnly = "visual only: read and kept, no effect on dynamics";
 
 // one row per element: tag, parent, multiplicity, attributes, refused attributes, refused
 // children, meaning
@@ -247,10 +260,15 @@ std::vector<ElementRule> build() {
                            "replace an inertia violating A + B >= C by the mean moment"),
                    real("settotalmass", 1, "-1", "if > 0, scale all masses to this total"),
                    keyword("coordinate", "local", "local", "global", "frames are local"),
-                   text("meshdir", "", "folder of mesh files (kept; lever reads no mesh file)"),
+                   text("meshdir", "",
+                        "folder of mesh files, relative to the model's folder (a file is read "
+                        "only if a mesh geom must give a body mass)"),
+                   keyword("exactmeshinertia", "false", "false true", "",
+                           "mesh volume and inertia: true = signed pyramid volumes; false = "
+                           "MuJoCo 2.2.2's legacy: each face's absolute volume, the inertia box's volume"),
                    text("texturedir", "", "folder of texture files (kept; never read)"),
                },
-               "strippath fitaabb discardvisual convexhull usethread fusestatic exactmeshinertia",
+               "strippath fitaabb discardvisual convexhull usethread fusestatic",
                "lengthrange", "compiler settings; apply to the whole model wherever written"});
   s.push_back({"option", "mujoco", '*',
                {
@@ -291,7 +309,9 @@ std::vector<ElementRule> build() {
   s.push_back({"velocity", "default", '?',
                shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m"),
                "cranklength user", "", "actuator defaults of the class, as a velocity servo"});
-  s.push_back({"mesh", "default", '?', texts("scale", kVisualOnly), "", "", "mesh defaults"});
+  s.push_back({"mesh", "default", '?',
+               {real("scale", 3, "1 1 1", "scale of the vertices of the class's meshes")}, "", "",
+               "mesh defaults"});
   s.push_back({"material", "default", '?',
                texts("texture emission specular shininess reflectance rgba texrepeat texuniform",
                      kVisualOnly),
@@ -304,10 +324,10 @@ std::vector<ElementRule> build() {
                      "diffuse specular mode", kVisualOnly),
                "", "", "light defaults"});
   s.push_back({"asset", "mujoco", '*', {}, "", "hfield skin",
-               "assets: meshes, materials and textures (visual only; no file is read)"});
-  s.push_back({"mesh", "asset", '*', texts(kMeshAttributes, kVisualOnly), "", "",
-               "a mesh; its file is read only if a mesh geom must give a body mass, which lever "
-               "refuses (add <inertial>)"});
+               "assets: meshes, materials and textures (no file is read unless a mesh must give mass)"});
+  s.push_back({"mesh", "asset", '*', mesh_attributes(), "", "",
+               "a mesh; its file (binary STL or OBJ) is read only if a mesh geom must give a "
+               "body mass; then its volume, centre and inertia are MuJoCo 2.2.2's"});
   s.push_back({"material", "asset", '*', texts(kMaterialAttributes, kVisualOnly), "", "",
                "a material"});
   s.push_back({"texture", "asset", '*', texts(kTextureAttributes, kVisualOnly), "", "",
@@ -512,12 +532,20 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   `<camera>`, `<visual>`, `<statistic>`, `compiler/meshdir` and `texturedir`, and geom
   `material`, `rgba`, `group`; geom contact parameters (`condim`, `friction`, `solref`, ...),
   since lever computes no contacts. Their names are in `Model::visual`.
-* Mesh geoms: lever reads no mesh file. A mesh geom has no mass in lever, and a body whose
-  inertia would come from a mesh geom (no `<inertial>`, the geom in `inertiagrouprange`) is
-  refused with a message naming the geom, the mesh and the file and saying to add `<inertial>`.
-  lever keeps a mesh geom's frame as written and its size zero, where MuJoCo moves the frame to
+* Mesh geoms: lever reads a mesh file only when a mesh geom must give its body mass (the body
+  has no `<inertial>`, or `inertiafromgeom="true"`, and the geom's group is in
+  `inertiagrouprange`). Then it computes what MuJoCo 2.2.2 does (its float vertices and
+  roundings included): `refpos`, `refquat`, `scale`, the volume and centre of mass from face
+  pyramids (`exactmeshinertia`), the inertia at the geom density of the mesh's class, the
+  principal axes, the geom's frame moved to them, its size the bounding box, its mass from
+  `density` or `mass`. It reads binary STL and OBJ (`v` and `f` lines: triangles and convex
+  quadrilaterals, one group); ASCII STL, MSH, OBJ faces of more than four vertices, an OBJ
+  without faces (MuJoCo would take the convex hull) and inline `vertex`/`face` meshes are
+  refused by name, and so is a missing, unreadable or degenerate file, with a message naming
+  the geom, the mesh and the file and saying to add `<inertial>`. Other mesh geoms are massless
+  in lever and keep their frame as written and their size zero, where MuJoCo moves the frame to
   the mesh's centre and principal axes and sizes it from the file; nothing in the dynamics uses
-  either.
+  either. A geom of another type with `mesh=` (fitted to the mesh by MuJoCo) is refused.
 * Contacts: lever computes none. Geom pairs MuJoCo would test for contact (compatible
   `contype`/`conaffinity`, on bodies that are not welded together or parent and child) are
   listed in a warning at load (`Model::warnings`, printed by the command line), since a motion

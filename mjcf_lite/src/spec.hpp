@@ -102,10 +102,19 @@ struct KeySpec {
   std::optional<std::vector<double>> qpos, qvel, ctrl;
 };
 
+/// What a <mesh> says about its shape: read only if one of its geoms must give a body mass.
+struct MeshSource {
+  Vec3 refpos{};
+  Quat refquat{1, 0, 0, 0};
+  Vec3 scale{1, 1, 1};
+  double density = 1000;  ///< geom density of the mesh's default class (MuJoCo uses it)
+};
+
 /// The visual-only parts of a model (assets, lights, cameras): names, for reference checks.
 struct AssetSpec {
   std::vector<Place> meshes, materials, textures;  ///< the asset's name in Place::name
   std::vector<std::string> mesh_files;             ///< per mesh; "" if inline
+  std::vector<MeshSource> mesh_sources;            ///< per mesh
   std::vector<std::string> lights, cameras;
 };
 
@@ -119,6 +128,7 @@ struct CompilerSpec {
   bool balanceinertia = false;
   double settotalmass = -1;
   std::string meshdir, texturedir;
+  bool exactmeshinertia = false;
 };
 
 struct ModelSpec {
@@ -129,6 +139,7 @@ struct ModelSpec {
   std::vector<MotorSpec> motors;
   std::vector<KeySpec> keys;
   AssetSpec assets;
+  std::string model_dir;  ///< folder of the model file, with a trailing '/', or "" (mesh files)
 };
 
 }  // namespace lever::mjcf::detail

@@ -161,14 +161,18 @@ bool is_constant(const std::string& name) {
 //   actuator_trnid  lever keeps the joint only (`own`); MuJoCo's is (nu, 2), its second column -1
 //                   for a joint transmission; the other actuator types lever fixes are checked
 //                   here too (compare_actuator_types);
-//   geom frames     mesh geoms' size, pos and quat are MuJoCo's fit to the mesh file;
+//   geom frames     mesh geoms' size, pos and quat are MuJoCo's fit to the mesh file, which
+//                   lever computes only for the meshes it read (those that give a body mass);
 //   names, options  not arrays of the table; keyframes have their own rows (compare_keyframes).
-// geom_size, geom_pos, geom_quat but of mesh geoms: MuJoCo fits them to the mesh file (its size,
-// its centre and principal axes), which lever never reads; lever keeps the frame as written
+// geom_size, geom_pos, geom_quat but of mesh geoms lever did not read: MuJoCo fits them to the
+// mesh file (its size, its centre and principal axes); lever keeps the frame as written and the
+// size zero unless the geom gives its body mass (then lever read the mesh, and its size, the
+// bounding box, is positive)
 void compare_geom_frames(Differences& d, const Model& o, const FieldView& view, const MjArray& mj) {
   const std::string name = view.info->name;
   for (int g = 0; g < view.rows; ++g) {
-    if (o.geom_type[static_cast<size_t>(g)] == GeomType::kMesh) continue;
+    const size_t geom = static_cast<size_t>(g);
+    if (o.geom_type[geom] == GeomType::kMesh && o.geom_size[geom].isZero()) continue;
     if (view.cols == 4) {
       bool same = true, opposite = true;
       for (int k = 0; k < 4; ++k) {

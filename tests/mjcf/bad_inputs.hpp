@@ -503,7 +503,35 @@ inline const BadInput kBadInputs[] = {
       <geom name="shell" type="mesh" mesh="link"/>
     </body>
   </worldbody>
-</mujoco>)", 8, "geom", "mesh", "add an <inertial> to body 'b'", MuJoCo::kRejects, ""},
+</mujoco>)", 8, "geom", "mesh", "cannot read mesh file 'link.stl'", MuJoCo::kRejects, ""},
+  {"mesh-msh-for-mass", R"(<mujoco>
+  <asset>
+    <mesh name="link" file="link.msh"/>
+  </asset>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom name="shell" type="mesh" mesh="link"/>
+    </body>
+  </worldbody>
+</mujoco>)", 8, "geom", "mesh", "is not binary STL or OBJ", MuJoCo::kRejects, ""},
+  {"mesh-inline-for-mass", R"(<mujoco>
+  <asset>
+    <mesh name="tet" vertex="0 0 0  1 0 0  0 1 0  0 0 1"/>
+  </asset>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom type="mesh" mesh="tet"/>
+    </body>
+  </worldbody>
+</mujoco>)", 8, "geom", "mesh", "gives its vertices inline", MuJoCo::kAccepts,
+   "MuJoCo takes the convex hull of inline vertices (qhull); lever does not compute hulls"},
+  {"mesh-refquat-zero", R"(<mujoco>
+  <asset>
+    <mesh name="link" file="link.stl" refquat="0 0 0 0"/>
+  </asset>
+</mujoco>)", 3, "mesh", "refquat", "refquat is zero", MuJoCo::kRejects, ""},
   {"mesh-unknown", R"(<mujoco>
   <asset>
     <mesh name="link" file="link.stl"/>
