@@ -56,8 +56,9 @@ inline constexpr int kBiasParameters = 10;
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
 /// Geom types; the numeric values are MuJoCo's mjtGeom.
-/// A mesh geom (kMesh) is kept for its name, frame and material; lever reads no mesh file, so it
-/// never gives a body mass (lever::mjcf refuses a model where it would).
+/// A mesh geom (kMesh): lever::mjcf reads its file only when it gives its body mass (then its
+/// frame, size, mass and inertia are MuJoCo's, from the mesh); otherwise it is kept massless, with
+/// its frame as written and size zero.
 enum class GeomType : int {
   kSphere = 2,
   kCapsule = 3,
