@@ -198,6 +198,124 @@ TEST_CASE("identify: ctrl columns go through the prior's servos (gain, bias, bot
   std::filesystem::remove(without);
 }
 
+TEST_CASE("identify: a motor's unknown gain, from ctrl", "[derivatives][identify]") {
+  // arm2 with the heavier link 2 and an elbow motor 1.3 times as strong as the prior says (a
+  // wrong torque constant). The shoulder's gain stays known: it fixes the scale that the elbow's
+  // gain and the inertia would otherwise share (gravity does not: its torque scales with mass).
+  const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
+  Model truth = heavy_arm2();
+  truth.actuator_gainprm[1][0] = 1.3;
+  set_const(truth);
+  const std::string csv = temp_path("gain.csv");
+  simulate_csv(truth, 6.0, csv, true, false);  // ctrl only: the force is what is unknown
+  const identify::Trajectory data = identify::read_csv(prior, csv);
+  identify::Options options;
+  options.gains = identify::gain_actuators_named(prior, "elbow");
+  const identify::Result r = identify::identify(prior, data, options);
+  const Eigen::VectorXd expected = r.base.K * model_parameters(truth);
+  INFO("estimate " << r.estimate.transpose() << "\ntrue     " << expected.transpose());
+  CHECK((r.estimate - expected).cwiseAbs().maxCoeff() <=
+        1e-8 * std::max(1.0, expected.cwiseAbs().maxCoeff()));
+  const int gain = regressor_columns(prior) - 1;  // elbow.gain
+  CHECK(std::abs(r.parameters[gain] - 1.3) <= 1e-8);
+  CHECK(r.residual_rms < 1e-10);
+  CHECK(r.dropped == 0);  // no forcerange
+  REQUIRE(r.not_physical.empty());
+  // the written model has the gain: the motor became a <general gainprm="1.3">
+  const std::string written = temp_path("gain.xml");
+  identify::write_model(model_path("models/arm2.xml"), identify::identified_model(prior, r),
+                        written);
+  const Model identified = mjcf::load_file(written);
+  CHECK(std::abs(identified.actuator_gainprm[1][0] - 1.3) <= 1e-8);
+  CHECK(identified.actuator_gainprm[0][0] == 1.0);
+  CHECK(identified.actuator_biastype[1] == BiasType::kNone);
+  CHECK(identified.actuator_ctrlrange[1] == prior.actuator_ctrlrange[1]);
+  // without a known gain nothing fixes the scale: a clear error, not a zero model
+  options.gains = identify::gain_actuators_named(prior, "all");
+  CHECK_THROWS_WITH(identify::identify(prior, data, options),
+                    Catch::Contains("scale together"));
+  CHECK_THROWS_WITH(identify::gain_actuators_named(prior, "wrist"),
+                    Catch::Contains("no actuator 'wrist'"));
+  std::filesystem::remove(csv);
+  std::filesystem::remove(written);
+}
+
+TEST_CASE("identify: a position servo's kp, rows where its force clamps dropped",
+          "[derivatives][identify]") {
+  // panda7's servos (forcerange 87 / 12 N m, clamping part of the time): joint 4's kp is 20%
+  // above the prior's in the truth. Its gain carries biasprm[1] = -kp; the rows where its force
+  // is at the clamp are dropped (judged at the estimated kp), the rest recover kp.
+  const Model prior = mjcf::load_file(model_path("models/panda7.xml"));
+  Model truth = prior;
+  const int servo = 3;
+  const double kp = 1.2 * prior.actuator_gainprm[servo][0];
+  truth.actuator_gainprm[servo][0] = kp;
+  truth.actuator_biasprm[servo][1] = -kp;
+  set_const(truth);
+  const std::string csv = temp_path("servo.csv");
+  simulate_csv(truth, 2.0, csv, true, false);
+  const identify::Trajectory data = identify::read_csv(prior, csv);
+  identify::Options options;
+  options.gains = {servo};
+  const identify::Result r = identify::identify(prior, data, options);
+  const int gain = regressor_columns(prior) - prior.nu + servo;
+  INFO("kp " << r.parameters[gain] << " vs " << kp << ", dropped " << r.dropped);
+  CHECK(std::abs(r.parameters[gain] - kp) <= 1e-8 * kp);
+  CHECK(r.dropped > 0);
+  CHECK(r.residual_rms < 1e-9);
+  const Model identified = identify::identified_model(prior, r);
+  CHECK(identified.actuator_biasprm[servo][1] == -r.parameters[gain]);
+  std::filesystem::remove(csv);
+}
+
+TEST_CASE("identify: noisy torques, estimates within their standard errors",
+          "[derivatives][identify]") {
+  // arm2 with the heavier link 2; Gaussian noise of known sigma added to the joint torques (the
+  // least-squares model's own error), each seed a new draw. Every estimate must be within 4
+  // standard errors of the truth, and over the seeds about 68% within one: a fraction far below
+  // (standard errors too small, e.g. not scaled by the residual) or far above (too large) fails.
+  const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
+  const Model truth = heavy_arm2();
+  const std::string csv = temp_path("noisy.csv");
+  simulate_csv(truth, 6.0, csv, true);
+  const identify::Trajectory clean = identify::read_csv(prior, csv);
+  std::filesystem::remove(csv);
+  const auto run = [&](double force_sigma, double qacc_sigma, int seeds) {
+    int within1 = 0, total = 0;
+    for (int seed = 1; seed <= seeds; ++seed) {
+      identify::Trajectory noisy = clean;
+      std::mt19937_64 rng(static_cast<unsigned long long>(seed));
+      std::normal_distribution<double> normal(0.0, 1.0);
+      for (Eigen::Index i = 0; i < noisy.force.size(); ++i) {
+        noisy.force.data()[i] += force_sigma * normal(rng);
+        noisy.qacc.data()[i] += qacc_sigma * normal(rng);
+      }
+      const identify::Result r = identify::identify(prior, noisy);
+      const Eigen::VectorXd expected = r.base.K * model_parameters(truth);
+      for (int k = 0; k < r.base.rank; ++k) {
+        const double z = (r.estimate[k] - expected[k]) / r.standard_error[k];
+        INFO("seed " << seed << ", " << r.base.names[k] << ": " << r.estimate[k] << " vs "
+                     << expected[k] << ", standard error " << r.standard_error[k] << " (least "
+                     << "squares' " << r.ols_standard_error[k] << ")");
+        CHECK(std::abs(z) <= 4.0);
+        within1 += std::abs(z) <= 1.0 ? 1 : 0;
+        ++total;
+      }
+    }
+    return static_cast<double>(within1) / total;
+  };
+  SECTION("noise on the torque") {
+    const double fraction = run(0.05, 0.0, 20);
+    CHECK(fraction > 0.55);
+    CHECK(fraction < 0.8);
+  }
+  SECTION("noise on qacc") {
+    const double fraction = run(0.0, 0.2, 20);
+    CHECK(fraction > 0.55);
+    CHECK(fraction < 0.8);
+  }
+}
+
 TEST_CASE("identify: bad trajectories get clear errors", "[derivatives][identify]") {
   const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
   const std::string csv = temp_path("bad.csv");
