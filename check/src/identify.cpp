@@ -330,8 +330,8 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
   };
 
   // Rows where an estimated-gain actuator's force may be clamped are not linear in the gain:
-  // drop them, judged at the current gains (the prior's first), and fit again until the set of
-  // dropped rows settles.
+  // drop them, judged at the current gains (the prior's within a factor of two first), and fit
+  // again until the set of dropped rows settles.
   std::vector<char> keep(static_cast<std::size_t>(N * nv), 1);
   Eigen::MatrixXd W;
   Eigen::VectorXd target;
@@ -347,10 +347,15 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
       const double margin = 0.01 * (range[1] - range[0]);
       const int d = prior.jnt_dofadr[prior.actuator_trnid[a]];
       const auto G = static_cast<Eigen::Index>(g);
+      // the first fit trusts the prior's gain to a factor of two only: a row is kept when the
+      // force is inside the range for every gain in [g/2, 2g]; later fits use the estimate
+      const double low = pass == 0 ? 0.5 : 1.0, high = pass == 0 ? 2.0 : 1.0;
       for (int k = 0; k < N; ++k) {
-        const double force = gains[G] * basis(G, k) + gain_free(G, k);
-        if (force <= range[0] + margin || force >= range[1] - margin) {
-          next[static_cast<std::size_t>(k * nv + d)] = 0;
+        for (const double factor : {low, high}) {
+          const double force = factor * gains[G] * basis(G, k) + gain_free(G, k);
+          if (force <= range[0] + margin || force >= range[1] - margin) {
+            next[static_cast<std::size_t>(k * nv + d)] = 0;
+          }
         }
       }
     }

@@ -345,13 +345,20 @@ BaseParameters base_parameters_with_gains(const Model& model, const std::vector<
       data.qvel[i] = uniform(-2, 2);
       qacc[i] = uniform(-10, 10);
     }
-    for (const int a : gains) {  // the others' ctrl stays zero: their gain columns vanish
+    for (const int a : gains) {
       const auto& range = model.actuator_ctrlrange[a];
       data.ctrl[a] =
           model.actuator_ctrllimited[a] ? uniform(range[0], range[1]) : uniform(-1.0, 1.0);
     }
     kinematics(model, data);
     regressor(model, data, qacc, W.middleRows(static_cast<Eigen::Index>(s) * nv, nv));
+  }
+
+  // the gain columns of actuators whose gain is known are left out (zero: unidentifiable)
+  const std::vector<int> fixed = gain_actuators(model);
+  for (std::size_t g = 0; g < fixed.size(); ++g) {
+    if (std::find(gains.begin(), gains.end(), fixed[g]) != gains.end()) continue;
+    W.col(n - static_cast<int>(fixed.size()) + static_cast<int>(g)).setZero();
   }
 
   // W P = Q R: the first `rank` pivoted columns span the rest, W_D = W_B beta

@@ -42,7 +42,7 @@ Model heavy_arm2() {
 // gets the PD law's torque, a servo (affine bias) the reference itself as its target.
 // Returns how many (row, actuator) pairs had the force on a forcerange edge.
 int simulate_csv(const Model& model, double seconds, const std::string& path, bool with_qacc,
-                 bool with_force = true) {
+                 bool with_force = true, double swing = 0.4) {
   std::ofstream out(path);
   out << "time";
   for (const char* what : {"qpos", "qvel", "qacc"}) {
@@ -63,7 +63,7 @@ int simulate_csv(const Model& model, double seconds, const std::string& path, bo
     for (int a = 0; a < model.nu; ++a) {
       const int j = model.actuator_trnid[a];
       const double lo = model.jnt_range[j][0], hi = model.jnt_range[j][1];
-      const double mid = 0.5 * (lo + hi), half = 0.4 * (hi - lo);
+      const double mid = 0.5 * (lo + hi), half = swing * (hi - lo);
       double ref = mid, ref_vel = 0;
       for (const double f : {0.3, 0.71, 1.3}) {  // Hz, three sines of a third of the swing each
         const double w = 2 * std::numbers::pi * (f + 0.1 * a);

@@ -60,8 +60,9 @@ struct Result {
   BaseParameters base;             ///< the prior's base parameters (names, K)
   std::vector<int> gains;          ///< the actuators whose gains were estimated
   /// equations (sample, dof) left out because an estimated-gain actuator's force there is within
-  /// 1% of its forcerange's width of an edge or beyond, at the estimated gain: the force is not
-  /// linear in the gain where it clamps (decided again after each fit until it settles)
+  /// 1% of its forcerange's width of an edge or beyond: the force is not linear in the gain where
+  /// it clamps. Judged first for every gain within a factor of two of the prior's, then at each
+  /// fit's estimate until the set settles.
   int dropped = 0;
   Eigen::VectorXd prior;           ///< (rank) K pi of the prior model
   Eigen::VectorXd estimate;        ///< (rank) least-squares estimate

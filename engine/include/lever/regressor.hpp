@@ -12,8 +12,8 @@
 // (rnea includes armature; basis_a is the force per unit gain, see actuator_gain_basis). The gain
 // columns carry a minus sign: the motors' gain-scaled torque moves to the parameter side, and
 // what is left on the other side is known in absolute terms (an actuator force's gain-free part,
-// the springs, the stops). With data.ctrl zero the gain columns are zero and
-// Y pi = rnea + damping * qvel. docs/derivatives.md has the derivation.
+// the springs, the stops). Without the gain columns, Y pi = rnea + damping * qvel.
+// docs/derivatives.md has the derivation.
 #pragma once
 
 #include <Eigen/Core>
@@ -122,9 +122,9 @@ struct BaseParameters {
 BaseParameters base_parameters(const Model& model, int samples = 50, unsigned long long seed = 1);
 
 /// The same with only the gain columns of `gains` (actuator ids, each in gain_actuators) taking
-/// part: the other actuators' ctrl is held at zero, so their gain columns are zero and land in
-/// `unidentifiable` (their gains are known, not estimated). Throws StateError for an actuator
-/// without a gain column.
+/// part: the other gain columns are zeroed in the stack, so they land in `unidentifiable` (their
+/// gains are known, not estimated; their torque belongs on the known side). Throws StateError for
+/// an actuator without a gain column.
 BaseParameters base_parameters_with_gains(const Model& model, const std::vector<int>& gains,
                                           int samples = 50, unsigned long long seed = 1);
 
