@@ -256,8 +256,9 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
   if (!r.gains.empty()) {
     if (data.ctrl.rows() != prior.nu || data.ctrl.cols() != N ||
         data.actuator_force.rows() != prior.nu || data.actuator_force.cols() != N) {
-      throw Error("identify: estimating an actuator's gain needs the trajectory's ctrl columns "
-                  "(ctrl[m] for every actuator).");
+      throw Error(
+          "identify: estimating an actuator's gain needs the trajectory's ctrl columns "
+          "(ctrl[m] for every actuator).");
     }
   }
   r.base = base_parameters_with_gains(prior, r.gains);  // throws for a gain that is not fixed
@@ -273,8 +274,9 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
   const std::vector<int> fixed = gain_actuators(prior);
   std::vector<int> gain_column(r.gains.size());  // each estimated gain's column in pi
   for (std::size_t g = 0; g < r.gains.size(); ++g) {
-    gain_column[g] = gain_column0 + static_cast<int>(std::find(fixed.begin(), fixed.end(),
-                                                               r.gains[g]) - fixed.begin());
+    gain_column[g] =
+        gain_column0 +
+        static_cast<int>(std::find(fixed.begin(), fixed.end(), r.gains[g]) - fixed.begin());
   }
   Data work(prior);
   Eigen::MatrixXd Y(nv, n);
@@ -300,7 +302,8 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
       const int j = prior.actuator_trnid[a];
       const int q = prior.jnt_qposadr[j], d = prior.jnt_dofadr[j];
       const auto G = static_cast<Eigen::Index>(g);
-      basis(G, k) = actuator_gain_basis(prior, a, data.ctrl(a, k), data.qpos(q, k), data.qvel(d, k));
+      basis(G, k) =
+          actuator_gain_basis(prior, a, data.ctrl(a, k), data.qpos(q, k), data.qvel(d, k));
       gain_free(G, k) = actuator_gain_free_force(prior, a, data.qpos(q, k), data.qvel(d, k));
       target_all[k * nv + d] +=
           prior.actuator_gear[a][0] * (gain_free(G, k) - data.actuator_force(a, k));
@@ -310,7 +313,7 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
   // the full parameters closest to the prior (each scaled by its kind's size) with K pi = theta
   const int bodies = prior.nbody - 1;
   const auto kind_of = [&](int c) {
-    if (c >= gain_column0) return 6;  // gain
+    if (c >= gain_column0) return 6;                                        // gain
     if (c >= kPerBody * bodies) return c < kPerBody * bodies + nv ? 4 : 5;  // armature, damping
     const int k = c % kPerBody;
     return k == 0 ? 0 : (k <= 3 ? 1 : 2);  // mass, first moment, inertia
@@ -365,9 +368,10 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
     r.equations = static_cast<int>(rows);
     r.dropped = N * nv - r.equations;
     if (r.equations < rank + 1) {
-      throw Error("identify: " + std::to_string(r.equations) + " equations (samples x dofs" +
-                  (r.dropped ? ", less " + std::to_string(r.dropped) + " where a force clamps" : "") +
-                  ") for " + std::to_string(rank) + " base parameters: too few samples.");
+      throw Error(
+          "identify: " + std::to_string(r.equations) + " equations (samples x dofs" +
+          (r.dropped ? ", less " + std::to_string(r.dropped) + " where a force clamps" : "") +
+          ") for " + std::to_string(rank) + " base parameters: too few samples.");
     }
     W.resize(rows, rank);
     target.resize(rows);
@@ -378,9 +382,10 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
     }
     if (!r.gains.empty() &&
         target.cwiseAbs().maxCoeff() <= 1e-12 * std::max(1.0, W.cwiseAbs().maxCoeff())) {
-      throw Error("identify: with the gains of every actuator estimated, nothing in the data is "
-                  "known in absolute terms (no spring, stop, gain-free actuator force or actuator of "
-                  "known gain): the gains and the inertia scale together. Estimate fewer gains.");
+      throw Error(
+          "identify: with the gains of every actuator estimated, nothing in the data is "
+          "known in absolute terms (no spring, stop, gain-free actuator force or actuator of "
+          "known gain): the gains and the inertia scale together. Estimate fewer gains.");
     }
     r.estimate = Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(W).solve(target);
     if (r.gains.empty() || pass >= 20) break;

@@ -85,7 +85,7 @@ int gain_tied_bias(const Model& model, int a) {
   const double gain = model.actuator_gainprm[a][0];
   const auto& bias = model.actuator_biasprm[a];
   if (gain == 0) return 0;
-  if (bias[1] == -gain) return 1;                 // position servo: kp (ctrl - length)
+  if (bias[1] == -gain) return 1;                  // position servo: kp (ctrl - length)
   if (bias[1] == 0 && bias[2] == -gain) return 2;  // velocity servo: kv (ctrl - velocity)
   return 0;
 }
@@ -97,12 +97,9 @@ double actuator_gain_basis(const Model& model, int a, double ctrl, double qpos, 
   }
   const double gear = model.actuator_gear[a][0];
   switch (gain_tied_bias(model, a)) {
-    case 1:
-      return ctrl - gear * qpos;
-    case 2:
-      return ctrl - gear * qvel;
-    default:
-      return ctrl;
+    case 1: return ctrl - gear * qpos;
+    case 2: return ctrl - gear * qvel;
+    default: return ctrl;
   }
 }
 
@@ -234,8 +231,8 @@ void set_model_parameters(Model& model, const Eigen::Ref<const Eigen::VectorXd>&
   for (const int a : gain_actuators(model)) {
     const double gain = pi[column++];
     if (!std::isfinite(gain)) {
-      throw ModelError("actuator '" + actuator_label(model, a) + "': gain " +
-                       std::to_string(gain) + " is not finite.");
+      throw ModelError("actuator '" + actuator_label(model, a) + "': gain " + std::to_string(gain) +
+                       " is not finite.");
     }
     // a servo's tied bias entry follows its gain (read from the model before the edit)
     const int tied = gain_tied_bias(model, a);

@@ -117,7 +117,8 @@ TEST_CASE("cli: lever identify recovers the model an excited run came from",
   std::filesystem::remove(written);
 }
 
-TEST_CASE("cli: lever identify --identify-gain finds a motor's gain", "[cli][derivatives][identify]") {
+TEST_CASE("cli: lever identify --identify-gain finds a motor's gain",
+          "[cli][derivatives][identify]") {
   // arm2 whose elbow motor is 1.3 times as strong as arm2.xml says, excited by `lever simulate`;
   // identified from arm2.xml with the elbow's gain estimated (the shoulder's known fixes the scale)
   const std::string arm2 = model_path("models/arm2.xml");
@@ -154,8 +155,8 @@ TEST_CASE("cli: lever identify --identify-gain finds a motor's gain", "[cli][der
   const Model identified = mjcf::load_file(written);
   CHECK(std::abs(identified.actuator_gainprm[1][0] - 1.3) <= 1e-8);
   // all gains: nothing absolute is left, a clear error (exit 2)
-  const Run all = run_lever("identify " + quoted(arm2) + " " + quoted(csv) + " --identify-gain all",
-                            true);
+  const Run all =
+      run_lever("identify " + quoted(arm2) + " " + quoted(csv) + " --identify-gain all", true);
   CHECK(all.status == 2);
   CHECK_THAT(all.out, Catch::Contains("scale together"));
   for (const std::string& f : {truth, csv, written}) std::filesystem::remove(f);

@@ -8,14 +8,15 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <numbers>
 #include <random>
-#include <utility>
 #include <string>
+#include <utility>
 
 #include <lever/harness/models.hpp>
 #include <lever/harness/random_state.hpp>
@@ -233,8 +234,7 @@ TEST_CASE("identify: a motor's unknown gain, from ctrl", "[derivatives][identify
   CHECK(identified.actuator_ctrlrange[1] == prior.actuator_ctrlrange[1]);
   // without a known gain nothing fixes the scale: a clear error, not a zero model
   options.gains = identify::gain_actuators_named(prior, "all");
-  CHECK_THROWS_WITH(identify::identify(prior, data, options),
-                    Catch::Contains("scale together"));
+  CHECK_THROWS_WITH(identify::identify(prior, data, options), Catch::Contains("scale together"));
   CHECK_THROWS_WITH(identify::gain_actuators_named(prior, "wrist"),
                     Catch::Contains("no actuator 'wrist'"));
   std::filesystem::remove(csv);
@@ -267,6 +267,42 @@ TEST_CASE("identify: a position servo's kp, rows where its force clamps dropped"
   const Model identified = identify::identified_model(prior, r);
   CHECK(identified.actuator_biasprm[servo][1] == -r.parameters[gain]);
   std::filesystem::remove(csv);
+}
+
+TEST_CASE("identify: write_model writes new gains as each actuator element says them",
+          "[derivatives][identify]") {
+  // servo_affine.xml: a <general> position servo, a <motor>, a <position>, a <velocity>, and two
+  // affine gains (no gain column). Every fixed gain scaled by 1.5 and written: the file read back
+  // has the gains, each servo's tied bias at -gain, the untouched actuators as they were.
+  const std::string path = model_path("tests/derivatives/servo_affine.xml");
+  const Model prior = mjcf::load_file(path);
+  const std::vector<int> gains = gain_actuators(prior);
+  REQUIRE(gains.size() == 4);  // elbow, shoulder_motor, elbow_p, slide
+  Eigen::VectorXd pi = model_parameters(prior);
+  const int first = regressor_columns(prior) - static_cast<int>(gains.size());
+  for (int g = 0; g < static_cast<int>(gains.size()); ++g) pi[first + g] *= 1.5;
+  Model edited = prior;
+  set_model_parameters(edited, pi);
+  const std::string written = temp_path("servo_affine.xml");
+  identify::write_model(path, edited, written);
+  const Model back = mjcf::load_file(written);
+  for (int a = 0; a < prior.nu; ++a) {
+    INFO(prior.actuator_name[a]);
+    CHECK(back.actuator_gaintype[a] == prior.actuator_gaintype[a]);
+    CHECK(back.actuator_biastype[a] == prior.actuator_biastype[a]);
+    for (int i = 0; i < 3; ++i) {
+      CHECK(back.actuator_gainprm[a][i] == edited.actuator_gainprm[a][i]);
+      CHECK(back.actuator_biasprm[a][i] == edited.actuator_biasprm[a][i]);
+    }
+    CHECK(back.actuator_gear[a] == prior.actuator_gear[a]);
+    CHECK(back.actuator_ctrlrange[a] == prior.actuator_ctrlrange[a]);
+    CHECK(back.actuator_forcerange[a] == prior.actuator_forcerange[a]);
+    const bool fixed = std::find(gains.begin(), gains.end(), a) != gains.end();
+    CHECK((back.actuator_gainprm[a][0] != prior.actuator_gainprm[a][0]) == fixed);
+    const int tied = gain_tied_bias(prior, a);
+    if (tied > 0) CHECK(back.actuator_biasprm[a][tied] == -back.actuator_gainprm[a][0]);
+  }
+  std::filesystem::remove(written);
 }
 
 TEST_CASE("identify: noisy data, estimates within their standard errors",

@@ -89,8 +89,9 @@ TEST_CASE("regressor: with ctrl, the gain columns reproduce the actuators' torqu
         const int q = model.jnt_qposadr[j], d = model.jnt_dofadr[j];
         const double gear = model.actuator_gear[a][0];
         const bool fixed = std::find(gains.begin(), gains.end(), a) != gains.end();
-        expected[d] += gear * (fixed ? actuator_gain_free_force(model, a, data.qpos[q], data.qvel[d])
-                                     : data.actuator_force[a]);
+        expected[d] +=
+            gear * (fixed ? actuator_gain_free_force(model, a, data.qpos[q], data.qvel[d])
+                          : data.actuator_force[a]);
         const auto& f = model.actuator_forcerange[a];
         if (model.actuator_forcelimited[a] &&
             (data.actuator_force[a] <= f[0] || data.actuator_force[a] >= f[1])) {

@@ -71,7 +71,8 @@ int cmd_identify(const std::vector<std::string>& argv) {
     json.key("dropped").value(r.dropped);
     json.key("gains").begin_array();
     for (const int a : r.gains) {
-      json.value(prior.actuator_name[a].empty() ? "#" + std::to_string(a) : prior.actuator_name[a]);
+      json.value(prior.actuator_name[a].empty() ? std::string("#").append(std::to_string(a))
+                                                : prior.actuator_name[a]);
     }
     json.end_array();
     json.key("residual_rms").value(r.residual_rms);
@@ -104,11 +105,14 @@ int cmd_identify(const std::vector<std::string>& argv) {
     std::printf("qacc from %s; joint forces from %s\n", data.qacc_source.c_str(),
                 data.force_source.c_str());
     if (!r.gains.empty()) {
-      std::printf("%d gains estimated from ctrl; %d equations dropped where their force may clamp\n",
-                  static_cast<int>(r.gains.size()), r.dropped);
+      std::printf(
+          "%d gains estimated from ctrl; %d equations dropped where their force may clamp\n",
+          static_cast<int>(r.gains.size()), r.dropped);
     }
     std::printf("\n");
-    std::printf("%d base parameters (SI units: kg, kg m, kg m^2, N m s/rad; gains per unit ctrl):\n", r.base.rank);
+    std::printf(
+        "%d base parameters (SI units: kg, kg m, kg m^2, N m s/rad; gains per unit ctrl):\n",
+        r.base.rank);
     std::printf("  %14s %14s %14s  %s\n", "prior", "estimate", "std. error", "combination");
     for (int k = 0; k < r.base.rank; ++k) {
       std::printf("  %14s %14s %14s  %s\n", num(r.prior[k], "%.8g").c_str(),

@@ -31,8 +31,8 @@ struct Trajectory {
   Eigen::MatrixXd actuator_force;  ///< (nu x N) each actuator's force in `force` (before gear)
   Eigen::MatrixXd ctrl;  ///< (nu x N) the ctrl columns as written (unclamped); 0 x N without them
   bool qacc_differenced = false;  ///< qacc from differences of qvel (errors correlated in time)
-  std::string qacc_source;   ///< where qacc came from (its columns, or differences of qvel)
-  std::string force_source;  ///< where the motor forces came from
+  std::string qacc_source;        ///< where qacc came from (its columns, or differences of qvel)
+  std::string force_source;       ///< where the motor forces came from
 };
 
 /// Read a trajectory in `lever simulate --csv`'s columns: time, qpos[joint], qvel[joint], and
@@ -57,23 +57,23 @@ struct Options {
 
 /// What identify() found.
 struct Result {
-  BaseParameters base;             ///< the prior's base parameters (names, K)
-  std::vector<int> gains;          ///< the actuators whose gains were estimated
+  BaseParameters base;     ///< the prior's base parameters (names, K)
+  std::vector<int> gains;  ///< the actuators whose gains were estimated
   /// equations (sample, dof) left out because an estimated-gain actuator's force there is within
   /// 1% of its forcerange's width of an edge or beyond: the force is not linear in the gain where
   /// it clamps. Judged first for every gain within a factor of two of the prior's, then at each
   /// fit's estimate until the set settles.
   int dropped = 0;
-  Eigen::VectorXd prior;           ///< (rank) K pi of the prior model
-  Eigen::VectorXd estimate;        ///< (rank) least-squares estimate
+  Eigen::VectorXd prior;     ///< (rank) K pi of the prior model
+  Eigen::VectorXd estimate;  ///< (rank) least-squares estimate
   /// (rank) the estimate's standard errors: the square roots of the diagonal of the
   /// cluster-robust covariance (W^T W)^-1 (sum_c W_c^T r_c r_c^T W_c) (W^T W)^-1 c/(c-1) m/(m-p),
   /// clusters c of consecutive samples (a sample's dofs share their errors through M; differenced
   /// qacc's errors are correlated between neighbouring samples)
   Eigen::VectorXd standard_error;
   Eigen::VectorXd ols_standard_error;  ///< (rank) sqrt(diag(sigma^2 (W^T W)^-1)), for comparison
-  double residual_rms = 0.0;       ///< of the fit, in N m (N for slides)
-  int samples = 0, equations = 0;  ///< N and the equations used (N nv less the dropped)
+  double residual_rms = 0.0;           ///< of the fit, in N m (N for slides)
+  int samples = 0, equations = 0;      ///< N and the equations used (N nv less the dropped)
   /// base parameters the data barely excites: in the direction of W's singular vectors whose
   /// singular value is below 1e-6 of the largest (W with columns scaled to unit norm); their
   /// estimates are not to be trusted

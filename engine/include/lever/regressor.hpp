@@ -69,8 +69,7 @@ int gain_tied_bias(const Model& model, int actuator);
 /// The force of a fixed-gain actuator per unit gain at a joint position and velocity: ctrl
 /// (clamped to ctrlrange) minus the tied length (gear q) or velocity (gear qvel). Its force before
 /// the forcerange clamp is gainprm[0] * basis + actuator_gain_free_force.
-double actuator_gain_basis(const Model& model, int actuator, double ctrl, double qpos,
-                           double qvel);
+double actuator_gain_basis(const Model& model, int actuator, double ctrl, double qpos, double qvel);
 
 /// The part of a fixed-gain actuator's force (before the forcerange clamp) that does not scale
 /// with the gain: its bias without the tied entry.
