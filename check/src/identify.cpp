@@ -2,6 +2,7 @@
 #include <lever/error.hpp>
 #include <lever/identify.hpp>
 #include <lever/kinematics.hpp>
+#include <lever/mjcf.hpp>
 
 #ifdef LEVER_HAVE_TINYXML2
 #include <tinyxml2.h>
@@ -120,9 +121,10 @@ Trajectory read_csv(const Model& prior, const std::string& path) {
     force_col[a] = find("actuator_force[" + name + "]", false);
     have_force = have_force && force_col[a] >= 0;
   }
-  if (!have_force) {
-    for (int a = 0; a < nu; ++a)
-      ctrl_col[a] = find("ctrl[" + label_of(prior.actuator_name[a], a) + "]", true);
+  bool have_ctrl = true;  // kept when every actuator has one; required without forces
+  for (int a = 0; a < nu; ++a) {
+    ctrl_col[a] = find("ctrl[" + label_of(prior.actuator_name[a], a) + "]", !have_force);
+    have_ctrl = have_ctrl && ctrl_col[a] >= 0;
   }
 
   // the rows, every field a finite number
@@ -155,7 +157,10 @@ Trajectory read_csv(const Model& prior, const std::string& path) {
       if (have_qacc) parse(qacc_col[d]);
       if (have_constraint) parse(constraint_col[d]);
     }
-    for (int a = 0; a < nu; ++a) parse(have_force ? force_col[a] : ctrl_col[a]);
+    for (int a = 0; a < nu; ++a) {
+      if (have_force) parse(force_col[a]);
+      if (have_ctrl) parse(ctrl_col[a]);
+    }
     rows.push_back(std::move(row));
   }
 
@@ -168,6 +173,8 @@ Trajectory read_csv(const Model& prior, const std::string& path) {
   t.qvel.resize(nv, count);
   t.qacc.resize(nv, count);
   t.force.setZero(nv, count);
+  t.actuator_force.setZero(nu, count);
+  t.ctrl.setZero(have_ctrl ? nu : 0, count);
   const auto at = [&](int r, int c) {
     return rows[static_cast<std::size_t>(r)][static_cast<std::size_t>(c)];
   };
@@ -197,8 +204,11 @@ Trajectory read_csv(const Model& prior, const std::string& path) {
           have_force ? at(r, force_col[a])
                      : force_from_ctrl(prior, a, at(r, ctrl_col[a]), t.qpos(d, k), t.qvel(d, k));
       t.force(d, k) += prior.actuator_gear[a][0] * force;
+      t.actuator_force(a, k) = force;
+      if (have_ctrl) t.ctrl(a, k) = at(r, ctrl_col[a]);
     }
   }
+  t.qacc_differenced = !have_qacc;
   t.qacc_source = have_qacc ? "the qacc columns"
                             : "forward differences of qvel, (qvel[k+1] - qvel[k]) / (t[k+1] - "
                               "t[k]) (the last row dropped)";
@@ -209,7 +219,31 @@ Trajectory read_csv(const Model& prior, const std::string& path) {
   return t;
 }
 
-Result identify(const Model& prior, const Trajectory& data) {
+std::vector<int> gain_actuators_named(const Model& prior, const std::string& names) {
+  const std::vector<int> fixed = gain_actuators(prior);
+  if (names == "all") return fixed;
+  std::vector<int> out;
+  std::stringstream list(names);
+  std::string name;
+  while (std::getline(list, name, ',')) {
+    int found = -1;
+    for (int a = 0; a < prior.nu; ++a) {
+      if (label_of(prior.actuator_name[a], a) == name) found = a;
+    }
+    if (found < 0) {
+      throw Error("identify: no actuator '" + name + "' in the prior '" + prior.name + "'.");
+    }
+    if (std::find(fixed.begin(), fixed.end(), found) == fixed.end()) {
+      throw Error("identify: actuator '" + name +
+                  "' has an affine gain: only a fixed gain (gainprm[0]) is identified.");
+    }
+    if (std::find(out.begin(), out.end(), found) == out.end()) out.push_back(found);
+  }
+  if (out.empty()) throw Error("identify: no actuator named in '" + names + "'.");
+  return out;
+}
+
+Result identify(const Model& prior, const Trajectory& data, const Options& options) {
   const int nv = prior.nv;
   const auto N = static_cast<int>(data.time.size());
   if (data.qpos.rows() != nv || data.qpos.cols() != N || data.qvel.cols() != N ||
@@ -218,44 +252,189 @@ Result identify(const Model& prior, const Trajectory& data) {
                 ", " + std::to_string(N) + " samples).");
   }
   Result r;
-  r.base = base_parameters(prior);
+  r.gains = options.gains;
+  if (!r.gains.empty()) {
+    if (data.ctrl.rows() != prior.nu || data.ctrl.cols() != N ||
+        data.actuator_force.rows() != prior.nu || data.actuator_force.cols() != N) {
+      throw Error(
+          "identify: estimating an actuator's gain needs the trajectory's ctrl columns "
+          "(ctrl[m] for every actuator).");
+    }
+  }
+  r.base = base_parameters_with_gains(prior, r.gains);  // throws for a gain that is not fixed
   const int rank = r.base.rank;
   r.samples = N;
-  r.equations = N * nv;
-  if (r.equations < rank + 1) {
-    throw Error("identify: " + std::to_string(r.equations) + " equations (samples x dofs) for " +
-                std::to_string(rank) + " base parameters: too few samples.");
-  }
 
-  // the base regressor stacked over the samples, and the forces it must explain
+  // The base regressor stacked over the samples, and the forces it must explain. An actuator
+  // whose gain is estimated keeps only its force's gain-free part on the right; the rest is its
+  // gain column (-gear * basis) on the left.
+  const Eigen::VectorXd pi0 = model_parameters(prior);
+  const int n = static_cast<int>(pi0.size());
+  const int gain_column0 = n - static_cast<int>(gain_actuators(prior).size());
+  const std::vector<int> fixed = gain_actuators(prior);
+  std::vector<int> gain_column(r.gains.size());  // each estimated gain's column in pi
+  for (std::size_t g = 0; g < r.gains.size(); ++g) {
+    gain_column[g] =
+        gain_column0 +
+        static_cast<int>(std::find(fixed.begin(), fixed.end(), r.gains[g]) - fixed.begin());
+  }
   Data work(prior);
-  Eigen::MatrixXd Y(nv, regressor_columns(prior));
-  Eigen::MatrixXd W(r.equations, rank);
-  Eigen::VectorXd target(r.equations);
+  Eigen::MatrixXd Y(nv, n);
+  Eigen::MatrixXd W_all(N * nv, rank);
+  Eigen::VectorXd target_all(N * nv);
+  Eigen::MatrixXd basis(static_cast<Eigen::Index>(r.gains.size()), N);  // force per unit gain
+  Eigen::MatrixXd gain_free(static_cast<Eigen::Index>(r.gains.size()), N);
   for (int k = 0; k < N; ++k) {
     work.qpos = data.qpos.col(k);
     work.qvel = data.qvel.col(k);
+    work.ctrl.setZero();
+    for (const int a : r.gains) work.ctrl[a] = data.ctrl(a, k);
     kinematics(prior, work);
     regressor(prior, work, data.qacc.col(k), Y);
-    W.middleRows(k * nv, nv) = r.base.base_regressor(Y);
+    W_all.middleRows(k * nv, nv) = r.base.base_regressor(Y);
     for (int j = 0; j < prior.njnt; ++j) {  // springs are the prior's
       const int q = prior.jnt_qposadr[j], d = prior.jnt_dofadr[j];
-      target[k * nv + d] =
+      target_all[k * nv + d] =
           data.force(d, k) + prior.jnt_stiffness[j] * (data.qpos(q, k) - prior.qpos_spring[q]);
+    }
+    for (std::size_t g = 0; g < r.gains.size(); ++g) {
+      const int a = r.gains[g];
+      const int j = prior.actuator_trnid[a];
+      const int q = prior.jnt_qposadr[j], d = prior.jnt_dofadr[j];
+      const auto G = static_cast<Eigen::Index>(g);
+      basis(G, k) =
+          actuator_gain_basis(prior, a, data.ctrl(a, k), data.qpos(q, k), data.qvel(d, k));
+      gain_free(G, k) = actuator_gain_free_force(prior, a, data.qpos(q, k), data.qvel(d, k));
+      target_all[k * nv + d] +=
+          prior.actuator_gear[a][0] * (gain_free(G, k) - data.actuator_force(a, k));
     }
   }
 
-  // least squares, standard errors, and the directions the data does not excite
-  const Eigen::ColPivHouseholderQR<Eigen::MatrixXd> qr(W);
-  r.estimate = qr.solve(target);
-  r.prior = r.base.K * model_parameters(prior);
+  // the full parameters closest to the prior (each scaled by its kind's size) with K pi = theta
+  const int bodies = prior.nbody - 1;
+  const auto kind_of = [&](int c) {
+    if (c >= gain_column0) return 6;                                        // gain
+    if (c >= kPerBody * bodies) return c < kPerBody * bodies + nv ? 4 : 5;  // armature, damping
+    const int k = c % kPerBody;
+    return k == 0 ? 0 : (k <= 3 ? 1 : 2);  // mass, first moment, inertia
+  };
+  double kind_size[7] = {0, 0, 0, 0, 0, 0, 0};
+  for (int c = 0; c < n; ++c)
+    kind_size[kind_of(c)] = std::max(kind_size[kind_of(c)], std::abs(pi0[c]));
+  Eigen::VectorXd scale(n);
+  for (int c = 0; c < n; ++c) {
+    const double floor = kind_size[kind_of(c)] > 0 ? 1e-3 * kind_size[kind_of(c)] : 1e-6;
+    scale[c] = std::max(std::abs(pi0[c]), floor);
+  }
+  r.prior = r.base.K * pi0;
+  const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> KS(r.base.K * scale.asDiagonal());
+  const auto closest = [&](const Eigen::VectorXd& theta) -> Eigen::VectorXd {
+    return pi0 + scale.cwiseProduct(KS.solve(theta - r.prior));
+  };
+
+  // Rows where an estimated-gain actuator's force may be clamped are not linear in the gain:
+  // drop them, judged at the current gains (the prior's within a factor of two first), and fit
+  // again until the set of dropped rows settles.
+  std::vector<char> keep(static_cast<std::size_t>(N * nv), 1);
+  Eigen::MatrixXd W;
+  Eigen::VectorXd target;
+  Eigen::VectorXd gains(static_cast<Eigen::Index>(r.gains.size()));
+  for (std::size_t g = 0; g < r.gains.size(); ++g)
+    gains[static_cast<Eigen::Index>(g)] = pi0[gain_column[g]];
+  for (int pass = 0;; ++pass) {
+    std::vector<char> next(keep.size(), 1);
+    for (std::size_t g = 0; g < r.gains.size(); ++g) {
+      const int a = r.gains[g];
+      if (!prior.actuator_forcelimited[a]) continue;
+      const auto& range = prior.actuator_forcerange[a];
+      const double margin = 0.01 * (range[1] - range[0]);
+      const int d = prior.jnt_dofadr[prior.actuator_trnid[a]];
+      const auto G = static_cast<Eigen::Index>(g);
+      // the first fit trusts the prior's gain to a factor of two only: a row is kept when the
+      // force is inside the range for every gain in [g/2, 2g]; later fits use the estimate
+      const double low = pass == 0 ? 0.5 : 1.0, high = pass == 0 ? 2.0 : 1.0;
+      for (int k = 0; k < N; ++k) {
+        for (const double factor : {low, high}) {
+          const double force = factor * gains[G] * basis(G, k) + gain_free(G, k);
+          if (force <= range[0] + margin || force >= range[1] - margin) {
+            next[static_cast<std::size_t>(k * nv + d)] = 0;
+          }
+        }
+      }
+    }
+    if (pass > 0 && next == keep) break;
+    keep = next;
+    const auto rows = static_cast<Eigen::Index>(std::count(keep.begin(), keep.end(), 1));
+    r.equations = static_cast<int>(rows);
+    r.dropped = N * nv - r.equations;
+    if (r.equations < rank + 1) {
+      throw Error(
+          "identify: " + std::to_string(r.equations) + " equations (samples x dofs" +
+          (r.dropped ? ", less " + std::to_string(r.dropped) + " where a force clamps" : "") +
+          ") for " + std::to_string(rank) + " base parameters: too few samples.");
+    }
+    W.resize(rows, rank);
+    target.resize(rows);
+    for (Eigen::Index i = 0, row = 0; i < N * nv; ++i) {
+      if (!keep[static_cast<std::size_t>(i)]) continue;
+      W.row(row) = W_all.row(i);
+      target[row++] = target_all[i];
+    }
+    if (!r.gains.empty() &&
+        target.cwiseAbs().maxCoeff() <= 1e-12 * std::max(1.0, W.cwiseAbs().maxCoeff())) {
+      throw Error(
+          "identify: with the gains of every actuator estimated, nothing in the data is "
+          "known in absolute terms (no spring, stop, gain-free actuator force or actuator of "
+          "known gain): the gains and the inertia scale together. Estimate fewer gains.");
+    }
+    r.estimate = Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(W).solve(target);
+    if (r.gains.empty() || pass >= 20) break;
+    const Eigen::VectorXd pi = closest(r.estimate);
+    for (std::size_t g = 0; g < r.gains.size(); ++g)
+      gains[static_cast<Eigen::Index>(g)] = pi[gain_column[g]];
+  }
+
+  // standard errors and the directions the data does not excite
   const Eigen::VectorXd residual = target - W * r.estimate;
   r.residual_rms = std::sqrt(residual.squaredNorm() / r.equations);
-  const double sigma2 = residual.squaredNorm() / (r.equations - rank);
-  const Eigen::MatrixXd information = W.transpose() * W;
-  const Eigen::MatrixXd covariance =
-      sigma2 * information.ldlt().solve(Eigen::MatrixXd::Identity(rank, rank));
-  r.standard_error = covariance.diagonal().cwiseMax(0.0).cwiseSqrt();
+  const double dof = r.equations - rank;
+  const Eigen::MatrixXd inverse_information =
+      (W.transpose() * W).ldlt().solve(Eigen::MatrixXd::Identity(rank, rank));
+  r.ols_standard_error =
+      (residual.squaredNorm() / dof * inverse_information.diagonal()).cwiseMax(0.0).cwiseSqrt();
+  // Cluster-robust (sandwich) covariance: a sample's dofs share their errors (a qacc error e
+  // enters every row as M e), and differenced qacc's errors are correlated between neighbouring
+  // samples (each qvel error enters two differences); errors in separate clusters are taken as
+  // independent. Clusters: one sample, or ten consecutive ones for differenced qacc.
+  {
+    const int per_cluster = data.qacc_differenced ? 10 : 1;
+    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(rank, rank);
+    Eigen::VectorXd score = Eigen::VectorXd::Zero(rank);
+    int clusters = 0, current = -1;
+    for (Eigen::Index i = 0, row = 0; i < N * nv; ++i) {
+      if (!keep[static_cast<std::size_t>(i)]) continue;
+      const int cluster = static_cast<int>(i / nv) / per_cluster;
+      if (cluster != current) {
+        meat += score * score.transpose();
+        score.setZero();
+        current = cluster;
+        ++clusters;
+      }
+      score += W.row(row).transpose() * residual[row];
+      ++row;
+    }
+    meat += score * score.transpose();
+    if (clusters > rank + 1) {
+      const double correction =
+          clusters / (clusters - 1.0) * (r.equations - 1.0) / dof;  // small-sample, as Stata's
+      r.standard_error = (correction * inverse_information * meat * inverse_information)
+                             .diagonal()
+                             .cwiseMax(0.0)
+                             .cwiseSqrt();
+    } else {
+      r.standard_error = r.ols_standard_error;  // too few clusters for the sandwich
+    }
+  }
 
   Eigen::VectorXd norms = W.colwise().norm().transpose();
   for (int c = 0; c < rank; ++c) norms[c] = norms[c] > 0 ? norms[c] : 1.0;
@@ -272,26 +451,7 @@ Result identify(const Model& prior, const Trajectory& data) {
     }
   }
 
-  // the full parameters closest to the prior (scaled by each kind's size) with K pi = estimate
-  const Eigen::VectorXd pi0 = model_parameters(prior);
-  const int n = static_cast<int>(pi0.size());
-  const int bodies = prior.nbody - 1;
-  Eigen::VectorXd scale(n);
-  const auto kind_of = [&](int c) {
-    if (c >= kPerBody * bodies) return c < kPerBody * bodies + nv ? 4 : 5;  // armature, damping
-    const int k = c % kPerBody;
-    return k == 0 ? 0 : (k <= 3 ? 1 : 2);  // mass, first moment, inertia
-  };
-  double kind_size[6] = {0, 0, 0, 0, 0, 0};
-  for (int c = 0; c < n; ++c)
-    kind_size[kind_of(c)] = std::max(kind_size[kind_of(c)], std::abs(pi0[c]));
-  for (int c = 0; c < n; ++c) {
-    const double floor = kind_size[kind_of(c)] > 0 ? 1e-3 * kind_size[kind_of(c)] : 1e-6;
-    scale[c] = std::max(std::abs(pi0[c]), floor);
-  }
-  const Eigen::MatrixXd KS = r.base.K * scale.asDiagonal();
-  const Eigen::VectorXd step = KS.completeOrthogonalDecomposition().solve(r.estimate - r.prior);
-  r.parameters = pi0 + scale.cwiseProduct(step);
+  r.parameters = closest(r.estimate);
 
   // inertia the data cannot see stays the prior's about the (new) centre of mass
   for (int b = 1; b <= bodies; ++b) {
@@ -355,7 +515,7 @@ Result identify(const Model& prior, const Trajectory& data) {
   }
 
   // armature and damping that came out negative by rounding only (an estimate of zero) are zero
-  for (int c = kPerBody * bodies; c < n; ++c) {
+  for (int c = kPerBody * bodies; c < gain_column0; ++c) {
     if (r.parameters[c] < 0 && r.parameters[c] > -1e-12 * std::max(1.0, kind_size[kind_of(c)])) {
       r.parameters[c] = 0.0;
     }
@@ -450,6 +610,51 @@ void write_model(const std::string& prior_path, const Model& identified,
   visit(world);
   if (body != identified.nbody - 1 || joint != identified.njnt) {
     throw Error(prior_path + ": its bodies and joints do not match the identified model.");
+  }
+
+  // actuators whose gain (or tied bias) differs from the prior's, in document order
+  const Model original = mjcf::load_file(prior_path);
+  if (original.nu != identified.nu) {
+    throw Error(prior_path + ": its actuators do not match the identified model.");
+  }
+  const auto used = [&](const auto& prm, int at_least) {  // entries up to the last nonzero
+    int count = static_cast<int>(prm.size());
+    while (count > at_least && prm[static_cast<std::size_t>(count - 1)] == 0) --count;
+    return vector(prm.data(), count);
+  };
+  int actuator = 0;
+  for (tinyxml2::XMLElement* section = root->FirstChildElement("actuator"); section;
+       section = section->NextSiblingElement("actuator")) {
+    for (tinyxml2::XMLElement* e = section->FirstChildElement(); e; e = e->NextSiblingElement()) {
+      const std::string tag = e->Name();
+      if (tag != "motor" && tag != "general" && tag != "position" && tag != "velocity") continue;
+      const int a = actuator++;
+      if (a >= identified.nu) throw Error(prior_path + ": more actuators than the model.");
+      if (identified.actuator_gainprm[a] == original.actuator_gainprm[a] &&
+          identified.actuator_biasprm[a] == original.actuator_biasprm[a]) {
+        continue;
+      }
+      const double gain = identified.actuator_gainprm[a][0];
+      if (tag == "position") {
+        e->SetAttribute("kp", number(gain).c_str());  // its bias -kp follows
+      } else if (tag == "velocity") {
+        e->SetAttribute("kv", number(gain).c_str());
+      } else {
+        if (tag == "motor") {  // a motor's gain is 1: say everything a <general> needs
+          e->SetName("general");
+          e->SetAttribute("dyntype", "none");
+          e->SetAttribute("gaintype", "fixed");
+          e->SetAttribute("biastype", "none");
+        }
+        e->SetAttribute("gainprm", used(identified.actuator_gainprm[a], 1).c_str());
+        if (identified.actuator_biastype[a] == BiasType::kAffine) {
+          e->SetAttribute("biasprm", used(identified.actuator_biasprm[a], 3).c_str());
+        }
+      }
+    }
+  }
+  if (actuator != identified.nu) {
+    throw Error(prior_path + ": its actuators do not match the identified model.");
   }
   if (doc.SaveFile(out_path.c_str()) != tinyxml2::XML_SUCCESS) {
     throw Error(out_path + ": cannot write the model.");

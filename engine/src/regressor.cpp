@@ -59,7 +59,58 @@ std::string dof_label(const Model& model, int i) {
   return joint.empty() ? std::string("dof").append(std::to_string(i)) : joint;
 }
 
+std::string actuator_label(const Model& model, int a) {
+  return model.actuator_name[a].empty() ? std::string("actuator").append(std::to_string(a))
+                                        : model.actuator_name[a];
+}
+
+bool has_gain_column(const Model& model, int a) {
+  return model.actuator_gaintype[a] == GainType::kFixed;
+}
+
+int inertial_columns(const Model& model) { return kPerBody * (model.nbody - 1); }
+
 }  // namespace
+
+std::vector<int> gain_actuators(const Model& model) {
+  std::vector<int> out;
+  for (int a = 0; a < model.nu; ++a) {
+    if (has_gain_column(model, a)) out.push_back(a);
+  }
+  return out;
+}
+
+int gain_tied_bias(const Model& model, int a) {
+  if (model.actuator_biastype[a] != BiasType::kAffine) return 0;
+  const double gain = model.actuator_gainprm[a][0];
+  const auto& bias = model.actuator_biasprm[a];
+  if (gain == 0) return 0;
+  if (bias[1] == -gain) return 1;                  // position servo: kp (ctrl - length)
+  if (bias[1] == 0 && bias[2] == -gain) return 2;  // velocity servo: kv (ctrl - velocity)
+  return 0;
+}
+
+double actuator_gain_basis(const Model& model, int a, double ctrl, double qpos, double qvel) {
+  if (model.actuator_ctrllimited[a]) {
+    const auto& range = model.actuator_ctrlrange[a];
+    ctrl = std::min(std::max(ctrl, range[0]), range[1]);
+  }
+  const double gear = model.actuator_gear[a][0];
+  switch (gain_tied_bias(model, a)) {
+    case 1: return ctrl - gear * qpos;
+    case 2: return ctrl - gear * qvel;
+    default: return ctrl;
+  }
+}
+
+double actuator_gain_free_force(const Model& model, int a, double qpos, double qvel) {
+  if (model.actuator_biastype[a] != BiasType::kAffine) return 0.0;
+  const double gear = model.actuator_gear[a][0];
+  const double length = gear * qpos, velocity = gear * qvel;
+  const auto& b = model.actuator_biasprm[a];
+  const int tied = gain_tied_bias(model, a);
+  return b[0] + (tied == 1 ? 0.0 : b[1] * length) + (tied == 2 ? 0.0 : b[2] * velocity);
+}
 
 InertialParameters to_parameters(const MjcfInertial& inertial) {
   const double m = inertial.mass;
@@ -125,7 +176,11 @@ void set_body_parameters(Model& model, int body, const InertialParameters& pi) {
   model.body_inertia[body] = inertial.diaginertia;
 }
 
-int regressor_columns(const Model& model) { return kPerBody * (model.nbody - 1) + 2 * model.nv; }
+int regressor_columns(const Model& model) {
+  int gains = 0;  // counted, not listed: regressor() calls this and allocates nothing
+  for (int a = 0; a < model.nu; ++a) gains += has_gain_column(model, a) ? 1 : 0;
+  return inertial_columns(model) + 2 * model.nv + gains;
+}
 
 std::vector<std::string> regressor_names(const Model& model) {
   std::vector<std::string> names;
@@ -135,6 +190,7 @@ std::vector<std::string> regressor_names(const Model& model) {
   }
   for (int i = 0; i < model.nv; ++i) names.push_back(dof_label(model, i) + ".armature");
   for (int i = 0; i < model.nv; ++i) names.push_back(dof_label(model, i) + ".damping");
+  for (const int a : gain_actuators(model)) names.push_back(actuator_label(model, a) + ".gain");
   return names;
 }
 
@@ -148,6 +204,8 @@ Eigen::VectorXd model_parameters(const Model& model) {
     pi[tail + i] = model.dof_armature[i];
     pi[tail + model.nv + i] = model.dof_damping[i];
   }
+  int column = tail + 2 * model.nv;
+  for (const int a : gain_actuators(model)) pi[column++] = model.actuator_gainprm[a][0];
   return pi;
 }
 
@@ -168,6 +226,18 @@ void set_model_parameters(Model& model, const Eigen::Ref<const Eigen::VectorXd>&
   for (int i = 0; i < edited.nv; ++i) {
     edited.dof_armature[i] = pi[tail + i];
     edited.dof_damping[i] = pi[tail + edited.nv + i];
+  }
+  int column = tail + 2 * edited.nv;
+  for (const int a : gain_actuators(model)) {
+    const double gain = pi[column++];
+    if (!std::isfinite(gain)) {
+      throw ModelError("actuator '" + actuator_label(model, a) + "': gain " + std::to_string(gain) +
+                       " is not finite.");
+    }
+    // a servo's tied bias entry follows its gain (read from the model before the edit)
+    const int tied = gain_tied_bias(model, a);
+    edited.actuator_gainprm[a][0] = gain;
+    if (tied > 0) edited.actuator_biasprm[a][static_cast<std::size_t>(tied)] = -gain;
   }
   set_const(edited);
   model = std::move(edited);
@@ -222,6 +292,15 @@ void regressor(const Model& model, Data& data, const Eigen::Ref<const Eigen::Vec
     Y(i, tail + i) = qacc[i];                  // armature: part of M
     Y(i, tail + model.nv + i) = data.qvel[i];  // damping: the motor supplies + b qvel
   }
+  // gains: the actuator's gain-scaled torque, moved to the parameter side (hence the sign)
+  int column = tail + 2 * model.nv;
+  for (int u = 0; u < model.nu; ++u) {
+    if (!has_gain_column(model, u)) continue;
+    const int j = model.actuator_trnid[u];
+    const int q = model.jnt_qposadr[j], d = model.jnt_dofadr[j];
+    Y(d, column++) = -model.actuator_gear[u][0] *
+                     actuator_gain_basis(model, u, data.ctrl[u], data.qpos[q], data.qvel[d]);
+  }
 }
 
 Eigen::MatrixXd BaseParameters::base_regressor(const Eigen::Ref<const Eigen::MatrixXd>& Y) const {
@@ -231,6 +310,17 @@ Eigen::MatrixXd BaseParameters::base_regressor(const Eigen::Ref<const Eigen::Mat
 }
 
 BaseParameters base_parameters(const Model& model, int samples, unsigned long long seed) {
+  return base_parameters_with_gains(model, gain_actuators(model), samples, seed);
+}
+
+BaseParameters base_parameters_with_gains(const Model& model, const std::vector<int>& gains,
+                                          int samples, unsigned long long seed) {
+  for (const int a : gains) {
+    if (a < 0 || a >= model.nu || !has_gain_column(model, a)) {
+      throw StateError("base_parameters: actuator " + std::to_string(a) +
+                       " has no gain column (only fixed-gain actuators have one).");
+    }
+  }
   const int n = regressor_columns(model);
   const int nv = model.nv;
   std::mt19937_64 rng(seed);
@@ -252,8 +342,20 @@ BaseParameters base_parameters(const Model& model, int samples, unsigned long lo
       data.qvel[i] = uniform(-2, 2);
       qacc[i] = uniform(-10, 10);
     }
+    for (const int a : gains) {
+      const auto& range = model.actuator_ctrlrange[a];
+      data.ctrl[a] =
+          model.actuator_ctrllimited[a] ? uniform(range[0], range[1]) : uniform(-1.0, 1.0);
+    }
     kinematics(model, data);
     regressor(model, data, qacc, W.middleRows(static_cast<Eigen::Index>(s) * nv, nv));
+  }
+
+  // the gain columns of actuators whose gain is known are left out (zero: unidentifiable)
+  const std::vector<int> fixed = gain_actuators(model);
+  for (std::size_t g = 0; g < fixed.size(); ++g) {
+    if (std::find(gains.begin(), gains.end(), fixed[g]) != gains.end()) continue;
+    W.col(n - static_cast<int>(fixed.size()) + static_cast<int>(g)).setZero();
   }
 
   // W P = Q R: the first `rank` pivoted columns span the rest, W_D = W_B beta

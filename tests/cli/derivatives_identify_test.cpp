@@ -9,6 +9,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <lever/harness/models.hpp>
@@ -113,6 +115,51 @@ TEST_CASE("cli: lever identify recovers the model an excited run came from",
   CHECK_THAT(other.out, Catch::Contains("no column 'qpos[wrist]'"));
   std::filesystem::remove(csv);
   std::filesystem::remove(written);
+}
+
+TEST_CASE("cli: lever identify --identify-gain finds a motor's gain",
+          "[cli][derivatives][identify]") {
+  // arm2 whose elbow motor is 1.3 times as strong as arm2.xml says, excited by `lever simulate`;
+  // identified from arm2.xml with the elbow's gain estimated (the shoulder's known fixes the scale)
+  const std::string arm2 = model_path("models/arm2.xml");
+  const auto temp = [](const std::string& name) {
+    return (std::filesystem::temp_directory_path() / ("lever_cli_gain_" + name)).string();
+  };
+  std::stringstream text;
+  text << std::ifstream(arm2).rdbuf();
+  std::string xml = text.str();
+  const std::string motor = "<motor name=\"elbow\" joint=\"elbow\"";
+  const auto at = xml.find(motor);
+  REQUIRE(at != std::string::npos);
+  xml.replace(at, motor.size(),
+              "<general name=\"elbow\" joint=\"elbow\" gainprm=\"1.3\" gear=\"1\"");
+  const std::string truth = temp("truth.xml"), csv = temp("run.csv"), written = temp("out.xml");
+  std::ofstream(truth) << xml;
+  REQUIRE(run_lever("simulate " + quoted(truth) + " --excite 0.8 --duration 4 --csv " + quoted(csv))
+              .status == 0);
+  const Run run = run_lever("identify " + quoted(arm2) + " " + quoted(csv) +
+                            " --identify-gain elbow --json --write-model " + quoted(written));
+  INFO(run.out);
+  REQUIRE(run.status == 0);
+  const json::Value out = json::parse(run.out);
+  REQUIRE(out["gains"].size() == 1);
+  CHECK(out["gains"][0].string == "elbow");
+  CHECK(out["dropped"].number == 0);
+  bool found = false;
+  for (std::size_t k = 0; k < out["base"].size(); ++k) {
+    if (out["base"][k].str("name") != "elbow.gain") continue;
+    found = true;
+    CHECK(std::abs(out["base"][k]["estimate"].number - 1.3) <= 1e-8);
+  }
+  CHECK(found);
+  const Model identified = mjcf::load_file(written);
+  CHECK(std::abs(identified.actuator_gainprm[1][0] - 1.3) <= 1e-8);
+  // all gains: nothing absolute is left, a clear error (exit 2)
+  const Run all =
+      run_lever("identify " + quoted(arm2) + " " + quoted(csv) + " --identify-gain all", true);
+  CHECK(all.status == 2);
+  CHECK_THAT(all.out, Catch::Contains("scale together"));
+  for (const std::string& f : {truth, csv, written}) std::filesystem::remove(f);
 }
 
 }  // namespace lever::test

@@ -8,6 +8,7 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include <numbers>
 #include <random>
 #include <string>
+#include <utility>
 
 #include <lever/harness/models.hpp>
 #include <lever/harness/random_state.hpp>
@@ -42,7 +44,7 @@ Model heavy_arm2() {
 // gets the PD law's torque, a servo (affine bias) the reference itself as its target.
 // Returns how many (row, actuator) pairs had the force on a forcerange edge.
 int simulate_csv(const Model& model, double seconds, const std::string& path, bool with_qacc,
-                 bool with_force = true) {
+                 bool with_force = true, double swing = 0.4) {
   std::ofstream out(path);
   out << "time";
   for (const char* what : {"qpos", "qvel", "qacc"}) {
@@ -63,7 +65,7 @@ int simulate_csv(const Model& model, double seconds, const std::string& path, bo
     for (int a = 0; a < model.nu; ++a) {
       const int j = model.actuator_trnid[a];
       const double lo = model.jnt_range[j][0], hi = model.jnt_range[j][1];
-      const double mid = 0.5 * (lo + hi), half = 0.4 * (hi - lo);
+      const double mid = 0.5 * (lo + hi), half = swing * (hi - lo);
       double ref = mid, ref_vel = 0;
       for (const double f : {0.3, 0.71, 1.3}) {  // Hz, three sines of a third of the swing each
         const double w = 2 * std::numbers::pi * (f + 0.1 * a);
@@ -196,6 +198,197 @@ TEST_CASE("identify: ctrl columns go through the prior's servos (gain, bias, bot
   CHECK(r.residual_rms < 1e-9);
   std::filesystem::remove(with);
   std::filesystem::remove(without);
+}
+
+TEST_CASE("identify: a motor's unknown gain, from ctrl", "[derivatives][identify]") {
+  // arm2 with the heavier link 2 and an elbow motor 1.3 times as strong as the prior says (a
+  // wrong torque constant). The shoulder's gain stays known: it fixes the scale that the elbow's
+  // gain and the inertia would otherwise share (gravity does not: its torque scales with mass).
+  const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
+  Model truth = heavy_arm2();
+  truth.actuator_gainprm[1][0] = 1.3;
+  set_const(truth);
+  const std::string csv = temp_path("gain.csv");
+  simulate_csv(truth, 6.0, csv, true, false);  // ctrl only: the force is what is unknown
+  const identify::Trajectory data = identify::read_csv(prior, csv);
+  identify::Options options;
+  options.gains = identify::gain_actuators_named(prior, "elbow");
+  const identify::Result r = identify::identify(prior, data, options);
+  const Eigen::VectorXd expected = r.base.K * model_parameters(truth);
+  INFO("estimate " << r.estimate.transpose() << "\ntrue     " << expected.transpose());
+  CHECK((r.estimate - expected).cwiseAbs().maxCoeff() <=
+        1e-8 * std::max(1.0, expected.cwiseAbs().maxCoeff()));
+  const int gain = regressor_columns(prior) - 1;  // elbow.gain
+  CHECK(std::abs(r.parameters[gain] - 1.3) <= 1e-8);
+  CHECK(r.residual_rms < 1e-10);
+  CHECK(r.dropped == 0);  // no forcerange
+  REQUIRE(r.not_physical.empty());
+  // the written model has the gain: the motor became a <general gainprm="1.3">
+  const std::string written = temp_path("gain.xml");
+  identify::write_model(model_path("models/arm2.xml"), identify::identified_model(prior, r),
+                        written);
+  const Model identified = mjcf::load_file(written);
+  CHECK(std::abs(identified.actuator_gainprm[1][0] - 1.3) <= 1e-8);
+  CHECK(identified.actuator_gainprm[0][0] == 1.0);
+  CHECK(identified.actuator_biastype[1] == BiasType::kNone);
+  CHECK(identified.actuator_ctrlrange[1] == prior.actuator_ctrlrange[1]);
+  // without a known gain nothing fixes the scale: a clear error, not a zero model
+  options.gains = identify::gain_actuators_named(prior, "all");
+  CHECK_THROWS_WITH(identify::identify(prior, data, options), Catch::Contains("scale together"));
+  CHECK_THROWS_WITH(identify::gain_actuators_named(prior, "wrist"),
+                    Catch::Contains("no actuator 'wrist'"));
+  std::filesystem::remove(csv);
+  std::filesystem::remove(written);
+}
+
+TEST_CASE("identify: a position servo's kp, rows where its force clamps dropped",
+          "[derivatives][identify]") {
+  // panda7's servos (forcerange 87 / 12 N m, clamping part of the time): joint 4's kp is 20%
+  // above the prior's in the truth. Its gain carries biasprm[1] = -kp; the rows where its force
+  // is at the clamp are dropped (judged at the estimated kp), the rest recover kp.
+  const Model prior = mjcf::load_file(model_path("models/panda7.xml"));
+  Model truth = prior;
+  const int servo = 3;
+  const double kp = 1.2 * prior.actuator_gainprm[servo][0];
+  truth.actuator_gainprm[servo][0] = kp;
+  truth.actuator_biasprm[servo][1] = -kp;
+  set_const(truth);
+  const std::string csv = temp_path("servo.csv");
+  simulate_csv(truth, 2.0, csv, true, false);
+  const identify::Trajectory data = identify::read_csv(prior, csv);
+  identify::Options options;
+  options.gains = {servo};
+  const identify::Result r = identify::identify(prior, data, options);
+  const int gain = regressor_columns(prior) - prior.nu + servo;
+  INFO("kp " << r.parameters[gain] << " vs " << kp << ", dropped " << r.dropped);
+  CHECK(std::abs(r.parameters[gain] - kp) <= 1e-8 * kp);
+  CHECK(r.dropped > 0);
+  CHECK(r.residual_rms < 1e-9);
+  const Model identified = identify::identified_model(prior, r);
+  CHECK(identified.actuator_biasprm[servo][1] == -r.parameters[gain]);
+  std::filesystem::remove(csv);
+}
+
+TEST_CASE("identify: write_model writes new gains as each actuator element says them",
+          "[derivatives][identify]") {
+  // servo_affine.xml: a <general> position servo, a <motor>, a <position>, a <velocity>, and two
+  // affine gains (no gain column). Every fixed gain scaled by 1.5 and written: the file read back
+  // has the gains, each servo's tied bias at -gain, the untouched actuators as they were.
+  const std::string path = model_path("tests/derivatives/servo_affine.xml");
+  const Model prior = mjcf::load_file(path);
+  const std::vector<int> gains = gain_actuators(prior);
+  REQUIRE(gains.size() == 4);  // elbow, shoulder_motor, elbow_p, slide
+  Eigen::VectorXd pi = model_parameters(prior);
+  const int first = regressor_columns(prior) - static_cast<int>(gains.size());
+  for (int g = 0; g < static_cast<int>(gains.size()); ++g) pi[first + g] *= 1.5;
+  Model edited = prior;
+  set_model_parameters(edited, pi);
+  const std::string written = temp_path("servo_affine.xml");
+  identify::write_model(path, edited, written);
+  const Model back = mjcf::load_file(written);
+  for (int a = 0; a < prior.nu; ++a) {
+    INFO(prior.actuator_name[a]);
+    CHECK(back.actuator_gaintype[a] == prior.actuator_gaintype[a]);
+    CHECK(back.actuator_biastype[a] == prior.actuator_biastype[a]);
+    for (int i = 0; i < 3; ++i) {
+      CHECK(back.actuator_gainprm[a][i] == edited.actuator_gainprm[a][i]);
+      CHECK(back.actuator_biasprm[a][i] == edited.actuator_biasprm[a][i]);
+    }
+    CHECK(back.actuator_gear[a] == prior.actuator_gear[a]);
+    CHECK(back.actuator_ctrlrange[a] == prior.actuator_ctrlrange[a]);
+    CHECK(back.actuator_forcerange[a] == prior.actuator_forcerange[a]);
+    const bool fixed = std::find(gains.begin(), gains.end(), a) != gains.end();
+    CHECK((back.actuator_gainprm[a][0] != prior.actuator_gainprm[a][0]) == fixed);
+    const int tied = gain_tied_bias(prior, a);
+    if (tied > 0) CHECK(back.actuator_biasprm[a][tied] == -back.actuator_gainprm[a][0]);
+  }
+  std::filesystem::remove(written);
+}
+
+TEST_CASE("identify: noisy data, estimates within their standard errors",
+          "[derivatives][identify]") {
+  // arm2 with the heavier link 2; Gaussian noise of known sigma, each seed a new draw. Every
+  // estimate must be within 4 standard errors of the truth, and over 20 seeds (180 estimates)
+  // about 68% within one: a fraction far below (standard errors too small, e.g. not scaled by
+  // the residual) or far above (too large, e.g. blind to correlated errors) fails.
+  const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
+  const Model truth = heavy_arm2();
+  // noise(trajectory, rng) adds the noise; shift: what the clean data's estimate differs by
+  const auto run = [&](bool with_qacc, const auto& noise, const std::string& label) {
+    const std::string csv = temp_path("noisy.csv");
+    simulate_csv(truth, 6.0, csv, with_qacc);
+    const identify::Trajectory clean = identify::read_csv(prior, csv);
+    std::filesystem::remove(csv);
+    const double h_b = with_qacc ? 0.0 : truth.opt.timestep * 0.02;  // see the test above
+    int within1 = 0, within1_ols = 0, total = 0;
+    for (int seed = 1; seed <= 20; ++seed) {
+      identify::Trajectory noisy = clean;
+      std::mt19937_64 rng(static_cast<unsigned long long>(seed));
+      noise(noisy, rng);
+      const identify::Result r = identify::identify(prior, noisy);
+      const Eigen::VectorXd expected = r.base.K * model_parameters(truth);
+      for (int k = 0; k < r.base.rank; ++k) {
+        const bool armature = r.base.names[k].find("armature") != std::string::npos;
+        const double error = r.estimate[k] - expected[k] - (armature ? h_b : 0.0);
+        INFO(label << ", seed " << seed << ", " << r.base.names[k] << ": " << r.estimate[k]
+                   << " vs " << expected[k] << ", standard error " << r.standard_error[k]
+                   << " (least squares' " << r.ols_standard_error[k] << ")");
+        CHECK(std::abs(error) <= 4.0 * r.standard_error[k]);
+        within1 += std::abs(error) <= r.standard_error[k] ? 1 : 0;
+        within1_ols += std::abs(error) <= r.ols_standard_error[k] ? 1 : 0;
+        ++total;
+      }
+    }
+    return std::pair{static_cast<double>(within1) / total,
+                     static_cast<double>(within1_ols) / total};
+  };
+  SECTION("noise on the torque: the least-squares model itself") {
+    const auto [fraction, ols] = run(
+        true,
+        [](identify::Trajectory& t, std::mt19937_64& rng) {
+          std::normal_distribution<double> normal(0.0, 0.05);  // N m
+          for (Eigen::Index i = 0; i < t.force.size(); ++i) t.force.data()[i] += normal(rng);
+        },
+        "torque");
+    INFO("within one standard error: " << fraction << " (least squares' " << ols << ")");
+    CHECK(fraction > 0.55);
+    CHECK(fraction < 0.8);
+  }
+  SECTION("noise on qacc: errors shared by a sample's dofs (M e)") {
+    const auto [fraction, ols] = run(
+        true,
+        [](identify::Trajectory& t, std::mt19937_64& rng) {
+          std::normal_distribution<double> normal(0.0, 0.2);  // rad/s^2
+          for (Eigen::Index i = 0; i < t.qacc.size(); ++i) t.qacc.data()[i] += normal(rng);
+        },
+        "qacc");
+    INFO("within one standard error: " << fraction << " (least squares' " << ols << ")");
+    CHECK(fraction > 0.55);
+    CHECK(fraction < 0.8);
+  }
+  SECTION("noise on qvel, qacc differenced: errors correlated between neighbouring samples") {
+    // each qvel error enters two differences with opposite signs: the differenced errors
+    // telescope, and the textbook sigma^2 (W^T W)^-1 overstates the estimate's spread about
+    // threefold (every estimate within one of its standard errors); the clustered sandwich not
+    const auto [fraction, ols] = run(
+        false,
+        [](identify::Trajectory& t, std::mt19937_64& rng) {
+          std::normal_distribution<double> normal(0.0, 2e-4);  // rad/s
+          const Eigen::Index N = t.time.size();
+          Eigen::MatrixXd e(t.qvel.rows(), N + 1);  // the dropped last row has its error too
+          for (Eigen::Index i = 0; i < e.size(); ++i) e.data()[i] = normal(rng);
+          for (Eigen::Index k = 0; k < N; ++k) {
+            const double dt = k + 1 < N ? t.time[k + 1] - t.time[k] : t.time[k] - t.time[k - 1];
+            t.qvel.col(k) += e.col(k);
+            t.qacc.col(k) += (e.col(k + 1) - e.col(k)) / dt;
+          }
+        },
+        "differenced");
+    INFO("within one standard error: " << fraction << " (least squares' " << ols << ")");
+    CHECK(fraction > 0.55);
+    CHECK(fraction < 0.8);
+    CHECK(ols > 0.9);
+  }
 }
 
 TEST_CASE("identify: bad trajectories get clear errors", "[derivatives][identify]") {

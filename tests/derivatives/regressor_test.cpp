@@ -37,10 +37,12 @@ Eigen::VectorXd explained_force(const Model& model, const Data& data) {
 
 }  // namespace
 
-TEST_CASE("regressor: Y pi equals rnea + damping qvel", "[derivatives][regressor]") {
+TEST_CASE("regressor: Y pi equals rnea + damping qvel (gain columns left out)",
+          "[derivatives][regressor]") {
   for (ModelCase& c : every_model()) {
     INFO(c.name);
     const Model& model = c.model;
+    const int inertial = 10 * (model.nbody - 1) + 2 * model.nv;
     Data data(model);
     const Eigen::VectorXd pi = model_parameters(model);
     Eigen::MatrixXd Y(model.nv, regressor_columns(model));
@@ -53,10 +55,85 @@ TEST_CASE("regressor: Y pi equals rnea + damping qvel", "[derivatives][regressor
       regressor(model, data, qacc, Y);
       rnea(model, data, qacc, tau);
       for (int i = 0; i < model.nv; ++i) tau[i] += model.dof_damping[i] * data.qvel[i];
-      const Eigen::VectorXd Ypi = Y * pi;
+      const Eigen::VectorXd Ypi = Y.leftCols(inertial) * pi.head(inertial);  // gains left out
       CHECK((Ypi - tau).cwiseAbs().maxCoeff() <= allowed(largest(tau)));
     }
   }
+}
+
+TEST_CASE("regressor: with ctrl, the gain columns reproduce the actuators' torque",
+          "[derivatives][regressor]") {
+  // Y pi = rnea + damping qvel - (the fixed-gain actuators' gain-scaled torque). forward()'s
+  // qfrc_actuator, less each fixed-gain actuator's gain-free force and each other actuator's
+  // force, is that torque, on every dof where no actuator's force is clamped
+  int compared = 0;
+  for (ModelCase& c : every_model()) {
+    INFO(c.name);
+    const Model& model = c.model;
+    Data data(model);
+    const Eigen::VectorXd pi = model_parameters(model);
+    const std::vector<int> gains = gain_actuators(model);
+    Eigen::MatrixXd Y(model.nv, regressor_columns(model));
+    Eigen::VectorXd tau(model.nv);
+    std::mt19937_64 rng(c.seed + 11);
+    for (int k = 0; k < 100; ++k) {
+      apply(random_state(model, rng), data);
+      forward(model, data);
+      const Eigen::VectorXd qacc = random_qacc(model, rng);
+      regressor(model, data, qacc, Y);
+      rnea(model, data, qacc, tau);
+      Eigen::VectorXd expected = tau - data.qfrc_actuator;
+      std::vector<char> clamped(static_cast<std::size_t>(model.nv), 0);
+      for (int a = 0; a < model.nu; ++a) {
+        const int j = model.actuator_trnid[a];
+        const int q = model.jnt_qposadr[j], d = model.jnt_dofadr[j];
+        const double gear = model.actuator_gear[a][0];
+        const bool fixed = std::find(gains.begin(), gains.end(), a) != gains.end();
+        expected[d] +=
+            gear * (fixed ? actuator_gain_free_force(model, a, data.qpos[q], data.qvel[d])
+                          : data.actuator_force[a]);
+        const auto& f = model.actuator_forcerange[a];
+        if (model.actuator_forcelimited[a] &&
+            (data.actuator_force[a] <= f[0] || data.actuator_force[a] >= f[1])) {
+          clamped[static_cast<std::size_t>(d)] = 1;
+        }
+      }
+      for (int i = 0; i < model.nv; ++i) expected[i] += model.dof_damping[i] * data.qvel[i];
+      const Eigen::VectorXd Ypi = Y * pi;
+      const double scale = std::max(largest(tau), largest(data.qfrc_actuator));
+      for (int i = 0; i < model.nv; ++i) {
+        if (clamped[static_cast<std::size_t>(i)]) continue;
+        ++compared;
+        CHECK(std::abs(Ypi[i] - expected[i]) <= allowed(scale));
+      }
+    }
+  }
+  CHECK(compared > 1000);
+}
+
+TEST_CASE("regressor: gain columns, names and servos' tied bias", "[derivatives][regressor]") {
+  const Model arm2 = mjcf::load_file(model_path("models/arm2.xml"));
+  const std::vector<std::string> names = regressor_names(arm2);
+  REQUIRE(regressor_columns(arm2) == 26);
+  CHECK(names[24] == "shoulder.gain");
+  CHECK(names[25] == "elbow.gain");
+  CHECK(gain_tied_bias(arm2, 0) == 0);
+  // the base parameters: both gains identifiable beside the 9 of the inertia, none without ctrl
+  CHECK(base_parameters(arm2).rank == 11);
+  const BaseParameters without = base_parameters_with_gains(arm2, {});
+  CHECK(without.rank == 9);
+  CHECK(std::count(without.unidentifiable.begin(), without.unidentifiable.end(), 25) == 1);
+  // panda7's position servos: the gain kp carries biasprm[1] = -kp with it
+  Model panda = mjcf::load_file(model_path("models/panda7.xml"));
+  CHECK(gain_tied_bias(panda, 3) == 1);
+  Eigen::VectorXd pi = model_parameters(panda);
+  const int column = regressor_columns(panda) - panda.nu + 3;
+  CHECK(pi[column] == panda.actuator_gainprm[3][0]);
+  pi[column] = 1234.5;
+  set_model_parameters(panda, pi);
+  CHECK(panda.actuator_gainprm[3][0] == 1234.5);
+  CHECK(panda.actuator_biasprm[3][1] == -1234.5);
+  CHECK(panda.actuator_biasprm[3][2] != -1234.5);  // kv is not the gain's
 }
 
 TEST_CASE("regressor: parameters to and from MJCF's inertial", "[derivatives][regressor]") {
@@ -165,7 +242,8 @@ TEST_CASE("regressor: arm2 with a heavier link 2 is identified from its own simu
   Data data(truth);
   std::mt19937_64 rng(21);
   const int samples = 200;
-  const BaseParameters base = base_parameters(prior);  // the structure is the prior's
+  // the structure is the prior's; the motors' torque is data here, not a gain to estimate
+  const BaseParameters base = base_parameters_with_gains(prior, {});
   Eigen::MatrixXd W(samples * prior.nv, base.rank);
   Eigen::VectorXd target(samples * prior.nv);
   Eigen::MatrixXd Y(prior.nv, regressor_columns(prior));

@@ -1,13 +1,16 @@
 // lever identify: the base inertial parameters (and armature, damping) of a model from a
 // trajectory.
 //
-//   lever identify PRIOR.xml DATA.csv [--write-model OUT.xml] [--json]
+//   lever identify PRIOR.xml DATA.csv [--identify-gain all|NAME,..] [--write-model OUT.xml]
+//                  [--json]
 //
 // DATA.csv is in `lever simulate --csv`'s columns (lever/identify.hpp's read_csv says which are
 // needed). The identification is lever::identify's; this command parses and prints.
+// --identify-gain: estimate these actuators' gains (gainprm[0], fixed-gain actuators) from the
+// ctrl columns as well.
 // --json: one object: base (name, prior, estimate, standard_error per base parameter), samples,
-// equations, residual_rms, unexcited (names), not_physical (null or why), qacc_source,
-// force_source.
+// equations, dropped, gains (names), residual_rms, unexcited (names), not_physical (null or
+// why), qacc_source, force_source.
 // Exit 0; 1 when some base parameter is not excited or the identified model is not physical
 // (then --write-model writes nothing); bad input exits 2.
 #include <cstdio>
@@ -26,18 +29,23 @@ namespace lever::cli {
 namespace {
 
 const char* const kUsage =
-    "usage: lever identify PRIOR.xml DATA.csv [--write-model OUT.xml] [--json]\n"
+    "usage: lever identify PRIOR.xml DATA.csv [--identify-gain all|NAME,..] [--write-model "
+    "OUT.xml] [--json]\n"
     "  DATA.csv               a trajectory in `lever simulate --csv`'s columns: time, qpos[j],\n"
     "                         qvel[j], and qacc[j] (else qvel's forward difference), "
     "actuator_force[m]\n"
     "                         (else ctrl[m] through the prior's actuators), qfrc_constraint[j]\n"
-    "  --write-model OUT.xml  PRIOR.xml with the identified inertials, armature and damping\n"
+    "  --identify-gain A,B    estimate these actuators' gains (gainprm[0]; `all`: every fixed\n"
+    "                         gain) from the ctrl columns; rows where their force may clamp\n"
+    "                         are dropped. Keep one gain known: the data fixes the scale only\n"
+    "                         through forces known in absolute terms\n"
+    "  --write-model OUT.xml  PRIOR.xml with the identified inertials, armature, damping, gains\n"
     "  --json                 one JSON object with every base parameter and the fit\n";
 
 }  // namespace
 
 int cmd_identify(const std::vector<std::string>& argv) {
-  const Args args(argv, {"write-model"}, {"json", "help"});
+  const Args args(argv, {"write-model", "identify-gain"}, {"json", "help"});
   if (args.has("help")) {
     std::fputs(kUsage, stdout);
     return kOk;
@@ -48,7 +56,11 @@ int cmd_identify(const std::vector<std::string>& argv) {
   const std::string prior_path = args.positional()[0], data_path = args.positional()[1];
   const Model prior = load_model("identify", prior_path);
   const identify::Trajectory data = identify::read_csv(prior, data_path);
-  const identify::Result r = identify::identify(prior, data);
+  identify::Options options;
+  if (args.has("identify-gain")) {
+    options.gains = identify::gain_actuators_named(prior, args.get("identify-gain"));
+  }
+  const identify::Result r = identify::identify(prior, data, options);
 
   if (args.has("json")) {
     Json json(stdout);
@@ -56,6 +68,13 @@ int cmd_identify(const std::vector<std::string>& argv) {
     json.key("model").value(prior.name);
     json.key("samples").value(r.samples);
     json.key("equations").value(r.equations);
+    json.key("dropped").value(r.dropped);
+    json.key("gains").begin_array();
+    for (const int a : r.gains) {
+      json.value(prior.actuator_name[a].empty() ? std::string("#").append(std::to_string(a))
+                                                : prior.actuator_name[a]);
+    }
+    json.end_array();
     json.key("residual_rms").value(r.residual_rms);
     json.key("qacc_source").value(data.qacc_source);
     json.key("force_source").value(data.force_source);
@@ -83,9 +102,17 @@ int cmd_identify(const std::vector<std::string>& argv) {
   } else {
     std::printf("prior %s (%s), data %s: %d samples, %d equations\n", prior.name.c_str(),
                 prior_path.c_str(), data_path.c_str(), r.samples, r.equations);
-    std::printf("qacc from %s; joint forces from %s\n\n", data.qacc_source.c_str(),
+    std::printf("qacc from %s; joint forces from %s\n", data.qacc_source.c_str(),
                 data.force_source.c_str());
-    std::printf("%d base parameters (SI units: kg, kg m, kg m^2, N m s/rad):\n", r.base.rank);
+    if (!r.gains.empty()) {
+      std::printf(
+          "%d gains estimated from ctrl; %d equations dropped where their force may clamp\n",
+          static_cast<int>(r.gains.size()), r.dropped);
+    }
+    std::printf("\n");
+    std::printf(
+        "%d base parameters (SI units: kg, kg m, kg m^2, N m s/rad; gains per unit ctrl):\n",
+        r.base.rank);
     std::printf("  %14s %14s %14s  %s\n", "prior", "estimate", "std. error", "combination");
     for (int k = 0; k < r.base.rank; ++k) {
       std::printf("  %14s %14s %14s  %s\n", num(r.prior[k], "%.8g").c_str(),

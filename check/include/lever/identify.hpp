@@ -5,7 +5,10 @@
 //   Y_base(q, qvel, qacc) theta = qfrc_actuator + qfrc_applied + qfrc_constraint - springs
 // one row per dof and sample, theta the base parameters of the prior model (their structure
 // depends on the kinematics only, which the prior must get right). Springs are taken from the
-// prior. `lever identify` is this file's command-line face.
+// prior. With Options::gains the chosen actuators' gains are estimated too: their gain-scaled
+// torque moves to the left (the regressor's gain columns) and only their force's gain-free part
+// stays on the right; rows where such an actuator's force may be clamped are dropped.
+// `lever identify` is this file's command-line face.
 #pragma once
 
 #include <Eigen/Core>
@@ -25,8 +28,11 @@ struct Trajectory {
   /// (nv x N) the joint force the motors, the user and the joint stops applied:
   /// qfrc_actuator + qfrc_applied + qfrc_constraint
   Eigen::MatrixXd force;
-  std::string qacc_source;   ///< where qacc came from (its columns, or differences of qvel)
-  std::string force_source;  ///< where the motor forces came from
+  Eigen::MatrixXd actuator_force;  ///< (nu x N) each actuator's force in `force` (before gear)
+  Eigen::MatrixXd ctrl;  ///< (nu x N) the ctrl columns as written (unclamped); 0 x N without them
+  bool qacc_differenced = false;  ///< qacc from differences of qvel (errors correlated in time)
+  std::string qacc_source;        ///< where qacc came from (its columns, or differences of qvel)
+  std::string force_source;       ///< where the motor forces came from
 };
 
 /// Read a trajectory in `lever simulate --csv`'s columns: time, qpos[joint], qvel[joint], and
@@ -36,19 +42,38 @@ struct Trajectory {
 /// row's qpos and qvel: ctrl clamped to ctrlrange, gain * ctrl + bias with an affine gain and bias
 /// in length = gear qpos and velocity = gear qvel, then clamped to forcerange), and
 /// qfrc_constraint[joint] (else zero). A joint or motor is
-/// named as `lever simulate` names it (its name, or #index). Other columns are ignored. Throws
+/// named as `lever simulate` names it (its name, or #index). The ctrl columns are kept when all are
+/// present (identifying gains needs them). Other columns are ignored. Throws
 /// lever::Error naming the file, line and column for a missing column, a field that is not a finite
 /// number, a row of the wrong length, or fewer rows than the identification needs.
 Trajectory read_csv(const Model& prior, const std::string& path);
 
+/// What to identify besides the inertial parameters, armature and damping.
+struct Options {
+  /// actuators (ids, each in gain_actuators(prior)) whose gain gainprm[0] is estimated from the
+  /// trajectory's ctrl (a servo's tied bias entry with it); the others' forces are known
+  std::vector<int> gains;
+};
+
 /// What identify() found.
 struct Result {
-  BaseParameters base;             ///< the prior's base parameters (names, K)
-  Eigen::VectorXd prior;           ///< (rank) K pi of the prior model
-  Eigen::VectorXd estimate;        ///< (rank) least-squares estimate
-  Eigen::VectorXd standard_error;  ///< (rank) sqrt(diag(sigma^2 (W^T W)^-1))
-  double residual_rms = 0.0;       ///< of the fit, in N m (N for slides)
-  int samples = 0, equations = 0;  ///< N and N nv
+  BaseParameters base;     ///< the prior's base parameters (names, K)
+  std::vector<int> gains;  ///< the actuators whose gains were estimated
+  /// equations (sample, dof) left out because an estimated-gain actuator's force there is within
+  /// 1% of its forcerange's width of an edge or beyond: the force is not linear in the gain where
+  /// it clamps. Judged first for every gain within a factor of two of the prior's, then at each
+  /// fit's estimate until the set settles.
+  int dropped = 0;
+  Eigen::VectorXd prior;     ///< (rank) K pi of the prior model
+  Eigen::VectorXd estimate;  ///< (rank) least-squares estimate
+  /// (rank) the estimate's standard errors: the square roots of the diagonal of the
+  /// cluster-robust covariance (W^T W)^-1 (sum_c W_c^T r_c r_c^T W_c) (W^T W)^-1 c/(c-1) m/(m-p),
+  /// clusters c of consecutive samples (a sample's dofs share their errors through M; differenced
+  /// qacc's errors are correlated between neighbouring samples)
+  Eigen::VectorXd standard_error;
+  Eigen::VectorXd ols_standard_error;  ///< (rank) sqrt(diag(sigma^2 (W^T W)^-1)), for comparison
+  double residual_rms = 0.0;           ///< of the fit, in N m (N for slides)
+  int samples = 0, equations = 0;      ///< N and the equations used (N nv less the dropped)
   /// base parameters the data barely excites: in the direction of W's singular vectors whose
   /// singular value is below 1e-6 of the largest (W with columns scaled to unit norm); their
   /// estimates are not to be trusted
@@ -62,16 +87,29 @@ struct Result {
 };
 
 /// Least squares on the base regressor. Throws lever::Error when the trajectory does not fit the
-/// prior (sizes) or has fewer equations than base parameters plus one.
-Result identify(const Model& prior, const Trajectory& data);
+/// prior (sizes), has fewer equations than base parameters plus one, lacks the ctrl that
+/// estimating a gain needs, or when gains are estimated and nothing in the data is known in
+/// absolute terms (all remaining forces zero: then the gains and the inertia scale together and
+/// no data can separate them; keep one actuator's gain known).
+Result identify(const Model& prior, const Trajectory& data, const Options& options = {});
 
-/// The prior with the result's parameters (inertials, armature, damping), set_const applied.
+/// The actuator named `name` (its name, or #index as `lever simulate` writes it) among those with
+/// a gain column, or every one of them for "all". Throws lever::Error for a name that is not an
+/// actuator or whose gain is not fixed.
+std::vector<int> gain_actuators_named(const Model& prior, const std::string& names);
+
+/// The prior with the result's parameters (inertials, armature, damping, gains), set_const applied.
 /// Throws ModelError if they are not physical (result.not_physical says why beforehand).
 Model identified_model(const Model& prior, const Result& result);
 
 /// Write the MJCF file `prior_path` again with each body's <inertial> and each joint's armature
 /// and damping replaced by the identified model's (bodies and joints in document order, as MuJoCo
-/// numbers them). Everything else is kept as written; inertiafromgeom="true" becomes "auto".
+/// numbers them), and each actuator whose gain differs from the prior's (the model `prior_path`
+/// loads) with its new gain: kp of
+/// a <position>, kv of a <velocity>, gainprm (and biasprm, whose tied entry follows) of a
+/// <general>; a <motor> becomes a <general> with gainprm, gaintype, biastype and dyntype written
+/// out (a <motor> has no gain attribute). Everything else is kept as written;
+/// inertiafromgeom="true" becomes "auto".
 /// Throws lever::Error if the file cannot be read or written or does not match the model.
 void write_model(const std::string& prior_path, const Model& identified,
                  const std::string& out_path);
