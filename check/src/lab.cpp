@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include <lever/error.hpp>
+#include <lever/dynamics.hpp>
 #include <lever/forward.hpp>
 
 namespace lever::lab {
@@ -127,8 +128,7 @@ RunLog run(const Model& model, Data& data, const Controller& controller, long st
     if (on_row) on_row(k, data);
     if (k == steps) break;
     for (int a = 0; a < model.nu && !bad_ctrl; ++a) {
-      // the gain of a motor is 1, so any difference is ctrlrange or forcerange clamping
-      if (data.actuator_force[a] != data.ctrl[a]) ++log.clamped[static_cast<size_t>(a)];
+      if (actuator_clamped(model, data, a)) ++log.clamped[static_cast<size_t>(a)];
     }
     step(model, data);  // recomputes the same forward(), then integrates (or resets a bad state)
     log.warnings.collect(data);

@@ -68,4 +68,13 @@ void actuation(const Model& model, Data& data) {
   }
 }
 
+bool actuator_clamped(const Model& model, const Data& data, int a) {
+  const double ctrl = data.ctrl[a];
+  const auto& c = model.actuator_ctrlrange[a];
+  if (model.actuator_ctrllimited[a] && (ctrl < c[0] || ctrl > c[1])) return true;
+  const auto& f = model.actuator_forcerange[a];
+  const double force = data.actuator_force[a];
+  return model.actuator_forcelimited[a] && (force == f[0] || force == f[1]);
+}
+
 }  // namespace lever

@@ -399,7 +399,8 @@ PYBIND11_MODULE(_lever, m) {
         return Y;
       },
       py::arg("model"), py::arg("data"), py::arg("qacc"),
-      "Y (nv x columns) with Y pi = rnea(qacc) + damping qvel at data's qpos and qvel.");
+      "Y (nv x columns) at data's qpos, qvel and ctrl: Y pi = rnea(qacc) + damping qvel - the "
+      "actuators' torque through their gain columns (gear gain basis; see docs/derivatives.md).");
   m.def(
       "regressor_names", [](const ModelPtr& x) { return lever::regressor_names(model_of(x)); },
       py::arg("model"), "What each column of the regressor (each entry of pi) is.");

@@ -273,5 +273,8 @@ def test_derivatives_and_regressor_from_python():
     Y = lever.regressor(model, data, qacc)
     pi = lever.model_parameters(model)
     assert len(lever.regressor_names(model)) == Y.shape[1] == pi.size
-    tau = lever.rnea(model, data, qacc) + model.dof_damping * data.qvel
+    # the gain columns move the motors' torque to the parameter side (no clamp binds here)
+    lever.forward(model, data)
+    tau = lever.rnea(model, data, qacc) + model.dof_damping * data.qvel - data.qfrc_actuator
+    assert np.abs(data.qfrc_actuator).max() > 0.1
     np.testing.assert_allclose(Y @ pi, tau, rtol=0, atol=1e-12 * max(1, np.abs(tau).max()))

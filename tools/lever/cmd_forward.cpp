@@ -117,7 +117,7 @@ void print_text(const std::string& path, const Model& model, const Data& data,
     std::printf("  %-10s %-10s %12s %12s %8s\n", "motor", "joint", "ctrl", "force", "units");
     for (int a = 0; a < model.nu; ++a) {
       const int j = model.actuator_trnid[a];
-      const bool clamped = data.ctrl[a] != data.actuator_force[a];  // the gain is 1
+      const bool clamped = actuator_clamped(model, data, a);
       std::printf("  %-10s %-10s %12s %12s %8s%s\n", label_of(model.actuator_name[a], a).c_str(),
                   label_of(model.jnt_name[j], j).c_str(), num(data.ctrl[a]).c_str(),
                   num(data.actuator_force[a]).c_str(), joint_units(model, j).force,

@@ -37,10 +37,15 @@ void passive(const Model& model, Data& data);
 /// Motor transmission lengths and velocities (MuJoCo's mj_transmission and the velocity stage).
 void transmission(const Model& model, Data& data);
 
-/// Motor forces (MuJoCo's mj_fwdActuation): ctrl clamped to ctrlrange where ctrllimited (data.ctrl
-/// itself is not changed), force = gear-free gain * ctrl, clamped to forcerange where
-/// forcelimited, then qfrc_actuator = moment^T actuator_force.
+/// Actuator forces (MuJoCo's mj_fwdActuation): ctrl clamped to ctrlrange where ctrllimited
+/// (data.ctrl itself is not changed), force = gain * ctrl + bias (gain fixed or affine, bias none
+/// or affine, in the actuator's length and velocity), clamped to forcerange where forcelimited,
+/// then qfrc_actuator = moment^T actuator_force.
 void actuation(const Model& model, Data& data);
+
+/// Whether actuator a's last actuation() clamped something: ctrl outside a limited ctrlrange, or
+/// the force at a limited forcerange's end (then the force no longer follows gain and bias).
+bool actuator_clamped(const Model& model, const Data& data, int a);
 
 /// D = d (qfrc_actuator + qfrc_passive - qfrc_bias) / d qvel into qDeriv (nv x nv), the matrix
 /// MuJoCo 2.2.2's implicit integrator uses (mjd_smooth_vel): affine actuator bias and gain
