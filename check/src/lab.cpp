@@ -5,6 +5,7 @@
 
 #include <lever/error.hpp>
 #include <lever/dynamics.hpp>
+#include <utility>
 #include <lever/forward.hpp>
 
 namespace lever::lab {
@@ -22,22 +23,37 @@ void validate(const Model& model, const Controller& controller) {
   }
   if (!controller.gravity_compensation && controller.excite == 0.0) return;
   for (int a = 0; a < model.nu; ++a) {
+    const std::string name =
+        model.actuator_name[a].empty() ? "#" + std::to_string(a) : model.actuator_name[a];
     if (model.actuator_gear[a][0] == 0) {
-      const std::string name =
-          model.actuator_name[a].empty() ? "#" + std::to_string(a) : model.actuator_name[a];
-      throw StateError("lab controller: motor " + name +
+      throw StateError("lab controller: actuator " + name +
                        " has gear 0: gravity compensation or excitation cannot be expressed as "
                        "its ctrl.");
+    }
+    if (model.actuator_gaintype[a] != GainType::kFixed || model.actuator_gainprm[a][0] == 0) {
+      throw StateError("lab controller: actuator " + name +
+                       " has no fixed, nonzero gain: a torque added to the command cannot be "
+                       "expressed as its ctrl.");
     }
   }
 }
 
 namespace {
 
-// The excitation's PD command for motor a: track a sum of sines inside its joint's range.
-double excitation(const Model& model, double fraction, int a, const Data& data) {
+// ctrl that adds `torque` to the joint of a fixed-gain actuator (motor or servo): the force is
+// gain ctrl + bias, so whatever the bias, one more torque / (gear gain) of ctrl adds exactly torque
+double ctrl_for_torque(const Model& model, int a, double torque) {
+  return torque / (model.actuator_gear[a][0] * model.actuator_gainprm[a][0]);
+}
+
+bool is_servo(const Model& model, int a) {
+  return model.actuator_biastype[a] == BiasType::kAffine;
+}
+
+// The excitation's reference for actuator a: a sum of sines inside its joint's range, and its rate.
+std::pair<double, double> reference(const Model& model, double fraction, int a, const Data& data) {
   const int j = model.actuator_trnid[a];
-  const int q = model.jnt_qposadr[j], dof = model.jnt_dofadr[j];
+  const int q = model.jnt_qposadr[j];
   const double mid =
       model.jnt_limited[j] ? 0.5 * (model.jnt_range[j][0] + model.jnt_range[j][1]) : model.qpos0[q];
   const double half =
@@ -48,9 +64,19 @@ double excitation(const Model& model, double fraction, int a, const Data& data) 
     ref += fraction * half / 3 * std::sin(w * data.time + a);
     ref_vel += fraction * half / 3 * w * std::cos(w * data.time + a);
   }
+  return {ref, ref_vel};
+}
+
+// The excitation's command for actuator a: a servo is given the reference as its target (its
+// own gains track it); a motor, the torque of a PD law tuned to dof_M0 (4 Hz, damping ratio 0.7)
+double excitation(const Model& model, double fraction, int a, const Data& data) {
+  const auto [ref, ref_vel] = reference(model, fraction, a, data);
+  if (is_servo(model, a)) return ref / model.actuator_gear[a][0];
+  const int j = model.actuator_trnid[a];
+  const int q = model.jnt_qposadr[j], dof = model.jnt_dofadr[j];
   const double wn = 2 * std::numbers::pi * 4.0;  // 4 Hz: faster than the reference's sines
   const double kp = wn * wn * model.dof_M0[dof], kd = 2 * 0.7 * wn * model.dof_M0[dof];
-  return (kp * (ref - data.qpos[q]) + kd * (ref_vel - data.qvel[dof])) / model.actuator_gear[a][0];
+  return ctrl_for_torque(model, a, kp * (ref - data.qpos[q]) + kd * (ref_vel - data.qvel[dof]));
 }
 
 }  // namespace
@@ -60,7 +86,7 @@ void apply(const Model& model, const Controller& controller, Data& data) {
     data.ctrl[a] = controller.torque[a];
     if (controller.gravity_compensation) {
       const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
-      data.ctrl[a] += data.qfrc_bias[dof] / model.actuator_gear[a][0];
+      data.ctrl[a] += ctrl_for_torque(model, a, data.qfrc_bias[dof]);
     }
     if (controller.excite > 0) data.ctrl[a] += excitation(model, controller.excite, a, data);
   }

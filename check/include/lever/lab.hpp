@@ -1,8 +1,10 @@
 // lever/lab.hpp: lesson 5.1's lab as library code: its controller and the loop that runs it.
 //
-// The lab applies a constant torque at each motor plus, when switched on, a gravity-compensation
-// term equal to the current state's qfrc_bias:
-//     ctrl[a] = torque[a] + (gravity_compensation ? qfrc_bias[dof of a] / gear[a] : 0).
+// The lab applies a constant command at each actuator plus, when switched on, a gravity-compensation
+// term equal to the current state's qfrc_bias, turned into ctrl through the actuator's fixed gain
+// (for a motor of gain 1, ctrl is the torque; for a servo, it is a feed-forward offset of its
+// target that adds exactly that torque whatever its bias):
+//     ctrl[a] = torque[a] + (gravity_compensation ? qfrc_bias[dof of a] / (gear[a] gain[a]) : 0).
 // `run` steps a model under it and hands every state visited to a callback: the start state and
 // the state after each step (N + 1 rows for N steps). Each row holds the state at its time and what
 // forward() computes there under the ctrl the controller chose, so the forces and accelerations
@@ -26,18 +28,19 @@ namespace lever::lab {
 /// The lab's controller.
 struct Controller {
   Eigen::VectorXd torque;             ///< (nu) the constant part, in ctrl units
-  bool gravity_compensation = false;  ///< add qfrc_bias / gear
+  bool gravity_compensation = false;  ///< add qfrc_bias / (gear gain)
   /// Excitation for identification (`lever simulate --excite`), 0 for none: each motor's joint
   /// tracks a sum of three sines (0.3, 0.71, 1.3 Hz, plus 0.1 Hz per motor index, a third of the
   /// amplitude each) about the middle of its range, sweeping this fraction of the half range (of
-  /// +-1 rad or m for an unlimited joint), by a PD law tuned to dof_M0: natural frequency 4 Hz,
-  /// damping ratio 0.7; its command is added to the others.
+  /// +-1 rad or m for an unlimited joint); a motor tracks it by a PD law tuned to dof_M0 (natural
+  /// frequency 4 Hz, damping ratio 0.7), a servo (affine bias) is given it as its target. The
+  /// command is added to the others.
   double excite = 0.0;
 };
 
 /// Throws StateError when the controller does not fit the model: torque of the wrong size or not
-/// finite, excite outside [0, 1], or gravity compensation or excitation through a motor with
-/// gear 0 (it cannot be expressed as ctrl).
+/// finite, excite outside [0, 1], or gravity compensation or excitation through an actuator with
+/// gear 0 or without a fixed, nonzero gain (a torque cannot be expressed as its ctrl).
 void validate(const Model& model, const Controller& controller);
 
 /// Write the controller's command into data.ctrl. data.qfrc_bias must be the current state's.
