@@ -7,6 +7,7 @@
 //                   (I + h d) qacc = kp (c - q) - (kv + d) qdot.
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <lever/lab.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 #include <string>
@@ -180,4 +181,30 @@ TEST_CASE("set_const refuses servo parameters and keyframes that cannot be simul
   lever::Model short_key = model;
   short_key.key_qpos.resize(2, 0);
   CHECK_THROWS_AS(lever::set_const(short_key), lever::ModelError);
+}
+
+TEST_CASE("the lab's gravity compensation through a servo adds exactly qfrc_bias",
+          "[unit][servo][lab]") {
+  // panda7 at rest at its `home` keyframe, each servo's target at the joint's angle: without
+  // compensation the servos push nothing and the arm sags; with it, the targets are offset by
+  // qfrc_bias / (gear kp) and the actuator torque is gravity's, so the arm does not accelerate
+  const lever::Model model =
+      lever::mjcf::load_file(std::string(LEVER_SOURCE_DIR) + "/models/panda7.xml");
+  lever::Data data(model);
+  lever::reset_keyframe(model, data, "home");
+  data.qvel.setZero();
+  lever::lab::Controller controller;
+  controller.torque = data.qpos;  // each servo's target: where its joint is (gear 1, one per joint)
+  lever::forward(model, data);
+  lever::lab::apply(model, controller, data);
+  lever::forward(model, data);
+  CHECK(data.qacc.cwiseAbs().maxCoeff() > 1.0);  // sagging
+  controller.gravity_compensation = true;
+  lever::lab::apply(model, controller, data);
+  lever::forward(model, data);
+  for (int i = 0; i < model.nv; ++i) {
+    INFO("dof " << i);
+    CHECK(data.qfrc_actuator[i] == Approx(data.qfrc_bias[i]).margin(1e-9));
+    CHECK(std::abs(data.qacc[i]) < 1e-8);
+  }
 }
