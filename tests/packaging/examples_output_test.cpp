@@ -8,6 +8,9 @@
 // to be rounding noise, below 1e-12.
 #include <catch2/catch.hpp>
 
+#include <Eigen/Eigenvalues>
+#include <Eigen/SVD>
+
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
@@ -331,4 +334,53 @@ TEST_CASE("l5_1_exercise2_workspace: the map exists and the farthest reach is re
   }
   CHECK(distance[0].value >= best - distance[0].half_unit);
   CHECK(distance[0].value <= best + 5e-3);  // a 601-point grid is within a few mm of the optimum
+}
+
+TEST_CASE("l5_2_seven_dof prints lesson 5.2's keyframe, Jacobian and step figures as lever computes",
+          "[packaging]") {
+  const Run out = run(example("l5_2_seven_dof"));  // no argument: the installed panda7.xml
+  REQUIRE(out.status == 0);
+  const lever::Model model = lever::mjcf::load_file(lever::test::model_path("models/panda7.xml"));
+  const int home = model.key("home");
+  check_line(out, "keyframe home:", {1.0, static_cast<double>(model.njnt), model.opt.timestep});
+  const Eigen::VectorXd qpos = model.key_qpos.row(home).transpose();
+  check_line(out, "    qpos [", std::vector<double>(qpos.data(), qpos.data() + qpos.size()));
+
+  // the ee Jacobian at home, by another SVD than the program's; manipulability as the product
+  // of the singular values rather than sqrt(det(J J^T))
+  lever::Data data(model);
+  lever::reset_keyframe(model, data, home);
+  lever::forward(model, data);
+  Eigen::MatrixXd jacp(3, model.nv), jacr(3, model.nv), J(6, model.nv);
+  lever::jac_site(model, data, model.site("ee"), jacp, jacr);
+  J << jacp, jacr;
+  const Eigen::VectorXd sigma = Eigen::BDCSVD<Eigen::MatrixXd>(J).singularValues();
+  std::vector<double> expected{2.0, 6.0, static_cast<double>(model.nv)};
+  for (Eigen::Index i = 0; i < sigma.size(); ++i) expected.push_back(sigma[i]);
+  check_line(out, "singular values", expected);
+  check_line(out, "manipulability", {sigma.prod(), sigma[0] / sigma[sigma.size() - 1]});
+
+  // the step's spectral radius at home, linearised here with another difference step
+  const auto radius = [&](lever::Integrator integrator) {
+    lever::Model m = model;
+    m.opt.integrator = integrator;
+    const int n = m.nq + m.nv;
+    const double eps = 1e-7;
+    Eigen::MatrixXd A(n, n);
+    for (int i = 0; i < n; ++i) {
+      Eigen::VectorXd x[2];
+      for (int side = 0; side < 2; ++side) {
+        lever::Data d(m);
+        lever::reset_keyframe(m, d, home);
+        (i < m.nq ? d.qpos[i] : d.qvel[i - m.nq]) += side ? -eps : eps;
+        lever::step(m, d);
+        x[side].resize(n);
+        x[side] << d.qpos, d.qvel;
+      }
+      A.col(i) = (x[0] - x[1]) / (2 * eps);
+    }
+    return Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues().cwiseAbs().maxCoeff();
+  };
+  check_line(out, "spectral radius of the step at home",
+             {3.0, radius(model.opt.integrator), radius(lever::Integrator::kEuler), 1.0});
 }
