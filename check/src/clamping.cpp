@@ -47,13 +47,9 @@ Clamping check_clamping(const Model& model) {
       result.target[a] = std::clamp(data.ctrl[a], r[0], r[1]);
     }
     // the force before forcerange, from the model's law (not the engine's): gain target + bias
-    const auto& g = model.actuator_gainprm[a];
-    const auto& b = model.actuator_biasprm[a];
     const double len = data.actuator_length[a], vel = data.actuator_velocity[a];
-    double gain = g[0], bias = 0.0;
-    if (model.actuator_gaintype[a] == GainType::kAffine) gain += g[1] * len + g[2] * vel;
-    if (model.actuator_biastype[a] == BiasType::kAffine) bias = b[0] + b[1] * len + b[2] * vel;
-    result.raw_force[a] = gain * result.target[a] + bias;
+    result.raw_force[a] =
+        actuator_gain(model, a, len, vel) * result.target[a] + actuator_bias(model, a, len, vel);
   }
   result.ctrl = data.ctrl;
   result.actuator_force = data.actuator_force;

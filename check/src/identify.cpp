@@ -1,4 +1,5 @@
 // Least-squares identification of the base parameters (see lever/identify.hpp).
+#include <lever/dynamics.hpp>
 #include <lever/error.hpp>
 #include <lever/identify.hpp>
 #include <lever/kinematics.hpp>
@@ -67,15 +68,8 @@ double force_from_ctrl(const Model& prior, int a, double ctrl, double q, double 
   if (prior.actuator_ctrllimited[a]) ctrl = clamp(ctrl, prior.actuator_ctrlrange[a]);
   const double gear = prior.actuator_gear[a][0];
   const double length = gear * q, velocity = gear * qd;
-  const auto& g = prior.actuator_gainprm[a];
-  const double gain = prior.actuator_gaintype[a] == GainType::kAffine
-                          ? g[0] + g[1] * length + g[2] * velocity
-                          : g[0];
-  double force = gain * ctrl;
-  if (prior.actuator_biastype[a] == BiasType::kAffine) {
-    const auto& b = prior.actuator_biasprm[a];
-    force += b[0] + b[1] * length + b[2] * velocity;
-  }
+  double force = actuator_gain(prior, a, length, velocity) * ctrl;
+  force += actuator_bias(prior, a, length, velocity);
   if (prior.actuator_forcelimited[a]) force = clamp(force, prior.actuator_forcerange[a]);
   return force;
 }

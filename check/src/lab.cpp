@@ -3,10 +3,13 @@
 #include <cmath>
 #include <numbers>
 
-#include <lever/error.hpp>
-#include <lever/dynamics.hpp>
 #include <utility>
+
+#include <lever/dynamics.hpp>
+#include <lever/error.hpp>
 #include <lever/forward.hpp>
+
+#include "util.hpp"
 
 namespace lever::lab {
 
@@ -46,10 +49,6 @@ double ctrl_for_torque(const Model& model, int a, double torque) {
   return torque / (model.actuator_gear[a][0] * model.actuator_gainprm[a][0]);
 }
 
-bool is_servo(const Model& model, int a) {
-  return model.actuator_biastype[a] == BiasType::kAffine;
-}
-
 // The excitation's reference for actuator a: a sum of sines inside its joint's range, and its rate.
 std::pair<double, double> reference(const Model& model, double fraction, int a, const Data& data) {
   const int j = model.actuator_trnid[a];
@@ -71,7 +70,7 @@ std::pair<double, double> reference(const Model& model, double fraction, int a, 
 // own gains track it); a motor, the torque of a PD law tuned to dof_M0 (4 Hz, damping ratio 0.7)
 double excitation(const Model& model, double fraction, int a, const Data& data) {
   const auto [ref, ref_vel] = reference(model, fraction, a, data);
-  if (is_servo(model, a)) return ref / model.actuator_gear[a][0];
+  if (check::is_servo(model, a)) return ref / model.actuator_gear[a][0];
   const int j = model.actuator_trnid[a];
   const int q = model.jnt_qposadr[j], dof = model.jnt_dofadr[j];
   const double wn = 2 * std::numbers::pi * 4.0;  // 4 Hz: faster than the reference's sines

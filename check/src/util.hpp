@@ -8,6 +8,7 @@
 #include <limits>
 #include <string>
 
+#include <lever/dynamics.hpp>
 #include <lever/model.hpp>
 
 namespace lever::check {
@@ -49,13 +50,8 @@ inline bool is_servo(const Model& model, int a) {
 inline std::array<double, 2> actuator_force_range(const Model& model, int a, double length,
                                                   double velocity) {
   constexpr double inf = std::numeric_limits<double>::infinity();
-  const auto& g = model.actuator_gainprm[a];
-  const auto& b = model.actuator_biasprm[a];
-  double gain = g[0];
-  if (model.actuator_gaintype[a] == GainType::kAffine) gain += g[1] * length + g[2] * velocity;
-  double bias = 0.0;
-  if (model.actuator_biastype[a] == BiasType::kAffine)
-    bias = b[0] + b[1] * length + b[2] * velocity;
+  const double gain = actuator_gain(model, a, length, velocity);
+  const double bias = actuator_bias(model, a, length, velocity);
   double lo = -inf, hi = inf;
   if (gain == 0.0) {
     lo = hi = bias;

@@ -53,15 +53,8 @@ void actuation(const Model& model, Data& data) {
   for (int a = 0; a < model.nu; ++a) {
     const double length = data.actuator_length[a];
     const double velocity = data.actuator_velocity[a];
-    const auto& g = model.actuator_gainprm[a];
-    const double gain = model.actuator_gaintype[a] == GainType::kAffine
-                            ? g[0] + g[1] * length + g[2] * velocity
-                            : g[0];
-    force[a] *= gain;
-    if (model.actuator_biastype[a] == BiasType::kAffine) {
-      const auto& b = model.actuator_biasprm[a];
-      force[a] += b[0] + b[1] * length + b[2] * velocity;
-    }
+    force[a] *= actuator_gain(model, a, length, velocity);
+    force[a] += actuator_bias(model, a, length, velocity);
     if (model.actuator_forcelimited[a]) force[a] = clamp(force[a], model.actuator_forcerange[a]);
     const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
     data.qfrc_actuator[dof] += model.actuator_gear[a][0] * force[a];

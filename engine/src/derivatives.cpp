@@ -171,9 +171,9 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
     const auto& b = model.actuator_biasprm[a];
     const bool affine_gain = model.actuator_gaintype[a] == GainType::kAffine;
     const bool affine_bias = model.actuator_biastype[a] == BiasType::kAffine;
-    const double gain = affine_gain ? g[0] + g[1] * length + g[2] * velocity : g[0];
-    double force = u * gain;  // in actuation()'s order, so the clamp test sees the same number
-    if (affine_bias) force += b[0] + b[1] * length + b[2] * velocity;
+    const double gain = actuator_gain(model, a, length, velocity);
+    // in actuation()'s order, so the clamp test sees the same number
+    const double force = u * gain + actuator_bias(model, a, length, velocity);
     if (model.actuator_forcelimited[a]) {
       const auto& range = model.actuator_forcerange[a];
       if (force < range[0] || force > range[1]) continue;  // clamped: no sensitivity

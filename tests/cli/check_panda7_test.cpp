@@ -191,6 +191,9 @@ TEST_CASE("check panda7 (8): spectral radii, timesteps and armature recomputed",
 
   const double rho_model = radius(model, qpos, qvel, ctrl);
   const double rho_euler = radius(with(model, Integrator::kEuler, h), qpos, qvel, ctrl);
+  // two central-difference linearisations with different steps (1e-7 here, lever check's own):
+  // each carries rounding of order 1e-16 |x| / eps ~ 1e-9 in A's entries and truncation of order
+  // eps^2; a spectral radius agrees to far better than 1e-5, which still tells 0.98 from 1
   CHECK(home["rho_model"].number == Approx(rho_model).epsilon(1e-5));
   CHECK(home["rho_euler"].number == Approx(rho_euler).epsilon(1e-5));
   // the lesson's point: the servos are stable under implicit and not under explicit Euler
@@ -266,6 +269,8 @@ TEST_CASE("check panda7: servos in sections (1), (3) and (6)", "[check][panda7]"
     const double q = model.qpos0[a];
     const double kp = model.actuator_gainprm[a][0];
     const double force = kp * target - kp * q;
+    // the engine sums kp target + (-kp) length in another order: |kp q| reaches ~7e3 N m, so
+    // the two roundings differ by ~1e-12; 1e-9 N m is that with room, and far below any term
     CHECK(c["force_before_forcerange"][static_cast<size_t>(a)].number ==
           Approx(force).margin(1e-9));
     const auto& f = model.actuator_forcerange[a];
@@ -362,10 +367,13 @@ TEST_CASE("check arm2: sections (7) and (8) for a planar 2-joint arm", "[check]"
   jac_site(model, d, model.site("ee"), jacp, jacr);
   const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(jacp).singularValues();
   CHECK(std::abs(vec(site["worst"][0]["sigma"])[1] - sigma[1]) <= 1e-12);
+  // singular up to the search's resolution: its golden sections stop near 1e-8 rad in q, where
+  // the vanishing singular value is ~1e-9 of the others and sin(q2) ~1e-8
   CHECK(sigma[1] < 1e-9);
   CHECK(std::abs(std::sin(q[1])) < 1e-6);
   const json::Value& st = report["step_stability"]["states"][0];
   CHECK(st["where"].string == "qpos0");
+  // as at home: two finite-difference linearisations with different steps
   CHECK(st["rho_model"].number == Approx(radius(model, model.qpos0, Eigen::VectorXd::Zero(model.nv),
                                                 Eigen::VectorXd::Zero(model.nu)))
                                       .epsilon(1e-5));

@@ -138,6 +138,9 @@ TEST_CASE("the implicit step's D is d qfrc_smooth / d qvel where no clamp binds"
     const Eigen::VectorXd column = (plus.qfrc_smooth - minus.qfrc_smooth) / (2 * eps);
     for (int i = 0; i < model.nv; ++i) {
       INFO("D(" << i << ", " << j << ")");
+      // qfrc_smooth is affine in qvel through the actuators and damping and quadratic through
+      // the bias, so a central difference has no truncation error: what is left is rounding,
+      // ~1e-16 |qfrc_smooth| / eps ~ 1e-10 here
       CHECK(D(i, j) == Approx(column[i]).margin(1e-8));
     }
   }
@@ -204,6 +207,8 @@ TEST_CASE("the lab's gravity compensation through a servo adds exactly qfrc_bias
   lever::forward(model, data);
   for (int i = 0; i < model.nv; ++i) {
     INFO("dof " << i);
+    // kp (target + offset) - kp q cancels terms of ~7e3 N m (kp 4500, q ~1.57): rounding of
+    // ~1e-12 N m, and qacc = M^-1 of that; the margins leave room above rounding only
     CHECK(data.qfrc_actuator[i] == Approx(data.qfrc_bias[i]).margin(1e-9));
     CHECK(std::abs(data.qacc[i]) < 1e-8);
   }

@@ -43,6 +43,22 @@ void transmission(const Model& model, Data& data);
 /// then qfrc_actuator = moment^T actuator_force.
 void actuation(const Model& model, Data& data);
 
+/// Actuator a's gain at actuator length and velocity: gainprm[0], plus gainprm[1] length +
+/// gainprm[2] velocity when the gain is affine. Its force is gain * (clamped ctrl) + bias.
+inline double actuator_gain(const Model& model, int a, double length, double velocity) {
+  const auto& g = model.actuator_gainprm[a];
+  return model.actuator_gaintype[a] == GainType::kAffine ? g[0] + g[1] * length + g[2] * velocity
+                                                         : g[0];
+}
+
+/// Actuator a's bias at actuator length and velocity: 0, or biasprm[0] + biasprm[1] length +
+/// biasprm[2] velocity when the bias is affine.
+inline double actuator_bias(const Model& model, int a, double length, double velocity) {
+  const auto& b = model.actuator_biasprm[a];
+  return model.actuator_biastype[a] == BiasType::kAffine ? b[0] + b[1] * length + b[2] * velocity
+                                                         : 0.0;
+}
+
 /// Whether actuator a's last actuation() clamped something: ctrl outside a limited ctrlrange, or
 /// the force at a limited forcerange's end (then the force no longer follows gain and bias).
 bool actuator_clamped(const Model& model, const Data& data, int a);
