@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <lever/diff/report.hpp>
+#include <lever/diff/runs.hpp>
 #include <lever/diff/twin.hpp>
 #include <string>
 #include <vector>
@@ -48,6 +49,24 @@ inline void check_within_bound(const diff::Report& report,
     }
     INFO("first values beyond the bound:" << first_failures);
     CHECK(e.max_ratio <= 1.0);
+  }
+}
+
+/// A free run's quantities held to MuJoCo's own sensitivity: lever may differ from MuJoCo up to
+/// `generosity` times MuJoCo's difference from itself started 1e-15 away (plus the bound), since
+/// an unstable or chaotic stretch can amplify one last-bit difference more than the other; a
+/// wrong term would show up as O(1) differences, far beyond it.
+inline void check_near_noise_floor(const diff::FreeRun& run, const std::vector<std::string>& quantities,
+                                   double generosity = 100.0) {
+  for (const std::string& q : quantities) {
+    const diff::Extreme* ours = run.lever_vs_mujoco.find(q);
+    const diff::Extreme* noise = run.nudged_vs_mujoco.find(q);
+    REQUIRE(ours);
+    REQUIRE(noise);
+    INFO(q << ": lever differs by " << ours->max_abs_diff << ", MuJoCo from itself by "
+           << noise->max_abs_diff << " (largest |value| " << ours->max_abs_mujoco << ")");
+    CHECK(ours->max_abs_diff <=
+          generosity * (noise->max_abs_diff + allowed(ours->max_abs_mujoco)));
   }
 }
 

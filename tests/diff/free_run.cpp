@@ -43,11 +43,8 @@ TEST_CASE("diff: free runs stay at the dynamics' own noise floor", "[diff][free-
         std::printf("%-22s %-7s %-16s %16.2e %24.2e\n",
                     std::filesystem::path(file).filename().c_str(), diff::path_name(path),
                     q.c_str(), ours->max_abs_diff, noise->max_abs_diff);
-        const double floor = noise->max_abs_diff + allowed(ours->max_abs_mujoco);
-        INFO(q << ": lever differs by " << ours->max_abs_diff << ", MuJoCo from itself by "
-               << noise->max_abs_diff << " (largest |value| " << ours->max_abs_mujoco << ")");
-        CHECK(ours->max_abs_diff <= kGenerosity * floor);
       }
+      check_near_noise_floor(run, diff::free_run_quantities(), kGenerosity);
     }
   }
 }

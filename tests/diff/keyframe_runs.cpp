@@ -22,7 +22,6 @@ namespace {
 
 constexpr int kSteps = 60;
 constexpr double kNudge = 1e-15;
-constexpr double kGenerosity = 100.0;  // as in free_run.cpp, and for the same reason
 
 // whether MuJoCo itself, started 1e-15 away, leaves the bound: the step then amplifies last-bit
 // differences, and no independent implementation can hold the bound along the run
@@ -75,16 +74,7 @@ TEST_CASE("diff: 60 steps from the first keyframe agree under Euler, RK4 and imp
         if (!mujoco_is_sensitive(run)) {
           check_within_bound(run.lever_vs_mujoco, {"qpos", "qvel", "actuator_force"});
         } else {
-          for (const std::string q : {"qpos", "qvel", "actuator_force"}) {
-            const diff::Extreme* ours = run.lever_vs_mujoco.find(q);
-            const diff::Extreme* noise = run.nudged_vs_mujoco.find(q);
-            REQUIRE(ours);
-            REQUIRE(noise);
-            INFO(q << ": lever differs by " << ours->max_abs_diff << ", MuJoCo from itself by "
-                   << noise->max_abs_diff);
-            CHECK(ours->max_abs_diff <=
-                  kGenerosity * (noise->max_abs_diff + allowed(ours->max_abs_mujoco)));
-          }
+          check_near_noise_floor(run, {"qpos", "qvel", "actuator_force"});
         }
         twin.set_integrator(own);
       }
