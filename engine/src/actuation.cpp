@@ -23,7 +23,7 @@ double clamp(double x, const std::array<double, 2>& range) {
 }  // namespace
 
 void transmission(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::transmission");
+  check_entry(model, data, "lever::transmission");
   for (int a = 0; a < model.nu; ++a) {
     const int j = model.actuator_trnid[a];
     const double gear = model.actuator_gear[a][0];  // a joint transmission uses gear[0] only
@@ -33,7 +33,7 @@ void transmission(const Model& model, Data& data) {
 }
 
 void actuation(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::actuation");
+  check_entry(model, data, "lever::actuation");
   data.qfrc_actuator.setZero();
   if (model.nu == 0) return;
 

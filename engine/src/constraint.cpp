@@ -95,7 +95,7 @@ bool cholesky_subset(const Eigen::MatrixXd& A, const std::vector<int>& idx, int 
 }  // namespace
 
 void make_constraint(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::make_constraint");
+  check_entry(model, data, "lever::make_constraint");
   int n = 0;
   for (int j = 0; j < model.njnt; ++j) {
     if (!model.jnt_limited[j]) continue;
@@ -144,7 +144,7 @@ void make_constraint(const Model& model, Data& data) {
 }
 
 void reference_constraint(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::reference_constraint");
+  check_entry(model, data, "lever::reference_constraint");
   for (int r = 0; r < data.nefc; ++r) {
     data.efc_vel[r] = data.efc_sign[r] * data.qvel[data.efc_dof[r]];
     data.efc_aref[r] = -data.efc_B[r] * data.efc_vel[r] -
@@ -153,7 +153,7 @@ void reference_constraint(const Model& model, Data& data) {
 }
 
 void solve_constraint(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::solve_constraint");
+  check_entry(model, data, "lever::solve_constraint");
   const int n = data.nefc;
   data.qfrc_constraint.setZero();
   data.qacc = data.qacc_smooth;

@@ -15,7 +15,7 @@
 namespace lever {
 
 void crba(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::crba");
+  check_entry(model, data, "lever::crba");
   auto& IC = data.work.crb;
   Eigen::MatrixXd& H = data.M;
 
@@ -83,14 +83,14 @@ void ltdl_solve(const Model& model, const Eigen::MatrixXd& LD, const Eigen::Vect
 }  // namespace
 
 void factor_mass(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::factor_mass");
+  check_entry(model, data, "lever::factor_mass");
   data.qLD = data.M;
   const int bad = ltdl(model, data.qLD, data.qLDiagInv);
   if (bad >= 0) record_warning(data, Warning::kInertia, bad);
 }
 
 void solve_mass(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x) {
-  const EntryCheck entry(model, data, "lever::solve_mass");
+  check_entry(model, data, "lever::solve_mass");
   check_argument_size(x.size(), model.nv, "lever::solve_mass", "x");
   ltdl_solve(model, data.qLD, data.qLDiagInv, x);
 }

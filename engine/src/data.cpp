@@ -32,6 +32,7 @@ Data::Data(const Model& model)
       nsite(model.nsite) {
   // every array of the field table, zero-filled at its size; then the values that are not zero
   detail::size_data_arrays(model, *this);
+  model_tag = model.fit_tag;  // sized from this model: it fits
   qpos = model.qpos0;
   for (auto& q : xquat) q = Eigen::Vector4d(1, 0, 0, 0);
   for (auto* list : {&xmat, &ximat, &site_xmat}) {
@@ -87,7 +88,7 @@ std::string warning_text(const Data& data) {
 }
 
 void reset(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::reset");
+  check_entry(model, data, "lever::reset");
   data.time = 0.0;
   data.qpos = model.qpos0;
   data.qvel.setZero();
@@ -99,7 +100,7 @@ void reset(const Model& model, Data& data) {
 }
 
 void reset_keyframe(const Model& model, Data& data, int key) {
-  const EntryCheck entry(model, data, "lever::reset_keyframe");
+  check_entry(model, data, "lever::reset_keyframe");
   if (key < 0 || key >= model.nkey) {
     throw StateError("lever::reset_keyframe: keyframe " + std::to_string(key) +
                      " does not exist (the model has " + std::to_string(model.nkey) +
@@ -117,9 +118,9 @@ void reset_keyframe(const Model& model, Data& data, const std::string& key) {
   if (id < 0) {
     std::string names;
     for (const std::string& n : model.key_name) names += (names.empty() ? "'" : ", '") + n + "'";
-    throw StateError("lever::reset_keyframe: the model has no keyframe named '" + key + "' (" +
-                     (names.empty() ? std::string("it has no named keyframes") : "it has " + names) +
-                     ").");
+    throw StateError(
+        "lever::reset_keyframe: the model has no keyframe named '" + key + "' (" +
+        (names.empty() ? std::string("it has no named keyframes") : "it has " + names) + ").");
   }
   reset_keyframe(model, data, id);
 }

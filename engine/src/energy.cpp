@@ -6,7 +6,7 @@
 namespace lever {
 
 void compute_energy(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::compute_energy");
+  check_entry(model, data, "lever::compute_energy");
   // gravity: -m g . x_com for every body; springs: k (q - q_spring)^2 / 2
   double potential = 0.0;
   for (int b = 1; b < model.nbody; ++b) {

@@ -56,7 +56,7 @@ void acceleration_stage(const Model& model, Data& data) {
 }
 
 void forward(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::forward");
+  check_entry(model, data, "lever::forward");
   check_inputs(data);
   position_stage(model, data);
   velocity_stage(model, data);
@@ -65,7 +65,7 @@ void forward(const Model& model, Data& data) {
 }
 
 void inverse(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::inverse");
+  check_entry(model, data, "lever::inverse");
   check_inputs(data);
   record_if_bad(data, data.qacc, Warning::kBadQacc);
   position_stage(model, data);

@@ -64,7 +64,7 @@ void bias_velocity_column(const Model& model, Data& data, int j, Eigen::Ref<Eige
 
 void smooth_velocity_derivative(const Model& model, Data& data,
                                 Eigen::Ref<Eigen::MatrixXd> qDeriv) {
-  const EntryCheck entry(model, data, "lever::smooth_velocity_derivative");
+  check_entry(model, data, "lever::smooth_velocity_derivative");
   if (qDeriv.rows() != model.nv || qDeriv.cols() != model.nv) {
     throw StateError("lever::smooth_velocity_derivative: qDeriv is " +
                      std::to_string(qDeriv.rows()) + " x " + std::to_string(qDeriv.cols()) +

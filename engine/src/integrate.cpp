@@ -80,7 +80,7 @@ void rk4(const Model& model, Data& data) {
 }  // namespace
 
 void step(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::step");
+  check_entry(model, data, "lever::step");
   if (!check_and_reset(model, data, data.qpos, Warning::kBadQpos)) {
     check_and_reset(model, data, data.qvel, Warning::kBadQvel);
   }
@@ -95,7 +95,7 @@ void step(const Model& model, Data& data) {
 }
 
 void step1(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::step1");
+  check_entry(model, data, "lever::step1");
   if (!check_and_reset(model, data, data.qpos, Warning::kBadQpos)) {
     check_and_reset(model, data, data.qvel, Warning::kBadQvel);
   }
@@ -104,7 +104,7 @@ void step1(const Model& model, Data& data) {
 }
 
 void step2(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::step2");
+  check_entry(model, data, "lever::step2");
   acceleration_stage(model, data);
   if (check_and_reset(model, data, data.qacc, Warning::kBadQacc)) forward(model, data);
   // as in MuJoCo 2.2.2, the split step integrates RK4 models with Euler: RK4 needs forward() at

@@ -32,32 +32,29 @@ inline void record_warning(Data& data, Warning w, int info) {
   stat.lastinfo = info;
 }
 
-/// The check at the door of every public function: Model and Data belong together and every
-/// array of Data still has its size (check_fit). A pipeline (forward, step, inverse) checks once;
-/// the stages it calls inside are not checked again. Allocates nothing unless it throws.
-class EntryCheck {
- public:
-  EntryCheck(const Model& model, Data& data, const char* where) : data_(&data) {
-    if (data.work.inside_entry) {
-      data_ = nullptr;  // an outer call has checked, and will clear the mark
-      return;
-    }
-    check_fit(model, data, where);
-    data.work.inside_entry = true;
-  }
-  /// For functions that only read data (Jacobians, solves): checks unless inside a pipeline.
-  EntryCheck(const Model& model, const Data& data, const char* where) {
-    if (!data.work.inside_entry) check_fit(model, data, where);
-  }
-  ~EntryCheck() {
-    if (data_ != nullptr) data_->work.inside_entry = false;
-  }
-  EntryCheck(const EntryCheck&) = delete;
-  EntryCheck& operator=(const EntryCheck&) = delete;
+/// Whether the arrays a caller assigns (the state and the inputs) still have the model's sizes.
+inline bool inputs_fit(const Model& model, const Data& data) {
+  return data.qpos.size() == model.nq && data.qvel.size() == model.nv &&
+         data.qacc.size() == model.nv && data.ctrl.size() == model.nu &&
+         data.qfrc_applied.size() == model.nv;
+}
 
- private:
-  Data* data_ = nullptr;
-};
+/// The check at the door of every public function. Model and Data are matched where they meet:
+/// set_const gives a model a fresh tag, and a Data that passed check_fit against a model keeps its
+/// tag. A call then costs a comparison of tags and of the input arrays' sizes; only a Data meeting
+/// a model (or a model edition) it has not been checked against walks the whole field table.
+/// No guard object: nothing to unwind on the hot path.
+inline void check_entry(const Model& model, Data& data, const char* where) {
+  if (model.fit_tag != 0 && data.model_tag == model.fit_tag && inputs_fit(model, data)) return;
+  check_fit(model, data, where);  // throws, naming the array that does not fit
+  data.model_tag = model.fit_tag;
+}
+
+/// The same for functions that only read data (Jacobians, solves).
+inline void check_entry(const Model& model, const Data& data, const char* where) {
+  if (model.fit_tag != 0 && data.model_tag == model.fit_tag && inputs_fit(model, data)) return;
+  check_fit(model, data, where);
+}
 
 /// The three stages of forward() (MuJoCo's mj_fwdPosition, mj_fwdVelocity, and mj_fwdActuation +
 /// mj_fwdAcceleration + mj_fwdConstraint); step1()/step2() split a step between them.

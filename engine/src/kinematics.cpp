@@ -143,7 +143,7 @@ void check_jacobians(const Model& model, const Eigen::Ref<Eigen::MatrixXd>& jacp
 }  // namespace
 
 void kinematics(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::kinematics");
+  check_entry(model, data, "lever::kinematics");
   poses(model, data);
   com_quantities(model, data);
 }
@@ -181,7 +181,7 @@ void point_jacobians(const Model& model, const Data& data, int body, const Eigen
 
 void jac_point(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
                Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr) {
-  const EntryCheck entry(model, data, "lever::jac_point");
+  check_entry(model, data, "lever::jac_point");
   check_jacobians(model, jacp, jacr, "lever::jac_point");
   if (body < 0 || body >= model.nbody) {
     throw StateError("lever::jac_point: body " + std::to_string(body) + " is not in 0.." +
@@ -193,7 +193,7 @@ void jac_point(const Model& model, const Data& data, int body, const Eigen::Vect
 void jac_site(const Model& model, const Data& data, int site, Eigen::Ref<Eigen::MatrixXd> jacp,
               Eigen::Ref<Eigen::MatrixXd> jacr) {
   // checked here, before data.site_xpos is read, and named as the caller knows it
-  const EntryCheck entry(model, data, "lever::jac_site");
+  check_entry(model, data, "lever::jac_site");
   check_jacobians(model, jacp, jacr, "lever::jac_site");
   if (site < 0 || site >= model.nsite) {
     throw StateError("lever::jac_site: site " + std::to_string(site) + " is not in 0.." +

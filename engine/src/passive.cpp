@@ -6,7 +6,7 @@
 namespace lever {
 
 void passive(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::passive");
+  check_entry(model, data, "lever::passive");
   for (int j = 0; j < model.njnt; ++j) {
     const int q = model.jnt_qposadr[j];
     const int d = model.jnt_dofadr[j];

@@ -61,13 +61,13 @@ void newton_euler(const Model& model, Data& data, const double* qdd,
 }  // namespace
 
 void bias(const Model& model, Data& data) {
-  const EntryCheck entry(model, data, "lever::bias");
+  check_entry(model, data, "lever::bias");
   newton_euler(model, data, nullptr, data.qfrc_bias);
 }
 
 void rnea(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc,
           Eigen::Ref<Eigen::VectorXd> tau) {
-  const EntryCheck entry(model, data, "lever::rnea");
+  check_entry(model, data, "lever::rnea");
   check_argument_size(qacc.size(), model.nv, "lever::rnea", "qacc");
   check_argument_size(tau.size(), model.nv, "lever::rnea", "tau");
   newton_euler(model, data, qacc.data(), tau);

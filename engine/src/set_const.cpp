@@ -7,6 +7,7 @@
 #include <lever/kinematics.hpp>
 #include <lever/model.hpp>
 
+#include <atomic>
 #include <cmath>
 #include <string>
 
@@ -44,8 +45,10 @@ void check_sizes(Model& model) {
   if (model.nkey < 0 || model.key_qpos.rows() != model.nkey || model.key_qpos.cols() != model.nq ||
       model.key_qvel.rows() != model.nkey || model.key_qvel.cols() != model.nv ||
       model.key_ctrl.rows() != model.nkey || model.key_ctrl.cols() != model.nu) {
-    throw ModelError("keyframe arrays key_qpos, key_qvel, key_ctrl must be nkey x nq, nkey x nv "
-                     "and nkey x nu (nkey = " + std::to_string(model.nkey) + ").");
+    throw ModelError(
+        "keyframe arrays key_qpos, key_qvel, key_ctrl must be nkey x nq, nkey x nv "
+        "and nkey x nu (nkey = " +
+        std::to_string(model.nkey) + ").");
   }
   // what set_const derives is sized here; every other array must have the size the field table
   // gives it (lever/fields.hpp)
@@ -324,6 +327,8 @@ void set_const(Model& model) {
   check_mass(model);
   build_tree_sums(model);
   build_rotations(model);
+  static std::atomic<std::uint64_t> last_tag{0};
+  model.fit_tag = ++last_tag;
 
   // constants at qpos0: diag of M and of M^-1, and the bodies' mean inverse inertias
   Data data(model);

@@ -362,8 +362,35 @@ TEST_CASE("an array of Data resized by assignment is refused, naming it", "[fiel
   CHECK_THROWS_WITH(lever::inverse(model, data),
                     Catch::Contains("lever::inverse") && Catch::Contains("data.ctrl"));
   data.ctrl = Eigen::VectorXd::Zero(model.nu);
+  CHECK_NOTHROW(lever::forward(model, data));
+
+  // an output array is sized once: calls compare the model's tag and the inputs' sizes only, and
+  // check_fit (run whenever the Data meets a model edition it has not been checked against)
+  // names the output that was resized
   data.xmat.pop_back();
-  CHECK_THROWS_WITH(lever::kinematics(model, data), Catch::Contains("data.xmat"));
+  CHECK_THROWS_WITH(lever::check_fit(model, data, "here"), Catch::Contains("data.xmat"));
+  lever::Model edited = model;
+  lever::set_const(edited);  // a new edition of the model: the next call checks everything
+  CHECK(edited.fit_tag != model.fit_tag);
+  CHECK_THROWS_WITH(lever::kinematics(edited, data), Catch::Contains("data.xmat"));
+}
+
+TEST_CASE("a Data checked once against a model edition is not checked again", "[fields]") {
+  const lever::Model model = load("models/arm3.xml");
+  lever::Data data(model);
+  CHECK(model.fit_tag != 0);
+  CHECK(data.model_tag == model.fit_tag);  // sized from it
+  lever::Model heavier = model;
+  heavier.body_mass[2] *= 2.0;
+  lever::set_const(heavier);
+  CHECK(heavier.fit_tag != model.fit_tag);
+  lever::forward(heavier, data);  // same sizes: checked once, then remembered
+  CHECK(data.model_tag == heavier.fit_tag);
+  lever::forward(model, data);
+  CHECK(data.model_tag == model.fit_tag);
+  const lever::Model other = load("models/arm2.xml");
+  CHECK_THROWS_AS(lever::forward(other, data), lever::StateError);
+  CHECK(data.model_tag == model.fit_tag);  // a refusal changes nothing
 }
 
 TEST_CASE("rnea, solve_mass and jac_site refuse arguments of the wrong size or index", "[fields]") {

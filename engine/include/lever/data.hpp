@@ -135,14 +135,18 @@ struct Data {
     std::vector<int> lcp_index;        ///< (nefc_max) the active rows, in order
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
-    Eigen::MatrixXd qDeriv;                  ///< (nv x nv) implicit: d qfrc_smooth / d qvel
+    Eigen::MatrixXd qDeriv;                    ///< (nv x nv) implicit: d qfrc_smooth / d qvel
     Eigen::PartialPivLU<Eigen::MatrixXd> qLU;  ///< implicit: LU factor of M - h qDeriv
-    std::vector<Motion> dcvel, dcacc;        ///< (nbody) implicit: d cvel, d cacc / d qvel_j
-    std::vector<Force> dcfrc;                ///< (nbody) implicit: d cfrc / d qvel_j
-    bool inside_entry = false;  ///< a public function has checked this Data and runs its stages
+    std::vector<Motion> dcvel, dcacc;          ///< (nbody) implicit: d cvel, d cacc / d qvel_j
+    std::vector<Force> dcfrc;                  ///< (nbody) implicit: d cfrc / d qvel_j
   } work;
 
   int nefc_max = 0;  ///< 2 * njnt: the most limit rows a model can have
+  /// The fit_tag of the model this Data was last checked against (lever/fields.hpp check_fit):
+  /// a call with that model compares tags instead of walking the field table. The arrays a caller
+  /// assigns (qpos, qvel, qacc, ctrl, qfrc_applied) are checked on every call; the outputs are
+  /// sized once and must not be resized (check_fit says which one was).
+  std::uint64_t model_tag = 0;
   /// sizes of the model this Data was built for (checked on use: lever/fields.hpp check_fit)
   int nq = 0, nv = 0, nu = 0, nbody = 0, njnt = 0, ngeom = 0, nsite = 0;
 };

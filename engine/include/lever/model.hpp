@@ -84,11 +84,11 @@ struct CompilerInfo {
 /// What a model file says that changes no dynamics (assets, lights, cameras, materials), kept so
 /// that tools can show it. The engine never reads it.
 struct VisualInfo {
-  std::string meshdir, texturedir;                   ///< <compiler>, as written
-  std::vector<std::string> mesh_name, mesh_file;     ///< <asset><mesh>; file "" if inline
-  std::vector<std::string> material_name;            ///< <asset><material>
-  std::vector<std::string> texture_name;             ///< <asset><texture>
-  std::vector<std::string> light_name, camera_name;  ///< lights and cameras ("" if unnamed)
+  std::string meshdir, texturedir;                    ///< <compiler>, as written
+  std::vector<std::string> mesh_name, mesh_file;      ///< <asset><mesh>; file "" if inline
+  std::vector<std::string> material_name;             ///< <asset><material>
+  std::vector<std::string> texture_name;              ///< <asset><texture>
+  std::vector<std::string> light_name, camera_name;   ///< lights and cameras ("" if unnamed)
   std::vector<std::string> geom_mesh, geom_material;  ///< (ngeom) names, "" if none
 };
 
@@ -221,6 +221,10 @@ struct Model {
   /// the parent body (unused for a body's later joints)
   std::vector<Eigen::Vector3d> jnt_axis_in_parent;
   std::vector<Eigen::Vector3d> jnt_pos_in_parent;
+
+  /// set_const: a number no other set_const call has given (0: never set). A Data checked
+  /// against this model remembers it, so later calls need not check the whole field table again.
+  std::uint64_t fit_tag = 0;
 
   // ---- names ---------------------------------------------------------------------------------
   /// Index of the named object, or -1. Linear search: meant for set-up code, not inner loops.
