@@ -48,12 +48,18 @@ void poses(const Model& model, Data& data) {
         data.xanchor[j] =
             model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(turned, model.jnt_pos[j])) : pos;
       }
-      if (model.jnt_type[j] == JointType::kSlide) {
+      const JointKind kind = model.jnt_kind[j];
+      if (kind == JointKind::kSlide) {
         pos += data.xaxis[j] * theta;
         continue;
       }
       const double s = std::sin(0.5 * theta), c = std::cos(0.5 * theta);
-      quat = quat_mul(quat, Quat(c, axis[0] * s, axis[1] * s, axis[2] * s));
+      if (kind == JointKind::kHinge) {
+        quat = quat_mul(quat, Quat(c, axis[0] * s, axis[1] * s, axis[2] * s));
+      } else {  // about a coordinate axis: two of the turn's components are zero
+        const int k = static_cast<int>(kind) - static_cast<int>(JointKind::kHingeX);
+        quat = quat_mul_axis(quat, k, c, axis[k] * s);
+      }
       // the anchor stays where it is: the frame's origin swings around it
       if (model.jnt_offset[j]) {
         turned = quat_to_mat(quat);

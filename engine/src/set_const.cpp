@@ -139,6 +139,19 @@ void build_tree_sums(Model& model) {
 }
 
 // Rotation matrices of the constant quaternions, and whether each is the identity.
+// A hinge whose axis is exactly +-1 along one coordinate axis of its body and zero along the
+// others is dispatched to the kernels that leave the zeros out (bit for bit the general product).
+JointKind joint_kind(const Model& model, int j) {
+  if (model.jnt_type[j] == JointType::kSlide) return JointKind::kSlide;
+  const Eigen::Vector3d& a = model.jnt_axis[j];
+  constexpr JointKind kAligned[3] = {JointKind::kHingeX, JointKind::kHingeY, JointKind::kHingeZ};
+  for (int k = 0; k < 3; ++k) {
+    const bool others_zero = a[(k + 1) % 3] == 0.0 && a[(k + 2) % 3] == 0.0;
+    if (others_zero && std::abs(a[k]) == 1.0) return kAligned[k];
+  }
+  return JointKind::kHinge;
+}
+
 void build_rotations(Model& model) {
   model.body_rotated.resize(model.nbody);
   model.body_imat.resize(model.nbody);
@@ -154,6 +167,8 @@ void build_rotations(Model& model) {
     model.site_mat[s] = quat_to_mat(quat_normalized(model.site_quat[s]));
     model.site_rotated[s] = !is_identity(model.site_quat[s]);
   }
+  model.jnt_kind.resize(model.njnt);
+  for (int j = 0; j < model.njnt; ++j) model.jnt_kind[j] = joint_kind(model, j);
   model.jnt_offset.resize(model.njnt);
   model.jnt_axis_in_parent.resize(model.njnt);
   model.jnt_pos_in_parent.resize(model.njnt);

@@ -27,6 +27,21 @@ namespace lever {
 /// Joint types; the numeric values are MuJoCo's mjtJoint.
 enum class JointType : int { kSlide = 2, kHinge = 3 };
 
+/// How a joint moves its body, as the kernels need to know it. set_const derives it from jnt_type
+/// and jnt_axis so that a kernel dispatches once per joint and does only the arithmetic that
+/// joint needs: a hinge about a coordinate axis of its body (arm2's -y, every Panda joint's z)
+/// turns by a quaternion with two zero components, so half of its product is left out. Every
+/// kernel reads a joint's coordinates at jnt_qposadr and its dofs at jnt_dofadr, so kinds whose
+/// qpos is longer than their dofs (ball and free joints: a quaternion for three rotational dofs)
+/// extend this list without changing the kernels' loops.
+enum class JointKind : uint8_t {
+  kHingeX,  ///< hinge about +-x of the body frame
+  kHingeY,  ///< hinge about +-y
+  kHingeZ,  ///< hinge about +-z
+  kHinge,   ///< hinge about any other axis
+  kSlide,   ///< slide along its axis
+};
+
 /// Integrators; the numeric values are MuJoCo's mjtIntegrator. kImplicit is MuJoCo 2.2.2's
 /// `implicit`: implicit in every velocity-dependent force (MuJoCo 3's `implicitfast` does not
 /// exist in 2.2.2).
@@ -216,6 +231,7 @@ struct Model {
   std::vector<uint8_t> body_irotated;  ///< body_iquat is not the identity
   std::vector<Mat3> site_mat;          ///< rotation of site_quat
   std::vector<uint8_t> site_rotated;   ///< site_quat is not the identity
+  std::vector<JointKind> jnt_kind;     ///< what the kernels dispatch on (see JointKind)
   std::vector<uint8_t> jnt_offset;     ///< jnt_pos is not zero (the anchor is off the origin)
   /// the first joint of each body: its axis and anchor turned by body_quat, i.e. in the frame of
   /// the parent body (unused for a body's later joints)

@@ -129,6 +129,21 @@ inline Quat quat_mul(const Quat& a, const Quat& b) {
               a[0] * b[3] + a[1] * b[2] - a[2] * b[1] + a[3] * b[0]);
 }
 
+/// q * (c, s e_k): the product with a rotation about coordinate axis k (0, 1, 2 for x, y, z),
+/// where (c, s) = (cos, sin) of half the angle, signed with the axis. The eight products with
+/// the zero components are left out; the rest are summed in quat_mul's order, so the result is
+/// quat_mul's to the bit.
+inline Quat quat_mul_axis(const Quat& q, int k, double c, double s) {
+  switch (k) {
+    case 0: return Quat(q[0] * c - q[1] * s, q[0] * s + q[1] * c, q[2] * c + q[3] * s,
+                        -(q[2] * s) + q[3] * c);
+    case 1: return Quat(q[0] * c - q[2] * s, q[1] * c - q[3] * s, q[0] * s + q[2] * c,
+                        q[1] * s + q[3] * c);
+    default: return Quat(q[0] * c - q[3] * s, q[1] * c + q[2] * s, -(q[1] * s) + q[2] * c,
+                         q[0] * s + q[3] * c);
+  }
+}
+
 /// The rotation matrix of a unit quaternion (maps local to parent coordinates).
 inline Eigen::Matrix3d quat_to_mat(const Quat& q) {
   const double w = q[0], x = q[1], y = q[2], z = q[3];
