@@ -484,26 +484,18 @@ def case_check_html_runs_no_script():
 
 # ---- the 3D view --------------------------------------------------------------------------------
 
-def case_view_3d_renders():
-    with Browser(LAB) as b:
-        check(b.ready, 'the page did not get ready: %s' % b.errors_shown())
-        b.js('lab.press("Bent pose");')
-        view = b.js('return lab.view();')
-        check(view['kind'] == '3d', 'the lab has no 3D view in headless chromium: %s' % view)
-        # each geom's position and z axis (a capsule's or cylinder's) as three.js draws it
-        geoms = b.js('return lab.sims[0].view3d.geoms.map(g => { g.updateMatrixWorld();'
-                     'const e = g.matrixWorld.elements; return [e[12], e[13], e[14], e[8], e[9], e[10]]; });')
-        qpos = b.js('return Array.from(lab.sims[0].data.qpos);')
-        b.js('for (const box of document.querySelectorAll("input[data-toggle]")) if (!box.checked) box.click();')
-        overlays = b.js('return lab.view();')
-        b.js('lab.orbit(60, -20);')
-        turned = b.js('return lab.view();')
-        b.js('lab.zoom(2);')
-        zoomed = b.js('return lab.view();')
-        check(b.console_errors() == [], 'console errors: %s' % b.console_errors())
-    # MuJoCo's geom_xpos and geom_xmat from lever's native body poses and the model's geom frames
-    native = native_forward(ARM2, qpos)
-    model = json.loads(subprocess.run([ARGS.lever, 'model', ARM2, '--json'], check=True,
+def drawn_geoms(b):
+    """Each geom's position and z axis (a capsule's or cylinder's) as three.js draws it, and qpos."""
+    geoms = b.js('return lab.sims[0].view3d.geoms.map(g => { g.updateMatrixWorld();'
+                 'const e = g.matrixWorld.elements; return [e[12], e[13], e[14], e[8], e[9], e[10]]; });')
+    return geoms, b.js('return Array.from(lab.sims[0].data.qpos);')
+
+
+def check_geoms_where_lever_puts_them(path, geoms, qpos):
+    """MuJoCo's geom_xpos and geom_xmat's z column from lever's native body poses (lever forward)
+    and the model's geom frames (lever model): the view draws every geom there."""
+    native = native_forward(path, qpos)
+    model = json.loads(subprocess.run([ARGS.lever, 'model', path, '--json'], check=True,
                                       capture_output=True, text=True).stdout)
     check(len(geoms) == model['ngeom'], '%d geoms drawn of %d' % (len(geoms), model['ngeom']))
     for i, drawn in enumerate(geoms):
@@ -517,15 +509,61 @@ def case_view_3d_renders():
             close(drawn[k], native['xpos'][3 * body + k] + sum(r * p for r, p in zip(row, pos)),
                   'geom %d position[%d]' % (i, k))
             close(drawn[3 + k], sum(r * a for r, a in zip(row, geom_z)), 'geom %d z axis[%d]' % (i, k))
-    print('3D view: %d triangles in %d draw calls, %d pixels drawn; all overlays %d; turned %d; zoomed out %d'
-          % (view['triangles'], view['calls'], view['inked'], overlays['inked'], turned['inked'],
-             zoomed['inked']))
+    return model
+
+
+def case_view_3d_renders():
+    with Browser(LAB) as b:
+        check(b.ready, 'the page did not get ready: %s' % b.errors_shown())
+        b.js('lab.press("Bent pose");')
+        view = b.js('return lab.view();')
+        check(view['kind'] == '3d', 'the lab has no 3D view in headless chromium: %s' % view)
+        geoms, qpos = drawn_geoms(b)
+        b.js('for (const box of document.querySelectorAll("input[data-toggle]")) if (!box.checked) box.click();')
+        overlays = b.js('return lab.view();')
+        b.js('lab.orbit(60, -20);')
+        turned = b.js('return lab.view();')
+        b.js('lab.zoom(2);')
+        zoomed = b.js('return lab.view();')
+        check(b.console_errors() == [], 'console errors: %s' % b.console_errors())
+    check_geoms_where_lever_puts_them(ARM2, geoms, qpos)
+    print('3D view: %d triangles in %d draw calls, %d pixels drawn; turned %d; zoomed out %d'
+          % (view['triangles'], view['calls'], view['inked'], turned['inked'], zoomed['inked']))
     check(view['triangles'] > 100 and view['inked'] > 2000, 'the 3D view drew almost nothing: %s' % view)
     check(overlays['checksum'] != view['checksum'], 'the overlays drew nothing')
     check(turned['camera']['azimuth'] != view['camera']['azimuth'] and
           turned['camera']['elevation'] == view['camera']['elevation'] - 20, 'orbit: %s' % turned['camera'])
     check(zoomed['camera']['distance'] == 2 * turned['camera']['distance'], 'zoom: %s' % zoomed['camera'])
     check(zoomed['inked'] < turned['inked'], 'twice as far, the arm should cover fewer pixels')
+
+
+def case_view_3d_every_geom_type():
+    # tests/models/geoms_inertia.xml has every primitive geom type; the Menagerie-style model has
+    # mesh geoms whose files are absent (drawn as nothing: lever gave them no size)
+    spec = data_url('{"model": "any", "camera": {"azimuth": 120, "elevation": -25, "distance": 1.2,'
+                    '"target": [0.1, 0, 0.2]}}', 'application/json')
+    for path in (os.path.join(ROOT, 'tests', 'models', 'geoms_inertia.xml'),
+                 os.path.join(ROOT, 'tests', 'menagerie', 'panda_style.xml')):
+        with open(path) as f:
+            xml = f.read()
+        query = 'paused=1&spec=%s&model=%s' % (urllib.parse.quote(spec),
+                                                urllib.parse.quote(data_url(xml, 'application/xml')))
+        with Browser(query) as b:
+            check(b.ready, '%s: the page did not get ready: %s' % (path, b.errors_shown()))
+            view = b.js('return lab.view();')
+            geoms, qpos = drawn_geoms(b)
+            meshes = b.js('return lab.sims[0].view3d.geoms.map(g => g.children.length);')
+            check(b.console_errors() == [], 'console errors: %s' % b.console_errors())
+        model = check_geoms_where_lever_puts_them(path, geoms, qpos)
+        check(view['kind'] == '3d' and view['inked'] > 500, '%s: %s' % (path, view))
+        for i, (kind, parts) in enumerate(zip(model['geom_type'], meshes)):
+            sized = all(x > 0 for x in model['geom_size'][3 * i:3 * i + 3 if kind in (4, 6, 7) else 3 * i + 1])
+            # a capsule is a tube and two caps; every other sized geom one shape; a mesh lever did
+            # not read, none
+            expected = 3 if kind == 3 else (1 if sized else 0)
+            check(parts == expected, '%s: geom %d (type %d) drawn with %d shapes' % (path, i, kind, parts))
+        print('%s: %d geoms of types %s, %d triangles' % (os.path.basename(path), model['ngeom'],
+                                                         sorted(set(model['geom_type'])), view['triangles']))
 
 
 def native_forward(model, qpos, qvel=None, ctrl=None):
