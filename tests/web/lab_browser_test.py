@@ -482,6 +482,18 @@ def case_check_html_runs_no_script():
     check('fine <script>' in explain, 'entities in the explanation: %r' % explain)
 
 
+
+def case_check_bad_question_shows_an_error():
+    # a question the page cannot ask: its problem shown with the line of the spec it is on
+    bad = ('{"title": "t", "questions": [\n'
+           '{"kind": "numeric", "q": "fine", "answer": 1, "tol": 0.1, "explain": ""},\n'
+           '{"kind": "mcq", "q": "which?", "options": ["a", "b"], "answer": 2}]}')
+    with Browser('paused=1&spec=' + urllib.parse.quote(data_url(bad, 'application/json'))) as b:
+        shown = b.errors_shown()
+        check(not b.ready, 'a question whose answer is not one of its options was accepted')
+    check(len(shown) == 1 and 'question 2' in shown[0] and 'line 3' in shown[0],
+          'errors shown: %s' % shown)
+
 # ---- the 3D view --------------------------------------------------------------------------------
 
 def drawn_geoms(b):
