@@ -18,6 +18,8 @@ packages=(
   chromium             # tests/web: the lab in a real browser, headless
   chromium-driver      # tests/web: chromedriver, which selenium drives chromium through
   python3-selenium     # tests/web: the browser tests (Debian's /usr/bin/python3)
+  libjs-three          # the lab's 3D view (three.js r111), served with the page by web/serve.py
+  libjs-katex          # the knowledge check's math (KaTeX), served with the page by web/serve.py
 )
 
 # `scripts/setup.sh fuzz`: also what `make fuzz` needs (clang and its libFuzzer runtime)

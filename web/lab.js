@@ -7,11 +7,18 @@
 // run, after a button) the page shows the current state under the command the controller gives it
 // (mj_forward, controller, mj_forward): the same numbers as `lever simulate --json`'s last row.
 //
+// A knowledge check (a spec with "questions") is shown whole, in order: each question with its
+// input or options, a Check button and its explanation (web/quiz.js), and a question's sim under it.
+//
+// The view is 3D (web/view3d.js, three.js) where WebGL is available, else the 2D drawing below.
+//
 // URL: ?spec=URL (default specs/5.1-lab.json), &model=URL (default models/<spec.model>.xml),
-// &paused=1 (start paused). window.lab drives the page as its controls do: lab.press(label),
-// lab.set(param or label, value), lab.run(seconds), lab.readouts(), lab.play(), lab.pause(),
-// lab.reset(), lab.errors(); lab.ready resolves when the page is built (or has shown an error);
-// lab.mj is web/lever.js's API itself.
+// &paused=1 (start paused), &view=2d (the 2D view even with WebGL). window.lab drives the page as
+// its controls do: lab.press(label), lab.set(param or label, value), lab.run(seconds),
+// lab.readouts(), lab.play(), lab.pause(), lab.reset(), lab.errors(), lab.questions(),
+// lab.answer(question, value) -> {correct, explain}, lab.view() (which view, what it drew),
+// lab.rate() (frames and simulated seconds per wall second while playing); lab.ready resolves
+// when the page is built (or has shown an error); lab.mj is web/lever.js's API itself.
 (function () {
   'use strict';
 
@@ -110,7 +117,7 @@
 
   // ---- one simulation: a lab block or a question's sim -------------------------------------------
   class Sim {
-    constructor(mj, spec, specText, model, container, heading) {
+    constructor(mj, spec, specText, model, container) {
       this.mj = mj;
       this.spec = spec;
       this.specText = specText;
@@ -123,7 +130,7 @@
       this.stepsSinceSample = 0;
       this.sampleEvery = Math.max(1, Math.round(0.01 / model.opt.timestep));
       this.compileAll();
-      this.build(container, heading);
+      this.build(container);
       for (const c of this.controls) {
         if (c.apply) this.call(c.apply, c.spec.value, 'apply');
       }
@@ -231,7 +238,10 @@
 
     reset() {
       this.mj.mj_resetData(this.model, this.data);
-      if (this.setup) this.call(this.setup);
+      if (this.setup) {
+        this.call(this.setup);
+        this.syncControls();
+      }
       this.samples = [];
       this.trail = [];
       this.stepsSinceSample = 0;
@@ -258,6 +268,7 @@
     // what a control does when it changes or is pressed
     press(control) {
       this.call(control.run);
+      this.syncControls();
       this.samples = [];
       this.trail = [];
       this.settle();
@@ -278,6 +289,16 @@
       }
     }
 
+    // a button or the setup may set ctx (a pose's targets): the sliders then show the new values
+    syncControls() {
+      for (const control of this.controls) {
+        const param = control.spec.param;
+        if (param === undefined || !control.read || control.read() === this.ctx[param]) continue;
+        control.write(this.ctx[param]);
+        if (control.output) control.output.textContent = this.controlText(control, this.ctx[param]);
+      }
+    }
+
     controlText(control, value) {
       const c = control.spec;
       return formatNumber(value, c.digits === undefined ? 2 : c.digits) + (c.unit ? ' ' + c.unit : '');
@@ -291,11 +312,10 @@
     }
 
     // ---- the page ------------------------------------------------------------------------------
-    build(container, heading) {
+    build(container) {
       const s = this.spec;
       const root = element('section', {class: 'sim'});
       if (s.title) root.appendChild(element('h2', {}, s.title));
-      if (heading) root.appendChild(element('p', {class: 'question'}, heading));
       const layout = element('div', {class: 'layout'});
       const left = element('div');
       const right = element('div', {class: 'controls'});
@@ -305,6 +325,10 @@
       this.view = element('canvas', {class: 'view', height: String(s.height || 240)});
       this.view.style.height = (s.height || 240) + 'px';
       left.appendChild(this.view);
+      const want2d = params.get('view') === '2d' || s.view === '2d';
+      this.view3d = want2d || !window.View3D ? null : window.View3D.create(this.view, this.model, s.camera);
+      this.view.dataset.view = this.view3d ? '3d' : '2d';
+      if (this.view3d) this.view.title = 'drag: turn the camera; wheel: zoom; double click: the lesson\'s view';
       const toolbar = element('div', {class: 'toolbar'});
       this.playButton = element('button', {type: 'button', class: 'play'}, 'Play');
       this.playButton.addEventListener('click', () => (this.running ? this.pause() : this.play()));
@@ -427,6 +451,16 @@
     }
 
     draw() {
+      if (this.view3d) {
+        this.view3d.draw(this.data, this.overlays, this.trail);
+        this.plotCanvases.forEach((c, i) => this.drawPlot(c, this.plotSpecs[i], i));
+        return;
+      }
+      this.draw2d();
+    }
+
+    // the fallback without WebGL: the model projected by the same camera onto a 2D canvas
+    draw2d() {
       const canvas = this.view;
       const ratio = window.devicePixelRatio || 1;
       const width = Math.max(1, Math.round(canvas.clientWidth * ratio));
@@ -605,14 +639,7 @@
 
   // ---- the page --------------------------------------------------------------------------------
   const sims = [];
-
-  // the sims a spec holds: itself (a lab block) or its questions' "sim"s (a knowledge check)
-  function simsOf(spec) {
-    if (spec && Array.isArray(spec.questions)) {
-      return spec.questions.filter((q) => q && q.sim).map((q) => ({spec: q.sim, heading: q.q}));
-    }
-    return [{spec, heading: null}];
-  }
+  const questions = [];
 
   async function start() {
     const specUrl = params.get('spec') || 'specs/5.1-lab.json';
@@ -624,10 +651,8 @@
     document.getElementById('engine').textContent = 'lever ' + mj.version + ' (WebAssembly)';
     const specText = await fetchText(specUrl, 'spec');
     const spec = parseSpec(specText);
-    const list = simsOf(spec);
-    if (list.length === 0) throw new SpecError('the spec has no simulation (no "sim" in its questions)');
     const container = document.getElementById('sims');
-    for (const {spec: s, heading} of list) {
+    const addSim = async (s, where) => {
       if (!s || typeof s !== 'object' || typeof s.model !== 'string') {
         throw new SpecError('a simulation needs "model": the name of a model file',
           lineOfString(specText, '"sim"'));
@@ -640,16 +665,37 @@
       } catch (e) {
         if (e instanceof mj.LoadError) {
           showError('model ' + modelUrl, e.message, e.line);
-          continue;
+          return;
         }
         throw e;
       }
-      sims.push(new Sim(mj, s, specText, model, container, heading));
+      sims.push(new Sim(mj, s, specText, model, where));
+    };
+    if (spec && Array.isArray(spec.questions)) {
+      // a knowledge check: every question in order, a question's sim under it
+      if (spec.questions.length === 0) throw new SpecError('the knowledge check has no questions');
+      if (spec.title) container.appendChild(element('h2', {class: 'check-title'}, spec.title));
+      for (const [i, q] of spec.questions.entries()) {
+        let question;
+        try {
+          question = new window.quiz.Question(q, i, container);
+        } catch (e) {
+          throw e instanceof window.quiz.QuizError ?
+            new SpecError(e.message, lineOfString(specText, (q && q.q) || '"questions"')) : e;
+        }
+        questions.push(question);
+        if (q.sim) await addSim(q.sim, question.root);
+      }
+    } else {
+      await addSim(spec, container);
     }
     if (params.get('paused') !== '1') sims.forEach((s) => s.play());
     let last = null;
-    const frame = (now) => {
-      const dt = last === null ? 0 : Math.min(0.1, (now - last) / 1000);
+    const frame = () => {
+      // the wall clock now (rAF's own timestamp can lag it when frames are slow); at most 0.25 s
+      // per frame: a slow frame is caught up, a hidden tab does not jump ahead
+      const now = performance.now();
+      const dt = last === null ? 0 : Math.min(0.25, (now - last) / 1000);
       last = now;
       for (const sim of sims) {
         if (!sim.running) continue;
@@ -659,11 +705,31 @@
           sim.pending -= steps * sim.model.opt.timestep;
           sim.advance(steps);
           sim.refresh();
+          sim.frames = (sim.frames || 0) + 1;
         });
       }
       window.requestAnimationFrame(frame);
     };
     window.requestAnimationFrame(frame);
+  }
+
+  function questionFor(index) {
+    const question = questions[index];
+    if (!question) throw new Error('no question ' + index + ' on this page (' + questions.length + ' questions)');
+    return question;
+  }
+
+  // frames drawn and simulated seconds per wall second while a sim plays, over `seconds` of wall time
+  function measureRate(seconds, index) {
+    const sim = simFor(index);
+    return new Promise((resolve) => {
+      const start = {wall: performance.now(), time: sim.data.time, frames: sim.frames || 0};
+      setTimeout(() => {
+        const wall = (performance.now() - start.wall) / 1000;
+        resolve({wall, frames_per_second: ((sim.frames || 0) - start.frames) / wall,
+          sim_seconds_per_wall_second: (sim.data.time - start.time) / wall});
+      }, 1000 * seconds);
+    });
   }
 
   function simFor(index) {
@@ -700,6 +766,20 @@
     play(index) { simFor(index).play(); },
     pause(index) { simFor(index).pause(); },
     reset(index) { simFor(index).reset(); },
+    questions: () => questions.map((q) => q.describe()),
+    answer(question, value) { return questionFor(question).answer(value); },
+    // which view a sim has ('3d' or '2d'), and for the 3D view what its last frame drew
+    view(index) {
+      const sim = simFor(index);
+      if (!sim.view3d) return {kind: '2d'};
+      sim.draw();
+      const info = sim.view3d.renderer.info.render;
+      return Object.assign({kind: '3d', triangles: info.triangles, calls: info.calls,
+        camera: Object.assign({}, sim.view3d.cam)}, sim.view3d.pixelSummary());
+    },
+    orbit(dAzimuth, dElevation, index) { simFor(index).view3d.orbit(dAzimuth, dElevation); },
+    zoom(factor, index) { simFor(index).view3d.zoom(factor); },
+    rate: measureRate,
   };
 
   window.addEventListener('error', (event) => showError('page', event.message, event.lineno));

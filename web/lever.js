@@ -97,10 +97,10 @@
     class MjModel {
       constructor(wasmModel) {
         this._wasm = wasmModel;
-        for (const size of ['nq', 'nv', 'nu', 'nbody', 'njnt', 'ngeom', 'nsite']) {
+        for (const size of ['nq', 'nv', 'nu', 'nbody', 'njnt', 'ngeom', 'nsite', 'nkey']) {
           this[size] = wasmModel.size(size);
         }
-        for (const kind of ['body', 'jnt', 'geom', 'site', 'actuator']) {
+        for (const kind of ['body', 'jnt', 'geom', 'site', 'actuator', 'key']) {
           const list = wasmModel.names(kind);
           const names = [];
           for (let i = 0; i < list.size(); i++) names.push(list.get(i));
@@ -121,7 +121,7 @@
         return new MjModel(wasmModel);
       }
 
-      /** Index of a named object (kind: body, jnt, geom, site, actuator), or -1. */
+      /** Index of a named object (kind: body, jnt, geom, site, actuator, key), or -1. */
       name2id(kind, name) {
         return this[kind + '_names'].indexOf(name);
       }
@@ -157,6 +157,19 @@
       mj_step(model, data) { check(data._wasm.step()); },
       mj_forward(model, data) { check(data._wasm.forward()); },
       mj_resetData(model, data) { check(data._wasm.reset()); },
+      /** lever::reset_keyframe: time, qpos, qvel and ctrl of keyframe `key` (its index). */
+      mj_resetDataKeyframe(model, data, key) { check(data._wasm.reset_keyframe(key)); },
+      /**
+       * lever::jac_site at data's current kinematics (run mj_forward first), as MuJoCo's
+       * mj_jacSite: fills jacp and jacr (3 x nv each, row-major; either may be null).
+       */
+      mj_jacSite(model, data, jacp, jacr, site) {
+        check(data._wasm.jac_site(site));
+        const n = 3 * model.nv;
+        const start = data._wasm.jac_address() / 8;
+        if (jacp) jacp.set(Module.HEAPF64.subarray(start, start + n));
+        if (jacr) jacr.set(Module.HEAPF64.subarray(start + n, start + 2 * n));
+      },
       // lever::set_const after editing model parameters (body_mass, ...). As MuJoCo 2.2.2's
       // mj_setConst, which computes its constants in `data` at qpos0, it leaves data.qpos at
       // qpos0 (and the outputs of that pose in data); qvel, ctrl and time are kept.

@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Serve the lab on 127.0.0.1: web/ at /, the WebAssembly build at /build/, models/ at /models/.
+"""Serve the lab on 127.0.0.1: web/ at /, the WebAssembly build at /build/, models/ at /models/,
+Debian's three.js and KaTeX (libjs-three, libjs-katex) at /vendor/three/ and /vendor/katex/.
 
     web/serve.py [--port N] [--build DIR]      (port 0, the default: a free port)
 
@@ -15,21 +16,28 @@ import threading
 
 WEB = os.path.dirname(os.path.abspath(__file__))
 ROOT = os.path.dirname(WEB)
+# the page's libraries, as Debian installs them (scripts/setup.sh): never fetched from the network
+VENDOR = {'three': '/usr/share/javascript/three', 'katex': '/usr/share/javascript/katex'}
 
 
 class Handler(http.server.SimpleHTTPRequestHandler):
     extensions_map = dict(http.server.SimpleHTTPRequestHandler.extensions_map,
                           **{'.wasm': 'application/wasm', '.js': 'text/javascript',
-                             '.json': 'application/json', '.xml': 'application/xml'})
+                             '.json': 'application/json', '.xml': 'application/xml',
+                             '.css': 'text/css', '.woff2': 'font/woff2', '.woff': 'font/woff',
+                             '.ttf': 'font/ttf'})
 
     def __init__(self, *args, build_dir, **kwargs):
         self.build_dir = build_dir
         super().__init__(*args, directory=WEB, **kwargs)
 
     def translate_path(self, path):
-        # /build/... -> the WebAssembly build, /models/... -> the repository's models
+        # /build/... -> the WebAssembly build, /models/... -> the repository's models,
+        # /vendor/NAME/... -> Debian's copy of the library NAME
         clean = path.split('?', 1)[0].split('#', 1)[0]
-        for prefix, directory in (('/build/', self.build_dir), ('/models/', os.path.join(ROOT, 'models'))):
+        places = [('/build/', self.build_dir), ('/models/', os.path.join(ROOT, 'models'))]
+        places += [('/vendor/%s/' % name, directory) for name, directory in VENDOR.items()]
+        for prefix, directory in places:
             if clean.startswith(prefix):
                 rest = clean[len(prefix):]
                 if '..' in rest.split('/'):
@@ -63,9 +71,14 @@ def main():
     build_dir = args.build or os.path.join(ROOT, 'build-web', 'web', 'wasm')
     if not os.path.exists(os.path.join(build_dir, 'lever_wasm.wasm')):
         sys.exit('serve.py: no lever_wasm.wasm in %s (run `make web` first)' % build_dir)
+    for name, directory in VENDOR.items():
+        if not os.path.isdir(directory):
+            sys.exit('serve.py: no %s in %s (run scripts/setup.sh: it installs libjs-%s)'
+                     % (name, directory, name))
     server, url = start(args.port, build_dir)
     print(url + '?spec=specs/5.1-lab.json', flush=True)
     print(url + '?spec=specs/5.1-check.json', flush=True)
+    print(url + '?spec=specs/5.2-lab.json', flush=True)
     try:
         threading.Event().wait()
     except KeyboardInterrupt:

@@ -1,6 +1,7 @@
 // web/lever.js on node against lever's native build: every array the JS API exposes, on every
 // model, equals what `lever forward --json` computes for the same state (to lever's 1e-12 bound);
-// model edits reach the engine through mj_setConst; views follow the heap when it grows.
+// model edits reach the engine through mj_setConst; views follow the heap when it grows;
+// mj_jacSite gives `lever forward`'s site_jacp and site_jacr; mj_resetDataKeyframe its --key state.
 //   node api_node_test.js LEVER WASM_DIR REPO_ROOT
 'use strict';
 const fs = require('fs');
@@ -24,8 +25,9 @@ function close(ours, native, what) {
   }
 }
 
-function nativeForward(file, qpos, qvel, ctrl) {
+function nativeForward(file, qpos, qvel, ctrl, key) {
   const args = ['forward', file, '--json'];
+  if (key) args.push('--key=' + key);
   if (qpos.length) args.push('--qpos=' + qpos.join(','));
   if (qvel.length) args.push('--qvel=' + qvel.join(','));
   if (ctrl.length) args.push('--ctrl=' + ctrl.join(','));
@@ -74,6 +76,31 @@ function compareData(mj, model, data, native, label) {
   if (arrays < 20) fail(`${label}: only ${arrays} arrays in common with lever forward --json`);
 }
 
+// mj_jacSite for every site: the native command's site_jacp and site_jacr (nsite x 3 x nv)
+function compareJacobians(mj, model, data, native, label) {
+  const n = 3 * model.nv;
+  const jacp = new Float64Array(n);
+  const jacr = new Float64Array(n);
+  for (let site = 0; site < model.nsite; site++) {
+    mj.mj_jacSite(model, data, jacp, jacr, site);
+    for (let i = 0; i < n; i++) {
+      close(jacp[i], native.site_jacp[site * n + i], `${label}: jacp of site ${site} [${i}]`);
+      close(jacr[i], native.site_jacr[site * n + i], `${label}: jacr of site ${site} [${i}]`);
+    }
+  }
+  for (const bad of [-1, model.nsite]) {
+    let threw = null;
+    try {
+      mj.mj_jacSite(model, data, jacp, null, bad);
+    } catch (e) {
+      threw = e;
+    }
+    if (!(threw instanceof mj.EngineError) || !/site/.test(threw.message)) {
+      fail(`${label}: mj_jacSite at site ${bad} gave ${threw} instead of an EngineError`);
+    }
+  }
+}
+
 (async () => {
   const mj = await createLever(createLeverModule,
     {wasmBinary: fs.readFileSync(path.resolve(wasmDir, 'lever_wasm.wasm'))});
@@ -94,9 +121,17 @@ function compareData(mj, model, data, native, label) {
       data.ctrl.set(s.ctrl);
       mj.mj_forward(model, data);
       const fmt = (v) => v.map((x) => x.toPrecision(17));
-      compareData(mj, model, data,
-        nativeForward(path.join(root, file), fmt(s.qpos), fmt(s.qvel), fmt(s.ctrl)),
-        `${file} state ${seed}`);
+      const native = nativeForward(path.join(root, file), fmt(s.qpos), fmt(s.qvel), fmt(s.ctrl));
+      compareData(mj, model, data, native, `${file} state ${seed}`);
+      compareJacobians(mj, model, data, native, `${file} state ${seed}`);
+    }
+    for (let key = 0; key < model.nkey; key++) {
+      // a keyframe's state, then forward: what `lever forward --key NAME` computes
+      mj.mj_resetDataKeyframe(model, data, key);
+      mj.mj_forward(model, data);
+      const name = model.key_names[key];
+      compareData(mj, model, data, nativeForward(path.join(root, file), [], [], [], name),
+        `${file} keyframe ${name}`);
     }
     data.delete();
     model.delete();
@@ -140,6 +175,16 @@ function compareData(mj, model, data, native, label) {
   data.qvel.fill(0);
   mj.mj_forward(model, data);
   if (data.qpos.buffer !== mj.Module.HEAPU8.buffer) fail('data.qpos still views the old heap');
+  let noKey = null;
+  try {
+    mj.mj_resetDataKeyframe(model, data, 0);  // arm2 has no keyframe
+  } catch (e) {
+    noKey = e;
+  }
+  if (!(noKey instanceof mj.EngineError)) fail('mj_resetDataKeyframe on a model without keyframes: ' + noKey);
+  data.qpos.set([0.6, -1.2]);
+  data.qvel.fill(0);
+  mj.mj_forward(model, data);
   compareData(mj, model, data, heavyNative, 'arm2 at 1.6 kg, after the heap grew');
   for (const m of kept) m.delete();
 

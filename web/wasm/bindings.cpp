@@ -100,16 +100,18 @@ class WasmModel {
     if (what == "njnt") return model_.njnt;
     if (what == "ngeom") return model_.ngeom;
     if (what == "nsite") return model_.nsite;
+    if (what == "nkey") return model_.nkey;
     return -1;
   }
 
-  /// kind: "body", "jnt", "geom", "site", "actuator"
+  /// kind: "body", "jnt", "geom", "site", "actuator", "key"
   std::vector<std::string> names(const std::string& kind) const {
     if (kind == "body") return model_.body_name;
     if (kind == "jnt") return model_.jnt_name;
     if (kind == "geom") return model_.geom_name;
     if (kind == "site") return model_.site_name;
     if (kind == "actuator") return model_.actuator_name;
+    if (kind == "key") return model_.key_name;
     return {};
   }
 
@@ -166,6 +168,25 @@ class WasmData {
   }
   std::string warnings() const { return lever::warning_text(data_); }
 
+  /// lever::reset_keyframe (MuJoCo's mj_resetDataKeyframe); "" or the error (no such keyframe).
+  std::string reset_keyframe(int key) {
+    return guarded([this, key] { lever::reset_keyframe(model_.model(), data_, key); });
+  }
+
+  /// lever::jac_site (MuJoCo's mj_jacSite) at data's current kinematics, into the 6 x nv buffer at
+  /// jac_address(): jacp's 3 rows then jacr's, row-major. "" or the error (a site out of range).
+  std::string jac_site(int site) {
+    const int nv = model_.model().nv;
+    jacp_.resize(3, nv);
+    jacr_.resize(3, nv);
+    jac_.resize(6, nv);
+    return guarded([this, site] {
+      lever::jac_site(model_.model(), data_, site, jacp_, jacr_);
+      jac_ << jacp_, jacr_;
+    });
+  }
+  uintptr_t jac_address() const { return reinterpret_cast<uintptr_t>(jac_.data()); }
+
  private:
   template <typename F>
   static std::string guarded(F f) {
@@ -179,6 +200,9 @@ class WasmData {
 
   WasmModel& model_;
   lever::Data data_;
+  // row-major, so that JavaScript reads jacp and jacr as two flat 3 x nv arrays, as MuJoCo's are
+  Eigen::Matrix<double, 6, Eigen::Dynamic, Eigen::RowMajor> jac_;
+  Eigen::MatrixXd jacp_, jacr_;  // lever::jac_site's (column-major) outputs
 };
 
 /// `lever check` on MJCF text: lesson 5.1's six checks and lesson 5.2's two, as the command prints
@@ -235,6 +259,9 @@ EMSCRIPTEN_BINDINGS(lever) {
       .function("forward", &WasmData::forward)
       .function("reset", &WasmData::reset)
       .function("steps", &WasmData::steps)
-      .function("warnings", &WasmData::warnings);
+      .function("warnings", &WasmData::warnings)
+      .function("reset_keyframe", &WasmData::reset_keyframe)
+      .function("jac_site", &WasmData::jac_site)
+      .function("jac_address", &WasmData::jac_address);
   constant("version", std::string(lever::version_string()));
 }
