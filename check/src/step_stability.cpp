@@ -106,8 +106,9 @@ StabilityScan scan(const std::function<bool(double)>& ok, double from, double to
   StabilityScan result;
   result.from = from;
   result.to = to;
+  // (1e-9 below ceil: a whole number of decades gives that many intervals, however log10 rounds)
   const int intervals =
-      std::max(1, static_cast<int>(std::ceil(points_per_decade * std::log10(to / from))));
+      std::max(1, static_cast<int>(std::ceil(points_per_decade * std::log10(to / from) - 1e-9)));
   std::vector<double> grid;
   if (with_zero) grid.push_back(0.0);
   for (int k = 0; k <= intervals; ++k) {

@@ -298,8 +298,10 @@ struct StabilityRun {
 /// grid shows is listed. A change narrower than the grid's spacing can be missed.
 struct StabilityScan {
   double from = 0.0, to = 0.0;
-  int points = 0;             ///< grid points evaluated
-  double resolution = 1e-6;   ///< relative width a change is bisected to
+  int points = 0;  ///< grid points evaluated
+  /// relative width a change is bisected to: fine enough that the value's printed digits do not
+  /// depend on how the grid's points round
+  double resolution = 1e-9;
   bool stable_first = false;  ///< stability at the first point (0 for an armature, else `from`)
   /// each change of stability, ascending, given by its stable side s: the step is stable at s
   /// and not at s (1 + resolution) (a timestep going unstable) or s / (1 + resolution) (an
