@@ -69,7 +69,9 @@ double radius(const Model& model, const Start& s) {
       d.ctrl = s.ctrl;
       (i < model.nq ? d.qpos[i] : d.qvel[i - model.nq]) += sign * eps;
       step(model, d);
-      (sign > 0 ? plus : minus) << d.qpos, d.qvel;
+      Eigen::VectorXd& x = sign > 0 ? plus : minus;
+      x.head(model.nq) = d.qpos;
+      x.tail(model.nv) = d.qvel;
     }
     A.col(i) = (plus - minus) / (2 * eps);
   }
@@ -178,9 +180,10 @@ TEST_CASE("check (8): the pendulum's searches list every change of stability, ea
     const Start s{model.qpos0, Eigen::VectorXd::Zero(1), Eigen::VectorXd::Zero(1)};
     // the growth rate in closed form: I' theta'' = m g l theta - kv theta', with I' the inertia
     // about the hinge plus the armature (m l^2 + I_yy + a)
+    const double g = gravity, brake = kv;  // (a lambda may not capture a structured binding)
     const Growth rate = [&](const Model& m) {
       const double inertia = 1.0 * 0.1 * 0.1 + 0.001 + m.dof_armature[0];
-      const double K = 1.0 * gravity * 0.1 / inertia, C = kv / inertia;
+      const double K = 1.0 * g * 0.1 / inertia, C = brake / inertia;
       return 0.5 * (-C + std::sqrt(C * C + 4 * K));
     };
     CHECK(at["growth"].number == Approx(rate(model)).epsilon(1e-6));
@@ -245,7 +248,8 @@ TEST_CASE("check (8) panda7: each timestep and armature reported is a boundary, 
   for (const auto& [name, integrator] :
        {std::pair{std::string("model"), model.opt.integrator}, {"euler", Integrator::kEuler}}) {
     INFO(name);
-    const auto ok = [&](double dt) { return stable(with(model, integrator, dt), s, slack, rate); };
+    const Integrator chosen = integrator;  // (a lambda may not capture a structured binding)
+    const auto ok = [&](double dt) { return stable(with(model, chosen, dt), s, slack, rate); };
     const json::Value& scan = at["timestep_scan_" + name];
     REQUIRE(scan["changes"].size() == 1);
     check_changes(scan, ok);
