@@ -11,8 +11,8 @@
 //     explicit Euler stable at the model's timestep (the same on every joint, then per joint with
 //     the others heavy, and per joint alone, the others as in the model). Each is a scan: the
 //     criterion on a log-spaced grid, every change of stability between neighbours bisected.
-//     Stability need not change once (one boundary); every change is kept, and the value reported
-//     is the one that holds on a whole stretch: the timestep below which every timestep is stable,
+//     Stability need not change only once (one boundary); every change is kept, and the value
+//     reported holds on a whole stretch: the timestep below which every timestep is stable,
 //     the armature above which every armature is;
 //   - simulations that confirm it: the model as it is, explicit Euler with the model's armature,
 //     and explicit Euler with `margin` times the smallest armature on every joint.
