@@ -238,12 +238,29 @@ void values(Json& j, const std::vector<double>& v) {
   j.values(Eigen::Map<const Eigen::VectorXd>(v.data(), static_cast<Eigen::Index>(v.size())));
 }
 
+// A search along a timestep or an armature: its grid and every change of stability it found.
+void scan(Json& j, const StabilityScan& s) {
+  j.begin_object().key("from").value(s.from).key("to").value(s.to).key("points").value(s.points);
+  j.key("resolution").value(s.resolution).key("stable_first").value(s.stable_first);
+  j.key("changes");
+  values(j, s.changes);
+  j.end_object();
+}
+
+void scans(Json& j, const std::vector<StabilityScan>& list) {
+  j.begin_array();
+  for (const StabilityScan& s : list) scan(j, s);
+  j.end_array();
+}
+
 void stability(Json& j, const StepStability& st) {
   j.key("timestep").value(st.timestep).key("integrator").value(st.integrator);
   j.key("fd_eps").value(st.fd_eps).key("slack").value(st.slack).key("dt_cap").value(st.dt_cap);
   j.key("armature_cap").value(st.armature_cap).key("margin").value(st.margin);
   j.key("qvel_bound").value(st.qvel_bound).key("settle_qvel").value(st.settle_qvel);
-  j.key("ample").value(st.ample).key("joints");
+  j.key("ample").value(st.ample).key("dt_floor").value(st.dt_floor);
+  j.key("armature_start").value(st.armature_start);
+  j.key("points_per_decade").value(st.points_per_decade).key("joints");
   strings(j, st.joints);
   j.key("states").begin_array();
   for (const StabilityAt& s : st.states) {
@@ -258,6 +275,18 @@ void stability(Json& j, const StepStability& st) {
     j.key("armature_alone");
     values(j, s.armature_alone);
     j.key("armature_floor").value(s.armature_floor);
+    j.key("timestep_scan_model");
+    scan(j, s.dt_scan_model);
+    j.key("timestep_scan_euler");
+    scan(j, s.dt_scan_euler);
+    j.key("armature_scan_all");
+    scan(j, s.armature_scan_all);
+    j.key("armature_scan_each");
+    scans(j, s.armature_scan_each);
+    j.key("armature_scan_floor");
+    scan(j, s.armature_scan_floor);
+    j.key("armature_scan_alone");
+    scans(j, s.armature_scan_alone);
     j.key("sweep_timestep");
     values(j, s.sweep_dt);
     j.key("sweep_rho_model");

@@ -492,8 +492,63 @@ void print_singular(std::ostream& out, const SingularPoses& sp, const Structure&
 
 // ---- (8) ---------------------------------------------------------------------------------------
 
-std::string timestep_text(double h) {
-  return std::isinf(h) ? "stable up to the search's cap" : general(h) + " s";
+std::string timestep_text(double h, const StabilityScan& scan) {
+  if (std::isinf(h)) return "stable up to the search's cap";
+  if (h == 0.0) return "none (unstable at " + general(scan.from) + " s, the smallest searched)";
+  return general(h) + " s";
+}
+
+// The stretches where a search found the step stable: "[a, b], [c, d]".
+std::string stable_stretches(const StabilityScan& s, bool from_zero) {
+  std::string out;
+  const auto add = [&out](double a, double b) {
+    out += (out.empty() ? "[" : ", [") + general(a) + ", " + general(b) + "]";
+  };
+  bool stable = s.stable_first;
+  double start = from_zero ? 0.0 : s.from;
+  for (const double change : s.changes) {
+    if (stable) add(start, change);
+    start = change;
+    stable = !stable;
+  }
+  if (stable) add(start, s.to);
+  return out.empty() ? "none" : out;
+}
+
+// A search whose stability changed more than once: where it is stable, and what the value
+// reported chose.
+std::string several_changes(const std::string& what, const StabilityScan& s, bool timestep) {
+  return "      " + what + ": " + std::to_string(s.changes.size()) + " changes, stable on " +
+         stable_stretches(s, !timestep) + (timestep ? " s" : " kg m^2") +
+         (timestep ? "; reported: the largest timestep below which every one is stable\n"
+                   : "; reported: the smallest armature above which every one is stable\n");
+}
+
+// How the searches were made, and every search that found more than one boundary.
+void print_searches(std::ostream& out, const StepStability& st, const StabilityAt& s) {
+  std::string notes;
+  const auto note = [&](const std::string& what, const StabilityScan& scan, bool timestep) {
+    if (scan.several()) notes += several_changes(what, scan, timestep);
+  };
+  note(st.integrator + " timestep", s.dt_scan_model, true);
+  if (st.integrator != "Euler") note("Euler timestep", s.dt_scan_euler, true);
+  note("Euler armature on every joint", s.armature_scan_all, false);
+  for (size_t j = 0; j < s.armature_scan_each.size(); ++j) {
+    note("Euler armature, " + st.joints[j] + " with the others heavy", s.armature_scan_each[j],
+         false);
+  }
+  note("Euler armature, the common floor", s.armature_scan_floor, false);
+  for (size_t j = 0; j < s.armature_scan_alone.size(); ++j) {
+    note("Euler armature, " + st.joints[j] + " alone", s.armature_scan_alone[j], false);
+  }
+  const StabilityScan& grid = s.dt_scan_model;
+  out << "    searched: timesteps " << general(grid.from) << " to " << general(grid.to)
+      << " s, armatures 0 and " << general(s.armature_scan_all.from) << " to "
+      << general(s.armature_scan_all.to) << " kg m^2, " << st.points_per_decade
+      << " points a decade, each change of stability bisected to a relative "
+      << general(grid.resolution) << "; "
+      << (notes.empty() ? "every search found one change at most\n"
+                        : "stability changes more than once in:\n" + notes);
 }
 
 std::string armature_text(double a) {
@@ -541,8 +596,8 @@ void print_stability(std::ostream& out, const StepStability& st) {
       out << "; explicit Euler rho = " << fixed(s.rho_euler, 4)
           << (s.stable_euler ? " stable" : " unstable");
     out << "\n    largest stable timestep: " << st.integrator << " "
-        << timestep_text(s.max_dt_model);
-    if (!euler) out << ", Euler " << timestep_text(s.max_dt_euler);
+        << timestep_text(s.max_dt_model, s.dt_scan_model);
+    if (!euler) out << ", Euler " << timestep_text(s.max_dt_euler, s.dt_scan_euler);
     out << "\n";
     out << "    smallest armature for a stable Euler step at " << general(st.timestep)
         << " s: the same on every joint " << armature_text(s.armature_all) << " kg m^2\n";
@@ -570,6 +625,7 @@ void print_stability(std::ostream& out, const StepStability& st) {
           << fixed(s.rho_euler_with, 4) << ", per joint together " << fixed(s.rho_euler_each, 4)
           << (s.stable_euler_each ? " stable" : " UNSTABLE") << "\n";
     }
+    print_searches(out, st, s);
     out << "    simulated " << (s.runs.empty() ? 0 : s.runs.front().steps)
         << " steps from this state:\n";
     for (const StabilityRun& r : s.runs) print_run(out, r);

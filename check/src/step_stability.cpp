@@ -7,18 +7,19 @@
 //     linearisation [[0, I], [dqacc/dqpos, dqacc/dqvel]] (central differences of forward()). A step
 //     is stable when rho <= max(1, exp(h growth)) (1 + slack): it grows no mode faster than the
 //     dynamics do (rho < 1 for a damped, held arm; an arm that falls grows anyway);
-//   - the largest stable timestep for each integrator (doubling, then bisection on the criterion);
-//   - the smallest armature that keeps explicit Euler stable at the model's timestep: the same on
-//     every joint, then per joint with the others at that value, and per joint alone (the others as
-//     in the model), each by bisection;
+//   - the largest stable timestep for each integrator, and the smallest armature that keeps
+//     explicit Euler stable at the model's timestep (the same on every joint, then per joint with
+//     the others heavy, and per joint alone, the others as in the model). Each is a scan: the
+//     criterion on a log-spaced grid, every change of stability between neighbours bisected.
+//     Stability need not change only once (one boundary); every change is kept, and the value
+//     reported holds on a whole stretch: the timestep below which every timestep is stable,
+//     the armature above which every armature is;
 //   - simulations that confirm it: the model as it is, explicit Euler with the model's armature,
-//   and
-//     explicit Euler with `margin` times the smallest armature on every joint.
-// The bisections assume stability is monotonic in the timestep and in the armature (one boundary);
-// they report the first boundary they find.
+//     and explicit Euler with `margin` times the smallest armature on every joint.
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <vector>
 
 #include <Eigen/Eigenvalues>
 
@@ -33,7 +34,6 @@ namespace lever::check {
 
 namespace {
 
-constexpr int kBisections = 30;
 constexpr int kRunSteps = 1000;
 constexpr int kSweep = 40;  // chart points of rho against the timestep
 
@@ -97,45 +97,70 @@ struct Judge {
   }
 };
 
-double largest_timestep(const Model& model, Integrator integrator, const State& s, double growth,
-                        const Judge& judge, double cap) {
+// Stability along one parameter x on a log-spaced grid from `from` to `to` (`points_per_decade`
+// points a decade, 0 first when `with_zero`), each change between neighbours bisected (in log x,
+// linearly next to 0) until its sides are within the scan's relative resolution. Stability is not
+// assumed to change once: every change the grid shows is kept.
+StabilityScan scan(const std::function<bool(double)>& ok, double from, double to,
+                   int points_per_decade, bool with_zero) {
+  StabilityScan result;
+  result.from = from;
+  result.to = to;
+  // (1e-9 below ceil: a whole number of decades gives that many intervals, however log10 rounds)
+  const int intervals =
+      std::max(1, static_cast<int>(std::ceil(points_per_decade * std::log10(to / from) - 1e-9)));
+  std::vector<double> grid;
+  if (with_zero) grid.push_back(0.0);
+  for (int k = 0; k <= intervals; ++k) {
+    grid.push_back(from * std::pow(to / from, static_cast<double>(k) / intervals));
+  }
+  result.points = static_cast<int>(grid.size());
+  bool previous = ok(grid.front());
+  result.stable_first = previous;
+  for (size_t k = 1; k < grid.size(); ++k) {
+    const bool now = ok(grid[k]);
+    if (now == previous) continue;
+    // bisect [lo, hi]: ok(lo) == previous, ok(hi) == now
+    double lo = grid[k - 1], hi = grid[k];
+    const double smallest = 1e-6 * from;  // next to 0: a change this close to 0 is at 0
+    while (lo > 0 ? hi > lo * (1 + result.resolution) : hi > smallest) {
+      const double mid = lo > 0 ? std::sqrt(lo * hi) : 0.5 * hi;
+      (ok(mid) == previous ? lo : hi) = mid;
+    }
+    result.changes.push_back(previous ? lo : hi);  // the stable side
+    previous = now;
+  }
+  return result;
+}
+
+// The largest timestep below which every timestep scanned is stable: the end of the first
+// stable stretch, if it starts at the scan's smallest timestep (0 if that one is unstable,
+// kInf if no change is found up to the cap).
+double largest_stable(const StabilityScan& s) {
+  if (!s.stable_first) return 0.0;
+  return s.changes.empty() ? kInf : s.changes.front();
+}
+
+// The smallest armature above which every armature scanned is stable: the start of the last
+// stable stretch, if it reaches the cap (kInf if the cap is unstable; 0 if nothing changes and 0
+// is stable).
+double smallest_stable(const StabilityScan& s) {
+  const bool stable_last = s.stable_first == (s.changes.size() % 2 == 0);
+  if (!stable_last) return kInf;
+  return s.changes.empty() ? 0.0 : s.changes.back();  // the last change, to stable
+}
+
+StabilityScan timestep_scan(const Model& model, Integrator integrator, const State& s,
+                            double growth, const Judge& judge, const StepStability& cfg) {
   const auto ok = [&](double h) {
     const Model m = variant(model, integrator, h, {});
     return judge.stable(judge.rho(m, s), growth, h);
   };
-  double lo = model.opt.timestep, hi = lo;
-  if (ok(lo)) {
-    for (hi = 2 * lo; ok(hi); hi *= 2) {
-      lo = hi;
-      if (hi > cap) return kInf;
-    }
-  } else {
-    for (lo = hi / 2; !ok(lo); lo /= 2) {
-      hi = lo;
-      if (lo < 1e-9) return 0.0;
-    }
-  }
-  for (int k = 0; k < kBisections; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (ok(mid) ? lo : hi) = mid;
-  }
-  return lo;
+  return scan(ok, cfg.dt_floor * model.opt.timestep, cfg.dt_cap, cfg.points_per_decade, false);
 }
 
-// The smallest a >= 0 with ok(a), by doubling from `start` and bisection; kInf past `cap`.
-double smallest_stable(const std::function<bool(double)>& ok, double start, double cap) {
-  if (ok(0.0)) return 0.0;
-  double lo = 0.0, hi = std::max(start, 1e-3);
-  while (!ok(hi)) {
-    lo = hi;
-    hi *= 2;
-    if (hi > cap) return kInf;
-  }
-  for (int k = 0; k < kBisections; ++k) {
-    const double mid = 0.5 * (lo + hi);
-    (ok(mid) ? hi : lo) = mid;
-  }
-  return hi;
+StabilityScan armature_scan(const std::function<bool(double)>& ok, const StepStability& cfg) {
+  return scan(ok, cfg.armature_start, cfg.armature_cap, cfg.points_per_decade, true);
 }
 
 StabilityRun simulate(const Model& m, const State& s, const std::string& armature,
@@ -191,42 +216,50 @@ StabilityAt check_state(const Model& model, const StepStability& cfg, const std:
   at.rho_euler = judge.rho(euler, s);
   at.stable_model = judge.stable(at.rho_model, at.growth, h);
   at.stable_euler = judge.stable(at.rho_euler, at.growth, h);
-  at.max_dt_model = largest_timestep(model, model.opt.integrator, s, at.growth, judge, cfg.dt_cap);
-  at.max_dt_euler = largest_timestep(model, Integrator::kEuler, s, at.growth, judge, cfg.dt_cap);
+  at.dt_scan_model = timestep_scan(model, model.opt.integrator, s, at.growth, judge, cfg);
+  at.dt_scan_euler = model.opt.integrator == Integrator::kEuler
+                         ? at.dt_scan_model
+                         : timestep_scan(model, Integrator::kEuler, s, at.growth, judge, cfg);
+  at.max_dt_model = largest_stable(at.dt_scan_model);
+  at.max_dt_euler = largest_stable(at.dt_scan_euler);
 
   // armature for explicit Euler at h
   const std::vector<double> own = model.dof_armature;
-  const double start = own.empty() ? 0.0 : *std::max_element(own.begin(), own.end());
   const auto euler_with = [&](const std::vector<double>& armature) {
     return judge.stable(variant(model, Integrator::kEuler, h, armature), s);
   };
-  at.armature_all =
-      smallest_stable([&](double a) { return euler_with(std::vector<double>(model.nv, a)); }, start,
-                      cfg.armature_cap);
+  at.armature_scan_all =
+      armature_scan([&](double a) { return euler_with(std::vector<double>(model.nv, a)); }, cfg);
+  at.armature_all = smallest_stable(at.armature_scan_all);
   // per joint: each joint's own need, the others given `ample` times armature_all (heavy, so the
   // joint's effective inertia 1 / (M^-1)_ii is its own). The joints couple (that effective inertia
   // falls when the neighbours are light), so these needs do not hold together; the set that does:
-  // max(need_i, floor) with the smallest common floor, by bisection (at most armature_all).
+  // max(need_i, floor) with the smallest common floor. Nothing to share out when no armature is
+  // needed, or none is enough.
+  const bool needed = std::isfinite(at.armature_all) && at.armature_all > 0;
   for (int j = 0; j < model.njnt; ++j) {
     const int dof = model.jnt_dofadr[j];
-    double each = kInf;
-    if (std::isfinite(at.armature_all)) {
-      each = smallest_stable(
-          [&](double a) {
-            std::vector<double> arm(model.nv, cfg.ample * std::max(at.armature_all, 1e-3));
-            arm[dof] = a;
-            return euler_with(arm);
-          },
-          at.armature_all, cfg.armature_cap);
+    if (!needed) {
+      at.armature_each.push_back(at.armature_all);
+      at.armature_alone.push_back(at.armature_all);
+      continue;
     }
-    at.armature_each.push_back(each);
-    at.armature_alone.push_back(smallest_stable(
+    at.armature_scan_each.push_back(armature_scan(
+        [&](double a) {
+          std::vector<double> arm(model.nv, cfg.ample * at.armature_all);
+          arm[dof] = a;
+          return euler_with(arm);
+        },
+        cfg));
+    at.armature_each.push_back(smallest_stable(at.armature_scan_each.back()));
+    at.armature_scan_alone.push_back(armature_scan(
         [&](double a) {
           std::vector<double> arm = own;
           arm[dof] = a;
           return euler_with(arm);
         },
-        own[dof], cfg.armature_cap));
+        cfg));
+    at.armature_alone.push_back(smallest_stable(at.armature_scan_alone.back()));
   }
   const auto floored = [&](double floor) {
     std::vector<double> arm(model.nv, floor);
@@ -236,10 +269,10 @@ StabilityAt check_state(const Model& model, const StepStability& cfg, const std:
     }
     return arm;
   };
-  at.armature_floor = kInf;
-  if (std::isfinite(at.armature_all)) {
-    at.armature_floor = smallest_stable([&](double t) { return euler_with(floored(t)); },
-                                        at.armature_all, cfg.armature_cap);
+  at.armature_floor = at.armature_all;
+  if (needed) {
+    at.armature_scan_floor = armature_scan([&](double t) { return euler_with(floored(t)); }, cfg);
+    at.armature_floor = smallest_stable(at.armature_scan_floor);
   }
   for (int k = 0; k <= kSweep; ++k) {
     const double dt = h * std::pow(10.0, -1.0 + 2.0 * k / kSweep);

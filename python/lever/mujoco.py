@@ -81,7 +81,7 @@ class mjtConstraintState(_enum.IntEnum):
 
 
 class mjtIntegrator(_enum.IntEnum):
-    """Integrators (mjtIntegrator); lever has Euler and RK4."""
+    """Integrators (mjtIntegrator): lever has all three of MuJoCo 2.2.2's."""
     mjINT_EULER = 0
     mjINT_RK4 = 1
     mjINT_IMPLICIT = 2

@@ -336,8 +336,9 @@ TEST_CASE("l5_1_exercise2_workspace: the map exists and the farthest reach is re
   CHECK(distance[0].value <= best + 5e-3);  // a 601-point grid is within a few mm of the optimum
 }
 
-TEST_CASE("l5_2_seven_dof prints lesson 5.2's keyframe, Jacobian and step figures as lever computes",
-          "[packaging]") {
+TEST_CASE(
+    "l5_2_seven_dof prints lesson 5.2's keyframe, Jacobian and step figures as lever computes",
+    "[packaging]") {
   const Run out = run(example("l5_2_seven_dof"));  // no argument: the installed panda7.xml
   REQUIRE(out.status == 0);
   const lever::Model model = lever::mjcf::load_file(lever::test::model_path("models/panda7.xml"));
@@ -384,3 +385,42 @@ TEST_CASE("l5_2_seven_dof prints lesson 5.2's keyframe, Jacobian and step figure
   check_line(out, "spectral radius of the step at home",
              {3.0, radius(model.opt.integrator), radius(lever::Integrator::kEuler), 1.0});
 }
+
+#ifdef LEVER_INSTALLED_PYTHON_EXAMPLES
+namespace {
+
+// A line with every standalone number replaced by '#': the words two programs must share.
+std::string words_of(const std::string& line) {
+  static const std::regex number(R"((^|[\s(\[,=>"])-?\d+(?:\.\d+)?(?:e[-+]?\d+)?)");
+  return std::regex_replace(line, number, "$1#");
+}
+
+}  // namespace
+
+TEST_CASE("l5_2_seven_dof.py prints what the C++ l5_2_seven_dof prints, line for line",
+          "[packaging][python]") {
+  // both installed, both run here: the C++ program on lever::step and Eigen, the Python one on
+  // lever.mujoco's mj_step and numpy, both on lever check's report for sections (7) and (8)
+  const Run cpp = run(example("l5_2_seven_dof"));
+  const Run py = run(std::string("PYTHONPATH='") + LEVER_INSTALLED_PYTHONPATH +
+                     "' PYTHONDONTWRITEBYTECODE=1 '" + LEVER_PYTHON_EXECUTABLE + "' '" +
+                     LEVER_INSTALLED_PYTHON_EXAMPLES + "/l5_2_seven_dof.py'");
+  REQUIRE(cpp.status == 0);
+  REQUIRE(py.status == 0);
+  REQUIRE(cpp.lines.size() >= 10);
+  REQUIRE(py.lines.size() == cpp.lines.size());
+  for (size_t i = 0; i < cpp.lines.size(); ++i) {
+    INFO("C++:    " << cpp.lines[i] << "\nPython: " << py.lines[i]);
+    CHECK(words_of(py.lines[i]) == words_of(cpp.lines[i]));
+    const std::vector<Printed> ours = numbers_in(py.lines[i]), theirs = numbers_in(cpp.lines[i]);
+    REQUIRE(ours.size() == theirs.size());
+    for (size_t k = 0; k < ours.size(); ++k) {
+      INFO("number " << k << ": Python " << ours[k].text << ", C++ " << theirs[k].text);
+      // each printed figure lies within half a unit of its last digit of the value it rounds;
+      // two roundings of values that agree far better than that differ by at most both halves
+      CHECK(std::abs(ours[k].value - theirs[k].value) <=
+            (ours[k].half_unit + theirs[k].half_unit) * (1 + 1e-9));
+    }
+  }
+}
+#endif

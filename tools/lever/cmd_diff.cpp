@@ -1,7 +1,7 @@
 // lever diff: compare lever with MuJoCo 2.2.2 on random states (and trajectories) of a model.
 //
 //   lever diff MODEL... [--states N] [--seed S] [--path loader|engine|both] [--trajectory]
-//                       [--json | --markdown]
+//                       [--key NAME] [--json | --markdown]
 //
 // For each model and each path (lever's own loader, or MuJoCo's compiled parameters copied into
 // lever), it prints the largest difference per quantity with its ratio to the bound
@@ -36,6 +36,7 @@ int cmd_diff(const std::vector<std::string>&) {
 #include <ctime>
 #include <fstream>
 #include <lever/diff/runs.hpp>
+#include <lever/mjcf.hpp>
 #include <string>
 #include <vector>
 
@@ -52,20 +53,22 @@ constexpr double kNudge = 1e-15;
 
 const char* kUsage =
     "usage: lever diff MODEL... [--states N] [--seed S] [--path loader|engine|both]\n"
-    "                           [--trajectory] [--json | --markdown]\n"
+    "                           [--trajectory] [--key NAME] [--json | --markdown]\n"
     "  --states N     random states per model (default 1000)\n"
     "  --seed S       seed of the random states (default: derived from the file name)\n"
     "  --path P       loader: lever's own MJCF loader; engine: MuJoCo's compiled model copied\n"
     "                 into lever; both (default)\n"
     "  --trajectory   also 10 s lockstep trajectories (Euler, RK4, implicit) and a 10 s free\n"
     "                 run, from the model's first keyframe (else from rest)\n"
+    "  --key NAME     the trajectories start from keyframe NAME instead (every MODEL must\n"
+    "                 have it; needs --trajectory or --markdown)\n"
     "  --json         machine-readable output\n"
     "  --markdown     the agreement document for all MODELs (implies --trajectory)\n"
     "Each quantity is held to |lever - mujoco| <= 1e-12 max(1, |mujoco|), |mujoco| its largest\n"
     "element in that state; its element-wise ratio is printed beside it, with MuJoCo's own floor\n"
     "(MuJoCo against a copy of the model moved in space: same physics, other rounding).\n"
     "Exit status: 0 every quantity within the bound; 1 some are not; 2 a model could not be\n"
-    "loaded.\n";
+    "loaded, or has no keyframe NAME (nothing is compared then).\n";
 
 struct Options {
   std::vector<std::string> files;
@@ -74,6 +77,7 @@ struct Options {
   std::uint64_t seed = 0;
   std::vector<Path> paths{Path::kLoader, Path::kEngine};
   bool trajectory = false, json = false, markdown = false;
+  std::string key;  // the keyframe the trajectories start from ("": the first, else rest)
 };
 
 struct PathResult {
@@ -121,7 +125,8 @@ std::vector<Path> parse_paths(const std::string& text) {
 }
 
 Options parse_options(const std::vector<std::string>& argv) {
-  const Args args(argv, {"states", "seed", "path"}, {"trajectory", "json", "markdown", "help"});
+  const Args args(argv, {"states", "seed", "path", "key"},
+                  {"trajectory", "json", "markdown", "help"});
   Options o;
   if (args.has("help")) return o;
   o.files = args.positional();
@@ -136,6 +141,13 @@ Options parse_options(const std::vector<std::string>& argv) {
   o.markdown = args.has("markdown");
   if (o.json && o.markdown) throw UsageError{"--json and --markdown exclude each other"};
   o.trajectory = args.has("trajectory") || o.markdown;
+  if (args.has("key")) {
+    o.key = args.get("key");
+    if (o.key.empty()) throw UsageError{"--key needs a keyframe's name"};
+    if (!o.trajectory) {
+      throw UsageError{"--key NAME sets where the trajectories start: add --trajectory"};
+    }
+  }
   return o;
 }
 
@@ -148,6 +160,7 @@ PathResult run_path(const std::string& file, Path path, const Options& o) {
   result.states = o.states;
   try {
     diff::Twin twin(file, path);
+    if (!o.key.empty()) twin.start_from_key(o.key);
     result.random = diff::random_states(twin, o.states, result.seed);
     result.self_noise = diff::mujoco_self_noise(twin, o.states, result.seed);
     if (o.trajectory) {
@@ -161,10 +174,33 @@ PathResult run_path(const std::string& file, Path path, const Options& o) {
       result.start = twin.start_name();
       result.free = diff::free_run(twin, kTrajectorySeconds, diff::Control::kSmooth, kNudge);
     }
+  } catch (const StateError& e) {  // the only state a run takes from the user is --key
+    result.error = "--key: " + std::string(e.what());
   } catch (const std::exception& e) {
     result.error = e.what();
   }
   return result;
+}
+
+// Every model that lever's loader reads must have keyframe `key`; checked before anything runs,
+// so that a misspelt name costs no comparisons and prints no half report. (A model lever cannot
+// load is reported by its run, as without --key.)
+bool keys_exist(const Options& o) {
+  if (o.key.empty()) return true;
+  for (const std::string& file : o.files) {
+    try {
+      const Model model = mjcf::load_file(file);
+      if (model.key(o.key) >= 0) continue;
+      Data data(model);
+      reset_keyframe(model, data, o.key);  // throws the engine's message, listing the keyframes
+    } catch (const StateError& e) {
+      std::fprintf(stderr, "lever diff: --key: %s: %s\n", file.c_str(), e.what());
+      return false;
+    } catch (const Error&) {
+      continue;  // lever cannot load it: its run says why
+    }
+  }
+  return true;
 }
 
 int exit_status(const std::vector<ModelResult>& results) {
@@ -525,6 +561,8 @@ void markdown_free_runs(const std::vector<ModelResult>& results) {
 }
 
 void print_markdown(const std::vector<ModelResult>& results, const Options& o) {
+  const std::string start =
+      o.key.empty() ? "the model's first keyframe (else from rest)" : "keyframe '" + o.key + "'";
   std::printf("# Agreement with MuJoCo 2.2.2\n\n");
   std::printf("Generated by `make agreement` (`lever diff --markdown`) on %s.  \n",
               today().c_str());
@@ -558,11 +596,12 @@ void print_markdown(const std::vector<ModelResult>& results, const Options& o) {
       "(up to 3x its range) and qfrc_applied random. Per state: forward, energy, site Jacobians, "
       "inverse dynamics at the forward qacc and at a random qacc, and one Euler, one RK4 and one "
       "implicit step. "
-      "Lockstep: %.0f s from the model's first keyframe (else from rest) under a sinusoidal control sweeping each motor's whole range; at "
-      "every step lever starts from MuJoCo's own state, the forward pass at that state is compared "
-      "(qacc, qfrc_constraint), then both take one step and the state after it is compared (qpos, "
+      "Lockstep, under Euler, RK4 and implicit (MuJoCo's `opt.integrator` set to each): %.0f s "
+      "from %s under a sinusoidal control sweeping each motor's whole range; at every step lever "
+      "starts from MuJoCo's own state, the forward pass at that state is compared (qacc, "
+      "qfrc_constraint), then both take one step and the state after it is compared (qpos, "
       "qvel).\n\n",
-      o.states, kTrajectorySeconds);
+      o.states, kTrajectorySeconds, start.c_str());
   std::printf("## Summary\n\n");
   markdown_summary(results);
   std::printf("\n## Random states: worst ratio to the bound, quantity × model (both paths)\n\n");
@@ -624,6 +663,7 @@ int cmd_diff(const std::vector<std::string>& argv) {
     std::printf("%s", kUsage);
     return kOk;
   }
+  if (!keys_exist(o)) return kBadInput;
   std::vector<ModelResult> results;
   for (const std::string& file : o.files) {
     ModelResult m{file, {}};

@@ -291,6 +291,28 @@ struct StabilityRun {
   bool bounded() const { return blowup_step < 0; }
 };
 
+/// Where the step's stability changes along one parameter (a timestep, or an armature), as a
+/// search found it: stability evaluated on a log-spaced grid from `from` to `to` (an armature
+/// search tries 0 first), and each change between two neighbouring points bisected until its two
+/// sides are within a relative `resolution`. Stability need not change only once: each change the
+/// grid shows is listed. A change narrower than the grid's spacing can be missed.
+struct StabilityScan {
+  double from = 0.0, to = 0.0;
+  int points = 0;  ///< grid points evaluated
+  /// relative width a change is bisected to: fine enough that the value's printed digits do not
+  /// depend on how the grid's points round
+  double resolution = 1e-9;
+  bool stable_first = false;  ///< stability at the first point (0 for an armature, else `from`)
+  /// each change of stability, ascending, given by its stable side s: the step is stable at s
+  /// and not at s (1 + resolution) (a timestep going unstable) or s / (1 + resolution) (an
+  /// armature becoming stable)
+  std::vector<double> changes;
+  /// true when stability changes more than once (the reported value then rests on a choice:
+  /// the largest timestep below which every one is stable, the smallest armature above which
+  /// every one is)
+  bool several() const { return changes.size() > 1; }
+};
+
 struct StabilityAt {
   std::string where;  ///< "keyframe home" or "qpos0"
   Eigen::VectorXd qpos, qvel, ctrl;
@@ -298,13 +320,20 @@ struct StabilityAt {
   double rho_model = 0.0;  ///< spectral radius of the model's step (its integrator)
   double rho_euler = 0.0;  ///< of explicit Euler's step at the same timestep
   bool stable_model = false, stable_euler = false;
-  double max_dt_model = 0.0, max_dt_euler = 0.0;  ///< largest stable timestep found (kInf: cap)
-  double armature_all = 0.0;           ///< smallest armature on every joint for Euler (kInf: none)
+  /// the largest timestep below which every timestep scanned is stable (0: unstable already at
+  /// the scan's smallest; kInf: stable up to the cap)
+  double max_dt_model = 0.0, max_dt_euler = 0.0;
+  StabilityScan dt_scan_model, dt_scan_euler;  ///< the searches behind them
+  /// armatures for explicit Euler at the model's timestep, each the smallest above which every
+  /// armature scanned is stable (0: stable with none; kInf: unstable up to the cap):
+  double armature_all = 0.0;           ///< the same on every joint
   std::vector<double> armature_each;   ///< per joint, the others at ample x armature_all
   double armature_floor = kInf;        ///< the least floor t with max(each_i, t) stable together
-  std::vector<double> armature_alone;  ///< per joint, the others as in the model (kInf: none)
-  double rho_euler_with = 0.0;         ///< Euler's radius, margin x armature_all on every joint
-  double rho_euler_each = 0.0;         ///< Euler's radius, margin x armature_each per joint
+  std::vector<double> armature_alone;  ///< per joint, the others as in the model
+  StabilityScan armature_scan_all, armature_scan_floor;  ///< the searches behind them
+  std::vector<StabilityScan> armature_scan_each, armature_scan_alone;
+  double rho_euler_with = 0.0;  ///< Euler's radius, margin x armature_all on every joint
+  double rho_euler_each = 0.0;  ///< Euler's radius, margin x armature_each per joint
   bool stable_euler_each = false;
   std::vector<StabilityRun> runs;  ///< model as is, Euler without and with armature
   /// rho against the timestep (log-spaced, h/10 to 10 h), for the chart
@@ -314,14 +343,17 @@ struct StabilityAt {
 struct StepStability {
   double timestep = 0.0;
   std::string integrator;
-  double fd_eps = 1e-6;       ///< central-difference step on [qpos; qvel]
-  double slack = 1e-3;        ///< stable: rho <= max(1, exp(h growth)) (1 + slack)
-  double dt_cap = 1.0;        ///< s: the timestep search stops here
-  double armature_cap = 1e4;  ///< kg m^2: the armature search stops here
-  double margin = 1.1;        ///< the simulation uses this times the smallest armature
-  double qvel_bound = 1e3;    ///< a run blows up past this |qvel|
-  double settle_qvel = 1e-3;  ///< a run settles when |qvel| stays below this over its last tenth
-  double ample = 10.0;        ///< per joint: the other joints get this times armature_all
+  double fd_eps = 1e-6;          ///< central-difference step on [qpos; qvel]
+  double slack = 1e-3;           ///< stable: rho <= max(1, exp(h growth)) (1 + slack)
+  double dt_cap = 1.0;           ///< s: the timestep search stops here
+  double dt_floor = 1e-3;        ///< the timestep search starts at this times the model's timestep
+  double armature_start = 1e-6;  ///< kg m^2: the armature search's grid starts here (after 0)
+  int points_per_decade = 10;    ///< grid density of the searches
+  double armature_cap = 1e4;     ///< kg m^2: the armature search stops here
+  double margin = 1.1;           ///< the simulation uses this times the smallest armature
+  double qvel_bound = 1e3;       ///< a run blows up past this |qvel|
+  double settle_qvel = 1e-3;     ///< a run settles when |qvel| stays below this over its last tenth
+  double ample = 10.0;           ///< per joint: the other joints get this times armature_all
   std::vector<std::string> joints;
   std::vector<StabilityAt> states;
 };

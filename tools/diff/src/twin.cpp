@@ -1,4 +1,5 @@
 #include <lever/diff/twin.hpp>
+#include <lever/error.hpp>
 #include <lever/mjcf.hpp>
 #include <stdexcept>
 
@@ -46,13 +47,14 @@ Twin::Twin(const std::string& file, Path path, test::MjModelPtr mj)
       path_(path) {
   check_sizes(model, m.get());
   m->opt.enableflags |= mjENBL_ENERGY;
+  start_key_ = model.nkey > 0 ? 0 : -1;
 }
 
 void Twin::set_integrator(Integrator integrator) {
   model.opt.integrator = integrator;
   m->opt.integrator = integrator == Integrator::kRK4        ? mjINT_RK4
-                     : integrator == Integrator::kImplicit ? mjINT_IMPLICIT
-                                                           : mjINT_EULER;
+                      : integrator == Integrator::kImplicit ? mjINT_IMPLICIT
+                                                            : mjINT_EULER;
 }
 
 void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s) {
@@ -82,17 +84,29 @@ void Twin::follow_mujoco() {
 }
 
 void Twin::reset() {
-  if (model.nkey > 0) {
-    reset_keyframe(model, data, 0);
-    mj_resetDataKeyframe(m.get(), d.get(), 0);
+  if (start_key_ >= 0) {
+    reset_keyframe(model, data, start_key_);
+    mj_resetDataKeyframe(m.get(), d.get(), start_key_);
     return;
   }
   lever::reset(model, data);
   mj_resetData(m.get(), d.get());
 }
 
+void Twin::start_from_key(const std::string& key) {
+  const int id = model.key(key);
+  if (id < 0) {
+    reset_keyframe(model, data, key);  // throws the engine's message, which lists the keyframes
+  }
+  // lever and MuJoCo number a file's keyframes alike, in the order they are written
+  if (id < 0 || id >= m->nkey) {
+    throw StateError("keyframe '" + key + "' is not in MuJoCo's compiled model");
+  }
+  start_key_ = id;
+}
+
 std::string Twin::start_name() const {
-  return model.nkey > 0 ? "keyframe '" + model.key_name[0] + "'" : "rest at qpos0";
+  return start_key_ >= 0 ? "keyframe '" + model.key_name[start_key_] + "'" : "rest at qpos0";
 }
 
 }  // namespace lever::diff

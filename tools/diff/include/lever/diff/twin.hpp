@@ -43,9 +43,13 @@ class Twin {
   void set_state(const test::State& s);
   /// Copy MuJoCo's current state (time, qpos, qvel, ctrl, qfrc_applied) into lever.
   void follow_mujoco();
-  /// Reset both to the start of a run: the model's first keyframe if it has one (lever's
-  /// reset_keyframe against mj_resetDataKeyframe), else as mj_resetData does.
+  /// Reset both to the start of a run: the start keyframe (the model's first unless
+  /// start_from_key() chose another; lever's reset_keyframe against mj_resetDataKeyframe), else,
+  /// for a model without keyframes, as mj_resetData does.
   void reset();
+  /// Start runs from the keyframe called `key`. Throws StateError, listing the model's
+  /// keyframes, if it has none of that name (and changes nothing).
+  void start_from_key(const std::string& key);
   /// The name of the state reset() starts from: "keyframe 'NAME'" or "rest at qpos0".
   std::string start_name() const;
 
@@ -58,6 +62,7 @@ class Twin {
   Twin(const std::string& file, Path path, test::MjModelPtr mj);
   std::string file_;
   Path path_;
+  int start_key_ = -1;  // the keyframe reset() starts from; -1: rest at qpos0
 };
 
 }  // namespace lever::diff

@@ -1,0 +1,168 @@
+// `lever diff` as a user runs it: the lockstep trajectories of --trajectory under Euler, RK4 and
+// MuJoCo 2.2.2's implicit integrator, --key NAME choosing the keyframe they start from, and the
+// refusal of a keyframe the model does not have. Where the command reports MuJoCo's value of a
+// quantity at some step, this test replays MuJoCo on its own (mjModel.opt.integrator set here,
+// the keyframe reset here, the same control) and finds that value there, to the bit.
+#include <catch2/catch.hpp>
+
+#include <mujoco/mujoco.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+
+#include <lever/harness/from_mujoco.hpp>
+#include <lever/harness/models.hpp>
+#include <lever/harness/random_state.hpp>
+#include "json_reader.hpp"
+#include "run_lever.hpp"
+
+namespace lever::test {
+
+namespace {
+
+// panda7 with a second keyframe after `home`, so that --key has something other than the first
+// keyframe to choose. Written beside the temporary directory's other files.
+std::string panda_with_two_keys() {
+  std::ifstream in(model_path("models/panda7.xml"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string xml = text.str();
+  const std::string end = "</keyframe>";
+  const size_t at = xml.find(end);
+  REQUIRE(at != std::string::npos);
+  xml.insert(at, R"(  <key name="reach" qpos="0.3 0.5 -0.2 -1.2 0.4 1.9 0.1"
+         ctrl="0.35 0.45 -0.15 -1.3 0.45 1.8 0.2"/>
+  )");
+  return temporary_file("lever-diff-panda7-two-keys.xml", xml);
+}
+
+// What MuJoCo alone computes in the lockstep's run: from keyframe `key`, under `integrator`, the
+// harness's smooth control set at each step's start, mj_forward (whose qacc is compared) then
+// mj_step (whose qpos, qvel are compared). Indexed [quantity][step][element].
+struct Replay {
+  std::vector<std::vector<double>> qacc, qfrc_constraint, qpos, qvel;
+  const std::vector<std::vector<double>>& operator[](const std::string& quantity) const {
+    if (quantity == "qacc") return qacc;
+    if (quantity == "qfrc_constraint") return qfrc_constraint;
+    if (quantity == "qpos") return qpos;
+    REQUIRE(quantity == "qvel");
+    return qvel;
+  }
+};
+
+Replay replay(const std::string& file, int key, int integrator, int steps) {
+  const Model model = mjcf::load_file(file);  // for the control's span, as the harness uses it
+  MjModelPtr m = mujoco_load(file);
+  m->opt.integrator = integrator;
+  MjDataPtr d = mujoco_data(m.get());
+  mj_resetDataKeyframe(m.get(), d.get(), key);
+  Replay r;
+  const auto copy = [](const double* x, int n) { return std::vector<double>(x, x + n); };
+  Eigen::VectorXd ctrl(model.nu);
+  for (int k = 0; k < steps; ++k) {
+    smooth_control(model, d->time, ctrl);
+    for (int a = 0; a < m->nu; ++a) d->ctrl[a] = ctrl[a];
+    mj_forward(m.get(), d.get());
+    r.qacc.push_back(copy(d->qacc, m->nv));
+    r.qfrc_constraint.push_back(copy(d->qfrc_constraint, m->nv));
+    mj_step(m.get(), d.get());
+    r.qpos.push_back(copy(d->qpos, m->nq));
+    r.qvel.push_back(copy(d->qvel, m->nv));
+  }
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("cli: lever diff --trajectory --key: lockstep under Euler, RK4 and MuJoCo's implicit",
+          "[diff][key]") {
+  const std::string file = panda_with_two_keys();
+  const Model model = mjcf::load_file(file);
+  REQUIRE(model.nkey == 2);
+  const Run run = run_lever("diff " + quoted(file) +
+                            " --trajectory --key reach --json --states 2 --path loader");
+  INFO(run.out);
+  REQUIRE(run.status == 0);
+  const json::Value out = json::parse(run.out);
+  const json::Value& path = out["models"][0]["paths"][0];
+  CHECK(path["path"].string == "loader");
+  CHECK(path["pass"].boolean);
+  CHECK(path["start"].string == "keyframe 'reach'");
+
+  const int steps = static_cast<int>(std::lround(10.0 / model.opt.timestep));
+  const int key = model.key("reach");
+  const Replay euler = replay(file, key, mjINT_EULER, steps);
+  const Replay rk4 = replay(file, key, mjINT_RK4, steps);
+  const Replay implicit = replay(file, key, mjINT_IMPLICIT, steps);
+  const std::pair<const char*, const Replay*> runs[] = {
+      {"lockstep_euler", &euler}, {"lockstep_rk4", &rk4}, {"lockstep_implicit", &implicit}};
+  for (const auto& [name, own] : runs) {
+    INFO(name);
+    const json::Value& report = path[name];
+    REQUIRE(report.size() == 4);
+    for (const json::Value& q : report.array) {
+      const std::string quantity = q["quantity"].string;
+      INFO(quantity);
+      CHECK(q["pass"].boolean);
+      const int n = quantity == "qpos" ? model.nq : model.nv;
+      CHECK(q["compared"].number == static_cast<double>(steps) * n);
+      // MuJoCo's value where the command saw its largest ratio is this test's own MuJoCo run's
+      const auto state = static_cast<size_t>(q["state"].number);
+      const auto index = static_cast<size_t>(q["index"].number);
+      REQUIRE(state < static_cast<size_t>(steps));
+      CHECK(q["mujoco"].number == (*own)[quantity][state][index]);
+    }
+  }
+  // and the two integrators differ there: the implicit lockstep did not run Euler
+  const json::Value* qvel = nullptr;
+  for (const json::Value& q : path["lockstep_implicit"].array) {
+    if (q["quantity"].string == "qvel") qvel = &q;
+  }
+  REQUIRE(qvel != nullptr);
+  const auto state = static_cast<size_t>((*qvel)["state"].number);
+  const auto index = static_cast<size_t>((*qvel)["index"].number);
+  CHECK(implicit.qvel[state][index] != euler.qvel[state][index]);
+  std::filesystem::remove(file);
+}
+
+TEST_CASE("cli: lever diff --trajectory starts from the first keyframe without --key",
+          "[diff][key]") {
+  const Run run = run_lever("diff " + quoted(model_path("models/panda7.xml")) +
+                            " --trajectory --json --states 1 --path engine");
+  REQUIRE(run.status == 0);
+  CHECK(json::parse(run.out)["models"][0]["paths"][0]["start"].string == "keyframe 'home'");
+}
+
+TEST_CASE("cli: lever diff --key refuses a keyframe the model does not have", "[diff][key]") {
+  const std::string file = panda_with_two_keys();
+  // exit 2 before anything is compared: nothing on standard output
+  const Run quiet = run_lever("diff " + quoted(file) + " --trajectory --key nosuch");
+  CHECK(quiet.status == 2);
+  CHECK(quiet.out.empty());
+  const Run said = run_lever("diff " + quoted(file) + " --trajectory --key nosuch", true);
+  CHECK(said.status == 2);
+  INFO(said.out);
+  CHECK(said.out.find("--key") != std::string::npos);
+  CHECK(said.out.find("'nosuch'") != std::string::npos);
+  CHECK(said.out.find("'home', 'reach'") != std::string::npos);  // the model's keyframes
+  // a model with no keyframes at all, among others that have it
+  const Run none = run_lever("diff " + quoted(file) + " " + quoted(model_path("models/arm2.xml")) +
+                                 " --trajectory --key home",
+                             true);
+  CHECK(none.status == 2);
+  CHECK(none.out.find("arm2.xml") != std::string::npos);
+  CHECK(none.out.find("no named keyframes") != std::string::npos);
+  // --key only says where the trajectories start
+  const Run alone = run_lever("diff " + quoted(file) + " --key home", true);
+  CHECK(alone.status == 2);
+  CHECK(alone.out.find("--trajectory") != std::string::npos);
+  std::filesystem::remove(file);
+}
+
+}  // namespace lever::test
