@@ -31,6 +31,7 @@
 #include <string>
 
 #include "internal.hpp"
+#include "recursion.hpp"
 
 namespace lever {
 
@@ -75,25 +76,11 @@ void check_sizes(const Model& model, const Data& data, const Derivatives& deriv)
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, Derivatives::Workspace& w,
                            Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
-  // forward pass, root to leaves: v, a and f of every body, Sdot and Psi_ddot of every dof
-  w.v[0].setZero();
-  w.a[0].setZero();
-  if (gravity) w.a[0].tail<3>() = -model.opt.gravity;  // an upward acceleration of the world
+  // forward pass, root to leaves: v and a of every body, Sdot and Psi_ddot of every dof; then f
+  forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot);
   for (int b = 1; b < model.nbody; ++b) {
-    const int parent = model.body_parentid[b];
-    Motion vb = w.v[parent];
-    Motion ab = w.a[parent];
-    for (int k = 0; k < model.body_dofnum[b]; ++k) {
-      const int j = model.body_dofadr[b] + k;
-      const Motion& S = data.cdof[j];
-      w.Sdot[j] = cross_motion(vb, S);
-      w.Sddot[j] = cross_motion(ab, S) + cross_motion(vb, w.Sdot[j]);
-      ab += w.Sdot[j] * qd[j];
-      if (qdd != nullptr) ab += S * qdd[j];
-      vb += S * qd[j];
-    }
-    w.v[b] = vb;
-    w.a[b] = ab;
+    const Motion& vb = w.v[b];
+    const Motion& ab = w.a[b];
     w.I[b] = data.cinert[b].matrix();
     const Force h = w.I[b] * vb;  // momentum
     w.f[b] = w.I[b] * ab + cross_force(vb, h);

@@ -20,6 +20,9 @@
 #include <random>
 #include <sstream>
 
+#include "internal.hpp"
+#include "recursion.hpp"
+
 namespace lever {
 
 namespace {
@@ -250,23 +253,14 @@ void regressor(const Model& model, Data& data, const Eigen::Ref<const Eigen::Vec
     throw StateError("regressor: qacc must have nv elements and Y be nv x regressor_columns.");
   }
   Y.setZero();
-  // velocities and accelerations of every body (as RNEA's forward pass; gravity as a_0 = -g),
-  // kept in Data's RNEA workspace
+  // velocities and accelerations of every body (RNEA's forward pass; gravity as a_0 = -g), kept
+  // in Data's RNEA workspace
   auto& v = data.cvel;
   auto& a = data.work.cacc;
-  v[0].setZero();
-  a[0] << 0.0, 0.0, 0.0, -model.opt.gravity;
+  forward_pass(model, data, data.qvel.data(), qacc.data(), true, v, a, nullptr, nullptr);
   for (int b = 1; b < model.nbody; ++b) {
-    const int parent = model.body_parentid[b];
-    Motion vb = v[parent], ab = a[parent];
-    for (int k = 0; k < model.body_dofnum[b]; ++k) {
-      const int i = model.body_dofadr[b] + k;
-      const Motion& S = data.cdof[i];
-      ab += cross_motion(vb, S) * data.qvel[i] + S * qacc[i];
-      vb += S * data.qvel[i];
-    }
-    v[b] = vb;
-    a[b] = ab;
+    const Motion& vb = v[b];
+    const Motion& ab = a[b];
 
     // body b's block: the dofs that support it, seen in its frame
     const Eigen::Vector3d& c = data.subtree_com[model.body_rootid[b]];

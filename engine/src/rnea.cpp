@@ -10,6 +10,7 @@
 #include <lever/dynamics.hpp>
 
 #include "internal.hpp"
+#include "recursion.hpp"
 
 namespace lever {
 
@@ -22,40 +23,12 @@ void newton_euler(const Model& model, Data& data, const double* qdd,
   auto& v = data.cvel;
   auto& a = data.work.cacc;
   auto& f = data.work.cfrc;
-  v[0].setZero();
-  a[0] << 0.0, 0.0, 0.0, -model.opt.gravity;
-
-  // forward pass: velocity, acceleration and the net force each body needs, root to leaves
+  forward_pass(model, data, data.qvel.data(), qdd, true, v, a, &data.cdof_dot, nullptr);
   for (int b = 1; b < model.nbody; ++b) {
-    const int parent = model.body_parentid[b];
-    Motion vb = v[parent];
-    Motion ab = a[parent];
-    bool moving = parent > 0;  // the world does not move: its children's first Sdot is zero
-    for (int k = 0; k < model.body_dofnum[b]; ++k) {
-      const int i = model.body_dofadr[b] + k;
-      const Motion& S = data.cdof[i];
-      if (moving) {
-        data.cdof_dot[i] = cross_motion(vb, S);  // S moves with the body carrying it
-        ab += data.cdof_dot[i] * data.qvel[i];
-      } else {
-        data.cdof_dot[i].setZero();
-        moving = true;
-      }
-      vb += S * data.qvel[i];
-      if (qdd != nullptr) ab += S * qdd[i];
-    }
-    v[b] = vb;
-    a[b] = ab;
     const RigidInertia& I = data.cinert[b];
-    f[b] = I * ab + cross_force(vb, I * vb);
+    f[b] = I * a[b] + cross_force(v[b], I * v[b]);  // the net force body b needs
   }
-
-  // backward pass: each joint transmits the force of its whole subtree
-  for (int b = model.nbody - 1; b > 0; --b) {
-    const int parent = model.body_parentid[b];
-    if (parent > 0) f[parent] += f[b];
-  }
-  for (int i = 0; i < model.nv; ++i) tau[i] = data.cdof[i].dot(f[model.dof_bodyid[i]]);
+  backward_pass(model, data, f, tau.data());
 }
 
 }  // namespace
