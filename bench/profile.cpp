@@ -73,7 +73,7 @@ struct Rig {
       const std::vector<double> tau(static_cast<std::size_t>(s.qvel.size()), 0.5);
       kdl->set_state(s.qpos.data(), s.qvel.data(), s.qacc.data(), tau.data());
     }
-    const auto nx = static_cast<std::size_t>(2 * f.mj->nv);
+    const auto nx = 2 * static_cast<std::size_t>(f.mj->nv);
     AB.resize(nx * nx + nx * static_cast<std::size_t>(f.mj->nu));
   }
 
@@ -115,7 +115,7 @@ std::vector<Operation> operations() {
   };
   const auto transition_fd = [](const Fixture& f, Rig& r, mjtByte centred) {
     const mjModel* m = f.mj.get();
-    const auto nx = static_cast<std::size_t>(2 * m->nv);
+    const auto nx = 2 * static_cast<std::size_t>(m->nv);
     mjd_transitionFD(m, r.md.get(), 1e-6, centred, r.AB.data(),
                      m->nu > 0 ? r.AB.data() + nx * nx : nullptr, nullptr, nullptr);
   };
