@@ -185,21 +185,21 @@ for (const file of models) {
   const b = engines.mujoco.qpos();
   const qposDiff = Math.max(...a.map((x, i) => Math.abs(x - b[i])));
 
-  // warm up (node's JIT compiles the loops and the wasm in tiers: the first thousands of steps
-  // run several times slower), about half a second each, then size the rounds: about 50 ms of
-  // lever's steps each
-  let leverNs = Infinity;
+  // warm up: node runs new wasm code from a baseline compiler first and swaps in optimized code
+  // later (lever's after about 0.4 s of steps on a loaded machine, several times faster): a
+  // second of steps each, then size the rounds from lever's last warm-up runs, about 50 ms each
+  const leverWarm = [];
   for (const who of ['lever', 'mujoco']) {
     const begin = process.cpuUsage();
     let spent = 0;
-    while (spent < 5e5) {  // µs
+    while (spent < 1e6) {  // µs
       const t = timeRun(engines[who], 2000);
-      if (who === 'lever') leverNs = Math.min(leverNs, t.cpu);
+      if (who === 'lever') leverWarm.push(t.cpu);
       const used = process.cpuUsage(begin);
       spent = used.user + used.system;
     }
   }
-  const steps = Math.max(1000, Math.round(5e7 / leverNs));
+  const steps = Math.max(1000, Math.round(5e7 / quantile(leverWarm.slice(-5), 0.5)));
   const cpu = {lever: [], mujoco: []};
   const wall = {lever: [], mujoco: []};
   for (let r = 0; r < rounds; r++) {
