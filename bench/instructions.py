@@ -10,14 +10,15 @@ once per model: every operation's loop is dumped on its own, and an empty loop f
 loop itself. Instructions per call = (the loop's total - the empty loop's per-iteration cost x N) / N.
 The counts are exact and do not depend on the machine's load: after three warm-up calls every call
 runs the same instructions, so N = 1000 and N = 11000 give the same count per call. For the
-models named by --stages, the `forward` loops are also broken down: lever's by function (self cost,
-`callgrind_annotate --inclusive=no`), MuJoCo's by the stages of its pipeline (inclusive cost of
+models named by --stages, the `forward` loops are also broken down (and lever's `step`): lever's by
+function (self cost, `callgrind_annotate --inclusive=no`), MuJoCo's by the stages of its pipeline (inclusive cost of
 mj_kinematics, mj_comPos, ..., mj_fwdConstraint: libmujoco's own static functions have no names).
 
 Writes one JSON file, which `lever_bench_report --instructions FILE` puts beside the times:
   {"tool": ..., "iterations": N, "seconds": ...,
    "models": {"arm2": {"lever": {"forward": 4214.0, ...}, "mujoco": {...}, "kdl": {...}}},
-   "stages": {"arm2": {"lever": [["lever::poses", 878.0], ...], "mujoco": [["mj_kinematics", ...]]}}}
+   "stages": {"arm2": {"lever": [["lever::poses", 878.0], ...], "lever_step": [...],
+                       "mujoco": [["mj_kinematics", ...]]}}}
 Needs Debian's valgrind (callgrind and callgrind_annotate).
 """
 import argparse
@@ -160,6 +161,7 @@ def count_model(profile, model_path, iterations, want_stages, workdir):
     if want_stages:
         breakdown = {
             "lever": lever_stages(dumps["forward"][1], loops["forward"]),
+            "lever_step": lever_stages(dumps["step"][1], loops["step"]),
             "mujoco": mujoco_stages(dumps["mujoco:forward"][1], loops["mujoco:forward"],
                                     counts["mujoco"]["forward"]),
         }

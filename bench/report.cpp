@@ -728,6 +728,10 @@ int main(int argc, char** argv) {
       out << "\n\n";
     };
     stage_table("lever", "lever function", true);
+    out << "lever's `step` the same way (the state restored before each call, as in the "
+           "benchmark): what it adds to `forward` is its integrator's work (arm2's is Euler, "
+           "panda7's `implicit`).\n\n";
+    stage_table("lever_step", "lever function (`step`)", true);
     out << "MuJoCo's `mj_forward` by the stages of its pipeline, each with what it calls "
            "(libmujoco's own static functions have no names to list them by); `rest` is "
            "`mj_forward`'s own work and the checks. `mj_collision` runs its broad phase over the "
