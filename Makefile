@@ -66,8 +66,9 @@ define bench_report
 args="$(BENCH_BUILD)/bench.json --check $(BENCH_BUILD)/bench-check.md"; \
   [ -f $(BENCH_BUILD)/instructions.json ] && args="$$args --instructions $(BENCH_BUILD)/instructions.json"; \
   [ -f $(WEB_BUILD)/web-bench.json ] && args="$$args --web $(WEB_BUILD)/web-bench.json"; \
-  $(BENCH_BUILD)/bench/lever_bench_report $$args > docs/performance.md.part && \
-  mv docs/performance.md.part docs/performance.md && echo "wrote docs/performance.md"
+  if $(BENCH_BUILD)/bench/lever_bench_report $$args > docs/performance.md.part; then \
+    mv docs/performance.md.part docs/performance.md && echo "wrote docs/performance.md"; \
+  else rm -f docs/performance.md.part; exit 1; fi
 endef
 .PHONY: bench bench-build bench-instructions
 bench-build: setup
