@@ -47,25 +47,52 @@ clean:
 	rm -rf $(BUILD) $(BUILD).configure.log
 
 # make bench: lever against MuJoCo 2.2.2 and Orocos KDL (bench/), built in Release in its own
-# folder, run with repetitions and random interleaving; writes docs/performance.md. Run it on a quiet
-# machine (`uptime`): the ratios are only as good as the load allows.
+# folder, run with repetitions and random interleaving, then every operation's instructions per
+# call counted by callgrind (bench/instructions.py, about two minutes); writes docs/performance.md.
+# Run it on a quiet machine (`uptime`): the time ratios are only as good as the load allows (the
+# instruction counts do not depend on it).
+# make bench-instructions: the instruction counts alone (any load), into $(BENCH_BUILD)/
+# instructions.json; docs/performance.md is rewritten with them if a timing run is there.
 BENCH_BUILD ?= build-bench
 BENCH_REPETITIONS ?= 10
 BENCH_MIN_TIME ?= 0.05
 BENCH_FLAGS ?=
-.PHONY: bench
-bench: setup
+BENCH_ITERATIONS ?= 1000
+LEVER_COMMIT = $(shell git rev-parse --short HEAD 2>/dev/null || echo unknown)$(shell git diff --quiet HEAD -- engine 2>/dev/null || echo +uncommitted-engine-changes)
+# the report from whatever measurements are there: times (needed), instruction counts, the
+# browser peer (make web-bench); written to a temporary file first, so that a failure leaves
+# the document as it was
+define bench_report
+args="$(BENCH_BUILD)/bench.json --check $(BENCH_BUILD)/bench-check.md"; \
+  [ -f $(BENCH_BUILD)/instructions.json ] && args="$$args --instructions $(BENCH_BUILD)/instructions.json"; \
+  [ -f $(WEB_BUILD)/web-bench.json ] && args="$$args --web $(WEB_BUILD)/web-bench.json"; \
+  if $(BENCH_BUILD)/bench/lever_bench_report $$args > docs/performance.md.part; then \
+    mv docs/performance.md.part docs/performance.md && echo "wrote docs/performance.md"; \
+  else rm -f docs/performance.md.part; exit 1; fi
+endef
+.PHONY: bench bench-build bench-instructions
+bench-build: setup
+	@scripts/setup.sh bench
 	@cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DLEVER_BUILD_BENCH=ON > $(BENCH_BUILD).configure.log || (cat $(BENCH_BUILD).configure.log; exit 1)
-	@cmake --build $(BENCH_BUILD) -j $(JOBS) --target lever_bench lever_bench_report
+	@cmake --build $(BENCH_BUILD) -j $(JOBS) --target lever_bench lever_bench_report lever_bench_profile
+bench: bench-build
 	@$(BENCH_BUILD)/bench/lever_bench --check > $(BENCH_BUILD)/bench-check.md || (cat $(BENCH_BUILD)/bench-check.md; exit 1)
 	$(BENCH_BUILD)/bench/lever_bench --benchmark_repetitions=$(BENCH_REPETITIONS) \
 	  --benchmark_min_time=$(BENCH_MIN_TIME) --benchmark_enable_random_interleaving=true \
 	  --benchmark_display_aggregates_only=true \
 	  --benchmark_out=$(BENCH_BUILD)/bench.json --benchmark_out_format=json \
-	  --benchmark_context=lever_commit=$$(git rev-parse --short HEAD 2>/dev/null || echo unknown)$$(git diff --quiet HEAD -- engine 2>/dev/null || echo +uncommitted-engine-changes) \
+	  --benchmark_context=lever_commit=$(LEVER_COMMIT) \
 	  $(BENCH_FLAGS)
-	@$(BENCH_BUILD)/bench/lever_bench_report $(BENCH_BUILD)/bench.json --check $(BENCH_BUILD)/bench-check.md > docs/performance.md
-	@echo "bench: wrote docs/performance.md"
+	bench/instructions.py --profile $(BENCH_BUILD)/bench/lever_bench_profile \
+	  --iterations $(BENCH_ITERATIONS) --commit $(LEVER_COMMIT) \
+	  --out $(BENCH_BUILD)/instructions.json models/*.xml
+	@$(bench_report)
+bench-instructions: bench-build
+	bench/instructions.py --profile $(BENCH_BUILD)/bench/lever_bench_profile \
+	  --iterations $(BENCH_ITERATIONS) --commit $(LEVER_COMMIT) \
+	  --out $(BENCH_BUILD)/instructions.json models/*.xml
+	@if [ -f $(BENCH_BUILD)/bench.json ] && [ -f $(BENCH_BUILD)/bench-check.md ]; then $(bench_report); \
+	  else echo "bench-instructions: no timing run in $(BENCH_BUILD) (make bench): docs/performance.md left as it is"; fi
 
 # make agreement: lever against MuJoCo 2.2.2 on every model (random states, lockstep trajectories,
 # free runs); writes docs/agreement.md. Quantities beyond the 1e-12 bound are written into the
@@ -119,8 +146,15 @@ format:
 # into build-web/: build-web/web/wasm/lever_wasm.{js,wasm}, the lab's engine (web/wasm). Emscripten's
 # JS optimizer needs Debian's node-acorn on NODE_PATH.
 # make lab: builds it and serves the lab (web/) on 127.0.0.1, printing the page's URL (LAB_PORT=0:
-# a free port). make web-bench: one lab step (forward + step) timed natively and in WebAssembly.
+# a free port).
+# make web-bench: one lab step (forward + step) timed natively and in WebAssembly; then lever's
+# WebAssembly lab step against MuJoCo's official WebAssembly build (npm mujoco-js, pinned by
+# web/bench/package-lock.json, installed into $(WEB_BUILD)/web-bench-peer by this target only) in
+# one node process (web/bench/peer_step_time.mjs), into $(WEB_BUILD)/web-bench.json; docs/
+# performance.md is rewritten with it if a `make bench` run is there.
 WEB_BUILD ?= build-web
+WEB_PEER = $(WEB_BUILD)/web-bench-peer
+WEB_BENCH_MODELS ?= models/arm2.xml models/panda7.xml
 LAB_PORT ?= 0
 WEB_ENV = NODE_PATH=/usr/share/nodejs
 .PHONY: web lab web-bench
@@ -132,8 +166,20 @@ web: setup
 	@ls -l $(WEB_BUILD)/web/wasm/lever_wasm.wasm $(WEB_BUILD)/web/wasm/lever_wasm.js
 lab: web
 	/usr/bin/python3 web/serve.py --port $(LAB_PORT) --build $(WEB_BUILD)/web/wasm
-web-bench: web build
+$(WEB_PEER)/node_modules/mujoco-js/package.json: web/bench/package.json web/bench/package-lock.json
+	@scripts/setup.sh web-bench
+	@mkdir -p $(WEB_PEER)
+	@cp web/bench/package.json web/bench/package-lock.json $(WEB_PEER)/
+	cd $(WEB_PEER) && npm ci --ignore-scripts --no-audit --no-fund
+	@touch $@
+web-bench: web build $(WEB_PEER)/node_modules/mujoco-js/package.json
 	@$(WEB_ENV) cmake --build $(WEB_BUILD) -j $(JOBS) --target lever_step_time
 	$(BUILD)/web/bench/lever_step_time models/arm2.xml
 	node $(WEB_BUILD)/web/bench/lever_step_time.js models/arm2.xml
 	node web/bench/js_step_time.js $(WEB_BUILD)/web/wasm models/arm2.xml
+	node web/bench/peer_step_time.mjs --lever $(WEB_BUILD)/web/wasm \
+	  --mujoco $(WEB_PEER)/node_modules/mujoco-js --commit $(LEVER_COMMIT) \
+	  --out $(WEB_BUILD)/web-bench.json $(WEB_BENCH_MODELS)
+	@if [ -f $(BENCH_BUILD)/bench.json ] && [ -f $(BENCH_BUILD)/bench-check.md ] && \
+	  [ -x $(BENCH_BUILD)/bench/lever_bench_report ]; then $(bench_report); \
+	  else echo "web-bench: no make bench run in $(BENCH_BUILD): docs/performance.md left as it is"; fi

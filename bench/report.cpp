@@ -1,11 +1,15 @@
 // lever_bench_report: Google Benchmark's JSON output of lever_bench -> docs/performance.md.
 //
-//   lever_bench_report RESULTS.json [--check CHECK.md] > docs/performance.md
+//   lever_bench_report RESULTS.json [--check CHECK.md] [--instructions INSTRUCTIONS.json]
+//                      [--web WEB.json] > docs/performance.md
 //
 // For every <operation>/<model>/<peer>, the median of the repetitions' CPU times and their spread
-// (interquartile range over the median); lever's median over each peer's; and whether the
-// targets of the benchmark issue are met. No dependency besides the C++ standard library and the
-// tests' small JSON reader (tests/support/json_reader.hpp).
+// (interquartile range over the median); lever's median over each peer's; beside them, when
+// bench/instructions.py's counts are given, the instructions per call (callgrind) and their
+// ratio, which do not depend on the machine's load; the browser peer (web/bench/
+// peer_step_time.mjs, `make web-bench`); and whether the targets of issue 18 are met, by time and
+// by instructions. No dependency besides the C++ standard library and the tests' small JSON reader
+// (tests/support/json_reader.hpp).
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -80,6 +84,60 @@ std::vector<std::string> split(const std::string& s, char sep) {
   return out;
 }
 
+Json read_json(const std::string& path) {  // throws std::runtime_error naming the file
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot read " + path);
+  std::stringstream text;
+  text << in.rdbuf();
+  try {
+    return lever::test::json::parse(text.str());
+  } catch (const std::exception& e) {
+    throw std::runtime_error(path + ": " + e.what());
+  }
+}
+
+// bench/instructions.py's counts: instructions per call by model, peer and operation, and the
+// stages of forward for a few models
+struct Instructions {
+  const Json* root = nullptr;
+
+  std::optional<double> count(const std::string& op, const std::string& model,
+                              const std::string& peer) const {
+    if (root == nullptr) return std::nullopt;
+    const Json* models = root->find("models");
+    const Json* m = models != nullptr ? models->find(model) : nullptr;
+    const Json* p = m != nullptr ? m->find(peer) : nullptr;
+    const Json* c = p != nullptr ? p->find(op) : nullptr;
+    if (c == nullptr || c->kind != Json::Kind::kNumber) return std::nullopt;
+    return c->number;
+  }
+  // [[function, instructions per call], ...] of one peer's forward on one model
+  std::vector<std::pair<std::string, double>> stages(const std::string& model,
+                                                     const std::string& peer) const {
+    std::vector<std::pair<std::string, double>> out;
+    const Json* all = root != nullptr ? root->find("stages") : nullptr;
+    const Json* m = all != nullptr ? all->find(model) : nullptr;
+    const Json* p = m != nullptr ? m->find(peer) : nullptr;
+    if (p == nullptr) return out;
+    for (const Json& row : p->array) {
+      if (row.kind == Json::Kind::kArray && row.array.size() == 2)
+        out.emplace_back(row.array[0].string, row.array[1].number);
+    }
+    return out;
+  }
+};
+
+// web/bench/peer_step_time.mjs's result: one lab step in WebAssembly, lever against MuJoCo's
+// official build
+struct WebBench {
+  const Json* root = nullptr;
+
+  const Json* model(const std::string& name) const {
+    const Json* models = root != nullptr ? root->find("models") : nullptr;
+    return models != nullptr ? models->find(name) : nullptr;
+  }
+};
+
 // ---- formatting ---------------------------------------------------------------------------------
 
 std::string fmt(const char* format, double x) {
@@ -98,10 +156,21 @@ std::string time_cell(const std::optional<Stats>& s) {
   return value + " ±" + fmt("%.0f", 100 * s->iqr) + "%";
 }
 
+std::string ratio_text(double r) { return fmt(r < 0.1 ? "%.3f" : "%.2f", r); }
+
 std::string ratio_cell(const std::optional<Stats>& lever, const std::optional<Stats>& peer) {
   if (!lever || !peer) return "—";
-  const double r = lever->median / peer->median;
-  return fmt(r < 0.1 ? "%.3f" : "%.2f", r);
+  return ratio_text(lever->median / peer->median);
+}
+
+std::string count_text(double n) { return fmt("%.0f", n); }  // instructions per call
+
+std::string count_cell(const std::optional<double>& n) { return n ? count_text(*n) : "—"; }
+
+std::string count_ratio_cell(const std::optional<double>& lever,
+                             const std::optional<double>& peer) {
+  if (!lever || !peer) return "—";
+  return ratio_text(*lever / *peer);
 }
 
 // ---- what each operation times
@@ -142,63 +211,98 @@ const Operation kOperations[] = {
      "`mjd_transitionFD`, forward", ""},
 };
 
-// ---- targets
-// --------------------------------------------------------------------------------------
+// ---- targets: issue 18's "What to reach"
+// ----------------------------------------------------------------------------------------------
 
-struct Verdict {
-  std::string target, measured, status;
+// One target: a ratio against a goal, measured in time and (where callgrind can count it) in
+// instructions. Each ratio is lever's over the peer's: numerator over denominator.
+struct Ratio {
+  std::optional<double> numerator, denominator;
+  std::string numerator_unit;  // "ns", "instructions", "states/s"
+  bool known() const { return numerator && denominator && *denominator > 0; }
+  double value() const { return *numerator / *denominator; }
 };
 
-void target_ratio(std::vector<Verdict>& out, const Results& r, const std::string& text,
-                  const std::string& op, const std::string& model, const std::string& peer,
-                  double max_ratio, bool strict = false) {
-  const auto l = r.time(op, model, "lever"), p = r.time(op, model, peer);
-  if (!l || !p) {
-    out.push_back({text, "not measured", "—"});
-    return;
+struct Target {
+  std::string text;
+  double goal;
+  bool at_least;  // the ratio must reach the goal (a speed-up), not stay below it
+  Ratio time, instructions;
+
+  std::string goal_text() const {
+    return (at_least ? ">= " : "<= ") + fmt(goal < 1 ? "%.2f" : "%.1f", goal);
   }
-  const double ratio = l->median / p->median;
-  const bool met = strict ? ratio < max_ratio : ratio <= max_ratio;
-  std::string measured = fmt("%.1f ns", l->median) + " vs " + fmt("%.1f ns", p->median) + ": " +
-                         fmt("%.3f", ratio) + " (" + fmt("%.1fx", p->median / l->median) +
-                         " faster)";
-  const double by = ratio / max_ratio;
-  std::string status = met ? "met" : "**missed** by " + fmt(by < 1.01 ? "%.3fx" : "%.2fx", by);
-  out.push_back({text, measured, status});
+};
+
+std::string measured_cell(const Ratio& r, const char* unit_format) {
+  if (!r.known()) return "—";
+  return fmt(unit_format, *r.numerator) + " / " + fmt(unit_format, *r.denominator) + " = **" +
+         ratio_text(r.value()) + "**";
+}
+
+// "met", or by how much it is missed: the ratio over the goal (at most), the goal over the ratio
+// (at least)
+std::string verdict(const Ratio& r, double goal, bool at_least) {
+  if (!r.known()) return "not measured";
+  const double v = r.value();
+  const bool met = at_least ? v >= goal : v <= goal;
+  if (met) return "met";
+  const double by = at_least ? goal / v : v / goal;
+  return "**missed** by " + fmt(by < 1.01 ? "%.3fx" : "%.2fx", by);
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string json_path, check_path;
+  const char* usage =
+      "usage: lever_bench_report RESULTS.json [--check CHECK.md] [--instructions "
+      "INSTRUCTIONS.json] [--web WEB.json]\n";
+  std::string json_path, check_path, instructions_path, web_path;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     if (arg == "--check" && i + 1 < argc) {
       check_path = argv[++i];
-    } else if (json_path.empty()) {
+    } else if (arg == "--instructions" && i + 1 < argc) {
+      instructions_path = argv[++i];
+    } else if (arg == "--web" && i + 1 < argc) {
+      web_path = argv[++i];
+    } else if (json_path.empty() && arg.rfind("--", 0) != 0) {
       json_path = arg;
     } else {
-      std::cerr << "usage: lever_bench_report RESULTS.json [--check CHECK.md]\n";
+      std::cerr << usage;
       return 2;
     }
   }
   if (json_path.empty()) {
-    std::cerr << "usage: lever_bench_report RESULTS.json [--check CHECK.md]\n";
+    std::cerr << usage;
     return 2;
   }
-  std::ifstream in(json_path);
-  if (!in) {
-    std::cerr << "lever_bench_report: cannot read " << json_path << "\n";
-    return 2;
-  }
-  std::stringstream text;
-  text << in.rdbuf();
-  Json root;
+  Json root, instructions_root, web_root;
   try {
-    root = lever::test::json::parse(text.str());
+    root = read_json(json_path);
+    if (!instructions_path.empty()) instructions_root = read_json(instructions_path);
+    if (!web_path.empty()) web_root = read_json(web_path);
   } catch (const std::exception& e) {
-    std::cerr << "lever_bench_report: " << json_path << ": " << e.what() << "\n";
+    std::cerr << "lever_bench_report: " << e.what() << "\n";
     return 2;
+  }
+  Instructions counts;
+  if (!instructions_path.empty()) {
+    if (instructions_root.find("models") == nullptr) {
+      std::cerr << "lever_bench_report: " << instructions_path
+                << " is not bench/instructions.py's output\n";
+      return 2;
+    }
+    counts.root = &instructions_root;
+  }
+  WebBench web;
+  if (!web_path.empty()) {
+    if (web_root.find("models") == nullptr) {
+      std::cerr << "lever_bench_report: " << web_path
+                << " is not web/bench/peer_step_time.mjs's output\n";
+      return 2;
+    }
+    web.root = &web_root;
   }
   const Json* context = root.find("context");
   const Json* benchmarks = root.find("benchmarks");
@@ -289,62 +393,149 @@ int main(int argc, char** argv) {
   for (const std::string& model : model_order) {
     out << "| model " << model << " | " << context->str("model." + model) << " |\n";
   }
+  const std::string commit = context->str("lever_commit", "(not recorded)");
+  // a source measured at another commit than the times is said so
+  auto commit_note = [&](const std::string& other) {
+    return other == commit ? std::string(" (the same commit)")
+                           : " (**another commit than the times'**: " + other + ")";
+  };
+  if (counts.root != nullptr) {
+    out << "| instruction counts | " << instructions_root.str("tool")
+        << ", `bench/instructions.py`: each operation's loop of "
+        << instructions_root.str("iterations")
+        << " calls counted alone, the loop's own cost subtracted; commit "
+        << instructions_root.str("lever_commit", "(not recorded)")
+        << commit_note(instructions_root.str("lever_commit", "(not recorded)")) << "; took "
+        << instructions_root.str("seconds") << " s |\n";
+  }
+  if (web.root != nullptr) {
+    out << "| WebAssembly peer | " << web_root.str("date") << ", node " << web_root.str("node")
+        << ", npm `mujoco-js` " << web_root.str("mujoco_js") << " (MuJoCo "
+        << web_root.str("mujoco_version") << "), commit " << web_root.str("lever_commit")
+        << commit_note(web_root.str("lever_commit")) << " |\n";
+  }
   out << "\n";
 
-  // targets
-  std::vector<Verdict> verdicts;
-  target_ratio(verdicts, r, "arm2 `forward` <= 1/10 of `mj_forward`", "forward", "arm2", "mujoco",
-               0.1);
-  target_ratio(verdicts, r, "arm2 `forward` <= 1/10 of `mj_forward`, one limit active",
-               "forward_limit", "arm2", "mujoco", 0.1);
-  target_ratio(verdicts, r, "arm2 `step` <= 1/10 of `mj_step`", "step", "arm2", "mujoco", 0.1);
-  target_ratio(verdicts, r, "arm2 `step` <= 1/10 of `mj_step`, one limit active", "step_limit",
-               "arm2", "mujoco", 0.1);
-  target_ratio(verdicts, r, "arm2 `bias` faster than `mj_rne` alone", "bias", "arm2", "mujoco", 1.0,
-               true);
-  target_ratio(verdicts, r, "arm2 `crba` faster than `mj_crb` alone", "crba", "arm2", "mujoco", 1.0,
-               true);
-  // KDL's solvers start from q, so the verdict compares lever from q too; the piece alone
-  // (kinematics already done, as inside forward()) is shown beside it
-  for (const std::string& model : model_order) {
-    for (const auto& [op, piece, what] :
-         {std::tuple{"bias_from_q", "bias", " RNEA bias >= 3x faster than KDL's RNE"},
-          std::tuple{"crba_from_q", "crba", " CRBA >= 3x faster than KDL's JntToMass"}}) {
-      target_ratio(verdicts, r, model + what, op, model, "kdl", 1.0 / 3);
-      const auto l = r.time(piece, model, "lever"), k = r.time(op, model, "kdl");
-      if (l && k && verdicts.back().status != "—") {
-        verdicts.back().measured += "; lever's `" + std::string(piece) +
-                                    "` alone: " + fmt("%.1f ns", l->median) + ", " +
-                                    fmt("%.1fx", k->median / l->median) + " faster";
-      }
+  // ---- targets (issue 18's "What to reach")
+  std::vector<Target> targets;
+  const auto time_of = [&](const std::string& op, const std::string& model,
+                           const std::string& peer) -> std::optional<double> {
+    const auto t = r.time(op, model, peer);
+    if (!t) return std::nullopt;
+    return t->median;
+  };
+  // lever's op on a model against a peer's, in time and in instructions
+  const auto against = [&](const std::string& text, double goal, const std::string& op,
+                           const std::string& model, const std::string& peer) {
+    targets.push_back({text,
+                       goal,
+                       false,
+                       {time_of(op, model, "lever"), time_of(op, model, peer), "ns"},
+                       {counts.count(op, model, "lever"), counts.count(op, model, peer), ""}});
+  };
+  against("arm2 `forward` / `mj_forward`", 0.10, "forward", "arm2", "mujoco");
+  against("arm2 `forward` / `mj_forward`, one limit active", 0.10, "forward_limit", "arm2",
+          "mujoco");
+  against("arm2 `step` / `mj_step`", 0.10, "step", "arm2", "mujoco");
+  against("arm2 `step` / `mj_step`, one limit active", 0.10, "step_limit", "arm2", "mujoco");
+  against("panda7 `forward` / `mj_forward`", 0.20, "forward", "panda7", "mujoco");
+  against("chain20 `forward` / `mj_forward`", 0.25, "forward", "chain20", "mujoco");
+  for (const auto& [op, peer_call, g] :
+       {std::tuple{"bias", "`mj_rne`", 0.7}, std::tuple{"crba", "`mj_crb`", 1.0},
+        std::tuple{"jac_site", "`mj_jacSite`", 1.0}}) {
+    for (const std::string& model : model_order) {
+      against(model + " `" + op + "` / " + peer_call, g, op, model, "mujoco");
     }
   }
-  target_ratio(verdicts, r, "arm7 `forward` <= 1/4 of `mj_forward`", "forward", "arm7", "mujoco",
-               0.25);
-  if (const auto l = r.time("forward", "arm2", "lever")) {
-    const double floor_ns = 60, allowed = 2 * floor_ns;
-    verdicts.push_back(
-        {"arm2 `forward` within 2x of the ~60 ns floor (<= 120 ns)", fmt("%.1f ns", l->median),
-         l->median <= allowed ? "met" : "**missed** by " + fmt("%.2fx", l->median / allowed)});
+  for (const std::string& model : model_order) {
+    if (!r.time("fk", model, "kdl") && !counts.count("fk", model, "kdl")) continue;
+    against(model + " `fk` / KDL's `ChainFkSolverPos`", 1.0, "fk", model, "kdl");
   }
-  out << "## Targets\n\n| target | measured (lever vs peer) | |\n|---|---|---|\n";
-  for (const Verdict& v : verdicts)
-    out << "| " << v.target << " | " << v.measured << " | " << v.status << " |\n";
+  // the analytic step Jacobian against one forward: both lever's
+  targets.push_back({"panda7 analytic step Jacobian (`step_derivatives`) / one panda7 `forward`",
+                     5.0,
+                     false,
+                     {time_of("step_jacobian_forward", "panda7", "lever"),
+                      time_of("forward", "panda7", "lever"), "ns"},
+                     {counts.count("step_jacobian_forward", "panda7", "lever"),
+                      counts.count("forward", "panda7", "lever"), ""}});
+  // the browser peer (make web-bench): time only
+  for (const auto& [model, g] : {std::pair{"arm2", 0.12}, std::pair{"panda7", 0.25}}) {
+    Ratio t{std::nullopt, std::nullopt, "ns"};
+    if (const Json* w = web.model(model)) t = {w->num("lever_ns"), w->num("mujoco_ns"), "ns"};
+    targets.push_back({std::string("wasm lab step / MuJoCo ") +
+                           (web.root ? web_root.str("mujoco_version") : "3.3.8") + " wasm (" +
+                           model + ")",
+                       g,
+                       false,
+                       t,
+                       {}});
+  }
+  // batches: states per second on 2 threads over 1 thread, for every batch benchmark
+  bool any_batch_target = false;
+  for (const auto& [name, stats2] : r.throughput_stats) {
+    const std::string two = "/lever/threads:2";
+    if (name.size() <= two.size() || name.compare(name.size() - two.size(), two.size(), two) != 0)
+      continue;
+    const std::string family = name.substr(0, name.size() - two.size());
+    const auto one = r.throughput_stats.find(family + "/lever/threads:1");
+    if (one == r.throughput_stats.end()) continue;
+    targets.push_back({"`" + family + "`: states per second, 2 threads / 1 thread",
+                       1.8,
+                       true,
+                       {stats2.median, one->second.median, "states/s"},
+                       {}});
+    any_batch_target = true;
+  }
+  if (!any_batch_target) {
+    targets.push_back({"batch: states per second, 2 threads / 1 thread", 1.8, true, {}, {}});
+  }
+
+  out << "## Targets (issue 18)\n\n"
+         "Each ratio is lever's over the peer's (for the step Jacobian: over lever's own "
+         "`forward`; for the batch: 2 threads' throughput over 1 thread's). The time ratio is "
+         "of medians in this run; the instruction ratio is of callgrind's exact counts, which do "
+         "not depend on the load of the machine (MuJoCo's and KDL's prebuilt code runs the same "
+         "instructions per call anywhere; a time ratio far from the instruction ratio says where "
+         "the time is spent other than in instructions: memory, branches, `sincos`).\n\n"
+         "| target | goal | time (ns): lever / peer | instructions: lever / peer | by time | by "
+         "instructions |\n|---|---|---|---|---|---|\n";
+  for (const Target& t : targets) {
+    const char* unit = t.time.numerator_unit == "states/s" ? "%.3g" : "%.1f";
+    out << "| " << t.text << " | " << t.goal_text() << " | " << measured_cell(t.time, unit) << " | "
+        << measured_cell(t.instructions, "%.0f") << " | " << verdict(t.time, t.goal, t.at_least)
+        << " | " << (t.instructions.known() ? verdict(t.instructions, t.goal, t.at_least) : "—")
+        << " |\n";
+  }
   out << "\n";
 
-  // the table: operation x model
-  out << "## Times per call (ns) and ratios\n\n";
-  out << "| operation | model | lever | MuJoCo | KDL | lever/MuJoCo | lever/KDL |\n";
-  out << "|---|---|---:|---:|---:|---:|---:|\n";
+  // ---- the table: operation x model
+  const bool with_counts = counts.root != nullptr;
+  out << "## Times per call (ns) and ratios" << (with_counts ? "; instructions per call" : "")
+      << "\n\n";
+  out << "| operation | model | lever | MuJoCo | KDL | lever/MuJoCo | lever/KDL |";
+  if (with_counts) {
+    out << " instructions lever | MuJoCo | KDL | instructions lever/MuJoCo | lever/KDL |";
+  }
+  out << "\n|---|---|---:|---:|---:|---:|---:|" << (with_counts ? "---:|---:|---:|---:|---:|" : "")
+      << "\n";
   for (const Operation& op : kOperations) {
     for (const std::string& model : model_order) {
       const auto l = r.time(op.name, model, "lever");
       const auto m = r.time(op.name, model, "mujoco");
       const auto k = r.time(op.name, model, "kdl");
-      if (!l && !m && !k) continue;
+      const auto li = counts.count(op.name, model, "lever");
+      const auto mi = counts.count(op.name, model, "mujoco");
+      const auto ki = counts.count(op.name, model, "kdl");
+      if (!l && !m && !k && !li && !mi && !ki) continue;
       out << "| " << op.name << " | " << model << " | " << time_cell(l) << " | " << time_cell(m)
           << " | " << time_cell(k) << " | " << ratio_cell(l, m) << " | " << ratio_cell(l, k)
-          << " |\n";
+          << " |";
+      if (with_counts) {
+        out << " " << count_cell(li) << " | " << count_cell(mi) << " | " << count_cell(ki) << " | "
+            << count_ratio_cell(li, mi) << " | " << count_ratio_cell(li, ki) << " |";
+      }
+      out << "\n";
     }
   }
   out << "\n";
@@ -415,35 +606,138 @@ int main(int argc, char** argv) {
          "every "
          "body and site. lever's flags include `-ffp-contract=off` (no fused multiply-add); "
          "nothing is "
-         "built with `-march=native`.\n\n";
+         "built with `-march=native`. The instruction counts run the same calls on the same states "
+         "(`lever_bench_profile`, bench/README.md); lever's step Jacobian is one call, counted "
+         "once for both of MuJoCo's finite differences.\n\n";
 
-  out << "## Where a target is missed, and what it would take\n\n"
-         "The times follow the instruction counts (callgrind, `bench/README.md`): lever's "
-         "`forward` "
-         "runs about a third of `mj_forward`'s instructions on arm2 and arm7, and its time ratio "
-         "is "
-         "about the same. What lever still does per call is mostly arithmetic, not overhead: "
-         "`kinematics` is about 42% of arm2's `forward` (every body and site placed with MuJoCo's "
-         "outputs, quaternions and rotation matrices, then the com-frame inertias and dof axes, "
-         "plus one glibc `sincos` per joint), the velocities and RNE about 23%, CRBA 11%, the LTDL "
-         "factor and solve 8% (40% on chain20).\n\n"
-         "- `forward` and `step` at 1/10 of MuJoCo's on arm2, and within 2x of the ~60 ns floor, "
-         "would take about a third of lever's present work: a fused single pass for hinge chains "
-         "(poses, com quantities, velocities and RNE in one loop), computing only what the "
-         "dynamics "
-         "needs (no `ximat`, site frames or quaternions unless asked for, which gives up Data's "
-         "MuJoCo-parity pose fields after `forward`), or code generated per model. It is a "
-         "redesign "
-         "against the readable, table-shaped algorithms, not a tweak.\n"
-         "- The 7-DOF arm at 1/4 of `mj_forward` is closer: the same work on `kinematics` "
-         "(a third of it) would reach it.\n"
-         "- `crba` against `mj_crb` alone: the same time on arm2 with two thirds of its "
-         "instructions, faster on the larger models; `bias` includes `mj_comVel`'s work and is "
-         "still faster than `mj_rne` alone except on chain20.\n"
-         "- 3x against KDL from q: KDL's chain solvers compute the chain's own transforms and "
-         "nothing else, while lever's `kinematics` places every body and site and builds the "
-         "com-frame quantities MuJoCo parity needs; lever's `bias` and `crba` alone are 3.4-5.6x "
-         "and 10-12x faster than KDL's whole solvers.\n\n";
+  // ---- the browser peer
+  if (web.root != nullptr) {
+    out << "## In WebAssembly: the lab step against MuJoCo " << web_root.str("mujoco_version")
+        << "'s official build\n\n"
+        << "`make web-bench` (web/bench/peer_step_time.mjs): lever's WebAssembly build through "
+           "web/lever.js, as the lab runs it, against npm `mujoco-js` "
+        << web_root.str("mujoco_js")
+        << ", in one node process. One lab step is `mj_forward`, the controller (reads data, "
+           "writes ctrl), `mj_step`, called from JavaScript on each engine's own API, from the "
+           "same start; each round times the same number of steps on both, alternating which "
+           "goes first. Medians of the node process's CPU time over "
+        << web_root.str("rounds") << " rounds, `±` the interquartile range over the median.\n\n";
+    out << "| | |\n|---|---|\n";
+    out << "| date | " << web_root.str("date") << " |\n";
+    out << "| lever commit | " << web_root.str("lever_commit") << " |\n";
+    out << "| machine | " << web_root.str("cpu_model") << ", " << web_root.str("num_cpus")
+        << " CPUs |\n";
+    if (const Json* load = web_root.find("load_avg");
+        load != nullptr && load->kind == Json::Kind::kArray) {
+      out << "| load average at start | ";
+      for (std::size_t i = 0; i < load->array.size(); ++i)
+        out << (i ? ", " : "") << fmt("%.2f", load->array[i].number);
+      out << " |\n";
+    }
+    out << "| node | " << web_root.str("node") << " |\n";
+    out << "| sizes | lever_wasm.wasm " << fmt("%.0f", web_root.num("lever_wasm_bytes"))
+        << " bytes; mujoco-js's mujoco_wasm.js (the wasm inside) "
+        << fmt("%.0f", web_root.num("mujoco_js_bytes")) << " bytes |\n\n";
+    out << "| model | start and controller | lever (ns per step) | MuJoCo (ns per step) | "
+           "lever/MuJoCo | steps per round | max \\|qpos difference\\| after 1 s |\n"
+           "|---|---|---:|---:|---:|---:|---:|\n";
+    const Json* models = web_root.find("models");
+    for (std::size_t i = 0; i < models->keys.size(); ++i) {
+      const Json& m = models->members[i];
+      out << "| " << models->keys[i] << " | " << m.str("controller") << " | "
+          << fmt("%.0f", m.num("lever_ns")) << " ±" << fmt("%.0f", 100 * m.num("lever_iqr"))
+          << "% | " << fmt("%.0f", m.num("mujoco_ns")) << " ±"
+          << fmt("%.0f", 100 * m.num("mujoco_iqr")) << "% | "
+          << ratio_text(m.num("lever_ns") / m.num("mujoco_ns")) << " | "
+          << fmt("%.0f", m.num("steps_per_round")) << " | "
+          << fmt("%.1e", m.num("qpos_max_diff_after_1s")) << " |\n";
+    }
+    out << "\nThe last column checks that both engines run the same simulation: one second "
+           "from the same start set moving (every joint at 0.5 rad/s), the same controller.\n\n";
+  }
+
+  // ---- where forward's instructions go
+  // the models counted with stages: in the times' order, then any the times do not have
+  std::vector<std::string> staged;
+  for (const std::string& model : model_order) {
+    if (!counts.stages(model, "lever").empty()) staged.push_back(model);
+  }
+  if (const Json* all = counts.root != nullptr ? instructions_root.find("stages") : nullptr) {
+    for (const std::string& model : all->keys) {
+      if (std::find(staged.begin(), staged.end(), model) == staged.end() &&
+          !counts.stages(model, "lever").empty())
+        staged.push_back(model);
+    }
+  }
+  if (!staged.empty()) {
+    out << "## Where `forward`'s instructions go (callgrind, instructions per call)\n\n"
+           "lever's `forward` by function, each function's own instructions (what it calls "
+           "counted apart; a function the compiler inlined is counted in its caller); the share "
+           "of the whole call beside it. Functions under 1% of every model's call are summed "
+           "in the last row.\n\n";
+    // a table of name x model from per-model lists, in the first model's order
+    auto stage_table = [&](const std::string& peer, const std::string& first_column,
+                           bool fold_small) {
+      std::vector<std::string> names;
+      std::map<std::string, std::map<std::string, double>> cost;  // name -> model -> count
+      std::map<std::string, double> total;
+      for (const std::string& model : staged) {
+        for (const auto& [name, c] : counts.stages(model, peer)) {
+          if (cost.find(name) == cost.end()) names.push_back(name);
+          cost[name][model] = c;
+          total[model] += c;
+        }
+      }
+      out << "| " << first_column << " |";
+      for (const std::string& model : staged) out << " " << model << " | share |";
+      out << "\n|---|";
+      for (std::size_t i = 0; i < staged.size(); ++i) out << "---:|---:|";
+      out << "\n";
+      std::map<std::string, double> small;
+      int small_count = 0;
+      for (const std::string& name : names) {
+        bool large = !fold_small;
+        for (const auto& [model, c] : cost[name]) large = large || c >= 0.01 * total[model];
+        if (!large) {
+          for (const auto& [model, c] : cost[name]) small[model] += c;
+          ++small_count;
+          continue;
+        }
+        out << "| `" << name << "` |";
+        for (const std::string& model : staged) {
+          const auto it = cost[name].find(model);
+          if (it == cost[name].end()) {
+            out << " — | |";
+          } else {
+            out << " " << count_text(it->second) << " | "
+                << fmt("%.1f%%", 100 * it->second / total[model]) << " |";
+          }
+        }
+        out << "\n";
+      }
+      if (small_count > 0) {
+        out << "| " << small_count << " other functions |";
+        for (const std::string& model : staged) {
+          out << " " << count_text(small[model]) << " | "
+              << fmt("%.1f%%", 100 * small[model] / total[model]) << " |";
+        }
+        out << "\n";
+      }
+      out << "| **the whole call** |";
+      for (const std::string& model : staged) out << " **" << count_text(total[model]) << "** | |";
+      out << "\n\n";
+    };
+    stage_table("lever", "lever function", true);
+    out << "lever's `step` the same way (the state restored before each call, as in the "
+           "benchmark): what it adds to `forward` is its integrator's work (arm2's is Euler, "
+           "panda7's `implicit`).\n\n";
+    stage_table("lever_step", "lever function (`step`)", true);
+    out << "MuJoCo's `mj_forward` by the stages of its pipeline, each with what it calls "
+           "(libmujoco's own static functions have no names to list them by); `rest` is "
+           "`mj_forward`'s own work and the checks. `mj_collision` runs its broad phase over the "
+           "geoms even where nothing can collide.\n\n";
+    stage_table("mujoco", "MuJoCo stage", false);
+  }
 
   if (!check_path.empty()) {
     std::ifstream check(check_path);

@@ -24,11 +24,19 @@ packages=(
 
 # `scripts/setup.sh fuzz`: also what `make fuzz` needs (clang and its libFuzzer runtime)
 # `scripts/setup.sh lint`: what `make lint` and `make format-check` need
+# `scripts/setup.sh bench`: what `make bench` needs besides the above (valgrind's callgrind)
+# `scripts/setup.sh web-bench`: npm, which installs make web-bench's pinned peer (mujoco-js)
 if [ "${1:-}" = "fuzz" ]; then
   packages+=(clang-14 libclang-rt-14-dev)
 fi
 if [ "${1:-}" = "lint" ]; then
   packages+=(clang-tidy-14 clang-format-14 cppcheck)
+fi
+if [ "${1:-}" = "bench" ]; then
+  packages+=(valgrind)  # callgrind counts every benchmarked operation's instructions per call
+fi
+if [ "${1:-}" = "web-bench" ] && ! command -v npm >/dev/null 2>&1; then
+  packages+=(npm)  # installs npm mujoco-js (MuJoCo's official wasm build), make web-bench's peer
 fi
 
 missing=()
