@@ -58,12 +58,17 @@ struct RigidInertia {
   Eigen::Matrix3d I = Eigen::Matrix3d::Zero();  ///< symmetric
 
   /// The momentum I v of a body moving with v: [I w + h x v; m v - h x w].
+  /// Written out on I's elements: I is column-major, and a product through rotate() (row-major)
+  /// would copy it first.
   Force operator*(const Motion& v) const {
-    const Eigen::Vector3d w = v.head<3>();
-    const Eigen::Vector3d lin = v.tail<3>();
+    const double w0 = v[0], w1 = v[1], w2 = v[2], l0 = v[3], l1 = v[4], l2 = v[5];
     Force out;
-    out.head<3>() = rotate(I, w) + cross(h, lin);
-    out.tail<3>() = m * lin - cross(h, w);
+    out[0] = (I(0, 0) * w0 + I(0, 1) * w1 + I(0, 2) * w2) + (h[1] * l2 - h[2] * l1);
+    out[1] = (I(1, 0) * w0 + I(1, 1) * w1 + I(1, 2) * w2) + (h[2] * l0 - h[0] * l2);
+    out[2] = (I(2, 0) * w0 + I(2, 1) * w1 + I(2, 2) * w2) + (h[0] * l1 - h[1] * l0);
+    out[3] = m * l0 - (h[1] * w2 - h[2] * w1);
+    out[4] = m * l1 - (h[2] * w0 - h[0] * w2);
+    out[5] = m * l2 - (h[0] * w1 - h[1] * w0);
     return out;
   }
 
