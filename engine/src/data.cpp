@@ -67,6 +67,7 @@ Data::Data(const Model& model)
   work.dcvel.assign(nbody, Motion::Zero());
   work.dcacc.assign(nbody, Motion::Zero());
   work.dcfrc.assign(nbody, Force::Zero());
+  work.in_subtree.assign(nbody, 0);
 }
 
 int warning_count(const Data& data) {

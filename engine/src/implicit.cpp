@@ -28,17 +28,21 @@ namespace {
 //   dSdot_i = dv x S_i                                   (dv: before dof i is added)
 //   da_b = da_parent + dSdot_i qd_i + Sdot_j [if j is a dof of b]
 //   df_b = I_b da_b + dv_b x* I_b v_b + v_b x* I_b dv_b
-// then the forces are summed leaves to root and projected on each dof.
+// then the forces are summed leaves to root and projected on each dof. Only the subtree of dof
+// j's body moves with qvel_j: every term of the other bodies is zero, so the recursion runs over
+// that subtree alone, and the dofs above it see the subtree's whole force.
 void bias_velocity_column(const Model& model, Data& data, int j, Eigen::Ref<Eigen::VectorXd> out) {
   auto& dv = data.work.dcvel;
   auto& da = data.work.dcacc;
   auto& df = data.work.dcfrc;
-  dv[0].setZero();
-  da[0].setZero();
-  for (int b = 1; b < model.nbody; ++b) {
+  auto& in_subtree = data.work.in_subtree;
+  const int top = model.dof_bodyid[j];
+  for (int b = top; b < model.nbody; ++b) {  // children come after their parents
     const int parent = model.body_parentid[b];
-    Motion dvb = dv[parent];
-    Motion dab = da[parent];
+    in_subtree[b] = b == top || (parent >= top && in_subtree[parent]);
+    if (!in_subtree[b]) continue;
+    Motion dvb = b == top ? Motion::Zero() : dv[parent];
+    Motion dab = b == top ? Motion::Zero() : da[parent];
     for (int k = 0; k < model.body_dofnum[b]; ++k) {
       const int i = model.body_dofadr[b] + k;
       const Motion& S = data.cdof[i];
@@ -53,11 +57,22 @@ void bias_velocity_column(const Model& model, Data& data, int j, Eigen::Ref<Eige
     const RigidInertia& I = data.cinert[b];
     df[b] = I * dab + cross_force(dvb, I * data.cvel[b]) + cross_force(data.cvel[b], I * dvb);
   }
-  for (int b = model.nbody - 1; b > 0; --b) {
-    const int parent = model.body_parentid[b];
-    if (parent > 0) df[parent] += df[b];
+  for (int b = model.nbody - 1; b > top; --b) {
+    if (in_subtree[b]) df[model.body_parentid[b]] += df[b];
   }
-  for (int i = 0; i < model.nv; ++i) out[i] = data.cdof[i].dot(df[model.dof_bodyid[i]]);
+  out.setZero();
+  for (int b = top; b < model.nbody; ++b) {
+    if (!in_subtree[b]) continue;
+    for (int k = 0; k < model.body_dofnum[b]; ++k) {
+      const int i = model.body_dofadr[b] + k;
+      out[i] = data.cdof[i].dot(df[b]);
+    }
+  }
+  // the dofs above: each carries the subtree's force (no other body's term is non-zero)
+  const int first = model.body_dofadr[top];
+  for (int i = model.dof_parentid[first]; i >= 0; i = model.dof_parentid[i]) {
+    out[i] = data.cdof[i].dot(df[top]);
+  }
 }
 
 }  // namespace

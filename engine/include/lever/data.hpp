@@ -139,6 +139,7 @@ struct Data {
     Eigen::PartialPivLU<Eigen::MatrixXd> qLU;  ///< implicit: LU factor of M - h qDeriv
     std::vector<Motion> dcvel, dcacc;          ///< (nbody) implicit: d cvel, d cacc / d qvel_j
     std::vector<Force> dcfrc;                  ///< (nbody) implicit: d cfrc / d qvel_j
+    std::vector<uint8_t> in_subtree;  ///< (nbody) implicit: the bodies that move with qvel_j
   } work;
 
   int nefc_max = 0;  ///< 2 * njnt: the most limit rows a model can have
