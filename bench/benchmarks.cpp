@@ -304,6 +304,78 @@ void register_batch(const Fixture& f, int states) {
   }
 }
 
+// The lessons' two batch workloads, lever alone on 1 and 2 threads (the target is the speed-up):
+//   batch_workspace_map: exercise 2's map, forward() at rest on a grid over the first two joints'
+//     ranges (the other joints at qpos0), as l5_1_exercise2_workspace samples arm2;
+//   batch_rollout: a set of rollouts, every state advanced by 50 steps of the model's integrator.
+void register_lesson_batches(const Fixture& f) {
+  const Fixture* fp = &f;
+  constexpr int kGrid = 64;  // 64 x 64 poses per call
+  if (f.model.njnt >= 2) {
+    auto grid = std::make_shared<Batch>();
+    grid->qpos.resize(f.model.nq, kGrid * kGrid);
+    grid->qvel.setZero(f.model.nv, kGrid * kGrid);
+    grid->ctrl.resize(f.model.nu, 0);
+    for (int a = 0; a < kGrid; ++a) {
+      for (int b = 0; b < kGrid; ++b) {
+        Eigen::VectorXd q = f.model.qpos0;
+        for (int j = 0; j < 2; ++j) {
+          const auto [lo, hi] =
+              f.model.jnt_limited[j] ? f.model.jnt_range[j] : std::array<double, 2>{-3.14, 3.14};
+          q[f.model.jnt_qposadr[j]] = lo + (hi - lo) * (j == 0 ? a : b) / (kGrid - 1);
+        }
+        grid->qpos.col(a * kGrid + b) = q;
+      }
+    }
+    for (const int threads : {1, 2}) {
+      benchmark::RegisterBenchmark(
+          ("batch_workspace_map/" + f.name + "/lever/threads:" + std::to_string(threads)).c_str(),
+          [fp, grid, threads](benchmark::State& st) {
+            BatchRunner runner(fp->model, threads);
+            Eigen::MatrixXd qacc(fp->model.nv, grid->qpos.cols());
+            for (auto _ : st) {
+              runner.forward(grid->qpos, grid->qvel, grid->ctrl, qacc);
+              benchmark::ClobberMemory();
+            }
+            st.SetItemsProcessed(st.iterations() * grid->qpos.cols());
+          })
+          ->Unit(benchmark::kMicrosecond)
+          ->UseRealTime();
+    }
+  }
+
+  constexpr int kRollouts = 256, kSteps = 50;
+  auto start = std::make_shared<Batch>();
+  start->qpos.resize(f.model.nq, kRollouts);
+  start->qvel.resize(f.model.nv, kRollouts);
+  start->ctrl.resize(f.model.nu, kRollouts);
+  for (int k = 0; k < kRollouts; ++k) {
+    const State s = random_state(f.model, 7000003ull * static_cast<unsigned long long>(k + 1));
+    start->qpos.col(k) = s.qpos;
+    start->qvel.col(k) = s.qvel;
+    start->ctrl.col(k) = s.ctrl;
+  }
+  for (const int threads : {1, 2}) {
+    benchmark::RegisterBenchmark(
+        ("batch_rollout/" + f.name + "/lever/threads:" + std::to_string(threads)).c_str(),
+        [fp, start, threads](benchmark::State& st) {
+          BatchRunner runner(fp->model, threads);
+          Eigen::MatrixXd qpos = start->qpos, qvel = start->qvel;
+          for (auto _ : st) {
+            st.PauseTiming();  // every call starts from the same states
+            qpos = start->qpos;
+            qvel = start->qvel;
+            st.ResumeTiming();
+            runner.step(qpos, qvel, start->ctrl, kSteps);
+            benchmark::ClobberMemory();
+          }
+          st.SetItemsProcessed(st.iterations() * kRollouts * kSteps);
+        })
+        ->Unit(benchmark::kMicrosecond)
+        ->UseRealTime();
+  }
+}
+
 }  // namespace
 
 void register_benchmarks(const std::vector<std::unique_ptr<Fixture>>& fixtures, int batch_states) {
@@ -313,6 +385,9 @@ void register_benchmarks(const std::vector<std::unique_ptr<Fixture>>& fixtures, 
     register_kdl(*f);
   }
   for (const auto& f : fixtures) register_batch(*f, batch_states);
+  for (const auto& f : fixtures) {
+    if (f->name == "arm2" || f->name == "panda7") register_lesson_batches(*f);
+  }
 }
 
 }  // namespace lever::bench

@@ -577,6 +577,34 @@ int main(int argc, char** argv) {
     out << "\n";
   }
 
+  // the lessons' batch workloads: lever alone, the speed-up from a second thread
+  bool any_lesson_batch = false;
+  for (const auto& [name, s] : r.throughput_stats) {
+    any_lesson_batch = any_lesson_batch || name.rfind("batch_workspace_map/", 0) == 0 ||
+                       name.rfind("batch_rollout/", 0) == 0;
+  }
+  if (any_lesson_batch) {
+    out << "## The lessons' batches: states per second against threads (BatchRunner)\n\n"
+           "`batch_workspace_map`: exercise 2's workspace map, forward() at rest on a 64 x 64 grid "
+           "over the first two joints' ranges. `batch_rollout`: 256 rollouts of 50 steps each "
+           "(states per second counts steps). Wall-clock throughput, median ± IQR.\n\n"
+           "| workload | model | 1 thread (states/s) | 2 threads (states/s) | speed-up |\n"
+           "|---|---|---:|---:|---:|\n";
+    for (const char* family : {"batch_workspace_map", "batch_rollout"}) {
+      for (const std::string& model : model_order) {
+        const std::string base = std::string(family) + "/" + model + "/lever/threads:";
+        const auto one = r.throughput_stats.find(base + "1");
+        const auto two = r.throughput_stats.find(base + "2");
+        if (one == r.throughput_stats.end() || two == r.throughput_stats.end()) continue;
+        out << "| `" << family << "` | " << model << " | " << fmt("%.3g", one->second.median)
+            << " ±" << fmt("%.0f", 100 * one->second.iqr) << "% | "
+            << fmt("%.3g", two->second.median) << " ±" << fmt("%.0f", 100 * two->second.iqr)
+            << "% | " << fmt("%.2fx", two->second.median / one->second.median) << " |\n";
+      }
+    }
+    out << "\n";
+  }
+
   // what each operation times
   out << "## What each operation times\n\n";
   out << "Every peer gets the same model file and the same state (qpos, qvel, qacc, ctrl drawn "
