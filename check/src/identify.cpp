@@ -5,6 +5,8 @@
 #include <lever/kinematics.hpp>
 #include <lever/mjcf.hpp>
 
+#include "physical_fit.hpp"
+
 #ifdef LEVER_HAVE_TINYXML2
 #include <tinyxml2.h>
 #endif
@@ -237,6 +239,30 @@ std::vector<int> gain_actuators_named(const Model& prior, const std::string& nam
   return out;
 }
 
+std::pair<int, double> known_mass_named(const Model& prior, const std::string& text) {
+  const auto equals = text.find('=');
+  if (equals == std::string::npos) {
+    throw Error("identify: known mass '" + text + "': expected BODY=KG.");
+  }
+  const std::string name = text.substr(0, equals), value = text.substr(equals + 1);
+  int body = -1;
+  for (int b = 1; b < prior.nbody; ++b) {
+    if (label_of(prior.body_name[b], b) == name) body = b;
+  }
+  if (body < 0) throw Error("identify: no body '" + name + "' in the prior '" + prior.name + "'.");
+  char* end = nullptr;
+  const double mass = std::strtod(value.c_str(), &end);
+  if (value.empty() || end != value.c_str() + value.size() || !std::isfinite(mass) || !(mass > 0)) {
+    throw Error("identify: known mass '" + text + "': '" + value + "' is not a mass > 0 in kg.");
+  }
+  if (!(prior.body_mass[body] > 0)) {
+    throw Error("identify: body '" + name +
+                "' has no mass in the prior, so its centre of mass and inertia per unit mass, "
+                "which a known mass takes from the prior, are unknown.");
+  }
+  return {body, mass};
+}
+
 Result identify(const Model& prior, const Trajectory& data, const Options& options) {
   const int nv = prior.nv;
   const auto N = static_cast<int>(data.time.size());
@@ -321,6 +347,60 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
     scale[c] = std::max(std::abs(pi0[c]), floor);
   }
   r.prior = r.base.K * pi0;
+
+  // Known bodies: their parameters move to the known side. A base parameter made of known
+  // columns only is known outright and leaves the fit; that is what pins the scale when every
+  // gain is estimated.
+  Eigen::VectorXd pi_known = pi0;  // the prior with each known body's parameters
+  std::vector<char> body_known(static_cast<std::size_t>(bodies), 0);
+  for (const auto& [body, mass] : options.known_masses) {
+    if (body < 1 || body > bodies || !(prior.body_mass[body] > 0) || !(mass > 0)) {
+      throw Error("identify: a known mass needs a body with mass in the prior and a mass > 0.");
+    }
+    const int at = kPerBody * (body - 1);
+    pi_known.segment<kPerBody>(at) = mass / prior.body_mass[body] * pi0.segment<kPerBody>(at);
+    body_known[static_cast<std::size_t>(body - 1)] = 1;
+  }
+  const bool absolute_before = target_all.cwiseAbs().maxCoeff() > 0;
+  Eigen::VectorXd known_part = Eigen::VectorXd::Zero(rank);  // K pi restricted to known columns
+  std::vector<int> solved;  // the base parameters the least squares estimates
+  for (int k = 0; k < rank; ++k) {
+    bool unknown_column = false;
+    for (int c = 0; c < n; ++c) {
+      if (r.base.K(k, c) == 0.0) continue;
+      const bool known =
+          c < kPerBody * bodies && body_known[static_cast<std::size_t>(c / kPerBody)];
+      if (known) {
+        known_part[k] += r.base.K(k, c) * pi_known[c];
+      } else {
+        unknown_column = true;
+      }
+    }
+    if (unknown_column) solved.push_back(k);
+  }
+  if (!options.known_masses.empty()) {
+    target_all -= W_all * known_part;
+    Eigen::MatrixXd reduced(W_all.rows(), static_cast<Eigen::Index>(solved.size()));
+    // an estimated base parameter's known columns are on the known side now: the fit estimates
+    // its unknown part, and known_part adds the rest back
+    for (std::size_t j = 0; j < solved.size(); ++j) {
+      reduced.col(static_cast<Eigen::Index>(j)) = W_all.col(solved[j]);
+    }
+    W_all = std::move(reduced);
+    if (!r.gains.empty() && !absolute_before && static_cast<int>(solved.size()) == rank) {
+      throw Error(
+          "identify: the known masses fix no base parameter by themselves (each known body's "
+          "parameters appear only in combinations with unknown ones), so they do not pin the "
+          "scale the estimated gains and the inertia share: know a body whose own parameters "
+          "the data sees (the last link, a payload).");
+    }
+  }
+  const int unknowns = static_cast<int>(solved.size());
+  const auto embed = [&](const Eigen::VectorXd& x, const Eigen::VectorXd& fill) {
+    Eigen::VectorXd out = fill;
+    for (int j = 0; j < unknowns; ++j) out[solved[static_cast<std::size_t>(j)]] += x[j];
+    return out;
+  };
   const Eigen::CompleteOrthogonalDecomposition<Eigen::MatrixXd> KS(r.base.K * scale.asDiagonal());
   const auto closest = [&](const Eigen::VectorXd& theta) -> Eigen::VectorXd {
     return pi0 + scale.cwiseProduct(KS.solve(theta - r.prior));
@@ -331,7 +411,7 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
   // again until the set of dropped rows settles.
   std::vector<char> keep(static_cast<std::size_t>(N * nv), 1);
   Eigen::MatrixXd W;
-  Eigen::VectorXd target;
+  Eigen::VectorXd target, estimate;  // of the unknown base parameters
   Eigen::VectorXd gains(static_cast<Eigen::Index>(r.gains.size()));
   for (std::size_t g = 0; g < r.gains.size(); ++g)
     gains[static_cast<Eigen::Index>(g)] = pi0[gain_column[g]];
@@ -361,13 +441,13 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
     const auto rows = static_cast<Eigen::Index>(std::count(keep.begin(), keep.end(), 1));
     r.equations = static_cast<int>(rows);
     r.dropped = N * nv - r.equations;
-    if (r.equations < rank + 1) {
+    if (r.equations < unknowns + 1) {
       throw Error(
           "identify: " + std::to_string(r.equations) + " equations (samples x dofs" +
           (r.dropped ? ", less " + std::to_string(r.dropped) + " where a force clamps" : "") +
-          ") for " + std::to_string(rank) + " base parameters: too few samples.");
+          ") for " + std::to_string(unknowns) + " base parameters: too few samples.");
     }
-    W.resize(rows, rank);
+    W.resize(rows, unknowns);
     target.resize(rows);
     for (Eigen::Index i = 0, row = 0; i < N * nv; ++i) {
       if (!keep[static_cast<std::size_t>(i)]) continue;
@@ -381,7 +461,8 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
           "known in absolute terms (no spring, stop, gain-free actuator force or actuator of "
           "known gain): the gains and the inertia scale together. Estimate fewer gains.");
     }
-    r.estimate = Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(W).solve(target);
+    estimate = Eigen::ColPivHouseholderQR<Eigen::MatrixXd>(W).solve(target);
+    r.estimate = embed(estimate, known_part);
     if (r.gains.empty() || pass >= 20) break;
     const Eigen::VectorXd pi = closest(r.estimate);
     for (std::size_t g = 0; g < r.gains.size(); ++g)
@@ -389,21 +470,23 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
   }
 
   // standard errors and the directions the data does not excite
-  const Eigen::VectorXd residual = target - W * r.estimate;
+  const Eigen::VectorXd residual = target - W * estimate;
   r.residual_rms = std::sqrt(residual.squaredNorm() / r.equations);
-  const double dof = r.equations - rank;
+  const double dof = r.equations - unknowns;
   const Eigen::MatrixXd inverse_information =
-      (W.transpose() * W).ldlt().solve(Eigen::MatrixXd::Identity(rank, rank));
-  r.ols_standard_error =
-      (residual.squaredNorm() / dof * inverse_information.diagonal()).cwiseMax(0.0).cwiseSqrt();
+      (W.transpose() * W).ldlt().solve(Eigen::MatrixXd::Identity(unknowns, unknowns));
+  const Eigen::VectorXd no_error = Eigen::VectorXd::Zero(rank);  // a known base parameter's
+  r.ols_standard_error = embed(
+      (residual.squaredNorm() / dof * inverse_information.diagonal()).cwiseMax(0.0).cwiseSqrt(),
+      no_error);
   // Cluster-robust (sandwich) covariance: a sample's dofs share their errors (a qacc error e
   // enters every row as M e), and differenced qacc's errors are correlated between neighbouring
   // samples (each qvel error enters two differences); errors in separate clusters are taken as
   // independent. Clusters: one sample, or ten consecutive ones for differenced qacc.
   {
     const int per_cluster = data.qacc_differenced ? 10 : 1;
-    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(rank, rank);
-    Eigen::VectorXd score = Eigen::VectorXd::Zero(rank);
+    Eigen::MatrixXd meat = Eigen::MatrixXd::Zero(unknowns, unknowns);
+    Eigen::VectorXd score = Eigen::VectorXd::Zero(unknowns);
     int clusters = 0, current = -1;
     for (Eigen::Index i = 0, row = 0; i < N * nv; ++i) {
       if (!keep[static_cast<std::size_t>(i)]) continue;
@@ -418,101 +501,81 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
       ++row;
     }
     meat += score * score.transpose();
-    if (clusters > rank + 1) {
+    if (clusters > unknowns + 1) {
       const double correction =
           clusters / (clusters - 1.0) * (r.equations - 1.0) / dof;  // small-sample, as Stata's
-      r.standard_error = (correction * inverse_information * meat * inverse_information)
-                             .diagonal()
-                             .cwiseMax(0.0)
-                             .cwiseSqrt();
+      r.standard_error = embed((correction * inverse_information * meat * inverse_information)
+                                   .diagonal()
+                                   .cwiseMax(0.0)
+                                   .cwiseSqrt(),
+                               no_error);
     } else {
       r.standard_error = r.ols_standard_error;  // too few clusters for the sandwich
     }
   }
 
   Eigen::VectorXd norms = W.colwise().norm().transpose();
-  for (int c = 0; c < rank; ++c) norms[c] = norms[c] > 0 ? norms[c] : 1.0;
+  for (int c = 0; c < unknowns; ++c) norms[c] = norms[c] > 0 ? norms[c] : 1.0;
   const Eigen::JacobiSVD<Eigen::MatrixXd> svd(W * norms.cwiseInverse().asDiagonal(),
                                               Eigen::ComputeThinV);
   const Eigen::VectorXd& s = svd.singularValues();
-  for (int c = 0; c < rank; ++c) {
+  for (int c = 0; c < unknowns; ++c) {
     if (s[c] >= 1e-6 * s[0]) continue;
     int dominant = 0;
     svd.matrixV().col(c).cwiseAbs().maxCoeff(&dominant);
-    const std::string& name = r.base.names[static_cast<std::size_t>(dominant)];
+    const std::string& name =
+        r.base.names[static_cast<std::size_t>(solved[static_cast<std::size_t>(dominant)])];
     if (std::find(r.unexcited.begin(), r.unexcited.end(), name) == r.unexcited.end()) {
       r.unexcited.push_back(name);
     }
   }
 
-  r.parameters = closest(r.estimate);
-
-  // inertia the data cannot see stays the prior's about the (new) centre of mass
+  // The physical model that fits the data, closest to the prior (physical_fit.hpp): the data's
+  // metric is |W d| = |R d| over the estimated base parameters (the known ones are fixed with
+  // their bodies).
+  detail::PhysicalProblem problem;
+  problem.prior = pi_known;
+  problem.K = r.base.K;
+  problem.estimate = r.estimate;
+  {
+    const Eigen::HouseholderQR<Eigen::MatrixXd> qr(W);
+    const Eigen::MatrixXd R_solved = qr.matrixQR().topRows(unknowns).triangularView<Eigen::Upper>();
+    problem.R = Eigen::MatrixXd::Zero(unknowns, rank);
+    for (int j = 0; j < unknowns; ++j) {
+      problem.R.col(solved[static_cast<std::size_t>(j)]) = R_solved.col(j);
+    }
+  }
+  problem.body_free.assign(static_cast<std::size_t>(bodies), 0);
   for (int b = 1; b <= bodies; ++b) {
-    const int at = kPerBody * (b - 1);
-    const double m = r.parameters[at], m0 = pi0[at];
-    if (!(m > 0) || !(m0 > 0)) continue;
-    const Eigen::Vector3d c = r.parameters.segment<3>(at + 1) / m;
-    const Eigen::Vector3d c0 = pi0.segment<3>(at + 1) / m0;
-    // the parallel-axis term of each inertia entry, in the order xx yy zz xy xz yz
-    const auto shift = [](double mass, const Eigen::Vector3d& x) {
-      Eigen::Matrix<double, 6, 1> p;
-      p << mass * (x[1] * x[1] + x[2] * x[2]), mass * (x[0] * x[0] + x[2] * x[2]),
-          mass * (x[0] * x[0] + x[1] * x[1]), -mass * x[0] * x[1], -mass * x[0] * x[2],
-          -mass * x[1] * x[2];
-      return p;
-    };
-    const Eigen::Matrix<double, 6, 1> central0 = pi0.segment<6>(at + 4) - shift(m0, c0);
-    const Eigen::Matrix<double, 6, 1> moved = shift(m, c);
-    bool free_diagonal = false;
-    for (int e = 0; e < 6; ++e) {
-      if (!r.base.K.col(at + 4 + e).isZero(0)) continue;
-      r.parameters[at + 4 + e] = central0[e] + moved[e];
-      free_diagonal = free_diagonal || e < 3;
-    }
-    // A prior at the edge of the rigid bodies (a thin rod: two equal moments, the third near
-    // zero) leaves it as soon as a moment the data sees changes. Then raise the smallest unseen
-    // moment by the least amount that makes the body rigid again (bisection): it changes no base
-    // parameter.
-    const auto rigid = [&](const InertialParameters& pb) {
-      try {
-        to_inertial(pb);
-        return true;
-      } catch (const ModelError&) {
-        return false;
-      }
-    };
-    InertialParameters pb = r.parameters.segment<kPerBody>(at);
-    if (!free_diagonal || rigid(pb)) continue;
-    int smallest = -1;  // the unseen diagonal entry with the smallest moment about the centre
-    for (int e = 0; e < 3; ++e) {
-      if (!r.base.K.col(at + 4 + e).isZero(0)) continue;
-      const double central = pb[4 + e] - moved[e];
-      if (smallest < 0 || central < pb[4 + smallest] - moved[smallest]) smallest = e;
-    }
-    const auto raised = [&](double t) {
-      InertialParameters out = pb;
-      out[4 + smallest] += t;
-      return out;
-    };
-    // twice the triangle inequality's deficit is enough when the principal axes are the body's
-    const Eigen::Vector3d central = pb.segment<3>(4) - moved.head<3>();
-    const double deficit = std::max(0.0, 2 * central.maxCoeff() - central.sum());
-    double lo = 0.0, hi = 2 * deficit + 1e-12 * central.cwiseAbs().maxCoeff();
-    if (!rigid(raised(hi))) continue;  // not repairable this way: reported below
-    for (int i = 0; i < 100; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (rigid(raised(mid)) ? hi : lo) = mid;
-    }
-    // and 1e-9 of the largest moment more: the compilers check A + B >= C without tolerance
-    r.parameters.segment<kPerBody>(at) = raised(hi + 1e-9 * central.cwiseAbs().maxCoeff());
+    // a massless body (a frame) stays massless; a known body keeps its known parameters
+    problem.body_free[static_cast<std::size_t>(b - 1)] =
+        prior.body_mass[b] > 0 && !body_known[static_cast<std::size_t>(b - 1)];
+  }
+  for (int c = kPerBody * bodies; c < gain_column0; ++c) {  // armature, damping: >= 0
+    problem.linear.push_back(c);
+    problem.linear_nonnegative.push_back(1);
+  }
+  for (const int c : gain_column) {
+    problem.linear.push_back(c);
+    problem.linear_nonnegative.push_back(0);
+  }
+  problem.linear_scale = scale;
+  const detail::PhysicalFit fit = detail::fit_physical(problem);
+  r.parameters = fit.parameters;
+  r.physical_estimate = fit.base;
+  r.estimate_physical = fit.reached;
+  r.physical_residual_rms =
+      std::sqrt((residual.squaredNorm() + fit.misfit * fit.misfit) / r.equations);
+  r.distance_to_prior.assign(static_cast<std::size_t>(prior.nbody), 0.0);
+  for (int b = 1; b <= bodies; ++b) {
+    r.distance_to_prior[static_cast<std::size_t>(b)] =
+        fit.distance[static_cast<std::size_t>(b - 1)];
   }
 
-  // armature and damping that came out negative by rounding only (an estimate of zero) are zero
+  // armature and damping are fitted as squares: what is left of the hair they start from when
+  // the prior's is zero and the data wants none is zero
   for (int c = kPerBody * bodies; c < gain_column0; ++c) {
-    if (r.parameters[c] < 0 && r.parameters[c] > -1e-12 * std::max(1.0, kind_size[kind_of(c)])) {
-      r.parameters[c] = 0.0;
-    }
+    if (r.parameters[c] < 1e-12 * scale[c]) r.parameters[c] = 0.0;
   }
 
   try {
