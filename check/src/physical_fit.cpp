@@ -132,7 +132,7 @@ class Layout {
 
 PhysicalFit fit_physical(const PhysicalProblem& p) {
   const Layout layout(p);
-  const int rank = static_cast<int>(p.estimate.size());
+  const auto data_rows = p.R.rows();  // one per estimated base parameter
   const Eigen::MatrixXd RK = p.R * p.K;
   const double data_unit = 1.0 / std::max((p.R * p.estimate).norm(), 1e-300);
   double data_scale = kDataWeight * data_unit;
@@ -143,12 +143,12 @@ PhysicalFit fit_physical(const PhysicalProblem& p) {
     Eigen::MatrixXd dpi, ddiv;
     const Eigen::VectorXd pi = layout.parameters(x, jacobian ? &dpi : nullptr);
     const Eigen::VectorXd div = layout.divergence(x, jacobian ? &ddiv : nullptr);
-    Eigen::VectorXd r(rank + div.size());
-    r.head(rank) = data_scale * (RK * pi - p.R * t);
+    Eigen::VectorXd r(data_rows + div.size());
+    r.head(data_rows) = data_scale * (RK * pi - p.R * t);
     r.tail(div.size()) = div;
     if (jacobian != nullptr) {
       jacobian->resize(r.size(), layout.size());
-      jacobian->topRows(rank) = data_scale * (RK * dpi);
+      jacobian->topRows(data_rows) = data_scale * (RK * dpi);
       jacobian->bottomRows(div.size()) = ddiv;
     }
     return r;

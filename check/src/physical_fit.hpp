@@ -28,7 +28,7 @@ namespace lever::identify::detail {
 struct PhysicalProblem {
   Eigen::VectorXd prior;        ///< (n) the prior's parameters (a known body's: its known ones)
   Eigen::MatrixXd K;            ///< (rank x n) base parameters = K pi
-  Eigen::MatrixXd R;            ///< (rank x rank) |W d| = |R d|
+  Eigen::MatrixXd R;            ///< (estimated x rank) |W d| = |R d|
   Eigen::VectorXd estimate;     ///< (rank) the least-squares estimate beta_hat
   std::vector<char> body_free;  ///< (bodies) fit this body's ten parameters; else keep prior's
   std::vector<int> linear;      ///< other columns fitted (armature, damping, estimated gains)

@@ -162,4 +162,69 @@ TEST_CASE("cli: lever identify --identify-gain finds a motor's gain",
   for (const std::string& f : {truth, csv, written}) std::filesystem::remove(f);
 }
 
+TEST_CASE("cli: lever identify --known-mass pins the scale for every gain",
+          "[cli][derivatives][identify]") {
+  // arm2 whose motors are 1.3 and 0.8 times as strong as arm2.xml says and whose link 2 weighs
+  // 1.6 kg (twice the prior's, same shape): with every gain estimated the command refuses
+  // (nothing absolute), and with --known-mass link2=1.6 it recovers both gains
+  const std::string arm2 = model_path("models/arm2.xml");
+  const auto temp = [](const std::string& name) {
+    return (std::filesystem::temp_directory_path() / ("lever_cli_known_" + name)).string();
+  };
+  std::stringstream text;
+  text << std::ifstream(arm2).rdbuf();
+  std::string xml = text.str();
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = xml.find(from);
+    REQUIRE(at != std::string::npos);
+    xml.replace(at, from.size(), to);
+  };
+  replace("<motor name=\"shoulder\" joint=\"shoulder\"",
+          "<general name=\"shoulder\" joint=\"shoulder\" gainprm=\"1.3\"");
+  replace("<motor name=\"elbow\" joint=\"elbow\"",
+          "<general name=\"elbow\" joint=\"elbow\" gainprm=\"0.8\"");
+  replace("mass=\"0.8\" diaginertia=\"0.0001 0.0106666666666667 0.0106666666666667\"",
+          "mass=\"1.6\" diaginertia=\"0.0002 0.0213333333333334 0.0213333333333334\"");
+  const std::string truth = temp("truth.xml"), csv = temp("run.csv"), written = temp("out.xml");
+  std::ofstream(truth) << xml;
+  REQUIRE(run_lever("simulate " + quoted(truth) + " --excite 0.8 --duration 4 --csv " + quoted(csv))
+              .status == 0);
+  const std::string command =
+      "identify " + quoted(arm2) + " " + quoted(csv) + " --identify-gain all";
+  CHECK(run_lever(command, true).status == 2);  // the scale is not pinned
+  const Run run =
+      run_lever(command + " --known-mass link2=1.6 --json --write-model " + quoted(written));
+  INFO(run.out);
+  REQUIRE(run.status == 0);
+  const json::Value out = json::parse(run.out);
+  REQUIRE(out["known_masses"].size() == 1);
+  CHECK(out["known_masses"][0].str("body") == "link2");
+  CHECK(out["known_masses"][0]["mass"].number == 1.6);
+  CHECK(out["estimate_physical"].boolean);
+  CHECK(out["physical_residual_rms"].number < 1e-9);
+  int gains = 0;
+  for (std::size_t k = 0; k < out["base"].size(); ++k) {
+    const json::Value& p = out["base"][k];
+    const double want = p.str("name") == "shoulder.gain" ? 1.3 : 0.8;
+    if (p.str("name") != "shoulder.gain" && p.str("name") != "elbow.gain") continue;
+    ++gains;
+    CHECK(std::abs(p["estimate"].number - want) <= 1e-8);  // issue 14's noise-free target
+    CHECK(std::abs(p["physical"].number - want) <= 1e-8);
+  }
+  CHECK(gains == 2);
+  const Model identified = mjcf::load_file(written);
+  CHECK(std::abs(identified.actuator_gainprm[0][0] - 1.3) <= 1e-8);
+  CHECK(std::abs(identified.actuator_gainprm[1][0] - 0.8) <= 1e-8);
+  CHECK(std::abs(identified.body_mass[2] - 1.6) <= 1e-12);
+  // the text names the known mass and says the estimate is physical
+  const Run text_run = run_lever(command + " --known-mass link2=1.6");
+  CHECK_THAT(text_run.out, Catch::Contains("known: link2's mass 1.6 kg"));
+  CHECK_THAT(text_run.out, Catch::Contains("least-squares estimate is a rigid-body model's"));
+  // a body that is not there
+  const Run bad = run_lever(command + " --known-mass link9=1", true);
+  CHECK(bad.status == 2);
+  CHECK_THAT(bad.out, Catch::Contains("no body 'link9'"));
+  for (const std::string& f : {truth, csv, written}) std::filesystem::remove(f);
+}
+
 }  // namespace lever::test

@@ -242,6 +242,54 @@ TEST_CASE("identify: a motor's unknown gain, from ctrl", "[derivatives][identify
   std::filesystem::remove(written);
 }
 
+TEST_CASE("identify: a known mass pins the scale, and every gain is estimated",
+          "[derivatives][identify]") {
+  // arm2 with both motors' torque constants wrong (1.3 and 0.8 where the prior says 1), link 2
+  // twice as heavy (weighed: 1.6 kg; its shape, hence its centre of mass and inertia per kg, as
+  // the prior's) and link 1 different in mass and centre of mass. From ctrl alone, with every
+  // gain estimated, nothing in the data is absolute (a robot twice as heavy with motors twice as
+  // strong moves the same); link 2's known mass makes its own base parameters known and so fixes
+  // the scale: both gains and every base parameter are recovered.
+  const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
+  Model truth = prior;
+  truth.body_mass[2] = 1.6;
+  truth.body_inertia[2] *= 2.0;
+  truth.body_mass[1] = 1.3;
+  truth.body_ipos[1] << 0.27, 0, 0.01;
+  truth.actuator_gainprm[0][0] = 1.3;
+  truth.actuator_gainprm[1][0] = 0.8;
+  set_const(truth);
+  const std::string csv = temp_path("known_mass.csv");
+  simulate_csv(truth, 6.0, csv, true, false);  // ctrl only
+  const identify::Trajectory data = identify::read_csv(prior, csv);
+  identify::Options options;
+  options.gains = identify::gain_actuators_named(prior, "all");
+  CHECK_THROWS_WITH(identify::identify(prior, data, options), Catch::Contains("scale together"));
+  options.known_masses.push_back(identify::known_mass_named(prior, "link2=1.6"));
+  const identify::Result r = identify::identify(prior, data, options);
+  const Eigen::VectorXd expected = r.base.K * model_parameters(truth);
+  INFO("estimate " << r.estimate.transpose() << "\ntrue     " << expected.transpose());
+  // issue 14's noise-free target
+  CHECK((r.estimate - expected).cwiseAbs().maxCoeff() <=
+        1e-8 * std::max(1.0, expected.cwiseAbs().maxCoeff()));
+  const int first_gain = regressor_columns(prior) - 2;
+  CHECK(std::abs(r.parameters[first_gain] - 1.3) <= 1e-8);
+  CHECK(std::abs(r.parameters[first_gain + 1] - 0.8) <= 1e-8);
+  CHECK(r.parameters[10] == Approx(1.6).epsilon(1e-15));  // link2.m as known
+  CHECK(r.residual_rms < 1e-10);
+  CHECK(r.estimate_physical);
+  REQUIRE(r.not_physical.empty());
+  const Model identified = identify::identified_model(prior, r);
+  CHECK(identified.body_mass[2] == Approx(1.6).epsilon(1e-12));
+  // bad known masses are refused by name
+  CHECK_THROWS_WITH(identify::known_mass_named(prior, "link3=1"),
+                    Catch::Contains("no body 'link3'"));
+  CHECK_THROWS_WITH(identify::known_mass_named(prior, "link2=-1"),
+                    Catch::Contains("not a mass > 0"));
+  CHECK_THROWS_WITH(identify::known_mass_named(prior, "link2"), Catch::Contains("BODY=KG"));
+  std::filesystem::remove(csv);
+}
+
 TEST_CASE("identify: a position servo's kp, rows where its force clamps dropped",
           "[derivatives][identify]") {
   // panda7's servos (forcerange 87 / 12 N m, clamping part of the time): joint 4's kp is 20%
