@@ -169,8 +169,9 @@ int cmd_identify(const std::vector<std::string>& argv) {
     } else {
       std::printf(
           "physical: the least-squares estimate is NOT a rigid-body model's; the nearest "
-          "physical fit raises the residual rms from %s to %s\n",
-          num(r.residual_rms, "%.3g").c_str(), num(r.physical_residual_rms, "%.3g").c_str());
+          "physical fit raises the residual rms from %s to %s (by %s)\n",
+          num(r.residual_rms, "%.8g").c_str(), num(r.physical_residual_rms, "%.8g").c_str(),
+          num(r.physical_residual_rms - r.residual_rms, "%.2g").c_str());
       std::printf("  %14s %14s %14s  %s\n", "estimate", "physical", "moved (SE)", "combination");
       for (int k = 0; k < r.base.rank; ++k) {
         const double moved = r.physical_estimate[k] - r.estimate[k];
