@@ -158,7 +158,7 @@ Worst compare_in_mujoco(const std::string& a_file, const std::string& b_file, co
 }  // namespace
 
 TEST_CASE("identify: a real Panda that MuJoCo recorded, written back as a physical model",
-          "[derivatives][identify][mujoco]") {
+          "[identify][mujoco]") {
   const std::string prior_file = model_path("models/panda7.xml");
   const Model prior = mjcf::load_file(prior_file);
   const Model truth = real_panda(prior);
@@ -228,7 +228,7 @@ TEST_CASE("identify: a real Panda that MuJoCo recorded, written back as a physic
 namespace lever::test {
 
 TEST_CASE("identify: noisy torques, an estimate that is not physical, and the physical fit",
-          "[derivatives][identify][mujoco]") {
+          "[identify][mujoco]") {
   // The real Panda above with its hand nearly a point mass (its inertia about its centre a fiftieth
   // of the prior's): a pseudo-inertia near the edge of the physical cone, so that torque noise of
   // 1 N m (rms) pushes the least-squares estimate out of it. The physical fit is the projection of

@@ -1,4 +1,4 @@
-// identify's pseudo-inertia and log-Cholesky coordinates (check/src/pseudo_inertia.hpp): the
+// identify's pseudo-inertia and log-Cholesky coordinates (identify/src/pseudo_inertia.hpp): the
 // conversions round-trip, J is positive semidefinite exactly for a rigid body, the Jacobians
 // equal central differences, and the geodesic distance is what its definition says and does not
 // depend on the body frame.
@@ -36,8 +36,7 @@ LogCholesky random_theta(std::mt19937_64& rng) {
 
 }  // namespace
 
-TEST_CASE("pseudo-inertia: the conversions of every body of panda7 round-trip",
-          "[derivatives][identify]") {
+TEST_CASE("pseudo-inertia: the conversions of every body of panda7 round-trip", "[identify]") {
   const Model panda = mjcf::load_file(model_path("models/panda7.xml"));
   for (int b = 1; b < panda.nbody; ++b) {
     INFO(panda.body_name[b]);
@@ -57,8 +56,7 @@ TEST_CASE("pseudo-inertia: the conversions of every body of panda7 round-trip",
   }
 }
 
-TEST_CASE("pseudo-inertia: positive semidefinite exactly for a rigid body",
-          "[derivatives][identify]") {
+TEST_CASE("pseudo-inertia: positive semidefinite exactly for a rigid body", "[identify]") {
   // principal moments (1, 1, 2) are a flat disc's (the triangle inequality with equality):
   // J is singular, and one moment less breaks it
   MjcfInertial disc;
@@ -80,7 +78,7 @@ TEST_CASE("pseudo-inertia: positive semidefinite exactly for a rigid body",
 TEST_CASE(
     "pseudo-inertia: d pi / d theta and the geodesic residual's Jacobian are the "
     "derivatives",
-    "[derivatives][identify]") {
+    "[identify]") {
   std::mt19937_64 rng(3);
   const double h = 1e-6;
   for (int trial = 0; trial < 20; ++trial) {
@@ -111,7 +109,7 @@ TEST_CASE(
 }
 
 TEST_CASE("pseudo-inertia: the geodesic distance is Lee and Park's and frame-independent",
-          "[derivatives][identify]") {
+          "[identify]") {
   std::mt19937_64 rng(5);
   for (int trial = 0; trial < 20; ++trial) {
     const Matrix4 U0 = identify::detail::upper_factor(random_theta(rng));
