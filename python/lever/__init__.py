@@ -16,6 +16,7 @@ For programs written against MuJoCo's Python bindings, ``import lever.mujoco as 
 """
 
 import json as _json
+import os as _os
 
 from ._lever import (  # noqa: F401  (the package's API)
     Data,
@@ -84,3 +85,34 @@ def lab_run(model: Model, data: Data, torque, gravity_compensation: bool = False
     import numpy as _np
     return _lever.lab_run(model, data, _np.asarray(torque, dtype=float), bool(gravity_compensation),
                           int(steps), on_row)
+
+
+def identify(prior, trajectory, gains=None, known_masses=None, write_model=None) -> dict:
+    """Identify a model's inertial parameters (and armature, damping, gains) from a trajectory,
+    as `lever identify` does (docs/derivatives.md).
+
+    ``prior``: a Model (or a model file's path) whose kinematics are right. ``trajectory``: a CSV
+    file in `lever simulate --csv`'s columns, or a dict of arrays with one row per sample:
+    ``time`` (N), ``qpos`` (N, nq), ``qvel`` and ``qacc`` (N, nv), and either ``qfrc`` (N, nv: the
+    joint force of the motors, the user and the stops) or ``actuator_force`` (N, nu; with an
+    optional ``qfrc_constraint`` (N, nv)); ``ctrl`` (N, nu) when gains are estimated.
+    ``gains``: actuator names (or "all") whose gain is estimated from ctrl. ``known_masses``:
+    {body: kg}, a body whose mass is known (its shape the prior's). ``write_model``: write the
+    identified model as MJCF there (the prior must come from a file).
+
+    Returns a dict: ``names``, ``prior``, ``estimate`` and ``standard_error`` (one per base
+    parameter), ``physical_estimate`` and ``estimate_physical`` (whether the least-squares
+    estimate is a rigid-body model's; if not, the physical fit nearest it),
+    ``residual_rms`` and ``physical_residual_rms``, ``distance_to_prior`` (per body), ``parameters``
+    (the full pi written), ``unexcited``, ``not_physical`` (None or why), ``model`` (the identified
+    lever.Model, None if not physical) and ``written`` (the path, or None).
+    """
+    if isinstance(prior, (str, _os.PathLike)):
+        prior = load(_os.fspath(prior))
+    if isinstance(trajectory, _os.PathLike):
+        trajectory = _os.fspath(trajectory)
+    if isinstance(gains, (list, tuple)):
+        gains = ",".join(gains)
+    known = [f"{name}={float(kg)!r}" for name, kg in (known_masses or {}).items()]
+    return _lever.identify(prior, trajectory, gains or "", known,
+                           _os.fspath(write_model) if write_model else "")

@@ -16,6 +16,7 @@
 #include <lever/check.hpp>
 #include <lever/derivatives.hpp>
 #include <lever/fields.hpp>
+#include <lever/identify.hpp>
 #include <lever/lab.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
@@ -407,6 +408,113 @@ PYBIND11_MODULE(_lever, m) {
   m.def(
       "model_parameters", [](const ModelPtr& x) { return lever::model_parameters(model_of(x)); },
       py::arg("model"), "The model's own parameter vector pi.");
+
+  // ---- identification (docs/derivatives.md) ---------------------------------------------------
+  m.def(
+      "identify",
+      [](const ModelPtr& x, const py::object& trajectory, const std::string& gains,
+         const std::vector<std::string>& known_masses, const std::string& write_to) {
+        const lever::Model& prior = model_of(x);
+        namespace id = lever::identify;
+        id::Trajectory t;
+        if (py::isinstance<py::str>(trajectory)) {
+          t = id::read_csv(prior, trajectory.cast<std::string>());
+        } else {
+          // arrays of N rows, as a log holds them: one row per sample
+          const py::dict d = trajectory.cast<py::dict>();
+          const auto rows = [&](const char* key, Eigen::Index cols, bool required) {
+            if (!d.contains(key)) {
+              if (required) {
+                throw lever::Error(std::string("lever.identify: the trajectory has no '") + key +
+                                   "'.");
+              }
+              return Eigen::MatrixXd();
+            }
+            Eigen::MatrixXd a = d[key].cast<Eigen::MatrixXd>();
+            if (a.cols() == 1 && cols > 1 && a.rows() == cols) a.transposeInPlace();  // one row
+            if (a.cols() != cols) {
+              throw lever::Error(std::string("lever.identify: '") + key + "' needs " +
+                                 std::to_string(cols) + " columns.");
+            }
+            return Eigen::MatrixXd(a.transpose());
+          };
+          const Eigen::MatrixXd time = rows("time", 1, true);
+          t.time = time.row(0).transpose();
+          t.qpos = rows("qpos", prior.nq, true);
+          t.qvel = rows("qvel", prior.nv, true);
+          t.qacc = rows("qacc", prior.nv, true);
+          t.ctrl = rows("ctrl", prior.nu, false);
+          t.actuator_force = rows("actuator_force", prior.nu, false);
+          const bool joint_force = d.contains("qfrc");
+          if (joint_force) {
+            t.force = rows("qfrc", prior.nv, true);
+          } else if (t.actuator_force.size() > 0) {
+            t.force = Eigen::MatrixXd::Zero(prior.nv, t.actuator_force.cols());
+            for (int a = 0; a < prior.nu; ++a) {
+              const int dof = prior.jnt_dofadr[prior.actuator_trnid[a]];
+              t.force.row(dof) += prior.actuator_gear[a][0] * t.actuator_force.row(a);
+            }
+            const Eigen::MatrixXd stops = rows("qfrc_constraint", prior.nv, false);
+            if (stops.size() > 0) t.force += stops;
+          } else {
+            throw lever::Error(
+                "lever.identify: the trajectory needs 'qfrc' (the joint force of motors and "
+                "stops) or 'actuator_force'.");
+          }
+          // without them, estimating a gain is refused by identify() with the reason
+          if (t.ctrl.size() == 0) t.ctrl.resize(0, t.time.size());
+          if (t.actuator_force.size() == 0) t.actuator_force.resize(0, t.time.size());
+          t.qacc_source = "the trajectory's qacc";
+          t.force_source = joint_force ? "the trajectory's qfrc" : "actuator_force times gear";
+        }
+        id::Options options;
+        if (!gains.empty()) options.gains = id::gain_actuators_named(prior, gains);
+        for (const std::string& k : known_masses) {
+          options.known_masses.push_back(id::known_mass_named(prior, k));
+        }
+        const id::Result r = id::identify(prior, t, options);
+        py::dict out;
+        out["names"] = r.base.names;
+        out["prior"] = r.prior;
+        out["estimate"] = r.estimate;
+        out["standard_error"] = r.standard_error;
+        out["physical_estimate"] = r.physical_estimate;
+        out["estimate_physical"] = r.estimate_physical;
+        out["residual_rms"] = r.residual_rms;
+        out["physical_residual_rms"] = r.physical_residual_rms;
+        out["samples"] = r.samples;
+        out["equations"] = r.equations;
+        out["dropped"] = r.dropped;
+        out["unexcited"] = r.unexcited;
+        out["parameters"] = r.parameters;
+        py::dict distance;
+        for (int b = 1; b < prior.nbody; ++b) {
+          const std::string name = prior.body_name[b].empty()
+                                       ? std::string("#").append(std::to_string(b))
+                                       : prior.body_name[b];
+          distance[py::str(name)] = r.distance_to_prior[static_cast<std::size_t>(b)];
+        }
+        out["distance_to_prior"] = distance;
+        out["not_physical"] =
+            r.not_physical.empty() ? py::object(py::none()) : py::object(py::str(r.not_physical));
+        out["model"] = py::none();
+        out["written"] = py::none();
+        if (r.not_physical.empty()) {
+          auto identified = std::make_shared<lever::Model>(id::identified_model(prior, r));
+          if (!write_to.empty()) {
+            if (prior.source.empty()) {
+              throw lever::Error(
+                  "lever.identify: writing a model needs a prior loaded from a file.");
+            }
+            id::write_model(prior.source, *identified, write_to);
+            out["written"] = write_to;
+          }
+          out["model"] = ModelPtr(identified);
+        }
+        return out;
+      },
+      py::arg("prior"), py::arg("trajectory"), py::arg("gains"), py::arg("known_masses"),
+      py::arg("write_model"), "lever.identify's C++ side (see lever/__init__.py).");
 
   // ---- the checks and the lab ------------------------------------------------------------------
   m.def(

@@ -10,8 +10,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <lever/harness/models.hpp>
 
@@ -160,6 +162,149 @@ TEST_CASE("cli: lever identify --identify-gain finds a motor's gain",
   CHECK(all.status == 2);
   CHECK_THAT(all.out, Catch::Contains("scale together"));
   for (const std::string& f : {truth, csv, written}) std::filesystem::remove(f);
+}
+
+TEST_CASE("cli: lever identify --known-mass pins the scale for every gain",
+          "[cli][derivatives][identify]") {
+  // arm2 whose motors are 1.3 and 0.8 times as strong as arm2.xml says and whose link 2 weighs
+  // 1.6 kg (twice the prior's, same shape): with every gain estimated the command refuses
+  // (nothing absolute), and with --known-mass link2=1.6 it recovers both gains
+  const std::string arm2 = model_path("models/arm2.xml");
+  const auto temp = [](const std::string& name) {
+    return (std::filesystem::temp_directory_path() / ("lever_cli_known_" + name)).string();
+  };
+  std::stringstream text;
+  text << std::ifstream(arm2).rdbuf();
+  std::string xml = text.str();
+  const auto replace = [&](const std::string& from, const std::string& to) {
+    const auto at = xml.find(from);
+    REQUIRE(at != std::string::npos);
+    xml.replace(at, from.size(), to);
+  };
+  replace("<motor name=\"shoulder\" joint=\"shoulder\"",
+          "<general name=\"shoulder\" joint=\"shoulder\" gainprm=\"1.3\"");
+  replace("<motor name=\"elbow\" joint=\"elbow\"",
+          "<general name=\"elbow\" joint=\"elbow\" gainprm=\"0.8\"");
+  replace("mass=\"0.8\" diaginertia=\"0.0001 0.0106666666666667 0.0106666666666667\"",
+          "mass=\"1.6\" diaginertia=\"0.0002 0.0213333333333334 0.0213333333333334\"");
+  const std::string truth = temp("truth.xml"), csv = temp("run.csv"), written = temp("out.xml");
+  std::ofstream(truth) << xml;
+  REQUIRE(run_lever("simulate " + quoted(truth) + " --excite 0.8 --duration 4 --csv " + quoted(csv))
+              .status == 0);
+  const std::string command =
+      "identify " + quoted(arm2) + " " + quoted(csv) + " --identify-gain all";
+  CHECK(run_lever(command, true).status == 2);  // the scale is not pinned
+  const Run run =
+      run_lever(command + " --known-mass link2=1.6 --json --write-model " + quoted(written));
+  INFO(run.out);
+  REQUIRE(run.status == 0);
+  const json::Value out = json::parse(run.out);
+  REQUIRE(out["known_masses"].size() == 1);
+  CHECK(out["known_masses"][0].str("body") == "link2");
+  CHECK(out["known_masses"][0]["mass"].number == 1.6);
+  CHECK(out["estimate_physical"].boolean);
+  CHECK(out["physical_residual_rms"].number < 1e-9);
+  int gains = 0;
+  for (std::size_t k = 0; k < out["base"].size(); ++k) {
+    const json::Value& p = out["base"][k];
+    const double want = p.str("name") == "shoulder.gain" ? 1.3 : 0.8;
+    if (p.str("name") != "shoulder.gain" && p.str("name") != "elbow.gain") continue;
+    ++gains;
+    CHECK(std::abs(p["estimate"].number - want) <= 1e-8);  // issue 14's noise-free target
+    CHECK(std::abs(p["physical"].number - want) <= 1e-8);
+  }
+  CHECK(gains == 2);
+  const Model identified = mjcf::load_file(written);
+  CHECK(std::abs(identified.actuator_gainprm[0][0] - 1.3) <= 1e-8);
+  CHECK(std::abs(identified.actuator_gainprm[1][0] - 0.8) <= 1e-8);
+  CHECK(std::abs(identified.body_mass[2] - 1.6) <= 1e-12);
+  // the text names the known mass and says the estimate is physical
+  const Run text_run = run_lever(command + " --known-mass link2=1.6");
+  CHECK_THAT(text_run.out, Catch::Contains("known: link2's mass 1.6 kg"));
+  CHECK_THAT(text_run.out, Catch::Contains("least-squares estimate is a rigid-body model's"));
+  // a body that is not there
+  const Run bad = run_lever(command + " --known-mass link9=1", true);
+  CHECK(bad.status == 2);
+  CHECK_THAT(bad.out, Catch::Contains("no body 'link9'"));
+  for (const std::string& f : {truth, csv, written}) std::filesystem::remove(f);
+}
+
+TEST_CASE("cli: lever identify says when the estimate is not physical and how far the fit moved",
+          "[cli][derivatives][identify]") {
+  // panda7 whose hand is nearly a point mass (inertia about its centre a fiftieth of the
+  // prior's), excited by `lever simulate --excite`, its actuator_force columns given 1 N m of
+  // Gaussian noise: the least-squares estimate leaves the physical set, the command says so
+  // with the residual before and after, and writes the physical fit
+  const std::string panda7 = model_path("models/panda7.xml");
+  const auto temp = [](const std::string& name) {
+    return (std::filesystem::temp_directory_path() / ("lever_cli_noisy_" + name)).string();
+  };
+  std::stringstream text;
+  text << std::ifstream(panda7).rdbuf();
+  std::string xml = text.str();
+  const std::string hand =
+      "fullinertia=\"1.2516e-2 1.0027e-2 4.815e-3 -4.28e-4 -1.196e-3 -7.41e-4\"";
+  const auto at = xml.find(hand);
+  REQUIRE(at != std::string::npos);
+  xml.replace(at, hand.size(),
+              "fullinertia=\"2.5032e-4 2.0054e-4 9.63e-5 -8.56e-6 -2.392e-5 -1.482e-5\"");
+  const std::string truth = temp("truth.xml"), clean = temp("clean.csv"), noisy = temp("run.csv"),
+                    written = temp("out.xml");
+  std::ofstream(truth) << xml;
+  REQUIRE(
+      run_lever("simulate " + quoted(truth) + " --excite 0.4 --duration 10 --csv " + quoted(clean))
+          .status == 0);
+  {  // the noise, on every actuator_force column
+    std::ifstream in(clean);
+    std::ofstream out(noisy);
+    out.precision(17);
+    std::string line;
+    std::getline(in, line);
+    out << line << "\n";
+    std::vector<bool> force;
+    std::stringstream header(line);
+    for (std::string name; std::getline(header, name, ',');) {
+      force.push_back(name.rfind("actuator_force[", 0) == 0);
+    }
+    std::mt19937_64 rng(1);
+    std::normal_distribution<double> normal(0.0, 1.0);
+    while (std::getline(in, line)) {
+      std::stringstream fields(line);
+      std::size_t column = 0;
+      for (std::string field; std::getline(fields, field, ','); ++column) {
+        if (column > 0) out << ",";
+        if (column < force.size() && force[column]) {
+          out << std::stod(field) + normal(rng);
+        } else {
+          out << field;
+        }
+      }
+      out << "\n";
+    }
+  }
+  const std::string command = "identify " + quoted(panda7) + " " + quoted(noisy);
+  const Run run = run_lever(command + " --json --write-model " + quoted(written));
+  REQUIRE(run.status == 0);
+  const json::Value out = json::parse(run.out);
+  CHECK_FALSE(out["estimate_physical"].boolean);
+  const double before = out["residual_rms"].number, after = out["physical_residual_rms"].number;
+  CHECK(before == Approx(1.0).epsilon(0.05));  // the noise's rms
+  CHECK(after > before);
+  CHECK(after < 1.01 * before);
+  bool moved = false;
+  for (std::size_t k = 0; k < out["base"].size(); ++k) {
+    moved = moved || out["base"][k]["physical"].number != out["base"][k]["estimate"].number;
+  }
+  CHECK(moved);
+  CHECK(out["not_physical"].kind == json::Value::Kind::kNull);
+  const Model identified = mjcf::load_file(written);  // physical, or it would not load
+  CHECK(identified.nbody == 9);
+  const Run text_run = run_lever(command);
+  CHECK_THAT(text_run.out, Catch::Contains("the least-squares estimate is NOT a rigid-body "
+                                           "model's; the nearest physical fit raises the "
+                                           "residual rms from"));
+  CHECK_THAT(text_run.out, Catch::Contains("moved (SE)"));
+  for (const std::string& f : {truth, clean, noisy, written}) std::filesystem::remove(f);
 }
 
 }  // namespace lever::test

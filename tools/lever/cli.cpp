@@ -49,6 +49,7 @@ Args::Args(const std::vector<std::string>& argv, const std::vector<std::string>&
           value = argv[++i];
         }
         values_[name] = value;
+        all_values_[name].push_back(value);
       } else if (contains(switches, name)) {
         if (inline_value) throw UsageError{"option --" + name + " takes no value"};
         values_[name] = "";
@@ -62,6 +63,11 @@ Args::Args(const std::vector<std::string>& argv, const std::vector<std::string>&
 }
 
 bool Args::has(const std::string& name) const { return values_.count(name) > 0; }
+
+std::vector<std::string> Args::get_all(const std::string& name) const {
+  const auto it = all_values_.find(name);
+  return it == all_values_.end() ? std::vector<std::string>{} : it->second;
+}
 
 std::string Args::get(const std::string& name, const std::string& fallback) const {
   const auto it = values_.find(name);

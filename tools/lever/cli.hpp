@@ -32,6 +32,8 @@ class Args {
   const std::vector<std::string>& positional() const { return positional_; }
   bool has(const std::string& name) const;
   std::string get(const std::string& name, const std::string& fallback = "") const;
+  /// Every value a repeatable option was given, in order (get() returns the last).
+  std::vector<std::string> get_all(const std::string& name) const;
   double get_double(const std::string& name, double fallback) const;
   long get_long(const std::string& name, long fallback) const;
   /// A comma-separated list of n numbers ("0.6,-1.2"); `what` names it in errors.
@@ -40,6 +42,7 @@ class Args {
  private:
   std::vector<std::string> positional_;
   std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> all_values_;
 };
 
 /// The JSON writer the commands share (lever/json.hpp).

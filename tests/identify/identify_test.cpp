@@ -104,8 +104,7 @@ int simulate_csv(const Model& model, double seconds, const std::string& path, bo
 
 }  // namespace
 
-TEST_CASE("identify: arm2 with a heavier link 2, from its simulated trajectory",
-          "[derivatives][identify]") {
+TEST_CASE("identify: arm2 with a heavier link 2, from its simulated trajectory", "[identify]") {
   const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
   const Model truth = heavy_arm2();
   const std::string csv = temp_path("heavy.csv");
@@ -145,8 +144,7 @@ TEST_CASE("identify: arm2 with a heavier link 2, from its simulated trajectory",
   std::filesystem::remove(written);
 }
 
-TEST_CASE("identify: qacc differenced from qvel when the file has none",
-          "[derivatives][identify]") {
+TEST_CASE("identify: qacc differenced from qvel when the file has none", "[identify]") {
   // The forward difference of qvel is the acceleration the Euler step applied,
   // (M + h B)^-1 (forces), not forward()'s: M qacc_e + bias = forces - h B qacc_e. The extra
   // h B qacc_e reads as armature h b = 4e-5 kg m^2 (h = 2 ms, b = 0.02 N m s): the armature
@@ -170,7 +168,7 @@ TEST_CASE("identify: qacc differenced from qvel when the file has none",
 }
 
 TEST_CASE("identify: ctrl columns go through the prior's servos (gain, bias, both clamps)",
-          "[derivatives][identify]") {
+          "[identify]") {
   // panda7's position servos: force = kp ctrl - kp q - kv qd, clamped to +-87 / +-12 N m (the
   // reference swings far enough that the clamp binds part of the time). Without actuator_force
   // columns read_csv must rebuild gear * force from ctrl at each row's qpos and qvel: the same
@@ -200,7 +198,7 @@ TEST_CASE("identify: ctrl columns go through the prior's servos (gain, bias, bot
   std::filesystem::remove(without);
 }
 
-TEST_CASE("identify: a motor's unknown gain, from ctrl", "[derivatives][identify]") {
+TEST_CASE("identify: a motor's unknown gain, from ctrl", "[identify]") {
   // arm2 with the heavier link 2 and an elbow motor 1.3 times as strong as the prior says (a
   // wrong torque constant). The shoulder's gain stays known: it fixes the scale that the elbow's
   // gain and the inertia would otherwise share (gravity does not: its torque scales with mass).
@@ -242,8 +240,54 @@ TEST_CASE("identify: a motor's unknown gain, from ctrl", "[derivatives][identify
   std::filesystem::remove(written);
 }
 
-TEST_CASE("identify: a position servo's kp, rows where its force clamps dropped",
-          "[derivatives][identify]") {
+TEST_CASE("identify: a known mass pins the scale, and every gain is estimated", "[identify]") {
+  // arm2 with both motors' torque constants wrong (1.3 and 0.8 where the prior says 1), link 2
+  // twice as heavy (weighed: 1.6 kg; its shape, hence its centre of mass and inertia per kg, as
+  // the prior's) and link 1 different in mass and centre of mass. From ctrl alone, with every
+  // gain estimated, nothing in the data is absolute (a robot twice as heavy with motors twice as
+  // strong moves the same); link 2's known mass makes its own base parameters known and so fixes
+  // the scale: both gains and every base parameter are recovered.
+  const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
+  Model truth = prior;
+  truth.body_mass[2] = 1.6;
+  truth.body_inertia[2] *= 2.0;
+  truth.body_mass[1] = 1.3;
+  truth.body_ipos[1] << 0.27, 0, 0.01;
+  truth.actuator_gainprm[0][0] = 1.3;
+  truth.actuator_gainprm[1][0] = 0.8;
+  set_const(truth);
+  const std::string csv = temp_path("known_mass.csv");
+  simulate_csv(truth, 6.0, csv, true, false);  // ctrl only
+  const identify::Trajectory data = identify::read_csv(prior, csv);
+  identify::Options options;
+  options.gains = identify::gain_actuators_named(prior, "all");
+  CHECK_THROWS_WITH(identify::identify(prior, data, options), Catch::Contains("scale together"));
+  options.known_masses.push_back(identify::known_mass_named(prior, "link2=1.6"));
+  const identify::Result r = identify::identify(prior, data, options);
+  const Eigen::VectorXd expected = r.base.K * model_parameters(truth);
+  INFO("estimate " << r.estimate.transpose() << "\ntrue     " << expected.transpose());
+  // issue 14's noise-free target
+  CHECK((r.estimate - expected).cwiseAbs().maxCoeff() <=
+        1e-8 * std::max(1.0, expected.cwiseAbs().maxCoeff()));
+  const int first_gain = regressor_columns(prior) - 2;
+  CHECK(std::abs(r.parameters[first_gain] - 1.3) <= 1e-8);
+  CHECK(std::abs(r.parameters[first_gain + 1] - 0.8) <= 1e-8);
+  CHECK(r.parameters[10] == Approx(1.6).epsilon(1e-15));  // link2.m as known
+  CHECK(r.residual_rms < 1e-10);
+  CHECK(r.estimate_physical);
+  REQUIRE(r.not_physical.empty());
+  const Model identified = identify::identified_model(prior, r);
+  CHECK(identified.body_mass[2] == Approx(1.6).epsilon(1e-12));
+  // bad known masses are refused by name
+  CHECK_THROWS_WITH(identify::known_mass_named(prior, "link3=1"),
+                    Catch::Contains("no body 'link3'"));
+  CHECK_THROWS_WITH(identify::known_mass_named(prior, "link2=-1"),
+                    Catch::Contains("not a mass > 0"));
+  CHECK_THROWS_WITH(identify::known_mass_named(prior, "link2"), Catch::Contains("BODY=KG"));
+  std::filesystem::remove(csv);
+}
+
+TEST_CASE("identify: a position servo's kp, rows where its force clamps dropped", "[identify]") {
   // panda7's servos (forcerange 87 / 12 N m, clamping part of the time): joint 4's kp is 20%
   // above the prior's in the truth. Its gain carries biasprm[1] = -kp; the rows where its force
   // is at the clamp are dropped (judged at the estimated kp), the rest recover kp.
@@ -271,7 +315,7 @@ TEST_CASE("identify: a position servo's kp, rows where its force clamps dropped"
 }
 
 TEST_CASE("identify: write_model writes new gains as each actuator element says them",
-          "[derivatives][identify]") {
+          "[identify]") {
   // servo_affine.xml: a <general> position servo, a <motor>, a <position>, a <velocity>, and two
   // affine gains (no gain column). Every fixed gain scaled by 1.5 and written: the file read back
   // has the gains, each servo's tied bias at -gain, the untouched actuators as they were.
@@ -306,8 +350,7 @@ TEST_CASE("identify: write_model writes new gains as each actuator element says 
   std::filesystem::remove(written);
 }
 
-TEST_CASE("identify: noisy data, estimates within their standard errors",
-          "[derivatives][identify]") {
+TEST_CASE("identify: noisy data, estimates within their standard errors", "[identify]") {
   // arm2 with the heavier link 2; Gaussian noise of known sigma, each seed a new draw. Every
   // estimate must be within 4 standard errors of the truth, and over 20 seeds (180 estimates)
   // about 68% within one: a fraction far below (standard errors too small, e.g. not scaled by
@@ -392,7 +435,7 @@ TEST_CASE("identify: noisy data, estimates within their standard errors",
   }
 }
 
-TEST_CASE("identify: bad trajectories get clear errors", "[derivatives][identify]") {
+TEST_CASE("identify: bad trajectories get clear errors", "[identify]") {
   const Model prior = mjcf::load_file(model_path("models/arm2.xml"));
   const std::string csv = temp_path("bad.csv");
   const auto write = [&](const std::string& text) { std::ofstream(csv) << text; };

@@ -14,6 +14,7 @@
 #include <Eigen/Core>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <lever/model.hpp>
@@ -53,6 +54,10 @@ struct Options {
   /// actuators (ids, each in gain_actuators(prior)) whose gain gainprm[0] is estimated from the
   /// trajectory's ctrl (a servo's tied bias entry with it); the others' forces are known
   std::vector<int> gains;
+  /// bodies (ids) whose mass is known (kg); each one's centre of mass and inertia per unit mass
+  /// are the prior's (a part that was weighed and whose shape is known). Its ten parameters move
+  /// to the known side, which pins the scale that estimated gains and the inertia share.
+  std::vector<std::pair<int, double>> known_masses;
 };
 
 /// What identify() found.
@@ -78,11 +83,24 @@ struct Result {
   /// singular value is below 1e-6 of the largest (W with columns scaled to unit norm); their
   /// estimates are not to be trusted
   std::vector<std::string> unexcited;
-  /// the full parameter vector (regressor_columns) closest to the prior (each parameter scaled by
-  /// its kind's size in the prior) whose base parameters are the estimate: what a model written
-  /// from the result holds; unidentifiable combinations keep the prior's values
+  /// The full parameter vector (regressor_columns) a model written from the result holds: every
+  /// body's pseudo-inertia positive definite; its base parameters the estimate when a physical
+  /// model has them (else the nearest ones a physical model has, in the data's own metric); and
+  /// among those the one closest to the prior (Lee and Park's geodesic distance between each
+  /// body's pseudo-inertias, plus ((p - p0) / scale)^2 for armature, damping and gains). Massless
+  /// bodies stay massless; a known body keeps its known parameters.
   Eigen::VectorXd parameters;
-  /// empty when `parameters` is a physical model; else why not (which body fails, and how)
+  /// (rank) K parameters: the base parameters of the written model
+  Eigen::VectorXd physical_estimate;
+  /// true when the least-squares estimate itself is a physical model's (physical_estimate equals
+  /// it to 1e-10 of the fit's scale); false when the constraint moved the fit
+  bool estimate_physical = true;
+  /// the residual's rms with physical_estimate instead of the estimate (>= residual_rms)
+  double physical_residual_rms = 0.0;
+  /// (nbody) each body's geodesic distance from the prior's pseudo-inertia (0 for the world, a
+  /// massless or a known body)
+  std::vector<double> distance_to_prior;
+  /// empty when `parameters` is a physical model; else why not (e.g. a negative damping)
   std::string not_physical;
 };
 
@@ -97,6 +115,11 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
 /// a gain column, or every one of them for "all". Throws lever::Error for a name that is not an
 /// actuator or whose gain is not fixed.
 std::vector<int> gain_actuators_named(const Model& prior, const std::string& names);
+
+/// Parse `BODY=KG` (a body's name, or #index) into Options::known_masses' entry. Throws
+/// lever::Error for an unknown body, a mass that is not a positive number, or a body without mass
+/// in the prior (whose shape is then unknown).
+std::pair<int, double> known_mass_named(const Model& prior, const std::string& text);
 
 /// The prior with the result's parameters (inertials, armature, damping, gains), set_const applied.
 /// Throws ModelError if they are not physical (result.not_physical says why beforehand).
