@@ -26,7 +26,7 @@ void evaluate_random_state(const Model& model, Data& data, std::mt19937_64& rng)
 }  // namespace
 
 TEST_CASE("property: rnea(q, qd, qdd) == M qdd + qfrc_bias", "[property][rnea]") {
-  for (const ModelCase& c : every_model()) {
+  for (const ModelCase& c : every_model_and_random_trees()) {
     Data data(c.model);
     std::mt19937_64 rng(c.seed);
     Eigen::VectorXd tau(c.model.nv);
@@ -47,7 +47,7 @@ TEST_CASE("property: rnea(q, qd, qdd) == M qdd + qfrc_bias", "[property][rnea]")
 }
 
 TEST_CASE("property: CRBA column j == rnea(e_j) - qfrc_bias", "[property][crba]") {
-  for (const ModelCase& c : every_model()) {
+  for (const ModelCase& c : every_model_and_random_trees()) {
     Data data(c.model);
     std::mt19937_64 rng(c.seed);
     Eigen::VectorXd tau(c.model.nv);
@@ -68,7 +68,7 @@ TEST_CASE("property: CRBA column j == rnea(e_j) - qfrc_bias", "[property][crba]"
 
 TEST_CASE("property: 1/2 qvel' M qvel is the sum of the bodies' kinetic energies",
           "[property][energy]") {
-  for (const ModelCase& c : every_model()) {
+  for (const ModelCase& c : every_model_and_random_trees()) {
     const Model& model = c.model;
     Data data(model);
     std::mt19937_64 rng(c.seed);
@@ -98,7 +98,7 @@ TEST_CASE("property: 1/2 qvel' M qvel is the sum of the bodies' kinetic energies
 
 TEST_CASE("property: forward then inverse gives back qfrc_applied + qfrc_actuator",
           "[property][inverse]") {
-  for (const ModelCase& c : every_model()) {
+  for (const ModelCase& c : every_model_and_random_trees()) {
     const Model& model = c.model;
     Data data(model);
     std::mt19937_64 rng(c.seed);

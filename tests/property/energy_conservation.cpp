@@ -58,10 +58,10 @@ double energy_drift(Model model, const State& s, double h) {
 
 TEST_CASE("property: RK4 conserves energy, with a drift that shrinks as h^4",
           "[property][energy]") {
-  for (const ModelCase& c : every_model()) {
+  for (const ModelCase& c : every_model_and_random_trees()) {
     const Model model = conservative_variant(c.model);
     std::mt19937_64 rng(c.seed);
-    for (int k = 0; k < kStartStates; ++k) {
+    for (int k = 0; k < states_for(c, kStartStates); ++k) {
       const State s = random_state(model, rng);
       const double coarse = energy_drift(model, s, kTimestep);
       const double fine = energy_drift(model, s, kTimestep / 2);

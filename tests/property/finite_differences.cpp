@@ -36,12 +36,12 @@ Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& R_plus, const Eigen::Matr
 
 TEST_CASE("property: site Jacobians equal central differences of site_xpos and site_xmat",
           "[property][jacobian]") {
-  for (const ModelCase& c : every_model()) {
+  for (const ModelCase& c : every_model_and_random_trees()) {
     const Model& model = c.model;
     Data data(model), moved(model);
     std::mt19937_64 rng(c.seed);
     Eigen::MatrixXd jacp(3, model.nv), jacr(3, model.nv);
-    for (int k = 0; k < kStates; ++k) {
+    for (int k = 0; k < states_for(c, kStates); ++k) {
       apply(random_state(model, rng), data);
       kinematics(model, data);
       for (int s = 0; s < model.nsite; ++s) {
@@ -68,7 +68,7 @@ TEST_CASE("property: site Jacobians equal central differences of site_xpos and s
 
 TEST_CASE("property: gravity and spring torques equal the gradient of the potential energy",
           "[property][gravity]") {
-  for (const ModelCase& c : every_model()) {
+  for (const ModelCase& c : every_model_and_random_trees()) {
     const Model& model = c.model;
     Data data(model), moved(model);
     std::mt19937_64 rng(c.seed);

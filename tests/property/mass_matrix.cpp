@@ -6,7 +6,7 @@
 namespace lever::test {
 
 TEST_CASE("property: M is exactly symmetric and positive definite", "[property][crba]") {
-  for (const ModelCase& c : every_model()) {
+  for (const ModelCase& c : every_model_and_random_trees()) {
     Data data(c.model);
     std::mt19937_64 rng(c.seed);
     for (int k = 0; k < kStatesPerModel; ++k) {

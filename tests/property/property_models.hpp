@@ -10,8 +10,9 @@
 #include <string>
 #include <vector>
 
-#include <lever/harness/random_state.hpp>
 #include <lever/harness/models.hpp>
+#include <lever/harness/random_state.hpp>
+#include "random_tree.hpp"
 
 namespace lever::test {
 
@@ -33,6 +34,35 @@ inline std::vector<ModelCase> every_model() {
         {std::filesystem::path(file).filename().string(), seed_for(file), mjcf::load_file(file)});
   }
   return cases;
+}
+
+/// Random trees per property, besides the model files.
+constexpr int kRandomTrees = 20;
+
+/// kRandomTrees random trees (tests/support/random_tree.hpp), each named by the seed that
+/// rebuilds it: random_tree(seed).
+inline std::vector<ModelCase> random_trees() {
+  std::vector<ModelCase> cases;
+  const std::uint64_t first = seed_for("random_tree");
+  for (int t = 0; t < kRandomTrees; ++t) {
+    const std::uint64_t seed = first + static_cast<std::uint64_t>(t);
+    cases.push_back({"random_tree(" + std::to_string(seed) + ")", seed, random_tree(seed)});
+  }
+  return cases;
+}
+
+/// Every model file, then the random trees.
+inline std::vector<ModelCase> every_model_and_random_trees() {
+  std::vector<ModelCase> cases = every_model();
+  for (ModelCase& c : random_trees()) cases.push_back(std::move(c));
+  return cases;
+}
+
+/// How many of `states` the expensive properties (those differencing or integrating every dof)
+/// run on a case: all on a model file, a fifth on a random tree, whose dofs are many and whose
+/// number makes up for the states.
+inline int states_for(const ModelCase& c, int states) {
+  return c.model.source.empty() ? std::max(1, states / 5) : states;
 }
 
 /// Largest |x_i|.

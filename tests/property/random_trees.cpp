@@ -1,0 +1,50 @@
+// The random trees the properties run on draw what they claim to: branching trees, welded bodies,
+// both joint types, hinges about coordinate axes (set_const's own kernels) and general axes,
+// springs, physical inertias; and a seed rebuilds its tree exactly.
+#include <set>
+
+#include "property_models.hpp"
+
+namespace lever::test {
+
+TEST_CASE("property: the random trees cover what the properties should see", "[property][trees]") {
+  std::set<JointKind> kinds;
+  int branching = 0, welded = 0, springs = 0, offset_anchors = 0, largest_nv = 0;
+  for (const ModelCase& c : random_trees()) {
+    const Model& m = c.model;
+    INFO(c.name);
+    REQUIRE(m.nv >= 1);
+    largest_nv = std::max(largest_nv, m.nv);
+    std::vector<int> children(m.nbody, 0);
+    for (int b = 1; b < m.nbody; ++b) {
+      CHECK(m.body_parentid[b] < b);
+      ++children[m.body_parentid[b]];
+      if (m.body_jntnum[b] == 0) ++welded;
+      // a rigid body's principal moments satisfy the triangle inequality
+      const Eigen::Vector3d& I = m.body_inertia[b];
+      CHECK(I.x() + I.y() >= I.z());
+      CHECK(I.y() + I.z() >= I.x());
+      CHECK(I.x() + I.z() >= I.y());
+      CHECK(m.body_mass[b] > 0);
+    }
+    for (int b = 1; b < m.nbody; ++b) branching += children[b] >= 2;
+    for (int j = 0; j < m.njnt; ++j) {
+      kinds.insert(m.jnt_kind[j]);
+      springs += m.jnt_stiffness[j] > 0;
+      offset_anchors += m.jnt_offset[j] != 0;
+    }
+    // the seed alone rebuilds the tree
+    const Model again = random_tree(c.seed);
+    CHECK(again.body_parentid == m.body_parentid);
+    CHECK(again.jnt_axis == m.jnt_axis);
+    CHECK(again.body_inertia == m.body_inertia);
+  }
+  CHECK(kinds.size() == 5);  // hinge about x, y, z, any other axis; slide
+  CHECK(branching > 0);
+  CHECK(welded > 0);
+  CHECK(springs > 0);
+  CHECK(offset_anchors > 0);
+  CHECK(largest_nv >= 20);
+}
+
+}  // namespace lever::test
