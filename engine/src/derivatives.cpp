@@ -373,7 +373,9 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   // da = K^-1 (...), then Euler's update
   w.Da_q.noalias() = w.lu.solve(w.rhs_q);
   w.Da_v.noalias() = w.lu.solve(w.rhs_v);
-  w.Da_u.noalias() = w.lu.solve(w.rhs_u);
+  // a model without actuators has no control columns: Eigen's triangular solve would read the
+  // first coefficient of an empty matrix
+  if (model.nu > 0) w.Da_u.noalias() = w.lu.solve(w.rhs_u);
   assemble_euler(model, w.Da_q, w.Da_v, w.Da_u, deriv);
 }
 
