@@ -100,7 +100,7 @@ def test_identify_arrays_a_python_loop_logged():
     by_motor = {key: arrays[key] for key in ("time", "qpos", "qvel", "qacc", "ctrl",
                                              "actuator_force")}
     np.testing.assert_allclose(lever.identify(prior, by_motor)["estimate"], result["estimate"],
-                               rtol=0, atol=1e-9)
+                               rtol=0, atol=1e-9)  # other rows, same least squares: rounding
     # every gain estimated and nothing absolute: refused with the reason
     with pytest.raises(lever.Error, match="scale together"):
         lever.identify(prior, by_motor, gains="all")
