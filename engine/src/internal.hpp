@@ -43,16 +43,22 @@ inline bool inputs_fit(const Model& model, const Data& data) {
 /// set_const gives a model a fresh tag, and a Data that passed check_fit against a model keeps its
 /// tag. A call then costs a comparison of tags and of the input arrays' sizes; only a Data meeting
 /// a model (or a model edition) it has not been checked against walks the whole field table.
-/// No guard object: nothing to unwind on the hot path.
+/// No guard object: nothing to unwind on the hot path. checked_before: this Data has met this
+/// model edition and its inputs kept their sizes.
+inline bool checked_before(const Model& model, const Data& data) {
+  return model.fit_tag != 0 && data.model_tag == model.fit_tag && inputs_fit(model, data);
+}
+
+/// The entry check of a function that writes data: a Data that fits adopts the model's tag.
 inline void check_entry(const Model& model, Data& data, const char* where) {
-  if (model.fit_tag != 0 && data.model_tag == model.fit_tag && inputs_fit(model, data)) return;
+  if (checked_before(model, data)) return;
   check_fit(model, data, where);  // throws, naming the array that does not fit
   data.model_tag = model.fit_tag;
 }
 
 /// The same for functions that only read data (Jacobians, solves).
 inline void check_entry(const Model& model, const Data& data, const char* where) {
-  if (model.fit_tag != 0 && data.model_tag == model.fit_tag && inputs_fit(model, data)) return;
+  if (checked_before(model, data)) return;
   check_fit(model, data, where);
 }
 
