@@ -35,7 +35,7 @@ Data::Data(const Model& model)
   model_tag = model.fit_tag;  // sized from this model: it fits
   qpos = model.qpos0;
   for (auto& q : xquat) q = Eigen::Vector4d(1, 0, 0, 0);
-  for (auto* list : {&xmat, &ximat, &site_xmat}) {
+  for (auto* list : {&xmat, &ximat, &geom_xmat, &site_xmat}) {
     for (Mat3& R : *list) R.setIdentity();
   }
   std::fill(efc_id.begin(), efc_id.end(), -1);
@@ -43,6 +43,7 @@ Data::Data(const Model& model)
 
   // what is not in the table: lever's spatial inertias, and the workspace
   cinert.assign(nbody, RigidInertia{});
+  contact.assign(static_cast<size_t>(std::max(0, model.nconmax)), Contact{});
   qLD = Eigen::MatrixXd::Zero(nv, nv);
   work.crb.assign(nbody, RigidInertia{});
   work.cacc.assign(nbody, Motion::Zero());

@@ -79,6 +79,16 @@ void poses(const Model& model, Data& data) {
     data.subtree_com[b] = model.body_mass[b] * data.xipos[b];  // summed up in com_quantities()
   }
 
+  for (int g = 0; g < model.ngeom; ++g) {
+    const int b = model.geom_bodyid[g];
+    data.geom_xpos[g] = data.xpos[b] + rotate(data.xmat[b], model.geom_pos[g]);
+    if (model.geom_rotated[g]) {
+      data.geom_xmat[g].noalias() = data.xmat[b] * model.geom_mat[g];
+    } else {
+      data.geom_xmat[g] = data.xmat[b];
+    }
+  }
+
   for (int s = 0; s < model.nsite; ++s) {
     const int b = model.site_bodyid[s];
     data.site_xpos[s] = data.xpos[b] + rotate(data.xmat[b], model.site_pos[s]);

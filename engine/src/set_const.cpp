@@ -161,6 +161,12 @@ void build_rotations(Model& model) {
     model.body_imat[b] = quat_to_mat(quat_normalized(model.body_iquat[b]));
     model.body_irotated[b] = !is_identity(model.body_iquat[b]);
   }
+  model.geom_mat.resize(model.ngeom);
+  model.geom_rotated.resize(model.ngeom);
+  for (int g = 0; g < model.ngeom; ++g) {
+    model.geom_mat[g] = quat_to_mat(quat_normalized(model.geom_quat[g]));
+    model.geom_rotated[g] = !is_identity(model.geom_quat[g]);
+  }
   model.site_mat.resize(model.nsite);
   model.site_rotated.resize(model.nsite);
   for (int s = 0; s < model.nsite; ++s) {

@@ -42,6 +42,24 @@ struct WarningStat {
   int lastinfo = 0;  ///< the index (dof, actuator) involved the last time
 };
 
+/// One contact between two geoms (MuJoCo's mjContact): written by the collision functions (dist,
+/// pos, frame) and the pipeline that mixes the two geoms' parameters (the rest).
+struct Contact {
+  double dist = 0;             ///< signed distance along the normal (< 0: penetration)
+  Eigen::Vector3d pos{0, 0, 0};  ///< world frame, midway between the two surfaces
+  /// rows: the normal (from geom1 into geom2), then two tangents (MuJoCo's mjContact.frame,
+  /// which stores the same three axes as 9 numbers)
+  Mat3 frame = Mat3::Zero();
+  double includemargin = 0;  ///< margin - gap: rows only within this distance
+  std::array<double, 5> friction{1, 1, 0.005, 0.0001, 0.0001};  ///< tangent1, 2, spin, roll1, 2
+  std::array<double, 2> solref{0.02, 1};
+  std::array<double, 5> solimp{0.9, 0.95, 0.001, 0.5, 2};
+  int dim = 3;           ///< condim: 1, 3, 4 or 6
+  int geom1 = -1, geom2 = -1;
+  int exclude = 0;       ///< 1: beyond includemargin, no rows (MuJoCo's "in gap")
+  int efc_address = -1;  ///< first row, -1 if none
+};
+
 /// A joint-limit constraint row's state after the solve.
 enum class ConstraintState : int { kSatisfied = 0, kActive = 1 };
 
@@ -65,11 +83,17 @@ struct Data {
   std::vector<Mat3> site_xmat;             ///< (nsite)
   std::vector<Eigen::Vector3d> xanchor;    ///< (njnt) joint anchors
   std::vector<Eigen::Vector3d> xaxis;      ///< (njnt) joint axes (unit)
+  std::vector<Eigen::Vector3d> geom_xpos;  ///< (ngeom)
+  std::vector<Mat3> geom_xmat;             ///< (ngeom)
   // Spatial quantities below are in absolute coordinates: world axes, origin at the centre of mass
   // of the subtree hanging from the body's world child (MuJoCo's "c-frame").
   std::vector<Eigen::Vector3d> subtree_com;  ///< (nbody) centre of mass of each body's subtree
   std::vector<Motion> cdof;                  ///< (nv) motion subspace of each dof
   std::vector<RigidInertia> cinert;          ///< (nbody) spatial inertia of each body
+
+  // ---- position stage: collision() (issue 19) ----------------------------------------------------
+  int ncon = 0;                  ///< contacts found
+  std::vector<Contact> contact;  ///< (nconmax) the first ncon are current
 
   // ---- position stage: crba(), factor_mass() --------------------------------------------------
   Eigen::MatrixXd M;    ///< (nv x nv) joint-space inertia, full and symmetric, armature included

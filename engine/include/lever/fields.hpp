@@ -106,6 +106,8 @@
   X(ximat, double, nbody, 9, position, mujoco)                 \
   X(xanchor, double, njnt, 3, position, mujoco)                \
   X(xaxis, double, njnt, 3, position, mujoco)                  \
+  X(geom_xpos, double, ngeom, 3, position, mujoco)             \
+  X(geom_xmat, double, ngeom, 9, position, mujoco)             \
   X(site_xpos, double, nsite, 3, position, mujoco)             \
   X(site_xmat, double, nsite, 9, position, mujoco)             \
   X(subtree_com, double, nbody, 3, position, mujoco)           \

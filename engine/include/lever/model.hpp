@@ -75,6 +75,8 @@ using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::R
 /// frame, size, mass and inertia are MuJoCo's, from the mesh); otherwise it is kept massless, with
 /// its frame as written and size zero.
 enum class GeomType : int {
+  kPlane = 0,   ///< infinite in x and y of its frame (size: half-extents drawn, spacing)
+  kHfield = 1,  ///< height field (never collides in lever: refused when it could)
   kSphere = 2,
   kCapsule = 3,
   kEllipsoid = 4,
@@ -83,11 +85,19 @@ enum class GeomType : int {
   kMesh = 7
 };
 
+/// Friction cones; the numeric values are MuJoCo's mjtCone.
+enum class Cone : int { kPyramidal = 0, kElliptic = 1 };
+
 /// Simulation options (<option>).
 struct Options {
   double timestep = 0.002;                   ///< s
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};  ///< m/s^2, world frame
   Integrator integrator = Integrator::kEuler;
+  // contact (issue 19): MuJoCo 2.2.2's <option> defaults
+  Cone cone = Cone::kPyramidal;  ///< friction cone of contact rows
+  double impratio = 1.0;         ///< frictional-to-normal impedance ratio (elliptic cones)
+  int iterations = 100;          ///< solver iterations (lever's solver stops on convergence)
+  double tolerance = 1e-8;       ///< solver tolerance
 };
 
 /// Compiler settings that stay meaningful after compilation (read by `lever check`).
@@ -126,6 +136,10 @@ struct Model {
   int ngeom = 0;  ///< geoms
   int nsite = 0;  ///< sites
   int nkey = 0;   ///< keyframes
+  int npair = 0;     ///< explicit contact pairs (<contact><pair>)
+  int nexclude = 0;  ///< excluded body pairs (<contact><exclude>)
+  int nconmax = 100;  ///< most contacts a Data holds (<size nconmax>; MuJoCo 2.2.2's default)
+  int njmax = 500;    ///< most constraint rows a Data holds (<size njmax>)
 
   // ---- bodies (nbody) ------------------------------------------------------------------------
   std::vector<std::string> body_name{"world"};
@@ -188,6 +202,26 @@ struct Model {
   /// lever: the geom's own mass (density x volume, or its `mass` attribute), whether or not
   /// it contributed to its body (see body_explicit_inertial and compiler.inertiagrouprange)
   std::vector<double> geom_mass;
+  // contact parameters (issue 19), as mjModel's
+  std::vector<int> geom_condim;                    ///< 1, 3, 4 or 6
+  std::vector<int> geom_priority;                  ///< the higher one's parameters win
+  std::vector<double> geom_solmix;                 ///< weight when mixing solref/solimp
+  std::vector<Eigen::Vector3d> geom_friction;      ///< sliding, torsional, rolling
+  std::vector<std::array<double, 2>> geom_solref;  ///< contact solref
+  std::vector<std::array<double, 5>> geom_solimp;  ///< contact solimp
+  std::vector<double> geom_margin;                 ///< contact detection distance
+  std::vector<double> geom_gap;                    ///< contacts within margin - gap make rows
+  std::vector<double> geom_rbound;                 ///< bounding sphere radius (0: plane)
+
+  // ---- explicit contact pairs (npair) and exclusions (nexclude) ------------------------------
+  std::vector<int> pair_dim;
+  std::vector<int> pair_geom1, pair_geom2;
+  std::vector<int> pair_signature;  ///< ((body1 << 16) + body2), MuJoCo's
+  std::vector<std::array<double, 2>> pair_solref;
+  std::vector<std::array<double, 5>> pair_solimp;
+  std::vector<double> pair_margin, pair_gap;
+  std::vector<std::array<double, 5>> pair_friction;
+  std::vector<int> exclude_signature;  ///< ((body1 << 16) + body2), MuJoCo's
 
   // ---- sites (nsite) -------------------------------------------------------------------------
   std::vector<std::string> site_name;
@@ -229,6 +263,8 @@ struct Model {
   std::vector<uint8_t> body_rotated;   ///< body_quat is not the identity
   std::vector<Mat3> body_imat;         ///< rotation of body_iquat
   std::vector<uint8_t> body_irotated;  ///< body_iquat is not the identity
+  std::vector<Mat3> geom_mat;          ///< rotation of geom_quat
+  std::vector<uint8_t> geom_rotated;   ///< geom_quat is not the identity
   std::vector<Mat3> site_mat;          ///< rotation of site_quat
   std::vector<uint8_t> site_rotated;   ///< site_quat is not the identity
   std::vector<JointKind> jnt_kind;     ///< what the kernels dispatch on (see JointKind)
