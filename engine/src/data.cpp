@@ -57,7 +57,8 @@ Data::Data(const Model& model)
   work.lcp_f = work.lcp_w = Eigen::VectorXd::Zero(nefc_max);
   work.lcp_active.assign(nefc_max, 0);
   work.lcp_index.assign(nefc_max, 0);
-  work.rk_qpos0 = work.rk_dq = Eigen::VectorXd::Zero(nq);
+  work.rk_qpos0 = Eigen::VectorXd::Zero(nq);
+  work.rk_dq = Eigen::VectorXd::Zero(nv);  // a velocity: nv, not nq
   work.rk_qvel0 = work.rk_dv = Eigen::VectorXd::Zero(nv);
   for (int i = 0; i < 4; ++i) {
     work.rk_qvel[i] = Eigen::VectorXd::Zero(nv);

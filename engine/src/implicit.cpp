@@ -124,7 +124,7 @@ void implicit_step(const Model& model, Data& data) {
   w.vec1 = data.qfrc_smooth + data.qfrc_constraint;
   w.vec2.noalias() = w.qLU.solve(w.vec1);
   data.qvel += h * w.vec2;
-  data.qpos += h * data.qvel;
+  integrate_positions(model, data.qpos.data(), data.qvel.data(), h);
   data.time += h;
 }
 

@@ -11,9 +11,45 @@
 
 #include "internal.hpp"
 
+#include <cmath>
+
 namespace lever {
 
 namespace {
+
+constexpr double kMinNorm = 1e-15;  // MuJoCo's mjMINVAL: below it a vector has no direction
+
+// q normalized in place, or the identity when it has no length (MuJoCo's mju_normalize4).
+void normalize_quat(double* q) {
+  const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (norm < kMinNorm) {
+    q[0] = 1.0;
+    q[1] = q[2] = q[3] = 0.0;
+    return;
+  }
+  const double inverse = 1.0 / norm;
+  for (int k = 0; k < 4; ++k) q[k] *= inverse;
+}
+
+// q turned by the rotation vector h w, w in the frame q rotates into (body axes), then normalized:
+// the turn is exact for constant w, so only rounding moves q off the unit sphere.
+void turn_quat(double* q, const double* w, double h) {
+  const double speed = std::sqrt(w[0] * w[0] + w[1] * w[1] + w[2] * w[2]);
+  Eigen::Vector3d axis(1.0, 0.0, 0.0);  // any axis will do when there is no turn
+  if (speed >= kMinNorm) {
+    const double inverse = 1.0 / speed;
+    axis = Eigen::Vector3d(w[0] * inverse, w[1] * inverse, w[2] * inverse);
+  }
+  const double angle = h * speed;
+  Quat turn(1.0, 0.0, 0.0, 0.0);
+  if (angle != 0.0) {
+    const double s = std::sin(angle * 0.5);
+    turn = Quat(std::cos(angle * 0.5), axis[0] * s, axis[1] * s, axis[2] * s);
+  }
+  Quat turned = quat_mul(Quat(q[0], q[1], q[2], q[3]), turn);
+  normalize_quat(turned.data());
+  for (int k = 0; k < 4; ++k) q[k] = turned[k];
+}
 
 // MuJoCo's mj_checkPos / mj_checkVel / mj_checkAcc: a bad value resets the state.
 bool check_and_reset(const Model& model, Data& data, const Eigen::VectorXd& x, Warning kind) {
@@ -41,7 +77,7 @@ void euler(const Model& model, Data& data) {
   }
 
   data.qvel += h * qacc;
-  data.qpos += h * data.qvel;
+  detail::integrate_positions(model, data.qpos.data(), data.qvel.data(), h);
   data.time += h;
 }
 
@@ -58,7 +94,10 @@ void rk4(const Model& model, Data& data) {
   w.rk_qacc[0] = data.qacc;  // stage 0 is the forward() step() already ran
 
   for (int i = 1; i < 4; ++i) {
-    data.qpos = w.rk_qpos0 + (h * kA[i - 1]) * w.rk_qvel[i - 1];
+    // the stage's velocity (one nonzero a_ij per row), integrated from the step's start
+    w.rk_dq = kA[i - 1] * w.rk_qvel[i - 1];
+    data.qpos = w.rk_qpos0;
+    detail::integrate_positions(model, data.qpos.data(), w.rk_dq.data(), h);
     data.qvel = w.rk_qvel0 + (h * kA[i - 1]) * w.rk_qacc[i - 1];
     data.time = t0 + kA[i - 1] * h;
     forward(model, data);
@@ -73,11 +112,41 @@ void rk4(const Model& model, Data& data) {
     w.rk_dv += kB[i] * w.rk_qacc[i];
   }
   data.qvel = w.rk_qvel0 + h * w.rk_dv;
-  data.qpos = w.rk_qpos0 + h * w.rk_dq;
+  data.qpos = w.rk_qpos0;
+  detail::integrate_positions(model, data.qpos.data(), w.rk_dq.data(), h);
   data.time = t0 + h;
 }
 
 }  // namespace
+
+namespace detail {
+
+void integrate_positions(const Model& model, double* qpos, const double* qvel, double h) {
+  for (int j = 0; j < model.njnt; ++j) {
+    double* q = qpos + model.jnt_qposadr[j];
+    const double* v = qvel + model.jnt_dofadr[j];
+    switch (model.jnt_kind[j]) {
+      case JointKind::kFree:
+        for (int k = 0; k < 3; ++k) q[k] += h * v[k];
+        turn_quat(q + 3, v + 3, h);
+        break;
+      case JointKind::kBall: turn_quat(q, v, h); break;
+      default: q[0] += h * v[0]; break;  // hinge and slide
+    }
+  }
+}
+
+}  // namespace detail
+
+void integrate_pos(const Model& model, Eigen::Ref<Eigen::VectorXd> qpos,
+                   const Eigen::Ref<const Eigen::VectorXd>& qvel, double h) {
+  check_argument_size(qpos.size(), model.nq, "lever::integrate_pos", "qpos");
+  check_argument_size(qvel.size(), model.nv, "lever::integrate_pos", "qvel");
+  // a copy: a Ref may be strided, the joint loop reads contiguous coordinates
+  Eigen::VectorXd q = qpos, v = qvel;
+  detail::integrate_positions(model, q.data(), v.data(), h);
+  qpos = q;
+}
 
 void step(const Model& model, Data& data) {
   check_entry(model, data, "lever::step");

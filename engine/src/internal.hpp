@@ -77,6 +77,11 @@ void size_data_arrays(const Model& model, Data& data);
 
 /// MuJoCo 2.2.2's implicit step (implicit.cpp), after forward().
 void implicit_step(const Model& model, Data& data);
+
+/// qpos advanced by velocity qvel for time h, joint by joint (MuJoCo's mj_integratePos): hinge and
+/// slide coordinates add h qvel; a ball's or free joint's quaternion turns by the rotation h w
+/// about its body axes and is normalized. Used by every integrator.
+void integrate_positions(const Model& model, double* qpos, const double* qvel, double h);
 }  // namespace detail
 
 /// MuJoCo's mju_isBad: NaN, or beyond +-1e10.

@@ -157,7 +157,7 @@ struct Data {
     Eigen::VectorXd lcp_f, lcp_w;      ///< (nefc_max) row forces and complementary residuals
     std::vector<int> lcp_active;       ///< (nefc_max) 1 for rows in the active set
     std::vector<int> lcp_index;        ///< (nefc_max) the active rows, in order
-    Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages
+    Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages (rk_qpos0 nq, the rest nv)
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
     Eigen::MatrixXd qDeriv;                    ///< (nv x nv) implicit: d qfrc_smooth / d qvel
     Eigen::PartialPivLU<Eigen::MatrixXd> qLU;  ///< implicit: LU factor of M - h qDeriv

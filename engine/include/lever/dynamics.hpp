@@ -67,8 +67,14 @@ bool actuator_clamped(const Model& model, const Data& data, int a);
 /// MuJoCo 2.2.2's implicit integrator uses (mjd_smooth_vel): affine actuator bias and gain
 /// velocity terms (with the raw ctrl; clamps ignored), joint damping, and the Coriolis and
 /// centrifugal terms of the bias force. @pre the velocity stage of forward() (cvel, cdof_dot).
-void smooth_velocity_derivative(const Model& model, Data& data,
-                                Eigen::Ref<Eigen::MatrixXd> qDeriv);
+void smooth_velocity_derivative(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd> qDeriv);
+
+/// qpos (nq) advanced by the velocity qvel (nv) for time h, in place, as MuJoCo's
+/// mj_integratePos: hinge and slide coordinates add h qvel; a ball's or free joint's quaternion
+/// turns by h w (w about the body's axes) and is normalized. Every integrator steps qpos with it.
+/// Throws StateError when the sizes do not fit the model.
+void integrate_pos(const Model& model, Eigen::Ref<Eigen::VectorXd> qpos,
+                   const Eigen::Ref<const Eigen::VectorXd>& qvel, double h);
 
 /// Potential (gravity and joint springs) and kinetic energy into data.energy.
 /// @pre kinematics() and crba().

@@ -25,7 +25,7 @@
 namespace lever {
 
 /// Joint types; the numeric values are MuJoCo's mjtJoint.
-enum class JointType : int { kSlide = 2, kHinge = 3 };
+enum class JointType : int { kFree = 0, kBall = 1, kSlide = 2, kHinge = 3 };
 
 /// How a joint moves its body, as the kernels need to know it. set_const derives it from jnt_type
 /// and jnt_axis so that a kernel dispatches once per joint and does only the arithmetic that
@@ -40,6 +40,8 @@ enum class JointKind : uint8_t {
   kHingeZ,  ///< hinge about +-z
   kHinge,   ///< hinge about any other axis
   kSlide,   ///< slide along its axis
+  kBall,    ///< ball: a unit quaternion (w, x, y, z), three rotational dofs about body axes
+  kFree,    ///< free: position, then a quaternion; three translational dofs, then three rotational
 };
 
 /// Integrators; the numeric values are MuJoCo's mjtIntegrator. kImplicit is MuJoCo 2.2.2's
