@@ -113,6 +113,19 @@ void warning_findings(const Report& r, std::vector<std::string>& findings) {
 
 Report run_check(const Inputs& inputs) {
   const Model& model = inputs.model;
+  if (model.nq != model.nv) {
+    // the sections search joint ranges, lift weights against gravity at the joints and
+    // linearize the step: all written for a robot fixed to the world
+    std::string joints;
+    for (int j = 0; j < model.njnt; ++j) {
+      if (model.jnt_type[j] != JointType::kBall && model.jnt_type[j] != JointType::kFree) continue;
+      joints += (joints.empty() ? "'" : ", '") + model.jnt_name[j] + "'";
+    }
+    throw ModelError(
+        "lever check checks arms fixed to the world (hinge and slide joints); this "
+        "model has ball or free joints (" +
+        joints + "). lever forward, simulate and diff evaluate it.");
+  }
   if (!inputs.key.empty()) {  // an unknown keyframe is refused before any work, listing the keys
     Data data(model);
     reset_keyframe(model, data, inputs.key);

@@ -46,15 +46,33 @@ std::string name_or_index(const std::vector<std::string>& names, int i) {
   return names[i].empty() ? std::string(1, '#').append(std::to_string(i)) : names[i];
 }
 
+// A joint's name, with the component a row stands for where the joint has several: a free
+// joint's x y z qw qx qy qz (qpos) and vx vy vz wx wy wz (qvel), a ball's qw qx qy qz and wx wy wz.
+std::string joint_component(const Model& model, int j, int offset, bool coordinate) {
+  static const char* const kFreeQ[] = {"x", "y", "z", "qw", "qx", "qy", "qz"};
+  static const char* const kFreeV[] = {"vx", "vy", "vz", "wx", "wy", "wz"};
+  const std::string name = name_or_index(model.jnt_name, j);
+  switch (model.jnt_type[j]) {
+    case JointType::kFree: return name + "." + (coordinate ? kFreeQ : kFreeV)[offset];
+    case JointType::kBall:
+      return name + "." + (coordinate ? kFreeQ[3 + offset] : kFreeV[3 + offset]);
+    default: return name;
+  }
+}
+
 // The object row i of an array counted in `rows` stands for.
 std::string row_name(const Model& model, Size rows, int i) {
   switch (rows) {
     case Size::kNq:
-      for (int j = 0; j < model.njnt; ++j) {
-        if (model.jnt_qposadr[j] == i) return name_or_index(model.jnt_name, j);
+      for (int j = model.njnt - 1; j >= 0; --j) {
+        if (model.jnt_qposadr[j] <= i)
+          return joint_component(model, j, i - model.jnt_qposadr[j], true);
       }
       break;
-    case Size::kNv: return name_or_index(model.jnt_name, model.dof_jntid[i]);
+    case Size::kNv: {
+      const int j = model.dof_jntid[i];
+      return joint_component(model, j, i - model.jnt_dofadr[j], false);
+    }
     case Size::kNjnt: return name_or_index(model.jnt_name, i);
     case Size::kNu: return name_or_index(model.actuator_name, i);
     case Size::kNbody: return name_or_index(model.body_name, i);

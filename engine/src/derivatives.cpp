@@ -64,6 +64,12 @@ Matrix6d force_bar_matrix(const Force& f) {
 }
 
 void check_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
+  // the tangent-space layout of quaternion coordinates (mjd_transitionFD's) is not written yet
+  if (model.nq != model.nv) {
+    throw ModelError("derivatives: the model has ball or free joints (nq = " +
+                     std::to_string(model.nq) + ", nv = " + std::to_string(model.nv) +
+                     "); lever's analytic derivatives cover hinge and slide joints so far.");
+  }
   if (data.nv != model.nv || data.nu != model.nu || deriv.nv != model.nv || deriv.nu != model.nu) {
     throw StateError("derivatives: Data or Derivatives was built for another model (nv " +
                      std::to_string(model.nv) + ", nu " + std::to_string(model.nu) + ").");

@@ -13,9 +13,27 @@ void compute_energy(const Model& model, Data& data) {
     potential -= model.body_mass[b] * model.opt.gravity.dot(data.xipos[b]);
   }
   for (int j = 0; j < model.njnt; ++j) {
+    const double k = model.jnt_stiffness[j];
     const int q = model.jnt_qposadr[j];
-    const double stretch = data.qpos[q] - model.qpos_spring[q];
-    potential += 0.5 * model.jnt_stiffness[j] * stretch * stretch;
+    switch (model.jnt_kind[j]) {
+      case JointKind::kFree: {  // stretch of the position, then turn of the orientation
+        const Eigen::Vector3d stretch = data.qpos.segment<3>(q) - model.qpos_spring.segment<3>(q);
+        potential += 0.5 * k * stretch.dot(stretch);
+        const Eigen::Vector3d turn =
+            detail::quat_difference(&data.qpos[q + 3], &model.qpos_spring[q + 3]);
+        potential += 0.5 * k * turn.dot(turn);
+        break;
+      }
+      case JointKind::kBall: {
+        const Eigen::Vector3d turn = detail::quat_difference(&data.qpos[q], &model.qpos_spring[q]);
+        potential += 0.5 * k * turn.dot(turn);
+        break;
+      }
+      default: {
+        const double stretch = data.qpos[q] - model.qpos_spring[q];
+        potential += 0.5 * k * stretch * stretch;
+      }
+    }
   }
   data.energy[0] = potential;
   Eigen::VectorXd& momentum = data.work.vec1;  // preallocated: no heap use here

@@ -25,7 +25,7 @@ namespace {
 // One column of d qfrc_bias / d qvel: the Newton-Euler recursion of rnea.cpp differentiated with
 // respect to qvel_j. cdof and cinert do not depend on qvel; cvel and cdof_dot do:
 //   dv_b = dv_parent + S_j [if j is a dof of b]          (within a body, dof by dof)
-//   dSdot_i = dv x S_i                                   (dv: before dof i is added)
+//   dSdot_i = dv x S_i                 (dv: before dof i's segment, detail::starts_segment)
 //   da_b = da_parent + dSdot_i qd_i + Sdot_j [if j is a dof of b]
 //   df_b = I_b da_b + dv_b x* I_b v_b + v_b x* I_b dv_b
 // then the forces are summed leaves to root and projected on each dof. Only the subtree of dof
@@ -43,10 +43,12 @@ void bias_velocity_column(const Model& model, Data& data, int j, Eigen::Ref<Eige
     if (!in_subtree[b]) continue;
     Motion dvb = b == top ? Motion::Zero() : dv[parent];
     Motion dab = b == top ? Motion::Zero() : da[parent];
+    Motion dv_segment;  // dv before dof i's segment (detail::starts_segment)
     for (int k = 0; k < model.body_dofnum[b]; ++k) {
       const int i = model.body_dofadr[b] + k;
       const Motion& S = data.cdof[i];
-      dab += cross_motion(dvb, S) * data.qvel[i];
+      if (detail::starts_segment(model, i)) dv_segment = dvb;
+      dab += cross_motion(dv_segment, S) * data.qvel[i];
       if (i == j) {
         dab += data.cdof_dot[i];
         dvb += S;

@@ -19,18 +19,6 @@ namespace {
 
 constexpr double kMinNorm = 1e-15;  // MuJoCo's mjMINVAL: below it a vector has no direction
 
-// q normalized in place, or the identity when it has no length (MuJoCo's mju_normalize4).
-void normalize_quat(double* q) {
-  const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-  if (norm < kMinNorm) {
-    q[0] = 1.0;
-    q[1] = q[2] = q[3] = 0.0;
-    return;
-  }
-  const double inverse = 1.0 / norm;
-  for (int k = 0; k < 4; ++k) q[k] *= inverse;
-}
-
 // q turned by the rotation vector h w, w in the frame q rotates into (body axes), then normalized:
 // the turn is exact for constant w, so only rounding moves q off the unit sphere.
 void turn_quat(double* q, const double* w, double h) {
@@ -47,7 +35,7 @@ void turn_quat(double* q, const double* w, double h) {
     turn = Quat(std::cos(angle * 0.5), axis[0] * s, axis[1] * s, axis[2] * s);
   }
   Quat turned = quat_mul(Quat(q[0], q[1], q[2], q[3]), turn);
-  normalize_quat(turned.data());
+  detail::normalize_quat(turned.data());
   for (int k = 0; k < 4; ++k) q[k] = turned[k];
 }
 
@@ -146,6 +134,30 @@ void integrate_pos(const Model& model, Eigen::Ref<Eigen::VectorXd> qpos,
   Eigen::VectorXd q = qpos, v = qvel;
   detail::integrate_positions(model, q.data(), v.data(), h);
   qpos = q;
+}
+
+void differentiate_pos(const Model& model, Eigen::Ref<Eigen::VectorXd> qvel, double h,
+                       const Eigen::Ref<const Eigen::VectorXd>& qpos1,
+                       const Eigen::Ref<const Eigen::VectorXd>& qpos2) {
+  check_argument_size(qvel.size(), model.nv, "lever::differentiate_pos", "qvel");
+  check_argument_size(qpos1.size(), model.nq, "lever::differentiate_pos", "qpos1");
+  check_argument_size(qpos2.size(), model.nq, "lever::differentiate_pos", "qpos2");
+  // copies: a Ref may be strided, a quaternion is read as four contiguous numbers
+  const Eigen::VectorXd from = qpos1, to = qpos2;
+  for (int j = 0; j < model.njnt; ++j) {
+    int q = model.jnt_qposadr[j], v = model.jnt_dofadr[j];
+    switch (model.jnt_kind[j]) {
+      case JointKind::kFree:
+        for (int k = 0; k < 3; ++k) qvel[v + k] = (to[q + k] - from[q + k]) / h;
+        q += 3;
+        v += 3;
+        [[fallthrough]];
+      case JointKind::kBall:
+        qvel.segment<3>(v) = detail::quat_difference(&to[q], &from[q], h);
+        break;
+      default: qvel[v] = (to[q] - from[q]) / h;  // hinge and slide
+    }
+  }
 }
 
 void step(const Model& model, Data& data) {

@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 
 #include <array>
+#include <cmath>
 
 #include <lever/data.hpp>
 #include <lever/fields.hpp>
@@ -82,6 +83,59 @@ void implicit_step(const Model& model, Data& data);
 /// slide coordinates add h qvel; a ball's or free joint's quaternion turns by the rotation h w
 /// about its body axes and is normalized. Used by every integrator.
 void integrate_positions(const Model& model, double* qpos, const double* qvel, double h);
+
+/// q (4 numbers) normalized in place, or the identity when its length is below 1e-15 (MuJoCo's
+/// mju_normalize4, which scales even a unit quaternion by 1 / |q|: so does this).
+inline void normalize_quat(double* q) {
+  const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+  if (norm < 1e-15) {
+    q[0] = 1.0;
+    q[1] = q[2] = q[3] = 0.0;
+    return;
+  }
+  const double inverse = 1.0 / norm;
+  for (int k = 0; k < 4; ++k) q[k] *= inverse;
+}
+
+/// Every ball and free joint's quaternion in qpos normalized (MuJoCo's mj_normalizeQuat, which
+/// mj_kinematics runs first: an evaluation leaves the state's quaternions unit).
+inline void normalize_joint_quats(const Model& model, double* qpos) {
+  for (int j = 0; j < model.njnt; ++j) {
+    const JointKind kind = model.jnt_kind[j];
+    if (kind == JointKind::kBall) normalize_quat(qpos + model.jnt_qposadr[j]);
+    if (kind == JointKind::kFree) normalize_quat(qpos + model.jnt_qposadr[j] + 3);
+  }
+}
+
+/// The rotation vector r (3 numbers, in b's frame) with b * exp(r) = a, for unit quaternions a
+/// and b, its angle in [-pi, pi], divided by dt (MuJoCo's mju_subQuat for dt = 1, the
+/// orientation's difference in tangent space; mj_differentiatePos's rate for other dt).
+inline Eigen::Vector3d quat_difference(const double* a, const double* b, double dt = 1.0) {
+  // d = conj(b) * a
+  const Quat qa(a[0], a[1], a[2], a[3]);
+  const Quat conj_b(b[0], -b[1], -b[2], -b[3]);
+  const Quat d = quat_mul(conj_b, qa);
+  Eigen::Vector3d axis(d[1], d[2], d[3]);
+  const double sin_half = axis.norm();
+  if (sin_half < 1e-15) {
+    axis = Eigen::Vector3d::UnitX();
+  } else {
+    axis *= 1.0 / sin_half;
+  }
+  double angle = 2.0 * std::atan2(sin_half, d[0]);
+  if (angle > M_PI) angle -= 2.0 * M_PI;  // the shorter way round
+  return axis * (angle / dt);
+}
+
+/// Whether dof i starts a new motion segment of its body: its Sdot = v x S uses the body's
+/// velocity before the segment. Each hinge or slide is its own segment; a ball's three rotations
+/// share one, and so do a free joint's three translations and its three rotations (MuJoCo's
+/// mj_comVel).
+inline bool starts_segment(const Model& model, int i) {
+  const int j = model.dof_jntid[i];
+  const int offset = i - model.jnt_dofadr[j];
+  return offset == 0 || (offset == 3 && model.jnt_kind[j] == JointKind::kFree);
+}
 }  // namespace detail
 
 /// MuJoCo's mju_isBad: NaN, or beyond +-1e10.

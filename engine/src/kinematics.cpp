@@ -24,17 +24,32 @@ namespace {
 
 // Body poses, joint anchors and axes; then inertial frames and sites.
 void poses(const Model& model, Data& data) {
+  detail::normalize_joint_quats(model, data.qpos.data());
   Eigen::Matrix3d turned;  // the body's rotation, when a joint needs it as a matrix
   for (int b = 1; b < model.nbody; ++b) {
     const int p = model.body_parentid[b];
     const Mat3& parent = data.xmat[p];
-    Eigen::Vector3d pos = data.xpos[p] + rotate(parent, model.body_pos[b]);
-    Quat quat = model.body_rotated[b] ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
+    Eigen::Vector3d pos;
+    Quat quat;
+    if (model.body_jntnum[b] == 1 && model.jnt_kind[model.body_jntadr[b]] == JointKind::kFree) {
+      // a free body's pose is its qpos (body_pos and body_quat only gave qpos0); its joint's
+      // anchor is the body's origin and its axis z, by MuJoCo's convention
+      const int j = model.body_jntadr[b];
+      const double* q = &data.qpos[model.jnt_qposadr[j]];
+      pos = Eigen::Vector3d(q[0], q[1], q[2]);
+      quat = Quat(q[3], q[4], q[5], q[6]);
+      data.xanchor[j] = pos;
+      data.xaxis[j] = Eigen::Vector3d::UnitZ();
+    } else {
+      pos = data.xpos[p] + rotate(parent, model.body_pos[b]);
+      quat = model.body_rotated[b] ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
+    }
 
     for (int k = 0; k < model.body_jntnum[b]; ++k) {
       const int j = model.body_jntadr[b] + k;
+      const JointKind kind = model.jnt_kind[j];
+      if (kind == JointKind::kFree) break;  // placed above
       const int qadr = model.jnt_qposadr[j];
-      const double theta = data.qpos[qadr] - model.qpos0[qadr];
       const Eigen::Vector3d& axis = model.jnt_axis[j];
       if (k == 0) {
         // the body's first joint: its axis and anchor are constant in the parent's frame
@@ -48,17 +63,22 @@ void poses(const Model& model, Data& data) {
         data.xanchor[j] =
             model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(turned, model.jnt_pos[j])) : pos;
       }
-      const JointKind kind = model.jnt_kind[j];
       if (kind == JointKind::kSlide) {
-        pos += data.xaxis[j] * theta;
+        pos += data.xaxis[j] * (data.qpos[qadr] - model.qpos0[qadr]);
         continue;
       }
-      const double s = std::sin(0.5 * theta), c = std::cos(0.5 * theta);
-      if (kind == JointKind::kHinge) {
-        quat = quat_mul(quat, Quat(c, axis[0] * s, axis[1] * s, axis[2] * s));
-      } else {  // about a coordinate axis: two of the turn's components are zero
-        const int k = static_cast<int>(kind) - static_cast<int>(JointKind::kHingeX);
-        quat = quat_mul_axis(quat, k, c, axis[k] * s);
+      if (kind == JointKind::kBall) {  // qpos is the turn itself, a unit quaternion
+        const double* q = &data.qpos[qadr];
+        quat = quat_mul(quat, Quat(q[0], q[1], q[2], q[3]));
+      } else {
+        const double theta = data.qpos[qadr] - model.qpos0[qadr];
+        const double s = std::sin(0.5 * theta), c = std::cos(0.5 * theta);
+        if (kind == JointKind::kHinge) {
+          quat = quat_mul(quat, Quat(c, axis[0] * s, axis[1] * s, axis[2] * s));
+        } else {  // about a coordinate axis: two of the turn's components are zero
+          const int about = static_cast<int>(kind) - static_cast<int>(JointKind::kHingeX);
+          quat = quat_mul_axis(quat, about, c, axis[about] * s);
+        }
       }
       // the anchor stays where it is: the frame's origin swings around it
       if (model.jnt_offset[j]) {
@@ -100,6 +120,16 @@ void poses(const Model& model, Data& data) {
   }
 }
 
+// The three rotations of a ball (or of a free joint): about the body's own axes, the columns of
+// its rotation (MuJoCo takes the body's final frame, so a ball is its body's last joint).
+void rotation_subspace(const Mat3& body_rotation, const Eigen::Vector3d& to_origin, Motion* S) {
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Vector3d axis = body_rotation.col(k);
+    S[k].head<3>() = axis;
+    S[k].tail<3>() = cross(axis, to_origin);
+  }
+}
+
 // Subtree centres of mass, body inertias and joint motion subspaces in absolute coordinates.
 void com_quantities(const Model& model, Data& data) {
   // mass-weighted positions (poses() left each body's own), summed leaves to root
@@ -129,18 +159,31 @@ void com_quantities(const Model& model, Data& data) {
     data.cinert[b] = RigidInertia::from_com(model.body_mass[b], c, Iw);
   }
 
-  // each dof's motion subspace
-  for (int i = 0; i < model.nv; ++i) {
-    const int j = model.dof_jntid[i];
-    const Eigen::Vector3d& axis = data.xaxis[j];
-    if (model.jnt_type[j] == JointType::kHinge) {
-      const Eigen::Vector3d to_origin =
-          data.subtree_com[model.body_rootid[model.dof_bodyid[i]]] - data.xanchor[j];
-      data.cdof[i].head<3>() = axis;
-      data.cdof[i].tail<3>() = cross(axis, to_origin);
-    } else {
-      data.cdof[i].head<3>().setZero();
-      data.cdof[i].tail<3>() = axis;
+  // each dof's motion subspace: [a; a x (c - p)] for a rotation about world axis a through
+  // anchor p, [0; a] for a translation along a
+  for (int j = 0; j < model.njnt; ++j) {
+    const int i = model.jnt_dofadr[j];
+    const int b = model.jnt_bodyid[j];
+    const Eigen::Vector3d to_origin = data.subtree_com[model.body_rootid[b]] - data.xanchor[j];
+    switch (model.jnt_kind[j]) {
+      case JointKind::kSlide:
+        data.cdof[i].head<3>().setZero();
+        data.cdof[i].tail<3>() = data.xaxis[j];
+        break;
+      case JointKind::kFree:
+        // three translations along the world axes, then three rotations as a ball's
+        for (int k = 0; k < 3; ++k) {
+          data.cdof[i + k].head<3>().setZero();
+          data.cdof[i + k].tail<3>() = Eigen::Vector3d::Unit(k);
+        }
+        rotation_subspace(data.xmat[b], to_origin, &data.cdof[i + 3]);
+        break;
+      case JointKind::kBall: rotation_subspace(data.xmat[b], to_origin, &data.cdof[i]); break;
+      default: {  // a hinge
+        const Eigen::Vector3d& axis = data.xaxis[j];
+        data.cdof[i].head<3>() = axis;
+        data.cdof[i].tail<3>() = cross(axis, to_origin);
+      }
     }
   }
 }

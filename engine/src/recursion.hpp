@@ -12,14 +12,18 @@
 #include <lever/model.hpp>
 #include <lever/spatial.hpp>
 
+#include "internal.hpp"
+
 namespace lever {
 
 /// RNEA's forward pass: every body's velocity v and acceleration a from its parent's, root to
 /// leaves, dof by dof:
-///   v = v_parent + S_i qd_i,   a = a_parent + Sdot_i qd_i + S_i qdd_i,   Sdot_i = v x S_i
-/// (v, a before dof i). qdd == nullptr: zero. gravity: the world accelerates upward at -g, so the
-/// forces found from a include the weights. Sdot and Sddot (nv each, or nullptr) receive each
-/// dof's Sdot_i and its derivative a x S_i + v x Sdot_i (the inverse-dynamics derivatives' Psi).
+///   v = v_parent + S_i qd_i,   a = a_parent + Sdot_i qd_i + S_i qdd_i,   Sdot_i = v_seg x S_i
+/// (v, a before dof i; v_seg the velocity before dof i's segment: the dof itself for a hinge or
+/// a slide, a ball's three rotations together, see detail::starts_segment). qdd == nullptr: zero.
+/// gravity: the world accelerates upward at -g, so the forces found from a include the weights.
+/// Sdot and Sddot (nv each, or nullptr) receive each dof's Sdot_i and its derivative a x S_i + v x
+/// Sdot_i (the inverse-dynamics derivatives' Psi).
 inline void forward_pass(const Model& model, const Data& data, const double* qd, const double* qdd,
                          bool gravity, std::vector<Motion>& v, std::vector<Motion>& a,
                          std::vector<Motion>* Sdot, std::vector<Motion>* Sddot) {
@@ -31,23 +35,27 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
     const int parent = model.body_parentid[b];
     Motion vb = v[parent];
     Motion ab = a[parent];
-    bool moving = parent > 0;  // the world does not move: its children's first Sdot is zero
+    Motion v_segment;  // the velocity the current segment's Sdot uses
+    bool moving = false;
     for (int k = 0; k < model.body_dofnum[b]; ++k) {
       const int i = model.body_dofadr[b] + k;
       const Motion& S = data.cdof[i];
-      // S moves with the body that carries it: Sdot = v x S, v the velocity before dof i
+      if (detail::starts_segment(model, i)) {
+        v_segment = vb;
+        moving = parent > 0 || k > 0;  // the world does not move: nothing before it turns S
+      }
+      // S moves with the body that carries it: Sdot = v x S
       Motion S_dot_here;
       Motion& S_dot = Sdot != nullptr ? (*Sdot)[i] : S_dot_here;
       if (moving) {
-        S_dot = cross_motion(vb, S);
+        S_dot = cross_motion(v_segment, S);
       } else {
         S_dot.setZero();
       }
-      if (Sddot != nullptr) (*Sddot)[i] = cross_motion(ab, S) + cross_motion(vb, S_dot);
+      if (Sddot != nullptr) (*Sddot)[i] = cross_motion(ab, S) + cross_motion(v_segment, S_dot);
       if (moving) ab += S_dot * qd[i];
       if (qdd != nullptr) ab += S * qdd[i];
       vb += S * qd[i];
-      moving = true;
     }
     v[b] = vb;
     a[b] = ab;

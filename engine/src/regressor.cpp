@@ -317,6 +317,11 @@ BaseParameters base_parameters_with_gains(const Model& model, const std::vector<
   }
   const int n = regressor_columns(model);
   const int nv = model.nv;
+  if (model.nq != model.nv) {
+    throw ModelError(
+        "base parameters: the model has ball or free joints; lever identifies "
+        "robots of hinge and slide joints so far.");
+  }
   std::mt19937_64 rng(seed);
   const auto uniform = [&](double lo, double hi) {
     return std::uniform_real_distribution<double>(lo, hi)(rng);

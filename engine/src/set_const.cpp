@@ -30,10 +30,18 @@ void check_sizes(Model& model) {
       model.ngeom < 0) {
     throw ModelError("model sizes must be non-negative and include the world body.");
   }
-  if (model.nq != model.njnt || model.nv != model.njnt) {
-    throw ModelError("lever supports hinge and slide joints only, so nq == nv == njnt; got nq = " +
-                     std::to_string(model.nq) + ", nv = " + std::to_string(model.nv) +
-                     ", njnt = " + std::to_string(model.njnt) + ".");
+  LEVER_REQUIRE_SIZE(jnt_type, model.njnt);
+  int nq = 0, nv = 0;
+  for (const JointType type : model.jnt_type) {
+    nq += joint_nq(type);
+    nv += joint_nv(type);
+  }
+  if (model.nq != nq || model.nv != nv) {
+    throw ModelError("the joints need nq = " + std::to_string(nq) +
+                     " coordinates and nv = " + std::to_string(nv) +
+                     " dofs (hinge and slide 1 and 1, ball 4 and 3, free 7 and 6); "
+                     "the model says nq = " +
+                     std::to_string(model.nq) + ", nv = " + std::to_string(model.nv) + ".");
   }
   LEVER_REQUIRE_SIZE(body_name, model.nbody);
   LEVER_REQUIRE_SIZE(jnt_name, model.njnt);
@@ -71,24 +79,42 @@ void check_tree(const Model& model) {
                        "') must come after its parent (parent id " + std::to_string(p) + ").");
     }
   }
-  int next_joint = 0;
+  int next_joint = 0, next_qpos = 0, next_dof = 0;
   for (int b = 0; b < model.nbody; ++b) {
     if (model.body_jntnum[b] == 0) continue;
-    if (model.body_jntadr[b] != next_joint || model.body_dofadr[b] != next_joint ||
-        model.body_dofnum[b] != model.body_jntnum[b]) {
+    if (model.body_jntadr[b] != next_joint || model.body_dofadr[b] != next_dof) {
       throw ModelError("the joints and dofs of body '" + model.body_name[b] +
                        "' are not numbered in body order.");
     }
     for (int k = 0; k < model.body_jntnum[b]; ++k, ++next_joint) {
       const int j = next_joint;
-      if (model.jnt_bodyid[j] != b || model.jnt_qposadr[j] != j || model.jnt_dofadr[j] != j ||
-          model.dof_jntid[j] != j || model.dof_bodyid[j] != b) {
+      const int dofs = joint_nv(model.jnt_type[j]);
+      bool wired = model.jnt_bodyid[j] == b && model.jnt_qposadr[j] == next_qpos &&
+                   model.jnt_dofadr[j] == next_dof;
+      for (int i = next_dof; wired && i < next_dof + dofs; ++i) {
+        wired = model.dof_jntid[i] == j && model.dof_bodyid[i] == b;
+      }
+      if (!wired) {
         throw ModelError("joint " + std::to_string(j) + " is not wired to body '" +
                          model.body_name[b] + "' consistently.");
       }
+      // MuJoCo's rule: a free joint moves a body of the world alone (its pose is its qpos)
+      if (model.jnt_type[j] == JointType::kFree &&
+          (model.body_parentid[b] != 0 || model.body_jntnum[b] != 1)) {
+        throw ModelError("joint '" + model.jnt_name[j] + "' is free, so its body '" +
+                             model.body_name[b] +
+                             "' must be a child of the world with no other joint.",
+                         "joint", j);
+      }
+      next_qpos += joint_nq(model.jnt_type[j]);
+      next_dof += dofs;
+    }
+    if (model.body_dofnum[b] != next_dof - model.body_dofadr[b]) {
+      throw ModelError("body '" + model.body_name[b] + "' has " +
+                       std::to_string(model.body_dofnum[b]) + " dofs recorded and " +
+                       std::to_string(next_dof - model.body_dofadr[b]) + " in its joints.");
     }
   }
-  if (next_joint != model.njnt) throw ModelError("some joints belong to no body.");
   // each dof's parent is the previous dof on its path to the world
   std::vector<int> last_dof(model.nbody, -1);
   for (int b = 1; b < model.nbody; ++b) {
@@ -104,10 +130,26 @@ void check_tree(const Model& model) {
     last_dof[b] = previous;
   }
   for (int j = 0; j < model.njnt; ++j) {
-    if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
-      throw ModelError("joint " + std::to_string(j) + " is neither a hinge nor a slide.");
+    const JointType type = model.jnt_type[j];
+    if (type != JointType::kHinge && type != JointType::kSlide && type != JointType::kBall &&
+        type != JointType::kFree) {
+      throw ModelError("joint " + std::to_string(j) + " has type " +
+                       std::to_string(static_cast<int>(type)) +
+                       ", which is none of free (0), ball (1), slide (2) and hinge (3).");
     }
-    if (std::abs(model.jnt_axis[j].norm() - 1.0) > 1e-10) {
+    // a ball's limit is a cone MuJoCo bounds by the rotation angle: not in lever yet
+    if (type == JointType::kBall && model.jnt_limited[j]) {
+      throw ModelError("joint '" + model.jnt_name[j] +
+                           "' is a limited ball joint; lever limits hinge and slide joints only "
+                           "(remove limited=\"true\" or use hinges).",
+                       "joint", j);
+    }
+    if (type == JointType::kFree && model.jnt_limited[j]) {
+      throw ModelError("joint '" + model.jnt_name[j] + "' is free and cannot be limited.", "joint",
+                       j);
+    }
+    if ((type == JointType::kHinge || type == JointType::kSlide) &&
+        std::abs(model.jnt_axis[j].norm() - 1.0) > 1e-10) {
       throw ModelError("joint " + std::to_string(j) + "'s axis is not a unit vector.");
     }
   }
@@ -117,8 +159,15 @@ void check_tree(const Model& model) {
     }
   }
   for (int a = 0; a < model.nu; ++a) {
-    if (model.actuator_trnid[a] < 0 || model.actuator_trnid[a] >= model.njnt) {
+    const int j = model.actuator_trnid[a];
+    if (j < 0 || j >= model.njnt) {
       throw ModelError("actuator " + std::to_string(a) + " names no joint.");
+    }
+    if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
+      throw ModelError("actuator '" + model.actuator_name[a] + "' drives joint '" +
+                           model.jnt_name[j] +
+                           "', a ball or free joint; lever's actuators drive hinges and slides.",
+                       "actuator", a);
     }
   }
 }
@@ -142,7 +191,12 @@ void build_tree_sums(Model& model) {
 // A hinge whose axis is exactly +-1 along one coordinate axis of its body and zero along the
 // others is dispatched to the kernels that leave the zeros out (bit for bit the general product).
 JointKind joint_kind(const Model& model, int j) {
-  if (model.jnt_type[j] == JointType::kSlide) return JointKind::kSlide;
+  switch (model.jnt_type[j]) {
+    case JointType::kFree: return JointKind::kFree;
+    case JointType::kBall: return JointKind::kBall;
+    case JointType::kSlide: return JointKind::kSlide;
+    case JointType::kHinge: break;
+  }
   const Eigen::Vector3d& a = model.jnt_axis[j];
   constexpr JointKind kAligned[3] = {JointKind::kHingeX, JointKind::kHingeY, JointKind::kHingeZ};
   for (int k = 0; k < 3; ++k) {
@@ -220,7 +274,6 @@ void check_parameters(const Model& model) {
   }
   for (int j = 0; j < model.njnt; ++j) {
     const std::string& n = model.jnt_name[j];
-    const int d = model.jnt_dofadr[j];
     if (!model.jnt_pos[j].allFinite()) reject("joint", j, n, "has a non-finite anchor");
     if (!finite(model.jnt_solref[j]) || !finite(model.jnt_solimp[j]) ||
         !std::isfinite(model.jnt_margin[j])) {
@@ -230,10 +283,12 @@ void check_parameters(const Model& model) {
         !(model.jnt_range[j][0] < model.jnt_range[j][1] && finite(model.jnt_range[j]))) {
       reject("joint", j, n, "is limited but its range is not finite with lo < hi");
     }
-    if (!(model.dof_armature[d] >= 0) || !(model.dof_damping[d] >= 0) ||
-        !(model.jnt_stiffness[j] >= 0) || !std::isfinite(model.dof_armature[d]) ||
-        !std::isfinite(model.dof_damping[d]) || !std::isfinite(model.jnt_stiffness[j])) {
-      reject("joint", j, n, "needs finite, non-negative armature, damping and stiffness");
+    for (int d = model.jnt_dofadr[j]; d < model.jnt_dofadr[j] + joint_nv(model.jnt_type[j]); ++d) {
+      if (!(model.dof_armature[d] >= 0) || !(model.dof_damping[d] >= 0) ||
+          !(model.jnt_stiffness[j] >= 0) || !std::isfinite(model.dof_armature[d]) ||
+          !std::isfinite(model.dof_damping[d]) || !std::isfinite(model.jnt_stiffness[j])) {
+        reject("joint", j, n, "needs finite, non-negative armature, damping and stiffness");
+      }
     }
   }
   if (!model.qpos0.allFinite() || !model.qpos_spring.allFinite()) {
@@ -366,6 +421,18 @@ void set_const(Model& model) {
     x[i] = 1.0;
     solve_mass(model, data, x);
     model.dof_invweight0[i] = x[i];
+  }
+  // a ball's three dofs share the mean of their diagonal entries, as a free joint's translations
+  // and its rotations do (mj_setConst: one weight per direction-free group)
+  for (int j = 0; j < model.njnt; ++j) {
+    const JointType type = model.jnt_type[j];
+    if (type != JointType::kBall && type != JointType::kFree) continue;
+    for (int first = model.jnt_dofadr[j]; first < model.jnt_dofadr[j] + joint_nv(type);
+         first += 3) {
+      double* w = &model.dof_invweight0[first];
+      const double mean = (w[0] + w[1] + w[2]) / 3;
+      w[0] = w[1] = w[2] = mean;
+    }
   }
   model.body_invweight0.assign(model.nbody, {0.0, 0.0});
   Eigen::MatrixXd jacp(3, model.nv), jacr(3, model.nv), Minv_Jt(model.nv, 3);

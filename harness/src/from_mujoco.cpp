@@ -94,11 +94,14 @@ Model from_mujoco(const mjModel* m) {
     model.body_line.push_back(0);
   }
   for (int j = 0; j < m->njnt; ++j) {
-    if (m->jnt_type[j] != mjJNT_HINGE && m->jnt_type[j] != mjJNT_SLIDE) {
-      throw std::runtime_error("from_mujoco: joint type not supported by lever");
-    }
     model.jnt_name.push_back(name_of(m, mjOBJ_JOINT, j));
-    model.jnt_type.push_back(m->jnt_type[j] == mjJNT_HINGE ? JointType::kHinge : JointType::kSlide);
+    switch (m->jnt_type[j]) {  // lever's numbering is MuJoCo's
+      case mjJNT_FREE:
+      case mjJNT_BALL:
+      case mjJNT_SLIDE:
+      case mjJNT_HINGE: model.jnt_type.push_back(static_cast<JointType>(m->jnt_type[j])); break;
+      default: throw std::runtime_error("from_mujoco: joint type not supported by lever");
+    }
     model.jnt_qposadr.push_back(m->jnt_qposadr[j]);
     model.jnt_dofadr.push_back(m->jnt_dofadr[j]);
     model.jnt_bodyid.push_back(m->jnt_bodyid[j]);

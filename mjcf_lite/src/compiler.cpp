@@ -50,6 +50,7 @@ struct CompiledJoint {
   std::array<double, 2> range{};
   bool limited = false;
   double ref = 0, springref = 0;
+  Vec3 pos{};  ///< anchor (a free joint's is the origin)
 };
 
 struct CompiledSite {
@@ -512,9 +513,28 @@ class Compiler {
   }
 
   CompiledJoint compile_joint(const JointSpec& j, int body) {
-    CompiledJoint out{&j, body, j.axis, j.range, false, j.ref, j.springref};
-    out.limited = resolve_limited(j.limited, j.range, c_.autolimits, j.at, "range", "limited");
+    CompiledJoint out{&j, body, j.axis, j.range, false, j.ref, j.springref, j.pos};
     const bool hinge = j.type == JointType::kHinge;
+    const bool rotates_freely = j.type == JointType::kBall || j.type == JointType::kFree;
+    if (j.type == JointType::kFree) {
+      // MuJoCo's rules: a free joint gives its body's pose outright
+      const BodySpec& b = *nodes_[static_cast<size_t>(body)].spec;
+      const char* attribute = j.at.tag == "freejoint" ? "" : "type";  // the element says it
+      if (nodes_[static_cast<size_t>(body)].parent != 0) {
+        fail(j.at, attribute, "a free joint can only move a body directly inside <worldbody>");
+      }
+      if (b.joints.size() != 1) fail(j.at, attribute, "a free joint must be its body's only joint");
+      out.pos = {0, 0, 0};  // its anchor is the body's origin, whatever pos says
+    } else {
+      out.limited = resolve_limited(j.limited, j.range, c_.autolimits, j.at, "range", "limited");
+    }
+    if (out.limited && j.type == JointType::kBall) {
+      fail(j.at, "limited",
+           "lever does not limit ball joints yet (MuJoCo bounds the rotation angle); remove the "
+           "range, or build the joint from hinges");
+    }
+    // a ball or free joint turns about the body's own axes: its axis is z by convention
+    if (rotates_freely) out.axis = {0, 0, 1};
     if (out.limited) {
       if (j.range[0] >= j.range[1]) {
         fail(j.at, "range",
@@ -621,18 +641,30 @@ class Compiler {
   // a keyframe's lists must have the model's sizes (mjCKey::Compile); missing ones are filled in
   // assemble_keys
   void check_key(const KeySpec& k) const {
-    const auto check = [&](const std::optional<std::vector<double>>& v, const char* what,
-                           size_t n, const char* size) {
+    const auto check = [&](const std::optional<std::vector<double>>& v, const char* what, size_t n,
+                           const char* size) {
       if (v && v->size() != n) {
         fail(k.at, what,
-             std::string("keyframe ") + what + " has " + std::to_string(v->size()) +
-                 " number" + (v->size() == 1 ? "" : "s") + " but the model has " + size + " = " +
+             std::string("keyframe ") + what + " has " + std::to_string(v->size()) + " number" +
+                 (v->size() == 1 ? "" : "s") + " but the model has " + size + " = " +
                  std::to_string(n));
       }
     };
-    check(k.qpos, "qpos", joints_.size(), "nq");
-    check(k.qvel, "qvel", joints_.size(), "nv");
+    check(k.qpos, "qpos", static_cast<size_t>(coordinates()), "nq");
+    check(k.qvel, "qvel", static_cast<size_t>(dofs()), "nv");
     check(k.ctrl, "ctrl", motors_.size(), "nu");
+  }
+
+  // the model's nq and nv: a ball has a quaternion and three dofs, a free joint a position too
+  int coordinates() const {
+    int n = 0;
+    for (const CompiledJoint& j : joints_) n += joint_nq(j.spec->type);
+    return n;
+  }
+  int dofs() const {
+    int n = 0;
+    for (const CompiledJoint& j : joints_) n += joint_nv(j.spec->type);
+    return n;
   }
 
   // Geoms MuJoCo would test for contact (mj_contactFilter with filterparent on): compatible
@@ -652,7 +684,7 @@ class Compiler {
     const auto label = [&](size_t g) {
       const CompiledGeom& geom = geoms_[g];
       const std::string& body = nodes_[static_cast<size_t>(geom.body)].spec->at.name;
-      const std::string body_label = geom.body == 0  ? std::string("world")
+      const std::string body_label = geom.body == 0 ? std::string("world")
                                      : body.empty() ? "#" + std::to_string(geom.body)
                                                     : "'" + body + "'";
       return (geom.spec->at.name.empty() ? "geom " + std::to_string(g)
@@ -678,8 +710,8 @@ class Compiler {
     warnings_.push_back(
         std::to_string(pairs) + " geom pair" + (pairs == 1 ? "" : "s") +
         " could collide in MuJoCo (contype/conaffinity), but lever computes no contacts, so a "
-        "motion that brings them together differs from MuJoCo's: " + first +
-        (pairs > kListed ? "; and " + std::to_string(pairs - kListed) + " more" : "") +
+        "motion that brings them together differs from MuJoCo's: " +
+        first + (pairs > kListed ? "; and " + std::to_string(pairs - kListed) + " more" : "") +
         ". Set contype=\"0\" conaffinity=\"0\" on geoms that are not meant to collide.");
   }
 
@@ -730,7 +762,8 @@ Model Compiler::assemble() const {
   m.compiler.inertia_from_geoms_allowed = c_.inertiafromgeom != InertiaFromGeom::kFalse;
   m.nbody = static_cast<int>(nodes_.size());
   m.njnt = static_cast<int>(joints_.size());
-  m.nq = m.nv = m.njnt;  // hinge and slide joints: one coordinate and one dof each
+  m.nq = coordinates();
+  m.nv = dofs();
   m.ngeom = static_cast<int>(geoms_.size());
   m.nsite = static_cast<int>(sites_.size());
   m.nu = static_cast<int>(motors_.size());
@@ -773,8 +806,8 @@ void Compiler::assemble_bodies(Model& m) const {
     m.body_parentid[id] = parent;
     m.body_rootid[id] =
         parent == 0 ? static_cast<int>(id) : m.body_rootid[static_cast<size_t>(parent)];
-    m.body_jntnum[id] = m.body_dofnum[id] = static_cast<int>(b.joints.size());
-    if (!b.joints.empty()) m.body_jntadr[id] = m.body_dofadr[id] = c.first_joint;
+    m.body_jntnum[id] = static_cast<int>(b.joints.size());
+    if (!b.joints.empty()) m.body_jntadr[id] = c.first_joint;  // its dofs: assemble_joints
     m.body_pos[id] = eigen(c.pos);
     m.body_quat[id] = eigen(c.quat);
     m.body_ipos[id] = eigen(c.inertial.ipos);
@@ -790,41 +823,67 @@ void Compiler::assemble_bodies(Model& m) const {
 }
 
 void Compiler::assemble_joints(Model& m) const {
-  const Eigen::Index n = static_cast<Eigen::Index>(joints_.size());
-  m.qpos0 = Eigen::VectorXd::Zero(n);
-  m.qpos_spring = Eigen::VectorXd::Zero(n);
+  m.qpos0 = Eigen::VectorXd::Zero(m.nq);
+  m.qpos_spring = Eigen::VectorXd::Zero(m.nq);
+  int qadr = 0, dadr = 0;
   for (const CompiledJoint& c : joints_) {
     const JointSpec& s = *c.spec;
-    const int id = static_cast<int>(m.jnt_name.size());  // one qpos and one dof per joint
+    const int id = static_cast<int>(m.jnt_name.size());
     m.jnt_name.push_back(s.at.name);
     m.jnt_type.push_back(s.type);
-    m.jnt_qposadr.push_back(id);
-    m.jnt_dofadr.push_back(id);
+    m.jnt_qposadr.push_back(qadr);
+    m.jnt_dofadr.push_back(dadr);
     m.jnt_bodyid.push_back(c.body);
     m.jnt_limited.push_back(c.limited);
     m.jnt_solref.push_back(s.solref);
     m.jnt_solimp.push_back(s.solimp);
-    m.jnt_pos.push_back(eigen(s.pos));
+    m.jnt_pos.push_back(eigen(c.pos));
     m.jnt_axis.push_back(eigen(c.axis));
     m.jnt_stiffness.push_back(s.stiffness);
     m.jnt_range.push_back(c.range);
     m.jnt_margin.push_back(s.margin);
-    m.qpos0[id] = c.ref;
-    m.qpos_spring[id] = c.springref;
-    m.dof_bodyid.push_back(c.body);
-    m.dof_jntid.push_back(id);
-    m.dof_armature.push_back(s.armature);
-    m.dof_damping.push_back(s.damping);
+    // qpos0 (and the spring's rest) is the body as written: a free joint's is the body's pose,
+    // a ball's the identity, a hinge's or a slide's its ref (springref)
+    switch (s.type) {
+      case JointType::kFree: {
+        const CompiledBody& body = bodies_[static_cast<size_t>(c.body)];
+        for (int k = 0; k < 3; ++k) m.qpos0[qadr + k] = body.pos[static_cast<size_t>(k)];
+        for (int k = 0; k < 4; ++k) m.qpos0[qadr + 3 + k] = body.quat[static_cast<size_t>(k)];
+        m.qpos_spring.segment<7>(qadr) = m.qpos0.segment<7>(qadr);
+        break;
+      }
+      case JointType::kBall:
+        m.qpos0.segment<4>(qadr) = Eigen::Vector4d(1, 0, 0, 0);
+        m.qpos_spring.segment<4>(qadr) = m.qpos0.segment<4>(qadr);
+        break;
+      default: m.qpos0[qadr] = c.ref; m.qpos_spring[qadr] = c.springref;
+    }
+    for (int k = 0; k < joint_nv(s.type); ++k) {
+      m.dof_bodyid.push_back(c.body);
+      m.dof_jntid.push_back(id);
+      m.dof_armature.push_back(s.armature);
+      m.dof_damping.push_back(s.damping);
+    }
+    qadr += joint_nq(s.type);
+    dadr += joint_nv(s.type);
   }
-  // a dof's parent is the previous dof of its body, else the last dof of the nearest ancestor
-  // that has one (mujoco's body "lastdof", carried down the tree in body order)
+  // each body's dofs, and each dof's parent: the previous dof of its body, else the last dof of
+  // the nearest ancestor that has one (mujoco's body "lastdof", carried down in body order)
   std::vector<int> last_dof(nodes_.size(), -1);
-  m.dof_parentid.assign(joints_.size(), -1);
+  m.dof_parentid.assign(static_cast<size_t>(m.nv), -1);
   for (size_t body = 1; body < nodes_.size(); ++body) {
     last_dof[body] = last_dof[static_cast<size_t>(nodes_[body].parent)];
-    const int first = bodies_[body].first_joint;
-    for (size_t k = 0; k < nodes_[body].spec->joints.size(); ++k) {
-      const int dof = first + static_cast<int>(k);
+    const size_t njoints = nodes_[body].spec->joints.size();
+    if (njoints == 0) continue;
+    const int first_joint = bodies_[body].first_joint;
+    const int first = m.jnt_dofadr[static_cast<size_t>(first_joint)];
+    int count = 0;
+    for (size_t k = 0; k < njoints; ++k) {
+      count += joint_nv(m.jnt_type[static_cast<size_t>(first_joint) + k]);
+    }
+    m.body_dofadr[body] = first;
+    m.body_dofnum[body] = count;
+    for (int dof = first; dof < first + count; ++dof) {
       m.dof_parentid[static_cast<size_t>(dof)] = last_dof[body];
       last_dof[body] = dof;
     }
@@ -882,9 +941,31 @@ void Compiler::assemble_keys(Model& m) const {
     m.key_name.push_back(key.at.name);
     m.key_time.push_back(key.time);
     m.key_qpos.row(k) = m.qpos0.transpose();  // an unwritten qpos is qpos0, as in mujoco
-    for (int i = 0; key.qpos && i < m.nq; ++i) m.key_qpos(k, i) = (*key.qpos)[static_cast<size_t>(i)];
-    for (int i = 0; key.qvel && i < m.nv; ++i) m.key_qvel(k, i) = (*key.qvel)[static_cast<size_t>(i)];
-    for (int i = 0; key.ctrl && i < m.nu; ++i) m.key_ctrl(k, i) = (*key.ctrl)[static_cast<size_t>(i)];
+    for (int i = 0; key.qpos && i < m.nq; ++i)
+      m.key_qpos(k, i) = (*key.qpos)[static_cast<size_t>(i)];
+    for (int i = 0; key.qvel && i < m.nv; ++i)
+      m.key_qvel(k, i) = (*key.qvel)[static_cast<size_t>(i)];
+    for (int i = 0; key.ctrl && i < m.nu; ++i)
+      m.key_ctrl(k, i) = (*key.ctrl)[static_cast<size_t>(i)];
+    // a keyframe's quaternions are normalized at load. MuJoCo 2.2.2 does it twice (when it
+    // copies the keys into the model, and again at the end of its compile), and the second
+    // pass can move the last bit, so lever does both: reset_keyframe then gives MuJoCo's qpos
+    for (int pass = 0; pass < 2; ++pass) {
+      for (int j = 0; j < m.njnt; ++j) {
+        const JointType type = m.jnt_type[static_cast<size_t>(j)];
+        if (type != JointType::kBall && type != JointType::kFree) continue;
+        const int adr = m.jnt_qposadr[static_cast<size_t>(j)] + (type == JointType::kFree ? 3 : 0);
+        double* q = &m.key_qpos(k, adr);  // a row-major row: the four numbers are contiguous
+        const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+        if (norm < 1e-15) {
+          q[0] = 1;
+          q[1] = q[2] = q[3] = 0;
+          continue;
+        }
+        const double inverse = 1 / norm;
+        for (int c = 0; c < 4; ++c) q[c] *= inverse;
+      }
+    }
   }
 }
 

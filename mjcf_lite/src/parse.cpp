@@ -91,7 +91,11 @@ JointSpec read_joint(const Element& e, const AttrSet& set) {
   const Fields f(set, "body", "joint");
   JointSpec j;
   j.at = e.place();
-  j.type = f.word("type") == "slide" ? JointType::kSlide : JointType::kHinge;
+  const std::string type = f.word("type");
+  j.type = type == "slide"  ? JointType::kSlide
+           : type == "ball" ? JointType::kBall
+           : type == "free" ? JointType::kFree
+                            : JointType::kHinge;
   j.pos = f.array<3>("pos");
   j.axis = f.array<3>("axis");
   j.range = f.array<2>("range");
@@ -188,6 +192,11 @@ struct TreeReader {
         if (!ignore_inertials) body.inertial = std::move(inertial);
       } else if (child.tag == "body") {
         body.children.push_back(read_body(child, active));
+      } else if (child.tag == "freejoint") {
+        // MuJoCo gives a <freejoint> no default class: its name and group, the rest built in
+        JointSpec joint = read_joint(child, resolve(child, e.tag));
+        joint.type = JointType::kFree;
+        body.joints.push_back(joint);
       } else {
         const int cls = classes.choose(child, "class", active);
         const AttrSet set = resolve(child, e.tag, classes.at(cls).prototype(child.tag));
@@ -292,7 +301,8 @@ std::vector<KeySpec> read_keys(const Element& root) {
       for (const char* name : {"qpos", "qvel", "ctrl"}) {
         const Attribute* a = e.find(name);
         if (!a) continue;
-        const std::vector<double> v = parse_value(e, *a, attribute_rule("keyframe", "key", name)).numbers;
+        const std::vector<double> v =
+            parse_value(e, *a, attribute_rule("keyframe", "key", name)).numbers;
         if (std::string_view(name) == "qpos") k.qpos = v;
         if (std::string_view(name) == "qvel") k.qvel = v;
         if (std::string_view(name) == "ctrl") k.ctrl = v;
@@ -339,9 +349,8 @@ AssetSpec read_assets(const Element& root, const DefaultClasses& classes) {
         std::string path = file ? file->value : "";
         if (at.name.empty() && !path.empty()) {
           // mujoco: the file name without folder and extension
-          std::string base = path.substr(path.find_last_of("/\\") == std::string::npos
-                                             ? 0
-                                             : path.find_last_of("/\\") + 1);
+          std::string base = path.substr(
+              path.find_last_of("/\\") == std::string::npos ? 0 : path.find_last_of("/\\") + 1);
           const size_t dot = base.rfind('.');
           at.name = dot == std::string::npos ? base : base.substr(0, dot);
         }

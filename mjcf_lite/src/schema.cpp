@@ -85,7 +85,7 @@ std::vector<AttributeRule> alternatives() {
 
 std::vector<AttributeRule> joint_attributes() {
   return {
-      keyword("type", "hinge", "hinge slide", "free ball", "joint type"),
+      keyword("type", "hinge", "hinge slide ball free", "", "joint type"),
       real("pos", 3, "0 0 0", "anchor, body frame"),
       real("axis", 3, "0 0 1", "axis, body frame; normalized, must not be zero"),
       real("range", 2, "0 0", "lower and upper limit: rad/m; hinge in degrees unless radian"),
@@ -375,8 +375,7 @@ std::vector<ElementRule> build() {
       alternatives());
   s.push_back({"body", "worldbody", '*', body, "mocap user", "", "a body fixed to the world "
                "unless it has joints"});
-  s.push_back({"body", "body", '*', body, "mocap user", "freejoint composite",
-               "a child body"});
+  s.push_back({"body", "body", '*', body, "mocap user", "composite", "a child body"});
   for (const char* parent : {"worldbody", "body"}) {
     s.push_back({"camera", parent, '*', texts(kCameraAttributes, kVisualOnly), "", "",
                  "a camera (kept)"});
@@ -391,6 +390,12 @@ std::vector<ElementRule> build() {
                      real("fullinertia", 6, "", "Ixx Iyy Izz Ixy Ixz Iyz; diagonalized")},
                     alternatives()),
                "", "", "explicit mass and inertia of the body (else inferred from geoms)"});
+  s.push_back({"freejoint", "body", '?',
+               {text("name", "", "joint name"),
+                integer("group", 1, "0", "visualisation group (kept; no effect on dynamics)")},
+               "", "",
+               "a free joint, taking no default class: the body moves freely (its pose is its "
+               "qpos: position and quaternion; 6 dofs)"});
   s.push_back({"joint", "body", '*', join(naming("joint name"), joint_attributes()),
                kUnsupportedJointAttributes, "", "a joint between the body and its parent"});
   s.push_back({"geom", "body", '*', join(naming("geom name"), geom_attributes()),

@@ -24,7 +24,7 @@ __all__ = [
     "MjModel", "MjData", "mjtObj", "mjtConstraint", "mjtConstraintState", "mjtIntegrator",
     "mj_forward", "mj_step", "mj_step1", "mj_step2", "mj_kinematics", "mj_comPos", "mj_crb",
     "mj_factorM", "mj_rne", "mj_inverse", "mj_fullM", "mj_mulM", "mj_solveM", "mj_jacSite",
-    "mj_jacBody", "mj_jac", "mj_setConst", "mj_resetData", "mj_resetDataKeyframe",
+    "mj_jacBody", "mj_jac", "mj_integratePos", "mj_differentiatePos", "mj_setConst", "mj_resetData", "mj_resetDataKeyframe",
     "mj_name2id", "mj_id2name", "mj_energyPos", "mj_energyVel",
 ]
 
@@ -151,6 +151,19 @@ def _row(array: _np.ndarray, i: int) -> _np.ndarray:
     return array[i] if array.ndim == 2 else array[i:i + 1]
 
 
+# coordinates (qpos) and dofs (qvel) of each joint type, by MuJoCo's mjtJoint value: free, ball,
+# slide, hinge
+_JOINT_NQ = (7, 4, 1, 1)
+_JOINT_NV = (6, 3, 1, 1)
+
+
+def _joint_slice(array: _np.ndarray, native, joint: int, coordinates: bool) -> _np.ndarray:
+    """A joint's entries of a qpos-sized (coordinates) or qvel-sized array, as a view."""
+    kind = int(native.jnt_type[joint])
+    adr = int((native.jnt_qposadr if coordinates else native.jnt_dofadr)[joint])
+    return array[adr:adr + (_JOINT_NQ if coordinates else _JOINT_NV)[kind]]
+
+
 def _resolve(native, kind: str, key) -> int:
     names_attr, _, size_attr = _OBJECTS[kind]
     names = getattr(native, names_attr)
@@ -181,11 +194,10 @@ class _ModelObject:
         kind, model = self._kind, self._model
         full = _OBJECTS[kind][1] + attr
         if kind == "joint" and attr in ("qpos0", "qpos_spring"):
-            adr = int(model._native.jnt_qposadr[self.id])
-            return getattr(model._native, attr)[adr:adr + 1]
+            return _joint_slice(getattr(model._native, attr), model._native, self.id, True)
         if kind == "joint" and attr in ("armature", "damping", "invweight0", "M0"):
-            adr = int(model._native.jnt_dofadr[self.id])
-            return getattr(model._native, "dof_" + attr)[adr:adr + 1]
+            return _joint_slice(getattr(model._native, "dof_" + attr), model._native, self.id,
+                                False)
         if full in _MODEL_FIELDS or full == "actuator_trnid":
             return _row(getattr(model, full), self.id)
         raise _missing("MODEL", full) if full in _mujoco_names.MODEL else AttributeError(
@@ -221,12 +233,10 @@ class _DataObject:
                                           f"but lever does not compute it")
             raise AttributeError(f"a data {kind} has no attribute '{attr}'")
         array = getattr(data, source)
-        index = self.id
-        if kind == "joint":
-            native_model = data._model._native
-            adr = native_model.jnt_qposadr if source == "qpos" else native_model.jnt_dofadr
-            index = int(adr[self.id]) if source not in ("xanchor", "xaxis") else self.id
-        return _row(array, index)
+        if kind == "joint" and source not in ("xanchor", "xaxis"):
+            # a ball's qpos is its quaternion (4), its qvel three rates; a free joint's 7 and 6
+            return _joint_slice(array, data._model._native, self.id, source == "qpos")
+        return _row(array, self.id)
 
     def __getattr__(self, attr: str):
         return self._array(attr)
@@ -522,6 +532,19 @@ def mj_jac(m: MjModel, d: MjData, jacp, jacr, point, body: int) -> None:
     model, data = _pair(m, d)
     point = _np.asarray(point, dtype=float).reshape(3)
     _write_jacobians(jacp, jacr, *_lever.jac_point(model, data, int(body), point))
+
+
+def mj_integratePos(m: MjModel, qpos: _np.ndarray, qvel: _np.ndarray, dt: float) -> None:
+    """qpos (nq) advanced in place by qvel (nv) for time dt; quaternions turn and stay unit."""
+    qpos[...] = _lever.integrate_pos(m._native, _np.asarray(qpos, dtype=float),
+                                     _np.asarray(qvel, dtype=float), float(dt))
+
+
+def mj_differentiatePos(m: MjModel, qvel: _np.ndarray, dt: float, qpos1: _np.ndarray,
+                        qpos2: _np.ndarray) -> None:
+    """qvel (nv) = the velocity that takes qpos1 to qpos2 in time dt."""
+    qvel[...] = _lever.differentiate_pos(m._native, float(dt), _np.asarray(qpos1, dtype=float),
+                                         _np.asarray(qpos2, dtype=float))
 
 
 def mj_setConst(m: MjModel, d: MjData) -> None:

@@ -359,6 +359,25 @@ PYBIND11_MODULE(_lever, m) {
       py::arg("model"), py::arg("data"), py::arg("body"), py::arg("point"),
       "(jacp, jacr) of a world point fixed to a body.");
 
+  m.def(
+      "integrate_pos",
+      [](const ModelPtr& x, Eigen::VectorXd qpos, const Eigen::VectorXd& qvel, double h) {
+        lever::integrate_pos(model_of(x), qpos, qvel, h);
+        return qpos;
+      },
+      py::arg("model"), py::arg("qpos"), py::arg("qvel"), py::arg("h"),
+      "qpos advanced by qvel for time h (quaternions turned about body axes and normalized), "
+      "as mj_integratePos; returns a new array.");
+  m.def(
+      "differentiate_pos",
+      [](const ModelPtr& x, double h, const Eigen::VectorXd& qpos1, const Eigen::VectorXd& qpos2) {
+        Eigen::VectorXd qvel(model_of(x).nv);
+        lever::differentiate_pos(model_of(x), qvel, h, qpos1, qpos2);
+        return qvel;
+      },
+      py::arg("model"), py::arg("h"), py::arg("qpos1"), py::arg("qpos2"),
+      "The velocity (nv) taking qpos1 to qpos2 in time h, as mj_differentiatePos.");
+
   // ---- derivatives and the regressor (docs/derivatives.md)
   // ----------------------------------------
   m.def(

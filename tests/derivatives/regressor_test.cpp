@@ -39,7 +39,7 @@ Eigen::VectorXd explained_force(const Model& model, const Data& data) {
 
 TEST_CASE("regressor: Y pi equals rnea + damping qvel (gain columns left out)",
           "[derivatives][regressor]") {
-  for (ModelCase& c : every_model()) {
+  for (ModelCase& c : hinge_and_slide_models(every_model())) {
     INFO(c.name);
     const Model& model = c.model;
     const int inertial = 10 * (model.nbody - 1) + 2 * model.nv;
@@ -67,7 +67,7 @@ TEST_CASE("regressor: with ctrl, the gain columns reproduce the actuators' torqu
   // qfrc_actuator, less each fixed-gain actuator's gain-free force and each other actuator's
   // force, is that torque, on every dof where no actuator's force is clamped
   int compared = 0;
-  for (ModelCase& c : every_model()) {
+  for (ModelCase& c : hinge_and_slide_models(every_model())) {
     INFO(c.name);
     const Model& model = c.model;
     Data data(model);
@@ -137,7 +137,7 @@ TEST_CASE("regressor: gain columns, names and servos' tied bias", "[derivatives]
 }
 
 TEST_CASE("regressor: parameters to and from MJCF's inertial", "[derivatives][regressor]") {
-  for (ModelCase& c : every_model()) {
+  for (ModelCase& c : hinge_and_slide_models(every_model())) {
     INFO(c.name);
     const Model& model = c.model;
     for (int b = 1; b < model.nbody; ++b) {
@@ -184,7 +184,7 @@ TEST_CASE("regressor: parameters that are no rigid body are refused", "[derivati
 }
 
 TEST_CASE("regressor: the base parameters reproduce Y pi", "[derivatives][regressor]") {
-  for (ModelCase& c : every_model()) {
+  for (ModelCase& c : hinge_and_slide_models(every_model())) {
     INFO(c.name);
     const Model& model = c.model;
     const BaseParameters base = base_parameters(model);

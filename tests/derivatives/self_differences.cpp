@@ -22,6 +22,7 @@
 #include <lever/derivatives.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
+#include <lever/regressor.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -46,7 +47,7 @@ constexpr int kStates = 40;
 // Every model, servo_affine.xml (every term of a general actuator; tests/derivatives only) and
 // the random trees.
 std::vector<ModelCase> derivative_models() {
-  std::vector<ModelCase> cases = every_model();
+  std::vector<ModelCase> cases = hinge_and_slide_models(every_model());
   const std::string file = model_path("tests/derivatives/servo_affine.xml");
   cases.push_back({"servo_affine.xml", seed_for(file), mjcf::load_file(file)});
   for (ModelCase& c : random_trees()) cases.push_back(std::move(c));
@@ -132,7 +133,7 @@ std::vector<int> active_set(const Data& data) {
 
 TEST_CASE("derivatives: d rnea / d qpos and d qvel match central differences",
           "[derivatives][rnea]") {
-  for (ModelCase& c : every_model_and_random_trees()) {
+  for (ModelCase& c : hinge_and_slide_models(every_model_and_random_trees())) {
     INFO(c.name);
     const Model& model = c.model;
     Data data(model);
@@ -162,7 +163,7 @@ TEST_CASE("derivatives: d rnea / d qvel is linear in qvel: exact against its own
           "[derivatives][rnea]") {
   // tau is quadratic in qvel, so d tau / d qvel (at qacc = 0, no gravity) is linear in qvel:
   // D(v1 + v2) = D(v1) + D(v2) holds to rounding, a check between analytic results (1e-12).
-  for (ModelCase& c : every_model_and_random_trees()) {
+  for (ModelCase& c : hinge_and_slide_models(every_model_and_random_trees())) {
     INFO(c.name);
     Model model = c.model;
     model.opt.gravity.setZero();
@@ -339,6 +340,24 @@ TEST_CASE("derivatives: wrong sizes and unsupported integrators are errors", "[d
   Model odd = arm2;
   odd.opt.integrator = static_cast<Integrator>(3);  // MuJoCo 3's implicitfast: not in the enum
   CHECK_THROWS_WITH(step_derivatives(odd, data, deriv), Catch::Contains("not supported yet"));
+}
+
+}  // namespace lever::test
+
+namespace lever::test {
+
+TEST_CASE("derivatives: a model with ball or free joints is refused, saying why",
+          "[derivatives][refusal]") {
+  const Model model = mjcf::load_file(model_path("tests/models/floating.xml"));
+  REQUIRE(model.nq != model.nv);
+  Data data(model);
+  Derivatives deriv(model);
+  const Eigen::VectorXd qacc = Eigen::VectorXd::Zero(model.nv);
+  using Catch::Matchers::Contains;
+  CHECK_THROWS_WITH(step_derivatives(model, data, deriv), Contains("ball or free joints"));
+  CHECK_THROWS_WITH(forward_derivatives(model, data, deriv), Contains("ball or free joints"));
+  CHECK_THROWS_WITH(rnea_derivatives(model, data, qacc, deriv), Contains("ball or free joints"));
+  CHECK_THROWS_WITH(base_parameters(model, 10, 1), Contains("ball or free joints"));
 }
 
 }  // namespace lever::test

@@ -1,6 +1,6 @@
 // lever::integrate_pos against MuJoCo 2.2.2's mj_integratePos, joint kind by joint kind, on a model
-// with a free, a ball, a hinge and a slide joint. lever's loader does not take ball and free joints
-// yet, so lever's Model carries only what integrate_pos reads, copied from MuJoCo's compiled model.
+// with a free, a ball, a hinge and a slide joint: lever's Model carries only what integrate_pos
+// reads, copied from MuJoCo's compiled model (tests/models/floating.xml runs the whole engine).
 #include <mujoco/mujoco.h>
 #include <catch2/catch.hpp>
 
@@ -104,6 +104,38 @@ TEST_CASE("diff: integrate_pos agrees with mj_integratePos for free, ball, hinge
   integrate_pos(model, qpos, qvel, 0.5);
   CHECK(std::abs(qpos.segment(3, 4).norm() - 1.0) <= 1e-15);
   CHECK(std::abs(qpos.segment(7, 4).norm() - 1.0) <= 1e-15);
+}
+
+TEST_CASE("diff: differentiate_pos agrees with mj_differentiatePos and undoes integrate_pos",
+          "[diff][integrate]") {
+  const auto m = load_mujoco();
+  const Model model = joint_layout(m.get());
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> uniform(-2.0, 2.0);
+  double worst = 0.0, worst_round_trip = 0.0;
+  for (int trial = 0; trial < 1000; ++trial) {
+    Eigen::VectorXd qpos1(m->nq), qvel(m->nv);
+    for (int i = 0; i < m->nq; ++i) qpos1[i] = uniform(rng);
+    for (int i = 0; i < m->nv; ++i) qvel[i] = uniform(rng);
+    const double h = trial % 2 == 0 ? 0.002 : 0.1;
+    // unit quaternions, as MuJoCo's function assumes: a zero step normalizes them
+    integrate_pos(model, qpos1, Eigen::VectorXd::Zero(m->nv), h);
+    Eigen::VectorXd qpos2 = qpos1;
+    integrate_pos(model, qpos2, qvel, h);
+    Eigen::VectorXd ours(m->nv), theirs(m->nv);
+    differentiate_pos(model, ours, h, qpos1, qpos2);
+    mj_differentiatePos(m.get(), theirs.data(), h, qpos1.data(), qpos2.data());
+    for (int i = 0; i < m->nv; ++i) {
+      worst = std::max(worst, std::abs(ours[i] - theirs[i]) / std::max(1.0, std::abs(theirs[i])));
+      // a turn of h |w| < pi comes back as the velocity that made it
+      worst_round_trip = std::max(worst_round_trip, std::abs(ours[i] - qvel[i]));
+    }
+  }
+  INFO("worst relative difference " << worst << ", worst round trip " << worst_round_trip);
+  CHECK(worst <= 1e-12);
+  CHECK(worst_round_trip <= 1e-9);  // the quaternion's rounding, divided by h = 0.002
+  Eigen::VectorXd q = Eigen::VectorXd::Zero(m->nq), short_qvel = Eigen::VectorXd::Zero(m->nq - 1);
+  CHECK_THROWS_AS(differentiate_pos(model, short_qvel, 0.1, q, q), StateError);
 }
 
 TEST_CASE("diff: integrate_pos refuses vectors of the wrong size", "[diff][integrate]") {

@@ -112,14 +112,14 @@ inline const BadInput kBadInputs[] = {
   </worldbody>
 </mujoco>)", 4, "joint", "frictionloss", "valid MJCF but not supported by lever",
    MuJoCo::kAccepts, "valid MJCF outside lever's subset"},
-  {"unsupported-joint-type", R"(<mujoco>
+  {"unsupported-limited-ball", R"(<mujoco>
   <worldbody>
     <body name="b">
-      <joint name="j" type="ball"/>
+      <joint name="j" type="ball" limited="true" range="0 30"/>
       <geom size="0.1"/>
     </body>
   </worldbody>
-</mujoco>)", 4, "joint", "type", "'ball' is valid MJCF but not supported", MuJoCo::kAccepts,
+</mujoco>)", 4, "joint", "limited", "lever does not limit ball joints yet", MuJoCo::kAccepts,
    "valid MJCF outside lever's subset"},
   {"unsupported-geom-type", R"(<mujoco>
   <worldbody>
@@ -135,15 +135,28 @@ inline const BadInput kBadInputs[] = {
   <compiler coordinate="global"/>
 </mujoco>)", 2, "compiler", "coordinate", "'global' is valid MJCF but not supported",
    MuJoCo::kAccepts, "valid MJCF outside lever's subset (removed in MuJoCo 2.3.4)"},
-  {"unsupported-freejoint", R"(<mujoco>
+  {"nested-freejoint", R"(<mujoco>
+  <worldbody>
+    <body name="a">
+      <joint name="hinge"/>
+      <geom size="0.1"/>
+      <body name="b">
+        <freejoint/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>)", 7, "freejoint", "", "can only move a body directly inside <worldbody>",
+   MuJoCo::kRejects, ""},
+  {"free-joint-with-another", R"(<mujoco>
   <worldbody>
     <body name="b">
-      <freejoint/>
+      <joint name="hinge"/>
+      <joint name="float" type="free"/>
       <geom size="0.1"/>
     </body>
   </worldbody>
-</mujoco>)", 4, "freejoint", "", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
-   "valid MJCF outside lever's subset"},
+</mujoco>)", 5, "joint", "type", "must be its body's only joint", MuJoCo::kRejects, ""},
   {"unsupported-actuator", R"(<mujoco>
   <worldbody>
     <body name="b">
@@ -258,8 +271,8 @@ inline const BadInput kBadInputs[] = {
       <geom size="0.1"/>
     </body>
   </worldbody>
-</mujoco>)", 4, "joint", "type", "invalid value 'hing' for attribute 'type'; expected 'hinge' or "
-   "'slide' (did you mean 'hinge'?)", MuJoCo::kRejects, ""},
+</mujoco>)", 4, "joint", "type", "invalid value 'hing' for attribute 'type'; expected 'hinge', "
+   "'slide', 'ball' or 'free' (did you mean 'hinge'?)", MuJoCo::kRejects, ""},
   {"bad-boolean", R"(<mujoco>
   <worldbody>
     <body name="b">

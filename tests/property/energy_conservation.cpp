@@ -16,6 +16,14 @@ constexpr double kTimestep = 0.001;
 constexpr int kStartStates = 3;
 // halving h divides an h^4 drift by 16; accept an order between 3.5 and 4.5
 constexpr double kLeastRatio = 11.3, kMostRatio = 22.7;
+// A ball or free joint: MuJoCo 2.2.2's RK4 (which lever's equals step by step, tests/diff) adds
+// the four stages' angular velocities as vectors in the tangent space at the step's start, though
+// each was measured about the body's axes at its own stage orientation: exact for hinges and
+// slides, second order for a tumbling body. Its drift shrinks at least as h^2 (ratio >= 4, with
+// the same 0.5 of slack in the order as above).
+constexpr double kLeastRatioQuaternion = 2.8;
+
+bool has_quaternions(const Model& model) { return model.nq != model.nv; }
 
 // The model without damping, limits or actuators' effect, integrated with RK4.
 Model conservative_variant(Model model) {
@@ -68,7 +76,7 @@ TEST_CASE("property: RK4 conserves energy, with a drift that shrinks as h^4",
       INFO(c.name << ", seed " << c.seed << ", start state " << k << ": drift " << coarse
                   << " J at h = " << kTimestep << ", " << fine << " J at h / 2 (ratio "
                   << coarse / fine << ")");
-      CHECK(coarse / fine >= kLeastRatio);
+      CHECK(coarse / fine >= (has_quaternions(model) ? kLeastRatioQuaternion : kLeastRatio));
       CHECK(coarse / fine <= kMostRatio);
     }
   }

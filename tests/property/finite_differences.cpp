@@ -17,11 +17,15 @@ constexpr double kStep = 1e-5;
 constexpr double kBound = 1e-8;
 constexpr int kStates = kStatesPerModel / 4;  // 2 nv evaluations per state and quantity
 
-// Kinematics and potential energy at qpos with coordinate i moved by delta.
+// Kinematics and potential energy at qpos moved by delta along dof i: a hinge's or a slide's
+// coordinate changes by delta, a ball's quaternion turns by delta about the body axis i stands
+// for (integrate_pos, so a column is compared in the tangent space the Jacobian lives in).
 void evaluate_moved(const Model& model, Data& data, const Eigen::VectorXd& qpos, int i,
                     double delta) {
   data.qpos = qpos;
-  data.qpos[i] += delta;
+  Eigen::VectorXd along = Eigen::VectorXd::Zero(model.nv);
+  along[i] = delta;
+  integrate_pos(model, data.qpos, along, 1.0);
   forward(model, data);
   compute_energy(model, data);
 }
@@ -46,7 +50,7 @@ TEST_CASE("property: site Jacobians equal central differences of site_xpos and s
       kinematics(model, data);
       for (int s = 0; s < model.nsite; ++s) {
         jac_site(model, data, s, jacp, jacr);
-        for (int i = 0; i < model.nv; ++i) {  // hinge and slide: qpos index == dof index
+        for (int i = 0; i < model.nv; ++i) {
           evaluate_moved(model, moved, data.qpos, i, kStep);
           const Eigen::Vector3d p_plus = moved.site_xpos[s];
           const Eigen::Matrix3d R_plus = moved.site_xmat[s];

@@ -58,6 +58,16 @@ inline std::vector<ModelCase> every_model_and_random_trees() {
   return cases;
 }
 
+/// Whether every joint is a hinge or a slide (no quaternion coordinates): what lever's analytic
+/// derivatives and identification cover so far (they refuse the others, tests/derivatives).
+inline bool hinges_and_slides(const Model& model) { return model.nq == model.nv; }
+
+/// The cases of `cases` whose joints are all hinges and slides.
+inline std::vector<ModelCase> hinge_and_slide_models(std::vector<ModelCase> cases) {
+  std::erase_if(cases, [](const ModelCase& c) { return !hinges_and_slides(c.model); });
+  return cases;
+}
+
 /// How many of `states` the expensive properties (those differencing or integrating every dof)
 /// run on a case: all on a model file, a fifth on a random tree, whose dofs are many and whose
 /// number makes up for the states.

@@ -13,9 +13,14 @@ from conftest import MODEL_FILES
 
 
 def random_state(model, rng):
-    lo, hi = model.jnt_range[:, 0], model.jnt_range[:, 1]
-    limited = model.jnt_limited.astype(bool)
-    qpos = np.where(limited, rng.uniform(lo - 0.01, hi + 0.01), rng.uniform(-3, 3, model.nq))
+    """Each joint's coordinates: a limited one near its range, a free one's position and any
+    quaternion (not unit: forward normalizes it, in the state too), else U(-3, 3)."""
+    qpos = rng.uniform(-3, 3, model.nq)
+    for j in range(model.njnt):
+        adr = model.jnt_qposadr[j]
+        if model.jnt_limited[j]:
+            lo, hi = model.jnt_range[j]
+            qpos[adr] = rng.uniform(lo - 0.01, hi + 0.01)
     return qpos, rng.normal(0, 1, model.nv), rng.uniform(-2, 2, model.nu)
 
 

@@ -278,3 +278,29 @@ def test_derivatives_and_regressor_from_python():
     tau = lever.rnea(model, data, qacc) + model.dof_damping * data.qvel - data.qfrc_actuator
     assert np.abs(data.qfrc_actuator).max() > 0.1
     np.testing.assert_allclose(Y @ pi, tau, rtol=0, atol=1e-12 * max(1, np.abs(tau).max()))
+
+
+def test_ball_and_free_joints_named_access_and_position_calculus():
+    """A ball's named qpos is its quaternion and its qvel three rates; a free joint's 7 and 6.
+    mj_integratePos turns quaternions and keeps them unit; mj_differentiatePos undoes it."""
+    model = mujoco.MjModel.from_xml_path(str(REPO / "tests" / "models" / "floating.xml"))
+    data = mujoco.MjData(model)
+    assert (model.nq, model.nv) == (20, 17)
+    assert data.joint("shoulder").qpos.shape == (4,)
+    assert data.joint("shoulder").qvel.shape == (3,)
+    assert data.joint("float").qpos.shape == (7,)
+    assert data.joint("float").qvel.shape == (6,)
+    assert model.joint("spin").qpos0.shape == (7,)
+    np.testing.assert_array_equal(model.joint("shoulder").qpos0, [1, 0, 0, 0])
+    data.joint("shoulder").qvel[:] = [0.5, -1.0, 2.0]  # a view: writes reach the state
+    assert data.qvel[model.jnt_dofadr[1] + 2] == 2.0
+
+    rng = np.random.default_rng(5)
+    qpos = data.qpos.copy()
+    qvel = rng.normal(0, 1, model.nv)
+    mujoco.mj_integratePos(model, qpos, qvel, 0.01)
+    for j, adr in ((0, 3), (1, model.jnt_qposadr[1]), (4, model.jnt_qposadr[4] + 3)):
+        assert abs(np.linalg.norm(qpos[adr:adr + 4]) - 1) < 1e-15
+    back = np.zeros(model.nv)
+    mujoco.mj_differentiatePos(model, back, 0.01, data.qpos, qpos)
+    np.testing.assert_allclose(back, qvel, rtol=0, atol=1e-11)

@@ -204,6 +204,13 @@ TEST_CASE("every Data view has the table's size and points into its member", "[f
     for (int j = 0; j < model.njnt; ++j) {
       for (int c = 0; c < 3; ++c) CHECK(data.xaxis[j][c] == mark(k, 3 * j + c));
     }
+    k = next("geom_xpos");
+    k = next("geom_xmat");
+    for (int g = 0; g < model.ngeom; ++g) {
+      for (int r = 0; r < 3; ++r) {
+        for (int c = 0; c < 3; ++c) CHECK(data.geom_xmat[g](r, c) == mark(k, 9 * g + 3 * r + c));
+      }
+    }
     k = next("site_xpos");
     k = next("site_xmat");
     for (int s = 0; s < model.nsite; ++s) {
@@ -284,7 +291,7 @@ TEST_CASE("Data's constructor sizes every array as the table says, zero-filled",
     for (const FieldView& view : lever::data_fields(model, full)) {
       const std::string name = view.info->name;
       if (name == "qpos" || name == "xquat" || name == "xmat" || name == "ximat" ||
-          name == "site_xmat" || name == "efc_id" || name == "efc_dof") {
+          name == "geom_xmat" || name == "site_xmat" || name == "efc_id" || name == "efc_dof") {
         continue;
       }
       INFO("Data::" << name);

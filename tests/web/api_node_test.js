@@ -42,16 +42,19 @@ function nativeForward(file, qpos, qvel, ctrl, key) {
 
 // a deterministic state inside the joint ranges
 function stateOf(model, seed) {
+  // a hinge's or a slide's coordinate inside its range when it has one; any other coordinate
+  // (a free joint's position, a quaternion's numbers, normalized by forward) 0.3 sin(...)
   const qpos = [];
   const qvel = [];
   const ctrl = [];
-  for (let j = 0; j < model.nq; j++) {
+  for (let i = 0; i < model.nq; i++) qpos.push(0.3 * Math.sin(i + seed));
+  for (let j = 0; j < model.njnt; j++) {
     const lo = model.jnt_range[2 * j];
     const hi = model.jnt_range[2 * j + 1];
     const u = 0.5 + 0.4 * Math.sin(1.7 * (j + 1) * seed);
-    qpos.push(hi > lo ? lo + u * (hi - lo) : 0.3 * Math.sin(j + seed));
-    qvel.push(0.8 * Math.cos(2.3 * (j + 1) + seed));
+    if (hi > lo) qpos[model.jnt_qposadr[j]] = lo + u * (hi - lo);
   }
+  for (let i = 0; i < model.nv; i++) qvel.push(0.8 * Math.cos(2.3 * (i + 1) + seed));
   for (let a = 0; a < model.nu; a++) ctrl.push(2 * Math.sin(a + seed));
   return {qpos, qvel, ctrl};
 }

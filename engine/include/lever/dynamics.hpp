@@ -76,6 +76,14 @@ void smooth_velocity_derivative(const Model& model, Data& data, Eigen::Ref<Eigen
 void integrate_pos(const Model& model, Eigen::Ref<Eigen::VectorXd> qpos,
                    const Eigen::Ref<const Eigen::VectorXd>& qvel, double h);
 
+/// The velocity that takes qpos1 to qpos2 in time h (nv numbers into qvel), as MuJoCo's
+/// mj_differentiatePos: the inverse of integrate_pos. A ball's or free joint's turn is the
+/// rotation vector from qpos1's quaternion to qpos2's, about the body's axes, the short way round
+/// (both quaternions unit). Throws StateError when the sizes do not fit the model.
+void differentiate_pos(const Model& model, Eigen::Ref<Eigen::VectorXd> qvel, double h,
+                       const Eigen::Ref<const Eigen::VectorXd>& qpos1,
+                       const Eigen::Ref<const Eigen::VectorXd>& qpos2);
+
 /// Potential (gravity and joint springs) and kinetic energy into data.energy.
 /// @pre kinematics() and crba().
 void compute_energy(const Model& model, Data& data);

@@ -27,6 +27,18 @@ namespace lever {
 /// Joint types; the numeric values are MuJoCo's mjtJoint.
 enum class JointType : int { kFree = 0, kBall = 1, kSlide = 2, kHinge = 3 };
 
+/// Coordinates (qpos entries) of a joint of this type: a free joint's position and quaternion, a
+/// ball's quaternion, one number for a hinge or a slide.
+constexpr int joint_nq(JointType type) {
+  return type == JointType::kFree ? 7 : type == JointType::kBall ? 4 : 1;
+}
+
+/// Degrees of freedom (qvel entries) of a joint of this type: a quaternion's are three rates of
+/// turn, about the body's own axes.
+constexpr int joint_nv(JointType type) {
+  return type == JointType::kFree ? 6 : type == JointType::kBall ? 3 : 1;
+}
+
 /// How a joint moves its body, as the kernels need to know it. set_const derives it from jnt_type
 /// and jnt_axis so that a kernel dispatches once per joint and does only the arithmetic that
 /// joint needs: a hinge about a coordinate axis of its body (arm2's -y, every Panda joint's z)
@@ -130,16 +142,16 @@ struct Model {
   std::vector<std::string> warnings;
 
   // ---- sizes -------------------------------------------------------------------------------
-  int nq = 0;     ///< generalized coordinates (hinge and slide joints only: nq == nv)
-  int nv = 0;     ///< degrees of freedom
-  int nu = 0;     ///< actuators
-  int nbody = 1;  ///< bodies, world included
-  int njnt = 0;   ///< joints
-  int ngeom = 0;  ///< geoms
-  int nsite = 0;  ///< sites
-  int nkey = 0;   ///< keyframes
-  int npair = 0;     ///< explicit contact pairs (<contact><pair>)
-  int nexclude = 0;  ///< excluded body pairs (<contact><exclude>)
+  int nq = 0;         ///< generalized coordinates (a ball has 4 and a free joint 7: nq >= nv)
+  int nv = 0;         ///< degrees of freedom
+  int nu = 0;         ///< actuators
+  int nbody = 1;      ///< bodies, world included
+  int njnt = 0;       ///< joints
+  int ngeom = 0;      ///< geoms
+  int nsite = 0;      ///< sites
+  int nkey = 0;       ///< keyframes
+  int npair = 0;      ///< explicit contact pairs (<contact><pair>)
+  int nexclude = 0;   ///< excluded body pairs (<contact><exclude>)
   int nconmax = 100;  ///< most contacts a Data holds (<size nconmax>; MuJoCo 2.2.2's default)
   int njmax = 500;    ///< most constraint rows a Data holds (<size njmax>)
 

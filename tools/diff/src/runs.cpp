@@ -38,7 +38,7 @@ void compare_trajectory_point(const Model& model, int k, const double* qpos, con
   const Labeler dof = [&model](int i) {
     return "dof " + std::to_string(i) + " (joint '" + model.jnt_name[model.dof_jntid[i]] + "')";
   };
-  r.compare("qpos", k, qpos, d->qpos, model.nq, dof);
+  r.compare("qpos", k, qpos, d->qpos, model.nq, per_coordinate(model));
   r.compare("qvel", k, qvel, d->qvel, model.nv, dof);
   r.compare("qacc", k, qacc, d->qacc, model.nv, dof);
   r.compare("qfrc_constraint", k, qfrc_constraint, d->qfrc_constraint, model.nv, dof);
@@ -141,7 +141,8 @@ Report lockstep(Twin& twin, Integrator integrator, double seconds, Control contr
     // the transition: the state after one step
     step(twin.model, twin.data);
     mj_step(twin.m.get(), twin.d.get());
-    report.compare("qpos", k, twin.data.qpos.data(), twin.d->qpos, twin.model.nq, dof);
+    report.compare("qpos", k, twin.data.qpos.data(), twin.d->qpos, twin.model.nq,
+                   per_coordinate(twin.model));
     report.compare("qvel", k, twin.data.qvel.data(), twin.d->qvel, nv, dof);
   }
   twin.set_integrator(own);

@@ -71,6 +71,17 @@ inline double random_joint_position(const Model& model, int j, std::mt19937_64& 
   return stop;  // exactly on the stop: the row test is strict
 }
 
+// A ball's (or a free joint's) orientation: a uniformly random rotation, given a length off one
+// one time in four (the evaluation normalizes it, as MuJoCo's does).
+inline void random_joint_quat(double* q, std::mt19937_64& rng) {
+  std::normal_distribution<double> normal(0.0, 1.0);
+  Eigen::Vector4d v;
+  for (int k = 0; k < 4; ++k) v[k] = normal(rng);
+  v.normalize();
+  if (uniform(rng, 0, 1) < 0.25) v *= uniform(rng, 0.5, 2.0);
+  for (int k = 0; k < 4; ++k) q[k] = v[k];
+}
+
 inline double random_control(const Model& model, int a, std::mt19937_64& rng) {
   const auto span = control_span(model, a);
   const double u = uniform(rng, 0, 1);
@@ -81,14 +92,24 @@ inline double random_control(const Model& model, int a, std::mt19937_64& rng) {
 
 }  // namespace detail
 
-/// A random state: qpos as above, qvel ~ U(-2, 2) (at rest one time in ten), ctrl inside and
-/// beyond the span (up to 3x), qfrc_applied ~ U(-2, 2) one time in three, time ~ U(0, 10).
+/// A random state: qpos as above (ball and free joints: random orientations, not always unit), qvel
+/// ~ U(-2, 2) (at rest one time in ten), ctrl inside and beyond the span (up to 3x), qfrc_applied ~
+/// U(-2, 2) one time in three, time ~ U(0, 10).
 inline State random_state(const Model& model, std::mt19937_64& rng) {
   State s;
   s.time = detail::uniform(rng, 0, 10);
   s.qpos = model.qpos0;
   for (int j = 0; j < model.njnt; ++j) {
-    s.qpos[model.jnt_qposadr[j]] = detail::random_joint_position(model, j, rng);
+    const int adr = model.jnt_qposadr[j];
+    switch (model.jnt_type[j]) {
+      case JointType::kFree:  // a position within a metre of qpos0's, any orientation
+        for (int k = 0; k < 3; ++k)
+          s.qpos[adr + k] = model.qpos0[adr + k] + detail::uniform(rng, -1, 1);
+        detail::random_joint_quat(&s.qpos[adr + 3], rng);
+        break;
+      case JointType::kBall: detail::random_joint_quat(&s.qpos[adr], rng); break;
+      default: s.qpos[adr] = detail::random_joint_position(model, j, rng);
+    }
   }
   s.qvel = Eigen::VectorXd::Zero(model.nv);
   if (detail::uniform(rng, 0, 1) >= 0.1) {

@@ -12,6 +12,9 @@
 
 namespace lever::diff {
 
+/// Labels element i of a qpos-sized array: "qpos 7 (joint 'ball' #1, coordinate 0)".
+Labeler per_coordinate(const Model& model);
+
 /// set_const's model constants: dof_invweight0, dof_M0, body_invweight0, body_subtreemass.
 void compare_model_constants(const Twin& twin, Report& report);
 
