@@ -497,10 +497,51 @@ class Collider {
   }
 };
 
+/// The model's contact arrays have their sizes and the pair and exclusion lists are sorted by
+/// signature (the merge relies on it); a ModelError names the first that is not.
+void check_contact_model(const Model& model) {
+  const auto fail = [](const std::string& what) {
+    throw ModelError("lever::collision: " + what + " (compile the model with contact parameters)");
+  };
+  const auto ngeom = static_cast<size_t>(model.ngeom);
+  const auto sized = [&](size_t n, const char* name) {
+    if (n != ngeom) fail(std::string(name) + " has " + std::to_string(n) + " entries, not ngeom");
+  };
+  sized(model.geom_condim.size(), "geom_condim");
+  sized(model.geom_priority.size(), "geom_priority");
+  sized(model.geom_solmix.size(), "geom_solmix");
+  sized(model.geom_friction.size(), "geom_friction");
+  sized(model.geom_solref.size(), "geom_solref");
+  sized(model.geom_solimp.size(), "geom_solimp");
+  sized(model.geom_margin.size(), "geom_margin");
+  sized(model.geom_gap.size(), "geom_gap");
+  sized(model.geom_rbound.size(), "geom_rbound");
+  const auto npair = static_cast<size_t>(model.npair);
+  for (size_t n : {model.pair_dim.size(), model.pair_geom1.size(), model.pair_geom2.size(),
+                   model.pair_signature.size(), model.pair_solref.size(), model.pair_solimp.size(),
+                   model.pair_margin.size(), model.pair_gap.size(), model.pair_friction.size()}) {
+    if (n != npair) fail("a pair_ array does not have npair entries");
+  }
+  if (model.exclude_signature.size() != static_cast<size_t>(model.nexclude)) {
+    fail("exclude_signature does not have nexclude entries");
+  }
+  if (!std::is_sorted(model.pair_signature.begin(), model.pair_signature.end()) ||
+      !std::is_sorted(model.exclude_signature.begin(), model.exclude_signature.end())) {
+    fail("pair_signature and exclude_signature must be sorted");
+  }
+  for (int p = 0; p < model.npair; ++p) {
+    if (model.pair_geom1[p] < 0 || model.pair_geom1[p] >= model.ngeom || model.pair_geom2[p] < 0 ||
+        model.pair_geom2[p] >= model.ngeom) {
+      fail("pair " + std::to_string(p) + " names a geom that does not exist");
+    }
+  }
+}
+
 }  // namespace
 
 void collision(const Model& model, Data& data) {
   check_entry(model, data, "lever::collision");
+  check_contact_model(model);
   const auto nconmax = static_cast<size_t>(std::max(0, model.nconmax));
   if (data.contact.size() != nconmax || data.work.contact.size() != nconmax) {
     throw StateError("lever::collision: data.contact holds " + std::to_string(data.contact.size()) +
