@@ -16,6 +16,9 @@ const char* warning_name(Warning w) {
     case Warning::kBadQacc: return "qacc is NaN or larger than 1e10 (step resets the state)";
     case Warning::kBadCtrl: return "ctrl is NaN or larger than 1e10: controls set to zero";
     case Warning::kBadQfrcApplied: return "qfrc_applied is NaN or larger than 1e10";
+    case Warning::kContactUnsupported:
+      return "geoms of a pair lever cannot collide (mesh, hfield, or cylinder or ellipsoid against "
+             "a non-plane) came within their bounding spheres: no contact made";
     case Warning::kCount: break;
   }
   return "unknown warning";
@@ -44,6 +47,9 @@ Data::Data(const Model& model)
   // what is not in the table: lever's spatial inertias, and the workspace
   cinert.assign(nbody, RigidInertia{});
   contact.assign(static_cast<size_t>(std::max(0, model.nconmax)), Contact{});
+  work.contact.assign(contact.size(), Contact{});
+  work.body_weldid.assign(nbody, 0);
+  work.body_aabb.assign(6 * static_cast<size_t>(nbody), 0.0);
   qLD = Eigen::MatrixXd::Zero(nv, nv);
   work.crb.assign(nbody, RigidInertia{});
   work.cacc.assign(nbody, Motion::Zero());
@@ -99,6 +105,7 @@ void reset(const Model& model, Data& data) {
   data.qfrc_applied.setZero();
   data.qacc.setZero();
   data.nefc = 0;
+  data.ncon = 0;
   data.warning = {};
 }
 

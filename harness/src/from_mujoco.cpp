@@ -1,5 +1,6 @@
 #include <lever/harness/from_mujoco.hpp>
 
+#include <array>
 #include <stdexcept>
 
 namespace lever::test {
@@ -11,6 +12,65 @@ std::string name_of(const mjModel* m, int type, int id) {
   const char* n = mj_id2name(m, type, id);
   return n ? n : "";
 }
+
+// ---- contact (issue 19) ----------------------------------------------------------------------
+// The geoms' contact parameters and bounding spheres, <contact> pairs and exclusions, and the
+// contact options and sizes. MuJoCo features lever's collision stage does not model are refused
+// here, so that a comparison never runs on a model lever would read differently.
+void copy_contact(const mjModel* m, Model& model) {
+  if (m->opt.collision != mjCOL_ALL) {
+    throw std::runtime_error("from_mujoco: lever collides all pairs (option collision=\"all\")");
+  }
+  if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT | mjDSBL_FILTERPARENT)) {
+    throw std::runtime_error(
+        "from_mujoco: lever has no flags to disable constraints, contacts or the parent filter");
+  }
+  if (m->opt.enableflags & mjENBL_OVERRIDE) {
+    throw std::runtime_error("from_mujoco: lever has no contact override");
+  }
+  if (m->opt.cone != mjCONE_PYRAMIDAL && m->opt.cone != mjCONE_ELLIPTIC) {
+    throw std::runtime_error("from_mujoco: unknown friction cone");
+  }
+  model.opt.cone = m->opt.cone == mjCONE_PYRAMIDAL ? Cone::kPyramidal : Cone::kElliptic;
+  model.opt.impratio = m->opt.impratio;
+  model.nconmax = m->nconmax;
+  model.njmax = m->njmax;
+
+  for (int g = 0; g < m->ngeom; ++g) {
+    model.geom_condim.push_back(m->geom_condim[g]);
+    model.geom_priority.push_back(m->geom_priority[g]);
+    model.geom_solmix.push_back(m->geom_solmix[g]);
+    model.geom_friction.push_back(vec3(m->geom_friction + 3 * g));
+    model.geom_solref.push_back({m->geom_solref[mjNREF * g], m->geom_solref[mjNREF * g + 1]});
+    std::array<double, 5> solimp;
+    for (int k = 0; k < 5; ++k) solimp[k] = m->geom_solimp[mjNIMP * g + k];
+    model.geom_solimp.push_back(solimp);
+    model.geom_margin.push_back(m->geom_margin[g]);
+    model.geom_gap.push_back(m->geom_gap[g]);
+    model.geom_rbound.push_back(m->geom_rbound[g]);
+  }
+
+  model.npair = m->npair;
+  for (int p = 0; p < m->npair; ++p) {
+    model.pair_dim.push_back(m->pair_dim[p]);
+    model.pair_geom1.push_back(m->pair_geom1[p]);
+    model.pair_geom2.push_back(m->pair_geom2[p]);
+    model.pair_signature.push_back(m->pair_signature[p]);
+    model.pair_solref.push_back({m->pair_solref[mjNREF * p], m->pair_solref[mjNREF * p + 1]});
+    std::array<double, 5> solimp, friction;
+    for (int k = 0; k < 5; ++k) {
+      solimp[k] = m->pair_solimp[mjNIMP * p + k];
+      friction[k] = m->pair_friction[5 * p + k];
+    }
+    model.pair_solimp.push_back(solimp);
+    model.pair_friction.push_back(friction);
+    model.pair_margin.push_back(m->pair_margin[p]);
+    model.pair_gap.push_back(m->pair_gap[p]);
+  }
+  model.nexclude = m->nexclude;
+  for (int e = 0; e < m->nexclude; ++e) model.exclude_signature.push_back(m->exclude_signature[e]);
+}
+
 }  // namespace
 
 MjModelPtr mujoco_load(const std::string& path) {
@@ -139,6 +199,7 @@ Model from_mujoco(const mjModel* m) {
     model.geom_rgba.emplace_back(rgba[0], rgba[1], rgba[2], rgba[3]);
     model.geom_mass.push_back(0.0);
   }
+  copy_contact(m, model);
   for (int s = 0; s < m->nsite; ++s) {
     model.site_name.push_back(name_of(m, mjOBJ_SITE, s));
     model.site_bodyid.push_back(m->site_bodyid[s]);

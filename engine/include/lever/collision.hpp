@@ -26,14 +26,25 @@ struct GeomShape {
 /// Whether lever has a narrow-phase function for this pair of geom types (either order).
 bool has_collision_function(GeomType a, GeomType b);
 
-/// The narrow phase: contacts between two geoms nearer than `margin`. Writes dist, pos and frame
-/// of up to kMaxPairContacts contacts into `contacts` and returns how many. As MuJoCo's table,
-/// g1's type must not come after g2's (a sphere before a box); the normal points from g1 to g2.
-/// Throws ModelError for a pair has_collision_function() rejects.
+/// The narrow phase: contacts between two geoms nearer than `margin`. Writes dist, pos and the
+/// frame's first row, the normal from g1 to g2, of up to kMaxPairContacts contacts into
+/// `contacts` and returns how many. As MuJoCo's pair functions, it leaves the frame's other rows
+/// zero, except plane-capsule, which puts the capsule's axis in the second row for the driver to
+/// use as the first tangent (collision() completes the frame as mju_makeFrame). As MuJoCo's
+/// table, g1's type must not come after g2's (a sphere before a box). Throws ModelError for a
+/// pair has_collision_function() rejects, or given in the wrong order.
 int collide_shapes(const GeomShape& g1, const GeomShape& g2, double margin, Contact* contacts);
 
 /// The collision stage (MuJoCo's mj_collision): data.ncon and data.contact[0, ncon), in MuJoCo's
-/// order, with mixed parameters. @pre kinematics().
+/// order, with mixed parameters and complete frames. @pre kinematics().
+///
+/// A pair of geoms whose types lever has no function for (has_collision_function) that passes the
+/// filters and comes within its bounding spheres is skipped and counted in
+/// data.warning[Warning::kContactUnsupported] (lastinfo: its first geom). Throws StateError,
+/// changing neither data.ncon nor data.contact, when the contacts would exceed model.nconmax
+/// (MuJoCo keeps the first nconmax and warns); throws ModelError when the model's contact arrays
+/// (geom_condim ... geom_rbound, pair_*, exclude_signature) are missing or their signatures
+/// unsorted.
 void collision(const Model& model, Data& data);
 
 }  // namespace lever

@@ -30,6 +30,10 @@ enum class Warning : int {
   kBadQacc,         ///< qacc was bad (step: the state was reset)
   kBadCtrl,         ///< ctrl was bad: every control was treated as zero for that evaluation
   kBadQfrcApplied,  ///< qfrc_applied was bad (lever's own; MuJoCo does not check it)
+  /// collision(): two geoms of a pair of types lever has no function for (mesh, hfield, cylinder
+  /// or ellipsoid against anything but a plane) came within their bounding spheres and were not
+  /// collided (lever's own; lastinfo is the first geom of the pair)
+  kContactUnsupported,
   kCount
 };
 
@@ -164,6 +168,11 @@ struct Data {
     std::vector<Motion> dcvel, dcacc;          ///< (nbody) implicit: d cvel, d cacc / d qvel_j
     std::vector<Force> dcfrc;                  ///< (nbody) implicit: d cfrc / d qvel_j
     std::vector<uint8_t> in_subtree;  ///< (nbody) implicit: the bodies that move with qvel_j
+    // collision() (issue 19): contacts are gathered here and copied to `contact` only when all
+    // of them fit, so that a refusal leaves the last contacts in place
+    std::vector<Contact> contact;   ///< (nconmax)
+    std::vector<int> body_weldid;   ///< (nbody) the body each body is welded to (no joint between)
+    std::vector<double> body_aabb;  ///< (6 nbody) broad phase: bounds along the eigenframe's axes
   } work;
 
   int nefc_max = 0;  ///< 2 * njnt: the most limit rows a model can have

@@ -1,6 +1,7 @@
 // lever/lever.hpp: everything a lesson needs, in one include.
 #pragma once
 
+#include <lever/collision.hpp>
 #include <lever/constraint.hpp>
 #include <lever/data.hpp>
 #include <lever/derivatives.hpp>

@@ -230,12 +230,12 @@ struct Model {
   // ---- explicit contact pairs (npair) and exclusions (nexclude) ------------------------------
   std::vector<int> pair_dim;
   std::vector<int> pair_geom1, pair_geom2;
-  std::vector<int> pair_signature;  ///< ((body1 << 16) + body2), MuJoCo's
+  std::vector<int> pair_signature;  ///< ((body1 + 1) << 16) + body2 + 1, sorted (MuJoCo's)
   std::vector<std::array<double, 2>> pair_solref;
   std::vector<std::array<double, 5>> pair_solimp;
   std::vector<double> pair_margin, pair_gap;
   std::vector<std::array<double, 5>> pair_friction;
-  std::vector<int> exclude_signature;  ///< ((body1 << 16) + body2), MuJoCo's
+  std::vector<int> exclude_signature;  ///< ((body1 + 1) << 16) + body2 + 1, sorted (MuJoCo's)
 
   // ---- sites (nsite) -------------------------------------------------------------------------
   std::vector<std::string> site_name;
