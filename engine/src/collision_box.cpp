@@ -164,7 +164,9 @@ struct NearestFeature {
 NearestFeature nearest_feature(const Vec3& center, const Vec3& halfaxis, double halflength,
                                double radius, const Vec3& half, double margin) {
   NearestFeature best;
-  // farther than anything on the box, squared or not
+  // MuJoCo's starting bound. It has the units of a length but is compared with squared
+  // distances: a segment whose squared distance to the box exceeds it finds nothing, and the
+  // capsule gets no contact even when it is thick enough to reach the box (radius >~ 2)
   double best_distance2 = margin + 2 * (radius + halflength + half[0] + half[1] + half[2]);
 
   for (int end = -1; end <= 1; end += 2) {
@@ -353,7 +355,8 @@ int collide_capsule_box(const GeomShape& capsule, const GeomShape& box_shape, do
 
   const NearestFeature nearest =
       nearest_feature(center, halfaxis, halflength, radius, box.half, margin);
-  // nothing found: only a segment of length 0 beside an edge or corner (MuJoCo gives no contact)
+  // nothing found (beyond nearest_feature's starting bound, or a segment of length 0 beside an
+  // edge or a corner): MuJoCo gives no contact
   if (nearest.kind == NearestFeature::kNone) return 0;
   const std::optional<double> second = second_point(nearest, center, axis, halfaxis, box.half);
 
@@ -428,8 +431,9 @@ Vec3 axis_cross(int axis, const Vec3& v) {
 }
 
 /// MuJoCo's test of the 15 axes, in its order. Returns nothing when an axis separates the boxes
-/// by more than the margin. A face axis must be strictly better to win, an edge axis better by a
-/// relative 1e-12, so the faces win the ties of a box resting flat.
+/// by more than the margin. A face axis must be strictly better to win, an edge axis below
+/// penetration * (1 - 1e-12): with an overlap (> 0) that favours the faces in the ties of a box
+/// resting flat; with a gap within the margin (< 0) it lets an edge axis win an exact tie.
 std::optional<SeparatingAxis> least_penetration(const Box& b1, const Box& b2, const BoxPair& pair,
                                                 double margin) {
   const Vec3& size1 = b1.half;
@@ -507,7 +511,7 @@ std::optional<SeparatingAxis> least_penetration(const Box& b1, const Box& b2, co
 }
 
 /// The signed permutation of axes that turns a box face's outward normal into +z (faces 0-5 as
-/// in SeparatingAxis). Each is its own inverse.
+/// in SeparatingAxis). Products with it are exact: picking and negating entries.
 struct FaceTurn {
   std::array<int, 3> from;  ///< component k of a turned vector is sign[k] * v[from[k]]
   std::array<double, 3> sign;
@@ -645,7 +649,8 @@ int face_contacts(const Box& b1, const Box& b2, const BoxPair& pair, const Separ
       points[n++].pos = {llx, lly, pts[0][2] + u * pts[1][2] + v * pts[2][2]};
     }
   }
-  // 3. the lowest corner always; the other corners of the edges strictly over the rectangle
+  // 3. the lowest corner always, even outside the rectangle; the other corners of the edges only
+  // strictly over it
   const int ncorners = 1 << edges;
   for (int i = 0; i < ncorners; ++i) {
     const Vec3& corner = pts[i == 0 ? 0 : i + 2];
@@ -654,8 +659,9 @@ int face_contacts(const Box& b1, const Box& b2, const BoxPair& pair, const Separ
     points[n++].pos = corner;
   }
 
-  // within the margin; the contact is halfway down to the face, and MuJoCo's dist is that half
-  // height too (its full depth is computed but not used)
+  // within the margin; the contact is halfway down to the face, and MuJoCo 2.2.2's dist is that
+  // half height too (its full depth is computed but not used): a box pressed 1 mm into a face
+  // reports dist -0.5 mm, where the edge path reports full distances
   const Mat9 to_world = turn.world(reference.mat);
   const Vec3 column_z = {to_world[2], to_world[5], to_world[8]};
   const Vec3 normal = scale(column_z, on_box2 ? -1 : 1);  // from box 1 into box 2
@@ -697,7 +703,9 @@ int edge_contacts(const Box& b1, const Box& b2, const BoxPair& pair, const Separ
   Vec3 center = turn.apply(pair.center2_in_1);
   const Vec3 normal = turn.apply(axis.normal);
   const Mat9 rt = transpose(turn.apply_rows(pair.rot));  // rows: box 2's axes, turned frame
-  const Vec3 half1 = abs(turn.apply(b1.half));           // the turn is its own inverse
+  // (MuJoCo turns the sizes with the transpose: the same magnitudes, each permutation here being
+  // its own inverse)
+  const Vec3 half1 = abs(turn.apply(b1.half));
   const Vec3& half2 = b2.half;
   const double lx = half1[0], ly = half1[1], hz = half1[2];
   center[2] -= hz;

@@ -10,11 +10,12 @@
 
 namespace lever {
 
-/// The most contacts collide_box_box() writes: MuJoCo's box-box function returns the clipped
-/// polygon's points before its driver drops repeated positions (remove_repeated_positions), up to
-/// 16 edge crossings + 4 face corners + 4 box corners. Two identical boxes stacked face to face
-/// already give 9 (4 after the driver), more than kMaxPairContacts: the caller's buffer for a
-/// box-box pair must hold this many.
+/// The most contacts collide_box_box() writes, and so the size of the buffer a caller passes it:
+/// MuJoCo's box-box function returns the clipped polygon's points before its driver drops
+/// repeated positions (remove_repeated_positions), up to 16 edge crossings + 4 face corners + 4
+/// box corners. Two equal cubes face to face give 9 (the corners twice, 4 or 5 after the driver);
+/// turned 45 degrees about their normal they give 9 that all stay (the octagon and the incident
+/// box's lowest corner): more than kMaxPairContacts (8) survive the driver.
 inline constexpr int kMaxBoxBoxContacts = 24;
 
 /// Sphere (size[0] = radius) against a box (size = half-sizes): at most 1 contact.

@@ -358,6 +358,12 @@ TEST_CASE("diff: capsule-box contacts equal MuJoCo's", "[diff][collision]") {
                      0, -1});
     cases.push_back({"T onto a top edge",
                      capsule(Vec(0.2 + 0.02, 0, 0.1 + half + r - 0.004), Mat3::Identity()), 0, -1});
+    // MuJoCo compares squared distances with a bound that is a length: a capsule this thick
+    // reaches the box from where its segment finds nothing, and gets no contact
+    cases.push_back({"thick capsule, segment 4.9 above the face (MuJoCo's bound)",
+                     shape(GeomType::kCapsule, Vec(5, half, 0),
+                           origin + turn * Vec(0, 0, 0.1 + 4.9), turn * lying_along_x),
+                     0, 0});
     cases.push_back(
         {"segment of length 0 at a corner",
          shape(GeomType::kCapsule, Vec(r, 0, 0), origin + turn * Vec(0.21, 0.16, 0.11), turn), 0,
