@@ -14,7 +14,7 @@
 #include <cmath>
 #include <optional>
 
-namespace lever {
+namespace lever::detail {
 
 namespace {
 
@@ -854,4 +854,4 @@ int remove_repeated_positions(Contact* contacts, int count) {
   return kept;
 }
 
-}  // namespace lever
+}  // namespace lever::detail

@@ -8,7 +8,8 @@
 
 #include <lever/collision.hpp>
 
-namespace lever {
+// lever::detail, as collision_internal.hpp of branch `collide` declares the three functions
+namespace lever::detail {
 
 /// The most contacts collide_box_box() writes, and so the size of the buffer a caller passes it:
 /// MuJoCo's box-box function returns the clipped polygon's points before its driver drops
@@ -36,4 +37,4 @@ int collide_box_box(const GeomShape& box1, const GeomShape& box2, double margin,
 /// remain in contacts[0, result).
 int remove_repeated_positions(Contact* contacts, int count);
 
-}  // namespace lever
+}  // namespace lever::detail

@@ -97,7 +97,7 @@ std::string describe(const GeomShape& g) {
 struct Tally {
   long calls = 0, with_contacts = 0, contacts = 0;
   double worst = 0;  ///< largest |lever - mujoco| / bound over every value
-  std::array<long, kMaxBoxBoxContacts + 1> by_count{};  ///< calls by MuJoCo's contact count
+  std::array<long, detail::kMaxBoxBoxContacts + 1> by_count{};  ///< calls by MuJoCo's contact count
   int most_after_driver = 0;  ///< box-box: most contacts left after the driver's removal
 };
 
@@ -135,7 +135,7 @@ using PairFunction = int (*)(const GeomShape&, const GeomShape&, double, Contact
 int compare(MujocoGeoms& mujoco, int id1, const GeomShape& g1, int id2, const GeomShape& g2,
             double margin, PairFunction ours, Tally& tally, const std::string& what) {
   std::array<mjContact, mjMAXCONPAIR> theirs{};
-  std::array<Contact, kMaxBoxBoxContacts> mine{};
+  std::array<Contact, detail::kMaxBoxBoxContacts> mine{};
   const int n_mujoco = mujoco.collide(id1, g1, id2, g2, margin, theirs.data());
   const int n_lever = ours(g1, g2, margin, mine.data());
   ++tally.calls;
@@ -150,7 +150,7 @@ int compare(MujocoGeoms& mujoco, int id1, const GeomShape& g1, int id2, const Ge
   }
   if (n_mujoco > 0) ++tally.with_contacts;
   tally.contacts += n_mujoco;
-  ++tally.by_count[std::min(n_mujoco, kMaxBoxBoxContacts)];
+  ++tally.by_count[std::min(n_mujoco, detail::kMaxBoxBoxContacts)];
 
   double worst = 0;
   std::string worst_what;
@@ -184,7 +184,7 @@ std::string summary(const std::string& pair, const Tally& t) {
   std::ostringstream s;
   s << pair << ": " << t.calls << " poses, " << t.with_contacts << " with contacts, " << t.contacts
     << " contacts; worst " << t.worst << " of the bound; poses by contact count:";
-  for (int n = 0; n <= kMaxBoxBoxContacts; ++n) {
+  for (int n = 0; n <= detail::kMaxBoxBoxContacts; ++n) {
     if (t.by_count[n] > 0) s << " " << n << ":" << t.by_count[n];
   }
   return s.str();
@@ -225,8 +225,8 @@ TEST_CASE("diff: sphere-box contacts equal MuJoCo's", "[diff][collision]") {
       const Vec center = std::bernoulli_distribution(0.25)(rng)
                              ? Vec(box.pos + box.mat * box.size.cwiseProduct(random_point(rng)))
                              : near(box.pos, box.size.norm() + r + margin, rng);
-      compare(mujoco, kSphere, sphere_at(r, center), kBox1, box, margin, collide_sphere_box, tally,
-              "random pose " + std::to_string(i));
+      compare(mujoco, kSphere, sphere_at(r, center), kBox1, box, margin, detail::collide_sphere_box,
+              tally, "random pose " + std::to_string(i));
     }
     INFO(summary("sphere-box, random", tally));
     CHECK(tally.worst <= 1);
@@ -265,7 +265,7 @@ TEST_CASE("diff: sphere-box contacts equal MuJoCo's", "[diff][collision]") {
     for (const Case& c : cases) {
       INFO(c.name);
       const int n = compare(mujoco, kSphere, sphere_at(r, at(c.local)), kBox1, box, c.margin,
-                            collide_sphere_box, tally, c.name);
+                            detail::collide_sphere_box, tally, c.name);
       CHECK(n == c.expected);
     }
     CHECK(tally.worst <= 1);
@@ -290,7 +290,7 @@ TEST_CASE("diff: capsule-box contacts equal MuJoCo's", "[diff][collision]") {
                            : random_rotation(rng);
       const Vec center = near(box.pos, box.size.norm() + size[0] + size[1] + margin, rng);
       compare(mujoco, kCapsule, shape(GeomType::kCapsule, size, center, mat), kBox1, box, margin,
-              collide_capsule_box, tally, "random pose " + std::to_string(i));
+              detail::collide_capsule_box, tally, "random pose " + std::to_string(i));
     }
     INFO(summary("capsule-box, random", tally));
     CHECK(tally.worst <= 1);
@@ -371,8 +371,8 @@ TEST_CASE("diff: capsule-box contacts equal MuJoCo's", "[diff][collision]") {
     int twos = 0;
     for (const Case& c : cases) {
       INFO(c.name);
-      const int n =
-          compare(mujoco, kCapsule, c.g, kBox1, box, c.margin, collide_capsule_box, tally, c.name);
+      const int n = compare(mujoco, kCapsule, c.g, kBox1, box, c.margin,
+                            detail::collide_capsule_box, tally, c.name);
       if (c.expected >= 0) CHECK(n == c.expected);
       twos += n == 2;
     }
@@ -392,10 +392,11 @@ TEST_CASE("diff: box-box contacts equal MuJoCo's", "[diff][collision]") {
   // runs one comparison and records how many contacts the driver's removal would leave
   const auto run = [&](const GeomShape& b1, const GeomShape& b2, double margin,
                        const std::string& what) {
-    const int n = compare(mujoco, kBox1, b1, kBox2, b2, margin, collide_box_box, tally, what);
-    std::array<Contact, kMaxBoxBoxContacts> contacts;
-    collide_box_box(b1, b2, margin, contacts.data());
-    const int kept = remove_repeated_positions(contacts.data(), n);
+    const int n =
+        compare(mujoco, kBox1, b1, kBox2, b2, margin, detail::collide_box_box, tally, what);
+    std::array<Contact, detail::kMaxBoxBoxContacts> contacts;
+    detail::collide_box_box(b1, b2, margin, contacts.data());
+    const int kept = detail::remove_repeated_positions(contacts.data(), n);
     tally.most_after_driver = std::max(tally.most_after_driver, kept);
     return kept;
   };
@@ -413,7 +414,7 @@ TEST_CASE("diff: box-box contacts equal MuJoCo's", "[diff][collision]") {
     CHECK(tally.worst <= 1);
     CHECK(tally.with_contacts > tally.calls / 4);
     long many = 0;
-    for (int n = 3; n <= kMaxBoxBoxContacts; ++n) many += tally.by_count[n];
+    for (int n = 3; n <= detail::kMaxBoxBoxContacts; ++n) many += tally.by_count[n];
     CHECK(many > 100);
     SUCCEED(summary("box-box, random", tally) +
             "; most after the driver: " + std::to_string(tally.most_after_driver));
@@ -618,11 +619,11 @@ TEST_CASE("diff: MuJoCo's driver drops repeated box-box positions; lever's rule 
                    Eigen::Map<const Vec>(d->geom_xpos + 3 * k),
                    Eigen::Map<const Mat3>(d->geom_xmat + 9 * k));
     }
-    std::array<Contact, kMaxBoxBoxContacts> ours;
-    const int raw = collide_box_box(g[0], g[1], 0.0, ours.data());
+    std::array<Contact, detail::kMaxBoxBoxContacts> ours;
+    const int raw = detail::collide_box_box(g[0], g[1], 0.0, ours.data());
     std::array<mjContact, mjMAXCONPAIR> theirs;
     REQUIRE(mjCOLLISIONFUNC[mjGEOM_BOX][mjGEOM_BOX](m, d, theirs.data(), 0, 1, 0.0) == raw);
-    const int kept = remove_repeated_positions(ours.data(), raw);
+    const int kept = detail::remove_repeated_positions(ours.data(), raw);
     INFO("pose " << i << ": function " << raw << ", lever kept " << kept << ", MuJoCo's ncon "
                  << d->ncon);
     REQUIRE(d->ncon == kept);
