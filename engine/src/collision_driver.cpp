@@ -380,7 +380,8 @@ class Collider {
     for (Contact& c : found) c.frame.setZero();
     int n = collide_shapes(shape(g1), shape(g2), margin, found.data());
     if (n == 0) return;
-    if (type1 == GeomType::kBox && type2 == GeomType::kBox) n = drop_repeated_positions(found, n);
+    if (type1 == GeomType::kBox && type2 == GeomType::kBox)
+      n = detail::remove_repeated_positions(found.data(), n);
 
     // friction, solref, solimp
     std::array<double, 5> friction;
@@ -457,17 +458,6 @@ class Collider {
     }
     // sliding twice, torsional, rolling twice
     friction = {mu[0], mu[0], mu[1], mu[2], mu[2]};
-  }
-
-  /// Box-box can report one point twice: keep the last of equal positions (mj_collideGeoms).
-  static int drop_repeated_positions(std::array<Contact, kMaxPairContacts>& found, int n) {
-    int kept = 0;
-    for (int j = 0; j < n; ++j) {
-      bool repeated = false;
-      for (int k = j + 1; k < n && !repeated; ++k) repeated = found[j].pos == found[k].pos;
-      if (!repeated) found[kept++] = found[j];
-    }
-    return kept;
   }
 
   /// The contact frame from its normal row (mju_makeFrame): the normal made unit; the first

@@ -43,4 +43,9 @@ int collide_capsule_box(const GeomShape& capsule, const GeomShape& box, double m
                         Contact* contacts);
 int collide_box_box(const GeomShape& box1, const GeomShape& box2, double margin, Contact* contacts);
 
+/// What MuJoCo 2.2.2's driver (mj_collideGeoms) does to a box-box pair's contacts before it keeps
+/// them: a contact whose position equals, component by component and exactly, that of a later one
+/// is dropped; the survivors keep their order. Returns how many remain in contacts[0, result).
+int remove_repeated_positions(Contact* contacts, int count);
+
 }  // namespace lever::detail

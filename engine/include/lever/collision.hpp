@@ -12,8 +12,10 @@
 
 namespace lever {
 
-/// Most contacts one pair of geoms can produce (two boxes).
-inline constexpr int kMaxPairContacts = 8;
+/// Most contacts one call of the narrow phase writes: two boxes, whose clipped polygon MuJoCo
+/// 2.2.2 reports before its driver drops repeated positions (up to 16 edge crossings, 4 face
+/// corners and 4 box corners; 9 can survive the driver).
+inline constexpr int kMaxPairContacts = 24;
 
 /// A geom's shape and world pose, as the narrow phase reads them.
 struct GeomShape {
