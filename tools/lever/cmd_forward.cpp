@@ -97,19 +97,37 @@ void print_text(const std::string& path, const Model& model, const Data& data,
   std::printf(
       "joints: position, velocity, acceleration, and the joint forces (N m or N) that\n"
       "make up M qacc = qfrc_passive - qfrc_bias + qfrc_actuator + qfrc_constraint\n");
-  std::printf("  %-10s %-7s %12s %12s %12s %12s %12s %12s %12s %12s\n", "joint", "units", "qpos",
+  std::printf("  %-12s %-7s %12s %12s %12s %12s %12s %12s %12s %12s\n", "joint", "units", "qpos",
               "qvel", "qacc_smooth", "qacc", "qfrc_bias", "qfrc_passive", "qfrc_actuator",
               "qfrc_constr.");
+  // one row per dof: a free joint's three translations (with their coordinate) and a ball's or a
+  // free joint's three rotations about the body axes (their quaternion is listed below the table)
+  static const char* const kDofSuffix[] = {".x", ".y", ".z", ".wx", ".wy", ".wz"};
+  std::string quaternions;
   for (int j = 0; j < model.njnt; ++j) {
-    const int q = model.jnt_qposadr[j], v = model.jnt_dofadr[j];
-    const char* units = model.jnt_type[j] == JointType::kHinge ? "rad,N m" : "m,N";
-    std::printf("  %-10s %-7s %12s %12s %12s %12s %12s %12s %12s %12s\n",
-                label_of(model.jnt_name[j], j).c_str(), units, num(data.qpos[q]).c_str(),
-                num(data.qvel[v]).c_str(), num(data.qacc_smooth[v]).c_str(),
-                num(data.qacc[v]).c_str(), num(data.qfrc_bias[v]).c_str(),
-                num(data.qfrc_passive[v]).c_str(), num(data.qfrc_actuator[v]).c_str(),
-                num(data.qfrc_constraint[v]).c_str());
+    const JointType type = model.jnt_type[j];
+    const int nv = joint_nv(type);
+    for (int k = 0; k < nv; ++k) {
+      const int v = model.jnt_dofadr[j] + k;
+      const bool translation = type == JointType::kSlide || (type == JointType::kFree && k < 3);
+      const int suffix = type == JointType::kBall ? k + 3 : k;
+      const std::string label = label_of(model.jnt_name[j], j) + (nv > 1 ? kDofSuffix[suffix] : "");
+      const std::string qpos =
+          type == JointType::kHinge || translation ? num(data.qpos[model.jnt_qposadr[j] + k]) : "";
+      std::printf("  %-12s %-7s %12s %12s %12s %12s %12s %12s %12s %12s\n", label.c_str(),
+                  translation ? "m,N" : "rad,N m", qpos.c_str(), num(data.qvel[v]).c_str(),
+                  num(data.qacc_smooth[v]).c_str(), num(data.qacc[v]).c_str(),
+                  num(data.qfrc_bias[v]).c_str(), num(data.qfrc_passive[v]).c_str(),
+                  num(data.qfrc_actuator[v]).c_str(), num(data.qfrc_constraint[v]).c_str());
+    }
+    if (type == JointType::kBall || type == JointType::kFree) {
+      const int q = model.jnt_qposadr[j] + (type == JointType::kFree ? 3 : 0);
+      quaternions += "  " + label_of(model.jnt_name[j], j) + " quaternion (w x y z) (" +
+                     num(data.qpos[q]) + ", " + num(data.qpos[q + 1]) + ", " +
+                     num(data.qpos[q + 2]) + ", " + num(data.qpos[q + 3]) + ")\n";
+    }
   }
+  std::fputs(quaternions.c_str(), stdout);
 
   if (model.nu > 0) {
     std::printf(
