@@ -1,13 +1,22 @@
-// MuJoCo 2.2.2's soft joint limits (engine_core_constraint.c), solved exactly.
+// MuJoCo 2.2.2's soft constraints (engine_core_constraint.c): joint limits and contacts, solved
+// exactly.
 //
-// A row's target is the reference acceleration a_ref = -B v - K imp (pos - margin). The solve
-// finds the row forces f that MuJoCo's Newton solver converges to: with A = J M^-1 J^T and R the
-// regularizer, f and w = (A + R) f + (J qacc_smooth - a_ref) satisfy f >= 0, w >= 0, f.w = 0
-// (a linear complementarity problem with a symmetric positive definite matrix, so its solution is
-// unique). It is found by Murty's least-index principal pivoting, which is finite for such
-// matrices; the usual case, one row, takes one step.
+// Rows: a joint within `margin` of a stop gives one (J = +-e_dof); a contact (data.contact, from
+// collision()) without friction one, J = n^T (J_2 - J_1) at its point, and with a pyramidal
+// friction cone two per friction direction, the pyramid's edges n +- mu_k t_k (condim 3: two
+// tangents; 4: and the spin about n; 6: and two rolling axes, from the rotational Jacobians).
+// A row's target is the reference acceleration a_ref = -B v - K imp (pos - margin).
+//
+// Every row is one-sided (a limit pushes, a pyramid edge pushes), so the solve is the same for
+// all: the forces f that MuJoCo's Newton solver converges to satisfy, with A = J M^-1 J^T and R
+// the regularizer, f >= 0, w = (A + R) f + (J qacc_smooth - a_ref) >= 0, f.w = 0 (a linear
+// complementarity problem with a symmetric positive definite matrix, so its solution is unique).
+// It is found by Murty's least-index principal pivoting, which is finite for such matrices; the
+// usual case, one row, takes one step. Elliptic cones (not one-sided rows) are refused.
 #include <lever/constraint.hpp>
 #include <lever/dynamics.hpp>
+#include <lever/error.hpp>
+#include <lever/kinematics.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -94,8 +103,34 @@ bool cholesky_subset(const Eigen::MatrixXd& A, const std::vector<int>& idx, int 
 
 }  // namespace
 
-void make_constraint(const Model& model, Data& data) {
-  check_entry(model, data, "lever::make_constraint");
+namespace {
+
+// A row's product with a vector of nv numbers: a limit row's one entry, else the dense row.
+double row_dot(const Data& data, int r, const Eigen::VectorXd& x) {
+  if (data.efc_dof[r] >= 0) return data.efc_sign[r] * x[data.efc_dof[r]];
+  return data.efc_J.row(r).dot(x);
+}
+
+// x += J_r^T f for row r.
+void add_row_transpose(const Data& data, int r, double f, Eigen::VectorXd& x) {
+  if (data.efc_dof[r] >= 0) {
+    x[data.efc_dof[r]] += data.efc_sign[r] * f;
+  } else {
+    x += data.efc_J.row(r).transpose() * f;
+  }
+}
+
+// Room for `rows` more rows, or a StateError that changes nothing (MuJoCo warns and drops them).
+void require_rows(const Model& model, const Data& data, int n, int rows) {
+  if (n + rows > data.nefc_max) {
+    throw StateError("lever::make_constraint: the contacts need more than the model's njmax = " +
+                     std::to_string(model.njmax) +
+                     " constraint rows; raise <size njmax=...> (MuJoCo would drop rows).");
+  }
+}
+
+// The limit rows: lower stop, then upper, of each limited joint within margin of it.
+int add_limit_rows(const Model& model, Data& data) {
   int n = 0;
   for (int j = 0; j < model.njnt; ++j) {
     if (!model.jnt_limited[j]) continue;
@@ -105,29 +140,135 @@ void make_constraint(const Model& model, Data& data) {
     const double dist[2] = {q - model.jnt_range[j][0], model.jnt_range[j][1] - q};
     for (int side = 0; side < 2; ++side) {
       if (!(dist[side] < margin)) continue;  // strict: resting exactly at the stop makes no row
+      data.efc_type[n] = ConstraintType::kLimitJoint;
       data.efc_id[n] = j;
       data.efc_dof[n] = model.jnt_dofadr[j];
       data.efc_sign[n] = side == 0 ? 1.0 : -1.0;
+      data.efc_J.row(n).setZero();
+      data.efc_J(n, model.jnt_dofadr[j]) = data.efc_sign[n];
       data.efc_pos[n] = dist[side];
       data.efc_margin[n] = margin;
       ++n;
     }
   }
+  return n;
+}
+
+// Rows first..first+2 of out = frame * J (3 x nv), summed in MuJoCo's order (mju_mulMatMat).
+void rotate_rows(const Mat3& frame, const Eigen::MatrixXd& J, RowMatrix& out, int first) {
+  for (int i = 0; i < 3; ++i) {
+    for (Eigen::Index c = 0; c < J.cols(); ++c) {
+      out(first + i, c) = frame(i, 0) * J(0, c) + frame(i, 1) * J(1, c) + frame(i, 2) * J(2, c);
+    }
+  }
+}
+
+// A contact's rows after the n already made (MuJoCo's mj_instantiateContact, dense Jacobian).
+int add_contact_rows(const Model& model, Data& data, int i, int n) {
+  Contact& con = data.contact[i];
+  const int dim = con.dim;
+  const bool pyramid = dim > 1;
+  const int rows = pyramid ? 2 * (dim - 1) : 1;
+  require_rows(model, data, n, rows);
+  auto& w = data.work;
+  // relative velocity of the point on body 2 to the point on body 1, in the contact frame:
+  // normal, two tangents, then (condim 4, 6) the rotations about the same axes
+  const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
+  jac_point(model, data, b1, con.pos, w.jac1p, w.jac1r);
+  jac_point(model, data, b2, con.pos, w.jac2p, w.jac2r);
+  w.jac2p -= w.jac1p;  // in place: the workspace holds the difference
+  rotate_rows(con.frame, w.jac2p, w.contact_jac, 0);
+  if (dim > 3) {
+    w.jac2r -= w.jac1r;
+    rotate_rows(con.frame, w.jac2r, w.contact_jac, 3);
+  }
+  con.efc_address = n;
+  for (int r = n; r < n + rows; ++r) {
+    data.efc_type[r] =
+        pyramid ? ConstraintType::kContactPyramidal : ConstraintType::kContactFrictionless;
+    data.efc_id[r] = i;
+    data.efc_dof[r] = -1;
+    data.efc_sign[r] = 0.0;
+    data.efc_pos[r] = con.dist;
+    data.efc_margin[r] = con.includemargin;
+  }
+  if (!pyramid) {
+    data.efc_J.row(n) = w.contact_jac.row(0);
+    return n + 1;
+  }
+  // one pair of the pyramid's edges per friction direction: n + mu t, n - mu t
+  for (int k = 1; k < dim; ++k) {
+    const double mu = con.friction[k - 1];
+    data.efc_J.row(n) = w.contact_jac.row(0) + mu * w.contact_jac.row(k);
+    data.efc_J.row(n + 1) = w.contact_jac.row(0) - mu * w.contact_jac.row(k);
+    n += 2;
+  }
+  return n;
+}
+
+// solref and solimp sanitized as MuJoCo's getsolparam: the standard (positive) and direct
+// (negative) forms cannot be mixed; a time constant no shorter than two steps (refsafe); solimp
+// within its bounds.
+void sanitize(const Model& model, std::array<double, 2>& solref, std::array<double, 5>& solimp) {
+  if ((solref[0] > 0) != (solref[1] > 0)) solref = {0.02, 1.0};
+  if (solref[0] > 0) solref[0] = std::max(solref[0], 2 * model.opt.timestep);
+  solimp[0] = std::min(kMaxImp, std::max(kMinImp, solimp[0]));
+  solimp[1] = std::min(kMaxImp, std::max(kMinImp, solimp[1]));
+  solimp[2] = std::max(0.0, solimp[2]);
+  solimp[3] = std::min(kMaxImp, std::max(kMinImp, solimp[3]));
+  solimp[4] = std::max(1.0, solimp[4]);
+}
+
+// A row's approximate inverse inertia (MuJoCo's mj_diagApprox): frozen at qpos0 through
+// dof_invweight0 and body_invweight0, not the current inverse inertia. A contact's: the two
+// bodies' translational weights, and a pyramid edge adds mu^2 times the friction direction's.
+double diag_approx(const Model& model, const Data& data, int r) {
+  if (data.efc_type[r] == ConstraintType::kLimitJoint) return model.dof_invweight0[data.efc_dof[r]];
+  const Contact& con = data.contact[data.efc_id[r]];
+  const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
+  const double translation = model.body_invweight0[b1][0] + model.body_invweight0[b2][0];
+  if (data.efc_type[r] == ConstraintType::kContactFrictionless) return translation;
+  const double rotation = model.body_invweight0[b1][1] + model.body_invweight0[b2][1];
+  const int k = (r - con.efc_address) / 2;  // the friction direction of this pair of edges
+  const double mu = con.friction[k];
+  return translation + mu * mu * (k < 2 ? translation : rotation);
+}
+
+}  // namespace
+
+void make_constraint(const Model& model, Data& data) {
+  check_entry(model, data, "lever::make_constraint");
+  int n = add_limit_rows(model, data);
+  for (int i = 0; i < data.ncon; ++i) {
+    Contact& con = data.contact[i];
+    con.efc_address = -1;
+    if (con.exclude) continue;
+    if (model.opt.cone == Cone::kElliptic && con.dim > 1) {
+      throw StateError(
+          "lever::make_constraint: elliptic friction cones are not in lever yet; use "
+          "<option cone=\"pyramidal\"> (MuJoCo 2.2.2's default).");
+    }
+    n = add_contact_rows(model, data, i, n);
+  }
   data.nefc = n;
 
-  // impedance and regularizer (MuJoCo's mj_diagApprox and mj_makeImpedance)
+  // impedance and regularizer (MuJoCo's mj_diagApprox and mj_makeImpedance); the rows of one
+  // contact share its distance, so its impedance
   for (int r = 0; r < n; ++r) {
     std::array<double, 2> solref;
     std::array<double, 5> solimp;
-    limit_parameters(model, data.efc_id[r], solref, solimp);
+    if (data.efc_type[r] == ConstraintType::kLimitJoint) {
+      limit_parameters(model, data.efc_id[r], solref, solimp);
+    } else {
+      const Contact& con = data.contact[data.efc_id[r]];
+      solref = con.solref;
+      solimp = con.solimp;
+      sanitize(model, solref, solimp);
+    }
     const double imp = impedance(solimp, data.efc_pos[r], data.efc_margin[r], nullptr);
     const double dmax = solimp[1];
-    // R is frozen at qpos0 through dof_invweight0, not the current inverse inertia
-    const double invweight = model.dof_invweight0[data.efc_dof[r]];
     data.efc_imp[r] = imp;
-    data.efc_R[r] = std::max(kMinVal, (1 - imp) * invweight / imp);
-    data.efc_D[r] = 1 / data.efc_R[r];
-    data.efc_diagApprox[r] = data.efc_R[r] * imp / (1 - imp);
+    data.efc_R[r] = std::max(kMinVal, (1 - imp) * diag_approx(model, data, r) / imp);
     // K and B use dmax, not the current impedance
     if (solref[0] > 0) {
       data.efc_K[r] =
@@ -141,12 +282,37 @@ void make_constraint(const Model& model, Data& data) {
       data.efc_B[r] = -solref[1] / std::max(kMinVal, dmax);
     }
   }
+  // a pyramid's edges share one R, matching the elliptic cone's friction impedance: with the
+  // friction rows' R_1 = R_0 / impratio and the regularized cone's mu = friction_0 sqrt(R_1/R_0),
+  // every edge gets 2 mu^2 R_0
+  for (int i = 0; i < data.ncon; ++i) {
+    Contact& con = data.contact[i];
+    if (con.efc_address < 0 || con.dim == 1) continue;
+    const int first = con.efc_address;
+    const double R0 = data.efc_R[first];
+    const double R1 = R0 / std::max(kMinVal, model.opt.impratio);
+    con.mu = con.friction[0] * std::sqrt(R1 / R0);
+    const double shared = 2 * con.mu * con.mu * R0;
+    for (int r = first; r < first + 2 * (con.dim - 1); ++r) data.efc_R[r] = shared;
+  }
+  for (int r = 0; r < n; ++r) {
+    data.efc_D[r] = 1 / data.efc_R[r];
+    data.efc_diagApprox[r] = data.efc_R[r] * data.efc_imp[r] / (1 - data.efc_imp[r]);
+  }
+}
+
+double constraint_row_dot(const Data& data, int r, const Eigen::VectorXd& x) {
+  return row_dot(data, r, x);
+}
+
+void add_constraint_row_transpose(const Data& data, int r, double f, Eigen::VectorXd& x) {
+  add_row_transpose(data, r, f, x);
 }
 
 void reference_constraint(const Model& model, Data& data) {
   check_entry(model, data, "lever::reference_constraint");
   for (int r = 0; r < data.nefc; ++r) {
-    data.efc_vel[r] = data.efc_sign[r] * data.qvel[data.efc_dof[r]];
+    data.efc_vel[r] = row_dot(data, r, data.qvel);
     data.efc_aref[r] = -data.efc_B[r] * data.efc_vel[r] -
                        data.efc_K[r] * data.efc_imp[r] * (data.efc_pos[r] - data.efc_margin[r]);
   }
@@ -160,18 +326,25 @@ void solve_constraint(const Model& model, Data& data) {
   if (n == 0) return;
 
   auto& w = data.work;
-  // M^-1 J^T, one column per row (J's row r is sign_r e_dof_r)
+  // M^-1 J^T, one column per row
   for (int r = 0; r < n; ++r) {
     auto column = w.MinvJ.col(r);
-    column.setZero();
-    column[data.efc_dof[r]] = data.efc_sign[r];
+    if (data.efc_dof[r] >= 0) {
+      column.setZero();
+      column[data.efc_dof[r]] = data.efc_sign[r];
+    } else {
+      column = data.efc_J.row(r).transpose();
+    }
     solve_mass(model, data, column);
   }
   // A + R, and b = J qacc_smooth - a_ref
   for (int r = 0; r < n; ++r) {
-    for (int c = 0; c < n; ++c) w.A(r, c) = data.efc_sign[r] * w.MinvJ(data.efc_dof[r], c);
+    for (int c = 0; c < n; ++c) {
+      w.A(r, c) = data.efc_dof[r] >= 0 ? data.efc_sign[r] * w.MinvJ(data.efc_dof[r], c)
+                                       : data.efc_J.row(r).dot(w.MinvJ.col(c));
+    }
     w.A(r, r) += data.efc_R[r];
-    data.efc_b[r] = data.efc_sign[r] * data.qacc_smooth[data.efc_dof[r]] - data.efc_aref[r];
+    data.efc_b[r] = row_dot(data, r, data.qacc_smooth) - data.efc_aref[r];
   }
 
   // Murty's least-index principal pivoting, starting from the rows that are pushed into the stop
@@ -216,7 +389,7 @@ void solve_constraint(const Model& model, Data& data) {
   for (int r = 0; r < n; ++r) {
     data.efc_force[r] = active[r] ? f[r] : 0.0;
     data.efc_state[r] = active[r] ? ConstraintState::kActive : ConstraintState::kSatisfied;
-    data.qfrc_constraint[data.efc_dof[r]] += data.efc_sign[r] * data.efc_force[r];
+    add_row_transpose(data, r, data.efc_force[r], data.qfrc_constraint);
   }
   for (int r = 0; r < n; ++r) data.qacc += w.MinvJ.col(r) * data.efc_force[r];
 }

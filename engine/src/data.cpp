@@ -25,7 +25,7 @@ const char* warning_name(Warning w) {
 }
 
 Data::Data(const Model& model)
-    : nefc_max(2 * model.njnt),
+    : nefc_max(constraint_rows_max(model)),
       nq(model.nq),
       nv(model.nv),
       nu(model.nu),
@@ -63,6 +63,9 @@ Data::Data(const Model& model)
   work.lcp_f = work.lcp_w = Eigen::VectorXd::Zero(nefc_max);
   work.lcp_active.assign(nefc_max, 0);
   work.lcp_index.assign(nefc_max, 0);
+  efc_J = RowMatrix::Zero(nefc_max, nv);
+  work.jac1p = work.jac1r = work.jac2p = work.jac2r = Eigen::MatrixXd::Zero(3, nv);
+  work.contact_jac = RowMatrix::Zero(6, nv);
   work.rk_qpos0 = Eigen::VectorXd::Zero(nq);
   work.rk_dq = Eigen::VectorXd::Zero(nv);  // a velocity: nv, not nq
   work.rk_qvel0 = work.rk_dv = Eigen::VectorXd::Zero(nv);

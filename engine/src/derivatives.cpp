@@ -70,6 +70,11 @@ void check_sizes(const Model& model, const Data& data, const Derivatives& deriv)
                      std::to_string(model.nq) + ", nv = " + std::to_string(model.nv) +
                      "); lever's analytic derivatives cover hinge and slide joints so far.");
   }
+  if (model.contacts_possible) {
+    throw ModelError(
+        "derivatives: the model can make contacts; lever's analytic derivatives cover joint limits "
+        "so far (set contype and conaffinity to 0 where contacts are not wanted).");
+  }
   if (data.nv != model.nv || data.nu != model.nu || deriv.nv != model.nv || deriv.nu != model.nu) {
     throw StateError("derivatives: Data or Derivatives was built for another model (nv " +
                      std::to_string(model.nv) + ", nu " + std::to_string(model.nu) + ").");

@@ -150,6 +150,10 @@ const std::vector<FieldInfo>& data_field_table() {
   return table;
 }
 
+int constraint_rows_max(const Model& model) {
+  return 2 * model.njnt + (model.contacts_possible ? std::max(0, model.njmax) : 0);
+}
+
 int size_of(const Model& model, Size size) {
   switch (size) {
     case Size::kOne: return 1;
@@ -160,7 +164,7 @@ int size_of(const Model& model, Size size) {
     case Size::kNjnt: return model.njnt;
     case Size::kNgeom: return model.ngeom;
     case Size::kNsite: return model.nsite;
-    case Size::kNefc: return 2 * model.njnt;
+    case Size::kNefc: return constraint_rows_max(model);
   }
   return 0;
 }

@@ -1,6 +1,7 @@
 // The forward pipeline and inverse dynamics, stage by stage as MuJoCo 2.2.2's mj_forward and
-// mj_inverse: position (kinematics, M, limit rows, transmission), velocity (passive, bias,
-// reference accelerations), acceleration (motors, smooth dynamics, constraint solve).
+// mj_inverse: position (kinematics, contacts, M, constraint rows, transmission), velocity (passive,
+// bias, reference accelerations), acceleration (motors, smooth dynamics, constraint solve).
+#include <lever/collision.hpp>
 #include <lever/constraint.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/forward.hpp>
@@ -34,6 +35,11 @@ void check_inputs(Data& data) {
 
 void position_stage(const Model& model, Data& data) {
   kinematics(model, data);
+  if (model.contacts_possible) {
+    collision(model, data);
+  } else {
+    data.ncon = 0;
+  }
   crba(model, data);
   factor_mass(model, data);
   make_constraint(model, data);
@@ -74,11 +80,11 @@ void inverse(const Model& model, Data& data) {
   // limit forces implied by the given qacc: f = -D (J qacc - a_ref) where that pushes into the stop
   data.qfrc_constraint.setZero();
   for (int r = 0; r < data.nefc; ++r) {
-    const double jar = data.efc_sign[r] * data.qacc[data.efc_dof[r]] - data.efc_aref[r];
+    const double jar = constraint_row_dot(data, r, data.qacc) - data.efc_aref[r];
     const bool active = jar < 0;
     data.efc_force[r] = active ? -data.efc_D[r] * jar : 0.0;
     data.efc_state[r] = active ? ConstraintState::kActive : ConstraintState::kSatisfied;
-    data.qfrc_constraint[data.efc_dof[r]] += data.efc_sign[r] * data.efc_force[r];
+    add_constraint_row_transpose(data, r, data.efc_force[r], data.qfrc_constraint);
   }
 
   // M qacc + bias (armature included) is what every force together must supply

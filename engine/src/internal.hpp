@@ -26,6 +26,12 @@ void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref
 /// nullptr, also d imp / d pos.
 double impedance(const std::array<double, 5>& solimp, double pos, double margin, double* slope);
 
+/// J_r . x for constraint row r (constraint.cpp): a limit row's one entry, else the dense row.
+double constraint_row_dot(const Data& data, int r, const Eigen::VectorXd& x);
+
+/// x += J_r^T f for constraint row r (constraint.cpp).
+void add_constraint_row_transpose(const Data& data, int r, double f, Eigen::VectorXd& x);
+
 /// Record a warning of kind w about index info (MuJoCo's mj_warning).
 inline void record_warning(Data& data, Warning w, int info) {
   WarningStat& stat = data.warning[static_cast<int>(w)];

@@ -394,6 +394,26 @@ void check_at_qpos0(const Model& model, Data& data) {
   }
 }
 
+// Whether the collision stage can find anything (see Model::contacts_possible).
+bool contacts_possible(const Model& model) {
+  const auto n = static_cast<size_t>(model.ngeom);
+  const bool has_parameters = model.geom_friction.size() == n && model.geom_condim.size() == n &&
+                              model.geom_margin.size() == n;
+  if (!has_parameters) return false;
+  if (model.npair > 0) return true;
+  for (int g1 = 0; g1 < model.ngeom; ++g1) {
+    for (int g2 = g1 + 1; g2 < model.ngeom; ++g2) {
+      const int b1 = model.geom_bodyid[g1], b2 = model.geom_bodyid[g2];
+      if (b1 == b2 || (b1 == 0 && b2 == 0)) continue;
+      if ((model.geom_contype[g1] & model.geom_conaffinity[g2]) ||
+          (model.geom_contype[g2] & model.geom_conaffinity[g1])) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
 }  // namespace
 
 void set_const(Model& model) {
@@ -403,6 +423,7 @@ void set_const(Model& model) {
   check_mass(model);
   build_tree_sums(model);
   build_rotations(model);
+  model.contacts_possible = contacts_possible(model);
   static std::atomic<std::uint64_t> last_tag{0};
   model.fit_tag = ++last_tag;
 

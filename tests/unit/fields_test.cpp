@@ -227,6 +227,7 @@ TEST_CASE("every Data view has the table's size and points into its member", "[f
     CHECK(extent(data.M) == located(views[k]));
     k = next("qLDiagInv");
     k = next("actuator_length");
+    k = next("efc_type");
     k = next("efc_id");
     for (int r = 0; r < data.nefc; ++r) CHECK(data.efc_id[r] == mark(k, r));
     for (const FieldView& view : views) {

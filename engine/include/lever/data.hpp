@@ -49,7 +49,7 @@ struct WarningStat {
 /// One contact between two geoms (MuJoCo's mjContact): written by the collision functions (dist,
 /// pos, frame) and the pipeline that mixes the two geoms' parameters (the rest).
 struct Contact {
-  double dist = 0;             ///< signed distance along the normal (< 0: penetration)
+  double dist = 0;               ///< signed distance along the normal (< 0: penetration)
   Eigen::Vector3d pos{0, 0, 0};  ///< world frame, midway between the two surfaces
   /// rows: the normal (from geom1 into geom2), then two tangents (MuJoCo's mjContact.frame,
   /// which stores the same three axes as 9 numbers)
@@ -58,13 +58,23 @@ struct Contact {
   std::array<double, 5> friction{1, 1, 0.005, 0.0001, 0.0001};  ///< tangent1, 2, spin, roll1, 2
   std::array<double, 2> solref{0.02, 1};
   std::array<double, 5> solimp{0.9, 0.95, 0.001, 0.5, 2};
-  int dim = 3;           ///< condim: 1, 3, 4 or 6
+  int dim = 3;  ///< condim: 1, 3, 4 or 6
   int geom1 = -1, geom2 = -1;
   int exclude = 0;       ///< 1: beyond includemargin, no rows (MuJoCo's "in gap")
   int efc_address = -1;  ///< first row, -1 if none
+  double mu = 0;         ///< friction of the regularized cone, friction[0] sqrt(R_1 / R_0)
 };
 
-/// A joint-limit constraint row's state after the solve.
+/// What a constraint row is; the numeric values are MuJoCo's mjtConstraint (lever has joint
+/// limits and contacts without a friction cone or with a pyramidal one).
+enum class ConstraintType : int {
+  kLimitJoint = 3,
+  kContactFrictionless = 5,
+  kContactPyramidal = 6,
+  kContactElliptic = 7
+};
+
+/// A constraint row's state after the solve (MuJoCo's mjtConstraintState for one-sided rows).
 enum class ConstraintState : int { kSatisfied = 0, kActive = 1 };
 
 struct Data {
@@ -95,7 +105,8 @@ struct Data {
   std::vector<Motion> cdof;                  ///< (nv) motion subspace of each dof
   std::vector<RigidInertia> cinert;          ///< (nbody) spatial inertia of each body
 
-  // ---- position stage: collision() (issue 19) ----------------------------------------------------
+  // ---- position stage: collision() (issue 19)
+  // ----------------------------------------------------
   int ncon = 0;                  ///< contacts found
   std::vector<Contact> contact;  ///< (nconmax) the first ncon are current
 
@@ -108,11 +119,15 @@ struct Data {
   // ---- position stage: actuator transmission ---------------------------------------------------
   Eigen::VectorXd actuator_length;  ///< (nu) gear * qpos of the driven joint
 
-  // ---- position stage: joint-limit rows (make_constraint) -----------------------------------
-  int nefc = 0;                    ///< active rows: joints within `margin` of a stop
-  std::vector<int> efc_id;         ///< (nefc) joint id
-  std::vector<int> efc_dof;        ///< (nefc) the joint's dof
-  std::vector<double> efc_sign;    ///< (nefc) +1 lower stop, -1 upper stop: efc_J = sign * e_dof
+  // ---- position stage: constraint rows (make_constraint) -----------------------------------
+  // Joint limits within `margin` of a stop first, then each contact's rows (data.contact, those
+  // with exclude == 0): one for a frictionless contact, two per friction direction for a pyramid.
+  int nefc = 0;                          ///< rows
+  std::vector<ConstraintType> efc_type;  ///< (nefc)
+  std::vector<int> efc_id;               ///< (nefc) joint id (limit) or contact index (contact)
+  RowMatrix efc_J;                       ///< (nefc x nv) constraint Jacobian, rows dense
+  std::vector<int> efc_dof;              ///< (nefc) a limit row's dof, -1 for a contact row
+  std::vector<double> efc_sign;    ///< (nefc) +1 lower stop, -1 upper: a limit's efc_J = sign e_dof
   Eigen::VectorXd efc_pos;         ///< (nefc) signed distance to the stop (< 0 past it)
   Eigen::VectorXd efc_margin;      ///< (nefc)
   Eigen::VectorXd efc_diagApprox;  ///< (nefc) R * imp / (1 - imp), MuJoCo's final value
@@ -161,6 +176,8 @@ struct Data {
     Eigen::VectorXd lcp_f, lcp_w;      ///< (nefc_max) row forces and complementary residuals
     std::vector<int> lcp_active;       ///< (nefc_max) 1 for rows in the active set
     std::vector<int> lcp_index;        ///< (nefc_max) the active rows, in order
+    Eigen::MatrixXd jac1p, jac1r, jac2p, jac2r;  ///< (3 x nv) a contact's two point Jacobians
+    RowMatrix contact_jac;                       ///< (6 x nv) a contact's Jacobian in its frame
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages (rk_qpos0 nq, the rest nv)
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
     Eigen::MatrixXd qDeriv;                    ///< (nv x nv) implicit: d qfrc_smooth / d qvel
@@ -175,7 +192,7 @@ struct Data {
     std::vector<double> body_aabb;  ///< (6 nbody) broad phase: bounds along the eigenframe's axes
   } work;
 
-  int nefc_max = 0;  ///< 2 * njnt: the most limit rows a model can have
+  int nefc_max = 0;  ///< 2 * njnt limit rows, and njmax more if the model can make contacts
   /// The fit_tag of the model this Data was last checked against (lever/fields.hpp check_fit):
   /// a call with that model compares tags instead of walking the field table. The arrays a caller
   /// assigns (qpos, qvel, qacc, ctrl, qfrc_applied) are checked on every call; the outputs are

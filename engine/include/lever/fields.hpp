@@ -115,6 +115,7 @@
   X(M, double, nv, -1, position, own) /* MuJoCo: qM, sparse */ \
   X(qLDiagInv, double, nv, 1, position, mujoco)                \
   X(actuator_length, double, nu, 1, position, mujoco)          \
+  X(efc_type, int, nefc, 1, position, mujoco)                  \
   X(efc_id, int, nefc, 1, position, mujoco)                    \
   X(efc_pos, double, nefc, 1, position, mujoco)                \
   X(efc_margin, double, nefc, 1, position, mujoco)             \
@@ -182,6 +183,10 @@ const std::vector<FieldInfo>& data_field_table();
 
 /// How many rows `size` counts in this model (kNefc: the most limit rows it can have).
 int size_of(const Model& model, Size size);
+
+/// The most constraint rows a Data of this model holds: two limit rows per joint, and njmax
+/// contact rows when the model can make contacts (Model::contacts_possible).
+int constraint_rows_max(const Model& model);
 /// The same for a Data (kNefc: its live rows, data.nefc).
 int size_of(const Model& model, const Data& data, Size size);
 const char* size_name(Size size);

@@ -288,6 +288,12 @@ struct Model {
   std::vector<Eigen::Vector3d> jnt_axis_in_parent;
   std::vector<Eigen::Vector3d> jnt_pos_in_parent;
 
+  /// set_const: whether collision() can find contacts: the model has contact parameters (the
+  /// geom_* contact arrays; a model built by hand without them has no contacts) and a <pair>, or
+  /// two geoms on different bodies whose contype and conaffinity match. forward() runs the
+  /// collision stage, and Data makes room for njmax contact rows, only then.
+  bool contacts_possible = false;
+
   /// set_const: a number no other set_const call has given (0: never set). A Data checked
   /// against this model remembers it, so later calls need not check the whole field table again.
   std::uint64_t fit_tag = 0;

@@ -68,6 +68,9 @@ Labeler jacobian(const Model& model) {
 
 Labeler limit_row(const Model& model, const Data& data) {
   return [&model, &data](int r) {
+    if (data.efc_type[r] != ConstraintType::kLimitJoint) {
+      return "row " + std::to_string(r) + " (contact " + std::to_string(data.efc_id[r]) + ")";
+    }
     return "row " + std::to_string(r) + " (joint " + quoted(model.jnt_name, data.efc_id[r]) +
            (data.efc_sign[r] > 0 ? ", lower stop)" : ", upper stop)");
   };
@@ -131,8 +134,8 @@ bool compared_in_forward(const FieldInfo& info) {
          info.stage == Stage::kVelocity || info.stage == Stage::kAcceleration;
 }
 
-// Whether lever's limit rows are MuJoCo's rows (count, type, joint), row by row; reported as
-// nefc and efc_id.
+// Whether lever's constraint rows are MuJoCo's rows (count, then type and object row by row);
+// reported as nefc, efc_type and efc_id.
 bool compare_row_identity(const Twin& t, int k, Report& r) {
   const Data& data = t.data;
   const mjData* d = t.d.get();
@@ -140,16 +143,17 @@ bool compare_row_identity(const Twin& t, int k, Report& r) {
   if (data.nefc != d->nefc) return false;
   bool same_rows = true;
   for (int i = 0; i < data.nefc; ++i) {
-    const bool limit = d->efc_type[i] == mjCNSTR_LIMIT_JOINT;
-    r.compare("efc_id", k, data.efc_id[i], limit ? d->efc_id[i] : -1, "row " + std::to_string(i));
-    same_rows = same_rows && limit && data.efc_id[i] == d->efc_id[i];
+    const std::string row = "row " + std::to_string(i);
+    r.compare("efc_type", k, static_cast<int>(data.efc_type[i]), d->efc_type[i], row);
+    r.compare("efc_id", k, data.efc_id[i], d->efc_id[i], row);
+    same_rows = same_rows && static_cast<int>(data.efc_type[i]) == d->efc_type[i] &&
+                data.efc_id[i] == d->efc_id[i];
   }
   return same_rows;
 }
 
-// The limit rows' own arrays, which MuJoCo holds in another layout: efc_J (lever keeps each row's
-// dof and sign, the only nonzero of a joint-limit row) and efc_KBIP (lever's efc_K, efc_B,
-// efc_imp as three arrays).
+// The rows' arrays MuJoCo holds in another layout: efc_J (dense here: lever's, row-major) and
+// efc_KBIP (lever's efc_K, efc_B, efc_imp as three arrays).
 void compare_row_layouts(const Twin& t, int k, Report& r) {
   const Model& model = t.model;
   const Data& data = t.data;
@@ -158,7 +162,9 @@ void compare_row_layouts(const Twin& t, int k, Report& r) {
   const Labeler row = limit_row(model, data);
   if (!mj_isSparse(t.m.get())) {
     std::vector<double> jac(static_cast<std::size_t>(n) * nv, 0.0);
-    for (int i = 0; i < n; ++i) jac[i * nv + data.efc_dof[i]] = data.efc_sign[i];
+    for (int i = 0; i < n; ++i) {
+      for (int c = 0; c < nv; ++c) jac[i * nv + c] = data.efc_J(i, c);
+    }
     r.compare("efc_J", k, jac.data(), d->efc_J, n * nv,
               [&](int i) { return row(i / nv) + ", column " + dof_label(model, i % nv); });
   }
@@ -171,6 +177,35 @@ void compare_row_layouts(const Twin& t, int k, Report& r) {
   r.compare("efc_imp", k, data.efc_imp.data(), impedance.data(), n, row);
   r.compare("efc_K", k, data.efc_K.data(), stiffness.data(), n, row);
   r.compare("efc_B", k, data.efc_B.data(), damping.data(), n, row);
+}
+
+// The contacts (mjData.contact): their number, then each one's geoms, dim and exclude exactly and
+// its numbers within the bound, when the lists name the same geoms.
+void compare_contacts(const Twin& t, int k, Report& r) {
+  const Data& data = t.data;
+  const mjData* d = t.d.get();
+  r.compare("ncon", k, data.ncon, d->ncon);
+  if (data.ncon != d->ncon) return;
+  for (int i = 0; i < data.ncon; ++i) {
+    const Contact& ours = data.contact[i];
+    const mjContact& theirs = d->contact[i];
+    const std::string label = "contact " + std::to_string(i);
+    r.compare("contact geom1", k, ours.geom1, theirs.geom1, label);
+    r.compare("contact geom2", k, ours.geom2, theirs.geom2, label);
+    r.compare("contact dim", k, ours.dim, theirs.dim, label);
+    r.compare("contact exclude", k, ours.exclude, theirs.exclude, label);
+    r.compare("contact efc_address", k, ours.efc_address, theirs.efc_address, label);
+    if (ours.geom1 != theirs.geom1 || ours.geom2 != theirs.geom2) continue;
+    const auto indexed = [&label](int c) { return label + ", " + std::to_string(c); };
+    r.compare("contact dist", k, ours.dist, theirs.dist, label);
+    r.compare("contact pos", k, ours.pos.data(), theirs.pos, 3, indexed);
+    std::vector<double> frame(9);
+    for (int c = 0; c < 9; ++c) frame[c] = ours.frame(c / 3, c % 3);
+    r.compare("contact frame", k, frame.data(), theirs.frame, 9, indexed);
+    r.compare("contact includemargin", k, ours.includemargin, theirs.includemargin, label);
+    r.compare("contact friction", k, ours.friction.data(), theirs.friction, 5, indexed);
+    r.compare("contact mu", k, ours.mu, theirs.mu, label);
+  }
 }
 
 // Every array of Data's table that MuJoCo has and forward() writes, against MuJoCo's array of
@@ -204,6 +239,7 @@ void compare_forward_outputs(const Twin& t, int k, Report& r) {
     }
   }
   for (const char* q : {"nefc", "efc_J", "efc_imp", "efc_K", "efc_B"}) r.declare(q);
+  compare_contacts(t, k, r);
 
   const bool same_rows = compare_row_identity(t, k, r);
   std::vector<double> lever_values, mujoco_values;
@@ -219,7 +255,7 @@ void compare_forward_outputs(const Twin& t, int k, Report& r) {
       continue;
     }
     if (!info.in_mujoco) continue;
-    if (name == "efc_id") continue;  // compared by compare_row_identity
+    if (name == "efc_id" || name == "efc_type") continue;  // compared by compare_row_identity
     if (info.rows == Size::kNefc && !same_rows) continue;
     const auto found = theirs.find(name);
     if (found == theirs.end() || !test::same_layout(view, found->second)) {

@@ -1,0 +1,93 @@
+// Contact dynamics against MuJoCo 2.2.2 (issue 19): the scenes of tests/diff/contact_scenes with
+// MuJoCo's compiled model copied into lever (the engine path: the loader's contact attributes are
+// tested in tests/mjcf), at random states: the contacts, the constraint rows (efc_J, pos, margin,
+// R, D, aref, diagApprox) within the 1e-12 bound; qacc, qfrc_constraint and efc_force, which
+// MuJoCo finds iteratively, against MuJoCo run with tolerance 0 and 1000 iterations (its answer is
+// then the problem's unique minimizer) within 1e-10 relative, the worst reported against 1e-12.
+// Then one step of each integrator from the same states.
+#include <mujoco/mujoco.h>
+#include <catch2/catch.hpp>
+
+#include <lever/diff/compare.hpp>
+#include <lever/diff/report.hpp>
+#include <lever/diff/twin.hpp>
+#include <lever/lever.hpp>
+
+#include <algorithm>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <lever/harness/models.hpp>
+#include <lever/harness/random_state.hpp>
+#include <lever/harness/tolerance.hpp>
+
+namespace lever::test {
+
+namespace {
+
+std::string scene(const std::string& name) {
+  return source_dir() + "/tests/diff/contact_scenes/" + name;
+}
+
+// MuJoCo's answer made unique: its Newton solver run to convergence.
+void converge_mujoco(diff::Twin& twin) {
+  twin.m->opt.tolerance = 0;
+  twin.m->opt.iterations = 1000;
+}
+
+// The quantities an iterative solver decides: held to 1e-10 of their magnitude.
+bool solver_quantity(const std::string& q) {
+  return q == "qacc" || q == "qfrc_constraint" || q == "efc_force" || q == "efc_state" ||
+         q.rfind("qpos after", 0) == 0 || q.rfind("qvel after", 0) == 0 ||
+         q.find("qfrc_inverse") != std::string::npos;
+}
+
+// A state of a scene: the free bodies dropped into it or resting on what is below them, the
+// servo targets anywhere in their ranges.
+State scene_state(const Model& model, std::mt19937_64& rng, int k) {
+  State s = random_state(model, rng);
+  // a quarter of the states at rest, where contacts are steady
+  if (k % 4 == 0) s.qvel.setZero();
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("diff: contact scenes agree with MuJoCo at random states (engine path)",
+          "[diff][contact]") {
+  REQUIRE(mj_version() == 222);
+  for (const char* name : {"box_drop.xml", "gripper.xml", "free_objects.xml"}) {
+    diff::Twin twin(scene(name), diff::Path::kEngine);
+    converge_mujoco(twin);
+    std::mt19937_64 rng(seed_for(name));
+    diff::Report report;
+    int with_contacts = 0;
+    for (int k = 0; k < 200; ++k) {
+      const State s = scene_state(twin.model, rng, k);
+      diff::compare_forward(twin, s, k, report);
+      with_contacts += twin.data.ncon > 0 && twin.data.nefc > 0;
+      for (const Integrator integrator :
+           {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
+        diff::compare_step(twin, s, integrator, k, report);
+      }
+    }
+    INFO(name << ": " << with_contacts << " of 200 states with contact rows");
+    CHECK(with_contacts > 20);
+    double worst_solver = 0;
+    for (const diff::Extreme& e : report.quantities()) {
+      INFO(name << ": " << e.quantity << " [" << e.element << "] state " << e.state << ": lever "
+                << e.lever << " vs mujoco " << e.mujoco << ", " << e.max_ratio << " of 1e-12");
+      if (solver_quantity(e.quantity)) {
+        worst_solver = std::max(worst_solver, e.max_ratio);
+        CHECK(e.max_ratio <= 100.0);  // 1e-10 relative
+      } else {
+        CHECK(e.max_ratio <= 1.0);
+      }
+    }
+    WARN(name << ": the solver's outputs within " << worst_solver * 1e-12
+              << " of MuJoCo's (relative to max(1, |value|))");
+  }
+}
+
+}  // namespace lever::test
