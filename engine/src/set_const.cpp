@@ -50,6 +50,12 @@ void check_sizes(Model& model) {
         "and nkey x nu (nkey = " +
         std::to_string(model.nkey) + ").");
   }
+  // contact (issue 19): the counts the contact arrays of the field table are sized by
+  if (model.npair < 0 || model.nexclude < 0 || model.nconmax < 0 || model.njmax < 0) {
+    throw ModelError("npair, nexclude, nconmax and njmax must be non-negative; got " +
+                     std::to_string(model.npair) + ", " + std::to_string(model.nexclude) + ", " +
+                     std::to_string(model.nconmax) + ", " + std::to_string(model.njmax) + ".");
+  }
   // what set_const derives is sized here; every other array must have the size the field table
   // gives it (lever/fields.hpp)
   model.body_rootid.resize(model.nbody);

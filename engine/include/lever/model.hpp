@@ -98,6 +98,8 @@ struct Options {
   double impratio = 1.0;         ///< frictional-to-normal impedance ratio (elliptic cones)
   int iterations = 100;          ///< solver iterations (lever's solver stops on convergence)
   double tolerance = 1e-8;       ///< solver tolerance
+  /// <flag contact="disable"> (MuJoCo's mjDSBL_CONTACT): no collision stage, no contacts
+  bool contact_disabled = false;
 };
 
 /// Compiler settings that stay meaningful after compilation (read by `lever check`).
