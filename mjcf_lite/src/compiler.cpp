@@ -9,6 +9,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "inertia.hpp"
 #include "mesh.hpp"
@@ -801,41 +802,58 @@ class Compiler {
       return w == 0 ? 0 : weld_[static_cast<size_t>(nodes_[static_cast<size_t>(w)].parent)];
     };
     const auto excluded = [&](int b1, int b2) {
-      const int signature = body_pair_signature(b1, b2);
-      return std::any_of(excludes_.begin(), excludes_.end(),
-                         [&](const CompiledExclude& x) { return x.signature == signature; });
+      const int signature = body_pair_signature(b1, b2);  // excludes_ is sorted by it
+      const auto at =
+          std::lower_bound(excludes_.begin(), excludes_.end(), signature,
+                           [](const CompiledExclude& x, int value) { return x.signature < value; });
+      return at != excludes_.end() && at->signature == signature;
     };
-    std::vector<std::pair<int, int>> unsupported;
-    const auto consider = [&](int a, int b) {
+    // a pair MuJoCo tests without being told (mj_collision's dynamic pairs)
+    const auto dynamic_candidate = [&](int a, int b) {
+      const CompiledGeom& ga = geoms_[static_cast<size_t>(a)];
+      const CompiledGeom& gb = geoms_[static_cast<size_t>(b)];
+      if (!(ga.spec->contype & gb.spec->conaffinity) &&
+          !(gb.spec->contype & ga.spec->conaffinity)) {
+        return false;
+      }
+      const int wa = weld_[static_cast<size_t>(ga.body)];
+      const int wb = weld_[static_cast<size_t>(gb.body)];
+      if (wa == wb) return false;
+      if (wa != 0 && wb != 0 && (wa == weld_parent(wb) || wb == weld_parent(wa))) return false;
+      return !excluded(ga.body, gb.body);
+    };
+    const auto unsupported_types = [&](int a, int b) {
       const GeomType ta = geoms_[static_cast<size_t>(a)].spec->type;
       const GeomType tb = geoms_[static_cast<size_t>(b)].spec->type;
-      if (lever_collides(ta, tb) || (ta == GeomType::kPlane && tb == GeomType::kPlane)) return;
-      const std::pair<int, int> key{std::min(a, b), std::max(a, b)};
-      if (std::find(unsupported.begin(), unsupported.end(), key) == unsupported.end()) {
-        unsupported.push_back(key);
-      }
+      return !lever_collides(ta, tb) && !(ta == GeomType::kPlane && tb == GeomType::kPlane);
     };
-    for (size_t a = 0; a < geoms_.size(); ++a) {
-      for (size_t b = a + 1; b < geoms_.size(); ++b) {
-        const GeomSpec& ga = *geoms_[a].spec;
-        const GeomSpec& gb = *geoms_[b].spec;
-        if (!(ga.contype & gb.conaffinity) && !(gb.contype & ga.conaffinity)) continue;
-        const int wa = weld_[static_cast<size_t>(geoms_[a].body)];
-        const int wb = weld_[static_cast<size_t>(geoms_[b].body)];
-        if (wa == wb) continue;
-        if (wa != 0 && wb != 0 && (wa == weld_parent(wb) || wb == weld_parent(wa))) continue;
-        if (excluded(geoms_[a].body, geoms_[b].body)) continue;
-        consider(static_cast<int>(a), static_cast<int>(b));
+    // the first pairs are named, the rest only counted (a model of 10000 mesh geoms has 5e7)
+    constexpr size_t kListed = 10;
+    std::vector<std::pair<int, int>> unsupported;
+    size_t count = 0;
+    const auto note = [&](int a, int b) {
+      if (++count <= kListed) unsupported.push_back({std::min(a, b), std::max(a, b)});
+    };
+    for (int a = 0; a < static_cast<int>(geoms_.size()); ++a) {
+      for (int b = a + 1; b < static_cast<int>(geoms_.size()); ++b) {
+        if (unsupported_types(a, b) && dynamic_candidate(a, b)) note(a, b);
       }
     }
-    for (const CompiledPair& p : pairs_) consider(p.geom1, p.geom2);
+    // explicit pairs not already counted as dynamic ones, each once
+    std::set<std::pair<int, int>> explicit_pairs;
+    for (const CompiledPair& p : pairs_) {
+      const std::pair<int, int> key{std::min(p.geom1, p.geom2), std::max(p.geom1, p.geom2)};
+      if (!unsupported_types(key.first, key.second) || !explicit_pairs.insert(key).second) continue;
+      if (key.first == key.second || !dynamic_candidate(key.first, key.second)) {
+        note(key.first, key.second);
+      }
+    }
 
     const auto label = [&](int g) {
       const std::string& name = geoms_[static_cast<size_t>(g)].spec->at.name;
       return name.empty() ? "#" + std::to_string(g) : "'" + name + "'";
     };
-    constexpr size_t kListed = 10;  // one warning per pair for the first ones, then a count
-    for (size_t k = 0; k < unsupported.size() && k < kListed; ++k) {
+    for (size_t k = 0; k < unsupported.size(); ++k) {
       const auto [a, b] = unsupported[k];
       const GeomSpec& ga = *geoms_[static_cast<size_t>(a)].spec;
       const GeomSpec& gb = *geoms_[static_cast<size_t>(b)].spec;
@@ -848,8 +866,8 @@ class Compiler {
                           "other; " +
                           advice_for(ga.type, gb.type));
     }
-    if (unsupported.size() > kListed) {
-      warnings_.push_back("and " + std::to_string(unsupported.size() - kListed) +
+    if (count > kListed) {
+      warnings_.push_back("and " + std::to_string(count - kListed) +
                           " more geom pairs that can collide and that lever cannot compute "
                           "(meshes, and cylinders or ellipsoids against anything but a plane)");
     }

@@ -16,8 +16,8 @@
 
 #include <lever/mjcf.hpp>
 
-#include "run_process.hpp"
 #include <lever/harness/models.hpp>
+#include "run_process.hpp"
 
 namespace {
 
@@ -197,6 +197,25 @@ void make_files() {
                     "<actuator><motor joint=\"" + std::string(4000, 'k') + "\"/></actuator>\n");
   write("long-names-1000-joints.xml", long_names);
   write("unclosed-comment.xml", "<mujoco>\n<!-- never closed\n<worldbody/>\n</mujoco>\n");
+  // contact (issue 19): valid MJCF that lever refuses, each with its reason
+  write("contact-override.xml",
+        "<mujoco>\n<option>\n<flag override=\"enable\"/>\n</option>\n</mujoco>\n");
+  write("contact-noslip.xml", "<mujoco>\n<option noslip_iterations=\"10\"/>\n</mujoco>\n");
+  write("contact-condim-5.xml",
+        "<mujoco>\n<worldbody>\n<geom name=\"a\" size=\"1\"/>\n<body><joint/><geom name=\"b\" "
+        "size=\"1\"/></body>\n</worldbody>\n<contact><pair geom1=\"a\" geom2=\"b\" "
+        "condim=\"5\"/></contact>\n</mujoco>\n");
+  write("contact-moving-plane.xml",
+        "<mujoco>\n<worldbody>\n<body><joint/><geom size=\"1\"/>\n<geom type=\"plane\" "
+        "size=\"1 1 1\"/></body>\n</worldbody>\n</mujoco>\n");
+  write("contact-solver-cg.xml", "<mujoco>\n<option solver=\"CG\"/>\n</mujoco>\n");
+  std::string pairs =
+      "<mujoco>\n<worldbody>\n<geom name=\"floor\" type=\"plane\" size=\"0 0 1\"/>\n";
+  pairs += "<body><joint/><geom name=\"g\" type=\"cylinder\" size=\"0.1 0.1\"/></body>\n";
+  pairs += "</worldbody>\n<contact>\n";
+  for (int i = 0; i < 20000; ++i)
+    pairs += "<pair geom1=\"g\" geom2=\"floor\"/><exclude body1=\"world\" body2=\"world\"/>\n";
+  write("contact-20000-pairs.xml", pairs + "</contact>\n</mujoco>\n");
   write("cdata.xml", "<mujoco>\n<worldbody><![CDATA[<body/>]]></worldbody>\n</mujoco>\n");
   write("unlimited.xml", kUnlimited);
   std::filesystem::create_directories(dir() / "a-directory.xml");
@@ -230,6 +249,17 @@ std::vector<Row> rows() {
        "not supported by lever",
        2},
       {"URDF instead of MJCF", {"model", "@urdf.xml"}, 2, "this is URDF", 1},
+      // ---- contact: valid MJCF lever does not have -----------------------------------------
+      {"contact override", {"model", "@contact-override.xml"}, 2, "no contact override", 3},
+      {"noslip solver", {"model", "@contact-noslip.xml"}, 2, "no noslip solver", 2},
+      {"pair condim 5", {"model", "@contact-condim-5.xml"}, 2, "MuJoCo has no condim 5", 6},
+      {"plane in a moving body", {"model", "@contact-moving-plane.xml"}, 2, "use a box", 4},
+      {"solver CG", {"model", "@contact-solver-cg.xml"}, 2, "which has 'Newton'", 2},
+      {"20000 pairs and exclusions of one geom pair",
+       {"model", "@contact-20000-pairs.xml"},
+       0,
+       "",
+       -2},
       {"10000 unknown attributes", {"model", "@many-attributes.xml"}, 2, "unknown attribute", 3},
       // ---- files -----------------------------------------------------------------------------
       {"missing file", {"model", "@does-not-exist.xml"}, 2, "no such file", 0},
