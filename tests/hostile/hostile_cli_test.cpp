@@ -435,7 +435,7 @@ TEST_CASE("hostile inputs: a clear message, the right exit status, no crash, no 
       CHECK(!prints_non_finite(p.out));
       CHECK(!prints_non_finite(p.err));
       if (row.exit == 0) {
-        // success writes nothing to stderr but the loader's warnings (geoms MuJoCo could collide)
+        // success writes nothing to stderr but the loader's warnings (pairs lever cannot collide)
         std::istringstream lines(p.err);
         for (std::string line; std::getline(lines, line);) {
           CHECK_THAT(line, Catch::StartsWith("lever ") && Catch::Contains(": warning: "));

@@ -125,8 +125,9 @@ struct Model {
   Options opt;
   CompilerInfo compiler;
   VisualInfo visual;
-  /// What the compiler noticed that MuJoCo would simulate and lever does not (geoms that could
-  /// collide: lever computes no contacts), one sentence each; empty for a clean model.
+  /// What the compiler noticed that MuJoCo would simulate and lever does not (geom pairs that can
+  /// collide and that lever has no contact function for), one sentence each; empty for a clean
+  /// model.
   std::vector<std::string> warnings;
 
   // ---- sizes -------------------------------------------------------------------------------
