@@ -148,7 +148,7 @@ Report run_check(const Inputs& inputs) {
   clamping_findings(report.clamping, report.findings);
   stability_findings(report.stability, report.findings);
   warning_findings(report, report.findings);
-  // what the loader noticed (geom pairs MuJoCo could collide, where lever has no contacts)
+  // what the loader noticed (geom pairs that can collide and that lever cannot compute)
   for (const std::string& w : model.warnings) report.findings.push_back(w);
   return report;
 }

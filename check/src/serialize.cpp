@@ -79,7 +79,9 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kNsite: return name_or_index(model.site_name, i);
     case Size::kNgeom: return name_or_index(model.geom_name, i);
     case Size::kOne:
-    case Size::kNefc: break;
+    case Size::kNefc:
+    case Size::kNpair:  // pairs and exclusions have no names in lever: their index
+    case Size::kNexclude: break;
   }
   return std::to_string(i);
 }

@@ -16,7 +16,7 @@ namespace {
 namespace token {
 constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nbody = Size::kNbody, njnt = Size::kNjnt, ngeom = Size::kNgeom, nsite = Size::kNsite,
-               nefc = Size::kNefc;
+               nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy;
@@ -165,6 +165,8 @@ int size_of(const Model& model, Size size) {
     case Size::kNgeom: return model.ngeom;
     case Size::kNsite: return model.nsite;
     case Size::kNefc: return constraint_rows_max(model);
+    case Size::kNpair: return model.npair;
+    case Size::kNexclude: return model.nexclude;
   }
   return 0;
 }
@@ -174,8 +176,8 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 9> names = {"1",    "nq",    "nv",    "nu",  "nbody",
-                                                       "njnt", "ngeom", "nsite", "nefc"};
+  static constexpr std::array<const char*, 11> names = {
+      "1", "nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "nefc", "npair", "nexclude"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -268,18 +270,19 @@ void size_data_arrays(const Model& model, Data& data) {
 }  // namespace detail
 
 void check_model_sizes(const Model& model) {
-#define LEVER_MODEL_SIZE(name, type, rows, cols, origin)                              \
-  {                                                                                   \
-    const int n = size_of(model, token::rows);                                        \
-    const long expected = static_cast<long>(n) * resolve_cols(cols, n);               \
-    const long actual = Layout<decltype(Model::name)>::entries(model.name);           \
-    if (actual != expected) {                                                         \
-      throw ModelError("Model::" #name " holds " + shape_text(actual) +               \
-                       " but the model's sizes "                                      \
-                       "give it " +                                                   \
-                       shape_text(expected) + " (" + size_name(token::rows) + " = " + \
-                       std::to_string(n) + ").");                                     \
-    }                                                                                 \
+#define LEVER_MODEL_SIZE(name, type, rows, cols, origin)                                       \
+  {                                                                                            \
+    const int n = size_of(model, token::rows);                                                 \
+    const long expected = static_cast<long>(n) * resolve_cols(cols, n);                        \
+    const long actual = Layout<decltype(Model::name)>::entries(model.name);                    \
+    if (actual != expected) {                                                                  \
+      throw ModelError("Model::" #name " holds " + shape_text(actual) +                        \
+                       " but the model's sizes "                                               \
+                       "give it " +                                                            \
+                       shape_text(expected) + " (" + size_name(token::rows) + " = " +          \
+                       std::to_string(n) + ")" +                                               \
+                       (actual == 0 ? ": a model built by hand must fill it too" : "") + "."); \
+    }                                                                                          \
   }
   LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE)
 #undef LEVER_MODEL_SIZE

@@ -58,6 +58,12 @@ void check_sizes(Model& model) {
         "and nkey x nu (nkey = " +
         std::to_string(model.nkey) + ").");
   }
+  // contact (issue 19): the counts the contact arrays of the field table are sized by
+  if (model.npair < 0 || model.nexclude < 0 || model.nconmax < 0 || model.njmax < 0) {
+    throw ModelError("npair, nexclude, nconmax and njmax must be non-negative; got " +
+                     std::to_string(model.npair) + ", " + std::to_string(model.nexclude) + ", " +
+                     std::to_string(model.nconmax) + ", " + std::to_string(model.njmax) + ".");
+  }
   // what set_const derives is sized here; every other array must have the size the field table
   // gives it (lever/fields.hpp)
   model.body_rootid.resize(model.nbody);
@@ -399,7 +405,7 @@ bool contacts_possible(const Model& model) {
   const auto n = static_cast<size_t>(model.ngeom);
   const bool has_parameters = model.geom_friction.size() == n && model.geom_condim.size() == n &&
                               model.geom_margin.size() == n;
-  if (!has_parameters) return false;
+  if (!has_parameters || model.opt.contact_disabled) return false;
   if (model.npair > 0) return true;
   for (int g1 = 0; g1 < model.ngeom; ++g1) {
     for (int g2 = g1 + 1; g2 < model.ngeom; ++g2) {
@@ -423,7 +429,8 @@ void set_const(Model& model) {
   check_mass(model);
   build_tree_sums(model);
   build_rotations(model);
-  model.contacts_possible = contacts_possible(model);
+  // the constants and the checks at qpos0 are about the parameters: computed without contacts
+  model.contacts_possible = false;
   static std::atomic<std::uint64_t> last_tag{0};
   model.fit_tag = ++last_tag;
 
@@ -469,6 +476,11 @@ void set_const(Model& model) {
     model.body_invweight0[b] = weight;
   }
   check_at_qpos0(model, data);
+
+  // from here on a Data of this model makes room for contact rows, and forward() collides: a
+  // new edition, so that Data made before are checked again
+  model.contacts_possible = contacts_possible(model);
+  model.fit_tag = ++last_tag;
 }
 
 }  // namespace lever

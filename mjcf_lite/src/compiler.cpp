@@ -4,11 +4,14 @@
 // run in MuJoCo's order.
 #include "compiler.hpp"
 
+#include <lever/collision.hpp>
+
 #include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <map>
 #include <optional>
+#include <set>
 
 #include "inertia.hpp"
 #include "mesh.hpp"
@@ -65,6 +68,22 @@ struct CompiledMotor {
   bool ctrllimited = false, forcelimited = false;
 };
 
+// a <contact><pair>, its geoms ordered by body as MuJoCo orders them
+struct CompiledPair {
+  const PairSpec* spec;
+  int geom1 = -1, geom2 = -1;
+  int signature = 0;
+};
+
+struct CompiledExclude {
+  int signature = 0;
+};
+
+// MuJoCo's signature of a body pair (mjCPair, mjCBodyPair): the lower body id first, both + 1
+int body_pair_signature(int body1, int body2) {
+  return ((std::min(body1, body2) + 1) << 16) + std::max(body1, body2) + 1;
+}
+
 std::string show3(const Vec3& v) { return show(v[0]) + " " + show(v[1]) + " " + show(v[2]); }
 
 // finite input can still overflow (a huge density, fromto or settotalmass): refuse the result
@@ -108,7 +127,9 @@ int sizes_used(GeomType type) {
     case GeomType::kCylinder: return 2;
     case GeomType::kEllipsoid:
     case GeomType::kBox: return 3;
-    case GeomType::kMesh: return 0;  // its size comes from the mesh
+    case GeomType::kMesh: return 0;    // its size comes from the mesh
+    case GeomType::kPlane:             // only its grid spacing must be positive (compile_geom)
+    case GeomType::kHfield: return 0;  // refused by the parser
   }
   return 3;
 }
@@ -121,6 +142,8 @@ const char* type_name(GeomType type) {
     case GeomType::kEllipsoid: return "ellipsoid";
     case GeomType::kBox: return "box";
     case GeomType::kMesh: return "mesh";
+    case GeomType::kPlane: return "plane";
+    case GeomType::kHfield: return "hfield";
   }
   return "geom";
 }
@@ -134,8 +157,30 @@ const char* size_meaning(GeomType type) {
     case GeomType::kEllipsoid: return "three positive semi-axes: size=\"a b c\"";
     case GeomType::kBox: return "three positive half-sizes: size=\"x y z\"";
     case GeomType::kMesh: return "nothing (the mesh gives its size)";
+    case GeomType::kPlane:
+      return "a positive third size, the grid spacing it is drawn with: size=\"x y spacing\" (x, "
+             "y: half-sizes drawn, 0 for infinite)";
+    case GeomType::kHfield: return "an hfield asset";
   }
   return "";
+}
+
+// radius of the sphere around the geom's centre that holds it (mjCGeom::GetRBound); 0 for a
+// plane, which is infinite; a mesh geom's from the half-sizes of its bounding box (zero for a mesh
+// lever did not read, see apply_mesh)
+double bounding_radius(GeomType type, const Vec3& size) {
+  switch (type) {
+    case GeomType::kSphere: return size[0];
+    case GeomType::kCapsule: return size[0] + size[1];
+    case GeomType::kCylinder: return std::sqrt(size[0] * size[0] + size[1] * size[1]);
+    case GeomType::kEllipsoid: return std::max(std::max(size[0], size[1]), size[2]);
+    case GeomType::kBox:
+    case GeomType::kMesh:
+      return std::sqrt(size[0] * size[0] + size[1] * size[1] + size[2] * size[2]);
+    case GeomType::kPlane:
+    case GeomType::kHfield: return 0;
+  }
+  return 0;
 }
 
 // resolve limited="auto" (mujoco: checklimited); the attribute names are for the message
@@ -164,10 +209,11 @@ class Compiler {
     flatten(spec_.world, 0);
     check_names();
     for (size_t id = 0; id < bodies_.size(); ++id) compile_body(static_cast<int>(id));
+    compile_contact();
     for (const MotorSpec& m : spec_.motors) motors_.push_back(compile_motor(m));
     check_moving_bodies();
     for (const KeySpec& k : spec_.keys) check_key(k);
-    find_collision_pairs();
+    warn_unsupported_pairs();
     scale_total_mass();
     if (where) {
       for (const BodyNode& n : nodes_) where->body.push_back(n.spec->at);
@@ -186,6 +232,8 @@ class Compiler {
     const int id = static_cast<int>(nodes_.size());
     nodes_.push_back({&b, parent, {}});
     if (id > 0) nodes_[static_cast<size_t>(parent)].children.push_back(id);
+    // the body it moves with: itself if it has joints, else its parent's (mujoco's weldid)
+    weld_.push_back(id == 0 || !b.joints.empty() ? id : weld_[static_cast<size_t>(parent)]);
     bodies_.emplace_back();
     for (const BodySpec& child : b.children) flatten(child, id);
   }
@@ -230,6 +278,11 @@ class Compiler {
     check_unique(geoms, "geom");
     check_unique(sites, "site");
     check_unique(motors, "motor");
+    std::vector<std::pair<const Place*, std::string>> pairs, excludes;
+    for (const PairSpec& p : spec_.pairs) pairs.push_back({&p.at, p.at.name});
+    for (const ExcludeSpec& x : spec_.excludes) excludes.push_back({&x.at, x.at.name});
+    check_unique(pairs, "pair");
+    check_unique(excludes, "exclude");
   }
 
   // ---- bodies ---------------------------------------------------------------------------------
@@ -458,8 +511,12 @@ class Compiler {
   CompiledGeom compile_geom(const GeomSpec& g, int body, bool gives_mass) {
     check_mesh(g);
     if (!g.material.empty()) require_asset(g.at, "material", g.material, spec_.assets.materials);
-    if (g.condim != 1 && g.condim != 3 && g.condim != 4 && g.condim != 6) {
-      fail(g.at, "condim", "condim must be 1, 3, 4 or 6 (found " + std::to_string(g.condim) + ")");
+    check_condim(g.at, g.condim);
+    if (g.type == GeomType::kPlane && weld_[static_cast<size_t>(body)] != 0) {
+      const std::string& name = nodes_[static_cast<size_t>(body)].spec->at.name;
+      fail(g.at, "type",
+           "a plane is infinite, so it may only be in a body fixed to the world, and body '" +
+               name + "' moves (it or a parent has a joint): use a box for a moving floor or wall");
     }
     CompiledGeom out{&g, body, g.size, g.pos, g.orientation.quat, 0, {}};
     normalize(out.quat.data(), 4);
@@ -468,6 +525,11 @@ class Compiler {
     } else if (const char* reason =
                    apply_alternatives(g.orientation, c_.degree, c_.eulerseq, out.quat, nullptr)) {
       fail_orientation(g.at, reason);
+    }
+    if (g.type == GeomType::kPlane && !(out.size[2] > 0)) {
+      fail(g.at, "size",
+           std::string("a plane needs ") + size_meaning(g.type) + "; it has size \"" +
+               show3(out.size) + "\"");
     }
     for (int k = 0; k < sizes_used(g.type); ++k) {
       if (!(out.size[static_cast<size_t>(k)] > 0)) {
@@ -494,8 +556,10 @@ class Compiler {
 
   // a segment geom: centre, length and orientation (+z points from `to` back to `from`)
   void apply_fromto(const GeomSpec& g, CompiledGeom& out) {
-    if (g.type == GeomType::kSphere) {
-      fail(g.at, "fromto", "fromto needs a capsule, cylinder, ellipsoid or box, not a sphere");
+    if (g.type == GeomType::kSphere || g.type == GeomType::kPlane) {
+      fail(g.at, "fromto",
+           std::string("fromto needs a capsule, cylinder, ellipsoid or box, not a ") +
+               type_name(g.type));
     }
     if (g.pos[0] != 0 || g.pos[1] != 0 || g.pos[2] != 0) {
       fail(g.at, "pos", "a geom with fromto takes its position from fromto; remove pos");
@@ -667,52 +731,164 @@ class Compiler {
     return n;
   }
 
-  // Geoms MuJoCo would test for contact (mj_contactFilter with filterparent on): compatible
-  // contype/conaffinity bits, on bodies that move relative to each other, neither body welded to
-  // the other's parent. lever computes no contacts, so each such pair is a place where MuJoCo
-  // could differ; the compiler says so instead of staying silent.
-  void find_collision_pairs() {
-    const size_t n = nodes_.size();
-    std::vector<int> weld(n, 0);
-    for (size_t b = 1; b < n; ++b) {
-      weld[b] = nodes_[b].spec->joints.empty() ? weld[static_cast<size_t>(nodes_[b].parent)]
-                                               : static_cast<int>(b);
+  // ---- contact -------------------------------------------------------------------------------
+
+  static void check_condim(const Place& at, int condim) {
+    if (condim != 1 && condim != 3 && condim != 4 && condim != 6) {
+      fail(at, "condim",
+           "condim must be 1 (normal force only), 3 (and sliding friction), 4 (and torsional) or "
+           "6 (and rolling); MuJoCo has no condim " +
+               std::to_string(condim));
     }
+  }
+
+  // the geom or body called `name`, or a ParseError at `at` naming the attribute
+  template <class Names>
+  static int find_by_name(const Names& names, const std::string& name, const Place& at,
+                          const char* attribute, const char* kind) {
+    if (name.empty()) {
+      fail(at, attribute, std::string("attribute '") + attribute + "' is empty: name a " + kind);
+    }
+    std::vector<std::string_view> candidates;
+    for (size_t i = 0; i < names.size(); ++i) {
+      if (names[i] == name) return static_cast<int>(i);
+      candidates.push_back(names[i]);
+    }
+    fail(at, attribute,
+         std::string("unknown ") + kind + " '" + name + "'" + did_you_mean(name, candidates));
+  }
+
+  // <contact> (mjCPair::Compile, mjCBodyPair::Compile): the geoms or bodies by name, ordered by
+  // body id, and the body-pair signature; then both lists sorted by signature as MuJoCo sorts
+  // them (std::sort on the signature alone, so pairs of one body pair keep the order libstdc++'s
+  // sort gives them, which is MuJoCo's)
+  void compile_contact() {
+    std::vector<std::string> geom_names, body_names;
+    for (const CompiledGeom& g : geoms_) geom_names.push_back(g.spec->at.name);
+    for (size_t b = 0; b < nodes_.size(); ++b) {
+      body_names.push_back(b == 0 ? std::string("world") : nodes_[b].spec->at.name);
+    }
+    for (const PairSpec& p : spec_.pairs) {
+      check_condim(p.at, p.condim);
+      CompiledPair out{&p};
+      out.geom1 = find_by_name(geom_names, p.geom1, p.geom1_at, "geom1", "geom");
+      out.geom2 = find_by_name(geom_names, p.geom2, p.geom2_at, "geom2", "geom");
+      const int body1 = geoms_[static_cast<size_t>(out.geom1)].body;
+      const int body2 = geoms_[static_cast<size_t>(out.geom2)].body;
+      if (body1 > body2) std::swap(out.geom1, out.geom2);
+      out.signature = body_pair_signature(body1, body2);
+      pairs_.push_back(out);
+    }
+    for (const ExcludeSpec& x : spec_.excludes) {
+      const int body1 = find_by_name(body_names, x.body1, x.body1_at, "body1", "body");
+      const int body2 = find_by_name(body_names, x.body2, x.body2_at, "body2", "body");
+      excludes_.push_back({body_pair_signature(body1, body2)});
+    }
+    std::sort(pairs_.begin(), pairs_.end(), [](const CompiledPair& a, const CompiledPair& b) {
+      return a.signature < b.signature;
+    });
+    std::sort(excludes_.begin(), excludes_.end(),
+              [](const CompiledExclude& a, const CompiledExclude& b) {
+                return a.signature < b.signature;
+              });
+  }
+
+  // what to do about a pair lever cannot compute, from the geom type that makes it so
+  static std::string advice_for(GeomType a, GeomType b) {
+    const auto has = [&](GeomType t) { return a == t || b == t; };
+    std::string use;
+    if (has(GeomType::kMesh)) {
+      use =
+          "give the mesh's body primitive collision geoms (box, capsule, sphere) and make the "
+          "mesh visual only (contype=\"0\" conaffinity=\"0\")";
+    } else if (has(GeomType::kCylinder)) {
+      use = "use a capsule or a box instead of the cylinder";
+    } else {
+      use = "use a sphere, capsule or box instead of the ellipsoid";
+    }
+    return use +
+           ", or keep the two from colliding (contype/conaffinity, or <exclude> their bodies)";
+  }
+
+  // Geom pairs that can collide but that lever cannot compute: MuJoCo's candidates (mj_collision
+  // with filterparent on: compatible contype/conaffinity bits, bodies not welded together, neither
+  // welded to the other's parent, not excluded; and every <pair>) of types lever has no function
+  // for. lever's collision stage skips them and warns when they come near each other; the
+  // compiler names them now, with what to use instead.
+  void warn_unsupported_pairs() {
     const auto weld_parent = [&](int w) {
-      return w == 0 ? 0 : weld[static_cast<size_t>(nodes_[static_cast<size_t>(w)].parent)];
+      return w == 0 ? 0 : weld_[static_cast<size_t>(nodes_[static_cast<size_t>(w)].parent)];
     };
-    const auto label = [&](size_t g) {
-      const CompiledGeom& geom = geoms_[g];
-      const std::string& body = nodes_[static_cast<size_t>(geom.body)].spec->at.name;
-      const std::string body_label = geom.body == 0 ? std::string("world")
-                                     : body.empty() ? "#" + std::to_string(geom.body)
-                                                    : "'" + body + "'";
-      return (geom.spec->at.name.empty() ? "geom " + std::to_string(g)
-                                         : "geom '" + geom.spec->at.name + "'") +
-             " (body " + body_label + ", line " + std::to_string(geom.spec->at.line) + ")";
+    const auto excluded = [&](int b1, int b2) {
+      const int signature = body_pair_signature(b1, b2);  // excludes_ is sorted by it
+      const auto at =
+          std::lower_bound(excludes_.begin(), excludes_.end(), signature,
+                           [](const CompiledExclude& x, int value) { return x.signature < value; });
+      return at != excludes_.end() && at->signature == signature;
     };
-    int pairs = 0;
-    std::string first;
-    constexpr int kListed = 10;  // the message names the first pairs and counts the rest
-    for (size_t a = 0; a < geoms_.size(); ++a) {
-      for (size_t b = a + 1; b < geoms_.size(); ++b) {
-        const GeomSpec& ga = *geoms_[a].spec;
-        const GeomSpec& gb = *geoms_[b].spec;
-        if (!(ga.contype & gb.conaffinity) && !(gb.contype & ga.conaffinity)) continue;
-        const int wa = weld[static_cast<size_t>(geoms_[a].body)];
-        const int wb = weld[static_cast<size_t>(geoms_[b].body)];
-        if (wa == wb) continue;
-        if (wa != 0 && wb != 0 && (wa == weld_parent(wb) || wb == weld_parent(wa))) continue;
-        if (++pairs <= kListed) first += (pairs == 1 ? "" : "; ") + label(a) + " and " + label(b);
+    // a pair MuJoCo tests without being told (mj_collision's dynamic pairs)
+    const auto dynamic_candidate = [&](int a, int b) {
+      const CompiledGeom& ga = geoms_[static_cast<size_t>(a)];
+      const CompiledGeom& gb = geoms_[static_cast<size_t>(b)];
+      if (!(ga.spec->contype & gb.spec->conaffinity) &&
+          !(gb.spec->contype & ga.spec->conaffinity)) {
+        return false;
+      }
+      const int wa = weld_[static_cast<size_t>(ga.body)];
+      const int wb = weld_[static_cast<size_t>(gb.body)];
+      if (wa == wb) return false;
+      if (wa != 0 && wb != 0 && (wa == weld_parent(wb) || wb == weld_parent(wa))) return false;
+      return !excluded(ga.body, gb.body);
+    };
+    const auto unsupported_types = [&](int a, int b) {
+      const GeomType ta = geoms_[static_cast<size_t>(a)].spec->type;
+      const GeomType tb = geoms_[static_cast<size_t>(b)].spec->type;
+      return !has_collision_function(ta, tb) && !(ta == GeomType::kPlane && tb == GeomType::kPlane);
+    };
+    // the first pairs are named, the rest only counted (a model of 10000 mesh geoms has 5e7)
+    constexpr size_t kListed = 10;
+    std::vector<std::pair<int, int>> unsupported;
+    size_t count = 0;
+    const auto note = [&](int a, int b) {
+      if (++count <= kListed) unsupported.push_back({std::min(a, b), std::max(a, b)});
+    };
+    for (int a = 0; a < static_cast<int>(geoms_.size()); ++a) {
+      for (int b = a + 1; b < static_cast<int>(geoms_.size()); ++b) {
+        if (unsupported_types(a, b) && dynamic_candidate(a, b)) note(a, b);
       }
     }
-    if (pairs == 0) return;
-    warnings_.push_back(
-        std::to_string(pairs) + " geom pair" + (pairs == 1 ? "" : "s") +
-        " could collide in MuJoCo (contype/conaffinity), but lever computes no contacts, so a "
-        "motion that brings them together differs from MuJoCo's: " +
-        first + (pairs > kListed ? "; and " + std::to_string(pairs - kListed) + " more" : "") +
-        ". Set contype=\"0\" conaffinity=\"0\" on geoms that are not meant to collide.");
+    // explicit pairs not already counted as dynamic ones, each once
+    std::set<std::pair<int, int>> explicit_pairs;
+    for (const CompiledPair& p : pairs_) {
+      const std::pair<int, int> key{std::min(p.geom1, p.geom2), std::max(p.geom1, p.geom2)};
+      if (!unsupported_types(key.first, key.second) || !explicit_pairs.insert(key).second) continue;
+      if (key.first == key.second || !dynamic_candidate(key.first, key.second)) {
+        note(key.first, key.second);
+      }
+    }
+
+    const auto label = [&](int g) {
+      const std::string& name = geoms_[static_cast<size_t>(g)].spec->at.name;
+      return name.empty() ? "#" + std::to_string(g) : "'" + name + "'";
+    };
+    for (size_t k = 0; k < unsupported.size(); ++k) {
+      const auto [a, b] = unsupported[k];
+      const GeomSpec& ga = *geoms_[static_cast<size_t>(a)].spec;
+      const GeomSpec& gb = *geoms_[static_cast<size_t>(b)].spec;
+      const std::string ta = type_name(ga.type), tb = type_name(gb.type);
+      warnings_.push_back("geoms " + label(a) + " and " + label(b) + " (" + ta + ", " + tb +
+                          "; lines " + std::to_string(ga.at.line) + " and " +
+                          std::to_string(gb.at.line) + ") can collide and lever has no " + ta +
+                          "-" + tb +
+                          " contact: it skips them, and warns whenever they come near each "
+                          "other; " +
+                          advice_for(ga.type, gb.type));
+    }
+    if (count > kListed) {
+      warnings_.push_back("and " + std::to_string(count - kListed) +
+                          " more geom pairs that can collide and that lever cannot compute "
+                          "(meshes, and cylinders or ellipsoids against anything but a plane)");
+    }
   }
 
   // compiler/settotalmass scales every body, static ones included (mj_setTotalmass)
@@ -735,6 +911,7 @@ class Compiler {
   void assemble_bodies(Model& m) const;
   void assemble_joints(Model& m) const;
   void assemble_geoms_and_sites(Model& m) const;
+  void assemble_contact(Model& m) const;
   void assemble_motors(Model& m) const;
   void assemble_keys(Model& m) const;
   void assemble_visual(Model& m) const;
@@ -747,6 +924,9 @@ class Compiler {
   std::vector<CompiledJoint> joints_;
   std::vector<CompiledSite> sites_;
   std::vector<CompiledMotor> motors_;
+  std::vector<int> weld_;            ///< per body: the body it moves with (0: fixed to the world)
+  std::vector<CompiledPair> pairs_;  ///< sorted by signature
+  std::vector<CompiledExclude> excludes_;  ///< sorted by signature
   std::vector<std::string> warnings_;
   std::vector<std::optional<MeshMass>> mesh_cache_;  ///< per mesh, once read
 };
@@ -770,6 +950,7 @@ Model Compiler::assemble() const {
   assemble_bodies(m);
   assemble_joints(m);
   assemble_geoms_and_sites(m);
+  assemble_contact(m);
   assemble_motors(m);
   assemble_keys(m);
   assemble_visual(m);
@@ -912,6 +1093,38 @@ void Compiler::assemble_geoms_and_sites(Model& m) const {
     m.site_quat.push_back(eigen(s.quat));
     m.site_size.push_back(eigen(s.spec->size));
   }
+}
+
+void Compiler::assemble_contact(Model& m) const {
+  for (const CompiledGeom& g : geoms_) {
+    const GeomSpec& s = *g.spec;
+    m.geom_condim.push_back(s.condim);
+    m.geom_priority.push_back(s.priority);
+    m.geom_solmix.push_back(s.solmix);
+    m.geom_friction.push_back(eigen(s.friction));
+    m.geom_solref.push_back(s.solref);
+    m.geom_solimp.push_back(s.solimp);
+    m.geom_margin.push_back(s.margin);
+    m.geom_gap.push_back(s.gap);
+    m.geom_rbound.push_back(bounding_radius(s.type, g.size));
+  }
+  m.npair = static_cast<int>(pairs_.size());
+  for (const CompiledPair& p : pairs_) {
+    m.pair_dim.push_back(p.spec->condim);
+    m.pair_geom1.push_back(p.geom1);
+    m.pair_geom2.push_back(p.geom2);
+    m.pair_signature.push_back(p.signature);
+    m.pair_solref.push_back(p.spec->solref);
+    m.pair_solimp.push_back(p.spec->solimp);
+    m.pair_margin.push_back(p.spec->margin);
+    m.pair_gap.push_back(p.spec->gap);
+    m.pair_friction.push_back(p.spec->friction);
+  }
+  m.nexclude = static_cast<int>(excludes_.size());
+  for (const CompiledExclude& x : excludes_) m.exclude_signature.push_back(x.signature);
+  // a negative <size> count means MuJoCo's default (mjCModel::SetSizes)
+  m.nconmax = spec_.nconmax < 0 ? 100 : spec_.nconmax;
+  m.njmax = spec_.njmax < 0 ? 500 : spec_.njmax;
 }
 
 void Compiler::assemble_motors(Model& m) const {

@@ -42,6 +42,15 @@ void check_physical(const Element& e, const Attribute& a, const Value& v) {
   }
 }
 
+// valid MJCF values lever refuses with more to say than the schema's generic sentence
+void check_refused_value(const Element& e, const Attribute& a) {
+  if (e.tag == "geom" && a.name == "type" && a.value == "hfield") {
+    fail(e.place(a), a.name,
+         "type 'hfield' is valid MJCF but lever has no height fields: model the ground with a "
+         "plane (type=\"plane\") and raised parts with boxes");
+  }
+}
+
 }  // namespace
 
 const Value* AttrSet::find(std::string_view name) const {
@@ -54,6 +63,7 @@ void AttrSet::apply(const Element& e, const ElementRule& rule) {
   for (const Attribute& a : e.attributes) {
     const AttributeRule* r = find_attribute(rule, a.name);
     if (!r) continue;  // the reader has already refused it
+    check_refused_value(e, a);
     Value v = parse_value(e, a, *r);
     check_physical(e, a, v);
     if (r->partial) {
@@ -106,6 +116,7 @@ void apply_actuator(AttrSet& set, const Element& e, const ElementRule& rule) {
 }
 
 const AttrSet& DefaultClass::prototype(std::string_view tag) const {
+  if (tag == "pair") return pair;
   if (tag == "joint") return joint;
   if (tag == "geom") return geom;
   if (tag == "site") return site;
@@ -114,6 +125,7 @@ const AttrSet& DefaultClass::prototype(std::string_view tag) const {
 }
 
 AttrSet& DefaultClass::prototype(std::string_view tag) {
+  if (tag == "pair") return pair;
   if (tag == "joint") return joint;
   if (tag == "geom") return geom;
   if (tag == "site") return site;
@@ -121,7 +133,11 @@ AttrSet& DefaultClass::prototype(std::string_view tag) {
   return visual_only;
 }
 
-DefaultClasses::DefaultClasses() { classes_.push_back(DefaultClass{"main", {}, {}, {}, {}, {}}); }
+DefaultClasses::DefaultClasses() {
+  DefaultClass main;
+  main.name = "main";
+  classes_.push_back(std::move(main));
+}
 
 int DefaultClasses::find(std::string_view name) const {
   for (size_t i = 0; i < classes_.size(); ++i) {

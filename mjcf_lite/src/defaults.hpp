@@ -45,6 +45,7 @@ void apply_actuator(AttrSet& set, const Element& e, const ElementRule& rule);
 struct DefaultClass {
   std::string name;
   AttrSet joint, geom, site, actuator;
+  AttrSet pair;         ///< <contact><pair> defaults
   AttrSet visual_only;  ///< mesh, material, camera, light defaults: checked, not used
 
   const AttrSet& prototype(std::string_view tag) const;

@@ -13,6 +13,9 @@ double geom_volume(GeomType type, const Vec3& size) {
     case GeomType::kCylinder: return kPi * r * r * h;
     case GeomType::kEllipsoid: return 4 * kPi * size[0] * size[1] * size[2] / 3;
     case GeomType::kBox: return size[0] * size[1] * size[2] * 8;
+    case GeomType::kPlane:  // no volume: a plane gives its body no mass (mujoco)
+    case GeomType::kHfield:
+    case GeomType::kMesh: break;  // mesh: compiler.cpp's apply_mesh
   }
   return 0;
 }
@@ -53,6 +56,9 @@ Vec3 geom_inertia(GeomType type, const Vec3& size, double m) {
       return {m * (b * b + c * c) / 5, m * (a * a + c * c) / 5, m * (a * a + b * b) / 5};
     case GeomType::kBox:
       return {m * (b * b + c * c) / 3, m * (a * a + c * c) / 3, m * (a * a + b * b) / 3};
+    case GeomType::kPlane:
+    case GeomType::kHfield:
+    case GeomType::kMesh: break;
   }
   return {0, 0, 0};
 }

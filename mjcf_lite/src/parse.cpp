@@ -77,6 +77,7 @@ AttrSet resolve(const Element& e, std::string_view parent, const AttrSet& protot
 }
 
 GeomType geom_type(const std::string& w) {
+  if (w == "plane") return GeomType::kPlane;
   if (w == "capsule") return GeomType::kCapsule;
   if (w == "ellipsoid") return GeomType::kEllipsoid;
   if (w == "cylinder") return GeomType::kCylinder;
@@ -127,6 +128,13 @@ GeomSpec read_geom(const Element& e, const AttrSet& set) {
   g.conaffinity = f.integer("conaffinity");
   g.rgba = f.array<4>("rgba");
   g.condim = f.integer("condim");
+  g.priority = f.integer("priority");
+  g.solmix = f.real("solmix");
+  g.margin = f.real("margin");
+  g.gap = f.real("gap");
+  g.friction = f.array<3>("friction");
+  g.solref = f.array<2>("solref");
+  g.solimp = f.array<5>("solimp");
   g.mesh = f.word("mesh");
   g.material = f.word("material");
   return g;
@@ -258,9 +266,48 @@ CompilerSpec read_compiler(const Element& root) {
   return c;
 }
 
+// valid <option> values lever refuses, with what it has instead
+void check_option_support(const Element& option) {
+  if (const Attribute* noslip = option.find("noslip_iterations")) {
+    const Value v =
+        parse_value(option, *noslip, attribute_rule("mujoco", "option", "noslip_iterations"));
+    if (v.numbers[0] != 0) {
+      fail(option.place(*noslip), "noslip_iterations",
+           "lever has no noslip solver (MuJoCo's post-processing of friction forces): "
+           "noslip_iterations must be 0 (found " +
+               noslip->value + ")");
+    }
+  }
+  for (const Element& flag : option.children) {
+    const Attribute* override_flag = flag.find("override");
+    if (override_flag && override_flag->value == "enable") {
+      fail(flag.place(*override_flag), "override",
+           "lever has no contact override (MuJoCo's override=\"enable\" replaces every contact's "
+           "margin, solref and solimp by option o_margin, o_solref, o_solimp): set the geoms' "
+           "own margin, solref and solimp instead, and remove override=\"enable\"");
+    }
+  }
+}
+
+// <option> numbers lever refuses although MuJoCo 2.2.2 reads them
+void check_option_values(const Element& option, const AttrSet& set) {
+  const auto refuse = [&](const char* name, bool bad, const std::string& rule) {
+    const Attribute* a = option.find(name);
+    if (a && bad)
+      fail(option.place(*a), name, std::string(name) + " " + rule + " (found " + a->value + ")");
+  };
+  refuse("impratio", !(set.find("impratio") && set.find("impratio")->numbers[0] > 0),
+         "must be positive: it divides the normal impedance");
+  refuse("iterations", set.find("iterations") && set.find("iterations")->numbers[0] < 0,
+         "must not be negative");
+  refuse("tolerance", set.find("tolerance") && set.find("tolerance")->numbers[0] < 0,
+         "must not be negative");
+}
+
 Options read_option(const Element& root) {
-  AttrSet set;
+  AttrSet set, flags;
   for (const Element* e : sections(root, "option")) {
+    check_option_support(*e);
     const Attribute* integrator = e->find("integrator");
     if (integrator && integrator->value == "implicitfast") {
       fail(e->place(*integrator), "integrator",
@@ -269,6 +316,8 @@ Options read_option(const Element& root) {
            "terms included), 'Euler' or 'RK4'");
     }
     set.apply(*e, *find_rule("mujoco", "option"));
+    check_option_values(*e, set);
+    for (const Element& flag : e->children) flags.apply(flag, *find_rule("option", "flag"));
     const Attribute* timestep = e->find("timestep");
     if (timestep && !(set.find("timestep")->numbers[0] > 0)) {
       // mujoco 2.2.2 loads any timestep, and the first step then misbehaves
@@ -284,7 +333,69 @@ Options read_option(const Element& root) {
   o.integrator = integrator == "RK4"        ? Integrator::kRK4
                  : integrator == "implicit" ? Integrator::kImplicit
                                             : Integrator::kEuler;
+  // contact (issue 19); the solver is Newton, the only one the schema accepts
+  o.cone = f.word("cone") == "elliptic" ? Cone::kElliptic : Cone::kPyramidal;
+  o.impratio = f.real("impratio");
+  o.iterations = f.integer("iterations");
+  o.tolerance = f.real("tolerance");
+  o.contact_disabled = Fields(flags, "option", "flag").word("contact") == "disable";
   return o;
+}
+
+// <size>: nconmax and njmax (-1: MuJoCo's defaults, filled in by the compiler)
+void read_size(const Element& root, ModelSpec& spec) {
+  AttrSet set;
+  for (const Element* e : sections(root, "size")) {
+    set.apply(*e, *find_rule("mujoco", "size"));
+    for (const char* name : {"nconmax", "njmax"}) {
+      const Attribute* a = e->find(name);
+      if (a && set.find(name)->numbers[0] < -1) {
+        fail(e->place(*a), name,
+             std::string(name) + " must be -1 (MuJoCo's default) or a count >= 0 (found " +
+                 a->value + ")");
+      }
+    }
+  }
+  const Fields f(set, "mujoco", "size");
+  spec.nconmax = f.integer("nconmax");
+  spec.njmax = f.integer("njmax");
+}
+
+// <contact>: explicit pairs over their class (their own `class`, else the main class: a body's
+// childclass does not reach them) and exclusions, in document order
+void read_contact(const Element& root, const DefaultClasses& classes, ModelSpec& spec) {
+  for (const Element* section : sections(root, "contact")) {
+    for (const Element& e : section->children) {
+      if (e.tag == "pair") {
+        const int cls = classes.choose(e, "class", 0);
+        const AttrSet set = resolve(e, "contact", classes.at(cls).pair);
+        const Fields f(set, "contact", "pair");
+        PairSpec p;
+        p.at = e.place();
+        p.geom1 = f.word("geom1");
+        p.geom2 = f.word("geom2");
+        p.geom1_at = e.place(*e.find("geom1"));
+        p.geom2_at = e.place(*e.find("geom2"));
+        p.condim = f.integer("condim");
+        p.friction = f.array<5>("friction");
+        p.solref = f.array<2>("solref");
+        p.solimp = f.array<5>("solimp");
+        p.margin = f.real("margin");
+        p.gap = f.real("gap");
+        spec.pairs.push_back(std::move(p));
+      } else {
+        const AttrSet set = resolve(e, "contact");
+        const Fields f(set, "contact", "exclude");
+        ExcludeSpec x;
+        x.at = e.place();
+        x.body1 = f.word("body1");
+        x.body2 = f.word("body2");
+        x.body1_at = e.place(*e.find("body1"));
+        x.body2_at = e.place(*e.find("body2"));
+        spec.excludes.push_back(std::move(x));
+      }
+    }
+  }
 }
 
 // <keyframe><key>: the numbers as written; their counts are checked once the sizes are known
@@ -376,6 +487,7 @@ ModelSpec parse_model(const Element& root, bool ignore_inertials) {
   spec.name = Fields(root_set, "", "mujoco").word("model");
   spec.compiler = read_compiler(root);
   spec.opt = read_option(root);
+  read_size(root, spec);
   DefaultClasses classes;
   for (const Element* e : sections(root, "default")) classes.read_section(*e);
   spec.assets = read_assets(root, classes);
@@ -385,6 +497,7 @@ ModelSpec parse_model(const Element& root, bool ignore_inertials) {
     if (spec.world.at.line == 0) spec.world.at.line = e->line;
     tree.read_contents(*e, 0, spec.world);
   }
+  read_contact(root, classes, spec);
   for (const Element* e : sections(root, "actuator")) {
     for (const Element& a : e->children) spec.motors.push_back(read_actuator(a, classes));
   }

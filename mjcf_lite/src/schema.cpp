@@ -108,14 +108,16 @@ std::vector<AttributeRule> joint_attributes() {
 std::vector<AttributeRule> geom_attributes() {
   return join(
       {
-          keyword("type", "sphere", "sphere capsule ellipsoid cylinder box mesh", "plane hfield",
-                  "shape; a mesh geom needs no mesh file unless it must give its body mass"),
+          keyword("type", "sphere", "plane sphere capsule ellipsoid cylinder box mesh", "hfield",
+                  "shape; a plane only in a body fixed to the world; a mesh geom needs no mesh "
+                  "file unless it must give its body mass"),
           text("mesh", "",
                "mesh asset of a mesh geom (its file is read only if the geom must "
                "give its body mass)"),
           text("material", "", "material asset (kept; no effect on dynamics)"),
           partial("size", 3, "0 0 0",
-                  "sphere r; capsule, cylinder r, half-length; ellipsoid, box half-sizes"),
+                  "sphere r; capsule, cylinder r, half-length; ellipsoid, box half-sizes; plane "
+                  "drawn half-sizes (0: infinite) and grid spacing (must be positive)"),
           real("fromto", 6, "", "segment end points; sets pos, quat and the length"),
           real("pos", 3, "0 0 0", "centre, body frame"),
           real("quat", 4, "1 0 0 0", "orientation (w x y z), normalized; must not be zero"),
@@ -125,18 +127,23 @@ std::vector<AttributeRule> geom_attributes() {
                real("density", 1, "1000", "kg/m^3, for the mass inferred from the volume"),
                real("mass", 1, "", "kg; overrides density"),
                integer("group", 1, "0", "group; compiler/inertiagrouprange selects mass"),
-               integer("contype", 1, "1", "contact type bits (stored; lever has no contacts)"),
-               integer("conaffinity", 1, "1", "contact affinity bits (stored)"),
+               integer("contype", 1, "1",
+                       "contact type bits: two geoms collide if one's contype shares a bit with "
+                       "the other's conaffinity"),
+               integer("conaffinity", 1, "1", "contact affinity bits"),
                real("rgba", 4, "0.5 0.5 0.5 1", "colour"),
                integer("condim", 1, "3",
-                       "contact dimensionality (kept; lever computes no contacts)"),
-               partial("friction", 3, "1 0.005 0.0001", "contact friction (kept; no contacts)"),
-               partial("solref", 2, "0.02 1", "contact solref (kept; no contacts)"),
-               partial("solimp", 5, "0.9 0.95 0.001 0.5 2", "contact solimp (kept; no contacts)"),
-               real("margin", 1, "0", "contact margin (kept; no contacts)"),
-               real("gap", 1, "0", "contact gap (kept; no contacts)"),
-               integer("priority", 1, "0", "contact priority (kept; no contacts)"),
-               real("solmix", 1, "1", "contact solmix (kept; no contacts)"),
+                       "contact dimensionality: 1 (normal only), 3 (sliding friction), 4 (and "
+                       "torsional), 6 (and rolling)"),
+               partial("friction", 3, "1 0.005 0.0001", "sliding, torsional, rolling friction"),
+               partial("solref", 2, "0.02 1", "contact solref (timeconst, dampratio)"),
+               partial("solimp", 5, "0.9 0.95 0.001 0.5 2",
+                       "contact solimp (d0, dmax, width, mid, power)"),
+               real("margin", 1, "0", "contacts are detected within this distance"),
+               real("gap", 1, "0", "contacts within margin - gap become constraints"),
+               integer("priority", 1, "0",
+                       "of two geoms in contact, the higher priority's parameters are used"),
+               real("solmix", 1, "1", "weight of this geom's solref/solimp at equal priority"),
            }));
 }
 
@@ -160,6 +167,20 @@ std::vector<AttributeRule> motor_class_attributes() {
       real("forcerange", 2, "0 0", "force range"),
       keyword("forcelimited", "auto", "false true auto", "",
               "auto: limited if forcerange is given"),
+  };
+}
+
+// what a <pair> sets, in a default class and in <contact>; MuJoCo 2.2.2 takes nothing from the
+// two geoms: what is not written comes from the class, else from these built-in values
+std::vector<AttributeRule> pair_attributes() {
+  return {
+      integer("condim", 1, "3", "contact dimensionality: 1, 3, 4 or 6"),
+      partial("friction", 5, "1 1 0.005 0.0001 0.0001",
+              "tangent1, tangent2, torsional, rolling1, rolling2 friction"),
+      partial("solref", 2, "0.02 1", "contact solref (timeconst, dampratio)"),
+      partial("solimp", 5, "0.9 0.95 0.001 0.5 2", "contact solimp (d0, dmax, width, mid, power)"),
+      real("margin", 1, "0", "contacts are detected within this distance"),
+      real("gap", 1, "0", "contacts within margin - gap become constraints"),
   };
 }
 
@@ -242,7 +263,7 @@ const char* const kLightAttributes =
 std::vector<ElementRule> build() {
   std::vector<ElementRule> s;
   s.push_back({"mujoco", "", '!', {text("model", "MuJoCo Model", "model name")}, "",
-               "size custom contact equality tendon sensor include", "the root element"});
+               "custom equality tendon sensor include", "the root element"});
   s.push_back({"compiler", "mujoco", '*',
                {
                    keyword("angle", "degree", "radian degree", "",
@@ -279,17 +300,61 @@ std::vector<ElementRule> build() {
                            "velocity-dependent force); MuJoCo 3's implicitfast does not exist in "
                            "2.2.2"),
                    real("impratio", 1, "1",
-                        "friction-to-normal impedance ratio of contacts (kept; no contacts)"),
+                        "frictional-to-normal impedance ratio of elliptic-cone contacts; must be "
+                        "positive"),
+                   keyword("cone", "pyramidal", "pyramidal elliptic", "", "friction cone"),
+                   keyword("solver", "Newton", "Newton", "PGS CG",
+                           "constraint solver: lever's is Newton (MuJoCo's default)"),
+                   integer("iterations", 1, "100", "most solver iterations; must not be negative"),
+                   real("tolerance", 1, "1e-8",
+                        "solver tolerance (0: iterate to convergence); must not be negative"),
+                   integer("noslip_iterations", 1, "0",
+                           "noslip solver iterations: lever has no noslip solver, so only 0"),
+                   real("noslip_tolerance", 1, "1e-6",
+                        "noslip solver tolerance (kept; no effect without noslip iterations)"),
                },
-               "apirate tolerance noslip_tolerance mpr_tolerance wind magnetic density "
-               "viscosity o_margin o_solref o_solimp collision cone jacobian solver iterations "
-               "noslip_iterations mpr_iterations",
-               "flag", "simulation options"});
+               "apirate mpr_tolerance wind magnetic density viscosity o_margin o_solref o_solimp "
+               "collision jacobian mpr_iterations",
+               "", "simulation options"});
+  s.push_back({"flag", "option", '?',
+               {
+                   keyword("contact", "enable", "enable disable", "",
+                           "disable: no collision detection, no contacts"),
+                   keyword("override", "disable", "disable enable", "",
+                           "contact override: lever has none, so only disable"),
+               },
+               "constraint equality frictionloss limit passive gravity clampctrl warmstart "
+               "filterparent actuation refsafe sensor energy fwdinv sensornoise multiccd",
+               "", "simulation flags"});
+  s.push_back({"size", "mujoco", '*',
+               {
+                   integer("nconmax", 1, "-1",
+                           "most contacts at once (-1: 100); more is an error in lever"),
+                   integer("njmax", 1, "-1",
+                           "most constraint rows at once (-1: 500); more is an error in lever"),
+                   integer("nstack", 1, "-1", "MuJoCo's stack size (kept; lever sizes its own)"),
+               },
+               "nuserdata nkey nuser_body nuser_jnt nuser_geom nuser_site nuser_cam nuser_tendon "
+               "nuser_actuator nuser_sensor",
+               "", "sizes of MuJoCo's mjData"});
+  s.push_back({"contact", "mujoco", '*', {}, "", "", "explicit contact pairs and exclusions"});
+  s.push_back({"pair", "contact", '*', join({text("name", "", "pair name"),
+                                            text("class", "", "default class (else the main class)"),
+                                            required(text("geom1", "", "first geom")),
+                                            required(text("geom2", "", "second geom"))},
+                                           pair_attributes()),
+               "", "",
+               "a geom pair that collides whatever contype, conaffinity and the body filters say, "
+               "with its own parameters (not mixed from the geoms')"});
+  s.push_back({"exclude", "contact", '*', {text("name", "", "exclusion name"),
+                                          required(text("body1", "", "first body")),
+                                          required(text("body2", "", "second body"))},
+               "", "", "a body pair whose geoms never collide (pairs from <pair> still do)"});
   s.push_back({"default", "mujoco", '*', {text("class", "main", "class name (top level: main)")},
-               "", "pair equality tendon intvelocity damper cylinder muscle adhesion",
+               "", "equality tendon intvelocity damper cylinder muscle adhesion",
                "default class: attribute values that elements of the class start from"});
   s.push_back({"default", "default", '*', {required(text("class", "", "class name"))}, "",
-               "pair equality tendon intvelocity damper cylinder muscle adhesion",
+               "equality tendon intvelocity damper cylinder muscle adhesion",
                "nested class: starts as a copy of its parent"});
   s.push_back({"joint", "default", '?', joint_attributes(), kUnsupportedJointAttributes, "",
                "joint defaults of the class"});
@@ -297,6 +362,8 @@ std::vector<ElementRule> build() {
                "geom defaults of the class"});
   s.push_back({"site", "default", '?', site_attributes(), kUnsupportedSiteAttributes, "",
                "site defaults of the class"});
+  s.push_back({"pair", "default", '?', pair_attributes(), "", "",
+               "contact pair defaults of the class"});
   s.push_back({"motor", "default", '?',
                join(motor_class_attributes(),
                     {integer("group", 1, "0", "visualisation group (kept)")}),
@@ -532,11 +599,16 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   * a negative `kp` or `kv` on `<position>` or `<velocity>` (a servo that pushes away from its
     target, or a damper that feeds energy in);
   * `option/integrator="implicitfast"`, which is MuJoCo 3's: MuJoCo 2.2.2 rejects it too, and
-    lever's message names 2.2.2's `implicit`.
+    lever's message names 2.2.2's `implicit`;
+  * `option/impratio` that is zero or negative, a negative `option/iterations` or
+    `option/tolerance`, and `size/nconmax` or `size/njmax` below -1 (MuJoCo reads any negative
+    value as the default).
+* Refused because lever does not have them: `option/solver` `PGS` and `CG` (lever's solver is
+  Newton, MuJoCo's default), `option/noslip_iterations` above 0 (no noslip solver),
+  `option/flag override="enable"` (no contact override), `geom/type="hfield"`.
 * Kept, changing no dynamics: `<asset>` (`<mesh>`, `<material>`, `<texture>`), `<light>`,
   `<camera>`, `<visual>`, `<statistic>`, `compiler/meshdir` and `texturedir`, and geom
-  `material`, `rgba`, `group`; geom contact parameters (`condim`, `friction`, `solref`, ...),
-  since lever computes no contacts. Their names are in `Model::visual`.
+  `material`, `rgba`, `group`. Their names are in `Model::visual`.
 * Mesh geoms: lever reads a mesh file only when a mesh geom must give its body mass (the body
   has no `<inertial>`, or `inertiafromgeom="true"`, and the geom's group is in
   `inertiagrouprange`). Then it computes what MuJoCo 2.2.2 does (its float vertices and
@@ -551,10 +623,14 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   in lever and keep their frame as written and their size zero, where MuJoCo moves the frame to
   the mesh's centre and principal axes and sizes it from the file; nothing in the dynamics uses
   either. A geom of another type with `mesh=` (fitted to the mesh by MuJoCo) is refused.
-* Contacts: lever computes none. Geom pairs MuJoCo would test for contact (compatible
-  `contype`/`conaffinity`, on bodies that are not welded together or parent and child) are
-  listed in a warning at load (`Model::warnings`, printed by the command line), since a motion
-  that brings them together would differ from MuJoCo's.
+* Contacts: the geoms' contact parameters, `<contact><pair>` and `<exclude>` compile to
+  MuJoCo 2.2.2's `geom_*`, `pair_*` and `exclude_signature` arrays (a `<pair>` takes what it does
+  not write from its class, never from its two geoms, as 2.2.2 does). lever collides planes,
+  spheres, capsules and boxes with each other, and cylinders and ellipsoids with planes. A geom
+  pair that can collide (compatible `contype`/`conaffinity`, bodies neither welded together nor
+  parent and child nor excluded, or named by a `<pair>`) but that lever cannot compute (a mesh,
+  or a cylinder or ellipsoid against anything but a plane) is named in a warning at load
+  (`Model::warnings`, printed by the command line) with what to use instead.
 
 Value rules: numbers are decimal (`1`, `-.5`, `1e-3`); a list must have the stated count
 ("1-3" marks a partial vector whose missing numbers keep the class's values); keywords are

@@ -51,6 +51,12 @@ struct GeomSpec {
   double density = 1000;
   std::optional<double> mass;
   int group = 0, contype = 1, conaffinity = 1, condim = 3;
+  // contact parameters (issue 19)
+  int priority = 0;
+  double solmix = 1, margin = 0, gap = 0;
+  Vec3 friction{};
+  std::array<double, 2> solref{};
+  std::array<double, 5> solimp{};
   std::array<double, 4> rgba{};
   std::string mesh, material;  ///< asset names, "" if none
 };
@@ -102,6 +108,26 @@ struct KeySpec {
   std::optional<std::vector<double>> qpos, qvel, ctrl;
 };
 
+/// A <contact><pair>: its parameters as written over its class (MuJoCo 2.2.2 takes none from
+/// the two geoms).
+struct PairSpec {
+  Place at;
+  std::string geom1, geom2;
+  Place geom1_at, geom2_at;  ///< where the attributes are, for errors
+  int condim = 3;
+  std::array<double, 5> friction{};
+  std::array<double, 2> solref{};
+  std::array<double, 5> solimp{};
+  double margin = 0, gap = 0;
+};
+
+/// A <contact><exclude>.
+struct ExcludeSpec {
+  Place at;
+  std::string body1, body2;
+  Place body1_at, body2_at;
+};
+
 /// What a <mesh> says about its shape: read only if one of its geoms must give a body mass.
 struct MeshSource {
   Vec3 refpos{};
@@ -138,6 +164,9 @@ struct ModelSpec {
   BodySpec world;  ///< the world body: its geoms, sites and child bodies
   std::vector<MotorSpec> motors;
   std::vector<KeySpec> keys;
+  std::vector<PairSpec> pairs;
+  std::vector<ExcludeSpec> excludes;
+  int nconmax = -1, njmax = -1;  ///< <size>; -1: MuJoCo's defaults
   AssetSpec assets;
   std::string model_dir;  ///< folder of the model file, with a trailing '/', or "" (mesh files)
 };

@@ -141,8 +141,8 @@ Value read_keyword(const Element& e, const Attribute& a, const AttributeRule& ru
   if (has_word(rule.unsupported_keywords, a.value)) {
     fail(e.place(a), a.name,
          std::string(a.name) + " '" + a.value +
-             "' is valid MJCF but not supported by lever (see "
-             "docs/mjcf-subset.md)");
+             "' is valid MJCF but not supported by lever, which has " +
+             quoted_list(words(rule.keywords), "and") + " (see docs/mjcf-subset.md)");
   }
   std::vector<std::string_view> all = words(rule.keywords);
   for (const std::string_view w : words(rule.unsupported_keywords)) all.push_back(w);

@@ -174,6 +174,10 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("njnt", [](const lever::Model& x) { return x.njnt; })
       .def_property_readonly("ngeom", [](const lever::Model& x) { return x.ngeom; })
       .def_property_readonly("nsite", [](const lever::Model& x) { return x.nsite; })
+      .def_property_readonly("npair", [](const lever::Model& x) { return x.npair; })
+      .def_property_readonly("nexclude", [](const lever::Model& x) { return x.nexclude; })
+      .def_property_readonly("nconmax", [](const lever::Model& x) { return x.nconmax; })
+      .def_property_readonly("njmax", [](const lever::Model& x) { return x.njmax; })
       .def_property(
           "timestep", [](const lever::Model& x) { return x.opt.timestep; },
           [](lever::Model& x, double h) { x.opt.timestep = h; })

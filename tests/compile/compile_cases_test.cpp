@@ -308,8 +308,100 @@ const Case kCases[] = {
     <body name="b"><joint name="b"/><geom size="0.2"/></body></worldbody>
   <actuator><motor joint="b"/></actuator>
 </mujoco>)"},
+  // ---- contact (issue 19) ----------------------------------------------------------------
+  {"contact-geom-parameters", R"(<mujoco>
+  <default>
+    <geom friction="0.7" solref="0.01" solimp="0.8 0.9" margin="0.002" priority="1"/>
+    <default class="soft"><geom condim="4" solmix="3" gap="0.001" friction="0.5 0.01 0.002"/></default>
+  </default>
+  <worldbody>
+    <geom name="floor" type="plane" size="0 0 0.1" pos="0 0 -0.5" quat="1 0.1 0 0" condim="1"/>
+    <geom name="wall" type="plane" size="2 1 0.5" pos="1 0 0" zaxis="-1 0 0" mass="3"/>
+    <body name="a" pos="0 0 1">
+      <joint name="a" axis="0 1 0"/>
+      <geom name="ball" size="0.1" class="soft"/>
+      <geom name="rod" type="capsule" fromto="0 0 0 0.3 0 0.1" size="0.02" condim="6"/>
+      <geom name="can" type="cylinder" size="0.05 0.1" pos="0.2 0 0" solref="-100 -10"/>
+      <geom name="egg" type="ellipsoid" size="0.03 0.05 0.04" pos="0 0.2 0"/>
+      <geom name="brick" type="box" size="0.1 0.2 0.3" pos="0 0 0.3" contype="2" conaffinity="4"/>
+    </body>
+  </worldbody>
+</mujoco>)"},
+  {"plane-in-static-bodies", R"(<mujoco>
+  <worldbody>
+    <body name="table" pos="0 0 0.4">
+      <geom name="top" type="plane" size="0.5 0.5 0.05" mass="2"/>
+      <body name="shelf" pos="0 0 0.2" euler="10 0 0">
+        <geom type="plane" size="0 0 1" pos="0.1 0 0"/>
+        <geom type="box" size="0.1 0.1 0.01"/>
+      </body>
+    </body>
+    <body name="arm"><joint/><geom size="0.1"/></body>
+  </worldbody>
+</mujoco>)"},
+  {"contact-pairs-and-exclusions", R"(<mujoco>
+  <default>
+    <pair condim="1" friction="0.3 0.4" margin="0.01"/>
+    <default class="grippy"><pair condim="6" friction="2" solref="0.005 2" solimp="0.5"/></default>
+  </default>
+  <worldbody>
+    <geom name="floor" type="plane" size="1 1 0.1" priority="3" friction="0.2 0.1 0.1"/>
+    <body name="b1" pos="0 0 1"><joint/><geom name="g1" size="0.1" priority="1" margin="0.5"/>
+      <body name="b2" pos="0 0 0.5"><joint/><geom name="g2" type="box" size="0.1 0.1 0.1"/>
+        <body name="b3" pos="0 0 0.5"><joint/><geom name="g3" type="capsule" size="0.1 0.2"/></body>
+      </body>
+    </body>
+  </worldbody>
+  <contact>
+    <pair name="p1" geom1="g3" geom2="g1" gap="0.001"/>
+    <pair geom1="g2" geom2="floor" class="grippy" margin="0.02"/>
+    <pair geom1="g1" geom2="floor" condim="4" solref="-500 -5"/>
+    <pair geom1="floor" geom2="g3"/>
+    <pair geom1="g2" geom2="g3" class="grippy"/>
+    <pair geom1="g3" geom2="g2" friction="1 2 3 4 5"/>
+    <exclude name="x" body1="b3" body2="b1"/>
+    <exclude body1="b2" body2="world"/>
+    <exclude body1="b1" body2="b2"/>
+  </contact>
+</mujoco>)"},
+  {"contact-options-and-sizes", R"(<mujoco>
+  <option cone="elliptic" impratio="10" iterations="1000" tolerance="0" solver="Newton"
+          noslip_iterations="0" noslip_tolerance="1e-5">
+    <flag contact="disable" override="disable"/>
+  </option>
+  <option iterations="50"/>
+  <size nconmax="30" njmax="-1" nstack="100000"/>
+  <worldbody><body name="b"><joint/><geom size="0.1"/></body></worldbody>
+</mujoco>)"},
 };
 // clang-format on
+
+// MuJoCo 2.2.2 sorts <pair>s with std::sort by signature alone, which is not stable: with more than
+// 16 pairs of one body pair their order is libstdc++'s, and lever's must be the same
+std::string many_pairs_model() {
+  std::string xml = "<mujoco>\n<worldbody>\n<body name=\"a\"><joint/>";
+  for (int i = 0; i < 12; ++i) xml += "<geom name=\"a" + std::to_string(i) + "\" size=\"0.1\"/>";
+  xml += "</body>\n<body name=\"b\"><joint/>";
+  for (int i = 0; i < 12; ++i) xml += "<geom name=\"b" + std::to_string(i) + "\" size=\"0.1\"/>";
+  xml += "</body>\n</worldbody>\n<contact>\n";
+  for (int i = 0; i < 40; ++i) {
+    // alternate the two body pairs (a-b and world-a) and the order the geoms are written in
+    const std::string g1 = "a" + std::to_string(i % 12), g2 = "b" + std::to_string((5 * i) % 12);
+    if (i % 3 == 0) {
+      xml += "<pair geom1=\"" + g1 + "\" geom2=\"" + g1 + "\" condim=\"" +
+             std::to_string(1 + 2 * (i % 2)) + "\"/>\n";
+    } else {
+      xml += "<pair geom1=\"" + (i % 2 ? g1 : g2) + "\" geom2=\"" + (i % 2 ? g2 : g1) +
+             "\" margin=\"" + std::to_string(i) + "\"/>\n";
+    }
+  }
+  return xml + "</contact>\n</mujoco>\n";
+}
+
+TEST_CASE("many pairs of the same bodies are ordered as MuJoCo 2.2.2 orders them", "[compile]") {
+  compare("many-pairs", many_pairs_model());
+  CHECK(lever::mjcf::load_string(many_pairs_model()).npair == 40);
+}
 
 TEST_CASE("compiler corner cases agree with MuJoCo 2.2.2", "[compile]") {
   for (const Case& c : kCases) {

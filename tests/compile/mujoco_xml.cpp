@@ -164,10 +164,11 @@ bool is_constant(const std::string& name) {
 //   geom frames     mesh geoms' size, pos and quat are MuJoCo's fit to the mesh file, which
 //                   lever computes only for the meshes it read (those that give a body mass);
 //   names, options  not arrays of the table; keyframes have their own rows (compare_keyframes).
-// geom_size, geom_pos, geom_quat but of mesh geoms lever did not read: MuJoCo fits them to the
-// mesh file (its size, its centre and principal axes); lever keeps the frame as written and the
-// size zero unless the geom gives its body mass (then lever read the mesh, and its size, the
-// bounding box, is positive)
+// geom_size, geom_pos, geom_quat, geom_rbound but of mesh geoms lever did not read: MuJoCo fits
+// them to the
+// mesh file (its size, its centre and principal axes, the bounding sphere of its box); lever keeps
+// the frame as written and the size (so the bounding radius) zero unless the geom gives its body
+// mass (then lever read the mesh, and its size, the bounding box, is positive)
 void compare_geom_frames(Differences& d, const Model& o, const FieldView& view, const MjArray& mj) {
   const std::string name = view.info->name;
   for (int g = 0; g < view.rows; ++g) {
@@ -200,7 +201,7 @@ void compare_table(Differences& d, const Model& o, const mjModel& m) {
       continue;
     }
     const MjArray& mj = found->second;
-    if (name == "geom_size" || name == "geom_pos" || name == "geom_quat") {
+    if (name == "geom_size" || name == "geom_pos" || name == "geom_quat" || name == "geom_rbound") {
       compare_geom_frames(d, o, view, mj);
     } else if (view.cols == 4 && name.ends_with("quat")) {
       d.quats(name, view, mj);
@@ -232,9 +233,12 @@ void compare_keyframes(Differences& d, const Model& o, const mjModel& m) {
   d.names("key_name", o.key_name, m, mjOBJ_KEY);
   for (int k = 0; k < o.nkey; ++k) {
     d.real("key_time", k, o.key_time[static_cast<size_t>(k)], m.key_time[k]);
-    for (int i = 0; i < o.nq; ++i) d.real("key_qpos", k * o.nq + i, o.key_qpos(k, i), m.key_qpos[k * m.nq + i]);
-    for (int i = 0; i < o.nv; ++i) d.real("key_qvel", k * o.nv + i, o.key_qvel(k, i), m.key_qvel[k * m.nv + i]);
-    for (int i = 0; i < o.nu; ++i) d.real("key_ctrl", k * o.nu + i, o.key_ctrl(k, i), m.key_ctrl[k * m.nu + i]);
+    for (int i = 0; i < o.nq; ++i)
+      d.real("key_qpos", k * o.nq + i, o.key_qpos(k, i), m.key_qpos[k * m.nq + i]);
+    for (int i = 0; i < o.nv; ++i)
+      d.real("key_qvel", k * o.nv + i, o.key_qvel(k, i), m.key_qvel[k * m.nv + i]);
+    for (int i = 0; i < o.nu; ++i)
+      d.real("key_ctrl", k * o.nu + i, o.key_ctrl(k, i), m.key_ctrl[k * m.nu + i]);
   }
 }
 
@@ -250,6 +254,18 @@ void compare_options(Differences& d, const Model& o, const mjModel& m) {
   d.real("opt_timestep", 0, o.opt.timestep, m.opt.timestep);
   for (int k = 0; k < 3; ++k) d.real("opt_gravity", k, o.opt.gravity[k], m.opt.gravity[k]);
   d.integer("opt_integrator", 0, static_cast<int>(o.opt.integrator), m.opt.integrator);
+  // contact (issue 19): lever's Cone values are mjtCone's; its solver is always Newton
+  d.integer("opt_cone", 0, static_cast<int>(o.opt.cone), m.opt.cone);
+  d.real("opt_impratio", 0, o.opt.impratio, m.opt.impratio);
+  d.integer("opt_iterations", 0, o.opt.iterations, m.opt.iterations);
+  d.real("opt_tolerance", 0, o.opt.tolerance, m.opt.tolerance);
+  d.integer("opt_solver", 0, mjSOL_NEWTON, m.opt.solver);
+  d.integer("opt_noslip_iterations", 0, 0, m.opt.noslip_iterations);
+  d.integer("opt_contact_disabled", 0, o.opt.contact_disabled ? 1 : 0,
+            (m.opt.disableflags & mjDSBL_CONTACT) ? 1 : 0);
+  d.integer("opt_override", 0, 0, (m.opt.enableflags & mjENBL_OVERRIDE) ? 1 : 0);
+  d.integer("nconmax", 0, o.nconmax, m.nconmax);
+  d.integer("njmax", 0, o.njmax, m.njmax);
 }
 
 }  // namespace
@@ -263,6 +279,8 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m) {
   sizes = d.count("njnt", o.njnt, m.njnt) && sizes;
   sizes = d.count("ngeom", o.ngeom, m.ngeom) && sizes;
   sizes = d.count("nsite", o.nsite, m.nsite) && sizes;
+  sizes = d.count("npair", o.npair, m.npair) && sizes;
+  sizes = d.count("nexclude", o.nexclude, m.nexclude) && sizes;
   if (sizes) {
     compare_table(d, o, m);
     compare_actuator_types(d, o, m);

@@ -57,7 +57,7 @@ TEST_CASE("diff: a Menagerie-style arm agrees with MuJoCo on random states and f
     INFO(context(copy.file(), path, seed));
     diff::Twin twin(copy.file(), path);
     REQUIRE(twin.start_name() == "keyframe 'home'");
-    // its collision meshes can touch, and lever computes no contacts (the load warning says
+    // its collision meshes can touch, and lever has no mesh contact (the load warnings say
     // so): the comparison is of everything else, with MuJoCo's contacts switched off
     if (path == diff::Path::kLoader) REQUIRE_FALSE(twin.model.warnings.empty());
     twin.m->opt.disableflags |= mjDSBL_CONTACT;

@@ -16,8 +16,8 @@
 
 #include <lever/mjcf.hpp>
 
-#include "run_process.hpp"
 #include <lever/harness/models.hpp>
+#include "run_process.hpp"
 
 namespace {
 
@@ -131,7 +131,16 @@ void make_files() {
                                     std::string(5000, '1') + "\"/>\n</worldbody>\n</mujoco>\n");
   write("static-10000.xml", flat(Limits::kBodies, false));
   write("bodies-10001.xml", flat(Limits::kBodies + 1, false));
-  write("joints-1000.xml", flat(Limits::kJoints, true));
+  {
+    // side by side the spheres touch: as many contacts as joints, beyond nconmax (refused), or
+    // none when they do not collide
+    const std::string touching = flat(Limits::kJoints, true);
+    write("touching-1000.xml", touching);
+    std::string apart = touching;
+    apart.replace(apart.find("<worldbody>"), 11,
+                  "<default><geom contype=\"0\" conaffinity=\"0\"/></default>\n<worldbody>");
+    write("joints-1000.xml", apart);
+  }
   write("joints-1001.xml", flat(Limits::kJoints + 1, true));
   write("chain-95.xml", chain(95));
   write("chain-200.xml", chain(200));
@@ -197,6 +206,25 @@ void make_files() {
                     "<actuator><motor joint=\"" + std::string(4000, 'k') + "\"/></actuator>\n");
   write("long-names-1000-joints.xml", long_names);
   write("unclosed-comment.xml", "<mujoco>\n<!-- never closed\n<worldbody/>\n</mujoco>\n");
+  // contact (issue 19): valid MJCF that lever refuses, each with its reason
+  write("contact-override.xml",
+        "<mujoco>\n<option>\n<flag override=\"enable\"/>\n</option>\n</mujoco>\n");
+  write("contact-noslip.xml", "<mujoco>\n<option noslip_iterations=\"10\"/>\n</mujoco>\n");
+  write("contact-condim-5.xml",
+        "<mujoco>\n<worldbody>\n<geom name=\"a\" size=\"1\"/>\n<body><joint/><geom name=\"b\" "
+        "size=\"1\"/></body>\n</worldbody>\n<contact><pair geom1=\"a\" geom2=\"b\" "
+        "condim=\"5\"/></contact>\n</mujoco>\n");
+  write("contact-moving-plane.xml",
+        "<mujoco>\n<worldbody>\n<body><joint/><geom size=\"1\"/>\n<geom type=\"plane\" "
+        "size=\"1 1 1\"/></body>\n</worldbody>\n</mujoco>\n");
+  write("contact-solver-cg.xml", "<mujoco>\n<option solver=\"CG\"/>\n</mujoco>\n");
+  std::string pairs =
+      "<mujoco>\n<worldbody>\n<geom name=\"floor\" type=\"plane\" size=\"0 0 1\"/>\n";
+  pairs += "<body><joint/><geom name=\"g\" type=\"cylinder\" size=\"0.1 0.1\"/></body>\n";
+  pairs += "</worldbody>\n<contact>\n";
+  for (int i = 0; i < 20000; ++i)
+    pairs += "<pair geom1=\"g\" geom2=\"floor\"/><exclude body1=\"world\" body2=\"world\"/>\n";
+  write("contact-20000-pairs.xml", pairs + "</contact>\n</mujoco>\n");
   write("cdata.xml", "<mujoco>\n<worldbody><![CDATA[<body/>]]></worldbody>\n</mujoco>\n");
   write("unlimited.xml", kUnlimited);
   std::filesystem::create_directories(dir() / "a-directory.xml");
@@ -230,6 +258,17 @@ std::vector<Row> rows() {
        "not supported by lever",
        2},
       {"URDF instead of MJCF", {"model", "@urdf.xml"}, 2, "this is URDF", 1},
+      // ---- contact: valid MJCF lever does not have -----------------------------------------
+      {"contact override", {"model", "@contact-override.xml"}, 2, "no contact override", 3},
+      {"noslip solver", {"model", "@contact-noslip.xml"}, 2, "no noslip solver", 2},
+      {"pair condim 5", {"model", "@contact-condim-5.xml"}, 2, "MuJoCo has no condim 5", 6},
+      {"plane in a moving body", {"model", "@contact-moving-plane.xml"}, 2, "use a box", 4},
+      {"solver CG", {"model", "@contact-solver-cg.xml"}, 2, "which has 'Newton'", 2},
+      {"20000 pairs and exclusions of one geom pair",
+       {"model", "@contact-20000-pairs.xml"},
+       0,
+       "",
+       -2},
       {"10000 unknown attributes", {"model", "@many-attributes.xml"}, 2, "unknown attribute", 3},
       // ---- files -----------------------------------------------------------------------------
       {"missing file", {"model", "@does-not-exist.xml"}, 2, "no such file", 0},
@@ -283,6 +322,10 @@ std::vector<Row> rows() {
       // ---- big or odd but valid: loads within the bounds ---------------------------------------
       {"10000 static bodies", {"model", "@static-10000.xml"}, 0, ""},
       {"1000 joints side by side", {"forward", "@joints-1000.xml"}, 0, ""},
+      {"1000 touching spheres: more contacts than nconmax",
+       {"forward", "@touching-1000.xml"},
+       2,
+       "raise <size nconmax>"},
       {"bodies nested 95 deep", {"forward", "@chain-95.xml"}, 0, ""},
       {"defaults nested 90 deep", {"model", "@defaults-nested-90.xml"}, 0, ""},
       {"UTF-8 byte-order mark", {"forward", "@utf8-bom.xml"}, 0, ""},
@@ -405,7 +448,7 @@ TEST_CASE("hostile inputs: a clear message, the right exit status, no crash, no 
       CHECK(!prints_non_finite(p.out));
       CHECK(!prints_non_finite(p.err));
       if (row.exit == 0) {
-        // success writes nothing to stderr but the loader's warnings (geoms MuJoCo could collide)
+        // success writes nothing to stderr but the loader's warnings (pairs lever cannot collide)
         std::istringstream lines(p.err);
         for (std::string line; std::getline(lines, line);) {
           CHECK_THAT(line, Catch::StartsWith("lever ") && Catch::Contains(": warning: "));

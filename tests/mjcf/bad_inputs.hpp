@@ -122,10 +122,107 @@ inline const BadInput kBadInputs[] = {
 </mujoco>)", 4, "joint", "limited", "lever does not limit ball joints yet", MuJoCo::kAccepts,
    "valid MJCF outside lever's subset"},
   {"unsupported-geom-type", R"(<mujoco>
+  <asset><hfield name="h" nrow="2" ncol="2" size="1 1 1 0.1"/></asset>
   <worldbody>
-    <geom type="plane" size="1 1 0.1"/>
+    <geom type="hfield" hfield="h"/>
   </worldbody>
-</mujoco>)", 3, "geom", "type", "'plane' is valid MJCF but not supported", MuJoCo::kAccepts,
+</mujoco>)", 2, "hfield", "", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
+   "valid MJCF outside lever's subset"},
+  {"unsupported-geom-type-hfield", R"(<mujoco>
+  <default><geom type="hfield"/></default>
+</mujoco>)", 2, "geom", "type", "lever has no height fields: model the ground with a plane",
+   MuJoCo::kAccepts, "valid MJCF outside lever's subset"},
+
+  // ---- contact (issue 19) --------------------------------------------------------------------
+  {"contact-geom-condim-2", R"(<mujoco>
+  <worldbody>
+    <geom size="0.1" condim="2"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "condim", "MuJoCo has no condim 2", MuJoCo::kRejects, ""},
+  {"contact-pair-condim-5", R"(<mujoco>
+  <worldbody>
+    <geom name="a" size="0.1"/>
+    <body><joint/><geom name="b" size="0.1"/></body>
+  </worldbody>
+  <contact>
+    <pair geom1="a" geom2="b" condim="5"/>
+  </contact>
+</mujoco>)", 7, "pair", "condim", "MuJoCo has no condim 5", MuJoCo::kRejects, ""},
+  {"contact-pair-unknown-geom", R"(<mujoco>
+  <worldbody>
+    <geom name="floor" type="plane" size="1 1 0.1"/>
+    <body><joint/><geom name="ball" size="0.1"/></body>
+  </worldbody>
+  <contact>
+    <pair geom1="floor"
+          geom2="bal"/>
+  </contact>
+</mujoco>)", 8, "pair", "geom2", "unknown geom 'bal' (did you mean 'ball'?)", MuJoCo::kRejects,
+   ""},
+  {"contact-pair-in-default-with-geom", R"(<mujoco>
+  <default><pair geom1="a"/></default>
+</mujoco>)", 2, "pair", "geom1", "attribute 'geom1' is not allowed on <pair> inside <default>", MuJoCo::kRejects, ""},
+  {"contact-exclude-unknown-body", R"(<mujoco>
+  <worldbody>
+    <body name="hand"><joint/><geom size="0.1"/></body>
+  </worldbody>
+  <contact>
+    <exclude body1="hand" body2="hnd"/>
+  </contact>
+</mujoco>)", 6, "exclude", "body2", "unknown body 'hnd' (did you mean 'hand'?)",
+   MuJoCo::kRejects, ""},
+  {"contact-exclude-missing-body", R"(<mujoco>
+  <contact>
+    <exclude body1="world"/>
+  </contact>
+</mujoco>)", 3, "exclude", "body2", "required", MuJoCo::kRejects, ""},
+  {"contact-plane-in-moving-body", R"(<mujoco>
+  <worldbody>
+    <body name="tray"><joint type="slide"/><geom size="0.1"/>
+      <body name="lid"><geom type="plane" size="1 1 0.1"/></body>
+    </body>
+  </worldbody>
+</mujoco>)", 4, "geom", "type", "body 'lid' moves (it or a parent has a joint): use a box",
+   MuJoCo::kRejects, ""},
+  {"contact-plane-no-spacing", R"(<mujoco>
+  <worldbody>
+    <geom type="plane" size="1 1"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "size", "a plane needs a positive third size", MuJoCo::kRejects, ""},
+  {"contact-plane-fromto", R"(<mujoco>
+  <worldbody>
+    <geom type="plane" size="1 1 1" fromto="0 0 0 1 0 0"/>
+  </worldbody>
+</mujoco>)", 3, "geom", "fromto", "not a plane", MuJoCo::kRejects, ""},
+  {"contact-noslip", R"(<mujoco>
+  <option noslip_iterations="3"/>
+</mujoco>)", 2, "option", "noslip_iterations", "lever has no noslip solver", MuJoCo::kAccepts,
+   "lever has no noslip solver"},
+  {"contact-override", R"(<mujoco>
+  <option>
+    <flag override="enable"/>
+  </option>
+</mujoco>)", 3, "flag", "override", "lever has no contact override", MuJoCo::kAccepts,
+   "lever has no contact override"},
+  {"contact-solver-pgs", R"(<mujoco>
+  <option solver="PGS"/>
+</mujoco>)", 2, "option", "solver", "'PGS' is valid MJCF but not supported by lever, which has 'Newton'",
+   MuJoCo::kAccepts, "lever's solver is Newton"},
+  {"contact-cone-unknown", R"(<mujoco>
+  <option cone="eliptic"/>
+</mujoco>)", 2, "option", "cone", "expected 'pyramidal' or 'elliptic' (did you mean 'elliptic'?)",
+   MuJoCo::kRejects, ""},
+  {"contact-impratio-zero", R"(<mujoco>
+  <option impratio="0"/>
+</mujoco>)", 2, "option", "impratio", "must be positive", MuJoCo::kAccepts,
+   "a zero impratio divides by zero in the elliptic cone's impedance"},
+  {"contact-nconmax-below-minus-one", R"(<mujoco>
+  <size nconmax="-5"/>
+</mujoco>)", 2, "size", "nconmax", "must be -1 (MuJoCo's default) or a count >= 0",
+   MuJoCo::kAccepts, "MuJoCo reads any negative count as its default; -5 is a mistake"},
+  {"contact-unsupported-flag", R"(<mujoco>
+  <option><flag gravity="disable"/></option>
+</mujoco>)", 2, "flag", "gravity", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
    "valid MJCF outside lever's subset"},
   {"unsupported-integrator-implicitfast", R"(<mujoco>
   <option integrator="implicitfast"/>

@@ -2,6 +2,7 @@
 // orientation forms, default classes and childclass, limits, the joint and dof tree, options.
 #include <Eigen/Geometry>
 #include <catch2/catch.hpp>
+#include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 #include <numbers>
 
@@ -327,4 +328,71 @@ TEST_CASE("arm2 loads from its file with what the lesson says it contains", "[mj
   CHECK(m.site_name == std::vector<std::string>{"ee"});
   // the pedestal is vertical: +z turned by pi about x, so +z points from `to` to `from`
   CHECK(near(rotation(m.geom_quat[0]) * ez, -ez));
+}
+
+// ---- contact (issue 19) -------------------------------------------------------------------------
+
+TEST_CASE("the load warns of exactly the colliding pairs lever cannot compute", "[mjcf][contact]") {
+  const char* xml = R"(<mujoco>
+  <worldbody>
+    <geom name="floor" type="plane" size="0 0 1"/>
+    <body name="a"><joint/>
+      <geom name="can" type="cylinder" size="0.05 0.1"/>
+      <geom name="egg" type="ellipsoid" size="0.05 0.06 0.07"/>
+    </body>
+    <body name="b" pos="1 0 0"><joint/>
+      <geom name="rod" type="capsule" size="0.02 0.2"/>
+      <geom name="ghost" type="cylinder" size="0.05 0.1" contype="0" conaffinity="0"/>
+    </body>
+    <body name="c" pos="2 0 0"><joint/><geom name="puck" type="cylinder" size="0.05 0.1"/></body>
+  </worldbody>
+  <contact>
+    <exclude body1="c" body2="a"/>
+    <pair geom1="ghost" geom2="egg"/>
+  </contact>
+</mujoco>)";
+  const lever::Model m = lever::mjcf::load_string(xml);
+  // can-rod, egg-rod, rod-puck (dynamic; a-c excluded; the planes and the untouchable ghost are
+  // fine), and ghost-egg named by its <pair>
+  REQUIRE(m.warnings.size() == 4);
+  CHECK_THAT(m.warnings[0],
+             Catch::StartsWith("geoms 'can' and 'rod' (cylinder, capsule; lines 5 and 9) can "
+                               "collide and lever has no cylinder-capsule contact") &&
+                 Catch::Contains("use a capsule or a box instead of the cylinder"));
+  CHECK_THAT(m.warnings[1], Catch::StartsWith("geoms 'egg' and 'rod' (ellipsoid, capsule") &&
+                                Catch::Contains("instead of the ellipsoid"));
+  CHECK_THAT(m.warnings[2], Catch::StartsWith("geoms 'rod' and 'puck' (capsule, cylinder"));
+  CHECK_THAT(m.warnings[3], Catch::StartsWith("geoms 'egg' and 'ghost' (ellipsoid, cylinder"));
+  // what the compiler wrote for the collision stage
+  CHECK(m.geom_rbound[0] == 0.0);
+  CHECK(m.geom_rbound[3] == Approx(0.2 + 0.02).epsilon(1e-15));
+  REQUIRE(m.nexclude == 1);
+  CHECK(m.exclude_signature[0] == ((1 + 1) << 16) + 3 + 1);
+  REQUIRE(m.npair == 1);
+  CHECK(m.pair_geom1[0] == 2);  // the lower body's geom first
+  CHECK(m.pair_geom2[0] == 4);
+}
+
+TEST_CASE("a plane collides with every primitive; cylinders and ellipsoids only with it",
+          "[mjcf][contact]") {
+  const lever::Model m = lever::mjcf::load_string(R"(<mujoco>
+  <worldbody>
+    <geom type="plane" size="1 1 0.1"/>
+    <body><joint/><geom type="box" size="0.1 0.1 0.1"/><geom type="ellipsoid" size="0.1 0.1 0.2"/></body>
+    <body><joint/><geom type="sphere" size="0.1"/><geom type="cylinder" size="0.1 0.1"/></body>
+  </worldbody>
+</mujoco>)");
+  // box-sphere and every geom with the plane are lever's; the three others are not
+  REQUIRE(m.warnings.size() == 3);
+  CHECK_THAT(m.warnings[0], Catch::StartsWith("geoms #1 and #4 (box, cylinder;"));
+  CHECK_THAT(m.warnings[1], Catch::StartsWith("geoms #2 and #3 (ellipsoid, sphere;"));
+  CHECK_THAT(m.warnings[2], Catch::StartsWith("geoms #2 and #4 (ellipsoid, cylinder;"));
+}
+
+TEST_CASE("set_const names a contact array a model built by hand left empty", "[mjcf][contact]") {
+  lever::Model m = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));
+  REQUIRE(m.ngeom > 0);
+  m.geom_friction.clear();
+  CHECK_THROWS_WITH(lever::set_const(m), Catch::Contains("Model::geom_friction holds 0 numbers") &&
+                                             Catch::Contains("must fill it too"));
 }

@@ -42,7 +42,8 @@ def test_shapes_and_dtypes_are_mujocos(path):
     model = mujoco.MjModel.from_xml_path(str(path))
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
-    sizes = {n: getattr(model, n) for n in ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite")}
+    sizes = {n: getattr(model, n)
+             for n in ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude")}
     sizes["nefc"] = data.nefc
     # mjmodel.h's lengths of solref, solimp, gainprm and biasprm
     sizes.update(mjNREF=2, mjNIMP=5, mjNGAIN=10, mjNBIAS=10)

@@ -48,8 +48,8 @@ class Args {
 /// The JSON writer the commands share (lever/json.hpp).
 using Json = json::Writer;
 
-/// The model file loaded by lever::mjcf::load_file, with what the loader noticed (geom pairs
-/// MuJoCo could collide, where lever computes no contacts) written to stderr as warnings naming
+/// The model file loaded by lever::mjcf::load_file, with what the loader noticed (geom pairs that
+/// can collide and that lever cannot compute) written to stderr as warnings naming
 /// `command`: never a silent difference from MuJoCo.
 Model load_model(const std::string& command, const std::string& path,
                  const mjcf::LoadOptions& options = {});

@@ -100,6 +100,8 @@ class WasmModel {
     if (what == "njnt") return model_.njnt;
     if (what == "ngeom") return model_.ngeom;
     if (what == "nsite") return model_.nsite;
+    if (what == "npair") return model_.npair;
+    if (what == "nexclude") return model_.nexclude;
     if (what == "nkey") return model_.nkey;
     return -1;
   }

@@ -7,10 +7,9 @@
 //
 // Every listed array is contiguous and row-major: it is an (rows, cols) array of doubles, ints or
 // bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, nbody, njnt, ngeom,
-// nsite, nefc: the live limit rows of a Data; `one` for a single row); `cols` is a number. The last
-// column says whether MuJoCo 2.2.2's mjModel/mjData has an array of the same name, shape and
-// meaning
-// (`mujoco`) or not (`own`: lever's own, or laid out differently from MuJoCo's).
+// nsite, npair, nexclude, nefc: the live limit rows of a Data; `one` for a single row); `cols` is a
+// number. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of the same name,
+// shape and meaning (`mujoco`) or not (`own`: lever's own, or laid out differently from MuJoCo's).
 //
 // Adding an array to Model or Data: declare the member, then add its row here. The static_asserts
 // in fields.cpp check that its element type and layout match the row.
@@ -89,7 +88,30 @@
   X(actuator_forcelimited, uint8_t, nu, 1, mujoco)           \
   X(actuator_gear, double, nu, 6, mujoco)                    \
   X(actuator_ctrlrange, double, nu, 2, mujoco)               \
-  X(actuator_forcerange, double, nu, 2, mujoco)
+  X(actuator_forcerange, double, nu, 2, mujoco)              \
+  LEVER_MODEL_CONTACT_FIELDS(X)
+
+// contact parameters (issue 19): the geoms', the explicit <pair>s' and the <exclude>s'
+#define LEVER_MODEL_CONTACT_FIELDS(X)        \
+  X(geom_condim, int, ngeom, 1, mujoco)      \
+  X(geom_priority, int, ngeom, 1, mujoco)    \
+  X(geom_solmix, double, ngeom, 1, mujoco)   \
+  X(geom_friction, double, ngeom, 3, mujoco) \
+  X(geom_solref, double, ngeom, 2, mujoco)   \
+  X(geom_solimp, double, ngeom, 5, mujoco)   \
+  X(geom_margin, double, ngeom, 1, mujoco)   \
+  X(geom_gap, double, ngeom, 1, mujoco)      \
+  X(geom_rbound, double, ngeom, 1, mujoco)   \
+  X(pair_dim, int, npair, 1, mujoco)         \
+  X(pair_geom1, int, npair, 1, mujoco)       \
+  X(pair_geom2, int, npair, 1, mujoco)       \
+  X(pair_signature, int, npair, 1, mujoco)   \
+  X(pair_solref, double, npair, 2, mujoco)   \
+  X(pair_solimp, double, npair, 5, mujoco)   \
+  X(pair_margin, double, npair, 1, mujoco)   \
+  X(pair_gap, double, npair, 1, mujoco)      \
+  X(pair_friction, double, npair, 5, mujoco) \
+  X(exclude_signature, int, nexclude, 1, mujoco)
 
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
 // or `inverse` (written by inverse() only) or `energy` (by compute_energy() only)
@@ -151,7 +173,20 @@ namespace lever {
 enum class Scalar : int { kDouble, kInt, kByte };
 
 /// The sizes an array's rows can be counted in.
-enum class Size : int { kOne, kNq, kNv, kNu, kNbody, kNjnt, kNgeom, kNsite, kNefc };
+enum class Size : int {
+  kOne,
+  kNq,
+  kNv,
+  kNu,
+  kNbody,
+  kNjnt,
+  kNgeom,
+  kNsite,
+  kNefc,
+  // contact (issue 19)
+  kNpair,    ///< explicit contact pairs (<contact><pair>)
+  kNexclude  ///< excluded body pairs (<contact><exclude>)
+};
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;
 /// kEnergy: compute_energy() only).

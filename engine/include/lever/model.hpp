@@ -112,6 +112,8 @@ struct Options {
   double impratio = 1.0;         ///< frictional-to-normal impedance ratio (elliptic cones)
   int iterations = 100;          ///< solver iterations (lever's solver stops on convergence)
   double tolerance = 1e-8;       ///< solver tolerance
+  /// <flag contact="disable"> (MuJoCo's mjDSBL_CONTACT): no collision stage, no contacts
+  bool contact_disabled = false;
 };
 
 /// Compiler settings that stay meaningful after compilation (read by `lever check`).
@@ -137,8 +139,9 @@ struct Model {
   Options opt;
   CompilerInfo compiler;
   VisualInfo visual;
-  /// What the compiler noticed that MuJoCo would simulate and lever does not (geoms that could
-  /// collide: lever computes no contacts), one sentence each; empty for a clean model.
+  /// What the compiler noticed that MuJoCo would simulate and lever does not (geom pairs that can
+  /// collide and that lever has no contact function for), one sentence each; empty for a clean
+  /// model.
   std::vector<std::string> warnings;
 
   // ---- sizes -------------------------------------------------------------------------------

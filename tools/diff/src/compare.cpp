@@ -102,6 +102,8 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNq: return per_coordinate(model);
     case Size::kNv: return per_dof(model);
     case Size::kNefc: return limit_row(model, data);
+    case Size::kNpair: return [](int i) { return "pair " + std::to_string(i); };
+    case Size::kNexclude: return [](int i) { return "exclude " + std::to_string(i); };
     case Size::kOne: break;
   }
   return [](int) { return std::string(); };
