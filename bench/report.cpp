@@ -547,9 +547,9 @@ int main(int argc, char** argv) {
   if (any_batch) {
     out << "## Batch forward dynamics: states per second (BatchRunner)\n\n";
     out << context->str("batch_states") << " different states per call, no limit active; one Data "
-        << "(lever) or mjData (MuJoCo) per thread, the states split into contiguous blocks, "
-           "threads "
-        << "started per call. Wall-clock throughput, median ± IQR.\n\n";
+        << "(lever) or mjData (MuJoCo) per thread, the states split into contiguous blocks; "
+        << "lever's runner keeps its worker threads between calls, MuJoCo's are started per "
+        << "call (tens of microseconds per call). Wall-clock throughput, median ± IQR.\n\n";
     out << "| model | threads | lever (states/s) | MuJoCo (states/s) | lever/MuJoCo throughput | "
            "lever speed-up 2 vs 1 thread |\n";
     out << "|---|---:|---:|---:|---:|---:|\n";

@@ -1,7 +1,11 @@
-// BatchRunner: forward() and step() over the columns of a state matrix, one Data per thread.
+// BatchRunner: forward() and step() over the columns of a state matrix, one Data per thread,
+// worker threads kept alive between calls.
 #include <lever/batch.hpp>
 
+#include <condition_variable>
+#include <cstdint>
 #include <exception>
+#include <mutex>
 #include <string>
 #include <thread>
 
@@ -47,42 +51,111 @@ void load_state(Data& d, const Eigen::Ref<const Eigen::MatrixXd>& qpos,
   if (ctrl.cols() != 0) d.ctrl = ctrl.col(k);
 }
 
-// Run work(data, begin, end) on `threads` contiguous blocks of [0, n): block 0 on the calling
-// thread, the others on threads started here. An exception in any block is rethrown here.
-template <class Work>
-void run_blocks(std::vector<std::unique_ptr<Data>>& data, Eigen::Index n, Work work) {
-  const auto threads = static_cast<Eigen::Index>(data.size());
-  const Eigen::Index used = n < threads ? (n > 0 ? n : 1) : threads;
-  auto block = [&](Eigen::Index t) {  // columns [begin, end) of block t, sizes differing by <= 1
-    return std::pair<Eigen::Index, Eigen::Index>{t * n / used, (t + 1) * n / used};
-  };
-  if (used == 1) {
-    work(*data[0], Eigen::Index{0}, n);
-    return;
+}  // namespace
+
+// threads - 1 workers kept asleep between batches. A batch is a job, job(t) for thread t, handed
+// over under the mutex with a new generation number; the calling thread runs job(0) and waits
+// until `running` is back to zero. The job is a function pointer and a context pointer, so that
+// handing it over allocates nothing.
+struct detail::BatchPool {
+  std::mutex mutex;
+  std::condition_variable wake;      // a new generation, or stopping
+  std::condition_variable finished;  // running reached zero
+  std::uint64_t generation = 0;
+  int running = 0;  // workers still busy with the current generation
+  bool stopping = false;
+  void (*call)(void* job, int t) = nullptr;
+  void* job = nullptr;
+  std::vector<std::exception_ptr> errors;  // one per thread, sized once
+  std::vector<std::thread> workers;
+
+  explicit BatchPool(int threads) : errors(static_cast<std::size_t>(threads)) {
+    workers.reserve(static_cast<std::size_t>(threads - 1));
+    try {
+      for (int t = 1; t < threads; ++t) workers.emplace_back([this, t] { serve(t); });
+    } catch (...) {
+      stop();  // a thread could not start: leave no thread behind
+      throw;
+    }
   }
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(used));
-  std::vector<std::thread> pool;
-  pool.reserve(static_cast<std::size_t>(used - 1));
-  for (Eigen::Index t = 1; t < used; ++t) {
-    pool.emplace_back([&, t] {
+  ~BatchPool() { stop(); }
+
+  void stop() {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      stopping = true;
+    }
+    wake.notify_all();
+    for (std::thread& worker : workers) worker.join();
+    workers.clear();
+  }
+
+  // Worker t: sleep until a generation it has not run, run its part, report, sleep again.
+  void serve(int t) {
+    std::uint64_t seen = 0;
+    for (;;) {
+      std::unique_lock<std::mutex> lock(mutex);
+      wake.wait(lock, [&] { return stopping || generation != seen; });
+      if (stopping) return;
+      seen = generation;
+      lock.unlock();
       try {
-        const auto [begin, end] = block(t);
-        work(*data[static_cast<std::size_t>(t)], begin, end);
+        call(job, t);
       } catch (...) {
         errors[static_cast<std::size_t>(t)] = std::current_exception();
       }
-    });
+      lock.lock();
+      if (--running == 0) finished.notify_one();
+    }
   }
-  try {
-    const auto [begin, end] = block(0);
-    work(*data[0], begin, end);
-  } catch (...) {
-    errors[0] = std::current_exception();
+
+  // job(t) on every thread t (t = 0 here); returns when all are done, rethrowing the first
+  // exception (thread 0's first, then by thread).
+  template <class Job>
+  void run(Job& work) {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      call = [](void* j, int t) { (*static_cast<Job*>(j))(t); };
+      job = &work;
+      running = static_cast<int>(workers.size());
+      ++generation;
+    }
+    wake.notify_all();
+    try {
+      work(0);
+    } catch (...) {
+      errors[0] = std::current_exception();
+    }
+    {
+      std::unique_lock<std::mutex> lock(mutex);
+      finished.wait(lock, [&] { return running == 0; });
+    }
+    for (std::exception_ptr& e : errors) {
+      if (e) {
+        std::exception_ptr first = e;
+        for (std::exception_ptr& other : errors) other = nullptr;  // the next batch starts clean
+        std::rethrow_exception(first);
+      }
+    }
   }
-  for (std::thread& th : pool) th.join();
-  for (const std::exception_ptr& e : errors) {
-    if (e) std::rethrow_exception(e);
+};
+
+namespace {
+
+// Run work(data, begin, end) on contiguous blocks of [0, n), one per thread (sizes differing by
+// at most one; a block may be empty when n < threads). One block, or one state, runs here alone.
+template <class Work>
+void run_blocks(detail::BatchPool& pool, std::vector<std::unique_ptr<Data>>& data, Eigen::Index n,
+                Work& work) {
+  const auto threads = static_cast<Eigen::Index>(data.size());
+  if (threads == 1 || n <= 1) {
+    work(*data[0], Eigen::Index{0}, n);
+    return;
   }
+  auto block = [&](int t) {
+    work(*data[static_cast<std::size_t>(t)], t * n / threads, (t + 1) * n / threads);
+  };
+  pool.run(block);
 }
 
 }  // namespace
@@ -93,7 +166,10 @@ BatchRunner::BatchRunner(const Model& model, int threads) : model_(&model) {
   }
   data_.reserve(static_cast<std::size_t>(threads));
   for (int t = 0; t < threads; ++t) data_.push_back(std::make_unique<Data>(model));
+  pool_ = std::make_unique<detail::BatchPool>(threads);  // last: nothing can throw after it
 }
+
+BatchRunner::~BatchRunner() = default;
 
 void BatchRunner::forward(const Eigen::Ref<const Eigen::MatrixXd>& qpos,
                           const Eigen::Ref<const Eigen::MatrixXd>& qvel,
@@ -105,14 +181,15 @@ void BatchRunner::forward(const Eigen::Ref<const Eigen::MatrixXd>& qpos,
   check_rows("qacc", qacc.rows(), m.nv);
   check_cols("qacc", qacc.cols(), n);
 
-  run_blocks(data_, n, [&](Data& d, Eigen::Index begin, Eigen::Index end) {
+  auto work = [&](Data& d, Eigen::Index begin, Eigen::Index end) {
     if (ctrl.cols() == 0) d.ctrl.setZero();
     for (Eigen::Index k = begin; k < end; ++k) {
       load_state(d, qpos, qvel, ctrl, k);
       lever::forward(m, d);
       qacc.col(k) = d.qacc;
     }
-  });
+  };
+  run_blocks(*pool_, data_, n, work);
 }
 
 void BatchRunner::step(Eigen::Ref<Eigen::MatrixXd> qpos, Eigen::Ref<Eigen::MatrixXd> qvel,
@@ -123,7 +200,7 @@ void BatchRunner::step(Eigen::Ref<Eigen::MatrixXd> qpos, Eigen::Ref<Eigen::Matri
   if (nstep < 0)
     throw StateError("BatchRunner: nstep is " + std::to_string(nstep) + "; it must be >= 0.");
 
-  run_blocks(data_, n, [&](Data& d, Eigen::Index begin, Eigen::Index end) {
+  auto work = [&](Data& d, Eigen::Index begin, Eigen::Index end) {
     if (ctrl.cols() == 0) d.ctrl.setZero();
     for (Eigen::Index k = begin; k < end; ++k) {
       load_state(d, qpos, qvel, ctrl, k);
@@ -131,7 +208,8 @@ void BatchRunner::step(Eigen::Ref<Eigen::MatrixXd> qpos, Eigen::Ref<Eigen::Matri
       qpos.col(k) = d.qpos;
       qvel.col(k) = d.qvel;
     }
-  });
+  };
+  run_blocks(*pool_, data_, n, work);
 }
 
 }  // namespace lever

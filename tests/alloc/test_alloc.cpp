@@ -358,6 +358,29 @@ TEST_CASE("BatchRunner allocates nothing on one thread", "[alloc]") {
   }
 }
 
+TEST_CASE("BatchRunner on two threads allocates nothing per batch: its workers are kept",
+          "[alloc]") {
+  const lever::Model m = lever::mjcf::load_file(lever::test::model_path("models/panda7.xml"));
+  const std::vector<NamedState> states = states_for(m);
+  const auto n = static_cast<Eigen::Index>(states.size());
+  Eigen::MatrixXd qpos(m.nq, n), qvel(m.nv, n), ctrl(m.nu, n), qacc(m.nv, n);
+  for (Eigen::Index k = 0; k < n; ++k) {
+    qpos.col(k) = states[static_cast<std::size_t>(k)].qpos;
+    qvel.col(k) = states[static_cast<std::size_t>(k)].qvel;
+    ctrl.col(k) = states[static_cast<std::size_t>(k)].ctrl;
+  }
+  REQUIRE(n >= 2);  // both threads get states
+  lever::BatchRunner runner(m, 2);
+  for (int call = 0; call < 3; ++call) {  // the counters are atomic: the worker's calls count too
+    Allocations a = count([&] { runner.forward(qpos, qvel, ctrl, qacc); });
+    CHECK(a.news == 0);
+    CHECK(a.mallocs == 0);
+    a = count([&] { runner.step(qpos, qvel, ctrl, 2); });
+    CHECK(a.news == 0);
+    CHECK(a.mallocs == 0);
+  }
+}
+
 TEST_CASE("rnea_derivatives, forward_derivatives, step_derivatives and regressor allocate nothing",
           "[alloc][derivatives]") {
   for (const std::string& path : lever::test::all_model_files()) {

@@ -3,13 +3,16 @@
 // A batch is a set of states stored as matrix columns: qpos is nq x N, qvel is nv x N, ctrl is
 // nu x N (or nu x 0: no control), so state k is column k and its numbers are contiguous
 // (Eigen's default column-major order). The runner splits the N columns into `threads()`
-// contiguous blocks; the calling thread evaluates the first block and, when threads() > 1, one
-// std::thread per further block is started for the call and joined before it returns.
+// contiguous blocks; the calling thread evaluates the first block and the runner's worker
+// threads (threads() - 1 of them, started by the constructor and kept until the destructor) the
+// others. A call returns when every block is done; an exception thrown in any block reaches the
+// caller (the first block's first), after every block has finished.
 //
 // Cost: per state, exactly what forward() or step() costs on its own (nothing is allocated: the
-// Data of each thread was built by the constructor). Per call with threads() > 1, starting and
-// joining the threads (tens of microseconds), so give each call thousands of states, not a few.
-// The results do not depend on the number of threads: lever keeps no warm start between states.
+// Data of each thread was built by the constructor). Per call with threads() > 1, waking the
+// workers and waiting for them (a few microseconds), so keep the runner and give each call many
+// states. The results do not depend on the number of threads: lever keeps no warm start between
+// states.
 //
 //   lever::BatchRunner runner(model, 2);
 //   Eigen::MatrixXd qpos(model.nq, n), qvel(model.nv, n), ctrl(model.nu, n), qacc(model.nv, n);
@@ -28,12 +31,19 @@
 
 namespace lever {
 
+namespace detail {
+struct BatchPool;  // the worker threads and what they wait on (batch.cpp)
+}
+
 class BatchRunner {
  public:
-  /// One Data per thread, built here (the only allocations the runner makes besides the threads
-  /// themselves). The model must outlive the runner and stay unchanged while it is used.
+  /// One Data per thread and threads - 1 worker threads, built here (the only allocations the
+  /// runner makes). The model must outlive the runner and stay unchanged while it is used.
   /// Throws StateError if threads < 1.
   explicit BatchRunner(const Model& model, int threads = 1);
+  ~BatchRunner();                            // stops and joins the workers
+  BatchRunner(const BatchRunner&) = delete;  // the workers hold this runner's address
+  BatchRunner& operator=(const BatchRunner&) = delete;
 
   int threads() const { return static_cast<int>(data_.size()); }
   const Model& model() const { return *model_; }
@@ -57,6 +67,7 @@ class BatchRunner {
  private:
   const Model* model_;
   std::vector<std::unique_ptr<Data>> data_;  // one per thread, each its own allocation
+  std::unique_ptr<detail::BatchPool> pool_;  // the worker threads
 };
 
 }  // namespace lever

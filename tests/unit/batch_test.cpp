@@ -1,0 +1,106 @@
+// BatchRunner's worker pool: the same numbers on any number of threads, call after call on one
+// runner, and an exception thrown in a worker's block reaching the caller.
+#include <catch2/catch.hpp>
+
+#include <lever/batch.hpp>
+#include <lever/error.hpp>
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+
+#include <random>
+
+#include <lever/harness/models.hpp>
+
+namespace {
+
+struct States {
+  Eigen::MatrixXd qpos, qvel, ctrl;
+};
+
+// n random states inside the joint ranges (or +-1 where a joint has none), seeded.
+States random_states(const lever::Model& m, Eigen::Index n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  States s{Eigen::MatrixXd(m.nq, n), Eigen::MatrixXd(m.nv, n), Eigen::MatrixXd(m.nu, n)};
+  for (Eigen::Index k = 0; k < n; ++k) {
+    for (int i = 0; i < m.nq; ++i) s.qpos(i, k) = unit(rng);
+    for (int i = 0; i < m.nv; ++i) s.qvel(i, k) = unit(rng);
+    for (int i = 0; i < m.nu; ++i) s.ctrl(i, k) = unit(rng);
+  }
+  return s;
+}
+
+// forward() one state at a time in its own Data: what every batch must equal bit for bit.
+Eigen::MatrixXd one_by_one(const lever::Model& m, const States& s) {
+  lever::Data d(m);
+  Eigen::MatrixXd qacc(m.nv, s.qpos.cols());
+  for (Eigen::Index k = 0; k < s.qpos.cols(); ++k) {
+    d.qpos = s.qpos.col(k);
+    d.qvel = s.qvel.col(k);
+    d.ctrl = s.ctrl.col(k);
+    lever::forward(m, d);
+    qacc.col(k) = d.qacc;
+  }
+  return qacc;
+}
+
+}  // namespace
+
+TEST_CASE("one BatchRunner gives the one-state results call after call, on 1 to 3 threads",
+          "[batch]") {
+  const lever::Model m = lever::mjcf::load_file(lever::test::model_path("models/panda7.xml"));
+  for (const int threads : {1, 2, 3}) {
+    INFO(threads << " thread(s)");
+    lever::BatchRunner runner(m, threads);
+    // batch sizes that leave blocks empty (1, 2 < 3 threads), uneven and even
+    for (const Eigen::Index n :
+         {Eigen::Index{1}, Eigen::Index{2}, Eigen::Index{7}, Eigen::Index{64}}) {
+      for (unsigned call = 0; call < 3; ++call) {  // the same workers, woken again
+        INFO(n << " states, call " << call);
+        const States s = random_states(m, n, static_cast<unsigned>(n) * 10 + call);
+        Eigen::MatrixXd qacc(m.nv, n);
+        runner.forward(s.qpos, s.qvel, s.ctrl, qacc);
+        CHECK(qacc == one_by_one(m, s));  // exactly: the same calls on the same numbers
+      }
+    }
+    // step: every state's trajectory the same as on one thread
+    const States s = random_states(m, 9, 7);
+    States one = s, many = s;
+    lever::BatchRunner single(m, 1);
+    single.step(one.qpos, one.qvel, one.ctrl, 4);
+    runner.step(many.qpos, many.qvel, many.ctrl, 4);
+    CHECK(many.qpos == one.qpos);
+    CHECK(many.qvel == one.qvel);
+  }
+}
+
+TEST_CASE("an exception thrown in a worker's block reaches the caller; the runner still works",
+          "[batch]") {
+  const lever::Model m = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));
+  lever::BatchRunner runner(m, 2);
+  const States s = random_states(m, 10, 3);
+  Eigen::MatrixXd qacc(m.nv, 10);
+
+  // thread 1's Data no longer fits the model: forward() throws there, in the worker only
+  runner.data(1).qfrc_applied.resize(m.nv + 1);
+  CHECK_THROWS_AS(runner.forward(s.qpos, s.qvel, s.ctrl, qacc), lever::StateError);
+  CHECK_THROWS_WITH(runner.forward(s.qpos, s.qvel, s.ctrl, qacc), Catch::Contains("qfrc_applied"));
+  // the calling thread's block was computed all the same
+  const Eigen::MatrixXd expected = one_by_one(m, s);
+  CHECK(qacc.leftCols(5) == expected.leftCols(5));
+
+  // repaired, the same runner (the same workers) gives every state again
+  runner.data(1).qfrc_applied.setZero(m.nv);
+  qacc.setZero();
+  runner.forward(s.qpos, s.qvel, s.ctrl, qacc);
+  CHECK(qacc == expected);
+
+  // thrown on the calling thread too: the worker finishes its block before the error comes back
+  runner.data(0).qfrc_applied.resize(m.nv + 1);
+  qacc.setZero();
+  CHECK_THROWS_AS(runner.forward(s.qpos, s.qvel, s.ctrl, qacc), lever::StateError);
+  CHECK(qacc.rightCols(5) == expected.rightCols(5));
+  runner.data(0).qfrc_applied.setZero(m.nv);
+  runner.forward(s.qpos, s.qvel, s.ctrl, qacc);
+  CHECK(qacc == expected);
+}
