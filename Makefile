@@ -128,7 +128,7 @@ fuzz: fuzz-build
 # make lint: clang-tidy (.clang-tidy) and cppcheck over lever's own code: engine/, mjcf_lite/,
 # tools/, tests/, examples/, fuzz/, bench/. Uses the compile commands of $(BUILD).
 # make format-check: clang-format (.clang-format) would change no file; make format rewrites them.
-LINT_SOURCES = $(shell git ls-files 'engine/*.cpp' 'mjcf_lite/*.cpp' 'plot/*.cpp' 'check/*.cpp' 'identify/*.cpp' 'harness/*.cpp' 'tools/*.cpp' 'tests/*.cpp' 'examples/*.cpp' 'fuzz/*.cpp' 'bench/*.cpp')
+LINT_SOURCES = $(shell git ls-files 'engine/*.cpp' 'mjcf_lite/*.cpp' 'plot/*.cpp' 'io/*.cpp' 'check/*.cpp' 'lab/*.cpp' 'identify/*.cpp' 'harness/*.cpp' 'tools/*.cpp' 'tests/*.cpp' 'examples/*.cpp' 'fuzz/*.cpp' 'bench/*.cpp')
 FORMAT_FILES = $(shell git ls-files '*.cpp' '*.hpp' '*.h')
 .PHONY: lint format format-check
 lint: build
@@ -136,7 +136,7 @@ lint: build
 	run-clang-tidy-14 -p $(BUILD) -quiet -j $(JOBS) $(addprefix $(CURDIR)/,$(filter-out fuzz/fuzz_%.cpp,$(LINT_SOURCES)))
 	cppcheck --std=c++20 --language=c++ --enable=warning,performance,portability --inline-suppr \
 	  --suppress=missingIncludeSystem --suppress=missingInclude --quiet -j $(JOBS) --error-exitcode=1 \
-	  -I engine/include -I mjcf_lite/include -I plot/include -I check/include -I identify/include -I tools/diff/include \
+	  -I engine/include -I mjcf_lite/include -I plot/include -I io/include -I check/include -I lab/include -I identify/include -I tools/diff/include \
 	  -I harness/include \
 	  -I tests/support -I fuzz "-DTEST_CASE(...)=void test_case()" "-DSECTION(...)=if (true)" \
 	  "-DDYNAMIC_SECTION(...)=if (true)" $(LINT_SOURCES)

@@ -1,7 +1,7 @@
 // `lever check --json`: the report as one JSON object, sections as keys, numbers at full precision
 // (infinite and undefined figures, such as an unbounded motor's limit, as null).
 #include <lever/check.hpp>
-#include <lever/json.hpp>
+#include <lever/io/json.hpp>
 
 namespace lever::check {
 

@@ -17,11 +17,11 @@
 #include <lever/derivatives.hpp>
 #include <lever/fields.hpp>
 #include <lever/identify.hpp>
-#include <lever/lab.hpp>
+#include <lever/io/serialize.hpp>
+#include <lever/lab/lab.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/regressor.hpp>
-#include <lever/serialize.hpp>
 
 #include <cstdint>
 #include <memory>

@@ -7,7 +7,7 @@
 //                   (I + h d) qacc = kp (c - q) - (kv + d) qdot.
 #include <catch2/catch.hpp>
 #include <cmath>
-#include <lever/lab.hpp>
+#include <lever/lab/lab.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 #include <string>
@@ -19,14 +19,16 @@ constexpr double kArmature = 0.05, kDamping = 0.7, kKp = 40.0, kKv = 3.0, kH = 0
 
 std::string rotor_xml(const std::string& integrator, const std::string& actuator) {
   return R"(<mujoco>
-  <option timestep="0.01" integrator=")" + integrator + R"(" gravity="0 0 -9.81"/>
+  <option timestep="0.01" integrator=")" +
+         integrator + R"(" gravity="0 0 -9.81"/>
   <worldbody>
     <body name="rotor">
       <joint name="spin" axis="0 0 1" armature="0.05" damping="0.7"/>
       <inertial pos="0 0 0" mass="2" diaginertia="0.2 0.2 0.25"/>
     </body>
   </worldbody>
-  <actuator>)" + actuator + R"(</actuator>
+  <actuator>)" +
+         actuator + R"(</actuator>
   <keyframe>
     <key name="start" time="1.5" qpos="0.2" qvel="-0.4" ctrl="0.5"/>
     <key name="partial" qvel="0.1"/>

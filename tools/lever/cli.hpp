@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include <lever/json.hpp>
+#include <lever/io/json.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/model.hpp>
 
@@ -45,7 +45,7 @@ class Args {
   std::map<std::string, std::vector<std::string>> all_values_;
 };
 
-/// The JSON writer the commands share (lever/json.hpp).
+/// The JSON writer the commands share (lever/io/json.hpp).
 using Json = json::Writer;
 
 /// The model file loaded by lever::mjcf::load_file, with what the loader noticed (geom pairs that

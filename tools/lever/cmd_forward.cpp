@@ -23,9 +23,9 @@
 #include <cstdio>
 #include <string>
 
+#include <lever/io/serialize.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
-#include <lever/serialize.hpp>
 
 #include "cli.hpp"
 #include "commands.hpp"

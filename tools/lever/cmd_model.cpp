@@ -9,8 +9,8 @@
 // masses from the geoms. --schema: the supported MJCF subset as Markdown (docs/mjcf-subset.md).
 // Exit 0; a model that cannot be loaded prints the error and exits 2.
 #include <cstdio>
+#include <lever/io/serialize.hpp>
 #include <lever/mjcf.hpp>
-#include <lever/serialize.hpp>
 #include <string>
 #include <vector>
 

@@ -4,8 +4,8 @@
 //                        [--ctrl .. | --torque ..] [--gravity-compensation] [--excite F]
 //                        [--json] [--csv FILE] [--plot FILE.svg]
 //
-// The controller and the loop are lesson 5.1's lab (lever/lab.hpp): the trajectory has one row per
-// state visited, the start state and the state after every step (N + 1 rows for N steps).
+// The controller and the loop are lesson 5.1's lab (lever/lab/lab.hpp): the trajectory has one row
+// per state visited, the start state and the state after every step (N + 1 rows for N steps).
 //
 // Clamping is silent in the physics (as in MuJoCo); this command counts, per motor, the steps
 // whose command was clamped to ctrlrange (or its force to forcerange) and reports it on stderr.
@@ -17,11 +17,11 @@
 #include <string>
 #include <vector>
 
-#include <lever/lab.hpp>
+#include <lever/io/serialize.hpp>
+#include <lever/lab/lab.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/plot.hpp>
-#include <lever/serialize.hpp>
 
 #include "cli.hpp"
 #include "commands.hpp"

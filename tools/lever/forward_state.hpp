@@ -12,7 +12,7 @@
 #include <vector>
 
 #include <lever/data.hpp>
-#include <lever/lab.hpp>
+#include <lever/lab/lab.hpp>
 #include <lever/model.hpp>
 
 #include "cli.hpp"

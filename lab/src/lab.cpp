@@ -1,4 +1,4 @@
-#include <lever/lab.hpp>
+#include <lever/lab/lab.hpp>
 
 #include <cmath>
 #include <numbers>

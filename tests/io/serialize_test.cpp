@@ -1,10 +1,10 @@
-// lever/serialize.hpp: the JSON and CSV writers walk the field table.
+// lever/io/serialize.hpp: the JSON and CSV writers walk the field table.
 #include <catch2/catch.hpp>
 
 #include <lever/fields.hpp>
+#include <lever/io/serialize.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
-#include <lever/serialize.hpp>
 
 #include <limits>
 #include <sstream>

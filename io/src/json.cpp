@@ -1,4 +1,4 @@
-#include <lever/json.hpp>
+#include <lever/io/json.hpp>
 
 #include <cmath>
 

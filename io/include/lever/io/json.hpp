@@ -1,6 +1,6 @@
-// lever/json.hpp: a minimal streaming JSON writer, shared by the command line, the Python package
-// and the browser build. Numbers are written in full double precision (%.17g), non-finite numbers
-// as null, keys in the order written.
+// lever/io/json.hpp: a minimal streaming JSON writer, shared by the command line, the Python
+// package and the browser build. Numbers are written in full double precision (%.17g), non-finite
+// numbers as null, keys in the order written.
 #pragma once
 
 #include <Eigen/Core>

@@ -1,9 +1,9 @@
-// lever/lab.hpp: lesson 5.1's lab as library code: its controller and the loop that runs it.
+// lever/lab/lab.hpp: lesson 5.1's lab as library code: its controller and the loop that runs it.
 //
-// The lab applies a constant command at each actuator plus, when switched on, a gravity-compensation
-// term equal to the current state's qfrc_bias, turned into ctrl through the actuator's fixed gain
-// (for a motor of gain 1, ctrl is the torque; for a servo, it is a feed-forward offset of its
-// target that adds exactly that torque whatever its bias):
+// The lab applies a constant command at each actuator plus, when switched on, a
+// gravity-compensation term equal to the current state's qfrc_bias, turned into ctrl through the
+// actuator's fixed gain (for a motor of gain 1, ctrl is the torque; for a servo, it is a
+// feed-forward offset of its target that adds exactly that torque whatever its bias):
 //     ctrl[a] = torque[a] + (gravity_compensation ? qfrc_bias[dof of a] / (gear[a] gain[a]) : 0).
 // `run` steps a model under it and hands every state visited to a callback: the start state and
 // the state after each step (N + 1 rows for N steps). Each row holds the state at its time and what

@@ -1,4 +1,4 @@
-// lever/serialize.hpp: Model and Data as JSON, every array of the field table (lever/fields.hpp)
+// lever/io/serialize.hpp: Model and Data as JSON, every array of the field table (lever/fields.hpp)
 // under its own name, flattened row by row; and chosen Data arrays as CSV, one line per state.
 // Shared by `lever model --json`, `lever forward --json`, `lever simulate --csv`, the Python
 // package and the browser build.
@@ -9,7 +9,7 @@
 #include <vector>
 
 #include <lever/data.hpp>
-#include <lever/json.hpp>
+#include <lever/io/json.hpp>
 #include <lever/model.hpp>
 
 namespace lever {

@@ -1,4 +1,4 @@
-#include <lever/serialize.hpp>
+#include <lever/io/serialize.hpp>
 
 #include <cmath>
 #include <cstdint>
