@@ -1,8 +1,8 @@
 #include "fixture.hpp"
 
+#include <lever/harness/from_mujoco.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/spatial.hpp>
-#include <lever/harness/from_mujoco.hpp>
 
 #include <algorithm>
 #include <filesystem>
@@ -35,7 +35,12 @@ std::array<double, 3> array3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v
 std::vector<std::string> model_files(const std::string& dir) {
   std::vector<std::string> files;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    if (entry.path().extension() == ".xml") files.push_back(entry.path().string());
+    if (entry.path().extension() != ".xml") continue;
+    // the arms fixed to the world: what the peers (KDL's chains, the step Jacobians) and issue
+    // 18's targets are about; lesson 5.3's models (free bodies, contacts) are left out for now
+    const Model model = mjcf::load_file(entry.path().string());
+    if (model.nq != model.nv || model.contacts_possible) continue;
+    files.push_back(entry.path().string());
   }
   std::sort(files.begin(), files.end());
   return files;

@@ -3,6 +3,7 @@
 // refusal of a keyframe the model does not have. Where the command reports MuJoCo's value of a
 // quantity at some step, this test replays MuJoCo on its own (mjModel.opt.integrator set here,
 // the keyframe reset here, the same control) and finds that value there, to the bit.
+#include <algorithm>
 #include <catch2/catch.hpp>
 
 #include <mujoco/mujoco.h>

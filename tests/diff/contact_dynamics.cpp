@@ -1,4 +1,5 @@
-// Contact dynamics against MuJoCo 2.2.2 (issue 19): the scenes of tests/diff/contact_scenes with
+// Contact dynamics against MuJoCo 2.2.2 (issue 19): models/box_drop.xml, models/gripper.xml and
+// tests/diff/contact_scenes/free_objects.xml with
 // MuJoCo's compiled model copied into lever (the engine path: the loader's contact attributes are
 // tested in tests/mjcf), at random states: the contacts, the constraint rows (efc_J, pos, margin,
 // R, D, aref, diagApprox) within the 1e-12 bound; qacc, qfrc_constraint and efc_force, which
@@ -25,10 +26,6 @@
 namespace lever::test {
 
 namespace {
-
-std::string scene(const std::string& name) {
-  return source_dir() + "/tests/diff/contact_scenes/" + name;
-}
 
 // MuJoCo's answer made unique: its Newton solver run to convergence.
 void converge_mujoco(diff::Twin& twin) {
@@ -57,8 +54,9 @@ State scene_state(const Model& model, std::mt19937_64& rng, int k) {
 TEST_CASE("diff: contact scenes agree with MuJoCo at random states (engine path)",
           "[diff][contact]") {
   REQUIRE(mj_version() == 222);
-  for (const char* name : {"box_drop.xml", "gripper.xml", "free_objects.xml"}) {
-    diff::Twin twin(scene(name), diff::Path::kEngine);
+  for (const std::string name : {"models/box_drop.xml", "models/gripper.xml",
+                                 "tests/diff/contact_scenes/free_objects.xml"}) {
+    diff::Twin twin(model_path(name), diff::Path::kEngine);
     converge_mujoco(twin);
     std::mt19937_64 rng(seed_for(name));
     diff::Report report;
