@@ -105,14 +105,15 @@ TEST_CASE("property: forward then inverse gives back qfrc_applied + qfrc_actuato
     for (int k = 0; k < kStatesPerModel; ++k) {
       evaluate_random_state(model, data, rng);
       const Eigen::VectorXd applied = data.qfrc_applied + data.qfrc_actuator;
-      // the magnitudes of the terms of the equation of motion, per dof; the limit forces enter
-      // through D (J qacc - aref), so their terms are D |qacc| and D |aref|
+      // the magnitudes of the terms of the equation of motion, per dof; the constraint forces
+      // enter through J^T D (J qacc - aref), so a row's terms are |J| D |J qacc| and |J| D |aref|
       Eigen::VectorXd magnitude = data.M.cwiseAbs() * data.qacc.cwiseAbs() +
                                   data.qfrc_bias.cwiseAbs() + data.qfrc_passive.cwiseAbs() +
                                   data.qfrc_applied.cwiseAbs() + data.qfrc_actuator.cwiseAbs();
       for (int r = 0; r < data.nefc; ++r) {
-        const int i = data.efc_dof[r];
-        magnitude[i] += data.efc_D[r] * (std::abs(data.qacc[i]) + std::abs(data.efc_aref[r]));
+        const double row = data.efc_D[r] * (std::abs(data.efc_J.row(r).dot(data.qacc)) +
+                                            std::abs(data.efc_aref[r]));
+        magnitude += data.efc_J.row(r).transpose().cwiseAbs() * row;
       }
       inverse(model, data);
       for (int i = 0; i < model.nv; ++i) {

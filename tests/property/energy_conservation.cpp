@@ -25,9 +25,14 @@ constexpr double kLeastRatioQuaternion = 2.8;
 
 bool has_quaternions(const Model& model) { return model.nq != model.nv; }
 
-// The model without damping, limits or actuators' effect, integrated with RK4.
+// A drift this small (J, over kSeconds) is rounding, not truncation: ~1e4 steps of ~1e-16
+// relative error on energies of order 1 to 10 J.
+constexpr double kRoundingDrift = 1e-10;
+
+// The model without damping, limits, contacts or actuators' effect, integrated with RK4.
 Model conservative_variant(Model model) {
   for (double& b : model.dof_damping) b = 0.0;
+  model.opt.contact_disabled = true;  // a soft contact dissipates
   for (int j = 0; j < model.njnt; ++j) model.jnt_limited[j] = false;
   // actuators idle: ctrl zero is not enough, since a ctrlrange without 0 clamps it to a nonzero
   // target, and a servo's bias (-kp q - kv qdot) acts whatever ctrl is
@@ -76,6 +81,9 @@ TEST_CASE("property: RK4 conserves energy, with a drift that shrinks as h^4",
       INFO(c.name << ", seed " << c.seed << ", start state " << k << ": drift " << coarse
                   << " J at h = " << kTimestep << ", " << fine << " J at h / 2 (ratio "
                   << coarse / fine << ")");
+      // a drift at rounding level (a free body falling and spinning about a principal axis: RK4
+      // is exact on its energy up to the last bits) has no order to measure
+      if (coarse < kRoundingDrift && fine < kRoundingDrift) continue;
       CHECK(coarse / fine >= (has_quaternions(model) ? kLeastRatioQuaternion : kLeastRatio));
       CHECK(coarse / fine <= kMostRatio);
     }

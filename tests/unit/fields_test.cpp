@@ -260,15 +260,16 @@ TEST_CASE("Data's constructor sizes every array as the table says, zero-filled",
     INFO("model " << model.name);
     const lever::Data data(model);
     CHECK(data.nefc == 0);
-    CHECK(data.nefc_max == 2 * model.njnt);
+    CHECK(data.nefc_max == lever::constraint_rows_max(model));
     CHECK(data.qpos == model.qpos0);
     // the efc arrays hold their most rows; the views count the live ones
     lever::Data full(model);
     full.nefc = full.nefc_max;
     for (const FieldView& view : lever::data_fields(model, full)) {
       INFO("Data::" << view.info->name);
+      // kNefc: two limit rows per joint, and njmax contact rows if the model can make contacts
       const int rows = view.info->rows == lever::Size::kNefc
-                           ? 2 * model.njnt
+                           ? 2 * model.njnt + (model.contacts_possible ? model.njmax : 0)
                            : lever::size_of(model, view.info->rows);
       CHECK(view.rows == rows);
       CHECK(view.size() ==
