@@ -33,13 +33,6 @@ void converge_mujoco(diff::Twin& twin) {
   twin.m->opt.iterations = 1000;
 }
 
-// The quantities an iterative solver decides: held to 1e-10 of their magnitude.
-bool solver_quantity(const std::string& q) {
-  return q == "qacc" || q == "qfrc_constraint" || q == "efc_force" || q == "efc_state" ||
-         q.rfind("qpos after", 0) == 0 || q.rfind("qvel after", 0) == 0 ||
-         q.find("qfrc_inverse") != std::string::npos;
-}
-
 // A state of a scene: the free bodies dropped into it or resting on what is below them, the
 // servo targets anywhere in their ranges.
 State scene_state(const Model& model, std::mt19937_64& rng, int k) {
@@ -60,6 +53,7 @@ TEST_CASE("diff: contact scenes agree with MuJoCo at random states (engine path)
     converge_mujoco(twin);
     std::mt19937_64 rng(seed_for(name));
     diff::Report report;
+    report.set_solver_bound(diff::kContactSolverBound);
     int with_contacts = 0;
     for (int k = 0; k < 200; ++k) {
       const State s = scene_state(twin.model, rng, k);
@@ -76,12 +70,8 @@ TEST_CASE("diff: contact scenes agree with MuJoCo at random states (engine path)
     for (const diff::Extreme& e : report.quantities()) {
       INFO(name << ": " << e.quantity << " [" << e.element << "] state " << e.state << ": lever "
                 << e.lever << " vs mujoco " << e.mujoco << ", " << e.max_ratio << " of 1e-12");
-      if (solver_quantity(e.quantity)) {
-        worst_solver = std::max(worst_solver, e.max_ratio);
-        CHECK(e.max_ratio <= 100.0);  // 1e-10 relative
-      } else {
-        CHECK(e.max_ratio <= 1.0);
-      }
+      if (diff::decided_by_solver(e.quantity)) worst_solver = std::max(worst_solver, e.max_ratio);
+      CHECK(e.max_ratio <= e.bound);  // 1e-10 relative where the solver decides, else 1e-12
     }
     WARN(name << ": the solver's outputs within " << worst_solver * 1e-12
               << " of MuJoCo's (relative to max(1, |value|))");

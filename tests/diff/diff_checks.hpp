@@ -27,28 +27,13 @@ inline std::string context(const std::string& file, diff::Path path, std::uint64
          " path, seed " + std::to_string(seed);
 }
 
-/// Whether MuJoCo's constraint solver decides a quantity: the constrained acceleration, the
-/// constraint forces, and whatever follows from them (inverse dynamics at the forward
-/// acceleration, the state after a step).
-inline bool decided_by_solver(const std::string& q) {
-  return q == "qacc" || q == "qfrc_constraint" || q == "efc_force" || q == "efc_state" ||
-         q == "qpos" || q == "qvel" || q.rfind("qfrc_inverse (at the forward", 0) == 0 ||
-         q.find(" after one ") != std::string::npos || q.rfind("energy", 0) == 0;
-}
-
-/// The bound, in units of 1e-12, on the quantities MuJoCo's solver decides: with contacts MuJoCo's
-/// Newton iterations, even run to convergence (tolerance 0, 1000 iterations: the Twin does), stop
-/// ~1e-13 from the unique answer lever's exact solve finds; issue 19 holds them to 1e-10 relative
-/// and the tests report the worst against 1e-12. Without contacts MuJoCo converges exactly.
-inline double solver_gate(const Model& model) { return model.contacts_possible ? 100.0 : 1.0; }
-
 /// One assertion per quantity: its worst value within the bound. On failure the message names
 /// the state, the quantity, the element and both values, and lists the first values beyond the
 /// bound (the caller's INFO names the model, path and seed). `only` restricts the check to some
-/// quantities; `solver_bound` (solver_gate) is the bound of those decided_by_solver.
+/// quantities. A quantity's bound is 1e-12, or 1e-10 for what the constraint solver decides in
+/// a model with contacts (diff::kContactSolverBound, set by the report's run).
 inline void check_within_bound(const diff::Report& report,
-                               const std::vector<std::string>& only = {},
-                               double solver_bound = 1.0) {
+                               const std::vector<std::string>& only = {}) {
   for (const diff::Extreme& e : report.quantities()) {
     const bool wanted =
         only.empty() || std::find(only.begin(), only.end(), e.quantity) != only.end();
@@ -64,7 +49,7 @@ inline void check_within_bound(const diff::Report& report,
       if (this_quantity && !e.pass() && listed++ < 5) first_failures += "\n  " + f;
     }
     INFO("first values beyond the bound:" << first_failures);
-    CHECK(e.max_ratio <= (decided_by_solver(e.quantity) ? solver_bound : 1.0));
+    CHECK(e.max_ratio <= e.bound);
   }
 }
 

@@ -20,7 +20,7 @@ void compare_every_model_on(diff::Path path) {
     INFO(where);
     diff::Twin twin(file, path);
     const diff::Report report = diff::random_states(twin, kStates, seed);
-    check_within_bound(report, {}, solver_gate(twin.model));
+    check_within_bound(report);
     // the states must reach the stops, or the limit rows were never compared
     if (has_limits(twin.model)) CHECK(report.find("efc_force")->compared >= kStates / 10);
     // every array of Data's field table that MuJoCo has and forward() writes was compared (the

@@ -25,7 +25,7 @@ void lockstep_every_model(Integrator integrator) {
       diff::RunStats stats;
       const diff::Report report =
           diff::lockstep(twin, integrator, kSeconds, diff::Control::kSmooth, &stats);
-      check_within_bound(report, {}, solver_gate(twin.model));
+      check_within_bound(report);
       INFO(stats.constrained_steps << " of " << stats.steps << " steps with limit rows");
       if (has_limits(twin.model)) CHECK(stats.constrained_steps > 0);
     }

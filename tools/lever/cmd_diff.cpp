@@ -293,9 +293,12 @@ void print_text(const ModelResult& m) {
                   kTrajectorySeconds);
       print_free_run(p.free);
     }
-    std::printf("  %s: %s\n", p.pass() ? "PASS" : "FAIL",
-                p.pass() ? "every quantity within 1e-12 of MuJoCo 2.2.2"
-                         : "some quantities are beyond 1e-12 (see FAIL above)");
+    // with contacts, what MuJoCo's iterative solver decides is held to 1e-10 (issue 19)
+    const bool contacts = p.random.find("qacc") != nullptr && p.random.find("qacc")->bound > 1.0;
+    const char* bound = contacts ? "1e-12 (1e-10 for what the constraint solver decides)" : "1e-12";
+    std::printf("  %s: %s %s of MuJoCo 2.2.2%s\n", p.pass() ? "PASS" : "FAIL",
+                p.pass() ? "every quantity within" : "some quantities beyond", bound,
+                p.pass() ? "" : " (see FAIL above)");
   }
 }
 

@@ -11,12 +11,24 @@ namespace {
 constexpr std::size_t kFailuresKept = 20;  // enough to see a pattern, short enough to read
 }  // namespace
 
+bool decided_by_solver(const std::string& q) {
+  return q == "qacc" || q == "qfrc_constraint" || q == "efc_force" || q == "efc_state" ||
+         q == "qpos" || q == "qvel" || q.rfind("qfrc_inverse (at the forward", 0) == 0 ||
+         q.find(" after one ") != std::string::npos || q.rfind("energy", 0) == 0;
+}
+
+void Report::set_solver_bound(double bound) {
+  solver_bound_ = bound;
+  for (Extreme& e : extremes_) e.bound = decided_by_solver(e.quantity) ? bound : 1.0;
+}
+
 Extreme& Report::entry(const std::string& quantity) {
   for (Extreme& e : extremes_) {
     if (e.quantity == quantity) return e;
   }
   Extreme fresh;
   fresh.quantity = quantity;
+  fresh.bound = decided_by_solver(quantity) ? solver_bound_ : 1.0;
   extremes_.push_back(fresh);
   return extremes_.back();
 }
@@ -38,7 +50,7 @@ void Report::record(Extreme& e, int state, int index, double lever, double mujoc
                           : std::abs(lever - mujoco);
   if (diff > e.max_abs_diff) e.max_abs_diff = diff;
   if (std::abs(mujoco) > e.max_abs_mujoco) e.max_abs_mujoco = std::abs(mujoco);
-  const bool beyond = !(ratio <= 1.0);
+  const bool beyond = !(ratio <= e.bound);
   if (beyond) ++e.beyond;
   if (ratio > e.max_ratio || e.state < 0) {
     e.max_ratio = ratio;
@@ -79,6 +91,7 @@ void Report::merge(const Report& other) {
     if (o.max_ratio > e.max_ratio || (e.state < 0 && o.state >= 0)) {
       const Extreme totals = e;  // counts and maxima stay merged; the location is o's
       e = o;
+      e.bound = std::max(totals.bound, o.bound);
       e.compared = totals.compared;
       e.beyond = totals.beyond;
       e.max_abs_diff = totals.max_abs_diff;

@@ -54,6 +54,7 @@ std::uint64_t default_seed(const std::string& file) { return test::seed_for(file
 
 Report random_states(Twin& twin, int states, std::uint64_t seed) {
   Report report;
+  report.set_solver_bound(twin.model.contacts_possible ? kContactSolverBound : 1.0);
   compare_model_constants(twin, report);
   std::mt19937_64 rng(seed);
   for (int k = 0; k < states; ++k) {
@@ -116,6 +117,7 @@ Report mujoco_self_noise(const Twin& twin, int states, std::uint64_t seed) {
 Report lockstep(Twin& twin, Integrator integrator, double seconds, Control control,
                 RunStats* stats) {
   Report report;
+  report.set_solver_bound(twin.model.contacts_possible ? kContactSolverBound : 1.0);
   RunStats local;
   const Integrator own = twin.model.opt.integrator;
   twin.set_integrator(integrator);
