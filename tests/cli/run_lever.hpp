@@ -3,6 +3,7 @@
 
 #include <sys/wait.h>
 
+#include <unistd.h>
 #include <array>
 #include <cstdio>
 #include <filesystem>
@@ -37,7 +38,9 @@ inline std::string quoted(const std::string& path) { return "'" + path + "'"; }
 
 /// Write text to a file in the temporary directory and return its path.
 inline std::string temporary_file(const std::string& name, const std::string& text) {
-  const std::filesystem::path path = std::filesystem::temp_directory_path() / name;
+  // one per process: ctest runs the test cases of one executable side by side
+  const std::filesystem::path path =
+      std::filesystem::temp_directory_path() / (std::to_string(::getpid()) + "-" + name);
   std::ofstream(path) << text;
   return path.string();
 }
