@@ -31,6 +31,19 @@ constexpr double kMinVal = 1e-15;   // MuJoCo's mjMINVAL
 constexpr double kMinImp = 0.0001;  // mjMINIMP
 constexpr double kMaxImp = 0.9999;  // mjMAXIMP
 
+// solref and solimp sanitized as MuJoCo's getsolparam: the standard (positive) and direct
+// (negative) forms cannot be mixed; a time constant no shorter than two steps (refsafe); solimp
+// within its bounds.
+void sanitize(const Model& model, std::array<double, 2>& solref, std::array<double, 5>& solimp) {
+  if ((solref[0] > 0) != (solref[1] > 0)) solref = {0.02, 1.0};
+  if (solref[0] > 0) solref[0] = std::max(solref[0], 2 * model.opt.timestep);
+  solimp[0] = std::min(kMaxImp, std::max(kMinImp, solimp[0]));
+  solimp[1] = std::min(kMaxImp, std::max(kMinImp, solimp[1]));
+  solimp[2] = std::max(0.0, solimp[2]);
+  solimp[3] = std::min(kMaxImp, std::max(kMinImp, solimp[3]));
+  solimp[4] = std::max(1.0, solimp[4]);
+}
+
 }  // namespace
 
 // solref and solimp of a joint's limit, sanitized as MuJoCo's getsolparam does.
@@ -38,15 +51,7 @@ void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref
                       std::array<double, 5>& solimp) {
   solref = model.jnt_solref[jnt];
   solimp = model.jnt_solimp[jnt];
-  // the standard (positive) and direct (negative) forms cannot be mixed: use the default
-  if ((solref[0] > 0) != (solref[1] > 0)) solref = {0.02, 1.0};
-  // refsafe: a time constant shorter than two steps would make the Euler step unstable
-  if (solref[0] > 0) solref[0] = std::max(solref[0], 2 * model.opt.timestep);
-  solimp[0] = std::min(kMaxImp, std::max(kMinImp, solimp[0]));
-  solimp[1] = std::min(kMaxImp, std::max(kMinImp, solimp[1]));
-  solimp[2] = std::max(0.0, solimp[2]);
-  solimp[3] = std::min(kMaxImp, std::max(kMinImp, solimp[3]));
-  solimp[4] = std::max(1.0, solimp[4]);
+  sanitize(model, solref, solimp);
 }
 
 // Impedance at a violation: solimp's sigmoid from d0 (at the margin) to dmax (width past it).
@@ -204,19 +209,6 @@ int add_contact_rows(const Model& model, Data& data, int i, int n) {
     n += 2;
   }
   return n;
-}
-
-// solref and solimp sanitized as MuJoCo's getsolparam: the standard (positive) and direct
-// (negative) forms cannot be mixed; a time constant no shorter than two steps (refsafe); solimp
-// within its bounds.
-void sanitize(const Model& model, std::array<double, 2>& solref, std::array<double, 5>& solimp) {
-  if ((solref[0] > 0) != (solref[1] > 0)) solref = {0.02, 1.0};
-  if (solref[0] > 0) solref[0] = std::max(solref[0], 2 * model.opt.timestep);
-  solimp[0] = std::min(kMaxImp, std::max(kMinImp, solimp[0]));
-  solimp[1] = std::min(kMaxImp, std::max(kMinImp, solimp[1]));
-  solimp[2] = std::max(0.0, solimp[2]);
-  solimp[3] = std::min(kMaxImp, std::max(kMinImp, solimp[3]));
-  solimp[4] = std::max(1.0, solimp[4]);
 }
 
 // A row's approximate inverse inertia (MuJoCo's mj_diagApprox): frozen at qpos0 through
