@@ -213,6 +213,32 @@ void register_mujoco(const Fixture& f) {
   }
 }
 
+// ---- contact scenes: the whole forward and step, each peer with the solver its model file sets
+// (MuJoCo's Newton with its tolerance; lever's exact solve)
+
+void register_scene(const Fixture& f) {
+  const State* s = &f.state;
+  add("forward", f, "lever",
+      lever_fn(
+          &f, s, [](const Model&, Data&) {}, [](const Model& m, Data& d) { forward(m, d); }));
+  add("step", f, "lever",
+      lever_fn(
+          &f, s, [](const Model&, Data&) {},
+          [s](const Model& m, Data& d) {
+            d.qpos = s->qpos;
+            d.qvel = s->qvel;
+            step(m, d);
+          }));
+  const auto nothing = [](const mjModel*, mjData*) {};
+  add("forward", f, "mujoco",
+      mujoco_fn(&f, s, nothing, [](const mjModel* m, mjData* d) { mj_forward(m, d); }));
+  add("step", f, "mujoco", mujoco_fn(&f, s, nothing, [s](const mjModel* m, mjData* d) {
+        mju_copy(d->qpos, s->qpos.data(), m->nq);
+        mju_copy(d->qvel, s->qvel.data(), m->nv);
+        mj_step(m, d);
+      }));
+}
+
 // ---- Orocos KDL ---------------------------------------------------------------------------------
 
 void register_kdl(const Fixture& f) {
@@ -380,11 +406,17 @@ void register_lesson_batches(const Fixture& f) {
 
 void register_benchmarks(const std::vector<std::unique_ptr<Fixture>>& fixtures, int batch_states) {
   for (const auto& f : fixtures) {
+    if (f->scene) {
+      register_scene(*f);
+      continue;
+    }
     register_lever(*f);
     register_mujoco(*f);
     register_kdl(*f);
   }
-  for (const auto& f : fixtures) register_batch(*f, batch_states);
+  for (const auto& f : fixtures) {
+    if (!f->scene) register_batch(*f, batch_states);
+  }
   for (const auto& f : fixtures) {
     if (f->name == "arm2" || f->name == "panda7") register_lesson_batches(*f);
   }

@@ -134,15 +134,34 @@ void check_mujoco(const Fixture& f, const State& s, const std::string& label, Ta
   d.ctrl = s.ctrl;
   forward(m, d);
   MjDataPtr md = mujoco_data(f, s);
+  // a contact scene's accelerations come from MuJoCo's iterative solver: compare with it run to
+  // convergence (tolerance 0), where its answer is unique, on the mixed scale of the project's
+  // bound (at rest qacc is rounding noise around 0, so a relative error means nothing)
+  MjModelPtr converged(nullptr, mj_deleteModel);
+  if (f.scene) {
+    converged.reset(mj_copyModel(nullptr, mj));
+    converged->opt.tolerance = 0;
+    converged->opt.iterations = 1000;
+    mj = converged.get();
+  }
   mj_forward(mj, md.get());
   std::vector<mjtNum> M(static_cast<std::size_t>(mj->nv * mj->nv));
   mj_fullM(mj, M.data(), md->qM);
   const auto nv = static_cast<std::size_t>(m.nv);
   const std::string what =
-      "lever = MuJoCo (" + label + ", " + std::to_string(d.nefc) + " limit rows)";
+      "lever = MuJoCo (" + label + ", " + std::to_string(d.nefc) + " constraint rows)";
   table.row(what, f.name, "M", rel_error(flat(d.M), M, nv * nv), 1e-9);
   table.row(what, f.name, "qfrc_bias", rel_error(d.qfrc_bias, md->qfrc_bias, nv), 1e-9);
-  table.row(what, f.name, "qacc", rel_error(d.qacc, md->qacc, nv), 1e-6);
+  if (f.scene) {
+    double mixed = 0;
+    for (std::size_t i = 0; i < nv; ++i) {
+      mixed = std::max(mixed, std::abs(d.qacc[static_cast<Eigen::Index>(i)] - md->qacc[i]) /
+                                  std::max(1.0, std::abs(md->qacc[i])));
+    }
+    table.row(what, f.name, "qacc (MuJoCo converged; |diff| / max(1, |qacc|))", mixed, 1e-9);
+  } else {
+    table.row(what, f.name, "qacc", rel_error(d.qacc, md->qacc, nv), 1e-6);
+  }
   if (d.nefc != md->nefc) table.row(what, f.name, "nefc differs", 1.0, 0.0);
 }
 
@@ -196,6 +215,7 @@ bool run_checks(const std::vector<std::unique_ptr<Fixture>>& fixtures, std::ostr
   out << "|---|---|---|---:|---:|---|\n";
   Table table{out};
   for (const auto& f : fixtures) {
+    if (f->scene) continue;  // a contact scene has no KDL peer and no batch: MuJoCo's check only
     if (f->chain) {
       check_kdl(*f, table);
     } else {
@@ -207,7 +227,9 @@ bool run_checks(const std::vector<std::unique_ptr<Fixture>>& fixtures, std::ostr
     check_mujoco(*f, f->state, "timed state", table);
     if (f->limit) check_mujoco(*f, *f->limit, "timed limit state", table);
   }
-  for (const auto& f : fixtures) check_batch(*f, table);
+  for (const auto& f : fixtures) {
+    if (!f->scene) check_batch(*f, table);
+  }
   return table.ok;
 }
 

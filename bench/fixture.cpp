@@ -1,10 +1,12 @@
 #include "fixture.hpp"
 
+#include <lever/forward.hpp>
 #include <lever/harness/from_mujoco.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/spatial.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <random>
 #include <stdexcept>
@@ -32,19 +34,28 @@ std::array<double, 3> array3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v
 
 }  // namespace
 
-std::vector<std::string> model_files(const std::string& dir) {
+namespace {
+
+// the *.xml files of a directory whose model is (scenes) or is not a contact scene
+std::vector<std::string> files_where(const std::string& dir, bool scenes) {
   std::vector<std::string> files;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().extension() != ".xml") continue;
-    // the arms fixed to the world: what the peers (KDL's chains, the step Jacobians) and issue
-    // 18's targets are about; lesson 5.3's models (free bodies, contacts) are left out for now
     const Model model = mjcf::load_file(entry.path().string());
-    if (model.nq != model.nv || model.contacts_possible) continue;
-    files.push_back(entry.path().string());
+    const bool scene = model.nq != model.nv || model.contacts_possible;
+    if (scene == scenes) files.push_back(entry.path().string());
   }
   std::sort(files.begin(), files.end());
   return files;
 }
+
+}  // namespace
+
+// the arms fixed to the world: what the peers (KDL's chains, the step Jacobians) and issue 18's
+// kernel targets are about
+std::vector<std::string> model_files(const std::string& dir) { return files_where(dir, false); }
+
+std::vector<std::string> scene_files(const std::string& dir) { return files_where(dir, true); }
 
 State random_state(const Model& model, unsigned long long seed) {
   std::mt19937_64 rng(seed);
@@ -226,6 +237,31 @@ std::unique_ptr<Fixture> make_fixture(const std::string& path) {
   } catch (const std::invalid_argument& e) {
     f->kdl_note = e.what();
   }
+  return f;
+}
+
+std::unique_ptr<Fixture> make_scene_fixture(const std::string& path) {
+  auto f = std::make_unique<Fixture>();
+  f->path = path;
+  f->name = std::filesystem::path(path).stem().string();
+  f->scene = true;
+  char error[1000] = "";
+  mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
+  if (m == nullptr) throw std::runtime_error("MuJoCo could not load " + path + ": " + error);
+  f->mj = MjModelPtr(m, mj_deleteModel);
+  f->model = mjcf::load_file(path);
+  f->loader = "mjcf_lite";
+
+  const Model& model = f->model;
+  Data d(model);
+  if (model.nkey > 0) reset_keyframe(model, d, 0);
+  d.ctrl.setZero();
+  const int steps = static_cast<int>(std::lround(1.0 / model.opt.timestep));
+  for (int k = 0; k < steps; ++k) step(model, d);
+  forward(model, d);
+  if (d.ncon == 0) throw std::runtime_error(path + ": no contact after one second at rest");
+  f->ncon = d.ncon;
+  f->state = {d.qpos, d.qvel, d.qacc, d.ctrl};
   return f;
 }
 

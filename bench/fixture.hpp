@@ -40,10 +40,22 @@ struct Fixture {
 
   std::optional<ChainSpec> chain;  ///< KDL's chain, when the model is a serial chain
   std::string kdl_note;            ///< why there is no chain, if there is none
+
+  bool scene = false;  ///< a contact scene (free bodies, contacts): timed on forward and step only
+  int ncon = 0;        ///< a scene's contacts in its timed state
 };
 
-/// The *.xml files in a directory, as paths.
+/// The *.xml files in a directory, as paths: the arms fixed to the world (every operation is
+/// timed on them).
 std::vector<std::string> model_files(const std::string& dir);
+
+/// The contact scenes of a directory (lesson 5.3's models: free bodies, contacts possible).
+std::vector<std::string> scene_files(const std::string& dir);
+
+/// A contact scene timed where the lesson uses it, at rest in contact: its first keyframe (else
+/// qpos0), ctrl 0, then one second of lever's steps, so that its bodies lie on each other.
+/// Throws std::runtime_error if MuJoCo cannot load it or the scene has no contact then.
+std::unique_ptr<Fixture> make_scene_fixture(const std::string& path);
 
 /// Load a model for every peer and draw its state (seeded by the model's name).
 /// Throws std::runtime_error if MuJoCo cannot load it.

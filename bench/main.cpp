@@ -64,6 +64,9 @@ int main(int argc, char** argv) {
     for (const std::string& path : lever::bench::model_files(models_dir)) {
       fixtures.push_back(lever::bench::make_fixture(path));
     }
+    for (const std::string& path : lever::bench::scene_files(models_dir)) {
+      fixtures.push_back(lever::bench::make_scene_fixture(path));
+    }
   } catch (const std::exception& e) {
     std::cerr << "lever_bench: " << e.what() << "\n";
     return 2;
@@ -102,7 +105,11 @@ int main(int argc, char** argv) {
                         " loader=" + f->loader;
     if (f->site >= 0) about += " site=" + m.site_name[static_cast<std::size_t>(f->site)];
     if (f->limit) about += " limit_joint=" + m.jnt_name[static_cast<std::size_t>(f->limit_joint)];
-    about += f->chain ? " kdl=yes" : " kdl=no (" + f->kdl_note + ")";
+    if (f->scene) {
+      about += " scene: at rest after 1 s, ncon=" + std::to_string(f->ncon);
+    } else {
+      about += f->chain ? " kdl=yes" : " kdl=no (" + f->kdl_note + ")";
+    }
     benchmark::AddCustomContext("model." + f->name, about);
   }
 

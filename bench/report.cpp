@@ -440,6 +440,10 @@ int main(int argc, char** argv) {
   against("arm2 `step` / `mj_step`, one limit active", 0.10, "step_limit", "arm2", "mujoco");
   against("panda7 `forward` / `mj_forward`", 0.20, "forward", "panda7", "mujoco");
   against("chain20 `forward` / `mj_forward`", 0.25, "forward", "chain20", "mujoco");
+  // issue 19: lesson 5.3's scene, each peer with its own contact solver
+  against("gripper `forward` / `mj_forward`, box resting in contact", 0.5, "forward", "gripper",
+          "mujoco");
+  against("gripper `step` / `mj_step`, box resting in contact", 0.5, "step", "gripper", "mujoco");
   for (const auto& [op, peer_call, g] :
        {std::tuple{"bias", "`mj_rne`", 0.7}, std::tuple{"crba", "`mj_crb`", 1.0},
         std::tuple{"jac_site", "`mj_jacSite`", 1.0}}) {
@@ -612,7 +616,10 @@ int main(int argc, char** argv) {
          "model with a fixed seed, every joint inside its range; the `_limit` variants put the "
          "first "
          "limited joint, the shoulder, 1 mrad past its lower stop). Stages a peer needs before the "
-         "timed call run once before the timing loop.\n\n";
+         "timed call run once before the timing loop. The contact scenes (lesson 5.3's models) "
+         "are timed on `forward` and `step` only, at rest in contact (their model row says how "
+         "many contacts), each peer with the contact solver its file asks for: MuJoCo's "
+         "iterative one at its tolerance, lever's exact solve.\n\n";
   out << "| operation | lever | MuJoCo | KDL |\n|---|---|---|---|\n";
   for (const Operation& op : kOperations) {
     out << "| " << op.name << " | " << op.lever << " | " << op.mujoco << " | "
