@@ -34,6 +34,8 @@ std::array<double, 3> array3(const Eigen::Vector3d& v) { return {v.x(), v.y(), v
 
 }  // namespace
 
+bool is_scene(const Model& model) { return model.nq != model.nv || model.contacts_possible; }
+
 namespace {
 
 // the *.xml files of a directory whose model is (scenes) or is not a contact scene
@@ -41,9 +43,8 @@ std::vector<std::string> files_where(const std::string& dir, bool scenes) {
   std::vector<std::string> files;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
     if (entry.path().extension() != ".xml") continue;
-    const Model model = mjcf::load_file(entry.path().string());
-    const bool scene = model.nq != model.nv || model.contacts_possible;
-    if (scene == scenes) files.push_back(entry.path().string());
+    if (is_scene(mjcf::load_file(entry.path().string())) == scenes)
+      files.push_back(entry.path().string());
   }
   std::sort(files.begin(), files.end());
   return files;

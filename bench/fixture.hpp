@@ -49,6 +49,9 @@ struct Fixture {
 /// timed on them).
 std::vector<std::string> model_files(const std::string& dir);
 
+/// A contact scene: free bodies or contacts possible (lesson 5.3's models).
+bool is_scene(const Model& model);
+
 /// The contact scenes of a directory (lesson 5.3's models: free bodies, contacts possible).
 std::vector<std::string> scene_files(const std::string& dir);
 

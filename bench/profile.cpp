@@ -24,6 +24,7 @@
 // forward 20000000
 #include <lever/derivatives.hpp>
 #include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -31,6 +32,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "fixture.hpp"
@@ -242,6 +244,11 @@ std::vector<Operation> operations() {
 }
 
 bool available(const Operation& op, const Fixture& f) {
+  if (f.scene) {  // a contact scene is timed on forward and step only (bench/benchmarks.cpp)
+    const std::string_view name = op.name;
+    const std::string_view operation = name.substr(name.find(':') + 1);  // npos + 1 = 0
+    return op.needs == Needs::kNothing && (operation == "forward" || operation == "step");
+  }
   switch (op.needs) {
     case Needs::kSite: return f.site >= 0 && (!op.name.starts_with("kdl:") || f.chain);
     case Needs::kLimit: return f.limit.has_value();
@@ -287,7 +294,9 @@ int main(int argc, char** argv) {
   }
   std::unique_ptr<Fixture> f;
   try {
-    f = lever::bench::make_fixture(argv[1]);
+    f = lever::bench::is_scene(lever::mjcf::load_file(argv[1]))
+            ? lever::bench::make_scene_fixture(argv[1])
+            : lever::bench::make_fixture(argv[1]);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;
