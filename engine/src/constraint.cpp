@@ -18,6 +18,8 @@
 #include <lever/error.hpp>
 #include <lever/kinematics.hpp>
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
 #include <cmath>
 
@@ -84,29 +86,6 @@ double impedance(const std::array<double, 5>& solimp, double pos, double margin,
   }
   return d0 + y * (dmax - d0);
 }
-
-namespace {
-
-// Cholesky factor (lower, in place) of the rows/columns of A listed in idx[0..n); false if not
-// positive definite. L is written into L(0..n, 0..n).
-bool cholesky_subset(const Eigen::MatrixXd& A, const std::vector<int>& idx, int n,
-                     Eigen::MatrixXd& L) {
-  for (int c = 0; c < n; ++c) {
-    for (int r = c; r < n; ++r) {
-      double s = A(idx[r], idx[c]);
-      for (int k = 0; k < c; ++k) s -= L(r, k) * L(c, k);
-      if (r == c) {
-        if (!(s > 0)) return false;
-        L(c, c) = std::sqrt(s);
-      } else {
-        L(r, c) = s / L(c, c);
-      }
-    }
-  }
-  return true;
-}
-
-}  // namespace
 
 namespace {
 
@@ -318,59 +297,55 @@ void solve_constraint(const Model& model, Data& data) {
   if (n == 0) return;
 
   auto& w = data.work;
-  // M^-1 J^T, one column per row
+  // A = J M^-1 J^T + R. With M = L^T D L, J M^-1 J^T = Y^T D^-1 Y for Y = L^-T J^T: one half
+  // solve per row, over its dofs and their ancestors.
   for (int r = 0; r < n; ++r) {
-    auto column = w.MinvJ.col(r);
-    if (data.efc_dof[r] >= 0) {
-      column.setZero();
-      column[data.efc_dof[r]] = data.efc_sign[r];
-    } else {
-      column = data.efc_J.row(r).transpose();
-    }
-    solve_mass(model, data, column);
+    auto y = w.halfJ.col(r);
+    y = data.efc_J.row(r).transpose();
+    solve_mass_half(model, data, y);
+    w.halfJ_scaled.col(r) = y.cwiseProduct(data.qLDiagInv);
   }
-  // A + R, and b = J qacc_smooth - a_ref
-  for (int r = 0; r < n; ++r) {
-    for (int c = 0; c < n; ++c) {
-      w.A(r, c) = data.efc_dof[r] >= 0 ? data.efc_sign[r] * w.MinvJ(data.efc_dof[r], c)
-                                       : data.efc_J.row(r).dot(w.MinvJ.col(c));
-    }
-    w.A(r, r) += data.efc_R[r];
-    data.efc_b[r] = row_dot(data, r, data.qacc_smooth) - data.efc_aref[r];
-  }
+  // A is symmetric: its lower triangle is computed and read (small sizes: coefficient by
+  // coefficient, no blocking)
+  auto A = w.A.topLeftCorner(n, n);
+  A.triangularView<Eigen::Lower>() =
+      w.halfJ.leftCols(n).transpose().lazyProduct(w.halfJ_scaled.leftCols(n));
+  A.diagonal() += data.efc_R.head(n);
+  auto b = data.efc_b.head(n);
+  b = data.efc_J.topRows(n).lazyProduct(data.qacc_smooth) - data.efc_aref.head(n);
 
-  // Murty's least-index principal pivoting, starting from the rows that are pushed into the stop
-  Eigen::VectorXd& f = w.lcp_f;
-  Eigen::VectorXd& residual = w.lcp_w;
+  // Murty's least-index principal pivoting, starting from the rows that are pushed into the
+  // stop. A + R is positive definite (R > 0), so the LCP has one solution and the method reaches
+  // it from any start.
+  auto f = w.lcp_f.head(n);
+  auto residual = w.lcp_w.head(n);
   std::vector<int>& active = w.lcp_active;
   std::vector<int>& idx = w.lcp_index;
-  for (int r = 0; r < n; ++r) active[r] = data.efc_b[r] < 0;
+  for (int r = 0; r < n; ++r) active[r] = b[r] < 0;
   const int max_pivots = 64 * n + 64;
   for (int pivot = 0; pivot <= max_pivots; ++pivot) {
-    // forces of the active rows: (A + R)_SS f_S = -b_S
+    // forces of the active rows S: (A + R)_SS f_S = -b_S, the others 0
     int m = 0;
     for (int r = 0; r < n; ++r) {
       if (active[r]) idx[m++] = r;
     }
-    f.head(n).setZero();
+    f.setZero();
     if (m > 0) {
-      cholesky_subset(w.A, idx, m, w.L);  // (A + R)_SS is positive definite: R > 0
-      for (int k = 0; k < m; ++k) {       // forward substitution
-        double s = -data.efc_b[idx[k]];
-        for (int c = 0; c < k; ++c) s -= w.L(k, c) * f[idx[c]];
-        f[idx[k]] = s / w.L(k, k);
+      auto A_SS = w.L.topLeftCorner(m, m);  // gathered, then factored in place
+      auto f_S = w.lcp_rhs.head(m);
+      for (int k = 0; k < m; ++k) {
+        for (int c = 0; c <= k; ++c) A_SS(k, c) = A(idx[k], idx[c]);
+        f_S[k] = -b[idx[k]];
       }
-      for (int k = m - 1; k >= 0; --k) {  // back substitution
-        double s = f[idx[k]];
-        for (int c = k + 1; c < m; ++c) s -= w.L(c, k) * f[idx[c]];
-        f[idx[k]] = s / w.L(k, k);
-      }
+      Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> factor(A_SS);
+      factor.solveInPlace(f_S);
+      for (int k = 0; k < m; ++k) f[idx[k]] = f_S[k];
     }
     // the first row that breaks complementarity changes side
+    residual = b;
+    residual.noalias() += A.selfadjointView<Eigen::Lower>() * f;
     int flip = -1;
     for (int r = 0; r < n && flip < 0; ++r) {
-      residual[r] = data.efc_b[r];
-      for (int c = 0; c < n; ++c) residual[r] += w.A(r, c) * f[c];
       if ((active[r] && f[r] < 0) || (!active[r] && residual[r] < 0)) flip = r;
     }
     if (flip < 0) break;
@@ -383,7 +358,10 @@ void solve_constraint(const Model& model, Data& data) {
     data.efc_state[r] = active[r] ? ConstraintState::kActive : ConstraintState::kSatisfied;
     add_row_transpose(data, r, data.efc_force[r], data.qfrc_constraint);
   }
-  for (int r = 0; r < n; ++r) data.qacc += w.MinvJ.col(r) * data.efc_force[r];
+  // qacc = qacc_smooth + M^-1 J^T f
+  w.vec1 = data.qfrc_constraint;
+  solve_mass(model, data, w.vec1);
+  data.qacc += w.vec1;
 }
 
 }  // namespace lever

@@ -62,15 +62,19 @@ int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) 
   return bad;
 }
 
+// x <- L^-T x with a factor from ltdl(), leaves to root.
+void ltdl_solve_half(const Model& model, const Eigen::MatrixXd& LD, Eigen::Ref<Eigen::VectorXd> x) {
+  for (int k = model.nv - 1; k >= 0; --k) {
+    const double* Lk = &LD(0, k);
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= Lk[i] * x[k];
+  }
+}
+
 // x = (L^T D L)^-1 x with a factor from ltdl().
 void ltdl_solve(const Model& model, const Eigen::MatrixXd& LD, const Eigen::VectorXd& diag_inverse,
                 Eigen::Ref<Eigen::VectorXd> x) {
   const int n = model.nv;
-  // x <- L^-T x, leaves to root
-  for (int k = n - 1; k >= 0; --k) {
-    const double* Lk = &LD(0, k);
-    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= Lk[i] * x[k];
-  }
+  ltdl_solve_half(model, LD, x);  // x <- L^-T x
   // x <- D^-1 x
   for (int k = 0; k < n; ++k) x[k] *= diag_inverse[k];
   // x <- L^-1 x, root to leaves
@@ -93,6 +97,10 @@ void solve_mass(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd
   check_entry(model, data, "lever::solve_mass");
   check_argument_size(x.size(), model.nv, "lever::solve_mass", "x");
   ltdl_solve(model, data.qLD, data.qLDiagInv, x);
+}
+
+void solve_mass_half(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x) {
+  ltdl_solve_half(model, data.qLD, x);
 }
 
 void factor_mass_damped(const Model& model, Data& data, double h) {

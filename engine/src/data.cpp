@@ -57,10 +57,10 @@ Data::Data(const Model& model)
   work.LD2 = Eigen::MatrixXd::Zero(nv, nv);
   work.LD2DiagInv = Eigen::VectorXd::Zero(nv);
   work.vec1 = work.vec2 = work.vec3 = Eigen::VectorXd::Zero(nv);
-  work.MinvJ = Eigen::MatrixXd::Zero(nv, nefc_max);
+  work.halfJ = work.halfJ_scaled = Eigen::MatrixXd::Zero(nv, nefc_max);
   work.A = Eigen::MatrixXd::Zero(nefc_max, nefc_max);
   work.L = Eigen::MatrixXd::Zero(nefc_max, nefc_max);
-  work.lcp_f = work.lcp_w = Eigen::VectorXd::Zero(nefc_max);
+  work.lcp_f = work.lcp_w = work.lcp_rhs = Eigen::VectorXd::Zero(nefc_max);
   work.lcp_active.assign(nefc_max, 0);
   work.lcp_index.assign(nefc_max, 0);
   efc_J = RowMatrix::Zero(nefc_max, nv);

@@ -16,6 +16,9 @@ namespace lever {
 void factor_mass_damped(const Model& model, Data& data, double h);
 
 /// x = (M + h diag(dof_damping))^-1 x with the factor above.
+// x <- L^-T x, the first half of solve_mass (M = L^T D L): M^-1 = L^-1 D^-1 L^-T, so that
+// J M^-1 J^T = Y^T D^-1 Y with Y = L^-T J^T.
+void solve_mass_half(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x);
 void solve_mass_damped(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x);
 
 /// A joint limit's solref and solimp, sanitized as MuJoCo's getsolparam (constraint.cpp).

@@ -170,10 +170,12 @@ struct Data {
     Eigen::MatrixXd LD2;               ///< (nv x nv) factor of M + h diag(damping) (Euler)
     Eigen::VectorXd LD2DiagInv;        ///< (nv)
     Eigen::VectorXd vec1, vec2, vec3;  ///< (nv) scratch
-    Eigen::MatrixXd MinvJ;             ///< (nv x nefc_max) M^-1 J^T
+    Eigen::MatrixXd halfJ;             ///< (nv x nefc_max) L^-T J^T, with M = L^T D L
+    Eigen::MatrixXd halfJ_scaled;      ///< (nv x nefc_max) D^-1 L^-T J^T
     Eigen::MatrixXd A;                 ///< (nefc_max x nefc_max) J M^-1 J^T + R
-    Eigen::MatrixXd L;                 ///< (nefc_max x nefc_max) Cholesky factor of A's active part
+    Eigen::MatrixXd L;                 ///< (nefc_max x nefc_max) A's active part, then its factor
     Eigen::VectorXd lcp_f, lcp_w;      ///< (nefc_max) row forces and complementary residuals
+    Eigen::VectorXd lcp_rhs;           ///< (nefc_max) the active rows' right-hand side
     std::vector<int> lcp_active;       ///< (nefc_max) 1 for rows in the active set
     std::vector<int> lcp_index;        ///< (nefc_max) the active rows, in order
     Eigen::MatrixXd jac1p, jac1r, jac2p, jac2r;  ///< (3 x nv) a contact's two point Jacobians
