@@ -4,9 +4,9 @@ A program written for MuJoCo's Python bindings runs on lever with one changed im
 
     import lever.mujoco as mujoco
 
-It covers lever's features: models of hinge and slide joints, motors, joint limits, sites; the
-forward pipeline, the split step, inverse dynamics, M and its products, Jacobians, energies and
-names. Every mjModel/mjData array lever has keeps MuJoCo's name, shape and dtype and is a writable
+It covers lever's features: models of hinge, slide, ball and free joints, motors, joint limits,
+sites and contacts (d.ncon, d.contact, the efc arrays, mj_contactForce); the forward pipeline,
+the split step, inverse dynamics, M and its products, Jacobians, energies and names. Every mjModel/mjData array lever has keeps MuJoCo's name, shape and dtype and is a writable
 view of lever's memory (``model.body_mass[2] = 1.6`` then ``mj_setConst``). Whatever MuJoCo has
 and lever does not raises NotImplementedError naming it, never a silent wrong value; a name that
 MuJoCo does not have either raises AttributeError, and an unknown object name raises KeyError.
@@ -459,6 +459,8 @@ class MjData:
             getattr(self._native, name)[...] = value
         elif name == "time":
             object.__setattr__(self, name, value)
+        elif name in ("ncon", "contact", "efc_J", "nefc"):
+            raise AttributeError(f"MjData.{name} is computed by mj_forward; it cannot be set")
         else:
             raise _missing("DATA", name)
 

@@ -197,6 +197,8 @@ def test_contact_views_and_refusals():
         d.contact.no_such_member
     with pytest.raises(AttributeError):
         d.contact[0].dist = 1.0
+    with pytest.raises(AttributeError, match="cannot be set"):
+        d.ncon = 0
     with pytest.raises(lever.StateError, match="does not exist"):
         mujoco.mj_contactForce(m, d, n, np.zeros(6))
     # a model without contacts: none, and no rows of theirs
