@@ -5,8 +5,8 @@
 #include <cstdio>
 #include <vector>
 
+#include <lever/contact_force.hpp>
 #include <lever/error.hpp>
-
 #include <lever/fields.hpp>
 
 namespace lever {
@@ -182,6 +182,47 @@ void write_data_fields(json::Writer& json, const Model& model, const Data& data)
   json.key("time").value(data.time);
   json.key("nefc").value(data.nefc);
   for (const FieldView& v : data_fields(model, data)) write_array(json, v);
+  // efc_J's live rows, nefc x nv row-major (the table has no nefc x nv shape)
+  json.key("efc_J").begin_array();
+  for (int r = 0; r < data.nefc; ++r) {
+    for (int c = 0; c < model.nv; ++c) json.value(data.efc_J(r, c));
+  }
+  json.end_array();
+  write_contacts(json, model, data);
+}
+
+void write_contacts(json::Writer& json, const Model& model, const Data& data) {
+  check_fit(model, data, "lever::write_contacts");
+  json.key("ncon").value(data.ncon);
+  json.key("contact").begin_array();
+  const auto numbers = [&json](const char* key, const double* x, int n) {
+    json.key(key).begin_array();
+    for (int k = 0; k < n; ++k) json.value(x[k]);
+    json.end_array();
+  };
+  for (int i = 0; i < data.ncon; ++i) {
+    const Contact& c = data.contact[static_cast<size_t>(i)];
+    json.begin_object();
+    json.key("geom1").value(c.geom1);
+    json.key("geom2").value(c.geom2);
+    json.key("geom1_name").value(model.geom_name[static_cast<size_t>(c.geom1)]);
+    json.key("geom2_name").value(model.geom_name[static_cast<size_t>(c.geom2)]);
+    json.key("dist").value(c.dist);
+    numbers("pos", c.pos.data(), 3);
+    numbers("frame", c.frame.data(), 9);  // row-major: the normal, then the two tangents
+    json.key("dim").value(c.dim);
+    numbers("friction", c.friction.data(), 5);
+    numbers("solref", c.solref.data(), 2);
+    numbers("solimp", c.solimp.data(), 5);
+    json.key("includemargin").value(c.includemargin);
+    json.key("exclude").value(c.exclude);
+    json.key("efc_address").value(c.efc_address);
+    json.key("mu").value(c.mu);
+    const Eigen::Matrix<double, 6, 1> force = contact_force(model, data, i);
+    numbers("force", force.data(), 6);
+    json.end_object();
+  }
+  json.end_array();
 }
 
 void write_data_arrays(json::Writer& json, const Model& model, const Data& data,

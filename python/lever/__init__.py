@@ -29,6 +29,8 @@ from ._lever import (  # noqa: F401  (the package's API)
     actuation,
     bias,
     compute_energy,
+    contact_force,
+    contact_members,
     copy_model,
     crba,
     data_field_table,

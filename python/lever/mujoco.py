@@ -4,9 +4,9 @@ A program written for MuJoCo's Python bindings runs on lever with one changed im
 
     import lever.mujoco as mujoco
 
-It covers lever's features: models of hinge and slide joints, motors, joint limits, sites; the
-forward pipeline, the split step, inverse dynamics, M and its products, Jacobians, energies and
-names. Every mjModel/mjData array lever has keeps MuJoCo's name, shape and dtype and is a writable
+It covers lever's features: models of hinge, slide, ball and free joints, motors, joint limits,
+sites and contacts (d.ncon, d.contact, the efc arrays, mj_contactForce); the forward pipeline,
+the split step, inverse dynamics, M and its products, Jacobians, energies and names. Every mjModel/mjData array lever has keeps MuJoCo's name, shape and dtype and is a writable
 view of lever's memory (``model.body_mass[2] = 1.6`` then ``mj_setConst``). Whatever MuJoCo has
 and lever does not raises NotImplementedError naming it, never a silent wrong value; a name that
 MuJoCo does not have either raises AttributeError, and an unknown object name raises KeyError.
@@ -25,7 +25,7 @@ __all__ = [
     "mj_forward", "mj_step", "mj_step1", "mj_step2", "mj_kinematics", "mj_comPos", "mj_crb",
     "mj_factorM", "mj_rne", "mj_inverse", "mj_fullM", "mj_mulM", "mj_solveM", "mj_jacSite",
     "mj_jacBody", "mj_jac", "mj_integratePos", "mj_differentiatePos", "mj_setConst", "mj_resetData", "mj_resetDataKeyframe",
-    "mj_name2id", "mj_id2name", "mj_energyPos", "mj_energyVel",
+    "mj_name2id", "mj_id2name", "mj_energyPos", "mj_energyVel", "mj_contactForce",
 ]
 
 mjVERSION_HEADER = 222  # the MuJoCo version lever is proven against
@@ -60,7 +60,7 @@ class mjtObj(_enum.IntEnum):
 
 
 class mjtConstraint(_enum.IntEnum):
-    """Constraint types (mjtConstraint); lever makes joint-limit rows only."""
+    """Constraint types (mjtConstraint); lever makes joint-limit and contact rows."""
     mjCNSTR_EQUALITY = 0
     mjCNSTR_FRICTION_DOF = 1
     mjCNSTR_FRICTION_TENDON = 2
@@ -344,6 +344,63 @@ class MjModel:
         return f"<lever.mujoco.MjModel {self._native.name!r} nq={self.nq} nu={self.nu}>"
 
 
+# ---- contacts (issue 19): d.contact as MuJoCo's bindings show it -------------------------------
+
+class _MjContact:
+    """One contact (MuJoCo's MjContact): pos (3,), frame (9,: normal, then two tangents), dist,
+    geom1, geom2, dim, friction (5,), solref (2,), solimp (5,), includemargin, exclude,
+    efc_address, mu. Arrays are views of lever's memory; numbers are read when asked for."""
+
+    def __init__(self, native, index: int):
+        object.__setattr__(self, "_native", native)
+        object.__setattr__(self, "_index", index)
+
+    def __getattr__(self, name: str):
+        if name not in _CONTACT_MEMBERS:
+            raise AttributeError(f"'MjContact' object has no attribute '{name}'")
+        value = self._native.contact_field(name)[self._index]
+        return value if _np.ndim(value) else value.item()
+
+    def __setattr__(self, name: str, value) -> None:
+        raise AttributeError(f"lever.mujoco: MjContact.{name} is computed by mj_forward; it "
+                             f"cannot be set")
+
+    def __repr__(self) -> str:
+        return (f"<MjContact geom1={self.geom1} geom2={self.geom2} dist={self.dist:g} "
+                f"dim={self.dim}>")
+
+
+class _MjContactList:
+    """d.contact: len() is ncon; d.contact[i] is one contact; d.contact.dist and the other members
+    are arrays over the ncon contacts (views, shape (ncon,) or (ncon, k)), as MuJoCo's."""
+
+    def __init__(self, native):
+        object.__setattr__(self, "_native", native)
+
+    def __len__(self) -> int:
+        return self._native.ncon
+
+    def __getitem__(self, index) -> _MjContact:
+        n = self._native.ncon
+        i = int(index)
+        if i < 0:
+            i += n
+        if not 0 <= i < n:
+            raise IndexError(f"contact index {index} out of range: ncon is {n}")
+        return _MjContact(self._native, i)
+
+    def __iter__(self):
+        return (self[i] for i in range(len(self)))
+
+    def __getattr__(self, name: str) -> _np.ndarray:
+        if name not in _CONTACT_MEMBERS:
+            raise AttributeError(f"'MjContactList' object has no attribute '{name}'")
+        return self._native.contact_field(name)
+
+
+_CONTACT_MEMBERS = frozenset(_lever.contact_members())
+
+
 class MjData:
     """The state and outputs, as mujoco.MjData(model)."""
 
@@ -370,11 +427,14 @@ class MjData:
         return self._native.nefc
 
     @property
-    def efc_type(self) -> _np.ndarray:
-        """Every row lever makes is a joint limit."""
-        out = _np.full(self._native.nefc, mjtConstraint.mjCNSTR_LIMIT_JOINT, dtype=_np.int32)
-        out.flags.writeable = False
-        return out
+    def efc_J(self) -> _np.ndarray:
+        """(nefc, nv): the constraint Jacobian's live rows, dense (MuJoCo's dense layout)."""
+        return self._native.efc_J
+
+    @property
+    def contact(self) -> "_MjContactList":
+        """The first ncon contacts, as MuJoCo's d.contact: d.contact.dist (ncon,), d.contact[i]."""
+        return _MjContactList(self._native)
 
     @property
     def ne(self) -> int:
@@ -386,7 +446,7 @@ class MjData:
 
     @property
     def ncon(self) -> int:
-        return 0
+        return self._native.ncon
 
     def __getattr__(self, name: str):
         native = object.__getattribute__(self, "_native")
@@ -399,6 +459,8 @@ class MjData:
             getattr(self._native, name)[...] = value
         elif name == "time":
             object.__setattr__(self, name, value)
+        elif name in ("ncon", "contact", "efc_J", "nefc"):
+            raise AttributeError(f"MjData.{name} is computed by mj_forward; it cannot be set")
         else:
             raise _missing("DATA", name)
 
@@ -582,6 +644,14 @@ def mj_id2name(m: MjModel, type, id: int):
         raise NotImplementedError(f"lever.mujoco: mj_id2name for {mjtObj(int(type)).name}")
     names = getattr(m._native, _OBJECTS[kind][0])
     return names[id] if 0 <= id < len(names) and names[id] else None
+
+
+def mj_contactForce(m: MjModel, d: MjData, id: int, result: _np.ndarray) -> None:
+    """result (6) = contact `id`'s force in its frame: normal, two tangents, torsion, two rolls
+    (past its dim zero), decoded from the pyramid's edge forces as MuJoCo's. MuJoCo writes zeros
+    for an id outside [0, ncon); lever raises lever.StateError instead."""
+    model, data = _pair(m, d)
+    result[...] = _lever.contact_force(model, data, int(id)).reshape(_np.shape(result))
 
 
 def mj_energyPos(m: MjModel, d: MjData) -> None:

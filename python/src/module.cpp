@@ -103,6 +103,56 @@ lever::Data& data_for(const ModelPtr& model, const DataPtr& data) {
   return data->data;
 }
 
+// ---- contacts (issue 19)
+// ------------------------------------------------------------------------- data.contact is an
+// array of structs (lever::Contact, MuJoCo's mjContact); each member is shown as a strided numpy
+// view over the first ncon contacts, so that it is live as the other arrays.
+struct ContactMember {
+  const char* name;
+  std::ptrdiff_t offset;  // bytes from the start of a Contact
+  bool is_int;
+  int cols;  // 1: one number per contact, shape (ncon,)
+};
+
+const std::vector<ContactMember>& contact_members() {
+  static const std::vector<ContactMember> members = [] {
+    const lever::Contact c;
+    const auto at = [&c](const void* member) {
+      return static_cast<const char*>(member) - reinterpret_cast<const char*>(&c);
+    };
+    static_assert(sizeof(lever::Mat3) == 9 * sizeof(double), "frame is 9 numbers, row-major");
+    return std::vector<ContactMember>{
+        {"dist", at(&c.dist), false, 1},
+        {"pos", at(c.pos.data()), false, 3},
+        {"frame", at(c.frame.data()), false, 9},
+        {"includemargin", at(&c.includemargin), false, 1},
+        {"friction", at(c.friction.data()), false, 5},
+        {"solref", at(c.solref.data()), false, 2},
+        {"solimp", at(c.solimp.data()), false, 5},
+        {"mu", at(&c.mu), false, 1},
+        {"dim", at(&c.dim), true, 1},
+        {"geom1", at(&c.geom1), true, 1},
+        {"geom2", at(&c.geom2), true, 1},
+        {"exclude", at(&c.exclude), true, 1},
+        {"efc_address", at(&c.efc_address), true, 1},
+    };
+  }();
+  return members;
+}
+
+py::array contact_view(lever::Data& data, const ContactMember& m, py::handle owner) {
+  const auto stride = static_cast<py::ssize_t>(sizeof(lever::Contact));
+  const auto item = static_cast<py::ssize_t>(m.is_int ? sizeof(int32_t) : sizeof(double));
+  std::vector<py::ssize_t> shape{data.ncon}, strides{stride};
+  if (m.cols > 1) {
+    shape.push_back(m.cols);
+    strides.push_back(item);
+  }
+  char* base = reinterpret_cast<char*>(data.contact.data()) + m.offset;
+  const py::dtype dtype = m.is_int ? py::dtype::of<int32_t>() : py::dtype::of<double>();
+  return py::array(dtype, shape, strides, base, owner);
+}
+
 // Python exception classes, made once in the module
 py::object g_parse_error, g_model_error, g_state_error, g_error;
 
@@ -283,6 +333,28 @@ PYBIND11_MODULE(_lever, m) {
           "time", [](const PyData& d) { return d.data.time; },
           [](PyData& d, double t) { d.data.time = t; })
       .def_property_readonly("nefc", [](const PyData& d) { return d.data.nefc; })
+      // contacts (issue 19): ncon, each member of data.contact as a view over the first ncon,
+      // and efc_J's live rows (the field table has no (nefc, nv) shape)
+      .def_property_readonly("ncon", [](const PyData& d) { return d.data.ncon; })
+      .def(
+          "contact_field",
+          [](py::object self, const std::string& name) {
+            auto& d = self.cast<PyData&>();
+            for (const ContactMember& member : contact_members()) {
+              if (name == member.name) return contact_view(d.data, member, self);
+            }
+            throw lever::StateError("a contact has no member called '" + name + "'.");
+          },
+          py::arg("name"), "One member of data.contact for the first ncon contacts, as a view.")
+      .def_property_readonly("efc_J",
+                             [](py::object self) {
+                               auto& d = self.cast<PyData&>();
+                               const auto item = static_cast<py::ssize_t>(sizeof(double));
+                               const auto nv = static_cast<py::ssize_t>(d.data.efc_J.cols());
+                               return py::array_t<double>(
+                                   {static_cast<py::ssize_t>(d.data.nefc), nv}, {item * nv, item},
+                                   d.data.efc_J.data(), self);
+                             })
       .def_property_readonly("warnings",
                              [](const PyData& d) { return lever::warning_text(d.data); })
       .def_property_readonly("warning_count",
@@ -345,6 +417,23 @@ PYBIND11_MODULE(_lever, m) {
         return v;
       },
       py::arg("model"), py::arg("data"), py::arg("vec"), "M^-1 vec with the current factor.");
+  m.def(
+      "contact_members",
+      [] {
+        py::list names;
+        for (const ContactMember& member : contact_members()) names.append(member.name);
+        return names;
+      },
+      "The members of a contact Data.contact_field shows (MuJoCo's mjContact names).");
+  m.def(
+      "contact_force",
+      [](const ModelPtr& x, const DataPtr& d, int id) {
+        const Eigen::Matrix<double, 6, 1> f = lever::contact_force(*x, data_for(x, d), id);
+        return Eigen::VectorXd(f);
+      },
+      py::arg("model"), py::arg("data"), py::arg("id"),
+      "Contact id's force in its frame: normal, two tangents, torsion, two rolls (entries past "
+      "dim zero), as mj_contactForce; raises lever.StateError for an id outside [0, ncon).");
   m.def(
       "jac_site",
       [](const ModelPtr& x, const DataPtr& d, int site) {

@@ -107,6 +107,46 @@ struct Row {
   int line = -2;
 };
 
+// contact models (issue 19): malformed <contact> elements, contacts beyond nconmax at run time,
+// and geom pairs lever has no collision function for
+const char* const kTwoSpheres =
+    "<mujoco>\n<worldbody>\n<geom name=\"a\" size=\"1\"/>\n<body><joint/><geom name=\"b\" "
+    "size=\"1\"/></body>\n</worldbody>\n";
+
+void make_contact_files() {
+  const std::string two = kTwoSpheres;
+  write("pair-no-geom2.xml", two + "<contact><pair geom1=\"a\"/></contact>\n</mujoco>\n");
+  write("pair-unknown-geom.xml",
+        two + "<contact><pair geom1=\"a\" geom2=\"nosuch\"/></contact>\n</mujoco>\n");
+  write("pair-bad-friction.xml",
+        two + "<contact><pair geom1=\"a\" geom2=\"b\" friction=\"1 x\"/></contact>\n</mujoco>\n");
+  write("pair-nested.xml", two +
+                               "<contact><pair geom1=\"a\" geom2=\"b\"><pair geom1=\"a\" "
+                               "geom2=\"b\"/></pair></contact>\n</mujoco>\n");
+  write("exclude-unknown-body.xml",
+        two + "<contact><exclude body1=\"world\" body2=\"nosuch\"/></contact>\n</mujoco>\n");
+  write("geom-condim-2.xml",
+        "<mujoco>\n<worldbody>\n<geom name=\"a\" size=\"1\"/>\n<body><joint/><geom name=\"b\" "
+        "size=\"1\" condim=\"2\"/></body>\n</worldbody>\n</mujoco>\n");
+  // a box resting on a plane makes four contacts: two more than nconmax allows
+  write("contact-nconmax-2.xml",
+        "<mujoco>\n<size nconmax=\"2\"/>\n<worldbody>\n<geom name=\"floor\" type=\"plane\" "
+        "size=\"1 1 0.1\"/>\n<body pos=\"0 0 0.099\"><freejoint/><geom name=\"box\" "
+        "type=\"box\" size=\"0.1 0.1 0.1\"/></body>\n</worldbody>\n</mujoco>\n");
+  write("contact-cylinders.xml",
+        "<mujoco>\n<worldbody>\n<geom name=\"floor\" type=\"plane\" size=\"1 1 0.1\"/>\n"
+        "<body pos=\"0 0 0.1\"><freejoint/><geom name=\"cyl1\" type=\"cylinder\" size=\"0.05 "
+        "0.1\"/></body>\n<body pos=\"0.05 0 0.2\"><freejoint/><geom name=\"cyl2\" "
+        "type=\"cylinder\" size=\"0.05 0.1\"/></body>\n</worldbody>\n</mujoco>\n");
+  write("contact-mesh-sphere.xml",
+        "<mujoco>\n<asset>\n<mesh name=\"m\" vertex=\"0 0 0 1 0 0 0 1 0 0 0 1\"/>\n</asset>\n"
+        "<worldbody>\n<geom name=\"tet\" type=\"mesh\" mesh=\"m\"/>\n<body pos=\"0.2 0.2 0.2\">"
+        "<freejoint/><geom name=\"ball\" size=\"0.1\"/></body>\n</worldbody>\n</mujoco>\n");
+  write("contact-hfield.xml",
+        "<mujoco>\n<asset>\n<hfield name=\"h\" nrow=\"2\" ncol=\"2\" size=\"1 1 0.1 0.1\"/>\n"
+        "</asset>\n<worldbody>\n<geom type=\"hfield\" hfield=\"h\"/>\n</worldbody>\n</mujoco>\n");
+}
+
 // the files the rows use, made once
 void make_files() {
   const std::string arm2 = arm2_text();
@@ -226,6 +266,7 @@ void make_files() {
     pairs += "<pair geom1=\"g\" geom2=\"floor\"/><exclude body1=\"world\" body2=\"world\"/>\n";
   write("contact-20000-pairs.xml", pairs + "</contact>\n</mujoco>\n");
   write("cdata.xml", "<mujoco>\n<worldbody><![CDATA[<body/>]]></worldbody>\n</mujoco>\n");
+  make_contact_files();
   write("unlimited.xml", kUnlimited);
   std::filesystem::create_directories(dir() / "a-directory.xml");
 }
@@ -269,6 +310,29 @@ std::vector<Row> rows() {
        0,
        "",
        -2},
+      {"<pair> without geom2",
+       {"model", "@pair-no-geom2.xml"},
+       2,
+       "missing required attribute 'geom2'",
+       6},
+      {"<pair> naming a geom that does not exist",
+       {"forward", "@pair-unknown-geom.xml"},
+       2,
+       "unknown geom 'nosuch'",
+       6},
+      {"<pair> friction that is not a number",
+       {"model", "@pair-bad-friction.xml"},
+       2,
+       "'x' is not a number",
+       6},
+      {"<pair> inside <pair>", {"model", "@pair-nested.xml"}, 2, "is not allowed in <pair>", 6},
+      {"<exclude> naming a body that does not exist",
+       {"simulate", "@exclude-unknown-body.xml"},
+       2,
+       "unknown body 'nosuch'",
+       6},
+      {"geom condim 2", {"forward", "@geom-condim-2.xml"}, 2, "MuJoCo has no condim 2", 4},
+      {"height field", {"forward", "@contact-hfield.xml"}, 2, "not supported by lever", 3},
       {"10000 unknown attributes", {"model", "@many-attributes.xml"}, 2, "unknown attribute", 3},
       // ---- files -----------------------------------------------------------------------------
       {"missing file", {"model", "@does-not-exist.xml"}, 2, "no such file", 0},
@@ -327,6 +391,24 @@ std::vector<Row> rows() {
        2,
        "raise <size nconmax>"},
       {"bodies nested 95 deep", {"forward", "@chain-95.xml"}, 0, ""},
+      // contacts at run time (issue 19): more than nconmax is refused before anything is
+      // printed; a pair lever cannot collide is a warning (exit 1), never skipped silently
+      {"a box on a plane with nconmax 2: simulate --json",
+       {"simulate", "@contact-nconmax-2.xml", "--steps", "5", "--json"},
+       2,
+       "raise <size nconmax>"},
+      {"a box on a plane with nconmax 2: forward --json",
+       {"forward", "@contact-nconmax-2.xml", "--json"},
+       2,
+       "raise <size nconmax>"},
+      {"two cylinders touching: no cylinder-cylinder contact",
+       {"forward", "@contact-cylinders.xml"},
+       1,
+       "no cylinder-cylinder contact"},
+      {"a sphere on a mesh: simulate --json",
+       {"simulate", "@contact-mesh-sphere.xml", "--steps", "5", "--json"},
+       1,
+       "no mesh-sphere contact"},
       {"defaults nested 90 deep", {"model", "@defaults-nested-90.xml"}, 0, ""},
       {"UTF-8 byte-order mark", {"forward", "@utf8-bom.xml"}, 0, ""},
       {"Latin-1 byte in the model name", {"model", "@latin1-name.xml"}, 0, ""},

@@ -87,3 +87,37 @@ TEST_CASE("the JSON of a Data holds every array of the table", "[serialize]") {
     CHECK(model_json.find(key_of(info)) != std::string::npos);
   }
 }
+
+TEST_CASE("the JSON of a Data holds its contacts, each with its force", "[serialize]") {
+  const lever::Model model = lever::mjcf::load_file(lever::test::model_path("models/box_drop.xml"));
+  lever::Data data(model);
+  {
+    const std::string json = lever::data_to_json(model, data);
+    CHECK(json.find("\"ncon\":0,\"contact\":[]") != std::string::npos);
+  }
+  // the box lying on the table: let it fall and settle
+  for (int i = 0; i < 600; ++i) lever::step(model, data);
+  lever::forward(model, data);
+  REQUIRE(data.ncon > 0);
+  const std::string json = lever::data_to_json(model, data);
+  CHECK(json.find("\"ncon\":" + std::to_string(data.ncon) + ",") != std::string::npos);
+  // one object per contact, each with the mjContact fields, the geoms' names and the force
+  for (const char* key :
+       {"\"geom1\":", "\"geom2\":", "\"geom1_name\":\"table\"", "\"geom2_name\":\"box\"",
+        "\"dist\":", "\"pos\":[", "\"frame\":[", "\"dim\":3", "\"friction\":[", "\"solref\":[",
+        "\"solimp\":[", "\"includemargin\":", "\"exclude\":0",
+        "\"efc_address\":", "\"mu\":", "\"force\":["}) {
+    INFO(key);
+    size_t count = 0;
+    for (size_t at = json.find(key); at != std::string::npos; at = json.find(key, at + 1)) {
+      ++count;
+    }
+    CHECK(count == static_cast<size_t>(data.ncon));
+  }
+  // the normal forces hold the box up: they add up to its weight
+  double normal = 0;
+  for (int i = 0; i < data.ncon; ++i) normal += lever::contact_force(model, data, i)[0];
+  const double weight = model.body_mass[1] * -model.opt.gravity.z();
+  CHECK(std::abs(normal - weight) <= 1e-6 * weight);
+  CHECK(json.find("\"efc_J\":[") != std::string::npos);
+}

@@ -8,14 +8,19 @@
 // --json: one object: the model's name and sizes (nq, nv, nu, nbody, njnt, ngeom, nsite), time,
 // nefc, then every array of Data's field table (lever/fields.hpp: qpos ... qfrc_constraint,
 // qfrc_inverse, energy) under mjData's names, laid out as mjData stores them, row-major and
-// flattened (xmat: nbody x 9; efc arrays: the nefc live limit rows), with
+// flattened (xmat: nbody x 9; efc arrays: the nefc live rows, limits then contacts), with
 //   M          nv x nv, full and symmetric (MuJoCo's mj_fullM of qM)
 //   energy     [potential, kinetic] in J
+//   efc_J      nefc x nv, the constraint rows' Jacobian (dense, as MuJoCo's efc_J)
+//   ncon       the number of contacts
+//   contact    one object per contact: mjContact's fields, the geoms' names and `force`, its force
+//              in its frame (mj_contactForce; lever/io/serialize.hpp write_contacts)
 // and what the command adds:
 //   site_jacp  nsite x 3 x nv (mj_jacSite's jacp for each site, one after the other)
 //   site_jacr  nsite x 3 x nv
 // Numbers are printed with 17 significant digits, so they compare exactly.
-// Without --json: readable tables with names and units.
+// Without --json: readable tables with names and units (the contacts: geom names, dist, normal,
+// normal and friction force).
 // Exit 0; 1 when the evaluation raised an engine warning (a state that is NaN or beyond 1e10, an
 // acceleration that blows up) or gave a number that is not finite (printed as n/a, or null in
 // JSON), each said on stderr; bad input (a list with the wrong count, text that is not a number,
@@ -89,6 +94,48 @@ void print_json(const Model& model, const Data& data, const Evaluation& e) {
 }
 
 // ---- text ------------------------------------------------------------------------------------
+
+// The joint-limit rows among the constraint rows (contact rows are listed with their contacts).
+void print_limit_rows(const Model& model, const Data& data) {
+  int limits = 0;
+  for (int r = 0; r < data.nefc; ++r) limits += data.efc_type[r] == ConstraintType::kLimitJoint;
+  std::printf("\njoint-limit rows: %d of nefc %d\n", limits, data.nefc);
+  if (limits == 0) return;
+  std::printf("  %-10s %-6s %12s %12s %12s %12s %12s\n", "joint", "stop", "efc_pos", "efc_force",
+              "efc_aref", "efc_R", "efc_D");
+  for (int r = 0; r < data.nefc; ++r) {
+    if (data.efc_type[r] != ConstraintType::kLimitJoint) continue;
+    const int j = data.efc_id[r];
+    std::printf("  %-10s %-6s %12s %12s %12s %12s %12s\n", label_of(model.jnt_name[j], j).c_str(),
+                data.efc_sign[r] > 0 ? "lower" : "upper", num(data.efc_pos[r]).c_str(),
+                num(data.efc_force[r]).c_str(), num(data.efc_aref[r]).c_str(),
+                num(data.efc_R[r]).c_str(), num(data.efc_D[r]).c_str());
+  }
+  std::printf("  (efc_pos < 0: past the stop; efc_force > 0 pushes back; efc_pos in rad or m)\n");
+}
+
+// The contacts: which geoms, how far apart, the normal, and the force in the contact's frame.
+void print_contacts(const Model& model, const Data& data) {
+  if (!model.contacts_possible) return;
+  std::printf("\ncontacts: ncon %d\n", data.ncon);
+  if (data.ncon == 0) return;
+  std::printf("  %-3s %-12s %-12s %4s %12s %-38s %-26s %12s %12s\n", "#", "geom1", "geom2", "dim",
+              "dist", "pos", "normal", "normal N", "friction N");
+  for (int i = 0; i < data.ncon; ++i) {
+    const Contact& c = data.contact[static_cast<size_t>(i)];
+    const Eigen::Matrix<double, 6, 1> f = contact_force(model, data, i);
+    const std::string friction = c.dim > 1 ? num(f.segment<2>(1).norm()) : "-";
+    std::printf("  %-3d %-12s %-12s %4d %12s %-38s %-26s %12s %12s%s\n", i,
+                label_of(model.geom_name[c.geom1], c.geom1).c_str(),
+                label_of(model.geom_name[c.geom2], c.geom2).c_str(), c.dim, num(c.dist).c_str(),
+                vec_text(c.pos).c_str(), vec_text(c.frame.row(0).transpose()).c_str(),
+                num(f[0]).c_str(), friction.c_str(), c.exclude ? "  (in the gap: no rows)" : "");
+  }
+  std::printf(
+      "  (dist < 0: penetration, m; normal from geom1 into geom2; forces in the contact frame as\n"
+      "   mj_contactForce: the normal force pushes the geoms apart, friction N is the size of the\n"
+      "   tangential force)\n");
+}
 
 void print_text(const std::string& path, const Model& model, const Data& data,
                 const Evaluation& e) {
@@ -171,21 +218,8 @@ void print_text(const std::string& path, const Model& model, const Data& data,
   for (int r = 0; r < model.nv; ++r)
     std::printf("  %s\n", vec_text(data.M.row(r).transpose(), "%.6g").c_str());
 
-  std::printf("\njoint-limit rows: nefc %d\n", data.nefc);
-  if (data.nefc > 0) {
-    std::printf("  %-10s %-6s %12s %12s %12s %12s %12s\n", "joint", "stop", "efc_pos", "efc_force",
-                "efc_aref", "efc_R", "efc_D");
-  }
-  for (int r = 0; r < data.nefc; ++r) {
-    const int j = data.efc_id[r];
-    std::printf("  %-10s %-6s %12s %12s %12s %12s %12s\n", label_of(model.jnt_name[j], j).c_str(),
-                data.efc_sign[r] > 0 ? "lower" : "upper", num(data.efc_pos[r]).c_str(),
-                num(data.efc_force[r]).c_str(), num(data.efc_aref[r]).c_str(),
-                num(data.efc_R[r]).c_str(), num(data.efc_D[r]).c_str());
-  }
-  if (data.nefc > 0) {
-    std::printf("  (efc_pos < 0: past the stop; efc_force > 0 pushes back; efc_pos in rad or m)\n");
-  }
+  print_limit_rows(model, data);
+  print_contacts(model, data);
 
   std::printf("\nenergy: potential %s J, kinetic %s J\n", num(data.energy[0]).c_str(),
               num(data.energy[1]).c_str());

@@ -51,7 +51,9 @@ const char* const kUsage =
     "                          of three sines sweeping the fraction F of its range, PD-tracked\n"
     "                          (added to the other commands)\n"
     "  --json                  one JSON line per state (start, then after each step): time qpos\n"
-    "                          qvel qacc qfrc_bias qfrc_constraint ctrl actuator_force\n"
+    "                          qvel qacc qfrc_bias qfrc_constraint ctrl actuator_force, ncon\n"
+    "                          and contact (each contact's geoms, dist, pos, frame, ... and\n"
+    "                          force in its frame, as lever forward --json)\n"
     "  --csv FILE              the trajectory as CSV with a header row ('-': standard output)\n"
     "  --plot FILE.svg         joint angles over time and the site trail in the x-z plane\n"
     "Without --json, a short table of the run is printed. Steps whose command was clamped are\n"
@@ -67,6 +69,7 @@ void json_row(const Model& model, const Data& d) {
   json.begin_object();
   json.key("time").value(d.time);
   write_data_arrays(json, model, d, arrays);
+  write_contacts(json, model, d);  // ncon and each contact with its force (issue 19)
   json.end_object();
   json.newline();
 }

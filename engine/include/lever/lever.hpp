@@ -3,6 +3,7 @@
 
 #include <lever/collision.hpp>
 #include <lever/constraint.hpp>
+#include <lever/contact_force.hpp>
 #include <lever/data.hpp>
 #include <lever/derivatives.hpp>
 #include <lever/dynamics.hpp>

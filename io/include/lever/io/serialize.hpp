@@ -20,9 +20,17 @@ void write_model_sizes(json::Writer& json, const Model& model);
 /// The model's sizes, names and every array of the table, as members of the open JSON object.
 void write_model_fields(json::Writer& json, const Model& model);
 
-/// time, nefc and every array of the table (efc arrays: the live rows), as members of the open
-/// JSON object.
+/// time, nefc and every array of the table (efc arrays: the live rows), efc_J (nefc x nv,
+/// row-major), then the contacts (write_contacts), as members of the open JSON object.
 void write_data_fields(json::Writer& json, const Model& model, const Data& data);
+
+/// `ncon` and `contact`: an array of the ncon contacts, each an object with MuJoCo's mjContact
+/// fields (geom1, geom2, dist, pos, frame as 9 numbers row-major: the normal from geom1 into
+/// geom2, then two tangents; dim, friction, solref, solimp, includemargin, exclude, efc_address,
+/// mu), the geoms' names (geom1_name, geom2_name; "" for an unnamed geom) and `force`: its force
+/// in its frame (lever::contact_force, mj_contactForce: normal, two tangents, torsion, two rolls),
+/// as members of the open JSON object. Throws StateError if the data does not fit the model.
+void write_contacts(json::Writer& json, const Model& model, const Data& data);
 
 /// Chosen arrays of the table (by name, in the order given), as members of the open JSON object;
 /// throws StateError naming an array the table does not have.

@@ -1,0 +1,141 @@
+// `lever forward` and `lever simulate` on a model with contacts (issue 19): the JSON holds ncon and
+// each contact (mjContact's fields, the geoms' names, its force in its frame), equal to what the
+// library computes for the same state, and the forces obey Newton's law for the box they hold; the
+// text of `lever forward` lists them.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <cstdio>
+#include <sstream>
+#include <string>
+
+#include <lever/contact_force.hpp>
+#include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
+
+#include <lever/harness/models.hpp>
+#include "json_reader.hpp"
+#include "run_lever.hpp"
+
+namespace lever::test {
+
+namespace {
+
+std::string list(const Eigen::VectorXd& v) {
+  std::string out;
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    char buf[40];
+    std::snprintf(buf, sizeof buf, "%s%.17g", i ? "," : "", v[i]);
+    out += buf;
+  }
+  return out;
+}
+
+Eigen::VectorXd numbers(const json::Value& v) {
+  Eigen::VectorXd out(static_cast<Eigen::Index>(v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i) out[static_cast<Eigen::Index>(i)] = v[i].number;
+  return out;
+}
+
+// The box dropped onto the table, after it has come to rest (models/box_drop.xml).
+struct Resting {
+  Model model = mjcf::load_file(model_path("models/box_drop.xml"));
+  Data data{model};
+  Resting() {
+    for (int i = 0; i < 600; ++i) step(model, data);
+    forward(model, data);
+  }
+};
+
+}  // namespace
+
+TEST_CASE("lever forward --json: the contacts of a box on the table, as the library's",
+          "[cli][contact]") {
+  const Resting rest;
+  const Model& model = rest.model;
+  const Data& data = rest.data;
+  REQUIRE(data.ncon > 0);
+  const Run run = run_lever("forward " + quoted(model_path("models/box_drop.xml")) + " --qpos " +
+                            list(data.qpos) + " --qvel " + list(data.qvel) + " --json");
+  REQUIRE(run.status == 0);
+  const json::Value out = json::parse(run.out);
+  REQUIRE(out["ncon"].number == data.ncon);
+  REQUIRE(out["contact"].size() == static_cast<std::size_t>(data.ncon));
+  REQUIRE(out["efc_J"].size() == static_cast<std::size_t>(data.nefc * model.nv));
+
+  Eigen::Vector3d pushed = Eigen::Vector3d::Zero();  // the contacts' force on the box, world frame
+  for (int i = 0; i < data.ncon; ++i) {
+    INFO("contact " << i);
+    const Contact& c = data.contact[static_cast<std::size_t>(i)];
+    const json::Value& theirs = out["contact"][static_cast<std::size_t>(i)];
+    CHECK(theirs["geom1"].number == c.geom1);
+    CHECK(theirs["geom2"].number == c.geom2);
+    CHECK(theirs["geom1_name"].string == "table");
+    CHECK(theirs["geom2_name"].string == "box");
+    CHECK(theirs["dim"].number == c.dim);
+    CHECK(theirs["exclude"].number == c.exclude);
+    CHECK(theirs["efc_address"].number == c.efc_address);
+    CHECK(theirs["dist"].number == c.dist);
+    CHECK(theirs["mu"].number == c.mu);
+    CHECK(numbers(theirs["pos"]) == Eigen::VectorXd(c.pos));
+    CHECK(numbers(theirs["frame"]) == Eigen::Map<const Eigen::VectorXd>(c.frame.data(), 9));
+    const Eigen::VectorXd force = numbers(theirs["force"]);
+    CHECK(force == Eigen::VectorXd(contact_force(model, data, i)));
+    CHECK(force[0] > 0);  // the table pushes the box up
+    // frame rows are the normal and the tangents: the world force is frame^T f
+    pushed += c.frame.transpose() * force.head<3>();
+  }
+  // Newton for the free box (its frame origin is its centre of mass): m qacc = m g + contacts
+  const double mass = model.body_mass[1];
+  const Eigen::Vector3d qacc = numbers(out["qacc"]).head<3>();
+  const Eigen::Vector3d newton = mass * qacc - mass * model.opt.gravity - pushed;
+  INFO("m a - m g - F = " << newton.transpose());
+  CHECK(newton.norm() <= 1e-12 * mass * model.opt.gravity.norm());
+}
+
+TEST_CASE("lever forward lists the contacts in its text", "[cli][contact]") {
+  const Resting rest;
+  const Run run = run_lever("forward " + quoted(model_path("models/box_drop.xml")) + " --qpos " +
+                            list(rest.data.qpos) + " --qvel " + list(rest.data.qvel));
+  REQUIRE(run.status == 0);
+  CHECK_THAT(run.out, Catch::Contains("contacts: ncon " + std::to_string(rest.data.ncon)));
+  std::istringstream lines(run.out.substr(run.out.find("contacts: ncon")));
+  std::string line;
+  std::getline(lines, line);  // the title
+  std::getline(lines, line);  // the header
+  CHECK_THAT(line, Catch::Contains("geom1") && Catch::Contains("normal N"));
+  for (int i = 0; i < rest.data.ncon; ++i) {
+    std::getline(lines, line);
+    INFO(line);
+    CHECK_THAT(line, Catch::Contains("table") && Catch::Contains("box"));
+  }
+  // a model that cannot make contacts has no such section
+  const Run arm = run_lever("forward " + quoted(model_path("models/arm2.xml")));
+  REQUIRE(arm.status == 0);
+  CHECK_THAT(arm.out, !Catch::Contains("contacts:"));
+}
+
+TEST_CASE("lever simulate --json: each line's contacts, from falling to resting",
+          "[cli][contact]") {
+  const Run run =
+      run_lever("simulate " + quoted(model_path("models/box_drop.xml")) + " --steps 600 --json");
+  REQUIRE(run.status == 0);
+  std::istringstream lines(run.out);
+  int count = 0, first_ncon = -1, last_ncon = -1;
+  for (std::string line; std::getline(lines, line); ++count) {
+    const json::Value row = json::parse(line);
+    const int ncon = static_cast<int>(row["ncon"].number);
+    REQUIRE(row["contact"].size() == static_cast<std::size_t>(ncon));
+    for (std::size_t i = 0; i < row["contact"].size(); ++i) {
+      CHECK(row["contact"][i]["force"][0].number >= 0);  // contacts only push
+    }
+    if (first_ncon < 0) first_ncon = ncon;
+    last_ncon = ncon;
+  }
+  CHECK(count == 601);
+  CHECK(first_ncon == 0);  // dropped from above the table
+  const Resting rest;      // the same run in the library
+  CHECK(last_ncon == rest.data.ncon);
+}
+
+}  // namespace lever::test
