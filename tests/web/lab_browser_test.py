@@ -774,12 +774,14 @@ def case_gripper_contacts_match_native():
         hidden = b.js('return [lab.view(), lab.contactMarkers()];')
         b.js('document.querySelector("input[data-toggle=contacts]").click(); lab.press("Lift"); lab.run(0.6);')
         lifted = gripper_state(b)
+        geoms, qpos = drawn_geoms(b)  # the free box drawn at its qpos (position, quaternion)
         b.js('lab.play();')  # the real-time loop on a model with contacts
         b.driver.execute_async_script('setTimeout(arguments[arguments.length - 1], 500);')
         check(b.console_errors() == [], 'console errors: %s' % b.console_errors())
         check(b.errors_shown() == [], 'errors shown: %s' % b.errors_shown())
     check_contacts_drawn_and_read(gripped, 'gripped')
     check_contacts_drawn_and_read(lifted, 'lifted')
+    check_geoms_where_lever_puts_them(GRIPPER, geoms, qpos)
     check(hidden[1] == [] and hidden[0]['checksum'] != shown['checksum'],
           'turning the contacts overlay off changed nothing')
     # the lesson's physics: on the table and between the fingers, then held up by the fingers alone
