@@ -429,6 +429,17 @@
     }
 
     // ---- drawing -------------------------------------------------------------------------------
+    // each contact's normal force for the contacts overlay, when the engine gives it
+    // (mj_contactForce); otherwise null and the normals are drawn at one length
+    normalForces() {
+      if (!this.overlays.contacts || !this.mj.mj_contactForce) return null;
+      const force = new Float64Array(6);
+      return this.data.contact.map((c, i) => {
+        this.mj.mj_contactForce(this.model, this.data, i, force);
+        return force[0];
+      });
+    }
+
     camera(width, height) {
       const cam = this.spec.camera || {};
       const az = ((cam.azimuth === undefined ? 90 : cam.azimuth) * Math.PI) / 180;
@@ -452,7 +463,7 @@
 
     draw() {
       if (this.view3d) {
-        this.view3d.draw(this.data, this.overlays, this.trail);
+        this.view3d.draw(this.data, this.overlays, this.trail, this.normalForces());
         this.plotCanvases.forEach((c, i) => this.drawPlot(c, this.plotSpecs[i], i));
         return;
       }
@@ -565,6 +576,13 @@
       }
       if (this.overlays.sites) {
         for (let i = 0; i < model.nsite; i++) dotAt(at3(data.site_xpos, i), 3.5, '#c0c', null);
+      }
+      if (this.overlays.contacts) {
+        for (const c of data.contact) {
+          const p = Array.from(c.pos);
+          line(p, add(p, Array.from(c.frame.subarray(0, 3), (x) => 0.03 * x)), '#0060c0', 1.5 * ratio);
+          dotAt(p, 3, '#00a0ff', null);
+        }
       }
       this.plotCanvases.forEach((c, i) => this.drawPlot(c, this.plotSpecs[i], i));
     }
@@ -776,6 +794,13 @@
       const info = sim.view3d.renderer.info.render;
       return Object.assign({kind: '3d', triangles: info.triangles, calls: info.calls,
         camera: Object.assign({}, sim.view3d.cam)}, sim.view3d.pixelSummary());
+    },
+    // the contacts overlay of the 3D view: each contact's ball centre and normal's tip
+    contactMarkers(index) {
+      const sim = simFor(index);
+      if (!sim.view3d) return null;
+      sim.draw();
+      return sim.view3d.contactMarkers();
     },
     orbit(dAzimuth, dElevation, index) { simFor(index).view3d.orbit(dAzimuth, dElevation); },
     zoom(factor, index) { simFor(index).view3d.zoom(factor); },

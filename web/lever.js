@@ -11,7 +11,11 @@
 // Arrays are typed-array views onto lever's own Model and Data, one for each row of lever's field
 // table (engine/include/lever/fields.hpp): Float64Array, Int32Array for ids and counts, Uint8Array
 // for flags, flat in MuJoCo's row-major layout: data.xpos[3 * body + k]. Scalars
-// (data.time, data.nefc, model.opt.timestep) are read and written as numbers. A view is rebuilt
+// (data.time, data.nefc, data.ncon, model.opt.timestep) are read and written as numbers. The
+// efc_ arrays (efc_J: nefc x nv) have data.nefc rows at each access. data.contact is an array of
+// the data.ncon current contacts, each with MuJoCo's mjContact fields viewed in place (pos,
+// frame: the normal then two tangents, friction, solref, solimp as typed arrays; dist, dim,
+// geom1, geom2, includemargin, exclude, efc_address, mu as numbers). A view is rebuilt
 // whenever the wasm heap has grown or mj_setConst() has run, so keeping `data.qpos` in a variable
 // across those is the one thing to avoid (as with MuJoCo's own views).
 (function (root) {
@@ -56,7 +60,7 @@
           const heapView = Module[typed[f.type]];
           const start = f.address / bytes[f.type];
           const length = f.cols === 0 ? 1 : f.rows * f.cols;
-          views[f.name] = {scalar: f.cols === 0, view: heapView.subarray(start, start + length)};
+          views[f.name] = {scalar: f.cols === 0 && !f.live_rows, view: heapView.subarray(start, start + length)};
           if (f.live_rows) {  // efc_ arrays: as many rows as data.nefc says now
             const nefc = f.live_rows / 4;
             const cols = f.cols;
@@ -131,11 +135,54 @@
       }
     }
 
+    // lever::Contact's members (offset in bytes, type, count), the same for every Data
+    const contactMembers = (() => {
+      const list = Module.contact_layout();
+      const members = [];
+      for (let i = 0; i < list.size(); i++) {
+        const m = list.get(i);
+        members.push({name: m.name, type: m.type, offset: m.offset, count: m.count});
+      }
+      list.delete();
+      return members;
+    })();
+
+    /** Contact `index` of a WasmData: an object whose fields are views into its data.contact. */
+    function contactView(wasmData, index) {
+      const base = wasmData.contact_address() + index * wasmData.contact_stride();
+      const contact = {};
+      for (const m of contactMembers) {
+        const heap = () => Module[typed[m.type]];
+        const start = (base + m.offset) / bytes[m.type];
+        if (m.count) {
+          Object.defineProperty(contact, m.name, {
+            enumerable: true,
+            get: () => heap().subarray(start, start + m.count),
+          });
+        } else {
+          Object.defineProperty(contact, m.name, {
+            enumerable: true,
+            get: () => heap()[start],
+            set: (value) => { heap()[start] = value; },
+          });
+        }
+      }
+      return contact;
+    }
+
     class MjData {
       constructor(model) {
         this._model = model;
         this._wasm = new Module.WasmData(model._wasm);
         attachFields(this, this._wasm, () => 0);
+      }
+
+      /** The data.ncon current contacts (a new array of views at each access). */
+      get contact() {
+        const n = Math.min(this.ncon, this._wasm.contact_capacity());
+        const list = [];
+        for (let i = 0; i < n; i++) list.push(contactView(this._wasm, i));
+        return list;
       }
 
       delete() {
@@ -178,6 +225,8 @@
         data.qpos.set(model.qpos0);
         check(data._wasm.forward());
       },
+      // TODO(lead): mj_contactForce once lever::contact_force is on main (branch `views`); the
+      // page computes no contact force of its own.
       /** n steps in one call into wasm (the same as n calls of mj_step). */
       mj_steps(model, data, n) { check(data._wasm.steps(n)); },
       /** `lever check` on MJCF text (lesson 5.1's six checks and lesson 5.2's two): its text, or its JSON. */

@@ -6,7 +6,8 @@ simulation's section cropped:
   specs/5.1-lab.json (the default): arm2 let go from the horizontal with gravity compensation off,
       so that it falls onto its shoulder stop, 2 s later, every overlay on;
   specs/5.2-lab.json: panda7 from its home keyframe sent to other targets, 1.5 s later, holding
-      them with gravity compensation, the ee trail behind it.
+      them with gravity compensation, the ee trail behind it;
+  specs/5.3-lab.json: the gripper down on the box, closed on it and lifted, its contacts drawn.
 Any other spec is shot as it loads; --script JS runs JS (window.lab's API) first instead.
 """
 import argparse
@@ -25,6 +26,8 @@ SCENES = {
     'specs/5.1-lab.json': 'lab.press("Arm horizontal"); lab.run(2);',
     'specs/5.2-lab.json': 'lab.press("Home"); lab.set("q1", 0.6); lab.set("q2", 0.5); '
                           'lab.set("q4", -1.9); lab.set("q6", 2.2); lab.run(1.5);',
+    'specs/5.3-lab.json': 'lab.press("Down to the box"); lab.run(0.6); lab.press("Grip"); lab.run(0.5); '
+                          'lab.press("Lift"); lab.run(0.3);',
 }
 ALL_OVERLAYS = ('for (const box of document.querySelectorAll("input[data-toggle]")) {'
                 '  if (!box.checked) box.click();'

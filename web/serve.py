@@ -79,6 +79,7 @@ def main():
     print(url + '?spec=specs/5.1-lab.json', flush=True)
     print(url + '?spec=specs/5.1-check.json', flush=True)
     print(url + '?spec=specs/5.2-lab.json', flush=True)
+    print(url + '?spec=specs/5.3-lab.json', flush=True)
     try:
         threading.Event().wait()
     except KeyboardInterrupt:

@@ -2,7 +2,7 @@
 // vendor/three/), from MuJoCo's free camera (window.View3D).
 //
 //   const view = View3D.create(canvas, model, camera);   // null when WebGL is not available
-//   view.draw(data, overlays, trail);                     // after every change of the state
+//   view.draw(data, overlays, trail, normalForces);       // after every change of the state
 //
 // Geoms as MuJoCo draws them: sphere, capsule, ellipsoid, cylinder, box; a mesh geom as the box
 // lever sized it by (its bounding box, when lever read the mesh). Each geom's pose is its body's
@@ -11,13 +11,20 @@
 // forward = (cos el cos az, cos el sin az, sin el) at `target` from `distance`, with 45 degrees of
 // vertical field of view (mjvCamera; azimuth and elevation in degrees). Dragging changes azimuth
 // and elevation, the wheel the distance, a double click restores the spec's camera.
+//
+// The contacts overlay draws each of data.contact's points (pos) as a small ball and its normal
+// (frame's first row, from geom1 into geom2) as a line from it: CONTACT_NORMAL long, or scaled by
+// the contact's normal force when draw() is given one per contact (N -> m by NORMAL_PER_NEWTON).
 (function (root) {
   'use strict';
 
-  const GEOM = {sphere: 2, capsule: 3, ellipsoid: 4, cylinder: 5, box: 6, mesh: 7};
+  const GEOM = {plane: 0, sphere: 2, capsule: 3, ellipsoid: 4, cylinder: 5, box: 6, mesh: 7};
   const AXIS_LENGTH = 0.1;  // m: the frames overlay, as the 2D view draws it
   const MARKER = 0.02;      // m: radius of the joint, com and site markers
   const TRAIL_POINTS = 2000;
+  const CONTACT_MARKER = 0.004;    // m: radius of a contact point's ball
+  const CONTACT_NORMAL = 0.03;     // m: a normal's length when no force is given
+  const NORMAL_PER_NEWTON = 0.01;  // m per N of normal force
 
   function freeCamera(spec) {
     const c = spec || {};
@@ -114,6 +121,10 @@
           group.add(mesh);
         };
         switch (m.geom_type[i]) {
+          case GEOM.plane:  // a plane's size: half-lengths in x and y (0: infinite, drawn as 2 m)
+            add(new THREE.PlaneBufferGeometry(2 * (size[0] || 1), 2 * (size[1] || 1)));
+            material.side = THREE.DoubleSide;
+            break;
           case GEOM.sphere:
             add(new THREE.SphereBufferGeometry(size[0], 24, 16));
             break;
@@ -191,6 +202,52 @@
       this.trail = onTop(new THREE.Line(trailGeometry, new THREE.LineBasicMaterial({color: 0xe6b800})));
       this.trail.frustumCulled = false;
       this.frames.frustumCulled = false;
+      // contacts: balls added as more contacts appear, normals as one set of line segments
+      this.contactBall = new THREE.SphereBufferGeometry(CONTACT_MARKER, 12, 8);
+      this.contactMaterial = new THREE.MeshBasicMaterial({color: 0x00a0ff, depthTest: false});
+      this.contactPoints = onTop(new THREE.Group());
+      this.contactNormals = onTop(new THREE.LineSegments(new THREE.BufferGeometry(),
+        new THREE.LineBasicMaterial({color: 0x0060c0})));
+      this.contactNormals.frustumCulled = false;
+    }
+
+    // the contacts of data (see the file's comment); normalForces: one number per contact, or null
+    drawContacts(data, visible, normalForces) {
+      const THREE = this.THREE;
+      const contacts = visible ? data.contact : [];
+      while (this.contactPoints.children.length < contacts.length) {
+        const ball = new THREE.Mesh(this.contactBall, this.contactMaterial);
+        ball.renderOrder = 10;
+        this.contactPoints.add(ball);
+      }
+      let segments = this.contactNormals.geometry.getAttribute('position');
+      if (!segments || segments.count < 2 * contacts.length) {
+        const capacity = Math.max(16, 2 * contacts.length);
+        segments = new THREE.BufferAttribute(new Float32Array(3 * capacity), 3);
+        this.contactNormals.geometry.setAttribute('position', segments);
+      }
+      this.contactPoints.children.forEach((ball, i) => (ball.visible = i < contacts.length));
+      contacts.forEach((c, i) => {
+        const p = c.pos;
+        const n = c.frame;  // its first row is the normal
+        const length = normalForces ? NORMAL_PER_NEWTON * normalForces[i] : CONTACT_NORMAL;
+        this.contactPoints.children[i].position.set(p[0], p[1], p[2]);
+        segments.setXYZ(2 * i, p[0], p[1], p[2]);
+        segments.setXYZ(2 * i + 1, p[0] + length * n[0], p[1] + length * n[1], p[2] + length * n[2]);
+      });
+      segments.needsUpdate = true;
+      this.contactNormals.geometry.setDrawRange(0, 2 * contacts.length);
+      this.contactPoints.visible = this.contactNormals.visible = visible;
+    }
+
+    /** What the contacts overlay shows now (for tests): each ball's centre and its normal's tip. */
+    contactMarkers() {
+      if (!this.contactPoints.visible) return [];
+      const segments = this.contactNormals.geometry.getAttribute('position');
+      return this.contactPoints.children.filter((ball) => ball.visible).map((ball, i) => ({
+        pos: [ball.position.x, ball.position.y, ball.position.z],
+        tip: [segments.getX(2 * i + 1), segments.getY(2 * i + 1), segments.getZ(2 * i + 1)],
+      }));
     }
 
     // mouse: drag to orbit (azimuth, elevation), wheel to zoom (distance), double click to reset
@@ -261,7 +318,7 @@
     }
 
     /** Move everything to data's state and render. */
-    draw(data, overlays, trail) {
+    draw(data, overlays, trail, normalForces) {
       const m = this.model;
       const at = (array, i, n) => Array.from(array.subarray(n * i, n * i + n));
       for (let i = 0; i < m.ngeom; i++) {
@@ -293,6 +350,7 @@
       this.coms.visible = !!overlays.com;
       for (let s = 0; s < m.nsite; s++) this.sites.children[s].position.set(...at(data.site_xpos, s, 3));
       this.sites.visible = !!overlays.sites;
+      this.drawContacts(data, !!overlays.contacts, normalForces || null);
       const line = this.trail.geometry.getAttribute('position');
       const points = trail.slice(-TRAIL_POINTS);
       points.forEach((p, i) => line.setXYZ(i, p[0], p[1], p[2]));

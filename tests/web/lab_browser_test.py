@@ -31,6 +31,7 @@ from selenium.webdriver.chrome.service import Service  # noqa: E402
 ARGS = None
 ARM2 = os.path.join(ROOT, 'models', 'arm2.xml')
 PANDA7 = os.path.join(ROOT, 'models', 'panda7.xml')
+GRIPPER = os.path.join(ROOT, 'models', 'gripper.xml')
 CHECK_SPEC = os.path.join(ROOT, 'web', 'specs', '5.1-check.json')
 
 
@@ -121,6 +122,7 @@ def lab_expected(row):
 LAB = 'paused=1&spec=specs/5.1-lab.json'
 CHECK = 'paused=1&spec=specs/5.1-check.json'
 PANDA = 'paused=1&spec=specs/5.2-lab.json'
+GRIP = 'paused=1&spec=specs/5.3-lab.json'
 
 
 # ---- cases ------------------------------------------------------------------------------------
@@ -693,6 +695,103 @@ def case_panda_real_time():
                                           rate['wall']))
     check(rate['frames_per_second'] > 0 and rate['sim_seconds_per_wall_second'] > 0,
           'the lab did not run: %s' % rate)
+
+
+# ---- lesson 5.3's lab: the gripper, contacts --------------------------------------------------
+
+CONTACT_TYPES = (5, 6, 7)  # efc_type of a contact row: frictionless, pyramidal, elliptic
+
+
+def native_contact_rows(native):
+    """Contact index -> its rows in `lever forward --json` (efc_id of each contact row)."""
+    rows = {}
+    for r, (kind, cid) in enumerate(zip(native['efc_type'], native['efc_id'])):
+        if kind in CONTACT_TYPES:
+            rows.setdefault(cid, []).append(r)
+    return rows
+
+
+def gripper_state(b):
+    """The page's state, its contacts (lever's data.contact), the 3D view's markers, its readouts."""
+    return b.js('const d = lab.sims[0].data; return {qpos: Array.from(d.qpos), qvel: Array.from(d.qvel),'
+                'ctrl: Array.from(d.ctrl), ncon: d.ncon, contacts: d.contact.map(c => ({pos: Array.from(c.pos),'
+                'normal: Array.from(c.frame.subarray(0, 3)), dist: c.dist, geom1: c.geom1, geom2: c.geom2})),'
+                'markers: lab.contactMarkers(), readouts: lab.readouts(),'
+                'box: lab.sims[0].model.name2id("body", "box"), table: lab.sims[0].model.name2id("geom", "table")};')
+
+
+def check_contacts_drawn_and_read(state, label):
+    """The markers on lever's contacts, the contacts those of lever's native rows, the readouts
+    native's. Returns the native forward."""
+    native = native_forward(GRIPPER, state['qpos'], state['qvel'], state['ctrl'])
+    rows = native_contact_rows(native)
+    ncon = native.get('ncon', len(rows))
+    check(state['ncon'] == ncon == len(state['contacts']), '%s: ncon %d, native %d, %d contacts in data.contact'
+          % (label, state['ncon'], ncon, len(state['contacts'])))
+    for cid, contact_rows in rows.items():
+        for r in contact_rows:  # a contact row's efc_pos is its contact's dist
+            close(state['contacts'][cid]['dist'], native['efc_pos'][r], '%s: contact %d dist' % (label, cid))
+    if isinstance(native.get('contact'), list):  # where `lever forward` prints contacts itself
+        for i, theirs in enumerate(native['contact']):
+            for k in range(3):
+                close(state['contacts'][i]['pos'][k], theirs['pos'][k], '%s: contact %d pos' % (label, i))
+    markers = state['markers']
+    check(len(markers) == ncon, '%s: %d contact markers drawn for %d contacts' % (label, len(markers), ncon))
+    lengths = []
+    for i, (marker, contact) in enumerate(zip(markers, state['contacts'])):
+        check(marker['pos'] == contact['pos'], '%s: marker %d at %s, contact at %s'
+              % (label, i, marker['pos'], contact['pos']))
+        # the normal's line: its tip is held in float32 (a WebGL vertex), 1e-7 of its ~0.1 m
+        d = [t - p for t, p in zip(marker['tip'], contact['pos'])]
+        length = sum(x * x for x in d) ** 0.5
+        lengths.append(length)
+        check(length > 0 and all(abs(x / length - n) < 1e-5 for x, n in zip(d, contact['normal'])),
+              '%s: marker %d points along %s, the normal is %s' % (label, i, d, contact['normal']))
+    check(max(lengths, default=0) - min(lengths, default=0) < 1e-6, '%s: normals drawn at lengths %s'
+          % (label, lengths))
+    box = state['box']
+    penetration = min([0.0] + [native['efc_pos'][r[0]] for r in rows.values()])
+    readouts_match(state['readouts'], {
+        'contacts (ncon)': (ncon, 0),
+        'box height (m)': (native['xpos'][3 * box + 2], 4),
+        'left finger servo force (N)': (native['actuator_force'][1], 3),
+        'right finger servo force (N)': (native['actuator_force'][2], 3),
+        'deepest penetration (mm)': (1000 * penetration, 3),
+    })
+    return native
+
+
+def case_gripper_contacts_match_native():
+    with Browser(GRIP) as b:
+        check(b.ready, 'the page did not get ready: %s' % b.errors_shown())
+        check(b.js('return lab.view().kind;') == '3d', 'the gripper is not shown in 3D')
+        check(b.js('const m = lab.sims[0].model; return [m.nq, m.nv, lab.sims[0].data.qpos.length,'
+                   'lab.sims[0].data.qvel.length];') == [10, 9, 10, 9], 'qpos/qvel not sized for the free box')
+        b.js('lab.press("Down to the box"); lab.run(0.6); lab.press("Grip"); lab.run(0.5);')
+        gripped = gripper_state(b)
+        shown = b.js('return lab.view();')
+        b.js('document.querySelector("input[data-toggle=contacts]").click();')
+        hidden = b.js('return [lab.view(), lab.contactMarkers()];')
+        b.js('document.querySelector("input[data-toggle=contacts]").click(); lab.press("Lift"); lab.run(0.6);')
+        lifted = gripper_state(b)
+        geoms, qpos = drawn_geoms(b)  # the free box drawn at its qpos (position, quaternion)
+        b.js('lab.play();')  # the real-time loop on a model with contacts
+        b.driver.execute_async_script('setTimeout(arguments[arguments.length - 1], 500);')
+        check(b.console_errors() == [], 'console errors: %s' % b.console_errors())
+        check(b.errors_shown() == [], 'errors shown: %s' % b.errors_shown())
+    check_contacts_drawn_and_read(gripped, 'gripped')
+    check_contacts_drawn_and_read(lifted, 'lifted')
+    check_geoms_where_lever_puts_them(GRIPPER, geoms, qpos)
+    check(hidden[1] == [] and hidden[0]['checksum'] != shown['checksum'],
+          'turning the contacts overlay off changed nothing')
+    # the lesson's physics: on the table and between the fingers, then held up by the fingers alone
+    table_contacts = [sum(1 for c in s['contacts'] if s['table'] in (c['geom1'], c['geom2']))
+                      for s in (gripped, lifted)]
+    heights = [s['readouts'][1]['value'] for s in (gripped, lifted)]
+    print('gripper: %d contacts (%d on the table) gripped at box height %.4f m; %d (%d) lifted at %.4f m'
+          % (gripped['ncon'], table_contacts[0], heights[0], lifted['ncon'], table_contacts[1], heights[1]))
+    check(table_contacts[0] > 0 and gripped['ncon'] > table_contacts[0], 'gripped: no table and finger contacts')
+    check(table_contacts[1] == 0 and lifted['ncon'] > 0 and heights[1] > 0.1, 'lifted: the box is not held up')
 
 
 def main():

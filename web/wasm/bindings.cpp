@@ -7,7 +7,10 @@
 // writing data.qpos[0] writes lever's Data. An address stays valid until the object is deleted or,
 // for the model, until set_const() (which may rebuild derived arrays): `generation` counts those,
 // and lever.js rebuilds its views when it changes or the heap grows. The efc_ arrays have as many
-// rows as there are live limit rows (data.nefc), which lever.js reads at each access.
+// rows as there are live rows (data.nefc: limits, then contacts), which lever.js reads at each
+// access; efc_J (nefc x nv, row-major) likewise. data.contact's first data.ncon entries are
+// described by contact_layout() (each member's offset in lever::Contact), so that lever.js views
+// them in place as well.
 #include <emscripten/bind.h>
 
 #include <cstdint>
@@ -19,6 +22,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace {
@@ -56,6 +60,38 @@ void add_number(std::vector<JsField>& out, const char* name, double& x) {
 }
 void add_number(std::vector<JsField>& out, const char* name, int& x) {
   out.push_back({name, "i32", reinterpret_cast<uintptr_t>(&x), 1, 0, 0});
+}
+
+/// Where a member of lever::Contact lies: its offset in bytes, its element type and count.
+struct JsMember {
+  std::string name;
+  std::string type;
+  int offset = 0;
+  int count = 0;  ///< 0 for a single number
+};
+
+/// The layout of lever::Contact (MuJoCo's mjContact's fields), measured on an instance so that it
+/// holds for whatever padding the compiler chose.
+std::vector<JsMember> contact_layout() {
+  const lever::Contact c;
+  const auto at = [&c](const void* member) {
+    return static_cast<int>(reinterpret_cast<uintptr_t>(member) - reinterpret_cast<uintptr_t>(&c));
+  };
+  static_assert(std::is_same_v<decltype(c.pos)::Scalar, double>);
+  static_assert(decltype(c.frame)::IsRowMajor, "frame's rows (normal first) must be contiguous");
+  return {{"dist", "f64", at(&c.dist), 0},
+          {"pos", "f64", at(c.pos.data()), 3},
+          {"frame", "f64", at(c.frame.data()), 9},
+          {"includemargin", "f64", at(&c.includemargin), 0},
+          {"friction", "f64", at(c.friction.data()), 5},
+          {"solref", "f64", at(c.solref.data()), 2},
+          {"solimp", "f64", at(c.solimp.data()), 5},
+          {"mu", "f64", at(&c.mu), 0},
+          {"dim", "i32", at(&c.dim), 0},
+          {"geom1", "i32", at(&c.geom1), 0},
+          {"geom2", "i32", at(&c.geom2), 0},
+          {"exclude", "i32", at(&c.exclude), 0},
+          {"efc_address", "i32", at(&c.efc_address), 0}};
 }
 
 /// A compiled model; `error`/`error_line` say why a load failed (then the model is empty).
@@ -143,6 +179,11 @@ class WasmData {
     std::vector<JsField> f;
     add_number(f, "time", data_.time);
     add_number(f, "nefc", data_.nefc);
+    add_number(f, "ncon", data_.ncon);
+    // efc_J's storage has nefc_max rows; row-major, so its first nefc rows are the live ones
+    f.push_back({"efc_J", "f64", reinterpret_cast<uintptr_t>(data_.efc_J.data()),
+                 static_cast<int>(data_.efc_J.rows()), static_cast<int>(data_.efc_J.cols()),
+                 reinterpret_cast<uintptr_t>(&data_.nefc)});
     for (const lever::FieldView& v : lever::data_fields(model_.model(), data_)) {
       JsField js = js_field(v);
       if (v.info->rows == lever::Size::kNefc)
@@ -169,6 +210,12 @@ class WasmData {
     });
   }
   std::string warnings() const { return lever::warning_text(data_); }
+
+  /// data.contact: its first element's address (the array holds nconmax, data.ncon are current)
+  /// and the distance between two elements, for the views contact_layout() describes.
+  uintptr_t contact_address() const { return reinterpret_cast<uintptr_t>(data_.contact.data()); }
+  int contact_capacity() const { return static_cast<int>(data_.contact.size()); }
+  int contact_stride() const { return static_cast<int>(sizeof(lever::Contact)); }
 
   /// lever::reset_keyframe (MuJoCo's mj_resetDataKeyframe); "" or the error (no such keyframe).
   std::string reset_keyframe(int key) {
@@ -243,6 +290,13 @@ EMSCRIPTEN_BINDINGS(lever) {
       .field("cols", &JsField::cols)
       .field("live_rows", &JsField::live_rows);
   register_vector<JsField>("JsFields");
+  value_object<JsMember>("JsMember")
+      .field("name", &JsMember::name)
+      .field("type", &JsMember::type)
+      .field("offset", &JsMember::offset)
+      .field("count", &JsMember::count);
+  register_vector<JsMember>("JsMembers");
+  function("contact_layout", &contact_layout);
   register_vector<std::string>("Strings");
   class_<WasmModel>("WasmModel")
       .class_function("load", &WasmModel::load)
@@ -262,6 +316,9 @@ EMSCRIPTEN_BINDINGS(lever) {
       .function("reset", &WasmData::reset)
       .function("steps", &WasmData::steps)
       .function("warnings", &WasmData::warnings)
+      .function("contact_address", &WasmData::contact_address)
+      .function("contact_capacity", &WasmData::contact_capacity)
+      .function("contact_stride", &WasmData::contact_stride)
       .function("reset_keyframe", &WasmData::reset_keyframe)
       .function("jac_site", &WasmData::jac_site)
       .function("jac_address", &WasmData::jac_address);
