@@ -225,8 +225,12 @@
         data.qpos.set(model.qpos0);
         check(data._wasm.forward());
       },
-      // TODO(lead): mj_contactForce once lever::contact_force is on main (branch `views`); the
-      // page computes no contact force of its own.
+      /** Contact id's force in its frame into result (6 numbers), as mj_contactForce. */
+      mj_contactForce(model, data, id, result) {
+        check(data._wasm.contact_force(id));
+        const start = data._wasm.contact_force_address() / 8;
+        result.set(Module.HEAPF64.subarray(start, start + 6));
+      },
       /** n steps in one call into wasm (the same as n calls of mj_step). */
       mj_steps(model, data, n) { check(data._wasm.steps(n)); },
       /** `lever check` on MJCF text (lesson 5.1's six checks and lesson 5.2's two): its text, or its JSON. */

@@ -37,6 +37,12 @@ using Vec3 = Eigen::Vector3d;
 /// MuJoCo's mjMINMU: the smallest friction coefficient a contact gets.
 constexpr double kMinFriction = 1e-5;
 
+// a geom as a message names it: 'name' (id), or its id alone when it has no name
+std::string geom_label(const Model& model, int g) {
+  const std::string& name = model.geom_name[static_cast<std::size_t>(g)];
+  return name.empty() ? std::to_string(g) : "'" + name + "' (" + std::to_string(g) + ")";
+}
+
 // ---- the eigenframe of the broad phase (MuJoCo's mju_eig3) --------------------------------------
 
 using Quat4 = std::array<double, 4>;
@@ -410,8 +416,8 @@ class Collider {
       c.efc_address = -1;
       if (count_ >= m_.nconmax) {
         throw StateError("lever::collision: more than nconmax = " + std::to_string(m_.nconmax) +
-                         " contacts (the " + std::to_string(m_.nconmax + 1) + "th between geoms " +
-                         std::to_string(g1) + " and " + std::to_string(g2) +
+                         " contacts (contact number " + std::to_string(m_.nconmax + 1) +
+                         " is between geoms " + geom_label(m_, g1) + " and " + geom_label(m_, g2) +
                          "); MuJoCo would drop the rest with a warning, lever refuses: raise "
                          "<size nconmax> (data.contact is left as it was)");
       }

@@ -178,6 +178,13 @@ function compareContacts(mj, model, data, native, label) {
         if (mine.length !== flat.length) fail(`${label}: contact[${i}].${name} length`);
         flat.forEach((x, k) => close(mine[k], x, `${label}: contact[${i}].${name}[${k}]`));
       }
+      // the force in the contact frame (mj_contactForce): decided by the solver, so its bound
+      if (theirs.force !== undefined) {
+        const force = new Float64Array(6);
+        mj.mj_contactForce(model, data, i, force);
+        theirs.force.forEach((x, k) =>
+          close(force[k], x, `${label}: mj_contactForce(${i})[${k}]`, boundOf('efc_force', native)));
+      }
     });
   }
   // efc_J: nefc x nv, row-major

@@ -217,6 +217,16 @@ class WasmData {
   int contact_capacity() const { return static_cast<int>(data_.contact.size()); }
   int contact_stride() const { return static_cast<int>(sizeof(lever::Contact)); }
 
+  /// lever::contact_force (MuJoCo's mj_contactForce) of contact `id` into the 6 numbers at
+  /// contact_force_address(); "" or the error (an id outside [0, ncon)).
+  std::string contact_force(int id) {
+    return guarded(
+        [this, id] { contact_force_ = lever::contact_force(model_.model(), data_, id); });
+  }
+  uintptr_t contact_force_address() const {
+    return reinterpret_cast<uintptr_t>(contact_force_.data());
+  }
+
   /// lever::reset_keyframe (MuJoCo's mj_resetDataKeyframe); "" or the error (no such keyframe).
   std::string reset_keyframe(int key) {
     return guarded([this, key] { lever::reset_keyframe(model_.model(), data_, key); });
@@ -252,6 +262,7 @@ class WasmData {
   // row-major, so that JavaScript reads jacp and jacr as two flat 3 x nv arrays, as MuJoCo's are
   Eigen::Matrix<double, 6, Eigen::Dynamic, Eigen::RowMajor> jac_;
   Eigen::MatrixXd jacp_, jacr_;  // lever::jac_site's (column-major) outputs
+  Eigen::Matrix<double, 6, 1> contact_force_ = Eigen::Matrix<double, 6, 1>::Zero();
 };
 
 /// `lever check` on MJCF text: lesson 5.1's six checks and lesson 5.2's two, as the command prints
@@ -319,6 +330,8 @@ EMSCRIPTEN_BINDINGS(lever) {
       .function("contact_address", &WasmData::contact_address)
       .function("contact_capacity", &WasmData::contact_capacity)
       .function("contact_stride", &WasmData::contact_stride)
+      .function("contact_force", &WasmData::contact_force)
+      .function("contact_force_address", &WasmData::contact_force_address)
       .function("reset_keyframe", &WasmData::reset_keyframe)
       .function("jac_site", &WasmData::jac_site)
       .function("jac_address", &WasmData::jac_address);
