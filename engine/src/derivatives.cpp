@@ -39,30 +39,6 @@ namespace {
 
 constexpr double kMinVal = 1e-15;  // MuJoCo's mjMINVAL, the floor of a limit row's R
 
-// ---- spatial cross products as 6x6 matrices (Featherstone eqs. 2.31-2.32) -------------------
-
-// v x (motion)
-Matrix6d motion_cross_matrix(const Motion& v) {
-  Matrix6d X = Matrix6d::Zero();
-  const Eigen::Matrix3d w = skew(v.head<3>());
-  X.topLeftCorner<3, 3>() = w;
-  X.bottomRightCorner<3, 3>() = w;
-  X.bottomLeftCorner<3, 3>() = skew(v.tail<3>());
-  return X;
-}
-
-// v x* (force) = -(v x)^T
-Matrix6d force_cross_matrix(const Motion& v) { return -motion_cross_matrix(v).transpose(); }
-
-// f xbar*: the matrix that maps a motion m to m x* f
-Matrix6d force_bar_matrix(const Force& f) {
-  Matrix6d X = Matrix6d::Zero();
-  X.topLeftCorner<3, 3>() = -skew(f.head<3>());
-  X.topRightCorner<3, 3>() = -skew(f.tail<3>());
-  X.bottomLeftCorner<3, 3>() = -skew(f.tail<3>());
-  return X;
-}
-
 void check_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
   // the tangent-space layout of quaternion coordinates (mjd_transitionFD's) is not written yet
   if (model.nq != model.nv) {
@@ -81,59 +57,81 @@ void check_sizes(const Model& model, const Data& data, const Derivatives& deriv)
   }
 }
 
+// ---- inverse-dynamics derivatives, one function per pass ---------------------------------------
+
+// The velocity coupling C = v x* I - I (v x) + (I v) xbar* of a body with inertia I = (m, h, J)
+// (h = m c, J about the frame's origin) moving with v = (w, u), whose momentum is
+// I v = (n, p) = (J w + h x u, m u - h x w). Writing [a] for the matrix of a x, the three terms are
+//   v x* I      = [[ [w]J - [u][h],  [w][h] + m[u] ], [ -[w][h],          m[w] ]]
+//   I (v x)     = [[ J[w] + [h][u],  [h][w]        ], [ -[h][w] + m[u],   m[w] ]]
+//   (I v) xbar* = [[ -[n],           -[p]          ], [ -[p],             0    ]]
+// and [p] = m[u] - [h][w] + [w][h] (as [a x b] = [a][b] - [b][a]) cancels the right column, so
+//   C = [[S - [n], 0], [-2[p], 0]],   S = [w]J - J[w] - [u][h] - [h][u].
+// S is symmetric: with P = [w]J, J[w] = -P^T; and [a][b] = b a^T - (a.b) 1.
+VelocityCoupling velocity_coupling(const RigidInertia& I, const Motion& v, const Force& momentum) {
+  const Eigen::Vector3d w = v.head<3>(), u = v.tail<3>();
+  Eigen::Matrix3d P;  // [w] J, column by column
+  for (int k = 0; k < 3; ++k) P.col(k) = cross(w, I.I.col(k));
+  VelocityCoupling C;
+  C.S = P + P.transpose() - I.h * u.transpose() - u * I.h.transpose();
+  C.S.diagonal().array() += 2 * u.dot(I.h);
+  C.momentum = momentum;
+  return C;
+}
+
+// The body pass, after the forward pass gave each body's v and a: its net force
+// f = I a + v x* (I v) and its coupling C, each body's own, into w.F and w.CC (their subtree sums
+// come next), and its inertia into w.IC.
+void body_terms(const Model& model, const Data& data, Derivatives::Workspace& w) {
+  for (int b = 1; b < model.nbody; ++b) {
+    const RigidInertia& I = data.cinert[b];
+    const Force momentum = I * w.v[b];
+    w.F[b] = I * w.a[b] + cross_force(w.v[b], momentum);
+    w.CC[b] = velocity_coupling(I, w.v[b], momentum);
+    w.IC[b] = I;
+  }
+}
+
+// The columns, from the subtree sums IC, CC, F: for each dof i, the pairs (i, j) with j = i or
+// above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
+void derivative_columns(const Model& model, const Data& data, const Derivatives::Workspace& w,
+                        Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
+  dtau_dq.setZero();
+  dtau_dv.setZero();
+  for (int i = 0; i < model.nv; ++i) {
+    const int b = model.dof_bodyid[i];
+    const Motion& Si = data.cdof[i];
+    const RigidInertia& IC = w.IC[b];
+    const VelocityCoupling& CC = w.CC[b];
+    const Force IC_Si = IC * Si;                            // IC symmetric: S_i . IC x
+    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);  // S_i . CC x (x's angular part)
+    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
+      dtau_dq(i, j) = IC_Si.dot(w.Sddot[j]) + CCt_Si.dot(w.Sdot[j].head<3>());
+      dtau_dv(i, j) = 2 * IC_Si.dot(w.Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+    }
+    const Force Xq = IC * w.Sddot[i] + CC * w.Sdot[i] + cross_force(Si, w.F[b]);
+    const Force Xv = 2 * (IC * w.Sdot[i]) + CC * Si;
+    for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+      dtau_dq(k, i) = data.cdof[k].dot(Xq);
+      dtau_dv(k, i) = data.cdof[k].dot(Xv);
+    }
+  }
+}
+
 // Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
 // and dtau_dv. Armature adds armature * qdd, which depends on neither. Without gravity and with
 // qdd = 0 they are the derivatives of the velocity product terms alone (implicit_derivatives).
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, Derivatives::Workspace& w,
                            Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
-  // forward pass, root to leaves: v and a of every body, Sdot and Psi_ddot of every dof; then f
+  // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof (RNEA's forward pass)
   forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot);
-  for (int b = 1; b < model.nbody; ++b) {
-    const Motion& vb = w.v[b];
-    const Motion& ab = w.a[b];
-    w.I[b] = data.cinert[b].matrix();
-    const Force h = w.I[b] * vb;  // momentum
-    w.f[b] = w.I[b] * ab + cross_force(vb, h);
-    w.C[b] =
-        force_cross_matrix(vb) * w.I[b] - w.I[b] * motion_cross_matrix(vb) + force_bar_matrix(h);
-  }
-
-  // backward pass, leaves to root: composites of I, C and f over each subtree
-  for (int b = 1; b < model.nbody; ++b) {
-    w.IC[b] = w.I[b];
-    w.CC[b] = w.C[b];
-    w.F[b] = w.f[b];
-  }
-  for (int b = model.nbody - 1; b > 0; --b) {
-    const int parent = model.body_parentid[b];
-    if (parent > 0) {
-      w.IC[parent] += w.IC[b];
-      w.CC[parent] += w.CC[b];
-      w.F[parent] += w.F[b];
-    }
-  }
-
-  // the columns: for each dof i, the pairs (i, j) with j = i or above it (d = i), then the
-  // pairs (k, i) with k strictly above i (d = i again, now the deeper one)
-  dtau_dq.setZero();
-  dtau_dv.setZero();
-  for (int i = 0; i < model.nv; ++i) {
-    const int b = model.dof_bodyid[i];
-    const Motion& Si = data.cdof[i];
-    const Force IC_Si = w.IC[b] * Si;               // IC symmetric: S_i . IC x
-    const Force CCt_Si = w.CC[b].transpose() * Si;  // S_i . CC x
-    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dtau_dq(i, j) = IC_Si.dot(w.Sddot[j]) + CCt_Si.dot(w.Sdot[j]);
-      dtau_dv(i, j) = 2 * IC_Si.dot(w.Sdot[j]) + CCt_Si.dot(data.cdof[j]);
-    }
-    const Force Xq = w.IC[b] * w.Sddot[i] + w.CC[b] * w.Sdot[i] + cross_force(Si, w.F[b]);
-    const Force Xv = 2 * (w.IC[b] * w.Sdot[i]) + w.CC[b] * Si;
-    for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
-      dtau_dq(k, i) = data.cdof[k].dot(Xq);
-      dtau_dv(k, i) = data.cdof[k].dot(Xv);
-    }
-  }
+  body_terms(model, data, w);
+  // leaves to root: the composites of f, I and C over each subtree (RNEA's backward pass)
+  sum_over_subtrees(model, w.F);
+  sum_over_subtrees(model, w.IC);
+  sum_over_subtrees(model, w.CC);
+  derivative_columns(model, data, w, dtau_dq, dtau_dv);
 }
 
 // The explicit force terms of the smooth dynamics, minus the inverse-dynamics derivatives:
@@ -464,12 +462,9 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   const auto ndof = static_cast<std::size_t>(nv);
   work.v.assign(nbody, Motion::Zero());
   work.a.assign(nbody, Motion::Zero());
-  work.f.assign(nbody, Force::Zero());
   work.F.assign(nbody, Force::Zero());
-  work.I.assign(nbody, Matrix6d::Zero());
-  work.C.assign(nbody, Matrix6d::Zero());
-  work.IC.assign(nbody, Matrix6d::Zero());
-  work.CC.assign(nbody, Matrix6d::Zero());
+  work.IC.assign(nbody, RigidInertia());
+  work.CC.assign(nbody, VelocityCoupling());
   work.Sdot.assign(ndof, Motion::Zero());
   work.Sddot.assign(ndof, Motion::Zero());
   work.rhs_q.setZero(nv, nv);
