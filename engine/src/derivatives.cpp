@@ -325,6 +325,26 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   assemble_euler(model, w.rhs_q, w.rhs_v, w.rhs_u, deriv);
 }
 
+// D = d qfrc_smooth / d qvel as smooth_velocity_derivative() (implicit.cpp) defines it: the
+// actuators' velocity terms with the raw ctrl (no clamp), minus damping, minus d c / d qvel, here
+// given as dbias_dv.
+void velocity_derivative(const Model& model, const Data& data, const Eigen::MatrixXd& dbias_dv,
+                         Eigen::MatrixXd& D) {
+  D = -dbias_dv;
+  for (int i = 0; i < model.nv; ++i) D(i, i) -= model.dof_damping[i];
+  for (int a = 0; a < model.nu; ++a) {
+    double per_velocity = 0.0;
+    if (model.actuator_biastype[a] == BiasType::kAffine)
+      per_velocity = model.actuator_biasprm[a][2];
+    if (model.actuator_gaintype[a] == GainType::kAffine) {
+      per_velocity += model.actuator_gainprm[a][2] * data.ctrl[a];
+    }
+    const double gear = model.actuator_gear[a][0];
+    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    D(dof, dof) += gear * per_velocity * gear;
+  }
+}
+
 // MuJoCo 2.2.2's implicit step (implicit.cpp): K a = f with K = M - h D, D = d qfrc_smooth / d qvel
 // as smooth_velocity_derivative() holds it, f = qfrc_smooth + qfrc_constraint, then Euler's update
 // with a. Differentiating exactly that, K da = df - dM a + h dD a. D is
@@ -342,8 +362,11 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   const double h = model.opt.timestep;
   forward_derivatives(model, data, deriv);
 
-  // the step's K, its LU factor and its acceleration a, computed as implicit_step does
-  smooth_velocity_derivative(model, data, w.D);
+  // the step's K, its LU factor and its acceleration a, as implicit_step computes them; D is
+  // smooth_velocity_derivative()'s, with its bias part d c / d qvel read from the RNEA derivative
+  // just taken (it equals the bias force's, the M qacc and gravity terms being free of qvel)
+  // rather than recomputed column by column
+  velocity_derivative(model, data, deriv.dtau_dv, w.D);
   w.K = data.M - h * w.D;
   w.lu.compute(w.K);
   w.col.head(nv) = data.qfrc_smooth + data.qfrc_constraint;
