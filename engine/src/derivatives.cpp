@@ -325,6 +325,23 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   assemble_euler(model, w.rhs_q, w.rhs_v, w.rhs_u, deriv);
 }
 
+// x = K^-1 b from K's LU factor (P K = L U, L with a unit diagonal), by substitution: for the
+// few small columns here Eigen's solve spends more on dispatch (and its blocked matrix path on
+// packing) than on the arithmetic.
+void lu_solve(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu,
+              const Eigen::Ref<const Eigen::VectorXd>& b, Eigen::Ref<Eigen::VectorXd> x) {
+  const Eigen::MatrixXd& LU = lu.matrixLU();
+  const int n = static_cast<int>(LU.rows());
+  x.noalias() = lu.permutationP() * b;
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < i; ++k) x[i] -= LU(i, k) * x[k];
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    for (int k = i + 1; k < n; ++k) x[i] -= LU(i, k) * x[k];
+    x[i] /= LU(i, i);
+  }
+}
+
 // D = d qfrc_smooth / d qvel as smooth_velocity_derivative() (implicit.cpp) defines it: the
 // actuators' velocity terms with the raw ctrl (no clamp), minus damping, minus d c / d qvel, here
 // given as dbias_dv.
@@ -403,13 +420,11 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   }
 
   // da = K^-1 (...), then Euler's update
-  // column by column: for a few columns Eigen's vector solve is a fraction of its blocked
-  // matrix path (which also reads the first coefficient of an empty matrix when nu = 0)
   for (int c = 0; c < nv; ++c) {
-    w.Da_q.col(c).noalias() = w.lu.solve(w.rhs_q.col(c));
-    w.Da_v.col(c).noalias() = w.lu.solve(w.rhs_v.col(c));
+    lu_solve(w.lu, w.rhs_q.col(c), w.Da_q.col(c));
+    lu_solve(w.lu, w.rhs_v.col(c), w.Da_v.col(c));
   }
-  for (int c = 0; c < model.nu; ++c) w.Da_u.col(c).noalias() = w.lu.solve(w.rhs_u.col(c));
+  for (int c = 0; c < model.nu; ++c) lu_solve(w.lu, w.rhs_u.col(c), w.Da_u.col(c));
   assemble_euler(model, w.Da_q, w.Da_v, w.Da_u, deriv);
 }
 
