@@ -372,7 +372,8 @@ void velocity_derivative(const Model& model, const Data& data, const Eigen::Matr
 //   d/d qvel = d c / d qvel at velocity a, and d/d q = d/d q [2 Q(q)(qd, a)].
 // Both come from the polarisation identity 2 Q(qd, a) = (Q(qd + s a) - Q(qd - s a)) / (2 s),
 // exact for every s != 0: the gravity-free RNEA derivatives at qd + s a and qd - s a, with s
-// chosen so that s a is as large as qd (no cancellation). No finite difference is taken.
+// chosen so that s a is as large as qd (no cancellation). No finite difference is taken. The
+// same two calls also carry M's derivative at a - qacc (below).
 void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   auto& w = deriv.work;
   const int nv = model.nv;
@@ -389,28 +390,34 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   w.col.head(nv) = data.qfrc_smooth + data.qfrc_constraint;
   w.qacc_step.noalias() = w.lu.solve(w.col.head(nv));
 
-  // df - dM a: the smooth terms with rnea differentiated at a, plus the held constraint rows
-  rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, w, w.tau_q,
-                        w.tau_v);
-  smooth_rhs(model, data, w.tau_q, w.tau_v, w);
+  // df - dM a + h dD a's bias part, from forward_derivatives' dtau (at qacc) and one pair of
+  // gravity-free RNEA derivatives R(velocity, acceleration) = dQ(velocity) + dL(acceleration),
+  // where rnea = Q(qd, qd) + L(qdd, gravity) (L linear; dL has no qvel part):
+  //   - d rnea at a  = - dtau - dL(a - qacc)
+  //   - h d[2 Q(qd, a)]  (D's bias part), by polarisation 2 Q(qd, a) = (Q(qd+sa) - Q(qd-sa)) / (2s)
+  // With delta = a - qacc and c = s / h, R(qd + s a, c delta) - R(qd - s a, -c delta) is
+  // 2 s d[2 Q(qd, a)] + 2 c dL(delta), so dividing it by 2 c gives both terms at once.
+  smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
   w.rhs_q += deriv.dconstraint_dq;
   w.rhs_v += deriv.dconstraint_dv;
   w.rhs_u += deriv.dconstraint_du;
-
-  // + h dD a, D's bias part: - h d [2 Q(qd, a)] by polarisation
   const double size_a = w.qacc_step.cwiseAbs().maxCoeff();
-  if (size_a > 0) {
-    const double size_v = data.qvel.cwiseAbs().maxCoeff();
-    const double s = (size_v > 0 ? size_v : 1.0) / size_a;
-    w.qvel_shift = data.qvel + s * w.qacc_step;
-    rnea_derivatives_into(model, data, w.qvel_shift.data(), nullptr, false, w, w.tau_q, w.tau_v);
-    w.rhs_q -= (h / (2 * s)) * w.tau_q;
-    w.rhs_v -= (h / (2 * s)) * w.tau_v;
-    w.qvel_shift = data.qvel - s * w.qacc_step;
-    rnea_derivatives_into(model, data, w.qvel_shift.data(), nullptr, false, w, w.tau_q, w.tau_v);
-    w.rhs_q += (h / (2 * s)) * w.tau_q;
-    w.rhs_v += (h / (2 * s)) * w.tau_v;
-  }
+  const double size_v = data.qvel.cwiseAbs().maxCoeff();
+  // s a as large as qd, so that nothing cancels beyond rounding (any s != 0 is exact)
+  const double s = size_a > 0 ? (size_v > 0 ? size_v : 1.0) / size_a : 1.0;
+  const double c = s / h;
+  w.qacc_shift = c * (w.qacc_step - data.qacc);
+  w.qvel_shift = data.qvel + s * w.qacc_step;
+  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, w, w.tau_q,
+                        w.tau_v);
+  w.rhs_q -= w.tau_q / (2 * c);
+  w.rhs_v -= w.tau_v / (2 * c);
+  w.qacc_shift = -w.qacc_shift;
+  w.qvel_shift = data.qvel - s * w.qacc_step;
+  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, w, w.tau_q,
+                        w.tau_v);
+  w.rhs_q += w.tau_q / (2 * c);
+  w.rhs_v += w.tau_v / (2 * c);
   // + h dD a, D's actuator part: only an affine gain's p2 ctrl depends on anything (ctrl)
   for (int a = 0; a < model.nu; ++a) {
     if (model.actuator_gaintype[a] != GainType::kAffine) continue;
@@ -529,6 +536,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.K.setZero(nv, nv);
   work.lu = Eigen::PartialPivLU<Eigen::MatrixXd>(nv);
   work.qvel_shift.setZero(nv);
+  work.qacc_shift.setZero(nv);
   work.Da_q.setZero(nv, nv);
   work.Da_v.setZero(nv, nv);
   work.Da_u.setZero(nv, nu);

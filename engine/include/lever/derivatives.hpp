@@ -101,6 +101,7 @@ struct Derivatives {
     Eigen::MatrixXd D, K;                 ///< (nv x nv) implicit: d qfrc_smooth / d qvel, M - h D
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;  ///< implicit: LU factor of K
     Eigen::VectorXd qvel_shift;               ///< (nv) implicit: qvel +- s a (polarisation)
+    Eigen::VectorXd qacc_shift;               ///< (nv) implicit: +- c (a - qacc), beside it
     Eigen::MatrixXd Da_q, Da_v, Da_u;  ///< (nv x nv / nu) implicit: d a / d (qpos, qvel, ctrl)
   } work;
 
