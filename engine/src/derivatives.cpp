@@ -39,30 +39,6 @@ namespace {
 
 constexpr double kMinVal = 1e-15;  // MuJoCo's mjMINVAL, the floor of a limit row's R
 
-// ---- spatial cross products as 6x6 matrices (Featherstone eqs. 2.31-2.32) -------------------
-
-// v x (motion)
-Matrix6d motion_cross_matrix(const Motion& v) {
-  Matrix6d X = Matrix6d::Zero();
-  const Eigen::Matrix3d w = skew(v.head<3>());
-  X.topLeftCorner<3, 3>() = w;
-  X.bottomRightCorner<3, 3>() = w;
-  X.bottomLeftCorner<3, 3>() = skew(v.tail<3>());
-  return X;
-}
-
-// v x* (force) = -(v x)^T
-Matrix6d force_cross_matrix(const Motion& v) { return -motion_cross_matrix(v).transpose(); }
-
-// f xbar*: the matrix that maps a motion m to m x* f
-Matrix6d force_bar_matrix(const Force& f) {
-  Matrix6d X = Matrix6d::Zero();
-  X.topLeftCorner<3, 3>() = -skew(f.head<3>());
-  X.topRightCorner<3, 3>() = -skew(f.tail<3>());
-  X.bottomLeftCorner<3, 3>() = -skew(f.tail<3>());
-  return X;
-}
-
 void check_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
   // the tangent-space layout of quaternion coordinates (mjd_transitionFD's) is not written yet
   if (model.nq != model.nv) {
@@ -81,59 +57,81 @@ void check_sizes(const Model& model, const Data& data, const Derivatives& deriv)
   }
 }
 
+// ---- inverse-dynamics derivatives, one function per pass ---------------------------------------
+
+// The velocity coupling C = v x* I - I (v x) + (I v) xbar* of a body with inertia I = (m, h, J)
+// (h = m c, J about the frame's origin) moving with v = (w, u), whose momentum is
+// I v = (n, p) = (J w + h x u, m u - h x w). Writing [a] for the matrix of a x, the three terms are
+//   v x* I      = [[ [w]J - [u][h],  [w][h] + m[u] ], [ -[w][h],          m[w] ]]
+//   I (v x)     = [[ J[w] + [h][u],  [h][w]        ], [ -[h][w] + m[u],   m[w] ]]
+//   (I v) xbar* = [[ -[n],           -[p]          ], [ -[p],             0    ]]
+// and [p] = m[u] - [h][w] + [w][h] (as [a x b] = [a][b] - [b][a]) cancels the right column, so
+//   C = [[S - [n], 0], [-2[p], 0]],   S = [w]J - J[w] - [u][h] - [h][u].
+// S is symmetric: with P = [w]J, J[w] = -P^T; and [a][b] = b a^T - (a.b) 1.
+VelocityCoupling velocity_coupling(const RigidInertia& I, const Motion& v, const Force& momentum) {
+  const Eigen::Vector3d w = v.head<3>(), u = v.tail<3>();
+  Eigen::Matrix3d P;  // [w] J, column by column
+  for (int k = 0; k < 3; ++k) P.col(k) = cross(w, I.I.col(k));
+  VelocityCoupling C;
+  C.S = P + P.transpose() - I.h * u.transpose() - u * I.h.transpose();
+  C.S.diagonal().array() += 2 * u.dot(I.h);
+  C.momentum = momentum;
+  return C;
+}
+
+// The body pass, after the forward pass gave each body's v and a: its net force
+// f = I a + v x* (I v) and its coupling C, each body's own, into w.F and w.CC (their subtree sums
+// come next), and its inertia into w.IC.
+void body_terms(const Model& model, const Data& data, Derivatives::Workspace& w) {
+  for (int b = 1; b < model.nbody; ++b) {
+    const RigidInertia& I = data.cinert[b];
+    const Force momentum = I * w.v[b];
+    w.F[b] = I * w.a[b] + cross_force(w.v[b], momentum);
+    w.CC[b] = velocity_coupling(I, w.v[b], momentum);
+    w.IC[b] = I;
+  }
+}
+
+// The columns, from the subtree sums IC, CC, F: for each dof i, the pairs (i, j) with j = i or
+// above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
+void derivative_columns(const Model& model, const Data& data, const Derivatives::Workspace& w,
+                        Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
+  dtau_dq.setZero();
+  dtau_dv.setZero();
+  for (int i = 0; i < model.nv; ++i) {
+    const int b = model.dof_bodyid[i];
+    const Motion& Si = data.cdof[i];
+    const RigidInertia& IC = w.IC[b];
+    const VelocityCoupling& CC = w.CC[b];
+    const Force IC_Si = IC * Si;                            // IC symmetric: S_i . IC x
+    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);  // S_i . CC x (x's angular part)
+    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
+      dtau_dq(i, j) = IC_Si.dot(w.Sddot[j]) + CCt_Si.dot(w.Sdot[j].head<3>());
+      dtau_dv(i, j) = 2 * IC_Si.dot(w.Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+    }
+    const Force Xq = IC * w.Sddot[i] + CC * w.Sdot[i] + cross_force(Si, w.F[b]);
+    const Force Xv = 2 * (IC * w.Sdot[i]) + CC * Si;
+    for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+      dtau_dq(k, i) = data.cdof[k].dot(Xq);
+      dtau_dv(k, i) = data.cdof[k].dot(Xv);
+    }
+  }
+}
+
 // Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
 // and dtau_dv. Armature adds armature * qdd, which depends on neither. Without gravity and with
 // qdd = 0 they are the derivatives of the velocity product terms alone (implicit_derivatives).
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, Derivatives::Workspace& w,
                            Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
-  // forward pass, root to leaves: v and a of every body, Sdot and Psi_ddot of every dof; then f
+  // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof (RNEA's forward pass)
   forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot);
-  for (int b = 1; b < model.nbody; ++b) {
-    const Motion& vb = w.v[b];
-    const Motion& ab = w.a[b];
-    w.I[b] = data.cinert[b].matrix();
-    const Force h = w.I[b] * vb;  // momentum
-    w.f[b] = w.I[b] * ab + cross_force(vb, h);
-    w.C[b] =
-        force_cross_matrix(vb) * w.I[b] - w.I[b] * motion_cross_matrix(vb) + force_bar_matrix(h);
-  }
-
-  // backward pass, leaves to root: composites of I, C and f over each subtree
-  for (int b = 1; b < model.nbody; ++b) {
-    w.IC[b] = w.I[b];
-    w.CC[b] = w.C[b];
-    w.F[b] = w.f[b];
-  }
-  for (int b = model.nbody - 1; b > 0; --b) {
-    const int parent = model.body_parentid[b];
-    if (parent > 0) {
-      w.IC[parent] += w.IC[b];
-      w.CC[parent] += w.CC[b];
-      w.F[parent] += w.F[b];
-    }
-  }
-
-  // the columns: for each dof i, the pairs (i, j) with j = i or above it (d = i), then the
-  // pairs (k, i) with k strictly above i (d = i again, now the deeper one)
-  dtau_dq.setZero();
-  dtau_dv.setZero();
-  for (int i = 0; i < model.nv; ++i) {
-    const int b = model.dof_bodyid[i];
-    const Motion& Si = data.cdof[i];
-    const Force IC_Si = w.IC[b] * Si;               // IC symmetric: S_i . IC x
-    const Force CCt_Si = w.CC[b].transpose() * Si;  // S_i . CC x
-    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dtau_dq(i, j) = IC_Si.dot(w.Sddot[j]) + CCt_Si.dot(w.Sdot[j]);
-      dtau_dv(i, j) = 2 * IC_Si.dot(w.Sdot[j]) + CCt_Si.dot(data.cdof[j]);
-    }
-    const Force Xq = w.IC[b] * w.Sddot[i] + w.CC[b] * w.Sdot[i] + cross_force(Si, w.F[b]);
-    const Force Xv = 2 * (w.IC[b] * w.Sdot[i]) + w.CC[b] * Si;
-    for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
-      dtau_dq(k, i) = data.cdof[k].dot(Xq);
-      dtau_dv(k, i) = data.cdof[k].dot(Xv);
-    }
-  }
+  body_terms(model, data, w);
+  // leaves to root: the composites of f, I and C over each subtree (RNEA's backward pass)
+  sum_over_subtrees(model, w.F);
+  sum_over_subtrees(model, w.IC);
+  sum_over_subtrees(model, w.CC);
+  derivative_columns(model, data, w, dtau_dq, dtau_dv);
 }
 
 // The explicit force terms of the smooth dynamics, minus the inverse-dynamics derivatives:
@@ -327,6 +325,43 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   assemble_euler(model, w.rhs_q, w.rhs_v, w.rhs_u, deriv);
 }
 
+// x = K^-1 b from K's LU factor (P K = L U, L with a unit diagonal), by substitution: for the
+// few small columns here Eigen's solve spends more on dispatch (and its blocked matrix path on
+// packing) than on the arithmetic.
+void lu_solve(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu,
+              const Eigen::Ref<const Eigen::VectorXd>& b, Eigen::Ref<Eigen::VectorXd> x) {
+  const Eigen::MatrixXd& LU = lu.matrixLU();
+  const int n = static_cast<int>(LU.rows());
+  x.noalias() = lu.permutationP() * b;
+  for (int i = 0; i < n; ++i) {
+    for (int k = 0; k < i; ++k) x[i] -= LU(i, k) * x[k];
+  }
+  for (int i = n - 1; i >= 0; --i) {
+    for (int k = i + 1; k < n; ++k) x[i] -= LU(i, k) * x[k];
+    x[i] /= LU(i, i);
+  }
+}
+
+// D = d qfrc_smooth / d qvel as smooth_velocity_derivative() (implicit.cpp) defines it: the
+// actuators' velocity terms with the raw ctrl (no clamp), minus damping, minus d c / d qvel, here
+// given as dbias_dv.
+void velocity_derivative(const Model& model, const Data& data, const Eigen::MatrixXd& dbias_dv,
+                         Eigen::MatrixXd& D) {
+  D = -dbias_dv;
+  for (int i = 0; i < model.nv; ++i) D(i, i) -= model.dof_damping[i];
+  for (int a = 0; a < model.nu; ++a) {
+    double per_velocity = 0.0;
+    if (model.actuator_biastype[a] == BiasType::kAffine)
+      per_velocity = model.actuator_biasprm[a][2];
+    if (model.actuator_gaintype[a] == GainType::kAffine) {
+      per_velocity += model.actuator_gainprm[a][2] * data.ctrl[a];
+    }
+    const double gear = model.actuator_gear[a][0];
+    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    D(dof, dof) += gear * per_velocity * gear;
+  }
+}
+
 // MuJoCo 2.2.2's implicit step (implicit.cpp): K a = f with K = M - h D, D = d qfrc_smooth / d qvel
 // as smooth_velocity_derivative() holds it, f = qfrc_smooth + qfrc_constraint, then Euler's update
 // with a. Differentiating exactly that, K da = df - dM a + h dD a. D is
@@ -337,42 +372,52 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
 //   d/d qvel = d c / d qvel at velocity a, and d/d q = d/d q [2 Q(q)(qd, a)].
 // Both come from the polarisation identity 2 Q(qd, a) = (Q(qd + s a) - Q(qd - s a)) / (2 s),
 // exact for every s != 0: the gravity-free RNEA derivatives at qd + s a and qd - s a, with s
-// chosen so that s a is as large as qd (no cancellation). No finite difference is taken.
+// chosen so that s a is as large as qd (no cancellation). No finite difference is taken. The
+// same two calls also carry M's derivative at a - qacc (below).
 void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   auto& w = deriv.work;
   const int nv = model.nv;
   const double h = model.opt.timestep;
   forward_derivatives(model, data, deriv);
 
-  // the step's K, its LU factor and its acceleration a, computed as implicit_step does
-  smooth_velocity_derivative(model, data, w.D);
+  // the step's K, its LU factor and its acceleration a, as implicit_step computes them; D is
+  // smooth_velocity_derivative()'s, with its bias part d c / d qvel read from the RNEA derivative
+  // just taken (it equals the bias force's, the M qacc and gravity terms being free of qvel)
+  // rather than recomputed column by column
+  velocity_derivative(model, data, deriv.dtau_dv, w.D);
   w.K = data.M - h * w.D;
   w.lu.compute(w.K);
   w.col.head(nv) = data.qfrc_smooth + data.qfrc_constraint;
   w.qacc_step.noalias() = w.lu.solve(w.col.head(nv));
 
-  // df - dM a: the smooth terms with rnea differentiated at a, plus the held constraint rows
-  rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, w, w.tau_q,
-                        w.tau_v);
-  smooth_rhs(model, data, w.tau_q, w.tau_v, w);
+  // df - dM a + h dD a's bias part, from forward_derivatives' dtau (at qacc) and one pair of
+  // gravity-free RNEA derivatives R(velocity, acceleration) = dQ(velocity) + dL(acceleration),
+  // where rnea = Q(qd, qd) + L(qdd, gravity) (L linear; dL has no qvel part):
+  //   - d rnea at a  = - dtau - dL(a - qacc)
+  //   - h d[2 Q(qd, a)]  (D's bias part), by polarisation 2 Q(qd, a) = (Q(qd+sa) - Q(qd-sa)) / (2s)
+  // With delta = a - qacc and c = s / h, R(qd + s a, c delta) - R(qd - s a, -c delta) is
+  // 2 s d[2 Q(qd, a)] + 2 c dL(delta), so dividing it by 2 c gives both terms at once.
+  smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
   w.rhs_q += deriv.dconstraint_dq;
   w.rhs_v += deriv.dconstraint_dv;
   w.rhs_u += deriv.dconstraint_du;
-
-  // + h dD a, D's bias part: - h d [2 Q(qd, a)] by polarisation
   const double size_a = w.qacc_step.cwiseAbs().maxCoeff();
-  if (size_a > 0) {
-    const double size_v = data.qvel.cwiseAbs().maxCoeff();
-    const double s = (size_v > 0 ? size_v : 1.0) / size_a;
-    w.qvel_shift = data.qvel + s * w.qacc_step;
-    rnea_derivatives_into(model, data, w.qvel_shift.data(), nullptr, false, w, w.tau_q, w.tau_v);
-    w.rhs_q -= (h / (2 * s)) * w.tau_q;
-    w.rhs_v -= (h / (2 * s)) * w.tau_v;
-    w.qvel_shift = data.qvel - s * w.qacc_step;
-    rnea_derivatives_into(model, data, w.qvel_shift.data(), nullptr, false, w, w.tau_q, w.tau_v);
-    w.rhs_q += (h / (2 * s)) * w.tau_q;
-    w.rhs_v += (h / (2 * s)) * w.tau_v;
-  }
+  const double size_v = data.qvel.cwiseAbs().maxCoeff();
+  // s a as large as qd, so that nothing cancels beyond rounding (any s != 0 is exact)
+  const double s = size_a > 0 ? (size_v > 0 ? size_v : 1.0) / size_a : 1.0;
+  const double c = s / h;
+  w.qacc_shift = c * (w.qacc_step - data.qacc);
+  w.qvel_shift = data.qvel + s * w.qacc_step;
+  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, w, w.tau_q,
+                        w.tau_v);
+  w.rhs_q -= w.tau_q / (2 * c);
+  w.rhs_v -= w.tau_v / (2 * c);
+  w.qacc_shift = -w.qacc_shift;
+  w.qvel_shift = data.qvel - s * w.qacc_step;
+  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, w, w.tau_q,
+                        w.tau_v);
+  w.rhs_q += w.tau_q / (2 * c);
+  w.rhs_v += w.tau_v / (2 * c);
   // + h dD a, D's actuator part: only an affine gain's p2 ctrl depends on anything (ctrl)
   for (int a = 0; a < model.nu; ++a) {
     if (model.actuator_gaintype[a] != GainType::kAffine) continue;
@@ -382,11 +427,11 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   }
 
   // da = K^-1 (...), then Euler's update
-  w.Da_q.noalias() = w.lu.solve(w.rhs_q);
-  w.Da_v.noalias() = w.lu.solve(w.rhs_v);
-  // a model without actuators has no control columns: Eigen's triangular solve would read the
-  // first coefficient of an empty matrix
-  if (model.nu > 0) w.Da_u.noalias() = w.lu.solve(w.rhs_u);
+  for (int c = 0; c < nv; ++c) {
+    lu_solve(w.lu, w.rhs_q.col(c), w.Da_q.col(c));
+    lu_solve(w.lu, w.rhs_v.col(c), w.Da_v.col(c));
+  }
+  for (int c = 0; c < model.nu; ++c) lu_solve(w.lu, w.rhs_u.col(c), w.Da_u.col(c));
   assemble_euler(model, w.Da_q, w.Da_v, w.Da_u, deriv);
 }
 
@@ -464,12 +509,9 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   const auto ndof = static_cast<std::size_t>(nv);
   work.v.assign(nbody, Motion::Zero());
   work.a.assign(nbody, Motion::Zero());
-  work.f.assign(nbody, Force::Zero());
   work.F.assign(nbody, Force::Zero());
-  work.I.assign(nbody, Matrix6d::Zero());
-  work.C.assign(nbody, Matrix6d::Zero());
-  work.IC.assign(nbody, Matrix6d::Zero());
-  work.CC.assign(nbody, Matrix6d::Zero());
+  work.IC.assign(nbody, RigidInertia());
+  work.CC.assign(nbody, VelocityCoupling());
   work.Sdot.assign(ndof, Motion::Zero());
   work.Sddot.assign(ndof, Motion::Zero());
   work.rhs_q.setZero(nv, nv);
@@ -494,6 +536,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.K.setZero(nv, nv);
   work.lu = Eigen::PartialPivLU<Eigen::MatrixXd>(nv);
   work.qvel_shift.setZero(nv);
+  work.qacc_shift.setZero(nv);
   work.Da_q.setZero(nv, nv);
   work.Da_v.setZero(nv, nv);
   work.Da_u.setZero(nv, nu);

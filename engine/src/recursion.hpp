@@ -62,14 +62,21 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
   }
 }
 
+/// Each body's value x[b] replaced by its sum over the body's subtree, leaves to root (the world,
+/// body 0, is left out). T has +=: a force, a RigidInertia, the derivatives' couplings.
+template <class T>
+inline void sum_over_subtrees(const Model& model, std::vector<T>& x) {
+  for (int b = model.nbody - 1; b > 0; --b) {
+    const int parent = model.body_parentid[b];
+    if (parent > 0) x[parent] += x[b];
+  }
+}
+
 /// RNEA's backward pass: each body's net force f summed into its parent's, leaves to root (f is
 /// overwritten with the force each body's joint transmits), then tau_i = S_i . f of dof i's body.
 inline void backward_pass(const Model& model, const Data& data, std::vector<Force>& f,
                           double* tau) {
-  for (int b = model.nbody - 1; b > 0; --b) {
-    const int parent = model.body_parentid[b];
-    if (parent > 0) f[parent] += f[b];  // a joint carries the force of its whole subtree
-  }
+  sum_over_subtrees(model, f);  // a joint carries the force of its whole subtree
   for (int i = 0; i < model.nv; ++i) tau[i] = data.cdof[i].dot(f[model.dof_bodyid[i]]);
 }
 

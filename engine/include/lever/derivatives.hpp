@@ -25,6 +25,38 @@ namespace lever {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
+/// The 6x6 matrix C = v x* I - I (v x) + (I v) xbar* of a body with inertia I moving with v (the
+/// change of its net force with its velocity, besides 2 I), or its sum over a subtree. Its right
+/// column of 3x3 blocks is zero and the rest is the symmetric S and the momentum (n, p) = I v
+/// (derivatives.cpp derives it):
+///   C = [[S - [n], 0], [-2 [p], 0]],   [a] the matrix of a x.
+/// Both parts sum over bodies, so a subtree's C is kept the same way.
+struct VelocityCoupling {
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();  ///< symmetric
+  Force momentum = Force::Zero();               ///< (n, p)
+
+  /// C m
+  Force operator*(const Motion& m) const {
+    const Eigen::Vector3d w = m.head<3>();
+    Force out;
+    out.head<3>() = S * w + cross(w, momentum.head<3>());
+    out.tail<3>() = 2 * cross(w, momentum.tail<3>());
+    return out;
+  }
+
+  /// The angular part of C^T m (its linear part is zero).
+  Eigen::Vector3d transpose_times(const Motion& m) const {
+    return S * m.head<3>() + cross(momentum.head<3>(), m.head<3>()) +
+           2 * cross(momentum.tail<3>(), m.tail<3>());
+  }
+
+  VelocityCoupling& operator+=(const VelocityCoupling& other) {
+    S += other.S;
+    momentum += other.momentum;
+    return *this;
+  }
+};
+
 /// Outputs and workspace of the derivative functions, sized once from a Model (one per Data):
 /// the functions below allocate nothing.
 struct Derivatives {
@@ -47,11 +79,12 @@ struct Derivatives {
 
   // ---- workspace (contents meaningless between calls) ---------------------------------------
   struct Workspace {
-    // per body: velocity, acceleration, net force, and their subtree (composite) sums
+    // per body: velocity, acceleration, and the subtree (composite) sums of the net force, the
+    // inertia and the velocity coupling C (derivatives.cpp)
     std::vector<Motion> v, a;
-    std::vector<Force> f, F;     ///< net force of the body; of its whole subtree
-    std::vector<Matrix6d> I, C;  ///< spatial inertia, and C_b = v x* I - I v x + (I v) xbar*
-    std::vector<Matrix6d> IC, CC;
+    std::vector<Force> F;              ///< net force of the body's whole subtree
+    std::vector<RigidInertia> IC;      ///< inertia of the body's whole subtree
+    std::vector<VelocityCoupling> CC;  ///< C = v x* I - I v x + (I v) xbar* summed over the subtree
     // per dof: the motion subspace's time derivative and Carpentier and Mansard's Psi_ddot
     std::vector<Motion> Sdot, Sddot;
     Eigen::MatrixXd rhs_q, rhs_v, rhs_u;  ///< (nv x nv / nu) right-hand sides before M^-1
@@ -68,6 +101,7 @@ struct Derivatives {
     Eigen::MatrixXd D, K;                 ///< (nv x nv) implicit: d qfrc_smooth / d qvel, M - h D
     Eigen::PartialPivLU<Eigen::MatrixXd> lu;  ///< implicit: LU factor of K
     Eigen::VectorXd qvel_shift;               ///< (nv) implicit: qvel +- s a (polarisation)
+    Eigen::VectorXd qacc_shift;               ///< (nv) implicit: +- c (a - qacc), beside it
     Eigen::MatrixXd Da_q, Da_v, Da_u;  ///< (nv x nv / nu) implicit: d a / d (qpos, qvel, ctrl)
   } work;
 
