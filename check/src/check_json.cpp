@@ -361,6 +361,7 @@ void contacts(Json& j, const Contacts& c) {
     j.key("simulated").value(r.simulated).key("spread").value(r.spread);
     j.key("time").value(r.time).key("final_speed").value(r.final_speed);
     j.key("settle_speed").value(r.settle_speed).key("settled").value(r.settled);
+    j.key("unsupported_warnings").value(r.unsupported);
     j.key("bound").value(r.bound).key("agrees").value(r.agrees());
   }
   j.end_object();

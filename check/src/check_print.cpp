@@ -687,6 +687,10 @@ void print_rest(std::ostream& out, const RestingDepth& r) {
       << " after " << fixed(r.time, 3) << " s (|qvel| " << sci(r.final_speed) << "), mean depth "
       << sig4(r.simulated * 1e3) << " mm (contacts within " << sci(r.spread)
       << " m of each other)\n";
+  if (r.unsupported > 0) {
+    out << "    (" << r.unsupported
+        << " warnings in the run: geoms lever cannot collide came near each other)\n";
+  }
   out << "    difference " << sci(r.simulated - r.predicted) << " m, bound " << sci(r.bound)
       << " m (the speed left, B |v| / (K d p) of the depth, and the spread): "
       << (r.agrees() ? "agrees" : "DISAGREES") << "\n";

@@ -236,6 +236,16 @@ void hold_servos(const Model& m, Data& d, const std::vector<int>& except) {
   }
 }
 
+// the warnings that make a run meaningless (a state reset, a singular M); a pair lever cannot
+// collide that came near is reported by the loader's finding, and does not spoil the run
+int spoiling_warnings(const Data& d) {
+  return warning_count(d) - d.warning[static_cast<int>(Warning::kContactUnsupported)].number;
+}
+
+int unsupported_warnings(const Data& d) {
+  return d.warning[static_cast<int>(Warning::kContactUnsupported)].number;
+}
+
 double body_speed(const Model& m, const Data& d, int joint) {
   const int dof = m.jnt_dofadr[joint];
   return d.qvel.segment(dof, 6).cwiseAbs().maxCoeff();
@@ -274,7 +284,8 @@ RestingDepth resting_depth(const Model& m, PairTable& table, std::vector<std::st
   tally(m, d, table, strays);
   r.time = d.time;
   r.final_speed = body_speed(m, d, joint);
-  r.settled = quiet >= quiet_needed && warning_count(d) == 0;
+  r.settled = quiet >= quiet_needed && spoiling_warnings(d) == 0;
+  r.unsupported = unsupported_warnings(d);
 
   // the contacts between the body and the plane, and their depth past the margin
   double lo = kInf, hi = -kInf, sum = 0;
@@ -396,7 +407,7 @@ GripTrial run_trial(GripSetup& s, const std::vector<double>& commands, const Gri
   tally(s.with_gravity, d, table, strays);
   t.drop = s.down.dot(d.xipos[s.body]) - before;
   t.speedup = s.down.dot(d.qvel.segment<3>(dof)) - speed_half;
-  t.slipped = t.speedup > g.speedup_threshold || t.drop > g.fall || warning_count(d) > 0;
+  t.slipped = t.speedup > g.speedup_threshold || t.drop > g.fall || spoiling_warnings(d) > 0;
   return t;
 }
 

@@ -400,7 +400,8 @@ struct RestingDepth {
   double settle_speed = 1e-9;  ///< m/s (rad/s): at rest below this
   double time_bound = 20.0;    ///< s of simulation at most
   bool settled = false;
-  double bound = 0.0;  ///< |simulated - predicted| allowed, m (how it is reasoned: check.md)
+  int unsupported = 0;  ///< warnings of geom pairs lever cannot collide coming near, in the run
+  double bound = 0.0;   ///< |simulated - predicted| allowed, m (how it is reasoned: check.md)
   bool agrees() const { return settled && std::abs(simulated - predicted) <= bound; }
 };
 
