@@ -639,7 +639,10 @@ void print_stability(std::ostream& out, const StepStability& st) {
 
 std::string numbers(const double* x, int n) {
   std::string s;
-  for (int i = 0; i < n; ++i) s += (i ? " " : "") + general(x[i]);
+  for (int i = 0; i < n; ++i) {
+    if (i > 0) s += ' ';
+    s += general(x[i]);
+  }
   return s;
 }
 
