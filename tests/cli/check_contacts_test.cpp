@@ -168,6 +168,30 @@ TEST_CASE("check (9): a model without contacts or fingers says what it skipped",
   CHECK(drop["skipped"].string.find("no free body with exactly two servo-driven fingers") == 0);
 }
 
+TEST_CASE("check --svg on the gripper: the grip's trials as bars, the skipped sections drawn empty",
+          "[check][contacts]") {
+  const std::string svg = temporary_file("lever_check_gripper.svg", "");
+  const Run run =
+      run_lever("check --svg " + quoted(svg) + " " + quoted(model_path("models/gripper.xml")));
+  CHECK(run.status == 1);  // the model's bodies have no <inertial>: findings, not a failure
+  const std::string stem = svg.substr(0, svg.size() - 4);
+  const json::Value g = check_json(model_path("models/gripper.xml"))["contacts"]["grip"];
+  for (const std::string& file :
+       {svg, stem + "-singular-poses.svg", stem + "-step-stability.svg", stem + "-grip.svg"}) {
+    INFO(file);
+    const std::string picture = read(file);
+    CHECK(picture.rfind("<?xml", 0) == 0);
+    if (file == stem + "-grip.svg") {
+      // one bar per trial, labelled with its force, the slipped ones marked
+      for (const json::Value& t : g["trials"].array) {
+        CHECK(picture.find(format("%.3f", t["force"].number) + " N") != std::string::npos);
+      }
+      CHECK(picture.find(" slip") != std::string::npos);
+    }
+    std::filesystem::remove(file);
+  }
+}
+
 TEST_CASE("docs/lesson-5.3.md's block is what lever check prints for the gripper",
           "[check][contacts]") {
   const std::string text = read(model_path("docs/lesson-5.3.md"));
