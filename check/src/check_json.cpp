@@ -28,7 +28,7 @@ void strings(Json& j, const std::vector<std::string>& list) {
 void structure(Json& j, const Structure& s) {
   j.key("joints").begin_array();
   for (const JointInfo& x : s.joints) {
-    j.begin_object().key("name").value(x.name).key("type").value(x.hinge ? "hinge" : "slide");
+    j.begin_object().key("name").value(x.name).key("type").value(x.type);
     j.key("axis").values(x.axis).key("range");
     pair(j, x.range);
     j.key("limited").value(x.limited).key("damping").value(x.damping);
@@ -315,24 +315,123 @@ void stability(Json& j, const StepStability& st) {
 }  // namespace
 
 namespace {
+
+// ---- (9) contacts
+
+template <size_t N>
+void numbers(Json& j, const std::array<double, N>& x) {
+  j.begin_array();
+  for (double v : x) j.value(v);
+  j.end_array();
+}
+
+void contacts(Json& j, const Contacts& c) {
+  if (!c.skipped.empty()) {
+    j.key("skipped").value(c.skipped);
+    return;
+  }
+  j.key("pairs").begin_array();
+  for (const ContactPairInfo& p : c.pairs) {
+    j.begin_object().key("geom1").value(p.geom1).key("geom2").value(p.geom2);
+    j.key("explicit_pair").value(p.explicit_pair).key("condim").value(p.condim).key("friction");
+    numbers(j, p.friction);
+    j.key("solref");
+    numbers(j, p.solref);
+    j.key("solimp");
+    numbers(j, p.solimp);
+    j.key("margin").value(p.margin).key("gap").value(p.gap).key("contacts_seen").value(p.seen);
+    j.key("agrees").value(p.agrees).end_object();
+  }
+  j.end_array().key("strays");
+  strings(j, c.strays);
+  const RestingDepth& r = c.rest;
+  j.key("resting_depth").begin_object();
+  if (!r.skipped.empty()) {
+    j.key("skipped").value(r.skipped);
+  } else {
+    j.key("body").value(r.body).key("plane").value(r.plane).key("start").value(r.start);
+    j.key("mass").value(r.mass).key("gravity").value(r.gravity).key("condim").value(r.condim);
+    j.key("contacts").value(r.contacts).key("rows_per_contact").value(r.rows);
+    j.key("friction").value(r.friction).key("impratio").value(r.impratio).key("solref");
+    numbers(j, r.solref);
+    j.key("solimp");
+    numbers(j, r.solimp);
+    j.key("K").value(r.K).key("invweight").value(r.invweight).key("A").value(r.A);
+    j.key("predicted").value(r.predicted).key("impedance").value(r.impedance);
+    j.key("simulated").value(r.simulated).key("spread").value(r.spread);
+    j.key("time").value(r.time).key("final_speed").value(r.final_speed);
+    j.key("settle_speed").value(r.settle_speed).key("settled").value(r.settled);
+    j.key("unsupported_warnings").value(r.unsupported);
+    j.key("bound").value(r.bound).key("agrees").value(r.agrees());
+  }
+  j.end_object();
+  const Grip& g = c.grip;
+  j.key("grip").begin_object();
+  if (!g.skipped.empty()) {
+    j.key("skipped").value(g.skipped);
+  } else {
+    j.key("body").value(g.body).key("fingers");
+    strings(j, g.fingers);
+    j.key("mass").value(g.mass).key("gravity").value(g.gravity).key("mu").value(g.mu);
+    j.key("needed_force").value(g.needed).key("servo_force").value(g.servo_force);
+    j.key("servo_force_simulated").value(g.servo_force_closed);
+    j.key("servo_kp").value(g.servo_kp).key("full_command").value(g.full_command);
+    j.key("touch").value(g.touch).key("holds_by_hand").value(g.holds_by_hand());
+    j.key("close_time").value(g.close_time).key("hold_time").value(g.hold_time);
+    j.key("speedup_threshold")
+        .value(g.speedup_threshold)
+        .key("fall")
+        .value(g.fall)
+        .key("creep")
+        .value(g.creep);
+    j.key("trials").begin_array();
+    for (const GripTrial& t : g.trials) {
+      j.begin_object().key("command").value(t.command).key("closed_force").value(t.closed_force);
+      j.key("force").value(t.force);
+      j.key("drop")
+          .value(t.drop)
+          .key("speedup")
+          .value(t.speedup)
+          .key("slipped")
+          .value(t.slipped)
+          .end_object();
+    }
+    j.end_array().key("hold_force").value(g.hold_force).key("slip_force").value(g.slip_force);
+    j.key("resolution").value(g.resolution);
+  }
+  j.end_object();
+}
+
 void report(Json& j, const Report& r) {
   j.begin_object().key("model").value(r.model).key("source").value(r.source);
+  // a section that does not apply holds only why
+  const auto section = [&](int n, const char* name, const auto& write) {
+    j.key(name).begin_object();
+    const std::string why = r.skipped(n);
+    if (why.empty()) {
+      write();
+    } else {
+      j.key("skipped").value(why);
+    }
+    j.end_object();
+  };
+  j.key("floating_joints").value(r.floating_joints);
   j.key("structure").begin_object();
   structure(j, r.structure);
-  j.end_object().key("kinematics").begin_object();
-  kinematics(j, r.kinematics);
-  j.end_object().key("torque_budget").begin_object();
-  budget(j, r.budget);
-  j.end_object().key("inertia").begin_object();
+  j.end_object();
+  section(2, "kinematics", [&] { kinematics(j, r.kinematics); });
+  section(3, "torque_budget", [&] { budget(j, r.budget); });
+  j.key("inertia").begin_object();
   inertia(j, r.inertia);
-  j.end_object().key("soft_stops").begin_object();
-  stops(j, r.stops);
-  j.end_object().key("clamping").begin_object();
+  j.end_object();
+  section(5, "soft_stops", [&] { stops(j, r.stops); });
+  j.key("clamping").begin_object();
   clamping(j, r.clamping);
-  j.end_object().key("singular_poses").begin_object();
-  singular(j, r.singular);
-  j.end_object().key("step_stability").begin_object();
-  stability(j, r.stability);
+  j.end_object();
+  section(7, "singular_poses", [&] { singular(j, r.singular); });
+  section(8, "step_stability", [&] { stability(j, r.stability); });
+  j.key("contacts").begin_object();
+  contacts(j, r.contacts);
   j.end_object().key("findings");
   strings(j, r.findings);
   j.key("exit_status").value(r.exit_status()).end_object();

@@ -13,6 +13,8 @@ namespace {
 
 using fmt::fixed;
 using fmt::general;
+using fmt::sci;
+using fmt::sig4;
 
 const char* torque_unit(bool hinge) { return hinge ? "N m" : "N"; }
 const char* position_unit(bool hinge) { return hinge ? "rad" : "m"; }
@@ -62,9 +64,10 @@ void print_servo(std::ostream& out, const MotorInfo& m) {
 void print_structure(std::ostream& out, const Structure& s) {
   out << "(1) what the compiled model contains:\n";
   for (const JointInfo& j : s.joints) {
-    out << "  joint " << j.name << (j.hinge ? "" : " (slide)") << " axis " << fmt::list(j.axis)
-        << " range " << (j.limited ? range_text(j.range) + " " + position_unit(j.hinge) : "-")
-        << " limited " << bool_text(j.limited) << " damping " << general(j.damping)
+    out << "  joint " << j.name << (j.hinge ? "" : " (" + j.type + ")") << " axis "
+        << fmt::list(j.axis) << " range "
+        << (j.limited ? range_text(j.range) + " " + position_unit(j.hinge) : "-") << " limited "
+        << bool_text(j.limited) << " damping " << general(j.damping)
         << (j.hinge ? " N m s/rad" : " N s/m");
     if (j.armature != 0) out << " armature " << general(j.armature);
     if (j.stiffness != 0) out << " stiffness " << general(j.stiffness);
@@ -632,6 +635,120 @@ void print_stability(std::ostream& out, const StepStability& st) {
   }
 }
 
+// ---- (9) contacts ------------------------------------------------------------------------------
+
+std::string numbers(const double* x, int n) {
+  std::string s;
+  for (int i = 0; i < n; ++i) {
+    if (i > 0) s += ' ';
+    s += general(x[i]);
+  }
+  return s;
+}
+
+void print_pairs(std::ostream& out, const Contacts& c) {
+  out << "  geom pairs that can touch (contype/conaffinity, weld and parent filters, <exclude>; "
+         "<pair>):\n";
+  for (const ContactPairInfo& p : c.pairs) {
+    out << "    " << p.geom1 << " - " << p.geom2 << (p.explicit_pair ? " (<pair>)" : "")
+        << ": condim " << p.condim << ", friction " << numbers(p.friction.data(), 3) << ", solref "
+        << numbers(p.solref.data(), 2) << ", solimp " << numbers(p.solimp.data(), 5) << ", margin "
+        << general(p.margin) << ", gap " << general(p.gap);
+    if (p.seen > 0) {
+      out << "; " << p.seen << " contacts in the runs below, "
+          << (p.agrees ? "each with these parameters" : "NOT all with these parameters");
+    }
+    out << "\n";
+  }
+}
+
+void print_rest(std::ostream& out, const RestingDepth& r) {
+  out << "  resting depth of a free body on a plane:";
+  if (!r.skipped.empty()) {
+    out << " skipped: " << r.skipped << "\n";
+    return;
+  }
+  out << " body " << r.body << " (m = " << general(r.mass) << " kg) on " << r.plane << "\n";
+  out << "    at rest a = 0 and v = 0, so each row pushes f = D aref = K d(p) p / R with\n"
+         "    aref = -B v - K d(r) r (r = -p, the depth past the margin) and R = (1 - d)/d A;\n"
+         "    the rows' normal forces carry the weight:\n"
+         "      n_contacts n_rows K d(p)^2 p / ((1 - d(p)) A) = m g\n";
+  out << "    K = 1/(dmax^2 timeconst^2 dampratio^2) = " << sig4(r.K) << " 1/s^2 (solref "
+      << numbers(r.solref.data(), 2) << ", solimp " << numbers(r.solimp.data(), 5) << ")\n";
+  if (r.condim == 1) {
+    out << "    A = t = " << sig4(r.A)
+        << " 1/kg (body_invweight0, translation), 1 row per contact\n";
+  } else {
+    out << "    A = 2 mu^2 (1 + mu^2) t / impratio = " << sig4(r.A) << " 1/kg (mu "
+        << general(r.friction) << ", t = " << sig4(r.invweight)
+        << " 1/kg from body_invweight0, impratio " << general(r.impratio) << "), " << r.rows
+        << " pyramid edges per contact (condim " << r.condim << ")\n";
+  }
+  out << "    " << r.contacts << " contacts at rest, m g = " << fixed(r.mass * r.gravity, 4)
+      << " N: p = " << sig4(r.predicted * 1e3) << " mm (d(p) = " << fixed(r.impedance, 4) << ")\n";
+  out << "    simulation from " << r.start << ": " << (r.settled ? "at rest" : "NOT at rest")
+      << " after " << fixed(r.time, 3) << " s (|qvel| " << sci(r.final_speed) << "), mean depth "
+      << sig4(r.simulated * 1e3) << " mm (contacts within " << sci(r.spread)
+      << " m of each other)\n";
+  if (r.unsupported > 0) {
+    out << "    (" << r.unsupported
+        << " warnings in the run: geoms lever cannot collide came near each other)\n";
+  }
+  out << "    difference " << sci(r.simulated - r.predicted) << " m, bound " << sci(r.bound)
+      << " m (the speed left, B |v| / (K d p) of the depth, and the spread): "
+      << (r.agrees() ? "agrees" : "DISAGREES") << "\n";
+}
+
+void print_grip(std::ostream& out, const Grip& g) {
+  out << "  grip: two fingers pressing with force F hold a box of mass m if 2 mu F >= m g:";
+  if (!g.skipped.empty()) {
+    out << " skipped: " << g.skipped << "\n";
+    return;
+  }
+  out << "\n    body " << g.body << " (m = " << general(g.mass) << " kg), fingers " << g.fingers[0]
+      << " and " << g.fingers[1] << ", mu = " << general(g.mu) << " (the mixed friction)\n";
+  out << "    needed: F = m g / (2 mu) = " << fixed(g.needed, 4) << " N\n";
+  out << "    the servos at full command " << general(g.full_command) << ": kp (command - "
+      << fixed(g.touch, 5) << ") = " << fixed(g.servo_force, 4)
+      << " N (clamped by forcerange; simulated: " << fixed(g.servo_force_closed, 4)
+      << " N): " << fixed(g.servo_force / g.needed, 2) << " x needed, "
+      << (g.holds_by_hand() ? "holds" : "CANNOT hold") << "\n";
+  out << "    simulation: the box between the fingers, closed for " << general(g.close_time)
+      << " s without gravity, then " << general(g.hold_time)
+      << " s with it; a slip: the box's falling speed grows by more than "
+      << general(g.speedup_threshold)
+      << " m/s over the second half (a held box creeps at a "
+         "steady speed: "
+      << fixed(g.creep * 1e3, 3) << " mm at the full grip)\n";
+  for (const GripTrial& t : g.trials) {
+    out << "      F = " << fixed(t.closed_force, 4) << " N closed, " << fixed(t.force, 4)
+        << " N while held: drop " << fixed(t.drop * 1e3, 3) << " mm, speed-up "
+        << fixed(t.speedup, 4) << " m/s" << (t.slipped ? ": slipped" : "") << "\n";
+  }
+  if (g.slip_force == 0.0) {
+    out << "    the box never slipped\n";
+  } else if (!std::isfinite(g.hold_force)) {
+    out << "    the box slipped at the full grip (" << fixed(g.slip_force, 4) << " N)\n";
+  } else {
+    out << "    slips between " << fixed(g.slip_force, 4) << " and " << fixed(g.hold_force, 4)
+        << " N; m g / (2 mu) = " << fixed(g.needed, 4) << " N (difference "
+        << fixed(0.5 * (g.slip_force + g.hold_force) - g.needed, 4) << " N, "
+        << fixed(100 * (0.5 * (g.slip_force + g.hold_force) / g.needed - 1), 2) << " %)\n";
+  }
+}
+
+void print_contacts(std::ostream& out, const Contacts& c) {
+  out << "(9) contacts: the pairs that can touch, a body's resting depth, the grip force:";
+  if (!c.skipped.empty()) {
+    out << " skipped: " << c.skipped << "\n";
+    return;
+  }
+  out << "\n";
+  print_pairs(out, c);
+  print_rest(out, c.rest);
+  print_grip(out, c.grip);
+}
+
 void print_findings(std::ostream& out, const Report& r) {
   if (r.findings.empty()) {
     out << "findings: none: every claim checks out (exit status 0)\n";
@@ -647,14 +764,24 @@ void print_findings(std::ostream& out, const Report& r) {
 std::string to_text(const Report& r) {
   std::ostringstream out;
   out << "lever check " << r.source << " (model \"" << r.model << "\")\n";
+  // a section that does not apply says so under its heading
+  const auto section = [&](int n, const char* title, const auto& print) {
+    const std::string why = r.skipped(n);
+    if (why.empty()) {
+      print();
+    } else {
+      out << "(" << n << ") " << title << ": skipped: " << why << "\n";
+    }
+  };
   print_structure(out, r.structure);
-  print_kinematics(out, r.kinematics);
-  print_budget(out, r.budget);
+  section(2, "forward kinematics of every site", [&] { print_kinematics(out, r.kinematics); });
+  section(3, "gravity torque and motor sizing", [&] { print_budget(out, r.budget); });
   print_inertia(out, r.inertia, r.budget);
-  print_stops(out, r.stops);
+  section(5, "joint stops are soft constraints", [&] { print_stops(out, r.stops); });
   print_clamping(out, r.clamping, r.budget);
-  print_singular(out, r.singular, r.structure);
-  print_stability(out, r.stability);
+  section(7, "singular poses", [&] { print_singular(out, r.singular, r.structure); });
+  section(8, "stability of the step", [&] { print_stability(out, r.stability); });
+  print_contacts(out, r.contacts);
   print_findings(out, r);
   return out.str();
 }

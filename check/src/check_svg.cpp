@@ -93,4 +93,21 @@ std::string step_stability_svg(const Report& r) {
   return plot::to_svg(figure);
 }
 
+std::string grip_svg(const Report& r) {
+  plot::BarChart chart;
+  const Grip& g = r.contacts.grip;
+  chart.title = r.model + ": the box's drop at each grip force";
+  chart.ylabel = "drop (mm)";
+  if (!r.contacts.skipped.empty() || !g.skipped.empty()) {
+    chart.title = r.model + ": grip not checked (see the text)";
+  }
+  for (const GripTrial& t : g.trials) {
+    chart.groups.push_back({fmt::fixed(t.force, 3) + " N" + (t.slipped ? " slip" : ""),
+                            {{"drop", t.drop * 1e3, t.slipped ? kGravityColor : kSpareColor}}});
+  }
+  chart.width = std::max(640, 140 + 75 * static_cast<int>(chart.groups.size()));
+  chart.height = 420;
+  return plot::to_svg(chart);
+}
+
 }  // namespace lever::check

@@ -83,7 +83,8 @@ Inertia check_inertia(const Inputs& inputs, const TorqueBudget& budget) {
     if (!body.explicit_inertial && body.mass > 0)
       result.bodies_without_inertial.push_back(body.name);
   }
-  if (inputs.inferred) {
+  // at each joint's worst pose from (3), which a model with ball or free joints skips
+  if (inputs.inferred && static_cast<int>(budget.joints.size()) == model.njnt) {
     for (int j = 0; j < model.njnt; ++j) {
       const JointBudget& joint = budget.joints[j];
       result.torques.push_back(

@@ -10,6 +10,11 @@ JointInfo joint_info(const Model& model, int j) {
   JointInfo info;
   info.name = joint_label(model, j);
   info.hinge = model.jnt_type[j] == JointType::kHinge;
+  const JointType type = model.jnt_type[j];
+  info.type = type == JointType::kHinge   ? "hinge"
+              : type == JointType::kSlide ? "slide"
+              : type == JointType::kBall  ? "ball"
+                                          : "free";
   info.axis = model.jnt_axis[j];
   info.range = model.jnt_range[j];
   info.limited = model.jnt_limited[j];

@@ -34,14 +34,19 @@ const char* kHelp =
     "      linearisation for the model's integrator and explicit Euler, the largest stable\n"
     "      timestep, the smallest armature that keeps Euler stable (each searched on a log grid,\n"
     "      every change of stability found bisected and listed), confirmed by simulation\n"
+    "  (9) contacts (lesson 5.3): the geom pairs that can touch and their mixed parameters, the\n"
+    "      depth a free body rests at on a plane against solref/solimp's steady state, and the\n"
+    "      force two finger servos need to hold a box (2 mu F >= m g) against a simulation that\n"
+    "      lowers the grip until the box slips\n"
+    "  A model with ball or free joints skips (2), (3), (5), (7) and (8), saying why.\n"
     "\n"
     "options:\n"
     "  --key NAME      sections (7) and (8) at keyframe NAME only (besides qpos0 in (7))\n"
     "  --json          print the same content as one JSON object instead of text\n"
     "  --svg FILE      also write the torque budget as a bar chart (SVG), and beside it\n"
-    "                  FILE's stem + -singular-poses.svg and -step-stability.svg\n"
-    "  --plot-dir DIR  also write DIR/<model>-torque-budget.svg, -singular-poses.svg and\n"
-    "                  -step-stability.svg\n"
+    "                  FILE's stem + -singular-poses.svg, -step-stability.svg, -grip.svg\n"
+    "  --plot-dir DIR  also write DIR/<model>-torque-budget.svg, -singular-poses.svg,\n"
+    "                  -step-stability.svg and -grip.svg\n"
     "  --help          print this help\n"
     "\n"
     "exit status: 0 every claim checks out, 1 findings (listed at the end), 2 the model cannot be "
@@ -63,11 +68,13 @@ void write_svg(const check::Report& report, const Args& args) {
     plot::write_file(in_dir + "-torque-budget.svg", check::torque_budget_svg(report));
     plot::write_file(in_dir + "-singular-poses.svg", check::singular_poses_svg(report));
     plot::write_file(in_dir + "-step-stability.svg", check::step_stability_svg(report));
+    plot::write_file(in_dir + "-grip.svg", check::grip_svg(report));
   }
   if (!path.empty()) {
     plot::write_file(path, check::torque_budget_svg(report));
     plot::write_file(beside(path, "singular-poses"), check::singular_poses_svg(report));
     plot::write_file(beside(path, "step-stability"), check::step_stability_svg(report));
+    plot::write_file(beside(path, "grip"), check::grip_svg(report));
   }
 }
 

@@ -40,6 +40,7 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 struct JointInfo {
   std::string name;
   bool hinge = true;
+  std::string type = "hinge";                      ///< hinge, slide, ball or free
   Eigen::Vector3d axis = Eigen::Vector3d::Zero();  ///< as in the model: the body frame
   std::array<double, 2> range{0.0, 0.0};
   bool limited = false;
@@ -358,6 +359,97 @@ struct StepStability {
   std::vector<StabilityAt> states;
 };
 
+// ---- (9) contacts (lesson 5.3)
+// -------------------------------------------------------------------
+
+/// Two geoms that can touch: the filters passed (contype/conaffinity, not on one welded body, not
+/// parent and child, no <exclude>) or named by a <pair>, with the parameters a contact between
+/// them gets (mixed by priority, else max and solmix, as MuJoCo's driver; a <pair>'s own).
+struct ContactPairInfo {
+  std::string geom1, geom2;
+  bool explicit_pair = false;  ///< from <contact><pair>
+  int condim = 3;
+  std::array<double, 3> friction{0, 0, 0};  ///< sliding, torsional, rolling
+  std::array<double, 2> solref{0, 0};
+  std::array<double, 5> solimp{0, 0, 0, 0, 0};
+  double margin = 0.0, gap = 0.0;
+  int seen = 0;        ///< contacts between them in the section's simulations
+  bool agrees = true;  ///< each of those got these parameters
+};
+
+/// A free body resting on a plane: the depth the soft contact predicts against the simulation's.
+/// At rest a = 0 and v = 0, so each row pushes f = D aref = K d(p) p / R with R = (1 - d)/d A:
+/// n_contacts n_rows K d(p)^2 p / ((1 - d(p)) A) = m g_n, solved for the depth p by bisection.
+struct RestingDepth {
+  std::string skipped;  ///< why it was not computed ("": computed)
+  std::string body, plane, start;
+  double mass = 0.0, gravity = 0.0;  ///< kg; the component of gravity along the plane's normal
+  int condim = 3, contacts = 0, rows = 0;  ///< contacts at rest; rows per contact
+  double friction = 0.0, impratio = 1.0;
+  std::array<double, 2> solref{0, 0};
+  std::array<double, 5> solimp{0, 0, 0, 0, 0};
+  double K = 0.0;          ///< 1 / (dmax^2 timeconst^2 dampratio^2), 1/s^2
+  double invweight = 0.0;  ///< t: the two bodies' translational body_invweight0, 1/kg
+  double A = 0.0;  ///< a row's approximate inverse inertia: t, or 2 mu^2 (1+mu^2) t/impratio
+  double predicted = 0.0;      ///< m
+  double impedance = 0.0;      ///< d(predicted)
+  double simulated = 0.0;      ///< m: the contacts' mean depth at rest
+  double spread = 0.0;         ///< m: deepest minus shallowest contact at rest
+  double time = 0.0;           ///< s simulated
+  double final_speed = 0.0;    ///< max |qvel| of the body at the end
+  double settle_speed = 1e-9;  ///< m/s (rad/s): at rest below this
+  double time_bound = 20.0;    ///< s of simulation at most
+  bool settled = false;
+  int unsupported = 0;  ///< warnings of geom pairs lever cannot collide coming near, in the run
+  double bound = 0.0;   ///< |simulated - predicted| allowed, m (how it is reasoned: check.md)
+  bool agrees() const { return settled && std::abs(simulated - predicted) <= bound; }
+};
+
+/// One trial of the grip: the fingers close on the box without gravity, then gravity acts.
+struct GripTrial {
+  double command = 0.0;       ///< the fingers' servo target (each finger's closing direction)
+  double closed_force = 0.0;  ///< N: the fingers' servo force once closed (mean of the fingers)
+  double force = 0.0;  ///< N: the same, averaged over the second half of the hold (the judged one)
+  double drop = 0.0;   ///< m: how far the box fell while gravity acted
+  double speedup = 0.0;  ///< m/s: its falling speed at the end minus at half the hold
+  bool slipped = false;
+};
+
+/// Two fingers pressing with force F hold a box of mass m when 2 mu F >= m g.
+struct Grip {
+  std::string skipped;  ///< why it was not computed ("": computed)
+  std::string body;
+  std::vector<std::string> fingers;  ///< the finger servos
+  double mass = 0.0, gravity = 0.0, mu = 0.0;
+  double needed = 0.0;        ///< N: m g / (2 mu)
+  double servo_force = 0.0;   ///< N: the fingers' servo force at the command that closes most
+  double servo_kp = 0.0;      ///< N/m (N m/rad): their stiffness
+  double full_command = 0.0;  ///< that command (the end of ctrlrange towards the box)
+  double touch = 0.0;         ///< the finger position holding the box at that command
+  double close_time = 0.3, hold_time = 0.2;  ///< s: each trial's two phases
+  double servo_force_closed = 0.0;           ///< N: measured at the full command once closed
+  /// m/s: a box whose falling speed grows by more than this over the second half of the hold
+  /// slips. A held box creeps (the soft friction rows are dampers: it sinks at a steady speed);
+  /// a box the friction cannot hold accelerates at g (1 - F/F_needed): 0.005 m/s in 0.1 s is a
+  /// shortfall of 0.5 % of the weight.
+  double speedup_threshold = 0.005;
+  double fall = 0.05;  ///< m: a drop beyond this is a slip too (the box left the fingers)
+  double creep = 0.0;  ///< m: the drop at the full command
+  std::vector<GripTrial> trials;  ///< in the order run: full, then lowered, then bisected
+  double hold_force = kInf;       ///< N: the least force that held (kInf: none held)
+  double slip_force = 0.0;        ///< N: the largest force that slipped (0: none slipped)
+  double resolution = 0.01;       ///< the bisection stops at this relative width
+  bool holds_by_hand() const { return servo_force >= needed; }
+};
+
+struct Contacts {
+  std::string skipped;  ///< why the section does not apply ("": it does)
+  std::vector<ContactPairInfo> pairs;
+  RestingDepth rest;
+  Grip grip;
+  std::vector<std::string> strays;  ///< "geom a and geom b": contacts of pairs not listed
+};
+
 // ---- the report ---------------------------------------------------------------------------------
 
 struct Report {
@@ -370,6 +462,12 @@ struct Report {
   Clamping clamping;
   SingularPoses singular;
   StepStability stability;
+  Contacts contacts;
+  /// the model's ball and free joints ("": none): sections (2), (3), (5), (7) and (8) vary each
+  /// joint as a hinge or slide over its range and are skipped for such a model (skipped())
+  std::string floating_joints;
+  /// why section `n` was not run ("": it was)
+  std::string skipped(int section) const;
   std::vector<std::string> findings;  ///< claims that do not check out
   int exit_status() const { return findings.empty() ? 0 : 1; }
 };
@@ -397,6 +495,8 @@ Clamping check_clamping(const Model& model);
 /// StateError listing the model's keyframes.
 SingularPoses check_singular_poses(const Model& model, const std::string& key = "");
 StepStability check_step_stability(const Model& model, const std::string& key = "");
+/// (9): the pairs that can touch, a free body resting on a plane, the grip of two finger servos.
+Contacts check_contacts(const Model& model);
 
 /// The step's linearisation d[qpos'; qvel']/d[qpos; qvel] by central differences of lever::step
 /// at (qpos, qvel, ctrl), and its spectral radius (the tools section (8) is built from).
@@ -422,5 +522,6 @@ std::string to_json(const Report& report);              ///< the same object, as
 std::string torque_budget_svg(const Report& report);
 std::string singular_poses_svg(const Report& report);  ///< sigma_min at each state and worst pose
 std::string step_stability_svg(const Report& report);  ///< spectral radii, Euler and the model's
+std::string grip_svg(const Report& report);  ///< each grip trial's force and the box's drop
 
 }  // namespace lever::check
