@@ -86,6 +86,8 @@ std::string unwritable_difference(const Model& file, const Model& model) {
   return "";
 }
 
+#ifdef LEVER_HAVE_TINYXML2
+
 bool quats_within(const FieldView& a, const FieldView& b, double bound) {
   if (a.size() != b.size()) return false;
   for (long i = 0; i < a.size(); ++i) {
@@ -93,8 +95,6 @@ bool quats_within(const FieldView& a, const FieldView& b, double bound) {
   }
   return true;
 }
-
-#ifdef LEVER_HAVE_TINYXML2
 
 std::string number(double x) { return detail::show(x + 0.0); }
 
