@@ -41,7 +41,7 @@ Clamping check_clamping(const Model& model) {
   result.target = data.ctrl;
   result.raw_force = Eigen::VectorXd::Zero(model.nu);
   for (int a = 0; a < model.nu; ++a) {
-    result.servo.push_back(is_servo(model, a) ? 1 : 0);
+    result.servo.push_back(is_servo(model.actuator_kind[a]) ? 1 : 0);
     if (model.actuator_ctrllimited[a]) {
       const auto& r = model.actuator_ctrlrange[a];
       result.target[a] = std::clamp(data.ctrl[a], r[0], r[1]);

@@ -36,7 +36,7 @@ MotorInfo motor_info(const Model& model, int a) {
   info.ctrllimited = model.actuator_ctrllimited[a];
   info.forcelimited = model.actuator_forcelimited[a];
   info.joint_torque = motor_torque_range(model, a);
-  info.servo = is_servo(model, a);
+  info.servo = is_servo(model.actuator_kind[a]);
   for (int k = 0; k < 3; ++k) {
     info.gainprm[k] = model.actuator_gainprm[a][k];
     info.biasprm[k] =

@@ -45,7 +45,7 @@ void motors_of_joint(const Model& model, int j, JointBudget& budget) {
     budget.motors.push_back(motor_label(model, a));
     budget.torque_range[0] += range[0];
     budget.torque_range[1] += range[1];
-    if (is_servo(model, a)) {
+    if (is_servo(model.actuator_kind[a])) {
       const double gear = model.actuator_gear[a][0];
       if (model.actuator_biastype[a] == BiasType::kAffine)
         budget.stiffness -= gear * gear * model.actuator_biasprm[a][1];

@@ -31,19 +31,6 @@ inline std::string motor_label(const Model& m, int a) {
   return label(m.actuator_name[a], "motor", a);
 }
 
-/// A servo: an actuator whose force depends on the joint's state through its bias or gain
-/// (a <general> or <position>/<velocity> servo, force = gain ctrl + bias(length, velocity)): its
-/// ctrl is a target, not a force. A motor has a fixed gain and no bias: force = gain ctrl.
-inline bool is_servo(const Model& model, int a) {
-  const auto& b = model.actuator_biasprm[a];
-  const auto& g = model.actuator_gainprm[a];
-  const bool state_bias =
-      model.actuator_biastype[a] == BiasType::kAffine && (b[1] != 0 || b[2] != 0);
-  const bool state_gain =
-      model.actuator_gaintype[a] == GainType::kAffine && (g[1] != 0 || g[2] != 0);
-  return state_bias || state_gain;
-}
-
 /// The force interval of one actuator at actuator length `length` and velocity `velocity`:
 /// gain x ctrlrange + bias, intersected with forcerange, as actuation() clamps the command and then
 /// the force; unbounded sides are infinite.
@@ -81,7 +68,7 @@ inline std::array<double, 2> geared(const Model& model, int a, const std::array<
 /// it is given (without a forcerange, its interval at qpos0 and rest, from the ctrlrange).
 inline std::array<double, 2> motor_torque_range(const Model& model, int a) {
   constexpr double inf = std::numeric_limits<double>::infinity();
-  if (is_servo(model, a)) {
+  if (is_servo(model.actuator_kind[a])) {
     if (model.actuator_forcelimited[a]) return geared(model, a, model.actuator_forcerange[a]);
     const double length =
         model.actuator_gear[a][0] * model.qpos0[model.jnt_qposadr[model.actuator_trnid[a]]];

@@ -84,13 +84,11 @@ std::vector<int> gain_actuators(const Model& model) {
 }
 
 int gain_tied_bias(const Model& model, int a) {
-  if (model.actuator_biastype[a] != BiasType::kAffine) return 0;
-  const double gain = model.actuator_gainprm[a][0];
-  const auto& bias = model.actuator_biasprm[a];
-  if (gain == 0) return 0;
-  if (bias[1] == -gain) return 1;                  // position servo: kp (ctrl - length)
-  if (bias[1] == 0 && bias[2] == -gain) return 2;  // velocity servo: kv (ctrl - velocity)
-  return 0;
+  switch (model.actuator_kind[a]) {
+    case ActuatorKind::kPositionServo: return 1;  // kp (ctrl - length)
+    case ActuatorKind::kVelocityServo: return 2;  // kv (ctrl - velocity)
+    default: return 0;
+  }
 }
 
 double actuator_gain_basis(const Model& model, int a, double ctrl, double qpos, double qvel) {

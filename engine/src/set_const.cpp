@@ -212,6 +212,16 @@ JointKind joint_kind(const Model& model, int j) {
   return JointKind::kHinge;
 }
 
+// The actuators' kinds (lever/model.hpp), from their current parameters.
+void build_actuator_kinds(Model& model) {
+  model.actuator_kind.resize(model.nu);
+  for (int a = 0; a < model.nu; ++a) {
+    model.actuator_kind[a] =
+        actuator_kind_of(model.actuator_gaintype[a], model.actuator_gainprm[a],
+                         model.actuator_biastype[a], model.actuator_biasprm[a]);
+  }
+}
+
 void build_rotations(Model& model) {
   model.body_rotated.resize(model.nbody);
   model.body_imat.resize(model.nbody);
@@ -422,6 +432,16 @@ bool contacts_possible(const Model& model) {
 
 }  // namespace
 
+ActuatorKind actuator_kind_of(GainType gaintype, const std::array<double, kGainParameters>& g,
+                              BiasType biastype, const std::array<double, kBiasParameters>& b) {
+  const bool affine_bias = biastype == BiasType::kAffine;
+  if (affine_bias && g[0] != 0 && b[1] == -g[0]) return ActuatorKind::kPositionServo;
+  if (affine_bias && g[0] != 0 && b[1] == 0 && b[2] == -g[0]) return ActuatorKind::kVelocityServo;
+  const bool state_bias = affine_bias && (b[1] != 0 || b[2] != 0);
+  const bool state_gain = gaintype == GainType::kAffine && (g[1] != 0 || g[2] != 0);
+  return state_bias || state_gain ? ActuatorKind::kGeneral : ActuatorKind::kMotor;
+}
+
 void set_const(Model& model) {
   check_sizes(model);
   check_tree(model);
@@ -429,6 +449,7 @@ void set_const(Model& model) {
   check_mass(model);
   build_tree_sums(model);
   build_rotations(model);
+  build_actuator_kinds(model);
   // the constants and the checks at qpos0 are about the parameters: computed without contacts
   model.contacts_possible = false;
   static std::atomic<std::uint64_t> last_tag{0};

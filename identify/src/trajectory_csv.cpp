@@ -1,15 +1,15 @@
-// Reading a trajectory from `lever simulate --csv`'s columns (see lever/identify.hpp).
+// Reading a trajectory from `lever simulate --csv`'s columns (see lever/identify.hpp); the file
+// itself is read by lever::io's CSV reader (lever/io/csv.hpp).
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
 #include <lever/identify.hpp>
+#include <lever/io/csv.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdlib>
-#include <fstream>
-#include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "names.hpp"
@@ -19,32 +19,6 @@ namespace lever::identify {
 namespace {
 
 using detail::label_of;
-
-// One CSV line split at commas, with "quoted, fields" as `lever simulate` writes them.
-std::vector<std::string> split_csv(const std::string& line) {
-  std::vector<std::string> fields(1);
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char ch = line[i];
-    if (quoted) {
-      if (ch == '"' && i + 1 < line.size() && line[i + 1] == '"') {
-        fields.back() += '"';
-        ++i;
-      } else if (ch == '"') {
-        quoted = false;
-      } else {
-        fields.back() += ch;
-      }
-    } else if (ch == '"') {
-      quoted = true;
-    } else if (ch == ',') {
-      fields.emplace_back();
-    } else if (ch != '\r') {
-      fields.back() += ch;
-    }
-  }
-  return fields;
-}
 
 double clamp(double x, const std::array<double, 2>& range) {
   return std::min(std::max(x, range[0]), range[1]);
@@ -67,16 +41,10 @@ double force_from_ctrl(const Model& prior, int a, double ctrl, double q, double 
 }  // namespace
 
 Trajectory read_csv(const Model& prior, const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open the trajectory file.");
-  std::string line;
-  if (!std::getline(in, line)) throw Error(path + ":1: empty file: expected a header row.");
-  const std::vector<std::string> header = split_csv(line);
-  std::map<std::string, int> column;
-  for (std::size_t c = 0; c < header.size(); ++c) column[header[c]] = static_cast<int>(c);
+  const io::CsvTable table = io::CsvTable::read(path);
   const auto find = [&](const std::string& name, bool required) {
-    const auto it = column.find(name);
-    if (it != column.end()) return it->second;
+    const int c = table.column(name);
+    if (c >= 0) return c;
     if (required) {
       throw Error(path + ":1: no column '" + name + "' (is the file from another model? " +
                   "the prior '" + prior.name + "' names its joints and motors as `lever " +
@@ -111,28 +79,12 @@ Trajectory read_csv(const Model& prior, const std::string& path) {
     have_ctrl = have_ctrl && ctrl_col[a] >= 0;
   }
 
-  // the rows, every field a finite number
+  // the rows, every field used a finite number
   std::vector<std::vector<double>> rows;
-  int line_number = 1;
-  while (std::getline(in, line)) {
-    ++line_number;
-    if (line.empty() || line == "\r") continue;
-    const std::vector<std::string> fields = split_csv(line);
-    if (fields.size() != header.size()) {
-      throw Error(path + ":" + std::to_string(line_number) + ": " + std::to_string(fields.size()) +
-                  " fields, the header has " + std::to_string(header.size()) + ".");
-    }
-    std::vector<double> row(fields.size(), 0.0);
+  for (int r = 0; r < table.rows(); ++r) {
+    std::vector<double> row(table.header().size(), 0.0);
     const auto parse = [&](int c) {
-      if (c < 0) return;
-      const std::string& f = fields[static_cast<std::size_t>(c)];
-      char* end = nullptr;
-      const double x = std::strtod(f.c_str(), &end);
-      if (f.empty() || end != f.c_str() + f.size() || !std::isfinite(x)) {
-        throw Error(path + ":" + std::to_string(line_number) + ": column '" +
-                    header[static_cast<std::size_t>(c)] + "': '" + f + "' is not a finite number.");
-      }
-      row[static_cast<std::size_t>(c)] = x;
+      if (c >= 0) row[static_cast<std::size_t>(c)] = table.number(r, c);
     };
     parse(time_col);
     for (int d = 0; d < nv; ++d) {
@@ -175,7 +127,7 @@ Trajectory read_csv(const Model& prior, const std::string& path) {
         // Euler step applied (its implicit-damping acceleration), a row's forces act over it
         const double dt = at(r + 1, time_col) - at(r, time_col);
         if (!(dt > 0)) {
-          throw Error(path + ":" + std::to_string(r + 3) + ": time does not increase.");
+          throw Error(path + ":" + std::to_string(table.line(r + 1)) + ": time does not increase.");
         }
         t.qacc(d, k) = (at(r + 1, qvel_col[d]) - at(r, qvel_col[d])) / dt;
       }

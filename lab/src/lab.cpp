@@ -9,8 +9,6 @@
 #include <lever/error.hpp>
 #include <lever/forward.hpp>
 
-#include "util.hpp"
-
 namespace lever::lab {
 
 void validate(const Model& model, const Controller& controller) {
@@ -70,7 +68,7 @@ std::pair<double, double> reference(const Model& model, double fraction, int a, 
 // own gains track it); a motor, the torque of a PD law tuned to dof_M0 (4 Hz, damping ratio 0.7)
 double excitation(const Model& model, double fraction, int a, const Data& data) {
   const auto [ref, ref_vel] = reference(model, fraction, a, data);
-  if (check::is_servo(model, a)) return ref / model.actuator_gear[a][0];
+  if (is_servo(model.actuator_kind[a])) return ref / model.actuator_gear[a][0];
   const int j = model.actuator_trnid[a];
   const int q = model.jnt_qposadr[j], dof = model.jnt_dofadr[j];
   const double wn = 2 * std::numbers::pi * 4.0;  // 4 Hz: faster than the reference's sines

@@ -217,6 +217,9 @@ class Compiler {
     scale_total_mass();
     if (where) {
       for (const BodyNode& n : nodes_) where->body.push_back(n.spec->at);
+      for (const BodyNode& n : nodes_) {
+        where->inertial.push_back(n.spec->inertial ? n.spec->inertial->at : Place{});
+      }
       for (const CompiledJoint& j : joints_) where->joint.push_back(j.spec->at);
       for (const CompiledSite& s : sites_) where->site.push_back(s.spec->at);
       for (const CompiledMotor& m : motors_) where->actuator.push_back(m.spec->at);

@@ -4,6 +4,7 @@
 #include <fstream>
 #include <lever/mjcf.hpp>
 #include <sstream>
+#include <utility>
 
 #include "compiler.hpp"
 #include "parse.hpp"
@@ -13,9 +14,9 @@
 
 namespace lever::mjcf {
 
-namespace {
+namespace detail {
 
-std::string read_file(const std::string& path) {
+std::string read_model_file(const std::string& path) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) {
     throw ParseError(path, 0, "", "", "cannot open the model: no such file");
@@ -41,9 +42,8 @@ std::string read_file(const std::string& path) {
   return text.str();
 }
 
-}  // namespace
-
-Model load_string(const std::string& xml, const std::string& filename, const LoadOptions& options) {
+Model load_located(const std::string& xml, const std::string& filename, const LoadOptions& options,
+                   Locations* located) {
   // build everything into locals: the caller gets a complete model or an exception
   Model model;
   detail::Locations where;
@@ -76,11 +76,18 @@ Model load_string(const std::string& xml, const std::string& filename, const Loa
     throw ParseError(filename, 0, "", "",
                      std::string("the compiled model is invalid: ") + e.what());
   }
+  if (located) *located = std::move(where);
   return model;
 }
 
+}  // namespace detail
+
+Model load_string(const std::string& xml, const std::string& filename, const LoadOptions& options) {
+  return detail::load_located(xml, filename, options, nullptr);
+}
+
 Model load_file(const std::string& path, const LoadOptions& options) {
-  Model model = load_string(read_file(path), path, options);
+  Model model = load_string(detail::read_model_file(path), path, options);
   model.source = path;
   return model;
 }

@@ -13,6 +13,9 @@ struct Place {
   std::string tag;
   std::string name;
   int line = 0;
+  /// the element's index in document order (the root element 0), for writing a model back
+  /// (lever/mjcf/write.hpp); -1 where no element applies
+  int element = -1;
 };
 
 /// One bad input, located. `attribute` is "" when the element as a whole is at fault.

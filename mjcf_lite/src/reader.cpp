@@ -19,7 +19,7 @@ const Attribute* Element::find(std::string_view name) const {
 
 Place Element::place() const {
   const Attribute* n = find("name");
-  return Place{tag, n ? n->value : "", line};
+  return Place{tag, n ? n->value : "", line, index};
 }
 
 Place Element::place(const Attribute& a) const {
@@ -272,9 +272,22 @@ void check_size(const std::string& xml) {
 
 }  // namespace
 
+namespace {
+
+// Each element's index in document order (pre-order, the root 0): the same numbering any XML
+// library's walk over the same text gives, which is how write.cpp finds an element again.
+int number_elements(Element& e, int next) {
+  e.index = next++;
+  for (Element& child : e.children) next = number_elements(child, next);
+  return next;
+}
+
+}  // namespace
+
 Element read_document(const std::string& xml) {
   check_size(xml);
   Element root = read_xml(xml);
+  number_elements(root, 0);
   check_root(root);
   Counts counts;
   validate(root, *find_rule("", "mujoco"), counts);

@@ -22,6 +22,7 @@ struct Attribute {
 struct Element {
   std::string tag;
   int line = 0;
+  int index = -1;  ///< position in document order, the root 0 (read_document numbers them)
   std::vector<Attribute> attributes;  ///< in document order
   std::vector<Element> children;      ///< in document order
 

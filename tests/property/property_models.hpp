@@ -13,6 +13,7 @@
 #include <lever/harness/models.hpp>
 #include <lever/harness/random_state.hpp>
 #include "random_tree.hpp"
+#include "random_tree_mjcf.hpp"
 
 namespace lever::test {
 
@@ -51,10 +52,27 @@ inline std::vector<ModelCase> random_trees() {
   return cases;
 }
 
-/// Every model file, then the random trees.
+/// Random trees written as MJCF (tests/support/random_tree_mjcf.hpp: ball joints, free roots),
+/// per property.
+constexpr int kRandomMjcfTrees = 20;
+
+/// kRandomMjcfTrees trees of random_tree_mjcf(seed), compiled by lever::mjcf::load_string.
+inline std::vector<ModelCase> random_mjcf_trees() {
+  std::vector<ModelCase> cases;
+  const std::uint64_t first = seed_for("random_tree_mjcf");
+  for (int t = 0; t < kRandomMjcfTrees; ++t) {
+    const std::uint64_t seed = first + static_cast<std::uint64_t>(t);
+    const std::string name = "random_tree_mjcf(" + std::to_string(seed) + ")";
+    cases.push_back({name, seed, mjcf::load_string(random_tree_mjcf(seed), name)});
+  }
+  return cases;
+}
+
+/// Every model file, then the random trees (built in memory, then written as MJCF).
 inline std::vector<ModelCase> every_model_and_random_trees() {
   std::vector<ModelCase> cases = every_model();
   for (ModelCase& c : random_trees()) cases.push_back(std::move(c));
+  for (ModelCase& c : random_mjcf_trees()) cases.push_back(std::move(c));
   return cases;
 }
 

@@ -47,4 +47,38 @@ TEST_CASE("property: the random trees cover what the properties should see", "[p
   CHECK(largest_nv >= 20);
 }
 
+TEST_CASE("property: the random MJCF trees have ball and free joints, branches and welds",
+          "[property][trees]") {
+  std::set<JointType> types;
+  int branching = 0, welded = 0, free_roots = 0;
+  for (const ModelCase& c : random_mjcf_trees()) {
+    const Model& m = c.model;
+    INFO(c.name);
+    REQUIRE(m.nv >= 1);
+    std::vector<int> children(m.nbody, 0);
+    for (int b = 1; b < m.nbody; ++b) {
+      ++children[m.body_parentid[b]];
+      if (m.body_jntnum[b] == 0) ++welded;
+      const Eigen::Vector3d& I = m.body_inertia[b];
+      CHECK(I.x() + I.y() >= I.z());
+      CHECK(I.y() + I.z() >= I.x());
+      CHECK(I.x() + I.z() >= I.y());
+    }
+    for (int b = 1; b < m.nbody; ++b) branching += children[b] >= 2;
+    for (int j = 0; j < m.njnt; ++j) {
+      types.insert(m.jnt_type[j]);
+      if (m.jnt_type[j] == JointType::kFree) {
+        ++free_roots;
+        CHECK(m.body_parentid[m.jnt_bodyid[j]] == 0);  // MuJoCo: a free joint is on a root
+      }
+    }
+    // the seed alone rebuilds the text
+    CHECK(random_tree_mjcf(c.seed) == random_tree_mjcf(c.seed));
+  }
+  CHECK(types.size() == 4);  // hinge, slide, ball, free
+  CHECK(branching > 0);
+  CHECK(welded > 0);
+  CHECK(free_roots > 0);
+}
+
 }  // namespace lever::test

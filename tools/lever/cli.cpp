@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
+#include <utility>
 
 namespace lever::cli {
 
@@ -111,6 +112,26 @@ Model load_model(const std::string& command, const std::string& path,
     std::fprintf(stderr, "lever %s: warning: %s: %s\n", command.c_str(), path.c_str(), w.c_str());
   }
   return model;
+}
+
+std::optional<Invocation> begin(const char* command, const std::vector<std::string>& argv,
+                                const char* usage, const std::vector<std::string>& valued,
+                                std::vector<std::string> switches, std::size_t positionals,
+                                const char* expected,
+                                const std::function<void(const Args&)>& check) {
+  switches.push_back("help");
+  Args args(argv, valued, switches);
+  if (args.has("help")) {
+    std::fputs(usage, stdout);
+    return std::nullopt;
+  }
+  if (args.positional().size() != positionals) {
+    throw UsageError{std::string("expects ") + expected + "\n" + usage};
+  }
+  if (check) check(args);
+  std::string path = args.positional()[0];
+  Model model = load_model(command, path);
+  return Invocation{std::move(args), std::move(path), std::move(model)};
 }
 
 }  // namespace lever::cli

@@ -1,10 +1,14 @@
-// Shared pieces of the `lever` command: argument parsing and number lists.
+// Shared pieces of the `lever` command: argument parsing, number lists, and the preamble of the
+// commands that read a model.
 #pragma once
 
 #include <Eigen/Core>
 
+#include <cstddef>
 #include <cstdio>
+#include <functional>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,5 +57,28 @@ using Json = json::Writer;
 /// `command`: never a silent difference from MuJoCo.
 Model load_model(const std::string& command, const std::string& path,
                  const mjcf::LoadOptions& options = {});
+
+// ---- the preamble of the commands that read a model (forward, derivatives, identify, simulate)
+
+/// The options that set the state: --key, --qpos, --qvel, --ctrl (forward_state.hpp reads them).
+inline const std::vector<std::string> kStateOptions{"key", "qpos", "qvel", "ctrl"};
+
+/// A command line read and its model loaded.
+struct Invocation {
+  Args args;
+  std::string path;  ///< the model file, the first positional
+  Model model;
+};
+
+/// What such a command does first: parse argv (`valued` options, `switches`, and --help), answer
+/// --help by printing `usage` (then it returns nothing: the command exits kOk), require exactly
+/// `positionals` positionals (else UsageError "expects <expected>" and the usage), run the
+/// command's own checks of its options (`check`, before anything is read), and load the first
+/// positional as the model, its warnings on stderr (load_model).
+std::optional<Invocation> begin(const char* command, const std::vector<std::string>& argv,
+                                const char* usage, const std::vector<std::string>& valued,
+                                std::vector<std::string> switches, std::size_t positionals,
+                                const char* expected,
+                                const std::function<void(const Args&)>& check = {});
 
 }  // namespace lever::cli

@@ -55,14 +55,10 @@ void print_matrix(const char* title, const Eigen::MatrixXd& m) {
 }  // namespace
 
 int cmd_derivatives(const std::vector<std::string>& argv) {
-  const Args args(argv, {"key", "qpos", "qvel", "ctrl"}, {"json", "help"});
-  if (args.has("help")) {
-    std::fputs(kUsage, stdout);
-    return kOk;
-  }
-  if (args.positional().size() != 1) throw UsageError{std::string("expects one MODEL\n") + kUsage};
-  const std::string path = args.positional()[0];
-  const Model model = load_model("derivatives", path);
+  const std::optional<Invocation> run =
+      begin("derivatives", argv, kUsage, kStateOptions, {"json"}, 1, "one MODEL");
+  if (!run) return kOk;
+  const auto& [args, path, model] = *run;
   Data data(model);
   Derivatives deriv(model);
   set_state_from_args(args, model, data);

@@ -228,14 +228,10 @@ void print_text(const std::string& path, const Model& model, const Data& data,
 }  // namespace
 
 int cmd_forward(const std::vector<std::string>& argv) {
-  const Args args(argv, {"key", "qpos", "qvel", "ctrl"}, {"json", "help"});
-  if (args.has("help")) {
-    std::fputs(kUsage, stdout);
-    return kOk;
-  }
-  if (args.positional().size() != 1) throw UsageError{std::string("expects one MODEL\n") + kUsage};
-  const std::string path = args.positional()[0];
-  const Model model = load_model("forward", path);
+  const std::optional<Invocation> run =
+      begin("forward", argv, kUsage, kStateOptions, {"json"}, 1, "one MODEL");
+  if (!run) return kOk;
+  const auto& [args, path, model] = *run;
   Data data(model);
   set_state_from_args(args, model, data);
   const Evaluation e = evaluate(model, data);

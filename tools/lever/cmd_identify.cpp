@@ -57,16 +57,12 @@ const char* const kUsage =
 }  // namespace
 
 int cmd_identify(const std::vector<std::string>& argv) {
-  const Args args(argv, {"write-model", "identify-gain", "known-mass"}, {"json", "help"});
-  if (args.has("help")) {
-    std::fputs(kUsage, stdout);
-    return kOk;
-  }
-  if (args.positional().size() != 2) {
-    throw UsageError{std::string("expects PRIOR.xml and DATA.csv\n") + kUsage};
-  }
-  const std::string prior_path = args.positional()[0], data_path = args.positional()[1];
-  const Model prior = load_model("identify", prior_path);
+  const std::optional<Invocation> run =
+      begin("identify", argv, kUsage, {"write-model", "identify-gain", "known-mass"}, {"json"}, 2,
+            "PRIOR.xml and DATA.csv");
+  if (!run) return kOk;
+  const auto& [args, prior_path, prior] = *run;
+  const std::string& data_path = args.positional()[1];
   const identify::Trajectory data = identify::read_csv(prior, data_path);
   identify::Options options;
   if (args.has("identify-gain")) {

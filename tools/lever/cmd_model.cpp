@@ -100,7 +100,7 @@ void print_motors(std::FILE* out, const Model& m) {
     if (m.actuator_biastype[a] == BiasType::kAffine) {
       std::fprintf(out, " %+g %+g length %+g velocity", b[0], b[1], b[2]);
     }
-    if (m.actuator_biastype[a] == BiasType::kAffine && b[1] < 0 && b[1] == -g[0] &&
+    if (m.actuator_kind[a] == ActuatorKind::kPositionServo && g[0] > 0 &&
         m.actuator_gaintype[a] == GainType::kFixed) {
       std::fprintf(out, "  (position servo: kp %g, kv %g)", g[0], -b[2]);
     }

@@ -274,30 +274,29 @@ struct FileCloser {
 }  // namespace
 
 int cmd_simulate(const std::vector<std::string>& argv) {
-  const Args args(
-      argv, {"steps", "duration", "key", "qpos", "qvel", "ctrl", "torque", "excite", "csv", "plot"},
-      {"gravity-compensation", "json", "help"});
-  if (args.has("help")) {
-    std::fputs(kUsage, stdout);
-    return kOk;
-  }
-  if (args.positional().size() != 1) throw UsageError{std::string("expects one MODEL\n") + kUsage};
-  if (args.has("steps") && args.has("duration")) {
-    throw UsageError{"give --steps or --duration, not both"};
-  }
-  if (args.has("ctrl") && args.has("torque")) {
-    throw UsageError{"--torque is --ctrl under the lab's name: give one of them"};
-  }
-  if (args.has("json") && args.get("csv") == "-") {
-    throw UsageError{"--json and --csv - both write to standard output: give a file to --csv"};
-  }
-  for (const char* file : {"csv", "plot"}) {
-    if (args.has(file) && args.get(file).empty()) {
-      throw UsageError{std::string("--") + file + " needs a file name"};
-    }
-  }
-
-  const Model model = load_model("simulate", args.positional()[0]);
+  std::vector<std::string> valued = kStateOptions;
+  valued.insert(valued.end(), {"steps", "duration", "torque", "excite", "csv", "plot"});
+  const std::optional<Invocation> run =
+      begin("simulate", argv, kUsage, valued, {"gravity-compensation", "json"}, 1, "one MODEL",
+            [](const Args& args) {
+              if (args.has("steps") && args.has("duration")) {
+                throw UsageError{"give --steps or --duration, not both"};
+              }
+              if (args.has("ctrl") && args.has("torque")) {
+                throw UsageError{"--torque is --ctrl under the lab's name: give one of them"};
+              }
+              if (args.has("json") && args.get("csv") == "-") {
+                throw UsageError{
+                    "--json and --csv - both write to standard output: give a file to --csv"};
+              }
+              for (const char* file : {"csv", "plot"}) {
+                if (args.has(file) && args.get(file).empty()) {
+                  throw UsageError{std::string("--") + file + " needs a file name"};
+                }
+              }
+            });
+  if (!run) return kOk;
+  const auto& [args, model_path, model] = *run;
   Data data(model);
   set_state_from_args(args, model, data);  // --qpos, --qvel (and --ctrl, replaced below)
 

@@ -81,6 +81,27 @@ enum class DynType : int { kNone = 0 };
 inline constexpr int kGainParameters = 10;
 inline constexpr int kBiasParameters = 10;
 
+// ---- actuator kind (issue 20) ----------------------------------------------------------------
+/// What an actuator's force law amounts to, decided once per actuator from its gain and bias
+/// (set_const, actuator_kind_of), so that the checks, the lab, identification and the command
+/// line ask one question instead of each testing the parameters its own way.
+enum class ActuatorKind : uint8_t {
+  kMotor,          ///< gain and bias independent of the joint's state: ctrl is a force
+  kPositionServo,  ///< affine bias, biasprm[1] = -gainprm[0] != 0: kp (ctrl - length) + ...
+  kVelocityServo,  ///< affine bias, biasprm[1] = 0, biasprm[2] = -gainprm[0] != 0: kv (ctrl - vel.)
+  kGeneral,        ///< gain or bias depends on length or velocity, the bias not tied to the gain
+};
+
+/// The kind of an actuator with these types and parameters: a position or velocity servo when
+/// its bias is tied to its gain as above, else kGeneral when gain or bias has a nonzero length or
+/// velocity term, else kMotor.
+ActuatorKind actuator_kind_of(GainType gaintype, const std::array<double, kGainParameters>& gainprm,
+                              BiasType biastype,
+                              const std::array<double, kBiasParameters>& biasprm);
+
+/// Whether ctrl is a target rather than a force: every kind but a motor.
+constexpr bool is_servo(ActuatorKind kind) { return kind != ActuatorKind::kMotor; }
+
 /// Row-major matrix, for per-keyframe arrays (key_qpos is nkey x nq, as MuJoCo's).
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -290,6 +311,9 @@ struct Model {
   /// the parent body (unused for a body's later joints)
   std::vector<Eigen::Vector3d> jnt_axis_in_parent;
   std::vector<Eigen::Vector3d> jnt_pos_in_parent;
+
+  // ---- set_const: each actuator's kind (issue 20) -------------------------------------------
+  std::vector<ActuatorKind> actuator_kind;  ///< (nu) from its gain and bias (see ActuatorKind)
 
   /// set_const: whether collision() can find contacts: the model has contact parameters (the
   /// geom_* contact arrays; a model built by hand without them has no contacts) and a <pair>, or

@@ -125,15 +125,11 @@ std::pair<int, double> known_mass_named(const Model& prior, const std::string& t
 /// Throws ModelError if they are not physical (result.not_physical says why beforehand).
 Model identified_model(const Model& prior, const Result& result);
 
-/// Write the MJCF file `prior_path` again with each body's <inertial> and each joint's armature
-/// and damping replaced by the identified model's (bodies and joints in document order, as MuJoCo
-/// numbers them), and each actuator whose gain differs from the prior's (the model `prior_path`
-/// loads) with its new gain: kp of
-/// a <position>, kv of a <velocity>, gainprm (and biasprm, whose tied entry follows) of a
-/// <general>; a <motor> becomes a <general> with gainprm, gaintype, biastype and dyntype written
-/// out (a <motor> has no gain attribute). Everything else is kept as written;
-/// inertiafromgeom="true" becomes "auto".
-/// Throws lever::Error if the file cannot be read or written or does not match the model.
+/// Write the MJCF file `prior_path` again with the identified model's inertials, armature,
+/// damping and actuator gains where they differ from the file's, everything else as written
+/// (lever::mjcf::write_file, lever/mjcf/write.hpp, says how each is written).
+/// Throws lever::Error (or mjcf::ParseError) if the file cannot be read or written, does not
+/// match the model, or cannot say it; out_path is then left as it was.
 void write_model(const std::string& prior_path, const Model& identified,
                  const std::string& out_path);
 
