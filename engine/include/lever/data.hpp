@@ -67,7 +67,7 @@ struct Contact {
 };
 
 /// What a constraint row is; the numeric values are MuJoCo's mjtConstraint (lever has joint
-/// limits and contacts without a friction cone or with a pyramidal one).
+/// limits and contacts without a friction cone, with a pyramidal or an elliptic one).
 enum class ConstraintType : int {
   kLimitJoint = 3,
   kContactFrictionless = 5,
@@ -124,7 +124,8 @@ struct Data {
 
   // ---- position stage: constraint rows (make_constraint) -----------------------------------
   // Joint limits within `margin` of a stop first, then each contact's rows (data.contact, those
-  // with exclude == 0): one for a frictionless contact, two per friction direction for a pyramid.
+  // with exclude == 0): one for a frictionless contact, two per friction direction for a pyramid,
+  // condim rows (normal first) for an elliptic cone.
   int nefc = 0;                          ///< rows
   std::vector<ConstraintType> efc_type;  ///< (nefc)
   std::vector<int> efc_id;               ///< (nefc) joint id (limit) or contact index (contact)

@@ -224,8 +224,8 @@ void compare_contacts(const Twin& t, int k, Report& r) {
 //              lever) keeps the frame its element wrote, where MuJoCo moves it to the mesh's
 //              centre and principal axes: such rows are left out (lever draws it, never collides
 //              it);
-//   efc_state  lever's ConstraintState values are MuJoCo's mjtConstraintState for the states a
-//              limit row can have (0 satisfied, 1 quadratic = active): compared as integers.
+//   efc_state  lever's ConstraintState values are MuJoCo's mjtConstraintState for the states its
+//              rows can have (0 satisfied, 1 quadratic = active, 4 cone): compared as integers.
 void compare_forward_outputs(const Twin& t, int k, Report& r) {
   const Model& model = t.model;
   const Data& data = t.data;
