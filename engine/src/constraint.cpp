@@ -1,18 +1,20 @@
-// MuJoCo 2.2.2's soft constraints (engine_core_constraint.c): joint limits and contacts, solved
-// exactly.
+// MuJoCo 2.2.2's soft constraints (engine_core_constraint.c): joint limits and contacts.
 //
 // Rows: a joint within `margin` of a stop gives one (J = +-e_dof); a contact (data.contact, from
-// collision()) without friction one, J = n^T (J_2 - J_1) at its point, and with a pyramidal
-// friction cone two per friction direction, the pyramid's edges n +- mu_k t_k (condim 3: two
-// tangents; 4: and the spin about n; 6: and two rolling axes, from the rotational Jacobians).
-// A row's target is the reference acceleration a_ref = -B v - K imp (pos - margin).
+// collision()) without friction one, J = n^T (J_2 - J_1) at its point. With friction, a pyramidal
+// cone gives two rows per friction direction, the pyramid's edges n +- mu_k t_k (condim 3: two
+// tangents; 4: and the spin about n; 6: and two rolling axes, from the rotational Jacobians); an
+// elliptic cone gives the condim rows themselves, the normal first, then the friction directions.
+// A row's target is the reference acceleration a_ref = -B v - K imp (pos - margin); an elliptic
+// cone's friction rows have no position (pos = margin = 0, K = 0).
 //
-// Every row is one-sided (a limit pushes, a pyramid edge pushes), so the solve is the same for
-// all: the forces f that MuJoCo's Newton solver converges to satisfy, with A = J M^-1 J^T and R
-// the regularizer, f >= 0, w = (A + R) f + (J qacc_smooth - a_ref) >= 0, f.w = 0 (a linear
+// Limit, frictionless and pyramidal rows are one-sided (a limit pushes, a pyramid edge pushes),
+// and the forces that MuJoCo's Newton solver converges to satisfy, with A = J M^-1 J^T and R the
+// regularizer, f >= 0, w = (A + R) f + (J qacc_smooth - a_ref) >= 0, f.w = 0 (a linear
 // complementarity problem with a symmetric positive definite matrix, so its solution is unique).
-// It is found by Murty's least-index principal pivoting, which is finite for such matrices; the
-// usual case, one row, takes one step. Elliptic cones (not one-sided rows) are refused.
+// It is found exactly by Murty's least-index principal pivoting, which is finite for such
+// matrices; the usual case, one row, takes one step. A model with elliptic cones is solved by the
+// Newton solver of solver.cpp instead (an elliptic cone is not a set of one-sided rows).
 #include <lever/constraint.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
@@ -151,8 +153,9 @@ void rotate_rows(const Mat3& frame, const Eigen::MatrixXd& J, RowMatrix& out, in
 int add_contact_rows(const Model& model, Data& data, int i, int n) {
   Contact& con = data.contact[i];
   const int dim = con.dim;
-  const bool pyramid = dim > 1;
-  const int rows = pyramid ? 2 * (dim - 1) : 1;
+  const bool elliptic = dim > 1 && model.opt.cone == Cone::kElliptic;
+  const bool pyramid = dim > 1 && !elliptic;
+  const int rows = pyramid ? 2 * (dim - 1) : elliptic ? dim : 1;
   require_rows(model, data, n, rows);
   auto& w = data.work;
   // relative velocity of the point on body 2 to the point on body 1, in the contact frame:
@@ -168,17 +171,20 @@ int add_contact_rows(const Model& model, Data& data, int i, int n) {
   }
   con.efc_address = n;
   for (int r = n; r < n + rows; ++r) {
-    data.efc_type[r] =
-        pyramid ? ConstraintType::kContactPyramidal : ConstraintType::kContactFrictionless;
+    data.efc_type[r] = pyramid    ? ConstraintType::kContactPyramidal
+                       : elliptic ? ConstraintType::kContactElliptic
+                                  : ConstraintType::kContactFrictionless;
     data.efc_id[r] = i;
     data.efc_dof[r] = -1;
     data.efc_sign[r] = 0.0;
-    data.efc_pos[r] = con.dist;
-    data.efc_margin[r] = con.includemargin;
+    // an elliptic cone's friction rows have no distance of their own
+    const bool friction_row = elliptic && r > n;
+    data.efc_pos[r] = friction_row ? 0.0 : con.dist;
+    data.efc_margin[r] = friction_row ? 0.0 : con.includemargin;
   }
-  if (!pyramid) {
-    data.efc_J.row(n) = w.contact_jac.row(0);
-    return n + 1;
+  if (!pyramid) {  // the contact frame's rows as they are: normal, tangents, spin, rolls
+    for (int k = 0; k < rows; ++k) data.efc_J.row(n + k) = w.contact_jac.row(k);
+    return n + rows;
   }
   // one pair of the pyramid's edges per friction direction: n + mu t, n - mu t
   for (int k = 1; k < dim; ++k) {
@@ -200,6 +206,9 @@ double diag_approx(const Model& model, const Data& data, int r) {
   const double translation = model.body_invweight0[b1][0] + model.body_invweight0[b2][0];
   if (data.efc_type[r] == ConstraintType::kContactFrictionless) return translation;
   const double rotation = model.body_invweight0[b1][1] + model.body_invweight0[b2][1];
+  if (data.efc_type[r] == ConstraintType::kContactElliptic) {
+    return r - con.efc_address < 3 ? translation : rotation;  // normal and tangents, then turns
+  }
   const int k = (r - con.efc_address) / 2;  // the friction direction of this pair of edges
   const double mu = con.friction[k];
   return translation + mu * mu * (k < 2 ? translation : rotation);
@@ -214,11 +223,6 @@ void make_constraint(const Model& model, Data& data) {
     Contact& con = data.contact[i];
     con.efc_address = -1;
     if (con.exclude) continue;
-    if (model.opt.cone == Cone::kElliptic && con.dim > 1) {
-      throw StateError(
-          "lever::make_constraint: elliptic friction cones are not in lever yet; use "
-          "<option cone=\"pyramidal\"> (MuJoCo 2.2.2's default).");
-    }
     n = add_contact_rows(model, data, i, n);
   }
   data.nefc = n;
@@ -228,6 +232,7 @@ void make_constraint(const Model& model, Data& data) {
   for (int r = 0; r < n; ++r) {
     std::array<double, 2> solref;
     std::array<double, 5> solimp;
+    double pos = data.efc_pos[r], margin = data.efc_margin[r];
     if (data.efc_type[r] == ConstraintType::kLimitJoint) {
       limit_parameters(model, data.efc_id[r], solref, solimp);
     } else {
@@ -235,13 +240,19 @@ void make_constraint(const Model& model, Data& data) {
       solref = con.solref;
       solimp = con.solimp;
       sanitize(model, solref, solimp);
+      pos = con.dist;  // an elliptic cone's friction rows too
+      margin = con.includemargin;
     }
-    const double imp = impedance(solimp, data.efc_pos[r], data.efc_margin[r], nullptr);
+    const double imp = impedance(solimp, pos, margin, nullptr);
     const double dmax = solimp[1];
     data.efc_imp[r] = imp;
     data.efc_R[r] = std::max(kMinVal, (1 - imp) * diag_approx(model, data, r) / imp);
-    // K and B use dmax, not the current impedance
-    if (solref[0] > 0) {
+    // K and B use dmax, not the current impedance; friction has no position to restore
+    const bool friction_row = data.efc_type[r] == ConstraintType::kContactElliptic &&
+                              r > data.contact[data.efc_id[r]].efc_address;
+    if (friction_row) {
+      data.efc_K[r] = 0.0;
+    } else if (solref[0] > 0) {
       data.efc_K[r] =
           1 / std::max(kMinVal, dmax * dmax * solref[0] * solref[0] * solref[1] * solref[1]);
     } else {
@@ -253,9 +264,10 @@ void make_constraint(const Model& model, Data& data) {
       data.efc_B[r] = -solref[1] / std::max(kMinVal, dmax);
     }
   }
-  // a pyramid's edges share one R, matching the elliptic cone's friction impedance: with the
-  // friction rows' R_1 = R_0 / impratio and the regularized cone's mu = friction_0 sqrt(R_1/R_0),
-  // every edge gets 2 mu^2 R_0
+  // friction's regularizer: the first friction row's R_1 = R_0 / impratio sets the regularized
+  // cone's mu = friction_0 sqrt(R_1 / R_0). An elliptic cone's other friction rows get the R
+  // that keeps R_j friction_j^2 equal across directions; a pyramid's edges share one R,
+  // 2 mu^2 R_0, matching the elliptic cone's friction impedance.
   for (int i = 0; i < data.ncon; ++i) {
     Contact& con = data.contact[i];
     if (con.efc_address < 0 || con.dim == 1) continue;
@@ -263,6 +275,14 @@ void make_constraint(const Model& model, Data& data) {
     const double R0 = data.efc_R[first];
     const double R1 = R0 / std::max(kMinVal, model.opt.impratio);
     con.mu = con.friction[0] * std::sqrt(R1 / R0);
+    if (data.efc_type[first] == ConstraintType::kContactElliptic) {
+      data.efc_R[first + 1] = R1;
+      for (int k = 1; k < con.dim - 1; ++k) {
+        data.efc_R[first + k + 1] =
+            R1 * con.friction[0] * con.friction[0] / (con.friction[k] * con.friction[k]);
+      }
+      continue;
+    }
     const double shared = 2 * con.mu * con.mu * R0;
     for (int r = first; r < first + 2 * (con.dim - 1); ++r) data.efc_R[r] = shared;
   }
@@ -295,6 +315,10 @@ void solve_constraint(const Model& model, Data& data) {
   data.qfrc_constraint.setZero();
   data.qacc = data.qacc_smooth;
   if (n == 0) return;
+  if (model.opt.cone == Cone::kElliptic) {
+    solve_constraint_newton(model, data);
+    return;
+  }
 
   auto& w = data.work;
   // A = J M^-1 J^T + R. With M = L^T D L, J M^-1 J^T = Y^T D^-1 Y for Y = L^-T J^T: one half

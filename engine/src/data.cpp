@@ -63,6 +63,16 @@ Data::Data(const Model& model)
   work.lcp_f = work.lcp_w = work.lcp_rhs = Eigen::VectorXd::Zero(nefc_max);
   work.lcp_active.assign(nefc_max, 0);
   work.lcp_index.assign(nefc_max, 0);
+  work.newton_H = Eigen::MatrixXd::Zero(nv, nv);
+  work.newton_llt = Eigen::LLT<Eigen::MatrixXd>(nv);
+  for (Eigen::VectorXd* v : {&work.newton_grad, &work.newton_dir, &work.newton_Mdir,
+                             &work.newton_Merr, &work.newton_trial, &work.newton_err}) {
+    *v = Eigen::VectorXd::Zero(nv);
+  }
+  for (Eigen::VectorXd* v :
+       {&work.newton_jar, &work.newton_jv, &work.newton_x, &work.newton_grad_x}) {
+    *v = Eigen::VectorXd::Zero(nefc_max);
+  }
   efc_J = RowMatrix::Zero(nefc_max, nv);
   work.jac1p = work.jac1r = work.jac2p = work.jac2r = Eigen::MatrixXd::Zero(3, nv);
   work.contact_jac = RowMatrix::Zero(6, nv);

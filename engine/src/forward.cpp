@@ -77,15 +77,9 @@ void inverse(const Model& model, Data& data) {
   position_stage(model, data);
   velocity_stage(model, data);
 
-  // limit forces implied by the given qacc: f = -D (J qacc - a_ref) where that pushes into the stop
-  data.qfrc_constraint.setZero();
-  for (int r = 0; r < data.nefc; ++r) {
-    const double jar = constraint_row_dot(data, r, data.qacc) - data.efc_aref[r];
-    const bool active = jar < 0;
-    data.efc_force[r] = active ? -data.efc_D[r] * jar : 0.0;
-    data.efc_state[r] = active ? ConstraintState::kActive : ConstraintState::kSatisfied;
-    add_constraint_row_transpose(data, r, data.efc_force[r], data.qfrc_constraint);
-  }
+  // the constraint forces implied by the given qacc: f = -D (J qacc - a_ref) where that pushes
+  // into a stop or contact, an elliptic cone's by its zone
+  constraint_forces_at(data, data.qacc);
 
   // M qacc + bias (armature included) is what every force together must supply
   rnea(model, data, data.qacc, data.qfrc_inverse);

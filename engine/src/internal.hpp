@@ -35,6 +35,15 @@ double constraint_row_dot(const Data& data, int r, const Eigen::VectorXd& x);
 /// x += J_r^T f for constraint row r (constraint.cpp).
 void add_constraint_row_transpose(const Data& data, int r, double f, Eigen::VectorXd& x);
 
+/// Solve the constraint rows by MuJoCo's Newton method to convergence (solver.cpp): qacc,
+/// efc_b, efc_force, efc_state, qfrc_constraint. Returns the Newton steps taken.
+/// @pre make_constraint, reference_constraint, qacc_smooth and M are current.
+int solve_constraint_newton(const Model& model, Data& data);
+
+/// efc_force, efc_state and qfrc_constraint that the rows exert at a given qacc (solver.cpp;
+/// MuJoCo's mj_constraintUpdate): what inverse() reports.
+void constraint_forces_at(Data& data, const Eigen::VectorXd& qacc);
+
 /// Record a warning of kind w about index info (MuJoCo's mj_warning).
 inline void record_warning(Data& data, Warning w, int info) {
   WarningStat& stat = data.warning[static_cast<int>(w)];

@@ -417,6 +417,29 @@ TEST_CASE("rnea_derivatives, forward_derivatives, step_derivatives and regressor
 #ifdef LEVER_ALLOC_HAVE_MUJOCO
 // collision() (issue 19) is not part of forward() yet: it is checked on its own, on the contact
 // scenes of tests/diff (MuJoCo's compiled model: mjcf_lite does not read contact attributes yet)
+TEST_CASE("the elliptic cones' Newton solver allocates nothing", "[alloc]") {
+  for (const char* file : {"models/box_drop.xml", "models/gripper.xml"}) {
+    INFO(file);
+    std::string how;
+    lever::Model m = load(lever::test::model_path(file), how);
+    m.opt.cone = lever::Cone::kElliptic;
+    lever::Data d(m);
+    if (m.nkey > 0) lever::reset_keyframe(m, d, 0);
+    int elliptic_rows = 0;
+    for (int k = 0; k < 500; ++k) {  // one second: the box falls or rests in contact
+      Allocations a = count([&] { lever::step(m, d); });
+      CHECK(a.news == 0);
+      CHECK(a.mallocs == 0);
+      a = count([&] { lever::inverse(m, d); });
+      CHECK(a.news == 0);
+      CHECK(a.mallocs == 0);
+      for (int r = 0; r < d.nefc; ++r)
+        elliptic_rows += d.efc_type[r] == lever::ConstraintType::kContactElliptic;
+    }
+    CHECK(elliptic_rows > 0);
+  }
+}
+
 TEST_CASE("collision allocates nothing", "[alloc]") {
   for (const char* file : {"arm_and_objects.xml", "capsule_stack.xml"}) {
     INFO(file);

@@ -1,9 +1,10 @@
-// lever/constraint.hpp: MuJoCo 2.2.2's soft joint limits.
+// lever/constraint.hpp: MuJoCo 2.2.2's soft joint limits and contacts.
 //
-// A limited joint within `margin` of a stop gets one constraint row. Its impedance comes from
+// A limited joint within `margin` of a stop gets one constraint row; a contact one (frictionless),
+// 2 (condim - 1) (pyramidal cone) or condim (elliptic cone) rows. A limit's impedance comes from
 // solimplimit, its reference acceleration from solreflimit, its regularizer from dof_invweight0
-// (frozen at qpos0 by set_const()). The rows are solved exactly: the result is the unique
-// minimizer MuJoCo's Newton solver converges to.
+// (frozen at qpos0 by set_const()); a contact's from its solref, solimp and body_invweight0. The
+// rows are solved to the unique minimizer MuJoCo's Newton solver converges to (docs/contact.md).
 #pragma once
 
 #include <lever/data.hpp>
@@ -11,8 +12,8 @@
 
 namespace lever {
 
-/// Instantiate the limit rows at data.qpos with their impedance, R, D, K, B (MuJoCo's
-/// mj_makeConstraint for joint limits). @pre kinematics().
+/// Instantiate the limit and contact rows at data.qpos with their impedance, R, D, K, B (MuJoCo's
+/// mj_makeConstraint). @pre kinematics().
 void make_constraint(const Model& model, Data& data);
 
 /// efc_vel and efc_aref at data.qvel (MuJoCo's mj_referenceConstraint).

@@ -6,6 +6,7 @@
 // otherwise. One Model can serve many Data (one per thread).
 #pragma once
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/LU>
 
@@ -66,7 +67,7 @@ struct Contact {
 };
 
 /// What a constraint row is; the numeric values are MuJoCo's mjtConstraint (lever has joint
-/// limits and contacts without a friction cone or with a pyramidal one).
+/// limits and contacts without a friction cone, with a pyramidal or an elliptic one).
 enum class ConstraintType : int {
   kLimitJoint = 3,
   kContactFrictionless = 5,
@@ -74,8 +75,10 @@ enum class ConstraintType : int {
   kContactElliptic = 7
 };
 
-/// A constraint row's state after the solve (MuJoCo's mjtConstraintState for one-sided rows).
-enum class ConstraintState : int { kSatisfied = 0, kActive = 1 };
+/// A constraint row's state after the solve (MuJoCo's mjtConstraintState): satisfied (no force),
+/// active (MuJoCo's "quadratic": every row of an elliptic cone when its force is inside the cone),
+/// or, for every row of an elliptic cone, on the cone's surface (the cone's middle zone).
+enum class ConstraintState : int { kSatisfied = 0, kActive = 1, kCone = 4 };
 
 struct Data {
   explicit Data(const Model& model);
@@ -121,7 +124,8 @@ struct Data {
 
   // ---- position stage: constraint rows (make_constraint) -----------------------------------
   // Joint limits within `margin` of a stop first, then each contact's rows (data.contact, those
-  // with exclude == 0): one for a frictionless contact, two per friction direction for a pyramid.
+  // with exclude == 0): one for a frictionless contact, two per friction direction for a pyramid,
+  // condim rows (normal first) for an elliptic cone.
   int nefc = 0;                          ///< rows
   std::vector<ConstraintType> efc_type;  ///< (nefc)
   std::vector<int> efc_id;               ///< (nefc) joint id (limit) or contact index (contact)
@@ -178,6 +182,14 @@ struct Data {
     Eigen::VectorXd lcp_rhs;           ///< (nefc_max) the active rows' right-hand side
     std::vector<int> lcp_active;       ///< (nefc_max) 1 for rows in the active set
     std::vector<int> lcp_index;        ///< (nefc_max) the active rows, in order
+    // the Newton solver (solver.cpp), used with elliptic cones
+    Eigen::MatrixXd newton_H;                  ///< (nv x nv) Hessian of the cost
+    Eigen::LLT<Eigen::MatrixXd> newton_llt;    ///< its Cholesky factor
+    Eigen::VectorXd newton_grad, newton_dir;   ///< (nv) gradient and Newton direction
+    Eigen::VectorXd newton_Mdir, newton_Merr;  ///< (nv) M dir, M (qacc - qacc_smooth)
+    Eigen::VectorXd newton_trial, newton_err;  ///< (nv) a trial acceleration, qacc - qacc_smooth
+    Eigen::VectorXd newton_jar, newton_jv;     ///< (nefc_max) J qacc - aref, J dir
+    Eigen::VectorXd newton_x, newton_grad_x;   ///< (nefc_max) rows' jar at a point, d cost / d jar
     Eigen::MatrixXd jac1p, jac1r, jac2p, jac2r;  ///< (3 x nv) a contact's two point Jacobians
     RowMatrix contact_jac;                       ///< (6 x nv) a contact's Jacobian in its frame
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages (rk_qpos0 nq, the rest nv)

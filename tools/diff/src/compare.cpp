@@ -224,8 +224,8 @@ void compare_contacts(const Twin& t, int k, Report& r) {
 //              lever) keeps the frame its element wrote, where MuJoCo moves it to the mesh's
 //              centre and principal axes: such rows are left out (lever draws it, never collides
 //              it);
-//   efc_state  lever's ConstraintState values are MuJoCo's mjtConstraintState for the states a
-//              limit row can have (0 satisfied, 1 quadratic = active): compared as integers.
+//   efc_state  lever's ConstraintState values are MuJoCo's mjtConstraintState for the states its
+//              rows can have (0 satisfied, 1 quadratic = active, 4 cone): compared as integers.
 void compare_forward_outputs(const Twin& t, int k, Report& r) {
   const Model& model = t.model;
   const Data& data = t.data;
@@ -343,7 +343,7 @@ void compare_forward(Twin& t, const test::State& s, int k, Report& r) {
   t.set_state(s);
   forward(t.model, t.data);
   compute_energy(t.model, t.data);
-  mj_forward(t.m.get(), t.d.get());
+  t.mujoco_forward();
   compare_forward_outputs(t, k, r);
   compare_energy(t, k, r);
   compare_site_jacobians(t, k, r);
@@ -365,6 +365,10 @@ void compare_step(Twin& t, const test::State& s, Integrator integrator, int k, R
   t.set_integrator(integrator);
   t.set_state(s);
   step(t.model, t.data);
+  if (t.restart_mujoco_solver) {  // mj_step's forward warm-started from the converged answer
+    t.mujoco_forward();
+    std::copy(t.d->qacc, t.d->qacc + t.m->nv, t.d->qacc_warmstart);
+  }
   mj_step(t.m.get(), t.d.get());
   const std::string name = integrator_name(integrator);
   r.compare("qpos after one " + name + " step", k, t.data.qpos.data(), t.d->qpos, t.model.nq,

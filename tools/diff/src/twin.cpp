@@ -3,6 +3,7 @@
 #include <lever/error.hpp>
 #include <lever/mjcf.hpp>
 #include <stdexcept>
+#include <vector>
 
 namespace lever::diff {
 
@@ -64,6 +65,23 @@ void Twin::set_integrator(Integrator integrator) {
   m->opt.integrator = integrator == Integrator::kRK4        ? mjINT_RK4
                       : integrator == Integrator::kImplicit ? mjINT_IMPLICIT
                                                             : mjINT_EULER;
+}
+
+void Twin::set_cone(Cone cone, double impratio) {
+  model.opt.cone = cone;
+  model.opt.impratio = impratio;
+  m->opt.cone = cone == Cone::kElliptic ? mjCONE_ELLIPTIC : mjCONE_PYRAMIDAL;
+  m->opt.impratio = impratio;
+}
+
+void Twin::mujoco_forward() {
+  mj_forward(m.get(), d.get());
+  for (int restart = 0; restart_mujoco_solver && restart < 20; ++restart) {
+    const std::vector<double> before(d->qacc, d->qacc + m->nv);
+    std::copy(before.begin(), before.end(), d->qacc_warmstart);
+    mj_forward(m.get(), d.get());
+    if (std::equal(before.begin(), before.end(), d->qacc)) break;
+  }
 }
 
 void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s) {
