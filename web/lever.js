@@ -233,7 +233,7 @@
       },
       /** n steps in one call into wasm (the same as n calls of mj_step). */
       mj_steps(model, data, n) { check(data._wasm.steps(n)); },
-      /** `lever check` on MJCF text (lesson 5.1's six checks and lesson 5.2's two): its text, or its JSON. */
+      /** `lever check` on MJCF text (lesson 5.1's six checks, lesson 5.2's two, lesson 5.3's contacts): its text, or its JSON. */
       lever_check(xml, filename, json) {
         return Module.check_model_text(xml, filename || 'model.xml', !!json);
       },

@@ -63,11 +63,11 @@ from . import _lever
 
 
 def check(model: Model, key: str = "") -> dict:
-    """Lesson 5.1's six checks of a model and lesson 5.2's two more: the report
+    """Lesson 5.1's six checks of a model, lesson 5.2's two and lesson 5.3's contacts: the report
     `lever check --json` prints, as a dict.
 
     Its keys are the sections (``structure``, ``kinematics``, ``torque_budget``, ``inertia``,
-    ``soft_stops``, ``clamping``, ``singular_poses``, ``step_stability``), ``findings`` (the
+    ``soft_stops``, ``clamping``, ``singular_poses``, ``step_stability``, ``contacts``), ``findings`` (the
     claims that do not check out) and ``exit_status`` (0 when every claim checks out). ``key``:
     sections 7 and 8 at that keyframe only (`lever check --key`).
     """

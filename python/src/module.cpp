@@ -636,7 +636,8 @@ PYBIND11_MODULE(_lever, m) {
         return lever::check::to_json(r);
       },
       py::arg("model"), py::arg("key") = "",
-      "Lesson 5.1's six checks and lesson 5.2's two more (singular poses, stability of the step) "
+      "Lesson 5.1's six checks, lesson 5.2's two (singular poses, stability of the step) and "
+      "lesson 5.3's contacts "
       "of a model, as the JSON `lever check` prints; `key`: sections 7 and 8 at that keyframe "
       "only.");
   m.def(

@@ -265,10 +265,10 @@ class WasmData {
   Eigen::Matrix<double, 6, 1> contact_force_ = Eigen::Matrix<double, 6, 1>::Zero();
 };
 
-/// `lever check` on MJCF text: lesson 5.1's six checks and lesson 5.2's two, as the command prints
-/// them (text) or as its JSON; section (4) loads the same text again with every mass inferred from
-/// the geoms, as check_file() does with the file. A model that cannot be loaded gives its
-/// diagnostic instead.
+/// `lever check` on MJCF text: lesson 5.1's six checks, lesson 5.2's two and lesson 5.3's contacts,
+/// as the command prints them (text) or as its JSON; section (4) loads the same text again with
+/// every mass inferred from the geoms, as check_file() does with the file. A model that cannot be
+/// loaded gives its diagnostic instead.
 std::string check_model_text(const std::string& xml, const std::string& filename, bool json) {
   try {
     lever::Model model = lever::mjcf::load_string(xml, filename);
@@ -280,8 +280,8 @@ std::string check_model_text(const std::string& xml, const std::string& filename
     } catch (const lever::Error& e) {
       inferred_error = e.what();
     }
-    const lever::check::Report report =
-        lever::check::run_check({model, inferred ? &*inferred : nullptr, inferred_error});
+    const lever::check::Report report = lever::check::run_check(
+        {model, inferred ? &*inferred : nullptr, inferred_error, /*key=*/""});
     return json ? lever::check::to_json(report) : lever::check::to_text(report);
   } catch (const std::exception& e) {
     return std::string("error: ") + e.what();

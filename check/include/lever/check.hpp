@@ -481,7 +481,7 @@ struct Inputs {
   std::string key;  ///< sections (7) and (8) at this keyframe only ("": qpos0 and every keyframe)
 };
 
-/// Run the eight checks.
+/// Run the checks (lesson 5.1's six, lesson 5.2's two, lesson 5.3's contacts).
 Report run_check(const Inputs& inputs);
 
 // the sections, each in its own file
