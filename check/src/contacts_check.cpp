@@ -232,7 +232,7 @@ void hold_servos(const Model& m, Data& d, const std::vector<int>& except) {
   forward(m, d);
   for (int a = 0; a < m.nu; ++a) {
     if (std::find(except.begin(), except.end(), a) != except.end()) continue;
-    d.ctrl[a] = is_servo(m, a) ? d.actuator_length[a] : 0.0;
+    d.ctrl[a] = is_servo(m.actuator_kind[a]) ? d.actuator_length[a] : 0.0;
   }
 }
 
@@ -430,7 +430,7 @@ Grip grip(const Model& m, PairTable& table, std::vector<std::string>& strays) {
     std::vector<Finger> found;
     for (int a = 0; a < m.nu; ++a) {
       const int j = m.actuator_trnid[a];
-      if (!is_servo(m, a) || m.jnt_type[j] == JointType::kFree || m.jnt_type[j] == JointType::kBall)
+      if (!is_servo(m.actuator_kind[a]) || m.jnt_type[j] == JointType::kFree || m.jnt_type[j] == JointType::kBall)
         continue;
       Finger f{a, j, {}, 1.0, 0.0};
       for (size_t k = 0; k < table.geoms.size(); ++k) {

@@ -21,7 +21,7 @@ namespace lever::test {
 constexpr double kClearance = 0.02;  // rad, m, or fraction of a motor's span
 
 /// An actuator whose force is not gain-1 ctrl: an affine gain or bias, or a gain other than 1.
-inline bool is_servo(const Model& model, int a) {
+inline bool force_is_not_ctrl(const Model& model, int a) {
   return model.actuator_gaintype[a] != GainType::kFixed ||
          model.actuator_biastype[a] != BiasType::kNone || model.actuator_gainprm[a][0] != 1.0;
 }
@@ -101,7 +101,7 @@ inline State smooth_state(const Model& model, std::mt19937_64& rng, bool past_st
   for (int i = 0; i < model.nv; ++i) s.qvel[i] = uniform(-2, 2);
   s.ctrl = Eigen::VectorXd::Zero(model.nu);
   for (int a = 0; a < model.nu; ++a) {
-    if (is_servo(model, a)) {
+    if (force_is_not_ctrl(model, a)) {
       s.ctrl[a] = servo_control(model, a, s, uniform);
       continue;
     }
