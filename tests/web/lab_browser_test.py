@@ -12,6 +12,7 @@ readouts must show the same digits and hold the same raw values to 1e-12.
 import argparse
 import json
 import os
+import re
 import struct
 import subprocess
 import sys
@@ -720,6 +721,13 @@ def gripper_state(b):
                 'box: lab.sims[0].model.name2id("body", "box"), table: lab.sims[0].model.name2id("geom", "table")};')
 
 
+def normal_per_newton():
+    """The 3D view's scale of a contact's normal line, m per N (view3d.js's NORMAL_PER_NEWTON)."""
+    with open(os.path.join(ROOT, 'web', 'view3d.js'), encoding='utf-8') as f:
+        text = f.read()
+    return float(re.search(r'NORMAL_PER_NEWTON = ([0-9.eE+-]+)', text).group(1))
+
+
 def check_contacts_drawn_and_read(state, label):
     """The markers on lever's contacts, the contacts those of lever's native rows, the readouts
     native's. Returns the native forward."""
@@ -747,8 +755,14 @@ def check_contacts_drawn_and_read(state, label):
         lengths.append(length)
         check(length > 0 and all(abs(x / length - n) < 1e-5 for x, n in zip(d, contact['normal'])),
               '%s: marker %d points along %s, the normal is %s' % (label, i, d, contact['normal']))
-    check(max(lengths, default=0) - min(lengths, default=0) < 1e-6, '%s: normals drawn at lengths %s'
-          % (label, lengths))
+    # each normal scaled by its contact's normal force (mj_contactForce), as native computes it
+    forces = [c['force'][0] for c in native.get('contact', [])]
+    check(len(forces) == len(lengths), '%s: native prints %d contact forces for %d normals'
+          % (label, len(forces), len(lengths)))
+    for i, (length, force) in enumerate(zip(lengths, forces)):
+        check(abs(length - normal_per_newton() * force) < 1e-6,
+              '%s: normal %d drawn %.9f m long for a normal force of %.9f N (%g m per N)'
+              % (label, i, length, force, normal_per_newton()))
     box = state['box']
     penetration = min([0.0] + [native['efc_pos'][r[0]] for r in rows.values()])
     readouts_match(state['readouts'], {
