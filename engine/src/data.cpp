@@ -64,7 +64,6 @@ Data::Data(const Model& model)
   work.lcp_active.assign(nefc_max, 0);
   work.lcp_index.assign(nefc_max, 0);
   work.newton_H = Eigen::MatrixXd::Zero(nv, nv);
-  work.newton_llt = Eigen::LLT<Eigen::MatrixXd>(nv);
   for (Eigen::VectorXd* v : {&work.newton_grad, &work.newton_dir, &work.newton_Mdir,
                              &work.newton_Merr, &work.newton_trial, &work.newton_err}) {
     *v = Eigen::VectorXd::Zero(nv);

@@ -17,6 +17,8 @@
 // the cost stops decreasing (no tolerance).
 #include <lever/constraint.hpp>
 
+#include <Eigen/Cholesky>
+
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -251,9 +253,9 @@ int solve_constraint_newton(const Model& model, Data& data) {
     }
     if (!changed && !cone) break;
     if (w.newton_grad.lpNorm<Eigen::Infinity>() == 0.0) break;
-    w.newton_llt.compute(w.newton_H);
-    w.newton_dir = -w.newton_grad;
-    w.newton_llt.solveInPlace(w.newton_dir);
+    const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> factor(w.newton_H);  // in place: H is rebuilt
+    w.newton_dir = -w.newton_grad;                                     // every step
+    factor.solveInPlace(w.newton_dir);
     if (!(w.newton_dir.dot(w.newton_grad) < 0)) break;  // no descent left, at rounding
 
     // the exact minimum along the Newton direction

@@ -6,7 +6,6 @@
 // otherwise. One Model can serve many Data (one per thread).
 #pragma once
 
-#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/LU>
 
@@ -183,8 +182,7 @@ struct Data {
     std::vector<int> lcp_active;       ///< (nefc_max) 1 for rows in the active set
     std::vector<int> lcp_index;        ///< (nefc_max) the active rows, in order
     // the Newton solver (solver.cpp), used with elliptic cones
-    Eigen::MatrixXd newton_H;                  ///< (nv x nv) Hessian of the cost
-    Eigen::LLT<Eigen::MatrixXd> newton_llt;    ///< its Cholesky factor
+    Eigen::MatrixXd newton_H;                  ///< (nv x nv) Hessian of the cost, then its factor
     Eigen::VectorXd newton_grad, newton_dir;   ///< (nv) gradient and Newton direction
     Eigen::VectorXd newton_Mdir, newton_Merr;  ///< (nv) M dir, M (qacc - qacc_smooth)
     Eigen::VectorXd newton_trial, newton_err;  ///< (nv) a trial acceleration, qacc - qacc_smooth
