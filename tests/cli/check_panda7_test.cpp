@@ -5,8 +5,7 @@
 // (1), (3) and (6), and `--key` on every command that takes a start state.
 #include <catch2/catch.hpp>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
+#include <Eigen/Core>
 
 #include <cmath>
 #include <filesystem>
@@ -21,6 +20,7 @@
 #include <lever/harness/models.hpp>
 #include "json_reader.hpp"
 #include "run_lever.hpp"
+#include "spectra.hpp"
 
 namespace lever::test {
 
@@ -72,7 +72,7 @@ double radius(const Model& model, const Eigen::VectorXd& qpos, const Eigen::Vect
     }
     A.col(i) = (plus - minus) / (2 * eps);
   }
-  return Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues().cwiseAbs().maxCoeff();
+  return lever::test::spectral_radius(A);
 }
 
 Model with(const Model& model, Integrator integrator, double timestep, double armature = -1) {
@@ -122,7 +122,7 @@ TEST_CASE("check panda7 (7): singular values, manipulability and aligned axes re
       INFO(at["where"].string);
       const Eigen::VectorXd q = vec(at["qpos"]);
       const Eigen::MatrixXd J = jacobian(model, q, ee);
-      const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(J).singularValues();
+      const Eigen::VectorXd sigma = lever::test::singular_values_jacobi(J);
       const Eigen::VectorXd printed = vec(at["sigma"]);
       REQUIRE(printed.size() == 6);
       CHECK((printed - sigma).cwiseAbs().maxCoeff() <= 1e-12 * sigma[0]);
@@ -167,8 +167,7 @@ TEST_CASE("check panda7 (7): singular values, manipulability and aligned axes re
       std::uniform_real_distribution<double> u(model.jnt_range[j][0], model.jnt_range[j][1]);
       q[j] = u(rng);
     }
-    sampled = std::min(
-        sampled, Eigen::JacobiSVD<Eigen::MatrixXd>(jacobian(model, q, ee)).singularValues()[5]);
+    sampled = std::min(sampled, lever::test::singular_values_jacobi(jacobian(model, q, ee))[5]);
   }
   const double worst = vec(site["worst"][0]["sigma"])[5];
   CHECK(worst <= sampled);
@@ -365,7 +364,7 @@ TEST_CASE("check arm2: sections (7) and (8) for a planar 2-joint arm", "[check]"
   forward(model, d);
   Eigen::MatrixXd jacp(3, model.nv), jacr(3, model.nv);
   jac_site(model, d, model.site("ee"), jacp, jacr);
-  const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(jacp).singularValues();
+  const Eigen::VectorXd sigma = lever::test::singular_values_jacobi(jacp);
   CHECK(std::abs(vec(site["worst"][0]["sigma"])[1] - sigma[1]) <= 1e-12);
   // singular up to the search's resolution: its golden sections stop near 1e-8 rad in q, where
   // the vanishing singular value is ~1e-9 of the others and sin(q2) ~1e-8
