@@ -119,8 +119,7 @@ def compare_with_mujoco(path, qpos, qvel, ctrl, d, ours_force):
             if name in EXACT:
                 assert np.array_equal(ours, ref), (path.name, i, name)
             else:
-                bound = 1e-10 if name == "mu" else 1e-12
-                assert np.all(np.abs(ours - ref) <= bound * np.maximum(1, np.abs(ref))), \
+                assert np.all(np.abs(ours - ref) <= 1e-12 * np.maximum(1, np.abs(ref))), \
                     (path.name, i, name, ours, ref)
     theirs_force = contact_forces(m2, d2, real_mujoco)
     assert np.all(np.abs(ours_force - theirs_force)
