@@ -351,6 +351,7 @@ void contacts(Json& j, const Contacts& c) {
   } else {
     j.key("body").value(r.body).key("plane").value(r.plane).key("start").value(r.start);
     j.key("mass").value(r.mass).key("gravity").value(r.gravity).key("condim").value(r.condim);
+    j.key("cone").value(r.elliptic ? "elliptic" : "pyramidal");
     j.key("contacts").value(r.contacts).key("rows_per_contact").value(r.rows);
     j.key("friction").value(r.friction).key("impratio").value(r.impratio).key("solref");
     numbers(j, r.solref);

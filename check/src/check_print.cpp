@@ -675,9 +675,11 @@ void print_rest(std::ostream& out, const RestingDepth& r) {
          "      n_contacts n_rows K d(p)^2 p / ((1 - d(p)) A) = m g\n";
   out << "    K = 1/(dmax^2 timeconst^2 dampratio^2) = " << sig4(r.K) << " 1/s^2 (solref "
       << numbers(r.solref.data(), 2) << ", solimp " << numbers(r.solimp.data(), 5) << ")\n";
-  if (r.condim == 1) {
-    out << "    A = t = " << sig4(r.A)
-        << " 1/kg (body_invweight0, translation), 1 row per contact\n";
+  if (r.condim == 1 || r.elliptic) {
+    out << "    A = t = " << sig4(r.A) << " 1/kg (body_invweight0, translation), 1 row per contact";
+    if (r.condim > 1)
+      out << " (elliptic cone: the normal row; its friction rows push nothing at rest)";
+    out << "\n";
   } else {
     out << "    A = 2 mu^2 (1 + mu^2) t / impratio = " << sig4(r.A) << " 1/kg (mu "
         << general(r.friction) << ", t = " << sig4(r.invweight)

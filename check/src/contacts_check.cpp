@@ -322,7 +322,11 @@ RestingDepth resting_depth(const Model& m, PairTable& table, std::vector<std::st
   r.K = r.solref[0] > 0 ? 1 / (dmax * dmax * r.solref[0] * r.solref[0] * r.solref[1] * r.solref[1])
                         : -r.solref[0] / (dmax * dmax);
   r.invweight = m.body_invweight0[body][0] + m.body_invweight0[m.geom_bodyid[plane]][0];
-  if (r.condim == 1) {
+  r.elliptic = m.opt.cone == Cone::kElliptic;
+  if (r.condim == 1 || r.elliptic) {
+    // one normal row per contact; an elliptic cone's friction rows carry nothing at rest (their
+    // aref is -B v = 0, and with the normal row pushing every row is in the cone's quadratic
+    // zone, f = -D (J a - aref))
     r.rows = 1;
     r.A = r.invweight;
   } else {
@@ -430,7 +434,8 @@ Grip grip(const Model& m, PairTable& table, std::vector<std::string>& strays) {
     std::vector<Finger> found;
     for (int a = 0; a < m.nu; ++a) {
       const int j = m.actuator_trnid[a];
-      if (!is_servo(m.actuator_kind[a]) || m.jnt_type[j] == JointType::kFree || m.jnt_type[j] == JointType::kBall)
+      if (!is_servo(m.actuator_kind[a]) || m.jnt_type[j] == JointType::kFree ||
+          m.jnt_type[j] == JointType::kBall)
         continue;
       Finger f{a, j, {}, 1.0, 0.0};
       for (size_t k = 0; k < table.geoms.size(); ++k) {
@@ -577,23 +582,18 @@ Contacts check_contacts(const Model& model) {
     return c;
   }
   std::vector<std::string> strays;
-  if (model.opt.cone != Cone::kPyramidal) {
-    // the resting depth's rows are a pyramid's edges; an elliptic cone's differ
-    c.rest.skipped = c.grip.skipped = "the hand calculations here are for pyramidal cones";
-  } else {
-    // a simulation the engine refuses (more contacts than nconmax) skips that part, saying why
-    try {
-      c.rest = resting_depth(model, table, strays);
-    } catch (const Error& e) {
-      c.rest = RestingDepth{};
-      c.rest.skipped = std::string("the simulation failed: ") + e.what();
-    }
-    try {
-      c.grip = grip(model, table, strays);
-    } catch (const Error& e) {
-      c.grip = Grip{};
-      c.grip.skipped = std::string("the simulation failed: ") + e.what();
-    }
+  // a simulation the engine refuses (more contacts than nconmax) skips that part, saying why
+  try {
+    c.rest = resting_depth(model, table, strays);
+  } catch (const Error& e) {
+    c.rest = RestingDepth{};
+    c.rest.skipped = std::string("the simulation failed: ") + e.what();
+  }
+  try {
+    c.grip = grip(model, table, strays);
+  } catch (const Error& e) {
+    c.grip = Grip{};
+    c.grip.skipped = std::string("the simulation failed: ") + e.what();
   }
   c.pairs = table.pairs;
   c.strays = strays;

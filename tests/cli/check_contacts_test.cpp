@@ -149,6 +149,46 @@ TEST_CASE("check (9): the gripper's pairs, grip force and slip", "[check][contac
   }
 }
 
+TEST_CASE("check (9): elliptic cones: one normal row carries the weight, the grip as by hand",
+          "[check][contacts]") {
+  // the same two lesson models with cone="elliptic": at rest each contact's normal row alone
+  // pushes (its friction rows have aref = -B v = 0), with A = t, the normal row's diagApprox
+  const std::string drop = temporary_file(
+      "lever_box_elliptic.xml", replaced(read(model_path("models/box_drop.xml")),
+                                         "<option timestep=\"0.002\"",
+                                         "<option cone=\"elliptic\" timestep=\"0.002\""));
+  const std::string grip = temporary_file(
+      "lever_gripper_elliptic.xml", replaced(read(model_path("models/gripper.xml")),
+                                             "<option timestep=\"0.002\"",
+                                             "<option cone=\"elliptic\" timestep=\"0.002\""));
+  const json::Value r = check_json(drop)["contacts"]["resting_depth"];
+  const json::Value g = check_json(grip)["contacts"]["grip"];
+  const json::Value pyramid = check_json(model_path("models/box_drop.xml"))["contacts"];
+  std::filesystem::remove(drop);
+  std::filesystem::remove(grip);
+  REQUIRE(!r.has("skipped"));
+  CHECK(r["cone"].string == "elliptic");
+  CHECK(r["rows_per_contact"].number == 1);
+  CHECK(r["A"].number == r["invweight"].number);
+  const double p = r["predicted"].number, d = r["impedance"].number;
+  CHECK(r["contacts"].number * r["K"].number * d * d * p / ((1 - d) * r["A"].number) ==
+        Approx(r["mass"].number * 9.81).epsilon(1e-12));
+  CHECK(r["settled"].boolean);
+  CHECK(std::abs(r["simulated"].number - p) <= r["bound"].number);
+  CHECK(r["agrees"].boolean);
+  // the pyramid's four edges of A = 2 mu^2 (1 + mu^2) t / impratio push as one normal row of
+  // A = t when mu = 1 and impratio = 1 (4 / 4t = 1 / t): the same depth, both cones
+  REQUIRE(pyramid["resting_depth"]["friction"].number == 1);
+  CHECK(p == Approx(pyramid["resting_depth"]["predicted"].number).epsilon(1e-12));
+  // the grip: the same hand calculation, the same 5 % (check.md)
+  REQUIRE(!g.has("skipped"));
+  const double needed = g["needed_force"].number;
+  CHECK(g["holds_by_hand"].boolean);
+  REQUIRE(g["slip_force"].number > 0);
+  CHECK(g["slip_force"].number < needed * 1.05);
+  CHECK(g["hold_force"].number > needed * 0.95);
+}
+
 TEST_CASE("check (9): friction too low for the finger servos is a finding", "[check][contacts]") {
   // mu 0.02: holding the 0.1 kg box needs 24.5 N, the servos' forcerange allows 10 N
   const std::string low = temporary_file("lever_gripper_slippery.xml",

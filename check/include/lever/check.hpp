@@ -385,12 +385,14 @@ struct RestingDepth {
   std::string body, plane, start;
   double mass = 0.0, gravity = 0.0;  ///< kg; the component of gravity along the plane's normal
   int condim = 3, contacts = 0, rows = 0;  ///< contacts at rest; rows per contact
+  bool elliptic = false;  ///< elliptic cones: one normal row per contact carries the weight
   double friction = 0.0, impratio = 1.0;
   std::array<double, 2> solref{0, 0};
   std::array<double, 5> solimp{0, 0, 0, 0, 0};
   double K = 0.0;          ///< 1 / (dmax^2 timeconst^2 dampratio^2), 1/s^2
   double invweight = 0.0;  ///< t: the two bodies' translational body_invweight0, 1/kg
-  double A = 0.0;  ///< a row's approximate inverse inertia: t, or 2 mu^2 (1+mu^2) t/impratio
+  double A = 0.0;  ///< a row's approximate inverse inertia: t (normal row), or 2 mu^2 (1+mu^2)
+                   ///< t/impratio (pyramid edge)
   double predicted = 0.0;      ///< m
   double impedance = 0.0;      ///< d(predicted)
   double simulated = 0.0;      ///< m: the contacts' mean depth at rest
