@@ -551,7 +551,9 @@ int main(int argc, char** argv) {
   if (any_batch) {
     out << "## Batch forward dynamics: states per second (BatchRunner)\n\n";
     out << context->str("batch_states") << " different states per call, no limit active; one Data "
-        << "(lever) or mjData (MuJoCo) per thread, the states split into contiguous blocks; "
+        << "(lever) or mjData (MuJoCo) per thread; lever's threads take the states in chunks from "
+           "a "
+        << "shared counter, MuJoCo's in one contiguous block each; "
         << "lever's runner keeps its worker threads between calls, MuJoCo's are started per "
         << "call (tens of microseconds per call). Wall-clock throughput, median ± IQR.\n\n";
     out << "| model | threads | lever (states/s) | MuJoCo (states/s) | lever/MuJoCo throughput | "

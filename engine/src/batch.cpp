@@ -2,6 +2,8 @@
 // worker threads kept alive between calls.
 #include <lever/batch.hpp>
 
+#include <algorithm>
+#include <atomic>
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
@@ -142,20 +144,33 @@ struct detail::BatchPool {
 
 namespace {
 
-// Run work(data, begin, end) on contiguous blocks of [0, n), one per thread (sizes differing by
-// at most one; a block may be empty when n < threads). One block, or one state, runs here alone.
+constexpr Eigen::Index kChunksPerThread = 8;
+
+// Run work(data, begin, end) over [0, n) in chunks, each thread with its own Data. With one
+// thread, or one state, everything runs here.
 template <class Work>
-void run_blocks(detail::BatchPool& pool, std::vector<std::unique_ptr<Data>>& data, Eigen::Index n,
-                Work& work) {
+void run_in_chunks(detail::BatchPool& pool, std::vector<std::unique_ptr<Data>>& data,
+                   Eigen::Index n, Work& work) {
   const auto threads = static_cast<Eigen::Index>(data.size());
   if (threads == 1 || n <= 1) {
     work(*data[0], Eigen::Index{0}, n);
     return;
   }
-  auto block = [&](int t) {
-    work(*data[static_cast<std::size_t>(t)], t * n / threads, (t + 1) * n / threads);
+  // The states are handed out in chunks from a shared counter, not in one block per thread: a
+  // thread that starts late (a worker waking up) or runs slower (another process on its core)
+  // takes fewer chunks, and neither waits long for the other at the end. Each state's result
+  // depends on that state alone, so which thread computes it changes nothing.
+  const Eigen::Index chunk = std::max<Eigen::Index>(1, n / (threads * kChunksPerThread));
+  std::atomic<Eigen::Index> next{0};
+  auto take_chunks = [&](int t) {
+    Data& d = *data[static_cast<std::size_t>(t)];
+    for (;;) {
+      const Eigen::Index begin = next.fetch_add(chunk, std::memory_order_relaxed);
+      if (begin >= n) return;
+      work(d, begin, std::min(n, begin + chunk));
+    }
   };
-  pool.run(block);
+  pool.run(take_chunks);
 }
 
 }  // namespace
@@ -189,7 +204,7 @@ void BatchRunner::forward(const Eigen::Ref<const Eigen::MatrixXd>& qpos,
       qacc.col(k) = d.qacc;
     }
   };
-  run_blocks(*pool_, data_, n, work);
+  run_in_chunks(*pool_, data_, n, work);
 }
 
 void BatchRunner::step(Eigen::Ref<Eigen::MatrixXd> qpos, Eigen::Ref<Eigen::MatrixXd> qvel,
@@ -209,7 +224,7 @@ void BatchRunner::step(Eigen::Ref<Eigen::MatrixXd> qpos, Eigen::Ref<Eigen::Matri
       qvel.col(k) = d.qvel;
     }
   };
-  run_blocks(*pool_, data_, n, work);
+  run_in_chunks(*pool_, data_, n, work);
 }
 
 }  // namespace lever

@@ -74,8 +74,7 @@ TEST_CASE("one BatchRunner gives the one-state results call after call, on 1 to 
   }
 }
 
-TEST_CASE("an exception thrown in a worker's block reaches the caller; the runner still works",
-          "[batch]") {
+TEST_CASE("an exception thrown in a worker reaches the caller; the runner still works", "[batch]") {
   const lever::Model m = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));
   lever::BatchRunner runner(m, 2);
   const States s = random_states(m, 10, 3);
@@ -85,9 +84,15 @@ TEST_CASE("an exception thrown in a worker's block reaches the caller; the runne
   runner.data(1).qfrc_applied.resize(m.nv + 1);
   CHECK_THROWS_AS(runner.forward(s.qpos, s.qvel, s.ctrl, qacc), lever::StateError);
   CHECK_THROWS_WITH(runner.forward(s.qpos, s.qvel, s.ctrl, qacc), Catch::Contains("qfrc_applied"));
-  // the calling thread's block was computed all the same
+  // the calling thread went on taking states: every state but the one the worker failed on (if
+  // it woke before the calling thread had taken them all) was computed all the same
   const Eigen::MatrixXd expected = one_by_one(m, s);
-  CHECK(qacc.leftCols(5) == expected.leftCols(5));
+  const auto computed = [&] {
+    int n = 0;
+    for (int k = 0; k < 10; ++k) n += qacc.col(k) == expected.col(k);
+    return n;
+  };
+  CHECK(computed() >= 9);
 
   // repaired, the same runner (the same workers) gives every state again
   runner.data(1).qfrc_applied.setZero(m.nv);
@@ -95,11 +100,12 @@ TEST_CASE("an exception thrown in a worker's block reaches the caller; the runne
   runner.forward(s.qpos, s.qvel, s.ctrl, qacc);
   CHECK(qacc == expected);
 
-  // thrown on the calling thread too: the worker finishes its block before the error comes back
+  // thrown on the calling thread too: the worker takes every other state before the error comes
+  // back
   runner.data(0).qfrc_applied.resize(m.nv + 1);
   qacc.setZero();
   CHECK_THROWS_AS(runner.forward(s.qpos, s.qvel, s.ctrl, qacc), lever::StateError);
-  CHECK(qacc.rightCols(5) == expected.rightCols(5));
+  CHECK(computed() == 9);
   runner.data(0).qfrc_applied.setZero(m.nv);
   runner.forward(s.qpos, s.qvel, s.ctrl, qacc);
   CHECK(qacc == expected);

@@ -2,11 +2,12 @@
 //
 // A batch is a set of states stored as matrix columns: qpos is nq x N, qvel is nv x N, ctrl is
 // nu x N (or nu x 0: no control), so state k is column k and its numbers are contiguous
-// (Eigen's default column-major order). The runner splits the N columns into `threads()`
-// contiguous blocks; the calling thread evaluates the first block and the runner's worker
-// threads (threads() - 1 of them, started by the constructor and kept until the destructor) the
-// others. A call returns when every block is done; an exception thrown in any block reaches the
-// caller (the first block's first), after every block has finished.
+// (Eigen's default column-major order). The calling thread and the runner's worker threads
+// (threads() - 1 of them, started by the constructor and kept until the destructor) take the
+// columns in chunks from a shared counter, so a thread that starts late or runs slower takes
+// fewer. A call returns when every thread is done; an exception thrown in a thread stops that
+// thread (the others go on taking the remaining states) and reaches the caller once all are done
+// (the calling thread's first, else the lowest worker's).
 //
 // Cost: per state, exactly what forward() or step() costs on its own (nothing is allocated: the
 // Data of each thread was built by the constructor). Per call with threads() > 1, waking the
@@ -48,8 +49,9 @@ class BatchRunner {
   int threads() const { return static_cast<int>(data_.size()); }
   const Model& model() const { return *model_; }
 
-  /// The Data thread t works in (t = 0 is the calling thread): set qfrc_applied there to apply
-  /// the same force to every state of that thread's block, or read its warnings after a call.
+  /// The Data thread t works in (t = 0 is the calling thread): set qfrc_applied in every thread's
+  /// Data to apply a force to every state (which thread computes which state is decided while
+  /// the call runs), or read its warnings after a call.
   Data& data(int t) { return *data_.at(static_cast<std::size_t>(t)); }
 
   /// qacc.col(k) = data.qacc after forward() at state k (qpos.col(k), qvel.col(k), ctrl.col(k)).
