@@ -7,6 +7,8 @@ packages=(
   build-essential cmake
   libeigen3-dev        # engine (header-only linear algebra)
   libtinyxml2-dev      # mjcf_lite
+  nlohmann-json3-dev   # io: the JSON writer's formatting (header-only; the WebAssembly build too)
+  libcli11-dev         # tools/lever: the command line (subcommands, --help, errors; header-only)
   catch2               # tests (Catch2 2.13)
   libmujoco-dev        # the reference: tests, benchmarks and `lever diff` only
   libbenchmark-dev     # bench/

@@ -115,7 +115,7 @@ TEST_CASE("check: a model that cannot be loaded exits 2 with the loader's messag
 TEST_CASE("check: --help, usage errors and --svg", "[check]") {
   const Run help = run_lever("check --help");
   CHECK(help.status == 0);
-  CHECK(help.out.find("usage: lever check MODEL") != std::string::npos);
+  CHECK(help.out.find("Usage: lever check [OPTIONS] MODEL") != std::string::npos);
   CHECK(run_lever("check").status == 2);
   CHECK(run_lever("check --no-such-option " + quoted(model_path("models/arm2.xml"))).status == 2);
 

@@ -1,7 +1,7 @@
 """The Python package is the C++ engine: on every model, at seeded random states, every array of
 the field table after forward() and after a step equals what the `lever` command (C++, the same
-library) prints for the same state, bit for bit (its JSON holds 17 significant digits, which
-round-trip a double exactly)."""
+library) prints for the same state, bit for bit (its JSON writes each double in the shortest
+form that reads back as the same double)."""
 import json
 import subprocess
 

@@ -1,5 +1,10 @@
-// Shared pieces of the `lever` command: argument parsing, number lists, and the preamble of the
-// commands that read a model.
+// Shared pieces of the `lever` command: the command line as CLI11 parsed it, the checks its
+// options are declared with, and the preamble of the commands that read a model.
+//
+// Each command declares its positionals and options on its own CLI11 subcommand (declare_<name>
+// in cmd_<name>.cpp: name, help text, type name, check); main() parses the whole command line
+// with CLI11, which answers --help and refuses what is not declared, and hands the command an
+// Args to read its values by name.
 #pragma once
 
 #include <Eigen/Core>
@@ -7,10 +12,10 @@
 #include <cstddef>
 #include <cstdio>
 #include <functional>
-#include <map>
-#include <optional>
 #include <string>
 #include <vector>
+
+#include <CLI/CLI.hpp>
 
 #include <lever/io/json.hpp>
 #include <lever/mjcf.hpp>
@@ -21,18 +26,50 @@ namespace lever::cli {
 /// Exit statuses of every command.
 enum Exit : int { kOk = 0, kFindings = 1, kBadInput = 2 };
 
-/// An error in the command line; main() prints it with the usage line and exits with kBadInput.
+/// An error in the command line found after parsing (a list of the wrong length, two options that
+/// exclude each other); main() prints it after the command's name and exits with kBadInput.
 struct UsageError {
   std::string message;
 };
 
-/// Command-line arguments: positionals, `--name value` options and `--flag` switches.
+// ---- declaring a command's options (CLI11) -------------------------------------------------
+
+/// The checks an option's value is declared with. Each refuses text that is not what the option
+/// takes, with the message the user sees after the option's name ("--qpos: 'x' is not a number").
+/// A finite double.
+const CLI::Validator& number_check();
+/// A whole number (a C long).
+const CLI::Validator& whole_number_check();
+/// Comma-separated finite doubles; how many the model needs is checked by Args::get_vector.
+const CLI::Validator& number_list_check();
+/// Not empty (a file or keyframe name).
+const CLI::Validator& not_empty_check();
+
+/// A `--name VALUE` option: shown in --help as `--name TYPE` with `help`; given twice, the last
+/// value counts.
+CLI::Option* add_value(CLI::App& command, const std::string& name, const std::string& type,
+                       const std::string& help);
+/// A `--name` switch, which takes no value.
+CLI::Option* add_switch(CLI::App& command, const std::string& name, const std::string& help);
+
+/// --key, --qpos, --qvel and --ctrl with their help (forward_state.hpp reads them).
+struct StateHelp {
+  const char* key;
+  const char* qpos;
+  const char* qvel;
+  const char* ctrl;
+};
+void add_state_options(CLI::App& command, const StateHelp& help);
+
+// ---- reading them ----------------------------------------------------------------------------
+
+/// One command's positionals and options as CLI11 parsed them; options are named without their
+/// dashes ("qpos" for --qpos).
 class Args {
  public:
-  /// `valued` lists the options that take a value; any other `--x` is a switch.
-  Args(const std::vector<std::string>& argv, const std::vector<std::string>& valued,
-       const std::vector<std::string>& switches);
+  explicit Args(const CLI::App& command);
 
+  /// Every positional's values, in the order they are declared.
   const std::vector<std::string>& positional() const { return positional_; }
   bool has(const std::string& name) const;
   std::string get(const std::string& name, const std::string& fallback = "") const;
@@ -40,13 +77,13 @@ class Args {
   std::vector<std::string> get_all(const std::string& name) const;
   double get_double(const std::string& name, double fallback) const;
   long get_long(const std::string& name, long fallback) const;
-  /// A comma-separated list of n numbers ("0.6,-1.2"); `what` names it in errors.
+  /// A comma-separated list of n numbers ("0.6,-1.2").
   Eigen::VectorXd get_vector(const std::string& name, int n, const Eigen::VectorXd& fallback) const;
 
  private:
+  const CLI::Option& option(const std::string& name) const;
+  const CLI::App* command_;
   std::vector<std::string> positional_;
-  std::map<std::string, std::string> values_;
-  std::map<std::string, std::vector<std::string>> all_values_;
 };
 
 /// The JSON writer the commands share (lever/io/json.hpp).
@@ -60,9 +97,6 @@ Model load_model(const std::string& command, const std::string& path,
 
 // ---- the preamble of the commands that read a model (forward, derivatives, identify, simulate)
 
-/// The options that set the state: --key, --qpos, --qvel, --ctrl (forward_state.hpp reads them).
-inline const std::vector<std::string> kStateOptions{"key", "qpos", "qvel", "ctrl"};
-
 /// A command line read and its model loaded.
 struct Invocation {
   Args args;
@@ -70,15 +104,10 @@ struct Invocation {
   Model model;
 };
 
-/// What such a command does first: parse argv (`valued` options, `switches`, and --help), answer
-/// --help by printing `usage` (then it returns nothing: the command exits kOk), require exactly
-/// `positionals` positionals (else UsageError "expects <expected>" and the usage), run the
-/// command's own checks of its options (`check`, before anything is read), and load the first
-/// positional as the model, its warnings on stderr (load_model).
-std::optional<Invocation> begin(const char* command, const std::vector<std::string>& argv,
-                                const char* usage, const std::vector<std::string>& valued,
-                                std::vector<std::string> switches, std::size_t positionals,
-                                const char* expected,
-                                const std::function<void(const Args&)>& check = {});
+/// What such a command does first, after CLI11 has parsed and checked each option: run the
+/// command's own checks of its options together (`check`, before anything is read), and load the
+/// first positional as the model, its warnings on stderr (load_model).
+Invocation begin(const char* command, const Args& args,
+                 const std::function<void(const Args&)>& check = {});
 
 }  // namespace lever::cli

@@ -16,42 +16,6 @@ namespace lever::cli {
 
 namespace {
 
-const char* kHelp =
-    "usage: lever check MODEL [--key NAME] [--json] [--svg FILE] [--plot-dir DIR]\n"
-    "\n"
-    "Check every claim a model makes, as lesson 5.1 does for arm2, and print section by section:\n"
-    "  (1) what the compiled model contains (joints, motors, sites, bodies)\n"
-    "  (2) forward kinematics of every site against independent formulas, at 1000 random poses\n"
-    "  (3) the torque budget: worst-case gravity torque per joint, motor limit / gravity torque,\n"
-    "      payloads, M(q), and the acceleration the spare torque gives\n"
-    "  (4) explicit inertias against those inferred from the geoms\n"
-    "  (5) soft joint stops: rest on each stop gravity can load and measure how far past it\n"
-    "  (6) commands beyond ctrlrange, and motors that cannot hold their own arm\n"
-    "  (7) singular poses: the site Jacobian's singular values over the joint ranges, the most\n"
-    "      singular poses, manipulability and condition number at qpos0 and the keyframes, and\n"
-    "      which joint axes align there\n"
-    "  (8) stability of the step at each keyframe (else qpos0): spectral radius of the step's\n"
-    "      linearisation for the model's integrator and explicit Euler, the largest stable\n"
-    "      timestep, the smallest armature that keeps Euler stable (each searched on a log grid,\n"
-    "      every change of stability found bisected and listed), confirmed by simulation\n"
-    "  (9) contacts (lesson 5.3): the geom pairs that can touch and their mixed parameters, the\n"
-    "      depth a free body rests at on a plane against solref/solimp's steady state, and the\n"
-    "      force two finger servos need to hold a box (2 mu F >= m g) against a simulation that\n"
-    "      lowers the grip until the box slips\n"
-    "  A model with ball or free joints skips (2), (3), (5), (7) and (8), saying why.\n"
-    "\n"
-    "options:\n"
-    "  --key NAME      sections (7) and (8) at keyframe NAME only (besides qpos0 in (7))\n"
-    "  --json          print the same content as one JSON object instead of text\n"
-    "  --svg FILE      also write the torque budget as a bar chart (SVG), and beside it\n"
-    "                  FILE's stem + -singular-poses.svg, -step-stability.svg, -grip.svg\n"
-    "  --plot-dir DIR  also write DIR/<model>-torque-budget.svg, -singular-poses.svg,\n"
-    "                  -step-stability.svg and -grip.svg\n"
-    "  --help          print this help\n"
-    "\n"
-    "exit status: 0 every claim checks out, 1 findings (listed at the end), 2 the model cannot be "
-    "loaded\n";
-
 // FILE.svg -> FILE-<suffix>.svg
 std::string beside(const std::string& path, const std::string& suffix) {
   std::filesystem::path p(path);
@@ -80,13 +44,51 @@ void write_svg(const check::Report& report, const Args& args) {
 
 }  // namespace
 
-int cmd_check(const std::vector<std::string>& argv) {
-  const Args args(argv, {"svg", "plot-dir", "key"}, {"json", "help"});
-  if (args.has("help")) {
-    std::fputs(kHelp, stdout);
-    return kOk;
-  }
-  if (args.positional().size() != 1) throw UsageError{"needs exactly one MODEL file (--help)"};
+void declare_check(CLI::App& command) {
+  command.add_option("MODEL", "the model file (MJCF)")->type_name("FILE")->required();
+  add_value(command, "key", "NAME",
+            "sections (7) and (8) at keyframe NAME only (besides qpos0 in (7))")
+      ->check(not_empty_check());
+  add_switch(command, "json", "print the same content as one JSON object instead of text");
+  add_value(command, "svg", "FILE",
+            "also write the torque budget as a bar chart (SVG), and beside it\n"
+            "FILE's stem + -singular-poses.svg, -step-stability.svg, -grip.svg")
+      ->check(not_empty_check());
+  add_value(command, "plot-dir", "DIR",
+            "also write DIR/<model>-torque-budget.svg, -singular-poses.svg,\n"
+            "-step-stability.svg and -grip.svg")
+      ->check(not_empty_check());
+  command.footer(
+      "Check every claim a model makes, as lesson 5.1 does for arm2, and print section by "
+      "section:\n"
+      "  (1) what the compiled model contains (joints, motors, sites, bodies)\n"
+      "  (2) forward kinematics of every site against independent formulas, at 1000 random poses\n"
+      "  (3) the torque budget: worst-case gravity torque per joint, motor limit / gravity "
+      "torque,\n"
+      "      payloads, M(q), and the acceleration the spare torque gives\n"
+      "  (4) explicit inertias against those inferred from the geoms\n"
+      "  (5) soft joint stops: rest on each stop gravity can load and measure how far past it\n"
+      "  (6) commands beyond ctrlrange, and motors that cannot hold their own arm\n"
+      "  (7) singular poses: the site Jacobian's singular values over the joint ranges, the most\n"
+      "      singular poses, manipulability and condition number at qpos0 and the keyframes, and\n"
+      "      which joint axes align there\n"
+      "  (8) stability of the step at each keyframe (else qpos0): spectral radius of the step's\n"
+      "      linearisation for the model's integrator and explicit Euler, the largest stable\n"
+      "      timestep, the smallest armature that keeps Euler stable (each searched on a log "
+      "grid,\n"
+      "      every change of stability found bisected and listed), confirmed by simulation\n"
+      "  (9) contacts (lesson 5.3): the geom pairs that can touch and their mixed parameters, the\n"
+      "      depth a free body rests at on a plane against solref/solimp's steady state, and the\n"
+      "      force two finger servos need to hold a box (2 mu F >= m g) against a simulation that\n"
+      "      lowers the grip until the box slips\n"
+      "  A model with ball or free joints skips (2), (3), (5), (7) and (8), saying why.\n"
+      "\n"
+      "Exit status: 0 every claim checks out, 1 findings (listed at the end), 2 the model cannot "
+      "be\n"
+      "loaded.");
+}
+
+int cmd_check(const Args& args) {
   const std::string& path = args.positional()[0];
 
   check::Report report;

@@ -26,15 +26,6 @@ namespace lever::cli {
 
 namespace {
 
-const char* const kUsage =
-    "usage: lever derivatives MODEL [--key NAME] [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]\n"
-    "  --key NAME    start from keyframe NAME (its qpos, qvel, ctrl; the lists below override)\n"
-    "  --qpos LIST   joint positions, nq numbers (default: qpos0)\n"
-    "  --qvel LIST   joint velocities, nv numbers (default: zeros)\n"
-    "  --ctrl LIST   actuator commands, nu numbers (default: zeros)\n"
-    "  --json        one JSON object: A, B (the step's Jacobians, mjd_transitionFD's layout),\n"
-    "                dqacc_dq, dqacc_dv, dqacc_du, dtau_dq, dtau_dv, M (row-major, flattened)\n";
-
 void row_major(Json& json, const char* key, const Eigen::MatrixXd& m) {
   json.key(key).begin_array();
   for (Eigen::Index r = 0; r < m.rows(); ++r) {
@@ -54,11 +45,22 @@ void print_matrix(const char* title, const Eigen::MatrixXd& m) {
 
 }  // namespace
 
-int cmd_derivatives(const std::vector<std::string>& argv) {
-  const std::optional<Invocation> run =
-      begin("derivatives", argv, kUsage, kStateOptions, {"json"}, 1, "one MODEL");
-  if (!run) return kOk;
-  const auto& [args, path, model] = *run;
+void declare_derivatives(CLI::App& command) {
+  command.add_option("MODEL", "the model file (MJCF)")->type_name("FILE")->required();
+  add_state_options(command,
+                    {"start from keyframe NAME (its qpos, qvel, ctrl; the lists below override)",
+                     "joint positions, nq numbers (default: qpos0)",
+                     "joint velocities, nv numbers (default: zeros)",
+                     "actuator commands, nu numbers (default: zeros)"});
+  add_switch(command, "json",
+             "one JSON object: A, B (the step's Jacobians, mjd_transitionFD's layout),\n"
+             "dqacc_dq, dqacc_dv, dqacc_du, dtau_dq, dtau_dv, M (row-major, flattened)");
+  command.footer(
+      "Exit status: 0; 1 when the engine warned or a number came out non-finite; 2 for bad input.");
+}
+
+int cmd_derivatives(const Args& command_line) {
+  const auto [args, path, model] = begin("derivatives", command_line);
   Data data(model);
   Derivatives deriv(model);
   set_state_from_args(args, model, data);

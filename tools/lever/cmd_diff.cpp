@@ -17,7 +17,11 @@
 
 namespace lever::cli {
 
-int cmd_diff(const std::vector<std::string>&) {
+void declare_diff(CLI::App& command) {
+  command.allow_extras();  // whatever is asked, the answer is the one below
+}
+
+int cmd_diff(const Args&) {
   std::fprintf(stderr,
                "lever diff: this lever was built without MuJoCo 2.2.2, so there is nothing to "
                "compare with (install libmujoco-dev 2.2.2 and reconfigure)\n");
@@ -50,25 +54,6 @@ using diff::Report;
 
 constexpr double kTrajectorySeconds = 10.0;
 constexpr double kNudge = 1e-15;
-
-const char* kUsage =
-    "usage: lever diff MODEL... [--states N] [--seed S] [--path loader|engine|both]\n"
-    "                           [--trajectory] [--key NAME] [--json | --markdown]\n"
-    "  --states N     random states per model (default 1000)\n"
-    "  --seed S       seed of the random states (default: derived from the file name)\n"
-    "  --path P       loader: lever's own MJCF loader; engine: MuJoCo's compiled model copied\n"
-    "                 into lever; both (default)\n"
-    "  --trajectory   also 10 s lockstep trajectories (Euler, RK4, implicit) and a 10 s free\n"
-    "                 run, from the model's first keyframe (else from rest)\n"
-    "  --key NAME     the trajectories start from keyframe NAME instead (every MODEL must\n"
-    "                 have it; needs --trajectory or --markdown)\n"
-    "  --json         machine-readable output\n"
-    "  --markdown     the agreement document for all MODELs (implies --trajectory)\n"
-    "Each quantity is held to |lever - mujoco| <= 1e-12 max(1, |mujoco|), |mujoco| its largest\n"
-    "element in that state; its element-wise ratio is printed beside it, with MuJoCo's own floor\n"
-    "(MuJoCo against a copy of the model moved in space: same physics, other rounding).\n"
-    "Exit status: 0 every quantity within the bound; 1 some are not; 2 a model could not be\n"
-    "loaded, or has no keyframe NAME (nothing is compared then).\n";
 
 struct Options {
   std::vector<std::string> files;
@@ -107,14 +92,21 @@ struct ModelResult {
 
 // ---- options --------------------------------------------------------------------------------
 
-std::uint64_t parse_seed(const std::string& text) {
+// "" when text is a seed (a whole number >= 0), else why not.
+std::string seed_error(const std::string& text) {
   errno = 0;
   char* end = nullptr;
-  const unsigned long long x = std::strtoull(text.c_str(), &end, 10);
+  std::strtoull(text.c_str(), &end, 10);
   if (text.empty() || text[0] == '-' || end != text.c_str() + text.size() || errno == ERANGE) {
-    throw UsageError{"--seed: '" + text + "' is not a whole number >= 0"};
+    return "'" + text + "' is not a whole number >= 0";
   }
-  return x;
+  return "";
+}
+
+std::uint64_t parse_seed(const std::string& text) {
+  const std::string error = seed_error(text);
+  if (!error.empty()) throw UsageError{"--seed: " + error};
+  return std::strtoull(text.c_str(), nullptr, 10);
 }
 
 std::vector<Path> parse_paths(const std::string& text) {
@@ -124,13 +116,9 @@ std::vector<Path> parse_paths(const std::string& text) {
   throw UsageError{"--path: '" + text + "' is not one of loader, engine, both"};
 }
 
-Options parse_options(const std::vector<std::string>& argv) {
-  const Args args(argv, {"states", "seed", "path", "key"},
-                  {"trajectory", "json", "markdown", "help"});
+Options parse_options(const Args& args) {
   Options o;
-  if (args.has("help")) return o;
   o.files = args.positional();
-  if (o.files.empty()) throw UsageError{"no MODEL given\n" + std::string(kUsage)};
   const long states = args.get_long("states", o.states);
   if (states < 1 || states > 100000000) throw UsageError{"--states must be between 1 and 1e8"};
   o.states = static_cast<int>(states);
@@ -139,11 +127,9 @@ Options parse_options(const std::vector<std::string>& argv) {
   if (args.has("path")) o.paths = parse_paths(args.get("path"));
   o.json = args.has("json");
   o.markdown = args.has("markdown");
-  if (o.json && o.markdown) throw UsageError{"--json and --markdown exclude each other"};
   o.trajectory = args.has("trajectory") || o.markdown;
   if (args.has("key")) {
     o.key = args.get("key");
-    if (o.key.empty()) throw UsageError{"--key needs a keyframe's name"};
     if (!o.trajectory) {
       throw UsageError{"--key NAME sets where the trajectories start: add --trajectory"};
     }
@@ -666,12 +652,41 @@ void print_markdown(const std::vector<ModelResult>& results, const Options& o) {
 
 }  // namespace
 
-int cmd_diff(const std::vector<std::string>& argv) {
-  const Options o = parse_options(argv);
-  if (o.files.empty()) {
-    std::printf("%s", kUsage);
-    return kOk;
-  }
+void declare_diff(CLI::App& command) {
+  command.add_option("MODEL", "the model files (MJCF)")
+      ->type_name("FILE")
+      ->required()
+      ->expected(1, -1)  // one or more
+      ->allow_extra_args();
+  add_value(command, "states", "N", "random states per model (default 1000)")
+      ->check(whole_number_check());
+  add_value(command, "seed", "S", "seed of the random states (default: derived from the file name)")
+      ->check(CLI::Validator([](std::string& text) { return seed_error(text); }, ""));
+  add_value(command, "path", "P",
+            "loader: lever's own MJCF loader; engine: MuJoCo's compiled model copied\n"
+            "into lever; both (default)")
+      ->check(CLI::IsMember({"loader", "engine", "both"}));
+  add_switch(command, "trajectory",
+             "also 10 s lockstep trajectories (Euler, RK4, implicit) and a 10 s free\n"
+             "run, from the model's first keyframe (else from rest)");
+  add_value(command, "key", "NAME",
+            "the trajectories start from keyframe NAME instead (every MODEL must\n"
+            "have it; needs --trajectory or --markdown)")
+      ->check(not_empty_check());
+  add_switch(command, "json", "machine-readable output");
+  add_switch(command, "markdown", "the agreement document for all MODELs (implies --trajectory)")
+      ->excludes("--json");
+  command.footer(
+      "Each quantity is held to |lever - mujoco| <= 1e-12 max(1, |mujoco|), |mujoco| its largest\n"
+      "element in that state; its element-wise ratio is printed beside it, with MuJoCo's own "
+      "floor\n"
+      "(MuJoCo against a copy of the model moved in space: same physics, other rounding).\n"
+      "Exit status: 0 every quantity within the bound; 1 some are not; 2 a model could not be\n"
+      "loaded, or has no keyframe NAME (nothing is compared then).");
+}
+
+int cmd_diff(const Args& args) {
+  const Options o = parse_options(args);
   if (!keys_exist(o)) return kBadInput;
   std::vector<ModelResult> results;
   for (const std::string& file : o.files) {

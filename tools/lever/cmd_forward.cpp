@@ -18,7 +18,8 @@
 // and what the command adds:
 //   site_jacp  nsite x 3 x nv (mj_jacSite's jacp for each site, one after the other)
 //   site_jacr  nsite x 3 x nv
-// Numbers are printed with 17 significant digits, so they compare exactly.
+// Numbers are written in the shortest form that reads back as the same double (nlohmann-json),
+// so they compare exactly.
 // Without --json: readable tables with names and units (the contacts: geom names, dist, normal,
 // normal and friction force).
 // Exit 0; 1 when the evaluation raised an engine warning (a state that is NaN or beyond 1e10, an
@@ -39,15 +40,6 @@
 namespace lever::cli {
 
 namespace {
-
-const char* const kUsage =
-    "usage: lever forward MODEL [--key NAME] [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]\n"
-    "  --key NAME    start from keyframe NAME (its qpos, qvel, ctrl; the lists below override)\n"
-    "  --qpos LIST   joint positions, nq numbers (default: qpos0)\n"
-    "  --qvel LIST   joint velocities, nv numbers (default: zeros)\n"
-    "  --ctrl LIST   motor commands, nu numbers (default: zeros); clamped to ctrlrange as in "
-    "MuJoCo\n"
-    "  --json        one JSON object keyed by mjData's names (arrays flattened row-major)\n";
 
 // Everything forward() leaves in data, plus what the command adds: site Jacobians and energy.
 struct Evaluation {
@@ -227,11 +219,22 @@ void print_text(const std::string& path, const Model& model, const Data& data,
 
 }  // namespace
 
-int cmd_forward(const std::vector<std::string>& argv) {
-  const std::optional<Invocation> run =
-      begin("forward", argv, kUsage, kStateOptions, {"json"}, 1, "one MODEL");
-  if (!run) return kOk;
-  const auto& [args, path, model] = *run;
+void declare_forward(CLI::App& command) {
+  command.add_option("MODEL", "the model file (MJCF)")->type_name("FILE")->required();
+  add_state_options(
+      command, {"start from keyframe NAME (its qpos, qvel, ctrl; the lists below override)",
+                "joint positions, nq numbers (default: qpos0)",
+                "joint velocities, nv numbers (default: zeros)",
+                "motor commands, nu numbers (default: zeros); clamped to ctrlrange as in MuJoCo"});
+  add_switch(command, "json",
+             "one JSON object keyed by mjData's names (arrays flattened row-major)");
+  command.footer(
+      "Exit status: 0; 1 when the engine warned or a number came out non-finite (said on\n"
+      "standard error); 2 for bad input.");
+}
+
+int cmd_forward(const Args& command_line) {
+  const auto [args, path, model] = begin("forward", command_line);
   Data data(model);
   set_state_from_args(args, model, data);
   const Evaluation e = evaluate(model, data);

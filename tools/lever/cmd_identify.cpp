@@ -32,36 +32,42 @@
 
 namespace lever::cli {
 
-namespace {
+void declare_identify(CLI::App& command) {
+  command.add_option("PRIOR.xml", "the prior: the model whose parameters are identified")
+      ->type_name("FILE")
+      ->required();
+  command
+      .add_option("DATA.csv",
+                  "a trajectory in `lever simulate --csv`'s columns: time, qpos[j],\n"
+                  "qvel[j], and qacc[j] (else qvel's forward difference),\n"
+                  "actuator_force[m] (else ctrl[m] through the prior's actuators),\n"
+                  "qfrc_constraint[j]")
+      ->type_name("FILE")
+      ->required();
+  add_value(command, "identify-gain", "all|NAME,..",
+            "estimate these actuators' gains (gainprm[0]; `all`: every fixed\n"
+            "gain) from the ctrl columns; rows where their force may clamp\n"
+            "are dropped. Keep one gain known: the data fixes the scale only\n"
+            "through forces known in absolute terms")
+      ->check(not_empty_check());
+  add_value(command, "known-mass", "BODY=KG",
+            "the body's mass is known (its centre of mass and inertia per unit\n"
+            "mass are the prior's): pins the scale, so every gain can be\n"
+            "estimated; repeatable")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  add_value(command, "write-model", "OUT.xml",
+            "PRIOR.xml with the identified inertials, armature, damping, gains:\n"
+            "the physical model (every pseudo-inertia positive definite) that\n"
+            "fits the data, closest to the prior")
+      ->check(not_empty_check());
+  add_switch(command, "json", "one JSON object with every base parameter and the fit");
+  command.footer(
+      "Exit status: 0; 1 when a base parameter is not excited or the identified model is not\n"
+      "physical (then --write-model writes nothing); 2 for bad input.");
+}
 
-const char* const kUsage =
-    "usage: lever identify PRIOR.xml DATA.csv [--identify-gain all|NAME,..] [--known-mass "
-    "BODY=KG]...\n"
-    "                      [--write-model OUT.xml] [--json]\n"
-    "  DATA.csv               a trajectory in `lever simulate --csv`'s columns: time, qpos[j],\n"
-    "                         qvel[j], and qacc[j] (else qvel's forward difference), "
-    "actuator_force[m]\n"
-    "                         (else ctrl[m] through the prior's actuators), qfrc_constraint[j]\n"
-    "  --identify-gain A,B    estimate these actuators' gains (gainprm[0]; `all`: every fixed\n"
-    "                         gain) from the ctrl columns; rows where their force may clamp\n"
-    "                         are dropped. Keep one gain known: the data fixes the scale only\n"
-    "                         through forces known in absolute terms\n"
-    "  --known-mass BODY=KG   the body's mass is known (its centre of mass and inertia per unit\n"
-    "                         mass are the prior's): pins the scale, so every gain can be\n"
-    "                         estimated; repeatable\n"
-    "  --write-model OUT.xml  PRIOR.xml with the identified inertials, armature, damping, gains:\n"
-    "                         the physical model (every pseudo-inertia positive definite) that\n"
-    "                         fits the data, closest to the prior\n"
-    "  --json                 one JSON object with every base parameter and the fit\n";
-
-}  // namespace
-
-int cmd_identify(const std::vector<std::string>& argv) {
-  const std::optional<Invocation> run =
-      begin("identify", argv, kUsage, {"write-model", "identify-gain", "known-mass"}, {"json"}, 2,
-            "PRIOR.xml and DATA.csv");
-  if (!run) return kOk;
-  const auto& [args, prior_path, prior] = *run;
+int cmd_identify(const Args& command_line) {
+  const auto [args, prior_path, prior] = begin("identify", command_line);
   const std::string& data_path = args.positional()[1];
   const identify::Trajectory data = identify::read_csv(prior, data_path);
   identify::Options options;

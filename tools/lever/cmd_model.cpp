@@ -2,6 +2,7 @@
 //
 //   lever model MODEL [--json] [--infer-inertia]
 //   lever model --schema
+// (declare_model has the options and their help)
 //
 // Text: joints, motors, sites, bodies (mass, principal moments, explicit or inferred inertia)
 // and options, like section (1) of lesson 5.1. --json: one object keyed by mjModel's field names,
@@ -20,13 +21,6 @@
 namespace lever::cli {
 
 namespace {
-
-const char* const kUsage =
-    "usage: lever model MODEL [--json] [--infer-inertia]\n"
-    "       lever model --schema\n"
-    "  --json            one JSON object keyed by mjModel's field names\n"
-    "  --infer-inertia   ignore every <inertial>: masses and inertias from the geoms\n"
-    "  --schema          print the supported MJCF subset as Markdown\n";
 
 // ---- text ----------------------------------------------------------------------------------
 
@@ -174,17 +168,21 @@ void print_model_json(Json& json, const Model& m) {
 
 }  // namespace
 
-int cmd_model(const std::vector<std::string>& argv) {
-  const Args args(argv, {}, {"json", "infer-inertia", "schema", "help"});
-  if (args.has("help")) {
-    std::fputs(kUsage, stdout);
-    return kOk;
-  }
+void declare_model(CLI::App& command) {
+  command.add_option("MODEL", "the model file (MJCF); not with --schema")->type_name("FILE");
+  add_switch(command, "json", "one JSON object keyed by mjModel's field names");
+  add_switch(command, "infer-inertia",
+             "ignore every <inertial>: masses and inertias from the geoms");
+  add_switch(command, "schema", "print the supported MJCF subset as Markdown")->excludes("MODEL");
+  command.footer("Exit status: 0, or 2 when the model cannot be loaded.");
+}
+
+int cmd_model(const Args& args) {
   if (args.has("schema")) {
     std::fputs(mjcf::schema_markdown().c_str(), stdout);
     return kOk;
   }
-  if (args.positional().size() != 1) throw UsageError{std::string("expects one MODEL\n") + kUsage};
+  if (args.positional().size() != 1) throw UsageError{"expects one MODEL (or --schema)"};
   mjcf::LoadOptions options;
   options.infer_inertia_from_geoms = args.has("infer-inertia");
   const Model model = mjcf::load_file(args.positional()[0], options);

@@ -31,34 +31,6 @@ namespace lever::cli {
 
 namespace {
 
-const char* const kUsage =
-    "usage: lever simulate MODEL [--steps N | --duration T] [--key NAME] [--qpos ..] [--qvel ..]\n"
-    "                            [--ctrl .. | --torque ..] [--gravity-compensation]\n"
-    "                            [--excite F]\n"
-    "                            [--json] [--csv FILE] [--plot FILE.svg]\n"
-    "  --steps N               number of steps of the model's timestep\n"
-    "  --duration T            simulated time in s, rounded to whole steps (default: 1 s)\n"
-    "  --key NAME              start from keyframe NAME: its time, qpos, qvel and ctrl (the\n"
-    "                          lists below override them)\n"
-    "  --qpos LIST             start positions, nq numbers (default: qpos0)\n"
-    "  --qvel LIST             start velocities, nv numbers (default: zeros)\n"
-    "  --ctrl LIST             constant motor commands, nu numbers (default: zeros, or the\n"
-    "                          keyframe's with --key)\n"
-    "  --torque LIST           the same as --ctrl, under the name lesson 5.1's lab gives it\n"
-    "  --gravity-compensation  add qfrc_bias of the current state to every command (the lab's\n"
-    "                          gc switch): ctrl = torque + qfrc_bias[dof] / gear, every step\n"
-    "  --excite F              excitation for `lever identify`: each motor's joint tracks a sum\n"
-    "                          of three sines sweeping the fraction F of its range, PD-tracked\n"
-    "                          (added to the other commands)\n"
-    "  --json                  one JSON line per state (start, then after each step): time qpos\n"
-    "                          qvel qacc qfrc_bias qfrc_constraint ctrl actuator_force, ncon\n"
-    "                          and contact (each contact's geoms, dist, pos, frame, ... and\n"
-    "                          force in its frame, as lever forward --json)\n"
-    "  --csv FILE              the trajectory as CSV with a header row ('-': standard output)\n"
-    "  --plot FILE.svg         joint angles over time and the site trail in the x-z plane\n"
-    "Without --json, a short table of the run is printed. Steps whose command was clamped are\n"
-    "counted per motor and reported on stderr.\n";
-
 using lab::Controller;
 
 // One JSON line per state: time and the lab's readouts, by their names in the field table.
@@ -273,30 +245,54 @@ struct FileCloser {
 
 }  // namespace
 
-int cmd_simulate(const std::vector<std::string>& argv) {
-  std::vector<std::string> valued = kStateOptions;
-  valued.insert(valued.end(), {"steps", "duration", "torque", "excite", "csv", "plot"});
-  const std::optional<Invocation> run =
-      begin("simulate", argv, kUsage, valued, {"gravity-compensation", "json"}, 1, "one MODEL",
-            [](const Args& args) {
-              if (args.has("steps") && args.has("duration")) {
-                throw UsageError{"give --steps or --duration, not both"};
-              }
-              if (args.has("ctrl") && args.has("torque")) {
-                throw UsageError{"--torque is --ctrl under the lab's name: give one of them"};
-              }
-              if (args.has("json") && args.get("csv") == "-") {
-                throw UsageError{
-                    "--json and --csv - both write to standard output: give a file to --csv"};
-              }
-              for (const char* file : {"csv", "plot"}) {
-                if (args.has(file) && args.get(file).empty()) {
-                  throw UsageError{std::string("--") + file + " needs a file name"};
-                }
-              }
-            });
-  if (!run) return kOk;
-  const auto& [args, model_path, model] = *run;
+void declare_simulate(CLI::App& command) {
+  command.add_option("MODEL", "the model file (MJCF)")->type_name("FILE")->required();
+  add_value(command, "steps", "N", "number of steps of the model's timestep")
+      ->check(whole_number_check());
+  add_value(command, "duration", "T", "simulated time in s, rounded to whole steps (default: 1 s)")
+      ->check(number_check())
+      ->excludes("--steps");
+  add_state_options(command, {"start from keyframe NAME: its time, qpos, qvel and ctrl (the\n"
+                              "lists below override them)",
+                              "start positions, nq numbers (default: qpos0)",
+                              "start velocities, nv numbers (default: zeros)",
+                              "constant motor commands, nu numbers (default: zeros, or the\n"
+                              "keyframe's with --key)"});
+  add_value(command, "torque", "LIST",
+            "the same as --ctrl, under the name lesson 5.1's lab gives it")
+      ->check(number_list_check())
+      ->excludes("--ctrl");
+  add_switch(command, "gravity-compensation",
+             "add qfrc_bias of the current state to every command (the lab's\n"
+             "gc switch): ctrl = torque + qfrc_bias[dof] / gear, every step");
+  add_value(command, "excite", "F",
+            "excitation for `lever identify`: each motor's joint tracks a sum\n"
+            "of three sines sweeping the fraction F of its range, PD-tracked\n"
+            "(added to the other commands)")
+      ->check(number_check());
+  add_switch(command, "json",
+             "one JSON line per state (start, then after each step): time qpos\n"
+             "qvel qacc qfrc_bias qfrc_constraint ctrl actuator_force, ncon\n"
+             "and contact (each contact's geoms, dist, pos, frame, ... and\n"
+             "force in its frame, as lever forward --json)");
+  add_value(command, "csv", "FILE",
+            "the trajectory as CSV with a header row ('-': standard output)")
+      ->check(not_empty_check());
+  add_value(command, "plot", "FILE.svg",
+            "joint angles over time and the site trail in the x-z plane")
+      ->check(not_empty_check());
+  command.footer(
+      "Without --json, a short table of the run is printed. Steps whose command was clamped are\n"
+      "counted per motor and reported on stderr.\n"
+      "Exit status: 0; 1 when the engine warned or a number came out non-finite; 2 for bad input.");
+}
+
+int cmd_simulate(const Args& command_line) {
+  const auto [args, model_path, model] = begin("simulate", command_line, [](const Args& given) {
+    if (given.has("json") && given.get("csv") == "-") {
+      throw UsageError{"--json and --csv - both write to standard output: give a file to --csv"};
+    }
+  });
   Data data(model);
   set_state_from_args(args, model, data);  // --qpos, --qvel (and --ctrl, replaced below)
 
