@@ -269,9 +269,22 @@ void size_data_arrays(const Model& model, Data& data) {
 }
 }  // namespace detail
 
+// every name of LEVER_MODEL_CONSTANTS is a member of Model (a misspelt one would match nothing)
+#define LEVER_CHECK_CONSTANT(name) static_assert(sizeof(Model::name) > 0);
+LEVER_MODEL_CONSTANTS(LEVER_CHECK_CONSTANT)
+#undef LEVER_CHECK_CONSTANT
+
+bool computed_by_set_const(std::string_view model_field) {
+#define LEVER_MODEL_CONSTANT(name) \
+  if (model_field == #name) return true;
+  LEVER_MODEL_CONSTANTS(LEVER_MODEL_CONSTANT)
+#undef LEVER_MODEL_CONSTANT
+  return false;
+}
+
 void check_model_sizes(const Model& model) {
 #define LEVER_MODEL_SIZE(name, type, rows, cols, origin)                                       \
-  {                                                                                            \
+  if (!computed_by_set_const(#name)) {                                                         \
     const int n = size_of(model, token::rows);                                                 \
     const long expected = static_cast<long>(n) * resolve_cols(cols, n);                        \
     const long actual = Layout<decltype(Model::name)>::entries(model.name);                    \

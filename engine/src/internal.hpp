@@ -91,6 +91,11 @@ void acceleration_stage(const Model& model, Data& data);
 void check_argument_size(long size, long n, const char* where, const char* what);
 
 namespace detail {
+/// The model evaluated once at qpos0, at rest and without control, into data (model_check.cpp):
+/// throws ModelError naming the object whose numbers overflow (set_const's last step, once the
+/// constants are computed).
+void check_at_qpos0(const Model& model, Data& data);
+
 /// Size every array of the field table in data for the model, zero-filled (the Data constructor).
 void size_data_arrays(const Model& model, Data& data);
 

@@ -34,7 +34,8 @@ class Layout {
     for (int b = 0; b < bodies; ++b) {
       if (!p.body_free[static_cast<std::size_t>(b)]) continue;
       free_.push_back(b);
-      Matrix4 J0 = pseudo_inertia(p.prior.segment<kPerBody>(kPerBody * b));
+      Matrix4 J0 = RigidInertia::from_parameters(p.prior.segment<kPerBody>(kPerBody * b))
+                       .to_pseudo_inertia();
       // a prior at the edge of the rigid bodies (a thin rod: Sigma singular) is moved inside by
       // a hair, so that the distance from it is finite and it has log-Cholesky coordinates
       const double floor = 1e-9 * J0.trace();

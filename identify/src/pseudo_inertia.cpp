@@ -47,25 +47,6 @@ Matrix4 pseudo_inertia_derivative(const LogCholesky& theta, const Matrix4& U, in
 
 }  // namespace
 
-Matrix4 pseudo_inertia(const InertialParameters& pi) {
-  Eigen::Matrix3d I;
-  I << pi[4], pi[7], pi[8], pi[7], pi[5], pi[9], pi[8], pi[9], pi[6];
-  Matrix4 J;
-  J.topLeftCorner<3, 3>() = 0.5 * I.trace() * Eigen::Matrix3d::Identity() - I;
-  J.topRightCorner<3, 1>() = pi.segment<3>(1);
-  J.bottomLeftCorner<1, 3>() = pi.segment<3>(1).transpose();
-  J(3, 3) = pi[0];
-  return J;
-}
-
-InertialParameters parameters_of(const Matrix4& J) {
-  const Eigen::Matrix3d sigma = J.topLeftCorner<3, 3>();
-  const Eigen::Matrix3d I = sigma.trace() * Eigen::Matrix3d::Identity() - sigma;
-  InertialParameters pi;
-  pi << J(3, 3), J(0, 3), J(1, 3), J(2, 3), I(0, 0), I(1, 1), I(2, 2), I(0, 1), I(0, 2), I(1, 2);
-  return pi;
-}
-
 Matrix4 upper_factor(const LogCholesky& theta) {
   Matrix4 U = Matrix4::Zero();
   for (int i = 0; i < 3; ++i) U(i, i) = std::exp(theta[1 + i]);
@@ -91,10 +72,11 @@ InertialParameters parameters_of(const LogCholesky& theta, Jacobian10* jacobian)
   const Matrix4 U = upper_factor(theta);
   if (jacobian != nullptr) {
     for (int k = 0; k < 10; ++k) {
-      jacobian->col(k) = parameters_of(pseudo_inertia_derivative(theta, U, k));
+      jacobian->col(k) =
+          RigidInertia::from_pseudo_inertia(pseudo_inertia_derivative(theta, U, k)).to_parameters();
     }
   }
-  return parameters_of(Matrix4(U * U.transpose()));
+  return RigidInertia::from_pseudo_inertia(U * U.transpose()).to_parameters();
 }
 
 GeodesicResidual::GeodesicResidual(const Matrix4& J0)

@@ -1,11 +1,10 @@
-// A body's ten inertial parameters as a pseudo-inertia, and the log-Cholesky coordinates that keep
-// it positive definite. Internal to identification; these conversions belong on the engine's
-// rigid-body inertia type (as Pinocchio's Inertia::toDynamicParameters) once the engine's spatial
-// types settle.
+// The physical fit's coordinates for one body: log-Cholesky factors of its pseudo-inertia, which
+// keep it positive definite, and the geodesic distance between pseudo-inertias. Internal to
+// identification; the conversions between a body's parameters and its pseudo-inertia are the
+// engine's (RigidInertia::to_pseudo_inertia / from_pseudo_inertia, lever/spatial.hpp).
 //
 // The pseudo-inertia (Wensing, Kim and Slotine 2017) of a body with parameters
-// pi = [m, h = m c, I about the frame origin] is the 4x4 second moment of its mass distribution,
-//   J = [Sigma h; h^T m],  Sigma = integral of x x^T dm = tr(I)/2 1 - I,
+// pi = [m, h = m c, I about the frame origin] is J = [Sigma h; h^T m], Sigma = tr(I)/2 1 - I,
 // and pi belongs to a rigid body (some nonnegative mass distribution) exactly when J is positive
 // semidefinite: m >= 0, and the principal moments about the centre of mass positive and within
 // the triangle inequality, which is Sigma - h h^T / m >= 0.
@@ -18,19 +17,13 @@
 
 #include <Eigen/Core>
 
-#include <lever/regressor.hpp>
+#include <lever/spatial.hpp>
 
 namespace lever::identify::detail {
 
 using Matrix4 = Eigen::Matrix4d;
 using LogCholesky = Eigen::Matrix<double, 10, 1>;
 using Jacobian10 = Eigen::Matrix<double, 10, 10>;
-
-/// J of pi (linear).
-Matrix4 pseudo_inertia(const InertialParameters& pi);
-
-/// pi of J (linear; the inverse of pseudo_inertia).
-InertialParameters parameters_of(const Matrix4& J);
 
 /// U of theta.
 Matrix4 upper_factor(const LogCholesky& theta);

@@ -1,7 +1,7 @@
-// identify's pseudo-inertia and log-Cholesky coordinates (identify/src/pseudo_inertia.hpp): the
-// conversions round-trip, J is positive semidefinite exactly for a rigid body, the Jacobians
-// equal central differences, and the geodesic distance is what its definition says and does not
-// depend on the body frame.
+// identify's log-Cholesky coordinates of the pseudo-inertia (identify/src/pseudo_inertia.hpp): the
+// conversions round-trip, the Jacobians equal central differences, and the geodesic distance is
+// what its definition says and does not depend on the body frame. (The pseudo-inertia itself is
+// the engine's, RigidInertia::to_pseudo_inertia: tests/unit/inertia_test.cpp.)
 #include <catch2/catch.hpp>
 
 #include <lever/lever.hpp>
@@ -36,17 +36,12 @@ LogCholesky random_theta(std::mt19937_64& rng) {
 
 }  // namespace
 
-TEST_CASE("pseudo-inertia: the conversions of every body of panda7 round-trip", "[identify]") {
+TEST_CASE("log-Cholesky: every body of panda7 round-trips", "[identify]") {
   const Model panda = mjcf::load_file(model_path("models/panda7.xml"));
   for (int b = 1; b < panda.nbody; ++b) {
     INFO(panda.body_name[b]);
     const InertialParameters pi = body_parameters(panda, b);
-    const Matrix4 J = identify::detail::pseudo_inertia(pi);
-    // J's last column is [m c; m], its block the second moment: tr(Sigma) = tr(I) / 2
-    CHECK(J(3, 3) == pi[0]);
-    CHECK(J.topLeftCorner<3, 3>().trace() == Approx(0.5 * (pi[4] + pi[5] + pi[6])).epsilon(1e-14));
-    CHECK((identify::detail::parameters_of(J) - pi).cwiseAbs().maxCoeff() <=
-          1e-15 * pi.cwiseAbs().maxCoeff());
+    const Matrix4 J = RigidInertia::from_parameters(pi).to_pseudo_inertia();
     // a real body's J is positive definite, and its log-Cholesky coordinates give it back
     CHECK(Eigen::SelfAdjointEigenSolver<Matrix4>(J).eigenvalues()[0] > 0);
     const LogCholesky theta = identify::detail::log_cholesky_of(J);
@@ -54,25 +49,6 @@ TEST_CASE("pseudo-inertia: the conversions of every body of panda7 round-trip", 
     CHECK((back - pi).cwiseAbs().maxCoeff() <= 1e-13 * pi.cwiseAbs().maxCoeff());
     CHECK(std::exp(2 * theta[0]) == Approx(pi[0]).epsilon(1e-14));  // m = e^(2 alpha)
   }
-}
-
-TEST_CASE("pseudo-inertia: positive semidefinite exactly for a rigid body", "[identify]") {
-  // principal moments (1, 1, 2) are a flat disc's (the triangle inequality with equality):
-  // J is singular, and one moment less breaks it
-  MjcfInertial disc;
-  disc.mass = 2.0;
-  disc.pos << 0.1, -0.2, 0.3;
-  disc.diaginertia << 1.0, 1.0, 2.0;
-  const auto smallest = [](const MjcfInertial& i) {
-    return Eigen::SelfAdjointEigenSolver<Matrix4>(
-               identify::detail::pseudo_inertia(to_parameters(i)))
-        .eigenvalues()[0];
-  };
-  CHECK(std::abs(smallest(disc)) <= 1e-14);
-  disc.diaginertia[2] = 2.01;  // A + B < C: no body has these moments
-  CHECK(smallest(disc) < -1e-4);
-  disc.diaginertia[2] = 1.99;
-  CHECK(smallest(disc) > 1e-4);
 }
 
 TEST_CASE(

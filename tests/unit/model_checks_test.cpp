@@ -1,4 +1,5 @@
-// set_const() refuses parameters that are not a physical model, with a sentence saying which.
+// set_const() refuses parameters that are not a physical model, with a sentence saying which:
+// validate() (lever/model_check.hpp), which it runs before computing anything.
 #include <catch2/catch.hpp>
 
 #include <lever/lever.hpp>
@@ -33,7 +34,7 @@ TEST_CASE("set_const refuses non-physical or inconsistent parameters", "[model]"
       {"negative mass", [](lever::Model& m) { m.body_mass[2] = -1; }, "mass"},
       {"negative inertia", [](lever::Model& m) { m.body_inertia[1].x() = -1e-4; }, "inertia"},
       {"zero body quaternion", [](lever::Model& m) { m.body_quat[1].setZero(); }, "quaternion"},
-      {"NaN body position", [nan](lever::Model& m) { m.body_pos[2].y() = nan; }, "position"},
+      {"NaN body position", [nan](lever::Model& m) { m.body_pos[2].y() = nan; }, "body_pos"},
       {"negative damping", [](lever::Model& m) { m.dof_damping[0] = -0.1; }, "damping"},
       {"negative armature", [](lever::Model& m) { m.dof_armature[1] = -0.1; }, "armature"},
       {"negative stiffness", [](lever::Model& m) { m.jnt_stiffness[0] = -1; }, "stiffness"},
@@ -42,7 +43,7 @@ TEST_CASE("set_const refuses non-physical or inconsistent parameters", "[model]"
          m.jnt_range[0] = {1.0, -1.0};
        },
        "range"},
-      {"NaN solref", [nan](lever::Model& m) { m.jnt_solref[1][0] = nan; }, "limit parameters"},
+      {"NaN solref", [nan](lever::Model& m) { m.jnt_solref[1][0] = nan; }, "jnt_solref"},
       {"reversed ctrlrange",
        [](lever::Model& m) {
          m.actuator_ctrlrange[0] = {5, -5};
@@ -58,6 +59,16 @@ TEST_CASE("set_const refuses non-physical or inconsistent parameters", "[model]"
       {"qpos0 too short", [](lever::Model& m) { m.qpos0.resize(1); }, "qpos0"},
       {"motor on no joint", [](lever::Model& m) { m.actuator_trnid[0] = 7; }, "names no joint"},
       {"array too short", [](lever::Model& m) { m.dof_damping.pop_back(); }, "dof_damping"},
+      {"root id not the world child", [](lever::Model& m) { m.body_rootid[2] = 2; }, "body_rootid"},
+      {"NaN geom size", [nan](lever::Model& m) { m.geom_size[0][0] = nan; }, "geom_size"},
+      {"zero geom quaternion", [](lever::Model& m) { m.geom_quat[0].setZero(); }, "quaternion"},
+      {"NaN qpos0", [nan](lever::Model& m) { m.qpos0[1] = nan; }, "qpos0"},
+      {"reversed forcerange",
+       [](lever::Model& m) {
+         m.actuator_forcelimited[0] = 1;
+         m.actuator_forcerange[0] = {1, -1};
+       },
+       "forcerange"},
   };
   const lever::Model good = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));
   for (const Case& c : cases) {
@@ -80,4 +91,70 @@ TEST_CASE("set_const recomputes the constants after a mass changes, as mj_setCon
   lever::set_const(model);
   CHECK(model.dof_invweight0[0] < before);  // a heavier arm is harder to accelerate
   CHECK(model.body_subtreemass[1] == model.body_mass[1] + model.body_mass[2]);
+}
+
+TEST_CASE("validate names the object at fault, so that a loader can point at its element",
+          "[model]") {
+  const lever::Model good = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));
+  CHECK_NOTHROW(lever::validate(good));
+  struct Located {
+    const char* what;
+    std::function<void(lever::Model&)> edit;
+    const char* object;
+    int index;
+    const char* phrase;
+  };
+  const Located cases[] = {
+      // a dof's array belongs to the dof's joint; a qpos entry's to the joint that has it
+      {"negative damping of dof 1", [](lever::Model& m) { m.dof_damping[1] = -0.1; }, "joint", 1,
+       "joint 'elbow' has a negative dof_damping -0.1"},
+      {"infinite qpos0 of joint 0",
+       [](lever::Model& m) { m.qpos0[0] = std::numeric_limits<double>::infinity(); }, "joint", 0,
+       "non-finite qpos0"},
+      {"negative mass of link 2", [](lever::Model& m) { m.body_mass[2] = -1; }, "body", 2,
+       "negative body_mass"},
+      {"reversed ctrlrange",
+       [](lever::Model& m) {
+         m.actuator_ctrlrange[1] = {5, -5};
+       },
+       "actuator", 1, "actuator_ctrlrange (5, -5)"},
+  };
+  for (const Located& c : cases) {
+    INFO(c.what);
+    lever::Model model = good;
+    c.edit(model);
+    const lever::Model edited = model;
+    try {
+      lever::validate(model);
+      FAIL("validate accepted it");
+    } catch (const lever::ModelError& e) {
+      CHECK(e.object() == c.object);
+      CHECK(e.index() == c.index);
+      CHECK_THAT(e.what(), Catch::Matchers::Contains(c.phrase));
+    }
+    CHECK(model.body_mass == edited.body_mass);  // validate changes nothing
+  }
+}
+
+TEST_CASE("set_const leaves body_rootid as the compiler recorded it", "[model]") {
+  lever::Model model = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));
+  // arm2: the world, then link1 under it and link2 under link1: both hang from link1
+  CHECK(model.body_rootid == std::vector<int>{0, 1, 1});
+  lever::set_const(model);
+  CHECK(model.body_rootid == std::vector<int>{0, 1, 1});
+}
+
+TEST_CASE("a model built by hand need not size what set_const computes", "[model]") {
+  lever::Model model = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));
+  const lever::Model loaded = model;
+  model.body_subtreemass.clear();
+  model.body_invweight0.clear();
+  model.dof_invweight0.clear();
+  model.dof_M0.clear();
+  CHECK_NOTHROW(lever::validate(model));
+  lever::set_const(model);
+  CHECK(model.body_subtreemass == loaded.body_subtreemass);
+  CHECK(model.dof_invweight0 == loaded.dof_invweight0);
+  CHECK(model.dof_M0 == loaded.dof_M0);
+  CHECK(model.body_invweight0 == loaded.body_invweight0);
 }

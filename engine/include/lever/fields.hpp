@@ -113,6 +113,11 @@
   X(pair_friction, double, npair, 5, mujoco) \
   X(exclude_signature, int, nexclude, 1, mujoco)
 
+// The Model arrays set_const computes from the others (MuJoCo's mj_setConst's constants). It sizes
+// and fills them; every other Model array is a parameter, sized and filled by whoever builds the
+// model (lever::mjcf's compiler, or by hand), and checked by validate() (lever/model_check.hpp).
+#define LEVER_MODEL_CONSTANTS(X) X(body_subtreemass) X(body_invweight0) X(dof_invweight0) X(dof_M0)
+
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
 // or `inverse` (written by inverse() only) or `energy` (by compute_energy() only)
 #define LEVER_DATA_FIELDS(X)                                   \
@@ -238,8 +243,11 @@ std::vector<FieldView> data_fields(const Model& model, const Data& data);
 FieldView model_field(const Model& model, std::string_view name);
 FieldView data_field(const Model& model, const Data& data, std::string_view name);
 
-/// Whether every array of the model has the size the table gives it (and the model's own
-/// counts agree with each other); throws ModelError naming the first array that does not.
+/// Whether set_const computes this Model array (LEVER_MODEL_CONSTANTS).
+bool computed_by_set_const(std::string_view model_field);
+
+/// Whether every array of the model but those set_const computes has the size the table gives
+/// it; throws ModelError naming the first array that does not.
 void check_model_sizes(const Model& model);
 
 /// Throws StateError unless `data` was built for a model of this model's sizes and none of its

@@ -12,6 +12,8 @@
 #include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
 #include <lever/model.hpp>
+#include <lever/model_check.hpp>
+#include <lever/parameters.hpp>
 #include <lever/regressor.hpp>
 #include <lever/spatial.hpp>
 #include <lever/version.hpp>

@@ -1,5 +1,7 @@
-// lever/regressor.hpp: the inertial-parameter regressor, tau = Y(q, qvel, qacc) pi, and the base
-// (identifiable) parameters of a model.
+// lever/regressor.hpp: the inertial-parameter regressor, tau = Y(q, qvel, qacc) pi
+// (engine/src/regressor.cpp), and the base (identifiable) parameters of a model, the regressor's
+// column space (engine/src/base_parameters.cpp). pi, its layout and names, and reading and writing
+// it in a model: lever/parameters.hpp; one body's conversions: RigidInertia (lever/spatial.hpp).
 //
 // Inverse dynamics is linear in each body's ten inertial parameters when they are written in the
 // body's own frame (Atkeson, An and Hollerbach 1986; Khalil and Dombre's "standard parameters"):
@@ -23,74 +25,9 @@
 
 #include <lever/data.hpp>
 #include <lever/model.hpp>
+#include <lever/parameters.hpp>
 
 namespace lever {
-
-/// One body's ten inertial parameters, [m, m c (3), I about the origin (xx, yy, zz, xy, xz, yz)],
-/// in the body frame.
-using InertialParameters = Eigen::Matrix<double, 10, 1>;
-
-/// What MJCF's <inertial> says: mass, centre of mass (pos), principal axes (quat, w x y z) and the
-/// principal moments (diaginertia), all in the body frame (Model's body_mass, body_ipos,
-/// body_iquat, body_inertia).
-struct MjcfInertial {
-  double mass = 0.0;
-  Eigen::Vector3d pos = Eigen::Vector3d::Zero();
-  Eigen::Vector4d quat{1, 0, 0, 0};
-  Eigen::Vector3d diaginertia = Eigen::Vector3d::Zero();
-};
-
-/// pi of an <inertial>: the parallel-axis theorem moves the inertia to the body origin.
-InertialParameters to_parameters(const MjcfInertial& inertial);
-
-/// The <inertial> of pi: centre of mass h / m, inertia about it, its principal axes and moments
-/// (moments in increasing order, quat a proper rotation). Throws ModelError if pi is not
-/// physically consistent: m > 0, principal moments > 0, each at most the sum of the other two.
-MjcfInertial to_inertial(const InertialParameters& pi);
-
-/// The parameters of body b in a model.
-InertialParameters body_parameters(const Model& model, int body);
-
-/// Write pi into body b of a model (body_mass, body_ipos, body_iquat, body_inertia); call
-/// set_const(model) afterwards. Throws as to_inertial.
-void set_body_parameters(Model& model, int body, const InertialParameters& pi);
-
-/// The actuators that have a gain column, in order: those whose gain is fixed
-/// (GainType::kFixed: force = gainprm[0] ctrl + bias, linear in gainprm[0]). An affine gain is
-/// not given one (its slopes in length and velocity would have to scale with it).
-std::vector<int> gain_actuators(const Model& model);
-
-/// Which bias entry a servo's gain carries along: 1 for a position servo (biastype affine,
-/// biasprm[1] == -gainprm[0] != 0: force = kp (ctrl - length) + ...), else 2 for a velocity servo
-/// (biasprm[1] == 0, biasprm[2] == -gainprm[0] != 0), else 0 (a motor, or a general actuator
-/// whose bias does not follow its gain). A tied entry is identified and written with the gain.
-int gain_tied_bias(const Model& model, int actuator);
-
-/// The force of a fixed-gain actuator per unit gain at a joint position and velocity: ctrl
-/// (clamped to ctrlrange) minus the tied length (gear q) or velocity (gear qvel). Its force before
-/// the forcerange clamp is gainprm[0] * basis + actuator_gain_free_force.
-double actuator_gain_basis(const Model& model, int actuator, double ctrl, double qpos, double qvel);
-
-/// The part of a fixed-gain actuator's force (before the forcerange clamp) that does not scale
-/// with the gain: its bias without the tied entry.
-double actuator_gain_free_force(const Model& model, int actuator, double qpos, double qvel);
-
-/// Columns of the regressor: 10 per body (bodies 1..nbody-1, in order), then nv armature, then nv
-/// damping columns, then one per gain_actuators(model).
-int regressor_columns(const Model& model);
-
-/// A name per column: "link1.m", "link1.mx", ..., "link1.Iyz", "shoulder.armature",
-/// "shoulder.damping", "shoulder.gain" (a body, joint or actuator without a name is called
-/// body<i> / dof<i> / actuator<i>; a gain column is named after its actuator).
-std::vector<std::string> regressor_names(const Model& model);
-
-/// The model's own parameter vector pi (regressor_columns(model) values; gains are gainprm[0]).
-Eigen::VectorXd model_parameters(const Model& model);
-
-/// Write a parameter vector back into a model (inertials, dof_armature, dof_damping, each gain
-/// actuator's gainprm[0] and its tied bias entry as -gain) and call set_const. Throws ModelError
-/// (naming the body) if a body's parameters are not physical, or if a gain is not finite.
-void set_model_parameters(Model& model, const Eigen::Ref<const Eigen::VectorXd>& pi);
 
 /// Y (nv x regressor_columns) at data.qpos, data.qvel, data.ctrl and the given qacc:
 /// Y pi = rnea(qacc) + dof_damping * qvel - sum_a gear_a gainprm_a[0] actuator_gain_basis_a

@@ -50,6 +50,25 @@ inline Eigen::Vector3d cross(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
                          a[0] * b[1] - a[1] * b[0]);
 }
 
+// ---- inertial parameters: the forms of a body's inertia besides the spatial one (issue 20) ------
+// RigidInertia converts to and from each (its members at the end of the struct, defined in
+// engine/src/inertia.cpp), as Pinocchio's Inertia::toDynamicParameters / FromDynamicParameters.
+
+/// The ten inertial parameters of a body about a frame, in that frame (Atkeson, An and Hollerbach
+/// 1986): [m, h = m c (3), I about the origin (xx, yy, zz, xy, xz, yz)]. Inverse dynamics is linear
+/// in them (the regressor's columns, lever/regressor.hpp), and those of two bodies add.
+using InertialParameters = Eigen::Matrix<double, 10, 1>;
+
+/// A body's inertia as MJCF's <inertial> gives it, and Model's body_mass, body_ipos, body_iquat,
+/// body_inertia hold it: mass, centre of mass (pos), principal axes (quat, w x y z: the principal
+/// frame in this frame) and the principal moments about the centre of mass (diaginertia).
+struct PrincipalInertia {
+  double mass = 0.0;
+  Eigen::Vector3d pos = Eigen::Vector3d::Zero();
+  Eigen::Vector4d quat{1, 0, 0, 0};
+  Eigen::Vector3d diaginertia = Eigen::Vector3d::Zero();
+};
+
 /// Spatial inertia of a rigid body (or of a rigid assembly) about a frame's origin, in that frame
 /// (Featherstone eq. 2.63): mass m, first moment h = m c, rotational inertia I about the origin.
 struct RigidInertia {
@@ -102,6 +121,28 @@ struct RigidInertia {
     M << I, hx, hx.transpose(), m * Eigen::Matrix3d::Identity();
     return M;
   }
+
+  // ---- inertial parameters (engine/src/inertia.cpp) ----
+
+  /// The ten parameters [m, h, Ixx, Iyy, Izz, Ixy, Ixz, Iyz].
+  InertialParameters to_parameters() const;
+  /// The inertia of ten parameters: any ten numbers (linear; not checked to be a rigid body's).
+  static RigidInertia from_parameters(const InertialParameters& pi);
+
+  /// An <inertial> moved to the frame's origin (quat normalised; the parallel-axis theorem).
+  static RigidInertia from_principal(const PrincipalInertia& principal);
+  /// The <inertial> of this inertia: centre of mass h / m, its principal axes (a proper rotation)
+  /// and moments (increasing). Throws ModelError unless it is a rigid body's: m > 0 and finite,
+  /// principal moments > 0, each at most the sum of the other two (to 1e-12 of the largest).
+  PrincipalInertia to_principal() const;
+
+  /// The pseudo-inertia (Wensing, Kim and Slotine 2017), the 4x4 second moment of the mass
+  /// distribution, J = [Sigma h; h^T m] with Sigma = integral of x x^T dm = tr(I)/2 1 - I. Linear
+  /// in the parameters; positive semidefinite exactly when they are a rigid body's (some
+  /// nonnegative mass distribution has them).
+  Eigen::Matrix4d to_pseudo_inertia() const;
+  /// The inertia of a pseudo-inertia (linear; the inverse of to_pseudo_inertia, J symmetric).
+  static RigidInertia from_pseudo_inertia(const Eigen::Matrix4d& J);
 };
 
 /// v x m: the derivative of motion vector m moving with velocity v (Featherstone eq. 2.31).
@@ -140,12 +181,15 @@ inline Quat quat_mul(const Quat& a, const Quat& b) {
 /// quat_mul's to the bit.
 inline Quat quat_mul_axis(const Quat& q, int k, double c, double s) {
   switch (k) {
-    case 0: return Quat(q[0] * c - q[1] * s, q[0] * s + q[1] * c, q[2] * c + q[3] * s,
-                        -(q[2] * s) + q[3] * c);
-    case 1: return Quat(q[0] * c - q[2] * s, q[1] * c - q[3] * s, q[0] * s + q[2] * c,
-                        q[1] * s + q[3] * c);
-    default: return Quat(q[0] * c - q[3] * s, q[1] * c + q[2] * s, -(q[1] * s) + q[2] * c,
-                         q[0] * s + q[3] * c);
+    case 0:
+      return Quat(q[0] * c - q[1] * s, q[0] * s + q[1] * c, q[2] * c + q[3] * s,
+                  -(q[2] * s) + q[3] * c);
+    case 1:
+      return Quat(q[0] * c - q[2] * s, q[1] * c - q[3] * s, q[0] * s + q[2] * c,
+                  q[1] * s + q[3] * c);
+    default:
+      return Quat(q[0] * c - q[3] * s, q[1] * c + q[2] * s, -(q[1] * s) + q[2] * c,
+                  q[0] * s + q[3] * c);
   }
 }
 
