@@ -20,6 +20,14 @@
 //   d tau_i / d q_j  = S_i . (IC Psi_ddot_j + CC Sdot_j)       + [i strictly above j] S_i . (S_j x*
 //   F) d tau_i / d qd_j = S_i . (2 IC Sdot_j + CC S_j)
 // (IC, CC, F of b(d)); pairs on different branches are zero.
+//
+// Ball and free joints, in qpos's tangent space (q -> q exp(dq)): a ball's dq_j turns its body
+// about S_j, and with it all three of the ball's axes, so for i above j within one segment (a
+// ball's dofs, a free joint's rotations or its translations) the S_j x* F term is cancelled too;
+// Psi_ddot_j uses the acceleration before the segment, and d / d qd_j's 2 Sdot_j becomes
+// Sdot_j + v' x S_j, v' the velocity after the segment. The step's position update
+// qpos (+) h w contributes exp(-h [w]) and SO(3)'s right Jacobian Jr(h w) on a turn's rows, and a
+// ball's spring -k log(ref^-1 q) the inverse right Jacobian. docs/derivatives.md derives each.
 #include <lever/derivatives.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
@@ -40,20 +48,96 @@ namespace {
 constexpr double kMinVal = 1e-15;  // MuJoCo's mjMINVAL, the floor of a limit row's R
 
 void check_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
-  // the tangent-space layout of quaternion coordinates (mjd_transitionFD's) is not written yet
-  if (model.nq != model.nv) {
-    throw ModelError("derivatives: the model has ball or free joints (nq = " +
-                     std::to_string(model.nq) + ", nv = " + std::to_string(model.nv) +
-                     "); lever's analytic derivatives cover hinge and slide joints so far.");
-  }
   if (model.contacts_possible) {
     throw ModelError(
         "derivatives: the model can make contacts; lever's analytic derivatives cover joint limits "
         "so far (set contype and conaffinity to 0 where contacts are not wanted).");
   }
-  if (data.nv != model.nv || data.nu != model.nu || deriv.nv != model.nv || deriv.nu != model.nu) {
+  // a ball's dofs turn about its body's final axes (MuJoCo's cdof): a joint after it in the same
+  // body would turn them too, a case the derivation below leaves out (docs/derivatives.md)
+  for (int j = 0; model.nq != model.nv && j < model.njnt; ++j) {
+    const int b = model.jnt_bodyid[j];
+    if (model.jnt_kind[j] == JointKind::kBall && model.body_jntnum[b] > 1) {
+      throw ModelError("derivatives: ball joint '" + model.jnt_name[j] +
+                       "' shares its body with other joints; lever's analytic derivatives cover a "
+                       "ball joint alone in its body so far.");
+    }
+  }
+  if (data.nv != model.nv || data.nu != model.nu || deriv.nv != model.nv || deriv.nu != model.nu ||
+      static_cast<int>(deriv.work.qpos0.size()) != model.nq) {
     throw StateError("derivatives: Data or Derivatives was built for another model (nv " +
                      std::to_string(model.nv) + ", nu " + std::to_string(model.nu) + ").");
+  }
+}
+
+// ---- ball and free joints in tangent space ------------------------------------------------------
+// A tangent coordinate of a ball (or of a free joint's rotation) turns the body about its own axes:
+// qpos' = qpos exp(dq) (integrate_pos). SO(3)'s exponential and its right Jacobian Jr, with
+// exp(phi + d) = exp(phi) exp(Jr(phi) d), and Jr's inverse, for phi = theta u.
+
+// The first dof of each rotation block: a ball's three dofs, a free joint's last three; -1 when
+// the joint has none.
+int rotation_block(const Model& model, int j) {
+  switch (model.jnt_kind[j]) {
+    case JointKind::kBall: return model.jnt_dofadr[j];
+    case JointKind::kFree: return model.jnt_dofadr[j] + 3;
+    default: return -1;
+  }
+}
+
+// exp([phi]): the rotation by the rotation vector phi (Rodrigues).
+Eigen::Matrix3d rotation_of(const Eigen::Vector3d& phi) {
+  const double theta = phi.norm();
+  const Eigen::Matrix3d K = skew(phi);
+  // sin(t) / t and (1 - cos(t)) / t^2, by their series below 1e-4 (error below 1e-17)
+  const double a = theta < 1e-4 ? 1 - theta * theta / 6 : std::sin(theta) / theta;
+  const double b =
+      theta < 1e-4 ? 0.5 - theta * theta / 24 : (1 - std::cos(theta)) / (theta * theta);
+  return Eigen::Matrix3d::Identity() + a * K + b * K * K;
+}
+
+// SO(3)'s right Jacobian Jr(phi) = I - (1 - cos t) / t^2 [phi] + (t - sin t) / t^3 [phi]^2.
+Eigen::Matrix3d right_jacobian(const Eigen::Vector3d& phi) {
+  const double theta = phi.norm();
+  const Eigen::Matrix3d K = skew(phi);
+  const double b =
+      theta < 1e-4 ? 0.5 - theta * theta / 24 : (1 - std::cos(theta)) / (theta * theta);
+  const double c = theta < 1e-4 ? 1.0 / 6 - theta * theta / 120
+                                : (theta - std::sin(theta)) / (theta * theta * theta);
+  return Eigen::Matrix3d::Identity() - b * K + c * K * K;
+}
+
+// Jr(phi)^-1 = I + [phi] / 2 + (1 / t^2 - (1 + cos t) / (2 t sin t)) [phi]^2 (|t| < pi).
+Eigen::Matrix3d inverse_right_jacobian(const Eigen::Vector3d& phi) {
+  const double theta = phi.norm();
+  const Eigen::Matrix3d K = skew(phi);
+  const double c =
+      theta < 1e-4 ? 1.0 / 12 + theta * theta / 720
+                   : 1 / (theta * theta) - (1 + std::cos(theta)) / (2 * theta * std::sin(theta));
+  return Eigen::Matrix3d::Identity() + 0.5 * K + c * K * K;
+}
+
+// The position update qpos' = qpos (+) h velocity in tangent space, applied to the rows of a
+// Jacobian: rows = [d qpos' / d y] for an input y, given rows = X + [with_identity] d qpos / d y
+// computed as if every coordinate added (hinge and slide: d qpos' = d qpos + h d velocity, X the
+// second term). A rotation block instead has d qpos' = exp(-h [w]) d qpos + Jr(h w) h d w: its
+// three rows become Jr X, plus exp(-h [w]) in its own columns where the identity was. Hinges,
+// slides and a free joint's translation keep their rows.
+void through_position_update(const Model& model, const double* velocity, double h,
+                             Eigen::Ref<Eigen::MatrixXd> rows, bool with_identity) {
+  if (model.nq == model.nv) return;
+  for (int j = 0; j < model.njnt; ++j) {
+    const int r = rotation_block(model, j);
+    if (r < 0) continue;
+    const Eigen::Vector3d phi = h * Eigen::Vector3d(velocity[r], velocity[r + 1], velocity[r + 2]);
+    auto block_rows = rows.middleRows<3>(r);
+    if (with_identity) block_rows.middleCols<3>(r) -= Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d Jr = right_jacobian(phi);
+    for (Eigen::Index c = 0; c < block_rows.cols(); ++c) {  // column by column: no temporary
+      const Eigen::Vector3d x = block_rows.col(c);
+      block_rows.col(c) = Jr * x;
+    }
+    if (with_identity) block_rows.middleCols<3>(r) += rotation_of(phi).transpose();
   }
 }
 
@@ -118,6 +202,60 @@ void derivative_columns(const Model& model, const Data& data, const Derivatives:
   }
 }
 
+// ---- what a ball (or a free joint's rotation) changes: its three dofs turn together
+// --------------
+
+// Psi_ddot of a segment's second and third dofs with the acceleration before the segment, not
+// before the dof: forward_pass() gave a_i x S_i + v_seg x Sdot_i, where a_i adds the segment's
+// earlier dofs' Sdot_k qd_k + S_k qdd_k, which turn with dof i (docs/derivatives.md). A free
+// joint's translations need nothing (linear x linear = 0).
+void segment_accelerations(const Model& model, const Data& data, const double* qd,
+                           const double* qdd, Derivatives::Workspace& w) {
+  for (int j = 0; j < model.njnt; ++j) {
+    const int r = rotation_block(model, j);
+    if (r < 0) continue;
+    Motion added = Motion::Zero();  // what the segment's dofs before i add to the acceleration
+    for (int i = r + 1; i < r + 3; ++i) {
+      added += w.Sdot[i - 1] * qd[i - 1];
+      if (qdd != nullptr) added += data.cdof[i - 1] * qdd[i - 1];
+      w.Sddot[i] -= cross_motion(added, data.cdof[i]);
+    }
+  }
+}
+
+// The columns of a segment's dofs, corrected after derivative_columns():
+//  - d tau_k / d q_i for k before i in the segment: turning about S_i turns S_k too, and
+//    d S_k / d q_i . F = (S_i x S_k) . F cancels the S_i x* F term the hinge formula adds;
+//  - d / d qd_i: d a_c / d qd_i = Sdot_i + v' x S_i + S_i x v_c, v' the velocity after the
+//    segment (the body's: a ball or a free joint is alone in its body), where a hinge has
+//    2 Sdot_i; the difference E = v' x S_i - Sdot_i enters as IC E wherever 2 IC Sdot_i did.
+void segment_columns(const Model& model, const Data& data, const Derivatives::Workspace& w,
+                     Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
+  for (int j = 0; j < model.njnt; ++j) {
+    const int r = rotation_block(model, j);
+    if (r < 0) continue;
+    const int b = model.jnt_bodyid[j];
+    for (int i = r; i < r + 3; ++i) {
+      const Motion& Si = data.cdof[i];
+      const Force S_cross_F = cross_force(Si, w.F[b]);
+      for (int k = r; k < i; ++k) dtau_dq(k, i) -= data.cdof[k].dot(S_cross_F);
+      const Motion E = cross_motion(w.v[b], Si) - w.Sdot[i];
+      // rows at or below i (the row's dof the deeper: its body's composite inertia)
+      for (int row = i; row < model.nv; ++row) {
+        int up = row;
+        while (up > i) up = model.dof_parentid[up];
+        if (up != i) continue;  // i is not on row's path to the world
+        dtau_dv(row, i) += (w.IC[model.dof_bodyid[row]] * data.cdof[row]).dot(E);
+      }
+      // rows above i (i the deeper dof)
+      const Force IC_E = w.IC[b] * E;
+      for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+        dtau_dv(k, i) += data.cdof[k].dot(IC_E);
+      }
+    }
+  }
+}
+
 // Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
 // and dtau_dv. Armature adds armature * qdd, which depends on neither. Without gravity and with
 // qdd = 0 they are the derivatives of the velocity product terms alone (implicit_derivatives).
@@ -126,12 +264,35 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
                            Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
   // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof (RNEA's forward pass)
   forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot);
+  if (model.nq != model.nv) segment_accelerations(model, data, qd, qdd, w);
   body_terms(model, data, w);
   // leaves to root: the composites of f, I and C over each subtree (RNEA's backward pass)
   sum_over_subtrees(model, w.F);
   sum_over_subtrees(model, w.IC);
   sum_over_subtrees(model, w.CC);
   derivative_columns(model, data, w, dtau_dq, dtau_dv);
+  if (model.nq != model.nv) segment_columns(model, data, w, dtau_dq, dtau_dv);
+}
+
+// The springs and dampers of ball and free joints, after smooth_rhs()'s loop gave each joint's
+// first dof -k and -b: a free joint's position springs are -k per coordinate, every dof damps
+// with -b, and a turn's spring -k log(ref^-1 q) moves by -k Jr(log)^-1 dq when q turns to
+// q exp(dq).
+void quaternion_springs(const Model& model, const Data& data, Derivatives::Workspace& w) {
+  for (int j = 0; j < model.njnt; ++j) {
+    const int r = rotation_block(model, j);
+    if (r < 0) continue;
+    const int d = model.jnt_dofadr[j];
+    const double k = model.jnt_stiffness[j];
+    w.rhs_q(d, d) += k;  // undo the loop's hinge spring on the first dof
+    for (int c = d; c < r; ++c) w.rhs_q(c, c) -= k;
+    for (int c = d + 1; c < r + 3; ++c) w.rhs_v(c, c) -= model.dof_damping[c];
+    if (k == 0) continue;
+    const int qadr = model.jnt_qposadr[j] + (r - d);
+    const Eigen::Vector3d turn =
+        detail::quat_difference(&data.qpos[qadr], &model.qpos_spring[qadr]);
+    w.rhs_q.block<3, 3>(r, r) -= k * inverse_right_jacobian(turn);
+  }
 }
 
 // The explicit force terms of the smooth dynamics, minus the inverse-dynamics derivatives:
@@ -145,6 +306,7 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
     w.rhs_q(d, d) -= model.jnt_stiffness[j];  // spring: -k (q - springref)
     w.rhs_v(d, d) -= model.dof_damping[d];    // damper: -b qd
   }
+  if (model.nq != model.nv) quaternion_springs(model, data, w);
 
   // actuators: force = clamp_f(gain clamp_c(ctrl) + bias), gain = p0 + p1 length + p2 velocity
   // (affine; p0 when fixed), bias = b0 + b1 length + b2 velocity (affine; 0 when none), with
@@ -275,7 +437,27 @@ void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
   for (int c = 0; c < model.nu; ++c) solve_column(deriv.dqacc_du, deriv.dconstraint_du, c, nullptr);
 }
 
-// x' = [qpos + h qvel'; qvel'] with qvel' = qvel + h qacc_step, given d qacc_step / d (q, v, u).
+// forward_derivatives() without its checks, for the step's calls (step_derivatives checked once).
+void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& deriv) {
+  forward(model, data);
+  auto& w = deriv.work;
+  rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, w, deriv.dtau_dq,
+                        deriv.dtau_dv);
+  smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
+  // the unconstrained part: M^-1 times each column
+  deriv.dqacc_dq = w.rhs_q;
+  deriv.dqacc_dv = w.rhs_v;
+  deriv.dqacc_du = w.rhs_u;
+  for (int c = 0; c < model.nv; ++c) {
+    solve_mass(model, data, deriv.dqacc_dq.col(c));
+    solve_mass(model, data, deriv.dqacc_dv.col(c));
+  }
+  for (int c = 0; c < model.nu; ++c) solve_mass(model, data, deriv.dqacc_du.col(c));
+  limit_rows(model, data, deriv);
+}
+
+// x' = [qpos (+) h qvel'; qvel'] with qvel' = qvel + h qacc_step, given
+// d qacc_step / d (q, v, u): the rows of hinges and slides here, a turn's by euler_turns().
 void assemble_euler(const Model& model, const Eigen::MatrixXd& Dq, const Eigen::MatrixXd& Dv,
                     const Eigen::MatrixXd& Du, Derivatives& deriv) {
   const int nv = model.nv;
@@ -294,13 +476,26 @@ void assemble_euler(const Model& model, const Eigen::MatrixXd& Dq, const Eigen::
   deriv.B.topRows(nv) = (h * h) * Du;
 }
 
+// The rows of ball and free joints' turns in an Euler-form step (Euler, implicit), after
+// assemble_euler(): qpos' = qpos (+) h qvel', qvel' = qvel + h qacc_step.
+void euler_turns(const Model& model, const Data& data, const Eigen::VectorXd& qacc_step,
+                 Derivatives& deriv) {
+  const int nv = model.nv;
+  const double h = model.opt.timestep;
+  auto& qvel_next = deriv.work.qvel_next;
+  qvel_next = data.qvel + h * qacc_step;
+  through_position_update(model, qvel_next.data(), h, deriv.A.topRows(nv), true);
+  through_position_update(model, qvel_next.data(), h, deriv.B.topRows(nv), false);
+}
+
 void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   auto& w = deriv.work;
-  forward_derivatives(model, data, deriv);
+  forward_derivatives_unchecked(model, data, deriv);
   bool damped = false;
   for (int i = 0; i < model.nv; ++i) damped = damped || model.dof_damping[i] > 0;
   if (!damped) {
     assemble_euler(model, deriv.dqacc_dq, deriv.dqacc_dv, deriv.dqacc_du, deriv);
+    if (model.nq != model.nv) euler_turns(model, data, data.qacc, deriv);
     return;
   }
 
@@ -323,6 +518,7 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   }
   for (int c = 0; c < model.nu; ++c) solve_mass_damped(model, data, w.rhs_u.col(c));
   assemble_euler(model, w.rhs_q, w.rhs_v, w.rhs_u, deriv);
+  if (model.nq != model.nv) euler_turns(model, data, w.qacc_step, deriv);
 }
 
 // x = K^-1 b from K's LU factor (P K = L U, L with a unit diagonal), by substitution: for the
@@ -378,7 +574,7 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   auto& w = deriv.work;
   const int nv = model.nv;
   const double h = model.opt.timestep;
-  forward_derivatives(model, data, deriv);
+  forward_derivatives_unchecked(model, data, deriv);
 
   // the step's K, its LU factor and its acceleration a, as implicit_step computes them; D is
   // smooth_velocity_derivative()'s, with its bias part d c / d qvel read from the RNEA derivative
@@ -433,13 +629,17 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   }
   for (int c = 0; c < model.nu; ++c) lu_solve(w.lu, w.rhs_u.col(c), w.Da_u.col(c));
   assemble_euler(model, w.Da_q, w.Da_v, w.Da_u, deriv);
+  if (model.nq != model.nv) euler_turns(model, data, w.qacc_step, deriv);
 }
 
 // Classical RK4 on x = [qpos; qvel] with slope k(x) = [qvel; qacc(x)], as step(): stage i starts
-// from x_i = x_0 + h a_i k_{i-1}, and x' = x_0 + h sum_i b_i k_i. By the chain rule, with
+// from x_i = (qpos_0 (+) h a_i qvel_{i-1}, qvel_0 + h a_i qacc_{i-1}), and
+// x' = (qpos_0 (+) h sum_i b_i qvel_i, qvel_0 + h sum_i b_i qacc_i). By the chain rule, with
 // F_i = d k / d x at x_i = [0 I; dqacc_dq dqacc_dv]:
-//   d k_i / d x_0 = F_i (I + h a_i d k_{i-1} / d x_0),
-//   d k_i / d u   = F_i h a_i d k_{i-1} / d u + [0; dqacc_du].
+//   d k_i / d x_0 = F_i J_i,   d k_i / d u = F_i J^u_i + [0; dqacc_du],
+//   J_i = d x_i / d x_0 = I + h a_i d k_{i-1} / d x_0,   J^u_i = h a_i d k_{i-1} / d u,
+// where, for the rows of a ball's or free joint's turn, (+) makes "I + h X" into
+// exp(-h a_i [w]) + Jr(h a_i w) h X (through_position_update), as for the final x'.
 void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   constexpr double kA[3] = {0.5, 0.5, 1.0};
   constexpr double kB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
@@ -449,6 +649,8 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   const double time0 = data.time;
   w.qpos0 = data.qpos;
   w.qvel0 = data.qvel;
+  const bool quaternions = model.nq != model.nv;
+  w.qvel_next.setZero();  // sum_i b_i qvel_i: the velocity the final qpos is integrated with
 
   w.Jx.setIdentity();  // d x_0 / d x_0
   w.Ju.setZero();
@@ -456,13 +658,20 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   deriv.B.setZero();
   for (int i = 0; i < 4; ++i) {
     if (i > 0) {
-      // x_i from the previous stage's slope (data still holds its qvel and qacc)
+      // x_i from the previous stage's slope (data still holds its qvel and qacc), as step()
       w.qacc_step = data.qacc;
-      data.qpos = w.qpos0 + (h * kA[i - 1]) * data.qvel;
+      if (quaternions) {  // as step(): qpos_0 (+) h (a_i qvel_{i-1})
+        w.stage_dq = kA[i - 1] * data.qvel;
+        data.qpos = w.qpos0;
+        detail::integrate_positions(model, data.qpos.data(), w.stage_dq.data(), h);
+      } else {
+        data.qpos = w.qpos0 + (h * kA[i - 1]) * data.qvel;
+      }
       data.qvel = w.qvel0 + (h * kA[i - 1]) * w.qacc_step;
       data.time = time0 + kA[i - 1] * h;
     }
-    forward_derivatives(model, data, deriv);
+    forward_derivatives_unchecked(model, data, deriv);
+    if (quaternions) w.qvel_next += kB[i] * data.qvel;
 
     // K = F J: the qpos rows of the slope are J's qvel rows; its qvel rows the chain rule
     w.Kx.topRows(nv) = w.Jx.bottomRows(nv);
@@ -479,11 +688,16 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       w.Jx = (h * kA[i]) * w.Kx;
       w.Jx.diagonal().array() += 1.0;
       w.Ju = (h * kA[i]) * w.Ku;
+      // the next stage's qpos turns by h a_{i+1} qvel_i (data.qvel is still stage i's)
+      through_position_update(model, data.qvel.data(), h * kA[i], w.Jx.topRows(nv), true);
+      through_position_update(model, data.qvel.data(), h * kA[i], w.Ju.topRows(nv), false);
     }
   }
   deriv.A *= h;
   deriv.A.diagonal().array() += 1.0;
   deriv.B *= h;
+  through_position_update(model, w.qvel_next.data(), h, deriv.A.topRows(nv), true);
+  through_position_update(model, w.qvel_next.data(), h, deriv.B.topRows(nv), false);
 
   data.qpos = w.qpos0;
   data.qvel = w.qvel0;
@@ -526,8 +740,10 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.drhs_v.setZero(nefc_max);
   work.rows.assign(static_cast<std::size_t>(nefc_max), 0);
   work.qacc_step.setZero(nv);
-  work.qpos0.setZero(nv);
+  work.qpos0.setZero(model.nq);
   work.qvel0.setZero(nv);
+  work.qvel_next.setZero(nv);
+  work.stage_dq.setZero(nv);
   work.Jx.setZero(2 * nv, 2 * nv);
   work.Ju.setZero(2 * nv, nu);
   work.Kx.setZero(2 * nv, 2 * nv);
@@ -555,29 +771,26 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_sizes(model, data, deriv);
-  forward(model, data);
-  auto& w = deriv.work;
-  rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, w, deriv.dtau_dq,
-                        deriv.dtau_dv);
-  smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
-  // the unconstrained part: M^-1 times each column
-  deriv.dqacc_dq = w.rhs_q;
-  deriv.dqacc_dv = w.rhs_v;
-  deriv.dqacc_du = w.rhs_u;
-  for (int c = 0; c < model.nv; ++c) {
-    solve_mass(model, data, deriv.dqacc_dq.col(c));
-    solve_mass(model, data, deriv.dqacc_dv.col(c));
-  }
-  for (int c = 0; c < model.nu; ++c) solve_mass(model, data, deriv.dqacc_du.col(c));
-  limit_rows(model, data, deriv);
+  forward_derivatives_unchecked(model, data, deriv);
 }
 
 void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_sizes(model, data, deriv);
+  // forward() normalizes the quaternions of qpos in place; the caller's state is given back as it
+  // was, bit for bit (RK4 restores its start itself)
+  const bool quaternions = model.nq != model.nv;
   switch (model.opt.integrator) {
-    case Integrator::kEuler: euler_derivatives(model, data, deriv); return;
+    case Integrator::kEuler:
+      if (quaternions) deriv.work.qpos0 = data.qpos;
+      euler_derivatives(model, data, deriv);
+      if (quaternions) data.qpos = deriv.work.qpos0;
+      return;
     case Integrator::kRK4: rk4_derivatives(model, data, deriv); return;
-    case Integrator::kImplicit: implicit_derivatives(model, data, deriv); return;
+    case Integrator::kImplicit:
+      if (quaternions) deriv.work.qpos0 = data.qpos;
+      implicit_derivatives(model, data, deriv);
+      if (quaternions) data.qpos = deriv.work.qpos0;
+      return;
   }
   // an integrator added to the enum later lands here until it has its own case
   throw Error("step_derivatives: integrator " +

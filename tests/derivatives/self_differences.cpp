@@ -44,14 +44,53 @@ constexpr double kFivePointStep = 1e-4;  // qacc: see above
 constexpr double kDifferenceBound = 1e-8;
 constexpr int kStates = 40;
 
-// Every model, servo_affine.xml (every term of a general actuator; tests/derivatives only) and
-// the random trees.
+// The models that cannot make contacts (the derivatives refuse the others).
+std::vector<ModelCase> without_contacts(std::vector<ModelCase> cases) {
+  std::erase_if(cases, [](const ModelCase& c) { return c.model.contacts_possible; });
+  return cases;
+}
+
+// Every model without contacts (ball and free joints included), servo_affine.xml (every term of a
+// general actuator; tests/derivatives only), the random trees and the random MJCF trees (ball
+// joints and free roots).
 std::vector<ModelCase> derivative_models() {
-  std::vector<ModelCase> cases = hinge_and_slide_models(every_model());
+  std::vector<ModelCase> cases = without_contacts(every_model());
   const std::string file = model_path("tests/derivatives/servo_affine.xml");
   cases.push_back({"servo_affine.xml", seed_for(file), mjcf::load_file(file)});
   for (ModelCase& c : random_trees()) cases.push_back(std::move(c));
+  for (ModelCase& c : random_mjcf_trees()) cases.push_back(std::move(c));
   return cases;
+}
+
+// Differences of out() along qpos's tangent: column c moves qpos to qpos (+) t e_c with
+// integrate_pos (for a ball, a turn about its body's axis c), as mjd_transitionFD does. Central
+// (step kStep), or the five-point stencil (step kFivePointStep) when five_point.
+Eigen::MatrixXd tangent_differences(const Model& model, Eigen::VectorXd& qpos, int n_out,
+                                    const std::function<void(Eigen::VectorXd&)>& out,
+                                    bool five_point = false) {
+  const int nv = model.nv;
+  const Eigen::VectorXd q0 = qpos;
+  const double h = five_point ? kFivePointStep : kStep;
+  Eigen::MatrixXd D(n_out, nv);
+  Eigen::VectorXd plus(n_out), minus(n_out), plus2(n_out), minus2(n_out);
+  const auto at = [&](int c, double t, Eigen::VectorXd& value) {
+    qpos = q0;
+    integrate_pos(model, qpos, Eigen::VectorXd::Unit(nv, c), t);
+    out(value);
+  };
+  for (int c = 0; c < nv; ++c) {
+    at(c, h, plus);
+    at(c, -h, minus);
+    if (five_point) {
+      at(c, 2 * h, plus2);
+      at(c, -2 * h, minus2);
+      D.col(c) = (8 * (plus - minus) - (plus2 - minus2)) / (12 * h);
+    } else {
+      D.col(c) = (plus - minus) / (2 * h);
+    }
+  }
+  qpos = q0;
+  return D;
 }
 
 // Largest |element|.
@@ -118,6 +157,14 @@ void check_close(const Eigen::MatrixXd& analytic, const Eigen::MatrixXd& differe
   }
 }
 
+// s's quaternions replaced by what an evaluation normalizes them to (kinematics normalizes qpos
+// in place, as MuJoCo's does), so that "the state is left as it was" can be asked exactly.
+void normalized_as_evaluated(const Model& model, Data& data, State& s) {
+  data.qpos = s.qpos;
+  kinematics(model, data);
+  s.qpos = data.qpos;
+}
+
 // The limit rows of the current evaluation, as (joint, side, state) codes: the active set.
 std::vector<int> active_set(const Data& data) {
   std::vector<int> rows;
@@ -133,7 +180,7 @@ std::vector<int> active_set(const Data& data) {
 
 TEST_CASE("derivatives: d rnea / d qpos and d qvel match central differences",
           "[derivatives][rnea]") {
-  for (ModelCase& c : hinge_and_slide_models(every_model_and_random_trees())) {
+  for (ModelCase& c : without_contacts(every_model_and_random_trees())) {
     INFO(c.name);
     const Model& model = c.model;
     Data data(model);
@@ -153,7 +200,8 @@ TEST_CASE("derivatives: d rnea / d qpos and d qvel match central differences",
         kinematics(model, data);
         rnea(model, data, qacc, out);
       };
-      check_close(dq, central_differences(data.qpos, model.nv, rnea_at), tau_scale, "dtau_dq");
+      check_close(dq, tangent_differences(model, data.qpos, model.nv, rnea_at), tau_scale,
+                  "dtau_dq");
       check_close(dv, central_differences(data.qvel, model.nv, rnea_at), tau_scale, "dtau_dv");
     }
   }
@@ -163,7 +211,7 @@ TEST_CASE("derivatives: d rnea / d qvel is linear in qvel: exact against its own
           "[derivatives][rnea]") {
   // tau is quadratic in qvel, so d tau / d qvel (at qacc = 0, no gravity) is linear in qvel:
   // D(v1 + v2) = D(v1) + D(v2) holds to rounding, a check between analytic results (1e-12).
-  for (ModelCase& c : hinge_and_slide_models(every_model_and_random_trees())) {
+  for (ModelCase& c : without_contacts(every_model_and_random_trees())) {
     INFO(c.name);
     Model model = c.model;
     model.opt.gravity.setZero();
@@ -210,7 +258,7 @@ TEST_CASE("derivatives: d qacc / d qpos, d qvel, d ctrl match central difference
         same_rows = same_rows && active_set(data) == rows;
         out = data.qacc;
       };
-      const Eigen::MatrixXd dq = five_point_differences(data.qpos, model.nv, qacc_at);
+      const Eigen::MatrixXd dq = tangent_differences(model, data.qpos, model.nv, qacc_at, true);
       const Eigen::MatrixXd dv = five_point_differences(data.qvel, model.nv, qacc_at);
       const Eigen::MatrixXd du = five_point_differences(data.ctrl, model.nv, qacc_at);
       if (!same_rows) continue;
@@ -241,7 +289,8 @@ TEST_CASE("derivatives: the step's A and B match central differences of step",
       const int states = states_for(c, kStates);
       int compared = 0;
       for (int k = 0; k < states; ++k) {
-        const State s = smooth_state(model, rng, true);
+        State s = smooth_state(model, rng, true);
+        normalized_as_evaluated(model, data, s);
         // a limit row or a clamp switching inside a difference (at any RK4 stage) is a
         // non-differentiable point: such states are not compared
         const bool smooth = differences_see_same_switches(model, probe, s, kStep);
@@ -253,26 +302,48 @@ TEST_CASE("derivatives: the step's A and B match central differences of step",
         REQUIRE(data.time == s.time);
         if (!smooth) continue;
 
-        const int nv = model.nv;
-        Eigen::VectorXd x(2 * nv);
-        x << s.qpos, s.qvel;
-        const auto step_from = [&](const Eigen::VectorXd& x0, const Eigen::VectorXd& ctrl,
-                                   Eigen::VectorXd& out) {
-          data.qpos = x0.head(nv);
-          data.qvel = x0.tail(nv);
+        // in mjd_transitionFD's tangent layout: qpos moved by integrate_pos, the next qpos read
+        // by differentiate_pos (centred: from the minus side to the plus side, as MuJoCo does)
+        const int nv = model.nv, nq = model.nq;
+        Eigen::VectorXd qpos = s.qpos, qvel = s.qvel, ctrl = s.ctrl;
+        const auto step_from_inputs = [&](Eigen::VectorXd& out) {  // out: [qpos'; qvel'] (nq + nv)
+          data.qpos = qpos;
+          data.qvel = qvel;
           data.ctrl = ctrl;
           data.time = s.time;
           step(model, data);
           out << data.qpos, data.qvel;
         };
-        Eigen::VectorXd ctrl = s.ctrl;
-        const Eigen::MatrixXd A = central_differences(
-            x, 2 * nv, [&](Eigen::VectorXd& out) { step_from(x, s.ctrl, out); });
-        const Eigen::MatrixXd B = central_differences(
-            ctrl, 2 * nv, [&](Eigen::VectorXd& out) { step_from(x, ctrl, out); });
+        Eigen::MatrixXd A(2 * nv, 2 * nv), B(2 * nv, model.nu);
+        Eigen::VectorXd plus(nq + nv), minus(nq + nv);
+        const auto column = [&](Eigen::Ref<Eigen::VectorXd> into) {
+          differentiate_pos(model, into.head(nv), 2 * kStep, minus.head(nq), plus.head(nq));
+          into.tail(nv) = (plus.tail(nv) - minus.tail(nv)) / (2 * kStep);
+        };
+        for (int c = 0; c < nv; ++c) {
+          for (const double t : {kStep, -kStep}) {
+            qpos = s.qpos;
+            integrate_pos(model, qpos, Eigen::VectorXd::Unit(nv, c), t);
+            step_from_inputs(t > 0 ? plus : minus);
+          }
+          qpos = s.qpos;
+          column(A.col(c));
+        }
+        for (int c = 0; c < 2 * nv + model.nu; ++c) {
+          if (c < nv) continue;
+          double& input = c < 2 * nv ? qvel[c - nv] : ctrl[c - 2 * nv];
+          const double x0 = input;
+          input = x0 + kStep;
+          step_from_inputs(plus);
+          input = x0 - kStep;
+          step_from_inputs(minus);
+          input = x0;
+          column(c < 2 * nv ? A.col(c) : B.col(c - 2 * nv));
+        }
         ++compared;
-        check_close(deriv.A, A, largest(x), "A");
-        check_close(deriv.B, B, largest(x), "B");
+        const double scale = std::max(largest(s.qpos), largest(s.qvel));
+        check_close(deriv.A, A, scale, "A");
+        check_close(deriv.B, B, scale, "B");
       }
       CHECK(compared >= states * 3 / 4);
     }
@@ -346,18 +417,30 @@ TEST_CASE("derivatives: wrong sizes and unsupported integrators are errors", "[d
 
 namespace lever::test {
 
-TEST_CASE("derivatives: a model with ball or free joints is refused, saying why",
+TEST_CASE("derivatives: contacts, and a ball sharing its body, are refused, saying why",
           "[derivatives][refusal]") {
-  const Model model = mjcf::load_file(model_path("tests/models/floating.xml"));
-  REQUIRE(model.nq != model.nv);
-  Data data(model);
-  Derivatives deriv(model);
-  const Eigen::VectorXd qacc = Eigen::VectorXd::Zero(model.nv);
   using Catch::Matchers::Contains;
-  CHECK_THROWS_WITH(step_derivatives(model, data, deriv), Contains("ball or free joints"));
-  CHECK_THROWS_WITH(forward_derivatives(model, data, deriv), Contains("ball or free joints"));
-  CHECK_THROWS_WITH(rnea_derivatives(model, data, qacc, deriv), Contains("ball or free joints"));
-  CHECK_THROWS_WITH(base_parameters(model, 10, 1), Contains("ball or free joints"));
+  const auto refused_by_all = [](const Model& model, const std::string& why) {
+    Data data(model);
+    Derivatives deriv(model);
+    const Eigen::VectorXd qacc = Eigen::VectorXd::Zero(model.nv);
+    const Eigen::VectorXd qpos = data.qpos;
+    CHECK_THROWS_WITH(step_derivatives(model, data, deriv), Contains(why));
+    CHECK_THROWS_WITH(forward_derivatives(model, data, deriv), Contains(why));
+    CHECK_THROWS_WITH(rnea_derivatives(model, data, qacc, deriv), Contains(why));
+    CHECK(data.qpos == qpos);  // nothing done
+  };
+  // a free box over a table: contacts are not differentiated (the message lever had before)
+  refused_by_all(mjcf::load_file(model_path("models/box_drop.xml")), "can make contacts");
+  // a ball followed by a hinge in one body: the hinge would turn the ball's axes (MuJoCo's cdof)
+  refused_by_all(mjcf::load_string(R"(<mujoco><worldbody><body>
+      <joint type="ball"/><joint type="hinge" axis="0 1 0"/>
+      <geom type="sphere" size=".1" contype="0" conaffinity="0"/></body></worldbody></mujoco>)",
+                                   "ball_hinge"),
+                 "shares its body with other joints");
+  // identification's regressor still covers hinges and slides only
+  const Model floating = mjcf::load_file(model_path("tests/models/floating.xml"));
+  CHECK_THROWS_WITH(base_parameters(floating, 10, 1), Contains("ball or free joints"));
 }
 
 }  // namespace lever::test

@@ -74,7 +74,8 @@ double servo_control(const Model& model, int a, const State& s, Uniform& uniform
   return span[1] + width;  // no clear control found: far out (the state may sit on a switch)
 }
 
-/// past_stop: put each limited joint past a stop (by 0.02-0.1) one time in four.
+/// past_stop: put each limited joint past a stop (by 0.02-0.1) one time in four. Ball and free
+/// joints: a uniformly random orientation (a unit quaternion).
 inline State smooth_state(const Model& model, std::mt19937_64& rng, bool past_stop) {
   const auto uniform = [&](double lo, double hi) {
     return std::uniform_real_distribution<double>(lo, hi)(rng);
@@ -83,6 +84,19 @@ inline State smooth_state(const Model& model, std::mt19937_64& rng, bool past_st
   s.qpos = model.qpos0;
   for (int j = 0; j < model.njnt; ++j) {
     double& q = s.qpos[model.jnt_qposadr[j]];
+    if (model.jnt_kind[j] == JointKind::kFree || model.jnt_kind[j] == JointKind::kBall) {
+      // any orientation (a unit quaternion), a free body within a metre of qpos0's position
+      double* quat = &q;
+      if (model.jnt_kind[j] == JointKind::kFree) {
+        for (int k = 0; k < 3; ++k) (&q)[k] += uniform(-1, 1);
+        quat += 3;
+      }
+      Eigen::Vector4d v;
+      for (int k = 0; k < 4; ++k) v[k] = std::normal_distribution<double>(0, 1)(rng);
+      v.normalize();
+      for (int k = 0; k < 4; ++k) quat[k] = v[k];
+      continue;
+    }
     if (!model.jnt_limited[j]) {
       q = model.qpos0[model.jnt_qposadr[j]] + uniform(-2.5, 2.5);
       continue;
@@ -166,7 +180,8 @@ inline std::vector<int> step_switches(const Model& model, Data& data, const Stat
   const double h = model.opt.timestep;
   for (int i = 1; i < 4; ++i) {
     const Eigen::VectorXd qvel = data.qvel, qacc = data.qacc;
-    data.qpos = s.qpos + (h * kA[i - 1]) * qvel;
+    data.qpos = s.qpos;
+    integrate_pos(model, data.qpos, kA[i - 1] * qvel, h);
     data.qvel = s.qvel + (h * kA[i - 1]) * qacc;
     data.time = s.time + kA[i - 1] * h;
     forward(model, data);
@@ -176,7 +191,7 @@ inline std::vector<int> step_switches(const Model& model, Data& data, const Stat
 }
 
 /// Whether every central difference of the step (each of qpos, qvel and ctrl moved by +-eps)
-/// sees the switches that s sees, at every forward() of the step.
+/// sees the switches that s sees, at every forward() of the step (qpos moved along its tangent).
 inline bool differences_see_same_switches(const Model& model, Data& probe, const State& s,
                                           double eps) {
   const std::vector<int> middle = step_switches(model, probe, s);
@@ -184,8 +199,8 @@ inline bool differences_see_same_switches(const Model& model, Data& probe, const
   for (int c = 0; c < 2 * nv + model.nu; ++c) {
     for (const double delta : {eps, -eps}) {
       State moved = s;
-      if (c < nv)
-        moved.qpos[c] += delta;
+      if (c < nv)  // along the tangent: qpos (+) delta e_c
+        integrate_pos(model, moved.qpos, Eigen::VectorXd::Unit(nv, c), delta);
       else if (c < 2 * nv)
         moved.qvel[c - nv] += delta;
       else

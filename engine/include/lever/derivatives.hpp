@@ -7,9 +7,11 @@
 // docs/derivatives.md derives every formula and lists the points where the dynamics is not
 // differentiable (a limit row appearing, a row changing state, a clamp boundary).
 //
-// All matrices are column-per-input: dtau_dq(i, j) = d tau_i / d qpos_j. Hinge and slide joints
-// only, so nq == nv and qpos needs no tangent space. MuJoCo 2.2.2 has no analytic counterpart;
-// its mjd_transitionFD (finite differences of mj_step) returns A and B in the same layout.
+// All matrices are column-per-input: dtau_dq(i, j) = d tau_i / d qpos_j, a qpos column being a
+// direction of qpos's tangent space (nv of them: a ball's turn about its body's axis j, as
+// integrate_pos applies it). MuJoCo 2.2.2 has no analytic counterpart; its mjd_transitionFD
+// (finite differences of mj_step) returns A and B in the same layout. Models that can make
+// contacts are refused, and so is a ball joint sharing its body with other joints.
 #pragma once
 
 #include <Eigen/Core>
@@ -74,8 +76,8 @@ struct Derivatives {
   Eigen::MatrixXd dconstraint_dq, dconstraint_dv, dconstraint_du;
 
   // ---- step: step_derivatives() ---------------------------------------------------------------
-  Eigen::MatrixXd A;  ///< (2nv x 2nv) d [qpos'; qvel'] / d [qpos; qvel] (mjd_transitionFD's A)
-  Eigen::MatrixXd B;  ///< (2nv x nu)  d [qpos'; qvel'] / d ctrl         (mjd_transitionFD's B)
+  Eigen::MatrixXd A;  ///< (2nv x 2nv) d [dq'; qvel'] / d [dq; qvel] (mjd_transitionFD's A)
+  Eigen::MatrixXd B;  ///< (2nv x nu)  d [dq'; qvel'] / d ctrl       (mjd_transitionFD's B)
 
   // ---- workspace (contents meaningless between calls) ---------------------------------------
   struct Workspace {
@@ -95,7 +97,9 @@ struct Derivatives {
     Eigen::VectorXd drhs_q, drhs_v;       ///< (nefc_max) d (aref - R f) / d q_c, d qd_c per row
     std::vector<int> rows;                ///< (nefc_max) the active rows
     Eigen::VectorXd qacc_step;            ///< (nv) the acceleration the Euler step advances with
-    Eigen::VectorXd qpos0, qvel0;         ///< (nv) the state step_derivatives() started from
+    Eigen::VectorXd qpos0, qvel0;         ///< (nq, nv) the state step_derivatives() started from
+    Eigen::VectorXd qvel_next;            ///< (nv) the velocity the step's qpos is integrated with
+    Eigen::VectorXd stage_dq;             ///< (nv) RK4: a_i qvel_{i-1}, a stage's qpos velocity
     Eigen::MatrixXd Jx, Ju;               ///< (2nv x 2nv / nu) RK4: d stage state / d (x0, u)
     Eigen::MatrixXd Kx, Ku;               ///< (2nv x 2nv / nu) RK4: d stage slope / d (x0, u)
     Eigen::MatrixXd D, K;                 ///< (nv x nv) implicit: d qfrc_smooth / d qvel, M - h D
@@ -124,7 +128,8 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv);
 
 /// The transition Jacobians of step() at data's state, in mjd_transitionFD's layout:
-/// x = [qpos; qvel] (2nv), A = d x' / d x, B = d x' / d ctrl, into deriv.A and deriv.B. Euler
+/// x = [dq; qvel] (2nv, dq qpos's tangent, the next qpos read in the tangent space at the next
+/// state), A = d x' / d x, B = d x' / d ctrl, into deriv.A and deriv.B. Euler
 /// (with its implicit damping), RK4 and implicit (K = M - h D differentiated exactly, D's
 /// dependence on qpos, qvel and ctrl included); the derivative of step's bad-state resets is not
 /// taken. data's state (time, qpos, qvel, ctrl) is left as it was; its other fields hold forward()
