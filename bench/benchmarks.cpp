@@ -59,7 +59,8 @@ void register_lever(const Fixture& f) {
   const State* s = &f.state;
   const int site = f.site;
 
-  add("fk", f, "lever", lever_fn(&f, s, nothing, kin));
+  add("fk", f, "lever", lever_fn(&f, s, nothing, [](const Model& m, Data& d) { poses(m, d); }));
+  add("kinematics", f, "lever", lever_fn(&f, s, nothing, kin));
   if (site >= 0) {
     // the Jacobians live outside Data, sized once
     auto jac = std::make_shared<std::array<Eigen::MatrixXd, 2>>();
@@ -149,8 +150,12 @@ void register_mujoco(const Fixture& f) {
   const State* s = &f.state;
   const int site = f.site;
 
-  // lever's kinematics() also computes what mj_comPos does (subtree centres of mass, cinert, cdof)
-  add("fk", f, "mujoco", mujoco_fn(&f, s, nothing, kin));
+  // lever's poses() places what mj_kinematics places, but for the quaternions xquat; its
+  // kinematics() also computes them, and what mj_comPos does (subtree centres of mass, cinert,
+  // cdof)
+  add("fk", f, "mujoco",
+      mujoco_fn(&f, s, nothing, [](const mjModel* m, mjData* d) { mj_kinematics(m, d); }));
+  add("kinematics", f, "mujoco", mujoco_fn(&f, s, nothing, kin));
   if (site >= 0) {
     auto jac = std::make_shared<std::vector<mjtNum>>(6 * static_cast<std::size_t>(f.mj->nv));
     add("jac_site", f, "mujoco", mujoco_fn(&f, s, kin, [site, jac](const mjModel* m, mjData* d) {

@@ -5,11 +5,11 @@
 //   lever_bench_profile MODEL.xml --all [ITERATIONS]       every operation the model has, in turn
 //   lever_bench_profile MODEL.xml --list                   their names
 //
-// Operations: lever's fk jac_site bias bias_from_q rnea rnea_from_q crba crba_factor crba_from_q
-// inverse forward forward_limit step step_limit step_jacobian_forward (the analytic A and B);
-// MuJoCo's counterparts as mujoco:<operation> (bias is mj_rne alone, bias_vel adds mj_comVel;
-// step_jacobian_centred too), KDL's as kdl:<operation> (fk jac_site bias_from_q rnea_from_q
-// crba_from_q forward). Each does what the benchmark of the same name times
+// Operations: lever's fk (poses) kinematics jac_site bias bias_from_q rnea rnea_from_q crba
+// crba_factor crba_from_q inverse forward forward_limit step step_limit step_jacobian_forward (the
+// analytic A and B); MuJoCo's counterparts as mujoco:<operation> (bias is mj_rne alone, bias_vel
+// adds mj_comVel; step_jacobian_centred too), KDL's as kdl:<operation> (fk jac_site bias_from_q
+// rnea_from_q crba_from_q forward). Each does what the benchmark of the same name times
 // (bench/benchmarks.cpp), after the same preparation.
 //
 // Under callgrind only the loops are counted (loading the model, the preparation and a few
@@ -123,7 +123,9 @@ std::vector<Operation> operations() {
   };
   return {
       // ---- lever
-      {"fk", N::kNothing, 1, [](const Fixture& f, Rig& r) { lever::kinematics(f.model, r.d); }},
+      {"fk", N::kNothing, 1, [](const Fixture& f, Rig& r) { lever::poses(f.model, r.d); }},
+      {"kinematics", N::kNothing, 1,
+       [](const Fixture& f, Rig& r) { lever::kinematics(f.model, r.d); }},
       {"jac_site", N::kSite, 1,
        [](const Fixture& f, Rig& r) { lever::jac_site(f.model, r.d, f.site, r.jacp, r.jacr); }},
       {"bias", N::kNothing, 1, [](const Fixture& f, Rig& r) { lever::bias(f.model, r.d); }},
@@ -172,6 +174,8 @@ std::vector<Operation> operations() {
        }},
       // ---- MuJoCo 2.2.2
       {"mujoco:fk", N::kNothing, 1,
+       [](const Fixture& f, Rig& r) { mj_kinematics(f.mj.get(), r.md.get()); }},
+      {"mujoco:kinematics", N::kNothing, 1,
        [](const Fixture& f, Rig& r) {
          mj_kinematics(f.mj.get(), r.md.get());
          mj_comPos(f.mj.get(), r.md.get());

@@ -184,8 +184,15 @@ struct Operation {
 };
 
 const Operation kOperations[] = {
-    {"fk", "`kinematics` (bodies, sites, com-frame inertias and dof axes)",
-     "`mj_kinematics` + `mj_comPos`", "`ChainFkSolverPos_recursive` (tip frame)"},
+    {"fk",
+     "`poses`: every body's frame and centre-of-mass frame, every geom's and site's frame and "
+     "each joint's anchor and axis, as (R, p) (all of `mj_kinematics` but `xquat`)",
+     "`mj_kinematics` (the same, and `xquat`)",
+     "`ChainFkSolverPos_recursive`: the tip frame (R, p) alone"},
+    {"kinematics",
+     "`kinematics`: `poses`, `xquat`, then subtree centres of mass, com-frame inertias and dof "
+     "axes",
+     "`mj_kinematics` + `mj_comPos`", ""},
     {"jac_site", "`jac_site` (kinematics done)", "`mj_jacSite` (kinematics, comPos done)",
      "`ChainJntToJacSolver` (from q)"},
     {"bias", "`bias` (kinematics done)",
@@ -713,7 +720,7 @@ int main(int argc, char** argv) {
          "(poses, "
          "then subtree centres of mass, body inertias and dof axes in MuJoCo's com-based frame), "
          "and "
-         "its `bias` that of `mj_comVel` and `mj_rne`; `mj_kinematics` also places geoms; "
+         "its `bias` that of `mj_comVel` and `mj_rne`; "
          "`mj_forward` and `mj_step` also run collision "
          "detection (nothing collides in these models), sensors and MuJoCo's iterative constraint "
          "solver, which lever replaces with an exact solve of the limit rows. KDL's forward "
@@ -723,7 +730,9 @@ int main(int argc, char** argv) {
          "and "
          "`forward` rows. KDL's tip Jacobian and FK give one frame; lever's and MuJoCo's FK place "
          "every "
-         "body and site. lever's flags include `-ffp-contract=off` (no fused multiply-add); "
+         "body, geom and site (`fk`: lever's `poses`, which leaves out the quaternions "
+         "`mj_kinematics` also composes; `kinematics` has them and MuJoCo's `mj_comPos`). lever's "
+         "flags include `-ffp-contract=off` (no fused multiply-add); "
          "nothing is "
          "built with `-march=native`. The instruction counts run the same calls on the same states "
          "(`lever_bench_profile`, bench/README.md); lever's step Jacobian is one call, counted "

@@ -2,8 +2,11 @@
 //
 // Poses compose from the root outwards, body by body, joint by joint, as MuJoCo's mj_kinematics:
 // a body starts at its parent's frame moved by (body_pos, body_quat); a hinge then turns it about
-// the joint's axis through the joint's anchor, a slide moves it along the axis. Orientations are
-// quaternions (normalized once per body, so xquat has MuJoCo's sign and xmat stays orthonormal).
+// the joint's axis through the joint's anchor, a slide moves it along the axis. The recursion
+// carries each frame as a rotation matrix and an origin (R, p), and does for each joint kind only
+// the arithmetic it needs: a hinge about a coordinate axis of its frame (arm2's -y, every Panda
+// joint's z) turns two columns of R. The orientations as quaternions (xquat) are composed beside
+// it only when asked: kinematics() does, in MuJoCo's order, so that xquat has MuJoCo's sign.
 //
 // Then, as MuJoCo's mj_comPos, the quantities the dynamics needs, in absolute coordinates (world
 // axes, origin at the subtree centre of mass of the body's world child, c):
@@ -22,13 +25,59 @@ namespace lever {
 
 namespace {
 
-// Body poses, joint anchors and axes; then inertial frames and sites.
-void poses(const Model& model, Data& data) {
+/// R <- R Rot_k(angle) for a turn about coordinate axis k of R's frame, given (c, s) = (cos,
+/// sin) of the angle: column k stays, the other two turn into each other.
+void turn_columns(Mat3& R, int k, double c, double s) {
+  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  for (int row = 0; row < 3; ++row) {
+    const double ri = R(row, i), rj = R(row, j);
+    R(row, i) = c * ri + s * rj;
+    R(row, j) = c * rj - s * ri;
+  }
+}
+
+/// out = A B for 3x3 rotations (out is neither A nor B), written out: Eigen's product of two
+/// row-major fixed matrices, returned by value, costs twice the arithmetic here.
+inline void multiply(const Mat3& A, const Mat3& B, Mat3& out) {
+  for (int r = 0; r < 3; ++r) {
+    const double a0 = A(r, 0), a1 = A(r, 1), a2 = A(r, 2);
+    out(r, 0) = a0 * B(0, 0) + a1 * B(1, 0) + a2 * B(2, 0);
+    out(r, 1) = a0 * B(0, 1) + a1 * B(1, 1) + a2 * B(2, 1);
+    out(r, 2) = a0 * B(0, 2) + a1 * B(1, 2) + a2 * B(2, 2);
+  }
+}
+
+/// out = A B for a constant rotation B of the model and its AxisMap: a quarter turn only moves
+/// A's columns (signed), anything else is the product.
+inline void multiply(const Mat3& A, const Mat3& B, const AxisMap& map, Mat3& out) {
+  if (map[0] == 0) {
+    multiply(A, B, out);
+    return;
+  }
+  for (int c = 0; c < 3; ++c) {
+    const int k = (map[c] > 0 ? map[c] : -map[c]) - 1;
+    const double sign = map[c] > 0 ? 1.0 : -1.0;
+    for (int r = 0; r < 3; ++r) out(r, c) = sign * A(r, k);
+  }
+}
+
+/// The rotation by angle (c, s) = (cos, sin) about a unit axis, as a matrix (Rodrigues).
+Mat3 axis_rotation(const Eigen::Vector3d& a, double c, double s) {
+  const double t = 1.0 - c;
+  Mat3 out;
+  out << c + t * a[0] * a[0], t * a[0] * a[1] - s * a[2], t * a[0] * a[2] + s * a[1],
+      t * a[0] * a[1] + s * a[2], c + t * a[1] * a[1], t * a[1] * a[2] - s * a[0],
+      t * a[0] * a[2] - s * a[1], t * a[1] * a[2] + s * a[0], c + t * a[2] * a[2];
+  return out;
+}
+
+// Body frames (xpos, xmat), joint anchors and axes, inertial frames, geoms and sites; with
+// orientations, the bodies' quaternions too (xquat), composed in MuJoCo's order.
+void place_bodies(const Model& model, Data& data, bool orientations) {
   detail::normalize_joint_quats(model, data.qpos.data());
-  Eigen::Matrix3d turned;  // the body's rotation, when a joint needs it as a matrix
   for (int b = 1; b < model.nbody; ++b) {
     const int p = model.body_parentid[b];
-    const Mat3& parent = data.xmat[p];
+    Mat3& R = data.xmat[b];
     Eigen::Vector3d pos;
     Quat quat;
     if (model.body_jntnum[b] == 1 && model.jnt_kind[model.body_jntadr[b]] == JointKind::kFree) {
@@ -38,11 +87,19 @@ void poses(const Model& model, Data& data) {
       const double* q = &data.qpos[model.jnt_qposadr[j]];
       pos = Eigen::Vector3d(q[0], q[1], q[2]);
       quat = Quat(q[3], q[4], q[5], q[6]);
+      R = quat_to_mat(quat);
       data.xanchor[j] = pos;
       data.xaxis[j] = Eigen::Vector3d::UnitZ();
     } else {
-      pos = data.xpos[p] + rotate(parent, model.body_pos[b]);
-      quat = model.body_rotated[b] ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
+      const Mat3& Rp = data.xmat[p];
+      pos = data.xpos[p] + rotate(Rp, model.body_pos[b]);
+      if (model.body_rotated[b]) {
+        multiply(Rp, model.body_mat[b], model.body_axismap[b], R);
+        if (orientations) quat = quat_mul(data.xquat[p], model.body_quat[b]);
+      } else {
+        R = Rp;
+        if (orientations) quat = data.xquat[p];
+      }
     }
 
     for (int k = 0; k < model.body_jntnum[b]; ++k) {
@@ -51,59 +108,60 @@ void poses(const Model& model, Data& data) {
       if (kind == JointKind::kFree) break;  // placed above
       const int qadr = model.jnt_qposadr[j];
       const Eigen::Vector3d& axis = model.jnt_axis[j];
-      if (k == 0) {
-        // the body's first joint: its axis and anchor are constant in the parent's frame
-        data.xaxis[j] = rotate(parent, model.jnt_axis_in_parent[j]);
-        data.xanchor[j] = model.jnt_offset[j]
-                              ? Eigen::Vector3d(pos + rotate(parent, model.jnt_pos_in_parent[j]))
-                              : pos;
-      } else {
-        turned = quat_to_mat(quat);  // the body turned by its earlier joints
-        data.xaxis[j] = rotate(turned, axis);
-        data.xanchor[j] =
-            model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(turned, model.jnt_pos[j])) : pos;
-      }
-      if (kind == JointKind::kSlide) {
-        pos += data.xaxis[j] * (data.qpos[qadr] - model.qpos0[qadr]);
-        continue;
-      }
-      if (kind == JointKind::kBall) {  // qpos is the turn itself, a unit quaternion
-        const double* q = &data.qpos[qadr];
-        quat = quat_mul(quat, Quat(q[0], q[1], q[2], q[3]));
-      } else {
-        const double theta = data.qpos[qadr] - model.qpos0[qadr];
-        const double s = std::sin(0.5 * theta), c = std::cos(0.5 * theta);
-        if (kind == JointKind::kHinge) {
-          quat = quat_mul(quat, Quat(c, axis[0] * s, axis[1] * s, axis[2] * s));
-        } else {  // about a coordinate axis: two of the turn's components are zero
-          const int about = static_cast<int>(kind) - static_cast<int>(JointKind::kHingeX);
-          quat = quat_mul_axis(quat, about, c, axis[about] * s);
+      data.xanchor[j] =
+          model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(R, model.jnt_pos[j])) : pos;
+      switch (kind) {
+        case JointKind::kSlide:
+          data.xaxis[j] = rotate(R, axis);
+          pos += data.xaxis[j] * (data.qpos[qadr] - model.qpos0[qadr]);
+          continue;               // nothing turns: the anchor need not be kept
+        case JointKind::kBall: {  // qpos is the turn itself, a unit quaternion
+          const Quat turn(data.qpos[qadr], data.qpos[qadr + 1], data.qpos[qadr + 2],
+                          data.qpos[qadr + 3]);
+          data.xaxis[j] = rotate(R, axis);
+          const Mat3 before = R;
+          multiply(before, quat_to_mat(turn), R);
+          if (orientations) quat = quat_mul(quat, turn);
+          break;
+        }
+        default: {  // a hinge: half angles for the quaternion, the whole angle for R
+          const double half = 0.5 * (data.qpos[qadr] - model.qpos0[qadr]);
+          const double sh = std::sin(half), ch = std::cos(half);
+          const double c = ch * ch - sh * sh, s = 2.0 * sh * ch;
+          if (kind == JointKind::kHinge) {
+            data.xaxis[j] = rotate(R, axis);
+            const Mat3 before = R;
+            multiply(before, axis_rotation(axis, c, s), R);
+            if (orientations)
+              quat = quat_mul(quat, Quat(ch, axis[0] * sh, axis[1] * sh, axis[2] * sh));
+          } else {  // about coordinate axis k of the frame, signed: R's column k is the axis
+            const int about = static_cast<int>(kind) - static_cast<int>(JointKind::kHingeX);
+            const double sign = axis[about];
+            data.xaxis[j] = sign * R.col(about);
+            turn_columns(R, about, c, sign * s);
+            if (orientations) quat = quat_mul_axis(quat, about, ch, sign * sh);
+          }
         }
       }
       // the anchor stays where it is: the frame's origin swings around it
-      if (model.jnt_offset[j]) {
-        turned = quat_to_mat(quat);
-        pos = data.xanchor[j] - rotate(turned, model.jnt_pos[j]);
-      }
+      if (model.jnt_offset[j]) pos = data.xanchor[j] - rotate(R, model.jnt_pos[j]);
     }
 
-    data.xquat[b] = quat_renormalized(quat);
-    data.xmat[b] = quat_to_mat(data.xquat[b]);
+    if (orientations) data.xquat[b] = quat_renormalized(quat);
     data.xpos[b] = pos;
-    data.xipos[b] = pos + rotate(data.xmat[b], model.body_ipos[b]);
+    data.xipos[b] = pos + rotate(R, model.body_ipos[b]);
     if (model.body_irotated[b]) {
-      data.ximat[b].noalias() = data.xmat[b] * model.body_imat[b];
+      multiply(R, model.body_imat[b], model.body_iaxismap[b], data.ximat[b]);
     } else {
-      data.ximat[b] = data.xmat[b];
+      data.ximat[b] = R;
     }
-    data.subtree_com[b] = model.body_mass[b] * data.xipos[b];  // summed up in com_quantities()
   }
 
   for (int g = 0; g < model.ngeom; ++g) {
     const int b = model.geom_bodyid[g];
     data.geom_xpos[g] = data.xpos[b] + rotate(data.xmat[b], model.geom_pos[g]);
     if (model.geom_rotated[g]) {
-      data.geom_xmat[g].noalias() = data.xmat[b] * model.geom_mat[g];
+      multiply(data.xmat[b], model.geom_mat[g], model.geom_axismap[g], data.geom_xmat[g]);
     } else {
       data.geom_xmat[g] = data.xmat[b];
     }
@@ -113,7 +171,7 @@ void poses(const Model& model, Data& data) {
     const int b = model.site_bodyid[s];
     data.site_xpos[s] = data.xpos[b] + rotate(data.xmat[b], model.site_pos[s]);
     if (model.site_rotated[s]) {
-      data.site_xmat[s].noalias() = data.xmat[b] * model.site_mat[s];
+      multiply(data.xmat[b], model.site_mat[s], model.site_axismap[s], data.site_xmat[s]);
     } else {
       data.site_xmat[s] = data.xmat[b];
     }
@@ -132,8 +190,8 @@ void rotation_subspace(const Mat3& body_rotation, const Eigen::Vector3d& to_orig
 
 // Subtree centres of mass, body inertias and joint motion subspaces in absolute coordinates.
 void com_quantities(const Model& model, Data& data) {
-  // mass-weighted positions (poses() left each body's own), summed leaves to root
-  data.subtree_com[0] = model.body_mass[0] * data.xipos[0];
+  // mass-weighted positions, summed leaves to root
+  for (int b = 0; b < model.nbody; ++b) data.subtree_com[b] = model.body_mass[b] * data.xipos[b];
   for (int b = model.nbody - 1; b > 0; --b) {
     data.subtree_com[model.body_parentid[b]] += data.subtree_com[b];
   }
@@ -201,9 +259,14 @@ void check_jacobians(const Model& model, const Eigen::Ref<Eigen::MatrixXd>& jacp
 
 }  // namespace
 
+void poses(const Model& model, Data& data) {
+  check_entry(model, data, "lever::poses");
+  place_bodies(model, data, false);
+}
+
 void kinematics(const Model& model, Data& data) {
   check_entry(model, data, "lever::kinematics");
-  poses(model, data);
+  place_bodies(model, data, true);
   com_quantities(model, data);
 }
 

@@ -56,37 +56,59 @@ void build_actuator_kinds(Model& model) {
   }
 }
 
+// R as a quarter turn (lever/model.hpp AxisMap), or {0, 0, 0}: every entry within 1e-15 of 0 or
+// +-1, so that a normalized quaternion's rounding (1/sqrt(2) squared) still counts.
+AxisMap axis_map(const Mat3& R) {
+  constexpr double kRounding = 1e-15;
+  AxisMap map{0, 0, 0};
+  for (int c = 0; c < 3; ++c) {
+    for (int k = 0; k < 3; ++k) {
+      const double x = R(k, c);
+      if (std::abs(x) <= kRounding) continue;
+      if (std::abs(std::abs(x) - 1.0) > kRounding || map[c] != 0) return AxisMap{0, 0, 0};
+      map[c] = static_cast<int8_t>(x > 0 ? k + 1 : -(k + 1));
+    }
+    if (map[c] == 0) return AxisMap{0, 0, 0};
+  }
+  return map;
+}
+
 void build_rotations(Model& model) {
   model.body_rotated.resize(model.nbody);
+  model.body_mat.resize(model.nbody);
   model.body_imat.resize(model.nbody);
   model.body_irotated.resize(model.nbody);
+  model.body_axismap.resize(model.nbody);
+  model.body_iaxismap.resize(model.nbody);
   for (int b = 0; b < model.nbody; ++b) {
     model.body_rotated[b] = !is_identity(model.body_quat[b]);
+    model.body_mat[b] = quat_to_mat(quat_normalized(model.body_quat[b]));
     model.body_imat[b] = quat_to_mat(quat_normalized(model.body_iquat[b]));
     model.body_irotated[b] = !is_identity(model.body_iquat[b]);
+    model.body_axismap[b] = axis_map(model.body_mat[b]);
+    model.body_iaxismap[b] = axis_map(model.body_imat[b]);
   }
   model.geom_mat.resize(model.ngeom);
   model.geom_rotated.resize(model.ngeom);
+  model.geom_axismap.resize(model.ngeom);
   for (int g = 0; g < model.ngeom; ++g) {
     model.geom_mat[g] = quat_to_mat(quat_normalized(model.geom_quat[g]));
     model.geom_rotated[g] = !is_identity(model.geom_quat[g]);
+    model.geom_axismap[g] = axis_map(model.geom_mat[g]);
   }
   model.site_mat.resize(model.nsite);
   model.site_rotated.resize(model.nsite);
+  model.site_axismap.resize(model.nsite);
   for (int s = 0; s < model.nsite; ++s) {
     model.site_mat[s] = quat_to_mat(quat_normalized(model.site_quat[s]));
     model.site_rotated[s] = !is_identity(model.site_quat[s]);
+    model.site_axismap[s] = axis_map(model.site_mat[s]);
   }
   model.jnt_kind.resize(model.njnt);
-  for (int j = 0; j < model.njnt; ++j) model.jnt_kind[j] = joint_kind(model, j);
   model.jnt_offset.resize(model.njnt);
-  model.jnt_axis_in_parent.resize(model.njnt);
-  model.jnt_pos_in_parent.resize(model.njnt);
   for (int j = 0; j < model.njnt; ++j) {
+    model.jnt_kind[j] = joint_kind(model, j);
     model.jnt_offset[j] = !model.jnt_pos[j].isZero(0.0);
-    const Eigen::Matrix3d R = quat_to_mat(quat_normalized(model.body_quat[model.jnt_bodyid[j]]));
-    model.jnt_axis_in_parent[j] = R * model.jnt_axis[j];
-    model.jnt_pos_in_parent[j] = R * model.jnt_pos[j];
   }
 }
 

@@ -14,6 +14,12 @@ namespace lever {
 /// use.
 void kinematics(const Model& model, Data& data);
 
+/// The frames alone, at data.qpos (what mj_kinematics places, without the quaternions): each
+/// body's xpos and xmat, xipos and ximat, the joints' xanchor and xaxis, geom_xpos, geom_xmat,
+/// site_xpos and site_xmat. Leaves xquat and the com-frame quantities as they were; kinematics()
+/// computes all of them.
+void poses(const Model& model, Data& data);
+
 /// Translational (jacp) and rotational (jacr) Jacobians of a site, 3 x nv each, world frame
 /// (MuJoCo's mj_jacSite): site velocity = jacp qvel, angular velocity = jacr qvel.
 /// @pre kinematics() was called for the current qpos.

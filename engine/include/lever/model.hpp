@@ -56,6 +56,11 @@ enum class JointKind : uint8_t {
   kFree,    ///< free: position, then a quaternion; three translational dofs, then three rotational
 };
 
+/// A constant rotation R that maps every axis onto an axis (a quarter turn, to within the rounding
+/// of its quaternion): column c of R is sign(m[c]) e_k with k = |m[c]| - 1, so that column c of
+/// A R is column k of A, signed. m[0] == 0: R is not one (a general rotation).
+using AxisMap = std::array<int8_t, 3>;
+
 /// Integrators; the numeric values are MuJoCo's mjtIntegrator. kImplicit is MuJoCo 2.2.2's
 /// `implicit`: implicit in every velocity-dependent force (MuJoCo 3's `implicitfast` does not
 /// exist in 2.2.2).
@@ -299,18 +304,19 @@ struct Model {
   // ---- set_const: constant rotations, so kinematics() does not rebuild them every call ------
   // A flag is 0 where the rotation is the identity, which lets kinematics() skip the product.
   std::vector<uint8_t> body_rotated;   ///< body_quat is not the identity
+  std::vector<Mat3> body_mat;          ///< rotation of body_quat
   std::vector<Mat3> body_imat;         ///< rotation of body_iquat
   std::vector<uint8_t> body_irotated;  ///< body_iquat is not the identity
   std::vector<Mat3> geom_mat;          ///< rotation of geom_quat
   std::vector<uint8_t> geom_rotated;   ///< geom_quat is not the identity
   std::vector<Mat3> site_mat;          ///< rotation of site_quat
   std::vector<uint8_t> site_rotated;   ///< site_quat is not the identity
-  std::vector<JointKind> jnt_kind;     ///< what the kernels dispatch on (see JointKind)
-  std::vector<uint8_t> jnt_offset;     ///< jnt_pos is not zero (the anchor is off the origin)
-  /// the first joint of each body: its axis and anchor turned by body_quat, i.e. in the frame of
-  /// the parent body (unused for a body's later joints)
-  std::vector<Eigen::Vector3d> jnt_axis_in_parent;
-  std::vector<Eigen::Vector3d> jnt_pos_in_parent;
+  /// Each of these rotations as a quarter turn where it is one (see AxisMap): a product with it
+  /// only moves columns. An arm's frames mostly are (MJCF's quat="1 1 0 0", a fromto along an
+  /// axis).
+  std::vector<AxisMap> body_axismap, body_iaxismap, geom_axismap, site_axismap;
+  std::vector<JointKind> jnt_kind;  ///< what the kernels dispatch on (see JointKind)
+  std::vector<uint8_t> jnt_offset;  ///< jnt_pos is not zero (the anchor is off the origin)
 
   // ---- set_const: each actuator's kind (issue 20) -------------------------------------------
   std::vector<ActuatorKind> actuator_kind;  ///< (nu) from its gain and bias (see ActuatorKind)
