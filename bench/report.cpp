@@ -574,7 +574,7 @@ int main(int argc, char** argv) {
           << count_text(*lever_forward) << " (" << fmt("%.2f", *lever_forward / shared)
           << " of that work's), and its kernels one by one reach the ratios of the `bias`, "
           << "`crba` and `jac_site` rows (0.5-1.0 of MuJoCo's): each kernel would have to run at "
-          << "a " << fmt("%.0f", 100 * allowed / shared)
+          << fmt("%.0f", 100 * allowed / shared)
           << "% of MuJoCo's instructions. `step` carries the same work plus the integrator's.\n";
     }
     // (2) a time ratio missed where the instruction ratio is met: the run's noise
@@ -587,7 +587,47 @@ int main(int argc, char** argv) {
           << "): the medians of a call of tens of nanoseconds move by more than that from run to "
           << "run on this machine (see the ± columns below); the instruction count is exact.\n";
     }
-    // (3) the batches: the machine's two cores
+    // (3) the kernels missed by instructions: what each computes beyond its peer
+    const auto dofs_of = [&](const std::string& model) {
+      const std::string about = context->str("model." + model);
+      const std::size_t at = about.find("nv=");
+      return at == std::string::npos ? 0.0 : std::atof(about.c_str() + at + 3);
+    };
+    for (const std::string& model : model_order) {
+      const auto lever_fk = counts.count("fk", model, "lever");
+      const auto kdl_fk = counts.count("fk", model, "kdl");
+      const double nv = dofs_of(model);
+      if (!lever_fk || !kdl_fk || nv <= 0 || *lever_fk <= *kdl_fk) continue;
+      out << "- " << model << " `fk` / KDL: lever's `poses` runs " << count_text(*lever_fk)
+          << " instructions (" << count_text(*lever_fk / nv) << " per joint), KDL's tip frame "
+          << count_text(*kdl_fk) << " (" << count_text(*kdl_fk / nv)
+          << " per joint). Both evaluate one `sincos` per hinge; KDL composes one frame "
+          << "product per segment and returns the tip alone, while `poses` also writes every "
+          << "body's frame and centre-of-mass frame, every geom's and site's frame and each "
+          << "joint's anchor and axis (what MuJoCo's callers read), through the model's index "
+          << "arrays.\n";
+    }
+    for (const std::string& model : model_order) {
+      const auto lever_bias = counts.count("bias", model, "lever");
+      const auto mujoco_bias = counts.count("bias", model, "mujoco");
+      if (!lever_bias || !mujoco_bias || *lever_bias <= 0.7 * *mujoco_bias) continue;
+      out << "- " << model << " `bias` / `mj_rne`: " << count_text(*lever_bias) << " against "
+          << count_text(*mujoco_bias) << " instructions (" << ratio_text(*lever_bias / *mujoco_bias)
+          << "): lever's RNEA runs over the com-frame quantities `kinematics` leaves, as "
+          << "`mj_comVel` + `mj_rne` do; the local-frame "
+          << "recursion issue 18 asks for is not written yet, and it is where the rest would "
+          << "come from (no com-frame transforms per body).\n";
+    }
+    if (const auto jac = counts.count("step_jacobian_forward", "panda7", "lever"),
+        fwd = counts.count("forward", "panda7", "lever");
+        jac && fwd && *jac > 5.0 * *fwd) {
+      out << "- panda7 step Jacobian: " << count_text(*jac) << " instructions, "
+          << fmt("%.2f", *jac / *fwd) << " forwards: one forward, two analytic RNEA-derivative "
+          << "passes (dM at the step's acceleration by polarisation), the implicit step's "
+          << "factorisation and the chain rule through the integrator, each a dense nv x nv "
+          << "product or solve.\n";
+    }
+    // (4) the batches: the machine's two cores
     std::string load_text = "not recorded";
     if (const Json* load = context->find("load_avg");
         load != nullptr && load->kind == Json::Kind::kArray && !load->array.empty())

@@ -4,7 +4,8 @@
 //
 // Runs lever::step_derivatives (and so forward_derivatives) at the state; docs/derivatives.md
 // says what each matrix holds. --json: one object with, flattened row-major,
-//   A          2nv x 2nv  d [qpos'; qvel'] / d [qpos; qvel]   (mjd_transitionFD's A)
+//   A          2nv x 2nv  d [qpos'; qvel'] / d [qpos; qvel]   (mjd_transitionFD's A; with
+//                         ball or free joints qpos is differenced in its tangent space, nv numbers)
 //   B          2nv x nu   d [qpos'; qvel'] / d ctrl           (mjd_transitionFD's B)
 //   dqacc_dq, dqacc_dv (nv x nv), dqacc_du (nv x nu)         forward dynamics
 //   dtau_dq, dtau_dv (nv x nv)                                rnea at qacc
@@ -93,12 +94,22 @@ int cmd_derivatives(const Args& command_line) {
     std::printf("state: qpos %s qvel %s ctrl %s\n", vec_text(data.qpos).c_str(),
                 vec_text(data.qvel).c_str(), vec_text(data.ctrl).c_str());
     std::printf("limit rows: %d (their active set held fixed)\n", data.nefc);
-    print_matrix("A = d [qpos'; qvel'] / d [qpos; qvel]", deriv.A);
-    print_matrix("B = d [qpos'; qvel'] / d ctrl", deriv.B);
-    print_matrix("d qacc / d qpos", deriv.dqacc_dq);
+    // with quaternions (ball, free joints) a position is differenced in its tangent space, nv
+    // numbers (mj_differentiatePos), as mjd_transitionFD does
+    const bool tangent = model.nq != model.nv;
+    const std::string q = tangent ? "dq" : "qpos";
+    if (tangent) {
+      std::printf(
+          "dq: a change of qpos in its tangent space (nv = %d numbers, as "
+          "mj_differentiatePos gives it)\n",
+          model.nv);
+    }
+    print_matrix(("A = d [" + q + "'; qvel'] / d [" + q + "; qvel]").c_str(), deriv.A);
+    print_matrix(("B = d [" + q + "'; qvel'] / d ctrl").c_str(), deriv.B);
+    print_matrix(("d qacc / d " + q).c_str(), deriv.dqacc_dq);
     print_matrix("d qacc / d qvel", deriv.dqacc_dv);
     print_matrix("d qacc / d ctrl (0 where a clamp binds)", deriv.dqacc_du);
-    print_matrix("d rnea / d qpos at qacc", deriv.dtau_dq);
+    print_matrix(("d rnea / d " + q + " at qacc").c_str(), deriv.dtau_dq);
     print_matrix("d rnea / d qvel at qacc", deriv.dtau_dv);
   }
   WarningLog warnings;
