@@ -12,9 +12,11 @@
 // and the forces that MuJoCo's Newton solver converges to satisfy, with A = J M^-1 J^T and R the
 // regularizer, f >= 0, w = (A + R) f + (J qacc_smooth - a_ref) >= 0, f.w = 0 (a linear
 // complementarity problem with a symmetric positive definite matrix, so its solution is unique).
-// It is found exactly by Murty's least-index principal pivoting, which is finite for such
-// matrices; the usual case, one row, takes one step. A model with elliptic cones is solved by the
-// Newton solver of solver.cpp instead (an elliptic cone is not a set of one-sided rows).
+// It is found exactly, in the smaller space: with no more rows than dofs by Murty's least-index
+// principal pivoting on the rows (finite for such matrices; one row takes one step), with more
+// rows than dofs (contacts) by active sets in dof space (solve_active_set). A model with elliptic
+// cones is solved by the Newton solver of solver.cpp instead (an elliptic cone is not a set of
+// one-sided rows).
 #include <lever/constraint.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
@@ -441,8 +443,8 @@ bool solve_active_set(const Model& model, Data& data) {
 }
 
 // The same problem in row space, exactly, by Murty's least-index principal pivoting on
-// A = J M^-1 J^T + R: finite for a positive definite A, whatever the start. The fallback of
-// solve_active_set.
+// A = J M^-1 J^T + R: finite for a positive definite A, whatever the start. For few rows, and the
+// fallback of solve_active_set.
 void solve_by_pivoting(const Model& model, Data& data) {
   const int n = data.nefc;
   auto& w = data.work;
@@ -537,7 +539,11 @@ void solve_constraint(const Model& model, Data& data) {
     return;
   }
   start_one_sided(data);
-  if (data.nefc == 0 || solve_active_set(model, data)) return;
+  if (data.nefc == 0) return;
+  // in the smaller space: rows (pivoting on A, nefc x nefc) when there are no more rows than
+  // dofs (a limit or two on an arm), dofs (active sets on H, nv x nv) otherwise (a box resting
+  // on four corners has 16 pyramid rows and 6 dofs)
+  if (data.nefc > model.nv && solve_active_set(model, data)) return;
   solve_by_pivoting(model, data);
 }
 
