@@ -155,9 +155,9 @@ class Collider {
     const int nbody = m_.nbody;
     int pair_address = 0, exclude_address = 0;
     for (int b1 = 0; b1 < nbody; ++b1) {
+      const bool b1_with_every_body = pairs_with_every_body(b1);
       for (int b2 = b1 + 1; b2 < nbody; ++b2) {
-        const int listed = (pairs_with_every_body(b1) ? 1 : 0) +
-                           (pairs_with_every_body(b2) ? 1 : 0) +
+        const int listed = (b1_with_every_body ? 1 : 0) + (pairs_with_every_body(b2) ? 1 : 0) +
                            (sweep && boxes_overlap(b1, b2) ? 1 : 0);
         for (int k = 0; k < listed; ++k) {
           body_pair(b1, b2, pair_address, exclude_address);
@@ -382,12 +382,16 @@ class Collider {
       return;
     }
 
-    std::array<Contact, kMaxPairContacts> found;
-    for (Contact& c : found) c.frame.setZero();
-    int n = collide_shapes(shape(g1), shape(g2), margin, found.data());
+    // The narrow phase writes each contact's dist, pos and normal; a frame's second row is a
+    // tangent only where the pair sets one (the capsule's axis), so every frame starts zero.
+    // One buffer per thread, reused: a pair costs no construction of kMaxPairContacts contacts.
+    thread_local std::array<Contact, kMaxPairContacts> buffer;
+    Contact* found = buffer.data();
+    for (Contact& c : buffer) c.frame.setZero();
+    int n = collide_shapes(shape(g1), shape(g2), margin, found);
     if (n == 0) return;
     if (type1 == GeomType::kBox && type2 == GeomType::kBox)
-      n = detail::remove_repeated_positions(found.data(), n);
+      n = detail::remove_repeated_positions(found, n);
 
     // friction, solref, solimp
     std::array<double, 5> friction;
@@ -414,6 +418,7 @@ class Collider {
       c.exclude = c.dist < c.includemargin ? 0 : 1;
       complete_frame(c.frame);
       c.efc_address = -1;
+      c.mu = 0;  // make_constraint sets it for a contact with friction rows
       if (count_ >= m_.nconmax) {
         throw StateError("lever::collision: more than nconmax = " + std::to_string(m_.nconmax) +
                          " contacts (contact number " + std::to_string(m_.nconmax + 1) +

@@ -12,9 +12,11 @@
 // and the forces that MuJoCo's Newton solver converges to satisfy, with A = J M^-1 J^T and R the
 // regularizer, f >= 0, w = (A + R) f + (J qacc_smooth - a_ref) >= 0, f.w = 0 (a linear
 // complementarity problem with a symmetric positive definite matrix, so its solution is unique).
-// It is found exactly by Murty's least-index principal pivoting, which is finite for such
-// matrices; the usual case, one row, takes one step. A model with elliptic cones is solved by the
-// Newton solver of solver.cpp instead (an elliptic cone is not a set of one-sided rows).
+// It is found exactly, in the smaller space: with no more rows than dofs by Murty's least-index
+// principal pivoting on the rows (finite for such matrices; one row takes one step), with more
+// rows than dofs (contacts) by active sets in dof space (solve_active_set). A model with elliptic
+// cones is solved by the Newton solver of solver.cpp instead (an elliptic cone is not a set of
+// one-sided rows).
 #include <lever/constraint.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
@@ -91,10 +93,15 @@ double impedance(const std::array<double, 5>& solimp, double pos, double margin,
 
 namespace {
 
-// A row's product with a vector of nv numbers: a limit row's one entry, else the dense row.
+// A row's product with a vector of nv numbers: a limit row's one entry, else the dense row
+// (summed in order: a few dofs, no vectorization to pay for).
 double row_dot(const Data& data, int r, const Eigen::VectorXd& x) {
   if (data.efc_dof[r] >= 0) return data.efc_sign[r] * x[data.efc_dof[r]];
-  return data.efc_J.row(r).dot(x);
+  const double* J = data.efc_J.row(r).data();
+  const double* v = x.data();
+  double sum = 0.0;
+  for (Eigen::Index i = 0; i < x.size(); ++i) sum += J[i] * v[i];
+  return sum;
 }
 
 // x += J_r^T f for row r.
@@ -102,7 +109,9 @@ void add_row_transpose(const Data& data, int r, double f, Eigen::VectorXd& x) {
   if (data.efc_dof[r] >= 0) {
     x[data.efc_dof[r]] += data.efc_sign[r] * f;
   } else {
-    x += data.efc_J.row(r).transpose() * f;
+    const double* J = data.efc_J.row(r).data();
+    double* out = x.data();
+    for (Eigen::Index i = 0; i < x.size(); ++i) out[i] += J[i] * f;
   }
 }
 
@@ -142,9 +151,13 @@ int add_limit_rows(const Model& model, Data& data) {
 
 // Rows first..first+2 of out = frame * J (3 x nv), summed in MuJoCo's order (mju_mulMatMat).
 void rotate_rows(const Mat3& frame, const Eigen::MatrixXd& J, RowMatrix& out, int first) {
+  const Eigen::Index nv = J.cols();
+  const double* Jc = J.data();  // column-major 3 x nv: column c at 3 c
   for (int i = 0; i < 3; ++i) {
-    for (Eigen::Index c = 0; c < J.cols(); ++c) {
-      out(first + i, c) = frame(i, 0) * J(0, c) + frame(i, 1) * J(1, c) + frame(i, 2) * J(2, c);
+    const double f0 = frame(i, 0), f1 = frame(i, 1), f2 = frame(i, 2);
+    double* row = out.row(first + i).data();
+    for (Eigen::Index c = 0; c < nv; ++c) {
+      row[c] = f0 * Jc[3 * c] + f1 * Jc[3 * c + 1] + f2 * Jc[3 * c + 2];
     }
   }
 }
@@ -160,15 +173,21 @@ int add_contact_rows(const Model& model, Data& data, int i, int n) {
   auto& w = data.work;
   // relative velocity of the point on body 2 to the point on body 1, in the contact frame:
   // normal, two tangents, then (condim 4, 6) the rotations about the same axes
+  // (the world does not move: a point of it has no Jacobian to compute or subtract)
   const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
-  jac_point(model, data, b1, con.pos, w.jac1p, w.jac1r);
-  jac_point(model, data, b2, con.pos, w.jac2p, w.jac2r);
-  w.jac2p -= w.jac1p;  // in place: the workspace holds the difference
-  rotate_rows(con.frame, w.jac2p, w.contact_jac, 0);
-  if (dim > 3) {
-    w.jac2r -= w.jac1r;
-    rotate_rows(con.frame, w.jac2r, w.contact_jac, 3);
+  if (b2 != 0) {
+    jac_point(model, data, b2, con.pos, w.jac2p, w.jac2r);
+  } else {
+    w.jac2p.setZero();
+    w.jac2r.setZero();
   }
+  if (b1 != 0) {
+    jac_point(model, data, b1, con.pos, w.jac1p, w.jac1r);
+    w.jac2p -= w.jac1p;  // in place: the workspace holds the difference
+    if (dim > 3) w.jac2r -= w.jac1r;
+  }
+  rotate_rows(con.frame, w.jac2p, w.contact_jac, 0);
+  if (dim > 3) rotate_rows(con.frame, w.jac2r, w.contact_jac, 3);
   con.efc_address = n;
   for (int r = n; r < n + rows; ++r) {
     data.efc_type[r] = pyramid    ? ConstraintType::kContactPyramidal
@@ -214,6 +233,30 @@ double diag_approx(const Model& model, const Data& data, int r) {
   return translation + mu * mu * (k < 2 ? translation : rotation);
 }
 
+// A row's impedance at its distance, and the stiffness and damping of its reference
+// acceleration (K and B use dmax, not the current impedance).
+struct SoftParameters {
+  double imp, K, B;
+};
+
+SoftParameters soft_parameters(const std::array<double, 2>& solref,
+                               const std::array<double, 5>& solimp, double pos, double margin) {
+  SoftParameters soft;
+  soft.imp = impedance(solimp, pos, margin, nullptr);
+  const double dmax = solimp[1];
+  if (solref[0] > 0) {
+    soft.K = 1 / std::max(kMinVal, dmax * dmax * solref[0] * solref[0] * solref[1] * solref[1]);
+  } else {
+    soft.K = -solref[0] / std::max(kMinVal, dmax * dmax);
+  }
+  if (solref[1] > 0) {
+    soft.B = 2 / std::max(kMinVal, dmax * solref[0]);
+  } else {
+    soft.B = -solref[1] / std::max(kMinVal, dmax);
+  }
+  return soft;
+}
+
 }  // namespace
 
 void make_constraint(const Model& model, Data& data) {
@@ -228,41 +271,30 @@ void make_constraint(const Model& model, Data& data) {
   data.nefc = n;
 
   // impedance and regularizer (MuJoCo's mj_diagApprox and mj_makeImpedance); the rows of one
-  // contact share its distance, so its impedance
+  // contact share its distance, so its impedance, K and B: computed at its first row
+  SoftParameters soft{};
   for (int r = 0; r < n; ++r) {
-    std::array<double, 2> solref;
-    std::array<double, 5> solimp;
-    double pos = data.efc_pos[r], margin = data.efc_margin[r];
     if (data.efc_type[r] == ConstraintType::kLimitJoint) {
+      std::array<double, 2> solref;
+      std::array<double, 5> solimp;
       limit_parameters(model, data.efc_id[r], solref, solimp);
+      soft = soft_parameters(solref, solimp, data.efc_pos[r], data.efc_margin[r]);
     } else {
       const Contact& con = data.contact[data.efc_id[r]];
-      solref = con.solref;
-      solimp = con.solimp;
-      sanitize(model, solref, solimp);
-      pos = con.dist;  // an elliptic cone's friction rows too
-      margin = con.includemargin;
+      if (r == con.efc_address) {
+        std::array<double, 2> solref = con.solref;
+        std::array<double, 5> solimp = con.solimp;
+        sanitize(model, solref, solimp);
+        soft = soft_parameters(solref, solimp, con.dist, con.includemargin);
+      }
     }
-    const double imp = impedance(solimp, pos, margin, nullptr);
-    const double dmax = solimp[1];
-    data.efc_imp[r] = imp;
-    data.efc_R[r] = std::max(kMinVal, (1 - imp) * diag_approx(model, data, r) / imp);
-    // K and B use dmax, not the current impedance; friction has no position to restore
+    data.efc_imp[r] = soft.imp;
+    data.efc_R[r] = std::max(kMinVal, (1 - soft.imp) * diag_approx(model, data, r) / soft.imp);
+    // friction has no position to restore
     const bool friction_row = data.efc_type[r] == ConstraintType::kContactElliptic &&
                               r > data.contact[data.efc_id[r]].efc_address;
-    if (friction_row) {
-      data.efc_K[r] = 0.0;
-    } else if (solref[0] > 0) {
-      data.efc_K[r] =
-          1 / std::max(kMinVal, dmax * dmax * solref[0] * solref[0] * solref[1] * solref[1]);
-    } else {
-      data.efc_K[r] = -solref[0] / std::max(kMinVal, dmax * dmax);
-    }
-    if (solref[1] > 0) {
-      data.efc_B[r] = 2 / std::max(kMinVal, dmax * solref[0]);
-    } else {
-      data.efc_B[r] = -solref[1] / std::max(kMinVal, dmax);
-    }
+    data.efc_K[r] = friction_row ? 0.0 : soft.K;
+    data.efc_B[r] = soft.B;
   }
   // friction's regularizer: the first friction row's R_1 = R_0 / impratio sets the regularized
   // cone's mu = friction_0 sqrt(R_1 / R_0). An elliptic cone's other friction rows get the R
@@ -309,18 +341,114 @@ void reference_constraint(const Model& model, Data& data) {
   }
 }
 
-void solve_constraint(const Model& model, Data& data) {
-  check_entry(model, data, "lever::solve_constraint");
-  const int n = data.nefc;
-  data.qfrc_constraint.setZero();
-  data.qacc = data.qacc_smooth;
-  if (n == 0) return;
-  if (model.opt.cone == Cone::kElliptic) {
-    solve_constraint_newton(model, data);
-    return;
-  }
+namespace {
 
+// Most rounds of the active-set solve before the pivoting takes over: settling takes one or two
+// (a contact that starts or stops pushing moves one row), a cycle is what the bound catches.
+constexpr int kMaxActiveSetRounds = 8;
+
+// x = H^-1 x for a symmetric positive definite H given by its lower triangle, which is replaced
+// by its Cholesky factor L (H = L L^T). nv x nv with nv a few dozen at most: plain loops, column
+// by column (right-looking: each finished column updates the ones after it).
+void cholesky_solve(Eigen::MatrixXd& H, Eigen::VectorXd& x) {
+  const Eigen::Index nv = x.size();
+  for (Eigen::Index j = 0; j < nv; ++j) {
+    double* Lj = H.col(j).data();
+    const double Ljj = std::sqrt(Lj[j]);
+    Lj[j] = Ljj;
+    for (Eigen::Index i = j + 1; i < nv; ++i) Lj[i] /= Ljj;
+    for (Eigen::Index k = j + 1; k < nv; ++k) {
+      if (Lj[k] == 0.0) continue;  // dofs of different trees (a gripper and a free box) decouple
+      double* Hk = H.col(k).data();
+      for (Eigen::Index i = k; i < nv; ++i) Hk[i] -= Lj[i] * Lj[k];
+    }
+  }
+  for (Eigen::Index i = 0; i < nv; ++i) {  // L y = x
+    double sum = x[i];
+    for (Eigen::Index k = 0; k < i; ++k) sum -= H(i, k) * x[k];
+    x[i] = sum / H(i, i);
+  }
+  for (Eigen::Index i = nv - 1; i >= 0; --i) {  // L^T x = y
+    double sum = x[i];
+    for (Eigen::Index k = i + 1; k < nv; ++k) sum -= H(k, i) * x[k];
+    x[i] = sum / H(i, i);
+  }
+}
+
+// The one-sided rows' problem solved in dof space. For a set S of pushing rows the cost
+// 1/2 |a - a_smooth|_M^2 + sum_S 1/2 D_r (J_r a - aref_r)^2 is one quadratic, minimized by
+//   (M + J_S^T D_S J_S) a = M a_smooth + J_S^T D_S aref_S         (nv x nv, whatever the rows)
+// (Newton's step for MuJoCo's primal problem, exact because the cost is quadratic on S; M a_smooth
+// is qfrc_smooth). If the
+// rows that push at that a, {r : jar_r = J_r a - aref_r < 0}, are S again, a is the minimizer:
+// f = -D jar > 0 on S and jar >= 0 off it is the complementarity the LCP asks for, whose
+// solution is unique. Otherwise S becomes that set and the round repeats, from S = the rows that
+// push at a_smooth. False (nothing written) when the set has not settled after
+// kMaxActiveSetRounds rounds: the pivoting, which always finishes, decides then.
+bool solve_active_set(const Model& model, Data& data) {
   auto& w = data.work;
+  const int n = data.nefc, nv = model.nv;
+  std::vector<int>& active = w.lcp_active;
+  auto& H = w.newton_H;
+  auto& a = w.newton_dir;  // the round's acceleration
+  const double* D = data.efc_D.data();
+  const double* aref = data.efc_aref.data();
+  for (int r = 0; r < n; ++r) active[r] = data.efc_b[r] < 0;
+
+  for (int round = 0; round < kMaxActiveSetRounds; ++round) {
+    // H = M + J_S^T D_S J_S (lower triangle) and a = M a_smooth + J_S^T D_S aref_S, where
+    // M a_smooth is qfrc_smooth (as MuJoCo's gradient M a - qfrc_smooth has it)
+    H = data.M;
+    a = data.qfrc_smooth;
+    double* rhs = a.data();
+    for (int r = 0; r < n; ++r) {
+      if (!active[r]) continue;
+      const int dof = data.efc_dof[r];
+      if (dof >= 0) {  // a limit row: J_r = sign e_dof, sign^2 = 1
+        H(dof, dof) += D[r];
+        rhs[dof] += data.efc_sign[r] * D[r] * aref[r];
+        continue;
+      }
+      // a contact row touches only its bodies' dofs: the span [first, last] of its nonzeros
+      const double* J = data.efc_J.row(r).data();
+      int first = 0, last = nv - 1;
+      while (first < nv && J[first] == 0.0) ++first;
+      while (last > first && J[last] == 0.0) --last;
+      for (int i = first; i <= last; ++i) {
+        const double DJi = D[r] * J[i];
+        rhs[i] += DJi * aref[r];
+        double* column = H.col(i).data();  // the lower triangle of column i, H(j, i) for j >= i
+        for (int j = i; j <= last; ++j) column[j] += DJi * J[j];
+      }
+    }
+    cholesky_solve(H, a);
+
+    // the rows that push at a; the same set: done
+    bool settled = true;
+    for (int r = 0; r < n; ++r) {
+      w.newton_jar[r] = row_dot(data, r, a) - aref[r];
+      settled = settled && (w.newton_jar[r] < 0) == (active[r] != 0);
+      active[r] = w.newton_jar[r] < 0;
+    }
+    if (!settled) continue;
+    data.qacc = a;
+    for (int r = 0; r < n; ++r) {
+      data.efc_force[r] = active[r] ? -D[r] * w.newton_jar[r] : 0.0;
+      data.efc_state[r] = active[r] ? ConstraintState::kActive : ConstraintState::kSatisfied;
+      add_row_transpose(data, r, data.efc_force[r], data.qfrc_constraint);
+    }
+    return true;
+  }
+  return false;
+}
+
+// The same problem in row space, exactly, by Murty's least-index principal pivoting on
+// A = J M^-1 J^T + R: finite for a positive definite A, whatever the start. For few rows, and the
+// fallback of solve_active_set.
+void solve_by_pivoting(const Model& model, Data& data) {
+  const int n = data.nefc;
+  auto& w = data.work;
+  const auto b = data.efc_b.head(n);
   // A = J M^-1 J^T + R. With M = L^T D L, J M^-1 J^T = Y^T D^-1 Y for Y = L^-T J^T: one half
   // solve per row, over its dofs and their ancestors.
   for (int r = 0; r < n; ++r) {
@@ -335,8 +463,6 @@ void solve_constraint(const Model& model, Data& data) {
   A.triangularView<Eigen::Lower>() =
       w.halfJ.leftCols(n).transpose().lazyProduct(w.halfJ_scaled.leftCols(n));
   A.diagonal() += data.efc_R.head(n);
-  auto b = data.efc_b.head(n);
-  b = data.efc_J.topRows(n).lazyProduct(data.qacc_smooth) - data.efc_aref.head(n);
 
   // Murty's least-index principal pivoting, starting from the rows that are pushed into the
   // stop. A + R is positive definite (R > 0), so the LCP has one solution and the method reaches
@@ -386,6 +512,45 @@ void solve_constraint(const Model& model, Data& data) {
   w.vec1 = data.qfrc_constraint;
   solve_mass(model, data, w.vec1);
   data.qacc += w.vec1;
+}
+
+}  // namespace
+
+namespace {
+
+// Where both one-sided solves start: no constraint force, qacc = qacc_smooth, and each row's
+// b = J qacc_smooth - a_ref (its jar without constraint forces).
+void start_one_sided(Data& data) {
+  data.qfrc_constraint.setZero();
+  data.qacc = data.qacc_smooth;
+  for (int r = 0; r < data.nefc; ++r) {
+    data.efc_b[r] = row_dot(data, r, data.qacc_smooth) - data.efc_aref[r];
+  }
+}
+
+}  // namespace
+
+void solve_constraint(const Model& model, Data& data) {
+  check_entry(model, data, "lever::solve_constraint");
+  if (model.opt.cone == Cone::kElliptic) {
+    data.qfrc_constraint.setZero();
+    data.qacc = data.qacc_smooth;
+    if (data.nefc > 0) solve_constraint_newton(model, data);
+    return;
+  }
+  start_one_sided(data);
+  if (data.nefc == 0) return;
+  // in the smaller space: rows (pivoting on A, nefc x nefc) when there are no more rows than
+  // dofs (a limit or two on an arm), dofs (active sets on H, nv x nv) otherwise (a box resting
+  // on four corners has 16 pyramid rows and 6 dofs)
+  if (data.nefc > model.nv && solve_active_set(model, data)) return;
+  solve_by_pivoting(model, data);
+}
+
+void solve_constraint_pivoting(const Model& model, Data& data) {
+  check_entry(model, data, "lever::solve_constraint_pivoting");
+  start_one_sided(data);
+  if (data.nefc > 0) solve_by_pivoting(model, data);
 }
 
 }  // namespace lever

@@ -40,6 +40,12 @@ void add_constraint_row_transpose(const Data& data, int r, double f, Eigen::Vect
 /// @pre make_constraint, reference_constraint, qacc_smooth and M are current.
 int solve_constraint_newton(const Model& model, Data& data);
 
+/// Solve one-sided rows (limits, frictionless and pyramidal contacts) by principal pivoting on
+/// A = J M^-1 J^T + R (constraint.cpp), the fallback of solve_constraint's active sets: qacc,
+/// efc_b, efc_force, efc_state, qfrc_constraint. For tests that compare the two.
+/// @pre as solve_constraint, and no elliptic cone.
+void solve_constraint_pivoting(const Model& model, Data& data);
+
 /// efc_force, efc_state and qfrc_constraint that the rows exert at a given qacc (solver.cpp;
 /// MuJoCo's mj_constraintUpdate): what inverse() reports.
 void constraint_forces_at(Data& data, const Eigen::VectorXd& qacc);

@@ -47,8 +47,9 @@ TEST_CASE("diff: how far MuJoCo's default tolerance moves its answer", "[diff][t
   REQUIRE(mj_version() == 222);
   std::printf(
       "| model | cone | states with contact rows | qacc, tolerance 1e-8 | efc_force, "
-      "tolerance 1e-8 | qacc, lever Newton vs LCP | qacc, Newton vs MuJoCo | qacc, LCP "
-      "vs MuJoCo |\n|---|---|---|---|---|---|---|---|\n");
+      "tolerance 1e-8 | qacc, lever Newton vs active sets | qacc, Newton vs MuJoCo | qacc, "
+      "active sets vs MuJoCo | qacc, pivoting vs MuJoCo "
+      "|\n|---|---|---|---|---|---|---|---|---|\n");
   for (const char* file :
        {"models/box_drop.xml", "models/gripper.xml", "tests/diff/contact_scenes/free_objects.xml",
         "tests/diff/contact_scenes/arm_and_objects.xml"}) {
@@ -59,6 +60,7 @@ TEST_CASE("diff: how far MuJoCo's default tolerance moves its answer", "[diff][t
       const int nv = twin.model.nv;
       std::mt19937_64 rng(seed_for(file));
       double loose_qacc = 0, loose_force = 0, newton_lcp = 0, newton_mj = 0, lcp_mj = 0;
+      double pivoting_mj = 0;
       int with_rows = 0;
       for (int k = 0; k < 200; ++k) {
         State s = random_state(twin.model, rng);
@@ -83,7 +85,8 @@ TEST_CASE("diff: how far MuJoCo's default tolerance moves its answer", "[diff][t
         REQUIRE(twin.d->nefc == nefc);
         loose_qacc = std::max(loose_qacc, relative(twin.d->qacc, qacc.data(), nv));
         loose_force = std::max(loose_force, relative(twin.d->efc_force, force.data(), nefc));
-        // lever: its solver for this cone; for a pyramid, also the Newton solver
+        // lever: its solver for this cone; for a pyramid (solved by active sets), also the
+        // Newton solver and the principal pivoting (the active sets' fallback)
         forward(twin.model, twin.data);
         if (cone == Cone::kPyramidal) {
           const Eigen::VectorXd lcp = twin.data.qacc;
@@ -91,18 +94,21 @@ TEST_CASE("diff: how far MuJoCo's default tolerance moves its answer", "[diff][t
           newton_lcp = std::max(newton_lcp, relative(twin.data.qacc.data(), lcp.data(), nv));
           newton_mj = std::max(newton_mj, relative(twin.data.qacc.data(), qacc.data(), nv));
           lcp_mj = std::max(lcp_mj, relative(lcp.data(), qacc.data(), nv));
+          solve_constraint_pivoting(twin.model, twin.data);
+          pivoting_mj = std::max(pivoting_mj, relative(twin.data.qacc.data(), qacc.data(), nv));
         }
       }
       CHECK(with_rows > 20);
       const bool pyramid = cone == Cone::kPyramidal;
-      std::printf("| %s | %s | %d | %.1e | %.1e | %s | %s | %s |\n", file,
+      std::printf("| %s | %s | %d | %.1e | %.1e | %s | %s | %s | %s |\n", file,
                   pyramid ? "pyramidal" : "elliptic", with_rows, loose_qacc, loose_force,
                   pyramid ? sci(newton_lcp).c_str() : "", pyramid ? sci(newton_mj).c_str() : "",
-                  pyramid ? sci(lcp_mj).c_str() : "");
+                  pyramid ? sci(lcp_mj).c_str() : "", pyramid ? sci(pivoting_mj).c_str() : "");
       if (pyramid) {
-        // both of lever's solvers reach MuJoCo's converged answer
+        // each of lever's solvers reaches MuJoCo's converged answer
         CHECK(newton_mj <= 1e-10);
         CHECK(lcp_mj <= 1e-10);
+        CHECK(pivoting_mj <= 1e-10);
       }
     }
   }

@@ -20,7 +20,7 @@ void make_constraint(const Model& model, Data& data);
 void reference_constraint(const Model& model, Data& data);
 
 /// Solve the rows: efc_force, efc_state, qfrc_constraint and qacc (MuJoCo's mj_fwdConstraint).
-/// @pre qacc_smooth, efc_aref and the factor of M are current.
+/// @pre qfrc_smooth, qacc_smooth, efc_aref, M and its factor are current.
 void solve_constraint(const Model& model, Data& data);
 
 }  // namespace lever
