@@ -584,8 +584,9 @@ int main(int argc, char** argv) {
         continue;
       out << "- " << t.text << ": met by instructions (" << ratio_text(t.instructions.value())
           << "), missed by time (" << ratio_text(t.time.value())
-          << "): the medians of a call of tens of nanoseconds move by more than that from run to "
-          << "run on this machine (see the ± columns below); the instruction count is exact.\n";
+          << "): the median of a call this short (tens to hundreds of nanoseconds) moves by more "
+          << "than that from run to run on this machine (see the ± columns below); the "
+          << "instruction count is exact.\n";
     }
     // (3) the kernels missed by instructions: what each computes beyond its peer
     const auto dofs_of = [&](const std::string& model) {
