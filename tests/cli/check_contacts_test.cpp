@@ -153,14 +153,14 @@ TEST_CASE("check (9): elliptic cones: one normal row carries the weight, the gri
           "[check][contacts]") {
   // the same two lesson models with cone="elliptic": at rest each contact's normal row alone
   // pushes (its friction rows have aref = -B v = 0), with A = t, the normal row's diagApprox
-  const std::string drop = temporary_file(
-      "lever_box_elliptic.xml", replaced(read(model_path("models/box_drop.xml")),
-                                         "<option timestep=\"0.002\"",
-                                         "<option cone=\"elliptic\" timestep=\"0.002\""));
-  const std::string grip = temporary_file(
-      "lever_gripper_elliptic.xml", replaced(read(model_path("models/gripper.xml")),
-                                             "<option timestep=\"0.002\"",
-                                             "<option cone=\"elliptic\" timestep=\"0.002\""));
+  const std::string drop =
+      temporary_file("lever_box_elliptic.xml",
+                     replaced(read(model_path("models/box_drop.xml")), "<option timestep=\"0.002\"",
+                              "<option cone=\"elliptic\" timestep=\"0.002\""));
+  const std::string grip =
+      temporary_file("lever_gripper_elliptic.xml",
+                     replaced(read(model_path("models/gripper.xml")), "<option timestep=\"0.002\"",
+                              "<option cone=\"elliptic\" timestep=\"0.002\""));
   const json::Value r = check_json(drop)["contacts"]["resting_depth"];
   const json::Value g = check_json(grip)["contacts"]["grip"];
   const json::Value pyramid = check_json(model_path("models/box_drop.xml"))["contacts"];
