@@ -7,6 +7,15 @@
 
 namespace lever::test {
 
+namespace {
+
+// A rigid body's principal moments: each at most the sum of the other two.
+bool rigid_body_moments(const Eigen::Vector3d& I) {
+  return I.x() + I.y() >= I.z() && I.y() + I.z() >= I.x() && I.x() + I.z() >= I.y();
+}
+
+}  // namespace
+
 TEST_CASE("property: the random trees cover what the properties should see", "[property][trees]") {
   std::set<JointKind> kinds;
   int branching = 0, welded = 0, springs = 0, offset_anchors = 0, largest_nv = 0;
@@ -20,11 +29,7 @@ TEST_CASE("property: the random trees cover what the properties should see", "[p
       CHECK(m.body_parentid[b] < b);
       ++children[m.body_parentid[b]];
       if (m.body_jntnum[b] == 0) ++welded;
-      // a rigid body's principal moments satisfy the triangle inequality
-      const Eigen::Vector3d& I = m.body_inertia[b];
-      CHECK(I.x() + I.y() >= I.z());
-      CHECK(I.y() + I.z() >= I.x());
-      CHECK(I.x() + I.z() >= I.y());
+      CHECK(rigid_body_moments(m.body_inertia[b]));
       CHECK(m.body_mass[b] > 0);
     }
     for (int b = 1; b < m.nbody; ++b) branching += children[b] >= 2;
@@ -59,10 +64,7 @@ TEST_CASE("property: the random MJCF trees have ball and free joints, branches a
     for (int b = 1; b < m.nbody; ++b) {
       ++children[m.body_parentid[b]];
       if (m.body_jntnum[b] == 0) ++welded;
-      const Eigen::Vector3d& I = m.body_inertia[b];
-      CHECK(I.x() + I.y() >= I.z());
-      CHECK(I.y() + I.z() >= I.x());
-      CHECK(I.x() + I.z() >= I.y());
+      CHECK(rigid_body_moments(m.body_inertia[b]));
     }
     for (int b = 1; b < m.nbody; ++b) branching += children[b] >= 2;
     for (int j = 0; j < m.njnt; ++j) {
