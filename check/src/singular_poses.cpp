@@ -37,6 +37,20 @@ constexpr int kGolden = 40;
 constexpr int kSweeps = 20;
 constexpr double kRankTolerance = 1e-9;  // relative to sigma_1: a singular value that counts
 
+// The singular values with those that do not count set to 0. The Jacobian's entries carry
+// rounding of order 1e-16 sigma_1 per joint of the chain, so near a singular pose sigma_k
+// settles at 1e-15..1e-13 sigma_1 wherever the search stops: noise, not a measure of how
+// singular the pose is. Zeroed, such poses print as singular (manipulability 0, condition inf)
+// and rank equal, rather than ordered by their rounding. (The search itself descends on the
+// values as computed, so that it ends on the singular pose rather than anywhere near it.)
+Eigen::VectorXd counted(Eigen::VectorXd sigma) {
+  const double floor = sigma.size() ? kRankTolerance * sigma[0] : 0.0;
+  for (Eigen::Index i = 0; i < sigma.size(); ++i) {
+    if (sigma[i] <= floor) sigma[i] = 0.0;
+  }
+  return sigma;
+}
+
 // The site Jacobian's singular values at any pose, counting evaluations.
 class JacobianProbe {
  public:
@@ -101,7 +115,7 @@ JacobianAt evaluate(const Model& model, JacobianProbe& probe, const std::string&
   at.where = where;
   at.q = q;
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(probe.jacobian(q), Eigen::ComputeFullV);
-  const Eigen::VectorXd all = svd.singularValues();
+  const Eigen::VectorXd all = counted(svd.singularValues());
   at.sigma = all.head(std::min<Eigen::Index>(rank, all.size()));
   at.manipulability = at.sigma.size() ? at.sigma.prod() : 0.0;
   const double low = smallest(all, rank);
@@ -253,7 +267,8 @@ SiteSingularity check_site(const Model& model, int s, const std::vector<Eigen::V
       const bool seen = std::any_of(found.begin(), found.end(), [&](const auto& f) {
         return (f.second - q).cwiseAbs().maxCoeff() < 1e-6;
       });
-      if (!seen) found.push_back({smallest(probe.sigma(q), site.rank), q});
+      // ranked by the values that count: poses singular to rounding tie
+      if (!seen) found.push_back({smallest(counted(probe.sigma(q)), site.rank), q});
     }
     std::stable_sort(found.begin(), found.end(),
                      [](const auto& a, const auto& b) { return a.first < b.first; });
