@@ -338,15 +338,9 @@ void size_model(Model& model) {
   LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE_ARRAY)
 #undef LEVER_MODEL_SIZE_ARRAY
   // outside the table (see lever/fields.hpp): one name per object, and the keyframes
-  const auto size_names = [](std::vector<std::string>& names, int n) {
-    names.resize(static_cast<size_t>(n));
-  };
-  size_names(model.body_name, model.nbody);
-  size_names(model.jnt_name, model.njnt);
-  size_names(model.geom_name, model.ngeom);
-  size_names(model.site_name, model.nsite);
-  size_names(model.actuator_name, model.nu);
-  size_names(model.key_name, model.nkey);
+#define LEVER_MODEL_SIZE_NAMES(name, count) model.name.resize(static_cast<size_t>(model.count));
+  LEVER_MODEL_NAMES(LEVER_MODEL_SIZE_NAMES)
+#undef LEVER_MODEL_SIZE_NAMES
   model.key_time.resize(static_cast<size_t>(model.nkey), 0.0);
   model.key_qpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nq));
   model.key_qvel.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nv));

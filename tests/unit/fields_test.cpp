@@ -631,10 +631,9 @@ std::vector<double> numbers_of(const lever::Model& model) {
 
 std::vector<std::string> names_of(const lever::Model& model) {
   std::vector<std::string> all;
-  for (const auto* names : {&model.body_name, &model.jnt_name, &model.geom_name, &model.site_name,
-                            &model.actuator_name, &model.key_name}) {
-    all.insert(all.end(), names->begin(), names->end());
-  }
+#define LEVER_TEST_NAMES(name, count) all.insert(all.end(), model.name.begin(), model.name.end());
+  LEVER_MODEL_NAMES(LEVER_TEST_NAMES)
+#undef LEVER_TEST_NAMES
   return all;
 }
 
@@ -744,8 +743,10 @@ TEST_CASE("a compiled model's arrays have the lengths size_model gives them", "[
       INFO("Model::" << table[i].name);
       CHECK(stored[i].numbers == promised(model, table[i]));
     }
-    CHECK(static_cast<int>(model.body_name.size()) == model.nbody);
-    CHECK(static_cast<int>(model.key_name.size()) == model.nkey);
+#define LEVER_TEST_NAME_COUNT(name, count) \
+  CHECK(static_cast<int>(model.name.size()) == model.count);
+    LEVER_MODEL_NAMES(LEVER_TEST_NAME_COUNT)
+#undef LEVER_TEST_NAME_COUNT
     CHECK(static_cast<int>(model.key_time.size()) == model.nkey);
     // sizing it again moves nothing: every array already has its length and keeps its numbers
     lever::Model sized = model;

@@ -17,11 +17,11 @@
 // The table sizes Model as it sizes Data: whoever builds a model (lever::mjcf's compiler, the
 // harness's copy of a MuJoCo model, a model built by hand) sets the counts (nbody, njnt, nq, ...),
 // calls size_model(), and writes each element by index. Arrays of Model outside the table, because
-// their entries are not numbers or their width is not a number: the names (one string per object:
-// body_name, jnt_name, geom_name, site_name, actuator_name, key_name) and the keyframes (key_time,
-// nkey; key_qpos, key_qvel, key_ctrl, nkey x nq, nv, nu), which size_model sizes by hand; the
-// arrays set_const derives (body_mat, jnt_kind, actuator_kind, ...), which set_const sizes; and
-// `visual`, the file's asset lists, counted by the file and never read by the engine.
+// their entries are not numbers or their width is not a number: the names (one string per object,
+// LEVER_MODEL_NAMES below) and the keyframes (key_time, nkey; key_qpos, key_qvel, key_ctrl, nkey x
+// nq, nv, nu), which size_model also sizes; the arrays set_const derives (body_mat, jnt_kind,
+// actuator_kind, ...), which set_const sizes; and `visual`, the file's asset lists, counted by the
+// file and never read by the engine.
 #pragma once
 
 #include <cstdint>
@@ -121,6 +121,16 @@
   X(pair_gap, double, npair, 1, mujoco)      \
   X(pair_friction, double, npair, 5, mujoco) \
   X(exclude_signature, int, nexclude, 1, mujoco)
+
+// The names of Model's objects, one string each ("" if unnamed), outside the table above because
+// their entries are not numbers. X(name, count): `count` is the Model member that counts them.
+#define LEVER_MODEL_NAMES(X) \
+  X(body_name, nbody)        \
+  X(jnt_name, njnt)          \
+  X(geom_name, ngeom)        \
+  X(site_name, nsite)        \
+  X(actuator_name, nu)       \
+  X(key_name, nkey)
 
 // The Model arrays set_const computes from the others (MuJoCo's mj_setConst's constants). It sizes
 // and fills them; every other Model array is a parameter, sized by size_model() and filled by
