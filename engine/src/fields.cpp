@@ -43,6 +43,10 @@ struct Layout<Eigen::VectorXd> {
   static void* data(const Eigen::VectorXd& v) { return const_cast<double*>(v.data()); }
   static long entries(const Eigen::VectorXd& v) { return v.size(); }
   static void resize(Eigen::VectorXd& v, int rows, int) { v.setZero(rows); }
+  // the numbers within the new length kept, the rest zero (size_model)
+  static void resize_keeping(Eigen::VectorXd& v, int rows, int) {
+    v.conservativeResizeLike(Eigen::VectorXd::Zero(rows));
+  }
 };
 
 template <>
@@ -90,13 +94,16 @@ struct Layout<std::vector<T>> {
   static_assert(sizeof(T) == per_entry * sizeof(element));
   static void* data(const std::vector<T>& v) { return const_cast<T*>(v.data()); }
   static long entries(const std::vector<T>& v) { return static_cast<long>(v.size()) * per_entry; }
+  static void resize(std::vector<T>& v, int rows, int) { v.assign(rows, zero()); }
+  // the entries within the new length kept, the rest zero (size_model)
+  static void resize_keeping(std::vector<T>& v, int rows, int) { v.resize(rows, zero()); }
   // Eigen's fixed-size types are not zeroed by T{} (their default constructor leaves the numbers
   // uninitialized): ask for Zero() explicitly
-  static void resize(std::vector<T>& v, int rows, int) {
+  static T zero() {
     if constexpr (kEigen) {
-      v.assign(rows, T::Zero());
+      return T::Zero();
     } else {
-      v.assign(rows, T{});
+      return T{};
     }
   }
 };
@@ -299,6 +306,46 @@ void check_model_sizes(const Model& model) {
   }
   LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE)
 #undef LEVER_MODEL_SIZE
+}
+
+// ---- sizing a Model (issue 20) -----------------------------------------------------------------
+
+void size_model(Model& model) {
+  const std::array<std::pair<const char*, int>, 10> counts = {{{"nq", model.nq},
+                                                               {"nv", model.nv},
+                                                               {"nu", model.nu},
+                                                               {"nbody", model.nbody},
+                                                               {"njnt", model.njnt},
+                                                               {"ngeom", model.ngeom},
+                                                               {"nsite", model.nsite},
+                                                               {"nkey", model.nkey},
+                                                               {"npair", model.npair},
+                                                               {"nexclude", model.nexclude}}};
+  for (const auto& [name, n] : counts) {
+    if (n < 0) {
+      throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +
+                       " is negative; a model's counts are 0 or more.");
+    }
+  }
+  if (model.nbody < 1) {
+    throw ModelError("size_model: nbody = 0; a model has at least the world body (body 0).");
+  }
+#define LEVER_MODEL_SIZE_ARRAY(name, type, rows, cols, origin)                           \
+  {                                                                                      \
+    const int n = size_of(model, token::rows);                                           \
+    Layout<decltype(Model::name)>::resize_keeping(model.name, n, resolve_cols(cols, n)); \
+  }
+  LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE_ARRAY)
+#undef LEVER_MODEL_SIZE_ARRAY
+  // outside the table (see lever/fields.hpp): one name per object, and the keyframes
+#define LEVER_MODEL_SIZE_NAMES(name, count) model.name.resize(static_cast<size_t>(model.count));
+  LEVER_MODEL_NAMES(LEVER_MODEL_SIZE_NAMES)
+#undef LEVER_MODEL_SIZE_NAMES
+  model.key_time.resize(static_cast<size_t>(model.nkey), 0.0);
+  model.key_qpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nq));
+  model.key_qvel.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nv));
+  model.key_ctrl.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nu));
+  model.fit_tag = 0;  // its arrays may have changed: set_const again before a Data trusts it
 }
 
 void check_fit(const Model& model, const Data& data, const char* where) {

@@ -192,12 +192,9 @@ void check_sizes(const Model& model) {
                      "the model says nq = " +
                      std::to_string(model.nq) + ", nv = " + std::to_string(model.nv) + ".");
   }
-  LEVER_REQUIRE_SIZE(body_name, model.nbody);
-  LEVER_REQUIRE_SIZE(jnt_name, model.njnt);
-  LEVER_REQUIRE_SIZE(geom_name, model.ngeom);
-  LEVER_REQUIRE_SIZE(site_name, model.nsite);
-  LEVER_REQUIRE_SIZE(actuator_name, model.nu);
-  LEVER_REQUIRE_SIZE(key_name, model.nkey);
+#define LEVER_REQUIRE_NAMES(name, count) LEVER_REQUIRE_SIZE(name, model.count);
+  LEVER_MODEL_NAMES(LEVER_REQUIRE_NAMES)
+#undef LEVER_REQUIRE_NAMES
   LEVER_REQUIRE_SIZE(key_time, model.nkey);
   if (model.nkey < 0 || model.key_qpos.rows() != model.nkey || model.key_qpos.cols() != model.nq ||
       model.key_qvel.rows() != model.nkey || model.key_qvel.cols() != model.nv ||

@@ -1,5 +1,7 @@
 #include <lever/harness/from_mujoco.hpp>
 
+#include <lever/fields.hpp>
+
 #include <array>
 #include <stdexcept>
 
@@ -37,38 +39,30 @@ void copy_contact(const mjModel* m, Model& model) {
   model.njmax = m->njmax;
 
   for (int g = 0; g < m->ngeom; ++g) {
-    model.geom_condim.push_back(m->geom_condim[g]);
-    model.geom_priority.push_back(m->geom_priority[g]);
-    model.geom_solmix.push_back(m->geom_solmix[g]);
-    model.geom_friction.push_back(vec3(m->geom_friction + 3 * g));
-    model.geom_solref.push_back({m->geom_solref[mjNREF * g], m->geom_solref[mjNREF * g + 1]});
-    std::array<double, 5> solimp;
-    for (int k = 0; k < 5; ++k) solimp[k] = m->geom_solimp[mjNIMP * g + k];
-    model.geom_solimp.push_back(solimp);
-    model.geom_margin.push_back(m->geom_margin[g]);
-    model.geom_gap.push_back(m->geom_gap[g]);
-    model.geom_rbound.push_back(m->geom_rbound[g]);
+    model.geom_condim[g] = m->geom_condim[g];
+    model.geom_priority[g] = m->geom_priority[g];
+    model.geom_solmix[g] = m->geom_solmix[g];
+    model.geom_friction[g] = vec3(m->geom_friction + 3 * g);
+    model.geom_solref[g] = {m->geom_solref[mjNREF * g], m->geom_solref[mjNREF * g + 1]};
+    for (int k = 0; k < 5; ++k) model.geom_solimp[g][k] = m->geom_solimp[mjNIMP * g + k];
+    model.geom_margin[g] = m->geom_margin[g];
+    model.geom_gap[g] = m->geom_gap[g];
+    model.geom_rbound[g] = m->geom_rbound[g];
   }
-
-  model.npair = m->npair;
   for (int p = 0; p < m->npair; ++p) {
-    model.pair_dim.push_back(m->pair_dim[p]);
-    model.pair_geom1.push_back(m->pair_geom1[p]);
-    model.pair_geom2.push_back(m->pair_geom2[p]);
-    model.pair_signature.push_back(m->pair_signature[p]);
-    model.pair_solref.push_back({m->pair_solref[mjNREF * p], m->pair_solref[mjNREF * p + 1]});
-    std::array<double, 5> solimp, friction;
+    model.pair_dim[p] = m->pair_dim[p];
+    model.pair_geom1[p] = m->pair_geom1[p];
+    model.pair_geom2[p] = m->pair_geom2[p];
+    model.pair_signature[p] = m->pair_signature[p];
+    model.pair_solref[p] = {m->pair_solref[mjNREF * p], m->pair_solref[mjNREF * p + 1]};
     for (int k = 0; k < 5; ++k) {
-      solimp[k] = m->pair_solimp[mjNIMP * p + k];
-      friction[k] = m->pair_friction[5 * p + k];
+      model.pair_solimp[p][k] = m->pair_solimp[mjNIMP * p + k];
+      model.pair_friction[p][k] = m->pair_friction[5 * p + k];
     }
-    model.pair_solimp.push_back(solimp);
-    model.pair_friction.push_back(friction);
-    model.pair_margin.push_back(m->pair_margin[p]);
-    model.pair_gap.push_back(m->pair_gap[p]);
+    model.pair_margin[p] = m->pair_margin[p];
+    model.pair_gap[p] = m->pair_gap[p];
   }
-  model.nexclude = m->nexclude;
-  for (int e = 0; e < m->nexclude; ++e) model.exclude_signature.push_back(m->exclude_signature[e]);
+  for (int e = 0; e < m->nexclude; ++e) model.exclude_signature[e] = m->exclude_signature[e];
 }
 
 }  // namespace
@@ -109,6 +103,7 @@ Model from_mujoco(const mjModel* m) {
   } else {
     throw std::runtime_error("from_mujoco: integrator not supported by lever");
   }
+  // the counts, then every array sized from them (lever::size_model), then each row copied
   model.nq = m->nq;
   model.nv = m->nv;
   model.nu = m->nu;
@@ -116,96 +111,81 @@ Model from_mujoco(const mjModel* m) {
   model.njnt = m->njnt;
   model.ngeom = m->ngeom;
   model.nsite = m->nsite;
+  model.nkey = m->nkey;
+  model.npair = m->npair;
+  model.nexclude = m->nexclude;
+  size_model(model);
 
-  model.body_name.clear();
-  model.body_parentid.clear();
-  model.body_rootid.clear();
-  model.body_jntnum.clear();
-  model.body_jntadr.clear();
-  model.body_dofnum.clear();
-  model.body_dofadr.clear();
-  model.body_geomnum.clear();
-  model.body_geomadr.clear();
-  model.body_pos.clear();
-  model.body_quat.clear();
-  model.body_ipos.clear();
-  model.body_iquat.clear();
-  model.body_mass.clear();
-  model.body_inertia.clear();
-  model.body_explicit_inertial.clear();
-  model.body_line.clear();
   for (int b = 0; b < m->nbody; ++b) {
-    model.body_name.push_back(name_of(m, mjOBJ_BODY, b));
-    model.body_parentid.push_back(m->body_parentid[b]);
-    model.body_rootid.push_back(m->body_rootid[b]);
-    model.body_jntnum.push_back(m->body_jntnum[b]);
-    model.body_jntadr.push_back(m->body_jntadr[b]);
-    model.body_dofnum.push_back(m->body_dofnum[b]);
-    model.body_dofadr.push_back(m->body_dofadr[b]);
-    model.body_geomnum.push_back(m->body_geomnum[b]);
-    model.body_geomadr.push_back(m->body_geomadr[b]);
-    model.body_pos.push_back(vec3(m->body_pos + 3 * b));
-    model.body_quat.push_back(vec4(m->body_quat + 4 * b));
-    model.body_ipos.push_back(vec3(m->body_ipos + 3 * b));
-    model.body_iquat.push_back(vec4(m->body_iquat + 4 * b));
-    model.body_mass.push_back(m->body_mass[b]);
-    model.body_inertia.push_back(vec3(m->body_inertia + 3 * b));
-    model.body_explicit_inertial.push_back(false);
-    model.body_line.push_back(0);
+    model.body_name[b] = name_of(m, mjOBJ_BODY, b);
+    model.body_parentid[b] = m->body_parentid[b];
+    model.body_rootid[b] = m->body_rootid[b];
+    model.body_jntnum[b] = m->body_jntnum[b];
+    model.body_jntadr[b] = m->body_jntadr[b];
+    model.body_dofnum[b] = m->body_dofnum[b];
+    model.body_dofadr[b] = m->body_dofadr[b];
+    model.body_geomnum[b] = m->body_geomnum[b];
+    model.body_geomadr[b] = m->body_geomadr[b];
+    model.body_pos[b] = vec3(m->body_pos + 3 * b);
+    model.body_quat[b] = vec4(m->body_quat + 4 * b);
+    model.body_ipos[b] = vec3(m->body_ipos + 3 * b);
+    model.body_iquat[b] = vec4(m->body_iquat + 4 * b);
+    model.body_mass[b] = m->body_mass[b];
+    model.body_inertia[b] = vec3(m->body_inertia + 3 * b);
+    model.body_explicit_inertial[b] = false;  // lever's own: not known from an mjModel
+    model.body_line[b] = 0;
   }
   for (int j = 0; j < m->njnt; ++j) {
-    model.jnt_name.push_back(name_of(m, mjOBJ_JOINT, j));
+    model.jnt_name[j] = name_of(m, mjOBJ_JOINT, j);
     switch (m->jnt_type[j]) {  // lever's numbering is MuJoCo's
       case mjJNT_FREE:
       case mjJNT_BALL:
       case mjJNT_SLIDE:
-      case mjJNT_HINGE: model.jnt_type.push_back(static_cast<JointType>(m->jnt_type[j])); break;
+      case mjJNT_HINGE: model.jnt_type[j] = static_cast<JointType>(m->jnt_type[j]); break;
       default: throw std::runtime_error("from_mujoco: joint type not supported by lever");
     }
-    model.jnt_qposadr.push_back(m->jnt_qposadr[j]);
-    model.jnt_dofadr.push_back(m->jnt_dofadr[j]);
-    model.jnt_bodyid.push_back(m->jnt_bodyid[j]);
-    model.jnt_limited.push_back(m->jnt_limited[j] != 0);
-    model.jnt_solref.push_back({m->jnt_solref[mjNREF * j], m->jnt_solref[mjNREF * j + 1]});
-    std::array<double, 5> solimp;
-    for (int k = 0; k < 5; ++k) solimp[k] = m->jnt_solimp[mjNIMP * j + k];
-    model.jnt_solimp.push_back(solimp);
-    model.jnt_pos.push_back(vec3(m->jnt_pos + 3 * j));
-    model.jnt_axis.push_back(vec3(m->jnt_axis + 3 * j));
-    model.jnt_stiffness.push_back(m->jnt_stiffness[j]);
-    model.jnt_range.push_back({m->jnt_range[2 * j], m->jnt_range[2 * j + 1]});
-    model.jnt_margin.push_back(m->jnt_margin[j]);
+    model.jnt_qposadr[j] = m->jnt_qposadr[j];
+    model.jnt_dofadr[j] = m->jnt_dofadr[j];
+    model.jnt_bodyid[j] = m->jnt_bodyid[j];
+    model.jnt_limited[j] = m->jnt_limited[j] != 0;
+    model.jnt_solref[j] = {m->jnt_solref[mjNREF * j], m->jnt_solref[mjNREF * j + 1]};
+    for (int k = 0; k < 5; ++k) model.jnt_solimp[j][k] = m->jnt_solimp[mjNIMP * j + k];
+    model.jnt_pos[j] = vec3(m->jnt_pos + 3 * j);
+    model.jnt_axis[j] = vec3(m->jnt_axis + 3 * j);
+    model.jnt_stiffness[j] = m->jnt_stiffness[j];
+    model.jnt_range[j] = {m->jnt_range[2 * j], m->jnt_range[2 * j + 1]};
+    model.jnt_margin[j] = m->jnt_margin[j];
   }
   model.qpos0 = Eigen::Map<const Eigen::VectorXd>(m->qpos0, m->nq);
   model.qpos_spring = Eigen::Map<const Eigen::VectorXd>(m->qpos_spring, m->nq);
   for (int i = 0; i < m->nv; ++i) {
-    model.dof_bodyid.push_back(m->dof_bodyid[i]);
-    model.dof_jntid.push_back(m->dof_jntid[i]);
-    model.dof_parentid.push_back(m->dof_parentid[i]);
-    model.dof_armature.push_back(m->dof_armature[i]);
-    model.dof_damping.push_back(m->dof_damping[i]);
+    model.dof_bodyid[i] = m->dof_bodyid[i];
+    model.dof_jntid[i] = m->dof_jntid[i];
+    model.dof_parentid[i] = m->dof_parentid[i];
+    model.dof_armature[i] = m->dof_armature[i];
+    model.dof_damping[i] = m->dof_damping[i];
   }
   for (int g = 0; g < m->ngeom; ++g) {
-    model.geom_name.push_back(name_of(m, mjOBJ_GEOM, g));
-    model.geom_type.push_back(static_cast<GeomType>(m->geom_type[g]));
-    model.geom_bodyid.push_back(m->geom_bodyid[g]);
-    model.geom_contype.push_back(m->geom_contype[g]);
-    model.geom_conaffinity.push_back(m->geom_conaffinity[g]);
-    model.geom_group.push_back(m->geom_group[g]);
-    model.geom_size.push_back(vec3(m->geom_size + 3 * g));
-    model.geom_pos.push_back(vec3(m->geom_pos + 3 * g));
-    model.geom_quat.push_back(vec4(m->geom_quat + 4 * g));
+    model.geom_name[g] = name_of(m, mjOBJ_GEOM, g);
+    model.geom_type[g] = static_cast<GeomType>(m->geom_type[g]);
+    model.geom_bodyid[g] = m->geom_bodyid[g];
+    model.geom_contype[g] = m->geom_contype[g];
+    model.geom_conaffinity[g] = m->geom_conaffinity[g];
+    model.geom_group[g] = m->geom_group[g];
+    model.geom_size[g] = vec3(m->geom_size + 3 * g);
+    model.geom_pos[g] = vec3(m->geom_pos + 3 * g);
+    model.geom_quat[g] = vec4(m->geom_quat + 4 * g);
     const float* rgba = m->geom_rgba + 4 * g;
-    model.geom_rgba.emplace_back(rgba[0], rgba[1], rgba[2], rgba[3]);
-    model.geom_mass.push_back(0.0);
+    model.geom_rgba[g] = Eigen::Vector4d(rgba[0], rgba[1], rgba[2], rgba[3]);
+    model.geom_mass[g] = 0.0;  // lever's own: not known from an mjModel
   }
   copy_contact(m, model);
   for (int s = 0; s < m->nsite; ++s) {
-    model.site_name.push_back(name_of(m, mjOBJ_SITE, s));
-    model.site_bodyid.push_back(m->site_bodyid[s]);
-    model.site_pos.push_back(vec3(m->site_pos + 3 * s));
-    model.site_quat.push_back(vec4(m->site_quat + 4 * s));
-    model.site_size.push_back(vec3(m->site_size + 3 * s));
+    model.site_name[s] = name_of(m, mjOBJ_SITE, s);
+    model.site_bodyid[s] = m->site_bodyid[s];
+    model.site_pos[s] = vec3(m->site_pos + 3 * s);
+    model.site_quat[s] = vec4(m->site_quat + 4 * s);
+    model.site_size[s] = vec3(m->site_size + 3 * s);
   }
   for (int a = 0; a < m->nu; ++a) {
     const bool affine_or_fixed_gain =
@@ -217,36 +197,27 @@ Model from_mujoco(const mjModel* m) {
       throw std::runtime_error(
           "from_mujoco: only stateless joint actuators with affine gain and bias are supported");
     }
-    model.actuator_name.push_back(name_of(m, mjOBJ_ACTUATOR, a));
-    model.actuator_trnid.push_back(m->actuator_trnid[2 * a]);
-    model.actuator_dyntype.push_back(DynType::kNone);
-    model.actuator_gaintype.push_back(static_cast<GainType>(m->actuator_gaintype[a]));
-    model.actuator_biastype.push_back(static_cast<BiasType>(m->actuator_biastype[a]));
-    std::array<double, kGainParameters> gainprm;
-    std::array<double, kBiasParameters> biasprm;
-    for (int k = 0; k < kGainParameters; ++k) gainprm[k] = m->actuator_gainprm[mjNGAIN * a + k];
-    for (int k = 0; k < kBiasParameters; ++k) biasprm[k] = m->actuator_biasprm[mjNBIAS * a + k];
-    model.actuator_gainprm.push_back(gainprm);
-    model.actuator_biasprm.push_back(biasprm);
-    std::array<double, 6> gear;
-    for (int k = 0; k < 6; ++k) gear[k] = m->actuator_gear[6 * a + k];
-    model.actuator_gear.push_back(gear);
-    model.actuator_ctrllimited.push_back(m->actuator_ctrllimited[a] != 0);
-    model.actuator_forcelimited.push_back(m->actuator_forcelimited[a] != 0);
-    model.actuator_ctrlrange.push_back(
-        {m->actuator_ctrlrange[2 * a], m->actuator_ctrlrange[2 * a + 1]});
-    model.actuator_forcerange.push_back(
-        {m->actuator_forcerange[2 * a], m->actuator_forcerange[2 * a + 1]});
+    model.actuator_name[a] = name_of(m, mjOBJ_ACTUATOR, a);
+    model.actuator_trnid[a] = m->actuator_trnid[2 * a];
+    model.actuator_dyntype[a] = DynType::kNone;
+    model.actuator_gaintype[a] = static_cast<GainType>(m->actuator_gaintype[a]);
+    model.actuator_biastype[a] = static_cast<BiasType>(m->actuator_biastype[a]);
+    for (int k = 0; k < kGainParameters; ++k) {
+      model.actuator_gainprm[a][k] = m->actuator_gainprm[mjNGAIN * a + k];
+    }
+    for (int k = 0; k < kBiasParameters; ++k) {
+      model.actuator_biasprm[a][k] = m->actuator_biasprm[mjNBIAS * a + k];
+    }
+    for (int k = 0; k < 6; ++k) model.actuator_gear[a][k] = m->actuator_gear[6 * a + k];
+    model.actuator_ctrllimited[a] = m->actuator_ctrllimited[a] != 0;
+    model.actuator_forcelimited[a] = m->actuator_forcelimited[a] != 0;
+    model.actuator_ctrlrange[a] = {m->actuator_ctrlrange[2 * a], m->actuator_ctrlrange[2 * a + 1]};
+    model.actuator_forcerange[a] = {m->actuator_forcerange[2 * a],
+                                    m->actuator_forcerange[2 * a + 1]};
   }
-  model.nkey = m->nkey;
-  model.key_name.clear();
-  model.key_time.clear();
-  model.key_qpos.resize(m->nkey, m->nq);
-  model.key_qvel.resize(m->nkey, m->nv);
-  model.key_ctrl.resize(m->nkey, m->nu);
   for (int k = 0; k < m->nkey; ++k) {
-    model.key_name.push_back(name_of(m, mjOBJ_KEY, k));
-    model.key_time.push_back(m->key_time[k]);
+    model.key_name[k] = name_of(m, mjOBJ_KEY, k);
+    model.key_time[k] = m->key_time[k];
     for (int i = 0; i < m->nq; ++i) model.key_qpos(k, i) = m->key_qpos[m->nq * k + i];
     for (int i = 0; i < m->nv; ++i) model.key_qvel(k, i) = m->key_qvel[m->nv * k + i];
     for (int i = 0; i < m->nu; ++i) model.key_ctrl(k, i) = m->key_ctrl[m->nu * k + i];

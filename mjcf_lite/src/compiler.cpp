@@ -5,6 +5,7 @@
 #include "compiler.hpp"
 
 #include <lever/collision.hpp>
+#include <lever/fields.hpp>
 
 #include <algorithm>
 #include <cctype>
@@ -943,6 +944,8 @@ Model Compiler::assemble() const {
   m.opt = spec_.opt;
   m.compiler.inertiagrouprange = c_.inertiagrouprange;
   m.compiler.inertia_from_geoms_allowed = c_.inertiafromgeom != InertiaFromGeom::kFalse;
+  // the counts first; size_model gives every array its length from them (the field table), and
+  // the assemble_* functions write each row by index
   m.nbody = static_cast<int>(nodes_.size());
   m.njnt = static_cast<int>(joints_.size());
   m.nq = coordinates();
@@ -950,6 +953,10 @@ Model Compiler::assemble() const {
   m.ngeom = static_cast<int>(geoms_.size());
   m.nsite = static_cast<int>(sites_.size());
   m.nu = static_cast<int>(motors_.size());
+  m.npair = static_cast<int>(pairs_.size());
+  m.nexclude = static_cast<int>(excludes_.size());
+  m.nkey = static_cast<int>(spec_.keys.size());
+  size_model(m);
   assemble_bodies(m);
   assemble_joints(m);
   assemble_geoms_and_sites(m);
@@ -962,26 +969,21 @@ Model Compiler::assemble() const {
 }
 
 void Compiler::assemble_bodies(Model& m) const {
-  const size_t n = nodes_.size();
-  m.body_name.assign(n, "");
-  m.body_parentid.assign(n, 0);
-  m.body_rootid.assign(n, 0);
-  m.body_jntnum.assign(n, 0);
-  m.body_jntadr.assign(n, -1);
-  m.body_dofnum.assign(n, 0);
-  m.body_dofadr.assign(n, -1);
-  m.body_geomnum.assign(n, 0);
-  m.body_geomadr.assign(n, -1);
-  m.body_pos.assign(n, Eigen::Vector3d::Zero());
-  m.body_quat.assign(n, Eigen::Vector4d(1, 0, 0, 0));
-  m.body_ipos.assign(n, Eigen::Vector3d::Zero());
-  m.body_iquat.assign(n, Eigen::Vector4d(1, 0, 0, 0));
-  m.body_mass.assign(n, 0.0);
-  m.body_inertia.assign(n, Eigen::Vector3d::Zero());
-  m.body_explicit_inertial.assign(n, false);
-  m.body_line.assign(n, 0);
+  // the world: its own parent and root, at the origin, without joints or mass
   m.body_name[0] = "world";
-  for (size_t id = 1; id < n; ++id) {
+  m.body_line[0] = 0;
+  m.body_parentid[0] = 0;
+  m.body_rootid[0] = 0;
+  m.body_jntnum[0] = 0;
+  m.body_jntadr[0] = -1;
+  m.body_pos[0] = Eigen::Vector3d::Zero();
+  m.body_quat[0] = Eigen::Vector4d(1, 0, 0, 0);
+  m.body_ipos[0] = Eigen::Vector3d::Zero();
+  m.body_iquat[0] = Eigen::Vector4d(1, 0, 0, 0);
+  m.body_mass[0] = 0.0;
+  m.body_inertia[0] = Eigen::Vector3d::Zero();
+  m.body_explicit_inertial[0] = false;
+  for (size_t id = 1; id < nodes_.size(); ++id) {
     const BodySpec& b = *nodes_[id].spec;
     const CompiledBody& c = bodies_[id];
     const int parent = nodes_[id].parent;
@@ -991,7 +993,7 @@ void Compiler::assemble_bodies(Model& m) const {
     m.body_rootid[id] =
         parent == 0 ? static_cast<int>(id) : m.body_rootid[static_cast<size_t>(parent)];
     m.body_jntnum[id] = static_cast<int>(b.joints.size());
-    if (!b.joints.empty()) m.body_jntadr[id] = c.first_joint;  // its dofs: assemble_joints
+    m.body_jntadr[id] = b.joints.empty() ? -1 : c.first_joint;  // its dofs: assemble_joints
     m.body_pos[id] = eigen(c.pos);
     m.body_quat[id] = eigen(c.quat);
     m.body_ipos[id] = eigen(c.inertial.ipos);
@@ -1000,32 +1002,30 @@ void Compiler::assemble_bodies(Model& m) const {
     m.body_inertia[id] = eigen(c.inertial.inertia);
     m.body_explicit_inertial[id] = c.explicit_inertial;
   }
-  for (size_t id = 0; id < n; ++id) {
+  for (size_t id = 0; id < nodes_.size(); ++id) {
     m.body_geomnum[id] = static_cast<int>(nodes_[id].spec->geoms.size());
-    if (m.body_geomnum[id] > 0) m.body_geomadr[id] = bodies_[id].first_geom;
+    m.body_geomadr[id] = m.body_geomnum[id] > 0 ? bodies_[id].first_geom : -1;
   }
 }
 
 void Compiler::assemble_joints(Model& m) const {
-  m.qpos0 = Eigen::VectorXd::Zero(m.nq);
-  m.qpos_spring = Eigen::VectorXd::Zero(m.nq);
   int qadr = 0, dadr = 0;
-  for (const CompiledJoint& c : joints_) {
+  for (size_t j = 0; j < joints_.size(); ++j) {
+    const CompiledJoint& c = joints_[j];
     const JointSpec& s = *c.spec;
-    const int id = static_cast<int>(m.jnt_name.size());
-    m.jnt_name.push_back(s.at.name);
-    m.jnt_type.push_back(s.type);
-    m.jnt_qposadr.push_back(qadr);
-    m.jnt_dofadr.push_back(dadr);
-    m.jnt_bodyid.push_back(c.body);
-    m.jnt_limited.push_back(c.limited);
-    m.jnt_solref.push_back(s.solref);
-    m.jnt_solimp.push_back(s.solimp);
-    m.jnt_pos.push_back(eigen(c.pos));
-    m.jnt_axis.push_back(eigen(c.axis));
-    m.jnt_stiffness.push_back(s.stiffness);
-    m.jnt_range.push_back(c.range);
-    m.jnt_margin.push_back(s.margin);
+    m.jnt_name[j] = s.at.name;
+    m.jnt_type[j] = s.type;
+    m.jnt_qposadr[j] = qadr;
+    m.jnt_dofadr[j] = dadr;
+    m.jnt_bodyid[j] = c.body;
+    m.jnt_limited[j] = c.limited;
+    m.jnt_solref[j] = s.solref;
+    m.jnt_solimp[j] = s.solimp;
+    m.jnt_pos[j] = eigen(c.pos);
+    m.jnt_axis[j] = eigen(c.axis);
+    m.jnt_stiffness[j] = s.stiffness;
+    m.jnt_range[j] = c.range;
+    m.jnt_margin[j] = s.margin;
     // qpos0 (and the spring's rest) is the body as written: a free joint's is the body's pose,
     // a ball's the identity, a hinge's or a slide's its ref (springref)
     switch (s.type) {
@@ -1043,10 +1043,11 @@ void Compiler::assemble_joints(Model& m) const {
       default: m.qpos0[qadr] = c.ref; m.qpos_spring[qadr] = c.springref;
     }
     for (int k = 0; k < joint_nv(s.type); ++k) {
-      m.dof_bodyid.push_back(c.body);
-      m.dof_jntid.push_back(id);
-      m.dof_armature.push_back(s.armature);
-      m.dof_damping.push_back(s.damping);
+      const size_t dof = static_cast<size_t>(dadr + k);
+      m.dof_bodyid[dof] = c.body;
+      m.dof_jntid[dof] = static_cast<int>(j);
+      m.dof_armature[dof] = s.armature;
+      m.dof_damping[dof] = s.damping;
     }
     qadr += joint_nq(s.type);
     dadr += joint_nv(s.type);
@@ -1054,10 +1055,11 @@ void Compiler::assemble_joints(Model& m) const {
   // each body's dofs, and each dof's parent: the previous dof of its body, else the last dof of
   // the nearest ancestor that has one (mujoco's body "lastdof", carried down in body order)
   std::vector<int> last_dof(nodes_.size(), -1);
-  m.dof_parentid.assign(static_cast<size_t>(m.nv), -1);
-  for (size_t body = 1; body < nodes_.size(); ++body) {
-    last_dof[body] = last_dof[static_cast<size_t>(nodes_[body].parent)];
+  for (size_t body = 0; body < nodes_.size(); ++body) {
+    if (body > 0) last_dof[body] = last_dof[static_cast<size_t>(nodes_[body].parent)];
     const size_t njoints = nodes_[body].spec->joints.size();
+    m.body_dofnum[body] = 0;
+    m.body_dofadr[body] = -1;
     if (njoints == 0) continue;
     const int first_joint = bodies_[body].first_joint;
     const int first = m.jnt_dofadr[static_cast<size_t>(first_joint)];
@@ -1075,87 +1077,87 @@ void Compiler::assemble_joints(Model& m) const {
 }
 
 void Compiler::assemble_geoms_and_sites(Model& m) const {
-  for (const CompiledGeom& g : geoms_) {
-    m.geom_name.push_back(g.spec->at.name);
-    m.geom_type.push_back(g.spec->type);
-    m.geom_bodyid.push_back(g.body);
-    m.geom_contype.push_back(g.spec->contype);
-    m.geom_conaffinity.push_back(g.spec->conaffinity);
-    m.geom_group.push_back(g.spec->group);
-    m.geom_size.push_back(eigen(g.size));
-    m.geom_pos.push_back(eigen(g.pos));
-    m.geom_quat.push_back(eigen(g.quat));
-    const std::array<double, 4>& c = g.spec->rgba;
-    m.geom_rgba.push_back(Eigen::Vector4d(c[0], c[1], c[2], c[3]));
-    m.geom_mass.push_back(g.mass);
+  for (size_t g = 0; g < geoms_.size(); ++g) {
+    const CompiledGeom& c = geoms_[g];
+    const GeomSpec& s = *c.spec;
+    m.geom_name[g] = s.at.name;
+    m.geom_type[g] = s.type;
+    m.geom_bodyid[g] = c.body;
+    m.geom_contype[g] = s.contype;
+    m.geom_conaffinity[g] = s.conaffinity;
+    m.geom_group[g] = s.group;
+    m.geom_size[g] = eigen(c.size);
+    m.geom_pos[g] = eigen(c.pos);
+    m.geom_quat[g] = eigen(c.quat);
+    m.geom_rgba[g] = Eigen::Vector4d(s.rgba[0], s.rgba[1], s.rgba[2], s.rgba[3]);
+    m.geom_mass[g] = c.mass;
   }
-  for (const CompiledSite& s : sites_) {
-    m.site_name.push_back(s.spec->at.name);
-    m.site_bodyid.push_back(s.body);
-    m.site_pos.push_back(eigen(s.spec->pos));
-    m.site_quat.push_back(eigen(s.quat));
-    m.site_size.push_back(eigen(s.spec->size));
+  for (size_t i = 0; i < sites_.size(); ++i) {
+    const CompiledSite& c = sites_[i];
+    m.site_name[i] = c.spec->at.name;
+    m.site_bodyid[i] = c.body;
+    m.site_pos[i] = eigen(c.spec->pos);
+    m.site_quat[i] = eigen(c.quat);
+    m.site_size[i] = eigen(c.spec->size);
   }
 }
 
 void Compiler::assemble_contact(Model& m) const {
-  for (const CompiledGeom& g : geoms_) {
-    const GeomSpec& s = *g.spec;
-    m.geom_condim.push_back(s.condim);
-    m.geom_priority.push_back(s.priority);
-    m.geom_solmix.push_back(s.solmix);
-    m.geom_friction.push_back(eigen(s.friction));
-    m.geom_solref.push_back(s.solref);
-    m.geom_solimp.push_back(s.solimp);
-    m.geom_margin.push_back(s.margin);
-    m.geom_gap.push_back(s.gap);
-    m.geom_rbound.push_back(bounding_radius(s.type, g.size));
+  for (size_t g = 0; g < geoms_.size(); ++g) {
+    const GeomSpec& s = *geoms_[g].spec;
+    m.geom_condim[g] = s.condim;
+    m.geom_priority[g] = s.priority;
+    m.geom_solmix[g] = s.solmix;
+    m.geom_friction[g] = eigen(s.friction);
+    m.geom_solref[g] = s.solref;
+    m.geom_solimp[g] = s.solimp;
+    m.geom_margin[g] = s.margin;
+    m.geom_gap[g] = s.gap;
+    m.geom_rbound[g] = bounding_radius(s.type, geoms_[g].size);
   }
-  m.npair = static_cast<int>(pairs_.size());
-  for (const CompiledPair& p : pairs_) {
-    m.pair_dim.push_back(p.spec->condim);
-    m.pair_geom1.push_back(p.geom1);
-    m.pair_geom2.push_back(p.geom2);
-    m.pair_signature.push_back(p.signature);
-    m.pair_solref.push_back(p.spec->solref);
-    m.pair_solimp.push_back(p.spec->solimp);
-    m.pair_margin.push_back(p.spec->margin);
-    m.pair_gap.push_back(p.spec->gap);
-    m.pair_friction.push_back(p.spec->friction);
+  for (size_t p = 0; p < pairs_.size(); ++p) {
+    const CompiledPair& c = pairs_[p];
+    const PairSpec& s = *c.spec;
+    m.pair_dim[p] = s.condim;
+    m.pair_geom1[p] = c.geom1;
+    m.pair_geom2[p] = c.geom2;
+    m.pair_signature[p] = c.signature;
+    m.pair_solref[p] = s.solref;
+    m.pair_solimp[p] = s.solimp;
+    m.pair_margin[p] = s.margin;
+    m.pair_gap[p] = s.gap;
+    m.pair_friction[p] = s.friction;
   }
-  m.nexclude = static_cast<int>(excludes_.size());
-  for (const CompiledExclude& x : excludes_) m.exclude_signature.push_back(x.signature);
+  for (size_t x = 0; x < excludes_.size(); ++x) m.exclude_signature[x] = excludes_[x].signature;
   // a negative <size> count means MuJoCo's default (mjCModel::SetSizes)
   m.nconmax = spec_.nconmax < 0 ? 100 : spec_.nconmax;
   m.njmax = spec_.njmax < 0 ? 500 : spec_.njmax;
 }
 
 void Compiler::assemble_motors(Model& m) const {
-  for (const CompiledMotor& a : motors_) {
-    m.actuator_name.push_back(a.spec->at.name);
-    m.actuator_trnid.push_back(a.joint);
-    m.actuator_dyntype.push_back(DynType::kNone);
-    m.actuator_gaintype.push_back(a.spec->gaintype);
-    m.actuator_biastype.push_back(a.spec->biastype);
-    m.actuator_gainprm.push_back(a.spec->gainprm);
-    m.actuator_biasprm.push_back(a.spec->biasprm);
-    m.actuator_gear.push_back(a.spec->gear);
-    m.actuator_ctrllimited.push_back(a.ctrllimited);
-    m.actuator_forcelimited.push_back(a.forcelimited);
-    m.actuator_ctrlrange.push_back(a.spec->ctrlrange);
-    m.actuator_forcerange.push_back(a.spec->forcerange);
+  for (size_t a = 0; a < motors_.size(); ++a) {
+    const CompiledMotor& c = motors_[a];
+    const MotorSpec& s = *c.spec;
+    m.actuator_name[a] = s.at.name;
+    m.actuator_trnid[a] = c.joint;
+    m.actuator_dyntype[a] = DynType::kNone;
+    m.actuator_gaintype[a] = s.gaintype;
+    m.actuator_biastype[a] = s.biastype;
+    m.actuator_gainprm[a] = s.gainprm;
+    m.actuator_biasprm[a] = s.biasprm;
+    m.actuator_gear[a] = s.gear;
+    m.actuator_ctrllimited[a] = c.ctrllimited;
+    m.actuator_forcelimited[a] = c.forcelimited;
+    m.actuator_ctrlrange[a] = s.ctrlrange;
+    m.actuator_forcerange[a] = s.forcerange;
   }
 }
 
 void Compiler::assemble_keys(Model& m) const {
-  m.nkey = static_cast<int>(spec_.keys.size());
-  m.key_qpos.resize(m.nkey, m.nq);
-  m.key_qvel.setZero(m.nkey, m.nv);
-  m.key_ctrl.setZero(m.nkey, m.nu);
   for (int k = 0; k < m.nkey; ++k) {
     const KeySpec& key = spec_.keys[static_cast<size_t>(k)];
-    m.key_name.push_back(key.at.name);
-    m.key_time.push_back(key.time);
+    m.key_name[static_cast<size_t>(k)] = key.at.name;
+    m.key_time[static_cast<size_t>(k)] = key.time;
     m.key_qpos.row(k) = m.qpos0.transpose();  // an unwritten qpos is qpos0, as in mujoco
     for (int i = 0; key.qpos && i < m.nq; ++i)
       m.key_qpos(k, i) = (*key.qpos)[static_cast<size_t>(i)];

@@ -1,6 +1,7 @@
 // The field table (lever/fields.hpp): its views, the Data constructor's sizes, the size checks at
 // the door of every public function (check_fit, StateError), set_const's Model size check
-// (ModelError), and step1 + step2 against step.
+// (ModelError), size_model's lengths (the table sizing Model as it sizes Data), and step1 + step2
+// against step.
 #include <catch2/catch.hpp>
 
 #include <lever/lever.hpp>
@@ -568,4 +569,191 @@ TEST_CASE("between step1 and step2 a controller sees the forces and its control 
   // qfrc_applied cancels qfrc_bias exactly up to rounding through M^-1: a loose sanity bound on
   // what the test is about (the split equals step bit for bit, above), not an agreement claim
   CHECK(data.qacc.norm() < 1e-9);
+}
+
+// ---- size_model (issue 20)
+// -----------------------------------------------------------------------
+
+namespace {
+
+// How many numbers of type Element a member holds, as the member itself says (independent of the
+// table's Layout code): a vector of entries of sizeof(T) bytes each, or an Eigen vector.
+template <class Element, class T>
+long numbers_in(const std::vector<T>& v) {
+  static_assert(sizeof(T) % sizeof(Element) == 0);
+  return static_cast<long>(v.size() * (sizeof(T) / sizeof(Element)));
+}
+template <class Element>
+long numbers_in(const Eigen::VectorXd& v) {
+  return v.size();
+}
+
+struct Stored {
+  std::string name;
+  const void* data;
+  long numbers;
+};
+
+// Every array of the table, as its member holds it.
+std::vector<Stored> stored_arrays(const lever::Model& model) {
+  std::vector<Stored> all;
+#define LEVER_TEST_STORED(name, type, rows, cols, origin) \
+  all.push_back({#name, model.name.data(), numbers_in<type>(model.name)});
+  LEVER_MODEL_FIELDS(LEVER_TEST_STORED)
+#undef LEVER_TEST_STORED
+  return all;
+}
+
+// The length the table gives an array in this model.
+long promised(const lever::Model& model, const lever::FieldInfo& info) {
+  const long rows = lever::size_of(model, info.rows);
+  return rows * (info.cols < 0 ? rows : info.cols);
+}
+
+// Every number of the table's arrays, as doubles, with every name and keyframe number.
+std::vector<double> numbers_of(const lever::Model& model) {
+  std::vector<double> all;
+  for (const FieldView& v : lever::model_fields(model)) {
+    for (long k = 0; k < v.size(); ++k) {
+      switch (v.info->scalar) {
+        case Scalar::kDouble: all.push_back(static_cast<const double*>(v.data)[k]); break;
+        case Scalar::kInt: all.push_back(static_cast<const int*>(v.data)[k]); break;
+        case Scalar::kByte: all.push_back(static_cast<const uint8_t*>(v.data)[k]); break;
+      }
+    }
+  }
+  for (const auto* matrix : {&model.key_qpos, &model.key_qvel, &model.key_ctrl}) {
+    all.insert(all.end(), matrix->data(), matrix->data() + matrix->size());
+  }
+  all.insert(all.end(), model.key_time.begin(), model.key_time.end());
+  return all;
+}
+
+std::vector<std::string> names_of(const lever::Model& model) {
+  std::vector<std::string> all;
+#define LEVER_TEST_NAMES(name, count) all.insert(all.end(), model.name.begin(), model.name.end());
+  LEVER_MODEL_NAMES(LEVER_TEST_NAMES)
+#undef LEVER_TEST_NAMES
+  return all;
+}
+
+}  // namespace
+
+TEST_CASE("size_model gives every array the length the field table promises", "[fields]") {
+  lever::Model model;  // the world body alone: every body array has its one row
+  model.body_mass[0] = 2.5;
+  model.body_quat[0] = Eigen::Vector4d(0.5, 0.5, 0.5, 0.5);
+  model.body_name[0] = "ground";
+  model.fit_tag = 7;
+  // counts that need not make a consistent model: sizing reads each one alone
+  model.nbody = 4;
+  model.njnt = 3;
+  model.nq = 9;
+  model.nv = 8;
+  model.ngeom = 5;
+  model.nsite = 2;
+  model.nu = 2;
+  model.npair = 1;
+  model.nexclude = 3;
+  model.nkey = 2;
+  lever::size_model(model);
+
+  const std::vector<lever::FieldInfo>& table = lever::model_field_table();
+  const std::vector<Stored> stored = stored_arrays(model);
+  const std::vector<FieldView> views = lever::model_fields(model);
+  REQUIRE(stored.size() == table.size());
+  for (size_t i = 0; i < table.size(); ++i) {
+    INFO("Model::" << table[i].name);
+    REQUIRE(stored[i].name == table[i].name);
+    CHECK(stored[i].numbers == promised(model, table[i]));
+    CHECK(stored[i].numbers > 0);  // every count above is positive
+    CHECK(stored[i].data == views[i].data);
+    // zero-filled: the world's row kept what it held, every new row is zero
+    const long first_new = table[i].rows == lever::Size::kNbody ? views[i].cols : 0;
+    for (long k = first_new; k < views[i].size(); ++k) {
+      double x = 0.0;
+      if (table[i].scalar == Scalar::kDouble) x = static_cast<const double*>(views[i].data)[k];
+      if (table[i].scalar == Scalar::kInt) x = static_cast<const int*>(views[i].data)[k];
+      if (table[i].scalar == Scalar::kByte) x = static_cast<const uint8_t*>(views[i].data)[k];
+      CHECK(x == 0.0);
+    }
+  }
+  CHECK(model.body_mass[0] == 2.5);
+  CHECK(model.body_quat[0] == Eigen::Vector4d(0.5, 0.5, 0.5, 0.5));
+  CHECK(model.body_jntadr[0] == -1);  // the default Model's world row, kept
+  // outside the table: one name per object, and the keyframes
+  CHECK(model.body_name == std::vector<std::string>{"ground", "", "", ""});
+  CHECK(model.jnt_name.size() == 3);
+  CHECK(model.geom_name.size() == 5);
+  CHECK(model.site_name.size() == 2);
+  CHECK(model.actuator_name.size() == 2);
+  CHECK(model.key_name.size() == 2);
+  CHECK(model.key_time == std::vector<double>{0.0, 0.0});
+  CHECK((model.key_qpos.rows() == 2 && model.key_qpos.cols() == 9));
+  CHECK((model.key_qvel.rows() == 2 && model.key_qvel.cols() == 8));
+  CHECK((model.key_ctrl.rows() == 2 && model.key_ctrl.cols() == 2));
+  CHECK(model.key_qpos.isZero());
+  CHECK(model.fit_tag == 0);  // set_const must run again before a Data trusts the model
+
+  // smaller counts cut the arrays, keeping the rows within them
+  model.body_mass[1] = 4.0;
+  model.nbody = 2;
+  model.nkey = 1;
+  model.key_qpos(0, 3) = 1.5;
+  lever::size_model(model);
+  CHECK(model.body_mass == std::vector<double>{2.5, 4.0});
+  CHECK(model.body_name.size() == 2);
+  CHECK((model.key_qpos.rows() == 1 && model.key_qpos(0, 3) == 1.5));
+  for (size_t i = 0; i < table.size(); ++i) {
+    INFO("Model::" << table[i].name);
+    CHECK(stored_arrays(model)[i].numbers == promised(model, table[i]));
+  }
+}
+
+TEST_CASE("size_model refuses a negative count or no world body, and changes nothing", "[fields]") {
+  const lever::Model base = load("models/arm3.xml");
+  const auto refuses = [&](auto&& edit, const char* count) {
+    INFO(count);
+    lever::Model model = base;
+    edit(model);
+    const std::vector<double> numbers = numbers_of(model);
+    const std::vector<std::string> names = names_of(model);
+    try {
+      lever::size_model(model);
+      FAIL("no ModelError");
+    } catch (const lever::ModelError& e) {
+      CHECK_THAT(text_of(e), Catch::Contains(count));
+    }
+    CHECK(same_bits(numbers_of(model), numbers));
+    CHECK(names_of(model) == names);
+    CHECK(model.fit_tag == base.fit_tag);
+  };
+  refuses([](lever::Model& m) { m.njnt = -1; }, "njnt");
+  refuses([](lever::Model& m) { m.nkey = -2; }, "nkey");
+  refuses([](lever::Model& m) { m.nexclude = -1; }, "nexclude");
+  refuses([](lever::Model& m) { m.nbody = 0; }, "nbody");
+}
+
+TEST_CASE("a compiled model's arrays have the lengths size_model gives them", "[fields]") {
+  for (const lever::Model& model : all_models()) {
+    INFO("model " << model.name);
+    const std::vector<lever::FieldInfo>& table = lever::model_field_table();
+    const std::vector<Stored> stored = stored_arrays(model);
+    for (size_t i = 0; i < table.size(); ++i) {
+      INFO("Model::" << table[i].name);
+      CHECK(stored[i].numbers == promised(model, table[i]));
+    }
+#define LEVER_TEST_NAME_COUNT(name, count) \
+  CHECK(static_cast<int>(model.name.size()) == model.count);
+    LEVER_MODEL_NAMES(LEVER_TEST_NAME_COUNT)
+#undef LEVER_TEST_NAME_COUNT
+    CHECK(static_cast<int>(model.key_time.size()) == model.nkey);
+    // sizing it again moves nothing: every array already has its length and keeps its numbers
+    lever::Model sized = model;
+    lever::size_model(sized);
+    CHECK(same_bits(numbers_of(sized), numbers_of(model)));
+    CHECK(names_of(sized) == names_of(model));
+    lever::set_const(sized);
+    CHECK(same_bits(numbers_of(sized), numbers_of(model)));
+  }
 }

@@ -13,6 +13,15 @@
 //
 // Adding an array to Model or Data: declare the member, then add its row here. The static_asserts
 // in fields.cpp check that its element type and layout match the row.
+//
+// The table sizes Model as it sizes Data: whoever builds a model (lever::mjcf's compiler, the
+// harness's copy of a MuJoCo model, a model built by hand) sets the counts (nbody, njnt, nq, ...),
+// calls size_model(), and writes each element by index. Arrays of Model outside the table, because
+// their entries are not numbers or their width is not a number: the names (one string per object,
+// LEVER_MODEL_NAMES below) and the keyframes (key_time, nkey; key_qpos, key_qvel, key_ctrl, nkey x
+// nq, nv, nu), which size_model also sizes; the arrays set_const derives (body_mat, jnt_kind,
+// actuator_kind, ...), which set_const sizes; and `visual`, the file's asset lists, counted by the
+// file and never read by the engine.
 #pragma once
 
 #include <cstdint>
@@ -113,9 +122,20 @@
   X(pair_friction, double, npair, 5, mujoco) \
   X(exclude_signature, int, nexclude, 1, mujoco)
 
+// The names of Model's objects, one string each ("" if unnamed), outside the table above because
+// their entries are not numbers. X(name, count): `count` is the Model member that counts them.
+#define LEVER_MODEL_NAMES(X) \
+  X(body_name, nbody)        \
+  X(jnt_name, njnt)          \
+  X(geom_name, ngeom)        \
+  X(site_name, nsite)        \
+  X(actuator_name, nu)       \
+  X(key_name, nkey)
+
 // The Model arrays set_const computes from the others (MuJoCo's mj_setConst's constants). It sizes
-// and fills them; every other Model array is a parameter, sized and filled by whoever builds the
-// model (lever::mjcf's compiler, or by hand), and checked by validate() (lever/model_check.hpp).
+// and fills them; every other Model array is a parameter, sized by size_model() and filled by
+// whoever builds the model (lever::mjcf's compiler, or by hand), and checked by validate()
+// (lever/model_check.hpp).
 #define LEVER_MODEL_CONSTANTS(X) X(body_subtreemass) X(body_invweight0) X(dof_invweight0) X(dof_M0)
 
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
@@ -249,6 +269,17 @@ bool computed_by_set_const(std::string_view model_field);
 /// Whether every array of the model but those set_const computes has the size the table gives
 /// it; throws ModelError naming the first array that does not.
 void check_model_sizes(const Model& model);
+
+// ---- sizing a Model (issue 20) -----------------------------------------------------------------
+/// Gives every array of the model the length its counts give it (nbody, njnt, nq, nv, ngeom,
+/// nsite, nu, npair, nexclude, nkey): each array of the field table rows x cols numbers, the
+/// constants set_const computes included; the names and the keyframes too (see the top of this
+/// file). The numbers an array already holds within its new length are kept, and every new entry is
+/// zero (an empty name), so a builder sets the counts, calls this, and writes each element by
+/// index, the world body's row included. Throws ModelError, changing nothing, when a count is
+/// negative or nbody is 0 (the world is body 0). The model then needs set_const() again (its
+/// fit_tag is cleared: no Data is taken to fit it until then).
+void size_model(Model& model);
 
 /// Throws StateError unless `data` was built for a model of this model's sizes and none of its
 /// arrays was resized since (for example by assigning a vector of another length to data.qpos).
