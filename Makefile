@@ -32,7 +32,7 @@ test: build
 # at -O0 (LEVER_TEST_COMPILE_OPTIONS; the libraries under test keep -O1): the largest test file
 # took 800 s with -g -O1, 370 s with -g1 -O1 and 215 s with -g1 -O0 (a loaded machine). Eigen's
 # eigensolver and SVDs, the heaviest templates the tests use, are compiled once in
-# tests/support/spectra.cpp. The benchmarks are left out (make bench measures them; their smoke
+# tests/support/spectra_*.cpp. The benchmarks are left out (make bench measures them; their smoke
 # tests run in make test). MuJoCo, KDL
 # and tinyxml2 are Debian's prebuilt libraries, not instrumented. .ci/run runs it after make test.
 # The Python package is left out: an instrumented extension cannot load into Debian's

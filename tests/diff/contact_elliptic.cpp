@@ -97,8 +97,13 @@ TEST_CASE("diff: elliptic cones agree with MuJoCo at random states (engine path)
       const Eigen::VectorXd force = twin.data.efc_force.head(twin.data.nefc);
       const std::vector<ConstraintState> state(twin.data.efc_state.begin(),
                                                twin.data.efc_state.begin() + twin.data.nefc);
+      const Eigen::VectorXd aref = twin.data.efc_aref.head(twin.data.nefc);
+      // from the state as given: forward() normalized qpos's quaternions in place (as
+      // mj_kinematics does), and normalizing a unit quaternion again (MuJoCo's mju_normalize4
+      // scales by 1 / |q| whatever |q| is) moves its last bits, and with them the rows'
+      twin.data.qpos = s.qpos;
       inverse(twin.model, twin.data);
-      // the rows are rebuilt, their last bits (aref) may move
+      CHECK((twin.data.efc_aref.head(twin.data.nefc) - aref).lpNorm<Eigen::Infinity>() == 0.0);
       CHECK((twin.data.efc_force.head(twin.data.nefc) - force).lpNorm<Eigen::Infinity>() <=
             1e-12 * std::max(1.0, force.lpNorm<Eigen::Infinity>()));
       CHECK(std::equal(state.begin(), state.end(), twin.data.efc_state.begin()));
