@@ -1,4 +1,5 @@
 // Data: sized once from the Model, so that evaluating and stepping never allocate.
+#include <lever/collision.hpp>
 #include <lever/data.hpp>
 #include <lever/error.hpp>
 
@@ -48,8 +49,10 @@ Data::Data(const Model& model)
   cinert.assign(nbody, RigidInertia{});
   contact.assign(static_cast<size_t>(std::max(0, model.nconmax)), Contact{});
   work.contact.assign(contact.size(), Contact{});
+  work.pair_contact.assign(kMaxPairContacts, Contact{});
   work.body_weldid.assign(nbody, 0);
   work.body_aabb.assign(6 * static_cast<size_t>(nbody), 0.0);
+  work.body_role.assign(nbody, 0);
   qLD = Eigen::MatrixXd::Zero(nv, nv);
   work.crb.assign(nbody, RigidInertia{});
   work.cacc.assign(nbody, Motion::Zero());

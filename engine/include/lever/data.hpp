@@ -199,9 +199,11 @@ struct Data {
     std::vector<uint8_t> in_subtree;  ///< (nbody) implicit: the bodies that move with qvel_j
     // collision() (issue 19): contacts are gathered here and copied to `contact` only when all
     // of them fit, so that a refusal leaves the last contacts in place
-    std::vector<Contact> contact;   ///< (nconmax)
+    std::vector<Contact> contact;       ///< (nconmax)
+    std::vector<Contact> pair_contact;  ///< (kMaxPairContacts) one geom pair's contacts
     std::vector<int> body_weldid;   ///< (nbody) the body each body is welded to (no joint between)
     std::vector<double> body_aabb;  ///< (6 nbody) broad phase: bounds along the eigenframe's axes
+    std::vector<std::uint8_t> body_role;  ///< (nbody) broad phase: can collide, paired with all
   } work;
 
   int nefc_max = 0;  ///< 2 * njnt limit rows, and njmax more if the model can make contacts
