@@ -76,8 +76,11 @@ Data::Data(const Model& model)
     *v = Eigen::VectorXd::Zero(nefc_max);
   }
   efc_J = RowMatrix::Zero(nefc_max, nv);
-  work.jac1p = work.jac1r = work.jac2p = work.jac2r = Eigen::MatrixXd::Zero(3, nv);
-  work.contact_jac = RowMatrix::Zero(6, nv);
+  work.contact_frame_J = RowMatrix::Zero(nefc_max, nv);
+  work.contact_span.assign(2 * contact.size(), 0);
+  work.dof_chain.assign(2 * static_cast<size_t>(nv), 0);
+  work.contact_weight.assign(36 * contact.size(), 0.0);
+  work.frame_scratch.assign(6 * static_cast<size_t>(nv), 0.0);
   work.rk_qpos0 = Eigen::VectorXd::Zero(nq);
   work.rk_dq = Eigen::VectorXd::Zero(nv);  // a velocity: nv, not nq
   work.rk_qvel0 = work.rk_dv = Eigen::VectorXd::Zero(nv);

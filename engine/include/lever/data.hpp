@@ -188,8 +188,19 @@ struct Data {
     Eigen::VectorXd newton_trial, newton_err;  ///< (nv) a trial acceleration, qacc - qacc_smooth
     Eigen::VectorXd newton_jar, newton_jv;     ///< (nefc_max) J qacc - aref, J dir
     Eigen::VectorXd newton_x, newton_grad_x;   ///< (nefc_max) rows' jar at a point, d cost / d jar
-    Eigen::MatrixXd jac1p, jac1r, jac2p, jac2r;  ///< (3 x nv) a contact's two point Jacobians
-    RowMatrix contact_jac;                       ///< (6 x nv) a contact's Jacobian in its frame
+    // a contact's rows in its own frame (make_constraint, issue 19): contact i's frame rows
+    // (normal, two tangents, then the spin and the two rolls; one row without friction) are rows
+    // efc_address.. of contact_frame_J, over the span of dofs contact_span[2 i] (the first) ..,
+    // contact_span[2 i + 1] of them, that holds the dofs of its two bodies' paths to the root
+    // which are not on both (zero elsewhere in the span; outside it, not written). Every row of
+    // the contact is a combination of them (a pyramid edge is n +- mu_k t_k), so the solvers
+    // work on these few rows over this span.
+    RowMatrix contact_frame_J;           ///< (nefc_max x nv)
+    std::vector<int> contact_span;       ///< (2 nconmax)
+    std::vector<int> dof_chain;          ///< (2 nv) scratch: two bodies' dofs to the root
+    std::vector<double> contact_weight;  ///< (36 nconmax) a Hessian's part of each contact, W of
+                                         ///< C^T W C in its frame (dim x dim, row-major)
+    std::vector<double> frame_scratch;   ///< (6 nv) W C over a contact's dofs
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages (rk_qpos0 nq, the rest nv)
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
     Eigen::MatrixXd qDeriv;                    ///< (nv x nv) implicit: d qfrc_smooth / d qvel
