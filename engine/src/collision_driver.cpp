@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <string>
 
 #include <lever/collision.hpp>
@@ -151,13 +152,15 @@ class Collider {
 
   void run() {
     compute_weld_bodies();
+    compute_body_roles();
     const bool sweep = compute_bounding_boxes();
     const int nbody = m_.nbody;
+    const std::uint8_t* role = d_.work.body_role.data();
     int pair_address = 0, exclude_address = 0;
     for (int b1 = 0; b1 < nbody; ++b1) {
-      const bool b1_with_every_body = pairs_with_every_body(b1);
+      const int b1_with_every_body = role[b1] & kWithEveryBody ? 1 : 0;
       for (int b2 = b1 + 1; b2 < nbody; ++b2) {
-        const int listed = (b1_with_every_body ? 1 : 0) + (pairs_with_every_body(b2) ? 1 : 0) +
+        const int listed = b1_with_every_body + (role[b2] & kWithEveryBody ? 1 : 0) +
                            (sweep && boxes_overlap(b1, b2) ? 1 : 0);
         for (int k = 0; k < listed; ++k) {
           body_pair(b1, b2, pair_address, exclude_address);
@@ -190,6 +193,17 @@ class Collider {
   }
 
   int weld(int body) const { return d_.work.body_weldid[body]; }
+
+  // what each body can take part in, found once per call rather than once per body pair
+  static constexpr std::uint8_t kCollides = 1;       // a geom with contype or conaffinity
+  static constexpr std::uint8_t kWithEveryBody = 2;  // listed with every body (below)
+
+  void compute_body_roles() {
+    for (int b = 0; b < m_.nbody; ++b) {
+      d_.work.body_role[b] = static_cast<std::uint8_t>(
+          (can_collide(b) ? kCollides : 0) | (pairs_with_every_body(b) ? kWithEveryBody : 0));
+    }
+  }
 
   bool can_collide(int body) const {
     for (int g = m_.body_geomadr[body]; g < m_.body_geomadr[body] + m_.body_geomnum[body]; ++g) {
@@ -260,7 +274,8 @@ class Collider {
   /// overlapping, where MuJoCo's order of equal keys decides), along the other two in double;
   /// two bodies of one geom each must also pass contype/conaffinity.
   bool boxes_overlap(int b1, int b2) const {
-    if (b1 == 0 || !can_collide(b1) || !can_collide(b2)) return false;
+    const std::uint8_t* role = d_.work.body_role.data();
+    if (b1 == 0 || !(role[b1] & kCollides) || !(role[b2] & kCollides)) return false;
     const double* a = d_.work.body_aabb.data() + 6 * b1;
     const double* b = d_.work.body_aabb.data() + 6 * b2;
     if (static_cast<float>(b[0]) > static_cast<float>(a[1]) ||
@@ -384,10 +399,9 @@ class Collider {
 
     // The narrow phase writes each contact's dist, pos and normal; a frame's second row is a
     // tangent only where the pair sets one (the capsule's axis), so every frame starts zero.
-    // One buffer per thread, reused: a pair costs no construction of kMaxPairContacts contacts.
-    thread_local std::array<Contact, kMaxPairContacts> buffer;
-    Contact* found = buffer.data();
-    for (Contact& c : buffer) c.frame.setZero();
+    // The buffer is Data's: nothing is allocated or constructed per pair.
+    Contact* found = d_.work.pair_contact.data();
+    for (Contact& c : d_.work.pair_contact) c.frame.setZero();
     int n = collide_shapes(shape(g1), shape(g2), margin, found);
     if (n == 0) return;
     if (type1 == GeomType::kBox && type2 == GeomType::kBox)

@@ -93,28 +93,6 @@ double impedance(const std::array<double, 5>& solimp, double pos, double margin,
 
 namespace {
 
-// A row's product with a vector of nv numbers: a limit row's one entry, else the dense row
-// (summed in order: a few dofs, no vectorization to pay for).
-double row_dot(const Data& data, int r, const Eigen::VectorXd& x) {
-  if (data.efc_dof[r] >= 0) return data.efc_sign[r] * x[data.efc_dof[r]];
-  const double* J = data.efc_J.row(r).data();
-  const double* v = x.data();
-  double sum = 0.0;
-  for (Eigen::Index i = 0; i < x.size(); ++i) sum += J[i] * v[i];
-  return sum;
-}
-
-// x += J_r^T f for row r.
-void add_row_transpose(const Data& data, int r, double f, Eigen::VectorXd& x) {
-  if (data.efc_dof[r] >= 0) {
-    x[data.efc_dof[r]] += data.efc_sign[r] * f;
-  } else {
-    const double* J = data.efc_J.row(r).data();
-    double* out = x.data();
-    for (Eigen::Index i = 0; i < x.size(); ++i) out[i] += J[i] * f;
-  }
-}
-
 // Room for `rows` more rows, or a StateError that changes nothing (MuJoCo warns and drops them).
 void require_rows(const Model& model, const Data& data, int n, int rows) {
   if (n + rows > data.nefc_max) {
@@ -149,20 +127,76 @@ int add_limit_rows(const Model& model, Data& data) {
   return n;
 }
 
-// Rows first..first+2 of out = frame * J (3 x nv), summed in MuJoCo's order (mju_mulMatMat).
-void rotate_rows(const Mat3& frame, const Eigen::MatrixXd& J, RowMatrix& out, int first) {
-  const Eigen::Index nv = J.cols();
-  const double* Jc = J.data();  // column-major 3 x nv: column c at 3 c
-  for (int i = 0; i < 3; ++i) {
-    const double f0 = frame(i, 0), f1 = frame(i, 1), f2 = frame(i, 2);
-    double* row = out.row(first + i).data();
-    for (Eigen::Index c = 0; c < nv; ++c) {
-      row[c] = f0 * Jc[3 * c] + f1 * Jc[3 * c + 1] + f2 * Jc[3 * c + 2];
+// The dofs that move a point of `body`, from its nearest body with dofs to the root, descending
+// (MuJoCo's dof chain): into chain, returning how many.
+int dof_chain(const Model& model, int body, int* chain) {
+  while (body > 0 && model.body_dofnum[body] == 0) body = model.body_parentid[body];
+  if (body == 0) return 0;
+  int n = 0;
+  for (int i = model.body_dofadr[body] + model.body_dofnum[body] - 1; i >= 0;
+       i = model.dof_parentid[i]) {
+    chain[n++] = i;
+  }
+  return n;
+}
+
+// Contact i's frame rows, w.contact_frame_J rows first.., over its span of dofs: the relative
+// velocity of the point on body 2 to the point on body 1 (MuJoCo's mj_jacDifPair, then frame * J
+// summed as mju_mulMatMat). A dof on both bodies' paths to the root moves both points alike (the
+// same cdof and the same tree's centre of mass: the difference is exactly zero), so the rows are
+// nonzero only on the dofs of one path; the world has no dofs.
+void contact_frame_rows(const Model& model, Data& data, int i, int first) {
+  const Contact& con = data.contact[i];
+  auto& w = data.work;
+  const int nv = model.nv;
+  const int rotations = con.dim > 3 ? con.dim - 3 : 0;  // spin, then the two rolls
+  const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
+  int* chain1 = w.dof_chain.data();
+  int* chain2 = chain1 + nv;
+  int n1 = dof_chain(model, b1, chain1), n2 = dof_chain(model, b2, chain2);
+  // the dofs on both paths are the common ancestors: the chains' common end
+  while (n1 > 0 && n2 > 0 && chain1[n1 - 1] == chain2[n2 - 1]) --n1, --n2;
+  // the span: from the smallest to the largest dof on one path only (chains descend)
+  const int lo = std::min(n1 > 0 ? chain1[n1 - 1] : nv, n2 > 0 ? chain2[n2 - 1] : nv);
+  const int hi = std::max(n1 > 0 ? chain1[0] : -1, n2 > 0 ? chain2[0] : -1);
+  const int span = hi >= lo ? hi - lo + 1 : 0;
+  w.contact_span[2 * i] = span > 0 ? lo : 0;
+  w.contact_span[2 * i + 1] = span;
+  double* const C = w.contact_frame_J.data() + static_cast<std::ptrdiff_t>(first) * nv;
+  for (int k = 0; k < con.dim; ++k) {
+    for (int j = lo; j < lo + span; ++j) C[k * nv + j] = 0.0;
+  }
+
+  const Eigen::Vector3d offset1 = con.pos - data.subtree_com[model.body_rootid[b1]];
+  const Eigen::Vector3d offset2 = con.pos - data.subtree_com[model.body_rootid[b2]];
+  for (int pass = 0; pass < 2; ++pass) {
+    const bool body2 = pass == 0;
+    const int* chain = body2 ? chain2 : chain1;
+    const int n = body2 ? n2 : n1;
+    for (int k = 0; k < n; ++k) {
+      const int dof = chain[k];
+      // the point's velocity per unit rate of the dof (as jac_point); body 1's counts negative
+      const Motion& S = data.cdof[dof];
+      Eigen::Vector3d p = S.tail<3>() + cross(S.head<3>(), body2 ? offset2 : offset1);
+      Eigen::Vector3d r = S.head<3>();
+      if (!body2) {
+        p = Eigen::Vector3d::Zero() - p;
+        r = Eigen::Vector3d::Zero() - r;
+      }
+      for (int row = 0; row < 3 && row < con.dim; ++row) {
+        C[row * nv + dof] =
+            con.frame(row, 0) * p[0] + con.frame(row, 1) * p[1] + con.frame(row, 2) * p[2];
+      }
+      for (int row = 0; row < rotations; ++row) {
+        C[(3 + row) * nv + dof] =
+            con.frame(row, 0) * r[0] + con.frame(row, 1) * r[1] + con.frame(row, 2) * r[2];
+      }
     }
   }
 }
 
-// A contact's rows after the n already made (MuJoCo's mj_instantiateContact, dense Jacobian).
+// A contact's rows after the n already made (MuJoCo's mj_instantiateContact): its frame's rows,
+// then its efc_J rows from them, dense.
 int add_contact_rows(const Model& model, Data& data, int i, int n) {
   Contact& con = data.contact[i];
   const int dim = con.dim;
@@ -170,24 +204,7 @@ int add_contact_rows(const Model& model, Data& data, int i, int n) {
   const bool pyramid = dim > 1 && !elliptic;
   const int rows = pyramid ? 2 * (dim - 1) : elliptic ? dim : 1;
   require_rows(model, data, n, rows);
-  auto& w = data.work;
-  // relative velocity of the point on body 2 to the point on body 1, in the contact frame:
-  // normal, two tangents, then (condim 4, 6) the rotations about the same axes
-  // (the world does not move: a point of it has no Jacobian to compute or subtract)
-  const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
-  if (b2 != 0) {
-    jac_point(model, data, b2, con.pos, w.jac2p, w.jac2r);
-  } else {
-    w.jac2p.setZero();
-    w.jac2r.setZero();
-  }
-  if (b1 != 0) {
-    jac_point(model, data, b1, con.pos, w.jac1p, w.jac1r);
-    w.jac2p -= w.jac1p;  // in place: the workspace holds the difference
-    if (dim > 3) w.jac2r -= w.jac1r;
-  }
-  rotate_rows(con.frame, w.jac2p, w.contact_jac, 0);
-  if (dim > 3) rotate_rows(con.frame, w.jac2r, w.contact_jac, 3);
+  contact_frame_rows(model, data, i, n);
   con.efc_address = n;
   for (int r = n; r < n + rows; ++r) {
     data.efc_type[r] = pyramid    ? ConstraintType::kContactPyramidal
@@ -201,18 +218,27 @@ int add_contact_rows(const Model& model, Data& data, int i, int n) {
     data.efc_pos[r] = friction_row ? 0.0 : con.dist;
     data.efc_margin[r] = friction_row ? 0.0 : con.includemargin;
   }
+  const int nv = model.nv;
+  const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
+  const double* C = data.work.contact_frame_J.data() + static_cast<std::ptrdiff_t>(n) * nv + lo;
+  double* J = data.efc_J.data() + static_cast<std::ptrdiff_t>(n) * nv;
+  for (int j = 0; j < rows * nv; ++j) J[j] = 0.0;
+  J += lo;
   if (!pyramid) {  // the contact frame's rows as they are: normal, tangents, spin, rolls
-    for (int k = 0; k < rows; ++k) data.efc_J.row(n + k) = w.contact_jac.row(k);
+    for (int k = 0; k < rows; ++k) {
+      for (int j = 0; j < span; ++j) J[k * nv + j] = C[k * nv + j];
+    }
     return n + rows;
   }
   // one pair of the pyramid's edges per friction direction: n + mu t, n - mu t
-  for (int k = 1; k < dim; ++k) {
+  for (int k = 1; k < dim; ++k, J += 2 * nv) {
     const double mu = con.friction[k - 1];
-    data.efc_J.row(n) = w.contact_jac.row(0) + mu * w.contact_jac.row(k);
-    data.efc_J.row(n + 1) = w.contact_jac.row(0) - mu * w.contact_jac.row(k);
-    n += 2;
+    for (int j = 0; j < span; ++j) {
+      J[j] = C[j] + mu * C[k * nv + j];
+      J[nv + j] = C[j] - mu * C[k * nv + j];
+    }
   }
-  return n;
+  return n + rows;
 }
 
 // A row's approximate inverse inertia (MuJoCo's mj_diagApprox): frozen at qpos0 through
@@ -324,28 +350,7 @@ void make_constraint(const Model& model, Data& data) {
   }
 }
 
-double constraint_row_dot(const Data& data, int r, const Eigen::VectorXd& x) {
-  return row_dot(data, r, x);
-}
-
-void add_constraint_row_transpose(const Data& data, int r, double f, Eigen::VectorXd& x) {
-  add_row_transpose(data, r, f, x);
-}
-
-void reference_constraint(const Model& model, Data& data) {
-  check_entry(model, data, "lever::reference_constraint");
-  for (int r = 0; r < data.nefc; ++r) {
-    data.efc_vel[r] = row_dot(data, r, data.qvel);
-    data.efc_aref[r] = -data.efc_B[r] * data.efc_vel[r] -
-                       data.efc_K[r] * data.efc_imp[r] * (data.efc_pos[r] - data.efc_margin[r]);
-  }
-}
-
 namespace {
-
-// Most rounds of the active-set solve before the pivoting takes over: settling takes one or two
-// (a contact that starts or stops pushing moves one row), a cycle is what the bound catches.
-constexpr int kMaxActiveSetRounds = 8;
 
 // x = H^-1 x for a symmetric positive definite H given by its lower triangle, which is replaced
 // by its Cholesky factor L (H = L L^T). nv x nv with nv a few dozen at most: plain loops, column
@@ -353,13 +358,13 @@ constexpr int kMaxActiveSetRounds = 8;
 void cholesky_solve(Eigen::MatrixXd& H, Eigen::VectorXd& x) {
   const Eigen::Index nv = x.size();
   for (Eigen::Index j = 0; j < nv; ++j) {
-    double* Lj = H.col(j).data();
+    double* Lj = H.data() + j * nv;
     const double Ljj = std::sqrt(Lj[j]);
     Lj[j] = Ljj;
     for (Eigen::Index i = j + 1; i < nv; ++i) Lj[i] /= Ljj;
     for (Eigen::Index k = j + 1; k < nv; ++k) {
       if (Lj[k] == 0.0) continue;  // dofs of different trees (a gripper and a free box) decouple
-      double* Hk = H.col(k).data();
+      double* Hk = H.data() + k * nv;
       for (Eigen::Index i = k; i < nv; ++i) Hk[i] -= Lj[i] * Lj[k];
     }
   }
@@ -375,58 +380,195 @@ void cholesky_solve(Eigen::MatrixXd& H, Eigen::VectorXd& x) {
   }
 }
 
+// H += weight v v^T, v over the span of `count` dofs from `lo`: the whole block, though only
+// its lower triangle is read (a loop of one length vectorizes; one of falling lengths does not).
+void add_rank_one(Eigen::MatrixXd& H, int lo, int count, double weight, const double* v) {
+  const Eigen::Index nv = H.rows();
+  double* column = H.data() + (lo * nv + lo);  // column lo + b from its row lo, for each b
+  for (int b = 0; b < count; ++b, column += nv) {
+    if (v[b] == 0.0) continue;
+    const double wb = weight * v[b];
+    for (int a = 0; a < count; ++a) column[a] += wb * v[a];
+  }
+}
+
+}  // namespace
+
+void rows_times(const Data& data, const double* x, double* out) {
+  const auto& C = data.work.contact_frame_J;
+  for (int r = 0; r < data.nefc;) {
+    if (data.efc_dof[r] >= 0) {  // a limit row: J_r = sign e_dof
+      out[r] = data.efc_sign[r] * x[data.efc_dof[r]];
+      ++r;
+      continue;
+    }
+    const int i = data.efc_id[r];
+    const Contact& con = data.contact[i];
+    const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
+    double c[6];  // the frame's rows times x
+    for (int k = 0; k < con.dim; ++k) {
+      const double* row = C.row(r + k).data() + lo;
+      double sum = 0.0;
+      for (int j = 0; j < span; ++j) sum += row[j] * x[lo + j];
+      c[k] = sum;
+    }
+    if (data.efc_type[r] != ConstraintType::kContactPyramidal) {
+      for (int k = 0; k < con.dim; ++k) out[r++] = c[k];
+      continue;
+    }
+    for (int k = 1; k < con.dim; ++k) {  // the edges n + mu t, n - mu t
+      const double mu = con.friction[k - 1];
+      out[r++] = c[0] + mu * c[k];
+      out[r++] = c[0] - mu * c[k];
+    }
+  }
+}
+
+void add_rows_transpose(const Data& data, const double* f, double* out) {
+  const auto& C = data.work.contact_frame_J;
+  for (int r = 0; r < data.nefc;) {
+    if (data.efc_dof[r] >= 0) {
+      out[data.efc_dof[r]] += data.efc_sign[r] * f[r];
+      ++r;
+      continue;
+    }
+    const int i = data.efc_id[r];
+    const Contact& con = data.contact[i];
+    const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
+    // the rows' forces as forces along the frame's rows: a pyramid's edges n +- mu t add their
+    // forces along n, and mu times their difference along t
+    double F[6];
+    const int frame = r;
+    if (data.efc_type[r] != ConstraintType::kContactPyramidal) {
+      for (int k = 0; k < con.dim; ++k) F[k] = f[r++];
+    } else {
+      F[0] = 0.0;
+      for (int k = 1; k < con.dim; ++k) {
+        F[0] += f[r] + f[r + 1];
+        F[k] = con.friction[k - 1] * (f[r] - f[r + 1]);
+        r += 2;
+      }
+    }
+    for (int k = 0; k < con.dim; ++k) {
+      if (F[k] == 0.0) continue;
+      const double* row = C.row(frame + k).data() + lo;
+      for (int j = 0; j < span; ++j) out[lo + j] += F[k] * row[j];
+    }
+  }
+}
+
+void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H) {
+  const auto& C = data.work.contact_frame_J;
+  for (int r = 0; r < data.nefc;) {
+    if (data.efc_dof[r] >= 0) {  // a limit row: J_r = sign e_dof, sign^2 = 1
+      H(data.efc_dof[r], data.efc_dof[r]) += weight[r];
+      ++r;
+      continue;
+    }
+    const int i = data.efc_id[r];
+    const Contact& con = data.contact[i];
+    const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
+    const int frame = r;
+    if (data.efc_type[r] != ConstraintType::kContactPyramidal) {
+      for (int k = 0; k < con.dim; ++k, ++r) {
+        if (weight[r] != 0.0) add_rank_one(H, lo, span, weight[r], C.row(frame + k).data() + lo);
+      }
+      continue;
+    }
+    // A pair of edges n +- mu t that both push adds d+ (n + mu t)(..)^T + d- (n - mu t)(..)^T
+    // = (d+ + d-) n n^T + mu^2 (d+ + d-) t t^T when d+ = d- (the edges of a pyramid share R):
+    // one product along t, and the normal's gathered over the pairs. A lone edge adds its own.
+    double normal = 0.0;
+    for (int k = 1; k < con.dim; ++k, r += 2) {
+      const double plus = weight[r], minus = weight[r + 1];
+      if (plus != 0.0 && plus == minus) {
+        const double mu = con.friction[k - 1];
+        normal += plus + minus;
+        add_rank_one(H, lo, span, mu * mu * (plus + minus), C.row(frame + k).data() + lo);
+      } else {
+        if (plus != 0.0) add_rank_one(H, lo, span, plus, data.efc_J.row(r).data() + lo);
+        if (minus != 0.0) add_rank_one(H, lo, span, minus, data.efc_J.row(r + 1).data() + lo);
+      }
+    }
+    if (normal != 0.0) add_rank_one(H, lo, span, normal, C.row(frame).data() + lo);
+  }
+}
+
+void add_frame_hessian(Data& data, int i, const double* W, Eigen::MatrixXd& H) {
+  const Contact& con = data.contact[i];
+  const int dim = con.dim, first = con.efc_address;
+  const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
+  const auto C = data.work.contact_frame_J.block(first, lo, dim, span);
+  // G = W C over the span (dim x span), then the lower triangle of C^T G
+  double* G = data.work.frame_scratch.data();
+  for (int k = 0; k < dim; ++k) {
+    for (int j = 0; j < span; ++j) {
+      double sum = 0.0;
+      for (int l = 0; l < dim; ++l) sum += W[k * dim + l] * C(l, j);
+      G[k * span + j] = sum;
+    }
+  }
+  for (int b = 0; b < span; ++b) {
+    double* column = H.data() + static_cast<std::ptrdiff_t>(lo + b) * H.rows() + lo;
+    for (int a = b; a < span; ++a) {
+      double sum = 0.0;
+      for (int k = 0; k < dim; ++k) sum += C(k, a) * G[k * span + b];
+      column[a] += sum;
+    }
+  }
+}
+
+void solve_with_hessian(Eigen::MatrixXd& H, Eigen::VectorXd& x) { cholesky_solve(H, x); }
+
+void reference_constraint(const Model& model, Data& data) {
+  check_entry(model, data, "lever::reference_constraint");
+  rows_times(data, data.qvel.data(), data.efc_vel.data());
+  for (int r = 0; r < data.nefc; ++r) {
+    data.efc_aref[r] = -data.efc_B[r] * data.efc_vel[r] -
+                       data.efc_K[r] * data.efc_imp[r] * (data.efc_pos[r] - data.efc_margin[r]);
+  }
+}
+
+namespace {
+
+// Most rounds of the active-set solve before the pivoting takes over: settling takes one or two
+// (a contact that starts or stops pushing moves one row), a cycle is what the bound catches.
+constexpr int kMaxActiveSetRounds = 8;
+
 // The one-sided rows' problem solved in dof space. For a set S of pushing rows the cost
 // 1/2 |a - a_smooth|_M^2 + sum_S 1/2 D_r (J_r a - aref_r)^2 is one quadratic, minimized by
 //   (M + J_S^T D_S J_S) a = M a_smooth + J_S^T D_S aref_S         (nv x nv, whatever the rows)
 // (Newton's step for MuJoCo's primal problem, exact because the cost is quadratic on S; M a_smooth
-// is qfrc_smooth). If the
-// rows that push at that a, {r : jar_r = J_r a - aref_r < 0}, are S again, a is the minimizer:
-// f = -D jar > 0 on S and jar >= 0 off it is the complementarity the LCP asks for, whose
-// solution is unique. Otherwise S becomes that set and the round repeats, from S = the rows that
-// push at a_smooth. False (nothing written) when the set has not settled after
-// kMaxActiveSetRounds rounds: the pivoting, which always finishes, decides then.
-bool solve_active_set(const Model& model, Data& data) {
+// is qfrc_smooth). If the rows that push at that a, {r : jar_r = J_r a - aref_r < 0}, are S
+// again, a is the minimizer: f = -D jar > 0 on S and jar >= 0 off it is the complementarity the
+// LCP asks for, whose solution is unique. Otherwise S becomes that set and the round repeats,
+// from S = the rows that push at a_smooth. False (nothing written) when the set has not settled
+// after kMaxActiveSetRounds rounds: the pivoting, which always finishes, decides then.
+bool solve_active_set(Data& data) {
   auto& w = data.work;
-  const int n = data.nefc, nv = model.nv;
+  const int n = data.nefc;
   std::vector<int>& active = w.lcp_active;
-  auto& H = w.newton_H;
   auto& a = w.newton_dir;  // the round's acceleration
   const double* D = data.efc_D.data();
   const double* aref = data.efc_aref.data();
   for (int r = 0; r < n; ++r) active[r] = data.efc_b[r] < 0;
 
   for (int round = 0; round < kMaxActiveSetRounds; ++round) {
-    // H = M + J_S^T D_S J_S (lower triangle) and a = M a_smooth + J_S^T D_S aref_S, where
-    // M a_smooth is qfrc_smooth (as MuJoCo's gradient M a - qfrc_smooth has it)
-    H = data.M;
+    // a = M a_smooth + J_S^T D_S aref_S, where M a_smooth is qfrc_smooth (as MuJoCo's gradient
+    // M a - qfrc_smooth has it), and H = M + J_S^T D_S J_S, each contact's part in its frame
+    for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] * aref[r] : 0.0;
     a = data.qfrc_smooth;
-    double* rhs = a.data();
-    for (int r = 0; r < n; ++r) {
-      if (!active[r]) continue;
-      const int dof = data.efc_dof[r];
-      if (dof >= 0) {  // a limit row: J_r = sign e_dof, sign^2 = 1
-        H(dof, dof) += D[r];
-        rhs[dof] += data.efc_sign[r] * D[r] * aref[r];
-        continue;
-      }
-      // a contact row touches only its bodies' dofs: the span [first, last] of its nonzeros
-      const double* J = data.efc_J.row(r).data();
-      int first = 0, last = nv - 1;
-      while (first < nv && J[first] == 0.0) ++first;
-      while (last > first && J[last] == 0.0) --last;
-      for (int i = first; i <= last; ++i) {
-        const double DJi = D[r] * J[i];
-        rhs[i] += DJi * aref[r];
-        double* column = H.col(i).data();  // the lower triangle of column i, H(j, i) for j >= i
-        for (int j = i; j <= last; ++j) column[j] += DJi * J[j];
-      }
-    }
-    cholesky_solve(H, a);
+    add_rows_transpose(data, w.lcp_f.data(), a.data());
+    for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] : 0.0;
+    w.newton_H = data.M;
+    add_rows_hessian(data, w.lcp_f.data(), w.newton_H);
+    solve_with_hessian(w.newton_H, a);
 
     // the rows that push at a; the same set: done
+    rows_times(data, a.data(), w.newton_jar.data());
     bool settled = true;
     for (int r = 0; r < n; ++r) {
-      w.newton_jar[r] = row_dot(data, r, a) - aref[r];
+      w.newton_jar[r] -= aref[r];
       settled = settled && (w.newton_jar[r] < 0) == (active[r] != 0);
       active[r] = w.newton_jar[r] < 0;
     }
@@ -435,8 +577,8 @@ bool solve_active_set(const Model& model, Data& data) {
     for (int r = 0; r < n; ++r) {
       data.efc_force[r] = active[r] ? -D[r] * w.newton_jar[r] : 0.0;
       data.efc_state[r] = active[r] ? ConstraintState::kActive : ConstraintState::kSatisfied;
-      add_row_transpose(data, r, data.efc_force[r], data.qfrc_constraint);
     }
+    add_rows_transpose(data, data.efc_force.data(), data.qfrc_constraint.data());
     return true;
   }
   return false;
@@ -506,8 +648,8 @@ void solve_by_pivoting(const Model& model, Data& data) {
   for (int r = 0; r < n; ++r) {
     data.efc_force[r] = active[r] ? f[r] : 0.0;
     data.efc_state[r] = active[r] ? ConstraintState::kActive : ConstraintState::kSatisfied;
-    add_row_transpose(data, r, data.efc_force[r], data.qfrc_constraint);
   }
+  add_rows_transpose(data, data.efc_force.data(), data.qfrc_constraint.data());
   // qacc = qacc_smooth + M^-1 J^T f
   w.vec1 = data.qfrc_constraint;
   solve_mass(model, data, w.vec1);
@@ -523,9 +665,8 @@ namespace {
 void start_one_sided(Data& data) {
   data.qfrc_constraint.setZero();
   data.qacc = data.qacc_smooth;
-  for (int r = 0; r < data.nefc; ++r) {
-    data.efc_b[r] = row_dot(data, r, data.qacc_smooth) - data.efc_aref[r];
-  }
+  rows_times(data, data.qacc_smooth.data(), data.efc_b.data());
+  data.efc_b.head(data.nefc) -= data.efc_aref.head(data.nefc);
 }
 
 }  // namespace
@@ -543,7 +684,7 @@ void solve_constraint(const Model& model, Data& data) {
   // in the smaller space: rows (pivoting on A, nefc x nefc) when there are no more rows than
   // dofs (a limit or two on an arm), dofs (active sets on H, nv x nv) otherwise (a box resting
   // on four corners has 16 pyramid rows and 6 dofs)
-  if (data.nefc > model.nv && solve_active_set(model, data)) return;
+  if (data.nefc > model.nv && solve_active_set(data)) return;
   solve_by_pivoting(model, data);
 }
 

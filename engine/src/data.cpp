@@ -1,4 +1,5 @@
 // Data: sized once from the Model, so that evaluating and stepping never allocate.
+#include <lever/collision.hpp>
 #include <lever/data.hpp>
 #include <lever/error.hpp>
 
@@ -48,8 +49,10 @@ Data::Data(const Model& model)
   cinert.assign(nbody, RigidInertia{});
   contact.assign(static_cast<size_t>(std::max(0, model.nconmax)), Contact{});
   work.contact.assign(contact.size(), Contact{});
+  work.pair_contact.assign(kMaxPairContacts, Contact{});
   work.body_weldid.assign(nbody, 0);
   work.body_aabb.assign(6 * static_cast<size_t>(nbody), 0.0);
+  work.body_role.assign(nbody, 0);
   qLD = Eigen::MatrixXd::Zero(nv, nv);
   work.crb.assign(nbody, RigidInertia{});
   work.cacc.assign(nbody, Motion::Zero());
@@ -73,8 +76,11 @@ Data::Data(const Model& model)
     *v = Eigen::VectorXd::Zero(nefc_max);
   }
   efc_J = RowMatrix::Zero(nefc_max, nv);
-  work.jac1p = work.jac1r = work.jac2p = work.jac2r = Eigen::MatrixXd::Zero(3, nv);
-  work.contact_jac = RowMatrix::Zero(6, nv);
+  work.contact_frame_J = RowMatrix::Zero(nefc_max, nv);
+  work.contact_span.assign(2 * contact.size(), 0);
+  work.dof_chain.assign(2 * static_cast<size_t>(nv), 0);
+  work.contact_weight.assign(36 * contact.size(), 0.0);
+  work.frame_scratch.assign(6 * static_cast<size_t>(nv), 0.0);
   work.rk_qpos0 = Eigen::VectorXd::Zero(nq);
   work.rk_dq = Eigen::VectorXd::Zero(nv);  // a velocity: nv, not nq
   work.rk_qvel0 = work.rk_dv = Eigen::VectorXd::Zero(nv);

@@ -29,11 +29,29 @@ void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref
 /// nullptr, also d imp / d pos.
 double impedance(const std::array<double, 5>& solimp, double pos, double margin, double* slope);
 
-/// J_r . x for constraint row r (constraint.cpp): a limit row's one entry, else the dense row.
-double constraint_row_dot(const Data& data, int r, const Eigen::VectorXd& x);
+// ---- the constraint rows' products (constraint.cpp), shared by the solvers -------------------
+// A contact's rows are combinations of its frame's rows over its span of dofs
+// (data.work.contact_frame_J, contact_span): the products work on those, a limit row on its dof.
 
-/// x += J_r^T f for constraint row r (constraint.cpp).
-void add_constraint_row_transpose(const Data& data, int r, double f, Eigen::VectorXd& x);
+/// out = J x for every row (nefc numbers; x has nv).
+void rows_times(const Data& data, const double* x, double* out);
+
+/// out += J^T f (f has nefc numbers, out nv).
+void add_rows_transpose(const Data& data, const double* f, double* out);
+
+/// H += J^T diag(weight) J in H's lower triangle (weight: nefc numbers, zero for a row left
+/// out), each contact's part from its frame's rows: a pyramid's pair of edges with one weight
+/// adds one product along its tangent, the pairs' normal parts gathered into one, instead of
+/// one product per edge.
+void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H);
+
+/// H += C^T W C for contact i in H's lower triangle: C its frame's rows, W (dim x dim, row-major,
+/// symmetric) a weight in its frame's coordinates (an elliptic cone's Hessian block).
+void add_frame_hessian(Data& data, int i, const double* W, Eigen::MatrixXd& H);
+
+/// x = H^-1 x for H = M + J^T (...) J assembled above (its lower triangle), which becomes its
+/// Cholesky factor: the active sets and the Newton solver both solve with it.
+void solve_with_hessian(Eigen::MatrixXd& H, Eigen::VectorXd& x);
 
 /// Solve the constraint rows by MuJoCo's Newton method to convergence (solver.cpp): qacc,
 /// efc_b, efc_force, efc_state, qfrc_constraint. Returns the Newton steps taken.

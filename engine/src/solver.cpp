@@ -17,8 +17,6 @@
 // the cost stops decreasing (no tolerance).
 #include <lever/constraint.hpp>
 
-#include <Eigen/Cholesky>
-
 #include <algorithm>
 #include <cmath>
 #include <limits>
@@ -123,9 +121,8 @@ double total_cost(Data& data, const Eigen::VectorXd& qacc) {
   w.newton_err = qacc - data.qacc_smooth;
   w.newton_Merr.noalias() = data.M * w.newton_err;
   const double gauss = 0.5 * w.newton_err.dot(w.newton_Merr);
-  for (int r = 0; r < data.nefc; ++r) {
-    w.newton_x[r] = constraint_row_dot(data, r, qacc) - data.efc_aref[r];
-  }
+  rows_times(data, qacc.data(), w.newton_x.data());
+  w.newton_x.head(data.nefc) -= data.efc_aref.head(data.nefc);
   return gauss + constraint_cost(data, w.newton_x, w.newton_grad_x, false);
 }
 
@@ -188,26 +185,24 @@ void record_forces(Data& data, const Eigen::VectorXd& x) {
   for (int r = 0; r < data.nefc; ++r) {
     data.efc_force[r] = -w.newton_grad_x[r];
     if (data.efc_force[r] == 0.0) data.efc_force[r] = 0.0;  // no -0 from a zero gradient
-    add_constraint_row_transpose(data, r, data.efc_force[r], data.qfrc_constraint);
   }
+  add_rows_transpose(data, data.efc_force.data(), data.qfrc_constraint.data());
 }
 
 }  // namespace
 
 void constraint_forces_at(Data& data, const Eigen::VectorXd& qacc) {
   auto& w = data.work;
-  for (int r = 0; r < data.nefc; ++r) {
-    w.newton_x[r] = constraint_row_dot(data, r, qacc) - data.efc_aref[r];
-  }
+  rows_times(data, qacc.data(), w.newton_x.data());
+  w.newton_x.head(data.nefc) -= data.efc_aref.head(data.nefc);
   record_forces(data, w.newton_x);
 }
 
-int solve_constraint_newton(const Model& model, Data& data) {
+int solve_constraint_newton([[maybe_unused]] const Model& model, Data& data) {
   auto& w = data.work;
-  const int n = data.nefc, nv = model.nv;
-  for (int r = 0; r < n; ++r) {
-    data.efc_b[r] = constraint_row_dot(data, r, data.qacc_smooth) - data.efc_aref[r];
-  }
+  const int n = data.nefc;
+  rows_times(data, data.qacc_smooth.data(), data.efc_b.data());
+  data.efc_b.head(n) -= data.efc_aref.head(n);
   // start from the unconstrained acceleration (lever's forward is a function of the state alone;
   // a warm start would change only where the iterations stop, at rounding)
   data.qacc = data.qacc_smooth;
@@ -224,9 +219,10 @@ int solve_constraint_newton(const Model& model, Data& data) {
   double previous_step = std::numeric_limits<double>::infinity();
   int step = 0;
   for (; step < kMaxNewtonSteps; ++step) {
-    // gradient M (a - a_smooth) + J^T ds/djar and Hessian M + J^T (d^2 s / d jar^2) J
-    w.newton_grad = w.newton_Merr;
-    w.newton_H = data.M;
+    // gradient M (a - a_smooth) + J^T ds/djar and Hessian M + J^T (d^2 s / d jar^2) J: per
+    // row, ds/djar (w.lcp_w) and a one-sided row's d^2 s / d jar^2 (w.lcp_f); per elliptic
+    // cone, its block's d^2 s / d jar^2 (w.contact_weight), in its frame's coordinates (its
+    // rows are its frame's rows)
     bool changed = step == 0, cone = false;
     for (int r = 0; r < n;) {
       const int size = block_size(data, r);
@@ -236,33 +232,40 @@ int solve_constraint_newton(const Model& model, Data& data) {
       changed = changed || state != data.efc_state[r];
       cone = cone || state == ConstraintState::kCone;
       std::fill(data.efc_state.begin() + r, data.efc_state.begin() + r + size, state);
-      if (state != ConstraintState::kSatisfied) {
+      const bool pushing = state != ConstraintState::kSatisfied;
+      for (int i = 0; i < size; ++i) w.lcp_w[r + i] = pushing ? g[i] : 0.0;
+      std::fill(w.lcp_f.data() + r, w.lcp_f.data() + r + size, 0.0);
+      if (data.efc_type[r] != ConstraintType::kContactElliptic) {  // a row of its own
+        w.lcp_f[r] = pushing ? h(0, 0) : 0.0;
+      } else {
+        double* W = w.contact_weight.data() + 36 * static_cast<std::ptrdiff_t>(data.efc_id[r]);
         for (int i = 0; i < size; ++i) {
-          add_constraint_row_transpose(data, r + i, g[i], w.newton_grad);
-          for (int j = 0; j < size; ++j) {
-            if (h(i, j) == 0.0) continue;
-            for (int a = 0; a < nv; ++a) {
-              const double Jia = data.efc_J(r + i, a) * h(i, j);
-              if (Jia == 0.0) continue;
-              for (int b = 0; b < nv; ++b) w.newton_H(a, b) += Jia * data.efc_J(r + j, b);
-            }
-          }
+          for (int j = 0; j < size; ++j) W[i * size + j] = pushing ? h(i, j) : 0.0;
         }
       }
       r += size;
     }
     if (!changed && !cone) break;
+    w.newton_grad = w.newton_Merr;
+    add_rows_transpose(data, w.lcp_w.data(), w.newton_grad.data());
     if (w.newton_grad.lpNorm<Eigen::Infinity>() == 0.0) break;
-    const Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> factor(w.newton_H);  // in place: H is rebuilt
-    w.newton_dir = -w.newton_grad;                                     // every step
-    factor.solveInPlace(w.newton_dir);
+    w.newton_dir = -w.newton_grad;
+    w.newton_H = data.M;
+    add_rows_hessian(data, w.lcp_f.data(), w.newton_H);  // the one-sided rows
+    for (int i = 0; i < data.ncon; ++i) {
+      const int first = data.contact[i].efc_address;
+      if (first < 0 || data.efc_type[first] != ConstraintType::kContactElliptic) continue;
+      add_frame_hessian(data, i, w.contact_weight.data() + 36 * static_cast<std::ptrdiff_t>(i),
+                        w.newton_H);
+    }
+    solve_with_hessian(w.newton_H, w.newton_dir);
     if (!(w.newton_dir.dot(w.newton_grad) < 0)) break;  // no descent left, at rounding
 
     // the exact minimum along the Newton direction
     w.newton_Mdir.noalias() = data.M * w.newton_dir;
     const double gauss1 = w.newton_dir.dot(w.newton_Merr);
     const double gauss2 = 0.5 * w.newton_dir.dot(w.newton_Mdir);
-    for (int r = 0; r < n; ++r) w.newton_jv[r] = constraint_row_dot(data, r, w.newton_dir);
+    rows_times(data, w.newton_dir.data(), w.newton_jv.data());
     const double alpha = line_search(data, gauss1, gauss2);
     if (!(alpha > 0.0)) break;
     data.qacc += alpha * w.newton_dir;

@@ -188,8 +188,19 @@ struct Data {
     Eigen::VectorXd newton_trial, newton_err;  ///< (nv) a trial acceleration, qacc - qacc_smooth
     Eigen::VectorXd newton_jar, newton_jv;     ///< (nefc_max) J qacc - aref, J dir
     Eigen::VectorXd newton_x, newton_grad_x;   ///< (nefc_max) rows' jar at a point, d cost / d jar
-    Eigen::MatrixXd jac1p, jac1r, jac2p, jac2r;  ///< (3 x nv) a contact's two point Jacobians
-    RowMatrix contact_jac;                       ///< (6 x nv) a contact's Jacobian in its frame
+    // a contact's rows in its own frame (make_constraint, issue 19): contact i's frame rows
+    // (normal, two tangents, then the spin and the two rolls; one row without friction) are rows
+    // efc_address.. of contact_frame_J, over the span of dofs contact_span[2 i] (the first) ..,
+    // contact_span[2 i + 1] of them, that holds the dofs of its two bodies' paths to the root
+    // which are not on both (zero elsewhere in the span; outside it, not written). Every row of
+    // the contact is a combination of them (a pyramid edge is n +- mu_k t_k), so the solvers
+    // work on these few rows over this span.
+    RowMatrix contact_frame_J;           ///< (nefc_max x nv)
+    std::vector<int> contact_span;       ///< (2 nconmax)
+    std::vector<int> dof_chain;          ///< (2 nv) scratch: two bodies' dofs to the root
+    std::vector<double> contact_weight;  ///< (36 nconmax) a Hessian's part of each contact, W of
+                                         ///< C^T W C in its frame (dim x dim, row-major)
+    std::vector<double> frame_scratch;   ///< (6 nv) W C over a contact's dofs
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages (rk_qpos0 nq, the rest nv)
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
     Eigen::MatrixXd qDeriv;                    ///< (nv x nv) implicit: d qfrc_smooth / d qvel
@@ -199,9 +210,11 @@ struct Data {
     std::vector<uint8_t> in_subtree;  ///< (nbody) implicit: the bodies that move with qvel_j
     // collision() (issue 19): contacts are gathered here and copied to `contact` only when all
     // of them fit, so that a refusal leaves the last contacts in place
-    std::vector<Contact> contact;   ///< (nconmax)
+    std::vector<Contact> contact;       ///< (nconmax)
+    std::vector<Contact> pair_contact;  ///< (kMaxPairContacts) one geom pair's contacts
     std::vector<int> body_weldid;   ///< (nbody) the body each body is welded to (no joint between)
     std::vector<double> body_aabb;  ///< (6 nbody) broad phase: bounds along the eigenframe's axes
+    std::vector<std::uint8_t> body_role;  ///< (nbody) broad phase: can collide, paired with all
   } work;
 
   int nefc_max = 0;  ///< 2 * njnt limit rows, and njmax more if the model can make contacts
