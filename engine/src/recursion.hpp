@@ -51,7 +51,8 @@ inline Force net_force(const RigidInertia& I, const Motion& v, const Motion& a) 
 /// a slide, a ball's three rotations together, see detail::starts_segment). qdd == nullptr: zero.
 /// gravity: the world accelerates upward at -g, so the forces found from a include the weights.
 /// Sdot and Sddot (nv each, or nullptr) receive each dof's Sdot_i and its derivative a x S_i + v x
-/// Sdot_i (the inverse-dynamics derivatives' Psi).
+/// Sdot_i (the inverse-dynamics derivatives' Psi). done(b, v[b], a[b]) runs as each body is
+/// finished, while its v and a are at hand (RNEA's net force, rnea.cpp).
 template <class BodyDone>
 inline void forward_pass(const Model& model, const Data& data, const double* qd, const double* qdd,
                          bool gravity, std::vector<Motion>& v, std::vector<Motion>& a,
@@ -63,7 +64,8 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
   for (int b = 1; b < model.nbody; ++b) {
     const int parent = model.body_parentid[b];
     if (model.body_dofnum[b] == 1 && Sddot == nullptr) {
-      // a hinge or a slide, alone in its body: one segment, the parent's velocity turns S
+      // a hinge or a slide, alone in its body (the arms' every joint): one segment, which the
+      // parent's velocity turns; the same arithmetic as the loop below, without its bookkeeping
       const int i = model.body_dofadr[b];
       const Motion& S = data.cdof[i];
       Motion S_dot_here;
@@ -111,6 +113,7 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
   }
 }
 
+/// The forward pass alone (the derivatives and the regressor use v and a after it).
 inline void forward_pass(const Model& model, const Data& data, const double* qd, const double* qdd,
                          bool gravity, std::vector<Motion>& v, std::vector<Motion>& a,
                          std::vector<Motion>* Sdot, std::vector<Motion>* Sddot) {
