@@ -74,7 +74,13 @@ def short_name(symbol):
         elif c == "(" and depth == 0 and i > 0:
             cut = i
             break
-    return symbol[:cut].strip()
+    symbol = symbol[:cut].strip()
+    # a function template's instance, which the demangler writes with its return type first:
+    # "void lever::forward_pass<...a lambda's type...>" -> "lever::forward_pass"
+    instance = re.match(r"^[\w:]+ ([\w:]+)<.*>$", symbol)
+    if instance:
+        symbol = instance.group(1)
+    return symbol
 
 
 # MuJoCo 2.2.2's forward pipeline, the functions mj_forward's stages call (none calls another)

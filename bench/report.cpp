@@ -619,10 +619,10 @@ int main(int argc, char** argv) {
       if (!lever_bias || !mujoco_bias || *lever_bias <= 0.7 * *mujoco_bias) continue;
       out << "- " << model << " `bias` / `mj_rne`: " << count_text(*lever_bias) << " against "
           << count_text(*mujoco_bias) << " instructions (" << ratio_text(*lever_bias / *mujoco_bias)
-          << "): lever's RNEA runs over the com-frame quantities `kinematics` leaves, as "
-          << "`mj_comVel` + `mj_rne` do; the local-frame "
-          << "recursion issue 18 asks for is not written yet, and it is where the rest would "
-          << "come from (no com-frame transforms per body).\n";
+          << "): lever's RNEA runs over the com-frame quantities `kinematics` leaves and does "
+          << "`mj_comVel`'s work too (the velocities and `cdof_dot`), each one-dof body in one "
+          << "step and its net force by Newton and Euler's equations about the frame origin "
+          << "(recursion.hpp); what remains is the six-vector products of that frame.\n";
     }
     if (const auto jac = counts.count("step_jacobian_forward", "panda7", "lever"),
         fwd = counts.count("forward", "panda7", "lever");
@@ -781,7 +781,10 @@ int main(int argc, char** argv) {
          "(poses, "
          "then subtree centres of mass, body inertias and dof axes in MuJoCo's com-based frame), "
          "and "
-         "its `bias` that of `mj_comVel` and `mj_rne`; "
+         "its `bias` that of `mj_comVel` and `mj_rne` (the `bias` row counts `mj_rne` alone, "
+         "`mj_comVel` having run before it: lever's row also computes the velocities); lever's "
+         "`step` runs `forward` without the outputs nothing in a step reads (`xquat`, and the "
+         "geom frames where nothing can collide); "
          "`mj_forward` and `mj_step` also run collision "
          "detection (nothing collides in these models), sensors and MuJoCo's iterative constraint "
          "solver, which lever replaces with an exact solve of the limit rows. KDL's forward "

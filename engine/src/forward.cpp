@@ -31,10 +31,9 @@ void check_inputs(Data& data) {
   record_if_bad(data, data.qfrc_applied, Warning::kBadQfrcApplied);
 }
 
-}  // namespace
-
-void position_stage(const Model& model, Data& data) {
-  kinematics(model, data);
+// The position stage after the kinematics: contacts, M and its factor, constraint rows,
+// transmission.
+void after_kinematics(const Model& model, Data& data) {
   if (model.contacts_possible) {
     collision(model, data);
   } else {
@@ -44,6 +43,13 @@ void position_stage(const Model& model, Data& data) {
   factor_mass(model, data);
   make_constraint(model, data);
   transmission(model, data);
+}
+
+}  // namespace
+
+void position_stage(const Model& model, Data& data) {
+  kinematics(model, data);
+  after_kinematics(model, data);
 }
 
 void velocity_stage(const Model& model, Data& data) {
@@ -69,6 +75,19 @@ void forward(const Model& model, Data& data) {
   acceleration_stage(model, data);
   record_if_bad(data, data.qacc, Warning::kBadQacc);
 }
+
+namespace detail {
+
+void step_forward(const Model& model, Data& data) {
+  check_inputs(data);
+  step_kinematics(model, data);
+  after_kinematics(model, data);
+  velocity_stage(model, data);
+  acceleration_stage(model, data);
+  record_if_bad(data, data.qacc, Warning::kBadQacc);
+}
+
+}  // namespace detail
 
 void inverse(const Model& model, Data& data) {
   check_entry(model, data, "lever::inverse");

@@ -69,7 +69,7 @@ void euler(const Model& model, Data& data) {
   data.time += h;
 }
 
-void rk4(const Model& model, Data& data) {
+void rk4(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&)) {
   // Butcher tableau of the classical method
   constexpr double kA[3] = {0.5, 0.5, 1.0};  // a_{i,i-1}; the rest of the lower triangle is 0
   constexpr double kB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
@@ -88,7 +88,7 @@ void rk4(const Model& model, Data& data) {
     detail::integrate_positions(model, data.qpos.data(), w.rk_dq.data(), h);
     data.qvel = w.rk_qvel0 + (h * kA[i - 1]) * w.rk_qacc[i - 1];
     data.time = t0 + kA[i - 1] * h;
-    forward(model, data);
+    forward_fn(model, data);
     w.rk_qvel[i] = data.qvel;
     w.rk_qacc[i] = data.qacc;
   }
@@ -160,19 +160,25 @@ void differentiate_pos(const Model& model, Eigen::Ref<Eigen::VectorXd> qvel, dou
   }
 }
 
-void step(const Model& model, Data& data) {
-  check_entry(model, data, "lever::step");
+void detail::step(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&)) {
   if (!check_and_reset(model, data, data.qpos, Warning::kBadQpos)) {
     check_and_reset(model, data, data.qvel, Warning::kBadQvel);
   }
-  forward(model, data);
-  if (check_and_reset(model, data, data.qacc, Warning::kBadQacc)) forward(model, data);
+  forward_fn(model, data);
+  if (check_and_reset(model, data, data.qacc, Warning::kBadQacc)) forward_fn(model, data);
 
   switch (model.opt.integrator) {
     case Integrator::kEuler: euler(model, data); break;
-    case Integrator::kRK4: rk4(model, data); break;
+    case Integrator::kRK4: rk4(model, data, forward_fn); break;
     case Integrator::kImplicit: detail::implicit_step(model, data); break;
   }
+}
+
+void step(const Model& model, Data& data) {
+  check_entry(model, data, "lever::step");
+  // the lean pipeline: a step reads neither xquat nor the geom frames of a model where nothing
+  // collides (detail::step_forward)
+  detail::step(model, data, detail::step_forward);
 }
 
 void step1(const Model& model, Data& data) {

@@ -126,6 +126,22 @@ void size_data_arrays(const Model& model, Data& data);
 /// MuJoCo 2.2.2's implicit step (implicit.cpp), after forward().
 void implicit_step(const Model& model, Data& data);
 
+// ---- the lean step pipeline (issue 18): forward() without the outputs nothing in a step reads
+// (xquat, and the geom frames when nothing can collide). After step() they are those of the last
+// forward() or kinematics(); everything else is forward()'s to the bit
+// (tests/property/lean_step.cpp).
+
+/// kinematics() without xquat, and without the geom frames unless the collision stage runs
+/// (kinematics.cpp).
+void step_kinematics(const Model& model, Data& data);
+
+/// forward() on step_kinematics(), the entry check left to the caller (forward.cpp).
+void step_forward(const Model& model, Data& data);
+
+/// step() after its entry check, each forward() of the step being `forward_fn` (forward() or
+/// step_forward(); integrate.cpp).
+void step(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&));
+
 /// qpos advanced by velocity qvel for time h, joint by joint (MuJoCo's mj_integratePos): hinge and
 /// slide coordinates add h qvel; a ball's or free joint's quaternion turns by the rotation h w
 /// about its body axes and is normalized. Used by every integrator.

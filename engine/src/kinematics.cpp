@@ -71,9 +71,17 @@ Mat3 axis_rotation(const Eigen::Vector3d& a, double c, double s) {
   return out;
 }
 
-// Body frames (xpos, xmat), joint anchors and axes, inertial frames, geoms and sites; with
-// orientations, the bodies' quaternions too (xquat), composed in MuJoCo's order.
-void place_bodies(const Model& model, Data& data, bool orientations) {
+// What place_bodies() writes besides the body frames, joint anchors and axes, inertial frames and
+// site frames.
+struct Placed {
+  bool orientations;  // the bodies' quaternions (xquat), composed in MuJoCo's order
+  bool geoms;         // geom_xpos, geom_xmat
+};
+
+// Body frames (xpos, xmat), joint anchors and axes, inertial frames, sites, and what `placed` asks
+// for.
+void place_bodies(const Model& model, Data& data, Placed placed) {
+  const bool orientations = placed.orientations;
   detail::normalize_joint_quats(model, data.qpos.data());
   for (int b = 1; b < model.nbody; ++b) {
     const int p = model.body_parentid[b];
@@ -157,7 +165,7 @@ void place_bodies(const Model& model, Data& data, bool orientations) {
     }
   }
 
-  for (int g = 0; g < model.ngeom; ++g) {
+  for (int g = 0; g < (placed.geoms ? model.ngeom : 0); ++g) {
     const int b = model.geom_bodyid[g];
     data.geom_xpos[g] = data.xpos[b] + rotate(data.xmat[b], model.geom_pos[g]);
     if (model.geom_rotated[g]) {
@@ -261,14 +269,25 @@ void check_jacobians(const Model& model, const Eigen::Ref<Eigen::MatrixXd>& jacp
 
 void poses(const Model& model, Data& data) {
   check_entry(model, data, "lever::poses");
-  place_bodies(model, data, false);
+  place_bodies(model, data, {.orientations = false, .geoms = true});
 }
 
 void kinematics(const Model& model, Data& data) {
   check_entry(model, data, "lever::kinematics");
-  place_bodies(model, data, true);
+  place_bodies(model, data, {.orientations = true, .geoms = true});
   com_quantities(model, data);
 }
+
+namespace detail {
+
+void step_kinematics(const Model& model, Data& data) {
+  // nothing in a step reads xquat, nor the geom frames unless collision runs; the site frames
+  // are what a caller reads after a step (an end effector's position), and cost little
+  place_bodies(model, data, {.orientations = false, .geoms = model.contacts_possible});
+  com_quantities(model, data);
+}
+
+}  // namespace detail
 
 namespace {
 

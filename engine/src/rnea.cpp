@@ -23,11 +23,10 @@ void newton_euler(const Model& model, Data& data, const double* qdd,
   auto& v = data.cvel;
   auto& a = data.work.cacc;
   auto& f = data.work.cfrc;
-  forward_pass(model, data, data.qvel.data(), qdd, true, v, a, &data.cdof_dot, nullptr);
-  for (int b = 1; b < model.nbody; ++b) {
-    const RigidInertia& I = data.cinert[b];
-    f[b] = I * a[b] + cross_force(v[b], I * v[b]);  // the net force body b needs
-  }
+  forward_pass(model, data, data.qvel.data(), qdd, true, v, a, &data.cdof_dot, nullptr,
+               [&](int b, const Motion& vb, const Motion& ab) {
+                 f[b] = net_force(data.cinert[b], vb, ab);  // I a + v x* I v
+               });
   backward_pass(model, data, f, tau.data());
 }
 
