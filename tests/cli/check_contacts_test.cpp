@@ -20,13 +20,6 @@ namespace lever::test {
 
 namespace {
 
-std::string read(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 json::Value check_json(const std::string& path) {
   const Run run = run_lever("check --json " + quoted(path));
   REQUIRE((run.status == 0 || run.status == 1));
@@ -89,8 +82,8 @@ TEST_CASE("check (9): a softer contact sinks deeper, by the same balance", "[che
   // (equal weights: 0.03 s), K = 1 / (dmax timeconst)^2 falls to 4/9; the depth grows (not by
   // 9/4: d(p) climbs its sigmoid)
   const std::string soft = temporary_file(
-      "lever_box_soft.xml", replaced(read(model_path("models/box_drop.xml")), "type=\"box\" size",
-                                     "solref=\"0.04 1\" type=\"box\" size"));
+      "lever_box_soft.xml", replaced(read_text(model_path("models/box_drop.xml")),
+                                     "type=\"box\" size", "solref=\"0.04 1\" type=\"box\" size"));
   const json::Value stiff = check_json(model_path("models/box_drop.xml"))["contacts"];
   const json::Value r = check_json(soft)["contacts"]["resting_depth"];
   std::filesystem::remove(soft);
@@ -153,14 +146,14 @@ TEST_CASE("check (9): elliptic cones: one normal row carries the weight, the gri
           "[check][contacts]") {
   // the same two lesson models with cone="elliptic": at rest each contact's normal row alone
   // pushes (its friction rows have aref = -B v = 0), with A = t, the normal row's diagApprox
-  const std::string drop =
-      temporary_file("lever_box_elliptic.xml",
-                     replaced(read(model_path("models/box_drop.xml")), "<option timestep=\"0.002\"",
-                              "<option cone=\"elliptic\" timestep=\"0.002\""));
-  const std::string grip =
-      temporary_file("lever_gripper_elliptic.xml",
-                     replaced(read(model_path("models/gripper.xml")), "<option timestep=\"0.002\"",
-                              "<option cone=\"elliptic\" timestep=\"0.002\""));
+  const std::string drop = temporary_file(
+      "lever_box_elliptic.xml",
+      replaced(read_text(model_path("models/box_drop.xml")), "<option timestep=\"0.002\"",
+               "<option cone=\"elliptic\" timestep=\"0.002\""));
+  const std::string grip = temporary_file(
+      "lever_gripper_elliptic.xml",
+      replaced(read_text(model_path("models/gripper.xml")), "<option timestep=\"0.002\"",
+               "<option cone=\"elliptic\" timestep=\"0.002\""));
   const json::Value r = check_json(drop)["contacts"]["resting_depth"];
   const json::Value g = check_json(grip)["contacts"]["grip"];
   const json::Value pyramid = check_json(model_path("models/box_drop.xml"))["contacts"];
@@ -192,7 +185,7 @@ TEST_CASE("check (9): elliptic cones: one normal row carries the weight, the gri
 TEST_CASE("check (9): friction too low for the finger servos is a finding", "[check][contacts]") {
   // mu 0.02: holding the 0.1 kg box needs 24.5 N, the servos' forcerange allows 10 N
   const std::string low = temporary_file("lever_gripper_slippery.xml",
-                                         replaced(read(model_path("models/gripper.xml")),
+                                         replaced(read_text(model_path("models/gripper.xml")),
                                                   "friction=\"1 0.005", "friction=\"0.02 0.005"));
   const Run run = run_lever("check " + quoted(low));
   const json::Value g = check_json(low)["contacts"]["grip"];
@@ -224,7 +217,7 @@ TEST_CASE("check --svg on the gripper: the grip's trials as bars, the skipped se
   for (const std::string& file :
        {svg, stem + "-singular-poses.svg", stem + "-step-stability.svg", stem + "-grip.svg"}) {
     INFO(file);
-    const std::string picture = read(file);
+    const std::string picture = read_text(file);
     CHECK(picture.rfind("<?xml", 0) == 0);
     if (file == stem + "-grip.svg") {
       // one bar per trial, labelled with its force, the slipped ones marked
@@ -239,7 +232,7 @@ TEST_CASE("check --svg on the gripper: the grip's trials as bars, the skipped se
 
 TEST_CASE("docs/lesson-5.3.md's block is what lever check prints for the gripper",
           "[check][contacts]") {
-  const std::string text = read(model_path("docs/lesson-5.3.md"));
+  const std::string text = read_text(model_path("docs/lesson-5.3.md"));
   const size_t open = text.find("```text\n");
   REQUIRE(open != std::string::npos);
   const size_t start = open + 8, end = text.find("```", start);

@@ -24,13 +24,6 @@ size_t count(const std::string& text, const std::string& piece) {
   return n;
 }
 
-std::string read(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 }  // namespace
 
 TEST_CASE("check: every model loads, exits 0 or 1, and --json agrees with the text", "[check]") {
@@ -75,7 +68,7 @@ TEST_CASE("check: every model loads, exits 0 or 1, and --json agrees with the te
 
 TEST_CASE("check: a motor that cannot hold its own arm is a finding (exit 1)", "[check]") {
   // arm2 with the shoulder motor limited to 6 N m, less than the 7.946 N m the straight arm weighs
-  std::string xml = read(model_path("models/arm2.xml"));
+  std::string xml = read_text(model_path("models/arm2.xml"));
   const std::string from = "ctrlrange=\"-25 25\"";
   REQUIRE(xml.find(from) != std::string::npos);
   xml.replace(xml.find(from), from.size(), "ctrlrange=\"-6 6\"");
@@ -123,7 +116,7 @@ TEST_CASE("check: --help, usage errors and --svg", "[check]") {
       (std::filesystem::temp_directory_path() / "lever_check_arm2.svg").string();
   CHECK(run_lever("check --svg " + quoted(svg) + " " + quoted(model_path("models/arm2.xml")))
             .status == 0);
-  const std::string picture = read(svg);
+  const std::string picture = read_text(svg);
   CHECK(picture.rfind("<?xml", 0) == 0);
   const Model model = mjcf::load_file(model_path("models/arm2.xml"));
   Data data(model);

@@ -19,13 +19,6 @@ namespace {
 const std::vector<std::string> kCommands = {"model", "check",       "forward", "simulate",
                                             "diff",  "derivatives", "identify"};
 
-std::string read(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
-
 // docs/cli.md holds `text` as one fenced block, whole.
 bool documented(const std::string& doc, const std::string& text) {
   return doc.find("```\n" + text + "```\n") != std::string::npos;
@@ -38,7 +31,7 @@ int lines(const std::string& text) {
 }  // namespace
 
 TEST_CASE("cli: lever --help lists every command, and docs/cli.md shows it", "[help]") {
-  const std::string doc = read(model_path("docs/cli.md"));
+  const std::string doc = read_text(model_path("docs/cli.md"));
   const Run help = run_lever("--help");
   CHECK(help.status == 0);
   for (const std::string& command : kCommands) {
@@ -52,7 +45,7 @@ TEST_CASE("cli: lever --help lists every command, and docs/cli.md shows it", "[h
 }
 
 TEST_CASE("cli: every command's --help, word for word in docs/cli.md", "[help]") {
-  const std::string doc = read(model_path("docs/cli.md"));
+  const std::string doc = read_text(model_path("docs/cli.md"));
   for (const std::string& command : kCommands) {
     INFO("lever " << command << " --help");
     const Run help = run_lever(command + " --help");

@@ -60,13 +60,6 @@ MjModelHandle mujoco_compile(const std::string& xml, std::string* error,
   return MjModelHandle(m, mj_deleteModel);
 }
 
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 std::string without_inertials(const std::string& xml) {
   static const std::regex inertial(R"(<inertial[^>]*/>|<inertial[^>]*>\s*</inertial>)");
   return std::regex_replace(xml, inertial, "");

@@ -4,6 +4,7 @@
 
 #include <mujoco/mujoco.h>
 
+#include <lever/harness/models.hpp>  // read_text
 #include <lever/model.hpp>
 #include <map>
 #include <memory>
@@ -19,9 +20,6 @@ using MjModelHandle = std::unique_ptr<mjModel, void (*)(mjModel*)>;
 /// `files` (name -> bytes) are put beside it in MuJoCo's virtual file system, for mesh assets.
 MjModelHandle mujoco_compile(const std::string& xml, std::string* error,
                              const std::map<std::string, std::string>& files = {});
-
-/// The file's text.
-std::string read_text(const std::string& path);
 
 /// The text without any <inertial .../> element (to compare inertia inferred from geoms).
 std::string without_inertials(const std::string& xml);

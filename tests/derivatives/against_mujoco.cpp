@@ -51,9 +51,7 @@ namespace {
 
 constexpr double kEps = 1e-5;
 constexpr double kBound = 1e-8;
-constexpr int kStates = 20;
-
-double largest(const Eigen::MatrixXd& x) { return x.size() ? x.cwiseAbs().maxCoeff() : 0.0; }
+constexpr int kMujocoStates = 20;
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -200,7 +198,7 @@ TEST_CASE("derivatives: A and B agree with MuJoCo's mjd_transitionFD (centred)",
       std::mt19937_64 rng(seed_for(file) + 11);
       double worst = 0;
       int compared = 0, missing_columns = 0;
-      for (int k = 0; k < kStates; ++k) {
+      for (int k = 0; k < kMujocoStates; ++k) {
         const State s = smooth_state(model, rng, false);
         // a clamp switching inside a difference (at any RK4 stage: the stages move the state by
         // h/2 qacc, which a stiff servo makes large) is a non-differentiable point: not compared
@@ -281,7 +279,7 @@ TEST_CASE("derivatives: A and B agree with MuJoCo's mjd_transitionFD (centred)",
         velocity_gains +=
             model.actuator_gaintype[a] == GainType::kAffine && model.actuator_gainprm[a][2] != 0;
       }
-      CHECK(compared >= kStates * 3 / 4);
+      CHECK(compared >= kMujocoStates * 3 / 4);
       // the dropped term is real: in every compared state, every such column shows it
       if (integrator == Integrator::kImplicit) CHECK(missing_columns == velocity_gains * compared);
       UNSCOPED_INFO(file << ": worst " << worst << " of the bound");
@@ -300,7 +298,7 @@ TEST_CASE("derivatives: d rnea agrees with MuJoCo's mj_inverse differenced",
     Derivatives deriv(model);
     std::mt19937_64 rng(seed_for(file) + 13);
     double worst = 0;
-    for (int k = 0; k < kStates; ++k) {
+    for (int k = 0; k < kMujocoStates; ++k) {
       const State s = smooth_state(model, rng, false);
       const Eigen::VectorXd qacc = random_qacc(model, rng);
       twin.set_state(s);
@@ -338,7 +336,7 @@ TEST_CASE("derivatives: d qacc agrees with MuJoCo's mj_forward differenced",
     Derivatives deriv(model);
     std::mt19937_64 rng(seed_for(file) + 17);
     double worst = 0;
-    for (int k = 0; k < kStates; ++k) {
+    for (int k = 0; k < kMujocoStates; ++k) {
       const State s = smooth_state(model, rng, false);
       twin.set_state(s);
       forward_derivatives(model, twin.data, deriv);

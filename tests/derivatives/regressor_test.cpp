@@ -22,8 +22,6 @@ namespace lever::test {
 
 namespace {
 
-double largest(const Eigen::MatrixXd& x) { return x.size() ? x.cwiseAbs().maxCoeff() : 0.0; }
-
 // The joint forces that explain the simulated motion, Y pi = qfrc_actuator + qfrc_applied +
 // qfrc_constraint - springs (forward's M qacc + bias = passive + actuator + applied + constraint).
 Eigen::VectorXd explained_force(const Model& model, const Data& data) {

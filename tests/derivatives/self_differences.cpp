@@ -42,7 +42,7 @@ namespace {
 constexpr double kStep = 1e-5;
 constexpr double kFivePointStep = 1e-4;  // qacc: see above
 constexpr double kDifferenceBound = 1e-8;
-constexpr int kStates = 40;
+constexpr int kSelfStates = 40;
 
 // The models that cannot make contacts (the derivatives refuse the others).
 std::vector<ModelCase> without_contacts(std::vector<ModelCase> cases) {
@@ -94,7 +94,6 @@ Eigen::MatrixXd tangent_differences(const Model& model, Eigen::VectorXd& qpos, i
 }
 
 // Largest |element|.
-double largest(const Eigen::MatrixXd& x) { return x.size() ? x.cwiseAbs().maxCoeff() : 0.0; }
 
 // Central differences of out(x) (writing into a vector) along each coordinate of x.
 Eigen::MatrixXd central_differences(Eigen::VectorXd& x, int n_out,
@@ -187,7 +186,7 @@ TEST_CASE("derivatives: d rnea / d qpos and d qvel match central differences",
     Derivatives deriv(model);
     std::mt19937_64 rng(c.seed);
     Eigen::VectorXd tau(model.nv);
-    for (int k = 0; k < kStates; ++k) {
+    for (int k = 0; k < kSelfStates; ++k) {
       apply(random_state(model, rng), data);
       const Eigen::VectorXd qacc = random_qacc(model, rng);
       kinematics(model, data);
@@ -247,7 +246,7 @@ TEST_CASE("derivatives: d qacc / d qpos, d qvel, d ctrl match central difference
     Derivatives deriv(model);
     std::mt19937_64 rng(c.seed);
     int compared = 0, with_rows = 0;
-    for (int k = 0; k < kStates; ++k) {
+    for (int k = 0; k < kSelfStates; ++k) {
       apply(smooth_state(model, rng, true), data);
       forward_derivatives(model, data, deriv);
       const std::vector<int> rows = active_set(data);
@@ -268,7 +267,7 @@ TEST_CASE("derivatives: d qacc / d qpos, d qvel, d ctrl match central difference
       check_close(deriv.dqacc_dv, dv, acc_scale, "dqacc_dv");
       check_close(deriv.dqacc_du, du, acc_scale, "dqacc_du");
     }
-    CHECK(compared >= kStates * 3 / 4);
+    CHECK(compared >= kSelfStates * 3 / 4);
     bool limited = false;
     for (int j = 0; j < model.njnt; ++j) limited = limited || model.jnt_limited[j];
     if (limited) CHECK(with_rows > 0);  // the limit rows' terms were exercised
@@ -286,7 +285,7 @@ TEST_CASE("derivatives: the step's A and B match central differences of step",
       Data data(model), probe(model);
       Derivatives deriv(model);
       std::mt19937_64 rng(c.seed + 7);
-      const int states = states_for(c, kStates);
+      const int states = states_for(c, kSelfStates);
       int compared = 0;
       for (int k = 0; k < states; ++k) {
         State s = smooth_state(model, rng, true);

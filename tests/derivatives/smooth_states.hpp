@@ -21,6 +21,9 @@ namespace lever::test {
 constexpr double kClearance = 0.02;  // rad, m, or fraction of a motor's span
 
 /// An actuator whose force is not gain-1 ctrl: an affine gain or bias, or a gain other than 1.
+/// max |x_ij|, 0 for an empty matrix.
+inline double largest(const Eigen::MatrixXd& x) { return x.size() ? x.cwiseAbs().maxCoeff() : 0.0; }
+
 inline bool force_is_not_ctrl(const Model& model, int a) {
   return model.actuator_gaintype[a] != GainType::kFixed ||
          model.actuator_biastype[a] != BiasType::kNone || model.actuator_gainprm[a][0] != 1.0;

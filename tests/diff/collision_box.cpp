@@ -54,23 +54,23 @@ Mat3 rotation(const Vec& axis, double angle) {
   return Eigen::AngleAxisd(angle, axis.normalized()).toRotationMatrix();
 }
 
-Mat3 random_rotation(std::mt19937_64& rng) {
+Mat3 random_rotation_matrix(std::mt19937_64& rng) {
   std::normal_distribution<double> normal;
   Eigen::Quaterniond q(normal(rng), normal(rng), normal(rng), normal(rng));
   q.normalize();
   return q.toRotationMatrix();
 }
 
-double uniform(std::mt19937_64& rng, double lo, double hi) {
+double uniform_in(std::mt19937_64& rng, double lo, double hi) {
   return std::uniform_real_distribution<double>(lo, hi)(rng);
 }
 
 /// A point of the cube [-1, 1]^3.
 Vec random_point(std::mt19937_64& rng) {
-  return Vec(uniform(rng, -1, 1), uniform(rng, -1, 1), uniform(rng, -1, 1));
+  return Vec(uniform_in(rng, -1, 1), uniform_in(rng, -1, 1), uniform_in(rng, -1, 1));
 }
 
-Vec random_direction(std::mt19937_64& rng) {
+Vec random_unit_vector(std::mt19937_64& rng) {
   std::normal_distribution<double> normal;
   return Vec(normal(rng), normal(rng), normal(rng)).normalized();
 }
@@ -85,7 +85,7 @@ Mat3 random_axis_permutation(std::mt19937_64& rng) {
   return m;
 }
 
-std::string describe(const GeomShape& g) {
+std::string describe_shape(const GeomShape& g) {
   std::ostringstream s;
   s.precision(17);
   s << "size " << g.size.transpose() << " pos " << g.pos.transpose() << " mat "
@@ -94,7 +94,7 @@ std::string describe(const GeomShape& g) {
 }
 
 /// What a batch of comparisons saw, for its assertions and its summary line.
-struct Tally {
+struct BoxTally {
   long calls = 0, with_contacts = 0, contacts = 0;
   double worst = 0;  ///< largest |lever - mujoco| / bound over every value
   std::array<long, kMaxPairContacts + 1> by_count{};  ///< calls by MuJoCo's contact count
@@ -133,7 +133,7 @@ using PairFunction = int (*)(const GeomShape&, const GeomShape&, double, Contact
 /// One comparison: lever's function against MuJoCo's on the same two shapes. Returns lever's
 /// contact count; a disagreement fails with both shapes printed to rerun it.
 int compare(MujocoGeoms& mujoco, int id1, const GeomShape& g1, int id2, const GeomShape& g2,
-            double margin, PairFunction ours, Tally& tally, const std::string& what) {
+            double margin, PairFunction ours, BoxTally& tally, const std::string& what) {
   std::array<mjContact, mjMAXCONPAIR> theirs{};
   std::array<Contact, kMaxPairContacts> mine{};
   const int n_mujoco = mujoco.collide(id1, g1, id2, g2, margin, theirs.data());
@@ -141,8 +141,8 @@ int compare(MujocoGeoms& mujoco, int id1, const GeomShape& g1, int id2, const Ge
   ++tally.calls;
   std::ostringstream where;
   where.precision(17);
-  where << what << "; margin " << margin << "\n  geom1 " << describe(g1) << "\n  geom2 "
-        << describe(g2);
+  where << what << "; margin " << margin << "\n  geom1 " << describe_shape(g1) << "\n  geom2 "
+        << describe_shape(g2);
   INFO(where.str());
   if (n_mujoco != n_lever) {
     FAIL_CHECK("contact count: lever " << n_lever << " vs mujoco " << n_mujoco);
@@ -180,7 +180,7 @@ int compare(MujocoGeoms& mujoco, int id1, const GeomShape& g1, int id2, const Ge
   return n_lever;
 }
 
-std::string summary(const std::string& pair, const Tally& t) {
+std::string summary(const std::string& pair, const BoxTally& t) {
   std::ostringstream s;
   s << pair << ": " << t.calls << " poses, " << t.with_contacts << " with contacts, " << t.contacts
     << " contacts; worst " << t.worst << " of the bound; poses by contact count:";
@@ -193,16 +193,16 @@ std::string summary(const std::string& pair, const Tally& t) {
 // ---- shapes ----------------------------------------------------------------------------------
 
 Vec random_box_size(std::mt19937_64& rng) {
-  return Vec(uniform(rng, 0.05, 0.5), uniform(rng, 0.05, 0.5), uniform(rng, 0.05, 0.5));
+  return Vec(uniform_in(rng, 0.05, 0.5), uniform_in(rng, 0.05, 0.5), uniform_in(rng, 0.05, 0.5));
 }
 
 double random_margin(std::mt19937_64& rng) {
-  return std::bernoulli_distribution(0.5)(rng) ? 0.0 : uniform(rng, 0.0, 0.1);
+  return std::bernoulli_distribution(0.5)(rng) ? 0.0 : uniform_in(rng, 0.0, 0.1);
 }
 
 /// A centre for geom 2 near geom 1: within the sum of their bounding radii (plus the margin).
 Vec near(const Vec& center1, double reach, std::mt19937_64& rng) {
-  return center1 + random_direction(rng) * uniform(rng, 0.0, reach);
+  return center1 + random_unit_vector(rng) * uniform_in(rng, 0.0, reach);
 }
 
 }  // namespace
@@ -210,7 +210,7 @@ Vec near(const Vec& center1, double reach, std::mt19937_64& rng) {
 TEST_CASE("diff: sphere-box contacts equal MuJoCo's", "[diff][collision]") {
   REQUIRE(mj_version() == 222);
   MujocoGeoms mujoco;
-  Tally tally;
+  BoxTally tally;
   std::mt19937_64 rng(19001);
   const auto sphere_at = [](double r, const Vec& p) {
     return shape(GeomType::kSphere, Vec(r, 0, 0), p, Mat3::Identity());
@@ -218,9 +218,9 @@ TEST_CASE("diff: sphere-box contacts equal MuJoCo's", "[diff][collision]") {
 
   SECTION("random poses") {
     for (int i = 0; i < 5000; ++i) {
-      const GeomShape box =
-          shape(GeomType::kBox, random_box_size(rng), random_point(rng), random_rotation(rng));
-      const double r = uniform(rng, 0.02, 0.4), margin = random_margin(rng);
+      const GeomShape box = shape(GeomType::kBox, random_box_size(rng), random_point(rng),
+                                  random_rotation_matrix(rng));
+      const double r = uniform_in(rng, 0.02, 0.4), margin = random_margin(rng);
       // a quarter of the centres inside the box
       const Vec center = std::bernoulli_distribution(0.25)(rng)
                              ? Vec(box.pos + box.mat * box.size.cwiseProduct(random_point(rng)))
@@ -275,19 +275,19 @@ TEST_CASE("diff: sphere-box contacts equal MuJoCo's", "[diff][collision]") {
 TEST_CASE("diff: capsule-box contacts equal MuJoCo's", "[diff][collision]") {
   REQUIRE(mj_version() == 222);
   MujocoGeoms mujoco;
-  Tally tally;
+  BoxTally tally;
   std::mt19937_64 rng(19002);
 
   SECTION("random poses") {
     for (int i = 0; i < 6000; ++i) {
-      const GeomShape box =
-          shape(GeomType::kBox, random_box_size(rng), random_point(rng), random_rotation(rng));
-      const Vec size(uniform(rng, 0.02, 0.3), uniform(rng, 0.05, 0.6), 0);
+      const GeomShape box = shape(GeomType::kBox, random_box_size(rng), random_point(rng),
+                                  random_rotation_matrix(rng));
+      const Vec size(uniform_in(rng, 0.02, 0.3), uniform_in(rng, 0.05, 0.6), 0);
       const double margin = random_margin(rng);
       // a third of the capsules snapped to the box's axes (exact ties of the orientation tests)
       const Mat3 mat = std::bernoulli_distribution(1.0 / 3)(rng)
                            ? Mat3(box.mat * random_axis_permutation(rng))
-                           : random_rotation(rng);
+                           : random_rotation_matrix(rng);
       const Vec center = near(box.pos, box.size.norm() + size[0] + size[1] + margin, rng);
       compare(mujoco, kCapsule, shape(GeomType::kCapsule, size, center, mat), kBox1, box, margin,
               detail::collide_capsule_box, tally, "random pose " + std::to_string(i));
@@ -384,7 +384,7 @@ TEST_CASE("diff: capsule-box contacts equal MuJoCo's", "[diff][collision]") {
 TEST_CASE("diff: box-box contacts equal MuJoCo's", "[diff][collision]") {
   REQUIRE(mj_version() == 222);
   MujocoGeoms mujoco;
-  Tally tally;
+  BoxTally tally;
   std::mt19937_64 rng(19003);
   const auto box = [](const Vec& size, const Vec& pos, const Mat3& mat) {
     return shape(GeomType::kBox, size, pos, mat);
@@ -403,11 +403,12 @@ TEST_CASE("diff: box-box contacts equal MuJoCo's", "[diff][collision]") {
 
   SECTION("random poses") {
     for (int i = 0; i < 8000; ++i) {
-      const GeomShape b1 = box(random_box_size(rng), random_point(rng), random_rotation(rng));
+      const GeomShape b1 =
+          box(random_box_size(rng), random_point(rng), random_rotation_matrix(rng));
       const Vec size2 = random_box_size(rng);
       const double margin = random_margin(rng);
       const GeomShape b2 = box(size2, near(b1.pos, b1.size.norm() + size2.norm() + margin, rng),
-                               random_rotation(rng));
+                               random_rotation_matrix(rng));
       run(b1, b2, margin, "random pose " + std::to_string(i));
     }
     INFO(summary("box-box, random", tally));
@@ -423,15 +424,15 @@ TEST_CASE("diff: box-box contacts equal MuJoCo's", "[diff][collision]") {
   SECTION("random stacks: box 2 on box 1, turned about the normal, tilted a little") {
     // the poses that clip a whole face: up to 8 polygon corners plus the lowest corner
     for (int i = 0; i < 4000; ++i) {
-      const Mat3 mat1 = random_rotation(rng);
+      const Mat3 mat1 = random_rotation_matrix(rng);
       const Vec size1 = random_box_size(rng);
       Vec size2 = random_box_size(rng);
       if (i % 2) size2.head<2>() = size1.head<2>();  // equal faces
-      const double tilt = i % 3 == 0 ? 0.0 : uniform(rng, -0.05, 0.05);
-      const Mat3 relative = rotation(Vec::UnitZ(), uniform(rng, 0, 2 * M_PI)) *
-                            rotation(Vec(uniform(rng, -1, 1), uniform(rng, -1, 1), 0), tilt);
-      const Vec local(uniform(rng, -0.2, 0.2), uniform(rng, -0.2, 0.2),
-                      size1[2] + size2[2] + uniform(rng, -0.02, 0.01));
+      const double tilt = i % 3 == 0 ? 0.0 : uniform_in(rng, -0.05, 0.05);
+      const Mat3 relative = rotation(Vec::UnitZ(), uniform_in(rng, 0, 2 * M_PI)) *
+                            rotation(Vec(uniform_in(rng, -1, 1), uniform_in(rng, -1, 1), 0), tilt);
+      const Vec local(uniform_in(rng, -0.2, 0.2), uniform_in(rng, -0.2, 0.2),
+                      size1[2] + size2[2] + uniform_in(rng, -0.02, 0.01));
       const double margin = i % 4 == 0 ? 0.02 : 0.0;
       const Vec pos1 = random_point(rng);
       run(box(size1, pos1, mat1), box(size2, pos1 + mat1 * local, mat1 * relative), margin,
@@ -449,14 +450,15 @@ TEST_CASE("diff: box-box contacts equal MuJoCo's", "[diff][collision]") {
     // box 2 resting on or pressed into box 1 with aligned (or 1e-9-tilted) axes: the separating
     // axis tests tie, edges coincide and clipped points repeat
     for (int i = 0; i < 4000; ++i) {
-      const Mat3 mat1 =
-          std::bernoulli_distribution(0.5)(rng) ? Mat3(Mat3::Identity()) : random_rotation(rng);
+      const Mat3 mat1 = std::bernoulli_distribution(0.5)(rng) ? Mat3(Mat3::Identity())
+                                                              : random_rotation_matrix(rng);
       // sizes from a small set, so that faces and edges line up exactly
       const auto pick = [&] { return 0.05 * std::uniform_int_distribution<int>(1, 6)(rng); };
       const Vec size1(pick(), pick(), pick()), size2(pick(), pick(), pick());
       Mat3 relative = random_axis_permutation(rng);
       const int tilt = std::uniform_int_distribution<int>(0, 2)(rng);
-      if (tilt > 0) relative = rotation(random_direction(rng), tilt == 1 ? 1e-9 : 1e-6) * relative;
+      if (tilt > 0)
+        relative = rotation(random_unit_vector(rng), tilt == 1 ? 1e-9 : 1e-6) * relative;
       // box 2's centre: above box 1's +z face, shifted in x and y by multiples of 0.05
       const Vec extent2 = (relative.cwiseAbs() * size2);
       const auto step = [&] { return 0.05 * std::uniform_int_distribution<int>(-6, 6)(rng); };

@@ -9,14 +9,14 @@
 #include <cstdio>
 #include <lever/diff/runs.hpp>
 
-#include "diff_checks.hpp"
 #include <lever/harness/models.hpp>
+#include "diff_checks.hpp"
 
 namespace lever::test {
 
 namespace {
 
-constexpr double kSeconds = 10.0;
+constexpr double kFreeRunSeconds = 10.0;
 constexpr double kNudge = 1e-15;
 // lever may diverge from MuJoCo up to this many times MuJoCo's divergence from itself (plus the
 // bound): generous on purpose, since a chaotic stretch can amplify one difference more than the
@@ -34,7 +34,8 @@ TEST_CASE("diff: free runs stay at the dynamics' own noise floor", "[diff][free-
       const std::string where = context(file, path, 0) + " (no randomness)";
       INFO(where);
       diff::Twin twin(file, path);
-      const diff::FreeRun run = diff::free_run(twin, kSeconds, diff::Control::kSmooth, kNudge);
+      const diff::FreeRun run =
+          diff::free_run(twin, kFreeRunSeconds, diff::Control::kSmooth, kNudge);
       for (const std::string& q : diff::free_run_quantities()) {
         const diff::Extreme* ours = run.lever_vs_mujoco.find(q);
         const diff::Extreme* noise = run.nudged_vs_mujoco.find(q);

@@ -5,14 +5,14 @@
 #include <cmath>
 #include <lever/diff/runs.hpp>
 
-#include "diff_checks.hpp"
 #include <lever/harness/models.hpp>
+#include "diff_checks.hpp"
 
 namespace lever::test {
 
 namespace {
 
-constexpr double kSeconds = 60.0;
+constexpr double kLessonSeconds = 60.0;
 
 // How far past its lower stop a joint is, in mrad, as the lesson prints it: 1000 (lo - q).
 double mrad_past_lower_stop(double lower, double q) { return 1000 * (lower - q); }
@@ -30,7 +30,7 @@ TEST_CASE("diff: lesson 5.1, arm2 falls onto its shoulder stop and rests there a
     const std::string where = context(file, path, 0) + " (no randomness)";
     INFO(where);
     diff::Twin twin(file, path);
-    const diff::FreeRun run = diff::free_run(twin, kSeconds, diff::Control::kZero);
+    const diff::FreeRun run = diff::free_run(twin, kLessonSeconds, diff::Control::kZero);
 
     // qpos and qvel at every one of the 30000 steps; qacc and the limit force are reported by the
     // free-run test instead (section 19.3: the impacts amplify last-bit differences in them)

@@ -12,7 +12,7 @@ namespace lever::test {
 
 namespace {
 
-constexpr double kSeconds = 10.0;
+constexpr double kTrajectorySeconds = 10.0;
 
 void lockstep_every_model(Integrator integrator) {
   REQUIRE(mj_version() == 222);
@@ -24,7 +24,7 @@ void lockstep_every_model(Integrator integrator) {
       diff::Twin twin(file, path);
       diff::RunStats stats;
       const diff::Report report =
-          diff::lockstep(twin, integrator, kSeconds, diff::Control::kSmooth, &stats);
+          diff::lockstep(twin, integrator, kTrajectorySeconds, diff::Control::kSmooth, &stats);
       check_within_bound(report);
       INFO(stats.constrained_steps << " of " << stats.steps << " steps with limit rows");
       if (has_limits(twin.model)) CHECK(stats.constrained_steps > 0);

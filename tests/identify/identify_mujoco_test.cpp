@@ -28,7 +28,7 @@ namespace lever::test {
 
 namespace {
 
-std::string temp_path(const std::string& name) {
+std::string mujoco_temp_path(const std::string& name) {
   return (std::filesystem::temp_directory_path() / ("lever_identify_mj_" + name)).string();
 }
 
@@ -163,8 +163,8 @@ TEST_CASE("identify: a real Panda that MuJoCo recorded, written back as a physic
   const std::string prior_file = model_path("models/panda7.xml");
   const Model prior = mjcf::load_file(prior_file);
   const Model truth = real_panda(prior);
-  const std::string truth_file = temp_path("truth.xml"), csv = temp_path("run.csv"),
-                    written = temp_path("identified.xml");
+  const std::string truth_file = mujoco_temp_path("truth.xml"), csv = mujoco_temp_path("run.csv"),
+                    written = mujoco_temp_path("identified.xml");
   identify::write_model(prior_file, truth, truth_file);
   record_with_mujoco(truth_file, truth, 10.0, csv);
 
@@ -242,8 +242,9 @@ TEST_CASE("identify: noisy torques, an estimate that is not physical, and the ph
   Model truth = real_panda(prior);
   truth.body_inertia[body_named(truth, "link7")] *= 0.02;
   set_const(truth);
-  const std::string truth_file = temp_path("noisy_truth.xml"), csv = temp_path("noisy.csv"),
-                    written = temp_path("noisy_identified.xml");
+  const std::string truth_file = mujoco_temp_path("noisy_truth.xml"),
+                    csv = mujoco_temp_path("noisy.csv"),
+                    written = mujoco_temp_path("noisy_identified.xml");
   identify::write_model(prior_file, truth, truth_file);
   record_with_mujoco(truth_file, truth, 10.0, csv);
   identify::Trajectory data = identify::read_csv(prior, csv);

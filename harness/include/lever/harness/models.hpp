@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -24,6 +26,14 @@ inline std::vector<std::string> all_model_files() {
   }
   std::sort(files.begin(), files.end());
   return files;
+}
+
+/// The whole text of a file ("" if it cannot be read).
+inline std::string read_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
 }
 
 /// Seed derived from a name, so every model gets its own reproducible random states.
