@@ -181,6 +181,11 @@ void step(const Model& model, Data& data) {
   detail::step(model, data, detail::step_forward);
 }
 
+void step_all(const Model& model, Data& data) {
+  check_entry(model, data, "lever::step_all");
+  detail::step(model, data, forward);
+}
+
 void step1(const Model& model, Data& data) {
   check_entry(model, data, "lever::step1");
   if (!check_and_reset(model, data, data.qpos, Warning::kBadQpos)) {

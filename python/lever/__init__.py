@@ -53,6 +53,7 @@ from ._lever import (  # noqa: F401  (the package's API)
     set_const,
     solve_mass,
     step,
+    step_all,
     step_derivatives,
     step1,
     step2,

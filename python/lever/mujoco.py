@@ -500,7 +500,7 @@ def mj_step(m: MjModel, d: MjData, nstep: int = 1) -> None:
     state before the last step and the new qpos, qvel and time, as in MuJoCo."""
     model, data = _pair(m, d)
     for _ in range(int(nstep)):
-        _lever.step(model, data)
+        _lever.step_all(model, data)  # lever.step skips xquat and unneeded geom frames
 
 
 def mj_step1(m: MjModel, d: MjData) -> None:

@@ -388,6 +388,9 @@ PYBIND11_MODULE(_lever, m) {
   };
   pipeline("forward", lever::forward, "Everything at the current state (mj_forward).");
   pipeline("step", lever::step, "One step of the model's integrator (mj_step).");
+  pipeline("step_all", lever::step_all,
+           "step() with every output forward() computes, xquat and the geom frames included, as "
+           "mj_step leaves them.");
   pipeline("step1", lever::step1, "Position and velocity stages of a split step (mj_step1).");
   pipeline("step2", lever::step2, "Motors, accelerations, the limit solve and Euler (mj_step2).");
   pipeline("inverse", lever::inverse, "Inverse dynamics into qfrc_inverse (mj_inverse).");

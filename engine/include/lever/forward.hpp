@@ -20,6 +20,12 @@ void forward(const Model& model, Data& data);
 /// read them at the new state.
 void step(const Model& model, Data& data);
 
+/// step() with every output forward() computes, as MuJoCo's mj_step leaves them (xquat and the
+/// geom frames included, at the state the step starts from; for RK4 its last stage): for a caller
+/// that draws or reads the frames after each step without calling forward() (lever.mujoco's
+/// mj_step is this). Its new state is step()'s, bit for bit.
+void step_all(const Model& model, Data& data);
+
 /// The first half of a step split around the control (MuJoCo's mj_step1): check qpos and qvel (a
 /// bad value resets the state and records a warning, as step() does), then the position and
 /// velocity stages of forward(): poses, M, limit rows, passive and bias forces. Between step1 and
