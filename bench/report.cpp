@@ -642,11 +642,12 @@ int main(int argc, char** argv) {
           << ratio_text(*lever_forward / *mujoco_forward)
           << "). lever solves the pyramid's rows exactly (active sets in dof space, "
              "docs/contact.md) "
-          << "where MuJoCo stops its iterative solver at its tolerance, and the rest is spread "
-          << "thin over the contact rows' construction (a point Jacobian and a rotation per "
-          << "contact, each pyramid edge a row of its own), the collision stage and the solve's "
-          << "Hessian; the next gain is the pyramid's structure (its edges are combinations of the "
-          << "contact frame's rows), not written yet.\n";
+          << "where MuJoCo stops its iterative solver at its tolerance. The rows are built "
+          << "through each contact's frame (a pyramid's edges are combinations of its rows, "
+          << "J^T D J summed per contact over the dofs that move one body against the other); "
+          << "what is left is spread thin: the solve's row products, Hessian and Cholesky "
+          << "factor, the per-row soft parameters (computed per row, not yet per contact) and "
+          << "the broad phase's bounding frames, recomputed every call.\n";
     }
     // (4) the batches: the machine's two cores
     std::string load_text = "not recorded";
