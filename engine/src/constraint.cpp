@@ -179,7 +179,7 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first) {
       const Motion& S = data.cdof[dof];
       Eigen::Vector3d p = S.tail<3>() + cross(S.head<3>(), body2 ? offset2 : offset1);
       Eigen::Vector3d r = S.head<3>();
-      if (!body2) {
+      if (!body2) {  // 0 - x rather than -x: MuJoCo's jac2 - jac1 with jac2 zero keeps zeros +0
         p = Eigen::Vector3d::Zero() - p;
         r = Eigen::Vector3d::Zero() - r;
       }
@@ -424,6 +424,11 @@ void rows_times(const Data& data, const double* x, double* out) {
   }
 }
 
+void rows_jar(const Data& data, const double* x, double* out) {
+  rows_times(data, x, out);
+  for (int r = 0; r < data.nefc; ++r) out[r] -= data.efc_aref[r];
+}
+
 void add_rows_transpose(const Data& data, const double* f, double* out) {
   const auto& C = data.work.contact_frame_J;
   for (int r = 0; r < data.nefc;) {
@@ -565,10 +570,9 @@ bool solve_active_set(Data& data) {
     solve_with_hessian(w.newton_H, a);
 
     // the rows that push at a; the same set: done
-    rows_times(data, a.data(), w.newton_jar.data());
+    rows_jar(data, a.data(), w.newton_jar.data());
     bool settled = true;
     for (int r = 0; r < n; ++r) {
-      w.newton_jar[r] -= aref[r];
       settled = settled && (w.newton_jar[r] < 0) == (active[r] != 0);
       active[r] = w.newton_jar[r] < 0;
     }
@@ -665,8 +669,7 @@ namespace {
 void start_one_sided(Data& data) {
   data.qfrc_constraint.setZero();
   data.qacc = data.qacc_smooth;
-  rows_times(data, data.qacc_smooth.data(), data.efc_b.data());
-  data.efc_b.head(data.nefc) -= data.efc_aref.head(data.nefc);
+  rows_jar(data, data.qacc_smooth.data(), data.efc_b.data());
 }
 
 }  // namespace

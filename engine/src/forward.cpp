@@ -45,6 +45,17 @@ void after_kinematics(const Model& model, Data& data) {
   transmission(model, data);
 }
 
+// forward()'s stages, on the kinematics of the caller's choice (kinematics(), or the lean step's
+// step_kinematics()), the entry check left to the caller.
+void forward_stages(const Model& model, Data& data, void (*kinematics_stage)(const Model&, Data&)) {
+  check_inputs(data);
+  kinematics_stage(model, data);
+  after_kinematics(model, data);
+  velocity_stage(model, data);
+  acceleration_stage(model, data);
+  record_if_bad(data, data.qacc, Warning::kBadQacc);
+}
+
 }  // namespace
 
 void position_stage(const Model& model, Data& data) {
@@ -69,23 +80,12 @@ void acceleration_stage(const Model& model, Data& data) {
 
 void forward(const Model& model, Data& data) {
   check_entry(model, data, "lever::forward");
-  check_inputs(data);
-  position_stage(model, data);
-  velocity_stage(model, data);
-  acceleration_stage(model, data);
-  record_if_bad(data, data.qacc, Warning::kBadQacc);
+  forward_stages(model, data, kinematics);
 }
 
 namespace detail {
 
-void step_forward(const Model& model, Data& data) {
-  check_inputs(data);
-  step_kinematics(model, data);
-  after_kinematics(model, data);
-  velocity_stage(model, data);
-  acceleration_stage(model, data);
-  record_if_bad(data, data.qacc, Warning::kBadQacc);
-}
+void step_forward(const Model& model, Data& data) { forward_stages(model, data, step_kinematics); }
 
 }  // namespace detail
 

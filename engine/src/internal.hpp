@@ -36,6 +36,10 @@ double impedance(const std::array<double, 5>& solimp, double pos, double margin,
 /// out = J x for every row (nefc numbers; x has nv).
 void rows_times(const Data& data, const double* x, double* out);
 
+/// out = J x - aref for every row (MuJoCo's jar: where the rows' accelerations stand against
+/// their reference; nefc numbers).
+void rows_jar(const Data& data, const double* x, double* out);
+
 /// out += J^T f (f has nefc numbers, out nv).
 void add_rows_transpose(const Data& data, const double* f, double* out);
 

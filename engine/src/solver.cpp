@@ -121,8 +121,7 @@ double total_cost(Data& data, const Eigen::VectorXd& qacc) {
   w.newton_err = qacc - data.qacc_smooth;
   w.newton_Merr.noalias() = data.M * w.newton_err;
   const double gauss = 0.5 * w.newton_err.dot(w.newton_Merr);
-  rows_times(data, qacc.data(), w.newton_x.data());
-  w.newton_x.head(data.nefc) -= data.efc_aref.head(data.nefc);
+  rows_jar(data, qacc.data(), w.newton_x.data());
   return gauss + constraint_cost(data, w.newton_x, w.newton_grad_x, false);
 }
 
@@ -193,16 +192,14 @@ void record_forces(Data& data, const Eigen::VectorXd& x) {
 
 void constraint_forces_at(Data& data, const Eigen::VectorXd& qacc) {
   auto& w = data.work;
-  rows_times(data, qacc.data(), w.newton_x.data());
-  w.newton_x.head(data.nefc) -= data.efc_aref.head(data.nefc);
+  rows_jar(data, qacc.data(), w.newton_x.data());
   record_forces(data, w.newton_x);
 }
 
 int solve_constraint_newton([[maybe_unused]] const Model& model, Data& data) {
   auto& w = data.work;
   const int n = data.nefc;
-  rows_times(data, data.qacc_smooth.data(), data.efc_b.data());
-  data.efc_b.head(n) -= data.efc_aref.head(n);
+  rows_jar(data, data.qacc_smooth.data(), data.efc_b.data());
   // start from the unconstrained acceleration (lever's forward is a function of the state alone;
   // a warm start would change only where the iterations stop, at rounding)
   data.qacc = data.qacc_smooth;
