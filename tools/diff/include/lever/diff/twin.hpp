@@ -41,7 +41,7 @@ class Twin {
   /// Use this friction cone and impratio on both sides (a model's elliptic variant).
   void set_cone(Cone cone, double impratio);
   /// mj_forward, then, with restart_mujoco_solver, mj_forward again warm-started from MuJoCo's
-  /// own answer while that changes it (at most 20 times). MuJoCo's Newton solver compares costs,
+  /// own answer while that moves it by more than rounding (at most 20 times). MuJoCo's Newton solver compares costs,
   /// and where the cost is large (1e5) it stops when a further decrease no longer shows in it,
   /// short of the minimizer with elliptic cones; a restart lets its line search start afresh.
   void mujoco_forward();
