@@ -657,9 +657,9 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   forward_derivatives_unchecked(model, data, deriv);
 
   // the step's K, its LU factor and its acceleration a, as implicit_step computes them; D is
-  // smooth_velocity_derivative()'s, with its bias part d c / d qvel read from the RNEA derivative
-  // just taken (it equals the bias force's, the M qacc and gravity terms being free of qvel)
-  // rather than recomputed column by column
+  // smooth_velocity_derivative()'s, its bias part d c / d qvel read from the RNEA derivative just
+  // taken (the same velocity columns: the M qacc and gravity terms are free of qvel) rather than
+  // recomputed
   w.D = -deriv.dtau_dv;
   add_actuator_damping_velocity_terms(model, data, w.D);
   w.K = data.M - h * w.D;
