@@ -89,11 +89,9 @@ Data::Data(const Model& model)
     work.rk_qacc[i] = Eigen::VectorXd::Zero(nv);
   }
   work.qDeriv = Eigen::MatrixXd::Zero(nv, nv);
-  work.qLU = Eigen::PartialPivLU<Eigen::MatrixXd>(nv);
-  work.dcvel.assign(nbody, Motion::Zero());
-  work.dcacc.assign(nbody, Motion::Zero());
-  work.dcfrc.assign(nbody, Force::Zero());
-  work.in_subtree.assign(nbody, 0);
+  work.qLU = Eigen::MatrixXd::Zero(nv, nv);
+  work.subtree_inertia.assign(nbody, RigidInertia());
+  work.subtree_coupling.assign(nbody, VelocityCoupling());
 }
 
 int warning_count(const Data& data) {

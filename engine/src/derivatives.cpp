@@ -154,49 +154,75 @@ void through_position_update(const Model& model, const double* velocity, double 
 // S is symmetric: with P = [w]J, J[w] = -P^T; and [a][b] = b a^T - (a.b) 1.
 VelocityCoupling velocity_coupling(const RigidInertia& I, const Motion& v, const Force& momentum) {
   const Eigen::Vector3d w = v.head<3>(), u = v.tail<3>();
-  Eigen::Matrix3d P;  // [w] J, column by column
-  for (int k = 0; k < 3; ++k) P.col(k) = cross(w, I.I.col(k));
+  const Eigen::Matrix3d& J = I.I;
+  const Eigen::Vector3d& h = I.h;
+  // P = [w] J, column by column: P(., c) = w x J(., c)
+  double P[3][3];
+  for (int c = 0; c < 3; ++c) {
+    P[0][c] = w[1] * J(2, c) - w[2] * J(1, c);
+    P[1][c] = w[2] * J(0, c) - w[0] * J(2, c);
+    P[2][c] = w[0] * J(1, c) - w[1] * J(0, c);
+  }
+  const double uh = 2 * (u[0] * h[0] + u[1] * h[1] + u[2] * h[2]);
   VelocityCoupling C;
-  C.S = P + P.transpose() - I.h * u.transpose() - u * I.h.transpose();
-  C.S.diagonal().array() += 2 * u.dot(I.h);
+  // S(r, c) = P(r, c) + P(c, r) - h_r u_c - u_r h_c, + 2 u.h on the diagonal: the upper
+  // triangle, mirrored
+  const double s01 = (P[0][1] + P[1][0]) - (h[0] * u[1] + u[0] * h[1]);
+  const double s02 = (P[0][2] + P[2][0]) - (h[0] * u[2] + u[0] * h[2]);
+  const double s12 = (P[1][2] + P[2][1]) - (h[1] * u[2] + u[1] * h[2]);
+  C.S(0, 0) = 2 * (P[0][0] - h[0] * u[0]) + uh;
+  C.S(1, 1) = 2 * (P[1][1] - h[1] * u[1]) + uh;
+  C.S(2, 2) = 2 * (P[2][2] - h[2] * u[2]) + uh;
+  C.S(0, 1) = C.S(1, 0) = s01;
+  C.S(0, 2) = C.S(2, 0) = s02;
+  C.S(1, 2) = C.S(2, 1) = s12;
   C.momentum = momentum;
   return C;
 }
 
-// The body pass, after the forward pass gave each body's v and a: its net force
-// f = I a + v x* (I v) and its coupling C, each body's own, into w.F and w.CC (their subtree sums
-// come next), and its inertia into w.IC.
-void body_terms(const Model& model, const Data& data, Derivatives::Workspace& w) {
+// The body pass, after the forward pass gave each body's v: its inertia into IC and its velocity
+// coupling C into CC (their subtree sums come next). The net force is the forward pass's
+// (net_force, recursion.hpp).
+void body_couplings(const Model& model, const Data& data, const std::vector<Motion>& v,
+                    std::vector<RigidInertia>& IC, std::vector<VelocityCoupling>& CC) {
   for (int b = 1; b < model.nbody; ++b) {
     const RigidInertia& I = data.cinert[b];
-    const Force momentum = I * w.v[b];
-    w.F[b] = I * w.a[b] + cross_force(w.v[b], momentum);
-    w.CC[b] = velocity_coupling(I, w.v[b], momentum);
-    w.IC[b] = I;
+    IC[b] = I;
+    CC[b] = velocity_coupling(I, v[b], I * v[b]);
   }
 }
 
-// The columns, from the subtree sums IC, CC, F: for each dof i, the pairs (i, j) with j = i or
-// above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
-void derivative_columns(const Model& model, const Data& data, const Derivatives::Workspace& w,
-                        Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
-  dtau_dq.setZero();
+// The columns, from the subtree sums IC, CC (and F for dtau_dq): for each dof i, the pairs (i, j)
+// with j = i or above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now
+// the deeper). dtau_dq == nullptr: d tau / d qd alone (Sddot and F are not read).
+void derivative_columns(const Model& model, const Data& data, const std::vector<Motion>& Sdot,
+                        const std::vector<Motion>* Sddot, const std::vector<Force>* F,
+                        const std::vector<RigidInertia>& ICs,
+                        const std::vector<VelocityCoupling>& CCs, Eigen::MatrixXd* dtau_dq,
+                        Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
+  if (dtau_dq != nullptr) dtau_dq->setZero();
   dtau_dv.setZero();
   for (int i = 0; i < model.nv; ++i) {
     const int b = model.dof_bodyid[i];
     const Motion& Si = data.cdof[i];
-    const RigidInertia& IC = w.IC[b];
-    const VelocityCoupling& CC = w.CC[b];
+    const RigidInertia& IC = ICs[b];
+    const VelocityCoupling& CC = CCs[b];
     const Force IC_Si = IC * Si;                            // IC symmetric: S_i . IC x
     const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);  // S_i . CC x (x's angular part)
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dtau_dq(i, j) = IC_Si.dot(w.Sddot[j]) + CCt_Si.dot(w.Sdot[j].head<3>());
-      dtau_dv(i, j) = 2 * IC_Si.dot(w.Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+      if (dtau_dq != nullptr) {
+        (*dtau_dq)(i, j) = IC_Si.dot((*Sddot)[j]) + CCt_Si.dot(Sdot[j].head<3>());
+      }
+      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
     }
-    const Force Xq = IC * w.Sddot[i] + CC * w.Sdot[i] + cross_force(Si, w.F[b]);
-    const Force Xv = 2 * (IC * w.Sdot[i]) + CC * Si;
+    const Force Xv = 2 * (IC * Sdot[i]) + CC * Si;
+    if (dtau_dq != nullptr) {
+      const Force Xq = IC * (*Sddot)[i] + CC * Sdot[i] + cross_force(Si, (*F)[b]);
+      for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+        (*dtau_dq)(k, i) = data.cdof[k].dot(Xq);
+      }
+    }
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
-      dtau_dq(k, i) = data.cdof[k].dot(Xq);
       dtau_dv(k, i) = data.cdof[k].dot(Xv);
     }
   }
@@ -223,32 +249,51 @@ void segment_accelerations(const Model& model, const Data& data, const double* q
   }
 }
 
-// The columns of a segment's dofs, corrected after derivative_columns():
-//  - d tau_k / d q_i for k before i in the segment: turning about S_i turns S_k too, and
-//    d S_k / d q_i . F = (S_i x S_k) . F cancels the S_i x* F term the hinge formula adds;
-//  - d / d qd_i: d a_c / d qd_i = Sdot_i + v' x S_i + S_i x v_c, v' the velocity after the
-//    segment (the body's: a ball or a free joint is alone in its body), where a hinge has
-//    2 Sdot_i; the difference E = v' x S_i - Sdot_i enters as IC E wherever 2 IC Sdot_i did.
-void segment_columns(const Model& model, const Data& data, const Derivatives::Workspace& w,
-                     Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
+// d tau_k / d q_i of a segment's dofs, corrected after derivative_columns(): for k before i in the
+// segment, turning about S_i turns S_k too, and d S_k / d q_i . F = (S_i x S_k) . F cancels the
+// S_i x* F term the hinge formula adds.
+void segment_position_columns(const Model& model, const Data& data, const std::vector<Force>& F,
+                              Eigen::MatrixXd& dtau_dq) {
   for (int j = 0; j < model.njnt; ++j) {
     const int r = rotation_block(model, j);
     if (r < 0) continue;
     const int b = model.jnt_bodyid[j];
     for (int i = r; i < r + 3; ++i) {
-      const Motion& Si = data.cdof[i];
-      const Force S_cross_F = cross_force(Si, w.F[b]);
+      const Force S_cross_F = cross_force(data.cdof[i], F[b]);
       for (int k = r; k < i; ++k) dtau_dq(k, i) -= data.cdof[k].dot(S_cross_F);
-      const Motion E = cross_motion(w.v[b], Si) - w.Sdot[i];
+    }
+  }
+}
+
+// d tau / d qd_i of a segment's dofs, corrected after derivative_columns(): d a_c / d qd_i =
+// Sdot_i + v' x S_i + S_i x v_c, v' the velocity after the segment, where a hinge has 2 Sdot_i;
+// the difference E = v' x S_i - Sdot_i enters as IC E wherever 2 IC Sdot_i did. (v' is the
+// body's velocity less the dofs after the segment in the same body: none for a free joint or a
+// ball alone in its body.)
+void segment_velocity_columns(const Model& model, const Data& data, const double* qd,
+                              const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
+                              const std::vector<RigidInertia>& IC,
+                              Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
+  for (int j = 0; j < model.njnt; ++j) {
+    const int r = rotation_block(model, j);
+    if (r < 0) continue;
+    const int b = model.jnt_bodyid[j];
+    Motion v_after = v[b];
+    for (int k = r + 3; k < model.body_dofadr[b] + model.body_dofnum[b]; ++k) {
+      v_after -= data.cdof[k] * qd[k];
+    }
+    for (int i = r; i < r + 3; ++i) {
+      const Motion& Si = data.cdof[i];
+      const Motion E = cross_motion(v_after, Si) - Sdot[i];
       // rows at or below i (the row's dof the deeper: its body's composite inertia)
       for (int row = i; row < model.nv; ++row) {
         int up = row;
         while (up > i) up = model.dof_parentid[up];
         if (up != i) continue;  // i is not on row's path to the world
-        dtau_dv(row, i) += (w.IC[model.dof_bodyid[row]] * data.cdof[row]).dot(E);
+        dtau_dv(row, i) += (IC[model.dof_bodyid[row]] * data.cdof[row]).dot(E);
       }
       // rows above i (i the deeper dof)
-      const Force IC_E = w.IC[b] * E;
+      const Force IC_E = IC[b] * E;
       for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
         dtau_dv(k, i) += data.cdof[k].dot(IC_E);
       }
@@ -262,16 +307,23 @@ void segment_columns(const Model& model, const Data& data, const Derivatives::Wo
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, Derivatives::Workspace& w,
                            Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
-  // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof (RNEA's forward pass)
-  forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot);
+  // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof, each body's net force
+  // (RNEA's forward pass)
+  forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot,
+               [&](int b, const Motion& vb, const Motion& ab) {
+                 w.F[b] = net_force(data.cinert[b], vb, ab);  // I a + v x* I v
+               });
   if (model.nq != model.nv) segment_accelerations(model, data, qd, qdd, w);
-  body_terms(model, data, w);
+  body_couplings(model, data, w.v, w.IC, w.CC);
   // leaves to root: the composites of f, I and C over each subtree (RNEA's backward pass)
   sum_over_subtrees(model, w.F);
   sum_over_subtrees(model, w.IC);
   sum_over_subtrees(model, w.CC);
-  derivative_columns(model, data, w, dtau_dq, dtau_dv);
-  if (model.nq != model.nv) segment_columns(model, data, w, dtau_dq, dtau_dv);
+  derivative_columns(model, data, w.Sdot, &w.Sddot, &w.F, w.IC, w.CC, &dtau_dq, dtau_dv);
+  if (model.nq != model.nv) {
+    segment_position_columns(model, data, w.F, dtau_dq);
+    segment_velocity_columns(model, data, qd, w.v, w.Sdot, w.IC, dtau_dv);
+  }
 }
 
 // The springs and dampers of ball and free joints, after smooth_rhs()'s loop gave each joint's
@@ -437,6 +489,67 @@ void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
   for (int c = 0; c < model.nu; ++c) solve_column(deriv.dqacc_du, deriv.dconstraint_du, c, nullptr);
 }
 
+// ---- solves with many right-hand sides ---------------------------------------------------------
+// The right-hand sides of a derivative (its qpos, qvel and ctrl columns, 2 nv + nu of them) are
+// solved together: side by side in one row-major matrix, each substitution of a solve is one row
+// operation over all of them, instead of one walk of the tree per column. The arithmetic of each
+// column is the single solve's, in the same order.
+
+// y += a x over n numbers: a row operation of the solves below (a plain loop, which the compiler
+// vectorises; Eigen's expression on a dynamic row costs more in setup than in arithmetic here).
+void add_scaled_row(double* y, double a, const double* x, Eigen::Index n) {
+  for (Eigen::Index c = 0; c < n; ++c) y[c] += a * x[c];
+}
+
+// X = (L^T D L)^-1 X with an LTDL factor in crba.cpp's layout (ltdl: D on the diagonal, L(k, i)
+// at LD(i, k) for each ancestor i of k), as solve_mass does one column.
+void ltdl_solve_rows(const Model& model, const Eigen::MatrixXd& LD,
+                     const Eigen::VectorXd& diag_inverse, RowMatrix& X) {
+  const Eigen::Index n = X.cols();
+  for (int k = model.nv - 1; k >= 0; --k) {  // L^-T, leaves to root
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+      add_scaled_row(X.row(i).data(), -LD(i, k), X.row(k).data(), n);
+    }
+  }
+  for (int k = 0; k < model.nv; ++k) X.row(k) *= diag_inverse[k];  // D^-1
+  for (int k = 0; k < model.nv; ++k) {                             // L^-1, root to leaves
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+      add_scaled_row(X.row(k).data(), -LD(i, k), X.row(i).data(), n);
+    }
+  }
+}
+
+// X = K^-1 X with factor_lu_tree()'s factor K = (U + I) L, as solve_lu_tree does one column.
+void lu_tree_solve_rows(const Model& model, const Eigen::MatrixXd& LU, RowMatrix& X) {
+  const Eigen::Index n = X.cols();
+  for (int k = model.nv - 1; k >= 0; --k) {  // (U + I)^-1, leaves to root
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+      add_scaled_row(X.row(i).data(), -LU(i, k), X.row(k).data(), n);
+    }
+  }
+  for (int k = 0; k < model.nv; ++k) {  // L^-1, root to leaves
+    for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) {
+      add_scaled_row(X.row(k).data(), -LU(k, j), X.row(j).data(), n);
+    }
+    X.row(k) /= LU(k, k);
+  }
+}
+
+// [in_q in_v in_u] side by side in w.right_hand_sides, then solve(X) solving every column of X in
+// place; returns X.
+template <class Solve>
+RowMatrix& solve_side_by_side(Derivatives::Workspace& w, const Eigen::MatrixXd& in_q,
+                              const Eigen::MatrixXd& in_v, const Eigen::MatrixXd& in_u,
+                              Solve&& solve) {
+  const Eigen::Index nv = in_q.cols(), nu = in_u.cols();
+  RowMatrix& X = w.right_hand_sides;
+  X.leftCols(nv) = in_q;
+  X.middleCols(nv, nv) = in_v;
+  X.rightCols(nu) = in_u;
+  solve(X);
+  return X;
+}
+
 // forward_derivatives() without its checks, for the step's calls (step_derivatives checked once).
 void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& deriv) {
   forward(model, data);
@@ -445,35 +558,40 @@ void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& 
                         deriv.dtau_dv);
   smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
   // the unconstrained part: M^-1 times each column
-  deriv.dqacc_dq = w.rhs_q;
-  deriv.dqacc_dv = w.rhs_v;
-  deriv.dqacc_du = w.rhs_u;
-  for (int c = 0; c < model.nv; ++c) {
-    solve_mass(model, data, deriv.dqacc_dq.col(c));
-    solve_mass(model, data, deriv.dqacc_dv.col(c));
-  }
-  for (int c = 0; c < model.nu; ++c) solve_mass(model, data, deriv.dqacc_du.col(c));
+  const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
+    ltdl_solve_rows(model, data.qLD, data.qLDiagInv, Y);
+  });
+  deriv.dqacc_dq = X.leftCols(model.nv);
+  deriv.dqacc_dv = X.middleCols(model.nv, model.nv);
+  deriv.dqacc_du = X.rightCols(model.nu);
   limit_rows(model, data, deriv);
 }
 
 // x' = [qpos (+) h qvel'; qvel'] with qvel' = qvel + h qacc_step, given
 // d qacc_step / d (q, v, u): the rows of hinges and slides here, a turn's by euler_turns().
-void assemble_euler(const Model& model, const Eigen::MatrixXd& Dq, const Eigen::MatrixXd& Dv,
-                    const Eigen::MatrixXd& Du, Derivatives& deriv) {
+template <class Matrix>
+void assemble_euler(const Model& model, const Matrix& Dq, const Matrix& Dv, const Matrix& Du,
+                    Derivatives& deriv) {
   const int nv = model.nv;
   const double h = model.opt.timestep;
-  auto pos_q = deriv.A.topLeftCorner(nv, nv);
-  auto pos_v = deriv.A.topRightCorner(nv, nv);
-  auto vel_q = deriv.A.bottomLeftCorner(nv, nv);
-  auto vel_v = deriv.A.bottomRightCorner(nv, nv);
-  vel_q = h * Dq;
-  vel_v = h * Dv;
-  vel_v.diagonal().array() += 1.0;
-  pos_q = h * vel_q;
-  pos_q.diagonal().array() += 1.0;
-  pos_v = h * vel_v;
-  deriv.B.bottomRows(nv) = h * Du;
-  deriv.B.topRows(nv) = (h * h) * Du;
+  Eigen::MatrixXd& A = deriv.A;
+  for (int c = 0; c < nv; ++c) {  // column by column, A = [[pos_q, pos_v], [vel_q, vel_v]]
+    for (int r = 0; r < nv; ++r) {
+      const double identity = r == c ? 1.0 : 0.0;
+      const double vel_q = h * Dq(r, c);
+      const double vel_v = h * Dv(r, c) + identity;
+      A(nv + r, c) = vel_q;
+      A(nv + r, nv + c) = vel_v;
+      A(r, c) = h * vel_q + identity;
+      A(r, nv + c) = h * vel_v;
+    }
+  }
+  for (int c = 0; c < model.nu; ++c) {
+    for (int r = 0; r < nv; ++r) {
+      deriv.B(nv + r, c) = h * Du(r, c);
+      deriv.B(r, c) = (h * h) * Du(r, c);
+    }
+  }
 }
 
 // The rows of ball and free joints' turns in an Euler-form step (Euler, implicit), after
@@ -512,50 +630,12 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   w.rhs_q += deriv.dconstraint_dq;
   w.rhs_v += deriv.dconstraint_dv;
   w.rhs_u += deriv.dconstraint_du;
-  for (int c = 0; c < model.nv; ++c) {
-    solve_mass_damped(model, data, w.rhs_q.col(c));
-    solve_mass_damped(model, data, w.rhs_v.col(c));
-  }
-  for (int c = 0; c < model.nu; ++c) solve_mass_damped(model, data, w.rhs_u.col(c));
-  assemble_euler(model, w.rhs_q, w.rhs_v, w.rhs_u, deriv);
+  const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
+    ltdl_solve_rows(model, data.work.LD2, data.work.LD2DiagInv, Y);
+  });
+  assemble_euler(model, X.leftCols(model.nv), X.middleCols(model.nv, model.nv),
+                 X.rightCols(model.nu), deriv);
   if (model.nq != model.nv) euler_turns(model, data, w.qacc_step, deriv);
-}
-
-// x = K^-1 b from K's LU factor (P K = L U, L with a unit diagonal), by substitution: for the
-// few small columns here Eigen's solve spends more on dispatch (and its blocked matrix path on
-// packing) than on the arithmetic.
-void lu_solve(const Eigen::PartialPivLU<Eigen::MatrixXd>& lu,
-              const Eigen::Ref<const Eigen::VectorXd>& b, Eigen::Ref<Eigen::VectorXd> x) {
-  const Eigen::MatrixXd& LU = lu.matrixLU();
-  const int n = static_cast<int>(LU.rows());
-  x.noalias() = lu.permutationP() * b;
-  for (int i = 0; i < n; ++i) {
-    for (int k = 0; k < i; ++k) x[i] -= LU(i, k) * x[k];
-  }
-  for (int i = n - 1; i >= 0; --i) {
-    for (int k = i + 1; k < n; ++k) x[i] -= LU(i, k) * x[k];
-    x[i] /= LU(i, i);
-  }
-}
-
-// D = d qfrc_smooth / d qvel as smooth_velocity_derivative() (implicit.cpp) defines it: the
-// actuators' velocity terms with the raw ctrl (no clamp), minus damping, minus d c / d qvel, here
-// given as dbias_dv.
-void velocity_derivative(const Model& model, const Data& data, const Eigen::MatrixXd& dbias_dv,
-                         Eigen::MatrixXd& D) {
-  D = -dbias_dv;
-  for (int i = 0; i < model.nv; ++i) D(i, i) -= model.dof_damping[i];
-  for (int a = 0; a < model.nu; ++a) {
-    double per_velocity = 0.0;
-    if (model.actuator_biastype[a] == BiasType::kAffine)
-      per_velocity = model.actuator_biasprm[a][2];
-    if (model.actuator_gaintype[a] == GainType::kAffine) {
-      per_velocity += model.actuator_gainprm[a][2] * data.ctrl[a];
-    }
-    const double gear = model.actuator_gear[a][0];
-    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
-    D(dof, dof) += gear * per_velocity * gear;
-  }
 }
 
 // MuJoCo 2.2.2's implicit step (implicit.cpp): K a = f with K = M - h D, D = d qfrc_smooth / d qvel
@@ -577,14 +657,16 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   forward_derivatives_unchecked(model, data, deriv);
 
   // the step's K, its LU factor and its acceleration a, as implicit_step computes them; D is
-  // smooth_velocity_derivative()'s, with its bias part d c / d qvel read from the RNEA derivative
-  // just taken (it equals the bias force's, the M qacc and gravity terms being free of qvel)
-  // rather than recomputed column by column
-  velocity_derivative(model, data, deriv.dtau_dv, w.D);
+  // smooth_velocity_derivative()'s, its bias part d c / d qvel read from the RNEA derivative just
+  // taken (the same velocity columns: the M qacc and gravity terms are free of qvel) rather than
+  // recomputed
+  w.D = -deriv.dtau_dv;
+  add_actuator_damping_velocity_terms(model, data, w.D);
   w.K = data.M - h * w.D;
-  w.lu.compute(w.K);
-  w.col.head(nv) = data.qfrc_smooth + data.qfrc_constraint;
-  w.qacc_step.noalias() = w.lu.solve(w.col.head(nv));
+  w.K_lu = w.K;
+  factor_lu_tree(model, w.K_lu);
+  w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
+  solve_lu_tree(model, w.K_lu, w.qacc_step.data());
 
   // df - dM a + h dD a's bias part, from forward_derivatives' dtau (at qacc) and one pair of
   // gravity-free RNEA derivatives R(velocity, acceleration) = dQ(velocity) + dL(acceleration),
@@ -593,7 +675,8 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   //   - h d[2 Q(qd, a)]  (D's bias part), by polarisation 2 Q(qd, a) = (Q(qd+sa) - Q(qd-sa)) / (2s)
   // With delta = a - qacc and c = s / h, R(qd + s a, c delta) - R(qd - s a, -c delta) is
   // 2 s d[2 Q(qd, a)] + 2 c dL(delta), so dividing it by 2 c gives both terms at once.
-  smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
+  // (w.rhs_* still hold smooth_rhs() at dtau: forward_derivatives_unchecked solved them into
+  // dqacc_* and left them as they were)
   w.rhs_q += deriv.dconstraint_dq;
   w.rhs_v += deriv.dconstraint_dv;
   w.rhs_u += deriv.dconstraint_du;
@@ -622,13 +705,10 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     w.rhs_u(dof, a) += h * gear * model.actuator_gainprm[a][2] * gear * w.qacc_step[dof];
   }
 
-  // da = K^-1 (...), then Euler's update
-  for (int c = 0; c < nv; ++c) {
-    lu_solve(w.lu, w.rhs_q.col(c), w.Da_q.col(c));
-    lu_solve(w.lu, w.rhs_v.col(c), w.Da_v.col(c));
-  }
-  for (int c = 0; c < model.nu; ++c) lu_solve(w.lu, w.rhs_u.col(c), w.Da_u.col(c));
-  assemble_euler(model, w.Da_q, w.Da_v, w.Da_u, deriv);
+  // da = K^-1 (...) in place, then Euler's update
+  const RowMatrix& X = solve_side_by_side(
+      w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) { lu_tree_solve_rows(model, w.K_lu, Y); });
+  assemble_euler(model, X.leftCols(nv), X.middleCols(nv, nv), X.rightCols(model.nu), deriv);
   if (model.nq != model.nv) euler_turns(model, data, w.qacc_step, deriv);
 }
 
@@ -706,6 +786,17 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
 
 }  // namespace
 
+void bias_velocity_derivative(const Model& model, const Data& data, const double* qd,
+                              const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
+                              std::vector<RigidInertia>& IC, std::vector<VelocityCoupling>& CC,
+                              Eigen::Ref<Eigen::MatrixXd> out) {
+  body_couplings(model, data, v, IC, CC);
+  sum_over_subtrees(model, IC);
+  sum_over_subtrees(model, CC);
+  derivative_columns(model, data, Sdot, nullptr, nullptr, IC, CC, nullptr, out);
+  if (model.nq != model.nv) segment_velocity_columns(model, data, qd, v, Sdot, IC, out);
+}
+
 Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   const int nefc_max = 2 * model.njnt;
   dtau_dq.setZero(nv, nv);
@@ -731,6 +822,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.rhs_q.setZero(nv, nv);
   work.rhs_v.setZero(nv, nv);
   work.rhs_u.setZero(nv, nu);
+  work.right_hand_sides.setZero(nv, 2 * nv + nu);
   work.tau_q.setZero(nv, nv);
   work.tau_v.setZero(nv, nv);
   work.MinvJ.setZero(nv, nefc_max);
@@ -750,12 +842,9 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.Ku.setZero(2 * nv, nu);
   work.D.setZero(nv, nv);
   work.K.setZero(nv, nv);
-  work.lu = Eigen::PartialPivLU<Eigen::MatrixXd>(nv);
+  work.K_lu.setZero(nv, nv);
   work.qvel_shift.setZero(nv);
   work.qacc_shift.setZero(nv);
-  work.Da_q.setZero(nv, nv);
-  work.Da_v.setZero(nv, nv);
-  work.Da_u.setZero(nv, nu);
 }
 
 void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc,

@@ -8,9 +8,12 @@
 //              gear^2 on its dof; the raw ctrl is used and the ctrl and force clamps are ignored
 //              (so a clamped servo still damps implicitly, exactly as in MuJoCo);
 //   passive:   -damping on the diagonal (joint springs do not depend on qvel);
-//   bias:      -d qfrc_bias / d qvel: the Coriolis and centrifugal terms, differentiated through
-//              the Newton-Euler recursion below (gravity does not depend on qvel).
+//   bias:      -d qfrc_bias / d qvel: the Coriolis and centrifugal terms, Carpentier and Mansard's
+//              d rnea / d qd (derivatives.cpp; gravity and qacc do not depend on qvel).
 // The constraint force is taken from the forward solve and held fixed, as MuJoCo does.
+//
+// M - h D is not symmetric, but it is non-zero only where M is (pairs of dofs on one branch), so,
+// as MuJoCo, it is factored without pivoting from the leaves up, where nothing fills in.
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
 
@@ -19,65 +22,6 @@
 #include "internal.hpp"
 
 namespace lever {
-
-namespace {
-
-// One column of d qfrc_bias / d qvel: the Newton-Euler recursion of rnea.cpp differentiated with
-// respect to qvel_j. cdof and cinert do not depend on qvel; cvel and cdof_dot do:
-//   dv_b = dv_parent + S_j [if j is a dof of b]          (within a body, dof by dof)
-//   dSdot_i = dv x S_i                 (dv: before dof i's segment, detail::starts_segment)
-//   da_b = da_parent + dSdot_i qd_i + Sdot_j [if j is a dof of b]
-//   df_b = I_b da_b + dv_b x* I_b v_b + v_b x* I_b dv_b
-// then the forces are summed leaves to root and projected on each dof. Only the subtree of dof
-// j's body moves with qvel_j: every term of the other bodies is zero, so the recursion runs over
-// that subtree alone, and the dofs above it see the subtree's whole force.
-void bias_velocity_column(const Model& model, Data& data, int j, Eigen::Ref<Eigen::VectorXd> out) {
-  auto& dv = data.work.dcvel;
-  auto& da = data.work.dcacc;
-  auto& df = data.work.dcfrc;
-  auto& in_subtree = data.work.in_subtree;
-  const int top = model.dof_bodyid[j];
-  for (int b = top; b < model.nbody; ++b) {  // children come after their parents
-    const int parent = model.body_parentid[b];
-    in_subtree[b] = b == top || (parent >= top && in_subtree[parent]);
-    if (!in_subtree[b]) continue;
-    Motion dvb = b == top ? Motion::Zero() : dv[parent];
-    Motion dab = b == top ? Motion::Zero() : da[parent];
-    Motion dv_segment;  // dv before dof i's segment (detail::starts_segment)
-    for (int k = 0; k < model.body_dofnum[b]; ++k) {
-      const int i = model.body_dofadr[b] + k;
-      const Motion& S = data.cdof[i];
-      if (detail::starts_segment(model, i)) dv_segment = dvb;
-      dab += cross_motion(dv_segment, S) * data.qvel[i];
-      if (i == j) {
-        dab += data.cdof_dot[i];
-        dvb += S;
-      }
-    }
-    dv[b] = dvb;
-    da[b] = dab;
-    const RigidInertia& I = data.cinert[b];
-    df[b] = I * dab + cross_force(dvb, I * data.cvel[b]) + cross_force(data.cvel[b], I * dvb);
-  }
-  for (int b = model.nbody - 1; b > top; --b) {
-    if (in_subtree[b]) df[model.body_parentid[b]] += df[b];
-  }
-  out.setZero();
-  for (int b = top; b < model.nbody; ++b) {
-    if (!in_subtree[b]) continue;
-    for (int k = 0; k < model.body_dofnum[b]; ++k) {
-      const int i = model.body_dofadr[b] + k;
-      out[i] = data.cdof[i].dot(df[b]);
-    }
-  }
-  // the dofs above: each carries the subtree's force (no other body's term is non-zero)
-  const int first = model.body_dofadr[top];
-  for (int i = model.dof_parentid[first]; i >= 0; i = model.dof_parentid[i]) {
-    out[i] = data.cdof[i].dot(df[top]);
-  }
-}
-
-}  // namespace
 
 void smooth_velocity_derivative(const Model& model, Data& data,
                                 Eigen::Ref<Eigen::MatrixXd> qDeriv) {
@@ -88,8 +32,16 @@ void smooth_velocity_derivative(const Model& model, Data& data,
                      " but must be nv x nv = " + std::to_string(model.nv) + " x " +
                      std::to_string(model.nv) + ".");
   }
-  qDeriv.setZero();
+  // minus the velocity derivative of the bias force (it sets every element)
+  bias_velocity_derivative(model, data, data.qvel.data(), data.cvel, data.cdof_dot,
+                           data.work.subtree_inertia, data.work.subtree_coupling, qDeriv);
+  qDeriv = -qDeriv;
 
+  add_actuator_damping_velocity_terms(model, data, qDeriv);
+}
+
+void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
+                                         Eigen::Ref<Eigen::MatrixXd> D) {
   // actuators: d force / d velocity of the affine bias and gain, carried to the dof by the gear
   for (int a = 0; a < model.nu; ++a) {
     double force_per_velocity = 0.0;
@@ -101,17 +53,42 @@ void smooth_velocity_derivative(const Model& model, Data& data,
     }
     const double gear = model.actuator_gear[a][0];
     const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
-    qDeriv(dof, dof) += gear * force_per_velocity * gear;
+    D(dof, dof) += gear * force_per_velocity * gear;
   }
-
   // joint damping
-  for (int i = 0; i < model.nv; ++i) qDeriv(i, i) -= model.dof_damping[i];
+  for (int i = 0; i < model.nv; ++i) D(i, i) -= model.dof_damping[i];
+}
 
-  // minus the velocity derivative of the bias force, one column per dof
-  for (int j = 0; j < model.nv; ++j) {
-    Eigen::VectorXd& column = data.work.vec3;
-    bias_velocity_column(model, data, j, column);
-    qDeriv.col(j) -= column;
+void factor_lu_tree(const Model& model, Eigen::MatrixXd& K) {
+  // eliminate dof k from its ancestors' rows, leaves first: row i -= (K(i, k) / K(k, k)) row k
+  // for each ancestor i, over the columns where row k is still non-zero (k's ancestors j);
+  // K(i, k) keeps the multiplier. Column by column, each column's elements in turn. M - h D is
+  // dominated by M; a zero pivot (which MuJoCo stops on) makes qvel non-finite, and the next
+  // step's state check resets it with a kBadQvel warning.
+  for (int k = model.nv - 1; k >= 0; --k) {
+    double* multiplier = &K(0, k);  // column k: K(i, k) for the ancestors i
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+      multiplier[i] /= multiplier[k];
+    }
+    for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) {
+      double* column = &K(0, j);
+      const double row_k = column[k];
+      for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+        column[i] -= row_k * multiplier[i];
+      }
+    }
+  }
+}
+
+void solve_lu_tree(const Model& model, const Eigen::MatrixXd& LU, double* x) {
+  // (U + I) y = x, leaves to root
+  for (int k = model.nv - 1; k >= 0; --k) {
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= x[k] * LU(i, k);
+  }
+  // L x = y, root to leaves
+  for (int k = 0; k < model.nv; ++k) {
+    for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) x[k] -= x[j] * LU(k, j);
+    x[k] /= LU(k, k);
   }
 }
 
@@ -121,11 +98,11 @@ void implicit_step(const Model& model, Data& data) {
   const double h = model.opt.timestep;
   auto& w = data.work;
   smooth_velocity_derivative(model, data, w.qDeriv);
-  w.qDeriv = data.M - h * w.qDeriv;  // M - h D, factored in place of D
-  w.qLU.compute(w.qDeriv);
+  w.qLU = data.M - h * w.qDeriv;
+  factor_lu_tree(model, w.qLU);
   w.vec1 = data.qfrc_smooth + data.qfrc_constraint;
-  w.vec2.noalias() = w.qLU.solve(w.vec1);
-  data.qvel += h * w.vec2;
+  solve_lu_tree(model, w.qLU, w.vec1.data());
+  data.qvel += h * w.vec1;
   integrate_positions(model, data.qpos.data(), data.qvel.data(), h);
   data.time += h;
 }

@@ -5,6 +5,7 @@
 
 #include <array>
 #include <cmath>
+#include <vector>
 
 #include <lever/data.hpp>
 #include <lever/fields.hpp>
@@ -117,6 +118,32 @@ void acceleration_stage(const Model& model, Data& data);
 
 /// Throws StateError unless a vector argument has n elements.
 void check_argument_size(long size, long n, const char* where, const char* what);
+
+// ---- the implicit integrator's matrix (implicit.cpp, derivatives.cpp) ---------------------------
+
+/// d qfrc_bias / d qvel into out (nv x nv): Carpentier and Mansard's d rnea / d qd, which does not
+/// depend on qacc or gravity, from the bodies' velocities v and the dofs' Sdot at velocity qd
+/// (RNEA's forward pass: data.cvel and data.cdof_dot after forward()); IC and CC (nbody each) are
+/// workspace for the subtree sums of inertia and velocity coupling (derivatives.cpp).
+void bias_velocity_derivative(const Model& model, const Data& data, const double* qd,
+                              const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
+                              std::vector<RigidInertia>& IC, std::vector<VelocityCoupling>& CC,
+                              Eigen::Ref<Eigen::MatrixXd> out);
+
+/// D += the actuators' and the dampers' part of d qfrc_smooth / d qvel as MuJoCo's mjd_smooth_vel
+/// has it: gear^2 (biasprm[2] + gainprm[2] ctrl) of each affine actuator (raw ctrl, no clamp) on
+/// its dof, minus dof_damping on the diagonal (implicit.cpp).
+void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
+                                         Eigen::Ref<Eigen::MatrixXd> D);
+
+/// K (nv x nv, non-zero only where M is: dofs on one branch) factored in place as MuJoCo's
+/// mju_factorLUSparse does, without pivoting, leaves first: K = (U + I) L, U strictly upper
+/// (above K's diagonal on return), L lower (on and below it). Eliminating a leaf touches only its
+/// ancestors' rows and columns, so nothing fills in (implicit.cpp).
+void factor_lu_tree(const Model& model, Eigen::MatrixXd& K);
+
+/// x = K^-1 x with factor_lu_tree()'s factor of K.
+void solve_lu_tree(const Model& model, const Eigen::MatrixXd& LU, double* x);
 
 namespace detail {
 /// The model evaluated once at qpos0, at rest and without control, into data (model_check.cpp):

@@ -60,10 +60,7 @@ void regressor(const Model& model, Data& data, const Eigen::Ref<const Eigen::Vec
     const Mat3& R = data.xmat[b];
     const Motion vB = to_body_frame(vb, c, p, R), aB = to_body_frame(ab, c, p, R);
     Eigen::Matrix<double, 6, kPerBody> F;  // net force of each unit parameter
-    for (int k = 0; k < kPerBody; ++k) {
-      const RigidInertia E = unit_inertia(k);
-      F.col(k) = E * aB + cross_force(vB, E * vB);
-    }
+    for (int k = 0; k < kPerBody; ++k) F.col(k) = net_force(unit_inertia(k), vB, aB);
     int top = b;  // the nearest body at or above b that has dofs
     while (top > 0 && model.body_dofnum[top] == 0) top = model.body_parentid[top];
     if (top == 0) continue;

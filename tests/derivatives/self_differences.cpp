@@ -389,8 +389,11 @@ TEST_CASE("derivatives: the implicit step's A and B are Euler's assembly of K^-1
     step_derivatives(model, data, deriv);
     const auto& w = deriv.work;
     const Eigen::MatrixXd I = Eigen::MatrixXd::Identity(nv, nv);
+    // d a / d (qpos, qvel, ctrl), side by side where the step solved them
+    const Eigen::MatrixXd Da_q = w.right_hand_sides.leftCols(nv);
+    const Eigen::MatrixXd Da_v = w.right_hand_sides.middleCols(nv, nv);
     Eigen::MatrixXd A(2 * nv, 2 * nv);
-    A << I + h * h * w.Da_q, h * (I + h * w.Da_v), h * w.Da_q, I + h * w.Da_v;
+    A << I + h * h * Da_q, h * (I + h * Da_v), h * Da_q, I + h * Da_v;
     CHECK((deriv.A - A).cwiseAbs().maxCoeff() <= allowed(largest(A)));
     // K a = qfrc_smooth + qfrc_constraint, as the step solves it
     const Eigen::VectorXd f = data.qfrc_smooth + data.qfrc_constraint;

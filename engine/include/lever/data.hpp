@@ -203,11 +203,11 @@ struct Data {
     std::vector<double> frame_scratch;   ///< (6 nv) W C over a contact's dofs
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages (rk_qpos0 nq, the rest nv)
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
-    Eigen::MatrixXd qDeriv;                    ///< (nv x nv) implicit: d qfrc_smooth / d qvel
-    Eigen::PartialPivLU<Eigen::MatrixXd> qLU;  ///< implicit: LU factor of M - h qDeriv
-    std::vector<Motion> dcvel, dcacc;          ///< (nbody) implicit: d cvel, d cacc / d qvel_j
-    std::vector<Force> dcfrc;                  ///< (nbody) implicit: d cfrc / d qvel_j
-    std::vector<uint8_t> in_subtree;  ///< (nbody) implicit: the bodies that move with qvel_j
+    Eigen::MatrixXd qDeriv;  ///< (nv x nv) implicit: d qfrc_smooth / d qvel
+    Eigen::MatrixXd qLU;     ///< (nv x nv) implicit: M - h qDeriv, then its factor (U + I) L
+    /// (nbody) implicit: each subtree's inertia and velocity coupling (d qfrc_bias / d qvel)
+    std::vector<RigidInertia> subtree_inertia;
+    std::vector<VelocityCoupling> subtree_coupling;
     // collision() (issue 19): contacts are gathered here and copied to `contact` only when all
     // of them fit, so that a refusal leaves the last contacts in place
     std::vector<Contact> contact;       ///< (nconmax)

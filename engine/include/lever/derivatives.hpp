@@ -27,38 +27,6 @@ namespace lever {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
-/// The 6x6 matrix C = v x* I - I (v x) + (I v) xbar* of a body with inertia I moving with v (the
-/// change of its net force with its velocity, besides 2 I), or its sum over a subtree. Its right
-/// column of 3x3 blocks is zero and the rest is the symmetric S and the momentum (n, p) = I v
-/// (derivatives.cpp derives it):
-///   C = [[S - [n], 0], [-2 [p], 0]],   [a] the matrix of a x.
-/// Both parts sum over bodies, so a subtree's C is kept the same way.
-struct VelocityCoupling {
-  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();  ///< symmetric
-  Force momentum = Force::Zero();               ///< (n, p)
-
-  /// C m
-  Force operator*(const Motion& m) const {
-    const Eigen::Vector3d w = m.head<3>();
-    Force out;
-    out.head<3>() = S * w + cross(w, momentum.head<3>());
-    out.tail<3>() = 2 * cross(w, momentum.tail<3>());
-    return out;
-  }
-
-  /// The angular part of C^T m (its linear part is zero).
-  Eigen::Vector3d transpose_times(const Motion& m) const {
-    return S * m.head<3>() + cross(momentum.head<3>(), m.head<3>()) +
-           2 * cross(momentum.tail<3>(), m.tail<3>());
-  }
-
-  VelocityCoupling& operator+=(const VelocityCoupling& other) {
-    S += other.S;
-    momentum += other.momentum;
-    return *this;
-  }
-};
-
 /// Outputs and workspace of the derivative functions, sized once from a Model (one per Data):
 /// the functions below allocate nothing.
 struct Derivatives {
@@ -90,23 +58,26 @@ struct Derivatives {
     // per dof: the motion subspace's time derivative and Carpentier and Mansard's Psi_ddot
     std::vector<Motion> Sdot, Sddot;
     Eigen::MatrixXd rhs_q, rhs_v, rhs_u;  ///< (nv x nv / nu) right-hand sides before M^-1
-    Eigen::MatrixXd tau_q, tau_v;         ///< (nv x nv) rnea derivatives at a second qacc
-    Eigen::MatrixXd MinvJ;                ///< (nv x nefc_max) M^-1 J^T of the active rows
-    Eigen::MatrixXd AR;                   ///< (nefc_max^2) Cholesky factor of (J M^-1 J^T + R)_SS
-    Eigen::VectorXd col;                  ///< (max(nv, nefc_max)) scratch
-    Eigen::VectorXd drhs_q, drhs_v;       ///< (nefc_max) d (aref - R f) / d q_c, d qd_c per row
-    std::vector<int> rows;                ///< (nefc_max) the active rows
-    Eigen::VectorXd qacc_step;            ///< (nv) the acceleration the Euler step advances with
-    Eigen::VectorXd qpos0, qvel0;         ///< (nq, nv) the state step_derivatives() started from
-    Eigen::VectorXd qvel_next;            ///< (nv) the velocity the step's qpos is integrated with
-    Eigen::VectorXd stage_dq;             ///< (nv) RK4: a_i qvel_{i-1}, a stage's qpos velocity
-    Eigen::MatrixXd Jx, Ju;               ///< (2nv x 2nv / nu) RK4: d stage state / d (x0, u)
-    Eigen::MatrixXd Kx, Ku;               ///< (2nv x 2nv / nu) RK4: d stage slope / d (x0, u)
-    Eigen::MatrixXd D, K;                 ///< (nv x nv) implicit: d qfrc_smooth / d qvel, M - h D
-    Eigen::PartialPivLU<Eigen::MatrixXd> lu;  ///< implicit: LU factor of K
-    Eigen::VectorXd qvel_shift;               ///< (nv) implicit: qvel +- s a (polarisation)
-    Eigen::VectorXd qacc_shift;               ///< (nv) implicit: +- c (a - qacc), beside it
-    Eigen::MatrixXd Da_q, Da_v, Da_u;  ///< (nv x nv / nu) implicit: d a / d (qpos, qvel, ctrl)
+    /// (nv x 2nv + nu) [rhs_q rhs_v rhs_u] side by side, solved in place; after step_derivatives()
+    /// (implicit, or Euler with damping): d a / d (qpos, qvel, ctrl) of the step's acceleration a
+    RowMatrix right_hand_sides;
+    Eigen::MatrixXd tau_q, tau_v;    ///< (nv x nv) rnea derivatives at a second qacc
+    Eigen::MatrixXd MinvJ;           ///< (nv x nefc_max) M^-1 J^T of the active rows
+    Eigen::MatrixXd AR;              ///< (nefc_max^2) Cholesky factor of (J M^-1 J^T + R)_SS
+    Eigen::VectorXd col;             ///< (max(nv, nefc_max)) scratch
+    Eigen::VectorXd drhs_q, drhs_v;  ///< (nefc_max) d (aref - R f) / d q_c, d qd_c per row
+    std::vector<int> rows;           ///< (nefc_max) the active rows
+    Eigen::VectorXd qacc_step;       ///< (nv) the acceleration the Euler step advances with
+    Eigen::VectorXd qpos0, qvel0;    ///< (nq, nv) the state step_derivatives() started from
+    Eigen::VectorXd qvel_next;       ///< (nv) the velocity the step's qpos is integrated with
+    Eigen::VectorXd stage_dq;        ///< (nv) RK4: a_i qvel_{i-1}, a stage's qpos velocity
+    Eigen::MatrixXd Jx, Ju;          ///< (2nv x 2nv / nu) RK4: d stage state / d (x0, u)
+    Eigen::MatrixXd Kx, Ku;          ///< (2nv x 2nv / nu) RK4: d stage slope / d (x0, u)
+    Eigen::MatrixXd D;               ///< (nv x nv) implicit: d qfrc_smooth / d qvel
+    Eigen::MatrixXd K;               ///< (nv x nv) implicit: M - h D
+    Eigen::MatrixXd K_lu;            ///< (nv x nv) implicit: K's factor (U + I) L (implicit.cpp)
+    Eigen::VectorXd qvel_shift;      ///< (nv) implicit: qvel +- s a (polarisation)
+    Eigen::VectorXd qacc_shift;      ///< (nv) implicit: +- c (a - qacc), beside it
   } work;
 
   int nv = 0, nu = 0;  ///< sizes of the model this workspace was built for (checked on use)

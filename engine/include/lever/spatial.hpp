@@ -163,6 +163,38 @@ inline Force cross_force(const Motion& v, const Force& f) {
   return out;
 }
 
+/// The 6x6 matrix C = v x* I - I (v x) + (I v) xbar* of a body with inertia I moving with v (the
+/// change of its net force with its velocity, besides 2 I), or its sum over a subtree. Its right
+/// column of 3x3 blocks is zero and the rest is the symmetric S and the momentum (n, p) = I v
+/// (derivatives.cpp derives it):
+///   C = [[S - [n], 0], [-2 [p], 0]],   [a] the matrix of a x.
+/// Both parts sum over bodies, so a subtree's C is kept the same way.
+struct VelocityCoupling {
+  Eigen::Matrix3d S = Eigen::Matrix3d::Zero();  ///< symmetric
+  Force momentum = Force::Zero();               ///< (n, p)
+
+  /// C m
+  Force operator*(const Motion& m) const {
+    const Eigen::Vector3d w = m.head<3>();
+    Force out;
+    out.head<3>() = S * w + cross(w, momentum.head<3>());
+    out.tail<3>() = 2 * cross(w, momentum.tail<3>());
+    return out;
+  }
+
+  /// The angular part of C^T m (its linear part is zero).
+  Eigen::Vector3d transpose_times(const Motion& m) const {
+    return S * m.head<3>() + cross(momentum.head<3>(), m.head<3>()) +
+           2 * cross(momentum.tail<3>(), m.tail<3>());
+  }
+
+  VelocityCoupling& operator+=(const VelocityCoupling& other) {
+    S += other.S;
+    momentum += other.momentum;
+    return *this;
+  }
+};
+
 // ---- quaternions (w, x, y, z) -----------------------------------------------------------------
 
 using Quat = Eigen::Vector4d;
