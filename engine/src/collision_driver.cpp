@@ -151,16 +151,14 @@ class Collider {
   Collider(const Model& model, Data& data) : m_(model), d_(data) {}
 
   void run() {
-    compute_weld_bodies();
-    compute_body_roles();
     const bool sweep = compute_bounding_boxes();
     const int nbody = m_.nbody;
-    const std::uint8_t* role = d_.work.body_role.data();
+    const std::uint8_t* role = m_.body_collision.data();
     int pair_address = 0, exclude_address = 0;
     for (int b1 = 0; b1 < nbody; ++b1) {
-      const int b1_with_every_body = role[b1] & kWithEveryBody ? 1 : 0;
+      const int b1_with_every_body = role[b1] & Model::kBodyPairsWithAll ? 1 : 0;
       for (int b2 = b1 + 1; b2 < nbody; ++b2) {
-        const int listed = b1_with_every_body + (role[b2] & kWithEveryBody ? 1 : 0) +
+        const int listed = b1_with_every_body + (role[b2] & Model::kBodyPairsWithAll ? 1 : 0) +
                            (sweep && boxes_overlap(b1, b2) ? 1 : 0);
         for (int k = 0; k < listed; ++k) {
           body_pair(b1, b2, pair_address, exclude_address);
@@ -184,46 +182,7 @@ class Collider {
 
   // ---- bodies ----------------------------------------------------------------------------------
 
-  void compute_weld_bodies() {
-    // a body without joints moves with its parent (bodies come after their parents)
-    d_.work.body_weldid[0] = 0;
-    for (int b = 1; b < m_.nbody; ++b) {
-      d_.work.body_weldid[b] = m_.body_jntnum[b] > 0 ? b : d_.work.body_weldid[m_.body_parentid[b]];
-    }
-  }
-
-  int weld(int body) const { return d_.work.body_weldid[body]; }
-
-  // what each body can take part in, found once per call rather than once per body pair
-  static constexpr std::uint8_t kCollides = 1;       // a geom with contype or conaffinity
-  static constexpr std::uint8_t kWithEveryBody = 2;  // listed with every body (below)
-
-  void compute_body_roles() {
-    for (int b = 0; b < m_.nbody; ++b) {
-      d_.work.body_role[b] = static_cast<std::uint8_t>(
-          (can_collide(b) ? kCollides : 0) | (pairs_with_every_body(b) ? kWithEveryBody : 0));
-    }
-  }
-
-  bool can_collide(int body) const {
-    for (int g = m_.body_geomadr[body]; g < m_.body_geomadr[body] + m_.body_geomnum[body]; ++g) {
-      if (m_.geom_contype[g] || m_.geom_conaffinity[g]) return true;
-    }
-    return false;
-  }
-
-  bool has_plane_or_hfield(int body) const {
-    for (int g = m_.body_geomadr[body]; g < m_.body_geomadr[body] + m_.body_geomnum[body]; ++g) {
-      if (m_.geom_type[g] == GeomType::kPlane || m_.geom_type[g] == GeomType::kHfield) return true;
-    }
-    return false;
-  }
-
-  /// The world (with geoms), and static bodies holding a plane, are paired with every body.
-  bool pairs_with_every_body(int body) const {
-    if (!can_collide(body)) return false;
-    return (body == 0 && m_.body_geomnum[0] > 0) || (weld(body) == 0 && has_plane_or_hfield(body));
-  }
+  int weld(int body) const { return m_.body_weldid[body]; }
 
   /// Bounds of each body's geoms (spheres of geom_rbound + geom_margin) along the eigenframe of
   /// the non-world geoms' positions; false when no geom is outside the world body.
@@ -274,8 +233,10 @@ class Collider {
   /// overlapping, where MuJoCo's order of equal keys decides), along the other two in double;
   /// two bodies of one geom each must also pass contype/conaffinity.
   bool boxes_overlap(int b1, int b2) const {
-    const std::uint8_t* role = d_.work.body_role.data();
-    if (b1 == 0 || !(role[b1] & kCollides) || !(role[b2] & kCollides)) return false;
+    const std::uint8_t* role = m_.body_collision.data();
+    if (b1 == 0 || !(role[b1] & Model::kBodyCollides) || !(role[b2] & Model::kBodyCollides)) {
+      return false;
+    }
     const double* a = d_.work.body_aabb.data() + 6 * b1;
     const double* b = d_.work.body_aabb.data() + 6 * b2;
     if (static_cast<float>(b[0]) > static_cast<float>(a[1]) ||
@@ -512,6 +473,24 @@ class Collider {
   }
 };
 
+bool body_can_collide(const Model& model, int body) {
+  for (int g = model.body_geomadr[body]; g < model.body_geomadr[body] + model.body_geomnum[body];
+       ++g) {
+    if (model.geom_contype[g] || model.geom_conaffinity[g]) return true;
+  }
+  return false;
+}
+
+bool body_has_plane_or_hfield(const Model& model, int body) {
+  for (int g = model.body_geomadr[body]; g < model.body_geomadr[body] + model.body_geomnum[body];
+       ++g) {
+    if (model.geom_type[g] == GeomType::kPlane || model.geom_type[g] == GeomType::kHfield) {
+      return true;
+    }
+  }
+  return false;
+}
+
 /// The model's contact arrays have their sizes and the pair and exclusion lists are sorted by
 /// signature (the merge relies on it); a ModelError names the first that is not.
 void check_contact_model(const Model& model) {
@@ -553,6 +532,27 @@ void check_contact_model(const Model& model) {
 }
 
 }  // namespace
+
+namespace detail {
+
+void build_collision_constants(Model& model) {
+  // a body without joints moves with its parent (bodies come after their parents)
+  model.body_weldid.assign(model.nbody, 0);
+  for (int b = 1; b < model.nbody; ++b) {
+    model.body_weldid[b] = model.body_jntnum[b] > 0 ? b : model.body_weldid[model.body_parentid[b]];
+  }
+  // the world (with geoms), and static bodies holding a plane, are paired with every body
+  model.body_collision.assign(model.nbody, 0);
+  for (int b = 0; b < model.nbody; ++b) {
+    if (!body_can_collide(model, b)) continue;
+    const bool with_all = (b == 0 && model.body_geomnum[0] > 0) ||
+                          (model.body_weldid[b] == 0 && body_has_plane_or_hfield(model, b));
+    model.body_collision[b] =
+        static_cast<std::uint8_t>(Model::kBodyCollides | (with_all ? Model::kBodyPairsWithAll : 0));
+  }
+}
+
+}  // namespace detail
 
 void collision(const Model& model, Data& data) {
   check_entry(model, data, "lever::collision");

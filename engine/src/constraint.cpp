@@ -26,6 +26,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
 #include "internal.hpp"
 
@@ -140,18 +141,20 @@ int dof_chain(const Model& model, int body, int* chain) {
   return n;
 }
 
-// Contact i's frame rows, w.contact_frame_J rows first.., over its span of dofs: the relative
-// velocity of the point on body 2 to the point on body 1 (MuJoCo's mj_jacDifPair, then frame * J
-// summed as mju_mulMatMat). A dof on both bodies' paths to the root moves both points alike (the
-// same cdof and the same tree's centre of mass: the difference is exactly zero), so the rows are
-// nonzero only on the dofs of one path; the world has no dofs.
-void contact_frame_rows(const Model& model, Data& data, int i, int first) {
-  const Contact& con = data.contact[i];
-  auto& w = data.work;
+// The dofs that move two bodies' points against each other: each body's dof chain (into
+// w.dof_chain: body 1's, then body 2's from nv on) without the dofs on both, and the span from
+// the smallest to the largest of them. The contacts of one geom pair come one after another:
+// found once for them.
+struct PairDofs {
+  int b1 = -1, b2 = -1;
+  int n1 = 0, n2 = 0;  // the chains' lengths
+  int lo = 0, span = 0;
+};
+
+void find_pair_dofs(const Model& model, Data& data, int b1, int b2, PairDofs& pair) {
+  if (pair.b1 == b1 && pair.b2 == b2) return;
   const int nv = model.nv;
-  const int rotations = con.dim > 3 ? con.dim - 3 : 0;  // spin, then the two rolls
-  const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
-  int* chain1 = w.dof_chain.data();
+  int* chain1 = data.work.dof_chain.data();
   int* chain2 = chain1 + nv;
   int n1 = dof_chain(model, b1, chain1), n2 = dof_chain(model, b2, chain2);
   // the dofs on both paths are the common ancestors: the chains' common end
@@ -160,11 +163,31 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first) {
   const int lo = std::min(n1 > 0 ? chain1[n1 - 1] : nv, n2 > 0 ? chain2[n2 - 1] : nv);
   const int hi = std::max(n1 > 0 ? chain1[0] : -1, n2 > 0 ? chain2[0] : -1);
   const int span = hi >= lo ? hi - lo + 1 : 0;
-  w.contact_span[2 * i] = span > 0 ? lo : 0;
+  pair = {b1, b2, n1, n2, span > 0 ? lo : 0, span};
+}
+
+// Contact i's frame rows, w.contact_frame_J rows first.., over its span of dofs: the relative
+// velocity of the point on body 2 to the point on body 1 (MuJoCo's mj_jacDifPair, then frame * J
+// summed as mju_mulMatMat). A dof on both bodies' paths to the root moves both points alike (the
+// same cdof and the same tree's centre of mass: the difference is exactly zero), so the rows are
+// nonzero only on the dofs of one path; the world has no dofs.
+void contact_frame_rows(const Model& model, Data& data, int i, int first, PairDofs& pair) {
+  const Contact& con = data.contact[i];
+  auto& w = data.work;
+  const int nv = model.nv;
+  const int rotations = con.dim > 3 ? con.dim - 3 : 0;  // spin, then the two rolls
+  const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
+  find_pair_dofs(model, data, b1, b2, pair);
+  const int* chain1 = w.dof_chain.data();
+  const int* chain2 = chain1 + nv;
+  const int n1 = pair.n1, n2 = pair.n2, lo = pair.lo, span = pair.span;
+  w.contact_span[2 * i] = lo;
   w.contact_span[2 * i + 1] = span;
   double* const C = w.contact_frame_J.data() + static_cast<std::ptrdiff_t>(first) * nv;
-  for (int k = 0; k < con.dim; ++k) {
-    for (int j = lo; j < lo + span; ++j) C[k * nv + j] = 0.0;
+  if (n1 + n2 < span) {  // dofs of neither path inside the span (the two paths are disjoint)
+    for (int k = 0; k < con.dim; ++k) {
+      for (int j = lo; j < lo + span; ++j) C[k * nv + j] = 0.0;
+    }
   }
 
   const Eigen::Vector3d offset1 = con.pos - data.subtree_com[model.body_rootid[b1]];
@@ -197,14 +220,14 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first) {
 
 // A contact's rows after the n already made (MuJoCo's mj_instantiateContact): its frame's rows,
 // then its efc_J rows from them, dense.
-int add_contact_rows(const Model& model, Data& data, int i, int n) {
+int add_contact_rows(const Model& model, Data& data, int i, int n, PairDofs& pair) {
   Contact& con = data.contact[i];
   const int dim = con.dim;
   const bool elliptic = dim > 1 && model.opt.cone == Cone::kElliptic;
   const bool pyramid = dim > 1 && !elliptic;
   const int rows = pyramid ? 2 * (dim - 1) : elliptic ? dim : 1;
   require_rows(model, data, n, rows);
-  contact_frame_rows(model, data, i, n);
+  contact_frame_rows(model, data, i, n, pair);
   con.efc_address = n;
   for (int r = n; r < n + rows; ++r) {
     data.efc_type[r] = pyramid    ? ConstraintType::kContactPyramidal
@@ -241,24 +264,6 @@ int add_contact_rows(const Model& model, Data& data, int i, int n) {
   return n + rows;
 }
 
-// A row's approximate inverse inertia (MuJoCo's mj_diagApprox): frozen at qpos0 through
-// dof_invweight0 and body_invweight0, not the current inverse inertia. A contact's: the two
-// bodies' translational weights, and a pyramid edge adds mu^2 times the friction direction's.
-double diag_approx(const Model& model, const Data& data, int r) {
-  if (data.efc_type[r] == ConstraintType::kLimitJoint) return model.dof_invweight0[data.efc_dof[r]];
-  const Contact& con = data.contact[data.efc_id[r]];
-  const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
-  const double translation = model.body_invweight0[b1][0] + model.body_invweight0[b2][0];
-  if (data.efc_type[r] == ConstraintType::kContactFrictionless) return translation;
-  const double rotation = model.body_invweight0[b1][1] + model.body_invweight0[b2][1];
-  if (data.efc_type[r] == ConstraintType::kContactElliptic) {
-    return r - con.efc_address < 3 ? translation : rotation;  // normal and tangents, then turns
-  }
-  const int k = (r - con.efc_address) / 2;  // the friction direction of this pair of edges
-  const double mu = con.friction[k];
-  return translation + mu * mu * (k < 2 ? translation : rotation);
-}
-
 // A row's impedance at its distance, and the stiffness and damping of its reference
 // acceleration (K and B use dmax, not the current impedance).
 struct SoftParameters {
@@ -283,99 +288,128 @@ SoftParameters soft_parameters(const std::array<double, 2>& solref,
   return soft;
 }
 
+// Row r's soft parameters (MuJoCo's mj_makeImpedance) from its impedance, K, B and regularizer R:
+// D = 1 / R, and the diagApprox that R was made from, R imp / (1 - imp).
+void set_soft_row(Data& data, int r, const SoftParameters& soft, double K, double R) {
+  data.efc_imp[r] = soft.imp;
+  data.efc_K[r] = K;
+  data.efc_B[r] = soft.B;
+  data.efc_R[r] = R;
+  data.efc_D[r] = 1 / R;
+  data.efc_diagApprox[r] = R * soft.imp / (1 - soft.imp);
+}
+
+// The regularizer R = (1 - imp) / imp * diagApprox of a row with approximate inverse inertia
+// `diag` (MuJoCo's mj_diagApprox: frozen at qpos0 through dof_invweight0 and body_invweight0, not
+// the current inverse inertia).
+double regularizer(const SoftParameters& soft, double diag) {
+  return std::max(kMinVal, (1 - soft.imp) * diag / soft.imp);
+}
+
+// The limit rows' soft parameters (they are the first `count` rows).
+void set_limit_soft_rows(const Model& model, Data& data, int count) {
+  for (int r = 0; r < count; ++r) {
+    std::array<double, 2> solref;
+    std::array<double, 5> solimp;
+    limit_parameters(model, data.efc_id[r], solref, solimp);
+    const SoftParameters soft =
+        soft_parameters(solref, solimp, data.efc_pos[r], data.efc_margin[r]);
+    set_soft_row(data, r, soft, soft.K, regularizer(soft, model.dof_invweight0[data.efc_dof[r]]));
+  }
+}
+
+// Contact i's rows' soft parameters, computed once for the contact: its rows share its distance,
+// so its impedance, K and B, and their R follow from the first row's. The first row's
+// diagApprox is the two bodies' translational weights (a pyramid's first edge n + mu_0 t_0 adds
+// mu_0^2 times the tangent's, translational too). Friction's regularizer: the first friction
+// row's R_1 = R_0 / impratio sets the regularized cone's mu = friction_0 sqrt(R_1 / R_0). An
+// elliptic cone's other friction rows get the R that keeps R_j friction_j^2 equal across
+// directions; a pyramid's edges share one R, 2 mu^2 R_0, matching the elliptic cone's friction
+// impedance. An elliptic cone's friction rows have no position to restore (K = 0).
+void set_contact_soft_rows(const Model& model, Data& data, int i) {
+  Contact& con = data.contact[i];
+  const int first = con.efc_address;
+  std::array<double, 2> solref = con.solref;
+  std::array<double, 5> solimp = con.solimp;
+  sanitize(model, solref, solimp);
+  const SoftParameters soft = soft_parameters(solref, solimp, con.dist, con.includemargin);
+  const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
+  const double translation = model.body_invweight0[b1][0] + model.body_invweight0[b2][0];
+  const ConstraintType type = data.efc_type[first];
+  if (type == ConstraintType::kContactFrictionless) {
+    set_soft_row(data, first, soft, soft.K, regularizer(soft, translation));
+    return;
+  }
+  const bool pyramid = type == ConstraintType::kContactPyramidal;
+  const double mu0 = con.friction[0];
+  const double R0 =
+      regularizer(soft, pyramid ? translation + mu0 * mu0 * translation : translation);
+  const double R1 = R0 / std::max(kMinVal, model.opt.impratio);
+  con.mu = mu0 * std::sqrt(R1 / R0);
+  if (pyramid) {
+    const double shared = 2 * con.mu * con.mu * R0;
+    for (int r = first; r < first + 2 * (con.dim - 1); ++r)
+      set_soft_row(data, r, soft, soft.K, shared);
+    return;
+  }
+  set_soft_row(data, first, soft, soft.K, R0);
+  set_soft_row(data, first + 1, soft, 0.0, R1);
+  for (int k = 1; k < con.dim - 1; ++k) {
+    set_soft_row(data, first + k + 1, soft, 0.0,
+                 R1 * con.friction[0] * con.friction[0] / (con.friction[k] * con.friction[k]));
+  }
+}
+
 }  // namespace
 
 void make_constraint(const Model& model, Data& data) {
   check_entry(model, data, "lever::make_constraint");
-  int n = add_limit_rows(model, data);
+  const int limits = add_limit_rows(model, data);
+  set_limit_soft_rows(model, data, limits);
+  int n = limits;
+  PairDofs pair;
   for (int i = 0; i < data.ncon; ++i) {
     Contact& con = data.contact[i];
     con.efc_address = -1;
     if (con.exclude) continue;
-    n = add_contact_rows(model, data, i, n);
+    n = add_contact_rows(model, data, i, n, pair);
+    set_contact_soft_rows(model, data, i);
   }
   data.nefc = n;
-
-  // impedance and regularizer (MuJoCo's mj_diagApprox and mj_makeImpedance); the rows of one
-  // contact share its distance, so its impedance, K and B: computed at its first row
-  SoftParameters soft{};
-  for (int r = 0; r < n; ++r) {
-    if (data.efc_type[r] == ConstraintType::kLimitJoint) {
-      std::array<double, 2> solref;
-      std::array<double, 5> solimp;
-      limit_parameters(model, data.efc_id[r], solref, solimp);
-      soft = soft_parameters(solref, solimp, data.efc_pos[r], data.efc_margin[r]);
-    } else {
-      const Contact& con = data.contact[data.efc_id[r]];
-      if (r == con.efc_address) {
-        std::array<double, 2> solref = con.solref;
-        std::array<double, 5> solimp = con.solimp;
-        sanitize(model, solref, solimp);
-        soft = soft_parameters(solref, solimp, con.dist, con.includemargin);
-      }
-    }
-    data.efc_imp[r] = soft.imp;
-    data.efc_R[r] = std::max(kMinVal, (1 - soft.imp) * diag_approx(model, data, r) / soft.imp);
-    // friction has no position to restore
-    const bool friction_row = data.efc_type[r] == ConstraintType::kContactElliptic &&
-                              r > data.contact[data.efc_id[r]].efc_address;
-    data.efc_K[r] = friction_row ? 0.0 : soft.K;
-    data.efc_B[r] = soft.B;
-  }
-  // friction's regularizer: the first friction row's R_1 = R_0 / impratio sets the regularized
-  // cone's mu = friction_0 sqrt(R_1 / R_0). An elliptic cone's other friction rows get the R
-  // that keeps R_j friction_j^2 equal across directions; a pyramid's edges share one R,
-  // 2 mu^2 R_0, matching the elliptic cone's friction impedance.
-  for (int i = 0; i < data.ncon; ++i) {
-    Contact& con = data.contact[i];
-    if (con.efc_address < 0 || con.dim == 1) continue;
-    const int first = con.efc_address;
-    const double R0 = data.efc_R[first];
-    const double R1 = R0 / std::max(kMinVal, model.opt.impratio);
-    con.mu = con.friction[0] * std::sqrt(R1 / R0);
-    if (data.efc_type[first] == ConstraintType::kContactElliptic) {
-      data.efc_R[first + 1] = R1;
-      for (int k = 1; k < con.dim - 1; ++k) {
-        data.efc_R[first + k + 1] =
-            R1 * con.friction[0] * con.friction[0] / (con.friction[k] * con.friction[k]);
-      }
-      continue;
-    }
-    const double shared = 2 * con.mu * con.mu * R0;
-    for (int r = first; r < first + 2 * (con.dim - 1); ++r) data.efc_R[r] = shared;
-  }
-  for (int r = 0; r < n; ++r) {
-    data.efc_D[r] = 1 / data.efc_R[r];
-    data.efc_diagApprox[r] = data.efc_R[r] * data.efc_imp[r] / (1 - data.efc_imp[r]);
-  }
 }
 
 namespace {
 
 // x = H^-1 x for a symmetric positive definite H given by its lower triangle, which is replaced
 // by its Cholesky factor L (H = L L^T). nv x nv with nv a few dozen at most: plain loops, column
-// by column (right-looking: each finished column updates the ones after it).
-void cholesky_solve(Eigen::MatrixXd& H, Eigen::VectorXd& x) {
-  const Eigen::Index nv = x.size();
-  for (Eigen::Index j = 0; j < nv; ++j) {
-    double* Lj = H.data() + j * nv;
+// by column (right-looking: each finished column updates the ones after it), each column's loops
+// ending at its last nonzero (the dofs of trees that no contact joins never meet: a gripper and
+// a free box are two blocks). column_end: nv ints of scratch.
+void cholesky_solve(Eigen::MatrixXd& H, Eigen::VectorXd& x, std::vector<int>& column_end) {
+  const int nv = static_cast<int>(x.size());
+  int* const end = column_end.data();  // one past column j's last nonzero
+  for (int j = 0; j < nv; ++j) {
+    double* Lj = H.data() + static_cast<std::ptrdiff_t>(j) * nv;
+    int e = nv;  // column j is final here: every column before it has updated it
+    while (e > j + 1 && Lj[e - 1] == 0.0) --e;
+    end[j] = e;
     const double Ljj = std::sqrt(Lj[j]);
     Lj[j] = Ljj;
-    for (Eigen::Index i = j + 1; i < nv; ++i) Lj[i] /= Ljj;
-    for (Eigen::Index k = j + 1; k < nv; ++k) {
-      if (Lj[k] == 0.0) continue;  // dofs of different trees (a gripper and a free box) decouple
-      double* Hk = H.data() + k * nv;
-      for (Eigen::Index i = k; i < nv; ++i) Hk[i] -= Lj[i] * Lj[k];
+    for (int i = j + 1; i < e; ++i) Lj[i] /= Ljj;
+    for (int k = j + 1; k < e; ++k) {
+      if (Lj[k] == 0.0) continue;
+      double* Hk = H.data() + static_cast<std::ptrdiff_t>(k) * nv;
+      for (int i = k; i < e; ++i) Hk[i] -= Lj[i] * Lj[k];
     }
   }
-  for (Eigen::Index i = 0; i < nv; ++i) {  // L y = x
-    double sum = x[i];
-    for (Eigen::Index k = 0; k < i; ++k) sum -= H(i, k) * x[k];
-    x[i] = sum / H(i, i);
+  for (int j = 0; j < nv;
+       ++j) {  // L y = x, column by column: y_j, once final, leaves the rows below
+    x[j] /= H(j, j);
+    for (int i = j + 1; i < end[j]; ++i) x[i] -= H(i, j) * x[j];
   }
-  for (Eigen::Index i = nv - 1; i >= 0; --i) {  // L^T x = y
+  for (int i = nv - 1; i >= 0; --i) {  // L^T x = y
     double sum = x[i];
-    for (Eigen::Index k = i + 1; k < nv; ++k) sum -= H(k, i) * x[k];
+    for (int k = i + 1; k < end[i]; ++k) sum -= H(k, i) * x[k];
     x[i] = sum / H(i, i);
   }
 }
@@ -389,6 +423,56 @@ void add_rank_one(Eigen::MatrixXd& H, int lo, int count, double weight, const do
     if (v[b] == 0.0) continue;
     const double wb = weight * v[b];
     for (int a = 0; a < count; ++a) column[a] += wb * v[a];
+  }
+}
+
+// H += sum_k W_k c_k c_k^T over the span of `count` dofs from `lo`, c_k a contact's frame row k
+// (rows `stride` apart): one pass over the block for all of the frame's rows, the whole block
+// though only its lower triangle is read (a loop of one length vectorizes; one of falling lengths
+// does not). Dim is a template argument so that the sum over the rows unrolls.
+template <int Dim>
+void add_frame_weights(Eigen::MatrixXd& H, int lo, int count, const double* c, Eigen::Index stride,
+                       const double* W) {
+  const Eigen::Index nv = H.rows();
+  double* column = H.data() + (lo * nv + lo);  // column lo + b from its row lo, for each b
+  for (int b = 0; b < count; ++b, column += nv) {
+    double wc[Dim];
+    bool any = false;
+    for (int k = 0; k < Dim; ++k) {
+      wc[k] = W[k] * c[k * stride + b];
+      any = any || wc[k] != 0.0;
+    }
+    if (!any) continue;
+    for (int a = 0; a < count; ++a) {
+      double sum = wc[0] * c[a];
+      for (int k = 1; k < Dim; ++k) sum += wc[k] * c[k * stride + a];
+      column[a] += sum;
+    }
+  }
+}
+
+// kernel(Dim) with a contact's dim (1 to 6) as a compile-time constant (std::integral_constant),
+// so that the kernels' loops over the frame's rows unroll
+template <class Kernel>
+void with_dim(int dim, Kernel&& kernel) {
+  switch (dim) {
+    case 1: return kernel(std::integral_constant<int, 1>{});
+    case 2: return kernel(std::integral_constant<int, 2>{});
+    case 3: return kernel(std::integral_constant<int, 3>{});
+    case 4: return kernel(std::integral_constant<int, 4>{});
+    case 5: return kernel(std::integral_constant<int, 5>{});
+    default: return kernel(std::integral_constant<int, 6>{});
+  }
+}
+
+// c = the frame's rows (rows `stride` apart) times x over the span of `count` dofs, each c_k
+// summed over the span in order
+template <int Dim>
+void frame_times(const double* rows, Eigen::Index stride, int count, const double* x, double* c) {
+  for (int k = 0; k < Dim; ++k) c[k] = 0.0;
+  for (int j = 0; j < count; ++j) {
+    const double xj = x[j];
+    for (int k = 0; k < Dim; ++k) c[k] += rows[k * stride + j] * xj;
   }
 }
 
@@ -406,12 +490,8 @@ void rows_times(const Data& data, const double* x, double* out) {
     const Contact& con = data.contact[i];
     const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
     double c[6];  // the frame's rows times x
-    for (int k = 0; k < con.dim; ++k) {
-      const double* row = C.row(r + k).data() + lo;
-      double sum = 0.0;
-      for (int j = 0; j < span; ++j) sum += row[j] * x[lo + j];
-      c[k] = sum;
-    }
+    with_dim(con.dim,
+             [&](auto dim) { frame_times<dim>(C.row(r).data() + lo, C.cols(), span, x + lo, c); });
     if (data.efc_type[r] != ConstraintType::kContactPyramidal) {
       for (int k = 0; k < con.dim; ++k) out[r++] = c[k];
       continue;
@@ -474,28 +554,28 @@ void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H) {
     const Contact& con = data.contact[i];
     const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
     const int frame = r;
+    double frame_weight[6] = {};  // along the frame's rows
     if (data.efc_type[r] != ConstraintType::kContactPyramidal) {
-      for (int k = 0; k < con.dim; ++k, ++r) {
-        if (weight[r] != 0.0) add_rank_one(H, lo, span, weight[r], C.row(frame + k).data() + lo);
-      }
-      continue;
-    }
-    // A pair of edges n +- mu t that both push adds d+ (n + mu t)(..)^T + d- (n - mu t)(..)^T
-    // = (d+ + d-) n n^T + mu^2 (d+ + d-) t t^T when d+ = d- (the edges of a pyramid share R):
-    // one product along t, and the normal's gathered over the pairs. A lone edge adds its own.
-    double normal = 0.0;
-    for (int k = 1; k < con.dim; ++k, r += 2) {
-      const double plus = weight[r], minus = weight[r + 1];
-      if (plus != 0.0 && plus == minus) {
-        const double mu = con.friction[k - 1];
-        normal += plus + minus;
-        add_rank_one(H, lo, span, mu * mu * (plus + minus), C.row(frame + k).data() + lo);
-      } else {
-        if (plus != 0.0) add_rank_one(H, lo, span, plus, data.efc_J.row(r).data() + lo);
-        if (minus != 0.0) add_rank_one(H, lo, span, minus, data.efc_J.row(r + 1).data() + lo);
+      for (int k = 0; k < con.dim; ++k) frame_weight[k] = weight[r++];
+    } else {
+      // A pair of edges n +- mu t that both push adds d+ (n + mu t)(..)^T + d- (n - mu t)(..)^T
+      // = (d+ + d-) n n^T + mu^2 (d+ + d-) t t^T when d+ = d- (the edges of a pyramid share R):
+      // a weight along t, and the normal's gathered over the pairs. A lone edge adds its own.
+      for (int k = 1; k < con.dim; ++k, r += 2) {
+        const double plus = weight[r], minus = weight[r + 1];
+        if (plus != 0.0 && plus == minus) {
+          const double mu = con.friction[k - 1];
+          frame_weight[0] += plus + minus;
+          frame_weight[k] = mu * mu * (plus + minus);
+        } else {
+          if (plus != 0.0) add_rank_one(H, lo, span, plus, data.efc_J.row(r).data() + lo);
+          if (minus != 0.0) add_rank_one(H, lo, span, minus, data.efc_J.row(r + 1).data() + lo);
+        }
       }
     }
-    if (normal != 0.0) add_rank_one(H, lo, span, normal, C.row(frame).data() + lo);
+    with_dim(con.dim, [&](auto dim) {
+      add_frame_weights<dim>(H, lo, span, C.row(frame).data() + lo, C.cols(), frame_weight);
+    });
   }
 }
 
@@ -523,7 +603,9 @@ void add_frame_hessian(Data& data, int i, const double* W, Eigen::MatrixXd& H) {
   }
 }
 
-void solve_with_hessian(Eigen::MatrixXd& H, Eigen::VectorXd& x) { cholesky_solve(H, x); }
+void solve_with_hessian(Data& data, Eigen::MatrixXd& H, Eigen::VectorXd& x) {
+  cholesky_solve(H, x, data.work.hessian_envelope);
+}
 
 void reference_constraint(const Model& model, Data& data) {
   check_entry(model, data, "lever::reference_constraint");
@@ -567,7 +649,7 @@ bool solve_active_set(Data& data) {
     for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] : 0.0;
     w.newton_H = data.M;
     add_rows_hessian(data, w.lcp_f.data(), w.newton_H);
-    solve_with_hessian(w.newton_H, a);
+    solve_with_hessian(data, w.newton_H, a);
 
     // the rows that push at a; the same set: done
     rows_jar(data, a.data(), w.newton_jar.data());

@@ -50,9 +50,7 @@ Data::Data(const Model& model)
   contact.assign(static_cast<size_t>(std::max(0, model.nconmax)), Contact{});
   work.contact.assign(contact.size(), Contact{});
   work.pair_contact.assign(kMaxPairContacts, Contact{});
-  work.body_weldid.assign(nbody, 0);
   work.body_aabb.assign(6 * static_cast<size_t>(nbody), 0.0);
-  work.body_role.assign(nbody, 0);
   qLD = Eigen::MatrixXd::Zero(nv, nv);
   work.crb.assign(nbody, RigidInertia{});
   work.cacc.assign(nbody, Motion::Zero());
@@ -81,6 +79,7 @@ Data::Data(const Model& model)
   work.dof_chain.assign(2 * static_cast<size_t>(nv), 0);
   work.contact_weight.assign(36 * contact.size(), 0.0);
   work.frame_scratch.assign(6 * static_cast<size_t>(nv), 0.0);
+  work.hessian_envelope.assign(nv, 0);
   work.rk_qpos0 = Eigen::VectorXd::Zero(nq);
   work.rk_dq = Eigen::VectorXd::Zero(nv);  // a velocity: nv, not nq
   work.rk_qvel0 = work.rk_dv = Eigen::VectorXd::Zero(nv);

@@ -55,8 +55,9 @@ void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H);
 void add_frame_hessian(Data& data, int i, const double* W, Eigen::MatrixXd& H);
 
 /// x = H^-1 x for H = M + J^T (...) J assembled above (its lower triangle), which becomes its
-/// Cholesky factor: the active sets and the Newton solver both solve with it.
-void solve_with_hessian(Eigen::MatrixXd& H, Eigen::VectorXd& x);
+/// Cholesky factor: the active sets and the Newton solver both solve with it (data's workspace
+/// holds where its columns end).
+void solve_with_hessian(Data& data, Eigen::MatrixXd& H, Eigen::VectorXd& x);
 
 /// Solve the constraint rows by MuJoCo's Newton method to convergence (solver.cpp): qacc,
 /// efc_b, efc_force, efc_state, qfrc_constraint. Returns the Newton steps taken.
@@ -150,6 +151,10 @@ namespace detail {
 /// throws ModelError naming the object whose numbers overflow (set_const's last step, once the
 /// constants are computed).
 void check_at_qpos0(const Model& model, Data& data);
+
+/// The collision stage's body constants, Model::body_weldid and body_collision
+/// (collision_driver.cpp; set_const computes them once, the broad phase reads them every call).
+void build_collision_constants(Model& model);
 
 /// Size every array of the field table in data for the model, zero-filled (the Data constructor).
 void size_data_arrays(const Model& model, Data& data);

@@ -149,6 +149,7 @@ void set_const(Model& model) {
   build_subtree_masses(model);
   build_rotations(model);
   build_actuator_kinds(model);
+  detail::build_collision_constants(model);
   // the constants and the checks at qpos0 are about the parameters: computed without contacts
   model.contacts_possible = false;
   static std::atomic<std::uint64_t> last_tag{0};

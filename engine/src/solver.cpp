@@ -255,7 +255,7 @@ int solve_constraint_newton([[maybe_unused]] const Model& model, Data& data) {
       add_frame_hessian(data, i, w.contact_weight.data() + 36 * static_cast<std::ptrdiff_t>(i),
                         w.newton_H);
     }
-    solve_with_hessian(w.newton_H, w.newton_dir);
+    solve_with_hessian(data, w.newton_H, w.newton_dir);
     if (!(w.newton_dir.dot(w.newton_grad) < 0)) break;  // no descent left, at rounding
 
     // the exact minimum along the Newton direction

@@ -201,6 +201,8 @@ struct Data {
     std::vector<double> contact_weight;  ///< (36 nconmax) a Hessian's part of each contact, W of
                                          ///< C^T W C in its frame (dim x dim, row-major)
     std::vector<double> frame_scratch;   ///< (6 nv) W C over a contact's dofs
+    std::vector<int> hessian_envelope;   ///< (nv) solve_with_hessian: the factor's envelope,
+                                         ///< one past each column's last nonzero
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages (rk_qpos0 nq, the rest nv)
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
     Eigen::MatrixXd qDeriv;  ///< (nv x nv) implicit: d qfrc_smooth / d qvel
@@ -212,9 +214,7 @@ struct Data {
     // of them fit, so that a refusal leaves the last contacts in place
     std::vector<Contact> contact;       ///< (nconmax)
     std::vector<Contact> pair_contact;  ///< (kMaxPairContacts) one geom pair's contacts
-    std::vector<int> body_weldid;   ///< (nbody) the body each body is welded to (no joint between)
     std::vector<double> body_aabb;  ///< (6 nbody) broad phase: bounds along the eigenframe's axes
-    std::vector<std::uint8_t> body_role;  ///< (nbody) broad phase: can collide, paired with all
   } work;
 
   int nefc_max = 0;  ///< 2 * njnt limit rows, and njmax more if the model can make contacts

@@ -321,6 +321,15 @@ struct Model {
   // ---- set_const: each actuator's kind (issue 20) -------------------------------------------
   std::vector<ActuatorKind> actuator_kind;  ///< (nu) from its gain and bias (see ActuatorKind)
 
+  // ---- set_const: the collision stage's body constants (issue 19) ---------------------------
+  std::vector<int> body_weldid;  ///< (nbody) the body it is welded to: itself if it has joints,
+                                 ///< else its parent's (MuJoCo's body_weldid)
+  /// (nbody) what a body takes part in, in the broad phase (kBodyCollides | kBodyPairsWithAll)
+  std::vector<uint8_t> body_collision;
+  static constexpr uint8_t kBodyCollides = 1;      ///< a geom with contype or conaffinity
+  static constexpr uint8_t kBodyPairsWithAll = 2;  ///< the world with geoms, or a static body
+                                                   ///< holding a plane: paired with every body
+
   /// set_const: whether collision() can find contacts: the model has contact parameters (the
   /// geom_* contact arrays; a model built by hand without them has no contacts) and a <pair>, or
   /// two geoms on different bodies whose contype and conaffinity match. forward() runs the
