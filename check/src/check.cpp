@@ -23,8 +23,6 @@ constexpr double kGravityTolerance = 1e-9;     // N m per N m of the largest tor
 // and its mean over the judged half lags the force at the slip by a few %; measured -2.2 %)
 constexpr double kGripTolerance = 0.05;
 
-const char* torque_unit(bool hinge) { return hinge ? "N m" : "N"; }
-
 void kinematics_findings(const Kinematics& k, std::vector<std::string>& findings) {
   for (const SiteKinematics& s : k.sites) {
     if (s.max_error_transforms > kKinematicsTolerance) {
@@ -47,7 +45,7 @@ void budget_findings(const TorqueBudget& b, std::vector<std::string>& findings) 
   }
   for (const JointBudget& j : b.joints) {
     if (!j.actuated() || !j.loaded || !(j.ratio < 1.0)) continue;
-    const char* unit = torque_unit(j.hinge);
+    const char* unit = fmt::torque_unit(j.hinge);
     findings.push_back("joint " + j.joint +
                        ": its motor cannot hold its own arm: the worst-case "
                        "gravity torque is " +

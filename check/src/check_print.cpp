@@ -15,8 +15,8 @@ using fmt::fixed;
 using fmt::general;
 using fmt::sci;
 using fmt::sig4;
+using fmt::torque_unit;
 
-const char* torque_unit(bool hinge) { return hinge ? "N m" : "N"; }
 const char* position_unit(bool hinge) { return hinge ? "rad" : "m"; }
 
 std::string bool_text(bool b) { return b ? "true" : "false"; }

@@ -38,4 +38,7 @@ std::string matrix(const Eigen::MatrixXd& M, int decimals);
 std::string wrap(const std::string& head, const std::vector<std::string>& items,
                  const std::string& indent, const std::string& tail = "", size_t width = 110);
 
+/// The unit of a joint's force: a hinge's torque or a slide's force.
+inline const char* torque_unit(bool hinge) { return hinge ? "N m" : "N"; }
+
 }  // namespace lever::check::fmt

@@ -38,8 +38,6 @@ namespace lever::check {
 
 namespace {
 
-constexpr double kUnloaded = 1e-9;  // N m (or N): gravity torque below this does not load a stop
-
 // One simulation from a start pose, and the state it came to rest in.
 struct Run {
   Eigen::VectorXd start;

@@ -23,7 +23,6 @@ namespace lever::check {
 namespace {
 
 constexpr int kFormulaPoses = 1000;
-constexpr double kUnloaded = 1e-9;  // N m: below this gravity does not load the joint
 
 double formula_error(const Model& model, GravityProbe& probe) {
   std::mt19937_64 rng(1);

@@ -13,6 +13,9 @@
 
 namespace lever::check {
 
+/// Gravity torque (N m, or N on a slide) below this does not load a joint or a stop.
+constexpr double kUnloaded = 1e-9;
+
 /// Principal moments in ascending order (as the lesson prints them, np.sort).
 inline Eigen::Vector3d sorted_moments(Eigen::Vector3d v) {
   std::sort(v.data(), v.data() + 3);

@@ -18,8 +18,7 @@ namespace {
 constexpr long kSampleBudget = 2000;  // grid points or random samples
 constexpr int kStartsPerJoint = 3;
 constexpr int kMaxSweeps = 100;
-constexpr double kTie = 1e-12;      // relative: a pose this close to the best counts as a tie
-constexpr double kUnloaded = 1e-9;  // N m: below this, gravity does not load the joint
+constexpr double kTie = 1e-12;  // relative: a pose this close to the best counts as a tie
 
 struct Candidate {
   Eigen::VectorXd q;

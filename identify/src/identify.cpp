@@ -20,7 +20,7 @@ namespace lever::identify {
 
 namespace {
 
-constexpr int kPerBody = 10;
+using detail::kPerBody;
 using detail::label_of;
 
 }  // namespace

@@ -14,7 +14,6 @@ namespace lever::identify::detail {
 
 namespace {
 
-constexpr int kPerBody = 10;
 // The data term's weight against the divergence at first: a relative misfit of 1e-4 of
 // |R beta_hat| costs as much as a geodesic distance of 1. Light enough that Levenberg-Marquardt
 // does not crawl along a stiff valley; raised (as augmented-Lagrangian methods do) whenever a round

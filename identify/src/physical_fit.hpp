@@ -25,6 +25,9 @@
 
 namespace lever::identify::detail {
 
+/// Inertial parameters per body in the parameter vector (lever/parameters.hpp's layout).
+constexpr int kPerBody = 10;
+
 struct PhysicalProblem {
   Eigen::VectorXd prior;        ///< (n) the prior's parameters (a known body's: its known ones)
   Eigen::MatrixXd K;            ///< (rank x n) base parameters = K pi

@@ -74,7 +74,7 @@ std::optional<double> obj_number(std::string_view s) {
   return (negative ? -1 : 1) * magnitude;
 }
 
-std::vector<std::string_view> tokens(std::string_view line) {
+std::vector<std::string_view> obj_fields(std::string_view line) {
   std::vector<std::string_view> out;
   size_t i = 0;
   while (i < line.size()) {
@@ -228,7 +228,7 @@ TriangleMesh read_obj(const std::string& text, bool righthand) {
   int number = 0;
   while (std::getline(in, line)) {
     ++number;
-    const std::vector<std::string_view> t = tokens(line);
+    const std::vector<std::string_view> t = obj_fields(line);
     const std::string where = "line " + std::to_string(number) + ": ";
     if (t.empty() || t[0][0] == '#') continue;
     const std::string_view key = t[0];

@@ -40,4 +40,11 @@ constexpr int kMaxDepth = Limits::kDepth;
 /// Parse MJCF text and validate its structure; throws Problem.
 Element read_document(const std::string& xml);
 
+/// Character classes of XML text and attribute values (ASCII only, whatever the locale: what the C
+/// locale's isspace and isdigit accept). The XML reader and the value parser share them.
+inline bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r';
+}
+inline bool is_digit(char c) { return c >= '0' && c <= '9'; }
+
 }  // namespace lever::mjcf::detail

@@ -9,7 +9,6 @@
 //   - eulerseq letters are checked where written, not only when an euler angle uses them.
 #include "values.hpp"
 
-#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cmath>
@@ -19,16 +18,13 @@ namespace lever::mjcf::detail {
 
 namespace {
 
-bool is_blank(char c) { return std::isspace(static_cast<unsigned char>(c)) != 0; }
-bool is_digit(char c) { return std::isdigit(static_cast<unsigned char>(c)) != 0; }
-
 std::vector<std::string> tokens(const std::string& s) {
   std::vector<std::string> out;
   size_t i = 0;
   while (i < s.size()) {
-    while (i < s.size() && is_blank(s[i])) ++i;
+    while (i < s.size() && is_space(s[i])) ++i;
     size_t j = i;
-    while (j < s.size() && !is_blank(s[j])) ++j;
+    while (j < s.size() && !is_space(s[j])) ++j;
     if (j > i) out.push_back(s.substr(i, j - i));
     i = j;
   }
@@ -120,7 +116,7 @@ Value read_numbers(const Element& e, const Attribute& a, const AttributeRule& ru
                             (n == 1 ? "" : "s") + "; expected " + expected(rule);
   if (n > rule.count) fail(e.place(a), a.name, found);
   // mujoco 2.2.2 reads the last number once more when the list ends in a blank (see top)
-  const bool trailing_blank = is_blank(a.value.back());
+  const bool trailing_blank = is_space(a.value.back());
   const bool quirk = trailing_blank && (rule.partial ? n < rule.count : n + 1 == rule.count);
   const std::string note = quirk ? " (the list ends in a blank, which MuJoCo 2.2.2 would fill by "
                                    "repeating the last number; remove the blank)"

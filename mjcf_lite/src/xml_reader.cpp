@@ -41,12 +41,7 @@ struct Node {
   bool is_text = false;
 };
 
-bool is_space(char c) {
-  const auto u = static_cast<unsigned char>(c);
-  return u < 128 && (c == ' ' || c == '\t' || c == '\n' || c == '\v' || c == '\f' || c == '\r');
-}
 bool is_alpha(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); }
-bool is_digit(char c) { return c >= '0' && c <= '9'; }
 bool is_name_start(char c) {
   return static_cast<unsigned char>(c) >= 128 || is_alpha(c) || c == ':' || c == '_';
 }
