@@ -5,8 +5,12 @@
 // the joint's axis through the joint's anchor, a slide moves it along the axis. The recursion
 // carries each frame as a rotation matrix and an origin (R, p), and does for each joint kind only
 // the arithmetic it needs: a hinge about a coordinate axis of its frame (arm2's -y, every Panda
-// joint's z) turns two columns of R. The orientations as quaternions (xquat) are composed beside
-// it only when asked: kinematics() does, in MuJoCo's order, so that xquat has MuJoCo's sign.
+// joint's z) turns two columns of R. So for each constant frame (a body on its parent, its inertial
+// frame, a geom, a site), as set_const classified it (lever/model.hpp FramePlacement): an offset
+// that is zero or along one axis takes one column of R, a frame that is not turned or is turned by
+// a quarter turn copies R's columns; only the others pay for the whole product. The orientations as
+// quaternions (xquat) are composed beside it only when asked: kinematics() does, in MuJoCo's order,
+// so that xquat has MuJoCo's sign.
 //
 // Then, as MuJoCo's mj_comPos, the quantities the dynamics needs, in absolute coordinates (world
 // axes, origin at the subtree centre of mass of the body's world child, c):
@@ -28,7 +32,8 @@ namespace {
 /// R <- R Rot_k(angle) for a turn about coordinate axis k of R's frame, given (c, s) = (cos,
 /// sin) of the angle: column k stays, the other two turn into each other.
 void turn_columns(Mat3& R, int k, double c, double s) {
-  const int i = (k + 1) % 3, j = (k + 2) % 3;
+  static constexpr int kNext[3] = {1, 2, 0};
+  const int i = kNext[k], j = kNext[i];
   for (int row = 0; row < 3; ++row) {
     const double ri = R(row, i), rj = R(row, j);
     R(row, i) = c * ri + s * rj;
@@ -36,29 +41,60 @@ void turn_columns(Mat3& R, int k, double c, double s) {
   }
 }
 
-/// out = A B for 3x3 rotations (out is neither A nor B), written out: Eigen's product of two
-/// row-major fixed matrices, returned by value, costs twice the arithmetic here.
+/// out = A B for 3x3 rotations (out is neither A nor B), row by row: row r of out is
+/// A(r, 0) B.row(0) + A(r, 1) B.row(1) + A(r, 2) B.row(2), the rows' first two entries as one
+/// pair (B is row-major) and the third alone, each sum in the order of the scalar product.
 inline void multiply(const Mat3& A, const Mat3& B, Mat3& out) {
   for (int r = 0; r < 3; ++r) {
     const double a0 = A(r, 0), a1 = A(r, 1), a2 = A(r, 2);
-    out(r, 0) = a0 * B(0, 0) + a1 * B(1, 0) + a2 * B(2, 0);
-    out(r, 1) = a0 * B(0, 1) + a1 * B(1, 1) + a2 * B(2, 1);
+    out.row(r).head<2>() =
+        a0 * B.row(0).head<2>() + a1 * B.row(1).head<2>() + a2 * B.row(2).head<2>();
     out(r, 2) = a0 * B(0, 2) + a1 * B(1, 2) + a2 * B(2, 2);
   }
 }
 
-/// out = A B for a constant rotation B of the model and its AxisMap: a quarter turn only moves
-/// A's columns (signed), anything else is the product.
-inline void multiply(const Mat3& A, const Mat3& B, const AxisMap& map, Mat3& out) {
-  if (map[0] == 0) {
-    multiply(A, B, out);
-    return;
+/// p + R v for a constant offset v placed as `f` says (lever/model.hpp FramePlacement): p, p plus
+/// one column of R, or the whole product. The terms left out are products with zero.
+inline Eigen::Vector3d offset_point(const Eigen::Vector3d& p, const Mat3& R,
+                                    const Eigen::Vector3d& v, const FramePlacement& f) {
+  switch (f.offset) {
+    case FramePlacement::Offset::kZero: return p;
+    case FramePlacement::Offset::kAlongAxis: {
+      const int k = f.axis;
+      const double x = v[k];
+      return Eigen::Vector3d(p[0] + R(0, k) * x, p[1] + R(1, k) * x, p[2] + R(2, k) * x);
+    }
+    case FramePlacement::Offset::kGeneral: break;
   }
-  for (int c = 0; c < 3; ++c) {
-    const int k = (map[c] > 0 ? map[c] : -map[c]) - 1;
-    const double sign = map[c] > 0 ? 1.0 : -1.0;
-    for (int r = 0; r < 3; ++r) out(r, c) = sign * A(r, k);
+  return p + rotate(R, v);
+}
+
+/// out = R B for a constant rotation B placed as `f` says: R, R's columns moved and signed (a
+/// quarter turn), or the product. out is not R.
+inline void turn_frame(const Mat3& R, const Mat3& B, const FramePlacement& f, Mat3& out) {
+  switch (f.turn) {
+    case FramePlacement::Turn::kNone: out = R; return;
+    case FramePlacement::Turn::kQuarter:
+      for (int c = 0; c < 3; ++c) {
+        const int k = f.column[c];
+        const double sign = f.sign[c];
+        out(0, c) = sign * R(0, k);
+        out(1, c) = sign * R(1, k);
+        out(2, c) = sign * R(2, k);
+      }
+      return;
+    case FramePlacement::Turn::kGeneral: break;
   }
+  multiply(R, B, out);
+}
+
+/// A constant frame (offset v, rotation B, placed as `f` says) on the frame (p, R): its origin
+/// and rotation.
+inline void place_frame(const Eigen::Vector3d& p, const Mat3& R, const Eigen::Vector3d& v,
+                        const Mat3& B, const FramePlacement& f, Eigen::Vector3d& origin,
+                        Mat3& rotation) {
+  origin = offset_point(p, R, v, f);
+  turn_frame(R, B, f, rotation);
 }
 
 /// The rotation by angle (c, s) = (cos, sin) about a unit axis, as a matrix (Rodrigues).
@@ -82,7 +118,8 @@ struct Placed {
 // for.
 void place_bodies(const Model& model, Data& data, Placed placed) {
   const bool orientations = placed.orientations;
-  detail::normalize_joint_quats(model, data.qpos.data());
+  // only ball and free joints have quaternions in qpos, and only they make nq exceed nv
+  if (model.nq > model.nv) detail::normalize_joint_quats(model, data.qpos.data());
   for (int b = 1; b < model.nbody; ++b) {
     const int p = model.body_parentid[b];
     Mat3& R = data.xmat[b];
@@ -99,14 +136,12 @@ void place_bodies(const Model& model, Data& data, Placed placed) {
       data.xanchor[j] = pos;
       data.xaxis[j] = Eigen::Vector3d::UnitZ();
     } else {
-      const Mat3& Rp = data.xmat[p];
-      pos = data.xpos[p] + rotate(Rp, model.body_pos[b]);
-      if (model.body_rotated[b]) {
-        multiply(Rp, model.body_mat[b], model.body_axismap[b], R);
-        if (orientations) quat = quat_mul(data.xquat[p], model.body_quat[b]);
-      } else {
-        R = Rp;
-        if (orientations) quat = data.xquat[p];
+      const FramePlacement& placement = model.body_placement[b];
+      place_frame(data.xpos[p], data.xmat[p], model.body_pos[b], model.body_mat[b], placement, pos,
+                  R);
+      if (orientations) {
+        const bool turned = placement.turn != FramePlacement::Turn::kNone;
+        quat = turned ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
       }
     }
 
@@ -157,32 +192,20 @@ void place_bodies(const Model& model, Data& data, Placed placed) {
 
     if (orientations) data.xquat[b] = quat_renormalized(quat);
     data.xpos[b] = pos;
-    data.xipos[b] = pos + rotate(R, model.body_ipos[b]);
-    if (model.body_irotated[b]) {
-      multiply(R, model.body_imat[b], model.body_iaxismap[b], data.ximat[b]);
-    } else {
-      data.ximat[b] = R;
-    }
+    place_frame(pos, R, model.body_ipos[b], model.body_imat[b], model.body_iplacement[b],
+                data.xipos[b], data.ximat[b]);
   }
 
   for (int g = 0; g < (placed.geoms ? model.ngeom : 0); ++g) {
     const int b = model.geom_bodyid[g];
-    data.geom_xpos[g] = data.xpos[b] + rotate(data.xmat[b], model.geom_pos[g]);
-    if (model.geom_rotated[g]) {
-      multiply(data.xmat[b], model.geom_mat[g], model.geom_axismap[g], data.geom_xmat[g]);
-    } else {
-      data.geom_xmat[g] = data.xmat[b];
-    }
+    place_frame(data.xpos[b], data.xmat[b], model.geom_pos[g], model.geom_mat[g],
+                model.geom_placement[g], data.geom_xpos[g], data.geom_xmat[g]);
   }
 
   for (int s = 0; s < model.nsite; ++s) {
     const int b = model.site_bodyid[s];
-    data.site_xpos[s] = data.xpos[b] + rotate(data.xmat[b], model.site_pos[s]);
-    if (model.site_rotated[s]) {
-      multiply(data.xmat[b], model.site_mat[s], model.site_axismap[s], data.site_xmat[s]);
-    } else {
-      data.site_xmat[s] = data.xmat[b];
-    }
+    place_frame(data.xpos[b], data.xmat[b], model.site_pos[s], model.site_mat[s],
+                model.site_placement[s], data.site_xpos[s], data.site_xmat[s]);
   }
 }
 
@@ -194,6 +217,32 @@ void rotation_subspace(const Mat3& body_rotation, const Eigen::Vector3d& to_orig
     S[k].head<3>() = axis;
     S[k].tail<3>() = cross(axis, to_origin);
   }
+}
+
+// A body's spatial inertia in world axes about a point c from its centre of mass (out): mass m,
+// first moment m c, and the rotational inertia R diag(d) R^T about the centre of mass (principal
+// axes R = ximat, principal moments d) moved to the point by the parallel-axis theorem
+// (RigidInertia::from_com's arithmetic), written into out's members: the symmetric product's six
+// entries once each, no temporary.
+inline void world_inertia(const Mat3& R, const Eigen::Vector3d& d, double m,
+                          const Eigen::Vector3d& c, RigidInertia& out) {
+  double Rd[3][3];  // column k of R scaled by the principal moment about it
+  for (int r = 0; r < 3; ++r) {
+    for (int k = 0; k < 3; ++k) Rd[r][k] = R(r, k) * d[k];
+  }
+  const auto entry = [&](int r, int s) {  // row r of R diag(d) against row s of R
+    return Rd[r][0] * R(s, 0) + Rd[r][1] * R(s, 1) + Rd[r][2] * R(s, 2);
+  };
+  const Eigen::Vector3d mc = m * c;
+  out.m = m;
+  out.h = mc;
+  Eigen::Matrix3d& I = out.I;
+  I(0, 0) = entry(0, 0) + (mc[1] * c[1] + mc[2] * c[2]);
+  I(1, 1) = entry(1, 1) + (mc[0] * c[0] + mc[2] * c[2]);
+  I(2, 2) = entry(2, 2) + (mc[0] * c[0] + mc[1] * c[1]);
+  I(0, 1) = I(1, 0) = entry(0, 1) - mc[0] * c[1];
+  I(0, 2) = I(2, 0) = entry(0, 2) - mc[0] * c[2];
+  I(1, 2) = I(2, 1) = entry(1, 2) - mc[1] * c[2];
 }
 
 // Subtree centres of mass, body inertias and joint motion subspaces in absolute coordinates.
@@ -208,21 +257,10 @@ void com_quantities(const Model& model, Data& data) {
     data.subtree_com[b] = m < 1e-15 ? data.xipos[b] : Eigen::Vector3d(data.subtree_com[b] / m);
   }
 
-  // each body's inertia about its tree's centre of mass, world axes: I_world = R diag(I) R^T
+  // each body's inertia about its tree's centre of mass, world axes
   for (int b = 1; b < model.nbody; ++b) {
-    const Mat3& R = data.ximat[b];
-    const Eigen::Vector3d& d = model.body_inertia[b];
-    // column k of R scaled by the principal moment about it
-    const Eigen::Matrix3d RD = R * d.asDiagonal();
-    Eigen::Matrix3d Iw;
-    Iw(0, 0) = RD(0, 0) * R(0, 0) + RD(0, 1) * R(0, 1) + RD(0, 2) * R(0, 2);
-    Iw(1, 1) = RD(1, 0) * R(1, 0) + RD(1, 1) * R(1, 1) + RD(1, 2) * R(1, 2);
-    Iw(2, 2) = RD(2, 0) * R(2, 0) + RD(2, 1) * R(2, 1) + RD(2, 2) * R(2, 2);
-    Iw(0, 1) = Iw(1, 0) = RD(0, 0) * R(1, 0) + RD(0, 1) * R(1, 1) + RD(0, 2) * R(1, 2);
-    Iw(0, 2) = Iw(2, 0) = RD(0, 0) * R(2, 0) + RD(0, 1) * R(2, 1) + RD(0, 2) * R(2, 2);
-    Iw(1, 2) = Iw(2, 1) = RD(1, 0) * R(2, 0) + RD(1, 1) * R(2, 1) + RD(1, 2) * R(2, 2);
     const Eigen::Vector3d c = data.xipos[b] - data.subtree_com[model.body_rootid[b]];
-    data.cinert[b] = RigidInertia::from_com(model.body_mass[b], c, Iw);
+    world_inertia(data.ximat[b], model.body_inertia[b], model.body_mass[b], c, data.cinert[b]);
   }
 
   // each dof's motion subspace: [a; a x (c - p)] for a rotation about world axis a through

@@ -27,9 +27,9 @@ void build_subtree_masses(Model& model) {
   }
 }
 
-// Rotation matrices of the constant quaternions, and whether each is the identity.
-// A hinge whose axis is exactly +-1 along one coordinate axis of its body and zero along the
-// others is dispatched to the kernels that leave the zeros out (bit for bit the general product).
+// A joint's kind (lever/model.hpp JointKind). A hinge whose axis is exactly +-1 along one
+// coordinate axis of its body and zero along the others is dispatched to the kernels that leave the
+// zeros out (bit for bit the general product).
 JointKind joint_kind(const Model& model, int j) {
   switch (model.jnt_type[j]) {
     case JointType::kFree: return JointKind::kFree;
@@ -56,53 +56,68 @@ void build_actuator_kinds(Model& model) {
   }
 }
 
-// R as a quarter turn (lever/model.hpp AxisMap), or {0, 0, 0}: every entry within 1e-15 of 0 or
-// +-1, so that a normalized quaternion's rounding (1/sqrt(2) squared) still counts.
-AxisMap axis_map(const Mat3& R) {
+// Whether R is a quarter turn (every entry within 1e-15 of 0 or +-1, so that a normalized
+// quaternion's rounding, 1/sqrt(2) squared, still counts); if so, its columns into `f`.
+bool is_quarter_turn(const Mat3& R, FramePlacement& f) {
   constexpr double kRounding = 1e-15;
-  AxisMap map{0, 0, 0};
   for (int c = 0; c < 3; ++c) {
+    int found = 0;
     for (int k = 0; k < 3; ++k) {
       const double x = R(k, c);
       if (std::abs(x) <= kRounding) continue;
-      if (std::abs(std::abs(x) - 1.0) > kRounding || map[c] != 0) return AxisMap{0, 0, 0};
-      map[c] = static_cast<int8_t>(x > 0 ? k + 1 : -(k + 1));
+      if (std::abs(std::abs(x) - 1.0) > kRounding || found++ > 0) return false;
+      f.column[c] = static_cast<uint8_t>(k);
+      f.sign[c] = x > 0 ? 1.0 : -1.0;
     }
-    if (map[c] == 0) return AxisMap{0, 0, 0};
+    if (found == 0) return false;
   }
-  return map;
+  return true;
+}
+
+// How kinematics() places a constant frame at offset v, rotation R (of quaternion q).
+FramePlacement placement(const Eigen::Vector3d& v, const Quat& q, const Mat3& R) {
+  FramePlacement f;
+  int nonzero = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (v[k] == 0.0) continue;
+    ++nonzero;
+    f.axis = static_cast<uint8_t>(k);
+  }
+  using Offset = FramePlacement::Offset;
+  f.offset = nonzero == 0 ? Offset::kZero : nonzero == 1 ? Offset::kAlongAxis : Offset::kGeneral;
+  if (is_identity(q)) {
+    f.turn = FramePlacement::Turn::kNone;
+  } else if (is_quarter_turn(R, f)) {
+    f.turn = FramePlacement::Turn::kQuarter;
+  } else {
+    f.turn = FramePlacement::Turn::kGeneral;
+  }
+  return f;
 }
 
 void build_rotations(Model& model) {
-  model.body_rotated.resize(model.nbody);
   model.body_mat.resize(model.nbody);
   model.body_imat.resize(model.nbody);
-  model.body_irotated.resize(model.nbody);
-  model.body_axismap.resize(model.nbody);
-  model.body_iaxismap.resize(model.nbody);
+  model.body_placement.resize(model.nbody);
+  model.body_iplacement.resize(model.nbody);
   for (int b = 0; b < model.nbody; ++b) {
-    model.body_rotated[b] = !is_identity(model.body_quat[b]);
     model.body_mat[b] = quat_to_mat(quat_normalized(model.body_quat[b]));
     model.body_imat[b] = quat_to_mat(quat_normalized(model.body_iquat[b]));
-    model.body_irotated[b] = !is_identity(model.body_iquat[b]);
-    model.body_axismap[b] = axis_map(model.body_mat[b]);
-    model.body_iaxismap[b] = axis_map(model.body_imat[b]);
+    model.body_placement[b] = placement(model.body_pos[b], model.body_quat[b], model.body_mat[b]);
+    model.body_iplacement[b] =
+        placement(model.body_ipos[b], model.body_iquat[b], model.body_imat[b]);
   }
   model.geom_mat.resize(model.ngeom);
-  model.geom_rotated.resize(model.ngeom);
-  model.geom_axismap.resize(model.ngeom);
+  model.geom_placement.resize(model.ngeom);
   for (int g = 0; g < model.ngeom; ++g) {
     model.geom_mat[g] = quat_to_mat(quat_normalized(model.geom_quat[g]));
-    model.geom_rotated[g] = !is_identity(model.geom_quat[g]);
-    model.geom_axismap[g] = axis_map(model.geom_mat[g]);
+    model.geom_placement[g] = placement(model.geom_pos[g], model.geom_quat[g], model.geom_mat[g]);
   }
   model.site_mat.resize(model.nsite);
-  model.site_rotated.resize(model.nsite);
-  model.site_axismap.resize(model.nsite);
+  model.site_placement.resize(model.nsite);
   for (int s = 0; s < model.nsite; ++s) {
     model.site_mat[s] = quat_to_mat(quat_normalized(model.site_quat[s]));
-    model.site_rotated[s] = !is_identity(model.site_quat[s]);
-    model.site_axismap[s] = axis_map(model.site_mat[s]);
+    model.site_placement[s] = placement(model.site_pos[s], model.site_quat[s], model.site_mat[s]);
   }
   model.jnt_kind.resize(model.njnt);
   model.jnt_offset.resize(model.njnt);

@@ -56,10 +56,23 @@ enum class JointKind : uint8_t {
   kFree,    ///< free: position, then a quaternion; three translational dofs, then three rotational
 };
 
-/// A constant rotation R that maps every axis onto an axis (a quarter turn, to within the rounding
-/// of its quaternion): column c of R is sign(m[c]) e_k with k = |m[c]| - 1, so that column c of
-/// A R is column k of A, signed. m[0] == 0: R is not one (a general rotation).
-using AxisMap = std::array<int8_t, 3>;
+/// How kinematics() places a constant frame (a body on its parent, a body's inertial frame, a
+/// geom or a site on its body) at offset v and rotation B in its parent's frame (p, R): set_const
+/// decides it once per frame, so that placing it does only the arithmetic it needs.
+struct FramePlacement {
+  /// The offset R v: nothing (v = 0), one column of R (v along one coordinate axis, `axis`; an
+  /// arm's links mostly are), or the whole product.
+  enum class Offset : uint8_t { kZero, kAlongAxis, kGeneral };
+  /// The rotation R B: R itself (B = 1), R's columns moved and signed (B a quarter turn to within
+  /// the rounding of its quaternion: column c of R B is sign[c] times column column[c] of R;
+  /// MJCF's quat="1 1 0 0", a fromto along an axis), or the whole product.
+  enum class Turn : uint8_t { kNone, kQuarter, kGeneral };
+  Offset offset = Offset::kGeneral;
+  uint8_t axis = 0;
+  Turn turn = Turn::kGeneral;
+  std::array<uint8_t, 3> column{0, 1, 2};
+  std::array<double, 3> sign{1.0, 1.0, 1.0};
+};
 
 /// Integrators; the numeric values are MuJoCo's mjtIntegrator. kImplicit is MuJoCo 2.2.2's
 /// `implicit`: implicit in every velocity-dependent force (MuJoCo 3's `implicitfast` does not
@@ -302,19 +315,13 @@ struct Model {
   std::vector<std::array<double, 2>> body_invweight0;  ///< (translational, rotational) at qpos0
 
   // ---- set_const: constant rotations, so kinematics() does not rebuild them every call ------
-  // A flag is 0 where the rotation is the identity, which lets kinematics() skip the product.
-  std::vector<uint8_t> body_rotated;   ///< body_quat is not the identity
-  std::vector<Mat3> body_mat;          ///< rotation of body_quat
-  std::vector<Mat3> body_imat;         ///< rotation of body_iquat
-  std::vector<uint8_t> body_irotated;  ///< body_iquat is not the identity
-  std::vector<Mat3> geom_mat;          ///< rotation of geom_quat
-  std::vector<uint8_t> geom_rotated;   ///< geom_quat is not the identity
-  std::vector<Mat3> site_mat;          ///< rotation of site_quat
-  std::vector<uint8_t> site_rotated;   ///< site_quat is not the identity
-  /// Each of these rotations as a quarter turn where it is one (see AxisMap): a product with it
-  /// only moves columns. An arm's frames mostly are (MJCF's quat="1 1 0 0", a fromto along an
-  /// axis).
-  std::vector<AxisMap> body_axismap, body_iaxismap, geom_axismap, site_axismap;
+  std::vector<Mat3> body_mat;   ///< rotation of body_quat
+  std::vector<Mat3> body_imat;  ///< rotation of body_iquat
+  std::vector<Mat3> geom_mat;   ///< rotation of geom_quat
+  std::vector<Mat3> site_mat;   ///< rotation of site_quat
+  /// How each constant frame is placed (see FramePlacement): a body on its parent (body_pos,
+  /// body_quat), its inertial frame (body_ipos, body_iquat), a geom, a site.
+  std::vector<FramePlacement> body_placement, body_iplacement, geom_placement, site_placement;
   std::vector<JointKind> jnt_kind;  ///< what the kernels dispatch on (see JointKind)
   std::vector<uint8_t> jnt_offset;  ///< jnt_pos is not zero (the anchor is off the origin)
 
