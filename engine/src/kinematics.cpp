@@ -112,7 +112,7 @@ Mat3 axis_rotation(const Eigen::Vector3d& a, double c, double s) {
 // kJointFrames, also its joints' anchors and axes (xanchor, xaxis) and its inertial frame (xipos,
 // ximat). place_site() asks for the frame alone.
 template <bool kOrientations, bool kJointFrames>
-void place_body(const Model& model, Data& data, int b) {
+[[gnu::always_inline]] inline void place_body(const Model& model, Data& data, int b) {
   const int p = model.body_parentid[b];
   Mat3& R = data.xmat[b];
   Eigen::Vector3d pos;
@@ -214,12 +214,10 @@ struct Placed {
 void place_bodies(const Model& model, Data& data, Placed placed) {
   // only ball and free joints have quaternions in qpos, and only they make nq exceed nv
   if (model.nq > model.nv) detail::normalize_joint_quats(model, data.qpos.data());
-  for (int b = 1; b < model.nbody; ++b) {
-    if (placed.orientations) {
-      place_body<true, true>(model, data, b);
-    } else {
-      place_body<false, true>(model, data, b);
-    }
+  if (placed.orientations) {
+    for (int b = 1; b < model.nbody; ++b) place_body<true, true>(model, data, b);
+  } else {
+    for (int b = 1; b < model.nbody; ++b) place_body<false, true>(model, data, b);
   }
 
   for (int g = 0; g < (placed.geoms ? model.ngeom : 0); ++g) {
