@@ -62,6 +62,9 @@ void register_lever(const Fixture& f) {
   add("fk", f, "lever", lever_fn(&f, s, nothing, [](const Model& m, Data& d) { poses(m, d); }));
   add("kinematics", f, "lever", lever_fn(&f, s, nothing, kin));
   if (site >= 0) {
+    // the tip frame alone from q, what KDL's FK gives and an inverse-kinematics loop reads
+    add("fk_tip", f, "lever",
+        lever_fn(&f, s, nothing, [site](const Model& m, Data& d) { place_site(m, d, site); }));
     // the Jacobians live outside Data, sized once
     auto jac = std::make_shared<std::array<Eigen::MatrixXd, 2>>();
     (*jac)[0].resize(3, f.model.nv);
@@ -156,6 +159,11 @@ void register_mujoco(const Fixture& f) {
   add("fk", f, "mujoco",
       mujoco_fn(&f, s, nothing, [](const mjModel* m, mjData* d) { mj_kinematics(m, d); }));
   add("kinematics", f, "mujoco", mujoco_fn(&f, s, nothing, kin));
+  // MuJoCo has no call that places one frame: its fk_tip is the whole mj_kinematics
+  if (site >= 0) {
+    add("fk_tip", f, "mujoco",
+        mujoco_fn(&f, s, nothing, [](const mjModel* m, mjData* d) { mj_kinematics(m, d); }));
+  }
   if (site >= 0) {
     auto jac = std::make_shared<std::vector<mjtNum>>(6 * static_cast<std::size_t>(f.mj->nv));
     add("jac_site", f, "mujoco", mujoco_fn(&f, s, kin, [site, jac](const mjModel* m, mjData* d) {
@@ -259,6 +267,7 @@ void register_kdl(const Fixture& f) {
     };
   };
   add("fk", f, "kdl", kdl_fn(&KdlPeer::fk));
+  add("fk_tip", f, "kdl", kdl_fn(&KdlPeer::fk));  // the chain's tip is the fixture's site
   add("jac_site", f, "kdl", kdl_fn(&KdlPeer::jacobian));
   add("bias_from_q", f, "kdl", kdl_fn(&KdlPeer::rne_bias));
   add("rnea_from_q", f, "kdl", kdl_fn(&KdlPeer::rne));

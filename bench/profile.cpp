@@ -5,12 +5,13 @@
 //   lever_bench_profile MODEL.xml --all [ITERATIONS]       every operation the model has, in turn
 //   lever_bench_profile MODEL.xml --list                   their names
 //
-// Operations: lever's fk (poses) kinematics jac_site bias bias_from_q rnea rnea_from_q crba
-// crba_factor crba_from_q inverse forward forward_limit step step_limit step_jacobian_forward (the
-// analytic A and B); MuJoCo's counterparts as mujoco:<operation> (bias is mj_rne alone, bias_vel
-// adds mj_comVel; step_jacobian_centred too), KDL's as kdl:<operation> (fk jac_site bias_from_q
-// rnea_from_q crba_from_q forward). Each does what the benchmark of the same name times
-// (bench/benchmarks.cpp), after the same preparation.
+// Operations: lever's fk (poses) fk_tip (place_site of the tip) kinematics jac_site bias
+// bias_from_q rnea rnea_from_q crba crba_factor crba_from_q inverse forward forward_limit step
+// step_limit step_jacobian_forward (the analytic A and B); MuJoCo's counterparts as
+// mujoco:<operation> (bias is mj_rne alone, bias_vel adds mj_comVel; step_jacobian_centred too;
+// fk_tip is mj_kinematics, MuJoCo having no one-frame call), KDL's as kdl:<operation> (fk fk_tip
+// jac_site bias_from_q rnea_from_q crba_from_q forward). Each does what the benchmark of the same
+// name times (bench/benchmarks.cpp), after the same preparation.
 //
 // Under callgrind only the loops are counted (loading the model, the preparation and a few
 // warm-up calls are not):
@@ -124,6 +125,8 @@ std::vector<Operation> operations() {
   return {
       // ---- lever
       {"fk", N::kNothing, 1, [](const Fixture& f, Rig& r) { lever::poses(f.model, r.d); }},
+      {"fk_tip", N::kSite, 1,
+       [](const Fixture& f, Rig& r) { lever::place_site(f.model, r.d, f.site); }},
       {"kinematics", N::kNothing, 1,
        [](const Fixture& f, Rig& r) { lever::kinematics(f.model, r.d); }},
       {"jac_site", N::kSite, 1,
@@ -174,6 +177,8 @@ std::vector<Operation> operations() {
        }},
       // ---- MuJoCo 2.2.2
       {"mujoco:fk", N::kNothing, 1,
+       [](const Fixture& f, Rig& r) { mj_kinematics(f.mj.get(), r.md.get()); }},
+      {"mujoco:fk_tip", N::kSite, 1,
        [](const Fixture& f, Rig& r) { mj_kinematics(f.mj.get(), r.md.get()); }},
       {"mujoco:kinematics", N::kNothing, 1,
        [](const Fixture& f, Rig& r) {
@@ -239,6 +244,7 @@ std::vector<Operation> operations() {
        [transition_fd](const Fixture& f, Rig& r) { transition_fd(f, r, 1); }},
       // ---- Orocos KDL (every solver starts from q)
       {"kdl:fk", N::kChain, 1, [](const Fixture&, Rig& r) { r.kdl->fk(); }},
+      {"kdl:fk_tip", N::kChain, 1, [](const Fixture&, Rig& r) { r.kdl->fk(); }},
       {"kdl:jac_site", N::kChain, 1, [](const Fixture&, Rig& r) { r.kdl->jacobian(); }},
       {"kdl:bias_from_q", N::kChain, 1, [](const Fixture&, Rig& r) { r.kdl->rne_bias(); }},
       {"kdl:rnea_from_q", N::kChain, 1, [](const Fixture&, Rig& r) { r.kdl->rne(); }},

@@ -185,10 +185,15 @@ struct Operation {
 
 const Operation kOperations[] = {
     {"fk",
-     "`poses`: every body's frame and centre-of-mass frame, every geom's and site's frame and "
-     "each joint's anchor and axis, as (R, p) (all of `mj_kinematics` but `xquat`)",
+     "all frames: `poses`, every body's frame and centre-of-mass frame, every geom's and site's "
+     "frame and each joint's anchor and axis, as (R, p) (all of `mj_kinematics` but `xquat`)",
      "`mj_kinematics` (the same, and `xquat`)",
      "`ChainFkSolverPos_recursive`: the tip frame (R, p) alone"},
+    {"fk_tip",
+     "`place_site` of the tip site: the frames (R, p) of the bodies from the tip to the world, "
+     "then the site's",
+     "`mj_kinematics` (MuJoCo has no call that places one frame)",
+     "`ChainFkSolverPos_recursive`: the tip frame (R, p)"},
     {"kinematics",
      "`kinematics`: `poses`, `xquat`, then subtree centres of mass, com-frame inertias and dof "
      "axes",
@@ -464,8 +469,9 @@ int main(int argc, char** argv) {
     }
   }
   for (const std::string& model : model_order) {
-    if (!r.time("fk", model, "kdl") && !counts.count("fk", model, "kdl")) continue;
-    against(model + " `fk` / KDL's `ChainFkSolverPos`", 1.0, "fk", model, "kdl");
+    // one frame from q against one frame from q: `fk_tip` (the `fk` row places every frame)
+    if (!r.time("fk_tip", model, "kdl") && !counts.count("fk_tip", model, "kdl")) continue;
+    against(model + " `fk_tip` / KDL's `ChainFkSolverPos`", 1.0, "fk_tip", model, "kdl");
   }
   // the analytic step Jacobian against one forward: both lever's
   targets.push_back({"panda7 analytic step Jacobian (`step_derivatives`) / one panda7 `forward`",
@@ -600,18 +606,17 @@ int main(int argc, char** argv) {
       return at == std::string::npos ? 0.0 : std::atof(about.c_str() + at + 3);
     };
     for (const std::string& model : model_order) {
-      const auto lever_fk = counts.count("fk", model, "lever");
-      const auto kdl_fk = counts.count("fk", model, "kdl");
+      const auto lever_fk = counts.count("fk_tip", model, "lever");
+      const auto kdl_fk = counts.count("fk_tip", model, "kdl");
       const double nv = dofs_of(model);
       if (!lever_fk || !kdl_fk || nv <= 0 || *lever_fk <= *kdl_fk) continue;
-      out << "- " << model << " `fk` / KDL: lever's `poses` runs " << count_text(*lever_fk)
+      out << "- " << model << " `fk_tip` / KDL: lever's `place_site` runs " << count_text(*lever_fk)
           << " instructions (" << count_text(*lever_fk / nv) << " per joint), KDL's tip frame "
           << count_text(*kdl_fk) << " (" << count_text(*kdl_fk / nv)
-          << " per joint). Both evaluate one `sincos` per hinge; KDL composes one frame "
-          << "product per segment and returns the tip alone, while `poses` also writes every "
-          << "body's frame and centre-of-mass frame, every geom's and site's frame and each "
-          << "joint's anchor and axis (what MuJoCo's callers read), through the model's index "
-          << "arrays.\n";
+          << " per joint). Both evaluate one `sincos` per hinge and compose one frame per body "
+          << "from the world to the tip; `place_site` also checks the state on entry, walks the "
+          << "path through the model's index arrays and writes each body's frame into `Data`, "
+          << "where the Jacobians and MuJoCo's callers read it.\n";
     }
     for (const std::string& model : model_order) {
       const auto lever_bias = counts.count("bias", model, "lever");
@@ -793,11 +798,13 @@ int main(int argc, char** argv) {
          "solver, which lever replaces with an exact solve of the limit rows. KDL's forward "
          "dynamics "
          "has no passive forces, motors or limits, and KDL's solvers always start from q (they "
-         "recompute every segment pose), so KDL is compared on the `*_from_q`, `fk`, `jac_site` "
-         "and "
-         "`forward` rows. KDL's tip Jacobian and FK give one frame; lever's and MuJoCo's FK place "
-         "every "
-         "body, geom and site (`fk`: lever's `poses`, which leaves out the quaternions "
+         "recompute every segment pose), so KDL is compared on the `*_from_q`, `fk`, `fk_tip`, "
+         "`jac_site` and "
+         "`forward` rows. KDL's tip Jacobian and FK give one frame: `fk_tip` compares it with "
+         "lever's "
+         "`place_site`, which places the tip site and the bodies on its path alone (MuJoCo has no "
+         "such call: its `fk_tip` is the whole `mj_kinematics`); the `fk` row places every frame, "
+         "every body, geom and site (lever's `poses`, which leaves out the quaternions "
          "`mj_kinematics` also composes; `kinematics` has them and MuJoCo's `mj_comPos`). lever's "
          "flags include `-ffp-contract=off` (no fused multiply-add); "
          "nothing is "

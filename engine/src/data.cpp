@@ -51,6 +51,7 @@ Data::Data(const Model& model)
   work.contact.assign(contact.size(), Contact{});
   work.pair_contact.assign(kMaxPairContacts, Contact{});
   work.body_aabb.assign(6 * static_cast<size_t>(nbody), 0.0);
+  work.body_path.assign(nbody, 0);
   qLD = Eigen::MatrixXd::Zero(nv, nv);
   work.crb.assign(nbody, RigidInertia{});
   work.cacc.assign(nbody, Motion::Zero());

@@ -107,6 +107,101 @@ Mat3 axis_rotation(const Eigen::Vector3d& a, double c, double s) {
   return out;
 }
 
+// Body b's frame (xpos, xmat) on its parent's, which is placed, with qpos's quaternions
+// normalized. With kOrientations, also its quaternion xquat, composed in MuJoCo's order; with
+// kJointFrames, also its joints' anchors and axes (xanchor, xaxis) and its inertial frame (xipos,
+// ximat). place_site() asks for the frame alone.
+template <bool kOrientations, bool kJointFrames>
+[[gnu::always_inline]] inline void place_body(const Model& model, Data& data, int b) {
+  const int p = model.body_parentid[b];
+  Mat3& R = data.xmat[b];
+  Eigen::Vector3d pos;
+  Quat quat;
+  if (model.body_jntnum[b] == 1 && model.jnt_kind[model.body_jntadr[b]] == JointKind::kFree) {
+    // a free body's pose is its qpos (body_pos and body_quat only gave qpos0); its joint's
+    // anchor is the body's origin and its axis z, by MuJoCo's convention
+    const int j = model.body_jntadr[b];
+    const double* q = &data.qpos[model.jnt_qposadr[j]];
+    pos = Eigen::Vector3d(q[0], q[1], q[2]);
+    quat = Quat(q[3], q[4], q[5], q[6]);
+    R = quat_to_mat(quat);
+    if constexpr (kJointFrames) {
+      data.xanchor[j] = pos;
+      data.xaxis[j] = Eigen::Vector3d::UnitZ();
+    }
+  } else {
+    const FramePlacement& placement = model.body_placement[b];
+    place_frame(data.xpos[p], data.xmat[p], model.body_pos[b], model.body_mat[b], placement, pos,
+                R);
+    if constexpr (kOrientations) {
+      const bool turned = placement.turn != FramePlacement::Turn::kNone;
+      quat = turned ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
+    }
+  }
+
+  for (int k = 0; k < model.body_jntnum[b]; ++k) {
+    const int j = model.body_jntadr[b] + k;
+    const JointKind kind = model.jnt_kind[j];
+    if (kind == JointKind::kFree) break;  // placed above
+    const int qadr = model.jnt_qposadr[j];
+    const Eigen::Vector3d& axis = model.jnt_axis[j];
+    // the joint's anchor and world axis, kept in Data only when asked for
+    const Eigen::Vector3d anchor =
+        model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(R, model.jnt_pos[j])) : pos;
+    if constexpr (kJointFrames) data.xanchor[j] = anchor;
+    Eigen::Vector3d world_axis;
+    switch (kind) {
+      case JointKind::kSlide:
+        world_axis = rotate(R, axis);
+        if constexpr (kJointFrames) data.xaxis[j] = world_axis;
+        pos += world_axis * (data.qpos[qadr] - model.qpos0[qadr]);
+        continue;               // nothing turns: the anchor need not be kept
+      case JointKind::kBall: {  // qpos is the turn itself, a unit quaternion
+        const Quat turn(data.qpos[qadr], data.qpos[qadr + 1], data.qpos[qadr + 2],
+                        data.qpos[qadr + 3]);
+        if constexpr (kJointFrames) data.xaxis[j] = rotate(R, axis);
+        const Mat3 before = R;
+        multiply(before, quat_to_mat(turn), R);
+        if constexpr (kOrientations) quat = quat_mul(quat, turn);
+        break;
+      }
+      default: {  // a hinge: half angles for the quaternion, the whole angle for R
+        const double half = 0.5 * (data.qpos[qadr] - model.qpos0[qadr]);
+        const double sh = std::sin(half), ch = std::cos(half);
+        const double c = ch * ch - sh * sh, s = 2.0 * sh * ch;
+        if (kind == JointKind::kHinge) {
+          if constexpr (kJointFrames) data.xaxis[j] = rotate(R, axis);
+          const Mat3 before = R;
+          multiply(before, axis_rotation(axis, c, s), R);
+          if constexpr (kOrientations)
+            quat = quat_mul(quat, Quat(ch, axis[0] * sh, axis[1] * sh, axis[2] * sh));
+        } else {  // about coordinate axis k of the frame, signed: R's column k is the axis
+          const int about = static_cast<int>(kind) - static_cast<int>(JointKind::kHingeX);
+          const double sign = axis[about];
+          if constexpr (kJointFrames) data.xaxis[j] = sign * R.col(about);
+          turn_columns(R, about, c, sign * s);
+          if constexpr (kOrientations) quat = quat_mul_axis(quat, about, ch, sign * sh);
+        }
+      }
+    }
+    // the anchor stays where it is: the frame's origin swings around it
+    if (model.jnt_offset[j]) pos = anchor - rotate(R, model.jnt_pos[j]);
+  }
+
+  if constexpr (kOrientations) data.xquat[b] = quat_renormalized(quat);
+  data.xpos[b] = pos;
+  if constexpr (kJointFrames) {
+    place_frame(pos, R, model.body_ipos[b], model.body_imat[b], model.body_iplacement[b],
+                data.xipos[b], data.ximat[b]);
+  }
+}
+
+inline void place_site_frame(const Model& model, Data& data, int s) {
+  const int b = model.site_bodyid[s];
+  place_frame(data.xpos[b], data.xmat[b], model.site_pos[s], model.site_mat[s],
+              model.site_placement[s], data.site_xpos[s], data.site_xmat[s]);
+}
+
 // What place_bodies() writes besides the body frames, joint anchors and axes, inertial frames and
 // site frames.
 struct Placed {
@@ -117,83 +212,12 @@ struct Placed {
 // Body frames (xpos, xmat), joint anchors and axes, inertial frames, sites, and what `placed` asks
 // for.
 void place_bodies(const Model& model, Data& data, Placed placed) {
-  const bool orientations = placed.orientations;
   // only ball and free joints have quaternions in qpos, and only they make nq exceed nv
   if (model.nq > model.nv) detail::normalize_joint_quats(model, data.qpos.data());
-  for (int b = 1; b < model.nbody; ++b) {
-    const int p = model.body_parentid[b];
-    Mat3& R = data.xmat[b];
-    Eigen::Vector3d pos;
-    Quat quat;
-    if (model.body_jntnum[b] == 1 && model.jnt_kind[model.body_jntadr[b]] == JointKind::kFree) {
-      // a free body's pose is its qpos (body_pos and body_quat only gave qpos0); its joint's
-      // anchor is the body's origin and its axis z, by MuJoCo's convention
-      const int j = model.body_jntadr[b];
-      const double* q = &data.qpos[model.jnt_qposadr[j]];
-      pos = Eigen::Vector3d(q[0], q[1], q[2]);
-      quat = Quat(q[3], q[4], q[5], q[6]);
-      R = quat_to_mat(quat);
-      data.xanchor[j] = pos;
-      data.xaxis[j] = Eigen::Vector3d::UnitZ();
-    } else {
-      const FramePlacement& placement = model.body_placement[b];
-      place_frame(data.xpos[p], data.xmat[p], model.body_pos[b], model.body_mat[b], placement, pos,
-                  R);
-      if (orientations) {
-        const bool turned = placement.turn != FramePlacement::Turn::kNone;
-        quat = turned ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
-      }
-    }
-
-    for (int k = 0; k < model.body_jntnum[b]; ++k) {
-      const int j = model.body_jntadr[b] + k;
-      const JointKind kind = model.jnt_kind[j];
-      if (kind == JointKind::kFree) break;  // placed above
-      const int qadr = model.jnt_qposadr[j];
-      const Eigen::Vector3d& axis = model.jnt_axis[j];
-      data.xanchor[j] =
-          model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(R, model.jnt_pos[j])) : pos;
-      switch (kind) {
-        case JointKind::kSlide:
-          data.xaxis[j] = rotate(R, axis);
-          pos += data.xaxis[j] * (data.qpos[qadr] - model.qpos0[qadr]);
-          continue;               // nothing turns: the anchor need not be kept
-        case JointKind::kBall: {  // qpos is the turn itself, a unit quaternion
-          const Quat turn(data.qpos[qadr], data.qpos[qadr + 1], data.qpos[qadr + 2],
-                          data.qpos[qadr + 3]);
-          data.xaxis[j] = rotate(R, axis);
-          const Mat3 before = R;
-          multiply(before, quat_to_mat(turn), R);
-          if (orientations) quat = quat_mul(quat, turn);
-          break;
-        }
-        default: {  // a hinge: half angles for the quaternion, the whole angle for R
-          const double half = 0.5 * (data.qpos[qadr] - model.qpos0[qadr]);
-          const double sh = std::sin(half), ch = std::cos(half);
-          const double c = ch * ch - sh * sh, s = 2.0 * sh * ch;
-          if (kind == JointKind::kHinge) {
-            data.xaxis[j] = rotate(R, axis);
-            const Mat3 before = R;
-            multiply(before, axis_rotation(axis, c, s), R);
-            if (orientations)
-              quat = quat_mul(quat, Quat(ch, axis[0] * sh, axis[1] * sh, axis[2] * sh));
-          } else {  // about coordinate axis k of the frame, signed: R's column k is the axis
-            const int about = static_cast<int>(kind) - static_cast<int>(JointKind::kHingeX);
-            const double sign = axis[about];
-            data.xaxis[j] = sign * R.col(about);
-            turn_columns(R, about, c, sign * s);
-            if (orientations) quat = quat_mul_axis(quat, about, ch, sign * sh);
-          }
-        }
-      }
-      // the anchor stays where it is: the frame's origin swings around it
-      if (model.jnt_offset[j]) pos = data.xanchor[j] - rotate(R, model.jnt_pos[j]);
-    }
-
-    if (orientations) data.xquat[b] = quat_renormalized(quat);
-    data.xpos[b] = pos;
-    place_frame(pos, R, model.body_ipos[b], model.body_imat[b], model.body_iplacement[b],
-                data.xipos[b], data.ximat[b]);
+  if (placed.orientations) {
+    for (int b = 1; b < model.nbody; ++b) place_body<true, true>(model, data, b);
+  } else {
+    for (int b = 1; b < model.nbody; ++b) place_body<false, true>(model, data, b);
   }
 
   for (int g = 0; g < (placed.geoms ? model.ngeom : 0); ++g) {
@@ -202,11 +226,7 @@ void place_bodies(const Model& model, Data& data, Placed placed) {
                 model.geom_placement[g], data.geom_xpos[g], data.geom_xmat[g]);
   }
 
-  for (int s = 0; s < model.nsite; ++s) {
-    const int b = model.site_bodyid[s];
-    place_frame(data.xpos[b], data.xmat[b], model.site_pos[s], model.site_mat[s],
-                model.site_placement[s], data.site_xpos[s], data.site_xmat[s]);
-  }
+  for (int s = 0; s < model.nsite; ++s) place_site_frame(model, data, s);
 }
 
 // The three rotations of a ball (or of a free joint): about the body's own axes, the columns of
@@ -314,6 +334,22 @@ void kinematics(const Model& model, Data& data) {
   check_entry(model, data, "lever::kinematics");
   place_bodies(model, data, {.orientations = true, .geoms = true});
   com_quantities(model, data);
+}
+
+void place_site(const Model& model, Data& data, int site) {
+  check_entry(model, data, "lever::place_site");
+  if (site < 0 || site >= model.nsite) {
+    throw StateError("lever::place_site: site " + std::to_string(site) + " is not in 0.." +
+                     std::to_string(model.nsite - 1) + ".");
+  }
+  if (model.nq > model.nv) detail::normalize_joint_quats(model, data.qpos.data());
+  // the path from the site's body to the world, then placed from the world outwards: each body
+  // on its parent, as place_bodies() does, and no other body
+  int* const path = data.work.body_path.data();
+  int length = 0;
+  for (int b = model.site_bodyid[site]; b > 0; b = model.body_parentid[b]) path[length++] = b;
+  while (length > 0) place_body<false, false>(model, data, path[--length]);
+  place_site_frame(model, data, site);
 }
 
 namespace detail {

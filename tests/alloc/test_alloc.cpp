@@ -262,8 +262,10 @@ TEST_CASE("the counting allocator sees operator new and Eigen's allocations", "[
 #endif
 }
 
-TEST_CASE("forward, step, step1, step2, inverse, jac_site and compute_energy allocate nothing",
-          "[alloc]") {
+TEST_CASE(
+    "forward, step, step1, step2, inverse, jac_site, place_site and compute_energy allocate "
+    "nothing",
+    "[alloc]") {
   const std::vector<std::string> files = lever::test::all_model_files();
   REQUIRE(!files.empty());
   for (const std::string& path : files) {
@@ -293,6 +295,13 @@ TEST_CASE("forward, step, step1, step2, inverse, jac_site and compute_energy all
 
         for (int site = 0; site < m.nsite; ++site) {
           a = count([&] { lever::jac_site(m, d, site, jacp, jacr); });
+          CHECK(a.news == 0);
+          CHECK(a.mallocs == 0);
+        }
+
+        // one site's frame from q, each in turn (after the Jacobians: it rewrites site frames)
+        for (int site = 0; site < m.nsite; ++site) {
+          a = count([&] { lever::place_site(m, d, site); });
           CHECK(a.news == 0);
           CHECK(a.mallocs == 0);
         }

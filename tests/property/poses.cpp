@@ -1,5 +1,7 @@
 // The lean pose stage against the whole kinematics: poses() is what kinematics() places, and the
-// quaternions kinematics() composes beside the rotation matrices describe the same rotations.
+// quaternions kinematics() composes beside the rotation matrices describe the same rotations;
+// place_site() places one site's frame, and the bodies on its path, as poses() does, and nothing
+// else.
 #include "property_models.hpp"
 
 namespace lever::test {
@@ -65,6 +67,121 @@ TEST_CASE("property: kinematics()' xquat is a unit quaternion whose rotation is 
         CHECK((from_quat - Eigen::Matrix3d(data.xmat[b])).cwiseAbs().maxCoeff() <= kBound);
       }
     }
+  }
+}
+
+namespace {
+
+constexpr double kUnplaced = -7.25;  // a value no frame holds: what place_site() must leave alone
+
+// Every frame and com-frame array of data but the world body's (which place_site() reads) set to
+// kUnplaced.
+void mark_unplaced(Data& data) {
+  for (std::size_t b = 1; b < data.xpos.size(); ++b) {
+    data.xpos[b].setConstant(kUnplaced);
+    data.xmat[b].setConstant(kUnplaced);
+    data.xquat[b].setConstant(kUnplaced);
+    data.xipos[b].setConstant(kUnplaced);
+    data.ximat[b].setConstant(kUnplaced);
+  }
+  for (auto* a :
+       {&data.xanchor, &data.xaxis, &data.geom_xpos, &data.site_xpos, &data.subtree_com}) {
+    for (auto& v : *a) v.setConstant(kUnplaced);
+  }
+  for (auto* a : {&data.geom_xmat, &data.site_xmat}) {
+    for (auto& m : *a) m.setConstant(kUnplaced);
+  }
+  for (auto& S : data.cdof) S.setConstant(kUnplaced);
+}
+
+template <class T>
+bool unplaced(const T& value) {
+  return (value.array() == kUnplaced).all();
+}
+
+template <class T>
+bool all_unplaced(const std::vector<T>& values) {
+  return std::all_of(values.begin(), values.end(), [](const T& v) { return unplaced(v); });
+}
+
+}  // namespace
+
+TEST_CASE(
+    "property: place_site() writes poses()' frames of the site and its path, bit for bit, "
+    "and nothing else",
+    "[property][kinematics]") {
+  int sites_checked = 0;
+  for (const ModelCase& c : every_model_and_random_trees()) {
+    const Model& m = c.model;
+    Data full(m), tip(m);
+    std::mt19937_64 rng(c.seed);
+    for (int k = 0; k < kStatesPerModel / 20; ++k) {
+      const auto state = random_state(m, rng);
+      apply(state, full);
+      poses(m, full);
+      for (int s = 0; s < m.nsite; ++s) {
+        apply(state, tip);
+        mark_unplaced(tip);
+        place_site(m, tip, s);
+        ++sites_checked;
+        // the path, found here independently of place_site()
+        std::vector<bool> on_path(m.nbody, false);
+        for (int b = m.site_bodyid[s]; b > 0; b = m.body_parentid[b]) on_path[b] = true;
+        INFO(c.name << ", seed " << c.seed << ", state " << k << ", site " << s);
+        CHECK(tip.qpos == full.qpos);  // both normalized the state's quaternions
+        for (int b = 1; b < m.nbody; ++b) {
+          INFO("body " << b << (on_path[b] ? " (on the path)" : ""));
+          if (on_path[b]) {
+            CHECK(tip.xpos[b] == full.xpos[b]);
+            CHECK(tip.xmat[b] == full.xmat[b]);
+          } else {
+            CHECK(unplaced(tip.xpos[b]));
+            CHECK(unplaced(tip.xmat[b]));
+          }
+          CHECK(unplaced(tip.xquat[b]));
+          CHECK(unplaced(tip.xipos[b]));
+          CHECK(unplaced(tip.ximat[b]));
+        }
+        for (int other = 0; other < m.nsite; ++other) {
+          INFO("site_xpos/site_xmat of site " << other);
+          if (other == s) {
+            CHECK(tip.site_xpos[s] == full.site_xpos[s]);
+            CHECK(tip.site_xmat[s] == full.site_xmat[s]);
+          } else {
+            CHECK(unplaced(tip.site_xpos[other]));
+            CHECK(unplaced(tip.site_xmat[other]));
+          }
+        }
+        CHECK(all_unplaced(tip.xanchor));
+        CHECK(all_unplaced(tip.xaxis));
+        CHECK(all_unplaced(tip.geom_xpos));
+        CHECK(all_unplaced(tip.geom_xmat));
+        CHECK(all_unplaced(tip.subtree_com));
+        CHECK(all_unplaced(tip.cdof));
+      }
+    }
+  }
+  CHECK(sites_checked > 0);  // some model has sites: the checks above ran
+}
+
+TEST_CASE("property: place_site() refuses a site index out of range and changes nothing",
+          "[property][kinematics]") {
+  for (const ModelCase& c : every_model_and_random_trees()) {
+    const Model& m = c.model;
+    Data data(m);
+    std::mt19937_64 rng(c.seed);
+    apply(random_state(m, rng), data);
+    mark_unplaced(data);
+    const Eigen::VectorXd qpos = data.qpos;
+    INFO(c.name);
+    for (const int bad : {-1, m.nsite, m.nsite + 5}) {
+      CHECK_THROWS_AS(place_site(m, data, bad), StateError);
+      CHECK_THROWS_WITH(place_site(m, data, bad),
+                        Catch::Contains("lever::place_site: site " + std::to_string(bad)));
+    }
+    CHECK(data.qpos == qpos);
+    CHECK(all_unplaced(std::vector<Eigen::Vector3d>(data.xpos.begin() + 1, data.xpos.end())));
+    CHECK(all_unplaced(data.site_xpos));
   }
 }
 

@@ -215,6 +215,8 @@ struct Data {
     std::vector<Contact> contact;       ///< (nconmax)
     std::vector<Contact> pair_contact;  ///< (kMaxPairContacts) one geom pair's contacts
     std::vector<double> body_aabb;  ///< (6 nbody) broad phase: bounds along the eigenframe's axes
+    // place_site() (issue 18): the bodies from a site's body up to (not including) the world
+    std::vector<int> body_path;  ///< (nbody)
   } work;
 
   int nefc_max = 0;  ///< 2 * njnt limit rows, and njmax more if the model can make contacts

@@ -20,6 +20,14 @@ void kinematics(const Model& model, Data& data);
 /// computes all of them.
 void poses(const Model& model, Data& data);
 
+/// One site's frame at data.qpos, what an inverse-kinematics loop reads: places the bodies on the
+/// path from the site's body to the world (their xpos and xmat), then the site (site_xpos[site],
+/// site_xmat[site]), each bit for bit what poses() writes; normalizes qpos's quaternions as
+/// poses() does, and changes nothing else in Data (the other bodies' and sites' frames, the
+/// joints' anchors and axes, the inertial and geom frames keep what they held). No allocation.
+/// @throws StateError if site is not in 0..nsite-1.
+void place_site(const Model& model, Data& data, int site);
+
 /// Translational (jacp) and rotational (jacr) Jacobians of a site, 3 x nv each, world frame
 /// (MuJoCo's mj_jacSite): site velocity = jacp qvel, angular velocity = jacr qvel.
 /// @pre kinematics() was called for the current qpos.
