@@ -402,8 +402,8 @@ void cholesky_solve(Eigen::MatrixXd& H, Eigen::VectorXd& x, std::vector<int>& co
       for (int i = k; i < e; ++i) Hk[i] -= Lj[i] * Lj[k];
     }
   }
-  for (int j = 0; j < nv;
-       ++j) {  // L y = x, column by column: y_j, once final, leaves the rows below
+  // L y = x, column by column: y_j, once final, leaves the rows below
+  for (int j = 0; j < nv; ++j) {
     x[j] /= H(j, j);
     for (int i = j + 1; i < end[j]; ++i) x[i] -= H(i, j) * x[j];
   }
