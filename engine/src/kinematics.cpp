@@ -31,9 +31,9 @@ namespace {
 
 /// R <- R Rot_k(angle) for a turn about coordinate axis k of R's frame, given (c, s) = (cos,
 /// sin) of the angle: column k stays, the other two turn into each other.
-void turn_columns(Mat3& R, int k, double c, double s) {
-  static constexpr int kNext[3] = {1, 2, 0};
-  const int i = kNext[k], j = kNext[i];
+template <int k>
+inline void turn_columns(Mat3& R, double c, double s) {
+  constexpr int i = (k + 1) % 3, j = (k + 2) % 3;
   for (int row = 0; row < 3; ++row) {
     const double ri = R(row, i), rj = R(row, j);
     R(row, i) = c * ri + s * rj;
@@ -53,20 +53,24 @@ inline void multiply(const Mat3& A, const Mat3& B, Mat3& out) {
   }
 }
 
-/// p + R v for a constant offset v placed as `f` says (lever/model.hpp FramePlacement): p, p plus
-/// one column of R, or the whole product. The terms left out are products with zero.
-inline Eigen::Vector3d offset_point(const Eigen::Vector3d& p, const Mat3& R,
-                                    const Eigen::Vector3d& v, const FramePlacement& f) {
+/// origin = p + R v for a constant offset v placed as `f` says (lever/model.hpp FramePlacement):
+/// p, p plus one column of R, or the whole product; the terms left out are products with zero.
+/// Written entry by entry, so that no temporary is copied into `origin` (which may be p).
+inline void offset_point(const Eigen::Vector3d& p, const Mat3& R, const Eigen::Vector3d& v,
+                         const FramePlacement& f, Eigen::Vector3d& origin) {
   switch (f.offset) {
-    case FramePlacement::Offset::kZero: return p;
+    case FramePlacement::Offset::kZero: origin = p; return;
     case FramePlacement::Offset::kAlongAxis: {
       const int k = f.axis;
       const double x = v[k];
-      return Eigen::Vector3d(p[0] + R(0, k) * x, p[1] + R(1, k) * x, p[2] + R(2, k) * x);
+      for (int r = 0; r < 3; ++r) origin[r] = p[r] + R(r, k) * x;
+      return;
     }
     case FramePlacement::Offset::kGeneral: break;
   }
-  return p + rotate(R, v);
+  for (int r = 0; r < 3; ++r) {
+    origin[r] = p[r] + (R(r, 0) * v[0] + R(r, 1) * v[1] + R(r, 2) * v[2]);
+  }
 }
 
 /// out = R B for a constant rotation B placed as `f` says: R, R's columns moved and signed (a
@@ -93,7 +97,7 @@ inline void turn_frame(const Mat3& R, const Mat3& B, const FramePlacement& f, Ma
 inline void place_frame(const Eigen::Vector3d& p, const Mat3& R, const Eigen::Vector3d& v,
                         const Mat3& B, const FramePlacement& f, Eigen::Vector3d& origin,
                         Mat3& rotation) {
-  origin = offset_point(p, R, v, f);
+  offset_point(p, R, v, f, origin);
   turn_frame(R, B, f, rotation);
 }
 
@@ -107,99 +111,183 @@ Mat3 axis_rotation(const Eigen::Vector3d& a, double c, double s) {
   return out;
 }
 
+// The arrays the placement reads and writes, each vector's data pointer loaded once per call:
+// read through the std::vectors, every store into one array would make the compiler load the
+// next array's data pointer again (Eigen's packet stores may alias any object).
+struct BodyArrays {
+  BodyArrays(const Model& model, Data& data)
+      : parentid(model.body_parentid.data()),
+        jntnum(model.body_jntnum.data()),
+        jntadr(model.body_jntadr.data()),
+        body_pos(model.body_pos.data()),
+        body_quat(model.body_quat.data()),
+        body_mat(model.body_mat.data()),
+        body_placement(model.body_placement.data()),
+        body_ipos(model.body_ipos.data()),
+        body_imat(model.body_imat.data()),
+        body_iplacement(model.body_iplacement.data()),
+        jnt_kind(model.jnt_kind.data()),
+        jnt_offset(model.jnt_offset.data()),
+        jnt_qposadr(model.jnt_qposadr.data()),
+        jnt_pos(model.jnt_pos.data()),
+        jnt_axis(model.jnt_axis.data()),
+        qpos0(model.qpos0.data()),
+        qpos(data.qpos.data()),
+        xpos(data.xpos.data()),
+        xmat(data.xmat.data()),
+        xquat(data.xquat.data()),
+        xipos(data.xipos.data()),
+        ximat(data.ximat.data()),
+        xanchor(data.xanchor.data()),
+        xaxis(data.xaxis.data()) {}
+
+  // the model's
+  const int *parentid, *jntnum, *jntadr;
+  const Eigen::Vector3d* body_pos;
+  const Quat* body_quat;
+  const Mat3* body_mat;
+  const FramePlacement* body_placement;
+  const Eigen::Vector3d* body_ipos;
+  const Mat3* body_imat;
+  const FramePlacement* body_iplacement;
+  const JointKind* jnt_kind;
+  const uint8_t* jnt_offset;
+  const int* jnt_qposadr;
+  const Eigen::Vector3d *jnt_pos, *jnt_axis;
+  const double* qpos0;
+  // the state and what is placed
+  const double* qpos;
+  Eigen::Vector3d* xpos;
+  Mat3* xmat;
+  Quat* xquat;
+  Eigen::Vector3d* xipos;
+  Mat3* ximat;
+  Eigen::Vector3d *xanchor, *xaxis;
+};
+
+// R and quat turned by hinge j about coordinate axis k of the body's frame (set_const's
+// kHingeX, kHingeY, kHingeZ), given (ch, sh) = (cos, sin) of half its angle: R's column k, signed
+// with the joint's axis, is the world axis.
+template <int k, bool kOrientations, bool kJointFrames>
+[[gnu::always_inline]] inline void turn_about_axis(const BodyArrays& a, int j, double ch, double sh,
+                                                   Mat3& R, Quat& quat) {
+  const double sign = a.jnt_axis[j][k];
+  if constexpr (kJointFrames) a.xaxis[j] = sign * R.col(k);
+  turn_columns<k>(R, ch * ch - sh * sh, sign * (2.0 * sh * ch));
+  if constexpr (kOrientations) quat = quat_mul_axis(quat, k, ch, sign * sh);
+}
+
+// The frame (pos, R) and its quaternion moved by joint j of its body (not a free joint).
+template <bool kOrientations, bool kJointFrames>
+[[gnu::always_inline]] inline void move_joint(const BodyArrays& a, int j, Eigen::Vector3d& pos,
+                                              Mat3& R, Quat& quat) {
+  const JointKind kind = a.jnt_kind[j];
+  const int qadr = a.jnt_qposadr[j];
+  const double* q = a.qpos + qadr;
+  const Eigen::Vector3d& axis = a.jnt_axis[j];
+  // the joint's anchor and world axis, kept in Data only when asked for
+  const bool offset = a.jnt_offset[j];
+  const Eigen::Vector3d anchor = offset ? Eigen::Vector3d(pos + rotate(R, a.jnt_pos[j])) : pos;
+  if constexpr (kJointFrames) a.xanchor[j] = anchor;
+  switch (kind) {
+    case JointKind::kSlide: {
+      const Eigen::Vector3d world_axis = rotate(R, axis);
+      if constexpr (kJointFrames) a.xaxis[j] = world_axis;
+      pos += world_axis * (q[0] - a.qpos0[qadr]);
+      return;  // nothing turns: the anchor need not be kept
+    }
+    case JointKind::kBall: {  // qpos is the turn itself, a unit quaternion
+      const Quat turn(q[0], q[1], q[2], q[3]);
+      if constexpr (kJointFrames) a.xaxis[j] = rotate(R, axis);
+      const Mat3 before = R;
+      multiply(before, quat_to_mat(turn), R);
+      if constexpr (kOrientations) quat = quat_mul(quat, turn);
+      break;
+    }
+    default: {  // a hinge: half angles for the quaternion, the whole angle for R
+      const double half = 0.5 * (q[0] - a.qpos0[qadr]);
+      const double sh = std::sin(half), ch = std::cos(half);
+      switch (kind) {
+        case JointKind::kHingeX:
+          turn_about_axis<0, kOrientations, kJointFrames>(a, j, ch, sh, R, quat);
+          break;
+        case JointKind::kHingeY:
+          turn_about_axis<1, kOrientations, kJointFrames>(a, j, ch, sh, R, quat);
+          break;
+        case JointKind::kHingeZ:
+          turn_about_axis<2, kOrientations, kJointFrames>(a, j, ch, sh, R, quat);
+          break;
+        default: {
+          const double c = ch * ch - sh * sh, s = 2.0 * sh * ch;
+          if constexpr (kJointFrames) a.xaxis[j] = rotate(R, axis);
+          const Mat3 before = R;
+          multiply(before, axis_rotation(axis, c, s), R);
+          if constexpr (kOrientations)
+            quat = quat_mul(quat, Quat(ch, axis[0] * sh, axis[1] * sh, axis[2] * sh));
+        }
+      }
+    }
+  }
+  // the anchor stays where it is: the frame's origin swings around it
+  if (offset) pos = anchor - rotate(R, a.jnt_pos[j]);
+}
+
 // Body b's frame (xpos, xmat) on its parent's, which is placed, with qpos's quaternions
 // normalized. With kOrientations, also its quaternion xquat, composed in MuJoCo's order; with
 // kJointFrames, also its joints' anchors and axes (xanchor, xaxis) and its inertial frame (xipos,
 // ximat). place_site() asks for the frame alone.
 template <bool kOrientations, bool kJointFrames>
-[[gnu::always_inline]] inline void place_body(const Model& model, Data& data, int b) {
-  const int p = model.body_parentid[b];
-  Mat3& R = data.xmat[b];
-  Eigen::Vector3d pos;
-  Quat quat;
-  if (model.body_jntnum[b] == 1 && model.jnt_kind[model.body_jntadr[b]] == JointKind::kFree) {
+[[gnu::always_inline]] inline void place_body(const BodyArrays& a, int b) {
+  const int p = a.parentid[b];
+  const int first_joint = a.jntadr[b], last_joint = first_joint + a.jntnum[b];
+  // composed in place in Data: nothing of the body's pose is held in registers across the calls
+  // to sincos, which would save and restore it
+  Eigen::Vector3d& pos = a.xpos[b];
+  Mat3& R = a.xmat[b];
+  Quat& quat = a.xquat[b];
+  if (last_joint == first_joint + 1 && a.jnt_kind[first_joint] == JointKind::kFree) {
     // a free body's pose is its qpos (body_pos and body_quat only gave qpos0); its joint's
     // anchor is the body's origin and its axis z, by MuJoCo's convention
-    const int j = model.body_jntadr[b];
-    const double* q = &data.qpos[model.jnt_qposadr[j]];
+    const double* q = a.qpos + a.jnt_qposadr[first_joint];
+    const Quat turn(q[3], q[4], q[5], q[6]);
     pos = Eigen::Vector3d(q[0], q[1], q[2]);
-    quat = Quat(q[3], q[4], q[5], q[6]);
-    R = quat_to_mat(quat);
+    R = quat_to_mat(turn);
+    if constexpr (kOrientations) quat = quat_renormalized(turn);
     if constexpr (kJointFrames) {
-      data.xanchor[j] = pos;
-      data.xaxis[j] = Eigen::Vector3d::UnitZ();
+      a.xanchor[first_joint] = pos;
+      a.xaxis[first_joint] = Eigen::Vector3d::UnitZ();
     }
   } else {
-    const FramePlacement& placement = model.body_placement[b];
-    place_frame(data.xpos[p], data.xmat[p], model.body_pos[b], model.body_mat[b], placement, pos,
-                R);
+    const FramePlacement& placement = a.body_placement[b];
+    place_frame(a.xpos[p], a.xmat[p], a.body_pos[b], a.body_mat[b], placement, pos, R);
     if constexpr (kOrientations) {
-      const bool turned = placement.turn != FramePlacement::Turn::kNone;
-      quat = turned ? quat_mul(data.xquat[p], model.body_quat[b]) : data.xquat[p];
-    }
-  }
-
-  for (int k = 0; k < model.body_jntnum[b]; ++k) {
-    const int j = model.body_jntadr[b] + k;
-    const JointKind kind = model.jnt_kind[j];
-    if (kind == JointKind::kFree) break;  // placed above
-    const int qadr = model.jnt_qposadr[j];
-    const Eigen::Vector3d& axis = model.jnt_axis[j];
-    // the joint's anchor and world axis, kept in Data only when asked for
-    const Eigen::Vector3d anchor =
-        model.jnt_offset[j] ? Eigen::Vector3d(pos + rotate(R, model.jnt_pos[j])) : pos;
-    if constexpr (kJointFrames) data.xanchor[j] = anchor;
-    Eigen::Vector3d world_axis;
-    switch (kind) {
-      case JointKind::kSlide:
-        world_axis = rotate(R, axis);
-        if constexpr (kJointFrames) data.xaxis[j] = world_axis;
-        pos += world_axis * (data.qpos[qadr] - model.qpos0[qadr]);
-        continue;               // nothing turns: the anchor need not be kept
-      case JointKind::kBall: {  // qpos is the turn itself, a unit quaternion
-        const Quat turn(data.qpos[qadr], data.qpos[qadr + 1], data.qpos[qadr + 2],
-                        data.qpos[qadr + 3]);
-        if constexpr (kJointFrames) data.xaxis[j] = rotate(R, axis);
-        const Mat3 before = R;
-        multiply(before, quat_to_mat(turn), R);
-        if constexpr (kOrientations) quat = quat_mul(quat, turn);
-        break;
-      }
-      default: {  // a hinge: half angles for the quaternion, the whole angle for R
-        const double half = 0.5 * (data.qpos[qadr] - model.qpos0[qadr]);
-        const double sh = std::sin(half), ch = std::cos(half);
-        const double c = ch * ch - sh * sh, s = 2.0 * sh * ch;
-        if (kind == JointKind::kHinge) {
-          if constexpr (kJointFrames) data.xaxis[j] = rotate(R, axis);
-          const Mat3 before = R;
-          multiply(before, axis_rotation(axis, c, s), R);
-          if constexpr (kOrientations)
-            quat = quat_mul(quat, Quat(ch, axis[0] * sh, axis[1] * sh, axis[2] * sh));
-        } else {  // about coordinate axis k of the frame, signed: R's column k is the axis
-          const int about = static_cast<int>(kind) - static_cast<int>(JointKind::kHingeX);
-          const double sign = axis[about];
-          if constexpr (kJointFrames) data.xaxis[j] = sign * R.col(about);
-          turn_columns(R, about, c, sign * s);
-          if constexpr (kOrientations) quat = quat_mul_axis(quat, about, ch, sign * sh);
-        }
+      if (placement.turn != FramePlacement::Turn::kNone) {
+        quat = quat_mul(a.xquat[p], a.body_quat[b]);
+      } else {
+        quat = a.xquat[p];
       }
     }
-    // the anchor stays where it is: the frame's origin swings around it
-    if (model.jnt_offset[j]) pos = anchor - rotate(R, model.jnt_pos[j]);
+    for (int j = first_joint; j < last_joint; ++j) {
+      if (a.jnt_kind[j] == JointKind::kFree) break;  // a free joint moves its body alone
+      move_joint<kOrientations, kJointFrames>(a, j, pos, R, quat);
+    }
+    if constexpr (kOrientations) quat = quat_renormalized(quat);
   }
-
-  if constexpr (kOrientations) data.xquat[b] = quat_renormalized(quat);
-  data.xpos[b] = pos;
   if constexpr (kJointFrames) {
-    place_frame(pos, R, model.body_ipos[b], model.body_imat[b], model.body_iplacement[b],
-                data.xipos[b], data.ximat[b]);
+    place_frame(pos, R, a.body_ipos[b], a.body_imat[b], a.body_iplacement[b], a.xipos[b],
+                a.ximat[b]);
   }
 }
 
-inline void place_site_frame(const Model& model, Data& data, int s) {
-  const int b = model.site_bodyid[s];
-  place_frame(data.xpos[b], data.xmat[b], model.site_pos[s], model.site_mat[s],
-              model.site_placement[s], data.site_xpos[s], data.site_xmat[s]);
+// Constant frames on their bodies (geoms, sites): frame i of n at (pos[i], mat[i]), placed as
+// placement[i] says, on body bodyid[i], into (xpos[i], xmat[i]).
+void place_attached(int n, const int* bodyid, const Eigen::Vector3d* pos, const Mat3* mat,
+                    const FramePlacement* placement, const Eigen::Vector3d* body_xpos,
+                    const Mat3* body_xmat, Eigen::Vector3d* xpos, Mat3* xmat) {
+  for (int i = 0; i < n; ++i) {
+    const int b = bodyid[i];
+    place_frame(body_xpos[b], body_xmat[b], pos[i], mat[i], placement[i], xpos[i], xmat[i]);
+  }
 }
 
 // What place_bodies() writes besides the body frames, joint anchors and axes, inertial frames and
@@ -214,19 +302,21 @@ struct Placed {
 void place_bodies(const Model& model, Data& data, Placed placed) {
   // only ball and free joints have quaternions in qpos, and only they make nq exceed nv
   if (model.nq > model.nv) detail::normalize_joint_quats(model, data.qpos.data());
+  const BodyArrays arrays(model, data);
+  const int nbody = model.nbody;
   if (placed.orientations) {
-    for (int b = 1; b < model.nbody; ++b) place_body<true, true>(model, data, b);
+    for (int b = 1; b < nbody; ++b) place_body<true, true>(arrays, b);
   } else {
-    for (int b = 1; b < model.nbody; ++b) place_body<false, true>(model, data, b);
+    for (int b = 1; b < nbody; ++b) place_body<false, true>(arrays, b);
   }
-
-  for (int g = 0; g < (placed.geoms ? model.ngeom : 0); ++g) {
-    const int b = model.geom_bodyid[g];
-    place_frame(data.xpos[b], data.xmat[b], model.geom_pos[g], model.geom_mat[g],
-                model.geom_placement[g], data.geom_xpos[g], data.geom_xmat[g]);
+  if (placed.geoms) {
+    place_attached(model.ngeom, model.geom_bodyid.data(), model.geom_pos.data(),
+                   model.geom_mat.data(), model.geom_placement.data(), arrays.xpos, arrays.xmat,
+                   data.geom_xpos.data(), data.geom_xmat.data());
   }
-
-  for (int s = 0; s < model.nsite; ++s) place_site_frame(model, data, s);
+  place_attached(model.nsite, model.site_bodyid.data(), model.site_pos.data(),
+                 model.site_mat.data(), model.site_placement.data(), arrays.xpos, arrays.xmat,
+                 data.site_xpos.data(), data.site_xmat.data());
 }
 
 // The three rotations of a ball (or of a free joint): about the body's own axes, the columns of
@@ -266,47 +356,64 @@ inline void world_inertia(const Mat3& R, const Eigen::Vector3d& d, double m,
 }
 
 // Subtree centres of mass, body inertias and joint motion subspaces in absolute coordinates.
+// Each array's data pointer is loaded once (see BodyArrays).
 void com_quantities(const Model& model, Data& data) {
+  const int nbody = model.nbody;
+  const int* const parentid = model.body_parentid.data();
+  const int* const rootid = model.body_rootid.data();
+  const double* const mass = model.body_mass.data();
+  const double* const subtreemass = model.body_subtreemass.data();
+  const Eigen::Vector3d* const inertia = model.body_inertia.data();
+  const Eigen::Vector3d* const xipos = data.xipos.data();
+  const Mat3* const ximat = data.ximat.data();
+  Eigen::Vector3d* const subtree_com = data.subtree_com.data();
+  RigidInertia* const cinert = data.cinert.data();
+
   // mass-weighted positions, summed leaves to root
-  for (int b = 0; b < model.nbody; ++b) data.subtree_com[b] = model.body_mass[b] * data.xipos[b];
-  for (int b = model.nbody - 1; b > 0; --b) {
-    data.subtree_com[model.body_parentid[b]] += data.subtree_com[b];
-  }
-  for (int b = 0; b < model.nbody; ++b) {
-    const double m = model.body_subtreemass[b];
-    data.subtree_com[b] = m < 1e-15 ? data.xipos[b] : Eigen::Vector3d(data.subtree_com[b] / m);
+  for (int b = 0; b < nbody; ++b) subtree_com[b] = mass[b] * xipos[b];
+  for (int b = nbody - 1; b > 0; --b) subtree_com[parentid[b]] += subtree_com[b];
+  for (int b = 0; b < nbody; ++b) {
+    const double m = subtreemass[b];
+    subtree_com[b] = m < 1e-15 ? xipos[b] : Eigen::Vector3d(subtree_com[b] / m);
   }
 
   // each body's inertia about its tree's centre of mass, world axes
-  for (int b = 1; b < model.nbody; ++b) {
-    const Eigen::Vector3d c = data.xipos[b] - data.subtree_com[model.body_rootid[b]];
-    world_inertia(data.ximat[b], model.body_inertia[b], model.body_mass[b], c, data.cinert[b]);
+  for (int b = 1; b < nbody; ++b) {
+    const Eigen::Vector3d c = xipos[b] - subtree_com[rootid[b]];
+    world_inertia(ximat[b], inertia[b], mass[b], c, cinert[b]);
   }
 
   // each dof's motion subspace: [a; a x (c - p)] for a rotation about world axis a through
   // anchor p, [0; a] for a translation along a
+  const int* const dofadr = model.jnt_dofadr.data();
+  const int* const jnt_bodyid = model.jnt_bodyid.data();
+  const JointKind* const jnt_kind = model.jnt_kind.data();
+  const Eigen::Vector3d* const xanchor = data.xanchor.data();
+  const Eigen::Vector3d* const xaxis = data.xaxis.data();
+  const Mat3* const xmat = data.xmat.data();
+  Motion* const cdof = data.cdof.data();
   for (int j = 0; j < model.njnt; ++j) {
-    const int i = model.jnt_dofadr[j];
-    const int b = model.jnt_bodyid[j];
-    const Eigen::Vector3d to_origin = data.subtree_com[model.body_rootid[b]] - data.xanchor[j];
-    switch (model.jnt_kind[j]) {
+    Motion* const S = cdof + dofadr[j];
+    const int b = jnt_bodyid[j];
+    const Eigen::Vector3d to_origin = subtree_com[rootid[b]] - xanchor[j];
+    switch (jnt_kind[j]) {
       case JointKind::kSlide:
-        data.cdof[i].head<3>().setZero();
-        data.cdof[i].tail<3>() = data.xaxis[j];
+        S[0].head<3>().setZero();
+        S[0].tail<3>() = xaxis[j];
         break;
       case JointKind::kFree:
         // three translations along the world axes, then three rotations as a ball's
         for (int k = 0; k < 3; ++k) {
-          data.cdof[i + k].head<3>().setZero();
-          data.cdof[i + k].tail<3>() = Eigen::Vector3d::Unit(k);
+          S[k].head<3>().setZero();
+          S[k].tail<3>() = Eigen::Vector3d::Unit(k);
         }
-        rotation_subspace(data.xmat[b], to_origin, &data.cdof[i + 3]);
+        rotation_subspace(xmat[b], to_origin, S + 3);
         break;
-      case JointKind::kBall: rotation_subspace(data.xmat[b], to_origin, &data.cdof[i]); break;
+      case JointKind::kBall: rotation_subspace(xmat[b], to_origin, S); break;
       default: {  // a hinge
-        const Eigen::Vector3d& axis = data.xaxis[j];
-        data.cdof[i].head<3>() = axis;
-        data.cdof[i].tail<3>() = cross(axis, to_origin);
+        const Eigen::Vector3d& axis = xaxis[j];
+        S[0].head<3>() = axis;
+        S[0].tail<3>() = cross(axis, to_origin);
       }
     }
   }
@@ -348,8 +455,11 @@ void place_site(const Model& model, Data& data, int site) {
   int* const path = data.work.body_path.data();
   int length = 0;
   for (int b = model.site_bodyid[site]; b > 0; b = model.body_parentid[b]) path[length++] = b;
-  while (length > 0) place_body<false, false>(model, data, path[--length]);
-  place_site_frame(model, data, site);
+  const BodyArrays arrays(model, data);
+  while (length > 0) place_body<false, false>(arrays, path[--length]);
+  place_attached(1, &model.site_bodyid[site], &model.site_pos[site], &model.site_mat[site],
+                 &model.site_placement[site], arrays.xpos, arrays.xmat, &data.site_xpos[site],
+                 &data.site_xmat[site]);
 }
 
 namespace detail {
