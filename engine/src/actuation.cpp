@@ -22,43 +22,59 @@ double clamp(double x, const std::array<double, 2>& range) {
 }
 }  // namespace
 
+void unchecked::transmission(const Model& model, Data& data) {
+  const int* const joint = model.actuator_trnid.data();
+  const auto* const gear = model.actuator_gear.data();
+  const int* const qposadr = model.jnt_qposadr.data();
+  const int* const dofadr = model.jnt_dofadr.data();
+  for (int a = 0; a < model.nu; ++a) {
+    const int j = joint[a];
+    const double g = gear[a][0];  // a joint transmission uses gear[0] only
+    data.actuator_length[a] = g * data.qpos[qposadr[j]];
+    data.actuator_velocity[a] = g * data.qvel[dofadr[j]];
+  }
+}
+
 void transmission(const Model& model, Data& data) {
   check_entry(model, data, "lever::transmission");
+  unchecked::transmission(model, data);
+}
+
+void unchecked::actuation(const Model& model, Data& data) {
+  double* const qfrc = data.qfrc_actuator.data();
+  for (int i = 0; i < model.nv; ++i) qfrc[i] = 0.0;
+  if (model.nu == 0) return;
+
+  // the clamped controls; one bad control zeroes them all (MuJoCo's mjWARN_BADCTRL)
+  double* const force = data.actuator_force.data();
+  const double* const ctrl = data.ctrl.data();
   for (int a = 0; a < model.nu; ++a) {
-    const int j = model.actuator_trnid[a];
-    const double gear = model.actuator_gear[a][0];  // a joint transmission uses gear[0] only
-    data.actuator_length[a] = gear * data.qpos[model.jnt_qposadr[j]];
-    data.actuator_velocity[a] = gear * data.qvel[model.jnt_dofadr[j]];
+    force[a] =
+        model.actuator_ctrllimited[a] ? clamp(ctrl[a], model.actuator_ctrlrange[a]) : ctrl[a];
+  }
+  const int bad = first_bad(force, model.nu);
+  if (bad >= 0) {
+    record_warning(data, Warning::kBadCtrl, bad);
+    for (int a = 0; a < model.nu; ++a) force[a] = 0.0;
+  }
+
+  const double* const length = data.actuator_length.data();
+  const double* const velocity = data.actuator_velocity.data();
+  const int* const joint = model.actuator_trnid.data();
+  const auto* const gear = model.actuator_gear.data();
+  const int* const dofadr = model.jnt_dofadr.data();
+  for (int a = 0; a < model.nu; ++a) {
+    double f = force[a] * actuator_gain(model, a, length[a], velocity[a]);
+    f += actuator_bias(model, a, length[a], velocity[a]);
+    if (model.actuator_forcelimited[a]) f = clamp(f, model.actuator_forcerange[a]);
+    force[a] = f;
+    qfrc[dofadr[joint[a]]] += gear[a][0] * f;
   }
 }
 
 void actuation(const Model& model, Data& data) {
   check_entry(model, data, "lever::actuation");
-  data.qfrc_actuator.setZero();
-  if (model.nu == 0) return;
-
-  // the clamped controls; one bad control zeroes them all (MuJoCo's mjWARN_BADCTRL)
-  Eigen::VectorXd& force = data.actuator_force;
-  bool bad = false;
-  for (int a = 0; a < model.nu; ++a) {
-    force[a] = model.actuator_ctrllimited[a] ? clamp(data.ctrl[a], model.actuator_ctrlrange[a])
-                                             : data.ctrl[a];
-    if (!bad && is_bad(force[a])) {
-      bad = true;
-      record_warning(data, Warning::kBadCtrl, a);
-    }
-  }
-  if (bad) force.setZero();
-
-  for (int a = 0; a < model.nu; ++a) {
-    const double length = data.actuator_length[a];
-    const double velocity = data.actuator_velocity[a];
-    force[a] *= actuator_gain(model, a, length, velocity);
-    force[a] += actuator_bias(model, a, length, velocity);
-    if (model.actuator_forcelimited[a]) force[a] = clamp(force[a], model.actuator_forcerange[a]);
-    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
-    data.qfrc_actuator[dof] += model.actuator_gear[a][0] * force[a];
-  }
+  unchecked::actuation(model, data);
 }
 
 bool actuator_clamped(const Model& model, const Data& data, int a) {

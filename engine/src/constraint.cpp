@@ -103,27 +103,35 @@ void require_rows(const Model& model, const Data& data, int n, int rows) {
   }
 }
 
+// Row n: joint j's stop on `sign`'s side (+1 lower, -1 upper) at distance dist.
+void add_limit_row(const Model& model, Data& data, int n, int j, double sign, double dist) {
+  const int dof = model.jnt_dofadr[j];
+  data.efc_type[n] = ConstraintType::kLimitJoint;
+  data.efc_id[n] = j;
+  data.efc_dof[n] = dof;
+  data.efc_sign[n] = sign;
+  data.efc_J.row(n).setZero();
+  data.efc_J(n, dof) = sign;
+  data.efc_pos[n] = dist;
+  data.efc_margin[n] = model.jnt_margin[j];
+}
+
 // The limit rows: lower stop, then upper, of each limited joint within margin of it.
 int add_limit_rows(const Model& model, Data& data) {
+  const uint8_t* const limited = model.jnt_limited.data();
+  const int* const qposadr = model.jnt_qposadr.data();
+  const auto* const range = model.jnt_range.data();
+  const double* const margin_of = model.jnt_margin.data();
+  const double* const qpos = data.qpos.data();
   int n = 0;
   for (int j = 0; j < model.njnt; ++j) {
-    if (!model.jnt_limited[j]) continue;
-    const double q = data.qpos[model.jnt_qposadr[j]];
-    const double margin = model.jnt_margin[j];
-    // lower stop first, then upper; dist < 0 means past the stop
-    const double dist[2] = {q - model.jnt_range[j][0], model.jnt_range[j][1] - q};
-    for (int side = 0; side < 2; ++side) {
-      if (!(dist[side] < margin)) continue;  // strict: resting exactly at the stop makes no row
-      data.efc_type[n] = ConstraintType::kLimitJoint;
-      data.efc_id[n] = j;
-      data.efc_dof[n] = model.jnt_dofadr[j];
-      data.efc_sign[n] = side == 0 ? 1.0 : -1.0;
-      data.efc_J.row(n).setZero();
-      data.efc_J(n, model.jnt_dofadr[j]) = data.efc_sign[n];
-      data.efc_pos[n] = dist[side];
-      data.efc_margin[n] = margin;
-      ++n;
-    }
+    if (!limited[j]) continue;
+    const double q = qpos[qposadr[j]];
+    const double margin = margin_of[j];
+    // dist < 0 means past the stop; strict: resting exactly at the stop makes no row
+    const double lower = q - range[j][0], upper = range[j][1] - q;
+    if (lower < margin) add_limit_row(model, data, n++, j, 1.0, lower);
+    if (upper < margin) add_limit_row(model, data, n++, j, -1.0, upper);
   }
   return n;
 }
@@ -362,8 +370,7 @@ void set_contact_soft_rows(const Model& model, Data& data, int i) {
 
 }  // namespace
 
-void make_constraint(const Model& model, Data& data) {
-  check_entry(model, data, "lever::make_constraint");
+void unchecked::make_constraint(const Model& model, Data& data) {
   const int limits = add_limit_rows(model, data);
   set_limit_soft_rows(model, data, limits);
   int n = limits;
@@ -376,6 +383,11 @@ void make_constraint(const Model& model, Data& data) {
     set_contact_soft_rows(model, data, i);
   }
   data.nefc = n;
+}
+
+void make_constraint(const Model& model, Data& data) {
+  check_entry(model, data, "lever::make_constraint");
+  unchecked::make_constraint(model, data);
 }
 
 namespace {
@@ -607,13 +619,19 @@ void solve_with_hessian(Data& data, Eigen::MatrixXd& H, Eigen::VectorXd& x) {
   cholesky_solve(H, x, data.work.hessian_envelope);
 }
 
-void reference_constraint(const Model& model, Data& data) {
-  check_entry(model, data, "lever::reference_constraint");
+void unchecked::reference_constraint(const Model& model, Data& data) {
+  (void)model;
+  if (data.nefc == 0) return;
   rows_times(data, data.qvel.data(), data.efc_vel.data());
   for (int r = 0; r < data.nefc; ++r) {
     data.efc_aref[r] = -data.efc_B[r] * data.efc_vel[r] -
                        data.efc_K[r] * data.efc_imp[r] * (data.efc_pos[r] - data.efc_margin[r]);
   }
+}
+
+void reference_constraint(const Model& model, Data& data) {
+  check_entry(model, data, "lever::reference_constraint");
+  unchecked::reference_constraint(model, data);
 }
 
 namespace {
@@ -746,26 +764,33 @@ void solve_by_pivoting(const Model& model, Data& data) {
 
 namespace {
 
+// Where every solve starts (and ends, without rows): no constraint force, qacc = qacc_smooth.
+void start_unconstrained(const Model& model, Data& data) {
+  double* const qfrc = data.qfrc_constraint.data();
+  double* const qacc = data.qacc.data();
+  const double* const qacc_smooth = data.qacc_smooth.data();
+  for (int i = 0; i < model.nv; ++i) {
+    qfrc[i] = 0.0;
+    qacc[i] = qacc_smooth[i];
+  }
+}
+
 // Where both one-sided solves start: no constraint force, qacc = qacc_smooth, and each row's
 // b = J qacc_smooth - a_ref (its jar without constraint forces).
-void start_one_sided(Data& data) {
-  data.qfrc_constraint.setZero();
-  data.qacc = data.qacc_smooth;
+void start_one_sided(const Model& model, Data& data) {
+  start_unconstrained(model, data);
   rows_jar(data, data.qacc_smooth.data(), data.efc_b.data());
 }
 
 }  // namespace
 
-void solve_constraint(const Model& model, Data& data) {
-  check_entry(model, data, "lever::solve_constraint");
-  if (model.opt.cone == Cone::kElliptic) {
-    data.qfrc_constraint.setZero();
-    data.qacc = data.qacc_smooth;
+void unchecked::solve_constraint(const Model& model, Data& data) {
+  if (data.nefc == 0 || model.opt.cone == Cone::kElliptic) {
+    start_unconstrained(model, data);
     if (data.nefc > 0) solve_constraint_newton(model, data);
     return;
   }
-  start_one_sided(data);
-  if (data.nefc == 0) return;
+  start_one_sided(model, data);
   // in the smaller space: rows (pivoting on A, nefc x nefc) when there are no more rows than
   // dofs (a limit or two on an arm), dofs (active sets on H, nv x nv) otherwise (a box resting
   // on four corners has 16 pyramid rows and 6 dofs)
@@ -773,9 +798,14 @@ void solve_constraint(const Model& model, Data& data) {
   solve_by_pivoting(model, data);
 }
 
+void solve_constraint(const Model& model, Data& data) {
+  check_entry(model, data, "lever::solve_constraint");
+  unchecked::solve_constraint(model, data);
+}
+
 void solve_constraint_pivoting(const Model& model, Data& data) {
   check_entry(model, data, "lever::solve_constraint_pivoting");
-  start_one_sided(data);
+  start_one_sided(model, data);
   if (data.nefc > 0) solve_by_pivoting(model, data);
 }
 

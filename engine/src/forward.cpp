@@ -13,15 +13,10 @@ namespace lever {
 
 namespace {
 
-// Record a warning if any element of x is bad (NaN or beyond 1e10); true if one was.
-bool record_if_bad(Data& data, const Eigen::VectorXd& x, Warning kind) {
-  for (Eigen::Index i = 0; i < x.size(); ++i) {
-    if (is_bad(x[i])) {
-      record_warning(data, kind, static_cast<int>(i));
-      return true;
-    }
-  }
-  return false;
+// Record a warning if any element of x is bad (NaN or beyond 1e10).
+void record_if_bad(Data& data, const Eigen::VectorXd& x, Warning kind) {
+  const int bad = first_bad(x.data(), static_cast<int>(x.size()));
+  if (bad >= 0) record_warning(data, kind, bad);
 }
 
 // The state forward() and inverse() read: warn about what cannot give finite results.
@@ -39,10 +34,10 @@ void after_kinematics(const Model& model, Data& data) {
   } else {
     data.ncon = 0;
   }
-  crba(model, data);
-  factor_mass(model, data);
-  make_constraint(model, data);
-  transmission(model, data);
+  unchecked::crba(model, data);
+  unchecked::factor_mass(model, data);
+  unchecked::make_constraint(model, data);
+  unchecked::transmission(model, data);
 }
 
 // forward()'s stages, on the kinematics of the caller's choice (kinematics(), or the lean step's
@@ -64,18 +59,26 @@ void position_stage(const Model& model, Data& data) {
 }
 
 void velocity_stage(const Model& model, Data& data) {
-  passive(model, data);
-  bias(model, data);
-  reference_constraint(model, data);
+  unchecked::passive(model, data);
+  unchecked::bias(model, data);
+  unchecked::reference_constraint(model, data);
 }
 
 void acceleration_stage(const Model& model, Data& data) {
   // the unconstrained acceleration, then the limit forces
-  actuation(model, data);
-  data.qfrc_smooth = data.qfrc_passive - data.qfrc_bias + data.qfrc_applied + data.qfrc_actuator;
-  data.qacc_smooth = data.qfrc_smooth;
-  solve_mass(model, data, data.qacc_smooth);
-  solve_constraint(model, data);
+  unchecked::actuation(model, data);
+  double* const qfrc_smooth = data.qfrc_smooth.data();
+  double* const qacc_smooth = data.qacc_smooth.data();
+  const double* const passive = data.qfrc_passive.data();
+  const double* const bias = data.qfrc_bias.data();
+  const double* const applied = data.qfrc_applied.data();
+  const double* const actuator = data.qfrc_actuator.data();
+  for (int i = 0; i < model.nv; ++i) {
+    qfrc_smooth[i] = passive[i] - bias[i] + applied[i] + actuator[i];
+    qacc_smooth[i] = qfrc_smooth[i];
+  }
+  unchecked::solve_mass(model, data, qacc_smooth);
+  unchecked::solve_constraint(model, data);
 }
 
 void forward(const Model& model, Data& data) {

@@ -112,10 +112,27 @@ inline void check_entry(const Model& model, const Data& data, const char* where)
 }
 
 /// The three stages of forward() (MuJoCo's mj_fwdPosition, mj_fwdVelocity, and mj_fwdActuation +
-/// mj_fwdAcceleration + mj_fwdConstraint); step1()/step2() split a step between them.
+/// mj_fwdAcceleration + mj_fwdConstraint); step1()/step2() split a step between them. The entry
+/// check is the caller's.
 void position_stage(const Model& model, Data& data);
 void velocity_stage(const Model& model, Data& data);
 void acceleration_stage(const Model& model, Data& data);
+
+/// The steps of forward()'s stages: each the public function of the same name (lever/dynamics.hpp,
+/// lever/constraint.hpp) without its entry check. forward(), step(), inverse(), step1() and step2()
+/// check Model and Data once, at their door, and then run these.
+namespace unchecked {
+void crba(const Model& model, Data& data);
+void factor_mass(const Model& model, Data& data);
+void solve_mass(const Model& model, const Data& data, double* x);  // x: nv numbers
+void bias(const Model& model, Data& data);
+void passive(const Model& model, Data& data);
+void transmission(const Model& model, Data& data);
+void actuation(const Model& model, Data& data);
+void make_constraint(const Model& model, Data& data);
+void reference_constraint(const Model& model, Data& data);
+void solve_constraint(const Model& model, Data& data);
+}  // namespace unchecked
 
 /// Throws StateError unless a vector argument has n elements.
 void check_argument_size(long size, long n, const char* where, const char* what);
@@ -239,5 +256,16 @@ inline bool starts_segment(const Model& model, int i) {
 
 /// MuJoCo's mju_isBad: NaN, or beyond +-1e10.
 inline bool is_bad(double x) { return x != x || x > 1e10 || x < -1e10; }
+
+/// The first of n numbers that is_bad, or -1. The common case, none, is one pass without
+/// branches (|x| <= 1e10 is false for a NaN too); only then is the first bad one looked for.
+inline int first_bad(const double* x, int n) {
+  bool all_good = true;
+  for (int i = 0; i < n; ++i) all_good &= std::abs(x[i]) <= 1e10;
+  if (all_good) return -1;
+  int i = 0;
+  while (!is_bad(x[i])) ++i;
+  return i;
+}
 
 }  // namespace lever

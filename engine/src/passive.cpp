@@ -16,26 +16,34 @@ void ball_spring(double k, const double* quat, const double* reference, double* 
 
 }  // namespace
 
-void passive(const Model& model, Data& data) {
-  check_entry(model, data, "lever::passive");
+void unchecked::passive(const Model& model, Data& data) {
+  double* const qfrc = data.qfrc_passive.data();
+  const double* const qpos = data.qpos.data();
+  const double* const spring = model.qpos_spring.data();
+  const int* const qposadr = model.jnt_qposadr.data();
+  const int* const dofadr = model.jnt_dofadr.data();
+  const JointKind* const kind = model.jnt_kind.data();
   for (int j = 0; j < model.njnt; ++j) {
     const double k = model.jnt_stiffness[j];
-    const int q = model.jnt_qposadr[j];
-    const int d = model.jnt_dofadr[j];
-    switch (model.jnt_kind[j]) {
+    const int q = qposadr[j];
+    const int d = dofadr[j];
+    switch (kind[j]) {
       case JointKind::kFree:  // a spring on the position, then one on the orientation
-        for (int c = 0; c < 3; ++c) {
-          data.qfrc_passive[d + c] = -k * (data.qpos[q + c] - model.qpos_spring[q + c]);
-        }
-        ball_spring(k, &data.qpos[q + 3], &model.qpos_spring[q + 3], &data.qfrc_passive[d + 3]);
+        for (int c = 0; c < 3; ++c) qfrc[d + c] = -k * (qpos[q + c] - spring[q + c]);
+        ball_spring(k, qpos + q + 3, spring + q + 3, qfrc + d + 3);
         break;
-      case JointKind::kBall:
-        ball_spring(k, &data.qpos[q], &model.qpos_spring[q], &data.qfrc_passive[d]);
-        break;
-      default: data.qfrc_passive[d] = -k * (data.qpos[q] - model.qpos_spring[q]);
+      case JointKind::kBall: ball_spring(k, qpos + q, spring + q, qfrc + d); break;
+      default: qfrc[d] = -k * (qpos[q] - spring[q]);
     }
   }
-  for (int i = 0; i < model.nv; ++i) data.qfrc_passive[i] -= model.dof_damping[i] * data.qvel[i];
+  const double* const damping = model.dof_damping.data();
+  const double* const qvel = data.qvel.data();
+  for (int i = 0; i < model.nv; ++i) qfrc[i] -= damping[i] * qvel[i];
+}
+
+void passive(const Model& model, Data& data) {
+  check_entry(model, data, "lever::passive");
+  unchecked::passive(model, data);
 }
 
 }  // namespace lever

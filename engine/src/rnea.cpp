@@ -18,23 +18,25 @@ namespace {
 
 // tau = ID(q, qd, qdd) without armature; qdd == nullptr means zero acceleration. Also leaves the
 // body velocities and the derivatives of the motion subspaces in data (cvel, cdof_dot).
-void newton_euler(const Model& model, Data& data, const double* qdd,
-                  Eigen::Ref<Eigen::VectorXd> tau) {
-  auto& v = data.cvel;
-  auto& a = data.work.cacc;
-  auto& f = data.work.cfrc;
-  forward_pass(model, data, data.qvel.data(), qdd, true, v, a, &data.cdof_dot, nullptr,
-               [&](int b, const Motion& vb, const Motion& ab) {
-                 f[b] = net_force(data.cinert[b], vb, ab);  // I a + v x* I v
+void newton_euler(const Model& model, Data& data, const double* qdd, double* tau) {
+  const RigidInertia* const I = data.cinert.data();
+  Force* const f = data.work.cfrc.data();
+  forward_pass(model, data, data.qvel.data(), qdd, true, data.cvel, data.work.cacc, &data.cdof_dot,
+               nullptr, [&](int b, const Motion& vb, const Motion& ab) {
+                 f[b] = net_force(I[b], vb, ab);  // I a + v x* I v
                });
-  backward_pass(model, data, f, tau.data());
+  backward_pass(model, data, data.work.cfrc, tau);
 }
 
 }  // namespace
 
+void unchecked::bias(const Model& model, Data& data) {
+  newton_euler(model, data, nullptr, data.qfrc_bias.data());
+}
+
 void bias(const Model& model, Data& data) {
   check_entry(model, data, "lever::bias");
-  newton_euler(model, data, nullptr, data.qfrc_bias);
+  unchecked::bias(model, data);
 }
 
 void rnea(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc,
@@ -42,7 +44,7 @@ void rnea(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd
   check_entry(model, data, "lever::rnea");
   check_argument_size(qacc.size(), model.nv, "lever::rnea", "qacc");
   check_argument_size(tau.size(), model.nv, "lever::rnea", "tau");
-  newton_euler(model, data, qacc.data(), tau);
+  newton_euler(model, data, qacc.data(), tau.data());
   // armature is part of M (crba adds it), so it is part of M qacc here too
   for (int i = 0; i < model.nv; ++i) tau[i] += model.dof_armature[i] * qacc[i];
 }
