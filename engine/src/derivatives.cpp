@@ -180,16 +180,25 @@ VelocityCoupling velocity_coupling(const RigidInertia& I, const Motion& v, const
   return C;
 }
 
-// The body pass, after the forward pass gave each body's v: its inertia into IC and its velocity
-// coupling C into CC (their subtree sums come next). The net force is the forward pass's
-// (net_force, recursion.hpp).
+// The body pass, after the forward pass gave each body's v: its velocity coupling C into CC (their
+// subtree sums come next). The net force is the forward pass's (net_force, recursion.hpp); the
+// subtree inertias IC do not depend on the velocity: crba()'s composites (subtree_inertias()).
 void body_couplings(const Model& model, const Data& data, const std::vector<Motion>& v,
-                    std::vector<RigidInertia>& IC, std::vector<VelocityCoupling>& CC) {
+                    std::vector<VelocityCoupling>& CC) {
   for (int b = 1; b < model.nbody; ++b) {
     const RigidInertia& I = data.cinert[b];
-    IC[b] = I;
     CC[b] = velocity_coupling(I, v[b], I * v[b]);
   }
+}
+
+// The inertia of each body's subtree, summed into w.IC as crba() sums data.work.crb (the same
+// additions in the same order), for rnea_derivatives(), whose caller may have run kinematics()
+// alone; after forward(), data.work.crb holds the same numbers and is read instead.
+const std::vector<RigidInertia>& subtree_inertias(const Model& model, const Data& data,
+                                                  Derivatives::Workspace& w) {
+  for (int b = 1; b < model.nbody; ++b) w.IC[b] = data.cinert[b];
+  sum_over_subtrees(model, w.IC);
+  return w.IC;
 }
 
 // The columns, from the subtree sums IC, CC (and F for dtau_dq): for each dof i, the pairs (i, j)
@@ -302,11 +311,13 @@ void segment_velocity_columns(const Model& model, const Data& data, const double
 }
 
 // Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
-// and dtau_dv. Armature adds armature * qdd, which depends on neither. Without gravity and with
-// qdd = 0 they are the derivatives of the velocity product terms alone (implicit_derivatives).
+// and dtau_dv, given the subtree inertias IC at data.qpos (data.work.crb after forward()).
+// Armature adds armature * qdd, which depends on neither. Without gravity and with qdd = 0 they
+// are the derivatives of the velocity product terms alone (implicit_derivatives).
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
-                           const double* qdd, bool gravity, Derivatives::Workspace& w,
-                           Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
+                           const double* qdd, bool gravity, const std::vector<RigidInertia>& IC,
+                           Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
+                           Eigen::MatrixXd& dtau_dv) {
   // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof, each body's net force
   // (RNEA's forward pass)
   forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot,
@@ -314,15 +325,14 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
                  w.F[b] = net_force(data.cinert[b], vb, ab);  // I a + v x* I v
                });
   if (model.nq != model.nv) segment_accelerations(model, data, qd, qdd, w);
-  body_couplings(model, data, w.v, w.IC, w.CC);
-  // leaves to root: the composites of f, I and C over each subtree (RNEA's backward pass)
+  body_couplings(model, data, w.v, w.CC);
+  // leaves to root: the composites of f and C over each subtree (RNEA's backward pass)
   sum_over_subtrees(model, w.F);
-  sum_over_subtrees(model, w.IC);
   sum_over_subtrees(model, w.CC);
-  derivative_columns(model, data, w.Sdot, &w.Sddot, &w.F, w.IC, w.CC, &dtau_dq, dtau_dv);
+  derivative_columns(model, data, w.Sdot, &w.Sddot, &w.F, IC, w.CC, &dtau_dq, dtau_dv);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
-    segment_velocity_columns(model, data, qd, w.v, w.Sdot, w.IC, dtau_dv);
+    segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, dtau_dv);
   }
 }
 
@@ -554,8 +564,8 @@ RowMatrix& solve_side_by_side(Derivatives::Workspace& w, const Eigen::MatrixXd& 
 void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& deriv) {
   forward(model, data);
   auto& w = deriv.work;
-  rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, w, deriv.dtau_dq,
-                        deriv.dtau_dv);
+  rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, data.work.crb, w,
+                        deriv.dtau_dq, deriv.dtau_dv);
   smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
   // the unconstrained part: M^-1 times each column
   const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
@@ -624,8 +634,8 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   factor_mass_damped(model, data, h);
   w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
   solve_mass_damped(model, data, w.qacc_step);
-  rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, w, w.tau_q,
-                        w.tau_v);
+  rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, data.work.crb, w,
+                        w.tau_q, w.tau_v);
   smooth_rhs(model, data, w.tau_q, w.tau_v, w);
   w.rhs_q += deriv.dconstraint_dq;
   w.rhs_v += deriv.dconstraint_dv;
@@ -687,14 +697,14 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   const double c = s / h;
   w.qacc_shift = c * (w.qacc_step - data.qacc);
   w.qvel_shift = data.qvel + s * w.qacc_step;
-  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, w, w.tau_q,
-                        w.tau_v);
+  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, data.work.crb,
+                        w, w.tau_q, w.tau_v);
   w.rhs_q -= w.tau_q / (2 * c);
   w.rhs_v -= w.tau_v / (2 * c);
   w.qacc_shift = -w.qacc_shift;
   w.qvel_shift = data.qvel - s * w.qacc_step;
-  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, w, w.tau_q,
-                        w.tau_v);
+  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, data.work.crb,
+                        w, w.tau_q, w.tau_v);
   w.rhs_q += w.tau_q / (2 * c);
   w.rhs_v += w.tau_v / (2 * c);
   // + h dD a, D's actuator part: only an affine gain's p2 ctrl depends on anything (ctrl)
@@ -790,8 +800,8 @@ void bias_velocity_derivative(const Model& model, const Data& data, const double
                               const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
                               std::vector<RigidInertia>& IC, std::vector<VelocityCoupling>& CC,
                               Eigen::Ref<Eigen::MatrixXd> out) {
-  body_couplings(model, data, v, IC, CC);
-  sum_over_subtrees(model, IC);
+  // IC: crba()'s subtree inertias (data.work.crb), which the position stage left
+  body_couplings(model, data, v, CC);
   sum_over_subtrees(model, CC);
   derivative_columns(model, data, Sdot, nullptr, nullptr, IC, CC, nullptr, out);
   if (model.nq != model.nv) segment_velocity_columns(model, data, qd, v, Sdot, IC, out);
@@ -854,7 +864,8 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
     throw StateError("rnea_derivatives: qacc has " + std::to_string(qacc.size()) +
                      " elements, the model has nv = " + std::to_string(model.nv) + ".");
   }
-  rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, deriv.work, deriv.dtau_dq,
+  rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true,
+                        subtree_inertias(model, data, deriv.work), deriv.work, deriv.dtau_dq,
                         deriv.dtau_dv);
 }
 
