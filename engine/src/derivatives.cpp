@@ -203,14 +203,15 @@ const std::vector<RigidInertia>& subtree_inertias(const Model& model, const Data
 
 // The columns, from the subtree sums IC, CC (and F for dtau_dq): for each dof i, the pairs (i, j)
 // with j = i or above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now
-// the deeper). dtau_dq == nullptr: d tau / d qd alone (Sddot and F are not read).
+// the deeper). dtau_dq == nullptr: d tau / d qd alone (Sddot and F are not read); dtau_dv ==
+// nullptr: d tau / d q alone.
 void derivative_columns(const Model& model, const Data& data, const std::vector<Motion>& Sdot,
                         const std::vector<Motion>* Sddot, const std::vector<Force>* F,
                         const std::vector<RigidInertia>& ICs,
                         const std::vector<VelocityCoupling>& CCs, Eigen::MatrixXd* dtau_dq,
-                        Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
+                        Eigen::Ref<Eigen::MatrixXd>* dtau_dv) {
   if (dtau_dq != nullptr) dtau_dq->setZero();
-  dtau_dv.setZero();
+  if (dtau_dv != nullptr) dtau_dv->setZero();
   for (int i = 0; i < model.nv; ++i) {
     const int b = model.dof_bodyid[i];
     const Motion& Si = data.cdof[i];
@@ -222,17 +223,21 @@ void derivative_columns(const Model& model, const Data& data, const std::vector<
       if (dtau_dq != nullptr) {
         (*dtau_dq)(i, j) = IC_Si.dot((*Sddot)[j]) + CCt_Si.dot(Sdot[j].head<3>());
       }
-      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+      if (dtau_dv != nullptr) {
+        (*dtau_dv)(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+      }
     }
-    const Force Xv = 2 * (IC * Sdot[i]) + CC * Si;
     if (dtau_dq != nullptr) {
       const Force Xq = IC * (*Sddot)[i] + CC * Sdot[i] + cross_force(Si, (*F)[b]);
       for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
         (*dtau_dq)(k, i) = data.cdof[k].dot(Xq);
       }
     }
-    for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
-      dtau_dv(k, i) = data.cdof[k].dot(Xv);
+    if (dtau_dv != nullptr) {
+      const Force Xv = 2 * (IC * Sdot[i]) + CC * Si;
+      for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+        (*dtau_dv)(k, i) = data.cdof[k].dot(Xv);
+      }
     }
   }
 }
@@ -311,13 +316,14 @@ void segment_velocity_columns(const Model& model, const Data& data, const double
 }
 
 // Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
-// and dtau_dv, given the subtree inertias IC at data.qpos (data.work.crb after forward()).
+// and dtau_dv (nullptr: d / d q alone), given the subtree inertias IC at data.qpos
+// (data.work.crb after forward()).
 // Armature adds armature * qdd, which depends on neither. Without gravity and with qdd = 0 they
 // are the derivatives of the velocity product terms alone (implicit_derivatives).
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, const std::vector<RigidInertia>& IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
-                           Eigen::MatrixXd& dtau_dv) {
+                           Eigen::MatrixXd* dtau_dv) {
   // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof, each body's net force
   // (RNEA's forward pass)
   forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot,
@@ -329,10 +335,15 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
   // leaves to root: the composites of f and C over each subtree (RNEA's backward pass)
   sum_over_subtrees(model, w.F);
   sum_over_subtrees(model, w.CC);
-  derivative_columns(model, data, w.Sdot, &w.Sddot, &w.F, IC, w.CC, &dtau_dq, dtau_dv);
+  if (dtau_dv != nullptr) {
+    Eigen::Ref<Eigen::MatrixXd> velocity_columns(*dtau_dv);
+    derivative_columns(model, data, w.Sdot, &w.Sddot, &w.F, IC, w.CC, &dtau_dq, &velocity_columns);
+  } else {
+    derivative_columns(model, data, w.Sdot, &w.Sddot, &w.F, IC, w.CC, &dtau_dq, nullptr);
+  }
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
-    segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, dtau_dv);
+    if (dtau_dv != nullptr) segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, *dtau_dv);
   }
 }
 
@@ -430,6 +441,7 @@ void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
   for (int r = 0; r < data.nefc; ++r) {
     if (data.efc_state[r] == ConstraintState::kActive) w.rows[n++] = r;
   }
+  w.active_rows = n;
   if (n == 0) return;
 
   // M^-1 J^T and the Cholesky factor of (J M^-1 J^T + R)_SS (J's row r is sign_r e_dof_r)
@@ -565,7 +577,7 @@ void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& 
   forward(model, data);
   auto& w = deriv.work;
   rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, data.work.crb, w,
-                        deriv.dtau_dq, deriv.dtau_dv);
+                        deriv.dtau_dq, &deriv.dtau_dv);
   smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
   // the unconstrained part: M^-1 times each column
   const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
@@ -635,11 +647,13 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
   solve_mass_damped(model, data, w.qacc_step);
   rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, data.work.crb, w,
-                        w.tau_q, w.tau_v);
+                        w.tau_q, &w.tau_v);
   smooth_rhs(model, data, w.tau_q, w.tau_v, w);
-  w.rhs_q += deriv.dconstraint_dq;
-  w.rhs_v += deriv.dconstraint_dv;
-  w.rhs_u += deriv.dconstraint_du;
+  if (w.active_rows > 0) {  // dconstraint_* are zero without an active limit row
+    w.rhs_q += deriv.dconstraint_dq;
+    w.rhs_v += deriv.dconstraint_dv;
+    w.rhs_u += deriv.dconstraint_du;
+  }
   const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
     ltdl_solve_rows(model, data.work.LD2, data.work.LD2DiagInv, Y);
   });
@@ -685,11 +699,15 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   //   - h d[2 Q(qd, a)]  (D's bias part), by polarisation 2 Q(qd, a) = (Q(qd+sa) - Q(qd-sa)) / (2s)
   // With delta = a - qacc and c = s / h, R(qd + s a, c delta) - R(qd - s a, -c delta) is
   // 2 s d[2 Q(qd, a)] + 2 c dL(delta), so dividing it by 2 c gives both terms at once.
-  // (w.rhs_* still hold smooth_rhs() at dtau: forward_derivatives_unchecked solved them into
-  // dqacc_* and left them as they were)
-  w.rhs_q += deriv.dconstraint_dq;
-  w.rhs_v += deriv.dconstraint_dv;
-  w.rhs_u += deriv.dconstraint_du;
+  // R's qvel columns are linear in the velocity (dQ / d qd = 2 Q(qd, .)), so those of
+  // R(qd - s a) are 2 dtau_dv - those of R(qd + s a): the second call computes its qpos columns
+  // alone. (w.rhs_* still hold smooth_rhs() at dtau: forward_derivatives_unchecked solved them
+  // into dqacc_* and left them as they were)
+  if (w.active_rows > 0) {  // dconstraint_* are zero without an active limit row
+    w.rhs_q += deriv.dconstraint_dq;
+    w.rhs_v += deriv.dconstraint_dv;
+    w.rhs_u += deriv.dconstraint_du;
+  }
   const double size_a = w.qacc_step.cwiseAbs().maxCoeff();
   const double size_v = data.qvel.cwiseAbs().maxCoeff();
   // s a as large as qd, so that nothing cancels beyond rounding (any s != 0 is exact)
@@ -698,15 +716,13 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   w.qacc_shift = c * (w.qacc_step - data.qacc);
   w.qvel_shift = data.qvel + s * w.qacc_step;
   rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, data.work.crb,
-                        w, w.tau_q, w.tau_v);
-  w.rhs_q -= w.tau_q / (2 * c);
-  w.rhs_v -= w.tau_v / (2 * c);
+                        w, w.tau_q, &w.tau_v);
   w.qacc_shift = -w.qacc_shift;
   w.qvel_shift = data.qvel - s * w.qacc_step;
   rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, data.work.crb,
-                        w, w.tau_q, w.tau_v);
-  w.rhs_q += w.tau_q / (2 * c);
-  w.rhs_v += w.tau_v / (2 * c);
+                        w, w.tau_q_minus, nullptr);
+  w.rhs_q -= (w.tau_q - w.tau_q_minus) / (2 * c);
+  w.rhs_v -= (w.tau_v - deriv.dtau_dv) / c;  // (R_v(qd + s a) - (2 dtau_dv - R_v(qd + s a))) / 2c
   // + h dD a, D's actuator part: only an affine gain's p2 ctrl depends on anything (ctrl)
   for (int a = 0; a < model.nu; ++a) {
     if (model.actuator_gaintype[a] != GainType::kAffine) continue;
@@ -803,7 +819,7 @@ void bias_velocity_derivative(const Model& model, const Data& data, const double
   // IC: crba()'s subtree inertias (data.work.crb), which the position stage left
   body_couplings(model, data, v, CC);
   sum_over_subtrees(model, CC);
-  derivative_columns(model, data, Sdot, nullptr, nullptr, IC, CC, nullptr, out);
+  derivative_columns(model, data, Sdot, nullptr, nullptr, IC, CC, nullptr, &out);
   if (model.nq != model.nv) segment_velocity_columns(model, data, qd, v, Sdot, IC, out);
 }
 
@@ -854,6 +870,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.K.setZero(nv, nv);
   work.K_lu.setZero(nv, nv);
   work.qvel_shift.setZero(nv);
+  work.tau_q_minus.setZero(nv, nv);
   work.qacc_shift.setZero(nv);
 }
 
@@ -866,7 +883,7 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
   }
   rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true,
                         subtree_inertias(model, data, deriv.work), deriv.work, deriv.dtau_dq,
-                        deriv.dtau_dv);
+                        &deriv.dtau_dv);
 }
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
