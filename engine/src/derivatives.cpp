@@ -180,50 +180,71 @@ VelocityCoupling velocity_coupling(const RigidInertia& I, const Motion& v, const
   return C;
 }
 
-// The body pass, after the forward pass gave each body's v: its inertia into IC and its velocity
-// coupling C into CC (their subtree sums come next). The net force is the forward pass's
-// (net_force, recursion.hpp).
+// The body pass, after the forward pass gave each body's v: its velocity coupling C into CC (their
+// subtree sums come next). The net force is the forward pass's (net_force, recursion.hpp); the
+// subtree inertias IC do not depend on the velocity: crba()'s composites (subtree_inertias()).
 void body_couplings(const Model& model, const Data& data, const std::vector<Motion>& v,
-                    std::vector<RigidInertia>& IC, std::vector<VelocityCoupling>& CC) {
+                    std::vector<VelocityCoupling>& CC) {
   for (int b = 1; b < model.nbody; ++b) {
     const RigidInertia& I = data.cinert[b];
-    IC[b] = I;
     CC[b] = velocity_coupling(I, v[b], I * v[b]);
   }
 }
 
+// The inertia of each body's subtree, summed into w.IC as crba() sums data.work.crb (the same
+// additions in the same order), for rnea_derivatives(), whose caller may have run kinematics()
+// alone; after forward(), data.work.crb holds the same numbers and is read instead.
+const std::vector<RigidInertia>& subtree_inertias(const Model& model, const Data& data,
+                                                  Derivatives::Workspace& w) {
+  for (int b = 1; b < model.nbody; ++b) w.IC[b] = data.cinert[b];
+  sum_over_subtrees(model, w.IC);
+  return w.IC;
+}
+
+// IC S_i of each dof i (IC its body's subtree inertia): the column force crba() finds, which every
+// RNEA-derivative pass at this qpos reads (derivative_columns), so the step's passes share it.
+void inertia_columns(const Model& model, const Data& data, const std::vector<RigidInertia>& IC,
+                     Derivatives::Workspace& w) {
+  for (int i = 0; i < model.nv; ++i) w.IC_S[i] = IC[model.dof_bodyid[i]] * data.cdof[i];
+}
+
 // The columns, from the subtree sums IC, CC (and F for dtau_dq): for each dof i, the pairs (i, j)
 // with j = i or above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now
-// the deeper). dtau_dq == nullptr: d tau / d qd alone (Sddot and F are not read).
+// the deeper). dtau_dq == nullptr: d tau / d qd alone (Sddot and F are not read); dtau_dv ==
+// nullptr: d tau / d q alone. IC_S: inertia_columns() at this qpos, or nullptr (computed here).
 void derivative_columns(const Model& model, const Data& data, const std::vector<Motion>& Sdot,
                         const std::vector<Motion>* Sddot, const std::vector<Force>* F,
-                        const std::vector<RigidInertia>& ICs,
+                        const std::vector<RigidInertia>& ICs, const std::vector<Force>* IC_S,
                         const std::vector<VelocityCoupling>& CCs, Eigen::MatrixXd* dtau_dq,
-                        Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
+                        Eigen::Ref<Eigen::MatrixXd>* dtau_dv) {
   if (dtau_dq != nullptr) dtau_dq->setZero();
-  dtau_dv.setZero();
+  if (dtau_dv != nullptr) dtau_dv->setZero();
   for (int i = 0; i < model.nv; ++i) {
     const int b = model.dof_bodyid[i];
     const Motion& Si = data.cdof[i];
     const RigidInertia& IC = ICs[b];
     const VelocityCoupling& CC = CCs[b];
-    const Force IC_Si = IC * Si;                            // IC symmetric: S_i . IC x
-    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);  // S_i . CC x (x's angular part)
+    const Force IC_Si = IC_S != nullptr ? (*IC_S)[i] : IC * Si;  // IC symmetric: S_i . IC x
+    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);       // S_i . CC x (x's angular part)
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
       if (dtau_dq != nullptr) {
         (*dtau_dq)(i, j) = IC_Si.dot((*Sddot)[j]) + CCt_Si.dot(Sdot[j].head<3>());
       }
-      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+      if (dtau_dv != nullptr) {
+        (*dtau_dv)(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+      }
     }
-    const Force Xv = 2 * (IC * Sdot[i]) + CC * Si;
     if (dtau_dq != nullptr) {
       const Force Xq = IC * (*Sddot)[i] + CC * Sdot[i] + cross_force(Si, (*F)[b]);
       for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
         (*dtau_dq)(k, i) = data.cdof[k].dot(Xq);
       }
     }
-    for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
-      dtau_dv(k, i) = data.cdof[k].dot(Xv);
+    if (dtau_dv != nullptr) {
+      const Force Xv = 2 * (IC * Sdot[i]) + CC * Si;
+      for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+        (*dtau_dv)(k, i) = data.cdof[k].dot(Xv);
+      }
     }
   }
 }
@@ -302,11 +323,16 @@ void segment_velocity_columns(const Model& model, const Data& data, const double
 }
 
 // Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
-// and dtau_dv. Armature adds armature * qdd, which depends on neither. Without gravity and with
-// qdd = 0 they are the derivatives of the velocity product terms alone (implicit_derivatives).
+// and dtau_dv (nullptr: d / d q alone), given the subtree inertias IC at data.qpos
+// (data.work.crb after forward()) and w.IC_S (inertia_columns()) from them. couplings: the
+// subtree sums of C at the velocity qd when the caller has them, nullptr: summed into w.CC.
+// Armature adds armature * qdd, which depends on neither. Without gravity and with qdd = 0 they
+// are the derivatives of the velocity product terms alone (implicit_derivatives).
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
-                           const double* qdd, bool gravity, Derivatives::Workspace& w,
-                           Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv) {
+                           const double* qdd, bool gravity, const std::vector<RigidInertia>& IC,
+                           Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
+                           Eigen::MatrixXd* dtau_dv,
+                           const std::vector<VelocityCoupling>* couplings = nullptr) {
   // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof, each body's net force
   // (RNEA's forward pass)
   forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot,
@@ -314,15 +340,24 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
                  w.F[b] = net_force(data.cinert[b], vb, ab);  // I a + v x* I v
                });
   if (model.nq != model.nv) segment_accelerations(model, data, qd, qdd, w);
-  body_couplings(model, data, w.v, w.IC, w.CC);
-  // leaves to root: the composites of f, I and C over each subtree (RNEA's backward pass)
+  // leaves to root: the composites of f and C over each subtree (RNEA's backward pass)
   sum_over_subtrees(model, w.F);
-  sum_over_subtrees(model, w.IC);
-  sum_over_subtrees(model, w.CC);
-  derivative_columns(model, data, w.Sdot, &w.Sddot, &w.F, w.IC, w.CC, &dtau_dq, dtau_dv);
+  if (couplings == nullptr) {
+    body_couplings(model, data, w.v, w.CC);
+    sum_over_subtrees(model, w.CC);
+    couplings = &w.CC;
+  }
+  const std::vector<VelocityCoupling>& CC = *couplings;
+  if (dtau_dv != nullptr) {
+    Eigen::Ref<Eigen::MatrixXd> velocity_columns(*dtau_dv);
+    derivative_columns(model, data, w.Sdot, &w.Sddot, &w.F, IC, &w.IC_S, CC, &dtau_dq,
+                       &velocity_columns);
+  } else {
+    derivative_columns(model, data, w.Sdot, &w.Sddot, &w.F, IC, &w.IC_S, CC, &dtau_dq, nullptr);
+  }
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
-    segment_velocity_columns(model, data, qd, w.v, w.Sdot, w.IC, dtau_dv);
+    if (dtau_dv != nullptr) segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, *dtau_dv);
   }
 }
 
@@ -420,6 +455,7 @@ void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
   for (int r = 0; r < data.nefc; ++r) {
     if (data.efc_state[r] == ConstraintState::kActive) w.rows[n++] = r;
   }
+  w.active_rows = n;
   if (n == 0) return;
 
   // M^-1 J^T and the Cholesky factor of (J M^-1 J^T + R)_SS (J's row r is sign_r e_dof_r)
@@ -554,8 +590,9 @@ RowMatrix& solve_side_by_side(Derivatives::Workspace& w, const Eigen::MatrixXd& 
 void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& deriv) {
   forward(model, data);
   auto& w = deriv.work;
-  rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, w, deriv.dtau_dq,
-                        deriv.dtau_dv);
+  inertia_columns(model, data, data.work.crb, w);
+  rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, data.work.crb, w,
+                        deriv.dtau_dq, &deriv.dtau_dv);
   smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
   // the unconstrained part: M^-1 times each column
   const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
@@ -624,12 +661,14 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   factor_mass_damped(model, data, h);
   w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
   solve_mass_damped(model, data, w.qacc_step);
-  rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, w, w.tau_q,
-                        w.tau_v);
+  rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, data.work.crb, w,
+                        w.tau_q, &w.tau_v);
   smooth_rhs(model, data, w.tau_q, w.tau_v, w);
-  w.rhs_q += deriv.dconstraint_dq;
-  w.rhs_v += deriv.dconstraint_dv;
-  w.rhs_u += deriv.dconstraint_du;
+  if (w.active_rows > 0) {  // dconstraint_* are zero without an active limit row
+    w.rhs_q += deriv.dconstraint_dq;
+    w.rhs_v += deriv.dconstraint_dv;
+    w.rhs_u += deriv.dconstraint_du;
+  }
   const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
     ltdl_solve_rows(model, data.work.LD2, data.work.LD2DiagInv, Y);
   });
@@ -675,11 +714,16 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   //   - h d[2 Q(qd, a)]  (D's bias part), by polarisation 2 Q(qd, a) = (Q(qd+sa) - Q(qd-sa)) / (2s)
   // With delta = a - qacc and c = s / h, R(qd + s a, c delta) - R(qd - s a, -c delta) is
   // 2 s d[2 Q(qd, a)] + 2 c dL(delta), so dividing it by 2 c gives both terms at once.
-  // (w.rhs_* still hold smooth_rhs() at dtau: forward_derivatives_unchecked solved them into
-  // dqacc_* and left them as they were)
-  w.rhs_q += deriv.dconstraint_dq;
-  w.rhs_v += deriv.dconstraint_dv;
-  w.rhs_u += deriv.dconstraint_du;
+  // R's qvel columns are linear in the velocity (dQ / d qd = 2 Q(qd, .)), so those of
+  // R(qd - s a) are 2 dtau_dv - those of R(qd + s a): the second call computes its qpos columns
+  // alone. So is C (velocity_coupling()): the second call's is 2 C(qd) - C(qd + s a). (w.rhs_*
+  // still hold smooth_rhs() at dtau: forward_derivatives_unchecked solved them into dqacc_* and
+  // left them as they were)
+  if (w.active_rows > 0) {  // dconstraint_* are zero without an active limit row
+    w.rhs_q += deriv.dconstraint_dq;
+    w.rhs_v += deriv.dconstraint_dv;
+    w.rhs_u += deriv.dconstraint_du;
+  }
   const double size_a = w.qacc_step.cwiseAbs().maxCoeff();
   const double size_v = data.qvel.cwiseAbs().maxCoeff();
   // s a as large as qd, so that nothing cancels beyond rounding (any s != 0 is exact)
@@ -687,16 +731,20 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   const double c = s / h;
   w.qacc_shift = c * (w.qacc_step - data.qacc);
   w.qvel_shift = data.qvel + s * w.qacc_step;
-  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, w, w.tau_q,
-                        w.tau_v);
-  w.rhs_q -= w.tau_q / (2 * c);
-  w.rhs_v -= w.tau_v / (2 * c);
+  w.CC_minus = w.CC;  // C(qd), summed over subtrees by forward_derivatives_unchecked
+  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, data.work.crb,
+                        w, w.tau_q, &w.tau_v);
+  for (int b = 1; b < model.nbody; ++b) {  // C(qd - s a) = 2 C(qd) - C(qd + s a)
+    VelocityCoupling& C = w.CC_minus[b];
+    C.S = 2 * C.S - w.CC[b].S;
+    C.momentum = 2 * C.momentum - w.CC[b].momentum;
+  }
   w.qacc_shift = -w.qacc_shift;
   w.qvel_shift = data.qvel - s * w.qacc_step;
-  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, w, w.tau_q,
-                        w.tau_v);
-  w.rhs_q += w.tau_q / (2 * c);
-  w.rhs_v += w.tau_v / (2 * c);
+  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, data.work.crb,
+                        w, w.tau_q_minus, nullptr, &w.CC_minus);
+  w.rhs_q -= (w.tau_q - w.tau_q_minus) / (2 * c);
+  w.rhs_v -= (w.tau_v - deriv.dtau_dv) / c;  // (R_v(qd + s a) - (2 dtau_dv - R_v(qd + s a))) / 2c
   // + h dD a, D's actuator part: only an affine gain's p2 ctrl depends on anything (ctrl)
   for (int a = 0; a < model.nu; ++a) {
     if (model.actuator_gaintype[a] != GainType::kAffine) continue;
@@ -790,10 +838,10 @@ void bias_velocity_derivative(const Model& model, const Data& data, const double
                               const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
                               std::vector<RigidInertia>& IC, std::vector<VelocityCoupling>& CC,
                               Eigen::Ref<Eigen::MatrixXd> out) {
-  body_couplings(model, data, v, IC, CC);
-  sum_over_subtrees(model, IC);
+  // IC: crba()'s subtree inertias (data.work.crb), which the position stage left
+  body_couplings(model, data, v, CC);
   sum_over_subtrees(model, CC);
-  derivative_columns(model, data, Sdot, nullptr, nullptr, IC, CC, nullptr, out);
+  derivative_columns(model, data, Sdot, nullptr, nullptr, IC, nullptr, CC, nullptr, &out);
   if (model.nq != model.nv) segment_velocity_columns(model, data, qd, v, Sdot, IC, out);
 }
 
@@ -817,7 +865,9 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.F.assign(nbody, Force::Zero());
   work.IC.assign(nbody, RigidInertia());
   work.CC.assign(nbody, VelocityCoupling());
+  work.CC_minus.assign(nbody, VelocityCoupling());
   work.Sdot.assign(ndof, Motion::Zero());
+  work.IC_S.assign(ndof, Force::Zero());
   work.Sddot.assign(ndof, Motion::Zero());
   work.rhs_q.setZero(nv, nv);
   work.rhs_v.setZero(nv, nv);
@@ -844,6 +894,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.K.setZero(nv, nv);
   work.K_lu.setZero(nv, nv);
   work.qvel_shift.setZero(nv);
+  work.tau_q_minus.setZero(nv, nv);
   work.qacc_shift.setZero(nv);
 }
 
@@ -854,8 +905,10 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
     throw StateError("rnea_derivatives: qacc has " + std::to_string(qacc.size()) +
                      " elements, the model has nv = " + std::to_string(model.nv) + ".");
   }
-  rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, deriv.work, deriv.dtau_dq,
-                        deriv.dtau_dv);
+  const std::vector<RigidInertia>& IC = subtree_inertias(model, data, deriv.work);
+  inertia_columns(model, data, IC, deriv.work);
+  rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, IC, deriv.work,
+                        deriv.dtau_dq, &deriv.dtau_dv);
 }
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {

@@ -32,9 +32,10 @@ void smooth_velocity_derivative(const Model& model, Data& data,
                      " but must be nv x nv = " + std::to_string(model.nv) + " x " +
                      std::to_string(model.nv) + ".");
   }
-  // minus the velocity derivative of the bias force (it sets every element)
-  bias_velocity_derivative(model, data, data.qvel.data(), data.cvel, data.cdof_dot,
-                           data.work.subtree_inertia, data.work.subtree_coupling, qDeriv);
+  // minus the velocity derivative of the bias force (it sets every element); the subtree
+  // inertias are crba()'s, which the position stage left in data.work.crb
+  bias_velocity_derivative(model, data, data.qvel.data(), data.cvel, data.cdof_dot, data.work.crb,
+                           data.work.subtree_coupling, qDeriv);
   qDeriv = -qDeriv;
 
   add_actuator_damping_velocity_terms(model, data, qDeriv);

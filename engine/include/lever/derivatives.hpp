@@ -78,6 +78,10 @@ struct Derivatives {
     Eigen::MatrixXd K_lu;            ///< (nv x nv) implicit: K's factor (U + I) L (implicit.cpp)
     Eigen::VectorXd qvel_shift;      ///< (nv) implicit: qvel +- s a (polarisation)
     Eigen::VectorXd qacc_shift;      ///< (nv) implicit: +- c (a - qacc), beside it
+    Eigen::MatrixXd tau_q_minus;     ///< (nv x nv) implicit: d rnea / d qpos at qd - s a
+    int active_rows = 0;             ///< the limit rows active at the last forward (limit_rows)
+    std::vector<Force> IC_S;         ///< (nv) IC S_i, IC dof i's subtree inertia (derivatives.cpp)
+    std::vector<VelocityCoupling> CC_minus;  ///< (nbody) implicit: CC at qd - s a
   } work;
 
   int nv = 0, nu = 0;  ///< sizes of the model this workspace was built for (checked on use)
