@@ -270,8 +270,8 @@ template <bool kOrientations, bool kJointFrames>
         quat = a.xquat[p];
       }
     }
+    // no free joint here: validate() allows one only as its body's single joint
     for (int j = first_joint; j < last_joint; ++j) {
-      if (a.jnt_kind[j] == JointKind::kFree) break;  // a free joint moves its body alone
       move_joint<kOrientations, kJointFrames>(a, j, pos, R, quat);
     }
     if constexpr (kOrientations) quat = quat_renormalized(quat);
