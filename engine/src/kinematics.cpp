@@ -43,13 +43,16 @@ inline void turn_columns(Mat3& R, double c, double s) {
 
 /// out = A B for 3x3 rotations (out is neither A nor B), row by row: row r of out is
 /// A(r, 0) B.row(0) + A(r, 1) B.row(1) + A(r, 2) B.row(2), the rows' first two entries as one
-/// pair (B is row-major) and the third alone, each sum in the order of the scalar product.
+/// pair (B is row-major) and the third alone, each sum in the order of the scalar product. B is
+/// read once, before out is written (to the compiler, a store into out could change B).
 inline void multiply(const Mat3& A, const Mat3& B, Mat3& out) {
+  const Eigen::RowVector2d b0 = B.row(0).head<2>(), b1 = B.row(1).head<2>(),
+                           b2 = B.row(2).head<2>();
+  const double b02 = B(0, 2), b12 = B(1, 2), b22 = B(2, 2);
   for (int r = 0; r < 3; ++r) {
     const double a0 = A(r, 0), a1 = A(r, 1), a2 = A(r, 2);
-    out.row(r).head<2>() =
-        a0 * B.row(0).head<2>() + a1 * B.row(1).head<2>() + a2 * B.row(2).head<2>();
-    out(r, 2) = a0 * B(0, 2) + a1 * B(1, 2) + a2 * B(2, 2);
+    out.row(r).head<2>() = a0 * b0 + a1 * b1 + a2 * b2;
+    out(r, 2) = a0 * b02 + a1 * b12 + a2 * b22;
   }
 }
 
@@ -267,8 +270,8 @@ template <bool kOrientations, bool kJointFrames>
         quat = a.xquat[p];
       }
     }
+    // no free joint here: validate() allows one only as its body's single joint
     for (int j = first_joint; j < last_joint; ++j) {
-      if (a.jnt_kind[j] == JointKind::kFree) break;  // a free joint moves its body alone
       move_joint<kOrientations, kJointFrames>(a, j, pos, R, quat);
     }
     if constexpr (kOrientations) quat = quat_renormalized(quat);
