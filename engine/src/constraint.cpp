@@ -726,7 +726,10 @@ void solve_by_pivoting(const Model& model, Data& data) {
       if (active[r]) idx[m++] = r;
     }
     f.setZero();
-    if (m > 0) {
+    if (m == 1) {  // one row (one limit, the common case): Cholesky's sqrt(A) and its two solves
+      const double l = std::sqrt(A(idx[0], idx[0]));
+      f[idx[0]] = -b[idx[0]] / l / l;
+    } else if (m > 1) {
       auto A_SS = w.L.topLeftCorner(m, m);  // gathered, then factored in place
       auto f_S = w.lcp_rhs.head(m);
       for (int k = 0; k < m; ++k) {
@@ -738,8 +741,12 @@ void solve_by_pivoting(const Model& model, Data& data) {
       for (int k = 0; k < m; ++k) f[idx[k]] = f_S[k];
     }
     // the first row that breaks complementarity changes side
-    residual = b;
-    residual.noalias() += A.selfadjointView<Eigen::Lower>() * f;
+    if (n == 1) {
+      residual[0] = b[0] + A(0, 0) * f[0];
+    } else {
+      residual = b;
+      residual.noalias() += A.selfadjointView<Eigen::Lower>() * f;
+    }
     int flip = -1;
     for (int r = 0; r < n && flip < 0; ++r) {
       if ((active[r] && f[r] < 0) || (!active[r] && residual[r] < 0)) flip = r;
