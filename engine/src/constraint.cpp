@@ -619,8 +619,7 @@ void solve_with_hessian(Data& data, Eigen::MatrixXd& H, Eigen::VectorXd& x) {
   cholesky_solve(H, x, data.work.hessian_envelope);
 }
 
-void unchecked::reference_constraint(const Model& model, Data& data) {
-  (void)model;
+void unchecked::reference_constraint(const Model& /*model*/, Data& data) {
   if (data.nefc == 0) return;
   rows_times(data, data.qvel.data(), data.efc_vel.data());
   for (int r = 0; r < data.nefc; ++r) {
@@ -763,7 +762,7 @@ void solve_by_pivoting(const Model& model, Data& data) {
   add_rows_transpose(data, data.efc_force.data(), data.qfrc_constraint.data());
   // qacc = qacc_smooth + M^-1 J^T f
   w.vec1 = data.qfrc_constraint;
-  solve_mass(model, data, w.vec1);
+  unchecked::solve_mass(model, data, w.vec1.data());
   data.qacc += w.vec1;
 }
 
