@@ -619,8 +619,7 @@ void solve_with_hessian(Data& data, Eigen::MatrixXd& H, Eigen::VectorXd& x) {
   cholesky_solve(H, x, data.work.hessian_envelope);
 }
 
-void unchecked::reference_constraint(const Model& model, Data& data) {
-  (void)model;
+void unchecked::reference_constraint(const Model& /*model*/, Data& data) {
   if (data.nefc == 0) return;
   rows_times(data, data.qvel.data(), data.efc_vel.data());
   for (int r = 0; r < data.nefc; ++r) {
@@ -726,7 +725,10 @@ void solve_by_pivoting(const Model& model, Data& data) {
       if (active[r]) idx[m++] = r;
     }
     f.setZero();
-    if (m > 0) {
+    if (m == 1) {  // one row (one limit, the common case): Cholesky's sqrt(A) and its two solves
+      const double l = std::sqrt(A(idx[0], idx[0]));
+      f[idx[0]] = -b[idx[0]] / l / l;
+    } else if (m > 1) {
       auto A_SS = w.L.topLeftCorner(m, m);  // gathered, then factored in place
       auto f_S = w.lcp_rhs.head(m);
       for (int k = 0; k < m; ++k) {
@@ -738,8 +740,12 @@ void solve_by_pivoting(const Model& model, Data& data) {
       for (int k = 0; k < m; ++k) f[idx[k]] = f_S[k];
     }
     // the first row that breaks complementarity changes side
-    residual = b;
-    residual.noalias() += A.selfadjointView<Eigen::Lower>() * f;
+    if (n == 1) {
+      residual[0] = b[0] + A(0, 0) * f[0];
+    } else {
+      residual = b;
+      residual.noalias() += A.selfadjointView<Eigen::Lower>() * f;
+    }
     int flip = -1;
     for (int r = 0; r < n && flip < 0; ++r) {
       if ((active[r] && f[r] < 0) || (!active[r] && residual[r] < 0)) flip = r;
@@ -756,7 +762,7 @@ void solve_by_pivoting(const Model& model, Data& data) {
   add_rows_transpose(data, data.efc_force.data(), data.qfrc_constraint.data());
   // qacc = qacc_smooth + M^-1 J^T f
   w.vec1 = data.qfrc_constraint;
-  solve_mass(model, data, w.vec1);
+  unchecked::solve_mass(model, data, w.vec1.data());
   data.qacc += w.vec1;
 }
 

@@ -14,36 +14,27 @@
 
 namespace lever {
 
-namespace unchecked {
-
-// (Model and Data hold std::vectors: a store through one may alias another's, so each array's
-// start is read once, here, rather than at every access.)
-void crba(const Model& model, Data& data) {
-  RigidInertia* const IC = data.work.crb.data();
-  const RigidInertia* const I = data.cinert.data();
-  const Motion* const S = data.cdof.data();
-  const int* const parent = model.body_parentid.data();
-  const int* const lambda = model.dof_parentid.data();
-  const int* const body = model.dof_bodyid.data();
-  const int nv = model.nv;
-  double* const H = data.M.data();  // column-major: H(i, j) at H[i + j nv]
+void unchecked::crba(const Model& model, Data& data) {
+  auto& IC = data.work.crb;
+  Eigen::MatrixXd& H = data.M;
 
   // composite inertias, leaves to root (bodies on the world stop there: nothing above them moves)
-  for (int b = 1; b < model.nbody; ++b) IC[b] = I[b];
+  for (int b = 1; b < model.nbody; ++b) IC[b] = data.cinert[b];
   for (int b = model.nbody - 1; b > 0; --b) {
-    if (parent[b] > 0) IC[parent[b]] += IC[b];
+    const int parent = model.body_parentid[b];
+    if (parent > 0) IC[parent] += IC[b];
   }
 
   // columns: the force that accelerating joint i needs, seen by i and by each of its ancestors
-  data.M.setZero();
-  for (int i = 0; i < nv; ++i) {
-    const Force F = IC[body[i]] * S[i];
-    H[i + i * nv] = S[i].dot(F) + model.dof_armature[i];  // armature: rotor inertia of the motor
-    for (int j = lambda[i]; j >= 0; j = lambda[j]) H[i + j * nv] = H[j + i * nv] = S[j].dot(F);
+  H.setZero();
+  for (int i = 0; i < model.nv; ++i) {
+    const Force F = IC[model.dof_bodyid[i]] * data.cdof[i];
+    H(i, i) = data.cdof[i].dot(F) + model.dof_armature[i];  // armature: rotor inertia of the motor
+    for (int j = model.dof_parentid[i]; j >= 0; j = model.dof_parentid[j]) {
+      H(i, j) = H(j, i) = data.cdof[j].dot(F);
+    }
   }
 }
-
-}  // namespace unchecked
 
 void crba(const Model& model, Data& data) {
   check_entry(model, data, "lever::crba");
@@ -55,83 +46,73 @@ namespace {
 // In-place LTDL factorization of the symmetric H, working in its upper triangle: on return D is
 // on the diagonal and L^T above it (L(k, i), i an ancestor of k, at (i, k)), so that every inner
 // loop runs down one column. Returns the first dof whose pivot was not positive, or -1.
-int ltdl(const Model& model, Eigen::MatrixXd& LD, Eigen::VectorXd& diag_inverse) {
+int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
   constexpr double kMinPivot = 1e-15;  // as MuJoCo's mjMINVAL: keep the solve finite
-  const int nv = model.nv;
-  const int* const lambda = model.dof_parentid.data();
-  double* const H = LD.data();  // column k from H + k nv: H(j, k) for the ancestors j of k
   int bad = -1;
-  for (int k = nv - 1; k >= 0; --k) {
-    double* const Hk = H + k * nv;
-    if (Hk[k] < kMinPivot) {
+  for (int k = model.nv - 1; k >= 0; --k) {
+    if (H(k, k) < kMinPivot) {
       bad = k;
-      Hk[k] = kMinPivot;
+      H(k, k) = kMinPivot;
     }
-    for (int i = lambda[k]; i >= 0; i = lambda[i]) {
+    const double* Hk = &H(0, k);  // column k: H(j, k) for the ancestors j of k
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
       const double a = Hk[i] / Hk[k];
-      double* const Hi = H + i * nv;
-      for (int j = i; j >= 0; j = lambda[j]) Hi[j] -= a * Hk[j];
-      Hk[i] = a;
+      double* Hi = &H(0, i);
+      for (int j = i; j >= 0; j = model.dof_parentid[j]) Hi[j] -= a * Hk[j];
+      H(i, k) = a;
     }
   }
-  for (int k = 0; k < nv; ++k) diag_inverse[k] = 1.0 / H[k + k * nv];
+  for (int k = 0; k < model.nv; ++k) diag_inverse[k] = 1.0 / H(k, k);
   return bad;
 }
 
 // x <- L^-T x with a factor from ltdl(), leaves to root.
-void ltdl_solve_half(const Model& model, const Eigen::MatrixXd& LD, double* x) {
-  const int nv = model.nv;
-  const int* const lambda = model.dof_parentid.data();
-  for (int k = nv - 1; k >= 0; --k) {
-    const double* const Lk = LD.data() + k * nv;
-    for (int i = lambda[k]; i >= 0; i = lambda[i]) x[i] -= Lk[i] * x[k];
+void ltdl_solve_half(const Model& model, const Eigen::MatrixXd& LD, Eigen::Ref<Eigen::VectorXd> x) {
+  for (int k = model.nv - 1; k >= 0; --k) {
+    const double* Lk = &LD(0, k);
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= Lk[i] * x[k];
   }
 }
 
 // x = (L^T D L)^-1 x with a factor from ltdl().
 void ltdl_solve(const Model& model, const Eigen::MatrixXd& LD, const Eigen::VectorXd& diag_inverse,
-                double* x) {
-  const int nv = model.nv;
-  const int* const lambda = model.dof_parentid.data();
+                Eigen::Ref<Eigen::VectorXd> x) {
+  const int n = model.nv;
   ltdl_solve_half(model, LD, x);  // x <- L^-T x
   // x <- D^-1 x
-  for (int k = 0; k < nv; ++k) x[k] *= diag_inverse[k];
+  for (int k = 0; k < n; ++k) x[k] *= diag_inverse[k];
   // x <- L^-1 x, root to leaves
-  for (int k = 0; k < nv; ++k) {
-    const double* const Lk = LD.data() + k * nv;
-    for (int i = lambda[k]; i >= 0; i = lambda[i]) x[k] -= Lk[i] * x[i];
+  for (int k = 0; k < n; ++k) {
+    const double* Lk = &LD(0, k);
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[k] -= Lk[i] * x[i];
   }
 }
 
 }  // namespace
 
-namespace unchecked {
-
-void factor_mass(const Model& model, Data& data) {
+void unchecked::factor_mass(const Model& model, Data& data) {
   data.qLD = data.M;
   const int bad = ltdl(model, data.qLD, data.qLDiagInv);
   if (bad >= 0) record_warning(data, Warning::kInertia, bad);
 }
-
-void solve_mass(const Model& model, const Data& data, double* x) {
-  ltdl_solve(model, data.qLD, data.qLDiagInv, x);
-}
-
-}  // namespace unchecked
 
 void factor_mass(const Model& model, Data& data) {
   check_entry(model, data, "lever::factor_mass");
   unchecked::factor_mass(model, data);
 }
 
+void unchecked::solve_mass(const Model& model, const Data& data, double* x) {
+  ltdl_solve(model, data.qLD, data.qLDiagInv, Eigen::Map<Eigen::VectorXd>(x, model.nv));
+}
+
 void solve_mass(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x) {
   check_entry(model, data, "lever::solve_mass");
   check_argument_size(x.size(), model.nv, "lever::solve_mass", "x");
-  ltdl_solve(model, data.qLD, data.qLDiagInv, x.data());
+  ltdl_solve(model, data.qLD, data.qLDiagInv, x);
 }
 
 void solve_mass_half(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x) {
-  ltdl_solve_half(model, data.qLD, x.data());
+  ltdl_solve_half(model, data.qLD, x);
 }
 
 void factor_mass_damped(const Model& model, Data& data, double h) {
@@ -142,7 +123,7 @@ void factor_mass_damped(const Model& model, Data& data, double h) {
 }
 
 void solve_mass_damped(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x) {
-  ltdl_solve(model, data.work.LD2, data.work.LD2DiagInv, x.data());
+  ltdl_solve(model, data.work.LD2, data.work.LD2DiagInv, x);
 }
 
 }  // namespace lever

@@ -257,15 +257,12 @@ inline bool starts_segment(const Model& model, int i) {
 /// MuJoCo's mju_isBad: NaN, or beyond +-1e10.
 inline bool is_bad(double x) { return x != x || x > 1e10 || x < -1e10; }
 
-/// The first of n numbers that is_bad, or -1. The common case, none, is one pass without
-/// branches (|x| <= 1e10 is false for a NaN too); only then is the first bad one looked for.
+/// The first of n numbers that is_bad, or -1 (|x| <= 1e10 is false for a NaN too).
 inline int first_bad(const double* x, int n) {
-  bool all_good = true;
-  for (int i = 0; i < n; ++i) all_good &= std::abs(x[i]) <= 1e10;
-  if (all_good) return -1;
-  int i = 0;
-  while (!is_bad(x[i])) ++i;
-  return i;
+  for (int i = 0; i < n; ++i) {
+    if (!(std::abs(x[i]) <= 1e10)) return i;
+  }
+  return -1;
 }
 
 }  // namespace lever
