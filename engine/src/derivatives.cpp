@@ -211,8 +211,9 @@ void inertia_columns(const Model& model, const Data& data, const std::vector<Rig
 
 // The columns, from the subtree sums IC and CC, for each dof i: the pairs (i, j) with j = i or
 // above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
-// IC_S: inertia_columns() at this qpos, or nullptr (computed here). Two functions, one per
-// output, so that the implicit step's d tau / d qd (bias_velocity_derivative) runs its own loop.
+// IC_S: inertia_columns() at this qpos (velocity_columns() also takes nullptr: computed there).
+// Two functions, one per output, so that the implicit step's d tau / d qd
+// (bias_velocity_derivative) runs its own loop.
 
 // d tau / d q, from Psi_ddot (Sddot) and the subtree net forces F besides.
 void position_columns(const Model& model, const Data& data, const std::vector<Motion>& Sdot,
