@@ -202,49 +202,61 @@ const std::vector<RigidInertia>& subtree_inertias(const Model& model, const Data
 }
 
 // IC S_i of each dof i (IC its body's subtree inertia): the column force crba() finds, which every
-// RNEA-derivative pass at this qpos reads (derivative_columns), so the step's passes share it.
+// RNEA-derivative pass at this qpos reads (position_columns(), velocity_columns()), so the step's
+// passes share it.
 void inertia_columns(const Model& model, const Data& data, const std::vector<RigidInertia>& IC,
                      Derivatives::Workspace& w) {
   for (int i = 0; i < model.nv; ++i) w.IC_S[i] = IC[model.dof_bodyid[i]] * data.cdof[i];
 }
 
-// The columns, from the subtree sums IC, CC (and F for dtau_dq): for each dof i, the pairs (i, j)
-// with j = i or above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now
-// the deeper). dtau_dq == nullptr: d tau / d qd alone (Sddot and F are not read); dtau_dv ==
-// nullptr: d tau / d q alone. IC_S: inertia_columns() at this qpos, or nullptr (computed here).
-void derivative_columns(const Model& model, const Data& data, const std::vector<Motion>& Sdot,
-                        const std::vector<Motion>* Sddot, const std::vector<Force>* F,
-                        const std::vector<RigidInertia>& ICs, const std::vector<Force>* IC_S,
-                        const std::vector<VelocityCoupling>& CCs, Eigen::MatrixXd* dtau_dq,
-                        Eigen::Ref<Eigen::MatrixXd>* dtau_dv) {
-  if (dtau_dq != nullptr) dtau_dq->setZero();
-  if (dtau_dv != nullptr) dtau_dv->setZero();
+// The columns, from the subtree sums IC and CC, for each dof i: the pairs (i, j) with j = i or
+// above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
+// IC_S: inertia_columns() at this qpos (velocity_columns() also takes nullptr: computed there).
+// Two functions, one per output, so that the implicit step's d tau / d qd
+// (bias_velocity_derivative) runs its own loop.
+
+// d tau / d q, from Psi_ddot (Sddot) and the subtree net forces F besides.
+void position_columns(const Model& model, const Data& data, const std::vector<Motion>& Sdot,
+                      const std::vector<Motion>& Sddot, const std::vector<Force>& F,
+                      const std::vector<RigidInertia>& ICs, const std::vector<Force>& IC_S,
+                      const std::vector<VelocityCoupling>& CCs, Eigen::MatrixXd& dtau_dq) {
+  dtau_dq.setZero();
   for (int i = 0; i < model.nv; ++i) {
     const int b = model.dof_bodyid[i];
     const Motion& Si = data.cdof[i];
     const RigidInertia& IC = ICs[b];
     const VelocityCoupling& CC = CCs[b];
-    const Force IC_Si = IC_S != nullptr ? (*IC_S)[i] : IC * Si;  // IC symmetric: S_i . IC x
-    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);       // S_i . CC x (x's angular part)
+    const Force& IC_Si = IC_S[i];                           // IC symmetric: S_i . IC x
+    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);  // S_i . CC x (x's angular part)
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      if (dtau_dq != nullptr) {
-        (*dtau_dq)(i, j) = IC_Si.dot((*Sddot)[j]) + CCt_Si.dot(Sdot[j].head<3>());
-      }
-      if (dtau_dv != nullptr) {
-        (*dtau_dv)(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
-      }
+      dtau_dq(i, j) = IC_Si.dot(Sddot[j]) + CCt_Si.dot(Sdot[j].head<3>());
     }
-    if (dtau_dq != nullptr) {
-      const Force Xq = IC * (*Sddot)[i] + CC * Sdot[i] + cross_force(Si, (*F)[b]);
-      for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
-        (*dtau_dq)(k, i) = data.cdof[k].dot(Xq);
-      }
+    const Force Xq = IC * Sddot[i] + CC * Sdot[i] + cross_force(Si, F[b]);
+    for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+      dtau_dq(k, i) = data.cdof[k].dot(Xq);
     }
-    if (dtau_dv != nullptr) {
-      const Force Xv = 2 * (IC * Sdot[i]) + CC * Si;
-      for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
-        (*dtau_dv)(k, i) = data.cdof[k].dot(Xv);
-      }
+  }
+}
+
+// d tau / d qd.
+void velocity_columns(const Model& model, const Data& data, const std::vector<Motion>& Sdot,
+                      const std::vector<RigidInertia>& ICs, const std::vector<Force>* IC_S,
+                      const std::vector<VelocityCoupling>& CCs,
+                      Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
+  dtau_dv.setZero();
+  for (int i = 0; i < model.nv; ++i) {
+    const int b = model.dof_bodyid[i];
+    const Motion& Si = data.cdof[i];
+    const RigidInertia& IC = ICs[b];
+    const VelocityCoupling& CC = CCs[b];
+    const Force IC_Si = IC_S != nullptr ? (*IC_S)[i] : IC * Si;
+    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);
+    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
+      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+    }
+    const Force Xv = 2 * (IC * Sdot[i]) + CC * Si;
+    for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+      dtau_dv(k, i) = data.cdof[k].dot(Xv);
     }
   }
 }
@@ -270,7 +282,7 @@ void segment_accelerations(const Model& model, const Data& data, const double* q
   }
 }
 
-// d tau_k / d q_i of a segment's dofs, corrected after derivative_columns(): for k before i in the
+// d tau_k / d q_i of a segment's dofs, corrected after position_columns(): for k before i in the
 // segment, turning about S_i turns S_k too, and d S_k / d q_i . F = (S_i x S_k) . F cancels the
 // S_i x* F term the hinge formula adds.
 void segment_position_columns(const Model& model, const Data& data, const std::vector<Force>& F,
@@ -286,7 +298,7 @@ void segment_position_columns(const Model& model, const Data& data, const std::v
   }
 }
 
-// d tau / d qd_i of a segment's dofs, corrected after derivative_columns(): d a_c / d qd_i =
+// d tau / d qd_i of a segment's dofs, corrected after velocity_columns(): d a_c / d qd_i =
 // Sdot_i + v' x S_i + S_i x v_c, v' the velocity after the segment, where a hinge has 2 Sdot_i;
 // the difference E = v' x S_i - Sdot_i enters as IC E wherever 2 IC Sdot_i did. (v' is the
 // body's velocity less the dofs after the segment in the same body: none for a free joint or a
@@ -348,13 +360,8 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
     couplings = &w.CC;
   }
   const std::vector<VelocityCoupling>& CC = *couplings;
-  if (dtau_dv != nullptr) {
-    Eigen::Ref<Eigen::MatrixXd> velocity_columns(*dtau_dv);
-    derivative_columns(model, data, w.Sdot, &w.Sddot, &w.F, IC, &w.IC_S, CC, &dtau_dq,
-                       &velocity_columns);
-  } else {
-    derivative_columns(model, data, w.Sdot, &w.Sddot, &w.F, IC, &w.IC_S, CC, &dtau_dq, nullptr);
-  }
+  position_columns(model, data, w.Sdot, w.Sddot, w.F, IC, w.IC_S, CC, dtau_dq);
+  if (dtau_dv != nullptr) velocity_columns(model, data, w.Sdot, IC, &w.IC_S, CC, *dtau_dv);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
     if (dtau_dv != nullptr) segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, *dtau_dv);
@@ -841,7 +848,7 @@ void bias_velocity_derivative(const Model& model, const Data& data, const double
   // IC: crba()'s subtree inertias (data.work.crb), which the position stage left
   body_couplings(model, data, v, CC);
   sum_over_subtrees(model, CC);
-  derivative_columns(model, data, Sdot, nullptr, nullptr, IC, nullptr, CC, nullptr, &out);
+  velocity_columns(model, data, Sdot, IC, nullptr, CC, out);
   if (model.nq != model.nv) segment_velocity_columns(model, data, qd, v, Sdot, IC, out);
 }
 
