@@ -90,7 +90,6 @@ Data::Data(const Model& model)
   }
   work.qDeriv = Eigen::MatrixXd::Zero(nv, nv);
   work.qLU = Eigen::MatrixXd::Zero(nv, nv);
-  work.subtree_inertia.assign(nbody, RigidInertia());
   work.subtree_coupling.assign(nbody, VelocityCoupling());
 }
 

@@ -843,8 +843,8 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
 
 void bias_velocity_derivative(const Model& model, const Data& data, const double* qd,
                               const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
-                              std::vector<RigidInertia>& IC, std::vector<VelocityCoupling>& CC,
-                              Eigen::Ref<Eigen::MatrixXd> out) {
+                              const std::vector<RigidInertia>& IC,
+                              std::vector<VelocityCoupling>& CC, Eigen::Ref<Eigen::MatrixXd> out) {
   // IC: crba()'s subtree inertias (data.work.crb), which the position stage left
   body_couplings(model, data, v, CC);
   sum_over_subtrees(model, CC);

@@ -141,12 +141,13 @@ void check_argument_size(long size, long n, const char* where, const char* what)
 
 /// d qfrc_bias / d qvel into out (nv x nv): Carpentier and Mansard's d rnea / d qd, which does not
 /// depend on qacc or gravity, from the bodies' velocities v and the dofs' Sdot at velocity qd
-/// (RNEA's forward pass: data.cvel and data.cdof_dot after forward()); IC and CC (nbody each) are
-/// workspace for the subtree sums of inertia and velocity coupling (derivatives.cpp).
+/// (RNEA's forward pass: data.cvel and data.cdof_dot after forward()); IC (nbody) holds each
+/// body's subtree inertia (crba()'s composites, data.work.crb after the position stage), CC
+/// (nbody) is workspace for the subtree sums of velocity coupling (derivatives.cpp).
 void bias_velocity_derivative(const Model& model, const Data& data, const double* qd,
                               const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
-                              std::vector<RigidInertia>& IC, std::vector<VelocityCoupling>& CC,
-                              Eigen::Ref<Eigen::MatrixXd> out);
+                              const std::vector<RigidInertia>& IC,
+                              std::vector<VelocityCoupling>& CC, Eigen::Ref<Eigen::MatrixXd> out);
 
 /// D += the actuators' and the dampers' part of d qfrc_smooth / d qvel as MuJoCo's mjd_smooth_vel
 /// has it: gear^2 (biasprm[2] + gainprm[2] ctrl) of each affine actuator (raw ctrl, no clamp) on

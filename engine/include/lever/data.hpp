@@ -207,8 +207,7 @@ struct Data {
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
     Eigen::MatrixXd qDeriv;  ///< (nv x nv) implicit: d qfrc_smooth / d qvel
     Eigen::MatrixXd qLU;     ///< (nv x nv) implicit: M - h qDeriv, then its factor (U + I) L
-    /// (nbody) implicit: each subtree's inertia and velocity coupling (d qfrc_bias / d qvel)
-    std::vector<RigidInertia> subtree_inertia;
+    /// (nbody) implicit: each subtree's velocity coupling (d qfrc_bias / d qvel)
     std::vector<VelocityCoupling> subtree_coupling;
     // collision() (issue 19): contacts are gathered here and copied to `contact` only when all
     // of them fit, so that a refusal leaves the last contacts in place

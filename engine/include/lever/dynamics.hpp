@@ -66,7 +66,8 @@ bool actuator_clamped(const Model& model, const Data& data, int a);
 /// D = d (qfrc_actuator + qfrc_passive - qfrc_bias) / d qvel into qDeriv (nv x nv), the matrix
 /// MuJoCo 2.2.2's implicit integrator uses (mjd_smooth_vel): affine actuator bias and gain
 /// velocity terms (with the raw ctrl; clamps ignored), joint damping, and the Coriolis and
-/// centrifugal terms of the bias force. @pre the velocity stage of forward() (cvel, cdof_dot).
+/// centrifugal terms of the bias force. @pre forward()'s position and velocity stages, as after
+/// forward(): crba's composite inertias, cvel and cdof_dot.
 void smooth_velocity_derivative(const Model& model, Data& data, Eigen::Ref<Eigen::MatrixXd> qDeriv);
 
 /// qpos (nq) advanced by the velocity qvel (nv) for time h, in place, as MuJoCo's
