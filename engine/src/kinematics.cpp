@@ -293,6 +293,17 @@ void place_attached(int n, const int* bodyid, const Eigen::Vector3d* pos, const 
   }
 }
 
+// The world's frame, which every other frame is placed on: set on every call, as MuJoCo's
+// mj_kinematics does, so that a value a caller wrote into it cannot move the robot. Its
+// quaternion only with the others (poses() and place_site() compose none).
+inline void place_world(Data& data, bool orientation) {
+  data.xpos[0].setZero();
+  data.xmat[0].setIdentity();
+  data.xipos[0].setZero();
+  data.ximat[0].setIdentity();
+  if (orientation) data.xquat[0] = Quat(1.0, 0.0, 0.0, 0.0);
+}
+
 // What place_bodies() writes besides the body frames, joint anchors and axes, inertial frames and
 // site frames.
 struct Placed {
@@ -305,6 +316,7 @@ struct Placed {
 void place_bodies(const Model& model, Data& data, Placed placed) {
   // only ball and free joints have quaternions in qpos, and only they make nq exceed nv
   if (model.nq > model.nv) detail::normalize_joint_quats(model, data.qpos.data());
+  place_world(data, placed.orientations);
   const BodyArrays arrays(model, data);
   const int nbody = model.nbody;
   if (placed.orientations) {
@@ -458,6 +470,7 @@ void place_site(const Model& model, Data& data, int site) {
   int* const path = data.work.body_path.data();
   int length = 0;
   for (int b = model.site_bodyid[site]; b > 0; b = model.body_parentid[b]) path[length++] = b;
+  place_world(data, false);
   const BodyArrays arrays(model, data);
   while (length > 0) place_body<false, false>(arrays, path[--length]);
   place_attached(1, &model.site_bodyid[site], &model.site_pos[site], &model.site_mat[site],

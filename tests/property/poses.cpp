@@ -70,6 +70,55 @@ TEST_CASE("property: kinematics()' xquat is a unit quaternion whose rotation is 
   }
 }
 
+TEST_CASE("property: the world's frame is set on every call, whatever Data held there",
+          "[property][kinematics]") {
+  // MuJoCo's mj_kinematics sets the world's frame each time; every other frame is placed on it
+  for (const ModelCase& c : every_model_and_random_trees()) {
+    Data clean(c.model), spoiled(c.model);
+    std::mt19937_64 rng(c.seed);
+    for (int k = 0; k < kStatesPerModel / 10; ++k) {
+      const auto state = random_state(c.model, rng);
+      apply(state, clean);
+      apply(state, spoiled);
+      forward(c.model, clean);
+      const auto spoil = [&] {
+        spoiled.xpos[0].setConstant(0.5);
+        spoiled.xmat[0].setConstant(0.5);
+        spoiled.xquat[0].setConstant(0.5);
+        spoiled.xipos[0].setConstant(0.5);
+        spoiled.ximat[0].setConstant(0.5);
+      };
+      spoil();
+      forward(c.model, spoiled);
+      INFO(c.name << ", seed " << c.seed << ", state " << k);
+      CHECK(same(spoiled.xpos, clean.xpos));
+      CHECK(same(spoiled.xmat, clean.xmat));
+      CHECK(same(spoiled.xquat, clean.xquat));
+      CHECK(same(spoiled.xipos, clean.xipos));
+      CHECK(same(spoiled.ximat, clean.ximat));
+      CHECK(same(spoiled.site_xpos, clean.site_xpos));
+      CHECK(spoiled.qacc == clean.qacc);
+      CHECK(clean.xpos[0] == Eigen::Vector3d::Zero());
+      CHECK(Eigen::Matrix3d(clean.xmat[0]) == Eigen::Matrix3d::Identity());
+      CHECK(clean.xquat[0] == Eigen::Vector4d(1, 0, 0, 0));
+      // the lean stages too: poses() and place_site() place on the world's frame as well (each
+      // from the state itself: normalizing qpos's quaternions again may move their last bit)
+      const auto lean_check = [&](const auto& place) {
+        apply(state, clean);
+        apply(state, spoiled);
+        place(clean);
+        spoil();
+        place(spoiled);
+        CHECK(same(spoiled.site_xpos, clean.site_xpos));
+      };
+      lean_check([&](Data& d) { poses(c.model, d); });
+      for (int s = 0; s < c.model.nsite; ++s) {
+        lean_check([&](Data& d) { place_site(c.model, d, s); });
+      }
+    }
+  }
+}
+
 namespace {
 
 constexpr double kUnplaced = -7.25;  // a value no frame holds: what place_site() must leave alone
