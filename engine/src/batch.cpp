@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <atomic>
-#include <chrono>
 #include <condition_variable>
 #include <cstdint>
 #include <exception>
@@ -56,29 +55,17 @@ void load_state(Data& d, const Eigen::Ref<const Eigen::MatrixXd>& qpos,
 
 }  // namespace
 
-// threads - 1 workers kept between batches. A batch is a job, job(t) for thread t, published
-// with a new generation number; the calling thread runs job(0) and waits until `running` is back
-// to zero. The job is a function pointer and a context pointer, so that handing it over allocates
-// nothing.
-//
-// Waiting spins before it sleeps, on both sides: a worker that finished a batch watches the
-// generation for kSpinTime before it sleeps on the condition variable, and the caller watches
-// `running` as long before it does. Waking a sleeping thread takes tens of microseconds on a
-// virtual machine (a futex, then the hypervisor waking an idle virtual CPU), which is a large
-// share of a batch of a thousand 0.5 us forward() calls split over two threads; calls made back
-// to back find the workers still spinning. (OpenMP runtimes wait the same way, GOMP_SPINCOUNT.)
-// The generation changes under the mutex, and a worker counts itself in `sleepers` under the
-// mutex before it sleeps, so a worker either sees the new generation or is counted and woken.
+// threads - 1 workers kept asleep between batches. A batch is a job, job(t) for thread t, handed
+// over under the mutex with a new generation number; the calling thread runs job(0) and waits
+// until `running` is back to zero. The job is a function pointer and a context pointer, so that
+// handing it over allocates nothing.
 struct detail::BatchPool {
-  static constexpr std::chrono::microseconds kSpinTime{200};
-
   std::mutex mutex;
   std::condition_variable wake;      // a new generation, or stopping
   std::condition_variable finished;  // running reached zero
-  std::atomic<std::uint64_t> generation{0};
-  std::atomic<int> running{0};  // workers still busy with the current generation
-  std::atomic<bool> stopping{false};
-  int sleepers = 0;  // workers asleep on `wake` (under the mutex)
+  std::uint64_t generation = 0;
+  int running = 0;  // workers still busy with the current generation
+  bool stopping = false;
   void (*call)(void* job, int t) = nullptr;
   void* job = nullptr;
   std::vector<std::exception_ptr> errors;  // one per thread, sized once
@@ -105,54 +92,22 @@ struct detail::BatchPool {
     workers.clear();
   }
 
-  // True once done() holds, after spinning at most kSpinTime; false if it still does not.
-  template <class Done>
-  static bool spin_until(Done done) {
-    const auto give_up = std::chrono::steady_clock::now() + kSpinTime;
-    for (int polls = 1;; ++polls) {
-      if (done()) return true;
-      relax();
-      // the clock is read every 64 polls: each read costs as much as the polls between
-      if (polls % 64 == 0 && std::chrono::steady_clock::now() > give_up) return done();
-    }
-  }
-
-  // A hint to the processor that this is a spin loop (it lets the other hyperthread run).
-  static void relax() {
-#if defined(__x86_64__) || defined(__i386__)
-    __builtin_ia32_pause();
-#else
-    std::this_thread::yield();
-#endif
-  }
-
-  // Worker t: wait for a generation it has not run, run its part, report, wait again.
+  // Worker t: sleep until a generation it has not run, run its part, report, sleep again.
   void serve(int t) {
     std::uint64_t seen = 0;
     for (;;) {
-      const auto news = [&] {
-        return stopping.load(std::memory_order_acquire) ||
-               generation.load(std::memory_order_acquire) != seen;
-      };
-      if (!spin_until(news)) {
-        std::unique_lock<std::mutex> lock(mutex);
-        ++sleepers;
-        wake.wait(lock, news);
-        --sleepers;
-      }
-      if (stopping.load(std::memory_order_acquire)) return;
-      seen = generation.load(std::memory_order_acquire);
+      std::unique_lock<std::mutex> lock(mutex);
+      wake.wait(lock, [&] { return stopping || generation != seen; });
+      if (stopping) return;
+      seen = generation;
+      lock.unlock();
       try {
         call(job, t);
       } catch (...) {
         errors[static_cast<std::size_t>(t)] = std::current_exception();
       }
-      if (running.fetch_sub(1, std::memory_order_acq_rel) == 1) {
-        // the last one: the caller may be asleep on `finished` (the lock orders this after its
-        // check of `running`)
-        { std::lock_guard<std::mutex> lock(mutex); }
-        finished.notify_one();
-      }
+      lock.lock();
+      if (--running == 0) finished.notify_one();
     }
   }
 
@@ -160,25 +115,22 @@ struct detail::BatchPool {
   // exception (thread 0's first, then by thread).
   template <class Job>
   void run(Job& work) {
-    bool wake_sleepers = false;
     {
       std::lock_guard<std::mutex> lock(mutex);
       call = [](void* j, int t) { (*static_cast<Job*>(j))(t); };
       job = &work;
-      running.store(static_cast<int>(workers.size()), std::memory_order_relaxed);
-      generation.fetch_add(1, std::memory_order_release);
-      wake_sleepers = sleepers > 0;
+      running = static_cast<int>(workers.size());
+      ++generation;
     }
-    if (wake_sleepers) wake.notify_all();
+    wake.notify_all();
     try {
       work(0);
     } catch (...) {
       errors[0] = std::current_exception();
     }
-    const auto all_done = [&] { return running.load(std::memory_order_acquire) == 0; };
-    if (!spin_until(all_done)) {
+    {
       std::unique_lock<std::mutex> lock(mutex);
-      finished.wait(lock, all_done);
+      finished.wait(lock, [&] { return running == 0; });
     }
     for (std::exception_ptr& e : errors) {
       if (e) {

@@ -11,11 +11,9 @@
 //
 // Cost: per state, exactly what forward() or step() costs on its own (nothing is allocated: the
 // Data of each thread was built by the constructor). Per call with threads() > 1, waking the
-// workers and waiting for them: a few microseconds, or tens where a worker had gone to sleep, so
-// keep the runner and give each call many states. Between calls each worker spins for 200
-// microseconds before it sleeps, so that calls made back to back find it awake: a runner keeps
-// its cores busy that long after each call. The results do not depend on the number of threads:
-// lever keeps no warm start between states.
+// workers and waiting for them (a few microseconds), so keep the runner and give each call many
+// states. The results do not depend on the number of threads: lever keeps no warm start between
+// states.
 //
 //   lever::BatchRunner runner(model, 2);
 //   Eigen::MatrixXd qpos(model.nq, n), qvel(model.nv, n), ctrl(model.nu, n), qacc(model.nv, n);
