@@ -14,6 +14,21 @@
 
 namespace lever {
 
+namespace {
+
+// Zeroes H(i, k) and H(k, i) for every dof k < i that is no ancestor of dof i (a branch elsewhere
+// in the tree: no coupling). With crba's ancestor entries this writes every entry of H.
+void zero_uncoupled(const Model& model, Eigen::MatrixXd& H, int i) {
+  int gap_end = i;  // rows (j, gap_end) lie between two consecutive ancestors
+  for (int j = model.dof_parentid[i];; j = model.dof_parentid[j]) {
+    for (int k = j + 1; k < gap_end; ++k) H(k, i) = H(i, k) = 0.0;
+    if (j < 0) return;
+    gap_end = j;
+  }
+}
+
+}  // namespace
+
 void unchecked::crba(const Model& model, Data& data) {
   auto& IC = data.work.crb;
   Eigen::MatrixXd& H = data.M;
@@ -26,7 +41,6 @@ void unchecked::crba(const Model& model, Data& data) {
   }
 
   // columns: the force that accelerating joint i needs, seen by i and by each of its ancestors
-  H.setZero();
   for (int i = 0; i < model.nv; ++i) {
     const Force F = IC[model.dof_bodyid[i]] * data.cdof[i];
     H(i, i) = data.cdof[i].dot(F) + model.dof_armature[i];  // armature: rotor inertia of the motor
@@ -34,6 +48,11 @@ void unchecked::crba(const Model& model, Data& data) {
       H(i, j) = H(j, i) = data.cdof[j].dot(F);
     }
   }
+  // the other entries are zero: written where there are any (past the chain the first dofs form),
+  // not by clearing all of H first, and every call, so nothing a caller left in M stays
+  int i = 1;
+  while (i < model.nv && model.dof_parentid[i] == i - 1) ++i;
+  for (; i < model.nv; ++i) zero_uncoupled(model, H, i);
 }
 
 void crba(const Model& model, Data& data) {
