@@ -62,16 +62,41 @@ void crba(const Model& model, Data& data) {
 
 namespace {
 
+// ltdl's step at a column k whose ancestors are the dofs 0..k-1 (a chain): the same arithmetic as
+// the general step, over contiguous rows (vectorized; restrict: two different columns). Kept out of
+// line: inlined, it slows the general step's loop.
+[[gnu::noinline]] void ltdl_chain_column(Eigen::MatrixXd& H, int k) {
+  double* __restrict Hk = &H(0, k);
+  for (int i = k - 1; i >= 0; --i) {
+    const double a = Hk[i] / Hk[k];
+    double* __restrict Hi = &H(0, i);
+    for (int j = 0; j <= i; ++j) Hi[j] -= a * Hk[j];
+    Hk[i] = a;  // H(i, k)
+  }
+}
+
 // In-place LTDL factorization of the symmetric H, working in its upper triangle: on return D is
 // on the diagonal and L^T above it (L(k, i), i an ancestor of k, at (i, k)), so that every inner
 // loop runs down one column. Returns the first dof whose pivot was not positive, or -1.
 int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
   constexpr double kMinPivot = 1e-15;  // as MuJoCo's mjMINVAL: keep the solve finite
+  // dofs 0..chain_end-1 form one chain (each the parent of the next); its columns from
+  // kLongChain on go contiguously (in shorter ones the vector loop's setup costs what it saves)
+  constexpr int kLongChain = 8;
+  int chain_end = 0;
+  if (model.nv > kLongChain) {
+    while (chain_end + 1 < model.nv && model.dof_parentid[chain_end + 1] == chain_end) ++chain_end;
+    ++chain_end;
+  }
   int bad = -1;
   for (int k = model.nv - 1; k >= 0; --k) {
     if (H(k, k) < kMinPivot) {
       bad = k;
       H(k, k) = kMinPivot;
+    }
+    if (k >= kLongChain && k < chain_end) {
+      ltdl_chain_column(H, k);
+      continue;
     }
     const double* Hk = &H(0, k);  // column k: H(j, k) for the ancestors j of k
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
