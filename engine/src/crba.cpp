@@ -62,10 +62,28 @@ void crba(const Model& model, Data& data) {
 
 namespace {
 
-// ltdl's step at a column k whose ancestors are the dofs 0..k-1 (a chain): the same arithmetic as
-// the general step, over contiguous rows (vectorized; restrict: two different columns). Kept out of
-// line: inlined, it slows the general step's loop.
-[[gnu::noinline]] void ltdl_chain_column(Eigen::MatrixXd& H, int k) {
+constexpr double kMinPivot = 1e-15;  // as MuJoCo's mjMINVAL: keep the solve finite
+
+// LTDL's step at column k of H (upper triangle): D_k's pivot made positive (returns whether it was
+// not), then column k eliminated from its ancestors' columns.
+inline bool ltdl_column(const Model& model, Eigen::MatrixXd& H, int k) {
+  const bool bad = H(k, k) < kMinPivot;
+  if (bad) H(k, k) = kMinPivot;
+  const double* Hk = &H(0, k);  // column k: H(j, k) for the ancestors j of k
+  for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+    const double a = Hk[i] / Hk[k];
+    double* Hi = &H(0, i);
+    for (int j = i; j >= 0; j = model.dof_parentid[j]) Hi[j] -= a * Hk[j];
+    H(i, k) = a;
+  }
+  return bad;
+}
+
+// The same step at a column k whose ancestors are the dofs 0..k-1 (a chain): the same arithmetic
+// over contiguous rows (vectorized; restrict: two different columns).
+inline bool ltdl_chain_column(Eigen::MatrixXd& H, int k) {
+  const bool bad = H(k, k) < kMinPivot;
+  if (bad) H(k, k) = kMinPivot;
   double* __restrict Hk = &H(0, k);
   for (int i = k - 1; i >= 0; --i) {
     const double a = Hk[i] / Hk[k];
@@ -73,37 +91,60 @@ namespace {
     for (int j = 0; j <= i; ++j) Hi[j] -= a * Hk[j];
     Hk[i] = a;  // H(i, k)
   }
+  return bad;
+}
+
+// Whether ltdl() takes the chain steps: dofs 0..kLongChain form a chain. Below that the vector
+// loop's setup costs what it saves.
+constexpr int kLongChain = 8;
+bool long_leading_chain(const Model& model) {
+  if (model.nv <= kLongChain) return false;
+  for (int k = 1; k <= kLongChain; ++k) {
+    if (model.dof_parentid[k] != k - 1) return false;
+  }
+  return true;
+}
+
+// ltdl() for a model whose first dofs form a long chain: its columns from kLongChain on take the
+// chain step. Out of line, so that it costs ltdl()'s common case one test.
+[[gnu::noinline]] int ltdl_long_chain(const Model& model, Eigen::MatrixXd& H) {
+  int chain_end = kLongChain + 1;  // dofs 0..chain_end-1 form one chain
+  while (chain_end < model.nv && model.dof_parentid[chain_end] == chain_end - 1) ++chain_end;
+  int bad = -1;
+  int k = model.nv - 1;
+  for (; k >= chain_end; --k) {
+    if (ltdl_column(model, H, k)) bad = k;
+  }
+  for (; k >= kLongChain; --k) {
+    if (ltdl_chain_column(H, k)) bad = k;
+  }
+  for (; k >= 0; --k) {
+    if (ltdl_column(model, H, k)) bad = k;
+  }
+  return bad;
 }
 
 // In-place LTDL factorization of the symmetric H, working in its upper triangle: on return D is
 // on the diagonal and L^T above it (L(k, i), i an ancestor of k, at (i, k)), so that every inner
 // loop runs down one column. Returns the first dof whose pivot was not positive, or -1.
 int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
-  constexpr double kMinPivot = 1e-15;  // as MuJoCo's mjMINVAL: keep the solve finite
-  // dofs 0..chain_end-1 form one chain (each the parent of the next); its columns from
-  // kLongChain on go contiguously (in shorter ones the vector loop's setup costs what it saves)
-  constexpr int kLongChain = 8;
-  int chain_end = 0;
-  if (model.nv > kLongChain) {
-    while (chain_end + 1 < model.nv && model.dof_parentid[chain_end + 1] == chain_end) ++chain_end;
-    ++chain_end;
-  }
   int bad = -1;
-  for (int k = model.nv - 1; k >= 0; --k) {
-    if (H(k, k) < kMinPivot) {
-      bad = k;
-      H(k, k) = kMinPivot;
-    }
-    if (k >= kLongChain && k < chain_end) {
-      ltdl_chain_column(H, k);
-      continue;
-    }
-    const double* Hk = &H(0, k);  // column k: H(j, k) for the ancestors j of k
-    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
-      const double a = Hk[i] / Hk[k];
-      double* Hi = &H(0, i);
-      for (int j = i; j >= 0; j = model.dof_parentid[j]) Hi[j] -= a * Hk[j];
-      H(i, k) = a;
+  if (long_leading_chain(model)) {
+    bad = ltdl_long_chain(model, H);
+  } else {
+    // leaves to root: ltdl_column(), written out (through the helper this loop compiles slower)
+    for (int k = model.nv - 1; k >= 0; --k) {
+      if (H(k, k) < kMinPivot) {
+        bad = k;
+        H(k, k) = kMinPivot;
+      }
+      const double* Hk = &H(0, k);
+      for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+        const double a = Hk[i] / Hk[k];
+        double* Hi = &H(0, i);
+        for (int j = i; j >= 0; j = model.dof_parentid[j]) Hi[j] -= a * Hk[j];
+        H(i, k) = a;
+      }
     }
   }
   for (int k = 0; k < model.nv; ++k) diag_inverse[k] = 1.0 / H(k, k);
