@@ -64,17 +64,24 @@ namespace {
 
 constexpr double kMinPivot = 1e-15;  // as MuJoCo's mjMINVAL: keep the solve finite
 
-// LTDL's step at column k of H (upper triangle): D_k's pivot made positive (returns whether it was
-// not), then column k eliminated from its ancestors' columns.
-inline bool ltdl_column(const Model& model, Eigen::MatrixXd& H, int k) {
-  const bool bad = H(k, k) < kMinPivot;
-  if (bad) H(k, k) = kMinPivot;
-  const double* Hk = &H(0, k);  // column k: H(j, k) for the ancestors j of k
-  for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
-    const double a = Hk[i] / Hk[k];
-    double* Hi = &H(0, i);
-    for (int j = i; j >= 0; j = model.dof_parentid[j]) Hi[j] -= a * Hk[j];
-    H(i, k) = a;
+// LTDL's steps at the columns k = last down to first of H (upper triangle), leaves to root: D_k's
+// pivot made positive, then column k eliminated from its ancestors' columns. Returns the first
+// (lowest) column whose pivot was not positive, or -1.
+[[gnu::always_inline]] inline int ltdl_columns(const Model& model, Eigen::MatrixXd& H, int last,
+                                               int first) {
+  int bad = -1;
+  for (int k = last; k >= first; --k) {
+    if (H(k, k) < kMinPivot) {
+      bad = k;
+      H(k, k) = kMinPivot;
+    }
+    const double* Hk = &H(0, k);  // column k: H(j, k) for the ancestors j of k
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+      const double a = Hk[i] / Hk[k];
+      double* Hi = &H(0, i);
+      for (int j = i; j >= 0; j = model.dof_parentid[j]) Hi[j] -= a * Hk[j];
+      H(i, k) = a;
+    }
   }
   return bad;
 }
@@ -105,48 +112,26 @@ bool long_leading_chain(const Model& model) {
   return true;
 }
 
-// ltdl() for a model whose first dofs form a long chain: its columns from kLongChain on take the
-// chain step. Out of line, so that it costs ltdl()'s common case one test.
+// ltdl() for a model whose first dofs form a long chain: the chain's columns from kLongChain on
+// take the chain step, the others the general one. Out of line, so that it costs ltdl()'s common
+// case one test.
 [[gnu::noinline]] int ltdl_long_chain(const Model& model, Eigen::MatrixXd& H) {
   int chain_end = kLongChain + 1;  // dofs 0..chain_end-1 form one chain
   while (chain_end < model.nv && model.dof_parentid[chain_end] == chain_end - 1) ++chain_end;
-  int bad = -1;
-  int k = model.nv - 1;
-  for (; k >= chain_end; --k) {
-    if (ltdl_column(model, H, k)) bad = k;
-  }
-  for (; k >= kLongChain; --k) {
+  int bad = ltdl_columns(model, H, model.nv - 1, chain_end);
+  for (int k = chain_end - 1; k >= kLongChain; --k) {
     if (ltdl_chain_column(H, k)) bad = k;
   }
-  for (; k >= 0; --k) {
-    if (ltdl_column(model, H, k)) bad = k;
-  }
-  return bad;
+  const int bad_below = ltdl_columns(model, H, kLongChain - 1, 0);
+  return bad_below >= 0 ? bad_below : bad;
 }
 
 // In-place LTDL factorization of the symmetric H, working in its upper triangle: on return D is
 // on the diagonal and L^T above it (L(k, i), i an ancestor of k, at (i, k)), so that every inner
 // loop runs down one column. Returns the first dof whose pivot was not positive, or -1.
 int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
-  int bad = -1;
-  if (long_leading_chain(model)) {
-    bad = ltdl_long_chain(model, H);
-  } else {
-    // leaves to root: ltdl_column(), written out (through the helper this loop compiles slower)
-    for (int k = model.nv - 1; k >= 0; --k) {
-      if (H(k, k) < kMinPivot) {
-        bad = k;
-        H(k, k) = kMinPivot;
-      }
-      const double* Hk = &H(0, k);
-      for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
-        const double a = Hk[i] / Hk[k];
-        double* Hi = &H(0, i);
-        for (int j = i; j >= 0; j = model.dof_parentid[j]) Hi[j] -= a * Hk[j];
-        H(i, k) = a;
-      }
-    }
-  }
+  const int bad = long_leading_chain(model) ? ltdl_long_chain(model, H)
+                                            : ltdl_columns(model, H, model.nv - 1, 0);
   for (int k = 0; k < model.nv; ++k) diag_inverse[k] = 1.0 / H(k, k);
   return bad;
 }
