@@ -14,6 +14,21 @@
 
 namespace lever {
 
+namespace {
+
+// Zeroes H(i, k) and H(k, i) for every dof k < i that is no ancestor of dof i (a branch elsewhere
+// in the tree: no coupling). With crba's ancestor entries this writes every entry of H.
+void zero_uncoupled(const Model& model, Eigen::MatrixXd& H, int i) {
+  int gap_end = i;  // rows (j, gap_end) lie between two consecutive ancestors
+  for (int j = model.dof_parentid[i];; j = model.dof_parentid[j]) {
+    for (int k = j + 1; k < gap_end; ++k) H(k, i) = H(i, k) = 0.0;
+    if (j < 0) return;
+    gap_end = j;
+  }
+}
+
+}  // namespace
+
 void unchecked::crba(const Model& model, Data& data) {
   auto& IC = data.work.crb;
   Eigen::MatrixXd& H = data.M;
@@ -26,7 +41,6 @@ void unchecked::crba(const Model& model, Data& data) {
   }
 
   // columns: the force that accelerating joint i needs, seen by i and by each of its ancestors
-  H.setZero();
   for (int i = 0; i < model.nv; ++i) {
     const Force F = IC[model.dof_bodyid[i]] * data.cdof[i];
     H(i, i) = data.cdof[i].dot(F) + model.dof_armature[i];  // armature: rotor inertia of the motor
@@ -34,6 +48,11 @@ void unchecked::crba(const Model& model, Data& data) {
       H(i, j) = H(j, i) = data.cdof[j].dot(F);
     }
   }
+  // the other entries are zero: written where there are any (past the chain the first dofs form),
+  // not by clearing all of H first, and every call, so nothing a caller left in M stays
+  int i = 1;
+  while (i < model.nv && model.dof_parentid[i] == i - 1) ++i;
+  for (; i < model.nv; ++i) zero_uncoupled(model, H, i);
 }
 
 void crba(const Model& model, Data& data) {
@@ -43,13 +62,15 @@ void crba(const Model& model, Data& data) {
 
 namespace {
 
-// In-place LTDL factorization of the symmetric H, working in its upper triangle: on return D is
-// on the diagonal and L^T above it (L(k, i), i an ancestor of k, at (i, k)), so that every inner
-// loop runs down one column. Returns the first dof whose pivot was not positive, or -1.
-int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
-  constexpr double kMinPivot = 1e-15;  // as MuJoCo's mjMINVAL: keep the solve finite
+constexpr double kMinPivot = 1e-15;  // as MuJoCo's mjMINVAL: keep the solve finite
+
+// LTDL's steps at the columns k = last down to first of H (upper triangle), leaves to root: D_k's
+// pivot made positive, then column k eliminated from its ancestors' columns. Returns the first
+// (lowest) column whose pivot was not positive, or -1.
+[[gnu::always_inline]] inline int ltdl_columns(const Model& model, Eigen::MatrixXd& H, int last,
+                                               int first) {
   int bad = -1;
-  for (int k = model.nv - 1; k >= 0; --k) {
+  for (int k = last; k >= first; --k) {
     if (H(k, k) < kMinPivot) {
       bad = k;
       H(k, k) = kMinPivot;
@@ -62,6 +83,55 @@ int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) 
       H(i, k) = a;
     }
   }
+  return bad;
+}
+
+// The same step at a column k whose ancestors are the dofs 0..k-1 (a chain): the same arithmetic
+// over contiguous rows (vectorized; restrict: two different columns).
+inline bool ltdl_chain_column(Eigen::MatrixXd& H, int k) {
+  const bool bad = H(k, k) < kMinPivot;
+  if (bad) H(k, k) = kMinPivot;
+  double* __restrict Hk = &H(0, k);
+  for (int i = k - 1; i >= 0; --i) {
+    const double a = Hk[i] / Hk[k];
+    double* __restrict Hi = &H(0, i);
+    for (int j = 0; j <= i; ++j) Hi[j] -= a * Hk[j];
+    Hk[i] = a;  // H(i, k)
+  }
+  return bad;
+}
+
+// Whether ltdl() takes the chain steps: dofs 0..kLongChain form a chain. Below that the vector
+// loop's setup costs what it saves.
+constexpr int kLongChain = 8;
+bool long_leading_chain(const Model& model) {
+  if (model.nv <= kLongChain) return false;
+  for (int k = 1; k <= kLongChain; ++k) {
+    if (model.dof_parentid[k] != k - 1) return false;
+  }
+  return true;
+}
+
+// ltdl() for a model whose first dofs form a long chain: the chain's columns from kLongChain on
+// take the chain step, the others the general one. Out of line, so that it costs ltdl()'s common
+// case one test.
+[[gnu::noinline]] int ltdl_long_chain(const Model& model, Eigen::MatrixXd& H) {
+  int chain_end = kLongChain + 1;  // dofs 0..chain_end-1 form one chain
+  while (chain_end < model.nv && model.dof_parentid[chain_end] == chain_end - 1) ++chain_end;
+  int bad = ltdl_columns(model, H, model.nv - 1, chain_end);
+  for (int k = chain_end - 1; k >= kLongChain; --k) {
+    if (ltdl_chain_column(H, k)) bad = k;
+  }
+  const int bad_below = ltdl_columns(model, H, kLongChain - 1, 0);
+  return bad_below >= 0 ? bad_below : bad;
+}
+
+// In-place LTDL factorization of the symmetric H, working in its upper triangle: on return D is
+// on the diagonal and L^T above it (L(k, i), i an ancestor of k, at (i, k)), so that every inner
+// loop runs down one column. Returns the first dof whose pivot was not positive, or -1.
+int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
+  const int bad = long_leading_chain(model) ? ltdl_long_chain(model, H)
+                                            : ltdl_columns(model, H, model.nv - 1, 0);
   for (int k = 0; k < model.nv; ++k) diag_inverse[k] = 1.0 / H(k, k);
   return bad;
 }
