@@ -63,23 +63,32 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
 
   for (int b = 1; b < model.nbody; ++b) {
     const int parent = model.body_parentid[b];
-    if (model.body_dofnum[b] == 1 && Sddot == nullptr) {
+    if (model.body_dofnum[b] == 1) {
       // a hinge or a slide, alone in its body (the arms' every joint): one segment, which the
-      // parent's velocity turns; the same arithmetic as the loop below, without its bookkeeping
+      // parent's velocity turns; the same arithmetic as the loop below, without its bookkeeping,
+      // each sum written once into its destination
       const int i = model.body_dofadr[b];
       const Motion& S = data.cdof[i];
+      const Motion& v_parent = v[parent];
+      const Motion& a_parent = a[parent];
       Motion S_dot_here;
       Motion& S_dot = Sdot != nullptr ? (*Sdot)[i] : S_dot_here;
-      Motion ab = a[parent];
       if (parent > 0) {
-        S_dot = cross_motion(v[parent], S);
-        ab += S_dot * qd[i];
+        S_dot = cross_motion(v_parent, S);
       } else {
         S_dot.setZero();
       }
-      if (qdd != nullptr) ab += S * qdd[i];
-      a[b] = ab;
-      v[b] = v[parent] + S * qd[i];
+      if (Sddot != nullptr) (*Sddot)[i] = cross_motion(a_parent, S) + cross_motion(v_parent, S_dot);
+      if (parent > 0 && qdd != nullptr) {
+        a[b] = a_parent + S_dot * qd[i] + S * qdd[i];
+      } else if (parent > 0) {
+        a[b] = a_parent + S_dot * qd[i];
+      } else if (qdd != nullptr) {
+        a[b] = a_parent + S * qdd[i];
+      } else {
+        a[b] = a_parent;
+      }
+      v[b] = v_parent + S * qd[i];
       done(b, v[b], a[b]);
       continue;
     }

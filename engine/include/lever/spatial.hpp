@@ -146,11 +146,16 @@ struct RigidInertia {
 };
 
 /// v x m: the derivative of motion vector m moving with velocity v (Featherstone eq. 2.31).
+/// Written out on the elements: [w x m_w; w x m_o + v_o x m_w], with no 3-vector temporaries.
 inline Motion cross_motion(const Motion& v, const Motion& m) {
-  const Eigen::Vector3d w = v.head<3>();
+  const double w0 = v[0], w1 = v[1], w2 = v[2], o0 = v[3], o1 = v[4], o2 = v[5];
   Motion out;
-  out.head<3>() = cross(w, m.head<3>());
-  out.tail<3>() = cross(w, m.tail<3>()) + cross(v.tail<3>(), m.head<3>());
+  out[0] = w1 * m[2] - w2 * m[1];
+  out[1] = w2 * m[0] - w0 * m[2];
+  out[2] = w0 * m[1] - w1 * m[0];
+  out[3] = (w1 * m[5] - w2 * m[4]) + (o1 * m[2] - o2 * m[1]);
+  out[4] = (w2 * m[3] - w0 * m[5]) + (o2 * m[0] - o0 * m[2]);
+  out[5] = (w0 * m[4] - w1 * m[3]) + (o0 * m[1] - o1 * m[0]);
   return out;
 }
 
