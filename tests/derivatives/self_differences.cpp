@@ -319,25 +319,25 @@ TEST_CASE("derivatives: the step's A and B match central differences of step",
           differentiate_pos(model, into.head(nv), 2 * kStep, minus.head(nq), plus.head(nq));
           into.tail(nv) = (plus.tail(nv) - minus.tail(nv)) / (2 * kStep);
         };
-        for (int c = 0; c < nv; ++c) {
+        for (int col = 0; col < nv; ++col) {
           for (const double t : {kStep, -kStep}) {
             qpos = s.qpos;
-            integrate_pos(model, qpos, Eigen::VectorXd::Unit(nv, c), t);
+            integrate_pos(model, qpos, Eigen::VectorXd::Unit(nv, col), t);
             step_from_inputs(t > 0 ? plus : minus);
           }
           qpos = s.qpos;
-          column(A.col(c));
+          column(A.col(col));
         }
-        for (int c = 0; c < 2 * nv + model.nu; ++c) {
-          if (c < nv) continue;
-          double& input = c < 2 * nv ? qvel[c - nv] : ctrl[c - 2 * nv];
+        for (int col = 0; col < 2 * nv + model.nu; ++col) {
+          if (col < nv) continue;
+          double& input = col < 2 * nv ? qvel[col - nv] : ctrl[col - 2 * nv];
           const double x0 = input;
           input = x0 + kStep;
           step_from_inputs(plus);
           input = x0 - kStep;
           step_from_inputs(minus);
           input = x0;
-          column(c < 2 * nv ? A.col(c) : B.col(c - 2 * nv));
+          column(col < 2 * nv ? A.col(col) : B.col(col - 2 * nv));
         }
         ++compared;
         const double scale = std::max(largest(s.qpos), largest(s.qvel));
