@@ -11,6 +11,7 @@
 #include <lever/dynamics.hpp>
 
 #include "internal.hpp"
+#include "recursion.hpp"
 
 namespace lever {
 
@@ -34,11 +35,7 @@ void unchecked::crba(const Model& model, Data& data) {
   Eigen::MatrixXd& H = data.M;
 
   // composite inertias, leaves to root (bodies on the world stop there: nothing above them moves)
-  for (int b = 1; b < model.nbody; ++b) IC[b] = data.cinert[b];
-  for (int b = model.nbody - 1; b > 0; --b) {
-    const int parent = model.body_parentid[b];
-    if (parent > 0) IC[parent] += IC[b];
-  }
+  composite_inertias(model, data, IC);
 
   // columns: the force that accelerating joint i needs, seen by i and by each of its ancestors
   for (int i = 0; i < model.nv; ++i) {

@@ -191,13 +191,12 @@ void body_couplings(const Model& model, const Data& data, const std::vector<Moti
   }
 }
 
-// The inertia of each body's subtree, summed into w.IC as crba() sums data.work.crb (the same
-// additions in the same order), for rnea_derivatives(), whose caller may have run kinematics()
-// alone; after forward(), data.work.crb holds the same numbers and is read instead.
+// The inertia of each body's subtree, summed into w.IC by crba()'s composite_inertias(), for
+// rnea_derivatives(), whose caller may have run kinematics() alone; after forward(),
+// data.work.crb holds the same numbers and is read instead.
 const std::vector<RigidInertia>& subtree_inertias(const Model& model, const Data& data,
                                                   Derivatives::Workspace& w) {
-  for (int b = 1; b < model.nbody; ++b) w.IC[b] = data.cinert[b];
-  sum_over_subtrees(model, w.IC);
+  composite_inertias(model, data, w.IC);
   return w.IC;
 }
 

@@ -140,6 +140,15 @@ inline void sum_over_subtrees(const Model& model, std::vector<T>& x) {
   }
 }
 
+/// CRBA's composite inertias: each body's cinert summed over its subtree, leaves to root, into IC
+/// (the world, body 0, left out). crba() keeps them in data.work.crb; the derivatives sum their
+/// own where forward() has not run.
+inline void composite_inertias(const Model& model, const Data& data,
+                               std::vector<RigidInertia>& IC) {
+  for (int b = 1; b < model.nbody; ++b) IC[b] = data.cinert[b];
+  sum_over_subtrees(model, IC);
+}
+
 /// RNEA's backward pass: each body's net force f summed into its parent's, leaves to root (f is
 /// overwritten with the force each body's joint transmits), then tau_i = S_i . f of dof i's body.
 inline void backward_pass(const Model& model, const Data& data, std::vector<Force>& f,

@@ -165,9 +165,11 @@ struct Data {
   std::array<double, 2> energy{0.0, 0.0};  ///< compute_energy(): potential, kinetic (J)
   std::array<WarningStat, static_cast<int>(Warning::kCount)> warning{};
 
-  // ---- workspace (preallocated; contents are meaningless between calls) ------------------------
+  // ---- workspace (preallocated; contents are meaningless between calls but where it says) -------
   struct Workspace {
-    std::vector<RigidInertia> crb;     ///< (nbody) composite inertias
+    /// (nbody) crba()'s composite inertias, kept until the next position stage: the implicit step
+    /// and the derivatives read them after forward()
+    std::vector<RigidInertia> crb;
     std::vector<Motion> cacc;          ///< (nbody) body accelerations
     std::vector<Force> cfrc;           ///< (nbody) body forces
     Eigen::MatrixXd LD2;               ///< (nv x nv) factor of M + h diag(damping) (Euler)
