@@ -688,9 +688,9 @@ bool solve_active_set(Data& data) {
 }
 
 // The same problem in row space, exactly, by Murty's least-index principal pivoting on
-// A = J M^-1 J^T + R: finite for a positive definite A, whatever the start. For few rows, and the
-// fallback of solve_active_set.
-void solve_by_pivoting(const Model& model, Data& data) {
+// A = J M^-1 J^T + R: finite for a positive definite A, whatever the start. Two rows or more:
+// the forces in w.lcp_f and the set in w.lcp_active.
+void pivot_rows(const Model& model, Data& data) {
   const int n = data.nefc;
   auto& w = data.work;
   const auto b = data.efc_b.head(n);
@@ -725,7 +725,7 @@ void solve_by_pivoting(const Model& model, Data& data) {
       if (active[r]) idx[m++] = r;
     }
     f.setZero();
-    if (m == 1) {  // one row (one limit, the common case): Cholesky's sqrt(A) and its two solves
+    if (m == 1) {  // one active row: Cholesky's sqrt(A) and its two solves
       const double l = std::sqrt(A(idx[0], idx[0]));
       f[idx[0]] = -b[idx[0]] / l / l;
     } else if (m > 1) {
@@ -740,18 +740,51 @@ void solve_by_pivoting(const Model& model, Data& data) {
       for (int k = 0; k < m; ++k) f[idx[k]] = f_S[k];
     }
     // the first row that breaks complementarity changes side
-    if (n == 1) {
-      residual[0] = b[0] + A(0, 0) * f[0];
-    } else {
-      residual = b;
-      residual.noalias() += A.selfadjointView<Eigen::Lower>() * f;
-    }
+    residual = b;
+    residual.noalias() += A.selfadjointView<Eigen::Lower>() * f;
     int flip = -1;
     for (int r = 0; r < n && flip < 0; ++r) {
       if ((active[r] && f[r] < 0) || (!active[r] && residual[r] < 0)) flip = r;
     }
     if (flip < 0) break;
     active[flip] = !active[flip];
+  }
+}
+
+// One row (an arm against one stop, the common case): A = J M^-1 J^T + R is a number, and
+// Murty's method ends after its first set: the row pushes (f = -b / A > 0, w = 0) exactly when
+// b < 0, else f = 0 and w = b >= 0. The same arithmetic as pivot_rows for one row, without its
+// matrices.
+void solve_one_row(const Model& model, Data& data) {
+  auto& w = data.work;
+  auto y = w.halfJ.col(0);
+  y = data.efc_J.row(0).transpose();
+  solve_mass_half(model, data, y);
+  auto y_scaled = w.halfJ_scaled.col(0);
+  y_scaled = y.cwiseProduct(data.qLDiagInv);
+  const double A = y.cwiseProduct(y_scaled).sum() + data.efc_R[0];
+  const double b = data.efc_b[0];
+  const bool pushes = b < 0;
+  w.lcp_active[0] = pushes;
+  if (pushes) {
+    const double l = std::sqrt(A);  // as Cholesky's factor of the 1 x 1 A
+    w.lcp_f[0] = -b / l / l;
+  } else {
+    w.lcp_f[0] = 0.0;
+  }
+}
+
+// The one-sided rows' problem in row space (pivot_rows; one row: solve_one_row), then the joint
+// forces and accelerations its forces give. For few rows, and the fallback of solve_active_set.
+void solve_by_pivoting(const Model& model, Data& data) {
+  const int n = data.nefc;
+  auto& w = data.work;
+  std::vector<int>& active = w.lcp_active;
+  auto f = w.lcp_f.head(n);
+  if (n == 1) {
+    solve_one_row(model, data);
+  } else {
+    pivot_rows(model, data);
   }
 
   // forces, joint forces and accelerations
@@ -765,7 +798,6 @@ void solve_by_pivoting(const Model& model, Data& data) {
   unchecked::solve_mass(model, data, w.vec1.data());
   data.qacc += w.vec1;
 }
-
 }  // namespace
 
 namespace {
