@@ -2,7 +2,7 @@
 """Instructions per call of every benchmarked operation, counted by callgrind.
 
     bench/instructions.py --profile build-bench/bench/lever_bench_profile \
-        [--iterations N] [--stages arm2,panda7] [--jobs 2] [--commit ID] \
+        [--iterations N] [--stages arm2,panda7,chain20] [--jobs 2] [--commit ID] \
         --out build-bench/instructions.json models/*.xml
 
 Runs `lever_bench_profile MODEL --all N` under `valgrind --tool=callgrind --instr-atstart=no`,
@@ -180,7 +180,7 @@ def main():
     parser.add_argument("--profile", required=True, help="the lever_bench_profile executable")
     parser.add_argument("--out", required=True, help="the JSON file to write")
     parser.add_argument("--iterations", type=int, default=1000)
-    parser.add_argument("--stages", default="arm2,panda7",
+    parser.add_argument("--stages", default="arm2,panda7,chain20",
                         help="models whose forward is broken down by function (comma-separated)")
     parser.add_argument("--jobs", type=int, default=2, help="models counted at once")
     parser.add_argument("--commit", default="unknown", help="lever's commit, for the report")

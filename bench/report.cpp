@@ -586,7 +586,28 @@ int main(int argc, char** argv) {
           << " of that work's), and its kernels one by one reach the ratios of the `bias`, "
           << "`crba` and `jac_site` rows (0.5-1.0 of MuJoCo's): each kernel would have to run at "
           << fmt("%.0f", 100 * allowed / shared)
-          << "% of MuJoCo's instructions. `step` carries the same work plus the integrator's.\n";
+          << "% of MuJoCo's instructions.";
+      // what a step and an active limit add, each against what they add to MuJoCo's call
+      const auto added = [&](const char* op) -> std::optional<std::pair<double, double>> {
+        const auto l = counts.count(op, model, "lever"), m = counts.count(op, model, "mujoco");
+        if (!l || !m) return std::nullopt;
+        return std::make_pair(*l - *lever_forward, *m - *mujoco_forward);
+      };
+      if (const auto step = added("step")) {
+        out << " `step` adds " << count_text(step->first) << " instructions to lever's `forward` "
+            << "(the integrator's work: Euler's implicit damping factors M + h D and solves "
+            << "with it again, as `mj_Euler` does; `implicit` its own pass) and "
+            << count_text(step->second) << " to `mj_forward`'s, so its ratio follows `forward`'s.";
+      }
+      if (const auto limit = added("forward_limit")) {
+        out << " An active limit adds " << count_text(limit->first) << " instructions to lever's "
+            << "`forward` against " << count_text(limit->second) << " to `mj_forward`'s ("
+            << ratio_text(limit->first / limit->second) << "): the row, its soft parameters and "
+            << "a one-row solve.";
+      }
+      out << " Computing the dynamics in body coordinates instead (Featherstone's tables as "
+          << "printed, MuJoCo's frames only where read) was tried for the step and was not "
+          << "cheaper: docs/conventions.md says why.\n";
     }
     // (2) a time ratio missed where the instruction ratio is met: the run's noise
     for (const Target& t : targets) {
