@@ -53,6 +53,25 @@ Fn lever_fn(const Fixture* f, const State* s, Prepare prepare, Op op) {
   };
 }
 
+// The three kernels with targets on every model, the contact scenes included (kinematics done):
+// the site Jacobian, the bias forces, M.
+void register_lever_kernels(const Fixture& f) {
+  const auto kin = [](const Model& m, Data& d) { kinematics(m, d); };
+  const State* s = &f.state;
+  const int site = f.site;
+  if (site >= 0) {
+    // the Jacobians live outside Data, sized once
+    auto jac = std::make_shared<std::array<Eigen::MatrixXd, 2>>();
+    (*jac)[0].resize(3, f.model.nv);
+    (*jac)[1].resize(3, f.model.nv);
+    add("jac_site", f, "lever", lever_fn(&f, s, kin, [site, jac](const Model& m, Data& d) {
+          jac_site(m, d, site, (*jac)[0], (*jac)[1]);
+        }));
+  }
+  add("bias", f, "lever", lever_fn(&f, s, kin, [](const Model& m, Data& d) { bias(m, d); }));
+  add("crba", f, "lever", lever_fn(&f, s, kin, [](const Model& m, Data& d) { crba(m, d); }));
+}
+
 void register_lever(const Fixture& f) {
   const auto nothing = [](const Model&, Data&) {};
   const auto kin = [](const Model& m, Data& d) { kinematics(m, d); };
@@ -65,18 +84,9 @@ void register_lever(const Fixture& f) {
     // the tip frame alone from q, what KDL's FK gives and an inverse-kinematics loop reads
     add("fk_tip", f, "lever",
         lever_fn(&f, s, nothing, [site](const Model& m, Data& d) { place_site(m, d, site); }));
-    // the Jacobians live outside Data, sized once
-    auto jac = std::make_shared<std::array<Eigen::MatrixXd, 2>>();
-    (*jac)[0].resize(3, f.model.nv);
-    (*jac)[1].resize(3, f.model.nv);
-    add("jac_site", f, "lever", lever_fn(&f, s, kin, [site, jac](const Model& m, Data& d) {
-          jac_site(m, d, site, (*jac)[0], (*jac)[1]);
-        }));
   }
-  const auto bias_op = [](const Model& m, Data& d) { bias(m, d); };
+  register_lever_kernels(f);
   const auto rnea_op = [](const Model& m, Data& d) { rnea(m, d, d.qacc, d.qfrc_inverse); };
-  const auto crba_op = [](const Model& m, Data& d) { crba(m, d); };
-  add("bias", f, "lever", lever_fn(&f, s, kin, bias_op));
   add("bias_from_q", f, "lever", lever_fn(&f, s, nothing, [](const Model& m, Data& d) {
         kinematics(m, d);
         bias(m, d);
@@ -86,7 +96,6 @@ void register_lever(const Fixture& f) {
         kinematics(m, d);
         rnea(m, d, d.qacc, d.qfrc_inverse);
       }));
-  add("crba", f, "lever", lever_fn(&f, s, kin, crba_op));
   add("crba_factor", f, "lever", lever_fn(&f, s, kin, [](const Model& m, Data& d) {
         crba(m, d);
         factor_mass(m, d);
@@ -139,6 +148,33 @@ Fn mujoco_fn(const Fixture* f, const State* s, Prepare prepare, Op op) {
   };
 }
 
+// register_lever_kernels' peers: mj_jacSite after mj_kinematics and mj_comPos, mj_rne (no
+// acceleration) after mj_comVel too, mj_crb after mj_comPos.
+void register_mujoco_kernels(const Fixture& f) {
+  const auto kin = [](const mjModel* m, mjData* d) {
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+  };
+  const auto kin_vel = [](const mjModel* m, mjData* d) {
+    mj_kinematics(m, d);
+    mj_comPos(m, d);
+    mj_comVel(m, d);
+  };
+  const State* s = &f.state;
+  const int site = f.site;
+  if (site >= 0) {
+    auto jac = std::make_shared<std::vector<mjtNum>>(6 * static_cast<std::size_t>(f.mj->nv));
+    add("jac_site", f, "mujoco", mujoco_fn(&f, s, kin, [site, jac](const mjModel* m, mjData* d) {
+          mj_jacSite(m, d, jac->data(), jac->data() + 3 * m->nv, site);
+        }));
+  }
+  add("bias", f, "mujoco", mujoco_fn(&f, s, kin_vel, [](const mjModel* m, mjData* d) {
+        mj_rne(m, d, 0, d->qfrc_bias);
+      }));
+  add("crba", f, "mujoco",
+      mujoco_fn(&f, s, kin, [](const mjModel* m, mjData* d) { mj_crb(m, d); }));
+}
+
 void register_mujoco(const Fixture& f) {
   const auto nothing = [](const mjModel*, mjData*) {};
   const auto kin = [](const mjModel* m, mjData* d) {
@@ -164,15 +200,7 @@ void register_mujoco(const Fixture& f) {
     add("fk_tip", f, "mujoco",
         mujoco_fn(&f, s, nothing, [](const mjModel* m, mjData* d) { mj_kinematics(m, d); }));
   }
-  if (site >= 0) {
-    auto jac = std::make_shared<std::vector<mjtNum>>(6 * static_cast<std::size_t>(f.mj->nv));
-    add("jac_site", f, "mujoco", mujoco_fn(&f, s, kin, [site, jac](const mjModel* m, mjData* d) {
-          mj_jacSite(m, d, jac->data(), jac->data() + 3 * m->nv, site);
-        }));
-  }
-  add("bias", f, "mujoco", mujoco_fn(&f, s, kin_vel, [](const mjModel* m, mjData* d) {
-        mj_rne(m, d, 0, d->qfrc_bias);
-      }));
+  register_mujoco_kernels(f);
   add("bias_from_q", f, "mujoco", mujoco_fn(&f, s, nothing, [kin_vel](const mjModel* m, mjData* d) {
         kin_vel(m, d);
         mj_rne(m, d, 0, d->qfrc_bias);
@@ -184,8 +212,6 @@ void register_mujoco(const Fixture& f) {
         kin_vel(m, d);
         mj_rne(m, d, 1, d->qfrc_inverse);
       }));
-  add("crba", f, "mujoco",
-      mujoco_fn(&f, s, kin, [](const mjModel* m, mjData* d) { mj_crb(m, d); }));
   add("crba_factor", f, "mujoco", mujoco_fn(&f, s, kin, [](const mjModel* m, mjData* d) {
         mj_crb(m, d);
         mj_factorM(m, d);
@@ -227,7 +253,8 @@ void register_mujoco(const Fixture& f) {
 }
 
 // ---- contact scenes: the whole forward and step, each peer with the solver its model file sets
-// (MuJoCo's Newton with its tolerance; lever's exact solve)
+// (MuJoCo's Newton with its tolerance; lever's exact solve), and the three kernels with targets
+// on every model (free joints: quaternion qpos)
 
 void register_scene(const Fixture& f) {
   const State* s = &f.state;
@@ -422,6 +449,8 @@ void register_benchmarks(const std::vector<std::unique_ptr<Fixture>>& fixtures, 
   for (const auto& f : fixtures) {
     if (f->scene) {
       register_scene(*f);
+      register_lever_kernels(*f);
+      register_mujoco_kernels(*f);
       continue;
     }
     register_lever(*f);

@@ -263,6 +263,8 @@ std::unique_ptr<Fixture> make_scene_fixture(const std::string& path) {
   if (d.ncon == 0) throw std::runtime_error(path + ": no contact after one second at rest");
   f->ncon = d.ncon;
   f->state = {d.qpos, d.qvel, d.qacc, d.ctrl};
+  f->site = model.site("ee");  // the site Jacobian's, as for the arms
+  if (f->site < 0) f->site = model.nsite - 1;
   return f;
 }
 

@@ -254,10 +254,13 @@ std::vector<Operation> operations() {
 }
 
 bool available(const Operation& op, const Fixture& f) {
-  if (f.scene) {  // a contact scene is timed on forward and step only (bench/benchmarks.cpp)
+  if (f.scene) {  // a contact scene: forward, step and the three kernels (bench/benchmarks.cpp)
     const std::string_view name = op.name;
+    if (name.starts_with("kdl:")) return false;
     const std::string_view operation = name.substr(name.find(':') + 1);  // npos + 1 = 0
-    return op.needs == Needs::kNothing && (operation == "forward" || operation == "step");
+    if (operation == "jac_site") return f.site >= 0;
+    return op.needs == Needs::kNothing && (operation == "forward" || operation == "step" ||
+                                           operation == "bias" || operation == "crba");
   }
   switch (op.needs) {
     case Needs::kSite: return f.site >= 0 && (!op.name.starts_with("kdl:") || f.chain);
