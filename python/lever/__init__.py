@@ -11,8 +11,9 @@ The C++ library seen from Python. Model and Data arrays are numpy views of lever
     for _ in range(500):
         lever.step(model, data)
     report = lever.check(model)               # lesson 5.1's six checks, as a dict
-    runner = lever.BatchRunner(model, threads=2)  # many states at once: one per row
-    out = runner.forward(qpos_rows, qvel_rows, fields=("qacc", "site_xpos"))
+    runner = lever.BatchRunner(model, threads=2)  # many states at once, on two threads
+    out = runner.forward(qpos, qvel, fields=("qacc", "site_xpos"))  # qpos (n, nq): a state a row
+    qpos2, qvel2 = runner.step(qpos, qvel, nstep=10)                # out["qacc"]: (n, nv)
 
 For programs written against MuJoCo's Python bindings, ``import lever.mujoco as mujoco``.
 """
