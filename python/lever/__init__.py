@@ -11,6 +11,9 @@ The C++ library seen from Python. Model and Data arrays are numpy views of lever
     for _ in range(500):
         lever.step(model, data)
     report = lever.check(model)               # lesson 5.1's six checks, as a dict
+    runner = lever.BatchRunner(model, threads=2)  # many states at once, on two threads
+    out = runner.forward(qpos, qvel, fields=("qacc", "site_xpos"))  # qpos (n, nq): a state a row
+    qpos2, qvel2 = runner.step(qpos, qvel, nstep=10)                # out["qacc"]: (n, nv)
 
 For programs written against MuJoCo's Python bindings, ``import lever.mujoco as mujoco``.
 """
@@ -19,6 +22,7 @@ import json as _json
 import os as _os
 
 from ._lever import (  # noqa: F401  (the package's API)
+    BatchRunner,
     Data,
     Error,
     Model,

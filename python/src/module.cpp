@@ -13,6 +13,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <lever/batch.hpp>
 #include <lever/check.hpp>
 #include <lever/derivatives.hpp>
 #include <lever/fields.hpp>
@@ -23,9 +24,13 @@
 #include <lever/mjcf.hpp>
 #include <lever/regressor.hpp>
 
+#include <algorithm>
 #include <cstdint>
+#include <cstring>
 #include <memory>
+#include <mutex>
 #include <string>
+#include <vector>
 
 namespace py = pybind11;
 
@@ -42,8 +47,6 @@ struct PyData {
 using ModelPtr = std::shared_ptr<lever::Model>;
 using DataPtr = std::shared_ptr<PyData>;
 
-// A numpy view of one field; `owner` keeps the memory alive. Shape (rows,) when the table gives
-// one column, else (rows, cols); MuJoCo's Python bindings use the same shapes.
 // A keyframe array (nkey x n, row-major) as a writable (nkey, n) numpy view.
 py::array key_view(lever::RowMatrix& a, py::handle owner) {
   const auto item = static_cast<py::ssize_t>(sizeof(double));
@@ -52,33 +55,31 @@ py::array key_view(lever::RowMatrix& a, py::handle owner) {
       {item * static_cast<py::ssize_t>(a.cols()), item}, a.data(), owner);
 }
 
+// The numpy shape of a field: (rows,) when the table gives one column, else (rows, cols); one row
+// (energy) is a flat array of its columns. MuJoCo's Python bindings use the same shapes.
+std::vector<py::ssize_t> field_shape(const lever::FieldView& v) {
+  std::vector<py::ssize_t> shape;
+  if (v.info->rows != lever::Size::kOne) shape.push_back(v.rows);
+  if (v.cols != 1 || v.info->rows == lever::Size::kOne) shape.push_back(v.cols);
+  return shape;
+}
+
+py::dtype field_dtype(const lever::FieldInfo& info) {
+  switch (info.scalar) {
+    case lever::Scalar::kDouble: return py::dtype::of<double>();
+    case lever::Scalar::kInt: return py::dtype::of<int32_t>();
+    case lever::Scalar::kByte: return py::dtype::of<uint8_t>();
+  }
+  return py::dtype::of<double>();
+}
+
+// A numpy view of one field; `owner` keeps the memory alive.
 py::array view(const lever::FieldView& v, py::handle owner, bool writable) {
-  std::vector<py::ssize_t> shape, strides;
-  py::dtype dtype;
-  size_t item = 0;
-  switch (v.info->scalar) {
-    case lever::Scalar::kDouble:
-      dtype = py::dtype::of<double>();
-      item = sizeof(double);
-      break;
-    case lever::Scalar::kInt:
-      dtype = py::dtype::of<int32_t>();
-      item = sizeof(int32_t);
-      break;
-    case lever::Scalar::kByte:
-      dtype = py::dtype::of<uint8_t>();
-      item = sizeof(uint8_t);
-      break;
-  }
-  // one row (energy): a flat array of its columns, as MuJoCo's bindings give mjData's vectors
-  if (v.info->rows != lever::Size::kOne) {
-    shape.push_back(v.rows);
-    strides.push_back(static_cast<py::ssize_t>(item) * v.cols);
-  }
-  if (v.cols != 1 || v.info->rows == lever::Size::kOne) {
-    shape.push_back(v.cols);
-    strides.push_back(static_cast<py::ssize_t>(item));
-  }
+  const py::dtype dtype = field_dtype(*v.info);
+  const auto item = static_cast<py::ssize_t>(dtype.itemsize());
+  const std::vector<py::ssize_t> shape = field_shape(v);
+  std::vector<py::ssize_t> strides(shape.size(), item);  // row-major
+  if (shape.size() == 2) strides[0] = item * v.cols;
   py::array a(dtype, shape, strides, v.data, owner);
   if (!writable) {
     py::detail::array_proxy(a.ptr())->flags &= ~py::detail::npy_api::NPY_ARRAY_WRITEABLE_;
@@ -151,6 +152,130 @@ py::array contact_view(lever::Data& data, const ContactMember& m, py::handle own
   char* base = reinterpret_cast<char*>(data.contact.data()) + m.offset;
   const py::dtype dtype = m.is_int ? py::dtype::of<int32_t>() : py::dtype::of<double>();
   return py::array(dtype, shape, strides, base, owner);
+}
+
+// ---- batches (lever/batch.hpp) ------------------------------------------------------------------
+// A C-contiguous (n, nq) float64 array holds state k's nq numbers contiguously in row k: that is
+// exactly the nq x n column-major matrix BatchRunner takes (state k its column k), so the array
+// is mapped, not copied.
+
+// lever::BatchRunner with the model it runs, kept alive, and a lock: the GIL is released while a
+// batch runs, and a second Python thread calling the same runner waits for the first batch
+// instead of sharing its Data.
+struct PyBatchRunner {
+  ModelPtr model;
+  lever::BatchRunner runner;
+  std::mutex busy;
+  PyBatchRunner(ModelPtr m, int threads) : model(std::move(m)), runner(*model, threads) {}
+};
+
+using StateRows = py::array_t<double, py::array::c_style>;
+using ConstStates = Eigen::Map<const Eigen::MatrixXd>;
+
+std::string shape_text(const py::array& a) {
+  std::string text = "(";
+  for (py::ssize_t i = 0; i < a.ndim(); ++i) {
+    text += (i ? ", " : "") + std::to_string(a.shape(i));
+  }
+  return text + (a.ndim() == 1 ? ",)" : ")");
+}
+
+// `what` as n states of `count` numbers, one per row: the array itself when it is a C-contiguous
+// float64 array, else a C-contiguous float64 copy (np.ascontiguousarray). `n` is -1 for the first
+// argument, which sets it.
+StateRows state_rows(const py::handle& values, const char* where, const char* what,
+                     const char* count_name, int count, py::ssize_t n) {
+  StateRows rows = StateRows::ensure(values);
+  if (!rows) {
+    PyErr_Clear();
+    throw lever::StateError(std::string(where) + ": " + what +
+                            " is not an array of numbers (float64).");
+  }
+  if (rows.ndim() != 2 || rows.shape(1) != count || (n >= 0 && rows.shape(0) != n)) {
+    throw lever::StateError(std::string(where) + ": " + what + " has shape " + shape_text(rows) +
+                            "; it needs (n, " + count_name + ") = (" +
+                            (n < 0 ? std::string("n") : std::to_string(n)) + ", " +
+                            std::to_string(count) + "): one state per row.");
+  }
+  return rows;
+}
+
+ConstStates as_columns(const StateRows& rows) {
+  return ConstStates(rows.data(), rows.shape(1), rows.shape(0));
+}
+
+// The states of one call: qpos (n, nq), qvel (n, nv), ctrl (n, nu) or None, checked.
+struct BatchStates {
+  StateRows qpos, qvel, ctrl;
+  bool zero_controls;  // ctrl was None
+  py::ssize_t n;
+
+  BatchStates(const lever::Model& model, const py::object& q, const py::object& v,
+              const py::object& u, const char* where)
+      : qpos(state_rows(q, where, "qpos", "nq", model.nq, -1)),
+        qvel(state_rows(v, where, "qvel", "nv", model.nv, qpos.shape(0))),
+        zero_controls(u.is_none()),
+        n(qpos.shape(0)) {
+    if (!zero_controls) ctrl = state_rows(u, where, "ctrl", "nu", model.nu, n);
+  }
+  // no columns when ctrl was None: BatchRunner's "every control zero"
+  ConstStates ctrl_columns(int nu) const {
+    return zero_controls ? ConstStates(nullptr, nu, 0) : as_columns(ctrl);
+  }
+};
+
+// One requested Data field of a batch: the output array, (n,) + the field's shape, whose row k
+// receives state k's numbers, and where those numbers are in each thread's Data.
+struct BatchField {
+  std::string name;
+  py::array out;
+  char* rows = nullptr;             // out's numbers: row k at rows + k * bytes
+  std::size_t bytes = 0;            // one state's
+  std::vector<const char*> source;  // source[t]: the field in runner.data(t)
+};
+
+// The field `name` with its output array, refused (naming it) unless forward() computes it and
+// its size is the model's alone. Its sources are located later, under the runner's lock.
+BatchField batch_field(const lever::Model& model, const std::string& name, py::ssize_t n) {
+  const char* where = "lever.BatchRunner.forward";
+  const lever::FieldInfo* info = nullptr;
+  for (const lever::FieldInfo& f : lever::data_field_table()) {
+    if (name == f.name) info = &f;
+  }
+  if (info == nullptr) {
+    if (name.rfind("contact", 0) == 0 || name.rfind("efc_", 0) == 0 || name == "ncon" ||
+        name == "nefc") {
+      throw lever::StateError(std::string(where) + ": field '" + name +
+                              "' is sized by the state's contacts or constraint rows, which "
+                              "vary from state to state: run lever.forward on a Data for it.");
+    }
+    throw lever::StateError(std::string(where) + ": Data has no field '" + name +
+                            "' (lever.data_field_table() lists them).");
+  }
+  if (info->rows == lever::Size::kNefc) {
+    throw lever::StateError(std::string(where) + ": field '" + name +
+                            "' has one row per live constraint row (nefc), which varies from "
+                            "state to state: run lever.forward on a Data for it.");
+  }
+  if (info->stage == lever::Stage::kInverse || info->stage == lever::Stage::kEnergy) {
+    throw lever::StateError(
+        std::string(where) + ": field '" + name + "' is not computed by forward() (" +
+        (info->stage == lever::Stage::kInverse ? "lever.inverse" : "lever.compute_energy") +
+        " writes it).");
+  }
+  lever::FieldView one_state;  // the field's shape in any Data of this model
+  one_state.info = info;
+  one_state.rows = lever::size_of(model, info->rows);
+  one_state.cols = info->cols < 0 ? one_state.rows : info->cols;
+  std::vector<py::ssize_t> shape = field_shape(one_state);
+  shape.insert(shape.begin(), n);
+  BatchField field;
+  field.name = name;
+  field.out = py::array(field_dtype(*info), shape);
+  field.rows = static_cast<char*>(field.out.mutable_data());
+  field.bytes =
+      static_cast<std::size_t>(one_state.size()) * static_cast<std::size_t>(field.out.itemsize());
+  return field;
 }
 
 // Python exception classes, made once in the module
@@ -473,6 +598,101 @@ PYBIND11_MODULE(_lever, m) {
       },
       py::arg("model"), py::arg("h"), py::arg("qpos1"), py::arg("qpos2"),
       "The velocity (nv) taking qpos1 to qpos2 in time h, as mj_differentiatePos.");
+
+  // ---- batches (lever/batch.hpp) ----------------------------------------------------------------
+  py::class_<PyBatchRunner, std::shared_ptr<PyBatchRunner>>(
+      m, "BatchRunner",
+      "forward() or step() over many states on several threads, one Data per thread "
+      "(lever::BatchRunner). States are rows: qpos (n, nq), qvel (n, nv), ctrl (n, nu).")
+      .def(py::init([](const ModelPtr& x, int threads) {
+             model_of(x);
+             return std::make_shared<PyBatchRunner>(x, threads);
+           }),
+           py::arg("model"), py::arg("threads") = 1,
+           "One Data per thread and threads - 1 worker threads, kept until the runner goes (keep "
+           "it and give each call many states); the runner keeps the model alive. Edit the model "
+           "between batches only. Raises lever.StateError if threads < 1.")
+      .def_property_readonly("threads",
+                             [](const PyBatchRunner& self) { return self.runner.threads(); })
+      .def_property_readonly("model", [](const PyBatchRunner& self) { return self.model; })
+      .def(
+          "forward",
+          [](PyBatchRunner& self, const py::object& qpos, const py::object& qvel,
+             const py::object& ctrl, const py::object& fields) {
+            const lever::Model& model = *self.model;
+            const BatchStates states(model, qpos, qvel, ctrl, "lever.BatchRunner.forward");
+            // a str is one name, not a sequence of one-letter names
+            const py::list names = py::isinstance<py::str>(fields)
+                                       ? py::list(py::make_tuple(fields))
+                                       : py::list(fields);
+            std::vector<BatchField> outputs;
+            for (const py::handle& name : names) {
+              const std::string text = py::str(name);
+              const auto same = [&text](const BatchField& f) { return f.name == text; };
+              if (std::none_of(outputs.begin(), outputs.end(), same)) {
+                outputs.push_back(batch_field(model, text, states.n));
+              }
+            }
+            {
+              py::gil_scoped_release release;
+              std::lock_guard<std::mutex> lock(self.busy);
+              // each field located once per thread's Data, not per state
+              for (BatchField& f : outputs) {
+                for (int t = 0; t < self.runner.threads(); ++t) {
+                  const lever::FieldView v = lever::data_field(model, self.runner.data(t), f.name);
+                  f.source.push_back(static_cast<const char*>(v.data));
+                }
+              }
+              // runs on every thread, concurrently for different states: raw buffers only
+              const auto collect = [&outputs](const lever::Data&, Eigen::Index k, int t) {
+                for (const BatchField& f : outputs) {
+                  std::memcpy(f.rows + static_cast<std::size_t>(k) * f.bytes,
+                              f.source[static_cast<std::size_t>(t)], f.bytes);
+                }
+              };
+              self.runner.forward_each(as_columns(states.qpos), as_columns(states.qvel),
+                                       states.ctrl_columns(model.nu), collect);
+            }
+            py::dict out;
+            for (const BatchField& f : outputs) out[py::str(f.name)] = f.out;
+            return out;
+          },
+          py::arg("qpos"), py::arg("qvel"), py::arg("ctrl") = py::none(),
+          py::arg("fields") = py::make_tuple("qacc"),
+          "forward() at every state (row k of qpos (n, nq), qvel (n, nv), ctrl (n, nu); ctrl None: "
+          "zero controls). Returns a dict: each name of `fields` (Data fields whose size is the "
+          "model's: qacc, qfrc_bias, M, site_xpos, ...) -> an array (n,) + that field's shape, "
+          "row k state k's. C-contiguous float64 inputs are read in place, others copied once; "
+          "none is modified. The GIL is released while the states run.")
+      .def(
+          "step",
+          [](PyBatchRunner& self, const py::object& qpos, const py::object& qvel,
+             const py::object& ctrl, int nstep) {
+            const lever::Model& model = *self.model;
+            const BatchStates states(model, qpos, qvel, ctrl, "lever.BatchRunner.step");
+            // the new states, stepped in place in fresh arrays: the inputs are left as they were
+            StateRows new_qpos({states.n, static_cast<py::ssize_t>(model.nq)});
+            StateRows new_qvel({states.n, static_cast<py::ssize_t>(model.nv)});
+            std::copy_n(states.qpos.data(), states.qpos.size(), new_qpos.mutable_data());
+            std::copy_n(states.qvel.data(), states.qvel.size(), new_qvel.mutable_data());
+            Eigen::Map<Eigen::MatrixXd> qpos_columns(new_qpos.mutable_data(), model.nq, states.n);
+            Eigen::Map<Eigen::MatrixXd> qvel_columns(new_qvel.mutable_data(), model.nv, states.n);
+            {
+              py::gil_scoped_release release;
+              std::lock_guard<std::mutex> lock(self.busy);
+              self.runner.step(qpos_columns, qvel_columns, states.ctrl_columns(model.nu), nstep);
+            }
+            return py::make_tuple(new_qpos, new_qvel);
+          },
+          py::arg("qpos"), py::arg("qvel"), py::arg("ctrl") = py::none(), py::arg("nstep") = 1,
+          "Every state (rows, as forward's) advanced by nstep steps of the model's integrator, "
+          "controls held: returns (qpos, qvel), new arrays; the inputs are not modified. A state "
+          "step() resets (NaN or huge values) comes back reset. The GIL is released while the "
+          "states run.")
+      .def("__repr__", [](const PyBatchRunner& self) {
+        return "<lever.BatchRunner '" + self.model->name +
+               "' threads=" + std::to_string(self.runner.threads()) + ">";
+      });
 
   // ---- derivatives and the regressor (docs/derivatives.md)
   // ----------------------------------------

@@ -1,5 +1,6 @@
 // BatchRunner's worker pool: the same numbers on any number of threads, call after call on one
-// runner, and an exception thrown in a worker's block reaching the caller.
+// runner, an exception thrown in a worker's block reaching the caller, and forward_each handing
+// every state over exactly once.
 #include <catch2/catch.hpp>
 
 #include <lever/batch.hpp>
@@ -7,8 +8,10 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
+#include <atomic>
 #include <random>
 #include <string>
+#include <vector>
 
 #include <lever/harness/models.hpp>
 
@@ -129,4 +132,58 @@ TEST_CASE("an exception thrown in a worker reaches the caller; the runner still 
   runner.data(0).qfrc_applied.setZero(m.nv);
   runner.forward(s.qpos, s.qvel, s.ctrl, qacc);
   CHECK(qacc == expected);
+}
+
+TEST_CASE(
+    "forward_each hands every state's Data over once, with forward()'s qacc, on 1 and 2 threads",
+    "[batch]") {
+  const lever::Model m = lever::mjcf::load_file(lever::test::model_path("models/panda7.xml"));
+  const Eigen::Index n = 37;
+  const States s = random_states(m, n, 11);
+  const Eigen::MatrixXd no_ctrl(m.nu, 0);
+  for (const int threads : {1, 2}) {
+    INFO(threads << " thread(s)");
+    lever::BatchRunner runner(m, threads);
+    for (const bool zero_controls : {false, true}) {
+      INFO((zero_controls ? "no controls" : "controls"));
+      const Eigen::MatrixXd& ctrl = zero_controls ? no_ctrl : s.ctrl;
+      Eigen::MatrixXd expected(m.nv, n);
+      runner.forward(s.qpos, s.qvel, ctrl, expected);
+
+      // each state's column written by its own call only; the count per state is atomic because
+      // two threads may (wrongly) collect the same state at once
+      Eigen::MatrixXd collected = Eigen::MatrixXd::Constant(m.nv, n, -1.0);
+      std::vector<std::atomic<int>> calls(static_cast<std::size_t>(n));
+      std::vector<int> thread_of(static_cast<std::size_t>(n), -1);
+      std::atomic<bool> right_data{true};
+      runner.forward_each(s.qpos, s.qvel, ctrl, [&](const lever::Data& d, Eigen::Index k, int t) {
+        calls[static_cast<std::size_t>(k)].fetch_add(1);
+        thread_of[static_cast<std::size_t>(k)] = t;
+        if (&d != &runner.data(t)) right_data = false;
+        collected.col(k) = d.qacc;
+      });
+      CHECK(collected == expected);  // exactly: forward() at the same state
+      CHECK(right_data);             // the Data handed over is data(thread)
+      for (Eigen::Index k = 0; k < n; ++k) {
+        INFO("state " << k);
+        CHECK(calls[static_cast<std::size_t>(k)].load() == 1);
+        CHECK(thread_of[static_cast<std::size_t>(k)] >= 0);
+        CHECK(thread_of[static_cast<std::size_t>(k)] < threads);
+      }
+    }
+  }
+  // an exception thrown by collect reaches the caller, and the runner still works
+  lever::BatchRunner runner(m, 2);
+  CHECK_THROWS_WITH(runner.forward_each(s.qpos, s.qvel, s.ctrl,
+                                        [](const lever::Data&, Eigen::Index k, int) {
+                                          if (k == 5) throw lever::StateError("state 5 refused");
+                                        }),
+                    Catch::Contains("state 5 refused"));
+  Eigen::MatrixXd qacc(m.nv, n);
+  runner.forward(s.qpos, s.qvel, s.ctrl, qacc);
+  CHECK(qacc == one_by_one(m, s));
+  // sizes are checked before any state runs
+  CHECK_THROWS_AS(runner.forward_each(s.qpos, s.qvel.leftCols(n - 1), s.ctrl,
+                                      [](const lever::Data&, Eigen::Index, int) {}),
+                  lever::StateError);
 }

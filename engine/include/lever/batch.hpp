@@ -20,10 +20,21 @@
 //   ...  // fill the states
 //   runner.forward(qpos, qvel, ctrl, qacc);  // qacc.col(k) = forward() at state k
 //   runner.step(qpos, qvel, ctrl, 10);       // every state advanced by 10 steps, in place
+//
+// forward() keeps qacc only; forward_each() hands the caller the whole Data after forward() at
+// each state, on the thread that computed it, to take whatever it needs (site_xpos for a
+// workspace map, qfrc_bias and M for an identification sweep): the Python binding's
+// BatchRunner.forward(fields=...) is built on it.
+//
+//   Eigen::MatrixXd tips(3, n);
+//   runner.forward_each(qpos, qvel, ctrl, [&](const lever::Data& d, Eigen::Index k, int) {
+//     tips.col(k) = d.site_xpos[0];  // column k is written by this call alone
+//   });
 #pragma once
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <memory>
 #include <vector>
 
@@ -59,6 +70,23 @@ class BatchRunner {
   void forward(const Eigen::Ref<const Eigen::MatrixXd>& qpos,
                const Eigen::Ref<const Eigen::MatrixXd>& qvel,
                const Eigen::Ref<const Eigen::MatrixXd>& ctrl, Eigen::Ref<Eigen::MatrixXd> qacc);
+
+  /// What forward_each() hands over for each state: the Data that forward() just ran in, the
+  /// state's index k (its column in qpos), and the thread t that ran it (the Data is data(t)).
+  using Collect = std::function<void(const Data& data, Eigen::Index state, int thread)>;
+
+  /// forward() at every state k (qpos.col(k), qvel.col(k), ctrl.col(k); ctrl may have no
+  /// columns: zero controls), then collect(data(t), k, t) on the thread t that computed it,
+  /// before that thread moves on to its next state: take what is needed from the Data there.
+  /// collect is called once per state, and concurrently from different threads for different
+  /// states (in no set order), so it must be safe to call so: writing into column k of a
+  /// preallocated output is; appending to a shared container is not. `thread` lets a caller keep
+  /// per-thread scratch (views of data(t) resolved once, accumulators) without locks. An
+  /// exception thrown by collect stops its thread as forward()'s own would (see the top of this
+  /// file). Nothing is allocated per state. Throws StateError on a size mismatch.
+  void forward_each(const Eigen::Ref<const Eigen::MatrixXd>& qpos,
+                    const Eigen::Ref<const Eigen::MatrixXd>& qvel,
+                    const Eigen::Ref<const Eigen::MatrixXd>& ctrl, const Collect& collect);
 
   /// Advance every state by `nstep` calls of step() (the model's integrator), in place. Controls
   /// are held constant over the steps. A state that step() resets (NaN or huge values) comes back
