@@ -650,6 +650,23 @@ int main(int argc, char** argv) {
           << "step and its net force by Newton and Euler's equations about the frame origin "
           << "(recursion.hpp); what remains is the six-vector products of that frame.\n";
     }
+    for (const std::string& model : model_order) {
+      const auto lever_crba = counts.count("crba", model, "lever");
+      const auto mujoco_crba = counts.count("crba", model, "mujoco");
+      if (!lever_crba || !mujoco_crba || *lever_crba <= *mujoco_crba) continue;
+      const double nv = dofs_of(model);
+      out << "- " << model << " `crba` / `mj_crb`: " << count_text(*lever_crba) << " against "
+          << count_text(*mujoco_crba) << " instructions ("
+          << ratio_text(*lever_crba / *mujoco_crba)
+          << "). Where a model has simple bodies (a free body about its centre of mass), both "
+          << "copy their constant diagonal (`dof_M0`) instead of computing it; beyond that, "
+          << "lever's M is dense, so crba writes all "
+          << count_text(nv * nv) << " entries every call, the zero couplings of a simple body "
+          << "and those between branches included, where MuJoCo's sparse "
+          << "`qM` holds only each dof's ancestors and clears them in one call; and lever sums "
+          << "every body's composite inertia, which the implicit step and the derivatives read "
+          << "after it.\n";
+    }
     if (const auto jac = counts.count("step_jacobian_forward", "panda7", "lever"),
         fwd = counts.count("forward", "panda7", "lever");
         jac && fwd && *jac > 5.0 * *fwd) {
@@ -829,7 +846,8 @@ int main(int argc, char** argv) {
          "first "
          "limited joint, the shoulder, 1 mrad past its lower stop). Stages a peer needs before the "
          "timed call run once before the timing loop. The contact scenes (lesson 5.3's models) "
-         "are timed on `forward` and `step` only, at rest in contact (their model row says how "
+         "are timed on `forward`, `step` and the three kernels whose targets name every model "
+         "(`bias`, `crba`, `jac_site`), at rest in contact (their model row says how "
          "many contacts), each peer with the contact solver its file asks for: MuJoCo's "
          "iterative one at its tolerance, lever's exact solve.\n\n";
   out << "| operation | lever | MuJoCo | KDL |\n|---|---|---|---|\n";
