@@ -28,22 +28,42 @@ void zero_uncoupled(const Model& model, Eigen::MatrixXd& H, int i) {
   }
 }
 
+// H's column i and its transpose row over i's ancestors: the force that accelerating dof i needs,
+// seen by i and by each of its ancestors.
+inline void crba_column(const Model& model, const Data& data, Eigen::MatrixXd& H, int i) {
+  const Force F = data.work.crb[model.dof_bodyid[i]] * data.cdof[i];
+  H(i, i) = data.cdof[i].dot(F) + model.dof_armature[i];  // armature: rotor inertia of the motor
+  for (int j = model.dof_parentid[i]; j >= 0; j = model.dof_parentid[j]) {
+    H(i, j) = H(j, i) = data.cdof[j].dot(F);
+  }
+}
+
+// The same for a simple body's dof (Model::body_simple): its diagonal entry is the same at every
+// state and its couplings are zero, as MuJoCo's mj_crb copies them.
+inline void simple_column(const Model& model, Eigen::MatrixXd& H, int i) {
+  H(i, i) = model.dof_M0[i];
+  for (int j = model.dof_parentid[i]; j >= 0; j = model.dof_parentid[j]) H(i, j) = H(j, i) = 0.0;
+}
+
 }  // namespace
 
 void unchecked::crba(const Model& model, Data& data) {
-  auto& IC = data.work.crb;
   Eigen::MatrixXd& H = data.M;
 
   // composite inertias, leaves to root (bodies on the world stop there: nothing above them moves)
-  composite_inertias(model, data, IC);
+  composite_inertias(model, data, data.work.crb);
 
-  // columns: the force that accelerating joint i needs, seen by i and by each of its ancestors
-  for (int i = 0; i < model.nv; ++i) {
-    const Force F = IC[model.dof_bodyid[i]] * data.cdof[i];
-    H(i, i) = data.cdof[i].dot(F) + model.dof_armature[i];  // armature: rotor inertia of the motor
-    for (int j = model.dof_parentid[i]; j >= 0; j = model.dof_parentid[j]) {
-      H(i, j) = H(j, i) = data.cdof[j].dot(F);
+  // the columns (a model without simple dofs does not ask for each dof)
+  if (model.has_simple_dofs) {
+    for (int i = 0; i < model.nv; ++i) {
+      if (model.dof_simplenum[i] > 0) {
+        simple_column(model, H, i);
+      } else {
+        crba_column(model, data, H, i);
+      }
     }
+  } else {
+    for (int i = 0; i < model.nv; ++i) crba_column(model, data, H, i);
   }
   // the other entries are zero: written where there are any (past the chain the first dofs form),
   // not by clearing all of H first, and every call, so nothing a caller left in M stays
@@ -63,7 +83,11 @@ constexpr double kMinPivot = 1e-15;  // as MuJoCo's mjMINVAL: keep the solve fin
 
 // LTDL's steps at the columns k = last down to first of H (upper triangle), leaves to root: D_k's
 // pivot made positive, then column k eliminated from its ancestors' columns. Returns the first
-// (lowest) column whose pivot was not positive, or -1.
+// (lowest) column whose pivot was not positive, or -1. SkipSimple: the model has simple dofs
+// (Model::body_simple), whose columns hold zeros off the diagonal (crba() writes them so) and are
+// skipped; without any, the loop does not ask (the factorization and solves below are
+// instantiated both ways, chosen once per call).
+template <bool SkipSimple>
 [[gnu::always_inline]] inline int ltdl_columns(const Model& model, Eigen::MatrixXd& H, int last,
                                                int first) {
   int bad = -1;
@@ -72,6 +96,7 @@ constexpr double kMinPivot = 1e-15;  // as MuJoCo's mjMINVAL: keep the solve fin
       bad = k;
       H(k, k) = kMinPivot;
     }
+    if (SkipSimple && model.dof_simplenum[k] > 0) continue;  // nothing to eliminate
     const double* Hk = &H(0, k);  // column k: H(j, k) for the ancestors j of k
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
       const double a = Hk[i] / Hk[k];
@@ -112,46 +137,76 @@ bool long_leading_chain(const Model& model) {
 // ltdl() for a model whose first dofs form a long chain: the chain's columns from kLongChain on
 // take the chain step, the others the general one. Out of line, so that it costs ltdl()'s common
 // case one test.
+// (A simple body has no child: a chain of nine dofs or more holds no simple dof, but in one body
+// of nine slides; its zero columns are eliminated as the others, to the same result.)
+template <bool SkipSimple>
 [[gnu::noinline]] int ltdl_long_chain(const Model& model, Eigen::MatrixXd& H) {
   int chain_end = kLongChain + 1;  // dofs 0..chain_end-1 form one chain
   while (chain_end < model.nv && model.dof_parentid[chain_end] == chain_end - 1) ++chain_end;
-  int bad = ltdl_columns(model, H, model.nv - 1, chain_end);
+  int bad = ltdl_columns<SkipSimple>(model, H, model.nv - 1, chain_end);
   for (int k = chain_end - 1; k >= kLongChain; --k) {
     if (ltdl_chain_column(H, k)) bad = k;
   }
-  const int bad_below = ltdl_columns(model, H, kLongChain - 1, 0);
+  const int bad_below = ltdl_columns<SkipSimple>(model, H, kLongChain - 1, 0);
   return bad_below >= 0 ? bad_below : bad;
 }
 
 // In-place LTDL factorization of the symmetric H, working in its upper triangle: on return D is
 // on the diagonal and L^T above it (L(k, i), i an ancestor of k, at (i, k)), so that every inner
 // loop runs down one column. Returns the first dof whose pivot was not positive, or -1.
-int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
-  const int bad = long_leading_chain(model) ? ltdl_long_chain(model, H)
-                                            : ltdl_columns(model, H, model.nv - 1, 0);
+template <bool SkipSimple>
+int ltdl_factor(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
+  const int bad = long_leading_chain(model) ? ltdl_long_chain<SkipSimple>(model, H)
+                                            : ltdl_columns<SkipSimple>(model, H, model.nv - 1, 0);
   for (int k = 0; k < model.nv; ++k) diag_inverse[k] = 1.0 / H(k, k);
   return bad;
 }
 
+int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
+  return model.has_simple_dofs ? ltdl_factor<true>(model, H, diag_inverse)
+                               : ltdl_factor<false>(model, H, diag_inverse);
+}
+
 // x <- L^-T x with a factor from ltdl(), leaves to root.
-void ltdl_solve_half(const Model& model, const Eigen::MatrixXd& LD, Eigen::Ref<Eigen::VectorXd> x) {
+template <bool SkipSimple>
+void solve_half(const Model& model, const Eigen::MatrixXd& LD, Eigen::Ref<Eigen::VectorXd> x) {
   for (int k = model.nv - 1; k >= 0; --k) {
+    if (SkipSimple && model.dof_simplenum[k] > 0) continue;  // column k of L is zero
     const double* Lk = &LD(0, k);
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= Lk[i] * x[k];
   }
 }
 
+void ltdl_solve_half(const Model& model, const Eigen::MatrixXd& LD, Eigen::Ref<Eigen::VectorXd> x) {
+  if (model.has_simple_dofs) {
+    solve_half<true>(model, LD, x);
+  } else {
+    solve_half<false>(model, LD, x);
+  }
+}
+
 // x = (L^T D L)^-1 x with a factor from ltdl().
-void ltdl_solve(const Model& model, const Eigen::MatrixXd& LD, const Eigen::VectorXd& diag_inverse,
-                Eigen::Ref<Eigen::VectorXd> x) {
+template <bool SkipSimple>
+void solve(const Model& model, const Eigen::MatrixXd& LD, const Eigen::VectorXd& diag_inverse,
+           Eigen::Ref<Eigen::VectorXd> x) {
   const int n = model.nv;
-  ltdl_solve_half(model, LD, x);  // x <- L^-T x
+  solve_half<SkipSimple>(model, LD, x);  // x <- L^-T x
   // x <- D^-1 x
   for (int k = 0; k < n; ++k) x[k] *= diag_inverse[k];
   // x <- L^-1 x, root to leaves
   for (int k = 0; k < n; ++k) {
+    if (SkipSimple && model.dof_simplenum[k] > 0) continue;  // row k of L is zero
     const double* Lk = &LD(0, k);
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[k] -= Lk[i] * x[i];
+  }
+}
+
+void ltdl_solve(const Model& model, const Eigen::MatrixXd& LD, const Eigen::VectorXd& diag_inverse,
+                Eigen::Ref<Eigen::VectorXd> x) {
+  if (model.has_simple_dofs) {
+    solve<true>(model, LD, diag_inverse, x);
+  } else {
+    solve<false>(model, LD, diag_inverse, x);
   }
 }
 

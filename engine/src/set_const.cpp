@@ -147,6 +147,43 @@ bool contacts_possible(const Model& model) {
   return false;
 }
 
+// MuJoCo's simple bodies (Model::body_simple), by its compiler's rule: the inertial frame is the
+// body's own (exactly: ipos zero, iquat the identity); the body is a child of the world, or of a
+// body without dofs that is one; it has no child body; each joint is at its origin, a hinge's or
+// slide's axis has one nonzero component, and no joint follows one that turns (hinge, ball). Such
+// a body's block of M is diagonal and constant: translations along fixed axes weigh its mass,
+// turns about its centre of mass its principal moments. Its dofs then count down to its last
+// (dof_simplenum).
+void build_simple_bodies(Model& model) {
+  model.body_simple.assign(model.nbody, 0);
+  for (int b = 0; b < model.nbody; ++b) {
+    const int parent = model.body_parentid[b];
+    const bool same_frame = model.body_ipos[b].isZero(0.0) && is_identity(model.body_iquat[b]);
+    const bool on_world = model.body_rootid[b] == b ||
+                          (model.body_parentid[parent] == 0 && model.body_dofnum[parent] == 0);
+    bool simple = same_frame && on_world;
+    if (parent > 0) model.body_simple[parent] = 0;  // a body with a child is not simple
+    bool turned = false;
+    for (int j = model.body_jntadr[b]; j < model.body_jntadr[b] + model.body_jntnum[b]; ++j) {
+      const JointType type = model.jnt_type[j];
+      const Eigen::Vector3d& axis = model.jnt_axis[j];
+      const int components = (axis[0] != 0) + (axis[1] != 0) + (axis[2] != 0);
+      const bool along_one_axis =
+          (type != JointType::kHinge && type != JointType::kSlide) || components <= 1;
+      if (turned || !model.jnt_pos[j].isZero(0.0) || !along_one_axis) simple = false;
+      if (type == JointType::kHinge || type == JointType::kBall) turned = true;
+    }
+    model.body_simple[b] = simple;
+  }
+  model.dof_simplenum.assign(model.nv, 0);
+  model.has_simple_dofs = false;
+  for (int i = model.nv - 1, count = 0; i >= 0; --i) {
+    count = model.body_simple[model.dof_bodyid[i]] ? count + 1 : 0;
+    model.dof_simplenum[i] = count;
+    model.has_simple_dofs = model.has_simple_dofs || count > 0;
+  }
+}
+
 }  // namespace
 
 ActuatorKind actuator_kind_of(GainType gaintype, const std::array<double, kGainParameters>& g,
@@ -170,7 +207,10 @@ void set_const(Model& model) {
   static std::atomic<std::uint64_t> last_tag{0};
   model.fit_tag = ++last_tag;
 
-  // constants at qpos0: diag of M and of M^-1, and the bodies' mean inverse inertias
+  // constants at qpos0: diag of M and of M^-1, and the bodies' mean inverse inertias; M computed
+  // whole (no dof simple yet: crba() would copy the simple ones' diagonal from dof_M0)
+  model.dof_simplenum.assign(model.nv, 0);
+  model.has_simple_dofs = false;
   Data data(model);
   data.qpos = model.qpos0;
   kinematics(model, data);
@@ -212,6 +252,7 @@ void set_const(Model& model) {
     model.body_invweight0[b] = weight;
   }
   detail::check_at_qpos0(model, data);  // model_check.cpp: finite parameters can still overflow
+  build_simple_bodies(model);  // after dof_M0, which crba() copies for their dofs from now on
 
   // from here on a Data of this model makes room for contact rows, and forward() collides: a
   // new edition, so that Data made before are checked again

@@ -50,6 +50,7 @@
   X(body_subtreemass, double, nbody, 1, mujoco)              \
   X(body_inertia, double, nbody, 3, mujoco)                  \
   X(body_invweight0, double, nbody, 2, mujoco)               \
+  X(body_simple, uint8_t, nbody, 1, mujoco)                  \
   X(body_explicit_inertial, uint8_t, nbody, 1, own)          \
   X(body_line, int, nbody, 1, own)                           \
   X(jnt_type, int, njnt, 1, mujoco)                          \
@@ -73,6 +74,7 @@
   X(dof_damping, double, nv, 1, mujoco)                      \
   X(dof_invweight0, double, nv, 1, mujoco)                   \
   X(dof_M0, double, nv, 1, mujoco)                           \
+  X(dof_simplenum, int, nv, 1, mujoco)                       \
   X(geom_type, int, ngeom, 1, mujoco)                        \
   X(geom_contype, int, ngeom, 1, mujoco)                     \
   X(geom_conaffinity, int, ngeom, 1, mujoco)                 \
@@ -136,7 +138,8 @@
 // and fills them; every other Model array is a parameter, sized by size_model() and filled by
 // whoever builds the model (lever::mjcf's compiler, or by hand), and checked by validate()
 // (lever/model_check.hpp).
-#define LEVER_MODEL_CONSTANTS(X) X(body_subtreemass) X(body_invweight0) X(dof_invweight0) X(dof_M0)
+#define LEVER_MODEL_CONSTANTS(X) \
+  X(body_subtreemass) X(body_invweight0) X(body_simple) X(dof_invweight0) X(dof_M0) X(dof_simplenum)
 
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
 // or `inverse` (written by inverse() only) or `energy` (by compute_energy() only)

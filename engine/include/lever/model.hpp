@@ -243,6 +243,9 @@ struct Model {
   std::vector<double> dof_damping;
   std::vector<double> dof_invweight0;  ///< set_const: diag of M^-1 at qpos0
   std::vector<double> dof_M0;          ///< set_const: diag of M at qpos0
+  /// set_const: how many dofs of a simple body (see body_simple) this one and the ones after it
+  /// in its body are, 0 for a dof of another body (MuJoCo's dof_simplenum)
+  std::vector<int> dof_simplenum;
 
   // ---- geoms (ngeom) -------------------------------------------------------------------------
   std::vector<std::string> geom_name;
@@ -313,6 +316,13 @@ struct Model {
   // ---- set_const: MuJoCo's compile-time constants ---------------------------------------------
   std::vector<double> body_subtreemass;                ///< kg, this body and all below it
   std::vector<std::array<double, 2>> body_invweight0;  ///< (translational, rotational) at qpos0
+  /// 1 for a body whose block of M is diagonal and the same at every state, so that crba()
+  /// copies it from dof_M0 and the LTDL steps skip its dofs (MuJoCo's body_simple, by its
+  /// compiler's rule): its inertial frame is its own frame, it hangs from the world or from a
+  /// body welded to the world, it has no child body, and its joints sit at its origin, a hinge's
+  /// or slide's axis along one coordinate axis, with no joint after the first one that turns.
+  std::vector<uint8_t> body_simple;
+  bool has_simple_dofs = false;  ///< set_const: some dof_simplenum is not 0
 
   // ---- set_const: constant rotations, so kinematics() does not rebuild them every call ------
   std::vector<Mat3> body_mat;   ///< rotation of body_quat
