@@ -597,7 +597,7 @@ int main(int argc, char** argv) {
         out << " `step` adds " << count_text(step->first) << " instructions to lever's `forward` "
             << "(the integrator's work: Euler's implicit damping factors M + h D and solves "
             << "with it again, as `mj_Euler` does; `implicit` its own pass) and "
-            << count_text(step->second) << " to `mj_forward`'s, so its ratio follows `forward`'s.";
+            << count_text(step->second) << " to `mj_forward`'s.";
       }
       if (const auto limit = added("forward_limit")) {
         out << " An active limit adds " << count_text(limit->first) << " instructions to lever's "
