@@ -148,18 +148,21 @@ Fn mujoco_fn(const Fixture* f, const State* s, Prepare prepare, Op op) {
   };
 }
 
+// What MuJoCo's kernels need run before them: the positions' stages, and the velocities' too.
+void mujoco_positions(const mjModel* m, mjData* d) {
+  mj_kinematics(m, d);
+  mj_comPos(m, d);
+}
+void mujoco_velocities(const mjModel* m, mjData* d) {
+  mujoco_positions(m, d);
+  mj_comVel(m, d);
+}
+
 // register_lever_kernels' peers: mj_jacSite after mj_kinematics and mj_comPos, mj_rne (no
 // acceleration) after mj_comVel too, mj_crb after mj_comPos.
 void register_mujoco_kernels(const Fixture& f) {
-  const auto kin = [](const mjModel* m, mjData* d) {
-    mj_kinematics(m, d);
-    mj_comPos(m, d);
-  };
-  const auto kin_vel = [](const mjModel* m, mjData* d) {
-    mj_kinematics(m, d);
-    mj_comPos(m, d);
-    mj_comVel(m, d);
-  };
+  const auto kin = mujoco_positions;
+  const auto kin_vel = mujoco_velocities;
   const State* s = &f.state;
   const int site = f.site;
   if (site >= 0) {
@@ -177,15 +180,8 @@ void register_mujoco_kernels(const Fixture& f) {
 
 void register_mujoco(const Fixture& f) {
   const auto nothing = [](const mjModel*, mjData*) {};
-  const auto kin = [](const mjModel* m, mjData* d) {
-    mj_kinematics(m, d);
-    mj_comPos(m, d);
-  };
-  const auto kin_vel = [](const mjModel* m, mjData* d) {
-    mj_kinematics(m, d);
-    mj_comPos(m, d);
-    mj_comVel(m, d);
-  };
+  const auto kin = mujoco_positions;
+  const auto kin_vel = mujoco_velocities;
   const State* s = &f.state;
   const int site = f.site;
 
