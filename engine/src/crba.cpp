@@ -5,7 +5,9 @@
 //   IC_b = I_b + sum of IC over b's children           (composite inertia of b's subtree)
 //   H_ij = S_j . (IC_body(i) S_i)   for j = i and each ancestor dof j of i
 // factor_mass() and solve_mass() are his LTDL factorization and solves (section 6.5), which keep
-// M's branch-induced sparsity: row i of L is non-zero only at i's ancestors.
+// M's branch-induced sparsity: row i of L is non-zero only at i's ancestors. A simple body's block
+// (Model::body_simple: diagonal and constant) is copied from dof_M0 and skipped by the LTDL steps,
+// as MuJoCo's mj_crb and mj_factorM do.
 //   lambda(i) = model.dof_parentid[i] (-1: the world), S_i = data.cdof[i], I_b = data.cinert[b].
 #include <lever/data.hpp>
 #include <lever/dynamics.hpp>
@@ -137,8 +139,9 @@ bool long_leading_chain(const Model& model) {
 // ltdl() for a model whose first dofs form a long chain: the chain's columns from kLongChain on
 // take the chain step, the others the general one. Out of line, so that it costs ltdl()'s common
 // case one test.
-// (A simple body has no child: a chain of nine dofs or more holds no simple dof, but in one body
-// of nine slides; its zero columns are eliminated as the others, to the same result.)
+// (The chain step does not skip simple dofs: a simple body has no child and hangs from the
+// world, so a chain from dof 0 holds one only as a single body of nine or more joints, whose zero
+// columns it eliminates to the same result.)
 template <bool SkipSimple>
 [[gnu::noinline]] int ltdl_long_chain(const Model& model, Eigen::MatrixXd& H) {
   int chain_end = kLongChain + 1;  // dofs 0..chain_end-1 form one chain
