@@ -243,8 +243,9 @@ struct Model {
   std::vector<double> dof_damping;
   std::vector<double> dof_invweight0;  ///< set_const: diag of M^-1 at qpos0
   std::vector<double> dof_M0;          ///< set_const: diag of M at qpos0
-  /// set_const: how many dofs of a simple body (see body_simple) this one and the ones after it
-  /// in its body are, 0 for a dof of another body (MuJoCo's dof_simplenum)
+  /// set_const: for a dof of a simple body (see body_simple), how many simple dofs run from it
+  /// without a break, this one included (across consecutive simple bodies, as MuJoCo counts);
+  /// 0 for a dof of another body (MuJoCo's dof_simplenum)
   std::vector<int> dof_simplenum;
 
   // ---- geoms (ngeom) -------------------------------------------------------------------------
