@@ -1,4 +1,4 @@
-// The narrow phase of the pairs with a box (engine/src/collision_box.cpp) against MuJoCo 2.2.2's
+// The narrow phase of the pairs with a box (engine/src/collision/box.cpp) against MuJoCo 2.2.2's
 // own functions, mjCOLLISIONFUNC[type1][type2], called on the same shapes: the number of contacts
 // and their order exactly; dist, pos and the frame's first two rows (normal, zeros) within the
 // agreement bound, value by value. Thousands of seeded random poses per pair, poses snapped to
@@ -19,7 +19,7 @@
 #include <lever/harness/from_mujoco.hpp>
 #include <lever/harness/tolerance.hpp>
 
-#include "collision_internal.hpp"
+#include "collision/narrow_phase.hpp"
 
 namespace lever::test {
 

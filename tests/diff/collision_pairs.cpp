@@ -91,7 +91,7 @@ class PairBench {
       const double pos_size = magnitude(c.pos, 3);
       for (int i = 0; i < 3; ++i) check_value("pos", i, ours[k].pos[i], c.pos[i], pos_size);
       // the narrow phase sets the normal and, for plane-capsule, the first tangent; the driver
-      // completes the frame (compared in collision_driver.cpp)
+      // completes the frame (compared in collision/driver.cpp)
       for (int i = 0; i < 6; ++i) {
         check_value("frame", i, ours[k].frame(i / 3, i % 3), c.frame[i], 1.0);
       }

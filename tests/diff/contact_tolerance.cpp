@@ -3,8 +3,8 @@
 // On the contact scenes, pyramidal and elliptic, at 200 random states each: MuJoCo 2.2.2 with its
 // defaults (tolerance 1e-8, 100 iterations) against MuJoCo run to convergence (tolerance 0, 1000
 // iterations, restarted from its own answer while that changes it), qacc and efc_force relative to
-// max(1, |value|). And, for pyramidal models, lever's Newton solver (solver.cpp) against its exact
-// LCP (constraint.cpp), both against MuJoCo converged: why the LCP stays.
+// max(1, |value|). And, for pyramidal models, lever's Newton solver (constraint/newton.cpp) against its exact
+// LCP (constraint/rows.cpp), both against MuJoCo converged: why the LCP stays.
 #include <mujoco/mujoco.h>
 #include <catch2/catch.hpp>
 
@@ -20,7 +20,7 @@
 #include <lever/harness/models.hpp>
 #include <lever/harness/random_state.hpp>
 
-#include "internal.hpp"
+#include "constraint/constraint_room.hpp"
 
 namespace lever::test {
 

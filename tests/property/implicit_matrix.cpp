@@ -1,4 +1,4 @@
-// The implicit integrator's matrix K = M - h D (engine/src/implicit.cpp) on every model and random
+// The implicit integrator's matrix K = M - h D (engine/src/pipeline/implicit.cpp) on every model and random
 // tree (branches, several joints in one body, ball and free joints):
 //  - D's bias part is -d qfrc_bias / d qvel. qfrc_bias is quadratic in qvel, so a central
 //    difference with any step is exact but for rounding; a step of 1 keeps that rounding near
@@ -10,7 +10,7 @@
 #include <cmath>
 #include <utility>
 
-#include "internal.hpp"
+#include "pipeline/pipeline.hpp"
 #include "property_models.hpp"
 
 namespace lever::test {

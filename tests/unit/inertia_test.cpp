@@ -1,4 +1,4 @@
-// RigidInertia's inertial-parameter conversions (lever/spatial.hpp, engine/src/inertia.cpp): the
+// RigidInertia's inertial-parameter conversions (lever/spatial.hpp, engine/src/basics/inertia.cpp): the
 // ten parameters, MJCF's principal form and the pseudo-inertia. Exact cases built from numbers
 // whose products are exact in binary, round trips on random rigid bodies, and the refusals.
 #include <catch2/catch.hpp>

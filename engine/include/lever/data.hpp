@@ -107,7 +107,7 @@ struct Data {
   std::vector<Motion> cdof;                  ///< (nv) motion subspace of each dof
   std::vector<RigidInertia> cinert;          ///< (nbody) spatial inertia of each body
 
-  // ---- position stage: collision() (issue 19)
+  // ---- position stage: collision()
   // ----------------------------------------------------
   int ncon = 0;                  ///< contacts found
   std::vector<Contact> contact;  ///< (nconmax) the first ncon are current
@@ -183,14 +183,14 @@ struct Data {
     Eigen::VectorXd lcp_rhs;           ///< (nefc_max) the active rows' right-hand side
     std::vector<int> lcp_active;       ///< (nefc_max) 1 for rows in the active set
     std::vector<int> lcp_index;        ///< (nefc_max) the active rows, in order
-    // the Newton solver (solver.cpp), used with elliptic cones
+    // the Newton solver (constraint/newton.cpp), used with elliptic cones
     Eigen::MatrixXd newton_H;                  ///< (nv x nv) Hessian of the cost, then its factor
     Eigen::VectorXd newton_grad, newton_dir;   ///< (nv) gradient and Newton direction
     Eigen::VectorXd newton_Mdir, newton_Merr;  ///< (nv) M dir, M (qacc - qacc_smooth)
     Eigen::VectorXd newton_trial, newton_err;  ///< (nv) a trial acceleration, qacc - qacc_smooth
     Eigen::VectorXd newton_jar, newton_jv;     ///< (nefc_max) J qacc - aref, J dir
     Eigen::VectorXd newton_x, newton_grad_x;   ///< (nefc_max) rows' jar at a point, d cost / d jar
-    // a contact's rows in its own frame (make_constraint, issue 19): contact i's frame rows
+    // a contact's rows in its own frame (make_constraint): contact i's frame rows
     // (normal, two tangents, then the spin and the two rolls; one row without friction) are rows
     // efc_address.. of contact_frame_J, over the span of dofs contact_span[2 i] (the first) ..,
     // contact_span[2 i + 1] of them, that holds the dofs of its two bodies' paths to the root
@@ -211,12 +211,12 @@ struct Data {
     Eigen::MatrixXd qLU;     ///< (nv x nv) implicit: M - h qDeriv, then its factor (U + I) L
     /// (nbody) implicit: each subtree's velocity coupling (d qfrc_bias / d qvel)
     std::vector<VelocityCoupling> subtree_coupling;
-    // collision() (issue 19): contacts are gathered here and copied to `contact` only when all
+    // collision(): contacts are gathered here and copied to `contact` only when all
     // of them fit, so that a refusal leaves the last contacts in place
     std::vector<Contact> contact;       ///< (nconmax)
     std::vector<Contact> pair_contact;  ///< (kMaxPairContacts) one geom pair's contacts
     std::vector<double> body_aabb;  ///< (6 nbody) broad phase: bounds along the eigenframe's axes
-    // place_site() (issue 18): the bodies from a site's body up to (not including) the world
+    // place_site(): the bodies from a site's body up to (not including) the world
     std::vector<int> body_path;  ///< (nbody)
   } work;
 

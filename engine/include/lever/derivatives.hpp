@@ -50,7 +50,7 @@ struct Derivatives {
   // ---- workspace (contents meaningless between calls) ---------------------------------------
   struct Workspace {
     // per body: velocity, acceleration, and the subtree (composite) sums of the net force, the
-    // inertia and the velocity coupling C (derivatives.cpp)
+    // inertia and the velocity coupling C (derivatives/inverse_dynamics.cpp)
     std::vector<Motion> v, a;
     std::vector<Force> F;              ///< net force of the body's whole subtree
     std::vector<RigidInertia> IC;      ///< inertia of the body's whole subtree
@@ -80,7 +80,7 @@ struct Derivatives {
     Eigen::VectorXd qacc_shift;      ///< (nv) implicit: +- c (a - qacc), beside it
     Eigen::MatrixXd tau_q_minus;     ///< (nv x nv) implicit: d rnea / d qpos at qd - s a
     int active_rows = 0;             ///< the limit rows active at the last forward (limit_rows)
-    std::vector<Force> IC_S;         ///< (nv) IC S_i, IC dof i's subtree inertia (derivatives.cpp)
+    std::vector<Force> IC_S;         ///< (nv) IC S_i, IC dof i's subtree inertia (derivatives/inverse_dynamics.cpp)
     std::vector<VelocityCoupling> CC_minus;  ///< (nbody) implicit: CC at qd - s a
   } work;
 

@@ -102,7 +102,7 @@
   X(actuator_forcerange, double, nu, 2, mujoco)              \
   LEVER_MODEL_CONTACT_FIELDS(X)
 
-// contact parameters (issue 19): the geoms', the explicit <pair>s' and the <exclude>s'
+// contact parameters: the geoms', the explicit <pair>s' and the <exclude>s'
 #define LEVER_MODEL_CONTACT_FIELDS(X)        \
   X(geom_condim, int, ngeom, 1, mujoco)      \
   X(geom_priority, int, ngeom, 1, mujoco)    \
@@ -211,7 +211,7 @@ enum class Size : int {
   kNgeom,
   kNsite,
   kNefc,
-  // contact (issue 19)
+  // contact
   kNpair,    ///< explicit contact pairs (<contact><pair>)
   kNexclude  ///< excluded body pairs (<contact><exclude>)
 };
@@ -273,7 +273,7 @@ bool computed_by_set_const(std::string_view model_field);
 /// it; throws ModelError naming the first array that does not.
 void check_model_sizes(const Model& model);
 
-// ---- sizing a Model (issue 20) -----------------------------------------------------------------
+// ---- sizing a Model -----------------------------------------------------------------
 /// Gives every array of the model the length its counts give it (nbody, njnt, nq, nv, ngeom,
 /// nsite, nu, npair, nexclude, nkey): each array of the field table rows x cols numbers, the
 /// constants set_const computes included; the names and the keyframes too (see the top of this

@@ -99,7 +99,7 @@ enum class DynType : int { kNone = 0 };
 inline constexpr int kGainParameters = 10;
 inline constexpr int kBiasParameters = 10;
 
-// ---- actuator kind (issue 20) ----------------------------------------------------------------
+// ---- actuator kind ----------------------------------------------------------------
 /// What an actuator's force law amounts to, decided once per actuator from its gain and bias
 /// (set_const, actuator_kind_of), so that the checks, the lab, identification and the command
 /// line ask one question instead of each testing the parameters its own way.
@@ -146,7 +146,7 @@ struct Options {
   double timestep = 0.002;                   ///< s
   Eigen::Vector3d gravity{0.0, 0.0, -9.81};  ///< m/s^2, world frame
   Integrator integrator = Integrator::kEuler;
-  // contact (issue 19): MuJoCo 2.2.2's <option> defaults
+  // contact: MuJoCo 2.2.2's <option> defaults
   Cone cone = Cone::kPyramidal;  ///< friction cone of contact rows
   double impratio = 1.0;         ///< frictional-to-normal impedance ratio (elliptic cones)
   int iterations = 100;          ///< solver iterations (lever's solver stops on convergence)
@@ -262,7 +262,7 @@ struct Model {
   /// lever: the geom's own mass (density x volume, or its `mass` attribute), whether or not
   /// it contributed to its body (see body_explicit_inertial and compiler.inertiagrouprange)
   std::vector<double> geom_mass;
-  // contact parameters (issue 19), as mjModel's
+  // contact parameters, as mjModel's
   std::vector<int> geom_condim;                    ///< 1, 3, 4 or 6
   std::vector<int> geom_priority;                  ///< the higher one's parameters win
   std::vector<double> geom_solmix;                 ///< weight when mixing solref/solimp
@@ -336,10 +336,10 @@ struct Model {
   std::vector<JointKind> jnt_kind;  ///< what the kernels dispatch on (see JointKind)
   std::vector<uint8_t> jnt_offset;  ///< jnt_pos is not zero (the anchor is off the origin)
 
-  // ---- set_const: each actuator's kind (issue 20) -------------------------------------------
+  // ---- set_const: each actuator's kind -------------------------------------------
   std::vector<ActuatorKind> actuator_kind;  ///< (nu) from its gain and bias (see ActuatorKind)
 
-  // ---- set_const: the collision stage's body constants (issue 19) ---------------------------
+  // ---- set_const: the collision stage's body constants ---------------------------
   std::vector<int> body_weldid;  ///< (nbody) the body it is welded to: itself if it has joints,
                                  ///< else its parent's (MuJoCo's body_weldid)
   /// (nbody) what a body takes part in, in the broad phase (kBodyCollides | kBodyPairsWithAll)

@@ -1,6 +1,6 @@
 // lever/regressor.hpp: the inertial-parameter regressor, tau = Y(q, qvel, qacc) pi
-// (engine/src/regressor.cpp), and the base (identifiable) parameters of a model, the regressor's
-// column space (engine/src/base_parameters.cpp). pi, its layout and names, and reading and writing
+// (engine/src/identification/regressor.cpp), and the base (identifiable) parameters of a model, the regressor's
+// column space (engine/src/identification/base_parameters.cpp). pi, its layout and names, and reading and writing
 // it in a model: lever/parameters.hpp; one body's conversions: RigidInertia (lever/spatial.hpp).
 //
 // Inverse dynamics is linear in each body's ten inertial parameters when they are written in the

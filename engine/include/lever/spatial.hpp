@@ -50,9 +50,9 @@ inline Eigen::Vector3d cross(const Eigen::Vector3d& a, const Eigen::Vector3d& b)
                          a[0] * b[1] - a[1] * b[0]);
 }
 
-// ---- inertial parameters: the forms of a body's inertia besides the spatial one (issue 20) ------
+// ---- inertial parameters: the forms of a body's inertia besides the spatial one ------
 // RigidInertia converts to and from each (its members at the end of the struct, defined in
-// engine/src/inertia.cpp), as Pinocchio's Inertia::toDynamicParameters / FromDynamicParameters.
+// engine/src/basics/inertia.cpp), as Pinocchio's Inertia::toDynamicParameters / FromDynamicParameters.
 
 /// The ten inertial parameters of a body about a frame, in that frame (Atkeson, An and Hollerbach
 /// 1986): [m, h = m c (3), I about the origin (xx, yy, zz, xy, xz, yz)]. Inverse dynamics is linear
@@ -122,7 +122,7 @@ struct RigidInertia {
     return M;
   }
 
-  // ---- inertial parameters (engine/src/inertia.cpp) ----
+  // ---- inertial parameters (engine/src/basics/inertia.cpp) ----
 
   /// The ten parameters [m, h, Ixx, Iyy, Izz, Ixy, Ixz, Iyz].
   InertialParameters to_parameters() const;
@@ -171,7 +171,7 @@ inline Force cross_force(const Motion& v, const Force& f) {
 /// The 6x6 matrix C = v x* I - I (v x) + (I v) xbar* of a body with inertia I moving with v (the
 /// change of its net force with its velocity, besides 2 I), or its sum over a subtree. Its right
 /// column of 3x3 blocks is zero and the rest is the symmetric S and the momentum (n, p) = I v
-/// (derivatives.cpp derives it):
+/// (derivatives/inverse_dynamics.cpp derives it):
 ///   C = [[S - [n], 0], [-2 [p], 0]],   [a] the matrix of a x.
 /// Both parts sum over bodies, so a subtree's C is kept the same way.
 struct VelocityCoupling {

@@ -1,0 +1,74 @@
+// The constraint room: MuJoCo 2.2.2's soft constraints. The rows of joint limits and contacts,
+// their impedance and reference acceleration, and the products with their Jacobian (rows.cpp);
+// the solvers: the active sets and principal pivoting (rows.cpp) and Newton's method (newton.cpp);
+// a contact's force in its frame (contact_force.cpp).
+#pragma once
+
+#include <Eigen/Core>
+
+#include <array>
+
+#include <lever/data.hpp>
+#include <lever/model.hpp>
+
+namespace lever {
+
+/// A joint limit's solref and solimp, sanitized as MuJoCo's getsolparam (rows.cpp).
+void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref,
+                      std::array<double, 5>& solimp);
+
+/// A limit row's impedance at distance pos from the stop (rows.cpp); with slope !=
+/// nullptr, also d imp / d pos.
+double impedance(const std::array<double, 5>& solimp, double pos, double margin, double* slope);
+
+// ---- the constraint rows' products (rows.cpp), shared by the solvers -------------------
+// A contact's rows are combinations of its frame's rows over its span of dofs
+// (data.work.contact_frame_J, contact_span): the products work on those, a limit row on its dof.
+
+/// out = J x for every row (nefc numbers; x has nv).
+void rows_times(const Data& data, const double* x, double* out);
+
+/// out = J x - aref for every row (MuJoCo's jar: where the rows' accelerations stand against
+/// their reference; nefc numbers).
+void rows_jar(const Data& data, const double* x, double* out);
+
+/// out += J^T f (f has nefc numbers, out nv).
+void add_rows_transpose(const Data& data, const double* f, double* out);
+
+/// H += J^T diag(weight) J in H's lower triangle (weight: nefc numbers, zero for a row left
+/// out), each contact's part from its frame's rows: a pyramid's pair of edges with one weight
+/// adds one product along its tangent, the pairs' normal parts gathered into one, instead of
+/// one product per edge.
+void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H);
+
+/// H += C^T W C for contact i in H's lower triangle: C its frame's rows, W (dim x dim, row-major,
+/// symmetric) a weight in its frame's coordinates (an elliptic cone's Hessian block).
+void add_frame_hessian(Data& data, int i, const double* W, Eigen::MatrixXd& H);
+
+/// x = H^-1 x for H = M + J^T (...) J assembled above (its lower triangle), which becomes its
+/// Cholesky factor: the active sets and the Newton solver both solve with it (data's workspace
+/// holds where its columns end).
+void solve_with_hessian(Data& data, Eigen::MatrixXd& H, Eigen::VectorXd& x);
+
+/// Solve the constraint rows by MuJoCo's Newton method to convergence (newton.cpp): qacc,
+/// efc_b, efc_force, efc_state, qfrc_constraint. Returns the Newton steps taken.
+/// @pre make_constraint, reference_constraint, qacc_smooth and M are current.
+int solve_constraint_newton(const Model& model, Data& data);
+
+/// Solve one-sided rows (limits, frictionless and pyramidal contacts) by principal pivoting on
+/// A = J M^-1 J^T + R (rows.cpp), the fallback of solve_constraint's active sets: qacc,
+/// efc_b, efc_force, efc_state, qfrc_constraint. For tests that compare the two.
+/// @pre as solve_constraint, and no elliptic cone.
+void solve_constraint_pivoting(const Model& model, Data& data);
+
+/// efc_force, efc_state and qfrc_constraint that the rows exert at a given qacc (newton.cpp;
+/// MuJoCo's mj_constraintUpdate): what inverse() reports.
+void constraint_forces_at(Data& data, const Eigen::VectorXd& qacc);
+
+namespace unchecked {
+void make_constraint(const Model& model, Data& data);
+void reference_constraint(const Model& model, Data& data);
+void solve_constraint(const Model& model, Data& data);
+}  // namespace unchecked
+
+}  // namespace lever

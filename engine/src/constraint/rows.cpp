@@ -1,0 +1,852 @@
+// MuJoCo 2.2.2's soft constraints (engine_core_constraint.c): joint limits and contacts.
+//
+// Rows: a joint within `margin` of a stop gives one (J = +-e_dof); a contact (data.contact, from
+// collision()) without friction one, J = n^T (J_2 - J_1) at its point. With friction, a pyramidal
+// cone gives two rows per friction direction, the pyramid's edges n +- mu_k t_k (condim 3: two
+// tangents; 4: and the spin about n; 6: and two rolling axes, from the rotational Jacobians); an
+// elliptic cone gives the condim rows themselves, the normal first, then the friction directions.
+// A row's target is the reference acceleration a_ref = -B v - K imp (pos - margin); an elliptic
+// cone's friction rows have no position (pos = margin = 0, K = 0).
+//
+// Limit, frictionless and pyramidal rows are one-sided (a limit pushes, a pyramid edge pushes),
+// and the forces that MuJoCo's Newton solver converges to satisfy, with A = J M^-1 J^T and R the
+// regularizer, f >= 0, w = (A + R) f + (J qacc_smooth - a_ref) >= 0, f.w = 0 (a linear
+// complementarity problem with a symmetric positive definite matrix, so its solution is unique).
+// It is found exactly, in the smaller space: with no more rows than dofs by Murty's least-index
+// principal pivoting on the rows (finite for such matrices; one row takes one step), with more
+// rows than dofs (contacts) by active sets in dof space (solve_active_set). A model with elliptic
+// cones is solved by the Newton solver of constraint/newton.cpp instead (an elliptic cone is not a set of
+// one-sided rows).
+#include <lever/constraint.hpp>
+#include <lever/dynamics.hpp>
+#include <lever/error.hpp>
+#include <lever/kinematics.hpp>
+
+#include <Eigen/Cholesky>
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+
+#include "model/model_room.hpp"
+#include "smooth/smooth.hpp"
+#include "constraint/constraint_room.hpp"
+
+namespace lever {
+
+namespace {
+
+constexpr double kMinVal = 1e-15;   // MuJoCo's mjMINVAL
+constexpr double kMinImp = 0.0001;  // mjMINIMP
+constexpr double kMaxImp = 0.9999;  // mjMAXIMP
+
+// solref and solimp sanitized as MuJoCo's getsolparam: the standard (positive) and direct
+// (negative) forms cannot be mixed; a time constant no shorter than two steps (refsafe); solimp
+// within its bounds.
+void sanitize(const Model& model, std::array<double, 2>& solref, std::array<double, 5>& solimp) {
+  if ((solref[0] > 0) != (solref[1] > 0)) solref = {0.02, 1.0};
+  if (solref[0] > 0) solref[0] = std::max(solref[0], 2 * model.opt.timestep);
+  solimp[0] = std::min(kMaxImp, std::max(kMinImp, solimp[0]));
+  solimp[1] = std::min(kMaxImp, std::max(kMinImp, solimp[1]));
+  solimp[2] = std::max(0.0, solimp[2]);
+  solimp[3] = std::min(kMaxImp, std::max(kMinImp, solimp[3]));
+  solimp[4] = std::max(1.0, solimp[4]);
+}
+
+}  // namespace
+
+// solref and solimp of a joint's limit, sanitized as MuJoCo's getsolparam does.
+void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref,
+                      std::array<double, 5>& solimp) {
+  solref = model.jnt_solref[jnt];
+  solimp = model.jnt_solimp[jnt];
+  sanitize(model, solref, solimp);
+}
+
+// Impedance at a violation: solimp's sigmoid from d0 (at the margin) to dmax (width past it).
+// With slope != nullptr, also d imp / d pos (zero on the flat parts; one-sided at their ends).
+double impedance(const std::array<double, 5>& solimp, double pos, double margin, double* slope) {
+  const double d0 = solimp[0], dmax = solimp[1], width = solimp[2];
+  const double mid = solimp[3], power = solimp[4];
+  if (slope != nullptr) *slope = 0.0;
+  if (d0 == dmax || width <= kMinVal) return 0.5 * (d0 + dmax);
+  const double x = std::abs((pos - margin) / width);
+  if (x >= 1) return dmax;
+  if (x <= 0) return d0;
+  double y, dy_dx;
+  if (power == 1) {
+    y = x;
+    dy_dx = 1;
+  } else if (power == 2) {  // the default: spare two calls to pow
+    y = x <= mid ? x * x / mid : 1 - (1 - x) * (1 - x) / (1 - mid);
+    dy_dx = x <= mid ? 2 * x / mid : 2 * (1 - x) / (1 - mid);
+  } else if (x <= mid) {
+    y = std::pow(x, power) / std::pow(mid, power - 1);
+    dy_dx = power * std::pow(x, power - 1) / std::pow(mid, power - 1);
+  } else {
+    y = 1 - std::pow(1 - x, power) / std::pow(1 - mid, power - 1);
+    dy_dx = power * std::pow(1 - x, power - 1) / std::pow(1 - mid, power - 1);
+  }
+  if (slope != nullptr) {
+    const double dx_dpos = (pos - margin < 0 ? -1.0 : 1.0) / width;
+    *slope = (dmax - d0) * dy_dx * dx_dpos;
+  }
+  return d0 + y * (dmax - d0);
+}
+
+namespace {
+
+// Room for `rows` more rows, or a StateError that changes nothing (MuJoCo warns and drops them).
+void require_rows(const Model& model, const Data& data, int n, int rows) {
+  if (n + rows > data.nefc_max) {
+    throw StateError("lever::make_constraint: the contacts need more than the model's njmax = " +
+                     std::to_string(model.njmax) +
+                     " constraint rows; raise <size njmax=...> (MuJoCo would drop rows).");
+  }
+}
+
+// Row n: joint j's stop on `sign`'s side (+1 lower, -1 upper) at distance dist.
+void add_limit_row(const Model& model, Data& data, int n, int j, double sign, double dist) {
+  const int dof = model.jnt_dofadr[j];
+  data.efc_type[n] = ConstraintType::kLimitJoint;
+  data.efc_id[n] = j;
+  data.efc_dof[n] = dof;
+  data.efc_sign[n] = sign;
+  data.efc_J.row(n).setZero();
+  data.efc_J(n, dof) = sign;
+  data.efc_pos[n] = dist;
+  data.efc_margin[n] = model.jnt_margin[j];
+}
+
+// The limit rows: lower stop, then upper, of each limited joint within margin of it.
+int add_limit_rows(const Model& model, Data& data) {
+  const uint8_t* const limited = model.jnt_limited.data();
+  const int* const qposadr = model.jnt_qposadr.data();
+  const auto* const range = model.jnt_range.data();
+  const double* const margin_of = model.jnt_margin.data();
+  const double* const qpos = data.qpos.data();
+  int n = 0;
+  for (int j = 0; j < model.njnt; ++j) {
+    if (!limited[j]) continue;
+    const double q = qpos[qposadr[j]];
+    const double margin = margin_of[j];
+    // dist < 0 means past the stop; strict: resting exactly at the stop makes no row
+    const double lower = q - range[j][0], upper = range[j][1] - q;
+    if (lower < margin) add_limit_row(model, data, n++, j, 1.0, lower);
+    if (upper < margin) add_limit_row(model, data, n++, j, -1.0, upper);
+  }
+  return n;
+}
+
+// The dofs that move a point of `body`, from its nearest body with dofs to the root, descending
+// (MuJoCo's dof chain): into chain, returning how many.
+int dof_chain(const Model& model, int body, int* chain) {
+  while (body > 0 && model.body_dofnum[body] == 0) body = model.body_parentid[body];
+  if (body == 0) return 0;
+  int n = 0;
+  for (int i = model.body_dofadr[body] + model.body_dofnum[body] - 1; i >= 0;
+       i = model.dof_parentid[i]) {
+    chain[n++] = i;
+  }
+  return n;
+}
+
+// The dofs that move two bodies' points against each other: each body's dof chain (into
+// w.dof_chain: body 1's, then body 2's from nv on) without the dofs on both, and the span from
+// the smallest to the largest of them. The contacts of one geom pair come one after another:
+// found once for them.
+struct PairDofs {
+  int b1 = -1, b2 = -1;
+  int n1 = 0, n2 = 0;  // the chains' lengths
+  int lo = 0, span = 0;
+};
+
+void find_pair_dofs(const Model& model, Data& data, int b1, int b2, PairDofs& pair) {
+  if (pair.b1 == b1 && pair.b2 == b2) return;
+  const int nv = model.nv;
+  int* chain1 = data.work.dof_chain.data();
+  int* chain2 = chain1 + nv;
+  int n1 = dof_chain(model, b1, chain1), n2 = dof_chain(model, b2, chain2);
+  // the dofs on both paths are the common ancestors: the chains' common end
+  while (n1 > 0 && n2 > 0 && chain1[n1 - 1] == chain2[n2 - 1]) --n1, --n2;
+  // the span: from the smallest to the largest dof on one path only (chains descend)
+  const int lo = std::min(n1 > 0 ? chain1[n1 - 1] : nv, n2 > 0 ? chain2[n2 - 1] : nv);
+  const int hi = std::max(n1 > 0 ? chain1[0] : -1, n2 > 0 ? chain2[0] : -1);
+  const int span = hi >= lo ? hi - lo + 1 : 0;
+  pair = {b1, b2, n1, n2, span > 0 ? lo : 0, span};
+}
+
+// Contact i's frame rows, w.contact_frame_J rows first.., over its span of dofs: the relative
+// velocity of the point on body 2 to the point on body 1 (MuJoCo's mj_jacDifPair, then frame * J
+// summed as mju_mulMatMat). A dof on both bodies' paths to the root moves both points alike (the
+// same cdof and the same tree's centre of mass: the difference is exactly zero), so the rows are
+// nonzero only on the dofs of one path; the world has no dofs.
+void contact_frame_rows(const Model& model, Data& data, int i, int first, PairDofs& pair) {
+  const Contact& con = data.contact[i];
+  auto& w = data.work;
+  const int nv = model.nv;
+  const int rotations = con.dim > 3 ? con.dim - 3 : 0;  // spin, then the two rolls
+  const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
+  find_pair_dofs(model, data, b1, b2, pair);
+  const int* chain1 = w.dof_chain.data();
+  const int* chain2 = chain1 + nv;
+  const int n1 = pair.n1, n2 = pair.n2, lo = pair.lo, span = pair.span;
+  w.contact_span[2 * i] = lo;
+  w.contact_span[2 * i + 1] = span;
+  double* const C = w.contact_frame_J.data() + static_cast<std::ptrdiff_t>(first) * nv;
+  if (n1 + n2 < span) {  // dofs of neither path inside the span (the two paths are disjoint)
+    for (int k = 0; k < con.dim; ++k) {
+      for (int j = lo; j < lo + span; ++j) C[k * nv + j] = 0.0;
+    }
+  }
+
+  const Eigen::Vector3d offset1 = con.pos - data.subtree_com[model.body_rootid[b1]];
+  const Eigen::Vector3d offset2 = con.pos - data.subtree_com[model.body_rootid[b2]];
+  for (int pass = 0; pass < 2; ++pass) {
+    const bool body2 = pass == 0;
+    const int* chain = body2 ? chain2 : chain1;
+    const int n = body2 ? n2 : n1;
+    for (int k = 0; k < n; ++k) {
+      const int dof = chain[k];
+      // the point's velocity per unit rate of the dof (as jac_point); body 1's counts negative
+      const Motion& S = data.cdof[dof];
+      Eigen::Vector3d p = S.tail<3>() + cross(S.head<3>(), body2 ? offset2 : offset1);
+      Eigen::Vector3d r = S.head<3>();
+      if (!body2) {  // 0 - x rather than -x: MuJoCo's jac2 - jac1 with jac2 zero keeps zeros +0
+        p = Eigen::Vector3d::Zero() - p;
+        r = Eigen::Vector3d::Zero() - r;
+      }
+      for (int row = 0; row < 3 && row < con.dim; ++row) {
+        C[row * nv + dof] =
+            con.frame(row, 0) * p[0] + con.frame(row, 1) * p[1] + con.frame(row, 2) * p[2];
+      }
+      for (int row = 0; row < rotations; ++row) {
+        C[(3 + row) * nv + dof] =
+            con.frame(row, 0) * r[0] + con.frame(row, 1) * r[1] + con.frame(row, 2) * r[2];
+      }
+    }
+  }
+}
+
+// A contact's rows after the n already made (MuJoCo's mj_instantiateContact): its frame's rows,
+// then its efc_J rows from them, dense.
+int add_contact_rows(const Model& model, Data& data, int i, int n, PairDofs& pair) {
+  Contact& con = data.contact[i];
+  const int dim = con.dim;
+  const bool elliptic = dim > 1 && model.opt.cone == Cone::kElliptic;
+  const bool pyramid = dim > 1 && !elliptic;
+  const int rows = pyramid ? 2 * (dim - 1) : elliptic ? dim : 1;
+  require_rows(model, data, n, rows);
+  contact_frame_rows(model, data, i, n, pair);
+  con.efc_address = n;
+  for (int r = n; r < n + rows; ++r) {
+    data.efc_type[r] = pyramid    ? ConstraintType::kContactPyramidal
+                       : elliptic ? ConstraintType::kContactElliptic
+                                  : ConstraintType::kContactFrictionless;
+    data.efc_id[r] = i;
+    data.efc_dof[r] = -1;
+    data.efc_sign[r] = 0.0;
+    // an elliptic cone's friction rows have no distance of their own
+    const bool friction_row = elliptic && r > n;
+    data.efc_pos[r] = friction_row ? 0.0 : con.dist;
+    data.efc_margin[r] = friction_row ? 0.0 : con.includemargin;
+  }
+  const int nv = model.nv;
+  const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
+  const double* C = data.work.contact_frame_J.data() + static_cast<std::ptrdiff_t>(n) * nv + lo;
+  double* J = data.efc_J.data() + static_cast<std::ptrdiff_t>(n) * nv;
+  for (int j = 0; j < rows * nv; ++j) J[j] = 0.0;
+  J += lo;
+  if (!pyramid) {  // the contact frame's rows as they are: normal, tangents, spin, rolls
+    for (int k = 0; k < rows; ++k) {
+      for (int j = 0; j < span; ++j) J[k * nv + j] = C[k * nv + j];
+    }
+    return n + rows;
+  }
+  // one pair of the pyramid's edges per friction direction: n + mu t, n - mu t
+  for (int k = 1; k < dim; ++k, J += 2 * nv) {
+    const double mu = con.friction[k - 1];
+    for (int j = 0; j < span; ++j) {
+      J[j] = C[j] + mu * C[k * nv + j];
+      J[nv + j] = C[j] - mu * C[k * nv + j];
+    }
+  }
+  return n + rows;
+}
+
+// A row's impedance at its distance, and the stiffness and damping of its reference
+// acceleration (K and B use dmax, not the current impedance).
+struct SoftParameters {
+  double imp, K, B;
+};
+
+SoftParameters soft_parameters(const std::array<double, 2>& solref,
+                               const std::array<double, 5>& solimp, double pos, double margin) {
+  SoftParameters soft;
+  soft.imp = impedance(solimp, pos, margin, nullptr);
+  const double dmax = solimp[1];
+  if (solref[0] > 0) {
+    soft.K = 1 / std::max(kMinVal, dmax * dmax * solref[0] * solref[0] * solref[1] * solref[1]);
+  } else {
+    soft.K = -solref[0] / std::max(kMinVal, dmax * dmax);
+  }
+  if (solref[1] > 0) {
+    soft.B = 2 / std::max(kMinVal, dmax * solref[0]);
+  } else {
+    soft.B = -solref[1] / std::max(kMinVal, dmax);
+  }
+  return soft;
+}
+
+// Row r's soft parameters (MuJoCo's mj_makeImpedance) from its impedance, K, B and regularizer R:
+// D = 1 / R, and the diagApprox that R was made from, R imp / (1 - imp).
+void set_soft_row(Data& data, int r, const SoftParameters& soft, double K, double R) {
+  data.efc_imp[r] = soft.imp;
+  data.efc_K[r] = K;
+  data.efc_B[r] = soft.B;
+  data.efc_R[r] = R;
+  data.efc_D[r] = 1 / R;
+  data.efc_diagApprox[r] = R * soft.imp / (1 - soft.imp);
+}
+
+// The regularizer R = (1 - imp) / imp * diagApprox of a row with approximate inverse inertia
+// `diag` (MuJoCo's mj_diagApprox: frozen at qpos0 through dof_invweight0 and body_invweight0, not
+// the current inverse inertia).
+double regularizer(const SoftParameters& soft, double diag) {
+  return std::max(kMinVal, (1 - soft.imp) * diag / soft.imp);
+}
+
+// The limit rows' soft parameters (they are the first `count` rows).
+void set_limit_soft_rows(const Model& model, Data& data, int count) {
+  for (int r = 0; r < count; ++r) {
+    std::array<double, 2> solref;
+    std::array<double, 5> solimp;
+    limit_parameters(model, data.efc_id[r], solref, solimp);
+    const SoftParameters soft =
+        soft_parameters(solref, solimp, data.efc_pos[r], data.efc_margin[r]);
+    set_soft_row(data, r, soft, soft.K, regularizer(soft, model.dof_invweight0[data.efc_dof[r]]));
+  }
+}
+
+// Contact i's rows' soft parameters, computed once for the contact: its rows share its distance,
+// so its impedance, K and B, and their R follow from the first row's. The first row's
+// diagApprox is the two bodies' translational weights (a pyramid's first edge n + mu_0 t_0 adds
+// mu_0^2 times the tangent's, translational too). Friction's regularizer: the first friction
+// row's R_1 = R_0 / impratio sets the regularized cone's mu = friction_0 sqrt(R_1 / R_0). An
+// elliptic cone's other friction rows get the R that keeps R_j friction_j^2 equal across
+// directions; a pyramid's edges share one R, 2 mu^2 R_0, matching the elliptic cone's friction
+// impedance. An elliptic cone's friction rows have no position to restore (K = 0).
+void set_contact_soft_rows(const Model& model, Data& data, int i) {
+  Contact& con = data.contact[i];
+  const int first = con.efc_address;
+  std::array<double, 2> solref = con.solref;
+  std::array<double, 5> solimp = con.solimp;
+  sanitize(model, solref, solimp);
+  const SoftParameters soft = soft_parameters(solref, solimp, con.dist, con.includemargin);
+  const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
+  const double translation = model.body_invweight0[b1][0] + model.body_invweight0[b2][0];
+  const ConstraintType type = data.efc_type[first];
+  if (type == ConstraintType::kContactFrictionless) {
+    set_soft_row(data, first, soft, soft.K, regularizer(soft, translation));
+    return;
+  }
+  const bool pyramid = type == ConstraintType::kContactPyramidal;
+  const double mu0 = con.friction[0];
+  const double R0 =
+      regularizer(soft, pyramid ? translation + mu0 * mu0 * translation : translation);
+  const double R1 = R0 / std::max(kMinVal, model.opt.impratio);
+  con.mu = mu0 * std::sqrt(R1 / R0);
+  if (pyramid) {
+    const double shared = 2 * con.mu * con.mu * R0;
+    for (int r = first; r < first + 2 * (con.dim - 1); ++r)
+      set_soft_row(data, r, soft, soft.K, shared);
+    return;
+  }
+  set_soft_row(data, first, soft, soft.K, R0);
+  set_soft_row(data, first + 1, soft, 0.0, R1);
+  for (int k = 1; k < con.dim - 1; ++k) {
+    set_soft_row(data, first + k + 1, soft, 0.0,
+                 R1 * con.friction[0] * con.friction[0] / (con.friction[k] * con.friction[k]));
+  }
+}
+
+}  // namespace
+
+void unchecked::make_constraint(const Model& model, Data& data) {
+  const int limits = add_limit_rows(model, data);
+  set_limit_soft_rows(model, data, limits);
+  int n = limits;
+  PairDofs pair;
+  for (int i = 0; i < data.ncon; ++i) {
+    Contact& con = data.contact[i];
+    con.efc_address = -1;
+    if (con.exclude) continue;
+    n = add_contact_rows(model, data, i, n, pair);
+    set_contact_soft_rows(model, data, i);
+  }
+  data.nefc = n;
+}
+
+void make_constraint(const Model& model, Data& data) {
+  check_entry(model, data, "lever::make_constraint");
+  unchecked::make_constraint(model, data);
+}
+
+namespace {
+
+// x = H^-1 x for a symmetric positive definite H given by its lower triangle, which is replaced
+// by its Cholesky factor L (H = L L^T). nv x nv with nv a few dozen at most: plain loops, column
+// by column (right-looking: each finished column updates the ones after it), each column's loops
+// ending at its last nonzero (the dofs of trees that no contact joins never meet: a gripper and
+// a free box are two blocks). column_end: nv ints of scratch.
+void cholesky_solve(Eigen::MatrixXd& H, Eigen::VectorXd& x, std::vector<int>& column_end) {
+  const int nv = static_cast<int>(x.size());
+  int* const end = column_end.data();  // one past column j's last nonzero
+  for (int j = 0; j < nv; ++j) {
+    double* Lj = H.data() + static_cast<std::ptrdiff_t>(j) * nv;
+    int e = nv;  // column j is final here: every column before it has updated it
+    while (e > j + 1 && Lj[e - 1] == 0.0) --e;
+    end[j] = e;
+    const double Ljj = std::sqrt(Lj[j]);
+    Lj[j] = Ljj;
+    for (int i = j + 1; i < e; ++i) Lj[i] /= Ljj;
+    for (int k = j + 1; k < e; ++k) {
+      if (Lj[k] == 0.0) continue;
+      double* Hk = H.data() + static_cast<std::ptrdiff_t>(k) * nv;
+      for (int i = k; i < e; ++i) Hk[i] -= Lj[i] * Lj[k];
+    }
+  }
+  // L y = x, column by column: y_j, once final, leaves the rows below
+  for (int j = 0; j < nv; ++j) {
+    x[j] /= H(j, j);
+    for (int i = j + 1; i < end[j]; ++i) x[i] -= H(i, j) * x[j];
+  }
+  for (int i = nv - 1; i >= 0; --i) {  // L^T x = y
+    double sum = x[i];
+    for (int k = i + 1; k < end[i]; ++k) sum -= H(k, i) * x[k];
+    x[i] = sum / H(i, i);
+  }
+}
+
+// H += weight v v^T, v over the span of `count` dofs from `lo`: the whole block, though only
+// its lower triangle is read (a loop of one length vectorizes; one of falling lengths does not).
+void add_rank_one(Eigen::MatrixXd& H, int lo, int count, double weight, const double* v) {
+  const Eigen::Index nv = H.rows();
+  double* column = H.data() + (lo * nv + lo);  // column lo + b from its row lo, for each b
+  for (int b = 0; b < count; ++b, column += nv) {
+    if (v[b] == 0.0) continue;
+    const double wb = weight * v[b];
+    for (int a = 0; a < count; ++a) column[a] += wb * v[a];
+  }
+}
+
+// H += sum_k W_k c_k c_k^T over the span of `count` dofs from `lo`, c_k a contact's frame row k
+// (rows `stride` apart): one pass over the block for all of the frame's rows, the whole block
+// though only its lower triangle is read (a loop of one length vectorizes; one of falling lengths
+// does not). Dim is a template argument so that the sum over the rows unrolls.
+template <int Dim>
+void add_frame_weights(Eigen::MatrixXd& H, int lo, int count, const double* c, Eigen::Index stride,
+                       const double* W) {
+  const Eigen::Index nv = H.rows();
+  double* column = H.data() + (lo * nv + lo);  // column lo + b from its row lo, for each b
+  for (int b = 0; b < count; ++b, column += nv) {
+    double wc[Dim];
+    bool any = false;
+    for (int k = 0; k < Dim; ++k) {
+      wc[k] = W[k] * c[k * stride + b];
+      any = any || wc[k] != 0.0;
+    }
+    if (!any) continue;
+    for (int a = 0; a < count; ++a) {
+      double sum = wc[0] * c[a];
+      for (int k = 1; k < Dim; ++k) sum += wc[k] * c[k * stride + a];
+      column[a] += sum;
+    }
+  }
+}
+
+// kernel(Dim) with a contact's dim (1 to 6) as a compile-time constant (std::integral_constant),
+// so that the kernels' loops over the frame's rows unroll
+template <class Kernel>
+void with_dim(int dim, Kernel&& kernel) {
+  switch (dim) {
+    case 1: return kernel(std::integral_constant<int, 1>{});
+    case 2: return kernel(std::integral_constant<int, 2>{});
+    case 3: return kernel(std::integral_constant<int, 3>{});
+    case 4: return kernel(std::integral_constant<int, 4>{});
+    case 5: return kernel(std::integral_constant<int, 5>{});
+    default: return kernel(std::integral_constant<int, 6>{});
+  }
+}
+
+// c = the frame's rows (rows `stride` apart) times x over the span of `count` dofs, each c_k
+// summed over the span in order
+template <int Dim>
+void frame_times(const double* rows, Eigen::Index stride, int count, const double* x, double* c) {
+  for (int k = 0; k < Dim; ++k) c[k] = 0.0;
+  for (int j = 0; j < count; ++j) {
+    const double xj = x[j];
+    for (int k = 0; k < Dim; ++k) c[k] += rows[k * stride + j] * xj;
+  }
+}
+
+}  // namespace
+
+void rows_times(const Data& data, const double* x, double* out) {
+  const auto& C = data.work.contact_frame_J;
+  for (int r = 0; r < data.nefc;) {
+    if (data.efc_dof[r] >= 0) {  // a limit row: J_r = sign e_dof
+      out[r] = data.efc_sign[r] * x[data.efc_dof[r]];
+      ++r;
+      continue;
+    }
+    const int i = data.efc_id[r];
+    const Contact& con = data.contact[i];
+    const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
+    double c[6];  // the frame's rows times x
+    with_dim(con.dim,
+             [&](auto dim) { frame_times<dim>(C.row(r).data() + lo, C.cols(), span, x + lo, c); });
+    if (data.efc_type[r] != ConstraintType::kContactPyramidal) {
+      for (int k = 0; k < con.dim; ++k) out[r++] = c[k];
+      continue;
+    }
+    for (int k = 1; k < con.dim; ++k) {  // the edges n + mu t, n - mu t
+      const double mu = con.friction[k - 1];
+      out[r++] = c[0] + mu * c[k];
+      out[r++] = c[0] - mu * c[k];
+    }
+  }
+}
+
+void rows_jar(const Data& data, const double* x, double* out) {
+  rows_times(data, x, out);
+  for (int r = 0; r < data.nefc; ++r) out[r] -= data.efc_aref[r];
+}
+
+void add_rows_transpose(const Data& data, const double* f, double* out) {
+  const auto& C = data.work.contact_frame_J;
+  for (int r = 0; r < data.nefc;) {
+    if (data.efc_dof[r] >= 0) {
+      out[data.efc_dof[r]] += data.efc_sign[r] * f[r];
+      ++r;
+      continue;
+    }
+    const int i = data.efc_id[r];
+    const Contact& con = data.contact[i];
+    const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
+    // the rows' forces as forces along the frame's rows: a pyramid's edges n +- mu t add their
+    // forces along n, and mu times their difference along t
+    double F[6];
+    const int frame = r;
+    if (data.efc_type[r] != ConstraintType::kContactPyramidal) {
+      for (int k = 0; k < con.dim; ++k) F[k] = f[r++];
+    } else {
+      F[0] = 0.0;
+      for (int k = 1; k < con.dim; ++k) {
+        F[0] += f[r] + f[r + 1];
+        F[k] = con.friction[k - 1] * (f[r] - f[r + 1]);
+        r += 2;
+      }
+    }
+    for (int k = 0; k < con.dim; ++k) {
+      if (F[k] == 0.0) continue;
+      const double* row = C.row(frame + k).data() + lo;
+      for (int j = 0; j < span; ++j) out[lo + j] += F[k] * row[j];
+    }
+  }
+}
+
+void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H) {
+  const auto& C = data.work.contact_frame_J;
+  for (int r = 0; r < data.nefc;) {
+    if (data.efc_dof[r] >= 0) {  // a limit row: J_r = sign e_dof, sign^2 = 1
+      H(data.efc_dof[r], data.efc_dof[r]) += weight[r];
+      ++r;
+      continue;
+    }
+    const int i = data.efc_id[r];
+    const Contact& con = data.contact[i];
+    const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
+    const int frame = r;
+    double frame_weight[6] = {};  // along the frame's rows
+    if (data.efc_type[r] != ConstraintType::kContactPyramidal) {
+      for (int k = 0; k < con.dim; ++k) frame_weight[k] = weight[r++];
+    } else {
+      // A pair of edges n +- mu t that both push adds d+ (n + mu t)(..)^T + d- (n - mu t)(..)^T
+      // = (d+ + d-) n n^T + mu^2 (d+ + d-) t t^T when d+ = d- (the edges of a pyramid share R):
+      // a weight along t, and the normal's gathered over the pairs. A lone edge adds its own.
+      for (int k = 1; k < con.dim; ++k, r += 2) {
+        const double plus = weight[r], minus = weight[r + 1];
+        if (plus != 0.0 && plus == minus) {
+          const double mu = con.friction[k - 1];
+          frame_weight[0] += plus + minus;
+          frame_weight[k] = mu * mu * (plus + minus);
+        } else {
+          if (plus != 0.0) add_rank_one(H, lo, span, plus, data.efc_J.row(r).data() + lo);
+          if (minus != 0.0) add_rank_one(H, lo, span, minus, data.efc_J.row(r + 1).data() + lo);
+        }
+      }
+    }
+    with_dim(con.dim, [&](auto dim) {
+      add_frame_weights<dim>(H, lo, span, C.row(frame).data() + lo, C.cols(), frame_weight);
+    });
+  }
+}
+
+void add_frame_hessian(Data& data, int i, const double* W, Eigen::MatrixXd& H) {
+  const Contact& con = data.contact[i];
+  const int dim = con.dim, first = con.efc_address;
+  const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
+  const auto C = data.work.contact_frame_J.block(first, lo, dim, span);
+  // G = W C over the span (dim x span), then the lower triangle of C^T G
+  double* G = data.work.frame_scratch.data();
+  for (int k = 0; k < dim; ++k) {
+    for (int j = 0; j < span; ++j) {
+      double sum = 0.0;
+      for (int l = 0; l < dim; ++l) sum += W[k * dim + l] * C(l, j);
+      G[k * span + j] = sum;
+    }
+  }
+  for (int b = 0; b < span; ++b) {
+    double* column = H.data() + static_cast<std::ptrdiff_t>(lo + b) * H.rows() + lo;
+    for (int a = b; a < span; ++a) {
+      double sum = 0.0;
+      for (int k = 0; k < dim; ++k) sum += C(k, a) * G[k * span + b];
+      column[a] += sum;
+    }
+  }
+}
+
+void solve_with_hessian(Data& data, Eigen::MatrixXd& H, Eigen::VectorXd& x) {
+  cholesky_solve(H, x, data.work.hessian_envelope);
+}
+
+void unchecked::reference_constraint(const Model& /*model*/, Data& data) {
+  if (data.nefc == 0) return;
+  rows_times(data, data.qvel.data(), data.efc_vel.data());
+  for (int r = 0; r < data.nefc; ++r) {
+    data.efc_aref[r] = -data.efc_B[r] * data.efc_vel[r] -
+                       data.efc_K[r] * data.efc_imp[r] * (data.efc_pos[r] - data.efc_margin[r]);
+  }
+}
+
+void reference_constraint(const Model& model, Data& data) {
+  check_entry(model, data, "lever::reference_constraint");
+  unchecked::reference_constraint(model, data);
+}
+
+namespace {
+
+// Most rounds of the active-set solve before the pivoting takes over: settling takes one or two
+// (a contact that starts or stops pushing moves one row), a cycle is what the bound catches.
+constexpr int kMaxActiveSetRounds = 8;
+
+// The one-sided rows' problem solved in dof space. For a set S of pushing rows the cost
+// 1/2 |a - a_smooth|_M^2 + sum_S 1/2 D_r (J_r a - aref_r)^2 is one quadratic, minimized by
+//   (M + J_S^T D_S J_S) a = M a_smooth + J_S^T D_S aref_S         (nv x nv, whatever the rows)
+// (Newton's step for MuJoCo's primal problem, exact because the cost is quadratic on S; M a_smooth
+// is qfrc_smooth). If the rows that push at that a, {r : jar_r = J_r a - aref_r < 0}, are S
+// again, a is the minimizer: f = -D jar > 0 on S and jar >= 0 off it is the complementarity the
+// LCP asks for, whose solution is unique. Otherwise S becomes that set and the round repeats,
+// from S = the rows that push at a_smooth. False (nothing written) when the set has not settled
+// after kMaxActiveSetRounds rounds: the pivoting, which always finishes, decides then.
+bool solve_active_set(Data& data) {
+  auto& w = data.work;
+  const int n = data.nefc;
+  std::vector<int>& active = w.lcp_active;
+  auto& a = w.newton_dir;  // the round's acceleration
+  const double* D = data.efc_D.data();
+  const double* aref = data.efc_aref.data();
+  for (int r = 0; r < n; ++r) active[r] = data.efc_b[r] < 0;
+
+  for (int round = 0; round < kMaxActiveSetRounds; ++round) {
+    // a = M a_smooth + J_S^T D_S aref_S, where M a_smooth is qfrc_smooth (as MuJoCo's gradient
+    // M a - qfrc_smooth has it), and H = M + J_S^T D_S J_S, each contact's part in its frame
+    for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] * aref[r] : 0.0;
+    a = data.qfrc_smooth;
+    add_rows_transpose(data, w.lcp_f.data(), a.data());
+    for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] : 0.0;
+    w.newton_H = data.M;
+    add_rows_hessian(data, w.lcp_f.data(), w.newton_H);
+    solve_with_hessian(data, w.newton_H, a);
+
+    // the rows that push at a; the same set: done
+    rows_jar(data, a.data(), w.newton_jar.data());
+    bool settled = true;
+    for (int r = 0; r < n; ++r) {
+      settled = settled && (w.newton_jar[r] < 0) == (active[r] != 0);
+      active[r] = w.newton_jar[r] < 0;
+    }
+    if (!settled) continue;
+    data.qacc = a;
+    for (int r = 0; r < n; ++r) {
+      data.efc_force[r] = active[r] ? -D[r] * w.newton_jar[r] : 0.0;
+      data.efc_state[r] = active[r] ? ConstraintState::kActive : ConstraintState::kSatisfied;
+    }
+    add_rows_transpose(data, data.efc_force.data(), data.qfrc_constraint.data());
+    return true;
+  }
+  return false;
+}
+
+// The same problem in row space, exactly, by Murty's least-index principal pivoting on
+// A = J M^-1 J^T + R: finite for a positive definite A, whatever the start. Two rows or more:
+// the forces in w.lcp_f and the set in w.lcp_active.
+void pivot_rows(const Model& model, Data& data) {
+  const int n = data.nefc;
+  auto& w = data.work;
+  const auto b = data.efc_b.head(n);
+  // A = J M^-1 J^T + R. With M = L^T D L, J M^-1 J^T = Y^T D^-1 Y for Y = L^-T J^T: one half
+  // solve per row, over its dofs and their ancestors.
+  for (int r = 0; r < n; ++r) {
+    auto y = w.halfJ.col(r);
+    y = data.efc_J.row(r).transpose();
+    solve_mass_half(model, data, y);
+    w.halfJ_scaled.col(r) = y.cwiseProduct(data.qLDiagInv);
+  }
+  // A is symmetric: its lower triangle is computed and read (small sizes: coefficient by
+  // coefficient, no blocking)
+  auto A = w.A.topLeftCorner(n, n);
+  A.triangularView<Eigen::Lower>() =
+      w.halfJ.leftCols(n).transpose().lazyProduct(w.halfJ_scaled.leftCols(n));
+  A.diagonal() += data.efc_R.head(n);
+
+  // Murty's least-index principal pivoting, starting from the rows that are pushed into the
+  // stop. A + R is positive definite (R > 0), so the LCP has one solution and the method reaches
+  // it from any start.
+  auto f = w.lcp_f.head(n);
+  auto residual = w.lcp_w.head(n);
+  std::vector<int>& active = w.lcp_active;
+  std::vector<int>& idx = w.lcp_index;
+  for (int r = 0; r < n; ++r) active[r] = b[r] < 0;
+  const int max_pivots = 64 * n + 64;
+  for (int pivot = 0; pivot <= max_pivots; ++pivot) {
+    // forces of the active rows S: (A + R)_SS f_S = -b_S, the others 0
+    int m = 0;
+    for (int r = 0; r < n; ++r) {
+      if (active[r]) idx[m++] = r;
+    }
+    f.setZero();
+    if (m == 1) {  // one active row: Cholesky's sqrt(A) and its two solves
+      const double l = std::sqrt(A(idx[0], idx[0]));
+      f[idx[0]] = -b[idx[0]] / l / l;
+    } else if (m > 1) {
+      auto A_SS = w.L.topLeftCorner(m, m);  // gathered, then factored in place
+      auto f_S = w.lcp_rhs.head(m);
+      for (int k = 0; k < m; ++k) {
+        for (int c = 0; c <= k; ++c) A_SS(k, c) = A(idx[k], idx[c]);
+        f_S[k] = -b[idx[k]];
+      }
+      Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> factor(A_SS);
+      factor.solveInPlace(f_S);
+      for (int k = 0; k < m; ++k) f[idx[k]] = f_S[k];
+    }
+    // the first row that breaks complementarity changes side
+    residual = b;
+    residual.noalias() += A.selfadjointView<Eigen::Lower>() * f;
+    int flip = -1;
+    for (int r = 0; r < n && flip < 0; ++r) {
+      if ((active[r] && f[r] < 0) || (!active[r] && residual[r] < 0)) flip = r;
+    }
+    if (flip < 0) break;
+    active[flip] = !active[flip];
+  }
+}
+
+// One row (an arm against one stop, the common case): A = J M^-1 J^T + R is a number, and
+// Murty's method ends after its first set: the row pushes (f = -b / A > 0, w = 0) exactly when
+// b < 0, else f = 0 and w = b >= 0. The same arithmetic as pivot_rows for one row, without its
+// matrices.
+void solve_one_row(const Model& model, Data& data) {
+  auto& w = data.work;
+  auto y = w.halfJ.col(0);
+  y = data.efc_J.row(0).transpose();
+  solve_mass_half(model, data, y);
+  auto y_scaled = w.halfJ_scaled.col(0);
+  y_scaled = y.cwiseProduct(data.qLDiagInv);
+  const double A = y.cwiseProduct(y_scaled).sum() + data.efc_R[0];
+  const double b = data.efc_b[0];
+  const bool pushes = b < 0;
+  w.lcp_active[0] = pushes;
+  if (pushes) {
+    const double l = std::sqrt(A);  // as Cholesky's factor of the 1 x 1 A
+    w.lcp_f[0] = -b / l / l;
+  } else {
+    w.lcp_f[0] = 0.0;
+  }
+}
+
+// The one-sided rows' problem in row space (pivot_rows; one row: solve_one_row), then the joint
+// forces and accelerations its forces give. For few rows, and the fallback of solve_active_set.
+void solve_by_pivoting(const Model& model, Data& data) {
+  const int n = data.nefc;
+  auto& w = data.work;
+  std::vector<int>& active = w.lcp_active;
+  auto f = w.lcp_f.head(n);
+  if (n == 1) {
+    solve_one_row(model, data);
+  } else {
+    pivot_rows(model, data);
+  }
+
+  // forces, joint forces and accelerations
+  for (int r = 0; r < n; ++r) {
+    data.efc_force[r] = active[r] ? f[r] : 0.0;
+    data.efc_state[r] = active[r] ? ConstraintState::kActive : ConstraintState::kSatisfied;
+  }
+  add_rows_transpose(data, data.efc_force.data(), data.qfrc_constraint.data());
+  // qacc = qacc_smooth + M^-1 J^T f
+  w.vec1 = data.qfrc_constraint;
+  unchecked::solve_mass(model, data, w.vec1.data());
+  data.qacc += w.vec1;
+}
+}  // namespace
+
+namespace {
+
+// Where every solve starts (and ends, without rows): no constraint force, qacc = qacc_smooth.
+void start_unconstrained(const Model& model, Data& data) {
+  double* const qfrc = data.qfrc_constraint.data();
+  double* const qacc = data.qacc.data();
+  const double* const qacc_smooth = data.qacc_smooth.data();
+  for (int i = 0; i < model.nv; ++i) {
+    qfrc[i] = 0.0;
+    qacc[i] = qacc_smooth[i];
+  }
+}
+
+// Where both one-sided solves start: no constraint force, qacc = qacc_smooth, and each row's
+// b = J qacc_smooth - a_ref (its jar without constraint forces).
+void start_one_sided(const Model& model, Data& data) {
+  start_unconstrained(model, data);
+  rows_jar(data, data.qacc_smooth.data(), data.efc_b.data());
+}
+
+}  // namespace
+
+void unchecked::solve_constraint(const Model& model, Data& data) {
+  if (data.nefc == 0 || model.opt.cone == Cone::kElliptic) {
+    start_unconstrained(model, data);
+    if (data.nefc > 0) solve_constraint_newton(model, data);
+    return;
+  }
+  start_one_sided(model, data);
+  // in the smaller space: rows (pivoting on A, nefc x nefc) when there are no more rows than
+  // dofs (a limit or two on an arm), dofs (active sets on H, nv x nv) otherwise (a box resting
+  // on four corners has 16 pyramid rows and 6 dofs)
+  if (data.nefc > model.nv && solve_active_set(data)) return;
+  solve_by_pivoting(model, data);
+}
+
+void solve_constraint(const Model& model, Data& data) {
+  check_entry(model, data, "lever::solve_constraint");
+  unchecked::solve_constraint(model, data);
+}
+
+void solve_constraint_pivoting(const Model& model, Data& data) {
+  check_entry(model, data, "lever::solve_constraint_pivoting");
+  start_one_sided(model, data);
+  if (data.nefc > 0) solve_by_pivoting(model, data);
+}
+
+}  // namespace lever

@@ -1,0 +1,57 @@
+// The derivatives of the smooth dynamics: Carpentier and Mansard's RNEA derivatives
+// (inverse_dynamics.cpp), which the implicit integrator (pipeline/implicit.cpp) and the step's
+// Jacobians (transition/) both read.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <vector>
+
+#include <lever/data.hpp>
+#include <lever/derivatives.hpp>
+#include <lever/model.hpp>
+#include <lever/spatial.hpp>
+
+namespace lever {
+
+/// d qfrc_bias / d qvel into out (nv x nv): Carpentier and Mansard's d rnea / d qd, which does not
+/// depend on qacc or gravity, from the bodies' velocities v and the dofs' Sdot at velocity qd
+/// (RNEA's forward pass: data.cvel and data.cdof_dot after forward()); IC (nbody) holds each
+/// body's subtree inertia (crba()'s composites, data.work.crb after the position stage), CC
+/// (nbody) is workspace for the subtree sums of velocity coupling.
+void bias_velocity_derivative(const Model& model, const Data& data, const double* qd,
+                              const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
+                              const std::vector<RigidInertia>& IC,
+                              std::vector<VelocityCoupling>& CC, Eigen::Ref<Eigen::MatrixXd> out);
+
+namespace detail {
+
+/// Throws unless Model, Data and Derivatives were made for one another, and the model is one the
+/// analytic derivatives cover.
+void check_derivative_sizes(const Model& model, const Data& data, const Derivatives& deriv);
+
+/// The first dof of a joint's rotation block (a ball's three dofs, a free joint's last three), or
+/// -1 when the joint has none.
+int rotation_block(const Model& model, int j);
+
+/// The inertia of each body's subtree into w.IC (for a caller that ran kinematics() alone); returns
+/// w.IC.
+const std::vector<RigidInertia>& subtree_inertias(const Model& model, const Data& data,
+                                                  Derivatives::Workspace& w);
+
+/// IC S_i of each dof i into w.IC_S, which every RNEA-derivative pass at this qpos reads.
+void inertia_columns(const Model& model, const Data& data, const std::vector<RigidInertia>& IC,
+                     Derivatives::Workspace& w);
+
+/// Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd) into dtau_dq and
+/// dtau_dv (nullptr: d / d q alone), given the subtree inertias IC and w.IC_S; couplings: the
+/// subtree sums of C at qd when the caller has them, nullptr: summed into w.CC.
+void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
+                           const double* qdd, bool gravity, const std::vector<RigidInertia>& IC,
+                           Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
+                           Eigen::MatrixXd* dtau_dv,
+                           const std::vector<VelocityCoupling>* couplings = nullptr);
+
+}  // namespace detail
+
+}  // namespace lever

@@ -1,0 +1,344 @@
+// Analytic derivatives of inverse dynamics (Carpentier and Mansard, RSS 2018): d tau / d q and
+// d tau / d qd of RNEA, and d qfrc_bias / d qvel, which the implicit integrator and the step's
+// Jacobians (transition/) read. docs/derivatives.md derives each formula.
+// derives each formula.
+//
+// Every spatial quantity is in lever's frame (world axes, origin at the tree's centre of mass c,
+// see kinematics.cpp). tau is a sum of dot products S_i . F, which do not depend on the frame, so
+// the derivatives may be taken with c held where it is: a frame fixed in the world. In such a
+// frame moving dof j by dq_j moves everything it carries rigidly with the spatial velocity S_j:
+//   d S_i / d q_j = S_j x S_i            (j a strict ancestor of i; 0 otherwise)
+//   d I_b / d q_j = S_j x* I_b - I_b S_j x   (j supports body b)
+// With Sdot_j = v_lambda(j) x S_j and Psi_ddot_j = a_lambda(j) x S_j + v_lambda(j) x Sdot_j (the
+// velocity and acceleration just before dof j), the net force f_b = I_b a_b + v_b x* I_b v_b of a
+// body b that dof j supports changes as
+//   d f_b / d q_j  = S_j x* f_b + I_b Psi_ddot_j + C_b Sdot_j
+//   d f_b / d qd_j = 2 I_b Sdot_j + C_b S_j,      C_b = v_b x* I_b - I_b v_b x + (I_b v_b) xbar*
+// where (f xbar*) m = m x* f. Summed over a subtree (composites IC, CC, F) and dotted with S_i,
+// the S_j x* F term cancels d S_i / d q_j when j is an ancestor of i, and for a pair (i, j) on one
+// branch, with d the deeper of the two and b(d) its body (the paper's table, in this frame):
+//   d tau_i / d q_j  = S_i . (IC Psi_ddot_j + CC Sdot_j)       + [i strictly above j] S_i . (S_j x*
+//   F) d tau_i / d qd_j = S_i . (2 IC Sdot_j + CC S_j)
+// (IC, CC, F of b(d)); pairs on different branches are zero.
+//
+// Ball and free joints, in qpos's tangent space (q -> q exp(dq)): a ball's dq_j turns its body
+// about S_j, and with it all three of the ball's axes, so for i above j within one segment (a
+// ball's dofs, a free joint's rotations or its translations) the S_j x* F term is cancelled too;
+// Psi_ddot_j uses the acceleration before the segment, and d / d qd_j's 2 Sdot_j becomes
+// Sdot_j + v' x S_j, v' the velocity after the segment. The step's position update
+// qpos (+) h w contributes exp(-h [w]) and SO(3)'s right Jacobian Jr(h w) on a turn's rows, and a
+// ball's spring -k log(ref^-1 q) the inverse right Jacobian. docs/derivatives.md derives each.
+#include <lever/derivatives.hpp>
+#include <lever/error.hpp>
+
+#include <string>
+
+#include "derivatives/derivatives_room.hpp"
+#include "smooth/recursion.hpp"
+
+namespace lever {
+
+namespace detail {
+
+void check_derivative_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
+  if (model.contacts_possible) {
+    throw ModelError(
+        "derivatives: the model can make contacts; lever's analytic derivatives cover joint limits "
+        "so far (set contype and conaffinity to 0 where contacts are not wanted).");
+  }
+  // a ball's dofs turn about its body's final axes (MuJoCo's cdof): a joint after it in the same
+  // body would turn them too, a case the derivation below leaves out (docs/derivatives.md)
+  for (int j = 0; model.nq != model.nv && j < model.njnt; ++j) {
+    const int b = model.jnt_bodyid[j];
+    if (model.jnt_kind[j] == JointKind::kBall && model.body_jntnum[b] > 1) {
+      throw ModelError("derivatives: ball joint '" + model.jnt_name[j] +
+                       "' shares its body with other joints; lever's analytic derivatives cover a "
+                       "ball joint alone in its body so far.");
+    }
+  }
+  if (data.nv != model.nv || data.nu != model.nu || deriv.nv != model.nv || deriv.nu != model.nu ||
+      static_cast<int>(deriv.work.qpos0.size()) != model.nq) {
+    throw StateError("derivatives: Data or Derivatives was built for another model (nv " +
+                     std::to_string(model.nv) + ", nu " + std::to_string(model.nu) + ").");
+  }
+}
+
+// A tangent coordinate of a ball (or of a free joint's rotation) turns the body about its own axes:
+// qpos' = qpos exp(dq).
+// The first dof of each rotation block: a ball's three dofs, a free joint's last three; -1 when
+// the joint has none.
+int rotation_block(const Model& model, int j) {
+  switch (model.jnt_kind[j]) {
+    case JointKind::kBall: return model.jnt_dofadr[j];
+    case JointKind::kFree: return model.jnt_dofadr[j] + 3;
+    default: return -1;
+  }
+}
+
+// The inertia of each body's subtree, summed into w.IC by crba()'s composite_inertias(), for
+// rnea_derivatives(), whose caller may have run kinematics() alone; after forward(),
+// data.work.crb holds the same numbers and is read instead.
+const std::vector<RigidInertia>& subtree_inertias(const Model& model, const Data& data,
+                                                  Derivatives::Workspace& w) {
+  composite_inertias(model, data, w.IC);
+  return w.IC;
+}
+
+// IC S_i of each dof i (IC its body's subtree inertia): the column force crba() finds, which every
+// RNEA-derivative pass at this qpos reads (position_columns(), velocity_columns()), so the step's
+// passes share it.
+void inertia_columns(const Model& model, const Data& data, const std::vector<RigidInertia>& IC,
+                     Derivatives::Workspace& w) {
+  for (int i = 0; i < model.nv; ++i) w.IC_S[i] = IC[model.dof_bodyid[i]] * data.cdof[i];
+}
+
+}  // namespace detail
+
+namespace {
+
+using detail::rotation_block;
+
+// ---- inverse-dynamics derivatives, one function per pass ---------------------------------------
+
+// The velocity coupling C = v x* I - I (v x) + (I v) xbar* of a body with inertia I = (m, h, J)
+// (h = m c, J about the frame's origin) moving with v = (w, u), whose momentum is
+// I v = (n, p) = (J w + h x u, m u - h x w). Writing [a] for the matrix of a x, the three terms are
+//   v x* I      = [[ [w]J - [u][h],  [w][h] + m[u] ], [ -[w][h],          m[w] ]]
+//   I (v x)     = [[ J[w] + [h][u],  [h][w]        ], [ -[h][w] + m[u],   m[w] ]]
+//   (I v) xbar* = [[ -[n],           -[p]          ], [ -[p],             0    ]]
+// and [p] = m[u] - [h][w] + [w][h] (as [a x b] = [a][b] - [b][a]) cancels the right column, so
+//   C = [[S - [n], 0], [-2[p], 0]],   S = [w]J - J[w] - [u][h] - [h][u].
+// S is symmetric: with P = [w]J, J[w] = -P^T; and [a][b] = b a^T - (a.b) 1.
+VelocityCoupling velocity_coupling(const RigidInertia& I, const Motion& v, const Force& momentum) {
+  const Eigen::Vector3d w = v.head<3>(), u = v.tail<3>();
+  const Eigen::Matrix3d& J = I.I;
+  const Eigen::Vector3d& h = I.h;
+  // P = [w] J, column by column: P(., c) = w x J(., c)
+  double P[3][3];
+  for (int c = 0; c < 3; ++c) {
+    P[0][c] = w[1] * J(2, c) - w[2] * J(1, c);
+    P[1][c] = w[2] * J(0, c) - w[0] * J(2, c);
+    P[2][c] = w[0] * J(1, c) - w[1] * J(0, c);
+  }
+  const double uh = 2 * (u[0] * h[0] + u[1] * h[1] + u[2] * h[2]);
+  VelocityCoupling C;
+  // S(r, c) = P(r, c) + P(c, r) - h_r u_c - u_r h_c, + 2 u.h on the diagonal: the upper
+  // triangle, mirrored
+  const double s01 = (P[0][1] + P[1][0]) - (h[0] * u[1] + u[0] * h[1]);
+  const double s02 = (P[0][2] + P[2][0]) - (h[0] * u[2] + u[0] * h[2]);
+  const double s12 = (P[1][2] + P[2][1]) - (h[1] * u[2] + u[1] * h[2]);
+  C.S(0, 0) = 2 * (P[0][0] - h[0] * u[0]) + uh;
+  C.S(1, 1) = 2 * (P[1][1] - h[1] * u[1]) + uh;
+  C.S(2, 2) = 2 * (P[2][2] - h[2] * u[2]) + uh;
+  C.S(0, 1) = C.S(1, 0) = s01;
+  C.S(0, 2) = C.S(2, 0) = s02;
+  C.S(1, 2) = C.S(2, 1) = s12;
+  C.momentum = momentum;
+  return C;
+}
+
+// The body pass, after the forward pass gave each body's v: its velocity coupling C into CC (their
+// subtree sums come next). The net force is the forward pass's (net_force, recursion.hpp); the
+// subtree inertias IC do not depend on the velocity: crba()'s composites (subtree_inertias()).
+void body_couplings(const Model& model, const Data& data, const std::vector<Motion>& v,
+                    std::vector<VelocityCoupling>& CC) {
+  for (int b = 1; b < model.nbody; ++b) {
+    const RigidInertia& I = data.cinert[b];
+    CC[b] = velocity_coupling(I, v[b], I * v[b]);
+  }
+}
+
+// The columns, from the subtree sums IC and CC, for each dof i: the pairs (i, j) with j = i or
+// above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
+// IC_S: inertia_columns() at this qpos (velocity_columns() also takes nullptr: computed there).
+// Two functions, one per output, so that the implicit step's d tau / d qd
+// (bias_velocity_derivative) runs its own loop.
+
+// d tau / d q, from Psi_ddot (Sddot) and the subtree net forces F besides.
+void position_columns(const Model& model, const Data& data, const std::vector<Motion>& Sdot,
+                      const std::vector<Motion>& Sddot, const std::vector<Force>& F,
+                      const std::vector<RigidInertia>& ICs, const std::vector<Force>& IC_S,
+                      const std::vector<VelocityCoupling>& CCs, Eigen::MatrixXd& dtau_dq) {
+  dtau_dq.setZero();
+  for (int i = 0; i < model.nv; ++i) {
+    const int b = model.dof_bodyid[i];
+    const Motion& Si = data.cdof[i];
+    const RigidInertia& IC = ICs[b];
+    const VelocityCoupling& CC = CCs[b];
+    const Force& IC_Si = IC_S[i];                           // IC symmetric: S_i . IC x
+    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);  // S_i . CC x (x's angular part)
+    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
+      dtau_dq(i, j) = IC_Si.dot(Sddot[j]) + CCt_Si.dot(Sdot[j].head<3>());
+    }
+    const Force Xq = IC * Sddot[i] + CC * Sdot[i] + cross_force(Si, F[b]);
+    for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+      dtau_dq(k, i) = data.cdof[k].dot(Xq);
+    }
+  }
+}
+
+// d tau / d qd.
+void velocity_columns(const Model& model, const Data& data, const std::vector<Motion>& Sdot,
+                      const std::vector<RigidInertia>& ICs, const std::vector<Force>* IC_S,
+                      const std::vector<VelocityCoupling>& CCs,
+                      Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
+  dtau_dv.setZero();
+  for (int i = 0; i < model.nv; ++i) {
+    const int b = model.dof_bodyid[i];
+    const Motion& Si = data.cdof[i];
+    const RigidInertia& IC = ICs[b];
+    const VelocityCoupling& CC = CCs[b];
+    const Force IC_Si = IC_S != nullptr ? (*IC_S)[i] : IC * Si;
+    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);
+    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
+      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+    }
+    const Force Xv = 2 * (IC * Sdot[i]) + CC * Si;
+    for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+      dtau_dv(k, i) = data.cdof[k].dot(Xv);
+    }
+  }
+}
+
+// ---- what a ball (or a free joint's rotation) changes: its three dofs turn together
+// --------------
+
+// Psi_ddot of a segment's second and third dofs with the acceleration before the segment, not
+// before the dof: forward_pass() gave a_i x S_i + v_seg x Sdot_i, where a_i adds the segment's
+// earlier dofs' Sdot_k qd_k + S_k qdd_k, which turn with dof i (docs/derivatives.md). A free
+// joint's translations need nothing (linear x linear = 0).
+void segment_accelerations(const Model& model, const Data& data, const double* qd,
+                           const double* qdd, Derivatives::Workspace& w) {
+  for (int j = 0; j < model.njnt; ++j) {
+    const int r = rotation_block(model, j);
+    if (r < 0) continue;
+    Motion added = Motion::Zero();  // what the segment's dofs before i add to the acceleration
+    for (int i = r + 1; i < r + 3; ++i) {
+      added += w.Sdot[i - 1] * qd[i - 1];
+      if (qdd != nullptr) added += data.cdof[i - 1] * qdd[i - 1];
+      w.Sddot[i] -= cross_motion(added, data.cdof[i]);
+    }
+  }
+}
+
+// d tau_k / d q_i of a segment's dofs, corrected after position_columns(): for k before i in the
+// segment, turning about S_i turns S_k too, and d S_k / d q_i . F = (S_i x S_k) . F cancels the
+// S_i x* F term the hinge formula adds.
+void segment_position_columns(const Model& model, const Data& data, const std::vector<Force>& F,
+                              Eigen::MatrixXd& dtau_dq) {
+  for (int j = 0; j < model.njnt; ++j) {
+    const int r = rotation_block(model, j);
+    if (r < 0) continue;
+    const int b = model.jnt_bodyid[j];
+    for (int i = r; i < r + 3; ++i) {
+      const Force S_cross_F = cross_force(data.cdof[i], F[b]);
+      for (int k = r; k < i; ++k) dtau_dq(k, i) -= data.cdof[k].dot(S_cross_F);
+    }
+  }
+}
+
+// d tau / d qd_i of a segment's dofs, corrected after velocity_columns(): d a_c / d qd_i =
+// Sdot_i + v' x S_i + S_i x v_c, v' the velocity after the segment, where a hinge has 2 Sdot_i;
+// the difference E = v' x S_i - Sdot_i enters as IC E wherever 2 IC Sdot_i did. (v' is the
+// body's velocity less the dofs after the segment in the same body: none for a free joint or a
+// ball alone in its body.)
+void segment_velocity_columns(const Model& model, const Data& data, const double* qd,
+                              const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
+                              const std::vector<RigidInertia>& IC,
+                              Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
+  for (int j = 0; j < model.njnt; ++j) {
+    const int r = rotation_block(model, j);
+    if (r < 0) continue;
+    const int b = model.jnt_bodyid[j];
+    Motion v_after = v[b];
+    for (int k = r + 3; k < model.body_dofadr[b] + model.body_dofnum[b]; ++k) {
+      v_after -= data.cdof[k] * qd[k];
+    }
+    for (int i = r; i < r + 3; ++i) {
+      const Motion& Si = data.cdof[i];
+      const Motion E = cross_motion(v_after, Si) - Sdot[i];
+      // rows at or below i (the row's dof the deeper: its body's composite inertia)
+      for (int row = i; row < model.nv; ++row) {
+        int up = row;
+        while (up > i) up = model.dof_parentid[up];
+        if (up != i) continue;  // i is not on row's path to the world
+        dtau_dv(row, i) += (IC[model.dof_bodyid[row]] * data.cdof[row]).dot(E);
+      }
+      // rows above i (i the deeper dof)
+      const Force IC_E = IC[b] * E;
+      for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+        dtau_dv(k, i) += data.cdof[k].dot(IC_E);
+      }
+    }
+  }
+}
+
+}  // namespace
+
+namespace detail {
+
+// Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
+// and dtau_dv (nullptr: d / d q alone), given the subtree inertias IC at data.qpos
+// (data.work.crb after forward()) and w.IC_S (inertia_columns()) from them. couplings: the
+// subtree sums of C at the velocity qd when the caller has them, nullptr: summed into w.CC.
+// Armature adds armature * qdd, which depends on neither. Without gravity and with qdd = 0 they
+// are the derivatives of the velocity product terms alone (implicit_derivatives).
+void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
+                           const double* qdd, bool gravity, const std::vector<RigidInertia>& IC,
+                           Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
+                           Eigen::MatrixXd* dtau_dv,
+                           const std::vector<VelocityCoupling>* couplings) {
+  // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof, each body's net force
+  // (RNEA's forward pass)
+  forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot,
+               [&](int b, const Motion& vb, const Motion& ab) {
+                 w.F[b] = net_force(data.cinert[b], vb, ab);  // I a + v x* I v
+               });
+  if (model.nq != model.nv) segment_accelerations(model, data, qd, qdd, w);
+  // leaves to root: the composites of f and C over each subtree (RNEA's backward pass)
+  sum_over_subtrees(model, w.F);
+  if (couplings == nullptr) {
+    body_couplings(model, data, w.v, w.CC);
+    sum_over_subtrees(model, w.CC);
+    couplings = &w.CC;
+  }
+  const std::vector<VelocityCoupling>& CC = *couplings;
+  position_columns(model, data, w.Sdot, w.Sddot, w.F, IC, w.IC_S, CC, dtau_dq);
+  if (dtau_dv != nullptr) velocity_columns(model, data, w.Sdot, IC, &w.IC_S, CC, *dtau_dv);
+  if (model.nq != model.nv) {
+    segment_position_columns(model, data, w.F, dtau_dq);
+    if (dtau_dv != nullptr) segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, *dtau_dv);
+  }
+}
+
+// The springs and dampers of ball and free joints, after smooth_rhs()'s loop gave each joint's
+// first dof -k and -b: a free joint's position springs are -k per coordinate, every dof damps
+// with -b, and a turn's spring -k log(ref^-1 q) moves by -k Jr(log)^-1 dq when q turns to
+
+}  // namespace detail
+
+void bias_velocity_derivative(const Model& model, const Data& data, const double* qd,
+                              const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
+                              const std::vector<RigidInertia>& IC,
+                              std::vector<VelocityCoupling>& CC, Eigen::Ref<Eigen::MatrixXd> out) {
+  // IC: crba()'s subtree inertias (data.work.crb), which the position stage left
+  body_couplings(model, data, v, CC);
+  sum_over_subtrees(model, CC);
+  velocity_columns(model, data, Sdot, IC, nullptr, CC, out);
+  if (model.nq != model.nv) segment_velocity_columns(model, data, qd, v, Sdot, IC, out);
+}
+
+void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc,
+                      Derivatives& deriv) {
+  detail::check_derivative_sizes(model, data, deriv);
+  if (qacc.size() != model.nv) {
+    throw StateError("rnea_derivatives: qacc has " + std::to_string(qacc.size()) +
+                     " elements, the model has nv = " + std::to_string(model.nv) + ".");
+  }
+  const std::vector<RigidInertia>& IC = detail::subtree_inertias(model, data, deriv.work);
+  detail::inertia_columns(model, data, IC, deriv.work);
+  detail::rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, IC, deriv.work,
+                        deriv.dtau_dq, &deriv.dtau_dv);
+}
+
+}  // namespace lever

@@ -1,0 +1,428 @@
+// validate(): whether a model's parameters make a model lever can evaluate (see
+// lever/model_check.hpp), and the check of the model evaluated once at qpos0 that set_const runs
+// after computing its constants.
+#include <lever/dynamics.hpp>
+#include <lever/error.hpp>
+#include <lever/fields.hpp>
+#include <lever/forward.hpp>
+#include <lever/model_check.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <sstream>
+#include <string>
+#include <string_view>
+
+#include "lifecycle/lifecycle.hpp"
+
+namespace lever {
+
+namespace {
+
+// ---- naming the object at fault ----------------------------------------------------------------
+
+[[noreturn]] void reject(const std::string& what, int index, const std::string& name,
+                         const std::string& why) {
+  const std::string label = name.empty() ? std::to_string(index) : "'" + name + "'";
+  throw ModelError(what + " " + label + " " + why + ".", what, index);
+}
+
+// The object a row of a Model array belongs to: the body, joint (for dof and qpos rows too),
+// geom, site, actuator or pair its size counts.
+struct Owner {
+  std::string kind;  ///< "" when the array is not counted per object
+  int index = -1;
+  std::string name;
+};
+
+Owner owner_of_row(const Model& model, Size size, int row) {
+  switch (size) {
+    case Size::kNbody: return {"body", row, model.body_name[row]};
+    case Size::kNjnt: return {"joint", row, model.jnt_name[row]};
+    case Size::kNv: {
+      const int j = model.dof_jntid[row];
+      return {"joint", j, model.jnt_name[j]};
+    }
+    case Size::kNq:
+      for (int j = 0; j < model.njnt; ++j) {
+        const int first = model.jnt_qposadr[j];
+        if (row >= first && row < first + joint_nq(model.jnt_type[j])) {
+          return {"joint", j, model.jnt_name[j]};
+        }
+      }
+      return {};
+    case Size::kNu: return {"actuator", row, model.actuator_name[row]};
+    case Size::kNgeom: return {"geom", row, model.geom_name[row]};
+    case Size::kNsite: return {"site", row, model.site_name[row]};
+    case Size::kNpair: return {"pair", row, ""};
+    default: return {};
+  }
+}
+
+// Row `row` of a double array, as "(a, b, c)" or "a".
+std::string row_text(const FieldView& field, int row) {
+  std::ostringstream s;
+  const double* x = field.doubles() + static_cast<long>(row) * field.cols;
+  if (field.cols > 1) s << "(";
+  for (int k = 0; k < field.cols; ++k) s << (k ? ", " : "") << x[k];
+  if (field.cols > 1) s << ")";
+  return s.str();
+}
+
+[[noreturn]] void reject_row(const Model& model, const FieldView& field, int row,
+                             const std::string& why) {
+  const Owner owner = owner_of_row(model, field.info->rows, row);
+  if (owner.kind.empty()) {
+    throw ModelError(std::string("Model::") + field.info->name + " " + why + ".");
+  }
+  reject(owner.kind, owner.index, owner.name, "has " + why);
+}
+
+// ---- driven by the field table -----------------------------------------------------------------
+
+// Every number of every double array the model is given is finite.
+void check_finite(const Model& model) {
+  for (const FieldView& field : model_fields(model)) {
+    if (field.info->scalar != Scalar::kDouble || computed_by_set_const(field.info->name)) continue;
+    for (int row = 0; row < field.rows; ++row) {
+      const double* x = field.doubles() + static_cast<long>(row) * field.cols;
+      for (int k = 0; k < field.cols; ++k) {
+        if (!std::isfinite(x[k])) {
+          reject_row(model, field, row,
+                     std::string("a non-finite ") + field.info->name + " " + row_text(field, row));
+        }
+      }
+    }
+  }
+}
+
+// Arrays no entry of which may be negative, and why.
+struct NonNegative {
+  const char* field;
+  const char* why;
+};
+constexpr NonNegative kNonNegative[] = {
+    {"body_mass", "no body has a negative mass"},
+    {"body_inertia", "no body has a negative principal moment of inertia"},
+    // each would make the model gain energy from nothing; MuJoCo 2.2.2 accepts them silently
+    {"dof_armature", "a negative armature would make the model gain energy from nothing"},
+    {"dof_damping", "a negative damping would make the model gain energy from nothing"},
+    {"jnt_stiffness", "a negative stiffness would make the model gain energy from nothing"},
+};
+
+// A range used when its flag is set must have lo < hi.
+struct Ordered {
+  const char* range;
+  const char* flag;
+};
+constexpr Ordered kOrdered[] = {{"jnt_range", "jnt_limited"},
+                                {"actuator_ctrlrange", "actuator_ctrllimited"},
+                                {"actuator_forcerange", "actuator_forcelimited"}};
+
+void check_ranges(const Model& model) {
+  for (const NonNegative& rule : kNonNegative) {
+    const FieldView field = model_field(model, rule.field);
+    for (int row = 0; row < field.rows; ++row) {
+      for (int k = 0; k < field.cols; ++k) {
+        if (field.doubles()[static_cast<long>(row) * field.cols + k] < 0) {
+          reject_row(model, field, row,
+                     std::string("a negative ") + rule.field + " " + row_text(field, row) + ": " +
+                         rule.why);
+        }
+      }
+    }
+  }
+  // every quaternion of the table (its arrays named *quat, four numbers a row) has a direction
+  for (const FieldView& field : model_fields(model)) {
+    const std::string_view name = field.info->name;
+    if (field.cols != 4 || name.size() < 4 || name.substr(name.size() - 4) != "quat") continue;
+    for (int row = 0; row < field.rows; ++row) {
+      const Eigen::Map<const Eigen::Vector4d> q(field.doubles() + 4L * row);
+      if (q.norm() < 1e-10) {
+        reject_row(model, field, row,
+                   std::string("a zero quaternion ") + field.info->name + " " +
+                       row_text(field, row) + ": it has no direction to normalize");
+      }
+    }
+  }
+  for (const Ordered& rule : kOrdered) {
+    const FieldView range = model_field(model, rule.range);
+    const FieldView flag = model_field(model, rule.flag);
+    const auto* flags = static_cast<const std::uint8_t*>(flag.data);
+    for (int row = 0; row < range.rows; ++row) {
+      const double lo = range.doubles()[2L * row], hi = range.doubles()[2L * row + 1];
+      if (flags[row] && !(lo < hi)) {
+        reject_row(model, range, row,
+                   std::string(rule.flag) + " set but a " + rule.range + " " +
+                       row_text(range, row) + " that does not have lo < hi");
+      }
+    }
+  }
+}
+
+// ---- what the table cannot say -----------------------------------------------------------------
+
+template <typename T>
+void require_size(const std::vector<T>& v, int n, const char* name) {
+  if (static_cast<int>(v.size()) != n) {
+    throw ModelError("model array " + std::string(name) + " has " + std::to_string(v.size()) +
+                     " entries where " + std::to_string(n) + " are needed.");
+  }
+}
+
+#define LEVER_REQUIRE_SIZE(field, n) require_size(model.field, n, #field)
+
+// The counts agree with each other, and every array has the size they give it (the field table's
+// arrays through check_model_sizes; names and keyframes here).
+void check_sizes(const Model& model) {
+  if (model.nbody < 1 || model.nv < 0 || model.njnt < 0 || model.nu < 0 || model.nsite < 0 ||
+      model.ngeom < 0) {
+    throw ModelError("model sizes must be non-negative and include the world body.");
+  }
+  LEVER_REQUIRE_SIZE(jnt_type, model.njnt);
+  int nq = 0, nv = 0;
+  for (const JointType type : model.jnt_type) {
+    nq += joint_nq(type);
+    nv += joint_nv(type);
+  }
+  if (model.nq != nq || model.nv != nv) {
+    throw ModelError("the joints need nq = " + std::to_string(nq) +
+                     " coordinates and nv = " + std::to_string(nv) +
+                     " dofs (hinge and slide 1 and 1, ball 4 and 3, free 7 and 6); "
+                     "the model says nq = " +
+                     std::to_string(model.nq) + ", nv = " + std::to_string(model.nv) + ".");
+  }
+#define LEVER_REQUIRE_NAMES(name, count) LEVER_REQUIRE_SIZE(name, model.count);
+  LEVER_MODEL_NAMES(LEVER_REQUIRE_NAMES)
+#undef LEVER_REQUIRE_NAMES
+  LEVER_REQUIRE_SIZE(key_time, model.nkey);
+  if (model.nkey < 0 || model.key_qpos.rows() != model.nkey || model.key_qpos.cols() != model.nq ||
+      model.key_qvel.rows() != model.nkey || model.key_qvel.cols() != model.nv ||
+      model.key_ctrl.rows() != model.nkey || model.key_ctrl.cols() != model.nu) {
+    throw ModelError(
+        "keyframe arrays key_qpos, key_qvel, key_ctrl must be nkey x nq, nkey x nv "
+        "and nkey x nu (nkey = " +
+        std::to_string(model.nkey) + ").");
+  }
+  // contact: the counts the contact arrays of the field table are sized by
+  if (model.npair < 0 || model.nexclude < 0 || model.nconmax < 0 || model.njmax < 0) {
+    throw ModelError("npair, nexclude, nconmax and njmax must be non-negative; got " +
+                     std::to_string(model.npair) + ", " + std::to_string(model.nexclude) + ", " +
+                     std::to_string(model.nconmax) + ", " + std::to_string(model.njmax) + ".");
+  }
+  check_model_sizes(model);
+}
+
+#undef LEVER_REQUIRE_SIZE
+
+// Parents precede children, joints and dofs follow the body tree, indices are in range.
+void check_tree(const Model& model) {
+  for (int b = 1; b < model.nbody; ++b) {
+    const int p = model.body_parentid[b];
+    if (p < 0 || p >= b) {
+      throw ModelError("body " + std::to_string(b) + " ('" + model.body_name[b] +
+                       "') must come after its parent (parent id " + std::to_string(p) + ").");
+    }
+  }
+  // each body's world child, which the compiler records (kinematics reads subtree_com there)
+  if (model.body_rootid[0] != 0) throw ModelError("the world's body_rootid must be 0.");
+  for (int b = 1; b < model.nbody; ++b) {
+    const int p = model.body_parentid[b];
+    const int root = p == 0 ? b : model.body_rootid[p];
+    if (model.body_rootid[b] != root) {
+      reject("body", b, model.body_name[b],
+             "has body_rootid " + std::to_string(model.body_rootid[b]) +
+                 ", but the child of the world it hangs from is body " + std::to_string(root));
+    }
+  }
+  int next_joint = 0, next_qpos = 0, next_dof = 0;
+  for (int b = 0; b < model.nbody; ++b) {
+    if (model.body_jntnum[b] == 0) continue;
+    if (model.body_jntadr[b] != next_joint || model.body_dofadr[b] != next_dof) {
+      throw ModelError("the joints and dofs of body '" + model.body_name[b] +
+                       "' are not numbered in body order.");
+    }
+    for (int k = 0; k < model.body_jntnum[b]; ++k, ++next_joint) {
+      const int j = next_joint;
+      const int dofs = joint_nv(model.jnt_type[j]);
+      bool wired = model.jnt_bodyid[j] == b && model.jnt_qposadr[j] == next_qpos &&
+                   model.jnt_dofadr[j] == next_dof;
+      for (int i = next_dof; wired && i < next_dof + dofs; ++i) {
+        wired = model.dof_jntid[i] == j && model.dof_bodyid[i] == b;
+      }
+      if (!wired) {
+        throw ModelError("joint " + std::to_string(j) + " is not wired to body '" +
+                         model.body_name[b] + "' consistently.");
+      }
+      // MuJoCo's rule: a free joint moves a body of the world alone (its pose is its qpos)
+      if (model.jnt_type[j] == JointType::kFree &&
+          (model.body_parentid[b] != 0 || model.body_jntnum[b] != 1)) {
+        throw ModelError("joint '" + model.jnt_name[j] + "' is free, so its body '" +
+                             model.body_name[b] +
+                             "' must be a child of the world with no other joint.",
+                         "joint", j);
+      }
+      next_qpos += joint_nq(model.jnt_type[j]);
+      next_dof += dofs;
+    }
+    if (model.body_dofnum[b] != next_dof - model.body_dofadr[b]) {
+      throw ModelError("body '" + model.body_name[b] + "' has " +
+                       std::to_string(model.body_dofnum[b]) + " dofs recorded and " +
+                       std::to_string(next_dof - model.body_dofadr[b]) + " in its joints.");
+    }
+  }
+  // each dof's parent is the previous dof on its path to the world
+  std::vector<int> last_dof(model.nbody, -1);
+  for (int b = 1; b < model.nbody; ++b) {
+    int previous = last_dof[model.body_parentid[b]];
+    for (int k = 0; k < model.body_dofnum[b]; ++k) {
+      const int i = model.body_dofadr[b] + k;
+      if (model.dof_parentid[i] != previous) {
+        throw ModelError("dof " + std::to_string(i) + "'s parent must be dof " +
+                         std::to_string(previous) + ", the previous dof on its path to the world.");
+      }
+      previous = i;
+    }
+    last_dof[b] = previous;
+  }
+  for (int j = 0; j < model.njnt; ++j) {
+    const JointType type = model.jnt_type[j];
+    if (type != JointType::kHinge && type != JointType::kSlide && type != JointType::kBall &&
+        type != JointType::kFree) {
+      throw ModelError("joint " + std::to_string(j) + " has type " +
+                       std::to_string(static_cast<int>(type)) +
+                       ", which is none of free (0), ball (1), slide (2) and hinge (3).");
+    }
+    // a ball's limit is a cone MuJoCo bounds by the rotation angle: not in lever yet
+    if (type == JointType::kBall && model.jnt_limited[j]) {
+      throw ModelError("joint '" + model.jnt_name[j] +
+                           "' is a limited ball joint; lever limits hinge and slide joints only "
+                           "(remove limited=\"true\" or use hinges).",
+                       "joint", j);
+    }
+    if (type == JointType::kFree && model.jnt_limited[j]) {
+      throw ModelError("joint '" + model.jnt_name[j] + "' is free and cannot be limited.", "joint",
+                       j);
+    }
+    if ((type == JointType::kHinge || type == JointType::kSlide) &&
+        std::abs(model.jnt_axis[j].norm() - 1.0) > 1e-10) {
+      throw ModelError("joint " + std::to_string(j) + "'s axis is not a unit vector.");
+    }
+  }
+  for (int s = 0; s < model.nsite; ++s) {
+    if (model.site_bodyid[s] < 0 || model.site_bodyid[s] >= model.nbody) {
+      throw ModelError("site " + std::to_string(s) + " names no body.");
+    }
+  }
+  for (int a = 0; a < model.nu; ++a) {
+    const int j = model.actuator_trnid[a];
+    if (j < 0 || j >= model.njnt) {
+      throw ModelError("actuator " + std::to_string(a) + " names no joint.");
+    }
+    if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
+      throw ModelError("actuator '" + model.actuator_name[a] + "' drives joint '" +
+                           model.jnt_name[j] +
+                           "', a ball or free joint; lever's actuators drive hinges and slides.",
+                       "actuator", a);
+    }
+  }
+}
+
+// The option block, the actuators' kinds and the keyframes (none of them in the field table).
+void check_options_actuators_keys(const Model& model) {
+  if (!(model.opt.timestep > 0) || !std::isfinite(model.opt.timestep)) {
+    throw ModelError("the timestep must be a positive number of seconds; it is " +
+                     std::to_string(model.opt.timestep) + ".");
+  }
+  if (!model.opt.gravity.allFinite()) throw ModelError("gravity must be finite.");
+  for (int a = 0; a < model.nu; ++a) {
+    const int gaintype = static_cast<int>(model.actuator_gaintype[a]);
+    const int biastype = static_cast<int>(model.actuator_biastype[a]);
+    if (model.actuator_dyntype[a] != DynType::kNone || gaintype < 0 || gaintype > 1 ||
+        biastype < 0 || biastype > 1) {
+      reject("actuator", a, model.actuator_name[a],
+             "needs dyntype none, gaintype fixed or affine and biastype none or affine");
+    }
+  }
+  for (int k = 0; k < model.nkey; ++k) {
+    if (!std::isfinite(model.key_time[k]) || !model.key_qpos.row(k).allFinite() ||
+        !model.key_qvel.row(k).allFinite() || !model.key_ctrl.row(k).allFinite()) {
+      reject("keyframe", k, model.key_name[k], "has a non-finite time, qpos, qvel or ctrl");
+    }
+  }
+}
+
+template <typename Vector>
+bool finite(const Vector& v) {
+  for (const double x : v) {
+    if (!std::isfinite(x)) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+void validate(const Model& model) {
+  check_sizes(model);
+  check_tree(model);
+  check_options_actuators_keys(model);
+  check_finite(model);
+  check_ranges(model);
+}
+
+namespace detail {
+
+// The model evaluated once at qpos0, at rest and without control: every number must be finite and
+// the acceleration within MuJoCo's 1e10 (mju_isBad). Finite parameters can still overflow (an
+// offset of 1e300, a gravity of 1e308); such a model would give NaN on its first evaluation, or
+// be reset by every step (mj_step's mj_checkAcc). MuJoCo 2.2.2 loads it; lever says which object
+// overflows instead.
+void check_at_qpos0(const Model& model, Data& data) {
+  data.qpos = model.qpos0;
+  data.qvel.setZero();
+  data.ctrl.setZero();
+  data.qfrc_applied.setZero();
+  forward(model, data);
+  compute_energy(model, data);
+  const char* const too_large = "gives non-finite numbers at qpos0: its numbers are too large";
+  // first the bodies' own frames (so that the body at fault is named, not its parent, whose
+  // subtree quantities include it), then what combines several bodies
+  for (int b = 1; b < model.nbody; ++b) {
+    const bool ok = data.xpos[b].allFinite() && data.xmat[b].allFinite() &&
+                    data.xipos[b].allFinite() && data.ximat[b].allFinite();
+    if (!ok) reject("body", b, model.body_name[b], too_large);
+  }
+  for (int b = 1; b < model.nbody; ++b) {
+    const RigidInertia& c = data.cinert[b];
+    const bool ok = data.subtree_com[b].allFinite() && std::isfinite(c.m) && c.h.allFinite() &&
+                    c.I.allFinite() && finite(model.body_invweight0[b]);
+    if (!ok) reject("body", b, model.body_name[b], too_large);
+  }
+  for (int j = 0; j < model.njnt; ++j) {
+    const int d = model.jnt_dofadr[j];
+    const bool ok = data.xanchor[j].allFinite() && data.xaxis[j].allFinite() &&
+                    data.cdof[d].allFinite() && data.M.row(d).allFinite() &&
+                    std::isfinite(data.qfrc_bias[d]) && std::isfinite(data.qfrc_passive[d]) &&
+                    std::isfinite(model.dof_invweight0[d]) && std::isfinite(model.dof_M0[d]);
+    if (!ok) reject("joint", j, model.jnt_name[j], too_large);
+    if (!(std::abs(data.qacc[d]) <= 1e10)) {
+      reject("joint", j, model.jnt_name[j],
+             "accelerates at more than 1e10 at rest at qpos0 (MuJoCo's limit for a diverged "
+             "state, which every step would reset): its masses, inertias or gravity are out of "
+             "scale");
+    }
+  }
+  for (int s = 0; s < model.nsite; ++s) {
+    if (!data.site_xpos[s].allFinite() || !data.site_xmat[s].allFinite()) {
+      reject("site", s, model.site_name[s], too_large);
+    }
+  }
+  if (!std::isfinite(data.energy[0])) {
+    throw ModelError(
+        "the model's potential energy at qpos0 is not finite: its numbers are too large.");
+  }
+}
+
+}  // namespace detail
+
+}  // namespace lever

@@ -1,0 +1,264 @@
+// set_const(): compute what follows from a model's parameters, once validate() (model_check.cpp)
+// has accepted them: the constants MuJoCo's mj_setConst freezes at qpos0 (engine_setconst.c), and
+// lever's constant rotations, joint and actuator kinds.
+#include <lever/dynamics.hpp>
+#include <lever/forward.hpp>
+#include <lever/kinematics.hpp>
+#include <lever/model.hpp>
+#include <lever/model_check.hpp>
+
+#include <atomic>
+#include <cmath>
+#include <string>
+
+#include "lifecycle/lifecycle.hpp"
+#include "collision/collision_room.hpp"
+
+namespace lever {
+
+namespace {
+
+bool is_identity(const Quat& q) { return q[0] == 1.0 && q[1] == 0.0 && q[2] == 0.0 && q[3] == 0.0; }
+
+// The subtree masses (summed leaves to root).
+void build_subtree_masses(Model& model) {
+  model.body_subtreemass.assign(model.body_mass.begin(), model.body_mass.end());
+  for (int b = model.nbody - 1; b > 0; --b) {
+    model.body_subtreemass[model.body_parentid[b]] += model.body_subtreemass[b];
+  }
+}
+
+// A joint's kind (lever/model.hpp JointKind). A hinge whose axis is exactly +-1 along one
+// coordinate axis of its body and zero along the others is dispatched to the kernels that leave the
+// zeros out (bit for bit the general product).
+JointKind joint_kind(const Model& model, int j) {
+  switch (model.jnt_type[j]) {
+    case JointType::kFree: return JointKind::kFree;
+    case JointType::kBall: return JointKind::kBall;
+    case JointType::kSlide: return JointKind::kSlide;
+    case JointType::kHinge: break;
+  }
+  const Eigen::Vector3d& a = model.jnt_axis[j];
+  constexpr JointKind kAligned[3] = {JointKind::kHingeX, JointKind::kHingeY, JointKind::kHingeZ};
+  for (int k = 0; k < 3; ++k) {
+    const bool others_zero = a[(k + 1) % 3] == 0.0 && a[(k + 2) % 3] == 0.0;
+    if (others_zero && std::abs(a[k]) == 1.0) return kAligned[k];
+  }
+  return JointKind::kHinge;
+}
+
+// The actuators' kinds (lever/model.hpp), from their current parameters.
+void build_actuator_kinds(Model& model) {
+  model.actuator_kind.resize(model.nu);
+  for (int a = 0; a < model.nu; ++a) {
+    model.actuator_kind[a] =
+        actuator_kind_of(model.actuator_gaintype[a], model.actuator_gainprm[a],
+                         model.actuator_biastype[a], model.actuator_biasprm[a]);
+  }
+}
+
+// Whether R is a quarter turn (every entry within 1e-15 of 0 or +-1, so that a normalized
+// quaternion's rounding, 1/sqrt(2) squared, still counts); if so, its columns into `f`.
+bool is_quarter_turn(const Mat3& R, FramePlacement& f) {
+  constexpr double kRounding = 1e-15;
+  for (int c = 0; c < 3; ++c) {
+    int found = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double x = R(k, c);
+      if (std::abs(x) <= kRounding) continue;
+      if (std::abs(std::abs(x) - 1.0) > kRounding || found++ > 0) return false;
+      f.column[c] = static_cast<uint8_t>(k);
+      f.sign[c] = x > 0 ? 1.0 : -1.0;
+    }
+    if (found == 0) return false;
+  }
+  return true;
+}
+
+// How kinematics() places a constant frame at offset v, rotation R (of quaternion q).
+FramePlacement placement(const Eigen::Vector3d& v, const Quat& q, const Mat3& R) {
+  FramePlacement f;
+  int nonzero = 0;
+  for (int k = 0; k < 3; ++k) {
+    if (v[k] == 0.0) continue;
+    ++nonzero;
+    f.axis = static_cast<uint8_t>(k);
+  }
+  using Offset = FramePlacement::Offset;
+  f.offset = nonzero == 0 ? Offset::kZero : nonzero == 1 ? Offset::kAlongAxis : Offset::kGeneral;
+  if (is_identity(q)) {
+    f.turn = FramePlacement::Turn::kNone;
+  } else if (is_quarter_turn(R, f)) {
+    f.turn = FramePlacement::Turn::kQuarter;
+  } else {
+    f.turn = FramePlacement::Turn::kGeneral;
+  }
+  return f;
+}
+
+void build_rotations(Model& model) {
+  model.body_mat.resize(model.nbody);
+  model.body_imat.resize(model.nbody);
+  model.body_placement.resize(model.nbody);
+  model.body_iplacement.resize(model.nbody);
+  for (int b = 0; b < model.nbody; ++b) {
+    model.body_mat[b] = quat_to_mat(quat_normalized(model.body_quat[b]));
+    model.body_imat[b] = quat_to_mat(quat_normalized(model.body_iquat[b]));
+    model.body_placement[b] = placement(model.body_pos[b], model.body_quat[b], model.body_mat[b]);
+    model.body_iplacement[b] =
+        placement(model.body_ipos[b], model.body_iquat[b], model.body_imat[b]);
+  }
+  model.geom_mat.resize(model.ngeom);
+  model.geom_placement.resize(model.ngeom);
+  for (int g = 0; g < model.ngeom; ++g) {
+    model.geom_mat[g] = quat_to_mat(quat_normalized(model.geom_quat[g]));
+    model.geom_placement[g] = placement(model.geom_pos[g], model.geom_quat[g], model.geom_mat[g]);
+  }
+  model.site_mat.resize(model.nsite);
+  model.site_placement.resize(model.nsite);
+  for (int s = 0; s < model.nsite; ++s) {
+    model.site_mat[s] = quat_to_mat(quat_normalized(model.site_quat[s]));
+    model.site_placement[s] = placement(model.site_pos[s], model.site_quat[s], model.site_mat[s]);
+  }
+  model.jnt_kind.resize(model.njnt);
+  model.jnt_offset.resize(model.njnt);
+  for (int j = 0; j < model.njnt; ++j) {
+    model.jnt_kind[j] = joint_kind(model, j);
+    model.jnt_offset[j] = !model.jnt_pos[j].isZero(0.0);
+  }
+}
+
+// Whether the collision stage can find anything (see Model::contacts_possible).
+bool contacts_possible(const Model& model) {
+  const auto n = static_cast<size_t>(model.ngeom);
+  const bool has_parameters = model.geom_friction.size() == n && model.geom_condim.size() == n &&
+                              model.geom_margin.size() == n;
+  if (!has_parameters || model.opt.contact_disabled) return false;
+  if (model.npair > 0) return true;
+  for (int g1 = 0; g1 < model.ngeom; ++g1) {
+    for (int g2 = g1 + 1; g2 < model.ngeom; ++g2) {
+      const int b1 = model.geom_bodyid[g1], b2 = model.geom_bodyid[g2];
+      if (b1 == b2 || (b1 == 0 && b2 == 0)) continue;
+      if ((model.geom_contype[g1] & model.geom_conaffinity[g2]) ||
+          (model.geom_contype[g2] & model.geom_conaffinity[g1])) {
+        return true;
+      }
+    }
+  }
+  return false;
+}
+
+// MuJoCo's simple bodies (Model::body_simple), by its compiler's rule: the inertial frame is the
+// body's own (exactly: ipos zero, iquat the identity); the body is a child of the world, or of a
+// body without dofs that is one; it has no child body; each joint is at its origin, a hinge's or
+// slide's axis has one nonzero component, and no joint follows one that turns (hinge, ball). Such
+// a body's block of M is diagonal and constant: translations along fixed axes weigh its mass,
+// turns about its centre of mass its principal moments. Its dofs then count down to its last
+// (dof_simplenum).
+void build_simple_bodies(Model& model) {
+  model.body_simple.assign(model.nbody, 0);
+  for (int b = 0; b < model.nbody; ++b) {
+    const int parent = model.body_parentid[b];
+    const bool same_frame = model.body_ipos[b].isZero(0.0) && is_identity(model.body_iquat[b]);
+    const bool on_world = model.body_rootid[b] == b ||
+                          (model.body_parentid[parent] == 0 && model.body_dofnum[parent] == 0);
+    bool simple = same_frame && on_world;
+    if (parent > 0) model.body_simple[parent] = 0;  // a body with a child is not simple
+    bool turned = false;
+    for (int j = model.body_jntadr[b]; j < model.body_jntadr[b] + model.body_jntnum[b]; ++j) {
+      const JointType type = model.jnt_type[j];
+      const Eigen::Vector3d& axis = model.jnt_axis[j];
+      const int components = (axis[0] != 0) + (axis[1] != 0) + (axis[2] != 0);
+      const bool along_one_axis =
+          (type != JointType::kHinge && type != JointType::kSlide) || components <= 1;
+      if (turned || !model.jnt_pos[j].isZero(0.0) || !along_one_axis) simple = false;
+      if (type == JointType::kHinge || type == JointType::kBall) turned = true;
+    }
+    model.body_simple[b] = simple;
+  }
+  model.dof_simplenum.assign(model.nv, 0);
+  model.has_simple_dofs = false;
+  for (int i = model.nv - 1, count = 0; i >= 0; --i) {
+    count = model.body_simple[model.dof_bodyid[i]] ? count + 1 : 0;
+    model.dof_simplenum[i] = count;
+    model.has_simple_dofs = model.has_simple_dofs || count > 0;
+  }
+}
+
+}  // namespace
+
+ActuatorKind actuator_kind_of(GainType gaintype, const std::array<double, kGainParameters>& g,
+                              BiasType biastype, const std::array<double, kBiasParameters>& b) {
+  const bool affine_bias = biastype == BiasType::kAffine;
+  if (affine_bias && g[0] != 0 && b[1] == -g[0]) return ActuatorKind::kPositionServo;
+  if (affine_bias && g[0] != 0 && b[1] == 0 && b[2] == -g[0]) return ActuatorKind::kVelocityServo;
+  const bool state_bias = affine_bias && (b[1] != 0 || b[2] != 0);
+  const bool state_gain = gaintype == GainType::kAffine && (g[1] != 0 || g[2] != 0);
+  return state_bias || state_gain ? ActuatorKind::kGeneral : ActuatorKind::kMotor;
+}
+
+void set_const(Model& model) {
+  validate(model);  // lever/model_check.hpp: nothing below runs on a model it refuses
+  build_subtree_masses(model);
+  build_rotations(model);
+  build_actuator_kinds(model);
+  detail::build_collision_constants(model);
+  // the constants and the checks at qpos0 are about the parameters: computed without contacts
+  model.contacts_possible = false;
+  static std::atomic<std::uint64_t> last_tag{0};
+  model.fit_tag = ++last_tag;
+
+  // constants at qpos0: diag of M and of M^-1, and the bodies' mean inverse inertias; M computed
+  // whole (no dof simple yet: crba() would copy the simple ones' diagonal from dof_M0)
+  model.dof_simplenum.assign(model.nv, 0);
+  model.has_simple_dofs = false;
+  Data data(model);
+  data.qpos = model.qpos0;
+  kinematics(model, data);
+  crba(model, data);
+  factor_mass(model, data);
+  model.dof_M0.resize(model.nv);
+  model.dof_invweight0.resize(model.nv);
+  Eigen::VectorXd x(model.nv);
+  for (int i = 0; i < model.nv; ++i) {
+    model.dof_M0[i] = data.M(i, i);
+    x.setZero();
+    x[i] = 1.0;
+    solve_mass(model, data, x);
+    model.dof_invweight0[i] = x[i];
+  }
+  // a ball's three dofs share the mean of their diagonal entries, as a free joint's translations
+  // and its rotations do (mj_setConst: one weight per direction-free group)
+  for (int j = 0; j < model.njnt; ++j) {
+    const JointType type = model.jnt_type[j];
+    if (type != JointType::kBall && type != JointType::kFree) continue;
+    for (int first = model.jnt_dofadr[j]; first < model.jnt_dofadr[j] + joint_nv(type);
+         first += 3) {
+      double* w = &model.dof_invweight0[first];
+      const double mean = (w[0] + w[1] + w[2]) / 3;
+      w[0] = w[1] = w[2] = mean;
+    }
+  }
+  model.body_invweight0.assign(model.nbody, {0.0, 0.0});
+  Eigen::MatrixXd jacp(3, model.nv), jacr(3, model.nv), Minv_Jt(model.nv, 3);
+  for (int b = 1; b < model.nbody; ++b) {
+    jac_point(model, data, b, data.xipos[b], jacp, jacr);
+    std::array<double, 2> weight{0.0, 0.0};
+    for (int part = 0; part < 2; ++part) {
+      const Eigen::MatrixXd& J = part == 0 ? jacp : jacr;
+      Minv_Jt = J.transpose();
+      for (int c = 0; c < 3; ++c) solve_mass(model, data, Minv_Jt.col(c));
+      weight[part] = (J * Minv_Jt).trace() / 3.0;
+    }
+    model.body_invweight0[b] = weight;
+  }
+  detail::check_at_qpos0(model, data);  // model_check.cpp: finite parameters can still overflow
+  build_simple_bodies(model);  // after dof_M0, which crba() copies for their dofs from now on
+
+  // from here on a Data of this model makes room for contact rows, and forward() collides: a
+  // new edition, so that Data made before are checked again
+  model.contacts_possible = contacts_possible(model);
+  model.fit_tag = ++last_tag;
+}
+
+}  // namespace lever

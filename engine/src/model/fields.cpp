@@ -1,0 +1,375 @@
+// The field table expanded: locating, sizing and checking every array of Model and Data.
+#include <lever/error.hpp>
+#include <lever/fields.hpp>
+
+#include "model/model_room.hpp"
+
+#include <array>
+#include <type_traits>
+
+namespace lever {
+
+namespace {
+
+// ---- the table's tokens ------------------------------------------------------------------------
+
+namespace token {
+constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
+               nbody = Size::kNbody, njnt = Size::kNjnt, ngeom = Size::kNgeom, nsite = Size::kNsite,
+               nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude;
+constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
+                acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
+                energy = Stage::kEnergy;
+constexpr bool mujoco = true, own = false;
+}  // namespace token
+
+template <class T>
+constexpr Scalar scalar_of() {
+  if constexpr (std::is_same_v<T, double>) return Scalar::kDouble;
+  if constexpr (std::is_same_v<T, int>) return Scalar::kInt;
+  return Scalar::kByte;
+}
+
+// ---- how each kind of member is laid out -------------------------------------------------------
+// elements_per_row: the numbers one entry of the container holds; element: their type.
+
+template <class C>
+struct Layout;
+
+template <>
+struct Layout<Eigen::VectorXd> {
+  using element = double;
+  static constexpr int per_entry = 1;
+  static void* data(const Eigen::VectorXd& v) { return const_cast<double*>(v.data()); }
+  static long entries(const Eigen::VectorXd& v) { return v.size(); }
+  static void resize(Eigen::VectorXd& v, int rows, int) { v.setZero(rows); }
+  // the numbers within the new length kept, the rest zero (size_model)
+  static void resize_keeping(Eigen::VectorXd& v, int rows, int) {
+    v.conservativeResizeLike(Eigen::VectorXd::Zero(rows));
+  }
+};
+
+template <>
+struct Layout<Eigen::MatrixXd> {  // square (M): its storage order does not matter
+  using element = double;
+  static constexpr int per_entry = 1;
+  static void* data(const Eigen::MatrixXd& m) { return const_cast<double*>(m.data()); }
+  static long entries(const Eigen::MatrixXd& m) { return m.size(); }
+  static void resize(Eigen::MatrixXd& m, int rows, int cols) { m.setZero(rows, cols); }
+};
+
+template <size_t N>
+struct Layout<std::array<double, N>> {  // a fixed-size array of Data (energy)
+  using element = double;
+  static constexpr int per_entry = 1;
+  static void* data(const std::array<double, N>& a) { return const_cast<double*>(a.data()); }
+  static long entries(const std::array<double, N>&) { return N; }
+  static void resize(std::array<double, N>& a, int, int) { a.fill(0.0); }
+};
+
+template <class T>
+struct Layout<std::vector<T>> {
+  static constexpr bool kEigen = requires { T::RowsAtCompileTime; };
+  static constexpr int per_entry = [] {
+    if constexpr (kEigen) {
+      return static_cast<int>(T::RowsAtCompileTime * T::ColsAtCompileTime);
+    } else if constexpr (requires { std::tuple_size<T>::value; }) {
+      return static_cast<int>(std::tuple_size<T>::value);
+    } else {
+      return 1;
+    }
+  }();
+  using element = decltype([] {
+    if constexpr (kEigen) {
+      return typename T::Scalar{};
+    } else if constexpr (requires { std::tuple_size<T>::value; }) {
+      return typename T::value_type{};
+    } else if constexpr (std::is_enum_v<T>) {
+      return std::underlying_type_t<T>{};
+    } else {
+      return T{};
+    }
+  }());
+  // an entry must be exactly its numbers, with no padding, for the array to be one block
+  static_assert(sizeof(T) == per_entry * sizeof(element));
+  static void* data(const std::vector<T>& v) { return const_cast<T*>(v.data()); }
+  static long entries(const std::vector<T>& v) { return static_cast<long>(v.size()) * per_entry; }
+  static void resize(std::vector<T>& v, int rows, int) { v.assign(rows, zero()); }
+  // the entries within the new length kept, the rest zero (size_model)
+  static void resize_keeping(std::vector<T>& v, int rows, int) { v.resize(rows, zero()); }
+  // Eigen's fixed-size types are not zeroed by T{} (their default constructor leaves the numbers
+  // uninitialized): ask for Zero() explicitly
+  static T zero() {
+    if constexpr (kEigen) {
+      return T::Zero();
+    } else {
+      return T{};
+    }
+  }
+};
+
+template <class C, class Element, int cols>
+constexpr bool matches() {
+  using L = Layout<C>;
+  if (!std::is_same_v<typename L::element, Element>) return false;
+  return cols < 0 || L::per_entry == 1 || L::per_entry == cols;
+}
+
+#define LEVER_CHECK_MODEL_ROW(name, type, rows, cols, origin) \
+  static_assert(matches<decltype(Model::name), type, cols>(), \
+                "the field table's row for Model::" #name " does not match its member");
+#define LEVER_CHECK_DATA_ROW(name, type, rows, cols, stage, origin) \
+  static_assert(matches<decltype(Data::name), type, cols>(),        \
+                "the field table's row for Data::" #name " does not match its member");
+LEVER_MODEL_FIELDS(LEVER_CHECK_MODEL_ROW)
+LEVER_DATA_FIELDS(LEVER_CHECK_DATA_ROW)
+#undef LEVER_CHECK_MODEL_ROW
+#undef LEVER_CHECK_DATA_ROW
+
+int resolve_cols(int cols, int rows) { return cols < 0 ? rows : cols; }
+
+// The rows an array is stored with: efc arrays hold the most rows the model can have.
+int storage_rows(const Model& model, Size size) { return size_of(model, size); }
+
+std::string shape_text(long elements) { return std::to_string(elements) + " numbers"; }
+
+}  // namespace
+
+// ---- the tables --------------------------------------------------------------------------------
+
+const std::vector<FieldInfo>& model_field_table() {
+  static const std::vector<FieldInfo> table = {
+#define LEVER_MODEL_ROW(name, type, rows, cols, origin) \
+  {#name, scalar_of<type>(), token::rows, cols, Stage::kState, token::origin},
+      LEVER_MODEL_FIELDS(LEVER_MODEL_ROW)
+#undef LEVER_MODEL_ROW
+  };
+  return table;
+}
+
+const std::vector<FieldInfo>& data_field_table() {
+  static const std::vector<FieldInfo> table = {
+#define LEVER_DATA_ROW(name, type, rows, cols, stage, origin) \
+  {#name, scalar_of<type>(), token::rows, cols, token::stage, token::origin},
+      LEVER_DATA_FIELDS(LEVER_DATA_ROW)
+#undef LEVER_DATA_ROW
+  };
+  return table;
+}
+
+int constraint_rows_max(const Model& model) {
+  return 2 * model.njnt + (model.contacts_possible ? std::max(0, model.njmax) : 0);
+}
+
+int size_of(const Model& model, Size size) {
+  switch (size) {
+    case Size::kOne: return 1;
+    case Size::kNq: return model.nq;
+    case Size::kNv: return model.nv;
+    case Size::kNu: return model.nu;
+    case Size::kNbody: return model.nbody;
+    case Size::kNjnt: return model.njnt;
+    case Size::kNgeom: return model.ngeom;
+    case Size::kNsite: return model.nsite;
+    case Size::kNefc: return constraint_rows_max(model);
+    case Size::kNpair: return model.npair;
+    case Size::kNexclude: return model.nexclude;
+  }
+  return 0;
+}
+
+int size_of(const Model& model, const Data& data, Size size) {
+  return size == Size::kNefc ? data.nefc : size_of(model, size);
+}
+
+const char* size_name(Size size) {
+  static constexpr std::array<const char*, 11> names = {
+      "1", "nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "nefc", "npair", "nexclude"};
+  return names[static_cast<size_t>(size)];
+}
+
+const char* stage_name(Stage stage) {
+  static constexpr std::array<const char*, 6> names = {"state",        "position", "velocity",
+                                                       "acceleration", "inverse",  "energy"};
+  return names[static_cast<size_t>(stage)];
+}
+
+const char* scalar_name(Scalar scalar) {
+  static constexpr std::array<const char*, 3> names = {"float64", "int32", "uint8"};
+  return names[static_cast<size_t>(scalar)];
+}
+
+// ---- locating ----------------------------------------------------------------------------------
+
+std::vector<FieldView> model_fields(const Model& model) {
+  std::vector<FieldView> views;
+  const std::vector<FieldInfo>& table = model_field_table();
+  views.reserve(table.size());
+  size_t k = 0;
+#define LEVER_MODEL_VIEW(name, type, rows, cols, origin)                                           \
+  {                                                                                                \
+    const int n = size_of(model, token::rows);                                                     \
+    views.push_back(                                                                               \
+        {&table[k++], Layout<decltype(Model::name)>::data(model.name), n, resolve_cols(cols, n)}); \
+  }
+  LEVER_MODEL_FIELDS(LEVER_MODEL_VIEW)
+#undef LEVER_MODEL_VIEW
+  return views;
+}
+
+std::vector<FieldView> model_fields(Model& model) {
+  return model_fields(static_cast<const Model&>(model));
+}
+
+std::vector<FieldView> data_fields(const Model& model, const Data& data) {
+  std::vector<FieldView> views;
+  const std::vector<FieldInfo>& table = data_field_table();
+  views.reserve(table.size());
+  size_t k = 0;
+#define LEVER_DATA_VIEW(name, type, rows, cols, stage, origin)                      \
+  {                                                                                 \
+    const int n = size_of(model, data, token::rows);                                \
+    views.push_back({&table[k++], Layout<decltype(Data::name)>::data(data.name), n, \
+                     resolve_cols(cols, size_of(model, token::rows))});             \
+  }
+  LEVER_DATA_FIELDS(LEVER_DATA_VIEW)
+#undef LEVER_DATA_VIEW
+  return views;
+}
+
+std::vector<FieldView> data_fields(const Model& model, Data& data) {
+  return data_fields(model, static_cast<const Data&>(data));
+}
+
+FieldView model_field(const Model& model, std::string_view name) {
+  for (const FieldView& v : model_fields(model)) {
+    if (name == v.info->name) return v;
+  }
+  throw StateError("Model has no array called '" + std::string(name) + "'.");
+}
+
+FieldView data_field(const Model& model, const Data& data, std::string_view name) {
+  for (const FieldView& v : data_fields(model, data)) {
+    if (name == v.info->name) return v;
+  }
+  throw StateError("Data has no array called '" + std::string(name) + "'.");
+}
+
+// ---- sizing and checking -----------------------------------------------------------------------
+
+void check_argument_size(long size, long n, const char* where, const char* what) {
+  if (size != n) {
+    throw StateError(std::string(where) + ": " + what + " has " + std::to_string(size) +
+                     " elements; the model needs " + std::to_string(n) + ".");
+  }
+}
+
+namespace detail {
+void size_data_arrays(const Model& model, Data& data) {
+#define LEVER_DATA_SIZE(name, type, rows, cols, stage, origin)                 \
+  {                                                                            \
+    const int n = storage_rows(model, token::rows);                            \
+    Layout<decltype(Data::name)>::resize(data.name, n, resolve_cols(cols, n)); \
+  }
+  LEVER_DATA_FIELDS(LEVER_DATA_SIZE)
+#undef LEVER_DATA_SIZE
+}
+}  // namespace detail
+
+// every name of LEVER_MODEL_CONSTANTS is a member of Model (a misspelt one would match nothing)
+#define LEVER_CHECK_CONSTANT(name) static_assert(sizeof(Model::name) > 0);
+LEVER_MODEL_CONSTANTS(LEVER_CHECK_CONSTANT)
+#undef LEVER_CHECK_CONSTANT
+
+bool computed_by_set_const(std::string_view model_field) {
+#define LEVER_MODEL_CONSTANT(name) \
+  if (model_field == #name) return true;
+  LEVER_MODEL_CONSTANTS(LEVER_MODEL_CONSTANT)
+#undef LEVER_MODEL_CONSTANT
+  return false;
+}
+
+void check_model_sizes(const Model& model) {
+#define LEVER_MODEL_SIZE(name, type, rows, cols, origin)                                       \
+  if (!computed_by_set_const(#name)) {                                                         \
+    const int n = size_of(model, token::rows);                                                 \
+    const long expected = static_cast<long>(n) * resolve_cols(cols, n);                        \
+    const long actual = Layout<decltype(Model::name)>::entries(model.name);                    \
+    if (actual != expected) {                                                                  \
+      throw ModelError("Model::" #name " holds " + shape_text(actual) +                        \
+                       " but the model's sizes "                                               \
+                       "give it " +                                                            \
+                       shape_text(expected) + " (" + size_name(token::rows) + " = " +          \
+                       std::to_string(n) + ")" +                                               \
+                       (actual == 0 ? ": a model built by hand must fill it too" : "") + "."); \
+    }                                                                                          \
+  }
+  LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE)
+#undef LEVER_MODEL_SIZE
+}
+
+// ---- sizing a Model -----------------------------------------------------------------
+
+void size_model(Model& model) {
+  const std::array<std::pair<const char*, int>, 10> counts = {{{"nq", model.nq},
+                                                               {"nv", model.nv},
+                                                               {"nu", model.nu},
+                                                               {"nbody", model.nbody},
+                                                               {"njnt", model.njnt},
+                                                               {"ngeom", model.ngeom},
+                                                               {"nsite", model.nsite},
+                                                               {"nkey", model.nkey},
+                                                               {"npair", model.npair},
+                                                               {"nexclude", model.nexclude}}};
+  for (const auto& [name, n] : counts) {
+    if (n < 0) {
+      throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +
+                       " is negative; a model's counts are 0 or more.");
+    }
+  }
+  if (model.nbody < 1) {
+    throw ModelError("size_model: nbody = 0; a model has at least the world body (body 0).");
+  }
+#define LEVER_MODEL_SIZE_ARRAY(name, type, rows, cols, origin)                           \
+  {                                                                                      \
+    const int n = size_of(model, token::rows);                                           \
+    Layout<decltype(Model::name)>::resize_keeping(model.name, n, resolve_cols(cols, n)); \
+  }
+  LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE_ARRAY)
+#undef LEVER_MODEL_SIZE_ARRAY
+  // outside the table (see lever/fields.hpp): one name per object, and the keyframes
+#define LEVER_MODEL_SIZE_NAMES(name, count) model.name.resize(static_cast<size_t>(model.count));
+  LEVER_MODEL_NAMES(LEVER_MODEL_SIZE_NAMES)
+#undef LEVER_MODEL_SIZE_NAMES
+  model.key_time.resize(static_cast<size_t>(model.nkey), 0.0);
+  model.key_qpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nq));
+  model.key_qvel.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nv));
+  model.key_ctrl.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nu));
+  model.fit_tag = 0;  // its arrays may have changed: set_const again before a Data trusts it
+}
+
+void check_fit(const Model& model, const Data& data, const char* where) {
+  const bool same_model = data.nq == model.nq && data.nv == model.nv && data.nu == model.nu &&
+                          data.nbody == model.nbody && data.njnt == model.njnt &&
+                          data.nsite == model.nsite && data.ngeom == model.ngeom;
+  if (!same_model) {
+    throw StateError(std::string(where) +
+                     ": this Data was built for another model (sizes nq, nv, nu, nbody, njnt, "
+                     "nsite, ngeom differ): build a Data from this model.");
+  }
+#define LEVER_DATA_FIT(name, type, rows, cols, stage, origin)                                \
+  {                                                                                          \
+    const int n = storage_rows(model, token::rows);                                          \
+    const long expected = static_cast<long>(n) * resolve_cols(cols, n);                      \
+    const long actual = Layout<decltype(Data::name)>::entries(data.name);                    \
+    if (actual != expected) {                                                                \
+      throw StateError(std::string(where) + ": data." #name " holds " + shape_text(actual) + \
+                       " but the model gives it " + shape_text(expected) +                   \
+                       ": assign it element by element or with a vector of that size.");     \
+    }                                                                                        \
+  }
+  LEVER_DATA_FIELDS(LEVER_DATA_FIT)
+#undef LEVER_DATA_FIT
+}
+
+}  // namespace lever

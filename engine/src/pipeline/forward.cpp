@@ -1,0 +1,115 @@
+// The forward pipeline and inverse dynamics, stage by stage as MuJoCo 2.2.2's mj_forward and
+// mj_inverse: position (kinematics, contacts, M, constraint rows, transmission), velocity (passive,
+// bias, reference accelerations), acceleration (motors, smooth dynamics, constraint solve).
+#include <lever/collision.hpp>
+#include <lever/constraint.hpp>
+#include <lever/dynamics.hpp>
+#include <lever/forward.hpp>
+#include <lever/kinematics.hpp>
+
+#include "basics/basics.hpp"
+#include "model/model_room.hpp"
+#include "smooth/smooth.hpp"
+#include "constraint/constraint_room.hpp"
+#include "pipeline/pipeline.hpp"
+
+namespace lever {
+
+namespace {
+
+// Record a warning if any element of x is bad (NaN or beyond 1e10).
+void record_if_bad(Data& data, const Eigen::VectorXd& x, Warning kind) {
+  const int bad = first_bad(x.data(), static_cast<int>(x.size()));
+  if (bad >= 0) record_warning(data, kind, bad);
+}
+
+// The state forward() and inverse() read: warn about what cannot give finite results.
+void check_inputs(Data& data) {
+  record_if_bad(data, data.qpos, Warning::kBadQpos);
+  record_if_bad(data, data.qvel, Warning::kBadQvel);
+  record_if_bad(data, data.qfrc_applied, Warning::kBadQfrcApplied);
+}
+
+// The position stage after the kinematics: contacts, M and its factor, constraint rows,
+// transmission.
+void after_kinematics(const Model& model, Data& data) {
+  if (model.contacts_possible) {
+    collision(model, data);
+  } else {
+    data.ncon = 0;
+  }
+  unchecked::crba(model, data);
+  unchecked::factor_mass(model, data);
+  unchecked::make_constraint(model, data);
+  unchecked::transmission(model, data);
+}
+
+// forward()'s stages, on the kinematics of the caller's choice (kinematics(), or the lean step's
+// step_kinematics()), the entry check left to the caller.
+void forward_stages(const Model& model, Data& data, void (*kinematics_stage)(const Model&, Data&)) {
+  check_inputs(data);
+  kinematics_stage(model, data);
+  after_kinematics(model, data);
+  velocity_stage(model, data);
+  acceleration_stage(model, data);
+  record_if_bad(data, data.qacc, Warning::kBadQacc);
+}
+
+}  // namespace
+
+void position_stage(const Model& model, Data& data) {
+  kinematics(model, data);
+  after_kinematics(model, data);
+}
+
+void velocity_stage(const Model& model, Data& data) {
+  unchecked::passive(model, data);
+  unchecked::bias(model, data);
+  unchecked::reference_constraint(model, data);
+}
+
+void acceleration_stage(const Model& model, Data& data) {
+  // the unconstrained acceleration, then the limit forces
+  unchecked::actuation(model, data);
+  double* const qfrc_smooth = data.qfrc_smooth.data();
+  double* const qacc_smooth = data.qacc_smooth.data();
+  const double* const passive = data.qfrc_passive.data();
+  const double* const bias = data.qfrc_bias.data();
+  const double* const applied = data.qfrc_applied.data();
+  const double* const actuator = data.qfrc_actuator.data();
+  for (int i = 0; i < model.nv; ++i) {
+    qfrc_smooth[i] = passive[i] - bias[i] + applied[i] + actuator[i];
+    qacc_smooth[i] = qfrc_smooth[i];
+  }
+  unchecked::solve_mass(model, data, qacc_smooth);
+  unchecked::solve_constraint(model, data);
+}
+
+void forward(const Model& model, Data& data) {
+  check_entry(model, data, "lever::forward");
+  forward_stages(model, data, kinematics);
+}
+
+namespace detail {
+
+void step_forward(const Model& model, Data& data) { forward_stages(model, data, step_kinematics); }
+
+}  // namespace detail
+
+void inverse(const Model& model, Data& data) {
+  check_entry(model, data, "lever::inverse");
+  check_inputs(data);
+  record_if_bad(data, data.qacc, Warning::kBadQacc);
+  position_stage(model, data);
+  velocity_stage(model, data);
+
+  // the constraint forces implied by the given qacc: f = -D (J qacc - a_ref) where that pushes
+  // into a stop or contact, an elliptic cone's by its zone
+  constraint_forces_at(data, data.qacc);
+
+  // M qacc + bias (armature included) is what every force together must supply
+  rnea(model, data, data.qacc, data.qfrc_inverse);
+  data.qfrc_inverse -= data.qfrc_passive + data.qfrc_constraint;
+}
+
+}  // namespace lever

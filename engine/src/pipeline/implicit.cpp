@@ -1,0 +1,115 @@
+// MuJoCo 2.2.2's implicit integrator (mjINT_IMPLICIT, engine_forward.c mj_implicit): the step is
+// implicit in every velocity-dependent force. With D = d qfrc_smooth / d qvel at the step's start,
+//   (M - h D) qacc_implicit = qfrc_smooth + qfrc_constraint,
+// then qvel += h qacc_implicit and qpos += h qvel (the new qvel), as in the Euler step.
+//
+// D is what MuJoCo 2.2.2's mjd_smooth_vel holds, term by term (engine_derivative.c):
+//   actuators: each affine bias contributes biasprm[2], each affine gain gainprm[2] * ctrl, times
+//              gear^2 on its dof; the raw ctrl is used and the ctrl and force clamps are ignored
+//              (so a clamped servo still damps implicitly, exactly as in MuJoCo);
+//   passive:   -damping on the diagonal (joint springs do not depend on qvel);
+//   bias:      -d qfrc_bias / d qvel: the Coriolis and centrifugal terms, Carpentier and Mansard's
+//              d rnea / d qd (derivatives/inverse_dynamics.cpp; gravity and qacc do not depend on qvel).
+// The constraint force is taken from the forward solve and held fixed, as MuJoCo does.
+//
+// M - h D is not symmetric, but it is non-zero only where M is (pairs of dofs on one branch), so,
+// as MuJoCo, it is factored without pivoting from the leaves up, where nothing fills in.
+#include <lever/dynamics.hpp>
+#include <lever/error.hpp>
+
+#include <string>
+
+#include "model/model_room.hpp"
+#include "derivatives/derivatives_room.hpp"
+#include "pipeline/pipeline.hpp"
+
+namespace lever {
+
+void smooth_velocity_derivative(const Model& model, Data& data,
+                                Eigen::Ref<Eigen::MatrixXd> qDeriv) {
+  check_entry(model, data, "lever::smooth_velocity_derivative");
+  if (qDeriv.rows() != model.nv || qDeriv.cols() != model.nv) {
+    throw StateError("lever::smooth_velocity_derivative: qDeriv is " +
+                     std::to_string(qDeriv.rows()) + " x " + std::to_string(qDeriv.cols()) +
+                     " but must be nv x nv = " + std::to_string(model.nv) + " x " +
+                     std::to_string(model.nv) + ".");
+  }
+  // minus the velocity derivative of the bias force (it sets every element); the subtree
+  // inertias are crba()'s, which the position stage left in data.work.crb
+  bias_velocity_derivative(model, data, data.qvel.data(), data.cvel, data.cdof_dot, data.work.crb,
+                           data.work.subtree_coupling, qDeriv);
+  qDeriv = -qDeriv;
+
+  add_actuator_damping_velocity_terms(model, data, qDeriv);
+}
+
+void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
+                                         Eigen::Ref<Eigen::MatrixXd> D) {
+  // actuators: d force / d velocity of the affine bias and gain, carried to the dof by the gear
+  for (int a = 0; a < model.nu; ++a) {
+    double force_per_velocity = 0.0;
+    if (model.actuator_biastype[a] == BiasType::kAffine) {
+      force_per_velocity = model.actuator_biasprm[a][2];
+    }
+    if (model.actuator_gaintype[a] == GainType::kAffine) {
+      force_per_velocity += model.actuator_gainprm[a][2] * data.ctrl[a];
+    }
+    const double gear = model.actuator_gear[a][0];
+    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    D(dof, dof) += gear * force_per_velocity * gear;
+  }
+  // joint damping
+  for (int i = 0; i < model.nv; ++i) D(i, i) -= model.dof_damping[i];
+}
+
+void factor_lu_tree(const Model& model, Eigen::MatrixXd& K) {
+  // eliminate dof k from its ancestors' rows, leaves first: row i -= (K(i, k) / K(k, k)) row k
+  // for each ancestor i, over the columns where row k is still non-zero (k's ancestors j);
+  // K(i, k) keeps the multiplier. Column by column, each column's elements in turn. M - h D is
+  // dominated by M; a zero pivot (which MuJoCo stops on) makes qvel non-finite, and the next
+  // step's state check resets it with a kBadQvel warning.
+  for (int k = model.nv - 1; k >= 0; --k) {
+    double* multiplier = &K(0, k);  // column k: K(i, k) for the ancestors i
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+      multiplier[i] /= multiplier[k];
+    }
+    for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) {
+      double* column = &K(0, j);
+      const double row_k = column[k];
+      for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+        column[i] -= row_k * multiplier[i];
+      }
+    }
+  }
+}
+
+void solve_lu_tree(const Model& model, const Eigen::MatrixXd& LU, double* x) {
+  // (U + I) y = x, leaves to root
+  for (int k = model.nv - 1; k >= 0; --k) {
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= x[k] * LU(i, k);
+  }
+  // L x = y, root to leaves
+  for (int k = 0; k < model.nv; ++k) {
+    for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) x[k] -= x[j] * LU(k, j);
+    x[k] /= LU(k, k);
+  }
+}
+
+namespace detail {
+
+void implicit_step(const Model& model, Data& data) {
+  const double h = model.opt.timestep;
+  auto& w = data.work;
+  smooth_velocity_derivative(model, data, w.qDeriv);
+  w.qLU = data.M - h * w.qDeriv;
+  factor_lu_tree(model, w.qLU);
+  w.vec1 = data.qfrc_smooth + data.qfrc_constraint;
+  solve_lu_tree(model, w.qLU, w.vec1.data());
+  data.qvel += h * w.vec1;
+  integrate_positions(model, data.qpos.data(), data.qvel.data(), h);
+  data.time += h;
+}
+
+}  // namespace detail
+
+}  // namespace lever

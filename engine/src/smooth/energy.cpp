@@ -1,0 +1,46 @@
+// Potential and kinetic energy (MuJoCo's mj_energyPos and mj_energyVel).
+#include <lever/dynamics.hpp>
+
+#include "basics/basics.hpp"
+#include "model/model_room.hpp"
+#include "smooth/smooth.hpp"
+
+namespace lever {
+
+void compute_energy(const Model& model, Data& data) {
+  check_entry(model, data, "lever::compute_energy");
+  // gravity: -m g . x_com for every body; springs: k (q - q_spring)^2 / 2
+  double potential = 0.0;
+  for (int b = 1; b < model.nbody; ++b) {
+    potential -= model.body_mass[b] * model.opt.gravity.dot(data.xipos[b]);
+  }
+  for (int j = 0; j < model.njnt; ++j) {
+    const double k = model.jnt_stiffness[j];
+    const int q = model.jnt_qposadr[j];
+    switch (model.jnt_kind[j]) {
+      case JointKind::kFree: {  // stretch of the position, then turn of the orientation
+        const Eigen::Vector3d stretch = data.qpos.segment<3>(q) - model.qpos_spring.segment<3>(q);
+        potential += 0.5 * k * stretch.dot(stretch);
+        const Eigen::Vector3d turn =
+            detail::quat_difference(&data.qpos[q + 3], &model.qpos_spring[q + 3]);
+        potential += 0.5 * k * turn.dot(turn);
+        break;
+      }
+      case JointKind::kBall: {
+        const Eigen::Vector3d turn = detail::quat_difference(&data.qpos[q], &model.qpos_spring[q]);
+        potential += 0.5 * k * turn.dot(turn);
+        break;
+      }
+      default: {
+        const double stretch = data.qpos[q] - model.qpos_spring[q];
+        potential += 0.5 * k * stretch * stretch;
+      }
+    }
+  }
+  data.energy[0] = potential;
+  Eigen::VectorXd& momentum = data.work.vec1;  // preallocated: no heap use here
+  momentum.noalias() = data.M * data.qvel;
+  data.energy[1] = 0.5 * data.qvel.dot(momentum);
+}
+
+}  // namespace lever

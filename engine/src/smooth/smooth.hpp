@@ -1,0 +1,58 @@
+// The smooth pipeline: kinematics (kinematics.cpp), the recursions (recursion.hpp), CRBA and the
+// LTDL factorization of M (crba.cpp), RNEA and the bias forces (rnea.cpp), the passive forces
+// (passive.cpp), the actuators (actuation.cpp) and the energies (energy.cpp). Everything here
+// depends on the state and the model alone, never on contacts or constraint rows.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <lever/data.hpp>
+#include <lever/model.hpp>
+
+namespace lever {
+
+/// Factor M + h diag(dof_damping) into data.work.LD2 (the Euler step's implicit damping).
+void factor_mass_damped(const Model& model, Data& data, double h);
+
+/// x <- L^-T x, the first half of solve_mass (M = L^T D L): M^-1 = L^-1 D^-1 L^-T, so that
+/// J M^-1 J^T = Y^T D^-1 Y with Y = L^-T J^T.
+void solve_mass_half(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x);
+
+/// x = (M + h diag(dof_damping))^-1 x with factor_mass_damped()'s factor.
+void solve_mass_damped(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x);
+
+/// The steps of forward()'s stages: each the public function of the same name (lever/dynamics.hpp,
+/// lever/constraint.hpp) without its entry check. forward(), step(), inverse(), step1() and step2()
+/// check Model and Data once, at their door, and then run these.
+namespace unchecked {
+void crba(const Model& model, Data& data);
+void factor_mass(const Model& model, Data& data);
+void solve_mass(const Model& model, const Data& data, double* x);  // x: nv numbers
+void bias(const Model& model, Data& data);
+void passive(const Model& model, Data& data);
+void transmission(const Model& model, Data& data);
+void actuation(const Model& model, Data& data);
+}  // namespace unchecked
+
+namespace detail {
+// ---- the lean step pipeline: forward() without the outputs nothing in a step reads
+// (xquat, and the geom frames when nothing can collide). After step() they are those of the last
+// forward() or kinematics(); everything else is forward()'s to the bit
+// (tests/property/lean_step.cpp).
+
+/// kinematics() without xquat, and without the geom frames unless the collision stage runs
+/// (kinematics.cpp).
+void step_kinematics(const Model& model, Data& data);
+
+/// Whether dof i starts a new motion segment of its body: its Sdot = v x S uses the body's
+/// velocity before the segment. Each hinge or slide is its own segment; a ball's three rotations
+/// share one, and so do a free joint's three translations and its three rotations (MuJoCo's
+/// mj_comVel).
+inline bool starts_segment(const Model& model, int i) {
+  const int j = model.dof_jntid[i];
+  const int offset = i - model.jnt_dofadr[j];
+  return offset == 0 || (offset == 3 && model.jnt_kind[j] == JointKind::kFree);
+}
+}  // namespace detail
+
+}  // namespace lever

@@ -1,0 +1,650 @@
+// Analytic derivatives of forward dynamics (the chain rule through M^-1, the passive forces, the
+// actuators and the limit rows) and of the step (Euler with implicit damping, RK4, MuJoCo 2.2.2's
+// implicit), on the inverse-dynamics derivatives of derivatives/inverse_dynamics.cpp.
+// docs/derivatives.md derives each formula.
+//
+// Ball and free joints, in qpos's tangent space (q -> q exp(dq)): the step's position update
+// qpos (+) h w contributes exp(-h [w]) and SO(3)'s right Jacobian Jr(h w) on a turn's rows, and a
+// ball's spring -k log(ref^-1 q) the inverse right Jacobian.
+#include <lever/derivatives.hpp>
+#include <lever/dynamics.hpp>
+#include <lever/error.hpp>
+#include <lever/forward.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "basics/basics.hpp"
+#include "smooth/smooth.hpp"
+#include "constraint/constraint_room.hpp"
+#include "derivatives/derivatives_room.hpp"
+#include "pipeline/pipeline.hpp"
+#include "transition/transition.hpp"
+#include "smooth/recursion.hpp"
+
+namespace lever {
+
+namespace {
+
+using detail::kMinVal;  // the floor of a limit row's R
+using detail::check_derivative_sizes;
+using detail::inertia_columns;
+using detail::rnea_derivatives_into;
+using detail::rotation_block;
+
+// ---- ball and free joints in tangent space ------------------------------------------------------
+// A tangent coordinate of a ball (or of a free joint's rotation) turns the body about its own axes:
+// qpos' = qpos exp(dq) (integrate_pos). SO(3)'s exponential and its right Jacobian Jr, with
+// exp(phi + d) = exp(phi) exp(Jr(phi) d), and Jr's inverse, for phi = theta u.
+
+// exp([phi]): the rotation by the rotation vector phi (Rodrigues).
+Eigen::Matrix3d rotation_of(const Eigen::Vector3d& phi) {
+  const double theta = phi.norm();
+  const Eigen::Matrix3d K = skew(phi);
+  // sin(t) / t and (1 - cos(t)) / t^2, by their series below 1e-4 (error below 1e-17)
+  const double a = theta < 1e-4 ? 1 - theta * theta / 6 : std::sin(theta) / theta;
+  const double b =
+      theta < 1e-4 ? 0.5 - theta * theta / 24 : (1 - std::cos(theta)) / (theta * theta);
+  return Eigen::Matrix3d::Identity() + a * K + b * K * K;
+}
+
+// SO(3)'s right Jacobian Jr(phi) = I - (1 - cos t) / t^2 [phi] + (t - sin t) / t^3 [phi]^2.
+Eigen::Matrix3d right_jacobian(const Eigen::Vector3d& phi) {
+  const double theta = phi.norm();
+  const Eigen::Matrix3d K = skew(phi);
+  const double b =
+      theta < 1e-4 ? 0.5 - theta * theta / 24 : (1 - std::cos(theta)) / (theta * theta);
+  const double c = theta < 1e-4 ? 1.0 / 6 - theta * theta / 120
+                                : (theta - std::sin(theta)) / (theta * theta * theta);
+  return Eigen::Matrix3d::Identity() - b * K + c * K * K;
+}
+
+// Jr(phi)^-1 = I + [phi] / 2 + (1 / t^2 - (1 + cos t) / (2 t sin t)) [phi]^2 (|t| < pi).
+Eigen::Matrix3d inverse_right_jacobian(const Eigen::Vector3d& phi) {
+  const double theta = phi.norm();
+  const Eigen::Matrix3d K = skew(phi);
+  const double c =
+      theta < 1e-4 ? 1.0 / 12 + theta * theta / 720
+                   : 1 / (theta * theta) - (1 + std::cos(theta)) / (2 * theta * std::sin(theta));
+  return Eigen::Matrix3d::Identity() + 0.5 * K + c * K * K;
+}
+
+// The position update qpos' = qpos (+) h velocity in tangent space, applied to the rows of a
+// Jacobian: rows = [d qpos' / d y] for an input y, given rows = X + [with_identity] d qpos / d y
+// computed as if every coordinate added (hinge and slide: d qpos' = d qpos + h d velocity, X the
+// second term). A rotation block instead has d qpos' = exp(-h [w]) d qpos + Jr(h w) h d w: its
+// three rows become Jr X, plus exp(-h [w]) in its own columns where the identity was. Hinges,
+// slides and a free joint's translation keep their rows.
+void through_position_update(const Model& model, const double* velocity, double h,
+                             Eigen::Ref<Eigen::MatrixXd> rows, bool with_identity) {
+  if (model.nq == model.nv) return;
+  for (int j = 0; j < model.njnt; ++j) {
+    const int r = rotation_block(model, j);
+    if (r < 0) continue;
+    const Eigen::Vector3d phi = h * Eigen::Vector3d(velocity[r], velocity[r + 1], velocity[r + 2]);
+    auto block_rows = rows.middleRows<3>(r);
+    if (with_identity) block_rows.middleCols<3>(r) -= Eigen::Matrix3d::Identity();
+    const Eigen::Matrix3d Jr = right_jacobian(phi);
+    for (Eigen::Index c = 0; c < block_rows.cols(); ++c) {  // column by column: no temporary
+      const Eigen::Vector3d x = block_rows.col(c);
+      block_rows.col(c) = Jr * x;
+    }
+    if (with_identity) block_rows.middleCols<3>(r) += rotation_of(phi).transpose();
+  }
+}
+
+// q exp(dq).
+void quaternion_springs(const Model& model, const Data& data, Derivatives::Workspace& w) {
+  for (int j = 0; j < model.njnt; ++j) {
+    const int r = rotation_block(model, j);
+    if (r < 0) continue;
+    const int d = model.jnt_dofadr[j];
+    const double k = model.jnt_stiffness[j];
+    w.rhs_q(d, d) += k;  // undo the loop's hinge spring on the first dof
+    for (int c = d; c < r; ++c) w.rhs_q(c, c) -= k;
+    for (int c = d + 1; c < r + 3; ++c) w.rhs_v(c, c) -= model.dof_damping[c];
+    if (k == 0) continue;
+    const int qadr = model.jnt_qposadr[j] + (r - d);
+    const Eigen::Vector3d turn =
+        detail::quat_difference(&data.qpos[qadr], &model.qpos_spring[qadr]);
+    w.rhs_q.block<3, 3>(r, r) -= k * inverse_right_jacobian(turn);
+  }
+}
+
+// The explicit force terms of the smooth dynamics, minus the inverse-dynamics derivatives:
+// rhs = d (qfrc_passive + qfrc_actuator) / d x - d rnea / d x, for x = qpos, qvel, ctrl.
+void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dtau_dq,
+                const Eigen::MatrixXd& dtau_dv, Derivatives::Workspace& w) {
+  w.rhs_q = -dtau_dq;
+  w.rhs_v = -dtau_dv;
+  for (int j = 0; j < model.njnt; ++j) {
+    const int d = model.jnt_dofadr[j];
+    w.rhs_q(d, d) -= model.jnt_stiffness[j];  // spring: -k (q - springref)
+    w.rhs_v(d, d) -= model.dof_damping[d];    // damper: -b qd
+  }
+  if (model.nq != model.nv) quaternion_springs(model, data, w);
+
+  // actuators: force = clamp_f(gain clamp_c(ctrl) + bias), gain = p0 + p1 length + p2 velocity
+  // (affine; p0 when fixed), bias = b0 + b1 length + b2 velocity (affine; 0 when none), with
+  // length = gear q and velocity = gear qd on the actuator's dof, which gets gear force. Where the
+  // force clamp binds the actuator passes on nothing; where the ctrl clamp binds it has no
+  // sensitivity to ctrl but keeps its length and velocity terms.
+  w.rhs_u.setZero();
+  bool bad = false;  // one bad control zeroes every control (actuation's kBadCtrl); bias stays
+  for (int a = 0; a < model.nu; ++a) bad = bad || is_bad(data.ctrl[a]);
+  for (int a = 0; a < model.nu; ++a) {
+    double u = bad ? 0.0 : data.ctrl[a];
+    bool ctrl_clamped = bad;
+    if (!bad && model.actuator_ctrllimited[a]) {
+      const auto& range = model.actuator_ctrlrange[a];
+      ctrl_clamped = u < range[0] || u > range[1];
+      u = std::clamp(u, range[0], range[1]);
+    }
+    const double length = data.actuator_length[a], velocity = data.actuator_velocity[a];
+    const auto& g = model.actuator_gainprm[a];
+    const auto& b = model.actuator_biasprm[a];
+    const bool affine_gain = model.actuator_gaintype[a] == GainType::kAffine;
+    const bool affine_bias = model.actuator_biastype[a] == BiasType::kAffine;
+    const double gain = actuator_gain(model, a, length, velocity);
+    // in actuation()'s order, so the clamp test sees the same number
+    const double force = u * gain + actuator_bias(model, a, length, velocity);
+    if (model.actuator_forcelimited[a]) {
+      const auto& range = model.actuator_forcerange[a];
+      if (force < range[0] || force > range[1]) continue;  // clamped: no sensitivity
+    }
+    double per_length = 0.0, per_velocity = 0.0;  // d force / d length, d force / d velocity
+    if (affine_gain) {
+      per_length += g[1] * u;
+      per_velocity += g[2] * u;
+    }
+    if (affine_bias) {
+      per_length += b[1];
+      per_velocity += b[2];
+    }
+    const double gear = model.actuator_gear[a][0];
+    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    w.rhs_q(dof, dof) += gear * per_length * gear;
+    w.rhs_v(dof, dof) += gear * per_velocity * gear;
+    if (!ctrl_clamped) w.rhs_u(dof, a) = gear * gain;
+  }
+}
+
+// The limit rows with their active set S held fixed. Forward dynamics satisfies
+//   M qacc = f_smooth + J_S^T f_S,    J_S qacc + R_S f_S = aref_S
+// so, with G = M^-1 (d f_smooth - d M qacc) already in dqacc (one column per input),
+//   (J M^-1 J^T + R)_SS df_S = d aref_S - dR_S f_S - J_S G,   dqacc = G + M^-1 J_S^T df_S.
+// aref = -B vel - K imp (pos - margin) and R = (1 - imp) invweight0 / imp depend on qpos through
+// the impedance, and aref on qvel through vel; neither depends on ctrl.
+void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
+  auto& w = deriv.work;
+  deriv.dconstraint_dq.setZero();
+  deriv.dconstraint_dv.setZero();
+  deriv.dconstraint_du.setZero();
+  int n = 0;
+  for (int r = 0; r < data.nefc; ++r) {
+    if (data.efc_state[r] == ConstraintState::kActive) w.rows[n++] = r;
+  }
+  w.active_rows = n;
+  if (n == 0) return;
+
+  // M^-1 J^T and the Cholesky factor of (J M^-1 J^T + R)_SS (J's row r is sign_r e_dof_r)
+  for (int k = 0; k < n; ++k) {
+    auto column = w.MinvJ.col(k);
+    column.setZero();
+    column[data.efc_dof[w.rows[k]]] = data.efc_sign[w.rows[k]];
+    solve_mass(model, data, column);
+  }
+  for (int k = 0; k < n; ++k) {
+    const int rk = w.rows[k];
+    for (int l = 0; l <= k; ++l) {
+      double s = data.efc_sign[rk] * w.MinvJ(data.efc_dof[rk], l);
+      if (l == k) s += data.efc_R[rk];
+      for (int c = 0; c < l; ++c) s -= w.AR(k, c) * w.AR(l, c);
+      w.AR(k, l) = l == k ? std::sqrt(s) : s / w.AR(l, l);
+    }
+  }
+
+  // d aref / d q_dof, d R / d q_dof, d aref / d qd_dof of each active row (zero elsewhere)
+  const auto solve_column = [&](Eigen::MatrixXd& dqacc, Eigen::MatrixXd& dconstraint, int c,
+                                const double* drhs_dx) {
+    Eigen::VectorXd& df = w.col;
+    for (int k = 0; k < n; ++k) {
+      const int r = w.rows[k];
+      df[k] =
+          (drhs_dx != nullptr ? drhs_dx[k] : 0.0) - data.efc_sign[r] * dqacc(data.efc_dof[r], c);
+    }
+    for (int k = 0; k < n; ++k) {  // L y = rhs, then L^T df = y
+      for (int l = 0; l < k; ++l) df[k] -= w.AR(k, l) * df[l];
+      df[k] /= w.AR(k, k);
+    }
+    for (int k = n - 1; k >= 0; --k) {
+      for (int l = k + 1; l < n; ++l) df[k] -= w.AR(l, k) * df[l];
+      df[k] /= w.AR(k, k);
+    }
+    for (int k = 0; k < n; ++k) {
+      const int r = w.rows[k];
+      dqacc.col(c) += w.MinvJ.col(k) * df[k];
+      dconstraint(data.efc_dof[r], c) += data.efc_sign[r] * df[k];
+    }
+  };
+
+  std::array<double, 2> solref;
+  std::array<double, 5> solimp;
+  for (int c = 0; c < model.nv; ++c) {
+    for (int k = 0; k < n; ++k) {
+      const int r = w.rows[k];
+      w.drhs_q[k] = w.drhs_v[k] = 0.0;
+      if (data.efc_dof[r] != c) continue;
+      const double sign = data.efc_sign[r];  // d pos / d q_dof: pos = sign (q - stop)
+      limit_parameters(model, data.efc_id[r], solref, solimp);
+      double slope = 0.0;
+      const double imp = impedance(solimp, data.efc_pos[r], data.efc_margin[r], &slope);
+      const double dimp_dq = slope * sign;
+      const double daref_dq =
+          -data.efc_K[r] * (dimp_dq * (data.efc_pos[r] - data.efc_margin[r]) + imp * sign);
+      const double invweight = model.dof_invweight0[c];
+      const bool R_floored = (1 - imp) * invweight / imp < kMinVal;  // R = mjMINVAL: constant
+      const double dR_dq = R_floored ? 0.0 : -invweight / (imp * imp) * dimp_dq;
+      w.drhs_q[k] = daref_dq - dR_dq * data.efc_force[r];
+      w.drhs_v[k] = -data.efc_B[r] * sign;  // aref = -B sign qd - K imp (pos - margin)
+    }
+    solve_column(deriv.dqacc_dq, deriv.dconstraint_dq, c, w.drhs_q.data());
+    solve_column(deriv.dqacc_dv, deriv.dconstraint_dv, c, w.drhs_v.data());
+  }
+  for (int c = 0; c < model.nu; ++c) solve_column(deriv.dqacc_du, deriv.dconstraint_du, c, nullptr);
+}
+
+// ---- solves with many right-hand sides ---------------------------------------------------------
+// The right-hand sides of a derivative (its qpos, qvel and ctrl columns, 2 nv + nu of them) are
+// solved together: side by side in one row-major matrix, each substitution of a solve is one row
+// operation over all of them, instead of one walk of the tree per column. The arithmetic of each
+// column is the single solve's, in the same order.
+
+// y += a x over n numbers: a row operation of the solves below (a plain loop, which the compiler
+// vectorises; Eigen's expression on a dynamic row costs more in setup than in arithmetic here).
+void add_scaled_row(double* y, double a, const double* x, Eigen::Index n) {
+  for (Eigen::Index c = 0; c < n; ++c) y[c] += a * x[c];
+}
+
+// X = (L^T D L)^-1 X with an LTDL factor in crba.cpp's layout (ltdl: D on the diagonal, L(k, i)
+// at LD(i, k) for each ancestor i of k), as solve_mass does one column.
+void ltdl_solve_rows(const Model& model, const Eigen::MatrixXd& LD,
+                     const Eigen::VectorXd& diag_inverse, RowMatrix& X) {
+  const Eigen::Index n = X.cols();
+  for (int k = model.nv - 1; k >= 0; --k) {  // L^-T, leaves to root
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+      add_scaled_row(X.row(i).data(), -LD(i, k), X.row(k).data(), n);
+    }
+  }
+  for (int k = 0; k < model.nv; ++k) X.row(k) *= diag_inverse[k];  // D^-1
+  for (int k = 0; k < model.nv; ++k) {                             // L^-1, root to leaves
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+      add_scaled_row(X.row(k).data(), -LD(i, k), X.row(i).data(), n);
+    }
+  }
+}
+
+// X = K^-1 X with factor_lu_tree()'s factor K = (U + I) L, as solve_lu_tree does one column.
+void lu_tree_solve_rows(const Model& model, const Eigen::MatrixXd& LU, RowMatrix& X) {
+  const Eigen::Index n = X.cols();
+  for (int k = model.nv - 1; k >= 0; --k) {  // (U + I)^-1, leaves to root
+    for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
+      add_scaled_row(X.row(i).data(), -LU(i, k), X.row(k).data(), n);
+    }
+  }
+  for (int k = 0; k < model.nv; ++k) {  // L^-1, root to leaves
+    for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) {
+      add_scaled_row(X.row(k).data(), -LU(k, j), X.row(j).data(), n);
+    }
+    X.row(k) /= LU(k, k);
+  }
+}
+
+// [in_q in_v in_u] side by side in w.right_hand_sides, then solve(X) solving every column of X in
+// place; returns X.
+template <class Solve>
+RowMatrix& solve_side_by_side(Derivatives::Workspace& w, const Eigen::MatrixXd& in_q,
+                              const Eigen::MatrixXd& in_v, const Eigen::MatrixXd& in_u,
+                              Solve&& solve) {
+  const Eigen::Index nv = in_q.cols(), nu = in_u.cols();
+  RowMatrix& X = w.right_hand_sides;
+  X.leftCols(nv) = in_q;
+  X.middleCols(nv, nv) = in_v;
+  X.rightCols(nu) = in_u;
+  solve(X);
+  return X;
+}
+
+// forward_derivatives() without its checks, for the step's calls (step_derivatives checked once).
+void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& deriv) {
+  forward(model, data);
+  auto& w = deriv.work;
+  inertia_columns(model, data, data.work.crb, w);
+  rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, data.work.crb, w,
+                        deriv.dtau_dq, &deriv.dtau_dv);
+  smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
+  // the unconstrained part: M^-1 times each column
+  const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
+    ltdl_solve_rows(model, data.qLD, data.qLDiagInv, Y);
+  });
+  deriv.dqacc_dq = X.leftCols(model.nv);
+  deriv.dqacc_dv = X.middleCols(model.nv, model.nv);
+  deriv.dqacc_du = X.rightCols(model.nu);
+  limit_rows(model, data, deriv);
+}
+
+// x' = [qpos (+) h qvel'; qvel'] with qvel' = qvel + h qacc_step, given
+// d qacc_step / d (q, v, u): the rows of hinges and slides here, a turn's by euler_turns().
+template <class Matrix>
+void assemble_euler(const Model& model, const Matrix& Dq, const Matrix& Dv, const Matrix& Du,
+                    Derivatives& deriv) {
+  const int nv = model.nv;
+  const double h = model.opt.timestep;
+  Eigen::MatrixXd& A = deriv.A;
+  for (int c = 0; c < nv; ++c) {  // column by column, A = [[pos_q, pos_v], [vel_q, vel_v]]
+    for (int r = 0; r < nv; ++r) {
+      const double identity = r == c ? 1.0 : 0.0;
+      const double vel_q = h * Dq(r, c);
+      const double vel_v = h * Dv(r, c) + identity;
+      A(nv + r, c) = vel_q;
+      A(nv + r, nv + c) = vel_v;
+      A(r, c) = h * vel_q + identity;
+      A(r, nv + c) = h * vel_v;
+    }
+  }
+  for (int c = 0; c < model.nu; ++c) {
+    for (int r = 0; r < nv; ++r) {
+      deriv.B(nv + r, c) = h * Du(r, c);
+      deriv.B(r, c) = (h * h) * Du(r, c);
+    }
+  }
+}
+
+// The rows of ball and free joints' turns in an Euler-form step (Euler, implicit), after
+// assemble_euler(): qpos' = qpos (+) h qvel', qvel' = qvel + h qacc_step.
+void euler_turns(const Model& model, const Data& data, const Eigen::VectorXd& qacc_step,
+                 Derivatives& deriv) {
+  const int nv = model.nv;
+  const double h = model.opt.timestep;
+  auto& qvel_next = deriv.work.qvel_next;
+  qvel_next = data.qvel + h * qacc_step;
+  through_position_update(model, qvel_next.data(), h, deriv.A.topRows(nv), true);
+  through_position_update(model, qvel_next.data(), h, deriv.B.topRows(nv), false);
+}
+
+void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
+  auto& w = deriv.work;
+  forward_derivatives_unchecked(model, data, deriv);
+  bool damped = false;
+  for (int i = 0; i < model.nv; ++i) damped = damped || model.dof_damping[i] > 0;
+  if (!damped) {
+    assemble_euler(model, deriv.dqacc_dq, deriv.dqacc_dv, deriv.dqacc_du, deriv);
+    if (model.nq != model.nv) euler_turns(model, data, data.qacc, deriv);
+    return;
+  }
+
+  // implicit damping: (M + h B) qacc_step = qfrc_smooth + qfrc_constraint, so
+  // (M + h B) d qacc_step = d f_smooth - d M qacc_step + d qfrc_constraint, where
+  // d f_smooth - d M qacc_step is smooth_rhs() with rnea differentiated at qacc_step
+  const double h = model.opt.timestep;
+  factor_mass_damped(model, data, h);
+  w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
+  solve_mass_damped(model, data, w.qacc_step);
+  rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, data.work.crb, w,
+                        w.tau_q, &w.tau_v);
+  smooth_rhs(model, data, w.tau_q, w.tau_v, w);
+  if (w.active_rows > 0) {  // dconstraint_* are zero without an active limit row
+    w.rhs_q += deriv.dconstraint_dq;
+    w.rhs_v += deriv.dconstraint_dv;
+    w.rhs_u += deriv.dconstraint_du;
+  }
+  const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
+    ltdl_solve_rows(model, data.work.LD2, data.work.LD2DiagInv, Y);
+  });
+  assemble_euler(model, X.leftCols(model.nv), X.middleCols(model.nv, model.nv),
+                 X.rightCols(model.nu), deriv);
+  if (model.nq != model.nv) euler_turns(model, data, w.qacc_step, deriv);
+}
+
+// MuJoCo 2.2.2's implicit step (implicit.cpp): K a = f with K = M - h D, D = d qfrc_smooth / d qvel
+// as smooth_velocity_derivative() holds it, f = qfrc_smooth + qfrc_constraint, then Euler's update
+// with a. Differentiating exactly that, K da = df - dM a + h dD a. D is
+//   D = D_act - diag(damping) - d c / d qvel,    D_act = diag(gear^2 (b2 + p2 ctrl)) (raw ctrl),
+// with c(q, qd) = qfrc_bias, which is gravity plus a quadratic form Q(q)(qd, qd). So
+//   d D_act a / d ctrl_k = gear^2 p2 a_dof on the actuator's dof (MuJoCo's FD misses it, see the
+//   docs), damping is constant, and (d c / d qvel) a = 2 Q(qd, a), whose derivatives are
+//   d/d qvel = d c / d qvel at velocity a, and d/d q = d/d q [2 Q(q)(qd, a)].
+// Both come from the polarisation identity 2 Q(qd, a) = (Q(qd + s a) - Q(qd - s a)) / (2 s),
+// exact for every s != 0: the gravity-free RNEA derivatives at qd + s a and qd - s a, with s
+// chosen so that s a is as large as qd (no cancellation). No finite difference is taken. The
+// same two calls also carry M's derivative at a - qacc (below).
+void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
+  auto& w = deriv.work;
+  const int nv = model.nv;
+  const double h = model.opt.timestep;
+  forward_derivatives_unchecked(model, data, deriv);
+
+  // the step's K, its LU factor and its acceleration a, as implicit_step computes them; D is
+  // smooth_velocity_derivative()'s, its bias part d c / d qvel read from the RNEA derivative just
+  // taken (the same velocity columns: the M qacc and gravity terms are free of qvel) rather than
+  // recomputed
+  w.D = -deriv.dtau_dv;
+  add_actuator_damping_velocity_terms(model, data, w.D);
+  w.K = data.M - h * w.D;
+  w.K_lu = w.K;
+  factor_lu_tree(model, w.K_lu);
+  w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
+  solve_lu_tree(model, w.K_lu, w.qacc_step.data());
+
+  // df - dM a + h dD a's bias part, from forward_derivatives' dtau (at qacc) and one pair of
+  // gravity-free RNEA derivatives R(velocity, acceleration) = dQ(velocity) + dL(acceleration),
+  // where rnea = Q(qd, qd) + L(qdd, gravity) (L linear; dL has no qvel part):
+  //   - d rnea at a  = - dtau - dL(a - qacc)
+  //   - h d[2 Q(qd, a)]  (D's bias part), by polarisation 2 Q(qd, a) = (Q(qd+sa) - Q(qd-sa)) / (2s)
+  // With delta = a - qacc and c = s / h, R(qd + s a, c delta) - R(qd - s a, -c delta) is
+  // 2 s d[2 Q(qd, a)] + 2 c dL(delta), so dividing it by 2 c gives both terms at once.
+  // R's qvel columns are linear in the velocity (dQ / d qd = 2 Q(qd, .)), so those of
+  // R(qd - s a) are 2 dtau_dv - those of R(qd + s a): the second call computes its qpos columns
+  // alone. So is C (velocity_coupling()): the second call's is 2 C(qd) - C(qd + s a). (w.rhs_*
+  // still hold smooth_rhs() at dtau: forward_derivatives_unchecked solved them into dqacc_* and
+  // left them as they were)
+  if (w.active_rows > 0) {  // dconstraint_* are zero without an active limit row
+    w.rhs_q += deriv.dconstraint_dq;
+    w.rhs_v += deriv.dconstraint_dv;
+    w.rhs_u += deriv.dconstraint_du;
+  }
+  const double size_a = w.qacc_step.cwiseAbs().maxCoeff();
+  const double size_v = data.qvel.cwiseAbs().maxCoeff();
+  // s a as large as qd, so that nothing cancels beyond rounding (any s != 0 is exact)
+  const double s = size_a > 0 ? (size_v > 0 ? size_v : 1.0) / size_a : 1.0;
+  const double c = s / h;
+  w.qacc_shift = c * (w.qacc_step - data.qacc);
+  w.qvel_shift = data.qvel + s * w.qacc_step;
+  w.CC_minus = w.CC;  // C(qd), summed over subtrees by forward_derivatives_unchecked
+  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, data.work.crb,
+                        w, w.tau_q, &w.tau_v);
+  for (int b = 1; b < model.nbody; ++b) {  // C(qd - s a) = 2 C(qd) - C(qd + s a)
+    VelocityCoupling& C = w.CC_minus[b];
+    C.S = 2 * C.S - w.CC[b].S;
+    C.momentum = 2 * C.momentum - w.CC[b].momentum;
+  }
+  w.qacc_shift = -w.qacc_shift;
+  w.qvel_shift = data.qvel - s * w.qacc_step;
+  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, data.work.crb,
+                        w, w.tau_q_minus, nullptr, &w.CC_minus);
+  w.rhs_q -= (w.tau_q - w.tau_q_minus) / (2 * c);
+  w.rhs_v -= (w.tau_v - deriv.dtau_dv) / c;  // (R_v(qd + s a) - (2 dtau_dv - R_v(qd + s a))) / 2c
+  // + h dD a, D's actuator part: only an affine gain's p2 ctrl depends on anything (ctrl)
+  for (int a = 0; a < model.nu; ++a) {
+    if (model.actuator_gaintype[a] != GainType::kAffine) continue;
+    const double gear = model.actuator_gear[a][0];
+    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    w.rhs_u(dof, a) += h * gear * model.actuator_gainprm[a][2] * gear * w.qacc_step[dof];
+  }
+
+  // da = K^-1 (...) in place, then Euler's update
+  const RowMatrix& X = solve_side_by_side(
+      w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) { lu_tree_solve_rows(model, w.K_lu, Y); });
+  assemble_euler(model, X.leftCols(nv), X.middleCols(nv, nv), X.rightCols(model.nu), deriv);
+  if (model.nq != model.nv) euler_turns(model, data, w.qacc_step, deriv);
+}
+
+// Classical RK4 on x = [qpos; qvel] with slope k(x) = [qvel; qacc(x)], as step(): stage i starts
+// from x_i = (qpos_0 (+) h a_i qvel_{i-1}, qvel_0 + h a_i qacc_{i-1}), and
+// x' = (qpos_0 (+) h sum_i b_i qvel_i, qvel_0 + h sum_i b_i qacc_i). By the chain rule, with
+// F_i = d k / d x at x_i = [0 I; dqacc_dq dqacc_dv]:
+//   d k_i / d x_0 = F_i J_i,   d k_i / d u = F_i J^u_i + [0; dqacc_du],
+//   J_i = d x_i / d x_0 = I + h a_i d k_{i-1} / d x_0,   J^u_i = h a_i d k_{i-1} / d u,
+// where, for the rows of a ball's or free joint's turn, (+) makes "I + h X" into
+// exp(-h a_i [w]) + Jr(h a_i w) h X (through_position_update), as for the final x'.
+void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
+  constexpr double kA[3] = {0.5, 0.5, 1.0};
+  constexpr double kB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
+  const int nv = model.nv;
+  const double h = model.opt.timestep;
+  auto& w = deriv.work;
+  const double time0 = data.time;
+  w.qpos0 = data.qpos;
+  w.qvel0 = data.qvel;
+  const bool quaternions = model.nq != model.nv;
+  w.qvel_next.setZero();  // sum_i b_i qvel_i: the velocity the final qpos is integrated with
+
+  w.Jx.setIdentity();  // d x_0 / d x_0
+  w.Ju.setZero();
+  deriv.A.setZero();  // sum_i b_i d k_i / d x_0 until the end
+  deriv.B.setZero();
+  for (int i = 0; i < 4; ++i) {
+    if (i > 0) {
+      // x_i from the previous stage's slope (data still holds its qvel and qacc), as step()
+      w.qacc_step = data.qacc;
+      if (quaternions) {  // as step(): qpos_0 (+) h (a_i qvel_{i-1})
+        w.stage_dq = kA[i - 1] * data.qvel;
+        data.qpos = w.qpos0;
+        detail::integrate_positions(model, data.qpos.data(), w.stage_dq.data(), h);
+      } else {
+        data.qpos = w.qpos0 + (h * kA[i - 1]) * data.qvel;
+      }
+      data.qvel = w.qvel0 + (h * kA[i - 1]) * w.qacc_step;
+      data.time = time0 + kA[i - 1] * h;
+    }
+    forward_derivatives_unchecked(model, data, deriv);
+    if (quaternions) w.qvel_next += kB[i] * data.qvel;
+
+    // K = F J: the qpos rows of the slope are J's qvel rows; its qvel rows the chain rule
+    w.Kx.topRows(nv) = w.Jx.bottomRows(nv);
+    w.Kx.bottomRows(nv).noalias() = deriv.dqacc_dq.lazyProduct(w.Jx.topRows(nv));
+    w.Kx.bottomRows(nv).noalias() += deriv.dqacc_dv.lazyProduct(w.Jx.bottomRows(nv));
+    w.Ku.topRows(nv) = w.Ju.bottomRows(nv);
+    w.Ku.bottomRows(nv) = deriv.dqacc_du;
+    w.Ku.bottomRows(nv).noalias() += deriv.dqacc_dq.lazyProduct(w.Ju.topRows(nv));
+    w.Ku.bottomRows(nv).noalias() += deriv.dqacc_dv.lazyProduct(w.Ju.bottomRows(nv));
+
+    deriv.A += kB[i] * w.Kx;
+    deriv.B += kB[i] * w.Ku;
+    if (i < 3) {
+      w.Jx = (h * kA[i]) * w.Kx;
+      w.Jx.diagonal().array() += 1.0;
+      w.Ju = (h * kA[i]) * w.Ku;
+      // the next stage's qpos turns by h a_{i+1} qvel_i (data.qvel is still stage i's)
+      through_position_update(model, data.qvel.data(), h * kA[i], w.Jx.topRows(nv), true);
+      through_position_update(model, data.qvel.data(), h * kA[i], w.Ju.topRows(nv), false);
+    }
+  }
+  deriv.A *= h;
+  deriv.A.diagonal().array() += 1.0;
+  deriv.B *= h;
+  through_position_update(model, w.qvel_next.data(), h, deriv.A.topRows(nv), true);
+  through_position_update(model, w.qvel_next.data(), h, deriv.B.topRows(nv), false);
+
+  data.qpos = w.qpos0;
+  data.qvel = w.qvel0;
+  data.time = time0;
+}
+
+}  // namespace
+
+Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
+  const int nefc_max = 2 * model.njnt;
+  dtau_dq.setZero(nv, nv);
+  dtau_dv.setZero(nv, nv);
+  dqacc_dq.setZero(nv, nv);
+  dqacc_dv.setZero(nv, nv);
+  dqacc_du.setZero(nv, nu);
+  dconstraint_dq.setZero(nv, nv);
+  dconstraint_dv.setZero(nv, nv);
+  dconstraint_du.setZero(nv, nu);
+  A.setZero(2 * nv, 2 * nv);
+  B.setZero(2 * nv, nu);
+
+  const auto nbody = static_cast<std::size_t>(model.nbody);
+  const auto ndof = static_cast<std::size_t>(nv);
+  work.v.assign(nbody, Motion::Zero());
+  work.a.assign(nbody, Motion::Zero());
+  work.F.assign(nbody, Force::Zero());
+  work.IC.assign(nbody, RigidInertia());
+  work.CC.assign(nbody, VelocityCoupling());
+  work.CC_minus.assign(nbody, VelocityCoupling());
+  work.Sdot.assign(ndof, Motion::Zero());
+  work.IC_S.assign(ndof, Force::Zero());
+  work.Sddot.assign(ndof, Motion::Zero());
+  work.rhs_q.setZero(nv, nv);
+  work.rhs_v.setZero(nv, nv);
+  work.rhs_u.setZero(nv, nu);
+  work.right_hand_sides.setZero(nv, 2 * nv + nu);
+  work.tau_q.setZero(nv, nv);
+  work.tau_v.setZero(nv, nv);
+  work.MinvJ.setZero(nv, nefc_max);
+  work.AR.setZero(nefc_max, nefc_max);
+  work.col.setZero(std::max(nv, nefc_max));
+  work.drhs_q.setZero(nefc_max);
+  work.drhs_v.setZero(nefc_max);
+  work.rows.assign(static_cast<std::size_t>(nefc_max), 0);
+  work.qacc_step.setZero(nv);
+  work.qpos0.setZero(model.nq);
+  work.qvel0.setZero(nv);
+  work.qvel_next.setZero(nv);
+  work.stage_dq.setZero(nv);
+  work.Jx.setZero(2 * nv, 2 * nv);
+  work.Ju.setZero(2 * nv, nu);
+  work.Kx.setZero(2 * nv, 2 * nv);
+  work.Ku.setZero(2 * nv, nu);
+  work.D.setZero(nv, nv);
+  work.K.setZero(nv, nv);
+  work.K_lu.setZero(nv, nv);
+  work.qvel_shift.setZero(nv);
+  work.tau_q_minus.setZero(nv, nv);
+  work.qacc_shift.setZero(nv);
+}
+
+void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
+  check_derivative_sizes(model, data, deriv);
+  forward_derivatives_unchecked(model, data, deriv);
+}
+
+void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
+  check_derivative_sizes(model, data, deriv);
+  // forward() normalizes the quaternions of qpos in place; the caller's state is given back as it
+  // was, bit for bit (RK4 restores its start itself)
+  const bool quaternions = model.nq != model.nv;
+  switch (model.opt.integrator) {
+    case Integrator::kEuler:
+      if (quaternions) deriv.work.qpos0 = data.qpos;
+      euler_derivatives(model, data, deriv);
+      if (quaternions) data.qpos = deriv.work.qpos0;
+      return;
+    case Integrator::kRK4: rk4_derivatives(model, data, deriv); return;
+    case Integrator::kImplicit:
+      if (quaternions) deriv.work.qpos0 = data.qpos;
+      implicit_derivatives(model, data, deriv);
+      if (quaternions) data.qpos = deriv.work.qpos0;
+      return;
+  }
+  // an integrator added to the enum later lands here until it has its own case
+  throw Error("step_derivatives: integrator " +
+              std::to_string(static_cast<int>(model.opt.integrator)) +
+              " is not supported yet (Euler, RK4 and implicit are).");
+}
+
+}  // namespace lever
