@@ -67,6 +67,7 @@ struct CompiledMotor {
   const MotorSpec* spec;
   int joint = -1;
   bool ctrllimited = false, forcelimited = false;
+  std::array<double, 2> ctrlrange{};  ///< as written, or from the joint's range (inheritrange)
 };
 
 // a <contact><pair>, its geoms ordered by body as MuJoCo orders them
@@ -645,12 +646,6 @@ class Compiler {
 
   CompiledMotor compile_motor(const MotorSpec& m) {
     CompiledMotor out{&m};
-    out.forcelimited = resolve_limited(m.forcelimited, m.forcerange, c_.autolimits, m.at,
-                                       "forcerange", "forcelimited");
-    out.ctrllimited = resolve_limited(m.ctrllimited, m.ctrlrange, c_.autolimits, m.at, "ctrlrange",
-                                      "ctrllimited");
-    check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
-    check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, m.ctrlrange);
     if (m.joint.empty()) fail(m.at, "joint", "attribute 'joint' is empty: name the joint to drive");
     std::vector<std::string_view> names;
     for (size_t j = 0; j < joints_.size(); ++j) {
@@ -660,7 +655,34 @@ class Compiler {
     if (out.joint < 0) {
       fail(m.at, "joint", "unknown joint '" + m.joint + "'" + did_you_mean(m.joint, names));
     }
+    out.ctrlrange = inherited_ctrlrange(m, joints_[static_cast<size_t>(out.joint)]);
+    out.forcelimited = resolve_limited(m.forcelimited, m.forcerange, c_.autolimits, m.at,
+                                       "forcerange", "forcelimited");
+    out.ctrllimited = resolve_limited(m.ctrllimited, out.ctrlrange, c_.autolimits, m.at,
+                                      "ctrlrange", "ctrllimited");
+    check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
+    check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, out.ctrlrange);
     return out;
+  }
+
+  // MuJoCo 3's inheritrange (mjCActuator::Compile): a position servo (fixed gain, affine bias,
+  // gainprm[0] = -biasprm[1]) with inheritrange > 0 takes as ctrlrange its joint's compiled range
+  // (radians if limited) about its middle, scaled by inheritrange; other actuators ignore it
+  static std::array<double, 2> inherited_ctrlrange(const MotorSpec& m, const CompiledJoint& j) {
+    const bool servo = m.gaintype == GainType::kFixed && m.biastype == BiasType::kAffine &&
+                       m.gainprm[0] == -m.biasprm[1];
+    if (!(m.inheritrange > 0) || !servo) return m.ctrlrange;
+    if (j.spec->type != JointType::kHinge && j.spec->type != JointType::kSlide) {
+      fail(m.at, "inheritrange",
+           "inheritrange needs a hinge or slide joint; joint '" + j.spec->at.name + "' is not one");
+    }
+    if (j.range[0] == j.range[1]) {
+      fail(m.at, "inheritrange",
+           "inheritrange takes the joint's range, and joint '" + j.spec->at.name + "' has none");
+    }
+    const double middle = 0.5 * (j.range[1] + j.range[0]);
+    const double half = 0.5 * (j.range[1] - j.range[0]) * m.inheritrange;
+    return {middle - half, middle + half};
   }
 
   static void check_range(const Place& at, const std::string& attribute, const std::string& flag,
@@ -1148,7 +1170,7 @@ void Compiler::assemble_motors(Model& m) const {
     m.actuator_gear[a] = s.gear;
     m.actuator_ctrllimited[a] = c.ctrllimited;
     m.actuator_forcelimited[a] = c.forcelimited;
-    m.actuator_ctrlrange[a] = s.ctrlrange;
+    m.actuator_ctrlrange[a] = c.ctrlrange;
     m.actuator_forcerange[a] = s.forcerange;
   }
 }

@@ -396,3 +396,22 @@ TEST_CASE("set_const names a contact array a model built by hand left empty", "[
   CHECK_THROWS_WITH(lever::set_const(m), Catch::Contains("Model::geom_friction holds 0 numbers") &&
                                              Catch::Contains("must fill it too"));
 }
+
+TEST_CASE("a camera's quat is kept as written, never refused as zero", "[mjcf]") {
+  // visual only: lever keeps the camera's attributes as text, and a unit quaternion is not zero
+  const Model model = lever::mjcf::load_string(R"(<mujoco>
+  <default><camera quat="0 1 0 0"/></default>
+  <worldbody>
+    <camera name="world_view" quat="1 0 0 0"/>
+    <body name="b">
+      <joint/>
+      <geom size="0.1"/>
+      <camera name="wrist" pos="0 0 0.1" quat="0.7071068 0 0.7071068 0"/>
+    </body>
+  </worldbody>
+</mujoco>)");
+  CHECK(model.visual.camera_name == std::vector<std::string>{"world_view", "wrist"});
+  // the geometry's quaternions are still checked
+  CHECK_THROWS_WITH(body_with(R"(<site quat="0 0 0 0"/>)"),
+                    Catch::Contains("quaternion '0 0 0 0' has (nearly) zero length"));
+}
