@@ -63,6 +63,12 @@ struct CompiledSite {
   Quat quat{1, 0, 0, 0};
 };
 
+// where an element is written, for messages that name several: its line, with its file when it
+// comes from an included one
+std::string line_text(const Place& at) {
+  return at.file.empty() ? std::to_string(at.line) : at.file + ":" + std::to_string(at.line);
+}
+
 struct CompiledMotor {
   const MotorSpec* spec;
   int joint = -1;
@@ -411,7 +417,7 @@ class Compiler {
     const std::string why = geom + " must give body '" + body_name + "' its mass and inertia";
     const std::string advice = ". Fix that, or add an <inertial> to body '" + body_name +
                                "' (then lever does not read the mesh)";
-    const std::string mesh = "mesh '" + at.name + "' (line " + std::to_string(at.line) + ")";
+    const std::string mesh = "mesh '" + at.name + "' (line " + line_text(at) + ")";
     if (file.empty()) {
       fail(g.at, "mesh",
            why + ", but " + mesh +
@@ -903,8 +909,7 @@ class Compiler {
       const GeomSpec& gb = *geoms_[static_cast<size_t>(b)].spec;
       const std::string ta = type_name(ga.type), tb = type_name(gb.type);
       warnings_.push_back("geoms " + label(a) + " and " + label(b) + " (" + ta + ", " + tb +
-                          "; lines " + std::to_string(ga.at.line) + " and " +
-                          std::to_string(gb.at.line) + ") can collide and lever has no " + ta +
+                          "; lines " + line_text(ga.at) + " and " + line_text(gb.at) + ") can collide and lever has no " + ta +
                           "-" + tb +
                           " contact: it skips them, and warns whenever they come near each "
                           "other; " +
