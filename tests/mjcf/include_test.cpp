@@ -211,3 +211,31 @@ TEST_CASE("a model with includes is not written back", "[mjcf][include]") {
                     Catch::Contains("the model includes other files"));
   CHECK_FALSE(std::filesystem::exists(folder.at("out.xml")));
 }
+
+TEST_CASE("the nesting limit counts included elements at their include's level",
+          "[mjcf][include]") {
+  const IncludeFolder folder("deep");
+  const auto bodies = [](int n) {
+    std::string open, close;
+    for (int i = 0; i < n; ++i) {
+      open += "<body>";
+      close += "</body>";
+    }
+    return std::make_pair(open, close);
+  };
+  // 60 levels in each file: each alone is within lever's 100, together they are not
+  const auto [outer_open, outer_close] = bodies(60);
+  const auto [inner_open, inner_close] = bodies(60);
+  folder.write("inner.xml", "<mujoco>" + inner_open + inner_close + "</mujoco>\n");
+  const std::string scene = folder.write(
+      "scene.xml", "<mujoco><worldbody>" + outer_open + "\n<include file=\"inner.xml\"/>" +
+                       outer_close + "</worldbody></mujoco>\n");
+  const lever::mjcf::ParseError e = load_error(scene);
+  CHECK(e.file() == scene);
+  CHECK(e.line() == 2);
+  CHECK_THAT(e.problem(), Catch::Contains("nested more than 100 levels deep"));
+  // 30 levels inside fit
+  const auto [few_open, few_close] = bodies(30);
+  folder.write("inner.xml", "<mujoco>" + few_open + few_close + "</mujoco>\n");
+  CHECK(lever::mjcf::load_file(scene).nbody == 91);
+}
