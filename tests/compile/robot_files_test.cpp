@@ -99,7 +99,7 @@ TEST_CASE("every real robot file MuJoCo 2.2.2 loads loads in lever or is refused
   for (const RobotRow& r : rows) {
     INFO(r.file << ": MuJoCo " << r.mujoco << "; lever " << r.lever);
     CHECK(r.ok);
-    // lever has <include> and MuJoCo 3's position kv: every scene reaches its robot
+    // lever has <include>: every scene reaches its robot
     CHECK(r.lever.find("<include") == std::string::npos);
   }
   // the files that loaded before <include> (7), the scenes of those (ur5e, humanoid100) since
