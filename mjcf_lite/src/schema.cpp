@@ -658,8 +658,8 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
 * MuJoCo 3's names that real model files carry, with MuJoCo 3's meaning (MuJoCo 2.2.2 refuses
   them): `<position kv>` (biasprm[2] = -kv; an element without kv takes its class's kv: lever
   clears the rest of a `<position>`'s biasprm as 2.2.2 does, where MuJoCo 3 keeps its class's, so
-  the two differ only for a `<position>` whose class's actuator default is a `<general>` with
-  biasprm[0] or biasprm[2] set) and `<position inheritrange>` (ctrlrange = the joint's compiled range about its middle,
+  the two differ only for a `<position>` without kv whose class's actuator default leaves
+  biasprm[0] or biasprm[2] nonzero: a `<velocity>`, or a `<general>` that sets them) and `<position inheritrange>` (ctrlrange = the joint's compiled range about its middle,
   scaled; refused beside a ctrlrange or on a joint without a range, as MuJoCo 3 refuses it). Other
   names MuJoCo 3 added (`implicitfast`, `dampratio`, `timeconst`, `actearly`, `gravcomp`,
   `actuatorfrcrange`, `assetdir`, `<replicate>`, `<frame>`, `<plugin>`, ...) are refused by name.
