@@ -600,6 +600,18 @@ inline const BadInput kBadInputs[] = {
   </actuator>
 </mujoco>)", 9, "position", "dampratio", "is MuJoCo 3's: MuJoCo 2.2.2, which lever follows",
    MuJoCo::kRejects, ""},
+  {"mujoco3-assetdir", R"(<mujoco>
+  <compiler assetdir="assets"/>
+</mujoco>)", 2, "compiler", "assetdir", "is MuJoCo 3's: MuJoCo 2.2.2, which lever follows",
+   MuJoCo::kRejects, ""},
+  {"mujoco3-gravcomp", R"(<mujoco>
+  <worldbody>
+    <body name="b" gravcomp="1">
+      <joint/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 3, "body", "gravcomp", "is MuJoCo 3's", MuJoCo::kRejects, ""},
   {"mujoco3-replicate", R"(<mujoco>
   <worldbody>
     <replicate count="2"/>
