@@ -909,8 +909,8 @@ class Compiler {
       const GeomSpec& gb = *geoms_[static_cast<size_t>(b)].spec;
       const std::string ta = type_name(ga.type), tb = type_name(gb.type);
       warnings_.push_back("geoms " + label(a) + " and " + label(b) + " (" + ta + ", " + tb +
-                          "; lines " + line_text(ga.at) + " and " + line_text(gb.at) + ") can collide and lever has no " + ta +
-                          "-" + tb +
+                          "; lines " + line_text(ga.at) + " and " + line_text(gb.at) +
+                          ") can collide and lever has no " + ta + "-" + tb +
                           " contact: it skips them, and warns whenever they come near each "
                           "other; " +
                           advice_for(ga.type, gb.type));

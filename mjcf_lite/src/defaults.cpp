@@ -21,8 +21,7 @@ void check_one_orientation(const Element& e) {
 }
 
 // lever refuses values that 2.2.2 accepts but that cannot describe a real machine
-void check_physical(const Element& e, const Attribute& a, const AttributeRule& r,
-                    const Value& v) {
+void check_physical(const Element& e, const Attribute& a, const AttributeRule& r, const Value& v) {
   double sum_of_squares = 0;
   for (const double x : v.numbers) sum_of_squares += x * x;
   // only a quaternion read as numbers: a visual-only element (a camera) keeps its text

@@ -97,7 +97,8 @@ class Expander {
            "an <include> cannot have children: it is replaced by the elements of its file");
     }
     const Place at = inc.place(*file);
-    const std::string path = fs::path(file->value).is_absolute() ? file->value : folder_ + file->value;
+    // always from the main file's folder, an absolute path too (as 2.2.2 joins them)
+    const std::string path = folder_ + file->value;
     for (const ReadFile& r : read_) {
       if (!same_file_name(r.path, path)) continue;
       if (r.by.line == 0) {

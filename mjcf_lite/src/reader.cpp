@@ -146,8 +146,10 @@ std::string misplaced(std::string_view tag, std::string_view parent) {
   if (is_known_mjcf_element(e.tag)) fail(e.place(), "", misplaced(e.tag, parent));
   if (is_mujoco3_name(e.tag, "")) {
     fail(e.place(), "",
-         "<" + e.tag + "> is MuJoCo 3's: MuJoCo 2.2.2, which lever follows, does not have it, and "
-         "neither does lever" + kDocs);
+         "<" + e.tag +
+             "> is MuJoCo 3's: MuJoCo 2.2.2, which lever follows, does not have it, and "
+             "neither does lever" +
+             kDocs);
   }
   std::vector<std::string_view> candidates = child_tags(parent);
   if (parent_rule) {
@@ -186,8 +188,10 @@ void check_attribute(const Element& e, const ElementRule& rule, const Attribute&
   }
   if (is_mujoco3_name(e.tag, a.name)) {
     fail(e.place(a), a.name,
-         "attribute '" + a.name + "' is MuJoCo 3's: MuJoCo 2.2.2, which lever follows, does not "
-         "have it, and neither does lever" + kDocs);
+         "attribute '" + a.name +
+             "' is MuJoCo 3's: MuJoCo 2.2.2, which lever follows, does not "
+             "have it, and neither does lever" +
+             kDocs);
   }
   std::vector<std::string_view> candidates;
   for (const AttributeRule& r : rule.attributes) candidates.push_back(r.name);

@@ -22,7 +22,7 @@ struct Attribute {
 struct Element {
   std::string tag;
   int line = 0;
-  int index = -1;  ///< position in document order, the root 0 (read_document numbers them)
+  int index = -1;    ///< position in document order, the root 0 (read_document numbers them)
   std::string file;  ///< the included file it comes from; "" for the model file itself
   std::vector<Attribute> attributes;  ///< in document order
   std::vector<Element> children;      ///< in document order

@@ -532,8 +532,9 @@ struct Mujoco3Names {
 const Mujoco3Names kMujoco3Names[] = {
     {"", "replicate frame plugin extension attach flexcomp flex deformable model instance"},
     {"compiler", "assetdir alignfree saveinertial"},
-    {"option", "ls_iterations ls_tolerance ccd_iterations ccd_tolerance sdf_iterations "
-               "sdf_initpoints actuatorgroupdisable"},
+    {"option",
+     "ls_iterations ls_tolerance ccd_iterations ccd_tolerance sdf_iterations "
+     "sdf_initpoints actuatorgroupdisable"},
     {"flag", "eulerdamp nativeccd island midphase autoreset"},
     {"joint", "actuatorfrcrange actuatorfrclimited actuatorgravcomp"},
     {"body", "gravcomp"},

@@ -117,7 +117,8 @@ TEST_CASE("check: with position servos, ctrl 0 in the stop runs is a target of 0
   std::filesystem::remove(path);
   // arm2 as it is, motors only: zero torque
   const Run motors = run_lever("check " + quoted(model_path("models/arm2.xml")));
-  CHECK(motors.out.find("(5) joint stops are soft constraints (zero torque: ") != std::string::npos);
+  CHECK(motors.out.find("(5) joint stops are soft constraints (zero torque: ") !=
+        std::string::npos);
   CHECK(motors.out.find("ctrl 0 is not zero torque") == std::string::npos);
 }
 

@@ -101,8 +101,8 @@ bool remove_refused(const mjcf::ParseError& e) {
 std::string every_refused_feature(const std::string& path) {
   // a copy of the file's folder: its model files copied, everything else linked
   const fs::path source(path);
-  const fs::path copy = fs::temp_directory_path() /
-                        ("lever-robot-files-" + std::to_string(::getpid()));
+  const fs::path copy =
+      fs::temp_directory_path() / ("lever-robot-files-" + std::to_string(::getpid()));
   fs::remove_all(copy);
   fs::create_directories(copy);
   for (const auto& entry : fs::directory_iterator(source.parent_path())) {

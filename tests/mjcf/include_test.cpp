@@ -100,10 +100,12 @@ TEST_CASE("included files' elements take the include's place, nested, from the m
 
 TEST_CASE("an error in an included file is located in that file", "[mjcf][include]") {
   const IncludeFolder folder("located");
-  folder.write("scene.xml", "<mujoco>\n  <worldbody>\n    <include file=\"part.xml\"/>\n"
-                            "  </worldbody>\n</mujoco>\n");
+  folder.write("scene.xml",
+               "<mujoco>\n  <worldbody>\n    <include file=\"part.xml\"/>\n"
+               "  </worldbody>\n</mujoco>\n");
   const std::string part = folder.write(
-      "part.xml", "<mujoco>\n  <body name=\"b\">\n    <joint rnage=\"0 1\"/>\n  </body>\n</mujoco>\n");
+      "part.xml",
+      "<mujoco>\n  <body name=\"b\">\n    <joint rnage=\"0 1\"/>\n  </body>\n</mujoco>\n");
   lever::mjcf::ParseError e = load_error(folder.at("scene.xml"));
   CHECK(e.file() == part);
   CHECK(e.line() == 3);
@@ -138,8 +140,8 @@ TEST_CASE("a missing, repeated or cyclic include names both files and the line",
     CHECK(e.line() == 2);
     CHECK(e.element() == "include");
     CHECK(e.attribute() == "file");
-    CHECK_THAT(e.problem(), Catch::Contains("cannot include 'a.xml'") &&
-                                Catch::Contains(folder.at("a.xml")));
+    CHECK_THAT(e.problem(),
+               Catch::Contains("cannot include 'a.xml'") && Catch::Contains(folder.at("a.xml")));
   }
   SECTION("a nested path written from the including file's folder") {
     folder.write("a.xml", "<mujoco>\n  <include file=\"b.xml\"/>\n</mujoco>\n");
@@ -157,14 +159,14 @@ TEST_CASE("a missing, repeated or cyclic include names both files and the line",
                                 Catch::Contains(folder.at("sub/c.xml") + "' exists beside"));
   }
   SECTION("a cycle") {
-    const std::string a = folder.write("a.xml", "<mujoco>\n  <include file=\"b.xml\"/>\n</mujoco>\n");
-    const std::string b = folder.write(
-        "b.xml", "<mujoco>\n  <worldbody/>\n  <include file=\"a.xml\"/>\n</mujoco>\n");
+    const std::string a =
+        folder.write("a.xml", "<mujoco>\n  <include file=\"b.xml\"/>\n</mujoco>\n");
+    const std::string b =
+        folder.write("b.xml", "<mujoco>\n  <worldbody/>\n  <include file=\"a.xml\"/>\n</mujoco>\n");
     const lever::mjcf::ParseError e = load_error(scene);
     CHECK(e.file() == b);
     CHECK(e.line() == 3);
-    CHECK_THAT(e.problem(),
-               Catch::Contains("'" + a + "' is already included, at " + scene + ":2"));
+    CHECK_THAT(e.problem(), Catch::Contains("'" + a + "' is already included, at " + scene + ":2"));
   }
   SECTION("the main file itself") {
     folder.write("a.xml", "<mujoco>\n  <include file=\"scene.xml\"/>\n</mujoco>\n");
@@ -188,8 +190,9 @@ TEST_CASE("a missing, repeated or cyclic include names both files and the line",
     CHECK(e.line() == 2);
     CHECK_THAT(e.problem(), Catch::Contains("has no elements inside its root element <mujoco>"));
     folder.write("a.xml", "<mujoco><worldbody/></mujoco>\n");
-    folder.write("kids.xml",
-                 "<mujoco>\n  <include file=\"a.xml\">\n    <worldbody/>\n  </include>\n</mujoco>\n");
+    folder.write(
+        "kids.xml",
+        "<mujoco>\n  <include file=\"a.xml\">\n    <worldbody/>\n  </include>\n</mujoco>\n");
     e = load_error(folder.at("kids.xml"));
     CHECK(e.line() == 3);
     CHECK_THAT(e.problem(), Catch::Contains("an <include> cannot have children"));
@@ -204,7 +207,8 @@ TEST_CASE("a model with includes is not written back", "[mjcf][include]") {
   const IncludeFolder folder("write");
   folder.write("part.xml", R"(<mujoco><worldbody><body name="b"><joint/><geom size="0.1"/></body>
   </worldbody></mujoco>)");
-  const std::string scene = folder.write("scene.xml", R"(<mujoco><include file="part.xml"/></mujoco>)");
+  const std::string scene =
+      folder.write("scene.xml", R"(<mujoco><include file="part.xml"/></mujoco>)");
   const lever::Model m = lever::mjcf::load_file(scene);
   CHECK(m.nbody == 2);
   CHECK_THROWS_WITH(lever::mjcf::write_file(scene, m, folder.at("out.xml")),
@@ -227,9 +231,9 @@ TEST_CASE("the nesting limit counts included elements at their include's level",
   const auto [outer_open, outer_close] = bodies(60);
   const auto [inner_open, inner_close] = bodies(60);
   folder.write("inner.xml", "<mujoco>" + inner_open + inner_close + "</mujoco>\n");
-  const std::string scene = folder.write(
-      "scene.xml", "<mujoco><worldbody>" + outer_open + "\n<include file=\"inner.xml\"/>" +
-                       outer_close + "</worldbody></mujoco>\n");
+  const std::string scene = folder.write("scene.xml", "<mujoco><worldbody>" + outer_open +
+                                                          "\n<include file=\"inner.xml\"/>" +
+                                                          outer_close + "</worldbody></mujoco>\n");
   const lever::mjcf::ParseError e = load_error(scene);
   CHECK(e.file() == scene);
   CHECK(e.line() == 2);
