@@ -325,7 +325,18 @@ std::string past_text(const StopRest& s) {
          ", where the limit already acts)";
 }
 
-void print_stop(std::ostream& out, const StopRest& s) {
+// what ctrl = 0 means in the runs: zero torque for motors, a target of 0 for position servos
+std::string zero_ctrl_text(const SoftStops& st) {
+  return st.servo_held_joints.empty() ? "zero torque" : "ctrl 0";
+}
+
+// whether a position servo holds `joint` at its target in the runs
+bool servo_held(const SoftStops& st, const std::string& joint) {
+  return std::any_of(st.servo_held_joints.begin(), st.servo_held_joints.end(),
+                     [&](const std::string& held) { return held.rfind(joint + " (", 0) == 0; });
+}
+
+void print_stop(std::ostream& out, const StopRest& s, const SoftStops& st) {
   const char* unit = position_unit(s.hinge);
   out << "  " << s.joint << ", " << (s.upper ? "upper" : "lower") << " stop " << general(s.stop)
       << " " << unit;
@@ -335,14 +346,17 @@ void print_stop(std::ostream& out, const StopRest& s) {
   }
   out << (s.from_qpos0 ? ", falling from qpos0 (the lesson's run):\n"
                        : ", from " + pose_text(s.start) + ":\n");
-  out << "    after " << fixed(s.time, 1) << " s with zero torque";
+  out << "    after " << fixed(s.time, 1) << " s with " << zero_ctrl_text(st);
   if (s.warnings > 0) out << " (" << s.warnings << " engine warnings: a state was reset)";
   if (!s.settled) {
     out << " (did not settle: max |qvel| " << fmt::sci(s.max_qvel) << " at the end)";
   }
   if (!s.rests_on_stop) {
     out << ": " << s.joint << " at " << fixed(s.q, 5) << " " << unit
-        << ", off the stop: with the other joints free, gravity does not hold it there\n";
+        << (servo_held(st, s.joint)
+                ? ", off the stop: its position servo holds it towards its target, 0 " +
+                      std::string(unit) + "\n"
+                : ", off the stop: with the other joints free, gravity does not hold it there\n");
     return;
   }
   out << ": " << s.joint << " at " << fixed(s.q, 5) << " " << unit << ", stop at "
@@ -358,11 +372,22 @@ void print_stop(std::ostream& out, const StopRest& s) {
 }
 
 void print_stops(std::ostream& out, const SoftStops& st) {
-  out << "(5) joint stops are soft constraints (zero torque: relaxed, polished by a static solve, "
-         "then run until every |qvel| < "
+  out << "(5) joint stops are soft constraints (" << zero_ctrl_text(st)
+      << ": relaxed, polished by a static solve, then run until every |qvel| < "
       << general(st.settle_qvel) << " for " << general(st.settle_time) << " s):\n";
+  if (!st.servo_held_joints.empty()) {
+    // a servo's ctrl is its target position: 0 holds the joint at 0, it does not let it go
+    std::string joints;
+    for (const std::string& j : st.servo_held_joints) {
+      if (!joints.empty()) joints += ", ";
+      joints += j;
+    }
+    out << "  ctrl 0 is not zero torque here: a position servo's ctrl is its target, so ctrl 0 "
+           "is a target of 0 and the servos pull their joints towards it: "
+        << joints << "\n";
+  }
   if (st.stops.empty()) out << "  no joint is limited\n";
-  for (const StopRest& s : st.stops) print_stop(out, s);
+  for (const StopRest& s : st.stops) print_stop(out, s, st);
 }
 
 // ---- (6) ---------------------------------------------------------------------------------------

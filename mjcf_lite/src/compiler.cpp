@@ -63,10 +63,17 @@ struct CompiledSite {
   Quat quat{1, 0, 0, 0};
 };
 
+// where an element is written, for messages that name several: its line, with its file when it
+// comes from an included one
+std::string line_text(const Place& at) {
+  return at.file.empty() ? std::to_string(at.line) : at.file + ":" + std::to_string(at.line);
+}
+
 struct CompiledMotor {
   const MotorSpec* spec;
   int joint = -1;
   bool ctrllimited = false, forcelimited = false;
+  std::array<double, 2> ctrlrange{};  ///< as written, or from the joint's range (inheritrange)
 };
 
 // a <contact><pair>, its geoms ordered by body as MuJoCo orders them
@@ -410,7 +417,7 @@ class Compiler {
     const std::string why = geom + " must give body '" + body_name + "' its mass and inertia";
     const std::string advice = ". Fix that, or add an <inertial> to body '" + body_name +
                                "' (then lever does not read the mesh)";
-    const std::string mesh = "mesh '" + at.name + "' (line " + std::to_string(at.line) + ")";
+    const std::string mesh = "mesh '" + at.name + "' (line " + line_text(at) + ")";
     if (file.empty()) {
       fail(g.at, "mesh",
            why + ", but " + mesh +
@@ -645,12 +652,6 @@ class Compiler {
 
   CompiledMotor compile_motor(const MotorSpec& m) {
     CompiledMotor out{&m};
-    out.forcelimited = resolve_limited(m.forcelimited, m.forcerange, c_.autolimits, m.at,
-                                       "forcerange", "forcelimited");
-    out.ctrllimited = resolve_limited(m.ctrllimited, m.ctrlrange, c_.autolimits, m.at, "ctrlrange",
-                                      "ctrllimited");
-    check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
-    check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, m.ctrlrange);
     if (m.joint.empty()) fail(m.at, "joint", "attribute 'joint' is empty: name the joint to drive");
     std::vector<std::string_view> names;
     for (size_t j = 0; j < joints_.size(); ++j) {
@@ -660,7 +661,34 @@ class Compiler {
     if (out.joint < 0) {
       fail(m.at, "joint", "unknown joint '" + m.joint + "'" + did_you_mean(m.joint, names));
     }
+    out.ctrlrange = inherited_ctrlrange(m, joints_[static_cast<size_t>(out.joint)]);
+    out.forcelimited = resolve_limited(m.forcelimited, m.forcerange, c_.autolimits, m.at,
+                                       "forcerange", "forcelimited");
+    out.ctrllimited = resolve_limited(m.ctrllimited, out.ctrlrange, c_.autolimits, m.at,
+                                      "ctrlrange", "ctrllimited");
+    check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
+    check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, out.ctrlrange);
     return out;
+  }
+
+  // MuJoCo 3's inheritrange (mjCActuator::Compile): a position servo (fixed gain, affine bias,
+  // gainprm[0] = -biasprm[1]) with inheritrange > 0 takes as ctrlrange its joint's compiled range
+  // (radians if limited) about its middle, scaled by inheritrange; other actuators ignore it
+  static std::array<double, 2> inherited_ctrlrange(const MotorSpec& m, const CompiledJoint& j) {
+    const bool servo = m.gaintype == GainType::kFixed && m.biastype == BiasType::kAffine &&
+                       m.gainprm[0] == -m.biasprm[1];
+    if (!(m.inheritrange > 0) || !servo) return m.ctrlrange;
+    if (j.spec->type != JointType::kHinge && j.spec->type != JointType::kSlide) {
+      fail(m.at, "inheritrange",
+           "inheritrange needs a hinge or slide joint; joint '" + j.spec->at.name + "' is not one");
+    }
+    if (j.range[0] == j.range[1]) {
+      fail(m.at, "inheritrange",
+           "inheritrange takes the joint's range, and joint '" + j.spec->at.name + "' has none");
+    }
+    const double middle = 0.5 * (j.range[1] + j.range[0]);
+    const double half = 0.5 * (j.range[1] - j.range[0]) * m.inheritrange;
+    return {middle - half, middle + half};
   }
 
   static void check_range(const Place& at, const std::string& attribute, const std::string& flag,
@@ -881,9 +909,8 @@ class Compiler {
       const GeomSpec& gb = *geoms_[static_cast<size_t>(b)].spec;
       const std::string ta = type_name(ga.type), tb = type_name(gb.type);
       warnings_.push_back("geoms " + label(a) + " and " + label(b) + " (" + ta + ", " + tb +
-                          "; lines " + std::to_string(ga.at.line) + " and " +
-                          std::to_string(gb.at.line) + ") can collide and lever has no " + ta +
-                          "-" + tb +
+                          "; lines " + line_text(ga.at) + " and " + line_text(gb.at) +
+                          ") can collide and lever has no " + ta + "-" + tb +
                           " contact: it skips them, and warns whenever they come near each "
                           "other; " +
                           advice_for(ga.type, gb.type));
@@ -1148,7 +1175,7 @@ void Compiler::assemble_motors(Model& m) const {
     m.actuator_gear[a] = s.gear;
     m.actuator_ctrllimited[a] = c.ctrllimited;
     m.actuator_forcelimited[a] = c.forcelimited;
-    m.actuator_ctrlrange[a] = s.ctrlrange;
+    m.actuator_ctrlrange[a] = c.ctrlrange;
     m.actuator_forcerange[a] = s.forcerange;
   }
 }

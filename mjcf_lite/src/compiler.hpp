@@ -18,6 +18,8 @@ struct Locations {
   std::vector<Place> body, joint, site, actuator;
   /// per body, its <inertial> element (Place::element -1 where it has none)
   std::vector<Place> inertial;
+  /// the files the model file includes (<include>), in the order read
+  std::vector<std::string> included_files;
 };
 
 /// Compile a parsed model; throws Problem for bad input. set_const() is not called here.

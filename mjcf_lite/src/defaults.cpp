@@ -21,10 +21,11 @@ void check_one_orientation(const Element& e) {
 }
 
 // lever refuses values that 2.2.2 accepts but that cannot describe a real machine
-void check_physical(const Element& e, const Attribute& a, const Value& v) {
+void check_physical(const Element& e, const Attribute& a, const AttributeRule& r, const Value& v) {
   double sum_of_squares = 0;
   for (const double x : v.numbers) sum_of_squares += x * x;
-  if (a.name == "quat" && sum_of_squares < 1e-14) {
+  // only a quaternion read as numbers: a visual-only element (a camera) keeps its text
+  if (a.name == "quat" && r.kind == ValueKind::kReal && sum_of_squares < 1e-14) {
     // mujoco 2.2.2 keeps such a quaternion unnormalized (a zero quat then means "world frame")
     fail(e.place(a), a.name, "quaternion '" + a.value + "' has (nearly) zero length");
   }
@@ -33,7 +34,8 @@ void check_physical(const Element& e, const Attribute& a, const Value& v) {
   // a negative servo gain pushes away from its target: MuJoCo 2.2.2 loads it, lever refuses it
   const bool must_not_be_negative =
       (a.name == "mass" || a.name == "density" || a.name == "diaginertia" || a.name == "armature" ||
-       a.name == "damping" || a.name == "stiffness" || a.name == "kp" || a.name == "kv");
+       a.name == "damping" || a.name == "stiffness" || a.name == "kp" || a.name == "kv" ||
+       a.name == "inheritrange");
   for (const double x : v.numbers) {
     if (must_not_be_negative && x < 0) {
       fail(e.place(a), a.name,
@@ -65,7 +67,7 @@ void AttrSet::apply(const Element& e, const ElementRule& rule) {
     if (!r) continue;  // the reader has already refused it
     check_refused_value(e, a);
     Value v = parse_value(e, a, *r);
-    check_physical(e, a, v);
+    check_physical(e, a, *r, v);
     if (r->partial) {
       // the unwritten tail keeps the inherited numbers, or the built-in ones
       const Value* old = find(a.name);
@@ -110,6 +112,22 @@ void apply_actuator(AttrSet& set, const Element& e, const ElementRule& rule) {
   set.erase(gain_name);  // held as gainprm[0] from here on, for later elements of the class too
   std::vector<double> bias(kBiasParameters, 0.0);
   bias[tag == "position" ? 1 : 2] = -gain[0];
+  if (tag == "position") {
+    // MuJoCo 3's kv: biasprm[2] = -kv. 2.2.2 clears the bias of a <position> (and MuJoCo 3 keeps
+    // the class's), so the class's kv is held under its own name to reach its elements
+    if (const Value* kv = set.find("kv")) set.set(kPositionKv, *kv);
+    set.erase("kv");
+    if (const Value* kv = set.find(kPositionKv)) bias[2] = -kv->numbers[0];
+    const Value* inherit = set.find("inheritrange");
+    const Value* ctrlrange = set.find("ctrlrange");
+    if (inherit && inherit->numbers[0] > 0 && ctrlrange &&
+        (ctrlrange->numbers[0] != 0 || ctrlrange->numbers[1] != 0)) {
+      const Attribute* written = e.find("inheritrange");
+      fail(written ? e.place(*written) : e.place(), "inheritrange",
+           "ctrlrange and inheritrange cannot both be defined (inheritrange sets ctrlrange from "
+           "the joint's range)");
+    }
+  }
   set.set("gainprm", Value{gain, "", 0});
   set.set("biasprm", Value{bias, "", 0});
   set.set("biastype", word_value("affine"));

@@ -37,9 +37,16 @@ class AttrSet {
 /// in <actuator>) over `set`, as MuJoCo 2.2.2's reader does: its attributes first, then what the
 /// shortcut implies in <general>'s terms. A motor sets gainprm[0] = 1, gain fixed, bias none; a
 /// position servo clears biasprm and sets gainprm[0] = kp (if written) and biasprm[1] = -kp, bias
-/// affine; a velocity servo the same with kv and biasprm[2]. So every kind shares one prototype
-/// per class, and a <general> of a class whose default is a <position> is a position servo.
+/// affine; a velocity servo the same with kv and biasprm[2]. MuJoCo 3's kv and inheritrange on a
+/// position servo: biasprm[2] = -kv (its own kv, else its class's); inheritrange is kept for the
+/// compiler, and refused beside a ctrlrange as MuJoCo 3 refuses it. So every kind shares one
+/// prototype per class, and a <general> of a class whose default is a <position> is a position
+/// servo.
 void apply_actuator(AttrSet& set, const Element& e, const ElementRule& rule);
+
+/// Where a position servo's kv is held in an actuator's AttrSet (kv alone is a velocity servo's
+/// gain, and a class has one actuator prototype for every kind).
+inline constexpr const char* kPositionKv = "position kv";
 
 /// One default class: a prototype per element kind (one for every actuator kind).
 struct DefaultClass {

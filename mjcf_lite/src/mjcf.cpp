@@ -48,14 +48,16 @@ Model load_located(const std::string& xml, const std::string& filename, const Lo
   Model model;
   detail::Locations where;
   try {
-    const detail::Element root = detail::read_document(xml);
+    const detail::Element root = detail::read_document(xml, filename, &where.included_files);
     detail::ModelSpec spec = detail::parse_model(root, options.infer_inertia_from_geoms);
     // mesh files are found from the model's folder, as MuJoCo does (mjuu_getfiledir)
     const size_t slash = filename.find_last_of("/\\");
     spec.model_dir = slash == std::string::npos ? "" : filename.substr(0, slash + 1);
     model = detail::compile(spec, &where);
   } catch (const detail::Problem& p) {
-    throw ParseError(filename, p.where.line, p.where.tag, p.attribute, p.message, p.where.name);
+    // a problem in an included file is reported in that file
+    const std::string& file = p.where.file.empty() ? filename : p.where.file;
+    throw ParseError(file, p.where.line, p.where.tag, p.attribute, p.message, p.where.name);
   }
   try {
     set_const(model);
@@ -68,7 +70,8 @@ Model load_located(const std::string& xml, const std::string& filename, const Lo
     if (e.object() == "actuator") places = &where.actuator;
     if (places && e.index() >= 0 && e.index() < static_cast<int>(places->size())) {
       const detail::Place& at = (*places)[static_cast<size_t>(e.index())];
-      throw ParseError(filename, at.line, at.tag, "", e.what(), at.name);
+      throw ParseError(at.file.empty() ? filename : at.file, at.line, at.tag, "", e.what(),
+                       at.name);
     }
     throw ParseError(filename, 0, "", "",
                      std::string("the compiled model is invalid: ") + e.what());

@@ -180,6 +180,7 @@ MotorSpec read_actuator(const Element& e, const DefaultClasses& classes) {
   m.ctrlrange = f.array<2>("ctrlrange");
   m.forcerange = f.array<2>("forcerange");
   m.ctrllimited = f.limited("ctrllimited");
+  m.inheritrange = f.real("inheritrange");
   m.forcelimited = f.limited("forcelimited");
   return m;
 }

@@ -16,6 +16,8 @@ struct Place {
   /// the element's index in document order (the root element 0), for writing a model back
   /// (lever/mjcf/write.hpp); -1 where no element applies
   int element = -1;
+  /// the file it was written in, for an element of an included file; "" for the model file
+  std::string file{};
 };
 
 /// One bad input, located. `attribute` is "" when the element as a whole is at fault.

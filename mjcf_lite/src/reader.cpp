@@ -5,6 +5,7 @@
 #include <map>
 #include <string>
 
+#include "include.hpp"
 #include "schema.hpp"
 #include "xml.hpp"
 
@@ -19,7 +20,7 @@ const Attribute* Element::find(std::string_view name) const {
 
 Place Element::place() const {
   const Attribute* n = find("name");
-  return Place{tag, n ? n->value : "", line, index};
+  return Place{tag, n ? n->value : "", line, index, file};
 }
 
 Place Element::place(const Attribute& a) const {
@@ -143,6 +144,13 @@ std::string misplaced(std::string_view tag, std::string_view parent) {
     fail(e.place(), "", "<" + e.tag + "> is valid MJCF but not supported by lever" + kDocs);
   }
   if (is_known_mjcf_element(e.tag)) fail(e.place(), "", misplaced(e.tag, parent));
+  if (is_mujoco3_name(e.tag, "")) {
+    fail(e.place(), "",
+         "<" + e.tag +
+             "> is MuJoCo 3's: MuJoCo 2.2.2, which lever follows, does not have it, and "
+             "neither does lever" +
+             kDocs);
+  }
   std::vector<std::string_view> candidates = child_tags(parent);
   if (parent_rule) {
     for (const std::string_view w : words(parent_rule->unsupported_children)) {
@@ -178,11 +186,12 @@ void check_attribute(const Element& e, const ElementRule& rule, const Attribute&
          "attribute '" + a.name + "' is not allowed on <" + e.tag + "> inside <" +
              std::string(rule.parent) + ">");
   }
-  if (e.tag == "position" && a.name == "kv") {  // models written for MuJoCo 3 use it
+  if (is_mujoco3_name(e.tag, a.name)) {
     fail(e.place(a), a.name,
-         "<position> has no 'kv' in MuJoCo 2.2.2, which lever follows (MuJoCo 3 added it): write "
-         "<general gainprm=\"KP\" biastype=\"affine\" biasprm=\"0 -KP -KV\"/> for a "
-         "position servo with damping");
+         "attribute '" + a.name +
+             "' is MuJoCo 3's: MuJoCo 2.2.2, which lever follows, does not "
+             "have it, and neither does lever" +
+             kDocs);
   }
   std::vector<std::string_view> candidates;
   for (const AttributeRule& r : rule.attributes) candidates.push_back(r.name);
@@ -252,6 +261,8 @@ void check_root(const Element& root) {
   }
 }
 
+}  // namespace
+
 // Limits checked on the raw text, before the XML reader builds a tree of it.
 void check_size(const std::string& xml) {
   if (xml.size() > Limits::kDocumentBytes) {
@@ -270,8 +281,6 @@ void check_size(const std::string& xml) {
   }
 }
 
-}  // namespace
-
 namespace {
 
 // Each element's index in document order (pre-order, the root 0): the same numbering any XML
@@ -284,11 +293,14 @@ int number_elements(Element& e, int next) {
 
 }  // namespace
 
-Element read_document(const std::string& xml) {
+Element read_document(const std::string& xml, const std::string& filename,
+                      std::vector<std::string>* included) {
   check_size(xml);
   Element root = read_xml(xml);
-  number_elements(root, 0);
   check_root(root);
+  const std::vector<std::string> files = expand_includes(root, filename, xml.size());
+  if (included) *included = files;
+  number_elements(root, 0);
   Counts counts;
   validate(root, *find_rule("", "mujoco"), counts);
   return root;

@@ -22,7 +22,8 @@ struct Attribute {
 struct Element {
   std::string tag;
   int line = 0;
-  int index = -1;  ///< position in document order, the root 0 (read_document numbers them)
+  int index = -1;    ///< position in document order, the root 0 (read_document numbers them)
+  std::string file;  ///< the included file it comes from; "" for the model file itself
   std::vector<Attribute> attributes;  ///< in document order
   std::vector<Element> children;      ///< in document order
 
@@ -37,8 +38,14 @@ struct Element {
 /// Deepest element nesting lever accepts (tinyxml2 itself stops at 100).
 constexpr int kMaxDepth = Limits::kDepth;
 
-/// Parse MJCF text and validate its structure; throws Problem.
-Element read_document(const std::string& xml);
+/// Parse MJCF text, replace its <include> elements by the files they name (include.hpp) and
+/// validate its structure; throws Problem. `filename` is the model file's path, from whose folder
+/// included files are found; `included`, if given, receives their paths in the order read.
+Element read_document(const std::string& xml, const std::string& filename = "",
+                      std::vector<std::string>* included = nullptr);
+
+/// The limits on the raw text of one file (size, tags), checked before it is read into a tree.
+void check_size(const std::string& xml);
 
 /// Character classes of XML text and attribute values (ASCII only, whatever the locale: what the C
 /// locale's isspace and isdigit accept). The XML reader and the value parser share them.

@@ -217,6 +217,18 @@ std::vector<AttributeRule> shortcut_class_attributes(std::string_view gain_name,
                real(gain_name, 1, "1", meaning)});
 }
 
+// <position>'s attributes beside kp that MuJoCo 3 added (3.1.0: kv; 3.1.3: inheritrange), with
+// MuJoCo 3's meaning; MuJoCo 2.2.2 refuses both
+std::vector<AttributeRule> position_class_attributes() {
+  return join(shortcut_class_attributes("kp", "position gain, N m/rad or N/m"),
+              {real("kv", 1, "",
+                    "MuJoCo 3's: damping, N m s/rad or N s/m: biasprm[2] = -kv (unset: the "
+                    "class's kv, else 0); must not be negative"),
+               real("inheritrange", 1, "0",
+                    "MuJoCo 3's: if positive, ctrlrange is the joint's range about its middle, "
+                    "scaled by this factor (the joint needs a range; no ctrlrange with it)")});
+}
+
 std::vector<AttributeRule> actuator_wiring(std::string_view what) {
   return {text("name", "", what), text("class", "", "default class (else the top-level class)"),
           required(text("joint", "", "the joint it drives"))};
@@ -312,9 +324,12 @@ std::vector<ElementRule> build() {
                            "noslip solver iterations: lever has no noslip solver, so only 0"),
                    real("noslip_tolerance", 1, "1e-6",
                         "noslip solver tolerance (kept; no effect without noslip iterations)"),
+                   keyword("jacobian", "auto", "dense sparse auto", "",
+                           "MuJoCo's matrix layout (dense, sparse, or by size): lever's numbers "
+                           "are the same for each, and it keeps its own layout"),
                },
                "apirate mpr_tolerance wind magnetic density viscosity o_margin o_solref o_solimp "
-               "collision jacobian mpr_iterations",
+               "collision mpr_iterations",
                "", "simulation options"});
   s.push_back({"flag", "option", '?',
                {
@@ -370,8 +385,7 @@ std::vector<ElementRule> build() {
                "cranklength user", "", "actuator defaults of the class, as a motor"});
   s.push_back({"general", "default", '?', general_class_attributes(), "cranklength user actlimited "
                "actrange", "", "actuator defaults of the class"});
-  s.push_back({"position", "default", '?',
-               shortcut_class_attributes("kp", "position gain, N m/rad or N/m"), "cranklength user",
+  s.push_back({"position", "default", '?', position_class_attributes(), "cranklength user",
                "", "actuator defaults of the class, as a position servo"});
   s.push_back({"velocity", "default", '?',
                shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m"),
@@ -487,9 +501,9 @@ std::vector<ElementRule> build() {
                "an actuator: force = gain * ctrl + bias (fixed or affine gain, affine bias)"});
   s.push_back({"position", "actuator", '*',
                join(actuator_wiring("actuator name"),
-                    shortcut_class_attributes("kp", "position gain, N m/rad or N/m")),
+                    position_class_attributes()),
                kUnsupportedActuatorAttributes, "",
-               "a position servo: force = kp (ctrl - q) (MuJoCo 2.2.2's <position> has no kv)"});
+               "a position servo: force = kp (ctrl - q) - kv qd (kv is MuJoCo 3's)"});
   s.push_back({"velocity", "actuator", '*',
                join(actuator_wiring("actuator name"),
                     shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m")),
@@ -511,7 +525,34 @@ const char* const kAllMjcfElements =
     "framexaxis frameyaxis framezaxis framelinvel frameangvel framelinacc frameangacc subtreecom "
     "subtreelinvel subtreeangmom clock user keyframe key include";
 
+// names MuJoCo 3 added that lever does not have, per element ("" lists elements)
+struct Mujoco3Names {
+  std::string_view tag, names;
+};
+const Mujoco3Names kMujoco3Names[] = {
+    {"", "replicate frame plugin extension attach flexcomp flex deformable model instance"},
+    {"compiler", "assetdir alignfree saveinertial"},
+    {"option",
+     "ls_iterations ls_tolerance ccd_iterations ccd_tolerance sdf_iterations "
+     "sdf_initpoints actuatorgroupdisable"},
+    {"flag", "eulerdamp nativeccd island midphase autoreset"},
+    {"joint", "actuatorfrcrange actuatorfrclimited actuatorgravcomp"},
+    {"body", "gravcomp"},
+    {"position", "dampratio timeconst"},
+    {"general", "actearly actdim"},
+};
+
 }  // namespace
+
+bool is_mujoco3_name(std::string_view tag, std::string_view attribute) {
+  for (const Mujoco3Names& n : kMujoco3Names) {
+    if (attribute.empty() ? (n.tag.empty() && has_word(n.names, tag))
+                          : (n.tag == tag && has_word(n.names, attribute))) {
+      return true;
+    }
+  }
+  return false;
+}
 
 const std::vector<ElementRule>& schema() {
   static const std::vector<ElementRule> table = build();
@@ -606,6 +647,26 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
 * Refused because lever does not have them: `option/solver` `PGS` and `CG` (lever's solver is
   Newton, MuJoCo's default), `option/noslip_iterations` above 0 (no noslip solver),
   `option/flag override="enable"` (no contact override), `geom/type="hfield"`.
+* `<include file="..."/>` anywhere: the included file's root element (of any tag; its
+  attributes are ignored) is dropped and its children take the `<include>`'s place, their own
+  includes expanded in turn, as MuJoCo 2.2.2 does before it reads a model. Paths are relative to
+  the folder of the main model file, in nested includes too (2.2.2 never changes that folder; an
+  error says so when the path was meant from the including file's folder), and
+  `compiler/meshdir` applies to the merged model, relative to the main file's folder. A file
+  included twice (so a cycle), an `<include>` with children or an included file with nothing in
+  its root is an error, as in 2.2.2; an error inside an included file names that file and its
+  line. (`compiler/assetdir` is MuJoCo 3's, and refused.)
+* MuJoCo 3's names that real model files carry, with MuJoCo 3's meaning (MuJoCo 2.2.2 refuses
+  them): `<position kv>` (biasprm[2] = -kv; an element without kv takes its class's kv: lever
+  clears the rest of a `<position>`'s biasprm as 2.2.2 does, where MuJoCo 3 keeps its class's, so
+  the two differ only for a `<position>` without kv whose class's actuator default leaves
+  biasprm[0] or biasprm[2] nonzero: a `<velocity>`, or a `<general>` that sets them) and `<position inheritrange>` (ctrlrange = the joint's compiled range about its middle,
+  scaled; refused beside a ctrlrange or on a joint without a range, as MuJoCo 3 refuses it). Other
+  names MuJoCo 3 added (`implicitfast`, `dampratio`, `timeconst`, `actearly`, `gravcomp`,
+  `actuatorfrcrange`, `assetdir`, `<replicate>`, `<frame>`, `<plugin>`, ...) are refused by name.
+* `option/jacobian` (`dense`, `sparse`, `auto`) is accepted: it chooses MuJoCo's matrix layout,
+  not the numbers, which are the same in every layout; lever keeps its own layout whatever it
+  says.
 * Kept, changing no dynamics: `<asset>` (`<mesh>`, `<material>`, `<texture>`), `<light>`,
   `<camera>`, `<visual>`, `<statistic>`, `compiler/meshdir` and `texturedir`, and geom
   `material`, `rgba`, `group`. Their names are in `Model::visual`.

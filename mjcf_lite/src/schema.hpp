@@ -65,6 +65,10 @@ bool has_word(std::string_view list, std::string_view word);
 /// Every element tag MJCF 2.2.2 knows (supported or not), for telling typos from valid MJCF.
 bool is_known_mjcf_element(std::string_view tag);
 
+/// Whether MuJoCo 3 added the element `tag` (attribute "") or the attribute of `tag`: names that
+/// models written for MuJoCo 3 carry, which lever refuses by name (those it has are in the table).
+bool is_mujoco3_name(std::string_view tag, std::string_view attribute);
+
 /// The Markdown description of the subset (docs/mjcf-subset.md).
 std::string markdown();
 

@@ -99,6 +99,9 @@ struct MotorSpec {
   Vec6 gear{};
   std::array<double, 2> ctrlrange{}, forcerange{};
   Limited ctrllimited = Limited::kAuto, forcelimited = Limited::kAuto;
+  /// MuJoCo 3's: if positive, a position servo's ctrlrange is its joint's range about the middle,
+  /// scaled by it (0: ctrlrange as written)
+  double inheritrange = 0;
 };
 
 /// A <key>: what it writes, before the sizes are known (compiler.cpp checks them).

@@ -282,6 +282,13 @@ std::string write_string(const std::string& source, const Model& model,
                          const std::string& filename) {
   detail::Locations where;
   const Model file = detail::load_located(source, filename, {}, &where);
+  if (!where.included_files.empty()) {
+    // the elements are found by their index in the one file written: included ones are elsewhere
+    throw Error(filename + ": the model includes other files (" + where.included_files.front() +
+                (where.included_files.size() > 1 ? ", ..." : "") +
+                "), and writing a model back writes one file; put the included elements into the "
+                "model file to write it.");
+  }
   const std::string differs = unwritable_difference(file, model);
   if (!differs.empty()) {
     throw Error(filename + ": the model differs from the file in " + differs +

@@ -93,6 +93,35 @@ TEST_CASE("check: a motor that cannot hold its own arm is a finding (exit 1)", "
   std::filesystem::remove(path);
 }
 
+TEST_CASE("check: with position servos, ctrl 0 in the stop runs is a target of 0, not zero torque",
+          "[check]") {
+  // arm2 with its shoulder motor made a position servo: its ctrl is a target angle
+  std::string xml = read_text(model_path("models/arm2.xml"));
+  const std::string from = "<motor name=\"shoulder\" joint=\"shoulder\" ctrlrange=\"-25 25\"/>";
+  REQUIRE(xml.find(from) != std::string::npos);
+  xml.replace(xml.find(from), from.size(),
+              "<position name=\"shoulder\" joint=\"shoulder\" kp=\"200\" ctrlrange=\"-2 2\"/>");
+  const std::string path = temporary_file("lever_check_shoulder_servo.xml", xml);
+  const Run run = run_lever("check " + quoted(path));
+  INFO(run.out);
+  const size_t at = run.out.find("\n(5) ");
+  const size_t end = run.out.find("\n(6) ");
+  REQUIRE(at != std::string::npos);
+  const std::string section = run.out.substr(at, end - at);
+  CHECK(section.find("(zero torque") == std::string::npos);
+  CHECK(section.find("with zero torque") == std::string::npos);
+  CHECK(section.find("(ctrl 0: relaxed") != std::string::npos);
+  CHECK(section.find("ctrl 0 is a target of 0") != std::string::npos);
+  CHECK(section.find(": shoulder (0 rad)\n") != std::string::npos);  // the elbow is a motor
+  CHECK(section.find("with ctrl 0") != std::string::npos);
+  std::filesystem::remove(path);
+  // arm2 as it is, motors only: zero torque
+  const Run motors = run_lever("check " + quoted(model_path("models/arm2.xml")));
+  CHECK(motors.out.find("(5) joint stops are soft constraints (zero torque: ") !=
+        std::string::npos);
+  CHECK(motors.out.find("ctrl 0 is not zero torque") == std::string::npos);
+}
+
 TEST_CASE("check: a model that cannot be loaded exits 2 with the loader's message", "[check]") {
   const std::string path = temporary_file(
       "lever_check_bad.xml",

@@ -373,6 +373,12 @@ const Case kCases[] = {
   <size nconmax="30" njmax="-1" nstack="100000"/>
   <worldbody><body name="b"><joint/><geom size="0.1"/></body></worldbody>
 </mujoco>)"},
+  // MuJoCo's matrix layout, which changes none of the compiled numbers
+  {"option-jacobian", R"(<mujoco>
+  <option jacobian="sparse"/>
+  <option jacobian="dense"/>
+  <worldbody><body name="b"><joint/><geom size="0.1"/></body></worldbody>
+</mujoco>)"},
 };
 // clang-format on
 

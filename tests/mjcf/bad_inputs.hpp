@@ -551,7 +551,7 @@ inline const BadInput kBadInputs[] = {
   </actuator>
 </mujoco>)", 9, "position", "kp", "must not be negative", MuJoCo::kAccepts,
    "a negative servo gain pushes away from its target: MuJoCo 2.2.2 loads it without a word"},
-  {"position-kv", R"(<mujoco>
+  {"negative-position-kv", R"(<mujoco>
   <worldbody>
     <body name="b">
       <joint name="j"/>
@@ -559,9 +559,64 @@ inline const BadInput kBadInputs[] = {
     </body>
   </worldbody>
   <actuator>
-    <position joint="j" kp="10" kv="1"/>
+    <position joint="j" kp="10" kv="-1"/>
   </actuator>
-</mujoco>)", 9, "position", "kv", "MuJoCo 3 added it", MuJoCo::kRejects, ""},
+</mujoco>)", 9, "position", "kv", "must not be negative", MuJoCo::kRejects,
+   "MuJoCo 3's kv (2.2.2 has none); MuJoCo 3 refuses a negative one too"},
+  {"inheritrange-and-ctrlrange", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j" range="-1 1"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <position joint="j" ctrlrange="-1 1"
+              inheritrange="1"/>
+  </actuator>
+</mujoco>)", 10, "position", "inheritrange", "ctrlrange and inheritrange cannot both be defined",
+   MuJoCo::kRejects, "MuJoCo 3's inheritrange (2.2.2 has none); MuJoCo 3 refuses it so too"},
+  {"inheritrange-without-joint-range", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <position joint="j" inheritrange="1"/>
+  </actuator>
+</mujoco>)", 9, "position", "inheritrange", "joint 'j' has none", MuJoCo::kRejects,
+   "MuJoCo 3's inheritrange (2.2.2 has none); MuJoCo 3 refuses it so too"},
+  {"mujoco3-dampratio", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <position joint="j" dampratio="1"/>
+  </actuator>
+</mujoco>)", 9, "position", "dampratio", "is MuJoCo 3's: MuJoCo 2.2.2, which lever follows",
+   MuJoCo::kRejects, ""},
+  {"mujoco3-assetdir", R"(<mujoco>
+  <compiler assetdir="assets"/>
+</mujoco>)", 2, "compiler", "assetdir", "is MuJoCo 3's: MuJoCo 2.2.2, which lever follows",
+   MuJoCo::kRejects, ""},
+  {"mujoco3-gravcomp", R"(<mujoco>
+  <worldbody>
+    <body name="b" gravcomp="1">
+      <joint/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+</mujoco>)", 3, "body", "gravcomp", "is MuJoCo 3's", MuJoCo::kRejects, ""},
+  {"mujoco3-replicate", R"(<mujoco>
+  <worldbody>
+    <replicate count="2"/>
+  </worldbody>
+</mujoco>)", 3, "replicate", "", "<replicate> is MuJoCo 3's", MuJoCo::kRejects, ""},
   {"negative-kv-in-default", R"(<mujoco>
   <default>
     <velocity kv="-1"/>

@@ -396,3 +396,106 @@ TEST_CASE("set_const names a contact array a model built by hand left empty", "[
   CHECK_THROWS_WITH(lever::set_const(m), Catch::Contains("Model::geom_friction holds 0 numbers") &&
                                              Catch::Contains("must fill it too"));
 }
+
+TEST_CASE("a camera's quat is kept as written, never refused as zero", "[mjcf]") {
+  // visual only: lever keeps the camera's attributes as text, and a unit quaternion is not zero
+  const Model model = lever::mjcf::load_string(R"(<mujoco>
+  <default><camera quat="0 1 0 0"/></default>
+  <worldbody>
+    <camera name="world_view" quat="1 0 0 0"/>
+    <body name="b">
+      <joint/>
+      <geom size="0.1"/>
+      <camera name="wrist" pos="0 0 0.1" quat="0.7071068 0 0.7071068 0"/>
+    </body>
+  </worldbody>
+</mujoco>)");
+  CHECK(model.visual.camera_name == std::vector<std::string>{"world_view", "wrist"});
+  // the geometry's quaternions are still checked
+  CHECK_THROWS_WITH(body_with(R"(<site quat="0 0 0 0"/>)"),
+                    Catch::Contains("quaternion '0 0 0 0' has (nearly) zero length"));
+}
+
+TEST_CASE("MuJoCo 3's position kv: biasprm[2] = -kv, the class's kv inherited", "[mjcf]") {
+  const Model m = lever::mjcf::load_string(R"(<mujoco>
+  <default>
+    <position kp="10" kv="2"/>
+    <default class="stiff">
+      <position kp="100"/>
+    </default>
+    <default class="plain">
+      <position kp="5" kv="0"/>
+    </default>
+  </default>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <position joint="j" kp="50" kv="3"/>
+    <position joint="j"/>
+    <position joint="j" class="stiff"/>
+    <general joint="j" class="stiff"/>
+    <position joint="j" class="plain"/>
+    <velocity joint="j" kv="7"/>
+  </actuator>
+</mujoco>)");
+  REQUIRE(m.nu == 6);
+  const auto bias = [&](int a) {
+    const auto& b = m.actuator_biasprm[static_cast<size_t>(a)];
+    return std::vector<double>{b[0], b[1], b[2], b[3]};
+  };
+  CHECK(m.actuator_gainprm[0][0] == 50.0);
+  CHECK(bias(0) == std::vector<double>{0, -50, -3, 0});
+  CHECK(bias(1) == std::vector<double>{0, -10, -2, 0});   // the main class's kp and kv
+  CHECK(bias(2) == std::vector<double>{0, -100, -2, 0});  // kv inherited by the nested class
+  CHECK(bias(3) == std::vector<double>{0, -100, -2, 0});  // a <general> takes the prototype
+  CHECK(bias(4) == std::vector<double>{0, -5, 0, 0});     // kv="0": no damping
+  CHECK(m.actuator_kind[0] == lever::ActuatorKind::kPositionServo);
+  // a velocity servo's kv is its gain, untouched by the position's
+  CHECK(m.actuator_gainprm[5][0] == 7.0);
+  CHECK(bias(5) == std::vector<double>{0, 0, -7, 0});
+}
+
+TEST_CASE("MuJoCo 3's inheritrange: ctrlrange from the joint's compiled range", "[mjcf]") {
+  const Model m = lever::mjcf::load_string(R"(<mujoco>
+  <default>
+    <default class="arm"><position kp="10" inheritrange="0.5"/></default>
+  </default>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" range="-30 90"/>
+      <geom size="0.1"/>
+      <body name="c">
+        <joint name="slider" type="slide" range="0 0.1"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <actuator>
+    <position joint="hinge" class="arm"/>
+    <position joint="slider" inheritrange="1"/>
+    <motor joint="hinge" class="arm"/>
+  </actuator>
+</mujoco>)");
+  REQUIRE(m.nu == 3);
+  // the hinge's range in radians (compiler angle="degree"), about its middle, halved
+  const double lo = -30 * (pi / 180.0), hi = 90 * (pi / 180.0);
+  const double middle = 0.5 * (hi + lo), half = 0.5 * (hi - lo) * 0.5;
+  CHECK(m.actuator_ctrlrange[0][0] == middle - half);
+  CHECK(m.actuator_ctrlrange[0][1] == middle + half);
+  CHECK(m.actuator_ctrllimited[0]);
+  CHECK(m.actuator_ctrlrange[1][0] == 0.0);
+  CHECK(m.actuator_ctrlrange[1][1] == 0.1);
+  // a motor ignores the inheritrange of its class (its bias is not a servo's)
+  CHECK(m.actuator_ctrlrange[2][0] == 0.0);
+  CHECK(m.actuator_ctrlrange[2][1] == 0.0);
+  CHECK_FALSE(m.actuator_ctrllimited[2]);
+  // on a ball joint, as MuJoCo 3
+  CHECK_THROWS_WITH(lever::mjcf::load_string(R"(<mujoco><worldbody><body name="b">
+    <joint name="ball" type="ball"/><geom size="0.1"/></body></worldbody>
+    <actuator><position joint="ball" inheritrange="1"/></actuator></mujoco>)"),
+                    Catch::Contains("inheritrange needs a hinge or slide joint"));
+}

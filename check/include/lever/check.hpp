@@ -219,6 +219,10 @@ struct SoftStops {
   double time_bound = 120.0;  ///< s with the model's own damping, at most
   int runs = 0;               ///< simulations (stops that start from the same pose share one)
   std::vector<StopRest> stops;
+  /// the runs hold ctrl at 0, which is zero torque for a motor but a target for a servo: the
+  /// joints whose position servos hold them at a target of 0 in every run, each with the target:
+  /// "shoulder (0 rad)", "slider (0 m)"
+  std::vector<std::string> servo_held_joints;
 };
 
 // ---- (6) clamping -------------------------------------------------------------------------------
