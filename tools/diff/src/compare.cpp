@@ -220,10 +220,9 @@ void compare_contacts(const Twin& t, int k, Report& r) {
 //   efc_*      the limit rows are compared only when they are the same rows (count, type and
 //              joint, reported as nefc and efc_id); efc_J and efc_KBIP are laid out otherwise
 //              (compare_row_layouts);
-//   geom_x*    a mesh geom lever did not read (its file was not needed for mass: size zero in
-//              lever) keeps the frame its element wrote, where MuJoCo moves it to the mesh's
-//              centre and principal axes: such rows are left out (lever draws it, never collides
-//              it);
+//   geom_x*    a mesh geom lever did not read (it gives no mass and cannot collide, or lever
+//              cannot read its file: size zero in lever) keeps the frame its element wrote, where
+//              MuJoCo moves it to the mesh's centre and principal axes: such rows are left out;
 //   efc_state  lever's ConstraintState values are MuJoCo's mjtConstraintState for the states its
 //              rows can have (0 satisfied, 1 quadratic = active, 4 cone): compared as integers.
 void compare_forward_outputs(const Twin& t, int k, Report& r) {
