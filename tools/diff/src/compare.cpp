@@ -364,11 +364,7 @@ void compare_step(Twin& t, const test::State& s, Integrator integrator, int k, R
   t.set_integrator(integrator);
   t.set_state(s);
   step(t.model, t.data);
-  if (t.restart_mujoco_solver) {  // mj_step's forward warm-started from the converged answer
-    t.mujoco_forward();
-    std::copy(t.d->qacc, t.d->qacc + t.m->nv, t.d->qacc_warmstart);
-  }
-  mj_step(t.m.get(), t.d.get());
+  mujoco_step_converged(t.m.get(), t.d.get(), t.restart_mujoco_solver);
   const std::string name = integrator_name(integrator);
   r.compare("qpos after one " + name + " step", k, t.data.qpos.data(), t.d->qpos, t.model.nq,
             per_coordinate(t.model));
