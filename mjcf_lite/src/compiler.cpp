@@ -175,7 +175,7 @@ const char* size_meaning(GeomType type) {
 
 // radius of the sphere around the geom's centre that holds it (mjCGeom::GetRBound); 0 for a
 // plane, which is infinite; a mesh geom's from the half-sizes of its bounding box (zero for a mesh
-// lever did not read, see apply_mesh)
+// lever did not read: one that gives no mass and cannot collide, or whose file lever cannot read)
 double bounding_radius(GeomType type, const Vec3& size) {
   switch (type) {
     case GeomType::kSphere: return size[0];
@@ -382,16 +382,8 @@ class Compiler {
   // and give it the mass and inertia MuJoCo 2.2.2 gives it (mjCGeom::Compile, GetVolume,
   // SetInertia).
   void apply_mesh(const GeomSpec& g, int body, CompiledGeom& out) {
-    size_t m = 0;
-    while (spec_.assets.meshes[m].name != g.mesh) ++m;  // check_mesh found it
-    const MeshMass& mesh = mesh_mass(m, g, body);
-    const Mat3 r = rotation(out.quat);
-    for (size_t k = 0; k < 3; ++k) {
-      out.pos[k] +=
-          r[3 * k] * mesh.pos[0] + r[3 * k + 1] * mesh.pos[1] + r[3 * k + 2] * mesh.pos[2];
-    }
-    out.quat = compiler_product(out.quat, mesh.quat);
-    out.size = mesh.aabb;
+    const MeshMass& mesh = mesh_mass(mesh_index(g), g, body);
+    place_on_mesh(mesh, out);
     const Vec3& b = mesh.box;
     const double volume = c_.exactmeshinertia ? mesh.volume : b[0] * b[1] * b[2] * 8;
     if (g.mass) {
@@ -406,24 +398,58 @@ class Compiler {
                    out.mass * (b[0] * b[0] + b[1] * b[1]) / 3};
   }
 
+  // A mesh geom that can collide but gives no mass: its frame and size as MuJoCo's (so its
+  // bounding radius, which the collision stage's broad phase reads) when lever can read its mesh;
+  // else, as before, the frame as written and size zero.
+  void place_colliding_mesh(const GeomSpec& g, CompiledGeom& out) {
+    const size_t m = mesh_index(g);
+    if (read_mesh(m).empty()) place_on_mesh(*mesh_cache_[m], out);
+  }
+
+  size_t mesh_index(const GeomSpec& g) const {
+    size_t m = 0;
+    while (spec_.assets.meshes[m].name != g.mesh) ++m;  // check_mesh found it
+    return m;
+  }
+
+  // the geom's frame moved to the mesh's centre and principal axes, its size the bounding box's
+  static void place_on_mesh(const MeshMass& mesh, CompiledGeom& out) {
+    const Mat3 r = rotation(out.quat);
+    for (size_t k = 0; k < 3; ++k) {
+      out.pos[k] +=
+          r[3 * k] * mesh.pos[0] + r[3 * k + 1] * mesh.pos[1] + r[3 * k + 2] * mesh.pos[2];
+    }
+    out.quat = compiler_product(out.quat, mesh.quat);
+    out.size = mesh.aabb;
+  }
+
   const MeshMass& mesh_mass(size_t m, const GeomSpec& g, int body) {
-    if (mesh_cache_.size() <= m) mesh_cache_.resize(spec_.assets.meshes.size());
-    if (mesh_cache_[m]) return *mesh_cache_[m];
-    const Place& at = spec_.assets.meshes[m];
-    const std::string& file = spec_.assets.mesh_files[m];
     const std::string& body_name = nodes_[static_cast<size_t>(body)].spec->at.name;
     const std::string geom =
         "mesh geom" + (g.at.name.empty() ? std::string() : " '" + g.at.name + "'");
     const std::string why = geom + " must give body '" + body_name + "' its mass and inertia";
     const std::string advice = ". Fix that, or add an <inertial> to body '" + body_name +
                                "' (then lever does not read the mesh)";
+    const std::string error = read_mesh(m);
+    if (!error.empty()) fail(g.at, "mesh", why + ", but " + error + advice);
+    return *mesh_cache_[m];
+  }
+
+  // Reads and processes mesh m once (mesh_cache_); returns why it cannot, "" once it has.
+  std::string read_mesh(size_t m) {
+    if (mesh_cache_.size() <= m) {
+      mesh_cache_.resize(spec_.assets.meshes.size());
+      mesh_error_.resize(spec_.assets.meshes.size());
+    }
+    if (mesh_cache_[m] || !mesh_error_[m].empty()) return mesh_error_[m];
+    const Place& at = spec_.assets.meshes[m];
+    const std::string& file = spec_.assets.mesh_files[m];
     const std::string mesh = "mesh '" + at.name + "' (line " + line_text(at) + ")";
+    std::string& error = mesh_error_[m];
     if (file.empty()) {
-      fail(g.at, "mesh",
-           why + ", but " + mesh +
-               " gives its vertices inline, which lever does not read: put them in an STL or OBJ "
-               "file" +
-               advice);
+      return error = mesh +
+                     " gives its vertices inline, which lever does not read: put them in an STL "
+                     "or OBJ file";
     }
     const std::string path = mesh_path(spec_.model_dir, c_.meshdir, file);
     const std::string ext = file.size() >= 4 ? file.substr(file.size() - 4) : file;
@@ -433,10 +459,9 @@ class Compiler {
              });
     };
     if (!is(".stl") && !is(".obj")) {
-      fail(g.at, "mesh",
-           why + ", but the file '" + path + "' of " + mesh +
-               " is not binary STL or OBJ, the formats lever reads (MuJoCo 2.2.2 also reads MSH)" +
-               advice);
+      return error = "the file '" + path + "' of " + mesh +
+                     " is not binary STL or OBJ, the formats lever reads (MuJoCo 2.2.2 also "
+                     "reads MSH)";
     }
     const MeshSource& source = spec_.assets.mesh_sources[m];
     const Vec3& scale = source.scale;
@@ -446,20 +471,16 @@ class Compiler {
     try {
       bytes = read_mesh_file(path, kMaxBytes);
     } catch (const MeshError& e) {
-      fail(g.at, "mesh",
-           why + ", but lever cannot read mesh file '" + path + "' of " + mesh + ": " + e.what() +
-               advice);
+      return error = "lever cannot read mesh file '" + path + "' of " + mesh + ": " + e.what();
     }
     try {
       TriangleMesh triangles = is(".stl") ? read_stl(bytes, righthand) : read_obj(bytes, righthand);
       mesh_cache_[m] = process_mesh(std::move(triangles), source.refpos, source.refquat, scale,
                                     source.density, c_.exactmeshinertia);
     } catch (const MeshError& e) {
-      fail(g.at, "mesh",
-           why + ", but mesh file '" + path + "' of " + mesh + " cannot be used: " + e.what() +
-               advice);
+      return error = "mesh file '" + path + "' of " + mesh + " cannot be used: " + e.what();
     }
-    return *mesh_cache_[m];
+    return "";
   }
 
   // bounds and the triangle inequality, for every body but the world
@@ -550,10 +571,14 @@ class Compiler {
       }
     }
     if (g.type == GeomType::kMesh) {
-      // a mesh geom that gives no mass keeps its frame as written, size zero and no mass: lever
-      // reads its file only when the body needs it
+      // a mesh geom that gives no mass has no mass; lever reads its file only when the body
+      // needs it or the geom can collide (else it keeps its frame as written and size zero)
       out.size = {0, 0, 0};
-      if (gives_mass) apply_mesh(g, body, out);
+      if (gives_mass) {
+        apply_mesh(g, body, out);
+      } else if (g.contype != 0 || g.conaffinity != 0) {
+        place_colliding_mesh(g, out);
+      }
       require_finite(g.at, "geom", out.size, out.pos, out.quat, std::array<double, 1>{out.mass},
                      out.inertia);
       return out;
@@ -960,6 +985,7 @@ class Compiler {
   std::vector<CompiledExclude> excludes_;  ///< sorted by signature
   std::vector<std::string> warnings_;
   std::vector<std::optional<MeshMass>> mesh_cache_;  ///< per mesh, once read
+  std::vector<std::string> mesh_error_;              ///< per mesh, why it could not be read
 };
 
 Eigen::Vector3d eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }

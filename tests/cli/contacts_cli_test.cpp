@@ -6,6 +6,8 @@
 
 #include <cmath>
 #include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <sstream>
 #include <string>
 
@@ -141,6 +143,59 @@ TEST_CASE("lever simulate --json: each line's contacts, from falling to resting"
   CHECK(first_ncon == 0);  // dropped from above the table
   const Resting rest;      // the same run in the library
   CHECK(last_ncon == rest.data.ncon);
+}
+
+// With elliptic cones a contact has dim rows (a pyramid 2 (dim - 1)): the box resting on its four
+// corners, condim 3, has 12 rows, and each contact's force is read from its own three.
+TEST_CASE("lever forward and simulate with elliptic cones: every contact's force",
+          "[cli][contact][elliptic]") {
+  std::string xml;
+  {
+    std::ifstream in(model_path("models/box_drop.xml"));
+    xml.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+  }
+  const std::string option = "<option timestep=\"0.002\"/>";
+  REQUIRE(xml.find(option) != std::string::npos);
+  xml.replace(xml.find(option), option.size(),
+              "<option timestep=\"0.002\" cone=\"elliptic\"/>");
+  const std::string file = temporary_file("box_drop_elliptic.xml", xml);
+  const Model model = mjcf::load_file(file);
+  REQUIRE(model.opt.cone == Cone::kElliptic);
+  Data data(model);
+  for (int i = 0; i < 600; ++i) step(model, data);
+  const Eigen::VectorXd qpos = data.qpos;
+  forward(model, data);
+  REQUIRE(data.ncon == 4);
+  REQUIRE(data.nefc == 12);
+
+  const std::string state = " --qpos " + list(qpos) + " --qvel " + list(data.qvel);
+  const Run json_run = run_lever("forward " + quoted(file) + state + " --json");
+  INFO(json_run.out);
+  REQUIRE(json_run.status == 0);
+  const json::Value out = json::parse(json_run.out);
+  REQUIRE(out["contact"].size() == 4);
+  double normal = 0;
+  for (int i = 0; i < data.ncon; ++i) {
+    const Eigen::VectorXd force = numbers(out["contact"][static_cast<std::size_t>(i)]["force"]);
+    CHECK(force == Eigen::VectorXd(contact_force(model, data, i)));
+    // elliptic rows are the force's components: the normal one is the contact's first row
+    CHECK(force[0] == data.efc_force[data.contact[static_cast<std::size_t>(i)].efc_address]);
+    normal += force[0];
+  }
+  // at rest the table carries the box's weight
+  CHECK(std::abs(normal - model.body_mass[1] * model.opt.gravity.norm()) <= 1e-6 * normal);
+
+  const Run text = run_lever("forward " + quoted(file) + state, true);
+  CHECK(text.status == 0);
+  CHECK_THAT(text.out, Catch::Contains("contacts: ncon 4") && !Catch::Contains("rows run past"));
+
+  const Run sim = run_lever("simulate " + quoted(file) + " --steps 600 --json");
+  CHECK(sim.status == 0);
+  CHECK_THAT(sim.out, !Catch::Contains("rows run past"));
+  std::istringstream lines(sim.out);
+  std::string line, last;
+  while (std::getline(lines, line)) last = line;
+  CHECK(json::parse(last)["ncon"].number == 4);
 }
 
 }  // namespace lever::test

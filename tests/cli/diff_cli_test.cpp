@@ -166,4 +166,43 @@ TEST_CASE("cli: lever diff --key refuses a keyframe the model does not have", "[
   std::filesystem::remove(file);
 }
 
+// box_drop with room for two contacts: a box lying in the table makes four. MuJoCo keeps two and
+// warns (on standard output, unless routed); lever refuses such a state. `lever diff` compares
+// the others, says how many it skipped and why, and --json stays JSON.
+TEST_CASE("lever diff skips the states with more contacts than nconmax, and --json stays JSON",
+          "[cli][diff][contact]") {
+  std::ifstream in(model_path("models/box_drop.xml"));
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string xml = text.str();
+  const std::string option = "<option timestep=\"0.002\"/>";
+  REQUIRE(xml.find(option) != std::string::npos);
+  xml.insert(xml.find(option) + option.size(), "\n  <size nconmax=\"2\"/>");
+  const std::string file = temporary_file("lever-diff-nconmax-2.xml", xml);
+  const std::string command = "diff " + quoted(file) + " --states 40 --path engine";
+
+  const Run json_run = run_lever(command + " --json");
+  INFO(json_run.out);
+  CHECK(json_run.status == 0);
+  const json::Value out = json::parse(json_run.out);  // throws on anything but one JSON document
+  const json::Value& path = out["models"][0]["paths"][0];
+  CHECK(path["loaded"].boolean);
+  CHECK(path["pass"].boolean);
+  const double skipped = path["skipped_states"].number;
+  CHECK(skipped > 0);
+  CHECK(skipped < 40);  // the others were compared
+  CHECK_THAT(path["first_skipped"].string, Catch::Contains("more than nconmax = 2 contacts"));
+  CHECK_THAT(path["first_skipped"].string, !Catch::StartsWith("--key"));
+
+  // MuJoCo warned, on standard error: standard output above was one JSON document
+  const Run both = run_lever(command + " --json", true);
+  CHECK_THAT(both.out, Catch::Contains("MuJoCo warns") && Catch::Contains("contact buffer"));
+
+  const Run text_run = run_lever(command);
+  CHECK(text_run.status == 0);
+  CHECK_THAT(text_run.out, Catch::Contains(std::to_string(static_cast<int>(skipped)) +
+                                           " of 40 random states skipped"));
+  CHECK_THAT(text_run.out, !Catch::Contains("--key") && !Catch::Contains("could not load"));
+}
+
 }  // namespace lever::test

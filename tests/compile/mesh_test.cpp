@@ -1,5 +1,6 @@
 // Mesh geoms that give their bodies mass: lever reads the mesh file and must compile the same
-// volume, centre, principal axes, geom frame, size, mass and inertia as MuJoCo 2.2.2. Each model
+// volume, centre, principal axes, geom frame, size, mass and inertia as MuJoCo 2.2.2; and a mesh
+// geom that can collide: its frame, size and bounding radius. Each model
 // is written with its mesh files into a temporary folder for lever and into MuJoCo's virtual
 // file system, and the two compiled models are compared field by field (compare_parameters also
 // compares the mesh geoms' size, pos and quat once lever has read their mesh).
@@ -8,7 +9,9 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
+#include <memory>
 #include <map>
 #include <string>
 #include <vector>
@@ -243,8 +246,9 @@ TEST_CASE("mesh files are found under compiler/meshdir beside the model", "[comp
                        "parts/");
 }
 
-TEST_CASE("a mesh is read only when it must give mass", "[compile][mesh]") {
-  // with an <inertial>, or in a group outside inertiagrouprange, the file is not needed
+TEST_CASE("a mesh file is needed only when it must give mass", "[compile][mesh]") {
+  // with an <inertial>, or in a group outside inertiagrouprange, the file is not needed (lever
+  // reads it if it can, for a geom that can collide, and goes on without it if not)
   const std::string xml = R"(<mujoco>
   <compiler inertiagrouprange="0 2"/>
   <asset><mesh name="m" file="absent.stl"/></asset>
@@ -270,6 +274,60 @@ TEST_CASE("a mesh is read only when it must give mass", "[compile][mesh]") {
   CHECK_THROWS_WITH(lever::mjcf::load_string(needed),
                     Catch::Contains("cannot read mesh file 'absent.stl'") &&
                         Catch::Contains("add an <inertial> to body 'b'"));
+}
+
+// A mesh geom that can collide but gives no mass (its body has an <inertial>): lever reads its
+// file all the same, so that its frame, size and bounding radius (geom_rbound) are MuJoCo's; the
+// collision stage, which has no mesh pairs, then sees it come near another geom and warns
+// (kContactUnsupported) wherever MuJoCo finds a contact, and stays quiet far away.
+TEST_CASE("a mesh geom that can collide has MuJoCo's bounding radius, and warns when near",
+          "[compile][mesh][collision]") {
+  const std::string xml = R"(<mujoco>
+  <asset><mesh name="box" file="box.stl"/></asset>
+  <worldbody>
+    <geom name="rock" type="sphere" size="0.05"/>
+    <body name="part" pos="0 0 0.5">
+      <inertial pos="0 0 0" mass="1" diaginertia="0.01 0.01 0.01"/>
+      <joint name="lift" type="slide" axis="0 0 1"/>
+      <geom name="part" type="mesh" mesh="box" pos="0.01 0 0" euler="10 20 30"/>
+    </body>
+  </worldbody>
+</mujoco>)";
+  const std::map<std::string, std::string> files{{"box.stl", binary_stl(skewed_box())}};
+  check_against_mujoco("colliding", xml, files);  // geom_size, pos, quat and rbound included
+
+  const Folder folder("colliding_run");
+  folder.write("model.xml", xml);
+  for (const auto& [file, bytes] : files) folder.write(file, bytes);
+  const lever::Model ours = lever::mjcf::load_file((folder.path / "model.xml").string());
+  REQUIRE(ours.geom_rbound[1] > 0);
+  std::string error;
+  const lever::test::MjModelHandle theirs = lever::test::mujoco_compile(xml, &error, files);
+  REQUIRE(theirs);
+  CHECK(ours.geom_rbound[1] == theirs->geom_rbound[1]);
+  std::unique_ptr<mjData, void (*)(mjData*)> d(mj_makeData(theirs.get()), mj_deleteData);
+  const int unsupported = static_cast<int>(lever::Warning::kContactUnsupported);
+  int touching = 0, warned = 0;
+  for (int k = 0; k <= 60; ++k) {
+    const double lift = -0.6 + 0.01 * k;  // from through the rock to 0.1 m above it
+    lever::Data data(ours);
+    data.qpos[0] = lift;
+    lever::forward(ours, data);
+    d->qpos[0] = lift;
+    mj_forward(theirs.get(), d.get());
+    const bool warns = data.warning[static_cast<size_t>(unsupported)].number > 0;
+    INFO("lift " << lift << ": MuJoCo " << d->ncon << " contacts, lever warns " << warns);
+    if (d->ncon > 0) CHECK(warns);
+    touching += d->ncon > 0;
+    warned += warns;
+  }
+  CHECK(touching >= 5);
+  CHECK(warned >= touching);
+  // far above: no warning
+  lever::Data far(ours);
+  far.qpos[0] = 0.5;
+  lever::forward(ours, far);
+  CHECK(far.warning[static_cast<size_t>(unsupported)].number == 0);
 }
 
 TEST_CASE("a Menagerie-style arm without its <inertial>s takes its masses from its meshes",

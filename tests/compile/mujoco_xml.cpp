@@ -155,13 +155,14 @@ bool is_constant(const std::string& name) {
 //                   for a joint transmission; the other actuator types lever fixes are checked
 //                   here too (compare_actuator_types);
 //   geom frames     mesh geoms' size, pos and quat are MuJoCo's fit to the mesh file, which
-//                   lever computes only for the meshes it read (those that give a body mass);
+//                   lever computes only for the meshes it read (those that give a body mass or
+//                   can collide, when lever can read the file);
 //   names, options  not arrays of the table; keyframes have their own rows (compare_keyframes).
 // geom_size, geom_pos, geom_quat, geom_rbound but of mesh geoms lever did not read: MuJoCo fits
-// them to the
-// mesh file (its size, its centre and principal axes, the bounding sphere of its box); lever keeps
-// the frame as written and the size (so the bounding radius) zero unless the geom gives its body
-// mass (then lever read the mesh, and its size, the bounding box, is positive)
+// them to the mesh file (its size, its centre and principal axes, the bounding sphere of its box);
+// lever keeps the frame as written and the size (so the bounding radius) zero unless it read the
+// mesh (a geom that gives its body mass, or can collide): then its size, the bounding box, is
+// positive
 void compare_geom_frames(Differences& d, const Model& o, const FieldView& view, const MjArray& mj) {
   const std::string name = view.info->name;
   for (int g = 0; g < view.rows; ++g) {

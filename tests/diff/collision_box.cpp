@@ -580,6 +580,60 @@ TEST_CASE("diff: box-box contacts equal MuJoCo's", "[diff][collision]") {
   }
 }
 
+// The xArm7's finger pads (Menagerie's ufactory_xarm7: boxes 0.015 x 0.002 x 0.0095, centred on
+// the fingers' hinge axis x, the left finger's pads facing the right finger's). Both fingers turn
+// about parallel x axes, so at every grip the pads' +-x faces lie in the same two planes: their
+// corners sit exactly on the reference face's edges, and whether a corner counts (strictly
+// inside) is the last bit's call. Face to face the count after the driver's removal is 2, 3 or
+// 4 depending on those bits. On the same poses lever's answer is MuJoCo's, bit for bit in the
+// count and within the bound in every value: poses with the pads parallel, tilted 1e-9 and 1e-3
+// about the shared axis, pressed up to 0.6 mm and apart within the margin, pad 1 against pad 1
+// (equal heights) and against pad 2 (overlapping 1 mm), the hand turned anywhere.
+TEST_CASE("diff: the xArm7's finger pads face to face: contacts equal MuJoCo's",
+          "[diff][collision]") {
+  REQUIRE(mj_version() == 222);
+  MujocoGeoms mujoco;
+  BoxTally tally;
+  std::mt19937_64 rng(19005);
+  const Vec pad(0.015, 0.002, 0.0095);
+  std::array<int, kMaxPairContacts + 1> kept_by_count{};
+  for (int i = 0; i < 3000; ++i) {
+    // the hand anywhere; the fingers' common closing angle about x, and each pad's own tilt
+    const Mat3 hand = i % 4 == 0 ? Mat3(Mat3::Identity()) : random_rotation_matrix(rng);
+    const Vec origin = random_point(rng);
+    const double grip = uniform_in(rng, -0.2, 0.2);
+    const int tilt_kind = i % 3;
+    const double tilt =
+        tilt_kind == 0 ? 0.0 : (tilt_kind == 1 ? 1e-9 : 1e-3) * uniform_in(rng, -1, 1);
+    const Mat3 left = hand * rotation(Vec::UnitX(), grip);
+    const Mat3 right = hand * rotation(Vec::UnitX(), grip + tilt);
+    // face to face along the pads' y: centre distance 2 * 0.002 less the press
+    const double press = uniform_in(rng, -0.0002, 0.0006);
+    const double dz = std::array<double, 3>{0.0, 0.018, -0.018}[i % 3 == 0 ? 0 : (i / 3) % 3];
+    const Vec left_pos = origin;
+    const Vec right_pos = origin + left * Vec(0, 2 * pad[1] - press, dz);
+    const double margin = i % 5 == 0 ? 0.0005 : 0.0;
+    const GeomShape b1 = shape(GeomType::kBox, pad, left_pos, left);
+    const GeomShape b2 = shape(GeomType::kBox, pad, right_pos, right);
+    const int n = compare(mujoco, kBox1, b1, kBox2, b2, margin, detail::collide_box_box, tally,
+                          "pads " + std::to_string(i));
+    std::array<Contact, kMaxPairContacts> contacts;
+    detail::collide_box_box(b1, b2, margin, contacts.data());
+    ++kept_by_count[detail::remove_repeated_positions(contacts.data(), n)];
+  }
+  std::ostringstream kept;
+  for (int n = 0; n <= kMaxPairContacts; ++n) {
+    if (kept_by_count[n] > 0) kept << " " << n << ":" << kept_by_count[n];
+  }
+  INFO(summary("xArm7 pads", tally) << "; after the driver:" << kept.str());
+  CHECK(tally.worst <= 1);
+  // the ties are there: face to face, rounding leaves 2, 3 or 4 contacts
+  CHECK(kept_by_count[2] > 0);
+  CHECK(kept_by_count[3] > 0);
+  CHECK(kept_by_count[4] > 0);
+  SUCCEED(summary("xArm7 pads", tally) + "; after the driver:" + kept.str());
+}
+
 // MuJoCo's function returns repeated positions (two equal cubes face to face: 9 points, the
 // corners twice); its collision stage keeps 4. This shows that the driver drops them, and that
 // remove_repeated_positions drops the same ones, in the same order.

@@ -139,6 +139,10 @@ Options parse_options(const Args& args) {
 
 // ---- running --------------------------------------------------------------------------------
 
+void print_mujoco_warning(const char* message) {
+  std::fprintf(stderr, "lever diff: MuJoCo warns: %s\n", message);
+}
+
 PathResult run_path(const std::string& file, Path path, const Options& o) {
   PathResult result;
   result.path = path;
@@ -146,7 +150,14 @@ PathResult run_path(const std::string& file, Path path, const Options& o) {
   result.states = o.states;
   try {
     diff::Twin twin(file, path);
-    if (!o.key.empty()) twin.start_from_key(o.key);
+    if (!o.key.empty()) {
+      try {
+        twin.start_from_key(o.key);
+      } catch (const StateError& e) {
+        result.error = "--key: " + std::string(e.what());
+        return result;
+      }
+    }
     result.random = diff::random_states(twin, o.states, result.seed);
     result.self_noise = diff::mujoco_self_noise(twin, o.states, result.seed);
     if (o.trajectory) {
@@ -160,8 +171,6 @@ PathResult run_path(const std::string& file, Path path, const Options& o) {
       result.start = twin.start_name();
       result.free = diff::free_run(twin, kTrajectorySeconds, diff::Control::kSmooth, kNudge);
     }
-  } catch (const StateError& e) {  // the only state a run takes from the user is --key
-    result.error = "--key: " + std::string(e.what());
   } catch (const std::exception& e) {
     result.error = e.what();
   }
@@ -262,6 +271,10 @@ void print_text(const ModelResult& m) {
     }
     std::printf("  %d random states, seed %llu\n", p.states,
                 static_cast<unsigned long long>(p.seed));
+    if (p.random.skipped() > 0) {
+      std::printf("  %d of %d random states skipped, lever refusing them (%s)\n",
+                  p.random.skipped(), p.states, p.random.first_skipped().c_str());
+    }
     print_table(p.random, "state", &p.self_noise);
     if (p.has_trajectories) {
       std::printf(
@@ -343,6 +356,8 @@ void print_json(const std::vector<ModelResult>& results) {
       if (!p.loaded()) j.key("error").value(p.error);
       j.key("pass").value(p.pass());
       j.key("states").value(p.states);
+      j.key("skipped_states").value(p.random.skipped());
+      if (p.random.skipped() > 0) j.key("first_skipped").value(p.random.first_skipped());
       j.key("seed").value(std::to_string(p.seed));  // a string: JSON numbers lose 64-bit seeds
       j.key("random_states");
       json_report(j, p.random);
@@ -686,6 +701,9 @@ void declare_diff(CLI::App& command) {
 }
 
 int cmd_diff(const Args& args) {
+  // MuJoCo prints its warnings on standard output (and appends them to MUJOCO_LOG.TXT in the
+  // working directory), where they would break --json and --markdown: they go to standard error
+  mju_user_warning = print_mujoco_warning;
   const Options o = parse_options(args);
   if (!keys_exist(o)) return kBadInput;
   std::vector<ModelResult> results;

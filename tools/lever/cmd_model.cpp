@@ -52,19 +52,42 @@ void print_options(std::FILE* out, const Model& m) {
                m.compiler.inertia_from_geoms_allowed ? "allowed" : "off (inertiafromgeom=false)");
 }
 
+// A joint's kind and the units of its range, damping and force: a free joint moves along and
+// about axes (its three translations first), a ball joint's range is its largest angle.
+struct JointWords {
+  const char* kind;
+  const char* range;
+  const char* damping;
+  const char* force;
+};
+
+JointWords joint_words(JointType type) {
+  switch (type) {
+    case JointType::kFree: return {"free", "-", "N s/m, N m s/rad", "N, N m"};
+    case JointType::kBall: return {"ball", "rad", "N m s/rad", "N m"};
+    case JointType::kSlide: return {"slide", "m", "N s/m", "N"};
+    default: return {"hinge", "rad", "N m s/rad", "N m"};
+  }
+}
+
 void print_joints(std::FILE* out, const Model& m) {
   std::fprintf(out, "joints (%d):\n", m.njnt);
   for (int j = 0; j < m.njnt; ++j) {
-    const bool hinge = m.jnt_type[j] == JointType::kHinge;
+    const JointWords words = joint_words(m.jnt_type[j]);
+    const bool one_axis = m.jnt_type[j] == JointType::kHinge || m.jnt_type[j] == JointType::kSlide;
     const int dof = m.jnt_dofadr[j];
+    // a free joint has no axis and no range; a ball joint no axis, and its range is [0, angle]
+    const std::string axis = one_axis ? "axis " + vec(m.jnt_axis[j]) + "  " : "";
+    const std::string range = m.jnt_type[j] == JointType::kFree
+                                  ? ""
+                                  : "range " + pair(m.jnt_range[j]) + " " + words.range + "  ";
     std::fprintf(out,
-                 "  %-12s %-6s body %-10s axis %s  range %s %s  limited %s  damping %g %s  "
-                 "armature %g  stiffness %g\n",
-                 label(m.jnt_name[j], j).c_str(), hinge ? "hinge" : "slide",
-                 label(m.body_name[m.jnt_bodyid[j]], m.jnt_bodyid[j]).c_str(),
-                 vec(m.jnt_axis[j]).c_str(), pair(m.jnt_range[j]).c_str(), hinge ? "rad" : "m",
-                 m.jnt_limited[j] ? "yes" : "no", m.dof_damping[dof], hinge ? "N m s/rad" : "N s/m",
-                 m.dof_armature[dof], m.jnt_stiffness[j]);
+                 "  %-12s %-6s body %-10s %s%slimited %s  damping %g %s  armature %g  "
+                 "stiffness %g\n",
+                 label(m.jnt_name[j], j).c_str(), words.kind,
+                 label(m.body_name[m.jnt_bodyid[j]], m.jnt_bodyid[j]).c_str(), axis.c_str(),
+                 range.c_str(), m.jnt_limited[j] ? "yes" : "no", m.dof_damping[dof],
+                 words.damping, m.dof_armature[dof], m.jnt_stiffness[j]);
   }
 }
 
@@ -72,14 +95,13 @@ void print_motors(std::FILE* out, const Model& m) {
   std::fprintf(out, "motors (%d):\n", m.nu);
   for (int a = 0; a < m.nu; ++a) {
     const int j = m.actuator_trnid[a];
-    const bool hinge = m.jnt_type[j] == JointType::kHinge;
     std::fprintf(out,
                  "  %-12s joint %-10s gear %g  ctrlrange %s  ctrllimited %s  forcerange %s %s  "
                  "forcelimited %s\n",
                  label(m.actuator_name[a], a).c_str(), label(m.jnt_name[j], j).c_str(),
                  m.actuator_gear[a][0], pair(m.actuator_ctrlrange[a]).c_str(),
                  m.actuator_ctrllimited[a] ? "yes" : "no", pair(m.actuator_forcerange[a]).c_str(),
-                 hinge ? "N m" : "N", m.actuator_forcelimited[a] ? "yes" : "no");
+                 joint_words(m.jnt_type[j]).force, m.actuator_forcelimited[a] ? "yes" : "no");
     const bool motor = m.actuator_gaintype[a] == GainType::kFixed &&
                        m.actuator_gainprm[a][0] == 1.0 && m.actuator_biastype[a] == BiasType::kNone;
     if (motor) continue;

@@ -18,14 +18,17 @@ Eigen::Matrix<double, 6, 1> contact_force(const Model& model, const Data& data, 
   const int first = contact.efc_address;
   if (first < 0) return force;  // no rows: the contact is beyond its margin and carries nothing
   const int tangents = contact.dim - 1;
-  const int rows = tangents == 0 ? 1 : 2 * tangents;
+  // the cone decides the row count: a pyramid has two edges per tangent, while a frictionless
+  // contact or an elliptic cone has one row per component of the force
+  const auto row_type = [&](int row) { return data.efc_type[static_cast<size_t>(row)]; };
+  const bool pyramid = first < data.nefc && row_type(first) == ConstraintType::kContactPyramidal;
+  const int rows = pyramid ? 2 * tangents : contact.dim;
   if (first + rows > data.nefc) {
     throw StateError("lever::contact_force: contact " + std::to_string(id) +
                      "'s rows run past data.nefc: the data was not computed by forward().");
   }
   const double* f = data.efc_force.data() + first;
-  if (data.efc_type[static_cast<size_t>(first)] != ConstraintType::kContactPyramidal) {
-    // frictionless or elliptic: one row per component of the force
+  if (!pyramid) {
     for (int k = 0; k < contact.dim; ++k) force[k] = f[k];
     return force;
   }

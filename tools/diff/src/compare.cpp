@@ -220,10 +220,9 @@ void compare_contacts(const Twin& t, int k, Report& r) {
 //   efc_*      the limit rows are compared only when they are the same rows (count, type and
 //              joint, reported as nefc and efc_id); efc_J and efc_KBIP are laid out otherwise
 //              (compare_row_layouts);
-//   geom_x*    a mesh geom lever did not read (its file was not needed for mass: size zero in
-//              lever) keeps the frame its element wrote, where MuJoCo moves it to the mesh's
-//              centre and principal axes: such rows are left out (lever draws it, never collides
-//              it);
+//   geom_x*    a mesh geom lever did not read (it gives no mass and cannot collide, or lever
+//              cannot read its file: size zero in lever) keeps the frame its element wrote, where
+//              MuJoCo moves it to the mesh's centre and principal axes: such rows are left out;
 //   efc_state  lever's ConstraintState values are MuJoCo's mjtConstraintState for the states its
 //              rows can have (0 satisfied, 1 quadratic = active, 4 cone): compared as integers.
 void compare_forward_outputs(const Twin& t, int k, Report& r) {
@@ -365,11 +364,7 @@ void compare_step(Twin& t, const test::State& s, Integrator integrator, int k, R
   t.set_integrator(integrator);
   t.set_state(s);
   step(t.model, t.data);
-  if (t.restart_mujoco_solver) {  // mj_step's forward warm-started from the converged answer
-    t.mujoco_forward();
-    std::copy(t.d->qacc, t.d->qacc + t.m->nv, t.d->qacc_warmstart);
-  }
-  mj_step(t.m.get(), t.d.get());
+  mujoco_step_converged(t.m.get(), t.d.get(), t.restart_mujoco_solver);
   const std::string name = integrator_name(integrator);
   r.compare("qpos after one " + name + " step", k, t.data.qpos.data(), t.d->qpos, t.model.nq,
             per_coordinate(t.model));

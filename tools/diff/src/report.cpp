@@ -102,6 +102,12 @@ void Report::merge(const Report& other) {
   for (const std::string& f : other.failures_) {
     if (failures_.size() < kFailuresKept) failures_.push_back(f);
   }
+  if (first_skipped_.empty()) first_skipped_ = other.first_skipped_;
+  skipped_ += other.skipped_;
+}
+
+void Report::skip(int state, const std::string& why) {
+  if (skipped_++ == 0) first_skipped_ = "state " + std::to_string(state) + ": " + why;
 }
 
 bool Report::pass() const {

@@ -62,6 +62,7 @@ Twin::Twin(const std::string& file, Path path, test::MjModelPtr mj)
     m->opt.tolerance = 0;
     m->opt.iterations = std::max(m->opt.iterations, 1000);
   }
+  restart_mujoco_solver = model.contacts_possible && model.opt.cone == Cone::kElliptic;
   start_key_ = model.nkey > 0 ? 0 : -1;
 }
 
@@ -77,14 +78,17 @@ void Twin::set_cone(Cone cone, double impratio) {
   model.opt.impratio = impratio;
   m->opt.cone = cone == Cone::kElliptic ? mjCONE_ELLIPTIC : mjCONE_PYRAMIDAL;
   m->opt.impratio = impratio;
+  restart_mujoco_solver = model.contacts_possible && cone == Cone::kElliptic;
 }
 
-void Twin::mujoco_forward() {
-  mj_forward(m.get(), d.get());
-  for (int restart = 0; restart_mujoco_solver && restart < 20; ++restart) {
+void Twin::mujoco_forward() { mujoco_forward_converged(m.get(), d.get(), restart_mujoco_solver); }
+
+void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver) {
+  mj_forward(m, d);
+  for (int restart = 0; restart_solver && restart < 20; ++restart) {
     const std::vector<double> before(d->qacc, d->qacc + m->nv);
     std::copy(before.begin(), before.end(), d->qacc_warmstart);
-    mj_forward(m.get(), d.get());
+    mj_forward(m, d);
     // Once at the minimizer, a restart only moves qacc in its last bits: MuJoCo's line search
     // keeps finding rounding-sized decreases of a 1e5 cost and runs all its iterations, so a
     // restart that moves qacc by less than a tenth of the comparison bound ends the loop.
@@ -97,6 +101,14 @@ void Twin::mujoco_forward() {
     }
     if (moved <= kRestartSettled * scale) break;
   }
+}
+
+void mujoco_step_converged(const mjModel* m, mjData* d, bool restart_solver) {
+  if (restart_solver) {  // mj_step's forward warm-started from the converged answer
+    mujoco_forward_converged(m, d, true);
+    std::copy(d->qacc, d->qacc + m->nv, d->qacc_warmstart);
+  }
+  mj_step(m, d);
 }
 
 void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s) {

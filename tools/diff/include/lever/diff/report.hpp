@@ -62,6 +62,12 @@ class Report {
   void declare(const std::string& quantity) { entry(quantity); }
   /// Fold another report in (its extremes keep their own state numbers).
   void merge(const Report& other);
+  /// A state left out because lever refused it (lever::StateError: more contacts than the
+  /// model's nconmax, more rows than its njmax, where MuJoCo drops the rest with a warning).
+  void skip(int state, const std::string& why);
+  /// How many states were left out, and the first of them with its reason ("" if none).
+  int skipped() const { return skipped_; }
+  const std::string& first_skipped() const { return first_skipped_; }
 
   const std::vector<Extreme>& quantities() const { return extremes_; }
   const Extreme* find(const std::string& quantity) const;
@@ -78,6 +84,8 @@ class Report {
   std::vector<Extreme> extremes_;
   double solver_bound_ = 1.0;
   std::vector<std::string> failures_;
+  int skipped_ = 0;
+  std::string first_skipped_;
 };
 
 }  // namespace lever::diff

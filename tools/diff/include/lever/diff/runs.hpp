@@ -13,7 +13,8 @@ namespace lever::diff {
 std::uint64_t default_seed(const std::string& file);
 
 /// Model constants, then `states` random states drawn with `seed` (test::random_state), each
-/// compared with compare_state().
+/// compared with compare_state(). A state lever refuses (StateError: more contacts than nconmax,
+/// more rows than njmax) is counted as skipped (Report::skip), and the others are compared.
 Report random_states(Twin& twin, int states, std::uint64_t seed);
 
 /// MuJoCo against itself: the same file compiled twice, the second time with every world child

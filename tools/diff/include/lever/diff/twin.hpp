@@ -26,6 +26,12 @@ const char* path_description(Path path);
 /// Write state s into MuJoCo's data, with the warm start cleared as after mj_resetData.
 void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s);
 
+/// mj_forward on (m, d), restarted from its own answer while that moves it (Twin::mujoco_forward).
+void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver);
+/// mj_step; with restart_solver, its forward warm-started from the converged answer, so that the
+/// step starts from the minimizer rather than where MuJoCo's solver stopped.
+void mujoco_step_converged(const mjModel* m, mjData* d, bool restart_solver);
+
 /// lever and MuJoCo on the same model file. MuJoCo's energy computation is switched on.
 class Twin {
  public:
@@ -45,6 +51,8 @@ class Twin {
   /// and where the cost is large (1e5) it stops when a further decrease no longer shows in it,
   /// short of the minimizer with elliptic cones; a restart lets its line search start afresh.
   void mujoco_forward();
+  /// On by default where MuJoCo's solver can stop short: a model with contacts and elliptic
+  /// cones (set_cone sets it again).
   bool restart_mujoco_solver = false;
 
   /// Write the same state into both; MuJoCo's warm start is cleared, as after mj_resetData.
