@@ -203,21 +203,24 @@ void write_contacts(json::Writer& json, const Model& model, const Data& data) {
   for (int i = 0; i < data.ncon; ++i) {
     const Contact& c = data.contact[static_cast<size_t>(i)];
     json.begin_object();
-    json.key("geom1").value(c.geom1);
-    json.key("geom2").value(c.geom2);
+    for (const ContactField& f : contact_field_table()) {  // frame row-major: the normal first
+      if (f.scalar == Scalar::kInt) {
+        const int* x = static_cast<const int*>(f.in(c));
+        if (f.count == 1) {
+          json.key(f.name).value(*x);
+        } else {
+          json.key(f.name).begin_array();
+          for (int k = 0; k < f.count; ++k) json.value(x[k]);
+          json.end_array();
+        }
+      } else if (f.count == 1) {
+        json.key(f.name).value(*static_cast<const double*>(f.in(c)));
+      } else {
+        numbers(f.name, static_cast<const double*>(f.in(c)), f.count);
+      }
+    }
     json.key("geom1_name").value(model.geom_name[static_cast<size_t>(c.geom1)]);
     json.key("geom2_name").value(model.geom_name[static_cast<size_t>(c.geom2)]);
-    json.key("dist").value(c.dist);
-    numbers("pos", c.pos.data(), 3);
-    numbers("frame", c.frame.data(), 9);  // row-major: the normal, then the two tangents
-    json.key("dim").value(c.dim);
-    numbers("friction", c.friction.data(), 5);
-    numbers("solref", c.solref.data(), 2);
-    numbers("solimp", c.solimp.data(), 5);
-    json.key("includemargin").value(c.includemargin);
-    json.key("exclude").value(c.exclude);
-    json.key("efc_address").value(c.efc_address);
-    json.key("mu").value(c.mu);
     const Eigen::Matrix<double, 6, 1> force = contact_force(model, data, i);
     numbers("force", force.data(), 6);
     json.end_object();

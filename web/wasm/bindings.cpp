@@ -70,28 +70,15 @@ struct JsMember {
   int count = 0;  ///< 0 for a single number
 };
 
-/// The layout of lever::Contact (MuJoCo's mjContact's fields), measured on an instance so that it
-/// holds for whatever padding the compiler chose.
+/// The layout of lever::Contact (MuJoCo's mjContact's fields): lever's contact field table.
 std::vector<JsMember> contact_layout() {
-  const lever::Contact c;
-  const auto at = [&c](const void* member) {
-    return static_cast<int>(reinterpret_cast<uintptr_t>(member) - reinterpret_cast<uintptr_t>(&c));
-  };
-  static_assert(std::is_same_v<decltype(c.pos)::Scalar, double>);
-  static_assert(decltype(c.frame)::IsRowMajor, "frame's rows (normal first) must be contiguous");
-  return {{"dist", "f64", at(&c.dist), 0},
-          {"pos", "f64", at(c.pos.data()), 3},
-          {"frame", "f64", at(c.frame.data()), 9},
-          {"includemargin", "f64", at(&c.includemargin), 0},
-          {"friction", "f64", at(c.friction.data()), 5},
-          {"solref", "f64", at(c.solref.data()), 2},
-          {"solimp", "f64", at(c.solimp.data()), 5},
-          {"mu", "f64", at(&c.mu), 0},
-          {"dim", "i32", at(&c.dim), 0},
-          {"geom1", "i32", at(&c.geom1), 0},
-          {"geom2", "i32", at(&c.geom2), 0},
-          {"exclude", "i32", at(&c.exclude), 0},
-          {"efc_address", "i32", at(&c.efc_address), 0}};
+  std::vector<JsMember> members;
+  for (const lever::ContactField& f : lever::contact_field_table()) {
+    const bool is_int = f.scalar == lever::Scalar::kInt;
+    members.push_back({f.name, is_int ? "i32" : "f64", static_cast<int>(f.offset),
+                       f.count == 1 ? 0 : f.count});
+  }
+  return members;
 }
 
 /// A compiled model; `error`/`error_line` say why a load failed (then the model is empty).

@@ -241,6 +241,41 @@ struct FieldView {
   long size() const { return static_cast<long>(rows) * cols; }
 };
 
+// ---- one contact's fields --------------------------------------------------------------------
+// X(name, element type, count, origin): the members of lever::Contact, in MuJoCo's mjContact order
+// (MuJoCo's H, the contact's cone Hessian, lever keeps in its solver's workspace instead). The JSON
+// writer, the comparison with MuJoCo and the Python and JavaScript bindings expand this list; a
+// member added to Contact is added here, and fields.cpp checks each row's type and count.
+#define LEVER_CONTACT_FIELDS(X)    \
+  X(dist, double, 1, mujoco)          \
+  X(pos, double, 3, mujoco)           \
+  X(frame, double, 9, mujoco)         \
+  X(includemargin, double, 1, mujoco) \
+  X(friction, double, 5, mujoco)      \
+  X(solref, double, 2, mujoco)        \
+  X(solimp, double, 5, mujoco)        \
+  X(mu, double, 1, mujoco)            \
+  X(dim, int, 1, mujoco)              \
+  X(geom1, int, 1, mujoco)            \
+  X(geom2, int, 1, mujoco)            \
+  X(exclude, int, 1, mujoco)          \
+  X(efc_address, int, 1, mujoco)
+
+/// A member of lever::Contact: its name, element type (kDouble or kInt), how many numbers it holds
+/// (frame: 9, row-major, the normal first) and where it lies, in bytes from a Contact's start.
+struct ContactField {
+  const char* name;
+  Scalar scalar;
+  int count;
+  std::ptrdiff_t offset;
+
+  const void* in(const Contact& c) const { return reinterpret_cast<const char*>(&c) + offset; }
+  void* in(Contact& c) const { return reinterpret_cast<char*>(&c) + offset; }
+};
+
+/// LEVER_CONTACT_FIELDS, located in a Contact.
+const std::vector<ContactField>& contact_field_table();
+
 const std::vector<FieldInfo>& model_field_table();
 const std::vector<FieldInfo>& data_field_table();
 

@@ -126,6 +126,34 @@ LEVER_DATA_FIELDS(LEVER_CHECK_DATA_ROW)
 #undef LEVER_CHECK_MODEL_ROW
 #undef LEVER_CHECK_DATA_ROW
 
+// A member of Contact as numbers: its element type, how many, and where they start.
+template <class M>
+struct ContactMember {
+  using element = M;
+  static constexpr int count = 1;
+  static const void* data(const M& m) { return &m; }
+};
+template <class T, int R, int C, int O>
+struct ContactMember<Eigen::Matrix<T, R, C, O>> {
+  static_assert(R == 1 || C == 1 || (O & Eigen::RowMajor), "a matrix member must be row-major");
+  using element = T;
+  static constexpr int count = R * C;
+  static const void* data(const Eigen::Matrix<T, R, C, O>& m) { return m.data(); }
+};
+template <class T, size_t N>
+struct ContactMember<std::array<T, N>> {
+  using element = T;
+  static constexpr int count = static_cast<int>(N);
+  static const void* data(const std::array<T, N>& a) { return a.data(); }
+};
+
+#define LEVER_CHECK_CONTACT_ROW(name, type, count_, origin)                                      \
+  static_assert(std::is_same_v<ContactMember<decltype(Contact::name)>::element, type> &&         \
+                    ContactMember<decltype(Contact::name)>::count == count_,                     \
+                "the contact field table's row for Contact::" #name " does not match its member");
+LEVER_CONTACT_FIELDS(LEVER_CHECK_CONTACT_ROW)
+#undef LEVER_CHECK_CONTACT_ROW
+
 int resolve_cols(int cols, int rows) { return cols < 0 ? rows : cols; }
 
 // The rows an array is stored with: efc arrays hold the most rows the model can have.
@@ -154,6 +182,22 @@ const std::vector<FieldInfo>& data_field_table() {
       LEVER_DATA_FIELDS(LEVER_DATA_ROW)
 #undef LEVER_DATA_ROW
   };
+  return table;
+}
+
+const std::vector<ContactField>& contact_field_table() {
+  static const std::vector<ContactField> table = [] {
+    const Contact c;  // offsets measured on an instance: whatever padding the compiler chose
+    const auto at = [&c](const void* member) {
+      return static_cast<const char*>(member) - reinterpret_cast<const char*>(&c);
+    };
+    return std::vector<ContactField>{
+#define LEVER_CONTACT_ROW(name, type, count, origin) \
+  {#name, scalar_of<type>(), count, at(ContactMember<decltype(Contact::name)>::data(c.name))},
+        LEVER_CONTACT_FIELDS(LEVER_CONTACT_ROW)
+#undef LEVER_CONTACT_ROW
+    };
+  }();
   return table;
 }
 

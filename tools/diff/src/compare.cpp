@@ -1,3 +1,4 @@
+#include <cstddef>
 #include <cstdio>
 #include <lever/diff/compare.hpp>
 #include <lever/dynamics.hpp>
@@ -181,32 +182,53 @@ void compare_row_layouts(const Twin& t, int k, Report& r) {
   r.compare("efc_B", k, data.efc_B.data(), damping.data(), n, row);
 }
 
-// The contacts (mjData.contact): their number, then each one's geoms, dim and exclude exactly and
-// its numbers within the bound, when the lists name the same geoms.
+// Where each field of lever's contact table lies in MuJoCo's mjContact (the same names).
+const std::vector<std::ptrdiff_t>& mujoco_contact_offsets() {
+  static const std::vector<std::ptrdiff_t> offsets = {
+#define LEVER_MJCONTACT_OFFSET(name, type, count, origin) offsetof(mjContact, name),
+      LEVER_CONTACT_FIELDS(LEVER_MJCONTACT_OFFSET)
+#undef LEVER_MJCONTACT_OFFSET
+  };
+  return offsets;
+}
+
+// The contacts (mjData.contact): their number, then every field of the contact table: the
+// integers (geoms, dim, exclude, efc_address) exactly, and the numbers within the bound when the
+// lists name the same geoms.
 void compare_contacts(const Twin& t, int k, Report& r) {
   const Data& data = t.data;
   const mjData* d = t.d.get();
   r.compare("ncon", k, data.ncon, d->ncon);
   if (data.ncon != d->ncon) return;
+  const std::vector<ContactField>& fields = contact_field_table();
+  const std::vector<std::ptrdiff_t>& theirs_at = mujoco_contact_offsets();
   for (int i = 0; i < data.ncon; ++i) {
     const Contact& ours = data.contact[i];
     const mjContact& theirs = d->contact[i];
+    const auto* theirs_bytes = reinterpret_cast<const char*>(&theirs);
     const std::string label = "contact " + std::to_string(i);
-    r.compare("contact geom1", k, ours.geom1, theirs.geom1, label);
-    r.compare("contact geom2", k, ours.geom2, theirs.geom2, label);
-    r.compare("contact dim", k, ours.dim, theirs.dim, label);
-    r.compare("contact exclude", k, ours.exclude, theirs.exclude, label);
-    r.compare("contact efc_address", k, ours.efc_address, theirs.efc_address, label);
-    if (ours.geom1 != theirs.geom1 || ours.geom2 != theirs.geom2) continue;
-    const auto indexed = [&label](int c) { return label + ", " + std::to_string(c); };
-    r.compare("contact dist", k, ours.dist, theirs.dist, label);
-    r.compare("contact pos", k, ours.pos.data(), theirs.pos, 3, indexed);
-    std::vector<double> frame(9);
-    for (int c = 0; c < 9; ++c) frame[c] = ours.frame(c / 3, c % 3);
-    r.compare("contact frame", k, frame.data(), theirs.frame, 9, indexed);
-    r.compare("contact includemargin", k, ours.includemargin, theirs.includemargin, label);
-    r.compare("contact friction", k, ours.friction.data(), theirs.friction, 5, indexed);
-    r.compare("contact mu", k, ours.mu, theirs.mu, label);
+    const bool same_geoms = ours.geom1 == theirs.geom1 && ours.geom2 == theirs.geom2;
+    for (int pass = 0; pass < 2; ++pass) {  // integers first: they say whether the rest compare
+      for (std::size_t f = 0; f < fields.size(); ++f) {
+        const ContactField& field = fields[f];
+        const bool is_int = field.scalar == Scalar::kInt;
+        if (is_int != (pass == 0) || (!is_int && !same_geoms)) continue;
+        const std::string quantity = std::string("contact ") + field.name;
+        const void* mine = field.in(ours);
+        const void* mujoco = theirs_bytes + theirs_at[f];
+        std::vector<double> a(field.count), b(field.count);
+        for (int c = 0; c < field.count; ++c) {
+          a[c] = is_int ? static_cast<const int*>(mine)[c] : static_cast<const double*>(mine)[c];
+          b[c] = is_int ? static_cast<const int*>(mujoco)[c] : static_cast<const double*>(mujoco)[c];
+        }
+        if (field.count == 1) {
+          r.compare(quantity, k, a[0], b[0], label);
+        } else {
+          r.compare(quantity, k, a.data(), b.data(), field.count,
+                    [&label](int c) { return label + ", " + std::to_string(c); });
+        }
+      }
+    }
   }
 }
 
