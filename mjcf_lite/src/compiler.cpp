@@ -370,14 +370,13 @@ class Compiler {
 
   // ---- meshes ---------------------------------------------------------------------------------
 
-  // A mesh geom that gives its body mass: read and process its mesh (once per mesh), then move
-  // the geom's frame to the mesh's centre and principal axes, size it by the mesh's bounding box
-  // and give it the mass and inertia MuJoCo 2.2.2 gives it (mjCGeom::Compile, GetVolume,
-  // SetInertia).
-  void apply_mesh(const GeomSpec& g, int body, CompiledGeom& out) {
-    size_t m = 0;
-    while (spec_.assets.meshes[m].name != g.mesh) ++m;  // check_mesh found it
-    const MeshMass& mesh = mesh_mass(m, g, body);
+  // A mesh geom that gives its body mass or can collide: read and process its mesh (once per
+  // mesh), then move the geom's frame to the mesh's centre and principal axes, size it by the
+  // mesh's bounding box and, if it gives mass, give it the mass and inertia MuJoCo 2.2.2 gives it
+  // (mjCGeom::Compile, GetVolume, SetInertia).
+  void apply_mesh(const GeomSpec& g, int body, CompiledGeom& out, bool gives_mass) {
+    const size_t m = mesh_index(g);
+    const MeshMass& mesh = mesh_mass(m, g, body, gives_mass);
     const Mat3 r = rotation(out.quat);
     for (size_t k = 0; k < 3; ++k) {
       out.pos[k] +=
@@ -385,6 +384,7 @@ class Compiler {
     }
     out.quat = compiler_product(out.quat, mesh.quat);
     out.size = mesh.aabb;
+    if (!gives_mass) return;  // read for collision only: its frame and size
     const Vec3& b = mesh.box;
     const double volume = c_.exactmeshinertia ? mesh.volume : b[0] * b[1] * b[2] * 8;
     if (g.mass) {
@@ -399,7 +399,29 @@ class Compiler {
                    out.mass * (b[0] * b[0] + b[1] * b[1]) / 3};
   }
 
-  const MeshMass& mesh_mass(size_t m, const GeomSpec& g, int body) {
+  size_t mesh_index(const GeomSpec& g) const {
+    size_t m = 0;
+    while (spec_.assets.meshes[m].name != g.mesh) ++m;  // check_mesh found it
+    return m;
+  }
+
+  static bool can_collide(const GeomSpec& g) { return g.contype != 0 || g.conaffinity != 0; }
+
+  // whether MuJoCo builds mesh m's convex hull: a mesh geom using it can collide and the compiler's
+  // convexhull is on (mjCModel::Compile's needhull)
+  bool needs_hull(size_t m) const {
+    if (!c_.convexhull) return false;
+    for (const BodyNode& node : nodes_) {
+      for (const GeomSpec& g : node.spec->geoms) {
+        if (g.type == GeomType::kMesh && can_collide(g) && g.mesh == spec_.assets.meshes[m].name) {
+          return true;
+        }
+      }
+    }
+    return false;
+  }
+
+  const MeshMass& mesh_mass(size_t m, const GeomSpec& g, int body, bool gives_mass) {
     if (mesh_cache_.size() <= m) mesh_cache_.resize(spec_.assets.meshes.size());
     if (mesh_cache_[m]) return *mesh_cache_[m];
     const Place& at = spec_.assets.meshes[m];
@@ -407,9 +429,15 @@ class Compiler {
     const std::string& body_name = nodes_[static_cast<size_t>(body)].spec->at.name;
     const std::string geom =
         "mesh geom" + (g.at.name.empty() ? std::string() : " '" + g.at.name + "'");
-    const std::string why = geom + " must give body '" + body_name + "' its mass and inertia";
-    const std::string advice = ". Fix that, or add an <inertial> to body '" + body_name +
-                               "' (then lever does not read the mesh)";
+    const std::string why =
+        gives_mass ? geom + " must give body '" + body_name + "' its mass and inertia"
+                   : geom + " can collide (contype or conaffinity is not 0)";
+    const std::string advice =
+        gives_mass ? ". Fix that, or add an <inertial> to body '" + body_name +
+                         "' and set the geom's contype and conaffinity to 0 (then lever does not "
+                         "read the mesh)"
+                   : ". Fix that, or set the geom's contype and conaffinity to 0 (then lever "
+                     "does not read the mesh)";
     const std::string mesh = "mesh '" + at.name + "' (line " + std::to_string(at.line) + ")";
     if (file.empty()) {
       fail(g.at, "mesh",
@@ -446,7 +474,7 @@ class Compiler {
     try {
       TriangleMesh triangles = is(".stl") ? read_stl(bytes, righthand) : read_obj(bytes, righthand);
       mesh_cache_[m] = process_mesh(std::move(triangles), source.refpos, source.refquat, scale,
-                                    source.density, c_.exactmeshinertia);
+                                    source.density, c_.exactmeshinertia, needs_hull(m));
     } catch (const MeshError& e) {
       fail(g.at, "mesh",
            why + ", but mesh file '" + path + "' of " + mesh + " cannot be used: " + e.what() +
@@ -543,10 +571,24 @@ class Compiler {
       }
     }
     if (g.type == GeomType::kMesh) {
-      // a mesh geom that gives no mass keeps its frame as written, size zero and no mass: lever
-      // reads its file only when the body needs it
+      // a mesh geom that neither gives mass nor can collide keeps its frame as written, size zero
+      // and no mass: lever reads its file only when the body or the collision stage needs it
       out.size = {0, 0, 0};
-      if (gives_mass) apply_mesh(g, body, out);
+      if (gives_mass) {
+        apply_mesh(g, body, out, true);
+      } else if (can_collide(g)) {
+        // MuJoCo reads mesh files lever does not (inline vertices, MSH): such a geom keeps its
+        // frame as written and cannot collide in lever, which says so (the unsupported pairs'
+        // warning names its pairs)
+        try {
+          apply_mesh(g, body, out, false);
+        } catch (const Problem& p) {
+          // once per mesh: the unsupported pairs' warnings name the other geoms
+          if (unreadable_meshes_.insert(g.mesh).second) {
+            warnings_.push_back("line " + std::to_string(p.where.line) + ": " + p.message);
+          }
+        }
+      }
       require_finite(g.at, "geom", out.size, out.pos, out.quat, std::array<double, 1>{out.mass},
                      out.inertia);
       return out;
@@ -803,12 +845,10 @@ class Compiler {
     std::string use;
     if (has(GeomType::kMesh)) {
       use =
-          "give the mesh's body primitive collision geoms (box, capsule, sphere) and make the "
-          "mesh visual only (contype=\"0\" conaffinity=\"0\")";
-    } else if (has(GeomType::kCylinder)) {
-      use = "use a capsule or a box instead of the cylinder";
+          "give the mesh a binary STL or OBJ file, or give its body primitive collision geoms "
+          "and make the mesh visual only (contype=\"0\" conaffinity=\"0\")";
     } else {
-      use = "use a sphere, capsule or box instead of the ellipsoid";
+      use = "model the ground with a plane or boxes instead of the height field";
     }
     return use +
            ", or keep the two from colliding (contype/conaffinity, or <exclude> their bodies)";
@@ -844,10 +884,18 @@ class Compiler {
       if (wa != 0 && wb != 0 && (wa == weld_parent(wb) || wb == weld_parent(wa))) return false;
       return !excluded(ga.body, gb.body);
     };
+    // a mesh geom whose mesh lever did not read has no shape to collide
+    const auto unread_mesh = [&](int g) {
+      const GeomSpec& spec = *geoms_[static_cast<size_t>(g)].spec;
+      if (spec.type != GeomType::kMesh) return false;
+      const size_t m = mesh_index(spec);
+      return m >= mesh_cache_.size() || !mesh_cache_[m];
+    };
     const auto unsupported_types = [&](int a, int b) {
       const GeomType ta = geoms_[static_cast<size_t>(a)].spec->type;
       const GeomType tb = geoms_[static_cast<size_t>(b)].spec->type;
-      return !has_collision_function(ta, tb) && !(ta == GeomType::kPlane && tb == GeomType::kPlane);
+      if (ta == GeomType::kPlane && tb == GeomType::kPlane) return false;
+      return !has_collision_function(ta, tb) || unread_mesh(a) || unread_mesh(b);
     };
     // the first pairs are named, the rest only counted (a model of 10000 mesh geoms has 5e7)
     constexpr size_t kListed = 10;
@@ -880,18 +928,19 @@ class Compiler {
       const GeomSpec& ga = *geoms_[static_cast<size_t>(a)].spec;
       const GeomSpec& gb = *geoms_[static_cast<size_t>(b)].spec;
       const std::string ta = type_name(ga.type), tb = type_name(gb.type);
+      const std::string why = has_collision_function(ga.type, gb.type)
+                                  ? "lever did not read the mesh (see its warning)"
+                                  : "lever has no " + ta + "-" + tb + " contact";
       warnings_.push_back("geoms " + label(a) + " and " + label(b) + " (" + ta + ", " + tb +
                           "; lines " + std::to_string(ga.at.line) + " and " +
-                          std::to_string(gb.at.line) + ") can collide and lever has no " + ta +
-                          "-" + tb +
-                          " contact: it skips them, and warns whenever they come near each "
-                          "other; " +
+                          std::to_string(gb.at.line) + ") can collide and " + why +
+                          ": it skips them, and warns whenever they come near each other; " +
                           advice_for(ga.type, gb.type));
     }
     if (count > kListed) {
       warnings_.push_back("and " + std::to_string(count - kListed) +
                           " more geom pairs that can collide and that lever cannot compute "
-                          "(meshes, and cylinders or ellipsoids against anything but a plane)");
+                          "(height fields, and meshes lever did not read)");
     }
   }
 
@@ -919,6 +968,7 @@ class Compiler {
   void assemble_motors(Model& m) const;
   void assemble_keys(Model& m) const;
   void assemble_visual(Model& m) const;
+  void assemble_meshes(Model& m) const;
 
   const ModelSpec& spec_;
   const CompilerSpec& c_;
@@ -933,6 +983,7 @@ class Compiler {
   std::vector<CompiledExclude> excludes_;  ///< sorted by signature
   std::vector<std::string> warnings_;
   std::vector<std::optional<MeshMass>> mesh_cache_;  ///< per mesh, once read
+  std::set<std::string> unreadable_meshes_;  ///< meshes read to collide only, and failed (warned)
 };
 
 Eigen::Vector3d eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
@@ -956,7 +1007,14 @@ Model Compiler::assemble() const {
   m.npair = static_cast<int>(pairs_.size());
   m.nexclude = static_cast<int>(excludes_.size());
   m.nkey = static_cast<int>(spec_.keys.size());
+  m.nmesh = static_cast<int>(spec_.assets.meshes.size());
+  for (const std::optional<MeshMass>& mesh : mesh_cache_) {
+    if (!mesh) continue;
+    m.nmeshvert += static_cast<int>(mesh->vert.size() / 3);
+    m.nmeshgraph += static_cast<int>(mesh->graph.size());
+  }
   size_model(m);
+  assemble_meshes(m);
   assemble_bodies(m);
   assemble_joints(m);
   assemble_geoms_and_sites(m);
@@ -1099,6 +1157,29 @@ void Compiler::assemble_geoms_and_sites(Model& m) const {
     m.site_pos[i] = eigen(c.spec->pos);
     m.site_quat[i] = eigen(c.quat);
     m.site_size[i] = eigen(c.spec->size);
+  }
+}
+
+// every mesh asset, as MuJoCo numbers them; one lever did not read has no vertices and no graph
+void Compiler::assemble_meshes(Model& m) const {
+  int vert = 0, graph = 0;
+  for (size_t k = 0; k < spec_.assets.meshes.size(); ++k) {
+    const MeshMass* mesh = k < mesh_cache_.size() && mesh_cache_[k] ? &*mesh_cache_[k] : nullptr;
+    m.mesh_vertadr[k] = vert;
+    m.mesh_vertnum[k] = mesh ? static_cast<int>(mesh->vert.size() / 3) : 0;
+    m.mesh_graphadr[k] = mesh && !mesh->graph.empty() ? graph : -1;
+    if (!mesh) continue;
+    for (int v = 0; v < m.mesh_vertnum[k]; ++v) {
+      const float* p = mesh->vert.data() + 3 * v;
+      m.mesh_vert[static_cast<size_t>(vert + v)] = Eigen::Vector3d(p[0], p[1], p[2]);
+    }
+    std::copy(mesh->graph.begin(), mesh->graph.end(), m.mesh_graph.begin() + graph);
+    vert += m.mesh_vertnum[k];
+    graph += static_cast<int>(mesh->graph.size());
+  }
+  for (size_t g = 0; g < geoms_.size(); ++g) {
+    const GeomSpec& s = *geoms_[g].spec;
+    m.geom_dataid[g] = s.type == GeomType::kMesh ? static_cast<int>(mesh_index(s)) : -1;
   }
 }
 

@@ -263,6 +263,7 @@ CompilerSpec read_compiler(const Element& root) {
   c.meshdir = f.word("meshdir");
   c.texturedir = f.word("texturedir");
   c.exactmeshinertia = f.word("exactmeshinertia") == "true";
+  c.convexhull = f.word("convexhull") == "true";
   return c;
 }
 
@@ -302,6 +303,11 @@ void check_option_values(const Element& option, const AttrSet& set) {
          "must not be negative");
   refuse("tolerance", set.find("tolerance") && set.find("tolerance")->numbers[0] < 0,
          "must not be negative");
+  refuse("mpr_tolerance", set.find("mpr_tolerance") && set.find("mpr_tolerance")->numbers[0] < 0,
+         "must not be negative");
+  refuse("mpr_iterations",
+         set.find("mpr_iterations") && set.find("mpr_iterations")->numbers[0] < 0,
+         "must not be negative");
 }
 
 Options read_option(const Element& root) {
@@ -338,7 +344,11 @@ Options read_option(const Element& root) {
   o.impratio = f.real("impratio");
   o.iterations = f.integer("iterations");
   o.tolerance = f.real("tolerance");
-  o.contact_disabled = Fields(flags, "option", "flag").word("contact") == "disable";
+  const Fields flag(flags, "option", "flag");
+  o.contact_disabled = flag.word("contact") == "disable";
+  o.mpr_tolerance = f.real("mpr_tolerance");
+  o.mpr_iterations = f.integer("mpr_iterations");
+  o.multiccd = flag.word("multiccd") == "enable";
   return o;
 }
 

@@ -155,6 +155,7 @@ struct CompilerSpec {
   double settotalmass = -1;
   std::string meshdir, texturedir;
   bool exactmeshinertia = false;
+  bool convexhull = true;  ///< hull graphs for the meshes that can collide (MuJoCo's default)
 };
 
 struct ModelSpec {
