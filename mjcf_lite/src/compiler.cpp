@@ -377,16 +377,23 @@ class Compiler {
   void apply_mesh(const GeomSpec& g, int body, CompiledGeom& out, bool gives_mass) {
     const size_t m = mesh_index(g);
     const MeshMass& mesh = mesh_mass(m, g, body, gives_mass);
+    // the solid's frame, or with shellinertia the shell's (MuJoCo 2.2.2's typeinertia)
+    const Vec3& frame_pos = g.shellinertia ? mesh.shell_pos : mesh.pos;
+    const Quat& frame_quat = g.shellinertia ? mesh.shell_quat : mesh.quat;
     const Mat3 r = rotation(out.quat);
     for (size_t k = 0; k < 3; ++k) {
-      out.pos[k] +=
-          r[3 * k] * mesh.pos[0] + r[3 * k + 1] * mesh.pos[1] + r[3 * k + 2] * mesh.pos[2];
+      out.pos[k] += r[3 * k] * frame_pos[0] + r[3 * k + 1] * frame_pos[1] +
+                    r[3 * k + 2] * frame_pos[2];
     }
-    out.quat = compiler_product(out.quat, mesh.quat);
+    out.quat = compiler_product(out.quat, frame_quat);
     out.size = mesh.aabb;
     if (!gives_mass) return;  // read for collision only: its frame and size
-    const Vec3& b = mesh.box;
-    const double volume = c_.exactmeshinertia ? mesh.volume : b[0] * b[1] * b[2] * 8;
+    // the volume: the shell's area when exact, else (MuJoCo 2.2.2) the solid's inertia box even
+    // for a shell; the inertia from the chosen inertia box
+    const Vec3& b = g.shellinertia ? mesh.shell_box : mesh.box;
+    const Vec3& solid = mesh.box;
+    const double volume = c_.exactmeshinertia ? (g.shellinertia ? mesh.surface : mesh.volume)
+                                              : solid[0] * solid[1] * solid[2] * 8;
     if (g.mass) {
       // a given mass goes only to a geom with a volume; mass 0 keeps zero inertia (mujoco)
       if (*g.mass == 0 || !(volume > 1e-15)) return;
@@ -517,6 +524,11 @@ class Compiler {
 
   // a mesh geom: its asset must exist (its file is read only if it gives its body mass)
   void check_mesh(const GeomSpec& g) const {
+    if (g.shellinertia && g.type != GeomType::kMesh) {
+      fail(g.at, "shellinertia",
+           std::string("shellinertia applies to mesh geoms only (MuJoCo 2.2.2 refuses it for a ") +
+               type_name(g.type) + " that gives mass): remove it");
+    }
     if (g.type != GeomType::kMesh && !g.mesh.empty()) {
       fail(g.at, "mesh",
            std::string("a ") + type_name(g.type) + " geom with mesh=\"" + g.mesh +

@@ -486,8 +486,18 @@ MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat
     if (e[0] + e[1] < e[2] || e[0] + e[2] < e[1] || e[1] + e[2] < e[0]) {
       throw fault("the principal moments of its inertia violate A + B >= C");
     }
-    if (shell) break;
     const double mass = volume * density;
+    if (shell) {
+      // MuJoCo's shell pass: its centre (the face centroids weighted by area, times 3/4: the
+      // pyramid formula with no apex) and axes in the vertices' frame after the solid pass
+      out.shell_pos = com;
+      out.shell_quat = p.quat;
+      out.surface = volume;
+      out.shell_box = {std::sqrt(6 * (e[1] + e[2] - e[0]) / mass) / 2,
+                       std::sqrt(6 * (e[0] + e[2] - e[1]) / mass) / 2,
+                       std::sqrt(6 * (e[0] + e[1] - e[2]) / mass) / 2};
+      break;
+    }
     out.volume = volume;
     out.box = {std::sqrt(6 * (e[1] + e[2] - e[0]) / mass) / 2,
                std::sqrt(6 * (e[0] + e[2] - e[1]) / mass) / 2,

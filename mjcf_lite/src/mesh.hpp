@@ -46,6 +46,12 @@ struct MeshMass {
   Vec3 box{};
   double volume = 0;
   Vec3 aabb{};
+  /// the shell's (MuJoCo's surface mesh, for shellinertia): the frame of its centre and principal
+  /// axes, computed in the volume's principal frame as MuJoCo does, its inertia box and its area
+  Vec3 shell_pos{};
+  Quat shell_quat{1, 0, 0, 0};
+  Vec3 shell_box{};
+  double surface = 0;
   /// what collision reads (MuJoCo's mesh_vert and mesh_graph): the vertices in the principal
   /// frame, x y z per vertex, and the convex hull's graph (empty when none was asked for)
   std::vector<float> vert;

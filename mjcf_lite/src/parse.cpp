@@ -122,6 +122,7 @@ GeomSpec read_geom(const Element& e, const AttrSet& set) {
   g.pos = f.array<3>("pos");
   g.orientation = f.orientation();
   g.density = f.real("density");
+  g.shellinertia = f.word("shellinertia") == "true";
   if (f.has("mass")) g.mass = f.real("mass");
   g.group = f.integer("group");
   g.contype = f.integer("contype");

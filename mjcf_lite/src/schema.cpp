@@ -125,6 +125,9 @@ std::vector<AttributeRule> geom_attributes() {
       join(alternatives(),
            {
                real("density", 1, "1000", "kg/m^3, for the mass inferred from the volume"),
+               keyword("shellinertia", "false", "false true", "",
+                       "a mesh geom's inertia as a shell (its surface area as the volume; MuJoCo "
+                       "2.2.2's frame and inertia box of the surface); meshes only"),
                real("mass", 1, "", "kg; overrides density"),
                integer("group", 1, "0", "group; compiler/inertiagrouprange selects mass"),
                integer("contype", 1, "1",
@@ -187,7 +190,7 @@ std::vector<AttributeRule> pair_attributes() {
 const char* const kUnsupportedJointAttributes =
     "springdamper solreffriction solimpfriction frictionloss user";
 const char* const kUnsupportedGeomAttributes =
-    "hfield fitscale fluidshape fluidcoef user shellinertia";
+    "hfield fitscale fluidshape fluidcoef user";
 const char* const kUnsupportedSiteAttributes = "fromto user";
 const char* const kOtherActuators = "intvelocity damper cylinder muscle adhesion";
 

@@ -93,3 +93,31 @@ TEST_CASE("a gripper of the Panda hand's and the 2F-85's meshes: masses and hull
 </mujoco>)";
   compare_with_mujoco(xml, "gripper_meshes.xml", 5);
 }
+
+TEST_CASE("shell inertia of real meshes is MuJoCo's, legacy and exact", "[compile][mesh]") {
+  // shellinertia: the geom's frame from the surface's centre and axes, its inertia from the
+  // surface's box, its volume the surface area when exact (else the solid's inertia box)
+  const std::string robots = lever::test::robots_dir() + "/menagerie-2022/";
+  for (const char* exact : {"false", "true"}) {
+    const std::string xml = R"(<mujoco>
+  <compiler exactmeshinertia=")" + std::string(exact) + R"(" meshdir=")" + robots + R"("/>
+  <asset>
+    <mesh name="hand" file="franka_emika_panda/assets/hand.stl"/>
+    <mesh name="finger" file="franka_emika_panda/assets/finger_0.obj"/>
+  </asset>
+  <default><geom shellinertia="true"/></default>
+  <worldbody>
+    <body name="hand">
+      <joint type="slide" axis="0 0 1"/>
+      <geom type="mesh" mesh="hand" pos="0.1 0 0" euler="0.3 0 0"/>
+      <body name="finger" pos="0 0 0.06">
+        <joint type="slide" axis="0 1 0"/>
+        <geom type="mesh" mesh="finger" density="500"/>
+        <geom type="mesh" mesh="hand" shellinertia="false" contype="0" conaffinity="0"/>
+      </body>
+    </body>
+  </worldbody>
+</mujoco>)";
+    compare_with_mujoco(xml, std::string("shell_") + exact + ".xml", 2);
+  }
+}
