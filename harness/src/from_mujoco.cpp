@@ -35,6 +35,9 @@ void copy_contact(const mjModel* m, Model& model) {
   }
   model.opt.cone = m->opt.cone == mjCONE_PYRAMIDAL ? Cone::kPyramidal : Cone::kElliptic;
   model.opt.impratio = m->opt.impratio;
+  model.opt.mpr_tolerance = m->opt.mpr_tolerance;
+  model.opt.mpr_iterations = m->opt.mpr_iterations;
+  model.opt.multiccd = (m->opt.enableflags & mjENBL_MULTICCD) != 0;
   model.nconmax = m->nconmax;
   model.njmax = m->njmax;
 
@@ -48,7 +51,19 @@ void copy_contact(const mjModel* m, Model& model) {
     model.geom_margin[g] = m->geom_margin[g];
     model.geom_gap[g] = m->geom_gap[g];
     model.geom_rbound[g] = m->geom_rbound[g];
+    model.geom_dataid[g] = m->geom_type[g] == mjGEOM_MESH ? m->geom_dataid[g] : -1;
   }
+  // meshes: vertices (floats, held as the doubles they convert to) and hull graphs
+  for (int k = 0; k < m->nmesh; ++k) {
+    model.mesh_vertadr[k] = m->mesh_vertadr[k];
+    model.mesh_vertnum[k] = m->mesh_vertnum[k];
+    model.mesh_graphadr[k] = m->mesh_graphadr[k];
+  }
+  for (int v = 0; v < m->nmeshvert; ++v) {
+    const float* p = m->mesh_vert + 3 * v;
+    model.mesh_vert[v] = Eigen::Vector3d(p[0], p[1], p[2]);
+  }
+  for (int i = 0; i < m->nmeshgraph; ++i) model.mesh_graph[i] = m->mesh_graph[i];
   for (int p = 0; p < m->npair; ++p) {
     model.pair_dim[p] = m->pair_dim[p];
     model.pair_geom1[p] = m->pair_geom1[p];
@@ -114,6 +129,9 @@ Model from_mujoco(const mjModel* m) {
   model.nkey = m->nkey;
   model.npair = m->npair;
   model.nexclude = m->nexclude;
+  model.nmesh = m->nmesh;
+  model.nmeshvert = m->nmeshvert;
+  model.nmeshgraph = m->nmeshgraph;
   size_model(model);
 
   for (int b = 0; b < m->nbody; ++b) {

@@ -175,7 +175,7 @@ const char* size_meaning(GeomType type) {
 
 // radius of the sphere around the geom's centre that holds it (mjCGeom::GetRBound); 0 for a
 // plane, which is infinite; a mesh geom's from the half-sizes of its bounding box (zero for a mesh
-// lever did not read: one that gives no mass and cannot collide, or whose file lever cannot read)
+// lever did not read, see apply_mesh)
 double bounding_radius(GeomType type, const Vec3& size) {
   switch (type) {
     case GeomType::kSphere: return size[0];
@@ -377,15 +377,30 @@ class Compiler {
 
   // ---- meshes ---------------------------------------------------------------------------------
 
-  // A mesh geom that gives its body mass: read and process its mesh (once per mesh), then move
-  // the geom's frame to the mesh's centre and principal axes, size it by the mesh's bounding box
-  // and give it the mass and inertia MuJoCo 2.2.2 gives it (mjCGeom::Compile, GetVolume,
-  // SetInertia).
-  void apply_mesh(const GeomSpec& g, int body, CompiledGeom& out) {
-    const MeshMass& mesh = mesh_mass(mesh_index(g), g, body);
-    place_on_mesh(mesh, out);
-    const Vec3& b = mesh.box;
-    const double volume = c_.exactmeshinertia ? mesh.volume : b[0] * b[1] * b[2] * 8;
+  // A mesh geom that gives its body mass or can collide: read and process its mesh (once per
+  // mesh), then move the geom's frame to the mesh's centre and principal axes, size it by the
+  // mesh's bounding box and, if it gives mass, give it the mass and inertia MuJoCo 2.2.2 gives it
+  // (mjCGeom::Compile, GetVolume, SetInertia).
+  void apply_mesh(const GeomSpec& g, int body, CompiledGeom& out, bool gives_mass) {
+    const size_t m = mesh_index(g);
+    const MeshMass& mesh = mesh_mass(m, g, body, gives_mass);
+    // the solid's frame, or with shellinertia the shell's (MuJoCo 2.2.2's typeinertia)
+    const Vec3& frame_pos = g.shellinertia ? mesh.shell_pos : mesh.pos;
+    const Quat& frame_quat = g.shellinertia ? mesh.shell_quat : mesh.quat;
+    const Mat3 r = rotation(out.quat);
+    for (size_t k = 0; k < 3; ++k) {
+      out.pos[k] += r[3 * k] * frame_pos[0] + r[3 * k + 1] * frame_pos[1] +
+                    r[3 * k + 2] * frame_pos[2];
+    }
+    out.quat = compiler_product(out.quat, frame_quat);
+    out.size = mesh.aabb;
+    if (!gives_mass) return;  // read for collision only: its frame and size
+    // the volume: the shell's area when exact, else (MuJoCo 2.2.2) the solid's inertia box even
+    // for a shell; the inertia from the chosen inertia box
+    const Vec3& b = g.shellinertia ? mesh.shell_box : mesh.box;
+    const Vec3& solid = mesh.box;
+    const double volume = c_.exactmeshinertia ? (g.shellinertia ? mesh.surface : mesh.volume)
+                                              : solid[0] * solid[1] * solid[2] * 8;
     if (g.mass) {
       // a given mass goes only to a geom with a volume; mass 0 keeps zero inertia (mujoco)
       if (*g.mass == 0 || !(volume > 1e-15)) return;
@@ -398,58 +413,52 @@ class Compiler {
                    out.mass * (b[0] * b[0] + b[1] * b[1]) / 3};
   }
 
-  // A mesh geom that can collide but gives no mass: its frame and size as MuJoCo's (so its
-  // bounding radius, which the collision stage's broad phase reads) when lever can read its mesh;
-  // else, as before, the frame as written and size zero.
-  void place_colliding_mesh(const GeomSpec& g, CompiledGeom& out) {
-    const size_t m = mesh_index(g);
-    if (read_mesh(m).empty()) place_on_mesh(*mesh_cache_[m], out);
-  }
-
   size_t mesh_index(const GeomSpec& g) const {
     size_t m = 0;
     while (spec_.assets.meshes[m].name != g.mesh) ++m;  // check_mesh found it
     return m;
   }
 
-  // the geom's frame moved to the mesh's centre and principal axes, its size the bounding box's
-  static void place_on_mesh(const MeshMass& mesh, CompiledGeom& out) {
-    const Mat3 r = rotation(out.quat);
-    for (size_t k = 0; k < 3; ++k) {
-      out.pos[k] +=
-          r[3 * k] * mesh.pos[0] + r[3 * k + 1] * mesh.pos[1] + r[3 * k + 2] * mesh.pos[2];
+  static bool can_collide(const GeomSpec& g) { return g.contype != 0 || g.conaffinity != 0; }
+
+  // whether MuJoCo builds mesh m's convex hull: a mesh geom using it can collide and the compiler's
+  // convexhull is on (mjCModel::Compile's needhull)
+  bool needs_hull(size_t m) const {
+    if (!c_.convexhull) return false;
+    for (const BodyNode& node : nodes_) {
+      for (const GeomSpec& g : node.spec->geoms) {
+        if (g.type == GeomType::kMesh && can_collide(g) && g.mesh == spec_.assets.meshes[m].name) {
+          return true;
+        }
+      }
     }
-    out.quat = compiler_product(out.quat, mesh.quat);
-    out.size = mesh.aabb;
+    return false;
   }
 
-  const MeshMass& mesh_mass(size_t m, const GeomSpec& g, int body) {
+  const MeshMass& mesh_mass(size_t m, const GeomSpec& g, int body, bool gives_mass) {
+    if (mesh_cache_.size() <= m) mesh_cache_.resize(spec_.assets.meshes.size());
+    if (mesh_cache_[m]) return *mesh_cache_[m];
+    const Place& at = spec_.assets.meshes[m];
+    const std::string& file = spec_.assets.mesh_files[m];
     const std::string& body_name = nodes_[static_cast<size_t>(body)].spec->at.name;
     const std::string geom =
         "mesh geom" + (g.at.name.empty() ? std::string() : " '" + g.at.name + "'");
-    const std::string why = geom + " must give body '" + body_name + "' its mass and inertia";
-    const std::string advice = ". Fix that, or add an <inertial> to body '" + body_name +
-                               "' (then lever does not read the mesh)";
-    const std::string error = read_mesh(m);
-    if (!error.empty()) fail(g.at, "mesh", why + ", but " + error + advice);
-    return *mesh_cache_[m];
-  }
-
-  // Reads and processes mesh m once (mesh_cache_); returns why it cannot, "" once it has.
-  std::string read_mesh(size_t m) {
-    if (mesh_cache_.size() <= m) {
-      mesh_cache_.resize(spec_.assets.meshes.size());
-      mesh_error_.resize(spec_.assets.meshes.size());
-    }
-    if (mesh_cache_[m] || !mesh_error_[m].empty()) return mesh_error_[m];
-    const Place& at = spec_.assets.meshes[m];
-    const std::string& file = spec_.assets.mesh_files[m];
+    const std::string why =
+        gives_mass ? geom + " must give body '" + body_name + "' its mass and inertia"
+                   : geom + " can collide (contype or conaffinity is not 0)";
+    const std::string advice =
+        gives_mass ? ". Fix that, or add an <inertial> to body '" + body_name +
+                         "' and set the geom's contype and conaffinity to 0 (then lever does not "
+                         "read the mesh)"
+                   : ". Fix that, or set the geom's contype and conaffinity to 0 (then lever "
+                     "does not read the mesh)";
     const std::string mesh = "mesh '" + at.name + "' (line " + line_text(at) + ")";
-    std::string& error = mesh_error_[m];
     if (file.empty()) {
-      return error = mesh +
-                     " gives its vertices inline, which lever does not read: put them in an STL "
-                     "or OBJ file";
+      fail(g.at, "mesh",
+           why + ", but " + mesh +
+               " gives its vertices inline, which lever does not read: put them in an STL or OBJ "
+               "file" +
+               advice);
     }
     const std::string path = mesh_path(spec_.model_dir, c_.meshdir, file);
     const std::string ext = file.size() >= 4 ? file.substr(file.size() - 4) : file;
@@ -459,9 +468,10 @@ class Compiler {
              });
     };
     if (!is(".stl") && !is(".obj")) {
-      return error = "the file '" + path + "' of " + mesh +
-                     " is not binary STL or OBJ, the formats lever reads (MuJoCo 2.2.2 also "
-                     "reads MSH)";
+      fail(g.at, "mesh",
+           why + ", but the file '" + path + "' of " + mesh +
+               " is not binary STL or OBJ, the formats lever reads (MuJoCo 2.2.2 also reads MSH)" +
+               advice);
     }
     const MeshSource& source = spec_.assets.mesh_sources[m];
     const Vec3& scale = source.scale;
@@ -471,16 +481,20 @@ class Compiler {
     try {
       bytes = read_mesh_file(path, kMaxBytes);
     } catch (const MeshError& e) {
-      return error = "lever cannot read mesh file '" + path + "' of " + mesh + ": " + e.what();
+      fail(g.at, "mesh",
+           why + ", but lever cannot read mesh file '" + path + "' of " + mesh + ": " + e.what() +
+               advice);
     }
     try {
       TriangleMesh triangles = is(".stl") ? read_stl(bytes, righthand) : read_obj(bytes, righthand);
       mesh_cache_[m] = process_mesh(std::move(triangles), source.refpos, source.refquat, scale,
-                                    source.density, c_.exactmeshinertia);
+                                    source.density, c_.exactmeshinertia, needs_hull(m));
     } catch (const MeshError& e) {
-      return error = "mesh file '" + path + "' of " + mesh + " cannot be used: " + e.what();
+      fail(g.at, "mesh",
+           why + ", but mesh file '" + path + "' of " + mesh + " cannot be used: " + e.what() +
+               advice);
     }
-    return "";
+    return *mesh_cache_[m];
   }
 
   // bounds and the triangle inequality, for every body but the world
@@ -517,6 +531,11 @@ class Compiler {
 
   // a mesh geom: its asset must exist (its file is read only if it gives its body mass)
   void check_mesh(const GeomSpec& g) const {
+    if (g.shellinertia && g.type != GeomType::kMesh) {
+      fail(g.at, "shellinertia",
+           std::string("shellinertia applies to mesh geoms only (MuJoCo 2.2.2 refuses it for a ") +
+               type_name(g.type) + " that gives mass): remove it");
+    }
     if (g.type != GeomType::kMesh && !g.mesh.empty()) {
       fail(g.at, "mesh",
            std::string("a ") + type_name(g.type) + " geom with mesh=\"" + g.mesh +
@@ -571,13 +590,23 @@ class Compiler {
       }
     }
     if (g.type == GeomType::kMesh) {
-      // a mesh geom that gives no mass has no mass; lever reads its file only when the body
-      // needs it or the geom can collide (else it keeps its frame as written and size zero)
+      // a mesh geom that neither gives mass nor can collide keeps its frame as written, size zero
+      // and no mass: lever reads its file only when the body or the collision stage needs it
       out.size = {0, 0, 0};
       if (gives_mass) {
-        apply_mesh(g, body, out);
-      } else if (g.contype != 0 || g.conaffinity != 0) {
-        place_colliding_mesh(g, out);
+        apply_mesh(g, body, out, true);
+      } else if (can_collide(g)) {
+        // MuJoCo reads mesh files lever does not (inline vertices, MSH): such a geom keeps its
+        // frame as written and cannot collide in lever, which says so (the unsupported pairs'
+        // warning names its pairs)
+        try {
+          apply_mesh(g, body, out, false);
+        } catch (const Problem& p) {
+          // once per mesh: the unsupported pairs' warnings name the other geoms
+          if (unreadable_meshes_.insert(g.mesh).second) {
+            warnings_.push_back("line " + line_text(p.where) + ": " + p.message);
+          }
+        }
       }
       require_finite(g.at, "geom", out.size, out.pos, out.quat, std::array<double, 1>{out.mass},
                      out.inertia);
@@ -856,12 +885,10 @@ class Compiler {
     std::string use;
     if (has(GeomType::kMesh)) {
       use =
-          "give the mesh's body primitive collision geoms (box, capsule, sphere) and make the "
-          "mesh visual only (contype=\"0\" conaffinity=\"0\")";
-    } else if (has(GeomType::kCylinder)) {
-      use = "use a capsule or a box instead of the cylinder";
+          "give the mesh a binary STL or OBJ file, or give its body primitive collision geoms "
+          "and make the mesh visual only (contype=\"0\" conaffinity=\"0\")";
     } else {
-      use = "use a sphere, capsule or box instead of the ellipsoid";
+      use = "model the ground with a plane or boxes instead of the height field";
     }
     return use +
            ", or keep the two from colliding (contype/conaffinity, or <exclude> their bodies)";
@@ -897,10 +924,18 @@ class Compiler {
       if (wa != 0 && wb != 0 && (wa == weld_parent(wb) || wb == weld_parent(wa))) return false;
       return !excluded(ga.body, gb.body);
     };
+    // a mesh geom whose mesh lever did not read has no shape to collide
+    const auto unread_mesh = [&](int g) {
+      const GeomSpec& spec = *geoms_[static_cast<size_t>(g)].spec;
+      if (spec.type != GeomType::kMesh) return false;
+      const size_t m = mesh_index(spec);
+      return m >= mesh_cache_.size() || !mesh_cache_[m];
+    };
     const auto unsupported_types = [&](int a, int b) {
       const GeomType ta = geoms_[static_cast<size_t>(a)].spec->type;
       const GeomType tb = geoms_[static_cast<size_t>(b)].spec->type;
-      return !has_collision_function(ta, tb) && !(ta == GeomType::kPlane && tb == GeomType::kPlane);
+      if (ta == GeomType::kPlane && tb == GeomType::kPlane) return false;
+      return !has_collision_function(ta, tb) || unread_mesh(a) || unread_mesh(b);
     };
     // the first pairs are named, the rest only counted (a model of 10000 mesh geoms has 5e7)
     constexpr size_t kListed = 10;
@@ -933,17 +968,19 @@ class Compiler {
       const GeomSpec& ga = *geoms_[static_cast<size_t>(a)].spec;
       const GeomSpec& gb = *geoms_[static_cast<size_t>(b)].spec;
       const std::string ta = type_name(ga.type), tb = type_name(gb.type);
+      const std::string why = has_collision_function(ga.type, gb.type)
+                                  ? "lever did not read the mesh (see its warning)"
+                                  : "lever has no " + ta + "-" + tb + " contact";
       warnings_.push_back("geoms " + label(a) + " and " + label(b) + " (" + ta + ", " + tb +
                           "; lines " + line_text(ga.at) + " and " + line_text(gb.at) +
-                          ") can collide and lever has no " + ta + "-" + tb +
-                          " contact: it skips them, and warns whenever they come near each "
-                          "other; " +
+                          ") can collide and " + why +
+                          ": it skips them, and warns whenever they come near each other; " +
                           advice_for(ga.type, gb.type));
     }
     if (count > kListed) {
       warnings_.push_back("and " + std::to_string(count - kListed) +
                           " more geom pairs that can collide and that lever cannot compute "
-                          "(meshes, and cylinders or ellipsoids against anything but a plane)");
+                          "(height fields, and meshes lever did not read)");
     }
   }
 
@@ -971,6 +1008,7 @@ class Compiler {
   void assemble_motors(Model& m) const;
   void assemble_keys(Model& m) const;
   void assemble_visual(Model& m) const;
+  void assemble_meshes(Model& m) const;
 
   const ModelSpec& spec_;
   const CompilerSpec& c_;
@@ -985,7 +1023,7 @@ class Compiler {
   std::vector<CompiledExclude> excludes_;  ///< sorted by signature
   std::vector<std::string> warnings_;
   std::vector<std::optional<MeshMass>> mesh_cache_;  ///< per mesh, once read
-  std::vector<std::string> mesh_error_;              ///< per mesh, why it could not be read
+  std::set<std::string> unreadable_meshes_;  ///< meshes read to collide only, and failed (warned)
 };
 
 Eigen::Vector3d eigen(const Vec3& v) { return {v[0], v[1], v[2]}; }
@@ -1009,7 +1047,14 @@ Model Compiler::assemble() const {
   m.npair = static_cast<int>(pairs_.size());
   m.nexclude = static_cast<int>(excludes_.size());
   m.nkey = static_cast<int>(spec_.keys.size());
+  m.nmesh = static_cast<int>(spec_.assets.meshes.size());
+  for (const std::optional<MeshMass>& mesh : mesh_cache_) {
+    if (!mesh) continue;
+    m.nmeshvert += static_cast<int>(mesh->vert.size() / 3);
+    m.nmeshgraph += static_cast<int>(mesh->graph.size());
+  }
   size_model(m);
+  assemble_meshes(m);
   assemble_bodies(m);
   assemble_joints(m);
   assemble_geoms_and_sites(m);
@@ -1152,6 +1197,29 @@ void Compiler::assemble_geoms_and_sites(Model& m) const {
     m.site_pos[i] = eigen(c.spec->pos);
     m.site_quat[i] = eigen(c.quat);
     m.site_size[i] = eigen(c.spec->size);
+  }
+}
+
+// every mesh asset, as MuJoCo numbers them; one lever did not read has no vertices and no graph
+void Compiler::assemble_meshes(Model& m) const {
+  int vert = 0, graph = 0;
+  for (size_t k = 0; k < spec_.assets.meshes.size(); ++k) {
+    const MeshMass* mesh = k < mesh_cache_.size() && mesh_cache_[k] ? &*mesh_cache_[k] : nullptr;
+    m.mesh_vertadr[k] = vert;
+    m.mesh_vertnum[k] = mesh ? static_cast<int>(mesh->vert.size() / 3) : 0;
+    m.mesh_graphadr[k] = mesh && !mesh->graph.empty() ? graph : -1;
+    if (!mesh) continue;
+    for (int v = 0; v < m.mesh_vertnum[k]; ++v) {
+      const float* p = mesh->vert.data() + 3 * v;
+      m.mesh_vert[static_cast<size_t>(vert + v)] = Eigen::Vector3d(p[0], p[1], p[2]);
+    }
+    std::copy(mesh->graph.begin(), mesh->graph.end(), m.mesh_graph.begin() + graph);
+    vert += m.mesh_vertnum[k];
+    graph += static_cast<int>(mesh->graph.size());
+  }
+  for (size_t g = 0; g < geoms_.size(); ++g) {
+    const GeomSpec& s = *geoms_[g].spec;
+    m.geom_dataid[g] = s.type == GeomType::kMesh ? static_cast<int>(mesh_index(s)) : -1;
   }
 }
 

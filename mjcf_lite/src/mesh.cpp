@@ -172,6 +172,49 @@ float vertex_products(const float* d, const float* e, const float* f, size_t i, 
          d[j] * f[i] + e[i] * f[j] + e[j] * f[i];
 }
 
+// MuJoCo's mjCMesh::RemoveRepeated: the vertices sorted (stably, as glibc's qsort_r sorts) by the
+// float key x + 0.01 y + 0.0001 z; a vertex equal to the one before it in that order is merged
+// into it; the survivors keep their order and the faces are renumbered.
+void remove_repeated(TriangleMesh& m) {
+  std::vector<float>& vert = m.vert;
+  const int nvert = static_cast<int>(vert.size() / 3);
+  const auto key = [&vert](int i) {
+    const size_t k = 3 * static_cast<size_t>(i);
+    return static_cast<float>(static_cast<double>(vert[k]) + 1e-2 * static_cast<double>(vert[k + 1]) +
+                              1e-4 * static_cast<double>(vert[k + 2]));
+  };
+  std::vector<int> order(static_cast<size_t>(nvert)), redirect(static_cast<size_t>(nvert));
+  for (int i = 0; i < nvert; ++i) order[i] = redirect[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) { return key(a) < key(b); });
+  int repeated = 0;
+  const auto same = [&vert](int a, int b) {
+    return vert[3 * a] == vert[3 * b] && vert[3 * a + 1] == vert[3 * b + 1] &&
+           vert[3 * a + 2] == vert[3 * b + 2];
+  };
+  for (int i = 1; i < nvert; ++i) {
+    if (same(order[i], order[i - 1])) {
+      redirect[order[i]] = order[i - 1];
+      ++repeated;
+    }
+  }
+  if (repeated == 0) return;
+  for (int i = 0; i < nvert; ++i) {
+    int j = i;
+    while (redirect[j] != j) j = redirect[j];
+    redirect[i] = j;
+  }
+  std::vector<int> position(static_cast<size_t>(nvert), -1);
+  int kept = 0;
+  for (int i = 0; i < nvert; ++i) {
+    if (redirect[i] != i) continue;
+    position[i] = kept;
+    for (int k = 0; k < 3; ++k) vert[3 * kept + k] = vert[3 * i + k];
+    ++kept;
+  }
+  vert.resize(3 * static_cast<size_t>(kept));
+  for (int& f : m.face) f = position[redirect[f]];
+}
+
 }  // namespace
 
 TriangleMesh read_stl(const std::string& bytes, bool righthand) {
@@ -215,6 +258,7 @@ TriangleMesh read_stl(const std::string& bytes, bool righthand) {
       m.face[righthand || j == 0 ? 3 * i + j : 3 * i + 3 - j] = vertex;
     }
   }
+  remove_repeated(m);
   return m;
 }
 
@@ -317,7 +361,10 @@ TriangleMesh read_obj(const std::string& text, bool righthand) {
 }
 
 MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat, const Vec3& scale,
-                      double density, bool exact) {
+                      double density, bool exact, bool hull) {
+  // MuJoCo builds the hull from the vertices as read; its vertex numbers hold after processing
+  std::vector<int> graph;
+  if (hull) graph = convex_hull_graph(mesh.vert);
   std::vector<float>& vert = mesh.vert;
   const std::vector<int>& face = mesh.face;
   const size_t nvert = vert.size() / 3, nface = face.size() / 3;
@@ -439,8 +486,18 @@ MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat
     if (e[0] + e[1] < e[2] || e[0] + e[2] < e[1] || e[1] + e[2] < e[0]) {
       throw fault("the principal moments of its inertia violate A + B >= C");
     }
-    if (shell) break;
     const double mass = volume * density;
+    if (shell) {
+      // MuJoCo's shell pass: its centre (the face centroids weighted by area, times 3/4: the
+      // pyramid formula with no apex) and axes in the vertices' frame after the solid pass
+      out.shell_pos = com;
+      out.shell_quat = p.quat;
+      out.surface = volume;
+      out.shell_box = {std::sqrt(6 * (e[1] + e[2] - e[0]) / mass) / 2,
+                       std::sqrt(6 * (e[0] + e[2] - e[1]) / mass) / 2,
+                       std::sqrt(6 * (e[0] + e[1] - e[2]) / mass) / 2};
+      break;
+    }
     out.volume = volume;
     out.box = {std::sqrt(6 * (e[1] + e[2] - e[0]) / mass) / 2,
                std::sqrt(6 * (e[0] + e[2] - e[1]) / mass) / 2,
@@ -464,6 +521,8 @@ MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat
     }
   }
   if (!mesh.consistent) throw fault("");
+  out.vert = std::move(vert);
+  out.graph = std::move(graph);
   return out;
 }
 

@@ -29,7 +29,8 @@ struct TriangleMesh {
 };
 
 /// Binary STL, as MuJoCo 2.2.2 reads it (it reads no ASCII STL). `righthand` is false when the
-/// mesh scale mirrors it: then each triangle's last two vertices swap.
+/// mesh scale mirrors it: then each triangle's last two vertices swap. Repeated vertices are
+/// merged as MuJoCo merges them (mjCMesh::RemoveRepeated), so that the vertex list is MuJoCo's.
 TriangleMesh read_stl(const std::string& bytes, bool righthand);
 
 /// Wavefront OBJ: `v` and `f` lines (triangles and convex quadrilaterals), numbers read as
@@ -45,14 +46,33 @@ struct MeshMass {
   Vec3 box{};
   double volume = 0;
   Vec3 aabb{};
+  /// the shell's (MuJoCo's surface mesh, for shellinertia): the frame of its centre and principal
+  /// axes, computed in the volume's principal frame as MuJoCo does, its inertia box and its area
+  Vec3 shell_pos{};
+  Quat shell_quat{1, 0, 0, 0};
+  Vec3 shell_box{};
+  double surface = 0;
+  /// what collision reads (MuJoCo's mesh_vert and mesh_graph): the vertices in the principal
+  /// frame, x y z per vertex, and the convex hull's graph (empty when none was asked for)
+  std::vector<float> vert;
+  std::vector<int> graph;
 };
+
+/// The graph of the convex hull of the vertices (x y z per vertex) that MuJoCo 2.2.2 builds with
+/// qhull (mjCMesh::MakeGraph, options "Qt", triangulated): numvert, numface, each hull vertex's
+/// neighbour-list address, its vertex index, the neighbour lists (hull-local indices, each ended
+/// by -1) and the triangles (vertex indices). Empty for fewer than 4 vertices. Throws MeshError
+/// when qhull fails (MuJoCo: "qhull error"); the build without qhull always throws.
+std::vector<int> convex_hull_graph(const std::vector<float>& vert);
 
 /// Process a mesh as mjCMesh::Process does: refpos, refquat, scale; centre of mass and volume
 /// from pyramids (|volume| per face unless `exact`, compiler/exactmeshinertia); products of
 /// inertia at `density` (the geom density of the mesh's default class); principal axes. Throws
 /// MeshError with MuJoCo's reasons (area, volume, eigenvalues, A + B >= C, face orientation).
+/// With `hull`, also the convex hull's graph of the vertices as read (before any of the above),
+/// as MuJoCo builds it for a mesh that can collide.
 MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat, const Vec3& scale,
-                      double density, bool exact);
+                      double density, bool exact, bool hull);
 
 /// The file's path as MuJoCo 2.2.2 forms it (mjuu_makefullname): an absolute file as it is, else
 /// an absolute meshdir + file, else the model's folder + meshdir + file. `meshdir` gets a

@@ -122,6 +122,7 @@ GeomSpec read_geom(const Element& e, const AttrSet& set) {
   g.pos = f.array<3>("pos");
   g.orientation = f.orientation();
   g.density = f.real("density");
+  g.shellinertia = f.word("shellinertia") == "true";
   if (f.has("mass")) g.mass = f.real("mass");
   g.group = f.integer("group");
   g.contype = f.integer("contype");
@@ -264,6 +265,7 @@ CompilerSpec read_compiler(const Element& root) {
   c.meshdir = f.word("meshdir");
   c.texturedir = f.word("texturedir");
   c.exactmeshinertia = f.word("exactmeshinertia") == "true";
+  c.convexhull = f.word("convexhull") == "true";
   return c;
 }
 
@@ -303,6 +305,11 @@ void check_option_values(const Element& option, const AttrSet& set) {
          "must not be negative");
   refuse("tolerance", set.find("tolerance") && set.find("tolerance")->numbers[0] < 0,
          "must not be negative");
+  refuse("mpr_tolerance", set.find("mpr_tolerance") && set.find("mpr_tolerance")->numbers[0] < 0,
+         "must not be negative");
+  refuse("mpr_iterations",
+         set.find("mpr_iterations") && set.find("mpr_iterations")->numbers[0] < 0,
+         "must not be negative");
 }
 
 Options read_option(const Element& root) {
@@ -339,7 +346,11 @@ Options read_option(const Element& root) {
   o.impratio = f.real("impratio");
   o.iterations = f.integer("iterations");
   o.tolerance = f.real("tolerance");
-  o.contact_disabled = Fields(flags, "option", "flag").word("contact") == "disable";
+  const Fields flag(flags, "option", "flag");
+  o.contact_disabled = flag.word("contact") == "disable";
+  o.mpr_tolerance = f.real("mpr_tolerance");
+  o.mpr_iterations = f.integer("mpr_iterations");
+  o.multiccd = flag.word("multiccd") == "enable";
   return o;
 }
 

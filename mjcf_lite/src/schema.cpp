@@ -125,6 +125,9 @@ std::vector<AttributeRule> geom_attributes() {
       join(alternatives(),
            {
                real("density", 1, "1000", "kg/m^3, for the mass inferred from the volume"),
+               keyword("shellinertia", "false", "false true", "",
+                       "a mesh geom's inertia as a shell (its surface area as the volume; MuJoCo "
+                       "2.2.2's frame and inertia box of the surface); meshes only"),
                real("mass", 1, "", "kg; overrides density"),
                integer("group", 1, "0", "group; compiler/inertiagrouprange selects mass"),
                integer("contype", 1, "1",
@@ -187,7 +190,7 @@ std::vector<AttributeRule> pair_attributes() {
 const char* const kUnsupportedJointAttributes =
     "springdamper solreffriction solimpfriction frictionloss user";
 const char* const kUnsupportedGeomAttributes =
-    "hfield fitscale fluidshape fluidcoef user shellinertia";
+    "hfield fitscale fluidshape fluidcoef user";
 const char* const kUnsupportedSiteAttributes = "fromto user";
 const char* const kOtherActuators = "intvelocity damper cylinder muscle adhesion";
 
@@ -295,13 +298,16 @@ std::vector<ElementRule> build() {
                    keyword("coordinate", "local", "local", "global", "frames are local"),
                    text("meshdir", "",
                         "folder of mesh files, relative to the model's folder (a file is read "
-                        "only if a mesh geom must give a body mass)"),
+                        "only if a mesh geom must give a body mass or can collide)"),
                    keyword("exactmeshinertia", "false", "false true", "",
                            "mesh volume and inertia: true = signed pyramid volumes; false = "
                            "MuJoCo 2.2.2's legacy: each face's absolute volume, the inertia box's volume"),
+                   keyword("convexhull", "true", "false true", "",
+                           "true: a mesh that can collide gets its convex hull's graph (qhull), "
+                           "along which its support point is found; false: every vertex is visited"),
                    text("texturedir", "", "folder of texture files (kept; never read)"),
                },
-               "strippath fitaabb discardvisual convexhull usethread fusestatic",
+               "strippath fitaabb discardvisual usethread fusestatic",
                "lengthrange", "compiler settings; apply to the whole model wherever written"});
   s.push_back({"option", "mujoco", '*',
                {
@@ -327,9 +333,13 @@ std::vector<ElementRule> build() {
                    keyword("jacobian", "auto", "dense sparse auto", "",
                            "MuJoCo's matrix layout (dense, sparse, or by size): lever's numbers "
                            "are the same for each, and it keeps its own layout"),
+                   real("mpr_tolerance", 1, "1e-6",
+                        "boundary tolerance of the MPR that collides convex pairs (cylinders, "
+                        "ellipsoids, meshes); must not be negative"),
+                   integer("mpr_iterations", 1, "50",
+                           "most MPR iterations per convex pair; must not be negative"),
                },
-               "apirate mpr_tolerance wind magnetic density viscosity o_margin o_solref o_solimp "
-               "collision mpr_iterations",
+               "apirate wind magnetic density viscosity o_margin o_solref o_solimp collision",
                "", "simulation options"});
   s.push_back({"flag", "option", '?',
                {
@@ -337,9 +347,12 @@ std::vector<ElementRule> build() {
                            "disable: no collision detection, no contacts"),
                    keyword("override", "disable", "disable enable", "",
                            "contact override: lever has none, so only disable"),
+                   keyword("multiccd", "disable", "disable enable", "",
+                           "enable: up to four more contacts per convex pair, found by MPR with "
+                           "the geoms turned slightly about the first contact (MuJoCo 2.2.2)"),
                },
                "constraint equality frictionloss limit passive gravity clampctrl warmstart "
-               "filterparent actuation refsafe sensor energy fwdinv sensornoise multiccd",
+               "filterparent actuation refsafe sensor energy fwdinv sensornoise",
                "", "simulation flags"});
   s.push_back({"size", "mujoco", '*',
                {
@@ -405,10 +418,12 @@ std::vector<ElementRule> build() {
                      "diffuse specular mode", kVisualOnly),
                "", "", "light defaults"});
   s.push_back({"asset", "mujoco", '*', {}, "", "hfield skin",
-               "assets: meshes, materials and textures (no file is read unless a mesh must give mass)"});
+               "assets: meshes, materials and textures (no file is read unless a mesh must give mass "
+               "or can collide)"});
   s.push_back({"mesh", "asset", '*', mesh_attributes(), "", "",
                "a mesh; its file (binary STL or OBJ) is read only if a mesh geom must give a "
-               "body mass; then its volume, centre and inertia are MuJoCo 2.2.2's"});
+               "body mass or can collide; then its volume, centre, inertia, vertices and convex "
+               "hull are MuJoCo 2.2.2's"});
   s.push_back({"material", "asset", '*', texts(kMaterialAttributes, kVisualOnly), "", "",
                "a material"});
   s.push_back({"texture", "asset", '*', texts(kTextureAttributes, kVisualOnly), "", "",
@@ -672,7 +687,7 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   `material`, `rgba`, `group`. Their names are in `Model::visual`.
 * Mesh geoms: lever reads a mesh file only when a mesh geom must give its body mass (the body
   has no `<inertial>`, or `inertiafromgeom="true"`, and the geom's group is in
-  `inertiagrouprange`). Then it computes what MuJoCo 2.2.2 does (its float vertices and
+  `inertiagrouprange`) or can collide (`contype` or `conaffinity` not 0). Then it computes what MuJoCo 2.2.2 does (its float vertices and
   roundings included): `refpos`, `refquat`, `scale`, the volume and centre of mass from face
   pyramids (`exactmeshinertia`), the inertia at the geom density of the mesh's class, the
   principal axes, the geom's frame moved to them, its size the bounding box, its mass from
@@ -680,18 +695,23 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   quadrilaterals, one group); ASCII STL, MSH, OBJ faces of more than four vertices, an OBJ
   without faces (MuJoCo would take the convex hull) and inline `vertex`/`face` meshes are
   refused by name, and so is a missing, unreadable or degenerate file, with a message naming
-  the geom, the mesh and the file and saying to add `<inertial>`. Other mesh geoms are massless
+  the geom, the mesh and the file and saying to add `<inertial>` (for a mesh read only to
+  collide, a warning: its pairs are skipped). For collision it keeps the vertices and, unless
+  `convexhull="false"`, the graph of their convex hull, built with qhull from the vertices as
+  read, as MuJoCo 2.2.2 does (a mesh qhull cannot hull, a flat one, is refused as MuJoCo refuses
+  it). Other mesh geoms are massless
   in lever and keep their frame as written and their size zero, where MuJoCo moves the frame to
   the mesh's centre and principal axes and sizes it from the file; nothing in the dynamics uses
   either. A geom of another type with `mesh=` (fitted to the mesh by MuJoCo) is refused.
 * Contacts: the geoms' contact parameters, `<contact><pair>` and `<exclude>` compile to
   MuJoCo 2.2.2's `geom_*`, `pair_*` and `exclude_signature` arrays (a `<pair>` takes what it does
-  not write from its class, never from its two geoms, as 2.2.2 does). lever collides planes,
-  spheres, capsules and boxes with each other, and cylinders and ellipsoids with planes. A geom
+  not write from its class, never from its two geoms, as 2.2.2 does). lever collides every pair
+  of geom types MuJoCo 2.2.2 collides (cylinders, ellipsoids and meshes by MuJoCo's MPR, with
+  `option/mpr_tolerance`, `mpr_iterations` and `flag/multiccd`; docs/contact.md). A geom
   pair that can collide (compatible `contype`/`conaffinity`, bodies neither welded together nor
-  parent and child nor excluded, or named by a `<pair>`) but that lever cannot compute (a mesh,
-  or a cylinder or ellipsoid against anything but a plane) is named in a warning at load
-  (`Model::warnings`, printed by the command line) with what to use instead.
+  parent and child nor excluded, or named by a `<pair>`) but that lever cannot compute (a mesh
+  whose file lever did not read) is named in a warning at load (`Model::warnings`, printed by
+  the command line) with what to use instead.
 
 Value rules: numbers are decimal (`1`, `-.5`, `1e-3`); a list must have the stated count
 ("1-3" marks a partial vector whose missing numbers keep the class's values); keywords are

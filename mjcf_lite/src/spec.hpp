@@ -50,6 +50,7 @@ struct GeomSpec {
   Orientation orientation;
   double density = 1000;
   std::optional<double> mass;
+  bool shellinertia = false;  ///< a mesh's inertia as a shell (MuJoCo 2.2.2's typeinertia)
   int group = 0, contype = 1, conaffinity = 1, condim = 3;
   // contact parameters (issue 19)
   int priority = 0;
@@ -158,6 +159,7 @@ struct CompilerSpec {
   double settotalmass = -1;
   std::string meshdir, texturedir;
   bool exactmeshinertia = false;
+  bool convexhull = true;  ///< hull graphs for the meshes that can collide (MuJoCo's default)
 };
 
 struct ModelSpec {

@@ -451,16 +451,22 @@ TEST_CASE("the elliptic cones' Newton solver allocates nothing", "[alloc]") {
 }
 
 TEST_CASE("collision allocates nothing", "[alloc]") {
-  for (const char* file : {"arm_and_objects.xml", "capsule_stack.xml"}) {
+  // the scenes' cylinders and ellipsoids, and the Menagerie's Panda's meshes, run libccd's MPR
+  // (with multiccd too)
+  const std::string scenes = lever::test::source_dir() + "/tests/diff/contact_scenes/";
+  const std::string panda =
+      lever::test::robots_dir() + "/menagerie-2022/franka_emika_panda/panda_nohand.xml";
+  for (const std::string& file : {scenes + "arm_and_objects.xml", scenes + "capsule_stack.xml",
+                                  scenes + "free_objects.xml", panda}) {
     INFO(file);
-    const auto mj =
-        lever::test::mujoco_load(lever::test::source_dir() + "/tests/diff/contact_scenes/" + file);
-    const lever::Model m = lever::test::from_mujoco(mj.get());
+    const auto mj = lever::test::mujoco_load(file);
+    lever::Model m = lever::test::from_mujoco(mj.get());
+    m.opt.multiccd = file == scenes + "free_objects.xml";
     lever::Data d(m);
     std::mt19937_64 rng(19);
-    std::uniform_real_distribution<double> u(-0.15, 0.15);
+    std::uniform_real_distribution<double> u(file == panda ? -2.5 : -0.15, file == panda ? 2.5 : 0.15);
     int contacts = 0;
-    for (int s = 0; s < 50; ++s) {
+    for (int s = 0; s < (file == panda ? 400 : 50); ++s) {
       for (int i = 0; i < m.nq; ++i) d.qpos[i] = m.qpos0[i] + u(rng);
       lever::kinematics(m, d);
       const Allocations a = count([&] { lever::collision(m, d); });

@@ -36,16 +36,20 @@ TEST_CASE("a Menagerie-style arm loads without its mesh files", "[compile][menag
     CHECK(model.geom_type[static_cast<size_t>(g)] == lever::GeomType::kMesh);
     CHECK(model.geom_mass[static_cast<size_t>(g)] == 0.0);
   }
-  // the collision meshes of links that are not neighbours can touch, and lever has no mesh
-  // contact: it names the first ten pairs, each with what to use instead, and counts the rest
-  REQUIRE(model.warnings.size() == 11);
-  for (size_t k = 0; k < 10; ++k) {
+  // the collision meshes are read to collide, and their files are missing: one warning per mesh
+  // (7); then the pairs they would make, the first ten named, each with what to use instead, the
+  // rest counted
+  REQUIRE(model.warnings.size() == 7 + 11);
+  for (size_t k = 0; k < 7; ++k) {
+    CHECK_THAT(model.warnings[k], Catch::Contains("mesh geom can collide") &&
+                                      Catch::Contains("no such file"));
+  }
+  for (size_t k = 7; k < 17; ++k) {
     CHECK_THAT(model.warnings[k], Catch::Contains("(mesh, mesh; lines ") &&
-                                      Catch::Contains("can collide and lever has no mesh-mesh "
-                                                      "contact") &&
+                                      Catch::Contains("can collide and lever did not read the mesh") &&
                                       Catch::Contains("primitive collision geoms"));
   }
-  CHECK_THAT(model.warnings[10], Catch::StartsWith("and ") && Catch::Contains("more geom pairs"));
+  CHECK_THAT(model.warnings[17], Catch::StartsWith("and ") && Catch::Contains("more geom pairs"));
 }
 
 TEST_CASE("a Menagerie-style arm compiles to MuJoCo 2.2.2's parameters", "[compile][menagerie]") {

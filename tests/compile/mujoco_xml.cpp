@@ -157,6 +157,7 @@ bool is_constant(const std::string& name) {
 //   geom frames     mesh geoms' size, pos and quat are MuJoCo's fit to the mesh file, which
 //                   lever computes only for the meshes it read (those that give a body mass or
 //                   can collide, when lever can read the file);
+//   mesh_*          compared per mesh lever read (compare_meshes);
 //   names, options  not arrays of the table; keyframes have their own rows (compare_keyframes).
 // geom_size, geom_pos, geom_quat, geom_rbound but of mesh geoms lever did not read: MuJoCo fits
 // them to the mesh file (its size, its centre and principal axes, the bounding sphere of its box);
@@ -184,11 +185,43 @@ void compare_geom_frames(Differences& d, const Model& o, const FieldView& view, 
   }
 }
 
+// The meshes (mesh_vertadr, mesh_vertnum, mesh_graphadr, mesh_graph, and mesh_vert, floats in
+// MuJoCo): lever reads a mesh only when a geom must give mass or can collide, so each mesh lever
+// read is compared with MuJoCo's at each side's own addresses, vertex for vertex (exactly: both are
+// the same floats) and its hull graph int for int; a mesh lever did not read has no vertices.
+void compare_meshes(Differences& d, const Model& o, const mjModel& m) {
+  if (!d.count("nmesh", o.nmesh, m.nmesh)) return;
+  for (int k = 0; k < o.nmesh; ++k) {
+    const int n = o.mesh_vertnum[static_cast<size_t>(k)];
+    if (n == 0) continue;
+    d.integer("mesh_vertnum", k, n, m.mesh_vertnum[k]);
+    if (n != m.mesh_vertnum[k]) continue;
+    const int ours = o.mesh_vertadr[static_cast<size_t>(k)], theirs = m.mesh_vertadr[k];
+    for (int v = 0; v < n; ++v) {
+      for (int i = 0; i < 3; ++i) {
+        const double a = o.mesh_vert[static_cast<size_t>(ours + v)][i];
+        const double b = m.mesh_vert[3 * (theirs + v) + i];
+        if (a != b) d.real("mesh_vert", 3 * (theirs + v) + i, a, b);
+      }
+    }
+    const int our_graph = o.mesh_graphadr[static_cast<size_t>(k)];
+    const int their_graph = m.mesh_graphadr[k];
+    d.integer("mesh_graphadr >= 0", k, our_graph >= 0, their_graph >= 0);
+    if (our_graph < 0 || their_graph < 0) continue;
+    const int* g = m.mesh_graph + their_graph;
+    const int size = 2 + 3 * g[0] + 6 * g[1];
+    for (int i = 0; i < size && our_graph + i < o.nmeshgraph; ++i) {
+      d.integer("mesh_graph", their_graph + i, o.mesh_graph[static_cast<size_t>(our_graph + i)],
+                g[i]);
+    }
+  }
+}
+
 void compare_table(Differences& d, const Model& o, const mjModel& m) {
   const std::map<std::string, MjArray> theirs = mujoco_model_arrays(&m);
   for (const FieldView& view : model_fields(o)) {
     const std::string name = view.info->name;
-    if (!view.info->in_mujoco || is_constant(name)) continue;
+    if (!view.info->in_mujoco || is_constant(name) || name.starts_with("mesh_")) continue;
     const auto found = theirs.find(name);
     if (found == theirs.end() || !same_layout(view, found->second)) {
       d.missing(name);
@@ -258,6 +291,10 @@ void compare_options(Differences& d, const Model& o, const mjModel& m) {
   d.integer("opt_contact_disabled", 0, o.opt.contact_disabled ? 1 : 0,
             (m.opt.disableflags & mjDSBL_CONTACT) ? 1 : 0);
   d.integer("opt_override", 0, 0, (m.opt.enableflags & mjENBL_OVERRIDE) ? 1 : 0);
+  d.real("opt_mpr_tolerance", 0, o.opt.mpr_tolerance, m.opt.mpr_tolerance);
+  d.integer("opt_mpr_iterations", 0, o.opt.mpr_iterations, m.opt.mpr_iterations);
+  d.integer("opt_multiccd", 0, o.opt.multiccd ? 1 : 0,
+            (m.opt.enableflags & mjENBL_MULTICCD) ? 1 : 0);
   d.integer("nconmax", 0, o.nconmax, m.nconmax);
   d.integer("njmax", 0, o.njmax, m.njmax);
 }
@@ -277,6 +314,7 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m) {
   sizes = d.count("nexclude", o.nexclude, m.nexclude) && sizes;
   if (sizes) {
     compare_table(d, o, m);
+    compare_meshes(d, o, m);
     compare_actuator_types(d, o, m);
     compare_names(d, o, m);
     compare_keyframes(d, o, m);

@@ -212,6 +212,13 @@ inline const BadInput kBadInputs[] = {
   <option cone="eliptic"/>
 </mujoco>)", 2, "option", "cone", "expected 'pyramidal' or 'elliptic' (did you mean 'elliptic'?)",
    MuJoCo::kRejects, ""},
+  {"shellinertia-not-a-mesh", R"(<mujoco>
+  <worldbody><body><joint/><geom type="box" size="0.1 0.1 0.1" shellinertia="true"/></body></worldbody>
+</mujoco>)", 2, "geom", "shellinertia", "applies to mesh geoms only", MuJoCo::kRejects, ""},
+  {"contact-mpr-iterations-negative", R"(<mujoco>
+  <option mpr_iterations="-1"/>
+</mujoco>)", 2, "option", "mpr_iterations", "must not be negative", MuJoCo::kAccepts,
+   "a negative count of MPR iterations is a mistake"},
   {"contact-impratio-zero", R"(<mujoco>
   <option impratio="0"/>
 </mujoco>)", 2, "option", "impratio", "must be positive", MuJoCo::kAccepts,

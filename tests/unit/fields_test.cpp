@@ -663,6 +663,9 @@ TEST_CASE("size_model gives every array the length the field table promises", "[
   model.nu = 2;
   model.npair = 1;
   model.nexclude = 3;
+  model.nmesh = 2;
+  model.nmeshvert = 6;
+  model.nmeshgraph = 11;
   model.nkey = 2;
   lever::size_model(model);
 

@@ -1,8 +1,10 @@
 // lever/collision.hpp: which geoms touch, and where (MuJoCo 2.2.2's collision stage).
 //
-// The narrow phase is one closed-form function per pair of geom types (MuJoCo's
-// engine_collision_primitive.c and engine_collision_box.c, reproduced in their decisions: which
-// contacts a pair yields and in what order). The driver (collision()) picks the candidate pairs
+// The narrow phase is one function per pair of geom types, as MuJoCo 2.2.2's table: closed-form
+// for the pairs MuJoCo solves in closed form (engine_collision_primitive.c, engine_collision_box.c,
+// reproduced in their decisions: which contacts a pair yields and in what order), and for the
+// general convex pairs (cylinders, ellipsoids, meshes) the Minkowski portal refinement of libccd,
+// the library MuJoCo runs, on MuJoCo's support functions (engine_collision_convex.c). The driver (collision()) picks the candidate pairs
 // as mj_collision does (contype/conaffinity, same and parent body filters, <pair>, <exclude>,
 // bounding spheres), calls the narrow phase and mixes the two geoms' contact parameters.
 #pragma once
@@ -23,6 +25,20 @@ struct GeomShape {
   Eigen::Vector3d size{0, 0, 0};  ///< geom_size
   Eigen::Vector3d pos{0, 0, 0};   ///< geom_xpos
   Mat3 mat = Mat3::Identity();    ///< geom_xmat
+  double rbound = 0;              ///< geom_rbound (multiccd's and plane-mesh's spacing of contacts)
+  /// A mesh's vertices in the geom's frame (kMesh only): mesh_vert from the mesh's address, x y z
+  /// per vertex, and its convex hull's graph (mesh_graph from mesh_graphadr; null if it has none,
+  /// then the support point is found by visiting every vertex).
+  const double* mesh_vert = nullptr;
+  int mesh_vertnum = 0;
+  const int* mesh_graph = nullptr;
+};
+
+/// The general convex pairs' settings (<option mpr_tolerance, mpr_iterations>, <flag multiccd>).
+struct ConvexOptions {
+  double mpr_tolerance = 1e-6;  ///< MPR's boundary tolerance
+  int mpr_iterations = 50;      ///< most MPR iterations
+  bool multiccd = false;        ///< MuJoCo 2.2.2's multi-point search (mjENBL_MULTICCD)
 };
 
 /// Whether lever has a narrow-phase function for this pair of geom types (either order).
@@ -34,8 +50,10 @@ bool has_collision_function(GeomType a, GeomType b);
 /// zero, except plane-capsule, which puts the capsule's axis in the second row for the driver to
 /// use as the first tangent (collision() completes the frame as mju_makeFrame). As MuJoCo's
 /// table, g1's type must not come after g2's (a sphere before a box). Throws ModelError for a
-/// pair has_collision_function() rejects, or given in the wrong order.
-int collide_shapes(const GeomShape& g1, const GeomShape& g2, double margin, Contact* contacts);
+/// pair has_collision_function() rejects, or given in the wrong order. `convex` applies to the
+/// pairs MuJoCo solves with MPR (mjc_Convex).
+int collide_shapes(const GeomShape& g1, const GeomShape& g2, double margin, Contact* contacts,
+                   const ConvexOptions& convex = {});
 
 /// The collision stage (MuJoCo's mj_collision): data.ncon and data.contact[0, ncon), in MuJoCo's
 /// order, with mixed parameters and complete frames. @pre kinematics().

@@ -122,7 +122,17 @@
   X(pair_margin, double, npair, 1, mujoco)   \
   X(pair_gap, double, npair, 1, mujoco)      \
   X(pair_friction, double, npair, 5, mujoco) \
-  X(exclude_signature, int, nexclude, 1, mujoco)
+  X(exclude_signature, int, nexclude, 1, mujoco)  \
+  LEVER_MODEL_MESH_FIELDS(X)
+
+// meshes as MuJoCo compiles them for collision: the geoms' meshes, their vertices and hulls
+#define LEVER_MODEL_MESH_FIELDS(X)                             \
+  X(geom_dataid, int, ngeom, 1, mujoco)                        \
+  X(mesh_vertadr, int, nmesh, 1, mujoco)                       \
+  X(mesh_vertnum, int, nmesh, 1, mujoco)                       \
+  X(mesh_graphadr, int, nmesh, 1, mujoco)                      \
+  X(mesh_vert, double, nmeshvert, 3, own) /* float in MuJoCo */ \
+  X(mesh_graph, int, nmeshgraph, 1, mujoco)
 
 // The names of Model's objects, one string each ("" if unnamed), outside the table above because
 // their entries are not numbers. X(name, count): `count` is the Model member that counts them.
@@ -212,8 +222,12 @@ enum class Size : int {
   kNsite,
   kNefc,
   // contact
-  kNpair,    ///< explicit contact pairs (<contact><pair>)
-  kNexclude  ///< excluded body pairs (<contact><exclude>)
+  kNpair,     ///< explicit contact pairs (<contact><pair>)
+  kNexclude,  ///< excluded body pairs (<contact><exclude>)
+  // meshes
+  kNmesh,      ///< meshes
+  kNmeshvert,  ///< mesh vertices, all meshes
+  kNmeshgraph  ///< ints of the meshes' hull graphs
 };
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;
@@ -310,7 +324,7 @@ void check_model_sizes(const Model& model);
 
 // ---- sizing a Model -----------------------------------------------------------------
 /// Gives every array of the model the length its counts give it (nbody, njnt, nq, nv, ngeom,
-/// nsite, nu, npair, nexclude, nkey): each array of the field table rows x cols numbers, the
+/// nsite, nu, npair, nexclude, nmesh, nmeshvert, nmeshgraph, nkey): each array of the field table rows x cols numbers, the
 /// constants set_const computes included; the names and the keyframes too (see the top of this
 /// file). The numbers an array already holds within its new length are kept, and every new entry is
 /// zero (an empty name), so a builder sets the counts, calls this, and writes each element by

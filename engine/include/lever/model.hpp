@@ -153,6 +153,11 @@ struct Options {
   double tolerance = 1e-8;       ///< solver tolerance
   /// <flag contact="disable"> (MuJoCo's mjDSBL_CONTACT): no collision stage, no contacts
   bool contact_disabled = false;
+  // the general convex pairs' Minkowski portal refinement (MuJoCo 2.2.2's defaults)
+  double mpr_tolerance = 1e-6;  ///< MPR's boundary tolerance
+  int mpr_iterations = 50;      ///< most MPR iterations
+  /// <flag multiccd="enable"> (MuJoCo's mjENBL_MULTICCD): up to four more contacts per convex pair
+  bool multiccd = false;
 };
 
 /// Compiler settings that stay meaningful after compilation (read by `lever check`).
@@ -194,6 +199,9 @@ struct Model {
   int nkey = 0;       ///< keyframes
   int npair = 0;      ///< explicit contact pairs (<contact><pair>)
   int nexclude = 0;   ///< excluded body pairs (<contact><exclude>)
+  int nmesh = 0;      ///< meshes (<asset><mesh>), each as MuJoCo compiles it if lever read it
+  int nmeshvert = 0;  ///< their vertices, all meshes
+  int nmeshgraph = 0;  ///< their convex hulls' graphs, all meshes (ints)
   int nconmax = 100;  ///< most contacts a Data holds (<size nconmax>; MuJoCo 2.2.2's default)
   int njmax = 500;    ///< most constraint rows a Data holds (<size njmax>)
 
@@ -272,6 +280,19 @@ struct Model {
   std::vector<double> geom_margin;                 ///< contact detection distance
   std::vector<double> geom_gap;                    ///< contacts within margin - gap make rows
   std::vector<double> geom_rbound;                 ///< bounding sphere radius (0: plane)
+  std::vector<int> geom_dataid;  ///< a mesh geom's mesh, -1 for other geoms
+
+  // ---- meshes (nmesh), as MuJoCo 2.2.2 compiles them for collision --------------------------
+  std::vector<int> mesh_vertadr;   ///< first vertex in mesh_vert
+  std::vector<int> mesh_vertnum;   ///< vertices; 0 for a mesh lever did not read (no geom needs it)
+  std::vector<int> mesh_graphadr;  ///< first int of its hull graph in mesh_graph, -1 if none
+  /// (nmeshvert) vertices in the geom's frame (the mesh's centre of mass and principal axes);
+  /// floats in MuJoCo, held here as the doubles they convert to
+  std::vector<Eigen::Vector3d> mesh_vert;
+  /// (nmeshgraph) each mesh's convex hull (qhull's, as MuJoCo): numvert, numface, then per hull
+  /// vertex the address of its neighbour list, its vertex in the mesh, then the neighbour lists
+  /// (hull vertex numbers, each list ended by -1), then the hull's triangles (mesh vertices)
+  std::vector<int> mesh_graph;
 
   // ---- explicit contact pairs (npair) and exclusions (nexclude) ------------------------------
   std::vector<int> pair_dim;

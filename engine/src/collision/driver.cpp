@@ -311,7 +311,22 @@ class Collider {
   }
 
   GeomShape shape(int g) const {
-    return GeomShape{m_.geom_type[g], m_.geom_size[g], d_.geom_xpos[g], d_.geom_xmat[g]};
+    GeomShape s{m_.geom_type[g], m_.geom_size[g], d_.geom_xpos[g], d_.geom_xmat[g],
+                m_.geom_rbound[g]};
+    const int mesh = m_.geom_dataid[g];
+    if (mesh >= 0 && m_.mesh_vertnum[mesh] > 0) {
+      s.mesh_vert = m_.mesh_vert[static_cast<size_t>(m_.mesh_vertadr[mesh])].data();
+      s.mesh_vertnum = m_.mesh_vertnum[mesh];
+      const int graph = m_.mesh_graphadr[mesh];
+      s.mesh_graph = graph >= 0 ? m_.mesh_graph.data() + graph : nullptr;
+    }
+    return s;
+  }
+
+  /// A mesh geom whose mesh lever did not read (no vertices) has no shape to collide.
+  bool unread_mesh(int g) const {
+    return m_.geom_type[g] == GeomType::kMesh &&
+           (m_.geom_dataid[g] < 0 || m_.mesh_vertnum[m_.geom_dataid[g]] == 0);
   }
 
   /// One geom pair: (g1, g2) of a dynamic pair, or explicit pair `ipair` (g1, g2 unused).
@@ -353,7 +368,7 @@ class Collider {
     if (type1 == GeomType::kPlane && r2 > 0 && above_plane(g1, g2) > margin + r2) return;
     if (type2 == GeomType::kPlane && r1 > 0 && above_plane(g2, g1) > margin + r1) return;
 
-    if (!has_collision_function(type1, type2)) {
+    if (!has_collision_function(type1, type2) || unread_mesh(g1) || unread_mesh(g2)) {
       ++unsupported_;  // recorded in data.warning once the whole stage has succeeded
       last_unsupported_geom_ = g1;
       return;
@@ -364,7 +379,8 @@ class Collider {
     // The buffer is Data's: nothing is allocated or constructed per pair.
     Contact* found = d_.work.pair_contact.data();
     for (Contact& c : d_.work.pair_contact) c.frame.setZero();
-    int n = collide_shapes(shape(g1), shape(g2), margin, found);
+    const ConvexOptions convex{m_.opt.mpr_tolerance, m_.opt.mpr_iterations, m_.opt.multiccd};
+    int n = collide_shapes(shape(g1), shape(g2), margin, found, convex);
     if (n == 0) return;
     if (type1 == GeomType::kBox && type2 == GeomType::kBox)
       n = detail::remove_repeated_positions(found, n);
@@ -392,7 +408,9 @@ class Collider {
       c.solref = solref;
       c.solimp = solimp;
       c.exclude = c.dist < c.includemargin ? 0 : 1;
-      complete_frame(c.frame);
+      if (!detail::complete_frame(c.frame)) {
+        throw StateError("lever::collision: a contact normal is undefined (not a unit vector)");
+      }
       c.efc_address = -1;
       c.mu = 0;  // make_constraint sets it for a contact with friction rows
       if (count_ >= m_.nconmax) {
@@ -446,32 +464,6 @@ class Collider {
     // sliding twice, torsional, rolling twice
     friction = {mu[0], mu[0], mu[1], mu[2], mu[2]};
   }
-
-  /// The contact frame from its normal row (mju_makeFrame): the normal made unit; the first
-  /// tangent the given second row if it has one (the capsule's axis), else world y or, for a
-  /// normal near y, world z, made orthogonal to the normal; the second tangent their cross product.
-  static void complete_frame(Mat3& frame) {
-    Vec3 normal = frame.row(0).transpose();
-    if (normalize_or_x(normal) < 0.5) {
-      throw StateError("lever::collision: a contact normal is undefined (not a unit vector)");
-    }
-    Vec3 tangent = frame.row(1).transpose();
-    if (std::sqrt(dot3(tangent, tangent)) < 0.5) {
-      tangent.setZero();
-      if (normal[1] < 0.5 && normal[1] > -0.5) {
-        tangent[1] = 1;
-      } else {
-        tangent[2] = 1;
-      }
-    }
-    tangent -= normal * dot3(normal, tangent);
-    normalize_or_x(tangent);
-    frame.row(0) = normal.transpose();
-    frame.row(1) = tangent.transpose();
-    frame.row(2) << normal[1] * tangent[2] - normal[2] * tangent[1],
-        normal[2] * tangent[0] - normal[0] * tangent[2],
-        normal[0] * tangent[1] - normal[1] * tangent[0];
-  }
 };
 
 bool body_can_collide(const Model& model, int body) {
@@ -511,6 +503,7 @@ void check_contact_model(const Model& model) {
   sized(model.geom_margin.size(), "geom_margin");
   sized(model.geom_gap.size(), "geom_gap");
   sized(model.geom_rbound.size(), "geom_rbound");
+  sized(model.geom_dataid.size(), "geom_dataid");
   const auto npair = static_cast<size_t>(model.npair);
   for (size_t n : {model.pair_dim.size(), model.pair_geom1.size(), model.pair_geom2.size(),
                    model.pair_signature.size(), model.pair_solref.size(), model.pair_solimp.size(),

@@ -1,6 +1,7 @@
 // What the narrow-phase files share (engine/src only): the box functions written in
-// collision/box.cpp, and the small vector helpers whose rounding and thresholds decide
-// MuJoCo 2.2.2's results (engine_util_blas.c).
+// collision/box.cpp, the general convex pairs written in collision/convex.cpp, and the small
+// vector helpers whose rounding and thresholds decide MuJoCo 2.2.2's results (engine_util_blas.c,
+// engine_util_spatial.c).
 #pragma once
 
 #include <Eigen/Core>
@@ -30,6 +31,58 @@ inline double normalize_or_x(Eigen::Vector3d& v) {
 inline double dot3(const Eigen::Vector3d& a, const Eigen::Vector3d& b) {
   return a[0] * b[0] + a[1] * b[1] + a[2] * b[2];
 }
+
+/// R v, each row's products summed left to right (mju_rotVecMat).
+inline Eigen::Vector3d rotate_rows(const Mat3& R, const Eigen::Vector3d& v) {
+  return Eigen::Vector3d(R(0, 0) * v[0] + R(0, 1) * v[1] + R(0, 2) * v[2],
+                         R(1, 0) * v[0] + R(1, 1) * v[1] + R(1, 2) * v[2],
+                         R(2, 0) * v[0] + R(2, 1) * v[1] + R(2, 2) * v[2]);
+}
+
+/// R^T v, each column's products summed top to bottom (mju_rotVecMatT).
+inline Eigen::Vector3d rotate_columns(const Mat3& R, const Eigen::Vector3d& v) {
+  return Eigen::Vector3d(R(0, 0) * v[0] + R(1, 0) * v[1] + R(2, 0) * v[2],
+                         R(0, 1) * v[0] + R(1, 1) * v[1] + R(2, 1) * v[2],
+                         R(0, 2) * v[0] + R(1, 2) * v[1] + R(2, 2) * v[2]);
+}
+
+/// The contact frame from its normal row (mju_makeFrame): the normal made unit; the first tangent
+/// the given second row if it has one (the capsule's axis), else world y or, for a normal near y,
+/// world z, made orthogonal to the normal; the second tangent their cross product. Returns false
+/// (the frame unchanged) when the normal is shorter than 0.5, which MuJoCo treats as an error.
+inline bool complete_frame(Mat3& frame) {
+  Eigen::Vector3d normal = frame.row(0).transpose();
+  if (normalize_or_x(normal) < 0.5) return false;
+  Eigen::Vector3d tangent = frame.row(1).transpose();
+  if (std::sqrt(dot3(tangent, tangent)) < 0.5) {
+    tangent.setZero();
+    if (normal[1] < 0.5 && normal[1] > -0.5) {
+      tangent[1] = 1;
+    } else {
+      tangent[2] = 1;
+    }
+  }
+  tangent -= normal * dot3(normal, tangent);
+  normalize_or_x(tangent);
+  frame.row(0) = normal.transpose();
+  frame.row(1) = tangent.transpose();
+  frame.row(2) << normal[1] * tangent[2] - normal[2] * tangent[1],
+      normal[2] * tangent[0] - normal[0] * tangent[2],
+      normal[0] * tangent[1] - normal[1] * tangent[0];
+  return true;
+}
+
+// The general convex pairs (MuJoCo 2.2.2's engine_collision_convex.c), written in
+// collision/convex.cpp, with collide_shapes()'s contract (g1's type first in MuJoCo's table).
+// convex_pair: mjc_Convex, MPR on the two support functions (multiccd: up to four more contacts);
+// plane_convex: mjc_PlaneConvex, the support point against the plane, and for a mesh up to two
+// more vertices below the margin.
+int convex_pair(const GeomShape& g1, const GeomShape& g2, double margin,
+                const ConvexOptions& options, Contact* contacts);
+int plane_convex(const GeomShape& plane, const GeomShape& convex, double margin,
+                 Contact* contacts);
+/// Whether this build has the general convex pairs (libccd; not in the WebAssembly build).
+bool has_convex_pairs();
 
 // The pairs with a box (MuJoCo 2.2.2's engine_collision_box.c: mjc_SphereBox, mjc_CapsuleBox,
 // mjc_BoxBox), written in collision/box.cpp. Each has collide_shapes()'s contract: g1's type

@@ -1,7 +1,7 @@
 // The narrow phase's closed-form pairs without a box: MuJoCo 2.2.2's
 // engine_collision_primitive.c (plane against sphere, capsule, box and cylinder; sphere and
-// capsule against each other) and its plane-ellipsoid (mjc_PlaneConvex, which for an ellipsoid
-// is one support point), and collide_shapes(), the table that dispatches to them.
+// capsule against each other), and collide_shapes(), the table that dispatches to them and to
+// the box pairs (box.cpp) and the general convex pairs (convex.cpp).
 //
 // The branch tests (margins, clamps, kMinVal) decide which contacts exist, so they are MuJoCo's,
 // evaluated on the same sums in the same order: dot products left to right (dot3), rotations row
@@ -10,6 +10,7 @@
 // driver completes the frame, as mj_collideGeoms does with mju_makeFrame.
 #include <cmath>
 #include <string>
+#include <utility>
 
 #include <lever/collision.hpp>
 #include <lever/error.hpp>
@@ -23,21 +24,8 @@ namespace {
 using detail::dot3;
 using detail::kMinVal;
 using detail::normalize_or_x;
+using detail::rotate_rows;
 using Vec3 = Eigen::Vector3d;
-
-/// R v, each row's products summed left to right (mju_rotVecMat).
-Vec3 rotate_rows(const Mat3& R, const Vec3& v) {
-  return Vec3(R(0, 0) * v[0] + R(0, 1) * v[1] + R(0, 2) * v[2],
-              R(1, 0) * v[0] + R(1, 1) * v[1] + R(1, 2) * v[2],
-              R(2, 0) * v[0] + R(2, 1) * v[1] + R(2, 2) * v[2]);
-}
-
-/// R^T v, each column's products summed top to bottom (mju_rotVecMatT).
-Vec3 rotate_columns(const Mat3& R, const Vec3& v) {
-  return Vec3(R(0, 0) * v[0] + R(1, 0) * v[1] + R(2, 0) * v[2],
-              R(0, 1) * v[0] + R(1, 1) * v[1] + R(2, 1) * v[2],
-              R(0, 2) * v[0] + R(1, 2) * v[1] + R(2, 2) * v[2]);
-}
 
 Vec3 cross3(const Vec3& a, const Vec3& b) {
   return Vec3(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
@@ -185,24 +173,6 @@ int plane_box(const GeomShape& plane, const GeomShape& box, double margin, Conta
   return count;
 }
 
-int plane_ellipsoid(const GeomShape& plane, const GeomShape& ellipsoid, double margin,
-                    Contact* contacts) {
-  // the ellipsoid's support point in -normal: S^2 d / |S d| in its frame (S = diag(size))
-  const Vec3 normal = z_axis(plane.mat);
-  const Vec3 down_local = rotate_columns(ellipsoid.mat, -normal);
-  Vec3 support = down_local.cwiseProduct(ellipsoid.size);
-  normalize_or_x(support);
-  support = support.cwiseProduct(ellipsoid.size);
-  const Vec3 deepest = rotate_rows(ellipsoid.mat, support) + ellipsoid.pos;
-
-  const double dist = dot3(normal, deepest - plane.pos);
-  if (dist > margin) return 0;
-  contacts[0].dist = dist;
-  contacts[0].pos = deepest + normal * (-0.5 * dist);
-  set_normal(contacts[0], normal);
-  return 1;
-}
-
 int sphere_capsule(const GeomShape& sphere, const GeomShape& capsule, double margin,
                    Contact* contacts) {
   // the point of the capsule's segment nearest the sphere's centre, as a sphere
@@ -289,9 +259,8 @@ int plane_sphere_shapes(const GeomShape& plane, const GeomShape& sphere, double 
   return plane_sphere(plane, sphere.pos, sphere.size[0], margin, contacts);
 }
 
-/// lever's table, indexed as MuJoCo's mjCOLLISIONFUNC by (type1, type2) with type1 <= type2;
-/// null where lever has no function (MuJoCo has none for plane-plane and the height field's
-/// pairs with planes; the rest are its iterative mjc_Convex and mjc_ConvexHField).
+/// lever's closed-form part of MuJoCo's mjCOLLISIONFUNC, indexed by (type1, type2) with
+/// type1 <= type2; null where MuJoCo runs MPR (is_convex_pair) or has no function.
 PairFunction pair_function(GeomType a, GeomType b) {
   using T = GeomType;
   switch (a) {
@@ -299,7 +268,8 @@ PairFunction pair_function(GeomType a, GeomType b) {
       switch (b) {
         case T::kSphere: return plane_sphere_shapes;
         case T::kCapsule: return plane_capsule;
-        case T::kEllipsoid: return plane_ellipsoid;
+        case T::kEllipsoid:
+        case T::kMesh: return detail::plane_convex;
         case T::kCylinder: return plane_cylinder;
         case T::kBox: return plane_box;
         default: return nullptr;
@@ -322,6 +292,14 @@ PairFunction pair_function(GeomType a, GeomType b) {
   }
 }
 
+/// The pairs MuJoCo 2.2.2 gives mjc_Convex (type1 <= type2): every pair of two solids (neither a
+/// plane nor a height field) without a closed form, i.e. any with an ellipsoid, a cylinder or a
+/// mesh, except plane-ellipsoid and plane-mesh (mjc_PlaneConvex, in the table above).
+bool is_convex_pair(GeomType a, GeomType b) {
+  const auto solid = [](GeomType t) { return t != GeomType::kPlane && t != GeomType::kHfield; };
+  return solid(a) && solid(b) && pair_function(a, b) == nullptr;
+}
+
 const char* type_name(GeomType t) {
   switch (t) {
     case GeomType::kPlane: return "plane";
@@ -339,15 +317,23 @@ const char* type_name(GeomType t) {
 }  // namespace
 
 bool has_collision_function(GeomType a, GeomType b) {
-  return static_cast<int>(a) <= static_cast<int>(b) ? pair_function(a, b) != nullptr
-                                                    : pair_function(b, a) != nullptr;
+  if (static_cast<int>(a) > static_cast<int>(b)) std::swap(a, b);
+  if (pair_function(a, b)) {
+    // plane-mesh runs the support function only; this build has it whenever it has meshes
+    return true;
+  }
+  return is_convex_pair(a, b) && detail::has_convex_pairs();
 }
 
-int collide_shapes(const GeomShape& g1, const GeomShape& g2, double margin, Contact* contacts) {
+int collide_shapes(const GeomShape& g1, const GeomShape& g2, double margin, Contact* contacts,
+                   const ConvexOptions& convex) {
   if (static_cast<int>(g1.type) > static_cast<int>(g2.type)) {
     throw ModelError(std::string("collide_shapes: a ") + type_name(g1.type) +
                      " must come after a " + type_name(g2.type) +
                      " (pass the geoms in MuJoCo's type order)");
+  }
+  if (is_convex_pair(g1.type, g2.type) && detail::has_convex_pairs()) {
+    return detail::convex_pair(g1, g2, margin, convex, contacts);
   }
   const PairFunction f = pair_function(g1.type, g2.type);
   if (!f) {

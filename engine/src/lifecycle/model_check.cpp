@@ -205,6 +205,9 @@ void check_sizes(const Model& model) {
         std::to_string(model.nkey) + ").");
   }
   // contact: the counts the contact arrays of the field table are sized by
+  if (model.nmesh < 0 || model.nmeshvert < 0 || model.nmeshgraph < 0) {
+    throw ModelError("nmesh, nmeshvert and nmeshgraph must be non-negative.");
+  }
   if (model.npair < 0 || model.nexclude < 0 || model.nconmax < 0 || model.njmax < 0) {
     throw ModelError("npair, nexclude, nconmax and njmax must be non-negative; got " +
                      std::to_string(model.npair) + ", " + std::to_string(model.nexclude) + ", " +
@@ -352,6 +355,52 @@ void check_options_actuators_keys(const Model& model) {
   }
 }
 
+// The meshes the collision stage reads: each mesh geom's mesh exists, each mesh's vertices lie
+// within mesh_vert (none for a mesh lever did not read), and its hull graph (if any) within mesh_graph, well formed: its vertices are
+// the mesh's, each neighbour list ends with -1 before the lists end, and names hull vertices.
+void check_meshes(const Model& model) {
+  if (model.opt.mpr_iterations < 0 || !(model.opt.mpr_tolerance >= 0)) {
+    throw ModelError("mpr_iterations and mpr_tolerance must not be negative.");
+  }
+  for (int g = 0; g < model.ngeom; ++g) {
+    const int id = model.geom_dataid[g];
+    if (id < -1 || id >= model.nmesh || (id >= 0 && model.geom_type[g] != GeomType::kMesh)) {
+      reject("geom", g, model.geom_name[g], "has a geom_dataid that names no mesh of it");
+    }
+  }
+  const auto fail = [](int m, const std::string& why) {
+    throw ModelError("mesh " + std::to_string(m) + " " + why + ".", "mesh", m);
+  };
+  for (int m = 0; m < model.nmesh; ++m) {
+    const int adr = model.mesh_vertadr[m], num = model.mesh_vertnum[m];
+    if (adr < 0 || num < 0 || adr > model.nmeshvert - num) {
+      fail(m, "has vertices outside mesh_vert");
+    }
+    const int graph = model.mesh_graphadr[m];
+    if (graph == -1) continue;
+    const int size = model.nmeshgraph;
+    if (graph < 0 || graph > size - 2) fail(m, "has a hull graph outside mesh_graph");
+    const int* g = model.mesh_graph.data() + graph;
+    const long numvert = g[0], numface = g[1];
+    if (numvert < 1 || numface < 0 || 2 + 3 * numvert + 6 * numface > size - graph) {
+      fail(m, "has a hull graph whose counts run past mesh_graph");
+    }
+    const long lists = numvert + 3 * numface;
+    for (long v = 0; v < numvert; ++v) {
+      const int vertex = g[2 + numvert + v], first = g[2 + v];
+      if (vertex < 0 || vertex >= num || first < 0 || first >= lists) {
+        fail(m, "has a hull vertex outside the mesh or its neighbour list");
+      }
+      long e = first;
+      while (e < lists && g[2 + 2 * numvert + e] >= 0) {
+        if (g[2 + 2 * numvert + e] >= numvert) fail(m, "has a hull neighbour that is no vertex");
+        ++e;
+      }
+      if (e >= lists) fail(m, "has a hull neighbour list without its end (-1)");
+    }
+  }
+}
+
 template <typename Vector>
 bool finite(const Vector& v) {
   for (const double x : v) {
@@ -366,6 +415,7 @@ void validate(const Model& model) {
   check_sizes(model);
   check_tree(model);
   check_options_actuators_keys(model);
+  check_meshes(model);
   check_finite(model);
   check_ranges(model);
 }

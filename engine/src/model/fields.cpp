@@ -16,7 +16,8 @@ namespace {
 namespace token {
 constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nbody = Size::kNbody, njnt = Size::kNjnt, ngeom = Size::kNgeom, nsite = Size::kNsite,
-               nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude;
+               nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude,
+               nmesh = Size::kNmesh, nmeshvert = Size::kNmeshvert, nmeshgraph = Size::kNmeshgraph;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy;
@@ -218,6 +219,9 @@ int size_of(const Model& model, Size size) {
     case Size::kNefc: return constraint_rows_max(model);
     case Size::kNpair: return model.npair;
     case Size::kNexclude: return model.nexclude;
+    case Size::kNmesh: return model.nmesh;
+    case Size::kNmeshvert: return model.nmeshvert;
+    case Size::kNmeshgraph: return model.nmeshgraph;
   }
   return 0;
 }
@@ -227,8 +231,9 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 11> names = {
-      "1", "nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "nefc", "npair", "nexclude"};
+  static constexpr std::array<const char*, 14> names = {
+      "1",     "nq",    "nv",       "nu",    "nbody",     "njnt",      "ngeom",
+      "nsite", "nefc",  "npair",    "nexclude", "nmesh", "nmeshvert", "nmeshgraph"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -355,7 +360,10 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 10> counts = {{{"nq", model.nq},
+  const std::array<std::pair<const char*, int>, 13> counts = {{{"nmesh", model.nmesh},
+                                                               {"nmeshvert", model.nmeshvert},
+                                                               {"nmeshgraph", model.nmeshgraph},
+                                                               {"nq", model.nq},
                                                                {"nv", model.nv},
                                                                {"nu", model.nu},
                                                                {"nbody", model.nbody},

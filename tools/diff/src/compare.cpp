@@ -105,6 +105,9 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNefc: return limit_row(model, data);
     case Size::kNpair: return [](int i) { return "pair " + std::to_string(i); };
     case Size::kNexclude: return [](int i) { return "exclude " + std::to_string(i); };
+    case Size::kNmesh: return [](int i) { return "mesh " + std::to_string(i); };
+    case Size::kNmeshvert: return [](int i) { return "mesh vertex " + std::to_string(i); };
+    case Size::kNmeshgraph: return [](int i) { return "mesh graph " + std::to_string(i); };
     case Size::kOne: break;
   }
   return [](int) { return std::string(); };

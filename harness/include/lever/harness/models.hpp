@@ -14,6 +14,10 @@ inline std::string source_dir() { return LEVER_SOURCE_DIR; }
 
 inline std::string model_path(const std::string& relative) { return source_dir() + "/" + relative; }
 
+/// The shared robot files (../shared/robots beside the checkout, or CMake's LEVER_ROBOTS_DIR):
+/// MuJoCo 2.2.2's sample models and the Menagerie of 2022, read in place.
+inline std::string robots_dir() { return LEVER_ROBOTS_DIR; }
+
 /// Every model file of the repository (models/ and tests/models/), sorted, as absolute paths.
 inline std::vector<std::string> all_model_files() {
   std::vector<std::string> files;

@@ -1,0 +1,466 @@
+// The general convex pairs, as MuJoCo 2.2.2 collides them (engine_collision_convex.c): every pair
+// with a cylinder, an ellipsoid or a mesh that has no closed form in its table.
+//
+//   support      each geom's farthest point along a direction (MuJoCo's mjccd_support): in the
+//                geom's frame, then rotated and moved to the world; a mesh's vertex found by
+//                climbing its convex hull's graph (or by visiting every vertex if it has none);
+//                both geoms grown by half the margin, so that shapes within the margin overlap
+//   convex_pair  libccd's Minkowski portal refinement (ccdMPRPenetration) on the two support
+//                functions, the library MuJoCo runs, with the model's mpr_tolerance and
+//                mpr_iterations: depth, direction and point of the grown shapes' overlap; dist =
+//                margin - depth, and the normal corrected where a geom's surface gives it exactly
+//                (fix_normal); with multiccd, four more searches with both geoms turned by
+//                +-1e-3 rad about the contact's tangents, keeping the contacts that are distinct
+//   plane_convex the support point against -normal (an ellipsoid's exact lowest point); for a mesh
+//                up to two more vertices below the margin, among the lowest one's hull neighbours
+//
+// Every sum runs in MuJoCo's order, so that libccd receives the same support points bit for bit
+// and returns the same answer.
+#include <cmath>
+
+#include <lever/collision.hpp>
+
+#include "collision/narrow_phase.hpp"
+
+#ifdef LEVER_HAVE_CCD
+#include <ccd/ccd.h>
+#include <ccd/vec3.h>
+#endif
+
+namespace lever::detail {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+/// MuJoCo's mju_sign: -1, 0 or 1.
+double sign_of(double x) { return x < 0 ? -1.0 : (x > 0 ? 1.0 : 0.0); }
+
+double distance3(const Vec3& a, const Vec3& b) {
+  const Vec3 d(a[0] - b[0], a[1] - b[1], a[2] - b[2]);
+  return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
+}
+
+// ---- the hull graph of a mesh (MuJoCo's mesh_graph) --------------------------------------------
+// numvert, numface, then per hull vertex its first edge's address and its vertex index in the
+// mesh, then each hull vertex's neighbours (hull-local indices) ending with -1.
+
+struct HullGraph {
+  const int* edge_address;
+  const int* vertex_index;
+  const int* neighbours;
+
+  explicit HullGraph(const int* graph)
+      : edge_address(graph + 2),
+        vertex_index(graph + 2 + graph[0]),
+        neighbours(graph + 2 + 2 * graph[0]) {}
+};
+
+/// A mesh vertex's projection on a direction, as MuJoCo sums it.
+double along(const double* vertex, const Vec3& dir) {
+  return dir[0] * vertex[0] + dir[1] * vertex[1] + dir[2] * vertex[2];
+}
+
+/// The mesh vertex farthest along dir (in the mesh's frame): the first of the best when every
+/// vertex is visited; the end of the climb from the hull's first vertex otherwise. `found` is its
+/// index as MuJoCo records it (a mesh vertex without a graph, a hull vertex with one).
+int mesh_support_vertex(const GeomShape& mesh, const Vec3& dir, int& found) {
+  double best = -1e10;
+  if (!mesh.mesh_graph) {
+    int best_vertex = -1;
+    for (int i = 0; i < mesh.mesh_vertnum; ++i) {
+      const double projection = along(mesh.mesh_vert + 3 * i, dir);
+      if (projection > best) {
+        best = projection;
+        best_vertex = i;
+      }
+    }
+    found = best_vertex;
+    return best_vertex;
+  }
+  const HullGraph hull(mesh.mesh_graph);
+  int current = 0;
+  best = along(mesh.mesh_vert + 3 * hull.vertex_index[0], dir);
+  for (bool moved = true; moved;) {
+    moved = false;
+    for (int e = hull.edge_address[current]; hull.neighbours[e] >= 0; ++e) {
+      const int next = hull.neighbours[e];
+      const double projection = along(mesh.mesh_vert + 3 * hull.vertex_index[next], dir);
+      if (projection > best) {
+        best = projection;
+        current = next;
+        moved = true;
+      }
+    }
+  }
+  found = current;
+  return hull.vertex_index[current];
+}
+
+/// A geom's support point in the world along world direction `world_dir`, grown by margin / 2
+/// (MuJoCo's mjccd_support). `found` receives a mesh's vertex as mesh_support_vertex records it.
+Vec3 support_point(const GeomShape& g, const Vec3& world_dir, double margin, int& found) {
+  const Vec3 dir = rotate_columns(g.mat, world_dir);
+  const Vec3& size = g.size;
+  Vec3 res;
+  switch (g.type) {
+    case GeomType::kSphere:
+      res = Vec3(dir[0] * size[0], dir[1] * size[0], dir[2] * size[0]);
+      break;
+    case GeomType::kCapsule:
+      res = Vec3(dir[0] * size[0], dir[1] * size[0], dir[2] * size[0]);
+      res[2] += sign_of(dir[2]) * size[1];
+      break;
+    case GeomType::kEllipsoid:
+      // the unit sphere's support point of the direction scaled by the semi-axes, scaled back
+      res = Vec3(dir[0] * size[0], dir[1] * size[1], dir[2] * size[2]);
+      normalize_or_x(res);
+      for (int i = 0; i < 3; ++i) res[i] *= size[i];
+      break;
+    case GeomType::kCylinder: {
+      // the rim point along the direction's horizontal part (the axis if it has none), the disc
+      // its vertical part points to
+      const double horizontal = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1]);
+      if (horizontal > kMinVal) {
+        res[0] = dir[0] / horizontal * size[0];
+        res[1] = dir[1] / horizontal * size[0];
+      } else {
+        res[0] = res[1] = 0;
+      }
+      res[2] = sign_of(dir[2]) * size[1];
+      break;
+    }
+    case GeomType::kBox:
+      for (int i = 0; i < 3; ++i) res[i] = sign_of(dir[i]) * size[i];
+      break;
+    case GeomType::kMesh: {
+      const int v = mesh_support_vertex(g, dir, found);
+      res = v < 0 ? Vec3::Zero() : Vec3(g.mesh_vert[3 * v], g.mesh_vert[3 * v + 1],
+                                        g.mesh_vert[3 * v + 2]);
+      break;
+    }
+    default:
+      res.setZero();  // planes and height fields have no support function (never asked)
+  }
+  for (int i = 0; i < 3; ++i) res[i] += dir[i] * margin / 2;
+  Vec3 world = rotate_rows(g.mat, res);
+  for (int i = 0; i < 3; ++i) world[i] += g.pos[i];
+  return world;
+}
+
+// ---- the normal where a geom's surface gives it (MuJoCo's mjc_fixNormal) -----------------------
+
+/// Normal of an ellipsoid at the ray from an inner point along nrm to its surface, refined by
+/// re-aiming the ray at the surface normal found (mjc_ellipsoidInside). False if it gave none.
+bool ellipsoid_normal_inside(Vec3& nrm, const Vec3& pos, const Vec3& size) {
+  const Vec3 inverse_square(1 / (size[0] * size[0]), 1 / (size[1] * size[1]),
+                            1 / (size[2] * size[2]));
+  const double C = pos[0] * pos[0] * inverse_square[0] + pos[1] * pos[1] * inverse_square[1] +
+                   pos[2] * pos[2] * inverse_square[2] - 1;
+  if (C > 0) return false;
+  normalize_or_x(nrm);
+  for (int iter = 0; iter < 30; ++iter) {
+    // the ray pos + x nrm (x >= 0) meets the surface where A x^2 + 2 B x + C = 0
+    const double A = nrm[0] * nrm[0] * inverse_square[0] + nrm[1] * nrm[1] * inverse_square[1] +
+                     nrm[2] * nrm[2] * inverse_square[2];
+    const double B = pos[0] * nrm[0] * inverse_square[0] + pos[1] * nrm[1] * inverse_square[1] +
+                     pos[2] * nrm[2] * inverse_square[2];
+    const double det = B * B - A * C;
+    if (det < kMinVal || A < kMinVal) return iter > 0;
+    const double x = (-B + std::sqrt(det)) / A;
+    if (x < 0) return iter > 0;
+    Vec3 surface;
+    for (int i = 0; i < 3; ++i) surface[i] = pos[i] + nrm[i] * x;
+    Vec3 normal(surface[0] * inverse_square[0], surface[1] * inverse_square[1],
+                surface[2] * inverse_square[2]);
+    normalize_or_x(normal);
+    const double change = distance3(nrm, normal);
+    nrm = normal;
+    if (change < 1e-6) break;
+  }
+  return true;
+}
+
+/// Normal of an ellipsoid at the surface point nearest an outer point: Newton on the Lagrange
+/// multiplier of the nearest-point problem (mjc_ellipsoidOutside).
+void ellipsoid_normal_outside(Vec3& nrm, const Vec3& pos, const Vec3& size) {
+  const Vec3 S2(size[0] * size[0], size[1] * size[1], size[2] * size[2]);
+  const Vec3 PS2(pos[0] * pos[0] * S2[0], pos[1] * pos[1] * S2[1], pos[2] * pos[2] * S2[2]);
+  double la = 0;
+  for (int iter = 0; iter < 30; ++iter) {
+    const Vec3 R(1 / (S2[0] + la), 1 / (S2[1] + la), 1 / (S2[2] + la));
+    const double val = PS2[0] * R[0] * R[0] + PS2[1] * R[1] * R[1] + PS2[2] * R[2] * R[2] - 1;
+    if (val < 1e-6) break;
+    const double deriv =
+        -2 * (PS2[0] * R[0] * R[0] * R[0] + PS2[1] * R[1] * R[1] * R[1] + PS2[2] * R[2] * R[2] * R[2]);
+    if (deriv > -kMinVal) break;
+    const double delta = -val / deriv;
+    if (delta < 1e-6) break;
+    la += delta;
+  }
+  nrm = Vec3(pos[0] / (S2[0] + la), pos[1] / (S2[1] + la), pos[2] / (S2[2] + la));
+  normalize_or_x(nrm);
+}
+
+/// The outward normal of geom g at the contact point, in g's frame, if its type gives one there
+/// (a sphere's, capsule's or ellipsoid's surface; a cylinder's round wall, well away from its
+/// discs); nrm starts as the contact's normal in g's frame.
+bool surface_normal(const GeomShape& g, const Vec3& pos, Vec3& nrm) {
+  const Vec3& size = g.size;
+  switch (g.type) {
+    case GeomType::kSphere:
+      nrm = pos;
+      return true;
+    case GeomType::kCapsule:
+      if (pos[2] < -size[1]) {
+        nrm[2] = pos[2] + size[1];
+      } else if (pos[2] > size[1]) {
+        nrm[2] = pos[2] - size[1];
+      } else {
+        nrm[2] = 0;
+      }
+      nrm[0] = pos[0];
+      nrm[1] = pos[1];
+      return true;
+    case GeomType::kEllipsoid: {
+      if (size[0] < kMinVal || size[1] < kMinVal || size[2] < kMinVal) return false;
+      const double elliptic = pos[0] * pos[0] / (size[0] * size[0]) +
+                              pos[1] * pos[1] / (size[1] * size[1]) +
+                              pos[2] * pos[2] / (size[2] * size[2]);
+      if (elliptic <= 1) return ellipsoid_normal_inside(nrm, pos, size);
+      ellipsoid_normal_outside(nrm, pos, size);
+      return true;
+    }
+    case GeomType::kCylinder: {
+      if (std::abs(pos[2]) > 0.95 * size[1]) return false;  // near a disc
+      const double to_disc = std::abs(size[1] - std::abs(pos[2]));
+      const double to_wall = std::abs(size[0] - std::sqrt(pos[0] * pos[0] + pos[1] * pos[1]));
+      if (to_disc < 0.25 * to_wall) return false;  // not four times nearer the wall
+      nrm = Vec3(pos[0], pos[1], 0);
+      return true;
+    }
+    default:
+      return false;
+  }
+}
+
+/// Replace MPR's normal by the geoms' surface normals where they give one: their difference
+/// (made unit) when both do, else the one that does (mjc_fixNormal).
+void fix_normal(const GeomShape& g1, const GeomShape& g2, Contact& c) {
+  const GeomShape* geoms[2] = {&g1, &g2};
+  Vec3 normal[2] = {c.frame.row(0).transpose(), -c.frame.row(0).transpose()};
+  bool processed[2] = {false, false};
+  for (int i = 0; i < 2; ++i) {
+    const GeomShape& g = *geoms[i];
+    if (g.type != GeomType::kSphere && g.type != GeomType::kCapsule &&
+        g.type != GeomType::kEllipsoid && g.type != GeomType::kCylinder) {
+      continue;
+    }
+    const Vec3 local = rotate_columns(g.mat, c.pos - g.pos);
+    Vec3 nrm = rotate_columns(g.mat, normal[i]);
+    processed[i] = surface_normal(g, local, nrm);
+    if (processed[i]) {
+      normalize_or_x(nrm);
+      normal[i] = rotate_rows(g.mat, nrm);
+    }
+  }
+  if (processed[0] && processed[1]) {
+    Vec3 n = normal[0] - normal[1];
+    normalize_or_x(n);
+    c.frame.row(0) = n.transpose();
+  } else if (processed[0]) {
+    c.frame.row(0) = normal[0].transpose();
+  } else if (processed[1]) {
+    c.frame.row(0) = (normal[1] * -1.0).transpose();
+  }
+  if (processed[0] || processed[1]) c.frame.row(1).setZero();
+}
+
+#ifdef LEVER_HAVE_CCD
+
+/// What libccd passes back to the support and centre functions: the geom, the margin and the
+/// mesh vertex last found (MuJoCo's mjtCCD).
+struct CcdObject {
+  const GeomShape* geom;
+  double margin;
+  int mesh_index;
+};
+
+void ccd_support(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* point) {
+  // libccd hands back the object it was given, which it owns as non-const in spirit
+  auto* o = static_cast<CcdObject*>(const_cast<void*>(object));
+  const Vec3 p = support_point(*o->geom, Vec3(dir->v[0], dir->v[1], dir->v[2]), o->margin,
+                               o->mesh_index);
+  for (int i = 0; i < 3; ++i) point->v[i] = p[i];
+}
+
+void ccd_center(const void* object, ccd_vec3_t* center) {
+  const auto* o = static_cast<const CcdObject*>(object);
+  for (int i = 0; i < 3; ++i) center->v[i] = o->geom->pos[i];
+}
+
+/// One MPR search: a contact if the grown shapes overlap with a defined direction (MuJoCo's
+/// mjc_MPRIteration).
+bool mpr_contact(const GeomShape& g1, const GeomShape& g2, double margin,
+                 const ConvexOptions& options, Contact& c) {
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.first_dir = ccdFirstDirDefault;
+  ccd.support1 = ccd_support;
+  ccd.support2 = ccd_support;
+  ccd.center1 = ccd_center;
+  ccd.center2 = ccd_center;
+  ccd.max_iterations = static_cast<unsigned long>(options.mpr_iterations);
+  ccd.mpr_tolerance = options.mpr_tolerance;
+  CcdObject o1{&g1, margin, -1}, o2{&g2, margin, -1};
+  ccd_real_t depth;
+  ccd_vec3_t dir, pos;
+  if (ccdMPRPenetration(&o1, &o2, &ccd, &depth, &dir, &pos) != 0) return false;
+  if (ccdVec3Eq(&dir, ccd_vec3_origin)) return false;  // overlap, but no direction
+  c.dist = margin - depth;
+  c.pos = Vec3(pos.v[0], pos.v[1], pos.v[2]);
+  c.frame.setZero();
+  c.frame.row(0) << dir.v[0], dir.v[1], dir.v[2];
+  fix_normal(g1, g2, c);
+  return true;
+}
+
+#endif  // LEVER_HAVE_CCD
+
+// ---- multiccd: the geoms turned about the first contact (MuJoCo's mjc_Convex) ------------------
+
+/// mju_quat2Mat of mju_axisAngle2Quat(axis, angle).
+Mat3 axis_angle_rotation(const Vec3& axis, double angle) {
+  if (angle == 0) return Mat3::Identity();
+  const double s = std::sin(angle * 0.5);
+  const double q0 = std::cos(angle * 0.5), q1 = axis[0] * s, q2 = axis[1] * s, q3 = axis[2] * s;
+  const double q00 = q0 * q0, q01 = q0 * q1, q02 = q0 * q2, q03 = q0 * q3;
+  const double q11 = q1 * q1, q12 = q1 * q2, q13 = q1 * q3;
+  const double q22 = q2 * q2, q23 = q2 * q3, q33 = q3 * q3;
+  Mat3 R;
+  R << q00 + q11 - q22 - q33, 2 * (q12 - q03), 2 * (q13 + q02),  //
+      2 * (q12 + q03), q00 - q11 + q22 - q33, 2 * (q23 - q01),   //
+      2 * (q13 - q02), 2 * (q23 + q01), q00 - q11 - q22 + q33;
+  return R;
+}
+
+/// A geom turned by rot about `origin`: mat = rot mat, pos moved so that origin stays put
+/// (mju_rotateFrame; rot's rows times mat's rows accumulated as mju_mulMatMat, zeros skipped).
+GeomShape turned(const GeomShape& g, const Mat3& rot, const Vec3& origin) {
+  GeomShape t = g;
+  for (int i = 0; i < 3; ++i) {
+    Vec3 row(0, 0, 0);
+    for (int k = 0; k < 3; ++k) {
+      const double r = rot(i, k);
+      if (r != 0) {
+        for (int j = 0; j < 3; ++j) row[j] += g.mat(k, j) * r;
+      }
+    }
+    t.mat.row(i) = row.transpose();
+  }
+  const Vec3 rel = origin - g.pos;
+  Vec3 moved = rotate_rows(rot, rel);
+  moved -= rel;
+  t.pos = g.pos - moved;
+  return t;
+}
+
+}  // namespace
+
+bool has_convex_pairs() {
+#ifdef LEVER_HAVE_CCD
+  return true;
+#else
+  return false;
+#endif
+}
+
+int convex_pair(const GeomShape& g1, const GeomShape& g2, double margin,
+                const ConvexOptions& options, Contact* contacts) {
+#ifdef LEVER_HAVE_CCD
+  if (!mpr_contact(g1, g2, margin, options, contacts[0])) return 0;
+  int count = 1;
+  const auto roundish = [](GeomType t) {
+    return t == GeomType::kSphere || t == GeomType::kEllipsoid;
+  };
+  if (!options.multiccd || roundish(g1.type) || roundish(g2.type)) return count;
+
+  // turn g1 by +-1e-3 rad about each tangent of the first contact and g2 back, search again, and
+  // keep a new contact farther than 1e-3 of the smaller bounding radius from every earlier one,
+  // at the first contact's depth
+  Mat3 frame = contacts[0].frame;
+  complete_frame(frame);
+  const double tolerance = 1e-3 * std::min(g1.rbound, g2.rbound);
+  const Vec3 origin = contacts[0].pos;
+  for (int axis = 1; axis <= 2; ++axis) {
+    for (const double angle : {-1e-3, 1e-3}) {
+      const Mat3 rot = axis_angle_rotation(frame.row(axis).transpose(), angle);
+      const GeomShape t1 = turned(g1, rot, origin);
+      const GeomShape t2 = turned(g2, rot.transpose(), origin);
+      Contact& candidate = contacts[count];
+      if (!mpr_contact(t1, t2, margin, options, candidate)) continue;
+      bool distinct = true;
+      for (int i = 0; i < count; ++i) {
+        if (distance3(contacts[i].pos, candidate.pos) <= tolerance) distinct = false;
+      }
+      if (distinct) {
+        candidate.dist = contacts[0].dist;
+        ++count;
+      }
+    }
+  }
+  return count;
+#else
+  (void)g1, (void)g2, (void)margin, (void)options, (void)contacts;
+  return 0;
+#endif
+}
+
+int plane_convex(const GeomShape& plane, const GeomShape& convex, double margin,
+                 Contact* contacts) {
+  const Vec3 normal = plane.mat.col(2);
+  const Vec3 down = normal * -1.0;
+  int lowest_found = -1;
+  const Vec3 lowest = support_point(convex, down, 0, lowest_found);
+  const double dist = dot3(normal, lowest - plane.pos);
+  if (dist > margin) return 0;
+  Contact& first = contacts[0];
+  first.dist = dist;
+  first.pos = lowest + normal * (-0.5 * dist);
+  first.frame.setZero();
+  first.frame.row(0) = normal.transpose();
+  if (convex.type != GeomType::kMesh) return 1;
+
+  // a mesh: more vertices below the margin (at most three contacts), each at least 0.3 of the
+  // bounding radius from the first
+  constexpr int kMostContacts = 3;
+  const Vec3 down_local = rotate_columns(convex.mat, down);
+  const double threshold = dot3(normal, convex.pos - plane.pos) - margin;
+  int count = 1;
+  const auto add_vertex = [&](const double* vertex) {
+    Vec3 point = rotate_rows(convex.mat, Vec3(vertex[0], vertex[1], vertex[2]));
+    point += convex.pos;
+    if (distance3(point, first.pos) < 0.3 * convex.rbound) return;
+    Contact& c = contacts[count++];
+    c.dist = dot3(normal, point - plane.pos);
+    c.pos = point + normal * (-0.5 * c.dist);
+    c.frame.setZero();
+    c.frame.row(0) = normal.transpose();
+  };
+  if (!convex.mesh_graph) {
+    for (int i = 0; i < convex.mesh_vertnum && count < kMostContacts; ++i) {
+      const double* vertex = convex.mesh_vert + 3 * i;
+      if (along(vertex, down_local) > threshold && i != lowest_found) add_vertex(vertex);
+    }
+  } else if (lowest_found >= 0) {
+    const HullGraph hull(convex.mesh_graph);
+    for (int e = hull.edge_address[lowest_found];
+         hull.neighbours[e] >= 0 && count < kMostContacts; ++e) {
+      const double* vertex = convex.mesh_vert + 3 * hull.vertex_index[hull.neighbours[e]];
+      if (along(vertex, down_local) > threshold) add_vertex(vertex);
+    }
+  }
+  return count;
+}
+
+}  // namespace lever::detail
