@@ -12,6 +12,7 @@ and lever does not raises NotImplementedError naming it, never a silent wrong va
 MuJoCo does not have either raises AttributeError, and an unknown object name raises KeyError.
 """
 
+import copy as _copy
 import enum as _enum
 import os as _os
 
@@ -340,6 +341,17 @@ class MjModel:
         else:
             raise _missing("MODEL", name)
 
+    # pickle and copies: the lever.Model beneath (every array of the field table, the names,
+    # the keyframes and the options), as MuJoCo's MjModel pickles and copies whole
+    def __reduce__(self):
+        return (MjModel, (self._native,))
+
+    def __copy__(self) -> "MjModel":
+        return MjModel(_lever.copy_model(self._native))
+
+    def __deepcopy__(self, memo) -> "MjModel":
+        return MjModel(_lever.copy_model(self._native))
+
     def __repr__(self) -> str:
         return f"<lever.mujoco.MjModel {self._native.name!r} nq={self.nq} nu={self.nu}>"
 
@@ -464,8 +476,29 @@ class MjData:
         else:
             raise _missing("DATA", name)
 
+    # pickle and copies: the lever.Data beneath (every array of the field table, the contacts,
+    # efc_J and the warnings) with its model. A copy keeps its MjModel, as MuJoCo's MjData (which
+    # holds no model) is used with the model it is given.
+    def __reduce__(self):
+        return (_data_from_native, (self._model, self._native))
+
+    def __copy__(self) -> "MjData":
+        return _data_from_native(self._model, _copy.copy(self._native))
+
+    def __deepcopy__(self, memo) -> "MjData":
+        return _data_from_native(self._model, _copy.copy(self._native))
+
     def __repr__(self) -> str:
         return f"<lever.mujoco.MjData time={self.time:g} nefc={self.nefc}>"
+
+
+def _data_from_native(model: MjModel, native) -> MjData:
+    """An MjData around a lever.Data (an unpickled or copied one), paired with `model`."""
+    data = MjData.__new__(MjData)
+    object.__setattr__(data, "_model", model)
+    object.__setattr__(data, "_native", native)
+    native._adopt_model(model._native)
+    return data
 
 
 def _add_named_access(cls, view) -> None:
@@ -486,7 +519,10 @@ def _pair(m: MjModel, d: MjData):
     if not isinstance(m, MjModel) or not isinstance(d, MjData):
         raise TypeError("expected (MjModel, MjData)")
     if d._model is not m:
-        raise ValueError("this MjData was made from another MjModel")
+        # MuJoCo's functions use the model they are given: an MjData of another model of the same
+        # sizes (a copy, an unpickled one) is paired with this one; other sizes are refused
+        d._native._adopt_model(m._native)
+        object.__setattr__(d, "_model", m)
     return m._native, d._native
 
 

@@ -221,8 +221,11 @@ def test_bad_input_raises(arm2, tmp_path):
     assert err.value.line == 3 and "bad.xml:3" in str(err.value) and err.value.attribute == "rnage"
     with pytest.raises(lever.ParseError):
         mujoco.MjModel.from_xml_string("<mujoco><worldbody>")
-    other = mujoco.MjModel.from_xml_path(str(ARM2))
-    with pytest.raises(ValueError, match="another"):
+    # MuJoCo's functions use the model they are given: another model of the same sizes is
+    # taken, one of other sizes refused
+    mujoco.mj_forward(mujoco.MjModel.from_xml_path(str(ARM2)), data)
+    other = mujoco.MjModel.from_xml_path(str(ARM2.parent / "arm3.xml"))
+    with pytest.raises(ValueError, match="another model"):
         mujoco.mj_forward(other, data)
     data.qpos[0] = np.nan
     mujoco.mj_step(model, data)  # a bad state is reset and recorded, as mj_step does
