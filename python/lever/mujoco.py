@@ -96,14 +96,15 @@ _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclud
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl")
 # the mjModel arrays model.body(...) and the other accessors reach
-_MODEL_OFFERED = _MODEL_FIELDS | {"actuator_trnid"}
+_MODEL_OFFERED = _MODEL_FIELDS | {"actuator_trnid", "dof_Madr"}
 
 
 # What lever.mujoco covers, generated from the field table, for the errors below
 _COVERED = {
-    "MODEL": ", ".join(sorted(_MODEL_FIELDS | set(_SIZES) | set(_KEY_FIELDS) | {"actuator_trnid"})),
+    "MODEL": ", ".join(sorted(_MODEL_FIELDS | set(_SIZES) | set(_KEY_FIELDS) |
+                              {"actuator_trnid", "dof_Madr", "nM"})),
     "DATA": ", ".join(sorted(_DATA_FIELDS | {"time", "ncon", "nefc", "ne", "nf", "efc_J",
-                                             "contact"})),
+                                             "contact", "qM"})),
 }
 _STRUCT = {"MODEL": "mjModel", "DATA": "mjData"}
 
@@ -340,6 +341,18 @@ class MjModel:
         return MjModel(_lever.load_string(xml))
 
     @property
+    def nM(self) -> int:
+        """Entries of MuJoCo's sparse M (data.qM)."""
+        return len(_sparse_rows(self._native)[1])
+
+    @property
+    def dof_Madr(self) -> _np.ndarray:
+        """(nv,) where each dof's row starts in data.qM (computed from dof_parentid: read-only)."""
+        out = _sparse_rows(self._native)[0]
+        out.flags.writeable = False
+        return out
+
+    @property
     def nkey(self) -> int:
         return self._native.nkey
 
@@ -513,6 +526,17 @@ class MjData:
     def ncon(self) -> int:
         return self._native.ncon
 
+    @property
+    def qM(self) -> _np.ndarray:
+        """(nM,) M(q) in MuJoCo's sparse layout (model.dof_Madr), read from lever's dense M
+        (data.M) when asked: a read-only copy, for mj_fullM(model, dst, data.qM)."""
+        _, columns = _sparse_rows(self._model._native)
+        rows = _np.repeat(_np.arange(self._model.nv),
+                          _np.diff(_np.append(self._model.dof_Madr, len(columns))))
+        out = self._native.M[rows, columns]
+        out.flags.writeable = False
+        return out
+
     def __getattr__(self, name: str):
         native = object.__getattribute__(self, "_native")
         if name in _DATA_FIELDS:
@@ -638,14 +662,37 @@ def mj_inverse(m: MjModel, d: MjData) -> None:
     _lever.inverse(*_pair(m, d))
 
 
+def _sparse_rows(native):
+    """MuJoCo's sparse layout of M (qM): dof i's row holds M[i, j] for j = i, then each dof on
+    the path to the world (dof_parentid), from address dof_Madr[i]. Returns (dof_Madr, the
+    column j of each entry of qM)."""
+    parent = native.dof_parentid
+    madr, columns = [], []
+    for i in range(native.nv):
+        madr.append(len(columns))
+        j = i
+        while j >= 0:
+            columns.append(j)
+            j = int(parent[j])
+    return _np.array(madr, dtype=_np.int32), _np.array(columns, dtype=_np.int64)
+
+
 def mj_fullM(m: MjModel, *args) -> None:
-    """mj_fullM(model, data, dst) (MuJoCo 3.10+): dst = M(q) as a dense nv x nv matrix."""
-    if len(args) != 2 or not isinstance(args[0], MjData):
-        raise NotImplementedError("lever.mujoco: mj_fullM(model, dst, qM) reads MuJoCo's sparse "
-                                  "qM, which lever does not keep; call mj_fullM(model, data, dst)")
-    d, dst = args
-    _pair(m, d)
-    dst[...] = d._native.M.reshape(_np.shape(dst))
+    """dst = M(q) as a dense nv x nv matrix: mj_fullM(model, dst, data.qM) (MuJoCo up to 3.9) or
+    mj_fullM(model, data, dst) (MuJoCo 3.10+)."""
+    if len(args) == 2 and isinstance(args[0], MjData):
+        d, dst = args
+        _pair(m, d)
+        dst[...] = d._native.M.reshape(_np.shape(dst))
+        return
+    dst, qM = args
+    madr, columns = _sparse_rows(m._native)
+    qM = _np.asarray(qM, dtype=float)
+    full = _np.zeros((m.nv, m.nv))
+    rows = _np.repeat(_np.arange(m.nv), _np.diff(_np.append(madr, len(columns))))
+    full[rows, columns] = qM
+    full[columns, rows] = qM
+    dst[...] = full.reshape(_np.shape(dst))
 
 
 def mj_mulM(m: MjModel, d: MjData, res: _np.ndarray, vec: _np.ndarray) -> None:

@@ -198,8 +198,8 @@ def test_joint_stop_rows(arm2):
 
 def test_what_lever_lacks_raises_not_implemented(arm2):
     model, data = arm2
-    with pytest.raises(NotImplementedError, match="qM"):
-        data.qM
+    with pytest.raises(NotImplementedError, match="qLDiagSqrtInv"):
+        data.qLDiagSqrtInv
     with pytest.raises(NotImplementedError, match="tendon_range"):
         model.tendon_range
     with pytest.raises(NotImplementedError, match="mj_collision"):

@@ -27,6 +27,8 @@ LAYOUT = {
               "(nefc, nv)", "reshape"),
     "actuator_trnid": ("lever computes it from actuator_trnid's joint column: read-only",
                        "writable"),
+    "dof_Madr": ("lever computes it from dof_parentid: read-only", "writable"),
+    "qM": ("lever keeps M dense; qM is read from it on each access: read-only", "writable"),
     "nconmax": ("MuJoCo 3.x sizes contacts on the fly (-1); 2.2.2 and lever hold nconmax", "value"),
     "njmax": ("MuJoCo 3.x sizes constraint rows on the fly (-1); 2.2.2 and lever hold njmax",
               "value"),
@@ -114,11 +116,11 @@ def public(obj):
 
 
 def offered_model_names():
-    return sorted(ours._MODEL_OFFERED | set(ours._SIZES) | set(ours._KEY_FIELDS))
+    return sorted(ours._MODEL_OFFERED | set(ours._SIZES) | set(ours._KEY_FIELDS) | {"nM"})
 
 
 def offered_data_names():
-    return sorted(ours._DATA_FIELDS | {"time", "ncon", "nefc", "efc_J"})
+    return sorted(ours._DATA_FIELDS | {"time", "ncon", "nefc", "efc_J", "qM"})
 
 
 @pytest.mark.parametrize("path", MODELS, ids=lambda p: p.name)
@@ -314,11 +316,11 @@ def call_each(module, m, d):
     if module is real:  # MuJoCo 3.x: mj_crb's body inertias, then mj_makeM's M from them
         module.mj_makeM(m, data)
     dense = np.zeros((nv, nv))
-    if module is real:  # MuJoCo 3.4's mj_fullM(m, dst, qM); lever keeps M dense, 3.10's form
-        module.mj_fullM(m, dense, data.qM)
-    else:
-        module.mj_fullM(m, data, dense)
+    module.mj_fullM(m, dense, data.qM)  # MuJoCo up to 3.9's form (lever.mujoco also takes 3.10's)
     out["mj_crb, mj_fullM"] = dense
+    if module is ours:
+        module.mj_fullM(m, data, dense)
+        assert np.array_equal(dense, out["mj_crb, mj_fullM"])
     module.mj_factorM(m, data)
     out["mj_factorM: qLDiagInv"] = data.qLDiagInv.copy()
     data = fresh()
