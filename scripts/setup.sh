@@ -14,6 +14,7 @@ packages=(
   libbenchmark-dev     # bench/
   liborocos-kdl-dev    # bench/ peer
   python3-dev python3-pybind11  # the Python package (python/), for /usr/bin/python3
+  python3-numpy                  # tests/packaging: the installed package under Debian's python3
   python3-venv python3-pip       # tests/python: the wheel tested in a fresh venv, numpy, pytest
                                  # and MuJoCo's own package from pip (tests/python/requirements.txt)
   emscripten           # make web, tests/web: lever compiled to WebAssembly for the lab (web/)
