@@ -15,8 +15,10 @@ packages=(
   libmujoco-dev        # the reference: tests, benchmarks and `lever diff` only
   libbenchmark-dev     # bench/
   liborocos-kdl-dev    # bench/ peer
-  python3-dev python3-numpy python3-pybind11  # the Python package (python/), for /usr/bin/python3
-  python3-pytest       # its tests (tests/python)
+  python3-dev python3-pybind11  # the Python package (python/), for /usr/bin/python3
+  python3-numpy                  # tests/packaging: the installed package under Debian's python3
+  python3-venv python3-pip       # tests/python: the wheel tested in a fresh venv, numpy, pytest
+                                 # and MuJoCo's own package from pip (tests/python/requirements.txt)
   emscripten           # make web, tests/web: lever compiled to WebAssembly for the lab (web/)
   node-acorn           # Emscripten's JS optimizer (NODE_PATH=/usr/share/nodejs)
   chromium             # tests/web: the lab in a real browser, headless

@@ -86,7 +86,7 @@ def motor_sizing(model, data) -> None:
     print(f"  largest point payload at the tip, arm horizontal: shoulder allows {payload[0]:.2f} kg, "
           f"elbow allows {payload[1]:.2f} kg -> {payload.min():.2f} kg")
     mass = np.zeros((model.nv, model.nv))
-    mujoco.mj_fullM(model, data, mass)  # 3.10+: reads the factorized M from data
+    mujoco.mj_fullM(model, mass, data.qM)  # MuJoCo 3.10+ also takes (model, data, mass)
     acc = (limit[0] - tau_g[0]) / mass[0, 0]  # elbow held rigid: qacc_elbow = 0
     elbow = mass[1, 0] * acc + tau_g[1]  # elbow torque that keeps it rigid
     print(f"  M(q) at this pose: {np.round(mass, 4).tolist()} kg m^2")

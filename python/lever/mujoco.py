@@ -12,6 +12,7 @@ and lever does not raises NotImplementedError naming it, never a silent wrong va
 MuJoCo does not have either raises AttributeError, and an unknown object name raises KeyError.
 """
 
+import copy as _copy
 import enum as _enum
 import os as _os
 
@@ -94,57 +95,80 @@ _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclud
           "njmax")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl")
+# the mjModel arrays model.body(...) and the other accessors reach
+_MODEL_OFFERED = _MODEL_FIELDS | {"actuator_trnid", "dof_Madr"}
+
+
+# What lever.mujoco covers, generated from the field table, for the errors below
+_COVERED = {
+    "MODEL": ", ".join(sorted(_MODEL_FIELDS | set(_SIZES) | set(_KEY_FIELDS) |
+                              {"actuator_trnid", "dof_Madr", "nM"})),
+    "DATA": ", ".join(sorted(_DATA_FIELDS | {"time", "ncon", "nefc", "ne", "nf", "efc_J",
+                                             "contact", "qM"})),
+}
+_STRUCT = {"MODEL": "mjModel", "DATA": "mjData"}
 
 
 def _missing(kind: str, name: str):
-    """The error for a MuJoCo name lever lacks, or a name MuJoCo lacks too."""
+    """The error for a MuJoCo name lever lacks (NotImplementedError, saying what lever has), or a
+    name MuJoCo 2.2.2 lacks too (AttributeError)."""
     if name in getattr(_mujoco_names, kind):
         return NotImplementedError(
-            f"lever.mujoco: {'mjModel' if kind == 'MODEL' else 'mjData'}.{name} is MuJoCo's but "
-            f"lever does not compute it (lever covers hinge and slide joints, motors, joint "
-            f"limits and sites; see docs/python.md)")
-    return AttributeError(f"'{'MjModel' if kind == 'MODEL' else 'MjData'}' object has no "
-                          f"attribute '{name}'")
+            f"lever.mujoco: {_STRUCT[kind]}.{name} is MuJoCo's but lever does not compute it; "
+            f"lever.mujoco's {_STRUCT[kind]} has (lever's field table): {_COVERED[kind]}")
+    return AttributeError(f"'Mj{_STRUCT[kind][2:]}' object has no attribute '{name}'")
 
 
 # ---- named access: model.joint('elbow').axis, data.site('ee').xpos -------------------------------
 
-# object type -> (name list in lever's Model, prefix of its model arrays, size attribute)
+# object type -> (name list in lever's Model, size attribute)
 _OBJECTS = {
-    "body": ("body_name", "body_", "nbody"),
-    "joint": ("jnt_name", "jnt_", "njnt"),
-    "geom": ("geom_name", "geom_", "ngeom"),
-    "site": ("site_name", "site_", "nsite"),
-    "actuator": ("actuator_name", "actuator_", "nu"),
+    "body": ("body_name", "nbody"),
+    "joint": ("jnt_name", "njnt"),
+    "geom": ("geom_name", "ngeom"),
+    "site": ("site_name", "nsite"),
+    "actuator": ("actuator_name", "nu"),
 }
 _OBJ_TYPES = {
     mjtObj.mjOBJ_BODY: "body", mjtObj.mjOBJ_XBODY: "body", mjtObj.mjOBJ_JOINT: "joint",
     mjtObj.mjOBJ_GEOM: "geom", mjtObj.mjOBJ_SITE: "site", mjtObj.mjOBJ_ACTUATOR: "actuator",
 }
 
-# data arrays reachable from a named object, as MuJoCo's accessors name them: attribute ->
-# (data array, how the object's index maps to its rows)
-_DATA_ACCESS = {
-    "body": {"xpos": "xpos", "xquat": "xquat", "xmat": "xmat", "xipos": "xipos",
-             "ximat": "ximat", "subtree_com": "subtree_com", "cvel": "cvel"},
-    "joint": {"qpos": "qpos", "qvel": "qvel", "qacc": "qacc", "qfrc_applied": "qfrc_applied",
-              "qfrc_bias": "qfrc_bias", "qfrc_passive": "qfrc_passive",
-              "qfrc_actuator": "qfrc_actuator", "qfrc_constraint": "qfrc_constraint",
-              "qfrc_smooth": "qfrc_smooth", "qacc_smooth": "qacc_smooth",
-              "qfrc_inverse": "qfrc_inverse", "xanchor": "xanchor", "xaxis": "xaxis",
-              "cdof": "cdof", "cdof_dot": "cdof_dot"},
-    "site": {"xpos": "site_xpos", "xmat": "site_xmat"},
-    "actuator": {"ctrl": "ctrl", "force": "actuator_force", "length": "actuator_length",
-                 "velocity": "actuator_velocity"},
-    "geom": {},
+# MuJoCo's accessors show an object's rows of every array its count sizes, under the array's name
+# less the object's prefix (model.body(i).mass is body_mass[i], data.geom(i).xpos geom_xpos[i]);
+# a joint's rows of the nq- and nv-sized arrays are its coordinates and dofs. kind -> [(the size
+# counting the rows, the prefix)], for mjModel and for mjData.
+_MODEL_ROWS = {
+    "body": [("nbody", "body_")],
+    "joint": [("njnt", "jnt_"), ("nv", "dof_"), ("nq", "")],
+    "geom": [("ngeom", "geom_")],
+    "site": [("nsite", "site_")],
+    "actuator": [("nu", "actuator_")],
 }
-_MUJOCO_DATA_ACCESS = {  # what MuJoCo's accessors also have that lever does not compute
-    "body": {"xfrc_applied", "cinert", "cacc", "cfrc_int", "cfrc_ext", "crb"},
-    "joint": {"qLDiagInv", "qacc_warmstart"},
-    "site": set(),
-    "actuator": {"act", "act_dot", "moment"},
-    "geom": {"xpos", "xmat"},
+_DATA_ROWS = {
+    "body": [("nbody", "")],
+    "joint": [("njnt", ""), ("nv", ""), ("nq", "")],
+    "geom": [("ngeom", "geom_")],
+    "site": [("nsite", "site_")],
+    "actuator": [("nu", "actuator_"), ("na", "")],
 }
+
+
+def _accessor_table(mujoco_arrays: dict, rows_of_kind: dict) -> dict:
+    """kind -> {attribute: (MuJoCo's array, the size counting its rows)} from MuJoCo's table."""
+    table = {}
+    for kind, sources in rows_of_kind.items():
+        attributes = {}
+        for array, rows in mujoco_arrays.items():
+            for size, prefix in sources:
+                if rows == size and array.startswith(prefix):
+                    attributes.setdefault(array[len(prefix):], (array, rows))
+        table[kind] = attributes
+    return table
+
+
+_MODEL_ACCESS = _accessor_table(_mujoco_names.MODEL, _MODEL_ROWS)
+_DATA_ACCESS = _accessor_table(_mujoco_names.DATA, _DATA_ROWS)
 
 
 def _row(array: _np.ndarray, i: int) -> _np.ndarray:
@@ -166,7 +190,7 @@ def _joint_slice(array: _np.ndarray, native, joint: int, coordinates: bool) -> _
 
 
 def _resolve(native, kind: str, key) -> int:
-    names_attr, _, size_attr = _OBJECTS[kind]
+    names_attr, size_attr = _OBJECTS[kind]
     names = getattr(native, names_attr)
     if isinstance(key, str):
         try:
@@ -181,6 +205,25 @@ def _resolve(native, kind: str, key) -> int:
     return index
 
 
+def _object_rows(owner, native_model, access: dict, offered, kind: str, index: int, attr: str,
+                 struct: str) -> _np.ndarray:
+    """The object's rows of the array behind `attr`: a view of lever's array when lever has it
+    (`offered`), NotImplementedError when only MuJoCo does, AttributeError when neither."""
+    source = access[kind].get(attr)
+    if source is None:
+        raise AttributeError(f"a {struct} {kind} has no attribute '{attr}'")
+    array_name, rows = source
+    if array_name not in offered:
+        raise NotImplementedError(
+            f"lever.mujoco: {struct}.{kind}(...).{attr} ({struct}.{array_name}) is MuJoCo's but "
+            f"lever does not compute it; a {kind} has here: "
+            f"{', '.join(sorted(a for a, (n, _) in access[kind].items() if n in offered))}")
+    array = getattr(owner, array_name)
+    if rows in ("nq", "nv"):  # a joint's coordinates or dofs
+        return _joint_slice(array, native_model, index, rows == "nq")
+    return _row(array, index)
+
+
 class _ModelObject:
     """model.body(...), model.joint(...), ...: the object's rows of the model arrays."""
 
@@ -192,17 +235,9 @@ class _ModelObject:
         object.__setattr__(self, "name", names[self.id])
 
     def _array(self, attr: str) -> _np.ndarray:
-        kind, model = self._kind, self._model
-        full = _OBJECTS[kind][1] + attr
-        if kind == "joint" and attr in ("qpos0", "qpos_spring"):
-            return _joint_slice(getattr(model._native, attr), model._native, self.id, True)
-        if kind == "joint" and attr in ("armature", "damping", "invweight0", "M0"):
-            return _joint_slice(getattr(model._native, "dof_" + attr), model._native, self.id,
-                                False)
-        if full in _MODEL_FIELDS or full == "actuator_trnid":
-            return _row(getattr(model, full), self.id)
-        raise _missing("MODEL", full) if full in _mujoco_names.MODEL else AttributeError(
-            f"a model {kind} has no attribute '{attr}'")
+        model = self._model
+        return _object_rows(model, model._native, _MODEL_ACCESS, _MODEL_OFFERED, self._kind,
+                            self.id, attr, "model")
 
     def __getattr__(self, attr: str):
         return self._array(attr)
@@ -226,18 +261,9 @@ class _DataObject:
         object.__setattr__(self, "name", names[self.id])
 
     def _array(self, attr: str) -> _np.ndarray:
-        kind, data = self._kind, self._data
-        source = _DATA_ACCESS[kind].get(attr)
-        if source is None:
-            if attr in _MUJOCO_DATA_ACCESS[kind]:
-                raise NotImplementedError(f"lever.mujoco: data.{kind}(...).{attr} is MuJoCo's "
-                                          f"but lever does not compute it")
-            raise AttributeError(f"a data {kind} has no attribute '{attr}'")
-        array = getattr(data, source)
-        if kind == "joint" and source not in ("xanchor", "xaxis"):
-            # a ball's qpos is its quaternion (4), its qvel three rates; a free joint's 7 and 6
-            return _joint_slice(array, data._model._native, self.id, source == "qpos")
-        return _row(array, self.id)
+        data = self._data
+        return _object_rows(data, data._model._native, _DATA_ACCESS, _DATA_FIELDS, self._kind,
+                            self.id, attr, "data")
 
     def __getattr__(self, attr: str):
         return self._array(attr)
@@ -315,6 +341,18 @@ class MjModel:
         return MjModel(_lever.load_string(xml))
 
     @property
+    def nM(self) -> int:
+        """Entries of MuJoCo's sparse M (data.qM)."""
+        return len(_sparse_rows(self._native)[1])
+
+    @property
+    def dof_Madr(self) -> _np.ndarray:
+        """(nv,) where each dof's row starts in data.qM (computed from dof_parentid: read-only)."""
+        out = _sparse_rows(self._native)[0]
+        out.flags.writeable = False
+        return out
+
+    @property
     def nkey(self) -> int:
         return self._native.nkey
 
@@ -340,25 +378,53 @@ class MjModel:
         else:
             raise _missing("MODEL", name)
 
+    # pickle and copies: the lever.Model beneath (every array of the field table, the names,
+    # the keyframes and the options), as MuJoCo's MjModel pickles and copies whole
+    def __reduce__(self):
+        return (MjModel, (self._native,))
+
+    def __copy__(self) -> "MjModel":
+        return MjModel(_lever.copy_model(self._native))
+
+    def __deepcopy__(self, memo) -> "MjModel":
+        return MjModel(_lever.copy_model(self._native))
+
     def __repr__(self) -> str:
         return f"<lever.mujoco.MjModel {self._native.name!r} nq={self.nq} nu={self.nu}>"
 
 
 # ---- contacts (issue 19): d.contact as MuJoCo's bindings show it -------------------------------
 
+_CONTACT_MEMBERS = frozenset(_lever.contact_members()) | {"geom"}
+
+
+def _contact_member(native, name: str, rows) -> _np.ndarray:
+    """Member `name` of the contacts `rows` (a slice or an index array of range(ncon)): a view of
+    lever's memory for a slice; `geom` is MuJoCo's (n, 2) pair [geom1, geom2]."""
+    if name == "geom":
+        return _np.stack([_contact_member(native, "geom1", rows),
+                          _contact_member(native, "geom2", rows)], axis=-1)
+    if name not in _CONTACT_MEMBERS:
+        if name in _mujoco_names.CONTACT:
+            raise NotImplementedError(
+                f"lever.mujoco: MjContact.{name} is MuJoCo's but lever does not compute it; a "
+                f"contact has here: {', '.join(sorted(_CONTACT_MEMBERS))}")
+        raise AttributeError(f"'MjContact' object has no attribute '{name}'")
+    return native.contact_field(name)[rows]
+
+
 class _MjContact:
     """One contact (MuJoCo's MjContact): pos (3,), frame (9,: normal, then two tangents), dist,
-    geom1, geom2, dim, friction (5,), solref (2,), solimp (5,), includemargin, exclude,
-    efc_address, mu. Arrays are views of lever's memory; numbers are read when asked for."""
+    geom1, geom2, geom (2,), dim, friction (5,), solref (2,), solimp (5,), includemargin,
+    exclude, efc_address, mu. Arrays are views of lever's memory; numbers are read when asked
+    for."""
 
     def __init__(self, native, index: int):
         object.__setattr__(self, "_native", native)
         object.__setattr__(self, "_index", index)
 
     def __getattr__(self, name: str):
-        if name not in _CONTACT_MEMBERS:
-            raise AttributeError(f"'MjContact' object has no attribute '{name}'")
-        value = self._native.contact_field(name)[self._index]
+        value = _contact_member(self._native, name, self._index)
         return value if _np.ndim(value) else value.item()
 
     def __setattr__(self, name: str, value) -> None:
@@ -370,35 +436,47 @@ class _MjContact:
                 f"dim={self.dim}>")
 
 
-class _MjContactList:
-    """d.contact: len() is ncon; d.contact[i] is one contact; d.contact.dist and the other members
-    are arrays over the ncon contacts (views, shape (ncon,) or (ncon, k)), as MuJoCo's."""
+def _as_slice(indices: range) -> slice:
+    """The slice of an array that picks `indices` (a range within the array's length)."""
+    if not len(indices):
+        return slice(0, 0)
+    stop = indices.stop if indices.stop >= 0 else None  # a reversed range running down to 0
+    return slice(indices.start, stop, indices.step)
 
-    def __init__(self, native):
+
+class _MjContactList:
+    """d.contact: len() is ncon; d.contact[i] is one contact; d.contact[a:b] the contacts a to b
+    (Python's slice of range(ncon)); d.contact.dist and the other members are arrays over those
+    contacts (views: shape (n,) or (n, k)), as MuJoCo's."""
+
+    def __init__(self, native, rows=slice(None)):
         object.__setattr__(self, "_native", native)
+        object.__setattr__(self, "_rows", rows)
+
+    def _indices(self) -> range:
+        return range(self._native.ncon)[self._rows]
 
     def __len__(self) -> int:
-        return self._native.ncon
+        return len(self._indices())
 
-    def __getitem__(self, index) -> _MjContact:
-        n = self._native.ncon
-        i = int(index)
-        if i < 0:
-            i += n
-        if not 0 <= i < n:
-            raise IndexError(f"contact index {index} out of range: ncon is {n}")
-        return _MjContact(self._native, i)
+    def __getitem__(self, index):
+        indices = self._indices()
+        if isinstance(index, slice):
+            return _MjContactList(self._native, _as_slice(indices[index]))
+        try:
+            return _MjContact(self._native, indices[int(index)])
+        except IndexError:
+            raise IndexError(f"contact index {index} out of range: {len(indices)} contacts "
+                             f"(ncon is {self._native.ncon})") from None
 
     def __iter__(self):
-        return (self[i] for i in range(len(self)))
+        return (_MjContact(self._native, i) for i in self._indices())
 
     def __getattr__(self, name: str) -> _np.ndarray:
-        if name not in _CONTACT_MEMBERS:
-            raise AttributeError(f"'MjContactList' object has no attribute '{name}'")
-        return self._native.contact_field(name)
+        return _contact_member(self._native, name, _as_slice(self._indices()))
 
-
-_CONTACT_MEMBERS = frozenset(_lever.contact_members())
+    def __repr__(self) -> str:
+        return f"<MjContactList of {len(self)} contacts>"
 
 
 class MjData:
@@ -448,6 +526,17 @@ class MjData:
     def ncon(self) -> int:
         return self._native.ncon
 
+    @property
+    def qM(self) -> _np.ndarray:
+        """(nM,) M(q) in MuJoCo's sparse layout (model.dof_Madr), read from lever's dense M
+        (data.M) when asked: a read-only copy, for mj_fullM(model, dst, data.qM)."""
+        _, columns = _sparse_rows(self._model._native)
+        rows = _np.repeat(_np.arange(self._model.nv),
+                          _np.diff(_np.append(self._model.dof_Madr, len(columns))))
+        out = self._native.M[rows, columns]
+        out.flags.writeable = False
+        return out
+
     def __getattr__(self, name: str):
         native = object.__getattribute__(self, "_native")
         if name in _DATA_FIELDS:
@@ -464,8 +553,29 @@ class MjData:
         else:
             raise _missing("DATA", name)
 
+    # pickle and copies: the lever.Data beneath (every array of the field table, the contacts,
+    # efc_J and the warnings) with its model. A copy keeps its MjModel, as MuJoCo's MjData (which
+    # holds no model) is used with the model it is given.
+    def __reduce__(self):
+        return (_data_from_native, (self._model, self._native))
+
+    def __copy__(self) -> "MjData":
+        return _data_from_native(self._model, _copy.copy(self._native))
+
+    def __deepcopy__(self, memo) -> "MjData":
+        return _data_from_native(self._model, _copy.copy(self._native))
+
     def __repr__(self) -> str:
         return f"<lever.mujoco.MjData time={self.time:g} nefc={self.nefc}>"
+
+
+def _data_from_native(model: MjModel, native) -> MjData:
+    """An MjData around a lever.Data (an unpickled or copied one), paired with `model`."""
+    data = MjData.__new__(MjData)
+    object.__setattr__(data, "_model", model)
+    object.__setattr__(data, "_native", native)
+    native._adopt_model(model._native)
+    return data
 
 
 def _add_named_access(cls, view) -> None:
@@ -486,7 +596,10 @@ def _pair(m: MjModel, d: MjData):
     if not isinstance(m, MjModel) or not isinstance(d, MjData):
         raise TypeError("expected (MjModel, MjData)")
     if d._model is not m:
-        raise ValueError("this MjData was made from another MjModel")
+        # MuJoCo's functions use the model they are given: an MjData of another model of the same
+        # sizes (a copy, an unpickled one) is paired with this one; other sizes are refused
+        d._native._adopt_model(m._native)
+        object.__setattr__(d, "_model", m)
     return m._native, d._native
 
 
@@ -549,14 +662,37 @@ def mj_inverse(m: MjModel, d: MjData) -> None:
     _lever.inverse(*_pair(m, d))
 
 
+def _sparse_rows(native):
+    """MuJoCo's sparse layout of M (qM): dof i's row holds M[i, j] for j = i, then each dof on
+    the path to the world (dof_parentid), from address dof_Madr[i]. Returns (dof_Madr, the
+    column j of each entry of qM)."""
+    parent = native.dof_parentid
+    madr, columns = [], []
+    for i in range(native.nv):
+        madr.append(len(columns))
+        j = i
+        while j >= 0:
+            columns.append(j)
+            j = int(parent[j])
+    return _np.array(madr, dtype=_np.int32), _np.array(columns, dtype=_np.int64)
+
+
 def mj_fullM(m: MjModel, *args) -> None:
-    """mj_fullM(model, data, dst) (MuJoCo 3.10+): dst = M(q) as a dense nv x nv matrix."""
-    if len(args) != 2 or not isinstance(args[0], MjData):
-        raise NotImplementedError("lever.mujoco: mj_fullM(model, dst, qM) reads MuJoCo's sparse "
-                                  "qM, which lever does not keep; call mj_fullM(model, data, dst)")
-    d, dst = args
-    _pair(m, d)
-    dst[...] = d._native.M.reshape(_np.shape(dst))
+    """dst = M(q) as a dense nv x nv matrix: mj_fullM(model, dst, data.qM) (MuJoCo up to 3.9) or
+    mj_fullM(model, data, dst) (MuJoCo 3.10+)."""
+    if len(args) == 2 and isinstance(args[0], MjData):
+        d, dst = args
+        _pair(m, d)
+        dst[...] = d._native.M.reshape(_np.shape(dst))
+        return
+    dst, qM = args
+    madr, columns = _sparse_rows(m._native)
+    qM = _np.asarray(qM, dtype=float)
+    full = _np.zeros((m.nv, m.nv))
+    rows = _np.repeat(_np.arange(m.nv), _np.diff(_np.append(madr, len(columns))))
+    full[rows, columns] = qM
+    full[columns, rows] = qM
+    dst[...] = full.reshape(_np.shape(dst))
 
 
 def mj_mulM(m: MjModel, d: MjData, res: _np.ndarray, vec: _np.ndarray) -> None:

@@ -24,6 +24,8 @@
 #include <lever/mjcf.hpp>
 #include <lever/regressor.hpp>
 
+#include "state.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <cstring>
@@ -42,6 +44,7 @@ struct PyData {
   std::shared_ptr<lever::Model> model;
   lever::Data data;
   explicit PyData(std::shared_ptr<lever::Model> m) : model(std::move(m)), data(*model) {}
+  PyData(std::shared_ptr<lever::Model> m, const lever::Data& d) : model(std::move(m)), data(d) {}
 };
 
 using ModelPtr = std::shared_ptr<lever::Model>;
@@ -104,42 +107,11 @@ lever::Data& data_for(const ModelPtr& model, const DataPtr& data) {
   return data->data;
 }
 
-// ---- contacts (issue 19)
-// ------------------------------------------------------------------------- data.contact is an
-// array of structs (lever::Contact, MuJoCo's mjContact); each member is shown as a strided numpy
-// view over the first ncon contacts, so that it is live as the other arrays.
-struct ContactMember {
-  const char* name;
-  std::ptrdiff_t offset;  // bytes from the start of a Contact
-  bool is_int;
-  int cols;  // 1: one number per contact, shape (ncon,)
-};
-
-const std::vector<ContactMember>& contact_members() {
-  static const std::vector<ContactMember> members = [] {
-    const lever::Contact c;
-    const auto at = [&c](const void* member) {
-      return static_cast<const char*>(member) - reinterpret_cast<const char*>(&c);
-    };
-    static_assert(sizeof(lever::Mat3) == 9 * sizeof(double), "frame is 9 numbers, row-major");
-    return std::vector<ContactMember>{
-        {"dist", at(&c.dist), false, 1},
-        {"pos", at(c.pos.data()), false, 3},
-        {"frame", at(c.frame.data()), false, 9},
-        {"includemargin", at(&c.includemargin), false, 1},
-        {"friction", at(c.friction.data()), false, 5},
-        {"solref", at(c.solref.data()), false, 2},
-        {"solimp", at(c.solimp.data()), false, 5},
-        {"mu", at(&c.mu), false, 1},
-        {"dim", at(&c.dim), true, 1},
-        {"geom1", at(&c.geom1), true, 1},
-        {"geom2", at(&c.geom2), true, 1},
-        {"exclude", at(&c.exclude), true, 1},
-        {"efc_address", at(&c.efc_address), true, 1},
-    };
-  }();
-  return members;
-}
+// ---- contacts ----------------------------------------------------------------------------------
+// data.contact is an array of structs (lever::Contact, MuJoCo's mjContact); each member is shown
+// as a strided numpy view over the first ncon contacts, so that it is live as the other arrays.
+using lever_python::contact_members;
+using lever_python::ContactMember;
 
 py::array contact_view(lever::Data& data, const ContactMember& m, py::handle owner) {
   const auto stride = static_cast<py::ssize_t>(sizeof(lever::Contact));
@@ -409,6 +381,15 @@ PYBIND11_MODULE(_lever, m) {
           },
           py::arg("name"), "One array of the field table, as a writable numpy view.")
       .def("to_json", [](const lever::Model& x) { return lever::model_to_json(x); })
+      // pickle: every array of the field table, the names, keyframes and options (state.hpp);
+      // copies: the whole C++ object, derived arrays included
+      .def(py::pickle([](const lever::Model& x) { return lever_python::model_state(x); },
+                      [](const py::dict& state) { return lever_python::model_from_state(state); }))
+      .def("__copy__", [](const lever::Model& x) { return std::make_shared<lever::Model>(x); })
+      .def(
+          "__deepcopy__",
+          [](const lever::Model& x, const py::dict&) { return std::make_shared<lever::Model>(x); },
+          py::arg("memo"))
       .def("__repr__", [](const lever::Model& x) {
         return "<lever.Model '" + x.name + "' nq=" + std::to_string(x.nq) +
                " nu=" + std::to_string(x.nu) + " nbody=" + std::to_string(x.nbody) + ">";
@@ -491,7 +472,44 @@ PYBIND11_MODULE(_lever, m) {
             return view(lever::data_field(*d.model, d.data, name), self, true);
           },
           py::arg("name"))
-      .def("to_json", [](const PyData& d) { return lever::data_to_json(*d.model, d.data); });
+      .def("to_json", [](const PyData& d) { return lever::data_to_json(*d.model, d.data); })
+      // pickle: (the model, the state): pickled together, a Data and its Model stay paired
+      .def(py::pickle(
+          [](const PyData& d) {
+            return py::make_tuple(d.model, lever_python::data_state(*d.model, d.data));
+          },
+          [](const py::tuple& t) {
+            if (t.size() != 2) throw lever::StateError("lever: cannot unpickle a Data from this.");
+            auto d = std::make_shared<PyData>(t[0].cast<ModelPtr>());
+            lever_python::restore_data(*d->model, d->data, t[1].cast<py::dict>());
+            return d;
+          }))
+      // copy.copy: the state copied, the model shared; copy.deepcopy: the model copied too, once
+      // per deepcopy call (deepcopy((model, data)) gives a pair that belongs together)
+      .def("__copy__", [](const PyData& d) { return std::make_shared<PyData>(d.model, d.data); })
+      .def(
+          "__deepcopy__",
+          [](const PyData& d, const py::dict& memo) {
+            const py::object model =
+                py::module_::import("copy").attr("deepcopy")(py::cast(d.model), memo);
+            return std::make_shared<PyData>(model.cast<ModelPtr>(), d.data);
+          },
+          py::arg("memo"))
+      .def(
+          "_adopt_model",
+          [](PyData& d, const ModelPtr& x) {
+            lever::check_fit(model_of(x), d.data, "lever.Data");
+            if (d.data.contact.size() != static_cast<std::size_t>(x->nconmax)) {
+              throw lever::StateError("lever.Data: this Data holds " +
+                                      std::to_string(d.data.contact.size()) +
+                                      " contacts; the model's nconmax is " +
+                                      std::to_string(x->nconmax) + ".");
+            }
+            d.model = x;
+          },
+          py::arg("model"),
+          "Pair this Data with another model of the same sizes (lever.mujoco: MuJoCo's "
+          "functions use the model they are given).");
   for (const lever::FieldInfo& f : lever::data_field_table()) {
     const std::string name = f.name;
     data_class.def_property_readonly(f.name, [name](py::object self) {

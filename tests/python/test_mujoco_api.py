@@ -66,8 +66,10 @@ def test_the_name_list_is_mujocos():
     if not MJXMACRO.is_file():
         pytest.skip("MuJoCo's headers (libmujoco-dev) not here")
     for macro in ("MJMODEL_POINTERS",):
-        assert set(mujoco_shapes(macro)) <= _mujoco_names.MODEL
-    assert set(mujoco_shapes("MJDATA_POINTERS")) <= _mujoco_names.DATA
+        assert {n: rows for n, (_, rows, _) in mujoco_shapes(macro).items()}.items() <= \
+            _mujoco_names.MODEL.items()
+    assert {n: rows for n, (_, rows, _) in mujoco_shapes("MJDATA_POINTERS").items()}.items() <= \
+        _mujoco_names.DATA.items()
 
 
 def test_named_access(arm2):
@@ -196,14 +198,15 @@ def test_joint_stop_rows(arm2):
 
 def test_what_lever_lacks_raises_not_implemented(arm2):
     model, data = arm2
-    with pytest.raises(NotImplementedError, match="qM"):
-        data.qM
+    with pytest.raises(NotImplementedError, match="qLDiagSqrtInv"):
+        data.qLDiagSqrtInv
     with pytest.raises(NotImplementedError, match="tendon_range"):
         model.tendon_range
     with pytest.raises(NotImplementedError, match="mj_collision"):
         mujoco.mj_collision(model, data)
-    with pytest.raises(NotImplementedError, match="xpos"):
-        data.geom(0).xpos
+    with pytest.raises(NotImplementedError, match="cacc"):
+        data.body(0).cacc
+    np.testing.assert_array_equal(data.geom(0).xpos, data.geom_xpos[0])  # lever computes it
     with pytest.raises(AttributeError):
         data.qpso
     with pytest.raises(ValueError, match="keyframe"):
@@ -221,8 +224,11 @@ def test_bad_input_raises(arm2, tmp_path):
     assert err.value.line == 3 and "bad.xml:3" in str(err.value) and err.value.attribute == "rnage"
     with pytest.raises(lever.ParseError):
         mujoco.MjModel.from_xml_string("<mujoco><worldbody>")
-    other = mujoco.MjModel.from_xml_path(str(ARM2))
-    with pytest.raises(ValueError, match="another"):
+    # MuJoCo's functions use the model they are given: another model of the same sizes is
+    # taken, one of other sizes refused
+    mujoco.mj_forward(mujoco.MjModel.from_xml_path(str(ARM2)), data)
+    other = mujoco.MjModel.from_xml_path(str(ARM2.parent / "arm3.xml"))
+    with pytest.raises(ValueError, match="another model"):
         mujoco.mj_forward(other, data)
     data.qpos[0] = np.nan
     mujoco.mj_step(model, data)  # a bad state is reset and recorded, as mj_step does
@@ -307,3 +313,16 @@ def test_ball_and_free_joints_named_access_and_position_calculus():
     # the round trip loses the quaternion's rounding (~1e-16) divided by dt = 0.01, and the
     # angle's atan2: far below 1e-11; a wrong axis or sign would be O(1)
     np.testing.assert_allclose(back, qvel, rtol=0, atol=1e-11)
+
+
+def test_the_generated_name_file_is_current():
+    """python/lever/_mujoco_names.py is what python/scripts/mujoco_names.py writes from the
+    installed MuJoCo 2.2.2 headers."""
+    if not MJXMACRO.is_file():
+        pytest.skip("MuJoCo's headers (libmujoco-dev) not here")
+    import subprocess
+    import sys
+    script = REPO / "python" / "scripts" / "mujoco_names.py"
+    out = subprocess.run([sys.executable, str(script), str(MJXMACRO.parent)], capture_output=True,
+                         text=True, timeout=60, check=True).stdout
+    assert out.strip() == pathlib.Path(_mujoco_names.__file__).read_text().strip()
