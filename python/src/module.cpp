@@ -112,17 +112,18 @@ lever::Data& data_for(const ModelPtr& model, const DataPtr& data) {
 // as a strided numpy view over the first ncon contacts, so that it is live as the other arrays.
 using lever_python::contact_members;
 using lever_python::ContactMember;
+using lever_python::is_int;
 
 py::array contact_view(lever::Data& data, const ContactMember& m, py::handle owner) {
   const auto stride = static_cast<py::ssize_t>(sizeof(lever::Contact));
-  const auto item = static_cast<py::ssize_t>(m.is_int ? sizeof(int32_t) : sizeof(double));
+  const auto item = static_cast<py::ssize_t>(is_int(m) ? sizeof(int32_t) : sizeof(double));
   std::vector<py::ssize_t> shape{data.ncon}, strides{stride};
-  if (m.cols > 1) {
-    shape.push_back(m.cols);
+  if (m.count > 1) {
+    shape.push_back(m.count);
     strides.push_back(item);
   }
   char* base = reinterpret_cast<char*>(data.contact.data()) + m.offset;
-  const py::dtype dtype = m.is_int ? py::dtype::of<int32_t>() : py::dtype::of<double>();
+  const py::dtype dtype = is_int(m) ? py::dtype::of<int32_t>() : py::dtype::of<double>();
   return py::array(dtype, shape, strides, base, owner);
 }
 

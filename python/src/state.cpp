@@ -26,7 +26,6 @@ static_assert(sizeof(lever::CompilerInfo) == 12, "lever::CompilerInfo changed: p
 static_assert(sizeof(lever::VisualInfo) == 8 * sizeof(std::vector<std::string>) +
                                                2 * sizeof(std::string),
               "lever::VisualInfo changed: pickle its new member");
-static_assert(sizeof(lever::Contact) == 240, "lever::Contact changed: add it to contact_members");
 static_assert(sizeof(lever::WarningStat) == 2 * sizeof(int), "lever::WarningStat changed");
 
 std::size_t scalar_bytes(lever::Scalar scalar) {
@@ -80,32 +79,6 @@ py::bytes matrix_bytes(const lever::RowMatrix& a) {
 }
 
 }  // namespace
-
-const std::vector<ContactMember>& contact_members() {
-  static const std::vector<ContactMember> members = [] {
-    const lever::Contact c;
-    const auto at = [&c](const void* member) {
-      return static_cast<const char*>(member) - reinterpret_cast<const char*>(&c);
-    };
-    static_assert(sizeof(lever::Mat3) == 9 * sizeof(double), "frame is 9 numbers, row-major");
-    return std::vector<ContactMember>{
-        {"dist", at(&c.dist), false, 1},
-        {"pos", at(c.pos.data()), false, 3},
-        {"frame", at(c.frame.data()), false, 9},
-        {"includemargin", at(&c.includemargin), false, 1},
-        {"friction", at(c.friction.data()), false, 5},
-        {"solref", at(c.solref.data()), false, 2},
-        {"solimp", at(c.solimp.data()), false, 5},
-        {"mu", at(&c.mu), false, 1},
-        {"dim", at(&c.dim), true, 1},
-        {"geom1", at(&c.geom1), true, 1},
-        {"geom2", at(&c.geom2), true, 1},
-        {"exclude", at(&c.exclude), true, 1},
-        {"efc_address", at(&c.efc_address), true, 1},
-    };
-  }();
-  return members;
-}
 
 // ---- Model ---------------------------------------------------------------------------------------
 
@@ -300,7 +273,7 @@ py::dict data_state(const lever::Model& model, const lever::Data& data) {
 
   py::dict contact;
   for (const ContactMember& member : contact_members()) {
-    const std::size_t bytes = (member.is_int ? sizeof(int) : sizeof(double)) * member.cols;
+    const std::size_t bytes = (is_int(member) ? sizeof(int) : sizeof(double)) * member.count;
     std::string column;
     for (int i = 0; i < data.ncon; ++i) {
       const char* at = reinterpret_cast<const char*>(&data.contact[i]) + member.offset;
@@ -354,7 +327,7 @@ void restore_data(const lever::Model& model, lever::Data& data, const py::dict& 
 
   const py::dict contact = item(state, "contact", "a Data").cast<py::dict>();
   for (const ContactMember& member : contact_members()) {
-    const std::size_t bytes = (member.is_int ? sizeof(int) : sizeof(double)) * member.cols;
+    const std::size_t bytes = (is_int(member) ? sizeof(int) : sizeof(double)) * member.count;
     std::string column(bytes * ncon, '\0');
     write_bytes(item(contact, member.name, "a Data"), column.data(), column.size(),
                 std::string("data.contact.") + member.name);

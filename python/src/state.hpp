@@ -11,6 +11,7 @@
 #include <pybind11/pybind11.h>
 
 #include <lever/data.hpp>
+#include <lever/fields.hpp>
 #include <lever/model.hpp>
 
 #include <cstddef>
@@ -21,15 +22,11 @@ namespace lever_python {
 
 namespace py = pybind11;
 
-/// One member of lever::Contact (MuJoCo's mjContact), located in the struct: data.contact's
+/// One member of lever::Contact (MuJoCo's mjContact), from lever's contact field table: data.contact's
 /// members are shown as strided numpy views and pickled member by member.
-struct ContactMember {
-  const char* name;
-  std::ptrdiff_t offset;  ///< bytes from the start of a Contact
-  bool is_int;
-  int cols;  ///< 1: one number per contact, shape (ncon,)
-};
-const std::vector<ContactMember>& contact_members();
+using ContactMember = lever::ContactField;
+inline const std::vector<ContactMember>& contact_members() { return lever::contact_field_table(); }
+inline bool is_int(const ContactMember& m) { return m.scalar == lever::Scalar::kInt; }
 
 /// The model as a dict: the format version, the counts, the names, the keyframes, the options and
 /// asset lists, the warnings, and every array of the field table as bytes.
