@@ -147,6 +147,7 @@ SiteSpec read_site(const Element& e, const AttrSet& set) {
   s.pos = f.array<3>("pos");
   s.orientation = f.orientation();
   s.size = f.array<3>("size");
+  s.type = geom_type(f.word("type"));
   return s;
 }
 
@@ -339,6 +340,9 @@ Options read_option(const Element& root) {
   o.iterations = f.integer("iterations");
   o.tolerance = f.real("tolerance");
   o.contact_disabled = Fields(flags, "option", "flag").word("contact") == "disable";
+  const Vec3 magnetic = f.array<3>("magnetic");
+  o.magnetic = Eigen::Vector3d(magnetic[0], magnetic[1], magnetic[2]);
+  o.sensornoise = Fields(flags, "option", "flag").word("sensornoise") == "enable";
   return o;
 }
 
@@ -502,6 +506,7 @@ ModelSpec parse_model(const Element& root, bool ignore_inertials) {
     for (const Element& a : e->children) spec.motors.push_back(read_actuator(a, classes));
   }
   spec.keys = read_keys(root);
+  spec.sensors = read_sensors(root);
   return spec;
 }
 

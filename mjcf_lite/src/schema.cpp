@@ -2,6 +2,8 @@
 // compiler/autolimits, which defaults to true as in MuJoCo 3.
 #include "schema.hpp"
 
+#include "sensors.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <sstream>
@@ -263,7 +265,7 @@ const char* const kLightAttributes =
 std::vector<ElementRule> build() {
   std::vector<ElementRule> s;
   s.push_back({"mujoco", "", '!', {text("model", "MuJoCo Model", "model name")}, "",
-               "custom equality tendon sensor include", "the root element"});
+               "custom equality tendon include", "the root element"});
   s.push_back({"compiler", "mujoco", '*',
                {
                    keyword("angle", "degree", "radian degree", "",
@@ -312,8 +314,10 @@ std::vector<ElementRule> build() {
                            "noslip solver iterations: lever has no noslip solver, so only 0"),
                    real("noslip_tolerance", 1, "1e-6",
                         "noslip solver tolerance (kept; no effect without noslip iterations)"),
+                   real("magnetic", 3, "0 -0.5 0",
+                        "Earth's magnetic field, world frame (what a magnetometer reads)"),
                },
-               "apirate mpr_tolerance wind magnetic density viscosity o_margin o_solref o_solimp "
+               "apirate mpr_tolerance wind density viscosity o_margin o_solref o_solimp "
                "collision jacobian mpr_iterations",
                "", "simulation options"});
   s.push_back({"flag", "option", '?',
@@ -322,9 +326,11 @@ std::vector<ElementRule> build() {
                            "disable: no collision detection, no contacts"),
                    keyword("override", "disable", "disable enable", "",
                            "contact override: lever has none, so only disable"),
+                   keyword("sensornoise", "disable", "disable enable", "",
+                           "enable: add each sensor's noise (its standard deviation `noise`)"),
                },
                "constraint equality frictionloss limit passive gravity clampctrl warmstart "
-               "filterparent actuation refsafe sensor energy fwdinv sensornoise multiccd",
+               "filterparent actuation refsafe sensor energy fwdinv multiccd",
                "", "simulation flags"});
   s.push_back({"size", "mujoco", '*',
                {
@@ -494,6 +500,7 @@ std::vector<ElementRule> build() {
                join(actuator_wiring("actuator name"),
                     shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m")),
                kUnsupportedActuatorAttributes, "", "a velocity servo: force = kv (ctrl - qd)"});
+  for (ElementRule& r : sensor_rules()) s.push_back(std::move(r));
   return s;
 }
 // clang-format on

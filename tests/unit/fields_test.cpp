@@ -664,6 +664,8 @@ TEST_CASE("size_model gives every array the length the field table promises", "[
   model.npair = 1;
   model.nexclude = 3;
   model.nkey = 2;
+  model.nsensor = 3;
+  model.nsensordata = 7;
   lever::size_model(model);
 
   const std::vector<lever::FieldInfo>& table = lever::model_field_table();

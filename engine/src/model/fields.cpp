@@ -16,7 +16,8 @@ namespace {
 namespace token {
 constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nbody = Size::kNbody, njnt = Size::kNjnt, ngeom = Size::kNgeom, nsite = Size::kNsite,
-               nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude;
+               nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude,
+               nsensor = Size::kNsensor, nsensordata = Size::kNsensordata;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy;
@@ -174,6 +175,8 @@ int size_of(const Model& model, Size size) {
     case Size::kNefc: return constraint_rows_max(model);
     case Size::kNpair: return model.npair;
     case Size::kNexclude: return model.nexclude;
+    case Size::kNsensor: return model.nsensor;
+    case Size::kNsensordata: return model.nsensordata;
   }
   return 0;
 }
@@ -183,8 +186,9 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 11> names = {
-      "1", "nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "nefc", "npair", "nexclude"};
+  static constexpr std::array<const char*, 13> names = {
+      "1",    "nq",  "nv",    "nu",       "nbody",   "njnt",       "ngeom",
+      "nsite", "nefc", "npair", "nexclude", "nsensor", "nsensordata"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -311,7 +315,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 10> counts = {{{"nq", model.nq},
+  const std::array<std::pair<const char*, int>, 12> counts = {{{"nq", model.nq},
                                                                {"nv", model.nv},
                                                                {"nu", model.nu},
                                                                {"nbody", model.nbody},
@@ -320,7 +324,9 @@ void size_model(Model& model) {
                                                                {"nsite", model.nsite},
                                                                {"nkey", model.nkey},
                                                                {"npair", model.npair},
-                                                               {"nexclude", model.nexclude}}};
+                                                               {"nexclude", model.nexclude},
+                                                               {"nsensor", model.nsensor},
+                                                               {"nsensordata", model.nsensordata}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +
