@@ -27,6 +27,8 @@
 #include <lever/harness/random_state.hpp>
 #include <lever/harness/tolerance.hpp>
 
+#include "sensors/sensors.hpp"  // the engine's ray casting (this executable sees engine/src)
+
 namespace lever::test {
 
 namespace {
@@ -197,6 +199,68 @@ TEST_CASE("diff: the gripper's sensors agree with MuJoCo, touch and force includ
       CHECK(agreement.nonzero[static_cast<size_t>(s)]);
     }
   }
+}
+
+}  // namespace lever::test
+
+namespace lever::test {
+
+TEST_CASE("diff: a ray meets every geom type where MuJoCo's does", "[diff][sensors]") {
+  // random shapes, poses and rays, many of them starting inside the shape or grazing it
+  std::mt19937_64 rng(2202);
+  std::uniform_real_distribution<double> u(-1, 1), size(0.05, 0.5);
+  const GeomType types[] = {GeomType::kPlane,     GeomType::kSphere,   GeomType::kCapsule,
+                            GeomType::kEllipsoid, GeomType::kCylinder, GeomType::kBox};
+  for (const GeomType type : types) {
+    int hits = 0;
+    double worst = 0;
+    for (int k = 0; k < 20000; ++k) {
+      const Eigen::Vector3d pos(u(rng), u(rng), u(rng)), pnt(u(rng), u(rng), u(rng));
+      Eigen::Vector3d vec(u(rng), u(rng), u(rng));
+      if (k % 3 == 0) vec = pos - pnt + 0.2 * vec;  // aimed at the shape
+      Eigen::Vector3d sz(size(rng), size(rng), size(rng));
+      if (type == GeomType::kPlane && k % 2 == 0) sz[0] = sz[1] = 0;  // infinite
+      const Eigen::Matrix3d R = quat_to_mat(quat_normalized(Quat(u(rng), u(rng), u(rng), u(rng))));
+      const Mat3 Rrow = R;
+      const double ours = ray_shape(pos, Rrow, sz, pnt, vec, type);
+      const double theirs = mju_rayGeom(pos.data(), Rrow.data(), sz.data(), pnt.data(), vec.data(),
+                                        static_cast<int>(type));
+      INFO("geom type " << static_cast<int>(type) << ", ray " << k);
+      REQUIRE((ours < 0) == (theirs < 0));
+      if (theirs >= 0) {
+        ++hits;
+        worst = std::max(worst, std::abs(ours - theirs) / (1e-12 * std::max(1.0, theirs)));
+      }
+    }
+    INFO("geom type " << static_cast<int>(type) << ": " << hits << " hits, worst " << worst);
+    CHECK(hits > 2000);
+    CHECK(worst <= 1.0);
+  }
+}
+
+TEST_CASE("diff: the rangefinder's ray skips its own body and invisible geoms as mj_ray does",
+          "[diff][sensors]") {
+  diff::Twin twin(model_path("tests/models/sensors.xml"), diff::Path::kLoader);
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int hits = 0;
+  for (int k = 0; k < 300; ++k) {
+    forward_both(twin, random_state(twin.model, rng));
+    // rays from every site in random directions, the site's body excluded
+    for (int s = 0; s < twin.model.nsite; ++s) {
+      const Eigen::Vector3d vec(u(rng), u(rng), u(rng));
+      const int body = twin.model.site_bodyid[s];
+      int our_geom = -1, their_geom = -1;
+      const double ours = ray(twin.model, twin.data, twin.data.site_xpos[s], vec, body, &our_geom);
+      const double theirs = mj_ray(twin.m.get(), twin.d.get(), twin.d->site_xpos + 3 * s,
+                                   vec.data(), nullptr, 1, body, &their_geom);
+      INFO("state " << k << ", site " << s);
+      REQUIRE(our_geom == their_geom);
+      CHECK(std::abs(ours - theirs) <= 1e-12 * std::max(1.0, std::abs(theirs)));
+      hits += our_geom >= 0;
+    }
+  }
+  CHECK(hits > 300);
 }
 
 }  // namespace lever::test
