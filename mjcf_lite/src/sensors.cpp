@@ -177,7 +177,10 @@ std::vector<SensorSpec> read_sensors(const Element& root) {
         sensors.push_back(std::move(s));
         continue;
       }
-      const auto object_type = [](const std::string& word) {
+      // objtype and reftype checked against their keywords (camera: valid MJCF, refused)
+      const auto object_type = [&e](const char* attribute) {
+        const std::string word =
+            parse_value(e, *e.find(attribute), attribute_rule("sensor", e.tag, attribute)).text;
         return word == "body" ? O::kBody
                : word == "xbody" ? O::kXBody
                : word == "geom"  ? O::kGeom
@@ -187,8 +190,7 @@ std::vector<SensorSpec> read_sensors(const Element& root) {
       const Attribute* object = e.find(kind->object_attribute);
       s.object = object->value;
       s.object_at = e.place(*object);
-      s.objtype = kind->objtype == O::kUnknown ? object_type(e.find("objtype")->value)
-                                               : kind->objtype;
+      s.objtype = kind->objtype == O::kUnknown ? object_type("objtype") : kind->objtype;
       if (kind->reference) {
         const Attribute* reftype = e.find("reftype");
         const Attribute* refname = e.find("refname");
@@ -200,7 +202,7 @@ std::vector<SensorSpec> read_sensors(const Element& root) {
           fail(e.place(*reftype), "reftype", "reftype given but refname is missing");
         }
         if (reftype) {
-          s.reftype = object_type(reftype->value);
+          s.reftype = object_type("reftype");
           s.ref = refname->value;
           s.ref_at = e.place(*refname);
         }
