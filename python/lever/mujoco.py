@@ -90,8 +90,8 @@ class mjtIntegrator(_enum.IntEnum):
 # lever's arrays that MuJoCo has under the same name, shape and meaning (the field table)
 _MODEL_FIELDS = frozenset(f["name"] for f in _lever.model_field_table() if f["mujoco"])
 _DATA_FIELDS = frozenset(f["name"] for f in _lever.data_field_table() if f["mujoco"])
-_SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude", "nconmax",
-          "njmax")
+_SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude", "nsensor",
+          "nsensordata", "nconmax", "njmax")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl")
 
@@ -101,8 +101,7 @@ def _missing(kind: str, name: str):
     if name in getattr(_mujoco_names, kind):
         return NotImplementedError(
             f"lever.mujoco: {'mjModel' if kind == 'MODEL' else 'mjData'}.{name} is MuJoCo's but "
-            f"lever does not compute it (lever covers hinge and slide joints, motors, joint "
-            f"limits and sites; see docs/python.md)")
+            f"lever does not compute it (see docs/python.md for what lever covers)")
     return AttributeError(f"'{'MjModel' if kind == 'MODEL' else 'MjData'}' object has no "
                           f"attribute '{name}'")
 
@@ -116,17 +115,22 @@ _OBJECTS = {
     "geom": ("geom_name", "geom_", "ngeom"),
     "site": ("site_name", "site_", "nsite"),
     "actuator": ("actuator_name", "actuator_", "nu"),
+    "sensor": ("sensor_name", "sensor_", "nsensor"),
 }
 _OBJ_TYPES = {
     mjtObj.mjOBJ_BODY: "body", mjtObj.mjOBJ_XBODY: "body", mjtObj.mjOBJ_JOINT: "joint",
     mjtObj.mjOBJ_GEOM: "geom", mjtObj.mjOBJ_SITE: "site", mjtObj.mjOBJ_ACTUATOR: "actuator",
+    mjtObj.mjOBJ_SENSOR: "sensor",
 }
 
 # data arrays reachable from a named object, as MuJoCo's accessors name them: attribute ->
 # (data array, how the object's index maps to its rows)
 _DATA_ACCESS = {
     "body": {"xpos": "xpos", "xquat": "xquat", "xmat": "xmat", "xipos": "xipos",
-             "ximat": "ximat", "subtree_com": "subtree_com", "cvel": "cvel"},
+             "ximat": "ximat", "subtree_com": "subtree_com", "cvel": "cvel",
+             # written when a sensor needs them, as in MuJoCo
+             "subtree_linvel": "subtree_linvel", "subtree_angmom": "subtree_angmom",
+             "cacc": "cacc", "cfrc_int": "cfrc_int", "cfrc_ext": "cfrc_ext"},
     "joint": {"qpos": "qpos", "qvel": "qvel", "qacc": "qacc", "qfrc_applied": "qfrc_applied",
               "qfrc_bias": "qfrc_bias", "qfrc_passive": "qfrc_passive",
               "qfrc_actuator": "qfrc_actuator", "qfrc_constraint": "qfrc_constraint",
@@ -137,13 +141,15 @@ _DATA_ACCESS = {
     "actuator": {"ctrl": "ctrl", "force": "actuator_force", "length": "actuator_length",
                  "velocity": "actuator_velocity"},
     "geom": {},
+    "sensor": {"data": "sensordata"},
 }
 _MUJOCO_DATA_ACCESS = {  # what MuJoCo's accessors also have that lever does not compute
-    "body": {"xfrc_applied", "cinert", "cacc", "cfrc_int", "cfrc_ext", "crb"},
+    "body": {"xfrc_applied", "cinert", "crb"},
     "joint": {"qLDiagInv", "qacc_warmstart"},
     "site": set(),
     "actuator": {"act", "act_dot", "moment"},
     "geom": {"xpos", "xmat"},
+    "sensor": set(),
 }
 
 
@@ -234,6 +240,10 @@ class _DataObject:
                                           f"but lever does not compute it")
             raise AttributeError(f"a data {kind} has no attribute '{attr}'")
         array = getattr(data, source)
+        if kind == "sensor":  # its numbers in sensordata
+            native = data._model._native
+            adr, dim = int(native.sensor_adr[self.id]), int(native.sensor_dim[self.id])
+            return array[adr:adr + dim]
         if kind == "joint" and source not in ("xanchor", "xaxis"):
             # a ball's qpos is its quaternion (4), its qvel three rates; a free joint's 7 and 6
             return _joint_slice(array, data._model._native, self.id, source == "qpos")
@@ -471,7 +481,7 @@ class MjData:
 def _add_named_access(cls, view) -> None:
     """cls.body(key), cls.joint(key) (also cls.jnt), ...: `view(self, kind, key)` for each kind of
     object, as MuJoCo's bindings name its accessors."""
-    for kind in ("body", "joint", "geom", "site", "actuator"):
+    for kind in ("body", "joint", "geom", "site", "actuator", "sensor"):
         setattr(cls, kind, lambda self, key, kind=kind: view(self, kind, key))
     cls.jnt = cls.joint
 
