@@ -76,14 +76,16 @@ void acceleration_core(const Model& model, Data& data) {
 // false (MuJoCo's mj_forwardSkip with skipsensor, as its RK4 stages call it).
 void forward_stages(const Model& model, Data& data, void (*kinematics_stage)(const Model&, Data&),
                     bool sensors) {
+  // a model without sensors pays one test here, not three calls
+  const bool with_sensors = sensors && model.nsensor > 0;
   check_inputs(data);
   kinematics_stage(model, data);
   after_kinematics(model, data);
-  if (sensors) sensor_position(model, data);
+  if (with_sensors) sensor_position(model, data);
   velocity_core(model, data);
-  if (sensors) sensor_velocity(model, data);
+  if (with_sensors) sensor_velocity(model, data);
   acceleration_core(model, data);
-  if (sensors) sensor_acceleration(model, data);
+  if (with_sensors) sensor_acceleration(model, data);
   record_if_bad(data, data.qacc, Warning::kBadQacc);
 }
 
