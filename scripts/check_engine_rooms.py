@@ -20,6 +20,7 @@ ROOMS = [
     ("smooth", "smooth.hpp"),                  # kinematics, recursions, CRBA, RNEA, passive, actuation
     ("collision", "collision_room.hpp"),       # the collision stage and its narrow phase
     ("constraint", "constraint_room.hpp"),     # rows, products, solvers, contact forces
+    ("sensors", "sensors.hpp"),                # sensor stages, forces inside the tree, rays
     ("derivatives", "derivatives_room.hpp"),   # the smooth dynamics differentiated (RNEA's)
     ("pipeline", "pipeline.hpp"),              # forward, the integrators, the batch
     ("transition", "transition.hpp"),          # forward dynamics and the step differentiated

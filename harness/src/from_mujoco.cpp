@@ -80,6 +80,30 @@ void copy_contact(const mjModel* m, Model& model) {
   for (int e = 0; e < m->nexclude; ++e) model.exclude_signature[e] = m->exclude_signature[e];
 }
 
+// ---- sensors: every sensor_ array, the magnetic field and the noise flag; lever's numbering of
+// types and objects is MuJoCo's (validate() refuses what lever cannot evaluate)
+void copy_sensors(const mjModel* m, Model& model) {
+  if (m->opt.disableflags & mjDSBL_SENSOR) {
+    throw std::runtime_error("from_mujoco: lever has no flag to disable sensors");
+  }
+  model.opt.magnetic = vec3(m->opt.magnetic);
+  model.opt.sensornoise = (m->opt.enableflags & mjENBL_SENSORNOISE) != 0;
+  for (int s = 0; s < m->nsensor; ++s) {
+    model.sensor_name[s] = name_of(m, mjOBJ_SENSOR, s);
+    model.sensor_type[s] = static_cast<SensorType>(m->sensor_type[s]);
+    model.sensor_datatype[s] = static_cast<SensorDataType>(m->sensor_datatype[s]);
+    model.sensor_needstage[s] = static_cast<SensorStage>(m->sensor_needstage[s]);
+    model.sensor_objtype[s] = static_cast<ObjectType>(m->sensor_objtype[s]);
+    model.sensor_objid[s] = m->sensor_objid[s];
+    model.sensor_reftype[s] = static_cast<ObjectType>(m->sensor_reftype[s]);
+    model.sensor_refid[s] = m->sensor_refid[s];
+    model.sensor_dim[s] = m->sensor_dim[s];
+    model.sensor_adr[s] = m->sensor_adr[s];
+    model.sensor_cutoff[s] = m->sensor_cutoff[s];
+    model.sensor_noise[s] = m->sensor_noise[s];
+  }
+}
+
 }  // namespace
 
 MjModelPtr mujoco_load(const std::string& path) {
@@ -132,6 +156,8 @@ Model from_mujoco(const mjModel* m) {
   model.nmesh = m->nmesh;
   model.nmeshvert = m->nmeshvert;
   model.nmeshgraph = m->nmeshgraph;
+  model.nsensor = m->nsensor;
+  model.nsensordata = m->nsensordata;
   size_model(model);
 
   for (int b = 0; b < m->nbody; ++b) {
@@ -204,7 +230,9 @@ Model from_mujoco(const mjModel* m) {
     model.site_pos[s] = vec3(m->site_pos + 3 * s);
     model.site_quat[s] = vec4(m->site_quat + 4 * s);
     model.site_size[s] = vec3(m->site_size + 3 * s);
+    model.site_type[s] = static_cast<GeomType>(m->site_type[s]);
   }
+  copy_sensors(m, model);
   for (int a = 0; a < m->nu; ++a) {
     const bool affine_or_fixed_gain =
         m->actuator_gaintype[a] == mjGAIN_FIXED || m->actuator_gaintype[a] == mjGAIN_AFFINE;

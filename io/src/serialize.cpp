@@ -78,6 +78,16 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kNbody: return name_or_index(model.body_name, i);
     case Size::kNsite: return name_or_index(model.site_name, i);
     case Size::kNgeom: return name_or_index(model.geom_name, i);
+    case Size::kNsensor: return name_or_index(model.sensor_name, i);
+    case Size::kNsensordata:
+      for (int s = model.nsensor - 1; s >= 0; --s) {
+        if (model.sensor_adr[s] <= i) {
+          const std::string name = name_or_index(model.sensor_name, s);
+          return model.sensor_dim[s] == 1 ? name
+                                          : name + "[" + std::to_string(i - model.sensor_adr[s]) + "]";
+        }
+      }
+      break;
     case Size::kOne:
     case Size::kNefc:
     case Size::kNpair:  // pairs and exclusions have no names in lever: their index

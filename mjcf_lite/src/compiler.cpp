@@ -1062,6 +1062,7 @@ Model Compiler::assemble() const {
   assemble_motors(m);
   assemble_keys(m);
   assemble_visual(m);
+  compile_sensors(spec_.sensors, m);  // last: sensors name the other objects
   m.warnings = warnings_;
   return m;
 }
@@ -1197,6 +1198,7 @@ void Compiler::assemble_geoms_and_sites(Model& m) const {
     m.site_pos[i] = eigen(c.spec->pos);
     m.site_quat[i] = eigen(c.quat);
     m.site_size[i] = eigen(c.spec->size);
+    m.site_type[i] = c.spec->type;
   }
 }
 

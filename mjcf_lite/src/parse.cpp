@@ -148,6 +148,7 @@ SiteSpec read_site(const Element& e, const AttrSet& set) {
   s.pos = f.array<3>("pos");
   s.orientation = f.orientation();
   s.size = f.array<3>("size");
+  s.type = geom_type(f.word("type"));
   return s;
 }
 
@@ -351,6 +352,9 @@ Options read_option(const Element& root) {
   o.mpr_tolerance = f.real("mpr_tolerance");
   o.mpr_iterations = f.integer("mpr_iterations");
   o.multiccd = flag.word("multiccd") == "enable";
+  const Vec3 magnetic = f.array<3>("magnetic");
+  o.magnetic = Eigen::Vector3d(magnetic[0], magnetic[1], magnetic[2]);
+  o.sensornoise = flag.word("sensornoise") == "enable";
   return o;
 }
 
@@ -514,6 +518,7 @@ ModelSpec parse_model(const Element& root, bool ignore_inertials) {
     for (const Element& a : e->children) spec.motors.push_back(read_actuator(a, classes));
   }
   spec.keys = read_keys(root);
+  spec.sensors = read_sensors(root);
   return spec;
 }
 

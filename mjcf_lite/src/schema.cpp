@@ -2,6 +2,8 @@
 // compiler/autolimits, which defaults to true as in MuJoCo 3.
 #include "schema.hpp"
 
+#include "sensors.hpp"
+
 #include <algorithm>
 #include <cctype>
 #include <sstream>
@@ -278,7 +280,7 @@ const char* const kLightAttributes =
 std::vector<ElementRule> build() {
   std::vector<ElementRule> s;
   s.push_back({"mujoco", "", '!', {text("model", "MuJoCo Model", "model name")}, "",
-               "custom equality tendon sensor include", "the root element"});
+               "custom equality tendon include", "the root element"});
   s.push_back({"compiler", "mujoco", '*',
                {
                    keyword("angle", "degree", "radian degree", "",
@@ -338,8 +340,10 @@ std::vector<ElementRule> build() {
                         "ellipsoids, meshes); must not be negative"),
                    integer("mpr_iterations", 1, "50",
                            "most MPR iterations per convex pair; must not be negative"),
+                   real("magnetic", 3, "0 -0.5 0",
+                        "Earth's magnetic field, world frame (what a magnetometer reads)"),
                },
-               "apirate wind magnetic density viscosity o_margin o_solref o_solimp collision",
+               "apirate wind density viscosity o_margin o_solref o_solimp collision",
                "", "simulation options"});
   s.push_back({"flag", "option", '?',
                {
@@ -350,9 +354,11 @@ std::vector<ElementRule> build() {
                    keyword("multiccd", "disable", "disable enable", "",
                            "enable: up to four more contacts per convex pair, found by MPR with "
                            "the geoms turned slightly about the first contact (MuJoCo 2.2.2)"),
+                   keyword("sensornoise", "disable", "disable enable", "",
+                           "enable: add each sensor's noise (its standard deviation `noise`)"),
                },
                "constraint equality frictionloss limit passive gravity clampctrl warmstart "
-               "filterparent actuation refsafe sensor energy fwdinv sensornoise",
+               "filterparent actuation refsafe sensor energy fwdinv",
                "", "simulation flags"});
   s.push_back({"size", "mujoco", '*',
                {
@@ -523,6 +529,7 @@ std::vector<ElementRule> build() {
                join(actuator_wiring("actuator name"),
                     shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m")),
                kUnsupportedActuatorAttributes, "", "a velocity servo: force = kv (ctrl - qd)"});
+  for (ElementRule& r : sensor_rules()) s.push_back(std::move(r));
   return s;
 }
 // clang-format on

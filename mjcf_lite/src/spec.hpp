@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "problem.hpp"
+#include "sensors.hpp"
 
 namespace lever::mjcf::detail {
 
@@ -64,6 +65,7 @@ struct GeomSpec {
 
 struct SiteSpec {
   Place at;
+  GeomType type = GeomType::kSphere;
   Vec3 pos{};
   Orientation orientation;
   Vec3 size{};
@@ -171,6 +173,7 @@ struct ModelSpec {
   std::vector<KeySpec> keys;
   std::vector<PairSpec> pairs;
   std::vector<ExcludeSpec> excludes;
+  std::vector<SensorSpec> sensors;
   int nconmax = -1, njmax = -1;  ///< <size>; -1: MuJoCo's defaults
   AssetSpec assets;
   std::string model_dir;  ///< folder of the model file, with a trailing '/', or "" (mesh files)

@@ -91,8 +91,8 @@ class mjtIntegrator(_enum.IntEnum):
 # lever's arrays that MuJoCo has under the same name, shape and meaning (the field table)
 _MODEL_FIELDS = frozenset(f["name"] for f in _lever.model_field_table() if f["mujoco"])
 _DATA_FIELDS = frozenset(f["name"] for f in _lever.data_field_table() if f["mujoco"])
-_SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude", "nconmax",
-          "njmax")
+_SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude", "nsensor",
+          "nsensordata", "nconmax", "njmax")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl")
 # the mjModel arrays model.body(...) and the other accessors reach
@@ -128,10 +128,12 @@ _OBJECTS = {
     "geom": ("geom_name", "ngeom"),
     "site": ("site_name", "nsite"),
     "actuator": ("actuator_name", "nu"),
+    "sensor": ("sensor_name", "nsensor"),
 }
 _OBJ_TYPES = {
     mjtObj.mjOBJ_BODY: "body", mjtObj.mjOBJ_XBODY: "body", mjtObj.mjOBJ_JOINT: "joint",
     mjtObj.mjOBJ_GEOM: "geom", mjtObj.mjOBJ_SITE: "site", mjtObj.mjOBJ_ACTUATOR: "actuator",
+    mjtObj.mjOBJ_SENSOR: "sensor",
 }
 
 # MuJoCo's accessors show an object's rows of every array its count sizes, under the array's name
@@ -144,6 +146,7 @@ _MODEL_ROWS = {
     "geom": [("ngeom", "geom_")],
     "site": [("nsite", "site_")],
     "actuator": [("nu", "actuator_")],
+    "sensor": [("nsensor", "sensor_")],
 }
 _DATA_ROWS = {
     "body": [("nbody", "")],
@@ -151,6 +154,7 @@ _DATA_ROWS = {
     "geom": [("ngeom", "geom_")],
     "site": [("nsite", "site_")],
     "actuator": [("nu", "actuator_"), ("na", "")],
+    "sensor": [("nsensordata", "sensor")],  # data.sensor(i).data: its numbers in sensordata
 }
 
 
@@ -221,6 +225,9 @@ def _object_rows(owner, native_model, access: dict, offered, kind: str, index: i
     array = getattr(owner, array_name)
     if rows in ("nq", "nv"):  # a joint's coordinates or dofs
         return _joint_slice(array, native_model, index, rows == "nq")
+    if rows == "nsensordata":  # a sensor's numbers
+        adr, dim = int(native_model.sensor_adr[index]), int(native_model.sensor_dim[index])
+        return array[adr:adr + dim]
     return _row(array, index)
 
 
@@ -581,7 +588,7 @@ def _data_from_native(model: MjModel, native) -> MjData:
 def _add_named_access(cls, view) -> None:
     """cls.body(key), cls.joint(key) (also cls.jnt), ...: `view(self, kind, key)` for each kind of
     object, as MuJoCo's bindings name its accessors."""
-    for kind in ("body", "joint", "geom", "site", "actuator"):
+    for kind in ("body", "joint", "geom", "site", "actuator", "sensor"):
         setattr(cls, kind, lambda self, key, kind=kind: view(self, kind, key))
     cls.jnt = cls.joint
 

@@ -324,6 +324,8 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nsite", [](const lever::Model& x) { return x.nsite; })
       .def_property_readonly("npair", [](const lever::Model& x) { return x.npair; })
       .def_property_readonly("nexclude", [](const lever::Model& x) { return x.nexclude; })
+      .def_property_readonly("nsensor", [](const lever::Model& x) { return x.nsensor; })
+      .def_property_readonly("nsensordata", [](const lever::Model& x) { return x.nsensordata; })
       .def_property_readonly("nconmax", [](const lever::Model& x) { return x.nconmax; })
       .def_property_readonly("njmax", [](const lever::Model& x) { return x.njmax; })
       .def_property(
@@ -350,6 +352,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("geom_name", [](const lever::Model& x) { return x.geom_name; })
       .def_property_readonly("site_name", [](const lever::Model& x) { return x.site_name; })
       .def_property_readonly("actuator_name", [](const lever::Model& x) { return x.actuator_name; })
+      .def_property_readonly("sensor_name", [](const lever::Model& x) { return x.sensor_name; })
       // keyframes (not in the field table: their rows are keyframes): writable row-major views
       .def_property_readonly("nkey", [](const lever::Model& x) { return x.nkey; })
       .def_property_readonly("key_name", [](const lever::Model& x) { return x.key_name; })

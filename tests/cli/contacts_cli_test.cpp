@@ -199,3 +199,19 @@ TEST_CASE("lever forward and simulate with elliptic cones: every contact's force
 }
 
 }  // namespace lever::test
+
+TEST_CASE("lever forward lists the sensors, and --time sets what a clock reads", "[cli][sensors]") {
+  using lever::test::run_lever;
+  const std::string model = lever::test::quoted(lever::test::model_path("tests/models/sensors.xml"));
+  const lever::test::Run json_run = run_lever("forward " + model + " --key bent --time 2.5 --json");
+  REQUIRE(json_run.status == 0);
+  const lever::test::json::Value out = lever::test::json::parse(json_run.out);
+  const lever::Model m = lever::mjcf::load_file(lever::test::model_path("tests/models/sensors.xml"));
+  REQUIRE(out["sensordata"].size() == static_cast<std::size_t>(m.nsensordata));
+  const int clock = m.sensor_adr[static_cast<std::size_t>(m.sensor("clock"))];
+  CHECK(out["sensordata"][static_cast<std::size_t>(clock)].number == 2.5);
+  CHECK(out["cfrc_int"].size() == static_cast<std::size_t>(6 * m.nbody));
+  const lever::test::Run text = run_lever("forward " + model + " --time 2.5");
+  CHECK_THAT(text.out, Catch::Contains("sensors: " + std::to_string(m.nsensor)));
+  CHECK_THAT(text.out, Catch::Contains("clock"));
+}

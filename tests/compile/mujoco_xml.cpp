@@ -81,6 +81,11 @@ class Differences {
     if (!agrees(ours, theirs)) add(describe(field, index, ours, theirs));
   }
 
+  // a number that must be MuJoCo's to the bit
+  void exact(const std::string& field, int index, double ours, double theirs) {
+    if (ours != theirs) add(describe(field, index, ours, theirs) + " (compared bit for bit)");
+  }
+
   bool count(const std::string& field, int ours, int theirs) {
     integer(field, 0, ours, theirs);
     return ours == theirs;
@@ -230,6 +235,11 @@ void compare_table(Differences& d, const Model& o, const mjModel& m) {
     const MjArray& mj = found->second;
     if (name == "geom_size" || name == "geom_pos" || name == "geom_quat" || name == "geom_rbound") {
       compare_geom_frames(d, o, view, mj);
+    } else if (name.starts_with("sensor_")) {
+      // compiled from the text alone (ids, counts, the numbers as written): bit for bit
+      for (long i = 0; i < view.size(); ++i) {
+        d.exact(name, static_cast<int>(i), element(view, i), element(mj, i));
+      }
     } else if (view.cols == 4 && name.ends_with("quat")) {
       d.quats(name, view, mj);
     } else if (view.info->scalar == Scalar::kDouble) {
@@ -275,6 +285,7 @@ void compare_names(Differences& d, const Model& o, const mjModel& m) {
   d.names("geom_name", o.geom_name, m, mjOBJ_GEOM);
   d.names("site_name", o.site_name, m, mjOBJ_SITE);
   d.names("actuator_name", o.actuator_name, m, mjOBJ_ACTUATOR);
+  d.names("sensor_name", o.sensor_name, m, mjOBJ_SENSOR);
 }
 
 void compare_options(Differences& d, const Model& o, const mjModel& m) {
@@ -295,6 +306,9 @@ void compare_options(Differences& d, const Model& o, const mjModel& m) {
   d.integer("opt_mpr_iterations", 0, o.opt.mpr_iterations, m.opt.mpr_iterations);
   d.integer("opt_multiccd", 0, o.opt.multiccd ? 1 : 0,
             (m.opt.enableflags & mjENBL_MULTICCD) ? 1 : 0);
+  for (int k = 0; k < 3; ++k) d.real("opt_magnetic", k, o.opt.magnetic[k], m.opt.magnetic[k]);
+  d.integer("opt_sensornoise", 0, o.opt.sensornoise ? 1 : 0,
+            (m.opt.enableflags & mjENBL_SENSORNOISE) ? 1 : 0);
   d.integer("nconmax", 0, o.nconmax, m.nconmax);
   d.integer("njmax", 0, o.njmax, m.njmax);
 }
@@ -312,6 +326,8 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m) {
   sizes = d.count("nsite", o.nsite, m.nsite) && sizes;
   sizes = d.count("npair", o.npair, m.npair) && sizes;
   sizes = d.count("nexclude", o.nexclude, m.nexclude) && sizes;
+  sizes = d.count("nsensor", o.nsensor, m.nsensor) && sizes;
+  sizes = d.count("nsensordata", o.nsensordata, m.nsensordata) && sizes;
   if (sizes) {
     compare_table(d, o, m);
     compare_meshes(d, o, m);

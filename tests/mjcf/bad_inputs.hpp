@@ -897,6 +897,261 @@ inline const BadInput kBadInputs[] = {
 </mujoco>)", 5, "joint", "", "more than 1e10", MuJoCo::kAccepts,
    "the acceleration at rest is beyond 1e10, so every mj_step would reset the state"},
 
+  // ---- sensors ------------------------------------------------------------------------------
+  {"sensor-unknown-type", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <toutch site="s"/>
+  </sensor>
+</mujoco>)", 14, "toutch", "", "did you mean 'touch'?", MuJoCo::kRejects, ""},
+  {"sensor-missing-object", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <touch name="pad" site="pad"/>
+  </sensor>
+</mujoco>)", 14, "touch", "site", "no site of that name", MuJoCo::kRejects, ""},
+  {"sensor-wrong-joint-kind", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <jointpos joint="ball"/>
+  </sensor>
+</mujoco>)", 14, "jointpos", "joint", "reads a hinge or slide joint", MuJoCo::kRejects, ""},
+  {"sensor-ball-on-hinge", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <ballquat joint="hinge"/>
+  </sensor>
+</mujoco>)", 14, "ballquat", "joint", "reads a ball joint", MuJoCo::kRejects, ""},
+  {"sensor-limit-unlimited", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <jointlimitfrc joint="hinge"/>
+  </sensor>
+</mujoco>)", 14, "jointlimitfrc", "joint", "is not limited", MuJoCo::kRejects, ""},
+  {"sensor-rangefinder-on-body", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <rangefinder body="b"/>
+  </sensor>
+</mujoco>)", 14, "rangefinder", "body", "unknown attribute 'body'", MuJoCo::kRejects, ""},
+  {"sensor-negative-cutoff", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <gyro site="s" cutoff="-1"/>
+  </sensor>
+</mujoco>)", 14, "gyro", "cutoff", "must not be negative", MuJoCo::kRejects, ""},
+  {"sensor-negative-noise", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <gyro site="s" noise="-0.1"/>
+  </sensor>
+</mujoco>)", 14, "gyro", "noise", "must not be negative", MuJoCo::kRejects, ""},
+  {"sensor-cutoff-on-quaternion", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <framequat objtype="site" objname="s" cutoff="1"/>
+  </sensor>
+</mujoco>)", 14, "framequat", "cutoff", "a cutoff does not apply", MuJoCo::kRejects, ""},
+  {"sensor-refname-without-reftype", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <framepos objtype="site" objname="s" refname="b"/>
+  </sensor>
+</mujoco>)", 14, "framepos", "refname", "reftype is missing", MuJoCo::kRejects, ""},
+  {"sensor-missing-reference", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <framepos objtype="site" objname="s" reftype="body" refname="nobody"/>
+  </sensor>
+</mujoco>)", 14, "framepos", "refname", "no body of that name", MuJoCo::kRejects, ""},
+  {"sensor-frame-of-joint", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <framepos objtype="joint" objname="hinge"/>
+  </sensor>
+</mujoco>)", 14, "framepos", "objtype", "'joint'", MuJoCo::kRejects, ""},
+  {"sensor-frame-of-camera", R"(<mujoco>
+  <worldbody>
+    <camera name="eye" pos="0 0 1"/>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <sensor>
+    <framepos objtype="camera" objname="eye"/>
+  </sensor>
+</mujoco>)", 10, "framepos", "objtype", "camera", MuJoCo::kAccepts, "lever does not place cameras"},
+  {"sensor-tendon", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <tendonpos tendon="t"/>
+  </sensor>
+</mujoco>)", 14, "tendonpos", "", "lever has no tendons", MuJoCo::kRejects, ""},
+  {"sensor-user", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <user objtype="site" objname="s" dim="1" needstage="pos" datatype="real"/>
+  </sensor>
+</mujoco>)", 14, "user", "", "valid MJCF but not supported", MuJoCo::kAccepts, "MuJoCo fills a user sensor from its sensor callback (mjcb_sensor), which lever does not have"},
+  {"sensor-repeated-name", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+      <body name="c" pos="0 0 -0.5">
+        <joint name="ball" type="ball"/>
+        <geom size="0.1"/>
+      </body>
+    </body>
+  </worldbody>
+  <sensor>
+    <gyro name="g" site="s"/>
+    <touch name="g" site="s"/>
+  </sensor>
+</mujoco>)", 15, "touch", "name", "repeated sensor name", MuJoCo::kRejects, ""},
+
   // ---- structure -----------------------------------------------------------------------------
   {"text-inside-element", R"(<mujoco>
   <worldbody>

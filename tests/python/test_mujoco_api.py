@@ -43,7 +43,8 @@ def test_shapes_and_dtypes_are_mujocos(path):
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
     sizes = {n: getattr(model, n)
-             for n in ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude")}
+             for n in ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude",
+                       "nsensor", "nsensordata")}
     sizes["nefc"] = data.nefc
     # mjmodel.h's lengths of solref, solimp, gainprm and biasprm
     sizes.update(mjNREF=2, mjNIMP=5, mjNGAIN=10, mjNBIAS=10)

@@ -135,6 +135,7 @@ inline Model random_tree(std::uint64_t seed) {
     m.site_pos.push_back(vector_in(rng, 0.3));
     m.site_quat.push_back(random_quat(rng));
     m.site_size.push_back(Eigen::Vector3d::Constant(0.01));
+    m.site_type.push_back(GeomType::kSphere);
   }
   m.nbody = bodies + 1;
   m.nsite = bodies;

@@ -667,6 +667,8 @@ TEST_CASE("size_model gives every array the length the field table promises", "[
   model.nmeshvert = 6;
   model.nmeshgraph = 11;
   model.nkey = 2;
+  model.nsensor = 3;
+  model.nsensordata = 7;
   lever::size_model(model);
 
   const std::vector<lever::FieldInfo>& table = lever::model_field_table();

@@ -1,6 +1,6 @@
 // lever forward: everything the engine computes at one state.
 //
-//   lever forward MODEL [--key NAME] [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]
+//   lever forward MODEL [--key NAME] [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--time T] [--json]
 //
 // Runs lever::forward() (MuJoCo's mj_forward) at the given state, then the site Jacobians
 // (mj_jacSite) and the energy (mj_energyPos + mj_energyVel). Omitted vectors are qpos0 and zeros.
@@ -21,7 +21,8 @@
 // Numbers are written in the shortest form that reads back as the same double (nlohmann-json),
 // so they compare exactly.
 // Without --json: readable tables with names and units (the contacts: geom names, dist, normal,
-// normal and friction force).
+// normal and friction force; the sensors: name, type and numbers). --time sets data.time (what a
+// clock sensor reads).
 // Exit 0; 1 when the evaluation raised an engine warning (a state that is NaN or beyond 1e10, an
 // acceleration that blows up) or gave a number that is not finite (printed as n/a, or null in
 // JSON), each said on stderr; bad input (a list with the wrong count, text that is not a number,
@@ -129,6 +130,20 @@ void print_contacts(const Model& model, const Data& data) {
       "   tangential force)\n");
 }
 
+// The sensors: each one's name, type and numbers (sensordata from its sensor_adr).
+void print_sensors(const Model& model, const Data& data) {
+  if (model.nsensor == 0) return;
+  std::printf("\nsensors: %d, sensordata in MuJoCo's units (m, rad, s, N, N m)\n", model.nsensor);
+  for (int s = 0; s < model.nsensor; ++s) {
+    std::string values;
+    for (int k = 0; k < model.sensor_dim[s]; ++k) {
+      values += (k ? ", " : "") + num(data.sensordata[model.sensor_adr[s] + k]);
+    }
+    std::printf("  %-16s %-14s %s\n", label_of(model.sensor_name[s], s).c_str(),
+                sensor_type_name(model.sensor_type[s]), values.c_str());
+  }
+}
+
 void print_text(const std::string& path, const Model& model, const Data& data,
                 const Evaluation& e) {
   std::printf("model %s (%s) at time %g s\n\n", model.name.c_str(), path.c_str(), data.time);
@@ -212,6 +227,7 @@ void print_text(const std::string& path, const Model& model, const Data& data,
 
   print_limit_rows(model, data);
   print_contacts(model, data);
+  print_sensors(model, data);
 
   std::printf("\nenergy: potential %s J, kinetic %s J\n", num(data.energy[0]).c_str(),
               num(data.energy[1]).c_str());
@@ -226,6 +242,8 @@ void declare_forward(CLI::App& command) {
                 "joint positions, nq numbers (default: qpos0)",
                 "joint velocities, nv numbers (default: zeros)",
                 "motor commands, nu numbers (default: zeros); clamped to ctrlrange as in MuJoCo"});
+  add_value(command, "time", "SECONDS", "data.time (default: 0, or the keyframe's): what a clock "
+            "sensor reads")->check(number_check());
   add_switch(command, "json",
              "one JSON object keyed by mjData's names (arrays flattened row-major)");
   command.footer(
@@ -237,6 +255,7 @@ int cmd_forward(const Args& command_line) {
   const auto [args, path, model] = begin("forward", command_line);
   Data data(model);
   set_state_from_args(args, model, data);
+  data.time = args.get_double("time", data.time);
   const Evaluation e = evaluate(model, data);
   if (args.has("json")) {
     print_json(model, data, e);

@@ -79,6 +79,9 @@ enum class ConstraintType : int {
 /// or, for every row of an elliptic cone, on the cone's surface (the cone's middle zone).
 enum class ConstraintState : int { kSatisfied = 0, kActive = 1, kCone = 4 };
 
+/// The sensor noise generator's starting state (Data::sensor_noise_state).
+inline constexpr std::uint64_t kSensorNoiseSeed = 0x5eed5eed5eed5eedULL;
+
 struct Data {
   explicit Data(const Model& model);
 
@@ -161,6 +164,21 @@ struct Data {
   Eigen::VectorXd qacc;                    ///< (nv) joint accelerations
   Eigen::VectorXd qfrc_inverse;            ///< (nv) inverse(): force that produces qacc
 
+  // ---- sensors: each stage's sensors after that stage (sensors room) -------------------------
+  Eigen::VectorXd sensordata;  ///< (nsensordata) sensor i's numbers from sensor_adr[i]
+  // Written only when an acceleration sensor needs them (MuJoCo's mj_rnePostConstraint), else
+  // left as they were (zero in a new Data), as in MuJoCo:
+  std::vector<Motion> cacc;      ///< (nbody) body accelerations, gravity's included as -g at the
+                                 ///< world
+  std::vector<Force> cfrc_int;   ///< (nbody) force the parent exerts on the body's subtree
+  std::vector<Force> cfrc_ext;   ///< (nbody) external forces on the body: contacts
+  // Written only when a subtree velocity sensor needs them (MuJoCo's mj_subtreeVel):
+  std::vector<Eigen::Vector3d> subtree_linvel;  ///< (nbody) velocity of the subtree's centre of mass
+  std::vector<Eigen::Vector3d> subtree_angmom;  ///< (nbody) angular momentum about it
+  /// The sensor noise's generator (splitmix64), set to kSensorNoiseSeed when the Data is made
+  /// and by reset(): the same steps draw the same noise, run after run.
+  std::uint64_t sensor_noise_state = 0;
+
   // ---- other ---------------------------------------------------------------------------------
   std::array<double, 2> energy{0.0, 0.0};  ///< compute_energy(): potential, kinetic (J)
   std::array<WarningStat, static_cast<int>(Warning::kCount)> warning{};
@@ -172,6 +190,8 @@ struct Data {
     std::vector<RigidInertia> crb;
     std::vector<Motion> cacc;          ///< (nbody) body accelerations
     std::vector<Force> cfrc;           ///< (nbody) body forces
+    std::vector<Motion> body_vel;      ///< (nbody) subtree_velocities(): each centre of mass's
+                                       ///< velocity, world axes
     Eigen::MatrixXd LD2;               ///< (nv x nv) factor of M + h diag(damping) (Euler)
     Eigen::VectorXd LD2DiagInv;        ///< (nv)
     Eigen::VectorXd vec1, vec2, vec3;  ///< (nv) scratch

@@ -89,6 +89,7 @@
   X(site_size, double, nsite, 3, mujoco)                     \
   X(site_pos, double, nsite, 3, mujoco)                      \
   X(site_quat, double, nsite, 4, mujoco)                     \
+  X(site_type, int, nsite, 1, mujoco)                        \
   X(actuator_trnid, int, nu, 1, own) /* (nu, 2) in MuJoCo */ \
   X(actuator_dyntype, int, nu, 1, mujoco)                    \
   X(actuator_gaintype, int, nu, 1, mujoco)                   \
@@ -100,7 +101,22 @@
   X(actuator_gear, double, nu, 6, mujoco)                    \
   X(actuator_ctrlrange, double, nu, 2, mujoco)               \
   X(actuator_forcerange, double, nu, 2, mujoco)              \
-  LEVER_MODEL_CONTACT_FIELDS(X)
+  LEVER_MODEL_CONTACT_FIELDS(X)                              \
+  LEVER_MODEL_SENSOR_FIELDS(X)
+
+// sensors: what each one measures, on which object, and where its numbers go
+#define LEVER_MODEL_SENSOR_FIELDS(X)              \
+  X(sensor_type, int, nsensor, 1, mujoco)         \
+  X(sensor_datatype, int, nsensor, 1, mujoco)     \
+  X(sensor_needstage, int, nsensor, 1, mujoco)    \
+  X(sensor_objtype, int, nsensor, 1, mujoco)      \
+  X(sensor_objid, int, nsensor, 1, mujoco)        \
+  X(sensor_reftype, int, nsensor, 1, mujoco)      \
+  X(sensor_refid, int, nsensor, 1, mujoco)        \
+  X(sensor_dim, int, nsensor, 1, mujoco)          \
+  X(sensor_adr, int, nsensor, 1, mujoco)          \
+  X(sensor_cutoff, double, nsensor, 1, mujoco)    \
+  X(sensor_noise, double, nsensor, 1, mujoco)
 
 // contact parameters: the geoms', the explicit <pair>s' and the <exclude>s'
 #define LEVER_MODEL_CONTACT_FIELDS(X)        \
@@ -142,6 +158,7 @@
   X(geom_name, ngeom)        \
   X(site_name, nsite)        \
   X(actuator_name, nu)       \
+  X(sensor_name, nsensor)    \
   X(key_name, nkey)
 
 // The Model arrays set_const computes from the others (MuJoCo's mj_setConst's constants). It sizes
@@ -203,6 +220,12 @@
   X(efc_state, int, nefc, 1, acceleration, mujoco)             \
   X(qfrc_constraint, double, nv, 1, acceleration, mujoco)      \
   X(qfrc_inverse, double, nv, 1, inverse, mujoco)              \
+  X(sensordata, double, nsensordata, 1, acceleration, mujoco) \
+  X(cacc, double, nbody, 6, acceleration, mujoco)             \
+  X(cfrc_int, double, nbody, 6, acceleration, mujoco)         \
+  X(cfrc_ext, double, nbody, 6, acceleration, mujoco)         \
+  X(subtree_linvel, double, nbody, 3, velocity, mujoco)       \
+  X(subtree_angmom, double, nbody, 3, velocity, mujoco)       \
   X(energy, double, one, 2, energy, mujoco)
 
 namespace lever {
@@ -227,7 +250,10 @@ enum class Size : int {
   // meshes
   kNmesh,      ///< meshes
   kNmeshvert,  ///< mesh vertices, all meshes
-  kNmeshgraph  ///< ints of the meshes' hull graphs
+  kNmeshgraph,  ///< ints of the meshes' hull graphs
+  // sensors
+  kNsensor,     ///< sensors
+  kNsensordata  ///< the sensors' numbers together (data.sensordata)
 };
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;

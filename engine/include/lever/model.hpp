@@ -120,6 +120,90 @@ ActuatorKind actuator_kind_of(GainType gaintype, const std::array<double, kGainP
 /// Whether ctrl is a target rather than a force: every kind but a motor.
 constexpr bool is_servo(ActuatorKind kind) { return kind != ActuatorKind::kMotor; }
 
+// ---- sensors --------------------------------------------------------------------------------
+/// Sensor types; the numeric values are MuJoCo 2.2.2's mjtSensor. lever evaluates every type
+/// but the tendon sensors and user sensors (MuJoCo fills those from a callback), which the
+/// compiler and validate() refuse by name.
+enum class SensorType : int {
+  kTouch = 0,
+  kAccelerometer,
+  kVelocimeter,
+  kGyro,
+  kForce,
+  kTorque,
+  kMagnetometer,
+  kRangefinder,
+  kJointPos,
+  kJointVel,
+  kTendonPos,
+  kTendonVel,
+  kActuatorPos,
+  kActuatorVel,
+  kActuatorFrc,
+  kBallQuat,
+  kBallAngVel,
+  kJointLimitPos,
+  kJointLimitVel,
+  kJointLimitFrc,
+  kTendonLimitPos,
+  kTendonLimitVel,
+  kTendonLimitFrc,
+  kFramePos,
+  kFrameQuat,
+  kFrameXAxis,
+  kFrameYAxis,
+  kFrameZAxis,
+  kFrameLinVel,
+  kFrameAngVel,
+  kFrameLinAcc,
+  kFrameAngAcc,
+  kSubtreeCom,
+  kSubtreeLinVel,
+  kSubtreeAngMom,
+  kClock,
+  kUser
+};
+
+/// The MJCF element of a sensor type ("touch", "framepos", ...).
+const char* sensor_type_name(SensorType type);
+
+/// What a sensor's numbers are (MuJoCo's mjtDataType): noise and cutoff treat them by it.
+enum class SensorDataType : int { kReal = 0, kPositive, kAxis, kQuaternion };
+
+/// The stage after which a sensor can be evaluated (MuJoCo's mjtStage).
+enum class SensorStage : int { kNone = 0, kPosition, kVelocity, kAcceleration };
+
+/// The kinds of object a sensor (or its reference frame) is attached to; the numeric values are
+/// MuJoCo's mjtObj. kBody is a body's inertial frame (centre of mass, principal axes), kXBody its
+/// own frame.
+enum class ObjectType : int {
+  kUnknown = 0,
+  kBody = 1,
+  kXBody = 2,
+  kJoint = 3,
+  kGeom = 5,
+  kSite = 6,
+  kCamera = 7,
+  kTendon = 17,
+  kActuator = 18
+};
+
+/// What a sensor of a type outputs and when, as MuJoCo 2.2.2's compiler sets it (a user
+/// sensor's come from its element: dim 0 here).
+struct SensorLayout {
+  int dim;                 ///< numbers
+  SensorDataType datatype;
+  SensorStage stage;
+  /// what it must be attached to: kSite, kJoint, kActuator, kBody (subtree sensors), kTendon;
+  /// kXBody for a frame sensor (any of body, xbody, geom, site); kUnknown for the clock
+  ObjectType object;
+};
+SensorLayout sensor_layout(SensorType type);
+
+/// Whether lever evaluates sensors of this type (every type but the tendon sensors and user
+/// sensors, which MuJoCo fills from a callback).
+bool sensor_type_supported(SensorType type);
+
 /// Row-major matrix, for per-keyframe arrays (key_qpos is nkey x nq, as MuJoCo's).
 using RowMatrix = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -158,6 +242,10 @@ struct Options {
   int mpr_iterations = 50;      ///< most MPR iterations
   /// <flag multiccd="enable"> (MuJoCo's mjENBL_MULTICCD): up to four more contacts per convex pair
   bool multiccd = false;
+  /// Earth's magnetic field, world frame (the magnetometer reads it in its site's frame)
+  Eigen::Vector3d magnetic{0.0, -0.5, 0.0};
+  /// <flag sensornoise="enable"> (MuJoCo's mjENBL_SENSORNOISE): add each sensor's noise
+  bool sensornoise = false;
 };
 
 /// Compiler settings that stay meaningful after compilation (read by `lever check`).
@@ -202,6 +290,8 @@ struct Model {
   int nmesh = 0;      ///< meshes (<asset><mesh>), each as MuJoCo compiles it if lever read it
   int nmeshvert = 0;  ///< their vertices, all meshes
   int nmeshgraph = 0;  ///< their convex hulls' graphs, all meshes (ints)
+  int nsensor = 0;      ///< sensors
+  int nsensordata = 0;  ///< numbers all sensors output together (the sum of sensor_dim)
   int nconmax = 100;  ///< most contacts a Data holds (<size nconmax>; MuJoCo 2.2.2's default)
   int njmax = 500;    ///< most constraint rows a Data holds (<size njmax>)
 
@@ -310,6 +400,8 @@ struct Model {
   std::vector<Eigen::Vector3d> site_pos;   ///< body frame
   std::vector<Eigen::Vector4d> site_quat;  ///< relative to the body
   std::vector<Eigen::Vector3d> site_size;
+  /// its shape: sphere, capsule, ellipsoid, cylinder or box (a touch sensor's zone)
+  std::vector<GeomType> site_type;
 
   // ---- actuators (nu): stateless actuators with a joint transmission ---------------------------
   // force = gain * ctrl + bias, with gain = gainprm[0] (+ gainprm[1] length + gainprm[2] velocity
@@ -327,6 +419,23 @@ struct Model {
   std::vector<uint8_t> actuator_forcelimited;
   std::vector<std::array<double, 2>> actuator_ctrlrange;
   std::vector<std::array<double, 2>> actuator_forcerange;
+
+  // ---- sensors (nsensor): what each measures and where its numbers go in data.sensordata ----------
+  std::vector<std::string> sensor_name;
+  std::vector<SensorType> sensor_type;
+  std::vector<SensorDataType> sensor_datatype;
+  std::vector<SensorStage> sensor_needstage;  ///< the stage that evaluates it
+  std::vector<ObjectType> sensor_objtype;     ///< what it is attached to (kUnknown: clock)
+  std::vector<int> sensor_objid;              ///< that object's id (-1: clock)
+  std::vector<ObjectType> sensor_reftype;     ///< a frame sensor's reference frame (kUnknown:
+                                              ///< the world)
+  std::vector<int> sensor_refid;              ///< its id (-1: the world)
+  std::vector<int> sensor_dim;                ///< numbers it outputs
+  std::vector<int> sensor_adr;                ///< its first number in data.sensordata
+  std::vector<double> sensor_cutoff;  ///< > 0: each number clipped to +-cutoff (positive
+                                      ///< sensors: to cutoff)
+  std::vector<double> sensor_noise;   ///< standard deviation of the noise added when
+                                      ///< opt.sensornoise is on
 
   // ---- keyframes (nkey): named states to start from (<keyframe><key>) --------------------------
   std::vector<std::string> key_name;
@@ -387,6 +496,7 @@ struct Model {
   int actuator(const std::string& n) const;
   int geom(const std::string& n) const;
   int key(const std::string& n) const;
+  int sensor(const std::string& n) const;
 };
 
 /// Derive the constants MuJoCo's mj_setConst computes (dof_invweight0, dof_M0, body_invweight0,

@@ -55,6 +55,7 @@ Owner owner_of_row(const Model& model, Size size, int row) {
     case Size::kNgeom: return {"geom", row, model.geom_name[row]};
     case Size::kNsite: return {"site", row, model.site_name[row]};
     case Size::kNpair: return {"pair", row, ""};
+    case Size::kNsensor: return {"sensor", row, model.sensor_name[row]};
     default: return {};
   }
 }
@@ -102,6 +103,8 @@ struct NonNegative {
   const char* why;
 };
 constexpr NonNegative kNonNegative[] = {
+    {"sensor_cutoff", "a sensor's cutoff is a bound on its magnitude"},
+    {"sensor_noise", "a sensor's noise is a standard deviation"},
     {"body_mass", "no body has a negative mass"},
     {"body_inertia", "no body has a negative principal moment of inertia"},
     // each would make the model gain energy from nothing; MuJoCo 2.2.2 accepts them silently
@@ -401,6 +404,101 @@ void check_meshes(const Model& model) {
   }
 }
 
+// A sensor attached to an object of this type and id: one lever has and the sensor can read.
+bool sensor_object_exists(const Model& model, ObjectType type, int id) {
+  switch (type) {
+    case ObjectType::kBody:
+    case ObjectType::kXBody: return id >= 0 && id < model.nbody;
+    case ObjectType::kGeom: return id >= 0 && id < model.ngeom;
+    case ObjectType::kSite: return id >= 0 && id < model.nsite;
+    case ObjectType::kJoint: return id >= 0 && id < model.njnt;
+    case ObjectType::kActuator: return id >= 0 && id < model.nu;
+    default: return false;
+  }
+}
+
+bool is_frame(ObjectType type) {
+  return type == ObjectType::kBody || type == ObjectType::kXBody || type == ObjectType::kGeom ||
+         type == ObjectType::kSite;
+}
+
+// Every sensor: a type lever evaluates, on an object of the kind it reads, with MuJoCo's layout
+// (dim, datatype, stage) and its numbers one after another in sensordata.
+void check_sensors(const Model& model) {
+  int adr = 0;
+  for (int s = 0; s < model.nsensor; ++s) {
+    const std::string& name = model.sensor_name[s];
+    const SensorType type = model.sensor_type[s];
+    const int t = static_cast<int>(type);
+    if (t < 0 || t > static_cast<int>(SensorType::kUser)) {
+      reject("sensor", s, name, "has an unknown type " + std::to_string(t));
+    }
+    if (!sensor_type_supported(type)) {
+      reject("sensor", s, name,
+             std::string("is a ") + sensor_type_name(type) + " sensor; lever has no " +
+                 (type == SensorType::kUser ? "sensor callbacks" : "tendons"));
+    }
+    const SensorLayout layout = sensor_layout(type);
+    if (model.sensor_dim[s] != layout.dim || model.sensor_datatype[s] != layout.datatype ||
+        model.sensor_needstage[s] != layout.stage) {
+      reject("sensor", s, name,
+             std::string("does not have a ") + sensor_type_name(type) +
+                 " sensor's dim, datatype and needstage (" + std::to_string(layout.dim) + ", " +
+                 std::to_string(static_cast<int>(layout.datatype)) + ", " +
+                 std::to_string(static_cast<int>(layout.stage)) + ")");
+    }
+    if (model.sensor_adr[s] != adr) {
+      reject("sensor", s, name,
+             "starts at sensordata " + std::to_string(model.sensor_adr[s]) +
+                 "; the sensors before it end at " + std::to_string(adr));
+    }
+    adr += layout.dim;
+    const ObjectType objtype = model.sensor_objtype[s];
+    const int id = model.sensor_objid[s];
+    const bool right_kind = layout.object == ObjectType::kXBody ? is_frame(objtype)
+                                                                : objtype == layout.object;
+    if (layout.object != ObjectType::kUnknown &&
+        (!right_kind || !sensor_object_exists(model, objtype, id))) {
+      reject("sensor", s, name, "is not attached to an object of the kind it reads");
+    }
+    if (model.sensor_refid[s] >= 0 &&
+        (!is_frame(model.sensor_reftype[s]) ||
+         !sensor_object_exists(model, model.sensor_reftype[s], model.sensor_refid[s]))) {
+      reject("sensor", s, name, "has a reference frame that is no body, geom or site");
+    }
+    if (objtype == ObjectType::kJoint) {
+      const JointType jt = model.jnt_type[id];
+      const bool ball = type == SensorType::kBallQuat || type == SensorType::kBallAngVel;
+      if (ball != (jt == JointType::kBall) ||
+          (!ball && jt != JointType::kHinge && jt != JointType::kSlide)) {
+        reject("sensor", s, name,
+               ball ? "reads a ball joint, and its joint is not one"
+                    : "reads a hinge or slide joint, and its joint is neither");
+      }
+      // a limit sensor of a joint whose limit was switched off reads 0, as in MuJoCo (its
+      // compiler refuses one on a joint that never had a limit; so does lever's)
+    }
+    if (type == SensorType::kRangefinder) {
+      for (int g = 0; g < model.ngeom; ++g) {
+        if (model.geom_type[g] == GeomType::kMesh || model.geom_type[g] == GeomType::kHfield) {
+          reject("sensor", s, name,
+                 "is a rangefinder, and lever casts no rays at mesh or height field geoms (geom " +
+                     std::to_string(g) + ")");
+        }
+      }
+    }
+    if (model.sensor_cutoff[s] > 0 && (layout.datatype == SensorDataType::kAxis ||
+                                       layout.datatype == SensorDataType::kQuaternion)) {
+      reject("sensor", s, name, "has a cutoff, and its numbers are an axis or a quaternion");
+    }
+  }
+  if (model.nsensordata != adr) {
+    throw ModelError("nsensordata is " + std::to_string(model.nsensordata) +
+                     "; the sensors' dims add up to " + std::to_string(adr) + ".");
+  }
+  if (!model.opt.magnetic.allFinite()) throw ModelError("the magnetic field must be finite.");
+}
+
 template <typename Vector>
 bool finite(const Vector& v) {
   for (const double x : v) {
@@ -416,6 +514,7 @@ void validate(const Model& model) {
   check_tree(model);
   check_options_actuators_keys(model);
   check_meshes(model);
+  check_sensors(model);
   check_finite(model);
   check_ranges(model);
 }

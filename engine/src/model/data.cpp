@@ -56,6 +56,8 @@ Data::Data(const Model& model)
   work.crb.assign(nbody, RigidInertia{});
   work.cacc.assign(nbody, Motion::Zero());
   work.cfrc.assign(nbody, Force::Zero());
+  work.body_vel.assign(nbody, Motion::Zero());
+  sensor_noise_state = kSensorNoiseSeed;
   work.LD2 = Eigen::MatrixXd::Zero(nv, nv);
   work.LD2DiagInv = Eigen::VectorXd::Zero(nv);
   work.vec1 = work.vec2 = work.vec3 = Eigen::VectorXd::Zero(nv);
@@ -122,6 +124,8 @@ void reset(const Model& model, Data& data) {
   data.nefc = 0;
   data.ncon = 0;
   data.warning = {};
+  data.sensordata.setZero();
+  data.sensor_noise_state = kSensorNoiseSeed;  // the same noise again, as after making the Data
 }
 
 void reset_keyframe(const Model& model, Data& data, int key) {

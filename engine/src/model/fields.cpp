@@ -17,7 +17,8 @@ namespace token {
 constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nbody = Size::kNbody, njnt = Size::kNjnt, ngeom = Size::kNgeom, nsite = Size::kNsite,
                nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude,
-               nmesh = Size::kNmesh, nmeshvert = Size::kNmeshvert, nmeshgraph = Size::kNmeshgraph;
+               nmesh = Size::kNmesh, nmeshvert = Size::kNmeshvert, nmeshgraph = Size::kNmeshgraph,
+               nsensor = Size::kNsensor, nsensordata = Size::kNsensordata;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy;
@@ -222,6 +223,8 @@ int size_of(const Model& model, Size size) {
     case Size::kNmesh: return model.nmesh;
     case Size::kNmeshvert: return model.nmeshvert;
     case Size::kNmeshgraph: return model.nmeshgraph;
+    case Size::kNsensor: return model.nsensor;
+    case Size::kNsensordata: return model.nsensordata;
   }
   return 0;
 }
@@ -231,9 +234,9 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 14> names = {
-      "1",     "nq",    "nv",       "nu",    "nbody",     "njnt",      "ngeom",
-      "nsite", "nefc",  "npair",    "nexclude", "nmesh", "nmeshvert", "nmeshgraph"};
+  static constexpr std::array<const char*, 16> names = {
+      "1",     "nq",    "nv",       "nu",    "nbody",     "njnt",      "ngeom",     "nsite",
+      "nefc",  "npair", "nexclude", "nmesh", "nmeshvert", "nmeshgraph", "nsensor", "nsensordata"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -360,7 +363,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 13> counts = {{{"nmesh", model.nmesh},
+  const std::array<std::pair<const char*, int>, 15> counts = {{{"nmesh", model.nmesh},
                                                                {"nmeshvert", model.nmeshvert},
                                                                {"nmeshgraph", model.nmeshgraph},
                                                                {"nq", model.nq},
@@ -372,7 +375,9 @@ void size_model(Model& model) {
                                                                {"nsite", model.nsite},
                                                                {"nkey", model.nkey},
                                                                {"npair", model.npair},
-                                                               {"nexclude", model.nexclude}}};
+                                                               {"nexclude", model.nexclude},
+                                                               {"nsensor", model.nsensor},
+                                                               {"nsensordata", model.nsensordata}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +

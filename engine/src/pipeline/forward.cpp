@@ -1,6 +1,7 @@
 // The forward pipeline and inverse dynamics, stage by stage as MuJoCo 2.2.2's mj_forward and
 // mj_inverse: position (kinematics, contacts, M, constraint rows, transmission), velocity (passive,
-// bias, reference accelerations), acceleration (motors, smooth dynamics, constraint solve).
+// bias, reference accelerations), acceleration (motors, smooth dynamics, constraint solve), each
+// followed by its sensors (skipped inside an RK4 step, as MuJoCo skips them).
 #include <lever/collision.hpp>
 #include <lever/constraint.hpp>
 #include <lever/dynamics.hpp>
@@ -11,6 +12,7 @@
 #include "model/model_room.hpp"
 #include "smooth/smooth.hpp"
 #include "constraint/constraint_room.hpp"
+#include "sensors/sensors.hpp"
 #include "pipeline/pipeline.hpp"
 
 namespace lever {
@@ -44,32 +46,16 @@ void after_kinematics(const Model& model, Data& data) {
   unchecked::transmission(model, data);
 }
 
-// forward()'s stages, on the kinematics of the caller's choice (kinematics(), or the lean step's
-// step_kinematics()), the entry check left to the caller.
-void forward_stages(const Model& model, Data& data, void (*kinematics_stage)(const Model&, Data&)) {
-  check_inputs(data);
-  kinematics_stage(model, data);
-  after_kinematics(model, data);
-  velocity_stage(model, data);
-  acceleration_stage(model, data);
-  record_if_bad(data, data.qacc, Warning::kBadQacc);
-}
-
-}  // namespace
-
-void position_stage(const Model& model, Data& data) {
-  kinematics(model, data);
-  after_kinematics(model, data);
-}
-
-void velocity_stage(const Model& model, Data& data) {
+// The velocity stage without its sensors.
+void velocity_core(const Model& model, Data& data) {
   unchecked::passive(model, data);
   unchecked::bias(model, data);
   unchecked::reference_constraint(model, data);
 }
 
-void acceleration_stage(const Model& model, Data& data) {
-  // the unconstrained acceleration, then the limit forces
+// The acceleration stage without its sensors: the unconstrained acceleration, then the
+// constraint forces.
+void acceleration_core(const Model& model, Data& data) {
   unchecked::actuation(model, data);
   double* const qfrc_smooth = data.qfrc_smooth.data();
   double* const qacc_smooth = data.qacc_smooth.data();
@@ -85,14 +71,67 @@ void acceleration_stage(const Model& model, Data& data) {
   unchecked::solve_constraint(model, data);
 }
 
+// forward()'s stages, on the kinematics of the caller's choice (kinematics(), or the lean step's
+// step_kinematics()), the entry check left to the caller; the sensors too unless `sensors` is
+// false (MuJoCo's mj_forwardSkip with skipsensor, as its RK4 stages call it).
+void forward_stages(const Model& model, Data& data, void (*kinematics_stage)(const Model&, Data&),
+                    bool sensors) {
+  // a model without sensors pays one test here, not three calls
+  const bool with_sensors = sensors && model.nsensor > 0;
+  check_inputs(data);
+  kinematics_stage(model, data);
+  after_kinematics(model, data);
+  if (with_sensors) sensor_position(model, data);
+  velocity_core(model, data);
+  if (with_sensors) sensor_velocity(model, data);
+  acceleration_core(model, data);
+  if (with_sensors) sensor_acceleration(model, data);
+  record_if_bad(data, data.qacc, Warning::kBadQacc);
+}
+
+// The lean step reads neither xquat nor the geom frames where nothing collides; sensors may
+// (framequat, a geom's frame, the rangefinder), so a model with sensors takes the whole
+// kinematics.
+void (*step_kinematics_for(const Model& model))(const Model&, Data&) {
+  return model.nsensor > 0 ? kinematics : detail::step_kinematics;
+}
+
+}  // namespace
+
+void position_stage(const Model& model, Data& data) {
+  kinematics(model, data);
+  after_kinematics(model, data);
+  sensor_position(model, data);
+}
+
+void velocity_stage(const Model& model, Data& data) {
+  velocity_core(model, data);
+  sensor_velocity(model, data);
+}
+
+void acceleration_stage(const Model& model, Data& data) {
+  acceleration_core(model, data);
+  sensor_acceleration(model, data);
+}
+
 void forward(const Model& model, Data& data) {
   check_entry(model, data, "lever::forward");
-  forward_stages(model, data, kinematics);
+  forward_stages(model, data, kinematics, true);
 }
 
 namespace detail {
 
-void step_forward(const Model& model, Data& data) { forward_stages(model, data, step_kinematics); }
+void step_forward(const Model& model, Data& data) {
+  forward_stages(model, data, step_kinematics_for(model), true);
+}
+
+void forward_without_sensors(const Model& model, Data& data) {
+  forward_stages(model, data, kinematics, false);
+}
+
+void step_forward_without_sensors(const Model& model, Data& data) {
+  forward_stages(model, data, step_kinematics_for(model), false);
+}
 
 }  // namespace detail
 
@@ -110,6 +149,7 @@ void inverse(const Model& model, Data& data) {
   // M qacc + bias (armature included) is what every force together must supply
   rnea(model, data, data.qacc, data.qfrc_inverse);
   data.qfrc_inverse -= data.qfrc_passive + data.qfrc_constraint;
+  sensor_acceleration(model, data);
 }
 
 }  // namespace lever

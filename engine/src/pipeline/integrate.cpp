@@ -72,7 +72,7 @@ void euler(const Model& model, Data& data) {
   data.time += h;
 }
 
-void rk4(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&)) {
+void rk4(const Model& model, Data& data, void (*stage_fn)(const Model&, Data&)) {
   // Butcher tableau of the classical method
   constexpr double kA[3] = {0.5, 0.5, 1.0};  // a_{i,i-1}; the rest of the lower triangle is 0
   constexpr double kB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
@@ -91,7 +91,7 @@ void rk4(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&)
     detail::integrate_positions(model, data.qpos.data(), w.rk_dq.data(), h);
     data.qvel = w.rk_qvel0 + (h * kA[i - 1]) * w.rk_qacc[i - 1];
     data.time = t0 + kA[i - 1] * h;
-    forward_fn(model, data);
+    stage_fn(model, data);
     w.rk_qvel[i] = data.qvel;
     w.rk_qacc[i] = data.qacc;
   }
@@ -163,7 +163,8 @@ void differentiate_pos(const Model& model, Eigen::Ref<Eigen::VectorXd> qvel, dou
   }
 }
 
-void detail::step(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&)) {
+void detail::step(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&),
+                  void (*stage_fn)(const Model&, Data&)) {
   if (!check_and_reset(model, data, data.qpos, Warning::kBadQpos)) {
     check_and_reset(model, data, data.qvel, Warning::kBadQvel);
   }
@@ -172,7 +173,7 @@ void detail::step(const Model& model, Data& data, void (*forward_fn)(const Model
 
   switch (model.opt.integrator) {
     case Integrator::kEuler: euler(model, data); break;
-    case Integrator::kRK4: rk4(model, data, forward_fn); break;
+    case Integrator::kRK4: rk4(model, data, stage_fn); break;
     case Integrator::kImplicit: detail::implicit_step(model, data); break;
   }
 }
@@ -181,12 +182,12 @@ void step(const Model& model, Data& data) {
   check_entry(model, data, "lever::step");
   // the lean pipeline: a step reads neither xquat nor the geom frames of a model where nothing
   // collides (detail::step_forward)
-  detail::step(model, data, detail::step_forward);
+  detail::step(model, data, detail::step_forward, detail::step_forward_without_sensors);
 }
 
 void step_all(const Model& model, Data& data) {
   check_entry(model, data, "lever::step_all");
-  detail::step(model, data, forward);
+  detail::step(model, data, forward, detail::forward_without_sensors);
 }
 
 void step1(const Model& model, Data& data) {

@@ -38,12 +38,19 @@ namespace detail {
 /// MuJoCo 2.2.2's implicit step (implicit.cpp), after forward().
 void implicit_step(const Model& model, Data& data);
 
-/// forward() on step_kinematics(), the entry check left to the caller (forward.cpp).
+/// forward() on step_kinematics() (on kinematics() when the model has sensors), the entry check
+/// left to the caller (forward.cpp).
 void step_forward(const Model& model, Data& data);
 
-/// step() after its entry check, each forward() of the step being `forward_fn` (forward() or
-/// step_forward(); integrate.cpp).
-void step(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&));
+/// forward() and step_forward() without the sensors, for the RK4 step's later stages (MuJoCo
+/// skips them there, so that sensordata stays that of the step's start).
+void forward_without_sensors(const Model& model, Data& data);
+void step_forward_without_sensors(const Model& model, Data& data);
+
+/// step() after its entry check, the step's forward() being `forward_fn` (forward() or
+/// step_forward(); integrate.cpp) and the RK4 stages' `stage_fn` (the same without sensors).
+void step(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&),
+          void (*stage_fn)(const Model&, Data&));
 
 /// qpos advanced by velocity qvel for time h, joint by joint (MuJoCo's mj_integratePos): hinge and
 /// slide coordinates add h qvel; a ball's or free joint's quaternion turns by the rotation h w

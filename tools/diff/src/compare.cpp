@@ -67,6 +67,16 @@ Labeler jacobian(const Model& model) {
   };
 }
 
+// sensordata's number i: the sensor it belongs to, and which of its numbers
+Labeler sensor_number(const Model& model) {
+  return [&model](int i) {
+    int s = model.nsensor - 1;
+    while (s > 0 && model.sensor_adr[s] > i) --s;
+    return "sensor " + quoted(model.sensor_name, s) + " (" + sensor_type_name(model.sensor_type[s]) +
+           ")" + (model.sensor_dim[s] > 1 ? ", number " + std::to_string(i - model.sensor_adr[s]) : "");
+  };
+}
+
 Labeler limit_row(const Model& model, const Data& data) {
   return [&model, &data](int r) {
     if (data.efc_type[r] != ConstraintType::kLimitJoint) {
@@ -108,6 +118,8 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNmesh: return [](int i) { return "mesh " + std::to_string(i); };
     case Size::kNmeshvert: return [](int i) { return "mesh vertex " + std::to_string(i); };
     case Size::kNmeshgraph: return [](int i) { return "mesh graph " + std::to_string(i); };
+    case Size::kNsensor: return [&model](int i) { return "sensor " + quoted(model.sensor_name, i); };
+    case Size::kNsensordata: return sensor_number(model);
     case Size::kOne: break;
   }
   return [](int) { return std::string(); };

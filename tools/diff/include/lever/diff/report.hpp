@@ -35,7 +35,8 @@ struct Extreme {
 
 /// Whether MuJoCo's constraint solver decides a quantity: the constrained acceleration, the
 /// constraint forces and whatever follows from them (inverse dynamics at the forward
-/// acceleration, the energy and the state after a step).
+/// acceleration, the energy and the state after a step, the sensors (sensordata holds the
+/// acceleration stage's) and the forces inside the tree).
 bool decided_by_solver(const std::string& quantity);
 
 /// Issue 19's bound, in units of 1e-12, on the quantities decided_by_solver in a model with
