@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include <optional>
 #include <vector>
 
 #include <lever/data.hpp>
@@ -46,6 +47,10 @@ struct Derivatives {
   // ---- step: step_derivatives() ---------------------------------------------------------------
   Eigen::MatrixXd A;  ///< (2nv x 2nv) d [dq'; qvel'] / d [dq; qvel] (mjd_transitionFD's A)
   Eigen::MatrixXd B;  ///< (2nv x nu)  d [dq'; qvel'] / d ctrl       (mjd_transitionFD's B)
+  /// step_derivatives(): the constraint rows' active set (which contacts exist, which rows push)
+  /// is not the same at the step's end, or at an RK4 stage, as at its start: A and B are the
+  /// derivative of the start's piece, held, and differences across the step are not smooth
+  bool active_set_changes = false;
 
   // ---- workspace (contents meaningless between calls) ---------------------------------------
   struct Workspace {
@@ -62,8 +67,8 @@ struct Derivatives {
     /// (implicit, or Euler with damping): d a / d (qpos, qvel, ctrl) of the step's acceleration a
     RowMatrix right_hand_sides;
     Eigen::MatrixXd tau_q, tau_v;    ///< (nv x nv) rnea derivatives at a second qacc
-    Eigen::MatrixXd MinvJ;           ///< (nv x nefc_max) M^-1 J^T of the active rows
-    Eigen::MatrixXd AR;              ///< (nefc_max^2) Cholesky factor of (J M^-1 J^T + R)_SS
+    Eigen::MatrixXd MinvJ;           ///< (nv x 2 njnt) M^-1 J^T of the active limit rows
+    Eigen::MatrixXd AR;              ///< (2 njnt)^2 Cholesky factor of (J M^-1 J^T + R)_SS
     Eigen::VectorXd col;             ///< (max(nv, nefc_max)) scratch
     Eigen::VectorXd drhs_q, drhs_v;  ///< (nefc_max) d (aref - R f) / d q_c, d qd_c per row
     std::vector<int> rows;           ///< (nefc_max) the active rows
@@ -82,6 +87,17 @@ struct Derivatives {
     int active_rows = 0;             ///< the limit rows active at the last forward (limit_rows)
     std::vector<Force> IC_S;         ///< (nv) IC S_i, IC dof i's subtree inertia (derivatives/inverse_dynamics.cpp)
     std::vector<VelocityCoupling> CC_minus;  ///< (nbody) implicit: CC at qd - s a
+    // contacts' rows with their active set held (transition/contact_rows.cpp)
+    Eigen::MatrixXd contact_Y;    ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
+    Eigen::MatrixXd contact_E;    ///< (nv x nv) dJ^T f, one column per qpos direction
+    Eigen::MatrixXd contact_H;    ///< (nv x nv) M + J^T D J over the active rows, then its factor
+    Eigen::MatrixXd contact_rhs;  ///< (nv x max(nv, nu)) right-hand sides solved with H
+    Eigen::MatrixXd contact_df;   ///< (nefc_max x max(nv, nu)) d f of the active rows
+    std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
+    // the active set's check (step_derivatives)
+    std::vector<int> active_set;  ///< the contacts' geom pairs and the rows' states at the start
+    Eigen::VectorXd qacc_sum;     ///< (nv) RK4: sum_i b_i qacc_i
+    std::optional<Data> next;     ///< forward() at the step's end
   } work;
 
   int nv = 0, nu = 0;  ///< sizes of the model this workspace was built for (checked on use)
