@@ -20,8 +20,6 @@
 // and the frame's rows move by d frame (the geometry's answer).
 #include <lever/error.hpp>
 
-#include <Eigen/Cholesky>
-
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -126,7 +124,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   w.active_rows = n;
   Eigen::MatrixXd& Y = w.contact_Y;  // (nefc_max x nv) y's qpos columns
   Eigen::MatrixXd& E = w.contact_E;  // (nv x nv) dJ^T f
-  Y.setZero();
+  Y.topRows(n).setZero();
   E.setZero();
 
   // the limit rows: their distance is sign (q - stop) on one dof
@@ -266,14 +264,59 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     }
   }
 
-  // H = M + J_S^T D_S J_S, factored in place
+  // H = M + J_S^T D_S J_S, its lower triangle factored in place (H = L L^T); nv is small, so
+  // plain loops over the dense rows (Eigen's dynamic outer products cost more in setup)
   Eigen::MatrixXd& H = w.contact_H;
   H = data.M;
   for (int k = 0; k < n; ++k) {
     const int r = w.rows[k];
-    H.noalias() += data.efc_D[r] * data.efc_J.row(r).transpose() * data.efc_J.row(r);
+    const double* J = data.efc_J.row(r).data();
+    for (int b = 0; b < nv; ++b) {
+      if (J[b] == 0.0) continue;
+      const double weight = data.efc_D[r] * J[b];
+      for (int a = b; a < nv; ++a) H(a, b) += weight * J[a];
+    }
   }
-  Eigen::LLT<Eigen::Ref<Eigen::MatrixXd>> factor(H);
+  for (int j = 0; j < nv; ++j) {
+    for (int k = 0; k < j; ++k) H(j, j) -= H(j, k) * H(j, k);
+    H(j, j) = std::sqrt(H(j, j));
+    for (int i = j + 1; i < nv; ++i) {
+      double sum = H(i, j);
+      for (int k = 0; k < j; ++k) sum -= H(i, k) * H(j, k);
+      H(i, j) = sum / H(j, j);
+    }
+  }
+  // x = H^-1 x for each column of X (L y = x, then L^T x = y)
+  const auto solve_with_H = [&](auto& X, int cols) {
+    for (int c = 0; c < cols; ++c) {
+      double* x = X.col(c).data();
+      for (int i = 0; i < nv; ++i) {
+        for (int k = 0; k < i; ++k) x[i] -= H(i, k) * x[k];
+        x[i] /= H(i, i);
+      }
+      for (int i = nv - 1; i >= 0; --i) {
+        for (int k = i + 1; k < nv; ++k) x[i] -= H(k, i) * x[k];
+        x[i] /= H(i, i);
+      }
+    }
+  };
+  // out += J_S^T df (df: one row per active row, cols columns)
+  const auto add_rows_transposed = [&](auto& out, const auto& df, int cols) {
+    for (int k = 0; k < n; ++k) {
+      const double* J = data.efc_J.row(w.rows[k]).data();
+      for (int i = 0; i < nv; ++i) {
+        if (J[i] == 0.0) continue;
+        for (int c = 0; c < cols; ++c) out(i, c) += J[i] * df(k, c);
+      }
+    }
+  };
+  // J_r x
+  const auto row_times = [&](int r, const double* x) {
+    const double* J = data.efc_J.row(r).data();
+    double sum = 0.0;
+    for (int i = 0; i < nv; ++i) sum += J[i] * x[i];
+    return sum;
+  };
 
   // each input's columns: d qacc = G + H^-1 (E + J_S^T (Y - D J_S G)), then the rows' forces
   const auto solve = [&](Eigen::MatrixXd& dqacc, Eigen::MatrixXd& dconstraint, int cols,
@@ -286,7 +329,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       for (int c = 0; c < cols; ++c) {
         double y = Yx != nullptr ? (*Yx)(k, c) : 0.0;
         if (velocity) y -= data.efc_D[r] * data.efc_B[r] * data.efc_J(r, c);
-        df(k, c) = y - data.efc_D[r] * data.efc_J.row(r).dot(dqacc.col(c));
+        df(k, c) = y - data.efc_D[r] * row_times(r, dqacc.col(c).data());
       }
     }
     if (Ex != nullptr) {
@@ -294,20 +337,16 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     } else {
       rhs.setZero();
     }
-    for (int k = 0; k < n; ++k) rhs.noalias() += data.efc_J.row(w.rows[k]).transpose() * df.row(k);
-    factor.solveInPlace(rhs);
+    add_rows_transposed(rhs, df, cols);
+    solve_with_H(rhs, cols);
     dqacc += rhs;
     // d f = y - D J d qacc, d qfrc_constraint = dJ^T f + J^T d f
     for (int k = 0; k < n; ++k) {
       const int r = w.rows[k];
-      for (int c = 0; c < cols; ++c) {
-        df(k, c) -= data.efc_D[r] * data.efc_J.row(r).dot(rhs.col(c));
-      }
+      for (int c = 0; c < cols; ++c) df(k, c) -= data.efc_D[r] * row_times(r, rhs.col(c).data());
     }
     if (Ex != nullptr) dconstraint = *Ex;
-    for (int k = 0; k < n; ++k) {
-      dconstraint.noalias() += data.efc_J.row(w.rows[k]).transpose() * df.row(k);
-    }
+    add_rows_transposed(dconstraint, df, cols);
   };
   solve(deriv.dqacc_dq, deriv.dconstraint_dq, nv, &Y, &E, false);
   solve(deriv.dqacc_dv, deriv.dconstraint_dv, nv, nullptr, nullptr, true);
