@@ -182,12 +182,17 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     for (int k = 0; k < 3 && k < dim; ++k) phi += F[k] * con.frame.row(k).transpose();
     for (int k = 3; k < dim; ++k) tau += F[k] * con.frame.row(k - 3).transpose();
 
-    // relative point and angular velocities of qacc and qvel (the dofs of one path only)
+    // relative point and angular velocities of qacc and qvel (the dofs of one path only), and
+    // each dof's point velocity at p, read again for every column below
     Vec3 Va = Vec3::Zero(), Wa = Vec3::Zero(), Vv = Vec3::Zero(), Wv = Vec3::Zero();
+    auto& point = w.contact_point_velocity;
     for (int d = 0; d < nv; ++d) {
+      if (moves1[d] == moves2[d] && !moves1[d]) continue;
+      point[static_cast<std::size_t>(d)] = point_velocity(model, data, d, p);
       if (moves1[d] == moves2[d]) continue;
       const double s = moves2[d] ? 1.0 : -1.0;
-      const Vec3 jd = point_velocity(model, data, d, p), wd = angular(data.cdof[d]);
+      const Vec3& jd = point[static_cast<std::size_t>(d)];
+      const Vec3 wd = angular(data.cdof[d]);
       Va += s * data.qacc[d] * jd;
       Wa += s * data.qacc[d] * wd;
       Vv += s * data.qvel[d] * jd;
@@ -212,7 +217,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
                      moves2[c] ? wc : zero,
                      moves2[c] ? point_velocity(model, data, c, data.geom_xpos[con.geom2]) : zero,
                      change);
-      const Vec3 jc = point_velocity(model, data, c, p);
+      const Vec3& jc = point[static_cast<std::size_t>(c)];
 
       // dV, dW for qacc and qvel, and dJ^T f's column c
       Vec3 dVa = Wa.cross(change.pos), dWa = Vec3::Zero();
@@ -223,7 +228,8 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       for (int d = 0; d < nv; ++d) {
         if (moves1[d] == moves2[d]) continue;
         const double s = moves2[d] ? 1.0 : -1.0;
-        const Vec3 jd = point_velocity(model, data, d, p), wd = angular(data.cdof[d]);
+        const Vec3& jd = point[static_cast<std::size_t>(d)];
+        const Vec3 wd = angular(data.cdof[d]);
         const bool turned = carries(model, c, d);
         Vec3 djd = wd.cross(change.pos), dwd = Vec3::Zero();
         if (turned) {

@@ -1,6 +1,7 @@
 // Analytic derivatives of forward dynamics (the chain rule through M^-1, the passive forces, the
-// actuators and the limit rows) and of the step (Euler with implicit damping, RK4, MuJoCo 2.2.2's
-// implicit), on the inverse-dynamics derivatives of derivatives/inverse_dynamics.cpp.
+// actuators and the limit rows; contacts' rows in contact_rows.cpp) and of the step (Euler with
+// implicit damping, RK4, MuJoCo 2.2.2's implicit), on the inverse-dynamics derivatives of
+// derivatives/inverse_dynamics.cpp, with the check that the rows' active set holds over the step.
 // docs/derivatives.md derives each formula.
 //
 // Ball and free joints, in qpos's tangent space (q -> q exp(dq)): the step's position update
@@ -693,6 +694,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.active_set.reserve(static_cast<std::size_t>(3 * std::max(0, model.nconmax) + nefc_max + 2));
   work.qacc_sum.setZero(nv);
   work.next.emplace(model);
+  work.contact_point_velocity.assign(ndof, Eigen::Vector3d::Zero());
   work.moves1.assign(ndof, 0);
   work.moves2.assign(ndof, 0);
 }
