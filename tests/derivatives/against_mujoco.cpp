@@ -157,7 +157,8 @@ void mj_step_differences(diff::Twin& twin, const State& s, Eigen::MatrixXd& Av,
   restore();
 }
 
-// Every model file that cannot make contacts (the derivatives refuse contacts; ball and free
+// Every model file that cannot make contacts (contacts.cpp tests the others at chosen states: a
+// random state would cross contact boundaries inside its differences; ball and free
 // joints included), servo_affine.xml (every term of a general actuator; tests/derivatives only),
 // and a few random MJCF trees (ball joints, free roots: tests/support/random_tree_mjcf.hpp),
 // written to temporary files for MuJoCo to compile.

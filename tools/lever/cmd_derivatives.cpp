@@ -10,6 +10,8 @@
 //   dqacc_dq, dqacc_dv (nv x nv), dqacc_du (nv x nu)         forward dynamics
 //   dtau_dq, dtau_dv (nv x nv)                                rnea at qacc
 //   M          nv x nv                                        d rnea / d qacc
+//   nefc, active_set_changes: the constraint rows at the state (held), and whether their active
+//   set changes within the step (then also a warning, exit 1)
 // Exit 0; 1 when the evaluation raised an engine warning or gave a number that is not finite;
 // bad input exits 2.
 #include <cstdio>
@@ -78,6 +80,8 @@ int cmd_derivatives(const Args& command_line) {
     json.key("qpos").values(data.qpos);
     json.key("qvel").values(data.qvel);
     json.key("ctrl").values(data.ctrl);
+    json.key("nefc").value(data.nefc);
+    json.key("active_set_changes").value(deriv.active_set_changes);
     row_major(json, "A", deriv.A);
     row_major(json, "B", deriv.B);
     row_major(json, "dqacc_dq", deriv.dqacc_dq);
@@ -93,7 +97,17 @@ int cmd_derivatives(const Args& command_line) {
                 integrator_name(model.opt.integrator), model.opt.timestep);
     std::printf("state: qpos %s qvel %s ctrl %s\n", vec_text(data.qpos).c_str(),
                 vec_text(data.qvel).c_str(), vec_text(data.ctrl).c_str());
-    std::printf("limit rows: %d (their active set held fixed)\n", data.nefc);
+    int limits = 0, contact_rows = 0, pushing = 0;
+    for (int r = 0; r < data.nefc; ++r) {
+      const bool limit = data.efc_type[r] == ConstraintType::kLimitJoint;
+      limits += limit;
+      contact_rows += !limit;
+      pushing += !limit && data.efc_state[r] != ConstraintState::kSatisfied;
+    }
+    std::printf(
+        "constraint rows: %d limit, %d contact (%d pushing), their active set held fixed%s\n",
+        limits, contact_rows, pushing,
+        deriv.active_set_changes ? "; the set changes within the step (see the warning)" : "");
     // with quaternions (ball, free joints) a position is differenced in its tangent space, nv
     // numbers (mj_differentiatePos), as mjd_transitionFD does
     const bool tangent = model.nq != model.nv;

@@ -3,20 +3,23 @@
 // Carpentier and Mansard's recursions ("Analytical derivatives of rigid body dynamics algorithms",
 // RSS 2018) in lever's frame (world axes, origin at the tree's centre of mass, see kinematics.cpp),
 // then the chain rule through the passive forces, the actuators (motors and affine servos), the
-// joint-limit rows and the integrators (Euler, RK4 and MuJoCo 2.2.2's implicit).
-// docs/derivatives.md derives every formula and lists the points where the dynamics is not
-// differentiable (a limit row appearing, a row changing state, a clamp boundary).
+// constraint rows (joint limits and contacts, their active set held; a contact's geometry, its
+// Jacobian and its soft parameters differentiated) and the integrators (Euler, RK4 and MuJoCo
+// 2.2.2's implicit). docs/derivatives.md derives every formula and lists the points where the
+// dynamics is not differentiable (a row appearing, a row changing state, a clamp boundary).
 //
 // All matrices are column-per-input: dtau_dq(i, j) = d tau_i / d qpos_j, a qpos column being a
 // direction of qpos's tangent space (nv of them: a ball's turn about its body's axis j, as
 // integrate_pos applies it). MuJoCo 2.2.2 has no analytic counterpart; its mjd_transitionFD
-// (finite differences of mj_step) returns A and B in the same layout. Models that can make
-// contacts are refused, and so is a ball joint sharing its body with other joints.
+// (finite differences of mj_step) returns A and B in the same layout. Refused (lever::Error): a
+// pushing contact of a pair whose geometry is not differentiated yet (capsule-box, box-box,
+// plane-cylinder), an elliptic cone on its surface, a ball joint sharing its body with others.
 #pragma once
 
 #include <Eigen/Core>
 #include <Eigen/LU>
 
+#include <optional>
 #include <vector>
 
 #include <lever/data.hpp>
@@ -46,6 +49,10 @@ struct Derivatives {
   // ---- step: step_derivatives() ---------------------------------------------------------------
   Eigen::MatrixXd A;  ///< (2nv x 2nv) d [dq'; qvel'] / d [dq; qvel] (mjd_transitionFD's A)
   Eigen::MatrixXd B;  ///< (2nv x nu)  d [dq'; qvel'] / d ctrl       (mjd_transitionFD's B)
+  /// step_derivatives(): the constraint rows' active set (which contacts exist, which rows push)
+  /// is not the same at the step's end, or at an RK4 stage, as at its start: A and B are the
+  /// derivative of the start's piece, held, and differences across the step are not smooth
+  bool active_set_changes = false;
 
   // ---- workspace (contents meaningless between calls) ---------------------------------------
   struct Workspace {
@@ -62,8 +69,8 @@ struct Derivatives {
     /// (implicit, or Euler with damping): d a / d (qpos, qvel, ctrl) of the step's acceleration a
     RowMatrix right_hand_sides;
     Eigen::MatrixXd tau_q, tau_v;    ///< (nv x nv) rnea derivatives at a second qacc
-    Eigen::MatrixXd MinvJ;           ///< (nv x nefc_max) M^-1 J^T of the active rows
-    Eigen::MatrixXd AR;              ///< (nefc_max^2) Cholesky factor of (J M^-1 J^T + R)_SS
+    Eigen::MatrixXd MinvJ;           ///< (nv x 2 njnt) M^-1 J^T of the active limit rows
+    Eigen::MatrixXd AR;              ///< (2 njnt)^2 Cholesky factor of (J M^-1 J^T + R)_SS
     Eigen::VectorXd col;             ///< (max(nv, nefc_max)) scratch
     Eigen::VectorXd drhs_q, drhs_v;  ///< (nefc_max) d (aref - R f) / d q_c, d qd_c per row
     std::vector<int> rows;           ///< (nefc_max) the active rows
@@ -82,6 +89,18 @@ struct Derivatives {
     int active_rows = 0;             ///< the limit rows active at the last forward (limit_rows)
     std::vector<Force> IC_S;         ///< (nv) IC S_i, IC dof i's subtree inertia (derivatives/inverse_dynamics.cpp)
     std::vector<VelocityCoupling> CC_minus;  ///< (nbody) implicit: CC at qd - s a
+    // contacts' rows with their active set held (transition/contact_rows.cpp)
+    Eigen::MatrixXd contact_Y;    ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
+    Eigen::MatrixXd contact_E;    ///< (nv x nv) dJ^T f, one column per qpos direction
+    Eigen::MatrixXd contact_H;    ///< (nv x nv) M + J^T D J over the active rows, then its factor
+    Eigen::MatrixXd contact_rhs;  ///< (nv x max(nv, nu)) right-hand sides solved with H
+    Eigen::MatrixXd contact_df;   ///< (nefc_max x max(nv, nu)) d f of the active rows
+    std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
+    std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at a contact's point
+    // the active set's check (step_derivatives)
+    std::vector<int> active_set;  ///< the contacts' geom pairs and the rows' states at the start
+    Eigen::VectorXd qacc_sum;     ///< (nv) RK4: sum_i b_i qacc_i
+    std::optional<Data> next;     ///< forward() at the step's end
   } work;
 
   int nv = 0, nu = 0;  ///< sizes of the model this workspace was built for (checked on use)
@@ -97,9 +116,9 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
 /// forward() at data's state, then d qacc / d qpos, d qvel and d ctrl into deriv.dqacc_*:
 /// springs and damping, actuators with their gain and bias (d ctrl zero where ctrl is clamped,
 /// all of an actuator's terms zero where its force is clamped), qfrc_applied held fixed,
-/// and the limit rows with their active set held fixed (their impedance and reference
-/// acceleration differentiated). Also writes deriv.dtau_* (at data.qacc) and
-/// deriv.dconstraint_*.
+/// and the constraint rows (limits and contacts) with their active set held fixed (their
+/// impedance, reference acceleration and, for contacts, Jacobian and geometry differentiated).
+/// Also writes deriv.dtau_* (at data.qacc) and deriv.dconstraint_*.
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv);
 
 /// The transition Jacobians of step() at data's state, in mjd_transitionFD's layout:

@@ -41,11 +41,6 @@ namespace lever {
 namespace detail {
 
 void check_derivative_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
-  if (model.contacts_possible) {
-    throw ModelError(
-        "derivatives: the model can make contacts; lever's analytic derivatives cover joint limits "
-        "so far (set contype and conaffinity to 0 where contacts are not wanted).");
-  }
   // a ball's dofs turn about its body's final axes (MuJoCo's cdof): a joint after it in the same
   // body would turn them too, a case the derivation below leaves out (docs/derivatives.md)
   for (int j = 0; model.nq != model.nv && j < model.njnt; ++j) {

@@ -20,6 +20,9 @@ const char* warning_name(Warning w) {
     case Warning::kContactUnsupported:
       return "geoms of a pair lever cannot collide (mesh, hfield, or cylinder or ellipsoid against "
              "a non-plane) came within their bounding spheres: no contact made";
+    case Warning::kActiveSetChanges:
+      return "the constraints' active set changes within the step: its derivatives hold the "
+             "start's";
     case Warning::kCount: break;
   }
   return "unknown warning";

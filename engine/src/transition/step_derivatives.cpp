@@ -1,6 +1,7 @@
 // Analytic derivatives of forward dynamics (the chain rule through M^-1, the passive forces, the
-// actuators and the limit rows) and of the step (Euler with implicit damping, RK4, MuJoCo 2.2.2's
-// implicit), on the inverse-dynamics derivatives of derivatives/inverse_dynamics.cpp.
+// actuators and the limit rows; contacts' rows in contact_rows.cpp) and of the step (Euler with
+// implicit damping, RK4, MuJoCo 2.2.2's implicit), on the inverse-dynamics derivatives of
+// derivatives/inverse_dynamics.cpp, with the check that the rows' active set holds over the step.
 // docs/derivatives.md derives each formula.
 //
 // Ball and free joints, in qpos's tangent space (q -> q exp(dq)): the step's position update
@@ -9,6 +10,7 @@
 #include <lever/derivatives.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
+#include <lever/fields.hpp>
 #include <lever/forward.hpp>
 
 #include <algorithm>
@@ -178,6 +180,10 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
 // aref = -B vel - K imp (pos - margin) and R = (1 - imp) invweight0 / imp depend on qpos through
 // the impedance, and aref on qvel through vel; neither depends on ctrl.
 void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
+  if (detail::active_contact_rows(data)) {  // a contact pushes: every row in dof space
+    detail::constraint_rows_held(model, data, deriv);
+    return;
+  }
   auto& w = deriv.work;
   deriv.dconstraint_dq.setZero();
   deriv.dconstraint_dv.setZero();
@@ -335,6 +341,61 @@ void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& 
   limit_rows(model, data, deriv);
 }
 
+// ---- the active set's check -----------------------------------------------------------------
+// The derivatives hold the rows' active set of the step's start. Where another set holds at its
+// end (a contact made or lost, a row starting or stopping to push), or at an RK4 stage, the step
+// is not differentiable across the perturbations a user would make: reported, not smoothed.
+
+// the contacts' geom pairs, then each row's state, after forward()
+void record_active_set(const Data& data, std::vector<int>& set) {
+  set.clear();
+  for (int i = 0; i < data.ncon; ++i) {
+    const Contact& con = data.contact[static_cast<std::size_t>(i)];
+    set.push_back(con.geom1);
+    set.push_back(con.geom2);
+    set.push_back(con.efc_address >= 0 ? 1 : 0);
+  }
+  set.push_back(-1);
+  for (int r = 0; r < data.nefc; ++r) set.push_back(static_cast<int>(data.efc_state[r]));
+}
+
+bool same_active_set(const Data& data, const std::vector<int>& set) {
+  std::size_t k = 0;
+  const auto next = [&](int value) { return k < set.size() && set[k++] == value; };
+  for (int i = 0; i < data.ncon; ++i) {
+    const Contact& con = data.contact[static_cast<std::size_t>(i)];
+    if (!next(con.geom1) || !next(con.geom2) || !next(con.efc_address >= 0 ? 1 : 0)) return false;
+  }
+  if (!next(-1)) return false;
+  for (int r = 0; r < data.nefc; ++r) {
+    if (!next(static_cast<int>(data.efc_state[r]))) return false;
+  }
+  return k == set.size();
+}
+
+// forward() at the step's end x' = (qpos (+) h velocity, qvel + h acceleration), in
+// deriv.work.next, against the start's set (deriv.work.active_set); a change sets the flag and
+// data's warning.
+void check_step_end(const Model& model, Data& data, Derivatives& deriv,
+                    const Eigen::VectorXd& velocity, const Eigen::VectorXd& acceleration) {
+  auto& w = deriv.work;
+  Data& next = *w.next;
+  const double h = model.opt.timestep;
+  next.time = data.time + h;
+  next.qpos = data.qpos;
+  detail::integrate_positions(model, next.qpos.data(), velocity.data(), h);
+  next.qvel = data.qvel + h * acceleration;
+  next.ctrl = data.ctrl;
+  next.qfrc_applied = data.qfrc_applied;
+  forward(model, next);
+  if (!same_active_set(next, w.active_set)) deriv.active_set_changes = true;
+  if (deriv.active_set_changes) {
+    WarningStat& stat = data.warning[static_cast<int>(Warning::kActiveSetChanges)];
+    ++stat.number;
+    stat.lastinfo = next.nefc;
+  }
+}
+
 // x' = [qpos (+) h qvel'; qvel'] with qvel' = qvel + h qacc_step, given
 // d qacc_step / d (q, v, u): the rows of hinges and slides here, a turn's by euler_turns().
 template <class Matrix>
@@ -380,6 +441,7 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   bool damped = false;
   for (int i = 0; i < model.nv; ++i) damped = damped || model.dof_damping[i] > 0;
   if (!damped) {
+    w.qacc_step = data.qacc;
     assemble_euler(model, deriv.dqacc_dq, deriv.dqacc_dv, deriv.dqacc_du, deriv);
     if (model.nq != model.nv) euler_turns(model, data, data.qacc, deriv);
     return;
@@ -510,6 +572,7 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   w.qvel0 = data.qvel;
   const bool quaternions = model.nq != model.nv;
   w.qvel_next.setZero();  // sum_i b_i qvel_i: the velocity the final qpos is integrated with
+  w.qacc_sum.setZero();   // sum_i b_i qacc_i
 
   w.Jx.setIdentity();  // d x_0 / d x_0
   w.Ju.setZero();
@@ -530,7 +593,13 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       data.time = time0 + kA[i - 1] * h;
     }
     forward_derivatives_unchecked(model, data, deriv);
-    if (quaternions) w.qvel_next += kB[i] * data.qvel;
+    if (i == 0) {
+      record_active_set(data, w.active_set);
+    } else if (!same_active_set(data, w.active_set)) {
+      deriv.active_set_changes = true;
+    }
+    w.qvel_next += kB[i] * data.qvel;
+    w.qacc_sum += kB[i] * data.qacc;
 
     // K = F J: the qpos rows of the slope are J's qvel rows; its qvel rows the chain rule
     w.Kx.topRows(nv) = w.Jx.bottomRows(nv);
@@ -566,7 +635,7 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
 }  // namespace
 
 Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
-  const int nefc_max = 2 * model.njnt;
+  const int nefc_max = constraint_rows_max(model);  // Data's: limits, and contacts' rows
   dtau_dq.setZero(nv, nv);
   dtau_dv.setZero(nv, nv);
   dqacc_dq.setZero(nv, nv);
@@ -595,8 +664,9 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.right_hand_sides.setZero(nv, 2 * nv + nu);
   work.tau_q.setZero(nv, nv);
   work.tau_v.setZero(nv, nv);
-  work.MinvJ.setZero(nv, nefc_max);
-  work.AR.setZero(nefc_max, nefc_max);
+  const int limit_rows_max = 2 * model.njnt;  // limit_rows() sees limit rows alone
+  work.MinvJ.setZero(nv, limit_rows_max);
+  work.AR.setZero(limit_rows_max, limit_rows_max);
   work.col.setZero(std::max(nv, nefc_max));
   work.drhs_q.setZero(nefc_max);
   work.drhs_v.setZero(nefc_max);
@@ -616,6 +686,17 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.qvel_shift.setZero(nv);
   work.tau_q_minus.setZero(nv, nv);
   work.qacc_shift.setZero(nv);
+  work.contact_Y.setZero(nefc_max, nv);
+  work.contact_E.setZero(nv, nv);
+  work.contact_H.setZero(nv, nv);
+  work.contact_rhs.setZero(nv, std::max(nv, nu));
+  work.contact_df.setZero(nefc_max, std::max(nv, nu));
+  work.active_set.reserve(static_cast<std::size_t>(3 * std::max(0, model.nconmax) + nefc_max + 2));
+  work.qacc_sum.setZero(nv);
+  work.next.emplace(model);
+  work.contact_point_velocity.assign(ndof, Eigen::Vector3d::Zero());
+  work.moves1.assign(ndof, 0);
+  work.moves2.assign(ndof, 0);
 }
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
@@ -628,17 +709,25 @@ void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   // forward() normalizes the quaternions of qpos in place; the caller's state is given back as it
   // was, bit for bit (RK4 restores its start itself)
   const bool quaternions = model.nq != model.nv;
+  auto& w = deriv.work;
+  deriv.active_set_changes = false;
   switch (model.opt.integrator) {
     case Integrator::kEuler:
-      if (quaternions) deriv.work.qpos0 = data.qpos;
-      euler_derivatives(model, data, deriv);
-      if (quaternions) data.qpos = deriv.work.qpos0;
-      return;
-    case Integrator::kRK4: rk4_derivatives(model, data, deriv); return;
     case Integrator::kImplicit:
-      if (quaternions) deriv.work.qpos0 = data.qpos;
-      implicit_derivatives(model, data, deriv);
-      if (quaternions) data.qpos = deriv.work.qpos0;
+      if (quaternions) w.qpos0 = data.qpos;
+      if (model.opt.integrator == Integrator::kEuler) {
+        euler_derivatives(model, data, deriv);
+      } else {
+        implicit_derivatives(model, data, deriv);
+      }
+      record_active_set(data, w.active_set);
+      if (quaternions) data.qpos = w.qpos0;
+      w.qvel_next = data.qvel + model.opt.timestep * w.qacc_step;
+      check_step_end(model, data, deriv, w.qvel_next, w.qacc_step);
+      return;
+    case Integrator::kRK4:
+      rk4_derivatives(model, data, deriv);
+      check_step_end(model, data, deriv, w.qvel_next, w.qacc_sum);
       return;
   }
   // an integrator added to the enum later lands here until it has its own case

@@ -1,8 +1,44 @@
 // The transition room: forward dynamics and the step differentiated (step_derivatives.cpp): the
-// chain rule through M^-1, the passive forces, the actuators and the limit rows, then Euler, RK4
-// and the implicit step, in qpos's tangent space. Its public face is lever/derivatives.hpp
-// (forward_derivatives, step_derivatives); it reads the derivatives room's RNEA derivatives and
-// runs the pipeline's forward(). Nothing here is shared with another room.
+// chain rule through M^-1, the passive forces, the actuators and the constraint rows, then Euler,
+// RK4 and the implicit step, in qpos's tangent space. The rows with their active set held:
+// joint limits in step_derivatives.cpp, every row once a contact's is active in contact_rows.cpp,
+// on the contact geometry's derivative (contact_geometry.cpp, which reads the collision stage's
+// contacts). Its public face is lever/derivatives.hpp (forward_derivatives, step_derivatives); it
+// reads the derivatives room's RNEA derivatives and runs the pipeline's forward().
 #pragma once
 
+#include <Eigen/Core>
+
 #include <lever/derivatives.hpp>
+#include <lever/model.hpp>
+
+namespace lever::detail {
+
+/// How a contact's distance, position and frame (rows: normal, tangents) change per unit of a
+/// motion of its geoms.
+struct ContactChange {
+  double dist = 0;
+  Eigen::Vector3d pos{0, 0, 0};
+  Mat3 frame = Mat3::Zero();
+};
+
+/// Whether contact_change() covers a pair of geom types (in MuJoCo's order, a before b).
+bool contact_geometry_supported(GeomType a, GeomType b);
+
+/// The change of data.contact[i] when geom1 moves rigidly with angular velocity w1 and its centre
+/// with velocity v1, and geom2 with (w2, v2): the narrow phase on dual numbers, its case held
+/// (contact_geometry.cpp). Throws lever::Error for a pair it does not cover, or a contact it does
+/// not reproduce.
+void contact_change(const Model& model, const Data& data, int i, const Eigen::Vector3d& w1,
+                    const Eigen::Vector3d& v1, const Eigen::Vector3d& w2,
+                    const Eigen::Vector3d& v2, ContactChange& change);
+
+/// Whether a contact's row is active (pushing) after forward().
+bool active_contact_rows(const Data& data);
+
+/// The rows' part of d qacc and d qfrc_constraint with the active set held, every active row
+/// (limits and contacts), given deriv.dqacc_* = G, the unconstrained part (contact_rows.cpp).
+/// Throws lever::Error for an elliptic cone in its middle zone.
+void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv);
+
+}  // namespace lever::detail

@@ -1,0 +1,362 @@
+// The constraint rows differentiated with their active set S held, when a contact's row is among
+// them (limit rows alone take step_derivatives.cpp's row-space path). forward() converged to
+//   M qacc = f_smooth - bias + J_S^T f_S,   f_S = D_S (aref_S - J_S qacc)   (D = 1 / R)
+// which is the pyramid's and frictionless rows' complementarity solution, and an elliptic cone's
+// while every row of it is in its quadratic zone. Differentiating, with G = M^-1 (d f_smooth - d ID)
+// (the unconstrained part, one column per input) and H = M + J_S^T D_S J_S:
+//   d qacc = G + H^-1 (dJ^T f + J_S^T (y - D_S J_S G)),   y_r = D_r (d aref_r - dR_r f_r - dJ_r qacc)
+//   d qfrc_constraint = dJ^T f + J_S^T (y - D_S J_S d qacc)
+// The terms a contact adds to a limit row's: its Jacobian moves with qpos (dJ qacc, dJ qvel in
+// aref's velocity, dJ^T f), and its distance (aref's position term, the impedance in aref and R)
+// moves with the contact geometry (contact_geometry.cpp).
+//
+// A contact row is C_k = frame_k . (j_2(p) - j_1(p)) over the dofs of one body's path only, with
+// j_i(p) = u_i + w_i x (p - O) the velocity of the contact point p per unit rate of dof i (w_i, u_i
+// = cdof, O its tree's centre of mass), and frame_k . (w_2 - w_1) for a rotational row (spin, roll).
+// Moving dof c turns the axis of every dof i it carries (a strict ancestor, or a dof of the same
+// ball) rigidly, and moves p by dp (the geometry's answer, not a rigid motion), so
+//   d j_i(p) / d q_c = [c carries i] (w_c x j_i(p) - w_i x j_c(p)) + w_i x dp
+//   d w_i / d q_c    = [c carries i] w_c x w_i
+// and the frame's rows move by d frame (the geometry's answer).
+#include <lever/error.hpp>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <string>
+
+#include "basics/basics.hpp"
+#include "constraint/constraint_room.hpp"
+#include "derivatives/derivatives_room.hpp"
+#include "transition/transition.hpp"
+
+namespace lever::detail {
+
+namespace {
+
+using Vec3 = Eigen::Vector3d;
+
+// solimp clamped to the bounds MuJoCo's getsolparam gives it (the impedance's slope reads it)
+std::array<double, 5> bounded_solimp(std::array<double, 5> solimp) {
+  constexpr double kMinImp = 0.0001, kMaxImp = 0.9999;
+  solimp[0] = std::min(kMaxImp, std::max(kMinImp, solimp[0]));
+  solimp[1] = std::min(kMaxImp, std::max(kMinImp, solimp[1]));
+  solimp[2] = std::max(0.0, solimp[2]);
+  solimp[3] = std::min(kMaxImp, std::max(kMinImp, solimp[3]));
+  solimp[4] = std::max(1.0, solimp[4]);
+  return solimp;
+}
+
+// Whether moving dof c turns the axis of dof i: c a strict ancestor of i, or both in one ball (or
+// one free joint's rotation), whose three dofs turn one another (docs/derivatives.md).
+bool carries(const Model& model, int c, int i) {
+  const int j = model.dof_jntid[c];
+  if (j == model.dof_jntid[i]) {
+    const int r = rotation_block(model, j);
+    if (r >= 0 && c >= r && i >= r) return true;
+  }
+  for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
+    if (k == c) return true;
+  }
+  return false;
+}
+
+// moves[c] = 1 for every dof that moves body b (its dof path to the root)
+void dofs_moving(const Model& model, int body, std::vector<char>& moves) {
+  std::fill(moves.begin(), moves.end(), 0);
+  while (body > 0 && model.body_dofnum[body] == 0) body = model.body_parentid[body];
+  if (body == 0) return;
+  for (int i = model.body_dofadr[body] + model.body_dofnum[body] - 1; i >= 0;
+       i = model.dof_parentid[i]) {
+    moves[static_cast<std::size_t>(i)] = 1;
+  }
+}
+
+Vec3 angular(const Motion& S) { return S.head<3>(); }
+Vec3 linear(const Motion& S) { return S.tail<3>(); }
+
+// The velocity of point p per unit rate of dof c (dof c's tree's centre of mass is cdof's origin)
+Vec3 point_velocity(const Model& model, const Data& data, int c, const Vec3& p) {
+  const Motion& S = data.cdof[c];
+  const Vec3 origin = data.subtree_com[model.body_rootid[model.dof_bodyid[c]]];
+  return linear(S) + angular(S).cross(p - origin);
+}
+
+struct SoftSlopes {
+  double aref_per_dist;  // d aref / d dist without the velocity term, over K: -(slope (d - m) + imp)
+  double R_per_dist;     // d R / d dist over R
+};
+
+// A row's impedance's slope through its distance, and what it does to aref and R.
+SoftSlopes soft_slopes(const std::array<double, 5>& solimp, double dist, double margin,
+                       double diag) {
+  double slope = 0.0;
+  const double imp = impedance(solimp, dist, margin, &slope);
+  const bool floored = (1 - imp) * diag / imp < kMinVal;  // R = mjMINVAL: constant
+  return {-(slope * (dist - margin) + imp), floored ? 0.0 : -slope / (imp * (1 - imp))};
+}
+
+}  // namespace
+
+bool active_contact_rows(const Data& data) {
+  for (int r = 0; r < data.nefc; ++r) {
+    if (data.efc_dof[r] < 0 && data.efc_state[r] != ConstraintState::kSatisfied) return true;
+  }
+  return false;
+}
+
+void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
+  auto& w = deriv.work;
+  const int nv = model.nv, nu = model.nu;
+  deriv.dconstraint_dq.setZero();
+  deriv.dconstraint_dv.setZero();
+  deriv.dconstraint_du.setZero();
+  int n = 0;
+  for (int r = 0; r < data.nefc; ++r) {
+    if (data.efc_state[r] == ConstraintState::kCone) {
+      throw Error(
+          "derivatives: an elliptic cone's force is on the cone's surface (its middle zone); lever "
+          "differentiates elliptic cones inside their quadratic zone and pyramidal and frictionless "
+          "contacts so far.");
+    }
+    if (data.efc_state[r] == ConstraintState::kActive) w.rows[n++] = r;
+  }
+  w.active_rows = n;
+  Eigen::MatrixXd& Y = w.contact_Y;  // (nefc_max x nv) y's qpos columns
+  Eigen::MatrixXd& E = w.contact_E;  // (nv x nv) dJ^T f
+  Y.topRows(n).setZero();
+  E.setZero();
+
+  // the limit rows: their distance is sign (q - stop) on one dof
+  std::array<double, 2> solref;
+  std::array<double, 5> solimp;
+  for (int k = 0; k < n; ++k) {
+    const int r = w.rows[k];
+    if (data.efc_dof[r] < 0) continue;
+    limit_parameters(model, data.efc_id[r], solref, solimp);
+    const SoftSlopes s = soft_slopes(solimp, data.efc_pos[r], data.efc_margin[r],
+                                     model.dof_invweight0[data.efc_dof[r]]);
+    const double sign = data.efc_sign[r];
+    const double daref = data.efc_K[r] * s.aref_per_dist * sign;
+    const double dR = data.efc_R[r] * s.R_per_dist * sign;
+    Y(k, data.efc_dof[r]) = data.efc_D[r] * (daref - dR * data.efc_force[r]);
+  }
+
+  // the contacts with an active row
+  std::vector<char>& moves1 = w.moves1;
+  std::vector<char>& moves2 = w.moves2;
+  for (int i = 0; i < data.ncon; ++i) {
+    const Contact& con = data.contact[static_cast<std::size_t>(i)];
+    const int first = con.efc_address;
+    if (first < 0) continue;
+    const bool pyramid = data.efc_type[first] == ConstraintType::kContactPyramidal;
+    const int dim = con.dim;
+    const int rows = pyramid ? 2 * (dim - 1) : (dim > 1 ? dim : 1);
+    int first_k = -1;  // where the contact's active rows start in w.rows
+    for (int k = 0; k < n && first_k < 0; ++k) {
+      if (w.rows[k] >= first && w.rows[k] < first + rows) first_k = k;
+    }
+    if (first_k < 0) continue;
+    if (!contact_geometry_supported(model.geom_type[con.geom1], model.geom_type[con.geom2])) {
+      ContactChange unused;  // names the pair in its message
+      contact_change(model, data, i, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(),
+                     unused);
+    }
+    const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
+    dofs_moving(model, b1, moves1);
+    dofs_moving(model, b2, moves2);
+    const Vec3 p = con.pos;
+
+    // the frame force (normal, tangents, spin, rolls) of the rows' forces
+    double F[6] = {0, 0, 0, 0, 0, 0};
+    const double* f = data.efc_force.data() + first;
+    if (pyramid) {
+      for (int k = 1; k < dim; ++k) {
+        F[0] += f[2 * (k - 1)] + f[2 * (k - 1) + 1];
+        F[k] = con.friction[static_cast<std::size_t>(k - 1)] * (f[2 * (k - 1)] - f[2 * (k - 1) + 1]);
+      }
+    } else {
+      for (int k = 0; k < rows; ++k) F[k] = f[k];
+    }
+    Vec3 phi = Vec3::Zero(), tau = Vec3::Zero();  // the force and torque at p, world axes
+    for (int k = 0; k < 3 && k < dim; ++k) phi += F[k] * con.frame.row(k).transpose();
+    for (int k = 3; k < dim; ++k) tau += F[k] * con.frame.row(k - 3).transpose();
+
+    // relative point and angular velocities of qacc and qvel (the dofs of one path only), and
+    // each dof's point velocity at p, read again for every column below
+    Vec3 Va = Vec3::Zero(), Wa = Vec3::Zero(), Vv = Vec3::Zero(), Wv = Vec3::Zero();
+    auto& point = w.contact_point_velocity;
+    for (int d = 0; d < nv; ++d) {
+      if (moves1[d] == moves2[d] && !moves1[d]) continue;
+      point[static_cast<std::size_t>(d)] = point_velocity(model, data, d, p);
+      if (moves1[d] == moves2[d]) continue;
+      const double s = moves2[d] ? 1.0 : -1.0;
+      const Vec3& jd = point[static_cast<std::size_t>(d)];
+      const Vec3 wd = angular(data.cdof[d]);
+      Va += s * data.qacc[d] * jd;
+      Wa += s * data.qacc[d] * wd;
+      Vv += s * data.qvel[d] * jd;
+      Wv += s * data.qvel[d] * wd;
+    }
+
+    // the soft parameters' slopes through the contact's distance (every row of it shares them)
+    const int b_sum1 = model.geom_bodyid[con.geom1], b_sum2 = model.geom_bodyid[con.geom2];
+    const double translation = model.body_invweight0[b_sum1][0] + model.body_invweight0[b_sum2][0];
+    const double mu0 = con.friction[0];
+    const double diag = pyramid ? translation + mu0 * mu0 * translation : translation;
+    const SoftSlopes soft = soft_slopes(bounded_solimp(con.solimp), con.dist, con.includemargin, diag);
+
+    for (int c = 0; c < nv; ++c) {
+      if (!moves1[c] && !moves2[c]) continue;
+      // the geoms' rigid motions under dof c, and the contact's change
+      const Vec3 wc = angular(data.cdof[c]);
+      const Vec3 zero = Vec3::Zero();
+      ContactChange change;
+      contact_change(model, data, i, moves1[c] ? wc : zero,
+                     moves1[c] ? point_velocity(model, data, c, data.geom_xpos[con.geom1]) : zero,
+                     moves2[c] ? wc : zero,
+                     moves2[c] ? point_velocity(model, data, c, data.geom_xpos[con.geom2]) : zero,
+                     change);
+      const Vec3& jc = point[static_cast<std::size_t>(c)];
+
+      // dV, dW for qacc and qvel, and dJ^T f's column c
+      Vec3 dVa = Wa.cross(change.pos), dWa = Vec3::Zero();
+      Vec3 dVv = Wv.cross(change.pos), dWv = Vec3::Zero();
+      Vec3 dphi = Vec3::Zero(), dtau = Vec3::Zero();
+      for (int k = 0; k < 3 && k < dim; ++k) dphi += F[k] * change.frame.row(k).transpose();
+      for (int k = 3; k < dim; ++k) dtau += F[k] * change.frame.row(k - 3).transpose();
+      for (int d = 0; d < nv; ++d) {
+        if (moves1[d] == moves2[d]) continue;
+        const double s = moves2[d] ? 1.0 : -1.0;
+        const Vec3& jd = point[static_cast<std::size_t>(d)];
+        const Vec3 wd = angular(data.cdof[d]);
+        const bool turned = carries(model, c, d);
+        Vec3 djd = wd.cross(change.pos), dwd = Vec3::Zero();
+        if (turned) {
+          djd += wc.cross(jd) - wd.cross(jc);
+          dwd = wc.cross(wd);
+          dVa += s * data.qacc[d] * (wc.cross(jd) - wd.cross(jc));
+          dWa += s * data.qacc[d] * dwd;
+          dVv += s * data.qvel[d] * (wc.cross(jd) - wd.cross(jc));
+          dWv += s * data.qvel[d] * dwd;
+        }
+        E(d, c) += s * (dphi.dot(jd) + phi.dot(djd) + dtau.dot(wd) + tau.dot(dwd));
+      }
+      // d (C_k x) for x = qacc, qvel
+      double dCa[6], dCv[6];
+      for (int k = 0; k < dim; ++k) {
+        const int axis = k < 3 ? k : k - 3;
+        const Vec3 e = con.frame.row(axis).transpose(), de = change.frame.row(axis).transpose();
+        dCa[k] = k < 3 ? de.dot(Va) + e.dot(dVa) : de.dot(Wa) + e.dot(dWa);
+        dCv[k] = k < 3 ? de.dot(Vv) + e.dot(dVv) : de.dot(Wv) + e.dot(dWv);
+      }
+      for (int k = first_k; k < n && w.rows[k] < first + rows; ++k) {
+        const int r = w.rows[k], q = r - first;
+        double dJa, dJv;
+        if (pyramid) {
+          const int t = q / 2 + 1;
+          const double mu = con.friction[static_cast<std::size_t>(t - 1)] * (q % 2 ? -1.0 : 1.0);
+          dJa = dCa[0] + mu * dCa[t];
+          dJv = dCv[0] + mu * dCv[t];
+        } else {
+          dJa = dCa[q];
+          dJv = dCv[q];
+        }
+        const double daref =
+            -data.efc_B[r] * dJv + data.efc_K[r] * soft.aref_per_dist * change.dist;
+        const double dR = data.efc_R[r] * soft.R_per_dist * change.dist;
+        Y(k, c) = data.efc_D[r] * (daref - dR * data.efc_force[r] - dJa);
+      }
+    }
+  }
+
+  // H = M + J_S^T D_S J_S, its lower triangle factored in place (H = L L^T); nv is small, so
+  // plain loops over the dense rows (Eigen's dynamic outer products cost more in setup)
+  Eigen::MatrixXd& H = w.contact_H;
+  H = data.M;
+  for (int k = 0; k < n; ++k) {
+    const int r = w.rows[k];
+    const double* J = data.efc_J.row(r).data();
+    for (int b = 0; b < nv; ++b) {
+      if (J[b] == 0.0) continue;
+      const double weight = data.efc_D[r] * J[b];
+      for (int a = b; a < nv; ++a) H(a, b) += weight * J[a];
+    }
+  }
+  for (int j = 0; j < nv; ++j) {
+    for (int k = 0; k < j; ++k) H(j, j) -= H(j, k) * H(j, k);
+    H(j, j) = std::sqrt(H(j, j));
+    for (int i = j + 1; i < nv; ++i) {
+      double sum = H(i, j);
+      for (int k = 0; k < j; ++k) sum -= H(i, k) * H(j, k);
+      H(i, j) = sum / H(j, j);
+    }
+  }
+  // x = H^-1 x for each column of X (L y = x, then L^T x = y)
+  const auto solve_with_H = [&](auto& X, int cols) {
+    for (int c = 0; c < cols; ++c) {
+      double* x = X.col(c).data();
+      for (int i = 0; i < nv; ++i) {
+        for (int k = 0; k < i; ++k) x[i] -= H(i, k) * x[k];
+        x[i] /= H(i, i);
+      }
+      for (int i = nv - 1; i >= 0; --i) {
+        for (int k = i + 1; k < nv; ++k) x[i] -= H(k, i) * x[k];
+        x[i] /= H(i, i);
+      }
+    }
+  };
+  // out += J_S^T df (df: one row per active row, cols columns)
+  const auto add_rows_transposed = [&](auto& out, const auto& df, int cols) {
+    for (int k = 0; k < n; ++k) {
+      const double* J = data.efc_J.row(w.rows[k]).data();
+      for (int i = 0; i < nv; ++i) {
+        if (J[i] == 0.0) continue;
+        for (int c = 0; c < cols; ++c) out(i, c) += J[i] * df(k, c);
+      }
+    }
+  };
+  // J_r x
+  const auto row_times = [&](int r, const double* x) {
+    const double* J = data.efc_J.row(r).data();
+    double sum = 0.0;
+    for (int i = 0; i < nv; ++i) sum += J[i] * x[i];
+    return sum;
+  };
+
+  // each input's columns: d qacc = G + H^-1 (E + J_S^T (Y - D J_S G)), then the rows' forces
+  const auto solve = [&](Eigen::MatrixXd& dqacc, Eigen::MatrixXd& dconstraint, int cols,
+                         const Eigen::MatrixXd* Yx, const Eigen::MatrixXd* Ex, bool velocity) {
+    auto rhs = w.contact_rhs.leftCols(cols);
+    auto df = w.contact_df.topLeftCorner(n, cols);
+    // y - D J G
+    for (int k = 0; k < n; ++k) {
+      const int r = w.rows[k];
+      for (int c = 0; c < cols; ++c) {
+        double y = Yx != nullptr ? (*Yx)(k, c) : 0.0;
+        if (velocity) y -= data.efc_D[r] * data.efc_B[r] * data.efc_J(r, c);
+        df(k, c) = y - data.efc_D[r] * row_times(r, dqacc.col(c).data());
+      }
+    }
+    if (Ex != nullptr) {
+      rhs = *Ex;
+    } else {
+      rhs.setZero();
+    }
+    add_rows_transposed(rhs, df, cols);
+    solve_with_H(rhs, cols);
+    dqacc += rhs;
+    // d f = y - D J d qacc, d qfrc_constraint = dJ^T f + J^T d f
+    for (int k = 0; k < n; ++k) {
+      const int r = w.rows[k];
+      for (int c = 0; c < cols; ++c) df(k, c) -= data.efc_D[r] * row_times(r, rhs.col(c).data());
+    }
+    if (Ex != nullptr) dconstraint = *Ex;
+    add_rows_transposed(dconstraint, df, cols);
+  };
+  solve(deriv.dqacc_dq, deriv.dconstraint_dq, nv, &Y, &E, false);
+  solve(deriv.dqacc_dv, deriv.dconstraint_dv, nv, nullptr, nullptr, true);
+  if (nu > 0) solve(deriv.dqacc_du, deriv.dconstraint_du, nu, nullptr, nullptr, false);
+}
+
+}  // namespace lever::detail
