@@ -52,7 +52,7 @@ std::vector<std::string> files_where(const std::string& dir, bool scenes) {
 
 }  // namespace
 
-// the arms fixed to the world: what the peers (KDL's chains, the step Jacobians) and issue 18's
+// the arms fixed to the world: what the peers (KDL's chains, the step Jacobians) and the speed goals'
 // kernel targets are about
 std::vector<std::string> model_files(const std::string& dir) { return files_where(dir, false); }
 

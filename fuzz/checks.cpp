@@ -149,7 +149,7 @@ const std::vector<Prepared>& models(const std::string& root) {
   return loaded;
 }
 
-// Contacts (issue 19): more contacts or rows than the model's nconmax / njmax is refused with a
+// Contacts: more contacts or rows than the model's nconmax / njmax is refused with a
 // StateError that says which size to raise (MuJoCo truncates with a warning); that is the
 // documented answer to a state, not a finding. Any other StateError still is.
 bool contact_capacity_refusal(const StateError& e) {

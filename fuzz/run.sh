@@ -17,7 +17,7 @@ rm -rf "$out/seeds"
 mkdir -p "$out/seeds/fuzz_mjcf" "$out/seeds/fuzz_engine" "$out/corpus/fuzz_mjcf" \
   "$out/corpus/fuzz_engine" "$out/findings/fuzz_mjcf" "$out/findings/fuzz_engine"
 cp models/*.xml tests/models/*.xml "$out/seeds/fuzz_mjcf/"
-# the contact scenes (issue 19): pairs, exclusions, margins, every geom type that collides
+# the contact scenes: pairs, exclusions, margins, every geom type that collides
 for f in tests/diff/contact_scenes/*.xml; do cp "$f" "$out/seeds/fuzz_mjcf/contact-scene-$(basename "$f")"; done
 [ -d tests/hostile/fuzz/fuzz_mjcf ] && cp tests/hostile/fuzz/fuzz_mjcf/* "$out/seeds/fuzz_mjcf/" 2>/dev/null || true
 [ -d tests/hostile/fuzz/fuzz_engine ] && cp tests/hostile/fuzz/fuzz_engine/* "$out/seeds/fuzz_engine/" 2>/dev/null || true

@@ -15,7 +15,7 @@ std::string name_of(const mjModel* m, int type, int id) {
   return n ? n : "";
 }
 
-// ---- contact (issue 19) ----------------------------------------------------------------------
+// ---- contact ----------------------------------------------------------------------
 // The geoms' contact parameters and bounding spheres, <contact> pairs and exclusions, and the
 // contact options and sizes. MuJoCo features lever's collision stage does not model are refused
 // here, so that a comparison never runs on a model lever would read differently.

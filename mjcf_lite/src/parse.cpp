@@ -342,7 +342,7 @@ Options read_option(const Element& root) {
   o.integrator = integrator == "RK4"        ? Integrator::kRK4
                  : integrator == "implicit" ? Integrator::kImplicit
                                             : Integrator::kEuler;
-  // contact (issue 19); the solver is Newton, the only one the schema accepts
+  // contact; the solver is Newton, the only one the schema accepts
   o.cone = f.word("cone") == "elliptic" ? Cone::kElliptic : Cone::kPyramidal;
   o.impratio = f.real("impratio");
   o.iterations = f.integer("iterations");

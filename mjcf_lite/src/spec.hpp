@@ -53,7 +53,7 @@ struct GeomSpec {
   std::optional<double> mass;
   bool shellinertia = false;  ///< a mesh's inertia as a shell (MuJoCo 2.2.2's typeinertia)
   int group = 0, contype = 1, conaffinity = 1, condim = 3;
-  // contact parameters (issue 19)
+  // contact parameters
   int priority = 0;
   double solmix = 1, margin = 0, gap = 0;
   Vec3 friction{};

@@ -400,7 +400,7 @@ class MjModel:
         return f"<lever.mujoco.MjModel {self._native.name!r} nq={self.nq} nu={self.nu}>"
 
 
-# ---- contacts (issue 19): d.contact as MuJoCo's bindings show it -------------------------------
+# ---- contacts: d.contact as MuJoCo's bindings show it -------------------------------
 
 _CONTACT_MEMBERS = frozenset(_lever.contact_members()) | {"geom"}
 

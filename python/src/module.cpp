@@ -443,7 +443,7 @@ PYBIND11_MODULE(_lever, m) {
           "time", [](const PyData& d) { return d.data.time; },
           [](PyData& d, double t) { d.data.time = t; })
       .def_property_readonly("nefc", [](const PyData& d) { return d.data.nefc; })
-      // contacts (issue 19): ncon, each member of data.contact as a view over the first ncon,
+      // contacts: ncon, each member of data.contact as a view over the first ncon,
       // and efc_J's live rows (the field table has no (nefc, nv) shape)
       .def_property_readonly("ncon", [](const PyData& d) { return d.data.ncon; })
       .def(

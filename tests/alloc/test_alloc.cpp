@@ -431,7 +431,7 @@ TEST_CASE("rnea_derivatives, forward_derivatives, step_derivatives and regressor
 }
 
 #ifdef LEVER_ALLOC_HAVE_MUJOCO
-// collision() (issue 19) is not part of forward() yet: it is checked on its own, on the contact
+// collision() is not part of forward() yet: it is checked on its own, on the contact
 // scenes of tests/diff (MuJoCo's compiled model: mjcf_lite does not read contact attributes yet)
 TEST_CASE("the elliptic cones' Newton solver allocates nothing", "[alloc]") {
   for (const char* file : {"models/box_drop.xml", "models/gripper.xml"}) {

@@ -1,4 +1,4 @@
-// `lever forward` and `lever simulate` on a model with contacts (issue 19): the JSON holds ncon and
+// `lever forward` and `lever simulate` on a model with contacts: the JSON holds ncon and
 // each contact (mjContact's fields, the geoms' names, its force in its frame), equal to what the
 // library computes for the same state, and the forces obey Newton's law for the box they hold; the
 // text of `lever forward` lists them.

@@ -100,7 +100,7 @@ TEST_CASE("cli: lever identify recovers the model an excited run came from",
   for (std::size_t k = 0; k < base.size(); ++k) {
     INFO(base[k].str("name"));
     const double prior = base[k]["prior"].number, estimate = base[k]["estimate"].number;
-    // 1e-8: issue 14's recovery target for noise-free data (a least-squares fit over a
+    // 1e-8: the recovery target for noise-free data (a least-squares fit over a
     // conditioned regressor, not two evaluations of one quantity: not the 1e-12 agreement bound)
     CHECK(std::abs(estimate - prior) <= 1e-8 * std::max(1.0, std::abs(prior)));
   }
@@ -211,7 +211,7 @@ TEST_CASE("cli: lever identify --known-mass pins the scale for every gain",
     const double want = p.str("name") == "shoulder.gain" ? 1.3 : 0.8;
     if (p.str("name") != "shoulder.gain" && p.str("name") != "elbow.gain") continue;
     ++gains;
-    CHECK(std::abs(p["estimate"].number - want) <= 1e-8);  // issue 14's noise-free target
+    CHECK(std::abs(p["estimate"].number - want) <= 1e-8);  // the noise-free target
     CHECK(std::abs(p["physical"].number - want) <= 1e-8);
   }
   CHECK(gains == 2);

@@ -308,7 +308,7 @@ const Case kCases[] = {
     <body name="b"><joint name="b"/><geom size="0.2"/></body></worldbody>
   <actuator><motor joint="b"/></actuator>
 </mujoco>)"},
-  // ---- contact (issue 19) ----------------------------------------------------------------
+  // ---- contact ----------------------------------------------------------------
   {"contact-geom-parameters", R"(<mujoco>
   <default>
     <geom friction="0.7" solref="0.01" solimp="0.8 0.9" margin="0.002" priority="1"/>

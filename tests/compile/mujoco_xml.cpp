@@ -292,7 +292,7 @@ void compare_options(Differences& d, const Model& o, const mjModel& m) {
   d.real("opt_timestep", 0, o.opt.timestep, m.opt.timestep);
   for (int k = 0; k < 3; ++k) d.real("opt_gravity", k, o.opt.gravity[k], m.opt.gravity[k]);
   d.integer("opt_integrator", 0, static_cast<int>(o.opt.integrator), m.opt.integrator);
-  // contact (issue 19): lever's Cone values are mjtCone's; its solver is always Newton
+  // contact: lever's Cone values are mjtCone's; its solver is always Newton
   d.integer("opt_cone", 0, static_cast<int>(o.opt.cone), m.opt.cone);
   d.real("opt_impratio", 0, o.opt.impratio, m.opt.impratio);
   d.integer("opt_iterations", 0, o.opt.iterations, m.opt.iterations);

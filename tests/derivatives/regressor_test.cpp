@@ -259,7 +259,7 @@ TEST_CASE("regressor: arm2 with a heavier link 2 is identified from its own simu
     UNSCOPED_INFO(base.names[k] << ": prior " << before[k] << ", true " << expected[k]
                                 << ", identified " << theta[k]);
   }
-  // 1e-8: the identification target of issue 14 (a least-squares solve, not an evaluation)
+  // 1e-8: the identification target (a least-squares solve, not an evaluation)
   CHECK((theta - expected).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, largest(expected)));
   CHECK((before - expected).cwiseAbs().maxCoeff() > 0.1);  // there was something to find
 }

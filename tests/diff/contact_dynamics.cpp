@@ -1,4 +1,4 @@
-// Contact dynamics against MuJoCo 2.2.2 (issue 19): models/box_drop.xml, models/gripper.xml and
+// Contact dynamics against MuJoCo 2.2.2: models/box_drop.xml, models/gripper.xml and
 // tests/diff/contact_scenes/free_objects.xml with
 // MuJoCo's compiled model copied into lever (the engine path: the loader's contact attributes are
 // tested in tests/mjcf), at random states: the contacts, the constraint rows (efc_J, pos, margin,

@@ -1,4 +1,4 @@
-// Elliptic friction cones against MuJoCo 2.2.2 (issue 19): the contact scenes and the lesson's
+// Elliptic friction cones against MuJoCo 2.2.2: the contact scenes and the lesson's
 // models switched to <option cone="elliptic"> on both sides (MuJoCo's compiled model copied into
 // lever), MuJoCo run to convergence (tolerance 0, 1000 iterations; its answer is then the
 // problem's unique minimizer, the one lever's Newton solver converges to).

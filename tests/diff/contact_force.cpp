@@ -1,4 +1,4 @@
-// lever::contact_force against MuJoCo 2.2.2's mj_contactForce (issue 19): the same contact scenes
+// lever::contact_force against MuJoCo 2.2.2's mj_contactForce: the same contact scenes
 // at random states, MuJoCo's solver run to convergence, each contact's force in its frame; with
 // pyramidal cones (two rows per tangent) and elliptic ones (one row per component).
 #include <mujoco/mujoco.h>

@@ -107,7 +107,7 @@ struct Row {
   int line = -2;
 };
 
-// contact models (issue 19): malformed <contact> elements, contacts beyond nconmax at run time,
+// contact models: malformed <contact> elements, contacts beyond nconmax at run time,
 // and geom pairs lever has no collision function for
 const char* const kTwoSpheres =
     "<mujoco>\n<worldbody>\n<geom name=\"a\" size=\"1\"/>\n<body><joint/><geom name=\"b\" "
@@ -246,7 +246,7 @@ void make_files() {
                     "<actuator><motor joint=\"" + std::string(4000, 'k') + "\"/></actuator>\n");
   write("long-names-1000-joints.xml", long_names);
   write("unclosed-comment.xml", "<mujoco>\n<!-- never closed\n<worldbody/>\n</mujoco>\n");
-  // contact (issue 19): valid MJCF that lever refuses, each with its reason
+  // contact: valid MJCF that lever refuses, each with its reason
   write("contact-override.xml",
         "<mujoco>\n<option>\n<flag override=\"enable\"/>\n</option>\n</mujoco>\n");
   write("contact-noslip.xml", "<mujoco>\n<option noslip_iterations=\"10\"/>\n</mujoco>\n");
@@ -391,7 +391,7 @@ std::vector<Row> rows() {
        2,
        "raise <size nconmax>"},
       {"bodies nested 95 deep", {"forward", "@chain-95.xml"}, 0, ""},
-      // contacts at run time (issue 19): more than nconmax is refused before anything is
+      // contacts at run time: more than nconmax is refused before anything is
       // printed; a pair lever cannot collide is a warning (exit 1), never skipped silently
       {"a box on a plane with nconmax 2: simulate --json",
        {"simulate", "@contact-nconmax-2.xml", "--steps", "5", "--json"},

@@ -1,4 +1,4 @@
-// Identification from data MuJoCo 2.2.2 recorded (issue 20): a Panda whose real links differ from
+// Identification from data MuJoCo 2.2.2 recorded: a Panda whose real links differ from
 // models/panda7.xml (two masses and one centre of mass), excited for 10 s by its position servos,
 // logged as a student logs it (time, qpos, qvel, qacc, ctrl, actuator_force, qfrc_constraint).
 // `identify` must write a physical model (every body's pseudo-inertia positive semidefinite) that
@@ -173,7 +173,7 @@ TEST_CASE("identify: a real Panda that MuJoCo recorded, written back as a physic
   const Eigen::VectorXd expected = r.base.K * model_parameters(truth);
   INFO("residual rms " << r.residual_rms << ", physical fit's " << r.physical_residual_rms);
   CHECK(r.unexcited.empty());
-  // noise-free: the least-squares estimate is the real robot's base parameters (issue 14's 1e-8)
+  // noise-free: the least-squares estimate is the real robot's base parameters (the 1e-8 target)
   CHECK((r.estimate - expected).cwiseAbs().maxCoeff() <=
         1e-8 * std::max(1.0, expected.cwiseAbs().maxCoeff()));
   // the real robot is physical, so the estimate is a physical model's and the written model
@@ -182,7 +182,7 @@ TEST_CASE("identify: a real Panda that MuJoCo recorded, written back as a physic
   CHECK((r.physical_estimate - r.estimate).cwiseAbs().maxCoeff() <=
         1e-8 * std::max(1.0, expected.cwiseAbs().maxCoeff()));
 
-  // the case issue 20 reported: the parameters nearest the prior in a plain scaled norm with
+  // the case reported: the parameters nearest the prior in a plain scaled norm with
   // these base parameters are not a rigid body's somewhere; the physical fit is
   const Eigen::VectorXd pi0 = model_parameters(prior);
   const Eigen::VectorXd scale = pi0.cwiseAbs().cwiseMax(1e-3);
@@ -218,7 +218,7 @@ TEST_CASE("identify: a real Panda that MuJoCo recorded, written back as a physic
   }
   const Worst worst = compare_in_mujoco(truth_file, written, truth, 100);
   INFO("M " << worst.M << ", qfrc_bias " << worst.bias << ", qacc " << worst.qacc);
-  // issue 20's stated bound for noise-free data (1e-6 mixed); measured ~5e-12, printed above
+  // the stated bound for noise-free data (1e-6 mixed); measured ~5e-12, printed above
   CHECK(worst.M <= 1e-6);
   CHECK(worst.bias <= 1e-6);
   CHECK(worst.qacc <= 1e-6);

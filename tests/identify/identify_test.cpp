@@ -214,7 +214,7 @@ TEST_CASE("identify: a motor's unknown gain, from ctrl", "[identify]") {
   const identify::Result r = identify::identify(prior, data, options);
   const Eigen::VectorXd expected = r.base.K * model_parameters(truth);
   INFO("estimate " << r.estimate.transpose() << "\ntrue     " << expected.transpose());
-  // 1e-8: issue 14's target for noise-free data (the least squares' conditioning, not a term)
+  // 1e-8: the target for noise-free data (the least squares' conditioning, not a term)
   CHECK((r.estimate - expected).cwiseAbs().maxCoeff() <=
         1e-8 * std::max(1.0, expected.cwiseAbs().maxCoeff()));
   const int gain = regressor_columns(prior) - 1;  // elbow.gain
@@ -266,7 +266,7 @@ TEST_CASE("identify: a known mass pins the scale, and every gain is estimated", 
   const identify::Result r = identify::identify(prior, data, options);
   const Eigen::VectorXd expected = r.base.K * model_parameters(truth);
   INFO("estimate " << r.estimate.transpose() << "\ntrue     " << expected.transpose());
-  // issue 14's noise-free target
+  // the noise-free target
   CHECK((r.estimate - expected).cwiseAbs().maxCoeff() <=
         1e-8 * std::max(1.0, expected.cwiseAbs().maxCoeff()));
   const int first_gain = regressor_columns(prior) - 2;
@@ -306,7 +306,7 @@ TEST_CASE("identify: a position servo's kp, rows where its force clamps dropped"
   const identify::Result r = identify::identify(prior, data, options);
   const int gain = regressor_columns(prior) - prior.nu + servo;
   INFO("kp " << r.parameters[gain] << " vs " << kp << ", dropped " << r.dropped);
-  CHECK(std::abs(r.parameters[gain] - kp) <= 1e-8 * kp);  // issue 14's noise-free target
+  CHECK(std::abs(r.parameters[gain] - kp) <= 1e-8 * kp);  // the noise-free target
   CHECK(r.dropped > 0);
   CHECK(r.residual_rms < 1e-9);
   const Model identified = identify::identified_model(prior, r);

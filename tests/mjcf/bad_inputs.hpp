@@ -133,7 +133,7 @@ inline const BadInput kBadInputs[] = {
 </mujoco>)", 2, "geom", "type", "lever has no height fields: model the ground with a plane",
    MuJoCo::kAccepts, "valid MJCF outside lever's subset"},
 
-  // ---- contact (issue 19) --------------------------------------------------------------------
+  // ---- contact --------------------------------------------------------------------
   {"contact-geom-condim-2", R"(<mujoco>
   <worldbody>
     <geom size="0.1" condim="2"/>

@@ -330,7 +330,7 @@ TEST_CASE("arm2 loads from its file with what the lesson says it contains", "[mj
   CHECK(near(rotation(m.geom_quat[0]) * ez, -ez));
 }
 
-// ---- contact (issue 19) -------------------------------------------------------------------------
+// ---- contact -------------------------------------------------------------------------
 
 TEST_CASE("the load warns of exactly the colliding pairs lever cannot compute", "[mjcf][contact]") {
   // every pair of geom types MuJoCo 2.2.2 collides is lever's (height fields are refused): what

@@ -1,5 +1,5 @@
 // The lean step against the whole one: step() runs forward() without the outputs nothing in a step
-// reads (xquat, and the geom frames of a model where nothing collides; issue 18); step_all() runs
+// reads (xquat, and the geom frames of a model where nothing collides); step_all() runs
 // forward() itself, as MuJoCo's mj_step does, and must write those.
 // Stepped from the same state, it must leave every other array of Data, the contacts, the
 // warnings and the new state bit for bit as forward() followed by the integrator does, with every

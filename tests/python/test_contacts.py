@@ -1,4 +1,4 @@
-"""Contacts from Python (issue 19): d.ncon, d.contact (MuJoCo's MjContact fields), the efc arrays
+"""Contacts from Python: d.ncon, d.contact (MuJoCo's MjContact fields), the efc arrays
 sized nefc and mj_contactForce, on the contact models at states taken from a run.
 
 The reference is MuJoCo 2.2.2's own Python package when it is the one installed (its solver run to

@@ -58,7 +58,7 @@ def test_identify_a_csv_as_the_command_does(lever_cli, tmp_path):
     assert result["residual_rms"] == command["residual_rms"]
     assert result["not_physical"] is None
     # the written model and the returned one are the truth on held-out states (noise-free:
-    # issue 14's 1e-8)
+    # the 1e-8 target)
     assert result["written"] == str(written)
     truth = lever.load(str(truth_file))
     assert worst_inverse_difference(truth, lever.load(str(written))) < 1e-8

@@ -579,7 +579,7 @@ TEST_CASE("between step1 and step2 a controller sees the forces and its control 
   CHECK(data.qacc.norm() < 1e-9);
 }
 
-// ---- size_model (issue 20)
+// ---- size_model
 // -----------------------------------------------------------------------
 
 namespace {

@@ -292,7 +292,7 @@ void print_text(const ModelResult& m) {
                   kTrajectorySeconds);
       print_free_run(p.free);
     }
-    // with contacts, what MuJoCo's iterative solver decides is held to 1e-10 (issue 19)
+    // with contacts, what MuJoCo's iterative solver decides is held to 1e-10
     const bool contacts = p.random.find("qacc") != nullptr && p.random.find("qacc")->bound > 1.0;
     const char* bound = contacts ? "1e-12 (1e-10 for what the constraint solver decides)" : "1e-12";
     std::printf("  %s: %s %s of MuJoCo 2.2.2%s\n", p.pass() ? "PASS" : "FAIL",

@@ -41,7 +41,7 @@ void json_row(const Model& model, const Data& d) {
   json.begin_object();
   json.key("time").value(d.time);
   write_data_arrays(json, model, d, arrays);
-  write_contacts(json, model, d);  // ncon and each contact with its force (issue 19)
+  write_contacts(json, model, d);  // ncon and each contact with its force
   json.end_object();
   json.newline();
 }

@@ -39,7 +39,7 @@ struct Extreme {
 /// acceleration stage's) and the forces inside the tree).
 bool decided_by_solver(const std::string& quantity);
 
-/// Issue 19's bound, in units of 1e-12, on the quantities decided_by_solver in a model with
+/// The bound, in units of 1e-12, on the quantities decided_by_solver in a model with
 /// contacts: MuJoCo's Newton iterations, even run to convergence (tolerance 0, 1000 iterations),
 /// stop ~1e-13 to 1e-12 from the unique answer lever's exact solve finds, so they are held to
 /// 1e-10 relative and reported against 1e-12. Without contacts MuJoCo converges exactly.
