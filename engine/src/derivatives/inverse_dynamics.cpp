@@ -46,6 +46,18 @@ void check_derivative_sizes(const Model& model, const Data& data, const Derivati
         "derivatives: the model can make contacts; lever's analytic derivatives cover joint limits "
         "so far (set contype and conaffinity to 0 where contacts are not wanted).");
   }
+  if (model.neq > 0) {
+    throw ModelError(
+        "derivatives: the model has equality constraints; lever's analytic derivatives cover joint "
+        "limits so far.");
+  }
+  for (int i = 0; i < model.nv; ++i) {
+    if (model.dof_frictionloss[i] > 0) {
+      throw ModelError("derivatives: joint '" + model.jnt_name[model.dof_jntid[i]] +
+                       "' has friction loss; lever's analytic derivatives cover joint limits so "
+                       "far.");
+    }
+  }
   // a ball's dofs turn about its body's final axes (MuJoCo's cdof): a joint after it in the same
   // body would turn them too, a case the derivation below leaves out (docs/derivatives.md)
   for (int j = 0; model.nq != model.nv && j < model.njnt; ++j) {

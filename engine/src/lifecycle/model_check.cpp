@@ -55,6 +55,7 @@ Owner owner_of_row(const Model& model, Size size, int row) {
     case Size::kNgeom: return {"geom", row, model.geom_name[row]};
     case Size::kNsite: return {"site", row, model.site_name[row]};
     case Size::kNpair: return {"pair", row, ""};
+    case Size::kNeq: return {"equality", row, model.eq_name[row]};
     default: return {};
   }
 }
@@ -108,6 +109,7 @@ constexpr NonNegative kNonNegative[] = {
     {"dof_armature", "a negative armature would make the model gain energy from nothing"},
     {"dof_damping", "a negative damping would make the model gain energy from nothing"},
     {"jnt_stiffness", "a negative stiffness would make the model gain energy from nothing"},
+    {"dof_frictionloss", "friction loss is the bound on a force's size"},
 };
 
 // A range used when its flag is set must have lo < hi.
@@ -205,6 +207,7 @@ void check_sizes(const Model& model) {
         std::to_string(model.nkey) + ").");
   }
   // contact: the counts the contact arrays of the field table are sized by
+  if (model.neq < 0) throw ModelError("neq must be non-negative; got " + std::to_string(model.neq) + ".");
   if (model.npair < 0 || model.nexclude < 0 || model.nconmax < 0 || model.njmax < 0) {
     throw ModelError("npair, nexclude, nconmax and njmax must be non-negative; got " +
                      std::to_string(model.npair) + ", " + std::to_string(model.nexclude) + ", " +
@@ -328,6 +331,37 @@ void check_tree(const Model& model) {
   }
 }
 
+// Each equality constraint names objects of its kind: two different bodies (connect, weld; body
+// 2 may be the world), or a hinge or slide and, optionally (-1: none), a second one (joint).
+void check_equalities(const Model& model) {
+  for (int e = 0; e < model.neq; ++e) {
+    const int type = static_cast<int>(model.eq_type[e]);
+    const int id1 = model.eq_obj1id[e], id2 = model.eq_obj2id[e];
+    if (type < 0 || type > static_cast<int>(EqualityType::kJoint)) {
+      reject("equality", e, model.eq_name[e],
+             "has a type lever does not have (connect 0, weld 1, joint 2; tendon couplings need "
+             "tendons)");
+    }
+    if (id1 == id2) reject("equality", e, model.eq_name[e], "names the same object twice");
+    if (model.eq_type[e] != EqualityType::kJoint) {
+      if (id1 < 0 || id1 >= model.nbody || id2 < 0 || id2 >= model.nbody) {
+        reject("equality", e, model.eq_name[e], "names a body that does not exist");
+      }
+      continue;
+    }
+    for (const int j : {id1, id2}) {
+      if (j == id2 && j == -1) continue;  // one joint: held at its qpos0 plus polycoef[0]
+      if (j < 0 || j >= model.njnt) {
+        reject("equality", e, model.eq_name[e], "names a joint that does not exist");
+      }
+      if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
+        reject("equality", e, model.eq_name[e],
+               "couples joint '" + model.jnt_name[j] + "', which is not a hinge or a slide");
+      }
+    }
+  }
+}
+
 // The option block, the actuators' kinds and the keyframes (none of them in the field table).
 void check_options_actuators_keys(const Model& model) {
   if (!(model.opt.timestep > 0) || !std::isfinite(model.opt.timestep)) {
@@ -366,6 +400,7 @@ void validate(const Model& model) {
   check_sizes(model);
   check_tree(model);
   check_options_actuators_keys(model);
+  check_equalities(model);
   check_finite(model);
   check_ranges(model);
 }

@@ -16,7 +16,8 @@ namespace {
 namespace token {
 constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nbody = Size::kNbody, njnt = Size::kNjnt, ngeom = Size::kNgeom, nsite = Size::kNsite,
-               nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude;
+               nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude,
+               neq = Size::kNeq;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy;
@@ -158,7 +159,16 @@ const std::vector<FieldInfo>& data_field_table() {
 }
 
 int constraint_rows_max(const Model& model) {
-  return 2 * model.njnt + (model.contacts_possible ? std::max(0, model.njmax) : 0);
+  // an equality constraint's rows whether or not it is active (eq_active may be edited); the
+  // arrays' own lengths, so that a model not sized yet is counted without reading past them
+  int rows = 0;
+  for (size_t e = 0; e < model.eq_type.size(); ++e) {
+    rows += model.eq_type[e] == EqualityType::kConnect ? 3
+            : model.eq_type[e] == EqualityType::kWeld  ? 6
+                                                       : 1;
+  }
+  for (const double loss : model.dof_frictionloss) rows += loss > 0;
+  return rows + 2 * model.njnt + (model.contacts_possible ? std::max(0, model.njmax) : 0);
 }
 
 int size_of(const Model& model, Size size) {
@@ -174,6 +184,7 @@ int size_of(const Model& model, Size size) {
     case Size::kNefc: return constraint_rows_max(model);
     case Size::kNpair: return model.npair;
     case Size::kNexclude: return model.nexclude;
+    case Size::kNeq: return model.neq;
   }
   return 0;
 }
@@ -183,8 +194,8 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 11> names = {
-      "1", "nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "nefc", "npair", "nexclude"};
+  static constexpr std::array<const char*, 12> names = {
+      "1", "nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "nefc", "npair", "nexclude", "neq"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -311,7 +322,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 10> counts = {{{"nq", model.nq},
+  const std::array<std::pair<const char*, int>, 11> counts = {{{"nq", model.nq},
                                                                {"nv", model.nv},
                                                                {"nu", model.nu},
                                                                {"nbody", model.nbody},
@@ -320,7 +331,8 @@ void size_model(Model& model) {
                                                                {"nsite", model.nsite},
                                                                {"nkey", model.nkey},
                                                                {"npair", model.npair},
-                                                               {"nexclude", model.nexclude}}};
+                                                               {"nexclude", model.nexclude},
+                                                               {"neq", model.neq}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +

@@ -18,5 +18,6 @@ int Model::site(const std::string& n) const { return find_name(site_name, n); }
 int Model::actuator(const std::string& n) const { return find_name(actuator_name, n); }
 int Model::key(const std::string& n) const { return find_name(key_name, n); }
 int Model::geom(const std::string& n) const { return find_name(geom_name, n); }
+int Model::equality(const std::string& n) const { return find_name(eq_name, n); }
 
 }  // namespace lever
