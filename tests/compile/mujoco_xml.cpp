@@ -241,6 +241,7 @@ void compare_names(Differences& d, const Model& o, const mjModel& m) {
   d.names("geom_name", o.geom_name, m, mjOBJ_GEOM);
   d.names("site_name", o.site_name, m, mjOBJ_SITE);
   d.names("actuator_name", o.actuator_name, m, mjOBJ_ACTUATOR);
+  d.names("eq_name", o.eq_name, m, mjOBJ_EQUALITY);
 }
 
 void compare_options(Differences& d, const Model& o, const mjModel& m) {
@@ -274,6 +275,7 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m) {
   sizes = d.count("nsite", o.nsite, m.nsite) && sizes;
   sizes = d.count("npair", o.npair, m.npair) && sizes;
   sizes = d.count("nexclude", o.nexclude, m.nexclude) && sizes;
+  sizes = d.count("neq", o.neq, m.neq) && sizes;
   if (sizes) {
     compare_table(d, o, m);
     compare_actuator_types(d, o, m);

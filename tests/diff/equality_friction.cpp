@@ -100,12 +100,12 @@ void random_states_agree(const char* name, diff::Path path) {
 }  // namespace
 
 TEST_CASE("diff: friction loss rows agree with MuJoCo on random states", "[diff][constraints]") {
-  for (const diff::Path path : {diff::Path::kEngine}) random_states_agree("friction_loss.xml", path);
+  for (const diff::Path path : paths_to_compare()) random_states_agree("friction_loss.xml", path);
 }
 
 TEST_CASE("diff: equality constraint rows agree with MuJoCo on random states",
           "[diff][constraints]") {
-  for (const diff::Path path : {diff::Path::kEngine}) random_states_agree("equality.xml", path);
+  for (const diff::Path path : paths_to_compare()) random_states_agree("equality.xml", path);
 }
 
 TEST_CASE("diff: the rows come in MuJoCo's order, every state of a friction-loss row reached",
@@ -131,7 +131,7 @@ TEST_CASE("diff: equality constraints and friction loss in lockstep and free run
   REQUIRE(mj_version() == 222);
   for (const char* name : {"friction_loss.xml", "equality.xml"}) {
     const std::string file = constraint_model(name);
-    for (const diff::Path path : {diff::Path::kEngine}) {
+    for (const diff::Path path : paths_to_compare()) {
       for (const Integrator integrator :
            {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
         INFO(context(file, path, 0) << ", " << integrator_name(integrator));
