@@ -78,6 +78,7 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kNbody: return name_or_index(model.body_name, i);
     case Size::kNsite: return name_or_index(model.site_name, i);
     case Size::kNgeom: return name_or_index(model.geom_name, i);
+    case Size::kNeq: return name_or_index(model.eq_name, i);
     case Size::kOne:
     case Size::kNefc:
     case Size::kNpair:  // pairs and exclusions have no names in lever: their index

@@ -351,6 +351,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nsite", [](const lever::Model& x) { return x.nsite; })
       .def_property_readonly("npair", [](const lever::Model& x) { return x.npair; })
       .def_property_readonly("nexclude", [](const lever::Model& x) { return x.nexclude; })
+      .def_property_readonly("neq", [](const lever::Model& x) { return x.neq; })
       .def_property_readonly("nconmax", [](const lever::Model& x) { return x.nconmax; })
       .def_property_readonly("njmax", [](const lever::Model& x) { return x.njmax; })
       .def_property(
@@ -377,6 +378,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("geom_name", [](const lever::Model& x) { return x.geom_name; })
       .def_property_readonly("site_name", [](const lever::Model& x) { return x.site_name; })
       .def_property_readonly("actuator_name", [](const lever::Model& x) { return x.actuator_name; })
+      .def_property_readonly("eq_name", [](const lever::Model& x) { return x.eq_name; })
       // keyframes (not in the field table: their rows are keyframes): writable row-major views
       .def_property_readonly("nkey", [](const lever::Model& x) { return x.nkey; })
       .def_property_readonly("key_name", [](const lever::Model& x) { return x.key_name; })
@@ -458,6 +460,8 @@ PYBIND11_MODULE(_lever, m) {
           "time", [](const PyData& d) { return d.data.time; },
           [](PyData& d, double t) { d.data.time = t; })
       .def_property_readonly("nefc", [](const PyData& d) { return d.data.nefc; })
+      .def_property_readonly("ne", [](const PyData& d) { return d.data.ne; })
+      .def_property_readonly("nf", [](const PyData& d) { return d.data.nf; })
       // contacts (issue 19): ncon, each member of data.contact as a view over the first ncon,
       // and efc_J's live rows (the field table has no (nefc, nv) shape)
       .def_property_readonly("ncon", [](const PyData& d) { return d.data.ncon; })

@@ -663,6 +663,7 @@ TEST_CASE("size_model gives every array the length the field table promises", "[
   model.nu = 2;
   model.npair = 1;
   model.nexclude = 3;
+  model.neq = 2;
   model.nkey = 2;
   lever::size_model(model);
 

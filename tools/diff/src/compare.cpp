@@ -112,6 +112,7 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNefc: return limit_row(model, data);
     case Size::kNpair: return [](int i) { return "pair " + std::to_string(i); };
     case Size::kNexclude: return [](int i) { return "exclude " + std::to_string(i); };
+    case Size::kNeq: return [&model](int i) { return "equality " + quoted(model.eq_name, i); };
     case Size::kOne: break;
   }
   return [](int) { return std::string(); };
