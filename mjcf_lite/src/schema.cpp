@@ -206,7 +206,12 @@ void add_equality_rules(std::vector<ElementRule>& s) {
                  text("class", "", "default class (else the main class)")},
                 join(std::move(a), equality_class_attributes()));
   };
-  s.push_back({"equality", "mujoco", '*', {}, "", "tendon distance",
+  s.push_back({"equality",
+               "mujoco",
+               '*',
+               {},
+               "",
+               "tendon distance",
                "equality constraints: rows of the constraint solver, first in MuJoCo's order"});
   s.push_back({"connect", "equality", '*',
                own({required(text("body1", "", "first body")),

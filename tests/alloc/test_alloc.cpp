@@ -451,8 +451,8 @@ TEST_CASE("the elliptic cones' Newton solver allocates nothing", "[alloc]") {
 }
 
 TEST_CASE("equality constraints and friction loss allocate nothing", "[alloc]") {
-  for (const char* file : {"tests/models/constraints/equality.xml",
-                           "tests/models/constraints/friction_loss.xml"}) {
+  for (const char* file :
+       {"tests/models/constraints/equality.xml", "tests/models/constraints/friction_loss.xml"}) {
     INFO(file);
     std::string how;
     const lever::Model base = load(lever::test::model_path(file), how);

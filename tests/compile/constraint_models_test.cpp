@@ -7,8 +7,8 @@
 
 #include <filesystem>
 
-#include "mujoco_xml.hpp"
 #include <lever/harness/models.hpp>
+#include "mujoco_xml.hpp"
 
 namespace {
 
@@ -38,11 +38,12 @@ std::string constraint_refusal(const std::string& xml) {
 
 TEST_CASE("the constraint models compile to MuJoCo 2.2.2's parameters", "[compile][constraints]") {
   for (const char* name : {"friction_loss.xml", "equality.xml"}) {
-    const std::string path = lever::test::model_path(std::string("tests/models/constraints/") + name);
+    const std::string path =
+        lever::test::model_path(std::string("tests/models/constraints/") + name);
     compare_with_mujoco(name, lever::test::read_text(path));
   }
-  const lever::Model friction = lever::mjcf::load_file(
-      lever::test::model_path("tests/models/constraints/friction_loss.xml"));
+  const lever::Model friction =
+      lever::mjcf::load_file(lever::test::model_path("tests/models/constraints/friction_loss.xml"));
   CHECK(friction.dof_frictionloss[1] == 0.4);  // from class "rough"
   CHECK(friction.dof_frictionloss[3] == 0.0);  // the class's value overridden by 0
   const lever::Model eq =
@@ -90,12 +91,14 @@ TEST_CASE("constraints lever cannot build are refused by name", "[compile][const
     <body name="b"><joint name="ball" type="ball"/><geom size="1"/></body></body></worldbody>)";
   CHECK_THAT(constraint_refusal(head + R"(<equality><tendon tendon1="t"/></equality></mujoco>)"),
              Catch::Contains("tendon"));
-  CHECK_THAT(constraint_refusal(head + R"(<equality><connect body1="x" anchor="0 0 0"/></equality></mujoco>)"),
+  CHECK_THAT(constraint_refusal(
+                 head + R"(<equality><connect body1="x" anchor="0 0 0"/></equality></mujoco>)"),
              Catch::Contains("unknown body 'x'"));
   CHECK_THAT(constraint_refusal(head + R"(<equality><joint joint1="ball"/></equality></mujoco>)"),
              Catch::Contains("joint 'ball' is a ball or free joint"));
-  CHECK_THAT(constraint_refusal(head + R"(<equality><weld body1="a" body2="a"/></equality></mujoco>)"),
-             Catch::Contains("constrained to itself"));
+  CHECK_THAT(
+      constraint_refusal(head + R"(<equality><weld body1="a" body2="a"/></equality></mujoco>)"),
+      Catch::Contains("constrained to itself"));
   CHECK_THAT(constraint_refusal(head + R"(<equality><connect body1="a"/></equality></mujoco>)"),
              Catch::Contains("anchor"));
 }

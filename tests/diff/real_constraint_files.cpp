@@ -38,9 +38,9 @@ TEST_CASE("diff: real files with friction loss agree with MuJoCo", "[diff][const
     WARN("no real model files at " << folder << ": skipped");
     return;
   }
-  for (const char* name : {"menagerie-2022/anybotics_anymal_b/anymal_b.xml",
-                           "menagerie-2022/anybotics_anymal_c/anymal_c.xml",
-                           "menagerie-2022/unitree_a1/a1.xml"}) {
+  for (const char* name :
+       {"menagerie-2022/anybotics_anymal_b/anymal_b.xml",
+        "menagerie-2022/anybotics_anymal_c/anymal_c.xml", "menagerie-2022/unitree_a1/a1.xml"}) {
     const std::string file = folder + "/" + name;
     for (const diff::Path path : paths_to_compare()) {
       const std::uint64_t seed = diff::default_seed(file);

@@ -144,20 +144,20 @@ struct Data {
   std::vector<ConstraintType> efc_type;  ///< (nefc)
   /// (nefc) equality constraint, dof (friction loss), joint (limit) or contact index (contact)
   std::vector<int> efc_id;
-  RowMatrix efc_J;                       ///< (nefc x nv) constraint Jacobian, rows dense
+  RowMatrix efc_J;  ///< (nefc x nv) constraint Jacobian, rows dense
   /// (nefc) the dof of a row whose efc_J is sign e_dof (a friction-loss or limit row), else -1
   std::vector<int> efc_dof;
   /// (nefc) +1 lower stop, -1 upper: a limit's efc_J = sign e_dof; +1 a friction-loss row
   std::vector<double> efc_sign;
   Eigen::VectorXd efc_frictionloss;  ///< (nefc) a friction-loss row's bound on |force|, else 0
-  Eigen::VectorXd efc_pos;         ///< (nefc) signed distance to the stop (< 0 past it)
-  Eigen::VectorXd efc_margin;      ///< (nefc)
-  Eigen::VectorXd efc_diagApprox;  ///< (nefc) R * imp / (1 - imp), MuJoCo's final value
-  Eigen::VectorXd efc_R;           ///< (nefc) regularizer
-  Eigen::VectorXd efc_D;           ///< (nefc) 1 / R
-  Eigen::VectorXd efc_imp;         ///< (nefc) impedance from solimp
-  Eigen::VectorXd efc_K;           ///< (nefc) stiffness of the reference dynamics
-  Eigen::VectorXd efc_B;           ///< (nefc) damping of the reference dynamics
+  Eigen::VectorXd efc_pos;           ///< (nefc) signed distance to the stop (< 0 past it)
+  Eigen::VectorXd efc_margin;        ///< (nefc)
+  Eigen::VectorXd efc_diagApprox;    ///< (nefc) R * imp / (1 - imp), MuJoCo's final value
+  Eigen::VectorXd efc_R;             ///< (nefc) regularizer
+  Eigen::VectorXd efc_D;             ///< (nefc) 1 / R
+  Eigen::VectorXd efc_imp;           ///< (nefc) impedance from solimp
+  Eigen::VectorXd efc_K;             ///< (nefc) stiffness of the reference dynamics
+  Eigen::VectorXd efc_B;             ///< (nefc) damping of the reference dynamics
 
   // ---- velocity stage ------------------------------------------------------------------------
   std::vector<Motion> cvel;           ///< (nbody) spatial velocity of each body
@@ -216,9 +216,9 @@ struct Data {
     // which are not on both (zero elsewhere in the span; outside it, not written). Every row of
     // the contact is a combination of them (a pyramid edge is n +- mu_k t_k), so the solvers
     // work on these few rows over this span.
-    RowMatrix contact_frame_J;           ///< (nefc_max x nv)
-    std::vector<int> contact_span;       ///< (2 nconmax)
-    std::vector<int> dof_chain;          ///< (2 nv) scratch: two bodies' dofs to the root
+    RowMatrix contact_frame_J;      ///< (nefc_max x nv)
+    std::vector<int> contact_span;  ///< (2 nconmax)
+    std::vector<int> dof_chain;     ///< (2 nv) scratch: two bodies' dofs to the root
     /// (12 x nv) an equality constraint's Jacobians: body 1's translational and rotational,
     /// then body 2's
     Eigen::MatrixXd equality_jac;

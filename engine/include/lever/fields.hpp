@@ -7,9 +7,10 @@
 //
 // Every listed array is contiguous and row-major: it is an (rows, cols) array of doubles, ints or
 // bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, nbody, njnt, ngeom,
-// nsite, npair, nexclude, neq, nefc: the live constraint rows of a Data; `one` for a single row); `cols` is a
-// number. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of the same name,
-// shape and meaning (`mujoco`) or not (`own`: lever's own, or laid out differently from MuJoCo's).
+// nsite, npair, nexclude, neq, nefc: the live constraint rows of a Data; `one` for a single row);
+// `cols` is a number. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of
+// the same name, shape and meaning (`mujoco`) or not (`own`: lever's own, or laid out differently
+// from MuJoCo's).
 //
 // Adding an array to Model or Data: declare the member, then add its row here. The static_asserts
 // in fields.cpp check that its element type and layout match the row.
@@ -129,13 +130,13 @@
   X(exclude_signature, int, nexclude, 1, mujoco)
 
 // equality constraints
-#define LEVER_MODEL_EQUALITY_FIELDS(X)   \
-  X(eq_type, int, neq, 1, mujoco)        \
-  X(eq_obj1id, int, neq, 1, mujoco)      \
-  X(eq_obj2id, int, neq, 1, mujoco)      \
-  X(eq_active, uint8_t, neq, 1, mujoco)  \
-  X(eq_solref, double, neq, 2, mujoco)   \
-  X(eq_solimp, double, neq, 5, mujoco)   \
+#define LEVER_MODEL_EQUALITY_FIELDS(X)  \
+  X(eq_type, int, neq, 1, mujoco)       \
+  X(eq_obj1id, int, neq, 1, mujoco)     \
+  X(eq_obj2id, int, neq, 1, mujoco)     \
+  X(eq_active, uint8_t, neq, 1, mujoco) \
+  X(eq_solref, double, neq, 2, mujoco)  \
+  X(eq_solimp, double, neq, 5, mujoco)  \
   X(eq_data, double, neq, 11, mujoco)
 
 // The names of Model's objects, one string each ("" if unnamed), outside the table above because
@@ -228,7 +229,7 @@ enum class Size : int {
   kNsite,
   kNefc,
   // contact
-  kNpair,    ///< explicit contact pairs (<contact><pair>)
+  kNpair,     ///< explicit contact pairs (<contact><pair>)
   kNexclude,  ///< excluded body pairs (<contact><exclude>)
   kNeq        ///< equality constraints (<equality>)
 };

@@ -258,8 +258,8 @@ struct Model {
   std::vector<double> dof_frictionloss;
   std::vector<std::array<double, 2>> dof_solref;  ///< friction loss solref (joint solreffriction)
   std::vector<std::array<double, 5>> dof_solimp;  ///< friction loss solimp (joint solimpfriction)
-  std::vector<double> dof_invweight0;  ///< set_const: diag of M^-1 at qpos0
-  std::vector<double> dof_M0;          ///< set_const: diag of M at qpos0
+  std::vector<double> dof_invweight0;             ///< set_const: diag of M^-1 at qpos0
+  std::vector<double> dof_M0;                     ///< set_const: diag of M at qpos0
   /// set_const: for a dof of a simple body (see body_simple), how many simple dofs run from it
   /// without a break, this one included (across consecutive simple bodies, as MuJoCo counts);
   /// 0 for a dof of another body (MuJoCo's dof_simplenum)

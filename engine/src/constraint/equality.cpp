@@ -127,8 +127,8 @@ void set_equality_soft_rows(const Model& model, Data& data, int e, int n, int ro
     const int j2 = model.eq_obj2id[e];
     if (j2 >= 0) diag += model.dof_invweight0[model.jnt_dofadr[j2]];
   } else {  // translational, for a weld's rotational rows too (see the top of this file)
-    diag = model.body_invweight0[model.eq_obj1id[e]][0] +
-           model.body_invweight0[model.eq_obj2id[e]][0];
+    diag =
+        model.body_invweight0[model.eq_obj1id[e]][0] + model.body_invweight0[model.eq_obj2id[e]][0];
   }
   const double R = regularizer(soft, diag);
   for (int r = n; r < n + rows; ++r) set_soft_row(data, r, soft, soft.K, R);
@@ -140,7 +140,7 @@ int add_equality_rows(const Model& model, Data& data, int n) {
   for (int e = 0; e < model.neq; ++e) {
     if (!model.eq_active[e]) continue;
     const int rows = model.eq_type[e] == EqualityType::kJoint ? joint_row(model, data, e, n)
-                                                               : body_rows(model, data, e, n);
+                                                              : body_rows(model, data, e, n);
     for (int r = n; r < n + rows; ++r) {
       data.efc_type[r] = ConstraintType::kEquality;
       data.efc_id[r] = e;

@@ -65,7 +65,8 @@ ConstraintState block_cost(const Data& data, int r, int size, const double* x, d
   }
   if (type != ConstraintType::kContactElliptic) {
     // an equality row pulls both ways; a friction-loss row inside its box is quadratic too
-    const bool two_sided = type == ConstraintType::kEquality || type == ConstraintType::kFrictionDof;
+    const bool two_sided =
+        type == ConstraintType::kEquality || type == ConstraintType::kFrictionDof;
     if (!two_sided && x[0] >= 0) return ConstraintState::kSatisfied;
     cost = 0.5 * D[0] * x[0] * x[0];
     grad[0] = D[0] * x[0];

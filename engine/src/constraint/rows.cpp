@@ -31,9 +31,9 @@
 #include <cmath>
 #include <type_traits>
 
+#include "constraint/constraint_room.hpp"
 #include "model/model_room.hpp"
 #include "smooth/smooth.hpp"
-#include "constraint/constraint_room.hpp"
 
 namespace lever {
 

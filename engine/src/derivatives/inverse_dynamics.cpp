@@ -350,7 +350,7 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
   const std::vector<RigidInertia>& IC = detail::subtree_inertias(model, data, deriv.work);
   detail::inertia_columns(model, data, IC, deriv.work);
   detail::rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, IC, deriv.work,
-                        deriv.dtau_dq, &deriv.dtau_dv);
+                                deriv.dtau_dq, &deriv.dtau_dv);
 }
 
 }  // namespace lever

@@ -207,7 +207,8 @@ void check_sizes(const Model& model) {
         std::to_string(model.nkey) + ").");
   }
   // contact: the counts the contact arrays of the field table are sized by
-  if (model.neq < 0) throw ModelError("neq must be non-negative; got " + std::to_string(model.neq) + ".");
+  if (model.neq < 0)
+    throw ModelError("neq must be non-negative; got " + std::to_string(model.neq) + ".");
   if (model.npair < 0 || model.nexclude < 0 || model.nconmax < 0 || model.njmax < 0) {
     throw ModelError("npair, nexclude, nconmax and njmax must be non-negative; got " +
                      std::to_string(model.npair) + ", " + std::to_string(model.nexclude) + ", " +

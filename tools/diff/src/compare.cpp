@@ -353,11 +353,10 @@ void compare_model_constants(const Twin& t, Report& r) {
   if (model.neq == m->neq && model.neq > 0) {
     std::vector<double> eq_data;
     for (const auto& row : model.eq_data) eq_data.insert(eq_data.end(), row.begin(), row.end());
-    r.compare("eq_data", 0, eq_data.data(), m->eq_data, model.neq * kEqualityData,
-              [&model](int i) {
-                return "equality " + quoted(model.eq_name, i / kEqualityData) + ", " +
-                       std::to_string(i % kEqualityData);
-              });
+    r.compare("eq_data", 0, eq_data.data(), m->eq_data, model.neq * kEqualityData, [&model](int i) {
+      return "equality " + quoted(model.eq_name, i / kEqualityData) + ", " +
+             std::to_string(i % kEqualityData);
+    });
   }
 }
 
