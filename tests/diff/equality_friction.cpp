@@ -19,8 +19,8 @@ namespace lever::test {
 
 namespace {
 
-constexpr int kConstraintStates = 200;
-constexpr double kConstraintRunSeconds = 1.0;
+constexpr int kConstraintStates = 100;
+constexpr double kConstraintRunSeconds = 0.4;
 
 std::string constraint_model(const char* name) {
   return model_path(std::string("tests/models/constraints/") + name);
