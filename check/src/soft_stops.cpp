@@ -45,7 +45,7 @@ struct Run {
   bool settled = false;
   int warnings = 0, nefc = 0;
   Eigen::VectorXd qpos, qfrc_constraint, qfrc_bias, qfrc_passive;
-  std::vector<int> efc_id;
+  std::vector<int> efc_id;  ///< a limit row's joint; -1 for every other row
   std::vector<double> efc_sign, efc_force;
 };
 
@@ -176,6 +176,9 @@ void simulate(const Model& model, const Model& relaxed, const SoftStops& rules, 
   run.qfrc_passive = data.qfrc_passive;
   run.nefc = data.nefc;
   run.efc_id.assign(data.efc_id.begin(), data.efc_id.begin() + data.nefc);
+  for (int r = 0; r < data.nefc; ++r) {  // only limit rows name a joint (rests_on)
+    if (data.efc_type[r] != ConstraintType::kLimitJoint) run.efc_id[r] = -1;
+  }
   run.efc_sign.assign(data.efc_sign.begin(), data.efc_sign.begin() + data.nefc);
   run.efc_force.assign(data.efc_force.data(), data.efc_force.data() + data.nefc);
 }

@@ -104,6 +104,37 @@ void copy_sensors(const mjModel* m, Model& model) {
   }
 }
 
+// Equality constraints (connect, weld, joint couplings) and the dofs' friction loss. A tendon
+// coupling is refused by name: lever has no tendons.
+void copy_constraints(const mjModel* m, Model& model) {
+  if (m->opt.disableflags & (mjDSBL_EQUALITY | mjDSBL_FRICTIONLOSS | mjDSBL_LIMIT)) {
+    throw std::runtime_error(
+        "from_mujoco: lever has no flags to disable equality constraints, friction loss or limits");
+  }
+  for (int i = 0; i < m->nv; ++i) {
+    model.dof_frictionloss[i] = m->dof_frictionloss[i];
+    model.dof_solref[i] = {m->dof_solref[mjNREF * i], m->dof_solref[mjNREF * i + 1]};
+    for (int k = 0; k < 5; ++k) model.dof_solimp[i][k] = m->dof_solimp[mjNIMP * i + k];
+  }
+  for (int e = 0; e < m->neq; ++e) {
+    switch (m->eq_type[e]) {
+      case mjEQ_CONNECT: model.eq_type[e] = EqualityType::kConnect; break;
+      case mjEQ_WELD: model.eq_type[e] = EqualityType::kWeld; break;
+      case mjEQ_JOINT: model.eq_type[e] = EqualityType::kJoint; break;
+      default:
+        throw std::runtime_error("from_mujoco: equality constraint " + std::to_string(e) +
+                                 " couples tendons; lever has no tendons");
+    }
+    model.eq_name[e] = name_of(m, mjOBJ_EQUALITY, e);
+    model.eq_obj1id[e] = m->eq_obj1id[e];
+    model.eq_obj2id[e] = m->eq_obj2id[e];
+    model.eq_active[e] = m->eq_active[e] != 0;
+    model.eq_solref[e] = {m->eq_solref[mjNREF * e], m->eq_solref[mjNREF * e + 1]};
+    for (int k = 0; k < 5; ++k) model.eq_solimp[e][k] = m->eq_solimp[mjNIMP * e + k];
+    for (int k = 0; k < mjNEQDATA; ++k) model.eq_data[e][k] = m->eq_data[mjNEQDATA * e + k];
+  }
+}
+
 }  // namespace
 
 MjModelPtr mujoco_load(const std::string& path) {
@@ -158,6 +189,7 @@ Model from_mujoco(const mjModel* m) {
   model.nmeshgraph = m->nmeshgraph;
   model.nsensor = m->nsensor;
   model.nsensordata = m->nsensordata;
+  model.neq = m->neq;
   size_model(model);
 
   for (int b = 0; b < m->nbody; ++b) {
@@ -224,6 +256,7 @@ Model from_mujoco(const mjModel* m) {
     model.geom_mass[g] = 0.0;  // lever's own: not known from an mjModel
   }
   copy_contact(m, model);
+  copy_constraints(m, model);
   for (int s = 0; s < m->nsite; ++s) {
     model.site_name[s] = name_of(m, mjOBJ_SITE, s);
     model.site_bodyid[s] = m->site_bodyid[s];

@@ -88,6 +88,7 @@ std::string row_name(const Model& model, Size rows, int i) {
         }
       }
       break;
+    case Size::kNeq: return name_or_index(model.eq_name, i);
     case Size::kOne:
     case Size::kNefc:
     case Size::kNpair:  // pairs and exclusions have no names in lever: their index

@@ -14,6 +14,7 @@
 #include <optional>
 #include <set>
 
+#include "equality.hpp"
 #include "inertia.hpp"
 #include "mesh.hpp"
 #include "orientation.hpp"
@@ -1053,12 +1054,14 @@ Model Compiler::assemble() const {
     m.nmeshvert += static_cast<int>(mesh->vert.size() / 3);
     m.nmeshgraph += static_cast<int>(mesh->graph.size());
   }
+  m.neq = static_cast<int>(spec_.equalities.size());
   size_model(m);
   assemble_meshes(m);
   assemble_bodies(m);
   assemble_joints(m);
   assemble_geoms_and_sites(m);
   assemble_contact(m);
+  assemble_equalities(spec_.equalities, m);  // equality.cpp: after the bodies' and joints' names
   assemble_motors(m);
   assemble_keys(m);
   assemble_visual(m);
@@ -1147,6 +1150,9 @@ void Compiler::assemble_joints(Model& m) const {
       m.dof_jntid[dof] = static_cast<int>(j);
       m.dof_armature[dof] = s.armature;
       m.dof_damping[dof] = s.damping;
+      m.dof_frictionloss[dof] = s.frictionloss;
+      m.dof_solref[dof] = s.solref_friction;
+      m.dof_solimp[dof] = s.solimp_friction;
     }
     qadr += joint_nq(s.type);
     dadr += joint_nv(s.type);

@@ -53,6 +53,7 @@ struct DefaultClass {
   std::string name;
   AttrSet joint, geom, site, actuator;
   AttrSet pair;         ///< <contact><pair> defaults
+  AttrSet equality;     ///< <equality> defaults (active, solref, solimp)
   AttrSet visual_only;  ///< mesh, material, camera, light defaults: checked, not used
 
   const AttrSet& prototype(std::string_view tag) const;

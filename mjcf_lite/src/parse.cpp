@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "defaults.hpp"
+#include "equality.hpp"
 #include "schema.hpp"
 
 namespace lever::mjcf::detail {
@@ -109,6 +110,9 @@ JointSpec read_joint(const Element& e, const AttrSet& set) {
   j.margin = f.real("margin");
   j.solref = f.array<2>("solreflimit");
   j.solimp = f.array<5>("solimplimit");
+  j.frictionloss = f.real("frictionloss");
+  j.solref_friction = f.array<2>("solreffriction");
+  j.solimp_friction = f.array<5>("solimpfriction");
   return j;
 }
 
@@ -514,6 +518,7 @@ ModelSpec parse_model(const Element& root, bool ignore_inertials) {
     tree.read_contents(*e, 0, spec.world);
   }
   read_contact(root, classes, spec);
+  spec.equalities = read_equalities(root, classes);
   for (const Element* e : sections(root, "actuator")) {
     for (const Element& a : e->children) spec.motors.push_back(read_actuator(a, classes));
   }

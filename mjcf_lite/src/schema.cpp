@@ -104,6 +104,11 @@ std::vector<AttributeRule> joint_attributes() {
       partial("solreflimit", 2, "0.02 1", "limit solref (timeconst, dampratio)"),
       partial("solimplimit", 5, "0.9 0.95 0.001 0.5 2",
               "limit solimp (d0, dmax, width, mid, power)"),
+      real("frictionloss", 1, "0",
+           "dry friction: a constraint row per dof whose force is at most this (N m or N)"),
+      partial("solreffriction", 2, "0.02 1", "friction loss solref (timeconst, dampratio)"),
+      partial("solimpfriction", 5, "0.9 0.95 0.001 0.5 2",
+              "friction loss solimp (d0, dmax, width, mid, power)"),
   };
 }
 
@@ -189,8 +194,53 @@ std::vector<AttributeRule> pair_attributes() {
   };
 }
 
-const char* const kUnsupportedJointAttributes =
-    "springdamper solreffriction solimpfriction frictionloss user";
+// what an equality constraint takes from its class (MuJoCo 2.2.2 reads only these in <default>)
+std::vector<AttributeRule> equality_class_attributes() {
+  return {
+      keyword("active", "true", "false true", "", "false: the constraint makes no rows"),
+      partial("solref", 2, "0.02 1", "solref (timeconst, dampratio)"),
+      partial("solimp", 5, "0.9 0.95 0.001 0.5 2", "solimp (d0, dmax, width, mid, power)"),
+  };
+}
+
+// <equality> and its constraints: MuJoCo 2.2.2's connect, weld and joint coupling (compiled by
+// equality.cpp)
+void add_equality_rules(std::vector<ElementRule>& s) {
+  const auto own = [](std::vector<AttributeRule> a) {
+    return join({text("name", "", "constraint name"),
+                 text("class", "", "default class (else the main class)")},
+                join(std::move(a), equality_class_attributes()));
+  };
+  s.push_back({"equality",
+               "mujoco",
+               '*',
+               {},
+               "",
+               "tendon distance",
+               "equality constraints: rows of the constraint solver, first in MuJoCo's order"});
+  s.push_back({"connect", "equality", '*',
+               own({required(text("body1", "", "first body")),
+                    text("body2", "", "second body (else the world)"),
+                    required(real("anchor", 3, "0 0 0", "the joined point, body1's frame"))}),
+               "", "", "a ball joint: a point of body1 held on the same point of body2"});
+  s.push_back({"weld", "equality", '*',
+               own({required(text("body1", "", "first body")),
+                    text("body2", "", "second body (else the world)"),
+                    real("relpose", 7, "0 0 0 0 0 0 0",
+                         "body2's pose in body1's frame (position, quaternion); a zero "
+                         "quaternion: the pose at qpos0"),
+                    real("anchor", 3, "0 0 0", "the welded point, body2's frame"),
+                    real("torquescale", 1, "1", "weight of the rotational rows")}),
+               "", "", "body1 held at a fixed pose relative to body2"});
+  s.push_back({"joint", "equality", '*',
+               own({required(text("joint1", "", "the coupled joint (hinge or slide)")),
+                    text("joint2", "", "the joint it follows (else none: joint1 held)"),
+                    real("polycoef", 5, "0 1 0 0 0",
+                         "q1 - q1_0 = c0 + c1 x + c2 x^2 + c3 x^3 + c4 x^4, x = q2 - q2_0")}),
+               "", "", "a joint coupled to another by a polynomial (or held)"});
+}
+
+const char* const kUnsupportedJointAttributes = "springdamper user";
 const char* const kUnsupportedGeomAttributes =
     "hfield fitscale fluidshape fluidcoef user";
 const char* const kUnsupportedSiteAttributes = "fromto user";
@@ -280,7 +330,7 @@ const char* const kLightAttributes =
 std::vector<ElementRule> build() {
   std::vector<ElementRule> s;
   s.push_back({"mujoco", "", '!', {text("model", "MuJoCo Model", "model name")}, "",
-               "custom equality tendon include", "the root element"});
+               "custom tendon include", "the root element"});
   s.push_back({"compiler", "mujoco", '*',
                {
                    keyword("angle", "degree", "radian degree", "",
@@ -372,6 +422,7 @@ std::vector<ElementRule> build() {
                "nuser_actuator nuser_sensor",
                "", "sizes of MuJoCo's mjData"});
   s.push_back({"contact", "mujoco", '*', {}, "", "", "explicit contact pairs and exclusions"});
+  add_equality_rules(s);
   s.push_back({"pair", "contact", '*', join({text("name", "", "pair name"),
                                             text("class", "", "default class (else the main class)"),
                                             required(text("geom1", "", "first geom")),
@@ -385,10 +436,10 @@ std::vector<ElementRule> build() {
                                           required(text("body2", "", "second body"))},
                "", "", "a body pair whose geoms never collide (pairs from <pair> still do)"});
   s.push_back({"default", "mujoco", '*', {text("class", "main", "class name (top level: main)")},
-               "", "equality tendon intvelocity damper cylinder muscle adhesion",
+               "", "tendon intvelocity damper cylinder muscle adhesion",
                "default class: attribute values that elements of the class start from"});
   s.push_back({"default", "default", '*', {required(text("class", "", "class name"))}, "",
-               "equality tendon intvelocity damper cylinder muscle adhesion",
+               "tendon intvelocity damper cylinder muscle adhesion",
                "nested class: starts as a copy of its parent"});
   s.push_back({"joint", "default", '?', joint_attributes(), kUnsupportedJointAttributes, "",
                "joint defaults of the class"});
@@ -398,6 +449,8 @@ std::vector<ElementRule> build() {
                "site defaults of the class"});
   s.push_back({"pair", "default", '?', pair_attributes(), "", "",
                "contact pair defaults of the class"});
+  s.push_back({"equality", "default", '?', equality_class_attributes(), "", "",
+               "equality constraint defaults of the class"});
   s.push_back({"motor", "default", '?',
                join(motor_class_attributes(),
                     {integer("group", 1, "0", "visualisation group (kept)")}),

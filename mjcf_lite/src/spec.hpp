@@ -40,6 +40,9 @@ struct JointSpec {
   double damping = 0, stiffness = 0, springref = 0, armature = 0, ref = 0, margin = 0;
   std::array<double, 2> solref{};
   std::array<double, 5> solimp{};
+  double frictionloss = 0;
+  std::array<double, 2> solref_friction{};
+  std::array<double, 5> solimp_friction{};
 };
 
 struct GeomSpec {
@@ -127,6 +130,19 @@ struct PairSpec {
   double margin = 0, gap = 0;
 };
 
+/// An <equality> constraint (<connect>, <weld>, <joint>) over its class: the objects by name
+/// (object 2 "" when not written) and MuJoCo's eq_data as written (equality.cpp).
+struct EqualitySpec {
+  Place at;
+  EqualityType type = EqualityType::kConnect;
+  std::string name1, name2;
+  Place name1_at, name2_at;  ///< where the attributes are, for errors
+  bool active = true;
+  std::array<double, 2> solref{};
+  std::array<double, 5> solimp{};
+  std::array<double, kEqualityData> data{};
+};
+
 /// A <contact><exclude>.
 struct ExcludeSpec {
   Place at;
@@ -174,6 +190,7 @@ struct ModelSpec {
   std::vector<PairSpec> pairs;
   std::vector<ExcludeSpec> excludes;
   std::vector<SensorSpec> sensors;
+  std::vector<EqualitySpec> equalities;
   int nconmax = -1, njmax = -1;  ///< <size>; -1: MuJoCo's defaults
   AssetSpec assets;
   std::string model_dir;  ///< folder of the model file, with a trailing '/', or "" (mesh files)

@@ -92,7 +92,7 @@ class mjtIntegrator(_enum.IntEnum):
 _MODEL_FIELDS = frozenset(f["name"] for f in _lever.model_field_table() if f["mujoco"])
 _DATA_FIELDS = frozenset(f["name"] for f in _lever.data_field_table() if f["mujoco"])
 _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude", "nsensor",
-          "nsensordata", "nconmax", "njmax")
+          "nsensordata", "neq", "nconmax", "njmax")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl")
 # the mjModel arrays model.body(...) and the other accessors reach
@@ -523,11 +523,11 @@ class MjData:
 
     @property
     def ne(self) -> int:
-        return 0
+        return self._native.ne
 
     @property
     def nf(self) -> int:
-        return 0
+        return self._native.nf
 
     @property
     def ncon(self) -> int:

@@ -326,6 +326,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nexclude", [](const lever::Model& x) { return x.nexclude; })
       .def_property_readonly("nsensor", [](const lever::Model& x) { return x.nsensor; })
       .def_property_readonly("nsensordata", [](const lever::Model& x) { return x.nsensordata; })
+      .def_property_readonly("neq", [](const lever::Model& x) { return x.neq; })
       .def_property_readonly("nconmax", [](const lever::Model& x) { return x.nconmax; })
       .def_property_readonly("njmax", [](const lever::Model& x) { return x.njmax; })
       .def_property(
@@ -353,6 +354,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("site_name", [](const lever::Model& x) { return x.site_name; })
       .def_property_readonly("actuator_name", [](const lever::Model& x) { return x.actuator_name; })
       .def_property_readonly("sensor_name", [](const lever::Model& x) { return x.sensor_name; })
+      .def_property_readonly("eq_name", [](const lever::Model& x) { return x.eq_name; })
       // keyframes (not in the field table: their rows are keyframes): writable row-major views
       .def_property_readonly("nkey", [](const lever::Model& x) { return x.nkey; })
       .def_property_readonly("key_name", [](const lever::Model& x) { return x.key_name; })
@@ -443,6 +445,8 @@ PYBIND11_MODULE(_lever, m) {
           "time", [](const PyData& d) { return d.data.time; },
           [](PyData& d, double t) { d.data.time = t; })
       .def_property_readonly("nefc", [](const PyData& d) { return d.data.nefc; })
+      .def_property_readonly("ne", [](const PyData& d) { return d.data.ne; })
+      .def_property_readonly("nf", [](const PyData& d) { return d.data.nf; })
       // contacts: ncon, each member of data.contact as a view over the first ncon,
       // and efc_J's live rows (the field table has no (nefc, nv) shape)
       .def_property_readonly("ncon", [](const PyData& d) { return d.data.ncon; })

@@ -456,6 +456,33 @@ TEST_CASE("the elliptic cones' Newton solver allocates nothing", "[alloc]") {
   }
 }
 
+TEST_CASE("equality constraints and friction loss allocate nothing", "[alloc]") {
+  for (const char* file :
+       {"tests/models/constraints/equality.xml", "tests/models/constraints/friction_loss.xml"}) {
+    INFO(file);
+    std::string how;
+    const lever::Model base = load(lever::test::model_path(file), how);
+    for (const lever::Integrator integrator :
+         {lever::Integrator::kEuler, lever::Integrator::kRK4, lever::Integrator::kImplicit}) {
+      lever::Model m = base;
+      m.opt.integrator = integrator;
+      lever::Data d(m);
+      d.ctrl.setConstant(1.0);
+      int rows = 0;
+      for (int k = 0; k < 200; ++k) {
+        Allocations a = count([&] { lever::step(m, d); });
+        CHECK(a.news == 0);
+        CHECK(a.mallocs == 0);
+        a = count([&] { lever::inverse(m, d); });
+        CHECK(a.news == 0);
+        CHECK(a.mallocs == 0);
+        rows += d.ne + d.nf;
+      }
+      CHECK(rows > 0);
+    }
+  }
+}
+
 TEST_CASE("collision allocates nothing", "[alloc]") {
   // the scenes' cylinders and ellipsoids, and the Menagerie's Panda's meshes, run libccd's MPR
   // (with multiccd too)

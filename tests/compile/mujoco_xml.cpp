@@ -286,6 +286,7 @@ void compare_names(Differences& d, const Model& o, const mjModel& m) {
   d.names("site_name", o.site_name, m, mjOBJ_SITE);
   d.names("actuator_name", o.actuator_name, m, mjOBJ_ACTUATOR);
   d.names("sensor_name", o.sensor_name, m, mjOBJ_SENSOR);
+  d.names("eq_name", o.eq_name, m, mjOBJ_EQUALITY);
 }
 
 void compare_options(Differences& d, const Model& o, const mjModel& m) {
@@ -328,6 +329,7 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m) {
   sizes = d.count("nexclude", o.nexclude, m.nexclude) && sizes;
   sizes = d.count("nsensor", o.nsensor, m.nsensor) && sizes;
   sizes = d.count("nsensordata", o.nsensordata, m.nsensordata) && sizes;
+  sizes = d.count("neq", o.neq, m.neq) && sizes;
   if (sizes) {
     compare_table(d, o, m);
     compare_meshes(d, o, m);

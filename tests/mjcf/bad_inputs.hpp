@@ -106,11 +106,11 @@ inline const BadInput kBadInputs[] = {
   {"unsupported-attribute", R"(<mujoco>
   <worldbody>
     <body name="b">
-      <joint name="j" frictionloss="0.1"/>
+      <joint name="j" springdamper="0.1 1"/>
       <geom size="0.1"/>
     </body>
   </worldbody>
-</mujoco>)", 4, "joint", "frictionloss", "valid MJCF but not supported by lever",
+</mujoco>)", 4, "joint", "springdamper", "valid MJCF but not supported by lever",
    MuJoCo::kAccepts, "valid MJCF outside lever's subset"},
   {"unsupported-limited-ball", R"(<mujoco>
   <worldbody>

@@ -126,17 +126,19 @@ class WasmModel {
     if (what == "npair") return model_.npair;
     if (what == "nexclude") return model_.nexclude;
     if (what == "nmesh") return model_.nmesh;
+    if (what == "neq") return model_.neq;
     if (what == "nkey") return model_.nkey;
     return -1;
   }
 
-  /// kind: "body", "jnt", "geom", "site", "actuator", "key"
+  /// kind: "body", "jnt", "geom", "site", "actuator", "eq", "key"
   std::vector<std::string> names(const std::string& kind) const {
     if (kind == "body") return model_.body_name;
     if (kind == "jnt") return model_.jnt_name;
     if (kind == "geom") return model_.geom_name;
     if (kind == "site") return model_.site_name;
     if (kind == "actuator") return model_.actuator_name;
+    if (kind == "eq") return model_.eq_name;
     if (kind == "key") return model_.key_name;
     return {};
   }
@@ -167,6 +169,8 @@ class WasmData {
     std::vector<JsField> f;
     add_number(f, "time", data_.time);
     add_number(f, "nefc", data_.nefc);
+    add_number(f, "ne", data_.ne);
+    add_number(f, "nf", data_.nf);
     add_number(f, "ncon", data_.ncon);
     // efc_J's storage has nefc_max rows; row-major, so its first nefc rows are the live ones
     f.push_back({"efc_J", "f64", reinterpret_cast<uintptr_t>(data_.efc_J.data()),

@@ -69,9 +69,12 @@ struct Contact {
   double mu = 0;         ///< friction of the regularized cone, friction[0] sqrt(R_1 / R_0)
 };
 
-/// What a constraint row is; the numeric values are MuJoCo's mjtConstraint (lever has joint
-/// limits and contacts without a friction cone, with a pyramidal or an elliptic one).
+/// What a constraint row is; the numeric values are MuJoCo's mjtConstraint (lever has equality
+/// constraints, dof friction loss, joint limits and contacts without a friction cone, with a
+/// pyramidal or an elliptic one; no tendons, so none of the tendon rows).
 enum class ConstraintType : int {
+  kEquality = 0,
+  kFrictionDof = 1,
   kLimitJoint = 3,
   kContactFrictionless = 5,
   kContactPyramidal = 6,
@@ -79,9 +82,18 @@ enum class ConstraintType : int {
 };
 
 /// A constraint row's state after the solve (MuJoCo's mjtConstraintState): satisfied (no force),
-/// active (MuJoCo's "quadratic": every row of an elliptic cone when its force is inside the cone),
-/// or, for every row of an elliptic cone, on the cone's surface (the cone's middle zone).
-enum class ConstraintState : int { kSatisfied = 0, kActive = 1, kCone = 4 };
+/// active (MuJoCo's "quadratic": an equality row always, a friction-loss row while its force is
+/// inside +-frictionloss, every row of an elliptic cone when its force is inside the cone), a
+/// friction-loss row at its bound (linear cost: force +frictionloss, kLinearNeg, or
+/// -frictionloss, kLinearPos), or, for every row of an elliptic cone, on the cone's surface (the
+/// cone's middle zone).
+enum class ConstraintState : int {
+  kSatisfied = 0,
+  kActive = 1,
+  kLinearNeg = 2,
+  kLinearPos = 3,
+  kCone = 4
+};
 
 /// The sensor noise generator's starting state (Data::sensor_noise_state).
 inline constexpr std::uint64_t kSensorNoiseSeed = 0x5eed5eed5eed5eedULL;
@@ -129,23 +141,30 @@ struct Data {
   Eigen::VectorXd actuator_length;  ///< (nu) gear * qpos of the driven joint
 
   // ---- position stage: constraint rows (make_constraint) -----------------------------------
-  // Joint limits within `margin` of a stop first, then each contact's rows (data.contact, those
-  // with exclude == 0): one for a frictionless contact, two per friction direction for a pyramid,
-  // condim rows (normal first) for an elliptic cone.
+  // MuJoCo's order: the active equality constraints' rows (3 a connect, 6 a weld, 1 a joint
+  // coupling), one row per dof with friction loss, joint limits within `margin` of a stop, then
+  // each contact's rows (data.contact, those with exclude == 0): one for a frictionless contact,
+  // two per friction direction for a pyramid, condim rows (normal first) for an elliptic cone.
   int nefc = 0;                          ///< rows
+  int ne = 0;                            ///< of them, equality rows (the first ne)
+  int nf = 0;                            ///< of them, friction-loss rows (the next nf)
   std::vector<ConstraintType> efc_type;  ///< (nefc)
-  std::vector<int> efc_id;               ///< (nefc) joint id (limit) or contact index (contact)
-  RowMatrix efc_J;                       ///< (nefc x nv) constraint Jacobian, rows dense
-  std::vector<int> efc_dof;              ///< (nefc) a limit row's dof, -1 for a contact row
-  std::vector<double> efc_sign;    ///< (nefc) +1 lower stop, -1 upper: a limit's efc_J = sign e_dof
-  Eigen::VectorXd efc_pos;         ///< (nefc) signed distance to the stop (< 0 past it)
-  Eigen::VectorXd efc_margin;      ///< (nefc)
-  Eigen::VectorXd efc_diagApprox;  ///< (nefc) R * imp / (1 - imp), MuJoCo's final value
-  Eigen::VectorXd efc_R;           ///< (nefc) regularizer
-  Eigen::VectorXd efc_D;           ///< (nefc) 1 / R
-  Eigen::VectorXd efc_imp;         ///< (nefc) impedance from solimp
-  Eigen::VectorXd efc_K;           ///< (nefc) stiffness of the reference dynamics
-  Eigen::VectorXd efc_B;           ///< (nefc) damping of the reference dynamics
+  /// (nefc) equality constraint, dof (friction loss), joint (limit) or contact index (contact)
+  std::vector<int> efc_id;
+  RowMatrix efc_J;  ///< (nefc x nv) constraint Jacobian, rows dense
+  /// (nefc) the dof of a row whose efc_J is sign e_dof (a friction-loss or limit row), else -1
+  std::vector<int> efc_dof;
+  /// (nefc) +1 lower stop, -1 upper: a limit's efc_J = sign e_dof; +1 a friction-loss row
+  std::vector<double> efc_sign;
+  Eigen::VectorXd efc_frictionloss;  ///< (nefc) a friction-loss row's bound on |force|, else 0
+  Eigen::VectorXd efc_pos;           ///< (nefc) signed distance to the stop (< 0 past it)
+  Eigen::VectorXd efc_margin;        ///< (nefc)
+  Eigen::VectorXd efc_diagApprox;    ///< (nefc) R * imp / (1 - imp), MuJoCo's final value
+  Eigen::VectorXd efc_R;             ///< (nefc) regularizer
+  Eigen::VectorXd efc_D;             ///< (nefc) 1 / R
+  Eigen::VectorXd efc_imp;           ///< (nefc) impedance from solimp
+  Eigen::VectorXd efc_K;             ///< (nefc) stiffness of the reference dynamics
+  Eigen::VectorXd efc_B;             ///< (nefc) damping of the reference dynamics
 
   // ---- velocity stage ------------------------------------------------------------------------
   std::vector<Motion> cvel;           ///< (nbody) spatial velocity of each body
@@ -221,9 +240,12 @@ struct Data {
     // which are not on both (zero elsewhere in the span; outside it, not written). Every row of
     // the contact is a combination of them (a pyramid edge is n +- mu_k t_k), so the solvers
     // work on these few rows over this span.
-    RowMatrix contact_frame_J;           ///< (nefc_max x nv)
-    std::vector<int> contact_span;       ///< (2 nconmax)
-    std::vector<int> dof_chain;          ///< (2 nv) scratch: two bodies' dofs to the root
+    RowMatrix contact_frame_J;      ///< (nefc_max x nv)
+    std::vector<int> contact_span;  ///< (2 nconmax)
+    std::vector<int> dof_chain;     ///< (2 nv) scratch: two bodies' dofs to the root
+    /// (12 x nv) an equality constraint's Jacobians: body 1's translational and rotational,
+    /// then body 2's
+    Eigen::MatrixXd equality_jac;
     std::vector<double> contact_weight;  ///< (36 nconmax) a Hessian's part of each contact, W of
                                          ///< C^T W C in its frame (dim x dim, row-major)
     std::vector<double> frame_scratch;   ///< (6 nv) W C over a contact's dofs
@@ -244,7 +266,9 @@ struct Data {
     std::vector<int> body_path;  ///< (nbody)
   } work;
 
-  int nefc_max = 0;  ///< 2 * njnt limit rows, and njmax more if the model can make contacts
+  /// the equality rows, a friction-loss row per dof, 2 * njnt limit rows, and njmax more if the
+  /// model can make contacts
+  int nefc_max = 0;
   /// The fit_tag of the model this Data was last checked against (lever/fields.hpp check_fit):
   /// a call with that model compares tags instead of walking the field table. The arrays a caller
   /// assigns (qpos, qvel, qacc, ctrl, qfrc_applied) are checked on every call; the outputs are

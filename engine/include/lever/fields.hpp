@@ -7,9 +7,10 @@
 //
 // Every listed array is contiguous and row-major: it is an (rows, cols) array of doubles, ints or
 // bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, nbody, njnt, ngeom,
-// nsite, npair, nexclude, nefc: the live limit rows of a Data; `one` for a single row); `cols` is a
-// number. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of the same name,
-// shape and meaning (`mujoco`) or not (`own`: lever's own, or laid out differently from MuJoCo's).
+// nsite, npair, nexclude, neq, nefc: the live constraint rows of a Data; `one` for a single row);
+// `cols` is a number. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of
+// the same name, shape and meaning (`mujoco`) or not (`own`: lever's own, or laid out differently
+// from MuJoCo's).
 //
 // Adding an array to Model or Data: declare the member, then add its row here. The static_asserts
 // in fields.cpp check that its element type and layout match the row.
@@ -75,6 +76,9 @@
   X(dof_invweight0, double, nv, 1, mujoco)                   \
   X(dof_M0, double, nv, 1, mujoco)                           \
   X(dof_simplenum, int, nv, 1, mujoco)                       \
+  X(dof_frictionloss, double, nv, 1, mujoco)                 \
+  X(dof_solref, double, nv, 2, mujoco)                       \
+  X(dof_solimp, double, nv, 5, mujoco)                       \
   X(geom_type, int, ngeom, 1, mujoco)                        \
   X(geom_contype, int, ngeom, 1, mujoco)                     \
   X(geom_conaffinity, int, ngeom, 1, mujoco)                 \
@@ -102,7 +106,8 @@
   X(actuator_ctrlrange, double, nu, 2, mujoco)               \
   X(actuator_forcerange, double, nu, 2, mujoco)              \
   LEVER_MODEL_CONTACT_FIELDS(X)                              \
-  LEVER_MODEL_SENSOR_FIELDS(X)
+  LEVER_MODEL_SENSOR_FIELDS(X)                               \
+  LEVER_MODEL_EQUALITY_FIELDS(X)
 
 // sensors: what each one measures, on which object, and where its numbers go
 #define LEVER_MODEL_SENSOR_FIELDS(X)              \
@@ -150,6 +155,16 @@
   X(mesh_vert, double, nmeshvert, 3, own) /* float in MuJoCo */ \
   X(mesh_graph, int, nmeshgraph, 1, mujoco)
 
+// equality constraints
+#define LEVER_MODEL_EQUALITY_FIELDS(X)  \
+  X(eq_type, int, neq, 1, mujoco)       \
+  X(eq_obj1id, int, neq, 1, mujoco)     \
+  X(eq_obj2id, int, neq, 1, mujoco)     \
+  X(eq_active, uint8_t, neq, 1, mujoco) \
+  X(eq_solref, double, neq, 2, mujoco)  \
+  X(eq_solimp, double, neq, 5, mujoco)  \
+  X(eq_data, double, neq, 11, mujoco)
+
 // The names of Model's objects, one string each ("" if unnamed), outside the table above because
 // their entries are not numbers. X(name, count): `count` is the Model member that counts them.
 #define LEVER_MODEL_NAMES(X) \
@@ -159,6 +174,7 @@
   X(site_name, nsite)        \
   X(actuator_name, nu)       \
   X(sensor_name, nsensor)    \
+  X(eq_name, neq)            \
   X(key_name, nkey)
 
 // The Model arrays set_const computes from the others (MuJoCo's mj_setConst's constants). It sizes
@@ -199,6 +215,7 @@
   X(efc_diagApprox, double, nefc, 1, position, mujoco)         \
   X(efc_R, double, nefc, 1, position, mujoco)                  \
   X(efc_D, double, nefc, 1, position, mujoco)                  \
+  X(efc_frictionloss, double, nefc, 1, position, mujoco)       \
   X(efc_sign, double, nefc, 1, position, own)                  \
   X(efc_dof, int, nefc, 1, position, own)                      \
   X(efc_imp, double, nefc, 1, position, own)                   \
@@ -253,7 +270,9 @@ enum class Size : int {
   kNmeshgraph,  ///< ints of the meshes' hull graphs
   // sensors
   kNsensor,     ///< sensors
-  kNsensordata  ///< the sensors' numbers together (data.sensordata)
+  kNsensordata,  ///< the sensors' numbers together (data.sensordata)
+  // equality constraints
+  kNeq        ///< equality constraints (<equality>)
 };
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;
@@ -319,10 +338,11 @@ const std::vector<ContactField>& contact_field_table();
 const std::vector<FieldInfo>& model_field_table();
 const std::vector<FieldInfo>& data_field_table();
 
-/// How many rows `size` counts in this model (kNefc: the most limit rows it can have).
+/// How many rows `size` counts in this model (kNefc: the most constraint rows it can have).
 int size_of(const Model& model, Size size);
 
-/// The most constraint rows a Data of this model holds: two limit rows per joint, and njmax
+/// The most constraint rows a Data of this model holds: every equality constraint's rows, one
+/// friction-loss row per dof with dof_frictionloss > 0, two limit rows per joint, and njmax
 /// contact rows when the model can make contacts (Model::contacts_possible).
 int constraint_rows_max(const Model& model);
 /// The same for a Data (kNefc: its live rows, data.nefc).

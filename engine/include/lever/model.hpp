@@ -222,6 +222,18 @@ enum class GeomType : int {
   kMesh = 7
 };
 
+/// Equality constraint types; the numeric values are MuJoCo's mjtEq (lever has no tendons, so
+/// no kTendon constraint; MuJoCo 2.2.2 refuses its distance constraint).
+enum class EqualityType : int { kConnect = 0, kWeld = 1, kJoint = 2 };
+
+/// Numbers per equality constraint in eq_data (MuJoCo's mjNEQDATA). What they mean by type:
+///   connect: anchor in body 1's frame (0-2), the same point in body 2's frame at qpos0 (3-5);
+///   weld:    anchor in body 2's frame (0-2), the relative pose of body 2 in body 1's frame:
+///            position (3-5) and quaternion (6-9), torquescale (10);
+///   joint:   polynomial coefficients (0-4): q1 - q1_0 = sum_k c_k (q2 - q2_0)^k.
+/// The compiler's default leaves 1 at entries 1 and 10 of every type (as MuJoCo's).
+inline constexpr int kEqualityData = 11;
+
 /// Friction cones; the numeric values are MuJoCo's mjtCone.
 enum class Cone : int { kPyramidal = 0, kElliptic = 1 };
 
@@ -292,6 +304,7 @@ struct Model {
   int nmeshgraph = 0;  ///< their convex hulls' graphs, all meshes (ints)
   int nsensor = 0;      ///< sensors
   int nsensordata = 0;  ///< numbers all sensors output together (the sum of sensor_dim)
+  int neq = 0;        ///< equality constraints (<equality>)
   int nconmax = 100;  ///< most contacts a Data holds (<size nconmax>; MuJoCo 2.2.2's default)
   int njmax = 500;    ///< most constraint rows a Data holds (<size njmax>)
 
@@ -339,8 +352,12 @@ struct Model {
   std::vector<int> dof_parentid;  ///< previous dof on the path to the world, -1 if none
   std::vector<double> dof_armature;
   std::vector<double> dof_damping;
-  std::vector<double> dof_invweight0;  ///< set_const: diag of M^-1 at qpos0
-  std::vector<double> dof_M0;          ///< set_const: diag of M at qpos0
+  /// dry friction: a constraint row of force within +-frictionloss while the dof moves
+  std::vector<double> dof_frictionloss;
+  std::vector<std::array<double, 2>> dof_solref;  ///< friction loss solref (joint solreffriction)
+  std::vector<std::array<double, 5>> dof_solimp;  ///< friction loss solimp (joint solimpfriction)
+  std::vector<double> dof_invweight0;             ///< set_const: diag of M^-1 at qpos0
+  std::vector<double> dof_M0;                     ///< set_const: diag of M at qpos0
   /// set_const: for a dof of a simple body (see body_simple), how many simple dofs run from it
   /// without a break, this one included (across consecutive simple bodies, as MuJoCo counts);
   /// 0 for a dof of another body (MuJoCo's dof_simplenum)
@@ -393,6 +410,18 @@ struct Model {
   std::vector<double> pair_margin, pair_gap;
   std::vector<std::array<double, 5>> pair_friction;
   std::vector<int> exclude_signature;  ///< ((body1 + 1) << 16) + body2 + 1, sorted (MuJoCo's)
+
+  // ---- equality constraints (neq) ---------------------------------------------------------------
+  std::vector<std::string> eq_name;
+  std::vector<EqualityType> eq_type;
+  std::vector<int> eq_obj1id;  ///< body (connect, weld) or joint (joint)
+  std::vector<int> eq_obj2id;  ///< the second body (0: the world) or joint (-1: none)
+  std::vector<uint8_t> eq_active;
+  std::vector<std::array<double, 2>> eq_solref;
+  std::vector<std::array<double, 5>> eq_solimp;
+  /// see kEqualityData; set_const completes a connect's anchor in body 2 and a weld's relative
+  /// pose left zero (its quaternion all zero) from the bodies' poses at qpos0, as mj_setConst
+  std::vector<std::array<double, kEqualityData>> eq_data;
 
   // ---- sites (nsite) -------------------------------------------------------------------------
   std::vector<std::string> site_name;
@@ -497,6 +526,7 @@ struct Model {
   int geom(const std::string& n) const;
   int key(const std::string& n) const;
   int sensor(const std::string& n) const;
+  int equality(const std::string& n) const;
 };
 
 /// Derive the constants MuJoCo's mj_setConst computes (dof_invweight0, dof_M0, body_invweight0,

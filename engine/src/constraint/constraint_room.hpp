@@ -1,7 +1,9 @@
-// The constraint room: MuJoCo 2.2.2's soft constraints. The rows of joint limits and contacts,
-// their impedance and reference acceleration, and the products with their Jacobian (rows.cpp);
-// the solvers: the active sets and principal pivoting (rows.cpp) and Newton's method (newton.cpp);
-// a contact's force in its frame (contact_force.cpp).
+// The constraint room: MuJoCo 2.2.2's soft constraints. The rows in MuJoCo's order: equality
+// constraints (equality.cpp), friction loss (friction_loss.cpp), joint limits and contacts
+// (rows.cpp); their impedance and reference acceleration, and the products with their Jacobian
+// (rows.cpp); the solvers: the active sets and principal pivoting for one-sided rows (rows.cpp)
+// and Newton's method for every kind (newton.cpp); a contact's force in its frame
+// (contact_force.cpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -20,6 +22,41 @@ void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref
 /// A limit row's impedance at distance pos from the stop (rows.cpp); with slope !=
 /// nullptr, also d imp / d pos.
 double impedance(const std::array<double, 5>& solimp, double pos, double margin, double* slope);
+
+/// solref and solimp sanitized as MuJoCo's getsolparam (rows.cpp): the standard and direct
+/// forms not mixed, a time constant of at least two steps, solimp within its bounds.
+void sanitize(const Model& model, std::array<double, 2>& solref, std::array<double, 5>& solimp);
+
+/// A row's impedance at its distance, and the stiffness and damping of its reference
+/// acceleration (K and B use dmax, not the current impedance).
+struct SoftParameters {
+  double imp, K, B;
+};
+
+/// The soft parameters of a row at distance pos with margin (rows.cpp; sanitized solref, solimp).
+SoftParameters soft_parameters(const std::array<double, 2>& solref,
+                               const std::array<double, 5>& solimp, double pos, double margin);
+
+/// The regularizer R = (1 - imp) / imp * diag of a row whose approximate inverse inertia is diag
+/// (MuJoCo's mj_diagApprox, frozen at qpos0), at least mjMINVAL (rows.cpp).
+double regularizer(const SoftParameters& soft, double diag);
+
+/// Row r's efc_imp, efc_K (K: 0 for friction), efc_B, efc_R, efc_D and efc_diagApprox (rows.cpp).
+void set_soft_row(Data& data, int r, const SoftParameters& soft, double K, double R);
+
+/// The active equality constraints' rows from row n, with their soft parameters (equality.cpp).
+/// Returns the rows made so far.
+int add_equality_rows(const Model& model, Data& data, int n);
+
+/// What mj_setConst completes in eq_data from the bodies' poses in data (kinematics at qpos0):
+/// a connect's anchor in body 2's frame; a weld's anchor in body 1's frame and body 2's
+/// orientation in body 1's when its relpose quaternion is zero, else that quaternion normalized
+/// (equality.cpp).
+void complete_equality_data(Model& model, const Data& data);
+
+/// One row per dof with friction loss from row n, with their soft parameters (friction_loss.cpp).
+/// Returns the rows made so far.
+int add_friction_loss_rows(const Model& model, Data& data, int n);
 
 // ---- the constraint rows' products (rows.cpp), shared by the solvers -------------------
 // A contact's rows are combinations of its frame's rows over its span of dofs

@@ -1,10 +1,14 @@
 // MuJoCo 2.2.2's primal problem solved by Newton's method with an exact line search (read in
 // engine_solver.c's mj_solNewton and engine_core_constraint.c's mj_constraintUpdate; written here
-// in lever's own words). Used for models with elliptic friction cones.
+// in lever's own words). Used for models with elliptic friction cones, equality constraints or
+// friction loss.
 //
 // The unknown is the acceleration a. The cost is the Gauss term 1/2 (a - a_smooth)^T M (a -
 // a_smooth) plus, for each block of rows, a convex function s of jar = J a - a_ref:
-//   a one-sided row (limit, frictionless contact): 1/2 D jar^2 when jar < 0, else 0;
+//   an equality row: 1/2 D jar^2;
+//   a friction-loss row of bound f: 1/2 D jar^2 while |jar| < R f, else f |jar| - 1/2 R f^2
+//     (Huber's: its force -D jar inside the box, +-f at its sides, states linear neg / pos);
+//   a one-sided row (limit, frictionless contact, pyramid edge): 1/2 D jar^2 when jar < 0, else 0;
 //   an elliptic cone of dim rows: with the rows scaled to a circular cone, N = mu jar_0 and
 //     t_j = friction_j jar_j (j >= 1), T = |t|,
 //       N >= mu T          inside the dual cone: no force, no cost (satisfied);
@@ -48,8 +52,22 @@ ConstraintState block_cost(const Data& data, int r, int size, const double* x, d
   cost = 0.0;
   std::fill(grad, grad + size, 0.0);
   if (hess != nullptr) hess->topLeftCorner(size, size).setZero();
-  if (data.efc_type[r] != ConstraintType::kContactElliptic) {
-    if (x[0] >= 0) return ConstraintState::kSatisfied;
+  const ConstraintType type = data.efc_type[r];
+  if (type == ConstraintType::kFrictionDof) {
+    // Huber's cost: linear beyond |jar| = R f, where the force reaches the box's side +-f
+    const double f = data.efc_frictionloss[r], Rf = data.efc_R[r] * f;
+    if (x[0] <= -Rf || x[0] >= Rf) {
+      const double side = x[0] >= Rf ? 1.0 : -1.0;
+      cost = -0.5 * Rf * f + side * f * x[0];
+      grad[0] = side * f;
+      return side > 0 ? ConstraintState::kLinearPos : ConstraintState::kLinearNeg;
+    }
+  }
+  if (type != ConstraintType::kContactElliptic) {
+    // an equality row pulls both ways; a friction-loss row inside its box is quadratic too
+    const bool two_sided =
+        type == ConstraintType::kEquality || type == ConstraintType::kFrictionDof;
+    if (!two_sided && x[0] >= 0) return ConstraintState::kSatisfied;
     cost = 0.5 * D[0] * x[0] * x[0];
     grad[0] = D[0] * x[0];
     if (hess != nullptr) (*hess)(0, 0) = D[0];
@@ -211,10 +229,14 @@ int solve_constraint_newton([[maybe_unused]] const Model& model, Data& data) {
   // they stop when a step moves qacc by a few units in the last place, when a step no longer
   // shrinks once it is tiny (rounding noise, not convergence), or when a step changed no row's
   // state and no cone is in its middle zone (the cost was one quadratic there: the Newton step
-  // reached its minimum exactly).
+  // reached its minimum, to the rounding of the solve with H). One more step is then taken, as
+  // iterative refinement: stiff rows (an equality constraint's D is large) make H ill-conditioned,
+  // and the second solve removes most of the first one's rounding error, as MuJoCo's further
+  // iterations do.
   constexpr double kEps = std::numeric_limits<double>::epsilon();
   double previous_step = std::numeric_limits<double>::infinity();
   int step = 0;
+  bool refined = false;
   for (; step < kMaxNewtonSteps; ++step) {
     // gradient M (a - a_smooth) + J^T ds/djar and Hessian M + J^T (d^2 s / d jar^2) J: per
     // row, ds/djar (w.lcp_w) and a one-sided row's d^2 s / d jar^2 (w.lcp_f); per elliptic
@@ -242,7 +264,10 @@ int solve_constraint_newton([[maybe_unused]] const Model& model, Data& data) {
       }
       r += size;
     }
-    if (!changed && !cone) break;
+    if (!changed && !cone) {
+      if (refined) break;
+      refined = true;
+    }
     w.newton_grad = w.newton_Merr;
     add_rows_transpose(data, w.lcp_w.data(), w.newton_grad.data());
     if (w.newton_grad.lpNorm<Eigen::Infinity>() == 0.0) break;

@@ -1,4 +1,6 @@
-// MuJoCo 2.2.2's soft constraints (engine_core_constraint.c): joint limits and contacts.
+// MuJoCo 2.2.2's soft constraints (engine_core_constraint.c): the rows' order and their soft
+// parameters; joint limits and contacts (equality constraints: equality.cpp; friction loss:
+// friction_loss.cpp). MuJoCo's order: equality rows, friction-loss rows, limits, contacts.
 //
 // Rows: a joint within `margin` of a stop gives one (J = +-e_dof); a contact (data.contact, from
 // collision()) without friction one, J = n^T (J_2 - J_1) at its point. With friction, a pyramidal
@@ -15,8 +17,9 @@
 // It is found exactly, in the smaller space: with no more rows than dofs by Murty's least-index
 // principal pivoting on the rows (finite for such matrices; one row takes one step), with more
 // rows than dofs (contacts) by active sets in dof space (solve_active_set). A model with elliptic
-// cones is solved by the Newton solver of constraint/newton.cpp instead (an elliptic cone is not a set of
-// one-sided rows).
+// cones, equality constraints or friction loss is solved by the Newton solver of
+// constraint/newton.cpp instead (an elliptic cone, an equality row that pulls both ways and a
+// friction-loss row's box on its force are not one-sided rows).
 #include <lever/constraint.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
@@ -28,9 +31,9 @@
 #include <cmath>
 #include <type_traits>
 
+#include "constraint/constraint_room.hpp"
 #include "model/model_room.hpp"
 #include "smooth/smooth.hpp"
-#include "constraint/constraint_room.hpp"
 
 namespace lever {
 
@@ -39,6 +42,8 @@ namespace {
 constexpr double kMinVal = 1e-15;   // MuJoCo's mjMINVAL
 constexpr double kMinImp = 0.0001;  // mjMINIMP
 constexpr double kMaxImp = 0.9999;  // mjMAXIMP
+
+}  // namespace
 
 // solref and solimp sanitized as MuJoCo's getsolparam: the standard (positive) and direct
 // (negative) forms cannot be mixed; a time constant no shorter than two steps (refsafe); solimp
@@ -52,8 +57,6 @@ void sanitize(const Model& model, std::array<double, 2>& solref, std::array<doub
   solimp[3] = std::min(kMaxImp, std::max(kMinImp, solimp[3]));
   solimp[4] = std::max(1.0, solimp[4]);
 }
-
-}  // namespace
 
 // solref and solimp of a joint's limit, sanitized as MuJoCo's getsolparam does.
 void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref,
@@ -118,14 +121,14 @@ void add_limit_row(const Model& model, Data& data, int n, int j, double sign, do
   data.efc_margin[n] = model.jnt_margin[j];
 }
 
-// The limit rows: lower stop, then upper, of each limited joint within margin of it.
-int add_limit_rows(const Model& model, Data& data) {
+// The limit rows after the n already made: lower stop, then upper, of each limited joint within
+// margin of it. Returns the rows made so far.
+int add_limit_rows(const Model& model, Data& data, int n) {
   const uint8_t* const limited = model.jnt_limited.data();
   const int* const qposadr = model.jnt_qposadr.data();
   const auto* const range = model.jnt_range.data();
   const double* const margin_of = model.jnt_margin.data();
   const double* const qpos = data.qpos.data();
-  int n = 0;
   for (int j = 0; j < model.njnt; ++j) {
     if (!limited[j]) continue;
     const double q = qpos[qposadr[j]];
@@ -274,11 +277,7 @@ int add_contact_rows(const Model& model, Data& data, int i, int n, PairDofs& pai
   return n + rows;
 }
 
-// A row's impedance at its distance, and the stiffness and damping of its reference
-// acceleration (K and B use dmax, not the current impedance).
-struct SoftParameters {
-  double imp, K, B;
-};
+}  // namespace
 
 SoftParameters soft_parameters(const std::array<double, 2>& solref,
                                const std::array<double, 5>& solimp, double pos, double margin) {
@@ -316,9 +315,11 @@ double regularizer(const SoftParameters& soft, double diag) {
   return std::max(kMinVal, (1 - soft.imp) * diag / soft.imp);
 }
 
-// The limit rows' soft parameters (they are the first `count` rows).
-void set_limit_soft_rows(const Model& model, Data& data, int count) {
-  for (int r = 0; r < count; ++r) {
+namespace {
+
+// The limit rows' soft parameters (rows first..end).
+void set_limit_soft_rows(const Model& model, Data& data, int first, int end) {
+  for (int r = first; r < end; ++r) {
     std::array<double, 2> solref;
     std::array<double, 5> solimp;
     limit_parameters(model, data.efc_id[r], solref, solimp);
@@ -373,9 +374,12 @@ void set_contact_soft_rows(const Model& model, Data& data, int i) {
 }  // namespace
 
 void unchecked::make_constraint(const Model& model, Data& data) {
-  const int limits = add_limit_rows(model, data);
-  set_limit_soft_rows(model, data, limits);
-  int n = limits;
+  data.ne = add_equality_rows(model, data, 0);
+  data.nf = add_friction_loss_rows(model, data, data.ne) - data.ne;
+  int n = data.ne + data.nf;
+  const int limits = add_limit_rows(model, data, n);
+  set_limit_soft_rows(model, data, n, limits);
+  n = limits;
   PairDofs pair;
   for (int i = 0; i < data.ncon; ++i) {
     Contact& con = data.contact[i];
@@ -385,6 +389,7 @@ void unchecked::make_constraint(const Model& model, Data& data) {
     set_contact_soft_rows(model, data, i);
   }
   data.nefc = n;
+  for (int r = data.ne + data.nf; r < n; ++r) data.efc_frictionloss[r] = 0.0;
 }
 
 void make_constraint(const Model& model, Data& data) {
@@ -494,7 +499,15 @@ void frame_times(const double* rows, Eigen::Index stride, int count, const doubl
 
 void rows_times(const Data& data, const double* x, double* out) {
   const auto& C = data.work.contact_frame_J;
+  const int nv = static_cast<int>(data.efc_J.cols());
   for (int r = 0; r < data.nefc;) {
+    if (data.efc_type[r] == ConstraintType::kEquality) {  // a dense row, summed in order
+      const double* J = data.efc_J.row(r).data();
+      double sum = 0.0;
+      for (int j = 0; j < nv; ++j) sum += J[j] * x[j];
+      out[r++] = sum;
+      continue;
+    }
     if (data.efc_dof[r] >= 0) {  // a limit row: J_r = sign e_dof
       out[r] = data.efc_sign[r] * x[data.efc_dof[r]];
       ++r;
@@ -525,7 +538,16 @@ void rows_jar(const Data& data, const double* x, double* out) {
 
 void add_rows_transpose(const Data& data, const double* f, double* out) {
   const auto& C = data.work.contact_frame_J;
+  const int nv = static_cast<int>(data.efc_J.cols());
   for (int r = 0; r < data.nefc;) {
+    if (data.efc_type[r] == ConstraintType::kEquality) {
+      const double* J = data.efc_J.row(r).data();
+      if (f[r] != 0.0) {
+        for (int j = 0; j < nv; ++j) out[j] += J[j] * f[r];
+      }
+      ++r;
+      continue;
+    }
     if (data.efc_dof[r] >= 0) {
       out[data.efc_dof[r]] += data.efc_sign[r] * f[r];
       ++r;
@@ -558,7 +580,13 @@ void add_rows_transpose(const Data& data, const double* f, double* out) {
 
 void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H) {
   const auto& C = data.work.contact_frame_J;
+  const int nv = static_cast<int>(data.efc_J.cols());
   for (int r = 0; r < data.nefc;) {
+    if (data.efc_type[r] == ConstraintType::kEquality) {
+      if (weight[r] != 0.0) add_rank_one(H, 0, nv, weight[r], data.efc_J.row(r).data());
+      ++r;
+      continue;
+    }
     if (data.efc_dof[r] >= 0) {  // a limit row: J_r = sign e_dof, sign^2 = 1
       H(data.efc_dof[r], data.efc_dof[r]) += weight[r];
       ++r;
@@ -825,7 +853,8 @@ void start_one_sided(const Model& model, Data& data) {
 }  // namespace
 
 void unchecked::solve_constraint(const Model& model, Data& data) {
-  if (data.nefc == 0 || model.opt.cone == Cone::kElliptic) {
+  // rows that are not one-sided (elliptic cones, equality, friction loss): Newton's method
+  if (data.nefc == 0 || model.opt.cone == Cone::kElliptic || data.ne + data.nf > 0) {
     start_unconstrained(model, data);
     if (data.nefc > 0) solve_constraint_newton(model, data);
     return;
@@ -845,6 +874,11 @@ void solve_constraint(const Model& model, Data& data) {
 
 void solve_constraint_pivoting(const Model& model, Data& data) {
   check_entry(model, data, "lever::solve_constraint_pivoting");
+  if (data.ne + data.nf > 0) {
+    throw StateError(
+        "lever::solve_constraint_pivoting: the rows include equality constraints or friction loss, "
+        "which are not one-sided; solve_constraint solves them by Newton's method.");
+  }
   start_one_sided(model, data);
   if (data.nefc > 0) solve_by_pivoting(model, data);
 }

@@ -41,6 +41,18 @@ namespace lever {
 namespace detail {
 
 void check_derivative_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
+  if (model.neq > 0) {
+    throw ModelError(
+        "derivatives: the model has equality constraints; lever's analytic derivatives cover joint "
+        "limits and contacts so far.");
+  }
+  for (int i = 0; i < model.nv; ++i) {
+    if (model.dof_frictionloss[i] > 0) {
+      throw ModelError("derivatives: joint '" + model.jnt_name[model.dof_jntid[i]] +
+                       "' has friction loss; lever's analytic derivatives cover joint limits so "
+                       "far.");
+    }
+  }
   // a ball's dofs turn about its body's final axes (MuJoCo's cdof): a joint after it in the same
   // body would turn them too, a case the derivation below leaves out (docs/derivatives.md)
   for (int j = 0; model.nq != model.nv && j < model.njnt; ++j) {
@@ -333,7 +345,7 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
   const std::vector<RigidInertia>& IC = detail::subtree_inertias(model, data, deriv.work);
   detail::inertia_columns(model, data, IC, deriv.work);
   detail::rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, IC, deriv.work,
-                        deriv.dtau_dq, &deriv.dtau_dv);
+                                deriv.dtau_dq, &deriv.dtau_dv);
 }
 
 }  // namespace lever

@@ -56,6 +56,7 @@ Owner owner_of_row(const Model& model, Size size, int row) {
     case Size::kNsite: return {"site", row, model.site_name[row]};
     case Size::kNpair: return {"pair", row, ""};
     case Size::kNsensor: return {"sensor", row, model.sensor_name[row]};
+    case Size::kNeq: return {"equality", row, model.eq_name[row]};
     default: return {};
   }
 }
@@ -111,6 +112,7 @@ constexpr NonNegative kNonNegative[] = {
     {"dof_armature", "a negative armature would make the model gain energy from nothing"},
     {"dof_damping", "a negative damping would make the model gain energy from nothing"},
     {"jnt_stiffness", "a negative stiffness would make the model gain energy from nothing"},
+    {"dof_frictionloss", "friction loss is the bound on a force's size"},
 };
 
 // A range used when its flag is set must have lo < hi.
@@ -211,6 +213,8 @@ void check_sizes(const Model& model) {
   if (model.nmesh < 0 || model.nmeshvert < 0 || model.nmeshgraph < 0) {
     throw ModelError("nmesh, nmeshvert and nmeshgraph must be non-negative.");
   }
+  if (model.neq < 0)
+    throw ModelError("neq must be non-negative; got " + std::to_string(model.neq) + ".");
   if (model.npair < 0 || model.nexclude < 0 || model.nconmax < 0 || model.njmax < 0) {
     throw ModelError("npair, nexclude, nconmax and njmax must be non-negative; got " +
                      std::to_string(model.npair) + ", " + std::to_string(model.nexclude) + ", " +
@@ -330,6 +334,37 @@ void check_tree(const Model& model) {
                            model.jnt_name[j] +
                            "', a ball or free joint; lever's actuators drive hinges and slides.",
                        "actuator", a);
+    }
+  }
+}
+
+// Each equality constraint names objects of its kind: two different bodies (connect, weld; body
+// 2 may be the world), or a hinge or slide and, optionally (-1: none), a second one (joint).
+void check_equalities(const Model& model) {
+  for (int e = 0; e < model.neq; ++e) {
+    const int type = static_cast<int>(model.eq_type[e]);
+    const int id1 = model.eq_obj1id[e], id2 = model.eq_obj2id[e];
+    if (type < 0 || type > static_cast<int>(EqualityType::kJoint)) {
+      reject("equality", e, model.eq_name[e],
+             "has a type lever does not have (connect 0, weld 1, joint 2; tendon couplings need "
+             "tendons)");
+    }
+    if (id1 == id2) reject("equality", e, model.eq_name[e], "names the same object twice");
+    if (model.eq_type[e] != EqualityType::kJoint) {
+      if (id1 < 0 || id1 >= model.nbody || id2 < 0 || id2 >= model.nbody) {
+        reject("equality", e, model.eq_name[e], "names a body that does not exist");
+      }
+      continue;
+    }
+    for (const int j : {id1, id2}) {
+      if (j == id2 && j == -1) continue;  // one joint: held at its qpos0 plus polycoef[0]
+      if (j < 0 || j >= model.njnt) {
+        reject("equality", e, model.eq_name[e], "names a joint that does not exist");
+      }
+      if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
+        reject("equality", e, model.eq_name[e],
+               "couples joint '" + model.jnt_name[j] + "', which is not a hinge or a slide");
+      }
     }
   }
 }
@@ -515,6 +550,7 @@ void validate(const Model& model) {
   check_options_actuators_keys(model);
   check_meshes(model);
   check_sensors(model);
+  check_equalities(model);
   check_finite(model);
   check_ranges(model);
 }

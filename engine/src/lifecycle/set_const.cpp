@@ -13,6 +13,7 @@
 
 #include "lifecycle/lifecycle.hpp"
 #include "collision/collision_room.hpp"
+#include "constraint/constraint_room.hpp"
 
 namespace lever {
 
@@ -252,6 +253,7 @@ void set_const(Model& model) {
     }
     model.body_invweight0[b] = weight;
   }
+  complete_equality_data(model, data);  // constraint/equality.cpp: anchors at qpos0
   detail::check_at_qpos0(model, data);  // model_check.cpp: finite parameters can still overflow
   build_simple_bodies(model);  // after dof_M0, which crba() copies for their dofs from now on
 

@@ -18,7 +18,8 @@ constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nbody = Size::kNbody, njnt = Size::kNjnt, ngeom = Size::kNgeom, nsite = Size::kNsite,
                nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude,
                nmesh = Size::kNmesh, nmeshvert = Size::kNmeshvert, nmeshgraph = Size::kNmeshgraph,
-               nsensor = Size::kNsensor, nsensordata = Size::kNsensordata;
+               nsensor = Size::kNsensor, nsensordata = Size::kNsensordata,
+               neq = Size::kNeq;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy;
@@ -204,7 +205,16 @@ const std::vector<ContactField>& contact_field_table() {
 }
 
 int constraint_rows_max(const Model& model) {
-  return 2 * model.njnt + (model.contacts_possible ? std::max(0, model.njmax) : 0);
+  // an equality constraint's rows whether or not it is active (eq_active may be edited); the
+  // arrays' own lengths, so that a model not sized yet is counted without reading past them
+  int rows = 0;
+  for (size_t e = 0; e < model.eq_type.size(); ++e) {
+    rows += model.eq_type[e] == EqualityType::kConnect ? 3
+            : model.eq_type[e] == EqualityType::kWeld  ? 6
+                                                       : 1;
+  }
+  for (const double loss : model.dof_frictionloss) rows += loss > 0;
+  return rows + 2 * model.njnt + (model.contacts_possible ? std::max(0, model.njmax) : 0);
 }
 
 int size_of(const Model& model, Size size) {
@@ -225,6 +235,7 @@ int size_of(const Model& model, Size size) {
     case Size::kNmeshgraph: return model.nmeshgraph;
     case Size::kNsensor: return model.nsensor;
     case Size::kNsensordata: return model.nsensordata;
+    case Size::kNeq: return model.neq;
   }
   return 0;
 }
@@ -234,9 +245,10 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 16> names = {
-      "1",     "nq",    "nv",       "nu",    "nbody",     "njnt",      "ngeom",     "nsite",
-      "nefc",  "npair", "nexclude", "nmesh", "nmeshvert", "nmeshgraph", "nsensor", "nsensordata"};
+  static constexpr std::array<const char*, 17> names = {
+      "1",     "nq",    "nv",       "nu",    "nbody",     "njnt",       "ngeom",   "nsite",
+      "nefc",  "npair", "nexclude", "nmesh", "nmeshvert", "nmeshgraph", "nsensor", "nsensordata",
+      "neq"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -363,7 +375,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 15> counts = {{{"nmesh", model.nmesh},
+  const std::array<std::pair<const char*, int>, 16> counts = {{{"nmesh", model.nmesh},
                                                                {"nmeshvert", model.nmeshvert},
                                                                {"nmeshgraph", model.nmeshgraph},
                                                                {"nq", model.nq},
@@ -377,7 +389,8 @@ void size_model(Model& model) {
                                                                {"npair", model.npair},
                                                                {"nexclude", model.nexclude},
                                                                {"nsensor", model.nsensor},
-                                                               {"nsensordata", model.nsensordata}}};
+                                                               {"nsensordata", model.nsensordata},
+                                                               {"neq", model.neq}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +

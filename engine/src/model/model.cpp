@@ -19,5 +19,6 @@ int Model::actuator(const std::string& n) const { return find_name(actuator_name
 int Model::key(const std::string& n) const { return find_name(key_name, n); }
 int Model::geom(const std::string& n) const { return find_name(geom_name, n); }
 int Model::sensor(const std::string& n) const { return find_name(sensor_name, n); }
+int Model::equality(const std::string& n) const { return find_name(eq_name, n); }
 
 }  // namespace lever

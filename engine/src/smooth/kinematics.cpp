@@ -483,9 +483,10 @@ void place_site(const Model& model, Data& data, int site) {
 namespace detail {
 
 void step_kinematics(const Model& model, Data& data) {
-  // nothing in a step reads xquat, nor the geom frames unless collision runs; the site frames
-  // are what a caller reads after a step (an end effector's position), and cost little
-  place_bodies(model, data, {.orientations = false, .geoms = model.contacts_possible});
+  // nothing in a step reads xquat but a weld's rows (equality constraints), nor the geom frames
+  // unless collision runs; the site frames are what a caller reads after a step (an end
+  // effector's position), and cost little
+  place_bodies(model, data, {.orientations = model.neq > 0, .geoms = model.contacts_possible});
   com_quantities(model, data);
 }
 

@@ -79,6 +79,14 @@ Labeler sensor_number(const Model& model) {
 
 Labeler limit_row(const Model& model, const Data& data) {
   return [&model, &data](int r) {
+    if (data.efc_type[r] == ConstraintType::kEquality) {
+      return "row " + std::to_string(r) + " (equality " + quoted(model.eq_name, data.efc_id[r]) +
+             ")";
+    }
+    if (data.efc_type[r] == ConstraintType::kFrictionDof) {
+      return "row " + std::to_string(r) + " (friction loss, " + dof_label(model, data.efc_id[r]) +
+             ")";
+    }
     if (data.efc_type[r] != ConstraintType::kLimitJoint) {
       return "row " + std::to_string(r) + " (contact " + std::to_string(data.efc_id[r]) + ")";
     }
@@ -120,6 +128,7 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNmeshgraph: return [](int i) { return "mesh graph " + std::to_string(i); };
     case Size::kNsensor: return [&model](int i) { return "sensor " + quoted(model.sensor_name, i); };
     case Size::kNsensordata: return sensor_number(model);
+    case Size::kNeq: return [&model](int i) { return "equality " + quoted(model.eq_name, i); };
     case Size::kOne: break;
   }
   return [](int) { return std::string(); };
@@ -158,7 +167,9 @@ bool compare_row_identity(const Twin& t, int k, Report& r) {
   const Data& data = t.data;
   const mjData* d = t.d.get();
   r.compare("nefc", k, data.nefc, d->nefc);
-  if (data.nefc != d->nefc) return false;
+  r.compare("ne", k, data.ne, d->ne);
+  r.compare("nf", k, data.nf, d->nf);
+  if (data.nefc != d->nefc || data.ne != d->ne || data.nf != d->nf) return false;
   bool same_rows = true;
   for (int i = 0; i < data.nefc; ++i) {
     const std::string row = "row " + std::to_string(i);
@@ -260,8 +271,9 @@ void compare_contacts(const Twin& t, int k, Report& r) {
 //   geom_x*    a mesh geom lever did not read (it gives no mass and cannot collide, or lever
 //              cannot read its file: size zero in lever) keeps the frame its element wrote, where
 //              MuJoCo moves it to the mesh's centre and principal axes: such rows are left out;
-//   efc_state  lever's ConstraintState values are MuJoCo's mjtConstraintState for the states its
-//              rows can have (0 satisfied, 1 quadratic = active, 4 cone): compared as integers.
+//   efc_state  lever's ConstraintState values are MuJoCo's mjtConstraintState (0 satisfied,
+//              1 quadratic = active, 2 and 3 a friction-loss row's linear sides, 4 cone):
+//              compared as integers.
 void compare_forward_outputs(const Twin& t, int k, Report& r) {
   const Model& model = t.model;
   const Data& data = t.data;
@@ -276,7 +288,7 @@ void compare_forward_outputs(const Twin& t, int k, Report& r) {
       r.declare(view.info->name);
     }
   }
-  for (const char* q : {"nefc", "efc_J", "efc_imp", "efc_K", "efc_B"}) r.declare(q);
+  for (const char* q : {"nefc", "ne", "nf", "efc_J", "efc_imp", "efc_K", "efc_B"}) r.declare(q);
   compare_contacts(t, k, r);
 
   const bool same_rows = compare_row_identity(t, k, r);
@@ -373,6 +385,15 @@ void compare_model_constants(const Twin& t, Report& r) {
             });
   r.compare("body_subtreemass", 0, model.body_subtreemass.data(), m->body_subtreemass, model.nbody,
             [&model](int i) { return "body " + quoted(model.body_name, i); });
+  // the anchors and relative poses set_const completes at qpos0 (mj_setConst's)
+  if (model.neq == m->neq && model.neq > 0) {
+    std::vector<double> eq_data;
+    for (const auto& row : model.eq_data) eq_data.insert(eq_data.end(), row.begin(), row.end());
+    r.compare("eq_data", 0, eq_data.data(), m->eq_data, model.neq * kEqualityData, [&model](int i) {
+      return "equality " + quoted(model.eq_name, i / kEqualityData) + ", " +
+             std::to_string(i % kEqualityData);
+    });
+  }
 }
 
 void compare_forward(Twin& t, const test::State& s, int k, Report& r) {

@@ -57,8 +57,11 @@ Twin::Twin(const std::string& file, Path path, test::MjModelPtr mj)
   // with contacts, MuJoCo's constraint solver run to convergence: its answer is then the
   // problem's unique minimizer, the one lever's exact solve finds (with the default tolerance
   // 1e-8 MuJoCo stops ~1e-11 away from it where contacts are pyramidal). Limit rows alone it
-  // solves exactly within its default iterations.
-  if (model.contacts_possible) {
+  // solves exactly within its default iterations; equality constraints and friction loss are
+  // solved by the Newton method, which a tolerance stops short of the minimizer too.
+  const bool friction_loss = std::any_of(
+      model.dof_frictionloss.begin(), model.dof_frictionloss.end(), [](double f) { return f > 0; });
+  if (model.contacts_possible || model.neq > 0 || friction_loss) {
     m->opt.tolerance = 0;
     m->opt.iterations = std::max(m->opt.iterations, 1000);
   }

@@ -1,0 +1,104 @@
+// Friction loss and equality constraints compiled by mjcf_lite and by MuJoCo 2.2.2: the models
+// of tests/models/constraints/ and small cases (class inheritance, what is left unwritten), field
+// by field (dof_frictionloss, dof_solref, dof_solimp, eq_* with eq_data as mj_setConst completes
+// it); and the constraints lever refuses, by name.
+#include <catch2/catch.hpp>
+#include <lever/mjcf.hpp>
+
+#include <filesystem>
+
+#include <lever/harness/models.hpp>
+#include "mujoco_xml.hpp"
+
+namespace {
+
+void compare_with_mujoco(const std::string& name, const std::string& xml) {
+  INFO(name);
+  const lever::Model ours = lever::mjcf::load_string(xml, name);
+  std::string error;
+  const lever::test::MjModelHandle theirs = lever::test::mujoco_compile(xml, &error);
+  INFO("mujoco: " << error);
+  REQUIRE(theirs);
+  std::vector<std::string> differences = lever::test::compare_parameters(ours, *theirs);
+  const std::vector<std::string> constants = lever::test::compare_constants(ours, *theirs);
+  differences.insert(differences.end(), constants.begin(), constants.end());
+  for (const std::string& d : differences) FAIL_CHECK(name << ": " << d);
+}
+
+std::string constraint_refusal(const std::string& xml) {
+  try {
+    lever::mjcf::load_string(xml, "refused.xml");
+  } catch (const lever::mjcf::ParseError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("the constraint models compile to MuJoCo 2.2.2's parameters", "[compile][constraints]") {
+  for (const char* name : {"friction_loss.xml", "equality.xml"}) {
+    const std::string path =
+        lever::test::model_path(std::string("tests/models/constraints/") + name);
+    compare_with_mujoco(name, lever::test::read_text(path));
+  }
+  const lever::Model friction =
+      lever::mjcf::load_file(lever::test::model_path("tests/models/constraints/friction_loss.xml"));
+  CHECK(friction.dof_frictionloss[1] == 0.4);  // from class "rough"
+  CHECK(friction.dof_frictionloss[3] == 0.0);  // the class's value overridden by 0
+  const lever::Model eq =
+      lever::mjcf::load_file(lever::test::model_path("tests/models/constraints/equality.xml"));
+  REQUIRE(eq.neq == 7);
+  CHECK(eq.eq_active[6] == 0);
+  CHECK(eq.eq_solref[1][0] == 0.05);  // class "loose"
+}
+
+TEST_CASE("equality and friction loss corner cases agree with MuJoCo 2.2.2",
+          "[compile][constraints]") {
+  // a weld to the world without anchor or relpose, a coupling left at its default polycoef, a
+  // connect whose second body is a child, partial solref and solimp over the main class, a
+  // class's frictionloss and solimpfriction partly overridden
+  compare_with_mujoco("corners.xml", R"(<mujoco>
+  <default>
+    <joint frictionloss="0.2" solimpfriction="0.7 0.8 0.01"/>
+    <equality solref="0.03" solimp="0.8"/>
+  </default>
+  <worldbody>
+    <body name="a" pos="0 0 1" euler="10 20 30">
+      <joint name="a1" axis="1 0 0" solimpfriction="0.6"/>
+      <joint name="a2" axis="0 1 0" frictionloss="1.5" solreffriction="0.05"/>
+      <geom size="0.1"/>
+      <body name="b" pos="0.2 0 0">
+        <joint name="b1" type="slide" axis="0 0 1" frictionloss="0"/>
+        <geom size="0.05"/>
+      </body>
+    </body>
+    <body name="c" pos="1 0 1">
+      <freejoint/>
+      <geom type="box" size="0.1 0.2 0.3"/>
+    </body>
+  </worldbody>
+  <equality>
+    <weld body1="c"/>
+    <joint joint1="a2" joint2="a1"/>
+    <connect body1="a" body2="b" anchor="0.1 0.2 0.3" solimp="0.5 0.6"/>
+  </equality>
+</mujoco>)");
+}
+
+TEST_CASE("constraints lever cannot build are refused by name", "[compile][constraints]") {
+  const std::string head = R"(<mujoco><worldbody><body name="a"><joint name="j"/><geom size="1"/>
+    <body name="b"><joint name="ball" type="ball"/><geom size="1"/></body></body></worldbody>)";
+  CHECK_THAT(constraint_refusal(head + R"(<equality><tendon tendon1="t"/></equality></mujoco>)"),
+             Catch::Contains("tendon"));
+  CHECK_THAT(constraint_refusal(
+                 head + R"(<equality><connect body1="x" anchor="0 0 0"/></equality></mujoco>)"),
+             Catch::Contains("unknown body 'x'"));
+  CHECK_THAT(constraint_refusal(head + R"(<equality><joint joint1="ball"/></equality></mujoco>)"),
+             Catch::Contains("joint 'ball' is a ball or free joint"));
+  CHECK_THAT(
+      constraint_refusal(head + R"(<equality><weld body1="a" body2="a"/></equality></mujoco>)"),
+      Catch::Contains("constrained to itself"));
+  CHECK_THAT(constraint_refusal(head + R"(<equality><connect body1="a"/></equality></mujoco>)"),
+             Catch::Contains("anchor"));
+}
