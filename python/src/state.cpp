@@ -21,7 +21,7 @@ constexpr int kStateVersion = 1;
 // The structs outside the field table are carried member by member below. A member added to one
 // of them changes its size and stops the build here: carry the new member too, then update the
 // size.
-static_assert(sizeof(lever::Options) == 72, "lever::Options changed: pickle its new member");
+static_assert(sizeof(lever::Options) == 120, "lever::Options changed: pickle its new member");
 static_assert(sizeof(lever::CompilerInfo) == 12, "lever::CompilerInfo changed: pickle it");
 static_assert(sizeof(lever::VisualInfo) == 8 * sizeof(std::vector<std::string>) +
                                                2 * sizeof(std::string),
@@ -118,6 +118,11 @@ py::dict model_state(const lever::Model& model) {
   opt["iterations"] = o.iterations;
   opt["tolerance"] = o.tolerance;
   opt["contact_disabled"] = o.contact_disabled;
+  opt["mpr_tolerance"] = o.mpr_tolerance;
+  opt["mpr_iterations"] = o.mpr_iterations;
+  opt["multiccd"] = o.multiccd;
+  opt["magnetic"] = bytes_of(o.magnetic.data(), 3 * sizeof(double));
+  opt["sensornoise"] = o.sensornoise;
   state["opt"] = opt;
 
   py::dict compiler;
@@ -208,6 +213,12 @@ std::shared_ptr<lever::Model> model_from_state(const py::dict& state) {
   m.opt.iterations = item(opt, "iterations", "a model").cast<int>();
   m.opt.tolerance = item(opt, "tolerance", "a model").cast<double>();
   m.opt.contact_disabled = item(opt, "contact_disabled", "a model").cast<bool>();
+  m.opt.mpr_tolerance = item(opt, "mpr_tolerance", "a model").cast<double>();
+  m.opt.mpr_iterations = item(opt, "mpr_iterations", "a model").cast<int>();
+  m.opt.multiccd = item(opt, "multiccd", "a model").cast<bool>();
+  write_bytes(item(opt, "magnetic", "a model"), m.opt.magnetic.data(), 3 * sizeof(double),
+              "model.opt.magnetic");
+  m.opt.sensornoise = item(opt, "sensornoise", "a model").cast<bool>();
 
   const py::dict compiler = item(state, "compiler", "a model").cast<py::dict>();
   m.compiler.inertiagrouprange =

@@ -13,11 +13,6 @@ namespace lever::test {
 
 namespace fs = std::filesystem;
 
-std::string robots_dir() {
-  if (const char* dir = std::getenv("LEVER_ROBOTS_DIR")) return dir;
-  return (fs::path(source_dir()).parent_path() / "shared" / "robots").string();
-}
-
 std::vector<std::string> robot_files(const std::string& root) {
   std::vector<std::string> files;
   for (const auto& entry : fs::recursive_directory_iterator(root)) {

@@ -2,15 +2,12 @@
 // they are, and what lever refuses in each (robot_files_test.cpp).
 #pragma once
 
+#include <lever/harness/models.hpp>
 #include <lever/mjcf.hpp>
 #include <string>
 #include <vector>
 
 namespace lever::test {
-
-/// The folder of the real robot files: $LEVER_ROBOTS_DIR if set, else ../shared/robots beside
-/// the source tree.
-std::string robots_dir();
 
 /// Every *.xml file under `root`, sorted, as paths.
 std::vector<std::string> robot_files(const std::string& root);

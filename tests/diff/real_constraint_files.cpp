@@ -1,5 +1,5 @@
 // Real robot files that use joint friction loss (MuJoCo Menagerie 2022's ANYmal B and C and
-// Unitree A1, from ../shared/robots beside the repository, or the folder LEVER_ROBOTS names)
+// Unitree A1, from ../shared/robots beside the repository, or the folder $LEVER_ROBOTS_DIR names)
 // against MuJoCo 2.2.2: random states and a lockstep run, both paths. Their feet and shins are
 // meshes and cylinders that collide with each other, pairs lever's collision stage does not
 // compute yet, so contacts are disabled on both sides (<flag contact="disable">): what is
@@ -17,11 +17,6 @@
 namespace lever::test {
 
 namespace {
-
-std::string robots_folder() {
-  if (const char* env = std::getenv("LEVER_ROBOTS")) return env;
-  return source_dir() + "/../shared/robots";
-}
 
 int friction_rows(const Data& data) {
   int n = 0;
@@ -44,7 +39,7 @@ TEST_CASE("diff: Cassie's closed leg chains (equality connects) agree with MuJoC
   // MuJoCo's compiled model only: lever's loader refuses the file's motors' `user` attribute.
   // Random states; inverse dynamics at the forward qacc to 1e-12 of the cancelled forces
   REQUIRE(mj_version() == 222);
-  const std::string file = robots_folder() + "/menagerie-2022/agility_cassie/cassie.xml";
+  const std::string file = robots_dir() + "/menagerie-2022/agility_cassie/cassie.xml";
   if (!std::filesystem::exists(file)) {
     WARN("no real model file " << file << ": skipped");
     return;
@@ -65,7 +60,7 @@ TEST_CASE("diff: Cassie's closed leg chains (equality connects) agree with MuJoC
 
 TEST_CASE("diff: real files with friction loss agree with MuJoCo", "[diff][constraints][robots]") {
   REQUIRE(mj_version() == 222);
-  const std::string folder = robots_folder();
+  const std::string folder = robots_dir();
   if (!std::filesystem::exists(folder)) {
     WARN("no real model files at " << folder << ": skipped");
     return;

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 #include <sstream>
+#include <cstdlib>
 #include <string>
 #include <vector>
 
@@ -14,9 +15,13 @@ inline std::string source_dir() { return LEVER_SOURCE_DIR; }
 
 inline std::string model_path(const std::string& relative) { return source_dir() + "/" + relative; }
 
-/// The shared robot files (../shared/robots beside the checkout, or CMake's LEVER_ROBOTS_DIR):
-/// MuJoCo 2.2.2's sample models and the Menagerie of 2022, read in place.
-inline std::string robots_dir() { return LEVER_ROBOTS_DIR; }
+/// The shared robot files: MuJoCo 2.2.2's sample models and the Menagerie of 2022, read in place
+/// from $LEVER_ROBOTS_DIR when it is set, else from CMake's LEVER_ROBOTS_DIR (../shared/robots
+/// beside the checkout).
+inline std::string robots_dir() {
+  if (const char* dir = std::getenv("LEVER_ROBOTS_DIR")) return dir;
+  return LEVER_ROBOTS_DIR;
+}
 
 /// Every model file of the repository (models/ and tests/models/), sorted, as absolute paths.
 inline std::vector<std::string> all_model_files() {
