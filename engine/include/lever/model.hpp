@@ -65,7 +65,9 @@ struct FramePlacement {
   enum class Offset : uint8_t { kZero, kAlongAxis, kGeneral };
   /// The rotation R B: R itself (B = 1), R's columns moved and signed (B a quarter turn to within
   /// the rounding of its quaternion: column c of R B is sign[c] times column column[c] of R;
-  /// MJCF's quat="1 1 0 0", a fromto along an axis), or the whole product.
+  /// MJCF's quat="1 1 0 0", a fromto along an axis), or the whole product. kinematics() takes
+  /// only kNone's shortcut: it composes a quarter turn's quaternion as any other, so that the
+  /// rounding of its 1/sqrt(2) lands in the last bit where MuJoCo's does.
   enum class Turn : uint8_t { kNone, kQuarter, kGeneral };
   Offset offset = Offset::kGeneral;
   uint8_t axis = 0;
