@@ -81,7 +81,8 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kOne:
     case Size::kNefc:
     case Size::kNpair:  // pairs and exclusions have no names in lever: their index
-    case Size::kNexclude: break;
+    case Size::kNexclude:
+    case Size::kNmocap: break;
   }
   return std::to_string(i);
 }

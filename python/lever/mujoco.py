@@ -90,10 +90,10 @@ class mjtIntegrator(_enum.IntEnum):
 # lever's arrays that MuJoCo has under the same name, shape and meaning (the field table)
 _MODEL_FIELDS = frozenset(f["name"] for f in _lever.model_field_table() if f["mujoco"])
 _DATA_FIELDS = frozenset(f["name"] for f in _lever.data_field_table() if f["mujoco"])
-_SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude", "nconmax",
-          "njmax")
+_SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude", "nmocap",
+          "nconmax", "njmax")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
-_KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl")
+_KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl", "key_mpos", "key_mquat")
 
 
 def _missing(kind: str, name: str):

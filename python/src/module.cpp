@@ -351,6 +351,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nsite", [](const lever::Model& x) { return x.nsite; })
       .def_property_readonly("npair", [](const lever::Model& x) { return x.npair; })
       .def_property_readonly("nexclude", [](const lever::Model& x) { return x.nexclude; })
+      .def_property_readonly("nmocap", [](const lever::Model& x) { return x.nmocap; })
       .def_property_readonly("nconmax", [](const lever::Model& x) { return x.nconmax; })
       .def_property_readonly("njmax", [](const lever::Model& x) { return x.njmax; })
       .def_property(
@@ -366,9 +367,10 @@ PYBIND11_MODULE(_lever, m) {
       .def_property(
           "integrator", [](const lever::Model& x) { return static_cast<int>(x.opt.integrator); },
           [](lever::Model& x, int i) {
-            if (i != 0 && i != 1 && i != 2) {
-              throw lever::StateError("integrator " + std::to_string(i) +
-                                      " is not one lever has (0 Euler, 1 RK4, 2 implicit).");
+            if (i != 0 && i != 1 && i != 2 && i != 3) {
+              throw lever::StateError(
+                  "integrator " + std::to_string(i) +
+                  " is not one lever has (0 Euler, 1 RK4, 2 implicit, 3 implicitfast).");
             }
             x.opt.integrator = static_cast<lever::Integrator>(i);
           })
@@ -400,6 +402,16 @@ PYBIND11_MODULE(_lever, m) {
                              [](py::object self) {
                                auto& x = self.cast<lever::Model&>();
                                return key_view(x.key_ctrl, self);
+                             })
+      .def_property_readonly("key_mpos",
+                             [](py::object self) {
+                               auto& x = self.cast<lever::Model&>();
+                               return key_view(x.key_mpos, self);
+                             })
+      .def_property_readonly("key_mquat",
+                             [](py::object self) {
+                               auto& x = self.cast<lever::Model&>();
+                               return key_view(x.key_mquat, self);
                              })
       .def(
           "field",

@@ -4,7 +4,9 @@
 // bit of the geoms' frames, so the frames must be MuJoCo's own, not a rounding away.
 #include <mujoco/mujoco.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <random>
 #include <sstream>
 #include <string>
@@ -12,6 +14,7 @@
 #include <lever/diff/runs.hpp>
 #include <lever/diff/twin.hpp>
 #include <lever/harness/models.hpp>
+#include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
 
 namespace lever::test {
@@ -85,7 +88,139 @@ void check_bits_on_every_model(diff::Path path) {
   }
 }
 
+// ---- mocap bodies ------------------------------------------------------------------------------
+
+const char* const kMocapModels[] = {"tests/models/mocap.xml",
+                                    "tests/diff/contact_scenes/mocap_contacts.xml"};
+
+// The same random mocap poses written into both: positions about the arm, quaternions of any
+// length (kinematics normalizes them in place, as mj_kinematics does).
+void write_random_mocap(diff::Twin& twin, std::mt19937_64& rng) {
+  std::uniform_real_distribution<double> x(0.0, 0.6), y(-0.1, 0.1), z(0.3, 0.7), scale(0.2, 3.0);
+  std::normal_distribution<double> normal;
+  for (int i = 0; i < twin.model.nmocap; ++i) {
+    const Eigen::Vector3d pos(x(rng), y(rng), z(rng));
+    const double s = scale(rng);
+    const Eigen::Vector4d quat(s * normal(rng), s * normal(rng), s * normal(rng), s * normal(rng));
+    twin.data.mocap_pos[i] = pos;
+    twin.data.mocap_quat[i] = quat;
+    for (int k = 0; k < 3; ++k) twin.d->mocap_pos[3 * i + k] = pos[k];
+    for (int k = 0; k < 4; ++k) twin.d->mocap_quat[4 * i + k] = quat[k];
+  }
+}
+
+void compare_mocap_state(const diff::Twin& twin, BitTally& tally) {
+  for (int i = 0; i < twin.model.nmocap; ++i) {
+    tally.compare("mocap_pos", i, twin.data.mocap_pos[i].data(), twin.d->mocap_pos + 3 * i, 3);
+    tally.compare("mocap_quat", i, twin.data.mocap_quat[i].data(), twin.d->mocap_quat + 4 * i, 4);
+  }
+}
+
+bool within_bound(double ours, double theirs) {
+  return std::abs(ours - theirs) <= 1e-12 * std::max(1.0, std::abs(theirs));
+}
+
 }  // namespace
+
+TEST_CASE("diff: mocap bodies are numbered, and keyframes place them, as MuJoCo's",
+          "[diff][bits][mocap]") {
+  for (const char* relative : kMocapModels) {
+    for (const diff::Path path : {diff::Path::kLoader, diff::Path::kEngine}) {
+      INFO(relative << " (" << diff::path_name(path) << ")");
+      diff::Twin twin(model_path(relative), path);
+      const mjModel* m = twin.m.get();
+      REQUIRE(m->nmocap == 2);
+      CHECK(twin.model.nmocap == m->nmocap);
+      for (int b = 0; b < m->nbody; ++b) CHECK(twin.model.body_mocapid[b] == m->body_mocapid[b]);
+      for (int k = 0; k < m->nkey; ++k) {
+        for (int i = 0; i < 3 * m->nmocap; ++i) {
+          CHECK(twin.model.key_mpos(k, i) == m->key_mpos[3 * m->nmocap * k + i]);
+        }
+        for (int i = 0; i < 4 * m->nmocap; ++i) {
+          CHECK(twin.model.key_mquat(k, i) == m->key_mquat[4 * m->nmocap * k + i]);
+        }
+      }
+      // Data's mocap arrays: at the bodies after construction and reset, at the key after a
+      // keyframe reset
+      BitTally tally;
+      Data fresh(twin.model);
+      mjData* d = twin.d.get();
+      mj_resetData(m, d);
+      for (int i = 0; i < m->nmocap; ++i) {
+        tally.compare("mocap_pos", i, fresh.mocap_pos[i].data(), d->mocap_pos + 3 * i, 3);
+        tally.compare("mocap_quat", i, fresh.mocap_quat[i].data(), d->mocap_quat + 4 * i, 4);
+      }
+      for (int k = 0; k < m->nkey; ++k) {
+        reset_keyframe(twin.model, twin.data, k);
+        mj_resetDataKeyframe(m, d, k);
+        compare_mocap_state(twin, tally);
+        reset(twin.model, twin.data);
+        mj_resetData(m, d);
+        compare_mocap_state(twin, tally);
+      }
+      INFO(tally.differing << " of " << tally.compared << " differ; first " << tally.first);
+      CHECK(tally.compared > 0);
+      CHECK(tally.differing == 0);
+    }
+  }
+}
+
+TEST_CASE("diff: mocap bodies at random poses: poses to the bit, contacts as MuJoCo's",
+          "[diff][bits][mocap]") {
+  REQUIRE(mj_version() == 222);
+  for (const char* relative : kMocapModels) {
+    for (const diff::Path path : {diff::Path::kLoader, diff::Path::kEngine}) {
+      INFO(relative << " (" << diff::path_name(path) << ")");
+      diff::Twin twin(model_path(relative), path);
+      std::mt19937_64 rng(diff::default_seed(relative));
+      BitTally tally;
+      long contacts = 0, mocap_contacts = 0, contact_mismatches = 0;
+      std::string first_mismatch;
+      for (int i = 0; i < kStates; ++i) {
+        twin.set_state(random_state(twin.model, rng));
+        write_random_mocap(twin, rng);
+        twin.mujoco_forward();
+        forward(twin.model, twin.data);
+        compare_poses(twin, tally);
+        compare_mocap_state(twin, tally);  // normalized in place, both
+        const mjData* d = twin.d.get();
+        if (twin.data.ncon != d->ncon) {
+          if (contact_mismatches++ == 0) {
+            first_mismatch = "state " + std::to_string(i) + ": ncon " +
+                             std::to_string(twin.data.ncon) + " vs " + std::to_string(d->ncon);
+          }
+          continue;
+        }
+        for (int c = 0; c < d->ncon; ++c) {
+          const Contact& ours = twin.data.contact[c];
+          const mjContact& theirs = d->contact[c];
+          ++contacts;
+          const int b1 = twin.model.geom_bodyid[theirs.geom1];
+          const int b2 = twin.model.geom_bodyid[theirs.geom2];
+          if (twin.model.body_mocapid[b1] >= 0 || twin.model.body_mocapid[b2] >= 0) {
+            ++mocap_contacts;
+          }
+          bool same = ours.geom1 == theirs.geom1 && ours.geom2 == theirs.geom2 &&
+                      within_bound(ours.dist, theirs.dist);
+          for (int k = 0; k < 3; ++k) same = same && within_bound(ours.pos[k], theirs.pos[k]);
+          for (int k = 0; k < 9; ++k) {
+            same = same && within_bound(ours.frame.data()[k], theirs.frame[k]);
+          }
+          if (!same && contact_mismatches++ == 0) {
+            first_mismatch = "state " + std::to_string(i) + ", contact " + std::to_string(c);
+          }
+        }
+      }
+      INFO(tally.differing << " of " << tally.compared << " pose numbers differ; first "
+                           << tally.first);
+      CHECK(tally.differing == 0);
+      INFO(contact_mismatches << " contacts differ; first " << first_mismatch << "; "
+                              << mocap_contacts << " of " << contacts << " touch a mocap body");
+      CHECK(contact_mismatches == 0);
+      if (twin.model.ngeom > 0 && relative == kMocapModels[1]) CHECK(mocap_contacts >= 50);
+    }
+  }
+}
 
 TEST_CASE("diff: poses equal MuJoCo's to the bit on random states, MuJoCo's compiled model",
           "[diff][bits]") {

@@ -138,6 +138,7 @@ class WasmModel {
     if (what == "nsite") return model_.nsite;
     if (what == "npair") return model_.npair;
     if (what == "nexclude") return model_.nexclude;
+    if (what == "nmocap") return model_.nmocap;
     if (what == "nkey") return model_.nkey;
     return -1;
   }

@@ -16,7 +16,8 @@ namespace {
 namespace token {
 constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nbody = Size::kNbody, njnt = Size::kNjnt, ngeom = Size::kNgeom, nsite = Size::kNsite,
-               nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude;
+               nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude,
+               nmocap = Size::kNmocap;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy;
@@ -174,6 +175,7 @@ int size_of(const Model& model, Size size) {
     case Size::kNefc: return constraint_rows_max(model);
     case Size::kNpair: return model.npair;
     case Size::kNexclude: return model.nexclude;
+    case Size::kNmocap: return model.nmocap;
   }
   return 0;
 }
@@ -183,8 +185,9 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 11> names = {
-      "1", "nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "nefc", "npair", "nexclude"};
+  static constexpr std::array<const char*, 12> names = {
+      "1",     "nq",   "nv",    "nu",       "nbody", "njnt",
+      "ngeom", "nsite", "nefc", "npair", "nexclude", "nmocap"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -311,7 +314,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 10> counts = {{{"nq", model.nq},
+  const std::array<std::pair<const char*, int>, 11> counts = {{{"nq", model.nq},
                                                                {"nv", model.nv},
                                                                {"nu", model.nu},
                                                                {"nbody", model.nbody},
@@ -320,7 +323,8 @@ void size_model(Model& model) {
                                                                {"nsite", model.nsite},
                                                                {"nkey", model.nkey},
                                                                {"npair", model.npair},
-                                                               {"nexclude", model.nexclude}}};
+                                                               {"nexclude", model.nexclude},
+                                                               {"nmocap", model.nmocap}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +
@@ -330,6 +334,7 @@ void size_model(Model& model) {
   if (model.nbody < 1) {
     throw ModelError("size_model: nbody = 0; a model has at least the world body (body 0).");
   }
+  const size_t bodies_before = model.body_mocapid.size();
 #define LEVER_MODEL_SIZE_ARRAY(name, type, rows, cols, origin)                           \
   {                                                                                      \
     const int n = size_of(model, token::rows);                                           \
@@ -337,6 +342,8 @@ void size_model(Model& model) {
   }
   LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE_ARRAY)
 #undef LEVER_MODEL_SIZE_ARRAY
+  // a new body is not a mocap body until the builder says so
+  for (size_t b = bodies_before; b < model.body_mocapid.size(); ++b) model.body_mocapid[b] = -1;
   // outside the table (see lever/fields.hpp): one name per object, and the keyframes
 #define LEVER_MODEL_SIZE_NAMES(name, count) model.name.resize(static_cast<size_t>(model.count));
   LEVER_MODEL_NAMES(LEVER_MODEL_SIZE_NAMES)
@@ -345,6 +352,8 @@ void size_model(Model& model) {
   model.key_qpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nq));
   model.key_qvel.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nv));
   model.key_ctrl.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nu));
+  model.key_mpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, 3 * model.nmocap));
+  model.key_mquat.conservativeResizeLike(RowMatrix::Zero(model.nkey, 4 * model.nmocap));
   model.fit_tag = 0;  // its arrays may have changed: set_const again before a Data trusts it
 }
 

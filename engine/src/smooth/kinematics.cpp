@@ -3,7 +3,7 @@
 // Poses compose from the root outwards, body by body, joint by joint, as MuJoCo's mj_kinematics,
 // and with its arithmetic, operation for operation, so that every pose is MuJoCo's to the last
 // bit (two boxes face to face touch or not by that bit): a body's orientation is a quaternion,
-// its parent's times body_quat, times each joint's turn (a
+// its parent's times body_quat (a mocap body's: mocap_quat), times each joint's turn (a
 // hinge's axis-angle quaternion, a ball's qpos); its origin is its parent's plus the parent's
 // rotation of body_pos, moved along a slide's world axis, and swung about a turning joint's
 // anchor. The quaternion is then normalized (always scaled by 1 / |q|) and turned into the matrix
@@ -90,6 +90,7 @@ struct BodyArrays {
       : parentid(model.body_parentid.data()),
         jntnum(model.body_jntnum.data()),
         jntadr(model.body_jntadr.data()),
+        mocapid(model.body_mocapid.data()),
         body_pos(model.body_pos.data()),
         body_quat(model.body_quat.data()),
         body_placement(model.body_placement.data()),
@@ -103,6 +104,8 @@ struct BodyArrays {
         jnt_axis(model.jnt_axis.data()),
         qpos0(model.qpos0.data()),
         qpos(data.qpos.data()),
+        mocap_pos(data.mocap_pos.data()),
+        mocap_quat(data.mocap_quat.data()),
         xpos(data.xpos.data()),
         xmat(data.xmat.data()),
         xquat(data.xquat.data()),
@@ -112,7 +115,7 @@ struct BodyArrays {
         xaxis(data.xaxis.data()) {}
 
   // the model's
-  const int *parentid, *jntnum, *jntadr;
+  const int *parentid, *jntnum, *jntadr, *mocapid;
   const Eigen::Vector3d* body_pos;
   const Quat* body_quat;
   const FramePlacement* body_placement;
@@ -126,6 +129,8 @@ struct BodyArrays {
   const double* qpos0;
   // the state and what is placed
   const double* qpos;
+  const Eigen::Vector3d* mocap_pos;
+  const Quat* mocap_quat;
   Eigen::Vector3d* xpos;
   Mat3* xmat;
   Quat* xquat;
@@ -206,12 +211,19 @@ template <bool kJointFrames>
     }
   } else {
     const int p = a.parentid[b];
-    const FramePlacement& placement = a.body_placement[b];
-    offset_point(a.xpos[p], a.xmat[p], a.body_pos[b], placement, pos);
-    if (placement.turn == FramePlacement::Turn::kNone) {
-      quat = a.xquat[p];
+    const int mocap = a.mocapid[b];
+    if (mocap >= 0) {  // a mocap body: where the user put it (its parent is the world)
+      const FramePlacement general;
+      offset_point(a.xpos[p], a.xmat[p], a.mocap_pos[mocap], general, pos);
+      quat = quat_mul(a.xquat[p], a.mocap_quat[mocap]);
     } else {
-      quat = quat_mul(a.xquat[p], a.body_quat[b]);
+      const FramePlacement& placement = a.body_placement[b];
+      offset_point(a.xpos[p], a.xmat[p], a.body_pos[b], placement, pos);
+      if (placement.turn == FramePlacement::Turn::kNone) {
+        quat = a.xquat[p];
+      } else {
+        quat = quat_mul(a.xquat[p], a.body_quat[b]);
+      }
     }
     // no free joint here: validate() allows one only as its body's single joint
     for (int j = first_joint; j < last_joint; ++j) move_joint<kJointFrames>(a, j, pos, quat);
@@ -247,10 +259,11 @@ inline void place_world(Data& data) {
 }
 
 // The state's quaternions normalized in place, as mj_kinematics starts: the ball and free
-// joints' in qpos.
+// joints' in qpos, and the mocap bodies'.
 inline void normalize_state_quats(const Model& model, Data& data) {
   // only ball and free joints have quaternions in qpos, and only they make nq exceed nv
   if (model.nq > model.nv) detail::normalize_joint_quats(model, data.qpos.data());
+  for (int i = 0; i < model.nmocap; ++i) detail::normalize_quat(data.mocap_quat[i].data());
 }
 
 // Body frames (xpos, xquat, xmat), joint anchors and axes, inertial frames, sites, and, when

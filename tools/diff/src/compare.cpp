@@ -104,6 +104,7 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNefc: return limit_row(model, data);
     case Size::kNpair: return [](int i) { return "pair " + std::to_string(i); };
     case Size::kNexclude: return [](int i) { return "exclude " + std::to_string(i); };
+    case Size::kNmocap: return [](int i) { return "mocap " + std::to_string(i); };
     case Size::kOne: break;
   }
   return [](int) { return std::string(); };
