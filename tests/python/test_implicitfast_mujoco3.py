@@ -7,19 +7,20 @@ initial qpos nudged by 1e-15 (as tests/diff/free_run.cpp measures it for 2.2.2).
 against MuJoCo 3's implicit shows the two agree on this model otherwise; lever's implicit against
 MuJoCo 3's implicitfast shows that the test could fail (the Coriolis terms matter here).
 
-Needs `mujoco` 3.x importable beside the built lever package (a venv: pip install mujoco numpy);
-skipped where it is absent (CI's Debian Python has only MuJoCo 2.2.2's C library).
+Needs `mujoco` 3.x importable beside the built lever package (a venv: pip install mujoco==3.1.6
+"numpy<2"; lever's array views need numpy 1.x); skipped where it is absent (CI's Debian Python has
+only MuJoCo 2.2.2's C library).
 """
 import pathlib
 
-import numpy as np
 import pytest
-
-import lever
 
 mujoco = pytest.importorskip("mujoco")
 if int(mujoco.__version__.split(".")[0]) < 3:
     pytest.skip(f"mujoco {mujoco.__version__} is not MuJoCo 3", allow_module_level=True)
+
+import lever  # noqa: E402
+import numpy as np  # noqa: E402
 
 REPO = pathlib.Path(__file__).resolve().parents[2]
 PANDA = REPO / "models" / "panda7.xml"
