@@ -181,12 +181,13 @@ TEST_CASE(
           INFO("body " << b << (on_path[b] ? " (on the path)" : ""));
           if (on_path[b]) {
             CHECK(tip.xpos[b] == full.xpos[b]);
+            CHECK(tip.xquat[b] == full.xquat[b]);
             CHECK(tip.xmat[b] == full.xmat[b]);
           } else {
             CHECK(unplaced(tip.xpos[b]));
+            CHECK(unplaced(tip.xquat[b]));
             CHECK(unplaced(tip.xmat[b]));
           }
-          CHECK(unplaced(tip.xquat[b]));
           CHECK(unplaced(tip.xipos[b]));
           CHECK(unplaced(tip.ximat[b]));
         }
