@@ -190,6 +190,7 @@ Model from_mujoco(const mjModel* m) {
   model.nsensor = m->nsensor;
   model.nsensordata = m->nsensordata;
   model.neq = m->neq;
+  model.nmocap = m->nmocap;
   size_model(model);
 
   for (int b = 0; b < m->nbody; ++b) {
@@ -210,6 +211,7 @@ Model from_mujoco(const mjModel* m) {
     model.body_inertia[b] = vec3(m->body_inertia + 3 * b);
     model.body_explicit_inertial[b] = false;  // lever's own: not known from an mjModel
     model.body_line[b] = 0;
+    model.body_mocapid[b] = m->body_mocapid[b];
   }
   for (int j = 0; j < m->njnt; ++j) {
     model.jnt_name[j] = name_of(m, mjOBJ_JOINT, j);
@@ -300,6 +302,10 @@ Model from_mujoco(const mjModel* m) {
     for (int i = 0; i < m->nq; ++i) model.key_qpos(k, i) = m->key_qpos[m->nq * k + i];
     for (int i = 0; i < m->nv; ++i) model.key_qvel(k, i) = m->key_qvel[m->nv * k + i];
     for (int i = 0; i < m->nu; ++i) model.key_ctrl(k, i) = m->key_ctrl[m->nu * k + i];
+    for (int i = 0; i < 3 * m->nmocap; ++i) model.key_mpos(k, i) = m->key_mpos[3 * m->nmocap * k + i];
+    for (int i = 0; i < 4 * m->nmocap; ++i) {
+      model.key_mquat(k, i) = m->key_mquat[4 * m->nmocap * k + i];
+    }
   }
   set_const(model);
   return model;

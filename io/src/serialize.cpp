@@ -96,6 +96,7 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kNmesh:  // meshes, their vertices and graphs: by index
     case Size::kNmeshvert:
     case Size::kNmeshgraph: break;
+    case Size::kNmocap: break;
   }
   return std::to_string(i);
 }

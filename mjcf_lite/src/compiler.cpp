@@ -244,6 +244,13 @@ class Compiler {
     const int id = static_cast<int>(nodes_.size());
     nodes_.push_back({&b, parent, {}});
     if (id > 0) nodes_[static_cast<size_t>(parent)].children.push_back(id);
+    if (b.mocap && (id == 0 || parent != 0 || !b.joints.empty())) {
+      // as MuJoCo 2.2.2's compiler: a mocap body hangs from the world and has no joints
+      fail(b.at, "mocap",
+           "mocap body '" + b.at.name + "' is not a fixed child of the world: a mocap body must "
+           "be a child of <worldbody> without joints");
+    }
+    if (b.mocap) ++nmocap_;
     // the body it moves with: itself if it has joints, else its parent's (mujoco's weldid)
     weld_.push_back(id == 0 || !b.joints.empty() ? id : weld_[static_cast<size_t>(parent)]);
     bodies_.emplace_back();
@@ -804,6 +811,8 @@ class Compiler {
     check(k.qpos, "qpos", static_cast<size_t>(coordinates()), "nq");
     check(k.qvel, "qvel", static_cast<size_t>(dofs()), "nv");
     check(k.ctrl, "ctrl", motors_.size(), "nu");
+    check(k.mpos, "mpos", 3 * static_cast<size_t>(nmocap_), "3 nmocap");
+    check(k.mquat, "mquat", 4 * static_cast<size_t>(nmocap_), "4 nmocap");
   }
 
   // the model's nq and nv: a ball has a quaternion and three dofs, a free joint a position too
@@ -1014,6 +1023,7 @@ class Compiler {
   const ModelSpec& spec_;
   const CompilerSpec& c_;
   std::vector<BodyNode> nodes_;
+  int nmocap_ = 0;  // the mocap bodies, numbered in body order
   std::vector<CompiledBody> bodies_;
   std::vector<CompiledGeom> geoms_;
   std::vector<CompiledJoint> joints_;
@@ -1055,6 +1065,7 @@ Model Compiler::assemble() const {
     m.nmeshgraph += static_cast<int>(mesh->graph.size());
   }
   m.neq = static_cast<int>(spec_.equalities.size());
+  m.nmocap = nmocap_;
   size_model(m);
   assemble_meshes(m);
   assemble_bodies(m);
@@ -1085,6 +1096,8 @@ void Compiler::assemble_bodies(Model& m) const {
   m.body_mass[0] = 0.0;
   m.body_inertia[0] = Eigen::Vector3d::Zero();
   m.body_explicit_inertial[0] = false;
+  m.body_mocapid[0] = -1;
+  int next_mocap = 0;
   for (size_t id = 1; id < nodes_.size(); ++id) {
     const BodySpec& b = *nodes_[id].spec;
     const CompiledBody& c = bodies_[id];
@@ -1103,6 +1116,7 @@ void Compiler::assemble_bodies(Model& m) const {
     m.body_mass[id] = c.inertial.mass;
     m.body_inertia[id] = eigen(c.inertial.inertia);
     m.body_explicit_inertial[id] = c.explicit_inertial;
+    m.body_mocapid[id] = b.mocap ? next_mocap++ : -1;
   }
   for (size_t id = 0; id < nodes_.size(); ++id) {
     m.body_geomnum[id] = static_cast<int>(nodes_[id].spec->geoms.size());
@@ -1294,25 +1308,42 @@ void Compiler::assemble_keys(Model& m) const {
       m.key_qvel(k, i) = (*key.qvel)[static_cast<size_t>(i)];
     for (int i = 0; key.ctrl && i < m.nu; ++i)
       m.key_ctrl(k, i) = (*key.ctrl)[static_cast<size_t>(i)];
-    // a keyframe's quaternions are normalized at load. MuJoCo 2.2.2 does it twice (when it
-    // copies the keys into the model, and again at the end of its compile), and the second
-    // pass can move the last bit, so lever does both: reset_keyframe then gives MuJoCo's qpos
+    // the mocap bodies: as written, else where the bodies are (mjCKey::Compile)
+    for (int b = 0; b < m.nbody; ++b) {
+      const int id = m.body_mocapid[static_cast<size_t>(b)];
+      if (id < 0) continue;
+      for (int c = 0; c < 3; ++c) m.key_mpos(k, 3 * id + c) = m.body_pos[static_cast<size_t>(b)][c];
+      for (int c = 0; c < 4; ++c) {
+        m.key_mquat(k, 4 * id + c) = m.body_quat[static_cast<size_t>(b)][c];
+      }
+    }
+    for (int i = 0; key.mpos && i < 3 * m.nmocap; ++i)
+      m.key_mpos(k, i) = (*key.mpos)[static_cast<size_t>(i)];
+    for (int i = 0; key.mquat && i < 4 * m.nmocap; ++i)
+      m.key_mquat(k, i) = (*key.mquat)[static_cast<size_t>(i)];
+    // a keyframe's quaternions are normalized at load. MuJoCo 2.2.2 does qpos's twice (when it
+    // copies the keys into the model, and again at the end of its compile), and the second pass
+    // can move the last bit, so lever does both: reset_keyframe then gives MuJoCo's qpos. The
+    // mocap quaternions (mquat) it normalizes once.
+    const auto normalize = [](double* q) {  // mju_normalize4
+      const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
+      if (norm < 1e-15) {
+        q[0] = 1;
+        q[1] = q[2] = q[3] = 0;
+        return;
+      }
+      const double inverse = 1 / norm;
+      for (int c = 0; c < 4; ++c) q[c] *= inverse;
+    };
     for (int pass = 0; pass < 2; ++pass) {
       for (int j = 0; j < m.njnt; ++j) {
         const JointType type = m.jnt_type[static_cast<size_t>(j)];
         if (type != JointType::kBall && type != JointType::kFree) continue;
         const int adr = m.jnt_qposadr[static_cast<size_t>(j)] + (type == JointType::kFree ? 3 : 0);
-        double* q = &m.key_qpos(k, adr);  // a row-major row: the four numbers are contiguous
-        const double norm = std::sqrt(q[0] * q[0] + q[1] * q[1] + q[2] * q[2] + q[3] * q[3]);
-        if (norm < 1e-15) {
-          q[0] = 1;
-          q[1] = q[2] = q[3] = 0;
-          continue;
-        }
-        const double inverse = 1 / norm;
-        for (int c = 0; c < 4; ++c) q[c] *= inverse;
+        normalize(&m.key_qpos(k, adr));  // a row-major row: the four numbers are contiguous
       }
     }
+    for (int i = 0; i < m.nmocap; ++i) normalize(&m.key_mquat(k, 4 * i));
   }
 }
 

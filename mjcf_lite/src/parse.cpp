@@ -232,6 +232,7 @@ struct TreeReader {
     b.at = e.place();
     b.pos = f.array<3>("pos");
     b.orientation = f.orientation();
+    b.mocap = f.word("mocap") == "true";
     read_contents(e, active, b);
     return b;
   }
@@ -321,13 +322,6 @@ Options read_option(const Element& root) {
   AttrSet set, flags;
   for (const Element* e : sections(root, "option")) {
     check_option_support(*e);
-    const Attribute* integrator = e->find("integrator");
-    if (integrator && integrator->value == "implicitfast") {
-      fail(e->place(*integrator), "integrator",
-           "integrator 'implicitfast' is MuJoCo 3's and does not exist in MuJoCo 2.2.2, which "
-           "lever follows: use 'implicit' (implicit in every velocity-dependent force, Coriolis "
-           "terms included), 'Euler' or 'RK4'");
-    }
     set.apply(*e, *find_rule("mujoco", "option"));
     check_option_values(*e, set);
     for (const Element& flag : e->children) flags.apply(flag, *find_rule("option", "flag"));
@@ -345,6 +339,7 @@ Options read_option(const Element& root) {
   const std::string integrator = f.word("integrator");
   o.integrator = integrator == "RK4"        ? Integrator::kRK4
                  : integrator == "implicit" ? Integrator::kImplicit
+                 : integrator == "implicitfast" ? Integrator::kImplicitFast
                                             : Integrator::kEuler;
   // contact; the solver is Newton, the only one the schema accepts
   o.cone = f.word("cone") == "elliptic" ? Cone::kElliptic : Cone::kPyramidal;
@@ -429,7 +424,7 @@ std::vector<KeySpec> read_keys(const Element& root) {
         k.time = parse_value(e, *t, attribute_rule("keyframe", "key", "time")).numbers[0];
       }
       // the lists as written (an AttrSet would fill them to their maximum length)
-      for (const char* name : {"qpos", "qvel", "ctrl"}) {
+      for (const char* name : {"qpos", "qvel", "ctrl", "mpos", "mquat"}) {
         const Attribute* a = e.find(name);
         if (!a) continue;
         const std::vector<double> v =
@@ -437,6 +432,8 @@ std::vector<KeySpec> read_keys(const Element& root) {
         if (std::string_view(name) == "qpos") k.qpos = v;
         if (std::string_view(name) == "qvel") k.qvel = v;
         if (std::string_view(name) == "ctrl") k.ctrl = v;
+        if (std::string_view(name) == "mpos") k.mpos = v;
+        if (std::string_view(name) == "mquat") k.mquat = v;
       }
       keys.push_back(std::move(k));
     }

@@ -365,10 +365,10 @@ std::vector<ElementRule> build() {
                {
                    real("timestep", 1, "0.002", "s; must be positive"),
                    real("gravity", 3, "0 0 -9.81", "m/s^2, world frame"),
-                   keyword("integrator", "Euler", "Euler RK4 implicit", "",
+                   keyword("integrator", "Euler", "Euler RK4 implicit implicitfast", "",
                            "integrator: implicit is MuJoCo 2.2.2's (implicit in every "
-                           "velocity-dependent force); MuJoCo 3's implicitfast does not exist in "
-                           "2.2.2"),
+                           "velocity-dependent force); implicitfast is MuJoCo 3's (implicit in "
+                           "the joint damping and actuator velocity terms only)"),
                    real("impratio", 1, "1",
                         "frictional-to-normal impedance ratio of elliptic-cone contacts; must be "
                         "positive"),
@@ -518,19 +518,25 @@ std::vector<ElementRule> build() {
                {text("name", "", "keyframe name"), real("time", 1, "0", "s"),
                 partial("qpos", 1000, "", "nq numbers (default: qpos0)"),
                 partial("qvel", 1000, "", "nv numbers (default: zero)"),
-                partial("ctrl", 1000, "", "nu numbers (default: zero)")},
-               "act mpos mquat", "", "a keyframe (mj_resetDataKeyframe)"});
+                partial("ctrl", 1000, "", "nu numbers (default: zero)"),
+                partial("mpos", 3000, "", "3 nmocap numbers (default: the mocap bodies' pos)"),
+                partial("mquat", 4000, "",
+                        "4 nmocap numbers, normalized (default: the mocap bodies' quat)")},
+               "act", "", "a keyframe (mj_resetDataKeyframe)"});
   s.push_back({"worldbody", "mujoco", '*', {}, "", "composite",
                "the world body: static geoms, sites and the body tree; takes no attributes"});
   const std::vector<AttributeRule> body = join(
       {text("name", "", "body name"),
        text("childclass", "", "default class for everything inside this body"),
        real("pos", 3, "0 0 0", "position in the parent frame"),
-       real("quat", 4, "1 0 0 0", "orientation in the parent frame; must not be zero")},
+       real("quat", 4, "1 0 0 0", "orientation in the parent frame; must not be zero"),
+       keyword("mocap", "false", "false true", "",
+               "true: a mocap body, placed by data.mocap_pos and mocap_quat (a child of the "
+               "world without joints)")},
       alternatives());
-  s.push_back({"body", "worldbody", '*', body, "mocap user", "", "a body fixed to the world "
+  s.push_back({"body", "worldbody", '*', body, "user", "", "a body fixed to the world "
                "unless it has joints"});
-  s.push_back({"body", "body", '*', body, "mocap user", "composite", "a child body"});
+  s.push_back({"body", "body", '*', body, "user", "composite", "a child body"});
   for (const char* parent : {"worldbody", "body"}) {
     s.push_back({"camera", parent, '*', texts(kCameraAttributes, kVisualOnly), "", "",
                  "a camera (kept)"});
@@ -714,8 +720,6 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   * finite numbers whose compiled result overflows (e.g. a `fromto` of 1e308);
   * a negative `kp` or `kv` on `<position>` or `<velocity>` (a servo that pushes away from its
     target, or a damper that feeds energy in);
-  * `option/integrator="implicitfast"`, which is MuJoCo 3's: MuJoCo 2.2.2 rejects it too, and
-    lever's message names 2.2.2's `implicit`;
   * `option/impratio` that is zero or negative, a negative `option/iterations` or
     `option/tolerance`, and `size/nconmax` or `size/njmax` below -1 (MuJoCo reads any negative
     value as the default).
@@ -736,8 +740,10 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   clears the rest of a `<position>`'s biasprm as 2.2.2 does, where MuJoCo 3 keeps its class's, so
   the two differ only for a `<position>` without kv whose class's actuator default leaves
   biasprm[0] or biasprm[2] nonzero: a `<velocity>`, or a `<general>` that sets them) and `<position inheritrange>` (ctrlrange = the joint's compiled range about its middle,
-  scaled; refused beside a ctrlrange or on a joint without a range, as MuJoCo 3 refuses it). Other
-  names MuJoCo 3 added (`implicitfast`, `dampratio`, `timeconst`, `actearly`, `gravcomp`,
+  scaled; refused beside a ctrlrange or on a joint without a range, as MuJoCo 3 refuses it), and
+  `option/integrator="implicitfast"` (MuJoCo 3's integrator: implicit in the joint damping and
+  the actuators' velocity terms only, its matrix factored as M is). Other
+  names MuJoCo 3 added (`dampratio`, `timeconst`, `actearly`, `gravcomp`,
   `actuatorfrcrange`, `assetdir`, `<replicate>`, `<frame>`, `<plugin>`, ...) are refused by name.
 * `option/jacobian` (`dense`, `sparse`, `auto`) is accepted: it chooses MuJoCo's matrix layout,
   not the numbers, which are the same in every layout; lever keeps its own layout whatever it

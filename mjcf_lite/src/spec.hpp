@@ -86,6 +86,7 @@ struct BodySpec {
   Place at;
   Vec3 pos{};
   Orientation orientation;
+  bool mocap = false;  ///< placed by Data's mocap_pos/mocap_quat (a child of the world, no joints)
   std::optional<InertialSpec> inertial;
   std::vector<JointSpec> joints;
   std::vector<GeomSpec> geoms;
@@ -114,7 +115,7 @@ struct MotorSpec {
 struct KeySpec {
   Place at;
   double time = 0;
-  std::optional<std::vector<double>> qpos, qvel, ctrl;
+  std::optional<std::vector<double>> qpos, qvel, ctrl, mpos, mquat;
 };
 
 /// A <contact><pair>: its parameters as written over its class (MuJoCo 2.2.2 takes none from

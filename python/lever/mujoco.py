@@ -92,9 +92,9 @@ class mjtIntegrator(_enum.IntEnum):
 _MODEL_FIELDS = frozenset(f["name"] for f in _lever.model_field_table() if f["mujoco"])
 _DATA_FIELDS = frozenset(f["name"] for f in _lever.data_field_table() if f["mujoco"])
 _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude", "nsensor",
-          "nsensordata", "neq", "nconmax", "njmax")
+          "nsensordata", "neq", "nmocap", "nconmax", "njmax")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
-_KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl")
+_KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl", "key_mpos", "key_mquat")
 # the mjModel arrays model.body(...) and the other accessors reach
 _MODEL_OFFERED = _MODEL_FIELDS | {"actuator_trnid", "dof_Madr"}
 

@@ -327,6 +327,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nsensor", [](const lever::Model& x) { return x.nsensor; })
       .def_property_readonly("nsensordata", [](const lever::Model& x) { return x.nsensordata; })
       .def_property_readonly("neq", [](const lever::Model& x) { return x.neq; })
+      .def_property_readonly("nmocap", [](const lever::Model& x) { return x.nmocap; })
       .def_property_readonly("nconmax", [](const lever::Model& x) { return x.nconmax; })
       .def_property_readonly("njmax", [](const lever::Model& x) { return x.njmax; })
       .def_property(
@@ -342,9 +343,10 @@ PYBIND11_MODULE(_lever, m) {
       .def_property(
           "integrator", [](const lever::Model& x) { return static_cast<int>(x.opt.integrator); },
           [](lever::Model& x, int i) {
-            if (i != 0 && i != 1 && i != 2) {
-              throw lever::StateError("integrator " + std::to_string(i) +
-                                      " is not one lever has (0 Euler, 1 RK4, 2 implicit).");
+            if (i != 0 && i != 1 && i != 2 && i != 3) {
+              throw lever::StateError(
+                  "integrator " + std::to_string(i) +
+                  " is not one lever has (0 Euler, 1 RK4, 2 implicit, 3 implicitfast).");
             }
             x.opt.integrator = static_cast<lever::Integrator>(i);
           })
@@ -378,6 +380,16 @@ PYBIND11_MODULE(_lever, m) {
                              [](py::object self) {
                                auto& x = self.cast<lever::Model&>();
                                return key_view(x.key_ctrl, self);
+                             })
+      .def_property_readonly("key_mpos",
+                             [](py::object self) {
+                               auto& x = self.cast<lever::Model&>();
+                               return key_view(x.key_mpos, self);
+                             })
+      .def_property_readonly("key_mquat",
+                             [](py::object self) {
+                               auto& x = self.cast<lever::Model&>();
+                               return key_view(x.key_mquat, self);
                              })
       .def(
           "field",

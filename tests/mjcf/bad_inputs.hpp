@@ -231,10 +231,6 @@ inline const BadInput kBadInputs[] = {
   <option><flag gravity="disable"/></option>
 </mujoco>)", 2, "flag", "gravity", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
    "valid MJCF outside lever's subset"},
-  {"unsupported-integrator-implicitfast", R"(<mujoco>
-  <option integrator="implicitfast"/>
-</mujoco>)", 2, "option", "integrator", "does not exist in MuJoCo 2.2.2, which lever follows: use 'implicit'",
-   MuJoCo::kRejects, ""},
   {"unsupported-global-coordinates", R"(<mujoco>
   <compiler coordinate="global"/>
 </mujoco>)", 2, "compiler", "coordinate", "'global' is valid MJCF but not supported",

@@ -76,6 +76,7 @@ inline Model random_tree(std::uint64_t seed) {
     m.body_name.push_back("body" + std::to_string(b));
     m.body_parentid.push_back(parent);
     m.body_rootid.push_back(parent == 0 ? b : m.body_rootid[parent]);
+    m.body_mocapid.push_back(-1);
     // a welded body one time in five; the first body always moves, so that nv >= 1
     const int joints =
         (b > 1 && chance(rng, 0.2)) ? 0 : std::uniform_int_distribution<int>(1, 3)(rng);

@@ -176,6 +176,14 @@ TEST_CASE("every Data view has the table's size and points into its member", "[f
     k = next("ctrl");
     for (int a = 0; a < model.nu; ++a) CHECK(data.ctrl[a] == mark(k, a));
     k = next("qfrc_applied");
+    k = next("mocap_pos");
+    for (int i = 0; i < model.nmocap; ++i) {
+      for (int c = 0; c < 3; ++c) CHECK(data.mocap_pos[i][c] == mark(k, 3 * i + c));
+    }
+    k = next("mocap_quat");
+    for (int i = 0; i < model.nmocap; ++i) {
+      for (int c = 0; c < 4; ++c) CHECK(data.mocap_quat[i][c] == mark(k, 4 * i + c));
+    }
     k = next("qacc");
     for (int i = 0; i < model.nv; ++i) CHECK(data.qacc[i] == mark(k, i));
     k = next("xpos");
@@ -290,11 +298,12 @@ TEST_CASE("Data's constructor sizes every array as the table says, zero-filled",
     // and check_fit accepts it
     CHECK_NOTHROW(lever::check_fit(model, data, "test"));
     // zero-filled, but for the values that mean "nothing yet": qpos0, identity rotations,
-    // no joint (-1) in the limit rows
+    // no joint (-1) in the limit rows, the mocap bodies where the model puts them
     for (const FieldView& view : lever::data_fields(model, full)) {
       const std::string name = view.info->name;
       if (name == "qpos" || name == "xquat" || name == "xmat" || name == "ximat" ||
-          name == "geom_xmat" || name == "site_xmat" || name == "efc_id" || name == "efc_dof") {
+          name == "geom_xmat" || name == "site_xmat" || name == "efc_id" || name == "efc_dof" ||
+          name == "mocap_pos" || name == "mocap_quat") {
         continue;
       }
       INFO("Data::" << name);
@@ -516,10 +525,9 @@ TEST_CASE("step1 + step2 equals step bit for bit with Euler, at random states", 
         lever::step1(model, split);
         lever::step2(model, split);
       }
-      // step() leaves out what nothing in a step reads (lever/forward.hpp: xquat, and the geom
-      // frames where nothing collides), which step1() computes; tests/property/lean_step.cpp
-      // holds the lean step to the whole one on everything else
-      split.xquat = whole.xquat;
+      // step() leaves out what nothing in a step reads (lever/forward.hpp: the geom frames
+      // where nothing collides), which step1() computes; tests/property/lean_step.cpp holds the
+      // lean step to the whole one on everything else
       if (!model.contacts_possible) {
         split.geom_xpos = whole.geom_xpos;
         split.geom_xmat = whole.geom_xmat;
@@ -682,14 +690,16 @@ TEST_CASE("size_model gives every array the length the field table promises", "[
     CHECK(stored[i].numbers == promised(model, table[i]));
     CHECK(stored[i].numbers > 0);  // every count above is positive
     CHECK(stored[i].data == views[i].data);
-    // zero-filled: the world's row kept what it held, every new row is zero
+    // zero-filled: the world's row kept what it held, every new row is zero (body_mocapid: -1,
+    // no mocap body)
     const long first_new = table[i].rows == lever::Size::kNbody ? views[i].cols : 0;
+    const double fill = std::string(table[i].name) == "body_mocapid" ? -1.0 : 0.0;
     for (long k = first_new; k < views[i].size(); ++k) {
       double x = 0.0;
       if (table[i].scalar == Scalar::kDouble) x = static_cast<const double*>(views[i].data)[k];
       if (table[i].scalar == Scalar::kInt) x = static_cast<const int*>(views[i].data)[k];
       if (table[i].scalar == Scalar::kByte) x = static_cast<const uint8_t*>(views[i].data)[k];
-      CHECK(x == 0.0);
+      CHECK(x == fill);
     }
   }
   CHECK(model.body_mass[0] == 2.5);

@@ -127,6 +127,7 @@ class WasmModel {
     if (what == "nexclude") return model_.nexclude;
     if (what == "nmesh") return model_.nmesh;
     if (what == "neq") return model_.neq;
+    if (what == "nmocap") return model_.nmocap;
     if (what == "nkey") return model_.nkey;
     return -1;
   }

@@ -107,6 +107,11 @@ struct Data {
   Eigen::VectorXd qvel;          ///< (nv) joint velocities
   Eigen::VectorXd ctrl;          ///< (nu) motor commands, before clamping (never modified)
   Eigen::VectorXd qfrc_applied;  ///< (nv) user-applied joint forces
+  /// (nmocap) where the mocap bodies are, in the world frame: set from body_pos and body_quat by
+  /// the constructor and reset(), from the keyframe by reset_keyframe(), then written by the user;
+  /// kinematics() normalizes mocap_quat in place, as MuJoCo's mj_kinematics does
+  std::vector<Eigen::Vector3d> mocap_pos;
+  std::vector<Eigen::Vector4d> mocap_quat;
 
   // ---- position stage: kinematics() ------------------------------------------------------------
   std::vector<Eigen::Vector3d> xpos;       ///< (nbody) body frame origins

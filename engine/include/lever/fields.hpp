@@ -7,7 +7,7 @@
 //
 // Every listed array is contiguous and row-major: it is an (rows, cols) array of doubles, ints or
 // bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, nbody, njnt, ngeom,
-// nsite, npair, nexclude, neq, nefc: the live constraint rows of a Data; `one` for a single row);
+// nsite, npair, nexclude, neq, nmocap, nefc: the live constraint rows of a Data; `one` for a single row);
 // `cols` is a number. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of
 // the same name, shape and meaning (`mujoco`) or not (`own`: lever's own, or laid out differently
 // from MuJoCo's).
@@ -20,7 +20,7 @@
 // calls size_model(), and writes each element by index. Arrays of Model outside the table, because
 // their entries are not numbers or their width is not a number: the names (one string per object,
 // LEVER_MODEL_NAMES below) and the keyframes (key_time, nkey; key_qpos, key_qvel, key_ctrl, nkey x
-// nq, nv, nu), which size_model also sizes; the arrays set_const derives (body_mat, jnt_kind,
+// nq, nv, nu; key_mpos, key_mquat, nkey x 3 nmocap, 4 nmocap), which size_model also sizes; the arrays set_const derives (body_mat, jnt_kind,
 // actuator_kind, ...), which set_const sizes; and `visual`, the file's asset lists, counted by the
 // file and never read by the engine.
 #pragma once
@@ -54,6 +54,7 @@
   X(body_simple, uint8_t, nbody, 1, mujoco)                  \
   X(body_explicit_inertial, uint8_t, nbody, 1, own)          \
   X(body_line, int, nbody, 1, own)                           \
+  X(body_mocapid, int, nbody, 1, mujoco)                     \
   X(jnt_type, int, njnt, 1, mujoco)                          \
   X(jnt_qposadr, int, njnt, 1, mujoco)                       \
   X(jnt_dofadr, int, njnt, 1, mujoco)                        \
@@ -191,6 +192,8 @@
   X(qvel, double, nv, 1, state, mujoco)                        \
   X(ctrl, double, nu, 1, state, mujoco)                        \
   X(qfrc_applied, double, nv, 1, state, mujoco)                \
+  X(mocap_pos, double, nmocap, 3, state, mujoco)               \
+  X(mocap_quat, double, nmocap, 4, state, mujoco)              \
   X(qacc, double, nv, 1, acceleration, mujoco)                 \
   X(xpos, double, nbody, 3, position, mujoco)                  \
   X(xquat, double, nbody, 4, position, mujoco)                 \
@@ -272,7 +275,8 @@ enum class Size : int {
   kNsensor,     ///< sensors
   kNsensordata,  ///< the sensors' numbers together (data.sensordata)
   // equality constraints
-  kNeq        ///< equality constraints (<equality>)
+  kNeq,       ///< equality constraints (<equality>)
+  kNmocap     ///< mocap bodies (<body mocap="true">)
 };
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;

@@ -15,8 +15,8 @@ void forward(const Model& model, Data& data);
 /// qpos/qvel resets it and records a warning), forward(), then semi-implicit Euler with implicit
 /// joint damping or RK4, and time += timestep. As in MuJoCo, the outputs left in data describe
 /// the state at the start of the step (for RK4: its last stage), except those nothing in a step
-/// reads, which step() does not compute: xquat, and geom_xpos and geom_xmat when nothing in the
-/// model can collide, keep the values of the last forward() (or kinematics()). Call forward() to
+/// reads, which step() does not compute: geom_xpos and geom_xmat when nothing in the model can
+/// collide keep the values of the last forward() (or kinematics()). Call forward() to
 /// read them at the new state.
 void step(const Model& model, Data& data);
 

@@ -11,17 +11,16 @@ namespace lever {
 /// Forward kinematics at data.qpos (MuJoCo's mj_kinematics and mj_comPos): writes the poses
 /// xpos, xquat, xmat, xipos, ximat, site_xpos, site_xmat, the joints' xanchor and xaxis, and the
 /// shared spatial quantities subtree_com, cdof and cinert that crba(), rnea() and the Jacobians
-/// use.
+/// use. Every pose is MuJoCo's to the bit (its quaternion arithmetic, in its order).
 void kinematics(const Model& model, Data& data);
 
-/// The frames alone, at data.qpos (what mj_kinematics places, without the quaternions): each
-/// body's xpos and xmat, xipos and ximat, the joints' xanchor and xaxis, geom_xpos, geom_xmat,
-/// site_xpos and site_xmat. Leaves xquat and the com-frame quantities as they were; kinematics()
-/// computes all of them.
+/// The frames alone, at data.qpos (what mj_kinematics places): each body's xpos, xquat and xmat,
+/// xipos and ximat, the joints' xanchor and xaxis, geom_xpos, geom_xmat, site_xpos and site_xmat.
+/// Leaves the com-frame quantities as they were; kinematics() computes them too.
 void poses(const Model& model, Data& data);
 
 /// One site's frame at data.qpos, what an inverse-kinematics loop reads: places the bodies on the
-/// path from the site's body to the world (their xpos and xmat), then the site (site_xpos[site],
+/// path from the site's body to the world (their xpos, xquat and xmat), then the site (site_xpos[site],
 /// site_xmat[site]), each bit for bit what poses() writes; normalizes qpos's quaternions as
 /// poses() does, and changes nothing else in Data (the other bodies' and sites' frames, the
 /// joints' anchors and axes, the inertial and geom frames keep what they held). No allocation.

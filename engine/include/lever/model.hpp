@@ -65,7 +65,9 @@ struct FramePlacement {
   enum class Offset : uint8_t { kZero, kAlongAxis, kGeneral };
   /// The rotation R B: R itself (B = 1), R's columns moved and signed (B a quarter turn to within
   /// the rounding of its quaternion: column c of R B is sign[c] times column column[c] of R;
-  /// MJCF's quat="1 1 0 0", a fromto along an axis), or the whole product.
+  /// MJCF's quat="1 1 0 0", a fromto along an axis), or the whole product. kinematics() takes
+  /// only kNone's shortcut: it composes a quarter turn's quaternion as any other, so that the
+  /// rounding of its 1/sqrt(2) lands in the last bit where MuJoCo's does.
   enum class Turn : uint8_t { kNone, kQuarter, kGeneral };
   Offset offset = Offset::kGeneral;
   uint8_t axis = 0;
@@ -75,16 +77,18 @@ struct FramePlacement {
 };
 
 /// Integrators; the numeric values are MuJoCo's mjtIntegrator. kImplicit is MuJoCo 2.2.2's
-/// `implicit`: implicit in every velocity-dependent force (MuJoCo 3's `implicitfast` does not
-/// exist in 2.2.2).
-enum class Integrator : int { kEuler = 0, kRK4 = 1, kImplicit = 2 };
+/// `implicit`: implicit in every velocity-dependent force. kImplicitFast is MuJoCo 3's
+/// `implicitfast` (mjINT_IMPLICITFAST; MuJoCo 2.2.2 has no such integrator): implicit in the
+/// joint damping and the actuators' velocity terms only, not in the Coriolis and centrifugal forces.
+enum class Integrator : int { kEuler = 0, kRK4 = 1, kImplicit = 2, kImplicitFast = 3 };
 
-/// The integrator's name as MJCF writes it: "Euler", "RK4" or "implicit".
+/// The integrator's name as MJCF writes it: "Euler", "RK4", "implicit" or "implicitfast".
 constexpr const char* integrator_name(Integrator integrator) {
   switch (integrator) {
     case Integrator::kEuler: return "Euler";
     case Integrator::kRK4: return "RK4";
     case Integrator::kImplicit: return "implicit";
+    case Integrator::kImplicitFast: return "implicitfast";
   }
   return "unknown";
 }
@@ -305,6 +309,8 @@ struct Model {
   int nsensor = 0;      ///< sensors
   int nsensordata = 0;  ///< numbers all sensors output together (the sum of sensor_dim)
   int neq = 0;        ///< equality constraints (<equality>)
+  int nmocap = 0;     ///< mocap bodies: children of the world without joints, placed by Data's
+                      ///< mocap_pos and mocap_quat (MJCF's <body mocap="true">)
   int nconmax = 100;  ///< most contacts a Data holds (<size nconmax>; MuJoCo 2.2.2's default)
   int njmax = 500;    ///< most constraint rows a Data holds (<size njmax>)
 
@@ -312,6 +318,7 @@ struct Model {
   std::vector<std::string> body_name{"world"};
   std::vector<int> body_parentid{0};  ///< parent body; the world is its own parent
   std::vector<int> body_rootid{0};    ///< the world child this body hangs from
+  std::vector<int> body_mocapid{-1};  ///< its row of mocap_pos/mocap_quat, or -1 (in body order)
   std::vector<int> body_jntnum{0};    ///< joints of this body
   std::vector<int> body_jntadr{-1};   ///< first joint, -1 if none
   std::vector<int> body_dofnum{0};    ///< dofs of this body
@@ -472,6 +479,8 @@ struct Model {
   RowMatrix key_qpos;  ///< (nkey x nq)
   RowMatrix key_qvel;  ///< (nkey x nv)
   RowMatrix key_ctrl;  ///< (nkey x nu)
+  RowMatrix key_mpos;   ///< (nkey x 3 nmocap) the mocap bodies' positions (default: body_pos)
+  RowMatrix key_mquat;  ///< (nkey x 4 nmocap) their orientations, unit (default: body_quat)
 
   // ---- set_const: MuJoCo's compile-time constants ---------------------------------------------
   std::vector<double> body_subtreemass;                ///< kg, this body and all below it

@@ -31,6 +31,17 @@ inline void normalize_quat(double* q) {
   for (int k = 0; k < 4; ++k) q[k] *= inverse;
 }
 
+/// v turned by the unit quaternion q (MuJoCo's mju_rotVecQuat, term for term: t = w v + u x v,
+/// then v + 2 u x t for q = (w, u)); the identity copies v.
+inline Eigen::Vector3d quat_rotate(const Quat& q, const Eigen::Vector3d& v) {
+  if (q[0] == 1.0 && q[1] == 0.0 && q[2] == 0.0 && q[3] == 0.0) return v;
+  const double t0 = q[0] * v[0] + q[2] * v[2] - q[3] * v[1];
+  const double t1 = q[0] * v[1] + q[3] * v[0] - q[1] * v[2];
+  const double t2 = q[0] * v[2] + q[1] * v[1] - q[2] * v[0];
+  return Eigen::Vector3d(v[0] + 2 * (q[2] * t2 - q[3] * t1), v[1] + 2 * (q[3] * t0 - q[1] * t2),
+                         v[2] + 2 * (q[1] * t1 - q[2] * t0));
+}
+
 /// Every ball and free joint's quaternion in qpos normalized (MuJoCo's mj_normalizeQuat, which
 /// mj_kinematics runs first: an evaluation leaves the state's quaternions unit).
 inline void normalize_joint_quats(const Model& model, double* qpos) {

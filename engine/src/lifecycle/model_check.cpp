@@ -209,6 +209,13 @@ void check_sizes(const Model& model) {
         "and nkey x nu (nkey = " +
         std::to_string(model.nkey) + ").");
   }
+  if (model.nmocap < 0 || model.key_mpos.rows() != model.nkey ||
+      model.key_mpos.cols() != 3 * model.nmocap || model.key_mquat.rows() != model.nkey ||
+      model.key_mquat.cols() != 4 * model.nmocap) {
+    throw ModelError("nmocap must be non-negative and key_mpos, key_mquat nkey x 3 nmocap and "
+                     "nkey x 4 nmocap (nkey = " + std::to_string(model.nkey) +
+                     ", nmocap = " + std::to_string(model.nmocap) + ").");
+  }
   // contact: the counts the contact arrays of the field table are sized by
   if (model.nmesh < 0 || model.nmeshvert < 0 || model.nmeshgraph < 0) {
     throw ModelError("nmesh, nmeshvert and nmeshgraph must be non-negative.");
@@ -227,6 +234,26 @@ void check_sizes(const Model& model) {
 
 // Parents precede children, joints and dofs follow the body tree, indices are in range.
 void check_tree(const Model& model) {
+  // the mocap bodies: numbered 0.. in body order, each a child of the world without joints (as
+  // MuJoCo 2.2.2's compiler requires)
+  int next_mocap = 0;
+  for (int b = 0; b < model.nbody; ++b) {
+    const int id = model.body_mocapid[b];
+    if (id == -1) continue;
+    if (id != next_mocap++) {
+      throw ModelError("body " + std::to_string(b) + " ('" + model.body_name[b] +
+                       "'): body_mocapid must number the mocap bodies 0, 1, ... in body order "
+                       "(or be -1); found " + std::to_string(id) + ".");
+    }
+    if (b == 0 || model.body_parentid[b] != 0 || model.body_jntnum[b] != 0) {
+      throw ModelError("body " + std::to_string(b) + " ('" + model.body_name[b] +
+                       "') is a mocap body but not a child of the world without joints.");
+    }
+  }
+  if (next_mocap != model.nmocap) {
+    throw ModelError("nmocap is " + std::to_string(model.nmocap) + " but body_mocapid names " +
+                     std::to_string(next_mocap) + " mocap bodies.");
+  }
   for (int b = 1; b < model.nbody; ++b) {
     const int p = model.body_parentid[b];
     if (p < 0 || p >= b) {

@@ -28,6 +28,20 @@ const char* warning_name(Warning w) {
   return "unknown warning";
 }
 
+namespace {
+
+// The mocap bodies where the model puts them (body_pos, body_quat), as mj_resetData does.
+void place_mocap_at_bodies(const Model& model, Data& data) {
+  for (int b = 0; b < model.nbody; ++b) {
+    const int id = model.body_mocapid[b];
+    if (id < 0) continue;
+    data.mocap_pos[id] = model.body_pos[b];
+    data.mocap_quat[id] = model.body_quat[b];
+  }
+}
+
+}  // namespace
+
 Data::Data(const Model& model)
     : nefc_max(constraint_rows_max(model)),
       nq(model.nq),
@@ -41,6 +55,7 @@ Data::Data(const Model& model)
   detail::size_data_arrays(model, *this);
   model_tag = model.fit_tag;  // sized from this model: it fits
   qpos = model.qpos0;
+  place_mocap_at_bodies(model, *this);
   for (auto& q : xquat) q = Eigen::Vector4d(1, 0, 0, 0);
   for (auto* list : {&xmat, &ximat, &geom_xmat, &site_xmat}) {
     for (Mat3& R : *list) R.setIdentity();
@@ -124,6 +139,7 @@ void reset(const Model& model, Data& data) {
   data.qvel.setZero();
   data.ctrl.setZero();
   data.qfrc_applied.setZero();
+  place_mocap_at_bodies(model, data);
   data.qacc.setZero();
   data.nefc = 0;
   data.ncon = 0;
@@ -144,6 +160,10 @@ void reset_keyframe(const Model& model, Data& data, int key) {
   data.qpos = model.key_qpos.row(key).transpose();
   data.qvel = model.key_qvel.row(key).transpose();
   data.ctrl = model.key_ctrl.row(key).transpose();
+  for (int i = 0; i < model.nmocap; ++i) {
+    for (int k = 0; k < 3; ++k) data.mocap_pos[i][k] = model.key_mpos(key, 3 * i + k);
+    for (int k = 0; k < 4; ++k) data.mocap_quat[i][k] = model.key_mquat(key, 4 * i + k);
+  }
 }
 
 void reset_keyframe(const Model& model, Data& data, const std::string& key) {

@@ -19,7 +19,7 @@ constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude,
                nmesh = Size::kNmesh, nmeshvert = Size::kNmeshvert, nmeshgraph = Size::kNmeshgraph,
                nsensor = Size::kNsensor, nsensordata = Size::kNsensordata,
-               neq = Size::kNeq;
+               neq = Size::kNeq, nmocap = Size::kNmocap;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy;
@@ -236,6 +236,7 @@ int size_of(const Model& model, Size size) {
     case Size::kNsensor: return model.nsensor;
     case Size::kNsensordata: return model.nsensordata;
     case Size::kNeq: return model.neq;
+    case Size::kNmocap: return model.nmocap;
   }
   return 0;
 }
@@ -245,10 +246,10 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 17> names = {
+  static constexpr std::array<const char*, 18> names = {
       "1",     "nq",    "nv",       "nu",    "nbody",     "njnt",       "ngeom",   "nsite",
       "nefc",  "npair", "nexclude", "nmesh", "nmeshvert", "nmeshgraph", "nsensor", "nsensordata",
-      "neq"};
+      "neq",   "nmocap"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -375,7 +376,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 16> counts = {{{"nmesh", model.nmesh},
+  const std::array<std::pair<const char*, int>, 17> counts = {{{"nmesh", model.nmesh},
                                                                {"nmeshvert", model.nmeshvert},
                                                                {"nmeshgraph", model.nmeshgraph},
                                                                {"nq", model.nq},
@@ -390,7 +391,8 @@ void size_model(Model& model) {
                                                                {"nexclude", model.nexclude},
                                                                {"nsensor", model.nsensor},
                                                                {"nsensordata", model.nsensordata},
-                                                               {"neq", model.neq}}};
+                                                               {"neq", model.neq},
+                                                               {"nmocap", model.nmocap}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +
@@ -400,6 +402,7 @@ void size_model(Model& model) {
   if (model.nbody < 1) {
     throw ModelError("size_model: nbody = 0; a model has at least the world body (body 0).");
   }
+  const size_t bodies_before = model.body_mocapid.size();
 #define LEVER_MODEL_SIZE_ARRAY(name, type, rows, cols, origin)                           \
   {                                                                                      \
     const int n = size_of(model, token::rows);                                           \
@@ -407,6 +410,8 @@ void size_model(Model& model) {
   }
   LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE_ARRAY)
 #undef LEVER_MODEL_SIZE_ARRAY
+  // a new body is not a mocap body until the builder says so
+  for (size_t b = bodies_before; b < model.body_mocapid.size(); ++b) model.body_mocapid[b] = -1;
   // outside the table (see lever/fields.hpp): one name per object, and the keyframes
 #define LEVER_MODEL_SIZE_NAMES(name, count) model.name.resize(static_cast<size_t>(model.count));
   LEVER_MODEL_NAMES(LEVER_MODEL_SIZE_NAMES)
@@ -415,6 +420,8 @@ void size_model(Model& model) {
   model.key_qpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nq));
   model.key_qvel.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nv));
   model.key_ctrl.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nu));
+  model.key_mpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, 3 * model.nmocap));
+  model.key_mquat.conservativeResizeLike(RowMatrix::Zero(model.nkey, 4 * model.nmocap));
   model.fit_tag = 0;  // its arrays may have changed: set_const again before a Data trusts it
 }
 

@@ -14,6 +14,11 @@
 //
 // M - h D is not symmetric, but it is non-zero only where M is (pairs of dofs on one branch), so,
 // as MuJoCo, it is factored without pivoting from the leaves up, where nothing fills in.
+//
+// MuJoCo 3's implicitfast (mjINT_IMPLICITFAST, engine_forward.c mj_implicitSkip) is the same step
+// with D holding the actuator and damping terms only (mjd_smooth_vel with flg_bias = 0: no
+// Coriolis derivative). That D is symmetric (diagonal here: each actuator drives one joint), so
+// M - h D is factored as M is, LTDL on the tree (MuJoCo 3's mj_factorI), and solved as M is.
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
 
@@ -22,6 +27,7 @@
 #include "model/model_room.hpp"
 #include "derivatives/derivatives_room.hpp"
 #include "pipeline/pipeline.hpp"
+#include "smooth/smooth.hpp"
 
 namespace lever {
 
@@ -105,6 +111,19 @@ void implicit_step(const Model& model, Data& data) {
   factor_lu_tree(model, w.qLU);
   w.vec1 = data.qfrc_smooth + data.qfrc_constraint;
   solve_lu_tree(model, w.qLU, w.vec1.data());
+  data.qvel += h * w.vec1;
+  integrate_positions(model, data.qpos.data(), data.qvel.data(), h);
+  data.time += h;
+}
+
+void implicit_fast_step(const Model& model, Data& data) {
+  const double h = model.opt.timestep;
+  auto& w = data.work;
+  w.qDeriv.setZero();
+  add_actuator_damping_velocity_terms(model, data, w.qDeriv);
+  factor_mass_minus(model, data, w.qDeriv, h);
+  w.vec1 = data.qfrc_smooth + data.qfrc_constraint;
+  solve_mass_damped(model, data, w.vec1);
   data.qvel += h * w.vec1;
   integrate_positions(model, data.qpos.data(), data.qvel.data(), h);
   data.time += h;

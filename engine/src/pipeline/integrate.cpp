@@ -5,7 +5,7 @@
 // f_smooth already holds the explicit -B v. So the state advances with an acceleration that is
 // stored nowhere; data.qacc keeps the forward (solver) acceleration, as in MuJoCo.
 // RK4 is the classical four-stage method on (qpos, qvel), without implicit damping. The implicit
-// integrator (MuJoCo 2.2.2's mjINT_IMPLICIT) is in implicit.cpp.
+// integrators (MuJoCo 2.2.2's mjINT_IMPLICIT, MuJoCo 3's mjINT_IMPLICITFAST) are in implicit.cpp.
 #include <lever/dynamics.hpp>
 #include <lever/forward.hpp>
 
@@ -175,13 +175,14 @@ void detail::step(const Model& model, Data& data, void (*forward_fn)(const Model
     case Integrator::kEuler: euler(model, data); break;
     case Integrator::kRK4: rk4(model, data, stage_fn); break;
     case Integrator::kImplicit: detail::implicit_step(model, data); break;
+    case Integrator::kImplicitFast: detail::implicit_fast_step(model, data); break;
   }
 }
 
 void step(const Model& model, Data& data) {
   check_entry(model, data, "lever::step");
-  // the lean pipeline: a step reads neither xquat nor the geom frames of a model where nothing
-  // collides (detail::step_forward)
+  // the lean pipeline: a step reads no geom frames of a model where nothing collides
+  // (detail::step_forward)
   detail::step(model, data, detail::step_forward, detail::step_forward_without_sensors);
 }
 
@@ -204,10 +205,13 @@ void step2(const Model& model, Data& data) {
   acceleration_stage(model, data);
   if (check_and_reset(model, data, data.qacc, Warning::kBadQacc)) forward(model, data);
   // as in MuJoCo 2.2.2, the split step integrates RK4 models with Euler: RK4 needs forward() at
-  // states in the middle of the step, which the caller's control is not part of. Implicit stays
-  // implicit (it needs only the start of the step).
+  // states in the middle of the step, which the caller's control is not part of. The implicit
+  // integrators stay implicit (they need only the start of the step), as in MuJoCo 3 for
+  // implicitfast.
   if (model.opt.integrator == Integrator::kImplicit) {
     detail::implicit_step(model, data);
+  } else if (model.opt.integrator == Integrator::kImplicitFast) {
+    detail::implicit_fast_step(model, data);
   } else {
     euler(model, data);
   }

@@ -37,6 +37,8 @@ void solve_lu_tree(const Model& model, const Eigen::MatrixXd& LU, double* x);
 namespace detail {
 /// MuJoCo 2.2.2's implicit step (implicit.cpp), after forward().
 void implicit_step(const Model& model, Data& data);
+/// MuJoCo 3's implicitfast step (implicit.cpp), after forward().
+void implicit_fast_step(const Model& model, Data& data);
 
 /// forward() on step_kinematics() (on kinematics() when the model has sensors), the entry check
 /// left to the caller (forward.cpp).

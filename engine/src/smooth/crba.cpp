@@ -249,6 +249,12 @@ void factor_mass_damped(const Model& model, Data& data, double h) {
   ltdl(model, data.work.LD2, data.work.LD2DiagInv);
 }
 
+void factor_mass_minus(const Model& model, Data& data, const Eigen::MatrixXd& D, double h) {
+  data.work.LD2 = data.M;
+  data.work.LD2 -= h * D;
+  ltdl(model, data.work.LD2, data.work.LD2DiagInv);
+}
+
 void solve_mass_damped(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x) {
   ltdl_solve(model, data.work.LD2, data.work.LD2DiagInv, x);
 }

@@ -1,16 +1,16 @@
 // Forward kinematics, the spatial quantities every algorithm shares, and point Jacobians.
 //
-// Poses compose from the root outwards, body by body, joint by joint, as MuJoCo's mj_kinematics:
-// a body starts at its parent's frame moved by (body_pos, body_quat); a hinge then turns it about
-// the joint's axis through the joint's anchor, a slide moves it along the axis. The recursion
-// carries each frame as a rotation matrix and an origin (R, p), and does for each joint kind only
-// the arithmetic it needs: a hinge about a coordinate axis of its frame (arm2's -y, every Panda
-// joint's z) turns two columns of R. So for each constant frame (a body on its parent, its inertial
-// frame, a geom, a site), as set_const classified it (lever/model.hpp FramePlacement): an offset
-// that is zero or along one axis takes one column of R, a frame that is not turned or is turned by
-// a quarter turn copies R's columns; only the others pay for the whole product. The orientations as
-// quaternions (xquat) are composed beside it only when asked: kinematics() does, in MuJoCo's order,
-// so that xquat has MuJoCo's sign.
+// Poses compose from the root outwards, body by body, joint by joint, as MuJoCo's mj_kinematics,
+// and with its arithmetic, operation for operation, so that every pose is MuJoCo's to the last
+// bit (two boxes face to face touch or not by that bit): a body's orientation is a quaternion,
+// its parent's times body_quat (a mocap body's: mocap_quat), times each joint's turn (a
+// hinge's axis-angle quaternion, a ball's qpos); its origin is its parent's plus the parent's
+// rotation of body_pos, moved along a slide's world axis, and swung about a turning joint's
+// anchor. The quaternion is then normalized (always scaled by 1 / |q|) and turned into the matrix
+// xmat. A constant frame on a body (its inertial frame, a geom, a site) is placed the same way:
+// origin p + R v, rotation the matrix of xquat * q. Only products with exact zeros and ones are
+// left out (as set_const classified each frame, lever/model.hpp FramePlacement, and a hinge about
+// a coordinate axis): leaving them out changes no bit.
 //
 // Then, as MuJoCo's mj_comPos, the quantities the dynamics needs, in absolute coordinates (world
 // axes, origin at the subtree centre of mass of the body's world child, c):
@@ -31,36 +31,10 @@ namespace lever {
 
 namespace {
 
-/// R <- R Rot_k(angle) for a turn about coordinate axis k of R's frame, given (c, s) = (cos,
-/// sin) of the angle: column k stays, the other two turn into each other.
-template <int k>
-inline void turn_columns(Mat3& R, double c, double s) {
-  constexpr int i = (k + 1) % 3, j = (k + 2) % 3;
-  for (int row = 0; row < 3; ++row) {
-    const double ri = R(row, i), rj = R(row, j);
-    R(row, i) = c * ri + s * rj;
-    R(row, j) = c * rj - s * ri;
-  }
-}
-
-/// out = A B for 3x3 rotations (out is neither A nor B), row by row: row r of out is
-/// A(r, 0) B.row(0) + A(r, 1) B.row(1) + A(r, 2) B.row(2), the rows' first two entries as one
-/// pair (B is row-major) and the third alone, each sum in the order of the scalar product. B is
-/// read once, before out is written (to the compiler, a store into out could change B).
-inline void multiply(const Mat3& A, const Mat3& B, Mat3& out) {
-  const Eigen::RowVector2d b0 = B.row(0).head<2>(), b1 = B.row(1).head<2>(),
-                           b2 = B.row(2).head<2>();
-  const double b02 = B(0, 2), b12 = B(1, 2), b22 = B(2, 2);
-  for (int r = 0; r < 3; ++r) {
-    const double a0 = A(r, 0), a1 = A(r, 1), a2 = A(r, 2);
-    out.row(r).head<2>() = a0 * b0 + a1 * b1 + a2 * b2;
-    out(r, 2) = a0 * b02 + a1 * b12 + a2 * b22;
-  }
-}
-
-/// origin = p + R v for a constant offset v placed as `f` says (lever/model.hpp FramePlacement):
-/// p, p plus one column of R, or the whole product; the terms left out are products with zero.
-/// Written entry by entry, so that no temporary is copied into `origin` (which may be p).
+/// origin = p + R v (MuJoCo's rotVecMat, then the sum) for a constant offset v placed as `f`
+/// says: p, p plus one column of R, or the whole product; the terms left out are products with
+/// zero, which change no bit of the sum. Written entry by entry, so that no temporary is copied
+/// into `origin` (which may be p).
 inline void offset_point(const Eigen::Vector3d& p, const Mat3& R, const Eigen::Vector3d& v,
                          const FramePlacement& f, Eigen::Vector3d& origin) {
   switch (f.offset) {
@@ -78,42 +52,34 @@ inline void offset_point(const Eigen::Vector3d& p, const Mat3& R, const Eigen::V
   }
 }
 
-/// out = R B for a constant rotation B placed as `f` says: R, R's columns moved and signed (a
-/// quarter turn), or the product. out is not R.
-inline void turn_frame(const Mat3& R, const Mat3& B, const FramePlacement& f, Mat3& out) {
-  switch (f.turn) {
-    case FramePlacement::Turn::kNone: out = R; return;
-    case FramePlacement::Turn::kQuarter:
-      for (int c = 0; c < 3; ++c) {
-        const int k = f.column[c];
-        const double sign = f.sign[c];
-        out(0, c) = sign * R(0, k);
-        out(1, c) = sign * R(1, k);
-        out(2, c) = sign * R(2, k);
-      }
-      return;
-    case FramePlacement::Turn::kGeneral: break;
-  }
-  multiply(R, B, out);
+/// The rotation matrix of a unit quaternion written into R (MuJoCo's quat2Mat, term for term).
+inline void quat_into_mat(const Quat& q, Mat3& R) {
+  const double q00 = q[0] * q[0], q01 = q[0] * q[1], q02 = q[0] * q[2], q03 = q[0] * q[3];
+  const double q11 = q[1] * q[1], q12 = q[1] * q[2], q13 = q[1] * q[3];
+  const double q22 = q[2] * q[2], q23 = q[2] * q[3], q33 = q[3] * q[3];
+  R(0, 0) = q00 + q11 - q22 - q33;
+  R(1, 1) = q00 - q11 + q22 - q33;
+  R(2, 2) = q00 - q11 - q22 + q33;
+  R(0, 1) = 2 * (q12 - q03);
+  R(0, 2) = 2 * (q13 + q02);
+  R(1, 0) = 2 * (q12 + q03);
+  R(1, 2) = 2 * (q23 - q01);
+  R(2, 0) = 2 * (q13 - q02);
+  R(2, 1) = 2 * (q23 + q01);
 }
 
-/// A constant frame (offset v, rotation B, placed as `f` says) on the frame (p, R): its origin
-/// and rotation.
-inline void place_frame(const Eigen::Vector3d& p, const Mat3& R, const Eigen::Vector3d& v,
-                        const Mat3& B, const FramePlacement& f, Eigen::Vector3d& origin,
-                        Mat3& rotation) {
+/// A constant frame (offset v, quaternion q, placed as `f` says) on the body frame (p, R, its
+/// quaternion body_quat): its origin and rotation. A frame that is not turned takes R itself (the
+/// product with the identity quaternion is exact); any other, the matrix of body_quat * q.
+inline void place_frame(const Eigen::Vector3d& p, const Mat3& R, const Quat& body_quat,
+                        const Eigen::Vector3d& v, const Quat& q, const FramePlacement& f,
+                        Eigen::Vector3d& origin, Mat3& rotation) {
   offset_point(p, R, v, f, origin);
-  turn_frame(R, B, f, rotation);
-}
-
-/// The rotation by angle (c, s) = (cos, sin) about a unit axis, as a matrix (Rodrigues).
-Mat3 axis_rotation(const Eigen::Vector3d& a, double c, double s) {
-  const double t = 1.0 - c;
-  Mat3 out;
-  out << c + t * a[0] * a[0], t * a[0] * a[1] - s * a[2], t * a[0] * a[2] + s * a[1],
-      t * a[0] * a[1] + s * a[2], c + t * a[1] * a[1], t * a[1] * a[2] - s * a[0],
-      t * a[0] * a[2] - s * a[1], t * a[1] * a[2] + s * a[0], c + t * a[2] * a[2];
-  return out;
+  if (f.turn == FramePlacement::Turn::kNone) {
+    rotation = R;
+  } else {
+    quat_into_mat(quat_mul(body_quat, q), rotation);
+  }
 }
 
 // The arrays the placement reads and writes, each vector's data pointer loaded once per call:
@@ -124,12 +90,12 @@ struct BodyArrays {
       : parentid(model.body_parentid.data()),
         jntnum(model.body_jntnum.data()),
         jntadr(model.body_jntadr.data()),
+        mocapid(model.body_mocapid.data()),
         body_pos(model.body_pos.data()),
         body_quat(model.body_quat.data()),
-        body_mat(model.body_mat.data()),
         body_placement(model.body_placement.data()),
         body_ipos(model.body_ipos.data()),
-        body_imat(model.body_imat.data()),
+        body_iquat(model.body_iquat.data()),
         body_iplacement(model.body_iplacement.data()),
         jnt_kind(model.jnt_kind.data()),
         jnt_offset(model.jnt_offset.data()),
@@ -138,6 +104,8 @@ struct BodyArrays {
         jnt_axis(model.jnt_axis.data()),
         qpos0(model.qpos0.data()),
         qpos(data.qpos.data()),
+        mocap_pos(data.mocap_pos.data()),
+        mocap_quat(data.mocap_quat.data()),
         xpos(data.xpos.data()),
         xmat(data.xmat.data()),
         xquat(data.xquat.data()),
@@ -147,13 +115,12 @@ struct BodyArrays {
         xaxis(data.xaxis.data()) {}
 
   // the model's
-  const int *parentid, *jntnum, *jntadr;
+  const int *parentid, *jntnum, *jntadr, *mocapid;
   const Eigen::Vector3d* body_pos;
   const Quat* body_quat;
-  const Mat3* body_mat;
   const FramePlacement* body_placement;
   const Eigen::Vector3d* body_ipos;
-  const Mat3* body_imat;
+  const Quat* body_iquat;
   const FramePlacement* body_iplacement;
   const JointKind* jnt_kind;
   const uint8_t* jnt_offset;
@@ -162,6 +129,8 @@ struct BodyArrays {
   const double* qpos0;
   // the state and what is placed
   const double* qpos;
+  const Eigen::Vector3d* mocap_pos;
+  const Quat* mocap_quat;
   Eigen::Vector3d* xpos;
   Mat3* xmat;
   Quat* xquat;
@@ -170,80 +139,60 @@ struct BodyArrays {
   Eigen::Vector3d *xanchor, *xaxis;
 };
 
-// R and quat turned by hinge j about coordinate axis k of the body's frame (set_const's
-// kHingeX, kHingeY, kHingeZ), given (ch, sh) = (cos, sin) of half its angle: R's column k, signed
-// with the joint's axis, is the world axis.
-template <int k, bool kOrientations, bool kJointFrames>
-[[gnu::always_inline]] inline void turn_about_axis(const BodyArrays& a, int j, double ch, double sh,
-                                                   Mat3& R, Quat& quat) {
-  const double sign = a.jnt_axis[j][k];
-  if constexpr (kJointFrames) a.xaxis[j] = sign * R.col(k);
-  turn_columns<k>(R, ch * ch - sh * sh, sign * (2.0 * sh * ch));
-  if constexpr (kOrientations) quat = quat_mul_axis(quat, k, ch, sign * sh);
-}
-
-// The frame (pos, R) and its quaternion moved by joint j of its body (not a free joint).
-template <bool kOrientations, bool kJointFrames>
+// The frame (pos, quat) moved by joint j of its body (not a free joint), in mj_kinematics's
+// order: the joint's world axis and anchor from the frame so far, then a slide's shift or a
+// turn's quaternion, and for a turn about an anchor off the origin, the origin swung back so that
+// the anchor stays.
+template <bool kJointFrames>
 [[gnu::always_inline]] inline void move_joint(const BodyArrays& a, int j, Eigen::Vector3d& pos,
-                                              Mat3& R, Quat& quat) {
+                                              Quat& quat) {
   const JointKind kind = a.jnt_kind[j];
   const int qadr = a.jnt_qposadr[j];
   const double* q = a.qpos + qadr;
   const Eigen::Vector3d& axis = a.jnt_axis[j];
-  // the joint's anchor and world axis, kept in Data only when asked for
+  // the anchor; at a zero jnt_pos, pos itself (the rotated zero adds nothing)
   const bool offset = a.jnt_offset[j];
-  const Eigen::Vector3d anchor = offset ? Eigen::Vector3d(pos + rotate(R, a.jnt_pos[j])) : pos;
+  Eigen::Vector3d anchor = pos;
+  if (offset) anchor = detail::quat_rotate(quat, a.jnt_pos[j]) + pos;
   if constexpr (kJointFrames) a.xanchor[j] = anchor;
   switch (kind) {
     case JointKind::kSlide: {
-      const Eigen::Vector3d world_axis = rotate(R, axis);
+      const Eigen::Vector3d world_axis = detail::quat_rotate(quat, axis);
       if constexpr (kJointFrames) a.xaxis[j] = world_axis;
       pos += world_axis * (q[0] - a.qpos0[qadr]);
-      return;  // nothing turns: the anchor need not be kept
+      return;  // nothing turns
     }
-    case JointKind::kBall: {  // qpos is the turn itself, a unit quaternion
-      const Quat turn(q[0], q[1], q[2], q[3]);
-      if constexpr (kJointFrames) a.xaxis[j] = rotate(R, axis);
-      const Mat3 before = R;
-      multiply(before, quat_to_mat(turn), R);
-      if constexpr (kOrientations) quat = quat_mul(quat, turn);
+    case JointKind::kBall:  // qpos is the turn itself, a unit quaternion
+      if constexpr (kJointFrames) a.xaxis[j] = detail::quat_rotate(quat, axis);
+      quat = quat_mul(quat, Quat(q[0], q[1], q[2], q[3]));
       break;
-    }
-    default: {  // a hinge: half angles for the quaternion, the whole angle for R
-      const double half = 0.5 * (q[0] - a.qpos0[qadr]);
-      const double sh = std::sin(half), ch = std::cos(half);
+    default: {  // a hinge: the quaternion of its angle about its axis (none at angle 0)
+      if constexpr (kJointFrames) a.xaxis[j] = detail::quat_rotate(quat, axis);
+      const double angle = q[0] - a.qpos0[qadr];
+      if (angle == 0.0) break;
+      const double sh = std::sin(angle * 0.5), ch = std::cos(angle * 0.5);
       switch (kind) {
-        case JointKind::kHingeX:
-          turn_about_axis<0, kOrientations, kJointFrames>(a, j, ch, sh, R, quat);
-          break;
-        case JointKind::kHingeY:
-          turn_about_axis<1, kOrientations, kJointFrames>(a, j, ch, sh, R, quat);
-          break;
-        case JointKind::kHingeZ:
-          turn_about_axis<2, kOrientations, kJointFrames>(a, j, ch, sh, R, quat);
-          break;
-        default: {
-          const double c = ch * ch - sh * sh, s = 2.0 * sh * ch;
-          if constexpr (kJointFrames) a.xaxis[j] = rotate(R, axis);
-          const Mat3 before = R;
-          multiply(before, axis_rotation(axis, c, s), R);
-          if constexpr (kOrientations)
-            quat = quat_mul(quat, Quat(ch, axis[0] * sh, axis[1] * sh, axis[2] * sh));
-        }
+        // about a coordinate axis: the product's terms with the turn's zero components left out
+        case JointKind::kHingeX: quat = quat_mul_axis(quat, 0, ch, axis[0] * sh); break;
+        case JointKind::kHingeY: quat = quat_mul_axis(quat, 1, ch, axis[1] * sh); break;
+        case JointKind::kHingeZ: quat = quat_mul_axis(quat, 2, ch, axis[2] * sh); break;
+        default: quat = quat_mul(quat, Quat(ch, axis[0] * sh, axis[1] * sh, axis[2] * sh));
       }
     }
   }
-  // the anchor stays where it is: the frame's origin swings around it
-  if (offset) pos = anchor - rotate(R, a.jnt_pos[j]);
+  // the anchor stays where it is: the origin swings around it
+  if (offset) {
+    const Eigen::Vector3d arm = anchor - pos;
+    const Eigen::Vector3d turned = detail::quat_rotate(quat, a.jnt_pos[j]);
+    for (int r = 0; r < 3; ++r) pos[r] += arm[r] - turned[r];
+  }
 }
 
-// Body b's frame (xpos, xmat) on its parent's, which is placed, with qpos's quaternions
-// normalized. With kOrientations, also its quaternion xquat, composed in MuJoCo's order; with
-// kJointFrames, also its joints' anchors and axes (xanchor, xaxis) and its inertial frame (xipos,
-// ximat). place_site() asks for the frame alone.
-template <bool kOrientations, bool kJointFrames>
+// Body b's frame (xpos, xquat, xmat) on its parent's, which is placed, with qpos's quaternions
+// normalized. With kJointFrames, also its joints' anchors and axes (xanchor, xaxis) and its
+// inertial frame (xipos, ximat); place_site() asks for the frame alone.
+template <bool kJointFrames>
 [[gnu::always_inline]] inline void place_body(const BodyArrays& a, int b) {
-  const int p = a.parentid[b];
   const int first_joint = a.jntadr[b], last_joint = first_joint + a.jntnum[b];
   // composed in place in Data: nothing of the body's pose is held in registers across the calls
   // to sincos, which would save and restore it
@@ -254,85 +203,84 @@ template <bool kOrientations, bool kJointFrames>
     // a free body's pose is its qpos (body_pos and body_quat only gave qpos0); its joint's
     // anchor is the body's origin and its axis z, by MuJoCo's convention
     const double* q = a.qpos + a.jnt_qposadr[first_joint];
-    const Quat turn(q[3], q[4], q[5], q[6]);
     pos = Eigen::Vector3d(q[0], q[1], q[2]);
-    R = quat_to_mat(turn);
-    if constexpr (kOrientations) quat = quat_renormalized(turn);
+    quat = Quat(q[3], q[4], q[5], q[6]);
     if constexpr (kJointFrames) {
       a.xanchor[first_joint] = pos;
       a.xaxis[first_joint] = Eigen::Vector3d::UnitZ();
     }
   } else {
-    const FramePlacement& placement = a.body_placement[b];
-    place_frame(a.xpos[p], a.xmat[p], a.body_pos[b], a.body_mat[b], placement, pos, R);
-    if constexpr (kOrientations) {
-      if (placement.turn != FramePlacement::Turn::kNone) {
-        quat = quat_mul(a.xquat[p], a.body_quat[b]);
-      } else {
+    const int p = a.parentid[b];
+    const int mocap = a.mocapid[b];
+    if (mocap >= 0) {  // a mocap body: where the user put it (its parent is the world)
+      const FramePlacement general;
+      offset_point(a.xpos[p], a.xmat[p], a.mocap_pos[mocap], general, pos);
+      quat = quat_mul(a.xquat[p], a.mocap_quat[mocap]);
+    } else {
+      const FramePlacement& placement = a.body_placement[b];
+      offset_point(a.xpos[p], a.xmat[p], a.body_pos[b], placement, pos);
+      if (placement.turn == FramePlacement::Turn::kNone) {
         quat = a.xquat[p];
+      } else {
+        quat = quat_mul(a.xquat[p], a.body_quat[b]);
       }
     }
     // no free joint here: validate() allows one only as its body's single joint
-    for (int j = first_joint; j < last_joint; ++j) {
-      move_joint<kOrientations, kJointFrames>(a, j, pos, R, quat);
-    }
-    if constexpr (kOrientations) quat = quat_renormalized(quat);
+    for (int j = first_joint; j < last_joint; ++j) move_joint<kJointFrames>(a, j, pos, quat);
   }
+  detail::normalize_quat(quat.data());
+  quat_into_mat(quat, R);
   if constexpr (kJointFrames) {
-    place_frame(pos, R, a.body_ipos[b], a.body_imat[b], a.body_iplacement[b], a.xipos[b],
+    place_frame(pos, R, quat, a.body_ipos[b], a.body_iquat[b], a.body_iplacement[b], a.xipos[b],
                 a.ximat[b]);
   }
 }
 
-// Constant frames on their bodies (geoms, sites): frame i of n at (pos[i], mat[i]), placed as
+// Constant frames on their bodies (geoms, sites): frame i of n at (pos[i], quat[i]), placed as
 // placement[i] says, on body bodyid[i], into (xpos[i], xmat[i]).
-void place_attached(int n, const int* bodyid, const Eigen::Vector3d* pos, const Mat3* mat,
-                    const FramePlacement* placement, const Eigen::Vector3d* body_xpos,
-                    const Mat3* body_xmat, Eigen::Vector3d* xpos, Mat3* xmat) {
+void place_attached(int n, const int* bodyid, const Eigen::Vector3d* pos, const Quat* quat,
+                    const FramePlacement* placement, const BodyArrays& a, Eigen::Vector3d* xpos,
+                    Mat3* xmat) {
   for (int i = 0; i < n; ++i) {
     const int b = bodyid[i];
-    place_frame(body_xpos[b], body_xmat[b], pos[i], mat[i], placement[i], xpos[i], xmat[i]);
+    place_frame(a.xpos[b], a.xmat[b], a.xquat[b], pos[i], quat[i], placement[i], xpos[i],
+                xmat[i]);
   }
 }
 
 // The world's frame, which every other frame is placed on: set on every call, as MuJoCo's
-// mj_kinematics does, so that a value a caller wrote into it cannot move the robot. Its
-// quaternion only with the others (poses() and place_site() compose none).
-inline void place_world(Data& data, bool orientation) {
+// mj_kinematics does, so that a value a caller wrote into it cannot move the robot.
+inline void place_world(Data& data) {
   data.xpos[0].setZero();
   data.xmat[0].setIdentity();
   data.xipos[0].setZero();
   data.ximat[0].setIdentity();
-  if (orientation) data.xquat[0] = Quat(1.0, 0.0, 0.0, 0.0);
+  data.xquat[0] = Quat(1.0, 0.0, 0.0, 0.0);
 }
 
-// What place_bodies() writes besides the body frames, joint anchors and axes, inertial frames and
-// site frames.
-struct Placed {
-  bool orientations;  // the bodies' quaternions (xquat), composed in MuJoCo's order
-  bool geoms;         // geom_xpos, geom_xmat
-};
-
-// Body frames (xpos, xmat), joint anchors and axes, inertial frames, sites, and what `placed` asks
-// for.
-void place_bodies(const Model& model, Data& data, Placed placed) {
+// The state's quaternions normalized in place, as mj_kinematics starts: the ball and free
+// joints' in qpos, and the mocap bodies'.
+inline void normalize_state_quats(const Model& model, Data& data) {
   // only ball and free joints have quaternions in qpos, and only they make nq exceed nv
   if (model.nq > model.nv) detail::normalize_joint_quats(model, data.qpos.data());
-  place_world(data, placed.orientations);
+  for (int i = 0; i < model.nmocap; ++i) detail::normalize_quat(data.mocap_quat[i].data());
+}
+
+// Body frames (xpos, xquat, xmat), joint anchors and axes, inertial frames, sites, and, when
+// asked, geoms.
+void place_bodies(const Model& model, Data& data, bool geoms) {
+  normalize_state_quats(model, data);
+  place_world(data);
   const BodyArrays arrays(model, data);
   const int nbody = model.nbody;
-  if (placed.orientations) {
-    for (int b = 1; b < nbody; ++b) place_body<true, true>(arrays, b);
-  } else {
-    for (int b = 1; b < nbody; ++b) place_body<false, true>(arrays, b);
-  }
-  if (placed.geoms) {
+  for (int b = 1; b < nbody; ++b) place_body<true>(arrays, b);
+  if (geoms) {
     place_attached(model.ngeom, model.geom_bodyid.data(), model.geom_pos.data(),
-                   model.geom_mat.data(), model.geom_placement.data(), arrays.xpos, arrays.xmat,
+                   model.geom_quat.data(), model.geom_placement.data(), arrays,
                    data.geom_xpos.data(), data.geom_xmat.data());
   }
   place_attached(model.nsite, model.site_bodyid.data(), model.site_pos.data(),
-                 model.site_mat.data(), model.site_placement.data(), arrays.xpos, arrays.xmat,
+                 model.site_quat.data(), model.site_placement.data(), arrays,
                  data.site_xpos.data(), data.site_xmat.data());
 }
 
@@ -451,12 +399,12 @@ void check_jacobians(const Model& model, const Eigen::Ref<Eigen::MatrixXd>& jacp
 
 void poses(const Model& model, Data& data) {
   check_entry(model, data, "lever::poses");
-  place_bodies(model, data, {.orientations = false, .geoms = true});
+  place_bodies(model, data, true);
 }
 
 void kinematics(const Model& model, Data& data) {
   check_entry(model, data, "lever::kinematics");
-  place_bodies(model, data, {.orientations = true, .geoms = true});
+  place_bodies(model, data, true);
   com_quantities(model, data);
 }
 
@@ -466,27 +414,26 @@ void place_site(const Model& model, Data& data, int site) {
     throw StateError("lever::place_site: site " + std::to_string(site) + " is not in 0.." +
                      std::to_string(model.nsite - 1) + ".");
   }
-  if (model.nq > model.nv) detail::normalize_joint_quats(model, data.qpos.data());
+  normalize_state_quats(model, data);
   // the path from the site's body to the world, then placed from the world outwards: each body
   // on its parent, as place_bodies() does, and no other body
   int* const path = data.work.body_path.data();
   int length = 0;
   for (int b = model.site_bodyid[site]; b > 0; b = model.body_parentid[b]) path[length++] = b;
-  place_world(data, false);
+  place_world(data);
   const BodyArrays arrays(model, data);
-  while (length > 0) place_body<false, false>(arrays, path[--length]);
-  place_attached(1, &model.site_bodyid[site], &model.site_pos[site], &model.site_mat[site],
-                 &model.site_placement[site], arrays.xpos, arrays.xmat, &data.site_xpos[site],
+  while (length > 0) place_body<false>(arrays, path[--length]);
+  place_attached(1, &model.site_bodyid[site], &model.site_pos[site], &model.site_quat[site],
+                 &model.site_placement[site], arrays, &data.site_xpos[site],
                  &data.site_xmat[site]);
 }
 
 namespace detail {
 
 void step_kinematics(const Model& model, Data& data) {
-  // nothing in a step reads xquat but a weld's rows (equality constraints), nor the geom frames
-  // unless collision runs; the site frames are what a caller reads after a step (an end
-  // effector's position), and cost little
-  place_bodies(model, data, {.orientations = model.neq > 0, .geoms = model.contacts_possible});
+  // nothing in a step reads the geom frames unless collision runs; the site frames are what a
+  // caller reads after a step (an end effector's position), and cost little
+  place_bodies(model, data, model.contacts_possible);
   com_quantities(model, data);
 }
 

@@ -18,7 +18,12 @@ void factor_mass_damped(const Model& model, Data& data, double h);
 /// J M^-1 J^T = Y^T D^-1 Y with Y = L^-T J^T.
 void solve_mass_half(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x);
 
-/// x = (M + h diag(dof_damping))^-1 x with factor_mass_damped()'s factor.
+/// Factor M - h D, for a symmetric D non-zero only where M is, into data.work.LD2 as M is
+/// factored (LTDL on the tree: MuJoCo 3's mj_factorI of implicitfast's matrix).
+void factor_mass_minus(const Model& model, Data& data, const Eigen::MatrixXd& D, double h);
+
+/// x = (M + h diag(dof_damping))^-1 x with factor_mass_damped()'s factor (or M - h D with
+/// factor_mass_minus()'s).
 void solve_mass_damped(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x);
 
 /// The steps of forward()'s stages: each the public function of the same name (lever/dynamics.hpp,

@@ -729,11 +729,11 @@ void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       rk4_derivatives(model, data, deriv);
       check_step_end(model, data, deriv, w.qvel_next, w.qacc_sum);
       return;
+    case Integrator::kImplicitFast: break;  // MuJoCo 3's: not differentiated yet
   }
-  // an integrator added to the enum later lands here until it has its own case
   throw Error("step_derivatives: integrator " +
               std::to_string(static_cast<int>(model.opt.integrator)) +
-              " is not supported yet (Euler, RK4 and implicit are).");
+              " (MuJoCo 3's implicitfast) is not supported yet (Euler, RK4 and implicit are).");
 }
 
 }  // namespace lever

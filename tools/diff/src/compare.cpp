@@ -129,6 +129,7 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNsensor: return [&model](int i) { return "sensor " + quoted(model.sensor_name, i); };
     case Size::kNsensordata: return sensor_number(model);
     case Size::kNeq: return [&model](int i) { return "equality " + quoted(model.eq_name, i); };
+    case Size::kNmocap: return [](int i) { return "mocap " + std::to_string(i); };
     case Size::kOne: break;
   }
   return [](int) { return std::string(); };
