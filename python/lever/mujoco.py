@@ -92,7 +92,8 @@ class mjtIntegrator(_enum.IntEnum):
 _MODEL_FIELDS = frozenset(f["name"] for f in _lever.model_field_table() if f["mujoco"])
 _DATA_FIELDS = frozenset(f["name"] for f in _lever.data_field_table() if f["mujoco"])
 _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude", "nsensor",
-          "nsensordata", "neq", "nmocap", "nconmax", "njmax")
+          "nsensordata", "neq", "nmocap", "nmesh", "nmeshvert", "nmeshgraph", "nconmax",
+          "njmax")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl", "key_mpos", "key_mquat")
 # the mjModel arrays model.body(...) and the other accessors reach
@@ -167,6 +168,12 @@ def _accessor_table(mujoco_arrays: dict, rows_of_kind: dict) -> dict:
             for size, prefix in sources:
                 if rows == size and array.startswith(prefix):
                     attributes.setdefault(array[len(prefix):], (array, rows))
+        # where a joint's array and its dofs' share a name, MuJoCo's joint view shows the dofs'
+        # (bodyid), except the limit's solref and solimp, which are the joint's
+        if kind == "joint":
+            for name in ("solref", "solimp"):
+                if "jnt_" + name in mujoco_arrays:
+                    attributes[name] = ("jnt_" + name, mujoco_arrays["jnt_" + name])
         table[kind] = attributes
     return table
 

@@ -328,6 +328,9 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nsensordata", [](const lever::Model& x) { return x.nsensordata; })
       .def_property_readonly("neq", [](const lever::Model& x) { return x.neq; })
       .def_property_readonly("nmocap", [](const lever::Model& x) { return x.nmocap; })
+      .def_property_readonly("nmesh", [](const lever::Model& x) { return x.nmesh; })
+      .def_property_readonly("nmeshvert", [](const lever::Model& x) { return x.nmeshvert; })
+      .def_property_readonly("nmeshgraph", [](const lever::Model& x) { return x.nmeshgraph; })
       .def_property_readonly("nconmax", [](const lever::Model& x) { return x.nconmax; })
       .def_property_readonly("njmax", [](const lever::Model& x) { return x.njmax; })
       .def_property(

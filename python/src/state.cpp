@@ -71,7 +71,8 @@ void check_version(const py::dict& state, const char* what) {
 
 // The counts that size a model (size_model reads them) and the capacities of its Data.
 #define LEVER_PYTHON_MODEL_COUNTS(X) \
-  X(nq) X(nv) X(nu) X(nbody) X(njnt) X(ngeom) X(nsite) X(nkey) X(npair) X(nexclude) X(nconmax) X(njmax)
+  X(nq) X(nv) X(nu) X(nbody) X(njnt) X(ngeom) X(nsite) X(nkey) X(npair) X(nexclude) X(nconmax) X(njmax) \
+  X(nmesh) X(nmeshvert) X(nmeshgraph) X(nsensor) X(nsensordata) X(neq) X(nmocap)
 
 // a keyframe array (nkey x n, row-major) as bytes, and back
 py::bytes matrix_bytes(const lever::RowMatrix& a) {
@@ -106,6 +107,8 @@ py::dict model_state(const lever::Model& model) {
   keys["key_qpos"] = matrix_bytes(model.key_qpos);
   keys["key_qvel"] = matrix_bytes(model.key_qvel);
   keys["key_ctrl"] = matrix_bytes(model.key_ctrl);
+  keys["key_mpos"] = matrix_bytes(model.key_mpos);
+  keys["key_mquat"] = matrix_bytes(model.key_mquat);
   state["keys"] = keys;
 
   const lever::Options& o = model.opt;
@@ -202,6 +205,8 @@ std::shared_ptr<lever::Model> model_from_state(const py::dict& state) {
   write_matrix(keys, "key_qpos", m.key_qpos);
   write_matrix(keys, "key_qvel", m.key_qvel);
   write_matrix(keys, "key_ctrl", m.key_ctrl);
+  write_matrix(keys, "key_mpos", m.key_mpos);
+  write_matrix(keys, "key_mquat", m.key_mquat);
 
   const py::dict opt = item(state, "opt", "a model").cast<py::dict>();
   m.opt.timestep = item(opt, "timestep", "a model").cast<double>();

@@ -151,7 +151,8 @@ def test_contact_force_pushes_as_its_rows(path):
             if c.efc_address < 0:
                 assert not forces[i].any()
                 continue
-            rows = 1 if c.dim == 1 else 2 * (c.dim - 1)
+            elliptic = d.efc_type[c.efc_address] == mujoco.mjtConstraint.mjCNSTR_CONTACT_ELLIPTIC
+            rows = c.dim if c.dim == 1 or elliptic else 2 * (c.dim - 1)  # a pyramid's edges
             span = slice(c.efc_address, c.efc_address + rows)
             assert np.all(d.efc_id[span] == i)
             by_rows = d.efc_J[span].T @ d.efc_force[span]

@@ -44,10 +44,11 @@ def test_shapes_and_dtypes_are_mujocos(path):
     mujoco.mj_forward(model, data)
     sizes = {n: getattr(model, n)
              for n in ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude",
-                       "nsensor", "nsensordata")}
+                       "nsensor", "nsensordata", "neq", "nmocap", "nmesh",
+                       "nmeshvert", "nmeshgraph")}
     sizes["nefc"] = data.nefc
     # mjmodel.h's lengths of solref, solimp, gainprm and biasprm
-    sizes.update(mjNREF=2, mjNIMP=5, mjNGAIN=10, mjNBIAS=10)
+    sizes.update(mjNREF=2, mjNIMP=5, mjNGAIN=10, mjNBIAS=10, mjNEQDATA=11)
     sizes["njmax"] = data.nefc  # 2.2.2 sizes efc arrays njmax; its Python shows the live rows
     for macro, obj, names in (("MJMODEL_POINTERS", model, mujoco._MODEL_FIELDS),
                               ("MJDATA_POINTERS", data, mujoco._DATA_FIELDS)):
@@ -205,8 +206,8 @@ def test_what_lever_lacks_raises_not_implemented(arm2):
         model.tendon_range
     with pytest.raises(NotImplementedError, match="mj_collision"):
         mujoco.mj_collision(model, data)
-    with pytest.raises(NotImplementedError, match="cacc"):
-        data.body(0).cacc
+    with pytest.raises(NotImplementedError, match="xfrc_applied"):
+        data.body(0).xfrc_applied
     np.testing.assert_array_equal(data.geom(0).xpos, data.geom_xpos[0])  # lever computes it
     with pytest.raises(AttributeError):
         data.qpso

@@ -128,6 +128,9 @@ inline Model random_tree(std::uint64_t seed) {
       m.dof_parentid.push_back(k == 0 ? parent_dof : j - 1);
       m.dof_armature.push_back(chance(rng, 0.5) ? uniform(rng, 0.001, 0.1) : 0.0);
       m.dof_damping.push_back(chance(rng, 0.5) ? uniform(rng, 0.01, 1.0) : 0.0);
+      m.dof_frictionloss.push_back(0.0);  // no friction-loss rows: the trees test the smooth terms
+      m.dof_solref.push_back({0.02, 1.0});
+      m.dof_solimp.push_back({0.9, 0.95, 0.001, 0.5, 2.0});
       ++m.njnt;
       ++m.nv;
     }

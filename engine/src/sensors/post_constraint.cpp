@@ -41,6 +41,51 @@ Force contact_wrench(const Data& data, const Contact& contact) {
   return wrench;
 }
 
+// A point given in body b's frame, in world coordinates (MuJoCo's mj_local2Global, summed in its
+// order).
+Vector3d point_on_body(const Data& data, int b, const double* local) {
+  const Mat3& R = data.xmat[b];
+  Vector3d p;
+  for (int r = 0; r < 3; ++r) {
+    p[r] = (R(r, 0) * local[0] + R(r, 1) * local[1] + R(r, 2) * local[2]) + data.xpos[b][r];
+  }
+  return p;
+}
+
+// The equality rows' forces on their bodies, added to cfrc_ext as MuJoCo 2.2.2 adds them: a
+// connect's three rows are a force in world axes, a weld's six a force and a torque, acting at
+// the constraint's point on each body, body 1 with the rows' sign and body 2 against it (the
+// opposite of a contact's convention). A joint coupling moves no body directly.
+void add_equality_forces(const Model& model, Data& data) {
+  int row = 0;
+  while (row < data.ne) {
+    const int id = data.efc_id[row];
+    const EqualityType type = model.eq_type[id];
+    if (type == EqualityType::kJoint) {
+      ++row;
+      continue;
+    }
+    const bool weld = type == EqualityType::kWeld;
+    const double* f = data.efc_force.data() + row;
+    Force wrench;  // [torque; force]
+    wrench.tail<3>() = Vector3d(f[0], f[1], f[2]);
+    wrench.head<3>() = weld ? Vector3d(f[3], f[4], f[5]) : Vector3d::Zero();
+    const double* anchors = model.eq_data[id].data();
+    // connect: body 1's anchor first; weld: body 2's (see kEqualityData)
+    const double* on_body1 = anchors + (weld ? 3 : 0);
+    const double* on_body2 = anchors + (weld ? 0 : 3);
+    if (const int b1 = model.eq_obj1id[id]; b1 != 0) {
+      data.cfrc_ext[b1] += force_about(wrench, point_on_body(data, b1, on_body1),
+                                       data.subtree_com[model.body_rootid[b1]]);
+    }
+    if (const int b2 = model.eq_obj2id[id]; b2 != 0) {
+      data.cfrc_ext[b2] -= force_about(wrench, point_on_body(data, b2, on_body2),
+                                       data.subtree_com[model.body_rootid[b2]]);
+    }
+    row += weld ? 6 : 3;
+  }
+}
+
 }  // namespace
 
 void rne_post_constraint(const Model& model, Data& data) {
@@ -62,6 +107,7 @@ void rne_post_constraint(const Model& model, Data& data) {
           force_about(wrench, contact.pos, data.subtree_com[model.body_rootid[body2]]);
     }
   }
+  add_equality_forces(model, data);
 
   // down the tree: each body's acceleration (the world's is -g, so that gravity is felt as an
   // upward acceleration), the net force that takes, and the parent's share of it
