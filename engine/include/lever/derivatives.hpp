@@ -43,6 +43,8 @@ struct Derivatives {
   Eigen::MatrixXd dqacc_dq;  ///< (nv x nv) d qacc / d qpos
   Eigen::MatrixXd dqacc_dv;  ///< (nv x nv) d qacc / d qvel
   Eigen::MatrixXd dqacc_du;  ///< (nv x nu) d qacc / d ctrl
+  /// (nv x nv) d qacc / d qfrc_applied, written by applied_force_derivatives() only
+  Eigen::MatrixXd dqacc_dapplied;
   /// d qfrc_constraint / d (qpos, qvel, ctrl) with the rows' active set held fixed
   Eigen::MatrixXd dconstraint_dq, dconstraint_dv, dconstraint_du;
 
@@ -120,6 +122,12 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
 /// impedance, reference acceleration and, for contacts, Jacobian and geometry differentiated).
 /// Also writes deriv.dtau_* (at data.qacc) and deriv.dconstraint_*.
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv);
+
+/// d qacc / d qfrc_applied into deriv.dqacc_dapplied, at the state of data's last forward()
+/// (forward_derivatives() ran it): (M + J_S^T R_S^-1 J_S)^-1 over the active rows S (limits and
+/// contacts, held fixed as in forward_derivatives()); M^-1 when no row pushes. Throws lever::Error
+/// for an elliptic cone on its surface, as forward_derivatives() does.
+void applied_force_derivatives(const Model& model, const Data& data, Derivatives& deriv);
 
 /// The transition Jacobians of step() at data's state, in mjd_transitionFD's layout:
 /// x = [dq; qvel] (2nv, dq qpos's tangent, the next qpos read in the tangent space at the next

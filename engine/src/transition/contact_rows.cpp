@@ -98,6 +98,60 @@ SoftSlopes soft_slopes(const std::array<double, 5>& solimp, double dist, double 
 
 }  // namespace
 
+int held_active_rows(const Data& data, std::vector<int>& rows) {
+  int n = 0;
+  for (int r = 0; r < data.nefc; ++r) {
+    if (data.efc_state[r] == ConstraintState::kCone) {
+      throw Error(
+          "derivatives: an elliptic cone's force is on the cone's surface (its middle zone); lever "
+          "differentiates elliptic cones inside their quadratic zone and pyramidal and frictionless "
+          "contacts so far.");
+    }
+    if (data.efc_state[r] == ConstraintState::kActive) rows[static_cast<std::size_t>(n++)] = r;
+  }
+  return n;
+}
+
+void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H) {
+  // nv is small, so plain loops over the dense rows (Eigen's dynamic outer products cost more in
+  // setup than in arithmetic here)
+  const auto nv = static_cast<int>(data.M.rows());
+  H = data.M;
+  for (int k = 0; k < n; ++k) {
+    const int r = rows[k];
+    const double* J = data.efc_J.row(r).data();
+    for (int b = 0; b < nv; ++b) {
+      if (J[b] == 0.0) continue;
+      const double weight = data.efc_D[r] * J[b];
+      for (int a = b; a < nv; ++a) H(a, b) += weight * J[a];
+    }
+  }
+  for (int j = 0; j < nv; ++j) {  // H = L L^T in place, L in the lower triangle
+    for (int k = 0; k < j; ++k) H(j, j) -= H(j, k) * H(j, k);
+    H(j, j) = std::sqrt(H(j, j));
+    for (int i = j + 1; i < nv; ++i) {
+      double sum = H(i, j);
+      for (int k = 0; k < j; ++k) sum -= H(i, k) * H(j, k);
+      H(i, j) = sum / H(j, j);
+    }
+  }
+}
+
+void solve_held_rows(const Eigen::MatrixXd& H, Eigen::Ref<Eigen::MatrixXd> X, int cols) {
+  const auto nv = static_cast<int>(H.rows());
+  for (int c = 0; c < cols; ++c) {  // L y = x, then L^T x = y
+    double* x = X.col(c).data();
+    for (int i = 0; i < nv; ++i) {
+      for (int k = 0; k < i; ++k) x[i] -= H(i, k) * x[k];
+      x[i] /= H(i, i);
+    }
+    for (int i = nv - 1; i >= 0; --i) {
+      for (int k = i + 1; k < nv; ++k) x[i] -= H(k, i) * x[k];
+      x[i] /= H(i, i);
+    }
+  }
+}
+
 bool active_contact_rows(const Data& data) {
   for (int r = 0; r < data.nefc; ++r) {
     if (data.efc_dof[r] < 0 && data.efc_state[r] != ConstraintState::kSatisfied) return true;
@@ -111,16 +165,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   deriv.dconstraint_dq.setZero();
   deriv.dconstraint_dv.setZero();
   deriv.dconstraint_du.setZero();
-  int n = 0;
-  for (int r = 0; r < data.nefc; ++r) {
-    if (data.efc_state[r] == ConstraintState::kCone) {
-      throw Error(
-          "derivatives: an elliptic cone's force is on the cone's surface (its middle zone); lever "
-          "differentiates elliptic cones inside their quadratic zone and pyramidal and frictionless "
-          "contacts so far.");
-    }
-    if (data.efc_state[r] == ConstraintState::kActive) w.rows[n++] = r;
-  }
+  const int n = held_active_rows(data, w.rows);
   w.active_rows = n;
   Eigen::MatrixXd& Y = w.contact_Y;  // (nefc_max x nv) y's qpos columns
   Eigen::MatrixXd& E = w.contact_E;  // (nv x nv) dJ^T f
@@ -270,42 +315,9 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     }
   }
 
-  // H = M + J_S^T D_S J_S, its lower triangle factored in place (H = L L^T); nv is small, so
-  // plain loops over the dense rows (Eigen's dynamic outer products cost more in setup)
   Eigen::MatrixXd& H = w.contact_H;
-  H = data.M;
-  for (int k = 0; k < n; ++k) {
-    const int r = w.rows[k];
-    const double* J = data.efc_J.row(r).data();
-    for (int b = 0; b < nv; ++b) {
-      if (J[b] == 0.0) continue;
-      const double weight = data.efc_D[r] * J[b];
-      for (int a = b; a < nv; ++a) H(a, b) += weight * J[a];
-    }
-  }
-  for (int j = 0; j < nv; ++j) {
-    for (int k = 0; k < j; ++k) H(j, j) -= H(j, k) * H(j, k);
-    H(j, j) = std::sqrt(H(j, j));
-    for (int i = j + 1; i < nv; ++i) {
-      double sum = H(i, j);
-      for (int k = 0; k < j; ++k) sum -= H(i, k) * H(j, k);
-      H(i, j) = sum / H(j, j);
-    }
-  }
-  // x = H^-1 x for each column of X (L y = x, then L^T x = y)
-  const auto solve_with_H = [&](auto& X, int cols) {
-    for (int c = 0; c < cols; ++c) {
-      double* x = X.col(c).data();
-      for (int i = 0; i < nv; ++i) {
-        for (int k = 0; k < i; ++k) x[i] -= H(i, k) * x[k];
-        x[i] /= H(i, i);
-      }
-      for (int i = nv - 1; i >= 0; --i) {
-        for (int k = i + 1; k < nv; ++k) x[i] -= H(k, i) * x[k];
-        x[i] /= H(i, i);
-      }
-    }
-  };
+  factor_held_rows(data, w.rows.data(), n, H);
+  const auto solve_with_H = [&](auto& X, int cols) { solve_held_rows(H, X, cols); };
   // out += J_S^T df (df: one row per active row, cols columns)
   const auto add_rows_transposed = [&](auto& out, const auto& df, int cols) {
     for (int k = 0; k < n; ++k) {

@@ -641,6 +641,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   dqacc_dq.setZero(nv, nv);
   dqacc_dv.setZero(nv, nv);
   dqacc_du.setZero(nv, nu);
+  dqacc_dapplied.setZero(nv, nv);
   dconstraint_dq.setZero(nv, nv);
   dconstraint_dv.setZero(nv, nv);
   dconstraint_du.setZero(nv, nu);
@@ -702,6 +703,17 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_derivative_sizes(model, data, deriv);
   forward_derivatives_unchecked(model, data, deriv);
+}
+
+void applied_force_derivatives(const Model& model, const Data& data, Derivatives& deriv) {
+  check_derivative_sizes(model, data, deriv);
+  // qfrc_applied enters as f_smooth does: d qacc = G + (rows' part) with G = M^-1 d f, which with
+  // the rows held is H^-1 d f (docs/derivatives.md), the same H the contact rows are solved with
+  auto& w = deriv.work;
+  const int n = detail::held_active_rows(data, w.rows);
+  detail::factor_held_rows(data, w.rows.data(), n, w.contact_H);
+  deriv.dqacc_dapplied.setIdentity();
+  detail::solve_held_rows(w.contact_H, deriv.dqacc_dapplied, model.nv);
 }
 
 void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {

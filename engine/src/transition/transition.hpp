@@ -9,6 +9,8 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 #include <lever/derivatives.hpp>
 #include <lever/model.hpp>
 
@@ -35,6 +37,18 @@ void contact_change(const Model& model, const Data& data, int i, const Eigen::Ve
 
 /// Whether a contact's row is active (pushing) after forward().
 bool active_contact_rows(const Data& data);
+
+/// The rows whose force is linear in the state with the active set held (kActive: limits,
+/// pyramids, frictionless, elliptic cones in their quadratic zone) into rows; returns how many.
+/// Throws lever::Error for an elliptic cone on its surface (its middle zone).
+int held_active_rows(const Data& data, std::vector<int>& rows);
+
+/// H = M + J_S^T D_S J_S over the rows rows[0..n) (D = 1 / R), factored in place as L L^T (L in
+/// its lower triangle): the matrix of forward dynamics linearised with those rows' active set held.
+void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H);
+
+/// X's first cols columns = H^-1 X, with factor_held_rows()' factor.
+void solve_held_rows(const Eigen::MatrixXd& H, Eigen::Ref<Eigen::MatrixXd> X, int cols);
 
 /// The rows' part of d qacc and d qfrc_constraint with the active set held, every active row
 /// (limits and contacts), given deriv.dqacc_* = G, the unconstrained part (contact_rows.cpp).
