@@ -242,6 +242,7 @@ def test_a_set_that_changes_is_flagged_and_warned():
         assert lever.derivatives(model, data)["active_set_changes"]
 
 
+@pytest.mark.filterwarnings("ignore:lever.derivatives")  # qpos0: the box drops onto the table
 def test_mjd_transitionFD_signature_and_refusals():
     om = ours.MjModel.from_xml_path(str(REPO / "models" / "gripper.xml"))
     od = ours.MjData(om)
@@ -263,3 +264,44 @@ def test_mjd_transitionFD_signature_and_refusals():
     A = np.zeros((nv2, nv2))
     ours.mjd_transitionFD(sensors, sd, 1e-6, 0, A, None, None, None)
     assert "analytic" in ours.mjd_transitionFD.__doc__.lower()
+
+
+def test_the_docs_worked_example_is_the_programs_output():
+    """docs/derivatives.md's worked example shows what examples/python/gripper_grasp_sensitivity.py
+    prints, whole, and the program's claims hold: a symmetric squeeze neither shifts nor turns the
+    box, and the left finger pushes it towards -y."""
+    import os
+    import sys
+    examples = REPO / "examples" / "python"
+    env = dict(os.environ, LEVER_MODELS=str(REPO / "models"),
+               PYTHONPATH=os.pathsep.join([str(examples), os.environ.get("PYTHONPATH", "")]))
+    out = subprocess.run([sys.executable, str(examples / "gripper_grasp_sensitivity.py")],
+                         capture_output=True, text=True, env=env, timeout=120)
+    assert out.returncode == 0, out.stderr
+    doc = (REPO / "docs" / "derivatives.md").read_text()
+    assert "```\n" + out.stdout + "```\n" in doc
+    rows = {line[:36].strip(): line[36:].split() for line in out.stdout.splitlines()[2:]}
+    assert rows["box y, one step (mm)"][2] == rows["box roll about x, one step (mrad)"][2] == "0.0"
+    assert float(rows["box y, one step (mm)"][0]) < 0 < float(rows["box y, one step (mm)"][1])
+    assert "active set changes within the step: no" in out.stdout
+
+
+REFUSED_PAIRS = {  # the free geom resting on the lower one -> the pair as the refusal names it
+    ("capsule", "box"): "capsule-box",
+    ("box", "box"): "box-box",
+    ("cylinder", "plane"): "plane-cylinder",
+}
+SHAPES = {"capsule": 'type="capsule" size="0.02 0.05"', "box": 'type="box" size="0.05 0.05 0.05"',
+          "cylinder": 'type="cylinder" size="0.03 0.03"', "plane": 'type="plane" size="1 1 0.1"'}
+
+
+@pytest.mark.parametrize("upper,lower", list(REFUSED_PAIRS), ids="-".join)
+def test_contact_geometry_not_differentiated_is_refused_by_name(upper, lower):
+    xml = (f'<mujoco><worldbody><geom {SHAPES[lower]}/><body pos="0 0 0.085"><freejoint/>'
+           f'<geom {SHAPES[upper]} mass="1"/></body></worldbody></mujoco>')
+    model = lever.load_string(xml)
+    data = lever.Data(model)
+    for _ in range(200):  # comes to rest on the lower geom
+        lever.step(model, data)
+    with pytest.raises(lever.Error, match=f"a {REFUSED_PAIRS[upper, lower]} contact is active"):
+        lever.derivatives(model, data)

@@ -1,6 +1,7 @@
 // lever derivatives: the analytic derivatives of the dynamics and of one step at one state.
 //
-//   lever derivatives MODEL [--key NAME] [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--settle N] [--json]
+//   lever derivatives MODEL [--key NAME] [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--settle N]
+//                           [--json]
 //
 // Runs lever::step_derivatives, forward_derivatives and applied_force_derivatives at the state
 // (after N steps under the constant ctrl with --settle: a grasp or a resting pose to differentiate

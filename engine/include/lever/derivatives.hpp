@@ -30,6 +30,14 @@ namespace lever {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
+/// How a contact's distance, position and frame (rows: normal, tangents) change per unit of a
+/// motion of its geoms (the contact geometry's derivative; a workspace type of Derivatives).
+struct ContactChange {
+  double dist = 0;
+  Eigen::Vector3d pos{0, 0, 0};
+  Mat3 frame = Mat3::Zero();
+};
+
 /// Outputs and workspace of the derivative functions, sized once from a Model (one per Data):
 /// the functions below allocate nothing.
 struct Derivatives {
@@ -92,12 +100,14 @@ struct Derivatives {
     std::vector<Force> IC_S;         ///< (nv) IC S_i, IC dof i's subtree inertia (derivatives/inverse_dynamics.cpp)
     std::vector<VelocityCoupling> CC_minus;  ///< (nbody) implicit: CC at qd - s a
     // contacts' rows with their active set held (transition/contact_rows.cpp)
-    Eigen::MatrixXd contact_Y;    ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
+    RowMatrix contact_Y;          ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
     Eigen::MatrixXd contact_E;    ///< (nv x nv) dJ^T f, one column per qpos direction
     Eigen::MatrixXd contact_H;    ///< (nv x nv) M + J^T D J over the active rows, then its factor
-    Eigen::MatrixXd contact_rhs;  ///< (nv x max(nv, nu)) right-hand sides solved with H
-    Eigen::MatrixXd contact_df;   ///< (nefc_max x max(nv, nu)) d f of the active rows
     std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
+    std::vector<char> carries;  ///< (nv x nv) [c * nv + i]: moving dof c turns dof i's axis
+    /// (nv x kMaxPairContacts) [c * kMaxPairContacts + k]: the change of one geom pair's contact k
+    /// under dof c, the narrow phase run once per dof for all of the pair's contacts
+    std::vector<ContactChange> pair_changes;
     std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at a contact's point
     // the active set's check (step_derivatives)
     std::vector<int> active_set;  ///< the contacts' geom pairs and the rows' states at the start
