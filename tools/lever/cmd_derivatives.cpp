@@ -84,7 +84,11 @@ int cmd_derivatives(const Args& command_line) {
   for (long k = 0; k < settle; ++k) step(model, data);
   step_derivatives(model, data, deriv);
   // RK4 leaves its last stage's forward derivatives: those of the state itself instead
-  if (model.opt.integrator == Integrator::kRK4) forward_derivatives(model, data, deriv);
+  if (model.opt.integrator == Integrator::kRK4) {
+    const Eigen::VectorXd qpos = data.qpos;  // forward() normalizes its quaternions
+    forward_derivatives(model, data, deriv);
+    data.qpos = qpos;
+  }
   applied_force_derivatives(model, data, deriv);
 
   if (args.has("json")) {
