@@ -248,9 +248,9 @@ void register_mujoco(const Fixture& f) {
   }
 }
 
-// ---- contact scenes: the whole forward and step, each peer with the solver its model file sets
-// (MuJoCo's Newton with its tolerance; lever's exact solve), and the three kernels with targets
-// on every model (free joints: quaternion qpos)
+// ---- contact scenes: the whole forward, step and step Jacobian, each peer with the solver its
+// model file sets (MuJoCo's Newton with its tolerance; lever's exact solve), and the three kernels
+// with targets on every model (free joints: quaternion qpos)
 
 void register_scene(const Fixture& f) {
   const State* s = &f.state;
@@ -273,6 +273,23 @@ void register_scene(const Fixture& f) {
         mju_copy(d->qvel, s->qvel.data(), m->nv);
         mj_step(m, d);
       }));
+  // the step's Jacobians with the contacts pushing: lever's analytic A and B (through the
+  // contacts, their active set held) beside MuJoCo's differences of mj_step (eps 1e-6)
+  auto deriv = std::make_shared<Derivatives>(f.model);
+  const auto jacobian_op = [deriv](const Model& m, Data& d) { step_derivatives(m, d, *deriv); };
+  const auto no_setup = [](const Model&, Data&) {};
+  add("step_jacobian_centred", f, "lever", lever_fn(&f, s, no_setup, jacobian_op));
+  add("step_jacobian_forward", f, "lever", lever_fn(&f, s, no_setup, jacobian_op));
+  const auto nx = static_cast<std::size_t>(2 * f.mj->nv);
+  auto AB =
+      std::make_shared<std::vector<mjtNum>>(nx * nx + nx * static_cast<std::size_t>(f.mj->nu));
+  for (const int centred : {1, 0}) {
+    add(centred ? "step_jacobian_centred" : "step_jacobian_forward", f, "mujoco",
+        mujoco_fn(&f, s, nothing, [AB, nx, centred](const mjModel* m, mjData* d) {
+          mjd_transitionFD(m, d, 1e-6, static_cast<mjtByte>(centred), AB->data(),
+                           m->nu > 0 ? AB->data() + nx * nx : nullptr, nullptr, nullptr);
+        }));
+  }
 }
 
 // ---- Orocos KDL ---------------------------------------------------------------------------------

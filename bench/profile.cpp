@@ -254,13 +254,15 @@ std::vector<Operation> operations() {
 }
 
 bool available(const Operation& op, const Fixture& f) {
-  if (f.scene) {  // a contact scene: forward, step and the three kernels (bench/benchmarks.cpp)
+  if (f.scene) {  // a contact scene: forward, step, the three kernels and the step's Jacobians
+                  // (bench/benchmarks.cpp)
     const std::string_view name = op.name;
     if (name.starts_with("kdl:")) return false;
     const std::string_view operation = name.substr(name.find(':') + 1);  // npos + 1 = 0
     if (operation == "jac_site") return f.site >= 0;
-    return op.needs == Needs::kNothing && (operation == "forward" || operation == "step" ||
-                                           operation == "bias" || operation == "crba");
+    return op.needs == Needs::kNothing &&
+           (operation == "forward" || operation == "step" || operation == "bias" ||
+            operation == "crba" || operation.starts_with("step_jacobian"));
   }
   switch (op.needs) {
     case Needs::kSite: return f.site >= 0 && (!op.name.starts_with("kdl:") || f.chain);

@@ -537,6 +537,15 @@ std::vector<Target> collect_targets(const Inputs& in) {
                       time_of("forward", "panda7", "lever"), "ns"},
                      {counts.count("step_jacobian_forward", "panda7", "lever"),
                       counts.count("forward", "panda7", "lever"), ""}});
+  // the same with contacts pushing (the gripper's scene: the box resting on the table)
+  targets.push_back({"gripper analytic step Jacobian with contacts (`step_derivatives`) / one "
+                     "gripper `forward`",
+                     5.0,
+                     false,
+                     {time_of("step_jacobian_forward", "gripper", "lever"),
+                      time_of("forward", "gripper", "lever"), "ns"},
+                     {counts.count("step_jacobian_forward", "gripper", "lever"),
+                      counts.count("forward", "gripper", "lever"), ""}});
   // the browser peer (make web-bench): time only
   for (const auto& [model, g] : {std::pair{"arm2", 0.12}, std::pair{"panda7", 0.25}}) {
     Ratio t{std::nullopt, std::nullopt, "ns"};

@@ -67,6 +67,33 @@ from ._lever import (  # noqa: F401  (the package's API)
 from . import _lever
 
 
+def derivatives(model: Model, data: Data) -> dict:
+    """The analytic derivatives of the step and of forward dynamics at data's state, through
+    contacts and joint limits with their active set held (docs/derivatives.md), as
+    `lever derivatives --json` prints them. data's state is left as it was (its other fields hold
+    forward() at that state).
+
+    Returns a dict of numpy arrays: ``A`` (2nv x 2nv) and ``B`` (2nv x nu), the step's
+    Jacobians in mjd_transitionFD's layout (x = [dq; qvel], dq qpos's tangent: nv numbers);
+    ``dqacc_dq``, ``dqacc_dv`` (nv x nv), ``dqacc_du`` (nv x nu) and ``dqacc_dapplied``
+    (nv x nv, d qacc / d qfrc_applied), forward dynamics at the state; ``nefc``; and
+    ``active_set_changes``: True when the constraint rows' active set (which contacts exist, which
+    rows push) is not the same at the step's end (or an RK4 stage) as at its start, so that A and
+    B are the start's piece held, not the derivative a difference across the step would see. Then
+    a RuntimeWarning says so too.
+
+    Raises lever.Error naming what it does not differentiate (an integrator, a contact pair's
+    geometry, an elliptic cone on its surface, equality constraints, friction loss).
+    """
+    out = _lever.derivatives(model, data)
+    if out["active_set_changes"]:
+        import warnings as _warnings
+        _warnings.warn("lever.derivatives: the constraint rows' active set changes within the step; "
+                       "A and B hold the start's set (docs/derivatives.md)", RuntimeWarning,
+                       stacklevel=2)
+    return out
+
+
 def check(model: Model, key: str = "") -> dict:
     """Lesson 5.1's six checks of a model, lesson 5.2's two and lesson 5.3's contacts: the report
     `lever check --json` prints, as a dict.

@@ -27,6 +27,7 @@ __all__ = [
     "mj_factorM", "mj_rne", "mj_inverse", "mj_fullM", "mj_mulM", "mj_solveM", "mj_jacSite",
     "mj_jacBody", "mj_jac", "mj_integratePos", "mj_differentiatePos", "mj_setConst", "mj_resetData", "mj_resetDataKeyframe",
     "mj_name2id", "mj_id2name", "mj_energyPos", "mj_energyVel", "mj_contactForce",
+    "mjd_transitionFD",
 ]
 
 mjVERSION_HEADER = 222  # the MuJoCo version lever is proven against
@@ -818,6 +819,55 @@ def mj_energyVel(m: MjModel, d: MjData) -> None:
     potential = data.energy[0]
     _lever.compute_energy(model, data)
     data.energy[0] = potential
+
+
+def _output(array, rows: int, cols: int, name: str):
+    """A writable, C-contiguous float64 (rows x cols) array the caller passed, or None."""
+    if array is None:
+        return None
+    if (not isinstance(array, _np.ndarray) or array.dtype != _np.float64 or
+            not array.flags.c_contiguous or not array.flags.writeable):
+        raise TypeError(f"mjd_transitionFD: {name} must be a writable, C-contiguous float64 "
+                        f"numpy array")
+    if array.size != rows * cols or (array.ndim == 2 and array.shape != (rows, cols)):
+        raise ValueError(f"mjd_transitionFD: {name} must be {rows} x {cols}, got "
+                         f"{array.shape}")
+    return array.reshape(rows, cols)
+
+
+def mjd_transitionFD(m: MjModel, d: MjData, eps: float, flg_centered: int, A, B, C, D) -> None:
+    """The step's transition matrices at d's state, d x' = A dx + B du, with MuJoCo's signature
+    and layout (x = [dq; qvel], dq qpos's tangent as mj_differentiatePos gives it; na = 0 in
+    lever; A (2nv x 2nv) and B (2nv x nu) written row-major in place, None skips one).
+
+    Computed analytically, not by finite differences: lever.derivatives, exact through the
+    integrator (Euler, RK4, implicit), the actuators, joint limits and contacts with their
+    active set held (docs/derivatives.md). So ``eps`` and ``flg_centered`` are accepted for
+    MuJoCo's signature and not used. Where the active set changes within the step (the step is not
+    differentiable there) A and B are the start's piece and a RuntimeWarning says so.
+
+    C and D, the sensors' derivatives, lever does not compute: a model with sensors must pass None
+    for them (NotImplementedError otherwise); without sensors they are empty and left so.
+    """
+    model, data = _pair(m, d)
+    nv, nu, nsensordata = m.nv, m.nu, m.nsensordata
+    A = _output(A, 2 * nv, 2 * nv, "A")
+    B = _output(B, 2 * nv, nu, "B")
+    C = _output(C, nsensordata, 2 * nv, "C")
+    D = _output(D, nsensordata, nu, "D")
+    if nsensordata > 0 and (C is not None or D is not None):
+        raise NotImplementedError("lever.mujoco: mjd_transitionFD's C and D (the sensors' "
+                                  "derivatives) are MuJoCo's but lever does not compute them; "
+                                  "pass None for C and D")
+    del eps, flg_centered  # analytic: no difference is taken
+    if A is None and B is None:
+        return
+    from . import derivatives as _derivatives
+    out = _derivatives(model, data)
+    if A is not None:
+        A[...] = out["A"]
+    if B is not None:
+        B[...] = out["B"]
 
 
 def __getattr__(name: str):

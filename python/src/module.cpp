@@ -749,6 +749,33 @@ PYBIND11_MODULE(_lever, m) {
       "(A, B): the step's transition Jacobians at data's state, in mjd_transitionFD's layout "
       "(x = [qpos; qvel]); data's state is left as it was.");
   m.def(
+      "derivatives",
+      [](const ModelPtr& x, const DataPtr& d) {
+        lever::Data& data = data_for(x, d);
+        lever::Derivatives deriv(*x);
+        lever::step_derivatives(*x, data, deriv);
+        py::dict out;
+        out["A"] = deriv.A;
+        out["B"] = deriv.B;
+        out["active_set_changes"] = deriv.active_set_changes;
+        // Euler and implicit leave forward_derivatives() of the state itself; RK4 its last stage's
+        if (x->opt.integrator == lever::Integrator::kRK4) {
+          const Eigen::VectorXd qpos = data.qpos;  // forward() normalizes its quaternions
+          lever::forward_derivatives(*x, data, deriv);
+          data.qpos = qpos;
+        }
+        lever::applied_force_derivatives(*x, data, deriv);
+        out["dqacc_dq"] = deriv.dqacc_dq;
+        out["dqacc_dv"] = deriv.dqacc_dv;
+        out["dqacc_du"] = deriv.dqacc_du;
+        out["dqacc_dapplied"] = deriv.dqacc_dapplied;
+        out["nefc"] = data.nefc;
+        return out;
+      },
+      py::arg("model"), py::arg("data"),
+      "step_derivatives(), forward_derivatives() and applied_force_derivatives() at data's state "
+      "(lever.derivatives documents the keys).");
+  m.def(
       "forward_derivatives",
       [](const ModelPtr& x, const DataPtr& d) {
         lever::Data& data = data_for(x, d);

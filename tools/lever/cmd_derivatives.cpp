@@ -1,13 +1,17 @@
 // lever derivatives: the analytic derivatives of the dynamics and of one step at one state.
 //
-//   lever derivatives MODEL [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--json]
+//   lever derivatives MODEL [--key NAME] [--qpos a,b,..] [--qvel ..] [--ctrl ..] [--settle N]
+//                           [--json]
 //
-// Runs lever::step_derivatives (and so forward_derivatives) at the state; docs/derivatives.md
-// says what each matrix holds. --json: one object with, flattened row-major,
+// Runs lever::step_derivatives, forward_derivatives and applied_force_derivatives at the state
+// (after N steps under the constant ctrl with --settle: a grasp or a resting pose to differentiate
+// at); docs/derivatives.md says what each matrix holds. --json: one object with, flattened
+// row-major,
 //   A          2nv x 2nv  d [qpos'; qvel'] / d [qpos; qvel]   (mjd_transitionFD's A; with
 //                         ball or free joints qpos is differenced in its tangent space, nv numbers)
 //   B          2nv x nu   d [qpos'; qvel'] / d ctrl           (mjd_transitionFD's B)
 //   dqacc_dq, dqacc_dv (nv x nv), dqacc_du (nv x nu)         forward dynamics
+//   dqacc_dapplied (nv x nv)                                  d qacc / d qfrc_applied
 //   dtau_dq, dtau_dv (nv x nv)                                rnea at qacc
 //   M          nv x nv                                        d rnea / d qacc
 //   nefc, active_set_changes: the constraint rows at the state (held), and whether their active
@@ -55,9 +59,14 @@ void declare_derivatives(CLI::App& command) {
                      "joint positions, nq numbers (default: qpos0)",
                      "joint velocities, nv numbers (default: zeros)",
                      "actuator commands, nu numbers (default: zeros)"});
+  add_value(command, "settle", "N",
+            "first take N steps under the constant ctrl, then differentiate there\n"
+            "(a grasp, a pose resting on contacts; default 0)")
+      ->check(whole_number_check());
   add_switch(command, "json",
              "one JSON object: A, B (the step's Jacobians, mjd_transitionFD's layout),\n"
-             "dqacc_dq, dqacc_dv, dqacc_du, dtau_dq, dtau_dv, M (row-major, flattened)");
+             "dqacc_dq, dqacc_dv, dqacc_du, dqacc_dapplied, dtau_dq, dtau_dv, M\n"
+             "(row-major, flattened)");
   command.footer(
       "Exit status: 0; 1 when the engine warned or a number came out non-finite; 2 for bad input.");
 }
@@ -67,7 +76,20 @@ int cmd_derivatives(const Args& command_line) {
   Data data(model);
   Derivatives deriv(model);
   set_state_from_args(args, model, data);
+  constexpr long kMaxSettle = 10'000'000;  // as lever simulate's bound on one run
+  const long settle = args.has("settle") ? args.get_long("settle", 0) : 0;
+  if (settle < 0 || settle > kMaxSettle) {
+    throw UsageError{"--settle must be between 0 and " + std::to_string(kMaxSettle) + " steps"};
+  }
+  for (long k = 0; k < settle; ++k) step(model, data);
   step_derivatives(model, data, deriv);
+  // RK4 leaves its last stage's forward derivatives: those of the state itself instead
+  if (model.opt.integrator == Integrator::kRK4) {
+    const Eigen::VectorXd qpos = data.qpos;  // forward() normalizes its quaternions
+    forward_derivatives(model, data, deriv);
+    data.qpos = qpos;
+  }
+  applied_force_derivatives(model, data, deriv);
 
   if (args.has("json")) {
     Json json(stdout);
@@ -87,6 +109,7 @@ int cmd_derivatives(const Args& command_line) {
     row_major(json, "dqacc_dq", deriv.dqacc_dq);
     row_major(json, "dqacc_dv", deriv.dqacc_dv);
     row_major(json, "dqacc_du", deriv.dqacc_du);
+    row_major(json, "dqacc_dapplied", deriv.dqacc_dapplied);
     row_major(json, "dtau_dq", deriv.dtau_dq);
     row_major(json, "dtau_dv", deriv.dtau_dv);
     row_major(json, "M", data.M);
@@ -123,6 +146,7 @@ int cmd_derivatives(const Args& command_line) {
     print_matrix(("d qacc / d " + q).c_str(), deriv.dqacc_dq);
     print_matrix("d qacc / d qvel", deriv.dqacc_dv);
     print_matrix("d qacc / d ctrl (0 where a clamp binds)", deriv.dqacc_du);
+    print_matrix("d qacc / d qfrc_applied", deriv.dqacc_dapplied);
     print_matrix(("d rnea / d " + q + " at qacc").c_str(), deriv.dtau_dq);
     print_matrix("d rnea / d qvel at qacc", deriv.dtau_dv);
   }

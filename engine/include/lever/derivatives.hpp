@@ -30,6 +30,14 @@ namespace lever {
 
 using Matrix6d = Eigen::Matrix<double, 6, 6>;
 
+/// How a contact's distance, position and frame (rows: normal, tangents) change per unit of a
+/// motion of its geoms (the contact geometry's derivative; a workspace type of Derivatives).
+struct ContactChange {
+  double dist = 0;
+  Eigen::Vector3d pos{0, 0, 0};
+  Mat3 frame = Mat3::Zero();
+};
+
 /// Outputs and workspace of the derivative functions, sized once from a Model (one per Data):
 /// the functions below allocate nothing.
 struct Derivatives {
@@ -43,6 +51,8 @@ struct Derivatives {
   Eigen::MatrixXd dqacc_dq;  ///< (nv x nv) d qacc / d qpos
   Eigen::MatrixXd dqacc_dv;  ///< (nv x nv) d qacc / d qvel
   Eigen::MatrixXd dqacc_du;  ///< (nv x nu) d qacc / d ctrl
+  /// (nv x nv) d qacc / d qfrc_applied, written by applied_force_derivatives() only
+  Eigen::MatrixXd dqacc_dapplied;
   /// d qfrc_constraint / d (qpos, qvel, ctrl) with the rows' active set held fixed
   Eigen::MatrixXd dconstraint_dq, dconstraint_dv, dconstraint_du;
 
@@ -90,12 +100,14 @@ struct Derivatives {
     std::vector<Force> IC_S;         ///< (nv) IC S_i, IC dof i's subtree inertia (derivatives/inverse_dynamics.cpp)
     std::vector<VelocityCoupling> CC_minus;  ///< (nbody) implicit: CC at qd - s a
     // contacts' rows with their active set held (transition/contact_rows.cpp)
-    Eigen::MatrixXd contact_Y;    ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
+    RowMatrix contact_Y;          ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
     Eigen::MatrixXd contact_E;    ///< (nv x nv) dJ^T f, one column per qpos direction
     Eigen::MatrixXd contact_H;    ///< (nv x nv) M + J^T D J over the active rows, then its factor
-    Eigen::MatrixXd contact_rhs;  ///< (nv x max(nv, nu)) right-hand sides solved with H
-    Eigen::MatrixXd contact_df;   ///< (nefc_max x max(nv, nu)) d f of the active rows
     std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
+    std::vector<char> carries;  ///< (nv x nv) [c * nv + i]: moving dof c turns dof i's axis
+    /// (nv x kMaxPairContacts) [c * kMaxPairContacts + k]: the change of one geom pair's contact k
+    /// under dof c, the narrow phase run once per dof for all of the pair's contacts
+    std::vector<ContactChange> pair_changes;
     std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at a contact's point
     // the active set's check (step_derivatives)
     std::vector<int> active_set;  ///< the contacts' geom pairs and the rows' states at the start
@@ -120,6 +132,12 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
 /// impedance, reference acceleration and, for contacts, Jacobian and geometry differentiated).
 /// Also writes deriv.dtau_* (at data.qacc) and deriv.dconstraint_*.
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv);
+
+/// d qacc / d qfrc_applied into deriv.dqacc_dapplied, at the state of data's last forward()
+/// (forward_derivatives() ran it): (M + J_S^T R_S^-1 J_S)^-1 over the active rows S (limits and
+/// contacts, held fixed as in forward_derivatives()); M^-1 when no row pushes. Throws lever::Error
+/// for an elliptic cone on its surface, as forward_derivatives() does.
+void applied_force_derivatives(const Model& model, const Data& data, Derivatives& deriv);
 
 /// The transition Jacobians of step() at data's state, in mjd_transitionFD's layout:
 /// x = [dq; qvel] (2nv, dq qpos's tangent, the next qpos read in the tangent space at the next

@@ -328,16 +328,25 @@ bool contact_geometry_supported(GeomType a, GeomType b) {
   return a == T::kCapsule && b == T::kCapsule;
 }
 
-void contact_change(const Model& model, const Data& data, int i, const Eigen::Vector3d& w1,
-                    const Eigen::Vector3d& v1, const Eigen::Vector3d& w2,
-                    const Eigen::Vector3d& v2, ContactChange& change) {
+int pair_first_contact(const Data& data, int i, int& count) {
   const Contact& con = data.contact[static_cast<std::size_t>(i)];
-  // the contacts of one geom pair come one after another, in the narrow phase's order
+  const auto same_pair = [&](int k) {
+    const Contact& other = data.contact[static_cast<std::size_t>(k)];
+    return other.geom1 == con.geom1 && other.geom2 == con.geom2;
+  };
   int first = i;
-  while (first > 0 && data.contact[first - 1].geom1 == con.geom1 &&
-         data.contact[first - 1].geom2 == con.geom2) {
-    --first;
-  }
+  while (first > 0 && same_pair(first - 1)) --first;
+  int last = i;
+  while (last + 1 < data.ncon && same_pair(last + 1)) ++last;
+  count = last - first + 1;
+  return first;
+}
+
+void pair_contact_changes(const Model& model, const Data& data, int first, int count,
+                          const Eigen::Vector3d& w1, const Eigen::Vector3d& v1,
+                          const Eigen::Vector3d& w2, const Eigen::Vector3d& v2,
+                          ContactChange* changes) {
+  const Contact& con = data.contact[static_cast<std::size_t>(first)];
   const Pose g1 = moving_pose(model, data, con.geom1, w1, v1);
   const Pose g2 = moving_pose(model, data, con.geom2, w2, v2);
   // the pair's margin as the driver mixed it: includemargin is margin - gap
@@ -353,26 +362,41 @@ void contact_change(const Model& model, const Data& data, int i, const Eigen::Ve
                      : std::max(model.geom_margin[con.geom1], model.geom_margin[con.geom2]);
   std::array<Found, kMaxPairContacts> found;
   const int n = collide_moving(g1, g2, margin, found.data());
-  if (n == 0) throw Error("derivatives: contact " + std::to_string(i) + " is not reproduced.");
-  const Found& f = found[static_cast<std::size_t>((i - first) % n)];
-  const std::array<V, 3> frame = complete_frame(f.normal, f.tangent);
+  for (int k = 0; k < count; ++k) {
+    const int i = first + k;
+    const Contact& ck = data.contact[static_cast<std::size_t>(i)];
+    if (n == 0) throw Error("derivatives: contact " + std::to_string(i) + " is not reproduced.");
+    const Found& f = found[static_cast<std::size_t>(k % n)];
+    const std::array<V, 3> frame = complete_frame(f.normal, f.tangent);
 
-  // the values are the collision stage's: else this is not the contact it found
-  double gap = std::abs(f.dist.v - con.dist);
-  for (int k = 0; k < 3; ++k) {
-    gap = std::max(gap, std::abs(f.pos[k].v - con.pos[k]));
-    for (int r = 0; r < 3; ++r) gap = std::max(gap, std::abs(frame[r][k].v - con.frame(r, k)));
+    // the values are the collision stage's: else this is not the contact it found
+    double gap = std::abs(f.dist.v - ck.dist);
+    for (int a = 0; a < 3; ++a) {
+      gap = std::max(gap, std::abs(f.pos[a].v - ck.pos[a]));
+      for (int r = 0; r < 3; ++r) gap = std::max(gap, std::abs(frame[r][a].v - ck.frame(r, a)));
+    }
+    if (!(gap <= 1e-9 * (1 + ck.pos.cwiseAbs().maxCoeff()))) {
+      throw Error("derivatives: contact " + std::to_string(i) +
+                  " is not reproduced by the contact geometry's derivative (off by " +
+                  std::to_string(gap) + ").");
+    }
+    ContactChange& change = changes[k];
+    change.dist = f.dist.d;
+    for (int a = 0; a < 3; ++a) {
+      change.pos[a] = f.pos[a].d;
+      for (int r = 0; r < 3; ++r) change.frame(r, a) = frame[r][a].d;
+    }
   }
-  if (!(gap <= 1e-9 * (1 + con.pos.cwiseAbs().maxCoeff()))) {
-    throw Error("derivatives: contact " + std::to_string(i) +
-                " is not reproduced by the contact geometry's derivative (off by " +
-                std::to_string(gap) + ").");
-  }
-  change.dist = f.dist.d;
-  for (int k = 0; k < 3; ++k) {
-    change.pos[k] = f.pos[k].d;
-    for (int r = 0; r < 3; ++r) change.frame(r, k) = frame[r][k].d;
-  }
+}
+
+void contact_change(const Model& model, const Data& data, int i, const Eigen::Vector3d& w1,
+                    const Eigen::Vector3d& v1, const Eigen::Vector3d& w2,
+                    const Eigen::Vector3d& v2, ContactChange& change) {
+  int count = 0;
+  const int first = pair_first_contact(data, i, count);
+  std::array<ContactChange, kMaxPairContacts> changes;
+  pair_contact_changes(model, data, first, count, w1, v1, w2, v2, changes.data());
+  change = changes[static_cast<std::size_t>(i - first)];
 }
 
 }  // namespace lever::detail

@@ -6,6 +6,9 @@
 // (the unconstrained part, one column per input) and H = M + J_S^T D_S J_S:
 //   d qacc = G + H^-1 (dJ^T f + J_S^T (y - D_S J_S G)),   y_r = D_r (d aref_r - dR_r f_r - dJ_r qacc)
 //   d qfrc_constraint = dJ^T f + J_S^T (y - D_S J_S d qacc)
+// computed without G: H G - J_S^T D_S J_S G = M G = d f_smooth - d ID, so
+//   d qacc = H^-1 (d f_smooth - d ID + dJ^T f + J_S^T y),
+//   d qfrc_constraint = M d qacc - (d f_smooth - d ID).
 // The terms a contact adds to a limit row's: its Jacobian moves with qpos (dJ qacc, dJ qvel in
 // aref's velocity, dJ^T f), and its distance (aref's position term, the impedance in aref and R)
 // moves with the contact geometry (contact_geometry.cpp).
@@ -18,6 +21,7 @@
 //   d j_i(p) / d q_c = [c carries i] (w_c x j_i(p) - w_i x j_c(p)) + w_i x dp
 //   d w_i / d q_c    = [c carries i] w_c x w_i
 // and the frame's rows move by d frame (the geometry's answer).
+#include <lever/collision.hpp>
 #include <lever/error.hpp>
 
 #include <algorithm>
@@ -98,6 +102,70 @@ SoftSlopes soft_slopes(const std::array<double, 5>& solimp, double dist, double 
 
 }  // namespace
 
+void carry_table(const Model& model, std::vector<char>& table) {
+  const auto nv = static_cast<std::size_t>(model.nv);
+  table.assign(nv * nv, 0);
+  for (int c = 0; c < model.nv; ++c) {
+    for (int i = 0; i < model.nv; ++i) {
+      table[static_cast<std::size_t>(c) * nv + static_cast<std::size_t>(i)] = carries(model, c, i);
+    }
+  }
+}
+
+int held_active_rows(const Data& data, std::vector<int>& rows) {
+  int n = 0;
+  for (int r = 0; r < data.nefc; ++r) {
+    if (data.efc_state[r] == ConstraintState::kCone) {
+      throw Error(
+          "derivatives: an elliptic cone's force is on the cone's surface (its middle zone); lever "
+          "differentiates elliptic cones inside their quadratic zone and pyramidal and frictionless "
+          "contacts so far.");
+    }
+    if (data.efc_state[r] == ConstraintState::kActive) rows[static_cast<std::size_t>(n++)] = r;
+  }
+  return n;
+}
+
+void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H) {
+  // nv is small, so plain loops over the dense rows (Eigen's dynamic outer products cost more in
+  // setup than in arithmetic here)
+  const auto nv = static_cast<int>(data.M.rows());
+  H = data.M;
+  for (int k = 0; k < n; ++k) {
+    const int r = rows[k];
+    const double* J = data.efc_J.row(r).data();
+    for (int b = 0; b < nv; ++b) {
+      if (J[b] == 0.0) continue;
+      const double weight = data.efc_D[r] * J[b];
+      for (int a = b; a < nv; ++a) H(a, b) += weight * J[a];
+    }
+  }
+  for (int j = 0; j < nv; ++j) {  // H = L L^T in place, L in the lower triangle
+    for (int k = 0; k < j; ++k) H(j, j) -= H(j, k) * H(j, k);
+    H(j, j) = std::sqrt(H(j, j));
+    for (int i = j + 1; i < nv; ++i) {
+      double sum = H(i, j);
+      for (int k = 0; k < j; ++k) sum -= H(i, k) * H(j, k);
+      H(i, j) = sum / H(j, j);
+    }
+  }
+}
+
+void solve_held_rows(const Eigen::MatrixXd& H, Eigen::Ref<Eigen::MatrixXd> X, int cols) {
+  const auto nv = static_cast<int>(H.rows());
+  for (int c = 0; c < cols; ++c) {  // L y = x, then L^T x = y
+    double* x = X.col(c).data();
+    for (int i = 0; i < nv; ++i) {
+      for (int k = 0; k < i; ++k) x[i] -= H(i, k) * x[k];
+      x[i] /= H(i, i);
+    }
+    for (int i = nv - 1; i >= 0; --i) {
+      for (int k = i + 1; k < nv; ++k) x[i] -= H(k, i) * x[k];
+      x[i] /= H(i, i);
+    }
+  }
+}
+
 bool active_contact_rows(const Data& data) {
   for (int r = 0; r < data.nefc; ++r) {
     if (data.efc_dof[r] < 0 && data.efc_state[r] != ConstraintState::kSatisfied) return true;
@@ -108,21 +176,9 @@ bool active_contact_rows(const Data& data) {
 void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   auto& w = deriv.work;
   const int nv = model.nv, nu = model.nu;
-  deriv.dconstraint_dq.setZero();
-  deriv.dconstraint_dv.setZero();
-  deriv.dconstraint_du.setZero();
-  int n = 0;
-  for (int r = 0; r < data.nefc; ++r) {
-    if (data.efc_state[r] == ConstraintState::kCone) {
-      throw Error(
-          "derivatives: an elliptic cone's force is on the cone's surface (its middle zone); lever "
-          "differentiates elliptic cones inside their quadratic zone and pyramidal and frictionless "
-          "contacts so far.");
-    }
-    if (data.efc_state[r] == ConstraintState::kActive) w.rows[n++] = r;
-  }
+  const int n = held_active_rows(data, w.rows);
   w.active_rows = n;
-  Eigen::MatrixXd& Y = w.contact_Y;  // (nefc_max x nv) y's qpos columns
+  RowMatrix& Y = w.contact_Y;  // (nefc_max x nv) y's qpos columns, a row per active row
   Eigen::MatrixXd& E = w.contact_E;  // (nv x nv) dJ^T f
   Y.topRows(n).setZero();
   E.setZero();
@@ -145,6 +201,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   // the contacts with an active row
   std::vector<char>& moves1 = w.moves1;
   std::vector<char>& moves2 = w.moves2;
+  int cached_pair = -1;  // the first contact of the pair whose changes w.pair_changes holds
   for (int i = 0; i < data.ncon; ++i) {
     const Contact& con = data.contact[static_cast<std::size_t>(i)];
     const int first = con.efc_address;
@@ -165,6 +222,10 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
     dofs_moving(model, b1, moves1);
     dofs_moving(model, b2, moves2);
+    int pair_count = 0;
+    const int pair_first = pair_first_contact(data, i, pair_count);
+    const bool fresh_pair = pair_first != cached_pair;  // else its changes are in w.pair_changes
+    cached_pair = pair_first;
     const Vec3 p = con.pos;
 
     // the frame force (normal, tangents, spin, rolls) of the rows' forces
@@ -211,12 +272,17 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       // the geoms' rigid motions under dof c, and the contact's change
       const Vec3 wc = angular(data.cdof[c]);
       const Vec3 zero = Vec3::Zero();
-      ContactChange change;
-      contact_change(model, data, i, moves1[c] ? wc : zero,
-                     moves1[c] ? point_velocity(model, data, c, data.geom_xpos[con.geom1]) : zero,
-                     moves2[c] ? wc : zero,
-                     moves2[c] ? point_velocity(model, data, c, data.geom_xpos[con.geom2]) : zero,
-                     change);
+      ContactChange* pair_changes =
+          &w.pair_changes[static_cast<std::size_t>(c) * static_cast<std::size_t>(kMaxPairContacts)];
+      if (fresh_pair) {  // the pair's first contact with a pushing row: all of its contacts at once
+        pair_contact_changes(
+            model, data, pair_first, pair_count, moves1[c] ? wc : zero,
+            moves1[c] ? point_velocity(model, data, c, data.geom_xpos[con.geom1]) : zero,
+            moves2[c] ? wc : zero,
+            moves2[c] ? point_velocity(model, data, c, data.geom_xpos[con.geom2]) : zero,
+            pair_changes);
+      }
+      const ContactChange& change = pair_changes[i - pair_first];
       const Vec3& jc = point[static_cast<std::size_t>(c)];
 
       // dV, dW for qacc and qvel, and dJ^T f's column c
@@ -225,22 +291,23 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       Vec3 dphi = Vec3::Zero(), dtau = Vec3::Zero();
       for (int k = 0; k < 3 && k < dim; ++k) dphi += F[k] * change.frame.row(k).transpose();
       for (int k = 3; k < dim; ++k) dtau += F[k] * change.frame.row(k - 3).transpose();
+      // phi . (w_d x dp) = w_d . (dp x phi): one cross product for every d
+      const Vec3 dtau_all = change.pos.cross(phi) + dtau;
       for (int d = 0; d < nv; ++d) {
         if (moves1[d] == moves2[d]) continue;
         const double s = moves2[d] ? 1.0 : -1.0;
         const Vec3& jd = point[static_cast<std::size_t>(d)];
         const Vec3 wd = angular(data.cdof[d]);
-        const bool turned = carries(model, c, d);
-        Vec3 djd = wd.cross(change.pos), dwd = Vec3::Zero();
-        if (turned) {
-          djd += wc.cross(jd) - wd.cross(jc);
-          dwd = wc.cross(wd);
-          dVa += s * data.qacc[d] * (wc.cross(jd) - wd.cross(jc));
-          dWa += s * data.qacc[d] * dwd;
-          dVv += s * data.qvel[d] * (wc.cross(jd) - wd.cross(jc));
-          dWv += s * data.qvel[d] * dwd;
+        double e = dphi.dot(jd) + dtau_all.dot(wd);
+        if (w.carries[static_cast<std::size_t>(c * nv + d)] != 0) {  // c turns d's axis
+          const Vec3 djd = wc.cross(jd) - wd.cross(jc), dwd = wc.cross(wd);
+          dVa += (s * data.qacc[d]) * djd;
+          dWa += (s * data.qacc[d]) * dwd;
+          dVv += (s * data.qvel[d]) * djd;
+          dWv += (s * data.qvel[d]) * dwd;
+          e += phi.dot(djd) + tau.dot(dwd);
         }
-        E(d, c) += s * (dphi.dot(jd) + phi.dot(djd) + dtau.dot(wd) + tau.dot(dwd));
+        E(d, c) += s * e;
       }
       // d (C_k x) for x = qacc, qvel
       double dCa[6], dCv[6];
@@ -270,93 +337,66 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     }
   }
 
-  // H = M + J_S^T D_S J_S, its lower triangle factored in place (H = L L^T); nv is small, so
-  // plain loops over the dense rows (Eigen's dynamic outer products cost more in setup)
+  // d qacc = G + H^-1 (E + J_S^T (Y - D J_S G)) = H^-1 (rhs + E + J_S^T Y), because
+  // H G - J_S^T D J_S G = M G = rhs, the right-hand side smooth_rhs() left in w.rhs_* (before
+  // M^-1): one solve with H for the qpos, qvel and ctrl columns side by side (row-major, each
+  // substitution one row operation), and no product with G. Y's qvel columns are aref's
+  // velocity term, -D B J_r.
   Eigen::MatrixXd& H = w.contact_H;
-  H = data.M;
+  factor_held_rows(data, w.rows.data(), n, H);
+  RowMatrix& X = w.right_hand_sides;
+  X.leftCols(nv) = w.rhs_q + E;
+  X.middleCols(nv, nv) = w.rhs_v;
+  X.rightCols(nu) = w.rhs_u;
   for (int k = 0; k < n; ++k) {
     const int r = w.rows[k];
     const double* J = data.efc_J.row(r).data();
-    for (int b = 0; b < nv; ++b) {
-      if (J[b] == 0.0) continue;
-      const double weight = data.efc_D[r] * J[b];
-      for (int a = b; a < nv; ++a) H(a, b) += weight * J[a];
+    const double velocity_weight = -data.efc_D[r] * data.efc_B[r];
+    for (int i = 0; i < nv; ++i) {
+      if (J[i] == 0.0) continue;
+      double* x = X.row(i).data();
+      const double* y = Y.row(k).data();
+      for (int c = 0; c < nv; ++c) x[c] += J[i] * y[c];
+      const double a = J[i] * velocity_weight;
+      for (int c = 0; c < nv; ++c) x[nv + c] += a * J[c];
     }
   }
-  for (int j = 0; j < nv; ++j) {
-    for (int k = 0; k < j; ++k) H(j, j) -= H(j, k) * H(j, k);
-    H(j, j) = std::sqrt(H(j, j));
-    for (int i = j + 1; i < nv; ++i) {
-      double sum = H(i, j);
-      for (int k = 0; k < j; ++k) sum -= H(i, k) * H(j, k);
-      H(i, j) = sum / H(j, j);
+  const Eigen::Index cols = X.cols();
+  for (int i = 0; i < nv; ++i) {  // L y = x
+    double* xi = X.row(i).data();
+    for (int k = 0; k < i; ++k) {
+      const double a = -H(i, k);
+      const double* xk = X.row(k).data();
+      for (Eigen::Index c = 0; c < cols; ++c) xi[c] += a * xk[c];
+    }
+    X.row(i) /= H(i, i);
+  }
+  for (int i = nv - 1; i >= 0; --i) {  // L^T x = y
+    double* xi = X.row(i).data();
+    for (int k = i + 1; k < nv; ++k) {
+      const double a = -H(k, i);
+      const double* xk = X.row(k).data();
+      for (Eigen::Index c = 0; c < cols; ++c) xi[c] += a * xk[c];
+    }
+    X.row(i) /= H(i, i);
+  }
+  deriv.dqacc_dq = X.leftCols(nv);
+  deriv.dqacc_dv = X.middleCols(nv, nv);
+  deriv.dqacc_du = X.rightCols(nu);
+  // M d qacc = rhs + d qfrc_constraint, M's zeros (dofs on different branches) skipped
+  deriv.dconstraint_dq = -w.rhs_q;
+  deriv.dconstraint_dv = -w.rhs_v;
+  deriv.dconstraint_du = -w.rhs_u;
+  for (int i = 0; i < nv; ++i) {
+    for (int j = 0; j < nv; ++j) {
+      const double a = data.M(i, j);
+      if (a == 0.0) continue;
+      const double* x = X.row(j).data();
+      for (int c = 0; c < nv; ++c) deriv.dconstraint_dq(i, c) += a * x[c];
+      for (int c = 0; c < nv; ++c) deriv.dconstraint_dv(i, c) += a * x[nv + c];
+      for (int c = 0; c < nu; ++c) deriv.dconstraint_du(i, c) += a * x[2 * nv + c];
     }
   }
-  // x = H^-1 x for each column of X (L y = x, then L^T x = y)
-  const auto solve_with_H = [&](auto& X, int cols) {
-    for (int c = 0; c < cols; ++c) {
-      double* x = X.col(c).data();
-      for (int i = 0; i < nv; ++i) {
-        for (int k = 0; k < i; ++k) x[i] -= H(i, k) * x[k];
-        x[i] /= H(i, i);
-      }
-      for (int i = nv - 1; i >= 0; --i) {
-        for (int k = i + 1; k < nv; ++k) x[i] -= H(k, i) * x[k];
-        x[i] /= H(i, i);
-      }
-    }
-  };
-  // out += J_S^T df (df: one row per active row, cols columns)
-  const auto add_rows_transposed = [&](auto& out, const auto& df, int cols) {
-    for (int k = 0; k < n; ++k) {
-      const double* J = data.efc_J.row(w.rows[k]).data();
-      for (int i = 0; i < nv; ++i) {
-        if (J[i] == 0.0) continue;
-        for (int c = 0; c < cols; ++c) out(i, c) += J[i] * df(k, c);
-      }
-    }
-  };
-  // J_r x
-  const auto row_times = [&](int r, const double* x) {
-    const double* J = data.efc_J.row(r).data();
-    double sum = 0.0;
-    for (int i = 0; i < nv; ++i) sum += J[i] * x[i];
-    return sum;
-  };
-
-  // each input's columns: d qacc = G + H^-1 (E + J_S^T (Y - D J_S G)), then the rows' forces
-  const auto solve = [&](Eigen::MatrixXd& dqacc, Eigen::MatrixXd& dconstraint, int cols,
-                         const Eigen::MatrixXd* Yx, const Eigen::MatrixXd* Ex, bool velocity) {
-    auto rhs = w.contact_rhs.leftCols(cols);
-    auto df = w.contact_df.topLeftCorner(n, cols);
-    // y - D J G
-    for (int k = 0; k < n; ++k) {
-      const int r = w.rows[k];
-      for (int c = 0; c < cols; ++c) {
-        double y = Yx != nullptr ? (*Yx)(k, c) : 0.0;
-        if (velocity) y -= data.efc_D[r] * data.efc_B[r] * data.efc_J(r, c);
-        df(k, c) = y - data.efc_D[r] * row_times(r, dqacc.col(c).data());
-      }
-    }
-    if (Ex != nullptr) {
-      rhs = *Ex;
-    } else {
-      rhs.setZero();
-    }
-    add_rows_transposed(rhs, df, cols);
-    solve_with_H(rhs, cols);
-    dqacc += rhs;
-    // d f = y - D J d qacc, d qfrc_constraint = dJ^T f + J^T d f
-    for (int k = 0; k < n; ++k) {
-      const int r = w.rows[k];
-      for (int c = 0; c < cols; ++c) df(k, c) -= data.efc_D[r] * row_times(r, rhs.col(c).data());
-    }
-    if (Ex != nullptr) dconstraint = *Ex;
-    add_rows_transposed(dconstraint, df, cols);
-  };
-  solve(deriv.dqacc_dq, deriv.dconstraint_dq, nv, &Y, &E, false);
-  solve(deriv.dqacc_dv, deriv.dconstraint_dv, nv, nullptr, nullptr, true);
-  if (nu > 0) solve(deriv.dqacc_du, deriv.dconstraint_du, nu, nullptr, nullptr, false);
 }
 
 }  // namespace lever::detail

@@ -7,6 +7,7 @@
 // Ball and free joints, in qpos's tangent space (q -> q exp(dq)): the step's position update
 // qpos (+) h w contributes exp(-h [w]) and SO(3)'s right Jacobian Jr(h w) on a turn's rows, and a
 // ball's spring -k log(ref^-1 q) the inverse right Jacobian.
+#include <lever/collision.hpp>
 #include <lever/derivatives.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
@@ -180,10 +181,6 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
 // aref = -B vel - K imp (pos - margin) and R = (1 - imp) invweight0 / imp depend on qpos through
 // the impedance, and aref on qvel through vel; neither depends on ctrl.
 void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
-  if (detail::active_contact_rows(data)) {  // a contact pushes: every row in dof space
-    detail::constraint_rows_held(model, data, deriv);
-    return;
-  }
   auto& w = deriv.work;
   deriv.dconstraint_dq.setZero();
   deriv.dconstraint_dv.setZero();
@@ -331,6 +328,10 @@ void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& 
   rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, data.work.crb, w,
                         deriv.dtau_dq, &deriv.dtau_dv);
   smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
+  if (detail::active_contact_rows(data)) {  // every row in dof space, solved with H, not M
+    detail::constraint_rows_held(model, data, deriv);
+    return;
+  }
   // the unconstrained part: M^-1 times each column
   const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
     ltdl_solve_rows(model, data.qLD, data.qLDiagInv, Y);
@@ -387,7 +388,8 @@ void check_step_end(const Model& model, Data& data, Derivatives& deriv,
   next.qvel = data.qvel + h * acceleration;
   next.ctrl = data.ctrl;
   next.qfrc_applied = data.qfrc_applied;
-  forward(model, next);
+  // the rows' set only: the lean kinematics and no sensors (as step()'s RK4 stages)
+  detail::step_forward_without_sensors(model, next);
   if (!same_active_set(next, w.active_set)) deriv.active_set_changes = true;
   if (deriv.active_set_changes) {
     WarningStat& stat = data.warning[static_cast<int>(Warning::kActiveSetChanges)];
@@ -641,6 +643,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   dqacc_dq.setZero(nv, nv);
   dqacc_dv.setZero(nv, nv);
   dqacc_du.setZero(nv, nu);
+  dqacc_dapplied.setZero(nv, nv);
   dconstraint_dq.setZero(nv, nv);
   dconstraint_dv.setZero(nv, nv);
   dconstraint_du.setZero(nv, nu);
@@ -689,19 +692,30 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.contact_Y.setZero(nefc_max, nv);
   work.contact_E.setZero(nv, nv);
   work.contact_H.setZero(nv, nv);
-  work.contact_rhs.setZero(nv, std::max(nv, nu));
-  work.contact_df.setZero(nefc_max, std::max(nv, nu));
   work.active_set.reserve(static_cast<std::size_t>(3 * std::max(0, model.nconmax) + nefc_max + 2));
   work.qacc_sum.setZero(nv);
   work.next.emplace(model);
   work.contact_point_velocity.assign(ndof, Eigen::Vector3d::Zero());
   work.moves1.assign(ndof, 0);
   work.moves2.assign(ndof, 0);
+  detail::carry_table(model, work.carries);
+  work.pair_changes.assign(ndof * static_cast<std::size_t>(kMaxPairContacts), ContactChange{});
 }
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_derivative_sizes(model, data, deriv);
   forward_derivatives_unchecked(model, data, deriv);
+}
+
+void applied_force_derivatives(const Model& model, const Data& data, Derivatives& deriv) {
+  check_derivative_sizes(model, data, deriv);
+  // qfrc_applied enters as f_smooth does: d qacc = G + (rows' part) with G = M^-1 d f, which with
+  // the rows held is H^-1 d f (docs/derivatives.md), the same H the contact rows are solved with
+  auto& w = deriv.work;
+  const int n = detail::held_active_rows(data, w.rows);
+  detail::factor_held_rows(data, w.rows.data(), n, w.contact_H);
+  deriv.dqacc_dapplied.setIdentity();
+  detail::solve_held_rows(w.contact_H, deriv.dqacc_dapplied, model.nv);
 }
 
 void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {

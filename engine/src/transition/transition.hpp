@@ -9,18 +9,14 @@
 
 #include <Eigen/Core>
 
+#include <vector>
+
 #include <lever/derivatives.hpp>
 #include <lever/model.hpp>
 
 namespace lever::detail {
 
-/// How a contact's distance, position and frame (rows: normal, tangents) change per unit of a
-/// motion of its geoms.
-struct ContactChange {
-  double dist = 0;
-  Eigen::Vector3d pos{0, 0, 0};
-  Mat3 frame = Mat3::Zero();
-};
+using lever::ContactChange;
 
 /// Whether contact_change() covers a pair of geom types (in MuJoCo's order, a before b).
 bool contact_geometry_supported(GeomType a, GeomType b);
@@ -33,11 +29,39 @@ void contact_change(const Model& model, const Data& data, int i, const Eigen::Ve
                     const Eigen::Vector3d& v1, const Eigen::Vector3d& w2,
                     const Eigen::Vector3d& v2, ContactChange& change);
 
+/// The first of the contacts data.contact holds for contact i's geom pair (they come one after
+/// another, in the narrow phase's order), and in `count` how many there are.
+int pair_first_contact(const Data& data, int i, int& count);
+
+/// contact_change() for each of the `count` contacts of the pair whose first is `first`
+/// (pair_first_contact()) at once: changes[k] for contact first + k. The narrow phase runs once.
+void pair_contact_changes(const Model& model, const Data& data, int first, int count,
+                          const Eigen::Vector3d& w1, const Eigen::Vector3d& v1,
+                          const Eigen::Vector3d& w2, const Eigen::Vector3d& v2,
+                          ContactChange* changes);
+
 /// Whether a contact's row is active (pushing) after forward().
 bool active_contact_rows(const Data& data);
 
-/// The rows' part of d qacc and d qfrc_constraint with the active set held, every active row
-/// (limits and contacts), given deriv.dqacc_* = G, the unconstrained part (contact_rows.cpp).
+/// table[c * nv + i] = 1 where moving dof c turns the axis of dof i (c a strict ancestor of i, or
+/// both in one ball's or free joint's rotation): the contact rows' Jacobian derivative reads it.
+void carry_table(const Model& model, std::vector<char>& table);
+
+/// The rows whose force is linear in the state with the active set held (kActive: limits,
+/// pyramids, frictionless, elliptic cones in their quadratic zone) into rows; returns how many.
+/// Throws lever::Error for an elliptic cone on its surface (its middle zone).
+int held_active_rows(const Data& data, std::vector<int>& rows);
+
+/// H = M + J_S^T D_S J_S over the rows rows[0..n) (D = 1 / R), factored in place as L L^T (L in
+/// its lower triangle): the matrix of forward dynamics linearised with those rows' active set held.
+void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H);
+
+/// X's first cols columns = H^-1 X, with factor_held_rows()' factor.
+void solve_held_rows(const Eigen::MatrixXd& H, Eigen::Ref<Eigen::MatrixXd> X, int cols);
+
+/// d qacc and d qfrc_constraint with the active set held, every active row (limits and contacts),
+/// from the right-hand sides d f_smooth - d ID in deriv.work.rhs_q, rhs_v, rhs_u (before M^-1;
+/// contact_rows.cpp).
 /// Throws lever::Error for an elliptic cone in its middle zone.
 void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv);
 
