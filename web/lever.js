@@ -17,7 +17,8 @@
 // frame: the normal then two tangents, friction, solref, solimp as typed arrays; dist, dim,
 // geom1, geom2, includemargin, exclude, efc_address, mu as numbers). data.sensordata holds every
 // sensor's numbers (model.sensor_adr, sensor_dim; names in model.sensor_names), and
-// data.sensor('left_touch').data is one sensor's, as in MuJoCo's Python. A view is rebuilt
+// data.sensor('left_touch').data is one sensor's, model.sensor('left_touch') its description, as
+// in MuJoCo's Python. A view is rebuilt
 // whenever the wasm heap has grown or mj_setConst() has run, so keeping `data.qpos` in a variable
 // across those is the one thing to avoid (as with MuJoCo's own views).
 (function (root) {
@@ -133,6 +134,25 @@
         return this[kind + '_names'].indexOf(name);
       }
 
+      /**
+       * Sensor `name` (or its index), as MuJoCo's Python model.sensor(name): {id, name, type, dim,
+       * adr, objtype, objid, reftype, refid, cutoff, noise} (mjtSensor and mjtObj numbers). Throws
+       * for a sensor the model does not have.
+       */
+      sensor(name) {
+        const id = typeof name === 'number' ? name : this.name2id('sensor', name);
+        if (!(id >= 0 && id < this.nsensor)) {
+          throw new RangeError('the model has no sensor ' + JSON.stringify(name) +
+            (this.nsensor ? ' (its sensors: ' + this.sensor_names.map((n, i) => n || '#' + i).join(', ') + ')'
+              : ' (it has no sensors)'));
+        }
+        const s = {id, name: this.sensor_names[id]};
+        for (const key of ['type', 'dim', 'adr', 'objtype', 'objid', 'reftype', 'refid', 'cutoff', 'noise']) {
+          s[key] = this['sensor_' + key][id];
+        }
+        return s;
+      }
+
       delete() {
         this._wasm.delete();
       }
@@ -186,15 +206,8 @@
        * sensor the model does not have.
        */
       sensor(name) {
-        const m = this._model;
-        const id = typeof name === 'number' ? name : m.name2id('sensor', name);
-        if (!(id >= 0 && id < m.nsensor)) {
-          throw new RangeError('the model has no sensor ' + JSON.stringify(name) +
-            (m.nsensor ? ' (its sensors: ' + m.sensor_names.map((n, i) => n || '#' + i).join(', ') + ')'
-              : ' (it has no sensors)'));
-        }
-        const adr = m.sensor_adr[id];
-        return {id, name: m.sensor_names[id], data: this.sensordata.subarray(adr, adr + m.sensor_dim[id])};
+        const s = this._model.sensor(name);
+        return {id: s.id, name: s.name, data: this.sensordata.subarray(s.adr, s.adr + s.dim)};
       }
 
       /** The data.ncon current contacts (a new array of views at each access). */

@@ -270,6 +270,12 @@ function gripperContacts(mj, root) {
   if (!(seen.lifted.onTable === 0 && seen.lifted.ncon > 0 && seen.lifted.height > 0.1)) {
     fail('gripper: the box is not held up by the fingers: ' + JSON.stringify(seen.lifted));
   }
+  const pad = model.sensor('right_touch');
+  if (!(pad.id === 1 && pad.type === 0 && pad.dim === 1 && pad.adr === 1 && pad.objtype === 6 &&
+        pad.objid === model.name2id('site', 'right_pad') && pad.refid === -1)) {
+    fail("gripper: model.sensor('right_touch') is not the touch sensor (mjSENS_TOUCH 0) at site " +
+      'right_pad: ' + JSON.stringify(pad));
+  }
   if (!(model.nsensor === 2 && model.sensor_names.join() === 'left_touch,right_touch' &&
         seen.lifted.touch.every((f) => f > 1))) {
     fail('gripper: the pads do not feel the held box: ' + JSON.stringify(seen.lifted.touch));
