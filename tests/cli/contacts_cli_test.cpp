@@ -284,4 +284,12 @@ TEST_CASE("lever simulate writes each sensor's numbers as columns name[i], and l
   CHECK_THAT(text.out, Catch::Matches("(.|\n)*hand_in_base +framepos +geom hand in xbody base "
                                       "+sensordata\\[\\d+\\.\\.\\d+\\](.|\n)*"));
   CHECK_THAT(text.out, Catch::Contains("cutoff 0.5"));
+  const lever::test::Run model_json = run_lever("model " + lever::test::quoted(path) + " --json");
+  REQUIRE(model_json.status == 0);
+  const lever::test::json::Value compiled = lever::test::json::parse(model_json.out);
+  CHECK(compiled["nsensordata"].number == m.nsensordata);
+  REQUIRE(compiled["sensor_name"].size() == static_cast<std::size_t>(m.nsensor));
+  for (int s = 0; s < m.nsensor; ++s) {
+    CHECK(compiled["sensor_name"][static_cast<std::size_t>(s)].string == m.sensor_name[s]);
+  }
 }
