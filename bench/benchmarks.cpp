@@ -292,6 +292,19 @@ void register_scene(const Fixture& f) {
   }
 }
 
+// ---- the sensor model: the whole forward, every sensor evaluated by both peers (the sensor stages
+// are part of forward and mj_forward)
+
+void register_sensors(const Fixture& f) {
+  const State* s = &f.state;
+  add("forward", f, "lever",
+      lever_fn(
+          &f, s, [](const Model&, Data&) {}, [](const Model& m, Data& d) { forward(m, d); }));
+  const auto nothing = [](const mjModel*, mjData*) {};
+  add("forward", f, "mujoco",
+      mujoco_fn(&f, s, nothing, [](const mjModel* m, mjData* d) { mj_forward(m, d); }));
+}
+
 // ---- Orocos KDL ---------------------------------------------------------------------------------
 
 void register_kdl(const Fixture& f) {
@@ -460,6 +473,10 @@ void register_lesson_batches(const Fixture& f) {
 
 void register_benchmarks(const std::vector<std::unique_ptr<Fixture>>& fixtures, int batch_states) {
   for (const auto& f : fixtures) {
+    if (f->sensors) {
+      register_sensors(*f);
+      continue;
+    }
     if (f->scene) {
       register_scene(*f);
       register_lever_kernels(*f);
@@ -471,7 +488,7 @@ void register_benchmarks(const std::vector<std::unique_ptr<Fixture>>& fixtures, 
     register_kdl(*f);
   }
   for (const auto& f : fixtures) {
-    if (!f->scene) register_batch(*f, batch_states);
+    if (!f->scene && !f->sensors) register_batch(*f, batch_states);
   }
   for (const auto& f : fixtures) {
     if (f->name == "arm2" || f->name == "panda7") register_lesson_batches(*f);

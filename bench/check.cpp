@@ -162,6 +162,11 @@ void check_mujoco(const Fixture& f, const State& s, const std::string& label, Ta
   } else {
     table.row(what, f.name, "qacc", rel_error(d.qacc, md->qacc, nv), 1e-6);
   }
+  if (f.sensors) {
+    table.row(what, f.name, "sensordata",
+              rel_error(d.sensordata, md->sensordata, static_cast<std::size_t>(m.nsensordata)),
+              1e-9);
+  }
   if (d.nefc != md->nefc) table.row(what, f.name, "nefc differs", 1.0, 0.0);
 }
 
@@ -215,7 +220,8 @@ bool run_checks(const std::vector<std::unique_ptr<Fixture>>& fixtures, std::ostr
   out << "|---|---|---|---:|---:|---|\n";
   Table table{out};
   for (const auto& f : fixtures) {
-    if (f->scene) continue;  // a contact scene has no KDL peer and no batch: MuJoCo's check only
+    // a contact scene and the sensor model have no KDL peer and no batch: MuJoCo's check only
+    if (f->scene || f->sensors) continue;
     if (f->chain) {
       check_kdl(*f, table);
     } else {
@@ -228,7 +234,7 @@ bool run_checks(const std::vector<std::unique_ptr<Fixture>>& fixtures, std::ostr
     if (f->limit) check_mujoco(*f, *f->limit, "timed limit state", table);
   }
   for (const auto& f : fixtures) {
-    if (!f->scene) check_batch(*f, table);
+    if (!f->scene && !f->sensors) check_batch(*f, table);
   }
   return table.ok;
 }

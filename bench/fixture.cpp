@@ -268,4 +268,30 @@ std::unique_ptr<Fixture> make_scene_fixture(const std::string& path) {
   return f;
 }
 
+bool is_sensor_model(const Model& model) {
+  return model.nsensor > 0 && !model.contacts_possible;
+}
+
+std::unique_ptr<Fixture> make_sensor_fixture(const std::string& path) {
+  auto f = std::make_unique<Fixture>();
+  f->path = path;
+  f->name = std::filesystem::path(path).stem().string();
+  f->sensors = true;
+  char error[1000] = "";
+  mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
+  if (m == nullptr) throw std::runtime_error("MuJoCo could not load " + path + ": " + error);
+  f->mj = MjModelPtr(m, mj_deleteModel);
+  f->model = mjcf::load_file(path);
+  f->loader = "mjcf_lite";
+  const Model& model = f->model;
+  if (!is_sensor_model(model) || model.nkey == 0) {
+    throw std::runtime_error(path + ": the sensor benchmark needs sensors, a keyframe and no contact");
+  }
+  Data d(model);
+  reset_keyframe(model, d, 0);
+  f->state = {d.qpos, d.qvel, Eigen::VectorXd::Zero(model.nv), d.ctrl};
+  f->site = model.nsite - 1;
+  return f;
+}
+
 }  // namespace lever::bench

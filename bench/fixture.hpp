@@ -43,6 +43,7 @@ struct Fixture {
 
   bool scene = false;  ///< a contact scene (free bodies, contacts): timed on forward and step only
   int ncon = 0;        ///< a scene's contacts in its timed state
+  bool sensors = false;  ///< the sensor model: timed on forward only, every sensor evaluated
 };
 
 /// The *.xml files in a directory, as paths: the arms fixed to the world (every operation is
@@ -59,6 +60,14 @@ std::vector<std::string> scene_files(const std::string& dir);
 /// qpos0), ctrl 0, then one second of lever's steps, so that its bodies lie on each other.
 /// Throws std::runtime_error if MuJoCo cannot load it or the scene has no contact then.
 std::unique_ptr<Fixture> make_scene_fixture(const std::string& path);
+
+/// A model with sensors and no contact (tests/models/sensors.xml): its first keyframe's state,
+/// where its sensors read something (a moving arm, a swinging ball, a spinning free body).
+/// Throws std::runtime_error if MuJoCo cannot load it, or it has no sensors or no keyframe.
+std::unique_ptr<Fixture> make_sensor_fixture(const std::string& path);
+
+/// Whether lever_bench_profile times a model as the sensor model: sensors, and no contacts.
+bool is_sensor_model(const Model& model);
 
 /// Load a model for every peer and draw its state (seeded by the model's name).
 /// Throws std::runtime_error if MuJoCo cannot load it.

@@ -67,6 +67,10 @@ int main(int argc, char** argv) {
     for (const std::string& path : lever::bench::scene_files(models_dir)) {
       fixtures.push_back(lever::bench::make_scene_fixture(path));
     }
+    // the sensor-heavy model (every sensor type lever evaluates), timed on forward alone
+    if (models_dir == LEVER_BENCH_MODELS_DIR) {
+      fixtures.push_back(lever::bench::make_sensor_fixture(LEVER_BENCH_SENSOR_MODEL));
+    }
   } catch (const std::exception& e) {
     std::cerr << "lever_bench: " << e.what() << "\n";
     return 2;
@@ -105,7 +109,10 @@ int main(int argc, char** argv) {
                         " loader=" + f->loader;
     if (f->site >= 0) about += " site=" + m.site_name[static_cast<std::size_t>(f->site)];
     if (f->limit) about += " limit_joint=" + m.jnt_name[static_cast<std::size_t>(f->limit_joint)];
-    if (f->scene) {
+    if (f->sensors) {
+      about += " sensors: nsensor=" + std::to_string(m.nsensor) +
+               " nsensordata=" + std::to_string(m.nsensordata) + ", at its first keyframe";
+    } else if (f->scene) {
       about += " scene: at rest after 1 s, ncon=" + std::to_string(f->ncon);
     } else {
       about += f->chain ? " kdl=yes" : " kdl=no (" + f->kdl_note + ")";

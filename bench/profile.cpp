@@ -254,6 +254,7 @@ std::vector<Operation> operations() {
 }
 
 bool available(const Operation& op, const Fixture& f) {
+  if (f.sensors) return op.name == "forward" || op.name == "mujoco:forward";  // the sensor model
   if (f.scene) {  // a contact scene: forward, step, the three kernels and the step's Jacobians
                   // (bench/benchmarks.cpp)
     const std::string_view name = op.name;
@@ -309,9 +310,10 @@ int main(int argc, char** argv) {
   }
   std::unique_ptr<Fixture> f;
   try {
-    f = lever::bench::is_scene(lever::mjcf::load_file(argv[1]))
-            ? lever::bench::make_scene_fixture(argv[1])
-            : lever::bench::make_fixture(argv[1]);
+    const lever::Model model = lever::mjcf::load_file(argv[1]);
+    f = lever::bench::is_sensor_model(model) ? lever::bench::make_sensor_fixture(argv[1])
+        : lever::bench::is_scene(model)      ? lever::bench::make_scene_fixture(argv[1])
+                                             : lever::bench::make_fixture(argv[1]);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

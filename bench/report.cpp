@@ -483,6 +483,11 @@ void write_header(std::ostream& out, const Inputs& in) {
   out << "\n";
 }
 
+// the sensor model (lever_bench's context says "sensors: nsensor=..." of it): timed on forward alone
+bool sensor_model(const Inputs& in, const std::string& model) {
+  return in.context->str("model." + model).find(" sensors: nsensor=") != std::string::npos;
+}
+
 // every target with its goal and this run's ratios
 std::vector<Target> collect_targets(const Inputs& in) {
   const Results& r = in.results;
@@ -517,10 +522,15 @@ std::vector<Target> collect_targets(const Inputs& in) {
   against("gripper `forward` / `mj_forward`, box resting in contact", 0.5, "forward", "gripper",
           "mujoco");
   against("gripper `step` / `mj_step`, box resting in contact", 0.5, "step", "gripper", "mujoco");
+  // the sensor stages: tests/models/sensors.xml, every sensor type lever evaluates, both peers
+  // evaluating the same sensors inside their forward
+  against("sensors `forward` / `mj_forward`, every sensor type lever evaluates", 0.5, "forward",
+          "sensors", "mujoco");
   for (const auto& [op, peer_call, g] :
        {std::tuple{"bias", "`mj_rne`", 0.7}, std::tuple{"crba", "`mj_crb`", 1.0},
         std::tuple{"jac_site", "`mj_jacSite`", 1.0}}) {
     for (const std::string& model : model_order) {
+      if (sensor_model(in, model)) continue;  // timed on forward alone
       against(model + " `" + op + "` / " + peer_call, g, op, model, "mujoco");
     }
   }

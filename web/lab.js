@@ -1,6 +1,8 @@
 // lab.js: runs a lesson's lab spec (the JSON of a ```lab``` block, or a knowledge check whose
 // questions carry a "sim") on lever's WebAssembly build, with MuJoCo's names in scope for the
-// spec's strings: `model`, `data`, `ctx` (the controls' values by param) and `mj`.
+// spec's strings: `model`, `data`, `ctx` (the controls' values by param) and `mj`. A readout or a
+// plot trace gives either an "expr" or a "sensor" by name (and "index" for one of its several
+// numbers): {"label": "left pad (N)", "sensor": "left_touch"} reads data.sensordata.
 //
 // One step of a simulation is what lesson 5.1's lab does: mj_forward (so that the controller reads
 // the current state's qfrc_bias, ...), the controller, mj_step. Between steps (paused, after a
@@ -154,6 +156,31 @@
       return {f, code, kind, line};
     }
 
+    // A readout's or a trace's value: its "expr", or "sensor": a sensor's name (with "index",
+    // default 0, for one of a sensor's several numbers), read from data.sensordata. Its label
+    // defaults to the sensor's name.
+    compileValue(item, kind) {
+      if (item.sensor === undefined) return {spec: item, expr: this.compile(item.expr, 'expr')};
+      const line = lineOfString(this.specText, String(item.sensor));
+      const id = this.model.name2id('sensor', item.sensor);
+      if (id < 0) {
+        const names = this.model.sensor_names.filter((n) => n);
+        throw new SpecError('the ' + kind + ' names sensor "' + item.sensor +
+          '", which the model does not have' +
+          (names.length ? ' (its sensors: ' + names.join(', ') + ')' : ' (it has no sensors)'), line);
+      }
+      const index = item.index === undefined ? 0 : item.index;
+      const dim = this.model.sensor_dim[id];
+      if (!(Number.isInteger(index) && index >= 0 && index < dim)) {
+        throw new SpecError('the ' + kind + ' reads number ' + JSON.stringify(index) + ' of sensor "' +
+          item.sensor + '", which has ' + dim + ' (index 0 to ' + (dim - 1) + ')', line);
+      }
+      const code = 'data.sensor(' + JSON.stringify(item.sensor) + ').data[' + index + ']';
+      const label = item.label || (dim > 1 ? item.sensor + '[' + index + ']' : item.sensor);
+      const f = (model, data) => data.sensordata[model.sensor_adr[id] + index];
+      return {spec: Object.assign({}, item, {label, expr: code}), expr: {f, code, kind: 'expr', line}};
+    }
+
     compileAll() {
       const s = this.spec;
       this.controller = s.controller ? this.compile(s.controller, 'controller') : null;
@@ -172,10 +199,10 @@
           apply: c.apply ? this.compile(c.apply, 'apply') : null,
         };
       });
-      this.readoutSpecs = (s.readouts || []).map((r) => ({spec: r, expr: this.compile(r.expr, 'expr')}));
+      this.readoutSpecs = (s.readouts || []).map((r) => this.compileValue(r, 'readout'));
       this.plotSpecs = (s.plots || []).map((p) => ({
         spec: p,
-        traces: (p.traces || []).map((t) => ({spec: t, expr: this.compile(t.expr, 'expr')})),
+        traces: (p.traces || []).map((t) => this.compileValue(t, 'trace')),
       }));
       if (s.trail) {
         this.trailSite = this.model.name2id('site', s.trail);

@@ -15,7 +15,10 @@
 // efc_ arrays (efc_J: nefc x nv) have data.nefc rows at each access. data.contact is an array of
 // the data.ncon current contacts, each with MuJoCo's mjContact fields viewed in place (pos,
 // frame: the normal then two tangents, friction, solref, solimp as typed arrays; dist, dim,
-// geom1, geom2, includemargin, exclude, efc_address, mu as numbers). A view is rebuilt
+// geom1, geom2, includemargin, exclude, efc_address, mu as numbers). data.sensordata holds every
+// sensor's numbers (model.sensor_adr, sensor_dim; names in model.sensor_names), and
+// data.sensor('left_touch').data is one sensor's, model.sensor('left_touch') its description, as
+// in MuJoCo's Python. A view is rebuilt
 // whenever the wasm heap has grown or mj_setConst() has run, so keeping `data.qpos` in a variable
 // across those is the one thing to avoid (as with MuJoCo's own views).
 (function (root) {
@@ -101,10 +104,11 @@
     class MjModel {
       constructor(wasmModel) {
         this._wasm = wasmModel;
-        for (const size of ['nq', 'nv', 'nu', 'nbody', 'njnt', 'ngeom', 'nsite', 'nkey']) {
+        for (const size of ['nq', 'nv', 'nu', 'nbody', 'njnt', 'ngeom', 'nsite', 'nkey', 'nsensor',
+          'nsensordata']) {
           this[size] = wasmModel.size(size);
         }
-        for (const kind of ['body', 'jnt', 'geom', 'site', 'actuator', 'key']) {
+        for (const kind of ['body', 'jnt', 'geom', 'site', 'actuator', 'sensor', 'key']) {
           const list = wasmModel.names(kind);
           const names = [];
           for (let i = 0; i < list.size(); i++) names.push(list.get(i));
@@ -125,9 +129,28 @@
         return new MjModel(wasmModel);
       }
 
-      /** Index of a named object (kind: body, jnt, geom, site, actuator, key), or -1. */
+      /** Index of a named object (kind: body, jnt, geom, site, actuator, sensor, key), or -1. */
       name2id(kind, name) {
         return this[kind + '_names'].indexOf(name);
+      }
+
+      /**
+       * Sensor `name` (or its index), as MuJoCo's Python model.sensor(name): {id, name, type, dim,
+       * adr, objtype, objid, reftype, refid, cutoff, noise} (mjtSensor and mjtObj numbers). Throws
+       * for a sensor the model does not have.
+       */
+      sensor(name) {
+        const id = typeof name === 'number' ? name : this.name2id('sensor', name);
+        if (!(id >= 0 && id < this.nsensor)) {
+          throw new RangeError('the model has no sensor ' + JSON.stringify(name) +
+            (this.nsensor ? ' (its sensors: ' + this.sensor_names.map((n, i) => n || '#' + i).join(', ') + ')'
+              : ' (it has no sensors)'));
+        }
+        const s = {id, name: this.sensor_names[id]};
+        for (const key of ['type', 'dim', 'adr', 'objtype', 'objid', 'reftype', 'refid', 'cutoff', 'noise']) {
+          s[key] = this['sensor_' + key][id];
+        }
+        return s;
       }
 
       delete() {
@@ -175,6 +198,16 @@
         this._model = model;
         this._wasm = new Module.WasmData(model._wasm);
         attachFields(this, this._wasm, () => 0);
+      }
+
+      /**
+       * Sensor `name` (or its index), as MuJoCo's Python data.sensor(name): {id, name, data}, data
+       * its numbers, a view into data.sensordata from sensor_adr, sensor_dim long. Throws for a
+       * sensor the model does not have.
+       */
+      sensor(name) {
+        const s = this._model.sensor(name);
+        return {id: s.id, name: s.name, data: this.sensordata.subarray(s.adr, s.adr + s.dim)};
       }
 
       /** The data.ncon current contacts (a new array of views at each access). */

@@ -138,6 +138,14 @@ void contact_findings(const Contacts& c, std::vector<std::string>& findings) {
   }
   const Grip& g = c.grip;
   if (!g.skipped.empty()) return;
+  for (const GripPad& p : g.pads) {
+    if (p.agrees()) continue;
+    findings.push_back("touch sensor " + p.sensor + " on finger " + p.finger + " reads " +
+                       fmt::fixed(p.closed, 4) + " N closed and " + fmt::fixed(p.held, 4) +
+                       " N held while its servo pushes " + fmt::fixed(p.servo_closed, 4) +
+                       " and " + fmt::fixed(p.servo_held, 4) +
+                       " N: its site does not cover the contacts, or the finger is not at rest");
+  }
   if (!g.holds_by_hand()) {
     findings.push_back("the fingers (" + g.fingers[0] + ", " + g.fingers[1] + ") press body " +
                        g.body + " with at most " + fmt::fixed(g.servo_force, 3) +

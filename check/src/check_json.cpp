@@ -399,6 +399,14 @@ void contacts(Json& j, const Contacts& c) {
     }
     j.end_array().key("hold_force").value(g.hold_force).key("slip_force").value(g.slip_force);
     j.key("resolution").value(g.resolution);
+    j.key("pads").begin_array();
+    for (const GripPad& p : g.pads) {
+      j.begin_object().key("sensor").value(p.sensor).key("finger").value(p.finger);
+      j.key("closed").value(p.closed).key("servo_closed").value(p.servo_closed);
+      j.key("held").value(p.held).key("servo_held").value(p.servo_held);
+      j.key("tolerance").value(p.tolerance).key("agrees").value(p.agrees()).end_object();
+    }
+    j.end_array();
   }
   j.end_object();
 }

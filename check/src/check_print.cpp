@@ -752,6 +752,16 @@ void print_grip(std::ostream& out, const Grip& g) {
         << " N while held: drop " << fixed(t.drop * 1e3, 3) << " mm, speed-up "
         << fixed(t.speedup, 4) << " m/s" << (t.slipped ? ": slipped" : "") << "\n";
   }
+  if (!g.pads.empty()) {
+    out << "    touch sensors on the fingers at the full grip (the normal force they feel) against "
+           "the servo's push, closed | held:\n";
+  }
+  for (const GripPad& p : g.pads) {
+    out << "      " << p.sensor << " on " << p.finger << ": " << fixed(p.closed, 4) << " N vs "
+        << fixed(p.servo_closed, 4) << " N | " << fixed(p.held, 4) << " N vs "
+        << fixed(p.servo_held, 4) << " N: " << (p.agrees() ? "agree" : "DISAGREE")
+        << " (within " << general(100 * p.tolerance) << " %)\n";
+  }
   if (g.slip_force == 0.0) {
     out << "    the box never slipped\n";
   } else if (!std::isfinite(g.hold_force)) {

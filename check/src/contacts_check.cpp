@@ -1,7 +1,7 @@
 // (9) Contacts, lesson 5.3's hand calculations: which geom pairs can touch and with what
 // parameters, how deep a free body sinks into a plane at rest (solref/solimp's steady state), and
 // the force two finger servos need to hold a box (2 mu F >= m g) against a simulation that lowers
-// the grip until the box slips.
+// the grip until the box slips, and what touch sensors on the fingers read against the servos.
 #include <algorithm>
 #include <cmath>
 #include <optional>
@@ -382,9 +382,40 @@ double finger_force(const GripSetup& s, const Data& d) {
   return sum / static_cast<double>(s.fingers.size());
 }
 
-// close the fingers without gravity at `commands`, then let gravity act: how far the box drops
+// A finger's touch sensor and where its numbers are.
+struct PadSensor {
+  int adr = -1;     // its one number in sensordata
+  int finger = -1;  // index into GripSetup::fingers
+};
+
+// the touch sensors whose sites move with a finger's joint
+std::vector<PadSensor> finger_pads(const Model& m, const std::vector<Finger>& fingers,
+                                   Grip& g) {
+  const std::vector<int> weld = weld_bodies(m);
+  std::vector<PadSensor> pads;
+  for (int s = 0; s < m.nsensor; ++s) {
+    if (m.sensor_type[s] != SensorType::kTouch) continue;
+    const int body = weld[m.site_bodyid[m.sensor_objid[s]]];
+    for (size_t f = 0; f < fingers.size(); ++f) {
+      if (body != m.jnt_bodyid[fingers[f].joint]) continue;
+      pads.push_back({m.sensor_adr[s], static_cast<int>(f)});
+      GripPad pad;
+      pad.sensor = m.sensor_name[s].empty() ? "#" + std::to_string(s) : m.sensor_name[s];
+      pad.finger = motor_label(m, fingers[f].actuator);
+      g.pads.push_back(pad);
+    }
+  }
+  return pads;
+}
+
+// close the fingers without gravity at `commands`, then let gravity act: how far the box drops;
+// with `pads`, what the fingers' touch sensors read against their servos (into `read`)
 GripTrial run_trial(GripSetup& s, const std::vector<double>& commands, const Grip& g,
-                    PairTable& table, std::vector<std::string>& strays, Data* closed = nullptr) {
+                    PairTable& table, std::vector<std::string>& strays, Data* closed = nullptr,
+                    const std::vector<PadSensor>& pads = {}, std::vector<GripPad>* read = nullptr) {
+  const auto servo = [&s](const Data& d, const PadSensor& p) {
+    return std::abs(d.actuator_force[s.fingers[static_cast<size_t>(p.finger)].actuator]);
+  };
   Data d = s.start;
   for (size_t i = 0; i < s.fingers.size(); ++i) d.ctrl[s.fingers[i].actuator] = commands[i];
   const int close_steps = static_cast<int>(std::lround(g.close_time / s.with_gravity.opt.timestep));
@@ -395,6 +426,10 @@ GripTrial run_trial(GripSetup& s, const std::vector<double>& commands, const Gri
   t.command = commands[0];
   t.closed_force = finger_force(s, d);
   if (closed) *closed = d;
+  for (size_t k = 0; read && k < pads.size(); ++k) {
+    (*read)[k].closed = d.sensordata[pads[k].adr];
+    (*read)[k].servo_closed = servo(d, pads[k]);
+  }
   const double before = s.down.dot(d.xipos[s.body]);
   // the free joint's first three velocities are its centre's, in the world frame
   const int dof = s.with_gravity.jnt_dofadr[s.free_joint];
@@ -404,9 +439,19 @@ GripTrial run_trial(GripSetup& s, const std::vector<double>& commands, const Gri
     step(s.with_gravity, d);
     if (i + 1 == hold_steps / 2) speed_half = s.down.dot(d.qvel.segment<3>(dof));
     // the force is judged while the slip is: the fingers' force over the second half
-    if (i + 1 > hold_steps / 2) t.force += finger_force(s, d), ++counted;
+    if (i + 1 > hold_steps / 2) {
+      t.force += finger_force(s, d), ++counted;
+      for (size_t k = 0; read && k < pads.size(); ++k) {
+        (*read)[k].held += d.sensordata[pads[k].adr];
+        (*read)[k].servo_held += servo(d, pads[k]);
+      }
+    }
   }
   t.force /= std::max(1, counted);
+  for (size_t k = 0; read && k < pads.size(); ++k) {
+    (*read)[k].held /= std::max(1, counted);
+    (*read)[k].servo_held /= std::max(1, counted);
+  }
   forward(s.with_gravity, d);
   tally(s.with_gravity, d, table, strays);
   t.drop = s.down.dot(d.xipos[s.body]) - before;
@@ -523,7 +568,8 @@ Grip grip(const Model& m, PairTable& table, std::vector<std::string>& strays) {
   }
   g.full_command = full[0];
   Data closed(m);
-  GripTrial first = run_trial(s, full, g, table, strays, &closed);
+  const std::vector<PadSensor> pads = finger_pads(m, s.fingers, g);
+  GripTrial first = run_trial(s, full, g, table, strays, &closed, pads, &g.pads);
   // the hand calculation of the servo's force at the full command: kp x its error, clamped
   g.servo_force = kInf;
   for (const Finger& f : s.fingers) {

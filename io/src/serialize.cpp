@@ -60,6 +60,13 @@ std::string joint_component(const Model& model, int j, int offset, bool coordina
   }
 }
 
+// The sensor whose numbers include sensordata[i].
+int sensor_of(const Model& model, int i) {
+  int s = model.nsensor - 1;
+  while (s > 0 && model.sensor_adr[s] > i) --s;
+  return s;
+}
+
 // The object row i of an array counted in `rows` stands for.
 std::string row_name(const Model& model, Size rows, int i) {
   switch (rows) {
@@ -79,15 +86,12 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kNsite: return name_or_index(model.site_name, i);
     case Size::kNgeom: return name_or_index(model.geom_name, i);
     case Size::kNsensor: return name_or_index(model.sensor_name, i);
-    case Size::kNsensordata:
-      for (int s = model.nsensor - 1; s >= 0; --s) {
-        if (model.sensor_adr[s] <= i) {
-          const std::string name = name_or_index(model.sensor_name, s);
-          return model.sensor_dim[s] == 1 ? name
-                                          : name + "[" + std::to_string(i - model.sensor_adr[s]) + "]";
-        }
-      }
-      break;
+    case Size::kNsensordata: {
+      // a named sensor's numbers: name[k], k from 0 within the sensor; an unnamed one's: i
+      const int s = sensor_of(model, i);
+      if (model.sensor_name[s].empty()) break;
+      return model.sensor_name[s] + "[" + std::to_string(i - model.sensor_adr[s]) + "]";
+    }
     case Size::kNeq: return name_or_index(model.eq_name, i);
     case Size::kOne:
     case Size::kNefc:
@@ -141,8 +145,12 @@ std::string CsvWriter::header() const {
   for (const size_t k : columns_) {
     const FieldView& v = views[k];
     for (int r = 0; r < v.rows; ++r) {
+      // a sensor's numbers by its own name, `imu_acc[0]`: sensordata[k] only if it has none
+      const bool named_sensor = v.info->rows == Size::kNsensordata &&
+                                !model_->sensor_name[sensor_of(*model_, r)].empty();
       const std::string object =
-          std::string(v.info->name) + "[" + row_name(*model_, v.info->rows, r) + "]";
+          named_sensor ? row_name(*model_, v.info->rows, r)
+                       : std::string(v.info->name) + "[" + row_name(*model_, v.info->rows, r) + "]";
       for (int c = 0; c < v.cols; ++c) {
         line += ',';
         line += csv_field(v.cols == 1 ? object : object + "[" + std::to_string(c) + "]");
@@ -167,7 +175,8 @@ std::string CsvWriter::row(const Data& data) const {
 
 const std::vector<std::string>& simulate_csv_arrays() {
   static const std::vector<std::string> arrays = {
-      "qpos", "qvel", "qacc", "qfrc_bias", "ctrl", "actuator_force", "qfrc_constraint"};
+      "qpos", "qvel", "qacc", "qfrc_bias", "ctrl", "actuator_force", "qfrc_constraint",
+      "sensordata"};
   return arrays;
 }
 
@@ -190,6 +199,9 @@ void write_model_fields(json::Writer& json, const Model& model) {
   write_names(json, "geom_name", model.geom_name);
   write_names(json, "site_name", model.site_name);
   write_names(json, "actuator_name", model.actuator_name);
+  json.key("nsensor").value(model.nsensor);
+  json.key("nsensordata").value(model.nsensordata);
+  write_names(json, "sensor_name", model.sensor_name);
   for (const FieldView& v : model_fields(model)) write_array(json, v);
 }
 

@@ -240,6 +240,18 @@ const char* object_kind(ObjectType type) {
   }
 }
 
+// "" or, when `name` is no object of `type` but is another kind's, " ('name' is a body)".
+std::string other_kind(const Model& model, ObjectType type, const std::string& name) {
+  for (ObjectType other : {O::kBody, O::kJoint, O::kGeom, O::kSite, O::kActuator}) {
+    if (other == type || (other == O::kBody && type == O::kXBody)) continue;
+    if (find_object(model, other, name) >= 0) {
+      return std::string(" ('") + name + "' is " + (other == O::kActuator ? "an " : "a ") +
+             object_kind(other) + ")";
+    }
+  }
+  return "";
+}
+
 }  // namespace
 
 void compile_sensors(const std::vector<SensorSpec>& sensors, Model& model) {
@@ -266,7 +278,8 @@ void compile_sensors(const std::vector<SensorSpec>& sensors, Model& model) {
       if (objid < 0) {
         fail(s.object_at, s.object_attribute,
              tag + " names " + object_kind(s.objtype) + " '" + s.object +
-                 "', and the model has no " + object_kind(s.objtype) + " of that name");
+                 "', and the model has no " + object_kind(s.objtype) + " of that name" +
+                 other_kind(model, s.objtype, s.object));
       }
     }
     if (s.reftype != O::kUnknown) {
@@ -274,7 +287,8 @@ void compile_sensors(const std::vector<SensorSpec>& sensors, Model& model) {
       if (refid < 0) {
         fail(s.ref_at, "refname",
              tag + " names " + object_kind(s.reftype) + " '" + s.ref + "' as its reference, and " +
-                 "the model has no " + object_kind(s.reftype) + " of that name");
+                 "the model has no " + object_kind(s.reftype) + " of that name" +
+                 other_kind(model, s.reftype, s.ref));
       }
     }
     if (s.objtype == O::kJoint) {

@@ -127,6 +127,18 @@ TEST_CASE("check (9): the gripper's pairs, grip force and slip", "[check][contac
   // at rest the servo pushes what the hand calculation says (kv = 0, the fingers stopped)
   CHECK(g["servo_force_simulated"].number == Approx(servo).epsilon(1e-6));
   CHECK(g["holds_by_hand"].boolean);
+  // the touch pads on the fingers read the normal force the box presses them with: at rest, what
+  // each finger's servo pushes along its slide (the box face's normal is the slide's axis)
+  REQUIRE(g["pads"].size() == 2);
+  for (const json::Value& p : g["pads"].array) {
+    INFO(p["sensor"].string);
+    CHECK(p["agrees"].boolean);
+    CHECK(p["closed"].number == Approx(p["servo_closed"].number).epsilon(0.01));
+    CHECK(p["closed"].number == Approx(servo).epsilon(0.01));
+    CHECK(p["held"].number == Approx(p["servo_held"].number).epsilon(0.01));
+  }
+  CHECK(g["pads"][0]["sensor"].string == "left_touch");
+  CHECK(g["pads"][0]["finger"].string == "left");
   // the simulation: held at the full grip, slipped once lowered; the slip lies within 5 % of
   // m g / (2 mu) (the check's tolerance: search resolution 1 %, the speed-up threshold 0.5 %,
   // the finger force changing while the slip is judged)

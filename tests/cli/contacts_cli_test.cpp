@@ -4,12 +4,14 @@
 // text of `lever forward` lists them.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iterator>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include <lever/contact_force.hpp>
 #include <lever/lever.hpp>
@@ -214,4 +216,80 @@ TEST_CASE("lever forward lists the sensors, and --time sets what a clock reads",
   const lever::test::Run text = run_lever("forward " + model + " --time 2.5");
   CHECK_THAT(text.out, Catch::Contains("sensors: " + std::to_string(m.nsensor)));
   CHECK_THAT(text.out, Catch::Contains("clock"));
+}
+
+TEST_CASE("lever simulate writes each sensor's numbers as columns name[i], and lever model lists "
+          "the sensors", "[cli][sensors]") {
+  using lever::test::run_lever;
+  const std::string path = lever::test::model_path("tests/models/sensors.xml");
+  const lever::Model m = lever::mjcf::load_file(path);
+  const lever::test::Run csv = run_lever("simulate " + lever::test::quoted(path) +
+                                         " --key bent --steps 3 --csv -");
+  REQUIRE(csv.status == 0);
+  std::istringstream lines(csv.out);
+  std::string header;
+  std::getline(lines, header);
+  std::vector<std::string> columns;
+  {
+    std::istringstream fields(header);
+    for (std::string f; std::getline(fields, f, ',');) columns.push_back(f);
+  }
+  const auto column = [&columns](const std::string& name) {
+    const auto it = std::find(columns.begin(), columns.end(), name);
+    return it == columns.end() ? -1 : static_cast<int>(it - columns.begin());
+  };
+  int sensor_columns = 0;
+  for (int s = 0; s < m.nsensor; ++s) {
+    for (int k = 0; k < m.sensor_dim[s]; ++k) {
+      const std::string name = m.sensor_name[s].empty()
+                                   ? "sensordata[" + std::to_string(m.sensor_adr[s] + k) + "]"
+                                   : m.sensor_name[s] + "[" + std::to_string(k) + "]";
+      CHECK(column(name) >= 0);
+      sensor_columns += column(name) >= 0;
+    }
+  }
+  CHECK(sensor_columns == m.nsensordata);
+  // the clock reads the row's time and the encoder its joint's qpos, on every row
+  const int time = column("time"), clock = column("clock[0]"), yaw = column("yaw_pos[0]");
+  const int qpos_yaw = column("qpos[yaw]");
+  REQUIRE((time >= 0 && clock >= 0 && yaw >= 0 && qpos_yaw >= 0));
+  int rows = 0;
+  for (std::string line; std::getline(lines, line); ++rows) {
+    std::vector<std::string> fields;
+    std::istringstream in(line);
+    for (std::string f; std::getline(in, f, ',');) fields.push_back(f);
+    REQUIRE(fields.size() == columns.size());
+    CHECK(fields[clock] == fields[time]);
+    CHECK(fields[yaw] == fields[qpos_yaw]);
+  }
+  CHECK(rows == 4);
+
+  const lever::test::Run json =
+      run_lever("simulate " + lever::test::quoted(path) + " --steps 2 --json");
+  REQUIRE(json.status == 0);
+  std::istringstream json_lines(json.out);
+  std::string first;
+  std::getline(json_lines, first);
+  CHECK(lever::test::json::parse(first)["sensordata"].size() ==
+        static_cast<std::size_t>(m.nsensordata));
+  const lever::test::Run arm2 = run_lever(
+      "simulate " + lever::test::quoted(lever::test::model_path("models/arm2.xml")) +
+      " --steps 1 --json");
+  CHECK(arm2.out.find("sensordata") == std::string::npos);  // no sensors: the rows as before
+
+  const lever::test::Run text = run_lever("model " + lever::test::quoted(path));
+  REQUIRE(text.status == 0);
+  CHECK_THAT(text.out, Catch::Contains("sensors (" + std::to_string(m.nsensor) + ", " +
+                                       std::to_string(m.nsensordata) + " numbers"));
+  CHECK_THAT(text.out, Catch::Matches("(.|\n)*hand_in_base +framepos +geom hand in xbody base "
+                                      "+sensordata\\[\\d+\\.\\.\\d+\\](.|\n)*"));
+  CHECK_THAT(text.out, Catch::Contains("cutoff 0.5"));
+  const lever::test::Run model_json = run_lever("model " + lever::test::quoted(path) + " --json");
+  REQUIRE(model_json.status == 0);
+  const lever::test::json::Value compiled = lever::test::json::parse(model_json.out);
+  CHECK(compiled["nsensordata"].number == m.nsensordata);
+  REQUIRE(compiled["sensor_name"].size() == static_cast<std::size_t>(m.nsensor));
+  for (int s = 0; s < m.nsensor; ++s) {
+    CHECK(compiled["sensor_name"][static_cast<std::size_t>(s)].string == m.sensor_name[s]);
+  }
 }

@@ -68,9 +68,9 @@ void forward_both(diff::Twin& twin, const State& s) {
   twin.mujoco_forward();
 }
 
-// models/gripper.xml with sensors: a touch pad on each finger (a box site around its two tip
-// spheres), a force/torque sensor and a rangefinder at the carriage, an accelerometer and a gyro
-// in the box, the lift's limit force, the servos' forces.
+// models/gripper.xml (whose fingers carry a touch pad each: a box site around the two tip spheres)
+// with more sensors: a force/torque sensor and a rangefinder at the carriage, an accelerometer and
+// a gyro in the box, the lift's limit force, the servos' forces.
 std::string gripper_with_sensors() {
   std::string xml = read_text(model_path("models/gripper.xml"));
   const auto insert_after = [&xml](const std::string& anchor, const std::string& text) {
@@ -78,15 +78,9 @@ std::string gripper_with_sensors() {
     REQUIRE(at != std::string::npos);
     xml.insert(xml.find("/>", at) + 2, text);
   };
-  insert_after("<geom name=\"left_finger\"",
-               "<site name=\"left_pad\" type=\"box\" size=\"0.02 0.006 0.012\" pos=\"0 -0.008 0\"/>");
-  insert_after("<geom name=\"right_finger\"",
-               "<site name=\"right_pad\" type=\"box\" size=\"0.02 0.006 0.012\" pos=\"0 0.008 0\"/>");
   insert_after("<geom name=\"carriage\"",
                "<site name=\"wrist\" pos=\"0 0 -0.02\" euler=\"3.14159 0 0.3\"/>");
   xml.insert(xml.find("<keyframe>"), R"(<sensor>
-    <touch name="left_touch" site="left_pad"/>
-    <touch name="right_touch" site="right_pad"/>
     <force name="wrist_force" site="wrist"/>
     <torque name="wrist_torque" site="wrist"/>
     <rangefinder name="range" site="wrist"/>

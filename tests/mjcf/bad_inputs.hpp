@@ -926,6 +926,19 @@ inline const BadInput kBadInputs[] = {
     <touch name="pad" site="pad"/>
   </sensor>
 </mujoco>)", 14, "touch", "site", "no site of that name", MuJoCo::kRejects, ""},
+  {"sensor-site-names-a-body", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="hinge" axis="0 1 0"/>
+      <geom size="0.1"/>
+      <site name="s"/>
+    </body>
+  </worldbody>
+  <sensor>
+    <accelerometer site="b"/>
+  </sensor>
+</mujoco>)", 10, "accelerometer", "site", "no site of that name ('b' is a body)",
+   MuJoCo::kRejects, ""},
   {"sensor-wrong-joint-kind", R"(<mujoco>
   <worldbody>
     <body name="b">

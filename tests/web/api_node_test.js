@@ -33,7 +33,9 @@ function close(ours, native, what, bound = 1e-12) {
 // the last bit, efc_force to ~30 ulp (the solve's sums ordered differently by native Eigen's SIMD
 // and wasm's scalar code, amplified by the grasp's conditioning: four contacts, pyramid rows),
 // and qacc of the 0.1 kg box gathers 1/m times that over its rows: 1.1e-12 at an element near 0.
-const kSolverDecided = new Set(['qacc', 'qfrc_constraint', 'efc_force', 'efc_state']);
+// The sensors that read contact forces or accelerations (touch, force, accelerometer) sum them.
+const kSolverDecided = new Set(['qacc', 'qfrc_constraint', 'efc_force', 'efc_state', 'sensordata',
+  'cacc', 'cfrc_int', 'cfrc_ext']);
 const kContactTypeRows = new Set([5, 6, 7]);  // efc_type of a contact row
 function boundOf(name, native) {
   const contacts = (native.efc_type || []).some((type) => kContactTypeRows.has(type));
@@ -247,7 +249,18 @@ function gripperContacts(mj, root) {
     }
     const q = data.qpos.subarray(free + 3, free + 7);
     close(Math.hypot(...q), 1, `${label}: the box's quaternion norm`);
-    seen[name] = {ncon: data.ncon, onTable: onTable.length, height: data.xpos[3 * box + 2]};
+    // the finger pads' touch sensors, by name, are their slices of sensordata, as native's
+    for (const pad of ['left_touch', 'right_touch']) {
+      const sensor = data.sensor(pad);
+      const id = model.name2id('sensor', pad);
+      if (sensor.id !== id || id < 0 || sensor.data.length !== 1 ||
+          sensor.data[0] !== data.sensordata[model.sensor_adr[id]]) {
+        fail(`${label}: data.sensor('${pad}') is not sensordata[${model.sensor_adr[id]}]`);
+      }
+      close(sensor.data[0], native.sensordata[model.sensor_adr[id]], `${label}: ${pad}`, 1e-10);
+    }
+    seen[name] = {ncon: data.ncon, onTable: onTable.length, height: data.xpos[3 * box + 2],
+      touch: Array.from(data.sensordata)};
   }
   console.log('gripper contacts: ' + JSON.stringify(seen));
   // the physics the views show: gripped on the table, then held in the air by the fingers alone
@@ -257,6 +270,23 @@ function gripperContacts(mj, root) {
   if (!(seen.lifted.onTable === 0 && seen.lifted.ncon > 0 && seen.lifted.height > 0.1)) {
     fail('gripper: the box is not held up by the fingers: ' + JSON.stringify(seen.lifted));
   }
+  const pad = model.sensor('right_touch');
+  if (!(pad.id === 1 && pad.type === 0 && pad.dim === 1 && pad.adr === 1 && pad.objtype === 6 &&
+        pad.objid === model.name2id('site', 'right_pad') && pad.refid === -1)) {
+    fail("gripper: model.sensor('right_touch') is not the touch sensor (mjSENS_TOUCH 0) at site " +
+      'right_pad: ' + JSON.stringify(pad));
+  }
+  if (!(model.nsensor === 2 && model.sensor_names.join() === 'left_touch,right_touch' &&
+        seen.lifted.touch.every((f) => f > 1))) {
+    fail('gripper: the pads do not feel the held box: ' + JSON.stringify(seen.lifted.touch));
+  }
+  let threw = false;
+  try {
+    data.sensor('no_such_pad');
+  } catch (e) {
+    threw = e instanceof RangeError && e.message.includes('left_touch, right_touch');
+  }
+  if (!threw) fail("gripper: data.sensor('no_such_pad') did not throw a RangeError naming the sensors");
   data.delete();
   model.delete();
 }

@@ -4,8 +4,8 @@
 //   lever model --schema
 // (declare_model has the options and their help)
 //
-// Text: joints, motors, sites, bodies (mass, principal moments, explicit or inferred inertia)
-// and options, like section (1) of lesson 5.1. --json: one object keyed by mjModel's field names,
+// Text: joints, motors, sites, bodies (mass, principal moments, explicit or inferred inertia),
+// sensors and options, like section (1) of lesson 5.1. --json: one object keyed by mjModel's field names,
 // arrays flattened row-major, full precision. --infer-inertia: ignore every <inertial> and infer
 // masses from the geoms. --schema: the supported MJCF subset as Markdown (docs/mjcf-subset.md).
 // Exit 0; a model that cannot be loaded prints the error and exits 2.
@@ -162,6 +162,35 @@ void print_bodies(std::FILE* out, const Model& m) {
   }
 }
 
+// Each sensor: its type, the object it reads (and its reference frame), where its numbers are in
+// sensordata, and its cutoff and noise where set.
+void print_sensors(std::FILE* out, const Model& m) {
+  if (m.nsensor == 0) return;
+  std::fprintf(out, "sensors (%d, %d numbers in sensordata):\n", m.nsensor, m.nsensordata);
+  const auto object = [&m](ObjectType type, int id) -> std::string {
+    switch (type) {
+      case ObjectType::kBody: return "body " + label(m.body_name[id], id);
+      case ObjectType::kXBody: return "xbody " + label(m.body_name[id], id);
+      case ObjectType::kGeom: return "geom " + label(m.geom_name[id], id);
+      case ObjectType::kSite: return "site " + label(m.site_name[id], id);
+      case ObjectType::kJoint: return "joint " + label(m.jnt_name[id], id);
+      case ObjectType::kActuator: return "actuator " + label(m.actuator_name[id], id);
+      default: return "-";
+    }
+  };
+  for (int s = 0; s < m.nsensor; ++s) {
+    std::string line = object(m.sensor_objtype[s], m.sensor_objid[s]);
+    if (m.sensor_refid[s] >= 0) line += " in " + object(m.sensor_reftype[s], m.sensor_refid[s]);
+    const int adr = m.sensor_adr[s], dim = m.sensor_dim[s];
+    std::fprintf(out, "  %-16s %-14s %-28s sensordata[%d%s]", label(m.sensor_name[s], s).c_str(),
+                 sensor_type_name(m.sensor_type[s]), line.c_str(), adr,
+                 dim > 1 ? (".." + std::to_string(adr + dim - 1)).c_str() : "");
+    if (m.sensor_cutoff[s] > 0) std::fprintf(out, "  cutoff %g", m.sensor_cutoff[s]);
+    if (m.sensor_noise[s] > 0) std::fprintf(out, "  noise %g", m.sensor_noise[s]);
+    std::fprintf(out, "\n");
+  }
+}
+
 // ---- json ------------------------------------------------------------------------------------
 
 // joints, motors, sites, bodies (mass, principal moments, explicit or inferred) and options
@@ -174,6 +203,7 @@ void print_model_text(std::FILE* out, const Model& m) {
   print_motors(out, m);
   print_sites(out, m);
   print_bodies(out, m);
+  print_sensors(out, m);
   print_keyframes(out, m);
   print_options(out, m);
   print_warnings(out, m);

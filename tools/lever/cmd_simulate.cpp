@@ -33,14 +33,17 @@ namespace {
 
 using lab::Controller;
 
-// One JSON line per state: time and the lab's readouts, by their names in the field table.
+// One JSON line per state: time and the lab's readouts, by their names in the field table, and
+// the sensors' numbers when the model has sensors.
 void json_row(const Model& model, const Data& d) {
   static const std::vector<std::string> arrays = {
       "qpos", "qvel", "qacc", "qfrc_bias", "qfrc_constraint", "ctrl", "actuator_force"};
+  static const std::vector<std::string> sensors = {"sensordata"};
   Json json(stdout);
   json.begin_object();
   json.key("time").value(d.time);
   write_data_arrays(json, model, d, arrays);
+  if (model.nsensor > 0) write_data_arrays(json, model, d, sensors);
   write_contacts(json, model, d);  // ncon and each contact with its force
   json.end_object();
   json.newline();
@@ -274,9 +277,11 @@ void declare_simulate(CLI::App& command) {
              "one JSON line per state (start, then after each step): time qpos\n"
              "qvel qacc qfrc_bias qfrc_constraint ctrl actuator_force, ncon\n"
              "and contact (each contact's geoms, dist, pos, frame, ... and\n"
-             "force in its frame, as lever forward --json)");
+             "force in its frame, as lever forward --json), and sensordata\n"
+             "when the model has sensors");
   add_value(command, "csv", "FILE",
-            "the trajectory as CSV with a header row ('-': standard output)")
+            "the trajectory as CSV with a header row ('-': standard output);\n"
+            "a sensor's numbers are columns name[0], name[1], ...")
       ->check(not_empty_check());
   add_value(command, "plot", "FILE.svg",
             "joint angles over time and the site trail in the x-z plane")

@@ -129,11 +129,14 @@ class WasmModel {
     if (what == "neq") return model_.neq;
     if (what == "nmocap") return model_.nmocap;
     if (what == "nkey") return model_.nkey;
+    if (what == "nsensor") return model_.nsensor;
+    if (what == "nsensordata") return model_.nsensordata;
     return -1;
   }
 
-  /// kind: "body", "jnt", "geom", "site", "actuator", "eq", "key"
+  /// kind: "body", "jnt", "geom", "site", "actuator", "sensor", "eq", "key"
   std::vector<std::string> names(const std::string& kind) const {
+    if (kind == "sensor") return model_.sensor_name;
     if (kind == "body") return model_.body_name;
     if (kind == "jnt") return model_.jnt_name;
     if (kind == "geom") return model_.geom_name;

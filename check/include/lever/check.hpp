@@ -421,6 +421,24 @@ struct GripTrial {
   bool slipped = false;
 };
 
+/// A touch sensor on a finger (its site on a body that moves with the finger's joint) at the full
+/// grip: the normal force it reads against what the finger's servo pushes. At rest the finger's
+/// slide balances the servo against the box's push along it, so a pad that covers the contacts
+/// reads the servo's force (cos of the normal's tilt from the slide, and the damping of a finger
+/// still moving, are what separate them).
+struct GripPad {
+  std::string sensor, finger;  ///< the touch sensor, the finger servo
+  double closed = 0.0;         ///< N: the sensor, closed without gravity
+  double servo_closed = 0.0;   ///< N: |actuator_force| of the finger's servo then
+  double held = 0.0;           ///< N: the sensor, mean over the second half of the hold
+  double servo_held = 0.0;     ///< N: the servo, the same
+  double tolerance = 0.01;     ///< relative: |sensor - servo| <= this x servo, closed and held
+  bool agrees() const {
+    return std::abs(closed - servo_closed) <= tolerance * servo_closed &&
+           std::abs(held - servo_held) <= tolerance * servo_held;
+  }
+};
+
 /// Two fingers pressing with force F hold a box of mass m when 2 mu F >= m g.
 struct Grip {
   std::string skipped;  ///< why it was not computed ("": computed)
@@ -445,6 +463,7 @@ struct Grip {
   double hold_force = kInf;       ///< N: the least force that held (kInf: none held)
   double slip_force = 0.0;        ///< N: the largest force that slipped (0: none slipped)
   double resolution = 0.01;       ///< the bisection stops at this relative width
+  std::vector<GripPad> pads;      ///< the fingers' touch sensors, at the full grip
   bool holds_by_hand() const { return servo_force >= needed; }
 };
 

@@ -44,7 +44,9 @@ std::string data_to_json(const Model& model, const Data& data);
 /// CSV of chosen Data arrays (names of the field table), one line per state: `time`, then each
 /// array's elements in the order given, row by row. A column is named after its array and its
 /// row's object, `qpos[shoulder]` (joints for nq/nv/njnt arrays, motors for nu, bodies, sites;
-/// `#3` for an object without a name), with `[c]` appended for arrays of several columns.
+/// `#3` for an object without a name), with `[c]` appended for arrays of several columns; a
+/// named sensor's numbers are `name[k]` (k counted within the sensor), an unnamed one's
+/// `sensordata[i]`.
 /// Numbers have 17 significant digits; a number that is not finite is an empty field.
 class CsvWriter {
  public:
@@ -61,7 +63,7 @@ class CsvWriter {
 };
 
 /// The columns of `lever simulate --csv`: joint positions, velocities, accelerations, bias forces,
-/// motor commands and forces, limit forces.
+/// motor commands and forces, limit forces, the sensors' numbers (none for a model without sensors).
 const std::vector<std::string>& simulate_csv_arrays();
 
 }  // namespace lever
