@@ -164,6 +164,16 @@ Model from_mujoco(const mjModel* m) {
   model.name = "from_mujoco";
   model.opt.timestep = m->opt.timestep;
   model.opt.gravity = vec3(m->opt.gravity);
+  model.opt.viscosity = m->opt.viscosity;
+  model.opt.density = m->opt.density;
+  model.opt.wind = vec3(m->opt.wind);
+  for (int g = 0; g < m->ngeom; ++g) {
+    if (m->geom_fluid[mjNFLUID * g] > 0) {
+      throw std::runtime_error("from_mujoco: geom " + std::to_string(g) +
+                               " uses the ellipsoid fluid model (fluidshape); lever has the "
+                               "inertia-box model only");
+    }
+  }
   if (m->opt.integrator == mjINT_EULER) {
     model.opt.integrator = Integrator::kEuler;
   } else if (m->opt.integrator == mjINT_RK4) {
@@ -191,7 +201,23 @@ Model from_mujoco(const mjModel* m) {
   model.nsensordata = m->nsensordata;
   model.neq = m->neq;
   model.nmocap = m->nmocap;
+  model.nuser_body = m->nuser_body;
+  model.nuser_jnt = m->nuser_jnt;
+  model.nuser_geom = m->nuser_geom;
+  model.nuser_site = m->nuser_site;
+  model.nuser_actuator = m->nuser_actuator;
+  model.nuser_sensor = m->nuser_sensor;
   size_model(model);
+  // user data, row-major as MuJoCo's
+  const auto copy_user = [](const mjtNum* from, RowMatrix& to) {
+    for (Eigen::Index i = 0; i < to.size(); ++i) to.data()[i] = from[i];
+  };
+  copy_user(m->body_user, model.body_user);
+  copy_user(m->jnt_user, model.jnt_user);
+  copy_user(m->geom_user, model.geom_user);
+  copy_user(m->site_user, model.site_user);
+  copy_user(m->actuator_user, model.actuator_user);
+  copy_user(m->sensor_user, model.sensor_user);
 
   for (int b = 0; b < m->nbody; ++b) {
     model.body_name[b] = name_of(m, mjOBJ_BODY, b);

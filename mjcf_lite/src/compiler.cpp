@@ -1011,6 +1011,21 @@ class Compiler {
   // ---- the Model --------------------------------------------------------------------------------
 
   Model assemble() const;
+  // each kind's `user` lists in the model's order of its objects
+  struct UserLists {
+    std::vector<const UserData*> body, joint, geom, site, actuator, sensor;
+  };
+  UserLists user_lists() const {
+    UserLists u;
+    for (const BodyNode& n : nodes_) u.body.push_back(&n.spec->user);
+    for (const CompiledJoint& j : joints_) u.joint.push_back(&j.spec->user);
+    for (const CompiledGeom& g : geoms_) u.geom.push_back(&g.spec->user);
+    for (const CompiledSite& s : sites_) u.site.push_back(&s.spec->user);
+    for (const CompiledMotor& a : motors_) u.actuator.push_back(&a.spec->user);
+    for (const SensorSpec& s : spec_.sensors) u.sensor.push_back(&s.user);
+    return u;
+  }
+
   void assemble_bodies(Model& m) const;
   void assemble_joints(Model& m) const;
   void assemble_geoms_and_sites(Model& m) const;
@@ -1066,7 +1081,19 @@ Model Compiler::assemble() const {
   }
   m.neq = static_cast<int>(spec_.equalities.size());
   m.nmocap = nmocap_;
+  const UserLists users = user_lists();
+  m.nuser_body = user_width(UserKind::kBody, spec_.nuser, users.body);
+  m.nuser_jnt = user_width(UserKind::kJoint, spec_.nuser, users.joint);
+  m.nuser_geom = user_width(UserKind::kGeom, spec_.nuser, users.geom);
+  m.nuser_site = user_width(UserKind::kSite, spec_.nuser, users.site);
+  m.nuser_actuator = user_width(UserKind::kActuator, spec_.nuser, users.actuator);
+  m.nuser_sensor = user_width(UserKind::kSensor, spec_.nuser, users.sensor);
   size_model(m);
+  fill_user_rows(users.body, m.nuser_body, m.body_user);
+  fill_user_rows(users.joint, m.nuser_jnt, m.jnt_user);
+  fill_user_rows(users.geom, m.nuser_geom, m.geom_user);
+  fill_user_rows(users.site, m.nuser_site, m.site_user);
+  fill_user_rows(users.actuator, m.nuser_actuator, m.actuator_user);
   assemble_meshes(m);
   assemble_bodies(m);
   assemble_joints(m);
@@ -1077,6 +1104,7 @@ Model Compiler::assemble() const {
   assemble_keys(m);
   assemble_visual(m);
   compile_sensors(spec_.sensors, m);  // last: sensors name the other objects
+  fill_user_rows(users.sensor, m.nuser_sensor, m.sensor_user);  // once nsensor is known
   m.warnings = warnings_;
   return m;
 }

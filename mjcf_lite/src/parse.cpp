@@ -54,6 +54,15 @@ class Fields {
     return w == "true" ? Limited::kTrue : (w == "false" ? Limited::kFalse : Limited::kAuto);
   }
 
+  // the `user` list (empty if neither written nor inherited), located at the element
+  UserData user(const Element& e) const {
+    UserData u;
+    if (const Value* v = set_.find("user")) u.numbers = v->numbers;
+    const Attribute* written = e.find("user");
+    u.at = written ? e.place(*written) : e.place();
+    return u;
+  }
+
   Orientation orientation() const {
     Orientation o;
     o.quat = array<4>("quat");
@@ -113,6 +122,7 @@ JointSpec read_joint(const Element& e, const AttrSet& set) {
   j.frictionloss = f.real("frictionloss");
   j.solref_friction = f.array<2>("solreffriction");
   j.solimp_friction = f.array<5>("solimpfriction");
+  j.user = f.user(e);
   return j;
 }
 
@@ -142,6 +152,7 @@ GeomSpec read_geom(const Element& e, const AttrSet& set) {
   g.solimp = f.array<5>("solimp");
   g.mesh = f.word("mesh");
   g.material = f.word("material");
+  g.user = f.user(e);
   return g;
 }
 
@@ -153,6 +164,7 @@ SiteSpec read_site(const Element& e, const AttrSet& set) {
   s.orientation = f.orientation();
   s.size = f.array<3>("size");
   s.type = geom_type(f.word("type"));
+  s.user = f.user(e);
   return s;
 }
 
@@ -188,6 +200,7 @@ MotorSpec read_actuator(const Element& e, const DefaultClasses& classes) {
   m.ctrllimited = f.limited("ctrllimited");
   m.inheritrange = f.real("inheritrange");
   m.forcelimited = f.limited("forcelimited");
+  m.user = f.user(e);
   return m;
 }
 
@@ -233,6 +246,7 @@ struct TreeReader {
     b.pos = f.array<3>("pos");
     b.orientation = f.orientation();
     b.mocap = f.word("mocap") == "true";
+    b.user = f.user(e);
     read_contents(e, active, b);
     return b;
   }
@@ -316,6 +330,11 @@ void check_option_values(const Element& option, const AttrSet& set) {
   refuse("mpr_iterations",
          set.find("mpr_iterations") && set.find("mpr_iterations")->numbers[0] < 0,
          "must not be negative");
+  // MuJoCo 2.2.2 takes them as written: a negative one would drive the bodies, not drag them
+  refuse("viscosity", set.find("viscosity") && set.find("viscosity")->numbers[0] < 0,
+         "must not be negative");
+  refuse("density", set.find("density") && set.find("density")->numbers[0] < 0,
+         "must not be negative");
 }
 
 Options read_option(const Element& root) {
@@ -354,6 +373,10 @@ Options read_option(const Element& root) {
   const Vec3 magnetic = f.array<3>("magnetic");
   o.magnetic = Eigen::Vector3d(magnetic[0], magnetic[1], magnetic[2]);
   o.sensornoise = flag.word("sensornoise") == "enable";
+  o.viscosity = f.real("viscosity");
+  o.density = f.real("density");
+  const Vec3 wind = f.array<3>("wind");
+  o.wind = Eigen::Vector3d(wind[0], wind[1], wind[2]);
   return o;
 }
 
@@ -362,6 +385,17 @@ void read_size(const Element& root, ModelSpec& spec) {
   AttrSet set;
   for (const Element* e : sections(root, "size")) {
     set.apply(*e, *find_rule("mujoco", "size"));
+    for (int k = 0; k < kUserKinds; ++k) {
+      const char* name = user_size_attribute(static_cast<UserKind>(k));
+      if (const Attribute* a = e->find(name)) {
+        if (set.find(name)->numbers[0] < -1) {
+          fail(e->place(*a), name,
+               std::string(name) + " must be -1 (the longest list of the kind) or a count >= 0 "
+               "(found " + a->value + ")");
+        }
+        spec.nuser.at[static_cast<size_t>(k)] = e->place(*a);
+      }
+    }
     for (const char* name : {"nconmax", "njmax"}) {
       const Attribute* a = e->find(name);
       if (a && set.find(name)->numbers[0] < -1) {
@@ -374,6 +408,10 @@ void read_size(const Element& root, ModelSpec& spec) {
   const Fields f(set, "mujoco", "size");
   spec.nconmax = f.integer("nconmax");
   spec.njmax = f.integer("njmax");
+  for (int k = 0; k < kUserKinds; ++k) {
+    spec.nuser.width[static_cast<size_t>(k)] =
+        f.integer(user_size_attribute(static_cast<UserKind>(k)));
+  }
 }
 
 // <contact>: explicit pairs over their class (their own `class`, else the main class: a body's

@@ -10,6 +10,18 @@
 
 namespace lever::mjcf::detail {
 
+AttributeRule user_data_rule() {
+  AttributeRule r;
+  r.name = "user";
+  r.kind = ValueKind::kReal;
+  r.count = 1000;
+  r.list = true;
+  r.meaning =
+      "user data: numbers the engine never reads, padded with zeros to `size/nuser_*` (-1: the "
+      "longest list of the kind)";
+  return r;
+}
+
 namespace {
 
 // ---- attribute constructors, so that each table row reads as one line ------------------------
@@ -32,6 +44,8 @@ AttributeRule partial(std::string_view name, int count, std::string_view def,
   r.partial = true;
   return r;
 }
+
+AttributeRule user_data() { return user_data_rule(); }
 
 AttributeRule integer(std::string_view name, int count, std::string_view def,
                       std::string_view meaning) {
@@ -109,6 +123,7 @@ std::vector<AttributeRule> joint_attributes() {
       partial("solreffriction", 2, "0.02 1", "friction loss solref (timeconst, dampratio)"),
       partial("solimpfriction", 5, "0.9 0.95 0.001 0.5 2",
               "friction loss solimp (d0, dmax, width, mid, power)"),
+      user_data(),
   };
 }
 
@@ -154,6 +169,7 @@ std::vector<AttributeRule> geom_attributes() {
                integer("priority", 1, "0",
                        "of two geoms in contact, the higher priority's parameters are used"),
                real("solmix", 1, "1", "weight of this geom's solref/solimp at equal priority"),
+               user_data(),
            }));
 }
 
@@ -166,7 +182,8 @@ std::vector<AttributeRule> site_attributes() {
                real("pos", 3, "0 0 0", "position, body frame"),
                real("quat", 4, "1 0 0 0", "orientation (w x y z); must not be zero")},
               join(alternatives(),
-                   {partial("size", 3, "0.005 0.005 0.005", "sphere radius (first number)")}));
+                   {partial("size", 3, "0.005 0.005 0.005", "sphere radius (first number)"),
+                    user_data()}));
 }
 
 std::vector<AttributeRule> motor_class_attributes() {
@@ -177,6 +194,7 @@ std::vector<AttributeRule> motor_class_attributes() {
       real("forcerange", 2, "0 0", "force range"),
       keyword("forcelimited", "auto", "false true auto", "",
               "auto: limited if forcerange is given"),
+      user_data(),
   };
 }
 
@@ -240,10 +258,10 @@ void add_equality_rules(std::vector<ElementRule>& s) {
                "", "", "a joint coupled to another by a polynomial (or held)"});
 }
 
-const char* const kUnsupportedJointAttributes = "springdamper user";
+const char* const kUnsupportedJointAttributes = "springdamper";
 const char* const kUnsupportedGeomAttributes =
-    "hfield fitscale fluidshape fluidcoef user";
-const char* const kUnsupportedSiteAttributes = "fromto user";
+    "hfield fitscale fluidshape fluidcoef";
+const char* const kUnsupportedSiteAttributes = "fromto";
 const char* const kOtherActuators = "intvelocity damper cylinder muscle adhesion";
 
 // attributes every actuator kind shares, in a default class and in <actuator>
@@ -290,7 +308,7 @@ std::vector<AttributeRule> actuator_wiring(std::string_view what) {
 }
 
 const char* const kUnsupportedActuatorAttributes =
-    "lengthrange cranklength user jointinparent tendon slidersite cranksite site refsite body "
+    "lengthrange cranklength jointinparent tendon slidersite cranksite site refsite body "
     "actlimited actrange";
 
 // visual-only assets and elements: read, checked by name, kept as text; no effect on dynamics
@@ -392,8 +410,15 @@ std::vector<ElementRule> build() {
                            "most MPR iterations per convex pair; must not be negative"),
                    real("magnetic", 3, "0 -0.5 0",
                         "Earth's magnetic field, world frame (what a magnetometer reads)"),
+                   real("viscosity", 1, "0",
+                        "the medium's viscosity, Pa s: Stokes drag on each body's inertia box "
+                        "(MuJoCo 2.2.2's passive fluid forces); must not be negative"),
+                   real("density", 1, "0",
+                        "the medium's density, kg/m^3: quadratic drag on each body's inertia "
+                        "box; must not be negative"),
+                   real("wind", 3, "0 0 0", "the medium's velocity, m/s, world frame"),
                },
-               "apirate wind density viscosity o_margin o_solref o_solimp collision",
+               "apirate o_margin o_solref o_solimp collision",
                "", "simulation options"});
   s.push_back({"flag", "option", '?',
                {
@@ -417,9 +442,15 @@ std::vector<ElementRule> build() {
                    integer("njmax", 1, "-1",
                            "most constraint rows at once (-1: 500); more is an error in lever"),
                    integer("nstack", 1, "-1", "MuJoCo's stack size (kept; lever sizes its own)"),
+                   integer("nuser_body", 1, "-1",
+                           "numbers of user data per body (-1: the longest `user` of the bodies)"),
+                   integer("nuser_jnt", 1, "-1", "the same per joint"),
+                   integer("nuser_geom", 1, "-1", "the same per geom"),
+                   integer("nuser_site", 1, "-1", "the same per site"),
+                   integer("nuser_actuator", 1, "-1", "the same per actuator"),
+                   integer("nuser_sensor", 1, "-1", "the same per sensor"),
                },
-               "nuserdata nkey nuser_body nuser_jnt nuser_geom nuser_site nuser_cam nuser_tendon "
-               "nuser_actuator nuser_sensor",
+               "nuserdata nkey nuser_cam nuser_tendon",
                "", "sizes of MuJoCo's mjData"});
   s.push_back({"contact", "mujoco", '*', {}, "", "", "explicit contact pairs and exclusions"});
   add_equality_rules(s);
@@ -454,14 +485,14 @@ std::vector<ElementRule> build() {
   s.push_back({"motor", "default", '?',
                join(motor_class_attributes(),
                     {integer("group", 1, "0", "visualisation group (kept)")}),
-               "cranklength user", "", "actuator defaults of the class, as a motor"});
-  s.push_back({"general", "default", '?', general_class_attributes(), "cranklength user actlimited "
+               "cranklength", "", "actuator defaults of the class, as a motor"});
+  s.push_back({"general", "default", '?', general_class_attributes(), "cranklength actlimited "
                "actrange", "", "actuator defaults of the class"});
-  s.push_back({"position", "default", '?', position_class_attributes(), "cranklength user",
+  s.push_back({"position", "default", '?', position_class_attributes(), "cranklength",
                "", "actuator defaults of the class, as a position servo"});
   s.push_back({"velocity", "default", '?',
                shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m"),
-               "cranklength user", "", "actuator defaults of the class, as a velocity servo"});
+               "cranklength", "", "actuator defaults of the class, as a velocity servo"});
   s.push_back({"mesh", "default", '?',
                {real("scale", 3, "1 1 1", "scale of the vertices of the class's meshes")}, "", "",
                "mesh defaults"});
@@ -532,11 +563,12 @@ std::vector<ElementRule> build() {
        real("quat", 4, "1 0 0 0", "orientation in the parent frame; must not be zero"),
        keyword("mocap", "false", "false true", "",
                "true: a mocap body, placed by data.mocap_pos and mocap_quat (a child of the "
-               "world without joints)")},
+               "world without joints)"),
+       user_data()},
       alternatives());
-  s.push_back({"body", "worldbody", '*', body, "user", "", "a body fixed to the world "
+  s.push_back({"body", "worldbody", '*', body, "", "", "a body fixed to the world "
                "unless it has joints"});
-  s.push_back({"body", "body", '*', body, "user", "composite", "a child body"});
+  s.push_back({"body", "body", '*', body, "", "composite", "a child body"});
   for (const char* parent : {"worldbody", "body"}) {
     s.push_back({"camera", parent, '*', texts(kCameraAttributes, kVisualOnly), "", "",
                  "a camera (kept)"});
@@ -798,7 +830,7 @@ std::string value_text(const AttributeRule& a) {
   switch (a.kind) {
     case ValueKind::kReal:
       if (a.count == 1) return "real";
-      return (a.partial ? "1-" : "") + std::to_string(a.count) + " reals";
+      return (a.partial || a.list ? "1-" : "") + std::to_string(a.count) + " reals";
     case ValueKind::kInteger:
       return a.count == 1 ? "integer" : std::to_string(a.count) + " integers";
     case ValueKind::kKeyword: {

@@ -31,6 +31,7 @@ struct AttributeRule {
   std::string_view keywords;              ///< kKeyword: accepted words, blank-separated
   std::string_view unsupported_keywords;  ///< kKeyword: valid MJCF words lever refuses
   std::string_view meaning;               ///< one line for the docs
+  bool list = false;  ///< 1..count numbers, replacing what it inherits (user data)
 };
 
 struct ElementRule {
@@ -42,6 +43,10 @@ struct ElementRule {
   std::string_view unsupported_children;    ///< valid MJCF child elements lever refuses
   std::string_view meaning;
 };
+
+/// The `user` attribute of bodies, joints, geoms, sites, actuators and sensors: MuJoCo's user
+/// data, up to 1000 numbers (its reader's buffer), the whole list replacing what a class gave.
+AttributeRule user_data_rule();
 
 /// Every element rule, parents before children.
 const std::vector<ElementRule>& schema();

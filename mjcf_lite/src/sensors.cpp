@@ -6,6 +6,8 @@
 #include <array>
 #include <string_view>
 
+#include <lever/fields.hpp>
+
 #include "reader.hpp"
 #include "schema.hpp"
 #include "values.hpp"
@@ -143,7 +145,7 @@ std::vector<ElementRule> sensor_rules() {
     r.attributes.push_back(real_rule("cutoff", "> 0: its numbers clipped to +-cutoff"));
     r.attributes.push_back(
         real_rule("noise", "standard deviation of noise added with <flag sensornoise=\"enable\">"));
-    r.unsupported_attributes = "user";
+    r.attributes.push_back(user_data_rule());
     r.meaning = meaning_of(s);
     rules.push_back(std::move(r));
   }
@@ -172,6 +174,11 @@ std::vector<SensorSpec> read_sensors(const Element& root) {
                                                        : ": it is a standard deviation"));
         }
         (std::string_view(name) == "cutoff" ? s.cutoff : s.noise) = x;
+      }
+      s.user.at = e.place();
+      if (const Attribute* user = e.find("user")) {
+        s.user.numbers = parse_value(e, *user, user_data_rule()).numbers;
+        s.user.at = e.place(*user);
       }
       if (kind->type == T::kClock) {
         sensors.push_back(std::move(s));

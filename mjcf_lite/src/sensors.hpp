@@ -10,6 +10,7 @@
 #include <lever/model.hpp>
 
 #include "problem.hpp"
+#include "user.hpp"
 
 namespace lever::mjcf::detail {
 
@@ -28,6 +29,7 @@ struct SensorSpec {
   std::string ref;
   Place ref_at;
   double cutoff = 0, noise = 0;
+  UserData user;
 };
 
 /// The schema rows of <sensor> and of each sensor element (schema.cpp appends them).

@@ -10,6 +10,7 @@
 
 #include "problem.hpp"
 #include "sensors.hpp"
+#include "user.hpp"
 
 namespace lever::mjcf::detail {
 
@@ -43,6 +44,7 @@ struct JointSpec {
   double frictionloss = 0;
   std::array<double, 2> solref_friction{};
   std::array<double, 5> solimp_friction{};
+  UserData user;
 };
 
 struct GeomSpec {
@@ -64,6 +66,7 @@ struct GeomSpec {
   std::array<double, 5> solimp{};
   std::array<double, 4> rgba{};
   std::string mesh, material;  ///< asset names, "" if none
+  UserData user;
 };
 
 struct SiteSpec {
@@ -72,6 +75,7 @@ struct SiteSpec {
   Vec3 pos{};
   Orientation orientation;
   Vec3 size{};
+  UserData user;
 };
 
 struct InertialSpec {
@@ -87,6 +91,7 @@ struct BodySpec {
   Vec3 pos{};
   Orientation orientation;
   bool mocap = false;  ///< placed by Data's mocap_pos/mocap_quat (a child of the world, no joints)
+  UserData user;
   std::optional<InertialSpec> inertial;
   std::vector<JointSpec> joints;
   std::vector<GeomSpec> geoms;
@@ -109,6 +114,7 @@ struct MotorSpec {
   /// MuJoCo 3's: if positive, a position servo's ctrlrange is its joint's range about the middle,
   /// scaled by it (0: ctrlrange as written)
   double inheritrange = 0;
+  UserData user;
 };
 
 /// A <key>: what it writes, before the sizes are known (compiler.cpp checks them).
@@ -193,6 +199,7 @@ struct ModelSpec {
   std::vector<SensorSpec> sensors;
   std::vector<EqualitySpec> equalities;
   int nconmax = -1, njmax = -1;  ///< <size>; -1: MuJoCo's defaults
+  UserSizes nuser;               ///< <size nuser_*>
   AssetSpec assets;
   std::string model_dir;  ///< folder of the model file, with a trailing '/', or "" (mesh files)
 };

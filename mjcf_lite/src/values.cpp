@@ -70,7 +70,7 @@ std::string expected(const AttributeRule& rule) {
   const bool whole = rule.kind == ValueKind::kInteger;
   const std::string noun = whole ? "integer" : "number";
   if (rule.count == 1) return whole ? "an integer" : "a number";
-  if (rule.partial) return "1 to " + std::to_string(rule.count) + " " + noun + "s";
+  if (rule.partial || rule.list) return "1 to " + std::to_string(rule.count) + " " + noun + "s";
   return std::to_string(rule.count) + " " + noun + "s";
 }
 
@@ -117,11 +117,12 @@ Value read_numbers(const Element& e, const Attribute& a, const AttributeRule& ru
   if (n > rule.count) fail(e.place(a), a.name, found);
   // mujoco 2.2.2 reads the last number once more when the list ends in a blank (see top)
   const bool trailing_blank = is_space(a.value.back());
-  const bool quirk = trailing_blank && (rule.partial ? n < rule.count : n + 1 == rule.count);
+  const bool variable = rule.partial || rule.list;
+  const bool quirk = trailing_blank && (variable ? n < rule.count : n + 1 == rule.count);
   const std::string note = quirk ? " (the list ends in a blank, which MuJoCo 2.2.2 would fill by "
                                    "repeating the last number; remove the blank)"
                                  : "";
-  if (!rule.partial && n < rule.count) fail(e.place(a), a.name, found + note);
+  if (!variable && n < rule.count) fail(e.place(a), a.name, found + note);
   if (quirk) {
     fail(e.place(a), a.name,
          "attribute '" + a.name + "' ends in a blank after " + std::to_string(n) + " of up to " +

@@ -297,7 +297,7 @@ PYBIND11_MODULE(_lever, m) {
       d["name"] = f.name;
       d["dtype"] = lever::scalar_name(f.scalar);
       d["rows"] = lever::size_name(f.rows);
-      d["cols"] = f.cols < 0 ? py::object(py::str(lever::size_name(f.rows))) : py::int_(f.cols);
+      d["cols"] = f.cols < 0 ? py::object(py::str(lever::size_name(f.cols_size))) : py::int_(f.cols);
       if (data) d["stage"] = lever::stage_name(f.stage);
       d["mujoco"] = f.in_mujoco;
       out.append(d);

@@ -72,7 +72,8 @@ void check_version(const py::dict& state, const char* what) {
 // The counts that size a model (size_model reads them) and the capacities of its Data.
 #define LEVER_PYTHON_MODEL_COUNTS(X) \
   X(nq) X(nv) X(nu) X(nbody) X(njnt) X(ngeom) X(nsite) X(nkey) X(npair) X(nexclude) X(nconmax) X(njmax) \
-  X(nmesh) X(nmeshvert) X(nmeshgraph) X(nsensor) X(nsensordata) X(neq) X(nmocap)
+  X(nmesh) X(nmeshvert) X(nmeshgraph) X(nsensor) X(nsensordata) X(neq) X(nmocap) \
+  X(nuser_body) X(nuser_jnt) X(nuser_geom) X(nuser_site) X(nuser_actuator) X(nuser_sensor)
 
 // a keyframe array (nkey x n, row-major) as bytes, and back
 py::bytes matrix_bytes(const lever::RowMatrix& a) {
@@ -126,6 +127,9 @@ py::dict model_state(const lever::Model& model) {
   opt["multiccd"] = o.multiccd;
   opt["magnetic"] = bytes_of(o.magnetic.data(), 3 * sizeof(double));
   opt["sensornoise"] = o.sensornoise;
+  opt["viscosity"] = o.viscosity;
+  opt["density"] = o.density;
+  opt["wind"] = bytes_of(o.wind.data(), 3 * sizeof(double));
   state["opt"] = opt;
 
   py::dict compiler;
@@ -224,6 +228,10 @@ std::shared_ptr<lever::Model> model_from_state(const py::dict& state) {
   write_bytes(item(opt, "magnetic", "a model"), m.opt.magnetic.data(), 3 * sizeof(double),
               "model.opt.magnetic");
   m.opt.sensornoise = item(opt, "sensornoise", "a model").cast<bool>();
+  m.opt.viscosity = item(opt, "viscosity", "a model").cast<double>();
+  m.opt.density = item(opt, "density", "a model").cast<double>();
+  write_bytes(item(opt, "wind", "a model"), m.opt.wind.data(), 3 * sizeof(double),
+              "model.opt.wind");
 
   const py::dict compiler = item(state, "compiler", "a model").cast<py::dict>();
   m.compiler.inertiagrouprange =

@@ -11,7 +11,9 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include <lever/harness/from_mujoco.hpp>
 #include <lever/harness/models.hpp>
+#include <lever/mjcf.hpp>
 #include "diff_checks.hpp"
 
 namespace lever::test {
@@ -36,26 +38,64 @@ void disable_contacts(diff::Twin& twin) {
 
 TEST_CASE("diff: Cassie's closed leg chains (equality connects) agree with MuJoCo",
           "[diff][constraints][robots]") {
-  // MuJoCo's compiled model only: lever's loader refuses the file's motors' `user` attribute.
-  // Random states; inverse dynamics at the forward qacc to 1e-12 of the cancelled forces
+  // Random states, both paths (lever's loader reads the motors' and sensors' `user` data);
+  // inverse dynamics at the forward qacc to 1e-12 of the cancelled forces
   REQUIRE(mj_version() == 222);
   const std::string file = robots_dir() + "/menagerie-2022/agility_cassie/cassie.xml";
   if (!std::filesystem::exists(file)) {
     WARN("no real model file " << file << ": skipped");
     return;
   }
-  const std::uint64_t seed = diff::default_seed(file);
-  INFO(context(file, diff::Path::kEngine, seed));
-  diff::Twin twin(file, diff::Path::kEngine);
+  for (const diff::Path path : paths_to_compare()) {
+    const std::uint64_t seed = diff::default_seed(file);
+    INFO(context(file, path, seed));
+    diff::Twin twin(file, path);
+    disable_contacts(twin);
+    const diff::Report report = diff::random_states(twin, 50, seed);
+    check_within_bound(report, all_but_inverse_at_forward(report));
+    inverse_at_forward_agrees(twin, 50, seed);
+    twin.reset();
+    forward(twin.model, twin.data);
+    CHECK(twin.data.ne == 12);  // four connects
+  }
+}
+
+TEST_CASE("diff: Cassie's user data is MuJoCo's", "[diff][robots][user]") {
+  REQUIRE(mj_version() == 222);
+  const std::string file = robots_dir() + "/menagerie-2022/agility_cassie/cassie.xml";
+  if (!std::filesystem::exists(file)) {
+    WARN("no real model file " << file << ": skipped");
+    return;
+  }
+  const Model model = mjcf::load_file(file);
+  const MjModelPtr m = mujoco_load(file);
+  REQUIRE(model.nuser_actuator == m->nuser_actuator);
+  REQUIRE(model.nuser_sensor == m->nuser_sensor);
+  REQUIRE(model.nuser_actuator == 1);  // the motors' `user`: one number each
+  for (int i = 0; i < model.actuator_user.size(); ++i) {
+    CHECK(model.actuator_user.data()[i] == m->actuator_user[i]);
+  }
+  for (int i = 0; i < model.sensor_user.size(); ++i) {
+    CHECK(model.sensor_user.data()[i] == m->sensor_user[i]);
+  }
+  CHECK(model.actuator_user(0, 0) == 2900);
+}
+
+TEST_CASE("diff: Cassie runs 1 s from its keyframe within MuJoCo's own sensitivity",
+          "[diff][constraints][robots]") {
+  // free fall from `home` with the connects holding the legs' closed chains; each engine on its
+  // own, held to MuJoCo against itself started 1e-15 away
+  REQUIRE(mj_version() == 222);
+  const std::string file = robots_dir() + "/menagerie-2022/agility_cassie/cassie.xml";
+  if (!std::filesystem::exists(file)) {
+    WARN("no real model file " << file << ": skipped");
+    return;
+  }
+  diff::Twin twin(file, diff::Path::kLoader);
   disable_contacts(twin);
-  const diff::Report report = diff::random_states(twin, 50, seed);
-  check_within_bound(report, all_but_inverse_at_forward(report));
-  inverse_at_forward_agrees(twin, 50, seed);
-  // (a lockstep run is not held here: on its stiff chains, solref 0.005, qacc differs from
-  // MuJoCo's by up to 1.6e-12 of its magnitude, 1.6 times the bound, on 21 of 6400 values)
-  twin.reset();
-  forward(twin.model, twin.data);
-  CHECK(twin.data.ne == 12);  // four connects
+  REQUIRE(twin.start_name() == "keyframe 'home'");
+  const diff::FreeRun run = diff::free_run(twin, 1.0, diff::Control::kZero, 1e-15);
+  check_near_noise_floor(run, {"qpos", "qvel"});
 }
 
 TEST_CASE("diff: real files with friction loss agree with MuJoCo", "[diff][constraints][robots]") {

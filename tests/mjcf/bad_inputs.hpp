@@ -219,6 +219,28 @@ inline const BadInput kBadInputs[] = {
   <option mpr_iterations="-1"/>
 </mujoco>)", 2, "option", "mpr_iterations", "must not be negative", MuJoCo::kAccepts,
    "a negative count of MPR iterations is a mistake"},
+  {"fluid-viscosity-negative", R"(<mujoco>
+  <option viscosity="-0.1"/>
+</mujoco>)", 2, "option", "viscosity", "must not be negative", MuJoCo::kAccepts,
+   "a negative viscosity drives the bodies instead of dragging them"},
+  {"fluid-density-negative", R"(<mujoco>
+  <option density="-1000"/>
+</mujoco>)", 2, "option", "density", "must not be negative", MuJoCo::kAccepts,
+   "a negative density drives the bodies instead of dragging them"},
+  {"fluid-wind-two-numbers", R"(<mujoco>
+  <option wind="1 2"/>
+</mujoco>)", 2, "option", "wind", "has 2 numbers; expected 3 numbers", MuJoCo::kRejects, ""},
+  {"user-not-a-number", R"(<mujoco>
+  <worldbody><body><joint user="1 two"/><geom size="0.1"/></body></worldbody>
+</mujoco>)", 2, "joint", "user", "'two' is not a number", MuJoCo::kRejects, ""},
+  {"user-longer-than-nuser", R"(<mujoco>
+  <size nuser_actuator="1"/>
+  <worldbody><body><joint name="j"/><geom size="0.1"/></body></worldbody>
+  <actuator><motor joint="j" user="1 2"/></actuator>
+</mujoco>)", 4, "motor", "user", "more than <size nuser_actuator=\"1\">", MuJoCo::kRejects, ""},
+  {"user-nuser-below-minus-one", R"(<mujoco>
+  <size nuser_body="-2"/>
+</mujoco>)", 2, "size", "nuser_body", "must be -1", MuJoCo::kRejects, ""},
   {"contact-impratio-zero", R"(<mujoco>
   <option impratio="0"/>
 </mujoco>)", 2, "option", "impratio", "must be positive", MuJoCo::kAccepts,

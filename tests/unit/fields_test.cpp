@@ -102,7 +102,8 @@ TEST_CASE("every Model view has the table's size and points into its member", "[
     INFO("Model::" << view.info->name);
     CHECK(view.info == &lever::model_field_table()[v]);
     CHECK(view.rows == lever::size_of(model, view.info->rows));
-    CHECK(view.cols == (view.info->cols < 0 ? view.rows : view.info->cols));
+    CHECK(view.cols ==
+          (view.info->cols < 0 ? lever::size_of(model, view.info->cols_size) : view.info->cols));
     for (long k = 0; k < view.size(); ++k) write_mark(view, v, k);
   }
   // read back through the members themselves
@@ -603,6 +604,10 @@ template <class Element>
 long numbers_in(const Eigen::VectorXd& v) {
   return v.size();
 }
+template <class Element>
+long numbers_in(const lever::RowMatrix& m) {  // the user data: rows x nuser_*
+  return m.size();
+}
 
 struct Stored {
   std::string name;
@@ -623,7 +628,7 @@ std::vector<Stored> stored_arrays(const lever::Model& model) {
 // The length the table gives an array in this model.
 long promised(const lever::Model& model, const lever::FieldInfo& info) {
   const long rows = lever::size_of(model, info.rows);
-  return rows * (info.cols < 0 ? rows : info.cols);
+  return rows * (info.cols < 0 ? lever::size_of(model, info.cols_size) : info.cols);
 }
 
 // Every number of the table's arrays, as doubles, with every name and keyframe number.
@@ -678,6 +683,12 @@ TEST_CASE("size_model gives every array the length the field table promises", "[
   model.nkey = 2;
   model.nsensor = 3;
   model.nsensordata = 7;
+  model.nuser_body = 2;
+  model.nuser_jnt = 1;
+  model.nuser_geom = 3;
+  model.nuser_site = 1;
+  model.nuser_actuator = 2;
+  model.nuser_sensor = 1;
   lever::size_model(model);
 
   const std::vector<lever::FieldInfo>& table = lever::model_field_table();

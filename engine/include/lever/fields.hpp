@@ -33,6 +33,13 @@
 #include <lever/data.hpp>
 #include <lever/model.hpp>
 
+// Widths counted by a size of the model rather than written as a number (the `cols` of the user
+// data arrays): negative, so that FieldInfo::cols_size tells which size counts them.
+namespace lever::counted_cols {
+inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_site = -5,
+                     nuser_actuator = -6, nuser_sensor = -7;
+}  // namespace lever::counted_cols
+
 // X(name, element type, rows, cols, origin)
 #define LEVER_MODEL_FIELDS(X)                                \
   X(body_parentid, int, nbody, 1, mujoco)                    \
@@ -108,7 +115,17 @@
   X(actuator_forcerange, double, nu, 2, mujoco)              \
   LEVER_MODEL_CONTACT_FIELDS(X)                              \
   LEVER_MODEL_SENSOR_FIELDS(X)                               \
-  LEVER_MODEL_EQUALITY_FIELDS(X)
+  LEVER_MODEL_EQUALITY_FIELDS(X)                             \
+  LEVER_MODEL_USER_FIELDS(X)
+
+// user data: each kind's numbers (MJCF `user`), rows padded with zeros to nuser_<kind>
+#define LEVER_MODEL_USER_FIELDS(X)                                              \
+  X(body_user, double, nbody, counted_cols::nuser_body, mujoco)                 \
+  X(jnt_user, double, njnt, counted_cols::nuser_jnt, mujoco)                    \
+  X(geom_user, double, ngeom, counted_cols::nuser_geom, mujoco)                 \
+  X(site_user, double, nsite, counted_cols::nuser_site, mujoco)                 \
+  X(actuator_user, double, nu, counted_cols::nuser_actuator, mujoco)            \
+  X(sensor_user, double, nsensor, counted_cols::nuser_sensor, mujoco)
 
 // sensors: what each one measures, on which object, and where its numbers go
 #define LEVER_MODEL_SENSOR_FIELDS(X)              \
@@ -276,7 +293,14 @@ enum class Size : int {
   kNsensordata,  ///< the sensors' numbers together (data.sensordata)
   // equality constraints
   kNeq,       ///< equality constraints (<equality>)
-  kNmocap     ///< mocap bodies (<body mocap="true">)
+  kNmocap,    ///< mocap bodies (<body mocap="true">)
+  // user data widths (columns only)
+  kNuserBody,
+  kNuserJnt,
+  kNuserGeom,
+  kNuserSite,
+  kNuserActuator,
+  kNuserSensor
 };
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;
@@ -288,9 +312,10 @@ struct FieldInfo {
   const char* name;
   Scalar scalar;
   Size rows;
-  int cols;        ///< -1: as many as rows counts (M is nv x nv)
+  int cols;        ///< < 0: as many as cols_size counts (M is nv x nv; body_user nuser_body)
   Stage stage;     ///< Data arrays only
   bool in_mujoco;  ///< MuJoCo 2.2.2 has an array of this name, shape and meaning
+  Size cols_size = Size::kOne;  ///< what counts the columns when cols < 0
 };
 
 /// An array of a Model or Data, located: `rows x cols` elements from `data`, row-major.

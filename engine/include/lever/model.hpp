@@ -262,7 +262,15 @@ struct Options {
   Eigen::Vector3d magnetic{0.0, -0.5, 0.0};
   /// <flag sensornoise="enable"> (MuJoCo's mjENBL_SENSORNOISE): add each sensor's noise
   bool sensornoise = false;
+  // the medium the bodies move in: MuJoCo 2.2.2's passive fluid forces, each body replaced by the
+  // box of its inertia (smooth/fluid.cpp); none while viscosity and density are both 0
+  double viscosity = 0.0;                  ///< Pa s: Stokes drag on the box's mean-diameter sphere
+  double density = 0.0;                    ///< kg/m^3: quadratic drag on the box's faces
+  Eigen::Vector3d wind{0.0, 0.0, 0.0};     ///< m/s, world frame: the medium's own velocity
 };
+
+/// Whether the model's bodies feel MuJoCo 2.2.2's fluid forces (opt.viscosity or opt.density > 0).
+inline bool has_fluid(const Options& opt) { return opt.viscosity > 0 || opt.density > 0; }
 
 /// Compiler settings that stay meaningful after compilation (read by `lever check`).
 struct CompilerInfo {
@@ -311,6 +319,10 @@ struct Model {
   int neq = 0;        ///< equality constraints (<equality>)
   int nmocap = 0;     ///< mocap bodies: children of the world without joints, placed by Data's
                       ///< mocap_pos and mocap_quat (MJCF's <body mocap="true">)
+  // user data: numbers per object that the engine never reads (MJCF's `user`), each kind's rows
+  // padded with zeros to its width (<size nuser_*>, else the longest list of the kind)
+  int nuser_body = 0, nuser_jnt = 0, nuser_geom = 0, nuser_site = 0, nuser_actuator = 0,
+      nuser_sensor = 0;
   int nconmax = 100;  ///< most contacts a Data holds (<size nconmax>; MuJoCo 2.2.2's default)
   int njmax = 500;    ///< most constraint rows a Data holds (<size njmax>)
 
@@ -472,6 +484,9 @@ struct Model {
                                       ///< sensors: to cutoff)
   std::vector<double> sensor_noise;   ///< standard deviation of the noise added when
                                       ///< opt.sensornoise is on
+
+  // ---- user data: (nbody x nuser_body), (njnt x nuser_jnt), ... MuJoCo's *_user arrays -------
+  RowMatrix body_user, jnt_user, geom_user, site_user, actuator_user, sensor_user;
 
   // ---- keyframes (nkey): named states to start from (<keyframe><key>) --------------------------
   std::vector<std::string> key_name;

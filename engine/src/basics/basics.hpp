@@ -18,6 +18,9 @@ namespace detail {
 /// vector has no direction and a quaternion is reset.
 inline constexpr double kMinVal = 1e-15;
 
+/// MuJoCo's mjPI.
+inline constexpr double kPi = 3.14159265358979323846;
+
 /// q (4 numbers) normalized in place, or the identity when its length is below kMinVal (MuJoCo's
 /// mju_normalize4, which scales even a unit quaternion by 1 / |q|: so does this).
 inline void normalize_quat(double* q) {

@@ -403,6 +403,17 @@ void check_options_actuators_keys(const Model& model) {
                      std::to_string(model.opt.timestep) + ".");
   }
   if (!model.opt.gravity.allFinite()) throw ModelError("gravity must be finite.");
+  // MuJoCo 2.2.2 takes a negative viscosity or density as written: a medium that pushes
+  if (!(model.opt.viscosity >= 0) || !std::isfinite(model.opt.viscosity) ||
+      !(model.opt.density >= 0) || !std::isfinite(model.opt.density) ||
+      !model.opt.wind.allFinite()) {
+    throw ModelError("the medium's viscosity and density must be finite and not negative, and "
+                     "the wind finite.");
+  }
+  if (has_fluid(model.opt) && model.opt.integrator == Integrator::kImplicitFast) {
+    throw ModelError("fluid forces (viscosity, density) with MuJoCo 3's implicitfast integrator: "
+                     "lever has them with Euler, RK4 and MuJoCo 2.2.2's implicit only.");
+  }
   for (int a = 0; a < model.nu; ++a) {
     const int gaintype = static_cast<int>(model.actuator_gaintype[a]);
     const int biastype = static_cast<int>(model.actuator_biastype[a]);

@@ -26,6 +26,21 @@ constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = S
 constexpr bool mujoco = true, own = false;
 }  // namespace token
 
+// The size that counts an array's columns when its table row gives no number: -1, its rows'
+// (M, nv x nv); a counted_cols width, that width's.
+constexpr Size cols_size_of(int cols, Size rows) {
+  switch (cols) {
+    case -1: return rows;
+    case counted_cols::nuser_body: return Size::kNuserBody;
+    case counted_cols::nuser_jnt: return Size::kNuserJnt;
+    case counted_cols::nuser_geom: return Size::kNuserGeom;
+    case counted_cols::nuser_site: return Size::kNuserSite;
+    case counted_cols::nuser_actuator: return Size::kNuserActuator;
+    case counted_cols::nuser_sensor: return Size::kNuserSensor;
+    default: return Size::kOne;
+  }
+}
+
 template <class T>
 constexpr Scalar scalar_of() {
   if constexpr (std::is_same_v<T, double>) return Scalar::kDouble;
@@ -59,6 +74,18 @@ struct Layout<Eigen::MatrixXd> {  // square (M): its storage order does not matt
   static void* data(const Eigen::MatrixXd& m) { return const_cast<double*>(m.data()); }
   static long entries(const Eigen::MatrixXd& m) { return m.size(); }
   static void resize(Eigen::MatrixXd& m, int rows, int cols) { m.setZero(rows, cols); }
+};
+
+template <>
+struct Layout<RowMatrix> {  // rows x a counted width (the user data)
+  using element = double;
+  static constexpr int per_entry = 1;
+  static void* data(const RowMatrix& m) { return const_cast<double*>(m.data()); }
+  static long entries(const RowMatrix& m) { return m.size(); }
+  static void resize(RowMatrix& m, int rows, int cols) { m.setZero(rows, cols); }
+  static void resize_keeping(RowMatrix& m, int rows, int cols) {
+    m.conservativeResizeLike(RowMatrix::Zero(rows, cols));
+  }
 };
 
 template <size_t N>
@@ -157,7 +184,10 @@ struct ContactMember<std::array<T, N>> {
 LEVER_CONTACT_FIELDS(LEVER_CHECK_CONTACT_ROW)
 #undef LEVER_CHECK_CONTACT_ROW
 
-int resolve_cols(int cols, int rows) { return cols < 0 ? rows : cols; }
+// An array's columns in this model: its table's number, else what cols_size_of counts.
+int resolve_cols(const Model& model, int cols, Size rows) {
+  return cols < 0 ? size_of(model, cols_size_of(cols, rows)) : cols;
+}
 
 // The rows an array is stored with: efc arrays hold the most rows the model can have.
 int storage_rows(const Model& model, Size size) { return size_of(model, size); }
@@ -171,7 +201,8 @@ std::string shape_text(long elements) { return std::to_string(elements) + " numb
 const std::vector<FieldInfo>& model_field_table() {
   static const std::vector<FieldInfo> table = {
 #define LEVER_MODEL_ROW(name, type, rows, cols, origin) \
-  {#name, scalar_of<type>(), token::rows, cols, Stage::kState, token::origin},
+  {#name, scalar_of<type>(), token::rows, cols, Stage::kState, token::origin, \
+   cols_size_of(cols, token::rows)},
       LEVER_MODEL_FIELDS(LEVER_MODEL_ROW)
 #undef LEVER_MODEL_ROW
   };
@@ -181,7 +212,8 @@ const std::vector<FieldInfo>& model_field_table() {
 const std::vector<FieldInfo>& data_field_table() {
   static const std::vector<FieldInfo> table = {
 #define LEVER_DATA_ROW(name, type, rows, cols, stage, origin) \
-  {#name, scalar_of<type>(), token::rows, cols, token::stage, token::origin},
+  {#name, scalar_of<type>(), token::rows, cols, token::stage, token::origin, \
+   cols_size_of(cols, token::rows)},
       LEVER_DATA_FIELDS(LEVER_DATA_ROW)
 #undef LEVER_DATA_ROW
   };
@@ -237,6 +269,12 @@ int size_of(const Model& model, Size size) {
     case Size::kNsensordata: return model.nsensordata;
     case Size::kNeq: return model.neq;
     case Size::kNmocap: return model.nmocap;
+    case Size::kNuserBody: return model.nuser_body;
+    case Size::kNuserJnt: return model.nuser_jnt;
+    case Size::kNuserGeom: return model.nuser_geom;
+    case Size::kNuserSite: return model.nuser_site;
+    case Size::kNuserActuator: return model.nuser_actuator;
+    case Size::kNuserSensor: return model.nuser_sensor;
   }
   return 0;
 }
@@ -246,10 +284,11 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 18> names = {
-      "1",     "nq",    "nv",       "nu",    "nbody",     "njnt",       "ngeom",   "nsite",
-      "nefc",  "npair", "nexclude", "nmesh", "nmeshvert", "nmeshgraph", "nsensor", "nsensordata",
-      "neq",   "nmocap"};
+  static constexpr std::array<const char*, 24> names = {
+      "1",          "nq",          "nv",           "nu",          "nbody",          "njnt",
+      "ngeom",      "nsite",       "nefc",         "npair",       "nexclude",       "nmesh",
+      "nmeshvert",  "nmeshgraph",  "nsensor",      "nsensordata", "neq",            "nmocap",
+      "nuser_body", "nuser_jnt",   "nuser_geom",   "nuser_site",  "nuser_actuator", "nuser_sensor"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -275,7 +314,8 @@ std::vector<FieldView> model_fields(const Model& model) {
   {                                                                                                \
     const int n = size_of(model, token::rows);                                                     \
     views.push_back(                                                                               \
-        {&table[k++], Layout<decltype(Model::name)>::data(model.name), n, resolve_cols(cols, n)}); \
+        {&table[k++], Layout<decltype(Model::name)>::data(model.name), n,                      \
+         resolve_cols(model, cols, token::rows)});                                             \
   }
   LEVER_MODEL_FIELDS(LEVER_MODEL_VIEW)
 #undef LEVER_MODEL_VIEW
@@ -295,7 +335,7 @@ std::vector<FieldView> data_fields(const Model& model, const Data& data) {
   {                                                                                 \
     const int n = size_of(model, data, token::rows);                                \
     views.push_back({&table[k++], Layout<decltype(Data::name)>::data(data.name), n, \
-                     resolve_cols(cols, size_of(model, token::rows))});             \
+                     resolve_cols(model, cols, token::rows)});                     \
   }
   LEVER_DATA_FIELDS(LEVER_DATA_VIEW)
 #undef LEVER_DATA_VIEW
@@ -334,7 +374,7 @@ void size_data_arrays(const Model& model, Data& data) {
 #define LEVER_DATA_SIZE(name, type, rows, cols, stage, origin)                 \
   {                                                                            \
     const int n = storage_rows(model, token::rows);                            \
-    Layout<decltype(Data::name)>::resize(data.name, n, resolve_cols(cols, n)); \
+    Layout<decltype(Data::name)>::resize(data.name, n, resolve_cols(model, cols, token::rows)); \
   }
   LEVER_DATA_FIELDS(LEVER_DATA_SIZE)
 #undef LEVER_DATA_SIZE
@@ -358,7 +398,7 @@ void check_model_sizes(const Model& model) {
 #define LEVER_MODEL_SIZE(name, type, rows, cols, origin)                                       \
   if (!computed_by_set_const(#name)) {                                                         \
     const int n = size_of(model, token::rows);                                                 \
-    const long expected = static_cast<long>(n) * resolve_cols(cols, n);                        \
+    const long expected = static_cast<long>(n) * resolve_cols(model, cols, token::rows);       \
     const long actual = Layout<decltype(Model::name)>::entries(model.name);                    \
     if (actual != expected) {                                                                  \
       throw ModelError("Model::" #name " holds " + shape_text(actual) +                        \
@@ -376,7 +416,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 17> counts = {{{"nmesh", model.nmesh},
+  const std::array<std::pair<const char*, int>, 23> counts = {{{"nmesh", model.nmesh},
                                                                {"nmeshvert", model.nmeshvert},
                                                                {"nmeshgraph", model.nmeshgraph},
                                                                {"nq", model.nq},
@@ -392,7 +432,13 @@ void size_model(Model& model) {
                                                                {"nsensor", model.nsensor},
                                                                {"nsensordata", model.nsensordata},
                                                                {"neq", model.neq},
-                                                               {"nmocap", model.nmocap}}};
+                                                               {"nmocap", model.nmocap},
+                                                               {"nuser_body", model.nuser_body},
+                                                               {"nuser_jnt", model.nuser_jnt},
+                                                               {"nuser_geom", model.nuser_geom},
+                                                               {"nuser_site", model.nuser_site},
+                                                               {"nuser_actuator", model.nuser_actuator},
+                                                               {"nuser_sensor", model.nuser_sensor}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +
@@ -406,7 +452,8 @@ void size_model(Model& model) {
 #define LEVER_MODEL_SIZE_ARRAY(name, type, rows, cols, origin)                           \
   {                                                                                      \
     const int n = size_of(model, token::rows);                                           \
-    Layout<decltype(Model::name)>::resize_keeping(model.name, n, resolve_cols(cols, n)); \
+    Layout<decltype(Model::name)>::resize_keeping(model.name, n,                          \
+                                                  resolve_cols(model, cols, token::rows)); \
   }
   LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE_ARRAY)
 #undef LEVER_MODEL_SIZE_ARRAY
@@ -437,7 +484,7 @@ void check_fit(const Model& model, const Data& data, const char* where) {
 #define LEVER_DATA_FIT(name, type, rows, cols, stage, origin)                                \
   {                                                                                          \
     const int n = storage_rows(model, token::rows);                                          \
-    const long expected = static_cast<long>(n) * resolve_cols(cols, n);                      \
+    const long expected = static_cast<long>(n) * resolve_cols(model, cols, token::rows);     \
     const long actual = Layout<decltype(Data::name)>::entries(data.name);                    \
     if (actual != expected) {                                                                \
       throw StateError(std::string(where) + ": data." #name " holds " + shape_text(actual) + \

@@ -7,7 +7,8 @@
 //   actuators: each affine bias contributes biasprm[2], each affine gain gainprm[2] * ctrl, times
 //              gear^2 on its dof; the raw ctrl is used and the ctrl and force clamps are ignored
 //              (so a clamped servo still damps implicitly, exactly as in MuJoCo);
-//   passive:   -damping on the diagonal (joint springs do not depend on qvel);
+//   passive:   -damping on the diagonal (joint springs do not depend on qvel), and the fluid's
+//              drag as mjd_inertiaBoxFluid takes it (smooth/fluid.cpp);
 //   bias:      -d qfrc_bias / d qvel: the Coriolis and centrifugal terms, Carpentier and Mansard's
 //              d rnea / d qd (derivatives/inverse_dynamics.cpp; gravity and qacc do not depend on qvel).
 // The constraint force is taken from the forward solve and held fixed, as MuJoCo does.
@@ -47,6 +48,7 @@ void smooth_velocity_derivative(const Model& model, Data& data,
   qDeriv = -qDeriv;
 
   add_actuator_damping_velocity_terms(model, data, qDeriv);
+  if (has_fluid(model.opt)) detail::add_fluid_velocity_terms(model, data, qDeriv);
 }
 
 void add_actuator_damping_velocity_terms(const Model& model, const Data& data,

@@ -40,6 +40,20 @@ void actuation(const Model& model, Data& data);
 }  // namespace unchecked
 
 namespace detail {
+// ---- the fluid forces (fluid.cpp): MuJoCo 2.2.2's inertia-box model, on when has_fluid(opt)
+
+/// Every body's spatial velocity cvel from qvel (MuJoCo's mj_comVel without cdof_dot): the
+/// passive stage needs it before bias() computes it again with the rest.
+void body_velocities(const Model& model, Data& data);
+
+/// qfrc_passive += each body's drag in the medium (viscosity, density, wind); writes cvel.
+void add_fluid_forces(const Model& model, Data& data);
+
+/// D += d (fluid forces) / d qvel as MuJoCo 2.2.2's implicit step takes it (mjd_inertiaBoxFluid),
+/// at data.cvel (after forward()).
+void add_fluid_velocity_terms(const Model& model, const Data& data,
+                              Eigen::Ref<Eigen::MatrixXd> D);
+
 // ---- the lean step pipeline: forward() without the outputs nothing in a step reads
 // (xquat, and the geom frames when nothing can collide). After step() they are those of the last
 // forward() or kinematics(); everything else is forward()'s to the bit

@@ -634,6 +634,14 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   data.time = time0;
 }
 
+// The fluid forces depend on the pose and the velocity in ways the chain rule above leaves out.
+void refuse_fluid(const Model& model) {
+  if (has_fluid(model.opt)) {
+    throw ModelError("derivatives: the model has fluid forces (option viscosity or density); "
+                     "lever's analytic derivatives do not cover them yet.");
+  }
+}
+
 }  // namespace
 
 Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
@@ -704,6 +712,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_derivative_sizes(model, data, deriv);
+  refuse_fluid(model);
   forward_derivatives_unchecked(model, data, deriv);
 }
 
@@ -720,6 +729,7 @@ void applied_force_derivatives(const Model& model, const Data& data, Derivatives
 
 void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_derivative_sizes(model, data, deriv);
+  refuse_fluid(model);
   // forward() normalizes the quaternions of qpos in place; the caller's state is given back as it
   // was, bit for bit (RK4 restores its start itself)
   const bool quaternions = model.nq != model.nv;
