@@ -89,6 +89,7 @@ std::string row_name(const Model& model, Size rows, int i) {
       }
       break;
     case Size::kNeq: return name_or_index(model.eq_name, i);
+    case Size::kNtendon: return name_or_index(model.tendon_name, i);
     case Size::kOne:
     case Size::kNefc:
     case Size::kNpair:  // pairs and exclusions have no names in lever: their index
@@ -97,6 +98,7 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kNmeshvert:
     case Size::kNmeshgraph: break;
     case Size::kNmocap: break;
+    case Size::kNwrap: break;  // a path's objects: by index
   }
   return std::to_string(i);
 }

@@ -72,7 +72,7 @@ void check_version(const py::dict& state, const char* what) {
 // The counts that size a model (size_model reads them) and the capacities of its Data.
 #define LEVER_PYTHON_MODEL_COUNTS(X) \
   X(nq) X(nv) X(nu) X(nbody) X(njnt) X(ngeom) X(nsite) X(nkey) X(npair) X(nexclude) X(nconmax) X(njmax) \
-  X(nmesh) X(nmeshvert) X(nmeshgraph) X(nsensor) X(nsensordata) X(neq) X(nmocap)
+  X(nmesh) X(nmeshvert) X(nmeshgraph) X(nsensor) X(nsensordata) X(neq) X(nmocap) X(ntendon) X(nwrap)
 
 // a keyframe array (nkey x n, row-major) as bytes, and back
 py::bytes matrix_bytes(const lever::RowMatrix& a) {

@@ -128,11 +128,13 @@ class WasmModel {
     if (what == "nmesh") return model_.nmesh;
     if (what == "neq") return model_.neq;
     if (what == "nmocap") return model_.nmocap;
+    if (what == "ntendon") return model_.ntendon;
+    if (what == "nwrap") return model_.nwrap;
     if (what == "nkey") return model_.nkey;
     return -1;
   }
 
-  /// kind: "body", "jnt", "geom", "site", "actuator", "eq", "key"
+  /// kind: "body", "jnt", "geom", "site", "actuator", "eq", "tendon", "key"
   std::vector<std::string> names(const std::string& kind) const {
     if (kind == "body") return model_.body_name;
     if (kind == "jnt") return model_.jnt_name;
@@ -140,6 +142,7 @@ class WasmModel {
     if (kind == "site") return model_.site_name;
     if (kind == "actuator") return model_.actuator_name;
     if (kind == "eq") return model_.eq_name;
+    if (kind == "tendon") return model_.tendon_name;
     if (kind == "key") return model_.key_name;
     return {};
   }

@@ -7,8 +7,8 @@
 //
 // Every listed array is contiguous and row-major: it is an (rows, cols) array of doubles, ints or
 // bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, nbody, njnt, ngeom,
-// nsite, npair, nexclude, neq, nmocap, nefc: the live constraint rows of a Data; `one` for a single row);
-// `cols` is a number. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of
+// nsite, npair, nexclude, neq, nmocap, ntendon, nwrap, nefc: the live constraint rows of a Data;
+// `one` for a single row); `cols` is a number, or -1 for nv. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of
 // the same name, shape and meaning (`mujoco`) or not (`own`: lever's own, or laid out differently
 // from MuJoCo's).
 //
@@ -95,6 +95,7 @@
   X(site_pos, double, nsite, 3, mujoco)                      \
   X(site_quat, double, nsite, 4, mujoco)                     \
   X(site_type, int, nsite, 1, mujoco)                        \
+  X(actuator_trntype, int, nu, 1, mujoco)                    \
   X(actuator_trnid, int, nu, 1, own) /* (nu, 2) in MuJoCo */ \
   X(actuator_dyntype, int, nu, 1, mujoco)                    \
   X(actuator_gaintype, int, nu, 1, mujoco)                   \
@@ -108,7 +109,30 @@
   X(actuator_forcerange, double, nu, 2, mujoco)              \
   LEVER_MODEL_CONTACT_FIELDS(X)                              \
   LEVER_MODEL_SENSOR_FIELDS(X)                               \
-  LEVER_MODEL_EQUALITY_FIELDS(X)
+  LEVER_MODEL_EQUALITY_FIELDS(X)                             \
+  LEVER_MODEL_TENDON_FIELDS(X)
+
+// tendons and the objects of their paths
+#define LEVER_MODEL_TENDON_FIELDS(X)                 \
+  X(tendon_adr, int, ntendon, 1, mujoco)             \
+  X(tendon_num, int, ntendon, 1, mujoco)             \
+  X(tendon_limited, uint8_t, ntendon, 1, mujoco)     \
+  X(tendon_width, double, ntendon, 1, mujoco)        \
+  X(tendon_solref_lim, double, ntendon, 2, mujoco)   \
+  X(tendon_solimp_lim, double, ntendon, 5, mujoco)   \
+  X(tendon_solref_fri, double, ntendon, 2, mujoco)   \
+  X(tendon_solimp_fri, double, ntendon, 5, mujoco)   \
+  X(tendon_range, double, ntendon, 2, mujoco)        \
+  X(tendon_margin, double, ntendon, 1, mujoco)       \
+  X(tendon_stiffness, double, ntendon, 1, mujoco)    \
+  X(tendon_damping, double, ntendon, 1, mujoco)      \
+  X(tendon_frictionloss, double, ntendon, 1, mujoco) \
+  X(tendon_lengthspring, double, ntendon, 1, mujoco) \
+  X(tendon_length0, double, ntendon, 1, mujoco)      \
+  X(tendon_invweight0, double, ntendon, 1, mujoco)   \
+  X(wrap_type, int, nwrap, 1, mujoco)                \
+  X(wrap_objid, int, nwrap, 1, mujoco)               \
+  X(wrap_prm, double, nwrap, 1, mujoco)
 
 // sensors: what each one measures, on which object, and where its numbers go
 #define LEVER_MODEL_SENSOR_FIELDS(X)              \
@@ -176,6 +200,7 @@
   X(actuator_name, nu)       \
   X(sensor_name, nsensor)    \
   X(eq_name, neq)            \
+  X(tendon_name, ntendon)    \
   X(key_name, nkey)
 
 // The Model arrays set_const computes from the others (MuJoCo's mj_setConst's constants). It sizes
@@ -183,7 +208,8 @@
 // whoever builds the model (lever::mjcf's compiler, or by hand), and checked by validate()
 // (lever/model_check.hpp).
 #define LEVER_MODEL_CONSTANTS(X) \
-  X(body_subtreemass) X(body_invweight0) X(body_simple) X(dof_invweight0) X(dof_M0) X(dof_simplenum)
+  X(body_subtreemass) X(body_invweight0) X(body_simple) X(dof_invweight0) X(dof_M0) X(dof_simplenum) \
+  X(tendon_length0) X(tendon_invweight0)
 
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
 // or `inverse` (written by inverse() only) or `energy` (by compute_energy() only)
@@ -210,7 +236,10 @@
   X(cdof, double, nv, 6, position, mujoco)                     \
   X(M, double, nv, -1, position, own) /* MuJoCo: qM, sparse */ \
   X(qLDiagInv, double, nv, 1, position, mujoco)                \
+  X(ten_length, double, ntendon, 1, position, mujoco)          \
+  X(ten_J, double, ntendon, -1, position, mujoco)              \
   X(actuator_length, double, nu, 1, position, mujoco)          \
+  X(actuator_moment, double, nu, -1, position, mujoco)         \
   X(efc_type, int, nefc, 1, position, mujoco)                  \
   X(efc_id, int, nefc, 1, position, mujoco)                    \
   X(efc_pos, double, nefc, 1, position, mujoco)                \
@@ -227,6 +256,7 @@
   X(cvel, double, nbody, 6, velocity, mujoco)                  \
   X(cdof_dot, double, nv, 6, velocity, mujoco)                 \
   X(actuator_velocity, double, nu, 1, velocity, mujoco)        \
+  X(ten_velocity, double, ntendon, 1, velocity, mujoco)        \
   X(qfrc_passive, double, nv, 1, velocity, mujoco)             \
   X(qfrc_bias, double, nv, 1, velocity, mujoco)                \
   X(efc_vel, double, nefc, 1, velocity, mujoco)                \
@@ -276,7 +306,10 @@ enum class Size : int {
   kNsensordata,  ///< the sensors' numbers together (data.sensordata)
   // equality constraints
   kNeq,       ///< equality constraints (<equality>)
-  kNmocap     ///< mocap bodies (<body mocap="true">)
+  kNmocap,    ///< mocap bodies (<body mocap="true">)
+  // tendons
+  kNtendon,  ///< tendons (<tendon>)
+  kNwrap     ///< objects in the tendons' paths
 };
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;
@@ -288,7 +321,7 @@ struct FieldInfo {
   const char* name;
   Scalar scalar;
   Size rows;
-  int cols;        ///< -1: as many as rows counts (M is nv x nv)
+  int cols;        ///< -1: nv (M is nv x nv, ten_J ntendon x nv, actuator_moment nu x nv)
   Stage stage;     ///< Data arrays only
   bool in_mujoco;  ///< MuJoCo 2.2.2 has an array of this name, shape and meaning
 };

@@ -19,7 +19,8 @@ constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude,
                nmesh = Size::kNmesh, nmeshvert = Size::kNmeshvert, nmeshgraph = Size::kNmeshgraph,
                nsensor = Size::kNsensor, nsensordata = Size::kNsensordata,
-               neq = Size::kNeq, nmocap = Size::kNmocap;
+               neq = Size::kNeq, nmocap = Size::kNmocap, ntendon = Size::kNtendon,
+               nwrap = Size::kNwrap;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy;
@@ -59,6 +60,15 @@ struct Layout<Eigen::MatrixXd> {  // square (M): its storage order does not matt
   static void* data(const Eigen::MatrixXd& m) { return const_cast<double*>(m.data()); }
   static long entries(const Eigen::MatrixXd& m) { return m.size(); }
   static void resize(Eigen::MatrixXd& m, int rows, int cols) { m.setZero(rows, cols); }
+};
+
+template <>
+struct Layout<RowMatrix> {  // rows x nv (ten_J, actuator_moment), row-major as MuJoCo's
+  using element = double;
+  static constexpr int per_entry = 1;
+  static void* data(const RowMatrix& m) { return const_cast<double*>(m.data()); }
+  static long entries(const RowMatrix& m) { return m.size(); }
+  static void resize(RowMatrix& m, int rows, int cols) { m.setZero(rows, cols); }
 };
 
 template <size_t N>
@@ -157,7 +167,8 @@ struct ContactMember<std::array<T, N>> {
 LEVER_CONTACT_FIELDS(LEVER_CHECK_CONTACT_ROW)
 #undef LEVER_CHECK_CONTACT_ROW
 
-int resolve_cols(int cols, int rows) { return cols < 0 ? rows : cols; }
+// -1 in the table: nv columns
+int resolve_cols(int cols, const Model& model) { return cols < 0 ? model.nv : cols; }
 
 // The rows an array is stored with: efc arrays hold the most rows the model can have.
 int storage_rows(const Model& model, Size size) { return size_of(model, size); }
@@ -214,6 +225,9 @@ int constraint_rows_max(const Model& model) {
                                                        : 1;
   }
   for (const double loss : model.dof_frictionloss) rows += loss > 0;
+  // a tendon's friction-loss row, and its two stops (a tendon's range may be edited)
+  for (const double loss : model.tendon_frictionloss) rows += loss > 0;
+  rows += 2 * static_cast<int>(model.tendon_limited.size());
   return rows + 2 * model.njnt + (model.contacts_possible ? std::max(0, model.njmax) : 0);
 }
 
@@ -237,6 +251,8 @@ int size_of(const Model& model, Size size) {
     case Size::kNsensordata: return model.nsensordata;
     case Size::kNeq: return model.neq;
     case Size::kNmocap: return model.nmocap;
+    case Size::kNtendon: return model.ntendon;
+    case Size::kNwrap: return model.nwrap;
   }
   return 0;
 }
@@ -246,10 +262,10 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 18> names = {
+  static constexpr std::array<const char*, 20> names = {
       "1",     "nq",    "nv",       "nu",    "nbody",     "njnt",       "ngeom",   "nsite",
       "nefc",  "npair", "nexclude", "nmesh", "nmeshvert", "nmeshgraph", "nsensor", "nsensordata",
-      "neq",   "nmocap"};
+      "neq",   "nmocap", "ntendon", "nwrap"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -275,7 +291,7 @@ std::vector<FieldView> model_fields(const Model& model) {
   {                                                                                                \
     const int n = size_of(model, token::rows);                                                     \
     views.push_back(                                                                               \
-        {&table[k++], Layout<decltype(Model::name)>::data(model.name), n, resolve_cols(cols, n)}); \
+        {&table[k++], Layout<decltype(Model::name)>::data(model.name), n, resolve_cols(cols, model)}); \
   }
   LEVER_MODEL_FIELDS(LEVER_MODEL_VIEW)
 #undef LEVER_MODEL_VIEW
@@ -295,7 +311,7 @@ std::vector<FieldView> data_fields(const Model& model, const Data& data) {
   {                                                                                 \
     const int n = size_of(model, data, token::rows);                                \
     views.push_back({&table[k++], Layout<decltype(Data::name)>::data(data.name), n, \
-                     resolve_cols(cols, size_of(model, token::rows))});             \
+                     resolve_cols(cols, model)});             \
   }
   LEVER_DATA_FIELDS(LEVER_DATA_VIEW)
 #undef LEVER_DATA_VIEW
@@ -334,7 +350,7 @@ void size_data_arrays(const Model& model, Data& data) {
 #define LEVER_DATA_SIZE(name, type, rows, cols, stage, origin)                 \
   {                                                                            \
     const int n = storage_rows(model, token::rows);                            \
-    Layout<decltype(Data::name)>::resize(data.name, n, resolve_cols(cols, n)); \
+    Layout<decltype(Data::name)>::resize(data.name, n, resolve_cols(cols, model)); \
   }
   LEVER_DATA_FIELDS(LEVER_DATA_SIZE)
 #undef LEVER_DATA_SIZE
@@ -358,7 +374,7 @@ void check_model_sizes(const Model& model) {
 #define LEVER_MODEL_SIZE(name, type, rows, cols, origin)                                       \
   if (!computed_by_set_const(#name)) {                                                         \
     const int n = size_of(model, token::rows);                                                 \
-    const long expected = static_cast<long>(n) * resolve_cols(cols, n);                        \
+    const long expected = static_cast<long>(n) * resolve_cols(cols, model);                        \
     const long actual = Layout<decltype(Model::name)>::entries(model.name);                    \
     if (actual != expected) {                                                                  \
       throw ModelError("Model::" #name " holds " + shape_text(actual) +                        \
@@ -376,7 +392,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 17> counts = {{{"nmesh", model.nmesh},
+  const std::array<std::pair<const char*, int>, 19> counts = {{{"nmesh", model.nmesh},
                                                                {"nmeshvert", model.nmeshvert},
                                                                {"nmeshgraph", model.nmeshgraph},
                                                                {"nq", model.nq},
@@ -392,7 +408,9 @@ void size_model(Model& model) {
                                                                {"nsensor", model.nsensor},
                                                                {"nsensordata", model.nsensordata},
                                                                {"neq", model.neq},
-                                                               {"nmocap", model.nmocap}}};
+                                                               {"nmocap", model.nmocap},
+                                                               {"ntendon", model.ntendon},
+                                                               {"nwrap", model.nwrap}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +
@@ -406,7 +424,7 @@ void size_model(Model& model) {
 #define LEVER_MODEL_SIZE_ARRAY(name, type, rows, cols, origin)                           \
   {                                                                                      \
     const int n = size_of(model, token::rows);                                           \
-    Layout<decltype(Model::name)>::resize_keeping(model.name, n, resolve_cols(cols, n)); \
+    Layout<decltype(Model::name)>::resize_keeping(model.name, n, resolve_cols(cols, model)); \
   }
   LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE_ARRAY)
 #undef LEVER_MODEL_SIZE_ARRAY
@@ -437,7 +455,7 @@ void check_fit(const Model& model, const Data& data, const char* where) {
 #define LEVER_DATA_FIT(name, type, rows, cols, stage, origin)                                \
   {                                                                                          \
     const int n = storage_rows(model, token::rows);                                          \
-    const long expected = static_cast<long>(n) * resolve_cols(cols, n);                      \
+    const long expected = static_cast<long>(n) * resolve_cols(cols, model);                      \
     const long actual = Layout<decltype(Data::name)>::entries(data.name);                    \
     if (actual != expected) {                                                                \
       throw StateError(std::string(where) + ": data." #name " holds " + shape_text(actual) + \

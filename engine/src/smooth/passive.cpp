@@ -1,4 +1,5 @@
-// Passive joint forces: springs about springref and viscous damping (MuJoCo's mj_passive).
+// Passive joint forces: springs about springref and viscous damping (MuJoCo's mj_passive); the
+// tendons' spring-dampers (tendon.cpp).
 #include <lever/dynamics.hpp>
 
 #include "basics/basics.hpp"
@@ -41,6 +42,7 @@ void unchecked::passive(const Model& model, Data& data) {
   const double* const damping = model.dof_damping.data();
   const double* const qvel = data.qvel.data();
   for (int i = 0; i < model.nv; ++i) qfrc[i] -= damping[i] * qvel[i];
+  add_tendon_passive(model, data);
 }
 
 void passive(const Model& model, Data& data) {
