@@ -110,3 +110,52 @@ TEST_CASE("diff: fixed tendons in lockstep and free runs", "[diff][tendons]") {
 }
 
 }  // namespace lever::test
+
+namespace lever::test {
+
+namespace {
+
+// The real files whose tendons couple fingers (the Panda's and the 2F-85's split, the Shadow
+// hands' distal couplings). Contacts are disabled on both sides: their fingers' meshes touch at
+// rest in some poses, and what is compared here is the tendons, their actuators and rows.
+constexpr const char* kTendonRobotFiles[] = {
+    "menagerie-2022/franka_emika_panda/hand.xml",  "menagerie-2022/franka_emika_panda/panda.xml",
+    "menagerie-2022/franka_emika_panda/scene.xml", "menagerie-2022/robotiq_2f85/2f85.xml",
+    "menagerie-2022/shadow_hand/left_hand.xml",    "menagerie-2022/shadow_hand/right_hand.xml",
+    "menagerie-2022/shadow_hand/scene_left.xml",   "menagerie-2022/shadow_hand/scene_right.xml"};
+
+void without_contacts(diff::Twin& twin) {
+  twin.m->opt.disableflags |= mjDSBL_CONTACT;
+  twin.model.opt.contact_disabled = true;
+  set_const(twin.model);
+  twin.data = Data(twin.model);
+}
+
+}  // namespace
+
+TEST_CASE("diff: real files with tendons agree with MuJoCo", "[diff][tendons][robots]") {
+  REQUIRE(mj_version() == 222);
+  const std::string folder = robots_dir();
+  if (!std::filesystem::exists(folder)) {
+    WARN("no real model files at " << folder << ": skipped");
+    return;
+  }
+  for (const char* name : kTendonRobotFiles) {
+    const std::string file = folder + "/" + name;
+    for (const diff::Path path : paths_to_compare()) {
+      const std::uint64_t seed = diff::default_seed(file);
+      INFO(context(file, path, seed));
+      diff::Twin twin(file, path);
+      without_contacts(twin);
+      REQUIRE(twin.model.ntendon > 0);
+      const diff::Report report = diff::random_states(twin, 20, seed);
+      check_within_bound(report, all_but_inverse_at_forward(report));
+      require_tendon_quantities(report, 20);
+      // 1 s from the first keyframe (or qpos0), its controls held, each engine stepping from
+      // MuJoCo's state (lockstep), under the file's own integrator
+      check_within_bound(diff::lockstep(twin, twin.model.opt.integrator, 1.0, diff::Control::kKeep));
+    }
+  }
+}
+
+}  // namespace lever::test
