@@ -1113,7 +1113,7 @@ inline const BadInput kBadInputs[] = {
   <sensor>
     <tendonpos tendon="t"/>
   </sensor>
-</mujoco>)", 14, "tendonpos", "", "lever has no tendons", MuJoCo::kRejects, ""},
+</mujoco>)", 14, "tendonpos", "tendon", "the model has no tendon of that name", MuJoCo::kRejects, ""},
   {"sensor-user", R"(<mujoco>
   <worldbody>
     <body name="b">

@@ -126,7 +126,7 @@ constexpr bool is_servo(ActuatorKind kind) { return kind != ActuatorKind::kMotor
 
 // ---- sensors --------------------------------------------------------------------------------
 /// Sensor types; the numeric values are MuJoCo 2.2.2's mjtSensor. lever evaluates every type
-/// but the tendon sensors and user sensors (MuJoCo fills those from a callback), which the
+/// but user sensors (MuJoCo fills those from a callback), which the
 /// compiler and validate() refuse by name.
 enum class SensorType : int {
   kTouch = 0,
@@ -204,7 +204,7 @@ struct SensorLayout {
 };
 SensorLayout sensor_layout(SensorType type);
 
-/// Whether lever evaluates sensors of this type (every type but the tendon sensors and user
+/// Whether lever evaluates sensors of this type (every type but user
 /// sensors, which MuJoCo fills from a callback).
 bool sensor_type_supported(SensorType type);
 

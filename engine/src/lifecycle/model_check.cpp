@@ -528,6 +528,7 @@ bool sensor_object_exists(const Model& model, ObjectType type, int id) {
     case ObjectType::kSite: return id >= 0 && id < model.nsite;
     case ObjectType::kJoint: return id >= 0 && id < model.njnt;
     case ObjectType::kActuator: return id >= 0 && id < model.nu;
+    case ObjectType::kTendon: return id >= 0 && id < model.ntendon;
     default: return false;
   }
 }
