@@ -152,7 +152,9 @@ TEST_CASE("diff: real files with tendons agree with MuJoCo", "[diff][tendons][ro
       check_within_bound(report, all_but_inverse_at_forward(report));
       require_tendon_quantities(report, 20);
       // 1 s from the first keyframe (or qpos0), its controls held, each engine stepping from
-      // MuJoCo's state (lockstep), under the file's own integrator
+      // MuJoCo's state (lockstep), under the file's own integrator; a scene.xml adds only a floor
+      // and lights to a robot run already (contacts are off), so its run is left out (CI time)
+      if (std::string(name).find("scene") != std::string::npos) continue;
       check_within_bound(diff::lockstep(twin, twin.model.opt.integrator, 1.0, diff::Control::kKeep));
     }
   }
