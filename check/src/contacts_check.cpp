@@ -478,6 +478,7 @@ Grip grip(const Model& m, PairTable& table, std::vector<std::string>& strays) {
     if (free_joint_of(m, b) < 0) continue;
     std::vector<Finger> found;
     for (int a = 0; a < m.nu; ++a) {
+      if (m.actuator_trntype[a] != TransmissionType::kJoint) continue;
       const int j = m.actuator_trnid[a];
       if (!is_servo(m.actuator_kind[a]) || m.jnt_type[j] == JointType::kFree ||
           m.jnt_type[j] == JointType::kBall)

@@ -29,7 +29,10 @@ JointInfo joint_info(const Model& model, int j) {
 MotorInfo motor_info(const Model& model, int a) {
   MotorInfo info;
   info.name = motor_label(model, a);
-  info.joint = joint_label(model, model.actuator_trnid[a]);
+  const int id = model.actuator_trnid[a];
+  info.joint = model.actuator_trntype[a] == TransmissionType::kTendon
+                   ? label(model.tendon_name[id], "tendon", id)
+                   : joint_label(model, id);
   info.gear = model.actuator_gear[a][0];
   info.ctrlrange = model.actuator_ctrlrange[a];
   info.forcerange = model.actuator_forcerange[a];

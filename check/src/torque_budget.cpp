@@ -39,7 +39,9 @@ void motors_of_joint(const Model& model, int j, JointBudget& budget) {
   budget.torque_range = {0.0, 0.0};
   int servos = 0, last = -1;
   for (int a = 0; a < model.nu; ++a) {
-    if (model.actuator_trnid[a] != j) continue;
+    if (model.actuator_trntype[a] != TransmissionType::kJoint || model.actuator_trnid[a] != j) {
+      continue;  // a tendon actuator's force reaches its joints through the tendon's Jacobian
+    }
     const auto range = motor_torque_range(model, a);
     budget.motors.push_back(motor_label(model, a));
     budget.torque_range[0] += range[0];

@@ -104,8 +104,7 @@ void copy_sensors(const mjModel* m, Model& model) {
   }
 }
 
-// Equality constraints (connect, weld, joint couplings) and the dofs' friction loss. A tendon
-// coupling is refused by name: lever has no tendons.
+// Equality constraints (connect, weld, joint and tendon couplings) and the dofs' friction loss.
 void copy_constraints(const mjModel* m, Model& model) {
   if (m->opt.disableflags & (mjDSBL_EQUALITY | mjDSBL_FRICTIONLOSS | mjDSBL_LIMIT)) {
     throw std::runtime_error(
@@ -121,9 +120,10 @@ void copy_constraints(const mjModel* m, Model& model) {
       case mjEQ_CONNECT: model.eq_type[e] = EqualityType::kConnect; break;
       case mjEQ_WELD: model.eq_type[e] = EqualityType::kWeld; break;
       case mjEQ_JOINT: model.eq_type[e] = EqualityType::kJoint; break;
+      case mjEQ_TENDON: model.eq_type[e] = EqualityType::kTendon; break;
       default:
         throw std::runtime_error("from_mujoco: equality constraint " + std::to_string(e) +
-                                 " couples tendons; lever has no tendons");
+                                 " is a distance constraint; lever has none");
     }
     model.eq_name[e] = name_of(m, mjOBJ_EQUALITY, e);
     model.eq_obj1id[e] = m->eq_obj1id[e];
@@ -132,6 +132,34 @@ void copy_constraints(const mjModel* m, Model& model) {
     model.eq_solref[e] = {m->eq_solref[mjNREF * e], m->eq_solref[mjNREF * e + 1]};
     for (int k = 0; k < 5; ++k) model.eq_solimp[e][k] = m->eq_solimp[mjNIMP * e + k];
     for (int k = 0; k < mjNEQDATA; ++k) model.eq_data[e][k] = m->eq_data[mjNEQDATA * e + k];
+  }
+}
+
+// Tendons and their paths, as MuJoCo compiled them (validate() refuses the spatial ones).
+void copy_tendons(const mjModel* m, Model& model) {
+  for (int t = 0; t < m->ntendon; ++t) {
+    model.tendon_name[t] = name_of(m, mjOBJ_TENDON, t);
+    model.tendon_adr[t] = m->tendon_adr[t];
+    model.tendon_num[t] = m->tendon_num[t];
+    model.tendon_limited[t] = m->tendon_limited[t];
+    model.tendon_width[t] = m->tendon_width[t];
+    model.tendon_solref_lim[t] = {m->tendon_solref_lim[mjNREF * t], m->tendon_solref_lim[mjNREF * t + 1]};
+    model.tendon_solref_fri[t] = {m->tendon_solref_fri[mjNREF * t], m->tendon_solref_fri[mjNREF * t + 1]};
+    for (int k = 0; k < 5; ++k) {
+      model.tendon_solimp_lim[t][k] = m->tendon_solimp_lim[mjNIMP * t + k];
+      model.tendon_solimp_fri[t][k] = m->tendon_solimp_fri[mjNIMP * t + k];
+    }
+    model.tendon_range[t] = {m->tendon_range[2 * t], m->tendon_range[2 * t + 1]};
+    model.tendon_margin[t] = m->tendon_margin[t];
+    model.tendon_stiffness[t] = m->tendon_stiffness[t];
+    model.tendon_damping[t] = m->tendon_damping[t];
+    model.tendon_frictionloss[t] = m->tendon_frictionloss[t];
+    model.tendon_lengthspring[t] = m->tendon_lengthspring[t];
+  }
+  for (int w = 0; w < m->nwrap; ++w) {
+    model.wrap_type[w] = static_cast<WrapType>(m->wrap_type[w]);
+    model.wrap_objid[w] = m->wrap_objid[w];
+    model.wrap_prm[w] = m->wrap_prm[w];
   }
 }
 
@@ -207,6 +235,8 @@ Model from_mujoco(const mjModel* m) {
   model.nuser_site = m->nuser_site;
   model.nuser_actuator = m->nuser_actuator;
   model.nuser_sensor = m->nuser_sensor;
+  model.ntendon = m->ntendon;
+  model.nwrap = m->nwrap;
   size_model(model);
   // user data, row-major as MuJoCo's
   const auto copy_user = [](const mjtNum* from, RowMatrix& to) {
@@ -294,17 +324,22 @@ Model from_mujoco(const mjModel* m) {
     model.site_type[s] = static_cast<GeomType>(m->site_type[s]);
   }
   copy_sensors(m, model);
+  copy_tendons(m, model);
   for (int a = 0; a < m->nu; ++a) {
     const bool affine_or_fixed_gain =
         m->actuator_gaintype[a] == mjGAIN_FIXED || m->actuator_gaintype[a] == mjGAIN_AFFINE;
     const bool affine_or_no_bias =
         m->actuator_biastype[a] == mjBIAS_NONE || m->actuator_biastype[a] == mjBIAS_AFFINE;
-    if (m->actuator_trntype[a] != mjTRN_JOINT || m->actuator_dyntype[a] != mjDYN_NONE ||
-        !affine_or_fixed_gain || !affine_or_no_bias) {
+    const bool joint_or_tendon =
+        m->actuator_trntype[a] == mjTRN_JOINT || m->actuator_trntype[a] == mjTRN_TENDON;
+    if (!joint_or_tendon || m->actuator_dyntype[a] != mjDYN_NONE || !affine_or_fixed_gain ||
+        !affine_or_no_bias) {
       throw std::runtime_error(
-          "from_mujoco: only stateless joint actuators with affine gain and bias are supported");
+          "from_mujoco: only stateless joint and tendon actuators with affine gain and bias are "
+          "supported");
     }
     model.actuator_name[a] = name_of(m, mjOBJ_ACTUATOR, a);
+    model.actuator_trntype[a] = static_cast<TransmissionType>(m->actuator_trntype[a]);
     model.actuator_trnid[a] = m->actuator_trnid[2 * a];
     model.actuator_dyntype[a] = DynType::kNone;
     model.actuator_gaintype[a] = static_cast<GainType>(m->actuator_gaintype[a]);

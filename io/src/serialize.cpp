@@ -93,6 +93,7 @@ std::string row_name(const Model& model, Size rows, int i) {
       return model.sensor_name[s] + "[" + std::to_string(i - model.sensor_adr[s]) + "]";
     }
     case Size::kNeq: return name_or_index(model.eq_name, i);
+    case Size::kNtendon: return name_or_index(model.tendon_name, i);
     case Size::kOne:
     case Size::kNefc:
     case Size::kNpair:  // pairs and exclusions have no names in lever: their index
@@ -101,6 +102,7 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kNmeshvert:
     case Size::kNmeshgraph: break;
     case Size::kNmocap: break;
+    case Size::kNwrap: break;  // a path's objects: by index
   }
   return std::to_string(i);
 }

@@ -81,6 +81,8 @@ double excitation(const Model& model, double fraction, int a, const Data& data) 
 void apply(const Model& model, const Controller& controller, Data& data) {
   for (int a = 0; a < model.nu; ++a) {
     data.ctrl[a] = controller.torque[a];
+    // the compensation and the excitation are a joint's: a tendon actuator gets its torque only
+    if (model.actuator_trntype[a] != TransmissionType::kJoint) continue;
     if (controller.gravity_compensation) {
       const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
       data.ctrl[a] += ctrl_for_torque(model, a, data.qfrc_bias[dof]);

@@ -15,6 +15,7 @@
 #include <set>
 
 #include "equality.hpp"
+#include "tendon.hpp"
 #include "inertia.hpp"
 #include "mesh.hpp"
 #include "orientation.hpp"
@@ -73,6 +74,7 @@ std::string line_text(const Place& at) {
 struct CompiledMotor {
   const MotorSpec* spec;
   int joint = -1;
+  int tendon = -1;  ///< a tendon transmission's tendon (joint -1)
   bool ctrllimited = false, forcelimited = false;
   std::array<double, 2> ctrlrange{};  ///< as written, or from the joint's range (inheritrange)
 };
@@ -219,6 +221,10 @@ class Compiler {
     check_names();
     for (size_t id = 0; id < bodies_.size(); ++id) compile_body(static_cast<int>(id));
     compile_contact();
+    for (const TendonSpec& t : spec_.tendons) {
+      tendon_limited_.push_back(
+          resolve_limited(t.limited, t.range, c_.autolimits, t.at, "range", "limited"));
+    }
     for (const MotorSpec& m : spec_.motors) motors_.push_back(compile_motor(m));
     check_moving_bodies();
     for (const KeySpec& k : spec_.keys) check_key(k);
@@ -297,6 +303,9 @@ class Compiler {
     check_unique(geoms, "geom");
     check_unique(sites, "site");
     check_unique(motors, "motor");
+    std::vector<std::pair<const Place*, std::string>> tendons;
+    for (const TendonSpec& t : spec_.tendons) tendons.push_back({&t.at, t.at.name});
+    check_unique(tendons, "tendon");
     std::vector<std::pair<const Place*, std::string>> pairs, excludes;
     for (const PairSpec& p : spec_.pairs) pairs.push_back({&p.at, p.at.name});
     for (const ExcludeSpec& x : spec_.excludes) excludes.push_back({&x.at, x.at.name});
@@ -712,9 +721,39 @@ class Compiler {
 
   // ---- motors ---------------------------------------------------------------------------------
 
-  CompiledMotor compile_motor(const MotorSpec& m) {
+  // a tendon transmission: the tendon by name (MuJoCo 3's inheritrange needs a joint)
+  CompiledMotor compile_tendon_motor(const MotorSpec& m) {
     CompiledMotor out{&m};
-    if (m.joint.empty()) fail(m.at, "joint", "attribute 'joint' is empty: name the joint to drive");
+    if (!m.joint.empty()) {
+      fail(m.at, "tendon", "an actuator drives one joint or one tendon; this one names both");
+    }
+    std::vector<std::string_view> names;
+    for (size_t t = 0; t < spec_.tendons.size(); ++t) {
+      if (spec_.tendons[t].at.name == m.tendon) out.tendon = static_cast<int>(t);
+      names.push_back(spec_.tendons[t].at.name);
+    }
+    if (out.tendon < 0) {
+      fail(m.at, "tendon", "unknown tendon '" + m.tendon + "'" + did_you_mean(m.tendon, names));
+    }
+    if (m.inheritrange > 0) {
+      fail(m.at, "inheritrange", "inheritrange takes a joint's range; this actuator drives a tendon");
+    }
+    out.ctrlrange = m.ctrlrange;
+    out.forcelimited = resolve_limited(m.forcelimited, m.forcerange, c_.autolimits, m.at,
+                                       "forcerange", "forcelimited");
+    out.ctrllimited = resolve_limited(m.ctrllimited, out.ctrlrange, c_.autolimits, m.at,
+                                      "ctrlrange", "ctrllimited");
+    check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
+    check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, out.ctrlrange);
+    return out;
+  }
+
+  CompiledMotor compile_motor(const MotorSpec& m) {
+    if (!m.tendon.empty()) return compile_tendon_motor(m);
+    CompiledMotor out{&m};
+    if (m.joint.empty()) {
+      fail(m.at, "joint", "the actuator names no joint or tendon: name the joint (or tendon) to drive");
+    }
     std::vector<std::string_view> names;
     for (size_t j = 0; j < joints_.size(); ++j) {
       if (joints_[j].spec->at.name == m.joint) out.joint = static_cast<int>(j);
@@ -1044,6 +1083,7 @@ class Compiler {
   std::vector<CompiledJoint> joints_;
   std::vector<CompiledSite> sites_;
   std::vector<CompiledMotor> motors_;
+  std::vector<bool> tendon_limited_;  ///< each tendon's limited, resolved
   std::vector<int> weld_;            ///< per body: the body it moves with (0: fixed to the world)
   std::vector<CompiledPair> pairs_;  ///< sorted by signature
   std::vector<CompiledExclude> excludes_;  ///< sorted by signature
@@ -1080,6 +1120,8 @@ Model Compiler::assemble() const {
     m.nmeshgraph += static_cast<int>(mesh->graph.size());
   }
   m.neq = static_cast<int>(spec_.equalities.size());
+  m.ntendon = static_cast<int>(spec_.tendons.size());
+  m.nwrap = wrap_count(spec_.tendons);
   m.nmocap = nmocap_;
   const UserLists users = user_lists();
   m.nuser_body = user_width(UserKind::kBody, spec_.nuser, users.body);
@@ -1099,7 +1141,8 @@ Model Compiler::assemble() const {
   assemble_joints(m);
   assemble_geoms_and_sites(m);
   assemble_contact(m);
-  assemble_equalities(spec_.equalities, m);  // equality.cpp: after the bodies' and joints' names
+  assemble_tendons(spec_.tendons, tendon_limited_, m);  // tendon.cpp: after the joints' names
+  assemble_equalities(spec_.equalities, m);  // equality.cpp: after the bodies', joints', tendons'
   assemble_motors(m);
   assemble_keys(m);
   assemble_visual(m);
@@ -1310,7 +1353,8 @@ void Compiler::assemble_motors(Model& m) const {
     const CompiledMotor& c = motors_[a];
     const MotorSpec& s = *c.spec;
     m.actuator_name[a] = s.at.name;
-    m.actuator_trnid[a] = c.joint;
+    m.actuator_trntype[a] = c.tendon >= 0 ? TransmissionType::kTendon : TransmissionType::kJoint;
+    m.actuator_trnid[a] = c.tendon >= 0 ? c.tendon : c.joint;
     m.actuator_dyntype[a] = DynType::kNone;
     m.actuator_gaintype[a] = s.gaintype;
     m.actuator_biastype[a] = s.biastype;

@@ -136,6 +136,7 @@ void apply_actuator(AttrSet& set, const Element& e, const ElementRule& rule) {
 const AttrSet& DefaultClass::prototype(std::string_view tag) const {
   if (tag == "pair") return pair;
   if (tag == "equality") return equality;
+  if (tag == "tendon") return tendon;
   if (tag == "joint") return joint;
   if (tag == "geom") return geom;
   if (tag == "site") return site;
@@ -146,6 +147,7 @@ const AttrSet& DefaultClass::prototype(std::string_view tag) const {
 AttrSet& DefaultClass::prototype(std::string_view tag) {
   if (tag == "pair") return pair;
   if (tag == "equality") return equality;
+  if (tag == "tendon") return tendon;
   if (tag == "joint") return joint;
   if (tag == "geom") return geom;
   if (tag == "site") return site;

@@ -54,6 +54,7 @@ struct DefaultClass {
   AttrSet joint, geom, site, actuator;
   AttrSet pair;         ///< <contact><pair> defaults
   AttrSet equality;     ///< <equality> defaults (active, solref, solimp)
+  AttrSet tendon;       ///< <tendon> defaults
   AttrSet visual_only;  ///< mesh, material, camera, light defaults: checked, not used
 
   const AttrSet& prototype(std::string_view tag) const;

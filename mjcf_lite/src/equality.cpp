@@ -35,12 +35,14 @@ EqualitySpec read_equality(const Element& e, const DefaultClasses& classes) {
   const std::string_view tag = e.tag;
   EqualitySpec q;
   q.at = e.place();
-  q.type = tag == "weld"    ? EqualityType::kWeld
-           : tag == "joint" ? EqualityType::kJoint
-                            : EqualityType::kConnect;
+  q.type = tag == "weld"     ? EqualityType::kWeld
+           : tag == "joint"  ? EqualityType::kJoint
+           : tag == "tendon" ? EqualityType::kTendon
+                             : EqualityType::kConnect;
   const bool joint = q.type == EqualityType::kJoint;
-  const char* first = joint ? "joint1" : "body1";
-  const char* second = joint ? "joint2" : "body2";
+  const bool tendon = q.type == EqualityType::kTendon;
+  const char* first = joint ? "joint1" : tendon ? "tendon1" : "body1";
+  const char* second = joint ? "joint2" : tendon ? "tendon2" : "body2";
   q.name1 = equality_word(set, tag, first);
   q.name1_at = e.place(*e.find(first));  // required: the reader has checked it is there
   if (const Attribute* a = e.find(second)) {
@@ -66,7 +68,7 @@ EqualitySpec read_equality(const Element& e, const DefaultClasses& classes) {
     put("relpose", 3);
     put("torquescale", 10);
   }
-  if (joint) put("polycoef", 0);
+  if (joint || tendon) put("polycoef", 0);
   return q;
 }
 
@@ -97,17 +99,16 @@ void assemble_equalities(const std::vector<EqualitySpec>& equalities, Model& m) 
   for (size_t i = 0; i < equalities.size(); ++i) {
     const EqualitySpec& q = equalities[i];
     const bool joint = q.type == EqualityType::kJoint;
-    const std::vector<std::string>& names = joint ? m.jnt_name : m.body_name;
-    const char* kind = joint ? "joint" : "body";
-    const int id1 = find_object(names, q.name1, q.name1_at, joint ? "joint1" : "body1", kind);
+    const bool tendon = q.type == EqualityType::kTendon;
+    const std::vector<std::string>& names = joint ? m.jnt_name : tendon ? m.tendon_name : m.body_name;
+    const char* kind = joint ? "joint" : tendon ? "tendon" : "body";
+    const std::string first = std::string(kind) + "1", second = std::string(kind) + "2";
+    const int id1 = find_object(names, q.name1, q.name1_at, first.c_str(), kind);
     // no second object: the world for a connect or weld, none for a coupling
-    int id2 = joint ? -1 : 0;
-    if (!q.name2.empty()) {
-      id2 = find_object(names, q.name2, q.name2_at, joint ? "joint2" : "body2", kind);
-    }
+    int id2 = joint || tendon ? -1 : 0;
+    if (!q.name2.empty()) id2 = find_object(names, q.name2, q.name2_at, second.c_str(), kind);
     if (id1 == id2) {
-      fail(q.at, joint ? "joint2" : "body2",
-           std::string(kind) + " '" + q.name1 + "' is constrained to itself");
+      fail(q.at, second.c_str(), std::string(kind) + " '" + q.name1 + "' is constrained to itself");
     }
     for (const int j : {id1, id2}) {
       if (!joint || j < 0) continue;

@@ -1,6 +1,5 @@
-// <equality>: MuJoCo 2.2.2's connect, weld and joint constraints, read over their default class
-// (parse) and compiled into the Model's eq_* arrays (compile). A <tendon> coupling is refused by
-// the schema: lever has no tendons.
+// <equality>: MuJoCo 2.2.2's connect, weld, joint and tendon constraints, read over their default
+// class (parse) and compiled into the Model's eq_* arrays (compile).
 #pragma once
 
 #include <lever/model.hpp>
@@ -17,7 +16,7 @@ namespace lever::mjcf::detail {
 std::vector<EqualitySpec> read_equalities(const Element& root, const DefaultClasses& classes);
 
 /// eq_* of the model (sized for equalities.size()) from the specs, the objects found by name
-/// among the model's bodies and joints (already assembled); throws Problem for an unknown or
+/// among the model's bodies, joints and tendons (already assembled); throws Problem for an unknown or
 /// repeated object, or a joint that is not a hinge or a slide.
 void assemble_equalities(const std::vector<EqualitySpec>& equalities, Model& m);
 

@@ -8,6 +8,7 @@
 
 #include "defaults.hpp"
 #include "equality.hpp"
+#include "tendon.hpp"
 #include "schema.hpp"
 
 namespace lever::mjcf::detail {
@@ -190,6 +191,7 @@ MotorSpec read_actuator(const Element& e, const DefaultClasses& classes) {
   MotorSpec m;
   m.at = e.place();
   m.joint = Fields(set, "actuator", e.tag).word("joint");
+  m.tendon = Fields(set, "actuator", e.tag).word("tendon");
   m.gaintype = f.word("gaintype") == "affine" ? GainType::kAffine : GainType::kFixed;
   m.biastype = f.word("biastype") == "affine" ? BiasType::kAffine : BiasType::kNone;
   m.gainprm = f.array<kGainParameters>("gainprm");
@@ -554,6 +556,7 @@ ModelSpec parse_model(const Element& root, bool ignore_inertials) {
   }
   read_contact(root, classes, spec);
   spec.equalities = read_equalities(root, classes);
+  spec.tendons = read_tendons(root, classes);
   for (const Element* e : sections(root, "actuator")) {
     for (const Element& a : e->children) spec.motors.push_back(read_actuator(a, classes));
   }

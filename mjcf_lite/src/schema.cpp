@@ -234,7 +234,7 @@ void add_equality_rules(std::vector<ElementRule>& s) {
                '*',
                {},
                "",
-               "tendon distance",
+               "distance",
                "equality constraints: rows of the constraint solver, first in MuJoCo's order"});
   s.push_back({"connect", "equality", '*',
                own({required(text("body1", "", "first body")),
@@ -256,6 +256,54 @@ void add_equality_rules(std::vector<ElementRule>& s) {
                     real("polycoef", 5, "0 1 0 0 0",
                          "q1 - q1_0 = c0 + c1 x + c2 x^2 + c3 x^3 + c4 x^4, x = q2 - q2_0")}),
                "", "", "a joint coupled to another by a polynomial (or held)"});
+  s.push_back({"tendon", "equality", '*',
+               own({required(text("tendon1", "", "the coupled tendon")),
+                    text("tendon2", "", "the tendon it follows (else none: tendon1 held)"),
+                    real("polycoef", 5, "0 1 0 0 0",
+                         "L1 - L1_0 = c0 + c1 x + c2 x^2 + c3 x^3 + c4 x^4, x = L2 - L2_0 (lengths "
+                         "about those at qpos0)")}),
+               "", "", "a tendon's length coupled to another's by a polynomial (or held)"});
+}
+
+// what a tendon takes from its class (<default><tendon>)
+std::vector<AttributeRule> tendon_class_attributes() {
+  return {
+      integer("group", 1, "0", "visualisation group (kept; no effect on dynamics)"),
+      keyword("limited", "auto", "false true auto", "",
+              "auto: limited if range is given (compiler/autolimits)"),
+      real("range", 2, "0 0", "lower and upper length (length units, never degrees)"),
+      partial("solreflimit", 2, "0.02 1", "limit solref (timeconst, dampratio)"),
+      partial("solimplimit", 5, "0.9 0.95 0.001 0.5 2",
+              "limit solimp (d0, dmax, width, mid, power)"),
+      partial("solreffriction", 2, "0.02 1", "friction loss solref (timeconst, dampratio)"),
+      partial("solimpfriction", 5, "0.9 0.95 0.001 0.5 2",
+              "friction loss solimp (d0, dmax, width, mid, power)"),
+      real("frictionloss", 1, "0", "dry friction: a constraint row whose force is at most this"),
+      real("springlength", 1, "-1", "the spring's rest length; negative: the length at springref"),
+      real("margin", 1, "0", "limit rows start this far from a stop"),
+      real("stiffness", 1, "0", "spring stiffness along the tendon"),
+      real("damping", 1, "0", "damping along the tendon"),
+      real("width", 1, "0.003", "drawn width (spatial tendons)"),
+      text("material", "", "visual only: read and kept, no effect on dynamics"),
+      real("rgba", 4, "0.5 0.5 0.5 1", "visual only: read and kept, no effect on dynamics"),
+  };
+}
+
+// <tendon> and its fixed tendons (tendon.cpp)
+void add_tendon_rules(std::vector<ElementRule>& s) {
+  s.push_back({"tendon", "mujoco", '*', {}, "", "spatial",
+               "tendons: lengths along paths of joints (fixed; spatial tendons are refused)"});
+  s.push_back({"fixed", "tendon", '*',
+               join({text("name", "", "tendon name"),
+                     text("class", "", "default class (else the main class)")},
+                    tendon_class_attributes()),
+               "user", "",
+               "a fixed tendon: length sum coef_k q_k over its joints; a spring-damper, limits and "
+               "friction loss along it"});
+  s.push_back({"joint", "fixed", '*',
+               {required(text("joint", "", "a hinge or slide of the path")),
+                required(real("coef", 1, "0", "its coefficient in the length"))},
+               "", "", "one joint of a fixed tendon's path"});
 }
 
 const char* const kUnsupportedJointAttributes = "springdamper";
@@ -304,11 +352,12 @@ std::vector<AttributeRule> position_class_attributes() {
 
 std::vector<AttributeRule> actuator_wiring(std::string_view what) {
   return {text("name", "", what), text("class", "", "default class (else the top-level class)"),
-          required(text("joint", "", "the joint it drives"))};
+          text("joint", "", "the joint it drives (or tendon)"),
+          text("tendon", "", "the tendon it drives (or joint)")};
 }
 
 const char* const kUnsupportedActuatorAttributes =
-    "lengthrange cranklength jointinparent tendon slidersite cranksite site refsite body "
+    "lengthrange cranklength jointinparent slidersite cranksite site refsite body "
     "actlimited actrange";
 
 // visual-only assets and elements: read, checked by name, kept as text; no effect on dynamics
@@ -348,7 +397,7 @@ const char* const kLightAttributes =
 std::vector<ElementRule> build() {
   std::vector<ElementRule> s;
   s.push_back({"mujoco", "", '!', {text("model", "MuJoCo Model", "model name")}, "",
-               "custom tendon include", "the root element"});
+               "custom include", "the root element"});
   s.push_back({"compiler", "mujoco", '*',
                {
                    keyword("angle", "degree", "radian degree", "",
@@ -454,6 +503,7 @@ std::vector<ElementRule> build() {
                "", "sizes of MuJoCo's mjData"});
   s.push_back({"contact", "mujoco", '*', {}, "", "", "explicit contact pairs and exclusions"});
   add_equality_rules(s);
+  add_tendon_rules(s);
   s.push_back({"pair", "contact", '*', join({text("name", "", "pair name"),
                                             text("class", "", "default class (else the main class)"),
                                             required(text("geom1", "", "first geom")),
@@ -467,10 +517,10 @@ std::vector<ElementRule> build() {
                                           required(text("body2", "", "second body"))},
                "", "", "a body pair whose geoms never collide (pairs from <pair> still do)"});
   s.push_back({"default", "mujoco", '*', {text("class", "main", "class name (top level: main)")},
-               "", "tendon intvelocity damper cylinder muscle adhesion",
+               "", "intvelocity damper cylinder muscle adhesion",
                "default class: attribute values that elements of the class start from"});
   s.push_back({"default", "default", '*', {required(text("class", "", "class name"))}, "",
-               "tendon intvelocity damper cylinder muscle adhesion",
+               "intvelocity damper cylinder muscle adhesion",
                "nested class: starts as a copy of its parent"});
   s.push_back({"joint", "default", '?', joint_attributes(), kUnsupportedJointAttributes, "",
                "joint defaults of the class"});
@@ -482,6 +532,8 @@ std::vector<ElementRule> build() {
                "contact pair defaults of the class"});
   s.push_back({"equality", "default", '?', equality_class_attributes(), "", "",
                "equality constraint defaults of the class"});
+  s.push_back({"tendon", "default", '?', tendon_class_attributes(), "user", "",
+               "tendon defaults of the class"});
   s.push_back({"motor", "default", '?',
                join(motor_class_attributes(),
                     {integer("group", 1, "0", "visualisation group (kept)")}),

@@ -107,7 +107,7 @@ std::string_view meaning_of(const SensorElement& s) {
   switch (s.objtype) {
     case O::kSite: return "a sensor at a site";
     case O::kJoint: return "a sensor of a joint";
-    case O::kTendon: return "a sensor of a tendon (lever has no tendons: refused)";
+    case O::kTendon: return "a sensor of a tendon";
     case O::kActuator: return "a sensor of an actuator";
     case O::kBody: return "a sensor of the subtree hanging from a body";
     default: break;
@@ -116,8 +116,6 @@ std::string_view meaning_of(const SensorElement& s) {
 }
 
 // The element's own name: the tag, its type's object attribute and reference.
-const char* const kTendonSensorMessage =
-    " reads a tendon, and lever has no tendons (MuJoCo's spatial and fixed tendons)";
 
 }  // namespace
 
@@ -161,7 +159,6 @@ std::vector<SensorSpec> read_sensors(const Element& root) {
       SensorSpec s;
       s.at = e.place();
       s.type = kind->type;
-      if (kind->objtype == O::kTendon) fail(e.place(), "", "<" + e.tag + ">" + kTendonSensorMessage);
       // the numbers, each checked as MuJoCo's compiler checks it
       for (const char* name : {"cutoff", "noise"}) {
         const Attribute* a = e.find(name);
@@ -231,6 +228,7 @@ int find_object(const Model& model, ObjectType type, const std::string& name) {
     case O::kSite: return model.site(name);
     case O::kJoint: return model.joint(name);
     case O::kActuator: return model.actuator(name);
+    case O::kTendon: return model.tendon(name);
     default: return -1;
   }
 }
@@ -243,6 +241,7 @@ const char* object_kind(ObjectType type) {
     case O::kSite: return "site";
     case O::kJoint: return "joint";
     case O::kActuator: return "actuator";
+    case O::kTendon: return "tendon";
     default: return "object";
   }
 }

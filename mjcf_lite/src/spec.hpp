@@ -104,6 +104,7 @@ struct BodySpec {
 struct MotorSpec {
   Place at;
   std::string joint;
+  std::string tendon;  ///< a tendon transmission: the tendon's name (joint is then "")
   GainType gaintype = GainType::kFixed;
   BiasType biastype = BiasType::kNone;
   std::array<double, kGainParameters> gainprm{1};
@@ -148,6 +149,25 @@ struct EqualitySpec {
   std::array<double, 2> solref{};
   std::array<double, 5> solimp{};
   std::array<double, kEqualityData> data{};
+};
+
+/// One joint of a fixed tendon's path (<fixed><joint joint coef>).
+struct TendonJointSpec {
+  Place at;  ///< its `joint` attribute, for errors
+  std::string name;
+  double coef = 0;
+};
+
+/// A <tendon><fixed> over its class (tendon.cpp).
+struct TendonSpec {
+  Place at;
+  std::vector<TendonJointSpec> joints;
+  Limited limited = Limited::kAuto;
+  std::array<double, 2> range{};
+  std::array<double, 2> solref_limit{}, solref_friction{};
+  std::array<double, 5> solimp_limit{}, solimp_friction{};
+  double margin = 0, stiffness = 0, damping = 0, frictionloss = 0, springlength = -1;
+  double width = 0.003;
 };
 
 /// A <contact><exclude>.
@@ -198,6 +218,7 @@ struct ModelSpec {
   std::vector<ExcludeSpec> excludes;
   std::vector<SensorSpec> sensors;
   std::vector<EqualitySpec> equalities;
+  std::vector<TendonSpec> tendons;
   int nconmax = -1, njmax = -1;  ///< <size>; -1: MuJoCo's defaults
   UserSizes nuser;               ///< <size nuser_*>
   AssetSpec assets;

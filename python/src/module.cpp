@@ -239,7 +239,7 @@ BatchField batch_field(const lever::Model& model, const std::string& name, py::s
   lever::FieldView one_state;  // the field's shape in any Data of this model
   one_state.info = info;
   one_state.rows = lever::size_of(model, info->rows);
-  one_state.cols = info->cols < 0 ? one_state.rows : info->cols;
+  one_state.cols = info->cols < 0 ? model.nv : info->cols;  // -1: nv columns
   std::vector<py::ssize_t> shape = field_shape(one_state);
   shape.insert(shape.begin(), n);
   BatchField field;
@@ -328,6 +328,8 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nsensordata", [](const lever::Model& x) { return x.nsensordata; })
       .def_property_readonly("neq", [](const lever::Model& x) { return x.neq; })
       .def_property_readonly("nmocap", [](const lever::Model& x) { return x.nmocap; })
+      .def_property_readonly("ntendon", [](const lever::Model& x) { return x.ntendon; })
+      .def_property_readonly("nwrap", [](const lever::Model& x) { return x.nwrap; })
       .def_property_readonly("nmesh", [](const lever::Model& x) { return x.nmesh; })
       .def_property_readonly("nmeshvert", [](const lever::Model& x) { return x.nmeshvert; })
       .def_property_readonly("nmeshgraph", [](const lever::Model& x) { return x.nmeshgraph; })
@@ -360,6 +362,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("actuator_name", [](const lever::Model& x) { return x.actuator_name; })
       .def_property_readonly("sensor_name", [](const lever::Model& x) { return x.sensor_name; })
       .def_property_readonly("eq_name", [](const lever::Model& x) { return x.eq_name; })
+      .def_property_readonly("tendon_name", [](const lever::Model& x) { return x.tendon_name; })
       // keyframes (not in the field table: their rows are keyframes): writable row-major views
       .def_property_readonly("nkey", [](const lever::Model& x) { return x.nkey; })
       .def_property_readonly("key_name", [](const lever::Model& x) { return x.key_name; })

@@ -1,7 +1,8 @@
-// Friction loss and equality constraints compiled by mjcf_lite and by MuJoCo 2.2.2: the models
-// of tests/models/constraints/ and small cases (class inheritance, what is left unwritten), field
-// by field (dof_frictionloss, dof_solref, dof_solimp, eq_* with eq_data as mj_setConst completes
-// it); and the constraints lever refuses, by name.
+// Friction loss, equality constraints and fixed tendons compiled by mjcf_lite and by MuJoCo 2.2.2:
+// the models of tests/models/constraints/ and small cases (class inheritance, what is left
+// unwritten), field by field (dof_frictionloss, dof_solref, dof_solimp, eq_* with eq_data as
+// mj_setConst completes it, tendon_* and wrap_*, tendon_length0 and tendon_invweight0); and the
+// constraints lever refuses, by name.
 #include <catch2/catch.hpp>
 #include <lever/mjcf.hpp>
 
@@ -37,7 +38,7 @@ std::string constraint_refusal(const std::string& xml) {
 }  // namespace
 
 TEST_CASE("the constraint models compile to MuJoCo 2.2.2's parameters", "[compile][constraints]") {
-  for (const char* name : {"friction_loss.xml", "equality.xml"}) {
+  for (const char* name : {"friction_loss.xml", "equality.xml", "tendons.xml"}) {
     const std::string path =
         lever::test::model_path(std::string("tests/models/constraints/") + name);
     compare_with_mujoco(name, lever::test::read_text(path));
@@ -51,6 +52,71 @@ TEST_CASE("the constraint models compile to MuJoCo 2.2.2's parameters", "[compil
   REQUIRE(eq.neq == 7);
   CHECK(eq.eq_active[6] == 0);
   CHECK(eq.eq_solref[1][0] == 0.05);  // class "loose"
+  const lever::Model tendons =
+      lever::mjcf::load_file(lever::test::model_path("tests/models/constraints/tendons.xml"));
+  REQUIRE(tendons.ntendon == 5);
+  REQUIRE(tendons.nwrap == 10);
+  CHECK(tendons.tendon_limited[0] == 1);       // by its range (autolimits)
+  CHECK(tendons.tendon_stiffness[1] == 3.0);   // class "soft"
+  CHECK(tendons.tendon_lengthspring[2] == 0.2);  // as written
+  CHECK(tendons.actuator_trntype[1] == lever::TransmissionType::kTendon);
+  CHECK(tendons.eq_type[0] == lever::EqualityType::kTendon);
+}
+
+TEST_CASE("tendon corner cases agree with MuJoCo 2.2.2", "[compile][tendons]") {
+  // a tendon class nested in another, partial solref and solimp, limited="false" beside a range,
+  // a joint named twice in one path, a coupling of one tendon, springlength at springref in degrees
+  compare_with_mujoco("tendon_corners.xml", R"(<mujoco>
+  <default>
+    <tendon solreflimit="0.03" solimpfriction="0.7" margin="0.01"/>
+    <default class="a">
+      <tendon stiffness="2" range="-1 1"/>
+      <default class="b">
+        <tendon limited="false" damping="0.3" frictionloss="0.2"/>
+      </default>
+    </default>
+  </default>
+  <worldbody>
+    <body name="a" pos="0 0 1">
+      <joint name="a1" axis="1 0 0" springref="30"/>
+      <geom size="0.1"/>
+      <body name="b" pos="0.2 0 0">
+        <joint name="b1" type="slide" axis="0 0 1" ref="0.1"/>
+        <geom size="0.05"/>
+      </body>
+    </body>
+  </worldbody>
+  <tendon>
+    <fixed name="t1" class="a"><joint joint="a1" coef="2"/><joint joint="b1" coef="-1"/></fixed>
+    <fixed name="t2" class="b"><joint joint="b1" coef="0.5"/><joint joint="b1" coef="3"/></fixed>
+    <fixed class="b" limited="true" range="0 0.5"><joint joint="a1" coef="1"/></fixed>
+  </tendon>
+  <equality><tendon tendon1="t2" polycoef="0.1 1 0 0 0"/></equality>
+  <actuator><position tendon="t1" kp="10" gear="3"/></actuator>
+</mujoco>)");
+}
+
+TEST_CASE("tendons lever cannot build are refused by name", "[compile][tendons]") {
+  const std::string head = R"(<mujoco><worldbody><body name="a"><joint name="j"/><geom size="1"/>
+    <site name="s"/><body name="b"><joint name="ball" type="ball"/><geom size="1"/><site name="r"/>
+    </body></body></worldbody>)";
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
+    </spatial></tendon></mujoco>)"),
+             Catch::Contains("spatial"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><fixed><joint joint="ball" coef="1"/></fixed>
+    </tendon></mujoco>)"),
+             Catch::Contains("ball or free joint"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><fixed><joint joint="k" coef="1"/></fixed>
+    </tendon></mujoco>)"),
+             Catch::Contains("unknown joint 'k'"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><fixed name="t"/></tendon></mujoco>)"),
+             Catch::Contains("at least one"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><fixed name="t"><joint joint="j" coef="1"/>
+    </fixed></tendon><actuator><motor tendon="u"/></actuator></mujoco>)"),
+             Catch::Contains("unknown tendon 'u'"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><fixed name="t" limited="true" range="1 0">
+    <joint joint="j" coef="1"/></fixed></tendon></mujoco>)"),
+             Catch::Contains("lower < upper"));
 }
 
 TEST_CASE("equality and friction loss corner cases agree with MuJoCo 2.2.2",
@@ -90,7 +156,7 @@ TEST_CASE("constraints lever cannot build are refused by name", "[compile][const
   const std::string head = R"(<mujoco><worldbody><body name="a"><joint name="j"/><geom size="1"/>
     <body name="b"><joint name="ball" type="ball"/><geom size="1"/></body></body></worldbody>)";
   CHECK_THAT(constraint_refusal(head + R"(<equality><tendon tendon1="t"/></equality></mujoco>)"),
-             Catch::Contains("tendon"));
+             Catch::Contains("unknown tendon 't'"));
   CHECK_THAT(constraint_refusal(
                  head + R"(<equality><connect body1="x" anchor="0 0 0"/></equality></mujoco>)"),
              Catch::Contains("unknown body 'x'"));

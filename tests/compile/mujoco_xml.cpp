@@ -150,7 +150,7 @@ class Differences {
 // compiled parameters.
 bool is_constant(const std::string& name) {
   return name == "body_subtreemass" || name == "body_invweight0" || name == "dof_invweight0" ||
-         name == "dof_M0";
+         name == "dof_M0" || name == "tendon_length0" || name == "tendon_invweight0";
 }
 
 // Every array of Model's table that MuJoCo has, against MuJoCo's array of the same name (found
@@ -260,7 +260,6 @@ void compare_actuator_types(Differences& d, const Model& o, const mjModel& m) {
     d.integer("actuator_trnid", 2 * a, o.actuator_trnid[static_cast<size_t>(a)],
               m.actuator_trnid[2 * a]);
     d.integer("actuator_trnid", 2 * a + 1, -1, m.actuator_trnid[2 * a + 1]);
-    d.integer("actuator_trntype", a, mjTRN_JOINT, m.actuator_trntype[a]);
   }
 }
 
@@ -287,6 +286,7 @@ void compare_names(Differences& d, const Model& o, const mjModel& m) {
   d.names("actuator_name", o.actuator_name, m, mjOBJ_ACTUATOR);
   d.names("sensor_name", o.sensor_name, m, mjOBJ_SENSOR);
   d.names("eq_name", o.eq_name, m, mjOBJ_EQUALITY);
+  d.names("tendon_name", o.tendon_name, m, mjOBJ_TENDON);
 }
 
 void compare_options(Differences& d, const Model& o, const mjModel& m) {
@@ -330,6 +330,8 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m) {
   sizes = d.count("nsensor", o.nsensor, m.nsensor) && sizes;
   sizes = d.count("nsensordata", o.nsensordata, m.nsensordata) && sizes;
   sizes = d.count("neq", o.neq, m.neq) && sizes;
+  sizes = d.count("ntendon", o.ntendon, m.ntendon) && sizes;
+  sizes = d.count("nwrap", o.nwrap, m.nwrap) && sizes;
   if (sizes) {
     compare_table(d, o, m);
     compare_meshes(d, o, m);
@@ -354,6 +356,13 @@ std::vector<std::string> compare_constants(const Model& o, const mjModel& m) {
   d.reals("dof_M0", o.dof_M0, m.dof_M0);
   d.reals("body_subtreemass", o.body_subtreemass, m.body_subtreemass);
   d.rows("body_invweight0", o.body_invweight0, m.body_invweight0, 2);
+  if (d.count("ntendon", o.ntendon, m.ntendon) &&
+      d.count("size of tendon_length0", static_cast<int>(o.tendon_length0.size()), m.ntendon) &&
+      d.count("size of tendon_invweight0", static_cast<int>(o.tendon_invweight0.size()),
+              m.ntendon)) {
+    d.reals("tendon_length0", o.tendon_length0, m.tendon_length0);
+    d.reals("tendon_invweight0", o.tendon_invweight0, m.tendon_invweight0);
+  }
   return d.list;
 }
 

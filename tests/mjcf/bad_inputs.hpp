@@ -100,8 +100,8 @@ inline const BadInput kBadInputs[] = {
 
   // ---- valid MJCF that lever does not support ------------------------------------------------
   {"unsupported-element", R"(<mujoco>
-  <tendon/>
-</mujoco>)", 2, "tendon", "", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
+  <custom/>
+</mujoco>)", 2, "custom", "", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
    "valid MJCF outside lever's subset"},
   {"unsupported-attribute", R"(<mujoco>
   <worldbody>
@@ -428,7 +428,7 @@ inline const BadInput kBadInputs[] = {
   <actuator>
     <motor name="m"/>
   </actuator>
-</mujoco>)", 9, "motor", "joint", "missing required attribute 'joint'", MuJoCo::kRejects, ""},
+</mujoco>)", 9, "motor", "joint", "the actuator names no joint or tendon", MuJoCo::kRejects, ""},
   {"motor-unknown-joint", R"(<mujoco>
   <worldbody>
     <body name="b">
@@ -1148,7 +1148,7 @@ inline const BadInput kBadInputs[] = {
   <sensor>
     <tendonpos tendon="t"/>
   </sensor>
-</mujoco>)", 14, "tendonpos", "", "lever has no tendons", MuJoCo::kRejects, ""},
+</mujoco>)", 14, "tendonpos", "tendon", "the model has no tendon of that name", MuJoCo::kRejects, ""},
   {"sensor-user", R"(<mujoco>
   <worldbody>
     <body name="b">

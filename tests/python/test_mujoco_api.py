@@ -202,8 +202,8 @@ def test_what_lever_lacks_raises_not_implemented(arm2):
     model, data = arm2
     with pytest.raises(NotImplementedError, match="qLDiagSqrtInv"):
         data.qLDiagSqrtInv
-    with pytest.raises(NotImplementedError, match="tendon_range"):
-        model.tendon_range
+    with pytest.raises(NotImplementedError, match="cam_fovy"):
+        model.cam_fovy
     with pytest.raises(NotImplementedError, match="mj_collision"):
         mujoco.mj_collision(model, data)
     with pytest.raises(NotImplementedError, match="xfrc_applied"):

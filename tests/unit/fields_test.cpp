@@ -36,6 +36,9 @@ std::vector<lever::Model> all_models() {
       // a model only MuJoCo's compiler reads (tests/compile covers it)
     }
   }
+  // a model with tendons: ten_J and actuator_moment of more rows than nv has columns
+  models.push_back(
+      lever::mjcf::load_file(lever::test::model_path("tests/models/constraints/tendons.xml")));
   return models;
 }
 
@@ -236,7 +239,18 @@ TEST_CASE("every Data view has the table's size and points into its member", "[f
     k = next("M");  // (nv, nv), symmetric in use; the view is its whole storage
     CHECK(extent(data.M) == located(views[k]));
     k = next("qLDiagInv");
+    k = next("ten_length");
+    k = next("ten_J");  // (ntendon, nv), row-major as MuJoCo's dense ten_J
+    for (int t = 0; t < model.ntendon; ++t) {
+      for (int c = 0; c < model.nv; ++c) CHECK(data.ten_J(t, c) == mark(k, t * model.nv + c));
+    }
     k = next("actuator_length");
+    k = next("actuator_moment");  // (nu, nv), row-major
+    for (int a = 0; a < model.nu; ++a) {
+      for (int c = 0; c < model.nv; ++c) {
+        CHECK(data.actuator_moment(a, c) == mark(k, a * model.nv + c));
+      }
+    }
     k = next("efc_type");
     k = next("efc_id");
     for (int r = 0; r < data.nefc; ++r) CHECK(data.efc_id[r] == mark(k, r));
@@ -277,10 +291,22 @@ TEST_CASE("Data's constructor sizes every array as the table says, zero-filled",
     full.nefc = full.nefc_max;
     for (const FieldView& view : lever::data_fields(model, full)) {
       INFO("Data::" << view.info->name);
-      // kNefc: two limit rows per joint, and njmax contact rows if the model can make contacts
-      const int rows = view.info->rows == lever::Size::kNefc
-                           ? 2 * model.njnt + (model.contacts_possible ? model.njmax : 0)
-                           : lever::size_of(model, view.info->rows);
+      // kNefc: each equality constraint's rows, a friction-loss row per dof and tendon with
+      // friction loss, two limit rows per joint and per tendon, and njmax contact rows if the
+      // model can make contacts
+      int constraint_rows = 2 * model.njnt + 2 * model.ntendon;
+      for (int e = 0; e < model.neq; ++e) {
+        const lever::EqualityType type = model.eq_type[e];
+        constraint_rows += type == lever::EqualityType::kConnect ? 3
+                           : type == lever::EqualityType::kWeld  ? 6
+                                                                 : 1;
+      }
+      for (const double loss : model.dof_frictionloss) constraint_rows += loss > 0;
+      for (const double loss : model.tendon_frictionloss) constraint_rows += loss > 0;
+      const int rows =
+          view.info->rows == lever::Size::kNefc
+              ? constraint_rows + (model.contacts_possible ? model.njmax : 0)
+              : lever::size_of(model, view.info->rows);
       CHECK(view.rows == rows);
       CHECK(view.size() ==
             static_cast<long>(rows) * (view.info->cols < 0 ? model.nv : view.info->cols));
@@ -689,6 +715,8 @@ TEST_CASE("size_model gives every array the length the field table promises", "[
   model.nuser_site = 1;
   model.nuser_actuator = 2;
   model.nuser_sensor = 1;
+  model.ntendon = 2;
+  model.nwrap = 5;
   lever::size_model(model);
 
   const std::vector<lever::FieldInfo>& table = lever::model_field_table();

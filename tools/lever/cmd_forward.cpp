@@ -190,10 +190,13 @@ void print_text(const std::string& path, const Model& model, const Data& data,
     for (int a = 0; a < model.nu; ++a) {
       const int j = model.actuator_trnid[a];
       const bool clamped = actuator_clamped(model, data, a);
+      const bool tendon = model.actuator_trntype[a] == TransmissionType::kTendon;
       std::printf("  %-10s %-10s %12s %12s %8s%s\n", label_of(model.actuator_name[a], a).c_str(),
-                  label_of(model.jnt_name[j], j).c_str(), num(data.ctrl[a]).c_str(),
-                  num(data.actuator_force[a]).c_str(), joint_units(model, j).force,
-                  clamped ? "  (clamped)" : "");
+                  (tendon ? "tendon " + label_of(model.tendon_name[j], j)
+                          : label_of(model.jnt_name[j], j))
+                      .c_str(),
+                  num(data.ctrl[a]).c_str(), num(data.actuator_force[a]).c_str(),
+                  tendon ? "N" : joint_units(model, j).force, clamped ? "  (clamped)" : "");
     }
   }
 

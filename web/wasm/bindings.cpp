@@ -128,13 +128,15 @@ class WasmModel {
     if (what == "nmesh") return model_.nmesh;
     if (what == "neq") return model_.neq;
     if (what == "nmocap") return model_.nmocap;
+    if (what == "ntendon") return model_.ntendon;
+    if (what == "nwrap") return model_.nwrap;
     if (what == "nkey") return model_.nkey;
     if (what == "nsensor") return model_.nsensor;
     if (what == "nsensordata") return model_.nsensordata;
     return -1;
   }
 
-  /// kind: "body", "jnt", "geom", "site", "actuator", "sensor", "eq", "key"
+  /// kind: "body", "jnt", "geom", "site", "actuator", "sensor", "eq", "tendon", "key"
   std::vector<std::string> names(const std::string& kind) const {
     if (kind == "sensor") return model_.sensor_name;
     if (kind == "body") return model_.body_name;
@@ -143,6 +145,7 @@ class WasmModel {
     if (kind == "site") return model_.site_name;
     if (kind == "actuator") return model_.actuator_name;
     if (kind == "eq") return model_.eq_name;
+    if (kind == "tendon") return model_.tendon_name;
     if (kind == "key") return model_.key_name;
     return {};
   }

@@ -69,13 +69,15 @@ struct Contact {
   double mu = 0;         ///< friction of the regularized cone, friction[0] sqrt(R_1 / R_0)
 };
 
-/// What a constraint row is; the numeric values are MuJoCo's mjtConstraint (lever has equality
-/// constraints, dof friction loss, joint limits and contacts without a friction cone, with a
-/// pyramidal or an elliptic one; no tendons, so none of the tendon rows).
+/// What a constraint row is; the numeric values are MuJoCo's mjtConstraint (every kind: equality
+/// constraints, dof and tendon friction loss, joint and tendon limits, contacts without a friction
+/// cone, with a pyramidal or an elliptic one).
 enum class ConstraintType : int {
   kEquality = 0,
   kFrictionDof = 1,
+  kFrictionTendon = 2,
   kLimitJoint = 3,
+  kLimitTendon = 4,
   kContactFrictionless = 5,
   kContactPyramidal = 6,
   kContactElliptic = 7
@@ -142,19 +144,26 @@ struct Data {
                         ///< (i, k); unit diagonal implied), the rest unused
   Eigen::VectorXd qLDiagInv;  ///< (nv) 1 / D
 
+  // ---- position stage: tendons (tendon()) -----------------------------------------------------
+  Eigen::VectorXd ten_length;  ///< (ntendon)
+  RowMatrix ten_J;             ///< (ntendon x nv) d length / d qpos, dense (MuJoCo's dense ten_J)
+
   // ---- position stage: actuator transmission ---------------------------------------------------
-  Eigen::VectorXd actuator_length;  ///< (nu) gear * qpos of the driven joint
+  Eigen::VectorXd actuator_length;  ///< (nu) gear * qpos of the driven joint, or gear * tendon length
+  RowMatrix actuator_moment;        ///< (nu x nv) d actuator_length / d qpos (MuJoCo's, dense)
 
   // ---- position stage: constraint rows (make_constraint) -----------------------------------
-  // MuJoCo's order: the active equality constraints' rows (3 a connect, 6 a weld, 1 a joint
-  // coupling), one row per dof with friction loss, joint limits within `margin` of a stop, then
+  // MuJoCo's order: the active equality constraints' rows (3 a connect, 6 a weld, 1 a joint or
+  // tendon coupling), one row per dof with friction loss, then per tendon with friction loss,
+  // joint limits within `margin` of a stop, then tendon limits, then
   // each contact's rows (data.contact, those with exclude == 0): one for a frictionless contact,
   // two per friction direction for a pyramid, condim rows (normal first) for an elliptic cone.
   int nefc = 0;                          ///< rows
   int ne = 0;                            ///< of them, equality rows (the first ne)
   int nf = 0;                            ///< of them, friction-loss rows (the next nf)
   std::vector<ConstraintType> efc_type;  ///< (nefc)
-  /// (nefc) equality constraint, dof (friction loss), joint (limit) or contact index (contact)
+  /// (nefc) equality constraint, dof (friction loss), joint (limit), tendon (its friction loss or
+  /// limit) or contact index (contact)
   std::vector<int> efc_id;
   RowMatrix efc_J;  ///< (nefc x nv) constraint Jacobian, rows dense
   /// (nefc) the dof of a row whose efc_J is sign e_dof (a friction-loss or limit row), else -1
@@ -175,6 +184,7 @@ struct Data {
   std::vector<Motion> cvel;           ///< (nbody) spatial velocity of each body
   std::vector<Motion> cdof_dot;       ///< (nv) time derivative of cdof
   Eigen::VectorXd actuator_velocity;  ///< (nu)
+  Eigen::VectorXd ten_velocity;       ///< (ntendon) ten_J qvel
   Eigen::VectorXd qfrc_passive;       ///< (nv) joint springs and damping
   Eigen::VectorXd qfrc_bias;          ///< (nv) C(q, qvel) qvel + g(q): M qacc + qfrc_bias = tau
   Eigen::VectorXd efc_vel;            ///< (nefc) J qvel

@@ -34,6 +34,10 @@ void bias(const Model& model, Data& data);
 /// Joint springs and damping into qfrc_passive (MuJoCo's mj_passive).
 void passive(const Model& model, Data& data);
 
+/// Tendon lengths, Jacobians (ten_J) and velocities (MuJoCo's mj_tendon and the tendon part of
+/// its velocity stage); after kinematics().
+void tendon(const Model& model, Data& data);
+
 /// Motor transmission lengths and velocities (MuJoCo's mj_transmission and the velocity stage).
 void transmission(const Model& model, Data& data);
 

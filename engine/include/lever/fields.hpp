@@ -7,8 +7,8 @@
 //
 // Every listed array is contiguous and row-major: it is an (rows, cols) array of doubles, ints or
 // bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, nbody, njnt, ngeom,
-// nsite, npair, nexclude, neq, nmocap, nefc: the live constraint rows of a Data; `one` for a single row);
-// `cols` is a number. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of
+// nsite, npair, nexclude, neq, nmocap, ntendon, nwrap, nefc: the live constraint rows of a Data;
+// `one` for a single row); `cols` is a number, or -1 for nv. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of
 // the same name, shape and meaning (`mujoco`) or not (`own`: lever's own, or laid out differently
 // from MuJoCo's).
 //
@@ -37,7 +37,7 @@
 // data arrays): negative, so that FieldInfo::cols_size tells which size counts them.
 namespace lever::counted_cols {
 inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_site = -5,
-                     nuser_actuator = -6, nuser_sensor = -7;
+                     nuser_actuator = -6, nuser_sensor = -7, nv = -8;
 }  // namespace lever::counted_cols
 
 // X(name, element type, rows, cols, origin)
@@ -102,6 +102,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(site_pos, double, nsite, 3, mujoco)                      \
   X(site_quat, double, nsite, 4, mujoco)                     \
   X(site_type, int, nsite, 1, mujoco)                        \
+  X(actuator_trntype, int, nu, 1, mujoco)                    \
   X(actuator_trnid, int, nu, 1, own) /* (nu, 2) in MuJoCo */ \
   X(actuator_dyntype, int, nu, 1, mujoco)                    \
   X(actuator_gaintype, int, nu, 1, mujoco)                   \
@@ -116,7 +117,8 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   LEVER_MODEL_CONTACT_FIELDS(X)                              \
   LEVER_MODEL_SENSOR_FIELDS(X)                               \
   LEVER_MODEL_EQUALITY_FIELDS(X)                             \
-  LEVER_MODEL_USER_FIELDS(X)
+  LEVER_MODEL_USER_FIELDS(X)                                 \
+  LEVER_MODEL_TENDON_FIELDS(X)
 
 // user data: each kind's numbers (MJCF `user`), rows padded with zeros to nuser_<kind>
 #define LEVER_MODEL_USER_FIELDS(X)                                              \
@@ -126,6 +128,28 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(site_user, double, nsite, counted_cols::nuser_site, mujoco)                 \
   X(actuator_user, double, nu, counted_cols::nuser_actuator, mujoco)            \
   X(sensor_user, double, nsensor, counted_cols::nuser_sensor, mujoco)
+
+// tendons and the objects of their paths
+#define LEVER_MODEL_TENDON_FIELDS(X)                 \
+  X(tendon_adr, int, ntendon, 1, mujoco)             \
+  X(tendon_num, int, ntendon, 1, mujoco)             \
+  X(tendon_limited, uint8_t, ntendon, 1, mujoco)     \
+  X(tendon_width, double, ntendon, 1, mujoco)        \
+  X(tendon_solref_lim, double, ntendon, 2, mujoco)   \
+  X(tendon_solimp_lim, double, ntendon, 5, mujoco)   \
+  X(tendon_solref_fri, double, ntendon, 2, mujoco)   \
+  X(tendon_solimp_fri, double, ntendon, 5, mujoco)   \
+  X(tendon_range, double, ntendon, 2, mujoco)        \
+  X(tendon_margin, double, ntendon, 1, mujoco)       \
+  X(tendon_stiffness, double, ntendon, 1, mujoco)    \
+  X(tendon_damping, double, ntendon, 1, mujoco)      \
+  X(tendon_frictionloss, double, ntendon, 1, mujoco) \
+  X(tendon_lengthspring, double, ntendon, 1, mujoco) \
+  X(tendon_length0, double, ntendon, 1, mujoco)      \
+  X(tendon_invweight0, double, ntendon, 1, mujoco)   \
+  X(wrap_type, int, nwrap, 1, mujoco)                \
+  X(wrap_objid, int, nwrap, 1, mujoco)               \
+  X(wrap_prm, double, nwrap, 1, mujoco)
 
 // sensors: what each one measures, on which object, and where its numbers go
 #define LEVER_MODEL_SENSOR_FIELDS(X)              \
@@ -193,6 +217,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(actuator_name, nu)       \
   X(sensor_name, nsensor)    \
   X(eq_name, neq)            \
+  X(tendon_name, ntendon)    \
   X(key_name, nkey)
 
 // The Model arrays set_const computes from the others (MuJoCo's mj_setConst's constants). It sizes
@@ -200,7 +225,8 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
 // whoever builds the model (lever::mjcf's compiler, or by hand), and checked by validate()
 // (lever/model_check.hpp).
 #define LEVER_MODEL_CONSTANTS(X) \
-  X(body_subtreemass) X(body_invweight0) X(body_simple) X(dof_invweight0) X(dof_M0) X(dof_simplenum)
+  X(body_subtreemass) X(body_invweight0) X(body_simple) X(dof_invweight0) X(dof_M0) X(dof_simplenum) \
+  X(tendon_length0) X(tendon_invweight0)
 
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
 // or `inverse` (written by inverse() only) or `energy` (by compute_energy() only)
@@ -227,7 +253,10 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(cdof, double, nv, 6, position, mujoco)                     \
   X(M, double, nv, -1, position, own) /* MuJoCo: qM, sparse */ \
   X(qLDiagInv, double, nv, 1, position, mujoco)                \
+  X(ten_length, double, ntendon, 1, position, mujoco)          \
+  X(ten_J, double, ntendon, counted_cols::nv, position, mujoco)              \
   X(actuator_length, double, nu, 1, position, mujoco)          \
+  X(actuator_moment, double, nu, counted_cols::nv, position, mujoco)         \
   X(efc_type, int, nefc, 1, position, mujoco)                  \
   X(efc_id, int, nefc, 1, position, mujoco)                    \
   X(efc_pos, double, nefc, 1, position, mujoco)                \
@@ -244,6 +273,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(cvel, double, nbody, 6, velocity, mujoco)                  \
   X(cdof_dot, double, nv, 6, velocity, mujoco)                 \
   X(actuator_velocity, double, nu, 1, velocity, mujoco)        \
+  X(ten_velocity, double, ntendon, 1, velocity, mujoco)        \
   X(qfrc_passive, double, nv, 1, velocity, mujoco)             \
   X(qfrc_bias, double, nv, 1, velocity, mujoco)                \
   X(efc_vel, double, nefc, 1, velocity, mujoco)                \
@@ -300,7 +330,10 @@ enum class Size : int {
   kNuserGeom,
   kNuserSite,
   kNuserActuator,
-  kNuserSensor
+  kNuserSensor,
+  // tendons
+  kNtendon,  ///< tendons (<tendon>)
+  kNwrap     ///< objects in the tendons' paths
 };
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;
@@ -312,7 +345,8 @@ struct FieldInfo {
   const char* name;
   Scalar scalar;
   Size rows;
-  int cols;        ///< < 0: as many as cols_size counts (M is nv x nv; body_user nuser_body)
+  int cols;        ///< < 0: as many as cols_size counts (M nv x nv; ten_J ntendon x nv; body_user
+                   ///< nbody x nuser_body)
   Stage stage;     ///< Data arrays only
   bool in_mujoco;  ///< MuJoCo 2.2.2 has an array of this name, shape and meaning
   Size cols_size = Size::kOne;  ///< what counts the columns when cols < 0

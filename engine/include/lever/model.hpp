@@ -126,7 +126,7 @@ constexpr bool is_servo(ActuatorKind kind) { return kind != ActuatorKind::kMotor
 
 // ---- sensors --------------------------------------------------------------------------------
 /// Sensor types; the numeric values are MuJoCo 2.2.2's mjtSensor. lever evaluates every type
-/// but the tendon sensors and user sensors (MuJoCo fills those from a callback), which the
+/// but user sensors (MuJoCo fills those from a callback), which the
 /// compiler and validate() refuse by name.
 enum class SensorType : int {
   kTouch = 0,
@@ -204,7 +204,7 @@ struct SensorLayout {
 };
 SensorLayout sensor_layout(SensorType type);
 
-/// Whether lever evaluates sensors of this type (every type but the tendon sensors and user
+/// Whether lever evaluates sensors of this type (every type but user
 /// sensors, which MuJoCo fills from a callback).
 bool sensor_type_supported(SensorType type);
 
@@ -226,9 +226,17 @@ enum class GeomType : int {
   kMesh = 7
 };
 
-/// Equality constraint types; the numeric values are MuJoCo's mjtEq (lever has no tendons, so
-/// no kTendon constraint; MuJoCo 2.2.2 refuses its distance constraint).
-enum class EqualityType : int { kConnect = 0, kWeld = 1, kJoint = 2 };
+/// Equality constraint types; the numeric values are MuJoCo's mjtEq (MuJoCo 2.2.2 refuses its
+/// distance constraint). kTendon couples two tendons' lengths as kJoint couples two joints.
+enum class EqualityType : int { kConnect = 0, kWeld = 1, kJoint = 2, kTendon = 3 };
+
+/// What a tendon's path is made of (MuJoCo's mjtWrap). A fixed tendon's path is joints only (its
+/// length a linear combination of their coordinates); a spatial tendon's runs through sites,
+/// around spheres and cylinders, split by pulleys. lever computes fixed tendons.
+enum class WrapType : int { kNone = 0, kJoint = 1, kPulley = 2, kSite = 3, kSphere = 4, kCylinder = 5 };
+
+/// How an actuator reaches the dofs (MuJoCo's mjtTrn): lever has joint and tendon transmissions.
+enum class TransmissionType : int { kJoint = 0, kJointInParent = 1, kSliderCrank = 2, kTendon = 3, kSite = 4 };
 
 /// Numbers per equality constraint in eq_data (MuJoCo's mjNEQDATA). What they mean by type:
 ///   connect: anchor in body 1's frame (0-2), the same point in body 2's frame at qpos0 (3-5);
@@ -317,6 +325,8 @@ struct Model {
   int nsensor = 0;      ///< sensors
   int nsensordata = 0;  ///< numbers all sensors output together (the sum of sensor_dim)
   int neq = 0;        ///< equality constraints (<equality>)
+  int ntendon = 0;    ///< tendons (<tendon>)
+  int nwrap = 0;      ///< objects in all tendons' paths (a fixed tendon's joints)
   int nmocap = 0;     ///< mocap bodies: children of the world without joints, placed by Data's
                       ///< mocap_pos and mocap_quat (MJCF's <body mocap="true">)
   // user data: numbers per object that the engine never reads (MJCF's `user`), each kind's rows
@@ -442,6 +452,33 @@ struct Model {
   /// pose left zero (its quaternion all zero) from the bodies' poses at qpos0, as mj_setConst
   std::vector<std::array<double, kEqualityData>> eq_data;
 
+  // ---- tendons (ntendon) and their paths (nwrap), as mjModel's -------------------------------
+  // A fixed tendon's length is sum_k coef_k qpos(joint_k) over its path's joints (wrap_objid,
+  // wrap_prm = coef), its Jacobian those coefficients at the joints' dofs. Its force: a spring
+  // -stiffness (length - lengthspring) - damping velocity along it; a limit row when it leaves
+  // range (limited), a friction-loss row while it moves (frictionloss > 0).
+  std::vector<std::string> tendon_name;
+  std::vector<int> tendon_adr;  ///< first object of its path in wrap_*
+  std::vector<int> tendon_num;  ///< objects in its path
+  std::vector<uint8_t> tendon_limited;
+  std::vector<double> tendon_width;  ///< drawn width (spatial tendons; no effect on dynamics)
+  std::vector<std::array<double, 2>> tendon_solref_lim;  ///< limit solref
+  std::vector<std::array<double, 5>> tendon_solimp_lim;  ///< limit solimp
+  std::vector<std::array<double, 2>> tendon_solref_fri;  ///< friction loss solref
+  std::vector<std::array<double, 5>> tendon_solimp_fri;  ///< friction loss solimp
+  std::vector<std::array<double, 2>> tendon_range;       ///< length limits
+  std::vector<double> tendon_margin;                     ///< limit rows within this of a stop
+  std::vector<double> tendon_stiffness;
+  std::vector<double> tendon_damping;
+  std::vector<double> tendon_frictionloss;
+  /// the spring's rest length; set_const replaces a negative one by the length at qpos_spring
+  std::vector<double> tendon_lengthspring;
+  std::vector<double> tendon_length0;     ///< set_const: length at qpos0
+  std::vector<double> tendon_invweight0;  ///< set_const: J M^-1 J^T at qpos0
+  std::vector<WrapType> wrap_type;        ///< (nwrap)
+  std::vector<int> wrap_objid;            ///< (nwrap) the joint (site, geom) of the object
+  std::vector<double> wrap_prm;           ///< (nwrap) a joint's coefficient
+
   // ---- sites (nsite) -------------------------------------------------------------------------
   std::vector<std::string> site_name;
   std::vector<int> site_bodyid;
@@ -451,12 +488,13 @@ struct Model {
   /// its shape: sphere, capsule, ellipsoid, cylinder or box (a touch sensor's zone)
   std::vector<GeomType> site_type;
 
-  // ---- actuators (nu): stateless actuators with a joint transmission ---------------------------
+  // ---- actuators (nu): stateless actuators on a joint or a tendon ------------------------------
   // force = gain * ctrl + bias, with gain = gainprm[0] (+ gainprm[1] length + gainprm[2] velocity
   // if affine) and bias = biasprm[0] + biasprm[1] length + biasprm[2] velocity (if affine): a
   // motor is gain 1 and no bias; a position servo gain kp and bias (0, -kp, -kv).
   std::vector<std::string> actuator_name;
-  std::vector<int> actuator_trnid;  ///< joint id
+  std::vector<TransmissionType> actuator_trntype;  ///< joint or tendon
+  std::vector<int> actuator_trnid;  ///< the joint or tendon it drives
   std::vector<DynType> actuator_dyntype;
   std::vector<GainType> actuator_gaintype;
   std::vector<BiasType> actuator_biastype;
@@ -551,6 +589,7 @@ struct Model {
   int key(const std::string& n) const;
   int sensor(const std::string& n) const;
   int equality(const std::string& n) const;
+  int tendon(const std::string& n) const;
 };
 
 /// Derive the constants MuJoCo's mj_setConst computes (dof_invweight0, dof_M0, body_invweight0,

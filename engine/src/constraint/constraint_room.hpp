@@ -54,9 +54,22 @@ int add_equality_rows(const Model& model, Data& data, int n);
 /// (equality.cpp).
 void complete_equality_data(Model& model, const Data& data);
 
-/// One row per dof with friction loss from row n, with their soft parameters (friction_loss.cpp).
+/// One row per dof with friction loss, then per tendon with friction loss, from row n, with their
+/// soft parameters (friction_loss.cpp).
 /// Returns the rows made so far.
 int add_friction_loss_rows(const Model& model, Data& data, int n);
+
+/// Whether a row's Jacobian is a dense row of efc_J that the products read whole (an equality
+/// row, a tendon's friction-loss or limit row) rather than sign e_dof or a contact's frame rows.
+inline bool dense_row(ConstraintType type) {
+  return type == ConstraintType::kEquality || type == ConstraintType::kFrictionTendon ||
+         type == ConstraintType::kLimitTendon;
+}
+
+/// Whether a row is a friction-loss row (its force boxed by efc_frictionloss).
+inline bool friction_loss_row(ConstraintType type) {
+  return type == ConstraintType::kFrictionDof || type == ConstraintType::kFrictionTendon;
+}
 
 // ---- the constraint rows' products (rows.cpp), shared by the solvers -------------------
 // A contact's rows are combinations of its frame's rows over its span of dofs

@@ -11,6 +11,8 @@
 //                     rotational Jacobians' columns, scaled by torquescale.
 //   joint (1 row):    q_1 - q_1(qpos0) - poly(q_2 - q_2(qpos0)), poly(x) = c_0 + c_1 x + ... +
 //                     c_4 x^4 (without a second joint, poly = c_0); J = e_1 - poly'(x) e_2.
+//   tendon (1 row):   the same polynomial in the tendons' lengths about tendon_length0;
+//                     J = J_1 - poly'(x) J_2 with the tendons' Jacobians.
 // A constraint whose Jacobian is zero throughout (two bodies fixed to the world) makes no rows, as
 // in MuJoCo. Impedance: the connect's and weld's rows share one, at the norm of their error (the
 // weld's rotational part scaled by torquescale), a joint's at its error; no margin. diagApprox:
@@ -104,6 +106,28 @@ int joint_row(const Model& model, Data& data, int e, int n) {
   return 1;
 }
 
+// The row of tendon coupling e at row n, as a joint coupling's with the tendons' lengths against
+// their lengths at qpos0 (tendon_length0): J = J_1 - poly'(x) J_2, the tendons' Jacobians.
+// Returns 1.
+int tendon_row(const Model& model, Data& data, int e, int n) {
+  const double* c = model.eq_data[e].data();
+  const int t1 = model.eq_obj1id[e], t2 = model.eq_obj2id[e];
+  const int nv = model.nv;
+  const double* const J1 = data.ten_J.data() + static_cast<std::ptrdiff_t>(t1) * nv;
+  for (int j = 0; j < nv; ++j) data.efc_J(n, j) = J1[j];
+  const double offset = data.ten_length[t1] - model.tendon_length0[t1] - c[0];
+  if (t2 < 0) {
+    data.efc_pos[n] = offset;
+    return 1;
+  }
+  const double x = data.ten_length[t2] - model.tendon_length0[t2];
+  data.efc_pos[n] = offset - (c[1] * x + c[2] * x * x + c[3] * x * x * x + c[4] * x * x * x * x);
+  const double slope = c[1] + 2 * c[2] * x + 3 * c[3] * x * x + 4 * c[4] * x * x * x;
+  const double* const J2 = data.ten_J.data() + static_cast<std::ptrdiff_t>(t2) * nv;
+  for (int j = 0; j < nv; ++j) data.efc_J(n, j) += J2[j] * -slope;
+  return 1;
+}
+
 // The soft parameters of constraint e's rows n..n + rows.
 void set_equality_soft_rows(const Model& model, Data& data, int e, int n, int rows) {
   std::array<double, 2> solref = model.eq_solref[e];
@@ -126,6 +150,10 @@ void set_equality_soft_rows(const Model& model, Data& data, int e, int n, int ro
     diag = model.dof_invweight0[model.jnt_dofadr[model.eq_obj1id[e]]];
     const int j2 = model.eq_obj2id[e];
     if (j2 >= 0) diag += model.dof_invweight0[model.jnt_dofadr[j2]];
+  } else if (model.eq_type[e] == EqualityType::kTendon) {
+    diag = model.tendon_invweight0[model.eq_obj1id[e]];
+    const int t2 = model.eq_obj2id[e];
+    if (t2 >= 0) diag += model.tendon_invweight0[t2];
   } else {  // translational, for a weld's rotational rows too (see the top of this file)
     diag =
         model.body_invweight0[model.eq_obj1id[e]][0] + model.body_invweight0[model.eq_obj2id[e]][0];
@@ -139,8 +167,10 @@ void set_equality_soft_rows(const Model& model, Data& data, int e, int n, int ro
 int add_equality_rows(const Model& model, Data& data, int n) {
   for (int e = 0; e < model.neq; ++e) {
     if (!model.eq_active[e]) continue;
-    const int rows = model.eq_type[e] == EqualityType::kJoint ? joint_row(model, data, e, n)
-                                                              : body_rows(model, data, e, n);
+    const EqualityType type = model.eq_type[e];
+    const int rows = type == EqualityType::kJoint    ? joint_row(model, data, e, n)
+                     : type == EqualityType::kTendon ? tendon_row(model, data, e, n)
+                                                     : body_rows(model, data, e, n);
     for (int r = n; r < n + rows; ++r) {
       data.efc_type[r] = ConstraintType::kEquality;
       data.efc_id[r] = e;

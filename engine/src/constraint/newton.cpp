@@ -53,7 +53,7 @@ ConstraintState block_cost(const Data& data, int r, int size, const double* x, d
   std::fill(grad, grad + size, 0.0);
   if (hess != nullptr) hess->topLeftCorner(size, size).setZero();
   const ConstraintType type = data.efc_type[r];
-  if (type == ConstraintType::kFrictionDof) {
+  if (friction_loss_row(type)) {
     // Huber's cost: linear beyond |jar| = R f, where the force reaches the box's side +-f
     const double f = data.efc_frictionloss[r], Rf = data.efc_R[r] * f;
     if (x[0] <= -Rf || x[0] >= Rf) {
@@ -66,7 +66,7 @@ ConstraintState block_cost(const Data& data, int r, int size, const double* x, d
   if (type != ConstraintType::kContactElliptic) {
     // an equality row pulls both ways; a friction-loss row inside its box is quadratic too
     const bool two_sided =
-        type == ConstraintType::kEquality || type == ConstraintType::kFrictionDof;
+        type == ConstraintType::kEquality || friction_loss_row(type);
     if (!two_sided && x[0] >= 0) return ConstraintState::kSatisfied;
     cost = 0.5 * D[0] * x[0] * x[0];
     grad[0] = D[0] * x[0];

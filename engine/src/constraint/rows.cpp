@@ -2,7 +2,8 @@
 // parameters; joint limits and contacts (equality constraints: equality.cpp; friction loss:
 // friction_loss.cpp). MuJoCo's order: equality rows, friction-loss rows, limits, contacts.
 //
-// Rows: a joint within `margin` of a stop gives one (J = +-e_dof); a contact (data.contact, from
+// Rows: a joint within `margin` of a stop gives one (J = +-e_dof), a tendon within its margin of
+// a stop one (J = +-ten_J, after every joint's); a contact (data.contact, from
 // collision()) without friction one, J = n^T (J_2 - J_1) at its point. With friction, a pyramidal
 // cone gives two rows per friction direction, the pyramid's edges n +- mu_k t_k (condim 3: two
 // tangents; 4: and the spin about n; 6: and two rolling axes, from the rotational Jacobians); an
@@ -137,6 +138,38 @@ int add_limit_rows(const Model& model, Data& data, int n) {
     const double lower = q - range[j][0], upper = range[j][1] - q;
     if (lower < margin) add_limit_row(model, data, n++, j, 1.0, lower);
     if (upper < margin) add_limit_row(model, data, n++, j, -1.0, upper);
+  }
+  return n;
+}
+
+// The tendon limit rows after the n already made (MuJoCo's mj_instantiateLimit, after the joints'):
+// lower stop (J = ten_J, distance L - lower), then upper (J = -ten_J, distance upper - L), each
+// within the tendon's margin, with the tendon's limit solref, solimp and tendon_invweight0.
+int add_tendon_limit_rows(const Model& model, Data& data, int n) {
+  const int nv = model.nv;
+  for (int t = 0; t < model.ntendon; ++t) {
+    if (!model.tendon_limited[t]) continue;
+    const double length = data.ten_length[t];
+    const double margin = model.tendon_margin[t];
+    const double* const J = data.ten_J.data() + static_cast<std::ptrdiff_t>(t) * nv;
+    const double dist[2] = {length - model.tendon_range[t][0], model.tendon_range[t][1] - length};
+    for (int side = 0; side < 2; ++side) {
+      if (!(dist[side] < margin)) continue;
+      const double sign = side == 0 ? 1.0 : -1.0;
+      data.efc_type[n] = ConstraintType::kLimitTendon;
+      data.efc_id[n] = t;
+      data.efc_dof[n] = -1;
+      data.efc_sign[n] = 0.0;
+      for (int j = 0; j < nv; ++j) data.efc_J(n, j) = sign * J[j];
+      data.efc_pos[n] = dist[side];
+      data.efc_margin[n] = margin;
+      std::array<double, 2> solref = model.tendon_solref_lim[t];
+      std::array<double, 5> solimp = model.tendon_solimp_lim[t];
+      sanitize(model, solref, solimp);
+      const SoftParameters soft = soft_parameters(solref, solimp, dist[side], margin);
+      set_soft_row(data, n, soft, soft.K, regularizer(soft, model.tendon_invweight0[t]));
+      ++n;
+    }
   }
   return n;
 }
@@ -379,7 +412,7 @@ void unchecked::make_constraint(const Model& model, Data& data) {
   int n = data.ne + data.nf;
   const int limits = add_limit_rows(model, data, n);
   set_limit_soft_rows(model, data, n, limits);
-  n = limits;
+  n = add_tendon_limit_rows(model, data, limits);
   PairDofs pair;
   for (int i = 0; i < data.ncon; ++i) {
     Contact& con = data.contact[i];
@@ -501,7 +534,7 @@ void rows_times(const Data& data, const double* x, double* out) {
   const auto& C = data.work.contact_frame_J;
   const int nv = static_cast<int>(data.efc_J.cols());
   for (int r = 0; r < data.nefc;) {
-    if (data.efc_type[r] == ConstraintType::kEquality) {  // a dense row, summed in order
+    if (dense_row(data.efc_type[r])) {  // summed in order
       const double* J = data.efc_J.row(r).data();
       double sum = 0.0;
       for (int j = 0; j < nv; ++j) sum += J[j] * x[j];
@@ -540,7 +573,7 @@ void add_rows_transpose(const Data& data, const double* f, double* out) {
   const auto& C = data.work.contact_frame_J;
   const int nv = static_cast<int>(data.efc_J.cols());
   for (int r = 0; r < data.nefc;) {
-    if (data.efc_type[r] == ConstraintType::kEquality) {
+    if (dense_row(data.efc_type[r])) {
       const double* J = data.efc_J.row(r).data();
       if (f[r] != 0.0) {
         for (int j = 0; j < nv; ++j) out[j] += J[j] * f[r];
@@ -582,7 +615,7 @@ void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H) {
   const auto& C = data.work.contact_frame_J;
   const int nv = static_cast<int>(data.efc_J.cols());
   for (int r = 0; r < data.nefc;) {
-    if (data.efc_type[r] == ConstraintType::kEquality) {
+    if (dense_row(data.efc_type[r])) {
       if (weight[r] != 0.0) add_rank_one(H, 0, nv, weight[r], data.efc_J.row(r).data());
       ++r;
       continue;

@@ -46,6 +46,11 @@ void check_derivative_sizes(const Model& model, const Data& data, const Derivati
         "derivatives: the model has equality constraints; lever's analytic derivatives cover joint "
         "limits and contacts so far.");
   }
+  if (model.ntendon > 0) {
+    throw ModelError("derivatives: the model has tendons (tendon '" + model.tendon_name[0] +
+                     "'); lever's analytic derivatives do not cover tendons' forces and rows "
+                     "yet.");
+  }
   for (int i = 0; i < model.nv; ++i) {
     if (model.dof_frictionloss[i] > 0) {
       throw ModelError("derivatives: joint '" + model.jnt_name[model.dof_jntid[i]] +

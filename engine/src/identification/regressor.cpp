@@ -45,6 +45,11 @@ void regressor(const Model& model, Data& data, const Eigen::Ref<const Eigen::Vec
       data.nv != model.nv) {
     throw StateError("regressor: qacc must have nv elements and Y be nv x regressor_columns.");
   }
+  if (model.ntendon > 0) {
+    throw ModelError("regressor: the model has tendons (tendon '" + model.tendon_name[0] +
+                     "'); the regressor does not cover tendon forces or tendon-driven actuators "
+                     "yet.");
+  }
   Y.setZero();
   // velocities and accelerations of every body (RNEA's forward pass; gravity as a_0 = -g), kept
   // in Data's RNEA workspace

@@ -57,6 +57,7 @@ Owner owner_of_row(const Model& model, Size size, int row) {
     case Size::kNpair: return {"pair", row, ""};
     case Size::kNsensor: return {"sensor", row, model.sensor_name[row]};
     case Size::kNeq: return {"equality", row, model.eq_name[row]};
+    case Size::kNtendon: return {"tendon", row, model.tendon_name[row]};
     default: return {};
   }
 }
@@ -353,6 +354,17 @@ void check_tree(const Model& model) {
   }
   for (int a = 0; a < model.nu; ++a) {
     const int j = model.actuator_trnid[a];
+    const TransmissionType trn = model.actuator_trntype[a];
+    if (trn == TransmissionType::kTendon) {
+      if (j < 0 || j >= model.ntendon) {
+        throw ModelError("actuator " + std::to_string(a) + " names no tendon.");
+      }
+      continue;
+    }
+    if (trn != TransmissionType::kJoint) {
+      reject("actuator", a, model.actuator_name[a],
+             "has a transmission lever does not have (joint 0 and tendon 3 are lever's)");
+    }
     if (j < 0 || j >= model.njnt) {
       throw ModelError("actuator " + std::to_string(a) + " names no joint.");
     }
@@ -371,12 +383,17 @@ void check_equalities(const Model& model) {
   for (int e = 0; e < model.neq; ++e) {
     const int type = static_cast<int>(model.eq_type[e]);
     const int id1 = model.eq_obj1id[e], id2 = model.eq_obj2id[e];
-    if (type < 0 || type > static_cast<int>(EqualityType::kJoint)) {
+    if (type < 0 || type > static_cast<int>(EqualityType::kTendon)) {
       reject("equality", e, model.eq_name[e],
-             "has a type lever does not have (connect 0, weld 1, joint 2; tendon couplings need "
-             "tendons)");
+             "has a type lever does not have (connect 0, weld 1, joint 2, tendon 3)");
     }
     if (id1 == id2) reject("equality", e, model.eq_name[e], "names the same object twice");
+    if (model.eq_type[e] == EqualityType::kTendon) {
+      if (id1 < 0 || id1 >= model.ntendon || id2 < -1 || id2 >= model.ntendon) {
+        reject("equality", e, model.eq_name[e], "names a tendon that does not exist");
+      }
+      continue;
+    }
     if (model.eq_type[e] != EqualityType::kJoint) {
       if (id1 < 0 || id1 >= model.nbody || id2 < 0 || id2 >= model.nbody) {
         reject("equality", e, model.eq_name[e], "names a body that does not exist");
@@ -393,6 +410,42 @@ void check_equalities(const Model& model) {
                "couples joint '" + model.jnt_name[j] + "', which is not a hinge or a slide");
       }
     }
+  }
+}
+
+// Each tendon's path: consecutive objects of wrap_*, fixed (joints only: a hinge or a slide each,
+// the tendon's length their weighted coordinates). Spatial tendons are refused by name.
+void check_tendons(const Model& model) {
+  int next = 0;
+  for (int t = 0; t < model.ntendon; ++t) {
+    const std::string& name = model.tendon_name[t];
+    const int adr = model.tendon_adr[t], num = model.tendon_num[t];
+    if (adr != next || num < 1 || adr + num > model.nwrap) {
+      reject("tendon", t, name,
+             "has a path that is not the next tendon_num[t] >= 1 objects of wrap_* (tendon_adr "
+             "must follow the previous tendon's path)");
+    }
+    next = adr + num;
+    for (int w = adr; w < adr + num; ++w) {
+      if (model.wrap_type[w] != WrapType::kJoint) {
+        reject("tendon", t, name,
+               "is a spatial tendon (sites, wrapping geoms, pulleys); lever has fixed tendons "
+               "only");
+      }
+      const int j = model.wrap_objid[w];
+      if (j < 0 || j >= model.njnt) reject("tendon", t, name, "names a joint that does not exist");
+      if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
+        reject("tendon", t, name,
+               "runs along joint '" + model.jnt_name[j] + "', which is not a hinge or a slide");
+      }
+    }
+    if (model.tendon_limited[t] && !(model.tendon_range[t][0] < model.tendon_range[t][1])) {
+      reject("tendon", t, name, "is limited but its range does not have lower < upper");
+    }
+  }
+  if (next != model.nwrap) {
+    throw ModelError("nwrap is " + std::to_string(model.nwrap) + " but the tendons' paths hold " +
+                     std::to_string(next) + " objects.");
   }
 }
 
@@ -486,6 +539,7 @@ bool sensor_object_exists(const Model& model, ObjectType type, int id) {
     case ObjectType::kSite: return id >= 0 && id < model.nsite;
     case ObjectType::kJoint: return id >= 0 && id < model.njnt;
     case ObjectType::kActuator: return id >= 0 && id < model.nu;
+    case ObjectType::kTendon: return id >= 0 && id < model.ntendon;
     default: return false;
   }
 }
@@ -509,7 +563,7 @@ void check_sensors(const Model& model) {
     if (!sensor_type_supported(type)) {
       reject("sensor", s, name,
              std::string("is a ") + sensor_type_name(type) + " sensor; lever has no " +
-                 (type == SensorType::kUser ? "sensor callbacks" : "tendons"));
+                 (type == SensorType::kUser ? "sensor callbacks" : "tendon sensors"));
     }
     const SensorLayout layout = sensor_layout(type);
     if (model.sensor_dim[s] != layout.dim || model.sensor_datatype[s] != layout.datatype ||
@@ -588,6 +642,7 @@ void validate(const Model& model) {
   check_options_actuators_keys(model);
   check_meshes(model);
   check_sensors(model);
+  check_tendons(model);
   check_equalities(model);
   check_finite(model);
   check_ranges(model);

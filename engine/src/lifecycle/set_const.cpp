@@ -198,6 +198,37 @@ ActuatorKind actuator_kind_of(GainType gaintype, const std::array<double, kGainP
   return state_bias || state_gain ? ActuatorKind::kGeneral : ActuatorKind::kMotor;
 }
 
+namespace {
+
+// The tendons' constants (mj_setConst): each length at qpos0 and its inverse weight J M^-1 J^T
+// there (data: kinematics and M's factor at qpos0), then a negative spring length replaced by the
+// length at qpos_spring.
+void build_tendon_constants(Model& model, Data& data) {
+  model.tendon_length0.assign(model.ntendon, 0.0);
+  model.tendon_invweight0.assign(model.ntendon, 0.0);
+  if (model.ntendon == 0) return;
+  tendon(model, data);
+  Eigen::VectorXd x(model.nv);
+  for (int t = 0; t < model.ntendon; ++t) {
+    model.tendon_length0[t] = data.ten_length[t];
+    x = data.ten_J.row(t).transpose();
+    solve_mass(model, data, x);
+    double weight = 0.0;
+    for (int j = 0; j < model.nv; ++j) weight += data.ten_J(t, j) * x[j];
+    model.tendon_invweight0[t] = weight;
+  }
+  const Eigen::VectorXd qpos = data.qpos;
+  data.qpos = model.qpos_spring;
+  tendon(model, data);
+  for (int t = 0; t < model.ntendon; ++t) {
+    if (model.tendon_lengthspring[t] < 0) model.tendon_lengthspring[t] = data.ten_length[t];
+  }
+  data.qpos = qpos;
+  tendon(model, data);
+}
+
+}  // namespace
+
 void set_const(Model& model) {
   validate(model);  // lever/model_check.hpp: nothing below runs on a model it refuses
   build_subtree_masses(model);
@@ -253,6 +284,7 @@ void set_const(Model& model) {
     }
     model.body_invweight0[b] = weight;
   }
+  build_tendon_constants(model, data);
   complete_equality_data(model, data);  // constraint/equality.cpp: anchors at qpos0
   detail::check_at_qpos0(model, data);  // model_check.cpp: finite parameters can still overflow
   build_simple_bodies(model);  // after dof_M0, which crba() copies for their dofs from now on

@@ -19,7 +19,8 @@ constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude,
                nmesh = Size::kNmesh, nmeshvert = Size::kNmeshvert, nmeshgraph = Size::kNmeshgraph,
                nsensor = Size::kNsensor, nsensordata = Size::kNsensordata,
-               neq = Size::kNeq, nmocap = Size::kNmocap;
+               neq = Size::kNeq, nmocap = Size::kNmocap, ntendon = Size::kNtendon,
+               nwrap = Size::kNwrap;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy;
@@ -27,7 +28,7 @@ constexpr bool mujoco = true, own = false;
 }  // namespace token
 
 // The size that counts an array's columns when its table row gives no number: -1, its rows'
-// (M, nv x nv); a counted_cols width, that width's.
+// (M, nv x nv); a counted_cols width, that width's (ten_J and actuator_moment: nv).
 constexpr Size cols_size_of(int cols, Size rows) {
   switch (cols) {
     case -1: return rows;
@@ -37,6 +38,7 @@ constexpr Size cols_size_of(int cols, Size rows) {
     case counted_cols::nuser_site: return Size::kNuserSite;
     case counted_cols::nuser_actuator: return Size::kNuserActuator;
     case counted_cols::nuser_sensor: return Size::kNuserSensor;
+    case counted_cols::nv: return Size::kNv;
     default: return Size::kOne;
   }
 }
@@ -77,7 +79,7 @@ struct Layout<Eigen::MatrixXd> {  // square (M): its storage order does not matt
 };
 
 template <>
-struct Layout<RowMatrix> {  // rows x a counted width (the user data)
+struct Layout<RowMatrix> {  // rows x a counted width (user data; ten_J, actuator_moment nv)
   using element = double;
   static constexpr int per_entry = 1;
   static void* data(const RowMatrix& m) { return const_cast<double*>(m.data()); }
@@ -246,6 +248,9 @@ int constraint_rows_max(const Model& model) {
                                                        : 1;
   }
   for (const double loss : model.dof_frictionloss) rows += loss > 0;
+  // a tendon's friction-loss row, and its two stops (a tendon's range may be edited)
+  for (const double loss : model.tendon_frictionloss) rows += loss > 0;
+  rows += 2 * static_cast<int>(model.tendon_limited.size());
   return rows + 2 * model.njnt + (model.contacts_possible ? std::max(0, model.njmax) : 0);
 }
 
@@ -275,6 +280,8 @@ int size_of(const Model& model, Size size) {
     case Size::kNuserSite: return model.nuser_site;
     case Size::kNuserActuator: return model.nuser_actuator;
     case Size::kNuserSensor: return model.nuser_sensor;
+    case Size::kNtendon: return model.ntendon;
+    case Size::kNwrap: return model.nwrap;
   }
   return 0;
 }
@@ -284,11 +291,12 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 24> names = {
+  static constexpr std::array<const char*, 26> names = {
       "1",          "nq",          "nv",           "nu",          "nbody",          "njnt",
       "ngeom",      "nsite",       "nefc",         "npair",       "nexclude",       "nmesh",
       "nmeshvert",  "nmeshgraph",  "nsensor",      "nsensordata", "neq",            "nmocap",
-      "nuser_body", "nuser_jnt",   "nuser_geom",   "nuser_site",  "nuser_actuator", "nuser_sensor"};
+      "nuser_body", "nuser_jnt",   "nuser_geom",   "nuser_site",  "nuser_actuator", "nuser_sensor",
+      "ntendon",    "nwrap"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -416,7 +424,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 23> counts = {{{"nmesh", model.nmesh},
+  const std::array<std::pair<const char*, int>, 25> counts = {{{"nmesh", model.nmesh},
                                                                {"nmeshvert", model.nmeshvert},
                                                                {"nmeshgraph", model.nmeshgraph},
                                                                {"nq", model.nq},
@@ -438,7 +446,9 @@ void size_model(Model& model) {
                                                                {"nuser_geom", model.nuser_geom},
                                                                {"nuser_site", model.nuser_site},
                                                                {"nuser_actuator", model.nuser_actuator},
-                                                               {"nuser_sensor", model.nuser_sensor}}};
+                                                               {"nuser_sensor", model.nuser_sensor},
+                                                               {"ntendon", model.ntendon},
+                                                               {"nwrap", model.nwrap}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +

@@ -20,5 +20,6 @@ int Model::key(const std::string& n) const { return find_name(key_name, n); }
 int Model::geom(const std::string& n) const { return find_name(geom_name, n); }
 int Model::sensor(const std::string& n) const { return find_name(sensor_name, n); }
 int Model::equality(const std::string& n) const { return find_name(eq_name, n); }
+int Model::tendon(const std::string& n) const { return find_name(tendon_name, n); }
 
 }  // namespace lever

@@ -40,6 +40,7 @@ void after_kinematics(const Model& model, Data& data) {
   } else {
     data.ncon = 0;
   }
+  unchecked::tendon(model, data);
   unchecked::crba(model, data);
   unchecked::factor_mass(model, data);
   unchecked::make_constraint(model, data);
@@ -48,6 +49,7 @@ void after_kinematics(const Model& model, Data& data) {
 
 // The velocity stage without its sensors.
 void velocity_core(const Model& model, Data& data) {
+  unchecked::tendon_velocity(model, data);
   unchecked::passive(model, data);
   unchecked::bias(model, data);
   unchecked::reference_constraint(model, data);

@@ -7,8 +7,10 @@
 //   actuators: each affine bias contributes biasprm[2], each affine gain gainprm[2] * ctrl, times
 //              gear^2 on its dof; the raw ctrl is used and the ctrl and force clamps are ignored
 //              (so a clamped servo still damps implicitly, exactly as in MuJoCo);
-//   passive:   -damping on the diagonal (joint springs do not depend on qvel), and the fluid's
-//              drag as mjd_inertiaBoxFluid takes it (smooth/fluid.cpp);
+//              a tendon actuator's moment row m adds m^T (d force / d velocity) m;
+//   passive:   -damping on the diagonal (joint springs do not depend on qvel), each tendon's
+//              -damping J^T J (its Jacobian J), and the fluid's drag as mjd_inertiaBoxFluid takes
+//              it (smooth/fluid.cpp);
 //   bias:      -d qfrc_bias / d qvel: the Coriolis and centrifugal terms, Carpentier and Mansard's
 //              d rnea / d qd (derivatives/inverse_dynamics.cpp; gravity and qacc do not depend on qvel).
 // The constraint force is taken from the forward solve and held fixed, as MuJoCo does.
@@ -18,7 +20,7 @@
 //
 // MuJoCo 3's implicitfast (mjINT_IMPLICITFAST, engine_forward.c mj_implicitSkip) is the same step
 // with D holding the actuator and damping terms only (mjd_smooth_vel with flg_bias = 0: no
-// Coriolis derivative). That D is symmetric (diagonal here: each actuator drives one joint), so
+// Coriolis derivative). That D is symmetric (and kept where M is non-zero), so
 // M - h D is factored as M is, LTDL on the tree (MuJoCo 3's mj_factorI), and solved as M is.
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
@@ -51,6 +53,25 @@ void smooth_velocity_derivative(const Model& model, Data& data,
   if (has_fluid(model.opt)) detail::add_fluid_velocity_terms(model, data, qDeriv);
 }
 
+namespace {
+
+// D += J^T b J for a row J (nv numbers), where M is non-zero only: at dof pairs on one branch of the
+// tree (MuJoCo adds the whole product, then keeps M's sparsity pattern in its qDeriv). Each element
+// as MuJoCo's addJTBJ forms it: (J_k b) J_j.
+void add_row_outer_product(const Model& model, const double* J, double b,
+                           Eigen::Ref<Eigen::MatrixXd> D) {
+  for (int k = 0; k < model.nv; ++k) {
+    if (J[k] == 0.0) continue;
+    for (int j = k; j >= 0; j = model.dof_parentid[j]) {
+      if (J[j] == 0.0) continue;
+      D(k, j) += J[k] * b * J[j];
+      if (j != k) D(j, k) += J[j] * b * J[k];
+    }
+  }
+}
+
+}  // namespace
+
 void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
                                          Eigen::Ref<Eigen::MatrixXd> D) {
   // actuators: d force / d velocity of the affine bias and gain, carried to the dof by the gear
@@ -62,12 +83,24 @@ void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
     if (model.actuator_gaintype[a] == GainType::kAffine) {
       force_per_velocity += model.actuator_gainprm[a][2] * data.ctrl[a];
     }
+    if (model.actuator_trntype[a] == TransmissionType::kTendon) {
+      if (force_per_velocity != 0.0) {
+        add_row_outer_product(model, data.actuator_moment.row(a).data(), force_per_velocity, D);
+      }
+      continue;
+    }
     const double gear = model.actuator_gear[a][0];
     const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
     D(dof, dof) += gear * force_per_velocity * gear;
   }
   // joint damping
   for (int i = 0; i < model.nv; ++i) D(i, i) -= model.dof_damping[i];
+  // tendon damping: -damping J^T J over the tendon's Jacobian
+  for (int t = 0; t < model.ntendon; ++t) {
+    if (model.tendon_damping[t] > 0) {
+      add_row_outer_product(model, data.ten_J.row(t).data(), -model.tendon_damping[t], D);
+    }
+  }
 }
 
 void factor_lu_tree(const Model& model, Eigen::MatrixXd& K) {

@@ -73,8 +73,7 @@ SensorLayout sensor_layout(SensorType type) {
 bool sensor_type_supported(SensorType type) {
   const int t = static_cast<int>(type);
   if (t < 0 || t > static_cast<int>(SensorType::kClock)) return false;
-  const ObjectType object = sensor_layout(type).object;
-  return object != ObjectType::kTendon;
+  return true;  // every type but user sensors, which MuJoCo fills from a callback
 }
 
 namespace {
@@ -144,14 +143,21 @@ void put3(double* out, const Vector3d& v) {
   out[2] = v[2];
 }
 
-// The first row of joint j's limit and what `pick` takes from it, or 0 when the joint is
-// within its range (no row).
+// The first limit row of joint (tendon) j and what `pick` takes from it, or 0 when it is within
+// its range (no row); `kind` is kLimitJoint or kLimitTendon.
 template <class Pick>
-double limit_value(const Data& data, int j, Pick pick) {
+double limit_value(const Data& data, ConstraintType kind, int j, Pick pick) {
   for (int r = 0; r < data.nefc; ++r) {
-    if (data.efc_type[r] == ConstraintType::kLimitJoint && data.efc_id[r] == j) return pick(r);
+    if (data.efc_type[r] == kind && data.efc_id[r] == j) return pick(r);
   }
   return 0.0;
+}
+
+// The limit rows a limit sensor reads: a joint's or a tendon's.
+ConstraintType limit_kind(SensorType type) {
+  const bool tendon = type == SensorType::kTendonLimitPos || type == SensorType::kTendonLimitVel ||
+                      type == SensorType::kTendonLimitFrc;
+  return tendon ? ConstraintType::kLimitTendon : ConstraintType::kLimitJoint;
 }
 
 // ---- noise and cutoff ------------------------------------------------------------------------
@@ -343,8 +349,11 @@ void sensor_position(const Model& model, Data& data) {
         for (int k = 0; k < 4; ++k) out[k] = data.qpos[model.jnt_qposadr[id] + k];
         break;
       case SensorType::kJointLimitPos:
-        out[0] = limit_value(data, id, [&](int r) { return data.efc_pos[r] - data.efc_margin[r]; });
+      case SensorType::kTendonLimitPos:
+        out[0] = limit_value(data, limit_kind(model.sensor_type[s]), id,
+                             [&](int r) { return data.efc_pos[r] - data.efc_margin[r]; });
         break;
+      case SensorType::kTendonPos: out[0] = data.ten_length[id]; break;
       case SensorType::kFramePos:
       case SensorType::kFrameXAxis:
       case SensorType::kFrameYAxis:
@@ -385,8 +394,10 @@ void sensor_velocity(const Model& model, Data& data) {
         for (int k = 0; k < 3; ++k) out[k] = data.qvel[model.jnt_dofadr[id] + k];
         break;
       case SensorType::kJointLimitVel:
-        out[0] = limit_value(data, id, [&](int r) { return data.efc_vel[r]; });
+      case SensorType::kTendonLimitVel:
+        out[0] = limit_value(data, limit_kind(type), id, [&](int r) { return data.efc_vel[r]; });
         break;
+      case SensorType::kTendonVel: out[0] = data.ten_velocity[id]; break;
       case SensorType::kFrameLinVel:
       case SensorType::kFrameAngVel: frame_velocity(model, data, s, out); break;
       case SensorType::kSubtreeLinVel: put3(out, data.subtree_linvel[id]); break;
@@ -407,7 +418,8 @@ void sensor_acceleration(const Model& model, Data& data) {
     double* out = data.sensordata.data() + model.sensor_adr[s];
     // the forces inside the tree, once, for the first sensor that reads them
     const bool reads_forces = type != SensorType::kTouch && type != SensorType::kActuatorFrc &&
-                              type != SensorType::kJointLimitFrc;
+                              type != SensorType::kJointLimitFrc &&
+                              type != SensorType::kTendonLimitFrc;
     if (reads_forces && !forces_done) {
       rne_post_constraint(model, data);
       forces_done = true;
@@ -434,7 +446,8 @@ void sensor_acceleration(const Model& model, Data& data) {
       }
       case SensorType::kActuatorFrc: out[0] = data.actuator_force[id]; break;
       case SensorType::kJointLimitFrc:
-        out[0] = limit_value(data, id, [&](int r) { return data.efc_force[r]; });
+      case SensorType::kTendonLimitFrc:
+        out[0] = limit_value(data, limit_kind(type), id, [&](int r) { return data.efc_force[r]; });
         break;
       case SensorType::kFrameLinAcc:
       case SensorType::kFrameAngAcc: {

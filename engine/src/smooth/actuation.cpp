@@ -1,6 +1,8 @@
-// Actuators on joints: transmission, clamping and the joint forces they produce
+// Actuators on joints and tendons: transmission, clamping and the joint forces they produce
 // (MuJoCo 2.2.2's mj_transmission and mj_fwdActuation for stateless actuators: motors, position
-// and velocity servos, and <general> with fixed or affine gain and bias).
+// and velocity servos, and <general> with fixed or affine gain and bias). A joint transmission's
+// length is gear[0] qpos, its moment gear[0] at the joint's dof; a tendon transmission's length is
+// gear[0] times the tendon's length, its moment gear[0] ten_J. actuator_moment holds every row.
 //
 // Order, as MuJoCo: ctrl clamped to ctrlrange (on a copy; data.ctrl is never changed), force =
 // gain * ctrl + bias, force clamped to forcerange, then the gear carries it to the joint. A
@@ -25,13 +27,29 @@ double clamp(double x, const std::array<double, 2>& range) {
 }  // namespace
 
 void unchecked::transmission(const Model& model, Data& data) {
-  const int* const joint = model.actuator_trnid.data();
+  const int* const id = model.actuator_trnid.data();
   const auto* const gear = model.actuator_gear.data();
   const int* const qposadr = model.jnt_qposadr.data();
   const int* const dofadr = model.jnt_dofadr.data();
+  const int nv = model.nv;
   for (int a = 0; a < model.nu; ++a) {
-    const int j = joint[a];
-    const double g = gear[a][0];  // a joint transmission uses gear[0] only
+    const double g = gear[a][0];  // joint and tendon transmissions use gear[0] only
+    double* const moment = data.actuator_moment.data() + static_cast<std::ptrdiff_t>(a) * nv;
+    if (model.actuator_trntype[a] == TransmissionType::kTendon) {
+      const int t = id[a];
+      const double* const J = data.ten_J.data() + static_cast<std::ptrdiff_t>(t) * nv;
+      data.actuator_length[a] = data.ten_length[t] * g;
+      double velocity = 0.0;
+      for (int j = 0; j < nv; ++j) {
+        moment[j] = J[j] * g;
+        velocity += moment[j] * data.qvel[j];
+      }
+      data.actuator_velocity[a] = velocity;
+      continue;
+    }
+    const int j = id[a];
+    for (int k = 0; k < nv; ++k) moment[k] = 0.0;
+    moment[dofadr[j]] = g;
     data.actuator_length[a] = g * data.qpos[qposadr[j]];
     data.actuator_velocity[a] = g * data.qvel[dofadr[j]];
   }
@@ -65,11 +83,17 @@ void unchecked::actuation(const Model& model, Data& data) {
   const int* const joint = model.actuator_trnid.data();
   const auto* const gear = model.actuator_gear.data();
   const int* const dofadr = model.jnt_dofadr.data();
+  const int nv = model.nv;
   for (int a = 0; a < model.nu; ++a) {
     double f = force[a] * actuator_gain(model, a, length[a], velocity[a]);
     f += actuator_bias(model, a, length[a], velocity[a]);
     if (model.actuator_forcelimited[a]) f = clamp(f, model.actuator_forcerange[a]);
     force[a] = f;
+    if (model.actuator_trntype[a] == TransmissionType::kTendon) {  // moment^T f
+      const double* const moment = data.actuator_moment.data() + static_cast<std::ptrdiff_t>(a) * nv;
+      for (int j = 0; j < nv; ++j) qfrc[j] += moment[j] * f;
+      continue;
+    }
     qfrc[dofadr[joint[a]]] += gear[a][0] * f;
   }
 }

@@ -9,7 +9,7 @@ namespace lever {
 
 void compute_energy(const Model& model, Data& data) {
   check_entry(model, data, "lever::compute_energy");
-  // gravity: -m g . x_com for every body; springs: k (q - q_spring)^2 / 2
+  // gravity: -m g . x_com for every body; springs: k (q - q_spring)^2 / 2, tendons' included
   double potential = 0.0;
   for (int b = 1; b < model.nbody; ++b) {
     potential -= model.body_mass[b] * model.opt.gravity.dot(data.xipos[b]);
@@ -36,6 +36,11 @@ void compute_energy(const Model& model, Data& data) {
         potential += 0.5 * k * stretch * stretch;
       }
     }
+  }
+  // the tendons' springs: k (L - lengthspring)^2 / 2, with L the position stage's ten_length
+  for (int t = 0; t < model.ntendon; ++t) {
+    const double stretch = data.ten_length[t] - model.tendon_lengthspring[t];
+    if (model.tendon_stiffness[t] > 0) potential += 0.5 * model.tendon_stiffness[t] * stretch * stretch;
   }
   data.energy[0] = potential;
   Eigen::VectorXd& momentum = data.work.vec1;  // preallocated: no heap use here

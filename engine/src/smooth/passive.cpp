@@ -1,5 +1,5 @@
-// Passive forces: joint springs about springref, viscous damping, and the fluid's drag
-// (fluid.cpp) (MuJoCo's mj_passive).
+// Passive forces: joint springs about springref and viscous damping, the tendons' spring-dampers
+// (tendon.cpp), and the fluid's drag (fluid.cpp), in MuJoCo 2.2.2's mj_passive's order.
 #include <lever/dynamics.hpp>
 
 #include "basics/basics.hpp"
@@ -42,6 +42,7 @@ void unchecked::passive(const Model& model, Data& data) {
   const double* const damping = model.dof_damping.data();
   const double* const qvel = data.qvel.data();
   for (int i = 0; i < model.nv; ++i) qfrc[i] -= damping[i] * qvel[i];
+  add_tendon_passive(model, data);
   if (has_fluid(model.opt)) detail::add_fluid_forces(model, data);
 }
 

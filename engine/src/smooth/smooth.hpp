@@ -37,7 +37,14 @@ void bias(const Model& model, Data& data);
 void passive(const Model& model, Data& data);
 void transmission(const Model& model, Data& data);
 void actuation(const Model& model, Data& data);
+/// ten_length and ten_J (tendon.cpp)
+void tendon(const Model& model, Data& data);
+/// ten_velocity = ten_J qvel (tendon.cpp)
+void tendon_velocity(const Model& model, Data& data);
 }  // namespace unchecked
+
+/// The tendons' spring-dampers, J^T f, added to qfrc_passive (tendon.cpp; passive() calls it).
+void add_tendon_passive(const Model& model, Data& data);
 
 namespace detail {
 // ---- the fluid forces (fluid.cpp): MuJoCo 2.2.2's inertia-box model, on when has_fluid(opt)

@@ -87,6 +87,14 @@ Labeler limit_row(const Model& model, const Data& data) {
       return "row " + std::to_string(r) + " (friction loss, " + dof_label(model, data.efc_id[r]) +
              ")";
     }
+    if (data.efc_type[r] == ConstraintType::kFrictionTendon) {
+      return "row " + std::to_string(r) + " (friction loss, tendon " +
+             quoted(model.tendon_name, data.efc_id[r]) + ")";
+    }
+    if (data.efc_type[r] == ConstraintType::kLimitTendon) {
+      return "row " + std::to_string(r) + " (tendon " + quoted(model.tendon_name, data.efc_id[r]) +
+             " limit)";
+    }
     if (data.efc_type[r] != ConstraintType::kLimitJoint) {
       return "row " + std::to_string(r) + " (contact " + std::to_string(data.efc_id[r]) + ")";
     }
@@ -130,6 +138,8 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNsensordata: return sensor_number(model);
     case Size::kNeq: return [&model](int i) { return "equality " + quoted(model.eq_name, i); };
     case Size::kNmocap: return [](int i) { return "mocap " + std::to_string(i); };
+    case Size::kNtendon: return [&model](int i) { return "tendon " + quoted(model.tendon_name, i); };
+    case Size::kNwrap: return [](int i) { return "wrap " + std::to_string(i); };
     case Size::kOne: break;
   }
   return [](int) { return std::string(); };
