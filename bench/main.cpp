@@ -22,6 +22,9 @@
 #ifndef LEVER_BENCH_MODELS_DIR
 #define LEVER_BENCH_MODELS_DIR "models"
 #endif
+#ifndef LEVER_BENCH_SCENES_DIR
+#define LEVER_BENCH_SCENES_DIR "bench/scenes"
+#endif
 
 namespace {
 
@@ -66,6 +69,11 @@ int main(int argc, char** argv) {
     }
     for (const std::string& path : lever::bench::scene_files(models_dir)) {
       fixtures.push_back(lever::bench::make_scene_fixture(path));
+    }
+    if (models_dir == LEVER_BENCH_MODELS_DIR) {  // the scenes on real model files: the default run's
+      for (const std::string& path : lever::bench::robot_scene_files(LEVER_BENCH_SCENES_DIR)) {
+        fixtures.push_back(lever::bench::make_scene_fixture(path));
+      }
     }
   } catch (const std::exception& e) {
     std::cerr << "lever_bench: " << e.what() << "\n";
