@@ -197,6 +197,11 @@ bool has_collision_function(GeomType a, GeomType b) {
   return is_convex_pair(a, b) && detail::has_convex_pairs();
 }
 
+bool collides_by_mpr(GeomType a, GeomType b) {
+  if (static_cast<int>(a) > static_cast<int>(b)) std::swap(a, b);
+  return is_convex_pair(a, b);
+}
+
 int collide_shapes(const GeomShape& g1, const GeomShape& g2, double margin, Contact* contacts,
                    const ConvexOptions& convex) {
   if (static_cast<int>(g1.type) > static_cast<int>(g2.type)) {
