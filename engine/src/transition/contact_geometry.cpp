@@ -32,6 +32,9 @@ namespace {
 struct Dual {
   double v = 0;  // value
   double d = 0;  // derivative along the motion
+  Dual() = default;
+  constexpr Dual(double value, double derivative) : v(value), d(derivative) {}
+  explicit constexpr Dual(double value) : v(value) {}  // a constant
 };
 
 Dual operator+(Dual a, Dual b) { return {a.v + b.v, a.d + b.d}; }
