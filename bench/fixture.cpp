@@ -2,13 +2,16 @@
 
 #include <lever/forward.hpp>
 #include <lever/harness/from_mujoco.hpp>
+#include <lever/harness/models.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/spatial.hpp>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <random>
+#include <sstream>
 #include <stdexcept>
 
 namespace lever::bench {
@@ -57,6 +60,33 @@ std::vector<std::string> files_where(const std::string& dir, bool scenes) {
 std::vector<std::string> model_files(const std::string& dir) { return files_where(dir, false); }
 
 std::vector<std::string> scene_files(const std::string& dir) { return files_where(dir, true); }
+
+std::vector<std::string> robot_scene_files(const std::string& dir) {
+  // the scenes name the robots folder as it lies beside a checkout; the copies name the one the
+  // tests read (lever::test::robots_dir(), which $LEVER_ROBOTS_DIR can move)
+  const std::string beside_checkout = "../../../shared/robots";
+  const std::filesystem::path out_dir =
+      std::filesystem::temp_directory_path() / "lever_bench_scenes";
+  std::filesystem::create_directories(out_dir);
+  std::vector<std::string> files;
+  for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+    if (entry.path().extension() != ".xml") continue;
+    std::ifstream in(entry.path());
+    std::stringstream text;
+    text << in.rdbuf();
+    std::string xml = text.str();
+    for (std::size_t at = xml.find(beside_checkout); at != std::string::npos;
+         at = xml.find(beside_checkout, at)) {
+      xml.replace(at, beside_checkout.size(), test::robots_dir());
+      at += test::robots_dir().size();
+    }
+    const std::filesystem::path copy = out_dir / entry.path().filename();
+    std::ofstream(copy) << xml;
+    files.push_back(copy.string());
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
 
 State random_state(const Model& model, unsigned long long seed) {
   std::mt19937_64 rng(seed);

@@ -56,6 +56,11 @@ bool is_scene(const Model& model);
 /// The contact scenes of a directory (lesson 5.3's models: free bodies, contacts possible).
 std::vector<std::string> scene_files(const std::string& dir);
 
+/// The contact scenes of a directory that read real model files from ../shared/robots beside the
+/// checkout (bench/scenes: the mesh gripper, MuJoCo Menagerie's Panda hand), each copied to a
+/// temporary folder with that folder replaced by lever::test::robots_dir(): the copies' paths.
+std::vector<std::string> robot_scene_files(const std::string& dir);
+
 /// A contact scene timed where the lesson uses it, at rest in contact: its first keyframe (else
 /// qpos0), ctrl 0, then one second of lever's steps, so that its bodies lie on each other.
 /// Throws std::runtime_error if MuJoCo cannot load it or the scene has no contact then.

@@ -22,6 +22,9 @@
 #ifndef LEVER_BENCH_MODELS_DIR
 #define LEVER_BENCH_MODELS_DIR "models"
 #endif
+#ifndef LEVER_BENCH_SCENES_DIR
+#define LEVER_BENCH_SCENES_DIR "bench/scenes"
+#endif
 
 namespace {
 
@@ -70,6 +73,10 @@ int main(int argc, char** argv) {
     // the sensor-heavy model (every sensor type lever evaluates), timed on forward alone
     if (models_dir == LEVER_BENCH_MODELS_DIR) {
       fixtures.push_back(lever::bench::make_sensor_fixture(LEVER_BENCH_SENSOR_MODEL));
+      // the scenes on real model files: the default run's
+      for (const std::string& path : lever::bench::robot_scene_files(LEVER_BENCH_SCENES_DIR)) {
+        fixtures.push_back(lever::bench::make_scene_fixture(path));
+      }
     }
   } catch (const std::exception& e) {
     std::cerr << "lever_bench: " << e.what() << "\n";

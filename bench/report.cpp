@@ -526,6 +526,9 @@ std::vector<Target> collect_targets(const Inputs& in) {
   // evaluating the same sensors inside their forward
   against("sensors `forward` / `mj_forward`, every sensor type lever evaluates", 0.5, "forward",
           "sensors", "mujoco");
+  // a mesh gripper (bench/scenes: the Panda hand's finger meshes closed on a box, MPR)
+  against("mesh_gripper `forward` / `mj_forward`, Panda finger meshes holding a box", 0.5,
+          "forward", "mesh_gripper", "mujoco");
   for (const auto& [op, peer_call, g] :
        {std::tuple{"bias", "`mj_rne`", 0.7}, std::tuple{"crba", "`mj_crb`", 1.0},
         std::tuple{"jac_site", "`mj_jacSite`", 1.0}}) {

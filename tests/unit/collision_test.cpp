@@ -118,4 +118,15 @@ TEST_CASE("narrow phase: pairs are refused out of order or without a function",
   CHECK_FALSE(lever::has_collision_function(GeomType::kPlane, GeomType::kPlane));
   CHECK_FALSE(lever::has_collision_function(GeomType::kHfield, GeomType::kSphere));
   CHECK(lever::has_collision_function(GeomType::kBox, GeomType::kSphere));
+  // the pairs MuJoCo 2.2.2 gives MPR (not in the WebAssembly build), either order
+  using T = GeomType;
+  CHECK(lever::collides_by_mpr(T::kCylinder, T::kBox));
+  CHECK(lever::collides_by_mpr(T::kBox, T::kCylinder));
+  CHECK(lever::collides_by_mpr(T::kSphere, T::kEllipsoid));
+  CHECK(lever::collides_by_mpr(T::kMesh, T::kMesh));
+  CHECK_FALSE(lever::collides_by_mpr(T::kPlane, T::kEllipsoid));
+  CHECK_FALSE(lever::collides_by_mpr(T::kMesh, T::kPlane));
+  CHECK_FALSE(lever::collides_by_mpr(T::kPlane, T::kCylinder));
+  CHECK_FALSE(lever::collides_by_mpr(T::kSphere, T::kBox));
+  CHECK_FALSE(lever::collides_by_mpr(T::kHfield, T::kMesh));
 }

@@ -3,7 +3,8 @@
 // model edits reach the engine through mj_setConst; views follow the heap when it grows;
 // mj_jacSite gives `lever forward`'s site_jacp and site_jacr; mj_resetDataKeyframe its --key state;
 // data.ncon, data.contact and data.efc_J of the gripper, run in wasm until it holds the box, agree
-// with the constraint rows `lever forward` computes for the same state.
+// with the constraint rows `lever forward` computes for the same state; a model with a pair MuJoCo
+// collides by MPR (libccd, not in this build) is refused at load by the pair's name.
 //   node api_node_test.js LEVER WASM_DIR REPO_ROOT
 'use strict';
 const fs = require('fs');
@@ -378,6 +379,22 @@ function gripperContacts(mj, root) {
   mj.mj_forward(model, data);
   compareData(mj, model, data, heavyNative, 'arm2 at 1.6 kg, after the heap grew');
   for (const m of kept) m.delete();
+
+  // 4. a pair MuJoCo 2.2.2 collides by MPR (a cylinder on a box table): this build has no libccd,
+  //    so the load is refused, naming the two geoms and the pair (the native build collides it)
+  const cylinderOnBox = '<mujoco><worldbody><geom name="table" type="box" size="0.2 0.2 0.02"/>' +
+    '<body pos="0 0 0.1"><freejoint/><geom name="can" type="cylinder" size="0.03 0.05"/></body>' +
+    '</worldbody></mujoco>';
+  let withoutMpr = null;
+  try {
+    mj.MjModel.from_xml_string(cylinderOnBox, 'cylinder_on_box.xml').delete();
+  } catch (e) {
+    withoutMpr = e;
+  }
+  if (!(withoutMpr instanceof mj.LoadError) || !/'table' and 'can'/.test(withoutMpr.message) ||
+      !/box-cylinder pair by MPR/.test(withoutMpr.message)) {
+    fail('a cylinder on a box in the WebAssembly build: ' + withoutMpr);
+  }
 
   console.log(`${compared} numbers compared on ${files.length} models; heap ${before} -> ` +
     `${mj.Module.HEAPU8.buffer.byteLength} bytes after ${kept.length} extra models`);

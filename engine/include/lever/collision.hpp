@@ -44,6 +44,13 @@ struct ConvexOptions {
 /// Whether lever has a narrow-phase function for this pair of geom types (either order).
 bool has_collision_function(GeomType a, GeomType b);
 
+/// Whether MuJoCo 2.2.2 collides this pair of geom types (either order) by MPR on the two support
+/// functions (mjc_Convex): any pair of solids with an ellipsoid, a cylinder or a mesh, but
+/// plane-ellipsoid and plane-mesh. lever runs them with libccd, which its WebAssembly build does
+/// not have: there has_collision_function() is false for them, and the loader refuses a model
+/// whose geoms of such a pair can collide.
+bool collides_by_mpr(GeomType a, GeomType b);
+
 /// The narrow phase: contacts between two geoms nearer than `margin`. Writes dist, pos and the
 /// frame's first row, the normal from g1 to g2, of up to kMaxPairContacts contacts into
 /// `contacts` and returns how many. As MuJoCo's pair functions, it leaves the frame's other rows

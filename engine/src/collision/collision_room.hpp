@@ -11,4 +11,19 @@ namespace lever::detail {
 /// (driver.cpp; set_const computes them once, the broad phase reads them every call).
 void build_collision_constants(Model& model);
 
+/// A geom type's name in MJCF (<geom type="...">), for messages.
+inline const char* geom_type_name(GeomType t) {
+  switch (t) {
+    case GeomType::kPlane: return "plane";
+    case GeomType::kHfield: return "hfield";
+    case GeomType::kSphere: return "sphere";
+    case GeomType::kCapsule: return "capsule";
+    case GeomType::kEllipsoid: return "ellipsoid";
+    case GeomType::kCylinder: return "cylinder";
+    case GeomType::kBox: return "box";
+    case GeomType::kMesh: return "mesh";
+  }
+  return "unknown";
+}
+
 }  // namespace lever::detail

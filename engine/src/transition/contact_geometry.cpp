@@ -1,11 +1,12 @@
 // How a contact's distance, position and frame change when its two geoms move: the narrow phase's
-// closed-form pairs (collision/primitive.cpp, collision/box.cpp's sphere-box) and the driver's
-// frame completion (MuJoCo's mju_makeFrame), evaluated once more on dual numbers a + b e (e^2 = 0)
-// with the geoms' poses moving along a rigid motion. Every branch is decided on the values, as the
-// collision stage decided it, so the result is the exact derivative of the contact the stage found,
-// its case held (which face, which corner, which end of a capsule): forward-mode differentiation,
-// no step and no truncation. The values are checked against data.contact, so a contact this room
-// does not reproduce is an error, not a wrong derivative.
+// closed-form pairs (collision/primitive_pairs.hpp, written once on a scalar; here
+// collision/box.cpp's sphere-box and the plane-ellipsoid support point too) and the driver's frame
+// completion (MuJoCo's mju_makeFrame), evaluated on dual numbers a + b e (e^2 = 0) with the geoms'
+// poses moving along a rigid motion. Every branch is decided on the values, as the collision stage
+// decided it, so the result is the exact derivative of the contact the stage found, its case held
+// (which face, which corner, which end of a capsule): forward-mode differentiation, no step and no
+// truncation. The values are checked against data.contact, so a contact this room does not
+// reproduce is an error, not a wrong derivative.
 //
 // Pairs: plane against sphere, capsule, box and ellipsoid; sphere-sphere, sphere-capsule,
 // capsule-capsule, sphere-box. Capsule-box, box-box and plane-cylinder are refused by name.
@@ -17,61 +18,49 @@
 #include <string>
 
 #include "basics/basics.hpp"
+#include "collision/collision_room.hpp"
+#include "collision/primitive_pairs.hpp"
 #include "transition/transition.hpp"
 
 namespace lever::detail {
 
 namespace {
 
-// ---- dual numbers ---------------------------------------------------------------------------------
+// ---- dual numbers
+// ---------------------------------------------------------------------------------
 
 struct Dual {
   double v = 0;  // value
   double d = 0;  // derivative along the motion
+  Dual() = default;
+  constexpr Dual(double value, double derivative) : v(value), d(derivative) {}
+  explicit constexpr Dual(double value) : v(value) {}  // a constant
 };
 
 Dual operator+(Dual a, Dual b) { return {a.v + b.v, a.d + b.d}; }
+Dual operator+(double a, Dual b) { return {a + b.v, b.d}; }
 Dual operator-(Dual a, Dual b) { return {a.v - b.v, a.d - b.d}; }
+Dual operator-(Dual a, double b) { return {a.v - b, a.d}; }
 Dual operator-(Dual a) { return {-a.v, -a.d}; }
 Dual operator*(Dual a, Dual b) { return {a.v * b.v, a.d * b.v + a.v * b.d}; }
 Dual operator*(Dual a, double s) { return {a.v * s, a.d * s}; }
 Dual operator/(Dual a, Dual b) { return {a.v / b.v, (a.d * b.v - a.v * b.d) / (b.v * b.v)}; }
+Dual operator/(Dual a, double s) { return {a.v / s, a.d / s}; }
 Dual sqrt(Dual a) {
   const double r = std::sqrt(a.v);
   return {r, r > 0 ? a.d / (2 * r) : 0.0};
 }
+double value(Dual a) { return a.v; }
 Dual constant(double x) { return {x, 0.0}; }
 
-using V = std::array<Dual, 3>;
-
-V operator+(const V& a, const V& b) { return {a[0] + b[0], a[1] + b[1], a[2] + b[2]}; }
-V operator-(const V& a, const V& b) { return {a[0] - b[0], a[1] - b[1], a[2] - b[2]}; }
-V operator*(const V& a, Dual s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-V operator*(const V& a, double s) { return {a[0] * s, a[1] * s, a[2] * s}; }
-Dual dot(const V& a, const V& b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
-V cross(const V& a, const V& b) {
-  return {a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]};
-}
-V constant(const Eigen::Vector3d& x) { return {constant(x[0]), constant(x[1]), constant(x[2])}; }
-
-// v / |v| and |v|; a vector shorter than kMinVal becomes (1, 0, 0) (mju_normalize3)
-Dual normalize(V& v) {
-  const Dual norm = sqrt(dot(v, v));
-  if (norm.v < kMinVal) {
-    v = {constant(1), constant(0), constant(0)};
-  } else {
-    v = v * (constant(1) / norm);
-  }
-  return norm;
-}
+using V = primitive::Vec<Dual>;
+using primitive::cross;
+using primitive::dot;
+using primitive::normalize;
+V constant(const Eigen::Vector3d& x) { return primitive::constant_vec<Dual>(x); }
 
 // A geom's pose moving rigidly: pos' = w x (pos - centre) + v at the centre, mat' = [w] mat.
-struct Pose {
-  GeomType type;
-  Eigen::Vector3d size;
-  V pos;
-  std::array<V, 3> axis;  // mat's columns
-};
+using Pose = primitive::Shape<Dual>;
 
 Pose moving_pose(const Model& model, const Data& data, int g, const Eigen::Vector3d& w,
                  const Eigen::Vector3d& v) {
@@ -86,79 +75,19 @@ Pose moving_pose(const Model& model, const Data& data, int g, const Eigen::Vecto
 }
 
 // R x and R^T x for the pose's rotation
-V rotate(const Pose& p, const V& x) { return p.axis[0] * x[0] + p.axis[1] * x[1] + p.axis[2] * x[2]; }
-V unrotate(const Pose& p, const V& x) { return {dot(p.axis[0], x), dot(p.axis[1], x), dot(p.axis[2], x)}; }
+V rotate(const Pose& p, const V& x) { return primitive::rotate(p, x); }
+V unrotate(const Pose& p, const V& x) {
+  return {{dot(p.axis[0], x), dot(p.axis[1], x), dot(p.axis[2], x)}};
+}
 
-struct Found {
-  Dual dist;
-  V pos, normal, tangent;  // tangent: the first tangent's seed, zero unless the pair sets one
-};
+using Found = primitive::Touch<Dual>;
 
 void set(Found& f, Dual dist, const V& pos, const V& normal) {
-  f.dist = dist;
-  f.pos = pos;
-  f.normal = normal;
-  f.tangent = constant(Eigen::Vector3d::Zero());
+  primitive::touch(f, dist, pos, normal);
 }
 
-// ---- the pairs, as collision/primitive.cpp and box.cpp decide them ------------------------------
-
-int plane_sphere(const Pose& plane, const V& center, double radius, double margin, Found* out) {
-  const V n = plane.axis[2];
-  const Dual height = dot(center - plane.pos, n);
-  if (height.v > margin + radius) return 0;
-  const Dual dist = height - constant(radius);
-  set(out[0], dist, center + n * (dist * -0.5 - constant(radius)), n);
-  return 1;
-}
-
-int sphere_sphere(const V& c1, const Pose& p1, double r1, const V& c2, const Pose& p2, double r2,
-                  double margin, Found* out) {
-  const V between = c1 - c2;
-  const Dual distance = sqrt(dot(between, between));
-  if (distance.v > margin + r1 + r2) return 0;
-  const Dual dist = distance - constant(r1 + r2);
-  V n = c2 - c1;
-  if (normalize(n).v < kMinVal) {
-    n = cross(p1.axis[2], p2.axis[2]);
-    normalize(n);
-  }
-  set(out[0], dist, n * (constant(r1) + dist * 0.5) + c1, n);
-  return 1;
-}
-
-Dual clamp_to_segment(Dual x) {
-  if (x.v > 1) return constant(1);
-  if (x.v < -1) return constant(-1);
-  return x;
-}
-
-int plane_capsule(const Pose& plane, const Pose& capsule, double margin, Found* out) {
-  const V axis = capsule.axis[2];
-  const V segment = axis * capsule.size[1];
-  const int n1 = plane_sphere(plane, capsule.pos + segment, capsule.size[0], margin, out);
-  const int n2 = plane_sphere(plane, capsule.pos - segment, capsule.size[0], margin, out + n1);
-  for (int k = 0; k < n1 + n2; ++k) out[k].tangent = axis;
-  return n1 + n2;
-}
-
-int plane_box(const Pose& plane, const Pose& box, double margin, Found* out) {
-  const V n = plane.axis[2];
-  const Dual height = dot(box.pos - plane.pos, n);
-  int count = 0;
-  for (int i = 0; i < 8; ++i) {
-    const V local = constant(Eigen::Vector3d((i & 1) ? box.size[0] : -box.size[0],
-                                             (i & 2) ? box.size[1] : -box.size[1],
-                                             (i & 4) ? box.size[2] : -box.size[2]));
-    const V corner = rotate(box, local);
-    const Dual along = dot(n, corner);
-    if (height.v + along.v > margin || along.v > 0) continue;
-    const Dual dist = height + along;
-    set(out[count], dist, (corner + box.pos) + n * (dist * -0.5), n);
-    if (++count >= 4) return 4;
-  }
-  return count;
-}
+// ---- the pairs the collision room does not write on a scalar: as box.cpp and convex.cpp decide
+// them
 
 int plane_ellipsoid(const Pose& plane, const Pose& ellipsoid, double margin, Found* out) {
   const V n = plane.axis[2];
@@ -172,58 +101,6 @@ int plane_ellipsoid(const Pose& plane, const Pose& ellipsoid, double margin, Fou
   if (dist.v > margin) return 0;
   set(out[0], dist, deepest + n * (dist * -0.5), n);
   return 1;
-}
-
-int sphere_capsule(const Pose& sphere, const Pose& capsule, double margin, Found* out) {
-  const V axis = capsule.axis[2] * capsule.size[1];
-  const Dual x = clamp_to_segment(dot(axis, sphere.pos - capsule.pos) / dot(axis, axis));
-  return sphere_sphere(sphere.pos, sphere, sphere.size[0], axis * x + capsule.pos, capsule,
-                       capsule.size[0], margin, out);
-}
-
-int capsule_capsule(const Pose& c1, const Pose& c2, double margin, Found* out) {
-  const V a1 = c1.axis[2] * c1.size[1];
-  const V a2 = c2.axis[2] * c2.size[1];
-  const V between = c1.pos - c2.pos;
-  const Dual ma = dot(a1, a1), mb = -dot(a1, a2), mc = dot(a2, a2);
-  const Dual u = -dot(a1, between), v = dot(a2, between);
-  const Dual det = ma * mc - mb * mb;
-  const auto spheres_at = [&](Dual x1, Dual x2, Found* f) {
-    return sphere_sphere(a1 * x1 + c1.pos, c1, c1.size[0], a2 * x2 + c2.pos, c2, c2.size[0],
-                         margin, f);
-  };
-  if (std::abs(det.v) >= kMinVal) {
-    Dual x1 = (mc * u - mb * v) / det;
-    Dual x2 = (ma * v - mb * u) / det;
-    if (x1.v > 1) {
-      x1 = constant(1);
-      x2 = (v - mb) / mc;
-    } else if (x1.v < -1) {
-      x1 = constant(-1);
-      x2 = (v + mb) / mc;
-    }
-    if (x2.v > 1) {
-      x2 = constant(1);
-      x1 = clamp_to_segment((u - mb) / ma);
-    } else if (x2.v < -1) {
-      x2 = constant(-1);
-      x1 = clamp_to_segment((u + mb) / ma);
-    }
-    return spheres_at(x1, x2, out);
-  }
-  // parallel: the ends of each against the other, until two contacts are found
-  int count = sphere_sphere(c1.pos + a1, c1, c1.size[0],
-                            a2 * clamp_to_segment((v - mb) / mc) + c2.pos, c2, c2.size[0], margin,
-                            out);
-  count += sphere_sphere(c1.pos - a1, c1, c1.size[0], a2 * clamp_to_segment((v + mb) / mc) + c2.pos,
-                         c2, c2.size[0], margin, out + count);
-  if (count >= 2) return count;
-  count += sphere_sphere(a1 * clamp_to_segment((u - mb) / ma) + c1.pos, c1, c1.size[0], c2.pos + a2,
-                         c2, c2.size[0], margin, out + count);
-  if (count >= 2) return count;
-  count += sphere_sphere(a1 * clamp_to_segment((u + mb) / ma) + c1.pos, c1, c1.size[0], c2.pos - a2,
-                         c2, c2.size[0], margin, out + count);
-  return count;
 }
 
 int sphere_box(const Pose& sphere, const Pose& box, double margin, Found* out) {
@@ -268,41 +145,30 @@ int sphere_box(const Pose& sphere, const Pose& box, double margin, Found* out) {
   return 1;
 }
 
-const char* shape_name(GeomType t) {
-  switch (t) {
-    case GeomType::kPlane: return "plane";
-    case GeomType::kHfield: return "hfield";
-    case GeomType::kSphere: return "sphere";
-    case GeomType::kCapsule: return "capsule";
-    case GeomType::kEllipsoid: return "ellipsoid";
-    case GeomType::kCylinder: return "cylinder";
-    case GeomType::kBox: return "box";
-    case GeomType::kMesh: return "mesh";
-  }
-  return "unknown";
-}
-
 int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
   using T = GeomType;
   if (g1.type == T::kPlane) {
     switch (g2.type) {
-      case T::kSphere: return plane_sphere(g1, g2.pos, g2.size[0], margin, out);
-      case T::kCapsule: return plane_capsule(g1, g2, margin, out);
-      case T::kBox: return plane_box(g1, g2, margin, out);
+      case T::kSphere: return primitive::plane_sphere(g1, g2.pos, g2.size[0], margin, out);
+      case T::kCapsule: return primitive::plane_capsule(g1, g2, margin, out);
+      case T::kBox: return primitive::plane_box(g1, g2, margin, out);
       case T::kEllipsoid: return plane_ellipsoid(g1, g2, margin, out);
       default: break;
     }
   } else if (g1.type == T::kSphere) {
     switch (g2.type) {
-      case T::kSphere: return sphere_sphere(g1.pos, g1, g1.size[0], g2.pos, g2, g2.size[0], margin, out);
-      case T::kCapsule: return sphere_capsule(g1, g2, margin, out);
+      case T::kSphere:
+        return primitive::sphere_sphere(g1.pos, g1, g1.size[0], g2.pos, g2, g2.size[0], margin,
+                                        out);
+      case T::kCapsule: return primitive::sphere_capsule(g1, g2, margin, out);
       case T::kBox: return sphere_box(g1, g2, margin, out);
       default: break;
     }
   } else if (g1.type == T::kCapsule && g2.type == T::kCapsule) {
-    return capsule_capsule(g1, g2, margin, out);
+    return primitive::capsule_capsule(g1, g2, margin, out);
   }
-  throw Error(std::string("derivatives: a ") + shape_name(g1.type) + "-" + shape_name(g2.type) +
+  throw Error(std::string("derivatives: a ") + geom_type_name(g1.type) + "-" +
+              geom_type_name(g2.type) +
               " contact is active; lever differentiates the contact geometry of plane against "
               "sphere, capsule, box and ellipsoid, and of sphere and capsule pairs, so far.");
 }
@@ -323,7 +189,8 @@ std::array<V, 3> complete_frame(V normal, V tangent) {
 
 bool contact_geometry_supported(GeomType a, GeomType b) {
   using T = GeomType;
-  if (a == T::kPlane) return b == T::kSphere || b == T::kCapsule || b == T::kBox || b == T::kEllipsoid;
+  if (a == T::kPlane)
+    return b == T::kSphere || b == T::kCapsule || b == T::kBox || b == T::kEllipsoid;
   if (a == T::kSphere) return b == T::kSphere || b == T::kCapsule || b == T::kBox;
   return a == T::kCapsule && b == T::kCapsule;
 }

@@ -26,7 +26,8 @@ const char* path_description(Path path);
 /// Write state s into MuJoCo's data, with the warm start cleared as after mj_resetData.
 void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s);
 
-/// mj_forward on (m, d), restarted from its own answer while that moves it (Twin::mujoco_forward).
+/// mj_forward on (m, d), restarted from its own answer while that moves it, and from a cold start
+/// where it is still short of the minimizer by its own gradient (Twin::mujoco_forward).
 void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver);
 /// mj_step; with restart_solver, its forward warm-started from the converged answer, so that the
 /// step starts from the minimizer rather than where MuJoCo's solver stopped.
@@ -50,6 +51,8 @@ class Twin {
   /// own answer while that moves it by more than rounding (at most 20 times). MuJoCo's Newton solver compares costs,
   /// and where the cost is large (1e5) it stops when a further decrease no longer shows in it,
   /// short of the minimizer with elliptic cones; a restart lets its line search start afresh.
+  /// Where MuJoCo's own gradient (M^-1 times it) still puts the answer more than 1e-12 away, a
+  /// cold start (from qacc_smooth) too, and the answer with the smaller gradient is kept.
   void mujoco_forward();
   /// On by default where MuJoCo's solver can stop short: a model with contacts and elliptic
   /// cones (set_cone sets it again).
