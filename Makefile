@@ -64,8 +64,19 @@ test-asan: setup
 clean:
 	rm -rf $(BUILD) $(BUILD).configure.log
 
-# make bench: lever against MuJoCo 2.2.2 and Orocos KDL (bench/), built in Release in its own
-# folder, run with repetitions and random interleaving, then every operation's instructions per
+# make test-ray: tests/python/test_ray.py, a real local Ray cluster (a head and two worker nodes on
+# 127.0.0.1) against the single-process BatchRunner. Not part of make test: pip's ray is some 360 MB
+# and took 67 s to install (once, into $(BUILD)/venv-ray), the cluster about 10 s to start.
+.PHONY: test-ray
+test-ray: configure
+	@cmake --build $(BUILD) -j $(JOBS) --target lever_python lever_cli
+	tests/python/venv.sh wheel $(BUILD) .
+	tests/python/venv.sh ray $(BUILD)
+	cd tests/python && PYTHONDONTWRITEBYTECODE=1 $(abspath $(BUILD))/venv-ray/bin/python -m pytest -q -p no:cacheprovider test_ray.py
+
+# make bench: lever against MuJoCo 2.2.2, Orocos KDL and Pinocchio (pip's pin, installed into
+# $(BENCH_BUILD)/venv-pinocchio; without it the benchmarks run without Pinocchio and say so)
+# (bench/), built in Release in its own folder, run with repetitions and random interleaving, then every operation's instructions per
 # call counted by callgrind (bench/instructions.py, about two minutes); writes docs/performance.md.
 # Run it on a quiet machine (`uptime`): the time ratios are only as good as the load allows (the
 # instruction counts do not depend on it).
@@ -91,7 +102,8 @@ endef
 .PHONY: bench bench-build bench-instructions
 bench-build: setup
 	@scripts/setup.sh bench
-	@cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DLEVER_BUILD_BENCH=ON > $(BENCH_BUILD).configure.log || (cat $(BENCH_BUILD).configure.log; exit 1)
+	@cmake -S . -B $(BENCH_BUILD) -DCMAKE_BUILD_TYPE=Release -DLEVER_BUILD_BENCH=ON -DLEVER_BENCH_PINOCCHIO=ON > $(BENCH_BUILD).configure.log || (cat $(BENCH_BUILD).configure.log; exit 1)
+	@grep "Pinocchio" $(BENCH_BUILD).configure.log || true
 	@cmake --build $(BENCH_BUILD) -j $(JOBS) --target lever_bench lever_bench_report lever_bench_profile
 bench: bench-build
 	@$(BENCH_BUILD)/bench/lever_bench --check > $(BENCH_BUILD)/bench-check.md || (cat $(BENCH_BUILD)/bench-check.md; exit 1)

@@ -17,6 +17,8 @@
 #include <memory>
 #include <thread>
 
+#include "pinocchio_ops.hpp"
+
 namespace lever::bench {
 
 namespace {
@@ -328,6 +330,34 @@ void register_kdl(const Fixture& f) {
   add("forward", f, "kdl", kdl_fn(&KdlPeer::forward_dynamics));
 }
 
+// ---- Pinocchio, and lever's side of the operations only Pinocchio's comparison has
+// (bench/pinocchio_ops.hpp)
+
+void register_pinocchio(const Fixture& f) {
+  if (!f.chain) return;  // the peer is built from the serial chain
+  const Fixture* fp = &f;
+  for (const PinocchioOperation& op : pinocchio_operations()) {
+    if (op.name.starts_with("jac_site") && f.site < 0) continue;
+    if (op.lever) {
+      add(op.name, f, "lever", [fp, &op](benchmark::State& st) {
+        PinocchioRig rig(*fp, fp->state);
+        for (auto _ : st) {
+          op.lever(*fp, rig);
+          benchmark::ClobberMemory();
+        }
+      });
+    }
+    if (!have_pinocchio()) continue;
+    add(op.name, f, "pinocchio", [fp, &op](benchmark::State& st) {
+      PinocchioRig rig(*fp, fp->state);
+      for (auto _ : st) {
+        run_pinocchio(op, rig);
+        benchmark::ClobberMemory();
+      }
+    });
+  }
+}
+
 // ---- batches: states per second
 // ------------------------------------------------------------------
 
@@ -486,6 +516,7 @@ void register_benchmarks(const std::vector<std::unique_ptr<Fixture>>& fixtures, 
     register_lever(*f);
     register_mujoco(*f);
     register_kdl(*f);
+    register_pinocchio(*f);
   }
   for (const auto& f : fixtures) {
     if (!f->scene && !f->sensors) register_batch(*f, batch_states);

@@ -1,5 +1,9 @@
 #include "check.hpp"
 
+#include <lever/harness/tolerance.hpp>
+
+#include "pinocchio_ops.hpp"
+
 #include <lever/batch.hpp>
 #include <lever/lever.hpp>
 
@@ -7,6 +11,7 @@
 #include <cmath>
 #include <cstdio>
 #include <random>
+#include <stdexcept>
 #include <string>
 
 namespace lever::bench {
@@ -213,6 +218,115 @@ void check_batch(const Fixture& f, Table& table) {
   }
 }
 
+// 4. lever against Pinocchio on random states, to the project's bound (lever/harness/tolerance.hpp):
+// per quantity and state, max |lever - Pinocchio| / (1e-12 max(1, the quantity's magnitude))
+#ifdef LEVER_BENCH_PINOCCHIO_VERSION
+template <class A, class B>
+double excess(const A& ours, const B& theirs, std::size_t n) {
+  double worst = 0, magnitude = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    if (std::isfinite(theirs[i])) magnitude = std::max(magnitude, std::abs(theirs[i]));
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    worst = std::max(worst, test::excess(ours[i], theirs[i], magnitude));
+  }
+  return worst;
+}
+
+void check_pinocchio(const Fixture& f, Table& table) {
+  constexpr double kBound = 1;  // excess() is in units of the bound
+  constexpr int kStates = 10;
+  PinocchioRig rig(f, f.state);
+  const Model& m = rig.model;
+  Data& d = rig.d;
+  PinocchioPeer& pin = *rig.peer;
+  const auto nv = static_cast<std::size_t>(m.nv);
+  Eigen::VectorXd tau_rnea(m.nv), tau(m.nv);
+  std::mt19937_64 rng(4242);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto op = [](const std::string& name) -> const PinocchioOperation& {
+    for (const PinocchioOperation& o : pinocchio_operations())
+      if (o.name == name) return o;
+    throw std::logic_error("no operation " + name);
+  };
+  double e_pos = 0, e_rot = 0, e_jac = 0, e_nle = 0, e_rnea = 0, e_M = 0, e_aba = 0, e_fwd = 0;
+  double e_tq = 0, e_tv = 0, e_tM = 0, e_aq = 0, e_av = 0;
+  for (int k = 0; k < kStates; ++k) {
+    State s = random_state(m, 31337 + static_cast<unsigned long long>(k));
+    for (int j = 0; j < m.njnt; ++j) {  // anywhere in the range, not only its middle
+      const int a = m.jnt_qposadr[j];
+      if (m.jnt_limited[j])
+        s.qpos[a] =
+            m.jnt_range[j][0] + 0.5 * (u(rng) + 1) * (m.jnt_range[j][1] - m.jnt_range[j][0]);
+    }
+    for (int i = 0; i < m.nv; ++i) tau[i] = 5 * u(rng);
+    pin.set_state(s.qpos.data(), s.qvel.data(), s.qacc.data(), tau.data());
+    d.qpos = s.qpos;
+    d.qvel = s.qvel;
+    d.qacc = s.qacc;
+    d.qfrc_applied = tau;
+
+    if (f.site >= 0) {
+      op("jac_site_from_q").lever(f, rig);
+      pin.frame_jacobian();
+      const std::array<double, 12> tip = pin.frame_placement();
+      const auto site = static_cast<std::size_t>(f.site);
+      e_pos = std::max(e_pos, excess(d.site_xpos[site], tip.data(), 3));
+      e_rot = std::max(e_rot, excess(flat(d.site_xmat[site]), tip.data() + 3, 9));
+      Eigen::MatrixXd jac(6, m.nv);
+      jac << rig.jacp, rig.jacr;
+      e_jac = std::max(e_jac, excess(flat(jac), pin.jacobian(), 6 * nv));
+    }
+    kinematics(m, d);
+    bias(m, d);
+    pin.nonlinear_effects();
+    e_nle = std::max(e_nle, excess(d.qfrc_bias, pin.bias(), nv));
+    rnea(m, d, s.qacc, tau_rnea);
+    pin.rnea();
+    e_rnea = std::max(e_rnea, excess(tau_rnea, pin.tau(), nv));
+    crba(m, d);
+    pin.crba();
+    e_M = std::max(e_M, excess(flat(d.M), pin.mass_matrix(), nv * nv));
+
+    op("aba").lever(f, rig);
+    pin.aba();
+    e_aba = std::max(e_aba, excess(d.qacc, pin.acceleration(), nv));
+    forward(m, d);  // the whole forward dynamics: qfrc_applied is the only force besides bias
+    e_fwd = std::max(e_fwd, excess(d.qacc, pin.acceleration(), nv));
+    if (d.nefc != 0) table.row("lever = Pinocchio", f.name, "a constraint row in forward()", 1, 0);
+
+    d.qacc = s.qacc;
+    op("rnea_derivatives").lever(f, rig);
+    pin.rnea_derivatives();
+    e_tq = std::max(e_tq, excess(flat(rig.deriv.dtau_dq), pin.dtau_dq(), nv * nv));
+    e_tv = std::max(e_tv, excess(flat(rig.deriv.dtau_dv), pin.dtau_dv(), nv * nv));
+    e_tM = std::max(e_tM, excess(flat(d.M), pin.mass_matrix(), nv * nv));
+
+    op("aba_derivatives").lever(f, rig);
+    pin.aba_derivatives();
+    e_aq = std::max(e_aq, excess(flat(rig.deriv.dqacc_dq), pin.dacc_dq(), nv * nv));
+    e_av = std::max(e_av, excess(flat(rig.deriv.dqacc_dv), pin.dacc_dv(), nv * nv));
+  }
+  const std::string what = "lever = Pinocchio " + pinocchio_peer_version() + " (" +
+                           std::to_string(kStates) + " states; in units of the 1e-12 bound)";
+  if (f.site >= 0) {
+    table.row(what, f.name, "tip position (computeFrameJacobian's placement)", e_pos, kBound);
+    table.row(what, f.name, "tip rotation", e_rot, kBound);
+    table.row(what, f.name, "tip Jacobian, world axes (computeFrameJacobian)", e_jac, kBound);
+  }
+  table.row(what, f.name, "bias C v + g (nonLinearEffects)", e_nle, kBound);
+  table.row(what, f.name, "inverse dynamics (rnea)", e_rnea, kBound);
+  table.row(what, f.name, "M (crba)", e_M, kBound);
+  table.row(what, f.name, "a from tau (aba; lever's CRBA and LTDL)", e_aba, kBound);
+  table.row(what, f.name, "a from tau (aba; lever's forward())", e_fwd, kBound);
+  table.row(what, f.name, "d tau / d q (computeRNEADerivatives)", e_tq, kBound);
+  table.row(what, f.name, "d tau / d v (computeRNEADerivatives)", e_tv, kBound);
+  table.row(what, f.name, "M (computeRNEADerivatives)", e_tM, kBound);
+  table.row(what, f.name, "d a / d q (computeABADerivatives; forward_derivatives)", e_aq, kBound);
+  table.row(what, f.name, "d a / d v (computeABADerivatives; forward_derivatives)", e_av, kBound);
+}
+#endif
+
 }  // namespace
 
 bool run_checks(const std::vector<std::unique_ptr<Fixture>>& fixtures, std::ostream& out) {
@@ -236,6 +350,13 @@ bool run_checks(const std::vector<std::unique_ptr<Fixture>>& fixtures, std::ostr
   for (const auto& f : fixtures) {
     if (!f->scene && !f->sensors) check_batch(*f, table);
   }
+#ifdef LEVER_BENCH_PINOCCHIO_VERSION
+  for (const auto& f : fixtures) {
+    if (f->chain) check_pinocchio(*f, table);
+  }
+#else
+  out << "| Pinocchio | | not in this build (make bench installs it: LEVER_BENCH_PINOCCHIO) | | | |\n";
+#endif
   return table.ok;
 }
 

@@ -153,7 +153,7 @@ def count_model(profile, model_path, iterations, want_stages, workdir):
     if missing or "empty" not in dumps:
         raise RuntimeError(f"{model_path}: no callgrind dump for {', '.join(missing) or 'empty'}")
     loop_cost = dumps["empty"][0] / loops["empty"]  # per iteration: the loop and the call
-    counts = {"lever": {}, "mujoco": {}, "kdl": {}}
+    counts = {"lever": {}, "mujoco": {}, "kdl": {}, "pinocchio": {}}
     for op, n in loops.items():
         if op == "empty":
             continue

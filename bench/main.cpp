@@ -18,6 +18,7 @@
 #include "benchmarks.hpp"
 #include "check.hpp"
 #include "fixture.hpp"
+#include "pinocchio_ops.hpp"
 
 #ifndef LEVER_BENCH_MODELS_DIR
 #define LEVER_BENCH_MODELS_DIR "models"
@@ -105,6 +106,9 @@ int main(int argc, char** argv) {
   benchmark::AddCustomContext("cmake_build_type", LEVER_BENCH_BUILD_TYPE);
   benchmark::AddCustomContext("mujoco_version", mj_versionString());
   benchmark::AddCustomContext("kdl_version", LEVER_BENCH_KDL_VERSION);
+  if (lever::bench::have_pinocchio()) {
+    benchmark::AddCustomContext("pinocchio_version", lever::bench::pinocchio_peer_version());
+  }
   benchmark::AddCustomContext("eigen_version", std::to_string(EIGEN_WORLD_VERSION) + "." +
                                                    std::to_string(EIGEN_MAJOR_VERSION) + "." +
                                                    std::to_string(EIGEN_MINOR_VERSION));

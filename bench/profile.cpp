@@ -10,7 +10,9 @@
 // step_limit step_jacobian_forward (the analytic A and B); MuJoCo's counterparts as
 // mujoco:<operation> (bias is mj_rne alone, bias_vel adds mj_comVel; step_jacobian_centred too;
 // fk_tip is mj_kinematics, MuJoCo having no one-frame call), KDL's as kdl:<operation> (fk fk_tip
-// jac_site bias_from_q rnea_from_q crba_from_q forward). Each does what the benchmark of the same
+// jac_site bias_from_q rnea_from_q crba_from_q forward); on serial chains lever's jac_site_from_q
+// aba rnea_derivatives aba_derivatives and Pinocchio's as pinocchio:<operation> (fk bias_from_q
+// rnea_from_q crba_from_q and those four: bench/pinocchio_ops.hpp) where the build has Pinocchio. Each does what the benchmark of the same
 // name times (bench/benchmarks.cpp), after the same preparation.
 //
 // Under callgrind only the loops are counted (loading the model, the preparation and a few
@@ -38,6 +40,7 @@
 
 #include "fixture.hpp"
 #include "kdl_peer.hpp"
+#include "pinocchio_ops.hpp"
 
 #if __has_include(<valgrind/callgrind.h>)
 #include <valgrind/callgrind.h>
@@ -87,6 +90,7 @@ struct Rig {
   lever::bench::MjDataPtr md;
   std::vector<mjtNum> mjac, AB;
   std::unique_ptr<lever::bench::KdlPeer> kdl;
+  std::unique_ptr<lever::bench::PinocchioRig> pin;  // made by the operation that needs it
 };
 
 enum class Needs { kNothing, kSite, kLimit, kChain };
@@ -122,7 +126,7 @@ std::vector<Operation> operations() {
     mjd_transitionFD(m, r.md.get(), 1e-6, centred, r.AB.data(),
                      m->nu > 0 ? r.AB.data() + nx * nx : nullptr, nullptr, nullptr);
   };
-  return {
+  std::vector<Operation> ops = {
       // ---- lever
       {"fk", N::kNothing, 1, [](const Fixture& f, Rig& r) { lever::poses(f.model, r.d); }},
       {"fk_tip", N::kSite, 1,
@@ -251,6 +255,25 @@ std::vector<Operation> operations() {
       {"kdl:crba_from_q", N::kChain, 1, [](const Fixture&, Rig& r) { r.kdl->mass(); }},
       {"kdl:forward", N::kChain, 1, [](const Fixture&, Rig& r) { r.kdl->forward_dynamics(); }},
   };
+  // ---- the operations compared with Pinocchio (bench/pinocchio_ops.hpp): lever's new ones, and
+  // Pinocchio's as pinocchio:<operation> where this build has it
+  const auto rig = [](const Fixture& f, Rig& r) -> lever::bench::PinocchioRig& {
+    if (!r.pin) r.pin = std::make_unique<lever::bench::PinocchioRig>(f, r.s);
+    return *r.pin;
+  };
+  for (const lever::bench::PinocchioOperation& op : lever::bench::pinocchio_operations()) {
+    const lever::bench::PinocchioOperation* p = &op;
+    if (op.lever) {
+      ops.push_back({op.name, N::kChain, 1,
+                     [p, rig](const Fixture& f, Rig& r) { p->lever(f, rig(f, r)); }});
+    }
+    if (lever::bench::have_pinocchio()) {
+      ops.push_back({"pinocchio:" + op.name, N::kChain, 1, [p, rig](const Fixture& f, Rig& r) {
+                       lever::bench::run_pinocchio(*p, rig(f, r));
+                     }});
+    }
+  }
+  return ops;
 }
 
 bool available(const Operation& op, const Fixture& f) {

@@ -223,6 +223,31 @@ const Operation kOperations[] = {
      "`mjd_transitionFD`, forward", ""},
 };
 
+// ---- Pinocchio (bench/pinocchio_ops.hpp): the operations and what each peer's row times ---------
+
+struct PinocchioOperation {
+  const char* name;
+  const char* lever;
+  const char* pinocchio;
+};
+
+const PinocchioOperation kPinocchioOperations[] = {
+    {"fk", "`poses`: every body's, geom's and site's frame", "`forwardKinematics`: every joint's placement"},
+    {"bias_from_q", "`kinematics` + `bias`", "`nonLinearEffects`"},
+    {"rnea_from_q", "`kinematics` + `rnea(qacc)`", "`rnea`"},
+    {"crba_from_q", "`kinematics` + `crba`", "`crba` (upper triangle)"},
+    {"jac_site_from_q", "`kinematics` + `jac_site` of the tip site",
+     "`computeFrameJacobian` of the tip frame, `LOCAL_WORLD_ALIGNED`"},
+    {"aba", "`kinematics` + `bias` + `crba` + `factor_mass` + `solve_mass` (lever has no ABA)",
+     "`aba`"},
+    {"rnea_derivatives", "`kinematics` + `crba` + `rnea_derivatives`",
+     "`computeRNEADerivatives` (d tau / d q, d v and M)"},
+    {"aba_derivatives",
+     "`forward_derivatives` on the model without damping and actuator forces, tau as "
+     "`qfrc_applied` (forward() included)",
+     "`computeABADerivatives` (d a / d q, d v and M^-1)"},
+};
+
 // ---- the targets: each a ratio against its goal -------------------------------------------------
 
 // One target: a ratio against a goal, measured in time and (where callgrind can count it) in
@@ -448,7 +473,11 @@ void write_header(std::ostream& out, const Inputs& in) {
   out << "| flags | `" << context->str("cxx_flags") << "` |\n";
   out << "| peers | MuJoCo " << context->str("mujoco_version") << " and Orocos KDL "
       << context->str("kdl_version") << " (Debian's prebuilt libraries), Eigen "
-      << context->str("eigen_version") << " |\n";
+      << context->str("eigen_version");
+  if (const std::string pin = context->str("pinocchio_version"); !pin.empty()) {
+    out << "; Pinocchio " << pin << " (pip's `pin`, its wheels' prebuilt libraries)";
+  }
+  out << " |\n";
   const std::string gb_build = context->str("library_build_type");
   out << "| Google Benchmark | library built as " << gb_build
       << (gb_build == "debug"
@@ -1000,6 +1029,66 @@ void write_operations(std::ostream& out) {
          "once for both of MuJoCo's finite differences.\n\n";
 }
 
+// lever against Pinocchio: times, instructions and their ratios, each operation from the state
+void write_pinocchio(std::ostream& out, const Inputs& in) {
+  const Results& r = in.results;
+  const Instructions& counts = in.counts;
+  const std::string version = in.context != nullptr ? in.context->str("pinocchio_version") : "";
+  out << "## lever against Pinocchio" << (version.empty() ? "" : " " + version) << "\n\n";
+  if (version.empty()) {
+    out << "Not in this run: the benchmark was built without the Pinocchio peer (make bench "
+           "installs pip's `pin` into `build-bench/venv-pinocchio`; CMake's configure output "
+           "says why it was skipped).\n\n";
+    return;
+  }
+  out << "Pinocchio " << version << " from pip's `pin` (its wheels' prebuilt libraries), on every "
+         "serial chain, the model built from the same chain as KDL's (every joint turned to its "
+         "frame's z: `JointModelRZ`, Pinocchio's fastest revolute joint), the same state; every "
+         "operation starts from q, as Pinocchio's algorithms do. The checks below prove every "
+         "quantity equal to lever's to the 1e-12 bound first. A ratio above 1 is where Pinocchio "
+         "is faster.\n\n";
+  out << "| operation | lever | Pinocchio |\n|---|---|---|\n";
+  for (const PinocchioOperation& op : kPinocchioOperations) {
+    out << "| " << op.name << " | " << op.lever << " | " << op.pinocchio << " |\n";
+  }
+  const bool with_counts = counts.root != nullptr;
+  out << "\n| operation | model | lever (ns) | Pinocchio (ns) | lever/Pinocchio |";
+  if (with_counts) out << " instructions lever | Pinocchio | instructions lever/Pinocchio |";
+  out << "\n|---|---|---:|---:|---:|" << (with_counts ? "---:|---:|---:|" : "") << "\n";
+  std::vector<std::string> slower;
+  for (const PinocchioOperation& op : kPinocchioOperations) {
+    for (const std::string& model : in.model_order) {
+      const auto l = r.time(op.name, model, "lever");
+      const auto p = r.time(op.name, model, "pinocchio");
+      const auto li = counts.count(op.name, model, "lever");
+      const auto pi = counts.count(op.name, model, "pinocchio");
+      if (!p && !pi) continue;
+      out << "| " << op.name << " | " << model << " | " << time_cell(l) << " | " << time_cell(p)
+          << " | " << ratio_cell(l, p) << " |";
+      if (with_counts) {
+        out << " " << count_cell(li) << " | " << count_cell(pi) << " | "
+            << count_ratio_cell(li, pi) << " |";
+      }
+      out << "\n";
+      if (l && p && p->median > 0 && l->median > p->median) {
+        slower.push_back("`" + std::string(op.name) + "` on " + model + " (" +
+                         ratio_text(l->median / p->median) + "x in time" +
+                         (li && pi && *pi > 0 ? ", " + ratio_text(*li / *pi) + "x in instructions"
+                                              : std::string()) +
+                         ")");
+      }
+    }
+  }
+  out << "\n";
+  if (slower.empty()) {
+    out << "lever is at or below Pinocchio on every operation and model measured.\n\n";
+  } else {
+    out << "Where Pinocchio is faster (median times): ";
+    for (std::size_t i = 0; i < slower.size(); ++i) out << (i ? "; " : "") << slower[i];
+    out << ".\n\n";
+  }
+}
+
 // the browser peer: the lab step in WebAssembly against MuJoCo's official build
 void write_browser_peer(std::ostream& out, const Inputs& in) {
   if (in.web.root == nullptr) return;
@@ -1145,7 +1234,7 @@ void write_checks(std::ostream& out, const std::string& check_path) {
   out << "## Checks run with these numbers (`lever_bench --check`)\n\n";
   out << "The KDL bridge (lever's model as a KDL chain), the claim that lever and MuJoCo do the "
          "same "
-         "work on the timed states, and the batch API:\n\n";
+         "work on the timed states, the batch API, and lever against Pinocchio where it ran:\n\n";
   out << check_text.str() << "\n";
 }
 
@@ -1166,6 +1255,7 @@ int main(int argc, char** argv) {
   write_batch_forward(out, in);
   write_lesson_batches(out, in);
   write_operations(out);
+  write_pinocchio(out, in);
   write_browser_peer(out, in);
   write_forward_instructions(out, in);
   write_checks(out, in.check_path);

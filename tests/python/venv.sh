@@ -9,6 +9,9 @@
 #                               fresh venv into which pip installs that wheel; the test venv
 #                               reaches numpy, mujoco and pytest in BUILD/venv through a .pth
 #                               file (installing them afresh each run cost 20-30 s)
+#   venv.sh ray BUILD           make test-ray: BUILD/venv-ray, a venv with pip's ray
+#                               (requirements-ray.txt, made once) and the wheel `venv.sh wheel`
+#                               built, reaching numpy and pytest in BUILD/venv as venv-test does
 set -euo pipefail
 what=$1 build=$(realpath "$2")
 here=$(cd "$(dirname "$0")" && pwd)
@@ -40,5 +43,19 @@ case $what in
     "$build/venv/bin/pip" --python "$build/venv-test/bin/python" install "${quiet[@]}" --no-index \
       "$build"/python-wheel/lever-*.whl
     ;;
-  *) echo "venv.sh: tools BUILD | wheel BUILD SOURCE" >&2; exit 2 ;;
+  ray)
+    stamp=$build/venv-ray/requirements-ray.txt
+    if ! { [ -x "$build/venv-ray/bin/python" ] && cmp -s "$here/requirements-ray.txt" "$stamp"; }; then
+      rm -rf "$build/venv-ray"
+      "$python" -m venv "$build/venv-ray"
+      tools_site=$("$build/venv/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
+      ray_site=$("$build/venv-ray/bin/python" -c 'import sysconfig; print(sysconfig.get_paths()["purelib"])')
+      echo "$tools_site" > "$ray_site/lever-test-dependencies.pth"
+      "$build/venv-ray/bin/pip" install "${quiet[@]}" --only-binary=:all: -r "$here/requirements-ray.txt"
+      cp "$here/requirements-ray.txt" "$stamp"
+    fi
+    "$build/venv-ray/bin/pip" install "${quiet[@]}" --no-index --no-deps --force-reinstall \
+      "$build"/python-wheel/lever-*.whl
+    ;;
+  *) echo "venv.sh: tools BUILD | wheel BUILD SOURCE | ray BUILD" >&2; exit 2 ;;
 esac
