@@ -1,5 +1,7 @@
 #include "fixture.hpp"
 
+#include <lever/derivatives.hpp>
+#include <lever/error.hpp>
 #include <lever/forward.hpp>
 #include <lever/harness/from_mujoco.hpp>
 #include <lever/harness/models.hpp>
@@ -293,6 +295,19 @@ std::unique_ptr<Fixture> make_scene_fixture(const std::string& path) {
   if (d.ncon == 0) throw std::runtime_error(path + ": no contact after one second at rest");
   f->ncon = d.ncon;
   f->state = {d.qpos, d.qvel, d.qacc, d.ctrl};
+  // the step's Jacobians are timed where lever's derivatives cover the scene's contacts (a mesh
+  // contact's geometry is not differentiated: step_derivatives says so by name)
+  try {
+    Derivatives deriv(model);
+    Data probe(model);
+    probe.qpos = d.qpos;
+    probe.qvel = d.qvel;
+    probe.ctrl = d.ctrl;
+    step_derivatives(model, probe, deriv);
+    f->differentiable = true;
+  } catch (const Error&) {
+    f->differentiable = false;
+  }
   f->site = model.site("ee");  // the site Jacobian's, as for the arms
   if (f->site < 0) f->site = model.nsite - 1;
   return f;

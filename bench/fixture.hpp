@@ -43,6 +43,7 @@ struct Fixture {
 
   bool scene = false;  ///< a contact scene (free bodies, contacts): timed on forward and step only
   int ncon = 0;        ///< a scene's contacts in its timed state
+  bool differentiable = true;  ///< lever's step derivatives cover it (a scene's contacts)
   bool sensors = false;  ///< the sensor model: timed on forward only, every sensor evaluated
 };
 

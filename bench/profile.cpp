@@ -286,7 +286,8 @@ bool available(const Operation& op, const Fixture& f) {
     if (operation == "jac_site") return f.site >= 0;
     return op.needs == Needs::kNothing &&
            (operation == "forward" || operation == "step" || operation == "bias" ||
-            operation == "crba" || operation.starts_with("step_jacobian"));
+            operation == "crba" ||
+            (operation.starts_with("step_jacobian") && f.differentiable));
   }
   switch (op.needs) {
     case Needs::kSite: return f.site >= 0 && (!op.name.starts_with("kdl:") || f.chain);

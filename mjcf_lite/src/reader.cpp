@@ -136,9 +136,13 @@ std::string misplaced(std::string_view tag, std::string_view parent) {
 }
 
 [[noreturn]] void fail_element(const Element& e, std::string_view parent) {
+  // one tag can have several rules (<tendon> in <mujoco>, <default> and <equality>): the one
+  // that names this child as refused wins, so the message says so
   const ElementRule* parent_rule = nullptr;
   for (const ElementRule& r : schema()) {
-    if (r.tag == parent) parent_rule = &r;
+    if (r.tag != parent) continue;
+    if (!parent_rule || has_word(r.unsupported_children, e.tag)) parent_rule = &r;
+    if (has_word(r.unsupported_children, e.tag)) break;
   }
   if (parent_rule && has_word(parent_rule->unsupported_children, e.tag)) {
     fail(e.place(), "", "<" + e.tag + "> is valid MJCF but not supported by lever" + kDocs);

@@ -21,7 +21,7 @@ constexpr int kStateVersion = 1;
 // The structs outside the field table are carried member by member below. A member added to one
 // of them changes its size and stops the build here: carry the new member too, then update the
 // size.
-static_assert(sizeof(lever::Options) == 120, "lever::Options changed: pickle its new member");
+static_assert(sizeof(lever::Options) == 160, "lever::Options changed: pickle its new member");
 static_assert(sizeof(lever::CompilerInfo) == 12, "lever::CompilerInfo changed: pickle it");
 static_assert(sizeof(lever::VisualInfo) == 8 * sizeof(std::vector<std::string>) +
                                                2 * sizeof(std::string),

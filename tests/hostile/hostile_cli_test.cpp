@@ -202,7 +202,7 @@ void make_files() {
   write("attrnan.xml", "<mujoco>\n<worldbody>\n<geom size=\"nan\"/>\n</worldbody>\n</mujoco>\n");
   write("attrinf.xml", "<mujoco>\n<option gravity=\"0 0 -inf\"/>\n<worldbody/>\n</mujoco>\n");
   write("unknown-element.xml", "<mujoco>\n<worldbody>\n<bodyy/>\n</worldbody>\n</mujoco>\n");
-  write("unsupported-element.xml", "<mujoco>\n<tendon/>\n<worldbody/>\n</mujoco>\n");
+  write("unsupported-element.xml", "<mujoco>\n<custom/>\n<worldbody/>\n</mujoco>\n");
   write("urdf.xml", "<robot name=\"r\">\n<link name=\"l\"/>\n</robot>\n");
   write("big-file.xml",
         "<mujoco>\n<!--" + std::string(Limits::kDocumentBytes, ' ') + "-->\n</mujoco>\n");

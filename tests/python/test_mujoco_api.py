@@ -28,8 +28,8 @@ def mujoco_shapes(macro: str) -> dict:
     block = text[start:text.index("\n\n", start)]
     out = {}
     for ctype, name, rows, cols in re.findall(
-            r"X\w*\s*\(\s*(\w+)\s*,\s*(\w+)\s*,\s*(\w+)\s*,\s*(\w+)\s*\)", block):
-        out[name] = (ctype, rows, cols)
+            r"X\w*\s*\(\s*(\w+)\s*,\s*(\w+)\s*,\s*(\w+)\s*,\s*(\w+|MJ_M\(\w+\))\s*\)", block):
+        out[name] = (ctype, rows, re.sub(r"MJ_M\((\w+)\)", r"\1", cols))  # MJ_M(n): a model size
     return out
 
 
@@ -45,7 +45,8 @@ def test_shapes_and_dtypes_are_mujocos(path):
     sizes = {n: getattr(model, n)
              for n in ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude",
                        "nsensor", "nsensordata", "neq", "nmocap", "nmesh",
-                       "nmeshvert", "nmeshgraph")}
+                       "nmeshvert", "nmeshgraph", "ntendon", "nwrap", "nuser_body", "nuser_jnt",
+                       "nuser_geom", "nuser_site", "nuser_actuator", "nuser_sensor")}
     sizes["nefc"] = data.nefc
     # mjmodel.h's lengths of solref, solimp, gainprm and biasprm
     sizes.update(mjNREF=2, mjNIMP=5, mjNGAIN=10, mjNBIAS=10, mjNEQDATA=11)

@@ -37,6 +37,10 @@ LAYOUT = {
     "body_iquat": ("the principal axes of body_inertia, permuted with it", "principal"),
     "ximat": ("the principal axes of body_inertia in the world, permuted with it",
               "principal in the world"),
+    "tendon_lengthspring": ("MuJoCo 3.x holds a dead band, (ntendon, 2), low and high equal for a "
+                            "2.2.2 file; 2.2.2 and lever one length (ntendon,)", "deadband"),
+    "actuator_moment": ("MuJoCo 3.x keeps it sparse (moment_rownnz, moment_rowadr, moment_colind); "
+                        "2.2.2 and lever dense (nu, nv)", "sparse"),
 }
 # names the pinned MuJoCo gave another name: lever's (2.2.2's) name -> the pinned MuJoCo's
 RENAMED = {
@@ -105,6 +109,9 @@ def same(ours_value, real_value, what, layout=()):
         assert isinstance(ours_value, np.ndarray), f"{what}: {type(ours_value)} is not an array"
         if "reshape" in layout:
             ours_value = ours_value.reshape(real_value.shape)
+        if "deadband" in layout:
+            assert np.array_equal(real_value[:, 0], real_value[:, 1]), what
+            real_value = real_value[:, 0]
         assert ours_value.dtype == real_value.dtype, f"{what}: {ours_value.dtype}"
         if "writable" not in layout:
             assert ours_value.flags.writeable == real_value.flags.writeable, what
@@ -114,6 +121,15 @@ def same(ours_value, real_value, what, layout=()):
             f"{what}: {type(ours_value).__name__} is not MuJoCo's {type(real_value).__name__}"
         if "value" not in layout:
             close(ours_value, real_value, what)
+
+
+def dense_moment(rm, rd):
+    """MuJoCo 3.x's sparse actuator_moment as 2.2.2's dense (nu, nv) rows."""
+    dense = np.zeros((rm.nu, rm.nv))
+    for i in range(rm.nu):
+        adr, nnz = rd.moment_rowadr[i], rd.moment_rownnz[i]
+        dense[i, rd.moment_colind[adr:adr + nnz]] = rd.actuator_moment[adr:adr + nnz]
+    return dense
 
 
 def public(obj):
@@ -146,6 +162,9 @@ def test_arrays_sizes_and_options_are_mujocos(path):
             close(world_inertia_tensors(om.body_inertia, od.ximat),
                   world_inertia_tensors(rm.body_inertia, rd.ximat), "data." + name)
             continue
+        if layout == "sparse":
+            close(od.actuator_moment, dense_moment(rm, rd), "data." + name)
+            continue
         same(getattr(od, name), getattr(rd, name), "data." + name, layout)
     for name in ("timestep", "gravity", "integrator"):
         same(getattr(om.opt, name), getattr(rm.opt, name), "opt." + name)
@@ -156,6 +175,7 @@ def test_layout_differences_are_still_there():
     _, od, rm, rd = state(CONTACT_MODELS[0])
     assert rd.efc_J.shape != od.efc_J.shape and rd.efc_J.size == od.efc_J.size
     assert rm.nconmax == -1 and rm.njmax == -1
+    assert rd.actuator_moment.shape != od.actuator_moment.shape
 
 
 @pytest.mark.parametrize("path", MODELS, ids=lambda p: p.name)
@@ -208,6 +228,9 @@ def test_named_accessors_are_mujocos(path):
                         if (where, kind, attr) in ACCESSOR_ROWS:
                             dof = rm.jnt_dofadr[b.id]
                             theirs_value = getattr(rd, attr)[dof:dof + len(value)]
+                        if layout == "sparse":
+                            theirs_value = dense_moment(rm, rd)[b.id]
+                            layout = ("writable",)
                         if layout == "principal":
                             value = inertia_tensors(a.inertia, a.iquat)
                             theirs_value = inertia_tensors(b.inertia, b.iquat)

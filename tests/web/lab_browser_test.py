@@ -584,6 +584,10 @@ def case_view_3d_every_geom_type():
                  os.path.join(ROOT, 'tests', 'menagerie', 'panda_style.xml')):
         with open(path) as f:
             xml = f.read()
+        # the page has no MPR (mesh pairs): it refuses a model whose meshes can collide, so the
+        # collision meshes are drawn here with their collisions off
+        xml = xml.replace('<geom type="mesh" group="3"/>',
+                          '<geom type="mesh" group="3" contype="0" conaffinity="0"/>')
         query = 'paused=1&spec=%s&model=%s' % (urllib.parse.quote(spec),
                                                 urllib.parse.quote(data_url(xml, 'application/xml')))
         with Browser(query) as b:
