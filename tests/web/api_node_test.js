@@ -258,6 +258,7 @@ function gripperContacts(mj, root) {
           sensor.data[0] !== data.sensordata[model.sensor_adr[id]]) {
         fail(`${label}: data.sensor('${pad}') is not sensordata[${model.sensor_adr[id]}]`);
       }
+      // touch sums the solver's contact forces: held to the solver's bound (kSolverDecided above)
       close(sensor.data[0], native.sensordata[model.sensor_adr[id]], `${label}: ${pad}`, 1e-10);
     }
     seen[name] = {ncon: data.ncon, onTable: onTable.length, height: data.xpos[3 * box + 2],
