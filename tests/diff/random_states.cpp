@@ -5,12 +5,13 @@
 
 #include <lever/harness/models.hpp>
 #include "diff_checks.hpp"
+#include "sampling.hpp"
 
 namespace lever::test {
 
 namespace {
 
-constexpr int kStates = 1000;
+constexpr int kStates = samples(1000);
 
 void compare_every_model_on(diff::Path path) {
   REQUIRE(mj_version() == 222);
