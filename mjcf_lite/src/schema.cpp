@@ -397,7 +397,7 @@ const char* const kLightAttributes =
 std::vector<ElementRule> build() {
   std::vector<ElementRule> s;
   s.push_back({"mujoco", "", '!', {text("model", "MuJoCo Model", "model name")}, "",
-               "custom include", "the root element"});
+               "custom", "the root element"});
   s.push_back({"compiler", "mujoco", '*',
                {
                    keyword("angle", "degree", "radian degree", "",
