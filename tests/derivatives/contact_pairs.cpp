@@ -1,7 +1,7 @@
 // The contact geometry's derivative for the closed-form pairs beyond those of contacts.cpp's
-// scenes: plane-cylinder, capsule-box (an end over a face, the middle over an edge) and box-box
-// (a face clipped against a face, and two edges crossing), each pushing past solimp's width, the
-// narrow phase's case held. A and B under Euler, RK4 and implicit against centred differences of
+// scenes: plane-cylinder, capsule-box (an end over a face, the middle over an edge), box-box
+// (a face clipped against a face, and two edges crossing) and plane-mesh (three hull vertices),
+// each pushing past solimp's width, the narrow phase's case held. A and B under Euler, RK4 and implicit against centred differences of
 // lever's own step (eps 1e-6) and of MuJoCo 2.2.2's mj_step at tolerance 0 (eps 1e-6 and 1e-5;
 // step_differences.hpp), within 1e-6 of the matrix's scale, computed both ways here.
 #include <catch2/catch.hpp>
@@ -28,18 +28,20 @@ using namespace lever::test::step_differences;
 // One free body over a static geom, written for both engines to compile.
 struct PairScene {
   std::string name;
+  std::string asset;  // a mesh's vertices
   std::string below;  // the static geom
   std::string body;   // the free body's attributes and geom
   int contacts;       // the contacts the narrow phase finds at the state
   bool across_edge;   // the normal is none of the static geom's face normals (an edge's case)
+  bool settle = false;  // come to rest first, then pressed 3 mm down
 };
 
 std::string pair_scene_file(const PairScene& scene) {
   const std::string file =
       (std::filesystem::temp_directory_path() / ("lever_pair_" + scene.name + ".xml")).string();
-  std::ofstream(file) << "<mujoco model=\"" << scene.name
-                      << "\"><option timestep=\"0.002\"/><worldbody>" << scene.below << "<body "
-                      << scene.body << "</body></worldbody></mujoco>";
+  std::ofstream(file) << "<mujoco model=\"" << scene.name << "\"><option timestep=\"0.002\"/>"
+                      << scene.asset << "<worldbody>" << scene.below << "<body " << scene.body
+                      << "</body></worldbody></mujoco>";
   return file;
 }
 
@@ -69,30 +71,38 @@ TEST_CASE("derivatives with contacts: plane-cylinder, capsule-box and box-box ge
   // heights: each pushes 2 to 4 mm in (past solimp's width, 1 mm), box-box's face path reports
   // half of that
   const PairScene scenes[] = {
-      {"cylinder_upright", "<geom type=\"plane\" size=\"1 1 0.1\"/>",
+      {"cylinder_upright", "", "<geom type=\"plane\" size=\"1 1 0.1\"/>",
        "pos=\"0 0 0.027\" euler=\"1.2 0.6 0\"><freejoint/>"
        "<geom type=\"cylinder\" size=\"0.05 0.03\" mass=\"1\"/>",
        3, false},
-      {"cylinder_lying", "<geom type=\"plane\" size=\"1 1 0.1\"/>",
+      {"cylinder_lying", "", "<geom type=\"plane\" size=\"1 1 0.1\"/>",
        "pos=\"0 0 0.047\" euler=\"90 0.5 20\"><freejoint/>"
        "<geom type=\"cylinder\" size=\"0.05 0.04\" mass=\"1\"/>",
        2, false},
-      {"capsule_on_face", "<geom type=\"box\" size=\"0.2 0.2 0.05\"/>",
+      {"capsule_on_face", "", "<geom type=\"box\" size=\"0.2 0.2 0.05\"/>",
        "pos=\"0.02 0.01 0.068\" euler=\"0 89 10\"><freejoint/>"
        "<geom type=\"capsule\" size=\"0.02 0.05\" mass=\"1\"/>",
        2, false},
-      {"capsule_over_edge", "<geom type=\"box\" size=\"0.2 0.2 0.05\"/>",
+      {"capsule_over_edge", "", "<geom type=\"box\" size=\"0.2 0.2 0.05\"/>",
        "pos=\"0.2 0.01 0.0678\" euler=\"5 100 0\"><freejoint/>"
        "<geom type=\"capsule\" size=\"0.02 0.05\" mass=\"1\"/>",
        1, true},
-      {"box_on_face", "<geom type=\"box\" size=\"0.2 0.2 0.05\"/>",
+      {"box_on_face", "", "<geom type=\"box\" size=\"0.2 0.2 0.05\"/>",
        "pos=\"0.01 0.02 0.077\" euler=\"0.5 -0.3 30\"><freejoint/>"
        "<geom type=\"box\" size=\"0.03 0.04 0.03\" mass=\"1\"/>",
        4, false},
-      {"box_edges_crossing", "<geom type=\"box\" size=\"0.05 0.05 0.05\" euler=\"45 0 0\"/>",
+      {"box_edges_crossing", "", "<geom type=\"box\" size=\"0.05 0.05 0.05\" euler=\"45 0 0\"/>",
        "pos=\"0.002 0.001 0.1243\" euler=\"0 45 3\"><freejoint/>"
        "<geom type=\"box\" size=\"0.04 0.04 0.04\" mass=\"1\"/>",
        1, true},
+      {"mesh_on_plane",
+       "<asset><mesh name=\"rock\" vertex=\"-0.04 -0.03 -0.02  0.05 -0.035 -0.025  "
+       "0.045 0.04 -0.02  -0.035 0.03 -0.03  -0.03 -0.02 0.03  0.04 -0.03 0.02  "
+       "0.03 0.035 0.025  -0.04 0.02 0.02\"/></asset>",
+       "<geom type=\"plane\" size=\"1 1 0.1\"/>",
+       "pos=\"0 0 0.06\" euler=\"4 -3 10\"><freejoint/><geom type=\"mesh\" mesh=\"rock\" "
+       "mass=\"1\"/>",
+       3, false, true},
   };
   for (const PairScene& scene : scenes) {
     for (const Integrator integrator :
@@ -103,6 +113,10 @@ TEST_CASE("derivatives with contacts: plane-cylinder, capsule-box and box-box ge
       const Model& model = twin.model;
       INFO(scene.name << ", " << integrator_name(integrator));
       State s = state_of(model);
+      if (scene.settle) {
+        s = settle(model, s, 400);
+        s.qpos[2] -= 0.003;
+      }
       s.qvel << 0.01, -0.02, 0.005, 0.1, -0.05, 0.2;
       int contacts = 0;
       double face_alignment = 0;

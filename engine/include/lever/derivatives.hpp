@@ -13,8 +13,8 @@
 // integrate_pos applies it). MuJoCo 2.2.2 has no analytic counterpart; its mjd_transitionFD
 // (finite differences of mj_step) returns A and B in the same layout. Fixed tendons (springs,
 // dampers, actuators, limits, friction loss) and joint and tendon couplings are covered. Refused
-// (lever::Error): a pushing contact of a pair MuJoCo collides by MPR (meshes; cylinders and
-// ellipsoids against anything but a plane) or of a plane and a mesh, an elliptic cone on its surface, a connect or weld, a
+// (lever::Error): a pushing contact of a pair MuJoCo collides by MPR (meshes, cylinders and
+// ellipsoids against anything but a plane), an elliptic cone on its surface, a connect or weld, a
 // ball joint sharing its body with others.
 #pragma once
 

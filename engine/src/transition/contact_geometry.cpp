@@ -8,8 +8,8 @@
 // truncation. The values are checked against data.contact, so a contact this room does not
 // reproduce is an error, not a wrong derivative.
 //
-// Pairs: every pair MuJoCo collides in closed form: plane against sphere, capsule, box, cylinder
-// and ellipsoid; sphere-sphere, sphere-capsule, capsule-capsule, sphere-box, capsule-box and
+// Pairs: every pair MuJoCo collides in closed form: plane against sphere, capsule, box, cylinder,
+// ellipsoid and mesh; sphere-sphere, sphere-capsule, capsule-capsule, sphere-box, capsule-box and
 // box-box (collision/box_pairs.hpp). The pairs MuJoCo collides by MPR (meshes, and cylinders and
 // ellipsoids against anything but a plane) are refused by name: MPR's answer is an iteration's
 // end, not a closed form of the poses (docs/derivatives.md).
@@ -139,6 +139,25 @@ int box_box(const Pose& box1, const Pose& box2, double margin, Found* out) {
   return kept;
 }
 
+// Plane-mesh (collision/convex.cpp's plane_convex): each contact is a vertex of the mesh's hull
+// against the plane, the lowest and up to two more below the margin. The vertex, rigid in the
+// mesh, is where the contact's point and half its distance along the normal put it; held, it moves
+// with the mesh's pose. (Which vertices: the case the stage found.)
+int plane_mesh(const Pose& plane, const Pose& mesh, const Data& data, int first, int count,
+               Found* out) {
+  const V n = plane.axis[2];
+  const int g = data.contact[static_cast<std::size_t>(first)].geom2;
+  for (int k = 0; k < count; ++k) {
+    const Contact& c = data.contact[static_cast<std::size_t>(first + k)];
+    const Eigen::Vector3d vertex = c.pos + c.frame.row(0).transpose() * (0.5 * c.dist);
+    const Eigen::Vector3d local = data.geom_xmat[g].transpose() * (vertex - data.geom_xpos[g]);
+    const V point = rotate(mesh, constant(local)) + mesh.pos;
+    const Dual dist = dot(n, point - plane.pos);
+    set(out[k], dist, point + n * (dist * -0.5), n);
+  }
+  return count;
+}
+
 int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
   using T = GeomType;
   if (g1.type == T::kPlane) {
@@ -169,8 +188,8 @@ int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
   throw Error(std::string("derivatives: a ") + geom_type_name(g1.type) + "-" +
               geom_type_name(g2.type) +
               " contact is active; lever differentiates the contact geometry of the pairs "
-              "MuJoCo collides in closed form (plane against sphere, capsule, box, cylinder and "
-              "ellipsoid; sphere, capsule and box pairs), not those it collides by MPR.");
+              "MuJoCo collides in closed form (plane against sphere, capsule, box, cylinder, "
+              "ellipsoid and mesh; sphere, capsule and box pairs), not those it collides by MPR.");
 }
 
 // The frame the driver completes from the normal and the first tangent's seed (mju_makeFrame).
@@ -191,7 +210,7 @@ bool contact_geometry_supported(GeomType a, GeomType b) {
   using T = GeomType;
   if (a == T::kPlane) {
     return b == T::kSphere || b == T::kCapsule || b == T::kBox || b == T::kEllipsoid ||
-           b == T::kCylinder;
+           b == T::kCylinder || b == T::kMesh;
   }
   if (a == T::kSphere || a == T::kCapsule) {
     return b == T::kSphere || b == T::kCapsule || b == T::kBox;
@@ -232,7 +251,9 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   margin = pair >= 0 ? model.pair_margin[pair]
                      : std::max(model.geom_margin[con.geom1], model.geom_margin[con.geom2]);
   std::array<Found, kMaxPairContacts> found;
-  const int n = collide_moving(g1, g2, margin, found.data());
+  const int n = g1.type == GeomType::kPlane && g2.type == GeomType::kMesh
+                    ? plane_mesh(g1, g2, data, first, count, found.data())
+                    : collide_moving(g1, g2, margin, found.data());
   for (int k = 0; k < count; ++k) {
     const int i = first + k;
     const Contact& ck = data.contact[static_cast<std::size_t>(i)];
