@@ -1,9 +1,10 @@
 // The contact geometry's derivative for the closed-form pairs beyond those of contacts.cpp's
 // scenes: plane-cylinder, capsule-box (an end over a face, the middle over an edge), box-box
 // (a face clipped against a face, and two edges crossing) and plane-mesh (three hull vertices),
-// each pushing past solimp's width, the narrow phase's case held. A and B under Euler, RK4 and implicit against centred differences of
-// lever's own step (eps 1e-6) and of MuJoCo 2.2.2's mj_step at tolerance 0 (eps 1e-6 and 1e-5;
-// step_differences.hpp), within 1e-6 of the matrix's scale, computed both ways here.
+// each pushing past solimp's width, the narrow phase's case held. A (the scenes have no actuator)
+// under Euler, RK4 and implicit against centred differences of lever's own step (eps 1e-6) and of
+// MuJoCo 2.2.2's mj_step at tolerance 0 (eps 1e-6 and 1e-5; step_differences.hpp), within 1e-6 of
+// the matrix's scale, computed both ways here.
 #include <catch2/catch.hpp>
 #include <lever/diff/twin.hpp>
 

@@ -501,7 +501,9 @@ std::optional<SeparatingAxis<S>> least_penetration(const Box<S>& b1, const Box<S
 
   SeparatingAxis<S> best;
   best.penetration = S(margin);  // start above any real overlap
-  for (int i = 0; i < 3; ++i) best.penetration = best.penetration + (size1[i] * S(3) + size2[i] * S(3));
+  for (int i = 0; i < 3; ++i) {
+    best.penetration = best.penetration + (size1[i] * S(3) + size2[i] * S(3));
+  }
   bool found_one = false;
 
   for (int i = 0; i < 3; ++i) {
