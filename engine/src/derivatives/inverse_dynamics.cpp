@@ -41,21 +41,17 @@ namespace lever {
 namespace detail {
 
 void check_derivative_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
-  if (model.neq > 0) {
-    throw ModelError(
-        "derivatives: the model has equality constraints; lever's analytic derivatives cover joint "
-        "limits and contacts so far.");
-  }
-  if (model.ntendon > 0) {
-    throw ModelError("derivatives: the model has tendons (tendon '" + model.tendon_name[0] +
-                     "'); lever's analytic derivatives do not cover tendons' forces and rows "
-                     "yet.");
-  }
-  for (int i = 0; i < model.nv; ++i) {
-    if (model.dof_frictionloss[i] > 0) {
-      throw ModelError("derivatives: joint '" + model.jnt_name[model.dof_jntid[i]] +
-                       "' has friction loss; lever's analytic derivatives cover joint limits so "
-                       "far.");
+  // a connect's or weld's rows move with the bodies' poses (their Jacobian and error), which
+  // the held rows' derivative does not take yet; joint and tendon couplings are polynomials in
+  // coordinates and constant tendon Jacobians (transition/contact_rows.cpp)
+  for (int e = 0; e < model.neq; ++e) {
+    const EqualityType type = model.eq_type[e];
+    if (type == EqualityType::kConnect || type == EqualityType::kWeld) {
+      const std::string name =
+          model.eq_name[e].empty() ? std::to_string(e) : "'" + model.eq_name[e] + "'";
+      throw ModelError("derivatives: equality constraint " + name + " is a " +
+                       (type == EqualityType::kConnect ? "connect" : "weld") +
+                       "; lever's analytic derivatives cover joint and tendon couplings so far.");
     }
   }
   // a ball's dofs turn about its body's final axes (MuJoCo's cdof): a joint after it in the same

@@ -98,6 +98,17 @@ void through_position_update(const Model& model, const double* velocity, double 
   }
 }
 
+// X += b r^T r for a row r of n numbers (a tendon's Jacobian, a tendon actuator's moment): the
+// derivative of the force r^T f(r x) along the row, f' = b.
+void add_row_outer_product(const double* r, int n, double b, Eigen::MatrixXd& X) {
+  if (b == 0) return;
+  for (int j = 0; j < n; ++j) {
+    if (r[j] == 0.0) continue;
+    const double a = b * r[j];
+    for (int i = 0; i < n; ++i) X(i, j) += r[i] * a;
+  }
+}
+
 // q exp(dq).
 void quaternion_springs(const Model& model, const Data& data, Derivatives::Workspace& w) {
   for (int j = 0; j < model.njnt; ++j) {
@@ -128,6 +139,14 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
     w.rhs_v(d, d) -= model.dof_damping[d];    // damper: -b qd
   }
   if (model.nq != model.nv) quaternion_springs(model, data, w);
+  // a fixed tendon's spring-damper f = -k (L - lengthspring) - b v along its constant Jacobian J
+  // (L = J q, v = J qd), carried to the dofs as J^T f: -k J^T J and -b J^T J
+  for (int t = 0; t < model.ntendon; ++t) {
+    const double k = model.tendon_stiffness[t], b = model.tendon_damping[t];
+    if (k == 0 && b == 0) continue;
+    add_row_outer_product(data.ten_J.row(t).data(), model.nv, -k, w.rhs_q);
+    add_row_outer_product(data.ten_J.row(t).data(), model.nv, -b, w.rhs_v);
+  }
 
   // actuators: force = clamp_f(gain clamp_c(ctrl) + bias), gain = p0 + p1 length + p2 velocity
   // (affine; p0 when fixed), bias = b0 + b1 length + b2 velocity (affine; 0 when none), with
@@ -165,6 +184,17 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
     if (affine_bias) {
       per_length += b[1];
       per_velocity += b[2];
+    }
+    if (model.actuator_trntype[a] == TransmissionType::kTendon) {
+      // length = gear L, so d length / d q = gear J = the moment m, and qfrc = m force:
+      // m^T per_length m, m^T per_velocity m, m gain
+      const double* m = data.actuator_moment.row(a).data();
+      add_row_outer_product(m, model.nv, per_length, w.rhs_q);
+      add_row_outer_product(m, model.nv, per_velocity, w.rhs_v);
+      if (!ctrl_clamped) {
+        for (int i = 0; i < model.nv; ++i) w.rhs_u(i, a) = m[i] * gain;
+      }
+      continue;
     }
     const double gear = model.actuator_gear[a][0];
     const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
@@ -328,7 +358,7 @@ void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& 
   rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, data.work.crb, w,
                         deriv.dtau_dq, &deriv.dtau_dv);
   smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
-  if (detail::active_contact_rows(data)) {  // every row in dof space, solved with H, not M
+  if (detail::rows_beyond_joint_limits(data)) {  // every row in dof space, solved with H, not M
     detail::constraint_rows_held(model, data, deriv);
     return;
   }
@@ -543,6 +573,21 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   // + h dD a, D's actuator part: only an affine gain's p2 ctrl depends on anything (ctrl)
   for (int a = 0; a < model.nu; ++a) {
     if (model.actuator_gaintype[a] != GainType::kAffine) continue;
+    if (model.actuator_trntype[a] == TransmissionType::kTendon) {
+      // D's m^T p2 ctrl m, kept where M is non-zero (as the step's D keeps it): its ctrl
+      // column times a, for each pair of dofs on one branch (k and its ancestors j)
+      const double* m = data.actuator_moment.row(a).data();
+      const double p2 = h * model.actuator_gainprm[a][2];
+      for (int k = 0; k < nv; ++k) {
+        if (m[k] == 0.0) continue;
+        for (int j = k; j >= 0; j = model.dof_parentid[j]) {
+          if (m[j] == 0.0) continue;
+          w.rhs_u(k, a) += m[k] * p2 * m[j] * w.qacc_step[j];
+          if (j != k) w.rhs_u(j, a) += m[j] * p2 * m[k] * w.qacc_step[k];
+        }
+      }
+      continue;
+    }
     const double gear = model.actuator_gear[a][0];
     const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
     w.rhs_u(dof, a) += h * gear * model.actuator_gainprm[a][2] * gear * w.qacc_step[dof];
