@@ -45,7 +45,7 @@ def test_shapes_and_dtypes_are_mujocos(path):
     sizes = {n: getattr(model, n)
              for n in ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude",
                        "nsensor", "nsensordata", "neq", "nmocap", "nmesh",
-                       "nmeshvert", "nmeshgraph", "ntendon", "nwrap", "nuser_body", "nuser_jnt",
+                       "nmeshvert", "nmeshgraph", "nmeshface", "ntendon", "nwrap", "nuser_body", "nuser_jnt",
                        "nuser_geom", "nuser_site", "nuser_actuator", "nuser_sensor")}
     sizes["nefc"] = data.nefc
     # mjmodel.h's lengths of solref, solimp, gainprm and biasprm
