@@ -979,7 +979,10 @@ class Compiler {
       const int wa = weld_[static_cast<size_t>(ga.body)];
       const int wb = weld_[static_cast<size_t>(gb.body)];
       if (wa == wb) return false;
-      if (wa != 0 && wb != 0 && (wa == weld_parent(wb) || wb == weld_parent(wa))) return false;
+      if (!spec_.opt.disabled(kDisableFilterparent) && wa != 0 && wb != 0 &&
+          (wa == weld_parent(wb) || wb == weld_parent(wa))) {
+        return false;
+      }
       return !excluded(ga.body, gb.body);
     };
     // a mesh geom whose mesh lever did not read has no shape to collide

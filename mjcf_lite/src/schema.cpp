@@ -843,7 +843,14 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
     value as the default).
 * Refused because lever does not have them: `option/solver` `PGS` and `CG` (lever's solver is
   Newton, MuJoCo's default), `option/noslip_iterations` above 0 (no noslip solver),
-  `option/flag override="enable"` (no contact override), `geom/type="hfield"`.
+  `geom/type="hfield"`.
+* Every `option/flag` of MuJoCo 2.2.2, as `model.opt.disableflags` and `enableflags` (mjtDisableBit's
+  and mjtEnableBit's bits), honoured where MuJoCo reads each (docs/contact.md, "Option flags"), with
+  `override`'s `option/o_margin`, `o_solref` and `o_solimp`.
+* `<sensor><user>`: a sensor whose numbers `Model::sensor_callback` writes (MuJoCo's
+  `mjcb_sensor`), with its own `dim`, `datatype`, `needstage` and object; without a callback its
+  numbers stay zero, as MuJoCo leaves them. The rangefinder's ray meets meshes triangle by
+  triangle (MuJoCo's `mj_rayMesh`); a model with a rangefinder has every mesh read.
 * `<include file="..."/>` anywhere: the included file's root element (of any tag; its
   attributes are ignored) is dropped and its children take the `<include>`'s place, their own
   includes expanded in turn, as MuJoCo 2.2.2 does before it reads a model. Paths are relative to

@@ -12,6 +12,7 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -142,6 +143,10 @@ void compare_with_flags(const FlagCase& c, int states) {
       }
     }
   }
+  double worst = 0;
+  for (const diff::Extreme& e : report.quantities()) worst = std::max(worst, e.max_ratio);
+  std::printf("%s: worst %.3g of the bound, changed the answer at %d of %d states\n",
+              case_name(c).c_str(), worst, mattered, states);
   INFO(case_name(c) << ": the flag changed lever's answer at " << mattered << " of " << states
                     << " states");
   check_within_bound(report);

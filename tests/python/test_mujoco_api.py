@@ -55,6 +55,7 @@ def test_shapes_and_dtypes_are_mujocos(path):
                               ("MJDATA_POINTERS", data, mujoco._DATA_FIELDS)):
         table = mujoco_shapes(macro)
         table["energy"] = ("mjtNum", "1", "2")  # MJDATA_VECTOR: a flat (2,) array
+        table["solver_fwdinv"] = ("mjtNum", "1", "2")
         for name in names:
             ctype, rows, cols = table[name]
             array = getattr(obj, name)

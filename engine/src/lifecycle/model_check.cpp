@@ -463,6 +463,24 @@ void check_options_actuators_keys(const Model& model) {
     throw ModelError("the medium's viscosity and density must be finite and not negative, and "
                      "the wind finite.");
   }
+  // the flags: MuJoCo 2.2.2's bits only; the override's parameters finite
+  if ((model.opt.disableflags & ~((1 << kDisableBits) - 1)) != 0 ||
+      (model.opt.enableflags & ~((1 << kEnableBits) - 1)) != 0) {
+    throw ModelError("opt.disableflags and opt.enableflags hold MuJoCo 2.2.2's bits only (" +
+                     std::to_string(kDisableBits) + " and " + std::to_string(kEnableBits) +
+                     "); they are " + std::to_string(model.opt.disableflags) + " and " +
+                     std::to_string(model.opt.enableflags) + ".");
+  }
+  const auto finite_all = [](const auto& values) {
+    for (const double x : values) {
+      if (!std::isfinite(x)) return false;
+    }
+    return true;
+  };
+  if (!std::isfinite(model.opt.o_margin) || !finite_all(model.opt.o_solref) ||
+      !finite_all(model.opt.o_solimp)) {
+    throw ModelError("the contact override's o_margin, o_solref and o_solimp must be finite.");
+  }
   if (has_fluid(model.opt) && model.opt.integrator == Integrator::kImplicitFast) {
     throw ModelError("fluid forces (viscosity, density) with MuJoCo 3's implicitfast integrator: "
                      "lever has them with Euler, RK4 and MuJoCo 2.2.2's implicit only.");
