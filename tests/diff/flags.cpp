@@ -183,9 +183,11 @@ TEST_CASE("diff: every option flag agrees with MuJoCo where it matters", "[diff]
   const std::string chain = overlapping_chain();
   const FlagCase cases[] = {
       {sensors, kDisableGravity},
-      {sensors, kDisablePassive},
+      {sensors, kDisablePassive, 0, 0, false, true},  // Euler still damps implicitly, as 2.2.2
       {tendons, kDisablePassive},
+      {gripper, kDisablePassive, 0, 0, false, true},  // the implicit integrator's damping
       {sensors, kDisableActuation},
+      {gripper, kDisableActuation, 0, 0, false, true},
       {sensors, kDisableClampctrl, 0, 0, true},
       {sensors, kDisableLimit},
       {sensors, kDisableSensor},
