@@ -619,7 +619,7 @@ Grip grip(const Model& m, PairTable& table, std::vector<std::string>& strays) {
 
 Contacts check_contacts(const Model& model) {
   Contacts c;
-  if (model.opt.contact_disabled) {
+  if (model.opt.disabled(kDisableContact) || model.opt.disabled(kDisableConstraint)) {
     c.skipped = "contacts are disabled (<flag contact=\"disable\">)";
     return c;
   }

@@ -23,13 +23,12 @@ void copy_contact(const mjModel* m, Model& model) {
   if (m->opt.collision != mjCOL_ALL) {
     throw std::runtime_error("from_mujoco: lever collides all pairs (option collision=\"all\")");
   }
-  if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT | mjDSBL_FILTERPARENT)) {
-    throw std::runtime_error(
-        "from_mujoco: lever has no flags to disable constraints, contacts or the parent filter");
-  }
-  if (m->opt.enableflags & mjENBL_OVERRIDE) {
-    throw std::runtime_error("from_mujoco: lever has no contact override");
-  }
+  // the flags (lever's bits are MuJoCo's) and the contact override's parameters
+  model.opt.disableflags = m->opt.disableflags;
+  model.opt.enableflags = m->opt.enableflags;
+  model.opt.o_margin = m->opt.o_margin;
+  for (int k = 0; k < 2; ++k) model.opt.o_solref[k] = m->opt.o_solref[k];
+  for (int k = 0; k < 5; ++k) model.opt.o_solimp[k] = m->opt.o_solimp[k];
   if (m->opt.cone != mjCONE_PYRAMIDAL && m->opt.cone != mjCONE_ELLIPTIC) {
     throw std::runtime_error("from_mujoco: unknown friction cone");
   }
@@ -37,7 +36,6 @@ void copy_contact(const mjModel* m, Model& model) {
   model.opt.impratio = m->opt.impratio;
   model.opt.mpr_tolerance = m->opt.mpr_tolerance;
   model.opt.mpr_iterations = m->opt.mpr_iterations;
-  model.opt.multiccd = (m->opt.enableflags & mjENBL_MULTICCD) != 0;
   model.nconmax = m->nconmax;
   model.njmax = m->njmax;
 
@@ -64,6 +62,13 @@ void copy_contact(const mjModel* m, Model& model) {
     model.mesh_vert[v] = Eigen::Vector3d(p[0], p[1], p[2]);
   }
   for (int i = 0; i < m->nmeshgraph; ++i) model.mesh_graph[i] = m->mesh_graph[i];
+  for (int k = 0; k < m->nmesh; ++k) {
+    model.mesh_faceadr[k] = m->mesh_faceadr[k];
+    model.mesh_facenum[k] = m->mesh_facenum[k];
+  }
+  for (int f = 0; f < m->nmeshface; ++f) {
+    for (int k = 0; k < 3; ++k) model.mesh_face[f][k] = m->mesh_face[3 * f + k];
+  }
   for (int p = 0; p < m->npair; ++p) {
     model.pair_dim[p] = m->pair_dim[p];
     model.pair_geom1[p] = m->pair_geom1[p];
@@ -80,14 +85,10 @@ void copy_contact(const mjModel* m, Model& model) {
   for (int e = 0; e < m->nexclude; ++e) model.exclude_signature[e] = m->exclude_signature[e];
 }
 
-// ---- sensors: every sensor_ array, the magnetic field and the noise flag; lever's numbering of
+// ---- sensors: every sensor_ array, the magnetic field; lever's numbering of
 // types and objects is MuJoCo's (validate() refuses what lever cannot evaluate)
 void copy_sensors(const mjModel* m, Model& model) {
-  if (m->opt.disableflags & mjDSBL_SENSOR) {
-    throw std::runtime_error("from_mujoco: lever has no flag to disable sensors");
-  }
   model.opt.magnetic = vec3(m->opt.magnetic);
-  model.opt.sensornoise = (m->opt.enableflags & mjENBL_SENSORNOISE) != 0;
   for (int s = 0; s < m->nsensor; ++s) {
     model.sensor_name[s] = name_of(m, mjOBJ_SENSOR, s);
     model.sensor_type[s] = static_cast<SensorType>(m->sensor_type[s]);
@@ -106,10 +107,6 @@ void copy_sensors(const mjModel* m, Model& model) {
 
 // Equality constraints (connect, weld, joint and tendon couplings) and the dofs' friction loss.
 void copy_constraints(const mjModel* m, Model& model) {
-  if (m->opt.disableflags & (mjDSBL_EQUALITY | mjDSBL_FRICTIONLOSS | mjDSBL_LIMIT)) {
-    throw std::runtime_error(
-        "from_mujoco: lever has no flags to disable equality constraints, friction loss or limits");
-  }
   for (int i = 0; i < m->nv; ++i) {
     model.dof_frictionloss[i] = m->dof_frictionloss[i];
     model.dof_solref[i] = {m->dof_solref[mjNREF * i], m->dof_solref[mjNREF * i + 1]};
@@ -225,6 +222,7 @@ Model from_mujoco(const mjModel* m) {
   model.nmesh = m->nmesh;
   model.nmeshvert = m->nmeshvert;
   model.nmeshgraph = m->nmeshgraph;
+  model.nmeshface = m->nmeshface;
   model.nsensor = m->nsensor;
   model.nsensordata = m->nsensordata;
   model.neq = m->neq;

@@ -394,6 +394,14 @@ class Compiler {
 
   // ---- meshes ---------------------------------------------------------------------------------
 
+  // whether a ray is cast at the geoms (then every mesh is read, as MuJoCo reads them all)
+  bool has_rangefinder() const {
+    for (const SensorSpec& s : spec_.sensors) {
+      if (s.type == SensorType::kRangefinder) return true;
+    }
+    return false;
+  }
+
   // A mesh geom that gives its body mass or can collide: read and process its mesh (once per
   // mesh), then move the geom's frame to the mesh's centre and principal axes, size it by the
   // mesh's bounding box and, if it gives mass, give it the mass and inertia MuJoCo 2.2.2 gives it
@@ -608,11 +616,12 @@ class Compiler {
     }
     if (g.type == GeomType::kMesh) {
       // a mesh geom that neither gives mass nor can collide keeps its frame as written, size zero
-      // and no mass: lever reads its file only when the body or the collision stage needs it
+      // and no mass: lever reads its file only when the body, the collision stage or a
+      // rangefinder's ray needs it
       out.size = {0, 0, 0};
       if (gives_mass) {
         apply_mesh(g, body, out, true);
-      } else if (can_collide(g)) {
+      } else if (can_collide(g) || has_rangefinder()) {
         // MuJoCo reads mesh files lever does not (inline vertices, MSH): such a geom keeps its
         // frame as written and cannot collide in lever, which says so (the unsupported pairs'
         // warning names its pairs)
@@ -970,7 +979,10 @@ class Compiler {
       const int wa = weld_[static_cast<size_t>(ga.body)];
       const int wb = weld_[static_cast<size_t>(gb.body)];
       if (wa == wb) return false;
-      if (wa != 0 && wb != 0 && (wa == weld_parent(wb) || wb == weld_parent(wa))) return false;
+      if (!spec_.opt.disabled(kDisableFilterparent) && wa != 0 && wb != 0 &&
+          (wa == weld_parent(wb) || wb == weld_parent(wa))) {
+        return false;
+      }
       return !excluded(ga.body, gb.body);
     };
     // a mesh geom whose mesh lever did not read has no shape to collide
@@ -1138,6 +1150,7 @@ Model Compiler::assemble() const {
     if (!mesh) continue;
     m.nmeshvert += static_cast<int>(mesh->vert.size() / 3);
     m.nmeshgraph += static_cast<int>(mesh->graph.size());
+    m.nmeshface += static_cast<int>(mesh->face.size() / 3);
   }
   m.neq = static_cast<int>(spec_.equalities.size());
   m.ntendon = static_cast<int>(spec_.tendons.size());
@@ -1315,13 +1328,20 @@ void Compiler::assemble_geoms_and_sites(Model& m) const {
 
 // every mesh asset, as MuJoCo numbers them; one lever did not read has no vertices and no graph
 void Compiler::assemble_meshes(Model& m) const {
-  int vert = 0, graph = 0;
+  int vert = 0, graph = 0, face = 0;
   for (size_t k = 0; k < spec_.assets.meshes.size(); ++k) {
     const MeshMass* mesh = k < mesh_cache_.size() && mesh_cache_[k] ? &*mesh_cache_[k] : nullptr;
     m.mesh_vertadr[k] = vert;
     m.mesh_vertnum[k] = mesh ? static_cast<int>(mesh->vert.size() / 3) : 0;
     m.mesh_graphadr[k] = mesh && !mesh->graph.empty() ? graph : -1;
+    m.mesh_faceadr[k] = face;
+    m.mesh_facenum[k] = mesh ? static_cast<int>(mesh->face.size() / 3) : 0;
     if (!mesh) continue;
+    for (int f = 0; f < m.mesh_facenum[k]; ++f) {
+      const int* corners = mesh->face.data() + 3 * f;
+      m.mesh_face[static_cast<size_t>(face + f)] = {corners[0], corners[1], corners[2]};
+    }
+    face += m.mesh_facenum[k];
     for (int v = 0; v < m.mesh_vertnum[k]; ++v) {
       const float* p = mesh->vert.data() + 3 * v;
       m.mesh_vert[static_cast<size_t>(vert + v)] = Eigen::Vector3d(p[0], p[1], p[2]);

@@ -303,15 +303,6 @@ void check_option_support(const Element& option) {
                noslip->value + ")");
     }
   }
-  for (const Element& flag : option.children) {
-    const Attribute* override_flag = flag.find("override");
-    if (override_flag && override_flag->value == "enable") {
-      fail(flag.place(*override_flag), "override",
-           "lever has no contact override (MuJoCo's override=\"enable\" replaces every contact's "
-           "margin, solref and solimp by option o_margin, o_solref, o_solimp): set the geoms' "
-           "own margin, solref and solimp instead, and remove override=\"enable\"");
-    }
-  }
 }
 
 // <option> numbers lever refuses although MuJoCo 2.2.2 reads them
@@ -368,13 +359,19 @@ Options read_option(const Element& root) {
   o.iterations = f.integer("iterations");
   o.tolerance = f.real("tolerance");
   const Fields flag(flags, "option", "flag");
-  o.contact_disabled = flag.word("contact") == "disable";
+  for (int k = 0; k < kDisableBits; ++k) {
+    if (flag.word(kDisableNames[k]) == "disable") o.disableflags |= 1 << k;
+  }
+  for (int k = 0; k < kEnableBits; ++k) {
+    if (flag.word(kEnableNames[k]) == "enable") o.enableflags |= 1 << k;
+  }
+  o.o_margin = f.real("o_margin");
+  o.o_solref = f.array<2>("o_solref");
+  o.o_solimp = f.array<5>("o_solimp");
   o.mpr_tolerance = f.real("mpr_tolerance");
   o.mpr_iterations = f.integer("mpr_iterations");
-  o.multiccd = flag.word("multiccd") == "enable";
   const Vec3 magnetic = f.array<3>("magnetic");
   o.magnetic = Eigen::Vector3d(magnetic[0], magnetic[1], magnetic[2]);
-  o.sensornoise = flag.word("sensornoise") == "enable";
   o.viscosity = f.real("viscosity");
   o.density = f.real("density");
   const Vec3 wind = f.array<3>("wind");

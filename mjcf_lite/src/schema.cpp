@@ -466,24 +466,58 @@ std::vector<ElementRule> build() {
                         "the medium's density, kg/m^3: quadratic drag on each body's inertia "
                         "box; must not be negative"),
                    real("wind", 3, "0 0 0", "the medium's velocity, m/s, world frame"),
+                   real("o_margin", 1, "0",
+                        "with <flag override=\"enable\">: every contact's margin"),
+                   partial("o_solref", 2, "0.02 1",
+                           "with <flag override=\"enable\">: every contact's solref"),
+                   partial("o_solimp", 5, "0.9 0.95 0.001 0.5 2",
+                           "with <flag override=\"enable\">: every contact's solimp"),
                },
-               "apirate o_margin o_solref o_solimp collision",
+               "apirate collision",
                "", "simulation options"});
   s.push_back({"flag", "option", '?',
                {
+                   keyword("constraint", "enable", "enable disable", "",
+                           "disable: no constraint stage at all (no rows, no contacts)"),
+                   keyword("equality", "enable", "enable disable", "",
+                           "disable: no equality constraint rows"),
+                   keyword("frictionloss", "enable", "enable disable", "",
+                           "disable: no friction-loss rows (joints and tendons)"),
+                   keyword("limit", "enable", "enable disable", "",
+                           "disable: no limit rows (joints and tendons)"),
                    keyword("contact", "enable", "enable disable", "",
                            "disable: no collision detection, no contacts"),
+                   keyword("passive", "enable", "enable disable", "",
+                           "disable: no springs, damping or fluid forces"),
+                   keyword("gravity", "enable", "enable disable", "", "disable: no gravity"),
+                   keyword("clampctrl", "enable", "enable disable", "",
+                           "disable: ctrl is not clamped to ctrlrange"),
+                   keyword("warmstart", "enable", "enable disable", "",
+                           "the solver's warm start: lever's solver always starts from "
+                           "qacc_smooth (MuJoCo's disabled warm start), which changes where "
+                           "MuJoCo's iterations stop, not its converged answer"),
+                   keyword("filterparent", "enable", "enable disable", "",
+                           "disable: a body's geoms may collide with its parent's"),
+                   keyword("actuation", "enable", "enable disable", "",
+                           "disable: no actuator forces"),
+                   keyword("refsafe", "enable", "enable disable", "",
+                           "disable: solref's time constant may be shorter than 2 timesteps"),
+                   keyword("sensor", "enable", "enable disable", "",
+                           "disable: the sensor stages are skipped (sensordata kept)"),
                    keyword("override", "disable", "disable enable", "",
-                           "contact override: lever has none, so only disable"),
+                           "enable: every contact takes option o_margin, o_solref, o_solimp"),
+                   keyword("energy", "disable", "disable enable", "",
+                           "enable: forward computes the potential and kinetic energy"),
+                   keyword("fwdinv", "disable", "disable enable", "",
+                           "enable: each step compares forward and inverse dynamics "
+                           "(solver_fwdinv)"),
                    keyword("multiccd", "disable", "disable enable", "",
                            "enable: up to four more contacts per convex pair, found by MPR with "
                            "the geoms turned slightly about the first contact (MuJoCo 2.2.2)"),
                    keyword("sensornoise", "disable", "disable enable", "",
                            "enable: add each sensor's noise (its standard deviation `noise`)"),
                },
-               "constraint equality frictionloss limit passive gravity clampctrl warmstart "
-               "filterparent actuation refsafe sensor energy fwdinv",
-               "", "simulation flags"});
+               "", "", "simulation flags"});
   s.push_back({"size", "mujoco", '*',
                {
                    integer("nconmax", 1, "-1",
@@ -809,7 +843,14 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
     value as the default).
 * Refused because lever does not have them: `option/solver` `PGS` and `CG` (lever's solver is
   Newton, MuJoCo's default), `option/noslip_iterations` above 0 (no noslip solver),
-  `option/flag override="enable"` (no contact override), `geom/type="hfield"`.
+  `geom/type="hfield"`.
+* Every `option/flag` of MuJoCo 2.2.2, as `model.opt.disableflags` and `enableflags` (mjtDisableBit's
+  and mjtEnableBit's bits), honoured where MuJoCo reads each (docs/contact.md, "Option flags"), with
+  `override`'s `option/o_margin`, `o_solref` and `o_solimp`.
+* `<sensor><user>`: a sensor whose numbers `Model::sensor_callback` writes (MuJoCo's
+  `mjcb_sensor`), with its own `dim`, `datatype`, `needstage` and object; without a callback its
+  numbers stay zero, as MuJoCo leaves them. The rangefinder's ray meets meshes triangle by
+  triangle (MuJoCo's `mj_rayMesh`); a model with a rangefinder has every mesh read.
 * `<include file="..."/>` anywhere: the included file's root element (of any tag; its
   attributes are ignored) is dropped and its children take the `<include>`'s place, their own
   includes expanded in turn, as MuJoCo 2.2.2 does before it reads a model. Paths are relative to

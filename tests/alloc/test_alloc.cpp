@@ -501,7 +501,7 @@ TEST_CASE("collision allocates nothing", "[alloc]") {
     INFO(file);
     const auto mj = lever::test::mujoco_load(file);
     lever::Model m = lever::test::from_mujoco(mj.get());
-    m.opt.multiccd = file == scenes + "free_objects.xml";
+    if (file == scenes + "free_objects.xml") m.opt.enableflags |= lever::kEnableMulticcd;
     lever::Data d(m);
     std::mt19937_64 rng(19);
     std::uniform_real_distribution<double> u(file == panda ? -2.5 : -0.15, file == panda ? 2.5 : 0.15);

@@ -190,7 +190,8 @@ void compare_geom_frames(Differences& d, const Model& o, const FieldView& view, 
   }
 }
 
-// The meshes (mesh_vertadr, mesh_vertnum, mesh_graphadr, mesh_graph, and mesh_vert, floats in
+// The meshes (mesh_vertadr, mesh_vertnum, mesh_graphadr, mesh_graph, mesh_facenum, mesh_face,
+// and mesh_vert, floats in
 // MuJoCo): lever reads a mesh only when a geom must give mass or can collide, so each mesh lever
 // read is compared with MuJoCo's at each side's own addresses, vertex for vertex (exactly: both are
 // the same floats) and its hull graph int for int; a mesh lever did not read has no vertices.
@@ -207,6 +208,18 @@ void compare_meshes(Differences& d, const Model& o, const mjModel& m) {
         const double a = o.mesh_vert[static_cast<size_t>(ours + v)][i];
         const double b = m.mesh_vert[3 * (theirs + v) + i];
         if (a != b) d.real("mesh_vert", 3 * (theirs + v) + i, a, b);
+      }
+    }
+    const int faces = o.mesh_facenum[static_cast<size_t>(k)];
+    d.integer("mesh_facenum", k, faces, m.mesh_facenum[k]);
+    if (faces == m.mesh_facenum[k]) {
+      const int our_face = o.mesh_faceadr[static_cast<size_t>(k)], their_face = m.mesh_faceadr[k];
+      for (int f = 0; f < faces; ++f) {
+        for (int i = 0; i < 3; ++i) {
+          const int a = o.mesh_face[static_cast<size_t>(our_face + f)][static_cast<size_t>(i)];
+          const int b = m.mesh_face[3 * (their_face + f) + i];
+          if (a != b) d.integer("mesh_face", 3 * (their_face + f) + i, a, b);
+        }
       }
     }
     const int our_graph = o.mesh_graphadr[static_cast<size_t>(k)];
@@ -300,16 +313,14 @@ void compare_options(Differences& d, const Model& o, const mjModel& m) {
   d.real("opt_tolerance", 0, o.opt.tolerance, m.opt.tolerance);
   d.integer("opt_solver", 0, mjSOL_NEWTON, m.opt.solver);
   d.integer("opt_noslip_iterations", 0, 0, m.opt.noslip_iterations);
-  d.integer("opt_contact_disabled", 0, o.opt.contact_disabled ? 1 : 0,
-            (m.opt.disableflags & mjDSBL_CONTACT) ? 1 : 0);
-  d.integer("opt_override", 0, 0, (m.opt.enableflags & mjENBL_OVERRIDE) ? 1 : 0);
+  d.integer("opt_disableflags", 0, o.opt.disableflags, m.opt.disableflags);
+  d.integer("opt_enableflags", 0, o.opt.enableflags, m.opt.enableflags);
+  d.real("opt_o_margin", 0, o.opt.o_margin, m.opt.o_margin);
+  for (int k = 0; k < 2; ++k) d.real("opt_o_solref", k, o.opt.o_solref[k], m.opt.o_solref[k]);
+  for (int k = 0; k < 5; ++k) d.real("opt_o_solimp", k, o.opt.o_solimp[k], m.opt.o_solimp[k]);
   d.real("opt_mpr_tolerance", 0, o.opt.mpr_tolerance, m.opt.mpr_tolerance);
   d.integer("opt_mpr_iterations", 0, o.opt.mpr_iterations, m.opt.mpr_iterations);
-  d.integer("opt_multiccd", 0, o.opt.multiccd ? 1 : 0,
-            (m.opt.enableflags & mjENBL_MULTICCD) ? 1 : 0);
   for (int k = 0; k < 3; ++k) d.real("opt_magnetic", k, o.opt.magnetic[k], m.opt.magnetic[k]);
-  d.integer("opt_sensornoise", 0, o.opt.sensornoise ? 1 : 0,
-            (m.opt.enableflags & mjENBL_SENSORNOISE) ? 1 : 0);
   d.integer("nconmax", 0, o.nconmax, m.nconmax);
   d.integer("njmax", 0, o.njmax, m.njmax);
 }

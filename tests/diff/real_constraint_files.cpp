@@ -30,7 +30,7 @@ int friction_rows(const Data& data) {
 // A twin of the file with contacts disabled on both sides.
 void disable_contacts(diff::Twin& twin) {
   twin.m->opt.disableflags |= mjDSBL_CONTACT;
-  twin.model.opt.contact_disabled = true;
+  twin.model.opt.disableflags |= kDisableContact;
   set_const(twin.model);
   twin.data = Data(twin.model);
 }

@@ -127,7 +127,7 @@ constexpr const char* kTendonRobotFiles[] = {
 
 void without_contacts(diff::Twin& twin) {
   twin.m->opt.disableflags |= mjDSBL_CONTACT;
-  twin.model.opt.contact_disabled = true;
+  twin.model.opt.disableflags |= kDisableContact;
   set_const(twin.model);
   twin.data = Data(twin.model);
 }

@@ -45,7 +45,7 @@ def test_shapes_and_dtypes_are_mujocos(path):
     sizes = {n: getattr(model, n)
              for n in ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude",
                        "nsensor", "nsensordata", "neq", "nmocap", "nmesh",
-                       "nmeshvert", "nmeshgraph", "ntendon", "nwrap", "nuser_body", "nuser_jnt",
+                       "nmeshvert", "nmeshgraph", "nmeshface", "ntendon", "nwrap", "nuser_body", "nuser_jnt",
                        "nuser_geom", "nuser_site", "nuser_actuator", "nuser_sensor")}
     sizes["nefc"] = data.nefc
     # mjmodel.h's lengths of solref, solimp, gainprm and biasprm
@@ -55,6 +55,7 @@ def test_shapes_and_dtypes_are_mujocos(path):
                               ("MJDATA_POINTERS", data, mujoco._DATA_FIELDS)):
         table = mujoco_shapes(macro)
         table["energy"] = ("mjtNum", "1", "2")  # MJDATA_VECTOR: a flat (2,) array
+        table["solver_fwdinv"] = ("mjtNum", "1", "2")
         for name in names:
             ctype, rows, cols = table[name]
             array = getattr(obj, name)

@@ -50,6 +50,15 @@ void print_options(std::FILE* out, const Model& m) {
   std::fprintf(out, "  inertiagrouprange %d %d, inertia from geoms %s\n",
                m.compiler.inertiagrouprange[0], m.compiler.inertiagrouprange[1],
                m.compiler.inertia_from_geoms_allowed ? "allowed" : "off (inertiafromgeom=false)");
+  // the flags that differ from MuJoCo's defaults, by their MJCF names
+  std::string flags;
+  for (int k = 0; k < kDisableBits; ++k) {
+    if (m.opt.disableflags & (1 << k)) flags += std::string(" ") + kDisableNames[k] + "=disable";
+  }
+  for (int k = 0; k < kEnableBits; ++k) {
+    if (m.opt.enableflags & (1 << k)) flags += std::string(" ") + kEnableNames[k] + "=enable";
+  }
+  if (!flags.empty()) std::fprintf(out, "  flags:%s\n", flags.c_str());
 }
 
 // A joint's kind and the units of its range, damping and force: a free joint moves along and

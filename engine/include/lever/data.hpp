@@ -219,6 +219,10 @@ struct Data {
 
   // ---- other ---------------------------------------------------------------------------------
   std::array<double, 2> energy{0.0, 0.0};  ///< compute_energy(): potential, kinetic (J)
+  /// step() with <flag fwdinv="enable"> (MuJoCo's mj_compareFwdInv): the norms of the
+  /// constraint force's and the applied force's differences between the forward solve and
+  /// inverse dynamics at its qacc (0, 0 without constraint rows)
+  std::array<double, 2> solver_fwdinv{0.0, 0.0};
   std::array<WarningStat, static_cast<int>(Warning::kCount)> warning{};
 
   // ---- workspace (preallocated; contents are meaningless between calls but where it says) -------

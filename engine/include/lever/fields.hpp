@@ -195,7 +195,10 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(mesh_vertnum, int, nmesh, 1, mujoco)                       \
   X(mesh_graphadr, int, nmesh, 1, mujoco)                      \
   X(mesh_vert, double, nmeshvert, 3, own) /* float in MuJoCo */ \
-  X(mesh_graph, int, nmeshgraph, 1, mujoco)
+  X(mesh_graph, int, nmeshgraph, 1, mujoco)                    \
+  X(mesh_faceadr, int, nmesh, 1, mujoco)                       \
+  X(mesh_facenum, int, nmesh, 1, mujoco)                       \
+  X(mesh_face, int, nmeshface, 3, mujoco)
 
 // equality constraints
 #define LEVER_MODEL_EQUALITY_FIELDS(X)  \
@@ -229,7 +232,8 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(tendon_length0) X(tendon_invweight0)
 
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
-// or `inverse` (written by inverse() only) or `energy` (by compute_energy() only)
+// or `inverse` (written by inverse() only) or `energy` (by compute_energy(), and by forward() with
+// <flag energy="enable">) or `step` (by step() with <flag fwdinv="enable">)
 #define LEVER_DATA_FIELDS(X)                                   \
   X(qpos, double, nq, 1, state, mujoco)                        \
   X(qvel, double, nv, 1, state, mujoco)                        \
@@ -293,7 +297,8 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(cfrc_ext, double, nbody, 6, acceleration, mujoco)         \
   X(subtree_linvel, double, nbody, 3, velocity, mujoco)       \
   X(subtree_angmom, double, nbody, 3, velocity, mujoco)       \
-  X(energy, double, one, 2, energy, mujoco)
+  X(energy, double, one, 2, energy, mujoco)                    \
+  X(solver_fwdinv, double, one, 2, step, mujoco)
 
 namespace lever {
 
@@ -318,6 +323,7 @@ enum class Size : int {
   kNmesh,      ///< meshes
   kNmeshvert,  ///< mesh vertices, all meshes
   kNmeshgraph,  ///< ints of the meshes' hull graphs
+  kNmeshface,   ///< the meshes' triangles
   // sensors
   kNsensor,     ///< sensors
   kNsensordata,  ///< the sensors' numbers together (data.sensordata)
@@ -337,8 +343,9 @@ enum class Size : int {
 };
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;
-/// kEnergy: compute_energy() only).
-enum class Stage : int { kState, kPosition, kVelocity, kAcceleration, kInverse, kEnergy };
+/// kEnergy: compute_energy(), or forward() with opt.enabled(kEnableEnergy); kStep: step() with
+/// opt.enabled(kEnableFwdinv)).
+enum class Stage : int { kState, kPosition, kVelocity, kAcceleration, kInverse, kEnergy, kStep };
 
 /// One row of the table.
 struct FieldInfo {
@@ -433,7 +440,7 @@ void check_model_sizes(const Model& model);
 
 // ---- sizing a Model -----------------------------------------------------------------
 /// Gives every array of the model the length its counts give it (nbody, njnt, nq, nv, ngeom,
-/// nsite, nu, npair, nexclude, nmesh, nmeshvert, nmeshgraph, nkey): each array of the field table rows x cols numbers, the
+/// nsite, nu, npair, nexclude, nmesh, nmeshvert, nmeshgraph, nmeshface, nkey): each array of the field table rows x cols numbers, the
 /// constants set_const computes included; the names and the keyframes too (see the top of this
 /// file). The numbers an array already holds within its new length are kept, and every new entry is
 /// zero (an empty name), so a builder sets the counts, calls this, and writes each element by

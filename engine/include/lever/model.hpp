@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -204,8 +205,8 @@ struct SensorLayout {
 };
 SensorLayout sensor_layout(SensorType type);
 
-/// Whether lever evaluates sensors of this type (every type but user
-/// sensors, which MuJoCo fills from a callback).
+/// Whether lever knows sensors of this type (every type of MuJoCo 2.2.2's; user sensors are
+/// evaluated by Model::sensor_callback, as MuJoCo's by mjcb_sensor).
 bool sensor_type_supported(SensorType type);
 
 /// Row-major matrix, for per-keyframe arrays (key_qpos is nkey x nq, as MuJoCo's).
@@ -249,6 +250,39 @@ inline constexpr int kEqualityData = 11;
 /// Friction cones; the numeric values are MuJoCo's mjtCone.
 enum class Cone : int { kPyramidal = 0, kElliptic = 1 };
 
+/// The features <option><flag> switches off (MuJoCo's mjtDisableBit, the same bits): each set
+/// bit of Options::disableflags removes what MuJoCo 2.2.2 removes.
+enum DisableBit : int {
+  kDisableConstraint = 1 << 0,    ///< the whole constraint stage: no rows, no contacts
+  kDisableEquality = 1 << 1,      ///< equality constraint rows
+  kDisableFrictionloss = 1 << 2,  ///< friction-loss rows (joints and tendons)
+  kDisableLimit = 1 << 3,         ///< limit rows (joints and tendons)
+  kDisableContact = 1 << 4,       ///< the collision stage and contact rows
+  kDisablePassive = 1 << 5,       ///< springs, damping, the medium's forces
+  kDisableGravity = 1 << 6,       ///< gravity (in qfrc_bias, cacc, the potential energy)
+  kDisableClampctrl = 1 << 7,     ///< clamping ctrl to ctrlrange
+  kDisableWarmstart = 1 << 8,     ///< the solver's warm start (lever never warm-starts)
+  kDisableFilterparent = 1 << 9,  ///< the broad phase's parent-child filter
+  kDisableActuation = 1 << 10,    ///< actuator forces
+  kDisableRefsafe = 1 << 11,      ///< solref[0] >= 2 timestep
+  kDisableSensor = 1 << 12,       ///< the sensor stages (sensordata left as it was)
+};
+inline constexpr int kDisableBits = 13;  ///< MuJoCo's mjNDISABLE
+
+/// The optional features <option><flag> switches on (MuJoCo's mjtEnableBit, the same bits).
+enum EnableBit : int {
+  kEnableOverride = 1 << 0,     ///< every contact takes opt.o_margin, o_solref, o_solimp
+  kEnableEnergy = 1 << 1,       ///< forward() computes data.energy
+  kEnableFwdinv = 1 << 2,       ///< step() compares forward and inverse dynamics (solver_fwdinv)
+  kEnableSensornoise = 1 << 3,  ///< each sensor's noise is added
+  kEnableMulticcd = 1 << 4,     ///< up to four more contacts per convex pair
+};
+inline constexpr int kEnableBits = 5;  ///< MuJoCo's mjNENABLE
+
+/// The MJCF names of the flags, bit k of disableflags (enableflags) named by element k.
+extern const char* const kDisableNames[kDisableBits];
+extern const char* const kEnableNames[kEnableBits];
+
 /// Simulation options (<option>).
 struct Options {
   double timestep = 0.002;                   ///< s
@@ -259,22 +293,25 @@ struct Options {
   double impratio = 1.0;         ///< frictional-to-normal impedance ratio (elliptic cones)
   int iterations = 100;          ///< solver iterations (lever's solver stops on convergence)
   double tolerance = 1e-8;       ///< solver tolerance
-  /// <flag contact="disable"> (MuJoCo's mjDSBL_CONTACT): no collision stage, no contacts
-  bool contact_disabled = false;
   // the general convex pairs' Minkowski portal refinement (MuJoCo 2.2.2's defaults)
   double mpr_tolerance = 1e-6;  ///< MPR's boundary tolerance
   int mpr_iterations = 50;      ///< most MPR iterations
-  /// <flag multiccd="enable"> (MuJoCo's mjENBL_MULTICCD): up to four more contacts per convex pair
-  bool multiccd = false;
   /// Earth's magnetic field, world frame (the magnetometer reads it in its site's frame)
   Eigen::Vector3d magnetic{0.0, -0.5, 0.0};
-  /// <flag sensornoise="enable"> (MuJoCo's mjENBL_SENSORNOISE): add each sensor's noise
-  bool sensornoise = false;
   // the medium the bodies move in: MuJoCo 2.2.2's passive fluid forces, each body replaced by the
   // box of its inertia (smooth/fluid.cpp); none while viscosity and density are both 0
   double viscosity = 0.0;                  ///< Pa s: Stokes drag on the box's mean-diameter sphere
   double density = 0.0;                    ///< kg/m^3: quadratic drag on the box's faces
   Eigen::Vector3d wind{0.0, 0.0, 0.0};     ///< m/s, world frame: the medium's own velocity
+  // what every contact takes instead of its own with <flag override="enable"> (MuJoCo's defaults)
+  double o_margin = 0.0;
+  std::array<double, 2> o_solref{0.02, 1.0};
+  std::array<double, 5> o_solimp{0.9, 0.95, 0.001, 0.5, 2.0};
+  int disableflags = 0;  ///< DisableBit bits (<option><flag name="disable">)
+  int enableflags = 0;   ///< EnableBit bits (<option><flag name="enable">)
+
+  bool disabled(DisableBit bit) const { return (disableflags & bit) != 0; }
+  bool enabled(EnableBit bit) const { return (enableflags & bit) != 0; }
 };
 
 /// Whether the model's bodies feel MuJoCo 2.2.2's fluid forces (opt.viscosity or opt.density > 0).
@@ -296,6 +333,15 @@ struct VisualInfo {
   std::vector<std::string> light_name, camera_name;   ///< lights and cameras ("" if unnamed)
   std::vector<std::string> geom_mesh, geom_material;  ///< (ngeom) names, "" if none
 };
+
+struct Model;
+struct Data;
+
+/// What evaluates a model's user sensors (<sensor><user>), MuJoCo's mjcb_sensor: called after a
+/// stage (kPosition, kVelocity, kAcceleration) in which the model has user sensors, to write their
+/// numbers at sensor_adr in data.sensordata (noise and cutoff are applied after it). Without one,
+/// their numbers stay as they are (zero in a new Data), as in MuJoCo.
+using SensorCallback = std::function<void(const Model&, Data&, SensorStage)>;
 
 struct Model {
   std::string name = "MuJoCo Model";  ///< <mujoco model="...">
@@ -322,6 +368,7 @@ struct Model {
   int nmesh = 0;      ///< meshes (<asset><mesh>), each as MuJoCo compiles it if lever read it
   int nmeshvert = 0;  ///< their vertices, all meshes
   int nmeshgraph = 0;  ///< their convex hulls' graphs, all meshes (ints)
+  int nmeshface = 0;   ///< their triangles, all meshes
   int nsensor = 0;      ///< sensors
   int nsensordata = 0;  ///< numbers all sensors output together (the sum of sensor_dim)
   int neq = 0;        ///< equality constraints (<equality>)
@@ -429,6 +476,11 @@ struct Model {
   /// vertex the address of its neighbour list, its vertex in the mesh, then the neighbour lists
   /// (hull vertex numbers, each list ended by -1), then the hull's triangles (mesh vertices)
   std::vector<int> mesh_graph;
+  std::vector<int> mesh_faceadr;  ///< first triangle in mesh_face
+  std::vector<int> mesh_facenum;  ///< triangles; 0 for a mesh lever did not read
+  /// (nmeshface) each triangle's three vertices, numbered within its mesh (what the rangefinder's
+  /// ray meets, MuJoCo's mj_rayMesh)
+  std::vector<std::array<int, 3>> mesh_face;
 
   // ---- explicit contact pairs (npair) and exclusions (nexclude) ------------------------------
   std::vector<int> pair_dim;
@@ -520,8 +572,10 @@ struct Model {
   std::vector<int> sensor_adr;                ///< its first number in data.sensordata
   std::vector<double> sensor_cutoff;  ///< > 0: each number clipped to +-cutoff (positive
                                       ///< sensors: to cutoff)
+  /// evaluates the user sensors (set by the user; not part of a saved or pickled model)
+  SensorCallback sensor_callback;
   std::vector<double> sensor_noise;   ///< standard deviation of the noise added when
-                                      ///< opt.sensornoise is on
+                                      ///< opt.enabled(kEnableSensornoise)
 
   // ---- user data: (nbody x nuser_body), (njnt x nuser_jnt), ... MuJoCo's *_user arrays -------
   RowMatrix body_user, jnt_user, geom_user, site_user, actuator_user, sensor_user;

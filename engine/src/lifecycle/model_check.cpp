@@ -218,8 +218,8 @@ void check_sizes(const Model& model) {
                      ", nmocap = " + std::to_string(model.nmocap) + ").");
   }
   // contact: the counts the contact arrays of the field table are sized by
-  if (model.nmesh < 0 || model.nmeshvert < 0 || model.nmeshgraph < 0) {
-    throw ModelError("nmesh, nmeshvert and nmeshgraph must be non-negative.");
+  if (model.nmesh < 0 || model.nmeshvert < 0 || model.nmeshgraph < 0 || model.nmeshface < 0) {
+    throw ModelError("nmesh, nmeshvert, nmeshgraph and nmeshface must be non-negative.");
   }
   if (model.neq < 0)
     throw ModelError("neq must be non-negative; got " + std::to_string(model.neq) + ".");
@@ -463,6 +463,24 @@ void check_options_actuators_keys(const Model& model) {
     throw ModelError("the medium's viscosity and density must be finite and not negative, and "
                      "the wind finite.");
   }
+  // the flags: MuJoCo 2.2.2's bits only; the override's parameters finite
+  if ((model.opt.disableflags & ~((1 << kDisableBits) - 1)) != 0 ||
+      (model.opt.enableflags & ~((1 << kEnableBits) - 1)) != 0) {
+    throw ModelError("opt.disableflags and opt.enableflags hold MuJoCo 2.2.2's bits only (" +
+                     std::to_string(kDisableBits) + " and " + std::to_string(kEnableBits) +
+                     "); they are " + std::to_string(model.opt.disableflags) + " and " +
+                     std::to_string(model.opt.enableflags) + ".");
+  }
+  const auto finite_all = [](const auto& values) {
+    for (const double x : values) {
+      if (!std::isfinite(x)) return false;
+    }
+    return true;
+  };
+  if (!std::isfinite(model.opt.o_margin) || !finite_all(model.opt.o_solref) ||
+      !finite_all(model.opt.o_solimp)) {
+    throw ModelError("the contact override's o_margin, o_solref and o_solimp must be finite.");
+  }
   if (has_fluid(model.opt) && model.opt.integrator == Integrator::kImplicitFast) {
     throw ModelError("fluid forces (viscosity, density) with MuJoCo 3's implicitfast integrator: "
                      "lever has them with Euler, RK4 and MuJoCo 2.2.2's implicit only.");
@@ -504,6 +522,15 @@ void check_meshes(const Model& model) {
     const int adr = model.mesh_vertadr[m], num = model.mesh_vertnum[m];
     if (adr < 0 || num < 0 || adr > model.nmeshvert - num) {
       fail(m, "has vertices outside mesh_vert");
+    }
+    const int face = model.mesh_faceadr[m], faces = model.mesh_facenum[m];
+    if (face < 0 || faces < 0 || face > model.nmeshface - faces) {
+      fail(m, "has triangles outside mesh_face");
+    }
+    for (int f = face; f < face + faces; ++f) {
+      for (const int v : model.mesh_face[f]) {
+        if (v < 0 || v >= num) fail(m, "has a triangle whose vertex is not one of its own");
+      }
     }
     const int graph = model.mesh_graphadr[m];
     if (graph == -1) continue;
@@ -562,10 +589,25 @@ void check_sensors(const Model& model) {
     }
     if (!sensor_type_supported(type)) {
       reject("sensor", s, name,
-             std::string("is a ") + sensor_type_name(type) + " sensor; lever has no " +
-                 (type == SensorType::kUser ? "sensor callbacks" : "tendon sensors"));
+             std::string("is a ") + sensor_type_name(type) + " sensor, which lever does not have");
     }
-    const SensorLayout layout = sensor_layout(type);
+    SensorLayout layout = sensor_layout(type);
+    if (type == SensorType::kUser) {
+      // its own dim, datatype and stage (MuJoCo's compiler: an axis has 3 numbers, a
+      // quaternion 4), on an object of any kind lever has
+      const int dim = model.sensor_dim[s];
+      const SensorDataType datatype = model.sensor_datatype[s];
+      const int stage = static_cast<int>(model.sensor_needstage[s]);
+      const int kind = static_cast<int>(datatype);
+      if (dim < 0 || kind < 0 || kind > static_cast<int>(SensorDataType::kQuaternion) ||
+          (datatype == SensorDataType::kAxis && dim != 3) ||
+          (datatype == SensorDataType::kQuaternion && dim != 4) || stage < 0 ||
+          stage > static_cast<int>(SensorStage::kAcceleration)) {
+        reject("sensor", s, name,
+               "is a user sensor whose dim, datatype and needstage do not fit together");
+      }
+      layout = {dim, datatype, model.sensor_needstage[s], model.sensor_objtype[s]};
+    }
     if (model.sensor_dim[s] != layout.dim || model.sensor_datatype[s] != layout.datatype ||
         model.sensor_needstage[s] != layout.stage) {
       reject("sensor", s, name,
@@ -593,7 +635,7 @@ void check_sensors(const Model& model) {
          !sensor_object_exists(model, model.sensor_reftype[s], model.sensor_refid[s]))) {
       reject("sensor", s, name, "has a reference frame that is no body, geom or site");
     }
-    if (objtype == ObjectType::kJoint) {
+    if (objtype == ObjectType::kJoint && type != SensorType::kUser) {
       const JointType jt = model.jnt_type[id];
       const bool ball = type == SensorType::kBallQuat || type == SensorType::kBallAngVel;
       if (ball != (jt == JointType::kBall) ||
@@ -607,9 +649,14 @@ void check_sensors(const Model& model) {
     }
     if (type == SensorType::kRangefinder) {
       for (int g = 0; g < model.ngeom; ++g) {
-        if (model.geom_type[g] == GeomType::kMesh || model.geom_type[g] == GeomType::kHfield) {
+        const bool hfield = model.geom_type[g] == GeomType::kHfield;
+        const bool unread_mesh = model.geom_type[g] == GeomType::kMesh &&
+                                 (model.geom_dataid[g] < 0 || model.geom_dataid[g] >= model.nmesh ||
+                                  model.mesh_facenum[model.geom_dataid[g]] == 0);
+        if (hfield || unread_mesh) {
           reject("sensor", s, name,
-                 "is a rangefinder, and lever casts no rays at mesh or height field geoms (geom " +
+                 std::string("is a rangefinder, and lever casts no rays at ") +
+                     (hfield ? "height fields" : "a mesh geom without triangles") + " (geom " +
                      std::to_string(g) + ")");
         }
       }

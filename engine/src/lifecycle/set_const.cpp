@@ -134,7 +134,8 @@ bool contacts_possible(const Model& model) {
   const auto n = static_cast<size_t>(model.ngeom);
   const bool has_parameters = model.geom_friction.size() == n && model.geom_condim.size() == n &&
                               model.geom_margin.size() == n;
-  if (!has_parameters || model.opt.contact_disabled) return false;
+  if (!has_parameters || model.opt.disabled(kDisableContact) ||
+      model.opt.disabled(kDisableConstraint)) return false;
   if (model.npair > 0) return true;
   for (int g1 = 0; g1 < model.ngeom; ++g1) {
     for (int g2 = g1 + 1; g2 < model.ngeom; ++g2) {

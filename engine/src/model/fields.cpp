@@ -18,12 +18,13 @@ constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nbody = Size::kNbody, njnt = Size::kNjnt, ngeom = Size::kNgeom, nsite = Size::kNsite,
                nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude,
                nmesh = Size::kNmesh, nmeshvert = Size::kNmeshvert, nmeshgraph = Size::kNmeshgraph,
+               nmeshface = Size::kNmeshface,
                nsensor = Size::kNsensor, nsensordata = Size::kNsensordata,
                neq = Size::kNeq, nmocap = Size::kNmocap, ntendon = Size::kNtendon,
                nwrap = Size::kNwrap;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
-                energy = Stage::kEnergy;
+                energy = Stage::kEnergy, step = Stage::kStep;
 constexpr bool mujoco = true, own = false;
 }  // namespace token
 
@@ -270,6 +271,7 @@ int size_of(const Model& model, Size size) {
     case Size::kNmesh: return model.nmesh;
     case Size::kNmeshvert: return model.nmeshvert;
     case Size::kNmeshgraph: return model.nmeshgraph;
+    case Size::kNmeshface: return model.nmeshface;
     case Size::kNsensor: return model.nsensor;
     case Size::kNsensordata: return model.nsensordata;
     case Size::kNeq: return model.neq;
@@ -291,18 +293,18 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 26> names = {
+  static constexpr std::array<const char*, 27> names = {
       "1",          "nq",          "nv",           "nu",          "nbody",          "njnt",
       "ngeom",      "nsite",       "nefc",         "npair",       "nexclude",       "nmesh",
-      "nmeshvert",  "nmeshgraph",  "nsensor",      "nsensordata", "neq",            "nmocap",
+      "nmeshvert",  "nmeshgraph",  "nmeshface",    "nsensor",      "nsensordata", "neq",            "nmocap",
       "nuser_body", "nuser_jnt",   "nuser_geom",   "nuser_site",  "nuser_actuator", "nuser_sensor",
       "ntendon",    "nwrap"};
   return names[static_cast<size_t>(size)];
 }
 
 const char* stage_name(Stage stage) {
-  static constexpr std::array<const char*, 6> names = {"state",        "position", "velocity",
-                                                       "acceleration", "inverse",  "energy"};
+  static constexpr std::array<const char*, 7> names = {
+      "state", "position", "velocity", "acceleration", "inverse", "energy", "step"};
   return names[static_cast<size_t>(stage)];
 }
 
@@ -424,9 +426,10 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 25> counts = {{{"nmesh", model.nmesh},
+  const std::array<std::pair<const char*, int>, 26> counts = {{{"nmesh", model.nmesh},
                                                                {"nmeshvert", model.nmeshvert},
                                                                {"nmeshgraph", model.nmeshgraph},
+                                                               {"nmeshface", model.nmeshface},
                                                                {"nq", model.nq},
                                                                {"nv", model.nv},
                                                                {"nu", model.nu},

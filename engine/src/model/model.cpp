@@ -1,7 +1,13 @@
-// Name lookups of the Model.
+// Name lookups of the Model, and the names of its option flags.
 #include <lever/model.hpp>
 
 namespace lever {
+
+const char* const kDisableNames[kDisableBits] = {
+    "constraint", "equality", "frictionloss", "limit",    "contact",  "passive", "gravity",
+    "clampctrl",  "warmstart", "filterparent", "actuation", "refsafe", "sensor"};
+const char* const kEnableNames[kEnableBits] = {"override", "energy", "fwdinv", "sensornoise",
+                                               "multiccd"};
 
 namespace {
 int find_name(const std::vector<std::string>& names, const std::string& n) {

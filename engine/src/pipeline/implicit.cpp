@@ -50,7 +50,9 @@ void smooth_velocity_derivative(const Model& model, Data& data,
   qDeriv = -qDeriv;
 
   add_actuator_damping_velocity_terms(model, data, qDeriv);
-  if (has_fluid(model.opt)) detail::add_fluid_velocity_terms(model, data, qDeriv);
+  if (has_fluid(model.opt) && !model.opt.disabled(kDisablePassive)) {
+    detail::add_fluid_velocity_terms(model, data, qDeriv);
+  }
 }
 
 namespace {
@@ -75,7 +77,8 @@ void add_row_outer_product(const Model& model, const double* J, double b,
 void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
                                          Eigen::Ref<Eigen::MatrixXd> D) {
   // actuators: d force / d velocity of the affine bias and gain, carried to the dof by the gear
-  for (int a = 0; a < model.nu; ++a) {
+  const int actuators = model.opt.disabled(kDisableActuation) ? 0 : model.nu;
+  for (int a = 0; a < actuators; ++a) {
     double force_per_velocity = 0.0;
     if (model.actuator_biastype[a] == BiasType::kAffine) {
       force_per_velocity = model.actuator_biasprm[a][2];
@@ -93,6 +96,7 @@ void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
     const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
     D(dof, dof) += gear * force_per_velocity * gear;
   }
+  if (model.opt.disabled(kDisablePassive)) return;  // no dampers either
   // joint damping
   for (int i = 0; i < model.nv; ++i) D(i, i) -= model.dof_damping[i];
   // tendon damping: -damping J^T J over the tendon's Jacobian

@@ -170,6 +170,7 @@ void detail::step(const Model& model, Data& data, void (*forward_fn)(const Model
   }
   forward_fn(model, data);
   if (check_and_reset(model, data, data.qacc, Warning::kBadQacc)) forward_fn(model, data);
+  if (model.opt.enabled(kEnableFwdinv)) compare_forward_inverse(model, data);
 
   switch (model.opt.integrator) {
     case Integrator::kEuler: euler(model, data); break;
@@ -198,12 +199,15 @@ void step1(const Model& model, Data& data) {
   }
   position_stage(model, data);
   velocity_stage(model, data);
+  // MuJoCo's mj_step1 calls the energy functions whatever the flag, and they clear it when off
+  if (!model.opt.enabled(kEnableEnergy)) data.energy = {0.0, 0.0};
 }
 
 void step2(const Model& model, Data& data) {
   check_entry(model, data, "lever::step2");
   acceleration_stage(model, data);
   if (check_and_reset(model, data, data.qacc, Warning::kBadQacc)) forward(model, data);
+  if (model.opt.enabled(kEnableFwdinv)) detail::compare_forward_inverse(model, data);
   // as in MuJoCo 2.2.2, the split step integrates RK4 models with Euler: RK4 needs forward() at
   // states in the middle of the step, which the caller's control is not part of. The implicit
   // integrators stay implicit (they need only the start of the step), as in MuJoCo 3 for

@@ -49,6 +49,12 @@ void step_forward(const Model& model, Data& data);
 void forward_without_sensors(const Model& model, Data& data);
 void step_forward_without_sensors(const Model& model, Data& data);
 
+/// data.solver_fwdinv after forward(), for <flag fwdinv="enable"> (MuJoCo's mj_compareFwdInv):
+/// inverse dynamics at forward()'s qacc, the constraint force and the applied force it implies
+/// compared with forward()'s; forward()'s efc_force and qfrc_constraint are kept, inverse()'s
+/// qfrc_inverse and efc_state are left (forward.cpp).
+void compare_forward_inverse(const Model& model, Data& data);
+
 /// step() after its entry check, the step's forward() being `forward_fn` (forward() or
 /// step_forward(); integrate.cpp) and the RK4 stages' `stage_fn` (the same without sensors).
 void step(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&),

@@ -64,13 +64,19 @@ void unchecked::actuation(const Model& model, Data& data) {
   double* const qfrc = data.qfrc_actuator.data();
   for (int i = 0; i < model.nv; ++i) qfrc[i] = 0.0;
   if (model.nu == 0) return;
+  double* const force = data.actuator_force.data();
+  if (model.opt.disabled(kDisableActuation)) {
+    for (int a = 0; a < model.nu; ++a) force[a] = 0.0;
+    return;
+  }
 
   // the clamped controls; one bad control zeroes them all (MuJoCo's mjWARN_BADCTRL)
-  double* const force = data.actuator_force.data();
   const double* const ctrl = data.ctrl.data();
+  const bool clamp_ctrl = !model.opt.disabled(kDisableClampctrl);
   for (int a = 0; a < model.nu; ++a) {
-    force[a] =
-        model.actuator_ctrllimited[a] ? clamp(ctrl[a], model.actuator_ctrlrange[a]) : ctrl[a];
+    force[a] = clamp_ctrl && model.actuator_ctrllimited[a]
+                   ? clamp(ctrl[a], model.actuator_ctrlrange[a])
+                   : ctrl[a];
   }
   const int bad = first_bad(force, model.nu);
   if (bad >= 0) {

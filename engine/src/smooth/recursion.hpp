@@ -59,7 +59,7 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
                          std::vector<Motion>* Sdot, std::vector<Motion>* Sddot, BodyDone&& done) {
   v[0].setZero();
   a[0].setZero();
-  if (gravity) a[0].tail<3>() = -model.opt.gravity;  // the world accelerates upward: weights
+  if (gravity && !model.opt.disabled(kDisableGravity)) a[0].tail<3>() = -model.opt.gravity;  // the world accelerates upward: weights
 
   for (int b = 1; b < model.nbody; ++b) {
     const int parent = model.body_parentid[b];

@@ -41,6 +41,11 @@ void actuation(const Model& model, Data& data);
 void tendon(const Model& model, Data& data);
 /// ten_velocity = ten_J qvel (tendon.cpp)
 void tendon_velocity(const Model& model, Data& data);
+/// data.energy[0]: the potential energy, after the position stage (MuJoCo's mj_energyPos): the
+/// weights unless gravity is disabled, the springs unless passive forces are.
+void energy_position(const Model& model, Data& data);
+/// data.energy[1]: the kinetic energy qvel' M qvel / 2 (mj_energyVel).
+void energy_velocity(const Model& model, Data& data);
 }  // namespace unchecked
 
 /// The tendons' spring-dampers, J^T f, added to qfrc_passive (tendon.cpp; passive() calls it).

@@ -133,19 +133,21 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
                 const Eigen::MatrixXd& dtau_dv, Derivatives::Workspace& w) {
   w.rhs_q = -dtau_dq;
   w.rhs_v = -dtau_dv;
-  for (int j = 0; j < model.njnt; ++j) {
-    const int d = model.jnt_dofadr[j];
-    w.rhs_q(d, d) -= model.jnt_stiffness[j];  // spring: -k (q - springref)
-    w.rhs_v(d, d) -= model.dof_damping[d];    // damper: -b qd
-  }
-  if (model.nq != model.nv) quaternion_springs(model, data, w);
-  // a fixed tendon's spring-damper f = -k (L - lengthspring) - b v along its constant Jacobian J
-  // (L = J q, v = J qd), carried to the dofs as J^T f: -k J^T J and -b J^T J
-  for (int t = 0; t < model.ntendon; ++t) {
-    const double k = model.tendon_stiffness[t], b = model.tendon_damping[t];
-    if (k == 0 && b == 0) continue;
-    add_row_outer_product(data.ten_J.row(t).data(), model.nv, -k, w.rhs_q);
-    add_row_outer_product(data.ten_J.row(t).data(), model.nv, -b, w.rhs_v);
+  if (!model.opt.disabled(kDisablePassive)) {  // <flag passive="disable">: no springs, dampers
+    for (int j = 0; j < model.njnt; ++j) {
+      const int d = model.jnt_dofadr[j];
+      w.rhs_q(d, d) -= model.jnt_stiffness[j];  // spring: -k (q - springref)
+      w.rhs_v(d, d) -= model.dof_damping[d];    // damper: -b qd
+    }
+    if (model.nq != model.nv) quaternion_springs(model, data, w);
+    // a fixed tendon's spring-damper f = -k (L - lengthspring) - b v along its constant Jacobian
+    // J (L = J q, v = J qd), carried to the dofs as J^T f: -k J^T J and -b J^T J
+    for (int t = 0; t < model.ntendon; ++t) {
+      const double k = model.tendon_stiffness[t], b = model.tendon_damping[t];
+      if (k == 0 && b == 0) continue;
+      add_row_outer_product(data.ten_J.row(t).data(), model.nv, -k, w.rhs_q);
+      add_row_outer_product(data.ten_J.row(t).data(), model.nv, -b, w.rhs_v);
+    }
   }
 
   // actuators: force = clamp_f(gain clamp_c(ctrl) + bias), gain = p0 + p1 length + p2 velocity
@@ -154,12 +156,15 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
   // force clamp binds the actuator passes on nothing; where the ctrl clamp binds it has no
   // sensitivity to ctrl but keeps its length and velocity terms.
   w.rhs_u.setZero();
+  // <flag actuation="disable">: no actuator forces; clampctrl="disable": ctrl as it is
+  const int actuators = model.opt.disabled(kDisableActuation) ? 0 : model.nu;
+  const bool clamp_ctrl = !model.opt.disabled(kDisableClampctrl);
   bool bad = false;  // one bad control zeroes every control (actuation's kBadCtrl); bias stays
-  for (int a = 0; a < model.nu; ++a) bad = bad || is_bad(data.ctrl[a]);
-  for (int a = 0; a < model.nu; ++a) {
+  for (int a = 0; a < actuators; ++a) bad = bad || is_bad(data.ctrl[a]);
+  for (int a = 0; a < actuators; ++a) {
     double u = bad ? 0.0 : data.ctrl[a];
     bool ctrl_clamped = bad;
-    if (!bad && model.actuator_ctrllimited[a]) {
+    if (!bad && clamp_ctrl && model.actuator_ctrllimited[a]) {
       const auto& range = model.actuator_ctrlrange[a];
       ctrl_clamped = u < range[0] || u > range[1];
       u = std::clamp(u, range[0], range[1]);
@@ -571,7 +576,8 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   w.rhs_q -= (w.tau_q - w.tau_q_minus) / (2 * c);
   w.rhs_v -= (w.tau_v - deriv.dtau_dv) / c;  // (R_v(qd + s a) - (2 dtau_dv - R_v(qd + s a))) / 2c
   // + h dD a, D's actuator part: only an affine gain's p2 ctrl depends on anything (ctrl)
-  for (int a = 0; a < model.nu; ++a) {
+  const int actuators = model.opt.disabled(kDisableActuation) ? 0 : model.nu;
+  for (int a = 0; a < actuators; ++a) {
     if (model.actuator_gaintype[a] != GainType::kAffine) continue;
     if (model.actuator_trntype[a] == TransmissionType::kTendon) {
       // D's m^T p2 ctrl m, kept where M is non-zero (as the step's D keeps it): its ctrl

@@ -134,6 +134,7 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNmesh: return [](int i) { return "mesh " + std::to_string(i); };
     case Size::kNmeshvert: return [](int i) { return "mesh vertex " + std::to_string(i); };
     case Size::kNmeshgraph: return [](int i) { return "mesh graph " + std::to_string(i); };
+    case Size::kNmeshface: return [](int i) { return "mesh face " + std::to_string(i); };
     case Size::kNsensor: return [&model](int i) { return "sensor " + quoted(model.sensor_name, i); };
     case Size::kNsensordata: return sensor_number(model);
     case Size::kNeq: return [&model](int i) { return "equality " + quoted(model.eq_name, i); };
