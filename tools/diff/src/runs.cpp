@@ -1,5 +1,6 @@
 #include <cmath>
 #include <lever/diff/compare.hpp>
+#include <lever/diff/rk4.hpp>
 #include <lever/diff/runs.hpp>
 #include <lever/error.hpp>
 #include <lever/forward.hpp>
@@ -149,7 +150,15 @@ Report lockstep(Twin& twin, Integrator integrator, double seconds, Control contr
                    nv, dof);
     // the transition: the state after one step
     step(twin.model, twin.data);
-    mujoco_step_converged(twin.m.get(), twin.d.get(), twin.restart_mujoco_solver);
+    if (integrator == Integrator::kRK4) {
+      // MuJoCo's stages at the states lever's step went through (lever/diff/rk4.hpp says why)
+      MujocoRk4Stages stages;
+      mujoco_rk4_step(twin.m.get(), twin.d.get(), twin.restart_mujoco_solver,
+                      &twin.data.work.rk_qacc, &stages);
+      compare_rk4_stages(twin.model, twin.data, stages, k, report);
+    } else {
+      mujoco_step_converged(twin.m.get(), twin.d.get(), twin.restart_mujoco_solver);
+    }
     report.compare("qpos", k, twin.data.qpos.data(), twin.d->qpos, twin.model.nq,
                    per_coordinate(twin.model));
     report.compare("qvel", k, twin.data.qvel.data(), twin.d->qvel, nv, dof);

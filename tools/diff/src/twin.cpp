@@ -145,7 +145,10 @@ double distance_to_minimizer(const mjModel* m, mjData* d) {
 
 void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver) {
   mj_forward(m, d);
-  if (!restart_solver) return;
+  if (restart_solver) converge_mujoco_solver(m, d);
+}
+
+void converge_mujoco_solver(const mjModel* m, mjData* d) {
   restart_from_own_answer(m, d);
   const double warm = distance_to_minimizer(m, d);
   if (warm <= kStalled) return;

@@ -29,6 +29,10 @@ void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s);
 /// mj_forward on (m, d), restarted from its own answer while that moves it, and from a cold start
 /// where it is still short of the minimizer by its own gradient (Twin::mujoco_forward).
 void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver);
+/// After a forward on (m, d): MuJoCo's solver restarted from its own answer while that moves it,
+/// and from a cold start where it is still short of the minimizer by its own gradient (the
+/// answer nearer to it kept). The rest of mujoco_forward_converged.
+void converge_mujoco_solver(const mjModel* m, mjData* d);
 /// mj_step; with restart_solver, its forward warm-started from the converged answer, so that the
 /// step starts from the minimizer rather than where MuJoCo's solver stopped.
 void mujoco_step_converged(const mjModel* m, mjData* d, bool restart_solver);
