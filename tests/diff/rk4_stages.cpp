@@ -96,6 +96,7 @@ TEST_CASE("diff: an RK4 step with mesh contacts agrees with MuJoCo stage by stag
   }
   diff::Twin twin(file, diff::Path::kEngine);
   REQUIRE(twin.model.contacts_possible);
+  twin.set_integrator(Integrator::kRK4);
   const mjModel* m = twin.m.get();
   diff::Report report;
   report.set_solver_bound(diff::kContactSolverBound);
@@ -105,17 +106,25 @@ TEST_CASE("diff: an RK4 step with mesh contacts agrees with MuJoCo stage by stag
   for (int k = 0; k < 20; ++k) {
     const State s = random_state(twin.model, rng);
     random_qacc(twin.model, rng);  // the states `lever diff` draws
-    diff::compare_step(twin, s, Integrator::kRK4, k, report);
+    // lever's step, and MuJoCo's along its stages: each stage's velocity and acceleration
+    twin.set_state(s);
+    step(twin.model, twin.data);
+    diff::MujocoRk4Stages stages;
+    diff::mujoco_rk4_step(m, twin.d.get(), twin.restart_mujoco_solver, &twin.data.work.rk_qacc,
+                          &stages);
+    diff::compare_rk4_stages(twin.model, twin.data, stages, k, report, true);
+    report.compare("qpos after one RK4 step", k, twin.data.qpos.data(), twin.d->qpos, m->nq,
+                   diff::per_coordinate(twin.model));
+    report.compare("qvel after one RK4 step", k, twin.data.qvel.data(), twin.d->qvel, m->nv,
+                   [](int i) { return "dof " + std::to_string(i); });
     with_contacts += twin.d->ncon > 0;
     // MuJoCo's own RK4 step (its own stages), and the same from qpos + 1e-15
-    twin.m->opt.integrator = mjINT_RK4;
     MjDataPtr own = mujoco_data(m), nudged = mujoco_data(m);
     diff::set_mujoco_state(m, own.get(), s);
     diff::set_mujoco_state(m, nudged.get(), s);
     for (int i = 0; i < m->nq; ++i) nudged->qpos[i] += 1e-15;
     mj_step(m, own.get());
     mj_step(m, nudged.get());
-    twin.set_integrator(twin.model.opt.integrator);
     // the steps taken whole part where MuJoCo's own step parts from itself started 1e-15 away
     const double whole = rk4_state_excess(m, own.get(), twin.d.get());
     if (whole > diff::kContactSolverBound) {

@@ -78,7 +78,7 @@ void mujoco_rk4_step(const mjModel* m, mjData* d, bool restart_solver,
 }
 
 void compare_rk4_stages(const Model& model, const Data& data, const MujocoRk4Stages& stages,
-                        int k, Report& report) {
+                        int k, Report& report, bool accelerations) {
   const Labeler stage_dof = [&model](int i) {
     const int stage = 1 + i / model.nv, dof = i % model.nv;
     return "stage " + std::to_string(stage) + ", dof " + std::to_string(dof) + " (joint '" +
@@ -91,6 +91,7 @@ void compare_rk4_stages(const Model& model, const Data& data, const MujocoRk4Sta
     };
     report.compare("qvel at an RK4 stage", k, data.work.rk_qvel[i].data(),
                    stages.qvel[i].data(), model.nv, label);
+    if (!accelerations) continue;
     report.compare("qacc at an RK4 stage", k, data.work.rk_qacc[i].data(),
                    stages.qacc[i].data(), model.nv, label);
   }
