@@ -1,6 +1,7 @@
 #include <cstddef>
 #include <cstdio>
 #include <lever/diff/compare.hpp>
+#include <lever/diff/rk4.hpp>
 #include <lever/dynamics.hpp>
 #include <lever/fields.hpp>
 #include <lever/forward.hpp>
@@ -434,7 +435,14 @@ void compare_step(Twin& t, const test::State& s, Integrator integrator, int k, R
   t.set_integrator(integrator);
   t.set_state(s);
   step(t.model, t.data);
-  mujoco_step_converged(t.m.get(), t.d.get(), t.restart_mujoco_solver);
+  if (integrator == Integrator::kRK4) {
+    // MuJoCo's stages at the states lever's step went through (lever/diff/rk4.hpp says why)
+    MujocoRk4Stages stages;
+    mujoco_rk4_step(t.m.get(), t.d.get(), t.restart_mujoco_solver, &t.data.work.rk_qacc, &stages);
+    compare_rk4_stages(t.model, t.data, stages, k, r);
+  } else {
+    mujoco_step_converged(t.m.get(), t.d.get(), t.restart_mujoco_solver);
+  }
   const std::string name = integrator_name(integrator);
   r.compare("qpos after one " + name + " step", k, t.data.qpos.data(), t.d->qpos, t.model.nq,
             per_coordinate(t.model));
