@@ -10,6 +10,7 @@
 #include <lever/diff/runs.hpp>
 #include <lever/forward.hpp>
 
+#include <algorithm>
 #include <filesystem>
 #include <random>
 #include <set>
@@ -123,6 +124,39 @@ TEST_CASE("diff: the random states wrap every geom both ways and not at all", "[
     }
   }
   CHECK(cylinders >= 3);
+}
+
+TEST_CASE("diff: the random states make every kind of spatial tendon row", "[diff][tendons]") {
+  // on the states random_states draws: the coupling's row, friction-loss rows of SF and BE, and
+  // limit rows of SE, knob and lift (each within its margin of a stop in some state), with the
+  // same types and ids as MuJoCo's
+  diff::Twin twin(spatial_model_file(), diff::Path::kLoader);
+  std::mt19937_64 rng(diff::default_seed(spatial_model_file()));
+  std::set<int> limited, with_friction;
+  int equality_rows = 0;
+  for (int k = 0; k < kSpatialStates; ++k) {
+    const State s = random_state(twin.model, rng);
+    random_qacc(twin.model, rng);
+    twin.set_state(s);
+    forward(twin.model, twin.data);
+    twin.mujoco_forward();
+    REQUIRE(twin.d->nefc == twin.data.nefc);
+    for (int r = 0; r < twin.data.nefc; ++r) {
+      CHECK(static_cast<int>(twin.data.efc_type[r]) == twin.d->efc_type[r]);
+      CHECK(twin.data.efc_id[r] == twin.d->efc_id[r]);
+      const ConstraintType type = twin.data.efc_type[r];
+      if (type == ConstraintType::kLimitTendon) limited.insert(twin.data.efc_id[r]);
+      if (type == ConstraintType::kFrictionTendon) with_friction.insert(twin.data.efc_id[r]);
+      equality_rows += type == ConstraintType::kEquality;
+    }
+  }
+  const auto tendon = [&](const char* name) {
+    const auto& names = twin.model.tendon_name;
+    return static_cast<int>(std::find(names.begin(), names.end(), name) - names.begin());
+  };
+  CHECK(equality_rows == kSpatialStates);
+  CHECK(with_friction == std::set<int>{tendon("SF"), tendon("BE")});
+  CHECK(limited == std::set<int>{tendon("SE"), tendon("knob"), tendon("lift")});
 }
 
 TEST_CASE("diff: spatial tendons in lockstep and free runs", "[diff][tendons]") {
