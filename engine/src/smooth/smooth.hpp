@@ -1,6 +1,7 @@
 // The smooth pipeline: kinematics (kinematics.cpp), the recursions (recursion.hpp), CRBA and the
 // LTDL factorization of M (crba.cpp), RNEA and the bias forces (rnea.cpp), the passive forces
-// (passive.cpp), the actuators (actuation.cpp) and the energies (energy.cpp). Everything here
+// (passive.cpp), the tendons (tendon.cpp; a spatial tendon's wrapping, wrap.cpp), the actuators
+// (actuation.cpp) and the energies (energy.cpp). Everything here
 // depends on the state and the model alone, never on contacts or constraint rows.
 #pragma once
 
