@@ -289,10 +289,10 @@ std::vector<AttributeRule> tendon_class_attributes() {
   };
 }
 
-// <tendon> and its fixed tendons (tendon.cpp)
+// <tendon>: fixed and spatial tendons and their paths (tendon.cpp)
 void add_tendon_rules(std::vector<ElementRule>& s) {
-  s.push_back({"tendon", "mujoco", '*', {}, "", "spatial",
-               "tendons: lengths along paths of joints (fixed; spatial tendons are refused)"});
+  s.push_back({"tendon", "mujoco", '*', {}, "", "",
+               "tendons: lengths along paths of joints (fixed) or of sites (spatial)"});
   s.push_back({"fixed", "tendon", '*',
                join({text("name", "", "tendon name"),
                      text("class", "", "default class (else the main class)")},
@@ -304,6 +304,25 @@ void add_tendon_rules(std::vector<ElementRule>& s) {
                {required(text("joint", "", "a hinge or slide of the path")),
                 required(real("coef", 1, "0", "its coefficient in the length"))},
                "", "", "one joint of a fixed tendon's path"});
+  s.push_back({"spatial", "tendon", '*',
+               join({text("name", "", "tendon name"),
+                     text("class", "", "default class (else the main class)")},
+                    tendon_class_attributes()),
+               "user", "",
+               "a spatial tendon: a path through sites, wrapping around spheres and cylinders "
+               "between them, split by pulleys; a spring-damper, limits and friction loss along "
+               "it"});
+  s.push_back({"site", "spatial", '*',
+               {required(text("site", "", "a site the path passes through"))},
+               "", "", "a site of a spatial tendon's path"});
+  s.push_back({"geom", "spatial", '*',
+               {required(text("geom", "", "a sphere or cylinder between two sites of the path")),
+                text("sidesite", "", "a site on the side the tendon passes (inside the geom: "
+                                     "through it)")},
+               "", "", "a geom the path wraps around when the straight line would cross it"});
+  s.push_back({"pulley", "spatial", '*',
+               {required(real("divisor", 1, "0", "the branch's length is divided by this"))},
+               "", "", "starts a new branch of the path, its length divided by divisor"});
 }
 
 const char* const kUnsupportedJointAttributes = "springdamper";

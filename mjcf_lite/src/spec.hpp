@@ -151,17 +151,22 @@ struct EqualitySpec {
   std::array<double, kEqualityData> data{};
 };
 
-/// One joint of a fixed tendon's path (<fixed><joint joint coef>).
-struct TendonJointSpec {
-  Place at;  ///< its `joint` attribute, for errors
-  std::string name;
-  double coef = 0;
+/// One object of a tendon's path: a <fixed>'s <joint joint coef>, a <spatial>'s <site site>,
+/// <geom geom sidesite> or <pulley divisor>.
+struct TendonPathSpec {
+  Place at;  ///< its naming attribute (joint, site, geom; a pulley's divisor), for errors
+  WrapType type = WrapType::kJoint;  ///< kJoint, kSite, kPulley, or kSphere for any geom
+  std::string name;                  ///< the joint, site or geom ("" for a pulley)
+  double prm = 0;                    ///< a joint's coef, a pulley's divisor
+  std::string sidesite;              ///< a geom's side site ("" for none)
+  Place sidesite_at;
 };
 
-/// A <tendon><fixed> over its class (tendon.cpp).
+/// A <tendon><fixed> or <spatial> over its class (tendon.cpp).
 struct TendonSpec {
   Place at;
-  std::vector<TendonJointSpec> joints;
+  bool spatial = false;
+  std::vector<TendonPathSpec> path;
   Limited limited = Limited::kAuto;
   std::array<double, 2> range{};
   std::array<double, 2> solref_limit{}, solref_friction{};

@@ -464,8 +464,10 @@ TEST_CASE("the elliptic cones' Newton solver allocates nothing", "[alloc]") {
 }
 
 TEST_CASE("equality constraints and friction loss allocate nothing", "[alloc]") {
+  // spatial_tendons.xml: a tendon coupling and tendon friction loss, along wrapped paths
   for (const char* file :
-       {"tests/models/constraints/equality.xml", "tests/models/constraints/friction_loss.xml"}) {
+       {"tests/models/constraints/equality.xml", "tests/models/constraints/friction_loss.xml",
+        "tests/models/constraints/spatial_tendons.xml"}) {
     INFO(file);
     std::string how;
     const lever::Model base = load(lever::test::model_path(file), how);

@@ -244,6 +244,16 @@ TEST_CASE("every Data view has the table's size and points into its member", "[f
     for (int t = 0; t < model.ntendon; ++t) {
       for (int c = 0; c < model.nv; ++c) CHECK(data.ten_J(t, c) == mark(k, t * model.nv + c));
     }
+    k = next("ten_wrapadr");
+    k = next("ten_wrapnum");
+    k = next("wrap_obj");  // (nwrap, 2): two points per row, as MuJoCo's
+    for (int w = 0; w < model.nwrap; ++w) {
+      for (int c = 0; c < 2; ++c) CHECK(data.wrap_obj[w][c] == mark(k, 2 * w + c));
+    }
+    k = next("wrap_xpos");  // (nwrap, 6)
+    for (int w = 0; w < model.nwrap; ++w) {
+      for (int c = 0; c < 6; ++c) CHECK(data.wrap_xpos[w][c] == mark(k, 6 * w + c));
+    }
     k = next("actuator_length");
     k = next("actuator_moment");  // (nu, nv), row-major
     for (int a = 0; a < model.nu; ++a) {

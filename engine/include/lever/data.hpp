@@ -147,6 +147,17 @@ struct Data {
   // ---- position stage: tendons (tendon()) -----------------------------------------------------
   Eigen::VectorXd ten_length;  ///< (ntendon)
   RowMatrix ten_J;             ///< (ntendon x nv) d length / d qpos, dense (MuJoCo's dense ten_J)
+  // a spatial tendon's path as it lies now (MuJoCo's): tendon t's points are wrap_xpos and
+  // wrap_obj entries ten_wrapadr[t] .. + ten_wrapnum[t], counted in points (two per row, so that
+  // a path whose every geom wraps still fits the nwrap rows); a fixed tendon has none
+  std::vector<int> ten_wrapadr;  ///< (ntendon) its first point
+  std::vector<int> ten_wrapnum;  ///< (ntendon) its points: the sites, each wrapping geom's
+                                 ///< two tangent points, a pulley's marker
+  /// (nwrap x 2) each point's object: -1 a site, -2 a pulley's marker (at the origin), else the
+  /// geom whose surface the point is on; entries past the live points keep old values
+  std::vector<std::array<int, 2>> wrap_obj;
+  /// (nwrap x 6) the points, world frame, two per row (x y z x y z)
+  std::vector<std::array<double, 6>> wrap_xpos;
 
   // ---- position stage: actuator transmission ---------------------------------------------------
   Eigen::VectorXd actuator_length;  ///< (nu) gear * qpos of the driven joint, or gear * tendon length
@@ -265,6 +276,9 @@ struct Data {
     /// (12 x nv) an equality constraint's Jacobians: body 1's translational and rotational,
     /// then body 2's
     Eigen::MatrixXd equality_jac;
+    /// (12 x nv) a spatial tendon's segment: its first end's translational and rotational
+    /// Jacobians, then its second end's
+    Eigen::MatrixXd tendon_jac;
     std::vector<double> contact_weight;  ///< (36 nconmax) a Hessian's part of each contact, W of
                                          ///< C^T W C in its frame (dim x dim, row-major)
     std::vector<double> frame_scratch;   ///< (6 nv) W C over a contact's dofs

@@ -259,6 +259,10 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(qLDiagInv, double, nv, 1, position, mujoco)                \
   X(ten_length, double, ntendon, 1, position, mujoco)          \
   X(ten_J, double, ntendon, counted_cols::nv, position, mujoco)              \
+  X(ten_wrapadr, int, ntendon, 1, position, mujoco)            \
+  X(ten_wrapnum, int, ntendon, 1, position, mujoco)            \
+  X(wrap_obj, int, nwrap, 2, position, mujoco)                 \
+  X(wrap_xpos, double, nwrap, 6, position, mujoco)             \
   X(actuator_length, double, nu, 1, position, mujoco)          \
   X(actuator_moment, double, nu, counted_cols::nv, position, mujoco)         \
   X(efc_type, int, nefc, 1, position, mujoco)                  \

@@ -233,7 +233,7 @@ enum class EqualityType : int { kConnect = 0, kWeld = 1, kJoint = 2, kTendon = 3
 
 /// What a tendon's path is made of (MuJoCo's mjtWrap). A fixed tendon's path is joints only (its
 /// length a linear combination of their coordinates); a spatial tendon's runs through sites,
-/// around spheres and cylinders, split by pulleys. lever computes fixed tendons.
+/// around spheres and cylinders, split by pulleys. lever computes both.
 enum class WrapType : int { kNone = 0, kJoint = 1, kPulley = 2, kSite = 3, kSphere = 4, kCylinder = 5 };
 
 /// How an actuator reaches the dofs (MuJoCo's mjtTrn): lever has joint and tendon transmissions.
@@ -506,9 +506,13 @@ struct Model {
 
   // ---- tendons (ntendon) and their paths (nwrap), as mjModel's -------------------------------
   // A fixed tendon's length is sum_k coef_k qpos(joint_k) over its path's joints (wrap_objid,
-  // wrap_prm = coef), its Jacobian those coefficients at the joints' dofs. Its force: a spring
-  // -stiffness (length - lengthspring) - damping velocity along it; a limit row when it leaves
-  // range (limited), a friction-loss row while it moves (frictionloss > 0).
+  // wrap_prm = coef), its Jacobian those coefficients at the joints' dofs. A spatial tendon's path
+  // (its first object not a joint) runs through sites, wrapping around a sphere or cylinder geom
+  // between two of them (wrap_prm: its side site, or -1), and splits at pulleys (wrap_objid -1,
+  // wrap_prm the divisor of the branches after it); its length is the path's, its Jacobian the
+  // path's segments' (smooth/tendon.cpp). Its force: a spring -stiffness (length - lengthspring)
+  // - damping velocity along it; a limit row when it leaves range (limited), a friction-loss row
+  // while it moves (frictionloss > 0).
   std::vector<std::string> tendon_name;
   std::vector<int> tendon_adr;  ///< first object of its path in wrap_*
   std::vector<int> tendon_num;  ///< objects in its path
@@ -529,7 +533,8 @@ struct Model {
   std::vector<double> tendon_invweight0;  ///< set_const: J M^-1 J^T at qpos0
   std::vector<WrapType> wrap_type;        ///< (nwrap)
   std::vector<int> wrap_objid;            ///< (nwrap) the joint (site, geom) of the object
-  std::vector<double> wrap_prm;           ///< (nwrap) a joint's coefficient
+  std::vector<double> wrap_prm;           ///< (nwrap) a joint's coefficient, a geom's side site
+                                          ///< (-1: none), a pulley's divisor
 
   // ---- sites (nsite) -------------------------------------------------------------------------
   std::vector<std::string> site_name;
@@ -628,6 +633,9 @@ struct Model {
   /// two geoms on different bodies whose contype and conaffinity match. forward() runs the
   /// collision stage, and Data makes room for njmax contact rows, only then.
   bool contacts_possible = false;
+  /// set_const: a spatial tendon wraps around a geom, so that the tendon stage reads the geoms'
+  /// frames even where nothing collides (the lean step places them then too).
+  bool tendons_wrap_geoms = false;
 
   /// set_const: a number no other set_const call has given (0: never set). A Data checked
   /// against this model remembers it, so later calls need not check the whole field table again.

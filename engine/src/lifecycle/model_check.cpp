@@ -413,8 +413,86 @@ void check_equalities(const Model& model) {
   }
 }
 
-// Each tendon's path: consecutive objects of wrap_*, fixed (joints only: a hinge or a slide each,
-// the tendon's length their weighted coordinates). Spatial tendons are refused by name.
+// A fixed tendon's path: joints only, each a hinge or a slide.
+void check_fixed_path(const Model& model, int t) {
+  const std::string& name = model.tendon_name[t];
+  for (int w = model.tendon_adr[t]; w < model.tendon_adr[t] + model.tendon_num[t]; ++w) {
+    if (model.wrap_type[w] != WrapType::kJoint) {
+      reject("tendon", t, name, "mixes joints with sites, geoms or pulleys in its path");
+    }
+    const int j = model.wrap_objid[w];
+    if (j < 0 || j >= model.njnt) reject("tendon", t, name, "names a joint that does not exist");
+    if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
+      reject("tendon", t, name,
+             "runs along joint '" + model.jnt_name[j] + "', which is not a hinge or a slide");
+    }
+  }
+}
+
+// A spatial tendon's path, by MuJoCo 2.2.2's compiler rules: at least two objects; sites, each
+// with a neighbour that is not a pulley and never the same site twice in a row; a sphere or
+// cylinder geom (wrap_type saying which) between two sites, its wrap_prm a side site or -1; a
+// pulley neither last nor after another, its divisor positive (MuJoCo takes 0 and divides by it).
+void check_spatial_path(const Model& model, int t) {
+  const std::string& name = model.tendon_name[t];
+  const int adr = model.tendon_adr[t], num = model.tendon_num[t];
+  if (num < 2) reject("tendon", t, name, "is spatial with fewer than two objects in its path");
+  auto type_at = [&](int i) { return model.wrap_type[adr + i]; };
+  for (int i = 0; i < num; ++i) {
+    const int w = adr + i;
+    const int id = model.wrap_objid[w];
+    const std::string at = " (path object " + std::to_string(i) + ")";
+    switch (type_at(i)) {
+      case WrapType::kSite: {
+        if (id < 0 || id >= model.nsite) reject("tendon", t, name, "names a site that does not exist" + at);
+        const bool alone_before = i == 0 || type_at(i - 1) == WrapType::kPulley;
+        const bool alone_after = i == num - 1 || type_at(i + 1) == WrapType::kPulley;
+        if (alone_before && alone_after) {
+          reject("tendon", t, name, "has a site with no neighbour that is not a pulley" + at);
+        }
+        if (i + 1 < num && type_at(i + 1) == WrapType::kSite && model.wrap_objid[w + 1] == id) {
+          reject("tendon", t, name, "names the same site twice in a row" + at);
+        }
+        break;
+      }
+      case WrapType::kSphere:
+      case WrapType::kCylinder: {
+        if (id < 0 || id >= model.ngeom) reject("tendon", t, name, "names a geom that does not exist" + at);
+        const GeomType want = type_at(i) == WrapType::kSphere ? GeomType::kSphere : GeomType::kCylinder;
+        if (model.geom_type[id] != want) {
+          reject("tendon", t, name,
+                 "wraps around geom " + std::to_string(id) + " as a " +
+                     (want == GeomType::kSphere ? "sphere" : "cylinder") + ", which it is not" + at);
+        }
+        if (i == 0 || i == num - 1 || type_at(i - 1) != WrapType::kSite ||
+            type_at(i + 1) != WrapType::kSite) {
+          reject("tendon", t, name, "has a wrapping geom that is not between two sites" + at);
+        }
+        const double side = model.wrap_prm[w];
+        if (!(side == std::round(side)) || side < -1 || side >= model.nsite) {
+          reject("tendon", t, name, "has a side site that does not exist (wrap_prm)" + at);
+        }
+        break;
+      }
+      case WrapType::kPulley:
+        if (i == num - 1) reject("tendon", t, name, "ends with a pulley");
+        if (i > 0 && type_at(i - 1) == WrapType::kPulley) {
+          reject("tendon", t, name, "has two pulleys in a row" + at);
+        }
+        if (!(model.wrap_prm[w] > 0) || !std::isfinite(model.wrap_prm[w])) {
+          reject("tendon", t, name, "has a pulley whose divisor is not positive" + at);
+        }
+        break;
+      case WrapType::kJoint:
+        reject("tendon", t, name, "is spatial but has a joint in its path" + at);
+      default:
+        reject("tendon", t, name, "has an object of unknown type in its path" + at);
+    }
+  }
+}
+
+// Each tendon's path: consecutive objects of wrap_*, fixed (joints) or spatial (sites, wrapping
+// geoms, pulleys) by its first object, as MuJoCo decides.
 void check_tendons(const Model& model) {
   int next = 0;
   for (int t = 0; t < model.ntendon; ++t) {
@@ -426,18 +504,10 @@ void check_tendons(const Model& model) {
              "must follow the previous tendon's path)");
     }
     next = adr + num;
-    for (int w = adr; w < adr + num; ++w) {
-      if (model.wrap_type[w] != WrapType::kJoint) {
-        reject("tendon", t, name,
-               "is a spatial tendon (sites, wrapping geoms, pulleys); lever has fixed tendons "
-               "only");
-      }
-      const int j = model.wrap_objid[w];
-      if (j < 0 || j >= model.njnt) reject("tendon", t, name, "names a joint that does not exist");
-      if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
-        reject("tendon", t, name,
-               "runs along joint '" + model.jnt_name[j] + "', which is not a hinge or a slide");
-      }
+    if (model.wrap_type[adr] == WrapType::kJoint) {
+      check_fixed_path(model, t);
+    } else {
+      check_spatial_path(model, t);
     }
     if (model.tendon_limited[t] && !(model.tendon_range[t][0] < model.tendon_range[t][1])) {
       reject("tendon", t, name, "is limited but its range does not have lower < upper");

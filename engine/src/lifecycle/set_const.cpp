@@ -7,6 +7,7 @@
 #include <lever/model.hpp>
 #include <lever/model_check.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <string>
@@ -218,13 +219,16 @@ void build_tendon_constants(Model& model, Data& data) {
     for (int j = 0; j < model.nv; ++j) weight += data.ten_J(t, j) * x[j];
     model.tendon_invweight0[t] = weight;
   }
+  // a spatial tendon's length needs the sites (and wrapping geoms) placed at qpos_spring
   const Eigen::VectorXd qpos = data.qpos;
   data.qpos = model.qpos_spring;
+  kinematics(model, data);
   tendon(model, data);
   for (int t = 0; t < model.ntendon; ++t) {
     if (model.tendon_lengthspring[t] < 0) model.tendon_lengthspring[t] = data.ten_length[t];
   }
   data.qpos = qpos;
+  kinematics(model, data);
   tendon(model, data);
 }
 
@@ -235,6 +239,9 @@ void set_const(Model& model) {
   build_subtree_masses(model);
   build_rotations(model);
   build_actuator_kinds(model);
+  model.tendons_wrap_geoms = std::any_of(model.wrap_type.begin(), model.wrap_type.end(), [](WrapType w) {
+    return w == WrapType::kSphere || w == WrapType::kCylinder;
+  });
   detail::build_collision_constants(model);
   // the constants and the checks at qpos0 are about the parameters: computed without contacts
   model.contacts_possible = false;

@@ -431,9 +431,10 @@ void place_site(const Model& model, Data& data, int site) {
 namespace detail {
 
 void step_kinematics(const Model& model, Data& data) {
-  // nothing in a step reads the geom frames unless collision runs; the site frames are what a
-  // caller reads after a step (an end effector's position), and cost little
-  place_bodies(model, data, model.contacts_possible);
+  // nothing in a step reads the geom frames unless collision runs or a tendon wraps around a
+  // geom; the site frames are what a caller reads after a step (an end effector's position), and
+  // cost little
+  place_bodies(model, data, model.contacts_possible || model.tendons_wrap_geoms);
   com_quantities(model, data);
 }
 
