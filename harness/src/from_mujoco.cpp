@@ -330,17 +330,16 @@ Model from_mujoco(const mjModel* m) {
         m->actuator_gaintype[a] == mjGAIN_FIXED || m->actuator_gaintype[a] == mjGAIN_AFFINE;
     const bool affine_or_no_bias =
         m->actuator_biastype[a] == mjBIAS_NONE || m->actuator_biastype[a] == mjBIAS_AFFINE;
-    const bool joint_or_tendon =
-        m->actuator_trntype[a] == mjTRN_JOINT || m->actuator_trntype[a] == mjTRN_TENDON;
-    if (!joint_or_tendon || m->actuator_dyntype[a] != mjDYN_NONE || !affine_or_fixed_gain ||
-        !affine_or_no_bias) {
+    if (m->actuator_trntype[a] == mjTRN_BODY || m->actuator_dyntype[a] != mjDYN_NONE ||
+        !affine_or_fixed_gain || !affine_or_no_bias) {
       throw std::runtime_error(
-          "from_mujoco: only stateless joint and tendon actuators with affine gain and bias are "
+          "from_mujoco: only stateless actuators with affine gain and bias, not on a body, are "
           "supported");
     }
     model.actuator_name[a] = name_of(m, mjOBJ_ACTUATOR, a);
     model.actuator_trntype[a] = static_cast<TransmissionType>(m->actuator_trntype[a]);
-    model.actuator_trnid[a] = m->actuator_trnid[2 * a];
+    model.actuator_trnid[a] = {m->actuator_trnid[2 * a], m->actuator_trnid[2 * a + 1]};
+    model.actuator_cranklength[a] = m->actuator_cranklength[a];
     model.actuator_dyntype[a] = DynType::kNone;
     model.actuator_gaintype[a] = static_cast<GainType>(m->actuator_gaintype[a]);
     model.actuator_biastype[a] = static_cast<BiasType>(m->actuator_biastype[a]);

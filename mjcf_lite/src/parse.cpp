@@ -192,6 +192,13 @@ MotorSpec read_actuator(const Element& e, const DefaultClasses& classes) {
   m.at = e.place();
   m.joint = Fields(set, "actuator", e.tag).word("joint");
   m.tendon = Fields(set, "actuator", e.tag).word("tendon");
+  m.jointinparent = Fields(set, "actuator", e.tag).word("jointinparent");
+  m.site = Fields(set, "actuator", e.tag).word("site");
+  m.refsite = Fields(set, "actuator", e.tag).word("refsite");
+  m.cranksite = Fields(set, "actuator", e.tag).word("cranksite");
+  m.slidersite = Fields(set, "actuator", e.tag).word("slidersite");
+  m.cranklength = Fields(set, "actuator", e.tag).real("cranklength");
+  m.crank_attributes_written = e.find("cranklength") || e.find("slidersite");
   m.gaintype = f.word("gaintype") == "affine" ? GainType::kAffine : GainType::kFixed;
   m.biastype = f.word("biastype") == "affine" ? BiasType::kAffine : BiasType::kNone;
   m.gainprm = f.array<kGainParameters>("gainprm");

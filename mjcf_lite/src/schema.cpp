@@ -352,13 +352,20 @@ std::vector<AttributeRule> position_class_attributes() {
 
 std::vector<AttributeRule> actuator_wiring(std::string_view what) {
   return {text("name", "", what), text("class", "", "default class (else the top-level class)"),
-          text("joint", "", "the joint it drives (or tendon)"),
-          text("tendon", "", "the tendon it drives (or joint)")};
+          text("joint", "", "the joint it drives (one transmission of joint, jointinparent, "
+                            "tendon, site, cranksite)"),
+          text("jointinparent", "", "the joint it drives, a ball's or free joint's gear in the "
+                                    "parent's frame (a hinge or slide: as joint)"),
+          text("tendon", "", "the tendon it drives"),
+          text("site", "", "the site it pushes: gear is a wrench (force, torque) in its frame"),
+          text("refsite", "", "with site: the reference site whose frame holds the gear and the "
+                              "length"),
+          text("cranksite", "", "a slider-crank's crank site (with slidersite and cranklength)"),
+          text("slidersite", "", "a slider-crank's slider site: its z axis is the slide"),
+          real("cranklength", 1, "0", "a slider-crank's rod length, positive")};
 }
 
-const char* const kUnsupportedActuatorAttributes =
-    "lengthrange cranklength jointinparent slidersite cranksite site refsite body "
-    "actlimited actrange";
+const char* const kUnsupportedActuatorAttributes = "lengthrange body actlimited actrange";
 
 // visual-only assets and elements: read, checked by name, kept as text; no effect on dynamics
 std::vector<AttributeRule> texts(std::string_view names, std::string_view meaning) {

@@ -105,6 +105,11 @@ struct MotorSpec {
   Place at;
   std::string joint;
   std::string tendon;  ///< a tendon transmission: the tendon's name (joint is then "")
+  /// the other transmissions' names as written ("" if not): jointinparent, site (with refsite),
+  /// a slider-crank's cranksite and slidersite
+  std::string jointinparent, site, refsite, cranksite, slidersite;
+  double cranklength = 0;
+  bool crank_attributes_written = false;  ///< cranklength or slidersite on the element itself
   GainType gaintype = GainType::kFixed;
   BiasType biastype = BiasType::kNone;
   std::array<double, kGainParameters> gainprm{1};

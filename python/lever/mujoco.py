@@ -99,13 +99,13 @@ _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclud
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl", "key_mpos", "key_mquat")
 # the mjModel arrays model.body(...) and the other accessors reach
-_MODEL_OFFERED = _MODEL_FIELDS | {"actuator_trnid", "dof_Madr"}
+_MODEL_OFFERED = _MODEL_FIELDS | {"dof_Madr"}
 
 
 # What lever.mujoco covers, generated from the field table, for the errors below
 _COVERED = {
     "MODEL": ", ".join(sorted(_MODEL_FIELDS | set(_SIZES) | set(_KEY_FIELDS) |
-                              {"actuator_trnid", "dof_Madr", "nM"})),
+                              {"dof_Madr", "nM"})),
     "DATA": ", ".join(sorted(_DATA_FIELDS | {"time", "ncon", "nefc", "ne", "nf", "efc_J",
                                              "contact", "qM"})),
 }
@@ -371,14 +371,6 @@ class MjModel:
     @property
     def nkey(self) -> int:
         return self._native.nkey
-
-    @property
-    def actuator_trnid(self) -> _np.ndarray:
-        """(nu, 2) as MuJoCo's: the joint, then -1 (a joint transmission has no second id)."""
-        out = _np.full((self._native.nu, 2), -1, dtype=_np.int32)
-        out[:, 0] = self._native.actuator_trnid
-        out.flags.writeable = False
-        return out
 
     def __getattr__(self, name: str):
         native = object.__getattribute__(self, "_native")

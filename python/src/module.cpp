@@ -861,9 +861,10 @@ PYBIND11_MODULE(_lever, m) {
           if (joint_force) {
             t.force = rows("qfrc", prior.nv, true);
           } else if (t.actuator_force.size() > 0) {
+            lever::require_simple_actuators(prior, "lever.identify");
             t.force = Eigen::MatrixXd::Zero(prior.nv, t.actuator_force.cols());
             for (int a = 0; a < prior.nu; ++a) {
-              const int dof = prior.jnt_dofadr[prior.actuator_trnid[a]];
+              const int dof = lever::actuator_scalar_dof(prior, a);  // checked above
               t.force.row(dof) += prior.actuator_gear[a][0] * t.actuator_force.row(a);
             }
             const Eigen::MatrixXd stops = rows("qfrc_constraint", prior.nv, false);

@@ -17,6 +17,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "forward_state.hpp"
 
 namespace lever::cli {
 
@@ -94,16 +95,14 @@ void print_joints(std::FILE* out, const Model& m) {
 void print_motors(std::FILE* out, const Model& m) {
   std::fprintf(out, "motors (%d):\n", m.nu);
   for (int a = 0; a < m.nu; ++a) {
-    const int j = m.actuator_trnid[a];
-    const bool tendon = m.actuator_trntype[a] == TransmissionType::kTendon;
+    const TransmissionText target = transmission_text(m, a);
     std::fprintf(out,
                  "  %-12s %s %-10s gear %g  ctrlrange %s  ctrllimited %s  forcerange %s %s  "
                  "forcelimited %s\n",
-                 label(m.actuator_name[a], a).c_str(), tendon ? "tendon" : "joint",
-                 (tendon ? label(m.tendon_name[j], j) : label(m.jnt_name[j], j)).c_str(),
+                 label(m.actuator_name[a], a).c_str(), target.kind, target.object.c_str(),
                  m.actuator_gear[a][0], pair(m.actuator_ctrlrange[a]).c_str(),
                  m.actuator_ctrllimited[a] ? "yes" : "no", pair(m.actuator_forcerange[a]).c_str(),
-                 tendon ? "N" : joint_words(m.jnt_type[j]).force,
+                 actuator_force_units(m, a),
                  m.actuator_forcelimited[a] ? "yes" : "no");
     const bool motor = m.actuator_gaintype[a] == GainType::kFixed &&
                        m.actuator_gainprm[a][0] == 1.0 && m.actuator_biastype[a] == BiasType::kNone;

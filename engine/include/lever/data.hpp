@@ -149,7 +149,7 @@ struct Data {
   RowMatrix ten_J;             ///< (ntendon x nv) d length / d qpos, dense (MuJoCo's dense ten_J)
 
   // ---- position stage: actuator transmission ---------------------------------------------------
-  Eigen::VectorXd actuator_length;  ///< (nu) gear * qpos of the driven joint, or gear * tendon length
+  Eigen::VectorXd actuator_length;  ///< (nu) the transmission's length (lever/model.hpp TransmissionType)
   RowMatrix actuator_moment;        ///< (nu x nv) d actuator_length / d qpos (MuJoCo's, dense)
 
   // ---- position stage: constraint rows (make_constraint) -----------------------------------
@@ -261,6 +261,9 @@ struct Data {
     /// (12 x nv) an equality constraint's Jacobians: body 1's translational and rotational,
     /// then body 2's
     Eigen::MatrixXd equality_jac;
+    /// (12 x nv) a site or slider-crank transmission's Jacobians: the site's translational and
+    /// rotational, then the reference (slider) site's
+    Eigen::MatrixXd transmission_jac;
     std::vector<double> contact_weight;  ///< (36 nconmax) a Hessian's part of each contact, W of
                                          ///< C^T W C in its frame (dim x dim, row-major)
     std::vector<double> frame_scratch;   ///< (6 nv) W C over a contact's dofs

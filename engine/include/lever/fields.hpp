@@ -103,7 +103,8 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(site_quat, double, nsite, 4, mujoco)                     \
   X(site_type, int, nsite, 1, mujoco)                        \
   X(actuator_trntype, int, nu, 1, mujoco)                    \
-  X(actuator_trnid, int, nu, 1, own) /* (nu, 2) in MuJoCo */ \
+  X(actuator_trnid, int, nu, 2, mujoco)                      \
+  X(actuator_cranklength, double, nu, 1, mujoco)             \
   X(actuator_dyntype, int, nu, 1, mujoco)                    \
   X(actuator_gaintype, int, nu, 1, mujoco)                   \
   X(actuator_biastype, int, nu, 1, mujoco)                   \
@@ -114,6 +115,8 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(actuator_gear, double, nu, 6, mujoco)                    \
   X(actuator_ctrlrange, double, nu, 2, mujoco)               \
   X(actuator_forcerange, double, nu, 2, mujoco)              \
+  X(actuator_length0, double, nu, 1, mujoco)                 \
+  X(actuator_acc0, double, nu, 1, mujoco)                    \
   LEVER_MODEL_CONTACT_FIELDS(X)                              \
   LEVER_MODEL_SENSOR_FIELDS(X)                               \
   LEVER_MODEL_EQUALITY_FIELDS(X)                             \
@@ -226,7 +229,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
 // (lever/model_check.hpp).
 #define LEVER_MODEL_CONSTANTS(X) \
   X(body_subtreemass) X(body_invweight0) X(body_simple) X(dof_invweight0) X(dof_M0) X(dof_simplenum) \
-  X(tendon_length0) X(tendon_invweight0)
+  X(tendon_length0) X(tendon_invweight0) X(actuator_length0) X(actuator_acc0)
 
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
 // or `inverse` (written by inverse() only) or `energy` (by compute_energy() only)

@@ -235,7 +235,11 @@ enum class EqualityType : int { kConnect = 0, kWeld = 1, kJoint = 2, kTendon = 3
 /// around spheres and cylinders, split by pulleys. lever computes fixed tendons.
 enum class WrapType : int { kNone = 0, kJoint = 1, kPulley = 2, kSite = 3, kSphere = 4, kCylinder = 5 };
 
-/// How an actuator reaches the dofs (MuJoCo's mjtTrn): lever has joint and tendon transmissions.
+/// How an actuator reaches the dofs (MuJoCo's mjtTrn): a joint (its gear in the joint's own frame,
+/// or for ball and free joints in the parent's: kJointInParent), a slider-crank (a crank site
+/// pulled by a rod of cranklength from a slider site moving along its z axis), a tendon, or a
+/// site (a wrench at the site, in its frame; with a reference site, the length is the site's pose
+/// in the reference's frame). lever has all but MuJoCo's body (adhesion) transmission.
 enum class TransmissionType : int { kJoint = 0, kJointInParent = 1, kSliderCrank = 2, kTendon = 3, kSite = 4 };
 
 /// Numbers per equality constraint in eq_data (MuJoCo's mjNEQDATA). What they mean by type:
@@ -493,8 +497,11 @@ struct Model {
   // if affine) and bias = biasprm[0] + biasprm[1] length + biasprm[2] velocity (if affine): a
   // motor is gain 1 and no bias; a position servo gain kp and bias (0, -kp, -kv).
   std::vector<std::string> actuator_name;
-  std::vector<TransmissionType> actuator_trntype;  ///< joint or tendon
-  std::vector<int> actuator_trnid;  ///< the joint or tendon it drives
+  std::vector<TransmissionType> actuator_trntype;
+  /// what it drives: [0] the joint, tendon or site (a slider-crank's crank site); [1] a
+  /// slider-crank's slider site, a site transmission's reference site, else -1
+  std::vector<std::array<int, 2>> actuator_trnid;
+  std::vector<double> actuator_cranklength;  ///< a slider-crank's rod length (else 0)
   std::vector<DynType> actuator_dyntype;
   std::vector<GainType> actuator_gaintype;
   std::vector<BiasType> actuator_biastype;
@@ -505,6 +512,10 @@ struct Model {
   std::vector<uint8_t> actuator_forcelimited;
   std::vector<std::array<double, 2>> actuator_ctrlrange;
   std::vector<std::array<double, 2>> actuator_forcerange;
+  std::vector<double> actuator_length0;  ///< set_const: its length at qpos0
+  /// set_const: |M^-1 moment| at qpos0, the acceleration a unit force gives (a muscle's force
+  /// scale when its force is negative)
+  std::vector<double> actuator_acc0;
 
   // ---- sensors (nsensor): what each measures and where its numbers go in data.sensordata ----------
   std::vector<std::string> sensor_name;
@@ -591,6 +602,18 @@ struct Model {
   int equality(const std::string& n) const;
   int tendon(const std::string& n) const;
 };
+
+/// The dof actuator `a` drives alone, with moment gear[0]: that of a hinge or slide joint
+/// transmission (kJoint or kJointInParent, the same on those joints); -1 for every other
+/// transmission (ball and free joints, tendons, slider-cranks, sites), whose moment is a row of
+/// data.actuator_moment that depends on the state.
+int actuator_scalar_dof(const Model& model, int a);
+
+/// Throws ModelError, naming `feature` and the first actuator that is not one, unless every
+/// actuator drives a hinge or slide joint alone (actuator_scalar_dof >= 0): for the features
+/// (identification, the step's derivatives, ...) written for actuators whose moment is a
+/// constant gear on one dof.
+void require_simple_actuators(const Model& model, const std::string& feature);
 
 /// Derive the constants MuJoCo's mj_setConst computes (dof_invweight0, dof_M0, body_invweight0,
 /// body_subtreemass) and lever's link tree from the model's parameters. Call it after building a

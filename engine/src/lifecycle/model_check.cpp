@@ -353,26 +353,36 @@ void check_tree(const Model& model) {
     }
   }
   for (int a = 0; a < model.nu; ++a) {
-    const int j = model.actuator_trnid[a];
-    const TransmissionType trn = model.actuator_trntype[a];
-    if (trn == TransmissionType::kTendon) {
-      if (j < 0 || j >= model.ntendon) {
-        throw ModelError("actuator " + std::to_string(a) + " names no tendon.");
-      }
-      continue;
-    }
-    if (trn != TransmissionType::kJoint) {
-      reject("actuator", a, model.actuator_name[a],
-             "has a transmission lever does not have (joint 0 and tendon 3 are lever's)");
-    }
-    if (j < 0 || j >= model.njnt) {
-      throw ModelError("actuator " + std::to_string(a) + " names no joint.");
-    }
-    if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
-      throw ModelError("actuator '" + model.actuator_name[a] + "' drives joint '" +
-                           model.jnt_name[j] +
-                           "', a ball or free joint; lever's actuators drive hinges and slides.",
-                       "actuator", a);
+    const int id = model.actuator_trnid[a][0], second = model.actuator_trnid[a][1];
+    const auto names_no = [&](const char* kind) {
+      throw ModelError("actuator " + std::to_string(a) + " names no " + kind + ".", "actuator", a);
+    };
+    const auto site = [&](int s) { return s >= 0 && s < model.nsite; };
+    switch (model.actuator_trntype[a]) {
+      case TransmissionType::kJoint:
+      case TransmissionType::kJointInParent:
+        if (id < 0 || id >= model.njnt) names_no("joint");
+        if (second != -1) names_no("second object (a joint transmission has none: -1)");
+        break;
+      case TransmissionType::kTendon:
+        if (id < 0 || id >= model.ntendon) names_no("tendon");
+        if (second != -1) names_no("second object (a tendon transmission has none: -1)");
+        break;
+      case TransmissionType::kSliderCrank:
+        if (!site(id)) names_no("crank site");
+        if (!site(second)) names_no("slider site");
+        if (!(model.actuator_cranklength[a] > 0)) {
+          reject("actuator", a, model.actuator_name[a],
+                 "is a slider-crank whose cranklength is not positive");
+        }
+        break;
+      case TransmissionType::kSite:
+        if (!site(id)) names_no("site");
+        if (second != -1 && !site(second)) names_no("reference site");
+        break;
+      default:
+        reject("actuator", a, model.actuator_name[a],
+               "has a transmission lever does not have (MuJoCo's body transmission, adhesion)");
     }
   }
 }

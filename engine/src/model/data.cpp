@@ -99,6 +99,7 @@ Data::Data(const Model& model)
   work.contact_span.assign(2 * contact.size(), 0);
   work.dof_chain.assign(2 * static_cast<size_t>(nv), 0);
   work.equality_jac = Eigen::MatrixXd::Zero(12, nv);
+  work.transmission_jac = Eigen::MatrixXd::Zero(12, nv);
   work.contact_weight.assign(36 * contact.size(), 0.0);
   work.frame_scratch.assign(6 * static_cast<size_t>(nv), 0.0);
   work.hessian_envelope.assign(nv, 0);

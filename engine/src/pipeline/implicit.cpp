@@ -83,14 +83,14 @@ void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
     if (model.actuator_gaintype[a] == GainType::kAffine) {
       force_per_velocity += model.actuator_gainprm[a][2] * data.ctrl[a];
     }
-    if (model.actuator_trntype[a] == TransmissionType::kTendon) {
+    const int dof = actuator_scalar_dof(model, a);
+    if (dof < 0) {  // moment^T (d force / d velocity) moment
       if (force_per_velocity != 0.0) {
         add_row_outer_product(model, data.actuator_moment.row(a).data(), force_per_velocity, D);
       }
       continue;
     }
     const double gear = model.actuator_gear[a][0];
-    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
     D(dof, dof) += gear * force_per_velocity * gear;
   }
   // joint damping

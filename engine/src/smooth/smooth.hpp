@@ -47,6 +47,11 @@ void tendon_velocity(const Model& model, Data& data);
 void add_tendon_passive(const Model& model, Data& data);
 
 namespace detail {
+/// The translational and rotational Jacobians (3 x nv each) of a point fixed to `body`, given in
+/// world coordinates (MuJoCo's mj_jac), without the entry checks of jac_point (kinematics.cpp).
+void point_jacobians(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
+                     Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr);
+
 // ---- the fluid forces (fluid.cpp): MuJoCo 2.2.2's inertia-box model, on when has_fluid(opt)
 
 /// Every body's spatial velocity cvel from qvel (MuJoCo's mj_comVel without cdof_dot): the
