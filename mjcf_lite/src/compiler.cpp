@@ -75,7 +75,7 @@ struct CompiledMotor {
   const MotorSpec* spec;
   TransmissionType trntype = TransmissionType::kJoint;
   std::array<int, 2> trnid{-1, -1};  ///< Model::actuator_trnid
-  bool ctrllimited = false, forcelimited = false;
+  bool ctrllimited = false, forcelimited = false, actlimited = false;
   std::array<double, 2> ctrlrange{};  ///< as written, or from the joint's range (inheritrange)
 };
 
@@ -226,6 +226,7 @@ class Compiler {
           resolve_limited(t.limited, t.range, c_.autolimits, t.at, "range", "limited"));
     }
     for (const MotorSpec& m : spec_.motors) motors_.push_back(compile_motor(m));
+    check_stateless_first();
     check_moving_bodies();
     for (const KeySpec& k : spec_.keys) check_key(k);
     warn_unsupported_pairs();
@@ -812,9 +813,47 @@ class Compiler {
                                        "forcerange", "forcelimited");
     out.ctrllimited = resolve_limited(m.ctrllimited, out.ctrlrange, c_.autolimits, m.at,
                                       "ctrlrange", "ctrllimited");
+    out.actlimited = resolve_limited(m.actlimited, m.actrange, c_.autolimits, m.at, "actrange",
+                                     "actlimited");
     check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
     check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, out.ctrlrange);
+    check_range(m.at, "actrange", "actlimited", out.actlimited, m.actrange);
+    if (out.actlimited && m.dyntype == DynType::kNone) {
+      fail(m.at, "actrange", "an activation range needs activation dynamics; dyntype is none");
+    }
+    check_muscle(m);
     return out;
+  }
+
+  // MuJoCo keeps the activations after the stateless actuators' controls (mjCModel's counts)
+  void check_stateless_first() const {
+    bool stateful = false;
+    for (const MotorSpec& m : spec_.motors) {
+      if (m.dyntype != DynType::kNone) {
+        stateful = true;
+      } else if (stateful) {
+        fail(m.at, "dyntype",
+             "stateless actuators must come before stateful ones (those with dyntype "
+             "integrator, filter or muscle): move this one up");
+      }
+    }
+  }
+
+  // a muscle's parameters (mjCActuator::Compile), for its gain and its bias
+  static void check_muscle(const MotorSpec& m) {
+    for (const bool gain : {true, false}) {
+      const bool muscle = gain ? m.gaintype == GainType::kMuscle : m.biastype == BiasType::kMuscle;
+      if (!muscle) continue;
+      const double* prm = gain ? m.gainprm.data() : m.biasprm.data();
+      const char* attribute = gain ? "gainprm" : "biasprm";
+      if (prm[0] >= prm[1]) {
+        fail(m.at, attribute, "a muscle's range needs range[0] < range[1]");
+      }
+      if (prm[4] >= 1 || prm[5] <= 1) fail(m.at, attribute, "a muscle needs lmin < 1 < lmax");
+      if (prm[3] <= 0 || prm[6] <= 0 || prm[7] <= 0 || prm[8] <= 0) {
+        fail(m.at, attribute, "a muscle needs positive scale, vmax, fpmax and fvmax");
+      }
+    }
   }
 
   // MuJoCo 3's inheritrange (mjCActuator::Compile): a position servo (fixed gain, affine bias,
@@ -895,8 +934,16 @@ class Compiler {
     check(k.qpos, "qpos", static_cast<size_t>(coordinates()), "nq");
     check(k.qvel, "qvel", static_cast<size_t>(dofs()), "nv");
     check(k.ctrl, "ctrl", motors_.size(), "nu");
+    check(k.act, "act", static_cast<size_t>(activations()), "na");
     check(k.mpos, "mpos", 3 * static_cast<size_t>(nmocap_), "3 nmocap");
     check(k.mquat, "mquat", 4 * static_cast<size_t>(nmocap_), "4 nmocap");
+  }
+
+  // the model's na: one activation per actuator with dynamics
+  int activations() const {
+    int n = 0;
+    for (const MotorSpec& m : spec_.motors) n += m.dyntype != DynType::kNone;
+    return n;
   }
 
   // the model's nq and nv: a ball has a quaternion and three dofs, a free joint a position too
@@ -1175,6 +1222,7 @@ Model Compiler::assemble() const {
   m.ngeom = static_cast<int>(geoms_.size());
   m.nsite = static_cast<int>(sites_.size());
   m.nu = static_cast<int>(motors_.size());
+  m.na = activations();
   m.npair = static_cast<int>(pairs_.size());
   m.nexclude = static_cast<int>(excludes_.size());
   m.nkey = static_cast<int>(spec_.keys.size());
@@ -1421,7 +1469,11 @@ void Compiler::assemble_motors(Model& m) const {
     m.actuator_trntype[a] = c.trntype;
     m.actuator_trnid[a] = c.trnid;
     m.actuator_cranklength[a] = s.cranklength;
-    m.actuator_dyntype[a] = DynType::kNone;
+    m.actuator_dyntype[a] = s.dyntype;
+    m.actuator_dynprm[a] = s.dynprm;
+    m.actuator_actlimited[a] = c.actlimited;
+    m.actuator_actrange[a] = s.actrange;
+    m.actuator_lengthrange[a] = s.lengthrange;
     m.actuator_gaintype[a] = s.gaintype;
     m.actuator_biastype[a] = s.biastype;
     m.actuator_gainprm[a] = s.gainprm;
@@ -1446,6 +1498,7 @@ void Compiler::assemble_keys(Model& m) const {
       m.key_qvel(k, i) = (*key.qvel)[static_cast<size_t>(i)];
     for (int i = 0; key.ctrl && i < m.nu; ++i)
       m.key_ctrl(k, i) = (*key.ctrl)[static_cast<size_t>(i)];
+    for (int i = 0; key.act && i < m.na; ++i) m.key_act(k, i) = (*key.act)[static_cast<size_t>(i)];
     // the mocap bodies: as written, else where the bodies are (mjCKey::Compile)
     for (int b = 0; b < m.nbody; ++b) {
       const int id = m.body_mocapid[static_cast<size_t>(b)];

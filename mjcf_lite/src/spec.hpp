@@ -110,8 +110,12 @@ struct MotorSpec {
   std::string jointinparent, site, refsite, cranksite, slidersite;
   double cranklength = 0;
   bool crank_attributes_written = false;  ///< cranklength or slidersite on the element itself
+  DynType dyntype = DynType::kNone;
   GainType gaintype = GainType::kFixed;
   BiasType biastype = BiasType::kNone;
+  std::array<double, kDynParameters> dynprm{1};
+  std::array<double, 2> actrange{}, lengthrange{};
+  Limited actlimited = Limited::kAuto;
   std::array<double, kGainParameters> gainprm{1};
   std::array<double, kBiasParameters> biasprm{};
   Vec6 gear{};
@@ -127,7 +131,7 @@ struct MotorSpec {
 struct KeySpec {
   Place at;
   double time = 0;
-  std::optional<std::vector<double>> qpos, qvel, ctrl, mpos, mquat;
+  std::optional<std::vector<double>> qpos, qvel, ctrl, act, mpos, mquat;
 };
 
 /// A <contact><pair>: its parameters as written over its class (MuJoCo 2.2.2 takes none from
@@ -210,6 +214,7 @@ struct CompilerSpec {
   std::string meshdir, texturedir;
   bool exactmeshinertia = false;
   bool convexhull = true;  ///< hull graphs for the meshes that can collide (MuJoCo's default)
+  LengthRangeOptions lengthrange;  ///< <compiler><lengthrange>
 };
 
 struct ModelSpec {

@@ -95,7 +95,7 @@ _DATA_FIELDS = frozenset(f["name"] for f in _lever.data_field_table() if f["mujo
 _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude", "nsensor",
           "nsensordata", "neq", "nmocap", "nmesh", "nmeshvert", "nmeshgraph", "nconmax",
           "njmax", "ntendon", "nwrap", "nuser_body", "nuser_jnt", "nuser_geom", "nuser_site",
-          "nuser_actuator", "nuser_sensor")
+          "nuser_actuator", "nuser_sensor", "na")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl", "key_mpos", "key_mquat")
 # the mjModel arrays model.body(...) and the other accessors reach

@@ -328,6 +328,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nsensordata", [](const lever::Model& x) { return x.nsensordata; })
       .def_property_readonly("neq", [](const lever::Model& x) { return x.neq; })
       .def_property_readonly("nmocap", [](const lever::Model& x) { return x.nmocap; })
+      .def_property_readonly("na", [](const lever::Model& x) { return x.na; })
       .def_property_readonly("ntendon", [](const lever::Model& x) { return x.ntendon; })
       .def_property_readonly("nwrap", [](const lever::Model& x) { return x.nwrap; })
       .def_property_readonly("nuser_body", [](const lever::Model& x) { return x.nuser_body; })

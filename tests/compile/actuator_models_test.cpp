@@ -80,3 +80,52 @@ TEST_CASE("transmissions written wrongly are refused by name", "[compile][actuat
   CHECK_THAT(actuator_refusal(head + R"(<motor body="a"/></actuator></mujoco>)"),
              Catch::Contains("body"));
 }
+
+TEST_CASE("the muscle model compiles to MuJoCo 2.2.2's parameters, lengthrange included",
+          "[compile][actuators][muscles]") {
+  // the compiler's length-range simulation (two muscles, both sides) agrees with MuJoCo's
+  const std::string path = lever::test::model_path("tests/models/actuators/muscles.xml");
+  compare_actuators_with_mujoco("muscles.xml", lever::test::read_text(path));
+  const lever::Model m = lever::mjcf::load_file(path);
+  REQUIRE(m.na == 6);
+  CHECK(m.actuator_dyntype[3] == lever::DynType::kMuscle);
+  CHECK(m.actuator_gainprm[4][2] == 300);  // class "strong"
+  CHECK(m.actuator_dynprm[4][0] == 0.02);
+  CHECK(m.actuator_lengthrange[4] == std::array<double, 2>{0.1, 2});  // as written
+  // found by simulation: near the joint's stops (the limit rows are soft)
+  CHECK(m.actuator_lengthrange[3][0] == Approx(-1.2).margin(0.05));
+  CHECK(m.actuator_lengthrange[3][1] == Approx(1.5).margin(0.05));
+  CHECK(m.actuator_actlimited[2] == 1);
+}
+
+TEST_CASE("a muscle's lengthrange from its joint's range (uselimit) agrees with MuJoCo",
+          "[compile][actuators][muscles]") {
+  // the muscle first: MuJoCo 2.2.2 looks up the joint of actuator a as actuator_trnid[a] of its
+  // flat array, which is actuator a's own only for a = 0 (see lifecycle/length_range.cpp)
+  const std::string xml = R"(<mujoco><compiler angle="radian" autolimits="true"><lengthrange uselimit="true"/>
+    </compiler><worldbody><body><joint name="j" axis="0 1 0" range="-0.5 0.8"/>
+    <geom size="0.1" contype="0" conaffinity="0"/></body></worldbody>
+    <actuator><muscle name="m" joint="j" ctrlrange="0 1"/></actuator></mujoco>)";
+  compare_actuators_with_mujoco("uselimit", xml);
+  const lever::Model m = lever::mjcf::load_string(xml, "uselimit.xml");
+  CHECK(m.actuator_lengthrange[0] == std::array<double, 2>{-0.5, 0.8});
+}
+
+TEST_CASE("actuators with dynamics written wrongly are refused by name",
+          "[compile][actuators][muscles]") {
+  const std::string head = R"(<mujoco><worldbody><body><joint name="j"/><geom size="1"/></body>
+    </worldbody><actuator>)";
+  CHECK_THAT(actuator_refusal(head + R"(<general joint="j" dyntype="filter"/><motor joint="j"/>
+    </actuator></mujoco>)"),
+             Catch::Contains("stateless actuators must come before"));
+  CHECK_THAT(actuator_refusal(head + R"(<general joint="j" actrange="0 1"/></actuator></mujoco>)"),
+             Catch::Contains("needs activation dynamics"));
+  CHECK_THAT(actuator_refusal(head + R"(<muscle joint="j" lmin="1.2" lengthrange="0 1"/>
+    </actuator></mujoco>)"),
+             Catch::Contains("lmin < 1 < lmax"));
+  CHECK_THAT(actuator_refusal(head + R"(<general joint="j" dyntype="user"/></actuator></mujoco>)"),
+             Catch::Contains("user"));
+  // an unlimited joint: the simulation pulls the length without end and does not settle
+  CHECK_THAT(actuator_refusal(head + R"(<muscle joint="j"/></actuator></mujoco>)"),
+             Catch::Contains("did not settle"));
+}

@@ -6,7 +6,7 @@
 // and CSV dumps, the comparison with MuJoCo, and the Python and JavaScript bindings.
 //
 // Every listed array is contiguous and row-major: it is an (rows, cols) array of doubles, ints or
-// bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, nbody, njnt, ngeom,
+// bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, na, nbody, njnt, ngeom,
 // nsite, npair, nexclude, neq, nmocap, ntendon, nwrap, nefc: the live constraint rows of a Data;
 // `one` for a single row); `cols` is a number, or -1 for nv. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of
 // the same name, shape and meaning (`mujoco`) or not (`own`: lever's own, or laid out differently
@@ -106,6 +106,10 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(actuator_trnid, int, nu, 2, mujoco)                      \
   X(actuator_cranklength, double, nu, 1, mujoco)             \
   X(actuator_dyntype, int, nu, 1, mujoco)                    \
+  X(actuator_dynprm, double, nu, 10, mujoco)                 \
+  X(actuator_actlimited, uint8_t, nu, 1, mujoco)             \
+  X(actuator_actrange, double, nu, 2, mujoco)                \
+  X(actuator_lengthrange, double, nu, 2, mujoco)             \
   X(actuator_gaintype, int, nu, 1, mujoco)                   \
   X(actuator_biastype, int, nu, 1, mujoco)                   \
   X(actuator_gainprm, double, nu, 10, mujoco)                \
@@ -237,6 +241,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(qpos, double, nq, 1, state, mujoco)                        \
   X(qvel, double, nv, 1, state, mujoco)                        \
   X(ctrl, double, nu, 1, state, mujoco)                        \
+  X(act, double, na, 1, state, mujoco)                         \
   X(qfrc_applied, double, nv, 1, state, mujoco)                \
   X(mocap_pos, double, nmocap, 3, state, mujoco)               \
   X(mocap_quat, double, nmocap, 4, state, mujoco)              \
@@ -282,6 +287,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(efc_vel, double, nefc, 1, velocity, mujoco)                \
   X(efc_aref, double, nefc, 1, velocity, mujoco)               \
   X(actuator_force, double, nu, 1, acceleration, mujoco)       \
+  X(act_dot, double, na, 1, acceleration, mujoco)              \
   X(qfrc_actuator, double, nv, 1, acceleration, mujoco)        \
   X(qfrc_smooth, double, nv, 1, acceleration, mujoco)          \
   X(qacc_smooth, double, nv, 1, acceleration, mujoco)          \
@@ -336,7 +342,8 @@ enum class Size : int {
   kNuserSensor,
   // tendons
   kNtendon,  ///< tendons (<tendon>)
-  kNwrap     ///< objects in the tendons' paths
+  kNwrap,    ///< objects in the tendons' paths
+  kNa        ///< activations (actuators with dynamics)
 };
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;

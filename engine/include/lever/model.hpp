@@ -94,10 +94,17 @@ constexpr const char* integrator_name(Integrator integrator) {
 }
 
 /// Actuator gain, bias and activation-dynamics types; the numeric values are MuJoCo's mjtGain,
-/// mjtBias and mjtDyn (lever has the stateless, affine ones).
-enum class GainType : int { kFixed = 0, kAffine = 1 };
-enum class BiasType : int { kNone = 0, kAffine = 1 };
-enum class DynType : int { kNone = 0 };
+/// mjtBias and mjtDyn (lever has all but the user-defined ones). An actuator with dynamics has an
+/// activation act (data.act), which its force multiplies instead of ctrl: an integrator's rate is
+/// ctrl, a filter's (ctrl - act) / dynprm[0], a muscle's MuJoCo's activation dynamics
+/// (lever/dynamics.hpp muscle_activation_rate). A muscle's gain and bias are its force-length-
+/// velocity and passive curves (muscle_gain, muscle_bias).
+enum class GainType : int { kFixed = 0, kAffine = 1, kMuscle = 2 };
+enum class BiasType : int { kNone = 0, kAffine = 1, kMuscle = 2 };
+enum class DynType : int { kNone = 0, kIntegrator = 1, kFilter = 2, kMuscle = 3 };
+
+/// Number of activation-dynamics parameters per actuator (MuJoCo's mjNDYN).
+inline constexpr int kDynParameters = 10;
 
 /// Number of gain and bias parameters per actuator (MuJoCo's mjNGAIN, mjNBIAS).
 inline constexpr int kGainParameters = 10;
@@ -316,6 +323,9 @@ struct Model {
   int nq = 0;         ///< generalized coordinates (a ball has 4 and a free joint 7: nq >= nv)
   int nv = 0;         ///< degrees of freedom
   int nu = 0;         ///< actuators
+  /// activations: one per actuator with dynamics (dyntype not none), which come after the
+  /// stateless ones; actuator a's is act[a - (nu - na)]
+  int na = 0;
   int nbody = 1;      ///< bodies, world included
   int njnt = 0;       ///< joints
   int ngeom = 0;      ///< geoms
@@ -503,6 +513,13 @@ struct Model {
   std::vector<std::array<int, 2>> actuator_trnid;
   std::vector<double> actuator_cranklength;  ///< a slider-crank's rod length (else 0)
   std::vector<DynType> actuator_dyntype;
+  std::vector<std::array<double, kDynParameters>> actuator_dynprm;  ///< filter: tau; muscle:
+                                                                    ///< tau_act, tau_deact
+  std::vector<uint8_t> actuator_actlimited;  ///< its activation clamped to actrange after a step
+  std::vector<std::array<double, 2>> actuator_actrange;
+  /// the range of its length (a muscle's is mapped onto its operating range): as written, or
+  /// computed by the compiler (set_length_ranges)
+  std::vector<std::array<double, 2>> actuator_lengthrange;
   std::vector<GainType> actuator_gaintype;
   std::vector<BiasType> actuator_biastype;
   std::vector<std::array<double, kGainParameters>> actuator_gainprm;
@@ -543,6 +560,7 @@ struct Model {
   RowMatrix key_qpos;  ///< (nkey x nq)
   RowMatrix key_qvel;  ///< (nkey x nv)
   RowMatrix key_ctrl;  ///< (nkey x nu)
+  RowMatrix key_act;   ///< (nkey x na)
   RowMatrix key_mpos;   ///< (nkey x 3 nmocap) the mocap bodies' positions (default: body_pos)
   RowMatrix key_mquat;  ///< (nkey x 4 nmocap) their orientations, unit (default: body_quat)
 
@@ -610,10 +628,37 @@ struct Model {
 int actuator_scalar_dof(const Model& model, int a);
 
 /// Throws ModelError, naming `feature` and the first actuator that is not one, unless every
-/// actuator drives a hinge or slide joint alone (actuator_scalar_dof >= 0): for the features
-/// (identification, the step's derivatives, ...) written for actuators whose moment is a
-/// constant gear on one dof.
+/// actuator is stateless (dyntype none), has a fixed or affine gain and bias (no muscle) and
+/// drives a hinge or slide joint alone (actuator_scalar_dof >= 0): for the features
+/// (identification, the step's derivatives, ...) written for actuators whose force is affine in
+/// ctrl and whose moment is a constant gear on one dof.
 void require_simple_actuators(const Model& model, const std::string& feature);
+
+/// The actuators whose length range the compiler computes (MJCF <compiler><lengthrange mode>,
+/// MuJoCo's mjtLRMode): none, muscles, muscles and user-defined actuators (lever has none of
+/// those: the same as muscles), all.
+enum class LengthRangeMode : int { kNone = 0, kMuscle = 1, kMuscleUser = 2, kAll = 3 };
+
+/// How the compiler computes actuator length ranges (MJCF <compiler><lengthrange>, MuJoCo's
+/// mjLROpt, with its defaults).
+struct LengthRangeOptions {
+  LengthRangeMode mode = LengthRangeMode::kMuscle;
+  bool useexisting = true;  ///< keep a range already given (lower < upper)
+  bool uselimit = false;    ///< take a limited joint's or tendon's range
+  double accel = 20;        ///< the length's target acceleration in the simulation
+  double maxforce = 0;      ///< the most applied force (norm), 0: no bound
+  double timeconst = 1;     ///< s: the velocity's decay time constant
+  double timestep = 0.01;   ///< s: the simulation's timestep (0: the model's)
+  double inttotal = 10;     ///< s: simulated time per side
+  double inteval = 2;       ///< s: the final interval whose lengths give the range's end
+  double tolrange = 0.05;   ///< the most the lengths may spread over inteval, relative to the range
+};
+
+/// Set actuator_lengthrange where the options ask for it, as MuJoCo 2.2.2's compiler does
+/// (mj_setLengthRange): from the joint's or tendon's range (uselimit), or by simulating the model
+/// from qpos0 with the actuator pulled each way (lifecycle/length_range.cpp says how). Call it
+/// after set_const(). Throws ModelError naming the actuator when the simulation does not settle.
+void set_length_ranges(Model& model, const LengthRangeOptions& options = {});
 
 /// Derive the constants MuJoCo's mj_setConst computes (dof_invweight0, dof_M0, body_invweight0,
 /// body_subtreemass) and lever's link tree from the model's parameters. Call it after building a

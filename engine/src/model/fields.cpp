@@ -20,7 +20,7 @@ constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nmesh = Size::kNmesh, nmeshvert = Size::kNmeshvert, nmeshgraph = Size::kNmeshgraph,
                nsensor = Size::kNsensor, nsensordata = Size::kNsensordata,
                neq = Size::kNeq, nmocap = Size::kNmocap, ntendon = Size::kNtendon,
-               nwrap = Size::kNwrap;
+               nwrap = Size::kNwrap, na = Size::kNa;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy;
@@ -282,6 +282,7 @@ int size_of(const Model& model, Size size) {
     case Size::kNuserSensor: return model.nuser_sensor;
     case Size::kNtendon: return model.ntendon;
     case Size::kNwrap: return model.nwrap;
+    case Size::kNa: return model.na;
   }
   return 0;
 }
@@ -291,12 +292,12 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 26> names = {
+  static constexpr std::array<const char*, 27> names = {
       "1",          "nq",          "nv",           "nu",          "nbody",          "njnt",
       "ngeom",      "nsite",       "nefc",         "npair",       "nexclude",       "nmesh",
       "nmeshvert",  "nmeshgraph",  "nsensor",      "nsensordata", "neq",            "nmocap",
       "nuser_body", "nuser_jnt",   "nuser_geom",   "nuser_site",  "nuser_actuator", "nuser_sensor",
-      "ntendon",    "nwrap"};
+      "ntendon",    "nwrap",       "na"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -424,7 +425,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 25> counts = {{{"nmesh", model.nmesh},
+  const std::array<std::pair<const char*, int>, 26> counts = {{{"nmesh", model.nmesh},
                                                                {"nmeshvert", model.nmeshvert},
                                                                {"nmeshgraph", model.nmeshgraph},
                                                                {"nq", model.nq},
@@ -448,7 +449,8 @@ void size_model(Model& model) {
                                                                {"nuser_actuator", model.nuser_actuator},
                                                                {"nuser_sensor", model.nuser_sensor},
                                                                {"ntendon", model.ntendon},
-                                                               {"nwrap", model.nwrap}}};
+                                                               {"nwrap", model.nwrap},
+                                                               {"na", model.na}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +
@@ -477,6 +479,7 @@ void size_model(Model& model) {
   model.key_qpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nq));
   model.key_qvel.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nv));
   model.key_ctrl.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nu));
+  model.key_act.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.na));
   model.key_mpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, 3 * model.nmocap));
   model.key_mquat.conservativeResizeLike(RowMatrix::Zero(model.nkey, 4 * model.nmocap));
   model.fit_tag = 0;  // its arrays may have changed: set_const again before a Data trusts it

@@ -34,6 +34,18 @@ int actuator_scalar_dof(const Model& model, int a) {
 
 void require_simple_actuators(const Model& model, const std::string& feature) {
   for (int a = 0; a < model.nu; ++a) {
+    const bool stateful = model.actuator_dyntype[a] != DynType::kNone;
+    const bool muscle = model.actuator_gaintype[a] == GainType::kMuscle ||
+                        model.actuator_biastype[a] == BiasType::kMuscle;
+    if (stateful || muscle) {
+      const std::string name =
+          model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+      throw ModelError(feature + ": actuator " + name + " is " +
+                           (muscle ? "a muscle" : "an actuator with activation dynamics") + "; " +
+                           feature + " handles stateless actuators with fixed or affine gain "
+                           "and bias only, not yet that one.",
+                       "actuator", a);
+    }
     if (actuator_scalar_dof(model, a) >= 0) continue;
     const char* what = "a site";
     switch (model.actuator_trntype[a]) {

@@ -197,6 +197,45 @@ void transmission(const Model& model, Data& data) {
   unchecked::transmission(model, data);
 }
 
+namespace {
+
+// d act / dt of stateful actuator a at its clamped control and activation (MuJoCo's act_dot)
+double activation_rate(const Model& model, int a, double ctrl, double act) {
+  const auto& prm = model.actuator_dynprm[a];
+  switch (model.actuator_dyntype[a]) {
+    case DynType::kIntegrator: return ctrl;
+    case DynType::kFilter: return (ctrl - act) / std::max(detail::kMinVal, prm[0]);
+    case DynType::kMuscle: return muscle_activation_rate(ctrl, act, prm.data());
+    case DynType::kNone: break;
+  }
+  return 0.0;
+}
+
+}  // namespace
+
+double actuator_gain(const Model& model, int a, double length, double velocity) {
+  const auto& g = model.actuator_gainprm[a];
+  switch (model.actuator_gaintype[a]) {
+    case GainType::kAffine: return g[0] + g[1] * length + g[2] * velocity;
+    case GainType::kMuscle:
+      return muscle_gain(length, velocity, model.actuator_lengthrange[a], model.actuator_acc0[a],
+                         g.data());
+    case GainType::kFixed: break;
+  }
+  return g[0];
+}
+
+double actuator_bias(const Model& model, int a, double length, double velocity) {
+  const auto& b = model.actuator_biasprm[a];
+  switch (model.actuator_biastype[a]) {
+    case BiasType::kAffine: return b[0] + b[1] * length + b[2] * velocity;
+    case BiasType::kMuscle:
+      return muscle_bias(length, model.actuator_lengthrange[a], model.actuator_acc0[a], b.data());
+    case BiasType::kNone: break;
+  }
+  return 0.0;
+}
+
 void unchecked::actuation(const Model& model, Data& data) {
   double* const qfrc = data.qfrc_actuator.data();
   for (int i = 0; i < model.nv; ++i) qfrc[i] = 0.0;
@@ -219,8 +258,14 @@ void unchecked::actuation(const Model& model, Data& data) {
   const double* const velocity = data.actuator_velocity.data();
   const auto* const gear = model.actuator_gear.data();
   const int nv = model.nv;
+  const int first_stateful = model.nu - model.na;  // actuator a's activation: act[a - this]
   for (int a = 0; a < model.nu; ++a) {
-    double f = force[a] * actuator_gain(model, a, length[a], velocity[a]);
+    // a stateful actuator's force follows its activation, a stateless one's the clamped ctrl
+    const double input = a < first_stateful ? force[a] : data.act[a - first_stateful];
+    if (a >= first_stateful) {  // from the clamped control, before force[a] is overwritten
+      data.act_dot[a - first_stateful] = activation_rate(model, a, force[a], data.act[a - first_stateful]);
+    }
+    double f = input * actuator_gain(model, a, length[a], velocity[a]);
     f += actuator_bias(model, a, length[a], velocity[a]);
     if (model.actuator_forcelimited[a]) f = clamp(f, model.actuator_forcerange[a]);
     force[a] = f;
