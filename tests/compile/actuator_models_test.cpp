@@ -3,7 +3,11 @@
 // sample), field by field (actuator_trntype, actuator_trnid, actuator_cranklength, and the
 // constants actuator_length0 and actuator_acc0); and the transmissions lever refuses, by name.
 #include <catch2/catch.hpp>
+#include <lever/derivatives.hpp>
+#include <lever/forward.hpp>
 #include <lever/mjcf.hpp>
+#include <lever/parameters.hpp>
+#include <lever/regressor.hpp>
 
 #include <filesystem>
 
@@ -128,4 +132,28 @@ TEST_CASE("actuators with dynamics written wrongly are refused by name",
   // an unlimited joint: the simulation pulls the length without end and does not settle
   CHECK_THAT(actuator_refusal(head + R"(<muscle joint="j"/></actuator></mujoco>)"),
              Catch::Contains("did not settle"));
+}
+
+TEST_CASE("derivatives and identification refuse the actuators they do not handle, by name",
+          "[compile][actuators]") {
+  const lever::Model t =
+      lever::mjcf::load_file(lever::test::model_path("tests/models/actuators/transmissions.xml"));
+  lever::Data d(t);
+  lever::forward(t, d);
+  lever::Derivatives deriv(t);
+  CHECK_THROWS_WITH(lever::step_derivatives(t, d, deriv),
+                    Catch::Contains("actuator 'wrist_joint' drives a ball or free joint"));
+  Eigen::MatrixXd Y(t.nv, lever::regressor_columns(t));
+  CHECK_THROWS_WITH(lever::regressor(t, d, d.qacc, Y),
+                    Catch::Contains("regressor: actuator 'wrist_joint'"));
+  // a filter on a hinge, in a model without tendons
+  const lever::Model m = lever::mjcf::load_string(
+      R"(<mujoco><worldbody><body><joint name="j"/><geom size="0.1"/></body></worldbody>
+      <actuator><general name="wrist_filter" joint="j" dyntype="filter"/></actuator></mujoco>)",
+      "filter.xml");
+  lever::Data dm(m);
+  lever::forward(m, dm);
+  lever::Derivatives deriv_m(m);
+  CHECK_THROWS_WITH(lever::forward_derivatives(m, dm, deriv_m),
+                    Catch::Contains("actuator 'wrist_filter' is an actuator with activation"));
 }

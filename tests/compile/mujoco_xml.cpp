@@ -265,6 +265,10 @@ void compare_keyframes(Differences& d, const Model& o, const mjModel& m) {
       d.real("key_qvel", k * o.nv + i, o.key_qvel(k, i), m.key_qvel[k * m.nv + i]);
     for (int i = 0; i < o.nu; ++i)
       d.real("key_ctrl", k * o.nu + i, o.key_ctrl(k, i), m.key_ctrl[k * m.nu + i]);
+    if (d.count("na", o.na, m.na)) {
+      for (int i = 0; i < o.na; ++i)
+        d.real("key_act", k * o.na + i, o.key_act(k, i), m.key_act[k * m.na + i]);
+    }
   }
 }
 
@@ -322,6 +326,7 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m) {
   sizes = d.count("neq", o.neq, m.neq) && sizes;
   sizes = d.count("ntendon", o.ntendon, m.ntendon) && sizes;
   sizes = d.count("nwrap", o.nwrap, m.nwrap) && sizes;
+  sizes = d.count("na", o.na, m.na) && sizes;
   if (sizes) {
     compare_table(d, o, m);
     compare_meshes(d, o, m);

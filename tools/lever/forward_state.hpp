@@ -70,11 +70,19 @@ inline JointUnits joint_units(const Model& model, int joint) {
   return {"m", "m/s", "m/s^2", "N"};
 }
 
-/// Units of actuator a's force: its joint's for a hinge or slide, else N (a tendon's or
-/// slider-crank's force along its length, a site's or ball joint's wrench scaled by its gear).
+/// Units of actuator a's force: its joint's for a hinge or slide, N m for a ball's torque, N along
+/// a tendon or slider-crank; a free joint's or a site's force is the scale of its gear's wrench.
 inline const char* actuator_force_units(const Model& model, int a) {
-  if (actuator_scalar_dof(model, a) >= 0) return joint_units(model, model.actuator_trnid[a][0]).force;
-  return "N";
+  const int id = model.actuator_trnid[a][0];
+  switch (model.actuator_trntype[a]) {
+    case TransmissionType::kTendon:
+    case TransmissionType::kSliderCrank: return "N";
+    case TransmissionType::kSite: return "x gear";
+    default: break;
+  }
+  if (model.jnt_type[id] == JointType::kBall) return "N m";
+  if (model.jnt_type[id] == JointType::kFree) return "x gear";
+  return joint_units(model, id).force;
 }
 
 /// What text output prints for a number that is not finite (JSON prints null): never "nan" or
