@@ -212,6 +212,7 @@ Model from_mujoco(const mjModel* m) {
   model.nq = m->nq;
   model.nv = m->nv;
   model.nu = m->nu;
+  model.na = m->na;
   model.nbody = m->nbody;
   model.njnt = m->njnt;
   model.ngeom = m->ngeom;
@@ -324,22 +325,24 @@ Model from_mujoco(const mjModel* m) {
   copy_sensors(m, model);
   copy_tendons(m, model);
   for (int a = 0; a < m->nu; ++a) {
-    const bool affine_or_fixed_gain =
-        m->actuator_gaintype[a] == mjGAIN_FIXED || m->actuator_gaintype[a] == mjGAIN_AFFINE;
-    const bool affine_or_no_bias =
-        m->actuator_biastype[a] == mjBIAS_NONE || m->actuator_biastype[a] == mjBIAS_AFFINE;
-    const bool joint_or_tendon =
-        m->actuator_trntype[a] == mjTRN_JOINT || m->actuator_trntype[a] == mjTRN_TENDON;
-    if (!joint_or_tendon || m->actuator_dyntype[a] != mjDYN_NONE || !affine_or_fixed_gain ||
-        !affine_or_no_bias) {
+    if (m->actuator_trntype[a] == mjTRN_BODY || m->actuator_dyntype[a] == mjDYN_USER ||
+        m->actuator_gaintype[a] == mjGAIN_USER || m->actuator_biastype[a] == mjBIAS_USER) {
       throw std::runtime_error(
-          "from_mujoco: only stateless joint and tendon actuators with affine gain and bias are "
+          "from_mujoco: actuators on a body, and user-defined dynamics, gains and biases, are not "
           "supported");
     }
     model.actuator_name[a] = name_of(m, mjOBJ_ACTUATOR, a);
     model.actuator_trntype[a] = static_cast<TransmissionType>(m->actuator_trntype[a]);
-    model.actuator_trnid[a] = m->actuator_trnid[2 * a];
-    model.actuator_dyntype[a] = DynType::kNone;
+    model.actuator_trnid[a] = {m->actuator_trnid[2 * a], m->actuator_trnid[2 * a + 1]};
+    model.actuator_cranklength[a] = m->actuator_cranklength[a];
+    model.actuator_dyntype[a] = static_cast<DynType>(m->actuator_dyntype[a]);
+    for (int k = 0; k < kDynParameters; ++k) {
+      model.actuator_dynprm[a][k] = m->actuator_dynprm[mjNDYN * a + k];
+    }
+    model.actuator_actlimited[a] = m->actuator_actlimited[a] != 0;
+    model.actuator_actrange[a] = {m->actuator_actrange[2 * a], m->actuator_actrange[2 * a + 1]};
+    model.actuator_lengthrange[a] = {m->actuator_lengthrange[2 * a],
+                                     m->actuator_lengthrange[2 * a + 1]};
     model.actuator_gaintype[a] = static_cast<GainType>(m->actuator_gaintype[a]);
     model.actuator_biastype[a] = static_cast<BiasType>(m->actuator_biastype[a]);
     for (int k = 0; k < kGainParameters; ++k) {
@@ -361,6 +364,7 @@ Model from_mujoco(const mjModel* m) {
     for (int i = 0; i < m->nq; ++i) model.key_qpos(k, i) = m->key_qpos[m->nq * k + i];
     for (int i = 0; i < m->nv; ++i) model.key_qvel(k, i) = m->key_qvel[m->nv * k + i];
     for (int i = 0; i < m->nu; ++i) model.key_ctrl(k, i) = m->key_ctrl[m->nu * k + i];
+    for (int i = 0; i < m->na; ++i) model.key_act(k, i) = m->key_act[m->na * k + i];
     for (int i = 0; i < 3 * m->nmocap; ++i) model.key_mpos(k, i) = m->key_mpos[3 * m->nmocap * k + i];
     for (int i = 0; i < 4 * m->nmocap; ++i) {
       model.key_mquat(k, i) = m->key_mquat[4 * m->nmocap * k + i];

@@ -104,6 +104,7 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kNmeshface: break;
     case Size::kNmocap: break;
     case Size::kNwrap: break;  // a path's objects: by index
+    case Size::kNa: return name_or_index(model.actuator_name, i + model.nu - model.na);
   }
   return std::to_string(i);
 }

@@ -105,8 +105,17 @@ struct MotorSpec {
   Place at;
   std::string joint;
   std::string tendon;  ///< a tendon transmission: the tendon's name (joint is then "")
+  /// the other transmissions' names as written ("" if not): jointinparent, site (with refsite),
+  /// a slider-crank's cranksite and slidersite
+  std::string jointinparent, site, refsite, cranksite, slidersite;
+  double cranklength = 0;
+  bool crank_attributes_written = false;  ///< cranklength or slidersite on the element itself
+  DynType dyntype = DynType::kNone;
   GainType gaintype = GainType::kFixed;
   BiasType biastype = BiasType::kNone;
+  std::array<double, kDynParameters> dynprm{1};
+  std::array<double, 2> actrange{}, lengthrange{};
+  Limited actlimited = Limited::kAuto;
   std::array<double, kGainParameters> gainprm{1};
   std::array<double, kBiasParameters> biasprm{};
   Vec6 gear{};
@@ -122,7 +131,7 @@ struct MotorSpec {
 struct KeySpec {
   Place at;
   double time = 0;
-  std::optional<std::vector<double>> qpos, qvel, ctrl, mpos, mquat;
+  std::optional<std::vector<double>> qpos, qvel, ctrl, act, mpos, mquat;
 };
 
 /// A <contact><pair>: its parameters as written over its class (MuJoCo 2.2.2 takes none from
@@ -210,6 +219,7 @@ struct CompilerSpec {
   std::string meshdir, texturedir;
   bool exactmeshinertia = false;
   bool convexhull = true;  ///< hull graphs for the meshes that can collide (MuJoCo's default)
+  LengthRangeOptions lengthrange;  ///< <compiler><lengthrange>
 };
 
 struct ModelSpec {

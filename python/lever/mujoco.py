@@ -130,17 +130,17 @@ _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclud
           "nsensordata", "neq", "nmocap", "nmesh", "nmeshvert", "nmeshgraph", "nmeshface",
           "nconmax",
           "njmax", "ntendon", "nwrap", "nuser_body", "nuser_jnt", "nuser_geom", "nuser_site",
-          "nuser_actuator", "nuser_sensor")
+          "nuser_actuator", "nuser_sensor", "na")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl", "key_mpos", "key_mquat")
 # the mjModel arrays model.body(...) and the other accessors reach
-_MODEL_OFFERED = _MODEL_FIELDS | {"actuator_trnid", "dof_Madr"}
+_MODEL_OFFERED = _MODEL_FIELDS | {"dof_Madr"}
 
 
 # What lever.mujoco covers, generated from the field table, for the errors below
 _COVERED = {
     "MODEL": ", ".join(sorted(_MODEL_FIELDS | set(_SIZES) | set(_KEY_FIELDS) |
-                              {"actuator_trnid", "dof_Madr", "nM"})),
+                              {"dof_Madr", "nM"})),
     "DATA": ", ".join(sorted(_DATA_FIELDS | {"time", "ncon", "nefc", "ne", "nf", "efc_J",
                                              "contact", "qM"})),
 }
@@ -449,14 +449,6 @@ class MjModel:
     @property
     def nkey(self) -> int:
         return self._native.nkey
-
-    @property
-    def actuator_trnid(self) -> _np.ndarray:
-        """(nu, 2) as MuJoCo's: the joint, then -1 (a joint transmission has no second id)."""
-        out = _np.full((self._native.nu, 2), -1, dtype=_np.int32)
-        out[:, 0] = self._native.actuator_trnid
-        out.flags.writeable = False
-        return out
 
     def __getattr__(self, name: str):
         native = object.__getattribute__(self, "_native")

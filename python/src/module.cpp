@@ -355,6 +355,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nsensordata", [](const lever::Model& x) { return x.nsensordata; })
       .def_property_readonly("neq", [](const lever::Model& x) { return x.neq; })
       .def_property_readonly("nmocap", [](const lever::Model& x) { return x.nmocap; })
+      .def_property_readonly("na", [](const lever::Model& x) { return x.na; })
       .def_property_readonly("ntendon", [](const lever::Model& x) { return x.ntendon; })
       .def_property_readonly("nwrap", [](const lever::Model& x) { return x.nwrap; })
       .def_property_readonly("nuser_body", [](const lever::Model& x) { return x.nuser_body; })
@@ -925,9 +926,10 @@ PYBIND11_MODULE(_lever, m) {
           if (joint_force) {
             t.force = rows("qfrc", prior.nv, true);
           } else if (t.actuator_force.size() > 0) {
+            lever::require_simple_actuators(prior, "lever.identify");
             t.force = Eigen::MatrixXd::Zero(prior.nv, t.actuator_force.cols());
             for (int a = 0; a < prior.nu; ++a) {
-              const int dof = prior.jnt_dofadr[prior.actuator_trnid[a]];
+              const int dof = lever::actuator_scalar_dof(prior, a);  // checked above
               t.force.row(dof) += prior.actuator_gear[a][0] * t.actuator_force.row(a);
             }
             const Eigen::MatrixXd stops = rows("qfrc_constraint", prior.nv, false);

@@ -74,7 +74,7 @@ void check_version(const py::dict& state, const char* what) {
   X(nq) X(nv) X(nu) X(nbody) X(njnt) X(ngeom) X(nsite) X(nkey) X(npair) X(nexclude) X(nconmax) X(njmax) \
   X(nmesh) X(nmeshvert) X(nmeshgraph) X(nmeshface) X(nsensor) X(nsensordata) X(neq) X(nmocap) \
   X(nuser_body) X(nuser_jnt) X(nuser_geom) X(nuser_site) X(nuser_actuator) X(nuser_sensor) \
-  X(ntendon) X(nwrap)
+  X(ntendon) X(nwrap) X(na)
 
 // a keyframe array (nkey x n, row-major) as bytes, and back
 py::bytes matrix_bytes(const lever::RowMatrix& a) {
@@ -109,6 +109,7 @@ py::dict model_state(const lever::Model& model) {
   keys["key_qpos"] = matrix_bytes(model.key_qpos);
   keys["key_qvel"] = matrix_bytes(model.key_qvel);
   keys["key_ctrl"] = matrix_bytes(model.key_ctrl);
+  keys["key_act"] = matrix_bytes(model.key_act);
   keys["key_mpos"] = matrix_bytes(model.key_mpos);
   keys["key_mquat"] = matrix_bytes(model.key_mquat);
   state["keys"] = keys;
@@ -212,6 +213,7 @@ std::shared_ptr<lever::Model> model_from_state(const py::dict& state) {
   write_matrix(keys, "key_qpos", m.key_qpos);
   write_matrix(keys, "key_qvel", m.key_qvel);
   write_matrix(keys, "key_ctrl", m.key_ctrl);
+  write_matrix(keys, "key_act", m.key_act);
   write_matrix(keys, "key_mpos", m.key_mpos);
   write_matrix(keys, "key_mquat", m.key_mquat);
 

@@ -492,6 +492,29 @@ TEST_CASE("equality constraints and friction loss allocate nothing", "[alloc]") 
   }
 }
 
+TEST_CASE("transmissions, muscles and activations allocate nothing", "[alloc]") {
+  for (const char* file :
+       {"tests/models/actuators/transmissions.xml", "tests/models/actuators/muscles.xml"}) {
+    INFO(file);
+    std::string how;
+    const lever::Model base = load(lever::test::model_path(file), how);
+    for (const lever::Integrator integrator :
+         {lever::Integrator::kEuler, lever::Integrator::kRK4, lever::Integrator::kImplicit}) {
+      lever::Model m = base;
+      m.opt.integrator = integrator;
+      lever::Data d(m);
+      d.ctrl.setConstant(0.5);
+      for (int k = 0; k < 100; ++k) {
+        const Allocations a = count([&] { lever::step(m, d); });
+        CHECK(a.news == 0);
+        CHECK(a.mallocs == 0);
+      }
+      CHECK(d.act.size() == m.na);
+      if (m.na > 0) CHECK(d.act.cwiseAbs().maxCoeff() > 0);  // the activations moved
+    }
+  }
+}
+
 TEST_CASE("collision allocates nothing", "[alloc]") {
   // the scenes' cylinders and ellipsoids, and the Menagerie's Panda's meshes, run libccd's MPR
   // (with multiccd too)

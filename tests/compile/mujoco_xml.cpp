@@ -150,15 +150,13 @@ class Differences {
 // compiled parameters.
 bool is_constant(const std::string& name) {
   return name == "body_subtreemass" || name == "body_invweight0" || name == "dof_invweight0" ||
-         name == "dof_M0" || name == "tendon_length0" || name == "tendon_invweight0";
+         name == "dof_M0" || name == "tendon_length0" || name == "tendon_invweight0" ||
+         name == "actuator_length0" || name == "actuator_acc0";
 }
 
 // Every array of Model's table that MuJoCo has, against MuJoCo's array of the same name (found
 // through MuJoCo's own MJMODEL_POINTERS), element by element. Special cases, and why:
 //   *_quat          a unit quaternion and its negative are the same rotation (up to sign);
-//   actuator_trnid  lever keeps the joint only (`own`); MuJoCo's is (nu, 2), its second column -1
-//                   for a joint transmission; the other actuator types lever fixes are checked
-//                   here too (compare_actuator_types);
 //   geom frames     mesh geoms' size, pos and quat are MuJoCo's fit to the mesh file, which
 //                   lever computes only for the meshes it read (those that give a body mass or
 //                   can collide, when lever can read the file);
@@ -268,14 +266,6 @@ void compare_table(Differences& d, const Model& o, const mjModel& m) {
   }
 }
 
-void compare_actuator_types(Differences& d, const Model& o, const mjModel& m) {
-  for (int a = 0; a < o.nu; ++a) {
-    d.integer("actuator_trnid", 2 * a, o.actuator_trnid[static_cast<size_t>(a)],
-              m.actuator_trnid[2 * a]);
-    d.integer("actuator_trnid", 2 * a + 1, -1, m.actuator_trnid[2 * a + 1]);
-  }
-}
-
 // keyframes are kept outside the table (their row count is nkey, not a model size)
 void compare_keyframes(Differences& d, const Model& o, const mjModel& m) {
   if (!d.count("nkey", o.nkey, m.nkey)) return;
@@ -288,6 +278,10 @@ void compare_keyframes(Differences& d, const Model& o, const mjModel& m) {
       d.real("key_qvel", k * o.nv + i, o.key_qvel(k, i), m.key_qvel[k * m.nv + i]);
     for (int i = 0; i < o.nu; ++i)
       d.real("key_ctrl", k * o.nu + i, o.key_ctrl(k, i), m.key_ctrl[k * m.nu + i]);
+    if (d.count("na", o.na, m.na)) {
+      for (int i = 0; i < o.na; ++i)
+        d.real("key_act", k * o.na + i, o.key_act(k, i), m.key_act[k * m.na + i]);
+    }
   }
 }
 
@@ -343,10 +337,10 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m) {
   sizes = d.count("neq", o.neq, m.neq) && sizes;
   sizes = d.count("ntendon", o.ntendon, m.ntendon) && sizes;
   sizes = d.count("nwrap", o.nwrap, m.nwrap) && sizes;
+  sizes = d.count("na", o.na, m.na) && sizes;
   if (sizes) {
     compare_table(d, o, m);
     compare_meshes(d, o, m);
-    compare_actuator_types(d, o, m);
     compare_names(d, o, m);
     compare_keyframes(d, o, m);
   }
@@ -373,6 +367,12 @@ std::vector<std::string> compare_constants(const Model& o, const mjModel& m) {
               m.ntendon)) {
     d.reals("tendon_length0", o.tendon_length0, m.tendon_length0);
     d.reals("tendon_invweight0", o.tendon_invweight0, m.tendon_invweight0);
+  }
+  if (d.count("nu", o.nu, m.nu) &&
+      d.count("size of actuator_length0", static_cast<int>(o.actuator_length0.size()), m.nu) &&
+      d.count("size of actuator_acc0", static_cast<int>(o.actuator_acc0.size()), m.nu)) {
+    d.reals("actuator_length0", o.actuator_length0, m.actuator_length0);
+    d.reals("actuator_acc0", o.actuator_acc0, m.actuator_acc0);
   }
   return d.list;
 }

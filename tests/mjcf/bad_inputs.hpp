@@ -297,10 +297,10 @@ inline const BadInput kBadInputs[] = {
     </body>
   </worldbody>
   <actuator>
-    <general joint="j" dyntype="integrator"/>
+    <general joint="j" dyntype="user"/>
   </actuator>
-</mujoco>)", 9, "general", "dyntype", "'integrator' is valid MJCF but not supported",
-   MuJoCo::kAccepts, "activation dynamics (an actuator state) are outside lever's subset"},
+</mujoco>)", 9, "general", "dyntype", "'user' is valid MJCF but not supported",
+   MuJoCo::kAccepts, "user-defined activation dynamics (MuJoCo's callbacks) are outside lever's subset"},
 
   // ---- number lists ------------------------------------------------------------------------
   {"too-few-numbers", R"(<mujoco>

@@ -179,6 +179,8 @@ TEST_CASE("every Data view has the table's size and points into its member", "[f
     for (int i = 0; i < model.nv; ++i) CHECK(data.qvel[i] == mark(k, i));
     k = next("ctrl");
     for (int a = 0; a < model.nu; ++a) CHECK(data.ctrl[a] == mark(k, a));
+    k = next("act");
+    for (int i = 0; i < model.na; ++i) CHECK(data.act[i] == mark(k, i));
     k = next("qfrc_applied");
     k = next("mocap_pos");
     for (int i = 0; i < model.nmocap; ++i) {

@@ -119,6 +119,7 @@ class WasmModel {
     if (what == "nq") return model_.nq;
     if (what == "nv") return model_.nv;
     if (what == "nu") return model_.nu;
+    if (what == "na") return model_.na;
     if (what == "nbody") return model_.nbody;
     if (what == "njnt") return model_.njnt;
     if (what == "ngeom") return model_.ngeom;

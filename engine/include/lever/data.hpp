@@ -108,6 +108,7 @@ struct Data {
   Eigen::VectorXd qpos;          ///< (nq) joint positions, rad or m
   Eigen::VectorXd qvel;          ///< (nv) joint velocities
   Eigen::VectorXd ctrl;          ///< (nu) motor commands, before clamping (never modified)
+  Eigen::VectorXd act;           ///< (na) activations of the actuators with dynamics
   Eigen::VectorXd qfrc_applied;  ///< (nv) user-applied joint forces
   /// (nmocap) where the mocap bodies are, in the world frame: set from body_pos and body_quat by
   /// the constructor and reset(), from the keyframe by reset_keyframe(), then written by the user;
@@ -160,7 +161,7 @@ struct Data {
   std::vector<std::array<double, 6>> wrap_xpos;
 
   // ---- position stage: actuator transmission ---------------------------------------------------
-  Eigen::VectorXd actuator_length;  ///< (nu) gear * qpos of the driven joint, or gear * tendon length
+  Eigen::VectorXd actuator_length;  ///< (nu) the transmission's length (lever/model.hpp TransmissionType)
   RowMatrix actuator_moment;        ///< (nu x nv) d actuator_length / d qpos (MuJoCo's, dense)
 
   // ---- position stage: constraint rows (make_constraint) -----------------------------------
@@ -203,6 +204,7 @@ struct Data {
 
   // ---- acceleration stage --------------------------------------------------------------------
   Eigen::VectorXd actuator_force;          ///< (nu) after ctrl clamping, gain and force clamping
+  Eigen::VectorXd act_dot;                 ///< (na) d act / dt
   Eigen::VectorXd qfrc_actuator;           ///< (nv)
   Eigen::VectorXd qfrc_smooth;             ///< (nv) passive - bias + applied + actuator
   Eigen::VectorXd qacc_smooth;             ///< (nv) M^-1 qfrc_smooth
@@ -279,6 +281,9 @@ struct Data {
     /// (12 x nv) a spatial tendon's segment: its first end's translational and rotational
     /// Jacobians, then its second end's
     Eigen::MatrixXd tendon_jac;
+    /// (12 x nv) a site or slider-crank transmission's Jacobians: the site's translational and
+    /// rotational, then the reference (slider) site's
+    Eigen::MatrixXd transmission_jac;
     std::vector<double> contact_weight;  ///< (36 nconmax) a Hessian's part of each contact, W of
                                          ///< C^T W C in its frame (dim x dim, row-major)
     std::vector<double> frame_scratch;   ///< (6 nv) W C over a contact's dofs
@@ -286,6 +291,8 @@ struct Data {
                                          ///< one past each column's last nonzero
     Eigen::VectorXd rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages (rk_qpos0 nq, the rest nv)
     std::array<Eigen::VectorXd, 4> rk_qvel, rk_qacc;
+    Eigen::VectorXd rk_act0, rk_dact;    ///< (na) RK4: the step's start activation, its update
+    std::array<Eigen::VectorXd, 4> rk_act_dot;  ///< (na) each stage's act_dot
     Eigen::MatrixXd qDeriv;  ///< (nv x nv) implicit: d qfrc_smooth / d qvel
     Eigen::MatrixXd qLU;     ///< (nv x nv) implicit: M - h qDeriv, then its factor (U + I) L
     /// (nbody) implicit: each subtree's velocity coupling (d qfrc_bias / d qvel)

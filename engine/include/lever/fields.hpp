@@ -6,7 +6,7 @@
 // and CSV dumps, the comparison with MuJoCo, and the Python and JavaScript bindings.
 //
 // Every listed array is contiguous and row-major: it is an (rows, cols) array of doubles, ints or
-// bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, nbody, njnt, ngeom,
+// bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, na, nbody, njnt, ngeom,
 // nsite, npair, nexclude, neq, nmocap, ntendon, nwrap, nefc: the live constraint rows of a Data;
 // `one` for a single row); `cols` is a number, or -1 for nv. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of
 // the same name, shape and meaning (`mujoco`) or not (`own`: lever's own, or laid out differently
@@ -103,8 +103,13 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(site_quat, double, nsite, 4, mujoco)                     \
   X(site_type, int, nsite, 1, mujoco)                        \
   X(actuator_trntype, int, nu, 1, mujoco)                    \
-  X(actuator_trnid, int, nu, 1, own) /* (nu, 2) in MuJoCo */ \
+  X(actuator_trnid, int, nu, 2, mujoco)                      \
+  X(actuator_cranklength, double, nu, 1, mujoco)             \
   X(actuator_dyntype, int, nu, 1, mujoco)                    \
+  X(actuator_dynprm, double, nu, 10, mujoco)                 \
+  X(actuator_actlimited, uint8_t, nu, 1, mujoco)             \
+  X(actuator_actrange, double, nu, 2, mujoco)                \
+  X(actuator_lengthrange, double, nu, 2, mujoco)             \
   X(actuator_gaintype, int, nu, 1, mujoco)                   \
   X(actuator_biastype, int, nu, 1, mujoco)                   \
   X(actuator_gainprm, double, nu, 10, mujoco)                \
@@ -114,6 +119,8 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(actuator_gear, double, nu, 6, mujoco)                    \
   X(actuator_ctrlrange, double, nu, 2, mujoco)               \
   X(actuator_forcerange, double, nu, 2, mujoco)              \
+  X(actuator_length0, double, nu, 1, mujoco)                 \
+  X(actuator_acc0, double, nu, 1, mujoco)                    \
   LEVER_MODEL_CONTACT_FIELDS(X)                              \
   LEVER_MODEL_SENSOR_FIELDS(X)                               \
   LEVER_MODEL_EQUALITY_FIELDS(X)                             \
@@ -229,7 +236,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
 // (lever/model_check.hpp).
 #define LEVER_MODEL_CONSTANTS(X) \
   X(body_subtreemass) X(body_invweight0) X(body_simple) X(dof_invweight0) X(dof_M0) X(dof_simplenum) \
-  X(tendon_length0) X(tendon_invweight0)
+  X(tendon_length0) X(tendon_invweight0) X(actuator_length0) X(actuator_acc0)
 
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
 // or `inverse` (written by inverse() only) or `energy` (by compute_energy(), and by forward() with
@@ -238,6 +245,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(qpos, double, nq, 1, state, mujoco)                        \
   X(qvel, double, nv, 1, state, mujoco)                        \
   X(ctrl, double, nu, 1, state, mujoco)                        \
+  X(act, double, na, 1, state, mujoco)                         \
   X(qfrc_applied, double, nv, 1, state, mujoco)                \
   X(mocap_pos, double, nmocap, 3, state, mujoco)               \
   X(mocap_quat, double, nmocap, 4, state, mujoco)              \
@@ -287,6 +295,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(efc_vel, double, nefc, 1, velocity, mujoco)                \
   X(efc_aref, double, nefc, 1, velocity, mujoco)               \
   X(actuator_force, double, nu, 1, acceleration, mujoco)       \
+  X(act_dot, double, na, 1, acceleration, mujoco)              \
   X(qfrc_actuator, double, nv, 1, acceleration, mujoco)        \
   X(qfrc_smooth, double, nv, 1, acceleration, mujoco)          \
   X(qacc_smooth, double, nv, 1, acceleration, mujoco)          \
@@ -343,7 +352,8 @@ enum class Size : int {
   kNuserSensor,
   // tendons
   kNtendon,  ///< tendons (<tendon>)
-  kNwrap     ///< objects in the tendons' paths
+  kNwrap,    ///< objects in the tendons' paths
+  kNa        ///< activations (actuators with dynamics)
 };
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;

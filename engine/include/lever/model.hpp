@@ -95,10 +95,17 @@ constexpr const char* integrator_name(Integrator integrator) {
 }
 
 /// Actuator gain, bias and activation-dynamics types; the numeric values are MuJoCo's mjtGain,
-/// mjtBias and mjtDyn (lever has the stateless, affine ones).
-enum class GainType : int { kFixed = 0, kAffine = 1 };
-enum class BiasType : int { kNone = 0, kAffine = 1 };
-enum class DynType : int { kNone = 0 };
+/// mjtBias and mjtDyn (lever has all but the user-defined ones). An actuator with dynamics has an
+/// activation act (data.act), which its force multiplies instead of ctrl: an integrator's rate is
+/// ctrl, a filter's (ctrl - act) / dynprm[0], a muscle's MuJoCo's activation dynamics
+/// (lever/dynamics.hpp muscle_activation_rate). A muscle's gain and bias are its force-length-
+/// velocity and passive curves (muscle_gain, muscle_bias).
+enum class GainType : int { kFixed = 0, kAffine = 1, kMuscle = 2 };
+enum class BiasType : int { kNone = 0, kAffine = 1, kMuscle = 2 };
+enum class DynType : int { kNone = 0, kIntegrator = 1, kFilter = 2, kMuscle = 3 };
+
+/// Number of activation-dynamics parameters per actuator (MuJoCo's mjNDYN).
+inline constexpr int kDynParameters = 10;
 
 /// Number of gain and bias parameters per actuator (MuJoCo's mjNGAIN, mjNBIAS).
 inline constexpr int kGainParameters = 10;
@@ -236,7 +243,11 @@ enum class EqualityType : int { kConnect = 0, kWeld = 1, kJoint = 2, kTendon = 3
 /// around spheres and cylinders, split by pulleys. lever computes both.
 enum class WrapType : int { kNone = 0, kJoint = 1, kPulley = 2, kSite = 3, kSphere = 4, kCylinder = 5 };
 
-/// How an actuator reaches the dofs (MuJoCo's mjtTrn): lever has joint and tendon transmissions.
+/// How an actuator reaches the dofs (MuJoCo's mjtTrn): a joint (its gear in the joint's own frame,
+/// or for ball and free joints in the parent's: kJointInParent), a slider-crank (a crank site
+/// pulled by a rod of cranklength from a slider site moving along its z axis), a tendon, or a
+/// site (a wrench at the site, in its frame; with a reference site, the length is the site's pose
+/// in the reference's frame). lever has all but MuJoCo's body (adhesion) transmission.
 enum class TransmissionType : int { kJoint = 0, kJointInParent = 1, kSliderCrank = 2, kTendon = 3, kSite = 4 };
 
 /// Numbers per equality constraint in eq_data (MuJoCo's mjNEQDATA). What they mean by type:
@@ -358,6 +369,9 @@ struct Model {
   int nq = 0;         ///< generalized coordinates (a ball has 4 and a free joint 7: nq >= nv)
   int nv = 0;         ///< degrees of freedom
   int nu = 0;         ///< actuators
+  /// activations: one per actuator with dynamics (dyntype not none), which come after the
+  /// stateless ones; actuator a's is act[a - (nu - na)]
+  int na = 0;
   int nbody = 1;      ///< bodies, world included
   int njnt = 0;       ///< joints
   int ngeom = 0;      ///< geoms
@@ -550,9 +564,19 @@ struct Model {
   // if affine) and bias = biasprm[0] + biasprm[1] length + biasprm[2] velocity (if affine): a
   // motor is gain 1 and no bias; a position servo gain kp and bias (0, -kp, -kv).
   std::vector<std::string> actuator_name;
-  std::vector<TransmissionType> actuator_trntype;  ///< joint or tendon
-  std::vector<int> actuator_trnid;  ///< the joint or tendon it drives
+  std::vector<TransmissionType> actuator_trntype;
+  /// what it drives: [0] the joint, tendon or site (a slider-crank's crank site); [1] a
+  /// slider-crank's slider site, a site transmission's reference site, else -1
+  std::vector<std::array<int, 2>> actuator_trnid;
+  std::vector<double> actuator_cranklength;  ///< a slider-crank's rod length (else 0)
   std::vector<DynType> actuator_dyntype;
+  std::vector<std::array<double, kDynParameters>> actuator_dynprm;  ///< filter: tau; muscle:
+                                                                    ///< tau_act, tau_deact
+  std::vector<uint8_t> actuator_actlimited;  ///< its activation clamped to actrange after a step
+  std::vector<std::array<double, 2>> actuator_actrange;
+  /// the range of its length (a muscle's is mapped onto its operating range): as written, or
+  /// computed by the compiler (set_length_ranges)
+  std::vector<std::array<double, 2>> actuator_lengthrange;
   std::vector<GainType> actuator_gaintype;
   std::vector<BiasType> actuator_biastype;
   std::vector<std::array<double, kGainParameters>> actuator_gainprm;
@@ -562,6 +586,10 @@ struct Model {
   std::vector<uint8_t> actuator_forcelimited;
   std::vector<std::array<double, 2>> actuator_ctrlrange;
   std::vector<std::array<double, 2>> actuator_forcerange;
+  std::vector<double> actuator_length0;  ///< set_const: its length at qpos0
+  /// set_const: |M^-1 moment| at qpos0, the acceleration a unit force gives (a muscle's force
+  /// scale when its force is negative)
+  std::vector<double> actuator_acc0;
 
   // ---- sensors (nsensor): what each measures and where its numbers go in data.sensordata ----------
   std::vector<std::string> sensor_name;
@@ -591,6 +619,7 @@ struct Model {
   RowMatrix key_qpos;  ///< (nkey x nq)
   RowMatrix key_qvel;  ///< (nkey x nv)
   RowMatrix key_ctrl;  ///< (nkey x nu)
+  RowMatrix key_act;   ///< (nkey x na)
   RowMatrix key_mpos;   ///< (nkey x 3 nmocap) the mocap bodies' positions (default: body_pos)
   RowMatrix key_mquat;  ///< (nkey x 4 nmocap) their orientations, unit (default: body_quat)
 
@@ -653,6 +682,45 @@ struct Model {
   int equality(const std::string& n) const;
   int tendon(const std::string& n) const;
 };
+
+/// The dof actuator `a` drives alone, with moment gear[0]: that of a hinge or slide joint
+/// transmission (kJoint or kJointInParent, the same on those joints); -1 for every other
+/// transmission (ball and free joints, tendons, slider-cranks, sites), whose moment is a row of
+/// data.actuator_moment that depends on the state.
+int actuator_scalar_dof(const Model& model, int a);
+
+/// Throws ModelError, naming `feature` and the first actuator that is not one, unless every
+/// actuator is stateless (dyntype none), has a fixed or affine gain and bias (no muscle) and
+/// drives a hinge or slide joint alone (actuator_scalar_dof >= 0): for the features
+/// (identification, the step's derivatives, ...) written for actuators whose force is affine in
+/// ctrl and whose moment is a constant gear on one dof.
+void require_simple_actuators(const Model& model, const std::string& feature);
+
+/// The actuators whose length range the compiler computes (MJCF <compiler><lengthrange mode>,
+/// MuJoCo's mjtLRMode): none, muscles, muscles and user-defined actuators (lever has none of
+/// those: the same as muscles), all.
+enum class LengthRangeMode : int { kNone = 0, kMuscle = 1, kMuscleUser = 2, kAll = 3 };
+
+/// How the compiler computes actuator length ranges (MJCF <compiler><lengthrange>, MuJoCo's
+/// mjLROpt, with its defaults).
+struct LengthRangeOptions {
+  LengthRangeMode mode = LengthRangeMode::kMuscle;
+  bool useexisting = true;  ///< keep a range already given (lower < upper)
+  bool uselimit = false;    ///< take a limited joint's or tendon's range
+  double accel = 20;        ///< the length's target acceleration in the simulation
+  double maxforce = 0;      ///< the most applied force (norm), 0: no bound
+  double timeconst = 1;     ///< s: the velocity's decay time constant
+  double timestep = 0.01;   ///< s: the simulation's timestep (0: the model's)
+  double inttotal = 10;     ///< s: simulated time per side
+  double inteval = 2;       ///< s: the final interval whose lengths give the range's end
+  double tolrange = 0.05;   ///< the most the lengths may spread over inteval, relative to the range
+};
+
+/// Set actuator_lengthrange where the options ask for it, as MuJoCo 2.2.2's compiler does
+/// (mj_setLengthRange): from the joint's or tendon's range (uselimit), or by simulating the model
+/// from qpos0 with the actuator pulled each way (lifecycle/length_range.cpp says how). Call it
+/// after set_const(). Throws ModelError naming the actuator when the simulation does not settle.
+void set_length_ranges(Model& model, const LengthRangeOptions& options = {});
 
 /// Derive the constants MuJoCo's mj_setConst computes (dof_invweight0, dof_M0, body_invweight0,
 /// body_subtreemass) and lever's link tree from the model's parameters. Call it after building a

@@ -123,7 +123,8 @@ struct Ordered {
 };
 constexpr Ordered kOrdered[] = {{"jnt_range", "jnt_limited"},
                                 {"actuator_ctrlrange", "actuator_ctrllimited"},
-                                {"actuator_forcerange", "actuator_forcelimited"}};
+                                {"actuator_forcerange", "actuator_forcelimited"},
+                                {"actuator_actrange", "actuator_actlimited"}};
 
 void check_ranges(const Model& model) {
   for (const NonNegative& rule : kNonNegative) {
@@ -204,10 +205,11 @@ void check_sizes(const Model& model) {
   LEVER_REQUIRE_SIZE(key_time, model.nkey);
   if (model.nkey < 0 || model.key_qpos.rows() != model.nkey || model.key_qpos.cols() != model.nq ||
       model.key_qvel.rows() != model.nkey || model.key_qvel.cols() != model.nv ||
-      model.key_ctrl.rows() != model.nkey || model.key_ctrl.cols() != model.nu) {
+      model.key_ctrl.rows() != model.nkey || model.key_ctrl.cols() != model.nu ||
+      model.key_act.rows() != model.nkey || model.key_act.cols() != model.na) {
     throw ModelError(
-        "keyframe arrays key_qpos, key_qvel, key_ctrl must be nkey x nq, nkey x nv "
-        "and nkey x nu (nkey = " +
+        "keyframe arrays key_qpos, key_qvel, key_ctrl, key_act must be nkey x nq, nkey x nv, "
+        "nkey x nu and nkey x na (nkey = " +
         std::to_string(model.nkey) + ").");
   }
   if (model.nmocap < 0 || model.key_mpos.rows() != model.nkey ||
@@ -353,26 +355,36 @@ void check_tree(const Model& model) {
     }
   }
   for (int a = 0; a < model.nu; ++a) {
-    const int j = model.actuator_trnid[a];
-    const TransmissionType trn = model.actuator_trntype[a];
-    if (trn == TransmissionType::kTendon) {
-      if (j < 0 || j >= model.ntendon) {
-        throw ModelError("actuator " + std::to_string(a) + " names no tendon.");
-      }
-      continue;
-    }
-    if (trn != TransmissionType::kJoint) {
-      reject("actuator", a, model.actuator_name[a],
-             "has a transmission lever does not have (joint 0 and tendon 3 are lever's)");
-    }
-    if (j < 0 || j >= model.njnt) {
-      throw ModelError("actuator " + std::to_string(a) + " names no joint.");
-    }
-    if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
-      throw ModelError("actuator '" + model.actuator_name[a] + "' drives joint '" +
-                           model.jnt_name[j] +
-                           "', a ball or free joint; lever's actuators drive hinges and slides.",
-                       "actuator", a);
+    const int id = model.actuator_trnid[a][0], second = model.actuator_trnid[a][1];
+    const auto names_no = [&](const char* kind) {
+      throw ModelError("actuator " + std::to_string(a) + " names no " + kind + ".", "actuator", a);
+    };
+    const auto site = [&](int s) { return s >= 0 && s < model.nsite; };
+    switch (model.actuator_trntype[a]) {
+      case TransmissionType::kJoint:
+      case TransmissionType::kJointInParent:
+        if (id < 0 || id >= model.njnt) names_no("joint");
+        if (second != -1) names_no("second object (a joint transmission has none: -1)");
+        break;
+      case TransmissionType::kTendon:
+        if (id < 0 || id >= model.ntendon) names_no("tendon");
+        if (second != -1) names_no("second object (a tendon transmission has none: -1)");
+        break;
+      case TransmissionType::kSliderCrank:
+        if (!site(id)) names_no("crank site");
+        if (!site(second)) names_no("slider site");
+        if (!(model.actuator_cranklength[a] > 0)) {
+          reject("actuator", a, model.actuator_name[a],
+                 "is a slider-crank whose cranklength is not positive");
+        }
+        break;
+      case TransmissionType::kSite:
+        if (!site(id)) names_no("site");
+        if (second != -1 && !site(second)) names_no("reference site");
+        break;
+      default:
+        reject("actuator", a, model.actuator_name[a],
+               "has a transmission lever does not have (MuJoCo's body transmission, adhesion)");
     }
   }
 }
@@ -555,19 +567,36 @@ void check_options_actuators_keys(const Model& model) {
     throw ModelError("fluid forces (viscosity, density) with MuJoCo 3's implicitfast integrator: "
                      "lever has them with Euler, RK4 and MuJoCo 2.2.2's implicit only.");
   }
+  int stateful = 0;
   for (int a = 0; a < model.nu; ++a) {
+    const int dyntype = static_cast<int>(model.actuator_dyntype[a]);
     const int gaintype = static_cast<int>(model.actuator_gaintype[a]);
     const int biastype = static_cast<int>(model.actuator_biastype[a]);
-    if (model.actuator_dyntype[a] != DynType::kNone || gaintype < 0 || gaintype > 1 ||
-        biastype < 0 || biastype > 1) {
+    if (dyntype < 0 || dyntype > 3 || gaintype < 0 || gaintype > 2 || biastype < 0 ||
+        biastype > 2) {
       reject("actuator", a, model.actuator_name[a],
-             "needs dyntype none, gaintype fixed or affine and biastype none or affine");
+             "needs dyntype none, integrator, filter or muscle, gaintype fixed, affine or muscle "
+             "and biastype none, affine or muscle (lever has no user-defined ones)");
     }
+    if (dyntype != 0) {
+      ++stateful;
+    } else if (stateful > 0) {
+      reject("actuator", a, model.actuator_name[a],
+             "has no dynamics but comes after one that has: stateless actuators come first");
+    }
+    if (model.actuator_actlimited[a] && dyntype == 0) {
+      reject("actuator", a, model.actuator_name[a], "has an actrange but no dynamics");
+    }
+  }
+  if (stateful != model.na) {
+    throw ModelError("na = " + std::to_string(model.na) + " but " + std::to_string(stateful) +
+                     " actuators have dynamics (one activation each).");
   }
   for (int k = 0; k < model.nkey; ++k) {
     if (!std::isfinite(model.key_time[k]) || !model.key_qpos.row(k).allFinite() ||
-        !model.key_qvel.row(k).allFinite() || !model.key_ctrl.row(k).allFinite()) {
-      reject("keyframe", k, model.key_name[k], "has a non-finite time, qpos, qvel or ctrl");
+        !model.key_qvel.row(k).allFinite() || !model.key_ctrl.row(k).allFinite() ||
+        !model.key_act.row(k).allFinite()) {
+      reject("keyframe", k, model.key_name[k], "has a non-finite time, qpos, qvel, ctrl or act");
     }
   }
 }

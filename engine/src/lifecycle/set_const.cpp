@@ -53,9 +53,14 @@ JointKind joint_kind(const Model& model, int j) {
 void build_actuator_kinds(Model& model) {
   model.actuator_kind.resize(model.nu);
   for (int a = 0; a < model.nu; ++a) {
+    // an actuator with dynamics or a muscle's curves is none of the simple kinds
+    const bool simple = model.actuator_dyntype[a] == DynType::kNone &&
+                        model.actuator_gaintype[a] != GainType::kMuscle &&
+                        model.actuator_biastype[a] != BiasType::kMuscle;
     model.actuator_kind[a] =
-        actuator_kind_of(model.actuator_gaintype[a], model.actuator_gainprm[a],
-                         model.actuator_biastype[a], model.actuator_biasprm[a]);
+        simple ? actuator_kind_of(model.actuator_gaintype[a], model.actuator_gainprm[a],
+                                  model.actuator_biastype[a], model.actuator_biasprm[a])
+               : ActuatorKind::kGeneral;
   }
 }
 
@@ -232,6 +237,23 @@ void build_tendon_constants(Model& model, Data& data) {
   tendon(model, data);
 }
 
+// The actuators' constants (mj_setConst): each length at qpos0 and the norm of M^-1 times its
+// moment there (data: kinematics, tendons and M's factor at qpos0).
+void build_actuator_constants(Model& model, Data& data) {
+  model.actuator_length0.assign(model.nu, 0.0);
+  model.actuator_acc0.assign(model.nu, 0.0);
+  if (model.nu == 0) return;
+  transmission(model, data);
+  Eigen::VectorXd x(model.nv);
+  for (int a = 0; a < model.nu; ++a) {
+    model.actuator_length0[a] = data.actuator_length[a];
+    if (model.nv == 0) continue;
+    x = data.actuator_moment.row(a).transpose();
+    solve_mass(model, data, x);
+    model.actuator_acc0[a] = x.norm();
+  }
+}
+
 }  // namespace
 
 void set_const(Model& model) {
@@ -293,6 +315,7 @@ void set_const(Model& model) {
     model.body_invweight0[b] = weight;
   }
   build_tendon_constants(model, data);
+  build_actuator_constants(model, data);
   complete_equality_data(model, data);  // constraint/equality.cpp: anchors at qpos0
   detail::check_at_qpos0(model, data);  // model_check.cpp: finite parameters can still overflow
   build_simple_bodies(model);  // after dof_M0, which crba() copies for their dofs from now on

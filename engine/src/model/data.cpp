@@ -100,6 +100,7 @@ Data::Data(const Model& model)
   work.dof_chain.assign(2 * static_cast<size_t>(nv), 0);
   work.equality_jac = Eigen::MatrixXd::Zero(12, nv);
   work.tendon_jac = Eigen::MatrixXd::Zero(12, nv);
+  work.transmission_jac = Eigen::MatrixXd::Zero(12, nv);
   work.contact_weight.assign(36 * contact.size(), 0.0);
   work.frame_scratch.assign(6 * static_cast<size_t>(nv), 0.0);
   work.hessian_envelope.assign(nv, 0);
@@ -109,7 +110,9 @@ Data::Data(const Model& model)
   for (int i = 0; i < 4; ++i) {
     work.rk_qvel[i] = Eigen::VectorXd::Zero(nv);
     work.rk_qacc[i] = Eigen::VectorXd::Zero(nv);
+    work.rk_act_dot[i] = Eigen::VectorXd::Zero(model.na);
   }
+  work.rk_act0 = work.rk_dact = Eigen::VectorXd::Zero(model.na);
   work.qDeriv = Eigen::MatrixXd::Zero(nv, nv);
   work.qLU = Eigen::MatrixXd::Zero(nv, nv);
   work.subtree_coupling.assign(nbody, VelocityCoupling());
@@ -139,6 +142,8 @@ void reset(const Model& model, Data& data) {
   data.qpos = model.qpos0;
   data.qvel.setZero();
   data.ctrl.setZero();
+  data.act.setZero();
+  data.act_dot.setZero();
   data.qfrc_applied.setZero();
   place_mocap_at_bodies(model, data);
   data.qacc.setZero();
@@ -161,6 +166,7 @@ void reset_keyframe(const Model& model, Data& data, int key) {
   data.qpos = model.key_qpos.row(key).transpose();
   data.qvel = model.key_qvel.row(key).transpose();
   data.ctrl = model.key_ctrl.row(key).transpose();
+  data.act = model.key_act.row(key).transpose();
   for (int i = 0; i < model.nmocap; ++i) {
     for (int k = 0; k < 3; ++k) data.mocap_pos[i][k] = model.key_mpos(key, 3 * i + k);
     for (int k = 0; k < 4; ++k) data.mocap_quat[i][k] = model.key_mquat(key, 4 * i + k);

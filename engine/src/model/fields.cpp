@@ -21,7 +21,7 @@ constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nmeshface = Size::kNmeshface,
                nsensor = Size::kNsensor, nsensordata = Size::kNsensordata,
                neq = Size::kNeq, nmocap = Size::kNmocap, ntendon = Size::kNtendon,
-               nwrap = Size::kNwrap;
+               nwrap = Size::kNwrap, na = Size::kNa;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
                 energy = Stage::kEnergy, step = Stage::kStep;
@@ -284,6 +284,7 @@ int size_of(const Model& model, Size size) {
     case Size::kNuserSensor: return model.nuser_sensor;
     case Size::kNtendon: return model.ntendon;
     case Size::kNwrap: return model.nwrap;
+    case Size::kNa: return model.na;
   }
   return 0;
 }
@@ -298,7 +299,7 @@ const char* size_name(Size size) {
       "ngeom",      "nsite",       "nefc",         "npair",       "nexclude",       "nmesh",
       "nmeshvert",  "nmeshgraph",  "nmeshface",    "nsensor",      "nsensordata", "neq",            "nmocap",
       "nuser_body", "nuser_jnt",   "nuser_geom",   "nuser_site",  "nuser_actuator", "nuser_sensor",
-      "ntendon",    "nwrap"};
+      "ntendon",    "nwrap",       "na"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -451,7 +452,8 @@ void size_model(Model& model) {
                                                                {"nuser_actuator", model.nuser_actuator},
                                                                {"nuser_sensor", model.nuser_sensor},
                                                                {"ntendon", model.ntendon},
-                                                               {"nwrap", model.nwrap}}};
+                                                               {"nwrap", model.nwrap},
+                                                               {"na", model.na}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +
@@ -480,6 +482,7 @@ void size_model(Model& model) {
   model.key_qpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nq));
   model.key_qvel.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nv));
   model.key_ctrl.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nu));
+  model.key_act.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.na));
   model.key_mpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, 3 * model.nmocap));
   model.key_mquat.conservativeResizeLike(RowMatrix::Zero(model.nkey, 4 * model.nmocap));
   model.fit_tag = 0;  // its arrays may have changed: set_const again before a Data trusts it

@@ -64,6 +64,10 @@ void step(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&
 /// slide coordinates add h qvel; a ball's or free joint's quaternion turns by the rotation h w
 /// about its body axes and is normalized. Used by every integrator.
 void integrate_positions(const Model& model, double* qpos, const double* qvel, double h);
+
+/// act += h act_dot (na numbers), then each limited activation clamped to its actrange (MuJoCo's
+/// mj_advance: every integrator's last step on the activations).
+void advance_activations(const Model& model, Data& data, const double* act_dot, double h);
 }  // namespace detail
 
 }  // namespace lever

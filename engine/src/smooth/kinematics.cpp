@@ -440,10 +440,8 @@ void step_kinematics(const Model& model, Data& data) {
 
 }  // namespace detail
 
-namespace {
-
 // The Jacobians of a point fixed to a body, once the arguments are known to fit.
-void point_jacobians(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
+void detail::point_jacobians(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
                      Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr) {
   // write through column pointers: Eigen's dynamic-size assignment on a Ref costs more than the
   // arithmetic here
@@ -469,7 +467,6 @@ void point_jacobians(const Model& model, const Data& data, int body, const Eigen
   }
 }
 
-}  // namespace
 
 void jac_point(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
                Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr) {
@@ -479,7 +476,7 @@ void jac_point(const Model& model, const Data& data, int body, const Eigen::Vect
     throw StateError("lever::jac_point: body " + std::to_string(body) + " is not in 0.." +
                      std::to_string(model.nbody - 1) + ".");
   }
-  point_jacobians(model, data, body, point, jacp, jacr);
+  detail::point_jacobians(model, data, body, point, jacp, jacr);
 }
 
 void jac_site(const Model& model, const Data& data, int site, Eigen::Ref<Eigen::MatrixXd> jacp,
@@ -491,7 +488,7 @@ void jac_site(const Model& model, const Data& data, int site, Eigen::Ref<Eigen::
     throw StateError("lever::jac_site: site " + std::to_string(site) + " is not in 0.." +
                      std::to_string(model.nsite - 1) + ".");
   }
-  point_jacobians(model, data, model.site_bodyid[site], data.site_xpos[site], jacp, jacr);
+  detail::point_jacobians(model, data, model.site_bodyid[site], data.site_xpos[site], jacp, jacr);
 }
 
 }  // namespace lever

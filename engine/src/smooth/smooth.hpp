@@ -65,6 +65,11 @@ double wrap_around_geom(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1,
                         bool cylinder, const Eigen::Vector3d* side, Eigen::Vector3d& tangent0,
                         Eigen::Vector3d& tangent1);
 
+/// The translational and rotational Jacobians (3 x nv each) of a point fixed to `body`, given in
+/// world coordinates (MuJoCo's mj_jac), without the entry checks of jac_point (kinematics.cpp).
+void point_jacobians(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
+                     Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr);
+
 // ---- the fluid forces (fluid.cpp): MuJoCo 2.2.2's inertia-box model, on when has_fluid(opt)
 
 /// Every body's spatial velocity cvel from qvel (MuJoCo's mj_comVel without cdof_dot): the

@@ -56,8 +56,8 @@ void record_point(Data& data, int& point, const Eigen::Vector3d& x, int object) 
 void add_segment_jacobian(const Model& model, Data& data, int body_a, const Eigen::Vector3d& a,
                           int body_b, const Eigen::Vector3d& b, double scale, double* J) {
   Eigen::MatrixXd& jac = data.work.tendon_jac;  // rows 0-2: a's, 6-8: b's (3-5, 9-11 rotations)
-  jac_point(model, data, body_a, a, jac.middleRows(0, 3), jac.middleRows(3, 3));
-  jac_point(model, data, body_b, b, jac.middleRows(6, 3), jac.middleRows(9, 3));
+  detail::point_jacobians(model, data, body_a, a, jac.middleRows(0, 3), jac.middleRows(3, 3));
+  detail::point_jacobians(model, data, body_b, b, jac.middleRows(6, 3), jac.middleRows(9, 3));
   double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};
   const double norm = std::sqrt(u[0] * u[0] + u[1] * u[1] + u[2] * u[2]);
   if (norm < detail::kMinVal) {

@@ -202,7 +202,7 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
       continue;
     }
     const double gear = model.actuator_gear[a][0];
-    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    const int dof = actuator_scalar_dof(model, a);  // >= 0: refuse_fluid checked
     w.rhs_q(dof, dof) += gear * per_length * gear;
     w.rhs_v(dof, dof) += gear * per_velocity * gear;
     if (!ctrl_clamped) w.rhs_u(dof, a) = gear * gain;
@@ -595,7 +595,7 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       continue;
     }
     const double gear = model.actuator_gear[a][0];
-    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    const int dof = actuator_scalar_dof(model, a);  // >= 0: refuse_fluid checked
     w.rhs_u(dof, a) += h * gear * model.actuator_gainprm[a][2] * gear * w.qacc_step[dof];
   }
 
@@ -685,12 +685,15 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   data.time = time0;
 }
 
-// The fluid forces depend on the pose and the velocity in ways the chain rule above leaves out.
+// The fluid forces depend on the pose and the velocity in ways the chain rule above leaves out,
+// and so do the moments of transmissions other than a hinge's or a slide's.
 void refuse_fluid(const Model& model) {
   if (has_fluid(model.opt)) {
     throw ModelError("derivatives: the model has fluid forces (option viscosity or density); "
                      "lever's analytic derivatives do not cover them yet.");
   }
+  // the chain rule below carries each actuator's force through a constant gear on one dof
+  require_simple_actuators(model, "derivatives");
 }
 
 }  // namespace

@@ -143,6 +143,10 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNmocap: return [](int i) { return "mocap " + std::to_string(i); };
     case Size::kNtendon: return [&model](int i) { return "tendon " + quoted(model.tendon_name, i); };
     case Size::kNwrap: return [](int i) { return "wrap " + std::to_string(i); };
+    case Size::kNa:  // an activation: its actuator's, the stateful ones coming last
+      return [&model](int i) {
+        return "actuator " + quoted(model.actuator_name, i + model.nu - model.na);
+      };
     case Size::kOne: break;
   }
   return [](int) { return std::string(); };

@@ -179,6 +179,7 @@ void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s) {
     d->qacc_warmstart[i] = 0.0;
   }
   for (int a = 0; a < m->nu; ++a) d->ctrl[a] = s.ctrl[a];
+  for (int i = 0; i < m->na && i < s.act.size(); ++i) d->act[i] = s.act[i];
 }
 
 void Twin::set_state(const test::State& s) {
@@ -194,6 +195,7 @@ void Twin::follow_mujoco() {
     data.qfrc_applied[i] = d->qfrc_applied[i];
   }
   for (int a = 0; a < m->nu; ++a) data.ctrl[a] = d->ctrl[a];
+  for (int i = 0; i < m->na; ++i) data.act[i] = d->act[i];
 }
 
 void Twin::reset() {
