@@ -109,7 +109,7 @@ TEST_CASE("diff: real files that set a medium load and agree, or are refused by 
       // contacts off on both sides, as tests/diff/tendons.cpp has them for the 2F-85: its finger
       // meshes touch in random poses, and what is compared here is the medium's drag
       twin.m->opt.disableflags |= mjDSBL_CONTACT;
-      twin.model.opt.contact_disabled = true;
+      twin.model.opt.disableflags |= kDisableContact;
       set_const(twin.model);
       twin.data = Data(twin.model);
       check_within_bound(diff::random_states(twin, 20, seed));

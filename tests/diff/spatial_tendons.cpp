@@ -192,7 +192,7 @@ TEST_CASE("diff: the 2F-85 scene's spatial tendon agrees with MuJoCo", "[diff][t
     INFO(context(file, path, seed));
     diff::Twin twin(file, path);
     twin.m->opt.disableflags |= mjDSBL_CONTACT;
-    twin.model.opt.contact_disabled = true;
+    twin.model.opt.disableflags |= kDisableContact;
     set_const(twin.model);
     twin.data = Data(twin.model);
     REQUIRE(twin.model.wrap_type[twin.model.tendon_adr[1]] == WrapType::kSite);

@@ -66,7 +66,7 @@ bool has_range(const Model& model, int a) {
 // The copy the simulation runs on: the compiler's disable flags held by their parameters.
 Model simulation_model(const Model& model, const LengthRangeOptions& options) {
   Model sim = model;
-  sim.opt.contact_disabled = true;
+  sim.opt.disableflags |= kDisableContact;
   sim.opt.gravity.setZero();
   sim.opt.viscosity = sim.opt.density = 0;
   if (options.timestep > 0) sim.opt.timestep = options.timestep;

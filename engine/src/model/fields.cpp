@@ -294,12 +294,12 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 27> names = {
-      "1",          "nq",          "nv",           "nu",          "nbody",          "njnt",
-      "ngeom",      "nsite",       "nefc",         "npair",       "nexclude",       "nmesh",
-      "nmeshvert",  "nmeshgraph",  "nmeshface",    "nsensor",      "nsensordata", "neq",            "nmocap",
-      "nuser_body", "nuser_jnt",   "nuser_geom",   "nuser_site",  "nuser_actuator", "nuser_sensor",
-      "ntendon",    "nwrap",       "na"};
+  static constexpr std::array<const char*, 28> names = {
+      "1",           "nq",         "nv",          "nu",          "nbody",      "njnt",
+      "ngeom",       "nsite",      "nefc",        "npair",       "nexclude",   "nmesh",
+      "nmeshvert",   "nmeshgraph", "nmeshface",   "nsensor",     "nsensordata", "neq",
+      "nmocap",      "nuser_body", "nuser_jnt",   "nuser_geom",  "nuser_site", "nuser_actuator",
+      "nuser_sensor", "ntendon",   "nwrap",       "na"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -427,7 +427,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 26> counts = {{{"nmesh", model.nmesh},
+  const std::array<std::pair<const char*, int>, 27> counts = {{{"nmesh", model.nmesh},
                                                                {"nmeshvert", model.nmeshvert},
                                                                {"nmeshgraph", model.nmeshgraph},
                                                                {"nmeshface", model.nmeshface},
