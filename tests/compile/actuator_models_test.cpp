@@ -12,37 +12,13 @@
 #include <filesystem>
 
 #include <lever/harness/models.hpp>
-#include "mujoco_xml.hpp"
+#include "compile_checks.hpp"
 
-namespace {
-
-void compare_actuators_with_mujoco(const std::string& name, const std::string& xml) {
-  INFO(name);
-  const lever::Model ours = lever::mjcf::load_string(xml, name);
-  std::string error;
-  const lever::test::MjModelHandle theirs = lever::test::mujoco_compile(xml, &error);
-  INFO("mujoco: " << error);
-  REQUIRE(theirs);
-  std::vector<std::string> differences = lever::test::compare_parameters(ours, *theirs);
-  const std::vector<std::string> constants = lever::test::compare_constants(ours, *theirs);
-  differences.insert(differences.end(), constants.begin(), constants.end());
-  for (const std::string& d : differences) FAIL_CHECK(name << ": " << d);
-}
-
-std::string actuator_refusal(const std::string& xml) {
-  try {
-    lever::mjcf::load_string(xml, "refused.xml");
-  } catch (const lever::mjcf::ParseError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
+using lever::test::check_compiles_as_mujoco;
 
 TEST_CASE("the actuator models compile to MuJoCo 2.2.2's parameters", "[compile][actuators]") {
   const std::string path = lever::test::model_path("tests/models/actuators/transmissions.xml");
-  compare_actuators_with_mujoco("transmissions.xml", lever::test::read_text(path));
+  check_compiles_as_mujoco("transmissions.xml", lever::test::read_text(path));
   const lever::Model m = lever::mjcf::load_file(path);
   REQUIRE(m.nu == 10);
   CHECK(m.actuator_trntype[2] == lever::TransmissionType::kJointInParent);
@@ -61,27 +37,27 @@ TEST_CASE("MuJoCo's slider-crank sample compiles to MuJoCo 2.2.2's parameters",
     WARN("no " << file << ": skipped");
     return;
   }
-  compare_actuators_with_mujoco("slider_crank.xml", lever::test::read_text(file));
+  check_compiles_as_mujoco("slider_crank.xml", lever::test::read_text(file));
 }
 
 TEST_CASE("transmissions written wrongly are refused by name", "[compile][actuators]") {
   const std::string head = R"(<mujoco><worldbody><site name="s"/><body name="a"><joint name="j"/>
     <geom size="1"/><site name="t"/></body></worldbody><actuator>)";
-  CHECK_THAT(actuator_refusal(head + R"(<motor joint="j" site="s"/></actuator></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<motor joint="j" site="s"/></actuator></mujoco>)"),
              Catch::Contains("names both joint and site"));
-  CHECK_THAT(actuator_refusal(head + R"(<motor joint="j" slidersite="s"/></actuator></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<motor joint="j" slidersite="s"/></actuator></mujoco>)"),
              Catch::Contains("belong to a slider-crank"));
-  CHECK_THAT(actuator_refusal(head + R"(<motor joint="j" refsite="s"/></actuator></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<motor joint="j" refsite="s"/></actuator></mujoco>)"),
              Catch::Contains("refsite belongs to a site transmission"));
-  CHECK_THAT(actuator_refusal(head + R"(<motor cranksite="t" cranklength="1"/></actuator></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<motor cranksite="t" cranklength="1"/></actuator></mujoco>)"),
              Catch::Contains("needs slidersite"));
-  CHECK_THAT(actuator_refusal(head + R"(<motor cranksite="t" slidersite="s"/></actuator></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<motor cranksite="t" slidersite="s"/></actuator></mujoco>)"),
              Catch::Contains("positive cranklength"));
-  CHECK_THAT(actuator_refusal(head + R"(<motor site="x"/></actuator></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<motor site="x"/></actuator></mujoco>)"),
              Catch::Contains("unknown site 'x'"));
-  CHECK_THAT(actuator_refusal(head + R"(<motor site="t" refsite="y"/></actuator></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<motor site="t" refsite="y"/></actuator></mujoco>)"),
              Catch::Contains("unknown site 'y'"));
-  CHECK_THAT(actuator_refusal(head + R"(<motor body="a"/></actuator></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<motor body="a"/></actuator></mujoco>)"),
              Catch::Contains("body"));
 }
 
@@ -89,7 +65,7 @@ TEST_CASE("the muscle model compiles to MuJoCo 2.2.2's parameters, lengthrange i
           "[compile][actuators][muscles]") {
   // the compiler's length-range simulation (two muscles, both sides) agrees with MuJoCo's
   const std::string path = lever::test::model_path("tests/models/actuators/muscles.xml");
-  compare_actuators_with_mujoco("muscles.xml", lever::test::read_text(path));
+  check_compiles_as_mujoco("muscles.xml", lever::test::read_text(path));
   const lever::Model m = lever::mjcf::load_file(path);
   REQUIRE(m.na == 6);
   CHECK(m.actuator_dyntype[3] == lever::DynType::kMuscle);
@@ -110,7 +86,7 @@ TEST_CASE("a muscle's lengthrange from its joint's range (uselimit) agrees with 
     </compiler><worldbody><body><joint name="j" axis="0 1 0" range="-0.5 0.8"/>
     <geom size="0.1" contype="0" conaffinity="0"/></body></worldbody>
     <actuator><muscle name="m" joint="j" ctrlrange="0 1"/></actuator></mujoco>)";
-  compare_actuators_with_mujoco("uselimit", xml);
+  check_compiles_as_mujoco("uselimit", xml);
   const lever::Model m = lever::mjcf::load_string(xml, "uselimit.xml");
   CHECK(m.actuator_lengthrange[0] == std::array<double, 2>{-0.5, 0.8});
 }
@@ -119,18 +95,18 @@ TEST_CASE("actuators with dynamics written wrongly are refused by name",
           "[compile][actuators][muscles]") {
   const std::string head = R"(<mujoco><worldbody><body><joint name="j"/><geom size="1"/></body>
     </worldbody><actuator>)";
-  CHECK_THAT(actuator_refusal(head + R"(<general joint="j" dyntype="filter"/><motor joint="j"/>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<general joint="j" dyntype="filter"/><motor joint="j"/>
     </actuator></mujoco>)"),
              Catch::Contains("stateless actuators must come before"));
-  CHECK_THAT(actuator_refusal(head + R"(<general joint="j" actrange="0 1"/></actuator></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<general joint="j" actrange="0 1"/></actuator></mujoco>)"),
              Catch::Contains("needs activation dynamics"));
-  CHECK_THAT(actuator_refusal(head + R"(<muscle joint="j" lmin="1.2" lengthrange="0 1"/>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<muscle joint="j" lmin="1.2" lengthrange="0 1"/>
     </actuator></mujoco>)"),
              Catch::Contains("lmin < 1 < lmax"));
-  CHECK_THAT(actuator_refusal(head + R"(<general joint="j" dyntype="user"/></actuator></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<general joint="j" dyntype="user"/></actuator></mujoco>)"),
              Catch::Contains("user"));
   // an unlimited joint: the simulation pulls the length without end and does not settle
-  CHECK_THAT(actuator_refusal(head + R"(<muscle joint="j"/></actuator></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<muscle joint="j"/></actuator></mujoco>)"),
              Catch::Contains("did not settle"));
 }
 

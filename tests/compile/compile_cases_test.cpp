@@ -5,7 +5,7 @@
 #include <lever/mjcf.hpp>
 
 #include "bad_inputs.hpp"
-#include "mujoco_xml.hpp"
+#include "compile_checks.hpp"
 
 namespace {
 
@@ -16,16 +16,7 @@ struct Case {
 
 // both compile it; every parameter and constant must agree
 void compare(const std::string& name, const std::string& xml) {
-  INFO(name);
-  const lever::Model ours = lever::mjcf::load_string(xml, name + ".xml");
-  std::string error;
-  const lever::test::MjModelHandle theirs = lever::test::mujoco_compile(xml, &error);
-  INFO("mujoco: " << error);
-  REQUIRE(theirs);
-  std::vector<std::string> differences = lever::test::compare_parameters(ours, *theirs);
-  const std::vector<std::string> constants = lever::test::compare_constants(ours, *theirs);
-  differences.insert(differences.end(), constants.begin(), constants.end());
-  for (const std::string& d : differences) FAIL_CHECK(name << ": " << d);
+  lever::test::check_compiles_as_mujoco(name, xml);
 }
 
 // the lesson's demonstration: a 1 kg colliding geom and a 2 kg non-colliding geom in group 3
@@ -428,7 +419,8 @@ std::string many_pairs_model() {
   xml += "</body>\n</worldbody>\n<contact>\n";
   for (int i = 0; i < 40; ++i) {
     // alternate the two body pairs (a-b and world-a) and the order the geoms are written in
-    const std::string g1 = "a" + std::to_string(i % 12), g2 = "b" + std::to_string((5 * i) % 12);
+    const std::string g1 = std::string("a").append(std::to_string(i % 12));
+    const std::string g2 = std::string("b").append(std::to_string((5 * i) % 12));
     if (i % 3 == 0) {
       xml += "<pair geom1=\"" + g1 + "\" geom2=\"" + g1 + "\" condim=\"" +
              std::to_string(1 + 2 * (i % 2)) + "\"/>\n";

@@ -10,40 +10,16 @@
 #include <filesystem>
 
 #include <lever/harness/models.hpp>
-#include "mujoco_xml.hpp"
+#include "compile_checks.hpp"
 
-namespace {
-
-void compare_with_mujoco(const std::string& name, const std::string& xml) {
-  INFO(name);
-  const lever::Model ours = lever::mjcf::load_string(xml, name);
-  std::string error;
-  const lever::test::MjModelHandle theirs = lever::test::mujoco_compile(xml, &error);
-  INFO("mujoco: " << error);
-  REQUIRE(theirs);
-  std::vector<std::string> differences = lever::test::compare_parameters(ours, *theirs);
-  const std::vector<std::string> constants = lever::test::compare_constants(ours, *theirs);
-  differences.insert(differences.end(), constants.begin(), constants.end());
-  for (const std::string& d : differences) FAIL_CHECK(name << ": " << d);
-}
-
-std::string constraint_refusal(const std::string& xml) {
-  try {
-    lever::mjcf::load_string(xml, "refused.xml");
-  } catch (const lever::mjcf::ParseError& e) {
-    return e.what();
-  }
-  return "";
-}
-
-}  // namespace
+using lever::test::check_compiles_as_mujoco;
 
 TEST_CASE("the constraint models compile to MuJoCo 2.2.2's parameters", "[compile][constraints]") {
   for (const char* name :
        {"friction_loss.xml", "equality.xml", "tendons.xml", "spatial_tendons.xml"}) {
     const std::string path =
         lever::test::model_path(std::string("tests/models/constraints/") + name);
-    compare_with_mujoco(name, lever::test::read_text(path));
+    check_compiles_as_mujoco(name, lever::test::read_text(path));
   }
   const lever::Model friction =
       lever::mjcf::load_file(lever::test::model_path("tests/models/constraints/friction_loss.xml"));
@@ -68,7 +44,7 @@ TEST_CASE("the constraint models compile to MuJoCo 2.2.2's parameters", "[compil
 TEST_CASE("tendon corner cases agree with MuJoCo 2.2.2", "[compile][tendons]") {
   // a tendon class nested in another, partial solref and solimp, limited="false" beside a range,
   // a joint named twice in one path, a coupling of one tendon, springlength at springref in degrees
-  compare_with_mujoco("tendon_corners.xml", R"(<mujoco>
+  check_compiles_as_mujoco("tendon_corners.xml", R"(<mujoco>
   <default>
     <tendon solreflimit="0.03" solimpfriction="0.7" margin="0.01"/>
     <default class="a">
@@ -103,7 +79,7 @@ TEST_CASE("spatial tendon corner cases agree with MuJoCo 2.2.2", "[compile][tend
   // springref), a path starting at a pulley, a geom named twice, a side site on another body, a
   // cylinder and a sphere of one body, sites of the world only; a spatial tendon driven and
   // coupled to a fixed one
-  compare_with_mujoco("spatial_corners.xml", R"(<mujoco>
+  check_compiles_as_mujoco("spatial_corners.xml", R"(<mujoco>
   <default>
     <default class="rope"><tendon width="0.02" range="0.1 2" stiffness="3" margin="0.01"/></default>
   </default>
@@ -137,54 +113,54 @@ TEST_CASE("tendons lever cannot build are refused by name", "[compile][tendons]"
     <site name="s"/><body name="b"><joint name="ball" type="ball"/><geom size="1"/><site name="r"/>
     </body></body></worldbody>)";
   // spatial paths MuJoCo refuses too, each named
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/></spatial></tendon>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/></spatial></tendon>
     </mujoco>)"),
              Catch::Contains("at least two"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><site site="q"/>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="q"/>
     </spatial></tendon></mujoco>)"),
              Catch::Contains("unknown site 'q'"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><site site="s"/>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="s"/>
     </spatial></tendon></mujoco>)"),
              Catch::Contains("follows itself"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><pulley divisor="2"/>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><pulley divisor="2"/>
     <site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("no neighbour"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
     <pulley divisor="2"/></spatial></tendon></mujoco>)"),
              Catch::Contains("ends with a pulley"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
     <pulley divisor="0"/><site site="s"/><site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("divisor must be positive"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><geom geom="g"/>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><geom geom="g"/>
     </spatial></tendon></mujoco>)"),
              Catch::Contains("unknown geom 'g'"));
-  CHECK_THAT(constraint_refusal(R"(<mujoco><worldbody><body><joint/><geom name="box" type="box"
+  CHECK_THAT(lever::test::load_refusal(R"(<mujoco><worldbody><body><joint/><geom name="box" type="box"
     size="1 1 1"/><site name="s"/><site name="r" pos="1 0 0"/></body></worldbody><tendon><spatial>
     <site site="s"/><geom geom="box"/><site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("not a sphere or a cylinder"));
-  CHECK_THAT(constraint_refusal(R"(<mujoco><worldbody><body><joint/><geom name="ball" size="1"/>
+  CHECK_THAT(lever::test::load_refusal(R"(<mujoco><worldbody><body><joint/><geom name="ball" size="1"/>
     <site name="s"/><site name="r" pos="1 0 0"/></body></worldbody><tendon><spatial>
     <geom geom="ball"/><site site="s"/><site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("between two sites"));
-  CHECK_THAT(constraint_refusal(R"(<mujoco><worldbody><body><joint/><geom name="ball" size="1"/>
+  CHECK_THAT(lever::test::load_refusal(R"(<mujoco><worldbody><body><joint/><geom name="ball" size="1"/>
     <site name="s"/><site name="r" pos="1 0 0"/></body></worldbody><tendon><spatial>
     <site site="s"/><geom geom="ball" sidesite="x"/><site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("unknown side site 'x'"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial width="0"><site site="s"/>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial width="0"><site site="s"/>
     <site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("width must be positive"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><fixed><joint joint="ball" coef="1"/></fixed>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><fixed><joint joint="ball" coef="1"/></fixed>
     </tendon></mujoco>)"),
              Catch::Contains("ball or free joint"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><fixed><joint joint="k" coef="1"/></fixed>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><fixed><joint joint="k" coef="1"/></fixed>
     </tendon></mujoco>)"),
              Catch::Contains("unknown joint 'k'"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><fixed name="t"/></tendon></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><fixed name="t"/></tendon></mujoco>)"),
              Catch::Contains("at least one"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><fixed name="t"><joint joint="j" coef="1"/>
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><fixed name="t"><joint joint="j" coef="1"/>
     </fixed></tendon><actuator><motor tendon="u"/></actuator></mujoco>)"),
              Catch::Contains("unknown tendon 'u'"));
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><fixed name="t" limited="true" range="1 0">
+  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><fixed name="t" limited="true" range="1 0">
     <joint joint="j" coef="1"/></fixed></tendon></mujoco>)"),
              Catch::Contains("lower < upper"));
 }
@@ -194,7 +170,7 @@ TEST_CASE("equality and friction loss corner cases agree with MuJoCo 2.2.2",
   // a weld to the world without anchor or relpose, a coupling left at its default polycoef, a
   // connect whose second body is a child, partial solref and solimp over the main class, a
   // class's frictionloss and solimpfriction partly overridden
-  compare_with_mujoco("corners.xml", R"(<mujoco>
+  check_compiles_as_mujoco("corners.xml", R"(<mujoco>
   <default>
     <joint frictionloss="0.2" solimpfriction="0.7 0.8 0.01"/>
     <equality solref="0.03" solimp="0.8"/>
@@ -225,16 +201,16 @@ TEST_CASE("equality and friction loss corner cases agree with MuJoCo 2.2.2",
 TEST_CASE("constraints lever cannot build are refused by name", "[compile][constraints]") {
   const std::string head = R"(<mujoco><worldbody><body name="a"><joint name="j"/><geom size="1"/>
     <body name="b"><joint name="ball" type="ball"/><geom size="1"/></body></body></worldbody>)";
-  CHECK_THAT(constraint_refusal(head + R"(<equality><tendon tendon1="t"/></equality></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<equality><tendon tendon1="t"/></equality></mujoco>)"),
              Catch::Contains("unknown tendon 't'"));
-  CHECK_THAT(constraint_refusal(
+  CHECK_THAT(lever::test::load_refusal(
                  head + R"(<equality><connect body1="x" anchor="0 0 0"/></equality></mujoco>)"),
              Catch::Contains("unknown body 'x'"));
-  CHECK_THAT(constraint_refusal(head + R"(<equality><joint joint1="ball"/></equality></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<equality><joint joint1="ball"/></equality></mujoco>)"),
              Catch::Contains("joint 'ball' is a ball or free joint"));
   CHECK_THAT(
-      constraint_refusal(head + R"(<equality><weld body1="a" body2="a"/></equality></mujoco>)"),
+      lever::test::load_refusal(head + R"(<equality><weld body1="a" body2="a"/></equality></mujoco>)"),
       Catch::Contains("constrained to itself"));
-  CHECK_THAT(constraint_refusal(head + R"(<equality><connect body1="a"/></equality></mujoco>)"),
+  CHECK_THAT(lever::test::load_refusal(head + R"(<equality><connect body1="a"/></equality></mujoco>)"),
              Catch::Contains("anchor"));
 }

@@ -9,6 +9,7 @@
 #include <sstream>
 
 #include <lever/fields.hpp>
+#include <lever/mjcf.hpp>
 #include <lever/harness/mujoco_arrays.hpp>
 #include <lever/harness/tolerance.hpp>
 
@@ -375,6 +376,25 @@ std::vector<std::string> compare_constants(const Model& o, const mjModel& m) {
     d.reals("actuator_acc0", o.actuator_acc0, m.actuator_acc0);
   }
   return d.list;
+}
+
+std::vector<std::string> compile_differences(const std::string& name, const std::string& xml) {
+  const Model ours = mjcf::load_string(xml, name);
+  std::string error;
+  const MjModelHandle theirs = mujoco_compile(xml, &error);
+  if (!theirs) return {std::string("mujoco refuses ").append(name).append(": ").append(error)};
+  std::vector<std::string> differences = compare_parameters(ours, *theirs);
+  for (std::string& d : compare_constants(ours, *theirs)) differences.push_back(std::move(d));
+  return differences;
+}
+
+std::string load_refusal(const std::string& xml) {
+  try {
+    mjcf::load_string(xml, "refused.xml");
+  } catch (const mjcf::ParseError& e) {
+    return e.what();
+  }
+  return "";
 }
 
 }  // namespace lever::test
