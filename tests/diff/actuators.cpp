@@ -59,13 +59,7 @@ TEST_CASE("diff: actuator transmissions in lockstep runs", "[diff][actuators]") 
   REQUIRE(mj_version() == 222);
   for (const std::string& file : actuator_model_files()) {
     for (const diff::Path path : paths_to_compare()) {
-      for (const Integrator integrator :
-           {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
-        INFO(context(file, path, 0) << ", " << integrator_name(integrator));
-        diff::Twin twin(file, path);
-        check_within_bound(
-            diff::lockstep(twin, integrator, kActuatorRunSeconds, diff::Control::kSmooth));
-      }
+      check_lockstep_every_integrator(file, path, kActuatorRunSeconds);
     }
   }
 }
@@ -84,13 +78,7 @@ TEST_CASE("diff: muscles and activation dynamics agree with MuJoCo", "[diff][act
     const diff::Extreme* act_dot = report.find("act_dot");
     REQUIRE(act_dot != nullptr);
     CHECK(act_dot->compared >= kActuatorStates);
-    for (const Integrator integrator :
-         {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
-      INFO(integrator_name(integrator));
-      diff::Twin run(file, path);
-      check_within_bound(
-          diff::lockstep(run, integrator, kActuatorRunSeconds, diff::Control::kSmooth));
-    }
+    check_lockstep_every_integrator(file, path, kActuatorRunSeconds);
   }
 }
 

@@ -129,8 +129,7 @@ TEST_CASE("diff: elliptic cones, lockstep runs equal MuJoCo step by step", "[dif
   REQUIRE(mj_version() == 222);
   for (const char* file : {"models/box_drop.xml", "models/gripper.xml",
                            "tests/diff/contact_scenes/free_objects.xml"}) {
-    for (const Integrator integrator :
-         {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
+    for (const Integrator integrator : kEveryIntegrator) {
       const std::string name = std::string(file) + ", " + integrator_name(integrator);
       diff::Twin twin(model_path(file), diff::Path::kEngine);
       twin.set_cone(Cone::kElliptic, 1.0);

@@ -74,6 +74,30 @@ inline void check_near_noise_floor(const diff::FreeRun& run,
   }
 }
 
+/// Every integrator lever has, in MuJoCo's numbering.
+inline constexpr Integrator kEveryIntegrator[] = {Integrator::kEuler, Integrator::kRK4,
+                                                  Integrator::kImplicit};
+
+/// The model run from its initial state with smooth controls for `seconds` by each integrator in
+/// lockstep with MuJoCo (a fresh twin each): every quantity within the bound at every step.
+inline void check_lockstep_every_integrator(const std::string& file, diff::Path path,
+                                            double seconds) {
+  for (const Integrator integrator : kEveryIntegrator) {
+    INFO(context(file, path, 0) << ", " << integrator_name(integrator));
+    diff::Twin twin(file, path);
+    check_within_bound(diff::lockstep(twin, integrator, seconds, diff::Control::kSmooth));
+  }
+}
+
+/// The same run free (each engine on its own states, the model's integrator) held to MuJoCo's
+/// sensitivity, as check_near_noise_floor says.
+inline void check_free_run(const std::string& file, diff::Path path, double seconds) {
+  INFO(context(file, path, 0) << ", free run");
+  diff::Twin twin(file, path);
+  const diff::FreeRun run = diff::free_run(twin, seconds, diff::Control::kSmooth, 1e-15);
+  check_near_noise_floor(run, diff::free_run_quantities());
+}
+
 // Inverse dynamics at the forward acceleration: M qacc + bias - passive - J^T f(qacc) returns
 // qfrc_applied + qfrc_actuator, 0 on a dof nothing drives, by cancelling the constraint forces. Two
 // engines' roundings of that cancellation differ by 1e-12 of the forces cancelled, not of the

@@ -98,19 +98,8 @@ TEST_CASE("diff: equality constraints and friction loss in lockstep and free run
   for (const char* name : {"friction_loss.xml", "equality.xml"}) {
     const std::string file = constraint_model(name);
     for (const diff::Path path : paths_to_compare()) {
-      for (const Integrator integrator :
-           {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
-        INFO(context(file, path, 0) << ", " << integrator_name(integrator));
-        diff::Twin twin(file, path);
-        const diff::Report report =
-            diff::lockstep(twin, integrator, kConstraintRunSeconds, diff::Control::kSmooth);
-        check_within_bound(report);
-      }
-      INFO(context(file, path, 0) << ", free run");
-      diff::Twin twin(file, path);
-      const diff::FreeRun run =
-          diff::free_run(twin, kConstraintRunSeconds, diff::Control::kSmooth, 1e-15);
-      check_near_noise_floor(run, diff::free_run_quantities());
+      check_lockstep_every_integrator(file, path, kConstraintRunSeconds);
+      check_free_run(file, path, kConstraintRunSeconds);
     }
   }
 }

@@ -64,8 +64,7 @@ TEST_CASE("diff: 60 steps from the first keyframe agree under Euler, RK4 and imp
       if (twin.model.nkey == 0) continue;
       const double seconds = kSteps * twin.model.opt.timestep;
       const Integrator own = twin.model.opt.integrator;
-      for (const Integrator integrator :
-           {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
+      for (const Integrator integrator : kEveryIntegrator) {
         INFO(context(file, path, 0)
              << ", from " << twin.start_name() << ", " << integrator_name(integrator));
         check_within_bound(diff::lockstep(twin, integrator, seconds, diff::Control::kKeep));

@@ -61,8 +61,7 @@ TEST_CASE("diff: a Menagerie-style arm agrees with MuJoCo on random states and f
     // its collision meshes (the placeholder tetrahedra) are read and collided by both
     if (path == diff::Path::kLoader) REQUIRE(twin.model.warnings.empty());
     check_within_bound(diff::random_states(twin, samples(200), seed));
-    for (const Integrator integrator :
-         {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
+    for (const Integrator integrator : kEveryIntegrator) {
       INFO("lockstep from home, " << integrator_name(integrator));
       check_within_bound(diff::lockstep(twin, integrator, 10.0, diff::Control::kSmooth));
     }

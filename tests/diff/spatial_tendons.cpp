@@ -163,18 +163,9 @@ TEST_CASE("diff: spatial tendons in lockstep and free runs", "[diff][tendons]") 
   REQUIRE(mj_version() == 222);
   const std::string file = spatial_model_file();
   for (const diff::Path path : paths_to_compare()) {
-    for (const Integrator integrator :
-         {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
-      INFO(context(file, path, 0) << ", " << integrator_name(integrator));
-      diff::Twin twin(file, path);
-      check_within_bound(
-          diff::lockstep(twin, integrator, kSpatialRunSeconds, diff::Control::kSmooth));
-    }
+    check_lockstep_every_integrator(file, path, kSpatialRunSeconds);
   }
-  INFO(context(file, diff::Path::kLoader, 0) << ", free run");
-  diff::Twin twin(file, diff::Path::kLoader);
-  const diff::FreeRun run = diff::free_run(twin, kSpatialRunSeconds, diff::Control::kSmooth, 1e-15);
-  check_near_noise_floor(run, diff::free_run_quantities());
+  check_free_run(file, diff::Path::kLoader, kSpatialRunSeconds);
 }
 
 TEST_CASE("diff: the 2F-85 scene's spatial tendon agrees with MuJoCo", "[diff][tendons][robots]") {

@@ -95,18 +95,8 @@ TEST_CASE("diff: fixed tendons in lockstep and free runs", "[diff][tendons]") {
   REQUIRE(mj_version() == 222);
   const std::string file = tendon_model_file();
   for (const diff::Path path : paths_to_compare()) {
-    for (const Integrator integrator :
-         {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
-      INFO(context(file, path, 0) << ", " << integrator_name(integrator));
-      diff::Twin twin(file, path);
-      check_within_bound(
-          diff::lockstep(twin, integrator, kTendonRunSeconds, diff::Control::kSmooth));
-    }
-    INFO(context(file, path, 0) << ", free run");
-    diff::Twin twin(file, path);
-    const diff::FreeRun run =
-        diff::free_run(twin, kTendonRunSeconds, diff::Control::kSmooth, 1e-15);
-    check_near_noise_floor(run, diff::free_run_quantities());
+    check_lockstep_every_integrator(file, path, kTendonRunSeconds);
+    check_free_run(file, path, kTendonRunSeconds);
   }
 }
 
