@@ -2,8 +2,9 @@
 // constraints (equality.cpp), friction loss (friction_loss.cpp), joint limits and contacts
 // (rows.cpp); their impedance and reference acceleration, and the products with their Jacobian
 // (rows.cpp); the solvers: the active sets and principal pivoting for one-sided rows (rows.cpp)
-// and, on MuJoCo's primal problem (primal.cpp), Newton's method for every kind (newton.cpp); a
-// contact's force in its frame (contact_force.cpp).
+// and, on MuJoCo's primal problem (primal.cpp), Newton's method for every kind (newton.cpp) and
+// MuJoCo's conjugate gradients (cg.cpp, for opt.solver CG); a contact's force in its frame
+// (contact_force.cpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -120,14 +121,24 @@ ConstraintState block_cost(const Data& data, int r, int size, const double* x, d
 /// M (qacc - qacc_smooth), the rows' jar and their gradient there afterwards).
 double primal_cost(Data& data, const Eigen::VectorXd& qacc);
 
-/// Slope and curvature of the cost along qacc + alpha dir: the Gauss term's (gauss1 + 2 alpha
-/// gauss2, 2 gauss2) plus each block's, from jar + alpha J dir.
-void line_derivatives(Data& data, double gauss1, double gauss2, double alpha, double& slope,
-                      double& curvature);
+/// The Gauss term along qacc + alpha dir, cost + alpha slope + alpha^2 curvature:
+/// 1/2 |qacc - qacc_smooth|_M^2, dir^T M (qacc - qacc_smooth), 1/2 dir^T M dir.
+struct LineGauss {
+  double cost, slope, curvature;
+};
+
+/// A point of the line qacc + alpha dir: the cost there, its slope and curvature in alpha.
+struct LinePoint {
+  double alpha = 0, cost = 0, slope = 0, curvature = 0;
+};
+
+/// p's cost, slope and curvature at p.alpha: the Gauss term's plus each block's, from
+/// jar + alpha J dir.
+void evaluate_line(Data& data, const LineGauss& gauss, LinePoint& p);
 
 /// The step length that minimizes the cost along dir, to rounding (Newton's method on the slope,
 /// kept inside a bracket around its zero).
-double exact_line_search(Data& data, double gauss1, double gauss2);
+double exact_line_search(Data& data, const LineGauss& gauss);
 
 /// efc_force, efc_state and qfrc_constraint at the rows' values x (forces -d s / d jar).
 void record_primal_forces(Data& data, const Eigen::VectorXd& x);
@@ -136,6 +147,12 @@ void record_primal_forces(Data& data, const Eigen::VectorXd& x);
 /// efc_b, efc_force, efc_state, qfrc_constraint. Returns the Newton steps taken.
 /// @pre make_constraint, reference_constraint, qacc_smooth and M are current.
 int solve_constraint_newton(const Model& model, Data& data);
+
+/// Solve the constraint rows by MuJoCo's conjugate gradients (cg.cpp), stopped as MuJoCo stops
+/// them by opt.tolerance and opt.iterations: qacc, efc_b, efc_force, efc_state,
+/// qfrc_constraint. Returns the iterations taken (MuJoCo's solver_iter).
+/// @pre as solve_constraint_newton.
+int solve_constraint_cg(const Model& model, Data& data);
 
 /// Solve one-sided rows (limits, frictionless and pyramidal contacts) by principal pivoting on
 /// A = J M^-1 J^T + R (rows.cpp), the fallback of solve_constraint's active sets: qacc,

@@ -94,7 +94,7 @@ int solve_constraint_newton([[maybe_unused]] const Model& model, Data& data) {
     const double gauss1 = w.newton_dir.dot(w.newton_Merr);
     const double gauss2 = 0.5 * w.newton_dir.dot(w.newton_Mdir);
     rows_times(data, w.newton_dir.data(), w.newton_jv.data());
-    const double alpha = exact_line_search(data, gauss1, gauss2);
+    const double alpha = exact_line_search(data, {0.0, gauss1, gauss2});
     if (!(alpha > 0.0)) break;
     data.qacc += alpha * w.newton_dir;
     primal_cost(data, data.qacc);

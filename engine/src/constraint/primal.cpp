@@ -140,21 +140,23 @@ double primal_cost(Data& data, const Eigen::VectorXd& qacc) {
   return gauss + constraint_cost(data, w.newton_x, w.newton_grad_x, false);
 }
 
-void line_derivatives(Data& data, double gauss1, double gauss2, double alpha, double& slope,
-                      double& curvature) {
+void evaluate_line(Data& data, const LineGauss& gauss, LinePoint& p) {
   auto& w = data.work;
-  slope = gauss1 + 2 * alpha * gauss2;
-  curvature = 2 * gauss2;
+  const double alpha = p.alpha;
+  p.cost = gauss.cost + alpha * (gauss.slope + alpha * gauss.curvature);
+  p.slope = gauss.slope + 2 * alpha * gauss.curvature;
+  p.curvature = 2 * gauss.curvature;
   for (int r = 0; r < data.nefc;) {
     const int size = block_size(data, r);
     double x[6], g[6], cost;
     BlockHessian h;
     for (int j = 0; j < size; ++j) x[j] = w.newton_jar[r + j] + alpha * w.newton_jv[r + j];
     if (block_cost(data, r, size, x, cost, g, &h) != ConstraintState::kSatisfied) {
+      p.cost += cost;
       for (int i = 0; i < size; ++i) {
-        slope += g[i] * w.newton_jv[r + i];
+        p.slope += g[i] * w.newton_jv[r + i];
         for (int j = 0; j < size; ++j)
-          curvature += w.newton_jv[r + i] * h(i, j) * w.newton_jv[r + j];
+          p.curvature += w.newton_jv[r + i] * h(i, j) * w.newton_jv[r + j];
       }
     }
     r += size;
@@ -165,12 +167,14 @@ void line_derivatives(Data& data, double gauss1, double gauss2, double alpha, do
 // Newton's method on it, kept inside a bracket [lo, hi] around its zero (falling back to the
 // bracket's midpoint), converges; it stops when the slope is zero or the next point would not
 // move (the bracket cannot shrink in floating point).
-double exact_line_search(Data& data, double gauss1, double gauss2) {
+double exact_line_search(Data& data, const LineGauss& gauss) {
   double lo = 0.0, hi = std::numeric_limits<double>::infinity(), alpha = 1.0;
   double best = 0.0, best_slope = std::numeric_limits<double>::infinity();
   for (int k = 0; k < kMaxLineSteps; ++k) {
-    double slope, curvature;
-    line_derivatives(data, gauss1, gauss2, alpha, slope, curvature);
+    LinePoint point;
+    point.alpha = alpha;
+    evaluate_line(data, gauss, point);
+    const double slope = point.slope, curvature = point.curvature;
     if (std::abs(slope) < best_slope) {
       best = alpha;
       best_slope = std::abs(slope);
