@@ -518,8 +518,8 @@ std::vector<ElementRule> build() {
                            "most CG iterations (lever's Newton solve ends at convergence); must "
                            "not be negative"),
                    real("tolerance", 1, "1e-8",
-                        "CG's tolerance on the cost's decrease and gradient (0: until the cost "
-                        "stops decreasing); must not be negative"),
+                        "CG's tolerance on the cost's decrease and gradient (0: the exact "
+                        "minimizer CG converges to, as Newton's); must not be negative"),
                    integer("noslip_iterations", 1, "0",
                            "noslip solver iterations: lever has no noslip solver, so only 0"),
                    real("noslip_tolerance", 1, "1e-6",
