@@ -15,6 +15,7 @@
 #include <lever/diff/report.hpp>
 #include <lever/diff/twin.hpp>
 #include <lever/lever.hpp>
+#include <lever/mjcf.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -150,6 +151,38 @@ TEST_CASE("diff: CG at MuJoCo's default tolerance tracks MuJoCo's CG step by ste
     CHECK(constrained > 100);
     CHECK(same_count >= constrained * 95 / 100);
   }
+}
+
+}  // namespace lever::test
+
+namespace lever::test {
+
+// The derivatives hold the converged solution's active set: with CG at tolerance 0 (the exact
+// solve) they are Newton's, bit for bit; a CG stopped by a tolerance is refused by name.
+TEST_CASE("derivatives of a CG model: Newton's at tolerance 0, refused above it", "[cg]") {
+  Model newton_model = mjcf::load_file(model_path("models/box_drop.xml"));
+  Model cg_model = newton_model;
+  cg_model.opt.solver = Solver::kCG;
+  cg_model.opt.tolerance = 0;
+  Data newton(newton_model), cg(cg_model);
+  if (newton_model.nkey > 0) {
+    reset_keyframe(newton_model, newton, 0);
+    reset_keyframe(cg_model, cg, 0);
+  }
+  for (int k = 0; k < 150; ++k) step(newton_model, newton);  // the box resting on the floor
+  cg.qpos = newton.qpos;
+  cg.qvel = newton.qvel;
+  Derivatives dn(newton_model), dc(cg_model);
+  forward_derivatives(newton_model, newton, dn);
+  forward_derivatives(cg_model, cg, dc);
+  REQUIRE(newton.nefc > 0);
+  CHECK(dc.dqacc_dq == dn.dqacc_dq);
+  CHECK(dc.dqacc_dv == dn.dqacc_dv);
+  cg_model.opt.tolerance = 1e-8;
+  CHECK_THROWS_WITH(forward_derivatives(cg_model, cg, dc),
+                    Catch::Contains("opt.solver is CG with tolerance"));
+  CHECK_THROWS_WITH(step_derivatives(cg_model, cg, dc),
+                    Catch::Contains("opt.solver is CG with tolerance"));
 }
 
 }  // namespace lever::test
