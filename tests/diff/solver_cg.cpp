@@ -35,10 +35,10 @@ struct CgScene {
   Cone cone;
 };
 
-const char* cone_label(Cone cone) { return cone == Cone::kElliptic ? "elliptic" : "pyramidal"; }
+const char* cg_cone_label(Cone cone) { return cone == Cone::kElliptic ? "elliptic" : "pyramidal"; }
 
 // Both engines on CG with the given stopping rule.
-void use_cg(diff::Twin& twin, Cone cone, double tolerance, int iterations) {
+void use_cg_on_both(diff::Twin& twin, Cone cone, double tolerance, int iterations) {
   twin.set_cone(cone, 1.0);
   twin.restart_mujoco_solver = tolerance == 0;
   twin.model.opt.solver = Solver::kCG;
@@ -50,7 +50,7 @@ void use_cg(diff::Twin& twin, Cone cone, double tolerance, int iterations) {
 }
 
 // max |a - b| / max(1, max |b|) over n numbers.
-double relative_gap(const double* a, const double* b, int n) {
+double cg_relative_gap(const double* a, const double* b, int n) {
   double gap = 0, scale = 1;
   for (int i = 0; i < n; ++i) {
     gap = std::max(gap, std::abs(a[i] - b[i]));
@@ -71,9 +71,9 @@ TEST_CASE("diff: CG at tolerance 0 agrees with MuJoCo's CG run to the minimizer"
       {"tests/diff/contact_scenes/arm_and_objects.xml", Cone::kElliptic},
   };
   for (const CgScene& scene : scenes) {
-    const std::string name = std::string(scene.file) + " (" + cone_label(scene.cone) + ")";
+    const std::string name = std::string(scene.file) + " (" + cg_cone_label(scene.cone) + ")";
     diff::Twin twin(model_path(scene.file), diff::Path::kEngine);
-    use_cg(twin, scene.cone, 0.0, 1000);
+    use_cg_on_both(twin, scene.cone, 0.0, 1000);
     std::mt19937_64 rng(seed_for(scene.file));
     diff::Report report;
     report.set_solver_bound(diff::kContactSolverBound);
@@ -103,9 +103,9 @@ TEST_CASE("diff: CG at MuJoCo's default tolerance tracks MuJoCo's CG step by ste
        {CgScene{"tests/diff/contact_scenes/free_objects.xml", Cone::kPyramidal},
         CgScene{"tests/diff/contact_scenes/free_objects.xml", Cone::kElliptic},
         CgScene{"tests/diff/contact_scenes/arm_and_objects.xml", Cone::kPyramidal}}) {
-    const std::string name = std::string(scene.file) + " (" + cone_label(scene.cone) + ")";
+    const std::string name = std::string(scene.file) + " (" + cg_cone_label(scene.cone) + ")";
     diff::Twin twin(model_path(scene.file), diff::Path::kEngine);
-    use_cg(twin, scene.cone, 1e-8, 100);
+    use_cg_on_both(twin, scene.cone, 1e-8, 100);
     twin.m->opt.disableflags |= mjDSBL_WARMSTART;
     Model exact_model = twin.model;  // the minimizer: lever's exact solve
     exact_model.opt.tolerance = 0;
@@ -131,14 +131,14 @@ TEST_CASE("diff: CG at MuJoCo's default tolerance tracks MuJoCo's CG step by ste
         forward(exact_model, exact);
         // lever's CG stops as near the minimizer as MuJoCo's (each CG's distance from it is
         // what the tolerance leaves, set by the rounding of each product along the way)
-        const double mujoco_off = relative_gap(d->qacc, exact.qacc.data(), m->nv);
-        const double lever_off = relative_gap(twin.data.qacc.data(), exact.qacc.data(), m->nv);
+        const double mujoco_off = cg_relative_gap(d->qacc, exact.qacc.data(), m->nv);
+        const double lever_off = cg_relative_gap(twin.data.qacc.data(), exact.qacc.data(), m->nv);
         INFO(name << " step " << step << ": " << d->solver_iter << " MuJoCo iterations, "
                   << twin.data.solver_iter << " lever's; from the minimizer MuJoCo "
                   << mujoco_off << ", lever " << lever_off);
         CHECK(lever_off <= 10 * mujoco_off + diff::kContactSolverBound * 1e-12);
         worst_gap =
-            std::max(worst_gap, relative_gap(twin.data.qacc.data(), d->qacc, m->nv));
+            std::max(worst_gap, cg_relative_gap(twin.data.qacc.data(), d->qacc, m->nv));
         worst_mujoco = std::max(worst_mujoco, mujoco_off);
         worst_lever = std::max(worst_lever, lever_off);
       }
