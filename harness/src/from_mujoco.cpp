@@ -34,6 +34,12 @@ void copy_contact(const mjModel* m, Model& model) {
   }
   model.opt.cone = m->opt.cone == mjCONE_PYRAMIDAL ? Cone::kPyramidal : Cone::kElliptic;
   model.opt.impratio = m->opt.impratio;
+  if (m->opt.solver != mjSOL_CG && m->opt.solver != mjSOL_NEWTON) {
+    throw std::runtime_error("from_mujoco: lever has no PGS solver");
+  }
+  model.opt.solver = m->opt.solver == mjSOL_CG ? Solver::kCG : Solver::kNewton;
+  model.opt.iterations = m->opt.iterations;
+  model.opt.tolerance = m->opt.tolerance;
   model.opt.mpr_tolerance = m->opt.mpr_tolerance;
   model.opt.mpr_iterations = m->opt.mpr_iterations;
   model.nconmax = m->nconmax;

@@ -395,8 +395,9 @@ Options read_option(const Element& root) {
                  : integrator == "implicit" ? Integrator::kImplicit
                  : integrator == "implicitfast" ? Integrator::kImplicitFast
                                             : Integrator::kEuler;
-  // contact; the solver is Newton, the only one the schema accepts
+  // contact; the solver CG or Newton, the ones the schema accepts
   o.cone = f.word("cone") == "elliptic" ? Cone::kElliptic : Cone::kPyramidal;
+  o.solver = f.word("solver") == "CG" ? Solver::kCG : Solver::kNewton;
   o.impratio = f.real("impratio");
   o.iterations = f.integer("iterations");
   o.tolerance = f.real("tolerance");

@@ -329,9 +329,9 @@ class _DataObject:
 # ---- MjModel, MjOption, MjData -------------------------------------------------------------------
 
 class MjOption:
-    """model.opt: timestep, gravity, integrator, the flags (disableflags, enableflags: MuJoCo's
-    mjtDisableBit and mjtEnableBit bits) and the contact override (o_margin, o_solref, o_solimp),
-    written through to lever's model."""
+    """model.opt: timestep, gravity, integrator, the solver (solver, iterations, tolerance), the
+    flags (disableflags, enableflags: MuJoCo's mjtDisableBit and mjtEnableBit bits) and the
+    contact override (o_margin, o_solref, o_solimp), written through to lever's model."""
 
     def __init__(self, native):
         object.__setattr__(self, "_native", native)
@@ -359,6 +359,30 @@ class MjOption:
     @integrator.setter
     def integrator(self, value: int) -> None:
         self._native.integrator = int(value)  # Euler, RK4 or implicit (MuJoCo 2.2.2's)
+
+    @property
+    def solver(self) -> int:
+        return self._native.solver
+
+    @solver.setter
+    def solver(self, value: int) -> None:
+        self._native.solver = int(value)  # mjtSolver: 1 CG or 2 Newton (lever has no PGS)
+
+    @property
+    def iterations(self) -> int:
+        return self._native.iterations
+
+    @iterations.setter
+    def iterations(self, value: int) -> None:
+        self._native.iterations = int(value)
+
+    @property
+    def tolerance(self) -> float:
+        return self._native.tolerance
+
+    @tolerance.setter
+    def tolerance(self, value: float) -> None:
+        self._native.tolerance = float(value)
 
     @property
     def disableflags(self) -> int:
@@ -407,8 +431,8 @@ class MjOption:
         raise AttributeError(f"'MjOption' object has no attribute '{name}'")
 
     def __setattr__(self, name: str, value) -> None:
-        if name in ("timestep", "gravity", "integrator", "disableflags", "enableflags", "o_margin",
-                    "o_solref", "o_solimp"):
+        if name in ("timestep", "gravity", "integrator", "solver", "iterations", "tolerance",
+                    "disableflags", "enableflags", "o_margin", "o_solref", "o_solimp"):
             object.__setattr__(self, name, value)
         else:
             self.__getattr__(name)

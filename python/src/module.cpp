@@ -425,6 +425,28 @@ PYBIND11_MODULE(_lever, m) {
             }
             x.opt.integrator = static_cast<lever::Integrator>(i);
           })
+      // the constraint solver (mjtSolver's values) and CG's stopping rule
+      .def_property(
+          "solver", [](const lever::Model& x) { return static_cast<int>(x.opt.solver); },
+          [](lever::Model& x, int s) {
+            if (s != 1 && s != 2) {
+              throw lever::StateError("solver " + std::to_string(s) +
+                                      " is not one lever has (1 CG, 2 Newton; no PGS).");
+            }
+            x.opt.solver = static_cast<lever::Solver>(s);
+          })
+      .def_property(
+          "iterations", [](const lever::Model& x) { return x.opt.iterations; },
+          [](lever::Model& x, int n) {
+            if (n < 0) throw lever::StateError("iterations must not be negative.");
+            x.opt.iterations = n;
+          })
+      .def_property(
+          "tolerance", [](const lever::Model& x) { return x.opt.tolerance; },
+          [](lever::Model& x, double t) {
+            if (!(t >= 0)) throw lever::StateError("tolerance must not be negative.");
+            x.opt.tolerance = t;
+          })
       .def_property_readonly("body_name", [](const lever::Model& x) { return x.body_name; })
       .def_property_readonly("jnt_name", [](const lever::Model& x) { return x.jnt_name; })
       .def_property_readonly("geom_name", [](const lever::Model& x) { return x.geom_name; })
@@ -538,6 +560,7 @@ PYBIND11_MODULE(_lever, m) {
       // contacts: ncon, each member of data.contact as a view over the first ncon,
       // and efc_J's live rows (the field table has no (nefc, nv) shape)
       .def_property_readonly("ncon", [](const PyData& d) { return d.data.ncon; })
+      .def_property_readonly("solver_iter", [](const PyData& d) { return d.data.solver_iter; })
       .def(
           "contact_field",
           [](py::object self, const std::string& name) {

@@ -120,6 +120,7 @@ py::dict model_state(const lever::Model& model) {
   opt["gravity"] = bytes_of(o.gravity.data(), 3 * sizeof(double));
   opt["integrator"] = static_cast<int>(o.integrator);
   opt["cone"] = static_cast<int>(o.cone);
+  opt["solver"] = static_cast<int>(o.solver);
   opt["impratio"] = o.impratio;
   opt["iterations"] = o.iterations;
   opt["tolerance"] = o.tolerance;
@@ -223,6 +224,7 @@ std::shared_ptr<lever::Model> model_from_state(const py::dict& state) {
               "model.opt.gravity");
   m.opt.integrator = static_cast<lever::Integrator>(item(opt, "integrator", "a model").cast<int>());
   m.opt.cone = static_cast<lever::Cone>(item(opt, "cone", "a model").cast<int>());
+  m.opt.solver = static_cast<lever::Solver>(item(opt, "solver", "a model").cast<int>());
   m.opt.impratio = item(opt, "impratio", "a model").cast<double>();
   m.opt.iterations = item(opt, "iterations", "a model").cast<int>();
   m.opt.tolerance = item(opt, "tolerance", "a model").cast<double>();

@@ -463,6 +463,31 @@ TEST_CASE("the elliptic cones' Newton solver allocates nothing", "[alloc]") {
   }
 }
 
+TEST_CASE("MuJoCo's CG solver allocates nothing, with every integrator and both cones",
+          "[alloc]") {
+  std::string how;
+  const lever::Model base = load(lever::test::model_path("models/box_drop.xml"), how);
+  for (const lever::Cone cone : {lever::Cone::kPyramidal, lever::Cone::kElliptic}) {
+    for (const lever::Integrator integrator :
+         {lever::Integrator::kEuler, lever::Integrator::kRK4, lever::Integrator::kImplicit}) {
+      lever::Model m = base;
+      m.opt.cone = cone;
+      m.opt.integrator = integrator;
+      m.opt.solver = lever::Solver::kCG;  // MuJoCo's default tolerance: CG runs
+      lever::Data d(m);
+      if (m.nkey > 0) lever::reset_keyframe(m, d, 0);
+      int iterations = 0;
+      for (int k = 0; k < 250; ++k) {  // half a second: the box lands
+        const Allocations a = count([&] { lever::step(m, d); });
+        CHECK(a.news == 0);
+        CHECK(a.mallocs == 0);
+        iterations += d.solver_iter;
+      }
+      CHECK(iterations > 0);
+    }
+  }
+}
+
 TEST_CASE("equality constraints and friction loss allocate nothing", "[alloc]") {
   // spatial_tendons.xml: a tendon coupling and tendon friction loss, along wrapped paths
   for (const char* file :

@@ -364,6 +364,11 @@ const Case kCases[] = {
   <size nconmax="30" njmax="-1" nstack="100000"/>
   <worldbody><body name="b"><joint/><geom size="0.1"/></body></worldbody>
 </mujoco>)"},
+  // MuJoCo's conjugate gradients: opt.solver is mjSOL_CG (1), with its own stopping rule
+  {"option-solver-cg", R"(<mujoco>
+  <option solver="CG" iterations="30" tolerance="1e-6"/>
+  <worldbody><body name="b"><joint/><geom size="0.1"/></body></worldbody>
+</mujoco>)"},
   // every flag, the override's parameters (o_solref written in part), one <option> after another
   {"option-flags", R"(<mujoco>
   <option o_margin="0.01" o_solref="0.05" o_solimp="0.7 0.8 0.01 0.4 3">

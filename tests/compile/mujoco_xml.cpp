@@ -301,12 +301,12 @@ void compare_options(Differences& d, const Model& o, const mjModel& m) {
   d.real("opt_timestep", 0, o.opt.timestep, m.opt.timestep);
   for (int k = 0; k < 3; ++k) d.real("opt_gravity", k, o.opt.gravity[k], m.opt.gravity[k]);
   d.integer("opt_integrator", 0, static_cast<int>(o.opt.integrator), m.opt.integrator);
-  // contact: lever's Cone values are mjtCone's; its solver is always Newton
+  // contact: lever's Cone and Solver values are mjtCone's and mjtSolver's
   d.integer("opt_cone", 0, static_cast<int>(o.opt.cone), m.opt.cone);
   d.real("opt_impratio", 0, o.opt.impratio, m.opt.impratio);
   d.integer("opt_iterations", 0, o.opt.iterations, m.opt.iterations);
   d.real("opt_tolerance", 0, o.opt.tolerance, m.opt.tolerance);
-  d.integer("opt_solver", 0, mjSOL_NEWTON, m.opt.solver);
+  d.integer("opt_solver", 0, static_cast<int>(o.opt.solver), m.opt.solver);
   d.integer("opt_noslip_iterations", 0, 0, m.opt.noslip_iterations);
   d.integer("opt_disableflags", 0, o.opt.disableflags, m.opt.disableflags);
   d.integer("opt_enableflags", 0, o.opt.enableflags, m.opt.enableflags);

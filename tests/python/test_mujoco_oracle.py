@@ -164,7 +164,7 @@ def test_arrays_sizes_and_options_are_mujocos(path):
             close(od.actuator_moment, dense_moment(rm, rd), "data." + name)
             continue
         same(getattr(od, name), getattr(rd, name), "data." + name, layout)
-    for name in ("timestep", "gravity", "integrator"):
+    for name in ("timestep", "gravity", "integrator", "solver"):
         same(getattr(om.opt, name), getattr(rm.opt, name), "opt." + name)
 
 

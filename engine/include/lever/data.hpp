@@ -213,6 +213,9 @@ struct Data {
   std::vector<ConstraintState> efc_state;  ///< (nefc)
   Eigen::VectorXd qfrc_constraint;         ///< (nv) J^T efc_force
   Eigen::VectorXd qacc;                    ///< (nv) joint accelerations
+  /// the constraint solve's iterations: with opt.solver CG, MuJoCo's count (its solver_iter);
+  /// with Newton, lever's Newton steps (0 for the exact one-sided solves), not MuJoCo's
+  int solver_iter = 0;
   Eigen::VectorXd qfrc_inverse;            ///< (nv) inverse(): force that produces qacc
 
   // ---- sensors: each stage's sensors after that stage (sensors room) -------------------------
@@ -258,13 +261,17 @@ struct Data {
     Eigen::VectorXd lcp_rhs;           ///< (nefc_max) the active rows' right-hand side
     std::vector<int> lcp_active;       ///< (nefc_max) 1 for rows in the active set
     std::vector<int> lcp_index;        ///< (nefc_max) the active rows, in order
-    // the Newton solver (constraint/newton.cpp), used with elliptic cones
+    // the Newton solver (constraint/newton.cpp) and the primal problem it shares (primal.cpp)
     Eigen::MatrixXd newton_H;                  ///< (nv x nv) Hessian of the cost, then its factor
     Eigen::VectorXd newton_grad, newton_dir;   ///< (nv) gradient and Newton direction
     Eigen::VectorXd newton_Mdir, newton_Merr;  ///< (nv) M dir, M (qacc - qacc_smooth)
     Eigen::VectorXd newton_trial, newton_err;  ///< (nv) a trial acceleration, qacc - qacc_smooth
     Eigen::VectorXd newton_jar, newton_jv;     ///< (nefc_max) J qacc - aref, J dir
     Eigen::VectorXd newton_x, newton_grad_x;   ///< (nefc_max) rows' jar at a point, d cost / d jar
+    // the CG solver (constraint/cg.cpp) shares the Newton solver's vectors (newton_grad: the
+    // gradient, newton_dir: the search direction, newton_Mdir: M times it) and adds these
+    Eigen::VectorXd cg_Mgrad;                   ///< (nv) M^-1 gradient
+    Eigen::VectorXd cg_grad_old, cg_Mgrad_old;  ///< (nv) both at the previous iterate
     // a contact's rows in its own frame (make_constraint): contact i's frame rows
     // (normal, two tangents, then the spin and the two rolls; one row without friction) are rows
     // efc_address.. of contact_frame_J, over the span of dofs contact_span[2 i] (the first) ..,

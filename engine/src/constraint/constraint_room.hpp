@@ -2,7 +2,8 @@
 // constraints (equality.cpp), friction loss (friction_loss.cpp), joint limits and contacts
 // (rows.cpp); their impedance and reference acceleration, and the products with their Jacobian
 // (rows.cpp); the solvers: the active sets and principal pivoting for one-sided rows (rows.cpp)
-// and Newton's method for every kind (newton.cpp); a contact's force in its frame
+// and, on MuJoCo's primal problem (primal.cpp), Newton's method for every kind (newton.cpp) and
+// MuJoCo's conjugate gradients (cg.cpp, for opt.solver CG); a contact's force in its frame
 // (contact_force.cpp).
 #pragma once
 
@@ -100,10 +101,58 @@ void add_frame_hessian(Data& data, int i, const double* W, Eigen::MatrixXd& H);
 /// holds where its columns end).
 void solve_with_hessian(Data& data, Eigen::MatrixXd& H, Eigen::VectorXd& x);
 
+// ---- MuJoCo's primal problem (primal.cpp), shared by the Newton and CG solvers -------------
+// The unknown is qacc; the cost is the Gauss term plus a convex function s of each block's
+// jar = J qacc - aref (a block: an elliptic cone's dim rows, else one row). The line quantities
+// below read work.newton_jar (jar at the current qacc) and work.newton_jv (J dir).
+
+/// A block's Hessian d^2 s / d jar^2 (its top-left size x size corner).
+using BlockHessian = Eigen::Matrix<double, 6, 6>;
+
+/// The rows of the block starting at row r: an elliptic cone's dim rows, else one row.
+int block_size(const Data& data, int r);
+
+/// Cost, gradient (d s / d jar, into grad[0..size)) and, with hess != nullptr, Hessian of the
+/// block starting at row r, at the rows' values x[0..size). Returns the block's state.
+ConstraintState block_cost(const Data& data, int r, int size, const double* x, double& cost,
+                           double* grad, BlockHessian* hess);
+
+/// Gauss term and constraint cost at qacc (work.newton_Merr, newton_x and newton_grad_x hold
+/// M (qacc - qacc_smooth), the rows' jar and their gradient there afterwards).
+double primal_cost(Data& data, const Eigen::VectorXd& qacc);
+
+/// The Gauss term along qacc + alpha dir, cost + alpha slope + alpha^2 curvature:
+/// 1/2 |qacc - qacc_smooth|_M^2, dir^T M (qacc - qacc_smooth), 1/2 dir^T M dir.
+struct LineGauss {
+  double cost, slope, curvature;
+};
+
+/// A point of the line qacc + alpha dir: the cost there, its slope and curvature in alpha.
+struct LinePoint {
+  double alpha = 0, cost = 0, slope = 0, curvature = 0;
+};
+
+/// p's cost, slope and curvature at p.alpha: the Gauss term's plus each block's, from
+/// jar + alpha J dir.
+void evaluate_line(Data& data, const LineGauss& gauss, LinePoint& p);
+
+/// The step length that minimizes the cost along dir, to rounding (Newton's method on the slope,
+/// kept inside a bracket around its zero).
+double exact_line_search(Data& data, const LineGauss& gauss);
+
+/// efc_force, efc_state and qfrc_constraint at the rows' values x (forces -d s / d jar).
+void record_primal_forces(Data& data, const Eigen::VectorXd& x);
+
 /// Solve the constraint rows by MuJoCo's Newton method to convergence (newton.cpp): qacc,
 /// efc_b, efc_force, efc_state, qfrc_constraint. Returns the Newton steps taken.
 /// @pre make_constraint, reference_constraint, qacc_smooth and M are current.
 int solve_constraint_newton(const Model& model, Data& data);
+
+/// Solve the constraint rows by MuJoCo's conjugate gradients (cg.cpp), stopped as MuJoCo stops
+/// them by opt.tolerance and opt.iterations: qacc, efc_b, efc_force, efc_state,
+/// qfrc_constraint. Returns the iterations taken (MuJoCo's solver_iter).
+/// @pre as solve_constraint_newton.
+int solve_constraint_cg(const Model& model, Data& data);
 
 /// Solve one-sided rows (limits, frictionless and pyramidal contacts) by principal pivoting on
 /// A = J M^-1 J^T + R (rows.cpp), the fallback of solve_constraint's active sets: qacc,

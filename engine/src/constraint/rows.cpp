@@ -898,10 +898,18 @@ void start_one_sided(const Model& model, Data& data) {
 }  // namespace
 
 void unchecked::solve_constraint(const Model& model, Data& data) {
+  data.solver_iter = 0;
+  // MuJoCo's conjugate gradients, stopped where MuJoCo stops them, for every kind of row; at
+  // tolerance 0 the exact solve below (the minimizer CG converges to; cg.cpp says why)
+  if (model.opt.solver == Solver::kCG && model.opt.tolerance > 0) {
+    start_unconstrained(model, data);
+    if (data.nefc > 0) data.solver_iter = solve_constraint_cg(model, data);
+    return;
+  }
   // rows that are not one-sided (elliptic cones, equality, friction loss): Newton's method
   if (data.nefc == 0 || model.opt.cone == Cone::kElliptic || data.ne + data.nf > 0) {
     start_unconstrained(model, data);
-    if (data.nefc > 0) solve_constraint_newton(model, data);
+    if (data.nefc > 0) data.solver_iter = solve_constraint_newton(model, data);
     return;
   }
   start_one_sided(model, data);

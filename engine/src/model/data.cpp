@@ -87,7 +87,8 @@ Data::Data(const Model& model)
   work.lcp_index.assign(nefc_max, 0);
   work.newton_H = Eigen::MatrixXd::Zero(nv, nv);
   for (Eigen::VectorXd* v : {&work.newton_grad, &work.newton_dir, &work.newton_Mdir,
-                             &work.newton_Merr, &work.newton_trial, &work.newton_err}) {
+                             &work.newton_Merr, &work.newton_trial, &work.newton_err,
+                             &work.cg_Mgrad, &work.cg_grad_old, &work.cg_Mgrad_old}) {
     *v = Eigen::VectorXd::Zero(nv);
   }
   for (Eigen::VectorXd* v :

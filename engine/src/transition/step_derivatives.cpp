@@ -697,6 +697,20 @@ void refuse_fluid(const Model& model) {
   require_simple_actuators(model, "derivatives", true);
 }
 
+// The derivatives are those of the constraint problem's minimizer, its active set held. MuJoCo's
+// conjugate gradients stopped by a tolerance end short of it, where the rows' states can be
+// others: refused. At tolerance 0 CG runs to the minimizer (as its iterations allow), where the
+// solver no longer matters.
+void refuse_stopped_solver(const Model& model) {
+  if (model.opt.solver == Solver::kCG && model.opt.tolerance > 0) {
+    throw ModelError("derivatives: opt.solver is CG with tolerance " +
+                     std::to_string(model.opt.tolerance) +
+                     " > 0; the derivatives hold the active set of the converged solution, which "
+                     "a solve stopped by a tolerance need not reach. Set opt.tolerance to 0 (CG "
+                     "then converges as its iterations allow) or use the Newton solver.");
+  }
+}
+
 }  // namespace
 
 Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
@@ -768,11 +782,13 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_derivative_sizes(model, data, deriv);
   refuse_fluid(model);
+  refuse_stopped_solver(model);
   forward_derivatives_unchecked(model, data, deriv);
 }
 
 void applied_force_derivatives(const Model& model, const Data& data, Derivatives& deriv) {
   check_derivative_sizes(model, data, deriv);
+  refuse_stopped_solver(model);
   // qfrc_applied enters as f_smooth does: d qacc = G + (rows' part) with G = M^-1 d f, which with
   // the rows held is H^-1 d f (docs/derivatives.md), the same H the contact rows are solved with
   auto& w = deriv.work;
@@ -785,6 +801,7 @@ void applied_force_derivatives(const Model& model, const Data& data, Derivatives
 void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_derivative_sizes(model, data, deriv);
   refuse_fluid(model);
+  refuse_stopped_solver(model);
   // forward() normalizes the quaternions of qpos in place; the caller's state is given back as it
   // was, bit for bit (RK4 restores its start itself)
   const bool quaternions = model.nq != model.nv;
