@@ -29,6 +29,58 @@ void compare_actuators_with_mujoco(const std::string& name, const std::string& x
   for (const std::string& d : differences) FAIL_CHECK(name << ": " << d);
 }
 
+// The actuator arrays the compiler writes, held bit for bit (== on doubles) to MuJoCo's: each
+// shortcut's parameters are set, not computed, so they must be the same numbers
+std::vector<std::string> actuator_bits_differences(const lever::Model& o, const mjModel& m) {
+  std::vector<std::string> out;
+  const auto check = [&](const char* field, int a, int k, double ours, double theirs) {
+    if (ours != theirs) {
+      out.push_back(std::string(field) + "[" + std::to_string(a) + "][" + std::to_string(k) +
+                    "]: lever " + std::to_string(ours) + " vs mujoco " + std::to_string(theirs));
+    }
+  };
+  if (o.nu != m.nu || o.na != m.na) return {"nu or na differ"};
+  for (int a = 0; a < m.nu; ++a) {
+    check("actuator_trntype", a, 0, static_cast<int>(o.actuator_trntype[a]), m.actuator_trntype[a]);
+    check("actuator_dyntype", a, 0, static_cast<int>(o.actuator_dyntype[a]), m.actuator_dyntype[a]);
+    check("actuator_gaintype", a, 0, static_cast<int>(o.actuator_gaintype[a]),
+          m.actuator_gaintype[a]);
+    check("actuator_biastype", a, 0, static_cast<int>(o.actuator_biastype[a]),
+          m.actuator_biastype[a]);
+    check("actuator_ctrllimited", a, 0, o.actuator_ctrllimited[a], m.actuator_ctrllimited[a]);
+    check("actuator_forcelimited", a, 0, o.actuator_forcelimited[a], m.actuator_forcelimited[a]);
+    check("actuator_actlimited", a, 0, o.actuator_actlimited[a], m.actuator_actlimited[a]);
+    for (int k = 0; k < 2; ++k) {
+      check("actuator_trnid", a, k, o.actuator_trnid[a][k], m.actuator_trnid[2 * a + k]);
+      check("actuator_ctrlrange", a, k, o.actuator_ctrlrange[a][k], m.actuator_ctrlrange[2 * a + k]);
+      check("actuator_forcerange", a, k, o.actuator_forcerange[a][k],
+            m.actuator_forcerange[2 * a + k]);
+      check("actuator_actrange", a, k, o.actuator_actrange[a][k], m.actuator_actrange[2 * a + k]);
+    }
+    for (int k = 0; k < 6; ++k) check("actuator_gear", a, k, o.actuator_gear[a][k], m.actuator_gear[6 * a + k]);
+    for (int k = 0; k < mjNDYN; ++k) {
+      check("actuator_dynprm", a, k, o.actuator_dynprm[a][k], m.actuator_dynprm[mjNDYN * a + k]);
+    }
+    for (int k = 0; k < mjNGAIN; ++k) {
+      check("actuator_gainprm", a, k, o.actuator_gainprm[a][k], m.actuator_gainprm[mjNGAIN * a + k]);
+    }
+    for (int k = 0; k < mjNBIAS; ++k) {
+      check("actuator_biasprm", a, k, o.actuator_biasprm[a][k], m.actuator_biasprm[mjNBIAS * a + k]);
+    }
+  }
+  return out;
+}
+
+void compare_actuator_bits_with_mujoco(const std::string& name, const std::string& xml) {
+  INFO(name);
+  const lever::Model ours = lever::mjcf::load_string(xml, name);
+  std::string error;
+  const lever::test::MjModelHandle theirs = lever::test::mujoco_compile(xml, &error);
+  INFO("mujoco: " << error);
+  REQUIRE(theirs);
+  for (const std::string& d : actuator_bits_differences(ours, *theirs)) FAIL_CHECK(name << ": " << d);
+}
+
 std::string actuator_refusal(const std::string& xml) {
   try {
     lever::mjcf::load_string(xml, "refused.xml");
@@ -52,6 +104,49 @@ TEST_CASE("the actuator models compile to MuJoCo 2.2.2's parameters", "[compile]
   CHECK(m.actuator_trntype[9] == lever::TransmissionType::kSliderCrank);
   CHECK(m.actuator_trnid[9] == std::array<int, 2>{m.site("crank"), m.site("base")});
   CHECK(m.actuator_cranklength[9] == 0.6);
+}
+
+TEST_CASE("intvelocity, damper and cylinder compile to MuJoCo 2.2.2's parameters, bit for bit",
+          "[compile][actuators]") {
+  // in <actuator> and in default classes, each shortcut in a class rewriting what the ones
+  // before it set
+  const std::string path = lever::test::model_path("tests/models/actuators/shortcuts.xml");
+  const std::string xml = lever::test::read_text(path);
+  compare_actuators_with_mujoco("shortcuts.xml", xml);
+  compare_actuator_bits_with_mujoco("shortcuts.xml", xml);
+  const lever::Model m = lever::mjcf::load_file(path);
+  REQUIRE(m.nu == 9);
+  REQUIRE(m.na == 6);
+  CHECK(m.actuator_gainprm[m.actuator("elbow_damper")][2] == -2);
+  CHECK(m.actuator_gainprm[m.actuator("class_damper")][2] == 0);  // the class's kv not taken
+  CHECK(m.actuator_dyntype[m.actuator("shoulder_iv")] == lever::DynType::kIntegrator);
+  CHECK(m.actuator_actlimited[m.actuator("shoulder_iv")]);
+  CHECK(m.actuator_dyntype[m.actuator("narrow_cylinder")] == lever::DynType::kFilter);
+  // each on its own, in the simplest form, too
+  const std::string head = R"(<mujoco><worldbody><body><joint name="j" range="-1 1"/>
+    <geom size="0.1"/></body></worldbody><actuator>)";
+  for (const char* one : {R"(<damper joint="j" ctrlrange="0 1"/>)",
+                          R"(<intvelocity joint="j" actrange="-1 1"/>)",
+                          R"(<cylinder joint="j"/>)", R"(<cylinder joint="j" diameter="0.3"/>)"}) {
+    compare_actuator_bits_with_mujoco(one, head + one + "</actuator></mujoco>");
+  }
+}
+
+TEST_CASE("adhesion and body transmissions compile to MuJoCo 2.2.2's parameters, bit for bit",
+          "[compile][actuators]") {
+  const std::string path = lever::test::model_path("tests/models/actuators/adhesion.xml");
+  const std::string xml = lever::test::read_text(path);
+  compare_actuators_with_mujoco("adhesion.xml", xml);
+  compare_actuator_bits_with_mujoco("adhesion.xml", xml);
+  const lever::Model m = lever::mjcf::load_file(path);
+  const int pad = m.actuator("pad"), box = m.actuator("box"), ball = m.actuator("ball");
+  CHECK(m.actuator_trntype[pad] == lever::TransmissionType::kBody);
+  CHECK(m.actuator_trnid[pad] == std::array<int, 2>{m.body("pad"), -1});
+  CHECK(m.actuator_gainprm[pad][0] == 20);
+  CHECK(m.actuator_gainprm[box][0] == 1);  // the class's gain is not taken
+  CHECK(m.actuator_ctrllimited[box]);
+  CHECK(m.actuator_trntype[ball] == lever::TransmissionType::kBody);
+  CHECK(m.actuator_acc0[pad] == 0);  // no contacts at qpos0 in mj_setConst
 }
 
 TEST_CASE("MuJoCo's slider-crank sample compiles to MuJoCo 2.2.2's parameters",
@@ -82,7 +177,7 @@ TEST_CASE("transmissions written wrongly are refused by name", "[compile][actuat
   CHECK_THAT(actuator_refusal(head + R"(<motor site="t" refsite="y"/></actuator></mujoco>)"),
              Catch::Contains("unknown site 'y'"));
   CHECK_THAT(actuator_refusal(head + R"(<motor body="a"/></actuator></mujoco>)"),
-             Catch::Contains("body"));
+             Catch::Contains("unknown attribute 'body'"));
 }
 
 TEST_CASE("the muscle model compiles to MuJoCo 2.2.2's parameters, lengthrange included",
@@ -156,4 +251,12 @@ TEST_CASE("derivatives and identification refuse the actuators they do not handl
   lever::Derivatives deriv_m(m);
   CHECK_THROWS_WITH(lever::forward_derivatives(m, dm, deriv_m),
                     Catch::Contains("actuator 'wrist_filter' is an actuator with activation"));
+  // a body transmission's moment follows the contacts: not differentiated
+  const lever::Model a =
+      lever::mjcf::load_file(lever::test::model_path("tests/models/actuators/adhesion.xml"));
+  lever::Data da(a);
+  lever::forward(a, da);
+  lever::Derivatives deriv_a(a);
+  CHECK_THROWS_WITH(lever::step_derivatives(a, da, deriv_a),
+                    Catch::Contains("actuator 'pad' drives a body through its contacts"));
 }

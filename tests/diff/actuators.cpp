@@ -6,10 +6,12 @@
 // actuator_moment, actuator_velocity, actuator_force, act, act_dot, qfrc_actuator and the state
 // after each step agree within 1e-12.
 #include <catch2/catch.hpp>
+#include <lever/diff/compare.hpp>
 #include <lever/diff/runs.hpp>
 #include <lever/forward.hpp>
 
 #include <filesystem>
+#include <random>
 
 #include <lever/harness/models.hpp>
 #include "diff_checks.hpp"
@@ -91,6 +93,121 @@ TEST_CASE("diff: muscles and activation dynamics agree with MuJoCo", "[diff][act
       check_within_bound(
           diff::lockstep(run, integrator, kActuatorRunSeconds, diff::Control::kSmooth));
     }
+  }
+}
+
+TEST_CASE("diff: intvelocity, damper and cylinder agree with MuJoCo", "[diff][actuators]") {
+  REQUIRE(mj_version() == 222);
+  const std::string file = model_path("tests/models/actuators/shortcuts.xml");
+  for (const diff::Path path : paths_to_compare()) {
+    const std::uint64_t seed = diff::default_seed(file);
+    INFO(context(file, path, seed));
+    diff::Twin twin(file, path);
+    const diff::Report report = diff::random_states(twin, kActuatorStates, seed);
+    check_within_bound(report, all_but_inverse_at_forward(report));
+    require_actuator_quantities(report, kActuatorStates);
+    const diff::Extreme* act_dot = report.find("act_dot");
+    REQUIRE(act_dot != nullptr);
+    CHECK(act_dot->compared >= kActuatorStates);
+    for (const Integrator integrator : {Integrator::kEuler, Integrator::kImplicit}) {
+      INFO(integrator_name(integrator));
+      diff::Twin run(file, path);
+      check_within_bound(
+          diff::lockstep(run, integrator, kActuatorRunSeconds, diff::Control::kSmooth));
+    }
+  }
+}
+
+namespace {
+
+// A state of the adhesion scene with contacts of every kind likely: the box resting on the floor
+// or pressed into it, slightly turned; the ball in the floor or in its margin's gap; the pad
+// near the box's top half of the time; controls anywhere in their ranges.
+State adhesion_state(const Model& model, std::mt19937_64& rng) {
+  State s = random_state(model, rng);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const auto place = [&](const char* body, double x, double y, double z, double dz, double turn) {
+    const int adr = model.jnt_qposadr[model.body_jntadr[model.body(body)]];  // its free joint
+    s.qpos[adr + 0] = x + 0.02 * u(rng);
+    s.qpos[adr + 1] = y + 0.02 * u(rng);
+    s.qpos[adr + 2] = z + dz * u(rng);
+    Eigen::Vector4d q(1.0, turn * u(rng), turn * u(rng), turn * u(rng));
+    q.normalize();
+    for (int k = 0; k < 4; ++k) s.qpos[adr + 3 + k] = q[k];
+  };
+  place("box", 0.0, 0.0, 0.048, 0.004, 0.05);
+  place("ball", 0.2, 0.0, 0.035, 0.015, 0.0);
+  if (u(rng) > 0) s.qpos[model.jnt_qposadr[model.joint("lift")]] = -0.052 + 0.006 * u(rng);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("diff: adhesion (body transmissions) agrees with MuJoCo at random contact states",
+          "[diff][actuators][contact]") {
+  // actuator_moment and actuator_velocity are sums of the contact rows (efc_J) and the gap
+  // contacts' normal rows: within 1e-12; qacc and qfrc_constraint, the solver's, within its bound
+  // (MuJoCo at tolerance 0). Pyramidal and elliptic cones; condim 1 and 3; contacts with rows and
+  // in the gap.
+  REQUIRE(mj_version() == 222);
+  const std::string file = model_path("tests/models/actuators/adhesion.xml");
+  for (const Cone cone : {Cone::kPyramidal, Cone::kElliptic}) {
+    for (const diff::Path path : paths_to_compare()) {
+      INFO(context(file, path, 0) << (cone == Cone::kElliptic ? ", elliptic" : ", pyramidal"));
+      diff::Twin twin(file, path);
+      twin.set_cone(cone, 1.0);
+      twin.m->opt.tolerance = 0;
+      twin.m->opt.iterations = 1000;
+      std::mt19937_64 rng(diff::default_seed(file));
+      diff::Report report;
+      report.set_solver_bound(diff::kContactSolverBound);
+      int pad_contacts = 0, gap_contacts = 0, condim1 = 0;
+      for (int k = 0; k < 40; ++k) {
+        diff::compare_forward(twin, adhesion_state(twin.model, rng), k, report);
+        for (int i = 0; i < twin.data.ncon; ++i) {
+          const Contact& c = twin.data.contact[i];
+          const int pad = twin.model.body("pad");
+          pad_contacts += twin.model.geom_bodyid[c.geom1] == pad ||
+                          twin.model.geom_bodyid[c.geom2] == pad;
+          gap_contacts += c.exclude == 1;
+          condim1 += c.dim == 1;
+        }
+      }
+      CHECK(pad_contacts > 20);
+      CHECK(gap_contacts > 20);
+      CHECK(condim1 > 10);
+      check_within_bound(report);
+      std::string worst;
+      for (const char* q : {"actuator_moment", "actuator_velocity", "qfrc_actuator", "qacc"}) {
+        const diff::Extreme* e = report.find(q);
+        REQUIRE(e != nullptr);
+        worst += std::string(" ") + q + " " + std::to_string(e->max_ratio);
+      }
+      WARN(context(file, path, 0) << (cone == Cone::kElliptic ? ", elliptic: " : ", pyramidal: ")
+                                  << pad_contacts << " pad contacts, " << gap_contacts
+                                  << " in the gap, " << condim1 << " of condim 1; worst (of "
+                                  << "1e-12):" << worst);
+    }
+  }
+}
+
+TEST_CASE("diff: adhesion in a lockstep run with contacts", "[diff][actuators][contact]") {
+  REQUIRE(mj_version() == 222);
+  const std::string file = model_path("tests/models/actuators/adhesion.xml");
+  for (const diff::Path path : paths_to_compare()) {
+    INFO(context(file, path, 0));
+    // from the keyframe: the pad held on the box by its adhesion, the ball pulled to the floor
+    diff::Twin twin(file, path);
+    const diff::Report report =
+        diff::lockstep(twin, Integrator::kEuler, kActuatorRunSeconds, diff::Control::kKeep);
+    check_within_bound(report);
+    const int pad = twin.model.actuator("pad");
+    CHECK(twin.data.ncon >= 6);
+    CHECK(twin.data.actuator_moment.row(pad).norm() > 0);  // still touching the box
+    const diff::Extreme* qacc = report.find("qacc");
+    REQUIRE(qacc != nullptr);
+    WARN(context(file, path, 0) << ": " << twin.data.ncon << " contacts at the end; qacc worst "
+                                << qacc->max_ratio << " of 1e-12");
   }
 }
 
