@@ -11,6 +11,7 @@
 #include <lever/forward.hpp>
 
 #include <filesystem>
+#include <fstream>
 #include <random>
 
 #include <lever/harness/models.hpp>
@@ -209,6 +210,44 @@ TEST_CASE("diff: adhesion in a lockstep run with contacts", "[diff][actuators][c
     WARN(context(file, path, 0) << ": " << twin.data.ncon << " contacts at the end; qacc worst "
                                 << qacc->max_ratio << " of 1e-12");
   }
+}
+
+TEST_CASE("diff: MuJoCo's active adhesion sample, without its composite particles, agrees",
+          "[diff][actuators][contact][robots]") {
+  // the sample's own scene (two adhesion actuators, geoms with margin and gap, a spatial tendon
+  // over pulleys, joint equalities, a medium), its <composite type="particle"> taken out
+  REQUIRE(mj_version() == 222);
+  const std::string real = robots_dir() + "/mujoco-2.2.2/adhesion/active_adhesion.xml";
+  if (!std::filesystem::exists(real)) {
+    WARN("no " << real << ": skipped");
+    return;
+  }
+  std::string xml = read_text(real);
+  const size_t from = xml.find("<composite"), to = xml.find("</composite>");
+  REQUIRE(from != std::string::npos);
+  REQUIRE(to != std::string::npos);
+  xml.erase(from, to + std::string("</composite>").size() - from);
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "lever_active_adhesion_without_composite.xml";
+  {
+    std::ofstream out(file);
+    out << xml;
+  }
+  for (const diff::Path path : paths_to_compare()) {
+    const std::uint64_t seed = diff::default_seed(real);
+    INFO(context(real, path, seed));
+    diff::Twin twin(file.string(), path);
+    const diff::Report report = diff::random_states(twin, 20, seed);
+    check_within_bound(report, all_but_inverse_at_forward(report));
+    const diff::Extreme* moment = report.find("actuator_moment");
+    REQUIRE(moment != nullptr);
+    // an adhesion's moment is nonzero only in contact: some states must have had one
+    CHECK(moment->max_abs_mujoco > 0);
+    diff::Twin run(file.string(), path);
+    check_within_bound(
+        diff::lockstep(run, Integrator::kEuler, 0.02, diff::Control::kSmooth));
+  }
+  std::filesystem::remove(file);
 }
 
 }  // namespace lever::test
