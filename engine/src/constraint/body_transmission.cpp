@@ -32,6 +32,7 @@ void unchecked::body_transmission(const Model& model, Data& data) {
     for (int i = 0; i < data.ncon; ++i) {
       const Contact& con = data.contact[i];
       if (model.geom_bodyid[con.geom1] != body && model.geom_bodyid[con.geom2] != body) continue;
+      // (a contact whose bodies no dof moves has no rows: MuJoCo does not count it)
       if (con.exclude == 0 && con.efc_address >= 0) {
         ++counted;
         const bool normal_only = con.dim == 1 || elliptic;
