@@ -832,8 +832,13 @@ class Compiler {
     out.actlimited = resolve_limited(m.actlimited, m.actrange, c_.autolimits, m.at, "actrange",
                                      "actlimited");
     check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
-    check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, out.ctrlrange);
-    check_range(m.at, "actrange", "actlimited", out.actlimited, m.actrange);
+    // an <intvelocity>'s, a <damper>'s and <adhesion>'s limits are implied, not written
+    const bool implied = m.at.tag == "intvelocity" || m.at.tag == "damper" ||
+                         m.at.tag == "adhesion";
+    check_range(m.at, "ctrlrange", implied ? "<" + m.at.tag + "> (always ctrllimited)" : "ctrllimited",
+                out.ctrllimited, out.ctrlrange);
+    check_range(m.at, "actrange", implied ? "<" + m.at.tag + "> (always actlimited)" : "actlimited",
+                out.actlimited, m.actrange);
     if (out.actlimited && m.dyntype == DynType::kNone) {
       fail(m.at, "actrange", "an activation range needs activation dynamics; dyntype is none");
     }

@@ -342,8 +342,8 @@ inline const BadInput kBadInputs[] = {
   <actuator>
     <intvelocity joint="j" kp="3"/>
   </actuator>
-</mujoco>)", 9, "intvelocity", "actrange", "actrange needs lower < upper", MuJoCo::kRejects,
-   ""},
+</mujoco>)", 9, "intvelocity", "actrange",
+   "with <intvelocity> (always actlimited) the actrange needs lower < upper", MuJoCo::kRejects, ""},
   {"cylinder-bias-two-numbers", R"(<mujoco>
   <worldbody>
     <body name="b">
@@ -378,6 +378,18 @@ inline const BadInput kBadInputs[] = {
   </actuator>
 </mujoco>)", 9, "adhesion", "ctrlrange", "adhesion control range cannot be negative",
    MuJoCo::kRejects, ""},
+  {"adhesion-empty-ctrlrange", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <adhesion body="b" ctrlrange="0 0"/>
+  </actuator>
+</mujoco>)", 9, "adhesion", "ctrlrange",
+   "with <adhesion> (always ctrllimited) the ctrlrange needs lower < upper", MuJoCo::kRejects, ""},
   {"adhesion-unknown-body", R"(<mujoco>
   <worldbody>
     <body name="b">
