@@ -835,10 +835,11 @@ class Compiler {
     // an <intvelocity>'s, a <damper>'s and <adhesion>'s limits are implied, not written
     const bool implied = m.at.tag == "intvelocity" || m.at.tag == "damper" ||
                          m.at.tag == "adhesion";
-    check_range(m.at, "ctrlrange", implied ? "<" + m.at.tag + "> (always ctrllimited)" : "ctrllimited",
-                out.ctrllimited, out.ctrlrange);
-    check_range(m.at, "actrange", implied ? "<" + m.at.tag + "> (always actlimited)" : "actlimited",
-                out.actlimited, m.actrange);
+    const std::string ctrl_flag =
+        implied ? "<" + m.at.tag + "> (always ctrllimited)" : "ctrllimited";
+    const std::string act_flag = implied ? "<" + m.at.tag + "> (always actlimited)" : "actlimited";
+    check_range(m.at, "ctrlrange", ctrl_flag, out.ctrllimited, out.ctrlrange);
+    check_range(m.at, "actrange", act_flag, out.actlimited, m.actrange);
     if (out.actlimited && m.dyntype == DynType::kNone) {
       fail(m.at, "actrange", "an activation range needs activation dynamics; dyntype is none");
     }

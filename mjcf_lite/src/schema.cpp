@@ -833,7 +833,8 @@ std::vector<ElementRule> build() {
                "", "",
                "a position servo: force = kp (ctrl - q) - kv qd (kv is MuJoCo 3's)"});
   s.push_back({"muscle", "actuator", '*',
-               join(muscle_wiring(), muscle_class_attributes()), "", "", "a muscle: MuJoCo's force-length-velocity and activation model"});
+               join(muscle_wiring(), muscle_class_attributes()), "", "",
+               "a muscle: MuJoCo's force-length-velocity and activation model"});
   s.push_back({"velocity", "actuator", '*',
                join(actuator_wiring("actuator name"),
                     shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m")),

@@ -52,20 +52,25 @@ std::vector<std::string> actuator_bits_differences(const lever::Model& o, const 
     check("actuator_actlimited", a, 0, o.actuator_actlimited[a], m.actuator_actlimited[a]);
     for (int k = 0; k < 2; ++k) {
       check("actuator_trnid", a, k, o.actuator_trnid[a][k], m.actuator_trnid[2 * a + k]);
-      check("actuator_ctrlrange", a, k, o.actuator_ctrlrange[a][k], m.actuator_ctrlrange[2 * a + k]);
+      check("actuator_ctrlrange", a, k, o.actuator_ctrlrange[a][k],
+            m.actuator_ctrlrange[2 * a + k]);
       check("actuator_forcerange", a, k, o.actuator_forcerange[a][k],
             m.actuator_forcerange[2 * a + k]);
       check("actuator_actrange", a, k, o.actuator_actrange[a][k], m.actuator_actrange[2 * a + k]);
     }
-    for (int k = 0; k < 6; ++k) check("actuator_gear", a, k, o.actuator_gear[a][k], m.actuator_gear[6 * a + k]);
+    for (int k = 0; k < 6; ++k) {
+      check("actuator_gear", a, k, o.actuator_gear[a][k], m.actuator_gear[6 * a + k]);
+    }
     for (int k = 0; k < mjNDYN; ++k) {
       check("actuator_dynprm", a, k, o.actuator_dynprm[a][k], m.actuator_dynprm[mjNDYN * a + k]);
     }
     for (int k = 0; k < mjNGAIN; ++k) {
-      check("actuator_gainprm", a, k, o.actuator_gainprm[a][k], m.actuator_gainprm[mjNGAIN * a + k]);
+      check("actuator_gainprm", a, k, o.actuator_gainprm[a][k],
+            m.actuator_gainprm[mjNGAIN * a + k]);
     }
     for (int k = 0; k < mjNBIAS; ++k) {
-      check("actuator_biasprm", a, k, o.actuator_biasprm[a][k], m.actuator_biasprm[mjNBIAS * a + k]);
+      check("actuator_biasprm", a, k, o.actuator_biasprm[a][k],
+            m.actuator_biasprm[mjNBIAS * a + k]);
     }
   }
   return out;
@@ -78,7 +83,9 @@ void compare_actuator_bits_with_mujoco(const std::string& name, const std::strin
   const lever::test::MjModelHandle theirs = lever::test::mujoco_compile(xml, &error);
   INFO("mujoco: " << error);
   REQUIRE(theirs);
-  for (const std::string& d : actuator_bits_differences(ours, *theirs)) FAIL_CHECK(name << ": " << d);
+  for (const std::string& d : actuator_bits_differences(ours, *theirs)) {
+    FAIL_CHECK(name << ": " << d);
+  }
 }
 
 std::string actuator_refusal(const std::string& xml) {

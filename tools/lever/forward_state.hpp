@@ -43,8 +43,8 @@ inline std::string label_of(const std::string& name, int index) {
   return name.empty() ? std::string("#").append(std::to_string(index)) : name;
 }
 
-/// What actuator a drives: its transmission's kind ("joint", "tendon", "site", "crank", "body") and the
-/// object's label, for the tables that list actuators.
+/// What actuator a drives: its transmission's kind ("joint", "tendon", "site", "crank", "body")
+/// and the object's label, for the tables that list actuators.
 struct TransmissionText {
   const char* kind;
   std::string object;
