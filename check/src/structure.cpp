@@ -36,6 +36,7 @@ MotorInfo motor_info(const Model& model, int a) {
     case TransmissionType::kSliderCrank:
       info.joint = label(model.site_name[id], "crank site", id);
       break;
+    case TransmissionType::kBody: info.joint = label(model.body_name[id], "body", id); break;
     default: info.joint = joint_label(model, id);
   }
   info.gear = model.actuator_gear[a][0];

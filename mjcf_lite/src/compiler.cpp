@@ -732,7 +732,7 @@ class Compiler {
   // ---- motors ---------------------------------------------------------------------------------
 
   // The transmission (MuJoCo 2.2.2's xml reader, then mjCActuator::Compile): one of joint,
-  // jointinparent, tendon, cranksite, site; the slider-crank's and the site's second site.
+  // jointinparent, tendon, cranksite, site, body; the slider-crank's and the site's second site.
   void resolve_transmission(const MotorSpec& m, CompiledMotor& out) {
     struct Target {
       const char* attribute;
@@ -743,7 +743,8 @@ class Compiler {
                               {"jointinparent", &m.jointinparent, TransmissionType::kJointInParent},
                               {"tendon", &m.tendon, TransmissionType::kTendon},
                               {"cranksite", &m.cranksite, TransmissionType::kSliderCrank},
-                              {"site", &m.site, TransmissionType::kSite}};
+                              {"site", &m.site, TransmissionType::kSite},
+                              {"body", &m.body, TransmissionType::kBody}};
     const Target* chosen = nullptr;
     for (const Target& t : targets) {
       if (t.name->empty()) continue;
@@ -756,8 +757,8 @@ class Compiler {
     }
     if (!chosen) {
       fail(m.at, "joint",
-           "the actuator names no joint or tendon (nor jointinparent, site, cranksite): name what "
-           "it drives");
+           "the actuator names no joint or tendon (nor jointinparent, site, cranksite, body): name "
+           "what it drives");
     }
     const bool crank = chosen->type == TransmissionType::kSliderCrank;
     if (m.crank_attributes_written && !crank) {
@@ -802,6 +803,12 @@ class Compiler {
         if (!m.refsite.empty()) out.trnid[1] = site(m.refsite, "refsite");
         out.trnid[0] = site(m.site, "site");
         break;
+      case TransmissionType::kBody: {
+        std::vector<std::string_view> names{"world"};
+        for (size_t b = 1; b < nodes_.size(); ++b) names.push_back(nodes_[b].spec->at.name);
+        out.trnid[0] = find_by_name(names, m.body, m.at, "body", "body");
+        break;
+      }
     }
   }
 
@@ -825,8 +832,14 @@ class Compiler {
     out.actlimited = resolve_limited(m.actlimited, m.actrange, c_.autolimits, m.at, "actrange",
                                      "actlimited");
     check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
-    check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, out.ctrlrange);
-    check_range(m.at, "actrange", "actlimited", out.actlimited, m.actrange);
+    // an <intvelocity>'s, a <damper>'s and <adhesion>'s limits are implied, not written
+    const bool implied = m.at.tag == "intvelocity" || m.at.tag == "damper" ||
+                         m.at.tag == "adhesion";
+    const std::string ctrl_flag =
+        implied ? "<" + m.at.tag + "> (always ctrllimited)" : "ctrllimited";
+    const std::string act_flag = implied ? "<" + m.at.tag + "> (always actlimited)" : "actlimited";
+    check_range(m.at, "ctrlrange", ctrl_flag, out.ctrllimited, out.ctrlrange);
+    check_range(m.at, "actrange", act_flag, out.actlimited, m.actrange);
     if (out.actlimited && m.dyntype == DynType::kNone) {
       fail(m.at, "actrange", "an activation range needs activation dynamics; dyntype is none");
     }

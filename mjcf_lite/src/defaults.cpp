@@ -1,6 +1,8 @@
 // Default classes and attribute inheritance; see defaults.hpp.
 #include "defaults.hpp"
 
+#include "orientation.hpp"  // kPi
+
 namespace lever::mjcf::detail {
 
 namespace {
@@ -83,7 +85,8 @@ namespace {
 
 bool is_actuator(std::string_view tag) {
   return tag == "motor" || tag == "general" || tag == "position" || tag == "velocity" ||
-         tag == "muscle";
+         tag == "muscle" || tag == "intvelocity" || tag == "damper" || tag == "cylinder" ||
+         tag == "adhesion";
 }
 
 Value word_value(const char* w) { return Value{{}, w, 0}; }
@@ -127,6 +130,95 @@ void apply_muscle(AttrSet& set) {
   set.set("biastype", word_value("muscle"));
 }
 
+std::vector<double> general_numbers(const AttrSet& set, const char* name) {
+  const Value* v = set.find(name);
+  return v ? v->numbers : default_numbers(attribute_rule("actuator", "general", name));
+}
+
+// a damper's and adhesion's ctrlrange (required by the schema) must not be negative
+void require_non_negative_ctrlrange(const AttrSet& set, const Element& e, const char* what) {
+  const Value* range = set.find("ctrlrange");
+  if (range && (range->numbers[0] < 0 || range->numbers[1] < 0)) {
+    const Attribute* written = e.find("ctrlrange");
+    fail(written ? e.place(*written) : e.place(), "ctrlrange",
+         std::string(what) + " control range cannot be negative (found \"" +
+             (written ? written->value : "") + "\")");
+  }
+}
+
+// The shortcuts with state or a transmission of their own, in <general>'s terms as MuJoCo
+// 2.2.2's reader sets them; the attributes they read from the element itself (a damper's kv,
+// adhesion's gain) start from their built-in values, not the class's, as 2.2.2 clears gainprm
+// before it reads them.
+void apply_intvelocity(AttrSet& set) {
+  // a position servo on the activation, the integrated control; actlimited implied
+  std::vector<double> gain = general_numbers(set, "gainprm");
+  if (const Value* kp = set.find("kp")) gain[0] = kp->numbers[0];
+  set.erase("kp");
+  std::vector<double> bias(kBiasParameters, 0.0);
+  bias[1] = -gain[0];
+  set.set("gainprm", Value{gain, "", 0});
+  set.set("biasprm", Value{bias, "", 0});
+  set.set("dyntype", word_value("integrator"));
+  set.set("gaintype", word_value("fixed"));
+  set.set("biastype", word_value("affine"));
+  set.set("actlimited", word_value("true"));
+}
+
+void apply_damper(AttrSet& set, const Element& e) {
+  // force = -kv velocity ctrl: an affine gain with only its velocity term
+  std::vector<double> gain(kGainParameters, 0.0);
+  const Attribute* kv = e.find("kv");
+  gain[2] = -(kv ? set.find("kv")->numbers[0] : 0.0);
+  set.erase("kv");
+  require_non_negative_ctrlrange(set, e, "damper");
+  set.set("gainprm", Value{gain, "", 0});
+  set.set("dyntype", word_value("none"));
+  set.set("gaintype", word_value("affine"));
+  set.set("biastype", word_value("none"));
+  set.set("ctrllimited", word_value("true"));
+}
+
+void apply_cylinder(AttrSet& set) {
+  // a filter on the control (the pressure), times the area, plus an affine bias; the rest of
+  // gainprm and biasprm stays the class's
+  std::vector<double> dyn = general_numbers(set, "dynprm"), gain = general_numbers(set, "gainprm"),
+                      bias = general_numbers(set, "biasprm");
+  if (const Value* v = set.find("timeconst")) dyn[0] = v->numbers[0];
+  if (const Value* v = set.find("bias")) {
+    for (size_t k = 0; k < 3; ++k) bias[k] = v->numbers[k];
+  }
+  if (const Value* v = set.find("area")) gain[0] = v->numbers[0];
+  if (const Value* v = set.find("diameter")) {
+    const double d = v->numbers[0];
+    gain[0] = kPi / 4 * d * d;  // in MuJoCo's order of operations, for its last bit
+  }
+  for (const char* own : {"timeconst", "bias", "area", "diameter"}) set.erase(own);
+  set.set("dynprm", Value{dyn, "", 0});
+  set.set("gainprm", Value{gain, "", 0});
+  set.set("biasprm", Value{bias, "", 0});
+  set.set("dyntype", word_value("filter"));
+  set.set("gaintype", word_value("fixed"));
+  set.set("biastype", word_value("affine"));
+}
+
+void apply_adhesion(AttrSet& set, const Element& e) {
+  std::vector<double> gain(kGainParameters, 0.0);
+  gain[0] = e.find("gain") ? set.find("gain")->numbers[0] : 1.0;
+  set.erase("gain");
+  if (gain[0] < 0) {
+    fail(e.place(*e.find("gain")), "gain",
+         "adhesion gain cannot be negative (found " + show(gain[0]) + ")");
+  }
+  require_non_negative_ctrlrange(set, e, "adhesion");
+  set.set("gainprm", Value{gain, "", 0});
+  set.set("biasprm", Value{std::vector<double>(kBiasParameters, 0.0), "", 0});
+  set.set("dyntype", word_value("none"));
+  set.set("gaintype", word_value("fixed"));
+  set.set("biastype", word_value("none"));
+  set.set("ctrllimited", word_value("true"));
+}
+
 }  // namespace
 
 void apply_actuator(AttrSet& set, const Element& e, const ElementRule& rule) {
@@ -137,6 +229,10 @@ void apply_actuator(AttrSet& set, const Element& e, const ElementRule& rule) {
     apply_muscle(set);
     return;
   }
+  if (tag == "intvelocity") return apply_intvelocity(set);
+  if (tag == "damper") return apply_damper(set, e);
+  if (tag == "cylinder") return apply_cylinder(set);
+  if (tag == "adhesion") return apply_adhesion(set, e);
   set.set("dyntype", word_value("none"));
   set.set("gaintype", word_value("fixed"));
   const auto numbers = [&](const char* name) {

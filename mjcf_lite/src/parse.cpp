@@ -197,6 +197,7 @@ MotorSpec read_actuator(const Element& e, const DefaultClasses& classes) {
   m.refsite = f.word("refsite");
   m.cranksite = f.word("cranksite");
   m.slidersite = f.word("slidersite");
+  m.body = f.word("body");
   m.cranklength = f.real("cranklength");
   m.lengthrange = f.array<2>("lengthrange");
   m.crank_attributes_written = e.find("cranklength") || e.find("slidersite");

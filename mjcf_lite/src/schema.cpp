@@ -329,7 +329,6 @@ const char* const kUnsupportedJointAttributes = "springdamper";
 const char* const kUnsupportedGeomAttributes =
     "hfield fitscale fluidshape fluidcoef";
 const char* const kUnsupportedSiteAttributes = "fromto";
-const char* const kOtherActuators = "intvelocity damper cylinder adhesion";
 
 // attributes every actuator kind shares, in a default class and in <actuator>
 std::vector<AttributeRule> general_class_attributes() {
@@ -389,6 +388,51 @@ std::vector<AttributeRule> position_class_attributes() {
                     "scaled by this factor (the joint needs a range; no ctrlrange with it)")});
 }
 
+// <intvelocity>: an integrator whose activation a position servo follows (MuJoCo 2.2.2's reader
+// sets actlimited, so actrange is needed)
+std::vector<AttributeRule> intvelocity_class_attributes() {
+  return join(shortcut_class_attributes("kp", "position gain on the integrated control"),
+              {real("actrange", 2, "0 0",
+                    "range of the activation, the integrated control (always limited: needed)")});
+}
+
+// <damper>: ctrllimited is implied, so ctrlrange is required and must not be negative
+std::vector<AttributeRule> damper_class_attributes() {
+  std::vector<AttributeRule> out =
+      shortcut_class_attributes("kv", "damping per unit control, N m s/rad or N s/m; its class's "
+                                      "kv is not inherited (0 unless written)");
+  std::erase_if(out, [](const AttributeRule& r) { return r.name == "ctrllimited"; });
+  for (AttributeRule& r : out) {
+    if (r.name == "ctrlrange") {
+      r = required(real("ctrlrange", 2, "0 0", "control range, not negative (always limited)"));
+    }
+  }
+  return out;
+}
+
+// <cylinder>: a first-order filter (timeconst) on the pressure, times the area, plus an affine
+// bias
+std::vector<AttributeRule> cylinder_class_attributes() {
+  return join(motor_class_attributes(),
+              {integer("group", 1, "0", "visualisation group (kept; no effect on dynamics)"),
+               real("timeconst", 1, "1", "the pressure's time constant, s: dynprm[0]"),
+               real("area", 1, "1", "piston area: gainprm[0]"),
+               real("diameter", 1, "", "piston diameter: gainprm[0] = pi/4 diameter^2 (over area)"),
+               real("bias", 3, "0 0 0", "biasprm[0..2]: the force's affine bias")});
+}
+
+// <adhesion>: gain times a control in [0, ctrlrange], pulling the body onto what it touches
+std::vector<AttributeRule> adhesion_class_attributes() {
+  return {integer("group", 1, "0", "visualisation group (kept; no effect on dynamics)"),
+          required(real("ctrlrange", 2, "0 0", "control range, not negative (always limited)")),
+          real("forcerange", 2, "0 0", "force range"),
+          keyword("forcelimited", "auto", "false true auto", "",
+                  "auto: limited if forcerange is given"),
+          real("gain", 1, "1", "force per unit control, not negative; its class's gain is not "
+                               "inherited (1 unless written)"),
+          user_data()};
+}
+
 std::vector<AttributeRule> actuator_wiring(std::string_view what) {
   return {text("name", "", what), text("class", "", "default class (else the top-level class)"),
           text("joint", "", "the joint it drives (one transmission of joint, jointinparent, "
@@ -413,7 +457,11 @@ std::vector<AttributeRule> muscle_wiring() {
   return out;
 }
 
-const char* const kUnsupportedActuatorAttributes = "body";
+// <general>'s transmission onto a body: the contacts' normals (MuJoCo's adhesion)
+AttributeRule body_transmission() {
+  return text("body", "", "the body whose contacts it acts through: the moment is minus the "
+                          "mean of its contacts' normal Jacobians (adhesion)");
+}
 
 // visual-only assets and elements: read, checked by name, kept as text; no effect on dynamics
 std::vector<AttributeRule> texts(std::string_view names, std::string_view meaning) {
@@ -626,10 +674,9 @@ std::vector<ElementRule> build() {
                                           required(text("body2", "", "second body"))},
                "", "", "a body pair whose geoms never collide (pairs from <pair> still do)"});
   s.push_back({"default", "mujoco", '*', {text("class", "main", "class name (top level: main)")},
-               "", "intvelocity damper cylinder adhesion",
+               "", "",
                "default class: attribute values that elements of the class start from"});
-  s.push_back({"default", "default", '*', {required(text("class", "", "class name"))}, "",
-               "intvelocity damper cylinder adhesion",
+  s.push_back({"default", "default", '*', {required(text("class", "", "class name"))}, "", "",
                "nested class: starts as a copy of its parent"});
   s.push_back({"joint", "default", '?', joint_attributes(), kUnsupportedJointAttributes, "",
                "joint defaults of the class"});
@@ -656,6 +703,14 @@ std::vector<ElementRule> build() {
   s.push_back({"velocity", "default", '?',
                shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m"),
                "cranklength", "", "actuator defaults of the class, as a velocity servo"});
+  s.push_back({"intvelocity", "default", '?', intvelocity_class_attributes(), "cranklength", "",
+               "actuator defaults of the class, as an integrated-velocity servo"});
+  s.push_back({"damper", "default", '?', damper_class_attributes(), "cranklength", "",
+               "actuator defaults of the class, as a damper"});
+  s.push_back({"cylinder", "default", '?', cylinder_class_attributes(), "cranklength", "",
+               "actuator defaults of the class, as a cylinder"});
+  s.push_back({"adhesion", "default", '?', adhesion_class_attributes(), "", "",
+               "actuator defaults of the class, as adhesion"});
   s.push_back({"mesh", "default", '?',
                {real("scale", 3, "1 1 1", "scale of the vertices of the class's meshes")}, "", "",
                "mesh defaults"});
@@ -763,30 +818,49 @@ std::vector<ElementRule> build() {
                kUnsupportedSiteAttributes, "", "a named frame: no mass, no collision"});
   s.push_back({"site", "worldbody", '*', join(naming("site name"), site_attributes()),
                kUnsupportedSiteAttributes, "", "a named frame fixed to the world"});
-  s.push_back({"actuator", "mujoco", '*', {}, "", kOtherActuators, "actuators"});
+  s.push_back({"actuator", "mujoco", '*', {}, "", "", "actuators"});
   s.push_back({"motor", "actuator", '*',
                join(actuator_wiring("motor name"),
                     join(motor_class_attributes(),
                          {integer("group", 1, "0",
                                   "visualisation group (kept; no effect on dynamics)")})),
-               kUnsupportedActuatorAttributes,
+               "",
                "", "a torque (hinge) or force (slide) motor: force = gear * ctrl"});
   s.push_back({"general", "actuator", '*',
-               join(actuator_wiring("actuator name"), general_class_attributes()),
-               kUnsupportedActuatorAttributes, "",
+               join(join(actuator_wiring("actuator name"), {body_transmission()}),
+                    general_class_attributes()),
+               "", "",
                "an actuator: force = gain * ctrl + bias (fixed or affine gain, affine bias)"});
   s.push_back({"position", "actuator", '*',
                join(actuator_wiring("actuator name"),
                     position_class_attributes()),
-               kUnsupportedActuatorAttributes, "",
+               "", "",
                "a position servo: force = kp (ctrl - q) - kv qd (kv is MuJoCo 3's)"});
   s.push_back({"muscle", "actuator", '*',
-               join(muscle_wiring(), muscle_class_attributes()), kUnsupportedActuatorAttributes,
-               "", "a muscle: MuJoCo's force-length-velocity and activation model"});
+               join(muscle_wiring(), muscle_class_attributes()), "", "",
+               "a muscle: MuJoCo's force-length-velocity and activation model"});
   s.push_back({"velocity", "actuator", '*',
                join(actuator_wiring("actuator name"),
                     shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m")),
-               kUnsupportedActuatorAttributes, "", "a velocity servo: force = kv (ctrl - qd)"});
+               "", "", "a velocity servo: force = kv (ctrl - qd)"});
+  s.push_back({"intvelocity", "actuator", '*',
+               join(actuator_wiring("actuator name"), intvelocity_class_attributes()), "", "",
+               "an integrated-velocity servo: act' = ctrl, force = kp (act - length)"});
+  s.push_back({"damper", "actuator", '*',
+               join(actuator_wiring("actuator name"), damper_class_attributes()), "", "",
+               "an active damper: force = -kv ctrl velocity, ctrl in a non-negative range"});
+  s.push_back({"cylinder", "actuator", '*',
+               join(actuator_wiring("actuator name"), cylinder_class_attributes()), "", "",
+               "a pneumatic or hydraulic cylinder: act' = (ctrl - act) / timeconst, force = "
+               "area act + bias[0] + bias[1] length + bias[2] velocity"});
+  s.push_back({"adhesion", "actuator", '*',
+               join({text("name", "", "actuator name"),
+                     text("class", "", "default class (else the top-level class)"),
+                     required(body_transmission())},
+                    adhesion_class_attributes()),
+               "", "",
+               "adhesion: force = gain ctrl, pulling the body onto the geoms it touches along the "
+               "mean of its contacts' normals (contacts in the margin's gap count too)"});
   for (ElementRule& r : sensor_rules()) s.push_back(std::move(r));
   return s;
 }
@@ -917,8 +991,8 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
     renames the main class;
   * text inside an element (MuJoCo ignores it);
   * finite numbers whose compiled result overflows (e.g. a `fromto` of 1e308);
-  * a negative `kp` or `kv` on `<position>` or `<velocity>` (a servo that pushes away from its
-    target, or a damper that feeds energy in);
+  * a negative `kp` or `kv` on `<position>`, `<velocity>` or `<intvelocity>` (a servo that
+    pushes away from its target, or a damper that feeds energy in);
   * `option/impratio` that is zero or negative, a negative `option/iterations` or
     `option/tolerance`, and `size/nconmax` or `size/njmax` below -1 (MuJoCo reads any negative
     value as the default).

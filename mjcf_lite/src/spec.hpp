@@ -108,6 +108,7 @@ struct MotorSpec {
   /// the other transmissions' names as written ("" if not): jointinparent, site (with refsite),
   /// a slider-crank's cranksite and slidersite
   std::string jointinparent, site, refsite, cranksite, slidersite;
+  std::string body;  ///< a body transmission (adhesion): the body whose contacts it acts through
   double cranklength = 0;
   bool crank_attributes_written = false;  ///< cranklength or slidersite on the element itself
   DynType dyntype = DynType::kNone;

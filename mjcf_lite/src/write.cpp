@@ -243,6 +243,9 @@ class Writer {
       e->SetAttribute("kp", number(gain).c_str());  // its bias -kp follows
     } else if (tag == "velocity") {
       e->SetAttribute("kv", number(gain).c_str());  // its bias -kv follows
+    } else if (tag == "intvelocity" || tag == "damper" || tag == "cylinder" ||
+               tag == "adhesion") {
+      write_as_general(model, a, e);
     } else {
       if (tag == "motor") {  // a motor has no gain attribute: say what a <general> needs
         e->SetName("general");
@@ -255,6 +258,29 @@ class Writer {
         e->SetAttribute("biasprm", used(model.actuator_biasprm[a], 3).c_str());
       }
     }
+  }
+
+  // A shortcut whose own attributes cannot hold any gain and bias (an intvelocity's, damper's,
+  // cylinder's, adhesion's): rewritten as the <general> it compiles to, every parameter written,
+  // with the limits it implied
+  static void write_as_general(const Model& model, int a, tinyxml2::XMLElement* e) {
+    const std::string tag = e->Name();
+    for (const char* own : {"kp", "kv", "gain", "timeconst", "area", "diameter", "bias"}) {
+      e->DeleteAttribute(own);
+    }
+    e->SetName("general");
+    if (tag == "damper" || tag == "adhesion") e->SetAttribute("ctrllimited", "true");
+    if (tag == "intvelocity") e->SetAttribute("actlimited", "true");
+    const char* const dyn[] = {"none", "integrator", "filter", "muscle"};
+    const char* const gain[] = {"fixed", "affine", "muscle"};
+    const char* const bias[] = {"none", "affine", "muscle"};
+    e->SetAttribute("dyntype", dyn[static_cast<int>(model.actuator_dyntype[a])]);
+    e->SetAttribute("gaintype", gain[static_cast<int>(model.actuator_gaintype[a])]);
+    e->SetAttribute("biastype", bias[static_cast<int>(model.actuator_biastype[a])]);
+    // whole: a shorter list would take its tail from the class's <general> default
+    e->SetAttribute("dynprm", numbers(model.actuator_dynprm[a].data(), kDynParameters).c_str());
+    e->SetAttribute("gainprm", numbers(model.actuator_gainprm[a].data(), kGainParameters).c_str());
+    e->SetAttribute("biasprm", numbers(model.actuator_biasprm[a].data(), kBiasParameters).c_str());
   }
 
   std::string text() {

@@ -518,8 +518,10 @@ TEST_CASE("equality constraints and friction loss allocate nothing", "[alloc]") 
 }
 
 TEST_CASE("transmissions, muscles and activations allocate nothing", "[alloc]") {
+  // adhesion.xml: body transmissions over contacts with rows and in the gap
   for (const char* file :
-       {"tests/models/actuators/transmissions.xml", "tests/models/actuators/muscles.xml"}) {
+       {"tests/models/actuators/transmissions.xml", "tests/models/actuators/muscles.xml",
+        "tests/models/actuators/shortcuts.xml", "tests/models/actuators/adhesion.xml"}) {
     INFO(file);
     std::string how;
     const lever::Model base = load(lever::test::model_path(file), how);

@@ -15,6 +15,70 @@
 #include "compile_checks.hpp"
 
 using lever::test::check_compiles_as_mujoco;
+using lever::test::load_refusal;
+
+namespace {
+
+// The actuator arrays the compiler writes, held bit for bit (== on doubles) to MuJoCo's: each
+// shortcut's parameters are set, not computed, so they must be the same numbers
+std::vector<std::string> actuator_bits_differences(const lever::Model& o, const mjModel& m) {
+  std::vector<std::string> out;
+  const auto check = [&](const char* field, int a, int k, double ours, double theirs) {
+    if (ours != theirs) {
+      out.push_back(std::string(field) + "[" + std::to_string(a) + "][" + std::to_string(k) +
+                    "]: lever " + std::to_string(ours) + " vs mujoco " + std::to_string(theirs));
+    }
+  };
+  if (o.nu != m.nu || o.na != m.na) return {"nu or na differ"};
+  for (int a = 0; a < m.nu; ++a) {
+    check("actuator_trntype", a, 0, static_cast<int>(o.actuator_trntype[a]), m.actuator_trntype[a]);
+    check("actuator_dyntype", a, 0, static_cast<int>(o.actuator_dyntype[a]), m.actuator_dyntype[a]);
+    check("actuator_gaintype", a, 0, static_cast<int>(o.actuator_gaintype[a]),
+          m.actuator_gaintype[a]);
+    check("actuator_biastype", a, 0, static_cast<int>(o.actuator_biastype[a]),
+          m.actuator_biastype[a]);
+    check("actuator_ctrllimited", a, 0, o.actuator_ctrllimited[a], m.actuator_ctrllimited[a]);
+    check("actuator_forcelimited", a, 0, o.actuator_forcelimited[a], m.actuator_forcelimited[a]);
+    check("actuator_actlimited", a, 0, o.actuator_actlimited[a], m.actuator_actlimited[a]);
+    for (int k = 0; k < 2; ++k) {
+      check("actuator_trnid", a, k, o.actuator_trnid[a][k], m.actuator_trnid[2 * a + k]);
+      check("actuator_ctrlrange", a, k, o.actuator_ctrlrange[a][k],
+            m.actuator_ctrlrange[2 * a + k]);
+      check("actuator_forcerange", a, k, o.actuator_forcerange[a][k],
+            m.actuator_forcerange[2 * a + k]);
+      check("actuator_actrange", a, k, o.actuator_actrange[a][k], m.actuator_actrange[2 * a + k]);
+    }
+    for (int k = 0; k < 6; ++k) {
+      check("actuator_gear", a, k, o.actuator_gear[a][k], m.actuator_gear[6 * a + k]);
+    }
+    for (int k = 0; k < mjNDYN; ++k) {
+      check("actuator_dynprm", a, k, o.actuator_dynprm[a][k], m.actuator_dynprm[mjNDYN * a + k]);
+    }
+    for (int k = 0; k < mjNGAIN; ++k) {
+      check("actuator_gainprm", a, k, o.actuator_gainprm[a][k],
+            m.actuator_gainprm[mjNGAIN * a + k]);
+    }
+    for (int k = 0; k < mjNBIAS; ++k) {
+      check("actuator_biasprm", a, k, o.actuator_biasprm[a][k],
+            m.actuator_biasprm[mjNBIAS * a + k]);
+    }
+  }
+  return out;
+}
+
+void compare_actuator_bits_with_mujoco(const std::string& name, const std::string& xml) {
+  INFO(name);
+  const lever::Model ours = lever::mjcf::load_string(xml, name);
+  std::string error;
+  const lever::test::MjModelHandle theirs = lever::test::mujoco_compile(xml, &error);
+  INFO("mujoco: " << error);
+  REQUIRE(theirs);
+  for (const std::string& d : actuator_bits_differences(ours, *theirs)) {
+    FAIL_CHECK(name << ": " << d);
+  }
+}
+
+}  // namespace
 
 TEST_CASE("the actuator models compile to MuJoCo 2.2.2's parameters", "[compile][actuators]") {
   const std::string path = lever::test::model_path("tests/models/actuators/transmissions.xml");
@@ -30,6 +94,49 @@ TEST_CASE("the actuator models compile to MuJoCo 2.2.2's parameters", "[compile]
   CHECK(m.actuator_cranklength[9] == 0.6);
 }
 
+TEST_CASE("intvelocity, damper and cylinder compile to MuJoCo 2.2.2's parameters, bit for bit",
+          "[compile][actuators]") {
+  // in <actuator> and in default classes, each shortcut in a class rewriting what the ones
+  // before it set
+  const std::string path = lever::test::model_path("tests/models/actuators/shortcuts.xml");
+  const std::string xml = lever::test::read_text(path);
+  check_compiles_as_mujoco("shortcuts.xml", xml);
+  compare_actuator_bits_with_mujoco("shortcuts.xml", xml);
+  const lever::Model m = lever::mjcf::load_file(path);
+  REQUIRE(m.nu == 9);
+  REQUIRE(m.na == 6);
+  CHECK(m.actuator_gainprm[m.actuator("elbow_damper")][2] == -2);
+  CHECK(m.actuator_gainprm[m.actuator("class_damper")][2] == 0);  // the class's kv not taken
+  CHECK(m.actuator_dyntype[m.actuator("shoulder_iv")] == lever::DynType::kIntegrator);
+  CHECK(m.actuator_actlimited[m.actuator("shoulder_iv")]);
+  CHECK(m.actuator_dyntype[m.actuator("narrow_cylinder")] == lever::DynType::kFilter);
+  // each on its own, in the simplest form, too
+  const std::string head = R"(<mujoco><worldbody><body><joint name="j" range="-1 1"/>
+    <geom size="0.1"/></body></worldbody><actuator>)";
+  for (const char* one : {R"(<damper joint="j" ctrlrange="0 1"/>)",
+                          R"(<intvelocity joint="j" actrange="-1 1"/>)",
+                          R"(<cylinder joint="j"/>)", R"(<cylinder joint="j" diameter="0.3"/>)"}) {
+    compare_actuator_bits_with_mujoco(one, head + one + "</actuator></mujoco>");
+  }
+}
+
+TEST_CASE("adhesion and body transmissions compile to MuJoCo 2.2.2's parameters, bit for bit",
+          "[compile][actuators]") {
+  const std::string path = lever::test::model_path("tests/models/actuators/adhesion.xml");
+  const std::string xml = lever::test::read_text(path);
+  check_compiles_as_mujoco("adhesion.xml", xml);
+  compare_actuator_bits_with_mujoco("adhesion.xml", xml);
+  const lever::Model m = lever::mjcf::load_file(path);
+  const int pad = m.actuator("pad"), box = m.actuator("box"), ball = m.actuator("ball");
+  CHECK(m.actuator_trntype[pad] == lever::TransmissionType::kBody);
+  CHECK(m.actuator_trnid[pad] == std::array<int, 2>{m.body("pad"), -1});
+  CHECK(m.actuator_gainprm[pad][0] == 20);
+  CHECK(m.actuator_gainprm[box][0] == 1);  // the class's gain is not taken
+  CHECK(m.actuator_ctrllimited[box]);
+  CHECK(m.actuator_trntype[ball] == lever::TransmissionType::kBody);
+  CHECK(m.actuator_acc0[pad] == 0);  // no contacts at qpos0 in mj_setConst
+}
+
 TEST_CASE("MuJoCo's slider-crank sample compiles to MuJoCo 2.2.2's parameters",
           "[compile][actuators][robots]") {
   const std::string file = lever::test::robots_dir() + "/mujoco-2.2.2/slider_crank/slider_crank.xml";
@@ -43,22 +150,22 @@ TEST_CASE("MuJoCo's slider-crank sample compiles to MuJoCo 2.2.2's parameters",
 TEST_CASE("transmissions written wrongly are refused by name", "[compile][actuators]") {
   const std::string head = R"(<mujoco><worldbody><site name="s"/><body name="a"><joint name="j"/>
     <geom size="1"/><site name="t"/></body></worldbody><actuator>)";
-  CHECK_THAT(lever::test::load_refusal(head + R"(<motor joint="j" site="s"/></actuator></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<motor joint="j" site="s"/></actuator></mujoco>)"),
              Catch::Contains("names both joint and site"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<motor joint="j" slidersite="s"/></actuator></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<motor joint="j" slidersite="s"/></actuator></mujoco>)"),
              Catch::Contains("belong to a slider-crank"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<motor joint="j" refsite="s"/></actuator></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<motor joint="j" refsite="s"/></actuator></mujoco>)"),
              Catch::Contains("refsite belongs to a site transmission"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<motor cranksite="t" cranklength="1"/></actuator></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<motor cranksite="t" cranklength="1"/></actuator></mujoco>)"),
              Catch::Contains("needs slidersite"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<motor cranksite="t" slidersite="s"/></actuator></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<motor cranksite="t" slidersite="s"/></actuator></mujoco>)"),
              Catch::Contains("positive cranklength"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<motor site="x"/></actuator></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<motor site="x"/></actuator></mujoco>)"),
              Catch::Contains("unknown site 'x'"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<motor site="t" refsite="y"/></actuator></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<motor site="t" refsite="y"/></actuator></mujoco>)"),
              Catch::Contains("unknown site 'y'"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<motor body="a"/></actuator></mujoco>)"),
-             Catch::Contains("body"));
+  CHECK_THAT(load_refusal(head + R"(<motor body="a"/></actuator></mujoco>)"),
+             Catch::Contains("unknown attribute 'body'"));
 }
 
 TEST_CASE("the muscle model compiles to MuJoCo 2.2.2's parameters, lengthrange included",
@@ -95,18 +202,18 @@ TEST_CASE("actuators with dynamics written wrongly are refused by name",
           "[compile][actuators][muscles]") {
   const std::string head = R"(<mujoco><worldbody><body><joint name="j"/><geom size="1"/></body>
     </worldbody><actuator>)";
-  CHECK_THAT(lever::test::load_refusal(head + R"(<general joint="j" dyntype="filter"/><motor joint="j"/>
+  CHECK_THAT(load_refusal(head + R"(<general joint="j" dyntype="filter"/><motor joint="j"/>
     </actuator></mujoco>)"),
              Catch::Contains("stateless actuators must come before"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<general joint="j" actrange="0 1"/></actuator></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<general joint="j" actrange="0 1"/></actuator></mujoco>)"),
              Catch::Contains("needs activation dynamics"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<muscle joint="j" lmin="1.2" lengthrange="0 1"/>
+  CHECK_THAT(load_refusal(head + R"(<muscle joint="j" lmin="1.2" lengthrange="0 1"/>
     </actuator></mujoco>)"),
              Catch::Contains("lmin < 1 < lmax"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<general joint="j" dyntype="user"/></actuator></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<general joint="j" dyntype="user"/></actuator></mujoco>)"),
              Catch::Contains("user"));
   // an unlimited joint: the simulation pulls the length without end and does not settle
-  CHECK_THAT(lever::test::load_refusal(head + R"(<muscle joint="j"/></actuator></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<muscle joint="j"/></actuator></mujoco>)"),
              Catch::Contains("did not settle"));
 }
 
@@ -132,4 +239,12 @@ TEST_CASE("derivatives and identification refuse the actuators they do not handl
   lever::Derivatives deriv_m(m);
   CHECK_THROWS_WITH(lever::forward_derivatives(m, dm, deriv_m),
                     Catch::Contains("actuator 'wrist_filter' is an actuator with activation"));
+  // a body transmission's moment follows the contacts: not differentiated
+  const lever::Model a =
+      lever::mjcf::load_file(lever::test::model_path("tests/models/actuators/adhesion.xml"));
+  lever::Data da(a);
+  lever::forward(a, da);
+  lever::Derivatives deriv_a(a);
+  CHECK_THROWS_WITH(lever::step_derivatives(a, da, deriv_a),
+                    Catch::Contains("actuator 'pad' drives a body through its contacts"));
 }

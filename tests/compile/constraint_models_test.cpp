@@ -13,6 +13,7 @@
 #include "compile_checks.hpp"
 
 using lever::test::check_compiles_as_mujoco;
+using lever::test::load_refusal;
 
 TEST_CASE("the constraint models compile to MuJoCo 2.2.2's parameters", "[compile][constraints]") {
   for (const char* name :
@@ -113,54 +114,54 @@ TEST_CASE("tendons lever cannot build are refused by name", "[compile][tendons]"
     <site name="s"/><body name="b"><joint name="ball" type="ball"/><geom size="1"/><site name="r"/>
     </body></body></worldbody>)";
   // spatial paths MuJoCo refuses too, each named
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/></spatial></tendon>
+  CHECK_THAT(load_refusal(head + R"(<tendon><spatial><site site="s"/></spatial></tendon>
     </mujoco>)"),
              Catch::Contains("at least two"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="q"/>
+  CHECK_THAT(load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="q"/>
     </spatial></tendon></mujoco>)"),
              Catch::Contains("unknown site 'q'"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="s"/>
+  CHECK_THAT(load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="s"/>
     </spatial></tendon></mujoco>)"),
              Catch::Contains("follows itself"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><pulley divisor="2"/>
+  CHECK_THAT(load_refusal(head + R"(<tendon><spatial><site site="s"/><pulley divisor="2"/>
     <site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("no neighbour"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
+  CHECK_THAT(load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
     <pulley divisor="2"/></spatial></tendon></mujoco>)"),
              Catch::Contains("ends with a pulley"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
+  CHECK_THAT(load_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
     <pulley divisor="0"/><site site="s"/><site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("divisor must be positive"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial><site site="s"/><geom geom="g"/>
+  CHECK_THAT(load_refusal(head + R"(<tendon><spatial><site site="s"/><geom geom="g"/>
     </spatial></tendon></mujoco>)"),
              Catch::Contains("unknown geom 'g'"));
-  CHECK_THAT(lever::test::load_refusal(R"(<mujoco><worldbody><body><joint/><geom name="box" type="box"
+  CHECK_THAT(load_refusal(R"(<mujoco><worldbody><body><joint/><geom name="box" type="box"
     size="1 1 1"/><site name="s"/><site name="r" pos="1 0 0"/></body></worldbody><tendon><spatial>
     <site site="s"/><geom geom="box"/><site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("not a sphere or a cylinder"));
-  CHECK_THAT(lever::test::load_refusal(R"(<mujoco><worldbody><body><joint/><geom name="ball" size="1"/>
+  CHECK_THAT(load_refusal(R"(<mujoco><worldbody><body><joint/><geom name="ball" size="1"/>
     <site name="s"/><site name="r" pos="1 0 0"/></body></worldbody><tendon><spatial>
     <geom geom="ball"/><site site="s"/><site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("between two sites"));
-  CHECK_THAT(lever::test::load_refusal(R"(<mujoco><worldbody><body><joint/><geom name="ball" size="1"/>
+  CHECK_THAT(load_refusal(R"(<mujoco><worldbody><body><joint/><geom name="ball" size="1"/>
     <site name="s"/><site name="r" pos="1 0 0"/></body></worldbody><tendon><spatial>
     <site site="s"/><geom geom="ball" sidesite="x"/><site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("unknown side site 'x'"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><spatial width="0"><site site="s"/>
+  CHECK_THAT(load_refusal(head + R"(<tendon><spatial width="0"><site site="s"/>
     <site site="r"/></spatial></tendon></mujoco>)"),
              Catch::Contains("width must be positive"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><fixed><joint joint="ball" coef="1"/></fixed>
+  CHECK_THAT(load_refusal(head + R"(<tendon><fixed><joint joint="ball" coef="1"/></fixed>
     </tendon></mujoco>)"),
              Catch::Contains("ball or free joint"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><fixed><joint joint="k" coef="1"/></fixed>
+  CHECK_THAT(load_refusal(head + R"(<tendon><fixed><joint joint="k" coef="1"/></fixed>
     </tendon></mujoco>)"),
              Catch::Contains("unknown joint 'k'"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><fixed name="t"/></tendon></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<tendon><fixed name="t"/></tendon></mujoco>)"),
              Catch::Contains("at least one"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><fixed name="t"><joint joint="j" coef="1"/>
+  CHECK_THAT(load_refusal(head + R"(<tendon><fixed name="t"><joint joint="j" coef="1"/>
     </fixed></tendon><actuator><motor tendon="u"/></actuator></mujoco>)"),
              Catch::Contains("unknown tendon 'u'"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<tendon><fixed name="t" limited="true" range="1 0">
+  CHECK_THAT(load_refusal(head + R"(<tendon><fixed name="t" limited="true" range="1 0">
     <joint joint="j" coef="1"/></fixed></tendon></mujoco>)"),
              Catch::Contains("lower < upper"));
 }
@@ -201,16 +202,16 @@ TEST_CASE("equality and friction loss corner cases agree with MuJoCo 2.2.2",
 TEST_CASE("constraints lever cannot build are refused by name", "[compile][constraints]") {
   const std::string head = R"(<mujoco><worldbody><body name="a"><joint name="j"/><geom size="1"/>
     <body name="b"><joint name="ball" type="ball"/><geom size="1"/></body></body></worldbody>)";
-  CHECK_THAT(lever::test::load_refusal(head + R"(<equality><tendon tendon1="t"/></equality></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<equality><tendon tendon1="t"/></equality></mujoco>)"),
              Catch::Contains("unknown tendon 't'"));
-  CHECK_THAT(lever::test::load_refusal(
+  CHECK_THAT(load_refusal(
                  head + R"(<equality><connect body1="x" anchor="0 0 0"/></equality></mujoco>)"),
              Catch::Contains("unknown body 'x'"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<equality><joint joint1="ball"/></equality></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<equality><joint joint1="ball"/></equality></mujoco>)"),
              Catch::Contains("joint 'ball' is a ball or free joint"));
   CHECK_THAT(
-      lever::test::load_refusal(head + R"(<equality><weld body1="a" body2="a"/></equality></mujoco>)"),
+      load_refusal(head + R"(<equality><weld body1="a" body2="a"/></equality></mujoco>)"),
       Catch::Contains("constrained to itself"));
-  CHECK_THAT(lever::test::load_refusal(head + R"(<equality><connect body1="a"/></equality></mujoco>)"),
+  CHECK_THAT(load_refusal(head + R"(<equality><connect body1="a"/></equality></mujoco>)"),
              Catch::Contains("anchor"));
 }

@@ -277,7 +277,8 @@ inline const BadInput kBadInputs[] = {
     </body>
   </worldbody>
 </mujoco>)", 5, "joint", "type", "must be its body's only joint", MuJoCo::kRejects, ""},
-  {"unsupported-actuator", R"(<mujoco>
+  // ---- the shortcuts with state or their own transmission: MuJoCo 2.2.2's reader's rules -----
+  {"damper-without-ctrlrange", R"(<mujoco>
   <worldbody>
     <body name="b">
       <joint name="j"/>
@@ -285,10 +286,143 @@ inline const BadInput kBadInputs[] = {
     </body>
   </worldbody>
   <actuator>
-    <cylinder joint="j"/>
+    <damper joint="j" kv="1"/>
   </actuator>
-</mujoco>)", 9, "cylinder", "", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
-   "valid MJCF outside lever's subset"},
+</mujoco>)", 9, "damper", "ctrlrange", "missing required attribute 'ctrlrange'",
+   MuJoCo::kRejects, ""},
+  {"damper-negative-ctrlrange", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <damper joint="j" kv="1"
+            ctrlrange="-1 1"/>
+  </actuator>
+</mujoco>)", 10, "damper", "ctrlrange", "damper control range cannot be negative",
+   MuJoCo::kRejects, ""},
+  {"damper-default-without-ctrlrange", R"(<mujoco>
+  <default>
+    <damper kv="2"/>
+  </default>
+</mujoco>)", 3, "damper", "ctrlrange", "missing required attribute 'ctrlrange'",
+   MuJoCo::kRejects, ""},
+  {"damper-ctrllimited", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <damper joint="j" ctrlrange="0 1" ctrllimited="false"/>
+  </actuator>
+</mujoco>)", 9, "damper", "ctrllimited", "unknown attribute 'ctrllimited'", MuJoCo::kRejects,
+   ""},
+  {"damper-negative-kv", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <damper joint="j" ctrlrange="0 1" kv="-2"/>
+  </actuator>
+</mujoco>)", 9, "damper", "kv", "must not be negative", MuJoCo::kRejects, ""},
+  {"intvelocity-without-actrange", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <intvelocity joint="j" kp="3"/>
+  </actuator>
+</mujoco>)", 9, "intvelocity", "actrange",
+   "with <intvelocity> (always actlimited) the actrange needs lower < upper", MuJoCo::kRejects, ""},
+  {"cylinder-bias-two-numbers", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <cylinder joint="j" bias="1 2"/>
+  </actuator>
+</mujoco>)", 9, "cylinder", "bias", "3", MuJoCo::kRejects, ""},
+  {"adhesion-negative-gain", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <adhesion body="b" ctrlrange="0 1" gain="-1"/>
+  </actuator>
+</mujoco>)", 9, "adhesion", "gain", "adhesion gain cannot be negative", MuJoCo::kRejects, ""},
+  {"adhesion-negative-ctrlrange", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <adhesion body="b" ctrlrange="-1 0"/>
+  </actuator>
+</mujoco>)", 9, "adhesion", "ctrlrange", "adhesion control range cannot be negative",
+   MuJoCo::kRejects, ""},
+  {"adhesion-empty-ctrlrange", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <adhesion body="b" ctrlrange="0 0"/>
+  </actuator>
+</mujoco>)", 9, "adhesion", "ctrlrange",
+   "with <adhesion> (always ctrllimited) the ctrlrange needs lower < upper", MuJoCo::kRejects, ""},
+  {"adhesion-unknown-body", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <adhesion body="c" ctrlrange="0 1"/>
+  </actuator>
+</mujoco>)", 9, "adhesion", "body", "unknown body 'c'", MuJoCo::kRejects, ""},
+  {"adhesion-with-joint", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <adhesion body="b" joint="j" ctrlrange="0 1"/>
+  </actuator>
+</mujoco>)", 9, "adhesion", "joint", "unknown attribute 'joint'", MuJoCo::kRejects, ""},
+  {"general-body-and-joint", R"(<mujoco>
+  <worldbody>
+    <body name="b">
+      <joint name="j"/>
+      <geom size="0.1"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <general body="b" joint="j"/>
+  </actuator>
+</mujoco>)", 9, "general", "body", "names both joint and body", MuJoCo::kRejects, ""},
   {"unsupported-dyntype", R"(<mujoco>
   <worldbody>
     <body name="b">

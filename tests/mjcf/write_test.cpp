@@ -72,11 +72,18 @@ const std::set<std::string>& writable(const std::string& tag) {
                "axisangle", "xyaxes", "zaxis", "euler"},
       joint{"armature", "damping", "type"},
       actuator{"kp", "kv", "gainprm", "biasprm", "dyntype", "gaintype", "biastype"},
+      // a shortcut rewritten as a <general>: its own attributes become the general's
+      shortcut{"kp",   "kv",        "gain", "timeconst", "area",    "diameter",
+               "bias", "dynprm",    "gainprm", "biasprm", "dyntype", "gaintype",
+               "biastype", "ctrllimited", "actlimited"},
       compiler{"inertiafromgeom", "settotalmass"};
   if (tag == "inertial") return inertial;
   if (tag == "joint" || tag == "freejoint") return joint;
   if (tag == "motor" || tag == "position" || tag == "velocity" || tag == "general") {
     return actuator;
+  }
+  if (tag == "intvelocity" || tag == "damper" || tag == "cylinder" || tag == "adhesion") {
+    return shortcut;
   }
   if (tag == "compiler") return compiler;
   return none;
@@ -86,7 +93,9 @@ const std::set<std::string>& writable(const std::string& tag) {
 // skipped) with each of its attributes unchanged, but those write_string writes.
 void check_untouched(const Element& before, const Element& after, int& inserted) {
   INFO("<" << before.tag << "> at line " << before.line);
-  const bool renamed = (before.tag == "motor" && after.tag == "general") ||
+  const bool shortcut = before.tag == "intvelocity" || before.tag == "damper" ||
+                        before.tag == "cylinder" || before.tag == "adhesion";
+  const bool renamed = ((before.tag == "motor" || shortcut) && after.tag == "general") ||
                        (before.tag == "freejoint" && after.tag == "joint");
   CHECK((after.tag == before.tag || renamed));
   for (const auto& a : before.attributes) {
@@ -153,6 +162,8 @@ TEST_CASE(
   std::vector<std::string> files = lever::test::all_model_files();
   files.push_back(lever::test::model_path("tests/menagerie/panda_style.xml"));
   files.push_back(lever::test::model_path("tests/derivatives/servo_affine.xml"));
+  files.push_back(lever::test::model_path("tests/models/actuators/shortcuts.xml"));
+  files.push_back(lever::test::model_path("tests/models/actuators/adhesion.xml"));
   for (const std::string& file : files) {
     INFO(file);
     const Model prior = lever::mjcf::load_file(file);

@@ -43,8 +43,8 @@ inline std::string label_of(const std::string& name, int index) {
   return name.empty() ? std::string("#").append(std::to_string(index)) : name;
 }
 
-/// What actuator a drives: its transmission's kind ("joint", "tendon", "site", "crank") and the
-/// object's label, for the tables that list actuators.
+/// What actuator a drives: its transmission's kind ("joint", "tendon", "site", "crank", "body")
+/// and the object's label, for the tables that list actuators.
 struct TransmissionText {
   const char* kind;
   std::string object;
@@ -56,6 +56,7 @@ inline TransmissionText transmission_text(const Model& model, int a) {
     case TransmissionType::kTendon: return {"tendon", label_of(model.tendon_name[id], id)};
     case TransmissionType::kSite: return {"site", label_of(model.site_name[id], id)};
     case TransmissionType::kSliderCrank: return {"crank", label_of(model.site_name[id], id)};
+    case TransmissionType::kBody: return {"body", label_of(model.body_name[id], id)};
     default: return {"joint", label_of(model.jnt_name[id], id)};
   }
 }
@@ -78,6 +79,7 @@ inline const char* actuator_force_units(const Model& model, int a) {
     case TransmissionType::kTendon:
     case TransmissionType::kSliderCrank: return "N";
     case TransmissionType::kSite: return "x gear";
+    case TransmissionType::kBody: return "N";  // along the contacts' mean normal
     default: break;
   }
   if (model.jnt_type[id] == JointType::kBall) return "N m";

@@ -39,6 +39,8 @@ void passive(const Model& model, Data& data);
 void tendon(const Model& model, Data& data);
 
 /// Motor transmission lengths and velocities (MuJoCo's mj_transmission and the velocity stage).
+/// A body transmission's (adhesion's) moment and velocity need the contacts' rows: forward()
+/// computes them after make_constraint; here they are left zero.
 void transmission(const Model& model, Data& data);
 
 /// Actuator forces (MuJoCo's mj_fwdActuation): ctrl clamped to ctrlrange where ctrllimited

@@ -247,8 +247,17 @@ enum class WrapType : int { kNone = 0, kJoint = 1, kPulley = 2, kSite = 3, kSphe
 /// or for ball and free joints in the parent's: kJointInParent), a slider-crank (a crank site
 /// pulled by a rod of cranklength from a slider site moving along its z axis), a tendon, or a
 /// site (a wrench at the site, in its frame; with a reference site, the length is the site's pose
-/// in the reference's frame). lever has all but MuJoCo's body (adhesion) transmission.
-enum class TransmissionType : int { kJoint = 0, kJointInParent = 1, kSliderCrank = 2, kTendon = 3, kSite = 4 };
+/// in the reference's frame), or a body (MuJoCo's adhesion: no length; its moment is minus the
+/// mean of the normal Jacobians of the contacts touching the body's geoms, so it is computed
+/// after the contacts' rows, in the constraint room).
+enum class TransmissionType : int {
+  kJoint = 0,
+  kJointInParent = 1,
+  kSliderCrank = 2,
+  kTendon = 3,
+  kSite = 4,
+  kBody = 5
+};
 
 /// Numbers per equality constraint in eq_data (MuJoCo's mjNEQDATA). What they mean by type:
 ///   connect: anchor in body 1's frame (0-2), the same point in body 2's frame at qpos0 (3-5);

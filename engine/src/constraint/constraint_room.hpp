@@ -4,7 +4,8 @@
 // (rows.cpp); the solvers: the active sets and principal pivoting for one-sided rows (rows.cpp)
 // and, on MuJoCo's primal problem (primal.cpp), Newton's method for every kind (newton.cpp) and
 // MuJoCo's conjugate gradients (cg.cpp, for opt.solver CG); a contact's force in its frame
-// (contact_force.cpp).
+// (contact_force.cpp); the body transmission, which acts along the contacts' normals
+// (body_transmission.cpp).
 #pragma once
 
 #include <Eigen/Core>
@@ -164,8 +165,16 @@ void solve_constraint_pivoting(const Model& model, Data& data);
 /// MuJoCo's mj_constraintUpdate): what inverse() reports.
 void constraint_forces_at(Data& data, const Eigen::VectorXd& qacc);
 
+/// Row (nv numbers) = n^T (J_2 - J_1) at contact i's point, n its normal: the normal row of a
+/// contact that has no constraint rows (one in the gap beyond margin - gap), as its rows would
+/// have it (rows.cpp).
+void contact_normal_row(const Model& model, Data& data, int i, double* row);
+
 namespace unchecked {
 void make_constraint(const Model& model, Data& data);
+/// The body transmissions' (adhesion's) moments and velocities, from the contacts touching each
+/// body and their rows (body_transmission.cpp). @pre make_constraint and transmission are current.
+void body_transmission(const Model& model, Data& data);
 void reference_constraint(const Model& model, Data& data);
 void solve_constraint(const Model& model, Data& data);
 }  // namespace unchecked

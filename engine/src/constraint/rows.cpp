@@ -314,6 +314,32 @@ int add_contact_rows(const Model& model, Data& data, int i, int n, PairDofs& pai
 
 }  // namespace
 
+void contact_normal_row(const Model& model, Data& data, int i, double* row) {
+  const Contact& con = data.contact[i];
+  const int nv = model.nv;
+  for (int j = 0; j < nv; ++j) row[j] = 0.0;
+  const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
+  PairDofs pair;
+  find_pair_dofs(model, data, b1, b2, pair);
+  const int* chain1 = data.work.dof_chain.data();
+  const int* chain2 = chain1 + nv;
+  const Eigen::Vector3d normal = con.frame.row(0).transpose();
+  for (int pass = 0; pass < 2; ++pass) {
+    const bool body2 = pass == 0;
+    const int* chain = body2 ? chain2 : chain1;
+    const int n = body2 ? pair.n2 : pair.n1;
+    const Eigen::Vector3d offset =
+        con.pos - data.subtree_com[model.body_rootid[body2 ? b2 : b1]];
+    for (int k = 0; k < n; ++k) {
+      // as contact_frame_rows: the point's velocity per unit rate of the dof, body 1's negative
+      const Motion& S = data.cdof[chain[k]];
+      Eigen::Vector3d p = S.tail<3>() + cross(S.head<3>(), offset);
+      if (!body2) p = Eigen::Vector3d::Zero() - p;
+      row[chain[k]] = normal[0] * p[0] + normal[1] * p[1] + normal[2] * p[2];
+    }
+  }
+}
+
 SoftParameters soft_parameters(const std::array<double, 2>& solref,
                                const std::array<double, 5>& solimp, double pos, double margin) {
   SoftParameters soft;

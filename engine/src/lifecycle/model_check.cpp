@@ -382,9 +382,14 @@ void check_tree(const Model& model) {
         if (!site(id)) names_no("site");
         if (second != -1 && !site(second)) names_no("reference site");
         break;
+      case TransmissionType::kBody:
+        if (id < 0 || id >= model.nbody) names_no("body");
+        if (second != -1) names_no("second object (a body transmission has none: -1)");
+        break;
       default:
         reject("actuator", a, model.actuator_name[a],
-               "has a transmission lever does not have (MuJoCo's body transmission, adhesion)");
+               "has a transmission type that is not MuJoCo 2.2.2's (joint 0, jointinparent 1, "
+               "slider-crank 2, tendon 3, site 4, body 5)");
     }
   }
 }

@@ -61,6 +61,7 @@ void require_simple_actuators(const Model& model, const std::string& feature, bo
       case TransmissionType::kJointInParent: what = "a ball or free joint"; break;
       case TransmissionType::kSliderCrank: what = "a slider-crank"; break;
       case TransmissionType::kTendon: what = "a tendon"; break;
+      case TransmissionType::kBody: what = "a body through its contacts (adhesion)"; break;
       default: break;
     }
     const std::string name =

@@ -48,6 +48,7 @@ void after_kinematics(const Model& model, Data& data) {
   unchecked::factor_mass(model, data);
   unchecked::make_constraint(model, data);
   unchecked::transmission(model, data);
+  unchecked::body_transmission(model, data);  // adhesion: after the contacts' rows
 }
 
 // The velocity stage without its sensors.

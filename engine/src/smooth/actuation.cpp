@@ -3,7 +3,9 @@
 // servos, and <general> with fixed or affine gain and bias). Each transmission gives a length and
 // a moment row, d length / d qpos (actuator_moment holds every row): a hinge or slide gear[0] qpos
 // and gear[0] at its dof; a tendon gear[0] times the tendon's length and ten_J; a ball or free
-// joint, a slider-crank and a site as their functions below say. actuator_velocity is moment qvel.
+// joint, a slider-crank and a site as their functions below say; a body's (adhesion's) moment
+// needs the contacts' rows, so the constraint room fills it in after make_constraint (its row is
+// zero here). actuator_velocity is moment qvel.
 //
 // Order, as MuJoCo: ctrl clamped to ctrlrange (on a copy; data.ctrl is never changed), force =
 // gain * ctrl + bias, force clamped to forcerange, then the gear carries it to the joint. A
@@ -184,6 +186,11 @@ void unchecked::transmission(const Model& model, Data& data) {
       }
       case TransmissionType::kSite:
         site_transmission(model, data, a, moment, length);
+        break;
+      case TransmissionType::kBody:
+        // no length; the moment, from the contacts, is the constraint room's
+        // (body_transmission.cpp), after make_constraint
+        length = 0;
         break;
     }
     double velocity = 0.0;  // MuJoCo's mj_fwdVelocity: moment qvel
