@@ -44,7 +44,7 @@ std::string scene(const std::string& name) {
 /// hinges anywhere; one state in four keeps the hinges at exactly zero (the scenes are built so
 /// that capsules then lie parallel to each other or to a plane).
 void random_configuration(const Model& model, std::mt19937_64& rng, bool hinges_at_zero,
-                          Eigen::VectorXd& qpos) {
+                          Eigen::Ref<Eigen::VectorXd> qpos) {
   std::uniform_real_distribution<double> slide(-0.15, 0.15),
       hinge(-std::numbers::pi, std::numbers::pi), unit(0.0, 1.0);
   std::normal_distribution<double> normal(0.0, 1.0);

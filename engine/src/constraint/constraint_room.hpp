@@ -89,16 +89,16 @@ void add_rows_transpose(const Data& data, const double* f, double* out);
 /// out), each contact's part from its frame's rows: a pyramid's pair of edges with one weight
 /// adds one product along its tangent, the pairs' normal parts gathered into one, instead of
 /// one product per edge.
-void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H);
+void add_rows_hessian(Data& data, const double* weight, Eigen::Ref<Eigen::MatrixXd> H);
 
 /// H += C^T W C for contact i in H's lower triangle: C its frame's rows, W (dim x dim, row-major,
 /// symmetric) a weight in its frame's coordinates (an elliptic cone's Hessian block).
-void add_frame_hessian(Data& data, int i, const double* W, Eigen::MatrixXd& H);
+void add_frame_hessian(Data& data, int i, const double* W, Eigen::Ref<Eigen::MatrixXd> H);
 
 /// x = H^-1 x for H = M + J^T (...) J assembled above (its lower triangle), which becomes its
 /// Cholesky factor: the active sets and the Newton solver both solve with it (data's workspace
 /// holds where its columns end).
-void solve_with_hessian(Data& data, Eigen::MatrixXd& H, Eigen::VectorXd& x);
+void solve_with_hessian(Data& data, Eigen::Ref<Eigen::MatrixXd> H, Eigen::Ref<Eigen::VectorXd> x);
 
 /// Solve the constraint rows by MuJoCo's Newton method to convergence (newton.cpp): qacc,
 /// efc_b, efc_force, efc_state, qfrc_constraint. Returns the Newton steps taken.
@@ -113,7 +113,7 @@ void solve_constraint_pivoting(const Model& model, Data& data);
 
 /// efc_force, efc_state and qfrc_constraint that the rows exert at a given qacc (newton.cpp;
 /// MuJoCo's mj_constraintUpdate): what inverse() reports.
-void constraint_forces_at(Data& data, const Eigen::VectorXd& qacc);
+void constraint_forces_at(Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc);
 
 namespace unchecked {
 void make_constraint(const Model& model, Data& data);

@@ -118,7 +118,8 @@ ConstraintState block_cost(const Data& data, int r, int size, const double* x, d
 
 // The constraint cost at the rows' values x (nefc), its gradient d s / d jar into grad_x; the
 // states into data.efc_state when `record`.
-double constraint_cost(Data& data, const Eigen::VectorXd& x, Eigen::VectorXd& grad_x, bool record) {
+double constraint_cost(Data& data, const Eigen::Ref<const Eigen::VectorXd>& x,
+                       Eigen::Ref<Eigen::VectorXd> grad_x, bool record) {
   double total = 0.0;
   for (int r = 0; r < data.nefc;) {
     const int size = block_size(data, r);
@@ -134,7 +135,7 @@ double constraint_cost(Data& data, const Eigen::VectorXd& x, Eigen::VectorXd& gr
 
 // Gauss term and constraint cost at qacc (work.newton_Merr, newton_x and newton_grad_x hold
 // M (qacc - qacc_smooth), the rows' jar and their gradient there afterwards).
-double total_cost(Data& data, const Eigen::VectorXd& qacc) {
+double total_cost(Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc) {
   auto& w = data.work;
   w.newton_err = qacc - data.qacc_smooth;
   w.newton_Merr.noalias() = data.M * w.newton_err;
@@ -195,7 +196,7 @@ double line_search(Data& data, double gauss1, double gauss2) {
 }
 
 // efc_force, efc_state and qfrc_constraint at the rows' values x (forces -d s / d jar).
-void record_forces(Data& data, const Eigen::VectorXd& x) {
+void record_forces(Data& data, const Eigen::Ref<const Eigen::VectorXd>& x) {
   auto& w = data.work;
   constraint_cost(data, x, w.newton_grad_x, true);
   data.qfrc_constraint.setZero();
@@ -208,7 +209,7 @@ void record_forces(Data& data, const Eigen::VectorXd& x) {
 
 }  // namespace
 
-void constraint_forces_at(Data& data, const Eigen::VectorXd& qacc) {
+void constraint_forces_at(Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc) {
   auto& w = data.work;
   rows_jar(data, qacc.data(), w.newton_x.data());
   record_forces(data, w.newton_x);

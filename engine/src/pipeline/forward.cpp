@@ -9,18 +9,18 @@
 #include <lever/kinematics.hpp>
 
 #include "basics/basics.hpp"
-#include "model/model_room.hpp"
-#include "smooth/smooth.hpp"
 #include "constraint/constraint_room.hpp"
-#include "sensors/sensors.hpp"
+#include "model/model_room.hpp"
 #include "pipeline/pipeline.hpp"
+#include "sensors/sensors.hpp"
+#include "smooth/smooth.hpp"
 
 namespace lever {
 
 namespace {
 
 // Record a warning if any element of x is bad (NaN or beyond 1e10).
-void record_if_bad(Data& data, const Eigen::VectorXd& x, Warning kind) {
+void record_if_bad(Data& data, const Eigen::Ref<const Eigen::VectorXd>& x, Warning kind) {
   const int bad = first_bad(x.data(), static_cast<int>(x.size()));
   if (bad >= 0) record_warning(data, kind, bad);
 }

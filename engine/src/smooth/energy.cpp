@@ -43,7 +43,7 @@ void compute_energy(const Model& model, Data& data) {
     if (model.tendon_stiffness[t] > 0) potential += 0.5 * model.tendon_stiffness[t] * stretch * stretch;
   }
   data.energy[0] = potential;
-  Eigen::VectorXd& momentum = data.work.vec1;  // preallocated: no heap use here
+  auto& momentum = data.work.vec1;  // preallocated: no heap use here
   momentum.noalias() = data.M * data.qvel;
   data.energy[1] = 0.5 * data.qvel.dot(momentum);
 }

@@ -20,20 +20,20 @@
 #include <string>
 
 #include "basics/basics.hpp"
-#include "smooth/smooth.hpp"
 #include "constraint/constraint_room.hpp"
 #include "derivatives/derivatives_room.hpp"
 #include "pipeline/pipeline.hpp"
-#include "transition/transition.hpp"
 #include "smooth/recursion.hpp"
+#include "smooth/smooth.hpp"
+#include "transition/transition.hpp"
 
 namespace lever {
 
 namespace {
 
-using detail::kMinVal;  // the floor of a limit row's R
 using detail::check_derivative_sizes;
 using detail::inertia_columns;
+using detail::kMinVal;  // the floor of a limit row's R
 using detail::rnea_derivatives_into;
 using detail::rotation_block;
 
@@ -118,8 +118,9 @@ void quaternion_springs(const Model& model, const Data& data, Derivatives::Works
 
 // The explicit force terms of the smooth dynamics, minus the inverse-dynamics derivatives:
 // rhs = d (qfrc_passive + qfrc_actuator) / d x - d rnea / d x, for x = qpos, qvel, ctrl.
-void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dtau_dq,
-                const Eigen::MatrixXd& dtau_dv, Derivatives::Workspace& w) {
+void smooth_rhs(const Model& model, const Data& data,
+                const Eigen::Ref<const Eigen::MatrixXd>& dtau_dq,
+                const Eigen::Ref<const Eigen::MatrixXd>& dtau_dv, Derivatives::Workspace& w) {
   w.rhs_q = -dtau_dq;
   w.rhs_v = -dtau_dv;
   for (int j = 0; j < model.njnt; ++j) {
@@ -273,8 +274,8 @@ void add_scaled_row(double* y, double a, const double* x, Eigen::Index n) {
 
 // X = (L^T D L)^-1 X with an LTDL factor in crba.cpp's layout (ltdl: D on the diagonal, L(k, i)
 // at LD(i, k) for each ancestor i of k), as solve_mass does one column.
-void ltdl_solve_rows(const Model& model, const Eigen::MatrixXd& LD,
-                     const Eigen::VectorXd& diag_inverse, RowMatrix& X) {
+void ltdl_solve_rows(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LD,
+                     const Eigen::Ref<const Eigen::VectorXd>& diag_inverse, RowMatrix& X) {
   const Eigen::Index n = X.cols();
   for (int k = model.nv - 1; k >= 0; --k) {  // L^-T, leaves to root
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
@@ -290,7 +291,8 @@ void ltdl_solve_rows(const Model& model, const Eigen::MatrixXd& LD,
 }
 
 // X = K^-1 X with factor_lu_tree()'s factor K = (U + I) L, as solve_lu_tree does one column.
-void lu_tree_solve_rows(const Model& model, const Eigen::MatrixXd& LU, RowMatrix& X) {
+void lu_tree_solve_rows(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LU,
+                        RowMatrix& X) {
   const Eigen::Index n = X.cols();
   for (int k = model.nv - 1; k >= 0; --k) {  // (U + I)^-1, leaves to root
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
@@ -308,9 +310,10 @@ void lu_tree_solve_rows(const Model& model, const Eigen::MatrixXd& LU, RowMatrix
 // [in_q in_v in_u] side by side in w.right_hand_sides, then solve(X) solving every column of X in
 // place; returns X.
 template <class Solve>
-RowMatrix& solve_side_by_side(Derivatives::Workspace& w, const Eigen::MatrixXd& in_q,
-                              const Eigen::MatrixXd& in_v, const Eigen::MatrixXd& in_u,
-                              Solve&& solve) {
+RowMatrix& solve_side_by_side(Derivatives::Workspace& w,
+                              const Eigen::Ref<const Eigen::MatrixXd>& in_q,
+                              const Eigen::Ref<const Eigen::MatrixXd>& in_v,
+                              const Eigen::Ref<const Eigen::MatrixXd>& in_u, Solve&& solve) {
   const Eigen::Index nv = in_q.cols(), nu = in_u.cols();
   RowMatrix& X = w.right_hand_sides;
   X.leftCols(nv) = in_q;
@@ -378,7 +381,8 @@ bool same_active_set(const Data& data, const std::vector<int>& set) {
 // deriv.work.next, against the start's set (deriv.work.active_set); a change sets the flag and
 // data's warning.
 void check_step_end(const Model& model, Data& data, Derivatives& deriv,
-                    const Eigen::VectorXd& velocity, const Eigen::VectorXd& acceleration) {
+                    const Eigen::Ref<const Eigen::VectorXd>& velocity,
+                    const Eigen::Ref<const Eigen::VectorXd>& acceleration) {
   auto& w = deriv.work;
   Data& next = *w.next;
   const double h = model.opt.timestep;
@@ -427,8 +431,8 @@ void assemble_euler(const Model& model, const Matrix& Dq, const Matrix& Dv, cons
 
 // The rows of ball and free joints' turns in an Euler-form step (Euler, implicit), after
 // assemble_euler(): qpos' = qpos (+) h qvel', qvel' = qvel + h qacc_step.
-void euler_turns(const Model& model, const Data& data, const Eigen::VectorXd& qacc_step,
-                 Derivatives& deriv) {
+void euler_turns(const Model& model, const Data& data,
+                 const Eigen::Ref<const Eigen::VectorXd>& qacc_step, Derivatives& deriv) {
   const int nv = model.nv;
   const double h = model.opt.timestep;
   auto& qvel_next = deriv.work.qvel_next;
