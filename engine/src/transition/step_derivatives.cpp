@@ -118,9 +118,8 @@ void quaternion_springs(const Model& model, const Data& data, Derivatives::Works
 
 // The explicit force terms of the smooth dynamics, minus the inverse-dynamics derivatives:
 // rhs = d (qfrc_passive + qfrc_actuator) / d x - d rnea / d x, for x = qpos, qvel, ctrl.
-void smooth_rhs(const Model& model, const Data& data,
-                const Eigen::Ref<const Eigen::MatrixXd>& dtau_dq,
-                const Eigen::Ref<const Eigen::MatrixXd>& dtau_dv, Derivatives::Workspace& w) {
+void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dtau_dq,
+                const Eigen::MatrixXd& dtau_dv, Derivatives::Workspace& w) {
   w.rhs_q = -dtau_dq;
   w.rhs_v = -dtau_dv;
   for (int j = 0; j < model.njnt; ++j) {
@@ -291,8 +290,7 @@ void ltdl_solve_rows(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>
 }
 
 // X = K^-1 X with factor_lu_tree()'s factor K = (U + I) L, as solve_lu_tree does one column.
-void lu_tree_solve_rows(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LU,
-                        RowMatrix& X) {
+void lu_tree_solve_rows(const Model& model, const Eigen::MatrixXd& LU, RowMatrix& X) {
   const Eigen::Index n = X.cols();
   for (int k = model.nv - 1; k >= 0; --k) {  // (U + I)^-1, leaves to root
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
@@ -310,10 +308,9 @@ void lu_tree_solve_rows(const Model& model, const Eigen::Ref<const Eigen::Matrix
 // [in_q in_v in_u] side by side in w.right_hand_sides, then solve(X) solving every column of X in
 // place; returns X.
 template <class Solve>
-RowMatrix& solve_side_by_side(Derivatives::Workspace& w,
-                              const Eigen::Ref<const Eigen::MatrixXd>& in_q,
-                              const Eigen::Ref<const Eigen::MatrixXd>& in_v,
-                              const Eigen::Ref<const Eigen::MatrixXd>& in_u, Solve&& solve) {
+RowMatrix& solve_side_by_side(Derivatives::Workspace& w, const Eigen::MatrixXd& in_q,
+                              const Eigen::MatrixXd& in_v, const Eigen::MatrixXd& in_u,
+                              Solve&& solve) {
   const Eigen::Index nv = in_q.cols(), nu = in_u.cols();
   RowMatrix& X = w.right_hand_sides;
   X.leftCols(nv) = in_q;
