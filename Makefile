@@ -41,6 +41,8 @@ test: build
 # The Python package is left out: an instrumented extension cannot load into Debian's
 # uninstrumented python3 (the sanitizer runtime must come first in the process). So are the
 # browser tests: their engine is the WebAssembly build, which the sanitizers do not reach.
+# The tests that draw random states or run for seconds draw a quarter of them under the sanitizers
+# (tests/support/sampling.hpp): the same code paths, at a quarter of the time; make test draws all.
 ASAN_BUILD ?= build-asan
 # Left out under the sanitizers, to keep .ci/run within its 30 minutes: the slowest end-to-end
 # tests (each 40-260 s instrumented), whose every code path a lighter test of the same run also

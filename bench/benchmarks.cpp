@@ -125,13 +125,6 @@ void register_lever(const Fixture& f) {
     add("forward_limit", f, "lever", lever_fn(&f, l, nothing, forward_op));
     add("step_limit", f, "lever", lever_fn(&f, l, nothing, step_op(l)));
   }
-
-  // the step's Jacobians A and B, analytic: the same call is the peer of MuJoCo's centred and
-  // forward differences (its workspace lives outside Data, sized once)
-  auto deriv = std::make_shared<Derivatives>(f.model);
-  const auto jacobian_op = [deriv](const Model& m, Data& d) { step_derivatives(m, d, *deriv); };
-  add("step_jacobian_centred", f, "lever", lever_fn(&f, s, nothing, jacobian_op));
-  add("step_jacobian_forward", f, "lever", lever_fn(&f, s, nothing, jacobian_op));
 }
 
 // ---- MuJoCo 2.2.2 -------------------------------------------------------------------------------
@@ -162,6 +155,29 @@ void mujoco_velocities(const mjModel* m, mjData* d) {
 
 // register_lever_kernels' peers: mj_jacSite after mj_kinematics and mj_comPos, mj_rne (no
 // acceleration) after mj_comVel too, mj_crb after mj_comPos.
+// The step's Jacobians A and B at the fixture's state: lever's analytic ones (one call, the peer of
+// both of MuJoCo's; its workspace lives outside Data, sized once) beside mjd_transitionFD's centred
+// and forward differences of mj_step (eps 1e-6).
+void register_step_jacobians(const Fixture& f) {
+  const State* s = &f.state;
+  auto deriv = std::make_shared<Derivatives>(f.model);
+  const auto no_setup = [](const Model&, Data&) {};
+  const auto jacobian_op = [deriv](const Model& m, Data& d) { step_derivatives(m, d, *deriv); };
+  add("step_jacobian_centred", f, "lever", lever_fn(&f, s, no_setup, jacobian_op));
+  add("step_jacobian_forward", f, "lever", lever_fn(&f, s, no_setup, jacobian_op));
+  const auto nx = static_cast<std::size_t>(2 * f.mj->nv);
+  auto AB =
+      std::make_shared<std::vector<mjtNum>>(nx * nx + nx * static_cast<std::size_t>(f.mj->nu));
+  const auto mj_no_setup = [](const mjModel*, mjData*) {};
+  for (const int centred : {1, 0}) {
+    add(centred ? "step_jacobian_centred" : "step_jacobian_forward", f, "mujoco",
+        mujoco_fn(&f, s, mj_no_setup, [AB, nx, centred](const mjModel* m, mjData* d) {
+          mjd_transitionFD(m, d, 1e-6, static_cast<mjtByte>(centred), AB->data(),
+                           m->nu > 0 ? AB->data() + nx * nx : nullptr, nullptr, nullptr);
+        }));
+  }
+}
+
 void register_mujoco_kernels(const Fixture& f) {
   const auto kin = mujoco_positions;
   const auto kin_vel = mujoco_velocities;
@@ -236,18 +252,6 @@ void register_mujoco(const Fixture& f) {
     add("forward_limit", f, "mujoco", mujoco_fn(&f, l, nothing, forward_op));
     add("step_limit", f, "mujoco", mujoco_fn(&f, l, nothing, step_op(l)));
   }
-
-  // mjd_transitionFD: A and B by centred and by forward differences of mj_step (eps 1e-6)
-  const auto nx = static_cast<std::size_t>(2 * f.mj->nv);
-  auto AB =
-      std::make_shared<std::vector<mjtNum>>(nx * nx + nx * static_cast<std::size_t>(f.mj->nu));
-  for (const int centred : {1, 0}) {
-    add(centred ? "step_jacobian_centred" : "step_jacobian_forward", f, "mujoco",
-        mujoco_fn(&f, s, nothing, [AB, nx, centred](const mjModel* m, mjData* d) {
-          mjd_transitionFD(m, d, 1e-6, static_cast<mjtByte>(centred), AB->data(),
-                           m->nu > 0 ? AB->data() + nx * nx : nullptr, nullptr, nullptr);
-        }));
-  }
 }
 
 // ---- contact scenes: the whole forward, step and step Jacobian, each peer with the solver its
@@ -275,24 +279,8 @@ void register_scene(const Fixture& f) {
         mju_copy(d->qvel, s->qvel.data(), m->nv);
         mj_step(m, d);
       }));
-  // the step's Jacobians with the contacts pushing: lever's analytic A and B (through the
-  // contacts, their active set held) beside MuJoCo's differences of mj_step (eps 1e-6)
-  if (!f.differentiable) return;  // a contact whose geometry lever does not differentiate
-  auto deriv = std::make_shared<Derivatives>(f.model);
-  const auto jacobian_op = [deriv](const Model& m, Data& d) { step_derivatives(m, d, *deriv); };
-  const auto no_setup = [](const Model&, Data&) {};
-  add("step_jacobian_centred", f, "lever", lever_fn(&f, s, no_setup, jacobian_op));
-  add("step_jacobian_forward", f, "lever", lever_fn(&f, s, no_setup, jacobian_op));
-  const auto nx = static_cast<std::size_t>(2 * f.mj->nv);
-  auto AB =
-      std::make_shared<std::vector<mjtNum>>(nx * nx + nx * static_cast<std::size_t>(f.mj->nu));
-  for (const int centred : {1, 0}) {
-    add(centred ? "step_jacobian_centred" : "step_jacobian_forward", f, "mujoco",
-        mujoco_fn(&f, s, nothing, [AB, nx, centred](const mjModel* m, mjData* d) {
-          mjd_transitionFD(m, d, 1e-6, static_cast<mjtByte>(centred), AB->data(),
-                           m->nu > 0 ? AB->data() + nx * nx : nullptr, nullptr, nullptr);
-        }));
-  }
+  // the step's Jacobians with the contacts pushing (their active set held in lever's)
+  if (f.differentiable) register_step_jacobians(f);  // else a contact lever does not differentiate
 }
 
 // ---- the sensor model: the whole forward, every sensor evaluated by both peers (the sensor stages
@@ -516,6 +504,7 @@ void register_benchmarks(const std::vector<std::unique_ptr<Fixture>>& fixtures, 
     }
     register_lever(*f);
     register_mujoco(*f);
+    register_step_jacobians(*f);
     register_kdl(*f);
     register_pinocchio(*f);
   }

@@ -232,15 +232,25 @@ MjDataPtr mujoco_data(const Fixture& f, const State& s) {
   return d;
 }
 
-std::unique_ptr<Fixture> make_fixture(const std::string& path) {
+namespace {
+
+// A fixture named after its file, with MuJoCo's compiled model of it (every peer's first step).
+std::unique_ptr<Fixture> fixture_loaded_by_mujoco(const std::string& path) {
   auto f = std::make_unique<Fixture>();
   f->path = path;
   f->name = std::filesystem::path(path).stem().string();
-
   char error[1000] = "";
   mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
   if (m == nullptr) throw std::runtime_error("MuJoCo could not load " + path + ": " + error);
   f->mj = MjModelPtr(m, mj_deleteModel);
+  return f;
+}
+
+}  // namespace
+
+std::unique_ptr<Fixture> make_fixture(const std::string& path) {
+  auto f = fixture_loaded_by_mujoco(path);
+  const mjModel* m = f->mj.get();
 
   // lever's model through its own parser; MuJoCo's compiled numbers if the parser refuses it
   try {
@@ -274,14 +284,8 @@ std::unique_ptr<Fixture> make_fixture(const std::string& path) {
 }
 
 std::unique_ptr<Fixture> make_scene_fixture(const std::string& path) {
-  auto f = std::make_unique<Fixture>();
-  f->path = path;
-  f->name = std::filesystem::path(path).stem().string();
+  auto f = fixture_loaded_by_mujoco(path);
   f->scene = true;
-  char error[1000] = "";
-  mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
-  if (m == nullptr) throw std::runtime_error("MuJoCo could not load " + path + ": " + error);
-  f->mj = MjModelPtr(m, mj_deleteModel);
   f->model = mjcf::load_file(path);
   f->loader = "mjcf_lite";
 
@@ -318,14 +322,8 @@ bool is_sensor_model(const Model& model) {
 }
 
 std::unique_ptr<Fixture> make_sensor_fixture(const std::string& path) {
-  auto f = std::make_unique<Fixture>();
-  f->path = path;
-  f->name = std::filesystem::path(path).stem().string();
+  auto f = fixture_loaded_by_mujoco(path);
   f->sensors = true;
-  char error[1000] = "";
-  mjModel* m = mj_loadXML(path.c_str(), nullptr, error, sizeof error);
-  if (m == nullptr) throw std::runtime_error("MuJoCo could not load " + path + ": " + error);
-  f->mj = MjModelPtr(m, mj_deleteModel);
   f->model = mjcf::load_file(path);
   f->loader = "mjcf_lite";
   const Model& model = f->model;

@@ -68,7 +68,7 @@ int main(int argc, char** argv) try {
   std::printf("  %-9s %10s %10s %12s %8s %11s\n", "joint", "by hand", "qfrc_bias", "motor limit",
               "ratio", "random max");
   for (int a = 0; a < model.nu; ++a) {
-    const int j = model.actuator_trnid[a];  // each motor drives one joint, in joint order
+    const int j = model.actuator_trnid[a][0];  // each motor drives one joint, in joint order
     const double limit = model.actuator_ctrlrange[a][1] * model.actuator_gear[a][0];
     std::printf("  %-9s %10.3f %10.3f %12.4g %8.2f %11.3f\n", model.jnt_name[j].c_str(), by_hand[j],
                 by_bias[j], limit, limit / by_bias[j], largest[j]);

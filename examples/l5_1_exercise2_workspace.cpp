@@ -54,7 +54,7 @@ constexpr double kCell = 0.02;          // m: the map's resolution
 // @pre forward() at this pose with qvel = 0, so qfrc_bias is the gravity torque.
 bool holdable(const lever::Model& model, const lever::Data& data) {
   for (int a = 0; a < model.nu; ++a) {
-    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    const int dof = model.jnt_dofadr[model.actuator_trnid[a][0]];
     const double ctrl = data.qfrc_bias[dof] / model.actuator_gear[a][0];  // what it must command
     const auto [lo, hi] = model.actuator_ctrlrange[a];
     if (ctrl < lo || ctrl > hi) return false;

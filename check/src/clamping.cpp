@@ -32,8 +32,8 @@ Clamping check_clamping(const Model& model) {
   }
   result.newton_metres = model.nu > 0;
   for (int a = 0; a < model.nu; ++a) {
-    const bool plain = model.actuator_trntype[a] == TransmissionType::kJoint &&
-                       is_hinge(model, model.actuator_trnid[a]) &&
+    const bool plain = actuator_scalar_dof(model, a) >= 0 &&
+                       is_hinge(model, model.actuator_trnid[a][0]) &&
                        std::abs(model.actuator_gear[a][0]) == 1.0;
     result.newton_metres = result.newton_metres && plain;
   }

@@ -478,8 +478,8 @@ Grip grip(const Model& m, PairTable& table, std::vector<std::string>& strays) {
     if (free_joint_of(m, b) < 0) continue;
     std::vector<Finger> found;
     for (int a = 0; a < m.nu; ++a) {
-      if (m.actuator_trntype[a] != TransmissionType::kJoint) continue;
-      const int j = m.actuator_trnid[a];
+      if (actuator_scalar_dof(m, a) < 0) continue;
+      const int j = m.actuator_trnid[a][0];
       if (!is_servo(m.actuator_kind[a]) || m.jnt_type[j] == JointType::kFree ||
           m.jnt_type[j] == JointType::kBall)
         continue;
@@ -619,7 +619,7 @@ Grip grip(const Model& m, PairTable& table, std::vector<std::string>& strays) {
 
 Contacts check_contacts(const Model& model) {
   Contacts c;
-  if (model.opt.contact_disabled) {
+  if (model.opt.disabled(kDisableContact) || model.opt.disabled(kDisableConstraint)) {
     c.skipped = "contacts are disabled (<flag contact=\"disable\">)";
     return c;
   }

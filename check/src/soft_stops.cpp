@@ -237,8 +237,8 @@ void measure(const Model& model, const Run& run, int j, StopRest& rest) {
 SoftStops check_soft_stops(const Model& model) {
   SoftStops result;
   for (int a = 0; a < model.nu; ++a) {
-    if (model.actuator_kind[a] == ActuatorKind::kPositionServo) {
-      const int j = model.actuator_trnid[a];
+    if (model.actuator_kind[a] == ActuatorKind::kPositionServo && actuator_scalar_dof(model, a) >= 0) {
+      const int j = model.actuator_trnid[a][0];
       result.servo_held_joints.push_back(joint_label(model, j) +
                                          (is_hinge(model, j) ? " (0 rad)" : " (0 m)"));
     }

@@ -29,10 +29,15 @@ JointInfo joint_info(const Model& model, int j) {
 MotorInfo motor_info(const Model& model, int a) {
   MotorInfo info;
   info.name = motor_label(model, a);
-  const int id = model.actuator_trnid[a];
-  info.joint = model.actuator_trntype[a] == TransmissionType::kTendon
-                   ? label(model.tendon_name[id], "tendon", id)
-                   : joint_label(model, id);
+  const int id = model.actuator_trnid[a][0];
+  switch (model.actuator_trntype[a]) {
+    case TransmissionType::kTendon: info.joint = label(model.tendon_name[id], "tendon", id); break;
+    case TransmissionType::kSite: info.joint = label(model.site_name[id], "site", id); break;
+    case TransmissionType::kSliderCrank:
+      info.joint = label(model.site_name[id], "crank site", id);
+      break;
+    default: info.joint = joint_label(model, id);
+  }
   info.gear = model.actuator_gear[a][0];
   info.ctrlrange = model.actuator_ctrlrange[a];
   info.forcerange = model.actuator_forcerange[a];

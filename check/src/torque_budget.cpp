@@ -39,8 +39,9 @@ void motors_of_joint(const Model& model, int j, JointBudget& budget) {
   budget.torque_range = {0.0, 0.0};
   int servos = 0, last = -1;
   for (int a = 0; a < model.nu; ++a) {
-    if (model.actuator_trntype[a] != TransmissionType::kJoint || model.actuator_trnid[a] != j) {
-      continue;  // a tendon actuator's force reaches its joints through the tendon's Jacobian
+    if (actuator_scalar_dof(model, a) < 0 || model.actuator_trnid[a][0] != j) {
+      continue;  // a tendon's, a site's, a slider-crank's force reaches the joints through its
+                 // moment, which changes with the pose
     }
     const auto range = motor_torque_range(model, a);
     budget.motors.push_back(motor_label(model, a));

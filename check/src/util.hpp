@@ -73,11 +73,7 @@ inline std::array<double, 2> motor_torque_range(const Model& model, int a) {
   constexpr double inf = std::numeric_limits<double>::infinity();
   if (is_servo(model.actuator_kind[a])) {
     if (model.actuator_forcelimited[a]) return geared(model, a, model.actuator_forcerange[a]);
-    const int id = model.actuator_trnid[a];
-    const double length =
-        model.actuator_gear[a][0] * (model.actuator_trntype[a] == TransmissionType::kTendon
-                                         ? model.tendon_length0[id]
-                                         : model.qpos0[model.jnt_qposadr[id]]);
+    const double length = model.actuator_length0[a];
     const auto range = actuator_force_range(model, a, length, 0.0);
     if (!model.actuator_ctrllimited[a]) return {-inf, inf};
     return geared(model, a, range);

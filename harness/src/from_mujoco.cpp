@@ -23,13 +23,12 @@ void copy_contact(const mjModel* m, Model& model) {
   if (m->opt.collision != mjCOL_ALL) {
     throw std::runtime_error("from_mujoco: lever collides all pairs (option collision=\"all\")");
   }
-  if (m->opt.disableflags & (mjDSBL_CONSTRAINT | mjDSBL_CONTACT | mjDSBL_FILTERPARENT)) {
-    throw std::runtime_error(
-        "from_mujoco: lever has no flags to disable constraints, contacts or the parent filter");
-  }
-  if (m->opt.enableflags & mjENBL_OVERRIDE) {
-    throw std::runtime_error("from_mujoco: lever has no contact override");
-  }
+  // the flags (lever's bits are MuJoCo's) and the contact override's parameters
+  model.opt.disableflags = m->opt.disableflags;
+  model.opt.enableflags = m->opt.enableflags;
+  model.opt.o_margin = m->opt.o_margin;
+  for (int k = 0; k < 2; ++k) model.opt.o_solref[k] = m->opt.o_solref[k];
+  for (int k = 0; k < 5; ++k) model.opt.o_solimp[k] = m->opt.o_solimp[k];
   if (m->opt.cone != mjCONE_PYRAMIDAL && m->opt.cone != mjCONE_ELLIPTIC) {
     throw std::runtime_error("from_mujoco: unknown friction cone");
   }
@@ -37,7 +36,6 @@ void copy_contact(const mjModel* m, Model& model) {
   model.opt.impratio = m->opt.impratio;
   model.opt.mpr_tolerance = m->opt.mpr_tolerance;
   model.opt.mpr_iterations = m->opt.mpr_iterations;
-  model.opt.multiccd = (m->opt.enableflags & mjENBL_MULTICCD) != 0;
   model.nconmax = m->nconmax;
   model.njmax = m->njmax;
 
@@ -64,6 +62,13 @@ void copy_contact(const mjModel* m, Model& model) {
     model.mesh_vert[v] = Eigen::Vector3d(p[0], p[1], p[2]);
   }
   for (int i = 0; i < m->nmeshgraph; ++i) model.mesh_graph[i] = m->mesh_graph[i];
+  for (int k = 0; k < m->nmesh; ++k) {
+    model.mesh_faceadr[k] = m->mesh_faceadr[k];
+    model.mesh_facenum[k] = m->mesh_facenum[k];
+  }
+  for (int f = 0; f < m->nmeshface; ++f) {
+    for (int k = 0; k < 3; ++k) model.mesh_face[f][k] = m->mesh_face[3 * f + k];
+  }
   for (int p = 0; p < m->npair; ++p) {
     model.pair_dim[p] = m->pair_dim[p];
     model.pair_geom1[p] = m->pair_geom1[p];
@@ -80,14 +85,10 @@ void copy_contact(const mjModel* m, Model& model) {
   for (int e = 0; e < m->nexclude; ++e) model.exclude_signature[e] = m->exclude_signature[e];
 }
 
-// ---- sensors: every sensor_ array, the magnetic field and the noise flag; lever's numbering of
+// ---- sensors: every sensor_ array, the magnetic field; lever's numbering of
 // types and objects is MuJoCo's (validate() refuses what lever cannot evaluate)
 void copy_sensors(const mjModel* m, Model& model) {
-  if (m->opt.disableflags & mjDSBL_SENSOR) {
-    throw std::runtime_error("from_mujoco: lever has no flag to disable sensors");
-  }
   model.opt.magnetic = vec3(m->opt.magnetic);
-  model.opt.sensornoise = (m->opt.enableflags & mjENBL_SENSORNOISE) != 0;
   for (int s = 0; s < m->nsensor; ++s) {
     model.sensor_name[s] = name_of(m, mjOBJ_SENSOR, s);
     model.sensor_type[s] = static_cast<SensorType>(m->sensor_type[s]);
@@ -106,10 +107,6 @@ void copy_sensors(const mjModel* m, Model& model) {
 
 // Equality constraints (connect, weld, joint and tendon couplings) and the dofs' friction loss.
 void copy_constraints(const mjModel* m, Model& model) {
-  if (m->opt.disableflags & (mjDSBL_EQUALITY | mjDSBL_FRICTIONLOSS | mjDSBL_LIMIT)) {
-    throw std::runtime_error(
-        "from_mujoco: lever has no flags to disable equality constraints, friction loss or limits");
-  }
   for (int i = 0; i < m->nv; ++i) {
     model.dof_frictionloss[i] = m->dof_frictionloss[i];
     model.dof_solref[i] = {m->dof_solref[mjNREF * i], m->dof_solref[mjNREF * i + 1]};
@@ -215,6 +212,7 @@ Model from_mujoco(const mjModel* m) {
   model.nq = m->nq;
   model.nv = m->nv;
   model.nu = m->nu;
+  model.na = m->na;
   model.nbody = m->nbody;
   model.njnt = m->njnt;
   model.ngeom = m->ngeom;
@@ -225,6 +223,7 @@ Model from_mujoco(const mjModel* m) {
   model.nmesh = m->nmesh;
   model.nmeshvert = m->nmeshvert;
   model.nmeshgraph = m->nmeshgraph;
+  model.nmeshface = m->nmeshface;
   model.nsensor = m->nsensor;
   model.nsensordata = m->nsensordata;
   model.neq = m->neq;
@@ -326,22 +325,24 @@ Model from_mujoco(const mjModel* m) {
   copy_sensors(m, model);
   copy_tendons(m, model);
   for (int a = 0; a < m->nu; ++a) {
-    const bool affine_or_fixed_gain =
-        m->actuator_gaintype[a] == mjGAIN_FIXED || m->actuator_gaintype[a] == mjGAIN_AFFINE;
-    const bool affine_or_no_bias =
-        m->actuator_biastype[a] == mjBIAS_NONE || m->actuator_biastype[a] == mjBIAS_AFFINE;
-    const bool joint_or_tendon =
-        m->actuator_trntype[a] == mjTRN_JOINT || m->actuator_trntype[a] == mjTRN_TENDON;
-    if (!joint_or_tendon || m->actuator_dyntype[a] != mjDYN_NONE || !affine_or_fixed_gain ||
-        !affine_or_no_bias) {
+    if (m->actuator_trntype[a] == mjTRN_BODY || m->actuator_dyntype[a] == mjDYN_USER ||
+        m->actuator_gaintype[a] == mjGAIN_USER || m->actuator_biastype[a] == mjBIAS_USER) {
       throw std::runtime_error(
-          "from_mujoco: only stateless joint and tendon actuators with affine gain and bias are "
+          "from_mujoco: actuators on a body, and user-defined dynamics, gains and biases, are not "
           "supported");
     }
     model.actuator_name[a] = name_of(m, mjOBJ_ACTUATOR, a);
     model.actuator_trntype[a] = static_cast<TransmissionType>(m->actuator_trntype[a]);
-    model.actuator_trnid[a] = m->actuator_trnid[2 * a];
-    model.actuator_dyntype[a] = DynType::kNone;
+    model.actuator_trnid[a] = {m->actuator_trnid[2 * a], m->actuator_trnid[2 * a + 1]};
+    model.actuator_cranklength[a] = m->actuator_cranklength[a];
+    model.actuator_dyntype[a] = static_cast<DynType>(m->actuator_dyntype[a]);
+    for (int k = 0; k < kDynParameters; ++k) {
+      model.actuator_dynprm[a][k] = m->actuator_dynprm[mjNDYN * a + k];
+    }
+    model.actuator_actlimited[a] = m->actuator_actlimited[a] != 0;
+    model.actuator_actrange[a] = {m->actuator_actrange[2 * a], m->actuator_actrange[2 * a + 1]};
+    model.actuator_lengthrange[a] = {m->actuator_lengthrange[2 * a],
+                                     m->actuator_lengthrange[2 * a + 1]};
     model.actuator_gaintype[a] = static_cast<GainType>(m->actuator_gaintype[a]);
     model.actuator_biastype[a] = static_cast<BiasType>(m->actuator_biastype[a]);
     for (int k = 0; k < kGainParameters; ++k) {
@@ -363,6 +364,7 @@ Model from_mujoco(const mjModel* m) {
     for (int i = 0; i < m->nq; ++i) model.key_qpos(k, i) = m->key_qpos[m->nq * k + i];
     for (int i = 0; i < m->nv; ++i) model.key_qvel(k, i) = m->key_qvel[m->nv * k + i];
     for (int i = 0; i < m->nu; ++i) model.key_ctrl(k, i) = m->key_ctrl[m->nu * k + i];
+    for (int i = 0; i < m->na; ++i) model.key_act(k, i) = m->key_act[m->na * k + i];
     for (int i = 0; i < 3 * m->nmocap; ++i) model.key_mpos(k, i) = m->key_mpos[3 * m->nmocap * k + i];
     for (int i = 0; i < 4 * m->nmocap; ++i) {
       model.key_mquat(k, i) = m->key_mquat[4 * m->nmocap * k + i];

@@ -76,6 +76,7 @@ std::pair<int, double> known_mass_named(const Model& prior, const std::string& t
 Result identify(const Model& prior, const Trajectory& data, const Options& options) {
   const int nv = prior.nv;
   const auto N = static_cast<int>(data.time.size());
+  require_simple_actuators(prior, "identify");
   if (data.qpos.rows() != nv || data.qpos.cols() != N || data.qvel.cols() != N ||
       data.qacc.cols() != N || data.force.cols() != N || data.force.rows() != nv) {
     throw Error("identify: the trajectory's arrays do not fit the model (nv " + std::to_string(nv) +
@@ -129,7 +130,7 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
     }
     for (std::size_t g = 0; g < r.gains.size(); ++g) {
       const int a = r.gains[g];
-      const int j = prior.actuator_trnid[a];
+      const int j = prior.actuator_trnid[a][0];  // a hinge or slide (the regressor checked)
       const int q = prior.jnt_qposadr[j], d = prior.jnt_dofadr[j];
       const auto G = static_cast<Eigen::Index>(g);
       basis(G, k) =
@@ -232,7 +233,7 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
       if (!prior.actuator_forcelimited[a]) continue;
       const auto& range = prior.actuator_forcerange[a];
       const double margin = 0.01 * (range[1] - range[0]);
-      const int d = prior.jnt_dofadr[prior.actuator_trnid[a]];
+      const int d = actuator_scalar_dof(prior, a);
       const auto G = static_cast<Eigen::Index>(g);
       // the first fit trusts the prior's gain to a factor of two only: a row is kept when the
       // force is inside the range for every gain in [g/2, 2g]; later fits use the estimate

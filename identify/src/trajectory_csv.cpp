@@ -41,6 +41,7 @@ double force_from_ctrl(const Model& prior, int a, double ctrl, double q, double 
 }  // namespace
 
 Trajectory read_csv(const Model& prior, const std::string& path) {
+  require_simple_actuators(prior, "identify");  // a row's forces go to the motors' dofs
   const io::CsvTable table = io::CsvTable::read(path);
   const auto find = [&](const std::string& name, bool required) {
     const int c = table.column(name);
@@ -134,7 +135,7 @@ Trajectory read_csv(const Model& prior, const std::string& path) {
       if (have_constraint) t.force(d, k) += at(r, constraint_col[d]);
     }
     for (int a = 0; a < nu; ++a) {
-      const int d = prior.jnt_dofadr[prior.actuator_trnid[a]];
+      const int d = actuator_scalar_dof(prior, a);  // >= 0: checked when the file was opened
       // the row's actuator force, or its ctrl through the prior's actuator at the row's state
       const double force =
           have_force ? at(r, force_col[a])

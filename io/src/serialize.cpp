@@ -100,9 +100,11 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kNexclude:
     case Size::kNmesh:  // meshes, their vertices and graphs: by index
     case Size::kNmeshvert:
-    case Size::kNmeshgraph: break;
+    case Size::kNmeshgraph:
+    case Size::kNmeshface: break;
     case Size::kNmocap: break;
     case Size::kNwrap: break;  // a path's objects: by index
+    case Size::kNa: return name_or_index(model.actuator_name, i + model.nu - model.na);
   }
   return std::to_string(i);
 }
@@ -196,6 +198,11 @@ void write_model_fields(json::Writer& json, const Model& model) {
   json.key("opt_timestep").value(model.opt.timestep);
   json.key("opt_gravity").values(model.opt.gravity);
   json.key("opt_integrator").value(static_cast<int>(model.opt.integrator));
+  json.key("opt_disableflags").value(model.opt.disableflags);
+  json.key("opt_enableflags").value(model.opt.enableflags);
+  json.key("opt_o_margin").value(model.opt.o_margin);
+  json.key("opt_o_solref").values(Eigen::Map<const Eigen::VectorXd>(model.opt.o_solref.data(), 2));
+  json.key("opt_o_solimp").values(Eigen::Map<const Eigen::VectorXd>(model.opt.o_solimp.data(), 5));
   write_names(json, "body_name", model.body_name);
   write_names(json, "jnt_name", model.jnt_name);
   write_names(json, "geom_name", model.geom_name);

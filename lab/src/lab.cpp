@@ -49,7 +49,7 @@ double ctrl_for_torque(const Model& model, int a, double torque) {
 
 // The excitation's reference for actuator a: a sum of sines inside its joint's range, and its rate.
 std::pair<double, double> reference(const Model& model, double fraction, int a, const Data& data) {
-  const int j = model.actuator_trnid[a];
+  const int j = model.actuator_trnid[a][0];  // a hinge or slide (apply() checked)
   const int q = model.jnt_qposadr[j];
   const double mid =
       model.jnt_limited[j] ? 0.5 * (model.jnt_range[j][0] + model.jnt_range[j][1]) : model.qpos0[q];
@@ -69,7 +69,7 @@ std::pair<double, double> reference(const Model& model, double fraction, int a, 
 double excitation(const Model& model, double fraction, int a, const Data& data) {
   const auto [ref, ref_vel] = reference(model, fraction, a, data);
   if (is_servo(model.actuator_kind[a])) return ref / model.actuator_gear[a][0];
-  const int j = model.actuator_trnid[a];
+  const int j = model.actuator_trnid[a][0];
   const int q = model.jnt_qposadr[j], dof = model.jnt_dofadr[j];
   const double wn = 2 * std::numbers::pi * 4.0;  // 4 Hz: faster than the reference's sines
   const double kp = wn * wn * model.dof_M0[dof], kd = 2 * 0.7 * wn * model.dof_M0[dof];
@@ -81,10 +81,11 @@ double excitation(const Model& model, double fraction, int a, const Data& data) 
 void apply(const Model& model, const Controller& controller, Data& data) {
   for (int a = 0; a < model.nu; ++a) {
     data.ctrl[a] = controller.torque[a];
-    // the compensation and the excitation are a joint's: a tendon actuator gets its torque only
-    if (model.actuator_trntype[a] != TransmissionType::kJoint) continue;
+    // the compensation and the excitation are a hinge's or slide's: any other actuator (a tendon,
+    // a site, a ball joint) gets its torque only
+    const int dof = actuator_scalar_dof(model, a);
+    if (dof < 0) continue;
     if (controller.gravity_compensation) {
-      const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
       data.ctrl[a] += ctrl_for_torque(model, a, data.qfrc_bias[dof]);
     }
     if (controller.excite > 0) data.ctrl[a] += excitation(model, controller.excite, a, data);

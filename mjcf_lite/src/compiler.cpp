@@ -73,9 +73,9 @@ std::string line_text(const Place& at) {
 
 struct CompiledMotor {
   const MotorSpec* spec;
-  int joint = -1;
-  int tendon = -1;  ///< a tendon transmission's tendon (joint -1)
-  bool ctrllimited = false, forcelimited = false;
+  TransmissionType trntype = TransmissionType::kJoint;
+  std::array<int, 2> trnid{-1, -1};  ///< Model::actuator_trnid
+  bool ctrllimited = false, forcelimited = false, actlimited = false;
   std::array<double, 2> ctrlrange{};  ///< as written, or from the joint's range (inheritrange)
 };
 
@@ -226,6 +226,7 @@ class Compiler {
           resolve_limited(t.limited, t.range, c_.autolimits, t.at, "range", "limited"));
     }
     for (const MotorSpec& m : spec_.motors) motors_.push_back(compile_motor(m));
+    check_stateless_first();
     check_moving_bodies();
     for (const KeySpec& k : spec_.keys) check_key(k);
     warn_unsupported_pairs();
@@ -393,6 +394,14 @@ class Compiler {
   }
 
   // ---- meshes ---------------------------------------------------------------------------------
+
+  // whether a ray is cast at the geoms (then every mesh is read, as MuJoCo reads them all)
+  bool has_rangefinder() const {
+    for (const SensorSpec& s : spec_.sensors) {
+      if (s.type == SensorType::kRangefinder) return true;
+    }
+    return false;
+  }
 
   // A mesh geom that gives its body mass or can collide: read and process its mesh (once per
   // mesh), then move the geom's frame to the mesh's centre and principal axes, size it by the
@@ -608,11 +617,12 @@ class Compiler {
     }
     if (g.type == GeomType::kMesh) {
       // a mesh geom that neither gives mass nor can collide keeps its frame as written, size zero
-      // and no mass: lever reads its file only when the body or the collision stage needs it
+      // and no mass: lever reads its file only when the body, the collision stage or a
+      // rangefinder's ray needs it
       out.size = {0, 0, 0};
       if (gives_mass) {
         apply_mesh(g, body, out, true);
-      } else if (can_collide(g)) {
+      } else if (can_collide(g) || has_rangefinder()) {
         // MuJoCo reads mesh files lever does not (inline vertices, MSH): such a geom keeps its
         // frame as written and cannot collide in lever, which says so (the unsupported pairs'
         // warning names its pairs)
@@ -721,55 +731,138 @@ class Compiler {
 
   // ---- motors ---------------------------------------------------------------------------------
 
-  // a tendon transmission: the tendon by name (MuJoCo 3's inheritrange needs a joint)
-  CompiledMotor compile_tendon_motor(const MotorSpec& m) {
-    CompiledMotor out{&m};
-    if (!m.joint.empty()) {
-      fail(m.at, "tendon", "an actuator drives one joint or one tendon; this one names both");
+  // The transmission (MuJoCo 2.2.2's xml reader, then mjCActuator::Compile): one of joint,
+  // jointinparent, tendon, cranksite, site; the slider-crank's and the site's second site.
+  void resolve_transmission(const MotorSpec& m, CompiledMotor& out) {
+    struct Target {
+      const char* attribute;
+      const std::string* name;
+      TransmissionType type;
+    };
+    const Target targets[] = {{"joint", &m.joint, TransmissionType::kJoint},
+                              {"jointinparent", &m.jointinparent, TransmissionType::kJointInParent},
+                              {"tendon", &m.tendon, TransmissionType::kTendon},
+                              {"cranksite", &m.cranksite, TransmissionType::kSliderCrank},
+                              {"site", &m.site, TransmissionType::kSite}};
+    const Target* chosen = nullptr;
+    for (const Target& t : targets) {
+      if (t.name->empty()) continue;
+      if (chosen) {
+        fail(m.at, t.attribute,
+             std::string("an actuator has one transmission; this one names both ") +
+                 chosen->attribute + " and " + t.attribute);
+      }
+      chosen = &t;
     }
-    std::vector<std::string_view> names;
-    for (size_t t = 0; t < spec_.tendons.size(); ++t) {
-      if (spec_.tendons[t].at.name == m.tendon) out.tendon = static_cast<int>(t);
-      names.push_back(spec_.tendons[t].at.name);
+    if (!chosen) {
+      fail(m.at, "joint",
+           "the actuator names no joint or tendon (nor jointinparent, site, cranksite): name what "
+           "it drives");
     }
-    if (out.tendon < 0) {
-      fail(m.at, "tendon", "unknown tendon '" + m.tendon + "'" + did_you_mean(m.tendon, names));
+    const bool crank = chosen->type == TransmissionType::kSliderCrank;
+    if (m.crank_attributes_written && !crank) {
+      fail(m.at, "cranklength", "cranklength and slidersite belong to a slider-crank (cranksite)");
     }
-    if (m.inheritrange > 0) {
-      fail(m.at, "inheritrange", "inheritrange takes a joint's range; this actuator drives a tendon");
+    if (!m.refsite.empty() && chosen->type != TransmissionType::kSite) {
+      fail(m.at, "refsite", "refsite belongs to a site transmission (site=)");
     }
-    out.ctrlrange = m.ctrlrange;
-    out.forcelimited = resolve_limited(m.forcelimited, m.forcerange, c_.autolimits, m.at,
-                                       "forcerange", "forcelimited");
-    out.ctrllimited = resolve_limited(m.ctrllimited, out.ctrlrange, c_.autolimits, m.at,
-                                      "ctrlrange", "ctrllimited");
-    check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
-    check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, out.ctrlrange);
-    return out;
+    out.trntype = chosen->type;
+    std::vector<std::string_view> site_names;
+    for (const CompiledSite& s : sites_) site_names.push_back(s.spec->at.name);
+    const auto site = [&](const std::string& name, const char* attribute) {
+      return find_by_name(site_names, name, m.at, attribute, "site");
+    };
+    switch (chosen->type) {
+      case TransmissionType::kJoint:
+      case TransmissionType::kJointInParent: {
+        std::vector<std::string_view> names;
+        for (const CompiledJoint& j : joints_) names.push_back(j.spec->at.name);
+        out.trnid[0] = find_by_name(names, *chosen->name, m.at, chosen->attribute, "joint");
+        break;
+      }
+      case TransmissionType::kTendon: {
+        std::vector<std::string_view> names;
+        for (const TendonSpec& t : spec_.tendons) names.push_back(t.at.name);
+        out.trnid[0] = find_by_name(names, m.tendon, m.at, "tendon", "tendon");
+        break;
+      }
+      case TransmissionType::kSliderCrank:
+        if (m.slidersite.empty()) {
+          fail(m.at, "slidersite", "a slider-crank needs slidersite=\"NAME\", the site it slides along");
+        }
+        out.trnid[1] = site(m.slidersite, "slidersite");
+        if (!(m.cranklength > 0)) {
+          fail(m.at, "cranklength",
+               "a slider-crank needs a positive cranklength (the rod's length); it has " +
+                   show(m.cranklength));
+        }
+        out.trnid[0] = site(m.cranksite, "cranksite");
+        break;
+      case TransmissionType::kSite:
+        if (!m.refsite.empty()) out.trnid[1] = site(m.refsite, "refsite");
+        out.trnid[0] = site(m.site, "site");
+        break;
+    }
   }
 
   CompiledMotor compile_motor(const MotorSpec& m) {
-    if (!m.tendon.empty()) return compile_tendon_motor(m);
     CompiledMotor out{&m};
-    if (m.joint.empty()) {
-      fail(m.at, "joint", "the actuator names no joint or tendon: name the joint (or tendon) to drive");
+    resolve_transmission(m, out);
+    const bool on_joint = out.trntype == TransmissionType::kJoint ||
+                          out.trntype == TransmissionType::kJointInParent;
+    if (on_joint) {
+      out.ctrlrange = inherited_ctrlrange(m, joints_[static_cast<size_t>(out.trnid[0])]);
+    } else {
+      if (m.inheritrange > 0) {
+        fail(m.at, "inheritrange", "inheritrange takes a joint's range; this actuator drives no joint");
+      }
+      out.ctrlrange = m.ctrlrange;
     }
-    std::vector<std::string_view> names;
-    for (size_t j = 0; j < joints_.size(); ++j) {
-      if (joints_[j].spec->at.name == m.joint) out.joint = static_cast<int>(j);
-      names.push_back(joints_[j].spec->at.name);
-    }
-    if (out.joint < 0) {
-      fail(m.at, "joint", "unknown joint '" + m.joint + "'" + did_you_mean(m.joint, names));
-    }
-    out.ctrlrange = inherited_ctrlrange(m, joints_[static_cast<size_t>(out.joint)]);
     out.forcelimited = resolve_limited(m.forcelimited, m.forcerange, c_.autolimits, m.at,
                                        "forcerange", "forcelimited");
     out.ctrllimited = resolve_limited(m.ctrllimited, out.ctrlrange, c_.autolimits, m.at,
                                       "ctrlrange", "ctrllimited");
+    out.actlimited = resolve_limited(m.actlimited, m.actrange, c_.autolimits, m.at, "actrange",
+                                     "actlimited");
     check_range(m.at, "forcerange", "forcelimited", out.forcelimited, m.forcerange);
     check_range(m.at, "ctrlrange", "ctrllimited", out.ctrllimited, out.ctrlrange);
+    check_range(m.at, "actrange", "actlimited", out.actlimited, m.actrange);
+    if (out.actlimited && m.dyntype == DynType::kNone) {
+      fail(m.at, "actrange", "an activation range needs activation dynamics; dyntype is none");
+    }
+    check_muscle(m);
     return out;
+  }
+
+  // MuJoCo keeps the activations after the stateless actuators' controls (mjCModel's counts)
+  void check_stateless_first() const {
+    bool stateful = false;
+    for (const MotorSpec& m : spec_.motors) {
+      if (m.dyntype != DynType::kNone) {
+        stateful = true;
+      } else if (stateful) {
+        fail(m.at, "dyntype",
+             "stateless actuators must come before stateful ones (those with dyntype "
+             "integrator, filter or muscle): move this one up");
+      }
+    }
+  }
+
+  // a muscle's parameters (mjCActuator::Compile), for its gain and its bias
+  static void check_muscle(const MotorSpec& m) {
+    for (const bool gain : {true, false}) {
+      const bool muscle = gain ? m.gaintype == GainType::kMuscle : m.biastype == BiasType::kMuscle;
+      if (!muscle) continue;
+      const double* prm = gain ? m.gainprm.data() : m.biasprm.data();
+      const char* attribute = gain ? "gainprm" : "biasprm";
+      if (prm[0] >= prm[1]) {
+        fail(m.at, attribute, "a muscle's range needs range[0] < range[1]");
+      }
+      if (prm[4] >= 1 || prm[5] <= 1) fail(m.at, attribute, "a muscle needs lmin < 1 < lmax");
+      if (prm[3] <= 0 || prm[6] <= 0 || prm[7] <= 0 || prm[8] <= 0) {
+        fail(m.at, attribute, "a muscle needs positive scale, vmax, fpmax and fvmax");
+      }
+    }
   }
 
   // MuJoCo 3's inheritrange (mjCActuator::Compile): a position servo (fixed gain, affine bias,
@@ -850,8 +943,16 @@ class Compiler {
     check(k.qpos, "qpos", static_cast<size_t>(coordinates()), "nq");
     check(k.qvel, "qvel", static_cast<size_t>(dofs()), "nv");
     check(k.ctrl, "ctrl", motors_.size(), "nu");
+    check(k.act, "act", static_cast<size_t>(activations()), "na");
     check(k.mpos, "mpos", 3 * static_cast<size_t>(nmocap_), "3 nmocap");
     check(k.mquat, "mquat", 4 * static_cast<size_t>(nmocap_), "4 nmocap");
+  }
+
+  // the model's na: one activation per actuator with dynamics
+  int activations() const {
+    int n = 0;
+    for (const MotorSpec& m : spec_.motors) n += m.dyntype != DynType::kNone;
+    return n;
   }
 
   // the model's nq and nv: a ball has a quaternion and three dofs, a free joint a position too
@@ -970,7 +1071,10 @@ class Compiler {
       const int wa = weld_[static_cast<size_t>(ga.body)];
       const int wb = weld_[static_cast<size_t>(gb.body)];
       if (wa == wb) return false;
-      if (wa != 0 && wb != 0 && (wa == weld_parent(wb) || wb == weld_parent(wa))) return false;
+      if (!spec_.opt.disabled(kDisableFilterparent) && wa != 0 && wb != 0 &&
+          (wa == weld_parent(wb) || wb == weld_parent(wa))) {
+        return false;
+      }
       return !excluded(ga.body, gb.body);
     };
     // a mesh geom whose mesh lever did not read has no shape to collide
@@ -1130,6 +1234,7 @@ Model Compiler::assemble() const {
   m.ngeom = static_cast<int>(geoms_.size());
   m.nsite = static_cast<int>(sites_.size());
   m.nu = static_cast<int>(motors_.size());
+  m.na = activations();
   m.npair = static_cast<int>(pairs_.size());
   m.nexclude = static_cast<int>(excludes_.size());
   m.nkey = static_cast<int>(spec_.keys.size());
@@ -1138,6 +1243,7 @@ Model Compiler::assemble() const {
     if (!mesh) continue;
     m.nmeshvert += static_cast<int>(mesh->vert.size() / 3);
     m.nmeshgraph += static_cast<int>(mesh->graph.size());
+    m.nmeshface += static_cast<int>(mesh->face.size() / 3);
   }
   m.neq = static_cast<int>(spec_.equalities.size());
   m.ntendon = static_cast<int>(spec_.tendons.size());
@@ -1315,13 +1421,20 @@ void Compiler::assemble_geoms_and_sites(Model& m) const {
 
 // every mesh asset, as MuJoCo numbers them; one lever did not read has no vertices and no graph
 void Compiler::assemble_meshes(Model& m) const {
-  int vert = 0, graph = 0;
+  int vert = 0, graph = 0, face = 0;
   for (size_t k = 0; k < spec_.assets.meshes.size(); ++k) {
     const MeshMass* mesh = k < mesh_cache_.size() && mesh_cache_[k] ? &*mesh_cache_[k] : nullptr;
     m.mesh_vertadr[k] = vert;
     m.mesh_vertnum[k] = mesh ? static_cast<int>(mesh->vert.size() / 3) : 0;
     m.mesh_graphadr[k] = mesh && !mesh->graph.empty() ? graph : -1;
+    m.mesh_faceadr[k] = face;
+    m.mesh_facenum[k] = mesh ? static_cast<int>(mesh->face.size() / 3) : 0;
     if (!mesh) continue;
+    for (int f = 0; f < m.mesh_facenum[k]; ++f) {
+      const int* corners = mesh->face.data() + 3 * f;
+      m.mesh_face[static_cast<size_t>(face + f)] = {corners[0], corners[1], corners[2]};
+    }
+    face += m.mesh_facenum[k];
     for (int v = 0; v < m.mesh_vertnum[k]; ++v) {
       const float* p = mesh->vert.data() + 3 * v;
       m.mesh_vert[static_cast<size_t>(vert + v)] = Eigen::Vector3d(p[0], p[1], p[2]);
@@ -1373,9 +1486,14 @@ void Compiler::assemble_motors(Model& m) const {
     const CompiledMotor& c = motors_[a];
     const MotorSpec& s = *c.spec;
     m.actuator_name[a] = s.at.name;
-    m.actuator_trntype[a] = c.tendon >= 0 ? TransmissionType::kTendon : TransmissionType::kJoint;
-    m.actuator_trnid[a] = c.tendon >= 0 ? c.tendon : c.joint;
-    m.actuator_dyntype[a] = DynType::kNone;
+    m.actuator_trntype[a] = c.trntype;
+    m.actuator_trnid[a] = c.trnid;
+    m.actuator_cranklength[a] = s.cranklength;
+    m.actuator_dyntype[a] = s.dyntype;
+    m.actuator_dynprm[a] = s.dynprm;
+    m.actuator_actlimited[a] = c.actlimited;
+    m.actuator_actrange[a] = s.actrange;
+    m.actuator_lengthrange[a] = s.lengthrange;
     m.actuator_gaintype[a] = s.gaintype;
     m.actuator_biastype[a] = s.biastype;
     m.actuator_gainprm[a] = s.gainprm;
@@ -1400,6 +1518,7 @@ void Compiler::assemble_keys(Model& m) const {
       m.key_qvel(k, i) = (*key.qvel)[static_cast<size_t>(i)];
     for (int i = 0; key.ctrl && i < m.nu; ++i)
       m.key_ctrl(k, i) = (*key.ctrl)[static_cast<size_t>(i)];
+    for (int i = 0; key.act && i < m.na; ++i) m.key_act(k, i) = (*key.act)[static_cast<size_t>(i)];
     // the mocap bodies: as written, else where the bodies are (mjCKey::Compile)
     for (int b = 0; b < m.nbody; ++b) {
       const int id = m.body_mocapid[static_cast<size_t>(b)];

@@ -82,10 +82,50 @@ void AttrSet::apply(const Element& e, const ElementRule& rule) {
 namespace {
 
 bool is_actuator(std::string_view tag) {
-  return tag == "motor" || tag == "general" || tag == "position" || tag == "velocity";
+  return tag == "motor" || tag == "general" || tag == "position" || tag == "velocity" ||
+         tag == "muscle";
 }
 
 Value word_value(const char* w) { return Value{{}, w, 0}; }
+
+// <muscle> in <general>'s terms (MuJoCo 2.2.2's reader): the parameters it starts from that are
+// still <general>'s built-in values take the muscle's defaults, its own attributes set them, and
+// the bias takes the gain's first nine numbers; dynamics, gain and bias are a muscle's
+void apply_muscle(AttrSet& set) {
+  const auto numbers = [&](const char* name) {
+    const Value* v = set.find(name);
+    return v ? v->numbers : default_numbers(attribute_rule("actuator", "general", name));
+  };
+  std::vector<double> dyn = numbers("dynprm"), gain = numbers("gainprm"), bias = numbers("biasprm");
+  if (dyn[0] == 1) dyn[0] = 0.01;
+  if (dyn[1] == 0) dyn[1] = 0.04;
+  constexpr double kMuscleGain[9] = {0.75, 1.05, -1, 200, 0.5, 1.6, 1.5, 1.3, 1.2};
+  if (gain[0] == 1) gain[0] = kMuscleGain[0];
+  for (int k = 1; k < 9; ++k) {
+    if (gain[static_cast<size_t>(k)] == 0) gain[static_cast<size_t>(k)] = kMuscleGain[k];
+  }
+  struct Own {
+    const char* name;
+    std::vector<double>* target;
+    size_t first;
+  };
+  const Own own[] = {{"timeconst", &dyn, 0}, {"range", &gain, 0}, {"force", &gain, 2},
+                     {"scale", &gain, 3},    {"lmin", &gain, 4},  {"lmax", &gain, 5},
+                     {"vmax", &gain, 6},     {"fpmax", &gain, 7}, {"fvmax", &gain, 8}};
+  for (const Own& o : own) {
+    if (const Value* v = set.find(o.name)) {
+      for (size_t k = 0; k < v->numbers.size(); ++k) (*o.target)[o.first + k] = v->numbers[k];
+    }
+    set.erase(o.name);  // held in dynprm and gainprm from here on, for later elements too
+  }
+  for (size_t k = 0; k < 9; ++k) bias[k] = gain[k];
+  set.set("dynprm", Value{dyn, "", 0});
+  set.set("gainprm", Value{gain, "", 0});
+  set.set("biasprm", Value{bias, "", 0});
+  set.set("dyntype", word_value("muscle"));
+  set.set("gaintype", word_value("muscle"));
+  set.set("biastype", word_value("muscle"));
+}
 
 }  // namespace
 
@@ -93,6 +133,10 @@ void apply_actuator(AttrSet& set, const Element& e, const ElementRule& rule) {
   set.apply(e, rule);
   const std::string_view tag = e.tag;
   if (tag == "general") return;
+  if (tag == "muscle") {
+    apply_muscle(set);
+    return;
+  }
   set.set("dyntype", word_value("none"));
   set.set("gaintype", word_value("fixed"));
   const auto numbers = [&](const char* name) {

@@ -523,6 +523,7 @@ MeshMass process_mesh(TriangleMesh mesh, const Vec3& refpos, const Quat& refquat
   if (!mesh.consistent) throw fault("");
   out.vert = std::move(vert);
   out.graph = std::move(graph);
+  out.face = std::move(mesh.face);
   return out;
 }
 

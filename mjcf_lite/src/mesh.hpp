@@ -56,6 +56,8 @@ struct MeshMass {
   /// frame, x y z per vertex, and the convex hull's graph (empty when none was asked for)
   std::vector<float> vert;
   std::vector<int> graph;
+  /// its triangles, three vertex numbers each (MuJoCo's mesh_face: what a ray meets)
+  std::vector<int> face;
 };
 
 /// The graph of the convex hull of the vertices (x y z per vertex) that MuJoCo 2.2.2 builds with

@@ -47,6 +47,7 @@ Model load_located(const std::string& xml, const std::string& filename, const Lo
   // build everything into locals: the caller gets a complete model or an exception
   Model model;
   detail::Locations where;
+  LengthRangeOptions lengthrange;  // <compiler><lengthrange>, used once the constants are set
   try {
     const detail::Element root = detail::read_document(xml, filename, &where.included_files);
     detail::ModelSpec spec = detail::parse_model(root, options.infer_inertia_from_geoms);
@@ -54,6 +55,7 @@ Model load_located(const std::string& xml, const std::string& filename, const Lo
     const size_t slash = filename.find_last_of("/\\");
     spec.model_dir = slash == std::string::npos ? "" : filename.substr(0, slash + 1);
     model = detail::compile(spec, &where);
+    lengthrange = spec.compiler.lengthrange;
   } catch (const detail::Problem& p) {
     // a problem in an included file is reported in that file
     const std::string& file = p.where.file.empty() ? filename : p.where.file;
@@ -61,6 +63,7 @@ Model load_located(const std::string& xml, const std::string& filename, const Lo
   }
   try {
     set_const(model);
+    set_length_ranges(model, lengthrange);
   } catch (const ModelError& e) {
     // located at the element the object came from, when set_const names one
     const std::vector<detail::Place>* places = nullptr;

@@ -190,10 +190,30 @@ MotorSpec read_actuator(const Element& e, const DefaultClasses& classes) {
   const Fields f(set, "actuator", "general");
   MotorSpec m;
   m.at = e.place();
-  m.joint = Fields(set, "actuator", e.tag).word("joint");
-  m.tendon = Fields(set, "actuator", e.tag).word("tendon");
-  m.gaintype = f.word("gaintype") == "affine" ? GainType::kAffine : GainType::kFixed;
-  m.biastype = f.word("biastype") == "affine" ? BiasType::kAffine : BiasType::kNone;
+  m.joint = f.word("joint");
+  m.tendon = f.word("tendon");
+  m.jointinparent = f.word("jointinparent");
+  m.site = f.word("site");
+  m.refsite = f.word("refsite");
+  m.cranksite = f.word("cranksite");
+  m.slidersite = f.word("slidersite");
+  m.cranklength = f.real("cranklength");
+  m.lengthrange = f.array<2>("lengthrange");
+  m.crank_attributes_written = e.find("cranklength") || e.find("slidersite");
+  const std::string dyn = f.word("dyntype"), gain = f.word("gaintype"), bias = f.word("biastype");
+  m.dyntype = dyn == "integrator" ? DynType::kIntegrator
+              : dyn == "filter"   ? DynType::kFilter
+              : dyn == "muscle"   ? DynType::kMuscle
+                                  : DynType::kNone;
+  m.gaintype = gain == "affine" ? GainType::kAffine
+               : gain == "muscle" ? GainType::kMuscle
+                                  : GainType::kFixed;
+  m.biastype = bias == "affine" ? BiasType::kAffine
+               : bias == "muscle" ? BiasType::kMuscle
+                                  : BiasType::kNone;
+  m.dynprm = f.array<kDynParameters>("dynprm");
+  m.actrange = f.array<2>("actrange");
+  m.actlimited = f.limited("actlimited");
   m.gainprm = f.array<kGainParameters>("gainprm");
   m.biasprm = f.array<kBiasParameters>("biasprm");
   m.gear = f.array<6>("gear");
@@ -288,6 +308,28 @@ CompilerSpec read_compiler(const Element& root) {
   c.texturedir = f.word("texturedir");
   c.exactmeshinertia = f.word("exactmeshinertia") == "true";
   c.convexhull = f.word("convexhull") == "true";
+  // <compiler><lengthrange>: every one over the same settings, as the <compiler>s
+  AttrSet lr;
+  for (const Element* e : sections(root, "compiler")) {
+    for (const Element& child : e->children) {
+      if (child.tag == "lengthrange") lr.apply(child, *find_rule("compiler", "lengthrange"));
+    }
+  }
+  const Fields l(lr, "compiler", "lengthrange");
+  const std::string mode = l.word("mode");
+  c.lengthrange.mode = mode == "none"         ? LengthRangeMode::kNone
+                       : mode == "muscleuser" ? LengthRangeMode::kMuscleUser
+                       : mode == "all"        ? LengthRangeMode::kAll
+                                              : LengthRangeMode::kMuscle;
+  c.lengthrange.useexisting = l.word("useexisting") == "true";
+  c.lengthrange.uselimit = l.word("uselimit") == "true";
+  c.lengthrange.accel = l.real("accel");
+  c.lengthrange.maxforce = l.real("maxforce");
+  c.lengthrange.timeconst = l.real("timeconst");
+  c.lengthrange.timestep = l.real("timestep");
+  c.lengthrange.inttotal = l.real("inttotal");
+  c.lengthrange.inteval = l.real("inteval");
+  c.lengthrange.tolrange = l.real("tolrange");
   return c;
 }
 
@@ -301,15 +343,6 @@ void check_option_support(const Element& option) {
            "lever has no noslip solver (MuJoCo's post-processing of friction forces): "
            "noslip_iterations must be 0 (found " +
                noslip->value + ")");
-    }
-  }
-  for (const Element& flag : option.children) {
-    const Attribute* override_flag = flag.find("override");
-    if (override_flag && override_flag->value == "enable") {
-      fail(flag.place(*override_flag), "override",
-           "lever has no contact override (MuJoCo's override=\"enable\" replaces every contact's "
-           "margin, solref and solimp by option o_margin, o_solref, o_solimp): set the geoms' "
-           "own margin, solref and solimp instead, and remove override=\"enable\"");
     }
   }
 }
@@ -368,13 +401,19 @@ Options read_option(const Element& root) {
   o.iterations = f.integer("iterations");
   o.tolerance = f.real("tolerance");
   const Fields flag(flags, "option", "flag");
-  o.contact_disabled = flag.word("contact") == "disable";
+  for (int k = 0; k < kDisableBits; ++k) {
+    if (flag.word(kDisableNames[k]) == "disable") o.disableflags |= 1 << k;
+  }
+  for (int k = 0; k < kEnableBits; ++k) {
+    if (flag.word(kEnableNames[k]) == "enable") o.enableflags |= 1 << k;
+  }
+  o.o_margin = f.real("o_margin");
+  o.o_solref = f.array<2>("o_solref");
+  o.o_solimp = f.array<5>("o_solimp");
   o.mpr_tolerance = f.real("mpr_tolerance");
   o.mpr_iterations = f.integer("mpr_iterations");
-  o.multiccd = flag.word("multiccd") == "enable";
   const Vec3 magnetic = f.array<3>("magnetic");
   o.magnetic = Eigen::Vector3d(magnetic[0], magnetic[1], magnetic[2]);
-  o.sensornoise = flag.word("sensornoise") == "enable";
   o.viscosity = f.real("viscosity");
   o.density = f.real("density");
   const Vec3 wind = f.array<3>("wind");
@@ -464,7 +503,7 @@ std::vector<KeySpec> read_keys(const Element& root) {
         k.time = parse_value(e, *t, attribute_rule("keyframe", "key", "time")).numbers[0];
       }
       // the lists as written (an AttrSet would fill them to their maximum length)
-      for (const char* name : {"qpos", "qvel", "ctrl", "mpos", "mquat"}) {
+      for (const char* name : {"qpos", "qvel", "ctrl", "act", "mpos", "mquat"}) {
         const Attribute* a = e.find(name);
         if (!a) continue;
         const std::vector<double> v =
@@ -472,6 +511,7 @@ std::vector<KeySpec> read_keys(const Element& root) {
         if (std::string_view(name) == "qpos") k.qpos = v;
         if (std::string_view(name) == "qvel") k.qvel = v;
         if (std::string_view(name) == "ctrl") k.ctrl = v;
+        if (std::string_view(name) == "act") k.act = v;
         if (std::string_view(name) == "mpos") k.mpos = v;
         if (std::string_view(name) == "mquat") k.mquat = v;
       }

@@ -289,10 +289,10 @@ std::vector<AttributeRule> tendon_class_attributes() {
   };
 }
 
-// <tendon> and its fixed tendons (tendon.cpp)
+// <tendon>: fixed and spatial tendons and their paths (tendon.cpp)
 void add_tendon_rules(std::vector<ElementRule>& s) {
-  s.push_back({"tendon", "mujoco", '*', {}, "", "spatial",
-               "tendons: lengths along paths of joints (fixed; spatial tendons are refused)"});
+  s.push_back({"tendon", "mujoco", '*', {}, "", "",
+               "tendons: lengths along paths of joints (fixed) or of sites (spatial)"});
   s.push_back({"fixed", "tendon", '*',
                join({text("name", "", "tendon name"),
                      text("class", "", "default class (else the main class)")},
@@ -304,31 +304,70 @@ void add_tendon_rules(std::vector<ElementRule>& s) {
                {required(text("joint", "", "a hinge or slide of the path")),
                 required(real("coef", 1, "0", "its coefficient in the length"))},
                "", "", "one joint of a fixed tendon's path"});
+  s.push_back({"spatial", "tendon", '*',
+               join({text("name", "", "tendon name"),
+                     text("class", "", "default class (else the main class)")},
+                    tendon_class_attributes()),
+               "user", "",
+               "a spatial tendon: a path through sites, wrapping around spheres and cylinders "
+               "between them, split by pulleys; a spring-damper, limits and friction loss along "
+               "it"});
+  s.push_back({"site", "spatial", '*',
+               {required(text("site", "", "a site the path passes through"))},
+               "", "", "a site of a spatial tendon's path"});
+  s.push_back({"geom", "spatial", '*',
+               {required(text("geom", "", "a sphere or cylinder between two sites of the path")),
+                text("sidesite", "", "a site on the side the tendon passes (inside the geom: "
+                                     "through it)")},
+               "", "", "a geom the path wraps around when the straight line would cross it"});
+  s.push_back({"pulley", "spatial", '*',
+               {required(real("divisor", 1, "0", "the branch's length is divided by this"))},
+               "", "", "starts a new branch of the path, its length divided by divisor"});
 }
 
 const char* const kUnsupportedJointAttributes = "springdamper";
 const char* const kUnsupportedGeomAttributes =
     "hfield fitscale fluidshape fluidcoef";
 const char* const kUnsupportedSiteAttributes = "fromto";
-const char* const kOtherActuators = "intvelocity damper cylinder muscle adhesion";
+const char* const kOtherActuators = "intvelocity damper cylinder adhesion";
 
 // attributes every actuator kind shares, in a default class and in <actuator>
 std::vector<AttributeRule> general_class_attributes() {
   return join(motor_class_attributes(),
               {
                   integer("group", 1, "0", "visualisation group (kept; no effect on dynamics)"),
-                  keyword("dyntype", "none", "none", "integrator filter muscle user",
-                          "activation dynamics: none (ctrl acts directly)"),
-                  keyword("gaintype", "fixed", "fixed affine", "muscle user",
+                  keyword("dyntype", "none", "none integrator filter muscle", "user",
+                          "activation dynamics: none (ctrl acts directly); integrator (act' = "
+                          "ctrl), filter (act' = (ctrl - act) / dynprm[0]), muscle (MuJoCo's "
+                          "activation time constants dynprm[0..1]): the force follows act"),
+                  keyword("gaintype", "fixed", "fixed affine muscle", "user",
                           "gain: fixed = gainprm[0]; affine = gainprm[0] + gainprm[1] length + "
-                          "gainprm[2] velocity"),
-                  keyword("biastype", "none", "none affine", "muscle user",
-                          "bias: affine = biasprm[0] + biasprm[1] length + biasprm[2] velocity"),
+                          "gainprm[2] velocity; muscle = the force-length-velocity curves"),
+                  keyword("biastype", "none", "none affine muscle", "user",
+                          "bias: affine = biasprm[0] + biasprm[1] length + biasprm[2] velocity; "
+                          "muscle = the passive force curve"),
                   partial("gainprm", 10, "1 0 0 0 0 0 0 0 0 0", "gain parameters"),
                   partial("biasprm", 10, "0 0 0 0 0 0 0 0 0 0", "bias parameters"),
-                  partial("dynprm", 10, "1 0 0 0 0 0 0 0 0 0",
-                          "activation-dynamics parameters (kept; dyntype none ignores them)"),
+                  partial("dynprm", 10, "1 0 0 0 0 0 0 0 0 0", "activation-dynamics parameters"),
+                  keyword("actlimited", "auto", "false true auto", "",
+                          "auto: the activation is clamped to actrange if actrange is given"),
+                  real("actrange", 2, "0 0", "activation range (needs dynamics)"),
               });
+}
+
+// <muscle>'s own attributes: they set gainprm = biasprm and dynprm (MuJoCo 2.2.2's reader)
+std::vector<AttributeRule> muscle_class_attributes() {
+  return join(motor_class_attributes(),
+              {integer("group", 1, "0", "visualisation group (kept; no effect on dynamics)"),
+               real("timeconst", 2, "0.01 0.04", "activation and deactivation time constants, s"),
+               real("range", 2, "0.75 1.05", "operating range of normalized length"),
+               real("force", 1, "-1", "peak active force; negative: scale / acc0"),
+               real("scale", 1, "200", "the peak force's scale when force is negative"),
+               real("lmin", 1, "0.5", "least normalized length with active force"),
+               real("lmax", 1, "1.6", "greatest normalized length with active force"),
+               real("vmax", 1, "1.5", "shortening velocity (optimal lengths/s) with no force"),
+               real("fpmax", 1, "1.3", "passive force at lmax, relative to the peak force"),
+               real("fvmax", 1, "1.2", "the lengthening force, relative to the peak force")});
 }
 
 std::vector<AttributeRule> shortcut_class_attributes(std::string_view gain_name,
@@ -352,13 +391,29 @@ std::vector<AttributeRule> position_class_attributes() {
 
 std::vector<AttributeRule> actuator_wiring(std::string_view what) {
   return {text("name", "", what), text("class", "", "default class (else the top-level class)"),
-          text("joint", "", "the joint it drives (or tendon)"),
-          text("tendon", "", "the tendon it drives (or joint)")};
+          text("joint", "", "the joint it drives (one transmission of joint, jointinparent, "
+                            "tendon, site, cranksite)"),
+          text("jointinparent", "", "the joint it drives, a ball's or free joint's gear in the "
+                                    "parent's frame (a hinge or slide: as joint)"),
+          text("tendon", "", "the tendon it drives"),
+          text("site", "", "the site it pushes: gear is a wrench (force, torque) in its frame"),
+          text("refsite", "", "with site: the reference site whose frame holds the gear and the "
+                              "length"),
+          text("cranksite", "", "a slider-crank's crank site (with slidersite and cranklength)"),
+          text("slidersite", "", "a slider-crank's slider site: its z axis is the slide"),
+          real("cranklength", 1, "0", "a slider-crank's rod length, positive"),
+          real("lengthrange", 2, "0 0", "the range of its length (else the compiler's <lengthrange> "
+                                        "finds a muscle's)")};
 }
 
-const char* const kUnsupportedActuatorAttributes =
-    "lengthrange cranklength jointinparent slidersite cranksite site refsite body "
-    "actlimited actrange";
+// <muscle>: the wiring of the others but site and refsite (MuJoCo 2.2.2 has none on a muscle)
+std::vector<AttributeRule> muscle_wiring() {
+  std::vector<AttributeRule> out = actuator_wiring("muscle name");
+  std::erase_if(out, [](const AttributeRule& r) { return r.name == "site" || r.name == "refsite"; });
+  return out;
+}
+
+const char* const kUnsupportedActuatorAttributes = "body";
 
 // visual-only assets and elements: read, checked by name, kept as text; no effect on dynamics
 std::vector<AttributeRule> texts(std::string_view names, std::string_view meaning) {
@@ -397,7 +452,7 @@ const char* const kLightAttributes =
 std::vector<ElementRule> build() {
   std::vector<ElementRule> s;
   s.push_back({"mujoco", "", '!', {text("model", "MuJoCo Model", "model name")}, "",
-               "custom include", "the root element"});
+               "custom", "the root element"});
   s.push_back({"compiler", "mujoco", '*',
                {
                    keyword("angle", "degree", "radian degree", "",
@@ -427,7 +482,23 @@ std::vector<ElementRule> build() {
                    text("texturedir", "", "folder of texture files (kept; never read)"),
                },
                "strippath fitaabb discardvisual usethread fusestatic",
-               "lengthrange", "compiler settings; apply to the whole model wherever written"});
+               "", "compiler settings; apply to the whole model wherever written"});
+  s.push_back({"lengthrange", "compiler", '?',
+               {keyword("mode", "muscle", "none muscle muscleuser all", "",
+                        "which actuators get a computed length range (muscleuser: as muscle, "
+                        "lever has no user actuators)"),
+                keyword("useexisting", "true", "false true", "", "keep a lengthrange as written"),
+                keyword("uselimit", "false", "false true", "",
+                        "take a limited joint's or tendon's range"),
+                real("accel", 1, "20", "the simulation's target acceleration of the length"),
+                real("maxforce", 1, "0", "the most applied force (0: no bound)"),
+                real("timeconst", 1, "1", "s: the velocity's decay in the simulation"),
+                real("timestep", 1, "0.01", "s: the simulation's timestep (0: the model's)"),
+                real("inttotal", 1, "10", "s: simulated time per side"),
+                real("inteval", 1, "2", "s: the final interval whose lengths give the range"),
+                real("tolrange", 1, "0.05", "how far the lengths may spread, relative to the range")},
+               "", "", "how the compiler finds actuators' length ranges (MuJoCo's "
+               "mj_setLengthRange)"});
   s.push_back({"option", "mujoco", '*',
                {
                    real("timestep", 1, "0.002", "s; must be positive"),
@@ -466,24 +537,58 @@ std::vector<ElementRule> build() {
                         "the medium's density, kg/m^3: quadratic drag on each body's inertia "
                         "box; must not be negative"),
                    real("wind", 3, "0 0 0", "the medium's velocity, m/s, world frame"),
+                   real("o_margin", 1, "0",
+                        "with <flag override=\"enable\">: every contact's margin"),
+                   partial("o_solref", 2, "0.02 1",
+                           "with <flag override=\"enable\">: every contact's solref"),
+                   partial("o_solimp", 5, "0.9 0.95 0.001 0.5 2",
+                           "with <flag override=\"enable\">: every contact's solimp"),
                },
-               "apirate o_margin o_solref o_solimp collision",
+               "apirate collision",
                "", "simulation options"});
   s.push_back({"flag", "option", '?',
                {
+                   keyword("constraint", "enable", "enable disable", "",
+                           "disable: no constraint stage at all (no rows, no contacts)"),
+                   keyword("equality", "enable", "enable disable", "",
+                           "disable: no equality constraint rows"),
+                   keyword("frictionloss", "enable", "enable disable", "",
+                           "disable: no friction-loss rows (joints and tendons)"),
+                   keyword("limit", "enable", "enable disable", "",
+                           "disable: no limit rows (joints and tendons)"),
                    keyword("contact", "enable", "enable disable", "",
                            "disable: no collision detection, no contacts"),
+                   keyword("passive", "enable", "enable disable", "",
+                           "disable: no springs, damping or fluid forces"),
+                   keyword("gravity", "enable", "enable disable", "", "disable: no gravity"),
+                   keyword("clampctrl", "enable", "enable disable", "",
+                           "disable: ctrl is not clamped to ctrlrange"),
+                   keyword("warmstart", "enable", "enable disable", "",
+                           "the solver's warm start: lever's solver always starts from "
+                           "qacc_smooth (MuJoCo's disabled warm start), which changes where "
+                           "MuJoCo's iterations stop, not its converged answer"),
+                   keyword("filterparent", "enable", "enable disable", "",
+                           "disable: a body's geoms may collide with its parent's"),
+                   keyword("actuation", "enable", "enable disable", "",
+                           "disable: no actuator forces"),
+                   keyword("refsafe", "enable", "enable disable", "",
+                           "disable: solref's time constant may be shorter than 2 timesteps"),
+                   keyword("sensor", "enable", "enable disable", "",
+                           "disable: the sensor stages are skipped (sensordata kept)"),
                    keyword("override", "disable", "disable enable", "",
-                           "contact override: lever has none, so only disable"),
+                           "enable: every contact takes option o_margin, o_solref, o_solimp"),
+                   keyword("energy", "disable", "disable enable", "",
+                           "enable: forward computes the potential and kinetic energy"),
+                   keyword("fwdinv", "disable", "disable enable", "",
+                           "enable: each step compares forward and inverse dynamics "
+                           "(solver_fwdinv)"),
                    keyword("multiccd", "disable", "disable enable", "",
                            "enable: up to four more contacts per convex pair, found by MPR with "
                            "the geoms turned slightly about the first contact (MuJoCo 2.2.2)"),
                    keyword("sensornoise", "disable", "disable enable", "",
                            "enable: add each sensor's noise (its standard deviation `noise`)"),
                },
-               "constraint equality frictionloss limit passive gravity clampctrl warmstart "
-               "filterparent actuation refsafe sensor energy fwdinv",
-               "", "simulation flags"});
+               "", "", "simulation flags"});
   s.push_back({"size", "mujoco", '*',
                {
                    integer("nconmax", 1, "-1",
@@ -517,10 +622,10 @@ std::vector<ElementRule> build() {
                                           required(text("body2", "", "second body"))},
                "", "", "a body pair whose geoms never collide (pairs from <pair> still do)"});
   s.push_back({"default", "mujoco", '*', {text("class", "main", "class name (top level: main)")},
-               "", "intvelocity damper cylinder muscle adhesion",
+               "", "intvelocity damper cylinder adhesion",
                "default class: attribute values that elements of the class start from"});
   s.push_back({"default", "default", '*', {required(text("class", "", "class name"))}, "",
-               "intvelocity damper cylinder muscle adhesion",
+               "intvelocity damper cylinder adhesion",
                "nested class: starts as a copy of its parent"});
   s.push_back({"joint", "default", '?', joint_attributes(), kUnsupportedJointAttributes, "",
                "joint defaults of the class"});
@@ -538,8 +643,10 @@ std::vector<ElementRule> build() {
                join(motor_class_attributes(),
                     {integer("group", 1, "0", "visualisation group (kept)")}),
                "cranklength", "", "actuator defaults of the class, as a motor"});
-  s.push_back({"general", "default", '?', general_class_attributes(), "cranklength actlimited "
-               "actrange", "", "actuator defaults of the class"});
+  s.push_back({"general", "default", '?', general_class_attributes(), "cranklength", "",
+               "actuator defaults of the class"});
+  s.push_back({"muscle", "default", '?', muscle_class_attributes(), "cranklength", "",
+               "actuator defaults of the class, as a muscle"});
   s.push_back({"position", "default", '?', position_class_attributes(), "cranklength",
                "", "actuator defaults of the class, as a position servo"});
   s.push_back({"velocity", "default", '?',
@@ -602,10 +709,11 @@ std::vector<ElementRule> build() {
                 partial("qpos", 1000, "", "nq numbers (default: qpos0)"),
                 partial("qvel", 1000, "", "nv numbers (default: zero)"),
                 partial("ctrl", 1000, "", "nu numbers (default: zero)"),
+                partial("act", 1000, "", "na numbers (default: zero)"),
                 partial("mpos", 3000, "", "3 nmocap numbers (default: the mocap bodies' pos)"),
                 partial("mquat", 4000, "",
                         "4 nmocap numbers, normalized (default: the mocap bodies' quat)")},
-               "act", "", "a keyframe (mj_resetDataKeyframe)"});
+               "", "", "a keyframe (mj_resetDataKeyframe)"});
   s.push_back({"worldbody", "mujoco", '*', {}, "", "composite",
                "the world body: static geoms, sites and the body tree; takes no attributes"});
   const std::vector<AttributeRule> body = join(
@@ -668,6 +776,9 @@ std::vector<ElementRule> build() {
                     position_class_attributes()),
                kUnsupportedActuatorAttributes, "",
                "a position servo: force = kp (ctrl - q) - kv qd (kv is MuJoCo 3's)"});
+  s.push_back({"muscle", "actuator", '*',
+               join(muscle_wiring(), muscle_class_attributes()), kUnsupportedActuatorAttributes,
+               "", "a muscle: MuJoCo's force-length-velocity and activation model"});
   s.push_back({"velocity", "actuator", '*',
                join(actuator_wiring("actuator name"),
                     shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m")),
@@ -809,7 +920,14 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
     value as the default).
 * Refused because lever does not have them: `option/solver` `PGS` and `CG` (lever's solver is
   Newton, MuJoCo's default), `option/noslip_iterations` above 0 (no noslip solver),
-  `option/flag override="enable"` (no contact override), `geom/type="hfield"`.
+  `geom/type="hfield"`.
+* Every `option/flag` of MuJoCo 2.2.2, as `model.opt.disableflags` and `enableflags` (mjtDisableBit's
+  and mjtEnableBit's bits), honoured where MuJoCo reads each (docs/contact.md, "Option flags"), with
+  `override`'s `option/o_margin`, `o_solref` and `o_solimp`.
+* `<sensor><user>`: a sensor whose numbers `Model::sensor_callback` writes (MuJoCo's
+  `mjcb_sensor`), with its own `dim`, `datatype`, `needstage` and object; without a callback its
+  numbers stay zero, as MuJoCo leaves them. The rangefinder's ray meets meshes triangle by
+  triangle (MuJoCo's `mj_rayMesh`); a model with a rangefinder has every mesh read.
 * `<include file="..."/>` anywhere: the included file's root element (of any tag; its
   attributes are ignored) is dropped and its children take the `<include>`'s place, their own
   includes expanded in turn, as MuJoCo 2.2.2 does before it reads a model. Paths are relative to

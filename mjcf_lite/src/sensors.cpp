@@ -115,13 +115,101 @@ std::string_view meaning_of(const SensorElement& s) {
   return s.type == T::kClock ? "the simulation time" : "a sensor of a frame (body, geom, site)";
 }
 
-// The element's own name: the tag, its type's object attribute and reference.
+AttributeRule keyword_rule(std::string_view name, std::string_view accepted,
+                           std::string_view refused, std::string_view meaning) {
+  AttributeRule r;
+  r.name = name;
+  r.kind = ValueKind::kKeyword;
+  r.required = true;
+  r.keywords = accepted;
+  r.unsupported_keywords = refused;
+  r.meaning = meaning;
+  return r;
+}
+
+// <user>: a sensor the model's callback evaluates (MuJoCo's mjcb_sensor), laid out as written
+ElementRule user_sensor_rule() {
+  ElementRule r;
+  r.tag = "user";
+  r.parent = "sensor";
+  r.multiplicity = '*';
+  r.attributes.push_back(text_rule("name", "sensor name", false));
+  r.attributes.push_back(keyword_rule(
+      "objtype", "body xbody joint geom site tendon actuator",
+      "dof camera light mesh skin hfield texture material pair exclude equality sensor numeric "
+      "text tuple key",
+      "kind of object it is attached to"));
+  r.attributes.push_back(text_rule("objname", "that object's name", true));
+  r.attributes.push_back(keyword_rule("datatype", "real positive axis quaternion", "",
+                                      "what its numbers are (noise and cutoff treat them so)"));
+  r.attributes.push_back(keyword_rule("needstage", "none pos vel acc", "",
+                                      "the stage after which the callback evaluates it"));
+  AttributeRule dim;
+  dim.name = "dim";
+  dim.kind = ValueKind::kInteger;
+  dim.required = true;
+  dim.meaning = "how many numbers it outputs (axis: 3, quaternion: 4)";
+  r.attributes.push_back(dim);
+  r.attributes.push_back(real_rule("cutoff", "> 0: its numbers clipped to +-cutoff"));
+  r.attributes.push_back(
+      real_rule("noise", "standard deviation of noise added with <flag sensornoise=\"enable\">"));
+  r.attributes.push_back(user_data_rule());
+  r.meaning = "a user sensor: Model::sensor_callback (Python: model.set_sensor_callback) writes "
+              "its numbers; without one they stay zero, as in MuJoCo";
+  return r;
+}
+
+ObjectType object_type_named(const std::string& word) {
+  return word == "body"       ? O::kBody
+         : word == "xbody"    ? O::kXBody
+         : word == "joint"    ? O::kJoint
+         : word == "geom"     ? O::kGeom
+         : word == "site"     ? O::kSite
+         : word == "tendon"   ? O::kTendon
+         : word == "actuator" ? O::kActuator
+                              : O::kUnknown;
+}
+
+// A <user> sensor's own layout and object, each attribute checked as MuJoCo's compiler checks it.
+void read_user_sensor(const Element& e, SensorSpec& s) {
+  const auto word = [&e](const char* attribute) {
+    return parse_value(e, *e.find(attribute), attribute_rule("sensor", "user", attribute)).text;
+  };
+  const std::string datatype = word("datatype"), stage = word("needstage");
+  s.layout.datatype = datatype == "positive" ? SensorDataType::kPositive
+                      : datatype == "axis"   ? SensorDataType::kAxis
+                      : datatype == "quaternion" ? SensorDataType::kQuaternion
+                                                 : SensorDataType::kReal;
+  s.layout.stage = stage == "pos"   ? SensorStage::kPosition
+                   : stage == "vel" ? SensorStage::kVelocity
+                   : stage == "acc" ? SensorStage::kAcceleration
+                                    : SensorStage::kNone;
+  const Attribute* dim = e.find("dim");
+  s.layout.dim = static_cast<int>(
+      parse_value(e, *dim, attribute_rule("sensor", "user", "dim")).numbers[0]);
+  if (s.layout.dim < 0) {
+    fail(e.place(*dim), "dim", "dim must not be negative (found " + dim->value + ")");
+  }
+  if ((s.layout.datatype == SensorDataType::kAxis && s.layout.dim != 3) ||
+      (s.layout.datatype == SensorDataType::kQuaternion && s.layout.dim != 4)) {
+    fail(e.place(*dim), "dim",
+         "a user sensor of datatype " + datatype + " has " +
+             (s.layout.datatype == SensorDataType::kAxis ? "3" : "4") + " numbers (found dim " +
+             dim->value + ")");
+  }
+  s.objtype = object_type_named(word("objtype"));
+  s.layout.object = s.objtype;
+  s.object_attribute = "objname";
+  const Attribute* object = e.find("objname");
+  s.object = object->value;
+  s.object_at = e.place(*object);
+}
 
 }  // namespace
 
 std::vector<ElementRule> sensor_rules() {
   std::vector<ElementRule> rules;
-  rules.push_back({"sensor", "mujoco", '*', {}, "", "user",
+  rules.push_back({"sensor", "mujoco", '*', {}, "", "",
                    "sensors: their numbers are data.sensordata, each sensor's from sensor_adr"});
   for (const SensorElement& s : kSensorElements) {
     ElementRule r;
@@ -147,6 +235,7 @@ std::vector<ElementRule> sensor_rules() {
     r.meaning = meaning_of(s);
     rules.push_back(std::move(r));
   }
+  rules.push_back(user_sensor_rule());
   return rules;
 }
 
@@ -158,7 +247,7 @@ std::vector<SensorSpec> read_sensors(const Element& root) {
       const SensorElement* kind = find_element(e.tag);
       SensorSpec s;
       s.at = e.place();
-      s.type = kind->type;
+      s.type = kind ? kind->type : T::kUser;
       // the numbers, each checked as MuJoCo's compiler checks it
       for (const char* name : {"cutoff", "noise"}) {
         const Attribute* a = e.find(name);
@@ -177,6 +266,12 @@ std::vector<SensorSpec> read_sensors(const Element& root) {
         s.user.numbers = parse_value(e, *user, user_data_rule()).numbers;
         s.user.at = e.place(*user);
       }
+      if (s.type == T::kUser) {
+        read_user_sensor(e, s);
+        sensors.push_back(std::move(s));
+        continue;
+      }
+      s.layout = sensor_layout(s.type);
       if (kind->type == T::kClock) {
         sensors.push_back(std::move(s));
         continue;
@@ -263,7 +358,7 @@ std::string other_kind(const Model& model, ObjectType type, const std::string& n
 void compile_sensors(const std::vector<SensorSpec>& sensors, Model& model) {
   model.nsensor = static_cast<int>(sensors.size());
   int adr = 0;
-  for (const SensorSpec& s : sensors) adr += sensor_layout(s.type).dim;
+  for (const SensorSpec& s : sensors) adr += s.layout.dim;
   model.nsensordata = adr;
   size_model(model);
   adr = 0;
@@ -277,7 +372,7 @@ void compile_sensors(const std::vector<SensorSpec>& sensors, Model& model) {
                  std::to_string(sensors[k].at.line) + ")");
       }
     }
-    const SensorLayout layout = sensor_layout(s.type);
+    const SensorLayout& layout = s.layout;
     int objid = -1, refid = -1;
     if (s.type != T::kClock) {
       objid = find_object(model, s.objtype, s.object);
@@ -297,7 +392,7 @@ void compile_sensors(const std::vector<SensorSpec>& sensors, Model& model) {
                  other_kind(model, s.reftype, s.ref));
       }
     }
-    if (s.objtype == O::kJoint) {
+    if (s.objtype == O::kJoint && s.type != T::kUser) {
       const JointType jt = model.jnt_type[objid];
       const bool ball = s.type == T::kBallQuat || s.type == T::kBallAngVel;
       if (ball && jt != JointType::kBall) {
@@ -317,9 +412,14 @@ void compile_sensors(const std::vector<SensorSpec>& sensors, Model& model) {
     }
     if (s.type == T::kRangefinder) {
       for (int g = 0; g < model.ngeom; ++g) {
-        if (model.geom_type[g] == GeomType::kMesh || model.geom_type[g] == GeomType::kHfield) {
-          fail(s.at, "", "lever casts the rangefinder's ray at every geom type but meshes and "
-                         "height fields, and the model has one (geom " +
+        const bool hfield = model.geom_type[g] == GeomType::kHfield;
+        const bool unread_mesh = model.geom_type[g] == GeomType::kMesh &&
+                                 (model.geom_dataid[g] < 0 ||
+                                  model.mesh_facenum[static_cast<size_t>(model.geom_dataid[g])] == 0);
+        if (hfield || unread_mesh) {
+          fail(s.at, "", std::string("lever casts the rangefinder's ray at every geom type but ") +
+                             (hfield ? "height fields" : "meshes it did not read (MSH files)") +
+                             ", and the model has one (geom " +
                              (model.geom_name[g].empty() ? std::to_string(g)
                                                          : "'" + model.geom_name[g] + "'") +
                              ")");

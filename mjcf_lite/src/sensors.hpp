@@ -30,13 +30,15 @@ struct SensorSpec {
   Place ref_at;
   double cutoff = 0, noise = 0;
   UserData user;
+  /// a user sensor's own layout (<user dim datatype needstage>); other types take their type's
+  SensorLayout layout{0, SensorDataType::kReal, SensorStage::kNone, ObjectType::kUnknown};
 };
 
 /// The schema rows of <sensor> and of each sensor element (schema.cpp appends them).
 std::vector<ElementRule> sensor_rules();
 
-/// Every sensor of the model's <sensor> sections, in document order. Refuses, naming them, the
-/// sensors lever cannot evaluate (tendon and user sensors) and a negative cutoff or noise.
+/// Every sensor of the model's <sensor> sections, in document order. Refuses, naming them, a
+/// negative cutoff or noise, and a user sensor's dim that does not fit its datatype.
 std::vector<SensorSpec> read_sensors(const Element& root);
 
 /// The sensor_ arrays, nsensor and nsensordata of a model whose other objects are compiled (their

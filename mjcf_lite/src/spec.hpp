@@ -105,8 +105,17 @@ struct MotorSpec {
   Place at;
   std::string joint;
   std::string tendon;  ///< a tendon transmission: the tendon's name (joint is then "")
+  /// the other transmissions' names as written ("" if not): jointinparent, site (with refsite),
+  /// a slider-crank's cranksite and slidersite
+  std::string jointinparent, site, refsite, cranksite, slidersite;
+  double cranklength = 0;
+  bool crank_attributes_written = false;  ///< cranklength or slidersite on the element itself
+  DynType dyntype = DynType::kNone;
   GainType gaintype = GainType::kFixed;
   BiasType biastype = BiasType::kNone;
+  std::array<double, kDynParameters> dynprm{1};
+  std::array<double, 2> actrange{}, lengthrange{};
+  Limited actlimited = Limited::kAuto;
   std::array<double, kGainParameters> gainprm{1};
   std::array<double, kBiasParameters> biasprm{};
   Vec6 gear{};
@@ -122,7 +131,7 @@ struct MotorSpec {
 struct KeySpec {
   Place at;
   double time = 0;
-  std::optional<std::vector<double>> qpos, qvel, ctrl, mpos, mquat;
+  std::optional<std::vector<double>> qpos, qvel, ctrl, act, mpos, mquat;
 };
 
 /// A <contact><pair>: its parameters as written over its class (MuJoCo 2.2.2 takes none from
@@ -151,17 +160,22 @@ struct EqualitySpec {
   std::array<double, kEqualityData> data{};
 };
 
-/// One joint of a fixed tendon's path (<fixed><joint joint coef>).
-struct TendonJointSpec {
-  Place at;  ///< its `joint` attribute, for errors
-  std::string name;
-  double coef = 0;
+/// One object of a tendon's path: a <fixed>'s <joint joint coef>, a <spatial>'s <site site>,
+/// <geom geom sidesite> or <pulley divisor>.
+struct TendonPathSpec {
+  Place at;  ///< its naming attribute (joint, site, geom; a pulley's divisor), for errors
+  WrapType type = WrapType::kJoint;  ///< kJoint, kSite, kPulley, or kSphere for any geom
+  std::string name;                  ///< the joint, site or geom ("" for a pulley)
+  double prm = 0;                    ///< a joint's coef, a pulley's divisor
+  std::string sidesite;              ///< a geom's side site ("" for none)
+  Place sidesite_at;
 };
 
-/// A <tendon><fixed> over its class (tendon.cpp).
+/// A <tendon><fixed> or <spatial> over its class (tendon.cpp).
 struct TendonSpec {
   Place at;
-  std::vector<TendonJointSpec> joints;
+  bool spatial = false;
+  std::vector<TendonPathSpec> path;
   Limited limited = Limited::kAuto;
   std::array<double, 2> range{};
   std::array<double, 2> solref_limit{}, solref_friction{};
@@ -205,6 +219,7 @@ struct CompilerSpec {
   std::string meshdir, texturedir;
   bool exactmeshinertia = false;
   bool convexhull = true;  ///< hull graphs for the meshes that can collide (MuJoCo's default)
+  LengthRangeOptions lengthrange;  ///< <compiler><lengthrange>
 };
 
 struct ModelSpec {

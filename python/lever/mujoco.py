@@ -89,23 +89,58 @@ class mjtIntegrator(_enum.IntEnum):
     mjINT_IMPLICIT = 2
 
 
+class mjtStage(_enum.IntEnum):
+    """Pipeline stages (mjtStage): what a user sensor's callback is called after."""
+    mjSTAGE_NONE = 0
+    mjSTAGE_POS = 1
+    mjSTAGE_VEL = 2
+    mjSTAGE_ACC = 3
+
+
+class mjtDisableBit(_enum.IntFlag):
+    """Bits of model.opt.disableflags (mjtDisableBit): <option><flag name="disable">."""
+    mjDSBL_CONSTRAINT = 1 << 0
+    mjDSBL_EQUALITY = 1 << 1
+    mjDSBL_FRICTIONLOSS = 1 << 2
+    mjDSBL_LIMIT = 1 << 3
+    mjDSBL_CONTACT = 1 << 4
+    mjDSBL_PASSIVE = 1 << 5
+    mjDSBL_GRAVITY = 1 << 6
+    mjDSBL_CLAMPCTRL = 1 << 7
+    mjDSBL_WARMSTART = 1 << 8
+    mjDSBL_FILTERPARENT = 1 << 9
+    mjDSBL_ACTUATION = 1 << 10
+    mjDSBL_REFSAFE = 1 << 11
+    mjDSBL_SENSOR = 1 << 12
+
+
+class mjtEnableBit(_enum.IntFlag):
+    """Bits of model.opt.enableflags (mjtEnableBit): <option><flag name="enable">."""
+    mjENBL_OVERRIDE = 1 << 0
+    mjENBL_ENERGY = 1 << 1
+    mjENBL_FWDINV = 1 << 2
+    mjENBL_SENSORNOISE = 1 << 3
+    mjENBL_MULTICCD = 1 << 4
+
+
 # lever's arrays that MuJoCo has under the same name, shape and meaning (the field table)
 _MODEL_FIELDS = frozenset(f["name"] for f in _lever.model_field_table() if f["mujoco"])
 _DATA_FIELDS = frozenset(f["name"] for f in _lever.data_field_table() if f["mujoco"])
 _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude", "nsensor",
-          "nsensordata", "neq", "nmocap", "nmesh", "nmeshvert", "nmeshgraph", "nconmax",
+          "nsensordata", "neq", "nmocap", "nmesh", "nmeshvert", "nmeshgraph", "nmeshface",
+          "nconmax",
           "njmax", "ntendon", "nwrap", "nuser_body", "nuser_jnt", "nuser_geom", "nuser_site",
-          "nuser_actuator", "nuser_sensor")
+          "nuser_actuator", "nuser_sensor", "na")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl", "key_mpos", "key_mquat")
 # the mjModel arrays model.body(...) and the other accessors reach
-_MODEL_OFFERED = _MODEL_FIELDS | {"actuator_trnid", "dof_Madr"}
+_MODEL_OFFERED = _MODEL_FIELDS | {"dof_Madr"}
 
 
 # What lever.mujoco covers, generated from the field table, for the errors below
 _COVERED = {
     "MODEL": ", ".join(sorted(_MODEL_FIELDS | set(_SIZES) | set(_KEY_FIELDS) |
-                              {"actuator_trnid", "dof_Madr", "nM"})),
+                              {"dof_Madr", "nM"})),
     "DATA": ", ".join(sorted(_DATA_FIELDS | {"time", "ncon", "nefc", "ne", "nf", "efc_J",
                                              "contact", "qM"})),
 }
@@ -294,7 +329,9 @@ class _DataObject:
 # ---- MjModel, MjOption, MjData -------------------------------------------------------------------
 
 class MjOption:
-    """model.opt: timestep, gravity and integrator, written through to lever's model."""
+    """model.opt: timestep, gravity, integrator, the flags (disableflags, enableflags: MuJoCo's
+    mjtDisableBit and mjtEnableBit bits) and the contact override (o_margin, o_solref, o_solimp),
+    written through to lever's model."""
 
     def __init__(self, native):
         object.__setattr__(self, "_native", native)
@@ -323,6 +360,46 @@ class MjOption:
     def integrator(self, value: int) -> None:
         self._native.integrator = int(value)  # Euler, RK4 or implicit (MuJoCo 2.2.2's)
 
+    @property
+    def disableflags(self) -> int:
+        return self._native.disableflags
+
+    @disableflags.setter
+    def disableflags(self, value: int) -> None:
+        self._native.disableflags = int(value)
+
+    @property
+    def enableflags(self) -> int:
+        return self._native.enableflags
+
+    @enableflags.setter
+    def enableflags(self, value: int) -> None:
+        self._native.enableflags = int(value)
+
+    @property
+    def o_margin(self) -> float:
+        return self._native.o_margin
+
+    @o_margin.setter
+    def o_margin(self, value: float) -> None:
+        self._native.o_margin = float(value)
+
+    @property
+    def o_solref(self) -> _np.ndarray:
+        return self._native.o_solref
+
+    @o_solref.setter
+    def o_solref(self, value) -> None:
+        self._native.o_solref[:] = value
+
+    @property
+    def o_solimp(self) -> _np.ndarray:
+        return self._native.o_solimp
+
+    @o_solimp.setter
+    def o_solimp(self, value) -> None:
+        self._native.o_solimp[:] = value
+
     def __getattr__(self, name: str):
         if name in _mujoco_names.OPTION:
             raise NotImplementedError(f"lever.mujoco: mjOption.{name} is MuJoCo's but lever "
@@ -330,7 +407,8 @@ class MjOption:
         raise AttributeError(f"'MjOption' object has no attribute '{name}'")
 
     def __setattr__(self, name: str, value) -> None:
-        if name in ("timestep", "gravity", "integrator"):
+        if name in ("timestep", "gravity", "integrator", "disableflags", "enableflags", "o_margin",
+                    "o_solref", "o_solimp"):
             object.__setattr__(self, name, value)
         else:
             self.__getattr__(name)
@@ -371,14 +449,6 @@ class MjModel:
     @property
     def nkey(self) -> int:
         return self._native.nkey
-
-    @property
-    def actuator_trnid(self) -> _np.ndarray:
-        """(nu, 2) as MuJoCo's: the joint, then -1 (a joint transmission has no second id)."""
-        out = _np.full((self._native.nu, 2), -1, dtype=_np.int32)
-        out[:, 0] = self._native.actuator_trnid
-        out.flags.writeable = False
-        return out
 
     def __getattr__(self, name: str):
         native = object.__getattribute__(self, "_native")
@@ -608,6 +678,21 @@ _add_named_access(MjData, _DataObject)
 
 # ---- functions -----------------------------------------------------------------------------------
 
+# mujoco.set_mjcb_sensor's callback, or None
+_mjcb_sensor = None
+
+
+def set_mjcb_sensor(callback) -> None:
+    """MuJoCo's sensor callback: callback(m, d, stage) writes the user sensors' numbers into
+    d.sensordata after each stage that has user sensors (None: they stay as they are)."""
+    global _mjcb_sensor
+    _mjcb_sensor = callback
+
+
+def get_mjcb_sensor():
+    return _mjcb_sensor
+
+
 def _pair(m: MjModel, d: MjData):
     if not isinstance(m, MjModel) or not isinstance(d, MjData):
         raise TypeError("expected (MjModel, MjData)")
@@ -616,6 +701,12 @@ def _pair(m: MjModel, d: MjData):
         # sizes (a copy, an unpickled one) is paired with this one; other sizes are refused
         d._native._adopt_model(m._native)
         object.__setattr__(d, "_model", m)
+    # the sensor callback sees this call's MjModel and MjData (installed when either changed)
+    callback = _mjcb_sensor
+    if m.__dict__.get("_mjcb_installed") != (callback, id(d)):
+        m._native.set_sensor_callback(
+            None if callback is None else lambda _model, _data, stage: callback(m, d, stage))
+        object.__setattr__(m, "_mjcb_installed", (callback, id(d)))
     return m._native, d._native
 
 

@@ -50,6 +50,31 @@ struct PyData {
 using ModelPtr = std::shared_ptr<lever::Model>;
 using DataPtr = std::shared_ptr<PyData>;
 
+// The Data a pipeline call (lever.forward, lever.step, ...) is evaluating on this thread, so that
+// a Python sensor callback is handed the lever.Data it fills.
+thread_local const DataPtr* evaluating_data = nullptr;
+
+struct Evaluating {
+  const DataPtr* previous;
+  explicit Evaluating(const DataPtr& d) : previous(evaluating_data) { evaluating_data = &d; }
+  ~Evaluating() { evaluating_data = previous; }
+};
+
+// Model::sensor_callback calling a Python function fn(model, data, stage) (MuJoCo's mjcb_sensor;
+// stage 1, 2, 3: position, velocity, acceleration).
+lever::SensorCallback python_sensor_callback(py::object fn, std::weak_ptr<lever::Model> model) {
+  return [fn = std::move(fn), model](const lever::Model&, lever::Data& data,
+                                     lever::SensorStage stage) {
+    py::gil_scoped_acquire gil;
+    if (evaluating_data == nullptr || &(*evaluating_data)->data != &data) {
+      throw lever::StateError(
+          "lever: a Python sensor callback runs in lever.forward, step, step1, step2 and "
+          "inverse on a lever.Data, not in a batch.");
+    }
+    fn(model.lock(), *evaluating_data, static_cast<int>(stage));
+  };
+}
+
 // A keyframe array (nkey x n, row-major) as a writable (nkey, n) numpy view.
 py::array key_view(lever::RowMatrix& a, py::handle owner) {
   const auto item = static_cast<py::ssize_t>(sizeof(double));
@@ -230,11 +255,13 @@ BatchField batch_field(const lever::Model& model, const std::string& name, py::s
                             "' has one row per live constraint row (nefc), which varies from "
                             "state to state: run lever.forward on a Data for it.");
   }
-  if (info->stage == lever::Stage::kInverse || info->stage == lever::Stage::kEnergy) {
-    throw lever::StateError(
-        std::string(where) + ": field '" + name + "' is not computed by forward() (" +
-        (info->stage == lever::Stage::kInverse ? "lever.inverse" : "lever.compute_energy") +
-        " writes it).");
+  if (info->stage == lever::Stage::kInverse || info->stage == lever::Stage::kEnergy ||
+      info->stage == lever::Stage::kStep) {
+    const char* writer = info->stage == lever::Stage::kInverse  ? "lever.inverse"
+                         : info->stage == lever::Stage::kEnergy ? "lever.compute_energy"
+                                                                : "lever.step with fwdinv";
+    throw lever::StateError(std::string(where) + ": field '" + name +
+                            "' is not computed by forward() (" + writer + " writes it).");
   }
   lever::FieldView one_state;  // the field's shape in any Data of this model
   one_state.info = info;
@@ -328,6 +355,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nsensordata", [](const lever::Model& x) { return x.nsensordata; })
       .def_property_readonly("neq", [](const lever::Model& x) { return x.neq; })
       .def_property_readonly("nmocap", [](const lever::Model& x) { return x.nmocap; })
+      .def_property_readonly("na", [](const lever::Model& x) { return x.na; })
       .def_property_readonly("ntendon", [](const lever::Model& x) { return x.ntendon; })
       .def_property_readonly("nwrap", [](const lever::Model& x) { return x.nwrap; })
       .def_property_readonly("nuser_body", [](const lever::Model& x) { return x.nuser_body; })
@@ -339,6 +367,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nmesh", [](const lever::Model& x) { return x.nmesh; })
       .def_property_readonly("nmeshvert", [](const lever::Model& x) { return x.nmeshvert; })
       .def_property_readonly("nmeshgraph", [](const lever::Model& x) { return x.nmeshgraph; })
+      .def_property_readonly("nmeshface", [](const lever::Model& x) { return x.nmeshface; })
       .def_property_readonly("nconmax", [](const lever::Model& x) { return x.nconmax; })
       .def_property_readonly("njmax", [](const lever::Model& x) { return x.njmax; })
       .def_property(
@@ -351,6 +380,41 @@ PYBIND11_MODULE(_lever, m) {
             return py::array_t<double>({3}, {sizeof(double)}, x.opt.gravity.data(), self);
           },
           nullptr)
+      // <option><flag>: MuJoCo's mjtDisableBit and mjtEnableBit bits, and the contact override
+      .def_property(
+          "disableflags", [](const lever::Model& x) { return x.opt.disableflags; },
+          [](lever::Model& x, int bits) { x.opt.disableflags = bits; })
+      .def_property(
+          "enableflags", [](const lever::Model& x) { return x.opt.enableflags; },
+          [](lever::Model& x, int bits) { x.opt.enableflags = bits; })
+      .def_property(
+          "o_margin", [](const lever::Model& x) { return x.opt.o_margin; },
+          [](lever::Model& x, double margin) { x.opt.o_margin = margin; })
+      .def_property_readonly("o_solref",
+                             [](py::object self) {
+                               auto& x = self.cast<lever::Model&>();
+                               return py::array_t<double>({2}, {sizeof(double)},
+                                                          x.opt.o_solref.data(), self);
+                             })
+      .def_property_readonly("o_solimp",
+                             [](py::object self) {
+                               auto& x = self.cast<lever::Model&>();
+                               return py::array_t<double>({5}, {sizeof(double)},
+                                                          x.opt.o_solimp.data(), self);
+                             })
+      .def(
+          "set_sensor_callback",
+          [](const ModelPtr& x, py::object fn) {
+            if (fn.is_none()) {
+              x->sensor_callback = nullptr;
+            } else {
+              x->sensor_callback = python_sensor_callback(std::move(fn), x);
+            }
+          },
+          py::arg("callback"),
+          "fn(model, data, stage) writes the user sensors' numbers into data.sensordata after "
+          "each stage (1 position, 2 velocity, 3 acceleration) that has user sensors (MuJoCo's "
+          "mjcb_sensor); None removes it, and the user sensors then stay as they are.")
       .def_property(
           "integrator", [](const lever::Model& x) { return static_cast<int>(x.opt.integrator); },
           [](lever::Model& x, int i) {
@@ -557,6 +621,7 @@ PYBIND11_MODULE(_lever, m) {
         name,
         [fn](const ModelPtr& x, const DataPtr& d) {
           lever::Data& data = data_for(x, d);
+          const Evaluating evaluating(d);
           fn(*x, data);
         },
         py::arg("model"), py::arg("data"), doc);
@@ -861,9 +926,10 @@ PYBIND11_MODULE(_lever, m) {
           if (joint_force) {
             t.force = rows("qfrc", prior.nv, true);
           } else if (t.actuator_force.size() > 0) {
+            lever::require_simple_actuators(prior, "lever.identify");
             t.force = Eigen::MatrixXd::Zero(prior.nv, t.actuator_force.cols());
             for (int a = 0; a < prior.nu; ++a) {
-              const int dof = prior.jnt_dofadr[prior.actuator_trnid[a]];
+              const int dof = lever::actuator_scalar_dof(prior, a);  // checked above
               t.force.row(dof) += prior.actuator_gear[a][0] * t.actuator_force.row(a);
             }
             const Eigen::MatrixXd stops = rows("qfrc_constraint", prior.nv, false);

@@ -16,12 +16,12 @@ namespace {
 
 // Bumped when the layout of the state changes, so that an old pickle is refused by name rather
 // than misread.
-constexpr int kStateVersion = 1;
+constexpr int kStateVersion = 2;
 
 // The structs outside the field table are carried member by member below. A member added to one
 // of them changes its size and stops the build here: carry the new member too, then update the
 // size.
-static_assert(sizeof(lever::Options) == 160, "lever::Options changed: pickle its new member");
+static_assert(sizeof(lever::Options) == 216, "lever::Options changed: pickle its new member");
 static_assert(sizeof(lever::CompilerInfo) == 12, "lever::CompilerInfo changed: pickle it");
 static_assert(sizeof(lever::VisualInfo) == 8 * sizeof(std::vector<std::string>) +
                                                2 * sizeof(std::string),
@@ -72,9 +72,9 @@ void check_version(const py::dict& state, const char* what) {
 // The counts that size a model (size_model reads them) and the capacities of its Data.
 #define LEVER_PYTHON_MODEL_COUNTS(X) \
   X(nq) X(nv) X(nu) X(nbody) X(njnt) X(ngeom) X(nsite) X(nkey) X(npair) X(nexclude) X(nconmax) X(njmax) \
-  X(nmesh) X(nmeshvert) X(nmeshgraph) X(nsensor) X(nsensordata) X(neq) X(nmocap) \
+  X(nmesh) X(nmeshvert) X(nmeshgraph) X(nmeshface) X(nsensor) X(nsensordata) X(neq) X(nmocap) \
   X(nuser_body) X(nuser_jnt) X(nuser_geom) X(nuser_site) X(nuser_actuator) X(nuser_sensor) \
-  X(ntendon) X(nwrap)
+  X(ntendon) X(nwrap) X(na)
 
 // a keyframe array (nkey x n, row-major) as bytes, and back
 py::bytes matrix_bytes(const lever::RowMatrix& a) {
@@ -109,6 +109,7 @@ py::dict model_state(const lever::Model& model) {
   keys["key_qpos"] = matrix_bytes(model.key_qpos);
   keys["key_qvel"] = matrix_bytes(model.key_qvel);
   keys["key_ctrl"] = matrix_bytes(model.key_ctrl);
+  keys["key_act"] = matrix_bytes(model.key_act);
   keys["key_mpos"] = matrix_bytes(model.key_mpos);
   keys["key_mquat"] = matrix_bytes(model.key_mquat);
   state["keys"] = keys;
@@ -122,15 +123,17 @@ py::dict model_state(const lever::Model& model) {
   opt["impratio"] = o.impratio;
   opt["iterations"] = o.iterations;
   opt["tolerance"] = o.tolerance;
-  opt["contact_disabled"] = o.contact_disabled;
   opt["mpr_tolerance"] = o.mpr_tolerance;
   opt["mpr_iterations"] = o.mpr_iterations;
-  opt["multiccd"] = o.multiccd;
   opt["magnetic"] = bytes_of(o.magnetic.data(), 3 * sizeof(double));
-  opt["sensornoise"] = o.sensornoise;
   opt["viscosity"] = o.viscosity;
   opt["density"] = o.density;
   opt["wind"] = bytes_of(o.wind.data(), 3 * sizeof(double));
+  opt["o_margin"] = o.o_margin;
+  opt["o_solref"] = bytes_of(o.o_solref.data(), 2 * sizeof(double));
+  opt["o_solimp"] = bytes_of(o.o_solimp.data(), 5 * sizeof(double));
+  opt["disableflags"] = o.disableflags;
+  opt["enableflags"] = o.enableflags;
   state["opt"] = opt;
 
   py::dict compiler;
@@ -210,6 +213,7 @@ std::shared_ptr<lever::Model> model_from_state(const py::dict& state) {
   write_matrix(keys, "key_qpos", m.key_qpos);
   write_matrix(keys, "key_qvel", m.key_qvel);
   write_matrix(keys, "key_ctrl", m.key_ctrl);
+  write_matrix(keys, "key_act", m.key_act);
   write_matrix(keys, "key_mpos", m.key_mpos);
   write_matrix(keys, "key_mquat", m.key_mquat);
 
@@ -222,17 +226,21 @@ std::shared_ptr<lever::Model> model_from_state(const py::dict& state) {
   m.opt.impratio = item(opt, "impratio", "a model").cast<double>();
   m.opt.iterations = item(opt, "iterations", "a model").cast<int>();
   m.opt.tolerance = item(opt, "tolerance", "a model").cast<double>();
-  m.opt.contact_disabled = item(opt, "contact_disabled", "a model").cast<bool>();
   m.opt.mpr_tolerance = item(opt, "mpr_tolerance", "a model").cast<double>();
   m.opt.mpr_iterations = item(opt, "mpr_iterations", "a model").cast<int>();
-  m.opt.multiccd = item(opt, "multiccd", "a model").cast<bool>();
   write_bytes(item(opt, "magnetic", "a model"), m.opt.magnetic.data(), 3 * sizeof(double),
               "model.opt.magnetic");
-  m.opt.sensornoise = item(opt, "sensornoise", "a model").cast<bool>();
   m.opt.viscosity = item(opt, "viscosity", "a model").cast<double>();
   m.opt.density = item(opt, "density", "a model").cast<double>();
   write_bytes(item(opt, "wind", "a model"), m.opt.wind.data(), 3 * sizeof(double),
               "model.opt.wind");
+  m.opt.o_margin = item(opt, "o_margin", "a model").cast<double>();
+  write_bytes(item(opt, "o_solref", "a model"), m.opt.o_solref.data(), 2 * sizeof(double),
+              "model.opt.o_solref");
+  write_bytes(item(opt, "o_solimp", "a model"), m.opt.o_solimp.data(), 5 * sizeof(double),
+              "model.opt.o_solimp");
+  m.opt.disableflags = item(opt, "disableflags", "a model").cast<int>();
+  m.opt.enableflags = item(opt, "enableflags", "a model").cast<int>();
 
   const py::dict compiler = item(state, "compiler", "a model").cast<py::dict>();
   m.compiler.inertiagrouprange =

@@ -392,10 +392,17 @@ TEST_CASE("BatchRunner on two threads allocates nothing per batch: its workers a
 
 TEST_CASE("rnea_derivatives, forward_derivatives, step_derivatives and regressor allocate nothing",
           "[alloc][derivatives]") {
-  for (const std::string& path : lever::test::all_model_files()) {
+  // every model, and the fixed tendons' and friction loss's rows (which the derivatives take too)
+  std::vector<std::string> files = lever::test::all_model_files();
+  for (const char* file :
+       {"tests/models/constraints/tendons.xml", "tests/models/constraints/friction_loss.xml"}) {
+    files.push_back(lever::test::model_path(file));
+  }
+  for (const std::string& path : files) {
     std::string how;
     const lever::Model base = load(path, how);
-    const bool hinges_and_slides = base.nq == base.nv;  // what the regressor covers
+    // what the regressor covers: hinges and slides, no tendons
+    const bool hinges_and_slides = base.nq == base.nv && base.ntendon == 0;
     INFO("model " << std::filesystem::path(path).filename().string() << " loaded by " << how);
     for (const lever::Integrator integrator :
          {lever::Integrator::kEuler, lever::Integrator::kRK4, lever::Integrator::kImplicit}) {
@@ -457,8 +464,10 @@ TEST_CASE("the elliptic cones' Newton solver allocates nothing", "[alloc]") {
 }
 
 TEST_CASE("equality constraints and friction loss allocate nothing", "[alloc]") {
+  // spatial_tendons.xml: a tendon coupling and tendon friction loss, along wrapped paths
   for (const char* file :
-       {"tests/models/constraints/equality.xml", "tests/models/constraints/friction_loss.xml"}) {
+       {"tests/models/constraints/equality.xml", "tests/models/constraints/friction_loss.xml",
+        "tests/models/constraints/spatial_tendons.xml"}) {
     INFO(file);
     std::string how;
     const lever::Model base = load(lever::test::model_path(file), how);
@@ -483,6 +492,29 @@ TEST_CASE("equality constraints and friction loss allocate nothing", "[alloc]") 
   }
 }
 
+TEST_CASE("transmissions, muscles and activations allocate nothing", "[alloc]") {
+  for (const char* file :
+       {"tests/models/actuators/transmissions.xml", "tests/models/actuators/muscles.xml"}) {
+    INFO(file);
+    std::string how;
+    const lever::Model base = load(lever::test::model_path(file), how);
+    for (const lever::Integrator integrator :
+         {lever::Integrator::kEuler, lever::Integrator::kRK4, lever::Integrator::kImplicit}) {
+      lever::Model m = base;
+      m.opt.integrator = integrator;
+      lever::Data d(m);
+      d.ctrl.setConstant(0.5);
+      for (int k = 0; k < 100; ++k) {
+        const Allocations a = count([&] { lever::step(m, d); });
+        CHECK(a.news == 0);
+        CHECK(a.mallocs == 0);
+      }
+      CHECK(d.act.size() == m.na);
+      if (m.na > 0) CHECK(d.act.cwiseAbs().maxCoeff() > 0);  // the activations moved
+    }
+  }
+}
+
 TEST_CASE("collision allocates nothing", "[alloc]") {
   // the scenes' cylinders and ellipsoids, and the Menagerie's Panda's meshes, run libccd's MPR
   // (with multiccd too)
@@ -494,7 +526,7 @@ TEST_CASE("collision allocates nothing", "[alloc]") {
     INFO(file);
     const auto mj = lever::test::mujoco_load(file);
     lever::Model m = lever::test::from_mujoco(mj.get());
-    m.opt.multiccd = file == scenes + "free_objects.xml";
+    if (file == scenes + "free_objects.xml") m.opt.enableflags |= lever::kEnableMulticcd;
     lever::Data d(m);
     std::mt19937_64 rng(19);
     std::uniform_real_distribution<double> u(file == panda ? -2.5 : -0.15, file == panda ? 2.5 : 0.15);

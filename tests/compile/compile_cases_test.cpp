@@ -373,6 +373,42 @@ const Case kCases[] = {
   <size nconmax="30" njmax="-1" nstack="100000"/>
   <worldbody><body name="b"><joint/><geom size="0.1"/></body></worldbody>
 </mujoco>)"},
+  // every flag, the override's parameters (o_solref written in part), one <option> after another
+  {"option-flags", R"(<mujoco>
+  <option o_margin="0.01" o_solref="0.05" o_solimp="0.7 0.8 0.01 0.4 3">
+    <flag constraint="disable" equality="disable" frictionloss="disable" limit="disable"
+          contact="disable" passive="disable" gravity="disable" clampctrl="disable"/>
+  </option>
+  <option>
+    <flag warmstart="disable" filterparent="disable" actuation="disable" refsafe="disable"
+          sensor="disable" override="enable" energy="enable" fwdinv="enable"
+          sensornoise="enable" multiccd="enable"/>
+  </option>
+  <worldbody><body name="b"><joint/><geom size="0.1"/></body></worldbody>
+</mujoco>)"},
+  {"option-flags-some", R"(<mujoco>
+  <option><flag gravity="disable" energy="enable" contact="enable"/></option>
+  <worldbody><body name="b"><joint/><geom size="0.1"/></body></worldbody>
+</mujoco>)"},
+  // user sensors: their own dim, datatype and stage, on objects of every kind lever has
+  {"sensor-user", R"(<mujoco>
+  <worldbody>
+    <body name="b"><joint name="j"/><geom name="g" size="0.1"/><site name="s"/></body>
+  </worldbody>
+  <actuator><motor name="m" joint="j"/></actuator>
+  <tendon><fixed name="t"><joint joint="j" coef="1"/></fixed></tendon>
+  <sensor>
+    <user objtype="site" objname="s" dim="2" needstage="pos" datatype="real" cutoff="3"/>
+    <jointpos joint="j"/>
+    <user name="q" objtype="body" objname="b" dim="4" needstage="acc" datatype="quaternion"
+          noise="0.1" user="1 2"/>
+    <user objtype="xbody" objname="b" dim="3" needstage="vel" datatype="axis"/>
+    <user objtype="joint" objname="j" dim="0" needstage="none" datatype="positive"/>
+    <user objtype="geom" objname="g" dim="1" needstage="pos" datatype="positive"/>
+    <user objtype="actuator" objname="m" dim="1" needstage="acc" datatype="real"/>
+    <user objtype="tendon" objname="t" dim="5" needstage="vel" datatype="real"/>
+  </sensor>
+</mujoco>)"},
   // MuJoCo's matrix layout, which changes none of the compiled numbers
   {"option-jacobian", R"(<mujoco>
   <option jacobian="sparse"/>

@@ -1,4 +1,5 @@
-// Friction loss, equality constraints and fixed tendons compiled by mjcf_lite and by MuJoCo 2.2.2:
+// Friction loss, equality constraints, fixed and spatial tendons compiled by mjcf_lite and by
+// MuJoCo 2.2.2:
 // the models of tests/models/constraints/ and small cases (class inheritance, what is left
 // unwritten), field by field (dof_frictionloss, dof_solref, dof_solimp, eq_* with eq_data as
 // mj_setConst completes it, tendon_* and wrap_*, tendon_length0 and tendon_invweight0); and the
@@ -38,7 +39,8 @@ std::string constraint_refusal(const std::string& xml) {
 }  // namespace
 
 TEST_CASE("the constraint models compile to MuJoCo 2.2.2's parameters", "[compile][constraints]") {
-  for (const char* name : {"friction_loss.xml", "equality.xml", "tendons.xml"}) {
+  for (const char* name :
+       {"friction_loss.xml", "equality.xml", "tendons.xml", "spatial_tendons.xml"}) {
     const std::string path =
         lever::test::model_path(std::string("tests/models/constraints/") + name);
     compare_with_mujoco(name, lever::test::read_text(path));
@@ -96,13 +98,81 @@ TEST_CASE("tendon corner cases agree with MuJoCo 2.2.2", "[compile][tendons]") {
 </mujoco>)");
 }
 
+TEST_CASE("spatial tendon corner cases agree with MuJoCo 2.2.2", "[compile][tendons]") {
+  // a spatial tendon over a class of its own (width, limits, springlength left to the length at
+  // springref), a path starting at a pulley, a geom named twice, a side site on another body, a
+  // cylinder and a sphere of one body, sites of the world only; a spatial tendon driven and
+  // coupled to a fixed one
+  compare_with_mujoco("spatial_corners.xml", R"(<mujoco>
+  <default>
+    <default class="rope"><tendon width="0.02" range="0.1 2" stiffness="3" margin="0.01"/></default>
+  </default>
+  <worldbody>
+    <site name="w0" pos="0 0 1"/><site name="w1" pos="1 0 1"/>
+    <body name="a" pos="0 0 0.5">
+      <joint name="h" axis="0 1 0" springref="20"/>
+      <geom name="drum" type="cylinder" size="0.1 0.2"/>
+      <geom name="ball" type="sphere" pos="0.5 0 0" size="0.05"/>
+      <site name="s" pos="-0.3 0 0.1"/><site name="side" pos="0 0.3 0"/>
+      <body name="b" pos="1 0 0"><joint name="k" axis="0 1 0"/><geom size="0.05"/>
+        <site name="r" pos="0.2 0 0"/></body>
+    </body>
+  </worldbody>
+  <tendon>
+    <spatial name="t1" class="rope">
+      <pulley divisor="3"/><site site="w0"/><geom geom="drum" sidesite="side"/><site site="r"/>
+      <geom geom="ball"/><site site="s"/>
+      <pulley divisor="1.5"/><site site="w1"/><geom geom="drum"/><site site="s"/>
+    </spatial>
+    <spatial name="t2" limited="false"><site site="w0"/><site site="w1"/></spatial>
+    <fixed name="t3"><joint joint="k" coef="2"/></fixed>
+  </tendon>
+  <equality><tendon tendon1="t1" tendon2="t3" polycoef="0 1 0 0 0"/></equality>
+  <actuator><position tendon="t1" kp="10"/></actuator>
+</mujoco>)");
+}
+
 TEST_CASE("tendons lever cannot build are refused by name", "[compile][tendons]") {
   const std::string head = R"(<mujoco><worldbody><body name="a"><joint name="j"/><geom size="1"/>
     <site name="s"/><body name="b"><joint name="ball" type="ball"/><geom size="1"/><site name="r"/>
     </body></body></worldbody>)";
-  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
+  // spatial paths MuJoCo refuses too, each named
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/></spatial></tendon>
+    </mujoco>)"),
+             Catch::Contains("at least two"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><site site="q"/>
     </spatial></tendon></mujoco>)"),
-             Catch::Contains("spatial"));
+             Catch::Contains("unknown site 'q'"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><site site="s"/>
+    </spatial></tendon></mujoco>)"),
+             Catch::Contains("follows itself"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><pulley divisor="2"/>
+    <site site="r"/></spatial></tendon></mujoco>)"),
+             Catch::Contains("no neighbour"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
+    <pulley divisor="2"/></spatial></tendon></mujoco>)"),
+             Catch::Contains("ends with a pulley"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><site site="r"/>
+    <pulley divisor="0"/><site site="s"/><site site="r"/></spatial></tendon></mujoco>)"),
+             Catch::Contains("divisor must be positive"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial><site site="s"/><geom geom="g"/>
+    </spatial></tendon></mujoco>)"),
+             Catch::Contains("unknown geom 'g'"));
+  CHECK_THAT(constraint_refusal(R"(<mujoco><worldbody><body><joint/><geom name="box" type="box"
+    size="1 1 1"/><site name="s"/><site name="r" pos="1 0 0"/></body></worldbody><tendon><spatial>
+    <site site="s"/><geom geom="box"/><site site="r"/></spatial></tendon></mujoco>)"),
+             Catch::Contains("not a sphere or a cylinder"));
+  CHECK_THAT(constraint_refusal(R"(<mujoco><worldbody><body><joint/><geom name="ball" size="1"/>
+    <site name="s"/><site name="r" pos="1 0 0"/></body></worldbody><tendon><spatial>
+    <geom geom="ball"/><site site="s"/><site site="r"/></spatial></tendon></mujoco>)"),
+             Catch::Contains("between two sites"));
+  CHECK_THAT(constraint_refusal(R"(<mujoco><worldbody><body><joint/><geom name="ball" size="1"/>
+    <site name="s"/><site name="r" pos="1 0 0"/></body></worldbody><tendon><spatial>
+    <site site="s"/><geom geom="ball" sidesite="x"/><site site="r"/></spatial></tendon></mujoco>)"),
+             Catch::Contains("unknown side site 'x'"));
+  CHECK_THAT(constraint_refusal(head + R"(<tendon><spatial width="0"><site site="s"/>
+    <site site="r"/></spatial></tendon></mujoco>)"),
+             Catch::Contains("width must be positive"));
   CHECK_THAT(constraint_refusal(head + R"(<tendon><fixed><joint joint="ball" coef="1"/></fixed>
     </tendon></mujoco>)"),
              Catch::Contains("ball or free joint"));

@@ -150,15 +150,13 @@ class Differences {
 // compiled parameters.
 bool is_constant(const std::string& name) {
   return name == "body_subtreemass" || name == "body_invweight0" || name == "dof_invweight0" ||
-         name == "dof_M0" || name == "tendon_length0" || name == "tendon_invweight0";
+         name == "dof_M0" || name == "tendon_length0" || name == "tendon_invweight0" ||
+         name == "actuator_length0" || name == "actuator_acc0";
 }
 
 // Every array of Model's table that MuJoCo has, against MuJoCo's array of the same name (found
 // through MuJoCo's own MJMODEL_POINTERS), element by element. Special cases, and why:
 //   *_quat          a unit quaternion and its negative are the same rotation (up to sign);
-//   actuator_trnid  lever keeps the joint only (`own`); MuJoCo's is (nu, 2), its second column -1
-//                   for a joint transmission; the other actuator types lever fixes are checked
-//                   here too (compare_actuator_types);
 //   geom frames     mesh geoms' size, pos and quat are MuJoCo's fit to the mesh file, which
 //                   lever computes only for the meshes it read (those that give a body mass or
 //                   can collide, when lever can read the file);
@@ -190,7 +188,8 @@ void compare_geom_frames(Differences& d, const Model& o, const FieldView& view, 
   }
 }
 
-// The meshes (mesh_vertadr, mesh_vertnum, mesh_graphadr, mesh_graph, and mesh_vert, floats in
+// The meshes (mesh_vertadr, mesh_vertnum, mesh_graphadr, mesh_graph, mesh_facenum, mesh_face,
+// and mesh_vert, floats in
 // MuJoCo): lever reads a mesh only when a geom must give mass or can collide, so each mesh lever
 // read is compared with MuJoCo's at each side's own addresses, vertex for vertex (exactly: both are
 // the same floats) and its hull graph int for int; a mesh lever did not read has no vertices.
@@ -207,6 +206,18 @@ void compare_meshes(Differences& d, const Model& o, const mjModel& m) {
         const double a = o.mesh_vert[static_cast<size_t>(ours + v)][i];
         const double b = m.mesh_vert[3 * (theirs + v) + i];
         if (a != b) d.real("mesh_vert", 3 * (theirs + v) + i, a, b);
+      }
+    }
+    const int faces = o.mesh_facenum[static_cast<size_t>(k)];
+    d.integer("mesh_facenum", k, faces, m.mesh_facenum[k]);
+    if (faces == m.mesh_facenum[k]) {
+      const int our_face = o.mesh_faceadr[static_cast<size_t>(k)], their_face = m.mesh_faceadr[k];
+      for (int f = 0; f < faces; ++f) {
+        for (int i = 0; i < 3; ++i) {
+          const int a = o.mesh_face[static_cast<size_t>(our_face + f)][static_cast<size_t>(i)];
+          const int b = m.mesh_face[3 * (their_face + f) + i];
+          if (a != b) d.integer("mesh_face", 3 * (their_face + f) + i, a, b);
+        }
       }
     }
     const int our_graph = o.mesh_graphadr[static_cast<size_t>(k)];
@@ -255,14 +266,6 @@ void compare_table(Differences& d, const Model& o, const mjModel& m) {
   }
 }
 
-void compare_actuator_types(Differences& d, const Model& o, const mjModel& m) {
-  for (int a = 0; a < o.nu; ++a) {
-    d.integer("actuator_trnid", 2 * a, o.actuator_trnid[static_cast<size_t>(a)],
-              m.actuator_trnid[2 * a]);
-    d.integer("actuator_trnid", 2 * a + 1, -1, m.actuator_trnid[2 * a + 1]);
-  }
-}
-
 // keyframes are kept outside the table (their row count is nkey, not a model size)
 void compare_keyframes(Differences& d, const Model& o, const mjModel& m) {
   if (!d.count("nkey", o.nkey, m.nkey)) return;
@@ -275,6 +278,10 @@ void compare_keyframes(Differences& d, const Model& o, const mjModel& m) {
       d.real("key_qvel", k * o.nv + i, o.key_qvel(k, i), m.key_qvel[k * m.nv + i]);
     for (int i = 0; i < o.nu; ++i)
       d.real("key_ctrl", k * o.nu + i, o.key_ctrl(k, i), m.key_ctrl[k * m.nu + i]);
+    if (d.count("na", o.na, m.na)) {
+      for (int i = 0; i < o.na; ++i)
+        d.real("key_act", k * o.na + i, o.key_act(k, i), m.key_act[k * m.na + i]);
+    }
   }
 }
 
@@ -300,16 +307,14 @@ void compare_options(Differences& d, const Model& o, const mjModel& m) {
   d.real("opt_tolerance", 0, o.opt.tolerance, m.opt.tolerance);
   d.integer("opt_solver", 0, mjSOL_NEWTON, m.opt.solver);
   d.integer("opt_noslip_iterations", 0, 0, m.opt.noslip_iterations);
-  d.integer("opt_contact_disabled", 0, o.opt.contact_disabled ? 1 : 0,
-            (m.opt.disableflags & mjDSBL_CONTACT) ? 1 : 0);
-  d.integer("opt_override", 0, 0, (m.opt.enableflags & mjENBL_OVERRIDE) ? 1 : 0);
+  d.integer("opt_disableflags", 0, o.opt.disableflags, m.opt.disableflags);
+  d.integer("opt_enableflags", 0, o.opt.enableflags, m.opt.enableflags);
+  d.real("opt_o_margin", 0, o.opt.o_margin, m.opt.o_margin);
+  for (int k = 0; k < 2; ++k) d.real("opt_o_solref", k, o.opt.o_solref[k], m.opt.o_solref[k]);
+  for (int k = 0; k < 5; ++k) d.real("opt_o_solimp", k, o.opt.o_solimp[k], m.opt.o_solimp[k]);
   d.real("opt_mpr_tolerance", 0, o.opt.mpr_tolerance, m.opt.mpr_tolerance);
   d.integer("opt_mpr_iterations", 0, o.opt.mpr_iterations, m.opt.mpr_iterations);
-  d.integer("opt_multiccd", 0, o.opt.multiccd ? 1 : 0,
-            (m.opt.enableflags & mjENBL_MULTICCD) ? 1 : 0);
   for (int k = 0; k < 3; ++k) d.real("opt_magnetic", k, o.opt.magnetic[k], m.opt.magnetic[k]);
-  d.integer("opt_sensornoise", 0, o.opt.sensornoise ? 1 : 0,
-            (m.opt.enableflags & mjENBL_SENSORNOISE) ? 1 : 0);
   d.integer("nconmax", 0, o.nconmax, m.nconmax);
   d.integer("njmax", 0, o.njmax, m.njmax);
 }
@@ -332,10 +337,10 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m) {
   sizes = d.count("neq", o.neq, m.neq) && sizes;
   sizes = d.count("ntendon", o.ntendon, m.ntendon) && sizes;
   sizes = d.count("nwrap", o.nwrap, m.nwrap) && sizes;
+  sizes = d.count("na", o.na, m.na) && sizes;
   if (sizes) {
     compare_table(d, o, m);
     compare_meshes(d, o, m);
-    compare_actuator_types(d, o, m);
     compare_names(d, o, m);
     compare_keyframes(d, o, m);
   }
@@ -362,6 +367,12 @@ std::vector<std::string> compare_constants(const Model& o, const mjModel& m) {
               m.ntendon)) {
     d.reals("tendon_length0", o.tendon_length0, m.tendon_length0);
     d.reals("tendon_invweight0", o.tendon_invweight0, m.tendon_invweight0);
+  }
+  if (d.count("nu", o.nu, m.nu) &&
+      d.count("size of actuator_length0", static_cast<int>(o.actuator_length0.size()), m.nu) &&
+      d.count("size of actuator_acc0", static_cast<int>(o.actuator_acc0.size()), m.nu)) {
+    d.reals("actuator_length0", o.actuator_length0, m.actuator_length0);
+    d.reals("actuator_acc0", o.actuator_acc0, m.actuator_acc0);
   }
   return d.list;
 }

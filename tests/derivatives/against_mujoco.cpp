@@ -263,7 +263,7 @@ TEST_CASE("derivatives: A and B agree with MuJoCo's mjd_transitionFD (centred)",
           const double p2 = model.actuator_gainprm[a][2];
           if (p2 == 0) continue;
           const double gear = model.actuator_gear[a][0];
-          const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+          const int dof = model.jnt_dofadr[model.actuator_trnid[a][0]];
           Eigen::VectorXd term = Eigen::VectorXd::Zero(nv);
           term[dof] = h * gear * p2 * gear * deriv.work.qacc_step[dof];
           const Eigen::VectorXd da = deriv.work.K.partialPivLu().solve(term);

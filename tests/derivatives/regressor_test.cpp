@@ -83,7 +83,7 @@ TEST_CASE("regressor: with ctrl, the gain columns reproduce the actuators' torqu
       Eigen::VectorXd expected = tau - data.qfrc_actuator;
       std::vector<char> clamped(static_cast<std::size_t>(model.nv), 0);
       for (int a = 0; a < model.nu; ++a) {
-        const int j = model.actuator_trnid[a];
+        const int j = model.actuator_trnid[a][0];
         const int q = model.jnt_qposadr[j], d = model.jnt_dofadr[j];
         const double gear = model.actuator_gear[a][0];
         const bool fixed = std::find(gains.begin(), gains.end(), a) != gains.end();

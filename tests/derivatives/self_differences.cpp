@@ -277,75 +277,81 @@ TEST_CASE("derivatives: d qacc / d qpos, d qvel, d ctrl match central difference
 
 TEST_CASE("derivatives: the step's A and B match central differences of step",
           "[derivatives][step]") {
-  for (const Integrator integrator :
-       {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
-    for (ModelCase& c : derivative_models()) {
-      INFO(c.name << " " << integrator_name(integrator));
-      Model& model = c.model;
-      model.opt.integrator = integrator;
-      Data data(model), probe(model);
-      Derivatives deriv(model);
-      std::mt19937_64 rng(c.seed + 7);
-      const int states = states_for(c, kSelfStates);
-      int compared = 0;
-      for (int k = 0; k < states; ++k) {
-        State s = smooth_state(model, rng, true);
-        normalized_as_evaluated(model, data, s);
-        // a limit row or a clamp switching inside a difference (at any RK4 stage) is a
-        // non-differentiable point: such states are not compared
-        const bool smooth = differences_see_same_switches(model, probe, s, kStep);
-        apply(s, data);
-        step_derivatives(model, data, deriv);
-        // the state is left as it was
-        REQUIRE(data.qpos == s.qpos);
-        REQUIRE(data.qvel == s.qvel);
-        REQUIRE(data.time == s.time);
-        if (!smooth) continue;
+  // also with passive forces, gravity and the ctrl clamp switched off (<option><flag>), which
+  // the step's terms honour as forward() does (Euler and implicit: RK4 adds nothing new)
+  for (const int flags : {0, kDisablePassive | kDisableGravity | kDisableClampctrl}) {
+    for (const Integrator integrator :
+         {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
+      if (flags != 0 && integrator == Integrator::kRK4) continue;
+      for (ModelCase& c : derivative_models()) {
+        INFO(c.name << " " << integrator_name(integrator) << ", disableflags " << flags);
+        Model& model = c.model;
+        model.opt.integrator = integrator;
+        model.opt.disableflags = flags;
+        Data data(model), probe(model);
+        Derivatives deriv(model);
+        std::mt19937_64 rng(c.seed + 7);
+        const int states = states_for(c, kSelfStates);
+        int compared = 0;
+        for (int k = 0; k < states; ++k) {
+          State s = smooth_state(model, rng, true);
+          normalized_as_evaluated(model, data, s);
+          // a limit row or a clamp switching inside a difference (at any RK4 stage) is a
+          // non-differentiable point: such states are not compared
+          const bool smooth = differences_see_same_switches(model, probe, s, kStep);
+          apply(s, data);
+          step_derivatives(model, data, deriv);
+          // the state is left as it was
+          REQUIRE(data.qpos == s.qpos);
+          REQUIRE(data.qvel == s.qvel);
+          REQUIRE(data.time == s.time);
+          if (!smooth) continue;
 
-        // in mjd_transitionFD's tangent layout: qpos moved by integrate_pos, the next qpos read
-        // by differentiate_pos (centred: from the minus side to the plus side, as MuJoCo does)
-        const int nv = model.nv, nq = model.nq;
-        Eigen::VectorXd qpos = s.qpos, qvel = s.qvel, ctrl = s.ctrl;
-        const auto step_from_inputs = [&](Eigen::VectorXd& out) {  // out: [qpos'; qvel'] (nq + nv)
-          data.qpos = qpos;
-          data.qvel = qvel;
-          data.ctrl = ctrl;
-          data.time = s.time;
-          step(model, data);
-          out << data.qpos, data.qvel;
-        };
-        Eigen::MatrixXd A(2 * nv, 2 * nv), B(2 * nv, model.nu);
-        Eigen::VectorXd plus(nq + nv), minus(nq + nv);
-        const auto column = [&](Eigen::Ref<Eigen::VectorXd> into) {
-          differentiate_pos(model, into.head(nv), 2 * kStep, minus.head(nq), plus.head(nq));
-          into.tail(nv) = (plus.tail(nv) - minus.tail(nv)) / (2 * kStep);
-        };
-        for (int col = 0; col < nv; ++col) {
-          for (const double t : {kStep, -kStep}) {
+          // in mjd_transitionFD's tangent layout: qpos moved by integrate_pos, the next qpos read
+          // by differentiate_pos (centred: from the minus side to the plus side, as MuJoCo does)
+          const int nv = model.nv, nq = model.nq;
+          Eigen::VectorXd qpos = s.qpos, qvel = s.qvel, ctrl = s.ctrl;
+          const auto step_from_inputs = [&](Eigen::VectorXd& out) {  // out: [qpos'; qvel'] (nq + nv)
+            data.qpos = qpos;
+            data.qvel = qvel;
+            data.ctrl = ctrl;
+            data.time = s.time;
+            step(model, data);
+            out << data.qpos, data.qvel;
+          };
+          Eigen::MatrixXd A(2 * nv, 2 * nv), B(2 * nv, model.nu);
+          Eigen::VectorXd plus(nq + nv), minus(nq + nv);
+          const auto column = [&](Eigen::Ref<Eigen::VectorXd> into) {
+            differentiate_pos(model, into.head(nv), 2 * kStep, minus.head(nq), plus.head(nq));
+            into.tail(nv) = (plus.tail(nv) - minus.tail(nv)) / (2 * kStep);
+          };
+          for (int col = 0; col < nv; ++col) {
+            for (const double t : {kStep, -kStep}) {
+              qpos = s.qpos;
+              integrate_pos(model, qpos, Eigen::VectorXd::Unit(nv, col), t);
+              step_from_inputs(t > 0 ? plus : minus);
+            }
             qpos = s.qpos;
-            integrate_pos(model, qpos, Eigen::VectorXd::Unit(nv, col), t);
-            step_from_inputs(t > 0 ? plus : minus);
+            column(A.col(col));
           }
-          qpos = s.qpos;
-          column(A.col(col));
+          for (int col = 0; col < 2 * nv + model.nu; ++col) {
+            if (col < nv) continue;
+            double& input = col < 2 * nv ? qvel[col - nv] : ctrl[col - 2 * nv];
+            const double x0 = input;
+            input = x0 + kStep;
+            step_from_inputs(plus);
+            input = x0 - kStep;
+            step_from_inputs(minus);
+            input = x0;
+            column(col < 2 * nv ? A.col(col) : B.col(col - 2 * nv));
+          }
+          ++compared;
+          const double scale = std::max(largest(s.qpos), largest(s.qvel));
+          check_close(deriv.A, A, scale, "A");
+          check_close(deriv.B, B, scale, "B");
         }
-        for (int col = 0; col < 2 * nv + model.nu; ++col) {
-          if (col < nv) continue;
-          double& input = col < 2 * nv ? qvel[col - nv] : ctrl[col - 2 * nv];
-          const double x0 = input;
-          input = x0 + kStep;
-          step_from_inputs(plus);
-          input = x0 - kStep;
-          step_from_inputs(minus);
-          input = x0;
-          column(col < 2 * nv ? A.col(col) : B.col(col - 2 * nv));
-        }
-        ++compared;
-        const double scale = std::max(largest(s.qpos), largest(s.qvel));
-        check_close(deriv.A, A, scale, "A");
-        check_close(deriv.B, B, scale, "B");
+        CHECK(compared >= states * 3 / 4);
       }
-      CHECK(compared >= states * 3 / 4);
     }
   }
 }

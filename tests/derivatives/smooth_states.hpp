@@ -41,7 +41,7 @@ inline bool clear_of_edges(double x, const std::array<double, 2>& range) {
 /// sometimes a control anywhere (clamped by ctrlrange, or a force clamped by forcerange).
 template <class Uniform>
 double servo_control(const Model& model, int a, const State& s, Uniform& uniform) {
-  const int j = model.actuator_trnid[a];
+  const int j = model.actuator_trnid[a][0];
   const double gear = model.actuator_gear[a][0];
   const double length = gear * s.qpos[model.jnt_qposadr[j]];
   const double velocity = gear * s.qvel[model.jnt_dofadr[j]];

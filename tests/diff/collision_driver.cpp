@@ -31,6 +31,7 @@
 #include <lever/harness/models.hpp>
 #include <lever/harness/tolerance.hpp>
 #include <lever/kinematics.hpp>
+#include "sampling.hpp"
 
 namespace lever::test {
 
@@ -232,7 +233,7 @@ TEST_CASE("collision driver: contacts equal MuJoCo's on random states of the con
           "[diff][collision]") {
   REQUIRE(mj_version() == 222);
   for (const char* file : {"arm_and_objects.xml", "capsule_stack.xml", "free_objects.xml"}) {
-    const Tally t = compare_scene(file, 2000, 19 + std::string(file).size());
+    const Tally t = compare_scene(file, samples(2000), 19 + std::string(file).size());
     WARN(file << ": " << t.states << " states, " << t.contacts << " contacts (" << t.excluded
               << " beyond includemargin; condim 1/3/4/6: " << t.by_dim[1] << "/" << t.by_dim[3]
               << "/" << t.by_dim[4] << "/" << t.by_dim[6] << "), " << t.states_with_unsupported

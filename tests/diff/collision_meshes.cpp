@@ -95,7 +95,7 @@ MeshTally compare_file(const std::string& file, int states, bool multiccd, std::
   Data& data = twin.data;
   mjModel* m = twin.m.get();
   mjData* d = twin.d.get();
-  model.opt.multiccd = multiccd;
+  if (multiccd) model.opt.enableflags |= kEnableMulticcd;
   if (multiccd) m->opt.enableflags |= mjENBL_MULTICCD;
   std::mt19937_64 rng(seed);
   MeshTally tally;

@@ -107,9 +107,8 @@ TEST_CASE("diff: elliptic cones agree with MuJoCo at random states (engine path)
       CHECK((twin.data.efc_force.head(twin.data.nefc) - force).lpNorm<Eigen::Infinity>() <=
             1e-12 * std::max(1.0, force.lpNorm<Eigen::Infinity>()));
       CHECK(std::equal(state.begin(), state.end(), twin.data.efc_state.begin()));
-      // one step: RK4's is left to the lockstep runs below, where each of its four forwards
-      // warm-starts from the one before; from a random state MuJoCo's later RK4 stages cannot be
-      // restarted from their own answers as the first one is (restart_mujoco_solver)
+      // one step: RK4's is left to the lockstep runs below (CI time), where each of MuJoCo's
+      // four stages is converged as the first one is (diff::mujoco_rk4_step)
       for (const Integrator integrator : {Integrator::kEuler, Integrator::kImplicit}) {
         diff::compare_step(twin, s, integrator, k, report);
       }

@@ -11,12 +11,13 @@
 
 #include <lever/harness/models.hpp>
 #include "diff_checks.hpp"
+#include "sampling.hpp"
 
 namespace lever::test {
 
 namespace {
 
-constexpr double kFreeRunSeconds = 10.0;
+constexpr double kFreeRunSeconds = run_seconds(10.0);
 constexpr double kNudge = 1e-15;
 // lever may diverge from MuJoCo up to this many times MuJoCo's divergence from itself (plus the
 // bound): generous on purpose, since a chaotic stretch can amplify one difference more than the

@@ -13,6 +13,7 @@
 #include "diff_checks.hpp"
 #include <lever/harness/models.hpp>
 #include <lever/harness/placeholder_mesh.hpp>
+#include "sampling.hpp"
 
 namespace lever::test {
 
@@ -59,7 +60,7 @@ TEST_CASE("diff: a Menagerie-style arm agrees with MuJoCo on random states and f
     REQUIRE(twin.start_name() == "keyframe 'home'");
     // its collision meshes (the placeholder tetrahedra) are read and collided by both
     if (path == diff::Path::kLoader) REQUIRE(twin.model.warnings.empty());
-    check_within_bound(diff::random_states(twin, 200, seed));
+    check_within_bound(diff::random_states(twin, samples(200), seed));
     for (const Integrator integrator :
          {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
       INFO("lockstep from home, " << integrator_name(integrator));

@@ -15,6 +15,7 @@
 #include <lever/harness/models.hpp>
 #include <lever/mjcf.hpp>
 #include "diff_checks.hpp"
+#include "sampling.hpp"
 
 namespace lever::test {
 
@@ -29,7 +30,7 @@ int friction_rows(const Data& data) {
 // A twin of the file with contacts disabled on both sides.
 void disable_contacts(diff::Twin& twin) {
   twin.m->opt.disableflags |= mjDSBL_CONTACT;
-  twin.model.opt.contact_disabled = true;
+  twin.model.opt.disableflags |= kDisableContact;
   set_const(twin.model);
   twin.data = Data(twin.model);
 }
@@ -51,9 +52,9 @@ TEST_CASE("diff: Cassie's closed leg chains (equality connects) agree with MuJoC
     INFO(context(file, path, seed));
     diff::Twin twin(file, path);
     disable_contacts(twin);
-    const diff::Report report = diff::random_states(twin, 50, seed);
+    const diff::Report report = diff::random_states(twin, samples(50), seed);
     check_within_bound(report, all_but_inverse_at_forward(report));
-    inverse_at_forward_agrees(twin, 50, seed);
+    inverse_at_forward_agrees(twin, samples(50), seed);
     twin.reset();
     forward(twin.model, twin.data);
     CHECK(twin.data.ne == 12);  // four connects
@@ -114,7 +115,7 @@ TEST_CASE("diff: real files with friction loss agree with MuJoCo", "[diff][const
       INFO(context(file, path, seed));
       diff::Twin twin(file, path);
       disable_contacts(twin);
-      const diff::Report report = diff::random_states(twin, 50, seed);
+      const diff::Report report = diff::random_states(twin, samples(50), seed);
       check_within_bound(report);
       const diff::Report run =
           diff::lockstep(twin, Integrator::kEuler, 0.2, diff::Control::kSmooth);

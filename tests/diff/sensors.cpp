@@ -258,3 +258,159 @@ TEST_CASE("diff: the rangefinder's ray skips its own body and invisible geoms as
 }
 
 }  // namespace lever::test
+
+namespace lever::test {
+
+namespace {
+
+// The user sensors' callback on both sides: each user sensor's numbers from the state of its
+// stage (qpos at the position stage, qvel at the velocity stage, qacc at the acceleration stage),
+// so that both engines must call it at the same stages with the same data.
+void fill_user_sensors(int nsensor, const int* type, const int* stage_of, const int* adr,
+                       const int* dim, int stage, const double* qpos, const double* qvel,
+                       const double* qacc, double* sensordata) {
+  for (int s = 0; s < nsensor; ++s) {
+    if (type[s] != mjSENS_USER || stage_of[s] != stage) continue;
+    const double* from = stage == mjSTAGE_POS ? qpos : stage == mjSTAGE_VEL ? qvel : qacc;
+    for (int k = 0; k < dim[s]; ++k) sensordata[adr[s] + k] = 10 * from[k] + s;
+  }
+}
+
+void mujoco_user_sensors(const mjModel* m, mjData* d, int stage) {
+  fill_user_sensors(m->nsensor, m->sensor_type, m->sensor_needstage, m->sensor_adr, m->sensor_dim,
+                    stage, d->qpos, d->qvel, d->qacc, d->sensordata);
+}
+
+}  // namespace
+
+TEST_CASE("diff: user sensors are filled by the callback at MuJoCo's stages, cut off as MuJoCo's",
+          "[diff][sensors]") {
+  REQUIRE(mj_version() == 222);
+  const std::filesystem::path file =
+      std::filesystem::temp_directory_path() / "lever_user_sensors.xml";
+  std::ofstream(file) << R"(<mujoco>
+  <worldbody>
+    <body name="arm" pos="0 0 1">
+      <joint name="a" axis="0 1 0"/>
+      <joint name="b" type="slide" axis="1 0 0"/>
+      <geom type="capsule" fromto="0 0 0 0.3 0 0" size="0.03"/>
+      <site name="tip" pos="0.3 0 0"/>
+    </body>
+  </worldbody>
+  <actuator><motor name="m" joint="a"/></actuator>
+  <sensor>
+    <jointpos joint="a"/>
+    <user name="u_pos" objtype="site" objname="tip" dim="2" needstage="pos" datatype="real"
+          cutoff="4"/>
+    <user name="u_vel" objtype="joint" objname="b" dim="1" needstage="vel" datatype="positive"
+          cutoff="3"/>
+    <user name="u_acc" objtype="actuator" objname="m" dim="2" needstage="acc" datatype="real"
+          user="1 2"/>
+    <user name="u_none" objtype="body" objname="arm" dim="3" needstage="none" datatype="axis"/>
+    <framepos objtype="site" objname="tip"/>
+  </sensor>
+</mujoco>)";
+  diff::Twin twin(file.string(), diff::Path::kLoader);
+  REQUIRE(twin.model.nsensordata == 1 + 2 + 1 + 2 + 3 + 3);
+  std::mt19937_64 rng(5150);
+  // no callback: the user sensors' numbers stay zero, on both sides
+  mjcb_sensor = nullptr;
+  for (int k = 0; k < 5; ++k) forward_both(twin, random_state(twin.model, rng));
+  for (int i = 0; i < twin.model.nsensordata; ++i) {
+    CHECK(twin.data.sensordata[i] == twin.d->sensordata[i]);
+  }
+  CHECK(twin.data.sensordata[1] == 0);
+  // with one: the same numbers (cutoff applied after the callback)
+  mjcb_sensor = mujoco_user_sensors;
+  twin.model.sensor_callback = [](const Model& model, Data& data, SensorStage stage) {
+    std::vector<int> type, stage_of;
+    for (int s = 0; s < model.nsensor; ++s) {
+      type.push_back(static_cast<int>(model.sensor_type[s]));
+      stage_of.push_back(static_cast<int>(model.sensor_needstage[s]));
+    }
+    fill_user_sensors(model.nsensor, type.data(), stage_of.data(), model.sensor_adr.data(),
+                      model.sensor_dim.data(), static_cast<int>(stage), data.qpos.data(),
+                      data.qvel.data(), data.qacc.data(), data.sensordata.data());
+  };
+  int clipped = 0;
+  for (int k = 0; k < 50; ++k) {
+    forward_both(twin, random_state(twin.model, rng));
+    for (int i = 0; i < twin.model.nsensordata; ++i) {
+      INFO("state " << k << ", sensordata " << i);
+      CHECK(std::abs(twin.data.sensordata[i] - twin.d->sensordata[i]) <=
+            1e-12 * std::max(1.0, std::abs(twin.d->sensordata[i])));
+    }
+    clipped += std::abs(twin.data.sensordata[1]) == 4.0;
+  }
+  mjcb_sensor = nullptr;
+  CHECK(clipped > 0);
+  // the needstage="none" sensor is never evaluated
+  for (int k = 0; k < 3; ++k) CHECK(twin.data.sensordata[6 + k] == 0);
+  std::filesystem::remove(file);
+}
+
+TEST_CASE("diff: the rangefinder's ray meets meshes where MuJoCo's does", "[diff][sensors]") {
+  REQUIRE(mj_version() == 222);
+  // the Panda arm's links (lever reads every mesh of a model with a rangefinder, visual ones too,
+  // as MuJoCo does) with rangefinders at the world and on the hand looking at them
+  std::string xml =
+      read_text(robots_dir() + "/menagerie-2022/franka_emika_panda/panda_nohand.xml");
+  const auto insert_before = [&xml](const std::string& anchor, const std::string& text) {
+    const size_t at = xml.find(anchor);
+    REQUIRE(at != std::string::npos);
+    xml.insert(at, text);
+  };
+  insert_before("</worldbody>",
+                "<site name=\"eye\" pos=\"0.8 0.3 0.5\" zaxis=\"-1 -0.3 -0.1\"/>"
+                "<site name=\"below\" pos=\"0.3 0 0.02\" zaxis=\"0 0 1\"/>");
+  insert_before("</mujoco>",
+                "<sensor><rangefinder name=\"eye\" site=\"eye\"/>"
+                "<rangefinder name=\"below\" site=\"below\"/></sensor>");
+  // the file names its meshes relative to itself: the copy sits beside a link to them
+  const std::filesystem::path panda =
+      std::filesystem::path(robots_dir()) / "menagerie-2022" / "franka_emika_panda";
+  const std::filesystem::path copy = std::filesystem::temp_directory_path() / "lever_panda_rays";
+  std::filesystem::create_directories(copy);
+  std::filesystem::remove_all(copy / "assets");
+  std::filesystem::create_directory_symlink(panda / "assets", copy / "assets");
+  const std::string path = (copy / "panda_rangefinder.xml").string();
+  std::ofstream(path) << xml;
+
+  for (const diff::Path which : {diff::Path::kLoader, diff::Path::kEngine}) {
+    diff::Twin twin(path, which);
+    INFO(diff::path_name(which) << " path");
+    REQUIRE(twin.model.nmeshface > 1000);
+    std::mt19937_64 rng(seed_for(path));
+    std::uniform_real_distribution<double> u(-1, 1);
+    int mesh_hits = 0;
+    double worst = 0;
+    for (int k = 0; k < 40; ++k) {
+      forward_both(twin, random_state(twin.model, rng));
+      for (int i = 0; i < twin.model.nsensordata; ++i) {
+        worst = std::max(worst, std::abs(twin.data.sensordata[i] - twin.d->sensordata[i]) /
+                                    (1e-12 * std::max(1.0, std::abs(twin.d->sensordata[i]))));
+      }
+      // rays aimed at each mesh geom from around it, against mj_rayMesh
+      for (int g = 0; g < twin.model.ngeom; ++g) {
+        if (twin.model.geom_type[g] != GeomType::kMesh) continue;
+        const Eigen::Vector3d target = twin.data.geom_xpos[g];
+        const Eigen::Vector3d pnt = target + 0.4 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+        const Eigen::Vector3d vec =
+            target - pnt + 0.05 * Eigen::Vector3d(u(rng), u(rng), u(rng));
+        const double ours = ray_mesh(twin.model, twin.data, g, pnt, vec);
+        const double theirs = mj_rayMesh(twin.m.get(), twin.d.get(), g, pnt.data(), vec.data());
+        INFO("state " << k << ", geom " << g);
+        REQUIRE((ours < 0) == (theirs < 0));
+        worst = std::max(worst, std::abs(ours - theirs) / (1e-12 * std::max(1.0, theirs)));
+        mesh_hits += theirs >= 0;
+      }
+    }
+    std::printf("rangefinder on meshes, %s path: %d mesh hits, worst %.3g of the bound\n",
+                diff::path_name(which), mesh_hits, worst);
+    CHECK(mesh_hits > 200);
+    CHECK(worst <= 1.0);
+  }
+  std::filesystem::remove_all(copy);
+}
+
+}  // namespace lever::test

@@ -13,12 +13,13 @@
 
 #include <lever/harness/models.hpp>
 #include "diff_checks.hpp"
+#include "sampling.hpp"
 
 namespace lever::test {
 
 namespace {
 
-constexpr int kTendonStates = 100;
+constexpr int kTendonStates = samples(100);
 constexpr double kTendonRunSeconds = 0.4;
 
 std::string tendon_model_file() { return model_path("tests/models/constraints/tendons.xml"); }
@@ -126,7 +127,7 @@ constexpr const char* kTendonRobotFiles[] = {
 
 void without_contacts(diff::Twin& twin) {
   twin.m->opt.disableflags |= mjDSBL_CONTACT;
-  twin.model.opt.contact_disabled = true;
+  twin.model.opt.disableflags |= kDisableContact;
   set_const(twin.model);
   twin.data = Data(twin.model);
 }
@@ -148,9 +149,10 @@ TEST_CASE("diff: real files with tendons agree with MuJoCo", "[diff][tendons][ro
       diff::Twin twin(file, path);
       without_contacts(twin);
       REQUIRE(twin.model.ntendon > 0);
-      const diff::Report report = diff::random_states(twin, 20, seed);
+      const int states = samples(20);
+      const diff::Report report = diff::random_states(twin, states, seed);
       check_within_bound(report, all_but_inverse_at_forward(report));
-      require_tendon_quantities(report, 20);
+      require_tendon_quantities(report, states);
       // 1 s from the first keyframe (or qpos0), its controls held, each engine stepping from
       // MuJoCo's state (lockstep), under the file's own integrator; a scene.xml adds only a floor
       // and lights to a robot run already (contacts are off), so its run is left out (CI time)

@@ -1,5 +1,6 @@
-// Trajectories in lockstep: 10 s from the model's first keyframe (else from rest) under a smooth
-// control that sweeps every motor's whole range (so the joints hit their stops). At every step
+// Trajectories in lockstep: 10 s (a quarter under the sanitizers) from the model's first keyframe
+// (else from rest) under a smooth control that sweeps every motor's whole range (so the joints hit
+// their stops). At every step
 // lever starts from MuJoCo's own state, and one lever step must equal one MuJoCo step: qpos and
 // qvel after it, qacc and qfrc_constraint of its forward pass.
 #include <catch2/catch.hpp>
@@ -7,12 +8,13 @@
 
 #include <lever/harness/models.hpp>
 #include "diff_checks.hpp"
+#include "sampling.hpp"
 
 namespace lever::test {
 
 namespace {
 
-constexpr double kTrajectorySeconds = 10.0;
+constexpr double kTrajectorySeconds = run_seconds(10.0);
 
 void lockstep_every_model(Integrator integrator) {
   REQUIRE(mj_version() == 222);

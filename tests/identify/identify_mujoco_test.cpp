@@ -93,7 +93,7 @@ void record_with_mujoco(const std::string& file, const Model& model, double seco
   const auto steps = static_cast<long>(seconds / m->opt.timestep);
   for (long k = 0; k <= steps; ++k) {
     for (int a = 0; a < model.nu; ++a) {
-      const int j = model.actuator_trnid[a];
+      const int j = model.actuator_trnid[a][0];
       const double lo = model.jnt_range[j][0], hi = model.jnt_range[j][1];
       double ref = 0.5 * (lo + hi);
       for (const double f : {0.3, 0.71, 1.3}) {  // Hz, each joint its own

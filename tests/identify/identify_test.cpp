@@ -63,7 +63,7 @@ int simulate_csv(const Model& model, double seconds, const std::string& path, bo
   int clamped = 0;
   for (long k = 0; k <= steps; ++k) {
     for (int a = 0; a < model.nu; ++a) {
-      const int j = model.actuator_trnid[a];
+      const int j = model.actuator_trnid[a][0];
       const double lo = model.jnt_range[j][0], hi = model.jnt_range[j][1];
       const double mid = 0.5 * (lo + hi), half = swing * (hi - lo);
       double ref = mid, ref_vel = 0;

@@ -198,12 +198,11 @@ inline const BadInput kBadInputs[] = {
   <option noslip_iterations="3"/>
 </mujoco>)", 2, "option", "noslip_iterations", "lever has no noslip solver", MuJoCo::kAccepts,
    "lever has no noslip solver"},
-  {"contact-override", R"(<mujoco>
+  {"flag-unknown-word", R"(<mujoco>
   <option>
-    <flag override="enable"/>
+    <flag override="on"/>
   </option>
-</mujoco>)", 3, "flag", "override", "lever has no contact override", MuJoCo::kAccepts,
-   "lever has no contact override"},
+</mujoco>)", 3, "flag", "override", "expected 'disable' or 'enable'", MuJoCo::kRejects, ""},
   {"contact-solver-pgs", R"(<mujoco>
   <option solver="PGS"/>
 </mujoco>)", 2, "option", "solver", "'PGS' is valid MJCF but not supported by lever, which has 'Newton'",
@@ -249,10 +248,9 @@ inline const BadInput kBadInputs[] = {
   <size nconmax="-5"/>
 </mujoco>)", 2, "size", "nconmax", "must be -1 (MuJoCo's default) or a count >= 0",
    MuJoCo::kAccepts, "MuJoCo reads any negative count as its default; -5 is a mistake"},
-  {"contact-unsupported-flag", R"(<mujoco>
-  <option><flag gravity="disable"/></option>
-</mujoco>)", 2, "flag", "gravity", "valid MJCF but not supported by lever", MuJoCo::kAccepts,
-   "valid MJCF outside lever's subset"},
+  {"option-o-solref-three-numbers", R"(<mujoco>
+  <option o_solref="0.02 1 3"/>
+</mujoco>)", 2, "option", "o_solref", "expected", MuJoCo::kRejects, ""},
   {"unsupported-global-coordinates", R"(<mujoco>
   <compiler coordinate="global"/>
 </mujoco>)", 2, "compiler", "coordinate", "'global' is valid MJCF but not supported",
@@ -299,10 +297,10 @@ inline const BadInput kBadInputs[] = {
     </body>
   </worldbody>
   <actuator>
-    <general joint="j" dyntype="integrator"/>
+    <general joint="j" dyntype="user"/>
   </actuator>
-</mujoco>)", 9, "general", "dyntype", "'integrator' is valid MJCF but not supported",
-   MuJoCo::kAccepts, "activation dynamics (an actuator state) are outside lever's subset"},
+</mujoco>)", 9, "general", "dyntype", "'user' is valid MJCF but not supported",
+   MuJoCo::kAccepts, "user-defined activation dynamics (MuJoCo's callbacks) are outside lever's subset"},
 
   // ---- number lists ------------------------------------------------------------------------
   {"too-few-numbers", R"(<mujoco>
@@ -1162,9 +1160,9 @@ inline const BadInput kBadInputs[] = {
     </body>
   </worldbody>
   <sensor>
-    <user objtype="site" objname="s" dim="1" needstage="pos" datatype="real"/>
+    <user objtype="site" objname="s" dim="2" needstage="pos" datatype="axis"/>
   </sensor>
-</mujoco>)", 14, "user", "", "valid MJCF but not supported", MuJoCo::kAccepts, "MuJoCo fills a user sensor from its sensor callback (mjcb_sensor), which lever does not have"},
+</mujoco>)", 14, "user", "dim", "datatype axis has 3 numbers", MuJoCo::kRejects, ""},
   {"sensor-repeated-name", R"(<mujoco>
   <worldbody>
     <body name="b">

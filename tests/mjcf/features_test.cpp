@@ -228,7 +228,7 @@ TEST_CASE("limits: a range alone makes a joint or motor limited (autolimits)", "
   CHECK(m.jnt_range[2] == std::array<double, 2>{2, -2});  // kept as written, unchecked
   CHECK(m.actuator_ctrllimited == flags({true, false}));
   CHECK(m.actuator_forcelimited == flags({false, true}));
-  CHECK(m.actuator_trnid == std::vector<int>{0, 1});
+  CHECK(m.actuator_trnid == std::vector<std::array<int, 2>>{{0, -1}, {1, -1}});
 }
 
 TEST_CASE("joint parameters, solref/solimp defaults and partial values", "[mjcf]") {

@@ -92,7 +92,7 @@ TEST_CASE("included files' elements take the include's place, nested, from the m
   REQUIRE(m.njnt == 2);
   CHECK(m.jnt_range[1][1] == 2.0);  // angle="radian" from the included <compiler>
   CHECK(m.nu == 1);
-  CHECK(m.actuator_trnid[0] == 1);
+  CHECK(m.actuator_trnid[0][0] == 1);
   // the mesh was read from meshdir, relative to the main file's folder: a 1000 kg cube
   CHECK(m.body_mass[1] == Approx(1000.0).epsilon(1e-6));
   CHECK(m.visual.meshdir == "robot/assets");

@@ -344,7 +344,7 @@ TEST_CASE("l5_1_exercise2_workspace: the map exists and the farthest reach is re
   const Eigen::Vector3d shoulder = model.body_pos[model.body("link1")];
   auto holds = [&]() {
     for (int a = 0; a < model.nu; ++a) {
-      const double need = data.qfrc_bias[model.jnt_dofadr[model.actuator_trnid[a]]];
+      const double need = data.qfrc_bias[model.jnt_dofadr[model.actuator_trnid[a][0]]];
       if (need < model.actuator_ctrlrange[a][0] || need > model.actuator_ctrlrange[a][1])
         return false;
     }

@@ -32,7 +32,7 @@ constexpr double kRoundingDrift = 1e-10;
 // The model without damping, limits, contacts or actuators' effect, integrated with RK4.
 Model conservative_variant(Model model) {
   for (double& b : model.dof_damping) b = 0.0;
-  model.opt.contact_disabled = true;  // a soft contact dissipates
+  model.opt.disableflags |= kDisableContact;  // a soft contact dissipates
   for (int j = 0; j < model.njnt; ++j) model.jnt_limited[j] = false;
   // actuators idle: ctrl zero is not enough, since a ctrlrange without 0 clamps it to a nonzero
   // target, and a servo's bias (-kp q - kv qdot) acts whatever ctrl is

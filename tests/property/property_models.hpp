@@ -14,12 +14,13 @@
 #include <lever/harness/random_state.hpp>
 #include "random_tree.hpp"
 #include "random_tree_mjcf.hpp"
+#include "sampling.hpp"
 
 namespace lever::test {
 
 /// Random states per model and property: enough to visit every limit row and pose region of
 /// these small models, few enough to keep the whole kind under a couple of seconds.
-constexpr int kStatesPerModel = 200;
+constexpr int kStatesPerModel = samples(200);
 
 struct ModelCase {
   std::string name;  ///< file name, for messages

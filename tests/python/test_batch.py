@@ -18,7 +18,7 @@ from conftest import REPO
 MODELS = ("arm2", "panda7", "gripper")
 # every Data field a batch returns: sized by the model alone and computed by forward()
 FIELDS = tuple(f["name"] for f in lever.data_field_table()
-               if f["rows"] != "nefc" and f["stage"] not in ("inverse", "energy"))
+               if f["rows"] != "nefc" and f["stage"] not in ("inverse", "energy", "step"))
 
 
 def load(name):
@@ -262,6 +262,7 @@ def test_zero_states():
     ("ncon", "contacts"),
     ("qfrc_inverse", "lever.inverse"),  # not computed by forward()
     ("energy", "lever.compute_energy"),
+    ("solver_fwdinv", "lever.step with fwdinv"),
     ("no_such_field", "data_field_table"),
 ])
 def test_fields_a_batch_cannot_return_are_refused_by_name(field, says):

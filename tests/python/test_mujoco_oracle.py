@@ -25,8 +25,6 @@ TOLERANCE = 1e-12
 LAYOUT = {
     "efc_J": ("MuJoCo 3.x shows the dense rows flattened, (nefc * nv,); 2.2.2 (njmax, nv); lever "
               "(nefc, nv)", "reshape"),
-    "actuator_trnid": ("lever computes it from actuator_trnid's joint column: read-only",
-                       "writable"),
     "dof_Madr": ("lever computes it from dof_parentid: read-only", "writable"),
     "qM": ("lever keeps M dense; qM is read from it on each access: read-only", "writable"),
     "nconmax": ("MuJoCo 3.x sizes contacts on the fly (-1); 2.2.2 and lever hold nconmax", "value"),

@@ -187,6 +187,8 @@ TEST_CASE("every Data view has the table's size and points into its member", "[f
     for (int i = 0; i < model.nv; ++i) CHECK(data.qvel[i] == mark(k, i));
     k = next("ctrl");
     for (int a = 0; a < model.nu; ++a) CHECK(data.ctrl[a] == mark(k, a));
+    k = next("act");
+    for (int i = 0; i < model.na; ++i) CHECK(data.act[i] == mark(k, i));
     k = next("qfrc_applied");
     k = next("mocap_pos");
     for (int i = 0; i < model.nmocap; ++i) {
@@ -251,6 +253,16 @@ TEST_CASE("every Data view has the table's size and points into its member", "[f
     k = next("ten_J");  // (ntendon, nv), row-major as MuJoCo's dense ten_J
     for (int t = 0; t < model.ntendon; ++t) {
       for (int c = 0; c < model.nv; ++c) CHECK(data.ten_J(t, c) == mark(k, t * model.nv + c));
+    }
+    k = next("ten_wrapadr");
+    k = next("ten_wrapnum");
+    k = next("wrap_obj");  // (nwrap, 2): two points per row, as MuJoCo's
+    for (int w = 0; w < model.nwrap; ++w) {
+      for (int c = 0; c < 2; ++c) CHECK(data.wrap_obj[w][c] == mark(k, 2 * w + c));
+    }
+    k = next("wrap_xpos");  // (nwrap, 6)
+    for (int w = 0; w < model.nwrap; ++w) {
+      for (int c = 0; c < 6; ++c) CHECK(data.wrap_xpos[w][c] == mark(k, 6 * w + c));
     }
     k = next("actuator_length");
     k = next("actuator_moment");  // (nu, nv), row-major

@@ -57,7 +57,7 @@ TEST_CASE("set_const refuses non-physical or inconsistent parameters", "[model]"
        "axis"},
       {"parent after child", [](lever::Model& m) { m.body_parentid[1] = 2; }, "parent"},
       {"qpos0 too short", [](lever::Model& m) { m.qpos0.resize(1); }, "qpos0"},
-      {"motor on no joint", [](lever::Model& m) { m.actuator_trnid[0] = 7; }, "names no joint"},
+      {"motor on no joint", [](lever::Model& m) { m.actuator_trnid[0][0] = 7; }, "names no joint"},
       {"array too short", [](lever::Model& m) { m.dof_damping.pop_back(); }, "dof_damping"},
       {"root id not the world child", [](lever::Model& m) { m.body_rootid[2] = 2; }, "body_rootid"},
       {"NaN geom size", [nan](lever::Model& m) { m.geom_size[0][0] = nan; }, "geom_size"},

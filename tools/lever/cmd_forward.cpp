@@ -188,15 +188,13 @@ void print_text(const std::string& path, const Model& model, const Data& data,
         "\nmotors: ctrl as commanded, actuator_force after clamping to ctrlrange/forcerange\n");
     std::printf("  %-10s %-10s %12s %12s %8s\n", "motor", "joint", "ctrl", "force", "units");
     for (int a = 0; a < model.nu; ++a) {
-      const int j = model.actuator_trnid[a];
       const bool clamped = actuator_clamped(model, data, a);
-      const bool tendon = model.actuator_trntype[a] == TransmissionType::kTendon;
+      const TransmissionText target = transmission_text(model, a);
+      const bool joint = std::string_view(target.kind) == "joint";
       std::printf("  %-10s %-10s %12s %12s %8s%s\n", label_of(model.actuator_name[a], a).c_str(),
-                  (tendon ? "tendon " + label_of(model.tendon_name[j], j)
-                          : label_of(model.jnt_name[j], j))
-                      .c_str(),
+                  (joint ? target.object : std::string(target.kind) + " " + target.object).c_str(),
                   num(data.ctrl[a]).c_str(), num(data.actuator_force[a]).c_str(),
-                  tendon ? "N" : joint_units(model, j).force, clamped ? "  (clamped)" : "");
+                  actuator_force_units(model, a), clamped ? "  (clamped)" : "");
     }
   }
 

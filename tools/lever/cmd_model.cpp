@@ -17,6 +17,7 @@
 
 #include "cli.hpp"
 #include "commands.hpp"
+#include "forward_state.hpp"
 
 namespace lever::cli {
 
@@ -50,6 +51,15 @@ void print_options(std::FILE* out, const Model& m) {
   std::fprintf(out, "  inertiagrouprange %d %d, inertia from geoms %s\n",
                m.compiler.inertiagrouprange[0], m.compiler.inertiagrouprange[1],
                m.compiler.inertia_from_geoms_allowed ? "allowed" : "off (inertiafromgeom=false)");
+  // the flags that differ from MuJoCo's defaults, by their MJCF names
+  std::string flags;
+  for (int k = 0; k < kDisableBits; ++k) {
+    if (m.opt.disableflags & (1 << k)) flags += std::string(" ") + kDisableNames[k] + "=disable";
+  }
+  for (int k = 0; k < kEnableBits; ++k) {
+    if (m.opt.enableflags & (1 << k)) flags += std::string(" ") + kEnableNames[k] + "=enable";
+  }
+  if (!flags.empty()) std::fprintf(out, "  flags:%s\n", flags.c_str());
 }
 
 // A joint's kind and the units of its range, damping and force: a free joint moves along and
@@ -94,28 +104,37 @@ void print_joints(std::FILE* out, const Model& m) {
 void print_motors(std::FILE* out, const Model& m) {
   std::fprintf(out, "motors (%d):\n", m.nu);
   for (int a = 0; a < m.nu; ++a) {
-    const int j = m.actuator_trnid[a];
-    const bool tendon = m.actuator_trntype[a] == TransmissionType::kTendon;
+    const TransmissionText target = transmission_text(m, a);
     std::fprintf(out,
                  "  %-12s %s %-10s gear %g  ctrlrange %s  ctrllimited %s  forcerange %s %s  "
                  "forcelimited %s\n",
-                 label(m.actuator_name[a], a).c_str(), tendon ? "tendon" : "joint",
-                 (tendon ? label(m.tendon_name[j], j) : label(m.jnt_name[j], j)).c_str(),
+                 label(m.actuator_name[a], a).c_str(), target.kind, target.object.c_str(),
                  m.actuator_gear[a][0], pair(m.actuator_ctrlrange[a]).c_str(),
                  m.actuator_ctrllimited[a] ? "yes" : "no", pair(m.actuator_forcerange[a]).c_str(),
-                 tendon ? "N" : joint_words(m.jnt_type[j]).force,
+                 actuator_force_units(m, a),
                  m.actuator_forcelimited[a] ? "yes" : "no");
     const bool motor = m.actuator_gaintype[a] == GainType::kFixed &&
                        m.actuator_gainprm[a][0] == 1.0 && m.actuator_biastype[a] == BiasType::kNone;
-    if (motor) continue;
-    // force = gain ctrl + bias, with gain and bias affine in the actuator's length and velocity
+    if (motor && m.actuator_dyntype[a] == DynType::kNone) continue;
     const auto& g = m.actuator_gainprm[a];
+    if (m.actuator_gaintype[a] == GainType::kMuscle) {
+      const auto& r = m.actuator_lengthrange[a];
+      std::fprintf(out,
+                   "    muscle: range [%g, %g]  force %g  scale %g  lmin %g  lmax %g  vmax %g  "
+                   "fpmax %g  fvmax %g  lengthrange [%g, %g]  timeconst %g %g\n",
+                   g[0], g[1], g[2], g[3], g[4], g[5], g[6], g[7], g[8], r[0], r[1],
+                   m.actuator_dynprm[a][0], m.actuator_dynprm[a][1]);
+      continue;
+    }
+    // force = gain input + bias, with gain and bias affine in the actuator's length and velocity;
+    // the input is ctrl, or the activation act of an actuator with dynamics
+    const char* input = m.actuator_dyntype[a] == DynType::kNone ? "ctrl" : "act";
     const auto& b = m.actuator_biasprm[a];
     std::fprintf(out, "    force = (%g", g[0]);
     if (m.actuator_gaintype[a] == GainType::kAffine) {
       std::fprintf(out, " %+g length %+g velocity", g[1], g[2]);
     }
-    std::fprintf(out, ") ctrl");
+    std::fprintf(out, ") %s", input);
     if (m.actuator_biastype[a] == BiasType::kAffine) {
       std::fprintf(out, " %+g %+g length %+g velocity", b[0], b[1], b[2]);
     }

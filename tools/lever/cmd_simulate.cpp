@@ -231,7 +231,7 @@ void print_readouts(const Model& m, const Data& d) {
     const int v = m.jnt_dofadr[j];
     std::string force = "-";
     for (int a = 0; a < m.nu; ++a) {
-      if (m.actuator_trntype[a] != TransmissionType::kJoint || m.actuator_trnid[a] != j) continue;
+      if (actuator_scalar_dof(m, a) < 0 || m.actuator_trnid[a][0] != j) continue;
       force = num(d.actuator_force[a]);
     }
     std::printf("  %-10s %12s %12s %12s %12s %15s\n", label_of(m.jnt_name[j], j).c_str(),

@@ -43,6 +43,23 @@ inline std::string label_of(const std::string& name, int index) {
   return name.empty() ? std::string("#").append(std::to_string(index)) : name;
 }
 
+/// What actuator a drives: its transmission's kind ("joint", "tendon", "site", "crank") and the
+/// object's label, for the tables that list actuators.
+struct TransmissionText {
+  const char* kind;
+  std::string object;
+};
+
+inline TransmissionText transmission_text(const Model& model, int a) {
+  const int id = model.actuator_trnid[a][0];
+  switch (model.actuator_trntype[a]) {
+    case TransmissionType::kTendon: return {"tendon", label_of(model.tendon_name[id], id)};
+    case TransmissionType::kSite: return {"site", label_of(model.site_name[id], id)};
+    case TransmissionType::kSliderCrank: return {"crank", label_of(model.site_name[id], id)};
+    default: return {"joint", label_of(model.jnt_name[id], id)};
+  }
+}
+
 /// Units of a joint's position, velocity, acceleration and force.
 struct JointUnits {
   const char *pos, *vel, *acc, *force;
@@ -51,6 +68,21 @@ struct JointUnits {
 inline JointUnits joint_units(const Model& model, int joint) {
   if (model.jnt_type[joint] == JointType::kHinge) return {"rad", "rad/s", "rad/s^2", "N m"};
   return {"m", "m/s", "m/s^2", "N"};
+}
+
+/// Units of actuator a's force: its joint's for a hinge or slide, N m for a ball's torque, N along
+/// a tendon or slider-crank; a free joint's or a site's force is the scale of its gear's wrench.
+inline const char* actuator_force_units(const Model& model, int a) {
+  const int id = model.actuator_trnid[a][0];
+  switch (model.actuator_trntype[a]) {
+    case TransmissionType::kTendon:
+    case TransmissionType::kSliderCrank: return "N";
+    case TransmissionType::kSite: return "x gear";
+    default: break;
+  }
+  if (model.jnt_type[id] == JointType::kBall) return "N m";
+  if (model.jnt_type[id] == JointType::kFree) return "x gear";
+  return joint_units(model, id).force;
 }
 
 /// What text output prints for a number that is not finite (JSON prints null): never "nan" or

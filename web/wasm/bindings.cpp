@@ -119,6 +119,7 @@ class WasmModel {
     if (what == "nq") return model_.nq;
     if (what == "nv") return model_.nv;
     if (what == "nu") return model_.nu;
+    if (what == "na") return model_.na;
     if (what == "nbody") return model_.nbody;
     if (what == "njnt") return model_.njnt;
     if (what == "ngeom") return model_.ngeom;
@@ -155,6 +156,14 @@ class WasmModel {
     add_number(f, "opt.timestep", model_.opt.timestep);
     f.push_back(
         {"opt.gravity", "f64", reinterpret_cast<uintptr_t>(model_.opt.gravity.data()), 1, 3, 0});
+    // MuJoCo's mjtDisableBit and mjtEnableBit bits, writable (<option><flag>)
+    add_number(f, "opt.disableflags", model_.opt.disableflags);
+    add_number(f, "opt.enableflags", model_.opt.enableflags);
+    add_number(f, "opt.o_margin", model_.opt.o_margin);
+    f.push_back(
+        {"opt.o_solref", "f64", reinterpret_cast<uintptr_t>(model_.opt.o_solref.data()), 1, 2, 0});
+    f.push_back(
+        {"opt.o_solimp", "f64", reinterpret_cast<uintptr_t>(model_.opt.o_solimp.data()), 1, 5, 0});
     for (const lever::FieldView& v : lever::model_fields(model_)) f.push_back(js_field(v));
     return f;
   }

@@ -150,6 +150,12 @@ struct DataWorkspace {
   /// (12 x nv) an equality constraint's Jacobians: body 1's translational and rotational,
   /// then body 2's
   ArenaMatrix equality_jac;
+  /// (12 x nv) a spatial tendon's segment: its first end's translational and rotational
+  /// Jacobians, then its second end's
+  ArenaMatrix tendon_jac;
+  /// (12 x nv) a site or slider-crank transmission's Jacobians: the site's translational and
+  /// rotational, then the reference (slider) site's
+  ArenaMatrix transmission_jac;
   ArenaArray<double> contact_weight;  ///< (36 nconmax) a Hessian's part of each contact, W of
                                       ///< C^T W C in its frame (dim x dim, row-major)
   ArenaArray<double> frame_scratch;   ///< (6 nv) W C over a contact's dofs
@@ -157,6 +163,8 @@ struct DataWorkspace {
                                       ///< one past each column's last nonzero
   ArenaVector rk_qpos0, rk_qvel0, rk_dq, rk_dv;  ///< RK4 stages (rk_qpos0 nq, the rest nv)
   ArenaVector rk_qvel[4], rk_qacc[4];
+  ArenaVector rk_act0, rk_dact;  ///< (na) RK4: the step's start activation, its update
+  ArenaVector rk_act_dot[4];     ///< (na) each stage's act_dot
   ArenaMatrix qDeriv;  ///< (nv x nv) implicit: d qfrc_smooth / d qvel
   ArenaMatrix qLU;     ///< (nv x nv) implicit: M - h qDeriv, then its factor (U + I) L
   /// (nbody) implicit: each subtree's velocity coupling (d qfrc_bias / d qvel)
@@ -177,6 +185,7 @@ struct DataFields {
   ArenaVector qpos;          ///< (nq) joint positions, rad or m
   ArenaVector qvel;          ///< (nv) joint velocities
   ArenaVector ctrl;          ///< (nu) motor commands, before clamping (never modified)
+  ArenaVector act;           ///< (na) activations of the actuators with dynamics
   ArenaVector qfrc_applied;  ///< (nv) user-applied joint forces
   /// (nmocap) where the mocap bodies are, in the world frame: set from body_pos and body_quat by
   /// the constructor and reset(), from the keyframe by reset_keyframe(), then written by the user;
@@ -216,10 +225,20 @@ struct DataFields {
   // ---- position stage: tendons (tendon()) -----------------------------------------------------
   ArenaVector ten_length;  ///< (ntendon)
   ArenaRowMatrix ten_J;    ///< (ntendon x nv) d length / d qpos, dense (MuJoCo's dense ten_J)
+  // a spatial tendon's path as it lies now (MuJoCo's): tendon t's points are wrap_xpos and
+  // wrap_obj entries ten_wrapadr[t] .. + ten_wrapnum[t], counted in points (two per row, so that
+  // a path whose every geom wraps still fits the nwrap rows); a fixed tendon has none
+  ArenaArray<int> ten_wrapadr;  ///< (ntendon) its first point
+  ArenaArray<int> ten_wrapnum;  ///< (ntendon) its points: the sites, each wrapping geom's
+                                ///< two tangent points, a pulley's marker
+  /// (nwrap x 2) each point's object: -1 a site, -2 a pulley's marker (at the origin), else the
+  /// geom whose surface the point is on; entries past the live points keep old values
+  ArenaArray<std::array<int, 2>> wrap_obj;
+  /// (nwrap x 6) the points, world frame, two per row (x y z x y z)
+  ArenaArray<std::array<double, 6>> wrap_xpos;
 
   // ---- position stage: actuator transmission ---------------------------------------------------
-  /// (nu) gear * qpos of the driven joint, or gear * tendon length
-  ArenaVector actuator_length;
+  ArenaVector actuator_length;     ///< (nu) the transmission's length (lever/model.hpp TransmissionType)
   ArenaRowMatrix actuator_moment;  ///< (nu x nv) d actuator_length / d qpos (MuJoCo's, dense)
 
   // ---- position stage: constraint rows (make_constraint) -----------------------------------
@@ -262,6 +281,7 @@ struct DataFields {
 
   // ---- acceleration stage --------------------------------------------------------------------
   ArenaVector actuator_force;             ///< (nu) after ctrl clamping, gain and force clamping
+  ArenaVector act_dot;                    ///< (na) d act / dt
   ArenaVector qfrc_actuator;              ///< (nv)
   ArenaVector qfrc_smooth;                ///< (nv) passive - bias + applied + actuator
   ArenaVector qacc_smooth;                ///< (nv) M^-1 qfrc_smooth
@@ -289,6 +309,10 @@ struct DataFields {
 
   // ---- other ---------------------------------------------------------------------------------
   std::array<double, 2> energy{0.0, 0.0};  ///< compute_energy(): potential, kinetic (J)
+  /// step() with <flag fwdinv="enable"> (MuJoCo's mj_compareFwdInv): the norms of the
+  /// constraint force's and the applied force's differences between the forward solve and
+  /// inverse dynamics at its qacc (0, 0 without constraint rows)
+  std::array<double, 2> solver_fwdinv{0.0, 0.0};
   std::array<WarningStat, static_cast<int>(Warning::kCount)> warning{};
 
   DataWorkspace work;  ///< preallocated scratch (above)
@@ -303,7 +327,7 @@ struct DataFields {
   /// sizes of the model this Data was built for (checked on use: lever/fields.hpp check_fit)
   int nq = 0, nv = 0, nu = 0, nbody = 0, njnt = 0, ngeom = 0, nsite = 0;
   /// the other sizes the block was laid out with
-  int nmocap = 0, nsensordata = 0, nconmax = 0, ntendon = 0;
+  int nmocap = 0, nsensordata = 0, nconmax = 0, ntendon = 0, nwrap = 0, na = 0;
 };
 
 /// Data's arrays live in one block (lever/arena.hpp), allocated when the Data is made and sized by

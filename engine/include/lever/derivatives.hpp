@@ -11,9 +11,11 @@
 // All matrices are column-per-input: dtau_dq(i, j) = d tau_i / d qpos_j, a qpos column being a
 // direction of qpos's tangent space (nv of them: a ball's turn about its body's axis j, as
 // integrate_pos applies it). MuJoCo 2.2.2 has no analytic counterpart; its mjd_transitionFD
-// (finite differences of mj_step) returns A and B in the same layout. Refused (lever::Error): a
-// pushing contact of a pair whose geometry is not differentiated yet (capsule-box, box-box,
-// plane-cylinder), an elliptic cone on its surface, a ball joint sharing its body with others.
+// (finite differences of mj_step) returns A and B in the same layout. Fixed tendons (springs,
+// dampers, actuators, limits, friction loss) and joint and tendon couplings are covered. Refused
+// (lever::Error): a pushing contact of a pair MuJoCo collides by MPR (meshes, cylinders and
+// ellipsoids against anything but a plane), an elliptic cone on its surface, a connect or weld, a
+// ball joint sharing its body with others.
 #pragma once
 
 #include <Eigen/Core>

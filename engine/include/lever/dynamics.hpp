@@ -42,26 +42,39 @@ void tendon(const Model& model, Data& data);
 void transmission(const Model& model, Data& data);
 
 /// Actuator forces (MuJoCo's mj_fwdActuation): ctrl clamped to ctrlrange where ctrllimited
-/// (data.ctrl itself is not changed), force = gain * ctrl + bias (gain fixed or affine, bias none
-/// or affine, in the actuator's length and velocity), clamped to forcerange where forcelimited,
-/// then qfrc_actuator = moment^T actuator_force.
+/// (data.ctrl itself is not changed), force = gain * ctrl + bias (gain fixed, affine or a
+/// muscle's, bias none, affine or a muscle's, in the actuator's length and velocity; act instead
+/// of ctrl for an actuator with dynamics), clamped to forcerange where forcelimited, then
+/// qfrc_actuator = moment^T actuator_force, and act_dot from the clamped controls.
 void actuation(const Model& model, Data& data);
 
 /// Actuator a's gain at actuator length and velocity: gainprm[0], plus gainprm[1] length +
-/// gainprm[2] velocity when the gain is affine. Its force is gain * (clamped ctrl) + bias.
-inline double actuator_gain(const Model& model, int a, double length, double velocity) {
-  const auto& g = model.actuator_gainprm[a];
-  return model.actuator_gaintype[a] == GainType::kAffine ? g[0] + g[1] * length + g[2] * velocity
-                                                         : g[0];
-}
+/// gainprm[2] velocity when the gain is affine, a muscle's muscle_gain(). Its force is gain *
+/// (clamped ctrl, or its activation if it has dynamics) + bias.
+double actuator_gain(const Model& model, int a, double length, double velocity);
 
 /// Actuator a's bias at actuator length and velocity: 0, or biasprm[0] + biasprm[1] length +
-/// biasprm[2] velocity when the bias is affine.
-inline double actuator_bias(const Model& model, int a, double length, double velocity) {
-  const auto& b = model.actuator_biasprm[a];
-  return model.actuator_biastype[a] == BiasType::kAffine ? b[0] + b[1] * length + b[2] * velocity
-                                                         : 0.0;
-}
+/// biasprm[2] velocity when the bias is affine, a muscle's muscle_bias().
+double actuator_bias(const Model& model, int a, double length, double velocity);
+
+/// A muscle's active force per unit activation (MuJoCo 2.2.2's mju_muscleGain: -F FL(L) FV(V),
+/// muscle.cpp says what the parameters prm = gainprm and the curves are), at this length and
+/// velocity, for the actuator's lengthrange and acc0.
+double muscle_gain(double length, double velocity, const std::array<double, 2>& lengthrange,
+                   double acc0, const double* prm);
+
+/// d muscle_gain / d velocity (MuJoCo 2.2.2's mjd_muscleGain_vel, the implicit step's term).
+double muscle_gain_per_velocity(double length, double velocity,
+                                const std::array<double, 2>& lengthrange, double acc0,
+                                const double* prm);
+
+/// A muscle's passive force (MuJoCo 2.2.2's mju_muscleBias: -F FP(L)); prm = biasprm.
+double muscle_bias(double length, const std::array<double, 2>& lengthrange, double acc0,
+                   const double* prm);
+
+/// A muscle's activation rate d act / dt at this control and activation (MuJoCo 2.2.2's
+/// mju_muscleDynamics; dynprm[0], dynprm[1]: the activation and deactivation time constants).
+double muscle_activation_rate(double ctrl, double act, const double* dynprm);
 
 /// Whether actuator a's last actuation() clamped something: ctrl outside a limited ctrlrange, or
 /// the force at a limited forcerange's end (then the force no longer follows gain and bias).

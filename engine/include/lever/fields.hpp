@@ -6,7 +6,7 @@
 // and CSV dumps, the comparison with MuJoCo, and the Python and JavaScript bindings.
 //
 // Every listed array is contiguous and row-major: it is an (rows, cols) array of doubles, ints or
-// bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, nbody, njnt, ngeom,
+// bytes starting at one pointer. `rows` names a size of the model (nq, nv, nu, na, nbody, njnt, ngeom,
 // nsite, npair, nexclude, neq, nmocap, ntendon, nwrap, nefc: the live constraint rows of a Data;
 // `one` for a single row); `cols` is a number, or -1 for nv. The last column says whether MuJoCo 2.2.2's mjModel/mjData has an array of
 // the same name, shape and meaning (`mujoco`) or not (`own`: lever's own, or laid out differently
@@ -103,8 +103,13 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(site_quat, double, nsite, 4, mujoco)                     \
   X(site_type, int, nsite, 1, mujoco)                        \
   X(actuator_trntype, int, nu, 1, mujoco)                    \
-  X(actuator_trnid, int, nu, 1, own) /* (nu, 2) in MuJoCo */ \
+  X(actuator_trnid, int, nu, 2, mujoco)                      \
+  X(actuator_cranklength, double, nu, 1, mujoco)             \
   X(actuator_dyntype, int, nu, 1, mujoco)                    \
+  X(actuator_dynprm, double, nu, 10, mujoco)                 \
+  X(actuator_actlimited, uint8_t, nu, 1, mujoco)             \
+  X(actuator_actrange, double, nu, 2, mujoco)                \
+  X(actuator_lengthrange, double, nu, 2, mujoco)             \
   X(actuator_gaintype, int, nu, 1, mujoco)                   \
   X(actuator_biastype, int, nu, 1, mujoco)                   \
   X(actuator_gainprm, double, nu, 10, mujoco)                \
@@ -114,6 +119,8 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(actuator_gear, double, nu, 6, mujoco)                    \
   X(actuator_ctrlrange, double, nu, 2, mujoco)               \
   X(actuator_forcerange, double, nu, 2, mujoco)              \
+  X(actuator_length0, double, nu, 1, mujoco)                 \
+  X(actuator_acc0, double, nu, 1, mujoco)                    \
   LEVER_MODEL_CONTACT_FIELDS(X)                              \
   LEVER_MODEL_SENSOR_FIELDS(X)                               \
   LEVER_MODEL_EQUALITY_FIELDS(X)                             \
@@ -195,7 +202,10 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(mesh_vertnum, int, nmesh, 1, mujoco)                       \
   X(mesh_graphadr, int, nmesh, 1, mujoco)                      \
   X(mesh_vert, double, nmeshvert, 3, own) /* float in MuJoCo */ \
-  X(mesh_graph, int, nmeshgraph, 1, mujoco)
+  X(mesh_graph, int, nmeshgraph, 1, mujoco)                    \
+  X(mesh_faceadr, int, nmesh, 1, mujoco)                       \
+  X(mesh_facenum, int, nmesh, 1, mujoco)                       \
+  X(mesh_face, int, nmeshface, 3, mujoco)
 
 // equality constraints
 #define LEVER_MODEL_EQUALITY_FIELDS(X)  \
@@ -226,14 +236,16 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
 // (lever/model_check.hpp).
 #define LEVER_MODEL_CONSTANTS(X) \
   X(body_subtreemass) X(body_invweight0) X(body_simple) X(dof_invweight0) X(dof_M0) X(dof_simplenum) \
-  X(tendon_length0) X(tendon_invweight0)
+  X(tendon_length0) X(tendon_invweight0) X(actuator_length0) X(actuator_acc0)
 
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
-// or `inverse` (written by inverse() only) or `energy` (by compute_energy() only)
+// or `inverse` (written by inverse() only) or `energy` (by compute_energy(), and by forward() with
+// <flag energy="enable">) or `step` (by step() with <flag fwdinv="enable">)
 #define LEVER_DATA_FIELDS(X)                                   \
   X(qpos, double, nq, 1, state, mujoco)                        \
   X(qvel, double, nv, 1, state, mujoco)                        \
   X(ctrl, double, nu, 1, state, mujoco)                        \
+  X(act, double, na, 1, state, mujoco)                         \
   X(qfrc_applied, double, nv, 1, state, mujoco)                \
   X(mocap_pos, double, nmocap, 3, state, mujoco)               \
   X(mocap_quat, double, nmocap, 4, state, mujoco)              \
@@ -255,6 +267,10 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(qLDiagInv, double, nv, 1, position, mujoco)                \
   X(ten_length, double, ntendon, 1, position, mujoco)          \
   X(ten_J, double, ntendon, counted_cols::nv, position, mujoco)              \
+  X(ten_wrapadr, int, ntendon, 1, position, mujoco)            \
+  X(ten_wrapnum, int, ntendon, 1, position, mujoco)            \
+  X(wrap_obj, int, nwrap, 2, position, mujoco)                 \
+  X(wrap_xpos, double, nwrap, 6, position, mujoco)             \
   X(actuator_length, double, nu, 1, position, mujoco)          \
   X(actuator_moment, double, nu, counted_cols::nv, position, mujoco)         \
   X(efc_type, int, nefc, 1, position, mujoco)                  \
@@ -279,6 +295,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(efc_vel, double, nefc, 1, velocity, mujoco)                \
   X(efc_aref, double, nefc, 1, velocity, mujoco)               \
   X(actuator_force, double, nu, 1, acceleration, mujoco)       \
+  X(act_dot, double, na, 1, acceleration, mujoco)              \
   X(qfrc_actuator, double, nv, 1, acceleration, mujoco)        \
   X(qfrc_smooth, double, nv, 1, acceleration, mujoco)          \
   X(qacc_smooth, double, nv, 1, acceleration, mujoco)          \
@@ -293,7 +310,8 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(cfrc_ext, double, nbody, 6, acceleration, mujoco)         \
   X(subtree_linvel, double, nbody, 3, velocity, mujoco)       \
   X(subtree_angmom, double, nbody, 3, velocity, mujoco)       \
-  X(energy, double, one, 2, energy, mujoco)
+  X(energy, double, one, 2, energy, mujoco)                    \
+  X(solver_fwdinv, double, one, 2, step, mujoco)
 
 namespace lever {
 
@@ -318,6 +336,7 @@ enum class Size : int {
   kNmesh,      ///< meshes
   kNmeshvert,  ///< mesh vertices, all meshes
   kNmeshgraph,  ///< ints of the meshes' hull graphs
+  kNmeshface,   ///< the meshes' triangles
   // sensors
   kNsensor,     ///< sensors
   kNsensordata,  ///< the sensors' numbers together (data.sensordata)
@@ -333,12 +352,14 @@ enum class Size : int {
   kNuserSensor,
   // tendons
   kNtendon,  ///< tendons (<tendon>)
-  kNwrap     ///< objects in the tendons' paths
+  kNwrap,    ///< objects in the tendons' paths
+  kNa        ///< activations (actuators with dynamics)
 };
 
 /// The part of forward() that writes a Data array (kState: an input; kInverse: inverse() only;
-/// kEnergy: compute_energy() only).
-enum class Stage : int { kState, kPosition, kVelocity, kAcceleration, kInverse, kEnergy };
+/// kEnergy: compute_energy(), or forward() with opt.enabled(kEnableEnergy); kStep: step() with
+/// opt.enabled(kEnableFwdinv)).
+enum class Stage : int { kState, kPosition, kVelocity, kAcceleration, kInverse, kEnergy, kStep };
 
 /// One row of the table.
 struct FieldInfo {
@@ -433,7 +454,7 @@ void check_model_sizes(const Model& model);
 
 // ---- sizing a Model -----------------------------------------------------------------
 /// Gives every array of the model the length its counts give it (nbody, njnt, nq, nv, ngeom,
-/// nsite, nu, npair, nexclude, nmesh, nmeshvert, nmeshgraph, nkey): each array of the field table rows x cols numbers, the
+/// nsite, nu, npair, nexclude, nmesh, nmeshvert, nmeshgraph, nmeshface, nkey): each array of the field table rows x cols numbers, the
 /// constants set_const computes included; the names and the keyframes too (see the top of this
 /// file). The numbers an array already holds within its new length are kept, and every new entry is
 /// zero (an empty name), so a builder sets the counts, calls this, and writes each element by

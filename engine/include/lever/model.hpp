@@ -17,6 +17,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -94,10 +95,17 @@ constexpr const char* integrator_name(Integrator integrator) {
 }
 
 /// Actuator gain, bias and activation-dynamics types; the numeric values are MuJoCo's mjtGain,
-/// mjtBias and mjtDyn (lever has the stateless, affine ones).
-enum class GainType : int { kFixed = 0, kAffine = 1 };
-enum class BiasType : int { kNone = 0, kAffine = 1 };
-enum class DynType : int { kNone = 0 };
+/// mjtBias and mjtDyn (lever has all but the user-defined ones). An actuator with dynamics has an
+/// activation act (data.act), which its force multiplies instead of ctrl: an integrator's rate is
+/// ctrl, a filter's (ctrl - act) / dynprm[0], a muscle's MuJoCo's activation dynamics
+/// (lever/dynamics.hpp muscle_activation_rate). A muscle's gain and bias are its force-length-
+/// velocity and passive curves (muscle_gain, muscle_bias).
+enum class GainType : int { kFixed = 0, kAffine = 1, kMuscle = 2 };
+enum class BiasType : int { kNone = 0, kAffine = 1, kMuscle = 2 };
+enum class DynType : int { kNone = 0, kIntegrator = 1, kFilter = 2, kMuscle = 3 };
+
+/// Number of activation-dynamics parameters per actuator (MuJoCo's mjNDYN).
+inline constexpr int kDynParameters = 10;
 
 /// Number of gain and bias parameters per actuator (MuJoCo's mjNGAIN, mjNBIAS).
 inline constexpr int kGainParameters = 10;
@@ -204,8 +212,8 @@ struct SensorLayout {
 };
 SensorLayout sensor_layout(SensorType type);
 
-/// Whether lever evaluates sensors of this type (every type but user
-/// sensors, which MuJoCo fills from a callback).
+/// Whether lever knows sensors of this type (every type of MuJoCo 2.2.2's; user sensors are
+/// evaluated by Model::sensor_callback, as MuJoCo's by mjcb_sensor).
 bool sensor_type_supported(SensorType type);
 
 /// Row-major matrix, for per-keyframe arrays (key_qpos is nkey x nq, as MuJoCo's).
@@ -232,10 +240,14 @@ enum class EqualityType : int { kConnect = 0, kWeld = 1, kJoint = 2, kTendon = 3
 
 /// What a tendon's path is made of (MuJoCo's mjtWrap). A fixed tendon's path is joints only (its
 /// length a linear combination of their coordinates); a spatial tendon's runs through sites,
-/// around spheres and cylinders, split by pulleys. lever computes fixed tendons.
+/// around spheres and cylinders, split by pulleys. lever computes both.
 enum class WrapType : int { kNone = 0, kJoint = 1, kPulley = 2, kSite = 3, kSphere = 4, kCylinder = 5 };
 
-/// How an actuator reaches the dofs (MuJoCo's mjtTrn): lever has joint and tendon transmissions.
+/// How an actuator reaches the dofs (MuJoCo's mjtTrn): a joint (its gear in the joint's own frame,
+/// or for ball and free joints in the parent's: kJointInParent), a slider-crank (a crank site
+/// pulled by a rod of cranklength from a slider site moving along its z axis), a tendon, or a
+/// site (a wrench at the site, in its frame; with a reference site, the length is the site's pose
+/// in the reference's frame). lever has all but MuJoCo's body (adhesion) transmission.
 enum class TransmissionType : int { kJoint = 0, kJointInParent = 1, kSliderCrank = 2, kTendon = 3, kSite = 4 };
 
 /// Numbers per equality constraint in eq_data (MuJoCo's mjNEQDATA). What they mean by type:
@@ -249,6 +261,39 @@ inline constexpr int kEqualityData = 11;
 /// Friction cones; the numeric values are MuJoCo's mjtCone.
 enum class Cone : int { kPyramidal = 0, kElliptic = 1 };
 
+/// The features <option><flag> switches off (MuJoCo's mjtDisableBit, the same bits): each set
+/// bit of Options::disableflags removes what MuJoCo 2.2.2 removes.
+enum DisableBit : int {
+  kDisableConstraint = 1 << 0,    ///< the whole constraint stage: no rows, no contacts
+  kDisableEquality = 1 << 1,      ///< equality constraint rows
+  kDisableFrictionloss = 1 << 2,  ///< friction-loss rows (joints and tendons)
+  kDisableLimit = 1 << 3,         ///< limit rows (joints and tendons)
+  kDisableContact = 1 << 4,       ///< the collision stage and contact rows
+  kDisablePassive = 1 << 5,       ///< springs, damping, the medium's forces
+  kDisableGravity = 1 << 6,       ///< gravity (in qfrc_bias, cacc, the potential energy)
+  kDisableClampctrl = 1 << 7,     ///< clamping ctrl to ctrlrange
+  kDisableWarmstart = 1 << 8,     ///< the solver's warm start (lever never warm-starts)
+  kDisableFilterparent = 1 << 9,  ///< the broad phase's parent-child filter
+  kDisableActuation = 1 << 10,    ///< actuator forces
+  kDisableRefsafe = 1 << 11,      ///< solref[0] >= 2 timestep
+  kDisableSensor = 1 << 12,       ///< the sensor stages (sensordata left as it was)
+};
+inline constexpr int kDisableBits = 13;  ///< MuJoCo's mjNDISABLE
+
+/// The optional features <option><flag> switches on (MuJoCo's mjtEnableBit, the same bits).
+enum EnableBit : int {
+  kEnableOverride = 1 << 0,     ///< every contact takes opt.o_margin, o_solref, o_solimp
+  kEnableEnergy = 1 << 1,       ///< forward() computes data.energy
+  kEnableFwdinv = 1 << 2,       ///< step() compares forward and inverse dynamics (solver_fwdinv)
+  kEnableSensornoise = 1 << 3,  ///< each sensor's noise is added
+  kEnableMulticcd = 1 << 4,     ///< up to four more contacts per convex pair
+};
+inline constexpr int kEnableBits = 5;  ///< MuJoCo's mjNENABLE
+
+/// The MJCF names of the flags, bit k of disableflags (enableflags) named by element k.
+extern const char* const kDisableNames[kDisableBits];
+extern const char* const kEnableNames[kEnableBits];
+
 /// Simulation options (<option>).
 struct Options {
   double timestep = 0.002;                   ///< s
@@ -259,22 +304,25 @@ struct Options {
   double impratio = 1.0;         ///< frictional-to-normal impedance ratio (elliptic cones)
   int iterations = 100;          ///< solver iterations (lever's solver stops on convergence)
   double tolerance = 1e-8;       ///< solver tolerance
-  /// <flag contact="disable"> (MuJoCo's mjDSBL_CONTACT): no collision stage, no contacts
-  bool contact_disabled = false;
   // the general convex pairs' Minkowski portal refinement (MuJoCo 2.2.2's defaults)
   double mpr_tolerance = 1e-6;  ///< MPR's boundary tolerance
   int mpr_iterations = 50;      ///< most MPR iterations
-  /// <flag multiccd="enable"> (MuJoCo's mjENBL_MULTICCD): up to four more contacts per convex pair
-  bool multiccd = false;
   /// Earth's magnetic field, world frame (the magnetometer reads it in its site's frame)
   Eigen::Vector3d magnetic{0.0, -0.5, 0.0};
-  /// <flag sensornoise="enable"> (MuJoCo's mjENBL_SENSORNOISE): add each sensor's noise
-  bool sensornoise = false;
   // the medium the bodies move in: MuJoCo 2.2.2's passive fluid forces, each body replaced by the
   // box of its inertia (smooth/fluid.cpp); none while viscosity and density are both 0
   double viscosity = 0.0;                  ///< Pa s: Stokes drag on the box's mean-diameter sphere
   double density = 0.0;                    ///< kg/m^3: quadratic drag on the box's faces
   Eigen::Vector3d wind{0.0, 0.0, 0.0};     ///< m/s, world frame: the medium's own velocity
+  // what every contact takes instead of its own with <flag override="enable"> (MuJoCo's defaults)
+  double o_margin = 0.0;
+  std::array<double, 2> o_solref{0.02, 1.0};
+  std::array<double, 5> o_solimp{0.9, 0.95, 0.001, 0.5, 2.0};
+  int disableflags = 0;  ///< DisableBit bits (<option><flag name="disable">)
+  int enableflags = 0;   ///< EnableBit bits (<option><flag name="enable">)
+
+  bool disabled(DisableBit bit) const { return (disableflags & bit) != 0; }
+  bool enabled(EnableBit bit) const { return (enableflags & bit) != 0; }
 };
 
 /// Whether the model's bodies feel MuJoCo 2.2.2's fluid forces (opt.viscosity or opt.density > 0).
@@ -297,6 +345,15 @@ struct VisualInfo {
   std::vector<std::string> geom_mesh, geom_material;  ///< (ngeom) names, "" if none
 };
 
+struct Model;
+struct Data;
+
+/// What evaluates a model's user sensors (<sensor><user>), MuJoCo's mjcb_sensor: called after a
+/// stage (kPosition, kVelocity, kAcceleration) in which the model has user sensors, to write their
+/// numbers at sensor_adr in data.sensordata (noise and cutoff are applied after it). Without one,
+/// their numbers stay as they are (zero in a new Data), as in MuJoCo.
+using SensorCallback = std::function<void(const Model&, Data&, SensorStage)>;
+
 struct Model {
   std::string name = "MuJoCo Model";  ///< <mujoco model="...">
   std::string source;                 ///< file the model came from ("" if built in memory)
@@ -312,6 +369,9 @@ struct Model {
   int nq = 0;         ///< generalized coordinates (a ball has 4 and a free joint 7: nq >= nv)
   int nv = 0;         ///< degrees of freedom
   int nu = 0;         ///< actuators
+  /// activations: one per actuator with dynamics (dyntype not none), which come after the
+  /// stateless ones; actuator a's is act[a - (nu - na)]
+  int na = 0;
   int nbody = 1;      ///< bodies, world included
   int njnt = 0;       ///< joints
   int ngeom = 0;      ///< geoms
@@ -322,6 +382,7 @@ struct Model {
   int nmesh = 0;      ///< meshes (<asset><mesh>), each as MuJoCo compiles it if lever read it
   int nmeshvert = 0;  ///< their vertices, all meshes
   int nmeshgraph = 0;  ///< their convex hulls' graphs, all meshes (ints)
+  int nmeshface = 0;   ///< their triangles, all meshes
   int nsensor = 0;      ///< sensors
   int nsensordata = 0;  ///< numbers all sensors output together (the sum of sensor_dim)
   int neq = 0;        ///< equality constraints (<equality>)
@@ -429,6 +490,11 @@ struct Model {
   /// vertex the address of its neighbour list, its vertex in the mesh, then the neighbour lists
   /// (hull vertex numbers, each list ended by -1), then the hull's triangles (mesh vertices)
   std::vector<int> mesh_graph;
+  std::vector<int> mesh_faceadr;  ///< first triangle in mesh_face
+  std::vector<int> mesh_facenum;  ///< triangles; 0 for a mesh lever did not read
+  /// (nmeshface) each triangle's three vertices, numbered within its mesh (what the rangefinder's
+  /// ray meets, MuJoCo's mj_rayMesh)
+  std::vector<std::array<int, 3>> mesh_face;
 
   // ---- explicit contact pairs (npair) and exclusions (nexclude) ------------------------------
   std::vector<int> pair_dim;
@@ -454,9 +520,13 @@ struct Model {
 
   // ---- tendons (ntendon) and their paths (nwrap), as mjModel's -------------------------------
   // A fixed tendon's length is sum_k coef_k qpos(joint_k) over its path's joints (wrap_objid,
-  // wrap_prm = coef), its Jacobian those coefficients at the joints' dofs. Its force: a spring
-  // -stiffness (length - lengthspring) - damping velocity along it; a limit row when it leaves
-  // range (limited), a friction-loss row while it moves (frictionloss > 0).
+  // wrap_prm = coef), its Jacobian those coefficients at the joints' dofs. A spatial tendon's path
+  // (its first object not a joint) runs through sites, wrapping around a sphere or cylinder geom
+  // between two of them (wrap_prm: its side site, or -1), and splits at pulleys (wrap_objid -1,
+  // wrap_prm the divisor of the branches after it); its length is the path's, its Jacobian the
+  // path's segments' (smooth/tendon.cpp). Its force: a spring -stiffness (length - lengthspring)
+  // - damping velocity along it; a limit row when it leaves range (limited), a friction-loss row
+  // while it moves (frictionloss > 0).
   std::vector<std::string> tendon_name;
   std::vector<int> tendon_adr;  ///< first object of its path in wrap_*
   std::vector<int> tendon_num;  ///< objects in its path
@@ -477,7 +547,8 @@ struct Model {
   std::vector<double> tendon_invweight0;  ///< set_const: J M^-1 J^T at qpos0
   std::vector<WrapType> wrap_type;        ///< (nwrap)
   std::vector<int> wrap_objid;            ///< (nwrap) the joint (site, geom) of the object
-  std::vector<double> wrap_prm;           ///< (nwrap) a joint's coefficient
+  std::vector<double> wrap_prm;           ///< (nwrap) a joint's coefficient, a geom's side site
+                                          ///< (-1: none), a pulley's divisor
 
   // ---- sites (nsite) -------------------------------------------------------------------------
   std::vector<std::string> site_name;
@@ -493,9 +564,19 @@ struct Model {
   // if affine) and bias = biasprm[0] + biasprm[1] length + biasprm[2] velocity (if affine): a
   // motor is gain 1 and no bias; a position servo gain kp and bias (0, -kp, -kv).
   std::vector<std::string> actuator_name;
-  std::vector<TransmissionType> actuator_trntype;  ///< joint or tendon
-  std::vector<int> actuator_trnid;  ///< the joint or tendon it drives
+  std::vector<TransmissionType> actuator_trntype;
+  /// what it drives: [0] the joint, tendon or site (a slider-crank's crank site); [1] a
+  /// slider-crank's slider site, a site transmission's reference site, else -1
+  std::vector<std::array<int, 2>> actuator_trnid;
+  std::vector<double> actuator_cranklength;  ///< a slider-crank's rod length (else 0)
   std::vector<DynType> actuator_dyntype;
+  std::vector<std::array<double, kDynParameters>> actuator_dynprm;  ///< filter: tau; muscle:
+                                                                    ///< tau_act, tau_deact
+  std::vector<uint8_t> actuator_actlimited;  ///< its activation clamped to actrange after a step
+  std::vector<std::array<double, 2>> actuator_actrange;
+  /// the range of its length (a muscle's is mapped onto its operating range): as written, or
+  /// computed by the compiler (set_length_ranges)
+  std::vector<std::array<double, 2>> actuator_lengthrange;
   std::vector<GainType> actuator_gaintype;
   std::vector<BiasType> actuator_biastype;
   std::vector<std::array<double, kGainParameters>> actuator_gainprm;
@@ -505,6 +586,10 @@ struct Model {
   std::vector<uint8_t> actuator_forcelimited;
   std::vector<std::array<double, 2>> actuator_ctrlrange;
   std::vector<std::array<double, 2>> actuator_forcerange;
+  std::vector<double> actuator_length0;  ///< set_const: its length at qpos0
+  /// set_const: |M^-1 moment| at qpos0, the acceleration a unit force gives (a muscle's force
+  /// scale when its force is negative)
+  std::vector<double> actuator_acc0;
 
   // ---- sensors (nsensor): what each measures and where its numbers go in data.sensordata ----------
   std::vector<std::string> sensor_name;
@@ -520,8 +605,10 @@ struct Model {
   std::vector<int> sensor_adr;                ///< its first number in data.sensordata
   std::vector<double> sensor_cutoff;  ///< > 0: each number clipped to +-cutoff (positive
                                       ///< sensors: to cutoff)
+  /// evaluates the user sensors (set by the user; not part of a saved or pickled model)
+  SensorCallback sensor_callback;
   std::vector<double> sensor_noise;   ///< standard deviation of the noise added when
-                                      ///< opt.sensornoise is on
+                                      ///< opt.enabled(kEnableSensornoise)
 
   // ---- user data: (nbody x nuser_body), (njnt x nuser_jnt), ... MuJoCo's *_user arrays -------
   RowMatrix body_user, jnt_user, geom_user, site_user, actuator_user, sensor_user;
@@ -532,6 +619,7 @@ struct Model {
   RowMatrix key_qpos;  ///< (nkey x nq)
   RowMatrix key_qvel;  ///< (nkey x nv)
   RowMatrix key_ctrl;  ///< (nkey x nu)
+  RowMatrix key_act;   ///< (nkey x na)
   RowMatrix key_mpos;   ///< (nkey x 3 nmocap) the mocap bodies' positions (default: body_pos)
   RowMatrix key_mquat;  ///< (nkey x 4 nmocap) their orientations, unit (default: body_quat)
 
@@ -574,6 +662,9 @@ struct Model {
   /// two geoms on different bodies whose contype and conaffinity match. forward() runs the
   /// collision stage, and Data makes room for njmax contact rows, only then.
   bool contacts_possible = false;
+  /// set_const: a spatial tendon wraps around a geom, so that the tendon stage reads the geoms'
+  /// frames even where nothing collides (the lean step places them then too).
+  bool tendons_wrap_geoms = false;
 
   /// set_const: a number no other set_const call has given (0: never set). A Data checked
   /// against this model remembers it, so later calls need not check the whole field table again.
@@ -591,6 +682,45 @@ struct Model {
   int equality(const std::string& n) const;
   int tendon(const std::string& n) const;
 };
+
+/// The dof actuator `a` drives alone, with moment gear[0]: that of a hinge or slide joint
+/// transmission (kJoint or kJointInParent, the same on those joints); -1 for every other
+/// transmission (ball and free joints, tendons, slider-cranks, sites), whose moment is a row of
+/// data.actuator_moment that depends on the state.
+int actuator_scalar_dof(const Model& model, int a);
+
+/// Throws ModelError, naming `feature` and the first actuator that is not one, unless every
+/// actuator is stateless (dyntype none), has a fixed or affine gain and bias (no muscle) and
+/// drives a hinge or slide joint alone (actuator_scalar_dof >= 0): for the features
+/// (identification, the step's derivatives, ...) written for actuators whose force is affine in
+/// ctrl and whose moment is a constant gear on one dof.
+void require_simple_actuators(const Model& model, const std::string& feature);
+
+/// The actuators whose length range the compiler computes (MJCF <compiler><lengthrange mode>,
+/// MuJoCo's mjtLRMode): none, muscles, muscles and user-defined actuators (lever has none of
+/// those: the same as muscles), all.
+enum class LengthRangeMode : int { kNone = 0, kMuscle = 1, kMuscleUser = 2, kAll = 3 };
+
+/// How the compiler computes actuator length ranges (MJCF <compiler><lengthrange>, MuJoCo's
+/// mjLROpt, with its defaults).
+struct LengthRangeOptions {
+  LengthRangeMode mode = LengthRangeMode::kMuscle;
+  bool useexisting = true;  ///< keep a range already given (lower < upper)
+  bool uselimit = false;    ///< take a limited joint's or tendon's range
+  double accel = 20;        ///< the length's target acceleration in the simulation
+  double maxforce = 0;      ///< the most applied force (norm), 0: no bound
+  double timeconst = 1;     ///< s: the velocity's decay time constant
+  double timestep = 0.01;   ///< s: the simulation's timestep (0: the model's)
+  double inttotal = 10;     ///< s: simulated time per side
+  double inteval = 2;       ///< s: the final interval whose lengths give the range's end
+  double tolrange = 0.05;   ///< the most the lengths may spread over inteval, relative to the range
+};
+
+/// Set actuator_lengthrange where the options ask for it, as MuJoCo 2.2.2's compiler does
+/// (mj_setLengthRange): from the joint's or tendon's range (uselimit), or by simulating the model
+/// from qpos0 with the actuator pulled each way (lifecycle/length_range.cpp says how). Call it
+/// after set_const(). Throws ModelError naming the actuator when the simulation does not settle.
+void set_length_ranges(Model& model, const LengthRangeOptions& options = {});
 
 /// Derive the constants MuJoCo's mj_setConst computes (dof_invweight0, dof_M0, body_invweight0,
 /// body_subtreemass) and lever's link tree from the model's parameters. Call it after building a

@@ -9,11 +9,13 @@
 //                 pair listed twice is tested twice, as in MuJoCo.
 //   <pair>        explicit pairs merged in by signature; a geom pair they name is not tested again
 //   <exclude>     body pairs skipped (dynamic pairs only)
-//   geom pair     contype/conaffinity, same weld body, parent filter (dynamic pairs only); the
-//                 bounding-sphere and plane tests; then the narrow phase
+//   geom pair     contype/conaffinity, same weld body, parent filter (dynamic pairs only, unless
+//                 <flag filterparent="disable">); the bounding-sphere and plane tests; then the
+//                 narrow phase
 //   parameters    margin and gap max, condim and friction by priority else max, solref/solimp
-//                 mixed by solmix; includemargin = margin - gap, contacts beyond it kept with
-//                 exclude = 1
+//                 mixed by solmix (with <flag override="enable"> margin, solref and solimp are
+//                 opt.o_margin, o_solref, o_solimp); includemargin = margin - gap, contacts beyond
+//                 it kept with exclude = 1
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -301,7 +303,8 @@ class Collider {
     if (weld1 == weld2) return true;
     const int weld_parent1 = weld(m_.body_parentid[weld1]);
     const int weld_parent2 = weld(m_.body_parentid[weld2]);
-    const bool filter_parent = weld1 != 0 && weld2 != 0;
+    const bool filter_parent =
+        !m_.opt.disabled(kDisableFilterparent) && weld1 != 0 && weld2 != 0;
     return filter_parent && (weld1 == weld_parent2 || weld2 == weld_parent1);
   }
 
@@ -358,6 +361,8 @@ class Collider {
       gap = m_.pair_gap[ipair];
       condim = m_.pair_dim[ipair];
     }
+    const bool override_contacts = m_.opt.enabled(kEnableOverride);
+    if (override_contacts) margin = m_.opt.o_margin;
 
     // bounding spheres, and a plane against the other geom's bounding sphere
     const double r1 = m_.geom_rbound[g1], r2 = m_.geom_rbound[g2];
@@ -379,7 +384,8 @@ class Collider {
     // The buffer is Data's: nothing is allocated or constructed per pair.
     Contact* found = d_.work.pair_contact.data();
     for (Contact& c : d_.work.pair_contact) c.frame.setZero();
-    const ConvexOptions convex{m_.opt.mpr_tolerance, m_.opt.mpr_iterations, m_.opt.multiccd};
+    const ConvexOptions convex{m_.opt.mpr_tolerance, m_.opt.mpr_iterations,
+                               m_.opt.enabled(kEnableMulticcd)};
     int n = collide_shapes(shape(g1), shape(g2), margin, found, convex);
     if (n == 0) return;
     if (type1 == GeomType::kBox && type2 == GeomType::kBox)
@@ -397,6 +403,10 @@ class Collider {
       solimp = m_.pair_solimp[ipair];
     }
     for (double& mu : friction) mu = std::max(kMinFriction, mu);
+    if (override_contacts) {
+      solref = m_.opt.o_solref;
+      solimp = m_.opt.o_solimp;
+    }
 
     for (int i = 0; i < n; ++i) {
       Contact c = found[i];

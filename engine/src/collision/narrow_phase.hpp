@@ -1,5 +1,5 @@
-// What the narrow-phase files share (engine/src only): the box functions written in
-// collision/box.cpp, the general convex pairs written in collision/convex.cpp, and the small
+// What the narrow-phase files share (engine/src only): the box functions run in collision/box.cpp
+// (written in box_pairs.hpp), the general convex pairs written in collision/convex.cpp, and the small
 // vector helpers whose rounding and thresholds decide MuJoCo 2.2.2's results (engine_util_blas.c,
 // engine_util_spatial.c).
 #pragma once
@@ -85,7 +85,8 @@ int plane_convex(const GeomShape& plane, const GeomShape& convex, double margin,
 bool has_convex_pairs();
 
 // The pairs with a box (MuJoCo 2.2.2's engine_collision_box.c: mjc_SphereBox, mjc_CapsuleBox,
-// mjc_BoxBox), written in collision/box.cpp. Each has collide_shapes()'s contract: g1's type
+// mjc_BoxBox), written once on a scalar in collision/box_pairs.hpp and run on doubles by
+// collision/box.cpp. Each has collide_shapes()'s contract: g1's type
 // comes first in MuJoCo's table (sphere, capsule, box), at most kMaxPairContacts contacts with
 // dist, pos and the frame's normal row (the second row zero unless the function sets it; the
 // driver completes the frame).

@@ -1,13 +1,13 @@
 // The narrow phase's closed-form pairs without a box: MuJoCo 2.2.2's
 // engine_collision_primitive.c (plane against sphere, capsule, box and cylinder; sphere and
 // capsule against each other), and collide_shapes(), the table that dispatches to them and to
-// the box pairs (box.cpp) and the general convex pairs (convex.cpp). All but plane-cylinder are
-// written once, on a scalar, in primitive_pairs.hpp (the transition room differentiates them on
-// dual numbers); here they run on doubles.
+// the box pairs (box.cpp) and the general convex pairs (convex.cpp). They are written once, on a
+// scalar, in primitive_pairs.hpp (the transition room differentiates them on dual numbers); here
+// they run on doubles.
 //
 // The branch tests (margins, clamps, kMinVal) decide which contacts exist, so they are MuJoCo's,
-// evaluated on the same sums in the same order: dot products left to right (dot3), rotations row
-// by row (rotate_rows). Each function writes dist, pos and the frame's normal row; the second row
+// evaluated on the same sums in the same order: dot products left to right, rotations row by
+// row. Each function writes dist, pos and the frame's normal row; the second row
 // stays zero (the capsule's axis for plane-capsule, which MuJoCo uses as the first tangent) and the
 // driver completes the frame, as mj_collideGeoms does with mju_makeFrame.
 #include <array>
@@ -26,28 +26,9 @@ namespace lever {
 
 namespace {
 
-using detail::dot3;
-using detail::kMinVal;
-using detail::normalize_or_x;
-using detail::rotate_rows;
-using Vec3 = Eigen::Vector3d;
-
-Vec3 cross3(const Vec3& a, const Vec3& b) {
-  return Vec3(a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]);
-}
-
-/// A geom's z axis: a plane's normal, a capsule's or cylinder's axis.
-Vec3 z_axis(const Mat3& R) { return R.col(2); }
-
-/// Start a contact: its normal, no tangent yet.
-void set_normal(Contact& c, const Vec3& normal) {
-  c.frame.row(0) = normal.transpose();
-  c.frame.row(1).setZero();
-  c.frame.row(2).setZero();
-}
-
 // ---- the pairs written once on a scalar (primitive_pairs.hpp), on doubles ----------------------
 
+using Vec3 = Eigen::Vector3d;
 namespace primitive = detail::primitive;
 using primitive::Shape;
 using primitive::Touch;
@@ -86,63 +67,6 @@ int plane_sphere_pair(const Shape<double>& plane, const Shape<double>& sphere, d
   return primitive::plane_sphere(plane, sphere.pos, sphere.size[0], margin, out);
 }
 
-// ---- plane-cylinder, on doubles only -----------------------------------------------------------
-
-int plane_cylinder(const GeomShape& plane, const GeomShape& cylinder, double margin,
-                   Contact* contacts) {
-  const Vec3 normal = z_axis(plane.mat);
-  Vec3 axis = z_axis(cylinder.mat);
-  const double radius = cylinder.size[0], half_length = cylinder.size[1];
-
-  // let the axis point towards the plane
-  double axis_along_normal = dot3(normal, axis);
-  if (axis_along_normal > 0) {
-    axis = axis * -1.0;
-    axis_along_normal = -axis_along_normal;
-  }
-  const double center_height = dot3(cylinder.pos - plane.pos, normal);
-
-  // the radius towards the plane: -normal without its component along the axis
-  Vec3 rim = axis * axis_along_normal - normal;
-  const double rim_length = std::sqrt(dot3(rim, rim));
-  if (rim_length >= kMinVal) {
-    rim = rim * (radius / rim_length);
-  } else {
-    rim = cylinder.mat.col(0) * radius;  // disc parallel to the plane: the cylinder's x axis
-  }
-  const double rim_along_normal = dot3(rim, normal);
-  axis = axis * half_length;
-  axis_along_normal *= half_length;
-
-  auto add = [&](int k, double dist, const Vec3& point) {
-    contacts[k].dist = dist;
-    contacts[k].pos = point + normal * (-dist * 0.5);
-    set_normal(contacts[k], normal);
-  };
-
-  // the rim point nearest the plane, on the lower disc; none within margin means no contact
-  int count = 0;
-  const double lowest = center_height + axis_along_normal + rim_along_normal;
-  if (lowest > margin) return 0;
-  add(count++, lowest, cylinder.pos + rim + axis);
-
-  // the same rim point on the other disc
-  const double other_disc = center_height - axis_along_normal + rim_along_normal;
-  if (other_disc <= margin) add(count++, other_disc, cylinder.pos + rim - axis);
-
-  // two more points of the lower disc, a third of the way round either side
-  const double side_along_normal = -rim_along_normal * 0.5;
-  const double side = center_height + axis_along_normal + side_along_normal;
-  if (side <= margin) {
-    Vec3 sideways = cross3(rim, axis);
-    normalize_or_x(sideways);
-    sideways = sideways * (radius * std::sqrt(3.0) / 2);
-    add(count++, side, cylinder.pos + sideways + axis + rim * -0.5);
-    add(count++, side, cylinder.pos - sideways + axis + rim * -0.5);
-  }
-  return count;
-}
-
 using PairFunction = int (*)(const GeomShape&, const GeomShape&, double, Contact*);
 
 /// lever's closed-form part of MuJoCo's mjCOLLISIONFUNC, indexed by (type1, type2) with
@@ -156,7 +80,7 @@ PairFunction pair_function(GeomType a, GeomType b) {
         case T::kCapsule: return closed_form<primitive::plane_capsule<double>>;
         case T::kEllipsoid:
         case T::kMesh: return detail::plane_convex;
-        case T::kCylinder: return plane_cylinder;
+        case T::kCylinder: return closed_form<primitive::plane_cylinder<double>>;
         case T::kBox: return closed_form<primitive::plane_box<double>>;
         default: return nullptr;
       }

@@ -250,4 +250,61 @@ int capsule_capsule(const Shape<S>& c1, const Shape<S>& c2, double margin, Touch
   return count;
 }
 
+/// A cylinder against the plane: the rim point nearest the plane on the disc facing it, the same
+/// rim point on the other disc, and two more points of the near disc a third of the way round
+/// either side, each within the margin (MuJoCo's mjc_PlaneCylinder).
+template <class S>
+int plane_cylinder(const Shape<S>& plane, const Shape<S>& cylinder, double margin, Touch<S>* out) {
+  using std::sqrt;
+  const Vec<S> normal = plane.axis[2];
+  Vec<S> axis = cylinder.axis[2];
+  const double radius = cylinder.size[0], half_length = cylinder.size[1];
+
+  // let the axis point towards the plane
+  S axis_along_normal = dot(normal, axis);
+  if (value(axis_along_normal) > 0) {
+    axis = axis * S(-1.0);
+    axis_along_normal = -axis_along_normal;
+  }
+  const S center_height = dot(cylinder.pos - plane.pos, normal);
+
+  // the radius towards the plane: -normal without its component along the axis
+  Vec<S> rim = axis * axis_along_normal - normal;
+  const S rim_length = sqrt(dot(rim, rim));
+  if (value(rim_length) >= kMinVal) {
+    rim = rim * (S(radius) / rim_length);
+  } else {
+    rim = cylinder.axis[0] * S(radius);  // disc parallel to the plane: the cylinder's x axis
+  }
+  const S rim_along_normal = dot(rim, normal);
+  axis = axis * S(half_length);
+  axis_along_normal = axis_along_normal * S(half_length);
+
+  int count = 0;
+  const auto add = [&](const S& dist, const Vec<S>& point) {
+    touch(out[count++], dist, point + normal * (-dist * S(0.5)), normal);
+  };
+
+  // the rim point nearest the plane, on the lower disc; none within margin means no contact
+  const S lowest = center_height + axis_along_normal + rim_along_normal;
+  if (value(lowest) > margin) return 0;
+  add(lowest, cylinder.pos + rim + axis);
+
+  // the same rim point on the other disc
+  const S other_disc = center_height - axis_along_normal + rim_along_normal;
+  if (value(other_disc) <= margin) add(other_disc, cylinder.pos + rim - axis);
+
+  // two more points of the lower disc, a third of the way round either side
+  const S side_along_normal = -rim_along_normal * S(0.5);
+  const S side = center_height + axis_along_normal + side_along_normal;
+  if (value(side) <= margin) {
+    Vec<S> sideways = cross(rim, axis);
+    normalize(sideways);
+    sideways = sideways * S(radius * std::sqrt(3.0) / 2);
+    add(side, cylinder.pos + sideways + axis + rim * S(-0.5));
+    add(side, cylinder.pos - sideways + axis + rim * S(-0.5));
+  }
+  return count;
+}
+
 }  // namespace lever::detail::primitive

@@ -52,7 +52,9 @@ constexpr double kMaxImp = 0.9999;  // mjMAXIMP
 // within its bounds.
 void sanitize(const Model& model, std::array<double, 2>& solref, std::array<double, 5>& solimp) {
   if ((solref[0] > 0) != (solref[1] > 0)) solref = {0.02, 1.0};
-  if (solref[0] > 0) solref[0] = std::max(solref[0], 2 * model.opt.timestep);
+  if (solref[0] > 0 && !model.opt.disabled(kDisableRefsafe)) {
+    solref[0] = std::max(solref[0], 2 * model.opt.timestep);
+  }
   solimp[0] = std::min(kMaxImp, std::max(kMinImp, solimp[0]));
   solimp[1] = std::min(kMaxImp, std::max(kMinImp, solimp[1]));
   solimp[2] = std::max(0.0, solimp[2]);
@@ -408,14 +410,24 @@ void set_contact_soft_rows(const Model& model, Data& data, int i) {
 }  // namespace
 
 void unchecked::make_constraint(const Model& model, Data& data) {
-  data.ne = add_equality_rows(model, data, 0);
-  data.nf = add_friction_loss_rows(model, data, data.ne) - data.ne;
+  const Options& opt = model.opt;
+  if (opt.disabled(kDisableConstraint)) {  // no rows at all (and no contacts: see set_const)
+    data.ne = data.nf = data.nefc = 0;
+    return;
+  }
+  data.ne = opt.disabled(kDisableEquality) ? 0 : add_equality_rows(model, data, 0);
+  data.nf = opt.disabled(kDisableFrictionloss)
+                ? 0
+                : add_friction_loss_rows(model, data, data.ne) - data.ne;
   int n = data.ne + data.nf;
-  const int limits = add_limit_rows(model, data, n);
-  set_limit_soft_rows(model, data, n, limits);
-  n = add_tendon_limit_rows(model, data, limits);
+  if (!opt.disabled(kDisableLimit)) {
+    const int limits = add_limit_rows(model, data, n);
+    set_limit_soft_rows(model, data, n, limits);
+    n = add_tendon_limit_rows(model, data, limits);
+  }
   PairDofs pair;
-  for (int i = 0; i < data.ncon; ++i) {
+  const int ncon = opt.disabled(kDisableContact) ? 0 : data.ncon;
+  for (int i = 0; i < ncon; ++i) {
     Contact& con = data.contact[i];
     con.efc_address = -1;
     if (con.exclude) continue;

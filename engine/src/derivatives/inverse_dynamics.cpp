@@ -42,21 +42,28 @@ namespace lever {
 namespace detail {
 
 void check_derivative_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
-  if (model.neq > 0) {
-    throw ModelError(
-        "derivatives: the model has equality constraints; lever's analytic derivatives cover joint "
-        "limits and contacts so far.");
+  // a connect's or weld's rows move with the bodies' poses (their Jacobian and error), which
+  // the held rows' derivative does not take yet; joint and tendon couplings are polynomials in
+  // coordinates and constant tendon Jacobians (transition/contact_rows.cpp)
+  for (int e = 0; e < model.neq; ++e) {
+    const EqualityType type = model.eq_type[e];
+    if (type == EqualityType::kConnect || type == EqualityType::kWeld) {
+      const std::string name =
+          model.eq_name[e].empty() ? std::to_string(e) : "'" + model.eq_name[e] + "'";
+      throw ModelError("derivatives: equality constraint " + name + " is a " +
+                       (type == EqualityType::kConnect ? "connect" : "weld") +
+                       "; lever's analytic derivatives cover joint and tendon couplings so far.");
+    }
   }
-  if (model.ntendon > 0) {
-    throw ModelError("derivatives: the model has tendons (tendon '" + model.tendon_name[0] +
-                     "'); lever's analytic derivatives do not cover tendons' forces and rows "
-                     "yet.");
-  }
-  for (int i = 0; i < model.nv; ++i) {
-    if (model.dof_frictionloss[i] > 0) {
-      throw ModelError("derivatives: joint '" + model.jnt_name[model.dof_jntid[i]] +
-                       "' has friction loss; lever's analytic derivatives cover joint limits so "
-                       "far.");
+  // a spatial tendon's path (sites, wraps) moves with the poses, so its Jacobian does too, a term
+  // the held rows' and the springs' derivatives leave out; a fixed tendon's Jacobian is constant
+  for (int t = 0; t < model.ntendon; ++t) {
+    const int first = model.tendon_adr[t];
+    if (model.tendon_num[t] > 0 && model.wrap_type[first] != WrapType::kJoint) {
+      const std::string name =
+          model.tendon_name[t].empty() ? std::to_string(t) : "'" + model.tendon_name[t] + "'";
+      throw ModelError("derivatives: tendon " + name +
+                       " is spatial; lever's analytic derivatives cover fixed tendons so far.");
     }
   }
   // a ball's dofs turn about its body's final axes (MuJoCo's cdof): a joint after it in the same

@@ -50,6 +50,7 @@ void regressor(const Model& model, Data& data, const Eigen::Ref<const Eigen::Vec
                      "'); the regressor does not cover tendon forces or tendon-driven actuators "
                      "yet.");
   }
+  require_simple_actuators(model, "regressor");
   Y.setZero();
   // velocities and accelerations of every body (RNEA's forward pass; gravity as a_0 = -g), kept
   // in Data's RNEA workspace
@@ -85,7 +86,7 @@ void regressor(const Model& model, Data& data, const Eigen::Ref<const Eigen::Vec
   int column = tail + 2 * model.nv;
   for (int u = 0; u < model.nu; ++u) {
     if (!has_gain_column(model, u)) continue;
-    const int j = model.actuator_trnid[u];
+    const int j = model.actuator_trnid[u][0];  // a hinge or slide (checked above)
     const int q = model.jnt_qposadr[j], d = model.jnt_dofadr[j];
     Y(d, column++) = -model.actuator_gear[u][0] *
                      actuator_gain_basis(model, u, data.ctrl[u], data.qpos[q], data.qvel[d]);

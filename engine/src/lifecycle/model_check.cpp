@@ -123,7 +123,8 @@ struct Ordered {
 };
 constexpr Ordered kOrdered[] = {{"jnt_range", "jnt_limited"},
                                 {"actuator_ctrlrange", "actuator_ctrllimited"},
-                                {"actuator_forcerange", "actuator_forcelimited"}};
+                                {"actuator_forcerange", "actuator_forcelimited"},
+                                {"actuator_actrange", "actuator_actlimited"}};
 
 void check_ranges(const Model& model) {
   for (const NonNegative& rule : kNonNegative) {
@@ -204,10 +205,11 @@ void check_sizes(const Model& model) {
   LEVER_REQUIRE_SIZE(key_time, model.nkey);
   if (model.nkey < 0 || model.key_qpos.rows() != model.nkey || model.key_qpos.cols() != model.nq ||
       model.key_qvel.rows() != model.nkey || model.key_qvel.cols() != model.nv ||
-      model.key_ctrl.rows() != model.nkey || model.key_ctrl.cols() != model.nu) {
+      model.key_ctrl.rows() != model.nkey || model.key_ctrl.cols() != model.nu ||
+      model.key_act.rows() != model.nkey || model.key_act.cols() != model.na) {
     throw ModelError(
-        "keyframe arrays key_qpos, key_qvel, key_ctrl must be nkey x nq, nkey x nv "
-        "and nkey x nu (nkey = " +
+        "keyframe arrays key_qpos, key_qvel, key_ctrl, key_act must be nkey x nq, nkey x nv, "
+        "nkey x nu and nkey x na (nkey = " +
         std::to_string(model.nkey) + ").");
   }
   if (model.nmocap < 0 || model.key_mpos.rows() != model.nkey ||
@@ -218,8 +220,8 @@ void check_sizes(const Model& model) {
                      ", nmocap = " + std::to_string(model.nmocap) + ").");
   }
   // contact: the counts the contact arrays of the field table are sized by
-  if (model.nmesh < 0 || model.nmeshvert < 0 || model.nmeshgraph < 0) {
-    throw ModelError("nmesh, nmeshvert and nmeshgraph must be non-negative.");
+  if (model.nmesh < 0 || model.nmeshvert < 0 || model.nmeshgraph < 0 || model.nmeshface < 0) {
+    throw ModelError("nmesh, nmeshvert, nmeshgraph and nmeshface must be non-negative.");
   }
   if (model.neq < 0)
     throw ModelError("neq must be non-negative; got " + std::to_string(model.neq) + ".");
@@ -353,26 +355,36 @@ void check_tree(const Model& model) {
     }
   }
   for (int a = 0; a < model.nu; ++a) {
-    const int j = model.actuator_trnid[a];
-    const TransmissionType trn = model.actuator_trntype[a];
-    if (trn == TransmissionType::kTendon) {
-      if (j < 0 || j >= model.ntendon) {
-        throw ModelError("actuator " + std::to_string(a) + " names no tendon.");
-      }
-      continue;
-    }
-    if (trn != TransmissionType::kJoint) {
-      reject("actuator", a, model.actuator_name[a],
-             "has a transmission lever does not have (joint 0 and tendon 3 are lever's)");
-    }
-    if (j < 0 || j >= model.njnt) {
-      throw ModelError("actuator " + std::to_string(a) + " names no joint.");
-    }
-    if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
-      throw ModelError("actuator '" + model.actuator_name[a] + "' drives joint '" +
-                           model.jnt_name[j] +
-                           "', a ball or free joint; lever's actuators drive hinges and slides.",
-                       "actuator", a);
+    const int id = model.actuator_trnid[a][0], second = model.actuator_trnid[a][1];
+    const auto names_no = [&](const char* kind) {
+      throw ModelError("actuator " + std::to_string(a) + " names no " + kind + ".", "actuator", a);
+    };
+    const auto site = [&](int s) { return s >= 0 && s < model.nsite; };
+    switch (model.actuator_trntype[a]) {
+      case TransmissionType::kJoint:
+      case TransmissionType::kJointInParent:
+        if (id < 0 || id >= model.njnt) names_no("joint");
+        if (second != -1) names_no("second object (a joint transmission has none: -1)");
+        break;
+      case TransmissionType::kTendon:
+        if (id < 0 || id >= model.ntendon) names_no("tendon");
+        if (second != -1) names_no("second object (a tendon transmission has none: -1)");
+        break;
+      case TransmissionType::kSliderCrank:
+        if (!site(id)) names_no("crank site");
+        if (!site(second)) names_no("slider site");
+        if (!(model.actuator_cranklength[a] > 0)) {
+          reject("actuator", a, model.actuator_name[a],
+                 "is a slider-crank whose cranklength is not positive");
+        }
+        break;
+      case TransmissionType::kSite:
+        if (!site(id)) names_no("site");
+        if (second != -1 && !site(second)) names_no("reference site");
+        break;
+      default:
+        reject("actuator", a, model.actuator_name[a],
+               "has a transmission lever does not have (MuJoCo's body transmission, adhesion)");
     }
   }
 }
@@ -413,8 +425,86 @@ void check_equalities(const Model& model) {
   }
 }
 
-// Each tendon's path: consecutive objects of wrap_*, fixed (joints only: a hinge or a slide each,
-// the tendon's length their weighted coordinates). Spatial tendons are refused by name.
+// A fixed tendon's path: joints only, each a hinge or a slide.
+void check_fixed_path(const Model& model, int t) {
+  const std::string& name = model.tendon_name[t];
+  for (int w = model.tendon_adr[t]; w < model.tendon_adr[t] + model.tendon_num[t]; ++w) {
+    if (model.wrap_type[w] != WrapType::kJoint) {
+      reject("tendon", t, name, "mixes joints with sites, geoms or pulleys in its path");
+    }
+    const int j = model.wrap_objid[w];
+    if (j < 0 || j >= model.njnt) reject("tendon", t, name, "names a joint that does not exist");
+    if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
+      reject("tendon", t, name,
+             "runs along joint '" + model.jnt_name[j] + "', which is not a hinge or a slide");
+    }
+  }
+}
+
+// A spatial tendon's path, by MuJoCo 2.2.2's compiler rules: at least two objects; sites, each
+// with a neighbour that is not a pulley and never the same site twice in a row; a sphere or
+// cylinder geom (wrap_type saying which) between two sites, its wrap_prm a side site or -1; a
+// pulley neither last nor after another, its divisor positive (MuJoCo takes 0 and divides by it).
+void check_spatial_path(const Model& model, int t) {
+  const std::string& name = model.tendon_name[t];
+  const int adr = model.tendon_adr[t], num = model.tendon_num[t];
+  if (num < 2) reject("tendon", t, name, "is spatial with fewer than two objects in its path");
+  auto type_at = [&](int i) { return model.wrap_type[adr + i]; };
+  for (int i = 0; i < num; ++i) {
+    const int w = adr + i;
+    const int id = model.wrap_objid[w];
+    const std::string at = " (path object " + std::to_string(i) + ")";
+    switch (type_at(i)) {
+      case WrapType::kSite: {
+        if (id < 0 || id >= model.nsite) reject("tendon", t, name, "names a site that does not exist" + at);
+        const bool alone_before = i == 0 || type_at(i - 1) == WrapType::kPulley;
+        const bool alone_after = i == num - 1 || type_at(i + 1) == WrapType::kPulley;
+        if (alone_before && alone_after) {
+          reject("tendon", t, name, "has a site with no neighbour that is not a pulley" + at);
+        }
+        if (i + 1 < num && type_at(i + 1) == WrapType::kSite && model.wrap_objid[w + 1] == id) {
+          reject("tendon", t, name, "names the same site twice in a row" + at);
+        }
+        break;
+      }
+      case WrapType::kSphere:
+      case WrapType::kCylinder: {
+        if (id < 0 || id >= model.ngeom) reject("tendon", t, name, "names a geom that does not exist" + at);
+        const GeomType want = type_at(i) == WrapType::kSphere ? GeomType::kSphere : GeomType::kCylinder;
+        if (model.geom_type[id] != want) {
+          reject("tendon", t, name,
+                 "wraps around geom " + std::to_string(id) + " as a " +
+                     (want == GeomType::kSphere ? "sphere" : "cylinder") + ", which it is not" + at);
+        }
+        if (i == 0 || i == num - 1 || type_at(i - 1) != WrapType::kSite ||
+            type_at(i + 1) != WrapType::kSite) {
+          reject("tendon", t, name, "has a wrapping geom that is not between two sites" + at);
+        }
+        const double side = model.wrap_prm[w];
+        if (!(side == std::round(side)) || side < -1 || side >= model.nsite) {
+          reject("tendon", t, name, "has a side site that does not exist (wrap_prm)" + at);
+        }
+        break;
+      }
+      case WrapType::kPulley:
+        if (i == num - 1) reject("tendon", t, name, "ends with a pulley");
+        if (i > 0 && type_at(i - 1) == WrapType::kPulley) {
+          reject("tendon", t, name, "has two pulleys in a row" + at);
+        }
+        if (!(model.wrap_prm[w] > 0) || !std::isfinite(model.wrap_prm[w])) {
+          reject("tendon", t, name, "has a pulley whose divisor is not positive" + at);
+        }
+        break;
+      case WrapType::kJoint:
+        reject("tendon", t, name, "is spatial but has a joint in its path" + at);
+      default:
+        reject("tendon", t, name, "has an object of unknown type in its path" + at);
+    }
+  }
+}
+
+// Each tendon's path: consecutive objects of wrap_*, fixed (joints) or spatial (sites, wrapping
+// geoms, pulleys) by its first object, as MuJoCo decides.
 void check_tendons(const Model& model) {
   int next = 0;
   for (int t = 0; t < model.ntendon; ++t) {
@@ -426,18 +516,10 @@ void check_tendons(const Model& model) {
              "must follow the previous tendon's path)");
     }
     next = adr + num;
-    for (int w = adr; w < adr + num; ++w) {
-      if (model.wrap_type[w] != WrapType::kJoint) {
-        reject("tendon", t, name,
-               "is a spatial tendon (sites, wrapping geoms, pulleys); lever has fixed tendons "
-               "only");
-      }
-      const int j = model.wrap_objid[w];
-      if (j < 0 || j >= model.njnt) reject("tendon", t, name, "names a joint that does not exist");
-      if (model.jnt_type[j] != JointType::kHinge && model.jnt_type[j] != JointType::kSlide) {
-        reject("tendon", t, name,
-               "runs along joint '" + model.jnt_name[j] + "', which is not a hinge or a slide");
-      }
+    if (model.wrap_type[adr] == WrapType::kJoint) {
+      check_fixed_path(model, t);
+    } else {
+      check_spatial_path(model, t);
     }
     if (model.tendon_limited[t] && !(model.tendon_range[t][0] < model.tendon_range[t][1])) {
       reject("tendon", t, name, "is limited but its range does not have lower < upper");
@@ -463,23 +545,58 @@ void check_options_actuators_keys(const Model& model) {
     throw ModelError("the medium's viscosity and density must be finite and not negative, and "
                      "the wind finite.");
   }
+  // the flags: MuJoCo 2.2.2's bits only; the override's parameters finite
+  if ((model.opt.disableflags & ~((1 << kDisableBits) - 1)) != 0 ||
+      (model.opt.enableflags & ~((1 << kEnableBits) - 1)) != 0) {
+    throw ModelError("opt.disableflags and opt.enableflags hold MuJoCo 2.2.2's bits only (" +
+                     std::to_string(kDisableBits) + " and " + std::to_string(kEnableBits) +
+                     "); they are " + std::to_string(model.opt.disableflags) + " and " +
+                     std::to_string(model.opt.enableflags) + ".");
+  }
+  const auto finite_all = [](const auto& values) {
+    for (const double x : values) {
+      if (!std::isfinite(x)) return false;
+    }
+    return true;
+  };
+  if (!std::isfinite(model.opt.o_margin) || !finite_all(model.opt.o_solref) ||
+      !finite_all(model.opt.o_solimp)) {
+    throw ModelError("the contact override's o_margin, o_solref and o_solimp must be finite.");
+  }
   if (has_fluid(model.opt) && model.opt.integrator == Integrator::kImplicitFast) {
     throw ModelError("fluid forces (viscosity, density) with MuJoCo 3's implicitfast integrator: "
                      "lever has them with Euler, RK4 and MuJoCo 2.2.2's implicit only.");
   }
+  int stateful = 0;
   for (int a = 0; a < model.nu; ++a) {
+    const int dyntype = static_cast<int>(model.actuator_dyntype[a]);
     const int gaintype = static_cast<int>(model.actuator_gaintype[a]);
     const int biastype = static_cast<int>(model.actuator_biastype[a]);
-    if (model.actuator_dyntype[a] != DynType::kNone || gaintype < 0 || gaintype > 1 ||
-        biastype < 0 || biastype > 1) {
+    if (dyntype < 0 || dyntype > 3 || gaintype < 0 || gaintype > 2 || biastype < 0 ||
+        biastype > 2) {
       reject("actuator", a, model.actuator_name[a],
-             "needs dyntype none, gaintype fixed or affine and biastype none or affine");
+             "needs dyntype none, integrator, filter or muscle, gaintype fixed, affine or muscle "
+             "and biastype none, affine or muscle (lever has no user-defined ones)");
     }
+    if (dyntype != 0) {
+      ++stateful;
+    } else if (stateful > 0) {
+      reject("actuator", a, model.actuator_name[a],
+             "has no dynamics but comes after one that has: stateless actuators come first");
+    }
+    if (model.actuator_actlimited[a] && dyntype == 0) {
+      reject("actuator", a, model.actuator_name[a], "has an actrange but no dynamics");
+    }
+  }
+  if (stateful != model.na) {
+    throw ModelError("na = " + std::to_string(model.na) + " but " + std::to_string(stateful) +
+                     " actuators have dynamics (one activation each).");
   }
   for (int k = 0; k < model.nkey; ++k) {
     if (!std::isfinite(model.key_time[k]) || !model.key_qpos.row(k).allFinite() ||
-        !model.key_qvel.row(k).allFinite() || !model.key_ctrl.row(k).allFinite()) {
-      reject("keyframe", k, model.key_name[k], "has a non-finite time, qpos, qvel or ctrl");
+        !model.key_qvel.row(k).allFinite() || !model.key_ctrl.row(k).allFinite() ||
+        !model.key_act.row(k).allFinite()) {
+      reject("keyframe", k, model.key_name[k], "has a non-finite time, qpos, qvel, ctrl or act");
     }
   }
 }
@@ -504,6 +621,15 @@ void check_meshes(const Model& model) {
     const int adr = model.mesh_vertadr[m], num = model.mesh_vertnum[m];
     if (adr < 0 || num < 0 || adr > model.nmeshvert - num) {
       fail(m, "has vertices outside mesh_vert");
+    }
+    const int face = model.mesh_faceadr[m], faces = model.mesh_facenum[m];
+    if (face < 0 || faces < 0 || face > model.nmeshface - faces) {
+      fail(m, "has triangles outside mesh_face");
+    }
+    for (int f = face; f < face + faces; ++f) {
+      for (const int v : model.mesh_face[f]) {
+        if (v < 0 || v >= num) fail(m, "has a triangle whose vertex is not one of its own");
+      }
     }
     const int graph = model.mesh_graphadr[m];
     if (graph == -1) continue;
@@ -562,10 +688,25 @@ void check_sensors(const Model& model) {
     }
     if (!sensor_type_supported(type)) {
       reject("sensor", s, name,
-             std::string("is a ") + sensor_type_name(type) + " sensor; lever has no " +
-                 (type == SensorType::kUser ? "sensor callbacks" : "tendon sensors"));
+             std::string("is a ") + sensor_type_name(type) + " sensor, which lever does not have");
     }
-    const SensorLayout layout = sensor_layout(type);
+    SensorLayout layout = sensor_layout(type);
+    if (type == SensorType::kUser) {
+      // its own dim, datatype and stage (MuJoCo's compiler: an axis has 3 numbers, a
+      // quaternion 4), on an object of any kind lever has
+      const int dim = model.sensor_dim[s];
+      const SensorDataType datatype = model.sensor_datatype[s];
+      const int stage = static_cast<int>(model.sensor_needstage[s]);
+      const int kind = static_cast<int>(datatype);
+      if (dim < 0 || kind < 0 || kind > static_cast<int>(SensorDataType::kQuaternion) ||
+          (datatype == SensorDataType::kAxis && dim != 3) ||
+          (datatype == SensorDataType::kQuaternion && dim != 4) || stage < 0 ||
+          stage > static_cast<int>(SensorStage::kAcceleration)) {
+        reject("sensor", s, name,
+               "is a user sensor whose dim, datatype and needstage do not fit together");
+      }
+      layout = {dim, datatype, model.sensor_needstage[s], model.sensor_objtype[s]};
+    }
     if (model.sensor_dim[s] != layout.dim || model.sensor_datatype[s] != layout.datatype ||
         model.sensor_needstage[s] != layout.stage) {
       reject("sensor", s, name,
@@ -593,7 +734,7 @@ void check_sensors(const Model& model) {
          !sensor_object_exists(model, model.sensor_reftype[s], model.sensor_refid[s]))) {
       reject("sensor", s, name, "has a reference frame that is no body, geom or site");
     }
-    if (objtype == ObjectType::kJoint) {
+    if (objtype == ObjectType::kJoint && type != SensorType::kUser) {
       const JointType jt = model.jnt_type[id];
       const bool ball = type == SensorType::kBallQuat || type == SensorType::kBallAngVel;
       if (ball != (jt == JointType::kBall) ||
@@ -607,9 +748,14 @@ void check_sensors(const Model& model) {
     }
     if (type == SensorType::kRangefinder) {
       for (int g = 0; g < model.ngeom; ++g) {
-        if (model.geom_type[g] == GeomType::kMesh || model.geom_type[g] == GeomType::kHfield) {
+        const bool hfield = model.geom_type[g] == GeomType::kHfield;
+        const bool unread_mesh = model.geom_type[g] == GeomType::kMesh &&
+                                 (model.geom_dataid[g] < 0 || model.geom_dataid[g] >= model.nmesh ||
+                                  model.mesh_facenum[model.geom_dataid[g]] == 0);
+        if (hfield || unread_mesh) {
           reject("sensor", s, name,
-                 "is a rangefinder, and lever casts no rays at mesh or height field geoms (geom " +
+                 std::string("is a rangefinder, and lever casts no rays at ") +
+                     (hfield ? "height fields" : "a mesh geom without triangles") + " (geom " +
                      std::to_string(g) + ")");
         }
       }

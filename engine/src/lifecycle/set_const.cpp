@@ -7,6 +7,7 @@
 #include <lever/model.hpp>
 #include <lever/model_check.hpp>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <string>
@@ -52,9 +53,14 @@ JointKind joint_kind(const Model& model, int j) {
 void build_actuator_kinds(Model& model) {
   model.actuator_kind.resize(model.nu);
   for (int a = 0; a < model.nu; ++a) {
+    // an actuator with dynamics or a muscle's curves is none of the simple kinds
+    const bool simple = model.actuator_dyntype[a] == DynType::kNone &&
+                        model.actuator_gaintype[a] != GainType::kMuscle &&
+                        model.actuator_biastype[a] != BiasType::kMuscle;
     model.actuator_kind[a] =
-        actuator_kind_of(model.actuator_gaintype[a], model.actuator_gainprm[a],
-                         model.actuator_biastype[a], model.actuator_biasprm[a]);
+        simple ? actuator_kind_of(model.actuator_gaintype[a], model.actuator_gainprm[a],
+                                  model.actuator_biastype[a], model.actuator_biasprm[a])
+               : ActuatorKind::kGeneral;
   }
 }
 
@@ -134,7 +140,8 @@ bool contacts_possible(const Model& model) {
   const auto n = static_cast<size_t>(model.ngeom);
   const bool has_parameters = model.geom_friction.size() == n && model.geom_condim.size() == n &&
                               model.geom_margin.size() == n;
-  if (!has_parameters || model.opt.contact_disabled) return false;
+  if (!has_parameters || model.opt.disabled(kDisableContact) ||
+      model.opt.disabled(kDisableConstraint)) return false;
   if (model.npair > 0) return true;
   for (int g1 = 0; g1 < model.ngeom; ++g1) {
     for (int g2 = g1 + 1; g2 < model.ngeom; ++g2) {
@@ -217,14 +224,34 @@ void build_tendon_constants(Model& model, Data& data) {
     for (int j = 0; j < model.nv; ++j) weight += data.ten_J(t, j) * x[j];
     model.tendon_invweight0[t] = weight;
   }
+  // a spatial tendon's length needs the sites (and wrapping geoms) placed at qpos_spring
   const Eigen::VectorXd qpos = data.qpos;
   data.qpos = model.qpos_spring;
+  kinematics(model, data);
   tendon(model, data);
   for (int t = 0; t < model.ntendon; ++t) {
     if (model.tendon_lengthspring[t] < 0) model.tendon_lengthspring[t] = data.ten_length[t];
   }
   data.qpos = qpos;
+  kinematics(model, data);
   tendon(model, data);
+}
+
+// The actuators' constants (mj_setConst): each length at qpos0 and the norm of M^-1 times its
+// moment there (data: kinematics, tendons and M's factor at qpos0).
+void build_actuator_constants(Model& model, Data& data) {
+  model.actuator_length0.assign(model.nu, 0.0);
+  model.actuator_acc0.assign(model.nu, 0.0);
+  if (model.nu == 0) return;
+  transmission(model, data);
+  Eigen::VectorXd x(model.nv);
+  for (int a = 0; a < model.nu; ++a) {
+    model.actuator_length0[a] = data.actuator_length[a];
+    if (model.nv == 0) continue;
+    x = data.actuator_moment.row(a).transpose();
+    solve_mass(model, data, x);
+    model.actuator_acc0[a] = x.norm();
+  }
 }
 
 }  // namespace
@@ -234,6 +261,9 @@ void set_const(Model& model) {
   build_subtree_masses(model);
   build_rotations(model);
   build_actuator_kinds(model);
+  model.tendons_wrap_geoms = std::any_of(model.wrap_type.begin(), model.wrap_type.end(), [](WrapType w) {
+    return w == WrapType::kSphere || w == WrapType::kCylinder;
+  });
   detail::build_collision_constants(model);
   // the constants and the checks at qpos0 are about the parameters: computed without contacts
   model.contacts_possible = false;
@@ -285,6 +315,7 @@ void set_const(Model& model) {
     model.body_invweight0[b] = weight;
   }
   build_tendon_constants(model, data);
+  build_actuator_constants(model, data);
   complete_equality_data(model, data);  // constraint/equality.cpp: anchors at qpos0
   detail::check_at_qpos0(model, data);  // model_check.cpp: finite parameters can still overflow
   build_simple_bodies(model);  // after dof_M0, which crba() copies for their dofs from now on

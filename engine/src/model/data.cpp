@@ -50,7 +50,8 @@ namespace {
 // contacts), the constraint Jacobian, the factor of M, and the workspace. An array added to Data
 // that is not in the table gets its size here, in one line.
 void lay_out_own_arrays(Data& d, detail::ArrayPlacer& place) {
-  const std::size_t nq = d.nq, nv = d.nv, nbody = d.nbody, nefc = d.nefc_max, ncon = d.nconmax;
+  const std::size_t nq = d.nq, nv = d.nv, na = d.na, nbody = d.nbody, nefc = d.nefc_max,
+                    ncon = d.nconmax;
   place(d.cinert, nbody);
   place(d.contact, ncon);
   place(d.qLD, nv, nv);
@@ -82,6 +83,8 @@ void lay_out_own_arrays(Data& d, detail::ArrayPlacer& place) {
   place(w.contact_span, 2 * ncon);
   place(w.dof_chain, 2 * nv);
   place(w.equality_jac, 12, nv);
+  place(w.tendon_jac, 12, nv);
+  place(w.transmission_jac, 12, nv);
   place(w.contact_weight, 36 * ncon);
   place(w.frame_scratch, 6 * nv);
   place(w.hessian_envelope, nv);
@@ -90,7 +93,10 @@ void lay_out_own_arrays(Data& d, detail::ArrayPlacer& place) {
   for (int i = 0; i < 4; ++i) {
     place(w.rk_qvel[i], nv);
     place(w.rk_qacc[i], nv);
+    place(w.rk_act_dot[i], na);
   }
+  place(w.rk_act0, na);
+  place(w.rk_dact, na);
   place(w.qDeriv, nv, nv);
   place(w.qLU, nv, nv);
   place(w.subtree_coupling, nbody);
@@ -137,6 +143,8 @@ Data::Data(const Model& model) {
   nmocap = model.nmocap;
   nsensordata = model.nsensordata;
   ntendon = model.ntendon;
+  nwrap = model.nwrap;
+  na = model.na;
   nconmax = std::max(0, model.nconmax);
   // one block for every array, zeroed; then the values that are not zero
   block_ = ArenaBlock(block_bytes(*this));
@@ -204,6 +212,8 @@ void reset(const Model& model, Data& data) {
   data.qpos = model.qpos0;
   data.qvel.setZero();
   data.ctrl.setZero();
+  data.act.setZero();
+  data.act_dot.setZero();
   data.qfrc_applied.setZero();
   place_mocap_at_bodies(model, data);
   data.qacc.setZero();
@@ -226,6 +236,7 @@ void reset_keyframe(const Model& model, Data& data, int key) {
   data.qpos = model.key_qpos.row(key).transpose();
   data.qvel = model.key_qvel.row(key).transpose();
   data.ctrl = model.key_ctrl.row(key).transpose();
+  data.act = model.key_act.row(key).transpose();
   for (int i = 0; i < model.nmocap; ++i) {
     for (int k = 0; k < 3; ++k) data.mocap_pos[i][k] = model.key_mpos(key, 3 * i + k);
     for (int k = 0; k < 4; ++k) data.mocap_quat[i][k] = model.key_mquat(key, 4 * i + k);

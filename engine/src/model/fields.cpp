@@ -18,12 +18,13 @@ constexpr Size one = Size::kOne, nq = Size::kNq, nv = Size::kNv, nu = Size::kNu,
                nbody = Size::kNbody, njnt = Size::kNjnt, ngeom = Size::kNgeom, nsite = Size::kNsite,
                nefc = Size::kNefc, npair = Size::kNpair, nexclude = Size::kNexclude,
                nmesh = Size::kNmesh, nmeshvert = Size::kNmeshvert, nmeshgraph = Size::kNmeshgraph,
+               nmeshface = Size::kNmeshface,
                nsensor = Size::kNsensor, nsensordata = Size::kNsensordata,
                neq = Size::kNeq, nmocap = Size::kNmocap, ntendon = Size::kNtendon,
-               nwrap = Size::kNwrap;
+               nwrap = Size::kNwrap, na = Size::kNa;
 constexpr Stage state = Stage::kState, position = Stage::kPosition, velocity = Stage::kVelocity,
                 acceleration = Stage::kAcceleration, inverse = Stage::kInverse,
-                energy = Stage::kEnergy;
+                energy = Stage::kEnergy, step = Stage::kStep;
 constexpr bool mujoco = true, own = false;
 }  // namespace token
 
@@ -303,6 +304,7 @@ int size_of(const Model& model, Size size) {
     case Size::kNmesh: return model.nmesh;
     case Size::kNmeshvert: return model.nmeshvert;
     case Size::kNmeshgraph: return model.nmeshgraph;
+    case Size::kNmeshface: return model.nmeshface;
     case Size::kNsensor: return model.nsensor;
     case Size::kNsensordata: return model.nsensordata;
     case Size::kNeq: return model.neq;
@@ -315,6 +317,7 @@ int size_of(const Model& model, Size size) {
     case Size::kNuserSensor: return model.nuser_sensor;
     case Size::kNtendon: return model.ntendon;
     case Size::kNwrap: return model.nwrap;
+    case Size::kNa: return model.na;
   }
   return 0;
 }
@@ -324,18 +327,18 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 26> names = {
+  static constexpr std::array<const char*, 28> names = {
       "1",          "nq",          "nv",           "nu",          "nbody",          "njnt",
       "ngeom",      "nsite",       "nefc",         "npair",       "nexclude",       "nmesh",
-      "nmeshvert",  "nmeshgraph",  "nsensor",      "nsensordata", "neq",            "nmocap",
+      "nmeshvert",  "nmeshgraph",  "nmeshface",    "nsensor",      "nsensordata", "neq",            "nmocap",
       "nuser_body", "nuser_jnt",   "nuser_geom",   "nuser_site",  "nuser_actuator", "nuser_sensor",
-      "ntendon",    "nwrap"};
+      "ntendon",    "nwrap",       "na"};
   return names[static_cast<size_t>(size)];
 }
 
 const char* stage_name(Stage stage) {
-  static constexpr std::array<const char*, 6> names = {"state",        "position", "velocity",
-                                                       "acceleration", "inverse",  "energy"};
+  static constexpr std::array<const char*, 7> names = {
+      "state", "position", "velocity", "acceleration", "inverse", "energy", "step"};
   return names[static_cast<size_t>(stage)];
 }
 
@@ -426,6 +429,8 @@ int data_rows(const Data& data, Size size) {
     case Size::kNsensordata: return data.nsensordata;
     case Size::kNmocap: return data.nmocap;
     case Size::kNtendon: return data.ntendon;
+    case Size::kNwrap: return data.nwrap;
+    case Size::kNa: return data.na;
     default: break;
   }
   throw StateError(std::string("lever: a Data array counted in ") + size_name(size) +
@@ -481,9 +486,10 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 25> counts = {{{"nmesh", model.nmesh},
+  const std::array<std::pair<const char*, int>, 27> counts = {{{"nmesh", model.nmesh},
                                                                {"nmeshvert", model.nmeshvert},
                                                                {"nmeshgraph", model.nmeshgraph},
+                                                               {"nmeshface", model.nmeshface},
                                                                {"nq", model.nq},
                                                                {"nv", model.nv},
                                                                {"nu", model.nu},
@@ -505,7 +511,8 @@ void size_model(Model& model) {
                                                                {"nuser_actuator", model.nuser_actuator},
                                                                {"nuser_sensor", model.nuser_sensor},
                                                                {"ntendon", model.ntendon},
-                                                               {"nwrap", model.nwrap}}};
+                                                               {"nwrap", model.nwrap},
+                                                               {"na", model.na}}};
   for (const auto& [name, n] : counts) {
     if (n < 0) {
       throw ModelError(std::string("size_model: ") + name + " = " + std::to_string(n) +
@@ -534,6 +541,7 @@ void size_model(Model& model) {
   model.key_qpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nq));
   model.key_qvel.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nv));
   model.key_ctrl.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nu));
+  model.key_act.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.na));
   model.key_mpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, 3 * model.nmocap));
   model.key_mquat.conservativeResizeLike(RowMatrix::Zero(model.nkey, 4 * model.nmocap));
   model.fit_tag = 0;  // its arrays may have changed: set_const again before a Data trusts it

@@ -35,7 +35,10 @@ void check_inputs(Data& data) {
 // The position stage after the kinematics: contacts, M and its factor, constraint rows,
 // transmission.
 void after_kinematics(const Model& model, Data& data) {
-  if (model.contacts_possible) {
+  // the flags read here too, so that one switched after set_const still holds (MuJoCo reads them
+  // in mj_collision)
+  if (model.contacts_possible && !model.opt.disabled(kDisableContact) &&
+      !model.opt.disabled(kDisableConstraint)) {
     collision(model, data);
   } else {
     data.ncon = 0;
@@ -81,11 +84,14 @@ void forward_stages(const Model& model, Data& data, void (*kinematics_stage)(con
   // a model without sensors pays one test here, not three calls
   const bool with_sensors = sensors && model.nsensor > 0;
   check_inputs(data);
+  const bool energy = model.opt.enabled(kEnableEnergy);
   kinematics_stage(model, data);
   after_kinematics(model, data);
   if (with_sensors) sensor_position(model, data);
+  if (energy) unchecked::energy_position(model, data);
   velocity_core(model, data);
   if (with_sensors) sensor_velocity(model, data);
+  if (energy) unchecked::energy_velocity(model, data);
   acceleration_core(model, data);
   if (with_sensors) sensor_acceleration(model, data);
   record_if_bad(data, data.qacc, Warning::kBadQacc);
@@ -104,11 +110,13 @@ void position_stage(const Model& model, Data& data) {
   kinematics(model, data);
   after_kinematics(model, data);
   sensor_position(model, data);
+  if (model.opt.enabled(kEnableEnergy)) unchecked::energy_position(model, data);
 }
 
 void velocity_stage(const Model& model, Data& data) {
   velocity_core(model, data);
   sensor_velocity(model, data);
+  if (model.opt.enabled(kEnableEnergy)) unchecked::energy_velocity(model, data);
 }
 
 void acceleration_stage(const Model& model, Data& data) {
@@ -133,6 +141,28 @@ void forward_without_sensors(const Model& model, Data& data) {
 
 void step_forward_without_sensors(const Model& model, Data& data) {
   forward_stages(model, data, step_kinematics_for(model), false);
+}
+
+void compare_forward_inverse(const Model& model, Data& data) {
+  data.solver_fwdinv = {0.0, 0.0};
+  if (data.nefc == 0) return;
+  // what forward() applied, and what it found, kept while inverse dynamics at its qacc reuses
+  // the same arrays (MuJoCo's mj_compareFwdInv; it keeps the inverse's qfrc_inverse)
+  ArenaVector& forward_constraint = data.work.vec1;
+  ArenaVector& applied = data.work.vec2;
+  ArenaVector& forward_efc_force = data.work.lcp_f;  // (nefc_max) the pivoting solver's
+  forward_constraint = data.qfrc_constraint;
+  forward_efc_force.head(data.nefc) = data.efc_force.head(data.nefc);
+  applied = data.qfrc_applied + data.qfrc_actuator;
+
+  constraint_forces_at(data, data.qacc);
+  rnea(model, data, data.qacc, data.qfrc_inverse);
+  data.qfrc_inverse -= data.qfrc_passive + data.qfrc_constraint;
+
+  data.solver_fwdinv[0] = (forward_constraint - data.qfrc_constraint).norm();
+  data.solver_fwdinv[1] = (applied - data.qfrc_inverse).norm();
+  data.qfrc_constraint = forward_constraint;
+  data.efc_force.head(data.nefc) = forward_efc_force.head(data.nefc);
 }
 
 }  // namespace detail

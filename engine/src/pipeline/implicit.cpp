@@ -51,7 +51,9 @@ void smooth_velocity_derivative(const Model& model, Data& data,
   qDeriv = -qDeriv;
 
   add_actuator_damping_velocity_terms(model, data, qDeriv);
-  if (has_fluid(model.opt)) detail::add_fluid_velocity_terms(model, data, qDeriv);
+  if (has_fluid(model.opt) && !model.opt.disabled(kDisablePassive)) {
+    detail::add_fluid_velocity_terms(model, data, qDeriv);
+  }
 }
 
 namespace {
@@ -76,24 +78,38 @@ void add_row_outer_product(const Model& model, const double* J, double b,
 void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
                                          Eigen::Ref<Eigen::MatrixXd> D) {
   // actuators: d force / d velocity of the affine bias and gain, carried to the dof by the gear
-  for (int a = 0; a < model.nu; ++a) {
+  const int actuators = model.opt.disabled(kDisableActuation) ? 0 : model.nu;
+  for (int a = 0; a < actuators; ++a) {
     double force_per_velocity = 0.0;
     if (model.actuator_biastype[a] == BiasType::kAffine) {
       force_per_velocity = model.actuator_biasprm[a][2];
     }
+    // the gain's velocity term times what the gain multiplies: the raw ctrl (MuJoCo's, without
+    // its clamp), or the activation
+    double gain_per_velocity = 0.0;
     if (model.actuator_gaintype[a] == GainType::kAffine) {
-      force_per_velocity += model.actuator_gainprm[a][2] * data.ctrl[a];
+      gain_per_velocity = model.actuator_gainprm[a][2];
+    } else if (model.actuator_gaintype[a] == GainType::kMuscle) {
+      gain_per_velocity = muscle_gain_per_velocity(
+          data.actuator_length[a], data.actuator_velocity[a], model.actuator_lengthrange[a],
+          model.actuator_acc0[a], model.actuator_gainprm[a].data());
     }
-    if (model.actuator_trntype[a] == TransmissionType::kTendon) {
+    if (gain_per_velocity != 0.0) {
+      const int first_stateful = model.nu - model.na;
+      force_per_velocity += gain_per_velocity * (a < first_stateful ? data.ctrl[a]
+                                                                    : data.act[a - first_stateful]);
+    }
+    const int dof = actuator_scalar_dof(model, a);
+    if (dof < 0) {  // moment^T (d force / d velocity) moment
       if (force_per_velocity != 0.0) {
         add_row_outer_product(model, data.actuator_moment.row(a).data(), force_per_velocity, D);
       }
       continue;
     }
     const double gear = model.actuator_gear[a][0];
-    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
     D(dof, dof) += gear * force_per_velocity * gear;
   }
+  if (model.opt.disabled(kDisablePassive)) return;  // no dampers either
   // joint damping
   for (int i = 0; i < model.nv; ++i) D(i, i) -= model.dof_damping[i];
   // tendon damping: -damping J^T J over the tendon's Jacobian
@@ -147,6 +163,7 @@ void implicit_step(const Model& model, Data& data) {
   factor_lu_tree(model, w.qLU);
   w.vec1 = data.qfrc_smooth + data.qfrc_constraint;
   solve_lu_tree(model, w.qLU, w.vec1.data());
+  advance_activations(model, data, data.act_dot.data(), h);
   data.qvel += h * w.vec1;
   integrate_positions(model, data.qpos.data(), data.qvel.data(), h);
   data.time += h;
@@ -160,6 +177,7 @@ void implicit_fast_step(const Model& model, Data& data) {
   factor_mass_minus(model, data, w.qDeriv, h);
   w.vec1 = data.qfrc_smooth + data.qfrc_constraint;
   solve_mass_damped(model, data, w.vec1);
+  advance_activations(model, data, data.act_dot.data(), h);
   data.qvel += h * w.vec1;
   integrate_positions(model, data.qpos.data(), data.qvel.data(), h);
   data.time += h;

@@ -68,6 +68,7 @@ void euler(const Model& model, Data& data) {
     solve_mass_damped(model, data, qacc);
   }
 
+  detail::advance_activations(model, data, data.act_dot.data(), h);
   data.qvel += h * qacc;
   detail::integrate_positions(model, data.qpos.data(), data.qvel.data(), h);
   data.time += h;
@@ -84,6 +85,8 @@ void rk4(const Model& model, Data& data, void (*stage_fn)(const Model&, Data&)) 
   w.rk_qvel0 = data.qvel;
   w.rk_qvel[0] = data.qvel;
   w.rk_qacc[0] = data.qacc;  // stage 0 is the forward() step() already ran
+  w.rk_act0 = data.act;
+  w.rk_act_dot[0] = data.act_dot;
 
   for (int i = 1; i < 4; ++i) {
     // the stage's velocity (one nonzero a_ij per row), integrated from the step's start
@@ -91,18 +94,25 @@ void rk4(const Model& model, Data& data, void (*stage_fn)(const Model&, Data&)) 
     data.qpos = w.rk_qpos0;
     detail::integrate_positions(model, data.qpos.data(), w.rk_dq.data(), h);
     data.qvel = w.rk_qvel0 + (h * kA[i - 1]) * w.rk_qacc[i - 1];
+    // the stage's activation, unclamped (MuJoCo clamps only in the final update)
+    data.act = w.rk_act0 + (h * kA[i - 1]) * w.rk_act_dot[i - 1];
     data.time = t0 + kA[i - 1] * h;
     stage_fn(model, data);
     w.rk_qvel[i] = data.qvel;
     w.rk_qacc[i] = data.qacc;
+    w.rk_act_dot[i] = data.act_dot;
   }
 
   w.rk_dq.setZero();
   w.rk_dv.setZero();
+  w.rk_dact.setZero();
   for (int i = 0; i < 4; ++i) {
     w.rk_dq += kB[i] * w.rk_qvel[i];
     w.rk_dv += kB[i] * w.rk_qacc[i];
+    w.rk_dact += kB[i] * w.rk_act_dot[i];
   }
+  data.act = w.rk_act0;
+  detail::advance_activations(model, data, w.rk_dact.data(), h);
   data.qvel = w.rk_qvel0 + h * w.rk_dv;
   data.qpos = w.rk_qpos0;
   detail::integrate_positions(model, data.qpos.data(), w.rk_dq.data(), h);
@@ -112,6 +122,19 @@ void rk4(const Model& model, Data& data, void (*stage_fn)(const Model&, Data&)) 
 }  // namespace
 
 namespace detail {
+
+void advance_activations(const Model& model, Data& data, const double* act_dot, double h) {
+  const int first_stateful = model.nu - model.na;
+  for (int k = 0; k < model.na; ++k) {
+    double& act = data.act[k];
+    act += h * act_dot[k];
+    const int a = first_stateful + k;
+    if (!model.actuator_actlimited[a]) continue;
+    const auto& range = model.actuator_actrange[a];
+    if (act < range[0]) act = range[0];
+    if (act > range[1]) act = range[1];
+  }
+}
 
 void integrate_positions(const Model& model, double* qpos, const double* qvel, double h) {
   for (int j = 0; j < model.njnt; ++j) {
@@ -171,6 +194,7 @@ void detail::step(const Model& model, Data& data, void (*forward_fn)(const Model
   }
   forward_fn(model, data);
   if (check_and_reset(model, data, data.qacc, Warning::kBadQacc)) forward_fn(model, data);
+  if (model.opt.enabled(kEnableFwdinv)) compare_forward_inverse(model, data);
 
   switch (model.opt.integrator) {
     case Integrator::kEuler: euler(model, data); break;
@@ -199,12 +223,15 @@ void step1(const Model& model, Data& data) {
   }
   position_stage(model, data);
   velocity_stage(model, data);
+  // MuJoCo's mj_step1 calls the energy functions whatever the flag, and they clear it when off
+  if (!model.opt.enabled(kEnableEnergy)) data.energy = {0.0, 0.0};
 }
 
 void step2(const Model& model, Data& data) {
   check_entry(model, data, "lever::step2");
   acceleration_stage(model, data);
   if (check_and_reset(model, data, data.qacc, Warning::kBadQacc)) forward(model, data);
+  if (model.opt.enabled(kEnableFwdinv)) detail::compare_forward_inverse(model, data);
   // as in MuJoCo 2.2.2, the split step integrates RK4 models with Euler: RK4 needs forward() at
   // states in the middle of the step, which the caller's control is not part of. The implicit
   // integrators stay implicit (they need only the start of the step), as in MuJoCo 3 for

@@ -49,6 +49,12 @@ void step_forward(const Model& model, Data& data);
 void forward_without_sensors(const Model& model, Data& data);
 void step_forward_without_sensors(const Model& model, Data& data);
 
+/// data.solver_fwdinv after forward(), for <flag fwdinv="enable"> (MuJoCo's mj_compareFwdInv):
+/// inverse dynamics at forward()'s qacc, the constraint force and the applied force it implies
+/// compared with forward()'s; forward()'s efc_force and qfrc_constraint are kept, inverse()'s
+/// qfrc_inverse and efc_state are left (forward.cpp).
+void compare_forward_inverse(const Model& model, Data& data);
+
 /// step() after its entry check, the step's forward() being `forward_fn` (forward() or
 /// step_forward(); integrate.cpp) and the RK4 stages' `stage_fn` (the same without sensors).
 void step(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&),
@@ -58,6 +64,10 @@ void step(const Model& model, Data& data, void (*forward_fn)(const Model&, Data&
 /// slide coordinates add h qvel; a ball's or free joint's quaternion turns by the rotation h w
 /// about its body axes and is normalized. Used by every integrator.
 void integrate_positions(const Model& model, double* qpos, const double* qvel, double h);
+
+/// act += h act_dot (na numbers), then each limited activation clamped to its actrange (MuJoCo's
+/// mj_advance: every integrator's last step on the activations).
+void advance_activations(const Model& model, Data& data, const double* act_dot, double h);
 }  // namespace detail
 
 }  // namespace lever

@@ -113,7 +113,7 @@ void rne_post_constraint(const Model& model, Data& data) {
   // down the tree: each body's acceleration (the world's is -g, so that gravity is felt as an
   // upward acceleration), the net force that takes, and the parent's share of it
   data.cacc[0].setZero();
-  data.cacc[0].tail<3>() = -model.opt.gravity;
+  if (!model.opt.disabled(kDisableGravity)) data.cacc[0].tail<3>() = -model.opt.gravity;
   data.cfrc_int[0].setZero();
   for (int b = 1; b < nbody; ++b) {
     const int first = model.body_dofadr[b], n = model.body_dofnum[b];

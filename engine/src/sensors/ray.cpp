@@ -1,6 +1,7 @@
 // Rays against geoms (MuJoCo 2.2.2's engine_ray.c): where a ray p + x v first meets a shape, as
 // the number x >= 0, or -1 when it never does. Each shape is intersected in its own frame, where
-// it is centred and axis-aligned, so that each surface is a quadratic or a plane in x.
+// it is centred and axis-aligned, so that each surface is a quadratic or a plane in x; a mesh
+// triangle by triangle (ray_mesh).
 #include <cmath>
 
 #include "basics/basics.hpp"
@@ -114,7 +115,75 @@ double ray_box(const Vector3d& size, const Vector3d& p, const Vector3d& v) {
   return best;
 }
 
+// A triangle (corners v, the ray's frame) met by p + x d: projected on the plane across d (axes
+// b0, b1), the ray is the origin, and it meets the triangle where the origin is inside the
+// projected triangle; then x is where the ray crosses the triangle's plane (MuJoCo's
+// ray_triangle).
+double ray_triangle(const Vector3d v[3], const Vector3d& p, const Vector3d& d, const Vector3d& b0,
+                    const Vector3d& b1) {
+  double planar[3][2];
+  for (int i = 0; i < 3; ++i) {
+    const Vector3d dif = v[i] - p;
+    planar[i][0] = b0.dot(dif);
+    planar[i][1] = b1.dot(dif);
+  }
+  // all three corners on one side of an axis: the origin is outside
+  for (int axis = 0; axis < 2; ++axis) {
+    if ((planar[0][axis] > 0 && planar[1][axis] > 0 && planar[2][axis] > 0) ||
+        (planar[0][axis] < 0 && planar[1][axis] < 0 && planar[2][axis] < 0)) {
+      return -1;
+    }
+  }
+  // the origin as corner 2 + t0 (corner 0 - corner 2) + t1 (corner 1 - corner 2)
+  const double a00 = planar[0][0] - planar[2][0], a01 = planar[1][0] - planar[2][0];
+  const double a10 = planar[0][1] - planar[2][1], a11 = planar[1][1] - planar[2][1];
+  const double det = a00 * a11 - a01 * a10;
+  if (std::abs(det) < kMinVal) return -1;
+  const double r0 = -planar[2][0], r1 = -planar[2][1];
+  const double t0 = (a11 * r0 - a01 * r1) / det;
+  const double t1 = (-a10 * r0 + a00 * r1) / det;
+  if (t0 < 0 || t1 < 0 || t0 + t1 > 1) return -1;
+  // where the ray crosses the triangle's plane
+  const Vector3d normal = (v[0] - v[2]).cross(v[1] - v[2]);
+  const double denom = d.dot(normal);
+  if (std::abs(denom) < kMinVal) return -1;
+  return -(p - v[2]).dot(normal) / denom;
+}
+
 }  // namespace
+
+double ray_mesh(const Model& model, const Data& data, int g, const Vector3d& pnt,
+                const Vector3d& vec) {
+  const Mat3& R = data.geom_xmat[g];
+  // the mesh's bounding box first (a mesh geom's size is its half-extents)
+  if (ray_shape(data.geom_xpos[g], R, model.geom_size[g], pnt, vec, GeomType::kBox) < 0) return -1;
+  const Vector3d p = rotate_back(R, pnt - data.geom_xpos[g]), d = rotate_back(R, vec);
+  // axes across d: b1 from the coordinate axis least along d (its (1, 1, 1) without that
+  // component), made normal to d; b0 normal to both
+  Vector3d b0(1, 1, 1);
+  if (std::abs(d[0]) >= std::abs(d[1]) && std::abs(d[0]) >= std::abs(d[2])) {
+    b0[0] = 0;
+  } else if (std::abs(d[1]) >= std::abs(d[2])) {
+    b0[1] = 0;
+  } else {
+    b0[2] = 0;
+  }
+  Vector3d b1 = b0 - (d.dot(b0) / d.dot(d)) * d;
+  b1 /= b1.norm();
+  b0 = b1.cross(d);
+  b0 /= b0.norm();
+
+  const int mesh = model.geom_dataid[g];
+  const Eigen::Vector3d* vert = model.mesh_vert.data() + model.mesh_vertadr[mesh];
+  double best = -1;
+  const int first = model.mesh_faceadr[mesh], end = first + model.mesh_facenum[mesh];
+  for (int f = first; f < end; ++f) {
+    const std::array<int, 3>& corners = model.mesh_face[f];
+    const Vector3d v[3] = {vert[corners[0]], vert[corners[1]], vert[corners[2]]};
+    best = nearer(best, ray_triangle(v, p, d, b0, b1));
+  }
+  return best;
+}
 
 double ray_shape(const Vector3d& pos, const Mat3& R, const Vector3d& size, const Vector3d& pnt,
                  const Vector3d& vec, GeomType type) {
@@ -142,7 +211,7 @@ double ray_shape(const Vector3d& pos, const Mat3& R, const Vector3d& size, const
     case GeomType::kEllipsoid: return ray_ellipsoid(size, p, v);
     case GeomType::kCylinder: return ray_cylinder(size, p, v);
     case GeomType::kBox: return ray_box(size, p, v);
-    default: return -1;  // meshes and height fields: a model with a rangefinder has none
+    default: return -1;  // meshes (ray_mesh) and height fields (a rangefinder's model has none)
   }
 }
 
@@ -160,8 +229,10 @@ double ray(const Model& model, const Data& data, const Vector3d& pnt, const Vect
     } else if (model.geom_rgba[g][3] == 0) {
       continue;
     }
-    const double x = ray_shape(data.geom_xpos[g], data.geom_xmat[g], model.geom_size[g], pnt, vec,
-                               model.geom_type[g]);
+    const double x = model.geom_type[g] == GeomType::kMesh
+                         ? ray_mesh(model, data, g, pnt, vec)
+                         : ray_shape(data.geom_xpos[g], data.geom_xmat[g], model.geom_size[g],
+                                     pnt, vec, model.geom_type[g]);
     if (x >= 0 && (best < 0 || x < best)) {
       best = x;
       *geom = g;

@@ -1,7 +1,7 @@
 // The sensor stages (MuJoCo 2.2.2's engine_sensor.c): after each stage of forward(), the
 // sensors that stage can evaluate (sensor_needstage) write their numbers at sensor_adr in
-// data.sensordata; then, with <flag sensornoise="enable">, each gets its noise, and last each is
-// clipped at its cutoff.
+// data.sensordata (user sensors by the model's sensor_callback, MuJoCo's mjcb_sensor); then, with
+// <flag sensornoise="enable">, each gets its noise, and last each is clipped at its cutoff.
 #include <cmath>
 
 #include "basics/basics.hpp"
@@ -72,8 +72,7 @@ SensorLayout sensor_layout(SensorType type) {
 
 bool sensor_type_supported(SensorType type) {
   const int t = static_cast<int>(type);
-  if (t < 0 || t > static_cast<int>(SensorType::kClock)) return false;
-  return true;  // every type but user sensors, which MuJoCo fills from a callback
+  return t >= 0 && t <= static_cast<int>(SensorType::kUser);
 }
 
 namespace {
@@ -242,8 +241,20 @@ void apply_cutoff(const Model& model, Data& data, SensorStage stage) {
   }
 }
 
+// The user sensors of this stage, by the model's callback (MuJoCo's mjcb_sensor): without one,
+// their numbers stay what they were.
+void evaluate_user_sensors(const Model& model, Data& data, SensorStage stage) {
+  if (!model.sensor_callback) return;
+  for (int s = 0; s < model.nsensor; ++s) {
+    if (model.sensor_type[s] == SensorType::kUser && model.sensor_needstage[s] == stage) {
+      model.sensor_callback(model, data, stage);
+      return;
+    }
+  }
+}
+
 void finish_stage(const Model& model, Data& data, SensorStage stage) {
-  if (model.opt.sensornoise) add_noise(model, data, stage);
+  if (model.opt.enabled(kEnableSensornoise)) add_noise(model, data, stage);
   apply_cutoff(model, data, stage);
 }
 
@@ -328,7 +339,7 @@ double touch(const Model& model, const Data& data, int site) {
 // ---- the stages ---------------------------------------------------------------------------------
 
 void sensor_position(const Model& model, Data& data) {
-  if (model.nsensor == 0) return;
+  if (model.nsensor == 0 || model.opt.disabled(kDisableSensor)) return;
   for (int s = 0; s < model.nsensor; ++s) {
     if (model.sensor_needstage[s] != SensorStage::kPosition) continue;
     const int id = model.sensor_objid[s];
@@ -364,11 +375,12 @@ void sensor_position(const Model& model, Data& data) {
       default: break;  // validate() admits no other type at this stage
     }
   }
+  evaluate_user_sensors(model, data, SensorStage::kPosition);
   finish_stage(model, data, SensorStage::kPosition);
 }
 
 void sensor_velocity(const Model& model, Data& data) {
-  if (model.nsensor == 0) return;
+  if (model.nsensor == 0 || model.opt.disabled(kDisableSensor)) return;
   bool subtrees_done = false;
   for (int s = 0; s < model.nsensor; ++s) {
     if (model.sensor_needstage[s] != SensorStage::kVelocity) continue;
@@ -405,11 +417,12 @@ void sensor_velocity(const Model& model, Data& data) {
       default: break;
     }
   }
+  evaluate_user_sensors(model, data, SensorStage::kVelocity);
   finish_stage(model, data, SensorStage::kVelocity);
 }
 
 void sensor_acceleration(const Model& model, Data& data) {
-  if (model.nsensor == 0) return;
+  if (model.nsensor == 0 || model.opt.disabled(kDisableSensor)) return;
   bool forces_done = false;
   for (int s = 0; s < model.nsensor; ++s) {
     if (model.sensor_needstage[s] != SensorStage::kAcceleration) continue;
@@ -461,6 +474,7 @@ void sensor_acceleration(const Model& model, Data& data) {
       default: break;
     }
   }
+  evaluate_user_sensors(model, data, SensorStage::kAcceleration);
   finish_stage(model, data, SensorStage::kAcceleration);
 }
 

@@ -41,6 +41,11 @@ void subtree_velocities(const Model& model, Data& data);
 double ray_shape(const Eigen::Vector3d& pos, const Mat3& R, const Eigen::Vector3d& size,
                  const Eigen::Vector3d& pnt, const Eigen::Vector3d& vec, GeomType type);
 
+/// Distance along vec from pnt to mesh geom g's triangles, -1 if the ray meets none (MuJoCo's
+/// mj_rayMesh: its bounding box first, then every triangle).
+double ray_mesh(const Model& model, const Data& data, int g, const Eigen::Vector3d& pnt,
+                const Eigen::Vector3d& vec);
+
 /// The nearest geom a ray from pnt along vec meets, the geoms of body `exclude_body` and
 /// invisible ones (rgba alpha 0) left out (MuJoCo's mj_ray with every group and static geoms):
 /// its distance in lengths of vec, -1 if none; *geom its id (-1).

@@ -1,4 +1,5 @@
-// Potential and kinetic energy (MuJoCo's mj_energyPos and mj_energyVel).
+// Potential and kinetic energy (MuJoCo's mj_energyPos and mj_energyVel): forward() computes them
+// with <flag energy="enable">, compute_energy() on demand.
 #include <lever/dynamics.hpp>
 
 #include "basics/basics.hpp"
@@ -7,12 +8,17 @@
 
 namespace lever {
 
-void compute_energy(const Model& model, Data& data) {
-  check_entry(model, data, "lever::compute_energy");
+void unchecked::energy_position(const Model& model, Data& data) {
   // gravity: -m g . x_com for every body; springs: k (q - q_spring)^2 / 2, tendons' included
   double potential = 0.0;
-  for (int b = 1; b < model.nbody; ++b) {
-    potential -= model.body_mass[b] * model.opt.gravity.dot(data.xipos[b]);
+  if (!model.opt.disabled(kDisableGravity)) {
+    for (int b = 1; b < model.nbody; ++b) {
+      potential -= model.body_mass[b] * model.opt.gravity.dot(data.xipos[b]);
+    }
+  }
+  if (model.opt.disabled(kDisablePassive)) {
+    data.energy[0] = potential;
+    return;
   }
   for (int j = 0; j < model.njnt; ++j) {
     const double k = model.jnt_stiffness[j];
@@ -43,9 +49,19 @@ void compute_energy(const Model& model, Data& data) {
     if (model.tendon_stiffness[t] > 0) potential += 0.5 * model.tendon_stiffness[t] * stretch * stretch;
   }
   data.energy[0] = potential;
+}
+
+void unchecked::energy_velocity(const Model& model, Data& data) {
+  (void)model;
   auto& momentum = data.work.vec1;  // preallocated: no heap use here
   momentum.noalias() = data.M * data.qvel;
   data.energy[1] = 0.5 * data.qvel.dot(momentum);
+}
+
+void compute_energy(const Model& model, Data& data) {
+  check_entry(model, data, "lever::compute_energy");
+  unchecked::energy_position(model, data);
+  unchecked::energy_velocity(model, data);
 }
 
 }  // namespace lever

@@ -431,18 +431,17 @@ void place_site(const Model& model, Data& data, int site) {
 namespace detail {
 
 void step_kinematics(const Model& model, Data& data) {
-  // nothing in a step reads the geom frames unless collision runs; the site frames are what a
-  // caller reads after a step (an end effector's position), and cost little
-  place_bodies(model, data, model.contacts_possible);
+  // nothing in a step reads the geom frames unless collision runs or a tendon wraps around a
+  // geom; the site frames are what a caller reads after a step (an end effector's position), and
+  // cost little
+  place_bodies(model, data, model.contacts_possible || model.tendons_wrap_geoms);
   com_quantities(model, data);
 }
 
 }  // namespace detail
 
-namespace {
-
 // The Jacobians of a point fixed to a body, once the arguments are known to fit.
-void point_jacobians(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
+void detail::point_jacobians(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
                      Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr) {
   // write through column pointers: Eigen's dynamic-size assignment on a Ref costs more than the
   // arithmetic here
@@ -468,7 +467,6 @@ void point_jacobians(const Model& model, const Data& data, int body, const Eigen
   }
 }
 
-}  // namespace
 
 void jac_point(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
                Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr) {
@@ -478,7 +476,7 @@ void jac_point(const Model& model, const Data& data, int body, const Eigen::Vect
     throw StateError("lever::jac_point: body " + std::to_string(body) + " is not in 0.." +
                      std::to_string(model.nbody - 1) + ".");
   }
-  point_jacobians(model, data, body, point, jacp, jacr);
+  detail::point_jacobians(model, data, body, point, jacp, jacr);
 }
 
 void jac_site(const Model& model, const Data& data, int site, Eigen::Ref<Eigen::MatrixXd> jacp,
@@ -490,7 +488,7 @@ void jac_site(const Model& model, const Data& data, int site, Eigen::Ref<Eigen::
     throw StateError("lever::jac_site: site " + std::to_string(site) + " is not in 0.." +
                      std::to_string(model.nsite - 1) + ".");
   }
-  point_jacobians(model, data, model.site_bodyid[site], data.site_xpos[site], jacp, jacr);
+  detail::point_jacobians(model, data, model.site_bodyid[site], data.site_xpos[site], jacp, jacr);
 }
 
 }  // namespace lever

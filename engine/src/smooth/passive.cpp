@@ -21,6 +21,10 @@ void ball_spring(double k, const double* quat, const double* reference, double* 
 
 void unchecked::passive(const Model& model, Data& data) {
   double* const qfrc = data.qfrc_passive.data();
+  if (model.opt.disabled(kDisablePassive)) {
+    for (int i = 0; i < model.nv; ++i) qfrc[i] = 0.0;
+    return;
+  }
   const double* const qpos = data.qpos.data();
   const double* const spring = model.qpos_spring.data();
   const int* const qposadr = model.jnt_qposadr.data();

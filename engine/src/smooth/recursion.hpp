@@ -64,7 +64,7 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
   v[0].setZero();
   a[0].setZero();
   // the world accelerates upward: weights
-  if (gravity) a[0].template tail<3>() = -model.opt.gravity;
+  if (gravity && !model.opt.disabled(kDisableGravity)) a[0].template tail<3>() = -model.opt.gravity;
 
   for (int b = 1; b < model.nbody; ++b) {
     const int parent = model.body_parentid[b];

@@ -1,6 +1,7 @@
 // The smooth pipeline: kinematics (kinematics.cpp), the recursions (recursion.hpp), CRBA and the
 // LTDL factorization of M (crba.cpp), RNEA and the bias forces (rnea.cpp), the passive forces
-// (passive.cpp), the actuators (actuation.cpp) and the energies (energy.cpp). Everything here
+// (passive.cpp), the tendons (tendon.cpp; a spatial tendon's wrapping, wrap.cpp), the actuators
+// (actuation.cpp) and the energies (energy.cpp). Everything here
 // depends on the state and the model alone, never on contacts or constraint rows.
 #pragma once
 
@@ -42,12 +43,34 @@ void actuation(const Model& model, Data& data);
 void tendon(const Model& model, Data& data);
 /// ten_velocity = ten_J qvel (tendon.cpp)
 void tendon_velocity(const Model& model, Data& data);
+/// data.energy[0]: the potential energy, after the position stage (MuJoCo's mj_energyPos): the
+/// weights unless gravity is disabled, the springs unless passive forces are.
+void energy_position(const Model& model, Data& data);
+/// data.energy[1]: the kinetic energy qvel' M qvel / 2 (mj_energyVel).
+void energy_velocity(const Model& model, Data& data);
 }  // namespace unchecked
 
 /// The tendons' spring-dampers, J^T f, added to qfrc_passive (tendon.cpp; passive() calls it).
 void add_tendon_passive(const Model& model, Data& data);
 
 namespace detail {
+// ---- a spatial tendon's wrapping (wrap.cpp): MuJoCo 2.2.2's mju_wrap
+
+/// The path of a tendon from x0 to x1 around a sphere (or an infinite cylinder along its z axis)
+/// of `radius` centred at `centre` with axes R: when the straight segment would pass through it,
+/// the two tangent points (world frame) and the length of the path between them on the surface;
+/// else -1 (the tendon runs straight). `side` (or nullptr): a side site's position, which picks
+/// the side the path passes on, or, inside the geom, a path through it.
+double wrap_around_geom(const Eigen::Vector3d& x0, const Eigen::Vector3d& x1,
+                        const Eigen::Vector3d& centre, const Mat3& R, double radius,
+                        bool cylinder, const Eigen::Vector3d* side, Eigen::Vector3d& tangent0,
+                        Eigen::Vector3d& tangent1);
+
+/// The translational and rotational Jacobians (3 x nv each) of a point fixed to `body`, given in
+/// world coordinates (MuJoCo's mj_jac), without the entry checks of jac_point (kinematics.cpp).
+void point_jacobians(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,
+                     Eigen::Ref<Eigen::MatrixXd> jacp, Eigen::Ref<Eigen::MatrixXd> jacr);
+
 // ---- the fluid forces (fluid.cpp): MuJoCo 2.2.2's inertia-box model, on when has_fluid(opt)
 
 /// Every body's spatial velocity cvel from qvel (MuJoCo's mj_comVel without cdof_dot): the

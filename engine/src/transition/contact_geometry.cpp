@@ -1,6 +1,6 @@
 // How a contact's distance, position and frame change when its two geoms move: the narrow phase's
-// closed-form pairs (collision/primitive_pairs.hpp, written once on a scalar; here
-// collision/box.cpp's sphere-box and the plane-ellipsoid support point too) and the driver's frame
+// closed-form pairs (collision/primitive_pairs.hpp and collision/box_pairs.hpp, written once on a
+// scalar; here the plane-ellipsoid support point too) and the driver's frame
 // completion (MuJoCo's mju_makeFrame), evaluated on dual numbers a + b e (e^2 = 0) with the geoms'
 // poses moving along a rigid motion. Every branch is decided on the values, as the collision stage
 // decided it, so the result is the exact derivative of the contact the stage found, its case held
@@ -8,8 +8,11 @@
 // truncation. The values are checked against data.contact, so a contact this room does not
 // reproduce is an error, not a wrong derivative.
 //
-// Pairs: plane against sphere, capsule, box and ellipsoid; sphere-sphere, sphere-capsule,
-// capsule-capsule, sphere-box. Capsule-box, box-box and plane-cylinder are refused by name.
+// Pairs: every pair MuJoCo collides in closed form: plane against sphere, capsule, box, cylinder,
+// ellipsoid and mesh; sphere-sphere, sphere-capsule, capsule-capsule, sphere-box, capsule-box and
+// box-box (collision/box_pairs.hpp). The pairs MuJoCo collides by MPR (meshes, and cylinders and
+// ellipsoids against anything but a plane) are refused by name: MPR's answer is an iteration's
+// end, not a closed form of the poses (docs/derivatives.md).
 #include <lever/collision.hpp>
 #include <lever/error.hpp>
 
@@ -19,6 +22,7 @@
 
 #include "basics/basics.hpp"
 #include "collision/collision_room.hpp"
+#include "collision/box_pairs.hpp"
 #include "collision/primitive_pairs.hpp"
 #include "transition/transition.hpp"
 
@@ -51,7 +55,7 @@ Dual sqrt(Dual a) {
   return {r, r > 0 ? a.d / (2 * r) : 0.0};
 }
 double value(Dual a) { return a.v; }
-Dual constant(double x) { return {x, 0.0}; }
+Dual magnitude(Dual a) { return a.v < 0 ? -a : a; }
 
 using V = primitive::Vec<Dual>;
 using primitive::cross;
@@ -103,46 +107,55 @@ int plane_ellipsoid(const Pose& plane, const Pose& ellipsoid, double margin, Fou
   return 1;
 }
 
+// The box pairs of collision/box_pairs.hpp on the moving poses.
+box_pairs::Vec3<Dual> box_vec(const V& x) { return {x[0], x[1], x[2]}; }
+
 int sphere_box(const Pose& sphere, const Pose& box, double margin, Found* out) {
-  const double radius = sphere.size[0];
-  const V center = unrotate(box, sphere.pos - box.pos);  // in the box's frame
-  V nearest = center;
-  for (int k = 0; k < 3; ++k) {
-    const double half = box.size[k];
-    if (half > 0 && center[k].v < -half) nearest[k] = constant(-half);
-    if (half > 0 && center[k].v > half) nearest[k] = constant(half);
-  }
-  V toward = nearest - center;
-  const Dual distance = normalize(toward);
-  if (distance.v - radius > margin) return 0;
-  V local_pos, local_normal;
-  if (distance.v <= kMinVal) {
-    // the centre inside the box: out through the nearest face (first of -x, +x, ..., +z on a tie)
-    double closest = (box.size[0] + box.size[1] + box.size[2]) * 2;
-    int face = 0;
-    Dual gap_of_face;
-    for (int f = 0; f < 6; ++f) {
-      const int axis = f / 2;
-      const double side = (f % 2) ? 1.0 : -1.0;
-      const Dual signed_gap = constant(side * box.size[axis]) - center[axis];
-      const Dual gap = signed_gap.v < 0 ? -signed_gap : signed_gap;
-      if (gap.v < closest) {
-        closest = gap.v;
-        gap_of_face = gap;
-        face = f;
-      }
+  return box_pairs::sphere_box(box_vec(sphere.pos), sphere.size[0], box_pairs::box_of(box), margin,
+                               out);
+}
+
+int capsule_box(const Pose& capsule, const Pose& box, double margin, Found* out) {
+  return box_pairs::capsule_box(box_vec(capsule.pos), box_vec(capsule.axis[2]), capsule.size[0],
+                                capsule.size[1], box_pairs::box_of(box), margin, out);
+}
+
+// The driver drops a box-box contact whose position another later one repeats exactly
+// (remove_repeated_positions): the same here, on the values.
+int box_box(const Pose& box1, const Pose& box2, double margin, Found* out) {
+  const int n =
+      box_pairs::box_box(box_pairs::box_of(box1), box_pairs::box_of(box2), margin, out);
+  int kept = 0;
+  for (int i = 0; i < n; ++i) {
+    bool repeated = false;
+    for (int j = i + 1; j < n && !repeated; ++j) {
+      repeated = out[i].pos[0].v == out[j].pos[0].v && out[i].pos[1].v == out[j].pos[1].v &&
+                 out[i].pos[2].v == out[j].pos[2].v;
     }
-    local_normal = constant(Eigen::Vector3d::Zero());
-    local_normal[face / 2] = constant((face % 2) ? -1.0 : 1.0);
-    local_pos = center + local_normal * ((constant(radius) - gap_of_face) * 0.5);
-  } else {
-    const V deepest = center + toward * radius;
-    local_pos = nearest * 0.5 + deepest * 0.5;
-    local_normal = toward;
+    if (repeated) continue;
+    if (kept < i) out[kept] = out[i];
+    ++kept;
   }
-  set(out[0], distance - constant(radius), rotate(box, local_pos) + box.pos,
-      rotate(box, local_normal));
-  return 1;
+  return kept;
+}
+
+// Plane-mesh (collision/convex.cpp's plane_convex): each contact is a vertex of the mesh's hull
+// against the plane, the lowest and up to two more below the margin. The vertex, rigid in the
+// mesh, is where the contact's point and half its distance along the normal put it; held, it moves
+// with the mesh's pose. (Which vertices: the case the stage found.)
+int plane_mesh(const Pose& plane, const Pose& mesh, const Data& data, int first, int count,
+               Found* out) {
+  const V n = plane.axis[2];
+  const int g = data.contact[static_cast<std::size_t>(first)].geom2;
+  for (int k = 0; k < count; ++k) {
+    const Contact& c = data.contact[static_cast<std::size_t>(first + k)];
+    const Eigen::Vector3d vertex = c.pos + c.frame.row(0).transpose() * (0.5 * c.dist);
+    const Eigen::Vector3d local = data.geom_xmat[g].transpose() * (vertex - data.geom_xpos[g]);
+    const V point = rotate(mesh, constant(local)) + mesh.pos;
+    const Dual dist = dot(n, point - plane.pos);
+    set(out[k], dist, point + n * (dist * -0.5), n);
+  }
+  return count;
 }
 
 int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
@@ -153,6 +166,7 @@ int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
       case T::kCapsule: return primitive::plane_capsule(g1, g2, margin, out);
       case T::kBox: return primitive::plane_box(g1, g2, margin, out);
       case T::kEllipsoid: return plane_ellipsoid(g1, g2, margin, out);
+      case T::kCylinder: return primitive::plane_cylinder(g1, g2, margin, out);
       default: break;
     }
   } else if (g1.type == T::kSphere) {
@@ -166,11 +180,16 @@ int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
     }
   } else if (g1.type == T::kCapsule && g2.type == T::kCapsule) {
     return primitive::capsule_capsule(g1, g2, margin, out);
+  } else if (g1.type == T::kCapsule && g2.type == T::kBox) {
+    return capsule_box(g1, g2, margin, out);
+  } else if (g1.type == T::kBox && g2.type == T::kBox) {
+    return box_box(g1, g2, margin, out);
   }
   throw Error(std::string("derivatives: a ") + geom_type_name(g1.type) + "-" +
               geom_type_name(g2.type) +
-              " contact is active; lever differentiates the contact geometry of plane against "
-              "sphere, capsule, box and ellipsoid, and of sphere and capsule pairs, so far.");
+              " contact is active; lever differentiates the contact geometry of the pairs "
+              "MuJoCo collides in closed form (plane against sphere, capsule, box, cylinder, "
+              "ellipsoid and mesh; sphere, capsule and box pairs), not those it collides by MPR.");
 }
 
 // The frame the driver completes from the normal and the first tangent's seed (mju_makeFrame).
@@ -189,10 +208,14 @@ std::array<V, 3> complete_frame(V normal, V tangent) {
 
 bool contact_geometry_supported(GeomType a, GeomType b) {
   using T = GeomType;
-  if (a == T::kPlane)
-    return b == T::kSphere || b == T::kCapsule || b == T::kBox || b == T::kEllipsoid;
-  if (a == T::kSphere) return b == T::kSphere || b == T::kCapsule || b == T::kBox;
-  return a == T::kCapsule && b == T::kCapsule;
+  if (a == T::kPlane) {
+    return b == T::kSphere || b == T::kCapsule || b == T::kBox || b == T::kEllipsoid ||
+           b == T::kCylinder || b == T::kMesh;
+  }
+  if (a == T::kSphere || a == T::kCapsule) {
+    return b == T::kSphere || b == T::kCapsule || b == T::kBox;
+  }
+  return a == T::kBox && b == T::kBox;
 }
 
 int pair_first_contact(const Data& data, int i, int& count) {
@@ -228,7 +251,9 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   margin = pair >= 0 ? model.pair_margin[pair]
                      : std::max(model.geom_margin[con.geom1], model.geom_margin[con.geom2]);
   std::array<Found, kMaxPairContacts> found;
-  const int n = collide_moving(g1, g2, margin, found.data());
+  const int n = g1.type == GeomType::kPlane && g2.type == GeomType::kMesh
+                    ? plane_mesh(g1, g2, data, first, count, found.data())
+                    : collide_moving(g1, g2, margin, found.data());
   for (int k = 0; k < count; ++k) {
     const int i = first + k;
     const Contact& ck = data.contact[static_cast<std::size_t>(i)];

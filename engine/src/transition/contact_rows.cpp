@@ -1,8 +1,12 @@
-// The constraint rows differentiated with their active set S held, when a contact's row is among
-// them (limit rows alone take step_derivatives.cpp's row-space path). forward() converged to
+// The constraint rows differentiated with their active set S held, when a row other than a joint
+// limit's exerts a force (a contact's, a fixed tendon's limit or friction loss, a dof's friction
+// loss, a joint or tendon coupling; joint limits alone take step_derivatives.cpp's row-space
+// path). forward() converged to
 //   M qacc = f_smooth - bias + J_S^T f_S,   f_S = D_S (aref_S - J_S qacc)   (D = 1 / R)
-// which is the pyramid's and frictionless rows' complementarity solution, and an elliptic cone's
-// while every row of it is in its quadratic zone. Differentiating, with G = M^-1 (d f_smooth - d ID)
+// which is the pyramid's and frictionless rows' complementarity solution, an elliptic cone's
+// while every row of it is in its quadratic zone, and a friction-loss row's inside its box (a
+// friction-loss row at the box's side exerts +-frictionloss along a constant Jacobian: nothing
+// to differentiate). Differentiating, with G = M^-1 (d f_smooth - d ID)
 // (the unconstrained part, one column per input) and H = M + J_S^T D_S J_S:
 //   d qacc = G + H^-1 (dJ^T f + J_S^T (y - D_S J_S G)),   y_r = D_r (d aref_r - dR_r f_r - dJ_r qacc)
 //   d qfrc_constraint = dJ^T f + J_S^T (y - D_S J_S d qacc)
@@ -100,6 +104,71 @@ SoftSlopes soft_slopes(const std::array<double, 5>& solimp, double dist, double 
   return {-(slope * (dist - margin) + imp), floored ? 0.0 : -slope / (imp * (1 - imp))};
 }
 
+// A row whose Jacobian is the gradient of its distance in the coordinates: a fixed tendon's limit
+// (distance +-(L - stop), J = +-ten_J, constant) and a joint's or tendon's coupling (distance
+// x_1 - poly(x_2) about qpos0, J = J_1 - poly'(x_2) J_2 with J_1, J_2 the joints' unit rows or the
+// tendons' constant Jacobians). So d dist / d q = J, and the coupling's J moves only through
+// poly': dJ / d q_c = -poly''(x_2) J_2[c] J_2. Writes Y(k, .) = D (d aref - dR f - dJ qacc) and
+// E += dJ^T f.
+void coordinate_row(const Model& model, const Data& data, int r, int k, RowMatrix& Y,
+                    Eigen::MatrixXd& E) {
+  const int nv = model.nv;
+  const int id = data.efc_id[r];
+  std::array<double, 2> solref;
+  std::array<double, 5> solimp;
+  double diag = 0.0;
+  const double* J2 = nullptr;  // a coupling's second object's row (joint: a unit row, at dof2)
+  int dof2 = -1;
+  double curvature = 0.0;  // poly''(x_2)
+  if (data.efc_type[r] == ConstraintType::kLimitTendon) {
+    solref = model.tendon_solref_lim[id];
+    solimp = model.tendon_solimp_lim[id];
+    diag = model.tendon_invweight0[id];
+  } else {
+    solref = model.eq_solref[id];
+    solimp = model.eq_solimp[id];
+    const bool tendons = model.eq_type[id] == EqualityType::kTendon;
+    const int o1 = model.eq_obj1id[id], o2 = model.eq_obj2id[id];
+    diag = tendons ? model.tendon_invweight0[o1] : model.dof_invweight0[model.jnt_dofadr[o1]];
+    if (o2 >= 0) {
+      double x;
+      if (tendons) {
+        diag += model.tendon_invweight0[o2];
+        J2 = data.ten_J.row(o2).data();
+        x = data.ten_length[o2] - model.tendon_length0[o2];
+      } else {
+        diag += model.dof_invweight0[model.jnt_dofadr[o2]];
+        dof2 = model.jnt_dofadr[o2];
+        const int a2 = model.jnt_qposadr[o2];
+        x = data.qpos[a2] - model.qpos0[a2];
+      }
+      const double* c = model.eq_data[id].data();
+      curvature = 2 * c[2] + 6 * c[3] * x + 12 * c[4] * x * x;
+    }
+  }
+  sanitize(model, solref, solimp);
+  const SoftSlopes s = soft_slopes(solimp, data.efc_pos[r], data.efc_margin[r], diag);
+  const double* J = data.efc_J.row(r).data();
+  const double position = data.efc_D[r] * (data.efc_K[r] * s.aref_per_dist -
+                                           data.efc_R[r] * s.R_per_dist * data.efc_force[r]);
+  for (int c = 0; c < nv; ++c) Y(k, c) = position * J[c];
+  if (curvature == 0.0) return;
+  // dJ_c x = -poly'' J_2[c] (J_2 . x): in d aref (-B dJ qvel), in -dJ qacc, and dJ^T f
+  const auto row2 = [&](int i) { return J2 != nullptr ? J2[i] : (i == dof2 ? 1.0 : 0.0); };
+  double J2_qacc = 0.0, J2_qvel = 0.0;
+  for (int i = 0; i < nv; ++i) {
+    J2_qacc += row2(i) * data.qacc[i];
+    J2_qvel += row2(i) * data.qvel[i];
+  }
+  const double f = data.efc_force[r];
+  for (int c = 0; c < nv; ++c) {
+    const double turn = -curvature * row2(c);  // dJ_c = turn J_2
+    if (turn == 0.0) continue;
+    Y(k, c) += data.efc_D[r] * (-data.efc_B[r] * turn * J2_qvel - turn * J2_qacc);
+    for (int i = 0; i < nv; ++i) E(i, c) += turn * row2(i) * f;
+  }
+}
+
 }  // namespace
 
 void carry_table(const Model& model, std::vector<char>& table) {
@@ -166,9 +235,12 @@ void solve_held_rows(const Eigen::MatrixXd& H, Eigen::Ref<Eigen::MatrixXd> X, in
   }
 }
 
-bool active_contact_rows(const Data& data) {
+bool rows_beyond_joint_limits(const Data& data) {
   for (int r = 0; r < data.nefc; ++r) {
-    if (data.efc_dof[r] < 0 && data.efc_state[r] != ConstraintState::kSatisfied) return true;
+    if (data.efc_type[r] != ConstraintType::kLimitJoint &&
+        data.efc_state[r] != ConstraintState::kSatisfied) {
+      return true;
+    }
   }
   return false;
 }
@@ -183,19 +255,26 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   Y.topRows(n).setZero();
   E.setZero();
 
-  // the limit rows: their distance is sign (q - stop) on one dof
+  // the rows of joints and fixed tendons (limits, friction loss, joint and tendon couplings)
   std::array<double, 2> solref;
   std::array<double, 5> solimp;
   for (int k = 0; k < n; ++k) {
     const int r = w.rows[k];
-    if (data.efc_dof[r] < 0) continue;
-    limit_parameters(model, data.efc_id[r], solref, solimp);
-    const SoftSlopes s = soft_slopes(solimp, data.efc_pos[r], data.efc_margin[r],
-                                     model.dof_invweight0[data.efc_dof[r]]);
-    const double sign = data.efc_sign[r];
-    const double daref = data.efc_K[r] * s.aref_per_dist * sign;
-    const double dR = data.efc_R[r] * s.R_per_dist * sign;
-    Y(k, data.efc_dof[r]) = data.efc_D[r] * (daref - dR * data.efc_force[r]);
+    if (data.efc_type[r] == ConstraintType::kLimitJoint) {
+      // distance sign (q - stop) on one dof
+      limit_parameters(model, data.efc_id[r], solref, solimp);
+      const SoftSlopes s = soft_slopes(solimp, data.efc_pos[r], data.efc_margin[r],
+                                       model.dof_invweight0[data.efc_dof[r]]);
+      const double sign = data.efc_sign[r];
+      const double daref = data.efc_K[r] * s.aref_per_dist * sign;
+      const double dR = data.efc_R[r] * s.R_per_dist * sign;
+      Y(k, data.efc_dof[r]) = data.efc_D[r] * (daref - dR * data.efc_force[r]);
+    } else if (data.efc_type[r] == ConstraintType::kLimitTendon ||
+               data.efc_type[r] == ConstraintType::kEquality) {
+      coordinate_row(model, data, r, k, Y, E);
+    }
+    // a friction-loss row has no distance (pos 0, K 0) and a constant Jacobian: its terms are
+    // aref's velocity part alone, below
   }
 
   // the contacts with an active row

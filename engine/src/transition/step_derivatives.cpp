@@ -98,6 +98,17 @@ void through_position_update(const Model& model, const double* velocity, double 
   }
 }
 
+// X += b r^T r for a row r of n numbers (a tendon's Jacobian, a tendon actuator's moment): the
+// derivative of the force r^T f(r x) along the row, f' = b.
+void add_row_outer_product(const double* r, int n, double b, Eigen::MatrixXd& X) {
+  if (b == 0) return;
+  for (int j = 0; j < n; ++j) {
+    if (r[j] == 0.0) continue;
+    const double a = b * r[j];
+    for (int i = 0; i < n; ++i) X(i, j) += r[i] * a;
+  }
+}
+
 // q exp(dq).
 void quaternion_springs(const Model& model, const Data& data, Derivatives::Workspace& w) {
   for (int j = 0; j < model.njnt; ++j) {
@@ -122,12 +133,22 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
                 const Eigen::MatrixXd& dtau_dv, Derivatives::Workspace& w) {
   w.rhs_q = -dtau_dq;
   w.rhs_v = -dtau_dv;
-  for (int j = 0; j < model.njnt; ++j) {
-    const int d = model.jnt_dofadr[j];
-    w.rhs_q(d, d) -= model.jnt_stiffness[j];  // spring: -k (q - springref)
-    w.rhs_v(d, d) -= model.dof_damping[d];    // damper: -b qd
+  if (!model.opt.disabled(kDisablePassive)) {  // <flag passive="disable">: no springs, dampers
+    for (int j = 0; j < model.njnt; ++j) {
+      const int d = model.jnt_dofadr[j];
+      w.rhs_q(d, d) -= model.jnt_stiffness[j];  // spring: -k (q - springref)
+      w.rhs_v(d, d) -= model.dof_damping[d];    // damper: -b qd
+    }
+    if (model.nq != model.nv) quaternion_springs(model, data, w);
+    // a fixed tendon's spring-damper f = -k (L - lengthspring) - b v along its constant Jacobian
+    // J (L = J q, v = J qd), carried to the dofs as J^T f: -k J^T J and -b J^T J
+    for (int t = 0; t < model.ntendon; ++t) {
+      const double k = model.tendon_stiffness[t], b = model.tendon_damping[t];
+      if (k == 0 && b == 0) continue;
+      add_row_outer_product(data.ten_J.row(t).data(), model.nv, -k, w.rhs_q);
+      add_row_outer_product(data.ten_J.row(t).data(), model.nv, -b, w.rhs_v);
+    }
   }
-  if (model.nq != model.nv) quaternion_springs(model, data, w);
 
   // actuators: force = clamp_f(gain clamp_c(ctrl) + bias), gain = p0 + p1 length + p2 velocity
   // (affine; p0 when fixed), bias = b0 + b1 length + b2 velocity (affine; 0 when none), with
@@ -135,12 +156,15 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
   // force clamp binds the actuator passes on nothing; where the ctrl clamp binds it has no
   // sensitivity to ctrl but keeps its length and velocity terms.
   w.rhs_u.setZero();
+  // <flag actuation="disable">: no actuator forces; clampctrl="disable": ctrl as it is
+  const int actuators = model.opt.disabled(kDisableActuation) ? 0 : model.nu;
+  const bool clamp_ctrl = !model.opt.disabled(kDisableClampctrl);
   bool bad = false;  // one bad control zeroes every control (actuation's kBadCtrl); bias stays
-  for (int a = 0; a < model.nu; ++a) bad = bad || is_bad(data.ctrl[a]);
-  for (int a = 0; a < model.nu; ++a) {
+  for (int a = 0; a < actuators; ++a) bad = bad || is_bad(data.ctrl[a]);
+  for (int a = 0; a < actuators; ++a) {
     double u = bad ? 0.0 : data.ctrl[a];
     bool ctrl_clamped = bad;
-    if (!bad && model.actuator_ctrllimited[a]) {
+    if (!bad && clamp_ctrl && model.actuator_ctrllimited[a]) {
       const auto& range = model.actuator_ctrlrange[a];
       ctrl_clamped = u < range[0] || u > range[1];
       u = std::clamp(u, range[0], range[1]);
@@ -166,8 +190,19 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
       per_length += b[1];
       per_velocity += b[2];
     }
+    if (model.actuator_trntype[a] == TransmissionType::kTendon) {
+      // length = gear L, so d length / d q = gear J = the moment m, and qfrc = m force:
+      // m^T per_length m, m^T per_velocity m, m gain
+      const double* m = data.actuator_moment.row(a).data();
+      add_row_outer_product(m, model.nv, per_length, w.rhs_q);
+      add_row_outer_product(m, model.nv, per_velocity, w.rhs_v);
+      if (!ctrl_clamped) {
+        for (int i = 0; i < model.nv; ++i) w.rhs_u(i, a) = m[i] * gain;
+      }
+      continue;
+    }
     const double gear = model.actuator_gear[a][0];
-    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    const int dof = actuator_scalar_dof(model, a);  // >= 0: refuse_fluid checked
     w.rhs_q(dof, dof) += gear * per_length * gear;
     w.rhs_v(dof, dof) += gear * per_velocity * gear;
     if (!ctrl_clamped) w.rhs_u(dof, a) = gear * gain;
@@ -328,7 +363,7 @@ void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& 
   rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, data.work.crb, w,
                         deriv.dtau_dq, &deriv.dtau_dv);
   smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
-  if (detail::active_contact_rows(data)) {  // every row in dof space, solved with H, not M
+  if (detail::rows_beyond_joint_limits(data)) {  // every row in dof space, solved with H, not M
     detail::constraint_rows_held(model, data, deriv);
     return;
   }
@@ -542,10 +577,26 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   w.rhs_q -= (w.tau_q - w.tau_q_minus) / (2 * c);
   w.rhs_v -= (w.tau_v - deriv.dtau_dv) / c;  // (R_v(qd + s a) - (2 dtau_dv - R_v(qd + s a))) / 2c
   // + h dD a, D's actuator part: only an affine gain's p2 ctrl depends on anything (ctrl)
-  for (int a = 0; a < model.nu; ++a) {
+  const int actuators = model.opt.disabled(kDisableActuation) ? 0 : model.nu;
+  for (int a = 0; a < actuators; ++a) {
     if (model.actuator_gaintype[a] != GainType::kAffine) continue;
+    if (model.actuator_trntype[a] == TransmissionType::kTendon) {
+      // D's m^T p2 ctrl m, kept where M is non-zero (as the step's D keeps it): its ctrl
+      // column times a, for each pair of dofs on one branch (k and its ancestors j)
+      const double* m = data.actuator_moment.row(a).data();
+      const double p2 = h * model.actuator_gainprm[a][2];
+      for (int k = 0; k < nv; ++k) {
+        if (m[k] == 0.0) continue;
+        for (int j = k; j >= 0; j = model.dof_parentid[j]) {
+          if (m[j] == 0.0) continue;
+          w.rhs_u(k, a) += m[k] * p2 * m[j] * w.qacc_step[j];
+          if (j != k) w.rhs_u(j, a) += m[j] * p2 * m[k] * w.qacc_step[k];
+        }
+      }
+      continue;
+    }
     const double gear = model.actuator_gear[a][0];
-    const int dof = model.jnt_dofadr[model.actuator_trnid[a]];
+    const int dof = actuator_scalar_dof(model, a);  // >= 0: refuse_fluid checked
     w.rhs_u(dof, a) += h * gear * model.actuator_gainprm[a][2] * gear * w.qacc_step[dof];
   }
 
@@ -635,12 +686,15 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   data.time = time0;
 }
 
-// The fluid forces depend on the pose and the velocity in ways the chain rule above leaves out.
+// The fluid forces depend on the pose and the velocity in ways the chain rule above leaves out,
+// and so do the moments of transmissions other than a hinge's or a slide's.
 void refuse_fluid(const Model& model) {
   if (has_fluid(model.opt)) {
     throw ModelError("derivatives: the model has fluid forces (option viscosity or density); "
                      "lever's analytic derivatives do not cover them yet.");
   }
+  // the chain rule below carries each actuator's force through a constant gear on one dof
+  require_simple_actuators(model, "derivatives");
 }
 
 }  // namespace

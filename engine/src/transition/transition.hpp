@@ -40,8 +40,9 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
                           const Eigen::Vector3d& w2, const Eigen::Vector3d& v2,
                           ContactChange* changes);
 
-/// Whether a contact's row is active (pushing) after forward().
-bool active_contact_rows(const Data& data);
+/// Whether a row other than a joint limit's exerts a force after forward() (a contact pushing, a
+/// friction-loss, tendon-limit or equality row): constraint_rows_held() then takes every row.
+bool rows_beyond_joint_limits(const Data& data);
 
 /// table[c * nv + i] = 1 where moving dof c turns the axis of dof i (c a strict ancestor of i, or
 /// both in one ball's or free joint's rotation): the contact rows' Jacobian derivative reads it.

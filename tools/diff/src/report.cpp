@@ -15,7 +15,7 @@ bool decided_by_solver(const std::string& q) {
   // the acceleration stage's sensors and the forces inside the tree read qacc and efc_force
   return q == "qacc" || q == "qfrc_constraint" || q == "efc_force" || q == "efc_state" ||
          q == "sensordata" || q == "cacc" || q == "cfrc_int" || q == "cfrc_ext" ||
-         q == "qpos" || q == "qvel" || q.rfind("qfrc_inverse (at the forward", 0) == 0 ||
+         q == "qpos" || q == "qvel" || q == "qacc at an RK4 stage" || q.rfind("qfrc_inverse (at the forward", 0) == 0 ||
          q.find(" after one ") != std::string::npos || q.rfind("energy", 0) == 0;
 }
 

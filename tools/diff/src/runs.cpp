@@ -1,5 +1,6 @@
 #include <cmath>
 #include <lever/diff/compare.hpp>
+#include <lever/diff/rk4.hpp>
 #include <lever/diff/runs.hpp>
 #include <lever/error.hpp>
 #include <lever/forward.hpp>
@@ -22,6 +23,21 @@ void apply_control(const Model& model, Control control, double time, mjData* d) 
   } else if (control == Control::kZero) {
     ctrl.setZero();
   }
+}
+
+// What mj_forward reads, from one mjData into another of the same model: the state, the inputs
+// and the warm start (a whole mj_copyData copies MuJoCo's arena, megabytes, at every step).
+void copy_mujoco_inputs(const mjModel* m, const mjData* from, mjData* to) {
+  to->time = from->time;
+  mju_copy(to->qpos, from->qpos, m->nq);
+  mju_copy(to->qvel, from->qvel, m->nv);
+  mju_copy(to->act, from->act, m->na);
+  mju_copy(to->ctrl, from->ctrl, m->nu);
+  mju_copy(to->qfrc_applied, from->qfrc_applied, m->nv);
+  mju_copy(to->xfrc_applied, from->xfrc_applied, 6 * m->nbody);
+  mju_copy(to->mocap_pos, from->mocap_pos, 3 * m->nmocap);
+  mju_copy(to->mocap_quat, from->mocap_quat, 4 * m->nmocap);
+  mju_copy(to->qacc_warmstart, from->qacc_warmstart, m->nv);
 }
 
 void count(RunStats& stats, int nefc) {
@@ -135,6 +151,10 @@ Report lockstep(Twin& twin, Integrator integrator, double seconds, Control contr
            "')";
   };
   const int nv = twin.model.nv;
+  // an RK4 step's MuJoCo side along lever's stages, beside MuJoCo's own
+  test::MjDataPtr along_lever(nullptr, mj_deleteData);
+  if (integrator == Integrator::kRK4) along_lever = test::mujoco_data(twin.m.get());
+  MujocoRk4Stages stages;
   for (int k = 0; k < steps; ++k) {
     apply_control(twin.model, control, twin.d->time, twin.d.get());
     twin.follow_mujoco();
@@ -149,10 +169,22 @@ Report lockstep(Twin& twin, Integrator integrator, double seconds, Control contr
                    nv, dof);
     // the transition: the state after one step
     step(twin.model, twin.data);
-    mujoco_step_converged(twin.m.get(), twin.d.get(), twin.restart_mujoco_solver);
-    report.compare("qpos", k, twin.data.qpos.data(), twin.d->qpos, twin.model.nq,
+    const mjData* after = twin.d.get();  // MuJoCo's state after the step, compared
+    if (integrator == Integrator::kRK4) {
+      // lever's step against MuJoCo's along the stages lever's step went through (lever/diff/
+      // rk4.hpp says why); the run goes on from MuJoCo's own step, each stage converged
+      copy_mujoco_inputs(twin.m.get(), twin.d.get(), along_lever.get());
+      mujoco_rk4_step(twin.m.get(), along_lever.get(), twin.restart_mujoco_solver,
+                      &twin.data.work.rk_qacc, &stages);
+      compare_rk4_stages(twin.model, twin.data, stages, k, report);
+      after = along_lever.get();
+      mujoco_rk4_step(twin.m.get(), twin.d.get(), twin.restart_mujoco_solver, nullptr, nullptr);
+    } else {
+      mujoco_step_converged(twin.m.get(), twin.d.get(), twin.restart_mujoco_solver);
+    }
+    report.compare("qpos", k, twin.data.qpos.data(), after->qpos, twin.model.nq,
                    per_coordinate(twin.model));
-    report.compare("qvel", k, twin.data.qvel.data(), twin.d->qvel, nv, dof);
+    report.compare("qvel", k, twin.data.qvel.data(), after->qvel, nv, dof);
   }
   twin.set_integrator(own);
   if (stats) *stats = local;

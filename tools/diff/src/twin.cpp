@@ -13,10 +13,6 @@ namespace {
 // A restart of MuJoCo's solver that moves qacc by less than this (relative to max(1, |qacc|)) has
 // found the minimizer again: a tenth of the 1e-12 agreement bound.
 constexpr double kRestartSettled = 1e-13;
-// MuJoCo's answer counts as stuck short of the minimizer when M^-1 times its cost's gradient
-// exceeds this, relative to max(1, |qacc|): a hundredth of the solver's bound (1e-10). At the
-// minimizer rounding leaves 1e-14 to 1e-12 (measured on legged_elliptic.xml, 40000 forwards).
-constexpr double kStalled = 1e-12;
 
 Model lever_model(const std::string& file, Path path, const mjModel* m) {
   return path == Path::kLoader ? mjcf::load_file(file) : test::from_mujoco(m);
@@ -112,11 +108,12 @@ void restart_from_own_answer(const mjModel* m, mjData* d) {
   }
 }
 
-// How far d->qacc is from the minimizer of the problem MuJoCo solves, by MuJoCo's own functions:
-// M^-1 times the cost's gradient, M (qacc - qacc_smooth) - J' force(J qacc - aref), relative to
-// max(1, |qacc|). Zero at the minimizer but for rounding. mj_constraintUpdate writes the rows'
-// states and forces, which are put back as MuJoCo's solver left them.
-double distance_to_minimizer(const mjModel* m, mjData* d) {
+}  // namespace
+
+// M^-1 times the cost's gradient, M (qacc - qacc_smooth) - J' force(J qacc - aref), by MuJoCo's
+// own functions. mj_constraintUpdate writes the rows' states and forces, which are put back as
+// MuJoCo's solver left them.
+double mujoco_distance_to_minimizer(const mjModel* m, mjData* d) {
   const int nv = m->nv, nefc = d->nefc;
   if (nefc == 0) return 0;
   const std::vector<int> state(d->efc_state, d->efc_state + nefc);
@@ -141,13 +138,14 @@ double distance_to_minimizer(const mjModel* m, mjData* d) {
   return distance / scale;
 }
 
-}  // namespace
-
 void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver) {
   mj_forward(m, d);
-  if (!restart_solver) return;
+  if (restart_solver) converge_mujoco_solver(m, d);
+}
+
+void converge_mujoco_solver(const mjModel* m, mjData* d) {
   restart_from_own_answer(m, d);
-  const double warm = distance_to_minimizer(m, d);
+  const double warm = mujoco_distance_to_minimizer(m, d);
   if (warm <= kStalled) return;
   // Stuck short of the minimizer, where MuJoCo's line search finds no decrease of its cost: on
   // tests/diff/contact_scenes/legged_elliptic.xml (implicit lockstep, step 3659) 6e-7 from it in
@@ -161,7 +159,7 @@ void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver) 
   std::copy(d->qacc_smooth, d->qacc_smooth + m->nv, d->qacc_warmstart);
   mj_forward(m, d);
   restart_from_own_answer(m, d);
-  if (distance_to_minimizer(m, d) >= warm) mj_copyData(d, m, warm_answer.get());
+  if (mujoco_distance_to_minimizer(m, d) >= warm) mj_copyData(d, m, warm_answer.get());
 }
 
 void mujoco_step_converged(const mjModel* m, mjData* d, bool restart_solver) {
@@ -181,6 +179,7 @@ void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s) {
     d->qacc_warmstart[i] = 0.0;
   }
   for (int a = 0; a < m->nu; ++a) d->ctrl[a] = s.ctrl[a];
+  for (int i = 0; i < m->na && i < s.act.size(); ++i) d->act[i] = s.act[i];
 }
 
 void Twin::set_state(const test::State& s) {
@@ -196,6 +195,7 @@ void Twin::follow_mujoco() {
     data.qfrc_applied[i] = d->qfrc_applied[i];
   }
   for (int a = 0; a < m->nu; ++a) data.ctrl[a] = d->ctrl[a];
+  for (int i = 0; i < m->na; ++i) data.act[i] = d->act[i];
 }
 
 void Twin::reset() {

@@ -21,6 +21,7 @@ namespace lever::test {
 struct State {
   double time = 0.0;
   Eigen::VectorXd qpos, qvel, ctrl, qfrc_applied;
+  Eigen::VectorXd act;  ///< (na) activations, drawn only when the model has any
 };
 
 /// How far a "just past the stop" sample goes.
@@ -121,6 +122,9 @@ inline State random_state(const Model& model, std::mt19937_64& rng) {
   if (detail::uniform(rng, 0, 1) < 1.0 / 3.0) {
     for (int i = 0; i < model.nv; ++i) s.qfrc_applied[i] = detail::uniform(rng, -2, 2);
   }
+  // a little outside [0, 1] too: a muscle clamps its activation there
+  s.act = Eigen::VectorXd::Zero(model.na);
+  for (int i = 0; i < model.na; ++i) s.act[i] = detail::uniform(rng, -0.2, 1.2);
   return s;
 }
 
@@ -137,6 +141,7 @@ inline void apply(const State& s, Data& data) {
   data.qpos = s.qpos;
   data.qvel = s.qvel;
   data.ctrl = s.ctrl;
+  if (s.act.size() == data.act.size()) data.act = s.act;
   data.qfrc_applied = s.qfrc_applied;
 }
 

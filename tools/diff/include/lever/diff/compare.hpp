@@ -26,7 +26,9 @@ void compare_forward(Twin& twin, const test::State& s, int k, Report& report);
 void compare_inverse(Twin& twin, const test::State& s, const Eigen::VectorXd& qacc,
                      const std::string& label, int k, Report& report);
 
-/// One step of `integrator` on both from s: qpos, qvel and time after it.
+/// One step of `integrator` on both from s: qpos, qvel and time after it; for RK4 also each
+/// later stage's qvel and qacc, MuJoCo's stages evaluated at lever's stage states
+/// (lever/diff/rk4.hpp).
 void compare_step(Twin& twin, const test::State& s, Integrator integrator, int k, Report& report);
 
 /// All of the above at one state: forward, inverse at the forward solution and at

@@ -44,7 +44,9 @@ struct RunStats {
 
 /// From rest (qpos0), `seconds` of `integrator` in lockstep: at each step lever starts from
 /// MuJoCo's own state; qacc and qfrc_constraint of the forward pass at that state are compared,
-/// then both take one step and qpos, qvel after it are compared. The step number is the state.
+/// then both take one step and qpos, qvel after it are compared. An RK4 step is compared with
+/// MuJoCo's step along lever's stage states (lever/diff/rk4.hpp), and the run goes on from
+/// MuJoCo's own step (its stages converged as its forward is). The step number is the state.
 Report lockstep(Twin& twin, Integrator integrator, double seconds, Control control,
                 RunStats* stats = nullptr);
 

@@ -1,0 +1,68 @@
+// Cassie's achilles rods (MuJoCo Menagerie 2022's agility_cassie/cassie.xml): a rod's ball joint
+// turns it about its own axis with the rod's axial inertia, 3.754e-6 kg m^2 (the file's Ixx; the
+// centre of mass lies on that axis), and M's entry for that dof is what is left when CRBA's terms
+// in world coordinates, some 1e4 times larger, cancel. Both engines round that cancellation, each
+// its own way, so the entry and the factor's pivot (qLDiagInv) differ by ~1e-12 relative, and
+// with them qacc at the rod's dof wherever M^-1 decides it (a lockstep run's qacc, an RK4 stage's).
+// This measures it against the exact value and against MuJoCo started 1e-15 away from itself.
+#include <mujoco/mujoco.h>
+#include <catch2/catch.hpp>
+
+#include <lever/diff/runs.hpp>
+#include <lever/diff/twin.hpp>
+#include <lever/lever.hpp>
+
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include <lever/harness/models.hpp>
+#include <lever/harness/random_state.hpp>
+
+namespace lever::test {
+
+TEST_CASE("diff: Cassie's achilles rods' axial entry of M is as exact in lever as in MuJoCo",
+          "[diff][robots][cancellation]") {
+  REQUIRE(mj_version() == 222);
+  const std::string file = robots_dir() + "/menagerie-2022/agility_cassie/cassie.xml";
+  if (!std::filesystem::exists(file)) {
+    WARN("no real model file " << file << ": skipped");
+    return;
+  }
+  diff::Twin twin(file, diff::Path::kEngine);
+  const mjModel* m = twin.m.get();
+  const double axial = 3.754e-6;  // the rods' <inertial fullinertia> Ixx
+  const int rod_dofs[2] = {m->jnt_dofadr[mj_name2id(m, mjOBJ_JOINT, "left-achilles-rod")],
+                           m->jnt_dofadr[mj_name2id(m, mjOBJ_JOINT, "right-achilles-rod")]};
+  std::mt19937_64 rng(diff::default_seed(file));
+  double lever_error = 0, mujoco_error = 0, apart = 0, mujoco_nudged = 0;
+  MjDataPtr nudged = mujoco_data(m);
+  for (int k = 0; k < 100; ++k) {
+    const State s = random_state(twin.model, rng);
+    twin.set_state(s);
+    forward(twin.model, twin.data);
+    mj_forward(m, twin.d.get());
+    diff::set_mujoco_state(m, nudged.get(), s);
+    for (int i = 0; i < m->nq; ++i) nudged->qpos[i] += (rng() & 1) ? 1e-15 : -1e-15;
+    mj_forward(m, nudged.get());
+    for (const int dof : rod_dofs) {
+      const double ours = twin.data.M(dof, dof), theirs = twin.d->qM[m->dof_Madr[dof]];
+      lever_error = std::max(lever_error, std::abs(ours - axial) / axial);
+      mujoco_error = std::max(mujoco_error, std::abs(theirs - axial) / axial);
+      const double pivot = twin.d->qLDiagInv[dof];
+      apart = std::max(apart, std::abs(twin.data.qLDiagInv[dof] - pivot) / pivot);
+      mujoco_nudged = std::max(mujoco_nudged, std::abs(nudged->qLDiagInv[dof] - pivot) / pivot);
+    }
+  }
+  INFO("the rods' axial entry of M against 3.754e-6: lever " << lever_error << ", MuJoCo "
+       << mujoco_error << "; the pivots 1/D apart by " << apart
+       << ", MuJoCo from qpos +-1e-15 from itself by " << mujoco_nudged << " (relative)");
+  CHECK(lever_error <= 1e-12);  // both near the exact value, to the rounding of the
+  CHECK(mujoco_error <= 1e-12);  // cancellation
+  CHECK(apart <= mujoco_nudged);  // lever's difference within MuJoCo's own sensitivity
+  WARN("Cassie's achilles rods, 100 random states: M's axial entry within "
+       << lever_error << " (lever) and " << mujoco_error << " (MuJoCo) of 3.754e-6; qLDiagInv "
+       << apart << " apart; MuJoCo against itself from qpos +-1e-15: " << mujoco_nudged);
+}
+
+}  // namespace lever::test
