@@ -328,11 +328,11 @@ int size_of(const Model& model, const Data& data, Size size) {
 
 const char* size_name(Size size) {
   static constexpr std::array<const char*, 28> names = {
-      "1",          "nq",          "nv",           "nu",          "nbody",          "njnt",
-      "ngeom",      "nsite",       "nefc",         "npair",       "nexclude",       "nmesh",
-      "nmeshvert",  "nmeshgraph",  "nmeshface",    "nsensor",      "nsensordata", "neq",            "nmocap",
-      "nuser_body", "nuser_jnt",   "nuser_geom",   "nuser_site",  "nuser_actuator", "nuser_sensor",
-      "ntendon",    "nwrap",       "na"};
+      "1",           "nq",         "nv",          "nu",          "nbody",      "njnt",
+      "ngeom",       "nsite",      "nefc",        "npair",       "nexclude",   "nmesh",
+      "nmeshvert",   "nmeshgraph", "nmeshface",   "nsensor",     "nsensordata", "neq",
+      "nmocap",      "nuser_body", "nuser_jnt",   "nuser_geom",  "nuser_site", "nuser_actuator",
+      "nuser_sensor", "ntendon",   "nwrap",       "na"};
   return names[static_cast<size_t>(size)];
 }
 

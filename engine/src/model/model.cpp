@@ -39,7 +39,7 @@ int actuator_scalar_dof(const Model& model, int a) {
   return model.jnt_dofadr[j];
 }
 
-void require_simple_actuators(const Model& model, const std::string& feature) {
+void require_simple_actuators(const Model& model, const std::string& feature, bool tendons_too) {
   for (int a = 0; a < model.nu; ++a) {
     const bool stateful = model.actuator_dyntype[a] != DynType::kNone;
     const bool muscle = model.actuator_gaintype[a] == GainType::kMuscle ||
@@ -54,6 +54,7 @@ void require_simple_actuators(const Model& model, const std::string& feature) {
                        "actuator", a);
     }
     if (actuator_scalar_dof(model, a) >= 0) continue;
+    if (tendons_too && model.actuator_trntype[a] == TransmissionType::kTendon) continue;
     const char* what = "a site";
     switch (model.actuator_trntype[a]) {
       case TransmissionType::kJoint:

@@ -693,8 +693,9 @@ void refuse_fluid(const Model& model) {
     throw ModelError("derivatives: the model has fluid forces (option viscosity or density); "
                      "lever's analytic derivatives do not cover them yet.");
   }
-  // the chain rule below carries each actuator's force through a constant gear on one dof
-  require_simple_actuators(model, "derivatives");
+  // the chain rule below carries each actuator's force through a constant moment: a gear on one
+  // dof, or gear ten_J of a fixed tendon (a spatial one is refused with the tendons)
+  require_simple_actuators(model, "derivatives", true);
 }
 
 }  // namespace
