@@ -739,6 +739,7 @@ TEST_CASE("size_model gives every array the length the field table promises", "[
   model.nmesh = 2;
   model.nmeshvert = 6;
   model.nmeshgraph = 11;
+  model.nmeshface = 4;
   model.neq = 2;
   model.nkey = 2;
   model.nsensor = 3;
