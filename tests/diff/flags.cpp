@@ -73,7 +73,9 @@ std::string case_name(const FlagCase& c) {
   return name;
 }
 
-// Whether two Data of the model differ in a forward output that a flag can change.
+// Whether two Data of the model differ in a forward output that a flag can change: a flag that
+// acts moves an output by far more than rounding (1e-9 is no agreement bound, it only tells a
+// flag that acted from one that changed nothing).
 bool outputs_differ(const Data& a, const Data& b) {
   const auto differ = [](const Eigen::VectorXd& x, const Eigen::VectorXd& y) {
     return x.size() != y.size() || (x.size() > 0 && (x - y).cwiseAbs().maxCoeff() > 1e-9);

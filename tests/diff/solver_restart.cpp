@@ -11,6 +11,7 @@
 #include <mujoco/mujoco.h>
 #include <catch2/catch.hpp>
 
+#include <lever/diff/report.hpp>
 #include <lever/diff/twin.hpp>
 #include <lever/lever.hpp>
 
@@ -30,6 +31,9 @@ namespace {
 constexpr const char* kRestartScene = "tests/diff/contact_scenes/free_objects.xml";
 
 // |lever - mujoco| in qacc relative to max(1, |mujoco|).
+// The contact solver's bound on qacc, relative (report.hpp's kContactSolverBound, in units of 1e-12).
+constexpr double kSolverBound = diff::kContactSolverBound * 1e-12;
+
 double qacc_gap(const Data& data, const mjData* d, int nv) {
   double gap = 0, scale = 1;
   for (int i = 0; i < nv; ++i) {
@@ -62,12 +66,12 @@ TEST_CASE("diff: MuJoCo's solver, one iteration per forward, is restarted to the
     ++with_rows;
     const double one_forward = qacc_gap(twin.data, d, m->nv);
     const double one_distance = diff::mujoco_distance_to_minimizer(m, d);
-    short_of_it += one_forward > 1e-10;
+    short_of_it += one_forward > kSolverBound;
     diff::set_mujoco_state(m, d, s);
     diff::mujoco_forward_converged(m, d, true);
     INFO("state " << k << ": one forward " << one_forward << " from lever's qacc, converged "
                   << qacc_gap(twin.data, d, m->nv));
-    CHECK(qacc_gap(twin.data, d, m->nv) <= 1e-10);  // the solver's bound
+    CHECK(qacc_gap(twin.data, d, m->nv) <= kSolverBound);
     CHECK(diff::mujoco_distance_to_minimizer(m, d) <= std::max(diff::kStalled, one_distance));
   }
   CHECK(with_rows > 20);

@@ -247,8 +247,6 @@ void make_files() {
   write("long-names-1000-joints.xml", long_names);
   write("unclosed-comment.xml", "<mujoco>\n<!-- never closed\n<worldbody/>\n</mujoco>\n");
   // contact: valid MJCF that lever refuses, each with its reason
-  write("contact-override.xml",
-        "<mujoco>\n<option>\n<flag override=\"enable\"/>\n</option>\n</mujoco>\n");
   write("contact-noslip.xml", "<mujoco>\n<option noslip_iterations=\"10\"/>\n</mujoco>\n");
   write("contact-condim-5.xml",
         "<mujoco>\n<worldbody>\n<geom name=\"a\" size=\"1\"/>\n<body><joint/><geom name=\"b\" "
@@ -300,7 +298,6 @@ std::vector<Row> rows() {
        2},
       {"URDF instead of MJCF", {"model", "@urdf.xml"}, 2, "this is URDF", 1},
       // ---- contact: valid MJCF lever does not have -----------------------------------------
-      {"contact override", {"model", "@contact-override.xml"}, 2, "no contact override", 3},
       {"noslip solver", {"model", "@contact-noslip.xml"}, 2, "no noslip solver", 2},
       {"pair condim 5", {"model", "@contact-condim-5.xml"}, 2, "MuJoCo has no condim 5", 6},
       {"plane in a moving body", {"model", "@contact-moving-plane.xml"}, 2, "use a box", 4},

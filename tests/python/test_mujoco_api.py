@@ -43,13 +43,13 @@ def test_shapes_and_dtypes_are_mujocos(path):
     data = mujoco.MjData(model)
     mujoco.mj_forward(model, data)
     sizes = {n: getattr(model, n)
-             for n in ("nq", "nv", "nu", "na", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude",
+             for n in ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude",
                        "nsensor", "nsensordata", "neq", "nmocap", "nmesh",
                        "nmeshvert", "nmeshgraph", "nmeshface", "ntendon", "nwrap", "nuser_body", "nuser_jnt",
-                       "nuser_geom", "nuser_site", "nuser_actuator", "nuser_sensor")}
+                       "nuser_geom", "nuser_site", "nuser_actuator", "nuser_sensor", "na")}
     sizes["nefc"] = data.nefc
-    # mjmodel.h's lengths of solref, solimp, dynprm, gainprm and biasprm
-    sizes.update(mjNREF=2, mjNIMP=5, mjNDYN=10, mjNGAIN=10, mjNBIAS=10, mjNEQDATA=11)
+    # mjmodel.h's lengths of solref, solimp, gainprm, biasprm, dynprm and eq_data
+    sizes.update(mjNREF=2, mjNIMP=5, mjNGAIN=10, mjNBIAS=10, mjNDYN=10, mjNEQDATA=11)
     sizes["njmax"] = data.nefc  # 2.2.2 sizes efc arrays njmax; its Python shows the live rows
     for macro, obj, names in (("MJMODEL_POINTERS", model, mujoco._MODEL_FIELDS),
                               ("MJDATA_POINTERS", data, mujoco._DATA_FIELDS)):

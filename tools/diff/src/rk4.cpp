@@ -22,11 +22,7 @@ void evaluate_stage(const mjModel* m, mjData* d, bool restart_solver) {
 
 void mujoco_rk4_step(const mjModel* m, mjData* d, bool restart_solver,
                      const ArenaVector (*path_qacc)[4], MujocoRk4Stages* stages) {
-  if (m->na > 0) {
-    throw std::runtime_error("mujoco_rk4_step: a model with activations (na = " +
-                             std::to_string(m->na) + "); lever has none");
-  }
-  const int nq = m->nq, nv = m->nv;
+  const int nq = m->nq, nv = m->nv, na = m->na;
   const double h = m->opt.timestep, time = d->time;
   MujocoRk4Stages local;
   MujocoRk4Stages& x = stages ? *stages : local;
@@ -39,8 +35,13 @@ void mujoco_rk4_step(const mjModel* m, mjData* d, bool restart_solver,
   x.qpos[0].assign(d->qpos, d->qpos + nq);
   x.qvel[0].assign(d->qvel, d->qvel + nv);
   x.qacc[0].assign(d->qacc, d->qacc + nv);
+  // the activations ride along as mj_RungeKutta's X and F carry them (MuJoCo's own act_dot at
+  // every stage: lever's path is followed in qacc, where contacts make the stages sensitive)
+  std::array<std::vector<double>, 4> act, act_dot;
+  act[0].assign(d->act, d->act + na);
+  act_dot[0].assign(d->act_dot, d->act_dot + na);
 
-  std::vector<double> dq(nv), dv(nv);
+  std::vector<double> dq(nv), dv(nv), da(na);
   for (int i = 1; i < 4; ++i) {
     // the acceleration this stage's state is made from: lever's stage i-1 or MuJoCo's
     const double* qacc_before = path_qacc ? (*path_qacc)[i - 1].data() : x.qacc[i - 1].data();
@@ -53,11 +54,15 @@ void mujoco_rk4_step(const mjModel* m, mjData* d, bool restart_solver,
     mj_integratePos(m, x.qpos[i].data(), dq.data(), h);
     x.qvel[i] = x.qvel[0];
     for (int j = 0; j < nv; ++j) x.qvel[i][j] += dv[j] * h;
+    act[i] = act[0];
+    for (int j = 0; j < na; ++j) act[i][j] += (0.0 + kStageA[i - 1] * act_dot[i - 1][j]) * h;
     mju_copy(d->qpos, x.qpos[i].data(), nq);
     mju_copy(d->qvel, x.qvel[i].data(), nv);
+    if (na > 0) mju_copy(d->act, act[i].data(), na);
     d->time = time + (0.0 + kStageA[i - 1]) * h;
     evaluate_stage(m, d, restart_solver);
     x.qacc[i].assign(d->qacc, d->qacc + nv);
+    act_dot[i].assign(d->act_dot, d->act_dot + na);
   }
 
   // the weighted sums (MuJoCo's accelerations, the stages' velocities), then mj_advance: qvel
@@ -68,10 +73,19 @@ void mujoco_rk4_step(const mjModel* m, mjData* d, bool restart_solver,
       dq[j] += x.qvel[i][j] * kWeightB[i];
       dv[j] += x.qacc[i][j] * kWeightB[i];
     }
+    for (int j = 0; j < na; ++j) da[j] += act_dot[i][j] * kWeightB[i];
   }
   d->time = time;
   mju_copy(d->qpos, x.qpos[0].data(), nq);
   mju_copy(d->qvel, x.qvel[0].data(), nv);
+  // mj_advance: the activations first, clamped to actrange where limited
+  for (int j = 0; j < na; ++j) {
+    d->act[j] = act[0][j] + da[j] * h;
+    const int u = j + m->nu - na;
+    if (m->actuator_actlimited[u]) {
+      d->act[j] = mju_clip(d->act[j], m->actuator_actrange[2 * u], m->actuator_actrange[2 * u + 1]);
+    }
+  }
   for (int j = 0; j < nv; ++j) d->qvel[j] += dv[j] * h;
   mj_integratePos(m, d->qpos, dq.data(), h);
   d->time += h;

@@ -37,7 +37,7 @@ struct MujocoRk4Stages {
 /// it. Each next stage's state is made from `path_qacc[i]` if given (lever's stage accelerations,
 /// Data::work.rk_qacc), else from MuJoCo's own stage acceleration: then, without restart_solver,
 /// d ends bit for bit where mj_step leaves it (qpos, qvel, time, and the last stage's qacc and
-/// rows). Models with activations (na > 0) are refused (std::runtime_error): lever has none.
+/// rows). Activations ride along in MuJoCo's own act_dot at every stage.
 void mujoco_rk4_step(const mjModel* m, mjData* d, bool restart_solver,
                      const ArenaVector (*path_qacc)[4], MujocoRk4Stages* stages);
 
