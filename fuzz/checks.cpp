@@ -111,7 +111,7 @@ class Bytes {
     }
   }
 
-  void fill(Eigen::VectorXd& v) {
+  void fill(Eigen::Ref<Eigen::VectorXd> v) {
     for (Eigen::Index i = 0; i < v.size(); ++i) v[i] = number();
   }
 

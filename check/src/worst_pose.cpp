@@ -199,7 +199,7 @@ WorstPose worst_for_joint(const Model& model, GravityProbe& probe,
 
 GravityProbe::GravityProbe(const Model& model) : model_(model), data_(model) {}
 
-const Eigen::VectorXd& GravityProbe::operator()(const Eigen::VectorXd& qpos) {
+const ArenaVector& GravityProbe::operator()(const Eigen::VectorXd& qpos) {
   data_.qpos = qpos;
   data_.qvel.setZero();
   kinematics(model_, data_);

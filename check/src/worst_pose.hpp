@@ -24,7 +24,7 @@ namespace lever::check {
 class GravityProbe {
  public:
   explicit GravityProbe(const Model& model);
-  const Eigen::VectorXd& operator()(const Eigen::VectorXd& qpos);
+  const ArenaVector& operator()(const Eigen::VectorXd& qpos);
   long evaluations() const { return evaluations_; }
 
  private:

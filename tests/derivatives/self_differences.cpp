@@ -66,8 +66,8 @@ std::vector<ModelCase> derivative_models() {
 // Differences of out() along qpos's tangent: column c moves qpos to qpos (+) t e_c with
 // integrate_pos (for a ball, a turn about its body's axis c), as mjd_transitionFD does. Central
 // (step kStep), or the five-point stencil (step kFivePointStep) when five_point.
-Eigen::MatrixXd tangent_differences(const Model& model, Eigen::VectorXd& qpos, int n_out,
-                                    const std::function<void(Eigen::VectorXd&)>& out,
+Eigen::MatrixXd tangent_differences(const Model& model, Eigen::Ref<Eigen::VectorXd> qpos,
+                                    int n_out, const std::function<void(Eigen::VectorXd&)>& out,
                                     bool five_point = false) {
   const int nv = model.nv;
   const Eigen::VectorXd q0 = qpos;
@@ -97,7 +97,7 @@ Eigen::MatrixXd tangent_differences(const Model& model, Eigen::VectorXd& qpos, i
 // Largest |element|.
 
 // Central differences of out(x) (writing into a vector) along each coordinate of x.
-Eigen::MatrixXd central_differences(Eigen::VectorXd& x, int n_out,
+Eigen::MatrixXd central_differences(Eigen::Ref<Eigen::VectorXd> x, int n_out,
                                     const std::function<void(Eigen::VectorXd&)>& out) {
   Eigen::MatrixXd D(n_out, x.size());
   Eigen::VectorXd plus(n_out), minus(n_out);
@@ -114,7 +114,7 @@ Eigen::MatrixXd central_differences(Eigen::VectorXd& x, int n_out,
 }
 
 // Five-point differences of out(x) (writing into a vector) along each coordinate of x.
-Eigen::MatrixXd five_point_differences(Eigen::VectorXd& x, int n_out,
+Eigen::MatrixXd five_point_differences(Eigen::Ref<Eigen::VectorXd> x, int n_out,
                                        const std::function<void(Eigen::VectorXd&)>& out) {
   const double h = kFivePointStep;
   Eigen::MatrixXd D(n_out, x.size());

@@ -44,8 +44,9 @@ std::string scene(const std::string& name) {
 /// A random configuration that brings the scene's bodies into contact: slides within +-0.15 m,
 /// hinges anywhere; one state in four keeps the hinges at exactly zero (the scenes are built so
 /// that capsules then lie parallel to each other or to a plane).
+/// qpos: nq numbers (a Data's qpos, or a vector of that size), overwritten.
 void random_configuration(const Model& model, std::mt19937_64& rng, bool hinges_at_zero,
-                          Eigen::VectorXd& qpos) {
+                          Eigen::Ref<Eigen::VectorXd> qpos) {
   std::uniform_real_distribution<double> slide(-0.15, 0.15),
       hinge(-std::numbers::pi, std::numbers::pi), unit(0.0, 1.0);
   std::normal_distribution<double> normal(0.0, 1.0);
@@ -263,7 +264,7 @@ TEST_CASE("collision driver: more contacts than nconmax is refused and changes n
   int fitting = -1, overflowing = -1;
   std::vector<Eigen::VectorXd> states;
   for (int s = 0; s < 200 && (fitting < 0 || overflowing < 0); ++s) {
-    Eigen::VectorXd qpos;
+    Eigen::VectorXd qpos(model.nq);
     random_configuration(model, rng, false, qpos);
     states.push_back(qpos);
     data.qpos = qpos;

@@ -65,7 +65,7 @@ struct MeshTally {
   double worst = 0;
 };
 
-void random_pose(const Model& model, std::mt19937_64& rng, Eigen::VectorXd& qpos) {
+void random_pose(const Model& model, std::mt19937_64& rng, Eigen::Ref<Eigen::VectorXd> qpos) {
   std::uniform_real_distribution<double> unit(0.0, 1.0), spread(-0.06, 0.06);
   std::normal_distribution<double> normal(0.0, 1.0);
   qpos = model.qpos0;

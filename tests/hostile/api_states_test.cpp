@@ -61,18 +61,18 @@ TEST_CASE("hostile states through the API: warned about, reset by step, never si
     for (const char* field : {"qpos", "qvel", "ctrl", "qfrc_applied"}) {
       for (const Value& v : kValues) {
         lever::Data probe(model);
-        Eigen::VectorXd& target = std::string(field) == "qpos"   ? probe.qpos
-                                  : std::string(field) == "qvel" ? probe.qvel
-                                  : std::string(field) == "ctrl" ? probe.ctrl
-                                                                 : probe.qfrc_applied;
+        lever::ArenaVector& target = std::string(field) == "qpos"   ? probe.qpos
+                                     : std::string(field) == "qvel" ? probe.qvel
+                                     : std::string(field) == "ctrl" ? probe.ctrl
+                                                                    : probe.qfrc_applied;
         if (target.size() == 0) continue;
         {
           INFO(file << " " << field << " = " << v.name);
           lever::Data data(model);
-          Eigen::VectorXd& x = std::string(field) == "qpos"   ? data.qpos
-                               : std::string(field) == "qvel" ? data.qvel
-                               : std::string(field) == "ctrl" ? data.ctrl
-                                                              : data.qfrc_applied;
+          lever::ArenaVector& x = std::string(field) == "qpos"   ? data.qpos
+                                  : std::string(field) == "qvel" ? data.qvel
+                                  : std::string(field) == "ctrl" ? data.ctrl
+                                                                 : data.qfrc_applied;
           // qpos: the last coordinate that is not a quaternion's (forward normalizes those in
           // place, as MuJoCo's mj_normalizeQuat, so a huge one is gone before step sees it)
           x[std::string(field) == "qpos" ? last_plain_coordinate(model) : x.size() - 1] = v.x;

@@ -83,16 +83,17 @@ void check_equal(const std::map<std::string, std::vector<double>>& json, const s
   }
 }
 
-template <class V>
-std::vector<double> flat(const std::vector<V>& rows) {
+template <class Rows>  // a std::vector of Eigen vectors, or a Data's array of them
+std::vector<double> flat(const Rows& rows) {
   std::vector<double> out;
-  for (const V& v : rows) {
+  for (const auto& v : rows) {
     for (Eigen::Index i = 0; i < v.size(); ++i) out.push_back(v[i]);
   }
   return out;
 }
 
-std::vector<double> row_major(const std::vector<lever::Mat3>& ms) {
+template <class Mats>  // a std::vector of Mat3, or a Data's array of them
+std::vector<double> row_major(const Mats& ms) {
   std::vector<double> out;
   for (const lever::Mat3& m : ms) {
     for (int r = 0; r < 3; ++r) {

@@ -8,8 +8,8 @@ namespace lever::test {
 
 namespace {
 
-template <class T>
-bool same(const std::vector<T>& a, const std::vector<T>& b) {
+template <class Array>  // a std::vector or a Data's array
+bool same(const Array& a, const Array& b) {
   for (std::size_t i = 0; i < a.size(); ++i) {
     if (a[i] != b[i]) return false;
   }
@@ -147,9 +147,10 @@ bool unplaced(const T& value) {
   return (value.array() == kUnplaced).all();
 }
 
-template <class T>
-bool all_unplaced(const std::vector<T>& values) {
-  return std::all_of(values.begin(), values.end(), [](const T& v) { return unplaced(v); });
+template <class Array>
+bool all_unplaced(const Array& values) {
+  return std::all_of(values.begin(), values.end(),
+                     [](const typename Array::value_type& v) { return unplaced(v); });
 }
 
 }  // namespace

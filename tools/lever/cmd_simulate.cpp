@@ -375,12 +375,12 @@ int cmd_simulate(const Args& command_line) {
     if (text && (k % every == 0 || k == steps)) print_summary_row(model, d);
     if (plotting) {
       if (k == 0) {
-        record.start_body = d.xpos;
-        record.start_site = d.site_xpos;
+        record.start_body = d.xpos.to_vector();
+        record.start_site = d.site_xpos.to_vector();
       }
       if (k == steps) {
-        record.end_body = d.xpos;
-        record.end_site = d.site_xpos;
+        record.end_body = d.xpos.to_vector();
+        record.end_site = d.site_xpos.to_vector();
       }
       if (k % stride == 0 || k == steps) record.add(model, d);
     }

@@ -91,16 +91,16 @@ void add_rows_transpose(const Data& data, const double* f, double* out);
 /// out), each contact's part from its frame's rows: a pyramid's pair of edges with one weight
 /// adds one product along its tangent, the pairs' normal parts gathered into one, instead of
 /// one product per edge.
-void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H);
+void add_rows_hessian(Data& data, const double* weight, Eigen::Ref<Eigen::MatrixXd> H);
 
 /// H += C^T W C for contact i in H's lower triangle: C its frame's rows, W (dim x dim, row-major,
 /// symmetric) a weight in its frame's coordinates (an elliptic cone's Hessian block).
-void add_frame_hessian(Data& data, int i, const double* W, Eigen::MatrixXd& H);
+void add_frame_hessian(Data& data, int i, const double* W, Eigen::Ref<Eigen::MatrixXd> H);
 
 /// x = H^-1 x for H = M + J^T (...) J assembled above (its lower triangle), which becomes its
 /// Cholesky factor: the active sets and the Newton solver both solve with it (data's workspace
 /// holds where its columns end).
-void solve_with_hessian(Data& data, Eigen::MatrixXd& H, Eigen::VectorXd& x);
+void solve_with_hessian(Data& data, Eigen::Ref<Eigen::MatrixXd> H, Eigen::Ref<Eigen::VectorXd> x);
 
 // ---- MuJoCo's primal problem (primal.cpp), shared by the Newton and CG solvers -------------
 // The unknown is qacc; the cost is the Gauss term plus a convex function s of each block's
@@ -120,7 +120,7 @@ ConstraintState block_cost(const Data& data, int r, int size, const double* x, d
 
 /// Gauss term and constraint cost at qacc (work.newton_Merr, newton_x and newton_grad_x hold
 /// M (qacc - qacc_smooth), the rows' jar and their gradient there afterwards).
-double primal_cost(Data& data, const Eigen::VectorXd& qacc);
+double primal_cost(Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc);
 
 /// The Gauss term along qacc + alpha dir, cost + alpha slope + alpha^2 curvature:
 /// 1/2 |qacc - qacc_smooth|_M^2, dir^T M (qacc - qacc_smooth), 1/2 dir^T M dir.
@@ -142,7 +142,7 @@ void evaluate_line(Data& data, const LineGauss& gauss, LinePoint& p);
 double exact_line_search(Data& data, const LineGauss& gauss);
 
 /// efc_force, efc_state and qfrc_constraint at the rows' values x (forces -d s / d jar).
-void record_primal_forces(Data& data, const Eigen::VectorXd& x);
+void record_primal_forces(Data& data, const Eigen::Ref<const Eigen::VectorXd>& x);
 
 /// Solve the constraint rows by MuJoCo's Newton method to convergence (newton.cpp): qacc,
 /// efc_b, efc_force, efc_state, qfrc_constraint. Returns the Newton steps taken.
@@ -163,7 +163,7 @@ void solve_constraint_pivoting(const Model& model, Data& data);
 
 /// efc_force, efc_state and qfrc_constraint that the rows exert at a given qacc (newton.cpp;
 /// MuJoCo's mj_constraintUpdate): what inverse() reports.
-void constraint_forces_at(Data& data, const Eigen::VectorXd& qacc);
+void constraint_forces_at(Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc);
 
 /// Row (nv numbers) = n^T (J_2 - J_1) at contact i's point, n its normal: the normal row of a
 /// contact that has no constraint rows (one in the gap beyond margin - gap), as its rows would

@@ -115,7 +115,8 @@ namespace {
 
 // The constraint cost at the rows' values x (nefc), its gradient d s / d jar into grad_x; the
 // states into data.efc_state when `record`.
-double constraint_cost(Data& data, const Eigen::VectorXd& x, Eigen::VectorXd& grad_x, bool record) {
+double constraint_cost(Data& data, const Eigen::Ref<const Eigen::VectorXd>& x,
+                       Eigen::Ref<Eigen::VectorXd> grad_x, bool record) {
   double total = 0.0;
   for (int r = 0; r < data.nefc;) {
     const int size = block_size(data, r);
@@ -131,7 +132,7 @@ double constraint_cost(Data& data, const Eigen::VectorXd& x, Eigen::VectorXd& gr
 
 }  // namespace
 
-double primal_cost(Data& data, const Eigen::VectorXd& qacc) {
+double primal_cost(Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc) {
   auto& w = data.work;
   w.newton_err = qacc - data.qacc_smooth;
   w.newton_Merr.noalias() = data.M * w.newton_err;
@@ -193,7 +194,7 @@ double exact_line_search(Data& data, const LineGauss& gauss) {
   return best;
 }
 
-void record_primal_forces(Data& data, const Eigen::VectorXd& x) {
+void record_primal_forces(Data& data, const Eigen::Ref<const Eigen::VectorXd>& x) {
   auto& w = data.work;
   constraint_cost(data, x, w.newton_grad_x, true);
   data.qfrc_constraint.setZero();
@@ -204,7 +205,7 @@ void record_primal_forces(Data& data, const Eigen::VectorXd& x) {
   add_rows_transpose(data, data.efc_force.data(), data.qfrc_constraint.data());
 }
 
-void constraint_forces_at(Data& data, const Eigen::VectorXd& qacc) {
+void constraint_forces_at(Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc) {
   auto& w = data.work;
   rows_jar(data, qacc.data(), w.newton_x.data());
   record_primal_forces(data, w.newton_x);

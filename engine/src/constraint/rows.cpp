@@ -30,6 +30,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <type_traits>
 
 #include "constraint/constraint_room.hpp"
@@ -475,7 +476,8 @@ namespace {
 // by column (right-looking: each finished column updates the ones after it), each column's loops
 // ending at its last nonzero (the dofs of trees that no contact joins never meet: a gripper and
 // a free box are two blocks). column_end: nv ints of scratch.
-void cholesky_solve(Eigen::MatrixXd& H, Eigen::VectorXd& x, std::vector<int>& column_end) {
+void cholesky_solve(Eigen::Ref<Eigen::MatrixXd> H, Eigen::Ref<Eigen::VectorXd> x,
+                    std::span<int> column_end) {
   const int nv = static_cast<int>(x.size());
   int* const end = column_end.data();  // one past column j's last nonzero
   for (int j = 0; j < nv; ++j) {
@@ -506,7 +508,8 @@ void cholesky_solve(Eigen::MatrixXd& H, Eigen::VectorXd& x, std::vector<int>& co
 
 // H += weight v v^T, v over the span of `count` dofs from `lo`: the whole block, though only
 // its lower triangle is read (a loop of one length vectorizes; one of falling lengths does not).
-void add_rank_one(Eigen::MatrixXd& H, int lo, int count, double weight, const double* v) {
+void add_rank_one(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, double weight,
+                  const double* v) {
   const Eigen::Index nv = H.rows();
   double* column = H.data() + (lo * nv + lo);  // column lo + b from its row lo, for each b
   for (int b = 0; b < count; ++b, column += nv) {
@@ -521,8 +524,8 @@ void add_rank_one(Eigen::MatrixXd& H, int lo, int count, double weight, const do
 // though only its lower triangle is read (a loop of one length vectorizes; one of falling lengths
 // does not). Dim is a template argument so that the sum over the rows unrolls.
 template <int Dim>
-void add_frame_weights(Eigen::MatrixXd& H, int lo, int count, const double* c, Eigen::Index stride,
-                       const double* W) {
+void add_frame_weights(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, const double* c,
+                       Eigen::Index stride, const double* W) {
   const Eigen::Index nv = H.rows();
   double* column = H.data() + (lo * nv + lo);  // column lo + b from its row lo, for each b
   for (int b = 0; b < count; ++b, column += nv) {
@@ -649,7 +652,7 @@ void add_rows_transpose(const Data& data, const double* f, double* out) {
   }
 }
 
-void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H) {
+void add_rows_hessian(Data& data, const double* weight, Eigen::Ref<Eigen::MatrixXd> H) {
   const auto& C = data.work.contact_frame_J;
   const int nv = static_cast<int>(data.efc_J.cols());
   for (int r = 0; r < data.nefc;) {
@@ -692,7 +695,7 @@ void add_rows_hessian(Data& data, const double* weight, Eigen::MatrixXd& H) {
   }
 }
 
-void add_frame_hessian(Data& data, int i, const double* W, Eigen::MatrixXd& H) {
+void add_frame_hessian(Data& data, int i, const double* W, Eigen::Ref<Eigen::MatrixXd> H) {
   const Contact& con = data.contact[i];
   const int dim = con.dim, first = con.efc_address;
   const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
@@ -716,7 +719,7 @@ void add_frame_hessian(Data& data, int i, const double* W, Eigen::MatrixXd& H) {
   }
 }
 
-void solve_with_hessian(Data& data, Eigen::MatrixXd& H, Eigen::VectorXd& x) {
+void solve_with_hessian(Data& data, Eigen::Ref<Eigen::MatrixXd> H, Eigen::Ref<Eigen::VectorXd> x) {
   cholesky_solve(H, x, data.work.hessian_envelope);
 }
 
@@ -752,7 +755,7 @@ constexpr int kMaxActiveSetRounds = 8;
 bool solve_active_set(Data& data) {
   auto& w = data.work;
   const int n = data.nefc;
-  std::vector<int>& active = w.lcp_active;
+  auto& active = w.lcp_active;
   auto& a = w.newton_dir;  // the round's acceleration
   const double* D = data.efc_D.data();
   const double* aref = data.efc_aref.data();
@@ -815,8 +818,8 @@ void pivot_rows(const Model& model, Data& data) {
   // it from any start.
   auto f = w.lcp_f.head(n);
   auto residual = w.lcp_w.head(n);
-  std::vector<int>& active = w.lcp_active;
-  std::vector<int>& idx = w.lcp_index;
+  auto& active = w.lcp_active;
+  auto& idx = w.lcp_index;
   for (int r = 0; r < n; ++r) active[r] = b[r] < 0;
   const int max_pivots = 64 * n + 64;
   for (int pivot = 0; pivot <= max_pivots; ++pivot) {
@@ -880,7 +883,7 @@ void solve_one_row(const Model& model, Data& data) {
 void solve_by_pivoting(const Model& model, Data& data) {
   const int n = data.nefc;
   auto& w = data.work;
-  std::vector<int>& active = w.lcp_active;
+  auto& active = w.lcp_active;
   auto f = w.lcp_f.head(n);
   if (n == 1) {
     solve_one_row(model, data);

@@ -5,6 +5,7 @@
 
 #include <Eigen/Core>
 
+#include <span>
 #include <vector>
 
 #include <lever/data.hpp>
@@ -20,9 +21,9 @@ namespace lever {
 /// body's subtree inertia (crba()'s composites, data.work.crb after the position stage), CC
 /// (nbody) is workspace for the subtree sums of velocity coupling.
 void bias_velocity_derivative(const Model& model, const Data& data, const double* qd,
-                              const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
-                              const std::vector<RigidInertia>& IC,
-                              std::vector<VelocityCoupling>& CC, Eigen::Ref<Eigen::MatrixXd> out);
+                              std::span<const Motion> v, std::span<const Motion> Sdot,
+                              std::span<const RigidInertia> IC, std::span<VelocityCoupling> CC,
+                              Eigen::Ref<Eigen::MatrixXd> out);
 
 namespace detail {
 
@@ -36,18 +37,18 @@ int rotation_block(const Model& model, int j);
 
 /// The inertia of each body's subtree into w.IC (for a caller that ran kinematics() alone); returns
 /// w.IC.
-const std::vector<RigidInertia>& subtree_inertias(const Model& model, const Data& data,
-                                                  Derivatives::Workspace& w);
+std::span<const RigidInertia> subtree_inertias(const Model& model, const Data& data,
+                                               Derivatives::Workspace& w);
 
 /// IC S_i of each dof i into w.IC_S, which every RNEA-derivative pass at this qpos reads.
-void inertia_columns(const Model& model, const Data& data, const std::vector<RigidInertia>& IC,
+void inertia_columns(const Model& model, const Data& data, std::span<const RigidInertia> IC,
                      Derivatives::Workspace& w);
 
 /// Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd) into dtau_dq and
 /// dtau_dv (nullptr: d / d q alone), given the subtree inertias IC and w.IC_S; couplings: the
 /// subtree sums of C at qd when the caller has them, nullptr: summed into w.CC.
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
-                           const double* qdd, bool gravity, const std::vector<RigidInertia>& IC,
+                           const double* qdd, bool gravity, std::span<const RigidInertia> IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
                            Eigen::MatrixXd* dtau_dv,
                            const std::vector<VelocityCoupling>* couplings = nullptr);

@@ -31,6 +31,7 @@
 #include <lever/derivatives.hpp>
 #include <lever/error.hpp>
 
+#include <span>
 #include <string>
 
 #include "derivatives/derivatives_room.hpp"
@@ -97,8 +98,8 @@ int rotation_block(const Model& model, int j) {
 // The inertia of each body's subtree, summed into w.IC by crba()'s composite_inertias(), for
 // rnea_derivatives(), whose caller may have run kinematics() alone; after forward(),
 // data.work.crb holds the same numbers and is read instead.
-const std::vector<RigidInertia>& subtree_inertias(const Model& model, const Data& data,
-                                                  Derivatives::Workspace& w) {
+std::span<const RigidInertia> subtree_inertias(const Model& model, const Data& data,
+                                               Derivatives::Workspace& w) {
   composite_inertias(model, data, w.IC);
   return w.IC;
 }
@@ -106,7 +107,7 @@ const std::vector<RigidInertia>& subtree_inertias(const Model& model, const Data
 // IC S_i of each dof i (IC its body's subtree inertia): the column force crba() finds, which every
 // RNEA-derivative pass at this qpos reads (position_columns(), velocity_columns()), so the step's
 // passes share it.
-void inertia_columns(const Model& model, const Data& data, const std::vector<RigidInertia>& IC,
+void inertia_columns(const Model& model, const Data& data, std::span<const RigidInertia> IC,
                      Derivatives::Workspace& w) {
   for (int i = 0; i < model.nv; ++i) w.IC_S[i] = IC[model.dof_bodyid[i]] * data.cdof[i];
 }
@@ -159,8 +160,8 @@ VelocityCoupling velocity_coupling(const RigidInertia& I, const Motion& v, const
 // The body pass, after the forward pass gave each body's v: its velocity coupling C into CC (their
 // subtree sums come next). The net force is the forward pass's (net_force, recursion.hpp); the
 // subtree inertias IC do not depend on the velocity: crba()'s composites (subtree_inertias()).
-void body_couplings(const Model& model, const Data& data, const std::vector<Motion>& v,
-                    std::vector<VelocityCoupling>& CC) {
+void body_couplings(const Model& model, const Data& data, std::span<const Motion> v,
+                    std::span<VelocityCoupling> CC) {
   for (int b = 1; b < model.nbody; ++b) {
     const RigidInertia& I = data.cinert[b];
     CC[b] = velocity_coupling(I, v[b], I * v[b]);
@@ -174,10 +175,10 @@ void body_couplings(const Model& model, const Data& data, const std::vector<Moti
 // (bias_velocity_derivative) runs its own loop.
 
 // d tau / d q, from Psi_ddot (Sddot) and the subtree net forces F besides.
-void position_columns(const Model& model, const Data& data, const std::vector<Motion>& Sdot,
-                      const std::vector<Motion>& Sddot, const std::vector<Force>& F,
-                      const std::vector<RigidInertia>& ICs, const std::vector<Force>& IC_S,
-                      const std::vector<VelocityCoupling>& CCs, Eigen::MatrixXd& dtau_dq) {
+void position_columns(const Model& model, const Data& data, std::span<const Motion> Sdot,
+                      std::span<const Motion> Sddot, std::span<const Force> F,
+                      std::span<const RigidInertia> ICs, std::span<const Force> IC_S,
+                      std::span<const VelocityCoupling> CCs, Eigen::MatrixXd& dtau_dq) {
   dtau_dq.setZero();
   for (int i = 0; i < model.nv; ++i) {
     const int b = model.dof_bodyid[i];
@@ -197,10 +198,9 @@ void position_columns(const Model& model, const Data& data, const std::vector<Mo
 }
 
 // d tau / d qd.
-void velocity_columns(const Model& model, const Data& data, const std::vector<Motion>& Sdot,
-                      const std::vector<RigidInertia>& ICs, const std::vector<Force>* IC_S,
-                      const std::vector<VelocityCoupling>& CCs,
-                      Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
+void velocity_columns(const Model& model, const Data& data, std::span<const Motion> Sdot,
+                      std::span<const RigidInertia> ICs, const std::vector<Force>* IC_S,
+                      std::span<const VelocityCoupling> CCs, Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
   dtau_dv.setZero();
   for (int i = 0; i < model.nv; ++i) {
     const int b = model.dof_bodyid[i];
@@ -243,7 +243,7 @@ void segment_accelerations(const Model& model, const Data& data, const double* q
 // d tau_k / d q_i of a segment's dofs, corrected after position_columns(): for k before i in the
 // segment, turning about S_i turns S_k too, and d S_k / d q_i . F = (S_i x S_k) . F cancels the
 // S_i x* F term the hinge formula adds.
-void segment_position_columns(const Model& model, const Data& data, const std::vector<Force>& F,
+void segment_position_columns(const Model& model, const Data& data, std::span<const Force> F,
                               Eigen::MatrixXd& dtau_dq) {
   for (int j = 0; j < model.njnt; ++j) {
     const int r = rotation_block(model, j);
@@ -262,8 +262,8 @@ void segment_position_columns(const Model& model, const Data& data, const std::v
 // body's velocity less the dofs after the segment in the same body: none for a free joint or a
 // ball alone in its body.)
 void segment_velocity_columns(const Model& model, const Data& data, const double* qd,
-                              const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
-                              const std::vector<RigidInertia>& IC,
+                              std::span<const Motion> v, std::span<const Motion> Sdot,
+                              std::span<const RigidInertia> IC,
                               Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
   for (int j = 0; j < model.njnt; ++j) {
     const int r = rotation_block(model, j);
@@ -303,7 +303,7 @@ namespace detail {
 // Armature adds armature * qdd, which depends on neither. Without gravity and with qdd = 0 they
 // are the derivatives of the velocity product terms alone (implicit_derivatives).
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
-                           const double* qdd, bool gravity, const std::vector<RigidInertia>& IC,
+                           const double* qdd, bool gravity, std::span<const RigidInertia> IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
                            Eigen::MatrixXd* dtau_dv,
                            const std::vector<VelocityCoupling>* couplings) {
@@ -315,10 +315,10 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
                });
   if (model.nq != model.nv) segment_accelerations(model, data, qd, qdd, w);
   // leaves to root: the composites of f and C over each subtree (RNEA's backward pass)
-  sum_over_subtrees(model, w.F);
+  sum_over_subtrees<Force>(model, w.F);
   if (couplings == nullptr) {
     body_couplings(model, data, w.v, w.CC);
-    sum_over_subtrees(model, w.CC);
+    sum_over_subtrees<VelocityCoupling>(model, w.CC);
     couplings = &w.CC;
   }
   const std::vector<VelocityCoupling>& CC = *couplings;
@@ -337,12 +337,12 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
 }  // namespace detail
 
 void bias_velocity_derivative(const Model& model, const Data& data, const double* qd,
-                              const std::vector<Motion>& v, const std::vector<Motion>& Sdot,
-                              const std::vector<RigidInertia>& IC,
-                              std::vector<VelocityCoupling>& CC, Eigen::Ref<Eigen::MatrixXd> out) {
+                              std::span<const Motion> v, std::span<const Motion> Sdot,
+                              std::span<const RigidInertia> IC, std::span<VelocityCoupling> CC,
+                              Eigen::Ref<Eigen::MatrixXd> out) {
   // IC: crba()'s subtree inertias (data.work.crb), which the position stage left
   body_couplings(model, data, v, CC);
-  sum_over_subtrees(model, CC);
+  sum_over_subtrees<VelocityCoupling>(model, CC);
   velocity_columns(model, data, Sdot, IC, nullptr, CC, out);
   if (model.nq != model.nv) segment_velocity_columns(model, data, qd, v, Sdot, IC, out);
 }
@@ -354,7 +354,7 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
     throw StateError("rnea_derivatives: qacc has " + std::to_string(qacc.size()) +
                      " elements, the model has nv = " + std::to_string(model.nv) + ".");
   }
-  const std::vector<RigidInertia>& IC = detail::subtree_inertias(model, data, deriv.work);
+  const std::span<const RigidInertia> IC = detail::subtree_inertias(model, data, deriv.work);
   detail::inertia_columns(model, data, IC, deriv.work);
   detail::rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, IC, deriv.work,
                                 deriv.dtau_dq, &deriv.dtau_dv);

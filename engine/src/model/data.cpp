@@ -4,6 +4,8 @@
 #include <lever/error.hpp>
 
 #include <algorithm>
+#include <cstring>
+#include <new>
 
 #include "model/model_room.hpp"
 
@@ -42,17 +44,113 @@ void place_mocap_at_bodies(const Model& model, Data& data) {
 
 }  // namespace
 
-Data::Data(const Model& model)
-    : nefc_max(constraint_rows_max(model)),
-      nq(model.nq),
-      nv(model.nv),
-      nu(model.nu),
-      nbody(model.nbody),
-      njnt(model.njnt),
-      ngeom(model.ngeom),
-      nsite(model.nsite) {
-  // every array of the field table, zero-filled at its size; then the values that are not zero
-  detail::size_data_arrays(model, *this);
+namespace {
+
+// The arrays outside the field table, in the same block: lever's own kinds (spatial inertias,
+// contacts), the constraint Jacobian, the factor of M, and the workspace. An array added to Data
+// that is not in the table gets its size here, in one line.
+void lay_out_own_arrays(Data& d, detail::ArrayPlacer& place) {
+  const std::size_t nq = d.nq, nv = d.nv, na = d.na, nbody = d.nbody, nefc = d.nefc_max,
+                    ncon = d.nconmax;
+  place(d.cinert, nbody);
+  place(d.contact, ncon);
+  place(d.qLD, nv, nv);
+  place(d.efc_J, nefc, nv);
+  DataWorkspace& w = d.work;
+  place(w.crb, nbody);
+  place(w.cacc, nbody);
+  place(w.cfrc, nbody);
+  place(w.body_vel, nbody);
+  place(w.LD2, nv, nv);
+  place(w.LD2DiagInv, nv);
+  for (ArenaVector* v : {&w.vec1, &w.vec2, &w.vec3}) place(*v, nv);
+  place(w.halfJ, nv, nefc);
+  place(w.halfJ_scaled, nv, nefc);
+  place(w.A, nefc, nefc);
+  place(w.L, nefc, nefc);
+  for (ArenaVector* v : {&w.lcp_f, &w.lcp_w, &w.lcp_rhs}) place(*v, nefc);
+  place(w.lcp_active, nefc);
+  place(w.lcp_index, nefc);
+  place(w.newton_H, nv, nv);
+  for (ArenaVector* v : {&w.newton_grad, &w.newton_dir, &w.newton_Mdir, &w.newton_Merr,
+                         &w.newton_trial, &w.newton_err, &w.cg_Mgrad, &w.cg_grad_old,
+                         &w.cg_Mgrad_old}) {
+    place(*v, nv);
+  }
+  for (ArenaVector* v : {&w.newton_jar, &w.newton_jv, &w.newton_x, &w.newton_grad_x}) {
+    place(*v, nefc);
+  }
+  place(w.contact_frame_J, nefc, nv);
+  place(w.contact_span, 2 * ncon);
+  place(w.dof_chain, 2 * nv);
+  place(w.equality_jac, 12, nv);
+  place(w.tendon_jac, 12, nv);
+  place(w.transmission_jac, 12, nv);
+  place(w.contact_weight, 36 * ncon);
+  place(w.frame_scratch, 6 * nv);
+  place(w.hessian_envelope, nv);
+  place(w.rk_qpos0, nq);
+  for (ArenaVector* v : {&w.rk_qvel0, &w.rk_dq, &w.rk_dv}) place(*v, nv);  // rk_dq: a velocity
+  for (int i = 0; i < 4; ++i) {
+    place(w.rk_qvel[i], nv);
+    place(w.rk_qacc[i], nv);
+    place(w.rk_act_dot[i], na);
+  }
+  place(w.rk_act0, na);
+  place(w.rk_dact, na);
+  place(w.qDeriv, nv, nv);
+  place(w.qLU, nv, nv);
+  place(w.subtree_coupling, nbody);
+  place(w.contact, ncon);
+  place(w.pair_contact, kMaxPairContacts);
+  place(w.body_aabb, 6 * nbody);
+  place(w.body_path, nbody);
+}
+
+void lay_out(Data& data, detail::ArrayPlacer::Mode mode, unsigned char* block) {
+  detail::ArrayPlacer place(block, mode);
+  detail::lay_out_table_arrays(data, place);
+  lay_out_own_arrays(data, place);
+}
+
+std::size_t block_bytes(Data& data) {
+  detail::ArrayPlacer measure(nullptr, detail::ArrayPlacer::Mode::kMeasure);
+  detail::lay_out_table_arrays(data, measure);
+  lay_out_own_arrays(data, measure);
+  return measure.bytes();
+}
+
+}  // namespace
+
+namespace detail {
+void throw_arena_shape(long rows, long cols, long other_rows, long other_cols) {
+  throw StateError("lever: a Data array of " + std::to_string(rows) + " x " + std::to_string(cols) +
+                   " numbers was assigned " + std::to_string(other_rows) + " x " +
+                   std::to_string(other_cols) +
+                   ": a Data's arrays keep the sizes the model gave them (assign element by "
+                   "element or with an array of that size).");
+}
+}  // namespace detail
+
+Data::Data(const Model& model) {
+  nefc_max = constraint_rows_max(model);
+  nq = model.nq;
+  nv = model.nv;
+  nu = model.nu;
+  nbody = model.nbody;
+  njnt = model.njnt;
+  ngeom = model.ngeom;
+  nsite = model.nsite;
+  nmocap = model.nmocap;
+  nsensordata = model.nsensordata;
+  ntendon = model.ntendon;
+  nwrap = model.nwrap;
+  na = model.na;
+  nconmax = std::max(0, model.nconmax);
+  // one block for every array, zeroed; then the values that are not zero
+  block_ = ArenaBlock(block_bytes(*this));
+  if (block_.bytes() > 0) std::memset(block_.data(), 0, block_.bytes());
+  lay_out(*this, detail::ArrayPlacer::Mode::kConstruct, block_.data());
   model_tag = model.fit_tag;  // sized from this model: it fits
   qpos = model.qpos0;
   place_mocap_at_bodies(model, *this);
@@ -62,61 +160,33 @@ Data::Data(const Model& model)
   }
   std::fill(efc_id.begin(), efc_id.end(), -1);
   std::fill(efc_dof.begin(), efc_dof.end(), -1);
-
-  // what is not in the table: lever's spatial inertias, and the workspace
-  cinert.assign(nbody, RigidInertia{});
-  contact.assign(static_cast<size_t>(std::max(0, model.nconmax)), Contact{});
-  work.contact.assign(contact.size(), Contact{});
-  work.pair_contact.assign(kMaxPairContacts, Contact{});
-  work.body_aabb.assign(6 * static_cast<size_t>(nbody), 0.0);
-  work.body_path.assign(nbody, 0);
-  qLD = Eigen::MatrixXd::Zero(nv, nv);
-  work.crb.assign(nbody, RigidInertia{});
-  work.cacc.assign(nbody, Motion::Zero());
-  work.cfrc.assign(nbody, Force::Zero());
-  work.body_vel.assign(nbody, Motion::Zero());
   sensor_noise_state = kSensorNoiseSeed;
-  work.LD2 = Eigen::MatrixXd::Zero(nv, nv);
-  work.LD2DiagInv = Eigen::VectorXd::Zero(nv);
-  work.vec1 = work.vec2 = work.vec3 = Eigen::VectorXd::Zero(nv);
-  work.halfJ = work.halfJ_scaled = Eigen::MatrixXd::Zero(nv, nefc_max);
-  work.A = Eigen::MatrixXd::Zero(nefc_max, nefc_max);
-  work.L = Eigen::MatrixXd::Zero(nefc_max, nefc_max);
-  work.lcp_f = work.lcp_w = work.lcp_rhs = Eigen::VectorXd::Zero(nefc_max);
-  work.lcp_active.assign(nefc_max, 0);
-  work.lcp_index.assign(nefc_max, 0);
-  work.newton_H = Eigen::MatrixXd::Zero(nv, nv);
-  for (Eigen::VectorXd* v : {&work.newton_grad, &work.newton_dir, &work.newton_Mdir,
-                             &work.newton_Merr, &work.newton_trial, &work.newton_err,
-                             &work.cg_Mgrad, &work.cg_grad_old, &work.cg_Mgrad_old}) {
-    *v = Eigen::VectorXd::Zero(nv);
+}
+
+Data::Data(const Data& other) : DataFields(other), block_(other.block_.bytes()) {
+  // the views copied above still point into other's block: point them into this one
+  if (block_.bytes() > 0) std::memcpy(block_.data(), other.block_.data(), block_.bytes());
+  lay_out(*this, detail::ArrayPlacer::Mode::kRebase, block_.data());
+}
+
+Data::Data(Data&& other) noexcept : DataFields(other), block_(std::move(other.block_)) {
+  // the block did not move, so the views copied above are valid; other's no longer are, and a
+  // call with it must walk the field table (and refuse it) instead of trusting its tag
+  lay_out(other, detail::ArrayPlacer::Mode::kDetach, nullptr);
+  other.model_tag = 0;
+}
+
+Data& Data::operator=(const Data& other) {
+  if (&other != this) *this = Data(other);
+  return *this;
+}
+
+Data& Data::operator=(Data&& other) noexcept {
+  if (&other != this) {
+    this->~Data();
+    new (this) Data(std::move(other));
   }
-  for (Eigen::VectorXd* v :
-       {&work.newton_jar, &work.newton_jv, &work.newton_x, &work.newton_grad_x}) {
-    *v = Eigen::VectorXd::Zero(nefc_max);
-  }
-  efc_J = RowMatrix::Zero(nefc_max, nv);
-  work.contact_frame_J = RowMatrix::Zero(nefc_max, nv);
-  work.contact_span.assign(2 * contact.size(), 0);
-  work.dof_chain.assign(2 * static_cast<size_t>(nv), 0);
-  work.equality_jac = Eigen::MatrixXd::Zero(12, nv);
-  work.tendon_jac = Eigen::MatrixXd::Zero(12, nv);
-  work.transmission_jac = Eigen::MatrixXd::Zero(12, nv);
-  work.contact_weight.assign(36 * contact.size(), 0.0);
-  work.frame_scratch.assign(6 * static_cast<size_t>(nv), 0.0);
-  work.hessian_envelope.assign(nv, 0);
-  work.rk_qpos0 = Eigen::VectorXd::Zero(nq);
-  work.rk_dq = Eigen::VectorXd::Zero(nv);  // a velocity: nv, not nq
-  work.rk_qvel0 = work.rk_dv = Eigen::VectorXd::Zero(nv);
-  for (int i = 0; i < 4; ++i) {
-    work.rk_qvel[i] = Eigen::VectorXd::Zero(nv);
-    work.rk_qacc[i] = Eigen::VectorXd::Zero(nv);
-    work.rk_act_dot[i] = Eigen::VectorXd::Zero(model.na);
-  }
-  work.rk_act0 = work.rk_dact = Eigen::VectorXd::Zero(model.na);
-  work.qDeriv = Eigen::MatrixXd::Zero(nv, nv);
-  work.qLU = Eigen::MatrixXd::Zero(nv, nv);
-  work.subtree_coupling.assign(nbody, VelocityCoupling());
+  return *this;
 }
 
 int warning_count(const Data& data) {

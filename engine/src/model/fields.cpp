@@ -97,11 +97,12 @@ struct Layout<std::array<double, N>> {  // a fixed-size array of Data (energy)
   static constexpr int per_entry = 1;
   static void* data(const std::array<double, N>& a) { return const_cast<double*>(a.data()); }
   static long entries(const std::array<double, N>&) { return N; }
-  static void resize(std::array<double, N>& a, int, int) { a.fill(0.0); }
+  static void place(detail::ArrayPlacer&, std::array<double, N>&, int, int) {}  // not in the block
 };
 
+// What one entry of an array of T holds: per_entry numbers of type element.
 template <class T>
-struct Layout<std::vector<T>> {
+struct Entry {
   static constexpr bool kEigen = requires { T::RowsAtCompileTime; };
   static constexpr int per_entry = [] {
     if constexpr (kEigen) {
@@ -125,11 +126,6 @@ struct Layout<std::vector<T>> {
   }());
   // an entry must be exactly its numbers, with no padding, for the array to be one block
   static_assert(sizeof(T) == per_entry * sizeof(element));
-  static void* data(const std::vector<T>& v) { return const_cast<T*>(v.data()); }
-  static long entries(const std::vector<T>& v) { return static_cast<long>(v.size()) * per_entry; }
-  static void resize(std::vector<T>& v, int rows, int) { v.assign(rows, zero()); }
-  // the entries within the new length kept, the rest zero (size_model)
-  static void resize_keeping(std::vector<T>& v, int rows, int) { v.resize(rows, zero()); }
   // Eigen's fixed-size types are not zeroed by T{} (their default constructor leaves the numbers
   // uninitialized): ask for Zero() explicitly
   static T zero() {
@@ -137,6 +133,43 @@ struct Layout<std::vector<T>> {
       return T::Zero();
     } else {
       return T{};
+    }
+  }
+};
+
+template <class T>
+struct Layout<std::vector<T>> {
+  using element = typename Entry<T>::element;
+  static constexpr int per_entry = Entry<T>::per_entry;
+  static void* data(const std::vector<T>& v) { return const_cast<T*>(v.data()); }
+  static long entries(const std::vector<T>& v) { return static_cast<long>(v.size()) * per_entry; }
+  // the entries within the new length kept, the rest zero (size_model)
+  static void resize_keeping(std::vector<T>& v, int rows, int) { v.resize(rows, Entry<T>::zero()); }
+};
+
+// Data's arrays: views into its block (lever/arena.hpp), laid out once
+template <class T>
+struct Layout<ArenaArray<T>> {
+  using element = typename Entry<T>::element;
+  static constexpr int per_entry = Entry<T>::per_entry;
+  static void* data(const ArenaArray<T>& v) { return const_cast<T*>(v.data()); }
+  static long entries(const ArenaArray<T>& v) { return static_cast<long>(v.size()) * per_entry; }
+  static void place(detail::ArrayPlacer& place, ArenaArray<T>& v, int rows, int cols) {
+    place(v, static_cast<std::size_t>(rows) * cols / per_entry);
+  }
+};
+
+template <class Plain>
+struct Layout<ArenaMap<Plain>> {  // a vector, or a square matrix (M): its storage order is moot
+  using element = double;
+  static constexpr int per_entry = 1;
+  static void* data(const ArenaMap<Plain>& m) { return const_cast<double*>(m.data()); }
+  static long entries(const ArenaMap<Plain>& m) { return m.size(); }
+  static void place(detail::ArrayPlacer& place, ArenaMap<Plain>& m, int rows, int cols) {
+    if constexpr (Plain::ColsAtCompileTime == 1) {
+      place(m, static_cast<Eigen::Index>(rows) * cols);
+    } else {
+      place(m, rows, cols);
     }
   }
 };
@@ -180,9 +213,9 @@ struct ContactMember<std::array<T, N>> {
   static const void* data(const std::array<T, N>& a) { return a.data(); }
 };
 
-#define LEVER_CHECK_CONTACT_ROW(name, type, count_, origin)                                      \
-  static_assert(std::is_same_v<ContactMember<decltype(Contact::name)>::element, type> &&         \
-                    ContactMember<decltype(Contact::name)>::count == count_,                     \
+#define LEVER_CHECK_CONTACT_ROW(name, type, count_, origin)                              \
+  static_assert(std::is_same_v<ContactMember<decltype(Contact::name)>::element, type> && \
+                    ContactMember<decltype(Contact::name)>::count == count_,             \
                 "the contact field table's row for Contact::" #name " does not match its member");
 LEVER_CONTACT_FIELDS(LEVER_CHECK_CONTACT_ROW)
 #undef LEVER_CHECK_CONTACT_ROW
@@ -380,15 +413,41 @@ void check_argument_size(long size, long n, const char* where, const char* what)
   }
 }
 
-namespace detail {
-void size_data_arrays(const Model& model, Data& data) {
-#define LEVER_DATA_SIZE(name, type, rows, cols, stage, origin)                 \
-  {                                                                            \
-    const int n = storage_rows(model, token::rows);                            \
-    Layout<decltype(Data::name)>::resize(data.name, n, resolve_cols(model, cols, token::rows)); \
+namespace {
+// The rows an array of a Data holds, from the sizes it was made with (nefc: the most rows).
+int data_rows(const Data& data, Size size) {
+  switch (size) {
+    case Size::kOne: return 1;
+    case Size::kNq: return data.nq;
+    case Size::kNv: return data.nv;
+    case Size::kNu: return data.nu;
+    case Size::kNbody: return data.nbody;
+    case Size::kNjnt: return data.njnt;
+    case Size::kNgeom: return data.ngeom;
+    case Size::kNsite: return data.nsite;
+    case Size::kNefc: return data.nefc_max;
+    case Size::kNsensordata: return data.nsensordata;
+    case Size::kNmocap: return data.nmocap;
+    case Size::kNtendon: return data.ntendon;
+    case Size::kNwrap: return data.nwrap;
+    case Size::kNa: return data.na;
+    default: break;
   }
-  LEVER_DATA_FIELDS(LEVER_DATA_SIZE)
-#undef LEVER_DATA_SIZE
+  throw StateError(std::string("lever: a Data array counted in ") + size_name(size) +
+                   ", a size a Data does not keep: add it to Data's sizes.");
+}
+}  // namespace
+
+namespace detail {
+void lay_out_table_arrays(Data& data, ArrayPlacer& place) {
+#define LEVER_DATA_PLACE(name, type, rows, cols, stage, origin)                      \
+  {                                                                                  \
+    const int n = data_rows(data, token::rows);                                      \
+    const int c = cols < 0 ? data_rows(data, cols_size_of(cols, token::rows)) : cols; \
+    Layout<decltype(Data::name)>::place(place, data.name, n, c);                    \
+  }
+  LEVER_DATA_FIELDS(LEVER_DATA_PLACE)
+#undef LEVER_DATA_PLACE
 }
 }  // namespace detail
 
@@ -474,7 +533,7 @@ void size_model(Model& model) {
 #undef LEVER_MODEL_SIZE_ARRAY
   // a new body is not a mocap body until the builder says so
   for (size_t b = bodies_before; b < model.body_mocapid.size(); ++b) model.body_mocapid[b] = -1;
-  // outside the table (see lever/fields.hpp): one name per object, and the keyframes
+    // outside the table (see lever/fields.hpp): one name per object, and the keyframes
 #define LEVER_MODEL_SIZE_NAMES(name, count) model.name.resize(static_cast<size_t>(model.count));
   LEVER_MODEL_NAMES(LEVER_MODEL_SIZE_NAMES)
 #undef LEVER_MODEL_SIZE_NAMES

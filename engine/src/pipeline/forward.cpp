@@ -9,18 +9,18 @@
 #include <lever/kinematics.hpp>
 
 #include "basics/basics.hpp"
-#include "model/model_room.hpp"
-#include "smooth/smooth.hpp"
 #include "constraint/constraint_room.hpp"
-#include "sensors/sensors.hpp"
+#include "model/model_room.hpp"
 #include "pipeline/pipeline.hpp"
+#include "sensors/sensors.hpp"
+#include "smooth/smooth.hpp"
 
 namespace lever {
 
 namespace {
 
 // Record a warning if any element of x is bad (NaN or beyond 1e10).
-void record_if_bad(Data& data, const Eigen::VectorXd& x, Warning kind) {
+void record_if_bad(Data& data, const Eigen::Ref<const Eigen::VectorXd>& x, Warning kind) {
   const int bad = first_bad(x.data(), static_cast<int>(x.size()));
   if (bad >= 0) record_warning(data, kind, bad);
 }
@@ -149,9 +149,9 @@ void compare_forward_inverse(const Model& model, Data& data) {
   if (data.nefc == 0) return;
   // what forward() applied, and what it found, kept while inverse dynamics at its qacc reuses
   // the same arrays (MuJoCo's mj_compareFwdInv; it keeps the inverse's qfrc_inverse)
-  Eigen::VectorXd& forward_constraint = data.work.vec1;
-  Eigen::VectorXd& applied = data.work.vec2;
-  Eigen::VectorXd& forward_efc_force = data.work.lcp_f;  // (nefc_max) the pivoting solver's
+  ArenaVector& forward_constraint = data.work.vec1;
+  ArenaVector& applied = data.work.vec2;
+  ArenaVector& forward_efc_force = data.work.lcp_f;  // (nefc_max) the pivoting solver's
   forward_constraint = data.qfrc_constraint;
   forward_efc_force.head(data.nefc) = data.efc_force.head(data.nefc);
   applied = data.qfrc_applied + data.qfrc_actuator;

@@ -12,7 +12,8 @@
 //              -damping J^T J (its Jacobian J), and the fluid's drag as mjd_inertiaBoxFluid takes
 //              it (smooth/fluid.cpp);
 //   bias:      -d qfrc_bias / d qvel: the Coriolis and centrifugal terms, Carpentier and Mansard's
-//              d rnea / d qd (derivatives/inverse_dynamics.cpp; gravity and qacc do not depend on qvel).
+//              d rnea / d qd (derivatives/inverse_dynamics.cpp; gravity and qacc do not depend on
+//              qvel).
 // The constraint force is taken from the forward solve and held fixed, as MuJoCo does.
 //
 // M - h D is not symmetric, but it is non-zero only where M is (pairs of dofs on one branch), so,
@@ -27,8 +28,8 @@
 
 #include <string>
 
-#include "model/model_room.hpp"
 #include "derivatives/derivatives_room.hpp"
+#include "model/model_room.hpp"
 #include "pipeline/pipeline.hpp"
 #include "smooth/smooth.hpp"
 
@@ -119,7 +120,7 @@ void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
   }
 }
 
-void factor_lu_tree(const Model& model, Eigen::MatrixXd& K) {
+void factor_lu_tree(const Model& model, Eigen::Ref<Eigen::MatrixXd> K) {
   // eliminate dof k from its ancestors' rows, leaves first: row i -= (K(i, k) / K(k, k)) row k
   // for each ancestor i, over the columns where row k is still non-zero (k's ancestors j);
   // K(i, k) keeps the multiplier. Column by column, each column's elements in turn. M - h D is
@@ -140,7 +141,7 @@ void factor_lu_tree(const Model& model, Eigen::MatrixXd& K) {
   }
 }
 
-void solve_lu_tree(const Model& model, const Eigen::MatrixXd& LU, double* x) {
+void solve_lu_tree(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LU, double* x) {
   // (U + I) y = x, leaves to root
   for (int k = model.nv - 1; k >= 0; --k) {
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= x[k] * LU(i, k);

@@ -11,8 +11,8 @@
 
 #include "basics/basics.hpp"
 #include "model/model_room.hpp"
-#include "smooth/smooth.hpp"
 #include "pipeline/pipeline.hpp"
+#include "smooth/smooth.hpp"
 
 #include <cmath>
 
@@ -43,7 +43,8 @@ void turn_quat(double* q, const double* w, double h) {
 }
 
 // MuJoCo's mj_checkPos / mj_checkVel / mj_checkAcc: a bad value resets the state.
-bool check_and_reset(const Model& model, Data& data, const Eigen::VectorXd& x, Warning kind) {
+bool check_and_reset(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& x,
+                     Warning kind) {
   for (Eigen::Index i = 0; i < x.size(); ++i) {
     if (is_bad(x[i])) {
       reset(model, data);
@@ -56,7 +57,7 @@ bool check_and_reset(const Model& model, Data& data, const Eigen::VectorXd& x, W
 
 void euler(const Model& model, Data& data) {
   const double h = model.opt.timestep;
-  Eigen::VectorXd& qacc = data.work.vec2;
+  auto& qacc = data.work.vec2;
   qacc = data.qacc;
 
   bool damped = false;

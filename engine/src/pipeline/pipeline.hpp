@@ -29,10 +29,10 @@ void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
 /// mju_factorLUSparse does, without pivoting, leaves first: K = (U + I) L, U strictly upper
 /// (above K's diagonal on return), L lower (on and below it). Eliminating a leaf touches only its
 /// ancestors' rows and columns, so nothing fills in (implicit.cpp).
-void factor_lu_tree(const Model& model, Eigen::MatrixXd& K);
+void factor_lu_tree(const Model& model, Eigen::Ref<Eigen::MatrixXd> K);
 
 /// x = K^-1 x with factor_lu_tree()'s factor of K.
-void solve_lu_tree(const Model& model, const Eigen::MatrixXd& LU, double* x);
+void solve_lu_tree(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LU, double* x);
 
 namespace detail {
 /// MuJoCo 2.2.2's implicit step (implicit.cpp), after forward().

@@ -30,7 +30,8 @@ Force contact_wrench(const Data& data, const Contact& contact) {
   if (data.efc_type[contact.efc_address] == ConstraintType::kContactPyramidal) {
     const int tangents = contact.dim - 1;
     for (int k = 0; k < 2 * tangents; ++k) local[0] += f[k];
-    for (int k = 0; k < tangents; ++k) local[1 + k] = (f[2 * k] - f[2 * k + 1]) * contact.friction[k];
+    for (int k = 0; k < tangents; ++k)
+      local[1 + k] = (f[2 * k] - f[2 * k + 1]) * contact.friction[k];
   } else {
     for (int k = 0; k < contact.dim; ++k) local[k] = f[k];
   }
@@ -134,7 +135,7 @@ void rne_post_constraint(const Model& model, Data& data) {
 
 void subtree_velocities(const Model& model, Data& data) {
   const int nbody = model.nbody;
-  std::vector<Motion>& body_vel = data.work.body_vel;
+  auto& body_vel = data.work.body_vel;
 
   // each body alone: its centre of mass's velocity, its momentum, its spin about its centre
   for (int b = 0; b < nbody; ++b) {

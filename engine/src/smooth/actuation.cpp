@@ -92,7 +92,7 @@ void slider_crank_transmission(const Model& model, Data& data, int a, double* mo
     dl_dv = axis * (1 - av / root) + v * (1 / root);
     dl_da = v * (1 - av / root);
   }
-  Eigen::MatrixXd& jac = data.work.transmission_jac;
+  ArenaMatrix& jac = data.work.transmission_jac;
   auto crank_p = jac.middleRows(0, 3), crank_r = jac.middleRows(3, 3);
   auto slider_p = jac.middleRows(6, 3), slider_r = jac.middleRows(9, 3);
   detail::point_jacobians(model, data, model.site_bodyid[slider], data.site_xpos[slider], slider_p,
@@ -122,7 +122,7 @@ void site_transmission(const Model& model, Data& data, int a, double* moment, do
   const auto& gear = model.actuator_gear[a];
   const int site = model.actuator_trnid[a][0], ref = model.actuator_trnid[a][1];
   const int nv = model.nv;
-  Eigen::MatrixXd& jac = data.work.transmission_jac;
+  ArenaMatrix& jac = data.work.transmission_jac;
   auto site_p = jac.middleRows(0, 3), site_r = jac.middleRows(3, 3);
   auto ref_p = jac.middleRows(6, 3), ref_r = jac.middleRows(9, 3);
   detail::point_jacobians(model, data, model.site_bodyid[site], data.site_xpos[site], site_p, site_r);

@@ -14,8 +14,8 @@
 
 #include "basics/basics.hpp"
 #include "model/model_room.hpp"
-#include "smooth/smooth.hpp"
 #include "smooth/recursion.hpp"
+#include "smooth/smooth.hpp"
 
 namespace lever {
 
@@ -23,7 +23,7 @@ namespace {
 
 // Zeroes H(i, k) and H(k, i) for every dof k < i that is no ancestor of dof i (a branch elsewhere
 // in the tree: no coupling). With crba's ancestor entries this writes every entry of H.
-void zero_uncoupled(const Model& model, Eigen::MatrixXd& H, int i) {
+void zero_uncoupled(const Model& model, Eigen::Ref<Eigen::MatrixXd> H, int i) {
   int gap_end = i;  // rows (j, gap_end) lie between two consecutive ancestors
   for (int j = model.dof_parentid[i];; j = model.dof_parentid[j]) {
     for (int k = j + 1; k < gap_end; ++k) H(k, i) = H(i, k) = 0.0;
@@ -34,7 +34,8 @@ void zero_uncoupled(const Model& model, Eigen::MatrixXd& H, int i) {
 
 // H's column i and its transpose row over i's ancestors: the force that accelerating dof i needs,
 // seen by i and by each of its ancestors.
-inline void crba_column(const Model& model, const Data& data, Eigen::MatrixXd& H, int i) {
+inline void crba_column(const Model& model, const Data& data, Eigen::Ref<Eigen::MatrixXd> H,
+                        int i) {
   const Force F = data.work.crb[model.dof_bodyid[i]] * data.cdof[i];
   H(i, i) = data.cdof[i].dot(F) + model.dof_armature[i];  // armature: rotor inertia of the motor
   for (int j = model.dof_parentid[i]; j >= 0; j = model.dof_parentid[j]) {
@@ -44,7 +45,7 @@ inline void crba_column(const Model& model, const Data& data, Eigen::MatrixXd& H
 
 // The same for a simple body's dof (Model::body_simple): its diagonal entry is the same at every
 // state and its couplings are zero, as MuJoCo's mj_crb copies them.
-inline void simple_column(const Model& model, Eigen::MatrixXd& H, int i) {
+inline void simple_column(const Model& model, Eigen::Ref<Eigen::MatrixXd> H, int i) {
   H(i, i) = model.dof_M0[i];
   for (int j = model.dof_parentid[i]; j >= 0; j = model.dof_parentid[j]) H(i, j) = H(j, i) = 0.0;
 }
@@ -52,7 +53,7 @@ inline void simple_column(const Model& model, Eigen::MatrixXd& H, int i) {
 }  // namespace
 
 void unchecked::crba(const Model& model, Data& data) {
-  Eigen::MatrixXd& H = data.M;
+  auto& H = data.M;
 
   // composite inertias, leaves to root (bodies on the world stop there: nothing above them moves)
   composite_inertias(model, data, data.work.crb);
@@ -92,8 +93,8 @@ constexpr double kMinPivot = detail::kMinVal;  // keep the solve finite, as MuJo
 // skipped; without any, the loop does not ask (the factorization and solves below are
 // instantiated both ways, chosen once per call).
 template <bool SkipSimple>
-[[gnu::always_inline]] inline int ltdl_columns(const Model& model, Eigen::MatrixXd& H, int last,
-                                               int first) {
+[[gnu::always_inline]] inline int ltdl_columns(const Model& model, Eigen::Ref<Eigen::MatrixXd> H,
+                                               int last, int first) {
   int bad = -1;
   for (int k = last; k >= first; --k) {
     if (H(k, k) < kMinPivot) {
@@ -114,7 +115,7 @@ template <bool SkipSimple>
 
 // The same step at a column k whose ancestors are the dofs 0..k-1 (a chain): the same arithmetic
 // over contiguous rows (vectorized; restrict: two different columns).
-inline bool ltdl_chain_column(Eigen::MatrixXd& H, int k) {
+inline bool ltdl_chain_column(Eigen::Ref<Eigen::MatrixXd> H, int k) {
   const bool bad = H(k, k) < kMinPivot;
   if (bad) H(k, k) = kMinPivot;
   double* __restrict Hk = &H(0, k);
@@ -145,7 +146,7 @@ bool long_leading_chain(const Model& model) {
 // world, so a chain from dof 0 holds one only as a single body of nine or more joints, whose zero
 // columns it eliminates to the same result.)
 template <bool SkipSimple>
-[[gnu::noinline]] int ltdl_long_chain(const Model& model, Eigen::MatrixXd& H) {
+[[gnu::noinline]] int ltdl_long_chain(const Model& model, Eigen::Ref<Eigen::MatrixXd> H) {
   int chain_end = kLongChain + 1;  // dofs 0..chain_end-1 form one chain
   while (chain_end < model.nv && model.dof_parentid[chain_end] == chain_end - 1) ++chain_end;
   int bad = ltdl_columns<SkipSimple>(model, H, model.nv - 1, chain_end);
@@ -160,29 +161,33 @@ template <bool SkipSimple>
 // on the diagonal and L^T above it (L(k, i), i an ancestor of k, at (i, k)), so that every inner
 // loop runs down one column. Returns the first dof whose pivot was not positive, or -1.
 template <bool SkipSimple>
-int ltdl_factor(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
+int ltdl_factor(const Model& model, Eigen::Ref<Eigen::MatrixXd> H,
+                Eigen::Ref<Eigen::VectorXd> diag_inverse) {
   const int bad = long_leading_chain(model) ? ltdl_long_chain<SkipSimple>(model, H)
                                             : ltdl_columns<SkipSimple>(model, H, model.nv - 1, 0);
   for (int k = 0; k < model.nv; ++k) diag_inverse[k] = 1.0 / H(k, k);
   return bad;
 }
 
-int ltdl(const Model& model, Eigen::MatrixXd& H, Eigen::VectorXd& diag_inverse) {
+int ltdl(const Model& model, Eigen::Ref<Eigen::MatrixXd> H,
+         Eigen::Ref<Eigen::VectorXd> diag_inverse) {
   return model.has_simple_dofs ? ltdl_factor<true>(model, H, diag_inverse)
                                : ltdl_factor<false>(model, H, diag_inverse);
 }
 
 // x <- L^-T x with a factor from ltdl(), leaves to root.
 template <bool SkipSimple>
-void solve_half(const Model& model, const Eigen::MatrixXd& LD, Eigen::Ref<Eigen::VectorXd> x) {
+void solve_half(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LD,
+                Eigen::Ref<Eigen::VectorXd> x) {
   for (int k = model.nv - 1; k >= 0; --k) {
     if (SkipSimple && model.dof_simplenum[k] > 0) continue;  // column k of L is zero
-    const double* Lk = &LD(0, k);
+    const double* Lk = LD.col(k).data();
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= Lk[i] * x[k];
   }
 }
 
-void ltdl_solve_half(const Model& model, const Eigen::MatrixXd& LD, Eigen::Ref<Eigen::VectorXd> x) {
+void ltdl_solve_half(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LD,
+                     Eigen::Ref<Eigen::VectorXd> x) {
   if (model.has_simple_dofs) {
     solve_half<true>(model, LD, x);
   } else {
@@ -192,8 +197,8 @@ void ltdl_solve_half(const Model& model, const Eigen::MatrixXd& LD, Eigen::Ref<E
 
 // x = (L^T D L)^-1 x with a factor from ltdl().
 template <bool SkipSimple>
-void solve(const Model& model, const Eigen::MatrixXd& LD, const Eigen::VectorXd& diag_inverse,
-           Eigen::Ref<Eigen::VectorXd> x) {
+void solve(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LD,
+           const Eigen::Ref<const Eigen::VectorXd>& diag_inverse, Eigen::Ref<Eigen::VectorXd> x) {
   const int n = model.nv;
   solve_half<SkipSimple>(model, LD, x);  // x <- L^-T x
   // x <- D^-1 x
@@ -201,12 +206,13 @@ void solve(const Model& model, const Eigen::MatrixXd& LD, const Eigen::VectorXd&
   // x <- L^-1 x, root to leaves
   for (int k = 0; k < n; ++k) {
     if (SkipSimple && model.dof_simplenum[k] > 0) continue;  // row k of L is zero
-    const double* Lk = &LD(0, k);
+    const double* Lk = LD.col(k).data();
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[k] -= Lk[i] * x[i];
   }
 }
 
-void ltdl_solve(const Model& model, const Eigen::MatrixXd& LD, const Eigen::VectorXd& diag_inverse,
+void ltdl_solve(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LD,
+                const Eigen::Ref<const Eigen::VectorXd>& diag_inverse,
                 Eigen::Ref<Eigen::VectorXd> x) {
   if (model.has_simple_dofs) {
     solve<true>(model, LD, diag_inverse, x);
@@ -249,7 +255,8 @@ void factor_mass_damped(const Model& model, Data& data, double h) {
   ltdl(model, data.work.LD2, data.work.LD2DiagInv);
 }
 
-void factor_mass_minus(const Model& model, Data& data, const Eigen::MatrixXd& D, double h) {
+void factor_mass_minus(const Model& model, Data& data, const Eigen::Ref<const Eigen::MatrixXd>& D,
+                       double h) {
   data.work.LD2 = data.M;
   data.work.LD2 -= h * D;
   ltdl(model, data.work.LD2, data.work.LD2DiagInv);

@@ -53,7 +53,7 @@ void unchecked::energy_position(const Model& model, Data& data) {
 
 void unchecked::energy_velocity(const Model& model, Data& data) {
   (void)model;
-  Eigen::VectorXd& momentum = data.work.vec1;  // preallocated: no heap use here
+  auto& momentum = data.work.vec1;  // preallocated: no heap use here
   momentum.noalias() = data.M * data.qvel;
   data.energy[1] = 0.5 * data.qvel.dot(momentum);
 }

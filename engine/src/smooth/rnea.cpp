@@ -10,8 +10,8 @@
 #include <lever/dynamics.hpp>
 
 #include "model/model_room.hpp"
-#include "smooth/smooth.hpp"
 #include "smooth/recursion.hpp"
+#include "smooth/smooth.hpp"
 
 namespace lever {
 

@@ -21,7 +21,8 @@ void solve_mass_half(const Model& model, const Data& data, Eigen::Ref<Eigen::Vec
 
 /// Factor M - h D, for a symmetric D non-zero only where M is, into data.work.LD2 as M is
 /// factored (LTDL on the tree: MuJoCo 3's mj_factorI of implicitfast's matrix).
-void factor_mass_minus(const Model& model, Data& data, const Eigen::MatrixXd& D, double h);
+void factor_mass_minus(const Model& model, Data& data, const Eigen::Ref<const Eigen::MatrixXd>& D,
+                       double h);
 
 /// x = (M + h diag(dof_damping))^-1 x with factor_mass_damped()'s factor (or M - h D with
 /// factor_mass_minus()'s).

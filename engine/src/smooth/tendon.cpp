@@ -55,7 +55,7 @@ void record_point(Data& data, int& point, const Eigen::Vector3d& x, int object) 
 // tendon's Jacobian, a on body_a and b on body_b.
 void add_segment_jacobian(const Model& model, Data& data, int body_a, const Eigen::Vector3d& a,
                           int body_b, const Eigen::Vector3d& b, double scale, double* J) {
-  Eigen::MatrixXd& jac = data.work.tendon_jac;  // rows 0-2: a's, 6-8: b's (3-5, 9-11 rotations)
+  ArenaMatrix& jac = data.work.tendon_jac;  // rows 0-2: a's, 6-8: b's (3-5, 9-11 rotations)
   detail::point_jacobians(model, data, body_a, a, jac.middleRows(0, 3), jac.middleRows(3, 3));
   detail::point_jacobians(model, data, body_b, b, jac.middleRows(6, 3), jac.middleRows(9, 3));
   double u[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]};

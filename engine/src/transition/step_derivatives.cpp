@@ -20,20 +20,20 @@
 #include <string>
 
 #include "basics/basics.hpp"
-#include "smooth/smooth.hpp"
 #include "constraint/constraint_room.hpp"
 #include "derivatives/derivatives_room.hpp"
 #include "pipeline/pipeline.hpp"
-#include "transition/transition.hpp"
 #include "smooth/recursion.hpp"
+#include "smooth/smooth.hpp"
+#include "transition/transition.hpp"
 
 namespace lever {
 
 namespace {
 
-using detail::kMinVal;  // the floor of a limit row's R
 using detail::check_derivative_sizes;
 using detail::inertia_columns;
+using detail::kMinVal;  // the floor of a limit row's R
 using detail::rnea_derivatives_into;
 using detail::rotation_block;
 
@@ -308,8 +308,8 @@ void add_scaled_row(double* y, double a, const double* x, Eigen::Index n) {
 
 // X = (L^T D L)^-1 X with an LTDL factor in crba.cpp's layout (ltdl: D on the diagonal, L(k, i)
 // at LD(i, k) for each ancestor i of k), as solve_mass does one column.
-void ltdl_solve_rows(const Model& model, const Eigen::MatrixXd& LD,
-                     const Eigen::VectorXd& diag_inverse, RowMatrix& X) {
+void ltdl_solve_rows(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LD,
+                     const Eigen::Ref<const Eigen::VectorXd>& diag_inverse, RowMatrix& X) {
   const Eigen::Index n = X.cols();
   for (int k = model.nv - 1; k >= 0; --k) {  // L^-T, leaves to root
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
@@ -413,7 +413,8 @@ bool same_active_set(const Data& data, const std::vector<int>& set) {
 // deriv.work.next, against the start's set (deriv.work.active_set); a change sets the flag and
 // data's warning.
 void check_step_end(const Model& model, Data& data, Derivatives& deriv,
-                    const Eigen::VectorXd& velocity, const Eigen::VectorXd& acceleration) {
+                    const Eigen::Ref<const Eigen::VectorXd>& velocity,
+                    const Eigen::Ref<const Eigen::VectorXd>& acceleration) {
   auto& w = deriv.work;
   Data& next = *w.next;
   const double h = model.opt.timestep;
@@ -462,8 +463,8 @@ void assemble_euler(const Model& model, const Matrix& Dq, const Matrix& Dv, cons
 
 // The rows of ball and free joints' turns in an Euler-form step (Euler, implicit), after
 // assemble_euler(): qpos' = qpos (+) h qvel', qvel' = qvel + h qacc_step.
-void euler_turns(const Model& model, const Data& data, const Eigen::VectorXd& qacc_step,
-                 Derivatives& deriv) {
+void euler_turns(const Model& model, const Data& data,
+                 const Eigen::Ref<const Eigen::VectorXd>& qacc_step, Derivatives& deriv) {
   const int nv = model.nv;
   const double h = model.opt.timestep;
   auto& qvel_next = deriv.work.qvel_next;

@@ -21,7 +21,7 @@ void evaluate_stage(const mjModel* m, mjData* d, bool restart_solver) {
 }  // namespace
 
 void mujoco_rk4_step(const mjModel* m, mjData* d, bool restart_solver,
-                     const std::array<Eigen::VectorXd, 4>* path_qacc, MujocoRk4Stages* stages) {
+                     const ArenaVector (*path_qacc)[4], MujocoRk4Stages* stages) {
   const int nq = m->nq, nv = m->nv, na = m->na;
   const double h = m->opt.timestep, time = d->time;
   MujocoRk4Stages local;

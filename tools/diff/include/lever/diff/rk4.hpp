@@ -37,9 +37,9 @@ struct MujocoRk4Stages {
 /// it. Each next stage's state is made from `path_qacc[i]` if given (lever's stage accelerations,
 /// Data::work.rk_qacc), else from MuJoCo's own stage acceleration: then, without restart_solver,
 /// d ends bit for bit where mj_step leaves it (qpos, qvel, time, and the last stage's qacc and
-/// rows). Models with activations (na > 0) are refused (std::runtime_error): lever has none.
+/// rows). Activations ride along in MuJoCo's own act_dot at every stage.
 void mujoco_rk4_step(const mjModel* m, mjData* d, bool restart_solver,
-                     const std::array<Eigen::VectorXd, 4>* path_qacc, MujocoRk4Stages* stages);
+                     const ArenaVector (*path_qacc)[4], MujocoRk4Stages* stages);
 
 /// After lever's RK4 step (data) and mujoco_rk4_step along its path (stages): each later stage's
 /// velocity, built by each engine's own arithmetic from the same accelerations, so equal ("qvel
