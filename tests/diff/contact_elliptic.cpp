@@ -28,6 +28,8 @@
 #include <lever/harness/random_state.hpp>
 #include <lever/harness/tolerance.hpp>
 
+#include "diff_checks.hpp"
+
 namespace lever::test {
 
 namespace {
