@@ -759,6 +759,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.qacc_sum.setZero(nv);
   work.next.emplace(model);
   work.contact_point_velocity.assign(ndof, Eigen::Vector3d::Zero());
+  work.equality_point_velocity.assign(2 * ndof, Eigen::Vector3d::Zero());
   work.moves1.assign(ndof, 0);
   work.moves2.assign(ndof, 0);
   detail::carry_table(model, work.carries);
