@@ -392,10 +392,12 @@ TEST_CASE("BatchRunner on two threads allocates nothing per batch: its workers a
 
 TEST_CASE("rnea_derivatives, forward_derivatives, step_derivatives and regressor allocate nothing",
           "[alloc][derivatives]") {
-  // every model, and the fixed tendons' and friction loss's rows (which the derivatives take too)
+  // every model, and the fixed tendons', friction loss's and equality constraints' rows and the
+  // site actuators (which the derivatives take too)
   std::vector<std::string> files = lever::test::all_model_files();
   for (const char* file :
-       {"tests/models/constraints/tendons.xml", "tests/models/constraints/friction_loss.xml"}) {
+       {"tests/models/constraints/tendons.xml", "tests/models/constraints/friction_loss.xml",
+        "tests/models/constraints/equality.xml", "tests/derivatives/site_actuators.xml"}) {
     files.push_back(lever::test::model_path(file));
   }
   for (const std::string& path : files) {

@@ -12,10 +12,11 @@
 // direction of qpos's tangent space (nv of them: a ball's turn about its body's axis j, as
 // integrate_pos applies it). MuJoCo 2.2.2 has no analytic counterpart; its mjd_transitionFD
 // (finite differences of mj_step) returns A and B in the same layout. Fixed tendons (springs,
-// dampers, actuators, limits, friction loss) and joint and tendon couplings are covered. Refused
-// (lever::Error): a pushing contact of a pair MuJoCo collides by MPR (meshes, cylinders and
-// ellipsoids against anything but a plane), an elliptic cone on its surface, a connect or weld, a
-// ball joint sharing its body with others.
+// dampers, actuators, limits, friction loss), joint and tendon couplings, connects and welds, and
+// actuators on sites without a reference site are covered. Refused (lever::Error): a pushing
+// contact of a pair MuJoCo collides by MPR (meshes, cylinders and ellipsoids against anything but
+// a plane), an elliptic cone on its surface, a spatial tendon, a site actuator with a reference
+// site, a ball joint sharing its body with others.
 #pragma once
 
 #include <Eigen/Core>
@@ -111,6 +112,12 @@ struct Derivatives {
     /// under dof c, the narrow phase run once per dof for all of the pair's contacts
     std::vector<ContactChange> pair_changes;
     std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at a contact's point
+    /// (2nv) a connect's or weld's two anchors: each dof's velocity at body 1's anchor, then at
+    /// body 2's (transition/equality_rows.cpp)
+    std::vector<Eigen::Vector3d> equality_point_velocity;
+    /// (nv x nv) a site actuator's moment's change: (i, c) = d moment_i / d q_c
+    /// (transition/step_derivatives.cpp)
+    Eigen::MatrixXd moment_change;
     // the active set's check (step_derivatives)
     std::vector<int> active_set;  ///< the contacts' geom pairs and the rows' states at the start
     Eigen::VectorXd qacc_sum;     ///< (nv) RK4: sum_i b_i qacc_i

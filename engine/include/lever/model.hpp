@@ -709,12 +709,13 @@ int actuator_scalar_dof(const Model& model, int a);
 
 /// Throws ModelError, naming `feature` and the first actuator that is not one, unless every
 /// actuator is stateless (dyntype none), has a fixed or affine gain and bias (no muscle) and
-/// drives a hinge or slide joint alone (actuator_scalar_dof >= 0), or, where `tendons_too`, a
-/// tendon (whose moment is gear ten_J): for the features (identification, the step's
-/// derivatives, ...) written for actuators whose force is affine in ctrl and whose moment is
-/// constant in the dofs it drives.
+/// drives a hinge or slide joint alone (actuator_scalar_dof >= 0), or, where
+/// `tendons_and_sites`, a tendon (whose moment is gear ten_J) or a site without a reference site
+/// (whose moment turns with the site): for the features (identification, the step's
+/// derivatives, ...) written for actuators whose force is affine in ctrl and, but for those two,
+/// whose moment is constant in the dofs it drives.
 void require_simple_actuators(const Model& model, const std::string& feature,
-                              bool tendons_too = false);
+                              bool tendons_and_sites = false);
 
 /// The actuators whose length range the compiler computes (MJCF <compiler><lengthrange mode>,
 /// MuJoCo's mjtLRMode): none, muscles, muscles and user-defined actuators (lever has none of

@@ -42,19 +42,6 @@ namespace lever {
 namespace detail {
 
 void check_derivative_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
-  // a connect's or weld's rows move with the bodies' poses (their Jacobian and error), which
-  // the held rows' derivative does not take yet; joint and tendon couplings are polynomials in
-  // coordinates and constant tendon Jacobians (transition/contact_rows.cpp)
-  for (int e = 0; e < model.neq; ++e) {
-    const EqualityType type = model.eq_type[e];
-    if (type == EqualityType::kConnect || type == EqualityType::kWeld) {
-      const std::string name =
-          model.eq_name[e].empty() ? std::to_string(e) : "'" + model.eq_name[e] + "'";
-      throw ModelError("derivatives: equality constraint " + name + " is a " +
-                       (type == EqualityType::kConnect ? "connect" : "weld") +
-                       "; lever's analytic derivatives cover joint and tendon couplings so far.");
-    }
-  }
   // a spatial tendon's path (sites, wraps) moves with the poses, so its Jacobian does too, a term
   // the held rows' and the springs' derivatives leave out; a fixed tendon's Jacobian is constant
   for (int t = 0; t < model.ntendon; ++t) {

@@ -39,7 +39,8 @@ int actuator_scalar_dof(const Model& model, int a) {
   return model.jnt_dofadr[j];
 }
 
-void require_simple_actuators(const Model& model, const std::string& feature, bool tendons_too) {
+void require_simple_actuators(const Model& model, const std::string& feature,
+                              bool tendons_and_sites) {
   for (int a = 0; a < model.nu; ++a) {
     const bool stateful = model.actuator_dyntype[a] != DynType::kNone;
     const bool muscle = model.actuator_gaintype[a] == GainType::kMuscle ||
@@ -54,8 +55,11 @@ void require_simple_actuators(const Model& model, const std::string& feature, bo
                        "actuator", a);
     }
     if (actuator_scalar_dof(model, a) >= 0) continue;
-    if (tendons_too && model.actuator_trntype[a] == TransmissionType::kTendon) continue;
-    const char* what = "a site";
+    if (tendons_and_sites && model.actuator_trntype[a] == TransmissionType::kTendon) continue;
+    const bool site = model.actuator_trntype[a] == TransmissionType::kSite;
+    if (tendons_and_sites && site && model.actuator_trnid[a][1] < 0) continue;
+    const char* what = site && model.actuator_trnid[a][1] >= 0 ? "a site with a reference site"
+                                                                : "a site";
     switch (model.actuator_trntype[a]) {
       case TransmissionType::kJoint:
       case TransmissionType::kJointInParent: what = "a ball or free joint"; break;

@@ -1,7 +1,7 @@
 // The constraint rows differentiated with their active set S held, when a row other than a joint
 // limit's exerts a force (a contact's, a fixed tendon's limit or friction loss, a dof's friction
-// loss, a joint or tendon coupling; joint limits alone take step_derivatives.cpp's row-space
-// path). forward() converged to
+// loss, a joint or tendon coupling, a connect or weld; joint limits alone take
+// step_derivatives.cpp's row-space path). forward() converged to
 //   M qacc = f_smooth - bias + J_S^T f_S,   f_S = D_S (aref_S - J_S qacc)   (D = 1 / R)
 // which is the pyramid's and frictionless rows' complementarity solution, an elliptic cone's
 // while every row of it is in its quadratic zone, and a friction-loss row's inside its box (a
@@ -13,6 +13,7 @@
 // computed without G: H G - J_S^T D_S J_S G = M G = d f_smooth - d ID, so
 //   d qacc = H^-1 (d f_smooth - d ID + dJ^T f + J_S^T y),
 //   d qfrc_constraint = M d qacc - (d f_smooth - d ID).
+// A connect's and a weld's rows are differentiated in equality_rows.cpp, on the same lines.
 // The terms a contact adds to a limit row's: its Jacobian moves with qpos (dJ qacc, dJ qvel in
 // aref's velocity, dJ^T f), and its distance (aref's position term, the impedance in aref and R)
 // moves with the contact geometry (contact_geometry.cpp).
@@ -69,26 +70,7 @@ bool carries(const Model& model, int c, int i) {
   return false;
 }
 
-// moves[c] = 1 for every dof that moves body b (its dof path to the root)
-void dofs_moving(const Model& model, int body, std::vector<char>& moves) {
-  std::fill(moves.begin(), moves.end(), 0);
-  while (body > 0 && model.body_dofnum[body] == 0) body = model.body_parentid[body];
-  if (body == 0) return;
-  for (int i = model.body_dofadr[body] + model.body_dofnum[body] - 1; i >= 0;
-       i = model.dof_parentid[i]) {
-    moves[static_cast<std::size_t>(i)] = 1;
-  }
-}
-
 Vec3 angular(const Motion& S) { return S.head<3>(); }
-Vec3 linear(const Motion& S) { return S.tail<3>(); }
-
-// The velocity of point p per unit rate of dof c (dof c's tree's centre of mass is cdof's origin)
-Vec3 point_velocity(const Model& model, const Data& data, int c, const Vec3& p) {
-  const Motion& S = data.cdof[c];
-  const Vec3 origin = data.subtree_com[model.body_rootid[model.dof_bodyid[c]]];
-  return linear(S) + angular(S).cross(p - origin);
-}
 
 struct SoftSlopes {
   double aref_per_dist;  // d aref / d dist without the velocity term, over K: -(slope (d - m) + imp)
@@ -170,6 +152,22 @@ void coordinate_row(const Model& model, const Data& data, int r, int k, RowMatri
 }
 
 }  // namespace
+
+void dofs_moving(const Model& model, int body, std::vector<char>& moves) {
+  std::fill(moves.begin(), moves.end(), 0);
+  while (body > 0 && model.body_dofnum[body] == 0) body = model.body_parentid[body];
+  if (body == 0) return;
+  for (int i = model.body_dofadr[body] + model.body_dofnum[body] - 1; i >= 0;
+       i = model.dof_parentid[i]) {
+    moves[static_cast<std::size_t>(i)] = 1;
+  }
+}
+
+Vec3 point_velocity(const Model& model, const Data& data, int c, const Vec3& p) {
+  const Motion& S = data.cdof[c];
+  const Vec3 origin = data.subtree_com[model.body_rootid[model.dof_bodyid[c]]];
+  return S.tail<3>() + S.head<3>().cross(p - origin);
+}
 
 void carry_table(const Model& model, std::vector<char>& table) {
   const auto nv = static_cast<std::size_t>(model.nv);
@@ -269,6 +267,14 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       const double daref = data.efc_K[r] * s.aref_per_dist * sign;
       const double dR = data.efc_R[r] * s.R_per_dist * sign;
       Y(k, data.efc_dof[r]) = data.efc_D[r] * (daref - dR * data.efc_force[r]);
+    } else if (data.efc_type[r] == ConstraintType::kEquality &&
+               (model.eq_type[data.efc_id[r]] == EqualityType::kConnect ||
+                model.eq_type[data.efc_id[r]] == EqualityType::kWeld)) {
+      // a connect's or weld's rows, all at once at the first (equality_rows.cpp)
+      if (r == 0 || data.efc_type[r - 1] != ConstraintType::kEquality ||
+          data.efc_id[r - 1] != data.efc_id[r]) {
+        body_equality_rows(model, data, data.efc_id[r], k, w);
+      }
     } else if (data.efc_type[r] == ConstraintType::kLimitTendon ||
                data.efc_type[r] == ConstraintType::kEquality) {
       coordinate_row(model, data, r, k, Y, E);

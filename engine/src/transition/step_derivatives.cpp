@@ -127,6 +127,45 @@ void quaternion_springs(const Model& model, const Data& data, Derivatives::Works
   }
 }
 
+// w.moment_change(i, c) = d moment_i / d q_c for site actuator a without a reference site, whose
+// moment is moment_i = j_i(p) . f + w_i . t, with p the site, f = R gear[0-2] and t = R gear[3-5]
+// its force and torque in the world (R the site's frame) and j_i(p) = u_i + w_i x (p - O) dof i's
+// velocity at p. Moving a dof c that moves the site's body turns the axes of the dofs it carries
+// and moves the site rigidly (dp = j_c(p), dR = w_c x R), so for i moving the body too:
+//   d j_i(p) / d q_c = [c carries i] (w_c x j_i(p) - w_i x j_c(p)) + w_i x j_c(p)
+//   d w_i / d q_c    = [c carries i] w_c x w_i,   d f = w_c x f,   d t = w_c x t
+void site_moment_change(const Model& model, const Data& data, int a, Derivatives::Workspace& w) {
+  using Vec3 = Eigen::Vector3d;
+  const int nv = model.nv;
+  Eigen::MatrixXd& G = w.moment_change;
+  G.setZero();
+  const int site = model.actuator_trnid[a][0];
+  const auto& gear = model.actuator_gear[a];
+  const Mat3& R = data.site_xmat[site];
+  const Vec3 f = R * Vec3(gear[0], gear[1], gear[2]), t = R * Vec3(gear[3], gear[4], gear[5]);
+  std::vector<char>& on = w.moves1;
+  detail::dofs_moving(model, model.site_bodyid[site], on);
+  Vec3* const j = w.equality_point_velocity.data();
+  for (int i = 0; i < nv; ++i) {
+    if (on[i]) j[i] = detail::point_velocity(model, data, i, data.site_xpos[site]);
+  }
+  for (int c = 0; c < nv; ++c) {
+    if (!on[c]) continue;
+    const Vec3 wc = data.cdof[c].head<3>();
+    const Vec3 df = wc.cross(f), dt = wc.cross(t);
+    for (int i = 0; i < nv; ++i) {
+      if (!on[i]) continue;
+      const Vec3 wi = data.cdof[i].head<3>();
+      Vec3 dj = wi.cross(j[c]), dw = Vec3::Zero();
+      if (w.carries[static_cast<std::size_t>(c * nv + i)] != 0) {
+        dj += wc.cross(j[i]) - wi.cross(j[c]);
+        dw = wc.cross(wi);
+      }
+      G(i, c) = dj.dot(f) + j[i].dot(df) + dw.dot(t) + wi.dot(dt);
+    }
+  }
+}
+
 // The explicit force terms of the smooth dynamics, minus the inverse-dynamics derivatives:
 // rhs = d (qfrc_passive + qfrc_actuator) / d x - d rnea / d x, for x = qpos, qvel, ctrl.
 void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dtau_dq,
@@ -177,9 +216,10 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
     const double gain = actuator_gain(model, a, length, velocity);
     // in actuation()'s order, so the clamp test sees the same number
     const double force = u * gain + actuator_bias(model, a, length, velocity);
+    bool force_clamped = false;
     if (model.actuator_forcelimited[a]) {
       const auto& range = model.actuator_forcerange[a];
-      if (force < range[0] || force > range[1]) continue;  // clamped: no sensitivity
+      force_clamped = force < range[0] || force > range[1];
     }
     double per_length = 0.0, per_velocity = 0.0;  // d force / d length, d force / d velocity
     if (affine_gain) {
@@ -190,6 +230,26 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
       per_length += b[1];
       per_velocity += b[2];
     }
+    if (model.actuator_trntype[a] == TransmissionType::kSite) {
+      // a site without a reference site: no length, velocity = m . qvel, qfrc = m force, and m
+      // turns with the site (G = d m / d q): d qfrc / d q = G force + m per_velocity G^T qvel
+      // (the first even where the force is clamped), d qfrc / d qvel = m per_velocity m^T
+      site_moment_change(model, data, a, w);
+      const Eigen::MatrixXd& G = w.moment_change;
+      const double* m = data.actuator_moment.row(a).data();
+      w.rhs_q += data.actuator_force[a] * G;
+      if (force_clamped) continue;
+      for (int c = 0; c < model.nv; ++c) {
+        const double dvelocity = per_velocity * G.col(c).dot(data.qvel);
+        for (int i = 0; i < model.nv; ++i) w.rhs_q(i, c) += m[i] * dvelocity;
+      }
+      add_row_outer_product(m, model.nv, per_velocity, w.rhs_v);
+      if (!ctrl_clamped) {
+        for (int i = 0; i < model.nv; ++i) w.rhs_u(i, a) = m[i] * gain;
+      }
+      continue;
+    }
+    if (force_clamped) continue;  // a constant moment: no sensitivity
     if (model.actuator_trntype[a] == TransmissionType::kTendon) {
       // length = gear L, so d length / d q = gear J = the moment m, and qfrc = m force:
       // m^T per_length m, m^T per_velocity m, m gain
@@ -595,9 +655,37 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       }
       continue;
     }
+    if (model.actuator_trntype[a] == TransmissionType::kSite) {  // D's m p2 ctrl m^T: m p2 (m . a)
+      const double* m = data.actuator_moment.row(a).data();
+      double m_a = 0.0;
+      for (int i = 0; i < nv; ++i) m_a += m[i] * w.qacc_step[i];
+      const double p2 = h * model.actuator_gainprm[a][2];
+      for (int i = 0; i < nv; ++i) w.rhs_u(i, a) += m[i] * p2 * m_a;
+      continue;
+    }
     const double gear = model.actuator_gear[a][0];
     const int dof = actuator_scalar_dof(model, a);  // >= 0: refuse_fluid checked
     w.rhs_u(dof, a) += h * gear * model.actuator_gainprm[a][2] * gear * w.qacc_step[dof];
+  }
+  // + h dD a, a site's moment turning: D's m k m^T (k = b2 + p2 ctrl, raw ctrl, as D has it; one
+  // branch of dofs, all kept) changes by G_c k m^T + m k G_c^T along q_c (G = d m / d q)
+  for (int a = 0; a < actuators; ++a) {
+    if (model.actuator_trntype[a] != TransmissionType::kSite) continue;
+    double k = 0.0;
+    if (model.actuator_biastype[a] == BiasType::kAffine) k += model.actuator_biasprm[a][2];
+    if (model.actuator_gaintype[a] == GainType::kAffine) {
+      k += model.actuator_gainprm[a][2] * data.ctrl[a];
+    }
+    if (k == 0.0) continue;
+    site_moment_change(model, data, a, w);
+    const Eigen::MatrixXd& G = w.moment_change;
+    const double* m = data.actuator_moment.row(a).data();
+    double m_a = 0.0;
+    for (int i = 0; i < nv; ++i) m_a += m[i] * w.qacc_step[i];
+    for (int col = 0; col < nv; ++col) {
+      const double G_a = G.col(col).dot(w.qacc_step);
+      for (int i = 0; i < nv; ++i) w.rhs_q(i, col) += h * k * (G(i, col) * m_a + m[i] * G_a);
+    }
   }
 
   // da = K^-1 (...) in place, then Euler's update
@@ -687,14 +775,16 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
 }
 
 // The fluid forces depend on the pose and the velocity in ways the chain rule above leaves out,
-// and so do the moments of transmissions other than a hinge's or a slide's.
+// and so do the moments of transmissions other than a hinge's, a slide's, a fixed tendon's and a
+// site's without a reference site.
 void refuse_fluid(const Model& model) {
   if (has_fluid(model.opt)) {
     throw ModelError("derivatives: the model has fluid forces (option viscosity or density); "
                      "lever's analytic derivatives do not cover them yet.");
   }
-  // the chain rule below carries each actuator's force through a constant moment: a gear on one
-  // dof, or gear ten_J of a fixed tendon (a spatial one is refused with the tendons)
+  // the chain rule below carries each actuator's force through a constant moment (a gear on one
+  // dof, or gear ten_J of a fixed tendon: a spatial one is refused with the tendons) or a site's
+  // moment, whose turn it differentiates (site_moment_change); not yet a reference site's
   require_simple_actuators(model, "derivatives", true);
 }
 
@@ -774,6 +864,8 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.qacc_sum.setZero(nv);
   work.next.emplace(model);
   work.contact_point_velocity.assign(ndof, Eigen::Vector3d::Zero());
+  work.equality_point_velocity.assign(2 * ndof, Eigen::Vector3d::Zero());
+  work.moment_change.setZero(nv, nv);
   work.moves1.assign(ndof, 0);
   work.moves2.assign(ndof, 0);
   detail::carry_table(model, work.carries);

@@ -3,8 +3,9 @@
 // RK4 and the implicit step, in qpos's tangent space. The rows with their active set held:
 // joint limits in step_derivatives.cpp, every row once a contact's is active in contact_rows.cpp,
 // on the contact geometry's derivative (contact_geometry.cpp, which reads the collision stage's
-// contacts). Its public face is lever/derivatives.hpp (forward_derivatives, step_derivatives); it
-// reads the derivatives room's RNEA derivatives and runs the pipeline's forward().
+// contacts), a connect's and weld's rows in equality_rows.cpp. Its public face is
+// lever/derivatives.hpp (forward_derivatives, step_derivatives); it reads the derivatives room's
+// RNEA derivatives and runs the pipeline's forward().
 #pragma once
 
 #include <Eigen/Core>
@@ -44,6 +45,14 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
 /// friction-loss, tendon-limit or equality row): constraint_rows_held() then takes every row.
 bool rows_beyond_joint_limits(const Data& data);
 
+/// moves[c] = 1 for every dof that moves body b (its dof path to the root), 0 for the others.
+void dofs_moving(const Model& model, int body, std::vector<char>& moves);
+
+/// The velocity of point p per unit rate of dof c: cdof's linear part moved from its tree's
+/// centre of mass to p.
+Eigen::Vector3d point_velocity(const Model& model, const Data& data, int c,
+                               const Eigen::Vector3d& p);
+
 /// table[c * nv + i] = 1 where moving dof c turns the axis of dof i (c a strict ancestor of i, or
 /// both in one ball's or free joint's rotation): the contact rows' Jacobian derivative reads it.
 void carry_table(const Model& model, std::vector<char>& table);
@@ -59,6 +68,12 @@ void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd&
 
 /// X's first cols columns = H^-1 X, with factor_held_rows()' factor.
 void solve_held_rows(const Eigen::MatrixXd& H, Eigen::Ref<Eigen::MatrixXd> X, int cols);
+
+/// A connect's (3) or weld's (6) rows, equality constraint e's, at rows w.rows[first_k ...]:
+/// their terms of Y (qpos columns: D (d aref - dR f - dJ qacc)) and of E (dJ^T f), as the
+/// contacts' (equality_rows.cpp). Uses w.moves1, w.moves2 and w.equality_point_velocity.
+void body_equality_rows(const Model& model, const Data& data, int e, int first_k,
+                        Derivatives::Workspace& w);
 
 /// d qacc and d qfrc_constraint with the active set held, every active row (limits and contacts),
 /// from the right-hand sides d f_smooth - d ID in deriv.work.rhs_q, rhs_v, rhs_u (before M^-1;
