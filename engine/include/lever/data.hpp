@@ -243,6 +243,8 @@ struct Data {
     /// (nbody) crba()'s composite inertias, kept until the next position stage: the implicit step
     /// and the derivatives read them after forward()
     std::vector<RigidInertia> crb;
+    std::vector<double> subtree_mass;  ///< (nbody) kinematics(): each subtree's mass, summed as
+                                       ///< MuJoCo's mj_comPos sums it
     std::vector<Motion> cacc;          ///< (nbody) body accelerations
     std::vector<Force> cfrc;           ///< (nbody) body forces
     std::vector<Motion> body_vel;      ///< (nbody) subtree_velocities(): each centre of mass's

@@ -72,6 +72,7 @@ Data::Data(const Model& model)
   work.body_path.assign(nbody, 0);
   qLD = Eigen::MatrixXd::Zero(nv, nv);
   work.crb.assign(nbody, RigidInertia{});
+  work.subtree_mass.assign(nbody, 0.0);
   work.cacc.assign(nbody, Motion::Zero());
   work.cfrc.assign(nbody, Force::Zero());
   work.body_vel.assign(nbody, Motion::Zero());
