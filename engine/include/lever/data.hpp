@@ -115,6 +115,8 @@ struct DataWorkspace {
   /// (nbody) crba()'s composite inertias, kept until the next position stage: the implicit step
   /// and the derivatives read them after forward()
   ArenaArray<RigidInertia> crb;
+  ArenaArray<double> subtree_mass;  ///< (nbody) kinematics(): each subtree's mass, summed as
+                                    ///< MuJoCo's mj_comPos sums it
   ArenaArray<Motion> cacc;       ///< (nbody) body accelerations
   ArenaArray<Force> cfrc;        ///< (nbody) body forces
   ArenaArray<Motion> body_vel;   ///< (nbody) subtree_velocities(): each centre of mass's

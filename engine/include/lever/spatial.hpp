@@ -78,13 +78,15 @@ struct RigidInertia {
 
   /// The momentum I v of a body moving with v: [I w + h x v; m v - h x w].
   /// Written out on I's elements: I is column-major, and a product through rotate() (row-major)
-  /// would copy it first.
+  /// would copy it first. Each angular row is summed left to right, I's three terms and then
+  /// h x v's two, as MuJoCo's mju_mulInertVec sums it: where the terms cancel (a thin rod's axial
+  /// entry of M), another order rounds to another last bit, which the cancellation magnifies.
   Force operator*(const Motion& v) const {
     const double w0 = v[0], w1 = v[1], w2 = v[2], l0 = v[3], l1 = v[4], l2 = v[5];
     Force out;
-    out[0] = (I(0, 0) * w0 + I(0, 1) * w1 + I(0, 2) * w2) + (h[1] * l2 - h[2] * l1);
-    out[1] = (I(1, 0) * w0 + I(1, 1) * w1 + I(1, 2) * w2) + (h[2] * l0 - h[0] * l2);
-    out[2] = (I(2, 0) * w0 + I(2, 1) * w1 + I(2, 2) * w2) + (h[0] * l1 - h[1] * l0);
+    out[0] = I(0, 0) * w0 + I(0, 1) * w1 + I(0, 2) * w2 - h[2] * l1 + h[1] * l2;
+    out[1] = I(1, 0) * w0 + I(1, 1) * w1 + I(1, 2) * w2 + h[2] * l0 - h[0] * l2;
+    out[2] = I(2, 0) * w0 + I(2, 1) * w1 + I(2, 2) * w2 - h[1] * l0 + h[0] * l1;
     out[3] = m * l0 - (h[1] * w2 - h[2] * w1);
     out[4] = m * l1 - (h[2] * w0 - h[0] * w2);
     out[5] = m * l2 - (h[0] * w1 - h[1] * w0);
@@ -144,6 +146,13 @@ struct RigidInertia {
   /// The inertia of a pseudo-inertia (linear; the inverse of to_pseudo_inertia, J symmetric).
   static RigidInertia from_pseudo_inertia(const Eigen::Matrix4d& J);
 };
+
+/// m . f, the power of force f on motion m, summed as MuJoCo's mju_dot sums six numbers (pairs
+/// of the first four, then the last two), not as Eigen's dot does: a sum whose terms cancel
+/// (CRBA's entry for a thin rod's axial turn) keeps MuJoCo's last bit only in MuJoCo's order.
+inline double power(const Motion& m, const Force& f) {
+  return ((m[0] * f[0] + m[2] * f[2]) + (m[1] * f[1] + m[3] * f[3])) + (m[4] * f[4] + m[5] * f[5]);
+}
 
 /// v x m: the derivative of motion vector m moving with velocity v (Featherstone eq. 2.31).
 /// Written out on the elements: [w x m_w; w x m_o + v_o x m_w], with no 3-vector temporaries.

@@ -58,6 +58,7 @@ void lay_out_own_arrays(Data& d, detail::ArrayPlacer& place) {
   place(d.efc_J, nefc, nv);
   DataWorkspace& w = d.work;
   place(w.crb, nbody);
+  place(w.subtree_mass, nbody);
   place(w.cacc, nbody);
   place(w.cfrc, nbody);
   place(w.body_vel, nbody);

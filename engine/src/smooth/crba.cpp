@@ -37,9 +37,9 @@ void zero_uncoupled(const Model& model, Eigen::Ref<Eigen::MatrixXd> H, int i) {
 inline void crba_column(const Model& model, const Data& data, Eigen::Ref<Eigen::MatrixXd> H,
                         int i) {
   const Force F = data.work.crb[model.dof_bodyid[i]] * data.cdof[i];
-  H(i, i) = data.cdof[i].dot(F) + model.dof_armature[i];  // armature: rotor inertia of the motor
+  H(i, i) = power(data.cdof[i], F) + model.dof_armature[i];  // armature: the motor's rotor
   for (int j = model.dof_parentid[i]; j >= 0; j = model.dof_parentid[j]) {
-    H(i, j) = H(j, i) = data.cdof[j].dot(F);
+    H(i, j) = H(j, i) = power(data.cdof[j], F);
   }
 }
 

@@ -296,25 +296,27 @@ void rotation_subspace(const Mat3& body_rotation, const Eigen::Vector3d& to_orig
 
 // A body's spatial inertia in world axes about a point c from its centre of mass (out): mass m,
 // first moment m c, and the rotational inertia R diag(d) R^T about the centre of mass (principal
-// axes R = ximat, principal moments d) moved to the point by the parallel-axis theorem
-// (RigidInertia::from_com's arithmetic), written into out's members: the symmetric product's six
-// entries once each, no temporary.
+// axes R = ximat, principal moments d) moved to the point by the parallel-axis theorem, written
+// into out's members: the symmetric product's six entries once each, no temporary. Each product
+// and sum is MuJoCo's mju_inertCom's (entry (r, s) is row r of R against row s of R diag(d);
+// the diagonal's shift is m (c_j^2 + c_k^2)): a thin rod's axial entry of M is what is left when
+// terms 1e4 times larger cancel, and keeps MuJoCo's last bit only if these do.
 inline void world_inertia(const Mat3& R, const Eigen::Vector3d& d, double m,
                           const Eigen::Vector3d& c, RigidInertia& out) {
   double Rd[3][3];  // column k of R scaled by the principal moment about it
   for (int r = 0; r < 3; ++r) {
     for (int k = 0; k < 3; ++k) Rd[r][k] = R(r, k) * d[k];
   }
-  const auto entry = [&](int r, int s) {  // row r of R diag(d) against row s of R
-    return Rd[r][0] * R(s, 0) + Rd[r][1] * R(s, 1) + Rd[r][2] * R(s, 2);
+  const auto entry = [&](int r, int s) {  // row r of R against row s of R diag(d)
+    return R(r, 0) * Rd[s][0] + R(r, 1) * Rd[s][1] + R(r, 2) * Rd[s][2];
   };
   const Eigen::Vector3d mc = m * c;
   out.m = m;
   out.h = mc;
   Eigen::Matrix3d& I = out.I;
-  I(0, 0) = entry(0, 0) + (mc[1] * c[1] + mc[2] * c[2]);
-  I(1, 1) = entry(1, 1) + (mc[0] * c[0] + mc[2] * c[2]);
-  I(2, 2) = entry(2, 2) + (mc[0] * c[0] + mc[1] * c[1]);
+  I(0, 0) = entry(0, 0) + m * (c[1] * c[1] + c[2] * c[2]);
+  I(1, 1) = entry(1, 1) + m * (c[0] * c[0] + c[2] * c[2]);
+  I(2, 2) = entry(2, 2) + m * (c[0] * c[0] + c[1] * c[1]);
   I(0, 1) = I(1, 0) = entry(0, 1) - mc[0] * c[1];
   I(0, 2) = I(2, 0) = entry(0, 2) - mc[0] * c[2];
   I(1, 2) = I(2, 1) = entry(1, 2) - mc[1] * c[2];
@@ -327,19 +329,33 @@ void com_quantities(const Model& model, Data& data) {
   const int* const parentid = model.body_parentid.data();
   const int* const rootid = model.body_rootid.data();
   const double* const mass = model.body_mass.data();
-  const double* const subtreemass = model.body_subtreemass.data();
   const Eigen::Vector3d* const inertia = model.body_inertia.data();
   const Eigen::Vector3d* const xipos = data.xipos.data();
   const Mat3* const ximat = data.ximat.data();
   Eigen::Vector3d* const subtree_com = data.subtree_com.data();
   RigidInertia* const cinert = data.cinert.data();
 
-  // mass-weighted positions, summed leaves to root
-  for (int b = 0; b < nbody; ++b) subtree_com[b] = mass[b] * xipos[b];
-  for (int b = nbody - 1; b > 0; --b) subtree_com[parentid[b]] += subtree_com[b];
+  // mass-weighted positions and masses, summed leaves to root, then each sum scaled by its
+  // mass's reciprocal, in MuJoCo's mj_comPos order: a body's own term is added after its
+  // children's (the sums start from zero), the children's in falling index order, and its sum
+  // is scaled once it has gone to the parent (its last bit is MuJoCo's only in that order)
+  double* const subtree_mass = data.work.subtree_mass.data();
   for (int b = 0; b < nbody; ++b) {
-    const double m = subtreemass[b];
-    subtree_com[b] = m < detail::kMinVal ? xipos[b] : Eigen::Vector3d(subtree_com[b] / m);
+    subtree_com[b].setZero();
+    subtree_mass[b] = 0.0;
+  }
+  for (int b = nbody - 1; b >= 0; --b) {
+    subtree_com[b] += xipos[b] * mass[b];
+    subtree_mass[b] += mass[b];
+    if (b > 0) {
+      subtree_com[parentid[b]] += subtree_com[b];
+      subtree_mass[parentid[b]] += subtree_mass[b];
+    }
+    if (subtree_mass[b] < detail::kMinVal) {
+      subtree_com[b] = xipos[b];
+    } else {
+      subtree_com[b] *= 1.0 / subtree_mass[b];
+    }
   }
 
   // each body's inertia about its tree's centre of mass, world axes
