@@ -149,6 +149,14 @@ class CompositeExpander {
     smooth_ref_ = written_numbers(smooth, "solrefsmooth");
     smooth_imp_ = written_numbers(smooth, "solimpsmooth");
 
+    for (const Element& c : e_.children) {
+      // the element tree is checked by tag: a composite's <tendon> would pass for a section's
+      if (!c.children.empty()) {
+        const Element& inner = c.children.front();
+        fail(inner.place(), "",
+             "a composite's <" + c.tag + "> takes no child elements (found <" + inner.tag + ">)");
+      }
+    }
     if (const Element* g = child("geom")) geom_set_.apply(*g, *find_rule("composite", "geom"));
     if (const Element* s = child("site")) site_set_.apply(*s, *find_rule("composite", "site"));
     for (const Element& c : e_.children) {

@@ -504,7 +504,7 @@ void add_composite_rules(std::vector<ElementRule>& s) {
   const AttributeRule limited_ignored =
       keyword("limited", "auto", "false true auto", "",
               "read and ignored, as MuJoCo 2.2.2 ignores it (its reader looks for it on "
-              "<composite>): auto");
+              "`<composite>`): auto");
   s.push_back({"joint", "composite", '*',
                join({required(keyword("kind", "", "main twist stretch", "",
                                       "which generated joints: main, twist or stretch (rope and "
@@ -1161,6 +1161,8 @@ void describe(std::ostringstream& md, const ElementRule& e) {
   }
   std::vector<std::string_view> children;
   for (const ElementRule& c : schema()) {
+    // rules are keyed by the parent's tag: a composite's <tendon> is not a section's
+    if (e.parent == "composite") break;
     if (c.parent == e.tag && std::find(children.begin(), children.end(), c.tag) == children.end()) {
       children.push_back(c.tag);
     }
