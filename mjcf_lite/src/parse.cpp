@@ -6,6 +6,7 @@
 
 #include <algorithm>
 
+#include "composite.hpp"
 #include "defaults.hpp"
 #include "equality.hpp"
 #include "tendon.hpp"
@@ -97,6 +98,8 @@ GeomType geom_type(const std::string& w) {
   return GeomType::kSphere;
 }
 
+}  // namespace
+
 // ---- one element each ------------------------------------------------------------------------
 
 JointSpec read_joint(const Element& e, const AttrSet& set) {
@@ -169,6 +172,8 @@ SiteSpec read_site(const Element& e, const AttrSet& set) {
   return s;
 }
 
+namespace {
+
 InertialSpec read_inertial(const Element& e) {
   const AttrSet set = resolve(e, "body");
   const Fields f(set, "body", "inertial");
@@ -233,6 +238,7 @@ struct TreeReader {
   const DefaultClasses& classes;
   bool ignore_inertials;
   AssetSpec& assets;
+  CompositeOutput& generated;  ///< what composites add outside the body tree
 
   // the children of a <body> or <worldbody>; `active` is the class childclass selected
   void read_contents(const Element& e, int active, BodySpec& body) const {
@@ -248,6 +254,8 @@ struct TreeReader {
         JointSpec joint = read_joint(child, resolve(child, e.tag));
         joint.type = JointType::kFree;
         body.joints.push_back(joint);
+      } else if (child.tag == "composite") {
+        expand_composite(child, body, classes.at(0), assets, generated);
       } else {
         const int cls = classes.choose(child, "class", active);
         const AttrSet set = resolve(child, e.tag, classes.at(cls).prototype(child.tag));
@@ -590,15 +598,20 @@ ModelSpec parse_model(const Element& root, bool ignore_inertials) {
   DefaultClasses classes;
   for (const Element* e : sections(root, "default")) classes.read_section(*e);
   spec.assets = read_assets(root, classes);
-  const TreeReader tree{classes, ignore_inertials, spec.assets};
+  CompositeOutput generated;
+  const TreeReader tree{classes, ignore_inertials, spec.assets, generated};
   spec.world.at = Place{"worldbody", "world", 0};
   for (const Element* e : sections(root, "worldbody")) {
     if (spec.world.at.line == 0) spec.world.at.line = e->line;
     tree.read_contents(*e, 0, spec.world);
   }
+  // what composites generate comes first, as MuJoCo adds it while reading <worldbody>
+  spec.excludes = std::move(generated.excludes);
   read_contact(root, classes, spec);
-  spec.equalities = read_equalities(root, classes);
-  spec.tendons = read_tendons(root, classes);
+  spec.equalities = std::move(generated.equalities);
+  for (EqualitySpec& q : read_equalities(root, classes)) spec.equalities.push_back(std::move(q));
+  spec.tendons = std::move(generated.tendons);
+  for (TendonSpec& t : read_tendons(root, classes)) spec.tendons.push_back(std::move(t));
   for (const Element* e : sections(root, "actuator")) {
     for (const Element& a : e->children) spec.motors.push_back(read_actuator(a, classes));
   }

@@ -497,6 +497,101 @@ const char* const kLightAttributes =
 // one row per element: tag, parent, multiplicity, attributes, refused attributes, refused
 // children, meaning
 // clang-format off
+// The attributes named in `names` of the list `from`, in the list's order: a composite's
+// <geom>, <joint>, <tendon> and <site> take a subset of the ordinary element's attributes.
+std::vector<AttributeRule> attributes_named(const std::vector<AttributeRule>& from,
+                                            std::string_view names) {
+  std::vector<AttributeRule> out;
+  for (const AttributeRule& r : from) {
+    if (has_word(names, r.name)) out.push_back(r);
+  }
+  return out;
+}
+
+AttributeRule partial_integers(std::string_view name, int count, std::string_view def,
+                       std::string_view meaning) {
+  AttributeRule r = partial(name, count, def, meaning);
+  r.kind = ValueKind::kInteger;
+  return r;
+}
+
+const char* const kCompositeTypes =
+    "particle grid rope loop cloth box cylinder ellipsoid";
+
+// <composite>: MuJoCo 2.2.2's generated bodies (composite.cpp expands it into ordinary elements
+// before compilation); its children set the generated elements' attributes over MuJoCo's built-in
+// defaults, never over the model's default classes
+void add_composite_rules(std::vector<ElementRule>& s) {
+  const std::vector<AttributeRule> composite = {
+      text("prefix", "", "prefix of the generated elements' names (B, J, G, S, T ... and indices)"),
+      required(keyword("type", "", kCompositeTypes, "",
+                       "what is generated: particle (free particles), grid (1D or 2D, sites and "
+                       "tendons), rope and loop (a chain of bodies), cloth (a 2D tree of bodies), "
+                       "box, cylinder, ellipsoid (a 3D shell)")),
+      required(partial_integers("count", 3, "1 1 1",
+                        "elements along x, y, z; each >= 1, the singletons last")),
+      required(real("spacing", 1, "", "distance between neighbours; must be positive")),
+      real("offset", 3, "0 0 0", "centre of a particle set or grid, in the parent body's frame"),
+      real("flatinertia", 1, "0",
+           "cloth: positive: each body's inertia that of a flat box (this thickness ratio)"),
+      partial("solrefsmooth", 2, "0.02 1", "solref of the loop and 3D smoothing constraints"),
+      partial("solimpsmooth", 5, "0.9 0.95 0.001 0.5 2",
+              "solimp of the loop and 3D smoothing constraints"),
+  };
+  for (const char* parent : {"worldbody", "body"}) {
+    s.push_back({"composite", parent, '*', composite, "", "",
+                 "a composite object, expanded as MuJoCo 2.2.2 expands it into bodies, joints, "
+                 "geoms, sites, tendons, equality constraints and contact exclusions named "
+                 "prefix + B, J, G, S, T ... with their indices (rope and cloth: inside the body "
+                 "named for the origin, prefix + B<x> or B<x>_<y>)"});
+  }
+  const AttributeRule solreffix =
+      partial("solreffix", 2, "0.02 1", "solref of the equality constraint that holds the kind");
+  const AttributeRule solimpfix = partial("solimpfix", 5, "0.9 0.95 0.001 0.5 2",
+                                          "solimp of the equality constraint that holds the kind");
+  const AttributeRule limited_ignored =
+      keyword("limited", "auto", "false true auto", "",
+              "read and ignored, as MuJoCo 2.2.2 ignores it (its reader looks for it on "
+              "`<composite>`): auto");
+  s.push_back({"joint", "composite", '*',
+               join({required(keyword("kind", "", "main twist stretch", "",
+                                      "which generated joints: main, twist or stretch (rope and "
+                                      "cloth; twist and stretch are added only if written)")),
+                     solreffix, solimpfix, limited_ignored},
+                    attributes_named(joint_attributes(),
+                         "group stiffness damping armature range margin solreflimit "
+                         "solimplimit frictionloss solreffriction solimpfriction")),
+               "", "", "attributes of the generated joints of one kind"});
+  s.push_back({"tendon", "composite", '*',
+               join({required(keyword("kind", "", "main shear", "",
+                                      "which generated tendons: main or shear (2D grid and cloth; "
+                                      "shear is added only if written)")),
+                     solreffix, solimpfix, limited_ignored},
+                    attributes_named(tendon_class_attributes(),
+                         "group stiffness damping range margin solreflimit solimplimit "
+                         "frictionloss solreffriction solimpfriction material rgba width")),
+               "", "", "attributes of the generated tendons of one kind"});
+  s.push_back({"skin", "composite", '?',
+               join({keyword("texcoord", "false", "false true", "", kVisualOnly),
+                     integer("group", 1, "0", "visual only; must be 0 to 5")},
+                    texts("material rgba inflate subgrid", kVisualOnly)),
+               "", "",
+               "the skin MuJoCo draws over the composite: visual only; lever has no skins and "
+               "builds none (the attributes are checked as MuJoCo 2.2.2 checks them)"});
+  s.push_back({"geom", "composite", '?',
+               attributes_named(geom_attributes(),
+                    "type contype conaffinity condim group priority size material rgba friction "
+                    "mass density solmix solref solimp margin gap"),
+               "", "", "attributes of the generated geoms (sphere, capsule or ellipsoid)"});
+  s.push_back({"site", "composite", '?',
+               attributes_named(site_attributes(), "group size material rgba"), "", "",
+               "attributes of the generated sites"});
+  s.push_back({"pin", "composite", '*',
+               {required(partial_integers("coord", 2, "0 0", "grid coordinates of an element left "
+                                                        "without joints (fixed to the parent)"))},
+               "", "", "a grid element pinned in place"});
+}
+
 std::vector<ElementRule> build() {
   std::vector<ElementRule> s;
   s.push_back({"mujoco", "", '!', {text("model", "MuJoCo Model", "model name")}, "",
@@ -773,7 +868,7 @@ std::vector<ElementRule> build() {
                 partial("mquat", 4000, "",
                         "4 nmocap numbers, normalized (default: the mocap bodies' quat)")},
                "", "", "a keyframe (mj_resetDataKeyframe)"});
-  s.push_back({"worldbody", "mujoco", '*', {}, "", "composite",
+  s.push_back({"worldbody", "mujoco", '*', {}, "", "",
                "the world body: static geoms, sites and the body tree; takes no attributes"});
   const std::vector<AttributeRule> body = join(
       {text("name", "", "body name"),
@@ -787,7 +882,7 @@ std::vector<ElementRule> build() {
       alternatives());
   s.push_back({"body", "worldbody", '*', body, "", "", "a body fixed to the world "
                "unless it has joints"});
-  s.push_back({"body", "body", '*', body, "", "composite", "a child body"});
+  s.push_back({"body", "body", '*', body, "", "", "a child body"});
   for (const char* parent : {"worldbody", "body"}) {
     s.push_back({"camera", parent, '*', texts(kCameraAttributes, kVisualOnly), "", "",
                  "a camera (kept)"});
@@ -818,6 +913,7 @@ std::vector<ElementRule> build() {
                kUnsupportedSiteAttributes, "", "a named frame: no mass, no collision"});
   s.push_back({"site", "worldbody", '*', join(naming("site name"), site_attributes()),
                kUnsupportedSiteAttributes, "", "a named frame fixed to the world"});
+  add_composite_rules(s);
   s.push_back({"actuator", "mujoco", '*', {}, "", "", "actuators"});
   s.push_back({"motor", "actuator", '*',
                join(actuator_wiring("motor name"),
@@ -1025,6 +1121,16 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   the actuators' velocity terms only, its matrix factored as M is). Other
   names MuJoCo 3 added (`dampratio`, `timeconst`, `actearly`, `gravcomp`,
   `actuatorfrcrange`, `assetdir`, `<replicate>`, `<frame>`, `<plugin>`, ...) are refused by name.
+* `<composite>` (every type of MuJoCo 2.2.2: particle, grid, rope, loop, cloth, box, cylinder,
+  ellipsoid) is expanded as 2.2.2 expands it, before compilation, into the bodies, joints, geoms,
+  sites, tendons, equality constraints and contact exclusions it stands for, named as MuJoCo
+  names them (prefix + `B`, `J`, `JT`, `JS`, `G`, `S`, `T`, `TS` ... and the indices), with
+  MuJoCo's built-in defaults as 2.2.2 adjusts them per type (never the model's classes); the
+  tendons, constraints and exclusions it makes come before the model's own. The `<skin>` MuJoCo
+  builds over a composite is drawn only: lever has no skin arrays and builds none; `<skin>` and
+  its attributes (`texcoord`, `material`, `subgrid`, ...) are checked as 2.2.2 checks them and
+  refuse nothing. As in 2.2.2, `limited` on a composite's `<joint>` or `<tendon>` is read and
+  ignored.
 * `option/jacobian` (`dense`, `sparse`, `auto`) is accepted: it chooses MuJoCo's matrix layout,
   not the numbers, which are the same in every layout; lever keeps its own layout whatever it
   says.
@@ -1133,6 +1239,8 @@ void describe(std::ostringstream& md, const ElementRule& e) {
   }
   std::vector<std::string_view> children;
   for (const ElementRule& c : schema()) {
+    // rules are keyed by the parent's tag: a composite's <tendon> is not a section's
+    if (e.parent == "composite") break;
     if (c.parent == e.tag && std::find(children.begin(), children.end(), c.tag) == children.end()) {
       children.push_back(c.tag);
     }

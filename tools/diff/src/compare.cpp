@@ -290,6 +290,7 @@ void compare_contacts(const Twin& t, int k, Report& r) {
 //              cannot read its file: size zero in lever) keeps the frame its element wrote, where
 //              MuJoCo moves it to the mesh's centre and principal axes: such rows are left out;
 //   wrap_*     compared over the tendons' live points (ten_wrapnum's sum), the rest stale;
+//   ten_J      MuJoCo's sparse layout (a sparse model's) made dense;
 //   efc_state  lever's ConstraintState values are MuJoCo's mjtConstraintState (0 satisfied,
 //              1 quadratic = active, 2 and 3 a friction-loss row's linear sides, 4 cone):
 //              compared as integers.
@@ -346,6 +347,18 @@ void compare_forward_outputs(const Twin& t, int k, Report& r) {
     for (long i = 0; i < n; ++i) {
       lever_values[i] = test::element(view, i);
       mujoco_values[i] = test::element(mj, i);
+    }
+    if (name == "ten_J" && mj_isSparse(m)) {
+      // MuJoCo's sparse layout (mj_isSparse: jacobian="sparse", or "auto" with nv >= 60) keeps
+      // each row's nonzeros only (ten_J_rownnz, ten_J_rowadr, ten_J_colind): made dense here
+      std::fill(mujoco_values.begin(), mujoco_values.end(), 0.0);
+      for (int row = 0; row < m->ntendon; ++row) {
+        for (int j = 0; j < d->ten_J_rownnz[row]; ++j) {
+          const int at = d->ten_J_rowadr[row] + j;
+          mujoco_values[static_cast<std::size_t>(row) * m->nv + d->ten_J_colind[at]] =
+              d->ten_J[at];
+        }
+      }
     }
     if (name == "xquat") {
       for (long b = 0; b < view.rows; ++b) {
