@@ -1,21 +1,14 @@
 // <composite> against MuJoCo 2.2.2: every real file that uses one (MuJoCo 2.2.2's samples, from
 // ../shared/robots) compiled by both, the generated bodies, joints, geoms, sites, tendons,
 // equality constraints, exclusions and names compared array by array (compare_parameters,
-// compare_constants: bit for bit or within 1e-12). Where a file also uses a feature lever lacks
-// (<option solver="CG">, <adhesion> actuators), both load a copy without it; the copy is made in a
-// temporary folder beside links to the file's neighbours, so that its includes and textures are
-// found. Bad composites are refused at their element and attribute.
-#include <unistd.h>
-
+// compare_constants: bit for bit or within 1e-12). Bad composites are refused at their element
+// and attribute.
 #include <catch2/catch.hpp>
 #include <filesystem>
-#include <fstream>
 #include <lever/harness/models.hpp>
 #include <lever/error.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/mjcf/write.hpp>
-#include <regex>
-#include <sstream>
 
 #include "mujoco_xml.hpp"
 
@@ -23,50 +16,9 @@ namespace {
 
 namespace fs = std::filesystem;
 
-// A copy of the model file `path` with every match of `drop` removed, in a temporary folder whose
-// other entries link to the file's neighbours; removed with the object.
-class EditedCopy {
- public:
-  EditedCopy(const std::string& path, const std::string& drop)
-      : folder_(fs::temp_directory_path() /
-                ("lever-composite-" + std::to_string(::getpid()) + "-" +
-                 fs::path(path).stem().string())) {
-    fs::remove_all(folder_);
-    fs::create_directories(folder_);
-    for (const auto& entry : fs::directory_iterator(fs::path(path).parent_path())) {
-      if (entry.path().filename() == fs::path(path).filename()) continue;
-      fs::create_symlink(fs::absolute(entry.path()), folder_ / entry.path().filename());
-    }
-    std::ifstream in(path);
-    std::stringstream text;
-    text << in.rdbuf();
-    const std::string edited = drop.empty() ? text.str()
-                                            : std::regex_replace(text.str(), std::regex(drop), "");
-    file_ = (folder_ / fs::path(path).filename()).string();
-    std::ofstream(file_) << edited;
-  }
-  ~EditedCopy() { fs::remove_all(folder_); }
-  EditedCopy(const EditedCopy&) = delete;
-  EditedCopy& operator=(const EditedCopy&) = delete;
-  const std::string& file() const { return file_; }
-
- private:
-  fs::path folder_;
-  std::string file_;
-};
-
 struct CompositeFile {
   const char* path;  // under the robots folder
-  const char* drop;  // what lever lacks, removed from both engines' copy ("" for none)
   int bodies;        // the model's nbody, so that the composite is seen to be generated
-  // whether set_const's constants are compared too: not on the long chains of light bodies
-  // (cloth, loop), where dof_invweight0 and body_invweight0, diagonals of M^-1 (up to 6e5),
-  // differ from MuJoCo's by up to 3.1 times the bound. Not the composite's doing: every
-  // generated parameter agrees, and the positions, frames and cdof at qpos0 are bit for bit
-  // MuJoCo's, but crba's M agrees only to 2e-14 relative (its spatial products add in another
-  // order than mju_mulInertVec and mju_dot), which M's absolute bound hides on entries of 1e-5
-  // and the inverse magnifies. compile.every_real_robot_file reports it on flag.xml and loop.xml.
-  bool constants = true;
 };
 
 }  // namespace
@@ -78,35 +30,31 @@ TEST_CASE("the real files' composites compile as MuJoCo 2.2.2 compiles them",
     WARN("no real model files at " << root << ": skipped");
     return;
   }
-  const char* const cg = R"(solver="CG")";
   const std::vector<CompositeFile> files = {
-      {"hammock/hammock.xml", cg, 1 + 16 + 99},  // the humanoid and an 11 x 9 grid
-      {"composite/grid2pin.xml", "", 1 + 1 + 81},  // scene.xml's mocap body and a 9 x 9 grid
-      {"flag/flag.xml", "", 1 + 171, false},       // a 9 x 19 cloth
-      {"composite/cloth.xml", cg, 1 + 1 + 81, false},
-      {"composite/particle.xml", cg, 1 + 1 + 1000},
-      {"adhesion/active_adhesion.xml", R"(<adhesion[^>]*/>)", 1 + 7 + 64},
-      {"composite/rope.xml", "", 1 + 1 + 21},
-      {"composite/loop.xml", "", 1 + 1 + 20, false},
-      {"composite/softbox.xml", cg, 1 + 1 + 1 + 218},  // a 7 x 7 x 7 shell: 7^3 - 5^3
+      {"hammock/hammock.xml", 1 + 16 + 99},     // the humanoid and an 11 x 9 grid
+      {"composite/grid2pin.xml", 1 + 1 + 81},   // scene.xml's mocap body and a 9 x 9 grid
+      {"flag/flag.xml", 1 + 171},               // a 9 x 19 cloth
+      {"composite/cloth.xml", 1 + 1 + 81},
+      {"composite/particle.xml", 1 + 1 + 1000},
+      {"adhesion/active_adhesion.xml", 1 + 7 + 64},
+      {"composite/rope.xml", 1 + 1 + 21},
+      {"composite/loop.xml", 1 + 1 + 20},
+      {"composite/softbox.xml", 1 + 1 + 1 + 218},  // a 7 x 7 x 7 shell: 7^3 - 5^3
   };
   for (const CompositeFile& f : files) {
     const std::string path = root + "/" + f.path;
-    INFO(f.path << (std::string(f.drop).empty() ? "" : " without " + std::string(f.drop)));
-    const EditedCopy copy(path, f.drop);
-    const lever::Model ours = lever::mjcf::load_file(copy.file());
+    INFO(f.path);
+    const lever::Model ours = lever::mjcf::load_file(path);
     char error[1000] = "";
-    const lever::test::MjModelHandle theirs(mj_loadXML(copy.file().c_str(), nullptr, error,
+    const lever::test::MjModelHandle theirs(mj_loadXML(path.c_str(), nullptr, error,
                                                        sizeof error),
                                             mj_deleteModel);
     INFO("MuJoCo: " << error);
     REQUIRE(theirs);
     CHECK(ours.nbody == f.bodies);
     std::vector<std::string> differences = lever::test::compare_parameters(ours, *theirs);
-    if (f.constants) {
-      for (const std::string& d : lever::test::compare_constants(ours, *theirs)) {
-        differences.push_back(d);
-      }
+    for (const std::string& d : lever::test::compare_constants(ours, *theirs)) {
+      differences.push_back(d);
     }
     std::string first;
     for (size_t i = 0; i < std::min<size_t>(differences.size(), 10); ++i) {
@@ -114,31 +62,6 @@ TEST_CASE("the real files' composites compile as MuJoCo 2.2.2 compiles them",
     }
     INFO(differences.size() << " differences:" << first);
     CHECK(differences.empty());
-  }
-}
-
-TEST_CASE("the files that need only <composite> load unchanged", "[compile][composite][robots]") {
-  const std::string root = lever::test::robots_dir() + "/mujoco-2.2.2";
-  if (!fs::exists(root)) {
-    WARN("no real model files at " << root << ": skipped");
-    return;
-  }
-  for (const char* file : {"composite/grid2pin.xml", "flag/flag.xml", "composite/rope.xml",
-                           "composite/loop.xml"}) {
-    INFO(file);
-    CHECK_NOTHROW(lever::mjcf::load_file(root + "/" + file));
-  }
-  // the others are refused by what else they use, by its name
-  for (const char* file : {"hammock/hammock.xml", "composite/cloth.xml", "composite/particle.xml",
-                           "composite/softbox.xml"}) {
-    INFO(file);
-    try {
-      lever::mjcf::load_file(root + "/" + file);
-      FAIL("loaded");
-    } catch (const lever::mjcf::ParseError& e) {
-      CHECK(e.element() == "option");
-      CHECK(e.attribute() == "solver");
-    }
   }
 }
 
