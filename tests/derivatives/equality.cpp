@@ -20,7 +20,7 @@
 #include <string>
 
 #include <lever/harness/models.hpp>
-#include "step_differences.hpp"
+#include "step_checks.hpp"
 
 namespace lever::test::equality_derivatives {
 
@@ -48,40 +48,6 @@ BodyRows body_rows(const Model& model, const State& s) {
   return rows;
 }
 
-// A and B at s against lever's differences (eps 1e-6) and MuJoCo's (1e-6, 1e-5); the worst ratio
-// to the bound against MuJoCo. Where an error is within solimp's width the impedance's sigmoid
-// makes aref cubic in it and eps = 1e-5's truncation can reach the bound: there the eps = 1e-5
-// differences are Richardson-extrapolated with 2e-5, as for contacts (contacts.cpp).
-double compare_equality_step(diff::Twin& twin, const std::string& name, const State& s,
-                             bool curved) {
-  const Model& model = twin.model;
-  INFO(name << ", " << integrator_name(model.opt.integrator));
-  Derivatives deriv(model);
-  Data data(model);
-  apply(s, data);
-  step_derivatives(model, data, deriv);
-  CHECK_FALSE(deriv.active_set_changes);
-  const Differences own = lever_differences(model, s, 1e-6);
-  REQUIRE(own.same_active_set);
-  CHECK(ratio_to_bound(deriv.A, own.A) <= 1);
-  CHECK(ratio_to_bound(deriv.B, own.B) <= 1);
-  double worst = 0;
-  for (const double eps : {1e-6, 1e-5}) {
-    Differences theirs = mujoco_differences(twin, s, eps);
-    if (curved && eps > 1e-6) {
-      const Differences wide = mujoco_differences(twin, s, 2 * eps);
-      theirs.A = (4 * theirs.A - wide.A) / 3;
-      theirs.B = (4 * theirs.B - wide.B) / 3;
-    }
-    const double a = ratio_to_bound(deriv.A, theirs.A), b = ratio_to_bound(deriv.B, theirs.B);
-    INFO("eps " << eps << ": A " << a << ", B " << b << " of the bound");
-    CHECK(a <= 1);
-    CHECK(b <= 1);
-    worst = std::max({worst, a, b});
-  }
-  return worst;
-}
-
 // qpos0 moved along every tangent direction by a deterministic amount, velocities, then `steps`
 // Euler steps of lever: the constraints pull the bodies back towards consistent poses, so the
 // state has errors of the size the simulation has, and velocities.
@@ -106,7 +72,8 @@ void run_equality_case(const std::string& file, const std::string& name, double 
     const BodyRows rows = body_rows(twin.model, s);
     CHECK(rows.connect_rows == connect_rows);
     CHECK(rows.weld_rows == weld_rows);
-    const double worst = compare_equality_step(twin, name, s, rows.curved);
+    INFO(name);
+    const double worst = check_step_derivatives(twin, s, rows.curved);
     INFO(name << ", " << integrator_name(integrator) << ": worst " << worst << " of the bound"
               << (rows.curved ? " (curved impedance)" : ""));
     CHECK(worst <= 1);

@@ -16,7 +16,7 @@
 #include <string>
 
 #include <lever/harness/models.hpp>
-#include "step_differences.hpp"
+#include "step_checks.hpp"
 
 namespace lever::test::site_actuator_derivatives {
 
@@ -45,22 +45,7 @@ TEST_CASE("derivatives through site actuators (no reference site)",
        {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit}) {
     twin.set_integrator(integrator);
     INFO(integrator_name(integrator));
-    Derivatives deriv(model);
-    Data data(model);
-    apply(s, data);
-    step_derivatives(model, data, deriv);
-    const Differences own = lever_differences(model, s, 1e-6);
-    CHECK(ratio_to_bound(deriv.A, own.A) <= 1);
-    CHECK(ratio_to_bound(deriv.B, own.B) <= 1);
-    double worst = 0;
-    for (const double eps : {1e-6, 1e-5}) {
-      const Differences theirs = mujoco_differences(twin, s, eps);
-      const double a = ratio_to_bound(deriv.A, theirs.A), b = ratio_to_bound(deriv.B, theirs.B);
-      INFO("eps " << eps << ": A " << a << ", B " << b << " of the bound");
-      CHECK(a <= 1);
-      CHECK(b <= 1);
-      worst = std::max({worst, a, b});
-    }
+    const double worst = check_step_derivatives(twin, s);
     INFO("site_actuators.xml, " << integrator_name(integrator) << ": worst " << worst
                                 << " of the bound");
     CHECK(worst <= 1);

@@ -19,7 +19,7 @@
 #include <string>
 
 #include <lever/harness/models.hpp>
-#include "step_differences.hpp"
+#include "step_checks.hpp"
 
 namespace lever::test::tendon_derivatives {
 
@@ -58,32 +58,6 @@ RowKinds row_kinds(const Model& model, const State& s) {
   return k;
 }
 
-// A and B at s against lever's differences (eps 1e-6) and MuJoCo's (1e-6, 1e-5); the worst ratio
-// to the bound against MuJoCo.
-double compare_tendon_step(diff::Twin& twin, const std::string& name, const State& s) {
-  const Model& model = twin.model;
-  INFO(name << ", " << integrator_name(model.opt.integrator));
-  Derivatives deriv(model);
-  Data data(model);
-  apply(s, data);
-  step_derivatives(model, data, deriv);
-  CHECK_FALSE(deriv.active_set_changes);
-  const Differences own = lever_differences(model, s, 1e-6);
-  REQUIRE(own.same_active_set);
-  CHECK(ratio_to_bound(deriv.A, own.A) <= 1);
-  CHECK(ratio_to_bound(deriv.B, own.B) <= 1);
-  double worst = 0;
-  for (const double eps : {1e-6, 1e-5}) {
-    const Differences theirs = mujoco_differences(twin, s, eps);
-    const double a = ratio_to_bound(deriv.A, theirs.A), b = ratio_to_bound(deriv.B, theirs.B);
-    INFO("eps " << eps << ": A " << a << ", B " << b << " of the bound");
-    CHECK(a <= 1);
-    CHECK(b <= 1);
-    worst = std::max({worst, a, b});
-  }
-  return worst;
-}
-
 }  // namespace
 
 TEST_CASE("derivatives through fixed tendons: springs, actuators, limits, friction loss, couplings",
@@ -102,7 +76,8 @@ TEST_CASE("derivatives through fixed tendons: springs, actuators, limits, fricti
       const RowKinds k = row_kinds(twin.model, s);
       CHECK(k.tendon_limit >= 1);
       CHECK(k.equality == 2);
-      const double worst = compare_tendon_step(twin, "tendons.xml at 'bent'", s);
+      INFO("tendons.xml at 'bent'");
+      const double worst = check_step_derivatives(twin, s);
       UNSCOPED_INFO("tendons.xml at 'bent': worst " << worst << " of the bound");
     }
     {  // slow, the tendons' friction loss raised to 1000 on both sides: inside its box (a
@@ -118,7 +93,8 @@ TEST_CASE("derivatives through fixed tendons: springs, actuators, limits, fricti
       const RowKinds k = row_kinds(twin.model, slow);
       CHECK(k.tendon_friction >= 1);
       CHECK(k.tendon_limit >= 1);
-      const double worst = compare_tendon_step(twin, "tendons.xml slow", slow);
+      INFO("tendons.xml slow");
+      const double worst = check_step_derivatives(twin, slow);
       UNSCOPED_INFO("tendons.xml slow: worst " << worst << " of the bound");
     }
   }
@@ -134,7 +110,8 @@ TEST_CASE("derivatives through dof friction loss", "[derivatives][mujoco][tendon
     for (int i = 0; i < twin.model.nv; ++i) s.qvel[i] = 1e-3 * (i % 2 ? 1 : -1) * (1 + i);
     const RowKinds k = row_kinds(twin.model, s);
     CHECK(k.dof_friction >= 1);
-    const double worst = compare_tendon_step(twin, "friction_loss.xml", s);
+    INFO("friction_loss.xml");
+    const double worst = check_step_derivatives(twin, s);
     UNSCOPED_INFO("friction_loss.xml: worst " << worst << " of the bound");
   }
 }
@@ -157,7 +134,8 @@ TEST_CASE("derivatives through fixed tendons: Menagerie's Franka Panda hand",
     s.ctrl << 120;
     const RowKinds k = row_kinds(twin.model, s);
     CHECK(k.equality == 1);
-    const double worst = compare_tendon_step(twin, "Panda hand", s);
+    INFO("Panda hand");
+    const double worst = check_step_derivatives(twin, s);
     UNSCOPED_INFO("Panda hand: worst " << worst << " of the bound");
   }
 }
