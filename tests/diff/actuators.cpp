@@ -68,26 +68,12 @@ TEST_CASE("diff: actuator transmissions in lockstep runs", "[diff][actuators]") 
 }
 
 
-TEST_CASE("diff: muscles and activation dynamics agree with MuJoCo", "[diff][actuators][muscles]") {
-  REQUIRE(mj_version() == 222);
-  const std::string file = model_path("tests/models/actuators/muscles.xml");
-  for (const diff::Path path : paths_to_compare()) {
-    const std::uint64_t seed = diff::default_seed(file);
-    INFO(context(file, path, seed));
-    diff::Twin twin(file, path);
-    const diff::Report report = diff::random_states(twin, kActuatorStates, seed);
-    check_within_bound(report, all_but_inverse_at_forward(report));
-    require_actuator_quantities(report, kActuatorStates);
-    const diff::Extreme* act_dot = report.find("act_dot");
-    REQUIRE(act_dot != nullptr);
-    CHECK(act_dot->compared >= kActuatorStates);
-    check_lockstep_every_integrator(file, path, kActuatorRunSeconds);
-  }
-}
+namespace {
 
-TEST_CASE("diff: intvelocity, damper and cylinder agree with MuJoCo", "[diff][actuators]") {
-  REQUIRE(mj_version() == 222);
-  const std::string file = model_path("tests/models/actuators/shortcuts.xml");
+// Random states of a model with activations on both paths: every quantity within the bound,
+// act_dot compared at each state; then lockstep runs under `integrators`.
+void check_activation_model(const std::string& file,
+                            std::initializer_list<Integrator> integrators) {
   for (const diff::Path path : paths_to_compare()) {
     const std::uint64_t seed = diff::default_seed(file);
     INFO(context(file, path, seed));
@@ -98,13 +84,27 @@ TEST_CASE("diff: intvelocity, damper and cylinder agree with MuJoCo", "[diff][ac
     const diff::Extreme* act_dot = report.find("act_dot");
     REQUIRE(act_dot != nullptr);
     CHECK(act_dot->compared >= kActuatorStates);
-    for (const Integrator integrator : {Integrator::kEuler, Integrator::kImplicit}) {
+    for (const Integrator integrator : integrators) {
       INFO(integrator_name(integrator));
       diff::Twin run(file, path);
       check_within_bound(
           diff::lockstep(run, integrator, kActuatorRunSeconds, diff::Control::kSmooth));
     }
   }
+}
+
+}  // namespace
+
+TEST_CASE("diff: muscles and activation dynamics agree with MuJoCo", "[diff][actuators][muscles]") {
+  REQUIRE(mj_version() == 222);
+  check_activation_model(model_path("tests/models/actuators/muscles.xml"),
+                         {Integrator::kEuler, Integrator::kRK4, Integrator::kImplicit});
+}
+
+TEST_CASE("diff: intvelocity, damper and cylinder agree with MuJoCo", "[diff][actuators]") {
+  REQUIRE(mj_version() == 222);
+  check_activation_model(model_path("tests/models/actuators/shortcuts.xml"),
+                         {Integrator::kEuler, Integrator::kImplicit});
 }
 
 namespace {
