@@ -378,14 +378,18 @@ std::vector<std::string> compare_constants(const Model& o, const mjModel& m) {
   return d.list;
 }
 
+std::vector<std::string> compare_models(const Model& o, const mjModel& m) {
+  std::vector<std::string> differences = compare_parameters(o, m);
+  for (std::string& d : compare_constants(o, m)) differences.push_back(std::move(d));
+  return differences;
+}
+
 std::vector<std::string> compile_differences(const std::string& name, const std::string& xml) {
   const Model ours = mjcf::load_string(xml, name);
   std::string error;
   const MjModelHandle theirs = mujoco_compile(xml, &error);
   if (!theirs) return {std::string("mujoco refuses ").append(name).append(": ").append(error)};
-  std::vector<std::string> differences = compare_parameters(ours, *theirs);
-  for (std::string& d : compare_constants(ours, *theirs)) differences.push_back(std::move(d));
-  return differences;
+  return compare_models(ours, *theirs);
 }
 
 std::string load_refusal(const std::string& xml) {

@@ -34,6 +34,9 @@ std::vector<std::string> compare_parameters(const Model& o, const mjModel& m);
 /// body_invweight0.
 std::vector<std::string> compare_constants(const Model& o, const mjModel& m);
 
+/// compare_parameters and compare_constants together.
+std::vector<std::string> compare_models(const Model& o, const mjModel& m);
+
 /// Both compile `xml` (lever under the file name `name`); every difference of parameters and
 /// constants, empty when they agree. MuJoCo refusing the text is a difference too (its message).
 std::vector<std::string> compile_differences(const std::string& name, const std::string& xml);
