@@ -27,7 +27,7 @@
 #include <vector>
 
 #include <lever/harness/models.hpp>
-#include "step_differences.hpp"
+#include "step_checks.hpp"
 
 namespace lever::test::contact_derivatives {
 
@@ -88,25 +88,7 @@ double compare(diff::Twin& twin, const Case& c, bool curved_impedance) {
           (deriv.active_set_changes ? 1 : 0));
   }
 
-  const Differences own = lever_differences(model, c.state, 1e-6);
-  REQUIRE(own.same_active_set);
-  CHECK(ratio_to_bound(deriv.A, own.A) <= 1);
-  CHECK(ratio_to_bound(deriv.B, own.B) <= 1);
-  double worst = 0;
-  for (const double eps : {1e-6, 1e-5}) {
-    Differences theirs = mujoco_differences(twin, c.state, eps);
-    if (curved_impedance && eps > 1e-6) {
-      const Differences wide = mujoco_differences(twin, c.state, 2 * eps);
-      theirs.A = (4 * theirs.A - wide.A) / 3;
-      theirs.B = (4 * theirs.B - wide.B) / 3;
-    }
-    const double a = ratio_to_bound(deriv.A, theirs.A), b = ratio_to_bound(deriv.B, theirs.B);
-    INFO("eps " << eps << ": A " << a << ", B " << b << " of the bound");
-    CHECK(a <= 1);
-    CHECK(b <= 1);
-    worst = std::max({worst, a, b});
-  }
-  return worst;
+  return check_against_differences(twin, c.state, deriv, curved_impedance);
 }
 
 void frictionless(diff::Twin& twin) {
