@@ -490,32 +490,53 @@ TEST_CASE("MuJoCo's CG solver allocates nothing, with every integrator and both 
   }
 }
 
+namespace {
+
+// `steps` steps of the model in `file` under each integrator (a fresh Data each, every control at
+// `ctrl`), each step counted: none may allocate. after_step(m, d) runs after each step (more
+// calls to count, tallies); after_run(m, d) after each integrator's run.
+template <typename AfterStep, typename AfterRun>
+void check_steps_allocate_nothing(const char* file, double ctrl, int steps, AfterStep after_step,
+                                  AfterRun after_run) {
+  INFO(file);
+  std::string how;
+  const lever::Model base = load(lever::test::model_path(file), how);
+  for (const lever::Integrator integrator :
+       {lever::Integrator::kEuler, lever::Integrator::kRK4, lever::Integrator::kImplicit}) {
+    lever::Model m = base;
+    m.opt.integrator = integrator;
+    lever::Data d(m);
+    d.ctrl.setConstant(ctrl);
+    for (int k = 0; k < steps; ++k) {
+      const Allocations a = count([&] { lever::step(m, d); });
+      CHECK(a.news == 0);
+      CHECK(a.mallocs == 0);
+      after_step(m, d);
+    }
+    after_run(m, d);
+  }
+}
+
+}  // namespace
+
 TEST_CASE("equality constraints and friction loss allocate nothing", "[alloc]") {
   // spatial_tendons.xml: a tendon coupling and tendon friction loss, along wrapped paths
   for (const char* file :
        {"tests/models/constraints/equality.xml", "tests/models/constraints/friction_loss.xml",
         "tests/models/constraints/spatial_tendons.xml"}) {
-    INFO(file);
-    std::string how;
-    const lever::Model base = load(lever::test::model_path(file), how);
-    for (const lever::Integrator integrator :
-         {lever::Integrator::kEuler, lever::Integrator::kRK4, lever::Integrator::kImplicit}) {
-      lever::Model m = base;
-      m.opt.integrator = integrator;
-      lever::Data d(m);
-      d.ctrl.setConstant(1.0);
-      int rows = 0;
-      for (int k = 0; k < 200; ++k) {
-        Allocations a = count([&] { lever::step(m, d); });
-        CHECK(a.news == 0);
-        CHECK(a.mallocs == 0);
-        a = count([&] { lever::inverse(m, d); });
-        CHECK(a.news == 0);
-        CHECK(a.mallocs == 0);
-        rows += d.ne + d.nf;
-      }
-      CHECK(rows > 0);
-    }
+    int rows = 0;
+    check_steps_allocate_nothing(
+        file, 1.0, 200,
+        [&](const lever::Model& m, lever::Data& d) {
+          const Allocations a = count([&] { lever::inverse(m, d); });
+          CHECK(a.news == 0);
+          CHECK(a.mallocs == 0);
+          rows += d.ne + d.nf;
+        },
+        [&](const lever::Model&, const lever::Data&) {
+          CHECK(rows > 0);
+          rows = 0;
+        });
   }
 }
 
@@ -524,23 +545,12 @@ TEST_CASE("transmissions, muscles and activations allocate nothing", "[alloc]") 
   for (const char* file :
        {"tests/models/actuators/transmissions.xml", "tests/models/actuators/muscles.xml",
         "tests/models/actuators/shortcuts.xml", "tests/models/actuators/adhesion.xml"}) {
-    INFO(file);
-    std::string how;
-    const lever::Model base = load(lever::test::model_path(file), how);
-    for (const lever::Integrator integrator :
-         {lever::Integrator::kEuler, lever::Integrator::kRK4, lever::Integrator::kImplicit}) {
-      lever::Model m = base;
-      m.opt.integrator = integrator;
-      lever::Data d(m);
-      d.ctrl.setConstant(0.5);
-      for (int k = 0; k < 100; ++k) {
-        const Allocations a = count([&] { lever::step(m, d); });
-        CHECK(a.news == 0);
-        CHECK(a.mallocs == 0);
-      }
-      CHECK(d.act.size() == m.na);
-      if (m.na > 0) CHECK(d.act.cwiseAbs().maxCoeff() > 0);  // the activations moved
-    }
+    check_steps_allocate_nothing(
+        file, 0.5, 100, [](const lever::Model&, const lever::Data&) {},
+        [](const lever::Model& m, const lever::Data& d) {
+          CHECK(d.act.size() == m.na);
+          if (m.na > 0) CHECK(d.act.cwiseAbs().maxCoeff() > 0);  // the activations moved
+        });
   }
 }
 
