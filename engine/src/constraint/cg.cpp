@@ -42,6 +42,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "basics/basics.hpp"
 #include "constraint/constraint_room.hpp"
 #include "smooth/smooth.hpp"
 
@@ -49,7 +50,7 @@ namespace lever {
 
 namespace {
 
-constexpr double kMinVal = 1e-15;         // MuJoCo's mjMINVAL
+using detail::kMinVal;                    // MuJoCo's mjMINVAL
 constexpr int kMaxLineEvaluations = 50;   // CGsearch's LSmaxiter
 constexpr double kLineToleranceScale = 0.01;  // CGsearch's LStolscl: the slope's tolerance
 
