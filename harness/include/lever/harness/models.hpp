@@ -19,7 +19,8 @@ inline std::string model_path(const std::string& relative) { return source_dir()
 /// from $LEVER_ROBOTS_DIR when it is set, else from CMake's LEVER_ROBOTS_DIR (../shared/robots
 /// beside the checkout).
 inline std::string robots_dir() {
-  if (const char* dir = std::getenv("LEVER_ROBOTS_DIR")) return dir;
+  // set but empty counts as unset (as a shell's `LEVER_ROBOTS_DIR= make test` means "no override")
+  if (const char* dir = std::getenv("LEVER_ROBOTS_DIR"); dir != nullptr && *dir != '\0') return dir;
   return LEVER_ROBOTS_DIR;
 }
 
