@@ -64,6 +64,7 @@ void check_derivative_sizes(const Model& model, const Data& data, const Derivati
     }
   }
   if (data.nv != model.nv || data.nu != model.nu || deriv.nv != model.nv || deriv.nu != model.nu ||
+      deriv.na != model.na ||
       static_cast<int>(deriv.work.qpos0.size()) != model.nq) {
     throw StateError("derivatives: Data or Derivatives was built for another model (nv " +
                      std::to_string(model.nv) + ", nu " + std::to_string(model.nu) + ").");

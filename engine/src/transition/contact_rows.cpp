@@ -432,7 +432,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   RowMatrix& X = w.right_hand_sides;
   X.leftCols(nv) = w.rhs_q + E;
   X.middleCols(nv, nv) = w.rhs_v;
-  X.rightCols(nu) = w.rhs_u;
+  X.rightCols(nu + model.na) = w.rhs_u;  // ctrl, then act
   for (int k = 0; k < n; ++k) {
     const int r = w.rows[k];
     const double* J = data.efc_J.row(r).data();
@@ -467,11 +467,13 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   }
   deriv.dqacc_dq = X.leftCols(nv);
   deriv.dqacc_dv = X.middleCols(nv, nv);
-  deriv.dqacc_du = X.rightCols(nu);
+  deriv.dqacc_du = X.middleCols(2 * nv, nu);
+  deriv.dqacc_dact = X.rightCols(model.na);
   // M d qacc = rhs + d qfrc_constraint, M's zeros (dofs on different branches) skipped
   deriv.dconstraint_dq = -w.rhs_q;
   deriv.dconstraint_dv = -w.rhs_v;
-  deriv.dconstraint_du = -w.rhs_u;
+  deriv.dconstraint_du = -w.rhs_u.leftCols(nu);
+  deriv.dconstraint_dact = -w.rhs_u.rightCols(model.na);
   for (int i = 0; i < nv; ++i) {
     for (int j = 0; j < nv; ++j) {
       const double a = data.M(i, j);
@@ -480,6 +482,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       for (int c = 0; c < nv; ++c) deriv.dconstraint_dq(i, c) += a * x[c];
       for (int c = 0; c < nv; ++c) deriv.dconstraint_dv(i, c) += a * x[nv + c];
       for (int c = 0; c < nu; ++c) deriv.dconstraint_du(i, c) += a * x[2 * nv + c];
+      for (int c = 0; c < model.na; ++c) deriv.dconstraint_dact(i, c) += a * x[2 * nv + nu + c];
     }
   }
 }
