@@ -13,11 +13,12 @@
 // integrate_pos applies it). MuJoCo 2.2.2 has no analytic counterpart; its mjd_transitionFD
 // (finite differences of mj_step) returns A and B in the same layout. Fixed tendons (springs,
 // dampers, actuators, limits, friction loss), joint and tendon couplings, connects and welds,
-// actuators on sites without a reference site, and muscles and every activation dynamics (the
-// state then carries act: A is 2nv + na square) are covered. Refused (lever::Error): a pushing
-// contact of a pair MuJoCo collides by MPR (meshes, cylinders and ellipsoids against anything but
-// a plane), an elliptic cone on its surface, a spatial tendon, a site actuator with a reference
-// site, a ball joint sharing its body with others.
+// actuators on sites (with or without a reference site), and muscles and every activation
+// dynamics (the state then carries act: A is 2nv + na square) are covered. Refused
+// (lever::Error): a pushing contact of a pair MuJoCo collides by MPR (meshes, cylinders and
+// ellipsoids against anything but a plane), an elliptic cone on its surface, a spatial tendon, an
+// actuator on a slider-crank, a ball or free joint or a body, a ball joint sharing its body with
+// others.
 #pragma once
 
 #include <Eigen/Core>
@@ -129,6 +130,7 @@ struct Derivatives {
     /// (nv x nv) a site actuator's moment's change: (i, c) = d moment_i / d q_c
     /// (transition/step_derivatives.cpp)
     Eigen::MatrixXd moment_change;
+    Eigen::VectorXd length_gradient;  ///< (nv) a site actuator's d length / d qpos
     // the active set's check (step_derivatives)
     std::vector<int> active_set;  ///< the contacts' geom pairs and the rows' states at the start
     Eigen::VectorXd qacc_sum;     ///< (nv) RK4: sum_i b_i qacc_i

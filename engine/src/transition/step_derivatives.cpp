@@ -128,42 +128,104 @@ void quaternion_springs(const Model& model, const Data& data, Derivatives::Works
   }
 }
 
-// w.moment_change(i, c) = d moment_i / d q_c for site actuator a without a reference site, whose
-// moment is moment_i = j_i(p) . f + w_i . t, with p the site, f = R gear[0-2] and t = R gear[3-5]
-// its force and torque in the world (R the site's frame) and j_i(p) = u_i + w_i x (p - O) dof i's
-// velocity at p. Moving a dof c that moves the site's body turns the axes of the dofs it carries
-// and moves the site rigidly (dp = j_c(p), dR = w_c x R), so for i moving the body too:
-//   d j_i(p) / d q_c = [c carries i] (w_c x j_i(p) - w_i x j_c(p)) + w_i x j_c(p)
-//   d w_i / d q_c    = [c carries i] w_c x w_i,   d f = w_c x f,   d t = w_c x t
-void site_moment_change(const Model& model, const Data& data, int a, Derivatives::Workspace& w) {
+// Site actuator a's moment and length differentiated: w.moment_change(i, c) = d moment_i / d q_c
+// and w.length_gradient[c] = d length / d q_c. With p the site, r the reference site (if any),
+// s_i and r_i whether dof i moves the site's body and the reference's, j_i(x) = u_i + w_i x (x - O)
+// dof i's velocity at x, and f = R gear[0-2], t = R gear[3-5] the wrench in the world (R the
+// reference's frame, or the site's own without one), the moment is (MuJoCo 2.2.2's)
+//   moment_i = (s_i j_i(p) - r_i j_i(r)) . f + (s_i - r_i) w_i . t.
+// Moving dof c turns the axes of the dofs it carries and moves the bodies it moves rigidly, so
+//   d j_i(x) / d q_c = [c carries i] (w_c x j_i(x) - w_i x j_c(x)) + w_i x j_c(x)  (c moves x)
+//   d w_i / d q_c    = [c carries i] w_c x w_i,   d f = w_c x f,   d t = w_c x t  (c moves R)
+// The length (a reference site's alone; without one it is 0) is
+//   length = gear[0-2] . R^T (p - r) + gear[3-5] . phi,   phi = log(q_r^-1 q_p),
+// with MuJoCo's quaternions q_p = site_quat (x) xquat of the site's body (that order), q_r the
+// reference's. Turning a body by w_c dq turns q_p by site_quat w_c dq (on the left), so phi moves by
+// Jl^-1(phi) R(q_r)^T (s_c R(site_quat) w_c - r_c R(ref site_quat) w_c), Jl^-1 SO(3)'s inverse
+// left Jacobian; and d (R^T (p - r)) = R^T (s_c j_c(p) - r_c j_c(r) - r_c w_c x (p - r)).
+void site_transmission_change(const Model& model, const Data& data, int a,
+                              Derivatives::Workspace& w) {
   using Vec3 = Eigen::Vector3d;
   const int nv = model.nv;
   Eigen::MatrixXd& G = w.moment_change;
   G.setZero();
-  const int site = model.actuator_trnid[a][0];
+  w.length_gradient.setZero();
+  const int site = model.actuator_trnid[a][0], ref = model.actuator_trnid[a][1];
   const auto& gear = model.actuator_gear[a];
-  const Mat3& R = data.site_xmat[site];
-  const Vec3 f = R * Vec3(gear[0], gear[1], gear[2]), t = R * Vec3(gear[3], gear[4], gear[5]);
-  std::vector<char>& on = w.moves1;
-  detail::dofs_moving(model, model.site_bodyid[site], on);
-  Vec3* const j = w.equality_point_velocity.data();
-  for (int i = 0; i < nv; ++i) {
-    if (on[i]) j[i] = detail::point_velocity(model, data, i, data.site_xpos[site]);
+  const Vec3 gear_force(gear[0], gear[1], gear[2]), gear_torque(gear[3], gear[4], gear[5]);
+  const Mat3& R = data.site_xmat[ref >= 0 ? ref : site];
+  const Vec3 f = R * gear_force, t = R * gear_torque;
+  std::vector<char>& on_site = w.moves1;
+  std::vector<char>& on_ref = w.moves2;
+  detail::dofs_moving(model, model.site_bodyid[site], on_site);
+  if (ref >= 0) {
+    detail::dofs_moving(model, model.site_bodyid[ref], on_ref);
+  } else {
+    std::fill(on_ref.begin(), on_ref.end(), 0);
   }
+  const std::vector<char>& on_frame = ref >= 0 ? on_ref : on_site;  // the dofs that turn R
+  Vec3* const j_site = w.equality_point_velocity.data();
+  Vec3* const j_ref = j_site + nv;
+  for (int i = 0; i < nv; ++i) {
+    if (on_site[i]) j_site[i] = detail::point_velocity(model, data, i, data.site_xpos[site]);
+    if (on_ref[i]) j_ref[i] = detail::point_velocity(model, data, i, data.site_xpos[ref]);
+  }
+  // d j_i(x) / d q_c . f for a point x that dofs i and c both move
+  const auto point_term = [&](const Vec3* j, int i, int c, const Vec3& wi, const Vec3& wc,
+                              bool carried) {
+    Vec3 dj = wi.cross(j[c]);
+    if (carried) dj += wc.cross(j[i]) - wi.cross(j[c]);
+    return dj.dot(f);
+  };
   for (int c = 0; c < nv; ++c) {
-    if (!on[c]) continue;
+    if (!on_site[c] && !on_ref[c]) continue;
     const Vec3 wc = data.cdof[c].head<3>();
-    const Vec3 df = wc.cross(f), dt = wc.cross(t);
+    const Vec3 df = on_frame[c] ? Vec3(wc.cross(f)) : Vec3::Zero();
+    const Vec3 dt = on_frame[c] ? Vec3(wc.cross(t)) : Vec3::Zero();
     for (int i = 0; i < nv; ++i) {
-      if (!on[i]) continue;
+      if (!on_site[i] && !on_ref[i]) continue;
       const Vec3 wi = data.cdof[i].head<3>();
-      Vec3 dj = wi.cross(j[c]), dw = Vec3::Zero();
-      if (w.carries[static_cast<std::size_t>(c * nv + i)] != 0) {
-        dj += wc.cross(j[i]) - wi.cross(j[c]);
-        dw = wc.cross(wi);
+      const bool carried = w.carries[static_cast<std::size_t>(c * nv + i)] != 0;
+      double g = 0.0;
+      if (on_site[i]) {
+        if (on_site[c]) g += point_term(j_site, i, c, wi, wc, carried);
+        g += j_site[i].dot(df);
       }
-      G(i, c) = dj.dot(f) + j[i].dot(df) + dw.dot(t) + wi.dot(dt);
+      if (on_ref[i]) {
+        if (on_ref[c]) g -= point_term(j_ref, i, c, wi, wc, carried);
+        g -= j_ref[i].dot(df);
+      }
+      const int turn = on_site[i] - on_ref[i];
+      if (turn != 0) {
+        const Vec3 dw = carried ? Vec3(wc.cross(wi)) : Vec3::Zero();
+        g += turn * (dw.dot(t) + wi.dot(dt));
+      }
+      G(i, c) = g;
     }
+  }
+  if (ref < 0) return;  // no length
+  const Vec3 offset = data.site_xpos[site] - data.site_xpos[ref];
+  const Quat q_site = quat_mul(model.site_quat[site], data.xquat[model.site_bodyid[site]]);
+  const Quat q_ref = quat_mul(model.site_quat[ref], data.xquat[model.site_bodyid[ref]]);
+  const Vec3 phi = detail::quat_difference(q_site.data(), q_ref.data());
+  // rho . (R(q_r)^T e) = (R(q_r) Jl^-1(phi)^T gear_torque) . e, with Jl^-1(phi)^T = Jr^-1(phi)
+  const Vec3 rho = detail::quat_rotate(q_ref, inverse_right_jacobian(phi) * gear_torque);
+  const auto conj = [](const Quat& q) { return Quat(q[0], -q[1], -q[2], -q[3]); };
+  const Vec3 rho_site = detail::quat_rotate(conj(model.site_quat[site]), rho);
+  const Vec3 rho_ref = detail::quat_rotate(conj(model.site_quat[ref]), rho);
+  for (int c = 0; c < nv; ++c) {
+    const Vec3 wc = data.cdof[c].head<3>();
+    Vec3 dx = Vec3::Zero();  // d (p - r) - w_c x (p - r) for the reference's turn
+    double d_turn = 0.0;
+    if (on_site[c]) {
+      dx += j_site[c];
+      d_turn += rho_site.dot(wc);
+    }
+    if (on_ref[c]) {
+      dx -= j_ref[c] + wc.cross(offset);
+      d_turn -= rho_ref.dot(wc);
+    }
+    w.length_gradient[c] = f.dot(dx) + d_turn;
   }
 }
 
@@ -291,17 +353,20 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
     }
     const double per_length = slope.per_length, per_velocity = slope.per_velocity;
     if (model.actuator_trntype[a] == TransmissionType::kSite) {
-      // a site without a reference site: no length, velocity = m . qvel, qfrc = m force, and m
-      // turns with the site (G = d m / d q): d qfrc / d q = G force + m per_velocity G^T qvel
-      // (the first even where the force is clamped), d qfrc / d qvel = m per_velocity m^T
-      site_moment_change(model, data, a, w);
+      // a site: velocity = m . qvel, qfrc = m force, m turns with the site and its reference
+      // (G = d m / d q), and the length (a reference site's) has its own gradient, which is not m
+      // (site_transmission_change): d qfrc / d q = G force + m (per_length d length / d q +
+      // per_velocity G^T qvel) (the first even where the force is clamped),
+      // d qfrc / d qvel = m per_velocity m^T
+      site_transmission_change(model, data, a, w);
       const Eigen::MatrixXd& G = w.moment_change;
       const double* m = data.actuator_moment.row(a).data();
       w.rhs_q += data.actuator_force[a] * G;
       if (force_clamped) continue;
       for (int c = 0; c < model.nv; ++c) {
-        const double dvelocity = per_velocity * G.col(c).dot(data.qvel);
-        for (int i = 0; i < model.nv; ++i) w.rhs_q(i, c) += m[i] * dvelocity;
+        const double dforce = per_length * w.length_gradient[c] +
+                              per_velocity * G.col(c).dot(data.qvel);
+        for (int i = 0; i < model.nv; ++i) w.rhs_q(i, c) += m[i] * dforce;
       }
       add_row_outer_product(m, model.nv, per_velocity, w.rhs_v);
       if (input_column >= 0) {
@@ -774,12 +839,12 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     }
     // d k / d input
     if (gain_velocity != 0.0) w.rhs_u.col(input_column) += (h * gain_velocity) * r;
-    // a muscle's k moves with the length (gradient m: L = gear q or gear ten_length; a site has
-    // no length) and the velocity (gradient m in qvel; in qpos, a site's G^T qvel)
+    // a muscle's k moves with the length (gradient m: L = gear q or gear ten_length; a site's
+    // its own) and the velocity (gradient m in qvel; in qpos, a site's G^T qvel)
     if (per_length != 0.0 || per_velocity != 0.0) {
-      if (site) site_moment_change(model, data, a, w);
+      if (site) site_transmission_change(model, data, a, w);
       for (int col = 0; col < nv; ++col) {
-        double dk_dq = site ? 0.0 : per_length * m[col];
+        double dk_dq = per_length * (site ? w.length_gradient[col] : m[col]);
         if (site) dk_dq += per_velocity * w.moment_change.col(col).dot(data.qvel);
         const double dk_dv = per_velocity * m[col];
         if (dk_dq != 0.0) w.rhs_q.col(col) += (h * dk_dq) * r;
@@ -788,7 +853,7 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     }
     // a site's moment turning: m k m^T changes by G_c k m^T + m k G_c^T along q_c (G = d m / d q)
     if (site && k != 0.0) {
-      site_moment_change(model, data, a, w);
+      site_transmission_change(model, data, a, w);
       const Eigen::MatrixXd& G = w.moment_change;
       double m_a = 0.0;
       for (int i = 0; i < nv; ++i) m_a += m[i] * w.qacc_step[i];
@@ -909,7 +974,7 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
 
 // The fluid forces depend on the pose and the velocity in ways the chain rule above leaves out,
 // and so do the moments of transmissions other than a hinge's, a slide's, a fixed tendon's and a
-// site's without a reference site. Every gain, bias and activation dynamics is covered (fixed,
+// site's. Every gain, bias and activation dynamics is covered (fixed,
 // affine, muscle; none, integrator, filter, muscle).
 void refuse_uncovered(const Model& model) {
   if (has_fluid(model.opt)) {
@@ -918,13 +983,12 @@ void refuse_uncovered(const Model& model) {
   }
   // the chain rule above carries each actuator's force through a constant moment (a gear on one
   // dof, or gear ten_J of a fixed tendon: a spatial one is refused with the tendons) or a site's
-  // moment, whose turn it differentiates (site_moment_change); not yet a reference site's
+  // moment and length, whose change with the pose it differentiates (site_transmission_change)
   for (int a = 0; a < model.nu; ++a) {
     if (actuator_scalar_dof(model, a) >= 0) continue;
     const TransmissionType trn = model.actuator_trntype[a];
-    if (trn == TransmissionType::kTendon) continue;
-    if (trn == TransmissionType::kSite && model.actuator_trnid[a][1] < 0) continue;
-    const char* what = "a site with a reference site";
+    if (trn == TransmissionType::kTendon || trn == TransmissionType::kSite) continue;
+    const char* what = "a slider-crank";
     switch (trn) {
       case TransmissionType::kJoint:
       case TransmissionType::kJointInParent: what = "a ball or free joint"; break;
@@ -936,7 +1000,7 @@ void refuse_uncovered(const Model& model) {
         model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
     throw ModelError("derivatives: actuator " + name + " drives " + what +
                          "; lever's analytic derivatives cover actuators on hinge and slide "
-                         "joints, fixed tendons and sites without a reference site so far.",
+                         "joints, fixed tendons and sites so far.",
                      "actuator", a);
   }
 }
@@ -1012,6 +1076,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.act0.setZero(na);
   work.act_dot_sum.setZero(na);
   work.moment_times_a.setZero(nv);
+  work.length_gradient.setZero(nv);
   work.D.setZero(nv, nv);
   work.K.setZero(nv, nv);
   work.K_lu.setZero(nv, nv);
