@@ -16,7 +16,8 @@
 // actuators on sites (with or without a reference site), and muscles and every activation
 // dynamics (the state then carries act: A is 2nv + na square) are covered. Refused
 // (lever::Error): a pushing contact of a pair MuJoCo collides by MPR (meshes, cylinders and
-// ellipsoids against anything but a plane), an elliptic cone on its surface, a spatial tendon, an
+// ellipsoids against anything but a plane), an elliptic cone on its surface, a spatial tendon that
+// wraps around a geom (straight ones, with pulleys, are covered), an
 // actuator on a slider-crank, a ball or free joint or a body, a ball joint sharing its body with
 // others.
 #pragma once
@@ -131,6 +132,8 @@ struct Derivatives {
     /// (transition/step_derivatives.cpp)
     Eigen::MatrixXd moment_change;
     Eigen::VectorXd length_gradient;  ///< (nv) a site actuator's d length / d qpos
+    /// (nv x nv) a spatial tendon's (i, c) = d ten_J_i / d q_c (transition/spatial_tendons.cpp)
+    Eigen::MatrixXd tendon_change;
     // the active set's check (step_derivatives)
     std::vector<int> active_set;  ///< the contacts' geom pairs and the rows' states at the start
     Eigen::VectorXd qacc_sum;     ///< (nv) RK4: sum_i b_i qacc_i

@@ -86,6 +86,30 @@ SoftSlopes soft_slopes(const std::array<double, 5>& solimp, double dist, double 
   return {-(slope * (dist - margin) + imp), floored ? 0.0 : -slope / (imp * (1 - imp))};
 }
 
+// A tendon's limit or friction-loss row r (the k-th held) whose tendon is spatial: its Jacobian
+// +-ten_J moves with the pose (T = d ten_J / d q, spatial_tendons.cpp), so, with s the row's sign,
+// Y(k, c) += D (-B s T_c . qvel - s T_c . qacc) (aref's velocity term and -dJ qacc) and
+// E(., c) += s T_c f.
+void spatial_tendon_row(const Model& model, const Data& data, int r, int k,
+                        Derivatives::Workspace& w) {
+  const int t = data.efc_id[r];
+  if (!is_spatial_tendon(model, t)) return;
+  spatial_tendon_change(model, data, t, w);
+  const Eigen::MatrixXd& T = w.tendon_change;
+  const int nv = model.nv;
+  const double* J = data.efc_J.row(r).data();
+  const double* ten_J = data.ten_J.row(t).data();
+  double along = 0.0;  // efc_J . ten_J: the row's sign
+  for (int i = 0; i < nv; ++i) along += J[i] * ten_J[i];
+  const double sign = along < 0 ? -1.0 : 1.0;
+  const double f = data.efc_force[r];
+  for (int c = 0; c < nv; ++c) {
+    const double T_qvel = T.col(c).dot(data.qvel), T_qacc = T.col(c).dot(data.qacc);
+    w.contact_Y(k, c) += data.efc_D[r] * sign * (-data.efc_B[r] * T_qvel - T_qacc);
+    w.contact_E.col(c) += (sign * f) * T.col(c);
+  }
+}
+
 // A row whose Jacobian is the gradient of its distance in the coordinates: a fixed tendon's limit
 // (distance +-(L - stop), J = +-ten_J, constant) and a joint's or tendon's coupling (distance
 // x_1 - poly(x_2) about qpos0, J = J_1 - poly'(x_2) J_2 with J_1, J_2 the joints' unit rows or the
@@ -279,8 +303,24 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
                data.efc_type[r] == ConstraintType::kEquality) {
       coordinate_row(model, data, r, k, Y, E);
     }
-    // a friction-loss row has no distance (pos 0, K 0) and a constant Jacobian: its terms are
-    // aref's velocity part alone, below
+    if (data.efc_type[r] == ConstraintType::kLimitTendon ||
+        data.efc_type[r] == ConstraintType::kFrictionTendon) {
+      spatial_tendon_row(model, data, r, k, w);
+    }
+    // a friction-loss row has no distance (pos 0, K 0) and, but for a spatial tendon's, a
+    // constant Jacobian: its terms are aref's velocity part alone, below
+  }
+  // a spatial tendon's friction-loss row at its bound passes on a constant force along a Jacobian
+  // that moves: dJ^T f
+  for (int r = 0; r < data.nefc; ++r) {
+    const ConstraintState state = data.efc_state[r];
+    if (data.efc_type[r] != ConstraintType::kFrictionTendon ||
+        (state != ConstraintState::kLinearNeg && state != ConstraintState::kLinearPos) ||
+        !is_spatial_tendon(model, data.efc_id[r])) {
+      continue;
+    }
+    spatial_tendon_change(model, data, data.efc_id[r], w);
+    E += data.efc_force[r] * w.tendon_change;
   }
 
   // the contacts with an active row

@@ -301,13 +301,26 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
       w.rhs_v(d, d) -= model.dof_damping[d];    // damper: -b qd
     }
     if (model.nq != model.nv) quaternion_springs(model, data, w);
-    // a fixed tendon's spring-damper f = -k (L - lengthspring) - b v along its constant Jacobian
-    // J (L = J q, v = J qd), carried to the dofs as J^T f: -k J^T J and -b J^T J
+    // a tendon's spring-damper f = -k (L - lengthspring) - b v along its Jacobian J (d L = J dq,
+    // v = J qd), carried to the dofs as J^T f: -k J^T J and -b J^T J; a spatial tendon's J moves
+    // too (T = d J / d q): + T f in qpos, and -b J (T^T qd)^T through the velocity
     for (int t = 0; t < model.ntendon; ++t) {
       const double k = model.tendon_stiffness[t], b = model.tendon_damping[t];
       if (k == 0 && b == 0) continue;
-      add_row_outer_product(data.ten_J.row(t).data(), model.nv, -k, w.rhs_q);
-      add_row_outer_product(data.ten_J.row(t).data(), model.nv, -b, w.rhs_v);
+      const double* J = data.ten_J.row(t).data();
+      add_row_outer_product(J, model.nv, -k, w.rhs_q);
+      add_row_outer_product(J, model.nv, -b, w.rhs_v);
+      if (!detail::is_spatial_tendon(model, t)) continue;
+      detail::spatial_tendon_change(model, data, t, w);
+      const Eigen::MatrixXd& T = w.tendon_change;
+      const double f = -k * (data.ten_length[t] - model.tendon_lengthspring[t]) -
+                       b * data.ten_velocity[t];
+      w.rhs_q += f * T;
+      if (b == 0) continue;
+      for (int c = 0; c < model.nv; ++c) {
+        const double dv = T.col(c).dot(data.qvel);
+        for (int i = 0; i < model.nv; ++i) w.rhs_q(i, c) -= b * J[i] * dv;
+      }
     }
   }
 
@@ -374,11 +387,24 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
       }
       continue;
     }
-    if (force_clamped) continue;  // a constant moment: no sensitivity
     if (model.actuator_trntype[a] == TransmissionType::kTendon) {
       // length = gear L, so d length / d q = gear J = the moment m, and qfrc = m force:
-      // m^T per_length m, m^T per_velocity m, m gain
+      // m^T per_length m, m^T per_velocity m, m gain; a spatial tendon's m moves too
+      // (G = gear d J / d q): + G force (even where the force is clamped) and
+      // m per_velocity (G^T qvel)^T
       const double* m = data.actuator_moment.row(a).data();
+      const int t = model.actuator_trnid[a][0];
+      if (detail::is_spatial_tendon(model, t)) {
+        detail::spatial_tendon_change(model, data, t, w);
+        const double gear = model.actuator_gear[a][0];
+        w.rhs_q += (gear * data.actuator_force[a]) * w.tendon_change;
+        if (force_clamped) continue;
+        for (int c = 0; c < model.nv; ++c) {
+          const double dvelocity = per_velocity * gear * w.tendon_change.col(c).dot(data.qvel);
+          for (int i = 0; i < model.nv; ++i) w.rhs_q(i, c) += m[i] * dvelocity;
+        }
+      }
+      if (force_clamped) continue;
       add_row_outer_product(m, model.nv, per_length, w.rhs_q);
       add_row_outer_product(m, model.nv, per_velocity, w.rhs_v);
       if (input_column >= 0) {
@@ -386,6 +412,7 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
       }
       continue;
     }
+    if (force_clamped) continue;  // a constant moment: no sensitivity
     const double gear = model.actuator_gear[a][0];
     const int dof = actuator_scalar_dof(model, a);  // >= 0: refuse_uncovered checked
     w.rhs_q(dof, dof) += gear * per_length * gear;
@@ -822,9 +849,15 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     double k = gain_velocity * input;
     if (model.actuator_biastype[a] == BiasType::kAffine) k += model.actuator_biasprm[a][2];
     const bool site = model.actuator_trntype[a] == TransmissionType::kSite;
-    if (gain_velocity == 0.0 && per_length == 0.0 && per_velocity == 0.0 && !(site && k != 0.0)) {
+    const bool spatial = model.actuator_trntype[a] == TransmissionType::kTendon &&
+                         detail::is_spatial_tendon(model, model.actuator_trnid[a][0]);
+    const bool turning = site || spatial;  // the moment moves with the pose
+    if (gain_velocity == 0.0 && per_length == 0.0 && per_velocity == 0.0 &&
+        !(turning && k != 0.0)) {
       continue;
     }
+    const double gear = model.actuator_gear[a][0];
+    if (spatial) detail::spatial_tendon_change(model, data, model.actuator_trnid[a][0], w);
     // r = (m m^T a) where M is non-zero (for one dof: gear^2 a_dof)
     const double* m = data.actuator_moment.row(a).data();
     Eigen::VectorXd& r = w.moment_times_a;
@@ -840,12 +873,13 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     // d k / d input
     if (gain_velocity != 0.0) w.rhs_u.col(input_column) += (h * gain_velocity) * r;
     // a muscle's k moves with the length (gradient m: L = gear q or gear ten_length; a site's
-    // its own) and the velocity (gradient m in qvel; in qpos, a site's G^T qvel)
+    // its own) and the velocity (gradient m in qvel; in qpos, a turning moment's G^T qvel)
     if (per_length != 0.0 || per_velocity != 0.0) {
       if (site) site_transmission_change(model, data, a, w);
       for (int col = 0; col < nv; ++col) {
         double dk_dq = per_length * (site ? w.length_gradient[col] : m[col]);
         if (site) dk_dq += per_velocity * w.moment_change.col(col).dot(data.qvel);
+        if (spatial) dk_dq += per_velocity * gear * w.tendon_change.col(col).dot(data.qvel);
         const double dk_dv = per_velocity * m[col];
         if (dk_dq != 0.0) w.rhs_q.col(col) += (h * dk_dq) * r;
         if (dk_dv != 0.0) w.rhs_v.col(col) += (h * dk_dv) * r;
@@ -860,6 +894,26 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       for (int col = 0; col < nv; ++col) {
         const double G_a = G.col(col).dot(w.qacc_step);
         for (int i = 0; i < nv; ++i) w.rhs_q(i, col) += h * k * (G(i, col) * m_a + m[i] * G_a);
+      }
+    }
+    // a spatial tendon's moment turning: P(m k m^T) changes by k P(G_c m^T + m G_c^T),
+    // G = gear d J / d q
+    if (spatial && k != 0.0) {
+      for (int col = 0; col < nv; ++col) {
+        detail::add_pair_product(model, w.tendon_change.col(col).data(), m, w.qacc_step.data(),
+                                 h * k * gear, w.rhs_q.col(col));
+      }
+    }
+  }
+  // + h dD a, D's tendon dampers -b P(J J^T): a spatial tendon's J moves (T = d J / d q)
+  if (!model.opt.disabled(kDisablePassive)) {
+    for (int t = 0; t < model.ntendon; ++t) {
+      const double b = model.tendon_damping[t];
+      if (!(b > 0) || !detail::is_spatial_tendon(model, t)) continue;
+      detail::spatial_tendon_change(model, data, t, w);
+      for (int col = 0; col < nv; ++col) {
+        detail::add_pair_product(model, w.tendon_change.col(col).data(), data.ten_J.row(t).data(),
+                                 w.qacc_step.data(), -h * b, w.rhs_q.col(col));
       }
     }
   }
@@ -981,9 +1035,10 @@ void refuse_uncovered(const Model& model) {
     throw ModelError("derivatives: the model has fluid forces (option viscosity or density); "
                      "lever's analytic derivatives do not cover them yet.");
   }
+  detail::refuse_wrapping_tendons(model);
   // the chain rule above carries each actuator's force through a constant moment (a gear on one
-  // dof, or gear ten_J of a fixed tendon: a spatial one is refused with the tendons) or a site's
-  // moment and length, whose change with the pose it differentiates (site_transmission_change)
+  // dof, or gear ten_J of a tendon, whose change spatial_tendon_change gives for a spatial one)
+  // or a site's moment and length, whose change with the pose it differentiates (site_transmission_change)
   for (int a = 0; a < model.nu; ++a) {
     if (actuator_scalar_dof(model, a) >= 0) continue;
     const TransmissionType trn = model.actuator_trntype[a];
@@ -1077,6 +1132,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.act_dot_sum.setZero(na);
   work.moment_times_a.setZero(nv);
   work.length_gradient.setZero(nv);
+  work.tendon_change.setZero(nv, nv);
   work.D.setZero(nv, nv);
   work.K.setZero(nv, nv);
   work.K_lu.setZero(nv, nv);
