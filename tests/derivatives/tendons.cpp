@@ -144,16 +144,4 @@ TEST_CASE("derivatives through fixed tendons: Menagerie's Franka Panda hand",
 
 namespace lever::test::tendon_derivatives {
 
-TEST_CASE("derivatives refuse a wrapping spatial tendon by name (straight ones are covered)",
-          "[derivatives][tendons]") {
-  const Model model = mjcf::load_file(model_path("tests/models/constraints/spatial_tendons.xml"));
-  Data data(model);
-  Derivatives deriv(model);
-  forward(model, data);
-  CHECK_THROWS_WITH(step_derivatives(model, data, deriv),
-                    Catch::Contains("tendon 'SF' wraps around geom 'shoulder'"));
-  CHECK_THROWS_WITH(forward_derivatives(model, data, deriv),
-                    Catch::Contains("tendon 'SF' wraps around geom 'shoulder'"));
-}
-
 }  // namespace lever::test::tendon_derivatives

@@ -12,14 +12,13 @@
 // direction of qpos's tangent space (nv of them: a ball's turn about its body's axis j, as
 // integrate_pos applies it). MuJoCo 2.2.2 has no analytic counterpart; its mjd_transitionFD
 // (finite differences of mj_step) returns A and B in the same layout. Fixed tendons (springs,
-// dampers, actuators, limits, friction loss), joint and tendon couplings, connects and welds,
+// dampers, actuators, limits, friction loss), spatial tendons (straight and wrapping), joint and
+// tendon couplings, connects and welds,
 // actuators on sites (with or without a reference site), and muscles and every activation
 // dynamics (the state then carries act: A is 2nv + na square) are covered. Refused
 // (lever::Error): a pushing contact of a pair MuJoCo collides by MPR (meshes, cylinders and
-// ellipsoids against anything but a plane), an elliptic cone on its surface, a spatial tendon that
-// wraps around a geom (straight ones, with pulleys, are covered), an
-// actuator on a slider-crank, a ball or free joint or a body, a ball joint sharing its body with
-// others.
+// ellipsoids against anything but a plane), an elliptic cone on its surface, an actuator on a
+// slider-crank, a ball or free joint or a body, a ball joint sharing its body with others.
 #pragma once
 
 #include <Eigen/Core>
@@ -134,6 +133,8 @@ struct Derivatives {
     Eigen::VectorXd length_gradient;  ///< (nv) a site actuator's d length / d qpos
     /// (nv x nv) a spatial tendon's (i, c) = d ten_J_i / d q_c (transition/spatial_tendons.cpp)
     Eigen::MatrixXd tendon_change;
+    /// (2nv) a tendon segment's two ends' motions per dof, and a wrap's two tangent points'
+    std::vector<Eigen::Vector3d> segment_motion, tangent_motion;
     // the active set's check (step_derivatives)
     std::vector<int> active_set;  ///< the contacts' geom pairs and the rows' states at the start
     Eigen::VectorXd qacc_sum;     ///< (nv) RK4: sum_i b_i qacc_i

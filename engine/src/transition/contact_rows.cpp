@@ -86,28 +86,44 @@ SoftSlopes soft_slopes(const std::array<double, 5>& solimp, double dist, double 
   return {-(slope * (dist - margin) + imp), floored ? 0.0 : -slope / (imp * (1 - imp))};
 }
 
-// A tendon's limit or friction-loss row r (the k-th held) whose tendon is spatial: its Jacobian
-// +-ten_J moves with the pose (T = d ten_J / d q, spatial_tendons.cpp), so, with s the row's sign,
-// Y(k, c) += D (-B s T_c . qvel - s T_c . qacc) (aref's velocity term and -dJ qacc) and
-// E(., c) += s T_c f.
-void spatial_tendon_row(const Model& model, const Data& data, int r, int k,
-                        Derivatives::Workspace& w) {
-  const int t = data.efc_id[r];
-  if (!is_spatial_tendon(model, t)) return;
+// Row r (the k-th held) whose Jacobian holds scale ten_J(t) of spatial tendon t, which moves with
+// the pose (T = d ten_J / d q, spatial_tendons.cpp): dJ_c = scale T_c, so
+// Y(k, c) += D (-B dJ_c . qvel - dJ_c . qacc) (aref's velocity term and -dJ qacc) and
+// E(., c) += dJ_c f.
+void add_moving_tendon_terms(const Model& model, const Data& data, int r, int k, int t,
+                             double scale, Derivatives::Workspace& w) {
+  if (!is_spatial_tendon(model, t) || scale == 0.0) return;
   spatial_tendon_change(model, data, t, w);
   const Eigen::MatrixXd& T = w.tendon_change;
-  const int nv = model.nv;
-  const double* J = data.efc_J.row(r).data();
-  const double* ten_J = data.ten_J.row(t).data();
-  double along = 0.0;  // efc_J . ten_J: the row's sign
-  for (int i = 0; i < nv; ++i) along += J[i] * ten_J[i];
-  const double sign = along < 0 ? -1.0 : 1.0;
   const double f = data.efc_force[r];
-  for (int c = 0; c < nv; ++c) {
+  for (int c = 0; c < model.nv; ++c) {
     const double T_qvel = T.col(c).dot(data.qvel), T_qacc = T.col(c).dot(data.qacc);
-    w.contact_Y(k, c) += data.efc_D[r] * sign * (-data.efc_B[r] * T_qvel - T_qacc);
-    w.contact_E.col(c) += (sign * f) * T.col(c);
+    w.contact_Y(k, c) += data.efc_D[r] * scale * (-data.efc_B[r] * T_qvel - T_qacc);
+    w.contact_E.col(c) += (scale * f) * T.col(c);
   }
+}
+
+// A tendon's limit or friction-loss row (J = s ten_J, s = +-1) or a tendon coupling's
+// (J = ten_J(t1) - poly'(x_2) ten_J(t2)): the terms of its spatial tendons' moving Jacobians.
+void spatial_tendon_row(const Model& model, const Data& data, int r, int k,
+                        Derivatives::Workspace& w) {
+  const int id = data.efc_id[r];
+  if (data.efc_type[r] == ConstraintType::kEquality) {
+    if (model.eq_type[id] != EqualityType::kTendon) return;
+    const int t1 = model.eq_obj1id[id], t2 = model.eq_obj2id[id];
+    add_moving_tendon_terms(model, data, r, k, t1, 1.0, w);
+    if (t2 < 0) return;
+    const double* c = model.eq_data[id].data();
+    const double x = data.ten_length[t2] - model.tendon_length0[t2];
+    const double slope = c[1] + 2 * c[2] * x + 3 * c[3] * x * x + 4 * c[4] * x * x * x;
+    add_moving_tendon_terms(model, data, r, k, t2, -slope, w);
+    return;
+  }
+  const double* J = data.efc_J.row(r).data();
+  const double* ten_J = data.ten_J.row(id).data();
+  double along = 0.0;  // efc_J . ten_J: the row's sign
+  for (int i = 0; i < model.nv; ++i) along += J[i] * ten_J[i];
+  add_moving_tendon_terms(model, data, r, k, id, along < 0 ? -1.0 : 1.0, w);
 }
 
 // A row whose Jacobian is the gradient of its distance in the coordinates: a fixed tendon's limit
@@ -304,7 +320,8 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       coordinate_row(model, data, r, k, Y, E);
     }
     if (data.efc_type[r] == ConstraintType::kLimitTendon ||
-        data.efc_type[r] == ConstraintType::kFrictionTendon) {
+        data.efc_type[r] == ConstraintType::kFrictionTendon ||
+        data.efc_type[r] == ConstraintType::kEquality) {
       spatial_tendon_row(model, data, r, k, w);
     }
     // a friction-loss row has no distance (pos 0, K 0) and, but for a spatial tendon's, a

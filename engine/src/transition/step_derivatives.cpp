@@ -1035,7 +1035,6 @@ void refuse_uncovered(const Model& model) {
     throw ModelError("derivatives: the model has fluid forces (option viscosity or density); "
                      "lever's analytic derivatives do not cover them yet.");
   }
-  detail::refuse_wrapping_tendons(model);
   // the chain rule above carries each actuator's force through a constant moment (a gear on one
   // dof, or gear ten_J of a tendon, whose change spatial_tendon_change gives for a spatial one)
   // or a site's moment and length, whose change with the pose it differentiates (site_transmission_change)
@@ -1133,6 +1132,8 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.moment_times_a.setZero(nv);
   work.length_gradient.setZero(nv);
   work.tendon_change.setZero(nv, nv);
+  work.segment_motion.assign(2 * ndof, Eigen::Vector3d::Zero());
+  work.tangent_motion.assign(2 * ndof, Eigen::Vector3d::Zero());
   work.D.setZero(nv, nv);
   work.K.setZero(nv, nv);
   work.K_lu.setZero(nv, nv);

@@ -79,12 +79,9 @@ void body_equality_rows(const Model& model, const Data& data, int e, int first_k
 /// Whether tendon t is spatial (a path of sites), whose Jacobian moves with the pose.
 bool is_spatial_tendon(const Model& model, int t);
 
-/// Throws lever::ModelError naming the first tendon that wraps around a geom, or the first tendon
-/// coupling of a spatial tendon: what spatial_tendon_change() does not cover.
-void refuse_wrapping_tendons(const Model& model);
-
-/// w.tendon_change(i, c) = d ten_J(t, i) / d q_c for spatial tendon t of straight segments
-/// (spatial_tendons.cpp). Uses w.moves1, w.moves2 and w.equality_point_velocity.
+/// w.tendon_change(i, c) = d ten_J(t, i) / d q_c for spatial tendon t: straight segments, pulleys
+/// and wraps around spheres and cylinders (spatial_tendons.cpp). Uses w.moves1, w.moves2,
+/// w.equality_point_velocity, w.segment_motion and w.tangent_motion.
 void spatial_tendon_change(const Model& model, const Data& data, int t,
                            Derivatives::Workspace& w);
 
