@@ -73,8 +73,9 @@ def derivatives(model: Model, data: Data) -> dict:
     `lever derivatives --json` prints them. data's state is left as it was (its other fields hold
     forward() at that state).
 
-    Returns a dict of numpy arrays: ``A`` (2nv x 2nv) and ``B`` (2nv x nu), the step's
-    Jacobians in mjd_transitionFD's layout (x = [dq; qvel], dq qpos's tangent: nv numbers);
+    Returns a dict of numpy arrays: ``A`` (2nv + na square) and ``B`` (2nv + na x nu), the
+    step's Jacobians in mjd_transitionFD's layout (x = [dq; qvel; act], dq qpos's tangent: nv
+    numbers, act the stateful actuators' activations);
     ``dqacc_dq``, ``dqacc_dv`` (nv x nv), ``dqacc_du`` (nv x nu) and ``dqacc_dapplied``
     (nv x nv, d qacc / d qfrc_applied), forward dynamics at the state; ``nefc``; and
     ``active_set_changes``: True when the constraint rows' active set (which contacts exist, which

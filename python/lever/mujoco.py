@@ -953,8 +953,8 @@ def _output(array, rows: int, cols: int, name: str):
 
 def mjd_transitionFD(m: MjModel, d: MjData, eps: float, flg_centered: int, A, B, C, D) -> None:
     """The step's transition matrices at d's state, d x' = A dx + B du, with MuJoCo's signature
-    and layout (x = [dq; qvel], dq qpos's tangent as mj_differentiatePos gives it; na = 0 in
-    lever; A (2nv x 2nv) and B (2nv x nu) written row-major in place, None skips one).
+    and layout (x = [dq; qvel; act], dq qpos's tangent as mj_differentiatePos gives it; A
+    (2nv + na x 2nv + na) and B (2nv + na x nu) written row-major in place, None skips one).
 
     Computed analytically, not by finite differences: lever.derivatives, exact through the
     integrator (Euler, RK4, implicit), the actuators, joint limits and contacts with their
@@ -966,10 +966,10 @@ def mjd_transitionFD(m: MjModel, d: MjData, eps: float, flg_centered: int, A, B,
     for them (NotImplementedError otherwise); without sensors they are empty and left so.
     """
     model, data = _pair(m, d)
-    nv, nu, nsensordata = m.nv, m.nu, m.nsensordata
-    A = _output(A, 2 * nv, 2 * nv, "A")
-    B = _output(B, 2 * nv, nu, "B")
-    C = _output(C, nsensordata, 2 * nv, "C")
+    nv, nu, na, nsensordata = m.nv, m.nu, m.na, m.nsensordata
+    A = _output(A, 2 * nv + na, 2 * nv + na, "A")
+    B = _output(B, 2 * nv + na, nu, "B")
+    C = _output(C, nsensordata, 2 * nv + na, "C")
     D = _output(D, nsensordata, nu, "D")
     if nsensordata > 0 and (C is not None or D is not None):
         raise NotImplementedError("lever.mujoco: mjd_transitionFD's C and D (the sensors' "

@@ -392,12 +392,15 @@ TEST_CASE("BatchRunner on two threads allocates nothing per batch: its workers a
 
 TEST_CASE("rnea_derivatives, forward_derivatives, step_derivatives and regressor allocate nothing",
           "[alloc][derivatives]") {
-  // every model, and the fixed tendons', friction loss's and equality constraints' rows and the
-  // site actuators (which the derivatives take too)
+  // every model, and the fixed tendons', friction loss's and equality constraints' rows, the site
+  // actuators (with and without a reference site), the muscles and activation dynamics and the
+  // spatial tendons, straight and wrapping (which the derivatives take too)
   std::vector<std::string> files = lever::test::all_model_files();
   for (const char* file :
        {"tests/models/constraints/tendons.xml", "tests/models/constraints/friction_loss.xml",
-        "tests/models/constraints/equality.xml", "tests/derivatives/site_actuators.xml"}) {
+        "tests/models/constraints/equality.xml", "tests/derivatives/site_actuators.xml",
+        "tests/models/actuators/muscles.xml", "tests/derivatives/refsite_actuators.xml",
+        "tests/derivatives/spatial_tendons.xml", "tests/models/constraints/spatial_tendons.xml"}) {
     files.push_back(lever::test::model_path(file));
   }
   for (const std::string& path : files) {

@@ -3,8 +3,8 @@
 // clamped; an affine <general> at the tip of an arm with a ball wrist, whose velocity terms enter
 // the implicit step's D), under Euler, RK4 and implicit, against centred differences of lever's
 // own step (eps 1e-6) and of MuJoCo 2.2.2's mj_step (eps 1e-6 and 1e-5; step_differences.hpp),
-// within 1e-6 of the matrix's scale, computed both ways here. A site with a reference site is
-// refused by name.
+// within 1e-6 of the matrix's scale, computed both ways here (a site with a reference site:
+// refsite_actuators.cpp).
 #include <catch2/catch.hpp>
 #include <lever/diff/twin.hpp>
 
@@ -50,23 +50,6 @@ TEST_CASE("derivatives through site actuators (no reference site)",
                                 << " of the bound");
     CHECK(worst <= 1);
   }
-}
-
-TEST_CASE("derivatives refuse a site actuator with a reference site by name",
-          "[derivatives][actuators]") {
-  const Model model = mjcf::load_string(R"(
-    <mujoco>
-      <worldbody>
-        <site name="base" pos="0 0 0.5"/>
-        <body pos="0 0 1"><joint axis="0 1 0"/><geom size="0.1" contype="0" conaffinity="0"/>
-          <site name="tip" pos="0.1 0 0"/></body>
-      </worldbody>
-      <actuator><position site="tip" refsite="base" gear="1 0 0 0 0 0" kp="5"/></actuator>
-    </mujoco>)");
-  Data data(model);
-  Derivatives deriv(model);
-  CHECK_THROWS_WITH(step_derivatives(model, data, deriv),
-                    Catch::Contains("drives a site with a reference site"));
 }
 
 }  // namespace lever::test::site_actuator_derivatives

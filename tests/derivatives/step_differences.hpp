@@ -35,17 +35,19 @@ struct Differences {
 };
 
 // mj_step (MuJoCo) or step (lever) differenced, centred with step eps, in tangent space: column c
-// of A moves qpos by +-eps along dof c (integrate_pos) or qvel_c by +-eps; B moves ctrl. The next
-// qpos is read with differentiate_pos from the minus side to the plus side.
+// of A moves qpos by +-eps along dof c (integrate_pos) or qvel_c or act_c by +-eps; B moves ctrl.
+// The next qpos is read with differentiate_pos from the minus side to the plus side; the rows are
+// [dq'; qvel'; act'] (mjd_transitionFD's layout).
 inline Differences mujoco_differences(diff::Twin& twin, const State& s, double eps) {
   const mjModel* m = twin.m.get();
   mjData* d = twin.d.get();
-  const int nq = m->nq, nv = m->nv, nu = m->nu;
+  const int nq = m->nq, nv = m->nv, nu = m->nu, na = m->na;
+  const int n = 2 * nv + na;
   Differences out;
-  out.A.resize(2 * nv, 2 * nv);
-  out.B.resize(2 * nv, nu);
-  Eigen::VectorXd plus(nq + nv), minus(nq + nv), column(2 * nv), dpos(nv);
-  for (int c = 0; c < 2 * nv + nu; ++c) {
+  out.A.resize(n, n);
+  out.B.resize(n, nu);
+  Eigen::VectorXd plus(nq + nv + na), minus(nq + nv + na), column(n), dpos(nv);
+  for (int c = 0; c < n + nu; ++c) {
     for (const double delta : {eps, -eps}) {
       diff::set_mujoco_state(m, d, s);
       if (c < nv) {
@@ -54,20 +56,23 @@ inline Differences mujoco_differences(diff::Twin& twin, const State& s, double e
         mj_integratePos(m, d->qpos, dpos.data(), delta);
       } else if (c < 2 * nv) {
         d->qvel[c - nv] += delta;
+      } else if (c < n) {
+        d->act[c - 2 * nv] += delta;
       } else {
-        d->ctrl[c - 2 * nv] += delta;
+        d->ctrl[c - n] += delta;
       }
       mj_step(m, d);
       Eigen::VectorXd& next = delta > 0 ? plus : minus;
       for (int i = 0; i < nq; ++i) next[i] = d->qpos[i];
       for (int i = 0; i < nv; ++i) next[nq + i] = d->qvel[i];
+      for (int i = 0; i < na; ++i) next[nq + nv + i] = d->act[i];
     }
     mj_differentiatePos(m, column.data(), 2 * eps, minus.data(), plus.data());
-    column.tail(nv) = (plus.tail(nv) - minus.tail(nv)) / (2 * eps);
-    if (c < 2 * nv) {
+    column.tail(nv + na) = (plus.tail(nv + na) - minus.tail(nv + na)) / (2 * eps);
+    if (c < n) {
       out.A.col(c) = column;
     } else {
-      out.B.col(c - 2 * nv) = column;
+      out.B.col(c - n) = column;
     }
   }
   diff::set_mujoco_state(m, d, s);
@@ -75,35 +80,38 @@ inline Differences mujoco_differences(diff::Twin& twin, const State& s, double e
 }
 
 inline Differences lever_differences(const Model& model, const State& s, double eps) {
-  const int nq = model.nq, nv = model.nv, nu = model.nu;
+  const int nq = model.nq, nv = model.nv, nu = model.nu, na = model.na;
+  const int n = 2 * nv + na;
   Data data(model);
   apply(s, data);
   const std::vector<int> at_state = active_set(model, data);
   Differences out;
-  out.A.resize(2 * nv, 2 * nv);
-  out.B.resize(2 * nv, nu);
-  Eigen::VectorXd plus_q(nq), minus_q(nq), plus_v(nv), minus_v(nv), column(2 * nv);
-  for (int c = 0; c < 2 * nv + nu; ++c) {
+  out.A.resize(n, n);
+  out.B.resize(n, nu);
+  Eigen::VectorXd plus_q(nq), minus_q(nq), plus_v(nv + na), minus_v(nv + na), column(n);
+  for (int c = 0; c < n + nu; ++c) {
     for (const double delta : {eps, -eps}) {
       apply(s, data);
       if (c < nv) {
         integrate_pos(model, data.qpos, Eigen::VectorXd::Unit(nv, c), delta);
       } else if (c < 2 * nv) {
         data.qvel[c - nv] += delta;
+      } else if (c < n) {
+        data.act[c - 2 * nv] += delta;
       } else {
-        data.ctrl[c - 2 * nv] += delta;
+        data.ctrl[c - n] += delta;
       }
       out.same_active_set = out.same_active_set && active_set(model, data) == at_state;
       step(model, data);
       (delta > 0 ? plus_q : minus_q) = data.qpos;
-      (delta > 0 ? plus_v : minus_v) = data.qvel;
+      (delta > 0 ? plus_v : minus_v) << data.qvel, data.act;
     }
     differentiate_pos(model, column.head(nv), 2 * eps, minus_q, plus_q);
-    column.tail(nv) = (plus_v - minus_v) / (2 * eps);
-    if (c < 2 * nv) {
+    column.tail(nv + na) = (plus_v - minus_v) / (2 * eps);
+    if (c < n) {
       out.A.col(c) = column;
     } else {
-      out.B.col(c - 2 * nv) = column;
+      out.B.col(c - n) = column;
     }
   }
   return out;
@@ -125,6 +133,7 @@ inline State settle(Model model, State s, int steps) {
   s.time = data.time;
   s.qpos = data.qpos;
   s.qvel = data.qvel;
+  s.act = data.act;
   return s;
 }
 
@@ -135,6 +144,7 @@ inline State state_of(const Model& model) {
   s.qvel = Eigen::VectorXd::Zero(model.nv);
   s.ctrl = Eigen::VectorXd::Zero(model.nu);
   s.qfrc_applied = Eigen::VectorXd::Zero(model.nv);
+  s.act = Eigen::VectorXd::Zero(model.na);
   return s;
 }
 

@@ -144,14 +144,4 @@ TEST_CASE("derivatives through fixed tendons: Menagerie's Franka Panda hand",
 
 namespace lever::test::tendon_derivatives {
 
-TEST_CASE("derivatives refuse a spatial tendon by name, whose Jacobian moves with the poses",
-          "[derivatives][tendons]") {
-  const Model model = mjcf::load_file(model_path("tests/models/constraints/spatial_tendons.xml"));
-  Data data(model);
-  Derivatives deriv(model);
-  forward(model, data);
-  CHECK_THROWS_WITH(step_derivatives(model, data, deriv), Catch::Contains("is spatial"));
-  CHECK_THROWS_WITH(forward_derivatives(model, data, deriv), Catch::Contains("is spatial"));
-}
-
 }  // namespace lever::test::tendon_derivatives

@@ -7,9 +7,10 @@
 // (after N steps under the constant ctrl with --settle: a grasp or a resting pose to differentiate
 // at); docs/derivatives.md says what each matrix holds. --json: one object with, flattened
 // row-major,
-//   A          2nv x 2nv  d [qpos'; qvel'] / d [qpos; qvel]   (mjd_transitionFD's A; with
-//                         ball or free joints qpos is differenced in its tangent space, nv numbers)
-//   B          2nv x nu   d [qpos'; qvel'] / d ctrl           (mjd_transitionFD's B)
+//   A          2nv + na square  d [qpos'; qvel'; act'] / d [qpos; qvel; act]  (mjd_transitionFD's
+//                               A; with ball or free joints qpos is differenced in its tangent
+//                               space, nv numbers; act: the stateful actuators' activations)
+//   B          2nv + na x nu    d [qpos'; qvel'; act'] / d ctrl                (mjd_transitionFD's B)
 //   dqacc_dq, dqacc_dv (nv x nv), dqacc_du (nv x nu)         forward dynamics
 //   dqacc_dapplied (nv x nv)                                  d qacc / d qfrc_applied
 //   dtau_dq, dtau_dv (nv x nv)                                rnea at qacc
@@ -141,8 +142,10 @@ int cmd_derivatives(const Args& command_line) {
           "mj_differentiatePos gives it)\n",
           model.nv);
     }
-    print_matrix(("A = d [" + q + "'; qvel'] / d [" + q + "; qvel]").c_str(), deriv.A);
-    print_matrix(("B = d [" + q + "'; qvel'] / d ctrl").c_str(), deriv.B);
+    const std::string act = model.na > 0 ? "; act" : "";
+    print_matrix(("A = d [" + q + "'; qvel'" + act + "'] / d [" + q + "; qvel" + act + "]").c_str(),
+                 deriv.A);
+    print_matrix(("B = d [" + q + "'; qvel'" + act + "'] / d ctrl").c_str(), deriv.B);
     print_matrix(("d qacc / d " + q).c_str(), deriv.dqacc_dq);
     print_matrix("d qacc / d qvel", deriv.dqacc_dv);
     print_matrix("d qacc / d ctrl (0 where a clamp binds)", deriv.dqacc_du);

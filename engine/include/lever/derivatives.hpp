@@ -12,11 +12,13 @@
 // direction of qpos's tangent space (nv of them: a ball's turn about its body's axis j, as
 // integrate_pos applies it). MuJoCo 2.2.2 has no analytic counterpart; its mjd_transitionFD
 // (finite differences of mj_step) returns A and B in the same layout. Fixed tendons (springs,
-// dampers, actuators, limits, friction loss), joint and tendon couplings, connects and welds, and
-// actuators on sites without a reference site are covered. Refused (lever::Error): a pushing
-// contact of a pair MuJoCo collides by MPR (meshes, cylinders and ellipsoids against anything but
-// a plane), an elliptic cone on its surface, a spatial tendon, a site actuator with a reference
-// site, a ball joint sharing its body with others.
+// dampers, actuators, limits, friction loss), spatial tendons (straight and wrapping), joint and
+// tendon couplings, connects and welds,
+// actuators on sites (with or without a reference site), and muscles and every activation
+// dynamics (the state then carries act: A is 2nv + na square) are covered. Refused
+// (lever::Error): a pushing contact of a pair MuJoCo collides by MPR (meshes, cylinders and
+// ellipsoids against anything but a plane), an elliptic cone on its surface, an actuator on a
+// slider-crank, a ball or free joint or a body, a ball joint sharing its body with others.
 #pragma once
 
 #include <Eigen/Core>
@@ -54,14 +56,16 @@ struct Derivatives {
   Eigen::MatrixXd dqacc_dq;  ///< (nv x nv) d qacc / d qpos
   Eigen::MatrixXd dqacc_dv;  ///< (nv x nv) d qacc / d qvel
   Eigen::MatrixXd dqacc_du;  ///< (nv x nu) d qacc / d ctrl
+  Eigen::MatrixXd dqacc_dact;  ///< (nv x na) d qacc / d act (the stateful actuators' activations)
   /// (nv x nv) d qacc / d qfrc_applied, written by applied_force_derivatives() only
   Eigen::MatrixXd dqacc_dapplied;
-  /// d qfrc_constraint / d (qpos, qvel, ctrl) with the rows' active set held fixed
-  Eigen::MatrixXd dconstraint_dq, dconstraint_dv, dconstraint_du;
+  /// d qfrc_constraint / d (qpos, qvel, ctrl, act) with the rows' active set held fixed
+  Eigen::MatrixXd dconstraint_dq, dconstraint_dv, dconstraint_du, dconstraint_dact;
 
   // ---- step: step_derivatives() ---------------------------------------------------------------
-  Eigen::MatrixXd A;  ///< (2nv x 2nv) d [dq'; qvel'] / d [dq; qvel] (mjd_transitionFD's A)
-  Eigen::MatrixXd B;  ///< (2nv x nu)  d [dq'; qvel'] / d ctrl       (mjd_transitionFD's B)
+  /// (2nv + na)^2 d [dq'; qvel'; act'] / d [dq; qvel; act] (mjd_transitionFD's A)
+  Eigen::MatrixXd A;
+  Eigen::MatrixXd B;  ///< (2nv + na x nu) d [dq'; qvel'; act'] / d ctrl (mjd_transitionFD's B)
   /// step_derivatives(): the constraint rows' active set (which contacts exist, which rows push)
   /// is not the same at the step's end, or at an RK4 stage, as at its start: A and B are the
   /// derivative of the start's piece, held, and differences across the step are not smooth
@@ -77,9 +81,11 @@ struct Derivatives {
     std::vector<VelocityCoupling> CC;  ///< C = v x* I - I v x + (I v) xbar* summed over the subtree
     // per dof: the motion subspace's time derivative and Carpentier and Mansard's Psi_ddot
     std::vector<Motion> Sdot, Sddot;
-    Eigen::MatrixXd rhs_q, rhs_v, rhs_u;  ///< (nv x nv / nu) right-hand sides before M^-1
-    /// (nv x 2nv + nu) [rhs_q rhs_v rhs_u] side by side, solved in place; after step_derivatives()
-    /// (implicit, or Euler with damping): d a / d (qpos, qvel, ctrl) of the step's acceleration a
+    /// (nv x nv / nv / nu + na) right-hand sides before M^-1; rhs_u's columns: ctrl, then act
+    Eigen::MatrixXd rhs_q, rhs_v, rhs_u;
+    /// (nv x 2nv + nu + na) [rhs_q rhs_v rhs_u] side by side, solved in place; after
+    /// step_derivatives() (implicit, or Euler with damping): d a / d (qpos, qvel, ctrl, act) of
+    /// the step's acceleration a
     RowMatrix right_hand_sides;
     Eigen::MatrixXd tau_q, tau_v;    ///< (nv x nv) rnea derivatives at a second qacc
     Eigen::MatrixXd MinvJ;           ///< (nv x 2 njnt) M^-1 J^T of the active limit rows
@@ -91,8 +97,14 @@ struct Derivatives {
     Eigen::VectorXd qpos0, qvel0;    ///< (nq, nv) the state step_derivatives() started from
     Eigen::VectorXd qvel_next;       ///< (nv) the velocity the step's qpos is integrated with
     Eigen::VectorXd stage_dq;        ///< (nv) RK4: a_i qvel_{i-1}, a stage's qpos velocity
-    Eigen::MatrixXd Jx, Ju;          ///< (2nv x 2nv / nu) RK4: d stage state / d (x0, u)
-    Eigen::MatrixXd Kx, Ku;          ///< (2nv x 2nv / nu) RK4: d stage slope / d (x0, u)
+    Eigen::MatrixXd Jx, Ju;          ///< (2nv + na x 2nv + na / nu) RK4: d stage state / d (x0, u)
+    Eigen::MatrixXd Kx, Ku;          ///< (2nv + na x 2nv + na / nu) RK4: d stage slope / d (x0, u)
+    /// (na) d act_dot / d act and d act_dot / d ctrl of each stateful actuator (its own ctrl), at
+    /// the last forward (transition/step_derivatives.cpp)
+    Eigen::VectorXd act_rate_per_act, act_rate_per_ctrl;
+    Eigen::VectorXd act0;            ///< (na) RK4: the activations the step started from
+    Eigen::VectorXd act_dot_sum;     ///< (na) RK4: sum_i b_i act_dot_i
+    Eigen::VectorXd moment_times_a;  ///< (nv) implicit: an actuator's m m^T a, where M is non-zero
     Eigen::MatrixXd D;               ///< (nv x nv) implicit: d qfrc_smooth / d qvel
     Eigen::MatrixXd K;               ///< (nv x nv) implicit: M - h D
     Eigen::MatrixXd K_lu;            ///< (nv x nv) implicit: K's factor (U + I) L (implicit.cpp)
@@ -118,13 +130,18 @@ struct Derivatives {
     /// (nv x nv) a site actuator's moment's change: (i, c) = d moment_i / d q_c
     /// (transition/step_derivatives.cpp)
     Eigen::MatrixXd moment_change;
+    Eigen::VectorXd length_gradient;  ///< (nv) a site actuator's d length / d qpos
+    /// (nv x nv) a spatial tendon's (i, c) = d ten_J_i / d q_c (transition/spatial_tendons.cpp)
+    Eigen::MatrixXd tendon_change;
+    /// (2nv) a tendon segment's two ends' motions per dof, and a wrap's two tangent points'
+    std::vector<Eigen::Vector3d> segment_motion, tangent_motion;
     // the active set's check (step_derivatives)
     std::vector<int> active_set;  ///< the contacts' geom pairs and the rows' states at the start
     Eigen::VectorXd qacc_sum;     ///< (nv) RK4: sum_i b_i qacc_i
     std::optional<Data> next;     ///< forward() at the step's end
   } work;
 
-  int nv = 0, nu = 0;  ///< sizes of the model this workspace was built for (checked on use)
+  int nv = 0, nu = 0, na = 0;  ///< sizes of the model this workspace was built for (checked)
 };
 
 /// d tau / d qpos and d tau / d qvel of tau = rnea(qpos, qvel, qacc) (armature included, so
@@ -149,8 +166,8 @@ void forward_derivatives(const Model& model, Data& data, Derivatives& deriv);
 void applied_force_derivatives(const Model& model, const Data& data, Derivatives& deriv);
 
 /// The transition Jacobians of step() at data's state, in mjd_transitionFD's layout:
-/// x = [dq; qvel] (2nv, dq qpos's tangent, the next qpos read in the tangent space at the next
-/// state), A = d x' / d x, B = d x' / d ctrl, into deriv.A and deriv.B. Euler
+/// x = [dq; qvel; act] (2nv + na, dq qpos's tangent, the next qpos read in the tangent space at the
+/// next state), A = d x' / d x, B = d x' / d ctrl, into deriv.A and deriv.B. Euler
 /// (with its implicit damping), RK4 and implicit (K = M - h D differentiated exactly, D's
 /// dependence on qpos, qvel and ctrl included); the derivative of step's bad-state resets is not
 /// taken. data's state (time, qpos, qvel, ctrl) is left as it was; its other fields hold forward()

@@ -42,17 +42,6 @@ namespace lever {
 namespace detail {
 
 void check_derivative_sizes(const Model& model, const Data& data, const Derivatives& deriv) {
-  // a spatial tendon's path (sites, wraps) moves with the poses, so its Jacobian does too, a term
-  // the held rows' and the springs' derivatives leave out; a fixed tendon's Jacobian is constant
-  for (int t = 0; t < model.ntendon; ++t) {
-    const int first = model.tendon_adr[t];
-    if (model.tendon_num[t] > 0 && model.wrap_type[first] != WrapType::kJoint) {
-      const std::string name =
-          model.tendon_name[t].empty() ? std::to_string(t) : "'" + model.tendon_name[t] + "'";
-      throw ModelError("derivatives: tendon " + name +
-                       " is spatial; lever's analytic derivatives cover fixed tendons so far.");
-    }
-  }
   // a ball's dofs turn about its body's final axes (MuJoCo's cdof): a joint after it in the same
   // body would turn them too, a case the derivation below leaves out (docs/derivatives.md)
   for (int j = 0; model.nq != model.nv && j < model.njnt; ++j) {
@@ -64,6 +53,7 @@ void check_derivative_sizes(const Model& model, const Data& data, const Derivati
     }
   }
   if (data.nv != model.nv || data.nu != model.nu || deriv.nv != model.nv || deriv.nu != model.nu ||
+      deriv.na != model.na ||
       static_cast<int>(deriv.work.qpos0.size()) != model.nq) {
     throw StateError("derivatives: Data or Derivatives was built for another model (nv " +
                      std::to_string(model.nv) + ", nu " + std::to_string(model.nu) + ").");

@@ -80,7 +80,86 @@ double force_length(double L, double lmin, double lmax) {
   return 0;  // beyond lmax (below lmin, MuJoCo's second branch above applies, as here)
 }
 
+// d FL / d L, on force_length's branches
+double force_length_slope(double L, double lmin, double lmax) {
+  const double a = 0.5 * (lmin + 1), b = 0.5 * (1 + lmax);
+  if (L >= lmin && L <= a) {
+    const double width = at_least_tiny(a - lmin);
+    return (L - lmin) / width / width;
+  }
+  if (L <= 1) {
+    const double width = at_least_tiny(1 - a);
+    return (1 - L) / width / width;
+  }
+  if (L <= b) {
+    const double width = at_least_tiny(b - 1);
+    return -(L - 1) / width / width;
+  }
+  if (L <= lmax) {
+    const double width = at_least_tiny(lmax - b);
+    return -(lmax - L) / width / width;
+  }
+  return 0;
+}
+
 }  // namespace
+
+MusclePartials muscle_partials(double length, double velocity,
+                               const std::array<double, 2>& lengthrange, double acc0,
+                               const double* gainprm, const double* biasprm) {
+  MusclePartials p;
+  // the gain: -F FL(L) FV(V), L = range0 + (length - lengthrange0) / L0, V = velocity / (L0 vmax)
+  const MuscleScales s = scales(length, lengthrange, acc0, gainprm);
+  const double per_length = 1 / at_least_tiny(s.optimal_length);
+  const double velocity_scale = at_least_tiny(s.optimal_length * gainprm[6]);
+  const double V = velocity / velocity_scale;
+  const double fvmax = gainprm[8], y = fvmax - 1;
+  double FV = fvmax, dFV = 0, ddFV = 0;  // FV and its first two derivatives in V
+  if (V <= -1) {
+    FV = 0;
+  } else if (V <= 0) {
+    FV = (V + 1) * (V + 1);
+    dFV = 2 * V + 2;
+    ddFV = 2;
+  } else if (V <= y) {
+    FV = fvmax - (y - V) * (y - V) / at_least_tiny(y);
+    dFV = (-2 * V + 2 * y) / at_least_tiny(y);
+    ddFV = -2 / at_least_tiny(y);
+  }
+  const double FL = force_length(s.L, gainprm[4], gainprm[5]);
+  const double dFL = force_length_slope(s.L, gainprm[4], gainprm[5]) * per_length;
+  p.gain = -s.force * FL * FV;
+  p.gain_per_length = -s.force * dFL * FV;
+  p.gain_per_velocity = -s.force * FL * dFV / velocity_scale;
+  p.gain_per_velocity_per_length = -s.force * dFL * dFV / velocity_scale;
+  p.gain_per_velocity_per_velocity = -s.force * FL * ddFV / (velocity_scale * velocity_scale);
+  // the bias: -F fpmax FP(L), with biasprm's own numbers
+  const MuscleScales sb = scales(length, lengthrange, acc0, biasprm);
+  const double b = 0.5 * (1 + biasprm[5]), width = at_least_tiny(b - 1);
+  double dFP = 0;  // d FP / d L
+  if (sb.L > 1) dFP = sb.L <= b ? (sb.L - 1) / width / width : 1 / width;
+  p.bias_per_length = -sb.force * biasprm[7] * dFP / at_least_tiny(sb.optimal_length);
+  return p;
+}
+
+void muscle_activation_rate_partials(double ctrl, double act, const double* dynprm,
+                                     double& per_ctrl, double& per_act) {
+  const double target = clamped(ctrl, 0, 1);
+  const double a = clamped(act, 0, 1);
+  const double per_target = ctrl > 0 && ctrl < 1 ? 1.0 : 0.0;  // d target / d ctrl
+  const double a_per_act = act > 0 && act < 1 ? 1.0 : 0.0;     // d a / d act
+  // the branch is held (at target = act both give rate 0, and the rate is continuous there)
+  const bool activating = target > act;
+  const double shape = 0.5 + 1.5 * a;
+  const double tau = activating ? dynprm[0] * shape : dynprm[1] / shape;
+  const double dtau_dact =
+      tau < kMinVal ? 0.0
+                    : (activating ? dynprm[0] * 1.5 : -dynprm[1] * 1.5 / (shape * shape)) *
+                          a_per_act;
+  const double t = at_least_tiny(tau);
+  per_ctrl = per_target / t;
+  per_act = -1 / t - (target - act) / (t * t) * dtau_dact;
+}
 
 double muscle_gain(double length, double velocity, const std::array<double, 2>& lengthrange,
                    double acc0, const double* prm) {

@@ -53,6 +53,25 @@ void energy_velocity(const Model& model, Data& data);
 /// The tendons' spring-dampers, J^T f, added to qfrc_passive (tendon.cpp; passive() calls it).
 void add_tendon_passive(const Model& model, Data& data);
 
+/// A muscle's gain and bias differentiated (muscle.cpp's curves, in the actuator's length and
+/// velocity): the step's derivatives read them (transition/). Where a curve has a kink the
+/// branch muscle_gain takes is differentiated.
+struct MusclePartials {
+  double gain = 0;                            ///< muscle_gain
+  double gain_per_length = 0;                 ///< d gain / d length
+  double gain_per_velocity = 0;               ///< d gain / d velocity (muscle_gain_per_velocity)
+  double gain_per_velocity_per_length = 0;    ///< d^2 gain / d velocity d length
+  double gain_per_velocity_per_velocity = 0;  ///< d^2 gain / d velocity^2
+  double bias_per_length = 0;                 ///< d muscle_bias / d length
+};
+MusclePartials muscle_partials(double length, double velocity,
+                               const std::array<double, 2>& lengthrange, double acc0,
+                               const double* gainprm, const double* biasprm);
+
+/// d muscle_activation_rate / d ctrl and d act (the branch, activating or not, held).
+void muscle_activation_rate_partials(double ctrl, double act, const double* dynprm,
+                                     double& per_ctrl, double& per_act);
+
 namespace detail {
 // ---- a spatial tendon's wrapping (wrap.cpp): MuJoCo 2.2.2's mju_wrap
 

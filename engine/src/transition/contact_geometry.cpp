@@ -21,6 +21,7 @@
 #include <string>
 
 #include "basics/basics.hpp"
+#include "basics/dual.hpp"
 #include "collision/collision_room.hpp"
 #include "collision/box_pairs.hpp"
 #include "collision/primitive_pairs.hpp"
@@ -29,33 +30,6 @@
 namespace lever::detail {
 
 namespace {
-
-// ---- dual numbers
-// ---------------------------------------------------------------------------------
-
-struct Dual {
-  double v = 0;  // value
-  double d = 0;  // derivative along the motion
-  Dual() = default;
-  constexpr Dual(double value, double derivative) : v(value), d(derivative) {}
-  explicit constexpr Dual(double value) : v(value) {}  // a constant
-};
-
-Dual operator+(Dual a, Dual b) { return {a.v + b.v, a.d + b.d}; }
-Dual operator+(double a, Dual b) { return {a + b.v, b.d}; }
-Dual operator-(Dual a, Dual b) { return {a.v - b.v, a.d - b.d}; }
-Dual operator-(Dual a, double b) { return {a.v - b, a.d}; }
-Dual operator-(Dual a) { return {-a.v, -a.d}; }
-Dual operator*(Dual a, Dual b) { return {a.v * b.v, a.d * b.v + a.v * b.d}; }
-Dual operator*(Dual a, double s) { return {a.v * s, a.d * s}; }
-Dual operator/(Dual a, Dual b) { return {a.v / b.v, (a.d * b.v - a.v * b.d) / (b.v * b.v)}; }
-Dual operator/(Dual a, double s) { return {a.v / s, a.d / s}; }
-Dual sqrt(Dual a) {
-  const double r = std::sqrt(a.v);
-  return {r, r > 0 ? a.d / (2 * r) : 0.0};
-}
-double value(Dual a) { return a.v; }
-Dual magnitude(Dual a) { return a.v < 0 ? -a : a; }
 
 using V = primitive::Vec<Dual>;
 using primitive::cross;

@@ -86,6 +86,46 @@ SoftSlopes soft_slopes(const std::array<double, 5>& solimp, double dist, double 
   return {-(slope * (dist - margin) + imp), floored ? 0.0 : -slope / (imp * (1 - imp))};
 }
 
+// Row r (the k-th held) whose Jacobian holds scale ten_J(t) of spatial tendon t, which moves with
+// the pose (T = d ten_J / d q, spatial_tendons.cpp): dJ_c = scale T_c, so
+// Y(k, c) += D (-B dJ_c . qvel - dJ_c . qacc) (aref's velocity term and -dJ qacc) and
+// E(., c) += dJ_c f.
+void add_moving_tendon_terms(const Model& model, const Data& data, int r, int k, int t,
+                             double scale, Derivatives::Workspace& w) {
+  if (!is_spatial_tendon(model, t) || scale == 0.0) return;
+  spatial_tendon_change(model, data, t, w);
+  const Eigen::MatrixXd& T = w.tendon_change;
+  const double f = data.efc_force[r];
+  for (int c = 0; c < model.nv; ++c) {
+    const double T_qvel = T.col(c).dot(data.qvel), T_qacc = T.col(c).dot(data.qacc);
+    w.contact_Y(k, c) += data.efc_D[r] * scale * (-data.efc_B[r] * T_qvel - T_qacc);
+    w.contact_E.col(c) += (scale * f) * T.col(c);
+  }
+}
+
+// A tendon's limit or friction-loss row (J = s ten_J, s = +-1) or a tendon coupling's
+// (J = ten_J(t1) - poly'(x_2) ten_J(t2)): the terms of its spatial tendons' moving Jacobians.
+void spatial_tendon_row(const Model& model, const Data& data, int r, int k,
+                        Derivatives::Workspace& w) {
+  const int id = data.efc_id[r];
+  if (data.efc_type[r] == ConstraintType::kEquality) {
+    if (model.eq_type[id] != EqualityType::kTendon) return;
+    const int t1 = model.eq_obj1id[id], t2 = model.eq_obj2id[id];
+    add_moving_tendon_terms(model, data, r, k, t1, 1.0, w);
+    if (t2 < 0) return;
+    const double* c = model.eq_data[id].data();
+    const double x = data.ten_length[t2] - model.tendon_length0[t2];
+    const double slope = c[1] + 2 * c[2] * x + 3 * c[3] * x * x + 4 * c[4] * x * x * x;
+    add_moving_tendon_terms(model, data, r, k, t2, -slope, w);
+    return;
+  }
+  const double* J = data.efc_J.row(r).data();
+  const double* ten_J = data.ten_J.row(id).data();
+  double along = 0.0;  // efc_J . ten_J: the row's sign
+  for (int i = 0; i < model.nv; ++i) along += J[i] * ten_J[i];
+  add_moving_tendon_terms(model, data, r, k, id, along < 0 ? -1.0 : 1.0, w);
+}
+
 // A row whose Jacobian is the gradient of its distance in the coordinates: a fixed tendon's limit
 // (distance +-(L - stop), J = +-ten_J, constant) and a joint's or tendon's coupling (distance
 // x_1 - poly(x_2) about qpos0, J = J_1 - poly'(x_2) J_2 with J_1, J_2 the joints' unit rows or the
@@ -279,8 +319,25 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
                data.efc_type[r] == ConstraintType::kEquality) {
       coordinate_row(model, data, r, k, Y, E);
     }
-    // a friction-loss row has no distance (pos 0, K 0) and a constant Jacobian: its terms are
-    // aref's velocity part alone, below
+    if (data.efc_type[r] == ConstraintType::kLimitTendon ||
+        data.efc_type[r] == ConstraintType::kFrictionTendon ||
+        data.efc_type[r] == ConstraintType::kEquality) {
+      spatial_tendon_row(model, data, r, k, w);
+    }
+    // a friction-loss row has no distance (pos 0, K 0) and, but for a spatial tendon's, a
+    // constant Jacobian: its terms are aref's velocity part alone, below
+  }
+  // a spatial tendon's friction-loss row at its bound passes on a constant force along a Jacobian
+  // that moves: dJ^T f
+  for (int r = 0; r < data.nefc; ++r) {
+    const ConstraintState state = data.efc_state[r];
+    if (data.efc_type[r] != ConstraintType::kFrictionTendon ||
+        (state != ConstraintState::kLinearNeg && state != ConstraintState::kLinearPos) ||
+        !is_spatial_tendon(model, data.efc_id[r])) {
+      continue;
+    }
+    spatial_tendon_change(model, data, data.efc_id[r], w);
+    E += data.efc_force[r] * w.tendon_change;
   }
 
   // the contacts with an active row
@@ -432,7 +489,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   RowMatrix& X = w.right_hand_sides;
   X.leftCols(nv) = w.rhs_q + E;
   X.middleCols(nv, nv) = w.rhs_v;
-  X.rightCols(nu) = w.rhs_u;
+  X.rightCols(nu + model.na) = w.rhs_u;  // ctrl, then act
   for (int k = 0; k < n; ++k) {
     const int r = w.rows[k];
     const double* J = data.efc_J.row(r).data();
@@ -467,11 +524,13 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   }
   deriv.dqacc_dq = X.leftCols(nv);
   deriv.dqacc_dv = X.middleCols(nv, nv);
-  deriv.dqacc_du = X.rightCols(nu);
+  deriv.dqacc_du = X.middleCols(2 * nv, nu);
+  deriv.dqacc_dact = X.rightCols(model.na);
   // M d qacc = rhs + d qfrc_constraint, M's zeros (dofs on different branches) skipped
   deriv.dconstraint_dq = -w.rhs_q;
   deriv.dconstraint_dv = -w.rhs_v;
-  deriv.dconstraint_du = -w.rhs_u;
+  deriv.dconstraint_du = -w.rhs_u.leftCols(nu);
+  deriv.dconstraint_dact = -w.rhs_u.rightCols(model.na);
   for (int i = 0; i < nv; ++i) {
     for (int j = 0; j < nv; ++j) {
       const double a = data.M(i, j);
@@ -480,6 +539,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       for (int c = 0; c < nv; ++c) deriv.dconstraint_dq(i, c) += a * x[c];
       for (int c = 0; c < nv; ++c) deriv.dconstraint_dv(i, c) += a * x[nv + c];
       for (int c = 0; c < nu; ++c) deriv.dconstraint_du(i, c) += a * x[2 * nv + c];
+      for (int c = 0; c < model.na; ++c) deriv.dconstraint_dact(i, c) += a * x[2 * nv + nu + c];
     }
   }
 }

@@ -1,6 +1,7 @@
 // Analytic derivatives of forward dynamics (the chain rule through M^-1, the passive forces, the
-// actuators and the limit rows; contacts' rows in contact_rows.cpp) and of the step (Euler with
-// implicit damping, RK4, MuJoCo 2.2.2's implicit), on the inverse-dynamics derivatives of
+// actuators with their gains, biases and activation dynamics, and the limit rows; contacts' rows in
+// contact_rows.cpp) and of the step on the state [dq; qvel; act] (Euler with implicit damping,
+// RK4, MuJoCo 2.2.2's implicit), on the inverse-dynamics derivatives of
 // derivatives/inverse_dynamics.cpp, with the check that the rows' active set holds over the step.
 // docs/derivatives.md derives each formula.
 //
@@ -127,43 +128,164 @@ void quaternion_springs(const Model& model, const Data& data, Derivatives::Works
   }
 }
 
-// w.moment_change(i, c) = d moment_i / d q_c for site actuator a without a reference site, whose
-// moment is moment_i = j_i(p) . f + w_i . t, with p the site, f = R gear[0-2] and t = R gear[3-5]
-// its force and torque in the world (R the site's frame) and j_i(p) = u_i + w_i x (p - O) dof i's
-// velocity at p. Moving a dof c that moves the site's body turns the axes of the dofs it carries
-// and moves the site rigidly (dp = j_c(p), dR = w_c x R), so for i moving the body too:
-//   d j_i(p) / d q_c = [c carries i] (w_c x j_i(p) - w_i x j_c(p)) + w_i x j_c(p)
-//   d w_i / d q_c    = [c carries i] w_c x w_i,   d f = w_c x f,   d t = w_c x t
-void site_moment_change(const Model& model, const Data& data, int a, Derivatives::Workspace& w) {
+// Site actuator a's moment and length differentiated: w.moment_change(i, c) = d moment_i / d q_c
+// and w.length_gradient[c] = d length / d q_c. With p the site, r the reference site (if any),
+// s_i and r_i whether dof i moves the site's body and the reference's, j_i(x) = u_i + w_i x (x - O)
+// dof i's velocity at x, and f = R gear[0-2], t = R gear[3-5] the wrench in the world (R the
+// reference's frame, or the site's own without one), the moment is (MuJoCo 2.2.2's)
+//   moment_i = (s_i j_i(p) - r_i j_i(r)) . f + (s_i - r_i) w_i . t.
+// Moving dof c turns the axes of the dofs it carries and moves the bodies it moves rigidly, so
+//   d j_i(x) / d q_c = [c carries i] (w_c x j_i(x) - w_i x j_c(x)) + w_i x j_c(x)  (c moves x)
+//   d w_i / d q_c    = [c carries i] w_c x w_i,   d f = w_c x f,   d t = w_c x t  (c moves R)
+// The length (a reference site's alone; without one it is 0) is
+//   length = gear[0-2] . R^T (p - r) + gear[3-5] . phi,   phi = log(q_r^-1 q_p),
+// with MuJoCo's quaternions q_p = site_quat (x) xquat of the site's body (that order), q_r the
+// reference's. Turning a body by w_c dq turns q_p by site_quat w_c dq (on the left), so phi moves by
+// Jl^-1(phi) R(q_r)^T (s_c R(site_quat) w_c - r_c R(ref site_quat) w_c), Jl^-1 SO(3)'s inverse
+// left Jacobian; and d (R^T (p - r)) = R^T (s_c j_c(p) - r_c j_c(r) - r_c w_c x (p - r)).
+void site_transmission_change(const Model& model, const Data& data, int a,
+                              Derivatives::Workspace& w) {
   using Vec3 = Eigen::Vector3d;
   const int nv = model.nv;
   Eigen::MatrixXd& G = w.moment_change;
   G.setZero();
-  const int site = model.actuator_trnid[a][0];
+  w.length_gradient.setZero();
+  const int site = model.actuator_trnid[a][0], ref = model.actuator_trnid[a][1];
   const auto& gear = model.actuator_gear[a];
-  const Mat3& R = data.site_xmat[site];
-  const Vec3 f = R * Vec3(gear[0], gear[1], gear[2]), t = R * Vec3(gear[3], gear[4], gear[5]);
-  std::vector<char>& on = w.moves1;
-  detail::dofs_moving(model, model.site_bodyid[site], on);
-  Vec3* const j = w.equality_point_velocity.data();
-  for (int i = 0; i < nv; ++i) {
-    if (on[i]) j[i] = detail::point_velocity(model, data, i, data.site_xpos[site]);
+  const Vec3 gear_force(gear[0], gear[1], gear[2]), gear_torque(gear[3], gear[4], gear[5]);
+  const Mat3& R = data.site_xmat[ref >= 0 ? ref : site];
+  const Vec3 f = R * gear_force, t = R * gear_torque;
+  std::vector<char>& on_site = w.moves1;
+  std::vector<char>& on_ref = w.moves2;
+  detail::dofs_moving(model, model.site_bodyid[site], on_site);
+  if (ref >= 0) {
+    detail::dofs_moving(model, model.site_bodyid[ref], on_ref);
+  } else {
+    std::fill(on_ref.begin(), on_ref.end(), 0);
   }
+  const std::vector<char>& on_frame = ref >= 0 ? on_ref : on_site;  // the dofs that turn R
+  Vec3* const j_site = w.equality_point_velocity.data();
+  Vec3* const j_ref = j_site + nv;
+  for (int i = 0; i < nv; ++i) {
+    if (on_site[i]) j_site[i] = detail::point_velocity(model, data, i, data.site_xpos[site]);
+    if (on_ref[i]) j_ref[i] = detail::point_velocity(model, data, i, data.site_xpos[ref]);
+  }
+  // d j_i(x) / d q_c . f for a point x that dofs i and c both move
+  const auto point_term = [&](const Vec3* j, int i, int c, const Vec3& wi, const Vec3& wc,
+                              bool carried) {
+    Vec3 dj = wi.cross(j[c]);
+    if (carried) dj += wc.cross(j[i]) - wi.cross(j[c]);
+    return dj.dot(f);
+  };
   for (int c = 0; c < nv; ++c) {
-    if (!on[c]) continue;
+    if (!on_site[c] && !on_ref[c]) continue;
     const Vec3 wc = data.cdof[c].head<3>();
-    const Vec3 df = wc.cross(f), dt = wc.cross(t);
+    const Vec3 df = on_frame[c] ? Vec3(wc.cross(f)) : Vec3::Zero();
+    const Vec3 dt = on_frame[c] ? Vec3(wc.cross(t)) : Vec3::Zero();
     for (int i = 0; i < nv; ++i) {
-      if (!on[i]) continue;
+      if (!on_site[i] && !on_ref[i]) continue;
       const Vec3 wi = data.cdof[i].head<3>();
-      Vec3 dj = wi.cross(j[c]), dw = Vec3::Zero();
-      if (w.carries[static_cast<std::size_t>(c * nv + i)] != 0) {
-        dj += wc.cross(j[i]) - wi.cross(j[c]);
-        dw = wc.cross(wi);
+      const bool carried = w.carries[static_cast<std::size_t>(c * nv + i)] != 0;
+      double g = 0.0;
+      if (on_site[i]) {
+        if (on_site[c]) g += point_term(j_site, i, c, wi, wc, carried);
+        g += j_site[i].dot(df);
       }
-      G(i, c) = dj.dot(f) + j[i].dot(df) + dw.dot(t) + wi.dot(dt);
+      if (on_ref[i]) {
+        if (on_ref[c]) g -= point_term(j_ref, i, c, wi, wc, carried);
+        g -= j_ref[i].dot(df);
+      }
+      const int turn = on_site[i] - on_ref[i];
+      if (turn != 0) {
+        const Vec3 dw = carried ? Vec3(wc.cross(wi)) : Vec3::Zero();
+        g += turn * (dw.dot(t) + wi.dot(dt));
+      }
+      G(i, c) = g;
     }
   }
+  if (ref < 0) return;  // no length
+  const Vec3 offset = data.site_xpos[site] - data.site_xpos[ref];
+  const Quat q_site = quat_mul(model.site_quat[site], data.xquat[model.site_bodyid[site]]);
+  const Quat q_ref = quat_mul(model.site_quat[ref], data.xquat[model.site_bodyid[ref]]);
+  const Vec3 phi = detail::quat_difference(q_site.data(), q_ref.data());
+  // rho . (R(q_r)^T e) = (R(q_r) Jl^-1(phi)^T gear_torque) . e, with Jl^-1(phi)^T = Jr^-1(phi)
+  const Vec3 rho = detail::quat_rotate(q_ref, inverse_right_jacobian(phi) * gear_torque);
+  const auto conj = [](const Quat& q) { return Quat(q[0], -q[1], -q[2], -q[3]); };
+  const Vec3 rho_site = detail::quat_rotate(conj(model.site_quat[site]), rho);
+  const Vec3 rho_ref = detail::quat_rotate(conj(model.site_quat[ref]), rho);
+  for (int c = 0; c < nv; ++c) {
+    const Vec3 wc = data.cdof[c].head<3>();
+    Vec3 dx = Vec3::Zero();  // d (p - r) - w_c x (p - r) for the reference's turn
+    double d_turn = 0.0;
+    if (on_site[c]) {
+      dx += j_site[c];
+      d_turn += rho_site.dot(wc);
+    }
+    if (on_ref[c]) {
+      dx -= j_ref[c] + wc.cross(offset);
+      d_turn -= rho_ref.dot(wc);
+    }
+    w.length_gradient[c] = f.dot(dx) + d_turn;
+  }
+}
+
+// An actuator's gain and the slopes of its force in its length and velocity at a given input
+// (the clamped ctrl, or the activation): force = gain input + bias.
+struct ActuatorSlopes {
+  double gain = 0, per_length = 0, per_velocity = 0;
+};
+
+ActuatorSlopes actuator_slopes(const Model& model, const Data& data, int a, double input) {
+  ActuatorSlopes s;
+  const double length = data.actuator_length[a], velocity = data.actuator_velocity[a];
+  const bool muscle_gain = model.actuator_gaintype[a] == GainType::kMuscle;
+  const bool muscle_bias = model.actuator_biastype[a] == BiasType::kMuscle;
+  MusclePartials muscle;
+  if (muscle_gain || muscle_bias) {
+    muscle = muscle_partials(length, velocity, model.actuator_lengthrange[a],
+                             model.actuator_acc0[a], model.actuator_gainprm[a].data(),
+                             model.actuator_biasprm[a].data());
+  }
+  s.gain = actuator_gain(model, a, length, velocity);
+  if (model.actuator_gaintype[a] == GainType::kAffine) {
+    s.per_length += model.actuator_gainprm[a][1] * input;
+    s.per_velocity += model.actuator_gainprm[a][2] * input;
+  } else if (muscle_gain) {
+    s.per_length += muscle.gain_per_length * input;
+    s.per_velocity += muscle.gain_per_velocity * input;
+  }
+  if (model.actuator_biastype[a] == BiasType::kAffine) {
+    s.per_length += model.actuator_biasprm[a][1];
+    s.per_velocity += model.actuator_biasprm[a][2];
+  } else if (muscle_bias) {
+    s.per_length += muscle.bias_per_length;
+  }
+  return s;
+}
+
+// d act_dot / d act and d act_dot / d ctrl of stateful actuator a into w.act_rate_*, at its
+// clamped control u (the ctrl term 0 where the clamp binds: u is then constant): an integrator's
+// act_dot = u, a filter's (u - act) / tau, a muscle's muscle_activation_rate.
+void activation_rate_partials(const Model& model, const Data& data, int a, double u,
+                              bool ctrl_clamped, Derivatives::Workspace& w) {
+  const int k = a - (model.nu - model.na);
+  const auto& prm = model.actuator_dynprm[a];
+  double per_ctrl = 0.0, per_act = 0.0;
+  switch (model.actuator_dyntype[a]) {
+    case DynType::kIntegrator: per_ctrl = 1.0; break;
+    case DynType::kFilter: {
+      const double tau = std::max(kMinVal, prm[0]);
+      per_ctrl = 1 / tau;
+      per_act = -1 / tau;
+      break;
+    }
+    case DynType::kMuscle:
+      muscle_activation_rate_partials(u, data.act[k], prm.data(), per_ctrl, per_act);
+      break;
+    case DynType::kNone: break;
+  }
+  w.act_rate_per_act[k] = per_act;
+  w.act_rate_per_ctrl[k] = ctrl_clamped ? 0.0 : per_ctrl;
 }
 
 // The explicit force terms of the smooth dynamics, minus the inverse-dynamics derivatives:
@@ -179,25 +301,43 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
       w.rhs_v(d, d) -= model.dof_damping[d];    // damper: -b qd
     }
     if (model.nq != model.nv) quaternion_springs(model, data, w);
-    // a fixed tendon's spring-damper f = -k (L - lengthspring) - b v along its constant Jacobian
-    // J (L = J q, v = J qd), carried to the dofs as J^T f: -k J^T J and -b J^T J
+    // a tendon's spring-damper f = -k (L - lengthspring) - b v along its Jacobian J (d L = J dq,
+    // v = J qd), carried to the dofs as J^T f: -k J^T J and -b J^T J; a spatial tendon's J moves
+    // too (T = d J / d q): + T f in qpos, and -b J (T^T qd)^T through the velocity
     for (int t = 0; t < model.ntendon; ++t) {
       const double k = model.tendon_stiffness[t], b = model.tendon_damping[t];
       if (k == 0 && b == 0) continue;
-      add_row_outer_product(data.ten_J.row(t).data(), model.nv, -k, w.rhs_q);
-      add_row_outer_product(data.ten_J.row(t).data(), model.nv, -b, w.rhs_v);
+      const double* J = data.ten_J.row(t).data();
+      add_row_outer_product(J, model.nv, -k, w.rhs_q);
+      add_row_outer_product(J, model.nv, -b, w.rhs_v);
+      if (!detail::is_spatial_tendon(model, t)) continue;
+      detail::spatial_tendon_change(model, data, t, w);
+      const Eigen::MatrixXd& T = w.tendon_change;
+      const double f = -k * (data.ten_length[t] - model.tendon_lengthspring[t]) -
+                       b * data.ten_velocity[t];
+      w.rhs_q += f * T;
+      if (b == 0) continue;
+      for (int c = 0; c < model.nv; ++c) {
+        const double dv = T.col(c).dot(data.qvel);
+        for (int i = 0; i < model.nv; ++i) w.rhs_q(i, c) -= b * J[i] * dv;
+      }
     }
   }
 
-  // actuators: force = clamp_f(gain clamp_c(ctrl) + bias), gain = p0 + p1 length + p2 velocity
-  // (affine; p0 when fixed), bias = b0 + b1 length + b2 velocity (affine; 0 when none), with
-  // length = gear q and velocity = gear qd on the actuator's dof, which gets gear force. Where the
-  // force clamp binds the actuator passes on nothing; where the ctrl clamp binds it has no
-  // sensitivity to ctrl but keeps its length and velocity terms.
+  // actuators: force = clamp_f(gain input + bias), input = clamp_c(ctrl) (stateless) or act
+  // (stateful), gain = p0 + p1 length + p2 velocity (affine; p0 when fixed) or a muscle's
+  // -F FL(length) FV(velocity), bias = b0 + b1 length + b2 velocity (affine; 0 when none) or a
+  // muscle's -F FP(length), with length = gear q and velocity = gear qd on the actuator's dof,
+  // which gets gear force. Where the force clamp binds the actuator passes on nothing; where the
+  // ctrl clamp binds it has no sensitivity to ctrl but keeps its length and velocity terms. A
+  // stateful actuator's ctrl acts through act_dot alone (activation_rate_partials).
   w.rhs_u.setZero();
+  w.act_rate_per_act.setZero();
+  w.act_rate_per_ctrl.setZero();
   // <flag actuation="disable">: no actuator forces; clampctrl="disable": ctrl as it is
   const int actuators = model.opt.disabled(kDisableActuation) ? 0 : model.nu;
   const bool clamp_ctrl = !model.opt.disabled(kDisableClampctrl);
+  const int first_stateful = model.nu - model.na;  // actuator a's activation: act[a - this]
   bool bad = false;  // one bad control zeroes every control (actuation's kBadCtrl); bias stays
   for (int a = 0; a < actuators; ++a) bad = bad || is_bad(data.ctrl[a]);
   for (int a = 0; a < actuators; ++a) {
@@ -208,64 +348,76 @@ void smooth_rhs(const Model& model, const Data& data, const Eigen::MatrixXd& dta
       ctrl_clamped = u < range[0] || u > range[1];
       u = std::clamp(u, range[0], range[1]);
     }
-    const double length = data.actuator_length[a], velocity = data.actuator_velocity[a];
-    const auto& g = model.actuator_gainprm[a];
-    const auto& b = model.actuator_biasprm[a];
-    const bool affine_gain = model.actuator_gaintype[a] == GainType::kAffine;
-    const bool affine_bias = model.actuator_biastype[a] == BiasType::kAffine;
-    const double gain = actuator_gain(model, a, length, velocity);
+    const bool stateful = a >= first_stateful;
+    if (stateful) activation_rate_partials(model, data, a, u, ctrl_clamped, w);
+    // what the gain multiplies, and the column of rhs_u that moves it (-1: nothing does)
+    const double input = stateful ? data.act[a - first_stateful] : u;
+    const int input_column =
+        stateful ? model.nu + (a - first_stateful) : (ctrl_clamped ? -1 : a);
+    const ActuatorSlopes slope = actuator_slopes(model, data, a, input);
     // in actuation()'s order, so the clamp test sees the same number
-    const double force = u * gain + actuator_bias(model, a, length, velocity);
+    const double force =
+        input * slope.gain + actuator_bias(model, a, data.actuator_length[a],
+                                           data.actuator_velocity[a]);
     bool force_clamped = false;
     if (model.actuator_forcelimited[a]) {
       const auto& range = model.actuator_forcerange[a];
       force_clamped = force < range[0] || force > range[1];
     }
-    double per_length = 0.0, per_velocity = 0.0;  // d force / d length, d force / d velocity
-    if (affine_gain) {
-      per_length += g[1] * u;
-      per_velocity += g[2] * u;
-    }
-    if (affine_bias) {
-      per_length += b[1];
-      per_velocity += b[2];
-    }
+    const double per_length = slope.per_length, per_velocity = slope.per_velocity;
     if (model.actuator_trntype[a] == TransmissionType::kSite) {
-      // a site without a reference site: no length, velocity = m . qvel, qfrc = m force, and m
-      // turns with the site (G = d m / d q): d qfrc / d q = G force + m per_velocity G^T qvel
-      // (the first even where the force is clamped), d qfrc / d qvel = m per_velocity m^T
-      site_moment_change(model, data, a, w);
+      // a site: velocity = m . qvel, qfrc = m force, m turns with the site and its reference
+      // (G = d m / d q), and the length (a reference site's) has its own gradient, which is not m
+      // (site_transmission_change): d qfrc / d q = G force + m (per_length d length / d q +
+      // per_velocity G^T qvel) (the first even where the force is clamped),
+      // d qfrc / d qvel = m per_velocity m^T
+      site_transmission_change(model, data, a, w);
       const Eigen::MatrixXd& G = w.moment_change;
       const double* m = data.actuator_moment.row(a).data();
       w.rhs_q += data.actuator_force[a] * G;
       if (force_clamped) continue;
       for (int c = 0; c < model.nv; ++c) {
-        const double dvelocity = per_velocity * G.col(c).dot(data.qvel);
-        for (int i = 0; i < model.nv; ++i) w.rhs_q(i, c) += m[i] * dvelocity;
+        const double dforce = per_length * w.length_gradient[c] +
+                              per_velocity * G.col(c).dot(data.qvel);
+        for (int i = 0; i < model.nv; ++i) w.rhs_q(i, c) += m[i] * dforce;
       }
       add_row_outer_product(m, model.nv, per_velocity, w.rhs_v);
-      if (!ctrl_clamped) {
-        for (int i = 0; i < model.nv; ++i) w.rhs_u(i, a) = m[i] * gain;
+      if (input_column >= 0) {
+        for (int i = 0; i < model.nv; ++i) w.rhs_u(i, input_column) = m[i] * slope.gain;
+      }
+      continue;
+    }
+    if (model.actuator_trntype[a] == TransmissionType::kTendon) {
+      // length = gear L, so d length / d q = gear J = the moment m, and qfrc = m force:
+      // m^T per_length m, m^T per_velocity m, m gain; a spatial tendon's m moves too
+      // (G = gear d J / d q): + G force (even where the force is clamped) and
+      // m per_velocity (G^T qvel)^T
+      const double* m = data.actuator_moment.row(a).data();
+      const int t = model.actuator_trnid[a][0];
+      if (detail::is_spatial_tendon(model, t)) {
+        detail::spatial_tendon_change(model, data, t, w);
+        const double gear = model.actuator_gear[a][0];
+        w.rhs_q += (gear * data.actuator_force[a]) * w.tendon_change;
+        if (force_clamped) continue;
+        for (int c = 0; c < model.nv; ++c) {
+          const double dvelocity = per_velocity * gear * w.tendon_change.col(c).dot(data.qvel);
+          for (int i = 0; i < model.nv; ++i) w.rhs_q(i, c) += m[i] * dvelocity;
+        }
+      }
+      if (force_clamped) continue;
+      add_row_outer_product(m, model.nv, per_length, w.rhs_q);
+      add_row_outer_product(m, model.nv, per_velocity, w.rhs_v);
+      if (input_column >= 0) {
+        for (int i = 0; i < model.nv; ++i) w.rhs_u(i, input_column) = m[i] * slope.gain;
       }
       continue;
     }
     if (force_clamped) continue;  // a constant moment: no sensitivity
-    if (model.actuator_trntype[a] == TransmissionType::kTendon) {
-      // length = gear L, so d length / d q = gear J = the moment m, and qfrc = m force:
-      // m^T per_length m, m^T per_velocity m, m gain
-      const double* m = data.actuator_moment.row(a).data();
-      add_row_outer_product(m, model.nv, per_length, w.rhs_q);
-      add_row_outer_product(m, model.nv, per_velocity, w.rhs_v);
-      if (!ctrl_clamped) {
-        for (int i = 0; i < model.nv; ++i) w.rhs_u(i, a) = m[i] * gain;
-      }
-      continue;
-    }
     const double gear = model.actuator_gear[a][0];
-    const int dof = actuator_scalar_dof(model, a);  // >= 0: refuse_fluid checked
+    const int dof = actuator_scalar_dof(model, a);  // >= 0: refuse_uncovered checked
     w.rhs_q(dof, dof) += gear * per_length * gear;
     w.rhs_v(dof, dof) += gear * per_velocity * gear;
-    if (!ctrl_clamped) w.rhs_u(dof, a) = gear * gain;
+    if (input_column >= 0) w.rhs_u(dof, input_column) = gear * slope.gain;
   }
 }
 
@@ -280,6 +432,7 @@ void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
   deriv.dconstraint_dq.setZero();
   deriv.dconstraint_dv.setZero();
   deriv.dconstraint_du.setZero();
+  deriv.dconstraint_dact.setZero();
   int n = 0;
   for (int r = 0; r < data.nefc; ++r) {
     if (data.efc_state[r] == ConstraintState::kActive) w.rows[n++] = r;
@@ -352,6 +505,9 @@ void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
     solve_column(deriv.dqacc_dv, deriv.dconstraint_dv, c, w.drhs_v.data());
   }
   for (int c = 0; c < model.nu; ++c) solve_column(deriv.dqacc_du, deriv.dconstraint_du, c, nullptr);
+  for (int c = 0; c < model.na; ++c) {
+    solve_column(deriv.dqacc_dact, deriv.dconstraint_dact, c, nullptr);
+  }
 }
 
 // ---- solves with many right-hand sides ---------------------------------------------------------
@@ -406,11 +562,11 @@ template <class Solve>
 RowMatrix& solve_side_by_side(Derivatives::Workspace& w, const Eigen::MatrixXd& in_q,
                               const Eigen::MatrixXd& in_v, const Eigen::MatrixXd& in_u,
                               Solve&& solve) {
-  const Eigen::Index nv = in_q.cols(), nu = in_u.cols();
+  const Eigen::Index nv = in_q.cols(), inputs = in_u.cols();
   RowMatrix& X = w.right_hand_sides;
   X.leftCols(nv) = in_q;
   X.middleCols(nv, nv) = in_v;
-  X.rightCols(nu) = in_u;
+  X.rightCols(inputs) = in_u;
   solve(X);
   return X;
 }
@@ -433,7 +589,8 @@ void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& 
   });
   deriv.dqacc_dq = X.leftCols(model.nv);
   deriv.dqacc_dv = X.middleCols(model.nv, model.nv);
-  deriv.dqacc_du = X.rightCols(model.nu);
+  deriv.dqacc_du = X.middleCols(2 * model.nv, model.nu);
+  deriv.dqacc_dact = X.rightCols(model.na);
   limit_rows(model, data, deriv);
 }
 
@@ -474,7 +631,8 @@ bool same_active_set(const Data& data, const std::vector<int>& set) {
 // data's warning.
 void check_step_end(const Model& model, Data& data, Derivatives& deriv,
                     const Eigen::Ref<const Eigen::VectorXd>& velocity,
-                    const Eigen::Ref<const Eigen::VectorXd>& acceleration) {
+                    const Eigen::Ref<const Eigen::VectorXd>& acceleration,
+                    const Eigen::Ref<const Eigen::VectorXd>& act_dot) {
   auto& w = deriv.work;
   Data& next = *w.next;
   const double h = model.opt.timestep;
@@ -484,6 +642,8 @@ void check_step_end(const Model& model, Data& data, Derivatives& deriv,
   next.qvel = data.qvel + h * acceleration;
   next.ctrl = data.ctrl;
   next.qfrc_applied = data.qfrc_applied;
+  next.act = data.act;
+  detail::advance_activations(model, next, act_dot.data(), h);
   // the rows' set only: the lean kinematics and no sensors (as step()'s RK4 stages)
   detail::step_forward_without_sensors(model, next);
   if (!same_active_set(next, w.active_set)) deriv.active_set_changes = true;
@@ -494,12 +654,23 @@ void check_step_end(const Model& model, Data& data, Derivatives& deriv,
   }
 }
 
-// x' = [qpos (+) h qvel'; qvel'] with qvel' = qvel + h qacc_step, given
-// d qacc_step / d (q, v, u): the rows of hinges and slides here, a turn's by euler_turns().
-template <class Matrix>
-void assemble_euler(const Model& model, const Matrix& Dq, const Matrix& Dv, const Matrix& Du,
-                    Derivatives& deriv) {
-  const int nv = model.nv;
+// Whether stateful actuator k's activation act + h act_dot leaves its actrange (strictly: an
+// edge counts as inside), where the step clamps it and it no longer follows the state.
+bool activation_clamped(const Model& model, int k, double act, double act_dot) {
+  const int a = model.nu - model.na + k;
+  if (!model.actuator_actlimited[a]) return false;
+  const double next = act + model.opt.timestep * act_dot;
+  const auto& range = model.actuator_actrange[a];
+  return next < range[0] || next > range[1];
+}
+
+// x' = [qpos (+) h qvel'; qvel'; act'] with qvel' = qvel + h qacc_step and
+// act' = clamp(act + h act_dot), given d qacc_step / d (q, v, u, act): the rows of hinges and slides here, a turn's by euler_turns(). act_dot
+// depends on its own actuator's ctrl and act alone (w.act_rate_*); a clamped act' on nothing.
+template <class Matrix, class ActMatrix>
+void assemble_euler(const Model& model, const Data& data, const Matrix& Dq, const Matrix& Dv,
+                    const Matrix& Du, const ActMatrix& Da, Derivatives& deriv) {
+  const int nv = model.nv, nu = model.nu, na = model.na;
   const double h = model.opt.timestep;
   Eigen::MatrixXd& A = deriv.A;
   for (int c = 0; c < nv; ++c) {  // column by column, A = [[pos_q, pos_v], [vel_q, vel_v]]
@@ -513,11 +684,26 @@ void assemble_euler(const Model& model, const Matrix& Dq, const Matrix& Dv, cons
       A(r, nv + c) = h * vel_v;
     }
   }
-  for (int c = 0; c < model.nu; ++c) {
+  for (int c = 0; c < nu; ++c) {
     for (int r = 0; r < nv; ++r) {
       deriv.B(nv + r, c) = h * Du(r, c);
       deriv.B(r, c) = (h * h) * Du(r, c);
     }
+  }
+  if (na == 0) return;
+  const auto& w = deriv.work;
+  for (int k = 0; k < na; ++k) {  // the act columns of qpos' and qvel'
+    for (int r = 0; r < nv; ++r) {
+      A(nv + r, 2 * nv + k) = h * Da(r, k);
+      A(r, 2 * nv + k) = (h * h) * Da(r, k);
+    }
+  }
+  A.bottomRows(na).setZero();
+  deriv.B.bottomRows(na).setZero();
+  for (int k = 0; k < na; ++k) {
+    if (activation_clamped(model, k, data.act[k], data.act_dot[k])) continue;
+    A(2 * nv + k, 2 * nv + k) = 1 + h * w.act_rate_per_act[k];
+    deriv.B(2 * nv + k, nu - na + k) = h * w.act_rate_per_ctrl[k];
   }
 }
 
@@ -533,6 +719,16 @@ void euler_turns(const Model& model, const Data& data,
   through_position_update(model, qvel_next.data(), h, deriv.B.topRows(nv), false);
 }
 
+// The right-hand sides += d qfrc_constraint (forward's linearised solve), for a step that
+// advances with the forward solve's constraint force (Euler with damping, implicit).
+void add_constraint_change(const Model& model, Derivatives& deriv) {
+  auto& w = deriv.work;
+  w.rhs_q += deriv.dconstraint_dq;
+  w.rhs_v += deriv.dconstraint_dv;
+  w.rhs_u.leftCols(model.nu) += deriv.dconstraint_du;
+  w.rhs_u.rightCols(model.na) += deriv.dconstraint_dact;
+}
+
 void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   auto& w = deriv.work;
   forward_derivatives_unchecked(model, data, deriv);
@@ -540,7 +736,8 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   for (int i = 0; i < model.nv; ++i) damped = damped || model.dof_damping[i] > 0;
   if (!damped) {
     w.qacc_step = data.qacc;
-    assemble_euler(model, deriv.dqacc_dq, deriv.dqacc_dv, deriv.dqacc_du, deriv);
+    assemble_euler(model, data, deriv.dqacc_dq, deriv.dqacc_dv, deriv.dqacc_du, deriv.dqacc_dact,
+                   deriv);
     if (model.nq != model.nv) euler_turns(model, data, data.qacc, deriv);
     return;
   }
@@ -555,16 +752,12 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, data.work.crb, w,
                         w.tau_q, &w.tau_v);
   smooth_rhs(model, data, w.tau_q, w.tau_v, w);
-  if (w.active_rows > 0) {  // dconstraint_* are zero without an active limit row
-    w.rhs_q += deriv.dconstraint_dq;
-    w.rhs_v += deriv.dconstraint_dv;
-    w.rhs_u += deriv.dconstraint_du;
-  }
+  if (w.active_rows > 0) add_constraint_change(model, deriv);
   const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
     ltdl_solve_rows(model, data.work.LD2, data.work.LD2DiagInv, Y);
   });
-  assemble_euler(model, X.leftCols(model.nv), X.middleCols(model.nv, model.nv),
-                 X.rightCols(model.nu), deriv);
+  assemble_euler(model, data, X.leftCols(model.nv), X.middleCols(model.nv, model.nv),
+                 X.middleCols(2 * model.nv, model.nu), X.rightCols(model.na), deriv);
   if (model.nq != model.nv) euler_turns(model, data, w.qacc_step, deriv);
 }
 
@@ -610,11 +803,7 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   // alone. So is C (velocity_coupling()): the second call's is 2 C(qd) - C(qd + s a). (w.rhs_*
   // still hold smooth_rhs() at dtau: forward_derivatives_unchecked solved them into dqacc_* and
   // left them as they were)
-  if (w.active_rows > 0) {  // dconstraint_* are zero without an active limit row
-    w.rhs_q += deriv.dconstraint_dq;
-    w.rhs_v += deriv.dconstraint_dv;
-    w.rhs_u += deriv.dconstraint_du;
-  }
+  if (w.active_rows > 0) add_constraint_change(model, deriv);
   const double size_a = w.qacc_step.cwiseAbs().maxCoeff();
   const double size_v = data.qvel.cwiseAbs().maxCoeff();
   // s a as large as qd, so that nothing cancels beyond rounding (any s != 0 is exact)
@@ -636,85 +825,131 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
                         w, w.tau_q_minus, nullptr, &w.CC_minus);
   w.rhs_q -= (w.tau_q - w.tau_q_minus) / (2 * c);
   w.rhs_v -= (w.tau_v - deriv.dtau_dv) / c;  // (R_v(qd + s a) - (2 dtau_dv - R_v(qd + s a))) / 2c
-  // + h dD a, D's actuator part: only an affine gain's p2 ctrl depends on anything (ctrl)
+  // + h dD a, D's actuator part: m^T k m per actuator (kept where M is non-zero, as the step's D
+  // keeps it), k = b2 + gain_velocity input, with gain_velocity an affine gain's p2 or a muscle's
+  // d gain / d velocity (a function of the length and velocity), input the raw ctrl or the act
   const int actuators = model.opt.disabled(kDisableActuation) ? 0 : model.nu;
+  const int first_stateful = model.nu - model.na;
   for (int a = 0; a < actuators; ++a) {
-    if (model.actuator_gaintype[a] != GainType::kAffine) continue;
-    if (model.actuator_trntype[a] == TransmissionType::kTendon) {
-      // D's m^T p2 ctrl m, kept where M is non-zero (as the step's D keeps it): its ctrl
-      // column times a, for each pair of dofs on one branch (k and its ancestors j)
-      const double* m = data.actuator_moment.row(a).data();
-      const double p2 = h * model.actuator_gainprm[a][2];
-      for (int k = 0; k < nv; ++k) {
-        if (m[k] == 0.0) continue;
-        for (int j = k; j >= 0; j = model.dof_parentid[j]) {
-          if (m[j] == 0.0) continue;
-          w.rhs_u(k, a) += m[k] * p2 * m[j] * w.qacc_step[j];
-          if (j != k) w.rhs_u(j, a) += m[j] * p2 * m[k] * w.qacc_step[k];
-        }
-      }
-      continue;
+    const bool stateful = a >= first_stateful;
+    const double input = stateful ? data.act[a - first_stateful] : data.ctrl[a];
+    const int input_column = stateful ? model.nu + (a - first_stateful) : a;
+    double gain_velocity = 0.0, per_length = 0.0, per_velocity = 0.0;  // the last two: of k
+    if (model.actuator_gaintype[a] == GainType::kAffine) {
+      gain_velocity = model.actuator_gainprm[a][2];
+    } else if (model.actuator_gaintype[a] == GainType::kMuscle) {
+      const MusclePartials muscle = muscle_partials(
+          data.actuator_length[a], data.actuator_velocity[a], model.actuator_lengthrange[a],
+          model.actuator_acc0[a], model.actuator_gainprm[a].data(),
+          model.actuator_biasprm[a].data());
+      gain_velocity = muscle.gain_per_velocity;
+      per_length = muscle.gain_per_velocity_per_length * input;
+      per_velocity = muscle.gain_per_velocity_per_velocity * input;
     }
-    if (model.actuator_trntype[a] == TransmissionType::kSite) {  // D's m p2 ctrl m^T: m p2 (m . a)
-      const double* m = data.actuator_moment.row(a).data();
-      double m_a = 0.0;
-      for (int i = 0; i < nv; ++i) m_a += m[i] * w.qacc_step[i];
-      const double p2 = h * model.actuator_gainprm[a][2];
-      for (int i = 0; i < nv; ++i) w.rhs_u(i, a) += m[i] * p2 * m_a;
+    double k = gain_velocity * input;
+    if (model.actuator_biastype[a] == BiasType::kAffine) k += model.actuator_biasprm[a][2];
+    const bool site = model.actuator_trntype[a] == TransmissionType::kSite;
+    const bool spatial = model.actuator_trntype[a] == TransmissionType::kTendon &&
+                         detail::is_spatial_tendon(model, model.actuator_trnid[a][0]);
+    const bool turning = site || spatial;  // the moment moves with the pose
+    if (gain_velocity == 0.0 && per_length == 0.0 && per_velocity == 0.0 &&
+        !(turning && k != 0.0)) {
       continue;
     }
     const double gear = model.actuator_gear[a][0];
-    const int dof = actuator_scalar_dof(model, a);  // >= 0: refuse_fluid checked
-    w.rhs_u(dof, a) += h * gear * model.actuator_gainprm[a][2] * gear * w.qacc_step[dof];
-  }
-  // + h dD a, a site's moment turning: D's m k m^T (k = b2 + p2 ctrl, raw ctrl, as D has it; one
-  // branch of dofs, all kept) changes by G_c k m^T + m k G_c^T along q_c (G = d m / d q)
-  for (int a = 0; a < actuators; ++a) {
-    if (model.actuator_trntype[a] != TransmissionType::kSite) continue;
-    double k = 0.0;
-    if (model.actuator_biastype[a] == BiasType::kAffine) k += model.actuator_biasprm[a][2];
-    if (model.actuator_gaintype[a] == GainType::kAffine) {
-      k += model.actuator_gainprm[a][2] * data.ctrl[a];
-    }
-    if (k == 0.0) continue;
-    site_moment_change(model, data, a, w);
-    const Eigen::MatrixXd& G = w.moment_change;
+    if (spatial) detail::spatial_tendon_change(model, data, model.actuator_trnid[a][0], w);
+    // r = (m m^T a) where M is non-zero (for one dof: gear^2 a_dof)
     const double* m = data.actuator_moment.row(a).data();
-    double m_a = 0.0;
-    for (int i = 0; i < nv; ++i) m_a += m[i] * w.qacc_step[i];
-    for (int col = 0; col < nv; ++col) {
-      const double G_a = G.col(col).dot(w.qacc_step);
-      for (int i = 0; i < nv; ++i) w.rhs_q(i, col) += h * k * (G(i, col) * m_a + m[i] * G_a);
+    Eigen::VectorXd& r = w.moment_times_a;
+    r.setZero();
+    for (int i = 0; i < nv; ++i) {
+      if (m[i] == 0.0) continue;
+      for (int j = i; j >= 0; j = model.dof_parentid[j]) {
+        if (m[j] == 0.0) continue;
+        r[i] += m[i] * m[j] * w.qacc_step[j];
+        if (j != i) r[j] += m[j] * m[i] * w.qacc_step[i];
+      }
+    }
+    // d k / d input
+    if (gain_velocity != 0.0) w.rhs_u.col(input_column) += (h * gain_velocity) * r;
+    // a muscle's k moves with the length (gradient m: L = gear q or gear ten_length; a site's
+    // its own) and the velocity (gradient m in qvel; in qpos, a turning moment's G^T qvel)
+    if (per_length != 0.0 || per_velocity != 0.0) {
+      if (site) site_transmission_change(model, data, a, w);
+      for (int col = 0; col < nv; ++col) {
+        double dk_dq = per_length * (site ? w.length_gradient[col] : m[col]);
+        if (site) dk_dq += per_velocity * w.moment_change.col(col).dot(data.qvel);
+        if (spatial) dk_dq += per_velocity * gear * w.tendon_change.col(col).dot(data.qvel);
+        const double dk_dv = per_velocity * m[col];
+        if (dk_dq != 0.0) w.rhs_q.col(col) += (h * dk_dq) * r;
+        if (dk_dv != 0.0) w.rhs_v.col(col) += (h * dk_dv) * r;
+      }
+    }
+    // a site's moment turning: m k m^T changes by G_c k m^T + m k G_c^T along q_c (G = d m / d q)
+    if (site && k != 0.0) {
+      site_transmission_change(model, data, a, w);
+      const Eigen::MatrixXd& G = w.moment_change;
+      double m_a = 0.0;
+      for (int i = 0; i < nv; ++i) m_a += m[i] * w.qacc_step[i];
+      for (int col = 0; col < nv; ++col) {
+        const double G_a = G.col(col).dot(w.qacc_step);
+        for (int i = 0; i < nv; ++i) w.rhs_q(i, col) += h * k * (G(i, col) * m_a + m[i] * G_a);
+      }
+    }
+    // a spatial tendon's moment turning: P(m k m^T) changes by k P(G_c m^T + m G_c^T),
+    // G = gear d J / d q
+    if (spatial && k != 0.0) {
+      for (int col = 0; col < nv; ++col) {
+        detail::add_pair_product(model, w.tendon_change.col(col).data(), m, w.qacc_step.data(),
+                                 h * k * gear, w.rhs_q.col(col));
+      }
+    }
+  }
+  // + h dD a, D's tendon dampers -b P(J J^T): a spatial tendon's J moves (T = d J / d q)
+  if (!model.opt.disabled(kDisablePassive)) {
+    for (int t = 0; t < model.ntendon; ++t) {
+      const double b = model.tendon_damping[t];
+      if (!(b > 0) || !detail::is_spatial_tendon(model, t)) continue;
+      detail::spatial_tendon_change(model, data, t, w);
+      for (int col = 0; col < nv; ++col) {
+        detail::add_pair_product(model, w.tendon_change.col(col).data(), data.ten_J.row(t).data(),
+                                 w.qacc_step.data(), -h * b, w.rhs_q.col(col));
+      }
     }
   }
 
   // da = K^-1 (...) in place, then Euler's update
   const RowMatrix& X = solve_side_by_side(
       w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) { lu_tree_solve_rows(model, w.K_lu, Y); });
-  assemble_euler(model, X.leftCols(nv), X.middleCols(nv, nv), X.rightCols(model.nu), deriv);
+  assemble_euler(model, data, X.leftCols(nv), X.middleCols(nv, nv), X.middleCols(2 * nv, model.nu),
+                 X.rightCols(model.na), deriv);
   if (model.nq != model.nv) euler_turns(model, data, w.qacc_step, deriv);
 }
 
-// Classical RK4 on x = [qpos; qvel] with slope k(x) = [qvel; qacc(x)], as step(): stage i starts
-// from x_i = (qpos_0 (+) h a_i qvel_{i-1}, qvel_0 + h a_i qacc_{i-1}), and
-// x' = (qpos_0 (+) h sum_i b_i qvel_i, qvel_0 + h sum_i b_i qacc_i). By the chain rule, with
-// F_i = d k / d x at x_i = [0 I; dqacc_dq dqacc_dv]:
-//   d k_i / d x_0 = F_i J_i,   d k_i / d u = F_i J^u_i + [0; dqacc_du],
+// Classical RK4 on x = [qpos; qvel; act] with slope k(x) = [qvel; qacc(x); act_dot(x)], as
+// step(): stage i starts from x_i = (qpos_0 (+) h a_i qvel_{i-1}, qvel_0 + h a_i qacc_{i-1},
+// act_0 + h a_i act_dot_{i-1}) (the stages' act unclamped), and
+// x' = (qpos_0 (+) h sum_i b_i qvel_i, qvel_0 + h sum_i b_i qacc_i, clamp(act_0 + h sum_i b_i
+// act_dot_i)). By the chain rule, with F_i = d k / d x at x_i =
+// [0 I 0; dqacc_dq dqacc_dv dqacc_dact; 0 0 diag(d act_dot / d act)]:
+//   d k_i / d x_0 = F_i J_i,   d k_i / d u = F_i J^u_i + [0; dqacc_du; d act_dot / d ctrl],
 //   J_i = d x_i / d x_0 = I + h a_i d k_{i-1} / d x_0,   J^u_i = h a_i d k_{i-1} / d u,
 // where, for the rows of a ball's or free joint's turn, (+) makes "I + h X" into
 // exp(-h a_i [w]) + Jr(h a_i w) h X (through_position_update), as for the final x'.
 void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   constexpr double kA[3] = {0.5, 0.5, 1.0};
   constexpr double kB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
-  const int nv = model.nv;
+  const int nv = model.nv, nu = model.nu, na = model.na;
   const double h = model.opt.timestep;
   auto& w = deriv.work;
   const double time0 = data.time;
   w.qpos0 = data.qpos;
   w.qvel0 = data.qvel;
+  w.act0 = data.act;
   const bool quaternions = model.nq != model.nv;
   w.qvel_next.setZero();  // sum_i b_i qvel_i: the velocity the final qpos is integrated with
   w.qacc_sum.setZero();   // sum_i b_i qacc_i
+  w.act_dot_sum.setZero();
 
   w.Jx.setIdentity();  // d x_0 / d x_0
   w.Ju.setZero();
@@ -722,7 +957,8 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   deriv.B.setZero();
   for (int i = 0; i < 4; ++i) {
     if (i > 0) {
-      // x_i from the previous stage's slope (data still holds its qvel and qacc), as step()
+      // x_i from the previous stage's slope (data still holds its qvel, qacc and act_dot), as
+      // step()
       w.qacc_step = data.qacc;
       if (quaternions) {  // as step(): qpos_0 (+) h (a_i qvel_{i-1})
         w.stage_dq = kA[i - 1] * data.qvel;
@@ -732,6 +968,7 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
         data.qpos = w.qpos0 + (h * kA[i - 1]) * data.qvel;
       }
       data.qvel = w.qvel0 + (h * kA[i - 1]) * w.qacc_step;
+      data.act = w.act0 + (h * kA[i - 1]) * data.act_dot;
       data.time = time0 + kA[i - 1] * h;
     }
     forward_derivatives_unchecked(model, data, deriv);
@@ -742,15 +979,24 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     }
     w.qvel_next += kB[i] * data.qvel;
     w.qacc_sum += kB[i] * data.qacc;
+    w.act_dot_sum += kB[i] * data.act_dot;
 
-    // K = F J: the qpos rows of the slope are J's qvel rows; its qvel rows the chain rule
-    w.Kx.topRows(nv) = w.Jx.bottomRows(nv);
-    w.Kx.bottomRows(nv).noalias() = deriv.dqacc_dq.lazyProduct(w.Jx.topRows(nv));
-    w.Kx.bottomRows(nv).noalias() += deriv.dqacc_dv.lazyProduct(w.Jx.bottomRows(nv));
-    w.Ku.topRows(nv) = w.Ju.bottomRows(nv);
-    w.Ku.bottomRows(nv) = deriv.dqacc_du;
-    w.Ku.bottomRows(nv).noalias() += deriv.dqacc_dq.lazyProduct(w.Ju.topRows(nv));
-    w.Ku.bottomRows(nv).noalias() += deriv.dqacc_dv.lazyProduct(w.Ju.bottomRows(nv));
+    // K = F J: the qpos rows of the slope are J's qvel rows; its qvel rows the chain rule; its
+    // act rows each activation's own rate
+    w.Kx.topRows(nv) = w.Jx.middleRows(nv, nv);
+    w.Kx.middleRows(nv, nv).noalias() = deriv.dqacc_dq.lazyProduct(w.Jx.topRows(nv));
+    w.Kx.middleRows(nv, nv).noalias() += deriv.dqacc_dv.lazyProduct(w.Jx.middleRows(nv, nv));
+    w.Ku.topRows(nv) = w.Ju.middleRows(nv, nv);
+    w.Ku.middleRows(nv, nv) = deriv.dqacc_du;
+    w.Ku.middleRows(nv, nv).noalias() += deriv.dqacc_dq.lazyProduct(w.Ju.topRows(nv));
+    w.Ku.middleRows(nv, nv).noalias() += deriv.dqacc_dv.lazyProduct(w.Ju.middleRows(nv, nv));
+    if (na > 0) {
+      w.Kx.middleRows(nv, nv).noalias() += deriv.dqacc_dact.lazyProduct(w.Jx.bottomRows(na));
+      w.Ku.middleRows(nv, nv).noalias() += deriv.dqacc_dact.lazyProduct(w.Ju.bottomRows(na));
+      w.Kx.bottomRows(na) = w.act_rate_per_act.asDiagonal() * w.Jx.bottomRows(na);
+      w.Ku.bottomRows(na) = w.act_rate_per_act.asDiagonal() * w.Ju.bottomRows(na);
+      for (int k = 0; k < na; ++k) w.Ku(2 * nv + k, nu - na + k) += w.act_rate_per_ctrl[k];
+    }
 
     deriv.A += kB[i] * w.Kx;
     deriv.B += kB[i] * w.Ku;
@@ -768,24 +1014,49 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   deriv.B *= h;
   through_position_update(model, w.qvel_next.data(), h, deriv.A.topRows(nv), true);
   through_position_update(model, w.qvel_next.data(), h, deriv.B.topRows(nv), false);
+  for (int k = 0; k < na; ++k) {  // a clamped activation follows nothing
+    if (!activation_clamped(model, k, w.act0[k], w.act_dot_sum[k])) continue;
+    deriv.A.row(2 * nv + k).setZero();
+    deriv.B.row(2 * nv + k).setZero();
+  }
 
   data.qpos = w.qpos0;
   data.qvel = w.qvel0;
+  data.act = w.act0;
   data.time = time0;
 }
 
 // The fluid forces depend on the pose and the velocity in ways the chain rule above leaves out,
 // and so do the moments of transmissions other than a hinge's, a slide's, a fixed tendon's and a
-// site's without a reference site.
-void refuse_fluid(const Model& model) {
+// site's. Every gain, bias and activation dynamics is covered (fixed,
+// affine, muscle; none, integrator, filter, muscle).
+void refuse_uncovered(const Model& model) {
   if (has_fluid(model.opt)) {
     throw ModelError("derivatives: the model has fluid forces (option viscosity or density); "
                      "lever's analytic derivatives do not cover them yet.");
   }
-  // the chain rule below carries each actuator's force through a constant moment (a gear on one
-  // dof, or gear ten_J of a fixed tendon: a spatial one is refused with the tendons) or a site's
-  // moment, whose turn it differentiates (site_moment_change); not yet a reference site's
-  require_simple_actuators(model, "derivatives", true);
+  // the chain rule above carries each actuator's force through a constant moment (a gear on one
+  // dof, or gear ten_J of a tendon, whose change spatial_tendon_change gives for a spatial one)
+  // or a site's moment and length, whose change with the pose it differentiates (site_transmission_change)
+  for (int a = 0; a < model.nu; ++a) {
+    if (actuator_scalar_dof(model, a) >= 0) continue;
+    const TransmissionType trn = model.actuator_trntype[a];
+    if (trn == TransmissionType::kTendon || trn == TransmissionType::kSite) continue;
+    const char* what = "a slider-crank";
+    switch (trn) {
+      case TransmissionType::kJoint:
+      case TransmissionType::kJointInParent: what = "a ball or free joint"; break;
+      case TransmissionType::kSliderCrank: what = "a slider-crank"; break;
+      case TransmissionType::kBody: what = "a body through its contacts (adhesion)"; break;
+      default: break;
+    }
+    const std::string name =
+        model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+    throw ModelError("derivatives: actuator " + name + " drives " + what +
+                         "; lever's analytic derivatives cover actuators on hinge and slide "
+                         "joints, fixed tendons and sites so far.",
+                     "actuator", a);
+  }
 }
 
 // The derivatives are those of the constraint problem's minimizer, its active set held. MuJoCo's
@@ -804,19 +1075,22 @@ void refuse_stopped_solver(const Model& model) {
 
 }  // namespace
 
-Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
+Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(model.na) {
   const int nefc_max = constraint_rows_max(model);  // Data's: limits, and contacts' rows
   dtau_dq.setZero(nv, nv);
   dtau_dv.setZero(nv, nv);
   dqacc_dq.setZero(nv, nv);
   dqacc_dv.setZero(nv, nv);
   dqacc_du.setZero(nv, nu);
+  dqacc_dact.setZero(nv, na);
   dqacc_dapplied.setZero(nv, nv);
   dconstraint_dq.setZero(nv, nv);
   dconstraint_dv.setZero(nv, nv);
   dconstraint_du.setZero(nv, nu);
-  A.setZero(2 * nv, 2 * nv);
-  B.setZero(2 * nv, nu);
+  dconstraint_dact.setZero(nv, na);
+  const int states = 2 * nv + na;  // [dq; qvel; act]
+  A.setZero(states, states);
+  B.setZero(states, nu);
 
   const auto nbody = static_cast<std::size_t>(model.nbody);
   const auto ndof = static_cast<std::size_t>(nv);
@@ -831,8 +1105,8 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.Sddot.assign(ndof, Motion::Zero());
   work.rhs_q.setZero(nv, nv);
   work.rhs_v.setZero(nv, nv);
-  work.rhs_u.setZero(nv, nu);
-  work.right_hand_sides.setZero(nv, 2 * nv + nu);
+  work.rhs_u.setZero(nv, nu + na);
+  work.right_hand_sides.setZero(nv, 2 * nv + nu + na);
   work.tau_q.setZero(nv, nv);
   work.tau_v.setZero(nv, nv);
   const int limit_rows_max = 2 * model.njnt;  // limit_rows() sees limit rows alone
@@ -847,10 +1121,19 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
   work.qvel0.setZero(nv);
   work.qvel_next.setZero(nv);
   work.stage_dq.setZero(nv);
-  work.Jx.setZero(2 * nv, 2 * nv);
-  work.Ju.setZero(2 * nv, nu);
-  work.Kx.setZero(2 * nv, 2 * nv);
-  work.Ku.setZero(2 * nv, nu);
+  work.Jx.setZero(states, states);
+  work.Ju.setZero(states, nu);
+  work.Kx.setZero(states, states);
+  work.Ku.setZero(states, nu);
+  work.act_rate_per_act.setZero(na);
+  work.act_rate_per_ctrl.setZero(na);
+  work.act0.setZero(na);
+  work.act_dot_sum.setZero(na);
+  work.moment_times_a.setZero(nv);
+  work.length_gradient.setZero(nv);
+  work.tendon_change.setZero(nv, nv);
+  work.segment_motion.assign(2 * ndof, Eigen::Vector3d::Zero());
+  work.tangent_motion.assign(2 * ndof, Eigen::Vector3d::Zero());
   work.D.setZero(nv, nv);
   work.K.setZero(nv, nv);
   work.K_lu.setZero(nv, nv);
@@ -874,7 +1157,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu) {
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_derivative_sizes(model, data, deriv);
-  refuse_fluid(model);
+  refuse_uncovered(model);
   refuse_stopped_solver(model);
   forward_derivatives_unchecked(model, data, deriv);
 }
@@ -893,7 +1176,7 @@ void applied_force_derivatives(const Model& model, const Data& data, Derivatives
 
 void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   check_derivative_sizes(model, data, deriv);
-  refuse_fluid(model);
+  refuse_uncovered(model);
   refuse_stopped_solver(model);
   // forward() normalizes the quaternions of qpos in place; the caller's state is given back as it
   // was, bit for bit (RK4 restores its start itself)
@@ -912,11 +1195,11 @@ void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       record_active_set(data, w.active_set);
       if (quaternions) data.qpos = w.qpos0;
       w.qvel_next = data.qvel + model.opt.timestep * w.qacc_step;
-      check_step_end(model, data, deriv, w.qvel_next, w.qacc_step);
+      check_step_end(model, data, deriv, w.qvel_next, w.qacc_step, data.act_dot);
       return;
     case Integrator::kRK4:
       rk4_derivatives(model, data, deriv);
-      check_step_end(model, data, deriv, w.qvel_next, w.qacc_sum);
+      check_step_end(model, data, deriv, w.qvel_next, w.qacc_sum, w.act_dot_sum);
       return;
     case Integrator::kImplicitFast: break;  // MuJoCo 3's: not differentiated yet
   }

@@ -3,7 +3,8 @@
 // RK4 and the implicit step, in qpos's tangent space. The rows with their active set held:
 // joint limits in step_derivatives.cpp, every row once a contact's is active in contact_rows.cpp,
 // on the contact geometry's derivative (contact_geometry.cpp, which reads the collision stage's
-// contacts), a connect's and weld's rows in equality_rows.cpp. Its public face is
+// contacts), a connect's and weld's rows in equality_rows.cpp, a spatial tendon's Jacobian's
+// change in spatial_tendons.cpp. Its public face is
 // lever/derivatives.hpp (forward_derivatives, step_derivatives); it reads the derivatives room's
 // RNEA derivatives and runs the pipeline's forward().
 #pragma once
@@ -74,6 +75,20 @@ void solve_held_rows(const Eigen::MatrixXd& H, Eigen::Ref<Eigen::MatrixXd> X, in
 /// contacts' (equality_rows.cpp). Uses w.moves1, w.moves2 and w.equality_point_velocity.
 void body_equality_rows(const Model& model, const Data& data, int e, int first_k,
                         Derivatives::Workspace& w);
+
+/// Whether tendon t is spatial (a path of sites), whose Jacobian moves with the pose.
+bool is_spatial_tendon(const Model& model, int t);
+
+/// w.tendon_change(i, c) = d ten_J(t, i) / d q_c for spatial tendon t: straight segments, pulleys
+/// and wraps around spheres and cylinders (spatial_tendons.cpp). Uses w.moves1, w.moves2,
+/// w.equality_point_velocity, w.segment_motion and w.tangent_motion.
+void spatial_tendon_change(const Model& model, const Data& data, int t,
+                           Derivatives::Workspace& w);
+
+/// out += scale P(x y^T + y x^T) a, P keeping the pairs of dofs on one branch (where M is
+/// non-zero, as the implicit step's D keeps its outer products).
+void add_pair_product(const Model& model, const double* x, const double* y, const double* a,
+                      double scale, Eigen::Ref<Eigen::VectorXd> out);
 
 /// d qacc and d qfrc_constraint with the active set held, every active row (limits and contacts),
 /// from the right-hand sides d f_smooth - d ID in deriv.work.rhs_q, rhs_v, rhs_u (before M^-1;
