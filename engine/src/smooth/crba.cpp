@@ -43,11 +43,24 @@ inline void crba_column(const Model& model, const Data& data, Eigen::Ref<Eigen::
   }
 }
 
-// The same for a simple body's dof (Model::body_simple): its diagonal entry is the same at every
-// state and its couplings are zero, as MuJoCo's mj_crb copies them.
-inline void simple_column(const Model& model, Eigen::Ref<Eigen::MatrixXd> H, int i) {
-  H(i, i) = model.dof_M0[i];
-  for (int j = model.dof_parentid[i]; j >= 0; j = model.dof_parentid[j]) H(i, j) = H(j, i) = 0.0;
+// The same for a run of n simple dofs from `first` (Model::body_simple; dof_simplenum counts the
+// dofs of simple bodies one after another): their diagonal entries are the same at every state and
+// their couplings are zero, as MuJoCo's mj_crb copies them. A simple body hangs from the world (or
+// from a body welded to it), so its dofs couple with no dof outside it either: each column of the
+// run above the diagonal and each row left of it are zero whole, written without walking any
+// ancestors (zero_uncoupled need not visit the run).
+inline void simple_run(const Model& model, Eigen::Ref<Eigen::MatrixXd> H, int first, int n) {
+  const Eigen::Index stride = H.outerStride();
+  const double* const M0 = model.dof_M0.data();
+  for (int k = first; k < first + n; ++k) {
+    double* const column = &H(0, k);
+    double* row = &H(k, 0);
+    for (int r = 0; r < k; ++r, row += stride) {
+      column[r] = 0.0;
+      *row = 0.0;
+    }
+    column[k] = M0[k];
+  }
 }
 
 }  // namespace
@@ -58,20 +71,30 @@ void unchecked::crba(const Model& model, Data& data) {
   // composite inertias, leaves to root (bodies on the world stop there: nothing above them moves)
   composite_inertias(model, data, data.work.crb);
 
-  // the columns (a model without simple dofs does not ask for each dof)
+  // the columns, and the other entries, which are zero: written where there are any (past the
+  // chain the first dofs form), not by clearing all of H first, and every call, so nothing a
+  // caller left in M stays
   if (model.has_simple_dofs) {
-    for (int i = 0; i < model.nv; ++i) {
-      if (model.dof_simplenum[i] > 0) {
-        simple_column(model, H, i);
-      } else {
-        crba_column(model, data, H, i);
+    // a run of simple dofs whole; each other column with its zeros, once a dof before it is no
+    // ancestor of it
+    bool chain = true;  // dofs 0..i-1 are a chain down to i
+    for (int i = 0; i < model.nv;) {
+      const int run = model.dof_simplenum[i];
+      if (run > 0) {
+        simple_run(model, H, i, run);
+        i += run;
+        chain = false;
+        continue;
       }
+      crba_column(model, data, H, i);
+      chain = chain && model.dof_parentid[i] == i - 1;
+      if (!chain) zero_uncoupled(model, H, i);
+      ++i;
     }
-  } else {
-    for (int i = 0; i < model.nv; ++i) crba_column(model, data, H, i);
+    return;
   }
-  // the other entries are zero: written where there are any (past the chain the first dofs form),
-  // not by clearing all of H first, and every call, so nothing a caller left in M stays
+  // a model without simple dofs does not ask for each dof
+  for (int i = 0; i < model.nv; ++i) crba_column(model, data, H, i);
   int i = 1;
   while (i < model.nv && model.dof_parentid[i] == i - 1) ++i;
   for (; i < model.nv; ++i) zero_uncoupled(model, H, i);
