@@ -432,7 +432,8 @@ TEST_CASE("a Data's arrays live in one cache-aligned block; copies and moves kee
   CHECK(reinterpret_cast<std::uintptr_t>(begin) % lever::kCacheLine == 0);
   CHECK(data.block().bytes() % lever::kCacheLine == 0);
   for (const lever::FieldView& v : lever::data_fields(model, data)) {
-    if (std::string(v.info->name) == "energy") continue;  // a member of Data, outside the block
+    // members of Data (fixed-size arrays), outside the block
+    if (std::string(v.info->name) == "energy" || std::string(v.info->name) == "solver_fwdinv") continue;
     const auto* at = static_cast<const unsigned char*>(v.data);
     CHECK(reinterpret_cast<std::uintptr_t>(at) % lever::kCacheLine == 0);
     CHECK((at >= begin && at <= end));
@@ -453,6 +454,52 @@ TEST_CASE("a Data's arrays live in one cache-aligned block; copies and moves kee
   CHECK(other.nv == data.nv);
   CHECK(Eigen::VectorXd(other.qacc) == Eigen::VectorXd(data.qacc));
   CHECK_NOTHROW(lever::forward(model, other));
+}
+
+TEST_CASE("a copied Model owns its arrays; an assigned one takes the other's sizes; a moved one "
+          "keeps them where they were", "[fields]") {
+  const lever::Model model = load("models/panda7.xml");
+  lever::Data data(model);
+  lever::forward(model, data);
+
+  lever::Model copy = model;  // every array copied, none shared
+  const std::vector<lever::FieldView> original_fields = lever::model_fields(model);
+  const std::vector<lever::FieldView> copied_fields = lever::model_fields(copy);
+  REQUIRE(copied_fields.size() == original_fields.size());
+  for (std::size_t k = 0; k < original_fields.size(); ++k) {
+    const lever::FieldView& v = original_fields[k];
+    const lever::FieldView& w = copied_fields[k];
+    INFO(v.info->name);
+    CHECK(w.info == v.info);
+    CHECK(w.size() == v.size());
+    if (v.size() > 0) CHECK(w.data != v.data);
+  }
+  copy.body_mass[2] *= 2.0;
+  copy.key_qpos(0, 0) += 1.0;
+  CHECK(copy.body_mass[2] != model.body_mass[2]);
+  CHECK(copy.key_qpos(0, 0) != model.key_qpos(0, 0));
+  lever::set_const(copy);  // the original's constants stay its own
+  CHECK(copy.body_subtreemass[0] != model.body_subtreemass[0]);
+
+  lever::Model twin = model;
+  lever::Data twin_data(twin);
+  lever::forward(twin, twin_data);  // the same numbers give the same bits
+  CHECK(Eigen::VectorXd(twin_data.qacc) == Eigen::VectorXd(data.qacc));
+
+  const double* mass_at = twin.body_mass.data();
+  lever::Model moved = std::move(twin);  // the arrays change hands without a copy
+  CHECK(moved.body_mass.data() == mass_at);
+  lever::forward(moved, twin_data);
+  CHECK(Eigen::VectorXd(twin_data.qacc) == Eigen::VectorXd(data.qacc));
+
+  lever::Model other = load("models/arm2.xml");
+  other = model;  // assigned a model of other sizes: its counts and arrays become model's
+  CHECK(other.nv == model.nv);
+  CHECK(other.body_mass.size() == model.body_mass.size());
+  CHECK(other.body_mass.data() != model.body_mass.data());
+  lever::Data other_data(other);
+  lever::forward(other, other_data);
+  CHECK(Eigen::VectorXd(other_data.qacc) == Eigen::VectorXd(data.qacc));
 }
 
 TEST_CASE("a Data checked once against a model edition is not checked again", "[fields]") {

@@ -102,6 +102,22 @@ TEST_CASE("set_const recomputes the constants after a mass changes, as mj_setCon
   CHECK(model.body_subtreemass[1] == model.body_mass[1] + model.body_mass[2]);
 }
 
+TEST_CASE("set_const flags the passes forward() may skip: body transmission, friction loss",
+          "[model]") {
+  lever::Model arm = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));
+  CHECK_FALSE(arm.has_body_transmission);
+  CHECK_FALSE(arm.has_friction_loss);
+  arm.dof_frictionloss[1] = 0.1;  // an edit, then set_const, as after any parameter edit
+  lever::set_const(arm);
+  CHECK(arm.has_friction_loss);
+  const lever::Model adhesion =
+      lever::mjcf::load_file(lever::test::model_path("tests/models/actuators/adhesion.xml"));
+  CHECK(adhesion.has_body_transmission);
+  const lever::Model friction = lever::mjcf::load_file(
+      lever::test::model_path("tests/models/constraints/friction_loss.xml"));
+  CHECK(friction.has_friction_loss);
+}
+
 TEST_CASE("validate names the object at fault, so that a loader can point at its element",
           "[model]") {
   const lever::Model good = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));

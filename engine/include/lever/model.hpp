@@ -683,6 +683,13 @@ struct Model {
   /// set_const: a spatial tendon wraps around a geom, so that the tendon stage reads the geoms'
   /// frames even where nothing collides (the lean step places them then too).
   bool tendons_wrap_geoms = false;
+  /// set_const: an actuator has a body transmission (TransmissionType::kBody, <adhesion>), whose
+  /// moment forward() computes from the contacts after the constraint rows; without one that
+  /// pass is skipped.
+  bool has_body_transmission = false;
+  /// set_const: a dof or a tendon has friction loss (dof_frictionloss or tendon_frictionloss > 0),
+  /// so that make_constraint looks for friction-loss rows (Data is sized for them then too).
+  bool has_friction_loss = false;
 
   /// set_const: a number no other set_const call has given (0: never set). A Data checked
   /// against this model remembers it, so later calls need not check the whole field table again.

@@ -264,6 +264,13 @@ void set_const(Model& model) {
   model.tendons_wrap_geoms = std::any_of(model.wrap_type.begin(), model.wrap_type.end(), [](WrapType w) {
     return w == WrapType::kSphere || w == WrapType::kCylinder;
   });
+  model.has_body_transmission =
+      std::find(model.actuator_trntype.begin(), model.actuator_trntype.end(),
+                TransmissionType::kBody) != model.actuator_trntype.end();
+  const auto positive = [](double loss) { return loss > 0; };
+  model.has_friction_loss =
+      std::any_of(model.dof_frictionloss.begin(), model.dof_frictionloss.end(), positive) ||
+      std::any_of(model.tendon_frictionloss.begin(), model.tendon_frictionloss.end(), positive);
   detail::build_collision_constants(model);
   // the constants and the checks at qpos0 are about the parameters: computed without contacts
   model.contacts_possible = false;

@@ -43,17 +43,18 @@ void after_kinematics(const Model& model, Data& data) {
   } else {
     data.ncon = 0;
   }
-  unchecked::tendon(model, data);
+  if (model.ntendon > 0) unchecked::tendon(model, data);
   unchecked::crba(model, data);
   unchecked::factor_mass(model, data);
   unchecked::make_constraint(model, data);
   unchecked::transmission(model, data);
-  unchecked::body_transmission(model, data);  // adhesion: after the contacts' rows
+  // adhesion: after the contacts' rows
+  if (model.has_body_transmission) unchecked::body_transmission(model, data);
 }
 
 // The velocity stage without its sensors.
 void velocity_core(const Model& model, Data& data) {
-  unchecked::tendon_velocity(model, data);
+  if (model.ntendon > 0) unchecked::tendon_velocity(model, data);
   unchecked::passive(model, data);
   unchecked::bias(model, data);
   unchecked::reference_constraint(model, data);

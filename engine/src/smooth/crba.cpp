@@ -12,6 +12,8 @@
 #include <lever/data.hpp>
 #include <lever/dynamics.hpp>
 
+#include <algorithm>
+
 #include "basics/basics.hpp"
 #include "model/model_room.hpp"
 #include "smooth/recursion.hpp"
@@ -43,11 +45,39 @@ inline void crba_column(const Model& model, const Data& data, Eigen::Ref<Eigen::
   }
 }
 
-// The same for a simple body's dof (Model::body_simple): its diagonal entry is the same at every
-// state and its couplings are zero, as MuJoCo's mj_crb copies them.
-inline void simple_column(const Model& model, Eigen::Ref<Eigen::MatrixXd> H, int i) {
-  H(i, i) = model.dof_M0[i];
-  for (int j = model.dof_parentid[i]; j >= 0; j = model.dof_parentid[j]) H(i, j) = H(j, i) = 0.0;
+// The same for a run of n simple dofs from `first` (Model::body_simple; dof_simplenum counts the
+// dofs of simple bodies one after another): their diagonal entries are the same at every state and
+// their couplings are zero, as MuJoCo's mj_crb copies them. A simple body hangs from the world (or
+// from a body welded to it), so its dofs couple with no dof outside it either: the run's columns
+// are zero whole but for the diagonal, and so are its rows left of it, written without walking any
+// ancestors (zero_uncoupled need not visit the run). M is contiguous (a Data's array), so the
+// run's columns are one span.
+inline void simple_run(const Model& model, ArenaMatrix& M, int first, int n) {
+  const std::ptrdiff_t nv = model.nv;
+  std::fill_n(&M(0, first), n * nv, 0.0);
+  for (int j = 0; j < first; ++j) std::fill_n(&M(first, j), n, 0.0);
+  for (int k = first; k < first + n; ++k) M(k, k) = model.dof_M0[k];
+}
+
+// crba()'s columns and zeros where the model has simple dofs: a run of them whole; each other
+// column with its zeros, once a dof before it is no ancestor of it. Out of line, so that it costs
+// the common case one test.
+[[gnu::noinline]] void columns_with_simple_runs(const Model& model, const Data& data,
+                                                ArenaMatrix& H) {
+  bool chain = true;  // dofs 0..i-1 are a chain down to i
+  for (int i = 0; i < model.nv;) {
+    const int run = model.dof_simplenum[i];
+    if (run > 0) {
+      simple_run(model, H, i, run);
+      i += run;
+      chain = false;
+      continue;
+    }
+    crba_column(model, data, H, i);
+    chain = chain && model.dof_parentid[i] == i - 1;
+    if (!chain) zero_uncoupled(model, H, i);
+    ++i;
+  }
 }
 
 }  // namespace
@@ -58,20 +88,15 @@ void unchecked::crba(const Model& model, Data& data) {
   // composite inertias, leaves to root (bodies on the world stop there: nothing above them moves)
   composite_inertias(model, data, data.work.crb);
 
-  // the columns (a model without simple dofs does not ask for each dof)
+  // the columns, and the other entries, which are zero: written where there are any (past the
+  // chain the first dofs form), not by clearing all of H first, and every call, so nothing a
+  // caller left in M stays
   if (model.has_simple_dofs) {
-    for (int i = 0; i < model.nv; ++i) {
-      if (model.dof_simplenum[i] > 0) {
-        simple_column(model, H, i);
-      } else {
-        crba_column(model, data, H, i);
-      }
-    }
-  } else {
-    for (int i = 0; i < model.nv; ++i) crba_column(model, data, H, i);
+    columns_with_simple_runs(model, data, H);
+    return;
   }
-  // the other entries are zero: written where there are any (past the chain the first dofs form),
-  // not by clearing all of H first, and every call, so nothing a caller left in M stays
+  // a model without simple dofs does not ask for each dof
+  for (int i = 0; i < model.nv; ++i) crba_column(model, data, H, i);
   int i = 1;
   while (i < model.nv && model.dof_parentid[i] == i - 1) ++i;
   for (; i < model.nv; ++i) zero_uncoupled(model, H, i);

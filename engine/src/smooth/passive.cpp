@@ -46,7 +46,7 @@ void unchecked::passive(const Model& model, Data& data) {
   const double* const damping = model.dof_damping.data();
   const double* const qvel = data.qvel.data();
   for (int i = 0; i < model.nv; ++i) qfrc[i] -= damping[i] * qvel[i];
-  add_tendon_passive(model, data);
+  if (model.ntendon > 0) add_tendon_passive(model, data);
   if (has_fluid(model.opt)) detail::add_fluid_forces(model, data);
 }
 
