@@ -1,7 +1,8 @@
 // Actuators compiled by mjcf_lite and by MuJoCo 2.2.2: the models of tests/models/actuators/ and
-// the real files whose actuators are not on joints or tendons (the slider-cranks of MuJoCo's
-// sample), field by field (actuator_trntype, actuator_trnid, actuator_cranklength, and the
-// constants actuator_length0 and actuator_acc0); and the transmissions lever refuses, by name.
+// tests/derivatives/, the real files whose actuators are not on joints or tendons (the
+// slider-cranks of MuJoCo's sample), field by field (actuator_trntype, actuator_trnid,
+// actuator_cranklength, and the constants actuator_length0 and actuator_acc0); and the
+// transmissions lever refuses, by name.
 #include <catch2/catch.hpp>
 #include <lever/derivatives.hpp>
 #include <lever/forward.hpp>
@@ -247,4 +248,19 @@ TEST_CASE("derivatives and identification refuse the actuators they do not handl
   lever::Derivatives deriv_a(a);
   CHECK_THROWS_WITH(lever::step_derivatives(a, da, deriv_a),
                     Catch::Contains("actuator 'pad' drives a body through its contacts"));
+}
+
+TEST_CASE("the derivative tests' models compile to MuJoCo 2.2.2's parameters",
+          "[compile][actuators][derivatives]") {
+  // tests/derivatives load these through lever's reader: actuators on sites (with and without a
+  // reference site; motor, position, general), servos with an affine bias, actuators on spatial
+  // tendons
+  for (const char* name : {"site_actuators.xml", "refsite_actuators.xml", "servo_affine.xml",
+                           "spatial_tendons.xml"}) {
+    const std::string path = lever::test::model_path(std::string("tests/derivatives/") + name);
+    check_compiles_as_mujoco(name, lever::test::read_text(path));
+  }
+  const lever::Model thrusters =
+      lever::mjcf::load_file(lever::test::model_path("tests/derivatives/site_actuators.xml"));
+  CHECK(thrusters.actuator_trntype[0] == lever::TransmissionType::kSite);
 }
