@@ -230,7 +230,7 @@ TEST_CASE("derivatives and identification refuse the actuators they do not handl
   Eigen::MatrixXd Y(t.nv, lever::regressor_columns(t));
   CHECK_THROWS_WITH(lever::regressor(t, d, d.qacc, Y),
                     Catch::Contains("regressor: actuator 'wrist_joint'"));
-  // a filter on a hinge, in a model without tendons
+  // a filter on a hinge, in a model without tendons: differentiated
   const lever::Model m = lever::mjcf::load_string(
       R"(<mujoco><worldbody><body><joint name="j"/><geom size="0.1"/></body></worldbody>
       <actuator><general name="wrist_filter" joint="j" dyntype="filter"/></actuator></mujoco>)",
@@ -238,8 +238,12 @@ TEST_CASE("derivatives and identification refuse the actuators they do not handl
   lever::Data dm(m);
   lever::forward(m, dm);
   lever::Derivatives deriv_m(m);
-  CHECK_THROWS_WITH(lever::forward_derivatives(m, dm, deriv_m),
-                    Catch::Contains("actuator 'wrist_filter' is an actuator with activation"));
+  // activations are differentiated now: a filter's force is its activation (gain 1), so
+  // d qacc / d act is the joint's inverse inertia
+  lever::forward_derivatives(m, dm, deriv_m);
+  REQUIRE(deriv_m.dqacc_dact.rows() == 1);
+  REQUIRE(deriv_m.dqacc_dact.cols() == 1);
+  CHECK(deriv_m.dqacc_dact(0, 0) == Approx(dm.qLDiagInv[0]).epsilon(1e-12));
   // a body transmission's moment follows the contacts: not differentiated
   const lever::Model a =
       lever::mjcf::load_file(lever::test::model_path("tests/models/actuators/adhesion.xml"));
