@@ -199,6 +199,31 @@ TEST_CASE("a muscle's lengthrange from its joint's range (uselimit) agrees with 
   CHECK(m.actuator_lengthrange[0] == std::array<double, 2>{-0.5, 0.8});
 }
 
+TEST_CASE("every option of <compiler><lengthrange> agrees with MuJoCo",
+          "[compile][actuators][muscles]") {
+  // muscles.xml with the simulation's settings all written: useexisting false recomputes the
+  // ranges written too; mode none leaves the written ones and zeros
+  const std::string path = lever::test::model_path("tests/models/actuators/muscles.xml");
+  const std::string text = lever::test::read_text(path);
+  const std::string written = R"(<lengthrange inttotal="6" inteval="1.5"/>)";
+  REQUIRE(text.find(written) != std::string::npos);
+  const auto with = [&](const std::string& options) {
+    std::string xml = text;
+    return xml.replace(xml.find(written), written.size(), "<lengthrange " + options + "/>");
+  };
+  const std::string every = with(
+      R"(mode="muscleuser" useexisting="false" accel="30" maxforce="40" timeconst="0.5" )"
+      R"(timestep="0.005" inttotal="5" inteval="1" tolrange="0.2")");
+  check_compiles_as_mujoco("lengthrange options", every);
+  const lever::Model m = lever::mjcf::load_string(every, "options.xml");
+  CHECK(m.actuator_lengthrange[4] != std::array<double, 2>{0.1, 2});  // recomputed
+  const std::string none = with(R"(mode="none")");
+  check_compiles_as_mujoco("lengthrange none", none);
+  const lever::Model n = lever::mjcf::load_string(none, "none.xml");
+  CHECK(n.actuator_lengthrange[3] == std::array<double, 2>{0, 0});
+  CHECK(n.actuator_lengthrange[4] == std::array<double, 2>{0.1, 2});
+}
+
 TEST_CASE("actuators with dynamics written wrongly are refused by name",
           "[compile][actuators][muscles]") {
   const std::string head = R"(<mujoco><worldbody><body><joint name="j"/><geom size="1"/></body>
