@@ -76,7 +76,8 @@ def derivatives(model: Model, data: Data) -> dict:
     Returns a dict of numpy arrays: ``A`` (2nv + na square) and ``B`` (2nv + na x nu), the
     step's Jacobians in mjd_transitionFD's layout (x = [dq; qvel; act], dq qpos's tangent: nv
     numbers, act the stateful actuators' activations);
-    ``dqacc_dq``, ``dqacc_dv`` (nv x nv), ``dqacc_du`` (nv x nu) and ``dqacc_dapplied``
+    ``dqacc_dq``, ``dqacc_dv`` (nv x nv), ``dqacc_du`` (nv x nu), ``dqacc_dact`` (nv x na,
+    d qacc / d act: the activations' columns, empty when na is 0) and ``dqacc_dapplied``
     (nv x nv, d qacc / d qfrc_applied), forward dynamics at the state; ``nefc``; and
     ``active_set_changes``: True when the constraint rows' active set (which contacts exist, which
     rows push) is not the same at the step's end (or an RK4 stage) as at its start, so that A and

@@ -865,6 +865,7 @@ PYBIND11_MODULE(_lever, m) {
         out["dqacc_dq"] = deriv.dqacc_dq;
         out["dqacc_dv"] = deriv.dqacc_dv;
         out["dqacc_du"] = deriv.dqacc_du;
+        out["dqacc_dact"] = deriv.dqacc_dact;
         out["dqacc_dapplied"] = deriv.dqacc_dapplied;
         out["nefc"] = data.nefc;
         return out;

@@ -1,7 +1,8 @@
 // Actuators compiled by mjcf_lite and by MuJoCo 2.2.2: the models of tests/models/actuators/ and
-// the real files whose actuators are not on joints or tendons (the slider-cranks of MuJoCo's
-// sample), field by field (actuator_trntype, actuator_trnid, actuator_cranklength, and the
-// constants actuator_length0 and actuator_acc0); and the transmissions lever refuses, by name.
+// tests/derivatives/, the real files whose actuators are not on joints or tendons (the
+// slider-cranks of MuJoCo's sample), field by field (actuator_trntype, actuator_trnid,
+// actuator_cranklength, and the constants actuator_length0 and actuator_acc0); and the
+// transmissions lever refuses, by name.
 #include <catch2/catch.hpp>
 #include <lever/derivatives.hpp>
 #include <lever/forward.hpp>
@@ -198,6 +199,31 @@ TEST_CASE("a muscle's lengthrange from its joint's range (uselimit) agrees with 
   CHECK(m.actuator_lengthrange[0] == std::array<double, 2>{-0.5, 0.8});
 }
 
+TEST_CASE("every option of <compiler><lengthrange> agrees with MuJoCo",
+          "[compile][actuators][muscles]") {
+  // muscles.xml with the simulation's settings all written: useexisting false recomputes the
+  // ranges written too; mode none leaves the written ones and zeros
+  const std::string path = lever::test::model_path("tests/models/actuators/muscles.xml");
+  const std::string text = lever::test::read_text(path);
+  const std::string written = R"(<lengthrange inttotal="6" inteval="1.5"/>)";
+  REQUIRE(text.find(written) != std::string::npos);
+  const auto with = [&](const std::string& options) {
+    std::string xml = text;
+    return xml.replace(xml.find(written), written.size(), "<lengthrange " + options + "/>");
+  };
+  const std::string every = with(
+      R"(mode="muscleuser" useexisting="false" accel="30" maxforce="40" timeconst="0.5" )"
+      R"(timestep="0.005" inttotal="5" inteval="1" tolrange="0.2")");
+  check_compiles_as_mujoco("lengthrange options", every);
+  const lever::Model m = lever::mjcf::load_string(every, "options.xml");
+  CHECK(m.actuator_lengthrange[4] != std::array<double, 2>{0.1, 2});  // recomputed
+  const std::string none = with(R"(mode="none")");
+  check_compiles_as_mujoco("lengthrange none", none);
+  const lever::Model n = lever::mjcf::load_string(none, "none.xml");
+  CHECK(n.actuator_lengthrange[3] == std::array<double, 2>{0, 0});
+  CHECK(n.actuator_lengthrange[4] == std::array<double, 2>{0.1, 2});
+}
+
 TEST_CASE("actuators with dynamics written wrongly are refused by name",
           "[compile][actuators][muscles]") {
   const std::string head = R"(<mujoco><worldbody><body><joint name="j"/><geom size="1"/></body>
@@ -229,7 +255,7 @@ TEST_CASE("derivatives and identification refuse the actuators they do not handl
   Eigen::MatrixXd Y(t.nv, lever::regressor_columns(t));
   CHECK_THROWS_WITH(lever::regressor(t, d, d.qacc, Y),
                     Catch::Contains("regressor: actuator 'wrist_joint'"));
-  // a filter on a hinge, in a model without tendons
+  // a filter on a hinge, in a model without tendons: differentiated
   const lever::Model m = lever::mjcf::load_string(
       R"(<mujoco><worldbody><body><joint name="j"/><geom size="0.1"/></body></worldbody>
       <actuator><general name="wrist_filter" joint="j" dyntype="filter"/></actuator></mujoco>)",
@@ -237,8 +263,12 @@ TEST_CASE("derivatives and identification refuse the actuators they do not handl
   lever::Data dm(m);
   lever::forward(m, dm);
   lever::Derivatives deriv_m(m);
-  CHECK_THROWS_WITH(lever::forward_derivatives(m, dm, deriv_m),
-                    Catch::Contains("actuator 'wrist_filter' is an actuator with activation"));
+  // activations are differentiated now: a filter's force is its activation (gain 1), so
+  // d qacc / d act is the joint's inverse inertia
+  lever::forward_derivatives(m, dm, deriv_m);
+  REQUIRE(deriv_m.dqacc_dact.rows() == 1);
+  REQUIRE(deriv_m.dqacc_dact.cols() == 1);
+  CHECK(deriv_m.dqacc_dact(0, 0) == Approx(dm.qLDiagInv[0]).epsilon(1e-12));
   // a body transmission's moment follows the contacts: not differentiated
   const lever::Model a =
       lever::mjcf::load_file(lever::test::model_path("tests/models/actuators/adhesion.xml"));
@@ -247,4 +277,19 @@ TEST_CASE("derivatives and identification refuse the actuators they do not handl
   lever::Derivatives deriv_a(a);
   CHECK_THROWS_WITH(lever::step_derivatives(a, da, deriv_a),
                     Catch::Contains("actuator 'pad' drives a body through its contacts"));
+}
+
+TEST_CASE("the derivative tests' models compile to MuJoCo 2.2.2's parameters",
+          "[compile][actuators][derivatives]") {
+  // tests/derivatives load these through lever's reader: actuators on sites (with and without a
+  // reference site; motor, position, general), servos with an affine bias, actuators on spatial
+  // tendons
+  for (const char* name : {"site_actuators.xml", "refsite_actuators.xml", "servo_affine.xml",
+                           "spatial_tendons.xml"}) {
+    const std::string path = lever::test::model_path(std::string("tests/derivatives/") + name);
+    check_compiles_as_mujoco(name, lever::test::read_text(path));
+  }
+  const lever::Model thrusters =
+      lever::mjcf::load_file(lever::test::model_path("tests/derivatives/site_actuators.xml"));
+  CHECK(thrusters.actuator_trntype[0] == lever::TransmissionType::kSite);
 }

@@ -8,6 +8,8 @@
 // states where muscles shorten and lengthen and some are stretched past their optimal length (their
 // passive force on), the integrator's activation clamped at its actrange by the step at the second
 // (its row then zero).
+// lever's model comes from its own reader (what users get; tests/compile checks that it compiles
+// to MuJoCo's parameters), MuJoCo's from its compiler.
 #include <catch2/catch.hpp>
 #include <lever/diff/twin.hpp>
 
@@ -40,7 +42,7 @@ State muscle_state(const Model& model, const Eigen::Vector3d& qpos, const Eigen:
 }  // namespace
 
 TEST_CASE("derivatives through muscles and activation dynamics", "[derivatives][mujoco][actuators]") {
-  diff::Twin twin(model_path("tests/models/actuators/muscles.xml"), diff::Path::kEngine);
+  diff::Twin twin(model_path("tests/models/actuators/muscles.xml"), diff::Path::kLoader);
   converge(twin);
   const Model& model = twin.model;
   REQUIRE(model.na == 6);

@@ -5,6 +5,8 @@
 // Euler, RK4 and implicit, against centred differences of lever's own step (eps 1e-6) and of
 // MuJoCo 2.2.2's mj_step (eps 1e-6 and 1e-5; step_differences.hpp), within 1e-6 of the matrix's
 // scale, computed both ways here.
+// lever's model comes from its own reader (what users get; tests/compile checks that it compiles
+// to MuJoCo's parameters), MuJoCo's from its compiler.
 #include <catch2/catch.hpp>
 #include <lever/diff/twin.hpp>
 
@@ -23,7 +25,7 @@ using namespace lever::test::step_differences;
 
 TEST_CASE("derivatives through site actuators with a reference site",
           "[derivatives][mujoco][actuators]") {
-  diff::Twin twin(model_path("tests/derivatives/refsite_actuators.xml"), diff::Path::kEngine);
+  diff::Twin twin(model_path("tests/derivatives/refsite_actuators.xml"), diff::Path::kLoader);
   converge(twin);
   const Model& model = twin.model;
   REQUIRE(model.nv == 5);

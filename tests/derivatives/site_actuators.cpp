@@ -5,6 +5,8 @@
 // own step (eps 1e-6) and of MuJoCo 2.2.2's mj_step (eps 1e-6 and 1e-5; step_differences.hpp),
 // within 1e-6 of the matrix's scale, computed both ways here (a site with a reference site:
 // refsite_actuators.cpp).
+// lever's model comes from its own reader (what users get; tests/compile checks that it compiles
+// to MuJoCo's parameters), MuJoCo's from its compiler.
 #include <catch2/catch.hpp>
 #include <lever/diff/twin.hpp>
 
@@ -25,7 +27,7 @@ using namespace lever::test::step_differences;
 TEST_CASE("derivatives through site actuators (no reference site)",
           "[derivatives][mujoco][actuators]") {
   const std::string file = model_path("tests/derivatives/site_actuators.xml");
-  diff::Twin twin(file, diff::Path::kEngine);
+  diff::Twin twin(file, diff::Path::kLoader);
   converge(twin);
   const Model& model = twin.model;
   State s = state_of(model);

@@ -6,6 +6,8 @@
 // step_differences.hpp), within 1e-6 of the matrix's scale, computed both ways here; and the same
 // on tests/models/constraints/spatial_tendons.xml, whose tendons wrap around cylinders and a
 // sphere (side sites outside and inside them) and are coupled by an equality constraint.
+// lever's model comes from its own reader (what users get; tests/compile checks that it compiles
+// to MuJoCo's parameters), MuJoCo's from its compiler.
 #include <catch2/catch.hpp>
 #include <lever/diff/twin.hpp>
 
@@ -23,7 +25,7 @@ using namespace lever::test::step_differences;
 
 TEST_CASE("derivatives through spatial tendons of straight segments",
           "[derivatives][mujoco][tendons]") {
-  diff::Twin twin(model_path("tests/derivatives/spatial_tendons.xml"), diff::Path::kEngine);
+  diff::Twin twin(model_path("tests/derivatives/spatial_tendons.xml"), diff::Path::kLoader);
   converge(twin);
   const Model& model = twin.model;
   REQUIRE(model.nv == 6);
@@ -70,7 +72,7 @@ TEST_CASE("derivatives through spatial tendons wrapping spheres and cylinders",
   // tests/models/constraints/spatial_tendons.xml: arm26's cylinder wraps and more (side sites
   // outside and inside the geoms, a sphere, two geoms in one tendon, pulleys, a coupling of two
   // spatial tendons, limits, friction loss, springs, dampers, tendon actuators)
-  diff::Twin twin(model_path("tests/models/constraints/spatial_tendons.xml"), diff::Path::kEngine);
+  diff::Twin twin(model_path("tests/models/constraints/spatial_tendons.xml"), diff::Path::kLoader);
   converge(twin);
   const Model& model = twin.model;
   State s = state_of(model);

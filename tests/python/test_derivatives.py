@@ -304,3 +304,32 @@ def test_contact_geometry_not_differentiated_is_refused_by_name(upper, lower):
         lever.step(model, data)
     with pytest.raises(lever.Error, match=f"a {REFUSED_PAIRS[upper, lower]} contact is active"):
         lever.derivatives(model, data)
+
+
+def test_dqacc_dact_is_forward_differenced_in_the_activations():
+    """d qacc / d act on tests/models/actuators/muscles.xml (filters, an integrator, muscles; na 6)
+    at its key "tense": lever.forward differenced in each activation (qacc is affine in act while
+    no force is clamped, so the centred difference has rounding only). A model without stateful
+    actuators gets an empty block."""
+    model = lever.load(str(REPO / "tests" / "models" / "actuators" / "muscles.xml"))
+    assert model.na == 6
+    data = lever.Data(model)
+    lever.reset_keyframe(model, data, "tense")
+    act = data.act.copy()
+    out = lever.derivatives(model, data)
+    assert out["dqacc_dact"].shape == (model.nv, model.na)
+    eps = 1e-6
+    columns = []
+    for i in range(model.na):
+        acc = []
+        for sign in (1, -1):
+            data.act[:] = act
+            data.act[i] += sign * eps
+            lever.forward(model, data)
+            acc.append(data.qacc.copy())
+        columns.append((acc[0] - acc[1]) / (2 * eps))
+    theirs = np.column_stack(columns)
+    assert np.abs(theirs).max() > 1  # the activations move the arm
+    assert ratio_to_bound(out["dqacc_dact"], theirs) <= 1e-3
+    plain = lever.load(str(REPO / "models" / "arm2.xml"))
+    assert lever.derivatives(plain, lever.Data(plain))["dqacc_dact"].shape == (plain.nv, 0)
