@@ -180,9 +180,13 @@ void inverse(const Model& model, Data& data) {
   // into a stop or contact, an elliptic cone's by its zone
   constraint_forces_at(data, data.qacc);
 
-  // M qacc + bias (armature included) is what every force together must supply
-  rnea(model, data, data.qacc, data.qfrc_inverse);
-  data.qfrc_inverse -= data.qfrc_passive + data.qfrc_constraint;
+  // M qacc + bias (armature included) is what every force together must supply; summed as
+  // mj_inverse sums it, the armature's term, the passive and the constraint forces in turn
+  unchecked::newton_euler(model, data, data.qacc.data(), data.qfrc_inverse.data());
+  for (int i = 0; i < model.nv; ++i) {
+    data.qfrc_inverse[i] += model.dof_armature[i] * data.qacc[i] - data.qfrc_passive[i] -
+                            data.qfrc_constraint[i];
+  }
   sensor_acceleration(model, data);
 }
 

@@ -44,16 +44,20 @@ void smooth_velocity_derivative(const Model& model, Data& data,
                      " but must be nv x nv = " + std::to_string(model.nv) + " x " +
                      std::to_string(model.nv) + ".");
   }
-  // minus the velocity derivative of the bias force (it sets every element); the subtree
-  // inertias are crba()'s, which the position stage left in data.work.crb
-  bias_velocity_derivative(model, data, data.qvel.data(), data.cvel, data.cdof_dot, data.work.crb,
-                           data.work.subtree_coupling, qDeriv);
-  qDeriv = -qDeriv;
-
+  // summed in mjd_smooth_vel's order: the actuators, the passive forces, then minus the bias
+  // force's derivative
+  qDeriv.setZero();
   add_actuator_damping_velocity_terms(model, data, qDeriv);
   if (has_fluid(model.opt) && !model.opt.disabled(kDisablePassive)) {
     detail::add_fluid_velocity_terms(model, data, qDeriv);
   }
+  // the bias force's derivative (it sets every element) in the implicit step's matrix, free
+  // until the step forms M - h D there; the subtree inertias are crba()'s, which the position
+  // stage left in data.work.crb
+  auto& bias_derivative = data.work.qLU;
+  bias_velocity_derivative(model, data, data.qvel.data(), data.cvel, data.cdof_dot, data.work.crb,
+                           data.work.subtree_coupling, bias_derivative);
+  qDeriv -= bias_derivative;
 }
 
 namespace {
@@ -141,14 +145,27 @@ void factor_lu_tree(const Model& model, Eigen::Ref<Eigen::MatrixXd> K) {
   }
 }
 
-void solve_lu_tree(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LU, double* x) {
-  // (U + I) y = x, leaves to root
+void solve_lu_tree(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LU, double* x,
+                   int* ancestors) {
+  // (U + I) y = x, leaves to root: each x[i] takes its descendants' terms, the last dof first
   for (int k = model.nv - 1; k >= 0; --k) {
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= x[k] * LU(i, k);
   }
-  // L x = y, root to leaves
+  // L x = y, root to leaves: each x[k] takes its ancestors' terms, the root first as in
+  // mju_solveLUSparse (row k's columns in order), when there is room to list them
   for (int k = 0; k < model.nv; ++k) {
-    for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) x[k] -= x[j] * LU(k, j);
+    if (ancestors != nullptr) {
+      int n = 0;
+      for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) ancestors[n++] = j;
+      while (n > 0) {
+        const int j = ancestors[--n];
+        x[k] -= x[j] * LU(k, j);
+      }
+    } else {
+      for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) {
+        x[k] -= x[j] * LU(k, j);
+      }
+    }
     x[k] /= LU(k, k);
   }
 }
@@ -162,7 +179,7 @@ void implicit_step(const Model& model, Data& data) {
   w.qLU = data.M - h * w.qDeriv;
   factor_lu_tree(model, w.qLU);
   w.vec1 = data.qfrc_smooth + data.qfrc_constraint;
-  solve_lu_tree(model, w.qLU, w.vec1.data());
+  solve_lu_tree(model, w.qLU, w.vec1.data(), w.dof_chain.data());
   advance_activations(model, data, data.act_dot.data(), h);
   data.qvel += h * w.vec1;
   integrate_positions(model, data.qpos.data(), data.qvel.data(), h);

@@ -50,8 +50,8 @@ void velocity_in_medium(const Model& model, const Data& data, int b, Eigen::Vect
   const Eigen::Vector3d offset = data.xipos[b] - data.subtree_com[model.body_rootid[b]];
   const Eigen::Vector3d linear = c.tail<3>() - offset.cross(angular);
   const Mat3& R = data.ximat[b];
-  w = R.transpose() * angular;
-  v = R.transpose() * linear - R.transpose() * model.opt.wind;
+  w = rotate_back(R, angular);
+  v = rotate_back(R, linear) - rotate_back(R, model.opt.wind);
 }
 
 // The first dof on the path from body b to the world (its own last dof, else its nearest
@@ -77,11 +77,20 @@ namespace detail {
 void body_velocities(const Model& model, Data& data) {
   data.cvel[0].setZero();
   for (int b = 1; b < model.nbody; ++b) {
+    // summed as mj_comVel sums it: a segment's dofs (a ball's three, a free joint's three and
+    // three) together before they join the velocity
     Motion v = data.cvel[model.body_parentid[b]];
+    Motion segment = Motion::Zero();
     for (int k = 0; k < model.body_dofnum[b]; ++k) {
       const int i = model.body_dofadr[b] + k;
-      v += data.cdof[i] * data.qvel[i];
+      if (starts_segment(model, i)) {
+        if (k > 0) v += segment;
+        segment = data.cdof[i] * data.qvel[i];
+      } else {
+        segment += data.cdof[i] * data.qvel[i];
+      }
     }
+    if (model.body_dofnum[b] > 0) v += segment;
     data.cvel[b] = v;
   }
 }
@@ -102,11 +111,11 @@ void add_fluid_forces(const Model& model, Data& data) {
       force = (-3.0 * kPi * d * mu) * v;
     }
     if (rho > 0) {
+      // the other two sides in increasing order, each power multiplied out, as MuJoCo does
       for (int k = 0; k < 3; ++k) {
-        const double l = box[(k + 1) % 3], m = box[(k + 2) % 3];
+        const double l = box[k == 0 ? 1 : 0], m = box[k == 2 ? 1 : 2];
         force[k] -= 0.5 * rho * l * m * std::abs(v[k]) * v[k];
-        const double l2 = l * l, m2 = m * m;
-        torque[k] -= rho * box[k] * (l2 * l2 + m2 * m2) * std::abs(w[k]) * w[k] / 64.0;
+        torque[k] -= rho * box[k] * (l * l * l * l + m * m * m * m) * std::abs(w[k]) * w[k] / 64.0;
       }
     }
 
@@ -127,26 +136,34 @@ void add_fluid_velocity_terms(const Model& model, const Data& data,
                               Eigen::Ref<Eigen::MatrixXd> D) {
   // Each force component above is f_k = c_k g(u_k), u = J_local qvel (J_local: the body
   // Jacobian at the centre of mass in principal axes, rotation rows first); MuJoCo 2.2.2 adds
-  // sum_k (c_k g'(u_k)) J_local,k^T J_local,k: g'(u) = 1 for viscosity, 2 |u| for density.
+  // c_k g'(u_k) J_local,k^T J_local,k row by row, the viscous rows' first, then the density's:
+  // g'(u) = 1 for viscosity, 2 |u| for density. Each term is added on its own, in that order,
+  // with its factor c_k g'(u_k) formed as mjd_inertiaBoxFluid forms it.
   const double mu = model.opt.viscosity, rho = model.opt.density;
+  double slopes[12];  // (torque, force) rows: the viscous six, then the density's six
   for (int b = 1; b < model.nbody; ++b) {
     if (!feels_medium(model, b)) continue;
     const Eigen::Vector3d box = inertia_box(model, b);
     Eigen::Vector3d w, v;
     velocity_in_medium(model, data, b, w, v);
-    Eigen::Matrix<double, 6, 1> slope = Eigen::Matrix<double, 6, 1>::Zero();  // (torque, force)
+    int rows = 0;
     if (mu > 0) {
       const double d = (box[0] + box[1] + box[2]) / 3.0;
-      slope.head<3>().setConstant(-kPi * d * d * d * mu);
-      slope.tail<3>().setConstant(-3.0 * kPi * d * mu);
+      for (int k = 0; k < 3; ++k) slopes[rows + k] = -kPi * d * d * d * mu;
+      for (int k = 0; k < 3; ++k) slopes[rows + 3 + k] = -3.0 * kPi * d * mu;
+      rows += 6;
     }
     if (rho > 0) {
-      for (int k = 0; k < 3; ++k) {
-        const double l = box[(k + 1) % 3], m = box[(k + 2) % 3];
-        const double l2 = l * l, m2 = m * m;
-        slope[k] += -rho * box[k] * (l2 * l2 + m2 * m2) * 2 * std::abs(w[k]) / 64.0;
-        slope[3 + k] += -0.5 * rho * l * m * 2 * std::abs(v[k]);
-      }
+      const double fourth[3] = {box[0] * box[0] * box[0] * box[0],
+                                box[1] * box[1] * box[1] * box[1],
+                                box[2] * box[2] * box[2] * box[2]};
+      slopes[rows + 0] = -rho * box[0] * (fourth[1] + fourth[2]) * 2 * std::abs(w[0]) / 64.0;
+      slopes[rows + 1] = -rho * box[1] * (fourth[0] + fourth[2]) * 2 * std::abs(w[1]) / 64.0;
+      slopes[rows + 2] = -rho * box[2] * (fourth[0] + fourth[1]) * 2 * std::abs(w[2]) / 64.0;
+      slopes[rows + 3] = -0.5 * rho * box[1] * box[2] * 2 * std::abs(v[0]);
+      slopes[rows + 4] = -0.5 * rho * box[0] * box[2] * 2 * std::abs(v[1]);
+      slopes[rows + 5] = -0.5 * rho * box[0] * box[1] * 2 * std::abs(v[2]);
+      rows += 6;
     }
 
     const Mat3& R = data.ximat[b];
@@ -155,14 +172,16 @@ void add_fluid_velocity_terms(const Model& model, const Data& data,
       Eigen::Vector3d jacp, jacr;
       jacobian_columns(data, i, offset, jacp, jacr);
       Eigen::Matrix<double, 6, 1> u;
-      u.head<3>() = R.transpose() * jacr;
-      u.tail<3>() = R.transpose() * jacp;
+      u.head<3>() = rotate_back(R, jacr);
+      u.tail<3>() = rotate_back(R, jacp);
       return u;
     };
     for (int i = last_dof_moving(model, b); i >= 0; i = model.dof_parentid[i]) {
       const Eigen::Matrix<double, 6, 1> ui = local_column(i);
       for (int j = last_dof_moving(model, b); j >= 0; j = model.dof_parentid[j]) {
-        D(i, j) += ui.cwiseProduct(slope).dot(local_column(j));
+        const Eigen::Matrix<double, 6, 1> uj = local_column(j);
+        double& entry = D(i, j);
+        for (int r = 0; r < rows; ++r) entry += ui[r % 6] * slopes[r] * uj[r % 6];
       }
     }
   }

@@ -18,31 +18,34 @@
 
 namespace lever {
 
-/// The net force I a + v x* I v a body of inertia I = (m, h, I_o) needs to move with velocity
-/// v = (w, v_o) and acceleration a = (dw, a_o) (Featherstone eq. 5.9), written as Newton and
-/// Euler's equations about the frame origin o with its classical acceleration a_c = a_o + w x v_o:
-///   moment = I_o dw + w x I_o w + h x a_c,   force = m a_c - h x dw - w x (h x w)
-/// (57 products where the spatial form takes 66).
+/// The net force I a + v x* I v a body of inertia I needs to move with velocity v and
+/// acceleration a (Featherstone eq. 5.9), summed as MuJoCo's mj_rne sums it: the two momenta by
+/// RigidInertia * Motion (mju_mulInertVec's order), then v x* (I v) added term by term. Where
+/// the forces of a long chain cancel, another order (Newton and Euler's equations about the
+/// origin, 57 products rather than 66) rounds to other last bits.
 inline Force net_force(const RigidInertia& I, const Motion& v, const Motion& a) {
-  const double w0 = v[0], w1 = v[1], w2 = v[2];
-  const double d0 = a[0], d1 = a[1], d2 = a[2];
-  // the origin's classical acceleration
-  const double c0 = a[3] + (w1 * v[5] - w2 * v[4]);
-  const double c1 = a[4] + (w2 * v[3] - w0 * v[5]);
-  const double c2 = a[5] + (w0 * v[4] - w1 * v[3]);
+  // I a and I v side by side, a's element first in each pair: the two lanes do the same
+  // arithmetic (RigidInertia * Motion's, term by term), so one SSE2 instruction does both
+  using Pair = Eigen::Array2d;
+  const Pair x0(a[0], v[0]), x1(a[1], v[1]), x2(a[2], v[2]);
+  const Pair x3(a[3], v[3]), x4(a[4], v[4]), x5(a[5], v[5]);
   const Eigen::Matrix3d& J = I.I;
   const double h0 = I.h[0], h1 = I.h[1], h2 = I.h[2], m = I.m;
-  const double Jw0 = J(0, 0) * w0 + J(0, 1) * w1 + J(0, 2) * w2;
-  const double Jw1 = J(1, 0) * w0 + J(1, 1) * w1 + J(1, 2) * w2;
-  const double Jw2 = J(2, 0) * w0 + J(2, 1) * w1 + J(2, 2) * w2;
-  const double hw0 = h1 * w2 - h2 * w1, hw1 = h2 * w0 - h0 * w2, hw2 = h0 * w1 - h1 * w0;
+  const Pair r0 = J(0, 0) * x0 + J(0, 1) * x1 + J(0, 2) * x2 - h2 * x4 + h1 * x5;
+  const Pair r1 = J(1, 0) * x0 + J(1, 1) * x1 + J(1, 2) * x2 + h2 * x3 - h0 * x5;
+  const Pair r2 = J(2, 0) * x0 + J(2, 1) * x1 + J(2, 2) * x2 - h1 * x3 + h0 * x4;
+  const Pair r3 = m * x3 - (h1 * x2 - h2 * x1);
+  const Pair r4 = m * x4 - (h2 * x0 - h0 * x2);
+  const Pair r5 = m * x5 - (h0 * x1 - h1 * x0);
+  // the momentum p = I v, and v x* p added to I a (cross_force's terms)
+  const double p0 = r0[1], p1 = r1[1], p2 = r2[1], p3 = r3[1], p4 = r4[1], p5 = r5[1];
   Force f;
-  f[0] = (J(0, 0) * d0 + J(0, 1) * d1 + J(0, 2) * d2) + (w1 * Jw2 - w2 * Jw1) + (h1 * c2 - h2 * c1);
-  f[1] = (J(1, 0) * d0 + J(1, 1) * d1 + J(1, 2) * d2) + (w2 * Jw0 - w0 * Jw2) + (h2 * c0 - h0 * c2);
-  f[2] = (J(2, 0) * d0 + J(2, 1) * d1 + J(2, 2) * d2) + (w0 * Jw1 - w1 * Jw0) + (h0 * c1 - h1 * c0);
-  f[3] = m * c0 - (h1 * d2 - h2 * d1) - (w1 * hw2 - w2 * hw1);
-  f[4] = m * c1 - (h2 * d0 - h0 * d2) - (w2 * hw0 - w0 * hw2);
-  f[5] = m * c2 - (h0 * d1 - h1 * d0) - (w0 * hw1 - w1 * hw0);
+  f[0] = r0[0] + ((v[1] * p2 - v[2] * p1) + (v[4] * p5 - v[5] * p4));
+  f[1] = r1[0] + ((v[2] * p0 - v[0] * p2) + (v[5] * p3 - v[3] * p5));
+  f[2] = r2[0] + ((v[0] * p1 - v[1] * p0) + (v[3] * p4 - v[4] * p3));
+  f[3] = r3[0] + (v[1] * p5 - v[2] * p4);
+  f[4] = r4[0] + (v[2] * p3 - v[0] * p5);
+  f[5] = r5[0] + (v[0] * p4 - v[1] * p3);
   return f;
 }
 
@@ -97,14 +100,22 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
       done(b, v[b], a[b]);
       continue;
     }
+    // MuJoCo's order (mj_comVel, mj_rne): a segment's dofs summed before they join the body's
+    // velocity, and the body's Sdot qd terms, then its S qdd terms, before they join the parent's
+    // acceleration
     Motion vb = v[parent];
-    Motion ab = a[parent];
-    Motion v_segment;  // the velocity the current segment's Sdot uses
+    Motion v_segment;   // the velocity the current segment's Sdot uses
+    Motion segment_velocity = Motion::Zero();  // the current segment's S qd summed
+    Motion turning = Motion::Zero();           // the body's Sdot qd summed
+    Motion driven = Motion::Zero();            // the body's S qdd summed
+    Motion a_before;  // the acceleration before dof i, dof by dof, for Sddot alone
+    if (Sddot != nullptr) a_before = a[parent];
     bool moving = false;
     for (int k = 0; k < model.body_dofnum[b]; ++k) {
       const int i = model.body_dofadr[b] + k;
       const Motion& S = data.cdof[i];
       if (detail::starts_segment(model, i)) {
+        if (k > 0) vb += segment_velocity;
         v_segment = vb;
         moving = parent > 0 || k > 0;  // the world does not move: nothing before it turns S
       }
@@ -116,11 +127,27 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
       } else {
         S_dot.setZero();
       }
-      if (Sddot != nullptr) (*Sddot)[i] = cross_motion(ab, S) + cross_motion(v_segment, S_dot);
-      if (moving) ab += S_dot * qd[i];
-      if (qdd != nullptr) ab += S * qdd[i];
-      vb += S * qd[i];
+      if (Sddot != nullptr) {
+        (*Sddot)[i] = cross_motion(a_before, S) + cross_motion(v_segment, S_dot);
+        if (moving) a_before += S_dot * qd[i];
+        if (qdd != nullptr) a_before += S * qdd[i];
+      }
+      if (detail::starts_segment(model, i)) {
+        segment_velocity = S * qd[i];
+      } else {
+        segment_velocity += S * qd[i];
+      }
+      if (k == 0) {
+        turning = S_dot * qd[i];
+        if (qdd != nullptr) driven = S * qdd[i];
+      } else {
+        turning += S_dot * qd[i];
+        if (qdd != nullptr) driven += S * qdd[i];
+      }
     }
+    if (model.body_dofnum[b] > 0) vb += segment_velocity;
+    Motion ab = a[parent] + turning;
+    if (qdd != nullptr) ab += driven;
     v[b] = vb;
     a[b] = ab;
     done(b, v[b], a[b]);
@@ -158,7 +185,7 @@ inline void composite_inertias(const Model& model, const Data& data, std::span<R
 /// overwritten with the force each body's joint transmits), then tau_i = S_i . f of dof i's body.
 inline void backward_pass(const Model& model, const Data& data, std::span<Force> f, double* tau) {
   sum_over_subtrees<Force>(model, f);  // a joint carries the force of its whole subtree
-  for (int i = 0; i < model.nv; ++i) tau[i] = data.cdof[i].dot(f[model.dof_bodyid[i]]);
+  for (int i = 0; i < model.nv; ++i) tau[i] = power(data.cdof[i], f[model.dof_bodyid[i]]);
 }
 
 }  // namespace lever

@@ -15,11 +15,7 @@
 
 namespace lever {
 
-namespace {
-
-// tau = ID(q, qd, qdd) without armature; qdd == nullptr means zero acceleration. Also leaves the
-// body velocities and the derivatives of the motion subspaces in data (cvel, cdof_dot).
-void newton_euler(const Model& model, Data& data, const double* qdd, double* tau) {
+void unchecked::newton_euler(const Model& model, Data& data, const double* qdd, double* tau) {
   const RigidInertia* const I = data.cinert.data();
   Force* const f = data.work.cfrc.data();
   forward_pass(model, data, data.qvel.data(), qdd, true, data.cvel, data.work.cacc, &data.cdof_dot,
@@ -29,10 +25,8 @@ void newton_euler(const Model& model, Data& data, const double* qdd, double* tau
   backward_pass(model, data, data.work.cfrc, tau);
 }
 
-}  // namespace
-
 void unchecked::bias(const Model& model, Data& data) {
-  newton_euler(model, data, nullptr, data.qfrc_bias.data());
+  unchecked::newton_euler(model, data, nullptr, data.qfrc_bias.data());
 }
 
 void bias(const Model& model, Data& data) {
@@ -45,7 +39,7 @@ void rnea(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd
   check_entry(model, data, "lever::rnea");
   check_argument_size(qacc.size(), model.nv, "lever::rnea", "qacc");
   check_argument_size(tau.size(), model.nv, "lever::rnea", "tau");
-  newton_euler(model, data, qacc.data(), tau.data());
+  unchecked::newton_euler(model, data, qacc.data(), tau.data());
   // armature is part of M (crba adds it), so it is part of M qacc here too
   for (int i = 0; i < model.nv; ++i) tau[i] += model.dof_armature[i] * qacc[i];
 }

@@ -36,6 +36,10 @@ void crba(const Model& model, Data& data);
 void factor_mass(const Model& model, Data& data);
 void solve_mass(const Model& model, const Data& data, double* x);  // x: nv numbers
 void bias(const Model& model, Data& data);
+/// tau = ID(q, qd, qdd) without the armature's term (MuJoCo's mj_rne); qdd == nullptr means zero
+/// acceleration. Also leaves the body velocities and the derivatives of the motion subspaces in
+/// data (cvel, cdof_dot) (rnea.cpp).
+void newton_euler(const Model& model, Data& data, const double* qdd, double* tau);
 void passive(const Model& model, Data& data);
 void transmission(const Model& model, Data& data);
 void actuation(const Model& model, Data& data);
