@@ -34,10 +34,10 @@ void copy_contact(const mjModel* m, Model& model) {
   }
   model.opt.cone = m->opt.cone == mjCONE_PYRAMIDAL ? Cone::kPyramidal : Cone::kElliptic;
   model.opt.impratio = m->opt.impratio;
-  if (m->opt.solver != mjSOL_CG && m->opt.solver != mjSOL_NEWTON) {
-    throw std::runtime_error("from_mujoco: lever has no PGS solver");
+  if (m->opt.solver != mjSOL_PGS && m->opt.solver != mjSOL_CG && m->opt.solver != mjSOL_NEWTON) {
+    throw std::runtime_error("from_mujoco: unknown constraint solver");
   }
-  model.opt.solver = m->opt.solver == mjSOL_CG ? Solver::kCG : Solver::kNewton;
+  model.opt.solver = static_cast<Solver>(m->opt.solver);  // mjtSolver's values
   model.opt.iterations = m->opt.iterations;
   model.opt.tolerance = m->opt.tolerance;
   model.opt.mpr_tolerance = m->opt.mpr_tolerance;

@@ -404,9 +404,10 @@ Options read_option(const Element& root) {
                  : integrator == "implicit" ? Integrator::kImplicit
                  : integrator == "implicitfast" ? Integrator::kImplicitFast
                                             : Integrator::kEuler;
-  // contact; the solver CG or Newton, the ones the schema accepts
+  // contact; the solver
   o.cone = f.word("cone") == "elliptic" ? Cone::kElliptic : Cone::kPyramidal;
-  o.solver = f.word("solver") == "CG" ? Solver::kCG : Solver::kNewton;
+  const std::string solver = f.word("solver");
+  o.solver = solver == "PGS" ? Solver::kPGS : solver == "CG" ? Solver::kCG : Solver::kNewton;
   o.impratio = f.real("impratio");
   o.iterations = f.integer("iterations");
   o.tolerance = f.real("tolerance");

@@ -654,15 +654,17 @@ std::vector<ElementRule> build() {
                         "frictional-to-normal impedance ratio of elliptic-cone contacts; must be "
                         "positive"),
                    keyword("cone", "pyramidal", "pyramidal elliptic", "", "friction cone"),
-                   keyword("solver", "Newton", "CG Newton", "PGS",
-                           "constraint solver: Newton (lever solves the problem exactly) or "
-                           "MuJoCo's conjugate gradients (stopped by tolerance and iterations)"),
+                   keyword("solver", "Newton", "PGS CG Newton", "",
+                           "constraint solver: Newton (lever solves the problem exactly), "
+                           "MuJoCo's conjugate gradients or its projected Gauss-Seidel (both "
+                           "stopped by tolerance and iterations)"),
                    integer("iterations", 1, "100",
-                           "most CG iterations (lever's Newton solve ends at convergence); must "
-                           "not be negative"),
+                           "most CG iterations or PGS sweeps (lever's Newton solve ends at "
+                           "convergence); must not be negative"),
                    real("tolerance", 1, "1e-8",
                         "CG's tolerance on the cost's decrease and gradient (0: the exact "
-                        "minimizer CG converges to, as Newton's); must not be negative"),
+                        "minimizer CG converges to, as Newton's), PGS's on a sweep's decrease "
+                        "(0: every sweep of iterations); must not be negative"),
                    integer("noslip_iterations", 1, "0",
                            "noslip solver iterations: lever has no noslip solver, so only 0"),
                    real("noslip_tolerance", 1, "1e-6",
@@ -1092,8 +1094,7 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   * `option/impratio` that is zero or negative, a negative `option/iterations` or
     `option/tolerance`, and `size/nconmax` or `size/njmax` below -1 (MuJoCo reads any negative
     value as the default).
-* Refused because lever does not have them: `option/solver` `PGS` (lever's solvers are Newton,
-  MuJoCo's default, and CG), `option/noslip_iterations` above 0 (no noslip solver),
+* Refused because lever does not have them: `option/noslip_iterations` above 0 (no noslip solver),
   `geom/type="hfield"`.
 * Every `option/flag` of MuJoCo 2.2.2, as `model.opt.disableflags` and `enableflags` (mjtDisableBit's
   and mjtEnableBit's bits), honoured where MuJoCo reads each (docs/contact.md, "Option flags"), with

@@ -429,9 +429,9 @@ PYBIND11_MODULE(_lever, m) {
       .def_property(
           "solver", [](const lever::Model& x) { return static_cast<int>(x.opt.solver); },
           [](lever::Model& x, int s) {
-            if (s != 1 && s != 2) {
+            if (s < 0 || s > 2) {
               throw lever::StateError("solver " + std::to_string(s) +
-                                      " is not one lever has (1 CG, 2 Newton; no PGS).");
+                                      " is not one lever has (0 PGS, 1 CG, 2 Newton).");
             }
             x.opt.solver = static_cast<lever::Solver>(s);
           })

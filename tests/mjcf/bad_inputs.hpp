@@ -203,10 +203,6 @@ inline const BadInput kBadInputs[] = {
     <flag override="on"/>
   </option>
 </mujoco>)", 3, "flag", "override", "expected 'disable' or 'enable'", MuJoCo::kRejects, ""},
-  {"contact-solver-pgs", R"(<mujoco>
-  <option solver="PGS"/>
-</mujoco>)", 2, "option", "solver", "'PGS' is valid MJCF but not supported by lever, which has 'CG' and 'Newton'",
-   MuJoCo::kAccepts, "lever's solvers are CG and Newton"},
   {"contact-cone-unknown", R"(<mujoco>
   <option cone="eliptic"/>
 </mujoco>)", 2, "option", "cone", "expected 'pyramidal' or 'elliptic' (did you mean 'elliptic'?)",

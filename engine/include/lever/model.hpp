@@ -270,10 +270,10 @@ inline constexpr int kEqualityData = 11;
 /// Friction cones; the numeric values are MuJoCo's mjtCone.
 enum class Cone : int { kPyramidal = 0, kElliptic = 1 };
 
-/// Constraint solvers; the numeric values are MuJoCo's mjtSolver. lever has no PGS (the value is
-/// named so that a model carrying it is refused by name).
+/// Constraint solvers; the numeric values are MuJoCo's mjtSolver.
 enum class Solver : int {
-  kPGS = 0,     ///< MuJoCo's projected Gauss-Seidel: not in lever (validate refuses it)
+  kPGS = 0,     ///< MuJoCo's projected Gauss-Seidel on the dual, opt.iterations sweeps at most,
+                ///< stopped by opt.tolerance (at tolerance 0 too)
   kCG = 1,      ///< MuJoCo's conjugate gradients, stopped by opt.tolerance and opt.iterations
   kNewton = 2,  ///< Newton's method: lever solves the problem exactly (tolerance not read)
 };
@@ -320,8 +320,10 @@ struct Options {
   Cone cone = Cone::kPyramidal;  ///< friction cone of contact rows
   double impratio = 1.0;         ///< frictional-to-normal impedance ratio (elliptic cones)
   Solver solver = Solver::kNewton;  ///< constraint solver (MuJoCo's default, Newton)
-  int iterations = 100;   ///< most CG iterations (lever's Newton solve stops on convergence)
-  double tolerance = 1e-8;  ///< CG's tolerance, on the cost's decrease and gradient (MuJoCo's)
+  int iterations = 100;   ///< most CG iterations or PGS sweeps (lever's Newton solve stops on
+                          ///< convergence)
+  double tolerance = 1e-8;  ///< CG's tolerance, on the cost's decrease and gradient, and PGS's,
+                            ///< on a sweep's decrease (MuJoCo's)
   // the general convex pairs' Minkowski portal refinement (MuJoCo 2.2.2's defaults)
   double mpr_tolerance = 1e-6;  ///< MPR's boundary tolerance
   int mpr_iterations = 50;      ///< most MPR iterations

@@ -568,9 +568,10 @@ void check_options_actuators_keys(const Model& model) {
       !finite_all(model.opt.o_solimp)) {
     throw ModelError("the contact override's o_margin, o_solref and o_solimp must be finite.");
   }
-  if (model.opt.solver != Solver::kCG && model.opt.solver != Solver::kNewton) {
+  if (model.opt.solver != Solver::kPGS && model.opt.solver != Solver::kCG &&
+      model.opt.solver != Solver::kNewton) {
     throw ModelError("opt.solver " + std::to_string(static_cast<int>(model.opt.solver)) +
-                     " is not one lever has (1 CG, 2 Newton; MuJoCo's PGS, 0, is not in lever).");
+                     " is not one lever has (0 PGS, 1 CG, 2 Newton).");
   }
   if (model.opt.iterations < 0 || !(model.opt.tolerance >= 0)) {
     throw ModelError("the solver's iterations and tolerance must not be negative.");
