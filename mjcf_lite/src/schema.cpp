@@ -787,24 +787,31 @@ std::vector<ElementRule> build() {
                "equality constraint defaults of the class"});
   s.push_back({"tendon", "default", '?', tendon_class_attributes(), "user", "",
                "tendon defaults of the class"});
+  // MuJoCo 2.2.2 takes cranklength in a class for every actuator kind but adhesion; a class's
+  // value reaches the actuators of the class, a slider-crank's rod or, on another transmission,
+  // kept in actuator_cranklength as MuJoCo keeps it
+  const auto with_crank = [](std::vector<AttributeRule> rules) {
+    return join(std::move(rules),
+                {real("cranklength", 1, "0", "a slider-crank's rod length, positive")});
+  };
   s.push_back({"motor", "default", '?',
-               join(motor_class_attributes(),
-                    {integer("group", 1, "0", "visualisation group (kept)")}),
-               "cranklength", "", "actuator defaults of the class, as a motor"});
-  s.push_back({"general", "default", '?', general_class_attributes(), "cranklength", "",
+               with_crank(join(motor_class_attributes(),
+                               {integer("group", 1, "0", "visualisation group (kept)")})),
+               "", "", "actuator defaults of the class, as a motor"});
+  s.push_back({"general", "default", '?', with_crank(general_class_attributes()), "", "",
                "actuator defaults of the class"});
-  s.push_back({"muscle", "default", '?', muscle_class_attributes(), "cranklength", "",
+  s.push_back({"muscle", "default", '?', with_crank(muscle_class_attributes()), "", "",
                "actuator defaults of the class, as a muscle"});
-  s.push_back({"position", "default", '?', position_class_attributes(), "cranklength",
-               "", "actuator defaults of the class, as a position servo"});
+  s.push_back({"position", "default", '?', with_crank(position_class_attributes()), "", "",
+               "actuator defaults of the class, as a position servo"});
   s.push_back({"velocity", "default", '?',
-               shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m"),
-               "cranklength", "", "actuator defaults of the class, as a velocity servo"});
-  s.push_back({"intvelocity", "default", '?', intvelocity_class_attributes(), "cranklength", "",
+               with_crank(shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m")),
+               "", "", "actuator defaults of the class, as a velocity servo"});
+  s.push_back({"intvelocity", "default", '?', with_crank(intvelocity_class_attributes()), "", "",
                "actuator defaults of the class, as an integrated-velocity servo"});
-  s.push_back({"damper", "default", '?', damper_class_attributes(), "cranklength", "",
+  s.push_back({"damper", "default", '?', with_crank(damper_class_attributes()), "", "",
                "actuator defaults of the class, as a damper"});
-  s.push_back({"cylinder", "default", '?', cylinder_class_attributes(), "cranklength", "",
+  s.push_back({"cylinder", "default", '?', with_crank(cylinder_class_attributes()), "", "",
                "actuator defaults of the class, as a cylinder"});
   s.push_back({"adhesion", "default", '?', adhesion_class_attributes(), "", "",
                "actuator defaults of the class, as adhesion"});
