@@ -210,12 +210,15 @@ MotorSpec read_actuator(const Element& e, const DefaultClasses& classes) {
   m.dyntype = dyn == "integrator" ? DynType::kIntegrator
               : dyn == "filter"   ? DynType::kFilter
               : dyn == "muscle"   ? DynType::kMuscle
+              : dyn == "user"     ? DynType::kUser
                                   : DynType::kNone;
-  m.gaintype = gain == "affine" ? GainType::kAffine
+  m.gaintype = gain == "affine"   ? GainType::kAffine
                : gain == "muscle" ? GainType::kMuscle
+               : gain == "user"   ? GainType::kUser
                                   : GainType::kFixed;
-  m.biastype = bias == "affine" ? BiasType::kAffine
+  m.biastype = bias == "affine"   ? BiasType::kAffine
                : bias == "muscle" ? BiasType::kMuscle
+               : bias == "user"   ? BiasType::kUser
                                   : BiasType::kNone;
   m.dynprm = f.array<kDynParameters>("dynprm");
   m.actrange = f.array<2>("actrange");

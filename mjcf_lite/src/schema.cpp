@@ -335,16 +335,20 @@ std::vector<AttributeRule> general_class_attributes() {
   return join(motor_class_attributes(),
               {
                   integer("group", 1, "0", "visualisation group (kept; no effect on dynamics)"),
-                  keyword("dyntype", "none", "none integrator filter muscle", "user",
+                  keyword("dyntype", "none", "none integrator filter muscle user", "",
                           "activation dynamics: none (ctrl acts directly); integrator (act' = "
                           "ctrl), filter (act' = (ctrl - act) / dynprm[0]), muscle (MuJoCo's "
-                          "activation time constants dynprm[0..1]): the force follows act"),
-                  keyword("gaintype", "fixed", "fixed affine muscle", "user",
+                          "activation time constants dynprm[0..1]), user (the model's "
+                          "actuator_dyn_callback, MuJoCo's mjcb_act_dyn; 0 without one): the "
+                          "force follows act"),
+                  keyword("gaintype", "fixed", "fixed affine muscle user", "",
                           "gain: fixed = gainprm[0]; affine = gainprm[0] + gainprm[1] length + "
-                          "gainprm[2] velocity; muscle = the force-length-velocity curves"),
-                  keyword("biastype", "none", "none affine muscle", "user",
+                          "gainprm[2] velocity; muscle = the force-length-velocity curves; user "
+                          "= the model's actuator_gain_callback (mjcb_act_gain; 1 without one)"),
+                  keyword("biastype", "none", "none affine muscle user", "",
                           "bias: affine = biasprm[0] + biasprm[1] length + biasprm[2] velocity; "
-                          "muscle = the passive force curve"),
+                          "muscle = the passive force curve; user = the model's "
+                          "actuator_bias_callback (mjcb_act_bias; 0 without one)"),
                   partial("gainprm", 10, "1 0 0 0 0 0 0 0 0 0", "gain parameters"),
                   partial("biasprm", 10, "0 0 0 0 0 0 0 0 0 0", "bias parameters"),
                   partial("dynprm", 10, "1 0 0 0 0 0 0 0 0 0", "activation-dynamics parameters"),

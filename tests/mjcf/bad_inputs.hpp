@@ -419,18 +419,6 @@ inline const BadInput kBadInputs[] = {
     <general body="b" joint="j"/>
   </actuator>
 </mujoco>)", 9, "general", "body", "names both joint and body", MuJoCo::kRejects, ""},
-  {"unsupported-dyntype", R"(<mujoco>
-  <worldbody>
-    <body name="b">
-      <joint name="j"/>
-      <geom size="0.1"/>
-    </body>
-  </worldbody>
-  <actuator>
-    <general joint="j" dyntype="user"/>
-  </actuator>
-</mujoco>)", 9, "general", "dyntype", "'user' is valid MJCF but not supported",
-   MuJoCo::kAccepts, "user-defined activation dynamics (MuJoCo's callbacks) are outside lever's subset"},
 
   // ---- number lists ------------------------------------------------------------------------
   {"too-few-numbers", R"(<mujoco>

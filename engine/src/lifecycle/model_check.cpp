@@ -585,11 +585,11 @@ void check_options_actuators_keys(const Model& model) {
     const int dyntype = static_cast<int>(model.actuator_dyntype[a]);
     const int gaintype = static_cast<int>(model.actuator_gaintype[a]);
     const int biastype = static_cast<int>(model.actuator_biastype[a]);
-    if (dyntype < 0 || dyntype > 3 || gaintype < 0 || gaintype > 2 || biastype < 0 ||
-        biastype > 2) {
+    if (dyntype < 0 || dyntype > 4 || gaintype < 0 || gaintype > 3 || biastype < 0 ||
+        biastype > 3) {
       reject("actuator", a, model.actuator_name[a],
-             "needs dyntype none, integrator, filter or muscle, gaintype fixed, affine or muscle "
-             "and biastype none, affine or muscle (lever has no user-defined ones)");
+             "needs dyntype none, integrator, filter, muscle or user, gaintype fixed, affine, "
+             "muscle or user and biastype none, affine, muscle or user");
     }
     if (dyntype != 0) {
       ++stateful;
