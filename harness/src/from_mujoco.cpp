@@ -34,10 +34,10 @@ void copy_contact(const mjModel* m, Model& model) {
   }
   model.opt.cone = m->opt.cone == mjCONE_PYRAMIDAL ? Cone::kPyramidal : Cone::kElliptic;
   model.opt.impratio = m->opt.impratio;
-  if (m->opt.solver != mjSOL_CG && m->opt.solver != mjSOL_NEWTON) {
-    throw std::runtime_error("from_mujoco: lever has no PGS solver");
+  if (m->opt.solver != mjSOL_PGS && m->opt.solver != mjSOL_CG && m->opt.solver != mjSOL_NEWTON) {
+    throw std::runtime_error("from_mujoco: unknown constraint solver");
   }
-  model.opt.solver = m->opt.solver == mjSOL_CG ? Solver::kCG : Solver::kNewton;
+  model.opt.solver = static_cast<Solver>(m->opt.solver);  // mjtSolver's values
   model.opt.iterations = m->opt.iterations;
   model.opt.tolerance = m->opt.tolerance;
   model.opt.mpr_tolerance = m->opt.mpr_tolerance;
@@ -331,11 +331,8 @@ Model from_mujoco(const mjModel* m) {
   copy_sensors(m, model);
   copy_tendons(m, model);
   for (int a = 0; a < m->nu; ++a) {
-    if (m->actuator_dyntype[a] == mjDYN_USER || m->actuator_gaintype[a] == mjGAIN_USER ||
-        m->actuator_biastype[a] == mjBIAS_USER) {
-      throw std::runtime_error(
-          "from_mujoco: user-defined actuator dynamics, gains and biases are not supported");
-    }
+    // user-defined dynamics, gains and biases keep MuJoCo's values (mjtDyn, mjtGain, mjtBias):
+    // the caller sets the model's callbacks
     model.actuator_name[a] = name_of(m, mjOBJ_ACTUATOR, a);
     model.actuator_trntype[a] = static_cast<TransmissionType>(m->actuator_trntype[a]);
     model.actuator_trnid[a] = {m->actuator_trnid[2 * a], m->actuator_trnid[2 * a + 1]};

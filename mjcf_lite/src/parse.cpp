@@ -210,12 +210,15 @@ MotorSpec read_actuator(const Element& e, const DefaultClasses& classes) {
   m.dyntype = dyn == "integrator" ? DynType::kIntegrator
               : dyn == "filter"   ? DynType::kFilter
               : dyn == "muscle"   ? DynType::kMuscle
+              : dyn == "user"     ? DynType::kUser
                                   : DynType::kNone;
-  m.gaintype = gain == "affine" ? GainType::kAffine
+  m.gaintype = gain == "affine"   ? GainType::kAffine
                : gain == "muscle" ? GainType::kMuscle
+               : gain == "user"   ? GainType::kUser
                                   : GainType::kFixed;
-  m.biastype = bias == "affine" ? BiasType::kAffine
+  m.biastype = bias == "affine"   ? BiasType::kAffine
                : bias == "muscle" ? BiasType::kMuscle
+               : bias == "user"   ? BiasType::kUser
                                   : BiasType::kNone;
   m.dynprm = f.array<kDynParameters>("dynprm");
   m.actrange = f.array<2>("actrange");
@@ -404,9 +407,10 @@ Options read_option(const Element& root) {
                  : integrator == "implicit" ? Integrator::kImplicit
                  : integrator == "implicitfast" ? Integrator::kImplicitFast
                                             : Integrator::kEuler;
-  // contact; the solver CG or Newton, the ones the schema accepts
+  // contact; the solver
   o.cone = f.word("cone") == "elliptic" ? Cone::kElliptic : Cone::kPyramidal;
-  o.solver = f.word("solver") == "CG" ? Solver::kCG : Solver::kNewton;
+  const std::string solver = f.word("solver");
+  o.solver = solver == "PGS" ? Solver::kPGS : solver == "CG" ? Solver::kCG : Solver::kNewton;
   o.impratio = f.real("impratio");
   o.iterations = f.integer("iterations");
   o.tolerance = f.real("tolerance");

@@ -335,16 +335,20 @@ std::vector<AttributeRule> general_class_attributes() {
   return join(motor_class_attributes(),
               {
                   integer("group", 1, "0", "visualisation group (kept; no effect on dynamics)"),
-                  keyword("dyntype", "none", "none integrator filter muscle", "user",
+                  keyword("dyntype", "none", "none integrator filter muscle user", "",
                           "activation dynamics: none (ctrl acts directly); integrator (act' = "
                           "ctrl), filter (act' = (ctrl - act) / dynprm[0]), muscle (MuJoCo's "
-                          "activation time constants dynprm[0..1]): the force follows act"),
-                  keyword("gaintype", "fixed", "fixed affine muscle", "user",
+                          "activation time constants dynprm[0..1]), user (the model's "
+                          "actuator_dyn_callback, MuJoCo's mjcb_act_dyn; 0 without one): the "
+                          "force follows act"),
+                  keyword("gaintype", "fixed", "fixed affine muscle user", "",
                           "gain: fixed = gainprm[0]; affine = gainprm[0] + gainprm[1] length + "
-                          "gainprm[2] velocity; muscle = the force-length-velocity curves"),
-                  keyword("biastype", "none", "none affine muscle", "user",
+                          "gainprm[2] velocity; muscle = the force-length-velocity curves; user "
+                          "= the model's actuator_gain_callback (mjcb_act_gain; 1 without one)"),
+                  keyword("biastype", "none", "none affine muscle user", "",
                           "bias: affine = biasprm[0] + biasprm[1] length + biasprm[2] velocity; "
-                          "muscle = the passive force curve"),
+                          "muscle = the passive force curve; user = the model's "
+                          "actuator_bias_callback (mjcb_act_bias; 0 without one)"),
                   partial("gainprm", 10, "1 0 0 0 0 0 0 0 0 0", "gain parameters"),
                   partial("biasprm", 10, "0 0 0 0 0 0 0 0 0 0", "bias parameters"),
                   partial("dynprm", 10, "1 0 0 0 0 0 0 0 0 0", "activation-dynamics parameters"),
@@ -654,15 +658,17 @@ std::vector<ElementRule> build() {
                         "frictional-to-normal impedance ratio of elliptic-cone contacts; must be "
                         "positive"),
                    keyword("cone", "pyramidal", "pyramidal elliptic", "", "friction cone"),
-                   keyword("solver", "Newton", "CG Newton", "PGS",
-                           "constraint solver: Newton (lever solves the problem exactly) or "
-                           "MuJoCo's conjugate gradients (stopped by tolerance and iterations)"),
+                   keyword("solver", "Newton", "PGS CG Newton", "",
+                           "constraint solver: Newton (lever solves the problem exactly), "
+                           "MuJoCo's conjugate gradients or its projected Gauss-Seidel (both "
+                           "stopped by tolerance and iterations)"),
                    integer("iterations", 1, "100",
-                           "most CG iterations (lever's Newton solve ends at convergence); must "
-                           "not be negative"),
+                           "most CG iterations or PGS sweeps (lever's Newton solve ends at "
+                           "convergence); must not be negative"),
                    real("tolerance", 1, "1e-8",
                         "CG's tolerance on the cost's decrease and gradient (0: the exact "
-                        "minimizer CG converges to, as Newton's); must not be negative"),
+                        "minimizer CG converges to, as Newton's), PGS's on a sweep's decrease "
+                        "(0: every sweep of iterations); must not be negative"),
                    integer("noslip_iterations", 1, "0",
                            "noslip solver iterations: lever has no noslip solver, so only 0"),
                    real("noslip_tolerance", 1, "1e-6",
@@ -785,24 +791,31 @@ std::vector<ElementRule> build() {
                "equality constraint defaults of the class"});
   s.push_back({"tendon", "default", '?', tendon_class_attributes(), "user", "",
                "tendon defaults of the class"});
+  // MuJoCo 2.2.2 takes cranklength in a class for every actuator kind but adhesion; a class's
+  // value reaches the actuators of the class, a slider-crank's rod or, on another transmission,
+  // kept in actuator_cranklength as MuJoCo keeps it
+  const auto with_crank = [](std::vector<AttributeRule> rules) {
+    return join(std::move(rules),
+                {real("cranklength", 1, "0", "a slider-crank's rod length, positive")});
+  };
   s.push_back({"motor", "default", '?',
-               join(motor_class_attributes(),
-                    {integer("group", 1, "0", "visualisation group (kept)")}),
-               "cranklength", "", "actuator defaults of the class, as a motor"});
-  s.push_back({"general", "default", '?', general_class_attributes(), "cranklength", "",
+               with_crank(join(motor_class_attributes(),
+                               {integer("group", 1, "0", "visualisation group (kept)")})),
+               "", "", "actuator defaults of the class, as a motor"});
+  s.push_back({"general", "default", '?', with_crank(general_class_attributes()), "", "",
                "actuator defaults of the class"});
-  s.push_back({"muscle", "default", '?', muscle_class_attributes(), "cranklength", "",
+  s.push_back({"muscle", "default", '?', with_crank(muscle_class_attributes()), "", "",
                "actuator defaults of the class, as a muscle"});
-  s.push_back({"position", "default", '?', position_class_attributes(), "cranklength",
-               "", "actuator defaults of the class, as a position servo"});
+  s.push_back({"position", "default", '?', with_crank(position_class_attributes()), "", "",
+               "actuator defaults of the class, as a position servo"});
   s.push_back({"velocity", "default", '?',
-               shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m"),
-               "cranklength", "", "actuator defaults of the class, as a velocity servo"});
-  s.push_back({"intvelocity", "default", '?', intvelocity_class_attributes(), "cranklength", "",
+               with_crank(shortcut_class_attributes("kv", "velocity gain, N m s/rad or N s/m")),
+               "", "", "actuator defaults of the class, as a velocity servo"});
+  s.push_back({"intvelocity", "default", '?', with_crank(intvelocity_class_attributes()), "", "",
                "actuator defaults of the class, as an integrated-velocity servo"});
-  s.push_back({"damper", "default", '?', damper_class_attributes(), "cranklength", "",
+  s.push_back({"damper", "default", '?', with_crank(damper_class_attributes()), "", "",
                "actuator defaults of the class, as a damper"});
-  s.push_back({"cylinder", "default", '?', cylinder_class_attributes(), "cranklength", "",
+  s.push_back({"cylinder", "default", '?', with_crank(cylinder_class_attributes()), "", "",
                "actuator defaults of the class, as a cylinder"});
   s.push_back({"adhesion", "default", '?', adhesion_class_attributes(), "", "",
                "actuator defaults of the class, as adhesion"});
@@ -1092,8 +1105,7 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   * `option/impratio` that is zero or negative, a negative `option/iterations` or
     `option/tolerance`, and `size/nconmax` or `size/njmax` below -1 (MuJoCo reads any negative
     value as the default).
-* Refused because lever does not have them: `option/solver` `PGS` (lever's solvers are Newton,
-  MuJoCo's default, and CG), `option/noslip_iterations` above 0 (no noslip solver),
+* Refused because lever does not have them: `option/noslip_iterations` above 0 (no noslip solver),
   `geom/type="hfield"`.
 * Every `option/flag` of MuJoCo 2.2.2, as `model.opt.disableflags` and `enableflags` (mjtDisableBit's
   and mjtEnableBit's bits), honoured where MuJoCo reads each (docs/contact.md, "Option flags"), with

@@ -271,9 +271,9 @@ class Writer {
     e->SetName("general");
     if (tag == "damper" || tag == "adhesion") e->SetAttribute("ctrllimited", "true");
     if (tag == "intvelocity") e->SetAttribute("actlimited", "true");
-    const char* const dyn[] = {"none", "integrator", "filter", "muscle"};
-    const char* const gain[] = {"fixed", "affine", "muscle"};
-    const char* const bias[] = {"none", "affine", "muscle"};
+    const char* const dyn[] = {"none", "integrator", "filter", "muscle", "user"};
+    const char* const gain[] = {"fixed", "affine", "muscle", "user"};
+    const char* const bias[] = {"none", "affine", "muscle", "user"};
     e->SetAttribute("dyntype", dyn[static_cast<int>(model.actuator_dyntype[a])]);
     e->SetAttribute("gaintype", gain[static_cast<int>(model.actuator_gaintype[a])]);
     e->SetAttribute("biastype", bias[static_cast<int>(model.actuator_biastype[a])]);

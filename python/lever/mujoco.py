@@ -366,7 +366,7 @@ class MjOption:
 
     @solver.setter
     def solver(self, value: int) -> None:
-        self._native.solver = int(value)  # mjtSolver: 1 CG or 2 Newton (lever has no PGS)
+        self._native.solver = int(value)  # mjtSolver: 0 PGS, 1 CG or 2 Newton
 
     @property
     def iterations(self) -> int:
@@ -627,6 +627,13 @@ class MjData:
     @property
     def ne(self) -> int:
         return self._native.ne
+
+    @property
+    def solver_iter(self) -> int:
+        """The constraint solver's iterations (MuJoCo 2.2.2's d->solver_iter; MuJoCo 3's
+        d.solver_niter[0] for one island): CG's iterations and PGS's sweeps as MuJoCo counts them;
+        with Newton, lever's own Newton steps."""
+        return self._native.solver_iter
 
     @property
     def nf(self) -> int:

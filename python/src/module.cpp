@@ -75,6 +75,20 @@ lever::SensorCallback python_sensor_callback(py::object fn, std::weak_ptr<lever:
   };
 }
 
+// A Model actuator callback calling a Python function fn(model, data, id) -> float (MuJoCo's
+// mjcb_act_gain, mjcb_act_bias, mjcb_act_dyn).
+lever::ActuatorCallback python_actuator_callback(py::object fn, std::weak_ptr<lever::Model> model) {
+  return [fn = std::move(fn), model](const lever::Model&, const lever::Data& data, int id) {
+    py::gil_scoped_acquire gil;
+    if (evaluating_data == nullptr || &(*evaluating_data)->data != &data) {
+      throw lever::StateError(
+          "lever: a Python actuator callback runs in lever.forward, step, step1, step2 and "
+          "inverse on a lever.Data, not in a batch.");
+    }
+    return fn(model.lock(), *evaluating_data, id).cast<double>();
+  };
+}
+
 // A keyframe array (nkey x n, row-major) as a writable (nkey, n) numpy view.
 py::array key_view(lever::RowMatrix& a, py::handle owner) {
   const auto item = static_cast<py::ssize_t>(sizeof(double));
@@ -415,6 +429,21 @@ PYBIND11_MODULE(_lever, m) {
           "fn(model, data, stage) writes the user sensors' numbers into data.sensordata after "
           "each stage (1 position, 2 velocity, 3 acceleration) that has user sensors (MuJoCo's "
           "mjcb_sensor); None removes it, and the user sensors then stay as they are.")
+      .def(
+          "set_actuator_callbacks",
+          [](const ModelPtr& x, py::object gain, py::object bias, py::object dyn) {
+            const auto wrap = [&x](py::object fn) {
+              return fn.is_none() ? lever::ActuatorCallback{}
+                                  : python_actuator_callback(std::move(fn), x);
+            };
+            x->actuator_gain_callback = wrap(std::move(gain));
+            x->actuator_bias_callback = wrap(std::move(bias));
+            x->actuator_dyn_callback = wrap(std::move(dyn));
+          },
+          py::arg("gain") = py::none(), py::arg("bias") = py::none(), py::arg("dyn") = py::none(),
+          "fn(model, data, id) -> float for the actuators whose gaintype, biastype or dyntype is "
+          "user (MuJoCo's mjcb_act_gain, mjcb_act_bias, mjcb_act_dyn): the gain, the bias, "
+          "act_dot; None (the default) leaves MuJoCo's values, gain 1, bias 0, act_dot 0.")
       .def_property(
           "integrator", [](const lever::Model& x) { return static_cast<int>(x.opt.integrator); },
           [](lever::Model& x, int i) {
@@ -429,9 +458,9 @@ PYBIND11_MODULE(_lever, m) {
       .def_property(
           "solver", [](const lever::Model& x) { return static_cast<int>(x.opt.solver); },
           [](lever::Model& x, int s) {
-            if (s != 1 && s != 2) {
+            if (s < 0 || s > 2) {
               throw lever::StateError("solver " + std::to_string(s) +
-                                      " is not one lever has (1 CG, 2 Newton; no PGS).");
+                                      " is not one lever has (0 PGS, 1 CG, 2 Newton).");
             }
             x.opt.solver = static_cast<lever::Solver>(s);
           })

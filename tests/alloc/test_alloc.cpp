@@ -468,17 +468,18 @@ TEST_CASE("the elliptic cones' Newton solver allocates nothing", "[alloc]") {
   }
 }
 
-TEST_CASE("MuJoCo's CG solver allocates nothing, with every integrator and both cones",
+TEST_CASE("MuJoCo's CG and PGS solvers allocate nothing, with every integrator and both cones",
           "[alloc]") {
   std::string how;
   const lever::Model base = load(lever::test::model_path("models/box_drop.xml"), how);
+  for (const lever::Solver solver : {lever::Solver::kCG, lever::Solver::kPGS})
   for (const lever::Cone cone : {lever::Cone::kPyramidal, lever::Cone::kElliptic}) {
     for (const lever::Integrator integrator :
          {lever::Integrator::kEuler, lever::Integrator::kRK4, lever::Integrator::kImplicit}) {
       lever::Model m = base;
       m.opt.cone = cone;
       m.opt.integrator = integrator;
-      m.opt.solver = lever::Solver::kCG;  // MuJoCo's default tolerance: CG runs
+      m.opt.solver = solver;  // MuJoCo's default tolerance: the solver iterates
       lever::Data d(m);
       if (m.nkey > 0) lever::reset_keyframe(m, d, 0);
       int iterations = 0;

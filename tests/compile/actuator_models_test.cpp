@@ -236,8 +236,6 @@ TEST_CASE("actuators with dynamics written wrongly are refused by name",
   CHECK_THAT(load_refusal(head + R"(<muscle joint="j" lmin="1.2" lengthrange="0 1"/>
     </actuator></mujoco>)"),
              Catch::Contains("lmin < 1 < lmax"));
-  CHECK_THAT(load_refusal(head + R"(<general joint="j" dyntype="user"/></actuator></mujoco>)"),
-             Catch::Contains("user"));
   // an unlimited joint: the simulation pulls the length without end and does not settle
   CHECK_THAT(load_refusal(head + R"(<muscle joint="j"/></actuator></mujoco>)"),
              Catch::Contains("did not settle"));

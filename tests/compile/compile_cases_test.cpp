@@ -369,6 +369,38 @@ const Case kCases[] = {
   <option solver="CG" iterations="30" tolerance="1e-6"/>
   <worldbody><body name="b"><joint/><geom size="0.1"/></body></worldbody>
 </mujoco>)"},
+  // MuJoCo's projected Gauss-Seidel: opt.solver is mjSOL_PGS (0)
+  {"option-solver-pgs", R"(<mujoco>
+  <option solver="PGS" iterations="20" tolerance="0"/>
+  <worldbody><body name="b"><joint/><geom size="0.1"/></body></worldbody>
+</mujoco>)"},
+  // cranklength from a class: a slider-crank's rod, and kept on joint transmissions as MuJoCo
+  // keeps it
+  {"actuator-class-cranklength", R"(<mujoco>
+  <default>
+    <general cranklength="0.3"/>
+    <default class="crank">
+      <position kp="30" cranklength="0.08"/>
+      <motor cranklength="0.05"/>
+      <velocity cranklength="0.07"/>
+    </default>
+  </default>
+  <worldbody>
+    <site name="slider" pos="0 -.1 0" zaxis="1 .5 0"/>
+    <body>
+      <joint name="hinge" damping=".1"/>
+      <geom type="capsule" size=".01" fromto="0 0 0 .2 0 0"/>
+      <site name="crank" pos=".1 0 0"/>
+    </body>
+  </worldbody>
+  <actuator>
+    <position class="crank" cranksite="crank" slidersite="slider"/>
+    <position class="crank" cranksite="crank" slidersite="slider" cranklength="0.09"/>
+    <motor class="crank" joint="hinge"/>
+    <velocity class="crank" joint="hinge"/>
+    <general joint="hinge"/>
+  </actuator>
+</mujoco>)"},
   // every flag, the override's parameters (o_solref written in part), one <option> after another
   {"option-flags", R"(<mujoco>
   <option o_margin="0.01" o_solref="0.05" o_solimp="0.7 0.8 0.01 0.4 3">

@@ -255,7 +255,6 @@ void make_files() {
   write("contact-moving-plane.xml",
         "<mujoco>\n<worldbody>\n<body><joint/><geom size=\"1\"/>\n<geom type=\"plane\" "
         "size=\"1 1 1\"/></body>\n</worldbody>\n</mujoco>\n");
-  write("contact-solver-pgs.xml", "<mujoco>\n<option solver=\"PGS\"/>\n</mujoco>\n");
   std::string pairs =
       "<mujoco>\n<worldbody>\n<geom name=\"floor\" type=\"plane\" size=\"0 0 1\"/>\n";
   pairs += "<body><joint/><geom name=\"g\" type=\"cylinder\" size=\"0.1 0.1\"/></body>\n";
@@ -301,7 +300,6 @@ std::vector<Row> rows() {
       {"noslip solver", {"model", "@contact-noslip.xml"}, 2, "no noslip solver", 2},
       {"pair condim 5", {"model", "@contact-condim-5.xml"}, 2, "MuJoCo has no condim 5", 6},
       {"plane in a moving body", {"model", "@contact-moving-plane.xml"}, 2, "use a box", 4},
-      {"solver PGS", {"model", "@contact-solver-pgs.xml"}, 2, "which has 'CG' and 'Newton'", 2},
       {"20000 pairs and exclusions of one geom pair",
        {"model", "@contact-20000-pairs.xml"},
        0,

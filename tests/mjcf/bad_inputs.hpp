@@ -203,10 +203,6 @@ inline const BadInput kBadInputs[] = {
     <flag override="on"/>
   </option>
 </mujoco>)", 3, "flag", "override", "expected 'disable' or 'enable'", MuJoCo::kRejects, ""},
-  {"contact-solver-pgs", R"(<mujoco>
-  <option solver="PGS"/>
-</mujoco>)", 2, "option", "solver", "'PGS' is valid MJCF but not supported by lever, which has 'CG' and 'Newton'",
-   MuJoCo::kAccepts, "lever's solvers are CG and Newton"},
   {"contact-cone-unknown", R"(<mujoco>
   <option cone="eliptic"/>
 </mujoco>)", 2, "option", "cone", "expected 'pyramidal' or 'elliptic' (did you mean 'elliptic'?)",
@@ -423,18 +419,6 @@ inline const BadInput kBadInputs[] = {
     <general body="b" joint="j"/>
   </actuator>
 </mujoco>)", 9, "general", "body", "names both joint and body", MuJoCo::kRejects, ""},
-  {"unsupported-dyntype", R"(<mujoco>
-  <worldbody>
-    <body name="b">
-      <joint name="j"/>
-      <geom size="0.1"/>
-    </body>
-  </worldbody>
-  <actuator>
-    <general joint="j" dyntype="user"/>
-  </actuator>
-</mujoco>)", 9, "general", "dyntype", "'user' is valid MJCF but not supported",
-   MuJoCo::kAccepts, "user-defined activation dynamics (MuJoCo's callbacks) are outside lever's subset"},
 
   // ---- number lists ------------------------------------------------------------------------
   {"too-few-numbers", R"(<mujoco>

@@ -296,8 +296,9 @@ struct DataFields {
   ArenaArray<ConstraintState> efc_state;  ///< (nefc)
   ArenaVector qfrc_constraint;            ///< (nv) J^T efc_force
   ArenaVector qacc;                       ///< (nv) joint accelerations
-  /// the constraint solve's iterations: with opt.solver CG, MuJoCo's count (its solver_iter);
-  /// with Newton, lever's Newton steps (0 for the exact one-sided solves), not MuJoCo's
+  /// the constraint solve's iterations: with opt.solver CG or PGS, MuJoCo's count (its
+  /// solver_iter); with Newton, lever's Newton steps (0 for the exact one-sided solves), not
+  /// MuJoCo's
   int solver_iter = 0;
   ArenaVector qfrc_inverse;               ///< (nv) inverse(): force that produces qacc
 

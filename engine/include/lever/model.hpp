@@ -95,14 +95,15 @@ constexpr const char* integrator_name(Integrator integrator) {
 }
 
 /// Actuator gain, bias and activation-dynamics types; the numeric values are MuJoCo's mjtGain,
-/// mjtBias and mjtDyn (lever has all but the user-defined ones). An actuator with dynamics has an
+/// mjtBias and mjtDyn. An actuator with dynamics has an
 /// activation act (data.act), which its force multiplies instead of ctrl: an integrator's rate is
 /// ctrl, a filter's (ctrl - act) / dynprm[0], a muscle's MuJoCo's activation dynamics
 /// (lever/dynamics.hpp muscle_activation_rate). A muscle's gain and bias are its force-length-
-/// velocity and passive curves (muscle_gain, muscle_bias).
-enum class GainType : int { kFixed = 0, kAffine = 1, kMuscle = 2 };
-enum class BiasType : int { kNone = 0, kAffine = 1, kMuscle = 2 };
-enum class DynType : int { kNone = 0, kIntegrator = 1, kFilter = 2, kMuscle = 3 };
+/// velocity and passive curves (muscle_gain, muscle_bias). The user types are the model's
+/// callbacks' (Model::actuator_gain_callback, ..., MuJoCo's mjcb_act_gain, ...).
+enum class GainType : int { kFixed = 0, kAffine = 1, kMuscle = 2, kUser = 3 };
+enum class BiasType : int { kNone = 0, kAffine = 1, kMuscle = 2, kUser = 3 };
+enum class DynType : int { kNone = 0, kIntegrator = 1, kFilter = 2, kMuscle = 3, kUser = 4 };
 
 /// Number of activation-dynamics parameters per actuator (MuJoCo's mjNDYN).
 inline constexpr int kDynParameters = 10;
@@ -270,10 +271,10 @@ inline constexpr int kEqualityData = 11;
 /// Friction cones; the numeric values are MuJoCo's mjtCone.
 enum class Cone : int { kPyramidal = 0, kElliptic = 1 };
 
-/// Constraint solvers; the numeric values are MuJoCo's mjtSolver. lever has no PGS (the value is
-/// named so that a model carrying it is refused by name).
+/// Constraint solvers; the numeric values are MuJoCo's mjtSolver.
 enum class Solver : int {
-  kPGS = 0,     ///< MuJoCo's projected Gauss-Seidel: not in lever (validate refuses it)
+  kPGS = 0,     ///< MuJoCo's projected Gauss-Seidel on the dual, opt.iterations sweeps at most,
+                ///< stopped by opt.tolerance (at tolerance 0 too)
   kCG = 1,      ///< MuJoCo's conjugate gradients, stopped by opt.tolerance and opt.iterations
   kNewton = 2,  ///< Newton's method: lever solves the problem exactly (tolerance not read)
 };
@@ -320,8 +321,10 @@ struct Options {
   Cone cone = Cone::kPyramidal;  ///< friction cone of contact rows
   double impratio = 1.0;         ///< frictional-to-normal impedance ratio (elliptic cones)
   Solver solver = Solver::kNewton;  ///< constraint solver (MuJoCo's default, Newton)
-  int iterations = 100;   ///< most CG iterations (lever's Newton solve stops on convergence)
-  double tolerance = 1e-8;  ///< CG's tolerance, on the cost's decrease and gradient (MuJoCo's)
+  int iterations = 100;   ///< most CG iterations or PGS sweeps (lever's Newton solve stops on
+                          ///< convergence)
+  double tolerance = 1e-8;  ///< CG's tolerance, on the cost's decrease and gradient, and PGS's,
+                            ///< on a sweep's decrease (MuJoCo's)
   // the general convex pairs' Minkowski portal refinement (MuJoCo 2.2.2's defaults)
   double mpr_tolerance = 1e-6;  ///< MPR's boundary tolerance
   int mpr_iterations = 50;      ///< most MPR iterations
@@ -371,6 +374,13 @@ struct Data;
 /// numbers at sensor_adr in data.sensordata (noise and cutoff are applied after it). Without one,
 /// their numbers stay as they are (zero in a new Data), as in MuJoCo.
 using SensorCallback = std::function<void(const Model&, Data&, SensorStage)>;
+
+/// What evaluates an actuator's user-defined part (gaintype, biastype or dyntype "user"), MuJoCo's
+/// mjcb_act_gain, mjcb_act_bias and mjcb_act_dyn: the gain, the bias, or act_dot of actuator
+/// `actuator`, from the model and the data as actuation() has them then (transmission, lengths and
+/// velocities current; the forces of the actuators before it written; for act_dot, every force
+/// and qfrc_actuator). Without one, MuJoCo's values: gain 1, bias 0, act_dot 0.
+using ActuatorCallback = std::function<double(const Model&, const Data&, int actuator)>;
 
 struct Model {
   std::string name = "MuJoCo Model";  ///< <mujoco model="...">
@@ -625,6 +635,9 @@ struct Model {
                                       ///< sensors: to cutoff)
   /// evaluates the user sensors (set by the user; not part of a saved or pickled model)
   SensorCallback sensor_callback;
+  /// evaluate the actuators' user gain, bias and activation dynamics (set by the user; not part
+  /// of a saved or pickled model; a copy of the model shares them)
+  ActuatorCallback actuator_gain_callback, actuator_bias_callback, actuator_dyn_callback;
   std::vector<double> sensor_noise;   ///< standard deviation of the noise added when
                                       ///< opt.enabled(kEnableSensornoise)
 

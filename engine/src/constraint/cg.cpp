@@ -54,16 +54,6 @@ using detail::kMinVal;                    // MuJoCo's mjMINVAL
 constexpr int kMaxLineEvaluations = 50;   // CGsearch's LSmaxiter
 constexpr double kLineToleranceScale = 0.01;  // CGsearch's LStolscl: the slope's tolerance
 
-// MuJoCo's scale of costs and gradients: meaninertia max(1, nv), meaninertia the mean of M's
-// diagonal at qpos0 (dof_M0, summed in dof order as mj_setConst's setStat does).
-double cost_scale(const Model& model) {
-  if (model.nv == 0) return 1.0;
-  double sum = 0.0;
-  for (int i = 0; i < model.nv; ++i) sum += model.dof_M0[i];
-  const double meaninertia = sum / model.nv;
-  return meaninertia * std::max(1, model.nv);
-}
-
 // The line search along work.newton_dir from the current qacc (work.newton_jar its rows' jar,
 // gauss0 its Gauss term), as MuJoCo's CGsearch: the step length, 0 when none lowers the cost.
 class LineSearch {

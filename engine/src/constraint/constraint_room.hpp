@@ -3,7 +3,8 @@
 // (rows.cpp); their impedance and reference acceleration, and the products with their Jacobian
 // (rows.cpp); the solvers: the active sets and principal pivoting for one-sided rows (rows.cpp)
 // and, on MuJoCo's primal problem (primal.cpp), Newton's method for every kind (newton.cpp) and
-// MuJoCo's conjugate gradients (cg.cpp, for opt.solver CG); a contact's force in its frame
+// MuJoCo's conjugate gradients (cg.cpp, for opt.solver CG); on the dual problem, MuJoCo's
+// projected Gauss-Seidel (pgs.cpp, for opt.solver PGS); a contact's force in its frame
 // (contact_force.cpp); the body transmission, which acts along the contacts' normals
 // (body_transmission.cpp).
 #pragma once
@@ -61,6 +62,12 @@ void complete_equality_data(Model& model, const Data& data);
 /// Returns the rows made so far.
 int add_friction_loss_rows(const Model& model, Data& data, int n);
 
+/// The rows' matrix in row space, A = J M^-1 J^T + R (MuJoCo's efc_AR), into the lower triangle
+/// of work.A's top-left nefc x nefc corner, as MuJoCo forms it: Y = D^-1/2 L^-T J^T (work.halfJ)
+/// with M = L^T D L, then A = Y^T Y, each coefficient summed over the dofs in order (rows.cpp).
+/// Shared by the principal pivoting and the PGS solver. @pre M factored, rows made.
+void row_space_matrix(const Model& model, Data& data);
+
 /// Whether a row's Jacobian is a dense row of efc_J that the products read whole (an equality
 /// row, a tendon's friction-loss or limit row) rather than sign e_dof or a contact's frame rows.
 inline bool dense_row(ConstraintType type) {
@@ -106,6 +113,11 @@ void solve_with_hessian(Data& data, Eigen::Ref<Eigen::MatrixXd> H, Eigen::Ref<Ei
 // The unknown is qacc; the cost is the Gauss term plus a convex function s of each block's
 // jar = J qacc - aref (a block: an elliptic cone's dim rows, else one row). The line quantities
 // below read work.newton_jar (jar at the current qacc) and work.newton_jv (J dir).
+
+/// MuJoCo's scale of costs and gradients, meaninertia max(1, nv): meaninertia the mean of M's
+/// diagonal at qpos0 (dof_M0, summed in dof order as mj_setConst's setStat does). The CG and PGS
+/// solvers' tolerances are on costs divided by it.
+double cost_scale(const Model& model);
 
 /// A block's Hessian d^2 s / d jar^2 (its top-left size x size corner).
 using BlockHessian = Eigen::Matrix<double, 6, 6>;
@@ -154,6 +166,12 @@ int solve_constraint_newton(const Model& model, Data& data);
 /// qfrc_constraint. Returns the iterations taken (MuJoCo's solver_iter).
 /// @pre as solve_constraint_newton.
 int solve_constraint_cg(const Model& model, Data& data);
+
+/// Solve the constraint rows by MuJoCo's projected Gauss-Seidel on the dual problem (pgs.cpp),
+/// opt.iterations sweeps at most, stopped as MuJoCo stops them by opt.tolerance, from zero
+/// forces: efc_b, efc_force, efc_state (the dual states), qfrc_constraint, qacc. Returns the
+/// sweeps taken (MuJoCo's solver_iter). @pre as solve_constraint_newton.
+int solve_constraint_pgs(const Model& model, Data& data);
 
 /// Solve one-sided rows (limits, frictionless and pyramidal contacts) by principal pivoting on
 /// A = J M^-1 J^T + R (rows.cpp), the fallback of solve_constraint's active sets: qacc,

@@ -36,6 +36,14 @@ constexpr int kMaxLineSteps = 200;
 
 }  // namespace
 
+double cost_scale(const Model& model) {
+  if (model.nv == 0) return 1.0;
+  double sum = 0.0;
+  for (int i = 0; i < model.nv; ++i) sum += model.dof_M0[i];
+  const double meaninertia = sum / model.nv;
+  return meaninertia * std::max(1, model.nv);
+}
+
 int block_size(const Data& data, int r) {
   if (data.efc_type[r] != ConstraintType::kContactElliptic) return 1;
   return data.contact[data.efc_id[r]].dim;

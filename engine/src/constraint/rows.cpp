@@ -791,6 +791,36 @@ bool solve_active_set(Data& data) {
   return false;
 }
 
+}  // namespace
+
+void row_space_matrix(const Model& model, Data& data) {
+  const int n = data.nefc, nv = model.nv;
+  auto& w = data.work;
+  // With M = L^T D L, J M^-1 J^T = Y^T Y for Y = D^-1/2 L^-T J^T: one half solve per row, over
+  // its dofs and their ancestors, then each dof scaled by 1 / sqrt(D) (MuJoCo's qLDiagSqrtInv)
+  auto& inv_sqrt_d = w.vec3;
+  for (int k = 0; k < nv; ++k) inv_sqrt_d[k] = 1.0 / std::sqrt(data.qLD(k, k));
+  for (int r = 0; r < n; ++r) {
+    auto y = w.halfJ.col(r);
+    y = data.efc_J.row(r).transpose();
+    solve_mass_half(model, data, y);
+    y.array() *= inv_sqrt_d.array();
+  }
+  // the lower triangle, each coefficient summed over the dofs in order
+  for (int c = 0; c < n; ++c) {
+    const double* yc = w.halfJ.col(c).data();
+    for (int r = c; r < n; ++r) {
+      const double* yr = w.halfJ.col(r).data();
+      double sum = 0.0;
+      for (int k = 0; k < nv; ++k) sum += yr[k] * yc[k];
+      w.A(r, c) = sum;
+    }
+    w.A(c, c) += data.efc_R[c];
+  }
+}
+
+namespace {
+
 // The same problem in row space, exactly, by Murty's least-index principal pivoting on
 // A = J M^-1 J^T + R: finite for a positive definite A, whatever the start. Two rows or more:
 // the forces in w.lcp_f and the set in w.lcp_active.
@@ -798,20 +828,8 @@ void pivot_rows(const Model& model, Data& data) {
   const int n = data.nefc;
   auto& w = data.work;
   const auto b = data.efc_b.head(n);
-  // A = J M^-1 J^T + R. With M = L^T D L, J M^-1 J^T = Y^T D^-1 Y for Y = L^-T J^T: one half
-  // solve per row, over its dofs and their ancestors.
-  for (int r = 0; r < n; ++r) {
-    auto y = w.halfJ.col(r);
-    y = data.efc_J.row(r).transpose();
-    solve_mass_half(model, data, y);
-    w.halfJ_scaled.col(r) = y.cwiseProduct(data.qLDiagInv);
-  }
-  // A is symmetric: its lower triangle is computed and read (small sizes: coefficient by
-  // coefficient, no blocking)
+  row_space_matrix(model, data);
   auto A = w.A.topLeftCorner(n, n);
-  A.triangularView<Eigen::Lower>() =
-      w.halfJ.leftCols(n).transpose().lazyProduct(w.halfJ_scaled.leftCols(n));
-  A.diagonal() += data.efc_R.head(n);
 
   // Murty's least-index principal pivoting, starting from the rows that are pushed into the
   // stop. A + R is positive definite (R > 0), so the LCP has one solution and the method reaches
@@ -928,6 +946,13 @@ void start_one_sided(const Model& model, Data& data) {
 
 void unchecked::solve_constraint(const Model& model, Data& data) {
   data.solver_iter = 0;
+  // MuJoCo's projected Gauss-Seidel, its sweeps as MuJoCo runs them (at tolerance 0 too: they
+  // approach the minimizer without reaching it, so the exact solve would not be PGS's answer)
+  if (model.opt.solver == Solver::kPGS) {
+    start_unconstrained(model, data);
+    if (data.nefc > 0) data.solver_iter = solve_constraint_pgs(model, data);
+    return;
+  }
   // MuJoCo's conjugate gradients, stopped where MuJoCo stops them, for every kind of row; at
   // tolerance 0 the exact solve below (the minimizer CG converges to; cg.cpp says why)
   if (model.opt.solver == Solver::kCG && model.opt.tolerance > 0) {

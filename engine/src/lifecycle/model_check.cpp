@@ -568,9 +568,10 @@ void check_options_actuators_keys(const Model& model) {
       !finite_all(model.opt.o_solimp)) {
     throw ModelError("the contact override's o_margin, o_solref and o_solimp must be finite.");
   }
-  if (model.opt.solver != Solver::kCG && model.opt.solver != Solver::kNewton) {
+  if (model.opt.solver != Solver::kPGS && model.opt.solver != Solver::kCG &&
+      model.opt.solver != Solver::kNewton) {
     throw ModelError("opt.solver " + std::to_string(static_cast<int>(model.opt.solver)) +
-                     " is not one lever has (1 CG, 2 Newton; MuJoCo's PGS, 0, is not in lever).");
+                     " is not one lever has (0 PGS, 1 CG, 2 Newton).");
   }
   if (model.opt.iterations < 0 || !(model.opt.tolerance >= 0)) {
     throw ModelError("the solver's iterations and tolerance must not be negative.");
@@ -584,11 +585,11 @@ void check_options_actuators_keys(const Model& model) {
     const int dyntype = static_cast<int>(model.actuator_dyntype[a]);
     const int gaintype = static_cast<int>(model.actuator_gaintype[a]);
     const int biastype = static_cast<int>(model.actuator_biastype[a]);
-    if (dyntype < 0 || dyntype > 3 || gaintype < 0 || gaintype > 2 || biastype < 0 ||
-        biastype > 2) {
+    if (dyntype < 0 || dyntype > 4 || gaintype < 0 || gaintype > 3 || biastype < 0 ||
+        biastype > 3) {
       reject("actuator", a, model.actuator_name[a],
-             "needs dyntype none, integrator, filter or muscle, gaintype fixed, affine or muscle "
-             "and biastype none, affine or muscle (lever has no user-defined ones)");
+             "needs dyntype none, integrator, filter, muscle or user, gaintype fixed, affine, "
+             "muscle or user and biastype none, affine, muscle or user");
     }
     if (dyntype != 0) {
       ++stateful;

@@ -53,10 +53,12 @@ JointKind joint_kind(const Model& model, int j) {
 void build_actuator_kinds(Model& model) {
   model.actuator_kind.resize(model.nu);
   for (int a = 0; a < model.nu; ++a) {
-    // an actuator with dynamics or a muscle's curves is none of the simple kinds
+    // an actuator with dynamics, a muscle's curves or a user part is none of the simple kinds
     const bool simple = model.actuator_dyntype[a] == DynType::kNone &&
                         model.actuator_gaintype[a] != GainType::kMuscle &&
-                        model.actuator_biastype[a] != BiasType::kMuscle;
+                        model.actuator_biastype[a] != BiasType::kMuscle &&
+                        model.actuator_gaintype[a] != GainType::kUser &&
+                        model.actuator_biastype[a] != BiasType::kUser;
     model.actuator_kind[a] =
         simple ? actuator_kind_of(model.actuator_gaintype[a], model.actuator_gainprm[a],
                                   model.actuator_biastype[a], model.actuator_biasprm[a])

@@ -214,6 +214,7 @@ double activation_rate(const Model& model, int a, double ctrl, double act) {
     case DynType::kFilter: return (ctrl - act) / std::max(detail::kMinVal, prm[0]);
     case DynType::kMuscle: return muscle_activation_rate(ctrl, act, prm.data());
     case DynType::kNone: break;
+    case DynType::kUser: break;  // the model's callback, after the forces (actuation below)
   }
   return 0.0;
 }
@@ -228,6 +229,7 @@ double actuator_gain(const Model& model, int a, double length, double velocity) 
       return muscle_gain(length, velocity, model.actuator_lengthrange[a], model.actuator_acc0[a],
                          g.data());
     case GainType::kFixed: break;
+    case GainType::kUser: return 1.0;  // MuJoCo's without a callback (actuation calls it)
   }
   return g[0];
 }
@@ -239,6 +241,7 @@ double actuator_bias(const Model& model, int a, double length, double velocity) 
     case BiasType::kMuscle:
       return muscle_bias(length, model.actuator_lengthrange[a], model.actuator_acc0[a], b.data());
     case BiasType::kNone: break;
+    case BiasType::kUser: break;  // MuJoCo's without a callback (actuation calls it)
   }
   return 0.0;
 }
@@ -278,8 +281,15 @@ void unchecked::actuation(const Model& model, Data& data) {
     if (a >= first_stateful) {  // from the clamped control, before force[a] is overwritten
       data.act_dot[a - first_stateful] = activation_rate(model, a, force[a], data.act[a - first_stateful]);
     }
-    double f = input * actuator_gain(model, a, length[a], velocity[a]);
-    f += actuator_bias(model, a, length[a], velocity[a]);
+    // a user gain or bias from the model's callback, as MuJoCo's mjcb_act_gain and mjcb_act_bias
+    const double gain =
+        model.actuator_gaintype[a] == GainType::kUser && model.actuator_gain_callback
+            ? model.actuator_gain_callback(model, data, a)
+            : actuator_gain(model, a, length[a], velocity[a]);
+    double f = input * gain;
+    f += model.actuator_biastype[a] == BiasType::kUser && model.actuator_bias_callback
+             ? model.actuator_bias_callback(model, data, a)
+             : actuator_bias(model, a, length[a], velocity[a]);
     if (model.actuator_forcelimited[a]) f = clamp(f, model.actuator_forcerange[a]);
     force[a] = f;
     const int dof = actuator_scalar_dof(model, a);
@@ -289,6 +299,13 @@ void unchecked::actuation(const Model& model, Data& data) {
     }
     const double* const moment = data.actuator_moment.data() + static_cast<std::ptrdiff_t>(a) * nv;
     for (int j = 0; j < nv; ++j) qfrc[j] += moment[j] * f;  // moment^T f
+  }
+  // user activation dynamics, by the model's callback once every force is known (MuJoCo's
+  // mjcb_act_dyn, called after qfrc_actuator); 0 without one
+  for (int a = first_stateful; a < model.nu; ++a) {
+    if (model.actuator_dyntype[a] != DynType::kUser) continue;
+    data.act_dot[a - first_stateful] =
+        model.actuator_dyn_callback ? model.actuator_dyn_callback(model, data, a) : 0.0;
   }
 }
 
