@@ -18,9 +18,6 @@
 #include <cstdio>
 #include <string>
 
-#include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
-
 #include <lever/check.hpp>
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
@@ -57,7 +54,7 @@ double step_radius(const lever::Model& model, const lever::Data& start) {
     }
     A.col(i) = (x[0] - x[1]) / (2 * eps);
   }
-  return Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues().cwiseAbs().maxCoeff();
+  return lever::eigenvalues(A).cwiseAbs().maxCoeff();
 }
 
 }  // namespace
@@ -82,7 +79,7 @@ int main(int argc, char** argv) {
     Eigen::MatrixXd jacp(3, model.nv), jacr(3, model.nv), J(6, model.nv);
     lever::jac_site(model, data, ee, jacp, jacr);
     J << jacp, jacr;
-    const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(J).singularValues();
+    const Eigen::VectorXd sigma = lever::singular_values(J);
     std::printf("(2) ee Jacobian (6 x %d) at home: singular values %s\n", model.nv,
                 list(sigma).c_str());
     std::printf("    manipulability sqrt(det(J J^T)) = %.4g, condition number = %.4g\n",

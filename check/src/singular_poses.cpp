@@ -17,7 +17,7 @@
 #include <cmath>
 #include <random>
 
-#include <Eigen/SVD>
+#include <lever/spectra.hpp>
 
 #include <lever/data.hpp>
 #include <lever/kinematics.hpp>
@@ -73,7 +73,7 @@ class JacobianProbe {
     return J_;
   }
   Eigen::VectorXd sigma(const Eigen::VectorXd& q) {
-    return Eigen::JacobiSVD<Eigen::MatrixXd>(jacobian(q)).singularValues();
+    return singular_values(jacobian(q));
   }
   const Data& data() const { return data_; }
 
@@ -114,8 +114,8 @@ JacobianAt evaluate(const Model& model, JacobianProbe& probe, const std::string&
   JacobianAt at;
   at.where = where;
   at.q = q;
-  Eigen::JacobiSVD<Eigen::MatrixXd> svd(probe.jacobian(q), Eigen::ComputeFullV);
-  const Eigen::VectorXd all = counted(svd.singularValues());
+  const SingularValueDecomposition svd = singular_value_decomposition(probe.jacobian(q));
+  const Eigen::VectorXd all = counted(svd.sigma);
   at.sigma = all.head(std::min<Eigen::Index>(rank, all.size()));
   at.manipulability = at.sigma.size() ? at.sigma.prod() : 0.0;
   const double low = smallest(all, rank);
@@ -124,7 +124,7 @@ JacobianAt evaluate(const Model& model, JacobianProbe& probe, const std::string&
     // with more joints than task rows the Jacobian has a null space even at regular poses; the
     // motion that matters is the k-th right singular vector, the direction that moves the site
     // least
-    at.null_motion = svd.matrixV().col(rank - 1);
+    at.null_motion = svd.V.col(rank - 1);
     Eigen::Index big = 0;
     at.null_motion.cwiseAbs().maxCoeff(&big);
     if (at.null_motion[big] < 0) at.null_motion = -at.null_motion;  // a sign to print the same

@@ -21,7 +21,7 @@
 #include <functional>
 #include <vector>
 
-#include <Eigen/Eigenvalues>
+#include <lever/spectra.hpp>
 
 #include <lever/data.hpp>
 #include <lever/forward.hpp>
@@ -67,7 +67,7 @@ double growth_rate(const Model& model, const State& s, double eps) {
     Ac.block(nv, i, nv, 1) = (qacc[0] - qacc[1]) / (2 * eps);
   }
   if (nv == 0) return 0.0;
-  return Eigen::EigenSolver<Eigen::MatrixXd>(Ac, false).eigenvalues().real().maxCoeff();
+  return eigenvalues(Ac).real().maxCoeff();
 }
 
 // A copy of the model with another integrator, timestep or armature (constants recomputed).
@@ -332,7 +332,7 @@ Eigen::MatrixXd step_linearisation(const Model& model, const Eigen::VectorXd& qp
 
 double spectral_radius(const Eigen::MatrixXd& A) {
   if (A.size() == 0) return 0.0;
-  return Eigen::EigenSolver<Eigen::MatrixXd>(A, false).eigenvalues().cwiseAbs().maxCoeff();
+  return eigenvalues(A).cwiseAbs().maxCoeff();
 }
 
 StepStability check_step_stability(const Model& model, const std::string& key) {

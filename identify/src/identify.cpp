@@ -4,9 +4,9 @@
 #include <lever/error.hpp>
 #include <lever/identify.hpp>
 #include <lever/kinematics.hpp>
+#include <lever/spectra.hpp>
 
 #include <Eigen/QR>
-#include <Eigen/SVD>
 
 #include <algorithm>
 #include <cmath>
@@ -327,13 +327,14 @@ Result identify(const Model& prior, const Trajectory& data, const Options& optio
 
   Eigen::VectorXd norms = W.colwise().norm().transpose();
   for (int c = 0; c < unknowns; ++c) norms[c] = norms[c] > 0 ? norms[c] : 1.0;
-  const Eigen::JacobiSVD<Eigen::MatrixXd> svd(W * norms.cwiseInverse().asDiagonal(),
-                                              Eigen::ComputeThinV);
-  const Eigen::VectorXd& s = svd.singularValues();
+  // W is tall (rows >= unknowns): its full V is the thin one
+  const SingularValueDecomposition svd =
+      singular_value_decomposition(W * norms.cwiseInverse().asDiagonal());
+  const Eigen::VectorXd& s = svd.sigma;
   for (int c = 0; c < unknowns; ++c) {
     if (s[c] >= 1e-6 * s[0]) continue;
     int dominant = 0;
-    svd.matrixV().col(c).cwiseAbs().maxCoeff(&dominant);
+    svd.V.col(c).cwiseAbs().maxCoeff(&dominant);
     const std::string& name =
         r.base.names[static_cast<std::size_t>(solved[static_cast<std::size_t>(dominant)])];
     if (std::find(r.unexcited.begin(), r.unexcited.end(), name) == r.unexcited.end()) {

@@ -1,21 +1,29 @@
-// Eigenvalues and singular values the tests compute beside lever, compiled once for every test
-// executable (tests/support/spectra_*.cpp, one file per algorithm so that a parallel build
-// compiles them side by side): Eigen's general eigensolver and SVDs are the heaviest templates the
-// tests instantiate, minutes of compile time each under the sanitizers.
+// Eigenvalues and singular values the tests compute beside lever. The general eigensolver and
+// JacobiSVD are lever/spectra.hpp's, compiled once in the engine library (the heaviest templates
+// the tests would otherwise instantiate, minutes of compile time under the sanitizers); the Gram
+// route is the tests' own (spectra_gram.cpp).
 #pragma once
 
 #include <Eigen/Core>
 
+#include <lever/spectra.hpp>
+
 namespace lever::test {
 
 /// max |lambda| over the eigenvalues of a square matrix (general eigensolver).
-double spectral_radius(const Eigen::MatrixXd& A);
+inline double spectral_radius(const Eigen::MatrixXd& A) {
+  return lever::eigenvalues(A).cwiseAbs().maxCoeff();
+}
 
 /// max Re(lambda) over the eigenvalues of a square matrix (general eigensolver).
-double largest_real_part(const Eigen::MatrixXd& A);
+inline double largest_real_part(const Eigen::MatrixXd& A) {
+  return lever::eigenvalues(A).real().maxCoeff();
+}
 
 /// Singular values, largest first, by one-sided Jacobi rotations (Eigen's JacobiSVD).
-Eigen::VectorXd singular_values_jacobi(const Eigen::MatrixXd& J);
+inline Eigen::VectorXd singular_values_jacobi(const Eigen::MatrixXd& J) {
+  return lever::singular_values(J);
+}
 
 /// Singular values, largest first, as the square roots of J J^T's eigenvalues (symmetric QR
 /// iteration): a second algorithm where a test checks a program that uses JacobiSVD. Accurate to

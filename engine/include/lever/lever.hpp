@@ -16,4 +16,5 @@
 #include <lever/parameters.hpp>
 #include <lever/regressor.hpp>
 #include <lever/spatial.hpp>
+#include <lever/spectra.hpp>
 #include <lever/version.hpp>

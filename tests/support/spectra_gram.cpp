@@ -1,13 +1,10 @@
+// Singular values from the Gram matrix's symmetric eigenvalues (spectra.hpp), compiled once for
+// every test executable.
 #include <Eigen/Eigenvalues>
-#include <Eigen/SVD>
 
 #include "spectra.hpp"
 
 namespace lever::test {
-
-Eigen::VectorXd singular_values_jacobi(const Eigen::MatrixXd& J) {
-  return Eigen::JacobiSVD<Eigen::MatrixXd>(J).singularValues();
-}
 
 Eigen::VectorXd singular_values_from_gram(const Eigen::MatrixXd& J) {
   const bool wide = J.rows() <= J.cols();  // the smaller Gram matrix has the nonzero ones
