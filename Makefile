@@ -51,6 +51,7 @@ ASAN_BUILD ?= build-asan
 # are Eigen's QR and SVD of a large regressor; one step of each integrator at random states; the
 # derivatives against MuJoCo; the elliptic cones' lockstep runs for the Newton solver, whose
 # random-state comparison mostly times MuJoCo's own solver, uninstrumented). make test runs them.
+# The packaging tests are not built (tests/packaging/CMakeLists.txt says why).
 ASAN_SKIP = a real Panda that MuJoCo recorded|elliptic cones agree with MuJoCo at random states|how far MuJoCo's default tolerance moves its answer|every model loads, exits 0 or 1|noisy data, estimates within|lever identify says when the estimate is not physical|servos in sections|spectral radii, timesteps|noisy torques, an estimate|RK4 conserves energy|singular values, manipulability|A and B match central differences of step|lockstep trajectories, one RK4|lockstep trajectories, one implicit
 .PHONY: test-asan
 test-asan: setup
