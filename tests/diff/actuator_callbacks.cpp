@@ -136,6 +136,11 @@ TEST_CASE("user actuator callbacks that compute a built-in type give its numbers
   CHECK(d.actuator_force[1] == 0.5);
   CHECK(d.actuator_force[2] == 0.25);
   CHECK(d.act_dot[0] == 0.0);
+  // a callback has no derivative lever could know: refused by the actuator's name
+  Derivatives deriv(user);
+  Data e(user);
+  CHECK_THROWS_WITH(forward_derivatives(user, e, deriv), Catch::Contains("gaintype \"user\""));
+  CHECK_THROWS_WITH(step_derivatives(user, e, deriv), Catch::Contains("callback"));
 }
 
 TEST_CASE("user actuator callbacks agree with MuJoCo's mjcb_act_* in lockstep",

@@ -159,7 +159,7 @@ namespace lever::test {
 
 // The derivatives hold the converged solution's active set: with CG at tolerance 0 (the exact
 // solve) they are Newton's, bit for bit; a CG stopped by a tolerance is refused by name.
-TEST_CASE("derivatives of a CG model: Newton's at tolerance 0, refused above it", "[cg]") {
+TEST_CASE("derivatives of CG and PGS models: Newton's at tolerance 0, refused above it", "[cg]") {
   Model newton_model = mjcf::load_file(model_path("models/box_drop.xml"));
   Model cg_model = newton_model;
   cg_model.opt.solver = Solver::kCG;
@@ -183,6 +183,9 @@ TEST_CASE("derivatives of a CG model: Newton's at tolerance 0, refused above it"
                     Catch::Contains("opt.solver is CG with tolerance"));
   CHECK_THROWS_WITH(step_derivatives(cg_model, cg, dc),
                     Catch::Contains("opt.solver is CG with tolerance"));
+  cg_model.opt.solver = Solver::kPGS;  // PGS stopped by its tolerance: the same refusal
+  CHECK_THROWS_WITH(step_derivatives(cg_model, cg, dc),
+                    Catch::Contains("opt.solver is PGS with tolerance"));
 }
 
 }  // namespace lever::test

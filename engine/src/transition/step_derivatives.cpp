@@ -1028,12 +1028,25 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
 
 // The fluid forces depend on the pose and the velocity in ways the chain rule above leaves out,
 // and so do the moments of transmissions other than a hinge's, a slide's, a fixed tendon's and a
-// site's. Every gain, bias and activation dynamics is covered (fixed,
-// affine, muscle; none, integrator, filter, muscle).
+// site's. Every built-in gain, bias and activation dynamics is covered (fixed, affine, muscle;
+// none, integrator, filter, muscle); a user's callback has no derivative lever could know.
 void refuse_uncovered(const Model& model) {
   if (has_fluid(model.opt)) {
     throw ModelError("derivatives: the model has fluid forces (option viscosity or density); "
                      "lever's analytic derivatives do not cover them yet.");
+  }
+  for (int a = 0; a < model.nu; ++a) {
+    const char* user = model.actuator_gaintype[a] == GainType::kUser   ? "gaintype"
+                       : model.actuator_biastype[a] == BiasType::kUser ? "biastype"
+                       : model.actuator_dyntype[a] == DynType::kUser   ? "dyntype"
+                                                                       : nullptr;
+    if (user == nullptr) continue;
+    const std::string name =
+        model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+    throw ModelError("derivatives: actuator " + name + " has " + user +
+                         " \"user\" (a callback); lever's analytic derivatives cannot "
+                         "differentiate a callback.",
+                     "actuator", a);
   }
   // the chain rule above carries each actuator's force through a constant moment (a gear on one
   // dof, or gear ten_J of a tendon, whose change spatial_tendon_change gives for a spatial one)
@@ -1060,16 +1073,17 @@ void refuse_uncovered(const Model& model) {
 }
 
 // The derivatives are those of the constraint problem's minimizer, its active set held. MuJoCo's
-// conjugate gradients stopped by a tolerance end short of it, where the rows' states can be
-// others: refused. At tolerance 0 CG runs to the minimizer (as its iterations allow), where the
-// solver no longer matters.
+// iterative solvers (conjugate gradients, projected Gauss-Seidel) stopped by a tolerance end short
+// of it, where the rows' states can be others: refused. At tolerance 0 they run to the minimizer
+// as their iterations allow, where the solver no longer matters.
 void refuse_stopped_solver(const Model& model) {
-  if (model.opt.solver == Solver::kCG && model.opt.tolerance > 0) {
-    throw ModelError("derivatives: opt.solver is CG with tolerance " +
+  if (model.opt.solver != Solver::kNewton && model.opt.tolerance > 0) {
+    const char* solver = model.opt.solver == Solver::kCG ? "CG" : "PGS";
+    throw ModelError(std::string("derivatives: opt.solver is ") + solver + " with tolerance " +
                      std::to_string(model.opt.tolerance) +
                      " > 0; the derivatives hold the active set of the converged solution, which "
-                     "a solve stopped by a tolerance need not reach. Set opt.tolerance to 0 (CG "
-                     "then converges as its iterations allow) or use the Newton solver.");
+                     "a solve stopped by a tolerance need not reach. Set opt.tolerance to 0 (" +
+                     solver + " then converges as its iterations allow) or use the Newton solver.");
   }
 }
 
