@@ -105,6 +105,12 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kNmocap: break;
     case Size::kNwrap: break;  // a path's objects: by index
     case Size::kNa: return name_or_index(model.actuator_name, i + model.nu - model.na);
+    case Size::kNuserBody:  // the user numbers' widths count columns, never rows
+    case Size::kNuserJnt:
+    case Size::kNuserGeom:
+    case Size::kNuserSite:
+    case Size::kNuserActuator:
+    case Size::kNuserSensor: break;
   }
   return std::to_string(i);
 }

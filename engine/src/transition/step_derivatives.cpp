@@ -282,7 +282,8 @@ void activation_rate_partials(const Model& model, const Data& data, int a, doubl
     case DynType::kMuscle:
       muscle_activation_rate_partials(u, data.act[k], prm.data(), per_ctrl, per_act);
       break;
-    case DynType::kNone: break;
+    case DynType::kNone:
+    case DynType::kUser: break;  // refused before (refuse_uncovered): a callback's rate
   }
   w.act_rate_per_act[k] = per_act;
   w.act_rate_per_ctrl[k] = ctrl_clamped ? 0.0 : per_ctrl;
@@ -1026,6 +1027,11 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   data.time = time0;
 }
 
+// An actuator as a message names it: 'its name', or its index when it has none.
+std::string actuator_label(const Model& model, int a) {
+  return model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+}
+
 // The fluid forces depend on the pose and the velocity in ways the chain rule above leaves out,
 // and so do the moments of transmissions other than a hinge's, a slide's, a fixed tendon's and a
 // site's. Every built-in gain, bias and activation dynamics is covered (fixed, affine, muscle;
@@ -1041,9 +1047,7 @@ void refuse_uncovered(const Model& model) {
                        : model.actuator_dyntype[a] == DynType::kUser   ? "dyntype"
                                                                        : nullptr;
     if (user == nullptr) continue;
-    const std::string name =
-        model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
-    throw ModelError("derivatives: actuator " + name + " has " + user +
+    throw ModelError("derivatives: actuator " + actuator_label(model, a) + " has " + user +
                          " \"user\" (a callback); lever's analytic derivatives cannot "
                          "differentiate a callback.",
                      "actuator", a);
@@ -1063,9 +1067,7 @@ void refuse_uncovered(const Model& model) {
       case TransmissionType::kBody: what = "a body through its contacts (adhesion)"; break;
       default: break;
     }
-    const std::string name =
-        model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
-    throw ModelError("derivatives: actuator " + name + " drives " + what +
+    throw ModelError("derivatives: actuator " + actuator_label(model, a) + " drives " + what +
                          "; lever's analytic derivatives cover actuators on hinge and slide "
                          "joints, fixed tendons and sites so far.",
                      "actuator", a);

@@ -147,7 +147,13 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
       return [&model](int i) {
         return "actuator " + quoted(model.actuator_name, i + model.nu - model.na);
       };
-    case Size::kOne: break;
+    case Size::kOne:
+    case Size::kNuserBody:  // the user numbers' widths count columns, never rows
+    case Size::kNuserJnt:
+    case Size::kNuserGeom:
+    case Size::kNuserSite:
+    case Size::kNuserActuator:
+    case Size::kNuserSensor: break;
   }
   return [](int) { return std::string(); };
 }
@@ -339,7 +345,7 @@ void compare_forward_outputs(const Twin& t, int k, Report& r) {
       // MuJoCo writes the live points of the tendons' paths only (ten_wrapnum's sum; its counts
       // are compared as ten_wrapnum): the entries past them keep older values
       long points = 0;
-      for (int t = 0; t < m->ntendon; ++t) points += d->ten_wrapnum[t];
+      for (int tendon = 0; tendon < m->ntendon; ++tendon) points += d->ten_wrapnum[tendon];
       n = std::min(n, points * (name == "wrap_xpos" ? 3 : 1));
     }
     lever_values.resize(static_cast<std::size_t>(n));
