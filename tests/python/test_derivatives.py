@@ -333,3 +333,19 @@ def test_dqacc_dact_is_forward_differenced_in_the_activations():
     assert ratio_to_bound(out["dqacc_dact"], theirs) <= 1e-3
     plain = lever.load(str(REPO / "models" / "arm2.xml"))
     assert lever.derivatives(plain, lever.Data(plain))["dqacc_dact"].shape == (plain.nv, 0)
+
+
+def test_dqacc_dact_is_the_commands_bit_for_bit(lever_cli):
+    """`lever derivatives --json` writes d qacc / d act (nv x na, row-major) as lever.derivatives
+    returns it, at muscles.xml's key "tense"."""
+    path = str(REPO / "tests" / "models" / "actuators" / "muscles.xml")
+    out = subprocess.run([lever_cli, "derivatives", path, "--key", "tense", "--json"],
+                         capture_output=True, text=True, timeout=120)
+    assert out.returncode == 0, out.stderr
+    theirs = json.loads(out.stdout)
+    model = lever.load(path)
+    data = lever.Data(model)
+    lever.reset_keyframe(model, data, "tense")
+    mine = lever.derivatives(model, data)["dqacc_dact"]
+    assert mine.shape == (model.nv, model.na) and np.abs(mine).max() > 0
+    assert np.array_equal(mine.ravel(), theirs["dqacc_dact"])

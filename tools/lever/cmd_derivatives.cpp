@@ -12,6 +12,7 @@
 //                               space, nv numbers; act: the stateful actuators' activations)
 //   B          2nv + na x nu    d [qpos'; qvel'; act'] / d ctrl                (mjd_transitionFD's B)
 //   dqacc_dq, dqacc_dv (nv x nv), dqacc_du (nv x nu)         forward dynamics
+//   dqacc_dact (nv x na)                                      d qacc / d act
 //   dqacc_dapplied (nv x nv)                                  d qacc / d qfrc_applied
 //   dtau_dq, dtau_dv (nv x nv)                                rnea at qacc
 //   M          nv x nv                                        d rnea / d qacc
@@ -66,8 +67,8 @@ void declare_derivatives(CLI::App& command) {
       ->check(whole_number_check());
   add_switch(command, "json",
              "one JSON object: A, B (the step's Jacobians, mjd_transitionFD's layout),\n"
-             "dqacc_dq, dqacc_dv, dqacc_du, dqacc_dapplied, dtau_dq, dtau_dv, M\n"
-             "(row-major, flattened)");
+             "dqacc_dq, dqacc_dv, dqacc_du, dqacc_dact, dqacc_dapplied, dtau_dq, dtau_dv,\n"
+             "M (row-major, flattened)");
   command.footer(
       "Exit status: 0; 1 when the engine warned or a number came out non-finite; 2 for bad input.");
 }
@@ -110,6 +111,7 @@ int cmd_derivatives(const Args& command_line) {
     row_major(json, "dqacc_dq", deriv.dqacc_dq);
     row_major(json, "dqacc_dv", deriv.dqacc_dv);
     row_major(json, "dqacc_du", deriv.dqacc_du);
+    row_major(json, "dqacc_dact", deriv.dqacc_dact);
     row_major(json, "dqacc_dapplied", deriv.dqacc_dapplied);
     row_major(json, "dtau_dq", deriv.dtau_dq);
     row_major(json, "dtau_dv", deriv.dtau_dv);
@@ -149,6 +151,7 @@ int cmd_derivatives(const Args& command_line) {
     print_matrix(("d qacc / d " + q).c_str(), deriv.dqacc_dq);
     print_matrix("d qacc / d qvel", deriv.dqacc_dv);
     print_matrix("d qacc / d ctrl (0 where a clamp binds)", deriv.dqacc_du);
+    if (model.na > 0) print_matrix("d qacc / d act", deriv.dqacc_dact);
     print_matrix("d qacc / d qfrc_applied", deriv.dqacc_dapplied);
     print_matrix(("d rnea / d " + q + " at qacc").c_str(), deriv.dtau_dq);
     print_matrix("d rnea / d qvel at qacc", deriv.dtau_dv);
