@@ -143,6 +143,14 @@ void print_mujoco_warning(const char* message) {
   std::fprintf(stderr, "lever diff: MuJoCo warns: %s\n", message);
 }
 
+// MuJoCo's own errors (its data stack overflowing at a state with very many contacts, say) end
+// the process: its default handler waits for Enter first. Say which and stop, as for bad input.
+[[noreturn]] void stop_on_mujoco_error(const char* message) {
+  std::fprintf(stderr, "lever diff: MuJoCo 2.2.2 stopped with an error: %s\n", message);
+  std::fflush(stdout);
+  std::_Exit(2);
+}
+
 PathResult run_path(const std::string& file, Path path, const Options& o) {
   PathResult result;
   result.path = path;
@@ -700,13 +708,15 @@ void declare_diff(CLI::App& command) {
       "floor\n"
       "(MuJoCo against a copy of the model moved in space: same physics, other rounding).\n"
       "Exit status: 0 every quantity within the bound; 1 some are not; 2 a model could not be\n"
-      "loaded, or has no keyframe NAME (nothing is compared then).");
+      "loaded, or has no keyframe NAME (nothing is compared then), or MuJoCo stopped with an\n"
+      "error (its data stack overflowing at a state with very many contacts: the run ends there).");
 }
 
 int cmd_diff(const Args& args) {
   // MuJoCo prints its warnings on standard output (and appends them to MUJOCO_LOG.TXT in the
   // working directory), where they would break --json and --markdown: they go to standard error
   mju_user_warning = print_mujoco_warning;
+  mju_user_error = stop_on_mujoco_error;
   const Options o = parse_options(args);
   if (!keys_exist(o)) return kBadInput;
   std::vector<ModelResult> results;
