@@ -92,7 +92,7 @@ TEST_CASE("property: M - h D factors as (U + I) L without pivoting or fill-in, a
       }
       const Eigen::VectorXd f = data.qfrc_smooth + data.qfrc_constraint;
       Eigen::VectorXd x = f;
-      solve_lu_tree(model, factor, x.data());
+      solve_lu_tree(model, factor, x.data(), data.work.dof_chain.data());
       CHECK((K * x - f).cwiseAbs().maxCoeff() <=
             1e-12 * std::max({1.0, max_abs(f), scale * max_abs(x)}));
     }

@@ -441,7 +441,8 @@ void unchecked::make_constraint(const Model& model, Data& data) {
     data.ne = data.nf = data.nefc = 0;
     return;
   }
-  data.ne = opt.disabled(kDisableEquality) || model.neq == 0 ? 0 : add_equality_rows(model, data, 0);
+  data.ne =
+      opt.disabled(kDisableEquality) || model.neq == 0 ? 0 : add_equality_rows(model, data, 0);
   data.nf = opt.disabled(kDisableFrictionloss) || !model.has_friction_loss
                 ? 0
                 : add_friction_loss_rows(model, data, data.ne) - data.ne;

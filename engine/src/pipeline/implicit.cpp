@@ -152,19 +152,13 @@ void solve_lu_tree(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& 
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) x[i] -= x[k] * LU(i, k);
   }
   // L x = y, root to leaves: each x[k] takes its ancestors' terms, the root first as in
-  // mju_solveLUSparse (row k's columns in order), when there is room to list them
+  // mju_solveLUSparse (row k's columns in order), listed in `ancestors` nearest first
   for (int k = 0; k < model.nv; ++k) {
-    if (ancestors != nullptr) {
-      int n = 0;
-      for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) ancestors[n++] = j;
-      while (n > 0) {
-        const int j = ancestors[--n];
-        x[k] -= x[j] * LU(k, j);
-      }
-    } else {
-      for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) {
-        x[k] -= x[j] * LU(k, j);
-      }
+    int n = 0;
+    for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) ancestors[n++] = j;
+    while (n > 0) {
+      const int j = ancestors[--n];
+      x[k] -= x[j] * LU(k, j);
     }
     x[k] /= LU(k, k);
   }

@@ -31,11 +31,10 @@ void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
 /// ancestors' rows and columns, so nothing fills in (implicit.cpp).
 void factor_lu_tree(const Model& model, Eigen::Ref<Eigen::MatrixXd> K);
 
-/// x = K^-1 x with factor_lu_tree()'s factor of K. With `ancestors` (room for nv ints, scratch)
-/// summed in mju_solveLUSparse's order; without, each row's terms nearest ancestor first (the
-/// same but for rounding).
+/// x = K^-1 x with factor_lu_tree()'s factor of K, summed in mju_solveLUSparse's order;
+/// `ancestors` is scratch room for nv ints (a Data's work.dof_chain).
 void solve_lu_tree(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>& LU, double* x,
-                   int* ancestors = nullptr);
+                   int* ancestors);
 
 namespace detail {
 /// MuJoCo 2.2.2's implicit step (implicit.cpp), after forward().

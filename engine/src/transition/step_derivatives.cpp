@@ -790,7 +790,7 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   w.K_lu = w.K;
   factor_lu_tree(model, w.K_lu);
   w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
-  solve_lu_tree(model, w.K_lu, w.qacc_step.data());
+  solve_lu_tree(model, w.K_lu, w.qacc_step.data(), data.work.dof_chain.data());
 
   // df - dM a + h dD a's bias part, from forward_derivatives' dtau (at qacc) and one pair of
   // gravity-free RNEA derivatives R(velocity, acceleration) = dQ(velocity) + dL(acceleration),
