@@ -216,6 +216,8 @@ TEST_CASE("diff: PGS at MuJoCo's default tolerance stops after MuJoCo's sweeps",
     CHECK(c.sweeps.same_count);
     CHECK(c.whole.same_count);
     CHECK(c.sweeps.worst <= 1.0);
+    // as above: the bound, or MuJoCo's own move on lever's inputs (their last bits) where the
+    // sweeps it stops after carry those bits further
     CHECK(c.whole.worst <= std::max(1.0, 2 * c.inputs.worst));
     WARN(name << ", tolerance 1e-8: " << constrained << " steps with rows, " << sweeps
               << " sweeps; same inputs " << c.sweeps.worst << ", whole forward "
