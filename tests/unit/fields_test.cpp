@@ -70,8 +70,6 @@ template <class Plain>
 std::pair<const void*, long> extent(const lever::ArenaMap<Plain>& m) {
   return {m.data(), m.size()};
 }
-std::pair<const void*, long> extent(const Eigen::VectorXd& v) { return {v.data(), v.size()}; }
-std::pair<const void*, long> extent(const Eigen::MatrixXd& m) { return {m.data(), m.size()}; }
 std::pair<const void*, long> located(const FieldView& view) { return {view.data, view.size()}; }
 
 std::string text_of(const lever::Error& e) { return e.what(); }
@@ -312,9 +310,10 @@ TEST_CASE("Data's constructor sizes every array as the table says, zero-filled",
     for (const FieldView& view : lever::data_fields(model, full)) {
       INFO("Data::" << view.info->name);
       // kNefc: each equality constraint's rows, a friction-loss row per dof and tendon with
-      // friction loss, two limit rows per joint and per tendon, and njmax contact rows if the
-      // model can make contacts
-      int constraint_rows = 2 * model.njnt + 2 * model.ntendon;
+      // friction loss, two limit rows per limited joint and per tendon, and njmax contact rows
+      // if the model can make contacts
+      int constraint_rows = 2 * model.ntendon;
+      for (int j = 0; j < model.njnt; ++j) constraint_rows += model.jnt_limited[j] ? 2 : 0;
       for (int e = 0; e < model.neq; ++e) {
         const lever::EqualityType type = model.eq_type[e];
         constraint_rows += type == lever::EqualityType::kConnect ? 3
@@ -370,6 +369,30 @@ TEST_CASE("Data's constructor sizes every array as the table says, zero-filled",
   }
 }
 
+
+TEST_CASE("a limit switched on after its Data was made is refused by name; a new Data has room",
+          "[fields]") {
+  // a Data holds limit rows for the joints limited when it was made, not for every joint
+  lever::Model model = lever::mjcf::load_string(R"(<mujoco>
+  <worldbody>
+    <body><joint name="free_swing" type="hinge" axis="0 1 0"/><geom size=".1" mass="1"/></body>
+  </worldbody>
+</mujoco>)");
+  lever::Data data(model);
+  CHECK(data.nefc_max == 0);
+  model.jnt_limited[0] = 1;
+  model.jnt_range[0] = {0.5, 1.0};  // qpos 0 is past the lower stop: one row
+  try {
+    lever::forward(model, data);
+    FAIL("forward made a limit row with no room for it");
+  } catch (const lever::StateError& e) {
+    CHECK_THAT(e.what(), Catch::Contains("joint 0's limit was switched on after this Data was made"));
+  }
+  lever::Data fresh(model);
+  CHECK(fresh.nefc_max == 2);
+  lever::forward(model, fresh);
+  CHECK(fresh.nefc == 1);
+}
 TEST_CASE("a Data of another model is refused by name, and nothing is written", "[fields]") {
   const lever::Model arm2 = load("models/arm2.xml");
   const lever::Model arm3 = load("models/arm3.xml");

@@ -327,8 +327,8 @@ struct DataFields {
 
   DataWorkspace work;  ///< preallocated scratch (above)
 
-  /// the equality rows, a friction-loss row per dof, 2 * njnt limit rows, and njmax more if the
-  /// model can make contacts
+  /// the equality rows, a friction-loss row per dof, two limit rows per limited joint, and njmax
+  /// more if the model can make contacts
   int nefc_max = 0;
   /// The fit_tag of the model this Data was last checked against (lever/fields.hpp check_fit):
   /// a call with that model compares tags instead of walking the field table (no array can change

@@ -426,8 +426,9 @@ const std::vector<FieldInfo>& data_field_table();
 int size_of(const Model& model, Size size);
 
 /// The most constraint rows a Data of this model holds: every equality constraint's rows, one
-/// friction-loss row per dof with dof_frictionloss > 0, two limit rows per joint, and njmax
-/// contact rows when the model can make contacts (Model::contacts_possible).
+/// friction-loss row per dof with dof_frictionloss > 0, two limit rows per limited joint (as
+/// jnt_limited is when the Data is made), and njmax contact rows when the model can make
+/// contacts (Model::contacts_possible).
 int constraint_rows_max(const Model& model);
 /// The same for a Data (kNefc: its live rows, data.nefc).
 int size_of(const Model& model, const Data& data, Size size);

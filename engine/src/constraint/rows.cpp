@@ -114,6 +114,11 @@ void require_rows(const Model& model, const Data& data, int n, int rows) {
 
 // Row n: joint j's stop on `sign`'s side (+1 lower, -1 upper) at distance dist.
 void add_limit_row(const Model& model, Data& data, int n, int j, double sign, double dist) {
+  if (n >= data.nefc_max) {
+    throw StateError("lever::make_constraint: joint " + std::to_string(j) +
+                     "'s limit was switched on after this Data was made, which has no room for "
+                     "its rows; make a new Data for the edited model");
+  }
   const int dof = model.jnt_dofadr[j];
   data.efc_type[n] = ConstraintType::kLimitJoint;
   data.efc_id[n] = j;

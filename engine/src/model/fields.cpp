@@ -285,7 +285,11 @@ int constraint_rows_max(const Model& model) {
   // a tendon's friction-loss row, and its two stops (a tendon's range may be edited)
   for (const double loss : model.tendon_frictionloss) rows += loss > 0;
   rows += 2 * static_cast<int>(model.tendon_limited.size());
-  return rows + 2 * model.njnt + (model.contacts_possible ? std::max(0, model.njmax) : 0);
+  // both stops of each limited joint; not of the others: a 3000-dof model of unlimited particles
+  // would otherwise carry 6000 rows' room in its quadratic arrays (make_constraint refuses, by
+  // name, a limit switched on after its Data was made)
+  for (const auto limited : model.jnt_limited) rows += limited ? 2 : 0;
+  return rows + (model.contacts_possible ? std::max(0, model.njmax) : 0);
 }
 
 int size_of(const Model& model, Size size) {
