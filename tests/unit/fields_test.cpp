@@ -370,7 +370,7 @@ TEST_CASE("Data's constructor sizes every array as the table says, zero-filled",
 }
 
 
-TEST_CASE("a limit switched on after its Data was made is refused by name; a new Data has room",
+TEST_CASE("a limit switched on after its Data was made is refused by name, and a new Data has room",
           "[fields]") {
   // a Data holds limit rows for the joints limited when it was made, not for every joint
   lever::Model model = lever::mjcf::load_string(R"(<mujoco>
