@@ -637,7 +637,7 @@ TEST_CASE("diff: the xArm7's finger pads face to face: contacts equal MuJoCo's",
 // MuJoCo's function returns repeated positions (two equal cubes face to face: 9 points, the
 // corners twice); its collision stage keeps 4. This shows that the driver drops them, and that
 // remove_repeated_positions drops the same ones, in the same order.
-TEST_CASE("diff: MuJoCo's driver drops repeated box-box positions; lever's rule matches",
+TEST_CASE("diff: MuJoCo's driver drops repeated box-box positions, lever's rule matches",
           "[diff][collision]") {
   REQUIRE(mj_version() == 222);
   const MjModelPtr model = mujoco_load_string(R"(

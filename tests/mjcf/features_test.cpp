@@ -107,7 +107,7 @@ TEST_CASE("eulerseq: lower case rotates with the body, upper case about fixed ax
       near(rotation(extrinsic.body_quat[2]), about(ex, 60) * about(ey, 45) * about(ez, 30), 1e-14));
 }
 
-TEST_CASE("fromto places, sizes and turns a geom; +z points from `to` back to `from`", "[mjcf]") {
+TEST_CASE("fromto places, sizes and turns a geom, +z points from `to` back to `from`", "[mjcf]") {
   const Model m = lever::mjcf::load_string(R"(<mujoco>
   <worldbody>
     <geom type="capsule" fromto="0 0 0 0.5 0 0" size="0.025"/>
@@ -250,7 +250,7 @@ TEST_CASE("joint parameters, solref/solimp defaults and partial values", "[mjcf]
   CHECK(m.jnt_solimp[1] == std::array<double, 5>{0.8, 0.9, 0.001, 0.5, 2});
 }
 
-TEST_CASE("bodies are numbered depth-first; joints and dofs follow the body tree", "[mjcf]") {
+TEST_CASE("bodies are numbered depth-first, joints and dofs follow the body tree", "[mjcf]") {
   const Model m = lever::mjcf::load_string(R"(<mujoco>
   <worldbody>
     <body name="a">

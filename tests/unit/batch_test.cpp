@@ -78,7 +78,7 @@ TEST_CASE("one BatchRunner gives the one-state results call after call, on 1 to 
   }
 }
 
-TEST_CASE("an exception thrown in a worker reaches the caller; the runner still works", "[batch]") {
+TEST_CASE("an exception thrown in a worker reaches the caller, the runner still works", "[batch]") {
   const lever::Model m = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));
   lever::BatchRunner runner(m, 2);
   const States s = random_states(m, 10, 3);

@@ -444,7 +444,7 @@ TEST_CASE("an array of Data keeps its size: assigning one of another size throws
   CHECK_NOTHROW(lever::forward(model, data));
 }
 
-TEST_CASE("a Data's arrays live in one cache-aligned block; copies and moves keep them apart",
+TEST_CASE("a Data's arrays live in one cache-aligned block, copies and moves keep them apart",
           "[fields]") {
   const lever::Model model = load("models/arm3.xml");
   lever::Data data(model);
@@ -479,7 +479,7 @@ TEST_CASE("a Data's arrays live in one cache-aligned block; copies and moves kee
   CHECK_NOTHROW(lever::forward(model, other));
 }
 
-TEST_CASE("a copied Model owns its arrays; an assigned one takes the other's sizes; a moved one "
+TEST_CASE("a copied Model owns its arrays, an assigned one takes the other's sizes, a moved one "
           "keeps them where they were", "[fields]") {
   const lever::Model model = load("models/panda7.xml");
   lever::Data data(model);

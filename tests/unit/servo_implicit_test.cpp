@@ -148,7 +148,7 @@ TEST_CASE("the implicit step's D is d qfrc_smooth / d qvel where no clamp binds"
   }
 }
 
-TEST_CASE("reset_keyframe sets time, qpos, qvel and ctrl; unwritten values are qpos0 and zero",
+TEST_CASE("reset_keyframe sets time, qpos, qvel and ctrl, unwritten values are qpos0 and zero",
           "[unit][keyframe]") {
   const lever::Model model = lever::mjcf::load_string(rotor_xml("implicit", kServo));
   REQUIRE(model.nkey == 2);
