@@ -139,6 +139,17 @@ struct BodyArrays {
   Eigen::Vector3d *xanchor, *xaxis;
 };
 
+// What a pass over the bodies places besides each body's own frame (xpos, xquat, xmat): every
+// caller asks for what it reads and nothing more.
+struct Placed {
+  bool joint_frames = false;      // each joint's anchor and axis (xanchor, xaxis)
+  bool inertial_origin = false;   // the centre of mass (xipos)
+  bool inertial_axes = false;     // the principal axes (ximat)
+};
+constexpr Placed kFramesAlone{};                    // body_poses(), place_site()
+constexpr Placed kEveryFrame{true, true, true};      // poses(), kinematics()
+constexpr Placed kForJacobian{true, true, false};   // jac_site_from_q(): cdof's and c's inputs
+
 // The frame (pos, quat) moved by joint j of its body (not a free joint), in mj_kinematics's
 // order: the joint's world axis and anchor from the frame so far, then a slide's shift or a
 // turn's quaternion, and for a turn about an anchor off the origin, the origin swung back so that
@@ -189,10 +200,11 @@ template <bool kJointFrames>
 }
 
 // Body b's frame (xpos, xquat, xmat) on its parent's, which is placed, with qpos's quaternions
-// normalized. With kJointFrames, also its joints' anchors and axes (xanchor, xaxis) and its
-// inertial frame (xipos, ximat); place_site() asks for the frame alone.
-template <bool kJointFrames>
+// normalized; and what kPlace asks for besides: its joints' anchors and axes (xanchor, xaxis),
+// its inertial frame's origin (xipos) and axes (ximat).
+template <Placed kPlace>
 [[gnu::always_inline]] inline void place_body(const BodyArrays& a, int b) {
+  constexpr bool kJointFrames = kPlace.joint_frames;
   const int first_joint = a.jntadr[b], last_joint = first_joint + a.jntnum[b];
   // composed in place in Data: nothing of the body's pose is held in registers across the calls
   // to sincos, which would save and restore it
@@ -230,9 +242,11 @@ template <bool kJointFrames>
   }
   detail::normalize_quat(quat.data());
   quat_into_mat(quat, R);
-  if constexpr (kJointFrames) {
+  if constexpr (kPlace.inertial_origin && kPlace.inertial_axes) {
     place_frame(pos, R, quat, a.body_ipos[b], a.body_iquat[b], a.body_iplacement[b], a.xipos[b],
                 a.ximat[b]);
+  } else if constexpr (kPlace.inertial_origin) {
+    offset_point(pos, R, a.body_ipos[b], a.body_iplacement[b], a.xipos[b]);
   }
 }
 
@@ -266,15 +280,19 @@ inline void normalize_state_quats(const Model& model, Data& data) {
   for (int i = 0; i < model.nmocap; ++i) detail::normalize_quat(data.mocap_quat[i].data());
 }
 
-// Body frames (xpos, xquat, xmat), joint anchors and axes, inertial frames, sites, and, when
-// asked, geoms.
-void place_bodies(const Model& model, Data& data, bool geoms) {
+// Which frames attached to the bodies a pass places.
+enum class Attached { kNone, kSites, kGeomsAndSites };
+
+// Body frames (xpos, xquat, xmat), joint anchors and axes, inertial frames, and the attached
+// frames asked for.
+void place_bodies(const Model& model, Data& data, Attached attached) {
   normalize_state_quats(model, data);
   place_world(data);
   const BodyArrays arrays(model, data);
   const int nbody = model.nbody;
-  for (int b = 1; b < nbody; ++b) place_body<true>(arrays, b);
-  if (geoms) {
+  for (int b = 1; b < nbody; ++b) place_body<kEveryFrame>(arrays, b);
+  if (attached == Attached::kNone) return;
+  if (attached == Attached::kGeomsAndSites) {
     place_attached(model.ngeom, model.geom_bodyid.data(), model.geom_pos.data(),
                    model.geom_quat.data(), model.geom_placement.data(), arrays,
                    data.geom_xpos.data(), data.geom_xmat.data());
@@ -322,32 +340,30 @@ inline void world_inertia(const Mat3& R, const Eigen::Vector3d& d, double m,
   I(1, 2) = I(2, 1) = entry(1, 2) - mc[1] * c[2];
 }
 
-// Subtree centres of mass, body inertias and joint motion subspaces in absolute coordinates.
-// Each array's data pointer is loaded once (see BodyArrays).
-void com_quantities(const Model& model, Data& data) {
+// The subtree centres of mass (subtree_com) of the bodies b >= top for which in(b) holds (every
+// body: top 0; one tree: its root, and in(b) that b is in it): mass-weighted positions and masses,
+// summed leaves to root, then each sum scaled by its mass's reciprocal, in MuJoCo's mj_comPos
+// order: a body's own term is added after its children's (the sums start from zero), the
+// children's in falling index order, and its sum is scaled once it has gone to the parent (its
+// last bit is MuJoCo's only in that order). The top body's sum goes to no parent.
+template <class In>
+[[gnu::always_inline]] inline void subtree_centres(const Model& model, Data& data, int top, In in) {
   const int nbody = model.nbody;
   const int* const parentid = model.body_parentid.data();
-  const int* const rootid = model.body_rootid.data();
   const double* const mass = model.body_mass.data();
-  const Eigen::Vector3d* const inertia = model.body_inertia.data();
   const Eigen::Vector3d* const xipos = data.xipos.data();
-  const Mat3* const ximat = data.ximat.data();
   Eigen::Vector3d* const subtree_com = data.subtree_com.data();
-  RigidInertia* const cinert = data.cinert.data();
-
-  // mass-weighted positions and masses, summed leaves to root, then each sum scaled by its
-  // mass's reciprocal, in MuJoCo's mj_comPos order: a body's own term is added after its
-  // children's (the sums start from zero), the children's in falling index order, and its sum
-  // is scaled once it has gone to the parent (its last bit is MuJoCo's only in that order)
   double* const subtree_mass = data.work.subtree_mass.data();
-  for (int b = 0; b < nbody; ++b) {
+  for (int b = top; b < nbody; ++b) {
+    if (!in(b)) continue;
     subtree_com[b].setZero();
     subtree_mass[b] = 0.0;
   }
-  for (int b = nbody - 1; b >= 0; --b) {
+  for (int b = nbody - 1; b >= top; --b) {
+    if (!in(b)) continue;
     subtree_com[b] += xipos[b] * mass[b];
     subtree_mass[b] += mass[b];
-    if (b > 0) {
+    if (b > top) {
       subtree_com[parentid[b]] += subtree_com[b];
       subtree_mass[parentid[b]] += subtree_mass[b];
     }
@@ -357,6 +373,21 @@ void com_quantities(const Model& model, Data& data) {
       subtree_com[b] *= 1.0 / subtree_mass[b];
     }
   }
+}
+
+// Subtree centres of mass, body inertias and joint motion subspaces in absolute coordinates.
+// Each array's data pointer is loaded once (see BodyArrays).
+void com_quantities(const Model& model, Data& data) {
+  const int nbody = model.nbody;
+  const int* const rootid = model.body_rootid.data();
+  const double* const mass = model.body_mass.data();
+  const Eigen::Vector3d* const inertia = model.body_inertia.data();
+  const Eigen::Vector3d* const xipos = data.xipos.data();
+  const Mat3* const ximat = data.ximat.data();
+  Eigen::Vector3d* const subtree_com = data.subtree_com.data();
+  RigidInertia* const cinert = data.cinert.data();
+
+  subtree_centres(model, data, 0, [](int) { return true; });
 
   // each body's inertia about its tree's centre of mass, world axes
   for (int b = 1; b < nbody; ++b) {
@@ -415,12 +446,27 @@ void check_jacobians(const Model& model, const Eigen::Ref<Eigen::MatrixXd>& jacp
 
 void poses(const Model& model, Data& data) {
   check_entry(model, data, "lever::poses");
-  place_bodies(model, data, true);
+  place_bodies(model, data, Attached::kGeomsAndSites);
 }
 
 void kinematics(const Model& model, Data& data) {
   check_entry(model, data, "lever::kinematics");
-  place_bodies(model, data, true);
+  place_bodies(model, data, Attached::kGeomsAndSites);
+  com_quantities(model, data);
+}
+
+void body_poses(const Model& model, Data& data) {
+  check_entry(model, data, "lever::body_poses");
+  normalize_state_quats(model, data);
+  place_world(data);
+  const BodyArrays arrays(model, data);
+  const int nbody = model.nbody;
+  for (int b = 1; b < nbody; ++b) place_body<kFramesAlone>(arrays, b);
+}
+
+void body_kinematics(const Model& model, Data& data) {
+  check_entry(model, data, "lever::body_kinematics");
+  place_bodies(model, data, Attached::kNone);
   com_quantities(model, data);
 }
 
@@ -438,7 +484,7 @@ void place_site(const Model& model, Data& data, int site) {
   for (int b = model.site_bodyid[site]; b > 0; b = model.body_parentid[b]) path[length++] = b;
   place_world(data);
   const BodyArrays arrays(model, data);
-  while (length > 0) place_body<false>(arrays, path[--length]);
+  while (length > 0) place_body<kFramesAlone>(arrays, path[--length]);
   place_attached(1, &model.site_bodyid[site], &model.site_pos[site], &model.site_quat[site],
                  &model.site_placement[site], arrays, &data.site_xpos[site],
                  &data.site_xmat[site]);
@@ -450,7 +496,9 @@ void step_kinematics(const Model& model, Data& data) {
   // nothing in a step reads the geom frames unless collision runs or a tendon wraps around a
   // geom; the site frames are what a caller reads after a step (an end effector's position), and
   // cost little
-  place_bodies(model, data, model.contacts_possible || model.tendons_wrap_geoms);
+  place_bodies(model, data,
+               model.contacts_possible || model.tendons_wrap_geoms ? Attached::kGeomsAndSites
+                                                                   : Attached::kSites);
   com_quantities(model, data);
 }
 
@@ -505,6 +553,97 @@ void jac_site(const Model& model, const Data& data, int site, Eigen::Ref<Eigen::
                      std::to_string(model.nsite - 1) + ".");
   }
   detail::point_jacobians(model, data, model.site_bodyid[site], data.site_xpos[site], jacp, jacr);
+}
+
+namespace {
+
+// The motion subspace of dof i (a cdof column) as com_quantities() computes it, from the joint
+// frames and the tree's centre of mass c, and the velocity per unit rate of the point at `offset`
+// from c: jac_site_from_q()'s column i, each number as point_jacobians() finds it from cdof.
+inline void dof_column(const Model& model, const Data& data, int i, const Eigen::Vector3d& c,
+                       const Eigen::Vector3d& offset, double* p, double* r) {
+  const int j = model.dof_jntid[i];
+  const int k = i - model.jnt_dofadr[j];  // which of the joint's dofs
+  Motion S;
+  switch (model.jnt_kind[j]) {
+    case JointKind::kSlide:
+      S.head<3>().setZero();
+      S.tail<3>() = data.xaxis[j];
+      break;
+    case JointKind::kFree:
+      if (k < 3) {  // a translation along a world axis
+        S.head<3>().setZero();
+        S.tail<3>() = Eigen::Vector3d::Unit(k);
+        break;
+      }
+      [[fallthrough]];
+    case JointKind::kBall: {  // a rotation about one of the body's axes (rotation_subspace's)
+      const Eigen::Vector3d axis = data.xmat[model.jnt_bodyid[j]].col(k % 3);
+      S.head<3>() = axis;
+      S.tail<3>() = cross(axis, c - data.xanchor[j]);
+      break;
+    }
+    default: {  // a hinge
+      const Eigen::Vector3d& axis = data.xaxis[j];
+      S.head<3>() = axis;
+      S.tail<3>() = cross(axis, c - data.xanchor[j]);
+    }
+  }
+  const Eigen::Vector3d v = S.tail<3>() + cross(S.head<3>(), offset);
+  for (int row = 0; row < 3; ++row) {
+    r[row] = S[row];
+    p[row] = v[row];
+  }
+}
+
+}  // namespace
+
+void jac_site_from_q(const Model& model, Data& data, int site, Eigen::Ref<Eigen::MatrixXd> jacp,
+                     Eigen::Ref<Eigen::MatrixXd> jacr) {
+  check_entry(model, data, "lever::jac_site_from_q");
+  check_jacobians(model, jacp, jacr, "lever::jac_site_from_q");
+  if (site < 0 || site >= model.nsite) {
+    throw StateError("lever::jac_site_from_q: site " + std::to_string(site) + " is not in 0.." +
+                     std::to_string(model.nsite - 1) + ".");
+  }
+  normalize_state_quats(model, data);
+  place_world(data);
+  const BodyArrays arrays(model, data);
+  const int body = model.site_bodyid[site];
+  const int root = model.body_rootid[body];
+  // the bodies of the site's tree, whose centre of mass c is where cdof's moments are taken
+  // (the Jacobian is c's to the last bit only if c is): each body's frame, its joints' frames and
+  // its centre of mass, no inertial axes, no other tree
+  const int* const rootid = model.body_rootid.data();
+  const auto in_tree = [rootid, root](int b) { return rootid[b] == root; };
+  if (root > 0) {
+    for (int b = root; b < model.nbody; ++b) {
+      if (in_tree(b)) place_body<kForJacobian>(arrays, b);
+    }
+    subtree_centres(model, data, root, in_tree);
+  }
+  place_attached(1, &model.site_bodyid[site], &model.site_pos[site], &model.site_quat[site],
+                 &model.site_placement[site], arrays, &data.site_xpos[site],
+                 &data.site_xmat[site]);
+
+  // the columns from the last dof down: an ancestor of the site's body gets its column, every
+  // other dof zeros (for a chain, none)
+  int b = body;
+  while (b > 0 && model.body_dofnum[b] == 0) b = model.body_parentid[b];
+  int next = b > 0 ? model.body_dofadr[b] + model.body_dofnum[b] - 1 : -1;
+  const Eigen::Vector3d c = data.subtree_com[root];
+  const Eigen::Vector3d offset = data.site_xpos[site] - c;
+  double* const p = jacp.data();
+  double* const r = jacr.data();
+  const Eigen::Index p_stride = jacp.outerStride(), r_stride = jacr.outerStride();
+  for (int i = model.nv - 1; i >= 0; --i) {
+    if (i == next) {
+      dof_column(model, data, i, c, offset, p + i * p_stride, r + i * r_stride);
+      next = model.dof_parentid[i];
+    } else {
+      for (int row = 0; row < 3; ++row) p[i * p_stride + row] = r[i * r_stride + row] = 0.0;
+    }
+  }
 }
 
 }  // namespace lever
