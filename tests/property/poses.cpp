@@ -370,10 +370,20 @@ TEST_CASE(
         CHECK(all_unplaced(lean.cdof));
       }
     }
+    // refused before anything is written
+    apply(random_state(m, rng), lean);
+    mark_unplaced(lean);
     for (const int bad : {-1, m.nsite}) {
       CHECK_THROWS_WITH(jac_site_from_q(m, lean, bad, lean_jacp, lean_jacr),
                         Catch::Contains("lever::jac_site_from_q: site " + std::to_string(bad)));
     }
+    if (m.nsite > 0) {
+      Eigen::MatrixXd wide(3, m.nv + 1);
+      CHECK_THROWS_WITH(jac_site_from_q(m, lean, 0, wide, lean_jacr),
+                        Catch::Contains("lever::jac_site_from_q: a Jacobian must be 3 x"));
+    }
+    CHECK(all_unplaced(lean.site_xpos));
+    CHECK(all_unplaced(std::vector<Eigen::Vector3d>(lean.xpos.begin() + 1, lean.xpos.end())));
   }
   CHECK(sites_checked > 0);
 }
