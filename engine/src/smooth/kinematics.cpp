@@ -206,12 +206,14 @@ void place_attached(int n, const int* bodyid, const Eigen::Vector3d* pos, const 
 }
 
 // The world's frame, which every other frame is placed on: set on every call, as MuJoCo's
-// mj_kinematics does, so that a value a caller wrote into it cannot move the robot.
+// mj_kinematics does, so that a value a caller wrote into it cannot move the robot; its inertial
+// frame where the pass places inertial frames.
+template <Placed kPlace = kEveryFrame>
 inline void place_world(Data& data) {
   data.xpos[0].setZero();
   data.xmat[0].setIdentity();
-  data.xipos[0].setZero();
-  data.ximat[0].setIdentity();
+  if constexpr (kPlace.inertial_origin) data.xipos[0].setZero();
+  if constexpr (kPlace.inertial_axes) data.ximat[0].setIdentity();
   data.xquat[0] = Quat(1.0, 0.0, 0.0, 0.0);
 }
 
@@ -399,7 +401,7 @@ void kinematics(const Model& model, Data& data) {
 void body_poses(const Model& model, Data& data) {
   check_entry(model, data, "lever::body_poses");
   normalize_state_quats(model, data);
-  place_world(data);
+  place_world<kFramesAlone>(data);
   const int nbody = model.nbody;
   for (int b = 1; b < nbody; ++b) place_body<kFramesAlone>(model, data, b);
 }
@@ -422,7 +424,7 @@ void place_site(const Model& model, Data& data, int site) {
   int* const path = data.work.body_path.data();
   int length = 0;
   for (int b = model.site_bodyid[site]; b > 0; b = model.body_parentid[b]) path[length++] = b;
-  place_world(data);
+  place_world<kFramesAlone>(data);
   while (length > 0) place_body<kFramesAlone>(model, data, path[--length]);
   place_attached(1, &model.site_bodyid[site], &model.site_pos[site], &model.site_quat[site],
                  &model.site_placement[site], data, &data.site_xpos[site],
@@ -546,7 +548,7 @@ void jac_site_from_q(const Model& model, Data& data, int site, Eigen::Ref<Eigen:
                      std::to_string(model.nsite - 1) + ".");
   }
   normalize_state_quats(model, data);
-  place_world(data);
+  place_world<kForJacobian>(data);
   const int body = model.site_bodyid[site];
   const int root = model.body_rootid[body];
   // the bodies of the site's tree, whose centre of mass c is where cdof's moments are taken
