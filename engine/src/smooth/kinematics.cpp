@@ -144,7 +144,9 @@ template <bool kJointFrames>
 
 // Body b's frame (xpos, xquat, xmat) on its parent's, which is placed, with qpos's quaternions
 // normalized; and what kPlace asks for besides: its joints' anchors and axes (xanchor, xaxis),
-// its inertial frame's origin (xipos) and axes (ximat).
+// its inertial frame's origin (xipos) and axes (ximat). Model's and Data's arrays are read where
+// they are: a per-call copy of their data pointers cost some 50 instructions a call and saved
+// none (the stores into Data reload them from the copy as they would from Data).
 template <Placed kPlace>
 [[gnu::always_inline]] inline void place_body(const Model& m, Data& d, int b) {
   constexpr bool kJointFrames = kPlace.joint_frames;
