@@ -89,13 +89,15 @@ void register_lever(const Fixture& f) {
   }
   register_lever_kernels(f);
   const auto rnea_op = [](const Model& m, Data& d) { rnea(m, d, d.qacc, d.qfrc_inverse); };
+  // from q, each peer computes the quantity asked for and what it needs: lever's body_kinematics
+  // is kinematics without the geom and site frames, which nothing here reads
   add("bias_from_q", f, "lever", lever_fn(&f, s, nothing, [](const Model& m, Data& d) {
-        kinematics(m, d);
+        body_kinematics(m, d);
         bias(m, d);
       }));
   add("rnea", f, "lever", lever_fn(&f, s, kin, rnea_op));
   add("rnea_from_q", f, "lever", lever_fn(&f, s, nothing, [](const Model& m, Data& d) {
-        kinematics(m, d);
+        body_kinematics(m, d);
         rnea(m, d, d.qacc, d.qfrc_inverse);
       }));
   add("crba_factor", f, "lever", lever_fn(&f, s, kin, [](const Model& m, Data& d) {
@@ -103,7 +105,7 @@ void register_lever(const Fixture& f) {
         factor_mass(m, d);
       }));
   add("crba_from_q", f, "lever", lever_fn(&f, s, nothing, [](const Model& m, Data& d) {
-        kinematics(m, d);
+        body_kinematics(m, d);
         crba(m, d);
       }));
   add("inverse", f, "lever",

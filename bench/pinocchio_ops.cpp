@@ -53,19 +53,19 @@ PinocchioRig::~PinocchioRig() = default;
 const std::vector<PinocchioOperation>& pinocchio_operations() {
   using Op = PinocchioOperation;
   static const std::vector<Op> ops = {
-      {"fk", {}, LEVER_PEER_CALL(forward_kinematics)},
+      {"fk_bodies", [](const Fixture&, PinocchioRig& r) { body_poses(r.model, r.d); },
+       LEVER_PEER_CALL(forward_kinematics)},
       {"bias_from_q", {}, LEVER_PEER_CALL(nonlinear_effects)},
       {"rnea_from_q", {}, LEVER_PEER_CALL(rnea)},
       {"crba_from_q", {}, LEVER_PEER_CALL(crba)},
       {"jac_site_from_q",
        [](const Fixture& f, PinocchioRig& r) {
-         kinematics(r.model, r.d);
-         jac_site(r.model, r.d, f.site, r.jacp, r.jacr);
+         jac_site_from_q(r.model, r.d, f.site, r.jacp, r.jacr);
        },
        LEVER_PEER_CALL(frame_jacobian)},
       {"aba",
        [](const Fixture&, PinocchioRig& r) {
-         kinematics(r.model, r.d);
+         body_kinematics(r.model, r.d);
          bias(r.model, r.d);
          crba(r.model, r.d);
          factor_mass(r.model, r.d);
@@ -75,7 +75,7 @@ const std::vector<PinocchioOperation>& pinocchio_operations() {
        LEVER_PEER_CALL(aba)},
       {"rnea_derivatives",
        [](const Fixture&, PinocchioRig& r) {
-         kinematics(r.model, r.d);
+         body_kinematics(r.model, r.d);
          crba(r.model, r.d);
          rnea_derivatives(r.model, r.d, r.d.qacc, r.deriv);
        },

@@ -1,23 +1,29 @@
 // The operations timed against Pinocchio, lever's side and Pinocchio's, in one table that the
 // benchmarks (bench/benchmarks.cpp), the instruction counts (bench/profile.cpp) and the checks
 // (bench/check.cpp) share. Every operation starts from the state (q, v, a or tau), as Pinocchio's
-// algorithms do.
+// algorithms do, and each side computes the same outputs (what neither reads is not computed:
+// lever's body_kinematics is kinematics without the geom and site frames).
 //
-//   fk                 Pinocchio's forwardKinematics (lever's fk row is poses(), benchmarks.cpp)
-//   bias_from_q        nonLinearEffects                (lever: kinematics, bias)
-//   rnea_from_q        rnea                            (lever: kinematics, rnea)
-//   crba_from_q        crba                            (lever: kinematics, crba)
-//   jac_site_from_q    computeFrameJacobian, world axes (lever: kinematics, jac_site)
-//   aba                aba: a from tau                 (lever: kinematics, bias, crba, factor_mass,
-//                                                       solve_mass; lever has no ABA)
+//   fk_bodies          forwardKinematics: each joint's placement
+//                                                      (lever: body_poses, each body's frame)
+//   bias_from_q        nonLinearEffects                (lever: body_kinematics, bias)
+//   rnea_from_q        rnea                            (lever: body_kinematics, rnea)
+//   crba_from_q        crba                            (lever: body_kinematics, crba)
+//   jac_site_from_q    computeFrameJacobian, world axes, and the frame's placement
+//                                                      (lever: jac_site_from_q, the site's frame
+//                                                       and Jacobian)
+//   aba                aba: a from tau                 (lever: body_kinematics, bias, crba,
+//                                                       factor_mass, solve_mass; lever has no ABA)
 //   rnea_derivatives   computeRNEADerivatives: d tau / d q, d v, and M
-//                                                      (lever: kinematics, crba, rnea_derivatives)
+//                                                      (lever: body_kinematics, crba,
+//                                                       rnea_derivatives)
 //   aba_derivatives    computeABADerivatives: d a / d q, d v, and M^-1
 //                                                      (lever: forward_derivatives with tau as
 //                                                       qfrc_applied, on the model without its
 //                                                       damping and actuator forces: the same
 //                                                       quantity; lever keeps M's factor, not M^-1)
-// The first four rows' lever side is benchmarks.cpp's own; the last four are new here.
+// bias_from_q, rnea_from_q and crba_from_q's lever side is benchmarks.cpp's own (the rows MuJoCo
+// and KDL are timed against too); the others' is here.
 #pragma once
 
 #include <lever/derivatives.hpp>

@@ -10,9 +10,10 @@
 // step_limit step_jacobian_forward (the analytic A and B); MuJoCo's counterparts as
 // mujoco:<operation> (bias is mj_rne alone, bias_vel adds mj_comVel; step_jacobian_centred too;
 // fk_tip is mj_kinematics, MuJoCo having no one-frame call), KDL's as kdl:<operation> (fk fk_tip
-// jac_site bias_from_q rnea_from_q crba_from_q forward); on serial chains lever's jac_site_from_q
-// aba rnea_derivatives aba_derivatives and Pinocchio's as pinocchio:<operation> (fk bias_from_q
-// rnea_from_q crba_from_q and those four: bench/pinocchio_ops.hpp) where the build has Pinocchio. Each does what the benchmark of the same
+// jac_site bias_from_q rnea_from_q crba_from_q forward); on serial chains lever's fk_bodies
+// jac_site_from_q aba rnea_derivatives aba_derivatives and Pinocchio's as pinocchio:<operation>
+// (bias_from_q rnea_from_q crba_from_q and those five: bench/pinocchio_ops.hpp) where the build
+// has Pinocchio. Each does what the benchmark of the same
 // name times (bench/benchmarks.cpp), after the same preparation.
 //
 // Under callgrind only the loops are counted (loading the model, the preparation and a few
@@ -138,14 +139,14 @@ std::vector<Operation> operations() {
       {"bias", N::kNothing, 1, [](const Fixture& f, Rig& r) { lever::bias(f.model, r.d); }},
       {"bias_from_q", N::kNothing, 1,
        [](const Fixture& f, Rig& r) {
-         lever::kinematics(f.model, r.d);
+         lever::body_kinematics(f.model, r.d);
          lever::bias(f.model, r.d);
        }},
       {"rnea", N::kNothing, 1,
        [](const Fixture& f, Rig& r) { lever::rnea(f.model, r.d, r.d.qacc, r.d.qfrc_inverse); }},
       {"rnea_from_q", N::kNothing, 1,
        [](const Fixture& f, Rig& r) {
-         lever::kinematics(f.model, r.d);
+         lever::body_kinematics(f.model, r.d);
          lever::rnea(f.model, r.d, r.d.qacc, r.d.qfrc_inverse);
        }},
       {"crba", N::kNothing, 1, [](const Fixture& f, Rig& r) { lever::crba(f.model, r.d); }},
@@ -156,7 +157,7 @@ std::vector<Operation> operations() {
        }},
       {"crba_from_q", N::kNothing, 1,
        [](const Fixture& f, Rig& r) {
-         lever::kinematics(f.model, r.d);
+         lever::body_kinematics(f.model, r.d);
          lever::crba(f.model, r.d);
        }},
       {"inverse", N::kNothing, 1, [](const Fixture& f, Rig& r) { lever::inverse(f.model, r.d); }},

@@ -202,15 +202,15 @@ const Operation kOperations[] = {
      "`ChainJntToJacSolver` (from q)"},
     {"bias", "`bias` (kinematics done)",
      "`mj_rne(flg_acc=0)` alone (kinematics, comPos, comVel done)", ""},
-    {"bias_from_q", "`kinematics` + `bias`",
+    {"bias_from_q", "`body_kinematics` (`kinematics` without geom and site frames) + `bias`",
      "`mj_kinematics` + `mj_comPos` + `mj_comVel` + `mj_rne(0)`", "`ChainIdSolver_RNE`, qddot = 0"},
     {"rnea", "`rnea(qacc)` (kinematics done)",
      "`mj_rne(flg_acc=1)` alone (kinematics, comPos, comVel done)", ""},
-    {"rnea_from_q", "`kinematics` + `rnea(qacc)`",
+    {"rnea_from_q", "`body_kinematics` + `rnea(qacc)`",
      "`mj_kinematics` + `mj_comPos` + `mj_comVel` + `mj_rne(1)`", "`ChainIdSolver_RNE`"},
     {"crba", "`crba` (kinematics done)", "`mj_crb` alone (kinematics, comPos done)", ""},
     {"crba_factor", "`crba` + `factor_mass`", "`mj_crb` + `mj_factorM`", ""},
-    {"crba_from_q", "`kinematics` + `crba`", "`mj_kinematics` + `mj_comPos` + `mj_crb`",
+    {"crba_from_q", "`body_kinematics` + `crba`", "`mj_kinematics` + `mj_comPos` + `mj_crb`",
      "`ChainDynParam::JntToMass`"},
     {"inverse", "`inverse` (whole pipeline + RNEA)", "`mj_inverse`", ""},
     {"forward", "`forward`", "`mj_forward`", "`ChainFdSolver_RNE` (M, RNE, LDL only)"},
@@ -232,15 +232,18 @@ struct PinocchioOperation {
 };
 
 const PinocchioOperation kPinocchioOperations[] = {
-    {"fk", "`poses`: every body's, geom's and site's frame", "`forwardKinematics`: every joint's placement"},
-    {"bias_from_q", "`kinematics` + `bias`", "`nonLinearEffects`"},
-    {"rnea_from_q", "`kinematics` + `rnea(qacc)`", "`rnea`"},
-    {"crba_from_q", "`kinematics` + `crba`", "`crba` (upper triangle)"},
-    {"jac_site_from_q", "`kinematics` + `jac_site` of the tip site",
-     "`computeFrameJacobian` of the tip frame, `LOCAL_WORLD_ALIGNED`"},
-    {"aba", "`kinematics` + `bias` + `crba` + `factor_mass` + `solve_mass` (lever has no ABA)",
+    {"fk_bodies", "`body_poses`: every body's frame", "`forwardKinematics`: every joint's placement"},
+    {"bias_from_q", "`body_kinematics` (`kinematics` without geom and site frames) + `bias`",
+     "`nonLinearEffects`"},
+    {"rnea_from_q", "`body_kinematics` + `rnea(qacc)`", "`rnea`"},
+    {"crba_from_q", "`body_kinematics` + `crba`", "`crba` (upper triangle)"},
+    {"jac_site_from_q",
+     "`jac_site_from_q` of the tip site: the bodies of its tree, the site's frame, its Jacobian",
+     "`computeFrameJacobian` of the tip frame, `LOCAL_WORLD_ALIGNED` (the joints of its support, "
+     "the frame's placement, its Jacobian)"},
+    {"aba", "`body_kinematics` + `bias` + `crba` + `factor_mass` + `solve_mass` (lever has no ABA)",
      "`aba`"},
-    {"rnea_derivatives", "`kinematics` + `crba` + `rnea_derivatives`",
+    {"rnea_derivatives", "`body_kinematics` + `crba` + `rnea_derivatives`",
      "`computeRNEADerivatives` (d tau / d q, d v and M)"},
     {"aba_derivatives",
      "`forward_derivatives` on the model without damping and actuator forces, tau as "
@@ -1021,7 +1024,10 @@ void write_operations(std::ostream& out) {
          "`place_site`, which places the tip site and the bodies on its path alone (MuJoCo has no "
          "such call: its `fk_tip` is the whole `mj_kinematics`); the `fk` row places every frame, "
          "every body, geom and site (lever's `poses`, which leaves out the quaternions "
-         "`mj_kinematics` also composes; `kinematics` has them and MuJoCo's `mj_comPos`). lever's "
+         "`mj_kinematics` also composes; `kinematics` has them and MuJoCo's `mj_comPos`); the "
+         "`*_from_q` rows run lever's `body_kinematics`, `kinematics` without the geom and site "
+         "frames, which neither M, the bias nor inverse dynamics reads (MuJoCo has no such call "
+         "and places them all). lever's "
          "flags include `-ffp-contract=off` (no fused multiply-add); "
          "nothing is "
          "built with `-march=native`. The instruction counts run the same calls on the same states "

@@ -687,6 +687,8 @@ PYBIND11_MODULE(_lever, m) {
   pipeline("step2", lever::step2, "Motors, accelerations, the limit solve and Euler (mj_step2).");
   pipeline("inverse", lever::inverse, "Inverse dynamics into qfrc_inverse (mj_inverse).");
   pipeline("kinematics", lever::kinematics, "Poses and com-frame quantities (mj_kinematics).");
+  pipeline("body_kinematics", lever::body_kinematics,
+           "kinematics() without the geom and site frames: what crba, bias and rnea read.");
   pipeline("crba", lever::crba, "M(q) into data.M, armature included (mj_crb).");
   pipeline("factor_mass", lever::factor_mass, "Factor M (mj_factorM).");
   pipeline("bias", lever::bias, "qfrc_bias (mj_rne with flg_acc = 0).");
@@ -737,6 +739,16 @@ PYBIND11_MODULE(_lever, m) {
         return py::make_tuple(jacp, jacr);
       },
       py::arg("model"), py::arg("data"), py::arg("site"), "(jacp, jacr), each 3 x nv.");
+  m.def(
+      "jac_site_from_q",
+      [](const ModelPtr& x, const DataPtr& d, int site) {
+        Eigen::MatrixXd jacp(3, x->nv), jacr(3, x->nv);
+        lever::jac_site_from_q(*x, data_for(x, d), site, jacp, jacr);
+        return py::make_tuple(jacp, jacr);
+      },
+      py::arg("model"), py::arg("data"), py::arg("site"),
+      "(jacp, jacr), each 3 x nv, from data.qpos: jac_site() without the rest of kinematics() "
+      "(the site's tree and the site placed), bit for bit kinematics() then jac_site().");
   m.def(
       "jac_point",
       [](const ModelPtr& x, const DataPtr& d, int body, const Eigen::Vector3d& point) {

@@ -263,8 +263,8 @@ TEST_CASE("the counting allocator sees operator new and Eigen's allocations", "[
 }
 
 TEST_CASE(
-    "forward, step, step1, step2, inverse, jac_site, place_site and compute_energy allocate "
-    "nothing",
+    "forward, step, step1, step2, inverse, jac_site, place_site, jac_site_from_q, body_poses, "
+    "body_kinematics and compute_energy allocate nothing",
     "[alloc]") {
   const std::vector<std::string> files = lever::test::all_model_files();
   REQUIRE(!files.empty());
@@ -302,6 +302,16 @@ TEST_CASE(
         // one site's frame from q, each in turn (after the Jacobians: it rewrites site frames)
         for (int site = 0; site < m.nsite; ++site) {
           a = count([&] { lever::place_site(m, d, site); });
+          CHECK(a.news == 0);
+          CHECK(a.mallocs == 0);
+          a = count([&] { lever::jac_site_from_q(m, d, site, jacp, jacr); });
+          CHECK(a.news == 0);
+          CHECK(a.mallocs == 0);
+        }
+        // the lean kinematics (they rewrite frames forward() wrote)
+        for (void (*lean)(const lever::Model&, lever::Data&) :
+             {lever::body_poses, lever::body_kinematics}) {
+          a = count([&] { lean(m, d); });
           CHECK(a.news == 0);
           CHECK(a.mallocs == 0);
         }

@@ -1,7 +1,8 @@
 // The lean pose stage against the whole kinematics: poses() is what kinematics() places, and the
 // quaternions kinematics() composes beside the rotation matrices describe the same rotations;
 // place_site() places one site's frame, and the bodies on its path, as poses() does, and nothing
-// else.
+// else; body_poses(), body_kinematics() and jac_site_from_q() write what they promise bit for bit
+// as poses(), kinematics() and kinematics() + jac_site() do, and nothing else.
 #include "property_models.hpp"
 
 namespace lever::test {
@@ -233,6 +234,158 @@ TEST_CASE("property: place_site() refuses a site index out of range and changes 
     CHECK(all_unplaced(std::vector<Eigen::Vector3d>(data.xpos.begin() + 1, data.xpos.end())));
     CHECK(all_unplaced(data.site_xpos));
   }
+}
+
+TEST_CASE("property: body_poses() writes poses()' body frames bit for bit, and nothing else",
+          "[property][kinematics]") {
+  for (const ModelCase& c : every_model_and_random_trees()) {
+    const Model& m = c.model;
+    Data full(m), lean(m);
+    std::mt19937_64 rng(c.seed);
+    for (int k = 0; k < kStatesPerModel / 20; ++k) {
+      const auto state = random_state(m, rng);
+      apply(state, full);
+      poses(m, full);
+      apply(state, lean);
+      mark_unplaced(lean);
+      body_poses(m, lean);
+      INFO(c.name << ", seed " << c.seed << ", state " << k);
+      CHECK(lean.qpos == full.qpos);
+      CHECK(same(lean.xpos, full.xpos));
+      CHECK(same(lean.xquat, full.xquat));
+      CHECK(same(lean.xmat, full.xmat));
+      CHECK(all_unplaced(std::vector<Eigen::Vector3d>(lean.xipos.begin() + 1, lean.xipos.end())));
+      CHECK(all_unplaced(std::vector<Mat3>(lean.ximat.begin() + 1, lean.ximat.end())));
+      CHECK(all_unplaced(lean.xanchor));
+      CHECK(all_unplaced(lean.xaxis));
+      CHECK(all_unplaced(lean.geom_xpos));
+      CHECK(all_unplaced(lean.geom_xmat));
+      CHECK(all_unplaced(lean.site_xpos));
+      CHECK(all_unplaced(lean.site_xmat));
+      CHECK(all_unplaced(lean.subtree_com));
+      CHECK(all_unplaced(lean.cdof));
+    }
+  }
+}
+
+TEST_CASE(
+    "property: body_kinematics() writes kinematics()' arrays bit for bit, but for the geom and "
+    "site frames, which it leaves alone",
+    "[property][kinematics]") {
+  for (const ModelCase& c : every_model_and_random_trees()) {
+    const Model& m = c.model;
+    Data full(m), lean(m);
+    std::mt19937_64 rng(c.seed);
+    for (int k = 0; k < kStatesPerModel / 20; ++k) {
+      const auto state = random_state(m, rng);
+      apply(state, full);
+      kinematics(m, full);
+      apply(state, lean);
+      mark_unplaced(lean);
+      for (auto& I : lean.cinert) I.m = kUnplaced;
+      body_kinematics(m, lean);
+      INFO(c.name << ", seed " << c.seed << ", state " << k);
+      CHECK(lean.qpos == full.qpos);
+      CHECK(same(lean.xpos, full.xpos));
+      CHECK(same(lean.xquat, full.xquat));
+      CHECK(same(lean.xmat, full.xmat));
+      CHECK(same(lean.xipos, full.xipos));
+      CHECK(same(lean.ximat, full.ximat));
+      CHECK(same(lean.xanchor, full.xanchor));
+      CHECK(same(lean.xaxis, full.xaxis));
+      CHECK(same(lean.subtree_com, full.subtree_com));
+      CHECK(same(lean.cdof, full.cdof));
+      for (int b = 1; b < m.nbody; ++b) {
+        INFO("cinert of body " << b);
+        CHECK(lean.cinert[b].m == full.cinert[b].m);
+        CHECK(lean.cinert[b].h == full.cinert[b].h);
+        CHECK(lean.cinert[b].I == full.cinert[b].I);
+      }
+      CHECK(all_unplaced(lean.geom_xpos));
+      CHECK(all_unplaced(lean.geom_xmat));
+      CHECK(all_unplaced(lean.site_xpos));
+      CHECK(all_unplaced(lean.site_xmat));
+    }
+  }
+}
+
+TEST_CASE(
+    "property: jac_site_from_q() gives kinematics() + jac_site() bit for bit, and writes only "
+    "the site's tree and the site",
+    "[property][kinematics]") {
+  int sites_checked = 0;
+  for (const ModelCase& c : every_model_and_random_trees()) {
+    const Model& m = c.model;
+    Data full(m), lean(m);
+    Eigen::MatrixXd jacp(3, m.nv), jacr(3, m.nv), lean_jacp(3, m.nv), lean_jacr(3, m.nv);
+    std::mt19937_64 rng(c.seed);
+    for (int k = 0; k < kStatesPerModel / 20; ++k) {
+      const auto state = random_state(m, rng);
+      apply(state, full);
+      kinematics(m, full);
+      for (int s = 0; s < m.nsite; ++s) {
+        jac_site(m, full, s, jacp, jacr);
+        apply(state, lean);
+        mark_unplaced(lean);
+        lean_jacp.setConstant(kUnplaced);  // every entry must be written, zeros included
+        lean_jacr.setConstant(kUnplaced);
+        jac_site_from_q(m, lean, s, lean_jacp, lean_jacr);
+        ++sites_checked;
+        const int root = m.body_rootid[m.site_bodyid[s]];
+        INFO(c.name << ", seed " << c.seed << ", state " << k << ", site " << s);
+        CHECK(lean.qpos == full.qpos);
+        CHECK(lean_jacp == jacp);
+        CHECK(lean_jacr == jacr);
+        CHECK(lean.site_xpos[s] == full.site_xpos[s]);
+        CHECK(lean.site_xmat[s] == full.site_xmat[s]);
+        for (int b = 1; b < m.nbody; ++b) {
+          const bool in_tree = root > 0 && m.body_rootid[b] == root;
+          INFO("body " << b << (in_tree ? " (in the site's tree)" : ""));
+          if (in_tree) {
+            CHECK(lean.xpos[b] == full.xpos[b]);
+            CHECK(lean.xquat[b] == full.xquat[b]);
+            CHECK(lean.xmat[b] == full.xmat[b]);
+            CHECK(lean.xipos[b] == full.xipos[b]);
+            CHECK(lean.subtree_com[b] == full.subtree_com[b]);
+          } else {
+            CHECK(unplaced(lean.xpos[b]));
+            CHECK(unplaced(lean.xipos[b]));
+            CHECK(unplaced(lean.subtree_com[b]));
+          }
+          CHECK(unplaced(lean.ximat[b]));
+        }
+        for (int j = 0; j < m.njnt; ++j) {
+          const bool in_tree = root > 0 && m.body_rootid[m.jnt_bodyid[j]] == root;
+          INFO("joint " << j << (in_tree ? " (in the site's tree)" : ""));
+          CHECK(unplaced(lean.xanchor[j]) != in_tree);
+          if (in_tree) {
+            CHECK(lean.xanchor[j] == full.xanchor[j]);
+            CHECK(lean.xaxis[j] == full.xaxis[j]);
+          }
+        }
+        for (int other = 0; other < m.nsite; ++other) {
+          if (other != s) CHECK(unplaced(lean.site_xpos[other]));
+        }
+        CHECK(all_unplaced(lean.geom_xpos));
+        CHECK(all_unplaced(lean.cdof));
+      }
+    }
+    // refused before anything is written
+    apply(random_state(m, rng), lean);
+    mark_unplaced(lean);
+    for (const int bad : {-1, m.nsite}) {
+      CHECK_THROWS_WITH(jac_site_from_q(m, lean, bad, lean_jacp, lean_jacr),
+                        Catch::Contains("lever::jac_site_from_q: site " + std::to_string(bad)));
+    }
+    if (m.nsite > 0) {
+      Eigen::MatrixXd wide(3, m.nv + 1);
+      CHECK_THROWS_WITH(jac_site_from_q(m, lean, 0, wide, lean_jacr),
+                        Catch::Contains("lever::jac_site_from_q: a Jacobian must be 3 x"));
+    }
+    CHECK(all_unplaced(lean.site_xpos));
+    CHECK(all_unplaced(std::vector<Eigen::Vector3d>(lean.xpos.begin() + 1, lean.xpos.end())));
+  }
+  CHECK(sites_checked > 0);
 }
 
 }  // namespace lever::test

@@ -19,6 +19,18 @@ void kinematics(const Model& model, Data& data);
 /// Leaves the com-frame quantities as they were; kinematics() computes them too.
 void poses(const Model& model, Data& data);
 
+/// Each body's frame alone at data.qpos (xpos, xquat, xmat), what a controller reading its
+/// links' placements needs (Pinocchio's forwardKinematics): bit for bit what poses() writes;
+/// normalizes qpos's quaternions as poses() does, and changes nothing else in Data (the joints'
+/// anchors and axes, the inertial, geom and site frames keep what they held). No allocation.
+void body_poses(const Model& model, Data& data);
+
+/// kinematics() without the geom and site frames: the body, inertial and joint frames and the
+/// com-frame quantities (subtree_com, cdof, cinert), everything crba(), bias(), rnea() and
+/// jac_point() read, bit for bit what kinematics() writes; geom_xpos, geom_xmat, site_xpos and
+/// site_xmat keep what they held. No allocation.
+void body_kinematics(const Model& model, Data& data);
+
 /// One site's frame at data.qpos, what an inverse-kinematics loop reads: places the bodies on the
 /// path from the site's body to the world (their xpos, xquat and xmat), then the site (site_xpos[site],
 /// site_xmat[site]), each bit for bit what poses() writes; normalizes qpos's quaternions as
@@ -32,6 +44,18 @@ void place_site(const Model& model, Data& data, int site);
 /// @pre kinematics() was called for the current qpos.
 void jac_site(const Model& model, const Data& data, int site, Eigen::Ref<Eigen::MatrixXd> jacp,
               Eigen::Ref<Eigen::MatrixXd> jacr);
+
+/// jac_site() from data.qpos, without the rest of kinematics(): places the bodies of the site's
+/// tree (their frames, joint frames and centres of mass: the tree's centre of mass is where the
+/// Jacobian's moments are taken) and the site, then fills the columns of the dofs between the
+/// site and the world (zeros elsewhere). jacp, jacr, site_xpos[site] and site_xmat[site] are bit
+/// for bit what kinematics() then jac_site() give, and so are the tree's xpos, xquat, xmat,
+/// xipos, xanchor, xaxis and subtree_com; nothing else in Data changes (ximat, cdof, cinert, the
+/// other trees, geoms and sites keep what they held), but for qpos's quaternions, normalized as
+/// kinematics() does. No allocation.
+/// @throws StateError if site is not in 0..nsite-1 or a Jacobian is not 3 x nv.
+void jac_site_from_q(const Model& model, Data& data, int site, Eigen::Ref<Eigen::MatrixXd> jacp,
+                     Eigen::Ref<Eigen::MatrixXd> jacr);
 
 /// The same for a point fixed to a body, given in world coordinates (MuJoCo's mj_jac).
 void jac_point(const Model& model, const Data& data, int body, const Eigen::Vector3d& point,

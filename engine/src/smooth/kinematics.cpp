@@ -82,93 +82,47 @@ inline void place_frame(const Eigen::Vector3d& p, const Mat3& R, const Quat& bod
   }
 }
 
-// The arrays the placement reads and writes, each vector's data pointer loaded once per call:
-// read through the std::vectors, every store into one array would make the compiler load the
-// next array's data pointer again (Eigen's packet stores may alias any object).
-struct BodyArrays {
-  BodyArrays(const Model& model, Data& data)
-      : parentid(model.body_parentid.data()),
-        jntnum(model.body_jntnum.data()),
-        jntadr(model.body_jntadr.data()),
-        mocapid(model.body_mocapid.data()),
-        body_pos(model.body_pos.data()),
-        body_quat(model.body_quat.data()),
-        body_placement(model.body_placement.data()),
-        body_ipos(model.body_ipos.data()),
-        body_iquat(model.body_iquat.data()),
-        body_iplacement(model.body_iplacement.data()),
-        jnt_kind(model.jnt_kind.data()),
-        jnt_offset(model.jnt_offset.data()),
-        jnt_qposadr(model.jnt_qposadr.data()),
-        jnt_pos(model.jnt_pos.data()),
-        jnt_axis(model.jnt_axis.data()),
-        qpos0(model.qpos0.data()),
-        qpos(data.qpos.data()),
-        mocap_pos(data.mocap_pos.data()),
-        mocap_quat(data.mocap_quat.data()),
-        xpos(data.xpos.data()),
-        xmat(data.xmat.data()),
-        xquat(data.xquat.data()),
-        xipos(data.xipos.data()),
-        ximat(data.ximat.data()),
-        xanchor(data.xanchor.data()),
-        xaxis(data.xaxis.data()) {}
-
-  // the model's
-  const int *parentid, *jntnum, *jntadr, *mocapid;
-  const Eigen::Vector3d* body_pos;
-  const Quat* body_quat;
-  const FramePlacement* body_placement;
-  const Eigen::Vector3d* body_ipos;
-  const Quat* body_iquat;
-  const FramePlacement* body_iplacement;
-  const JointKind* jnt_kind;
-  const uint8_t* jnt_offset;
-  const int* jnt_qposadr;
-  const Eigen::Vector3d *jnt_pos, *jnt_axis;
-  const double* qpos0;
-  // the state and what is placed
-  const double* qpos;
-  const Eigen::Vector3d* mocap_pos;
-  const Quat* mocap_quat;
-  Eigen::Vector3d* xpos;
-  Mat3* xmat;
-  Quat* xquat;
-  Eigen::Vector3d* xipos;
-  Mat3* ximat;
-  Eigen::Vector3d *xanchor, *xaxis;
+// What a pass over the bodies places besides each body's own frame (xpos, xquat, xmat): every
+// caller asks for what it reads and nothing more.
+struct Placed {
+  bool joint_frames = false;      // each joint's anchor and axis (xanchor, xaxis)
+  bool inertial_origin = false;   // the centre of mass (xipos)
+  bool inertial_axes = false;     // the principal axes (ximat)
 };
+constexpr Placed kFramesAlone{};                    // body_poses(), place_site()
+constexpr Placed kEveryFrame{true, true, true};      // poses(), kinematics()
+constexpr Placed kForJacobian{true, true, false};   // jac_site_from_q(): cdof's and c's inputs
 
 // The frame (pos, quat) moved by joint j of its body (not a free joint), in mj_kinematics's
 // order: the joint's world axis and anchor from the frame so far, then a slide's shift or a
 // turn's quaternion, and for a turn about an anchor off the origin, the origin swung back so that
 // the anchor stays.
 template <bool kJointFrames>
-[[gnu::always_inline]] inline void move_joint(const BodyArrays& a, int j, Eigen::Vector3d& pos,
+[[gnu::always_inline]] inline void move_joint(const Model& m, Data& d, int j, Eigen::Vector3d& pos,
                                               Quat& quat) {
-  const JointKind kind = a.jnt_kind[j];
-  const int qadr = a.jnt_qposadr[j];
-  const double* q = a.qpos + qadr;
-  const Eigen::Vector3d& axis = a.jnt_axis[j];
+  const JointKind kind = m.jnt_kind[j];
+  const int qadr = m.jnt_qposadr[j];
+  const double* q = d.qpos.data() + qadr;
+  const Eigen::Vector3d& axis = m.jnt_axis[j];
   // the anchor; at a zero jnt_pos, pos itself (the rotated zero adds nothing)
-  const bool offset = a.jnt_offset[j];
+  const bool offset = m.jnt_offset[j];
   Eigen::Vector3d anchor = pos;
-  if (offset) anchor = detail::quat_rotate(quat, a.jnt_pos[j]) + pos;
-  if constexpr (kJointFrames) a.xanchor[j] = anchor;
+  if (offset) anchor = detail::quat_rotate(quat, m.jnt_pos[j]) + pos;
+  if constexpr (kJointFrames) d.xanchor[j] = anchor;
   switch (kind) {
     case JointKind::kSlide: {
       const Eigen::Vector3d world_axis = detail::quat_rotate(quat, axis);
-      if constexpr (kJointFrames) a.xaxis[j] = world_axis;
-      pos += world_axis * (q[0] - a.qpos0[qadr]);
+      if constexpr (kJointFrames) d.xaxis[j] = world_axis;
+      pos += world_axis * (q[0] - m.qpos0[qadr]);
       return;  // nothing turns
     }
     case JointKind::kBall:  // qpos is the turn itself, a unit quaternion
-      if constexpr (kJointFrames) a.xaxis[j] = detail::quat_rotate(quat, axis);
+      if constexpr (kJointFrames) d.xaxis[j] = detail::quat_rotate(quat, axis);
       quat = quat_mul(quat, Quat(q[0], q[1], q[2], q[3]));
       break;
     default: {  // a hinge: the quaternion of its angle about its axis (none at angle 0)
-      if constexpr (kJointFrames) a.xaxis[j] = detail::quat_rotate(quat, axis);
-      const double angle = q[0] - a.qpos0[qadr];
+      if constexpr (kJointFrames) d.xaxis[j] = detail::quat_rotate(quat, axis);
+      const double angle = q[0] - m.qpos0[qadr];
       if (angle == 0.0) break;
       const double sh = std::sin(angle * 0.5), ch = std::cos(angle * 0.5);
       switch (kind) {
@@ -183,78 +137,85 @@ template <bool kJointFrames>
   // the anchor stays where it is: the origin swings around it
   if (offset) {
     const Eigen::Vector3d arm = anchor - pos;
-    const Eigen::Vector3d turned = detail::quat_rotate(quat, a.jnt_pos[j]);
+    const Eigen::Vector3d turned = detail::quat_rotate(quat, m.jnt_pos[j]);
     for (int r = 0; r < 3; ++r) pos[r] += arm[r] - turned[r];
   }
 }
 
 // Body b's frame (xpos, xquat, xmat) on its parent's, which is placed, with qpos's quaternions
-// normalized. With kJointFrames, also its joints' anchors and axes (xanchor, xaxis) and its
-// inertial frame (xipos, ximat); place_site() asks for the frame alone.
-template <bool kJointFrames>
-[[gnu::always_inline]] inline void place_body(const BodyArrays& a, int b) {
-  const int first_joint = a.jntadr[b], last_joint = first_joint + a.jntnum[b];
+// normalized; and what kPlace asks for besides: its joints' anchors and axes (xanchor, xaxis),
+// its inertial frame's origin (xipos) and axes (ximat). Model's and Data's arrays are read where
+// they are: a per-call copy of their data pointers cost some 50 instructions a call and saved
+// none (the stores into Data reload them from the copy as they would from Data).
+template <Placed kPlace>
+[[gnu::always_inline]] inline void place_body(const Model& m, Data& d, int b) {
+  constexpr bool kJointFrames = kPlace.joint_frames;
+  const int first_joint = m.body_jntadr[b], last_joint = first_joint + m.body_jntnum[b];
   // composed in place in Data: nothing of the body's pose is held in registers across the calls
   // to sincos, which would save and restore it
-  Eigen::Vector3d& pos = a.xpos[b];
-  Mat3& R = a.xmat[b];
-  Quat& quat = a.xquat[b];
-  if (last_joint == first_joint + 1 && a.jnt_kind[first_joint] == JointKind::kFree) {
+  Eigen::Vector3d& pos = d.xpos[b];
+  Mat3& R = d.xmat[b];
+  Quat& quat = d.xquat[b];
+  if (last_joint == first_joint + 1 && m.jnt_kind[first_joint] == JointKind::kFree) {
     // a free body's pose is its qpos (body_pos and body_quat only gave qpos0); its joint's
     // anchor is the body's origin and its axis z, by MuJoCo's convention
-    const double* q = a.qpos + a.jnt_qposadr[first_joint];
+    const double* q = d.qpos.data() + m.jnt_qposadr[first_joint];
     pos = Eigen::Vector3d(q[0], q[1], q[2]);
     quat = Quat(q[3], q[4], q[5], q[6]);
     if constexpr (kJointFrames) {
-      a.xanchor[first_joint] = pos;
-      a.xaxis[first_joint] = Eigen::Vector3d::UnitZ();
+      d.xanchor[first_joint] = pos;
+      d.xaxis[first_joint] = Eigen::Vector3d::UnitZ();
     }
   } else {
-    const int p = a.parentid[b];
-    const int mocap = a.mocapid[b];
+    const int p = m.body_parentid[b];
+    const int mocap = m.body_mocapid[b];
     if (mocap >= 0) {  // a mocap body: where the user put it (its parent is the world)
       const FramePlacement general;
-      offset_point(a.xpos[p], a.xmat[p], a.mocap_pos[mocap], general, pos);
-      quat = quat_mul(a.xquat[p], a.mocap_quat[mocap]);
+      offset_point(d.xpos[p], d.xmat[p], d.mocap_pos[mocap], general, pos);
+      quat = quat_mul(d.xquat[p], d.mocap_quat[mocap]);
     } else {
-      const FramePlacement& placement = a.body_placement[b];
-      offset_point(a.xpos[p], a.xmat[p], a.body_pos[b], placement, pos);
+      const FramePlacement& placement = m.body_placement[b];
+      offset_point(d.xpos[p], d.xmat[p], m.body_pos[b], placement, pos);
       if (placement.turn == FramePlacement::Turn::kNone) {
-        quat = a.xquat[p];
+        quat = d.xquat[p];
       } else {
-        quat = quat_mul(a.xquat[p], a.body_quat[b]);
+        quat = quat_mul(d.xquat[p], m.body_quat[b]);
       }
     }
     // no free joint here: validate() allows one only as its body's single joint
-    for (int j = first_joint; j < last_joint; ++j) move_joint<kJointFrames>(a, j, pos, quat);
+    for (int j = first_joint; j < last_joint; ++j) move_joint<kJointFrames>(m, d, j, pos, quat);
   }
   detail::normalize_quat(quat.data());
   quat_into_mat(quat, R);
-  if constexpr (kJointFrames) {
-    place_frame(pos, R, quat, a.body_ipos[b], a.body_iquat[b], a.body_iplacement[b], a.xipos[b],
-                a.ximat[b]);
+  if constexpr (kPlace.inertial_origin && kPlace.inertial_axes) {
+    place_frame(pos, R, quat, m.body_ipos[b], m.body_iquat[b], m.body_iplacement[b], d.xipos[b],
+                d.ximat[b]);
+  } else if constexpr (kPlace.inertial_origin) {
+    offset_point(pos, R, m.body_ipos[b], m.body_iplacement[b], d.xipos[b]);
   }
 }
 
 // Constant frames on their bodies (geoms, sites): frame i of n at (pos[i], quat[i]), placed as
 // placement[i] says, on body bodyid[i], into (xpos[i], xmat[i]).
 void place_attached(int n, const int* bodyid, const Eigen::Vector3d* pos, const Quat* quat,
-                    const FramePlacement* placement, const BodyArrays& a, Eigen::Vector3d* xpos,
+                    const FramePlacement* placement, const Data& d, Eigen::Vector3d* xpos,
                     Mat3* xmat) {
   for (int i = 0; i < n; ++i) {
     const int b = bodyid[i];
-    place_frame(a.xpos[b], a.xmat[b], a.xquat[b], pos[i], quat[i], placement[i], xpos[i],
+    place_frame(d.xpos[b], d.xmat[b], d.xquat[b], pos[i], quat[i], placement[i], xpos[i],
                 xmat[i]);
   }
 }
 
 // The world's frame, which every other frame is placed on: set on every call, as MuJoCo's
-// mj_kinematics does, so that a value a caller wrote into it cannot move the robot.
+// mj_kinematics does, so that a value a caller wrote into it cannot move the robot; its inertial
+// frame where the pass places inertial frames.
+template <Placed kPlace = kEveryFrame>
 inline void place_world(Data& data) {
   data.xpos[0].setZero();
   data.xmat[0].setIdentity();
-  data.xipos[0].setZero();
-  data.ximat[0].setIdentity();
+  if constexpr (kPlace.inertial_origin) data.xipos[0].setZero();
+  if constexpr (kPlace.inertial_axes) data.ximat[0].setIdentity();
   data.xquat[0] = Quat(1.0, 0.0, 0.0, 0.0);
 }
 
@@ -266,21 +227,24 @@ inline void normalize_state_quats(const Model& model, Data& data) {
   for (int i = 0; i < model.nmocap; ++i) detail::normalize_quat(data.mocap_quat[i].data());
 }
 
-// Body frames (xpos, xquat, xmat), joint anchors and axes, inertial frames, sites, and, when
-// asked, geoms.
-void place_bodies(const Model& model, Data& data, bool geoms) {
+// Which frames attached to the bodies a pass places.
+enum class Attached { kNone, kSites, kGeomsAndSites };
+
+// Body frames (xpos, xquat, xmat), joint anchors and axes, inertial frames, and the attached
+// frames asked for.
+void place_bodies(const Model& model, Data& data, Attached attached) {
   normalize_state_quats(model, data);
   place_world(data);
-  const BodyArrays arrays(model, data);
   const int nbody = model.nbody;
-  for (int b = 1; b < nbody; ++b) place_body<true>(arrays, b);
-  if (geoms) {
+  for (int b = 1; b < nbody; ++b) place_body<kEveryFrame>(model, data, b);
+  if (attached == Attached::kNone) return;
+  if (attached == Attached::kGeomsAndSites) {
     place_attached(model.ngeom, model.geom_bodyid.data(), model.geom_pos.data(),
-                   model.geom_quat.data(), model.geom_placement.data(), arrays,
+                   model.geom_quat.data(), model.geom_placement.data(), data,
                    data.geom_xpos.data(), data.geom_xmat.data());
   }
   place_attached(model.nsite, model.site_bodyid.data(), model.site_pos.data(),
-                 model.site_quat.data(), model.site_placement.data(), arrays,
+                 model.site_quat.data(), model.site_placement.data(), data,
                  data.site_xpos.data(), data.site_xmat.data());
 }
 
@@ -322,32 +286,30 @@ inline void world_inertia(const Mat3& R, const Eigen::Vector3d& d, double m,
   I(1, 2) = I(2, 1) = entry(1, 2) - mc[1] * c[2];
 }
 
-// Subtree centres of mass, body inertias and joint motion subspaces in absolute coordinates.
-// Each array's data pointer is loaded once (see BodyArrays).
-void com_quantities(const Model& model, Data& data) {
+// The subtree centres of mass (subtree_com) of the bodies b >= top for which in(b) holds (every
+// body: top 0; one tree: its root, and in(b) that b is in it): mass-weighted positions and masses,
+// summed leaves to root, then each sum scaled by its mass's reciprocal, in MuJoCo's mj_comPos
+// order: a body's own term is added after its children's (the sums start from zero), the
+// children's in falling index order, and its sum is scaled once it has gone to the parent (its
+// last bit is MuJoCo's only in that order). The top body's sum goes to no parent.
+template <class In>
+[[gnu::always_inline]] inline void subtree_centres(const Model& model, Data& data, int top, In in) {
   const int nbody = model.nbody;
   const int* const parentid = model.body_parentid.data();
-  const int* const rootid = model.body_rootid.data();
   const double* const mass = model.body_mass.data();
-  const Eigen::Vector3d* const inertia = model.body_inertia.data();
   const Eigen::Vector3d* const xipos = data.xipos.data();
-  const Mat3* const ximat = data.ximat.data();
   Eigen::Vector3d* const subtree_com = data.subtree_com.data();
-  RigidInertia* const cinert = data.cinert.data();
-
-  // mass-weighted positions and masses, summed leaves to root, then each sum scaled by its
-  // mass's reciprocal, in MuJoCo's mj_comPos order: a body's own term is added after its
-  // children's (the sums start from zero), the children's in falling index order, and its sum
-  // is scaled once it has gone to the parent (its last bit is MuJoCo's only in that order)
   double* const subtree_mass = data.work.subtree_mass.data();
-  for (int b = 0; b < nbody; ++b) {
+  for (int b = top; b < nbody; ++b) {
+    if (!in(b)) continue;
     subtree_com[b].setZero();
     subtree_mass[b] = 0.0;
   }
-  for (int b = nbody - 1; b >= 0; --b) {
+  for (int b = nbody - 1; b >= top; --b) {
+    if (!in(b)) continue;
     subtree_com[b] += xipos[b] * mass[b];
     subtree_mass[b] += mass[b];
-    if (b > 0) {
+    if (b > top) {
       subtree_com[parentid[b]] += subtree_com[b];
       subtree_mass[parentid[b]] += subtree_mass[b];
     }
@@ -357,6 +319,20 @@ void com_quantities(const Model& model, Data& data) {
       subtree_com[b] *= 1.0 / subtree_mass[b];
     }
   }
+}
+
+// Subtree centres of mass, body inertias and joint motion subspaces in absolute coordinates.
+void com_quantities(const Model& model, Data& data) {
+  const int nbody = model.nbody;
+  const int* const rootid = model.body_rootid.data();
+  const double* const mass = model.body_mass.data();
+  const Eigen::Vector3d* const inertia = model.body_inertia.data();
+  const Eigen::Vector3d* const xipos = data.xipos.data();
+  const Mat3* const ximat = data.ximat.data();
+  Eigen::Vector3d* const subtree_com = data.subtree_com.data();
+  RigidInertia* const cinert = data.cinert.data();
+
+  subtree_centres(model, data, 0, [](int) { return true; });
 
   // each body's inertia about its tree's centre of mass, world axes
   for (int b = 1; b < nbody; ++b) {
@@ -415,12 +391,26 @@ void check_jacobians(const Model& model, const Eigen::Ref<Eigen::MatrixXd>& jacp
 
 void poses(const Model& model, Data& data) {
   check_entry(model, data, "lever::poses");
-  place_bodies(model, data, true);
+  place_bodies(model, data, Attached::kGeomsAndSites);
 }
 
 void kinematics(const Model& model, Data& data) {
   check_entry(model, data, "lever::kinematics");
-  place_bodies(model, data, true);
+  place_bodies(model, data, Attached::kGeomsAndSites);
+  com_quantities(model, data);
+}
+
+void body_poses(const Model& model, Data& data) {
+  check_entry(model, data, "lever::body_poses");
+  normalize_state_quats(model, data);
+  place_world<kFramesAlone>(data);
+  const int nbody = model.nbody;
+  for (int b = 1; b < nbody; ++b) place_body<kFramesAlone>(model, data, b);
+}
+
+void body_kinematics(const Model& model, Data& data) {
+  check_entry(model, data, "lever::body_kinematics");
+  place_bodies(model, data, Attached::kNone);
   com_quantities(model, data);
 }
 
@@ -436,11 +426,10 @@ void place_site(const Model& model, Data& data, int site) {
   int* const path = data.work.body_path.data();
   int length = 0;
   for (int b = model.site_bodyid[site]; b > 0; b = model.body_parentid[b]) path[length++] = b;
-  place_world(data);
-  const BodyArrays arrays(model, data);
-  while (length > 0) place_body<false>(arrays, path[--length]);
+  place_world<kFramesAlone>(data);
+  while (length > 0) place_body<kFramesAlone>(model, data, path[--length]);
   place_attached(1, &model.site_bodyid[site], &model.site_pos[site], &model.site_quat[site],
-                 &model.site_placement[site], arrays, &data.site_xpos[site],
+                 &model.site_placement[site], data, &data.site_xpos[site],
                  &data.site_xmat[site]);
 }
 
@@ -450,7 +439,9 @@ void step_kinematics(const Model& model, Data& data) {
   // nothing in a step reads the geom frames unless collision runs or a tendon wraps around a
   // geom; the site frames are what a caller reads after a step (an end effector's position), and
   // cost little
-  place_bodies(model, data, model.contacts_possible || model.tendons_wrap_geoms);
+  place_bodies(model, data,
+               model.contacts_possible || model.tendons_wrap_geoms ? Attached::kGeomsAndSites
+                                                                   : Attached::kSites);
   com_quantities(model, data);
 }
 
@@ -505,6 +496,96 @@ void jac_site(const Model& model, const Data& data, int site, Eigen::Ref<Eigen::
                      std::to_string(model.nsite - 1) + ".");
   }
   detail::point_jacobians(model, data, model.site_bodyid[site], data.site_xpos[site], jacp, jacr);
+}
+
+namespace {
+
+// The motion subspace of dof i (a cdof column) as com_quantities() computes it, from the joint
+// frames and the tree's centre of mass c, and the velocity per unit rate of the point at `offset`
+// from c: jac_site_from_q()'s column i, each number as point_jacobians() finds it from cdof.
+inline void dof_column(const Model& model, const Data& data, int i, const Eigen::Vector3d& c,
+                       const Eigen::Vector3d& offset, double* p, double* r) {
+  const int j = model.dof_jntid[i];
+  const int k = i - model.jnt_dofadr[j];  // which of the joint's dofs
+  Motion S;
+  switch (model.jnt_kind[j]) {
+    case JointKind::kSlide:
+      S.head<3>().setZero();
+      S.tail<3>() = data.xaxis[j];
+      break;
+    case JointKind::kFree:
+      if (k < 3) {  // a translation along a world axis
+        S.head<3>().setZero();
+        S.tail<3>() = Eigen::Vector3d::Unit(k);
+        break;
+      }
+      [[fallthrough]];
+    case JointKind::kBall: {  // a rotation about one of the body's axes (rotation_subspace's)
+      const Eigen::Vector3d axis = data.xmat[model.jnt_bodyid[j]].col(k % 3);
+      S.head<3>() = axis;
+      S.tail<3>() = cross(axis, c - data.xanchor[j]);
+      break;
+    }
+    default: {  // a hinge
+      const Eigen::Vector3d& axis = data.xaxis[j];
+      S.head<3>() = axis;
+      S.tail<3>() = cross(axis, c - data.xanchor[j]);
+    }
+  }
+  const Eigen::Vector3d v = S.tail<3>() + cross(S.head<3>(), offset);
+  for (int row = 0; row < 3; ++row) {
+    r[row] = S[row];
+    p[row] = v[row];
+  }
+}
+
+}  // namespace
+
+void jac_site_from_q(const Model& model, Data& data, int site, Eigen::Ref<Eigen::MatrixXd> jacp,
+                     Eigen::Ref<Eigen::MatrixXd> jacr) {
+  check_entry(model, data, "lever::jac_site_from_q");
+  check_jacobians(model, jacp, jacr, "lever::jac_site_from_q");
+  if (site < 0 || site >= model.nsite) {
+    throw StateError("lever::jac_site_from_q: site " + std::to_string(site) + " is not in 0.." +
+                     std::to_string(model.nsite - 1) + ".");
+  }
+  normalize_state_quats(model, data);
+  place_world<kForJacobian>(data);
+  const int body = model.site_bodyid[site];
+  const int root = model.body_rootid[body];
+  // the bodies of the site's tree, whose centre of mass c is where cdof's moments are taken
+  // (the Jacobian is c's to the last bit only if c is): each body's frame, its joints' frames and
+  // its centre of mass, no inertial axes, no other tree
+  const int* const rootid = model.body_rootid.data();
+  const auto in_tree = [rootid, root](int b) { return rootid[b] == root; };
+  if (root > 0) {
+    for (int b = root; b < model.nbody; ++b) {
+      if (in_tree(b)) place_body<kForJacobian>(model, data, b);
+    }
+    subtree_centres(model, data, root, in_tree);
+  }
+  place_attached(1, &model.site_bodyid[site], &model.site_pos[site], &model.site_quat[site],
+                 &model.site_placement[site], data, &data.site_xpos[site],
+                 &data.site_xmat[site]);
+
+  // the columns from the last dof down: an ancestor of the site's body gets its column, every
+  // other dof zeros (for a chain, none)
+  int b = body;
+  while (b > 0 && model.body_dofnum[b] == 0) b = model.body_parentid[b];
+  int next = b > 0 ? model.body_dofadr[b] + model.body_dofnum[b] - 1 : -1;
+  const Eigen::Vector3d c = data.subtree_com[root];
+  const Eigen::Vector3d offset = data.site_xpos[site] - c;
+  double* const p = jacp.data();
+  double* const r = jacr.data();
+  const Eigen::Index p_stride = jacp.outerStride(), r_stride = jacr.outerStride();
+  for (int i = model.nv - 1; i >= 0; --i) {
+    if (i == next) {
+      dof_column(model, data, i, c, offset, p + i * p_stride, r + i * r_stride);
+      next = model.dof_parentid[i];
+    } else {
+      for (int row = 0; row < 3; ++row) p[i * p_stride + row] = r[i * r_stride + row] = 0.0;
+    }
+  }
 }
 
 }  // namespace lever
