@@ -462,6 +462,16 @@ TEST_CASE("a copied Model owns its arrays; an assigned one takes the other's siz
   lever::Data data(model);
   lever::forward(model, data);
 
+  // every array of the table in the model's one block, each on a cache line of its own
+  const auto* block_begin = model.block().data();
+  for (const lever::FieldView& v : lever::model_fields(model)) {
+    if (v.size() == 0) continue;
+    INFO(v.info->name);
+    const auto* at = static_cast<const unsigned char*>(v.data);
+    CHECK(reinterpret_cast<std::uintptr_t>(at) % lever::kCacheLine == 0);
+    CHECK((at >= block_begin && at < block_begin + model.block().bytes()));
+  }
+
   lever::Model copy = model;  // every array copied, none shared
   const std::vector<lever::FieldView> original_fields = lever::model_fields(model);
   const std::vector<lever::FieldView> copied_fields = lever::model_fields(copy);

@@ -185,4 +185,8 @@ TEST_CASE("set_const recomputes what it derives, whatever those arrays held", "[
   CHECK(model.dof_M0 == loaded.dof_M0);
   CHECK(model.body_invweight0 == loaded.body_invweight0);
   CHECK(model.actuator_scalar_dof == loaded.actuator_scalar_dof);
+  for (int a = 0; a < model.nu; ++a) {  // arm2's motors drive a hinge each
+    CHECK(model.actuator_scalar_dof[a] == lever::actuator_scalar_dof(model, a));
+    CHECK(model.actuator_scalar_dof[a] == model.jnt_dofadr[model.actuator_trnid[a][0]]);
+  }
 }

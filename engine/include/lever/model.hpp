@@ -10,7 +10,9 @@
 //   2. what `set_const()` derives from them: the constants MuJoCo's mj_setConst freezes at qpos0
 //      (`dof_invweight0`, `dof_M0`, `body_invweight0`, `body_subtreemass`), and a few constant
 //      rotation matrices and flags that spare the algorithms repeated work.
-// After editing any parameter, call `lever::set_const(model)` before evaluating it again.
+// After editing any parameter, call `lever::set_const(model)` before evaluating it again. Every
+// array lives in the model's one block (see Model below): its length follows from the counts, and
+// changing a count means calling `lever::size_model(model)` (lever/fields.hpp) again.
 #pragma once
 
 #include <Eigen/Core>
