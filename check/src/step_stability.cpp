@@ -224,7 +224,7 @@ StabilityAt check_state(const Model& model, const StepStability& cfg, const std:
   at.max_dt_euler = largest_stable(at.dt_scan_euler);
 
   // armature for explicit Euler at h
-  const std::vector<double> own = model.dof_armature;
+  const std::vector<double> own = model.dof_armature.to_vector();
   const auto euler_with = [&](const std::vector<double>& armature) {
     return judge.stable(variant(model, Integrator::kEuler, h, armature), s);
   };

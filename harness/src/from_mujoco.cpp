@@ -244,7 +244,7 @@ Model from_mujoco(const mjModel* m) {
   model.nwrap = m->nwrap;
   size_model(model);
   // user data, row-major as MuJoCo's
-  const auto copy_user = [](const mjtNum* from, RowMatrix& to) {
+  const auto copy_user = [](const mjtNum* from, ArenaRowMatrix& to) {
     for (Eigen::Index i = 0; i < to.size(); ++i) to.data()[i] = from[i];
   };
   copy_user(m->body_user, model.body_user);

@@ -4,6 +4,7 @@
 #include "user.hpp"
 
 #include <algorithm>
+#include <stdexcept>
 #include <string>
 
 namespace lever::mjcf::detail {
@@ -32,8 +33,14 @@ int user_width(UserKind kind, const UserSizes& sizes, const std::vector<const Us
   return written >= 0 ? written : longest;
 }
 
-void fill_user_rows(const std::vector<const UserData*>& lists, int width, RowMatrix& out) {
-  out.setZero(static_cast<Eigen::Index>(lists.size()), width);
+void fill_user_rows(const std::vector<const UserData*>& lists, int width, ArenaRowMatrix& out) {
+  // sized by size_model: one row per object, `width` columns
+  if (out.rows() != static_cast<Eigen::Index>(lists.size()) || out.cols() != width) {
+    throw std::logic_error("lever::mjcf: user data sized " + std::to_string(out.rows()) + " x " +
+                           std::to_string(out.cols()) + " for " + std::to_string(lists.size()) +
+                           " x " + std::to_string(width));
+  }
+  out.setZero();
   for (size_t r = 0; r < lists.size(); ++r) {
     const std::vector<double>& x = lists[r]->numbers;
     for (size_t c = 0; c < x.size(); ++c) out(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(c)) = x[c];

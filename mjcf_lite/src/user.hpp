@@ -36,6 +36,6 @@ const char* user_size_attribute(UserKind kind);
 int user_width(UserKind kind, const UserSizes& sizes, const std::vector<const UserData*>& lists);
 
 /// The lists as rows of `out` (lists.size() x width), each padded with zeros.
-void fill_user_rows(const std::vector<const UserData*>& lists, int width, RowMatrix& out);
+void fill_user_rows(const std::vector<const UserData*>& lists, int width, ArenaRowMatrix& out);
 
 }  // namespace lever::mjcf::detail

@@ -90,7 +90,7 @@ lever::ActuatorCallback python_actuator_callback(py::object fn, std::weak_ptr<le
 }
 
 // A keyframe array (nkey x n, row-major) as a writable (nkey, n) numpy view.
-py::array key_view(lever::RowMatrix& a, py::handle owner) {
+py::array key_view(lever::ArenaRowMatrix& a, py::handle owner) {
   const auto item = static_cast<py::ssize_t>(sizeof(double));
   return py::array_t<double>(
       {static_cast<py::ssize_t>(a.rows()), static_cast<py::ssize_t>(a.cols())},

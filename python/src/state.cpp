@@ -77,7 +77,7 @@ void check_version(const py::dict& state, const char* what) {
   X(ntendon) X(nwrap) X(na)
 
 // a keyframe array (nkey x n, row-major) as bytes, and back
-py::bytes matrix_bytes(const lever::RowMatrix& a) {
+py::bytes matrix_bytes(const lever::ArenaRowMatrix& a) {
   return bytes_of(a.data(), sizeof(double) * static_cast<std::size_t>(a.size()));
 }
 
@@ -176,7 +176,7 @@ void write_model_fields(lever::Model& model, const py::dict& fields) {
   }
 }
 
-void write_matrix(const py::dict& keys, const char* name, lever::RowMatrix& a) {
+void write_matrix(const py::dict& keys, const char* name, lever::ArenaRowMatrix& a) {
   write_bytes(item(keys, name, "a model"), a.data(),
               sizeof(double) * static_cast<std::size_t>(a.size()), std::string("model.") + name);
 }

@@ -126,7 +126,7 @@ class Differences {
         "that name, element type and width");
   }
 
-  void reals(const std::string& field, const std::vector<double>& ours, const mjtNum* theirs) {
+  void reals(const std::string& field, const ArenaArray<double>& ours, const mjtNum* theirs) {
     for (size_t i = 0; i < ours.size(); ++i) real(field, static_cast<int>(i), ours[i], theirs[i]);
   }
 

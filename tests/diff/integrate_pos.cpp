@@ -6,6 +6,7 @@
 
 #include <lever/dynamics.hpp>
 #include <lever/error.hpp>
+#include <lever/fields.hpp>
 #include <lever/model.hpp>
 
 #include <cmath>
@@ -58,14 +59,15 @@ Model joint_layout(const mjModel* m) {
   model.nq = m->nq;
   model.nv = m->nv;
   model.njnt = m->njnt;
+  size_model(model);
   for (int j = 0; j < m->njnt; ++j) {
-    model.jnt_qposadr.push_back(m->jnt_qposadr[j]);
-    model.jnt_dofadr.push_back(m->jnt_dofadr[j]);
+    model.jnt_qposadr[j] = m->jnt_qposadr[j];
+    model.jnt_dofadr[j] = m->jnt_dofadr[j];
     switch (m->jnt_type[j]) {
-      case mjJNT_FREE: model.jnt_kind.push_back(JointKind::kFree); break;
-      case mjJNT_BALL: model.jnt_kind.push_back(JointKind::kBall); break;
-      case mjJNT_SLIDE: model.jnt_kind.push_back(JointKind::kSlide); break;
-      default: model.jnt_kind.push_back(JointKind::kHinge); break;
+      case mjJNT_FREE: model.jnt_kind[j] = JointKind::kFree; break;
+      case mjJNT_BALL: model.jnt_kind[j] = JointKind::kBall; break;
+      case mjJNT_SLIDE: model.jnt_kind[j] = JointKind::kSlide; break;
+      default: model.jnt_kind[j] = JointKind::kHinge; break;
     }
   }
   return model;

@@ -394,14 +394,6 @@ TEST_CASE("every pair of primitives collides in lever", "[mjcf][contact]") {
   CHECK(m.warnings.empty());
 }
 
-TEST_CASE("set_const names a contact array a model built by hand left empty", "[mjcf][contact]") {
-  lever::Model m = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));
-  REQUIRE(m.ngeom > 0);
-  m.geom_friction.clear();
-  CHECK_THROWS_WITH(lever::set_const(m), Catch::Contains("Model::geom_friction holds 0 numbers") &&
-                                             Catch::Contains("must fill it too"));
-}
-
 TEST_CASE("a camera's quat is kept as written, never refused as zero", "[mjcf]") {
   // visual only: lever keeps the camera's attributes as text, and a unit quaternion is not zero
   const Model model = lever::mjcf::load_string(R"(<mujoco>

@@ -73,34 +73,39 @@ inline Model random_tree(std::uint64_t seed) {
   const int bodies = std::uniform_int_distribution<int>(1, kRandomTreeMaxBodies)(rng);
   for (int b = 1; b <= bodies; ++b) {
     const int parent = std::uniform_int_distribution<int>(0, b - 1)(rng);
-    m.body_name.push_back("body" + std::to_string(b));
-    m.body_parentid.push_back(parent);
-    m.body_rootid.push_back(parent == 0 ? b : m.body_rootid[parent]);
-    m.body_mocapid.push_back(-1);
     // a welded body one time in five; the first body always moves, so that nv >= 1
     const int joints =
         (b > 1 && chance(rng, 0.2)) ? 0 : std::uniform_int_distribution<int>(1, 3)(rng);
-    m.body_jntnum.push_back(joints);
-    m.body_jntadr.push_back(joints ? m.njnt : -1);
-    m.body_dofnum.push_back(joints);
-    m.body_dofadr.push_back(joints ? m.nv : -1);
-    m.body_geomnum.push_back(0);
-    m.body_geomadr.push_back(-1);
-    m.body_pos.push_back(vector_in(rng, 0.5));
-    m.body_quat.push_back(random_quat(rng));
-    m.body_ipos.push_back(vector_in(rng, 0.2));
-    m.body_iquat.push_back(random_quat(rng));
+    // this body, its joints (one dof each) and its site counted, the arrays sized, then written
+    const int first_joint = m.njnt;
+    m.nbody = b + 1;
+    m.njnt += joints;
+    m.nv += joints;
+    m.nq = m.nv;
+    m.nsite = b;
+    size_model(m);
+    m.body_name[b] = "body" + std::to_string(b);
+    m.body_parentid[b] = parent;
+    m.body_rootid[b] = parent == 0 ? b : m.body_rootid[parent];
+    m.body_jntnum[b] = joints;
+    m.body_jntadr[b] = joints ? first_joint : -1;
+    m.body_dofnum[b] = joints;
+    m.body_dofadr[b] = joints ? first_joint : -1;
+    m.body_geomnum[b] = 0;
+    m.body_geomadr[b] = -1;
+    m.body_pos[b] = vector_in(rng, 0.5);
+    m.body_quat[b] = random_quat(rng);
+    m.body_ipos[b] = vector_in(rng, 0.2);
+    m.body_iquat[b] = random_quat(rng);
     const double mass = uniform(rng, 0.2, 2.0);
-    m.body_mass.push_back(mass);
+    m.body_mass[b] = mass;
     // principal moments from the second moments of a mass distribution (x2, y2, z2 >= 0):
     // Ixx = y2 + z2 and so on, which satisfy the triangle inequality by construction
     const Eigen::Vector3d second =
         mass * Eigen::Vector3d(uniform(rng, 0.001, 0.05), uniform(rng, 0.001, 0.05),
                                uniform(rng, 0.001, 0.05));
-    m.body_inertia.push_back(
-        {second.y() + second.z(), second.x() + second.z(), second.x() + second.y()});
-    m.body_explicit_inertial.push_back(1);
-    m.body_line.push_back(0);
+    m.body_inertia[b] = {second.y() + second.z(), second.x() + second.z(), second.x() + second.y()};
+    m.body_explicit_inertial[b] = 1;
 
     // the dof this body's first dof hangs from: the last dof on the path to the world
     int parent_dof = -1;
@@ -108,50 +113,38 @@ inline Model random_tree(std::uint64_t seed) {
       if (m.body_dofnum[a] > 0) parent_dof = m.body_dofadr[a] + m.body_dofnum[a] - 1;
     }
     for (int k = 0; k < joints; ++k) {
-      const int j = m.njnt;
-      m.jnt_name.push_back("joint" + std::to_string(j));
-      m.jnt_type.push_back(chance(rng, 0.7) ? JointType::kHinge : JointType::kSlide);
-      m.jnt_qposadr.push_back(j);
-      m.jnt_dofadr.push_back(j);
-      m.jnt_bodyid.push_back(b);
-      m.jnt_limited.push_back(0);
-      m.jnt_solref.push_back({0.02, 1.0});
-      m.jnt_solimp.push_back({0.9, 0.95, 0.001, 0.5, 2.0});
-      m.jnt_pos.push_back(chance(rng, 0.25) ? Eigen::Vector3d::Zero() : vector_in(rng, 0.2));
-      m.jnt_axis.push_back(random_axis(rng));
+      const int j = first_joint + k;
+      m.jnt_name[j] = "joint" + std::to_string(j);
+      m.jnt_type[j] = chance(rng, 0.7) ? JointType::kHinge : JointType::kSlide;
+      m.jnt_qposadr[j] = j;
+      m.jnt_dofadr[j] = j;
+      m.jnt_bodyid[j] = b;
+      m.jnt_solref[j] = {0.02, 1.0};
+      m.jnt_solimp[j] = {0.9, 0.95, 0.001, 0.5, 2.0};
+      m.jnt_pos[j] = chance(rng, 0.25) ? Eigen::Vector3d::Zero() : vector_in(rng, 0.2);
+      m.jnt_axis[j] = random_axis(rng);
       // a joint spring one time in three
-      m.jnt_stiffness.push_back(chance(rng, 1.0 / 3.0) ? uniform(rng, 0.1, 5.0) : 0.0);
-      m.jnt_range.push_back({0.0, 0.0});
-      m.jnt_margin.push_back(0.0);
-      m.dof_bodyid.push_back(b);
-      m.dof_jntid.push_back(j);
-      m.dof_parentid.push_back(k == 0 ? parent_dof : j - 1);
-      m.dof_armature.push_back(chance(rng, 0.5) ? uniform(rng, 0.001, 0.1) : 0.0);
-      m.dof_damping.push_back(chance(rng, 0.5) ? uniform(rng, 0.01, 1.0) : 0.0);
-      m.dof_frictionloss.push_back(0.0);  // no friction-loss rows: the trees test the smooth terms
-      m.dof_solref.push_back({0.02, 1.0});
-      m.dof_solimp.push_back({0.9, 0.95, 0.001, 0.5, 2.0});
-      ++m.njnt;
-      ++m.nv;
+      m.jnt_stiffness[j] = chance(rng, 1.0 / 3.0) ? uniform(rng, 0.1, 5.0) : 0.0;
+      m.dof_bodyid[j] = b;
+      m.dof_jntid[j] = j;
+      m.dof_parentid[j] = k == 0 ? parent_dof : j - 1;
+      m.dof_armature[j] = chance(rng, 0.5) ? uniform(rng, 0.001, 0.1) : 0.0;
+      m.dof_damping[j] = chance(rng, 0.5) ? uniform(rng, 0.01, 1.0) : 0.0;
+      // no limits and no friction-loss rows (left zero): the trees test the smooth terms
+      m.dof_solref[j] = {0.02, 1.0};
+      m.dof_solimp[j] = {0.9, 0.95, 0.001, 0.5, 2.0};
     }
-    m.site_name.push_back("site" + std::to_string(b));
-    m.site_bodyid.push_back(b);
-    m.site_pos.push_back(vector_in(rng, 0.3));
-    m.site_quat.push_back(random_quat(rng));
-    m.site_size.push_back(Eigen::Vector3d::Constant(0.01));
-    m.site_type.push_back(GeomType::kSphere);
+    const int s = b - 1;
+    m.site_name[s] = "site" + std::to_string(b);
+    m.site_bodyid[s] = b;
+    m.site_pos[s] = vector_in(rng, 0.3);
+    m.site_quat[s] = random_quat(rng);
+    m.site_size[s] = Eigen::Vector3d::Constant(0.01);
+    m.site_type[s] = GeomType::kSphere;
   }
-  m.nbody = bodies + 1;
-  m.nsite = bodies;
-  m.nq = m.nv;
-  m.qpos0 = Eigen::VectorXd::Zero(m.nq);
-  m.qpos_spring = Eigen::VectorXd::Zero(m.nq);
   for (int j = 0; j < m.njnt; ++j) {
     if (m.jnt_stiffness[j] > 0) m.qpos_spring[j] = uniform(rng, -0.5, 0.5);
   }
-  m.key_qpos.resize(0, m.nq);
-  m.key_qvel.resize(0, m.nv);
-  m.key_ctrl.resize(0, m.nu);
   set_const(m);
   return m;
 }

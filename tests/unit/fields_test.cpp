@@ -485,6 +485,16 @@ TEST_CASE("a copied Model owns its arrays, an assigned one takes the other's siz
   lever::Data data(model);
   lever::forward(model, data);
 
+  // every array of the table in the model's one block, each on a cache line of its own
+  const auto* block_begin = model.block().data();
+  for (const lever::FieldView& v : lever::model_fields(model)) {
+    if (v.size() == 0) continue;
+    INFO(v.info->name);
+    const auto* at = static_cast<const unsigned char*>(v.data);
+    CHECK(reinterpret_cast<std::uintptr_t>(at) % lever::kCacheLine == 0);
+    CHECK((at >= block_begin && at < block_begin + model.block().bytes()));
+  }
+
   lever::Model copy = model;  // every array copied, none shared
   const std::vector<lever::FieldView> original_fields = lever::model_fields(model);
   const std::vector<lever::FieldView> copied_fields = lever::model_fields(copy);
@@ -595,7 +605,8 @@ TEST_CASE("rnea, solve_mass and jac_site refuse arguments of the wrong size or i
   CHECK_NOTHROW(lever::jac_site(model, data, model.nsite - 1, jacp, jacr));
 }
 
-TEST_CASE("set_const refuses a Model array of the wrong size, naming it", "[fields]") {
+TEST_CASE("set_const refuses a Model whose counts changed since size_model, naming an array",
+          "[fields]") {
   const lever::Model base = load("models/arm3.xml");
   const auto refuses = [](lever::Model model, const char* name) {
     INFO(name);
@@ -604,39 +615,35 @@ TEST_CASE("set_const refuses a Model array of the wrong size, naming it", "[fiel
       FAIL("no ModelError");
     } catch (const lever::ModelError& e) {
       CHECK_THAT(text_of(e), Catch::Contains(name));
+      CHECK_THAT(text_of(e), Catch::Contains("size_model"));
     }
   };
   {
     lever::Model m = base;
-    m.body_mass.push_back(1.0);
-    refuses(m, "body_mass");
+    m.nsite += 1;
+    refuses(m, "site_name");
   }
   {
     lever::Model m = base;
-    m.jnt_axis.pop_back();
-    refuses(m, "jnt_axis");
+    m.nuser_body = 2;
+    refuses(m, "body_user");
   }
   {
     lever::Model m = base;
-    m.jnt_limited.push_back(0);
-    refuses(m, "jnt_limited");
+    m.nmeshvert = 3;
+    refuses(m, "mesh_vert");
   }
   {
     lever::Model m = base;
-    m.actuator_gear.clear();
-    refuses(m, "actuator_gear");
-  }
-  {
-    lever::Model m = base;
-    m.site_pos.push_back(Eigen::Vector3d::Zero());
-    refuses(m, "site_pos");
-  }
-  {
-    lever::Model m = base;
-    m.qpos0.resize(m.nq + 2);
-    refuses(m, "qpos0");
+    m.nu -= 1;
+    refuses(m, "actuator_name");
   }
   lever::Model m = base;
+  CHECK_NOTHROW(lever::set_const(m));
+  m.nuser_body = 2;  // sized again: accepted, the old numbers kept and the new column zero
+  lever::size_model(m);
+  CHECK(m.body_user.cols() == 2);
+  CHECK(m.body_mass == base.body_mass);
   CHECK_NOTHROW(lever::set_const(m));
 }
 
@@ -726,16 +733,16 @@ namespace {
 // How many numbers of type Element a member holds, as the member itself says (independent of the
 // table's Layout code): a vector of entries of sizeof(T) bytes each, or an Eigen vector.
 template <class Element, class T>
-long numbers_in(const std::vector<T>& v) {
+long numbers_in(const lever::ArenaArray<T>& v) {
   static_assert(sizeof(T) % sizeof(Element) == 0);
   return static_cast<long>(v.size() * (sizeof(T) / sizeof(Element)));
 }
 template <class Element>
-long numbers_in(const Eigen::VectorXd& v) {
+long numbers_in(const lever::ArenaVector& v) {
   return v.size();
 }
 template <class Element>
-long numbers_in(const lever::RowMatrix& m) {  // the user data: rows x nuser_*
+long numbers_in(const lever::ArenaRowMatrix& m) {  // user data, keyframes: rows x cols
   return m.size();
 }
 

@@ -56,7 +56,7 @@ TEST_CASE("set_const refuses non-physical or inconsistent parameters", "[model]"
        },
        "axis"},
       {"parent after child", [](lever::Model& m) { m.body_parentid[1] = 2; }, "parent"},
-      {"qpos0 too short", [](lever::Model& m) { m.qpos0.resize(1); }, "qpos0"},
+      {"nq changed without the joints", [](lever::Model& m) { m.nq += 1; }, "nq = "},
       {"motor on no joint", [](lever::Model& m) { m.actuator_trnid[0][0] = 7; }, "names no joint"},
       {"body transmission on no body",
        [](lever::Model& m) {
@@ -67,7 +67,7 @@ TEST_CASE("set_const refuses non-physical or inconsistent parameters", "[model]"
       {"transmission type beyond MuJoCo's",
        [](lever::Model& m) { m.actuator_trntype[0] = static_cast<lever::TransmissionType>(6); },
        "not MuJoCo 2.2.2's"},
-      {"array too short", [](lever::Model& m) { m.dof_damping.pop_back(); }, "dof_damping"},
+      {"a count changed since size_model", [](lever::Model& m) { m.nsite += 1; }, "size_model"},
       {"root id not the world child", [](lever::Model& m) { m.body_rootid[2] = 2; }, "body_rootid"},
       {"NaN geom size", [nan](lever::Model& m) { m.geom_size[0][0] = nan; }, "geom_size"},
       {"zero geom quaternion", [](lever::Model& m) { m.geom_quat[0].setZero(); }, "quaternion"},
@@ -169,17 +169,24 @@ TEST_CASE("set_const leaves body_rootid as the compiler recorded it", "[model]")
   CHECK(model.body_rootid == std::vector<int>{0, 1, 1});
 }
 
-TEST_CASE("a model built by hand need not size what set_const computes", "[model]") {
+TEST_CASE("set_const recomputes what it derives, whatever those arrays held", "[model]") {
   lever::Model model = lever::mjcf::load_file(lever::test::model_path("models/arm2.xml"));
   const lever::Model loaded = model;
-  model.body_subtreemass.clear();
-  model.body_invweight0.clear();
-  model.dof_invweight0.clear();
-  model.dof_M0.clear();
+  std::fill(model.body_subtreemass.begin(), model.body_subtreemass.end(), -1.0);
+  std::fill(model.body_invweight0.begin(), model.body_invweight0.end(),
+            std::array<double, 2>{-1.0, -1.0});
+  std::fill(model.dof_invweight0.begin(), model.dof_invweight0.end(), -1.0);
+  std::fill(model.dof_M0.begin(), model.dof_M0.end(), -1.0);
+  std::fill(model.actuator_scalar_dof.begin(), model.actuator_scalar_dof.end(), 7);
   CHECK_NOTHROW(lever::validate(model));
   lever::set_const(model);
   CHECK(model.body_subtreemass == loaded.body_subtreemass);
   CHECK(model.dof_invweight0 == loaded.dof_invweight0);
   CHECK(model.dof_M0 == loaded.dof_M0);
   CHECK(model.body_invweight0 == loaded.body_invweight0);
+  CHECK(model.actuator_scalar_dof == loaded.actuator_scalar_dof);
+  for (int a = 0; a < model.nu; ++a) {  // arm2's motors drive a hinge each
+    CHECK(model.actuator_scalar_dof[a] == lever::actuator_scalar_dof(model, a));
+    CHECK(model.actuator_scalar_dof[a] == model.jnt_dofadr[model.actuator_trnid[a][0]]);
+  }
 }

@@ -1,8 +1,10 @@
-// lever/arena.hpp: the views a Data's arrays are, into the one block that holds them all.
+// lever/arena.hpp: the views a Data's (and a Model's) arrays are, into the one block that holds
+// them all.
 //
-// A Data allocates one block when it is made, as MuJoCo's mj_makeData does: every array starts on
-// a cache line, and the block is a whole number of cache lines, so two Data never share one. Each
-// array member is a view into the block that reads and writes like the container it replaces:
+// A Data allocates one block when it is made, as MuJoCo's mj_makeData does, and a Model one when it
+// is sized (lever::size_model), as mj_makeModel does: every array starts on a cache line, and the
+// block is a whole number of cache lines, so two Data never share one. Each array member is a view
+// into the block that reads and writes like the container it replaces:
 //   ArenaArray<T>    a std::vector<T> that cannot grow: [i], size(), data(), begin()/end(), for
 //   ArenaVector      an Eigen::VectorXd that cannot be resized: every Eigen expression reads it
 //   ArenaMatrix      an Eigen::MatrixXd the same way
@@ -10,7 +12,7 @@
 // Assigning to a view copies the numbers, as the containers did; assigning numbers of another
 // shape throws StateError instead of resizing.
 //
-// A view is never copied on its own: it would alias the Data it came from. `auto x = data.qpos`
+// A view is never copied on its own: it would alias the Data (Model) it came from. `auto x = data.qpos`
 // does not compile (the copy constructor is private to Data); write the type to copy the numbers,
 // `Eigen::VectorXd x = data.qpos` or `std::vector<Motion> v = data.cvel.to_vector()`, or copy the
 // whole Data. Beware what Eigen allows implicitly: `const Eigen::VectorXd& x = data.qpos` and a
@@ -31,17 +33,18 @@
 
 namespace lever {
 
-/// Every array of a Data's block starts on a cache line, and the block ends on one.
+/// Every array of a Data's (Model's) block starts on a cache line, and the block ends on one.
 inline constexpr std::size_t kCacheLine = 64;
 
 struct DataFields;
 struct DataWorkspace;
+struct ModelFields;
 
 namespace detail {
 [[noreturn]] void throw_arena_shape(long rows, long cols, long other_rows, long other_cols);
 }  // namespace detail
 
-/// A std::vector<T> that cannot grow: `size()` elements of a Data's block.
+/// A std::vector<T> that cannot grow: `size()` elements of a Data's (Model's) block.
 template <class T>
 class ArenaArray {
  public:
@@ -77,16 +80,17 @@ class ArenaArray {
   const T& front() const { return data_[0]; }
   const T& back() const { return data_[size_ - 1]; }
 
-  /// Point the view at n elements (Data's layout only).
+  /// Point the view at n elements (the layout only).
   void place(T* at, std::size_t n) {
     data_ = at;
     size_ = n;
   }
 
  private:
-  // Only a Data copies its views (pointing them at its own block right after).
+  // Only a Data or a Model copies its views (pointing them at its own block right after).
   friend struct DataFields;
   friend struct DataWorkspace;
+  friend struct ModelFields;
   ArenaArray(const ArenaArray&) = default;
 
   void assign_from(const T* from, std::size_t n) {
@@ -100,7 +104,17 @@ class ArenaArray {
   std::size_t size_ = 0;
 };
 
-/// An Eigen vector or matrix of a Data's block: an Eigen::Map that cannot be resized.
+/// Whether two arrays hold the same elements (a view against a view or a std::vector).
+template <class T>
+bool operator==(const ArenaArray<T>& a, const ArenaArray<T>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end());
+}
+template <class T>
+bool operator==(const ArenaArray<T>& a, const std::vector<T>& b) {
+  return std::equal(a.begin(), a.end(), b.begin(), b.end());
+}
+
+/// An Eigen vector or matrix of a Data's (Model's) block: an Eigen::Map that cannot be resized.
 template <class Plain>
 class ArenaMap : public Eigen::Map<Plain, Eigen::AlignedMax> {
   using Base = Eigen::Map<Plain, Eigen::AlignedMax>;
@@ -125,15 +139,21 @@ class ArenaMap : public Eigen::Map<Plain, Eigen::AlignedMax> {
     return *this;
   }
 
-  /// Point the view at rows x cols numbers (Data's layout only).
+  /// Point the view at rows x cols numbers (the layout only).
   void place(typename Plain::Scalar* at, Eigen::Index rows, Eigen::Index cols) {
     new (static_cast<Base*>(this)) Base(at, rows, cols);
   }
 
+  /// A view never changes its size (Eigen's Map::resize would silently do nothing): a Model's
+  /// arrays change size with its counts (lever::size_model), a Data's never.
+  template <class... Sizes>
+  void resize(Sizes...) = delete;
+
  private:
-  // Only a Data copies its views (pointing them at its own block right after).
+  // Only a Data or a Model copies its views (pointing them at its own block right after).
   friend struct DataFields;
   friend struct DataWorkspace;
+  friend struct ModelFields;
   ArenaMap(const ArenaMap& other) : Base(other) {}
 
   template <class Other>
@@ -150,7 +170,8 @@ using ArenaMatrix = ArenaMap<Eigen::MatrixXd>;
 using ArenaRowMatrix =
     ArenaMap<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
 
-/// The block of memory behind a Data's arrays: 64-byte aligned, its size a multiple of 64 bytes.
+/// The block of memory behind a Data's (Model's) arrays: 64-byte aligned, its size a multiple of
+/// 64 bytes.
 class ArenaBlock {
  public:
   ArenaBlock() = default;

@@ -17,12 +17,13 @@
 //
 // The table sizes Model as it sizes Data: whoever builds a model (lever::mjcf's compiler, the
 // harness's copy of a MuJoCo model, a model built by hand) sets the counts (nbody, njnt, nq, ...),
-// calls size_model(), and writes each element by index. Arrays of Model outside the table, because
-// their entries are not numbers or their width is not a number: the names (one string per object,
-// LEVER_MODEL_NAMES below) and the keyframes (key_time, nkey; key_qpos, key_qvel, key_ctrl, nkey x
-// nq, nv, nu; key_mpos, key_mquat, nkey x 3 nmocap, 4 nmocap), which size_model also sizes; the arrays set_const derives (body_mat, jnt_kind,
-// actuator_kind, ...), which set_const sizes; and `visual`, the file's asset lists, counted by the
-// file and never read by the engine.
+// calls size_model(), which lays every array out in the model's one block, and writes each element
+// by index. Arrays of Model outside the table: the names (one string per object,
+// LEVER_MODEL_NAMES below, outside the block because their entries are not numbers), and in the
+// block the keyframes (key_time, nkey; key_qpos, key_qvel, key_ctrl, key_act, nkey x nq, nv, nu,
+// na; key_mpos, key_mquat, nkey x 3 nmocap, 4 nmocap) and what set_const derives for the kernels
+// (body_mat, jnt_kind, actuator_kind, ...), whose entries are not numbers; size_model sizes them all.
+// `visual`, the file's asset lists, is counted by the file and never read by the engine.
 #pragma once
 
 #include <cstdint>
@@ -121,6 +122,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(actuator_forcerange, double, nu, 2, mujoco)              \
   X(actuator_length0, double, nu, 1, mujoco)                 \
   X(actuator_acc0, double, nu, 1, mujoco)                    \
+  X(actuator_scalar_dof, int, nu, 1, own)                    \
   LEVER_MODEL_CONTACT_FIELDS(X)                              \
   LEVER_MODEL_SENSOR_FIELDS(X)                               \
   LEVER_MODEL_EQUALITY_FIELDS(X)                             \
@@ -230,13 +232,13 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(tendon_name, ntendon)    \
   X(key_name, nkey)
 
-// The Model arrays set_const computes from the others (MuJoCo's mj_setConst's constants). It sizes
-// and fills them; every other Model array is a parameter, sized by size_model() and filled by
-// whoever builds the model (lever::mjcf's compiler, or by hand), and checked by validate()
-// (lever/model_check.hpp).
+// The Model arrays set_const computes from the others (MuJoCo's mj_setConst's constants, and
+// lever's actuator_scalar_dof). size_model() sizes them with the rest and set_const fills them;
+// every other Model array is a parameter, filled by whoever builds the model (lever::mjcf's
+// compiler, or by hand), and checked by validate() (lever/model_check.hpp).
 #define LEVER_MODEL_CONSTANTS(X) \
   X(body_subtreemass) X(body_invweight0) X(body_simple) X(dof_invweight0) X(dof_M0) X(dof_simplenum) \
-  X(tendon_length0) X(tendon_invweight0) X(actuator_length0) X(actuator_acc0)
+  X(tendon_length0) X(tendon_invweight0) X(actuator_length0) X(actuator_acc0) X(actuator_scalar_dof)
 
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,
 // or `inverse` (written by inverse() only) or `energy` (by compute_energy(), and by forward() with
@@ -449,18 +451,21 @@ FieldView data_field(const Model& model, const Data& data, std::string_view name
 /// Whether set_const computes this Model array (LEVER_MODEL_CONSTANTS).
 bool computed_by_set_const(std::string_view model_field);
 
-/// Whether every array of the model but those set_const computes has the size the table gives
-/// it; throws ModelError naming the first array that does not.
+/// Whether every array of the model has the size its counts give it (size_model gives it that
+/// size, so a difference means a count changed since); throws ModelError naming the first array
+/// that does not.
 void check_model_sizes(const Model& model);
 
 // ---- sizing a Model -----------------------------------------------------------------
-/// Gives every array of the model the length its counts give it (nbody, njnt, nq, nv, ngeom,
-/// nsite, nu, npair, nexclude, nmesh, nmeshvert, nmeshgraph, nmeshface, nkey): each array of the field table rows x cols numbers, the
-/// constants set_const computes included; the names and the keyframes too (see the top of this
-/// file). The numbers an array already holds within its new length are kept, and every new entry is
-/// zero (an empty name), so a builder sets the counts, calls this, and writes each element by
-/// index, the world body's row included. Throws ModelError, changing nothing, when a count is
-/// negative or nbody is 0 (the world is body 0). The model then needs set_const() again (its
+/// Lays the model's arrays out in one new block, each the length its counts give it (nbody, njnt,
+/// nq, nv, ngeom, nsite, nu, npair, nexclude, nmesh, nmeshvert, nmeshgraph, nmeshface, nkey, ...):
+/// each array of the field table rows x cols numbers, the constants set_const computes included;
+/// the keyframes and set_const's own arrays too, and the names (see the top of this file). The
+/// numbers an array already holds within its new length are kept, and every new entry is zero (an
+/// empty name; body_mocapid -1), so a builder sets the counts, calls this, and writes each element
+/// by index, the world body's row included. Every view of the model's arrays taken before (a
+/// pointer, an Eigen::Map) is invalid after it. Throws ModelError, changing nothing, when a count
+/// is negative or nbody is 0 (the world is body 0). The model then needs set_const() again (its
 /// fit_tag is cleared: no Data is taken to fit it until then).
 void size_model(Model& model);
 

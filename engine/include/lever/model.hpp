@@ -10,7 +10,9 @@
 //   2. what `set_const()` derives from them: the constants MuJoCo's mj_setConst freezes at qpos0
 //      (`dof_invweight0`, `dof_M0`, `body_invweight0`, `body_subtreemass`), and a few constant
 //      rotation matrices and flags that spare the algorithms repeated work.
-// After editing any parameter, call `lever::set_const(model)` before evaluating it again.
+// After editing any parameter, call `lever::set_const(model)` before evaluating it again. Every
+// array lives in the model's one block (see Model below): its length follows from the counts, and
+// changing a count means calling `lever::size_model(model)` (lever/fields.hpp) again.
 #pragma once
 
 #include <Eigen/Core>
@@ -21,6 +23,7 @@
 #include <string>
 #include <vector>
 
+#include <lever/arena.hpp>
 #include <lever/spatial.hpp>
 
 namespace lever {
@@ -382,7 +385,9 @@ using SensorCallback = std::function<void(const Model&, Data&, SensorStage)>;
 /// and qfrc_actuator). Without one, MuJoCo's values: gain 1, bias 0, act_dot 0.
 using ActuatorCallback = std::function<double(const Model&, const Data&, int actuator)>;
 
-struct Model {
+/// Model's members (Model below adds the block its arrays live in); fields are read as model.nq,
+/// model.body_pos.
+struct ModelFields {
   std::string name = "MuJoCo Model";  ///< <mujoco model="...">
   std::string source;                 ///< file the model came from ("" if built in memory)
   Options opt;
@@ -427,124 +432,124 @@ struct Model {
 
   // ---- bodies (nbody) ------------------------------------------------------------------------
   std::vector<std::string> body_name{"world"};
-  std::vector<int> body_parentid{0};  ///< parent body; the world is its own parent
-  std::vector<int> body_rootid{0};    ///< the world child this body hangs from
-  std::vector<int> body_mocapid{-1};  ///< its row of mocap_pos/mocap_quat, or -1 (in body order)
-  std::vector<int> body_jntnum{0};    ///< joints of this body
-  std::vector<int> body_jntadr{-1};   ///< first joint, -1 if none
-  std::vector<int> body_dofnum{0};    ///< dofs of this body
-  std::vector<int> body_dofadr{-1};   ///< first dof, -1 if none
-  std::vector<int> body_geomnum{0};   ///< geoms of this body
-  std::vector<int> body_geomadr{-1};  ///< first geom, -1 if none
-  std::vector<Eigen::Vector3d> body_pos{Eigen::Vector3d::Zero()};       ///< in parent frame
-  std::vector<Eigen::Vector4d> body_quat{Eigen::Vector4d(1, 0, 0, 0)};  ///< relative to parent
-  std::vector<Eigen::Vector3d> body_ipos{Eigen::Vector3d::Zero()};  ///< centre of mass, body frame
-  std::vector<Eigen::Vector4d> body_iquat{Eigen::Vector4d(1, 0, 0, 0)};  ///< principal axes
-  std::vector<double> body_mass{0.0};                                    ///< kg
-  std::vector<Eigen::Vector3d> body_inertia{Eigen::Vector3d::Zero()};    ///< principal, kg m^2
+  ArenaArray<int> body_parentid;  ///< parent body; the world is its own parent
+  ArenaArray<int> body_rootid;    ///< the world child this body hangs from
+  ArenaArray<int> body_mocapid;  ///< its row of mocap_pos/mocap_quat, or -1 (in body order)
+  ArenaArray<int> body_jntnum;    ///< joints of this body
+  ArenaArray<int> body_jntadr;   ///< first joint, -1 if none
+  ArenaArray<int> body_dofnum;    ///< dofs of this body
+  ArenaArray<int> body_dofadr;   ///< first dof, -1 if none
+  ArenaArray<int> body_geomnum;   ///< geoms of this body
+  ArenaArray<int> body_geomadr;  ///< first geom, -1 if none
+  ArenaArray<Eigen::Vector3d> body_pos;       ///< in parent frame
+  ArenaArray<Eigen::Vector4d> body_quat;  ///< relative to parent
+  ArenaArray<Eigen::Vector3d> body_ipos;  ///< centre of mass, body frame
+  ArenaArray<Eigen::Vector4d> body_iquat;  ///< principal axes
+  ArenaArray<double> body_mass;                                    ///< kg
+  ArenaArray<Eigen::Vector3d> body_inertia;    ///< principal, kg m^2
   /// lever: true where the body's mass came from <inertial>, false where it was inferred
   /// from geoms (or the body has no mass at all)
-  std::vector<uint8_t> body_explicit_inertial{0};
-  std::vector<int> body_line{0};  ///< lever: source line of the <body> element (0: unknown)
+  ArenaArray<uint8_t> body_explicit_inertial;
+  ArenaArray<int> body_line;  ///< lever: source line of the <body> element (0: unknown)
 
   // ---- joints (njnt) -------------------------------------------------------------------------
   std::vector<std::string> jnt_name;
-  std::vector<JointType> jnt_type;
-  std::vector<int> jnt_qposadr;
-  std::vector<int> jnt_dofadr;
-  std::vector<int> jnt_bodyid;
-  std::vector<uint8_t> jnt_limited;
-  std::vector<std::array<double, 2>> jnt_solref;  ///< limit solref (timeconst, dampratio)
-  std::vector<std::array<double, 5>> jnt_solimp;  ///< limit solimp (d0, dmax, width, mid, power)
-  std::vector<Eigen::Vector3d> jnt_pos;   ///< anchor, in the body frame before this joint moves
-  std::vector<Eigen::Vector3d> jnt_axis;  ///< unit axis, same frame
-  std::vector<double> jnt_stiffness;      ///< N m/rad or N/m
-  std::vector<std::array<double, 2>> jnt_range;  ///< rad or m
-  std::vector<double> jnt_margin;
-  Eigen::VectorXd qpos0;        ///< (nq) default pose: each joint's `ref`
-  Eigen::VectorXd qpos_spring;  ///< (nq) spring reference: each joint's `springref`
+  ArenaArray<JointType> jnt_type;
+  ArenaArray<int> jnt_qposadr;
+  ArenaArray<int> jnt_dofadr;
+  ArenaArray<int> jnt_bodyid;
+  ArenaArray<uint8_t> jnt_limited;
+  ArenaArray<std::array<double, 2>> jnt_solref;  ///< limit solref (timeconst, dampratio)
+  ArenaArray<std::array<double, 5>> jnt_solimp;  ///< limit solimp (d0, dmax, width, mid, power)
+  ArenaArray<Eigen::Vector3d> jnt_pos;   ///< anchor, in the body frame before this joint moves
+  ArenaArray<Eigen::Vector3d> jnt_axis;  ///< unit axis, same frame
+  ArenaArray<double> jnt_stiffness;      ///< N m/rad or N/m
+  ArenaArray<std::array<double, 2>> jnt_range;  ///< rad or m
+  ArenaArray<double> jnt_margin;
+  ArenaVector qpos0;        ///< (nq) default pose: each joint's `ref`
+  ArenaVector qpos_spring;  ///< (nq) spring reference: each joint's `springref`
 
   // ---- dofs (nv) -----------------------------------------------------------------------------
-  std::vector<int> dof_bodyid;
-  std::vector<int> dof_jntid;
-  std::vector<int> dof_parentid;  ///< previous dof on the path to the world, -1 if none
-  std::vector<double> dof_armature;
-  std::vector<double> dof_damping;
+  ArenaArray<int> dof_bodyid;
+  ArenaArray<int> dof_jntid;
+  ArenaArray<int> dof_parentid;  ///< previous dof on the path to the world, -1 if none
+  ArenaArray<double> dof_armature;
+  ArenaArray<double> dof_damping;
   /// dry friction: a constraint row of force within +-frictionloss while the dof moves
-  std::vector<double> dof_frictionloss;
-  std::vector<std::array<double, 2>> dof_solref;  ///< friction loss solref (joint solreffriction)
-  std::vector<std::array<double, 5>> dof_solimp;  ///< friction loss solimp (joint solimpfriction)
-  std::vector<double> dof_invweight0;             ///< set_const: diag of M^-1 at qpos0
-  std::vector<double> dof_M0;                     ///< set_const: diag of M at qpos0
+  ArenaArray<double> dof_frictionloss;
+  ArenaArray<std::array<double, 2>> dof_solref;  ///< friction loss solref (joint solreffriction)
+  ArenaArray<std::array<double, 5>> dof_solimp;  ///< friction loss solimp (joint solimpfriction)
+  ArenaArray<double> dof_invweight0;             ///< set_const: diag of M^-1 at qpos0
+  ArenaArray<double> dof_M0;                     ///< set_const: diag of M at qpos0
   /// set_const: for a dof of a simple body (see body_simple), how many simple dofs run from it
   /// without a break, this one included (across consecutive simple bodies, as MuJoCo counts);
   /// 0 for a dof of another body (MuJoCo's dof_simplenum)
-  std::vector<int> dof_simplenum;
+  ArenaArray<int> dof_simplenum;
 
   // ---- geoms (ngeom) -------------------------------------------------------------------------
   std::vector<std::string> geom_name;
-  std::vector<GeomType> geom_type;
-  std::vector<int> geom_bodyid;
-  std::vector<int> geom_contype;
-  std::vector<int> geom_conaffinity;
-  std::vector<int> geom_group;
-  std::vector<Eigen::Vector3d> geom_size;
-  std::vector<Eigen::Vector3d> geom_pos;   ///< body frame
-  std::vector<Eigen::Vector4d> geom_quat;  ///< relative to the body
-  std::vector<Eigen::Vector4d> geom_rgba;
+  ArenaArray<GeomType> geom_type;
+  ArenaArray<int> geom_bodyid;
+  ArenaArray<int> geom_contype;
+  ArenaArray<int> geom_conaffinity;
+  ArenaArray<int> geom_group;
+  ArenaArray<Eigen::Vector3d> geom_size;
+  ArenaArray<Eigen::Vector3d> geom_pos;   ///< body frame
+  ArenaArray<Eigen::Vector4d> geom_quat;  ///< relative to the body
+  ArenaArray<Eigen::Vector4d> geom_rgba;
   /// lever: the geom's own mass (density x volume, or its `mass` attribute), whether or not
   /// it contributed to its body (see body_explicit_inertial and compiler.inertiagrouprange)
-  std::vector<double> geom_mass;
+  ArenaArray<double> geom_mass;
   // contact parameters, as mjModel's
-  std::vector<int> geom_condim;                    ///< 1, 3, 4 or 6
-  std::vector<int> geom_priority;                  ///< the higher one's parameters win
-  std::vector<double> geom_solmix;                 ///< weight when mixing solref/solimp
-  std::vector<Eigen::Vector3d> geom_friction;      ///< sliding, torsional, rolling
-  std::vector<std::array<double, 2>> geom_solref;  ///< contact solref
-  std::vector<std::array<double, 5>> geom_solimp;  ///< contact solimp
-  std::vector<double> geom_margin;                 ///< contact detection distance
-  std::vector<double> geom_gap;                    ///< contacts within margin - gap make rows
-  std::vector<double> geom_rbound;                 ///< bounding sphere radius (0: plane)
-  std::vector<int> geom_dataid;  ///< a mesh geom's mesh, -1 for other geoms
+  ArenaArray<int> geom_condim;                    ///< 1, 3, 4 or 6
+  ArenaArray<int> geom_priority;                  ///< the higher one's parameters win
+  ArenaArray<double> geom_solmix;                 ///< weight when mixing solref/solimp
+  ArenaArray<Eigen::Vector3d> geom_friction;      ///< sliding, torsional, rolling
+  ArenaArray<std::array<double, 2>> geom_solref;  ///< contact solref
+  ArenaArray<std::array<double, 5>> geom_solimp;  ///< contact solimp
+  ArenaArray<double> geom_margin;                 ///< contact detection distance
+  ArenaArray<double> geom_gap;                    ///< contacts within margin - gap make rows
+  ArenaArray<double> geom_rbound;                 ///< bounding sphere radius (0: plane)
+  ArenaArray<int> geom_dataid;  ///< a mesh geom's mesh, -1 for other geoms
 
   // ---- meshes (nmesh), as MuJoCo 2.2.2 compiles them for collision --------------------------
-  std::vector<int> mesh_vertadr;   ///< first vertex in mesh_vert
-  std::vector<int> mesh_vertnum;   ///< vertices; 0 for a mesh lever did not read (no geom needs it)
-  std::vector<int> mesh_graphadr;  ///< first int of its hull graph in mesh_graph, -1 if none
+  ArenaArray<int> mesh_vertadr;   ///< first vertex in mesh_vert
+  ArenaArray<int> mesh_vertnum;   ///< vertices; 0 for a mesh lever did not read (no geom needs it)
+  ArenaArray<int> mesh_graphadr;  ///< first int of its hull graph in mesh_graph, -1 if none
   /// (nmeshvert) vertices in the geom's frame (the mesh's centre of mass and principal axes);
   /// floats in MuJoCo, held here as the doubles they convert to
-  std::vector<Eigen::Vector3d> mesh_vert;
+  ArenaArray<Eigen::Vector3d> mesh_vert;
   /// (nmeshgraph) each mesh's convex hull (qhull's, as MuJoCo): numvert, numface, then per hull
   /// vertex the address of its neighbour list, its vertex in the mesh, then the neighbour lists
   /// (hull vertex numbers, each list ended by -1), then the hull's triangles (mesh vertices)
-  std::vector<int> mesh_graph;
-  std::vector<int> mesh_faceadr;  ///< first triangle in mesh_face
-  std::vector<int> mesh_facenum;  ///< triangles; 0 for a mesh lever did not read
+  ArenaArray<int> mesh_graph;
+  ArenaArray<int> mesh_faceadr;  ///< first triangle in mesh_face
+  ArenaArray<int> mesh_facenum;  ///< triangles; 0 for a mesh lever did not read
   /// (nmeshface) each triangle's three vertices, numbered within its mesh (what the rangefinder's
   /// ray meets, MuJoCo's mj_rayMesh)
-  std::vector<std::array<int, 3>> mesh_face;
+  ArenaArray<std::array<int, 3>> mesh_face;
 
   // ---- explicit contact pairs (npair) and exclusions (nexclude) ------------------------------
-  std::vector<int> pair_dim;
-  std::vector<int> pair_geom1, pair_geom2;
-  std::vector<int> pair_signature;  ///< ((body1 + 1) << 16) + body2 + 1, sorted (MuJoCo's)
-  std::vector<std::array<double, 2>> pair_solref;
-  std::vector<std::array<double, 5>> pair_solimp;
-  std::vector<double> pair_margin, pair_gap;
-  std::vector<std::array<double, 5>> pair_friction;
-  std::vector<int> exclude_signature;  ///< ((body1 + 1) << 16) + body2 + 1, sorted (MuJoCo's)
+  ArenaArray<int> pair_dim;
+  ArenaArray<int> pair_geom1, pair_geom2;
+  ArenaArray<int> pair_signature;  ///< ((body1 + 1) << 16) + body2 + 1, sorted (MuJoCo's)
+  ArenaArray<std::array<double, 2>> pair_solref;
+  ArenaArray<std::array<double, 5>> pair_solimp;
+  ArenaArray<double> pair_margin, pair_gap;
+  ArenaArray<std::array<double, 5>> pair_friction;
+  ArenaArray<int> exclude_signature;  ///< ((body1 + 1) << 16) + body2 + 1, sorted (MuJoCo's)
 
   // ---- equality constraints (neq) ---------------------------------------------------------------
   std::vector<std::string> eq_name;
-  std::vector<EqualityType> eq_type;
-  std::vector<int> eq_obj1id;  ///< body (connect, weld) or joint (joint)
-  std::vector<int> eq_obj2id;  ///< the second body (0: the world) or joint (-1: none)
-  std::vector<uint8_t> eq_active;
-  std::vector<std::array<double, 2>> eq_solref;
-  std::vector<std::array<double, 5>> eq_solimp;
+  ArenaArray<EqualityType> eq_type;
+  ArenaArray<int> eq_obj1id;  ///< body (connect, weld) or joint (joint)
+  ArenaArray<int> eq_obj2id;  ///< the second body (0: the world) or joint (-1: none)
+  ArenaArray<uint8_t> eq_active;
+  ArenaArray<std::array<double, 2>> eq_solref;
+  ArenaArray<std::array<double, 5>> eq_solimp;
   /// see kEqualityData; set_const completes a connect's anchor in body 2 and a weld's relative
   /// pose left zero (its quaternion all zero) from the bodies' poses at qpos0, as mj_setConst
-  std::vector<std::array<double, kEqualityData>> eq_data;
+  ArenaArray<std::array<double, kEqualityData>> eq_data;
 
   // ---- tendons (ntendon) and their paths (nwrap), as mjModel's -------------------------------
   // A fixed tendon's length is sum_k coef_k qpos(joint_k) over its path's joints (wrap_objid,
@@ -556,134 +561,137 @@ struct Model {
   // - damping velocity along it; a limit row when it leaves range (limited), a friction-loss row
   // while it moves (frictionloss > 0).
   std::vector<std::string> tendon_name;
-  std::vector<int> tendon_adr;  ///< first object of its path in wrap_*
-  std::vector<int> tendon_num;  ///< objects in its path
-  std::vector<uint8_t> tendon_limited;
-  std::vector<double> tendon_width;  ///< drawn width (spatial tendons; no effect on dynamics)
-  std::vector<std::array<double, 2>> tendon_solref_lim;  ///< limit solref
-  std::vector<std::array<double, 5>> tendon_solimp_lim;  ///< limit solimp
-  std::vector<std::array<double, 2>> tendon_solref_fri;  ///< friction loss solref
-  std::vector<std::array<double, 5>> tendon_solimp_fri;  ///< friction loss solimp
-  std::vector<std::array<double, 2>> tendon_range;       ///< length limits
-  std::vector<double> tendon_margin;                     ///< limit rows within this of a stop
-  std::vector<double> tendon_stiffness;
-  std::vector<double> tendon_damping;
-  std::vector<double> tendon_frictionloss;
+  ArenaArray<int> tendon_adr;  ///< first object of its path in wrap_*
+  ArenaArray<int> tendon_num;  ///< objects in its path
+  ArenaArray<uint8_t> tendon_limited;
+  ArenaArray<double> tendon_width;  ///< drawn width (spatial tendons; no effect on dynamics)
+  ArenaArray<std::array<double, 2>> tendon_solref_lim;  ///< limit solref
+  ArenaArray<std::array<double, 5>> tendon_solimp_lim;  ///< limit solimp
+  ArenaArray<std::array<double, 2>> tendon_solref_fri;  ///< friction loss solref
+  ArenaArray<std::array<double, 5>> tendon_solimp_fri;  ///< friction loss solimp
+  ArenaArray<std::array<double, 2>> tendon_range;       ///< length limits
+  ArenaArray<double> tendon_margin;                     ///< limit rows within this of a stop
+  ArenaArray<double> tendon_stiffness;
+  ArenaArray<double> tendon_damping;
+  ArenaArray<double> tendon_frictionloss;
   /// the spring's rest length; set_const replaces a negative one by the length at qpos_spring
-  std::vector<double> tendon_lengthspring;
-  std::vector<double> tendon_length0;     ///< set_const: length at qpos0
-  std::vector<double> tendon_invweight0;  ///< set_const: J M^-1 J^T at qpos0
-  std::vector<WrapType> wrap_type;        ///< (nwrap)
-  std::vector<int> wrap_objid;            ///< (nwrap) the joint (site, geom) of the object
-  std::vector<double> wrap_prm;           ///< (nwrap) a joint's coefficient, a geom's side site
+  ArenaArray<double> tendon_lengthspring;
+  ArenaArray<double> tendon_length0;     ///< set_const: length at qpos0
+  ArenaArray<double> tendon_invweight0;  ///< set_const: J M^-1 J^T at qpos0
+  ArenaArray<WrapType> wrap_type;        ///< (nwrap)
+  ArenaArray<int> wrap_objid;            ///< (nwrap) the joint (site, geom) of the object
+  ArenaArray<double> wrap_prm;           ///< (nwrap) a joint's coefficient, a geom's side site
                                           ///< (-1: none), a pulley's divisor
 
   // ---- sites (nsite) -------------------------------------------------------------------------
   std::vector<std::string> site_name;
-  std::vector<int> site_bodyid;
-  std::vector<Eigen::Vector3d> site_pos;   ///< body frame
-  std::vector<Eigen::Vector4d> site_quat;  ///< relative to the body
-  std::vector<Eigen::Vector3d> site_size;
+  ArenaArray<int> site_bodyid;
+  ArenaArray<Eigen::Vector3d> site_pos;   ///< body frame
+  ArenaArray<Eigen::Vector4d> site_quat;  ///< relative to the body
+  ArenaArray<Eigen::Vector3d> site_size;
   /// its shape: sphere, capsule, ellipsoid, cylinder or box (a touch sensor's zone)
-  std::vector<GeomType> site_type;
+  ArenaArray<GeomType> site_type;
 
   // ---- actuators (nu): stateless actuators on a joint or a tendon ------------------------------
   // force = gain * ctrl + bias, with gain = gainprm[0] (+ gainprm[1] length + gainprm[2] velocity
   // if affine) and bias = biasprm[0] + biasprm[1] length + biasprm[2] velocity (if affine): a
   // motor is gain 1 and no bias; a position servo gain kp and bias (0, -kp, -kv).
   std::vector<std::string> actuator_name;
-  std::vector<TransmissionType> actuator_trntype;
+  ArenaArray<TransmissionType> actuator_trntype;
   /// what it drives: [0] the joint, tendon or site (a slider-crank's crank site); [1] a
   /// slider-crank's slider site, a site transmission's reference site, else -1
-  std::vector<std::array<int, 2>> actuator_trnid;
-  std::vector<double> actuator_cranklength;  ///< a slider-crank's rod length (else 0)
-  std::vector<DynType> actuator_dyntype;
-  std::vector<std::array<double, kDynParameters>> actuator_dynprm;  ///< filter: tau; muscle:
+  ArenaArray<std::array<int, 2>> actuator_trnid;
+  ArenaArray<double> actuator_cranklength;  ///< a slider-crank's rod length (else 0)
+  ArenaArray<DynType> actuator_dyntype;
+  ArenaArray<std::array<double, kDynParameters>> actuator_dynprm;  ///< filter: tau; muscle:
                                                                     ///< tau_act, tau_deact
-  std::vector<uint8_t> actuator_actlimited;  ///< its activation clamped to actrange after a step
-  std::vector<std::array<double, 2>> actuator_actrange;
+  ArenaArray<uint8_t> actuator_actlimited;  ///< its activation clamped to actrange after a step
+  ArenaArray<std::array<double, 2>> actuator_actrange;
   /// the range of its length (a muscle's is mapped onto its operating range): as written, or
   /// computed by the compiler (set_length_ranges)
-  std::vector<std::array<double, 2>> actuator_lengthrange;
-  std::vector<GainType> actuator_gaintype;
-  std::vector<BiasType> actuator_biastype;
-  std::vector<std::array<double, kGainParameters>> actuator_gainprm;
-  std::vector<std::array<double, kBiasParameters>> actuator_biasprm;
-  std::vector<std::array<double, 6>> actuator_gear;
-  std::vector<uint8_t> actuator_ctrllimited;
-  std::vector<uint8_t> actuator_forcelimited;
-  std::vector<std::array<double, 2>> actuator_ctrlrange;
-  std::vector<std::array<double, 2>> actuator_forcerange;
-  std::vector<double> actuator_length0;  ///< set_const: its length at qpos0
+  ArenaArray<std::array<double, 2>> actuator_lengthrange;
+  ArenaArray<GainType> actuator_gaintype;
+  ArenaArray<BiasType> actuator_biastype;
+  ArenaArray<std::array<double, kGainParameters>> actuator_gainprm;
+  ArenaArray<std::array<double, kBiasParameters>> actuator_biasprm;
+  ArenaArray<std::array<double, 6>> actuator_gear;
+  ArenaArray<uint8_t> actuator_ctrllimited;
+  ArenaArray<uint8_t> actuator_forcelimited;
+  ArenaArray<std::array<double, 2>> actuator_ctrlrange;
+  ArenaArray<std::array<double, 2>> actuator_forcerange;
+  ArenaArray<double> actuator_length0;  ///< set_const: its length at qpos0
   /// set_const: |M^-1 moment| at qpos0, the acceleration a unit force gives (a muscle's force
   /// scale when its force is negative)
-  std::vector<double> actuator_acc0;
+  ArenaArray<double> actuator_acc0;
 
   // ---- sensors (nsensor): what each measures and where its numbers go in data.sensordata ----------
   std::vector<std::string> sensor_name;
-  std::vector<SensorType> sensor_type;
-  std::vector<SensorDataType> sensor_datatype;
-  std::vector<SensorStage> sensor_needstage;  ///< the stage that evaluates it
-  std::vector<ObjectType> sensor_objtype;     ///< what it is attached to (kUnknown: clock)
-  std::vector<int> sensor_objid;              ///< that object's id (-1: clock)
-  std::vector<ObjectType> sensor_reftype;     ///< a frame sensor's reference frame (kUnknown:
+  ArenaArray<SensorType> sensor_type;
+  ArenaArray<SensorDataType> sensor_datatype;
+  ArenaArray<SensorStage> sensor_needstage;  ///< the stage that evaluates it
+  ArenaArray<ObjectType> sensor_objtype;     ///< what it is attached to (kUnknown: clock)
+  ArenaArray<int> sensor_objid;              ///< that object's id (-1: clock)
+  ArenaArray<ObjectType> sensor_reftype;     ///< a frame sensor's reference frame (kUnknown:
                                               ///< the world)
-  std::vector<int> sensor_refid;              ///< its id (-1: the world)
-  std::vector<int> sensor_dim;                ///< numbers it outputs
-  std::vector<int> sensor_adr;                ///< its first number in data.sensordata
-  std::vector<double> sensor_cutoff;  ///< > 0: each number clipped to +-cutoff (positive
+  ArenaArray<int> sensor_refid;              ///< its id (-1: the world)
+  ArenaArray<int> sensor_dim;                ///< numbers it outputs
+  ArenaArray<int> sensor_adr;                ///< its first number in data.sensordata
+  ArenaArray<double> sensor_cutoff;  ///< > 0: each number clipped to +-cutoff (positive
                                       ///< sensors: to cutoff)
   /// evaluates the user sensors (set by the user; not part of a saved or pickled model)
   SensorCallback sensor_callback;
   /// evaluate the actuators' user gain, bias and activation dynamics (set by the user; not part
   /// of a saved or pickled model; a copy of the model shares them)
   ActuatorCallback actuator_gain_callback, actuator_bias_callback, actuator_dyn_callback;
-  std::vector<double> sensor_noise;   ///< standard deviation of the noise added when
+  ArenaArray<double> sensor_noise;   ///< standard deviation of the noise added when
                                       ///< opt.enabled(kEnableSensornoise)
 
   // ---- user data: (nbody x nuser_body), (njnt x nuser_jnt), ... MuJoCo's *_user arrays -------
-  RowMatrix body_user, jnt_user, geom_user, site_user, actuator_user, sensor_user;
+  ArenaRowMatrix body_user, jnt_user, geom_user, site_user, actuator_user, sensor_user;
 
   // ---- keyframes (nkey): named states to start from (<keyframe><key>) --------------------------
   std::vector<std::string> key_name;
-  std::vector<double> key_time;
-  RowMatrix key_qpos;  ///< (nkey x nq)
-  RowMatrix key_qvel;  ///< (nkey x nv)
-  RowMatrix key_ctrl;  ///< (nkey x nu)
-  RowMatrix key_act;   ///< (nkey x na)
-  RowMatrix key_mpos;   ///< (nkey x 3 nmocap) the mocap bodies' positions (default: body_pos)
-  RowMatrix key_mquat;  ///< (nkey x 4 nmocap) their orientations, unit (default: body_quat)
+  ArenaArray<double> key_time;
+  ArenaRowMatrix key_qpos;  ///< (nkey x nq)
+  ArenaRowMatrix key_qvel;  ///< (nkey x nv)
+  ArenaRowMatrix key_ctrl;  ///< (nkey x nu)
+  ArenaRowMatrix key_act;   ///< (nkey x na)
+  ArenaRowMatrix key_mpos;   ///< (nkey x 3 nmocap) the mocap bodies' positions (default: body_pos)
+  ArenaRowMatrix key_mquat;  ///< (nkey x 4 nmocap) their orientations, unit (default: body_quat)
 
   // ---- set_const: MuJoCo's compile-time constants ---------------------------------------------
-  std::vector<double> body_subtreemass;                ///< kg, this body and all below it
-  std::vector<std::array<double, 2>> body_invweight0;  ///< (translational, rotational) at qpos0
+  ArenaArray<double> body_subtreemass;                ///< kg, this body and all below it
+  ArenaArray<std::array<double, 2>> body_invweight0;  ///< (translational, rotational) at qpos0
   /// 1 for a body whose block of M is diagonal and the same at every state, so that crba()
   /// copies it from dof_M0 and the LTDL steps skip its dofs (MuJoCo's body_simple, by its
   /// compiler's rule): its inertial frame is its own frame, it hangs from the world or from a
   /// body welded to the world, it has no child body, and its joints sit at its origin, a hinge's
   /// or slide's axis along one coordinate axis, with no joint after the first one that turns.
-  std::vector<uint8_t> body_simple;
+  ArenaArray<uint8_t> body_simple;
   bool has_simple_dofs = false;  ///< set_const: some dof_simplenum is not 0
 
   // ---- set_const: constant rotations, so kinematics() does not rebuild them every call ------
-  std::vector<Mat3> body_mat;   ///< rotation of body_quat
-  std::vector<Mat3> body_imat;  ///< rotation of body_iquat
-  std::vector<Mat3> geom_mat;   ///< rotation of geom_quat
-  std::vector<Mat3> site_mat;   ///< rotation of site_quat
+  ArenaArray<Mat3> body_mat;   ///< rotation of body_quat
+  ArenaArray<Mat3> body_imat;  ///< rotation of body_iquat
+  ArenaArray<Mat3> geom_mat;   ///< rotation of geom_quat
+  ArenaArray<Mat3> site_mat;   ///< rotation of site_quat
   /// How each constant frame is placed (see FramePlacement): a body on its parent (body_pos,
   /// body_quat), its inertial frame (body_ipos, body_iquat), a geom, a site.
-  std::vector<FramePlacement> body_placement, body_iplacement, geom_placement, site_placement;
-  std::vector<JointKind> jnt_kind;  ///< what the kernels dispatch on (see JointKind)
-  std::vector<uint8_t> jnt_offset;  ///< jnt_pos is not zero (the anchor is off the origin)
+  ArenaArray<FramePlacement> body_placement, body_iplacement, geom_placement, site_placement;
+  ArenaArray<JointKind> jnt_kind;  ///< what the kernels dispatch on (see JointKind)
+  ArenaArray<uint8_t> jnt_offset;  ///< jnt_pos is not zero (the anchor is off the origin)
 
   // ---- set_const: each actuator's kind -------------------------------------------
-  std::vector<ActuatorKind> actuator_kind;  ///< (nu) from its gain and bias (see ActuatorKind)
+  ArenaArray<ActuatorKind> actuator_kind;  ///< (nu) from its gain and bias (see ActuatorKind)
+  /// (nu) the dof an actuator drives alone with moment gear[0] (a hinge or slide joint
+  /// transmission), else -1: actuator_scalar_dof(model, a), which actuation() reads here
+  ArenaArray<int> actuator_scalar_dof;
 
   // ---- set_const: the collision stage's body constants ---------------------------
-  std::vector<int> body_weldid;  ///< (nbody) the body it is welded to: itself if it has joints,
+  ArenaArray<int> body_weldid;  ///< (nbody) the body it is welded to: itself if it has joints,
                                  ///< else its parent's (MuJoCo's body_weldid)
   /// (nbody) what a body takes part in, in the broad phase (kBodyCollides | kBodyPairsWithAll)
-  std::vector<uint8_t> body_collision;
+  ArenaArray<uint8_t> body_collision;
   static constexpr uint8_t kBodyCollides = 1;      ///< a geom with contype or conaffinity
   static constexpr uint8_t kBodyPairsWithAll = 2;  ///< the world with geoms, or a static body
                                                    ///< holding a plane: paired with every body
@@ -708,6 +716,32 @@ struct Model {
   /// against this model remembers it, so later calls need not check the whole field table again.
   std::uint64_t fit_tag = 0;
 
+};
+
+/// A compiled model. Its arrays live in one block (lever/arena.hpp), as MuJoCo's mjModel's do: each
+/// starts on a cache line, and their lengths follow from the counts (nbody, njnt, nq, ...) alone.
+/// The arrays are views with mjModel's names: model.body_mass reads and writes like a
+/// std::vector<double>, model.qpos0 like an Eigen::VectorXd, but none changes its size on its own
+/// (assigning another size throws StateError). A builder sets the counts, calls
+/// lever::size_model(model) (lever/fields.hpp), which lays the block out anew (keeping what the
+/// arrays held within their new lengths), and writes each element by index. Copying a Model copies
+/// the block; moving it keeps every view where it was. The names, the options and the callbacks are
+/// ordinary members.
+///
+/// Adding an array: declare it in ModelFields as a view, then give it its size in one line: a row
+/// of LEVER_MODEL_FIELDS (lever/fields.hpp), or a line of lay_out_own_model_arrays
+/// (engine/src/model/model.cpp) for what the table does not list.
+struct Model : ModelFields {
+  Model();                               ///< the world body alone
+  Model(const Model& other);             ///< a copy of every array, in a new block
+  Model(Model&& other) noexcept;         ///< takes the block: the views stay valid
+  Model& operator=(const Model& other);  ///< the counts and arrays become other's
+  Model& operator=(Model&& other) noexcept;
+  ~Model() = default;
+
+  /// The block every array is a view into (bytes(): what the arrays take in memory).
+  const ArenaBlock& block() const { return block_; }
+
   // ---- names ---------------------------------------------------------------------------------
   /// Index of the named object, or -1. Linear search: meant for set-up code, not inner loops.
   int body(const std::string& n) const;
@@ -719,6 +753,10 @@ struct Model {
   int sensor(const std::string& n) const;
   int equality(const std::string& n) const;
   int tendon(const std::string& n) const;
+
+ private:
+  friend void size_model(Model& model);
+  ArenaBlock block_;
 };
 
 /// The dof actuator `a` drives alone, with moment gear[0]: that of a hinge or slide joint

@@ -541,12 +541,12 @@ namespace detail {
 
 void build_collision_constants(Model& model) {
   // a body without joints moves with its parent (bodies come after their parents)
-  model.body_weldid.assign(model.nbody, 0);
+  std::fill(model.body_weldid.begin(), model.body_weldid.end(), 0);
   for (int b = 1; b < model.nbody; ++b) {
     model.body_weldid[b] = model.body_jntnum[b] > 0 ? b : model.body_weldid[model.body_parentid[b]];
   }
   // the world (with geoms), and static bodies holding a plane, are paired with every body
-  model.body_collision.assign(model.nbody, 0);
+  std::fill(model.body_collision.begin(), model.body_collision.end(), 0);
   for (int b = 0; b < model.nbody; ++b) {
     if (!body_can_collide(model, b)) continue;
     const bool with_all = (b == 0 && model.body_geomnum[0] > 0) ||

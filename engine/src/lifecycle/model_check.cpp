@@ -169,11 +169,13 @@ void check_ranges(const Model& model) {
 
 // ---- what the table cannot say -----------------------------------------------------------------
 
-template <typename T>
-void require_size(const std::vector<T>& v, int n, const char* name) {
+template <class Array>
+void require_size(const Array& v, int n, const char* name) {
   if (static_cast<int>(v.size()) != n) {
     throw ModelError("model array " + std::string(name) + " has " + std::to_string(v.size()) +
-                     " entries where " + std::to_string(n) + " are needed.");
+                     " entries where " + std::to_string(n) +
+                     " are needed: a count changed since the arrays were sized; call "
+                     "lever::size_model after setting the counts.");
   }
 }
 

@@ -24,7 +24,7 @@ bool is_identity(const Quat& q) { return q[0] == 1.0 && q[1] == 0.0 && q[2] == 0
 
 // The subtree masses (summed leaves to root).
 void build_subtree_masses(Model& model) {
-  model.body_subtreemass.assign(model.body_mass.begin(), model.body_mass.end());
+  std::copy(model.body_mass.begin(), model.body_mass.end(), model.body_subtreemass.begin());
   for (int b = model.nbody - 1; b > 0; --b) {
     model.body_subtreemass[model.body_parentid[b]] += model.body_subtreemass[b];
   }
@@ -49,10 +49,11 @@ JointKind joint_kind(const Model& model, int j) {
   return JointKind::kHinge;
 }
 
-// The actuators' kinds (lever/model.hpp), from their current parameters.
+// The actuators' kinds (lever/model.hpp) and the dofs they drive alone, from their current
+// parameters.
 void build_actuator_kinds(Model& model) {
-  model.actuator_kind.resize(model.nu);
   for (int a = 0; a < model.nu; ++a) {
+    model.actuator_scalar_dof[a] = actuator_scalar_dof(model, a);
     // an actuator with dynamics, a muscle's curves or a user part is none of the simple kinds
     const bool simple = model.actuator_dyntype[a] == DynType::kNone &&
                         model.actuator_gaintype[a] != GainType::kMuscle &&
@@ -106,10 +107,6 @@ FramePlacement placement(const Eigen::Vector3d& v, const Quat& q, const Mat3& R)
 }
 
 void build_rotations(Model& model) {
-  model.body_mat.resize(model.nbody);
-  model.body_imat.resize(model.nbody);
-  model.body_placement.resize(model.nbody);
-  model.body_iplacement.resize(model.nbody);
   for (int b = 0; b < model.nbody; ++b) {
     model.body_mat[b] = quat_to_mat(quat_normalized(model.body_quat[b]));
     model.body_imat[b] = quat_to_mat(quat_normalized(model.body_iquat[b]));
@@ -117,20 +114,14 @@ void build_rotations(Model& model) {
     model.body_iplacement[b] =
         placement(model.body_ipos[b], model.body_iquat[b], model.body_imat[b]);
   }
-  model.geom_mat.resize(model.ngeom);
-  model.geom_placement.resize(model.ngeom);
   for (int g = 0; g < model.ngeom; ++g) {
     model.geom_mat[g] = quat_to_mat(quat_normalized(model.geom_quat[g]));
     model.geom_placement[g] = placement(model.geom_pos[g], model.geom_quat[g], model.geom_mat[g]);
   }
-  model.site_mat.resize(model.nsite);
-  model.site_placement.resize(model.nsite);
   for (int s = 0; s < model.nsite; ++s) {
     model.site_mat[s] = quat_to_mat(quat_normalized(model.site_quat[s]));
     model.site_placement[s] = placement(model.site_pos[s], model.site_quat[s], model.site_mat[s]);
   }
-  model.jnt_kind.resize(model.njnt);
-  model.jnt_offset.resize(model.njnt);
   for (int j = 0; j < model.njnt; ++j) {
     model.jnt_kind[j] = joint_kind(model, j);
     model.jnt_offset[j] = !model.jnt_pos[j].isZero(0.0);
@@ -166,7 +157,7 @@ bool contacts_possible(const Model& model) {
 // turns about its centre of mass its principal moments. Its dofs then count down to its last
 // (dof_simplenum).
 void build_simple_bodies(Model& model) {
-  model.body_simple.assign(model.nbody, 0);
+  std::fill(model.body_simple.begin(), model.body_simple.end(), 0);
   for (int b = 0; b < model.nbody; ++b) {
     const int parent = model.body_parentid[b];
     const bool same_frame = model.body_ipos[b].isZero(0.0) && is_identity(model.body_iquat[b]);
@@ -186,7 +177,7 @@ void build_simple_bodies(Model& model) {
     }
     model.body_simple[b] = simple;
   }
-  model.dof_simplenum.assign(model.nv, 0);
+  std::fill(model.dof_simplenum.begin(), model.dof_simplenum.end(), 0);
   model.has_simple_dofs = false;
   for (int i = model.nv - 1, count = 0; i >= 0; --i) {
     count = model.body_simple[model.dof_bodyid[i]] ? count + 1 : 0;
@@ -213,8 +204,8 @@ namespace {
 // there (data: kinematics and M's factor at qpos0), then a negative spring length replaced by the
 // length at qpos_spring.
 void build_tendon_constants(Model& model, Data& data) {
-  model.tendon_length0.assign(model.ntendon, 0.0);
-  model.tendon_invweight0.assign(model.ntendon, 0.0);
+  std::fill(model.tendon_length0.begin(), model.tendon_length0.end(), 0.0);
+  std::fill(model.tendon_invweight0.begin(), model.tendon_invweight0.end(), 0.0);
   if (model.ntendon == 0) return;
   tendon(model, data);
   Eigen::VectorXd x(model.nv);
@@ -242,8 +233,8 @@ void build_tendon_constants(Model& model, Data& data) {
 // The actuators' constants (mj_setConst): each length at qpos0 and the norm of M^-1 times its
 // moment there (data: kinematics, tendons and M's factor at qpos0).
 void build_actuator_constants(Model& model, Data& data) {
-  model.actuator_length0.assign(model.nu, 0.0);
-  model.actuator_acc0.assign(model.nu, 0.0);
+  std::fill(model.actuator_length0.begin(), model.actuator_length0.end(), 0.0);
+  std::fill(model.actuator_acc0.begin(), model.actuator_acc0.end(), 0.0);
   if (model.nu == 0) return;
   transmission(model, data);
   Eigen::VectorXd x(model.nv);
@@ -281,15 +272,13 @@ void set_const(Model& model) {
 
   // constants at qpos0: diag of M and of M^-1, and the bodies' mean inverse inertias; M computed
   // whole (no dof simple yet: crba() would copy the simple ones' diagonal from dof_M0)
-  model.dof_simplenum.assign(model.nv, 0);
+  std::fill(model.dof_simplenum.begin(), model.dof_simplenum.end(), 0);
   model.has_simple_dofs = false;
   Data data(model);
   data.qpos = model.qpos0;
   kinematics(model, data);
   crba(model, data);
   factor_mass(model, data);
-  model.dof_M0.resize(model.nv);
-  model.dof_invweight0.resize(model.nv);
   Eigen::VectorXd x(model.nv);
   for (int i = 0; i < model.nv; ++i) {
     model.dof_M0[i] = data.M(i, i);
@@ -310,7 +299,8 @@ void set_const(Model& model) {
       w[0] = w[1] = w[2] = mean;
     }
   }
-  model.body_invweight0.assign(model.nbody, {0.0, 0.0});
+  std::fill(model.body_invweight0.begin(), model.body_invweight0.end(),
+            std::array<double, 2>{0.0, 0.0});
   Eigen::MatrixXd jacp(3, model.nv), jacr(3, model.nv), Minv_Jt(model.nv, 3);
   for (int b = 1; b < model.nbody; ++b) {
     jac_point(model, data, b, data.xipos[b], jacp, jacr);

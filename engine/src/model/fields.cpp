@@ -5,6 +5,7 @@
 #include "model/model_room.hpp"
 
 #include <array>
+#include <cstring>
 #include <type_traits>
 
 namespace lever {
@@ -57,47 +58,14 @@ constexpr Scalar scalar_of() {
 template <class C>
 struct Layout;
 
-template <>
-struct Layout<Eigen::VectorXd> {
-  using element = double;
-  static constexpr int per_entry = 1;
-  static void* data(const Eigen::VectorXd& v) { return const_cast<double*>(v.data()); }
-  static long entries(const Eigen::VectorXd& v) { return v.size(); }
-  static void resize(Eigen::VectorXd& v, int rows, int) { v.setZero(rows); }
-  // the numbers within the new length kept, the rest zero (size_model)
-  static void resize_keeping(Eigen::VectorXd& v, int rows, int) {
-    v.conservativeResizeLike(Eigen::VectorXd::Zero(rows));
-  }
-};
-
-template <>
-struct Layout<Eigen::MatrixXd> {  // square (M): its storage order does not matter
-  using element = double;
-  static constexpr int per_entry = 1;
-  static void* data(const Eigen::MatrixXd& m) { return const_cast<double*>(m.data()); }
-  static long entries(const Eigen::MatrixXd& m) { return m.size(); }
-  static void resize(Eigen::MatrixXd& m, int rows, int cols) { m.setZero(rows, cols); }
-};
-
-template <>
-struct Layout<RowMatrix> {  // rows x a counted width (user data; ten_J, actuator_moment nv)
-  using element = double;
-  static constexpr int per_entry = 1;
-  static void* data(const RowMatrix& m) { return const_cast<double*>(m.data()); }
-  static long entries(const RowMatrix& m) { return m.size(); }
-  static void resize(RowMatrix& m, int rows, int cols) { m.setZero(rows, cols); }
-  static void resize_keeping(RowMatrix& m, int rows, int cols) {
-    m.conservativeResizeLike(RowMatrix::Zero(rows, cols));
-  }
-};
-
 template <size_t N>
 struct Layout<std::array<double, N>> {  // a fixed-size array of Data (energy)
   using element = double;
   static constexpr int per_entry = 1;
   static void* data(const std::array<double, N>& a) { return const_cast<double*>(a.data()); }
   static long entries(const std::array<double, N>&) { return N; }
-  static void place(detail::ArrayPlacer&, std::array<double, N>&, int, int) {}  // not in the block
+  template <class Placer>
+  static void place(Placer&, std::array<double, N>&, int, int) {}  // not in the block
 };
 
 // What one entry of an array of T holds: per_entry numbers of type element.
@@ -126,46 +94,30 @@ struct Entry {
   }());
   // an entry must be exactly its numbers, with no padding, for the array to be one block
   static_assert(sizeof(T) == per_entry * sizeof(element));
-  // Eigen's fixed-size types are not zeroed by T{} (their default constructor leaves the numbers
-  // uninitialized): ask for Zero() explicitly
-  static T zero() {
-    if constexpr (kEigen) {
-      return T::Zero();
-    } else {
-      return T{};
-    }
-  }
 };
 
-template <class T>
-struct Layout<std::vector<T>> {
-  using element = typename Entry<T>::element;
-  static constexpr int per_entry = Entry<T>::per_entry;
-  static void* data(const std::vector<T>& v) { return const_cast<T*>(v.data()); }
-  static long entries(const std::vector<T>& v) { return static_cast<long>(v.size()) * per_entry; }
-  // the entries within the new length kept, the rest zero (size_model)
-  static void resize_keeping(std::vector<T>& v, int rows, int) { v.resize(rows, Entry<T>::zero()); }
-};
-
-// Data's arrays: views into its block (lever/arena.hpp), laid out once
+// Data's and Model's arrays: views into their blocks (lever/arena.hpp)
 template <class T>
 struct Layout<ArenaArray<T>> {
   using element = typename Entry<T>::element;
   static constexpr int per_entry = Entry<T>::per_entry;
   static void* data(const ArenaArray<T>& v) { return const_cast<T*>(v.data()); }
   static long entries(const ArenaArray<T>& v) { return static_cast<long>(v.size()) * per_entry; }
-  static void place(detail::ArrayPlacer& place, ArenaArray<T>& v, int rows, int cols) {
+  template <class Placer>
+  static void place(Placer& place, ArenaArray<T>& v, int rows, int cols) {
     place(v, static_cast<std::size_t>(rows) * cols / per_entry);
   }
 };
 
+// a vector, a square matrix (M: its storage order is moot), or a row-major one (ten_J, user data)
 template <class Plain>
-struct Layout<ArenaMap<Plain>> {  // a vector, or a square matrix (M): its storage order is moot
+struct Layout<ArenaMap<Plain>> {
   using element = double;
   static constexpr int per_entry = 1;
   static void* data(const ArenaMap<Plain>& m) { return const_cast<double*>(m.data()); }
   static long entries(const ArenaMap<Plain>& m) { return m.size(); }
-  static void place(detail::ArrayPlacer& place, ArenaMap<Plain>& m, int rows, int cols) {
+  template <class Placer>
+  static void place(Placer& place, ArenaMap<Plain>& m, int rows, int cols) {
     if constexpr (Plain::ColsAtCompileTime == 1) {
       place(m, static_cast<Eigen::Index>(rows) * cols);
     } else {
@@ -443,6 +395,14 @@ int data_rows(const Data& data, Size size) {
 }  // namespace
 
 namespace detail {
+void lay_out_model_table_arrays(Model& model, ModelArrayPlacer& place) {
+#define LEVER_MODEL_PLACE(name, type, rows, cols, origin)                               \
+  Layout<decltype(Model::name)>::place(place, model.name, size_of(model, token::rows), \
+                                       resolve_cols(model, cols, token::rows));
+  LEVER_MODEL_FIELDS(LEVER_MODEL_PLACE)
+#undef LEVER_MODEL_PLACE
+}
+
 void lay_out_table_arrays(Data& data, ArrayPlacer& place) {
 #define LEVER_DATA_PLACE(name, type, rows, cols, stage, origin)                      \
   {                                                                                  \
@@ -469,19 +429,20 @@ bool computed_by_set_const(std::string_view model_field) {
 }
 
 void check_model_sizes(const Model& model) {
-#define LEVER_MODEL_SIZE(name, type, rows, cols, origin)                                       \
-  if (!computed_by_set_const(#name)) {                                                         \
-    const int n = size_of(model, token::rows);                                                 \
-    const long expected = static_cast<long>(n) * resolve_cols(model, cols, token::rows);       \
-    const long actual = Layout<decltype(Model::name)>::entries(model.name);                    \
-    if (actual != expected) {                                                                  \
-      throw ModelError("Model::" #name " holds " + shape_text(actual) +                        \
-                       " but the model's sizes "                                               \
-                       "give it " +                                                            \
-                       shape_text(expected) + " (" + size_name(token::rows) + " = " +          \
-                       std::to_string(n) + ")" +                                               \
-                       (actual == 0 ? ": a model built by hand must fill it too" : "") + "."); \
-    }                                                                                          \
+  // size_model gives every array the length its counts give it, so a difference means a count
+  // was changed after the last size_model
+#define LEVER_MODEL_SIZE(name, type, rows, cols, origin)                                          \
+  {                                                                                               \
+    const int n = size_of(model, token::rows);                                                    \
+    const long expected = static_cast<long>(n) * resolve_cols(model, cols, token::rows);          \
+    const long actual = Layout<decltype(Model::name)>::entries(model.name);                       \
+    if (actual != expected) {                                                                     \
+      throw ModelError("Model::" #name " holds " + shape_text(actual) +                           \
+                       " but the model's counts give it " + shape_text(expected) + " (" +         \
+                       size_name(token::rows) + " = " + std::to_string(n) +                       \
+                       "): a count changed since the arrays were sized; call lever::size_model " \
+                       "after setting the counts.");                                              \
+    }                                                                                             \
   }
   LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE)
 #undef LEVER_MODEL_SIZE
@@ -527,27 +488,21 @@ void size_model(Model& model) {
     throw ModelError("size_model: nbody = 0; a model has at least the world body (body 0).");
   }
   const size_t bodies_before = model.body_mocapid.size();
-#define LEVER_MODEL_SIZE_ARRAY(name, type, rows, cols, origin)                           \
-  {                                                                                      \
-    const int n = size_of(model, token::rows);                                           \
-    Layout<decltype(Model::name)>::resize_keeping(model.name, n,                          \
-                                                  resolve_cols(model, cols, token::rows)); \
-  }
-  LEVER_MODEL_FIELDS(LEVER_MODEL_SIZE_ARRAY)
-#undef LEVER_MODEL_SIZE_ARRAY
+  // one new block for every array, zeroed; each array moved into it, keeping what it held within
+  // its new length
+  detail::ModelArrayPlacer measure(nullptr, detail::ModelArrayPlacer::Mode::kMeasure);
+  detail::lay_out_model(model, measure);
+  ArenaBlock block(measure.bytes());
+  if (block.bytes() > 0) std::memset(block.data(), 0, block.bytes());
+  detail::ModelArrayPlacer move_into(block.data(), detail::ModelArrayPlacer::Mode::kResize);
+  detail::lay_out_model(model, move_into);
+  model.block_ = std::move(block);  // the old block goes
   // a new body is not a mocap body until the builder says so
   for (size_t b = bodies_before; b < model.body_mocapid.size(); ++b) model.body_mocapid[b] = -1;
-    // outside the table (see lever/fields.hpp): one name per object, and the keyframes
+  // outside the block (see lever/fields.hpp): one name per object
 #define LEVER_MODEL_SIZE_NAMES(name, count) model.name.resize(static_cast<size_t>(model.count));
   LEVER_MODEL_NAMES(LEVER_MODEL_SIZE_NAMES)
 #undef LEVER_MODEL_SIZE_NAMES
-  model.key_time.resize(static_cast<size_t>(model.nkey), 0.0);
-  model.key_qpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nq));
-  model.key_qvel.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nv));
-  model.key_ctrl.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.nu));
-  model.key_act.conservativeResizeLike(RowMatrix::Zero(model.nkey, model.na));
-  model.key_mpos.conservativeResizeLike(RowMatrix::Zero(model.nkey, 3 * model.nmocap));
-  model.key_mquat.conservativeResizeLike(RowMatrix::Zero(model.nkey, 4 * model.nmocap));
   model.fit_tag = 0;  // its arrays may have changed: set_const again before a Data trusts it
 }
 

@@ -1,9 +1,91 @@
-// Name lookups of the Model, the names of its option flags, and what an actuator's transmission
-// drives.
+// The Model's block (its arrays' layout, copies and moves), its name lookups, the names of its
+// option flags, and what an actuator's transmission drives.
 #include <lever/error.hpp>
+#include <lever/fields.hpp>
 #include <lever/model.hpp>
 
+#include <cstring>
+#include <new>
+#include <utility>
+
+#include "model/model_room.hpp"
+
 namespace lever {
+
+namespace detail {
+
+// The arrays outside the field table, in the same block: the keyframes and what set_const
+// derives for the kernels. An array added to Model that is not in the table gets its size here.
+void lay_out_own_model_arrays(Model& m, ModelArrayPlacer& place) {
+  const std::size_t nbody = m.nbody, ngeom = m.ngeom, nsite = m.nsite, njnt = m.njnt, nu = m.nu;
+  place(m.key_time, static_cast<std::size_t>(m.nkey));
+  place(m.key_qpos, m.nkey, m.nq);
+  place(m.key_qvel, m.nkey, m.nv);
+  place(m.key_ctrl, m.nkey, m.nu);
+  place(m.key_act, m.nkey, m.na);
+  place(m.key_mpos, m.nkey, 3 * m.nmocap);
+  place(m.key_mquat, m.nkey, 4 * m.nmocap);
+  place(m.body_mat, nbody);
+  place(m.body_imat, nbody);
+  place(m.geom_mat, ngeom);
+  place(m.site_mat, nsite);
+  place(m.body_placement, nbody);
+  place(m.body_iplacement, nbody);
+  place(m.geom_placement, ngeom);
+  place(m.site_placement, nsite);
+  place(m.jnt_kind, njnt);
+  place(m.jnt_offset, njnt);
+  place(m.actuator_kind, nu);
+  place(m.body_weldid, nbody);
+  place(m.body_collision, nbody);
+}
+
+void lay_out_model(Model& model, ModelArrayPlacer& place) {
+  lay_out_model_table_arrays(model, place);
+  lay_out_own_model_arrays(model, place);
+}
+
+}  // namespace detail
+
+Model::Model() {
+  size_model(*this);
+  // the world body: its own parent and root, no joints, dofs or geoms, unturned frames
+  body_mocapid[0] = -1;
+  body_jntadr[0] = -1;
+  body_dofadr[0] = -1;
+  body_geomadr[0] = -1;
+  body_quat[0] = Eigen::Vector4d(1, 0, 0, 0);
+  body_iquat[0] = Eigen::Vector4d(1, 0, 0, 0);
+}
+
+Model::Model(const Model& other) : ModelFields(other), block_(other.block_.bytes()) {
+  // the views copied above still point into other's block: point them into this one
+  if (block_.bytes() > 0) std::memcpy(block_.data(), other.block_.data(), block_.bytes());
+  detail::ModelArrayPlacer rebase(block_.data(), detail::ModelArrayPlacer::Mode::kRebase,
+                                  other.block_.data());
+  detail::lay_out_model(*this, rebase);
+}
+
+Model::Model(Model&& other) noexcept
+    : ModelFields(std::move(other)), block_(std::move(other.block_)) {
+  // the block did not move, so the views taken above are valid; other's no longer are
+  detail::ModelArrayPlacer detach(nullptr, detail::ModelArrayPlacer::Mode::kDetach);
+  detail::lay_out_model(other, detach);
+  other.fit_tag = 0;
+}
+
+Model& Model::operator=(const Model& other) {
+  if (&other != this) *this = Model(other);
+  return *this;
+}
+
+Model& Model::operator=(Model&& other) noexcept {
+  if (&other != this) {
+    this->~Model();
+    new (this) Model(std::move(other));
+  }
+  return *this;
+}
 
 const char* const kDisableNames[kDisableBits] = {
     "constraint", "equality", "frictionloss", "limit",    "contact",  "passive", "gravity",

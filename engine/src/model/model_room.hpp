@@ -1,5 +1,5 @@
 // The model room: Model and Data as arrays (the field table expanded, fields.cpp), Data's sizing
-// (data.cpp) and the name lookups (model.cpp). What other rooms take from it: the entry check every
+// (data.cpp), Model's block and the name lookups (model.cpp). What other rooms take from it: the entry check every
 // public function runs at its door, argument-size checks, and warnings recorded into Data.
 #pragma once
 
@@ -7,6 +7,7 @@
 #include <lever/fields.hpp>
 #include <lever/model.hpp>
 
+#include <algorithm>
 #include <memory>
 #include <type_traits>
 
@@ -100,6 +101,85 @@ class ArrayPlacer {
 
 /// Lay out the arrays of the field table (fields.cpp); Data's constructor lays out the rest.
 void lay_out_table_arrays(Data& data, ArrayPlacer& place);
+
+/// Lays a Model's arrays out in its block, each starting on a cache line, in four ways: measuring
+/// the block its counts need (no block yet), moving every array into a new block (size_model: the
+/// new block is zeroed first, each array keeps what it held within its new length, and a struct's
+/// new entries get their defaults), pointing the views into a copy of another model's block, and
+/// detaching them (a Model moved from). A copy's views keep their lengths, so that a Model whose
+/// counts were edited after its last size_model copies as it is (validate names the difference).
+class ModelArrayPlacer {
+ public:
+  enum class Mode { kMeasure, kResize, kRebase, kDetach };
+  /// kRebase: `from` is the block the views point into now, `block` its copy
+  ModelArrayPlacer(unsigned char* block, Mode mode, const unsigned char* from = nullptr)
+      : block_(block), from_(from), mode_(mode) {}
+
+  template <class T>
+  void operator()(ArenaArray<T>& array, std::size_t n) {
+    // the block is copied as bytes and never destroyed element by element
+    static_assert(std::is_trivially_destructible_v<T>);
+    switch (mode_) {
+      case Mode::kDetach: return array.place(nullptr, 0);
+      case Mode::kRebase: return array.place(rebased(array.data()), array.size());
+      case Mode::kMeasure: next(n * sizeof(T)); return;
+      case Mode::kResize: break;
+    }
+    T* at = reinterpret_cast<T*>(next(n * sizeof(T)));
+    // numbers and Eigen's fixed-size types start as the zeroed bytes; a struct with defaults
+    // (FramePlacement) gets them
+    if constexpr (!std::is_trivially_default_constructible_v<T> &&
+                  !requires { T::RowsAtCompileTime; }) {
+      std::uninitialized_value_construct_n(at, n);
+    }
+    std::copy_n(array.data(), std::min(n, array.size()), at);
+    array.place(at, n);
+  }
+
+  template <class Plain>
+  void operator()(ArenaMap<Plain>& map, Eigen::Index rows, Eigen::Index cols = 1) {
+    using Scalar = typename Plain::Scalar;
+    switch (mode_) {
+      case Mode::kDetach:
+        return map.place(nullptr, Plain::RowsAtCompileTime == 1 ? 1 : 0,
+                         Plain::ColsAtCompileTime == 1 ? 1 : 0);
+      case Mode::kRebase: return map.place(rebased(map.data()), map.rows(), map.cols());
+      case Mode::kMeasure: next(static_cast<std::size_t>(rows * cols) * sizeof(Scalar)); return;
+      case Mode::kResize: break;
+    }
+    auto* at = reinterpret_cast<Scalar*>(next(static_cast<std::size_t>(rows * cols) * sizeof(Scalar)));
+    Eigen::Map<Plain> moved(at, rows, cols);  // zero: the block was zeroed
+    const Eigen::Index keep_rows = std::min(rows, map.rows()), keep_cols = std::min(cols, map.cols());
+    if (keep_rows > 0 && keep_cols > 0) {
+      moved.topLeftCorner(keep_rows, keep_cols) = map.topLeftCorner(keep_rows, keep_cols);
+    }
+    map.place(at, rows, cols);
+  }
+
+  /// The block's size in bytes, once every array has been laid out.
+  std::size_t bytes() const { return offset_; }
+
+ private:
+  unsigned char* next(std::size_t bytes) {
+    unsigned char* at = block_ == nullptr ? nullptr : block_ + offset_;
+    offset_ += (bytes + kCacheLine - 1) / kCacheLine * kCacheLine;
+    return at;
+  }
+  template <class T>
+  T* rebased(T* at) const {
+    if (at == nullptr) return nullptr;
+    return reinterpret_cast<T*>(block_ + (reinterpret_cast<const unsigned char*>(at) - from_));
+  }
+
+  unsigned char* block_;
+  const unsigned char* from_;
+  Mode mode_;
+  std::size_t offset_ = 0;
+};
+
+/// Lay out a Model's arrays: the field table's (fields.cpp), then the rest (model.cpp).
+void lay_out_model_table_arrays(Model& model, ModelArrayPlacer& place);
+void lay_out_model(Model& model, ModelArrayPlacer& place);
 
 }  // namespace detail
 

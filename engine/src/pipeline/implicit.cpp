@@ -103,7 +103,7 @@ void add_actuator_damping_velocity_terms(const Model& model, const Data& data,
       force_per_velocity += gain_per_velocity * (a < first_stateful ? data.ctrl[a]
                                                                     : data.act[a - first_stateful]);
     }
-    const int dof = actuator_scalar_dof(model, a);
+    const int dof = model.actuator_scalar_dof[a];
     if (dof < 0) {  // moment^T (d force / d velocity) moment
       if (force_per_velocity != 0.0) {
         add_row_outer_product(model, data.actuator_moment.row(a).data(), force_per_velocity, D);

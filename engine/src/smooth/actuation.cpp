@@ -160,7 +160,7 @@ void unchecked::transmission(const Model& model, Data& data) {
     double* const moment = data.actuator_moment.data() + static_cast<std::ptrdiff_t>(a) * nv;
     for (int i = 0; i < nv; ++i) moment[i] = 0.0;
     double& length = data.actuator_length[a];
-    const int dof = actuator_scalar_dof(model, a);
+    const int dof = model.actuator_scalar_dof[a];
     if (dof >= 0) {  // a hinge or slide: the common case, its velocity without the row
       const double g = model.actuator_gear[a][0];
       moment[dof] = g;
@@ -292,7 +292,7 @@ void unchecked::actuation(const Model& model, Data& data) {
              : actuator_bias(model, a, length[a], velocity[a]);
     if (model.actuator_forcelimited[a]) f = clamp(f, model.actuator_forcerange[a]);
     force[a] = f;
-    const int dof = actuator_scalar_dof(model, a);
+    const int dof = model.actuator_scalar_dof[a];
     if (dof >= 0) {
       qfrc[dof] += gear[a][0] * f;
       continue;
