@@ -88,11 +88,13 @@ void Twin::mujoco_forward() { mujoco_forward_converged(m.get(), d.get(), restart
 
 namespace {
 
-// mj_forward warm-started from MuJoCo's own answer while that moves it (at most 20 times).
-void restart_from_own_answer(const mjModel* m, mjData* d) {
+// mj_forward from `given`, warm-started from MuJoCo's own answer while that moves it (at most 20
+// times).
+void restart_from_own_answer(const mjModel* m, mjData* d, const ForwardInputs& given) {
   for (int restart = 0; restart < 20; ++restart) {
     const std::vector<double> before(d->qacc, d->qacc + m->nv);
     std::copy(before.begin(), before.end(), d->qacc_warmstart);
+    given.restore(d);
     mj_forward(m, d);
     // Once at the minimizer, a restart only moves qacc in its last bits: MuJoCo's line search
     // keeps finding rounding-sized decreases of a 1e5 cost and runs all its iterations, so a
@@ -138,13 +140,22 @@ double mujoco_distance_to_minimizer(const mjModel* m, mjData* d) {
   return distance / scale;
 }
 
-void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver) {
-  mj_forward(m, d);
-  if (restart_solver) converge_mujoco_solver(m, d);
+ForwardInputs::ForwardInputs(const mjModel* m, const mjData* d)
+    : qpos_(d->qpos, d->qpos + m->nq), mocap_quat_(d->mocap_quat, d->mocap_quat + 4 * m->nmocap) {}
+
+void ForwardInputs::restore(mjData* d) const {
+  std::copy(qpos_.begin(), qpos_.end(), d->qpos);
+  std::copy(mocap_quat_.begin(), mocap_quat_.end(), d->mocap_quat);
 }
 
-void converge_mujoco_solver(const mjModel* m, mjData* d) {
-  restart_from_own_answer(m, d);
+void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver) {
+  const ForwardInputs given(m, d);
+  mj_forward(m, d);
+  if (restart_solver) converge_mujoco_solver(m, d, given);
+}
+
+void converge_mujoco_solver(const mjModel* m, mjData* d, const ForwardInputs& given) {
+  restart_from_own_answer(m, d, given);
   const double warm = mujoco_distance_to_minimizer(m, d);
   if (warm <= kStalled) return;
   // Stuck short of the minimizer, where MuJoCo's line search finds no decrease of its cost: on
@@ -157,15 +168,18 @@ void converge_mujoco_solver(const mjModel* m, mjData* d) {
   test::MjDataPtr warm_answer = test::mujoco_data(m);
   mj_copyData(warm_answer.get(), m, d);
   std::copy(d->qacc_smooth, d->qacc_smooth + m->nv, d->qacc_warmstart);
+  given.restore(d);
   mj_forward(m, d);
-  restart_from_own_answer(m, d);
+  restart_from_own_answer(m, d, given);
   if (mujoco_distance_to_minimizer(m, d) >= warm) mj_copyData(d, m, warm_answer.get());
 }
 
 void mujoco_step_converged(const mjModel* m, mjData* d, bool restart_solver) {
   if (restart_solver) {  // mj_step's forward warm-started from the converged answer
+    const ForwardInputs given(m, d);
     mujoco_forward_converged(m, d, true);
     std::copy(d->qacc, d->qacc + m->nv, d->qacc_warmstart);
+    given.restore(d);
   }
   mj_step(m, d);
 }
