@@ -91,7 +91,10 @@ class Twin {
   /// cold start (from qacc_smooth) too, and the answer with the smaller gradient is kept.
   void mujoco_forward();
   /// On by default where MuJoCo's solver can stop short: a model with contacts and elliptic
-  /// cones (set_cone sets it again).
+  /// cones solved by Newton (or CG, which the twin runs as Newton; set_cone sets it again).
+  /// The twin runs MuJoCo at tolerance 0 (and lever too) where the solver decides contacts,
+  /// equality constraints or friction loss, and MuJoCo's CG as its Newton solver there: the
+  /// minimizer does not depend on the method, and CG stalls short of it.
   bool restart_mujoco_solver = false;
 
   /// Write the same state into both; MuJoCo's warm start is cleared, as after mj_resetData.
@@ -115,6 +118,7 @@ class Twin {
 
  private:
   Twin(const std::string& file, Path path, test::MjModelPtr mj);
+  bool mujoco_solver_stops_short() const;
   std::string file_;
   Path path_;
   int start_key_ = -1;  // the keyframe reset() starts from; -1: rest at qpos0
