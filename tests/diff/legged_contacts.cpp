@@ -136,4 +136,34 @@ TEST_CASE("diff: real legged robots with contacts agree with MuJoCo to the state
   }
 }
 
+TEST_CASE("diff: the inverse at the forward qacc has MuJoCo's own floor beside it",
+          "[diff][elliptic][robots]") {
+  // The inverse dynamics' constraint forces are D (J qacc - aref), and an elliptic cone with
+  // impratio 100 has D up to 1.3e6: the last bit of qacc shows in them. ANYmal B on its floor,
+  // random state 15: lever 5.75e-9 from MuJoCo (137 of the bound), MuJoCo 6.98e-9 from itself at
+  // qacc moved one ulp. diff::mujoco_self_noise measures that move on the same states.
+  REQUIRE(mj_version() == 222);
+  const std::string file = robots_dir() + "/" + kAnymalB;
+  if (!std::filesystem::exists(file)) {
+    WARN("no real model file " << file << ": skipped");
+    return;
+  }
+  const std::uint64_t seed = diff::default_seed(file);
+  INFO(context(file, diff::Path::kLoader, seed));
+  diff::Twin twin(file, diff::Path::kLoader);
+  const int states = samples(8);
+  const diff::Report report = diff::random_states(twin, states, seed);
+  const diff::Report floor = diff::mujoco_self_noise(twin, states, seed);
+  const std::string quantity = "qfrc_inverse (at the forward qacc)";
+  const diff::Extreme* ours = report.find(quantity);
+  const diff::Extreme* own = floor.find(quantity);
+  REQUIRE(ours != nullptr);
+  REQUIRE(own != nullptr);
+  CHECK(own->compared == ours->compared);  // the same states
+  CHECK(own->max_abs_diff > 0);            // measured: one ulp of qacc moves MuJoCo's answer
+  INFO("lever " << ours->max_elementwise_ratio << ", MuJoCo at one ulp of qacc "
+                << own->max_elementwise_ratio << " (element-wise, of the bound)");
+  CHECK(ours->max_elementwise_ratio <= own->max_elementwise_ratio);
+}
+
 }  // namespace lever::test
