@@ -101,12 +101,13 @@ TEST_CASE("diff: a stuck MuJoCo answer nearer the minimizer than a cold start's 
     for (double a : stuck) scale = std::max(scale, std::abs(a));
     stuck[0] += 1e-6 * scale;
     std::copy(stuck.begin(), stuck.end(), d->qacc_warmstart);
+    const diff::ForwardInputs given(m, d);
     mj_forward(m, d);
     INFO("state " << k);
     REQUIRE(std::memcmp(d->qacc, stuck.data(), sizeof(double) * stuck.size()) == 0);
     const double at_stuck = diff::mujoco_distance_to_minimizer(m, d);
     CHECK(at_stuck > diff::kStalled);  // the gradient sees it is short of the minimizer
-    diff::converge_mujoco_solver(m, d);  // restarts stay put; the cold start is qacc_smooth
+    diff::converge_mujoco_solver(m, d, given);  // restarts stay put; the cold start is qacc_smooth
     CHECK(std::memcmp(d->qacc, stuck.data(), sizeof(double) * stuck.size()) == 0);
     CHECK(diff::mujoco_distance_to_minimizer(m, d) == at_stuck);
     // and at lever's answer MuJoCo's gradient is rounding

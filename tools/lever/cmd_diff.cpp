@@ -270,7 +270,8 @@ void print_text(const ModelResult& m) {
       "ratio = |diff| / bound; element-wise = the same with each element's own |mujoco| "
       "(reported);\n"
       "MuJoCo floor = MuJoCo against a moved copy of itself, element-wise (no engine can do "
-      "better)\n");
+      "better);\n"
+      "for the inverse at the forward qacc, against itself with that qacc moved one ulp\n");
   for (const PathResult& p : m.paths) {
     std::printf("\npath %s: %s\n", diff::path_name(p.path), diff::path_description(p.path));
     if (!p.loaded()) {

@@ -14,8 +14,9 @@ constexpr double kWeightB[4] = {1.0 / 6.0, 1.0 / 3.0, 1.0 / 3.0, 1.0 / 6.0};
 
 // mj_forwardSkip from the start without sensors, as mj_RungeKutta evaluates a stage.
 void evaluate_stage(const mjModel* m, mjData* d, bool restart_solver) {
+  const ForwardInputs given(m, d);
   mj_forwardSkip(m, d, mjSTAGE_NONE, 1);
-  if (restart_solver) converge_mujoco_solver(m, d);
+  if (restart_solver) converge_mujoco_solver(m, d, given);
 }
 
 }  // namespace

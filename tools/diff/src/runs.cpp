@@ -90,6 +90,9 @@ Report random_states(Twin& twin, int states, std::uint64_t seed) {
 
 namespace {
 
+// compare_state's name for it
+const char* const kInverseAtForward = "qfrc_inverse (at the forward qacc)";
+
 std::vector<double> full_mass_matrix(const mjModel* m, const mjData* d) {
   std::vector<double> M(static_cast<std::size_t>(m->nv) * m->nv);
   mj_fullM(m, M.data(), d->qM);
@@ -99,8 +102,9 @@ std::vector<double> full_mass_matrix(const mjModel* m, const mjData* d) {
 }  // namespace
 
 const std::vector<std::string>& self_noise_quantities() {
-  static const std::vector<std::string> names{"M",    "qfrc_bias",       "qacc_smooth",
-                                              "qacc", "qfrc_constraint", "efc_force"};
+  static const std::vector<std::string> names{
+      "M",         "qfrc_bias", "qacc_smooth", "qacc", "qfrc_constraint", "efc_force",
+      kInverseAtForward};
   return names;
 }
 
@@ -133,6 +137,17 @@ Report mujoco_self_noise(const Twin& twin, int states, std::uint64_t seed) {
     report.compare("qfrc_constraint", k, e->qfrc_constraint, d->qfrc_constraint, nv, none);
     if (e->nefc == d->nefc)
       report.compare("efc_force", k, e->efc_force, d->efc_force, d->nefc, none);
+    // the inverse dynamics at the forward acceleration, against itself at that acceleration
+    // moved by one ulp: its constraint forces are D (J qacc - aref), and where D reaches 1e6
+    // (elliptic cones with impratio 100) qacc's last bit shows in them
+    const std::vector<double> qacc(d->qacc, d->qacc + nv);
+    const ForwardInputs given(m, d.get());
+    mj_inverse(m, d.get());
+    const std::vector<double> inverse(d->qfrc_inverse, d->qfrc_inverse + nv);
+    given.restore(d.get());
+    for (int i = 0; i < nv; ++i) d->qacc[i] = std::nextafter(qacc[i], HUGE_VAL);
+    mj_inverse(m, d.get());
+    report.compare(kInverseAtForward, k, d->qfrc_inverse, inverse.data(), nv, none);
   }
   return report;
 }

@@ -64,9 +64,30 @@ Twin::Twin(const std::string& file, Path path, test::MjModelPtr mj)
   if (model.contacts_possible || model.neq > 0 || friction_loss) {
     m->opt.tolerance = 0;
     m->opt.iterations = std::max(m->opt.iterations, 1000);
+    // and lever the same: at tolerance 0 its CG is its exact solve, its PGS runs MuJoCo's sweeps
+    // (a file that asks for CG, MuJoCo's cloth, was solved by lever's CG at the file's tolerance
+    // 1e-8 against MuJoCo's at 0: 3e-5 apart in qacc, relative)
+    model.opt.tolerance = 0;
+    model.opt.iterations = m->opt.iterations;
+    // MuJoCo's CG at tolerance 0 stalls short of the minimizer, restarted or not (on the cloth
+    // 2e-7 from it by MuJoCo's own gradient, 5e-10 restarted, where lever's answer is 5e-14
+    // from it): the minimizer does not depend on the method, so MuJoCo's Newton finds it
+    if (m->opt.solver == mjSOL_CG) {
+      m->opt.solver = mjSOL_NEWTON;
+      // Newton's Hessian, its factor with the cones and their sparsity (nv x nv each) live on
+      // MuJoCo's stack, where CG's did not
+      m->nstack += 3 * m->nv * m->nv + 8 * m->nv;
+      d = test::mujoco_data(m.get());
+    }
   }
-  restart_mujoco_solver = model.contacts_possible && model.opt.cone == Cone::kElliptic;
+  restart_mujoco_solver = mujoco_solver_stops_short();
   start_key_ = model.nkey > 0 ? 0 : -1;
+}
+
+bool Twin::mujoco_solver_stops_short() const {
+  // (a restart of PGS would be another run of its sweeps from zero forces, not the same answer)
+  return model.contacts_possible && model.opt.cone == Cone::kElliptic &&
+         model.opt.solver != Solver::kPGS;
 }
 
 void Twin::set_integrator(Integrator integrator) {
@@ -81,18 +102,20 @@ void Twin::set_cone(Cone cone, double impratio) {
   model.opt.impratio = impratio;
   m->opt.cone = cone == Cone::kElliptic ? mjCONE_ELLIPTIC : mjCONE_PYRAMIDAL;
   m->opt.impratio = impratio;
-  restart_mujoco_solver = model.contacts_possible && cone == Cone::kElliptic;
+  restart_mujoco_solver = mujoco_solver_stops_short();
 }
 
 void Twin::mujoco_forward() { mujoco_forward_converged(m.get(), d.get(), restart_mujoco_solver); }
 
 namespace {
 
-// mj_forward warm-started from MuJoCo's own answer while that moves it (at most 20 times).
-void restart_from_own_answer(const mjModel* m, mjData* d) {
+// mj_forward from `given`, warm-started from MuJoCo's own answer while that moves it (at most 20
+// times).
+void restart_from_own_answer(const mjModel* m, mjData* d, const ForwardInputs& given) {
   for (int restart = 0; restart < 20; ++restart) {
     const std::vector<double> before(d->qacc, d->qacc + m->nv);
     std::copy(before.begin(), before.end(), d->qacc_warmstart);
+    given.restore(d);
     mj_forward(m, d);
     // Once at the minimizer, a restart only moves qacc in its last bits: MuJoCo's line search
     // keeps finding rounding-sized decreases of a 1e5 cost and runs all its iterations, so a
@@ -138,13 +161,22 @@ double mujoco_distance_to_minimizer(const mjModel* m, mjData* d) {
   return distance / scale;
 }
 
-void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver) {
-  mj_forward(m, d);
-  if (restart_solver) converge_mujoco_solver(m, d);
+ForwardInputs::ForwardInputs(const mjModel* m, const mjData* d)
+    : qpos_(d->qpos, d->qpos + m->nq), mocap_quat_(d->mocap_quat, d->mocap_quat + 4 * m->nmocap) {}
+
+void ForwardInputs::restore(mjData* d) const {
+  std::copy(qpos_.begin(), qpos_.end(), d->qpos);
+  std::copy(mocap_quat_.begin(), mocap_quat_.end(), d->mocap_quat);
 }
 
-void converge_mujoco_solver(const mjModel* m, mjData* d) {
-  restart_from_own_answer(m, d);
+void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver) {
+  const ForwardInputs given(m, d);
+  mj_forward(m, d);
+  if (restart_solver) converge_mujoco_solver(m, d, given);
+}
+
+void converge_mujoco_solver(const mjModel* m, mjData* d, const ForwardInputs& given) {
+  restart_from_own_answer(m, d, given);
   const double warm = mujoco_distance_to_minimizer(m, d);
   if (warm <= kStalled) return;
   // Stuck short of the minimizer, where MuJoCo's line search finds no decrease of its cost: on
@@ -157,15 +189,18 @@ void converge_mujoco_solver(const mjModel* m, mjData* d) {
   test::MjDataPtr warm_answer = test::mujoco_data(m);
   mj_copyData(warm_answer.get(), m, d);
   std::copy(d->qacc_smooth, d->qacc_smooth + m->nv, d->qacc_warmstart);
+  given.restore(d);
   mj_forward(m, d);
-  restart_from_own_answer(m, d);
+  restart_from_own_answer(m, d, given);
   if (mujoco_distance_to_minimizer(m, d) >= warm) mj_copyData(d, m, warm_answer.get());
 }
 
 void mujoco_step_converged(const mjModel* m, mjData* d, bool restart_solver) {
   if (restart_solver) {  // mj_step's forward warm-started from the converged answer
+    const ForwardInputs given(m, d);
     mujoco_forward_converged(m, d, true);
     std::copy(d->qacc, d->qacc + m->nv, d->qacc_warmstart);
+    given.restore(d);
   }
   mj_step(m, d);
 }

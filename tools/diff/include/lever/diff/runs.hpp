@@ -22,7 +22,11 @@ Report random_states(Twin& twin, int states, std::uint64_t seed);
 /// world), only the rounding differs. On the same random states as random_states(twin, states,
 /// seed), the dynamic quantities of the moved copy (M, qfrc_bias, qacc_smooth, qacc,
 /// qfrc_constraint, efc_force) are compared with the original's: the floor under any comparison of
-/// two engines.
+/// two engines. And the original's inverse dynamics at its forward acceleration against the same
+/// with that acceleration moved by one ulp (named as compare_state names it): stiff contact rows
+/// magnify the last bit of qacc in it. (A floating base's free joint places it whatever its
+/// body's offset, so a robot that touches only itself and the floor moves by nothing in the moved
+/// copy: its floor is 0 there.)
 Report mujoco_self_noise(const Twin& twin, int states, std::uint64_t seed);
 
 /// The quantities mujoco_self_noise() compares, in order.

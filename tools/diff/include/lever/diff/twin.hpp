@@ -6,6 +6,7 @@
 #include <lever/data.hpp>
 #include <lever/model.hpp>
 #include <string>
+#include <vector>
 
 #include <lever/harness/from_mujoco.hpp>
 #include <lever/harness/random_state.hpp>
@@ -35,15 +36,37 @@ double mujoco_distance_to_minimizer(const mjModel* m, mjData* d);
 /// 1e-14 to 1e-12 (measured on legged_elliptic.xml, 40000 forwards).
 inline constexpr double kStalled = 1e-12;
 
+/// The inputs mj_forward writes back into: mj_kinematics normalizes the quaternions of qpos (ball
+/// and free joints) and mocap_quat in place, and a unit quaternion normalized once more can move
+/// in its last bit (normalizing twice can alternate between two roundings). Where the contacts are
+/// discontinuous in the state, that bit decides MuJoCo's answer: at a random state of ANYmal B
+/// with its legs deep in its body, one ulp of the base quaternion adds a seventh contact between
+/// two boxes and moves qacc by 65. So a forward the harness repeats (a restart of MuJoCo's solver,
+/// mj_step after a converged forward) starts from the inputs the first forward was given, as
+/// lever's single forward and step do.
+class ForwardInputs {
+ public:
+  /// Saves d's qpos and mocap_quat.
+  ForwardInputs(const mjModel* m, const mjData* d);
+  /// Writes them back into d.
+  void restore(mjData* d) const;
+
+ private:
+  std::vector<double> qpos_, mocap_quat_;
+};
+
 /// mj_forward on (m, d), restarted from its own answer while that moves it, and from a cold start
-/// where it is still short of the minimizer by its own gradient (Twin::mujoco_forward).
+/// where it is still short of the minimizer by its own gradient (Twin::mujoco_forward). Every
+/// restart starts from the qpos and mocap_quat the first forward was given (ForwardInputs).
 void mujoco_forward_converged(const mjModel* m, mjData* d, bool restart_solver);
-/// After a forward on (m, d): MuJoCo's solver restarted from its own answer while that moves it,
-/// and from a cold start where it is still short of the minimizer by its own gradient (the
-/// answer nearer to it kept). The rest of mujoco_forward_converged.
-void converge_mujoco_solver(const mjModel* m, mjData* d);
+/// After a forward on (m, d) from `given`: MuJoCo's solver restarted from its own answer while
+/// that moves it, and from a cold start where it is still short of the minimizer by its own
+/// gradient (the answer nearer to it kept), each restart a forward from `given`. The rest of
+/// mujoco_forward_converged.
+void converge_mujoco_solver(const mjModel* m, mjData* d, const ForwardInputs& given);
 /// mj_step; with restart_solver, its forward warm-started from the converged answer, so that the
-/// step starts from the minimizer rather than where MuJoCo's solver stopped.
+/// step starts from the minimizer rather than where MuJoCo's solver stopped, and from the state
+/// d held before (ForwardInputs), as mj_step alone would start.
 void mujoco_step_converged(const mjModel* m, mjData* d, bool restart_solver);
 
 /// lever and MuJoCo on the same model file. MuJoCo's energy computation is switched on.
@@ -68,7 +91,10 @@ class Twin {
   /// cold start (from qacc_smooth) too, and the answer with the smaller gradient is kept.
   void mujoco_forward();
   /// On by default where MuJoCo's solver can stop short: a model with contacts and elliptic
-  /// cones (set_cone sets it again).
+  /// cones solved by Newton (or CG, which the twin runs as Newton; set_cone sets it again).
+  /// The twin runs MuJoCo at tolerance 0 (and lever too) where the solver decides contacts,
+  /// equality constraints or friction loss, and MuJoCo's CG as its Newton solver there: the
+  /// minimizer does not depend on the method, and CG stalls short of it.
   bool restart_mujoco_solver = false;
 
   /// Write the same state into both; MuJoCo's warm start is cleared, as after mj_resetData.
@@ -92,6 +118,7 @@ class Twin {
 
  private:
   Twin(const std::string& file, Path path, test::MjModelPtr mj);
+  bool mujoco_solver_stops_short() const;
   std::string file_;
   Path path_;
   int start_key_ = -1;  // the keyframe reset() starts from; -1: rest at qpos0

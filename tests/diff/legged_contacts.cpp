@@ -1,0 +1,169 @@
+// Real legged robots with their contacts on (MuJoCo Menagerie 2022's ANYmal B and C and Unitree
+// A1, elliptic cones, from ../shared/robots or the folder $LEVER_ROBOTS_DIR names) against MuJoCo
+// 2.2.2: random states where the legs sink deep into the floor and into the robot's own boxes,
+// with contact forces of 1e5, compared quantity by quantity and after one step of each
+// integrator.
+//
+// At such a state the contacts are discontinuous in the last bit of the state: on ANYmal B, one
+// ulp of the base's quaternion adds a seventh contact between two boxes and moves qacc by 65. And
+// MuJoCo's mj_forward normalizes qpos's quaternions in place (mj_kinematics), where a unit
+// quaternion normalized once more can move in its last bit. The harness repeats MuJoCo's forward
+// (to restart its solver, then mj_step warm-started from the converged answer); each repeat
+// normalized the quaternion again, so MuJoCo's step started one ulp away from lever's, and the
+// state after one step differed by 0.13 in qvel (1.8e10 of the bound). Every repeated forward
+// now starts from the inputs the first was given (diff::ForwardInputs), as lever's one forward
+// and one step do. A missing folder skips the tests with a warning.
+#include <mujoco/mujoco.h>
+#include <catch2/catch.hpp>
+
+#include <lever/diff/runs.hpp>
+#include <lever/diff/twin.hpp>
+#include <lever/lever.hpp>
+
+#include <cstring>
+#include <filesystem>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <lever/harness/models.hpp>
+#include <lever/harness/random_state.hpp>
+#include "diff_checks.hpp"
+#include "sampling.hpp"
+
+namespace lever::test {
+
+namespace {
+
+constexpr const char* kAnymalB = "menagerie-2022/anybotics_anymal_b/anymal_b.xml";
+// random state 3 of the file's own seed: the legs through the body's boxes (15 contacts, 60 rows)
+constexpr int kAnymalBDeepState = 3;
+
+State legged_state(const Model& model, const std::string& file, int k) {
+  std::mt19937_64 rng(diff::default_seed(file));
+  State s;
+  for (int i = 0; i <= k; ++i) {
+    s = random_state(model, rng);
+    random_qacc(model, rng);  // the draws random_states makes between states
+  }
+  return s;
+}
+
+bool same_bits(const double* a, const double* b, int n) {
+  return std::memcmp(a, b, sizeof(double) * static_cast<std::size_t>(n)) == 0;
+}
+
+}  // namespace
+
+TEST_CASE("diff: MuJoCo's repeated forwards start from the qpos the first was given",
+          "[diff][elliptic][restart][robots]") {
+  REQUIRE(mj_version() == 222);
+  const std::string file = robots_dir() + "/" + kAnymalB;
+  if (!std::filesystem::exists(file)) {
+    WARN("no real model file " << file << ": skipped");
+    return;
+  }
+  diff::Twin twin(file, diff::Path::kLoader);
+  REQUIRE(twin.restart_mujoco_solver);  // contacts, elliptic cones
+  const mjModel* m = twin.m.get();
+  mjData* d = twin.d.get();
+  const int nq = m->nq;
+  const State s = legged_state(twin.model, file, kAnymalBDeepState);
+
+  // the hazard: at this state a second mj_forward sees another qpos and other contacts
+  twin.set_state(s);
+  mj_forward(m, d);
+  const std::vector<double> once(d->qpos, d->qpos + nq);
+  const int ncon_once = d->ncon;
+  mj_forward(m, d);
+  REQUIRE_FALSE(same_bits(d->qpos, once.data(), nq));  // the quaternion normalized once more
+  REQUIRE(d->ncon != ncon_once);
+
+  // the converged forward leaves qpos and the contacts as one mj_forward does, however many
+  // times it restarted
+  twin.set_state(s);
+  diff::mujoco_forward_converged(m, d, true);
+  CHECK(same_bits(d->qpos, once.data(), nq));
+  CHECK(d->ncon == ncon_once);
+
+  // and the converged step starts where mj_step alone starts: from the state as given
+  for (const Integrator integrator : {Integrator::kEuler, Integrator::kImplicit}) {
+    twin.set_integrator(integrator);
+    twin.set_state(s);
+    mj_step(m, d);
+    const std::vector<double> qvel(d->qvel, d->qvel + m->nv);
+    twin.set_state(s);
+    diff::mujoco_step_converged(m, d, true);
+    double gap = 0, scale = 1;
+    for (int i = 0; i < m->nv; ++i) {
+      gap = std::max(gap, std::abs(d->qvel[i] - qvel[i]));
+      scale = std::max(scale, std::abs(qvel[i]));
+    }
+    INFO(integrator_name(integrator) << ": converged step against mj_step, qvel " << gap);
+    CHECK(gap <= 1e-12 * scale);  // before, 0.13 (the seventh contact)
+  }
+}
+
+TEST_CASE("diff: real legged robots with contacts agree with MuJoCo to the state after a step",
+          "[diff][elliptic][robots]") {
+  REQUIRE(mj_version() == 222);
+  const std::string folder = robots_dir();
+  if (!std::filesystem::exists(folder)) {
+    WARN("no real model files at " << folder << ": skipped");
+    return;
+  }
+  // the first states of each file's own seed, up to one where the step parted before the harness
+  // kept the inputs of its repeated forwards: ANYmal B alone, states 3 and 6 (0.13 and 0.03 in
+  // qvel); on its floor, state 7 (2e-3); the A1 alone, state 5 (4e-4)
+  const std::pair<const char*, int> files[] = {
+      {kAnymalB, 8},
+      {"menagerie-2022/anybotics_anymal_b/scene.xml", 8},
+      {"menagerie-2022/unitree_a1/a1.xml", 6}};
+  for (const auto& [name, states] : files) {
+    const std::string file = folder + "/" + name;
+    const std::uint64_t seed = diff::default_seed(file);
+    INFO(context(file, diff::Path::kLoader, seed));
+    diff::Twin twin(file, diff::Path::kLoader);
+    REQUIRE(twin.model.opt.cone == Cone::kElliptic);
+    const diff::Report report = diff::random_states(twin, samples(states), seed);
+    // states lever refuses (more contacts than the file's nconmax) are left out; the others
+    // all reach the step
+    const diff::Extreme* stepped = report.find("qvel after one Euler step");
+    REQUIRE(stepped != nullptr);
+    CHECK(stepped->compared == twin.model.nv * (samples(states) - report.skipped()));
+    CHECK(stepped->compared > 0);
+    check_within_bound(report);
+  }
+}
+
+TEST_CASE("diff: the inverse at the forward qacc has MuJoCo's own floor beside it",
+          "[diff][elliptic][robots]") {
+  // The inverse dynamics' constraint forces are D (J qacc - aref), and an elliptic cone with
+  // impratio 100 has D up to 1.3e6: the last bit of qacc shows in them. ANYmal B on its floor,
+  // random state 15: lever 5.75e-9 from MuJoCo (137 of the bound), MuJoCo 6.98e-9 from itself at
+  // qacc moved one ulp. diff::mujoco_self_noise measures that move on the same states.
+  REQUIRE(mj_version() == 222);
+  const std::string file = robots_dir() + "/" + kAnymalB;
+  if (!std::filesystem::exists(file)) {
+    WARN("no real model file " << file << ": skipped");
+    return;
+  }
+  const std::uint64_t seed = diff::default_seed(file);
+  INFO(context(file, diff::Path::kLoader, seed));
+  diff::Twin twin(file, diff::Path::kLoader);
+  const int states = samples(8);
+  const diff::Report report = diff::random_states(twin, states, seed);
+  const diff::Report floor = diff::mujoco_self_noise(twin, states, seed);
+  const std::string quantity = "qfrc_inverse (at the forward qacc)";
+  const diff::Extreme* ours = report.find(quantity);
+  const diff::Extreme* own = floor.find(quantity);
+  REQUIRE(ours != nullptr);
+  REQUIRE(own != nullptr);
+  CHECK(own->compared == ours->compared);  // the same states
+  CHECK(own->max_abs_diff > 0);            // measured: one ulp of qacc moves MuJoCo's answer
+  INFO("lever " << ours->max_elementwise_ratio << ", MuJoCo at one ulp of qacc "
+                << own->max_elementwise_ratio << " (element-wise, of the bound)");
+  CHECK(ours->max_elementwise_ratio <= own->max_elementwise_ratio);
+}
+
+}  // namespace lever::test
