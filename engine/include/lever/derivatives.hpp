@@ -118,6 +118,7 @@ struct Derivatives {
     RowMatrix contact_Y;          ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
     Eigen::MatrixXd contact_E;    ///< (nv x nv) dJ^T f, one column per qpos direction
     Eigen::MatrixXd contact_H;    ///< (nv x nv) M + J^T D J over the active rows, then its factor
+    std::vector<int> contact_H_first;  ///< (nv) the first column of each of its rows not zero
     std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
     std::vector<char> carries;  ///< (nv x nv) [c * nv + i]: moving dof c turns dof i's axis
     /// (nv x kMaxPairContacts) [c * kMaxPairContacts + k]: the change of one geom pair's contact k

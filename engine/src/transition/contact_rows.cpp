@@ -233,43 +233,73 @@ int held_active_rows(const Data& data, std::vector<int>& rows) {
   return n;
 }
 
-void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H) {
-  // nv is small, so plain loops over the dense rows (Eigen's dynamic outer products cost more in
-  // setup than in arithmetic here)
+RowSpan row_span(const Data& data, int r) {
+  switch (data.efc_type[r]) {
+    case ConstraintType::kContactFrictionless:
+    case ConstraintType::kContactPyramidal:
+    case ConstraintType::kContactElliptic: {
+      const int i = data.efc_id[r];
+      return {data.work.contact_span[2 * i], data.work.contact_span[2 * i + 1]};
+    }
+    default: break;
+  }
+  if (data.efc_dof[r] >= 0) return {data.efc_dof[r], 1};  // a joint's limit or friction loss
+  return {0, static_cast<int>(data.efc_J.cols())};
+}
+
+void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H,
+                      std::vector<int>& first) {
+  // nv is small, so plain loops over each row's span of dofs (Eigen's dynamic outer products
+  // cost more in setup than in arithmetic here)
   const auto nv = static_cast<int>(data.M.rows());
   H = data.M;
   for (int k = 0; k < n; ++k) {
     const int r = rows[k];
     const double* J = data.efc_J.row(r).data();
-    for (int b = 0; b < nv; ++b) {
+    const RowSpan s = row_span(data, r);
+    for (int b = s.lo; b < s.lo + s.count; ++b) {
       if (J[b] == 0.0) continue;
       const double weight = data.efc_D[r] * J[b];
-      for (int a = b; a < nv; ++a) H(a, b) += weight * J[a];
+      for (int a = b; a < s.lo + s.count; ++a) H(a, b) += weight * J[a];
     }
   }
-  for (int j = 0; j < nv; ++j) {  // H = L L^T in place, L in the lower triangle
-    for (int k = 0; k < j; ++k) H(j, j) -= H(j, k) * H(j, k);
-    H(j, j) = std::sqrt(H(j, j));
-    for (int i = j + 1; i < nv; ++i) {
+  // H's profile: the first column of each row's lower part that is not zero (M's is the row's
+  // tree's first dof; the rows join the trees they couple). L L^T keeps it, so the factor and
+  // the solves read nothing to its left.
+  for (int i = 0; i < nv; ++i) {
+    int j = 0;
+    while (j < i && H(i, j) == 0.0) ++j;
+    first[static_cast<std::size_t>(i)] = j;
+  }
+  for (int i = 0; i < nv; ++i) {  // H = L L^T in place, row by row, L in the lower triangle
+    const int fi = first[static_cast<std::size_t>(i)];
+    for (int j = fi; j <= i; ++j) {
       double sum = H(i, j);
-      for (int k = 0; k < j; ++k) sum -= H(i, k) * H(j, k);
-      H(i, j) = sum / H(j, j);
+      for (int k = std::max(fi, first[static_cast<std::size_t>(j)]); k < j; ++k) {
+        sum -= H(i, k) * H(j, k);
+      }
+      H(i, j) = j < i ? sum / H(j, j) : std::sqrt(sum);
     }
   }
 }
 
-void solve_held_rows(const Eigen::MatrixXd& H, Eigen::Ref<Eigen::MatrixXd> X, int cols) {
-  const auto nv = static_cast<int>(H.rows());
-  for (int c = 0; c < cols; ++c) {  // L y = x, then L^T x = y
-    double* x = X.col(c).data();
-    for (int i = 0; i < nv; ++i) {
-      for (int k = 0; k < i; ++k) x[i] -= H(i, k) * x[k];
-      x[i] /= H(i, i);
-    }
-    for (int i = nv - 1; i >= 0; --i) {
-      for (int k = i + 1; k < nv; ++k) x[i] -= H(k, i) * x[k];
-      x[i] /= H(i, i);
-    }
+void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
+                     Eigen::Ref<RowMatrix> X) {
+  const auto nv = static_cast<int>(L.rows());
+  const Eigen::Index cols = X.cols();
+  // one row operation over every column: y_i -= L(i, k) y_k
+  const auto subtract = [&](int i, double a, int k) {
+    double* xi = X.row(i).data();
+    const double* xk = X.row(k).data();
+    for (Eigen::Index c = 0; c < cols; ++c) xi[c] -= a * xk[c];
+  };
+  for (int i = 0; i < nv; ++i) {  // L y = x
+    for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(i, L(i, k), k);
+    X.row(i) /= L(i, i);
+  }
+  for (int i = nv - 1; i >= 0; --i) {  // L^T x = y: x_i final, it leaves the rows it reaches
+    X.row(i) /= L(i, i);
+    for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(k, L(i, k), i);
   }
 }
 
@@ -485,43 +515,26 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   // substitution one row operation), and no product with G. Y's qvel columns are aref's
   // velocity term, -D B J_r.
   Eigen::MatrixXd& H = w.contact_H;
-  factor_held_rows(data, w.rows.data(), n, H);
+  factor_held_rows(data, w.rows.data(), n, H, w.contact_H_first);
   RowMatrix& X = w.right_hand_sides;
   X.leftCols(nv) = w.rhs_q + E;
   X.middleCols(nv, nv) = w.rhs_v;
   X.rightCols(nu + model.na) = w.rhs_u;  // ctrl, then act
-  for (int k = 0; k < n; ++k) {
+  for (int k = 0; k < n; ++k) {  // J_r's non-zeros lie in its span; y_r's wherever dofs move it
     const int r = w.rows[k];
     const double* J = data.efc_J.row(r).data();
+    const RowSpan span = row_span(data, r);
     const double velocity_weight = -data.efc_D[r] * data.efc_B[r];
-    for (int i = 0; i < nv; ++i) {
+    const double* y = Y.row(k).data();
+    for (int i = span.lo; i < span.lo + span.count; ++i) {
       if (J[i] == 0.0) continue;
       double* x = X.row(i).data();
-      const double* y = Y.row(k).data();
       for (int c = 0; c < nv; ++c) x[c] += J[i] * y[c];
       const double a = J[i] * velocity_weight;
-      for (int c = 0; c < nv; ++c) x[nv + c] += a * J[c];
+      for (int c = span.lo; c < span.lo + span.count; ++c) x[nv + c] += a * J[c];
     }
   }
-  const Eigen::Index cols = X.cols();
-  for (int i = 0; i < nv; ++i) {  // L y = x
-    double* xi = X.row(i).data();
-    for (int k = 0; k < i; ++k) {
-      const double a = -H(i, k);
-      const double* xk = X.row(k).data();
-      for (Eigen::Index c = 0; c < cols; ++c) xi[c] += a * xk[c];
-    }
-    X.row(i) /= H(i, i);
-  }
-  for (int i = nv - 1; i >= 0; --i) {  // L^T x = y
-    double* xi = X.row(i).data();
-    for (int k = i + 1; k < nv; ++k) {
-      const double a = -H(k, i);
-      const double* xk = X.row(k).data();
-      for (Eigen::Index c = 0; c < cols; ++c) xi[c] += a * xk[c];
-    }
-    X.row(i) /= H(i, i);
-  }
+  solve_held_rows(H, w.contact_H_first, X);
   deriv.dqacc_dq = X.leftCols(nv);
   deriv.dqacc_dv = X.middleCols(nv, nv);
   deriv.dqacc_du = X.middleCols(2 * nv, nu);

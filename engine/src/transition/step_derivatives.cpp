@@ -1159,6 +1159,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.contact_Y.setZero(nefc_max, nv);
   work.contact_E.setZero(nv, nv);
   work.contact_H.setZero(nv, nv);
+  work.contact_H_first.assign(ndof, 0);
   work.active_set.reserve(static_cast<std::size_t>(3 * std::max(0, model.nconmax) + nefc_max + 2));
   work.qacc_sum.setZero(nv);
   work.next.emplace(model);
@@ -1185,9 +1186,11 @@ void applied_force_derivatives(const Model& model, const Data& data, Derivatives
   // the rows held is H^-1 d f (docs/derivatives.md), the same H the contact rows are solved with
   auto& w = deriv.work;
   const int n = detail::held_active_rows(data, w.rows);
-  detail::factor_held_rows(data, w.rows.data(), n, w.contact_H);
-  deriv.dqacc_dapplied.setIdentity();
-  detail::solve_held_rows(w.contact_H, deriv.dqacc_dapplied, model.nv);
+  detail::factor_held_rows(data, w.rows.data(), n, w.contact_H, w.contact_H_first);
+  auto X = w.right_hand_sides.leftCols(model.nv);
+  X.setIdentity();
+  detail::solve_held_rows(w.contact_H, w.contact_H_first, X);
+  deriv.dqacc_dapplied = X;
 }
 
 void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
