@@ -43,6 +43,12 @@ struct ContactChange {
   Mat3 frame = Mat3::Zero();
 };
 
+/// A rigid motion of a contact's two geoms along one direction (a dof's): each geom's angular
+/// velocity and its centre's velocity (a workspace type of Derivatives).
+struct GeomPairMotion {
+  Eigen::Vector3d w1{0, 0, 0}, v1{0, 0, 0}, w2{0, 0, 0}, v2{0, 0, 0};
+};
+
 /// Outputs and workspace of the derivative functions, sized once from a Model (one per Data):
 /// the functions below allocate nothing.
 struct Derivatives {
@@ -121,9 +127,11 @@ struct Derivatives {
     std::vector<int> contact_H_first;  ///< (nv) the first column of each of its rows not zero
     std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
     std::vector<char> carries;  ///< (nv x nv) [c * nv + i]: moving dof c turns dof i's axis
-    /// (nv x kMaxPairContacts) [c * kMaxPairContacts + k]: the change of one geom pair's contact k
-    /// under dof c, the narrow phase run once per dof for all of the pair's contacts
+    /// (nv x kMaxPairContacts) [m * kMaxPairContacts + k]: the change of one geom pair's contact k
+    /// along the m-th dof that moves the pair, the narrow phase run once per dof for all of the
+    /// pair's contacts
     std::vector<ContactChange> pair_changes;
+    std::vector<GeomPairMotion> pair_motions;  ///< (nv) the pair's motion along each such dof
     std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at a contact's point
     /// (2nv) a connect's or weld's two anchors: each dof's velocity at body 1's anchor, then at
     /// body 2's (transition/equality_rows.cpp)

@@ -439,21 +439,32 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     const double diag = pyramid ? translation + mu0 * mu0 * translation : translation;
     const SoftSlopes soft = soft_slopes(bounded_solimp(con.solimp), con.dist, con.includemargin, diag);
 
+    if (fresh_pair) {  // the pair's first contact with a pushing row: all of its contacts, along
+                       // each dof that moves the pair, at once
+      int directions = 0;
+      for (int c = 0; c < nv; ++c) {
+        if (!moves1[c] && !moves2[c]) continue;
+        const Vec3 wc = angular(data.cdof[c]);
+        GeomPairMotion& motion = w.pair_motions[static_cast<std::size_t>(directions++)];
+        motion = GeomPairMotion{};
+        if (moves1[c]) {
+          motion.w1 = wc;
+          motion.v1 = point_velocity(model, data, c, data.geom_xpos[con.geom1]);
+        }
+        if (moves2[c]) {
+          motion.w2 = wc;
+          motion.v2 = point_velocity(model, data, c, data.geom_xpos[con.geom2]);
+        }
+      }
+      pair_contact_changes(model, data, pair_first, pair_count, w.pair_motions.data(), directions,
+                           w.pair_changes.data());
+    }
+    int direction = 0;  // the dofs that move the pair, in order: pair_changes' directions
     for (int c = 0; c < nv; ++c) {
       if (!moves1[c] && !moves2[c]) continue;
-      // the geoms' rigid motions under dof c, and the contact's change
       const Vec3 wc = angular(data.cdof[c]);
-      const Vec3 zero = Vec3::Zero();
-      ContactChange* pair_changes =
-          &w.pair_changes[static_cast<std::size_t>(c) * static_cast<std::size_t>(kMaxPairContacts)];
-      if (fresh_pair) {  // the pair's first contact with a pushing row: all of its contacts at once
-        pair_contact_changes(
-            model, data, pair_first, pair_count, moves1[c] ? wc : zero,
-            moves1[c] ? point_velocity(model, data, c, data.geom_xpos[con.geom1]) : zero,
-            moves2[c] ? wc : zero,
-            moves2[c] ? point_velocity(model, data, c, data.geom_xpos[con.geom2]) : zero,
-            pair_changes);
-      }
+      const ContactChange* pair_changes =
+          &w.pair_changes[static_cast<std::size_t>(direction++) * kMaxPairContacts];
       const ContactChange& change = pair_changes[i - pair_first];
       const Vec3& jc = point[static_cast<std::size_t>(c)];
 

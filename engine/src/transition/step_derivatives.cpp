@@ -1170,6 +1170,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.moves2.assign(ndof, 0);
   detail::carry_table(model, work.carries);
   work.pair_changes.assign(ndof * static_cast<std::size_t>(kMaxPairContacts), ContactChange{});
+  work.pair_motions.assign(ndof, GeomPairMotion{});
 }
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {

@@ -36,11 +36,11 @@ void contact_change(const Model& model, const Data& data, int i, const Eigen::Ve
 int pair_first_contact(const Data& data, int i, int& count);
 
 /// contact_change() for each of the `count` contacts of the pair whose first is `first`
-/// (pair_first_contact()) at once: changes[k] for contact first + k. The narrow phase runs once.
+/// (pair_first_contact()) along each of the `directions` motions: changes[m * kMaxPairContacts + k]
+/// for contact first + k along motions[m]. The narrow phase runs once per motion, and its values
+/// are checked against data.contact once.
 void pair_contact_changes(const Model& model, const Data& data, int first, int count,
-                          const Eigen::Vector3d& w1, const Eigen::Vector3d& v1,
-                          const Eigen::Vector3d& w2, const Eigen::Vector3d& v2,
-                          ContactChange* changes);
+                          const GeomPairMotion* motions, int directions, ContactChange* changes);
 
 /// Whether a row other than a joint limit's exerts a force after forward() (a contact pushing, a
 /// friction-loss, tendon-limit or equality row): constraint_rows_held() then takes every row.
