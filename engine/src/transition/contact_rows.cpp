@@ -469,13 +469,17 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       const Vec3& jc = point[static_cast<std::size_t>(c)];
 
       // dV, dW for qacc and qvel, and dJ^T f's column c
-      Vec3 dVa = Wa.cross(change.pos), dWa = Vec3::Zero();
-      Vec3 dVv = Wv.cross(change.pos), dWv = Vec3::Zero();
       Vec3 dphi = Vec3::Zero(), dtau = Vec3::Zero();
       for (int k = 0; k < 3 && k < dim; ++k) dphi += F[k] * change.frame.row(k).transpose();
       for (int k = 3; k < dim; ++k) dtau += F[k] * change.frame.row(k - 3).transpose();
       // phi . (w_d x dp) = w_d . (dp x phi): one cross product for every d
       const Vec3 dtau_all = change.pos.cross(phi) + dtau;
+      // where c turns d's axis, d j_d = w_c x j_d - w_d x j_c and d w_d = w_c x w_d, so
+      // phi . d j_d + tau . d w_d = j_d . (phi x w_c) + w_d . (tau x w_c - j_c x phi), and the
+      // sums of x_d d j_d and x_d d w_d over those d are w_c x (sum x_d j_d) - (sum x_d w_d) x j_c
+      // and w_c x (sum x_d w_d): two vectors per column, sums per d, the products once
+      const Vec3 turn_j = phi.cross(wc), turn_w = tau.cross(wc) - jc.cross(phi);
+      Vec3 Ja = Vec3::Zero(), Wa_turned = Vec3::Zero(), Jv = Vec3::Zero(), Wv_turned = Vec3::Zero();
       for (int d = 0; d < nv; ++d) {
         if (moves1[d] == moves2[d]) continue;
         const double s = moves2[d] ? 1.0 : -1.0;
@@ -483,15 +487,18 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         const Vec3 wd = angular(data.cdof[d]);
         double e = dphi.dot(jd) + dtau_all.dot(wd);
         if (w.carries[static_cast<std::size_t>(c * nv + d)] != 0) {  // c turns d's axis
-          const Vec3 djd = wc.cross(jd) - wd.cross(jc), dwd = wc.cross(wd);
-          dVa += (s * data.qacc[d]) * djd;
-          dWa += (s * data.qacc[d]) * dwd;
-          dVv += (s * data.qvel[d]) * djd;
-          dWv += (s * data.qvel[d]) * dwd;
-          e += phi.dot(djd) + tau.dot(dwd);
+          e += turn_j.dot(jd) + turn_w.dot(wd);
+          const double a = s * data.qacc[d], v = s * data.qvel[d];
+          Ja += a * jd;
+          Wa_turned += a * wd;
+          Jv += v * jd;
+          Wv_turned += v * wd;
         }
         E(d, c) += s * e;
       }
+      const Vec3 dVa = Wa.cross(change.pos) + wc.cross(Ja) - Wa_turned.cross(jc);
+      const Vec3 dVv = Wv.cross(change.pos) + wc.cross(Jv) - Wv_turned.cross(jc);
+      const Vec3 dWa = wc.cross(Wa_turned), dWv = wc.cross(Wv_turned);
       // d (C_k x) for x = qacc, qvel
       double dCa[6], dCv[6];
       for (int k = 0; k < dim; ++k) {
