@@ -145,7 +145,9 @@ struct Derivatives {
     /// (2nv) a tendon segment's two ends' motions per dof, and a wrap's two tangent points'
     std::vector<Eigen::Vector3d> segment_motion, tangent_motion;
     // the active set's check (step_derivatives)
-    std::vector<int> active_set;  ///< the contacts' geom pairs and the rows' states at the start
+    /// the contacts' geom pairs, the rows' states and the spatial tendons' wraps at the start
+    std::vector<int> active_set;
+    std::vector<int> active_set_end;  ///< the same at the step's end, or at an RK4 stage
     Eigen::VectorXd qacc_sum;     ///< (nv) RK4: sum_i b_i qacc_i
     std::optional<Data> next;     ///< forward() at the step's end
   } work;

@@ -600,8 +600,39 @@ void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& 
 // end (a contact made or lost, a row starting or stopping to push), or at an RK4 stage, the step
 // is not differentiable across the perturbations a user would make: reported, not smoothed.
 
-// the contacts' geom pairs, then each row's state, after forward()
-void record_active_set(const Data& data, std::vector<int>& set) {
+// A point of a spatial tendon's path as forward() recorded it (data.wrap_obj, wrap_xpos: two
+// points per row): its object (-1 a site, -2 a pulley's marker, else the wrapping geom) and where
+// it is.
+int path_object(const Data& data, int point) { return data.wrap_obj[point / 2][point % 2]; }
+
+Eigen::Vector3d path_point(const Data& data, int point) {
+  const double* x = data.wrap_xpos[point / 2].data() + 3 * (point % 2);
+  return {x[0], x[1], x[2]};
+}
+
+// Which way round geom g the path from site x0 over tangent points t0, t1 to site x1 goes: the
+// sign of the turn from x0 to t0 about the geom's centre, seen along a cylinder's axis or along
+// the normal of a sphere's great circle through x0 and x1 (wrap_path.hpp's plane). Each of the two
+// pairs of tangent points turns its own way, so the sign tells which pair the wrap took; 0 for a
+// path through the geom (a side site inside it: t0 = t1, one point) or sites in line with the
+// centre.
+int wrap_side(const Model& model, const Data& data, int g, const Eigen::Vector3d& x0,
+              const Eigen::Vector3d& t0, const Eigen::Vector3d& t1, const Eigen::Vector3d& x1) {
+  if (t0 == t1) return 0;
+  const Eigen::Vector3d& centre = data.geom_xpos[g];
+  const Eigen::Vector3d p0 = x0 - centre, p1 = x1 - centre, turn = p0.cross(t0 - centre);
+  const Eigen::Vector3d axis = model.geom_type[g] == GeomType::kCylinder
+                                   ? Eigen::Vector3d(data.geom_xmat[g].col(2))
+                                   : Eigen::Vector3d(p0.cross(p1));
+  const double side = turn.dot(axis);
+  return side > 0 ? 1 : side < 0 ? -1 : 0;
+}
+
+// The active set after forward(): the contacts' geom pairs, each row's state, and each spatial
+// tendon's path (its points' objects: which geoms it wraps, and which way round each). A wrap
+// switching on or off, or to the other pair of tangent points, changes the tendon's Jacobian's
+// formula as a contact made or lost changes the rows.
+void record_active_set(const Model& model, const Data& data, std::vector<int>& set) {
   set.clear();
   for (int i = 0; i < data.ncon; ++i) {
     const Contact& con = data.contact[static_cast<std::size_t>(i)];
@@ -611,20 +642,26 @@ void record_active_set(const Data& data, std::vector<int>& set) {
   }
   set.push_back(-1);
   for (int r = 0; r < data.nefc; ++r) set.push_back(static_cast<int>(data.efc_state[r]));
+  set.push_back(-1);
+  for (int t = 0; t < model.ntendon; ++t) {
+    const int first = data.ten_wrapadr[t], end = first + data.ten_wrapnum[t];
+    for (int k = first; k < end; ++k) {
+      const int object = path_object(data, k);
+      set.push_back(object);
+      // a wrapped geom's first tangent point, between its sites: site, t0, t1, site
+      const bool first_tangent =
+          object >= 0 && k > first && k + 2 < end && path_object(data, k - 1) != object;
+      if (!first_tangent) continue;
+      set.push_back(wrap_side(model, data, object, path_point(data, k - 1), path_point(data, k),
+                              path_point(data, k + 1), path_point(data, k + 2)));
+    }
+  }
 }
 
-bool same_active_set(const Data& data, const std::vector<int>& set) {
-  std::size_t k = 0;
-  const auto next = [&](int value) { return k < set.size() && set[k++] == value; };
-  for (int i = 0; i < data.ncon; ++i) {
-    const Contact& con = data.contact[static_cast<std::size_t>(i)];
-    if (!next(con.geom1) || !next(con.geom2) || !next(con.efc_address >= 0 ? 1 : 0)) return false;
-  }
-  if (!next(-1)) return false;
-  for (int r = 0; r < data.nefc; ++r) {
-    if (!next(static_cast<int>(data.efc_state[r]))) return false;
-  }
-  return k == set.size();
+bool same_active_set(const Model& model, const Data& data, const std::vector<int>& set,
+                     std::vector<int>& scratch) {
+  record_active_set(model, data, scratch);
+  return scratch == set;
 }
 
 // forward() at the step's end x' = (qpos (+) h velocity, qvel + h acceleration), in
@@ -647,7 +684,9 @@ void check_step_end(const Model& model, Data& data, Derivatives& deriv,
   detail::advance_activations(model, next, act_dot.data(), h);
   // the rows' set only: the lean kinematics and no sensors (as step()'s RK4 stages)
   detail::step_forward_without_sensors(model, next);
-  if (!same_active_set(next, w.active_set)) deriv.active_set_changes = true;
+  if (!same_active_set(model, next, w.active_set, w.active_set_end)) {
+    deriv.active_set_changes = true;
+  }
   if (deriv.active_set_changes) {
     WarningStat& stat = data.warning[static_cast<int>(Warning::kActiveSetChanges)];
     ++stat.number;
@@ -974,8 +1013,8 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     }
     forward_derivatives_unchecked(model, data, deriv);
     if (i == 0) {
-      record_active_set(data, w.active_set);
-    } else if (!same_active_set(data, w.active_set)) {
+      record_active_set(model, data, w.active_set);
+    } else if (!same_active_set(model, data, w.active_set, w.active_set_end)) {
       deriv.active_set_changes = true;
     }
     w.qvel_next += kB[i] * data.qvel;
@@ -1160,7 +1199,11 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.contact_E.setZero(nv, nv);
   work.contact_H.setZero(nv, nv);
   work.contact_H_first.assign(ndof, 0);
-  work.active_set.reserve(static_cast<std::size_t>(3 * std::max(0, model.nconmax) + nefc_max + 2));
+  // contacts, rows and the tendons' path points (at most two a wrap row), each wrapped geom's side
+  const auto active_set_max =
+      static_cast<std::size_t>(3 * std::max(0, model.nconmax) + nefc_max + 4 * model.nwrap + 2);
+  work.active_set.reserve(active_set_max);
+  work.active_set_end.reserve(active_set_max);
   work.qacc_sum.setZero(nv);
   work.next.emplace(model);
   work.contact_point_velocity.assign(ndof, Eigen::Vector3d::Zero());
@@ -1212,7 +1255,7 @@ void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       } else {
         implicit_derivatives(model, data, deriv);
       }
-      record_active_set(data, w.active_set);
+      record_active_set(model, data, w.active_set);
       if (quaternions) data.qpos = w.qpos0;
       w.qvel_next = data.qvel + model.opt.timestep * w.qacc_step;
       check_step_end(model, data, deriv, w.qvel_next, w.qacc_step, data.act_dot);
