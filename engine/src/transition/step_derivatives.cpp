@@ -143,6 +143,7 @@ void quaternion_springs(const Model& model, const Data& data, Derivatives::Works
 // reference's. Turning a body by w_c dq turns q_p by site_quat w_c dq (on the left), so phi moves by
 // Jl^-1(phi) R(q_r)^T (s_c R(site_quat) w_c - r_c R(ref site_quat) w_c), Jl^-1 SO(3)'s inverse
 // left Jacobian; and d (R^T (p - r)) = R^T (s_c j_c(p) - r_c j_c(r) - r_c w_c x (p - r)).
+// (w.tangent_motion and w.segment_motion serve as scratch.)
 void site_transmission_change(const Model& model, const Data& data, int a,
                               Derivatives::Workspace& w) {
   using Vec3 = Eigen::Vector3d;
@@ -170,36 +171,39 @@ void site_transmission_change(const Model& model, const Data& data, int a,
     if (on_site[i]) j_site[i] = detail::point_velocity(model, data, i, data.site_xpos[site]);
     if (on_ref[i]) j_ref[i] = detail::point_velocity(model, data, i, data.site_xpos[ref]);
   }
-  // d j_i(x) / d q_c . f for a point x that dofs i and c both move
-  const auto point_term = [&](const Vec3* j, int i, int c, const Vec3& wi, const Vec3& wc,
-                              bool carried) {
-    Vec3 dj = wi.cross(j[c]);
-    if (carried) dj += wc.cross(j[i]) - wi.cross(j[c]);
-    return dj.dot(f);
-  };
+  // With a_i = j_i(x) x f for each dof i that moves x, e_i = w_i x t, and the triple product's
+  // turns, (w_i x j_c) . f = w_i . a_c, (w_c x j_i) . f = w_c . a_i, j_i . (w_c x f) = -w_c . a_i,
+  // (w_c x w_i) . t = w_c . e_i and w_i . (w_c x t) = -w_c . e_i: every term of G(i, c) a dot
+  // product of vectors made once per dof
+  Vec3* const a_site = w.tangent_motion.data();
+  Vec3* const a_ref = a_site + nv;
+  Vec3* const e = w.segment_motion.data();
+  for (int i = 0; i < nv; ++i) {
+    if (on_site[i]) a_site[i] = j_site[i].cross(f);
+    if (on_ref[i]) a_ref[i] = j_ref[i].cross(f);
+    e[i] = data.cdof[i].head<3>().cross(t);
+  }
   for (int c = 0; c < nv; ++c) {
     if (!on_site[c] && !on_ref[c]) continue;
     const Vec3 wc = data.cdof[c].head<3>();
-    const Vec3 df = on_frame[c] ? Vec3(wc.cross(f)) : Vec3::Zero();
-    const Vec3 dt = on_frame[c] ? Vec3(wc.cross(t)) : Vec3::Zero();
+    const double frame_turns = on_frame[c] ? 1.0 : 0.0;  // c turns f and t
     for (int i = 0; i < nv; ++i) {
       if (!on_site[i] && !on_ref[i]) continue;
       const Vec3 wi = data.cdof[i].head<3>();
-      const bool carried = w.carries[static_cast<std::size_t>(c * nv + i)] != 0;
+      const double carried = w.carries[static_cast<std::size_t>(c * nv + i)] != 0 ? 1.0 : 0.0;
+      // d j_i(x) / d q_c . f = [c moves x] (w_i . a_c + carried (w_c . a_i - w_i . a_c)), and
+      // j_i(x) . d f = -frame_turns w_c . a_i
+      const auto point_term = [&](const Vec3* a_point, bool c_moves_point) {
+        const double wc_ai = wc.dot(a_point[i]);
+        double g = -frame_turns * wc_ai;
+        if (c_moves_point) g += (1 - carried) * wi.dot(a_point[c]) + carried * wc_ai;
+        return g;
+      };
       double g = 0.0;
-      if (on_site[i]) {
-        if (on_site[c]) g += point_term(j_site, i, c, wi, wc, carried);
-        g += j_site[i].dot(df);
-      }
-      if (on_ref[i]) {
-        if (on_ref[c]) g -= point_term(j_ref, i, c, wi, wc, carried);
-        g -= j_ref[i].dot(df);
-      }
+      if (on_site[i]) g += point_term(a_site, on_site[c] != 0);
+      if (on_ref[i]) g -= point_term(a_ref, on_ref[c] != 0);
       const int turn = on_site[i] - on_ref[i];
-      if (turn != 0) {
-        const Vec3 dw = carried ? Vec3(wc.cross(wi)) : Vec3::Zero();
-        g += turn * (dw.dot(t) + wi.dot(dt));
-      }
+      if (turn != 0) g += turn * (carried - frame_turns) * wc.dot(e[i]);
       G(i, c) = g;
     }
   }
@@ -897,7 +901,11 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       continue;
     }
     const double gear = model.actuator_gear[a][0];
+    // the moment's change with the pose, once for both of its uses below
     if (spatial) detail::spatial_tendon_change(model, data, model.actuator_trnid[a][0], w);
+    if (site && (per_length != 0.0 || per_velocity != 0.0 || k != 0.0)) {
+      site_transmission_change(model, data, a, w);
+    }
     // r = (m m^T a) where M is non-zero (for one dof: gear^2 a_dof)
     const double* m = data.actuator_moment.row(a).data();
     Eigen::VectorXd& r = w.moment_times_a;
@@ -915,7 +923,6 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     // a muscle's k moves with the length (gradient m: L = gear q or gear ten_length; a site's
     // its own) and the velocity (gradient m in qvel; in qpos, a turning moment's G^T qvel)
     if (per_length != 0.0 || per_velocity != 0.0) {
-      if (site) site_transmission_change(model, data, a, w);
       for (int col = 0; col < nv; ++col) {
         double dk_dq = per_length * (site ? w.length_gradient[col] : m[col]);
         if (site) dk_dq += per_velocity * w.moment_change.col(col).dot(data.qvel);
@@ -927,7 +934,6 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     }
     // a site's moment turning: m k m^T changes by G_c k m^T + m k G_c^T along q_c (G = d m / d q)
     if (site && k != 0.0) {
-      site_transmission_change(model, data, a, w);
       const Eigen::MatrixXd& G = w.moment_change;
       double m_a = 0.0;
       for (int i = 0; i < nv; ++i) m_a += m[i] * w.qacc_step[i];
