@@ -82,9 +82,9 @@ def derivatives(model: Model, data: Data) -> dict:
     d qacc / d act: the activations' columns, empty when na is 0) and ``dqacc_dapplied``
     (nv x nv, d qacc / d qfrc_applied), forward dynamics at the state; ``nefc``; and
     ``active_set_changes``: True when the constraint rows' active set (which contacts exist, which
-    rows push) is not the same at the step's end (or an RK4 stage) as at its start, so that A and
-    B are the start's piece held, not the derivative a difference across the step would see. Then
-    a RuntimeWarning says so too.
+    rows push, which geoms a spatial tendon wraps and which way round) is not the same at the
+    step's end (or an RK4 stage) as at its start, so that A and B are the start's piece held, not
+    the derivative a difference across the step would see. Then a RuntimeWarning says so too.
 
     Raises lever.Error naming what it does not differentiate (an integrator, a contact pair's
     geometry, an elliptic cone on its surface, equality constraints, friction loss).

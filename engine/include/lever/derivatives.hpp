@@ -43,6 +43,12 @@ struct ContactChange {
   Mat3 frame = Mat3::Zero();
 };
 
+/// A rigid motion of a contact's two geoms along one direction (a dof's): each geom's angular
+/// velocity and its centre's velocity (a workspace type of Derivatives).
+struct GeomPairMotion {
+  Eigen::Vector3d w1{0, 0, 0}, v1{0, 0, 0}, w2{0, 0, 0}, v2{0, 0, 0};
+};
+
 /// Outputs and workspace of the derivative functions, sized once from a Model (one per Data):
 /// the functions below allocate nothing.
 struct Derivatives {
@@ -118,11 +124,14 @@ struct Derivatives {
     RowMatrix contact_Y;          ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
     Eigen::MatrixXd contact_E;    ///< (nv x nv) dJ^T f, one column per qpos direction
     Eigen::MatrixXd contact_H;    ///< (nv x nv) M + J^T D J over the active rows, then its factor
+    std::vector<int> contact_H_first;  ///< (nv) the first column of each of its rows not zero
     std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
     std::vector<char> carries;  ///< (nv x nv) [c * nv + i]: moving dof c turns dof i's axis
-    /// (nv x kMaxPairContacts) [c * kMaxPairContacts + k]: the change of one geom pair's contact k
-    /// under dof c, the narrow phase run once per dof for all of the pair's contacts
+    /// (nv x kMaxPairContacts) [m * kMaxPairContacts + k]: the change of one geom pair's contact k
+    /// along the m-th dof that moves the pair, the narrow phase run once per dof for all of the
+    /// pair's contacts
     std::vector<ContactChange> pair_changes;
+    std::vector<GeomPairMotion> pair_motions;  ///< (nv) the pair's motion along each such dof
     std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at a contact's point
     /// (2nv) a connect's or weld's two anchors: each dof's velocity at body 1's anchor, then at
     /// body 2's (transition/equality_rows.cpp)
@@ -136,7 +145,9 @@ struct Derivatives {
     /// (2nv) a tendon segment's two ends' motions per dof, and a wrap's two tangent points'
     std::vector<Eigen::Vector3d> segment_motion, tangent_motion;
     // the active set's check (step_derivatives)
-    std::vector<int> active_set;  ///< the contacts' geom pairs and the rows' states at the start
+    /// the contacts' geom pairs, the rows' states and the spatial tendons' wraps at the start
+    std::vector<int> active_set;
+    std::vector<int> active_set_end;  ///< the same at the step's end, or at an RK4 stage
     Eigen::VectorXd qacc_sum;     ///< (nv) RK4: sum_i b_i qacc_i
     std::optional<Data> next;     ///< forward() at the step's end
   } work;

@@ -207,12 +207,8 @@ int pair_first_contact(const Data& data, int i, int& count) {
 }
 
 void pair_contact_changes(const Model& model, const Data& data, int first, int count,
-                          const Eigen::Vector3d& w1, const Eigen::Vector3d& v1,
-                          const Eigen::Vector3d& w2, const Eigen::Vector3d& v2,
-                          ContactChange* changes) {
+                          const GeomPairMotion* motions, int directions, ContactChange* changes) {
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
-  const Pose g1 = moving_pose(model, data, con.geom1, w1, v1);
-  const Pose g2 = moving_pose(model, data, con.geom2, w2, v2);
   // the pair's margin as the driver mixed it: includemargin is margin - gap
   double margin;
   int pair = -1;
@@ -225,32 +221,42 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   margin = pair >= 0 ? model.pair_margin[pair]
                      : std::max(model.geom_margin[con.geom1], model.geom_margin[con.geom2]);
   std::array<Found, kMaxPairContacts> found;
-  const int n = g1.type == GeomType::kPlane && g2.type == GeomType::kMesh
-                    ? plane_mesh(g1, g2, data, first, count, found.data())
-                    : collide_moving(g1, g2, margin, found.data());
-  for (int k = 0; k < count; ++k) {
-    const int i = first + k;
-    const Contact& ck = data.contact[static_cast<std::size_t>(i)];
-    if (n == 0) throw Error("derivatives: contact " + std::to_string(i) + " is not reproduced.");
-    const Found& f = found[static_cast<std::size_t>(k % n)];
-    const std::array<V, 3> frame = complete_frame(f.normal, f.tangent);
+  for (int m = 0; m < directions; ++m) {
+    const GeomPairMotion& motion = motions[m];
+    const Pose g1 = moving_pose(model, data, con.geom1, motion.w1, motion.v1);
+    const Pose g2 = moving_pose(model, data, con.geom2, motion.w2, motion.v2);
+    const int n = g1.type == GeomType::kPlane && g2.type == GeomType::kMesh
+                      ? plane_mesh(g1, g2, data, first, count, found.data())
+                      : collide_moving(g1, g2, margin, found.data());
+    for (int k = 0; k < count; ++k) {
+      const int i = first + k;
+      const Contact& ck = data.contact[static_cast<std::size_t>(i)];
+      if (n == 0) throw Error("derivatives: contact " + std::to_string(i) + " is not reproduced.");
+      const Found& f = found[static_cast<std::size_t>(k % n)];
+      const std::array<V, 3> frame = complete_frame(f.normal, f.tangent);
 
-    // the values are the collision stage's: else this is not the contact it found
-    double gap = std::abs(f.dist.v - ck.dist);
-    for (int a = 0; a < 3; ++a) {
-      gap = std::max(gap, std::abs(f.pos[a].v - ck.pos[a]));
-      for (int r = 0; r < 3; ++r) gap = std::max(gap, std::abs(frame[r][a].v - ck.frame(r, a)));
-    }
-    if (!(gap <= 1e-9 * (1 + ck.pos.cwiseAbs().maxCoeff()))) {
-      throw Error("derivatives: contact " + std::to_string(i) +
-                  " is not reproduced by the contact geometry's derivative (off by " +
-                  std::to_string(gap) + ").");
-    }
-    ContactChange& change = changes[k];
-    change.dist = f.dist.d;
-    for (int a = 0; a < 3; ++a) {
-      change.pos[a] = f.pos[a].d;
-      for (int r = 0; r < 3; ++r) change.frame(r, a) = frame[r][a].d;
+      // the values are the collision stage's (the same along every motion): else this is not
+      // the contact it found
+      if (m == 0) {
+        double gap = std::abs(f.dist.v - ck.dist);
+        for (int a = 0; a < 3; ++a) {
+          gap = std::max(gap, std::abs(f.pos[a].v - ck.pos[a]));
+          for (int r = 0; r < 3; ++r) {
+            gap = std::max(gap, std::abs(frame[r][a].v - ck.frame(r, a)));
+          }
+        }
+        if (!(gap <= 1e-9 * (1 + ck.pos.cwiseAbs().maxCoeff()))) {
+          throw Error("derivatives: contact " + std::to_string(i) +
+                      " is not reproduced by the contact geometry's derivative (off by " +
+                      std::to_string(gap) + ").");
+        }
+      }
+      ContactChange& change = changes[m * kMaxPairContacts + k];
+      change.dist = f.dist.d;
+      for (int a = 0; a < 3; ++a) {
+        change.pos[a] = f.pos[a].d;
+        for (int r = 0; r < 3; ++r) change.frame(r, a) = frame[r][a].d;
+      }
     }
   }
 }
@@ -261,7 +267,8 @@ void contact_change(const Model& model, const Data& data, int i, const Eigen::Ve
   int count = 0;
   const int first = pair_first_contact(data, i, count);
   std::array<ContactChange, kMaxPairContacts> changes;
-  pair_contact_changes(model, data, first, count, w1, v1, w2, v2, changes.data());
+  const GeomPairMotion motion{w1, v1, w2, v2};
+  pair_contact_changes(model, data, first, count, &motion, 1, changes.data());
   change = changes[static_cast<std::size_t>(i - first)];
 }
 

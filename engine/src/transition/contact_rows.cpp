@@ -233,43 +233,73 @@ int held_active_rows(const Data& data, std::vector<int>& rows) {
   return n;
 }
 
-void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H) {
-  // nv is small, so plain loops over the dense rows (Eigen's dynamic outer products cost more in
-  // setup than in arithmetic here)
+RowSpan row_span(const Data& data, int r) {
+  switch (data.efc_type[r]) {
+    case ConstraintType::kContactFrictionless:
+    case ConstraintType::kContactPyramidal:
+    case ConstraintType::kContactElliptic: {
+      const int i = data.efc_id[r];
+      return {data.work.contact_span[2 * i], data.work.contact_span[2 * i + 1]};
+    }
+    default: break;
+  }
+  if (data.efc_dof[r] >= 0) return {data.efc_dof[r], 1};  // a joint's limit or friction loss
+  return {0, static_cast<int>(data.efc_J.cols())};
+}
+
+void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H,
+                      std::vector<int>& first) {
+  // nv is small, so plain loops over each row's span of dofs (Eigen's dynamic outer products
+  // cost more in setup than in arithmetic here)
   const auto nv = static_cast<int>(data.M.rows());
   H = data.M;
   for (int k = 0; k < n; ++k) {
     const int r = rows[k];
     const double* J = data.efc_J.row(r).data();
-    for (int b = 0; b < nv; ++b) {
+    const RowSpan s = row_span(data, r);
+    for (int b = s.lo; b < s.lo + s.count; ++b) {
       if (J[b] == 0.0) continue;
       const double weight = data.efc_D[r] * J[b];
-      for (int a = b; a < nv; ++a) H(a, b) += weight * J[a];
+      for (int a = b; a < s.lo + s.count; ++a) H(a, b) += weight * J[a];
     }
   }
-  for (int j = 0; j < nv; ++j) {  // H = L L^T in place, L in the lower triangle
-    for (int k = 0; k < j; ++k) H(j, j) -= H(j, k) * H(j, k);
-    H(j, j) = std::sqrt(H(j, j));
-    for (int i = j + 1; i < nv; ++i) {
+  // H's profile: the first column of each row's lower part that is not zero (M's is the row's
+  // tree's first dof; the rows join the trees they couple). L L^T keeps it, so the factor and
+  // the solves read nothing to its left.
+  for (int i = 0; i < nv; ++i) {
+    int j = 0;
+    while (j < i && H(i, j) == 0.0) ++j;
+    first[static_cast<std::size_t>(i)] = j;
+  }
+  for (int i = 0; i < nv; ++i) {  // H = L L^T in place, row by row, L in the lower triangle
+    const int fi = first[static_cast<std::size_t>(i)];
+    for (int j = fi; j <= i; ++j) {
       double sum = H(i, j);
-      for (int k = 0; k < j; ++k) sum -= H(i, k) * H(j, k);
-      H(i, j) = sum / H(j, j);
+      for (int k = std::max(fi, first[static_cast<std::size_t>(j)]); k < j; ++k) {
+        sum -= H(i, k) * H(j, k);
+      }
+      H(i, j) = j < i ? sum / H(j, j) : std::sqrt(sum);
     }
   }
 }
 
-void solve_held_rows(const Eigen::MatrixXd& H, Eigen::Ref<Eigen::MatrixXd> X, int cols) {
-  const auto nv = static_cast<int>(H.rows());
-  for (int c = 0; c < cols; ++c) {  // L y = x, then L^T x = y
-    double* x = X.col(c).data();
-    for (int i = 0; i < nv; ++i) {
-      for (int k = 0; k < i; ++k) x[i] -= H(i, k) * x[k];
-      x[i] /= H(i, i);
-    }
-    for (int i = nv - 1; i >= 0; --i) {
-      for (int k = i + 1; k < nv; ++k) x[i] -= H(k, i) * x[k];
-      x[i] /= H(i, i);
-    }
+void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
+                     Eigen::Ref<RowMatrix> X) {
+  const auto nv = static_cast<int>(L.rows());
+  const Eigen::Index cols = X.cols();
+  // one row operation over every column: y_i -= L(i, k) y_k
+  const auto subtract = [&](int i, double a, int k) {
+    double* xi = X.row(i).data();
+    const double* xk = X.row(k).data();
+    for (Eigen::Index c = 0; c < cols; ++c) xi[c] -= a * xk[c];
+  };
+  for (int i = 0; i < nv; ++i) {  // L y = x
+    for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(i, L(i, k), k);
+    X.row(i) /= L(i, i);
+  }
+  for (int i = nv - 1; i >= 0; --i) {  // L^T x = y: x_i final, it leaves the rows it reaches
+    X.row(i) /= L(i, i);
+    for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(k, L(i, k), i);
   }
 }
 
@@ -409,32 +439,47 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     const double diag = pyramid ? translation + mu0 * mu0 * translation : translation;
     const SoftSlopes soft = soft_slopes(bounded_solimp(con.solimp), con.dist, con.includemargin, diag);
 
+    if (fresh_pair) {  // the pair's first contact with a pushing row: all of its contacts, along
+                       // each dof that moves the pair, at once
+      int directions = 0;
+      for (int c = 0; c < nv; ++c) {
+        if (!moves1[c] && !moves2[c]) continue;
+        const Vec3 wc = angular(data.cdof[c]);
+        GeomPairMotion& motion = w.pair_motions[static_cast<std::size_t>(directions++)];
+        motion = GeomPairMotion{};
+        if (moves1[c]) {
+          motion.w1 = wc;
+          motion.v1 = point_velocity(model, data, c, data.geom_xpos[con.geom1]);
+        }
+        if (moves2[c]) {
+          motion.w2 = wc;
+          motion.v2 = point_velocity(model, data, c, data.geom_xpos[con.geom2]);
+        }
+      }
+      pair_contact_changes(model, data, pair_first, pair_count, w.pair_motions.data(), directions,
+                           w.pair_changes.data());
+    }
+    int direction = 0;  // the dofs that move the pair, in order: pair_changes' directions
     for (int c = 0; c < nv; ++c) {
       if (!moves1[c] && !moves2[c]) continue;
-      // the geoms' rigid motions under dof c, and the contact's change
       const Vec3 wc = angular(data.cdof[c]);
-      const Vec3 zero = Vec3::Zero();
-      ContactChange* pair_changes =
-          &w.pair_changes[static_cast<std::size_t>(c) * static_cast<std::size_t>(kMaxPairContacts)];
-      if (fresh_pair) {  // the pair's first contact with a pushing row: all of its contacts at once
-        pair_contact_changes(
-            model, data, pair_first, pair_count, moves1[c] ? wc : zero,
-            moves1[c] ? point_velocity(model, data, c, data.geom_xpos[con.geom1]) : zero,
-            moves2[c] ? wc : zero,
-            moves2[c] ? point_velocity(model, data, c, data.geom_xpos[con.geom2]) : zero,
-            pair_changes);
-      }
+      const ContactChange* pair_changes =
+          &w.pair_changes[static_cast<std::size_t>(direction++) * kMaxPairContacts];
       const ContactChange& change = pair_changes[i - pair_first];
       const Vec3& jc = point[static_cast<std::size_t>(c)];
 
       // dV, dW for qacc and qvel, and dJ^T f's column c
-      Vec3 dVa = Wa.cross(change.pos), dWa = Vec3::Zero();
-      Vec3 dVv = Wv.cross(change.pos), dWv = Vec3::Zero();
       Vec3 dphi = Vec3::Zero(), dtau = Vec3::Zero();
       for (int k = 0; k < 3 && k < dim; ++k) dphi += F[k] * change.frame.row(k).transpose();
       for (int k = 3; k < dim; ++k) dtau += F[k] * change.frame.row(k - 3).transpose();
       // phi . (w_d x dp) = w_d . (dp x phi): one cross product for every d
       const Vec3 dtau_all = change.pos.cross(phi) + dtau;
+      // where c turns d's axis, d j_d = w_c x j_d - w_d x j_c and d w_d = w_c x w_d, so
+      // phi . d j_d + tau . d w_d = j_d . (phi x w_c) + w_d . (tau x w_c - j_c x phi), and the
+      // sums of x_d d j_d and x_d d w_d over those d are w_c x (sum x_d j_d) - (sum x_d w_d) x j_c
+      // and w_c x (sum x_d w_d): two vectors per column, sums per d, the products once
+      const Vec3 turn_j = phi.cross(wc), turn_w = tau.cross(wc) - jc.cross(phi);
+      Vec3 Ja = Vec3::Zero(), Wa_turned = Vec3::Zero(), Jv = Vec3::Zero(), Wv_turned = Vec3::Zero();
       for (int d = 0; d < nv; ++d) {
         if (moves1[d] == moves2[d]) continue;
         const double s = moves2[d] ? 1.0 : -1.0;
@@ -442,15 +487,18 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         const Vec3 wd = angular(data.cdof[d]);
         double e = dphi.dot(jd) + dtau_all.dot(wd);
         if (w.carries[static_cast<std::size_t>(c * nv + d)] != 0) {  // c turns d's axis
-          const Vec3 djd = wc.cross(jd) - wd.cross(jc), dwd = wc.cross(wd);
-          dVa += (s * data.qacc[d]) * djd;
-          dWa += (s * data.qacc[d]) * dwd;
-          dVv += (s * data.qvel[d]) * djd;
-          dWv += (s * data.qvel[d]) * dwd;
-          e += phi.dot(djd) + tau.dot(dwd);
+          e += turn_j.dot(jd) + turn_w.dot(wd);
+          const double a = s * data.qacc[d], v = s * data.qvel[d];
+          Ja += a * jd;
+          Wa_turned += a * wd;
+          Jv += v * jd;
+          Wv_turned += v * wd;
         }
         E(d, c) += s * e;
       }
+      const Vec3 dVa = Wa.cross(change.pos) + wc.cross(Ja) - Wa_turned.cross(jc);
+      const Vec3 dVv = Wv.cross(change.pos) + wc.cross(Jv) - Wv_turned.cross(jc);
+      const Vec3 dWa = wc.cross(Wa_turned), dWv = wc.cross(Wv_turned);
       // d (C_k x) for x = qacc, qvel
       double dCa[6], dCv[6];
       for (int k = 0; k < dim; ++k) {
@@ -485,43 +533,26 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   // substitution one row operation), and no product with G. Y's qvel columns are aref's
   // velocity term, -D B J_r.
   Eigen::MatrixXd& H = w.contact_H;
-  factor_held_rows(data, w.rows.data(), n, H);
+  factor_held_rows(data, w.rows.data(), n, H, w.contact_H_first);
   RowMatrix& X = w.right_hand_sides;
   X.leftCols(nv) = w.rhs_q + E;
   X.middleCols(nv, nv) = w.rhs_v;
   X.rightCols(nu + model.na) = w.rhs_u;  // ctrl, then act
-  for (int k = 0; k < n; ++k) {
+  for (int k = 0; k < n; ++k) {  // J_r's non-zeros lie in its span; y_r's wherever dofs move it
     const int r = w.rows[k];
     const double* J = data.efc_J.row(r).data();
+    const RowSpan span = row_span(data, r);
     const double velocity_weight = -data.efc_D[r] * data.efc_B[r];
-    for (int i = 0; i < nv; ++i) {
+    const double* y = Y.row(k).data();
+    for (int i = span.lo; i < span.lo + span.count; ++i) {
       if (J[i] == 0.0) continue;
       double* x = X.row(i).data();
-      const double* y = Y.row(k).data();
       for (int c = 0; c < nv; ++c) x[c] += J[i] * y[c];
       const double a = J[i] * velocity_weight;
-      for (int c = 0; c < nv; ++c) x[nv + c] += a * J[c];
+      for (int c = span.lo; c < span.lo + span.count; ++c) x[nv + c] += a * J[c];
     }
   }
-  const Eigen::Index cols = X.cols();
-  for (int i = 0; i < nv; ++i) {  // L y = x
-    double* xi = X.row(i).data();
-    for (int k = 0; k < i; ++k) {
-      const double a = -H(i, k);
-      const double* xk = X.row(k).data();
-      for (Eigen::Index c = 0; c < cols; ++c) xi[c] += a * xk[c];
-    }
-    X.row(i) /= H(i, i);
-  }
-  for (int i = nv - 1; i >= 0; --i) {  // L^T x = y
-    double* xi = X.row(i).data();
-    for (int k = i + 1; k < nv; ++k) {
-      const double a = -H(k, i);
-      const double* xk = X.row(k).data();
-      for (Eigen::Index c = 0; c < cols; ++c) xi[c] += a * xk[c];
-    }
-    X.row(i) /= H(i, i);
-  }
+  solve_held_rows(H, w.contact_H_first, X);
   deriv.dqacc_dq = X.leftCols(nv);
   deriv.dqacc_dv = X.middleCols(nv, nv);
   deriv.dqacc_du = X.middleCols(2 * nv, nu);

@@ -143,6 +143,7 @@ void quaternion_springs(const Model& model, const Data& data, Derivatives::Works
 // reference's. Turning a body by w_c dq turns q_p by site_quat w_c dq (on the left), so phi moves by
 // Jl^-1(phi) R(q_r)^T (s_c R(site_quat) w_c - r_c R(ref site_quat) w_c), Jl^-1 SO(3)'s inverse
 // left Jacobian; and d (R^T (p - r)) = R^T (s_c j_c(p) - r_c j_c(r) - r_c w_c x (p - r)).
+// (w.tangent_motion and w.segment_motion serve as scratch.)
 void site_transmission_change(const Model& model, const Data& data, int a,
                               Derivatives::Workspace& w) {
   using Vec3 = Eigen::Vector3d;
@@ -170,36 +171,39 @@ void site_transmission_change(const Model& model, const Data& data, int a,
     if (on_site[i]) j_site[i] = detail::point_velocity(model, data, i, data.site_xpos[site]);
     if (on_ref[i]) j_ref[i] = detail::point_velocity(model, data, i, data.site_xpos[ref]);
   }
-  // d j_i(x) / d q_c . f for a point x that dofs i and c both move
-  const auto point_term = [&](const Vec3* j, int i, int c, const Vec3& wi, const Vec3& wc,
-                              bool carried) {
-    Vec3 dj = wi.cross(j[c]);
-    if (carried) dj += wc.cross(j[i]) - wi.cross(j[c]);
-    return dj.dot(f);
-  };
+  // With a_i = j_i(x) x f for each dof i that moves x, e_i = w_i x t, and the triple product's
+  // turns, (w_i x j_c) . f = w_i . a_c, (w_c x j_i) . f = w_c . a_i, j_i . (w_c x f) = -w_c . a_i,
+  // (w_c x w_i) . t = w_c . e_i and w_i . (w_c x t) = -w_c . e_i: every term of G(i, c) a dot
+  // product of vectors made once per dof
+  Vec3* const a_site = w.tangent_motion.data();
+  Vec3* const a_ref = a_site + nv;
+  Vec3* const e = w.segment_motion.data();
+  for (int i = 0; i < nv; ++i) {
+    if (on_site[i]) a_site[i] = j_site[i].cross(f);
+    if (on_ref[i]) a_ref[i] = j_ref[i].cross(f);
+    e[i] = data.cdof[i].head<3>().cross(t);
+  }
   for (int c = 0; c < nv; ++c) {
     if (!on_site[c] && !on_ref[c]) continue;
     const Vec3 wc = data.cdof[c].head<3>();
-    const Vec3 df = on_frame[c] ? Vec3(wc.cross(f)) : Vec3::Zero();
-    const Vec3 dt = on_frame[c] ? Vec3(wc.cross(t)) : Vec3::Zero();
+    const double frame_turns = on_frame[c] ? 1.0 : 0.0;  // c turns f and t
     for (int i = 0; i < nv; ++i) {
       if (!on_site[i] && !on_ref[i]) continue;
       const Vec3 wi = data.cdof[i].head<3>();
-      const bool carried = w.carries[static_cast<std::size_t>(c * nv + i)] != 0;
+      const double carried = w.carries[static_cast<std::size_t>(c * nv + i)] != 0 ? 1.0 : 0.0;
+      // d j_i(x) / d q_c . f = [c moves x] (w_i . a_c + carried (w_c . a_i - w_i . a_c)), and
+      // j_i(x) . d f = -frame_turns w_c . a_i
+      const auto point_term = [&](const Vec3* a_point, bool c_moves_point) {
+        const double wc_ai = wc.dot(a_point[i]);
+        double g = -frame_turns * wc_ai;
+        if (c_moves_point) g += (1 - carried) * wi.dot(a_point[c]) + carried * wc_ai;
+        return g;
+      };
       double g = 0.0;
-      if (on_site[i]) {
-        if (on_site[c]) g += point_term(j_site, i, c, wi, wc, carried);
-        g += j_site[i].dot(df);
-      }
-      if (on_ref[i]) {
-        if (on_ref[c]) g -= point_term(j_ref, i, c, wi, wc, carried);
-        g -= j_ref[i].dot(df);
-      }
+      if (on_site[i]) g += point_term(a_site, on_site[c] != 0);
+      if (on_ref[i]) g -= point_term(a_ref, on_ref[c] != 0);
       const int turn = on_site[i] - on_ref[i];
-      if (turn != 0) {
-        const Vec3 dw = carried ? Vec3(wc.cross(wi)) : Vec3::Zero();
-        g += turn * (dw.dot(t) + wi.dot(dt));
-      }
+      if (turn != 0) g += turn * (carried - frame_turns) * wc.dot(e[i]);
       G(i, c) = g;
     }
   }
@@ -600,8 +604,39 @@ void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& 
 // end (a contact made or lost, a row starting or stopping to push), or at an RK4 stage, the step
 // is not differentiable across the perturbations a user would make: reported, not smoothed.
 
-// the contacts' geom pairs, then each row's state, after forward()
-void record_active_set(const Data& data, std::vector<int>& set) {
+// A point of a spatial tendon's path as forward() recorded it (data.wrap_obj, wrap_xpos: two
+// points per row): its object (-1 a site, -2 a pulley's marker, else the wrapping geom) and where
+// it is.
+int path_object(const Data& data, int point) { return data.wrap_obj[point / 2][point % 2]; }
+
+Eigen::Vector3d path_point(const Data& data, int point) {
+  const double* x = data.wrap_xpos[point / 2].data() + 3 * (point % 2);
+  return {x[0], x[1], x[2]};
+}
+
+// Which way round geom g the path from site x0 over tangent points t0, t1 to site x1 goes: the
+// sign of the turn from x0 to t0 about the geom's centre, seen along a cylinder's axis or along
+// the normal of a sphere's great circle through x0 and x1 (wrap_path.hpp's plane). Each of the two
+// pairs of tangent points turns its own way, so the sign tells which pair the wrap took; 0 for a
+// path through the geom (a side site inside it: t0 = t1, one point) or sites in line with the
+// centre.
+int wrap_side(const Model& model, const Data& data, int g, const Eigen::Vector3d& x0,
+              const Eigen::Vector3d& t0, const Eigen::Vector3d& t1, const Eigen::Vector3d& x1) {
+  if (t0 == t1) return 0;
+  const Eigen::Vector3d& centre = data.geom_xpos[g];
+  const Eigen::Vector3d p0 = x0 - centre, p1 = x1 - centre, turn = p0.cross(t0 - centre);
+  const Eigen::Vector3d axis = model.geom_type[g] == GeomType::kCylinder
+                                   ? Eigen::Vector3d(data.geom_xmat[g].col(2))
+                                   : Eigen::Vector3d(p0.cross(p1));
+  const double side = turn.dot(axis);
+  return side > 0 ? 1 : side < 0 ? -1 : 0;
+}
+
+// The active set after forward(): the contacts' geom pairs, each row's state, and each spatial
+// tendon's path (its points' objects: which geoms it wraps, and which way round each). A wrap
+// switching on or off, or to the other pair of tangent points, changes the tendon's Jacobian's
+// formula as a contact made or lost changes the rows.
+void record_active_set(const Model& model, const Data& data, std::vector<int>& set) {
   set.clear();
   for (int i = 0; i < data.ncon; ++i) {
     const Contact& con = data.contact[static_cast<std::size_t>(i)];
@@ -611,20 +646,26 @@ void record_active_set(const Data& data, std::vector<int>& set) {
   }
   set.push_back(-1);
   for (int r = 0; r < data.nefc; ++r) set.push_back(static_cast<int>(data.efc_state[r]));
+  set.push_back(-1);
+  for (int t = 0; t < model.ntendon; ++t) {
+    const int first = data.ten_wrapadr[t], end = first + data.ten_wrapnum[t];
+    for (int k = first; k < end; ++k) {
+      const int object = path_object(data, k);
+      set.push_back(object);
+      // a wrapped geom's first tangent point, between its sites: site, t0, t1, site
+      const bool first_tangent =
+          object >= 0 && k > first && k + 2 < end && path_object(data, k - 1) != object;
+      if (!first_tangent) continue;
+      set.push_back(wrap_side(model, data, object, path_point(data, k - 1), path_point(data, k),
+                              path_point(data, k + 1), path_point(data, k + 2)));
+    }
+  }
 }
 
-bool same_active_set(const Data& data, const std::vector<int>& set) {
-  std::size_t k = 0;
-  const auto next = [&](int value) { return k < set.size() && set[k++] == value; };
-  for (int i = 0; i < data.ncon; ++i) {
-    const Contact& con = data.contact[static_cast<std::size_t>(i)];
-    if (!next(con.geom1) || !next(con.geom2) || !next(con.efc_address >= 0 ? 1 : 0)) return false;
-  }
-  if (!next(-1)) return false;
-  for (int r = 0; r < data.nefc; ++r) {
-    if (!next(static_cast<int>(data.efc_state[r]))) return false;
-  }
-  return k == set.size();
+bool same_active_set(const Model& model, const Data& data, const std::vector<int>& set,
+                     std::vector<int>& scratch) {
+  record_active_set(model, data, scratch);
+  return scratch == set;
 }
 
 // forward() at the step's end x' = (qpos (+) h velocity, qvel + h acceleration), in
@@ -647,7 +688,9 @@ void check_step_end(const Model& model, Data& data, Derivatives& deriv,
   detail::advance_activations(model, next, act_dot.data(), h);
   // the rows' set only: the lean kinematics and no sensors (as step()'s RK4 stages)
   detail::step_forward_without_sensors(model, next);
-  if (!same_active_set(next, w.active_set)) deriv.active_set_changes = true;
+  if (!same_active_set(model, next, w.active_set, w.active_set_end)) {
+    deriv.active_set_changes = true;
+  }
   if (deriv.active_set_changes) {
     WarningStat& stat = data.warning[static_cast<int>(Warning::kActiveSetChanges)];
     ++stat.number;
@@ -858,7 +901,11 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       continue;
     }
     const double gear = model.actuator_gear[a][0];
+    // the moment's change with the pose, once for both of its uses below
     if (spatial) detail::spatial_tendon_change(model, data, model.actuator_trnid[a][0], w);
+    if (site && (per_length != 0.0 || per_velocity != 0.0 || k != 0.0)) {
+      site_transmission_change(model, data, a, w);
+    }
     // r = (m m^T a) where M is non-zero (for one dof: gear^2 a_dof)
     const double* m = data.actuator_moment.row(a).data();
     Eigen::VectorXd& r = w.moment_times_a;
@@ -876,7 +923,6 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     // a muscle's k moves with the length (gradient m: L = gear q or gear ten_length; a site's
     // its own) and the velocity (gradient m in qvel; in qpos, a turning moment's G^T qvel)
     if (per_length != 0.0 || per_velocity != 0.0) {
-      if (site) site_transmission_change(model, data, a, w);
       for (int col = 0; col < nv; ++col) {
         double dk_dq = per_length * (site ? w.length_gradient[col] : m[col]);
         if (site) dk_dq += per_velocity * w.moment_change.col(col).dot(data.qvel);
@@ -888,7 +934,6 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     }
     // a site's moment turning: m k m^T changes by G_c k m^T + m k G_c^T along q_c (G = d m / d q)
     if (site && k != 0.0) {
-      site_transmission_change(model, data, a, w);
       const Eigen::MatrixXd& G = w.moment_change;
       double m_a = 0.0;
       for (int i = 0; i < nv; ++i) m_a += m[i] * w.qacc_step[i];
@@ -974,8 +1019,8 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     }
     forward_derivatives_unchecked(model, data, deriv);
     if (i == 0) {
-      record_active_set(data, w.active_set);
-    } else if (!same_active_set(data, w.active_set)) {
+      record_active_set(model, data, w.active_set);
+    } else if (!same_active_set(model, data, w.active_set, w.active_set_end)) {
       deriv.active_set_changes = true;
     }
     w.qvel_next += kB[i] * data.qvel;
@@ -1159,7 +1204,12 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.contact_Y.setZero(nefc_max, nv);
   work.contact_E.setZero(nv, nv);
   work.contact_H.setZero(nv, nv);
-  work.active_set.reserve(static_cast<std::size_t>(3 * std::max(0, model.nconmax) + nefc_max + 2));
+  work.contact_H_first.assign(ndof, 0);
+  // contacts, rows and the tendons' path points (at most two a wrap row), each wrapped geom's side
+  const auto active_set_max =
+      static_cast<std::size_t>(3 * std::max(0, model.nconmax) + nefc_max + 4 * model.nwrap + 2);
+  work.active_set.reserve(active_set_max);
+  work.active_set_end.reserve(active_set_max);
   work.qacc_sum.setZero(nv);
   work.next.emplace(model);
   work.contact_point_velocity.assign(ndof, Eigen::Vector3d::Zero());
@@ -1169,6 +1219,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.moves2.assign(ndof, 0);
   detail::carry_table(model, work.carries);
   work.pair_changes.assign(ndof * static_cast<std::size_t>(kMaxPairContacts), ContactChange{});
+  work.pair_motions.assign(ndof, GeomPairMotion{});
 }
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
@@ -1185,9 +1236,11 @@ void applied_force_derivatives(const Model& model, const Data& data, Derivatives
   // the rows held is H^-1 d f (docs/derivatives.md), the same H the contact rows are solved with
   auto& w = deriv.work;
   const int n = detail::held_active_rows(data, w.rows);
-  detail::factor_held_rows(data, w.rows.data(), n, w.contact_H);
-  deriv.dqacc_dapplied.setIdentity();
-  detail::solve_held_rows(w.contact_H, deriv.dqacc_dapplied, model.nv);
+  detail::factor_held_rows(data, w.rows.data(), n, w.contact_H, w.contact_H_first);
+  auto X = w.right_hand_sides.leftCols(model.nv);
+  X.setIdentity();
+  detail::solve_held_rows(w.contact_H, w.contact_H_first, X);
+  deriv.dqacc_dapplied = X;
 }
 
 void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
@@ -1208,7 +1261,7 @@ void step_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       } else {
         implicit_derivatives(model, data, deriv);
       }
-      record_active_set(data, w.active_set);
+      record_active_set(model, data, w.active_set);
       if (quaternions) data.qpos = w.qpos0;
       w.qvel_next = data.qvel + model.opt.timestep * w.qacc_step;
       check_step_end(model, data, deriv, w.qvel_next, w.qacc_step, data.act_dot);

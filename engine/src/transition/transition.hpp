@@ -36,11 +36,11 @@ void contact_change(const Model& model, const Data& data, int i, const Eigen::Ve
 int pair_first_contact(const Data& data, int i, int& count);
 
 /// contact_change() for each of the `count` contacts of the pair whose first is `first`
-/// (pair_first_contact()) at once: changes[k] for contact first + k. The narrow phase runs once.
+/// (pair_first_contact()) along each of the `directions` motions: changes[m * kMaxPairContacts + k]
+/// for contact first + k along motions[m]. The narrow phase runs once per motion, and its values
+/// are checked against data.contact once.
 void pair_contact_changes(const Model& model, const Data& data, int first, int count,
-                          const Eigen::Vector3d& w1, const Eigen::Vector3d& v1,
-                          const Eigen::Vector3d& w2, const Eigen::Vector3d& v2,
-                          ContactChange* changes);
+                          const GeomPairMotion* motions, int directions, ContactChange* changes);
 
 /// Whether a row other than a joint limit's exerts a force after forward() (a contact pushing, a
 /// friction-loss, tendon-limit or equality row): constraint_rows_held() then takes every row.
@@ -63,12 +63,22 @@ void carry_table(const Model& model, std::vector<char>& table);
 /// Throws lever::Error for an elliptic cone on its surface (its middle zone).
 int held_active_rows(const Data& data, std::vector<int>& rows);
 
+/// The dofs row r's Jacobian can be non-zero on, from lo: a contact's span of dofs
+/// (data.work.contact_span), a joint limit's or a dof's friction loss's one dof, else every dof.
+struct RowSpan {
+  int lo, count;
+};
+RowSpan row_span(const Data& data, int r);
+
 /// H = M + J_S^T D_S J_S over the rows rows[0..n) (D = 1 / R), factored in place as L L^T (L in
 /// its lower triangle): the matrix of forward dynamics linearised with those rows' active set held.
-void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H);
+/// first[i] (nv): the first column of row i of H, and of L, that is not zero (its profile).
+void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H,
+                      std::vector<int>& first);
 
-/// X's first cols columns = H^-1 X, with factor_held_rows()' factor.
-void solve_held_rows(const Eigen::MatrixXd& H, Eigen::Ref<Eigen::MatrixXd> X, int cols);
+/// X = H^-1 X, every column, with factor_held_rows()' factor L and profile.
+void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
+                     Eigen::Ref<RowMatrix> X);
 
 /// A connect's (3) or weld's (6) rows, equality constraint e's, at rows w.rows[first_k ...]:
 /// their terms of Y (qpos columns: D (d aref - dR f - dJ qacc)) and of E (dJ^T f), as the
