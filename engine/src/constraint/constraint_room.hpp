@@ -84,7 +84,27 @@ inline bool friction_loss_row(ConstraintType type) {
 // A contact's rows are combinations of its frame's rows over its span of dofs
 // (data.work.contact_frame_J, contact_span): the products work on those, a limit row on its dof.
 
-/// out = J x for every row (nefc numbers; x has nv).
+/// a . b over the dofs [lo, end) of n, summed as MuJoCo's mju_dot sums the whole length n (a is
+/// zero outside [lo, end), and zeros add nothing): four running sums by the dof's place in
+/// MuJoCo's groups of four, joined as (s0 + s2) + (s1 + s3), then the dofs past the last whole
+/// group summed in order and added. With D up to 1e6 on a cone's rows, a row's last bit shows in
+/// its force.
+inline double dot_as_mujoco(const double* a, const double* b, int lo, int end, int n) {
+  const int whole = n - n % 4;
+  double s[4] = {0.0, 0.0, 0.0, 0.0};
+  int j = lo;
+  for (; j < end && j < whole; ++j) s[j % 4] += a[j] * b[j];
+  double sum = (s[0] + s[2]) + (s[1] + s[3]);
+  if (j < end) {
+    double tail = a[j] * b[j];
+    for (++j; j < end; ++j) tail += a[j] * b[j];
+    sum += tail;
+  }
+  return sum;
+}
+
+/// out = J x for every row (nefc numbers; x has nv), a dense row's or a cone's rows' products
+/// summed as MuJoCo sums efc_J's (dot_as_mujoco).
 void rows_times(const Data& data, const double* x, double* out);
 
 /// out = J x - aref for every row (MuJoCo's jar: where the rows' accelerations stand against

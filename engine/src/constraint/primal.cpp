@@ -83,11 +83,8 @@ ConstraintState block_cost(const Data& data, int r, int size, const double* x, d
   double scale[6] = {}, U[6] = {};
   scale[0] = mu;
   for (int j = 1; j < size; ++j) scale[j] = con.friction[j - 1];
-  double T2 = 0.0;
-  for (int j = 0; j < size; ++j) {
-    U[j] = scale[j] * x[j];
-    if (j > 0) T2 += U[j] * U[j];
-  }
+  for (int j = 0; j < size; ++j) U[j] = scale[j] * x[j];
+  const double T2 = dot_as_mujoco(U + 1, U + 1, 0, size - 1, size - 1);
   const double N = U[0], T = std::sqrt(T2);
   if (N >= mu * T || (T <= 0 && N >= 0)) return ConstraintState::kSatisfied;
   if (mu * N + T <= 0 || (T <= 0 && N < 0)) {
@@ -105,7 +102,10 @@ ConstraintState block_cost(const Data& data, int r, int size, const double* x, d
   double dgap[6];
   dgap[0] = 1.0;
   for (int j = 1; j < size; ++j) dgap[j] = -mu * U[j] / T;
-  for (int j = 0; j < size; ++j) grad[j] = scale[j] * Dm * gap * dgap[j];
+  // the gradient in MuJoCo's order of products (its forces are these negated): the normal's
+  // Dm gap mu, each friction row's -(that / T) U_j friction_j
+  grad[0] = Dm * gap * mu;
+  for (int j = 1; j < size; ++j) grad[j] = -(grad[0] / T * U[j] * scale[j]);
   if (hess != nullptr) {
     // d^2 s / dU^2 = Dm (dgap dgap^T + gap d^2 gap / dU^2), d^2 gap / dt^2 = -mu (I - t t^T/T^2)/T
     for (int i = 0; i < size; ++i) {

@@ -581,11 +581,9 @@ void rows_times(const Data& data, const double* x, double* out) {
   const auto& C = data.work.contact_frame_J;
   const int nv = static_cast<int>(data.efc_J.cols());
   for (int r = 0; r < data.nefc;) {
-    if (dense_row(data.efc_type[r])) {  // summed in order
-      const double* J = data.efc_J.row(r).data();
-      double sum = 0.0;
-      for (int j = 0; j < nv; ++j) sum += J[j] * x[j];
-      out[r++] = sum;
+    if (dense_row(data.efc_type[r])) {
+      out[r] = dot_as_mujoco(data.efc_J.row(r).data(), x, 0, nv, nv);
+      ++r;
       continue;
     }
     if (data.efc_dof[r] >= 0) {  // a limit row: J_r = sign e_dof
@@ -596,13 +594,15 @@ void rows_times(const Data& data, const double* x, double* out) {
     const int i = data.efc_id[r];
     const Contact& con = data.contact[i];
     const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
+    if (data.efc_type[r] != ConstraintType::kContactPyramidal) {  // efc_J's rows are the frame's
+      for (int k = 0; k < con.dim; ++k, ++r) {
+        out[r] = dot_as_mujoco(C.row(r).data(), x, lo, lo + span, nv);
+      }
+      continue;
+    }
     double c[6];  // the frame's rows times x
     with_dim(con.dim,
              [&](auto dim) { frame_times<dim>(C.row(r).data() + lo, C.cols(), span, x + lo, c); });
-    if (data.efc_type[r] != ConstraintType::kContactPyramidal) {
-      for (int k = 0; k < con.dim; ++k) out[r++] = c[k];
-      continue;
-    }
     for (int k = 1; k < con.dim; ++k) {  // the edges n + mu t, n - mu t
       const double mu = con.friction[k - 1];
       out[r++] = c[0] + mu * c[k];
