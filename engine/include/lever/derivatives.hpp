@@ -132,7 +132,21 @@ struct Derivatives {
     /// pair's contacts
     std::vector<ContactChange> pair_changes;
     std::vector<GeomPairMotion> pair_motions;  ///< (nv) the pair's motion along each such dof
-    std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at a contact's point
+    std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at the world origin
+    /// Sums over the dofs on a geom pair's paths, weighted by qacc and qvel (contact_rows.cpp)
+    struct PathSums {
+      Eigen::Vector3d Va = Eigen::Vector3d::Zero(), Wa = Eigen::Vector3d::Zero();
+      Eigen::Vector3d Vv = Eigen::Vector3d::Zero(), Wv = Eigen::Vector3d::Zero();
+    };
+    /// One column of dJ^T f summed over a geom pair's contacts (contact_rows.cpp)
+    struct ColumnWrench {
+      Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+      Eigen::Vector3d carried_force = Eigen::Vector3d::Zero();
+      Eigen::Vector3d carried_torque = Eigen::Vector3d::Zero();
+    };
+    std::vector<int> pair_dofs;  ///< (nv) the dofs that move a geom pair, in order
+    std::vector<PathSums> pair_turned;  ///< (nv) per such dof c: the sums over the dofs c turns
+    std::vector<ColumnWrench> pair_columns;  ///< (nv) per such dof c: dJ^T f's column c
     /// (2nv) a connect's or weld's two anchors: each dof's velocity at body 1's anchor, then at
     /// body 2's (transition/equality_rows.cpp)
     std::vector<Eigen::Vector3d> equality_point_velocity;
