@@ -122,7 +122,8 @@ struct Derivatives {
     std::vector<VelocityCoupling> CC_minus;  ///< (nbody) implicit: CC at qd - s a
     // contacts' rows with their active set held (transition/contact_rows.cpp)
     RowMatrix contact_Y;          ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
-    Eigen::MatrixXd contact_E;    ///< (nv x nv) dJ^T f, one column per qpos direction
+    /// (nv x nv) dJ^T f, one column per qpos direction, and the contact rows' J^T Y
+    Eigen::MatrixXd contact_E;
     Eigen::MatrixXd contact_H;    ///< (nv x nv) M + J^T D J over the active rows, then its factor
     std::vector<int> contact_H_first;  ///< (nv) the first column of each of its rows not zero
     std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
@@ -138,7 +139,7 @@ struct Derivatives {
       Eigen::Vector3d Va = Eigen::Vector3d::Zero(), Wa = Eigen::Vector3d::Zero();
       Eigen::Vector3d Vv = Eigen::Vector3d::Zero(), Wv = Eigen::Vector3d::Zero();
     };
-    /// One column of dJ^T f summed over a geom pair's contacts (contact_rows.cpp)
+    /// One column of dJ^T f and J^T Y summed over a geom pair's contacts (contact_rows.cpp)
     struct ColumnWrench {
       Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
       Eigen::Vector3d carried_force = Eigen::Vector3d::Zero();

@@ -319,11 +319,16 @@ namespace {
 // bodies' paths (s_d = +1 on body 2's, -1 on body 1's), with j_d(p) = v_d + w_d x p, v_d dof d's
 // velocity at the world origin (w.contact_point_velocity). So a sum over d at any contact point
 // follows from two sums made once for the pair: sum x_d j_d(p) = sum x_d v_d + (sum x_d w_d) x p.
-// Likewise column c of dJ^T f, summed over the pair's contacts as a ColumnWrench, adds
-// s_d (force . v_d + torque . w_d) to E(d, c) for every d on one path, and
+// Likewise column c of dJ^T f and of the pair's rows' J^T Y, summed over the pair's contacts as a
+// ColumnWrench, adds s_d (force . v_d + torque . w_d) to E(d, c) for every d on one path, and
 // s_d (carried_force . v_d + carried_torque . w_d) where c turns d's axis.
 using PathSums = Derivatives::Workspace::PathSums;
 using ColumnWrench = Derivatives::Workspace::ColumnWrench;
+
+bool is_contact(ConstraintType type) {
+  return type == ConstraintType::kContactFrictionless ||
+         type == ConstraintType::kContactPyramidal || type == ConstraintType::kContactElliptic;
+}
 
 // Sets up a pair whose bodies w.moves1, w.moves2 hold: each dof's velocity at the world origin,
 // the path sums, the dofs that move the pair (w.pair_dofs), its motion along each
@@ -407,7 +412,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   const int n = held_active_rows(data, w.rows);
   w.active_rows = n;
   RowMatrix& Y = w.contact_Y;  // (nefc_max x nv) y's qpos columns, a row per active row
-  Eigen::MatrixXd& E = w.contact_E;  // (nv x nv) dJ^T f
+  Eigen::MatrixXd& E = w.contact_E;  // (nv x nv) dJ^T f, and the contact rows' J^T Y
   Y.topRows(n).setZero();
   E.setZero();
 
@@ -559,12 +564,17 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         dCa[k] = k < 3 ? de.dot(Va) + e.dot(dVa) : de.dot(Wa) + e.dot(dWa);
         dCv[k] = k < 3 ? de.dot(Vv) + e.dot(dVv) : de.dot(Wv) + e.dot(dWv);
       }
+      // each row's y, and J_r^T y_r's column c: J_r is a combination of the frame's rows C_k
+      // (a pyramid's C_0 +- mu C_t), so sum_r J_r^T y_r = sum_k C_k^T z_k, a force and a torque
+      // at p, summed with dJ^T f's column and spread with it
+      double z[6] = {0, 0, 0, 0, 0, 0};
       for (int k = first_k; k < n && w.rows[k] < first + rows; ++k) {
         const int r = w.rows[k], q = r - first;
-        double dJa, dJv;
+        double dJa, dJv, mu = 0.0;
+        int t = q;  // the row is C_t (+ C_0 / mu, a pyramid's)
         if (pyramid) {
-          const int t = q / 2 + 1;
-          const double mu = con.friction[static_cast<std::size_t>(t - 1)] * (q % 2 ? -1.0 : 1.0);
+          t = q / 2 + 1;
+          mu = con.friction[static_cast<std::size_t>(t - 1)] * (q % 2 ? -1.0 : 1.0);
           dJa = dCa[0] + mu * dCa[t];
           dJv = dCv[0] + mu * dCv[t];
         } else {
@@ -574,8 +584,20 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         const double daref =
             -data.efc_B[r] * dJv + data.efc_K[r] * soft.aref_per_dist * change.dist;
         const double dR = data.efc_R[r] * soft.R_per_dist * change.dist;
-        Y(k, c) = data.efc_D[r] * (daref - dR * data.efc_force[r] - dJa);
+        const double y = data.efc_D[r] * (daref - dR * data.efc_force[r] - dJa);
+        Y(k, c) = y;
+        if (pyramid) {
+          z[0] += y;
+          z[t] += mu * y;
+        } else {
+          z[t] += y;
+        }
       }
+      Vec3 row_force = Vec3::Zero(), row_torque = Vec3::Zero();
+      for (int k = 0; k < 3 && k < dim; ++k) row_force += z[k] * con.frame.row(k).transpose();
+      for (int k = 3; k < dim; ++k) row_torque += z[k] * con.frame.row(k - 3).transpose();
+      column.force += row_force;
+      column.torque += p.cross(row_force) + row_torque;
     }
   }
   if (cached_pair >= 0) spread_pair_columns(model, data, w, directions, E);
@@ -597,10 +619,11 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     const RowSpan span = row_span(data, r);
     const double velocity_weight = -data.efc_D[r] * data.efc_B[r];
     const double* y = Y.row(k).data();
+    const bool in_E = is_contact(data.efc_type[r]);  // a contact's J_r^T y_r is in E already
     for (int i = span.lo; i < span.lo + span.count; ++i) {
       if (J[i] == 0.0) continue;
       double* x = X.row(i).data();
-      for (int c = 0; c < nv; ++c) x[c] += J[i] * y[c];
+      for (int c = 0; c < nv && !in_E; ++c) x[c] += J[i] * y[c];
       const double a = J[i] * velocity_weight;
       for (int c = span.lo; c < span.lo + span.count; ++c) x[nv + c] += a * J[c];
     }
