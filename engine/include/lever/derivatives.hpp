@@ -122,7 +122,8 @@ struct Derivatives {
     std::vector<VelocityCoupling> CC_minus;  ///< (nbody) implicit: CC at qd - s a
     // contacts' rows with their active set held (transition/contact_rows.cpp)
     RowMatrix contact_Y;          ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
-    Eigen::MatrixXd contact_E;    ///< (nv x nv) dJ^T f, one column per qpos direction
+    /// (nv x nv) dJ^T f, one column per qpos direction, and the contact rows' J^T Y
+    Eigen::MatrixXd contact_E;
     Eigen::MatrixXd contact_H;    ///< (nv x nv) M + J^T D J over the active rows, then its factor
     std::vector<int> contact_H_first;  ///< (nv) the first column of each of its rows not zero
     std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
@@ -132,7 +133,21 @@ struct Derivatives {
     /// pair's contacts
     std::vector<ContactChange> pair_changes;
     std::vector<GeomPairMotion> pair_motions;  ///< (nv) the pair's motion along each such dof
-    std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at a contact's point
+    std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at the world origin
+    /// Sums over the dofs on a geom pair's paths, weighted by qacc and qvel (contact_rows.cpp)
+    struct PathSums {
+      Eigen::Vector3d Va = Eigen::Vector3d::Zero(), Wa = Eigen::Vector3d::Zero();
+      Eigen::Vector3d Vv = Eigen::Vector3d::Zero(), Wv = Eigen::Vector3d::Zero();
+    };
+    /// One column of dJ^T f and J^T Y summed over a geom pair's contacts (contact_rows.cpp)
+    struct ColumnWrench {
+      Eigen::Vector3d force = Eigen::Vector3d::Zero(), torque = Eigen::Vector3d::Zero();
+      Eigen::Vector3d carried_force = Eigen::Vector3d::Zero();
+      Eigen::Vector3d carried_torque = Eigen::Vector3d::Zero();
+    };
+    std::vector<int> pair_dofs;  ///< (nv) the dofs that move a geom pair, in order
+    std::vector<PathSums> pair_turned;  ///< (nv) per such dof c: the sums over the dofs c turns
+    std::vector<ColumnWrench> pair_columns;  ///< (nv) per such dof c: dJ^T f's column c
     /// (2nv) a connect's or weld's two anchors: each dof's velocity at body 1's anchor, then at
     /// body 2's (transition/equality_rows.cpp)
     std::vector<Eigen::Vector3d> equality_point_velocity;

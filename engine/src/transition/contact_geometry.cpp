@@ -1,8 +1,9 @@
 // How a contact's distance, position and frame change when its two geoms move: the narrow phase's
 // closed-form pairs (collision/primitive_pairs.hpp and collision/box_pairs.hpp, written once on a
 // scalar; here the plane-ellipsoid support point too) and the driver's frame
-// completion (MuJoCo's mju_makeFrame), evaluated on dual numbers a + b e (e^2 = 0) with the geoms'
-// poses moving along a rigid motion. Every branch is decided on the values, as the collision stage
+// completion (MuJoCo's mju_makeFrame), evaluated on dual numbers a + sum_m b_m e_m (e_m e_n = 0)
+// with the geoms' poses moving along up to six rigid motions at once (the values computed once, a
+// derivative per motion). Every branch is decided on the values, as the collision stage
 // decided it, so the result is the exact derivative of the contact the stage found, its case held
 // (which face, which corner, which end of a capsule): forward-mode differentiation, no step and no
 // truncation. The values are checked against data.contact, so a contact this room does not
@@ -16,6 +17,7 @@
 #include <lever/collision.hpp>
 #include <lever/error.hpp>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <string>
@@ -31,23 +33,34 @@ namespace lever::detail {
 
 namespace {
 
-using V = primitive::Vec<Dual>;
+// the narrow phase runs along kMotions motions at once: the values once, a derivative per motion
+constexpr int kMotions = 6;
+using Scalar = Duals<kMotions>;
+using V = primitive::Vec<Scalar>;
 using primitive::cross;
 using primitive::dot;
 using primitive::normalize;
-V constant(const Eigen::Vector3d& x) { return primitive::constant_vec<Dual>(x); }
+V constant(const Eigen::Vector3d& x) { return primitive::constant_vec<Scalar>(x); }
 
-// A geom's pose moving rigidly: pos' = w x (pos - centre) + v at the centre, mat' = [w] mat.
-using Pose = primitive::Shape<Dual>;
+// A geom's pose moving rigidly along each of the motions (geom 1's or 2's part of each):
+// pos' = w x (pos - centre) + v at the centre, mat' = [w] mat; motions past `count` stand still.
+using Pose = primitive::Shape<Scalar>;
 
-Pose moving_pose(const Model& model, const Data& data, int g, const Eigen::Vector3d& w,
-                 const Eigen::Vector3d& v) {
+Pose moving_pose(const Model& model, const Data& data, int g, const GeomPairMotion* motions,
+                 int count, bool second) {
   Pose p{model.geom_type[g], model.geom_size[g], {}, {}};
-  for (int k = 0; k < 3; ++k) p.pos[k] = {data.geom_xpos[g][k], v[k]};
+  for (int k = 0; k < 3; ++k) p.pos[k] = Scalar(data.geom_xpos[g][k]);
   for (int c = 0; c < 3; ++c) {
-    const Eigen::Vector3d a = data.geom_xmat[g].col(c);
-    const Eigen::Vector3d turn = w.cross(a);
-    for (int k = 0; k < 3; ++k) p.axis[c][k] = {a[k], turn[k]};
+    for (int k = 0; k < 3; ++k) p.axis[c][k] = Scalar(data.geom_xmat[g](k, c));
+  }
+  for (int m = 0; m < count; ++m) {
+    const Eigen::Vector3d& w = second ? motions[m].w2 : motions[m].w1;
+    const Eigen::Vector3d& v = second ? motions[m].v2 : motions[m].v1;
+    for (int k = 0; k < 3; ++k) p.pos[k].d[m] = v[k];
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d turn = w.cross(data.geom_xmat[g].col(c));
+      for (int k = 0; k < 3; ++k) p.axis[c][k].d[m] = turn[k];
+    }
   }
   return p;
 }
@@ -58,9 +71,9 @@ V unrotate(const Pose& p, const V& x) {
   return {{dot(p.axis[0], x), dot(p.axis[1], x), dot(p.axis[2], x)}};
 }
 
-using Found = primitive::Touch<Dual>;
+using Found = primitive::Touch<Scalar>;
 
-void set(Found& f, Dual dist, const V& pos, const V& normal) {
+void set(Found& f, const Scalar& dist, const V& pos, const V& normal) {
   primitive::touch(f, dist, pos, normal);
 }
 
@@ -75,14 +88,14 @@ int plane_ellipsoid(const Pose& plane, const Pose& ellipsoid, double margin, Fou
   support = {support[0] * ellipsoid.size[0], support[1] * ellipsoid.size[1],
              support[2] * ellipsoid.size[2]};
   const V deepest = rotate(ellipsoid, support) + ellipsoid.pos;
-  const Dual dist = dot(n, deepest - plane.pos);
+  const Scalar dist = dot(n, deepest - plane.pos);
   if (dist.v > margin) return 0;
   set(out[0], dist, deepest + n * (dist * -0.5), n);
   return 1;
 }
 
 // The box pairs of collision/box_pairs.hpp on the moving poses.
-box_pairs::Vec3<Dual> box_vec(const V& x) { return {x[0], x[1], x[2]}; }
+box_pairs::Vec3<Scalar> box_vec(const V& x) { return {x[0], x[1], x[2]}; }
 
 int sphere_box(const Pose& sphere, const Pose& box, double margin, Found* out) {
   return box_pairs::sphere_box(box_vec(sphere.pos), sphere.size[0], box_pairs::box_of(box), margin,
@@ -126,7 +139,7 @@ int plane_mesh(const Pose& plane, const Pose& mesh, const Data& data, int first,
     const Eigen::Vector3d vertex = c.pos + c.frame.row(0).transpose() * (0.5 * c.dist);
     const Eigen::Vector3d local = data.geom_xmat[g].transpose() * (vertex - data.geom_xpos[g]);
     const V point = rotate(mesh, constant(local)) + mesh.pos;
-    const Dual dist = dot(n, point - plane.pos);
+    const Scalar dist = dot(n, point - plane.pos);
     set(out[k], dist, point + n * (dist * -0.5), n);
   }
   return count;
@@ -221,10 +234,10 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   margin = pair >= 0 ? model.pair_margin[pair]
                      : std::max(model.geom_margin[con.geom1], model.geom_margin[con.geom2]);
   std::array<Found, kMaxPairContacts> found;
-  for (int m = 0; m < directions; ++m) {
-    const GeomPairMotion& motion = motions[m];
-    const Pose g1 = moving_pose(model, data, con.geom1, motion.w1, motion.v1);
-    const Pose g2 = moving_pose(model, data, con.geom2, motion.w2, motion.v2);
+  for (int m0 = 0; m0 < directions; m0 += kMotions) {  // kMotions motions at a time
+    const int motions_now = std::min(kMotions, directions - m0);
+    const Pose g1 = moving_pose(model, data, con.geom1, motions + m0, motions_now, false);
+    const Pose g2 = moving_pose(model, data, con.geom2, motions + m0, motions_now, true);
     const int n = g1.type == GeomType::kPlane && g2.type == GeomType::kMesh
                       ? plane_mesh(g1, g2, data, first, count, found.data())
                       : collide_moving(g1, g2, margin, found.data());
@@ -237,7 +250,7 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
 
       // the values are the collision stage's (the same along every motion): else this is not
       // the contact it found
-      if (m == 0) {
+      if (m0 == 0) {
         double gap = std::abs(f.dist.v - ck.dist);
         for (int a = 0; a < 3; ++a) {
           gap = std::max(gap, std::abs(f.pos[a].v - ck.pos[a]));
@@ -251,11 +264,13 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
                       std::to_string(gap) + ").");
         }
       }
-      ContactChange& change = changes[m * kMaxPairContacts + k];
-      change.dist = f.dist.d;
-      for (int a = 0; a < 3; ++a) {
-        change.pos[a] = f.pos[a].d;
-        for (int r = 0; r < 3; ++r) change.frame(r, a) = frame[r][a].d;
+      for (int m = 0; m < motions_now; ++m) {
+        ContactChange& change = changes[(m0 + m) * kMaxPairContacts + k];
+        change.dist = f.dist.d[m];
+        for (int a = 0; a < 3; ++a) {
+          change.pos[a] = f.pos[a].d[m];
+          for (int r = 0; r < 3; ++r) change.frame(r, a) = frame[r][a].d[m];
+        }
       }
     }
   }

@@ -313,13 +313,106 @@ bool rows_beyond_joint_limits(const Data& data) {
   return false;
 }
 
+namespace {
+
+// A geom pair's contact rows are C_k = frame_k . (sum_d s_d j_d(p)) over the dofs d on one of its
+// bodies' paths (s_d = +1 on body 2's, -1 on body 1's), with j_d(p) = v_d + w_d x p, v_d dof d's
+// velocity at the world origin (w.contact_point_velocity). So a sum over d at any contact point
+// follows from two sums made once for the pair: sum x_d j_d(p) = sum x_d v_d + (sum x_d w_d) x p.
+// Likewise column c of dJ^T f and of the pair's rows' J^T Y, summed over the pair's contacts as a
+// ColumnWrench, adds s_d (force . v_d + torque . w_d) to E(d, c) for every d on one path, and
+// s_d (carried_force . v_d + carried_torque . w_d) where c turns d's axis.
+using PathSums = Derivatives::Workspace::PathSums;
+using ColumnWrench = Derivatives::Workspace::ColumnWrench;
+
+bool is_contact(ConstraintType type) {
+  return type == ConstraintType::kContactFrictionless ||
+         type == ConstraintType::kContactPyramidal || type == ConstraintType::kContactElliptic;
+}
+
+// Sets up a pair whose bodies w.moves1, w.moves2 hold: each dof's velocity at the world origin,
+// the path sums, the dofs that move the pair (w.pair_dofs), its motion along each
+// (w.pair_motions) and the sums over the dofs each turns (w.pair_turned), its columns of dJ^T f
+// zeroed (w.pair_columns); returns the dofs' count.
+int begin_pair(const Model& model, const Data& data, const Contact& con, PathSums& path,
+               Derivatives::Workspace& w) {
+  const int nv = model.nv;
+  path = PathSums{};
+  for (int d = 0; d < nv; ++d) {
+    if (!w.moves1[d] && !w.moves2[d]) continue;
+    const Vec3 v = point_velocity(model, data, d, Vec3::Zero());
+    w.contact_point_velocity[static_cast<std::size_t>(d)] = v;
+    if (w.moves1[d] == w.moves2[d]) continue;
+    const double s = w.moves2[d] ? 1.0 : -1.0;
+    const Vec3 wd = angular(data.cdof[d]);
+    path.Va += s * data.qacc[d] * v;
+    path.Wa += s * data.qacc[d] * wd;
+    path.Vv += s * data.qvel[d] * v;
+    path.Wv += s * data.qvel[d] * wd;
+  }
+  int directions = 0;
+  for (int c = 0; c < nv; ++c) {
+    if (!w.moves1[c] && !w.moves2[c]) continue;
+    const auto m = static_cast<std::size_t>(directions++);
+    w.pair_dofs[m] = c;
+    const Vec3 wc = angular(data.cdof[c]);
+    GeomPairMotion& motion = w.pair_motions[m];
+    motion = GeomPairMotion{};
+    if (w.moves1[c]) {
+      motion.w1 = wc;
+      motion.v1 = point_velocity(model, data, c, data.geom_xpos[con.geom1]);
+    }
+    if (w.moves2[c]) {
+      motion.w2 = wc;
+      motion.v2 = point_velocity(model, data, c, data.geom_xpos[con.geom2]);
+    }
+    PathSums& turned = w.pair_turned[m];
+    turned = PathSums{};
+    w.pair_columns[m] = ColumnWrench{};
+    const char* carried = w.carries.data() + static_cast<std::ptrdiff_t>(c) * nv;
+    for (int d = 0; d < nv; ++d) {
+      if (!carried[d] || w.moves1[d] == w.moves2[d]) continue;
+      const double s = w.moves2[d] ? 1.0 : -1.0;
+      const Vec3& v = w.contact_point_velocity[static_cast<std::size_t>(d)];
+      const Vec3 wd = angular(data.cdof[d]);
+      turned.Va += s * data.qacc[d] * v;
+      turned.Wa += s * data.qacc[d] * wd;
+      turned.Vv += s * data.qvel[d] * v;
+      turned.Wv += s * data.qvel[d] * wd;
+    }
+  }
+  return directions;
+}
+
+// Adds the pair's summed columns of dJ^T f to E, over the dofs on one path.
+void spread_pair_columns(const Model& model, const Data& data, const Derivatives::Workspace& w,
+                         int directions, Eigen::MatrixXd& E) {
+  const int nv = model.nv;
+  for (int m = 0; m < directions; ++m) {
+    const int c = w.pair_dofs[static_cast<std::size_t>(m)];
+    const ColumnWrench& column = w.pair_columns[static_cast<std::size_t>(m)];
+    const char* carried = w.carries.data() + static_cast<std::ptrdiff_t>(c) * nv;
+    for (int d = 0; d < nv; ++d) {
+      if (w.moves1[d] == w.moves2[d]) continue;
+      const double s = w.moves2[d] ? 1.0 : -1.0;
+      const Vec3& v = w.contact_point_velocity[static_cast<std::size_t>(d)];
+      const Vec3 wd = angular(data.cdof[d]);
+      double e = column.force.dot(v) + column.torque.dot(wd);
+      if (carried[d]) e += column.carried_force.dot(v) + column.carried_torque.dot(wd);
+      E(d, c) += s * e;
+    }
+  }
+}
+
+}  // namespace
+
 void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   auto& w = deriv.work;
   const int nv = model.nv, nu = model.nu;
   const int n = held_active_rows(data, w.rows);
   w.active_rows = n;
   RowMatrix& Y = w.contact_Y;  // (nefc_max x nv) y's qpos columns, a row per active row
-  Eigen::MatrixXd& E = w.contact_E;  // (nv x nv) dJ^T f
+  Eigen::MatrixXd& E = w.contact_E;  // (nv x nv) dJ^T f, and the contact rows' J^T Y
   Y.topRows(n).setZero();
   E.setZero();
 
@@ -370,10 +463,14 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     E += data.efc_force[r] * w.tendon_change;
   }
 
-  // the contacts with an active row
+  // the contacts with an active row, a geom pair at a time: the pair's sums over its dofs are
+  // made once, each contact's terms follow from them at its point, and dJ^T f's columns are
+  // summed over the pair's contacts before they are spread over the dofs
   std::vector<char>& moves1 = w.moves1;
   std::vector<char>& moves2 = w.moves2;
-  int cached_pair = -1;  // the first contact of the pair whose changes w.pair_changes holds
+  PathSums path;  // the pair's
+  int cached_pair = -1;  // the first contact of the pair whose terms w holds
+  int directions = 0;    // the dofs that move that pair
   for (int i = 0; i < data.ncon; ++i) {
     const Contact& con = data.contact[static_cast<std::size_t>(i)];
     const int first = con.efc_address;
@@ -391,13 +488,18 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       contact_change(model, data, i, Vec3::Zero(), Vec3::Zero(), Vec3::Zero(), Vec3::Zero(),
                      unused);
     }
-    const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
-    dofs_moving(model, b1, moves1);
-    dofs_moving(model, b2, moves2);
     int pair_count = 0;
     const int pair_first = pair_first_contact(data, i, pair_count);
-    const bool fresh_pair = pair_first != cached_pair;  // else its changes are in w.pair_changes
-    cached_pair = pair_first;
+    if (pair_first != cached_pair) {  // the pair's first contact with a pushing row
+      if (cached_pair >= 0) spread_pair_columns(model, data, w, directions, E);
+      cached_pair = pair_first;
+      dofs_moving(model, model.geom_bodyid[con.geom1], moves1);
+      dofs_moving(model, model.geom_bodyid[con.geom2], moves2);
+      directions = begin_pair(model, data, con, path, w);
+      // all of the pair's contacts, along each dof that moves the pair, at once
+      pair_contact_changes(model, data, pair_first, pair_count, w.pair_motions.data(), directions,
+                           w.pair_changes.data());
+    }
     const Vec3 p = con.pos;
 
     // the frame force (normal, tangents, spin, rolls) of the rows' forces
@@ -415,22 +517,9 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     for (int k = 0; k < 3 && k < dim; ++k) phi += F[k] * con.frame.row(k).transpose();
     for (int k = 3; k < dim; ++k) tau += F[k] * con.frame.row(k - 3).transpose();
 
-    // relative point and angular velocities of qacc and qvel (the dofs of one path only), and
-    // each dof's point velocity at p, read again for every column below
-    Vec3 Va = Vec3::Zero(), Wa = Vec3::Zero(), Vv = Vec3::Zero(), Wv = Vec3::Zero();
-    auto& point = w.contact_point_velocity;
-    for (int d = 0; d < nv; ++d) {
-      if (moves1[d] == moves2[d] && !moves1[d]) continue;
-      point[static_cast<std::size_t>(d)] = point_velocity(model, data, d, p);
-      if (moves1[d] == moves2[d]) continue;
-      const double s = moves2[d] ? 1.0 : -1.0;
-      const Vec3& jd = point[static_cast<std::size_t>(d)];
-      const Vec3 wd = angular(data.cdof[d]);
-      Va += s * data.qacc[d] * jd;
-      Wa += s * data.qacc[d] * wd;
-      Vv += s * data.qvel[d] * jd;
-      Wv += s * data.qvel[d] * wd;
-    }
+    // relative point and angular velocities of qacc and qvel at p
+    const Vec3 Va = path.Va + path.Wa.cross(p), Wa = path.Wa;
+    const Vec3 Vv = path.Vv + path.Wv.cross(p), Wv = path.Wv;
 
     // the soft parameters' slopes through the contact's distance (every row of it shares them)
     const int b_sum1 = model.geom_bodyid[con.geom1], b_sum2 = model.geom_bodyid[con.geom2];
@@ -439,66 +528,34 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     const double diag = pyramid ? translation + mu0 * mu0 * translation : translation;
     const SoftSlopes soft = soft_slopes(bounded_solimp(con.solimp), con.dist, con.includemargin, diag);
 
-    if (fresh_pair) {  // the pair's first contact with a pushing row: all of its contacts, along
-                       // each dof that moves the pair, at once
-      int directions = 0;
-      for (int c = 0; c < nv; ++c) {
-        if (!moves1[c] && !moves2[c]) continue;
-        const Vec3 wc = angular(data.cdof[c]);
-        GeomPairMotion& motion = w.pair_motions[static_cast<std::size_t>(directions++)];
-        motion = GeomPairMotion{};
-        if (moves1[c]) {
-          motion.w1 = wc;
-          motion.v1 = point_velocity(model, data, c, data.geom_xpos[con.geom1]);
-        }
-        if (moves2[c]) {
-          motion.w2 = wc;
-          motion.v2 = point_velocity(model, data, c, data.geom_xpos[con.geom2]);
-        }
-      }
-      pair_contact_changes(model, data, pair_first, pair_count, w.pair_motions.data(), directions,
-                           w.pair_changes.data());
-    }
-    int direction = 0;  // the dofs that move the pair, in order: pair_changes' directions
-    for (int c = 0; c < nv; ++c) {
-      if (!moves1[c] && !moves2[c]) continue;
+    for (int m = 0; m < directions; ++m) {
+      const int c = w.pair_dofs[static_cast<std::size_t>(m)];
       const Vec3 wc = angular(data.cdof[c]);
-      const ContactChange* pair_changes =
-          &w.pair_changes[static_cast<std::size_t>(direction++) * kMaxPairContacts];
-      const ContactChange& change = pair_changes[i - pair_first];
-      const Vec3& jc = point[static_cast<std::size_t>(c)];
+      const ContactChange& change =
+          w.pair_changes[static_cast<std::size_t>(m) * kMaxPairContacts +
+                         static_cast<std::size_t>(i - pair_first)];
+      const Vec3 jc = w.contact_point_velocity[static_cast<std::size_t>(c)] + wc.cross(p);
+      const PathSums& turned = w.pair_turned[static_cast<std::size_t>(m)];
+      ColumnWrench& column = w.pair_columns[static_cast<std::size_t>(m)];
 
-      // dV, dW for qacc and qvel, and dJ^T f's column c
+      // dJ^T f's column c: phi . d j_d + tau . d w_d over the dofs d on one path, with
+      // d j_d = w_d x dp (+ w_c x j_d - w_d x j_c where c turns d's axis) and d w_d = w_c x w_d
+      // where it does; phi . d j_d + tau . d w_d = j_d . (phi x w_c) + w_d . (tau x w_c - j_c x
+      // phi) there. With j_d = v_d + w_d x p each is force . v_d + torque . w_d.
       Vec3 dphi = Vec3::Zero(), dtau = Vec3::Zero();
       for (int k = 0; k < 3 && k < dim; ++k) dphi += F[k] * change.frame.row(k).transpose();
       for (int k = 3; k < dim; ++k) dtau += F[k] * change.frame.row(k - 3).transpose();
-      // phi . (w_d x dp) = w_d . (dp x phi): one cross product for every d
-      const Vec3 dtau_all = change.pos.cross(phi) + dtau;
-      // where c turns d's axis, d j_d = w_c x j_d - w_d x j_c and d w_d = w_c x w_d, so
-      // phi . d j_d + tau . d w_d = j_d . (phi x w_c) + w_d . (tau x w_c - j_c x phi), and the
-      // sums of x_d d j_d and x_d d w_d over those d are w_c x (sum x_d j_d) - (sum x_d w_d) x j_c
-      // and w_c x (sum x_d w_d): two vectors per column, sums per d, the products once
       const Vec3 turn_j = phi.cross(wc), turn_w = tau.cross(wc) - jc.cross(phi);
-      Vec3 Ja = Vec3::Zero(), Wa_turned = Vec3::Zero(), Jv = Vec3::Zero(), Wv_turned = Vec3::Zero();
-      for (int d = 0; d < nv; ++d) {
-        if (moves1[d] == moves2[d]) continue;
-        const double s = moves2[d] ? 1.0 : -1.0;
-        const Vec3& jd = point[static_cast<std::size_t>(d)];
-        const Vec3 wd = angular(data.cdof[d]);
-        double e = dphi.dot(jd) + dtau_all.dot(wd);
-        if (w.carries[static_cast<std::size_t>(c * nv + d)] != 0) {  // c turns d's axis
-          e += turn_j.dot(jd) + turn_w.dot(wd);
-          const double a = s * data.qacc[d], v = s * data.qvel[d];
-          Ja += a * jd;
-          Wa_turned += a * wd;
-          Jv += v * jd;
-          Wv_turned += v * wd;
-        }
-        E(d, c) += s * e;
-      }
-      const Vec3 dVa = Wa.cross(change.pos) + wc.cross(Ja) - Wa_turned.cross(jc);
-      const Vec3 dVv = Wv.cross(change.pos) + wc.cross(Jv) - Wv_turned.cross(jc);
-      const Vec3 dWa = wc.cross(Wa_turned), dWv = wc.cross(Wv_turned);
+      column.force += dphi;
+      column.torque += p.cross(dphi) + change.pos.cross(phi) + dtau;
+      column.carried_force += turn_j;
+      column.carried_torque += p.cross(turn_j) + turn_w;
+
+      // dV, dW for qacc and qvel: the moved point, and the axes c turns
+      const Vec3 Ja = turned.Va + turned.Wa.cross(p), Jv = turned.Vv + turned.Wv.cross(p);
+      const Vec3 dVa = Wa.cross(change.pos) + wc.cross(Ja) - turned.Wa.cross(jc);
+      const Vec3 dVv = Wv.cross(change.pos) + wc.cross(Jv) - turned.Wv.cross(jc);
+      const Vec3 dWa = wc.cross(turned.Wa), dWv = wc.cross(turned.Wv);
       // d (C_k x) for x = qacc, qvel
       double dCa[6], dCv[6];
       for (int k = 0; k < dim; ++k) {
@@ -507,12 +564,17 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         dCa[k] = k < 3 ? de.dot(Va) + e.dot(dVa) : de.dot(Wa) + e.dot(dWa);
         dCv[k] = k < 3 ? de.dot(Vv) + e.dot(dVv) : de.dot(Wv) + e.dot(dWv);
       }
+      // each row's y, and J_r^T y_r's column c: J_r is a combination of the frame's rows C_k
+      // (a pyramid's C_0 +- mu C_t), so sum_r J_r^T y_r = sum_k C_k^T z_k, a force and a torque
+      // at p, summed with dJ^T f's column and spread with it
+      double z[6] = {0, 0, 0, 0, 0, 0};
       for (int k = first_k; k < n && w.rows[k] < first + rows; ++k) {
         const int r = w.rows[k], q = r - first;
-        double dJa, dJv;
+        double dJa, dJv, mu = 0.0;
+        int t = q;  // the row is C_t (+ C_0 / mu, a pyramid's)
         if (pyramid) {
-          const int t = q / 2 + 1;
-          const double mu = con.friction[static_cast<std::size_t>(t - 1)] * (q % 2 ? -1.0 : 1.0);
+          t = q / 2 + 1;
+          mu = con.friction[static_cast<std::size_t>(t - 1)] * (q % 2 ? -1.0 : 1.0);
           dJa = dCa[0] + mu * dCa[t];
           dJv = dCv[0] + mu * dCv[t];
         } else {
@@ -522,10 +584,23 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         const double daref =
             -data.efc_B[r] * dJv + data.efc_K[r] * soft.aref_per_dist * change.dist;
         const double dR = data.efc_R[r] * soft.R_per_dist * change.dist;
-        Y(k, c) = data.efc_D[r] * (daref - dR * data.efc_force[r] - dJa);
+        const double y = data.efc_D[r] * (daref - dR * data.efc_force[r] - dJa);
+        Y(k, c) = y;
+        if (pyramid) {
+          z[0] += y;
+          z[t] += mu * y;
+        } else {
+          z[t] += y;
+        }
       }
+      Vec3 row_force = Vec3::Zero(), row_torque = Vec3::Zero();
+      for (int k = 0; k < 3 && k < dim; ++k) row_force += z[k] * con.frame.row(k).transpose();
+      for (int k = 3; k < dim; ++k) row_torque += z[k] * con.frame.row(k - 3).transpose();
+      column.force += row_force;
+      column.torque += p.cross(row_force) + row_torque;
     }
   }
+  if (cached_pair >= 0) spread_pair_columns(model, data, w, directions, E);
 
   // d qacc = G + H^-1 (E + J_S^T (Y - D J_S G)) = H^-1 (rhs + E + J_S^T Y), because
   // H G - J_S^T D J_S G = M G = rhs, the right-hand side smooth_rhs() left in w.rhs_* (before
@@ -544,10 +619,11 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     const RowSpan span = row_span(data, r);
     const double velocity_weight = -data.efc_D[r] * data.efc_B[r];
     const double* y = Y.row(k).data();
+    const bool in_E = is_contact(data.efc_type[r]);  // a contact's J_r^T y_r is in E already
     for (int i = span.lo; i < span.lo + span.count; ++i) {
       if (J[i] == 0.0) continue;
       double* x = X.row(i).data();
-      for (int c = 0; c < nv; ++c) x[c] += J[i] * y[c];
+      for (int c = 0; c < nv && !in_E; ++c) x[c] += J[i] * y[c];
       const double a = J[i] * velocity_weight;
       for (int c = span.lo; c < span.lo + span.count; ++c) x[nv + c] += a * J[c];
     }

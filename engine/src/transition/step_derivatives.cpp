@@ -1220,6 +1220,9 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   detail::carry_table(model, work.carries);
   work.pair_changes.assign(ndof * static_cast<std::size_t>(kMaxPairContacts), ContactChange{});
   work.pair_motions.assign(ndof, GeomPairMotion{});
+  work.pair_dofs.assign(ndof, 0);
+  work.pair_turned.assign(ndof, Derivatives::Workspace::PathSums{});
+  work.pair_columns.assign(ndof, Derivatives::Workspace::ColumnWrench{});
 }
 
 void forward_derivatives(const Model& model, Data& data, Derivatives& deriv) {
