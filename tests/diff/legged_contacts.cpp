@@ -236,7 +236,6 @@ TEST_CASE("diff: the step's qvel with contacts has MuJoCo's own floor beside it"
           std::max(ratio(d->qvel, stepped.data()), ratio(d->qvel, fresh->qvel));
       INFO(name << " state " << k << ": lever " << lever_gap
                 << " of the bound, MuJoCo against itself " << mujoco_gap);
-      CHECK(lever_gap <= 3.0);  // measured 2.77, 1.98, 0.012
       ours = std::max(ours, lever_gap);
       own = std::max(own, mujoco_gap);
     }
