@@ -54,28 +54,11 @@ constexpr double kRaiseKept = 1e-10;  // a block's cost may rise this much befor
 constexpr int kQcqpSteps = 20;
 constexpr double kQcqpTolerance = 1e-10;
 
-// a . b summed as MuJoCo sums a dot product (mju_dot): four running sums over the whole groups
-// of four, joined as (s0 + s2) + (s1 + s3), then the last one to three products summed in order
-// and added. Every product of the solver is summed so (and the small formulas below are
-// MuJoCo's), so that on the same A and b the sweeps give MuJoCo's forces to the bit: a force on
-// a bound (a cone's surface) has its state decided by its last bits.
-double dot(const double* a, const double* b, int n) {
-  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-  int k = 0;
-  for (; k + 4 <= n; k += 4) {
-    s0 += a[k] * b[k];
-    s1 += a[k + 1] * b[k + 1];
-    s2 += a[k + 2] * b[k + 2];
-    s3 += a[k + 3] * b[k + 3];
-  }
-  double sum = (s0 + s2) + (s1 + s3);
-  if (k < n) {
-    double tail = a[k] * b[k];
-    for (int j = k + 1; j < n; ++j) tail += a[j] * b[j];
-    sum += tail;
-  }
-  return sum;
-}
+// a . b summed as MuJoCo sums a dot product (dot_as_mujoco over all n). Every product of the
+// solver is summed so (and the small formulas below are MuJoCo's), so that on the same A and b
+// the sweeps give MuJoCo's forces to the bit: a force on a bound (a cone's surface) has its state
+// decided by its last bits.
+double dot(const double* a, const double* b, int n) { return dot_as_mujoco(a, b, 0, n, n); }
 
 // x = (S + la I)^-1 y for the small symmetric S of the friction QCQP (n x n, row-major): by the
 // adjugate for 2 and 3 forces, by Cholesky for more. factor() is false when S + la I is
