@@ -14,6 +14,7 @@
 
 #include <lever/harness/models.hpp>
 #include "compile_checks.hpp"
+#include "robots.hpp"
 
 using lever::test::check_compiles_as_mujoco;
 using lever::test::load_refusal;
@@ -141,10 +142,7 @@ TEST_CASE("adhesion and body transmissions compile to MuJoCo 2.2.2's parameters,
 TEST_CASE("MuJoCo's slider-crank sample compiles to MuJoCo 2.2.2's parameters",
           "[compile][actuators][robots]") {
   const std::string file = lever::test::robots_dir() + "/mujoco-2.2.2/slider_crank/slider_crank.xml";
-  if (!std::filesystem::exists(file)) {
-    WARN("no " << file << ": skipped");
-    return;
-  }
+  if (!lever::test::robots_present(file)) return;
   check_compiles_as_mujoco("slider_crank.xml", lever::test::read_text(file));
 }
 

@@ -21,6 +21,7 @@
 
 #include <lever/harness/models.hpp>
 #include "step_checks.hpp"
+#include "robots.hpp"
 
 namespace lever::test::equality_derivatives {
 
@@ -94,10 +95,7 @@ TEST_CASE("derivatives through connect and weld: equality.xml",
 TEST_CASE("derivatives through connect: Menagerie's Cassie and Robotiq 2F-85",
           "[derivatives][mujoco][equality][robots]") {
   const std::string folder = robots_dir();
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   // Cassie under Euler only: MuJoCo's mj_step at tolerance 0 runs its Newton solver's 100
   // iterations on 32 dofs (about 10 ms a step here), and the integrators' own terms are the
   // other two models'

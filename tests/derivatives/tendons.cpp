@@ -20,6 +20,7 @@
 
 #include <lever/harness/models.hpp>
 #include "step_checks.hpp"
+#include "robots.hpp"
 
 namespace lever::test::tendon_derivatives {
 
@@ -119,10 +120,7 @@ TEST_CASE("derivatives through dof friction loss", "[derivatives][mujoco][tendon
 TEST_CASE("derivatives through fixed tendons: Menagerie's Franka Panda hand",
           "[derivatives][mujoco][tendons][robots]") {
   const std::string folder = robots_dir();
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   const std::string file = folder + "/menagerie-2022/franka_emika_panda/hand.xml";
   for (const Integrator integrator : kTendonIntegrators) {
     diff::Twin twin(file, diff::Path::kEngine);

@@ -16,6 +16,7 @@
 
 #include <lever/harness/models.hpp>
 #include "diff_checks.hpp"
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -206,10 +207,7 @@ TEST_CASE("diff: MuJoCo's active adhesion sample, without its composite particle
   // over pulleys, joint equalities, a medium), its <composite type="particle"> taken out
   REQUIRE(mj_version() == 222);
   const std::string real = robots_dir() + "/mujoco-2.2.2/adhesion/active_adhesion.xml";
-  if (!std::filesystem::exists(real)) {
-    WARN("no " << real << ": skipped");
-    return;
-  }
+  if (!robots_present(real)) return;
   std::string xml = read_text(real);
   const size_t from = xml.find("<composite"), to = xml.find("</composite>");
   REQUIRE(from != std::string::npos);

@@ -20,6 +20,7 @@
 
 #include <lever/harness/models.hpp>
 #include <lever/harness/random_state.hpp>
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -27,10 +28,7 @@ TEST_CASE("diff: Cassie's achilles rods' axial entry of M and its pivot are MuJo
           "[diff][robots][cancellation]") {
   REQUIRE(mj_version() == 222);
   const std::string file = robots_dir() + "/menagerie-2022/agility_cassie/scene.xml";
-  if (!std::filesystem::exists(file)) {
-    WARN("no real model file " << file << ": skipped");
-    return;
-  }
+  if (!robots_present(file)) return;
   diff::Twin twin(file, diff::Path::kEngine);
   const mjModel* m = twin.m.get();
   const double axial = 3.754e-6;  // the rods' <inertial fullinertia> Ixx

@@ -19,6 +19,7 @@
 #include <lever/harness/models.hpp>
 #include "diff_checks.hpp"
 #include "sampling.hpp"
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -38,10 +39,7 @@ TEST_CASE("diff: composite grid, cloth, rope and loop agree with MuJoCo on rando
           "[diff][composite][robots]") {
   REQUIRE(mj_version() == 222);
   const std::string folder = robots_dir() + "/mujoco-2.2.2";
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   struct Case {
     const char* file;
     int equality_rows;  // at qpos0: the held tendons (grid), the loop's connect
@@ -78,10 +76,7 @@ TEST_CASE("diff: a file that asks for CG (MuJoCo's cloth) is compared at its min
   // MuJoCo's CG at 0: 3e-5 apart in qacc (4e7 of the bound), 0.003 in qvel after one step.
   REQUIRE(mj_version() == 222);
   const std::string file = robots_dir() + "/mujoco-2.2.2/composite/cloth.xml";
-  if (!std::filesystem::exists(file)) {
-    WARN("no real model file " << file << ": skipped");
-    return;
-  }
+  if (!robots_present(file)) return;
   const std::uint64_t seed = diff::default_seed(file);
   INFO(context(file, diff::Path::kLoader, seed));
   diff::Twin twin(file, diff::Path::kLoader);

@@ -25,6 +25,7 @@
 #include <lever/harness/tolerance.hpp>
 
 #include "diff_checks.hpp"
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -254,10 +255,7 @@ TEST_CASE("flag.xml (a cloth flapping with the constraint stage off) loads with 
           "[flags][robots]") {
   // its composite cloth is compared with MuJoCo's in composites.cpp
   const std::string file = robots_dir() + "/mujoco-2.2.2/flag/flag.xml";
-  if (!std::filesystem::exists(file)) {
-    WARN("no real model files at " << robots_dir() << ": skipped");
-    return;
-  }
+  if (!robots_present(file)) return;
   const Model model = mjcf::load_file(file);
   CHECK((model.opt.disableflags & kDisableConstraint) != 0);
   // main tendons along x in the 18 rows but the origin's, and the 8 x 18 shear diagonals

@@ -13,6 +13,7 @@
 
 #include <lever/harness/models.hpp>
 #include "diff_checks.hpp"
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -80,10 +81,7 @@ TEST_CASE("diff: real files that set a medium load and agree, or are refused by 
           "[diff][fluid][robots]") {
   REQUIRE(mj_version() == 222);
   const std::string folder = robots_dir();
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   // (the third, flag/flag.xml, wind on a cloth without contacts: tests/diff/composites.cpp)
   for (const char* name : {"menagerie-2022/robotiq_2f85/scene.xml",
                            "mujoco-2.2.2/adhesion/active_adhesion.xml"}) {

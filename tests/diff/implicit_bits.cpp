@@ -25,6 +25,7 @@
 #include <lever/harness/random_state.hpp>
 
 #include "pipeline/pipeline.hpp"
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -58,10 +59,7 @@ TEST_CASE("diff: the flag's implicit step is MuJoCo's but for the bias force's d
           "[diff][robots][implicit]") {
   REQUIRE(mj_version() == 222);
   const std::string file = robots_dir() + "/mujoco-2.2.2/flag/flag.xml";
-  if (!std::filesystem::exists(file)) {
-    WARN("no real model file " << file << ": skipped");
-    return;
-  }
+  if (!robots_present(file)) return;
   diff::Twin twin(file, diff::Path::kEngine);
   twin.set_integrator(Integrator::kImplicit);
   const mjModel* m = twin.m.get();

@@ -30,6 +30,7 @@
 #include <lever/harness/random_state.hpp>
 #include "diff_checks.hpp"
 #include "sampling.hpp"
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -59,10 +60,7 @@ TEST_CASE("diff: MuJoCo's repeated forwards start from the qpos the first was gi
           "[diff][elliptic][restart][robots]") {
   REQUIRE(mj_version() == 222);
   const std::string file = robots_dir() + "/" + kAnymalB;
-  if (!std::filesystem::exists(file)) {
-    WARN("no real model file " << file << ": skipped");
-    return;
-  }
+  if (!robots_present(file)) return;
   diff::Twin twin(file, diff::Path::kLoader);
   REQUIRE(twin.restart_mujoco_solver);  // contacts, elliptic cones
   const mjModel* m = twin.m.get();
@@ -108,10 +106,7 @@ TEST_CASE("diff: real legged robots with contacts agree with MuJoCo to the state
           "[diff][elliptic][robots]") {
   REQUIRE(mj_version() == 222);
   const std::string folder = robots_dir();
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   // the first states of each file's own seed, up to one where the step parted before the harness
   // kept the inputs of its repeated forwards: ANYmal B alone, states 3 and 6 (0.13 and 0.03 in
   // qvel); on its floor, state 7 (2e-3); the A1 alone, state 5 (4e-4)
@@ -145,10 +140,7 @@ TEST_CASE("diff: the inverse at the forward qacc has MuJoCo's own floor beside i
   // measures that move on the same states.
   REQUIRE(mj_version() == 222);
   const std::string file = robots_dir() + "/" + kAnymalB;
-  if (!std::filesystem::exists(file)) {
-    WARN("no real model file " << file << ": skipped");
-    return;
-  }
+  if (!robots_present(file)) return;
   const std::uint64_t seed = diff::default_seed(file);
   INFO(context(file, diff::Path::kLoader, seed));
   diff::Twin twin(file, diff::Path::kLoader);
@@ -183,10 +175,7 @@ TEST_CASE("diff: the step's qvel with contacts has MuJoCo's own floor beside it"
   // (3.69, 3.07, 1.46 before lever's jar and cone forces took MuJoCo's order of sums).
   REQUIRE(mj_version() == 222);
   const std::string folder = robots_dir();
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   const std::pair<const char*, std::vector<int>> cases[] = {
       {kAnymalB, {1}}, {"menagerie-2022/anybotics_anymal_b/scene.xml", {3, 14}}};
   double ours = 0, own = 0;
@@ -255,10 +244,7 @@ TEST_CASE("diff: the contact forces at one qacc are MuJoCo's", "[diff][elliptic]
   // from MuJoCo's (at lever's own qacc, 5.7e-10 from mj_constraintUpdate's there).
   REQUIRE(mj_version() == 222);
   const std::string folder = robots_dir();
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   const std::pair<const char*, std::vector<int>> cases[] = {
       {kAnymalB, {1, 12}}, {"menagerie-2022/anybotics_anymal_b/scene.xml", {3, 14}}};
   for (const auto& [name, states] : cases) {

@@ -16,6 +16,7 @@
 #include <lever/mjcf.hpp>
 #include "diff_checks.hpp"
 #include "sampling.hpp"
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -43,10 +44,7 @@ TEST_CASE("diff: Cassie's closed leg chains (equality connects) agree with MuJoC
   // inverse dynamics at the forward qacc to 1e-12 of the cancelled forces
   REQUIRE(mj_version() == 222);
   const std::string file = robots_dir() + "/menagerie-2022/agility_cassie/cassie.xml";
-  if (!std::filesystem::exists(file)) {
-    WARN("no real model file " << file << ": skipped");
-    return;
-  }
+  if (!robots_present(file)) return;
   for (const diff::Path path : paths_to_compare()) {
     const std::uint64_t seed = diff::default_seed(file);
     INFO(context(file, path, seed));
@@ -64,10 +62,7 @@ TEST_CASE("diff: Cassie's closed leg chains (equality connects) agree with MuJoC
 TEST_CASE("diff: Cassie's user data is MuJoCo's", "[diff][robots][user]") {
   REQUIRE(mj_version() == 222);
   const std::string file = robots_dir() + "/menagerie-2022/agility_cassie/cassie.xml";
-  if (!std::filesystem::exists(file)) {
-    WARN("no real model file " << file << ": skipped");
-    return;
-  }
+  if (!robots_present(file)) return;
   const Model model = mjcf::load_file(file);
   const MjModelPtr m = mujoco_load(file);
   REQUIRE(model.nuser_actuator == m->nuser_actuator);
@@ -88,10 +83,7 @@ TEST_CASE("diff: Cassie runs 1 s from its keyframe within MuJoCo's own sensitivi
   // own, held to MuJoCo against itself started 1e-15 away
   REQUIRE(mj_version() == 222);
   const std::string file = robots_dir() + "/menagerie-2022/agility_cassie/cassie.xml";
-  if (!std::filesystem::exists(file)) {
-    WARN("no real model file " << file << ": skipped");
-    return;
-  }
+  if (!robots_present(file)) return;
   diff::Twin twin(file, diff::Path::kLoader);
   disable_contacts(twin);
   REQUIRE(twin.start_name() == "keyframe 'home'");
@@ -102,10 +94,7 @@ TEST_CASE("diff: Cassie runs 1 s from its keyframe within MuJoCo's own sensitivi
 TEST_CASE("diff: real files with friction loss agree with MuJoCo", "[diff][constraints][robots]") {
   REQUIRE(mj_version() == 222);
   const std::string folder = robots_dir();
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   for (const char* name :
        {"menagerie-2022/anybotics_anymal_b/anymal_b.xml",
         "menagerie-2022/anybotics_anymal_c/anymal_c.xml", "menagerie-2022/unitree_a1/a1.xml"}) {

@@ -26,6 +26,7 @@
 #include <lever/harness/random_state.hpp>
 #include <lever/harness/tolerance.hpp>
 #include "diff_checks.hpp"
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -90,10 +91,7 @@ TEST_CASE("diff: an RK4 step with mesh contacts agrees with MuJoCo stage by stag
           "[diff][rk4][robots]") {
   REQUIRE(mj_version() == 222);
   const std::string file = robots_dir() + "/menagerie-2022/robotiq_2f85/2f85.xml";
-  if (!std::filesystem::exists(file)) {
-    WARN("no real model file " << file << ": skipped");
-    return;
-  }
+  if (!robots_present(file)) return;
   diff::Twin twin(file, diff::Path::kEngine);
   REQUIRE(twin.model.contacts_possible);
   twin.set_integrator(Integrator::kRK4);

@@ -17,6 +17,7 @@
 
 #include <lever/harness/models.hpp>
 #include "diff_checks.hpp"
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -173,10 +174,7 @@ TEST_CASE("diff: the 2F-85 scene's spatial tendon agrees with MuJoCo", "[diff][t
   // other tendon robots (the random states put the box inside the fingers and the floor)
   REQUIRE(mj_version() == 222);
   const std::string folder = robots_dir();
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   const std::string file = folder + "/menagerie-2022/robotiq_2f85/scene.xml";
   for (const diff::Path path : paths_to_compare()) {
     const std::uint64_t seed = diff::default_seed(file);

@@ -14,6 +14,7 @@
 #include <lever/harness/models.hpp>
 #include "diff_checks.hpp"
 #include "sampling.hpp"
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -127,10 +128,7 @@ void without_contacts(diff::Twin& twin) {
 TEST_CASE("diff: real files with tendons agree with MuJoCo", "[diff][tendons][robots]") {
   REQUIRE(mj_version() == 222);
   const std::string folder = robots_dir();
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   for (const char* name : kTendonRobotFiles) {
     const std::string file = folder + "/" + name;
     for (const diff::Path path : paths_to_compare()) {

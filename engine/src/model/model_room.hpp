@@ -47,14 +47,46 @@ void check_argument_size(long size, long n, const char* where, const char* what)
 
 namespace detail {
 
+/// The walk both placers below share: hands out a block's bytes in order, each array starting on
+/// a cache line; with no block yet it only counts them.
+class BlockCursor {
+ public:
+  explicit BlockCursor(unsigned char* block) : block_(block) {}
+  /// The block's size in bytes, once every array has been laid out.
+  std::size_t bytes() const { return offset_; }
+
+ protected:
+  // the place of the next array, and the offset after it, rounded up to a cache line
+  unsigned char* next(std::size_t bytes) {
+    unsigned char* at = block_ == nullptr ? nullptr : block_ + offset_;
+    offset_ += (bytes + kCacheLine - 1) / kCacheLine * kCacheLine;
+    return at;
+  }
+
+  unsigned char* block_;
+
+ private:
+  std::size_t offset_ = 0;
+};
+
+/// Numbers and Eigen's fixed-size types start as a new block's zeroed bytes; a struct with
+/// defaults (Contact, RigidInertia, FramePlacement) gets them.
+template <class T>
+void give_defaults(T* at, std::size_t n) {
+  if constexpr (!std::is_trivially_default_constructible_v<T> &&
+                !requires { T::RowsAtCompileTime; }) {
+    std::uninitialized_value_construct_n(at, n);
+  }
+}
+
 /// Lays a Data's arrays out in its block, one after the other, each starting on a cache line. One
 /// walk over the arrays serves four purposes: measuring the block (no block yet), pointing every
 /// view at its place and giving each element its first value (a new Data: the block is zeroed
 /// first), pointing the views only (a copied block), and detaching them (a Data moved from).
-class ArrayPlacer {
+class ArrayPlacer : public BlockCursor {
  public:
   enum class Mode { kMeasure, kConstruct, kRebase, kDetach };
-  ArrayPlacer(unsigned char* block, Mode mode) : block_(block), mode_(mode) {}
+  ArrayPlacer(unsigned char* block, Mode mode) : BlockCursor(block), mode_(mode) {}
 
   template <class T>
   void operator()(ArenaArray<T>& array, std::size_t n) {
@@ -63,12 +95,7 @@ class ArrayPlacer {
     if (mode_ == Mode::kDetach) return array.place(nullptr, 0);
     T* at = reinterpret_cast<T*>(next(n * sizeof(T)));
     if (mode_ == Mode::kMeasure) return;
-    // numbers and Eigen's fixed-size types start as the zeroed bytes; a struct with defaults
-    // (Contact, RigidInertia) gets them
-    if constexpr (!std::is_trivially_default_constructible_v<T> &&
-                  !requires { T::RowsAtCompileTime; }) {
-      if (mode_ == Mode::kConstruct) std::uninitialized_value_construct_n(at, n);
-    }
+    if (mode_ == Mode::kConstruct) give_defaults(at, n);
     array.place(at, n);
   }
 
@@ -83,20 +110,8 @@ class ArrayPlacer {
     if (mode_ != Mode::kMeasure) map.place(at, rows, cols);
   }
 
-  /// The block's size in bytes, once every array has been laid out.
-  std::size_t bytes() const { return offset_; }
-
  private:
-  // the place of the next array, and the offset after it, rounded up to a cache line
-  unsigned char* next(std::size_t bytes) {
-    unsigned char* at = block_ == nullptr ? nullptr : block_ + offset_;
-    offset_ += (bytes + kCacheLine - 1) / kCacheLine * kCacheLine;
-    return at;
-  }
-
-  unsigned char* block_;
   Mode mode_;
-  std::size_t offset_ = 0;
 };
 
 /// Lay out the arrays of the field table (fields.cpp); Data's constructor lays out the rest.
@@ -108,12 +123,12 @@ void lay_out_table_arrays(Data& data, ArrayPlacer& place);
 /// new entries get their defaults), pointing the views into a copy of another model's block, and
 /// detaching them (a Model moved from). A copy's views keep their lengths, so that a Model whose
 /// counts were edited after its last size_model copies as it is (validate names the difference).
-class ModelArrayPlacer {
+class ModelArrayPlacer : public BlockCursor {
  public:
   enum class Mode { kMeasure, kResize, kRebase, kDetach };
   /// kRebase: `from` is the block the views point into now, `block` its copy
   ModelArrayPlacer(unsigned char* block, Mode mode, const unsigned char* from = nullptr)
-      : block_(block), from_(from), mode_(mode) {}
+      : BlockCursor(block), from_(from), mode_(mode) {}
 
   template <class T>
   void operator()(ArenaArray<T>& array, std::size_t n) {
@@ -126,12 +141,7 @@ class ModelArrayPlacer {
       case Mode::kResize: break;
     }
     T* at = reinterpret_cast<T*>(next(n * sizeof(T)));
-    // numbers and Eigen's fixed-size types start as the zeroed bytes; a struct with defaults
-    // (FramePlacement) gets them
-    if constexpr (!std::is_trivially_default_constructible_v<T> &&
-                  !requires { T::RowsAtCompileTime; }) {
-      std::uninitialized_value_construct_n(at, n);
-    }
+    give_defaults(at, n);
     std::copy_n(array.data(), std::min(n, array.size()), at);
     array.place(at, n);
   }
@@ -156,25 +166,15 @@ class ModelArrayPlacer {
     map.place(at, rows, cols);
   }
 
-  /// The block's size in bytes, once every array has been laid out.
-  std::size_t bytes() const { return offset_; }
-
  private:
-  unsigned char* next(std::size_t bytes) {
-    unsigned char* at = block_ == nullptr ? nullptr : block_ + offset_;
-    offset_ += (bytes + kCacheLine - 1) / kCacheLine * kCacheLine;
-    return at;
-  }
   template <class T>
   T* rebased(T* at) const {
     if (at == nullptr) return nullptr;
     return reinterpret_cast<T*>(block_ + (reinterpret_cast<const unsigned char*>(at) - from_));
   }
 
-  unsigned char* block_;
   const unsigned char* from_;
   Mode mode_;
-  std::size_t offset_ = 0;
 };
 
 /// Lay out a Model's arrays: the field table's (fields.cpp), then the rest (model.cpp).
