@@ -9,8 +9,10 @@
 #include <lever/mjcf.hpp>
 
 #include <atomic>
+#include <chrono>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <lever/harness/models.hpp>
@@ -86,14 +88,19 @@ TEST_CASE("an exception thrown in a worker reaches the caller, the runner still 
 
   // thread 1's Data is another model's: forward() throws there, in the worker only. Whether
   // the worker takes a state before the calling thread has taken all ten is the scheduler's
-  // choice (on a loaded machine the worker may not run in time), so the call is repeated until it
-  // has; on an idle machine the first call does
+  // choice, so the calling thread pauses a millisecond after each of its states (ten states
+  // take microseconds, less than a loaded machine may take to wake the worker), and the call is
+  // repeated until the worker has taken one; on an idle machine the first call does
   const lever::Model other = lever::mjcf::load_file(lever::test::model_path("models/arm3.xml"));
   runner.data(1) = lever::Data(other);
+  const auto collect_slowly = [&](const lever::Data& data, Eigen::Index k, int thread) {
+    qacc.col(k) = data.qacc;
+    if (thread == 0) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  };
   std::string message;
-  for (int attempt = 0; attempt < 1000 && message.empty(); ++attempt) {
+  for (int attempt = 0; attempt < 100 && message.empty(); ++attempt) {
     try {
-      runner.forward(s.qpos, s.qvel, s.ctrl, qacc);
+      runner.forward_each(s.qpos, s.qvel, s.ctrl, collect_slowly);
     } catch (const lever::StateError& e) {
       message = e.what();
     }
