@@ -92,8 +92,9 @@ def derivatives(model: Model, data: Data) -> dict:
     out = _lever.derivatives(model, data)
     if out["active_set_changes"]:
         import warnings as _warnings
-        _warnings.warn("lever.derivatives: the constraint rows' active set changes within the step; "
-                       "A and B hold the start's set (docs/derivatives.md)", RuntimeWarning,
+        _warnings.warn("lever.derivatives: the constraint rows' active set changes within the step "
+                       "(or a spatial tendon's wrapping does); A and B hold the start's "
+                       "(docs/derivatives.md)", RuntimeWarning,
                        stacklevel=2)
     return out
 

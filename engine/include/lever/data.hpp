@@ -110,6 +110,18 @@ enum class ConstraintState : int {
 /// The sensor noise generator's starting state (Data::sensor_noise_state).
 inline constexpr std::uint64_t kSensorNoiseSeed = 0x5eed5eed5eed5eedULL;
 
+/// One body's part of the implicit step's d qfrc_bias / d qvel as MuJoCo 2.2.2's mjd_rne_vel
+/// forms it (derivatives/bias_velocity_chain.cpp): two 6 x 6 matrices of the state, row-major,
+/// then one column's derivatives of the body's velocity, acceleration and force.
+struct BiasVelocityBody {
+  std::array<double, 36> inertia;   ///< d (I v) / d v: cinert as a 6 x 6 matrix
+  std::array<double, 36> coupling;  ///< d (v x* (I v)) / d v at cvel
+  Motion velocity;                  ///< d cvel / d qvel_c
+  Motion acceleration;              ///< d cacc / d qvel_c (the velocity-product part)
+  Force force;                      ///< d cfrc_body / d qvel_c, then summed over the subtree
+  int branch;                       ///< 1: in the column's dof's subtree; 2: above it; 0: neither
+};
+
 /// Data's workspace (preallocated; contents are meaningless between calls but where it says).
 struct DataWorkspace {
   /// (nbody) crba()'s composite inertias, kept until the next position stage: the implicit step
@@ -173,8 +185,11 @@ struct DataWorkspace {
   ArenaVector rk_act_dot[4];     ///< (na) each stage's act_dot
   ArenaMatrix qDeriv;  ///< (nv x nv) implicit: d qfrc_smooth / d qvel
   ArenaMatrix qLU;     ///< (nv x nv) implicit: M - h qDeriv, then its factor (U + I) L
-  /// (nbody) implicit: each subtree's velocity coupling (d qfrc_bias / d qvel)
-  ArenaArray<VelocityCoupling> subtree_coupling;
+  /// (nbody) implicit: each body's part of d qfrc_bias / d qvel in MuJoCo's chain-rule form
+  /// (derivatives/bias_velocity_chain.cpp), one dof's column at a time
+  ArenaArray<BiasVelocityBody> bias_chain_body;
+  /// (nv) implicit: d cdof_dot / d qvel of each dof, in that column
+  ArenaArray<Motion> bias_chain_dof;
   // collision(): contacts are gathered here and copied to `contact` only when all
   // of them fit, so that a refusal leaves the last contacts in place
   ArenaArray<Contact> contact;       ///< (nconmax)

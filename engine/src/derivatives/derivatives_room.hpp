@@ -1,6 +1,7 @@
 // The derivatives of the smooth dynamics: Carpentier and Mansard's RNEA derivatives
-// (inverse_dynamics.cpp), which the implicit integrator (pipeline/implicit.cpp) and the step's
-// Jacobians (transition/) both read.
+// (inverse_dynamics.cpp), which the step's Jacobians (transition/) read, and the bias force's
+// velocity derivative as MuJoCo's implicit integrator forms it (bias_velocity_chain.cpp), which
+// pipeline/implicit.cpp reads.
 #pragma once
 
 #include <Eigen/Core>
@@ -15,15 +16,11 @@
 
 namespace lever {
 
-/// d qfrc_bias / d qvel into out (nv x nv): Carpentier and Mansard's d rnea / d qd, which does not
-/// depend on qacc or gravity, from the bodies' velocities v and the dofs' Sdot at velocity qd
-/// (RNEA's forward pass: data.cvel and data.cdof_dot after forward()); IC (nbody) holds each
-/// body's subtree inertia (crba()'s composites, data.work.crb after the position stage), CC
-/// (nbody) is workspace for the subtree sums of velocity coupling.
-void bias_velocity_derivative(const Model& model, const Data& data, const double* qd,
-                              std::span<const Motion> v, std::span<const Motion> Sdot,
-                              std::span<const RigidInertia> IC, std::span<VelocityCoupling> CC,
-                              Eigen::Ref<Eigen::MatrixXd> out);
+/// D -= d qfrc_bias / d qvel, summed as MuJoCo 2.2.2's implicit step sums it (mjd_rne_vel's chain
+/// rule; bias_velocity_chain.cpp), from the velocity stage's cvel, cdof_dot and the position
+/// stage's cinert, cdof. Only the elements of dof pairs on one branch of the tree change.
+void subtract_bias_velocity_derivative(const Model& model, Data& data,
+                                       Eigen::Ref<Eigen::MatrixXd> D);
 
 namespace detail {
 

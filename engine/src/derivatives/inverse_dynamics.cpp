@@ -147,9 +147,7 @@ void body_couplings(const Model& model, const Data& data, std::span<const Motion
 
 // The columns, from the subtree sums IC and CC, for each dof i: the pairs (i, j) with j = i or
 // above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
-// IC_S: inertia_columns() at this qpos (velocity_columns() also takes nullptr: computed there).
-// Two functions, one per output, so that the implicit step's d tau / d qd
-// (bias_velocity_derivative) runs its own loop.
+// IC_S: inertia_columns() at this qpos.
 
 // d tau / d q, from Psi_ddot (Sddot) and the subtree net forces F besides.
 void position_columns(const Model& model, const Data& data, std::span<const Motion> Sdot,
@@ -176,7 +174,7 @@ void position_columns(const Model& model, const Data& data, std::span<const Moti
 
 // d tau / d qd.
 void velocity_columns(const Model& model, const Data& data, std::span<const Motion> Sdot,
-                      std::span<const RigidInertia> ICs, const std::vector<Force>* IC_S,
+                      std::span<const RigidInertia> ICs, const std::vector<Force>& IC_S,
                       std::span<const VelocityCoupling> CCs, Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
   dtau_dv.setZero();
   for (int i = 0; i < model.nv; ++i) {
@@ -184,7 +182,7 @@ void velocity_columns(const Model& model, const Data& data, std::span<const Moti
     const Motion& Si = data.cdof[i];
     const RigidInertia& IC = ICs[b];
     const VelocityCoupling& CC = CCs[b];
-    const Force IC_Si = IC_S != nullptr ? (*IC_S)[i] : IC * Si;
+    const Force& IC_Si = IC_S[i];
     const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
       dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
@@ -300,7 +298,7 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
   }
   const std::vector<VelocityCoupling>& CC = *couplings;
   position_columns(model, data, w.Sdot, w.Sddot, w.F, IC, w.IC_S, CC, dtau_dq);
-  if (dtau_dv != nullptr) velocity_columns(model, data, w.Sdot, IC, &w.IC_S, CC, *dtau_dv);
+  if (dtau_dv != nullptr) velocity_columns(model, data, w.Sdot, IC, w.IC_S, CC, *dtau_dv);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
     if (dtau_dv != nullptr) segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, *dtau_dv);
@@ -312,17 +310,6 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
 // with -b, and a turn's spring -k log(ref^-1 q) moves by -k Jr(log)^-1 dq when q turns to
 
 }  // namespace detail
-
-void bias_velocity_derivative(const Model& model, const Data& data, const double* qd,
-                              std::span<const Motion> v, std::span<const Motion> Sdot,
-                              std::span<const RigidInertia> IC, std::span<VelocityCoupling> CC,
-                              Eigen::Ref<Eigen::MatrixXd> out) {
-  // IC: crba()'s subtree inertias (data.work.crb), which the position stage left
-  body_couplings(model, data, v, CC);
-  sum_over_subtrees<VelocityCoupling>(model, CC);
-  velocity_columns(model, data, Sdot, IC, nullptr, CC, out);
-  if (model.nq != model.nv) segment_velocity_columns(model, data, qd, v, Sdot, IC, out);
-}
 
 void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eigen::VectorXd>& qacc,
                       Derivatives& deriv) {

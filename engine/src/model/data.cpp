@@ -101,7 +101,8 @@ void lay_out_own_arrays(Data& d, detail::ArrayPlacer& place) {
   place(w.rk_dact, na);
   place(w.qDeriv, nv, nv);
   place(w.qLU, nv, nv);
-  place(w.subtree_coupling, nbody);
+  place(w.bias_chain_body, nbody);
+  place(w.bias_chain_dof, nv);
   place(w.contact, ncon);
   place(w.pair_contact, kMaxPairContacts);
   place(w.body_aabb, 6 * nbody);

@@ -11,9 +11,9 @@
 //   passive:   -damping on the diagonal (joint springs do not depend on qvel), each tendon's
 //              -damping J^T J (its Jacobian J), and the fluid's drag as mjd_inertiaBoxFluid takes
 //              it (smooth/fluid.cpp);
-//   bias:      -d qfrc_bias / d qvel: the Coriolis and centrifugal terms, Carpentier and Mansard's
-//              d rnea / d qd (derivatives/inverse_dynamics.cpp; gravity and qacc do not depend on
-//              qvel).
+//   bias:      -d qfrc_bias / d qvel: the Coriolis and centrifugal terms, by mjd_rne_vel's chain
+//              rule and rounded as it rounds them (derivatives/bias_velocity_chain.cpp; gravity
+//              and qacc do not depend on qvel).
 // The constraint force is taken from the forward solve and held fixed, as MuJoCo does.
 //
 // M - h D is not symmetric, but it is non-zero only where M is (pairs of dofs on one branch), so,
@@ -51,13 +51,7 @@ void smooth_velocity_derivative(const Model& model, Data& data,
   if (has_fluid(model.opt) && !model.opt.disabled(kDisablePassive)) {
     detail::add_fluid_velocity_terms(model, data, qDeriv);
   }
-  // the bias force's derivative (it sets every element) in the implicit step's matrix, free
-  // until the step forms M - h D there; the subtree inertias are crba()'s, which the position
-  // stage left in data.work.crb
-  auto& bias_derivative = data.work.qLU;
-  bias_velocity_derivative(model, data, data.qvel.data(), data.cvel, data.cdof_dot, data.work.crb,
-                           data.work.subtree_coupling, bias_derivative);
-  qDeriv -= bias_derivative;
+  subtract_bias_velocity_derivative(model, data, qDeriv);
 }
 
 namespace {

@@ -1,0 +1,210 @@
+// d qfrc_bias / d qvel as MuJoCo 2.2.2's implicit integrator forms it (mjd_rne_vel and
+// mjd_comVel_vel, engine_derivative.c): the chain rule through the recursive Newton-Euler passes,
+// the derivative of every body's velocity, acceleration and force with respect to qvel carried
+// from the root to the leaves, the forces summed back, and each dof's row read off as
+// -cdof . d cfrc. It is the same matrix as Carpentier and Mansard's (inverse_dynamics.cpp), but
+// rounded as MuJoCo rounds it, which the implicit step needs: (M - h D) magnifies D's last bits
+// (a 340-dof cloth's qvel moved by 1.4 times the 1e-12 bound).
+//
+// MuJoCo forms the whole 6 x nv derivative of every body at once, its products skipping the
+// matrices' zero entries. Every operation acts on the columns one by one, so here the columns are
+// taken one at a time (the derivative along one dof's velocity c): the same products and sums,
+// element by element, over the bodies whose numbers in that column are not zero, those in the
+// subtree of c's body (velocity, acceleration, force) and their ancestors (summed forces).
+//
+// For column c, with v_b = d cvel_b / d qvel_c, a_b = d cacc_b, f_b = d cfrc_b:
+//   forward, each body b from its parent p:   v_b = v_p, a_b = a_p, then for each dof j of b
+//     d cdof_dot_j = X(cdof_j) v_b              X: d (vel x cdof) / d vel
+//     v_b += cdof_j [j = c]                     (a ball's three dofs take X with v_b before any
+//                                                of their three columns; a free joint's
+//                                                translations have cdof_dot = 0)
+//     a_b += cdof_dot_j [j = c] + d cdof_dot_j qvel_j
+//   f_b = I_b a_b + C_b v_b                     C_b = d (v x* (I v)) / d v at cvel_b
+//   backward, leaves to root:                   f_p += f_b  (p not the world)
+//   D(r, c) -= cdof_r . f_body(r)               (six products added one at a time)
+#include <lever/data.hpp>
+#include <lever/model.hpp>
+
+#include "derivatives/derivatives_room.hpp"
+
+namespace lever {
+
+namespace {
+
+using Matrix6 = std::array<double, 36>;  // row-major
+
+// A 3 x 3 skew block [a]x (a x . = [a]x .) written into M at (row, col), times sign.
+void put_skew(Matrix6& M, int row, int col, const double* a, double sign) {
+  double* r0 = &M[6 * row + col];
+  double* r1 = r0 + 6;
+  double* r2 = r1 + 6;
+  r0[1] = -sign * a[2];
+  r0[2] = sign * a[1];
+  r1[0] = sign * a[2];
+  r1[2] = -sign * a[0];
+  r2[0] = -sign * a[1];
+  r2[1] = sign * a[0];
+}
+
+// d (vel x m) / d vel for the motion cross product vel x m = [w x m_w; w x m_v + u x m_w]
+// (vel = [w; u], m = [m_w; m_v]): [-[m_w]x, 0; -[m_v]x, -[m_w]x].
+Matrix6 motion_cross_by_velocity(const Motion& m) {
+  Matrix6 X{};
+  put_skew(X, 0, 0, m.data(), -1.0);
+  put_skew(X, 3, 0, m.data() + 3, -1.0);
+  put_skew(X, 3, 3, m.data(), -1.0);
+  return X;
+}
+
+// d (vel x* f) / d vel for the force cross product vel x* f = [w x n + u x p; w x p]
+// (f = [n; p]): [-[n]x, -[p]x; -[p]x, 0].
+Matrix6 force_cross_by_velocity(const Force& f) {
+  Matrix6 X{};
+  put_skew(X, 0, 0, f.data(), -1.0);
+  put_skew(X, 0, 3, f.data() + 3, -1.0);
+  put_skew(X, 3, 0, f.data() + 3, -1.0);
+  return X;
+}
+
+// d (vel x* f) / d f: [[w]x, [u]x; 0, [w]x].
+Matrix6 force_cross_by_force(const Motion& vel) {
+  Matrix6 X{};
+  put_skew(X, 0, 0, vel.data(), 1.0);
+  put_skew(X, 0, 3, vel.data() + 3, 1.0);
+  put_skew(X, 3, 3, vel.data(), 1.0);
+  return X;
+}
+
+// The spatial inertia about the com frame as a matrix: [I, [h]x; -[h]x, m 1], the coefficients of
+// MuJoCo's mju_mulInertVec (h = m times the centre of mass's offset).
+Matrix6 inertia_matrix(const RigidInertia& I) {
+  Matrix6 X{};
+  for (int r = 0; r < 3; ++r) {
+    for (int c = 0; c < 3; ++c) X[6 * r + c] = I.I(r, c);
+  }
+  put_skew(X, 0, 3, I.h.data(), 1.0);
+  put_skew(X, 3, 0, I.h.data(), -1.0);
+  X[21] = X[28] = X[35] = I.m;
+  return X;
+}
+
+// Row r of A times x, summed as MuJoCo's mju_mulMatMat sums it: from zero, the columns in order,
+// the zero entries of A skipped.
+inline double row_times(const Matrix6& A, int r, const double* x) {
+  double sum = 0.0;
+  for (int k = 0; k < 6; ++k) {
+    const double a = A[6 * r + k];
+    if (a != 0.0) sum += a * x[k];
+  }
+  return sum;
+}
+
+inline void times(const Matrix6& A, const double* x, double* out) {
+  for (int r = 0; r < 6; ++r) out[r] = row_times(A, r, x);
+}
+
+// A B (6 x 6 each), as mju_mulMatMat forms it
+Matrix6 times(const Matrix6& A, const Matrix6& B) {
+  Matrix6 out{};
+  for (int r = 0; r < 6; ++r) {
+    for (int k = 0; k < 6; ++k) {
+      const double a = A[6 * r + k];
+      if (a == 0.0) continue;
+      for (int c = 0; c < 6; ++c) out[6 * r + c] += a * B[6 * k + c];
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+void subtract_bias_velocity_derivative(const Model& model, Data& data,
+                                       Eigen::Ref<Eigen::MatrixXd> D) {
+  const int nbody = model.nbody, nv = model.nv;
+  BiasVelocityBody* const body = data.work.bias_chain_body.data();
+  Motion* const dcdof_dot = data.work.bias_chain_dof.data();
+  const int* const parent = model.body_parentid.data();
+
+  // the matrices of the state, the same for every column
+  for (int b = 1; b < nbody; ++b) {
+    body[b].inertia = inertia_matrix(data.cinert[b]);
+    Force momentum;  // I cvel, summed as mju_mulInertVec
+    times(body[b].inertia, data.cvel[b].data(), momentum.data());
+    body[b].coupling = force_cross_by_velocity(momentum);
+    const Matrix6 through_momentum =
+        times(force_cross_by_force(data.cvel[b]), body[b].inertia);
+    for (int e = 0; e < 36; ++e) body[b].coupling[e] += through_momentum[e];
+  }
+
+  for (int c = 0; c < nv; ++c) {
+    const int top = model.dof_bodyid[c];
+    for (int b = 0; b < nbody; ++b) {
+      body[b].branch = 0;
+      body[b].force.setZero();
+    }
+    for (int b = parent[top]; b > 0; b = parent[b]) body[b].branch = 2;
+
+    // forward: the subtree of c's body (its bodies come after it)
+    for (int b = top; b < nbody; ++b) {
+      const int p = parent[b];
+      const bool inside = b == top || (p > 0 && body[p].branch == 1);
+      if (!inside) continue;
+      BiasVelocityBody& B = body[b];
+      B.branch = 1;
+      if (b == top) {  // its parent's numbers in this column are zero
+        B.velocity.setZero();
+        B.acceleration.setZero();
+      } else {
+        B.velocity = body[p].velocity;
+        B.acceleration = body[p].acceleration;
+      }
+      const int first = model.body_dofadr[b], last = first + model.body_dofnum[b];
+      for (int j = first; j < last; ++j) {
+        const JointType type = model.jnt_type[model.dof_jntid[j]];
+        if (type == JointType::kFree) {  // translations: cdof_dot = 0, then the rotations
+          for (int t = j; t < j + 3; ++t) dcdof_dot[t].setZero();
+          for (int t = j; t < j + 3; ++t) {
+            if (t == c) B.velocity += data.cdof[t];
+          }
+          j += 3;
+        }
+        if (type == JointType::kFree || type == JointType::kBall) {
+          for (int t = j; t < j + 3; ++t) {
+            times(motion_cross_by_velocity(data.cdof[t]), B.velocity.data(), dcdof_dot[t].data());
+          }
+          for (int t = j; t < j + 3; ++t) {
+            if (t == c) B.velocity += data.cdof[t];
+          }
+          j += 2;
+          continue;
+        }
+        times(motion_cross_by_velocity(data.cdof[j]), B.velocity.data(), dcdof_dot[j].data());
+        if (j == c) B.velocity += data.cdof[j];
+      }
+      for (int j = first; j < last; ++j) {
+        if (j == c) B.acceleration += data.cdof_dot[j];
+        const double qvel = data.qvel[j];
+        for (int k = 0; k < 6; ++k) B.acceleration[k] += dcdof_dot[j][k] * qvel;
+      }
+      times(B.inertia, B.acceleration.data(), B.force.data());
+      Force coupled;
+      times(B.coupling, B.velocity.data(), coupled.data());
+      B.force += coupled;
+    }
+
+    // backward: each body's force to its parent, leaves first
+    for (int b = nbody - 1; b > 0; --b) {
+      if (body[b].branch != 0 && parent[b] > 0) body[parent[b]].force += body[b].force;
+    }
+
+    // D(r, c) -= cdof_r . f over the dofs of the bodies on c's branch
+    for (int r = 0; r < nv; ++r) {
+      const BiasVelocityBody& B = body[model.dof_bodyid[r]];
+      if (B.branch == 0) continue;
+      double& out = D(r, c);
+      for (int k = 0; k < 6; ++k) out += B.force[k] * -data.cdof[r][k];
+    }
+  }
+}
+
+}  // namespace lever
