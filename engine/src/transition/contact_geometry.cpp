@@ -243,8 +243,10 @@ int polytope_pair(const Model& model, const Data& data, const Pose& g1, const Po
   const int n1 = highest_vertices(model, data, con.geom1, n, tolerance, top1);
   const int n2 = highest_vertices(model, data, con.geom2, -n, tolerance, top2);
   if (n1 < 0 || n2 < 0 || n1 * n2 > kMostOnPlane) {
-    throw Error("derivatives: contact " + std::to_string(first) +
-                " (MPR) lies on too many vertices to find its portal.");
+    throw Error("derivatives: contact " + std::to_string(first) + " (" +
+                geom_type_name(g1.type) + "-" + geom_type_name(g2.type) +
+                ", MPR) has a face of each geom on it; lever differentiates MPR's answer for a "
+                "vertex on a face or an edge across an edge, where its last portal is held.");
   }
   // the candidate support points (a vertex of each), on the moving poses
   std::array<V, kMostOnPlane> a{}, b{};
