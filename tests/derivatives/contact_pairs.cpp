@@ -1,7 +1,8 @@
 // The contact geometry's derivative for the closed-form pairs beyond those of contacts.cpp's
 // scenes: plane-cylinder, capsule-box (an end over a face, the middle over an edge), box-box
 // (a face clipped against a face, and two edges crossing), plane-mesh (three hull vertices) and
-// MPR's polytope pairs, box-mesh and mesh-mesh (a vertex on a face, MPR's last portal held),
+// MPR's polytope pairs, box-mesh and mesh-mesh (a vertex on a face, an edge across an edge; MPR's
+// last portal held),
 // each pushing past solimp's width, the narrow phase's case held. A (the scenes have no actuator)
 // under Euler, RK4 and implicit against centred differences of lever's own step (eps 1e-6) and of
 // MuJoCo 2.2.2's mj_step at tolerance 0 (eps 1e-6 and 1e-5; step_differences.hpp), within 1e-6 of
@@ -39,6 +40,7 @@ struct PairScene {
   bool settle = false;  // come to rest first, then pressed 3 mm down
   bool press = false;   // its lowest mesh vertex put 3 mm below the static geom's top (z 0.05)
   int rows = 4;         // the pyramid rows that push per contact, at least
+  double top = 0.05;    // the static geom's top, for press
 };
 
 std::string pair_scene_file(const PairScene& scene) {
@@ -51,8 +53,8 @@ std::string pair_scene_file(const PairScene& scene) {
 }
 
 // The state with the free mesh geom (geom 1) lowered until its lowest vertex is 3 mm below the
-// static geom's top face, at height 0.05.
-State pressed_mesh(const Model& model, State s) {
+// static geom's top, at height `top`.
+State pressed_mesh(const Model& model, State s, double top) {
   Data data(model);
   apply(s, data);
   kinematics(model, data);
@@ -63,7 +65,7 @@ State pressed_mesh(const Model& model, State s) {
                               data.geom_xmat[1] * model.mesh_vert[model.mesh_vertadr[mesh] + k];
     lowest = std::min(lowest, x[2]);
   }
-  s.qpos[2] -= lowest - (0.05 - 0.003);
+  s.qpos[2] -= lowest - (top - 0.003);
   return s;
 }
 
@@ -146,6 +148,17 @@ TEST_CASE("derivatives with contacts: plane-cylinder, capsule-box and box-box ge
        "pos=\"0.01 0.02 0.078\" euler=\"4 -3 10\"><freejoint/>"
        "<geom type=\"mesh\" mesh=\"rock\" mass=\"1\"/>",
        1, false, false, true, 2},
+      // a bar's edge across a box's edge (a box turned 45 degrees about x: its ridge along x),
+      // the bar turned 45 degrees about y and 3 about the world's z, so that its lowest edge is
+      // level
+      {"mesh_edge_across_edge",
+       "<asset><mesh name=\"bar\" vertex=\"-0.04 -0.05 -0.03  0.04 -0.05 -0.03  "
+       "0.04 0.05 -0.03  -0.04 0.05 -0.03  -0.04 -0.05 0.03  0.04 -0.05 0.03  "
+       "0.04 0.05 0.03  -0.04 0.05 0.03\"/></asset>",
+       "<geom type=\"box\" size=\"0.05 0.05 0.05\" euler=\"45 0 0\"/>",
+       "pos=\"-0.006 0.003 0.125\" quat=\"0.923563 -0.010017 0.382552 0.024184\">"
+       "<freejoint/><geom type=\"mesh\" mesh=\"bar\" mass=\"1\"/>",
+       1, true, false, true, 2, 0.0707106781186548},
   };
   for (const PairScene& scene : scenes) {
     for (const Integrator integrator :
@@ -160,7 +173,7 @@ TEST_CASE("derivatives with contacts: plane-cylinder, capsule-box and box-box ge
         s = settle(model, s, 400);
         s.qpos[2] -= 0.003;
       }
-      if (scene.press) s = pressed_mesh(model, s);
+      if (scene.press) s = pressed_mesh(model, s, scene.top);
       s.qvel << 0.01, -0.02, 0.005, 0.1, -0.05, 0.2;
       int contacts = 0;
       double face_alignment = 0;
