@@ -299,8 +299,8 @@ std::unique_ptr<Fixture> make_scene_fixture(const std::string& path) {
   if (d.ncon == 0) throw std::runtime_error(path + ": no contact after one second at rest");
   f->ncon = d.ncon;
   f->state = {d.qpos, d.qvel, d.qacc, d.ctrl};
-  // the step's Jacobians are timed where lever's derivatives cover the scene's contacts (a mesh
-  // contact's geometry is not differentiated: step_derivatives says so by name)
+  // the step's Jacobians are timed where lever's derivatives cover the scene's contacts (a pair
+  // they do not, a round geom against a mesh say, is refused by name)
   try {
     Derivatives deriv(model);
     Data probe(model);

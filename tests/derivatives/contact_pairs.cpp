@@ -1,6 +1,8 @@
 // The contact geometry's derivative for the closed-form pairs beyond those of contacts.cpp's
 // scenes: plane-cylinder, capsule-box (an end over a face, the middle over an edge), box-box
-// (a face clipped against a face, and two edges crossing) and plane-mesh (three hull vertices),
+// (a face clipped against a face, and two edges crossing), plane-mesh (three hull vertices) and
+// MPR's polytope pairs, box-mesh and mesh-mesh (a vertex on a face, an edge across an edge; MPR's
+// last portal held),
 // each pushing past solimp's width, the narrow phase's case held. A (the scenes have no actuator)
 // under Euler, RK4 and implicit against centred differences of lever's own step (eps 1e-6) and of
 // MuJoCo 2.2.2's mj_step at tolerance 0 (eps 1e-6 and 1e-5; step_differences.hpp), within 1e-6 of
@@ -12,6 +14,7 @@
 #include <lever/lever.hpp>
 #include <lever/mjcf.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -35,6 +38,9 @@ struct PairScene {
   int contacts;       // the contacts the narrow phase finds at the state
   bool across_edge;   // the normal is none of the static geom's face normals (an edge's case)
   bool settle = false;  // come to rest first, then pressed 3 mm down
+  bool press = false;   // its lowest mesh vertex put 3 mm below the static geom's top (z 0.05)
+  int rows = 4;         // the pyramid rows that push per contact, at least
+  double top = 0.05;    // the static geom's top, for press
 };
 
 std::string pair_scene_file(const PairScene& scene) {
@@ -44,6 +50,23 @@ std::string pair_scene_file(const PairScene& scene) {
                       << scene.asset << "<worldbody>" << scene.below << "<body " << scene.body
                       << "</body></worldbody></mujoco>";
   return file;
+}
+
+// The state with the free mesh geom (geom 1) lowered until its lowest vertex is 3 mm below the
+// static geom's top, at height `top`.
+State pressed_mesh(const Model& model, State s, double top) {
+  Data data(model);
+  apply(s, data);
+  kinematics(model, data);
+  const int mesh = model.geom_dataid[1];
+  double lowest = 1e300;
+  for (int k = 0; k < model.mesh_vertnum[mesh]; ++k) {
+    const Eigen::Vector3d x = data.geom_xpos[1] +
+                              data.geom_xmat[1] * model.mesh_vert[model.mesh_vertadr[mesh] + k];
+    lowest = std::min(lowest, x[2]);
+  }
+  s.qpos[2] -= lowest - (top - 0.003);
+  return s;
 }
 
 // The rows that push, the contacts, and the largest |cosine| between the first contact's normal
@@ -104,6 +127,38 @@ TEST_CASE("derivatives with contacts: plane-cylinder, capsule-box and box-box ge
        "pos=\"0 0 0.06\" euler=\"4 -3 10\"><freejoint/><geom type=\"mesh\" mesh=\"rock\" "
        "mass=\"1\"/>",
        3, false, true},
+      // MPR's pairs of two polytopes (one contact each: multiccd off): the rock's lowest vertex
+      // pressed 3 mm into a box's top face (box-mesh), and into a slab that is a mesh
+      // (mesh-mesh)
+      {"mesh_on_box",
+       "<asset><mesh name=\"rock\" vertex=\"-0.04 -0.03 -0.02  0.05 -0.035 -0.025  "
+       "0.045 0.04 -0.02  -0.035 0.03 -0.03  -0.03 -0.02 0.03  0.04 -0.03 0.02  "
+       "0.03 0.035 0.025  -0.04 0.02 0.02\"/></asset>",
+       "<geom type=\"box\" size=\"0.2 0.2 0.05\"/>",
+       "pos=\"0.01 0.02 0.078\" euler=\"4 -3 10\"><freejoint/>"
+       "<geom type=\"mesh\" mesh=\"rock\" mass=\"1\"/>",
+       1, false, false, true, 2},
+      {"mesh_on_mesh",
+       "<asset><mesh name=\"rock\" vertex=\"-0.04 -0.03 -0.02  0.05 -0.035 -0.025  "
+       "0.045 0.04 -0.02  -0.035 0.03 -0.03  -0.03 -0.02 0.03  0.04 -0.03 0.02  "
+       "0.03 0.035 0.025  -0.04 0.02 0.02\"/><mesh name=\"slab\" vertex=\"-0.2 -0.2 -0.05  "
+       "0.2 -0.2 -0.05  0.2 0.2 -0.05  -0.2 0.2 -0.05  -0.2 -0.2 0.05  0.2 -0.2 0.05  "
+       "0.2 0.2 0.05  -0.2 0.2 0.05\"/></asset>",
+       "<geom type=\"mesh\" mesh=\"slab\"/>",
+       "pos=\"0.01 0.02 0.078\" euler=\"4 -3 10\"><freejoint/>"
+       "<geom type=\"mesh\" mesh=\"rock\" mass=\"1\"/>",
+       1, false, false, true, 2},
+      // a bar's edge across a box's edge (a box turned 45 degrees about x: its ridge along x),
+      // the bar turned 45 degrees about y and 3 about the world's z, so that its lowest edge is
+      // level
+      {"mesh_edge_across_edge",
+       "<asset><mesh name=\"bar\" vertex=\"-0.04 -0.05 -0.03  0.04 -0.05 -0.03  "
+       "0.04 0.05 -0.03  -0.04 0.05 -0.03  -0.04 -0.05 0.03  0.04 -0.05 0.03  "
+       "0.04 0.05 0.03  -0.04 0.05 0.03\"/></asset>",
+       "<geom type=\"box\" size=\"0.05 0.05 0.05\" euler=\"45 0 0\"/>",
+       "pos=\"-0.006 0.003 0.125\" quat=\"0.923563 -0.010017 0.382552 0.024184\">"
+       "<freejoint/><geom type=\"mesh\" mesh=\"bar\" mass=\"1\"/>",
+       1, true, false, true, 2, 0.0707106781186548},
   };
   for (const PairScene& scene : scenes) {
     for (const Integrator integrator :
@@ -118,6 +173,7 @@ TEST_CASE("derivatives with contacts: plane-cylinder, capsule-box and box-box ge
         s = settle(model, s, 400);
         s.qpos[2] -= 0.003;
       }
+      if (scene.press) s = pressed_mesh(model, s, scene.top);
       s.qvel << 0.01, -0.02, 0.005, 0.1, -0.05, 0.2;
       int contacts = 0;
       double face_alignment = 0;
@@ -128,7 +184,7 @@ TEST_CASE("derivatives with contacts: plane-cylinder, capsule-box and box-box ge
       } else {
         CHECK(face_alignment > 1 - 1e-12);
       }
-      REQUIRE(pushing >= 4 * contacts);
+      REQUIRE(pushing >= scene.rows * contacts);
       Derivatives deriv(model);
       Data data(model);
       apply(s, data);

@@ -44,8 +44,9 @@ enum class Warning : int {
   /// or ellipsoid against anything but a plane) came within their bounding spheres and were not
   /// collided (lever's own; lastinfo is the first geom of the pair)
   kContactUnsupported,
-  /// step_derivatives(): the constraint rows' active set (the contacts, the rows that push) at
-  /// the step's end, or at an RK4 stage, is not the one at its start; A and B hold the start's
+  /// step_derivatives(): the constraint rows' active set (the contacts, the rows that push) or a
+  /// spatial tendon's wrapping at the step's end, or at an RK4 stage, is not the one at its
+  /// start; A and B hold the start's
   /// (lever's own; lastinfo: the rows at the step's end)
   kActiveSetChanges,
   kCount

@@ -23,8 +23,8 @@ const char* warning_name(Warning w) {
       return "geoms of a pair lever cannot collide (mesh, hfield, or cylinder or ellipsoid against "
              "a non-plane) came within their bounding spheres: no contact made";
     case Warning::kActiveSetChanges:
-      return "the constraints' active set changes within the step: its derivatives hold the "
-             "start's";
+      return "the constraints' active set (contacts, pushing rows) or a spatial tendon's wrapping "
+             "changes within the step: its derivatives hold the start's";
     case Warning::kCount: break;
   }
   return "unknown warning";

@@ -11,9 +11,12 @@
 //
 // Pairs: every pair MuJoCo collides in closed form: plane against sphere, capsule, box, cylinder,
 // ellipsoid and mesh; sphere-sphere, sphere-capsule, capsule-capsule, sphere-box, capsule-box and
-// box-box (collision/box_pairs.hpp). The pairs MuJoCo collides by MPR (meshes, and cylinders and
-// ellipsoids against anything but a plane) are refused by name: MPR's answer is an iteration's
-// end, not a closed form of the poses (docs/derivatives.md).
+// box-box (collision/box_pairs.hpp). Of the pairs MuJoCo collides by MPR, those of two polytopes
+// (box-mesh, mesh-mesh) at margin 0: MPR's answer is a closed form of its last portal's vertices,
+// held. The others (a cylinder or an ellipsoid against anything but a plane, a sphere or capsule
+// against a mesh) are refused by name: their support points move along the round surface with
+// the iteration's directions, so the answer is an iteration's end, not a closed form of the poses
+// (docs/derivatives.md).
 #include <lever/collision.hpp>
 #include <lever/error.hpp>
 
@@ -41,6 +44,12 @@ using primitive::cross;
 using primitive::dot;
 using primitive::normalize;
 V constant(const Eigen::Vector3d& x) { return primitive::constant_vec<Scalar>(x); }
+
+// The pairs MuJoCo collides by MPR whose geoms are both polytopes: box-mesh and mesh-mesh.
+bool polytope_mpr_pair(GeomType a, GeomType b) {
+  const auto polytope = [](GeomType t) { return t == GeomType::kBox || t == GeomType::kMesh; };
+  return polytope(a) && polytope(b) && (a == GeomType::kMesh || b == GeomType::kMesh);
+}
 
 // A geom's pose moving rigidly along each of the motions (geom 1's or 2's part of each):
 // pos' = w x (pos - centre) + v at the centre, mat' = [w] mat; motions past `count` stand still.
@@ -145,6 +154,138 @@ int plane_mesh(const Pose& plane, const Pose& mesh, const Data& data, int first,
   return count;
 }
 
+// ---- the MPR pairs of two polytopes (box-mesh, mesh-mesh) -------------------------------------
+// MuJoCo collides them by libccd's MPR, whose answer is read off its last portal: a triangle
+// (v1, v2, v3) of the Minkowski difference's support points v = a - b (a a point of geom 1, b of
+// geom 2, each a vertex of its polytope) and the interior point v0 = c1 - c2 (the geoms' centres).
+// The normal is the triangle's, pointing away from the origin, the depth the origin's distance to
+// it (dist = margin - depth: margin 0 here, where support points are vertices), and the point
+// half the sum of a and b weighted by the origin's barycentric coordinates in the tetrahedron
+// (v0, v1, v2, v3). Held (the vertices stay the portal's), all three are closed forms of the two
+// poses: differentiated here. Which vertices: those on the answer's supporting planes, the triple
+// whose closed form gives the collision stage's contact.
+
+// Vertex k of a box or mesh geom in its own frame.
+Eigen::Vector3d polytope_vertex(const Model& model, int g, int k) {
+  if (model.geom_type[g] == GeomType::kBox) {
+    const Eigen::Vector3d& size = model.geom_size[g];
+    return {(k & 1) ? size[0] : -size[0], (k & 2) ? size[1] : -size[1],
+            (k & 4) ? size[2] : -size[2]};
+  }
+  const int mesh = model.geom_dataid[g];
+  return model.mesh_vert[static_cast<std::size_t>(model.mesh_vertadr[mesh] + k)];
+}
+
+int polytope_vertex_count(const Model& model, int g) {
+  return model.geom_type[g] == GeomType::kBox ? 8 : model.mesh_vertnum[model.geom_dataid[g]];
+}
+
+// The polytope's vertices whose height along `up` is within `tolerance` of its highest (at most
+// kMostOnPlane; returns how many, or -1 for more).
+constexpr int kMostOnPlane = 8;
+int highest_vertices(const Model& model, const Data& data, int g, const Eigen::Vector3d& up,
+                     double tolerance, std::array<int, kMostOnPlane>& found) {
+  const int count = polytope_vertex_count(model, g);
+  double top = -1e300;
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Vector3d x = data.geom_xmat[g] * polytope_vertex(model, g, k);
+    top = std::max(top, up.dot(x));
+  }
+  int n = 0;
+  for (int k = 0; k < count; ++k) {
+    const Eigen::Vector3d x = data.geom_xmat[g] * polytope_vertex(model, g, k);
+    if (up.dot(x) < top - tolerance) continue;
+    if (n == kMostOnPlane) return -1;
+    found[static_cast<std::size_t>(n++)] = k;
+  }
+  return n;
+}
+
+// The answer of a portal whose support points are a[i] - b[i], on the moving poses.
+Found portal_answer(const V (&a)[3], const V (&b)[3], const V& c1, const V& c2, double margin) {
+  const V v0 = c1 - c2;
+  const V v[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+  V normal = cross(v[1] - v[0], v[2] - v[0]);
+  normalize(normal);
+  if (dot(normal, v[0]).v < 0) normal = normal * -1.0;
+  const Scalar depth = dot(normal, v[0]);
+  // barycentric weights (six times the volumes) of v0, v1, v2, v3, as libccd's findPos sums them;
+  // the triangle's orientation flips all four
+  const auto det = [](const V& x, const V& y, const V& z) { return dot(cross(x, y), z); };
+  Scalar w[4] = {det(v[0], v[1], v[2]), det(v[2], v[1], v0), det(v0, v[0], v[2]),
+                 det(v[1], v[0], v0)};
+  const Scalar sum = w[0] + w[1] + w[2] + w[3];
+  V p1 = c1 * w[0], p2 = c2 * w[0];
+  for (int i = 0; i < 3; ++i) {
+    p1 = p1 + a[i] * w[i + 1];
+    p2 = p2 + b[i] * w[i + 1];
+  }
+  const Scalar half = Scalar(0.5) / sum;
+  Found f;
+  set(f, Scalar(margin) - depth, (p1 + p2) * half, normal);
+  return f;
+}
+
+int polytope_pair(const Model& model, const Data& data, const Pose& g1, const Pose& g2,
+                  double margin, int first, int count, Found* out) {
+  const Contact& con = data.contact[static_cast<std::size_t>(first)];
+  if (margin != 0.0 || count != 1) {
+    throw Error(std::string("derivatives: a ") + geom_type_name(g1.type) + "-" +
+                geom_type_name(g2.type) +
+                " contact (MPR) is active with a margin or multiccd's extra contacts; lever "
+                "differentiates MPR's answer for two polytopes at margin 0, one contact per pair.");
+  }
+  // the vertices on each geom's supporting plane along the normal (the portal's lie on them,
+  // within MPR's tolerance)
+  const Eigen::Vector3d n = con.frame.row(0).transpose();
+  const double tolerance = 10 * model.opt.mpr_tolerance + 1e-12;
+  std::array<int, kMostOnPlane> top1{}, top2{};
+  const int n1 = highest_vertices(model, data, con.geom1, n, tolerance, top1);
+  const int n2 = highest_vertices(model, data, con.geom2, -n, tolerance, top2);
+  if (n1 < 0 || n2 < 0 || n1 * n2 > kMostOnPlane) {
+    throw Error("derivatives: contact " + std::to_string(first) + " (" +
+                geom_type_name(g1.type) + "-" + geom_type_name(g2.type) +
+                ", MPR) has a face of each geom on it; lever differentiates MPR's answer for a "
+                "vertex on a face or an edge across an edge, where its last portal is held.");
+  }
+  // the candidate support points (a vertex of each), on the moving poses
+  std::array<V, kMostOnPlane> a{}, b{};
+  int pairs = 0;
+  for (int i = 0; i < n1; ++i) {
+    for (int j = 0; j < n2; ++j) {
+      a[static_cast<std::size_t>(pairs)] =
+          rotate(g1, constant(polytope_vertex(model, con.geom1, top1[static_cast<std::size_t>(i)]))) +
+          g1.pos;
+      b[static_cast<std::size_t>(pairs)] =
+          rotate(g2, constant(polytope_vertex(model, con.geom2, top2[static_cast<std::size_t>(j)]))) +
+          g2.pos;
+      ++pairs;
+    }
+  }
+  // the triple whose answer is the stage's contact
+  double best = 1e300;
+  for (int i = 0; i < pairs; ++i) {
+    for (int j = i + 1; j < pairs; ++j) {
+      for (int k = j + 1; k < pairs; ++k) {
+        const auto I = static_cast<std::size_t>(i), J = static_cast<std::size_t>(j),
+                   K = static_cast<std::size_t>(k);
+        const V as[3] = {a[I], a[J], a[K]}, bs[3] = {b[I], b[J], b[K]};
+        const Found f = portal_answer(as, bs, g1.pos, g2.pos, margin);
+        double gap = std::abs(f.dist.v - con.dist);
+        for (int c = 0; c < 3; ++c) {
+          gap = std::max(gap, std::abs(f.pos[c].v - con.pos[c]));
+          gap = std::max(gap, std::abs(f.normal[c].v - con.frame(0, c)));
+        }
+        if (gap < best) {
+          best = gap;
+          out[0] = f;
+        }
+      }
+    }
+  }
+  return best < 1e300 ? 1 : 0;
+}
+
 int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
   using T = GeomType;
   if (g1.type == T::kPlane) {
@@ -176,7 +317,8 @@ int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
               geom_type_name(g2.type) +
               " contact is active; lever differentiates the contact geometry of the pairs "
               "MuJoCo collides in closed form (plane against sphere, capsule, box, cylinder, "
-              "ellipsoid and mesh; sphere, capsule and box pairs), not those it collides by MPR.");
+              "ellipsoid and mesh; sphere, capsule and box pairs) and, of those it collides by "
+              "MPR, box-mesh and mesh-mesh, not a round geom's.");
 }
 
 // The frame the driver completes from the normal and the first tangent's seed (mju_makeFrame).
@@ -202,7 +344,7 @@ bool contact_geometry_supported(GeomType a, GeomType b) {
   if (a == T::kSphere || a == T::kCapsule) {
     return b == T::kSphere || b == T::kCapsule || b == T::kBox;
   }
-  return a == T::kBox && b == T::kBox;
+  return (a == T::kBox && b == T::kBox) || polytope_mpr_pair(a, b);
 }
 
 int pair_first_contact(const Data& data, int i, int& count) {
@@ -238,9 +380,14 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
     const int motions_now = std::min(kMotions, directions - m0);
     const Pose g1 = moving_pose(model, data, con.geom1, motions + m0, motions_now, false);
     const Pose g2 = moving_pose(model, data, con.geom2, motions + m0, motions_now, true);
-    const int n = g1.type == GeomType::kPlane && g2.type == GeomType::kMesh
-                      ? plane_mesh(g1, g2, data, first, count, found.data())
-                      : collide_moving(g1, g2, margin, found.data());
+    int n = 0;
+    if (g1.type == GeomType::kPlane && g2.type == GeomType::kMesh) {
+      n = plane_mesh(g1, g2, data, first, count, found.data());
+    } else if (polytope_mpr_pair(g1.type, g2.type)) {
+      n = polytope_pair(model, data, g1, g2, margin, first, count, found.data());
+    } else {
+      n = collide_moving(g1, g2, margin, found.data());
+    }
     for (int k = 0; k < count; ++k) {
       const int i = first + k;
       const Contact& ck = data.contact[static_cast<std::size_t>(i)];
