@@ -80,19 +80,22 @@ double impedance(const std::array<double, 5>& solimp, double pos, double margin,
   const double x = std::abs((pos - margin) / width);
   if (x >= 1) return dmax;
   if (x <= 0) return d0;
+  // y = a x^p up to the midpoint, 1 - b (1 - x)^p past it, a = 1 / mid^(p-1) and
+  // b = 1 / (1 - mid)^(p-1), with pow as MuJoCo calls it: pow(x, 2) is not always x * x (libm's
+  // pow is within an ulp, not correctly rounded), and that ulp reaches R and efc_D. Only the
+  // default p = 2 spares the powers of mid and the slope's power: u^1 is u exactly.
   double y, dy_dx;
   if (power == 1) {
     y = x;
     dy_dx = 1;
-  } else if (power == 2) {  // the default: spare two calls to pow
-    y = x <= mid ? x * x / mid : 1 - (1 - x) * (1 - x) / (1 - mid);
-    dy_dx = x <= mid ? 2 * x / mid : 2 * (1 - x) / (1 - mid);
-  } else if (x <= mid) {
-    y = std::pow(x, power) / std::pow(mid, power - 1);
-    dy_dx = power * std::pow(x, power - 1) / std::pow(mid, power - 1);
   } else {
-    y = 1 - std::pow(1 - x, power) / std::pow(1 - mid, power - 1);
-    dy_dx = power * std::pow(1 - x, power - 1) / std::pow(1 - mid, power - 1);
+    const bool near = x <= mid;
+    const double u = near ? x : 1 - x;  // the distance from the flat end the branch starts at
+    const double base = near ? mid : 1 - mid;
+    const double scale = 1 / (power == 2 ? base : std::pow(base, power - 1));
+    const double power_u = scale * std::pow(u, power);
+    y = near ? power_u : 1 - power_u;
+    dy_dx = power * scale * (power == 2 ? u : std::pow(u, power - 1));
   }
   if (slope != nullptr) {
     const double dx_dpos = (pos - margin < 0 ? -1.0 : 1.0) / width;
