@@ -81,37 +81,50 @@ inline bool friction_loss_row(ConstraintType type) {
 }
 
 // ---- the constraint rows' products (rows.cpp), shared by the solvers -------------------
-// A contact's rows are combinations of its frame's rows over its span of dofs
-// (data.work.contact_frame_J, contact_span): the products work on those, a limit row on its dof.
+// A contact's rows are nonzero only over its span of dofs (data.work.contact_span): J x and
+// J^T f read efc_J's rows there (a pyramid's edges n +- mu t as efc_J holds them), each summed as
+// MuJoCo's dense products sum efc_J's; a limit row reads its dof. J^T D J works on the contact
+// frame's rows (data.work.contact_frame_J), a pyramid's pairs of edges gathered.
 
-/// a . b over the dofs [lo, end) of n, summed as MuJoCo's mju_dot sums the whole length n (a is
-/// zero outside [lo, end), and zeros add nothing): four running sums by the dof's place in
-/// MuJoCo's groups of four, joined as (s0 + s2) + (s1 + s3), then the dofs past the last whole
-/// group summed in order and added. With D up to 1e6 on a cone's rows, a row's last bit shows in
-/// its force.
+/// a . b over the dofs [lo, end) of n, summed as MuJoCo's mju_dot sums the whole length n: four
+/// running sums by the dof's place in MuJoCo's groups of four, joined as (s0 + s2) + (s1 + s3),
+/// then the dofs past the last whole group summed in order and added. The groups that [lo, end)
+/// touches are summed whole, as MuJoCo sums them: a must be zero outside [lo, end) (a zero
+/// product adds nothing to a sum, as in MuJoCo's) and both readable over [0, n), b finite. With D
+/// up to 1e6 on a cone's rows, a row's last bit shows in its force.
 inline double dot_as_mujoco(const double* a, const double* b, int lo, int end, int n) {
-  const int whole = n - n % 4;
-  double s[4] = {0.0, 0.0, 0.0, 0.0};
-  int j = lo;
-  for (; j < end && j < whole; ++j) s[j % 4] += a[j] * b[j];
-  double sum = (s[0] + s[2]) + (s[1] + s[3]);
+  const int whole = n & ~3;  // n, lo >= 0
+  const int groups_end = end < whole ? end : whole;
+  double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+  for (int j = lo & ~3; j < groups_end; j += 4) {
+    s0 += a[j] * b[j];
+    s1 += a[j + 1] * b[j + 1];
+    s2 += a[j + 2] * b[j + 2];
+    s3 += a[j + 3] * b[j + 3];
+  }
+  double sum = (s0 + s2) + (s1 + s3);
+  const int j = lo > whole ? lo : whole;  // past the last whole group (at most 3): in order
   if (j < end) {
     double tail = a[j] * b[j];
-    for (++j; j < end; ++j) tail += a[j] * b[j];
+    if (j + 1 < end) {
+      tail += a[j + 1] * b[j + 1];
+      if (j + 2 < end) tail += a[j + 2] * b[j + 2];
+    }
     sum += tail;
   }
   return sum;
 }
 
-/// out = J x for every row (nefc numbers; x has nv), a dense row's or a cone's rows' products
-/// summed as MuJoCo sums efc_J's (dot_as_mujoco).
+/// out = J x for every row (nefc numbers; x has nv), each row's product summed as MuJoCo's
+/// mju_mulMatVec sums efc_J's (dot_as_mujoco).
 void rows_times(const Data& data, const double* x, double* out);
 
 /// out = J x - aref for every row (MuJoCo's jar: where the rows' accelerations stand against
 /// their reference; nefc numbers).
 void rows_jar(const Data& data, const double* x, double* out);
 
-/// out += J^T f (f has nefc numbers, out nv).
+/// out += J^T f (f has nefc numbers, out nv): the rows added one after another, each row's
+/// products row_j f_r, as MuJoCo's mju_mulMatTVec adds them.
 void add_rows_transpose(const Data& data, const double* f, double* out);
 
 /// H += J^T diag(weight) J in H's lower triangle (weight: nefc numbers, zero for a row left

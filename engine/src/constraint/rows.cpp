@@ -30,6 +30,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <span>
 #include <type_traits>
 
@@ -70,6 +72,30 @@ void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref
   sanitize(model, solref, solimp);
 }
 
+namespace {
+
+// Whether libm's pow(x, 2) is p = x * x (rounded), for x in (0, 1), found mostly without calling
+// it. libm's pow (glibc's and musl's, both ARM's optimized routines) is within 0.54 ulp of the
+// true x^2 = p + e: where |e| < 0.45 ulp of p (p not a power of two: one ulp on both sides), every
+// other double is more than 0.55 ulp away, so pow returns p. e is exact by Dekker's product
+// (Veltkamp's split, no fused multiply-add). About one x in ten is left to pow.
+bool square_is_pow(double x, double& p) {
+  p = x * x;
+  const double c = 134217729.0 * x;  // 2^27 + 1
+  const double hi = c - (c - x), lo = x - hi;
+  const double e = ((hi * hi - p) + 2 * hi * lo) + lo * lo;
+  std::uint64_t bits;
+  std::memcpy(&bits, &p, sizeof bits);
+  const std::uint64_t exponent = bits >> 52;  // p > 0
+  if (exponent <= 200 || (bits & ((std::uint64_t{1} << 52) - 1)) == 0) return false;
+  const std::uint64_t ulp_bits = (exponent - 52) << 52;
+  double ulp;
+  std::memcpy(&ulp, &ulp_bits, sizeof ulp);
+  return std::abs(e) < 0.45 * ulp;
+}
+
+}  // namespace
+
 // Impedance at a violation: solimp's sigmoid from d0 (at the margin) to dmax (width past it).
 // With slope != nullptr, also d imp / d pos (zero on the flat parts; one-sided at their ends).
 double impedance(const std::array<double, 5>& solimp, double pos, double margin, double* slope) {
@@ -80,19 +106,25 @@ double impedance(const std::array<double, 5>& solimp, double pos, double margin,
   const double x = std::abs((pos - margin) / width);
   if (x >= 1) return dmax;
   if (x <= 0) return d0;
+  // y = a x^p up to the midpoint, 1 - b (1 - x)^p past it, a = 1 / mid^(p-1) and
+  // b = 1 / (1 - mid)^(p-1), with pow as MuJoCo calls it: pow(x, 2) is not always x * x (libm's
+  // pow is within an ulp, not correctly rounded), and that ulp reaches R and efc_D. The default
+  // p = 2 spares the powers of mid and the slope's power (u^1 is u exactly) and mostly u^2's.
   double y, dy_dx;
   if (power == 1) {
     y = x;
     dy_dx = 1;
-  } else if (power == 2) {  // the default: spare two calls to pow
-    y = x <= mid ? x * x / mid : 1 - (1 - x) * (1 - x) / (1 - mid);
-    dy_dx = x <= mid ? 2 * x / mid : 2 * (1 - x) / (1 - mid);
-  } else if (x <= mid) {
-    y = std::pow(x, power) / std::pow(mid, power - 1);
-    dy_dx = power * std::pow(x, power - 1) / std::pow(mid, power - 1);
   } else {
-    y = 1 - std::pow(1 - x, power) / std::pow(1 - mid, power - 1);
-    dy_dx = power * std::pow(1 - x, power - 1) / std::pow(1 - mid, power - 1);
+    const bool near = x <= mid;
+    const double u = near ? x : 1 - x;  // the distance from the flat end the branch starts at
+    const double base = near ? mid : 1 - mid;
+    const double scale = 1 / (power == 2 ? base : std::pow(base, power - 1));
+    // (pow is called with the power as a variable: a constant 2 would be folded into u * u)
+    double raised;
+    if (!(power == 2 && square_is_pow(u, raised))) raised = std::pow(u, power);
+    const double power_u = scale * raised;
+    y = near ? power_u : 1 - power_u;
+    dy_dx = power * scale * (power == 2 ? u : std::pow(u, power - 1));
   }
   if (slope != nullptr) {
     const double dx_dpos = (pos - margin < 0 ? -1.0 : 1.0) / width;
@@ -564,21 +596,82 @@ void with_dim(int dim, Kernel&& kernel) {
   }
 }
 
-// c = the frame's rows (rows `stride` apart) times x over the span of `count` dofs, each c_k
-// summed over the span in order
-template <int Dim>
-void frame_times(const double* rows, Eigen::Index stride, int count, const double* x, double* c) {
-  for (int k = 0; k < Dim; ++k) c[k] = 0.0;
-  for (int j = 0; j < count; ++j) {
-    const double xj = x[j];
-    for (int k = 0; k < Dim; ++k) c[k] += rows[k * stride + j] * xj;
+// out[k] = a_k . x for `count` rows a_k (`stride` apart) that share [lo, end) of n, each summed
+// as dot_as_mujoco sums it: four running sums over the groups of four from lo's to the last
+// whole one, then Tail (0 to 3) numbers past it, the bounds found once for the rows
+// (rows_dot_as_mujoco). Tail is a template argument so that the tail's sum unrolls.
+template <int Tail>
+void rows_dot(const double* a, Eigen::Index stride, int count, const double* x, int groups_begin,
+              int groups_end, int tail_begin, double* out) {
+  const double* t = x + tail_begin;
+  for (int k = 0; k < count; ++k, a += stride) {
+    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
+    for (int j = groups_begin; j < groups_end; j += 4) {
+      s0 += a[j] * x[j];
+      s1 += a[j + 1] * x[j + 1];
+      s2 += a[j + 2] * x[j + 2];
+      s3 += a[j + 3] * x[j + 3];
+    }
+    double sum = (s0 + s2) + (s1 + s3);
+    if constexpr (Tail > 0) {
+      const double* at = a + tail_begin;
+      double tail = at[0] * t[0];
+      if constexpr (Tail > 1) tail += at[1] * t[1];
+      if constexpr (Tail > 2) tail += at[2] * t[2];
+      sum += tail;
+    }
+    out[k] = sum;
+  }
+}
+
+// dot_as_mujoco for `count` rows of a (`stride` apart) at once, the bounds found once.
+void rows_dot_as_mujoco(const double* a, Eigen::Index stride, int count, const double* x, int lo,
+                        int end, int n, double* out) {
+  const int whole = n & ~3;
+  const int groups_begin = lo & ~3, groups_end = end < whole ? end : whole;
+  const int tail_begin = lo > whole ? lo : whole;
+  switch (end > tail_begin ? end - tail_begin : 0) {
+    case 0: return rows_dot<0>(a, stride, count, x, groups_begin, groups_end, tail_begin, out);
+    case 1: return rows_dot<1>(a, stride, count, x, groups_begin, groups_end, tail_begin, out);
+    case 2: return rows_dot<2>(a, stride, count, x, groups_begin, groups_end, tail_begin, out);
+    default: return rows_dot<3>(a, stride, count, x, groups_begin, groups_end, tail_begin, out);
+  }
+}
+
+// out[lo..lo + span) += sum_k a_k f_k over `count` rows a_k (`stride` apart) with nonzero forces
+// f_k, each out[j] adding the rows' products in the rows' order, as MuJoCo's J^T f adds them row
+// after row. Count is a template argument so that the loop over the rows unrolls.
+template <int Count>
+void add_rows_at(const double* const* a, const double* f, int lo, int span,
+                 double* __restrict out) {
+  const double* row[Count];
+  double force[Count];
+  for (int k = 0; k < Count; ++k) row[k] = a[k], force[k] = f[k];
+  for (int j = lo; j < lo + span; ++j) {
+    double o = out[j];
+    for (int k = 0; k < Count; ++k) o += row[k][j] * force[k];
+    out[j] = o;
+  }
+}
+
+void add_rows(const double* const* a, const double* f, int count, int lo, int span, double* out) {
+  switch (count) {
+    case 1: return add_rows_at<1>(a, f, lo, span, out);
+    case 2: return add_rows_at<2>(a, f, lo, span, out);
+    case 3: return add_rows_at<3>(a, f, lo, span, out);
+    case 4: return add_rows_at<4>(a, f, lo, span, out);
+    default:
+      for (int j = lo; j < lo + span; ++j) {
+        double o = out[j];
+        for (int k = 0; k < count; ++k) o += a[k][j] * f[k];
+        out[j] = o;
+      }
   }
 }
 
 }  // namespace
 
 void rows_times(const Data& data, const double* x, double* out) {
-  const auto& C = data.work.contact_frame_J;
   const int nv = static_cast<int>(data.efc_J.cols());
   for (int r = 0; r < data.nefc;) {
     if (dense_row(data.efc_type[r])) {
@@ -594,20 +687,12 @@ void rows_times(const Data& data, const double* x, double* out) {
     const int i = data.efc_id[r];
     const Contact& con = data.contact[i];
     const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
-    if (data.efc_type[r] != ConstraintType::kContactPyramidal) {  // efc_J's rows are the frame's
-      for (int k = 0; k < con.dim; ++k, ++r) {
-        out[r] = dot_as_mujoco(C.row(r).data(), x, lo, lo + span, nv);
-      }
-      continue;
-    }
-    double c[6];  // the frame's rows times x
-    with_dim(con.dim,
-             [&](auto dim) { frame_times<dim>(C.row(r).data() + lo, C.cols(), span, x + lo, c); });
-    for (int k = 1; k < con.dim; ++k) {  // the edges n + mu t, n - mu t
-      const double mu = con.friction[k - 1];
-      out[r++] = c[0] + mu * c[k];
-      out[r++] = c[0] - mu * c[k];
-    }
+    // efc_J's rows over the span, zero outside it: the frame's own rows, or a pyramid's edges
+    // n +- mu t as efc_J holds them (c0 +- mu ck from the frame's products rounds otherwise)
+    const int rows =
+        data.efc_type[r] == ConstraintType::kContactPyramidal ? 2 * (con.dim - 1) : con.dim;
+    rows_dot_as_mujoco(data.efc_J.row(r).data(), nv, rows, x, lo, lo + span, nv, out + r);
+    r += rows;
   }
 }
 
@@ -617,7 +702,6 @@ void rows_jar(const Data& data, const double* x, double* out) {
 }
 
 void add_rows_transpose(const Data& data, const double* f, double* out) {
-  const auto& C = data.work.contact_frame_J;
   const int nv = static_cast<int>(data.efc_J.cols());
   for (int r = 0; r < data.nefc;) {
     if (dense_row(data.efc_type[r])) {
@@ -636,25 +720,19 @@ void add_rows_transpose(const Data& data, const double* f, double* out) {
     const int i = data.efc_id[r];
     const Contact& con = data.contact[i];
     const int lo = data.work.contact_span[2 * i], span = data.work.contact_span[2 * i + 1];
-    // the rows' forces as forces along the frame's rows: a pyramid's edges n +- mu t add their
-    // forces along n, and mu times their difference along t
-    double F[6];
-    const int frame = r;
-    if (data.efc_type[r] != ConstraintType::kContactPyramidal) {
-      for (int k = 0; k < con.dim; ++k) F[k] = f[r++];
-    } else {
-      F[0] = 0.0;
-      for (int k = 1; k < con.dim; ++k) {
-        F[0] += f[r] + f[r + 1];
-        F[k] = con.friction[k - 1] * (f[r] - f[r + 1]);
-        r += 2;
-      }
+    // efc_J's rows over the span with a force, added in turn as MuJoCo's J^T f adds them (a
+    // row without one adds nothing): the frame's own rows, or a pyramid's edges n +- mu t
+    const int end =
+        r + (data.efc_type[r] == ConstraintType::kContactPyramidal ? 2 * (con.dim - 1) : con.dim);
+    const double* rows[10];
+    double forces[10];
+    int count = 0;
+    for (; r < end; ++r) {
+      if (f[r] == 0.0) continue;
+      rows[count] = data.efc_J.row(r).data();
+      forces[count++] = f[r];
     }
-    for (int k = 0; k < con.dim; ++k) {
-      if (F[k] == 0.0) continue;
-      const double* row = C.row(frame + k).data() + lo;
-      for (int j = 0; j < span; ++j) out[lo + j] += F[k] * row[j];
-    }
+    if (count > 0) add_rows(rows, forces, count, lo, span, out);
   }
 }
 

@@ -213,9 +213,9 @@ void build_tendon_constants(Model& model, Data& data) {
     model.tendon_length0[t] = data.ten_length[t];
     x = data.ten_J.row(t).transpose();
     solve_mass(model, data, x);
-    double weight = 0.0;
-    for (int j = 0; j < model.nv; ++j) weight += data.ten_J(t, j) * x[j];
-    model.tendon_invweight0[t] = weight;
+    // summed as mju_dot sums it (a tendon limit's R is proportional to it)
+    model.tendon_invweight0[t] =
+        dot_as_mujoco(data.ten_J.row(t).data(), x.data(), 0, model.nv, model.nv);
   }
   // a spatial tendon's length needs the sites (and wrapping geoms) placed at qpos_spring
   const Eigen::VectorXd qpos = data.qpos;
@@ -243,7 +243,7 @@ void build_actuator_constants(Model& model, Data& data) {
     if (model.nv == 0) continue;
     x = data.actuator_moment.row(a).transpose();
     solve_mass(model, data, x);
-    model.actuator_acc0[a] = x.norm();
+    model.actuator_acc0[a] = std::sqrt(dot_as_mujoco(x.data(), x.data(), 0, model.nv, model.nv));
   }
 }
 
@@ -301,15 +301,22 @@ void set_const(Model& model) {
   }
   std::fill(model.body_invweight0.begin(), model.body_invweight0.end(),
             std::array<double, 2>{0.0, 0.0});
-  Eigen::MatrixXd jacp(3, model.nv), jacr(3, model.nv), Minv_Jt(model.nv, 3);
+  // a body's weights: the mean of the diagonal of J M^-1 J^T, its translational and its
+  // rotational 3 x 3 block at its centre of mass, each entry summed over the dofs as mju_dot sums
+  // it (MuJoCo's mju_mulMatMatT): a contact's R is proportional to it, so its last bit is efc_D's
+  Eigen::MatrixXd jacp(3, model.nv), jacr(3, model.nv), Jt(model.nv, 3), Minv_Jt(model.nv, 3);
   for (int b = 1; b < model.nbody; ++b) {
     jac_point(model, data, b, data.xipos[b], jacp, jacr);
     std::array<double, 2> weight{0.0, 0.0};
     for (int part = 0; part < 2; ++part) {
-      const Eigen::MatrixXd& J = part == 0 ? jacp : jacr;
-      Minv_Jt = J.transpose();
+      Jt = (part == 0 ? jacp : jacr).transpose();
+      Minv_Jt = Jt;
       for (int c = 0; c < 3; ++c) solve_mass(model, data, Minv_Jt.col(c));
-      weight[part] = (J * Minv_Jt).trace() / 3.0;
+      double diagonal[3];
+      for (int c = 0; c < 3; ++c) {
+        diagonal[c] = dot_as_mujoco(Jt.col(c).data(), Minv_Jt.col(c).data(), 0, model.nv, model.nv);
+      }
+      weight[part] = (diagonal[0] + diagonal[1] + diagonal[2]) / 3;
     }
     model.body_invweight0[b] = weight;
   }
