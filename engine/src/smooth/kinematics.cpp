@@ -599,17 +599,19 @@ void jac_site_from_q(const Model& model, Data& data, int site, Eigen::Ref<Eigen:
   const auto in_tree = [rootid, root](int b) { return rootid[b] == root; };
   if (root > 0) {
     // the leading bodies welded to the world copied (a tree's root may be one), the others
-    // placed; the loop of a model without them as it was (see place_every_body)
+    // placed; a model without them keeps its loop from the root (see place_every_body)
     const int leading = model.body_static_leading;
-    int first = root;
-    if (leading > 0) {
+    if (leading == 0) {
+      for (int b = root; b < model.nbody; ++b) {
+        if (in_tree(b)) place_body<kForJacobian>(model, data, b);
+      }
+    } else {
       for (int b = root; b <= leading; ++b) {
         if (in_tree(b)) copy_static_body<kForJacobian>(model, data, b);
       }
-      first = std::max(root, leading + 1);
-    }
-    for (int b = first; b < model.nbody; ++b) {
-      if (in_tree(b)) place_body<kForJacobian>(model, data, b);
+      for (int b = std::max(root, leading + 1); b < model.nbody; ++b) {
+        if (in_tree(b)) place_body<kForJacobian>(model, data, b);
+      }
     }
     subtree_centres(model, data, root, in_tree);
   }
