@@ -250,6 +250,28 @@
         if (jacp) jacp.set(Module.HEAPF64.subarray(start, start + n));
         if (jacr) jacr.set(Module.HEAPF64.subarray(start + n, start + 2 * n));
       },
+      // lever's lean calls from data.qpos (lever/kinematics.hpp), for a controller that needs
+      // less than mj_forward; each writes what the native call writes, bit for bit.
+      /** lever::body_poses: each body's frame alone (data.xpos, xquat, xmat). */
+      lever_body_poses(model, data) { check(data._wasm.body_poses()); },
+      /**
+       * lever::body_kinematics: mj_kinematics and mj_comPos without the geom and site frames (the
+       * body, inertial and joint frames, subtree_com, cdof): what M, the bias forces and inverse
+       * dynamics read.
+       */
+      lever_body_kinematics(model, data) { check(data._wasm.body_kinematics()); },
+      /**
+       * lever::jac_site_from_q: a site's Jacobians (as mj_jacSite: jacp and jacr, 3 x nv each,
+       * row-major; either may be null) and its frame (data.site_xpos, site_xmat) from data.qpos,
+       * placing only the bodies of the site's tree (no mj_forward needed first).
+       */
+      lever_jac_site_from_q(model, data, jacp, jacr, site) {
+        check(data._wasm.jac_site_from_q(site));
+        const n = 3 * model.nv;
+        const start = data._wasm.jac_address() / 8;
+        if (jacp) jacp.set(Module.HEAPF64.subarray(start, start + n));
+        if (jacr) jacr.set(Module.HEAPF64.subarray(start + n, start + 2 * n));
+      },
       // lever::set_const after editing model parameters (body_mass, ...). As MuJoCo 2.2.2's
       // mj_setConst, which computes its constants in `data` at qpos0, it leaves data.qpos at
       // qpos0 (and the outputs of that pose in data); qvel, ctrl and time are kept.

@@ -49,6 +49,69 @@ TEST_CASE("property: poses() writes kinematics()' frames bit for bit",
   }
 }
 
+TEST_CASE("property: the bodies welded to the world are copied as kinematics() would place them",
+          "[property][kinematics]") {
+  // set_const places them once (Model::body_static_*); with body_static_leading 0 every call
+  // places every body from the parameters, which the copies must equal bit for bit
+  int copied = 0;
+  for (const ModelCase& c : every_model_and_random_trees()) {
+    Model placed = c.model;
+    placed.body_static_leading = 0;
+    copied += c.model.body_static_leading;
+    Data with_copies(c.model), without(placed);
+    std::mt19937_64 rng(c.seed);
+    for (int k = 0; k < 3; ++k) {
+      const auto state = random_state(c.model, rng);
+      apply(state, with_copies);
+      apply(state, without);
+      kinematics(c.model, with_copies);
+      kinematics(placed, without);
+      INFO(c.name << ", seed " << c.seed << ", state " << k);
+      CHECK(same(with_copies.xpos, without.xpos));
+      CHECK(same(with_copies.xquat, without.xquat));
+      CHECK(same(with_copies.xmat, without.xmat));
+      CHECK(same(with_copies.xipos, without.xipos));
+      CHECK(same(with_copies.ximat, without.ximat));
+      CHECK(same(with_copies.subtree_com, without.subtree_com));
+    }
+    for (int b = 0; b < c.model.nbody; ++b) {
+      // the leading run: bodies 1, 2, ... as long as each is welded to the world
+      const bool leading = b > 0 && b <= c.model.body_static_leading;
+      INFO(c.name << ", body " << b);
+      if (leading) CHECK(c.model.body_static[b] == 1);
+      if (b == c.model.body_static_leading + 1 && b < c.model.nbody) CHECK(c.model.body_static[b] == 0);
+      const bool welded = b > 0 && c.model.body_jntnum[b] == 0 && c.model.body_mocapid[b] < 0 &&
+                          (c.model.body_parentid[b] == 0 ||
+                           c.model.body_static[c.model.body_parentid[b]] == 1);
+      CHECK(c.model.body_static[b] == (welded ? 1 : 0));
+    }
+  }
+  CHECK(copied > 0);  // panda7's link0 at least
+}
+
+TEST_CASE("property: a body welded to the world moves with body_pos and body_quat after set_const",
+          "[property][kinematics]") {
+  Model model = mjcf::load_file(model_path("models/panda7.xml"));
+  REQUIRE(model.body_static_leading >= 1);
+  Data before(model);
+  kinematics(model, before);
+  model.body_pos[1] += Eigen::Vector3d(0.1, -0.2, 0.3);
+  model.body_quat[1] = Eigen::Vector4d(0.9, 0.1, -0.3, 0.2).normalized();
+  set_const(model);
+  Model placed = model;
+  placed.body_static_leading = 0;
+  Data copied(model), computed(placed);
+  kinematics(model, copied);
+  kinematics(placed, computed);
+  CHECK(copied.xpos[1] != before.xpos[1]);
+  CHECK(copied.xquat[1] != before.xquat[1]);
+  CHECK(same(copied.xpos, computed.xpos));
+  CHECK(same(copied.xquat, computed.xquat));
+  CHECK(same(copied.xmat, computed.xmat));
+  CHECK(same(copied.xipos, computed.xipos));
+  CHECK(same(copied.ximat, computed.ximat));
+}
+
 TEST_CASE("property: kinematics()' xquat is a unit quaternion whose rotation is xmat",
           "[property][kinematics]") {
   // xmat is made from the normalized xquat (as MuJoCo's mj_kinematics makes it): the matrix of

@@ -1,7 +1,9 @@
 // web/lever.js on node against lever's native build: every array the JS API exposes, on every
 // model, equals what `lever forward --json` computes for the same state (to lever's 1e-12 bound);
 // model edits reach the engine through mj_setConst; views follow the heap when it grows;
-// mj_jacSite gives `lever forward`'s site_jacp and site_jacr; mj_resetDataKeyframe its --key state;
+// mj_jacSite gives `lever forward`'s site_jacp and site_jacr, and lever's lean calls from qpos
+// (lever_body_poses, lever_body_kinematics, lever_jac_site_from_q) its frames, subtree_com, cdof
+// and Jacobians; mj_resetDataKeyframe its --key state;
 // data.ncon, data.contact and data.efc_J of the gripper, run in wasm until it holds the box, agree
 // with the constraint rows `lever forward` computes for the same state; a model with a pair MuJoCo
 // collides by MPR (libccd, not in this build) is refused at load by the pair's name.
@@ -121,6 +123,71 @@ function compareJacobians(mj, model, data, native, label) {
       fail(`${label}: mj_jacSite at site ${bad} gave ${threw} instead of an EngineError`);
     }
   }
+}
+
+// lever's lean calls from qpos (lever_body_poses, lever_body_kinematics, lever_jac_site_from_q),
+// each on a fresh Data at the state's qpos: the arrays each writes equal `lever forward`'s, and
+// those it does not write keep what a new Data holds
+function compareLeanCalls(mj, model, qpos, native, label) {
+  const flatNative = (name) => native[name].flat(Infinity);
+  // a fresh Data at qpos, `call` run on it, then `untouched` compared with what it held before
+  const run = (what, call, untouched) => {
+    const data = new mj.MjData(model);
+    data.qpos.set(qpos);
+    const before = untouched.map((name) => Array.from(data[name]));
+    call(data);
+    untouched.forEach((name, k) => {
+      if (data[name].some((x, i) => x !== before[k][i])) fail(`${label}: ${what} wrote data.${name}`);
+    });
+    return data;
+  };
+  const compareArrays = (data, names, what) => {
+    for (const name of names) {
+      const ours = data[name];
+      const theirs = flatNative(name);
+      if (ours.length !== theirs.length) {
+        fail(`${label}: ${what}: data.${name} has ${ours.length} numbers, native ${theirs.length}`);
+        continue;
+      }
+      for (let i = 0; i < ours.length; i++) close(ours[i], theirs[i], `${label}: ${what}: data.${name}[${i}]`);
+    }
+  };
+  const bodyFrames = ['xpos', 'xquat', 'xmat'];
+  let data = run('lever_body_poses', (d) => mj.lever_body_poses(model, d),
+    ['xipos', 'ximat', 'xanchor', 'xaxis', 'subtree_com', 'cdof', 'site_xpos']);
+  compareArrays(data, bodyFrames, 'lever_body_poses');
+  data.delete();
+  data = run('lever_body_kinematics', (d) => mj.lever_body_kinematics(model, d),
+    ['geom_xpos', 'geom_xmat', 'site_xpos', 'site_xmat', 'qfrc_bias']);
+  compareArrays(data, [...bodyFrames, 'xipos', 'ximat', 'xanchor', 'xaxis', 'subtree_com', 'cdof'],
+    'lever_body_kinematics');
+  data.delete();
+  const n = 3 * model.nv;
+  const jacp = new Float64Array(n);
+  const jacr = new Float64Array(n);
+  for (let site = 0; site < model.nsite; site++) {
+    const what = `lever_jac_site_from_q(${site})`;
+    data = run(what, (d) => mj.lever_jac_site_from_q(model, d, jacp, jacr, site), ['ximat', 'cdof', 'geom_xpos']);
+    for (let i = 0; i < n; i++) {
+      close(jacp[i], native.site_jacp[site * n + i], `${label}: ${what}: jacp[${i}]`);
+      close(jacr[i], native.site_jacr[site * n + i], `${label}: ${what}: jacr[${i}]`);
+    }
+    for (let k = 0; k < 3; k++) {
+      close(data.site_xpos[3 * site + k], flatNative('site_xpos')[3 * site + k], `${label}: ${what}: site_xpos[${k}]`);
+    }
+    data.delete();
+  }
+  let threw = null;
+  data = new mj.MjData(model);
+  try {
+    mj.lever_jac_site_from_q(model, data, jacp, jacr, model.nsite);
+  } catch (e) {
+    threw = e;
+  }
+  if (!(threw instanceof mj.EngineError) || !/site/.test(threw.message)) {
+    fail(`${label}: lever_jac_site_from_q at site ${model.nsite} gave ${threw} instead of an EngineError`);
+  }
+  data.delete();
 }
 
 // a dot product's rounding scale: the sum of its terms' magnitudes
@@ -316,6 +383,7 @@ function gripperContacts(mj, root) {
       const native = nativeForward(path.join(root, file), fmt(s.qpos), fmt(s.qvel), fmt(s.ctrl));
       compareData(mj, model, data, native, `${file} state ${seed}`);
       compareJacobians(mj, model, data, native, `${file} state ${seed}`);
+      compareLeanCalls(mj, model, s.qpos, native, `${file} state ${seed}`);
     }
     for (let key = 0; key < model.nkey; key++) {
       // a keyframe's state, then forward: what `lever forward --key NAME` computes

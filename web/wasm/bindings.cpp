@@ -254,6 +254,29 @@ class WasmData {
   }
   uintptr_t jac_address() const { return reinterpret_cast<uintptr_t>(jac_.data()); }
 
+  // The lean calls from qpos (lever/kinematics.hpp), for a controller that needs less than
+  // forward; "" or the error.
+  /// lever::body_poses: each body's xpos, xquat and xmat.
+  std::string body_poses() {
+    return guarded([this] { lever::body_poses(model_.model(), data_); });
+  }
+  /// lever::body_kinematics: kinematics() without the geom and site frames.
+  std::string body_kinematics() {
+    return guarded([this] { lever::body_kinematics(model_.model(), data_); });
+  }
+  /// lever::jac_site_from_q: the site's frame and Jacobians from qpos alone, into the buffer at
+  /// jac_address() as jac_site() fills it.
+  std::string jac_site_from_q(int site) {
+    const int nv = model_.model().nv;
+    jacp_.resize(3, nv);
+    jacr_.resize(3, nv);
+    jac_.resize(6, nv);
+    return guarded([this, site] {
+      lever::jac_site_from_q(model_.model(), data_, site, jacp_, jacr_);
+      jac_ << jacp_, jacr_;
+    });
+  }
+
  private:
   template <typename F>
   static std::string guarded(F f) {
@@ -342,6 +365,9 @@ EMSCRIPTEN_BINDINGS(lever) {
       .function("contact_force_address", &WasmData::contact_force_address)
       .function("reset_keyframe", &WasmData::reset_keyframe)
       .function("jac_site", &WasmData::jac_site)
-      .function("jac_address", &WasmData::jac_address);
+      .function("jac_address", &WasmData::jac_address)
+      .function("body_poses", &WasmData::body_poses)
+      .function("body_kinematics", &WasmData::body_kinematics)
+      .function("jac_site_from_q", &WasmData::jac_site_from_q);
   constant("version", std::string(lever::version_string()));
 }

@@ -60,6 +60,12 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(body_inertia, double, nbody, 3, mujoco)                  \
   X(body_invweight0, double, nbody, 2, mujoco)               \
   X(body_simple, uint8_t, nbody, 1, mujoco)                  \
+  X(body_static, uint8_t, nbody, 1, own)                     \
+  X(body_static_xpos, double, nbody, 3, own)                 \
+  X(body_static_xquat, double, nbody, 4, own)                \
+  X(body_static_xmat, double, nbody, 9, own)                 \
+  X(body_static_xipos, double, nbody, 3, own)                \
+  X(body_static_ximat, double, nbody, 9, own)                \
   X(body_explicit_inertial, uint8_t, nbody, 1, own)          \
   X(body_line, int, nbody, 1, own)                           \
   X(body_mocapid, int, nbody, 1, mujoco)                     \
@@ -233,11 +239,13 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(key_name, nkey)
 
 // The Model arrays set_const computes from the others (MuJoCo's mj_setConst's constants, and
-// lever's actuator_scalar_dof). size_model() sizes them with the rest and set_const fills them;
-// every other Model array is a parameter, filled by whoever builds the model (lever::mjcf's
+// lever's actuator_scalar_dof and the frames of the bodies welded to the world). size_model()
+// sizes them with the rest and set_const fills them; every other Model array is a parameter, filled by whoever builds the model (lever::mjcf's
 // compiler, or by hand), and checked by validate() (lever/model_check.hpp).
 #define LEVER_MODEL_CONSTANTS(X) \
   X(body_subtreemass) X(body_invweight0) X(body_simple) X(dof_invweight0) X(dof_M0) X(dof_simplenum) \
+  X(body_static) X(body_static_xpos) X(body_static_xquat) X(body_static_xmat) X(body_static_xipos) \
+  X(body_static_ximat) \
   X(tendon_length0) X(tendon_invweight0) X(actuator_length0) X(actuator_acc0) X(actuator_scalar_dof)
 
 // X(name, element type, rows, cols, stage, origin); stage is the part of forward() that writes it,

@@ -669,6 +669,22 @@ struct ModelFields {
   /// or slide's axis along one coordinate axis, with no joint after the first one that turns.
   ArenaArray<uint8_t> body_simple;
   bool has_simple_dofs = false;  ///< set_const: some dof_simplenum is not 0
+  /// 1 for a body welded to the world: it has no joint, it is no mocap body, and its parent is
+  /// the world or a body welded to it (a robot's base, a table). Its frames depend on no
+  /// coordinate, so set_const places them once, as kinematics() would (body_static_xpos, ...,
+  /// bit for bit), and kinematics() copies them rather than composing them again (see
+  /// body_static_leading); 0 elsewhere (and zero frames).
+  ArenaArray<uint8_t> body_static;
+  ArenaArray<Eigen::Vector3d> body_static_xpos;   ///< such a body's xpos
+  ArenaArray<Eigen::Vector4d> body_static_xquat;  ///< its xquat
+  ArenaArray<Mat3> body_static_xmat;              ///< its xmat
+  ArenaArray<Eigen::Vector3d> body_static_xipos;  ///< its xipos
+  ArenaArray<Mat3> body_static_ximat;             ///< its ximat
+  /// set_const: how many bodies from body 1 on, one after another, are welded to the world (a
+  /// robot's base, the first body of its file): kinematics() copies their frames, with no
+  /// question per body. A body welded to the world after a moving one is placed as any other
+  /// (the same numbers). 0 while set_const itself places the bodies.
+  int body_static_leading = 0;
 
   // ---- set_const: constant rotations, so kinematics() does not rebuild them every call ------
   ArenaArray<Mat3> body_mat;   ///< rotation of body_quat

@@ -139,10 +139,12 @@ void check_ranges(const Model& model) {
       }
     }
   }
-  // every quaternion of the table (its arrays named *quat, four numbers a row) has a direction
+  // every quaternion of the table the model is given (its arrays named *quat, four numbers a
+  // row) has a direction
   for (const FieldView& field : model_fields(model)) {
     const std::string_view name = field.info->name;
     if (field.cols != 4 || name.size() < 4 || name.substr(name.size() - 4) != "quat") continue;
+    if (computed_by_set_const(name)) continue;
     for (int row = 0; row < field.rows; ++row) {
       const Eigen::Map<const Eigen::Vector4d> q(field.doubles() + 4L * row);
       if (q.norm() < 1e-10) {

@@ -1,6 +1,7 @@
 // set_const(): compute what follows from a model's parameters, once validate() (model_check.cpp)
 // has accepted them: the constants MuJoCo's mj_setConst freezes at qpos0 (engine_setconst.c), and
-// lever's constant rotations, joint and actuator kinds.
+// lever's constant rotations, joint and actuator kinds, and the frames of the bodies welded to
+// the world.
 #include <lever/dynamics.hpp>
 #include <lever/forward.hpp>
 #include <lever/kinematics.hpp>
@@ -186,6 +187,27 @@ void build_simple_bodies(Model& model) {
   }
 }
 
+// The bodies welded to the world (Model::body_static): no joint, no mocap body, the parent the
+// world or such a body (a parent comes before its children). Their frames are taken from `data`,
+// placed at some qpos by kinematics() while body_static_leading was 0: they depend on no
+// coordinate, so these are the frames every later call would compose, bit for bit.
+void build_static_bodies(Model& model, const Data& data) {
+  int leading = 0;  // bodies 1..leading are welded to the world
+  for (int b = 0; b < model.nbody; ++b) {
+    const int parent = model.body_parentid[b];
+    const bool on_world = parent == 0 || model.body_static[parent];
+    const bool fixed = b > 0 && on_world && model.body_jntnum[b] == 0 && model.body_mocapid[b] < 0;
+    model.body_static[b] = fixed;
+    model.body_static_xpos[b] = fixed ? data.xpos[b] : Eigen::Vector3d::Zero();
+    model.body_static_xquat[b] = fixed ? data.xquat[b] : Eigen::Vector4d::Zero();
+    model.body_static_xmat[b] = fixed ? data.xmat[b] : Mat3::Zero();
+    model.body_static_xipos[b] = fixed ? data.xipos[b] : Eigen::Vector3d::Zero();
+    model.body_static_ximat[b] = fixed ? data.ximat[b] : Mat3::Zero();
+    if (fixed && b == leading + 1) leading = b;
+  }
+  model.body_static_leading = leading;
+}
+
 }  // namespace
 
 ActuatorKind actuator_kind_of(GainType gaintype, const std::array<double, kGainParameters>& g,
@@ -274,6 +296,8 @@ void set_const(Model& model) {
   // whole (no dof simple yet: crba() would copy the simple ones' diagonal from dof_M0)
   std::fill(model.dof_simplenum.begin(), model.dof_simplenum.end(), 0);
   model.has_simple_dofs = false;
+  // every body placed from its parameters, none copied from frames an earlier edition stored
+  model.body_static_leading = 0;
   Data data(model);
   data.qpos = model.qpos0;
   kinematics(model, data);
@@ -325,6 +349,7 @@ void set_const(Model& model) {
   complete_equality_data(model, data);  // constraint/equality.cpp: anchors at qpos0
   detail::check_at_qpos0(model, data);  // model_check.cpp: finite parameters can still overflow
   build_simple_bodies(model);  // after dof_M0, which crba() copies for their dofs from now on
+  build_static_bodies(model, data);  // kinematics() copies their frames from now on
 
   // from here on a Data of this model makes room for contact rows, and forward() collides: a
   // new edition, so that Data made before are checked again

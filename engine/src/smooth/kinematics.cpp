@@ -10,7 +10,9 @@
 // xmat. A constant frame on a body (its inertial frame, a geom, a site) is placed the same way:
 // origin p + R v, rotation the matrix of xquat * q. Only products with exact zeros and ones are
 // left out (as set_const classified each frame, lever/model.hpp FramePlacement, and a hinge about
-// a coordinate axis): leaving them out changes no bit.
+// a coordinate axis): leaving them out changes no bit. A body welded to the world (no joint on
+// the way to it) has the same frames at every state: set_const places it once and each call copies
+// its frames (Model::body_static).
 //
 // Then, as MuJoCo's mj_comPos, the quantities the dynamics needs, in absolute coordinates (world
 // axes, origin at the subtree centre of mass of the body's world child, c):
@@ -25,6 +27,7 @@
 #include "model/model_room.hpp"
 #include "smooth/smooth.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lever {
@@ -195,6 +198,44 @@ template <Placed kPlace>
   }
 }
 
+// A body welded to the world (Model::body_static): the frames set_const placed once, which are
+// what place_body() would compose (they depend on no coordinate), and the inertial frame where
+// kPlace asks for it. It has no joint frames.
+template <Placed kPlace>
+[[gnu::always_inline]] inline void copy_static_body(const Model& m, Data& d, int b) {
+  d.xpos[b] = m.body_static_xpos[b];
+  d.xquat[b] = m.body_static_xquat[b];
+  d.xmat[b] = m.body_static_xmat[b];
+  if constexpr (kPlace.inertial_origin) d.xipos[b] = m.body_static_xipos[b];
+  if constexpr (kPlace.inertial_axes) d.ximat[b] = m.body_static_ximat[b];
+}
+
+// Body b placed on its parent, which is placed: copied where set_const placed it (one of the
+// bodies welded to the world from body 1 on, Model::body_static_leading).
+template <Placed kPlace>
+[[gnu::always_inline]] inline void place_or_copy_body(const Model& m, Data& d, int b) {
+  if (b <= m.body_static_leading) {
+    copy_static_body<kPlace>(m, d, b);
+  } else {
+    place_body<kPlace>(m, d, b);
+  }
+}
+
+// Every body but the world, root to leaves: the leading ones welded to the world copied, the
+// others placed. A model without such bodies keeps the loop from body 1: one from a number known
+// only at run time cost arm2's body_poses() some twenty instructions a call (GCC kept its
+// counters on the stack).
+template <Placed kPlace>
+[[gnu::always_inline]] inline void place_every_body(const Model& m, Data& d) {
+  const int nbody = m.nbody, leading = m.body_static_leading;
+  if (leading == 0) {
+    for (int b = 1; b < nbody; ++b) place_body<kPlace>(m, d, b);
+    return;
+  }
+  for (int b = 1; b <= leading; ++b) copy_static_body<kPlace>(m, d, b);
+  for (int b = leading + 1; b < nbody; ++b) place_body<kPlace>(m, d, b);
+}
+
 // Constant frames on their bodies (geoms, sites): frame i of n at (pos[i], quat[i]), placed as
 // placement[i] says, on body bodyid[i], into (xpos[i], xmat[i]).
 void place_attached(int n, const int* bodyid, const Eigen::Vector3d* pos, const Quat* quat,
@@ -235,8 +276,7 @@ enum class Attached { kNone, kSites, kGeomsAndSites };
 void place_bodies(const Model& model, Data& data, Attached attached) {
   normalize_state_quats(model, data);
   place_world(data);
-  const int nbody = model.nbody;
-  for (int b = 1; b < nbody; ++b) place_body<kEveryFrame>(model, data, b);
+  place_every_body<kEveryFrame>(model, data);
   if (attached == Attached::kNone) return;
   if (attached == Attached::kGeomsAndSites) {
     place_attached(model.ngeom, model.geom_bodyid.data(), model.geom_pos.data(),
@@ -404,8 +444,7 @@ void body_poses(const Model& model, Data& data) {
   check_entry(model, data, "lever::body_poses");
   normalize_state_quats(model, data);
   place_world<kFramesAlone>(data);
-  const int nbody = model.nbody;
-  for (int b = 1; b < nbody; ++b) place_body<kFramesAlone>(model, data, b);
+  place_every_body<kFramesAlone>(model, data);
 }
 
 void body_kinematics(const Model& model, Data& data) {
@@ -427,7 +466,7 @@ void place_site(const Model& model, Data& data, int site) {
   int length = 0;
   for (int b = model.site_bodyid[site]; b > 0; b = model.body_parentid[b]) path[length++] = b;
   place_world<kFramesAlone>(data);
-  while (length > 0) place_body<kFramesAlone>(model, data, path[--length]);
+  while (length > 0) place_or_copy_body<kFramesAlone>(model, data, path[--length]);
   place_attached(1, &model.site_bodyid[site], &model.site_pos[site], &model.site_quat[site],
                  &model.site_placement[site], data, &data.site_xpos[site],
                  &data.site_xmat[site]);
@@ -559,8 +598,20 @@ void jac_site_from_q(const Model& model, Data& data, int site, Eigen::Ref<Eigen:
   const int* const rootid = model.body_rootid.data();
   const auto in_tree = [rootid, root](int b) { return rootid[b] == root; };
   if (root > 0) {
-    for (int b = root; b < model.nbody; ++b) {
-      if (in_tree(b)) place_body<kForJacobian>(model, data, b);
+    // the leading bodies welded to the world copied (a tree's root may be one), the others
+    // placed; a model without them keeps its loop from the root (see place_every_body)
+    const int leading = model.body_static_leading;
+    if (leading == 0) {
+      for (int b = root; b < model.nbody; ++b) {
+        if (in_tree(b)) place_body<kForJacobian>(model, data, b);
+      }
+    } else {
+      for (int b = root; b <= leading; ++b) {
+        if (in_tree(b)) copy_static_body<kForJacobian>(model, data, b);
+      }
+      for (int b = std::max(root, leading + 1); b < model.nbody; ++b) {
+        if (in_tree(b)) place_body<kForJacobian>(model, data, b);
+      }
     }
     subtree_centres(model, data, root, in_tree);
   }
