@@ -632,8 +632,8 @@ std::vector<ElementRule> build() {
                "", "compiler settings; apply to the whole model wherever written"});
   s.push_back({"lengthrange", "compiler", '?',
                {keyword("mode", "muscle", "none muscle muscleuser all", "",
-                        "which actuators get a computed length range (muscleuser: as muscle, "
-                        "lever has no user actuators)"),
+                        "which actuators get a computed length range (muscleuser: muscles and "
+                        "actuators with a user gain or bias)"),
                 keyword("useexisting", "true", "false true", "", "keep a lengthrange as written"),
                 keyword("uselimit", "false", "false true", "",
                         "take a limited joint's or tendon's range"),

@@ -224,6 +224,31 @@ TEST_CASE("every option of <compiler><lengthrange> agrees with MuJoCo",
   CHECK(n.actuator_lengthrange[4] == std::array<double, 2>{0.1, 2});
 }
 
+TEST_CASE("lengthrange mode muscleuser finds the ranges of user gains and biases as MuJoCo",
+          "[compile][actuators][muscles]") {
+  // a user gain and a user bias are user actuators; user dynamics alone and a motor are not
+  const std::string head = R"(<mujoco><compiler angle="radian" autolimits="true">)";
+  const std::string body = R"(</compiler><worldbody><body>
+    <joint name="j" axis="0 1 0" range="-0.6 0.9"/><geom size="0.1" contype="0" conaffinity="0"/>
+    </body></worldbody><actuator>
+    <general name="gain" joint="j" gaintype="user"/><general name="bias" joint="j" biastype="user"/>
+    <motor name="motor" joint="j"/><general name="dyn" joint="j" dyntype="user"/>
+    </actuator></mujoco>)";
+  const std::string user = head + R"(<lengthrange mode="muscleuser"/>)" + body;
+  check_compiles_as_mujoco("muscleuser", user);
+  const lever::Model m = lever::mjcf::load_string(user, "muscleuser.xml");
+  for (const int a : {0, 1}) {  // simulated to near the soft stops
+    CHECK(m.actuator_lengthrange[a][0] == Approx(-0.6).margin(0.1));
+    CHECK(m.actuator_lengthrange[a][1] == Approx(0.9).margin(0.1));
+  }
+  for (const int a : {2, 3}) CHECK(m.actuator_lengthrange[a] == std::array<double, 2>{0, 0});
+  // mode muscle leaves the user actuators alone
+  const std::string muscle = head + R"(<lengthrange mode="muscle"/>)" + body;
+  check_compiles_as_mujoco("muscle", muscle);
+  const lever::Model n = lever::mjcf::load_string(muscle, "muscle.xml");
+  for (int a = 0; a < 4; ++a) CHECK(n.actuator_lengthrange[a] == std::array<double, 2>{0, 0});
+}
+
 TEST_CASE("actuators with dynamics written wrongly are refused by name",
           "[compile][actuators][muscles]") {
   const std::string head = R"(<mujoco><worldbody><body><joint name="j"/><geom size="1"/></body>
