@@ -130,7 +130,7 @@ _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclud
           "nsensordata", "neq", "nmocap", "nmesh", "nmeshvert", "nmeshgraph", "nmeshface",
           "nconmax",
           "njmax", "ntendon", "nwrap", "nuser_body", "nuser_jnt", "nuser_geom", "nuser_site",
-          "nuser_actuator", "nuser_sensor", "na")
+          "nuser_tendon", "nuser_actuator", "nuser_sensor", "na")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl", "key_mpos", "key_mquat")
 # the mjModel arrays model.body(...) and the other accessors reach

@@ -825,6 +825,7 @@ TEST_CASE("size_model gives every array the length the field table promises", "[
   model.nuser_jnt = 1;
   model.nuser_geom = 3;
   model.nuser_site = 1;
+  model.nuser_tendon = 2;
   model.nuser_actuator = 2;
   model.nuser_sensor = 1;
   model.ntendon = 2;

@@ -38,7 +38,7 @@
 // data arrays): negative, so that FieldInfo::cols_size tells which size counts them.
 namespace lever::counted_cols {
 inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_site = -5,
-                     nuser_actuator = -6, nuser_sensor = -7, nv = -8;
+                     nuser_actuator = -6, nuser_sensor = -7, nv = -8, nuser_tendon = -9;
 }  // namespace lever::counted_cols
 
 // X(name, element type, rows, cols, origin)
@@ -135,6 +135,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(jnt_user, double, njnt, counted_cols::nuser_jnt, mujoco)                    \
   X(geom_user, double, ngeom, counted_cols::nuser_geom, mujoco)                 \
   X(site_user, double, nsite, counted_cols::nuser_site, mujoco)                 \
+  X(tendon_user, double, ntendon, counted_cols::nuser_tendon, mujoco)           \
   X(actuator_user, double, nu, counted_cols::nuser_actuator, mujoco)            \
   X(sensor_user, double, nsensor, counted_cols::nuser_sensor, mujoco)
 
@@ -350,6 +351,7 @@ enum class Size : int {
   kNuserJnt,
   kNuserGeom,
   kNuserSite,
+  kNuserTendon,
   kNuserActuator,
   kNuserSensor,
   // tendons

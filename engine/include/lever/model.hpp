@@ -425,8 +425,8 @@ struct ModelFields {
                       ///< mocap_pos and mocap_quat (MJCF's <body mocap="true">)
   // user data: numbers per object that the engine never reads (MJCF's `user`), each kind's rows
   // padded with zeros to its width (<size nuser_*>, else the longest list of the kind)
-  int nuser_body = 0, nuser_jnt = 0, nuser_geom = 0, nuser_site = 0, nuser_actuator = 0,
-      nuser_sensor = 0;
+  int nuser_body = 0, nuser_jnt = 0, nuser_geom = 0, nuser_site = 0, nuser_tendon = 0,
+      nuser_actuator = 0, nuser_sensor = 0;
   int nconmax = 100;  ///< most contacts a Data holds (<size nconmax>; MuJoCo 2.2.2's default)
   int njmax = 500;    ///< most constraint rows a Data holds (<size njmax>)
 
@@ -647,7 +647,8 @@ struct ModelFields {
                                       ///< opt.enabled(kEnableSensornoise)
 
   // ---- user data: (nbody x nuser_body), (njnt x nuser_jnt), ... MuJoCo's *_user arrays -------
-  ArenaRowMatrix body_user, jnt_user, geom_user, site_user, actuator_user, sensor_user;
+  ArenaRowMatrix body_user, jnt_user, geom_user, site_user, tendon_user, actuator_user,
+      sensor_user;
 
   // ---- keyframes (nkey): named states to start from (<keyframe><key>) --------------------------
   std::vector<std::string> key_name;
