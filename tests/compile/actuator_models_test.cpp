@@ -4,7 +4,9 @@
 // actuator_cranklength, and the constants actuator_length0 and actuator_acc0); and the
 // transmissions lever refuses, by name.
 #include <catch2/catch.hpp>
+#include <lever/check.hpp>
 #include <lever/derivatives.hpp>
+#include <lever/identify.hpp>
 #include <lever/forward.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/parameters.hpp>
@@ -264,6 +266,39 @@ TEST_CASE("actuators with dynamics written wrongly are refused by name",
   // an unlimited joint: the simulation pulls the length without end and does not settle
   CHECK_THAT(load_refusal(head + R"(<muscle joint="j"/></actuator></mujoco>)"),
              Catch::Contains("did not settle"));
+}
+
+TEST_CASE("lever check and identification refuse user actuators by name, callbacks or not",
+          "[compile][actuators]") {
+  // a motor, then one actuator with a user part each: the refusal names it and its attribute
+  const auto user_model = [](const std::string& part) {
+    return lever::mjcf::load_string(
+        R"(<mujoco><worldbody><body><joint name="j" range="-1 1" limited="true"/>
+        <geom type="capsule" size="0.05" fromto="0 0 0 0.3 0 0"/></body></worldbody><actuator>
+        <motor name="plain" joint="j"/><general name="custom" joint="j" )" + part +
+            R"(/></actuator></mujoco>)",
+        "user_actuator.xml");
+  };
+  for (const std::string type : {"gaintype", "biastype", "dyntype"}) {
+    INFO(type);
+    lever::Model m = user_model(type + "=\"user\"");
+    CHECK_THROWS_WITH(lever::check::check_model(m),
+                      Catch::Contains("lever check: actuator 'custom' has " + type + " \"user\"") &&
+                          Catch::Contains("callback"));
+    // installed callbacks do not change it: the sections read the parameters, not the callback
+    const auto callback = [](const lever::Model&, const lever::Data&, int) { return 2.0; };
+    m.actuator_gain_callback = m.actuator_bias_callback = m.actuator_dyn_callback = callback;
+    CHECK_THROWS_WITH(lever::check::check_model(m), Catch::Contains("has " + type));
+    lever::Data d(m);
+    lever::forward(m, d);
+    Eigen::MatrixXd Y(m.nv, lever::regressor_columns(m));
+    CHECK_THROWS_WITH(lever::regressor(m, d, d.qacc, Y),
+                      Catch::Contains("regressor: actuator 'custom' has " + type));
+    CHECK_THROWS_WITH(lever::identify::identify(m, lever::identify::Trajectory{}),
+                      Catch::Contains("identify: actuator 'custom' has " + type));
+  }
+  // the same model with a built-in gain is checked
+  CHECK_NOTHROW(lever::check::check_model(user_model(R"(gaintype="fixed")")));
 }
 
 TEST_CASE("derivatives and identification refuse the actuators they do not handle, by name",

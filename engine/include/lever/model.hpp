@@ -766,8 +766,14 @@ struct Model : ModelFields {
 /// data.actuator_moment that depends on the state.
 int actuator_scalar_dof(const Model& model, int a);
 
+/// The attribute that makes actuator a's force a user's callback (MuJoCo's mjcb_act_gain,
+/// mjcb_act_bias, mjcb_act_dyn): "gaintype", "biastype" or "dyntype" (the first of them whose
+/// type is user), or nullptr when its force is lever's own.
+const char* actuator_user_attribute(const Model& model, int a);
+
 /// Throws ModelError, naming `feature` and the first actuator that is not one, unless every
-/// actuator is stateless (dyntype none), has a fixed or affine gain and bias (no muscle) and
+/// actuator is stateless (dyntype none), has a fixed or affine gain and bias (no muscle, no user
+/// callback) and
 /// drives a hinge or slide joint alone (actuator_scalar_dof >= 0), or, where
 /// `tendons_and_sites`, a tendon (whose moment is gear ten_J) or a site without a reference site
 /// (whose moment turns with the site): for the features (identification, the step's
