@@ -253,6 +253,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(mocap_pos, double, nmocap, 3, state, mujoco)               \
   X(mocap_quat, double, nmocap, 4, state, mujoco)              \
   X(qacc, double, nv, 1, acceleration, mujoco)                 \
+  X(qacc_warmstart, double, nv, 1, acceleration, mujoco)       \
   X(xpos, double, nbody, 3, position, mujoco)                  \
   X(xquat, double, nbody, 4, position, mujoco)                 \
   X(xmat, double, nbody, 9, position, mujoco)                  \

@@ -293,7 +293,8 @@ enum DisableBit : int {
   kDisablePassive = 1 << 5,       ///< springs, damping, the medium's forces
   kDisableGravity = 1 << 6,       ///< gravity (in qfrc_bias, cacc, the potential energy)
   kDisableClampctrl = 1 << 7,     ///< clamping ctrl to ctrlrange
-  kDisableWarmstart = 1 << 8,     ///< the solver's warm start (lever never warm-starts)
+  kDisableWarmstart = 1 << 8,     ///< PGS's warm start from qacc_warmstart (Newton and CG
+                                  ///< start cold in lever: at tolerance 0 the answer is the same)
   kDisableFilterparent = 1 << 9,  ///< the broad phase's parent-child filter
   kDisableActuation = 1 << 10,    ///< actuator forces
   kDisableRefsafe = 1 << 11,      ///< solref[0] >= 2 timestep
