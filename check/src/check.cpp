@@ -193,8 +193,34 @@ std::string Report::skipped(int section) const {
   }
 }
 
+namespace {
+
+// A user actuator's force is the callback's (MuJoCo's mjcb_act_gain, mjcb_act_bias,
+// mjcb_act_dyn), which a model file does not carry: without it the engine would use MuJoCo's
+// stand-ins (gain 1, bias 0, no activation change), and every section that reads the actuators
+// (the torque budget from gainprm and biasprm, the servos' targets in the stop runs, the step's
+// linearization) would report on a force the user never wrote. So the model is refused by name,
+// callbacks installed or not: the sections read the force law from the parameters.
+void refuse_user_actuators(const Model& model) {
+  for (int a = 0; a < model.nu; ++a) {
+    const char* user = actuator_user_attribute(model, a);
+    if (user == nullptr) continue;
+    const std::string name =
+        model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+    throw ModelError("lever check: actuator " + name + " has " + user +
+                         " \"user\": its force comes from a callback (MuJoCo's mjcb_act_*) "
+                         "that lever check cannot know; its sections read each actuator's force "
+                         "from gainprm, biasprm and dynprm. Check a copy of the model with a "
+                         "built-in type in its place.",
+                     "actuator", a);
+  }
+}
+
+}  // namespace
+
 Report run_check(const Inputs& inputs) {
   const Model& model = inputs.model;
+  refuse_user_actuators(model);
   // the sections that vary each joint over its range, lift weights at the joints and linearize
   // the step in qpos are written for hinges and slides: a ball or free joint skips them
   std::string floating;

@@ -238,6 +238,7 @@ Model from_mujoco(const mjModel* m) {
   model.nuser_jnt = m->nuser_jnt;
   model.nuser_geom = m->nuser_geom;
   model.nuser_site = m->nuser_site;
+  model.nuser_tendon = m->nuser_tendon;
   model.nuser_actuator = m->nuser_actuator;
   model.nuser_sensor = m->nuser_sensor;
   model.ntendon = m->ntendon;
@@ -251,6 +252,7 @@ Model from_mujoco(const mjModel* m) {
   copy_user(m->jnt_user, model.jnt_user);
   copy_user(m->geom_user, model.geom_user);
   copy_user(m->site_user, model.site_user);
+  copy_user(m->tendon_user, model.tendon_user);
   copy_user(m->actuator_user, model.actuator_user);
   copy_user(m->sensor_user, model.sensor_user);
 

@@ -109,6 +109,7 @@ std::string row_name(const Model& model, Size rows, int i) {
     case Size::kNuserJnt:
     case Size::kNuserGeom:
     case Size::kNuserSite:
+    case Size::kNuserTendon:
     case Size::kNuserActuator:
     case Size::kNuserSensor: break;
   }

@@ -1189,7 +1189,7 @@ class Compiler {
   Model assemble() const;
   // each kind's `user` lists in the model's order of its objects
   struct UserLists {
-    std::vector<const UserData*> body, joint, geom, site, actuator, sensor;
+    std::vector<const UserData*> body, joint, geom, site, tendon, actuator, sensor;
   };
   UserLists user_lists() const {
     UserLists u;
@@ -1197,6 +1197,7 @@ class Compiler {
     for (const CompiledJoint& j : joints_) u.joint.push_back(&j.spec->user);
     for (const CompiledGeom& g : geoms_) u.geom.push_back(&g.spec->user);
     for (const CompiledSite& s : sites_) u.site.push_back(&s.spec->user);
+    for (const TendonSpec& t : spec_.tendons) u.tendon.push_back(&t.user);
     for (const CompiledMotor& a : motors_) u.actuator.push_back(&a.spec->user);
     for (const SensorSpec& s : spec_.sensors) u.sensor.push_back(&s.user);
     return u;
@@ -1267,6 +1268,7 @@ Model Compiler::assemble() const {
   m.nuser_jnt = user_width(UserKind::kJoint, spec_.nuser, users.joint);
   m.nuser_geom = user_width(UserKind::kGeom, spec_.nuser, users.geom);
   m.nuser_site = user_width(UserKind::kSite, spec_.nuser, users.site);
+  m.nuser_tendon = user_width(UserKind::kTendon, spec_.nuser, users.tendon);
   m.nuser_actuator = user_width(UserKind::kActuator, spec_.nuser, users.actuator);
   m.nuser_sensor = user_width(UserKind::kSensor, spec_.nuser, users.sensor);
   size_model(m);
@@ -1274,6 +1276,7 @@ Model Compiler::assemble() const {
   fill_user_rows(users.joint, m.nuser_jnt, m.jnt_user);
   fill_user_rows(users.geom, m.nuser_geom, m.geom_user);
   fill_user_rows(users.site, m.nuser_site, m.site_user);
+  fill_user_rows(users.tendon, m.nuser_tendon, m.tendon_user);
   fill_user_rows(users.actuator, m.nuser_actuator, m.actuator_user);
   assemble_meshes(m);
   assemble_bodies(m);

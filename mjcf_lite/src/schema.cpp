@@ -286,6 +286,7 @@ std::vector<AttributeRule> tendon_class_attributes() {
       real("width", 1, "0.003", "drawn width (spatial tendons)"),
       text("material", "", "visual only: read and kept, no effect on dynamics"),
       real("rgba", 4, "0.5 0.5 0.5 1", "visual only: read and kept, no effect on dynamics"),
+      user_data(),
   };
 }
 
@@ -297,7 +298,7 @@ void add_tendon_rules(std::vector<ElementRule>& s) {
                join({text("name", "", "tendon name"),
                      text("class", "", "default class (else the main class)")},
                     tendon_class_attributes()),
-               "user", "",
+               "", "",
                "a fixed tendon: length sum coef_k q_k over its joints; a spring-damper, limits and "
                "friction loss along it"});
   s.push_back({"joint", "fixed", '*',
@@ -308,7 +309,7 @@ void add_tendon_rules(std::vector<ElementRule>& s) {
                join({text("name", "", "tendon name"),
                      text("class", "", "default class (else the main class)")},
                     tendon_class_attributes()),
-               "user", "",
+               "", "",
                "a spatial tendon: a path through sites, wrapping around spheres and cylinders "
                "between them, split by pulleys; a spring-damper, limits and friction loss along "
                "it"});
@@ -632,8 +633,8 @@ std::vector<ElementRule> build() {
                "", "compiler settings; apply to the whole model wherever written"});
   s.push_back({"lengthrange", "compiler", '?',
                {keyword("mode", "muscle", "none muscle muscleuser all", "",
-                        "which actuators get a computed length range (muscleuser: as muscle, "
-                        "lever has no user actuators)"),
+                        "which actuators get a computed length range (muscleuser: muscles and "
+                        "actuators with a user gain or bias)"),
                 keyword("useexisting", "true", "false true", "", "keep a lengthrange as written"),
                 keyword("uselimit", "false", "false true", "",
                         "take a limited joint's or tendon's range"),
@@ -754,10 +755,11 @@ std::vector<ElementRule> build() {
                    integer("nuser_jnt", 1, "-1", "the same per joint"),
                    integer("nuser_geom", 1, "-1", "the same per geom"),
                    integer("nuser_site", 1, "-1", "the same per site"),
+                   integer("nuser_tendon", 1, "-1", "the same per tendon"),
                    integer("nuser_actuator", 1, "-1", "the same per actuator"),
                    integer("nuser_sensor", 1, "-1", "the same per sensor"),
                },
-               "nuserdata nkey nuser_cam nuser_tendon",
+               "nuserdata nkey nuser_cam",
                "", "sizes of MuJoCo's mjData"});
   s.push_back({"contact", "mujoco", '*', {}, "", "", "explicit contact pairs and exclusions"});
   add_equality_rules(s);
@@ -789,7 +791,7 @@ std::vector<ElementRule> build() {
                "contact pair defaults of the class"});
   s.push_back({"equality", "default", '?', equality_class_attributes(), "", "",
                "equality constraint defaults of the class"});
-  s.push_back({"tendon", "default", '?', tendon_class_attributes(), "user", "",
+  s.push_back({"tendon", "default", '?', tendon_class_attributes(), "", "",
                "tendon defaults of the class"});
   // MuJoCo 2.2.2 takes cranklength in a class for every actuator kind but adhesion; a class's
   // value reaches the actuators of the class, a slider-crank's rod or, on another transmission,

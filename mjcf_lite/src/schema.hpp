@@ -44,7 +44,7 @@ struct ElementRule {
   std::string_view meaning;
 };
 
-/// The `user` attribute of bodies, joints, geoms, sites, actuators and sensors: MuJoCo's user
+/// The `user` attribute of bodies, joints, geoms, sites, tendons, actuators and sensors: MuJoCo's user
 /// data, up to 1000 numbers (its reader's buffer), the whole list replacing what a class gave.
 AttributeRule user_data_rule();
 

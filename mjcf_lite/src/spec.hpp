@@ -183,6 +183,7 @@ struct TendonSpec {
   std::array<double, 5> solimp_limit{}, solimp_friction{};
   double margin = 0, stiffness = 0, damping = 0, frictionloss = 0, springlength = -1;
   double width = 0.003;
+  UserData user;
 };
 
 /// A <contact><exclude>.

@@ -55,6 +55,9 @@ TendonSpec read_tendon(const Element& e, const DefaultClasses& classes) {
   t.springlength = tendon_real(set, "springlength");
   t.width = tendon_real(set, "width");
   t.spatial = e.tag == "spatial";
+  if (const Value* user = set.find("user")) t.user.numbers = user->numbers;
+  const Attribute* user_written = e.find("user");
+  t.user.at = user_written ? e.place(*user_written) : e.place();
   for (const Element& child : e.children) {
     AttrSet cs;
     cs.apply(child, *find_rule(e.tag, child.tag));

@@ -11,7 +11,8 @@ namespace lever::mjcf::detail {
 
 const char* user_size_attribute(UserKind kind) {
   static constexpr std::array<const char*, kUserKinds> names = {
-      "nuser_body", "nuser_jnt", "nuser_geom", "nuser_site", "nuser_actuator", "nuser_sensor"};
+      "nuser_body",   "nuser_jnt",      "nuser_geom",  "nuser_site",
+      "nuser_tendon", "nuser_actuator", "nuser_sensor"};
   return names[static_cast<size_t>(kind)];
 }
 

@@ -1,4 +1,4 @@
-// User data (MJCF's `user` on bodies, joints, geoms, sites, actuators and sensors, and <size
+// User data (MJCF's `user` on bodies, joints, geoms, sites, tendons, actuators and sensors, and <size
 // nuser_*>): numbers the engine never reads, compiled as MuJoCo 2.2.2 compiles them into its
 // *_user arrays (user_model.cc, user_objects.cc). user.cpp.
 #pragma once
@@ -19,12 +19,12 @@ struct UserData {
 };
 
 /// The kinds of object that carry user data, in <size>'s order.
-enum class UserKind { kBody, kJoint, kGeom, kSite, kActuator, kSensor };
-inline constexpr int kUserKinds = 6;
+enum class UserKind { kBody, kJoint, kGeom, kSite, kTendon, kActuator, kSensor };
+inline constexpr int kUserKinds = 7;
 
 /// <size nuser_*>: each kind's width as written (-1: the longest list of the kind), and where.
 struct UserSizes {
-  std::array<int, kUserKinds> width{-1, -1, -1, -1, -1, -1};
+  std::array<int, kUserKinds> width{-1, -1, -1, -1, -1, -1, -1};
   std::array<Place, kUserKinds> at{};
 };
 

@@ -130,7 +130,7 @@ _SIZES = ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclud
           "nsensordata", "neq", "nmocap", "nmesh", "nmeshvert", "nmeshgraph", "nmeshface",
           "nconmax",
           "njmax", "ntendon", "nwrap", "nuser_body", "nuser_jnt", "nuser_geom", "nuser_site",
-          "nuser_actuator", "nuser_sensor", "na")
+          "nuser_tendon", "nuser_actuator", "nuser_sensor", "na")
 # keyframe arrays lever has, as MuJoCo's (nkey rows)
 _KEY_FIELDS = ("key_time", "key_qpos", "key_qvel", "key_ctrl", "key_mpos", "key_mquat")
 # the mjModel arrays model.body(...) and the other accessors reach
@@ -724,6 +724,54 @@ def get_mjcb_sensor():
     return _mjcb_sensor
 
 
+# mujoco.set_mjcb_act_gain's, set_mjcb_act_bias's and set_mjcb_act_dyn's callbacks, or None: as
+# MuJoCo's globals, they serve every model's actuators whose gaintype, biastype or dyntype is user
+_mjcb_act_gain = None
+_mjcb_act_bias = None
+_mjcb_act_dyn = None
+
+
+def set_mjcb_act_gain(callback) -> None:
+    """MuJoCo's user gain: callback(m, d, id) -> float, the gain of actuator id for every model's
+    actuators with gaintype user (None: MuJoCo's value without a callback, gain 1)."""
+    global _mjcb_act_gain
+    _mjcb_act_gain = callback
+
+
+def get_mjcb_act_gain():
+    return _mjcb_act_gain
+
+
+def set_mjcb_act_bias(callback) -> None:
+    """MuJoCo's user bias: callback(m, d, id) -> float, the bias of actuator id for every model's
+    actuators with biastype user (None: bias 0)."""
+    global _mjcb_act_bias
+    _mjcb_act_bias = callback
+
+
+def get_mjcb_act_bias():
+    return _mjcb_act_bias
+
+
+def set_mjcb_act_dyn(callback) -> None:
+    """MuJoCo's user activation dynamics: callback(m, d, id) -> float, act_dot of actuator id for
+    every model's actuators with dyntype user (None: act_dot 0)."""
+    global _mjcb_act_dyn
+    _mjcb_act_dyn = callback
+
+
+def get_mjcb_act_dyn():
+    return _mjcb_act_dyn
+
+
+def _for_pair(callback, m, d):
+    """A module-level callback as the native model calls it, handed this call's MjModel and MjData
+    (None stays None)."""
+    if callback is None:
+        return None
+    return lambda _model, _data, arg: callback(m, d, arg)
+
+
 def _pair(m: MjModel, d: MjData):
     if not isinstance(m, MjModel) or not isinstance(d, MjData):
         raise TypeError("expected (MjModel, MjData)")
@@ -732,12 +780,14 @@ def _pair(m: MjModel, d: MjData):
         # sizes (a copy, an unpickled one) is paired with this one; other sizes are refused
         d._native._adopt_model(m._native)
         object.__setattr__(d, "_model", m)
-    # the sensor callback sees this call's MjModel and MjData (installed when either changed)
-    callback = _mjcb_sensor
-    if m.__dict__.get("_mjcb_installed") != (callback, id(d)):
-        m._native.set_sensor_callback(
-            None if callback is None else lambda _model, _data, stage: callback(m, d, stage))
-        object.__setattr__(m, "_mjcb_installed", (callback, id(d)))
+    # the callbacks see this call's MjModel and MjData (installed when any of them changed)
+    installed = (_mjcb_sensor, _mjcb_act_gain, _mjcb_act_bias, _mjcb_act_dyn, id(d))
+    if m.__dict__.get("_mjcb_installed") != installed:
+        m._native.set_sensor_callback(_for_pair(_mjcb_sensor, m, d))
+        m._native.set_actuator_callbacks(gain=_for_pair(_mjcb_act_gain, m, d),
+                                         bias=_for_pair(_mjcb_act_bias, m, d),
+                                         dyn=_for_pair(_mjcb_act_dyn, m, d))
+        object.__setattr__(m, "_mjcb_installed", installed)
     return m._native, d._native
 
 

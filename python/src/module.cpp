@@ -376,6 +376,7 @@ PYBIND11_MODULE(_lever, m) {
       .def_property_readonly("nuser_jnt", [](const lever::Model& x) { return x.nuser_jnt; })
       .def_property_readonly("nuser_geom", [](const lever::Model& x) { return x.nuser_geom; })
       .def_property_readonly("nuser_site", [](const lever::Model& x) { return x.nuser_site; })
+      .def_property_readonly("nuser_tendon", [](const lever::Model& x) { return x.nuser_tendon; })
       .def_property_readonly("nuser_actuator", [](const lever::Model& x) { return x.nuser_actuator; })
       .def_property_readonly("nuser_sensor", [](const lever::Model& x) { return x.nuser_sensor; })
       .def_property_readonly("nmesh", [](const lever::Model& x) { return x.nmesh; })

@@ -73,7 +73,8 @@ void check_version(const py::dict& state, const char* what) {
 #define LEVER_PYTHON_MODEL_COUNTS(X) \
   X(nq) X(nv) X(nu) X(nbody) X(njnt) X(ngeom) X(nsite) X(nkey) X(npair) X(nexclude) X(nconmax) X(njmax) \
   X(nmesh) X(nmeshvert) X(nmeshgraph) X(nmeshface) X(nsensor) X(nsensordata) X(neq) X(nmocap) \
-  X(nuser_body) X(nuser_jnt) X(nuser_geom) X(nuser_site) X(nuser_actuator) X(nuser_sensor) \
+  X(nuser_body) X(nuser_jnt) X(nuser_geom) X(nuser_site) X(nuser_tendon) X(nuser_actuator) \
+  X(nuser_sensor) \
   X(ntendon) X(nwrap) X(na)
 
 // a keyframe array (nkey x n, row-major) as bytes, and back

@@ -134,6 +134,20 @@ TEST_CASE("check: a model that cannot be loaded exits 2 with the loader's messag
   std::filesystem::remove(path);
 }
 
+TEST_CASE("check: a user actuator (a callback's force) exits 2 naming it", "[check]") {
+  const std::string path = temporary_file(
+      "lever_check_user.xml",
+      "<mujoco>\n<worldbody>\n<body><joint name=\"j\" range=\"-1 1\" limited=\"true\"/>\n"
+      "<geom type=\"capsule\" size=\"0.05\" fromto=\"0 0 0 0.3 0 0\"/></body>\n</worldbody>\n"
+      "<actuator><general name=\"custom\" joint=\"j\" biastype=\"user\"/></actuator>\n"
+      "</mujoco>\n");
+  const Run run = run_lever("check " + quoted(path), true);
+  CHECK(run.status == 2);
+  CHECK(run.out.find("lever check: actuator 'custom' has biastype \"user\"") !=
+        std::string::npos);
+  std::filesystem::remove(path);
+}
+
 TEST_CASE("check: --help, usage errors and --svg", "[check]") {
   const Run help = run_lever("check --help");
   CHECK(help.status == 0);

@@ -4,7 +4,9 @@
 // actuator_cranklength, and the constants actuator_length0 and actuator_acc0); and the
 // transmissions lever refuses, by name.
 #include <catch2/catch.hpp>
+#include <lever/check.hpp>
 #include <lever/derivatives.hpp>
+#include <lever/identify.hpp>
 #include <lever/forward.hpp>
 #include <lever/mjcf.hpp>
 #include <lever/parameters.hpp>
@@ -222,6 +224,31 @@ TEST_CASE("every option of <compiler><lengthrange> agrees with MuJoCo",
   CHECK(n.actuator_lengthrange[4] == std::array<double, 2>{0.1, 2});
 }
 
+TEST_CASE("lengthrange mode muscleuser finds the ranges of user gains and biases as MuJoCo",
+          "[compile][actuators][muscles]") {
+  // a user gain and a user bias are user actuators; user dynamics alone and a motor are not
+  const std::string head = R"(<mujoco><compiler angle="radian" autolimits="true">)";
+  const std::string body = R"(</compiler><worldbody><body>
+    <joint name="j" axis="0 1 0" range="-0.6 0.9"/><geom size="0.1" contype="0" conaffinity="0"/>
+    </body></worldbody><actuator>
+    <general name="gain" joint="j" gaintype="user"/><general name="bias" joint="j" biastype="user"/>
+    <motor name="motor" joint="j"/><general name="dyn" joint="j" dyntype="user"/>
+    </actuator></mujoco>)";
+  const std::string user = head + R"(<lengthrange mode="muscleuser"/>)" + body;
+  check_compiles_as_mujoco("muscleuser", user);
+  const lever::Model m = lever::mjcf::load_string(user, "muscleuser.xml");
+  for (const int a : {0, 1}) {  // simulated to near the soft stops
+    CHECK(m.actuator_lengthrange[a][0] == Approx(-0.6).margin(0.1));
+    CHECK(m.actuator_lengthrange[a][1] == Approx(0.9).margin(0.1));
+  }
+  for (const int a : {2, 3}) CHECK(m.actuator_lengthrange[a] == std::array<double, 2>{0, 0});
+  // mode muscle leaves the user actuators alone
+  const std::string muscle = head + R"(<lengthrange mode="muscle"/>)" + body;
+  check_compiles_as_mujoco("muscle", muscle);
+  const lever::Model n = lever::mjcf::load_string(muscle, "muscle.xml");
+  for (int a = 0; a < 4; ++a) CHECK(n.actuator_lengthrange[a] == std::array<double, 2>{0, 0});
+}
+
 TEST_CASE("actuators with dynamics written wrongly are refused by name",
           "[compile][actuators][muscles]") {
   const std::string head = R"(<mujoco><worldbody><body><joint name="j"/><geom size="1"/></body>
@@ -237,6 +264,39 @@ TEST_CASE("actuators with dynamics written wrongly are refused by name",
   // an unlimited joint: the simulation pulls the length without end and does not settle
   CHECK_THAT(load_refusal(head + R"(<muscle joint="j"/></actuator></mujoco>)"),
              Catch::Contains("did not settle"));
+}
+
+TEST_CASE("lever check and identification refuse user actuators by name, callbacks or not",
+          "[compile][actuators]") {
+  // a motor, then one actuator with a user part each: the refusal names it and its attribute
+  const auto user_model = [](const std::string& part) {
+    return lever::mjcf::load_string(
+        R"(<mujoco><worldbody><body><joint name="j" range="-1 1" limited="true"/>
+        <geom type="capsule" size="0.05" fromto="0 0 0 0.3 0 0"/></body></worldbody><actuator>
+        <motor name="plain" joint="j"/><general name="custom" joint="j" )" + part +
+            R"(/></actuator></mujoco>)",
+        "user_actuator.xml");
+  };
+  for (const std::string type : {"gaintype", "biastype", "dyntype"}) {
+    INFO(type);
+    lever::Model m = user_model(type + "=\"user\"");
+    CHECK_THROWS_WITH(lever::check::check_model(m),
+                      Catch::Contains("lever check: actuator 'custom' has " + type + " \"user\"") &&
+                          Catch::Contains("callback"));
+    // installed callbacks do not change it: the sections read the parameters, not the callback
+    const auto callback = [](const lever::Model&, const lever::Data&, int) { return 2.0; };
+    m.actuator_gain_callback = m.actuator_bias_callback = m.actuator_dyn_callback = callback;
+    CHECK_THROWS_WITH(lever::check::check_model(m), Catch::Contains("has " + type));
+    lever::Data d(m);
+    lever::forward(m, d);
+    Eigen::MatrixXd Y(m.nv, lever::regressor_columns(m));
+    CHECK_THROWS_WITH(lever::regressor(m, d, d.qacc, Y),
+                      Catch::Contains("regressor: actuator 'custom' has " + type));
+    CHECK_THROWS_WITH(lever::identify::identify(m, lever::identify::Trajectory{}),
+                      Catch::Contains("identify: actuator 'custom' has " + type));
+  }
+  // the same model with a built-in gain is checked
+  CHECK_NOTHROW(lever::check::check_model(user_model(R"(gaintype="fixed")")));
 }
 
 TEST_CASE("derivatives and identification refuse the actuators they do not handle, by name",

@@ -437,6 +437,30 @@ const Case kCases[] = {
     <user objtype="tendon" objname="t" dim="5" needstage="vel" datatype="real"/>
   </sensor>
 </mujoco>)"},
+  // tendons' user data: written, inherited from a class, none; the width the longest list
+  {"tendon-user", R"(<mujoco>
+  <default><default class="u"><tendon user="7 8"/></default></default>
+  <worldbody>
+    <body name="b"><joint name="j"/><geom size="0.1"/><site name="s1"/>
+      <body pos="0 0 1"><joint name="k"/><geom size="0.1"/><site name="s2"/></body>
+    </body>
+  </worldbody>
+  <tendon>
+    <fixed name="own" user="1 2 3"><joint joint="j" coef="1"/></fixed>
+    <spatial name="inherited" class="u"><site site="s1"/><site site="s2"/></spatial>
+    <fixed name="replaced" class="u" user="4"><joint joint="k" coef="2"/></fixed>
+    <fixed name="none"><joint joint="k" coef="-1"/></fixed>
+  </tendon>
+</mujoco>)"},
+  // a written width pads every tendon's list with zeros
+  {"tendon-user-sized", R"(<mujoco>
+  <size nuser_tendon="4"/>
+  <worldbody><body name="b"><joint name="j"/><geom size="0.1"/></body></worldbody>
+  <tendon>
+    <fixed user="5"><joint joint="j" coef="1"/></fixed>
+    <fixed><joint joint="j" coef="3"/></fixed>
+  </tendon>
+</mujoco>)"},
   // MuJoCo's matrix layout, which changes none of the compiled numbers
   {"option-jacobian", R"(<mujoco>
   <option jacobian="sparse"/>

@@ -6,7 +6,7 @@
 //     Newton). On tests/diff/contact_scenes/free_objects.xml MuJoCo's CG stalls short of the
 //     minimizer even restarted (1e-8 pyramidal, 3e-7 elliptic, relative in qacc): left out;
 //   at MuJoCo's default tolerance (1e-8) and iterations (100), a lockstep run (lever started
-//     from MuJoCo's state each step; MuJoCo's warm start off, as lever never warm-starts): the
+//     from MuJoCo's state each step; MuJoCo's warm start off, as lever's CG never warm-starts): the
 //     same iteration counts (solver_iter), and lever's answer as near the minimizer as MuJoCo's.
 #include <mujoco/mujoco.h>
 #include <catch2/catch.hpp>

@@ -1,10 +1,11 @@
 // MuJoCo's projected Gauss-Seidel solver (<option solver="PGS">, engine/src/constraint/pgs.cpp)
-// against MuJoCo 2.2.2's mj_solPGS, both computed here, MuJoCo's warm start off (lever never
-// warm-starts). PGS after a fixed number of sweeps is not the minimizer, so the iterates
+// against MuJoCo 2.2.2's mj_solPGS, both computed here, both engines' warm start off but in the
+// warm-start case. PGS after a fixed number of sweeps is not the minimizer, so the iterates
 // themselves are compared: at tolerance 0 both run every sweep, and lever's sweeps follow
 // MuJoCo's order and arithmetic, so efc_force, efc_state, qacc and solver_iter after N sweeps
 // agree within 1e-12, on random states and on lockstep runs with every integrator; at MuJoCo's
-// default tolerance the sweeps stop at the same count.
+// default tolerance the sweeps stop at the same count; and warm-started from the last solve's
+// qacc_warmstart, a few sweeps give MuJoCo's forces along a run.
 #include <mujoco/mujoco.h>
 #include <catch2/catch.hpp>
 
@@ -17,6 +18,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "diff_checks.hpp"
 #include <lever/harness/models.hpp>
@@ -48,7 +50,7 @@ std::string pgs_scene_name(const PgsScene& scene) {
   return std::string(scene.file) + (scene.cone == Cone::kElliptic ? " (elliptic)" : "");
 }
 
-// Both engines on PGS with the given stopping rule, MuJoCo's warm start off.
+// Both engines on PGS with the given stopping rule, their warm starts off.
 void use_pgs_on_both(diff::Twin& twin, Cone cone, double tolerance, int iterations) {
   twin.set_cone(cone, 1.0);
   twin.restart_mujoco_solver = false;  // a restart would be another PGS run from zero forces
@@ -59,6 +61,7 @@ void use_pgs_on_both(diff::Twin& twin, Cone cone, double tolerance, int iteratio
   twin.m->opt.tolerance = tolerance;
   twin.m->opt.iterations = iterations;
   twin.m->opt.disableflags |= mjDSBL_WARMSTART;
+  twin.model.opt.disableflags |= kDisableWarmstart;
 }
 
 // MuJoCo's ctrl: test::smooth_control at MuJoCo's time.
@@ -106,9 +109,11 @@ void add_pgs_gap(const diff::Twin& twin, const mjData* d, PgsGap& gap) {
 
 // MuJoCo's constraint solve (mj_fwdConstraint: efc_b, then its PGS) run again on lever's inputs,
 // qacc_smooth and efc_aref (each engine computes them its own way, equal to 1e-12 but not to
-// the bit): what is left between the two is the sweeps' own arithmetic.
-void mujoco_pgs_on_lever_inputs(diff::Twin& twin) {
+// the bit), from the warm start the forward began with: what is left between the two is the
+// sweeps' own arithmetic.
+void mujoco_pgs_on_lever_inputs(diff::Twin& twin, const std::vector<double>& warmstart) {
   mjData* d = twin.d.get();
+  std::copy(warmstart.begin(), warmstart.end(), d->qacc_warmstart);
   for (int i = 0; i < twin.model.nv; ++i) d->qacc_smooth[i] = twin.data.qacc_smooth[i];
   for (int r = 0; r < d->nefc; ++r) d->efc_aref[r] = twin.data.efc_aref[r];
   mj_fwdConstraint(twin.m.get(), d);
@@ -123,6 +128,8 @@ struct PgsComparison {
 };
 
 void compare_pgs_state(diff::Twin& twin, PgsComparison& c) {
+  const std::vector<double> warmstart(twin.d->qacc_warmstart,
+                                      twin.d->qacc_warmstart + twin.model.nv);
   forward(twin.model, twin.data);
   mj_forward(twin.m.get(), twin.d.get());
   add_pgs_gap(twin, twin.d.get(), c.whole);
@@ -130,7 +137,7 @@ void compare_pgs_state(diff::Twin& twin, PgsComparison& c) {
   test::MjDataPtr rerun = test::mujoco_data(twin.m.get());
   mj_copyData(rerun.get(), twin.m.get(), twin.d.get());
   std::swap(twin.d, rerun);
-  mujoco_pgs_on_lever_inputs(twin);
+  mujoco_pgs_on_lever_inputs(twin, warmstart);
   add_pgs_gap(twin, twin.d.get(), c.sweeps);
   // MuJoCo against itself: its forward (now `rerun`) as if it were lever's
   PgsGap& self = c.inputs;
@@ -244,6 +251,62 @@ TEST_CASE("diff: PGS in lockstep with MuJoCo, every integrator", "[diff][contact
       WARN(name << " lockstep: within " << worst << " x 1e-12");
     }
   }
+}
+
+TEST_CASE("diff: PGS warm-started from the last solve's acceleration gives MuJoCo's forces",
+          "[diff][contact][pgs]") {
+  REQUIRE(mj_version() == 222);
+  // where the forces at qacc_warmstart cost more than zero forces (the elliptic gripper, friction
+  // loss and the equality rows at 4 sweeps) both engines start from zero; the pyramidal gripper
+  // keeps its warm start on most steps
+  double moved_most = 0;
+  for (const PgsScene& scene : {kPgsScenes[0], kPgsScenes[1], kPgsScenes[5], kPgsScenes[6]}) {
+    const std::string name = pgs_scene_name(scene);
+    diff::Twin twin(model_path(scene.file), diff::Path::kEngine);
+    // a few sweeps at tolerance 0: far from the minimizer, so where they start shows
+    use_pgs_on_both(twin, scene.cone, 0.0, 4);
+    twin.model.opt.disableflags &= ~kDisableWarmstart;
+    twin.m->opt.disableflags &= ~mjDSBL_WARMSTART;
+    Model cold = twin.model;  // the same solve from zero forces
+    cold.opt.disableflags |= kDisableWarmstart;
+    Data cold_data(cold);
+    twin.reset();
+    PgsComparison c;
+    double moved = 0;  // how far the warm start moved lever's forces from a cold start's
+    for (int k = 0; k < 100; ++k) {
+      pgs_smooth_control(twin);
+      twin.follow_mujoco();  // MuJoCo's qacc_warmstart too
+      cold_data.time = twin.data.time;
+      cold_data.qpos = twin.data.qpos;
+      cold_data.qvel = twin.data.qvel;
+      cold_data.ctrl = twin.data.ctrl;
+      cold_data.act = twin.data.act;
+      cold_data.qfrc_applied = twin.data.qfrc_applied;
+      compare_pgs_state(twin, c);
+      forward(cold, cold_data);
+      REQUIRE(cold_data.nefc == twin.data.nefc);
+      for (int r = 0; r < twin.data.nefc; ++r) {
+        moved = std::max(moved, std::abs(cold_data.efc_force[r] - twin.data.efc_force[r]) /
+                                    allowed(twin.d->efc_force[r]));
+      }
+      mj_step(twin.m.get(), twin.d.get());
+    }
+    INFO(name << ": on the same inputs within " << c.sweeps.worst << " x 1e-12 ("
+              << c.sweeps.first_difference << "), whole forward " << c.whole.worst << " ("
+              << c.whole.first_difference << "), MuJoCo on lever's inputs " << c.inputs.worst
+              << "; the warm start moved the forces " << moved << " x 1e-12");
+    CHECK(c.rows > 0);
+    moved_most = std::max(moved_most, moved);
+    CHECK(c.sweeps.worst <= 1.0);
+    CHECK(c.sweeps.same_states);
+    CHECK(c.sweeps.same_count);
+    CHECK(c.whole.same_count);
+    CHECK(c.whole.worst <= std::max(1.0, 2 * c.inputs.worst));
+    WARN(name << ", warm-started, 4 sweeps: same inputs " << c.sweeps.worst << ", whole forward "
+              << c.whole.worst << ", MuJoCo on lever's inputs " << c.inputs.worst
+              << ", moved from a cold start " << moved << " (x 1e-12)");
+  }
+  CHECK(moved_most > 1e3);  // the warm start mattered
 }
 
 }  // namespace lever::test

@@ -233,6 +233,11 @@ inline const BadInput kBadInputs[] = {
   <worldbody><body><joint name="j"/><geom size="0.1"/></body></worldbody>
   <actuator><motor joint="j" user="1 2"/></actuator>
 </mujoco>)", 4, "motor", "user", "more than <size nuser_actuator=\"1\">", MuJoCo::kRejects, ""},
+  {"user-longer-than-nuser-tendon", R"(<mujoco>
+  <size nuser_tendon="1"/>
+  <worldbody><body><joint name="j"/><geom size="0.1"/></body></worldbody>
+  <tendon><fixed user="1 2"><joint joint="j" coef="1"/></fixed></tendon>
+</mujoco>)", 4, "fixed", "user", "more than <size nuser_tendon=\"1\">", MuJoCo::kRejects, ""},
   {"user-nuser-below-minus-one", R"(<mujoco>
   <size nuser_body="-2"/>
 </mujoco>)", 2, "size", "nuser_body", "must be -1", MuJoCo::kRejects, ""},

@@ -46,7 +46,8 @@ def test_shapes_and_dtypes_are_mujocos(path):
              for n in ("nq", "nv", "nu", "nbody", "njnt", "ngeom", "nsite", "npair", "nexclude",
                        "nsensor", "nsensordata", "neq", "nmocap", "nmesh",
                        "nmeshvert", "nmeshgraph", "nmeshface", "ntendon", "nwrap", "nuser_body", "nuser_jnt",
-                       "nuser_geom", "nuser_site", "nuser_actuator", "nuser_sensor", "na")}
+                       "nuser_geom", "nuser_site", "nuser_tendon", "nuser_actuator", "nuser_sensor",
+                       "na")}
     sizes["nefc"] = data.nefc
     # mjmodel.h's lengths of solref, solimp, gainprm, biasprm, dynprm and eq_data
     sizes.update(mjNREF=2, mjNIMP=5, mjNGAIN=10, mjNBIAS=10, mjNDYN=10, mjNEQDATA=11)

@@ -37,6 +37,8 @@ LAYOUT = {
               "principal in the world"),
     "tendon_lengthspring": ("MuJoCo 3.x holds a dead band, (ntendon, 2), low and high equal for a "
                             "2.2.2 file; 2.2.2 and lever one length (ntendon,)", "deadband"),
+    "qacc_warmstart": ("MuJoCo 3.x saves it when a step ends; 2.2.2 and lever in each forward's "
+                       "constraint solve (mj_fwdConstraint): the forward's qacc", "warmstart"),
     "actuator_moment": ("MuJoCo 3.x keeps it sparse (moment_rownnz, moment_rowadr, moment_colind); "
                         "2.2.2 and lever dense (nu, nv)", "sparse"),
 }
@@ -163,6 +165,9 @@ def test_arrays_sizes_and_options_are_mujocos(path):
         if layout == "sparse":
             close(od.actuator_moment, dense_moment(rm, rd), "data." + name)
             continue
+        if layout == "warmstart":
+            close(od.qacc_warmstart, rd.qacc, "data." + name)
+            continue
         same(getattr(od, name), getattr(rd, name), "data." + name, layout)
     for name in ("timestep", "gravity", "integrator", "solver"):
         same(getattr(om.opt, name), getattr(rm.opt, name), "opt." + name)
@@ -174,6 +179,9 @@ def test_layout_differences_are_still_there():
     assert rd.efc_J.shape != od.efc_J.shape and rd.efc_J.size == od.efc_J.size
     assert rm.nconmax == -1 and rm.njmax == -1
     assert rd.actuator_moment.shape != od.actuator_moment.shape
+    # MuJoCo 3.x's forward leaves the warm start as the last step saved it
+    _, _, _, gripped = state(CONTACT_MODELS[1])
+    assert gripped.nefc > 0 and not np.array_equal(gripped.qacc_warmstart, gripped.qacc)
 
 
 @pytest.mark.parametrize("path", MODELS, ids=lambda p: p.name)
@@ -229,6 +237,9 @@ def test_named_accessors_are_mujocos(path):
                         if layout == "sparse":
                             theirs_value = dense_moment(rm, rd)[b.id]
                             layout = ("writable",)
+                        if layout == "warmstart":  # a joint's dofs
+                            dof = rm.jnt_dofadr[b.id]
+                            theirs_value = rd.qacc[dof:dof + len(value)]
                         if layout == "principal":
                             value = inertia_tensors(a.inertia, a.iquat)
                             theirs_value = inertia_tensors(b.inertia, b.iquat)
@@ -447,7 +458,8 @@ def test_from_xml_string_and_keyframes():
 @pytest.mark.parametrize("solver", ["PGS", "CG"])
 def test_solver_iterations_are_mujocos(solver):
     """data.solver_iter against the pinned MuJoCo's solver_niter[0] (one island: the box on the
-    floor) with its warm start off, as lever never warm-starts: PGS's sweeps and CG's iterations
+    floor) with both warm starts off (lever's CG starts cold, and the packages' flags differ:
+    tests/diff/solver_pgs.cpp holds PGS's warm start to MuJoCo 2.2.2's): PGS's sweeps and CG's iterations
     at MuJoCo's default tolerance, and PGS's answer (CG's, stopped by a tolerance, is as near the
     minimizer as MuJoCo's but not within 1e-12 of it: tests/diff/solver_cg.cpp). Newton's count
     is lever's own (its exact solve), not MuJoCo's."""
@@ -457,6 +469,7 @@ def test_solver_iterations_are_mujocos(solver):
     code = getattr(real.mjtSolver, f"mjSOL_{solver}")
     rm.opt.solver = om.opt.solver = int(code)
     rm.opt.disableflags |= int(real.mjtDisableBit.mjDSBL_WARMSTART)
+    om.opt.disableflags |= int(ours.mjtDisableBit.mjDSBL_WARMSTART)
     rd, od = real.MjData(rm), ours.MjData(om)
     if rm.nkey:
         real.mj_resetDataKeyframe(rm, rd, 0)

@@ -198,6 +198,8 @@ TEST_CASE("every Data view has the table's size and points into its member", "[f
     }
     k = next("qacc");
     for (int i = 0; i < model.nv; ++i) CHECK(data.qacc[i] == mark(k, i));
+    k = next("qacc_warmstart");
+    for (int i = 0; i < model.nv; ++i) CHECK(data.qacc_warmstart[i] == mark(k, i));
     k = next("xpos");
     for (int b = 0; b < model.nbody; ++b) {
       for (int c = 0; c < 3; ++c) CHECK(data.xpos[b][c] == mark(k, 3 * b + c));
@@ -825,6 +827,7 @@ TEST_CASE("size_model gives every array the length the field table promises", "[
   model.nuser_jnt = 1;
   model.nuser_geom = 3;
   model.nuser_site = 1;
+  model.nuser_tendon = 2;
   model.nuser_actuator = 2;
   model.nuser_sensor = 1;
   model.ntendon = 2;

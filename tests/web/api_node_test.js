@@ -37,8 +37,8 @@ function close(ours, native, what, bound = 1e-12) {
 // and wasm's scalar code, amplified by the grasp's conditioning: four contacts, pyramid rows),
 // and qacc of the 0.1 kg box gathers 1/m times that over its rows: 1.1e-12 at an element near 0.
 // The sensors that read contact forces or accelerations (touch, force, accelerometer) sum them.
-const kSolverDecided = new Set(['qacc', 'qfrc_constraint', 'efc_force', 'efc_state', 'sensordata',
-  'cacc', 'cfrc_int', 'cfrc_ext']);
+const kSolverDecided = new Set(['qacc', 'qacc_warmstart', 'qfrc_constraint', 'efc_force', 'efc_state',
+  'sensordata', 'cacc', 'cfrc_int', 'cfrc_ext']);
 const kContactTypeRows = new Set([5, 6, 7]);  // efc_type of a contact row
 function boundOf(name, native) {
   const contacts = (native.efc_type || []).some((type) => kContactTypeRows.has(type));

@@ -19,7 +19,8 @@ void make_constraint(const Model& model, Data& data);
 /// efc_vel and efc_aref at data.qvel (MuJoCo's mj_referenceConstraint).
 void reference_constraint(const Model& model, Data& data);
 
-/// Solve the rows: efc_force, efc_state, qfrc_constraint and qacc (MuJoCo's mj_fwdConstraint).
+/// Solve the rows: efc_force, efc_state, qfrc_constraint and qacc (MuJoCo's mj_fwdConstraint);
+/// qacc_warmstart = qacc afterwards, where the next PGS solve starts.
 /// @pre qfrc_smooth, qacc_smooth, efc_aref, M and its factor are current.
 void solve_constraint(const Model& model, Data& data);
 

@@ -312,6 +312,9 @@ struct DataFields {
   ArenaArray<ConstraintState> efc_state;  ///< (nefc)
   ArenaVector qfrc_constraint;            ///< (nv) J^T efc_force
   ArenaVector qacc;                       ///< (nv) joint accelerations
+  /// (nv) the last constraint solve's qacc (qacc_smooth without rows), where the next PGS solve
+  /// starts from (MuJoCo's qacc_warmstart); reset() zeroes it
+  ArenaVector qacc_warmstart;
   /// the constraint solve's iterations: with opt.solver CG or PGS, MuJoCo's count (its
   /// solver_iter); with Newton, lever's Newton steps (0 for the exact one-sided solves), not
   /// MuJoCo's
@@ -383,7 +386,7 @@ struct alignas(kCacheLine) Data : DataFields {
 };
 
 /// Reset the state as MuJoCo's mj_resetData: qpos = qpos0; qvel, ctrl, qfrc_applied, qacc,
-/// time and warnings zero.
+/// qacc_warmstart, time and warnings zero.
 void reset(const Model& model, Data& data);
 
 /// Reset to keyframe `key` as MuJoCo's mj_resetDataKeyframe: reset(), then time, qpos, qvel and

@@ -38,7 +38,7 @@
 // data arrays): negative, so that FieldInfo::cols_size tells which size counts them.
 namespace lever::counted_cols {
 inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_site = -5,
-                     nuser_actuator = -6, nuser_sensor = -7, nv = -8;
+                     nuser_actuator = -6, nuser_sensor = -7, nv = -8, nuser_tendon = -9;
 }  // namespace lever::counted_cols
 
 // X(name, element type, rows, cols, origin)
@@ -141,6 +141,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(jnt_user, double, njnt, counted_cols::nuser_jnt, mujoco)                    \
   X(geom_user, double, ngeom, counted_cols::nuser_geom, mujoco)                 \
   X(site_user, double, nsite, counted_cols::nuser_site, mujoco)                 \
+  X(tendon_user, double, ntendon, counted_cols::nuser_tendon, mujoco)           \
   X(actuator_user, double, nu, counted_cols::nuser_actuator, mujoco)            \
   X(sensor_user, double, nsensor, counted_cols::nuser_sensor, mujoco)
 
@@ -260,6 +261,7 @@ inline constexpr int nuser_body = -2, nuser_jnt = -3, nuser_geom = -4, nuser_sit
   X(mocap_pos, double, nmocap, 3, state, mujoco)               \
   X(mocap_quat, double, nmocap, 4, state, mujoco)              \
   X(qacc, double, nv, 1, acceleration, mujoco)                 \
+  X(qacc_warmstart, double, nv, 1, acceleration, mujoco)       \
   X(xpos, double, nbody, 3, position, mujoco)                  \
   X(xquat, double, nbody, 4, position, mujoco)                 \
   X(xmat, double, nbody, 9, position, mujoco)                  \
@@ -358,6 +360,7 @@ enum class Size : int {
   kNuserJnt,
   kNuserGeom,
   kNuserSite,
+  kNuserTendon,
   kNuserActuator,
   kNuserSensor,
   // tendons

@@ -293,7 +293,8 @@ enum DisableBit : int {
   kDisablePassive = 1 << 5,       ///< springs, damping, the medium's forces
   kDisableGravity = 1 << 6,       ///< gravity (in qfrc_bias, cacc, the potential energy)
   kDisableClampctrl = 1 << 7,     ///< clamping ctrl to ctrlrange
-  kDisableWarmstart = 1 << 8,     ///< the solver's warm start (lever never warm-starts)
+  kDisableWarmstart = 1 << 8,     ///< PGS's warm start from qacc_warmstart (Newton and CG
+                                  ///< start cold in lever: at tolerance 0 the answer is the same)
   kDisableFilterparent = 1 << 9,  ///< the broad phase's parent-child filter
   kDisableActuation = 1 << 10,    ///< actuator forces
   kDisableRefsafe = 1 << 11,      ///< solref[0] >= 2 timestep
@@ -425,8 +426,8 @@ struct ModelFields {
                       ///< mocap_pos and mocap_quat (MJCF's <body mocap="true">)
   // user data: numbers per object that the engine never reads (MJCF's `user`), each kind's rows
   // padded with zeros to its width (<size nuser_*>, else the longest list of the kind)
-  int nuser_body = 0, nuser_jnt = 0, nuser_geom = 0, nuser_site = 0, nuser_actuator = 0,
-      nuser_sensor = 0;
+  int nuser_body = 0, nuser_jnt = 0, nuser_geom = 0, nuser_site = 0, nuser_tendon = 0,
+      nuser_actuator = 0, nuser_sensor = 0;
   int nconmax = 100;  ///< most contacts a Data holds (<size nconmax>; MuJoCo 2.2.2's default)
   int njmax = 500;    ///< most constraint rows a Data holds (<size njmax>)
 
@@ -647,7 +648,8 @@ struct ModelFields {
                                       ///< opt.enabled(kEnableSensornoise)
 
   // ---- user data: (nbody x nuser_body), (njnt x nuser_jnt), ... MuJoCo's *_user arrays -------
-  ArenaRowMatrix body_user, jnt_user, geom_user, site_user, actuator_user, sensor_user;
+  ArenaRowMatrix body_user, jnt_user, geom_user, site_user, tendon_user, actuator_user,
+      sensor_user;
 
   // ---- keyframes (nkey): named states to start from (<keyframe><key>) --------------------------
   std::vector<std::string> key_name;
@@ -781,8 +783,14 @@ struct Model : ModelFields {
 /// data.actuator_moment that depends on the state.
 int actuator_scalar_dof(const Model& model, int a);
 
+/// The attribute that makes actuator a's force a user's callback (MuJoCo's mjcb_act_gain,
+/// mjcb_act_bias, mjcb_act_dyn): "gaintype", "biastype" or "dyntype" (the first of them whose
+/// type is user), or nullptr when its force is lever's own.
+const char* actuator_user_attribute(const Model& model, int a);
+
 /// Throws ModelError, naming `feature` and the first actuator that is not one, unless every
-/// actuator is stateless (dyntype none), has a fixed or affine gain and bias (no muscle) and
+/// actuator is stateless (dyntype none), has a fixed or affine gain and bias (no muscle, no user
+/// callback) and
 /// drives a hinge or slide joint alone (actuator_scalar_dof >= 0), or, where
 /// `tendons_and_sites`, a tendon (whose moment is gear ten_J) or a site without a reference site
 /// (whose moment turns with the site): for the features (identification, the step's

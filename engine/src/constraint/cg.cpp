@@ -9,7 +9,7 @@
 // restarted where the cost stalls, stalls too). MuJoCo's CG restarted from its own answer
 // reaches the minimizer where it does not stall (tests/diff/solver_cg.cpp).
 //
-// The cost is minimized over qacc from qacc = qacc_smooth (lever never warm-starts: MuJoCo with
+// The cost is minimized over qacc from qacc = qacc_smooth (lever's CG never warm-starts: MuJoCo with
 // <flag warmstart="disable">), with the mass matrix as preconditioner:
 //   g = M (qacc - qacc_smooth) + J^T ds/djar        the cost's gradient (M qacc - qfrc_smooth -
 //                                                   qfrc_constraint)

@@ -201,8 +201,9 @@ int solve_constraint_newton(const Model& model, Data& data);
 int solve_constraint_cg(const Model& model, Data& data);
 
 /// Solve the constraint rows by MuJoCo's projected Gauss-Seidel on the dual problem (pgs.cpp),
-/// opt.iterations sweeps at most, stopped as MuJoCo stops them by opt.tolerance, from zero
-/// forces: efc_b, efc_force, efc_state (the dual states), qfrc_constraint, qacc. Returns the
+/// opt.iterations sweeps at most, stopped as MuJoCo stops them by opt.tolerance, from the warm
+/// start (the forces at qacc_warmstart, or zero): efc_b, efc_force, efc_state (the dual states),
+/// qfrc_constraint, qacc. Returns the
 /// sweeps taken (MuJoCo's solver_iter). @pre as solve_constraint_newton.
 int solve_constraint_pgs(const Model& model, Data& data);
 

@@ -9,7 +9,10 @@
 //   sum_j (f_j / friction_j)^2 <= f_0^2,   f_0 >= 0.
 // Its minimizer gives the primal problem's qacc (primal.cpp); PGS approaches it sweep by sweep.
 //
-// The forces start at zero (lever never warm-starts: MuJoCo with <flag warmstart="disable">).
+// The forces start where MuJoCo's warm start puts them: the forces the rows exert at the last
+// solve's acceleration, qacc_warmstart (the primal forces there, constraint_forces_at), kept when
+// their dual cost f^T b + 1/2 f^T A f is not positive, that is no worse than zero forces, else
+// zero; zero too with <flag warmstart="disable">.
 // Each sweep visits the blocks in row order (a row of its own; an elliptic cone's dim rows) and
 // lowers the cost over the block with the other forces held, from the block's residual
 // res = b + A f (the cost's gradient there):
@@ -269,6 +272,24 @@ double block_change(const double* Ab, const double* res, const double* before, i
   return change;
 }
 
+// The forces the sweeps start from (the file's comment), into f = data.efc_force; work.A whole.
+void start_forces(const Model& model, Data& data) {
+  const int n = data.nefc;
+  const auto& A = data.work.A;
+  double* f = data.efc_force.data();
+  if (model.opt.disabled(kDisableWarmstart)) {
+    std::fill(f, f + n, 0.0);
+    return;
+  }
+  constraint_forces_at(data, data.qacc_warmstart);
+  // the dual cost, A f row by row (A is symmetric: its column r is its row r), in the
+  // workspace constraint_forces_at used for the rows' jar
+  double* Af = data.work.newton_x.data();
+  for (int r = 0; r < n; ++r) Af[r] = dot(A.col(r).data(), f, n);
+  const double cost = dot(f, data.efc_b.data(), n) + 0.5 * dot(f, Af, n);
+  if (cost > 0) std::fill(f, f + n, 0.0);
+}
+
 }  // namespace
 
 int solve_constraint_pgs(const Model& model, Data& data) {
@@ -290,9 +311,9 @@ int solve_constraint_pgs(const Model& model, Data& data) {
   double* inv_diag = w.lcp_w.data();
   for (int r = 0; r < n; ++r) inv_diag[r] = 1 / A(r, r);
 
+  start_forces(model, data);
   double* f = data.efc_force.data();
   const double* b = data.efc_b.data();
-  std::fill(f, f + n, 0.0);
   set_dual_states(data);
 
   const double scale = cost_scale(model);

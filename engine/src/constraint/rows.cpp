@@ -1026,9 +1026,8 @@ void start_one_sided(const Model& model, Data& data) {
   rows_jar(data, data.qacc_smooth.data(), data.efc_b.data());
 }
 
-}  // namespace
-
-void unchecked::solve_constraint(const Model& model, Data& data) {
+// The solve itself, by opt.solver and the rows (solve_constraint saves its qacc after).
+void solve_rows(const Model& model, Data& data) {
   data.solver_iter = 0;
   // MuJoCo's projected Gauss-Seidel, its sweeps as MuJoCo runs them (at tolerance 0 too: they
   // approach the minimizer without reaching it, so the exact solve would not be PGS's answer)
@@ -1056,6 +1055,13 @@ void unchecked::solve_constraint(const Model& model, Data& data) {
   // on four corners has 16 pyramid rows and 6 dofs)
   if (data.nefc > model.nv && solve_active_set(data)) return;
   solve_by_pivoting(model, data);
+}
+
+}  // namespace
+
+void unchecked::solve_constraint(const Model& model, Data& data) {
+  solve_rows(model, data);
+  data.qacc_warmstart = data.qacc;  // where the next PGS solve starts, as MuJoCo saves it
 }
 
 void solve_constraint(const Model& model, Data& data) {

@@ -3,7 +3,9 @@
 // normalize its length.
 //
 // Which actuators: by the options' mode (none, muscles, muscles and user actuators, all), those
-// without a range already (useexisting: lower < upper as written). With uselimit, a joint's or
+// without a range already. A user actuator is one with a user gain or bias (a callback); a user
+// activation alone does not make one, as in MuJoCo. The simulation runs without actuation, so no
+// callback is called (useexisting: lower < upper as written). With uselimit, a joint's or
 // tendon's range is taken when it is limited. Otherwise the range is found by simulation: from
 // qpos0 at rest, the actuator is pulled to each side in turn by an applied force
 // qfrc_applied = +-accel moment / |M^-1 moment| (at most maxforce in norm), which gives its
@@ -48,12 +50,17 @@ bool is_muscle(const Model& model, int a) {
          model.actuator_biastype[a] == BiasType::kMuscle;
 }
 
+bool is_user(const Model& model, int a) {
+  return model.actuator_gaintype[a] == GainType::kUser ||
+         model.actuator_biastype[a] == BiasType::kUser;
+}
+
 // whether the options ask for actuator a's range at all
 bool wanted(const Model& model, int a, const LengthRangeOptions& options) {
   switch (options.mode) {
     case LengthRangeMode::kNone: return false;
-    case LengthRangeMode::kMuscle:
-    case LengthRangeMode::kMuscleUser: return is_muscle(model, a);  // lever has no user actuators
+    case LengthRangeMode::kMuscle: return is_muscle(model, a);
+    case LengthRangeMode::kMuscleUser: return is_muscle(model, a) || is_user(model, a);
     case LengthRangeMode::kAll: return true;
   }
   return false;

@@ -220,6 +220,7 @@ void reset(const Model& model, Data& data) {
   data.qfrc_applied.setZero();
   place_mocap_at_bodies(model, data);
   data.qacc.setZero();
+  data.qacc_warmstart.setZero();
   data.nefc = 0;
   data.ncon = 0;
   data.warning = {};

@@ -38,6 +38,7 @@ constexpr Size cols_size_of(int cols, Size rows) {
     case counted_cols::nuser_jnt: return Size::kNuserJnt;
     case counted_cols::nuser_geom: return Size::kNuserGeom;
     case counted_cols::nuser_site: return Size::kNuserSite;
+    case counted_cols::nuser_tendon: return Size::kNuserTendon;
     case counted_cols::nuser_actuator: return Size::kNuserActuator;
     case counted_cols::nuser_sensor: return Size::kNuserSensor;
     case counted_cols::nv: return Size::kNv;
@@ -269,6 +270,7 @@ int size_of(const Model& model, Size size) {
     case Size::kNuserJnt: return model.nuser_jnt;
     case Size::kNuserGeom: return model.nuser_geom;
     case Size::kNuserSite: return model.nuser_site;
+    case Size::kNuserTendon: return model.nuser_tendon;
     case Size::kNuserActuator: return model.nuser_actuator;
     case Size::kNuserSensor: return model.nuser_sensor;
     case Size::kNtendon: return model.ntendon;
@@ -283,12 +285,13 @@ int size_of(const Model& model, const Data& data, Size size) {
 }
 
 const char* size_name(Size size) {
-  static constexpr std::array<const char*, 28> names = {
-      "1",           "nq",         "nv",          "nu",          "nbody",      "njnt",
-      "ngeom",       "nsite",      "nefc",        "npair",       "nexclude",   "nmesh",
-      "nmeshvert",   "nmeshgraph", "nmeshface",   "nsensor",     "nsensordata", "neq",
-      "nmocap",      "nuser_body", "nuser_jnt",   "nuser_geom",  "nuser_site", "nuser_actuator",
-      "nuser_sensor", "ntendon",   "nwrap",       "na"};
+  static constexpr std::array<const char*, 29> names = {
+      "1",            "nq",         "nv",          "nu",           "nbody",
+      "njnt",         "ngeom",      "nsite",       "nefc",         "npair",
+      "nexclude",     "nmesh",      "nmeshvert",   "nmeshgraph",   "nmeshface",
+      "nsensor",      "nsensordata", "neq",        "nmocap",       "nuser_body",
+      "nuser_jnt",    "nuser_geom", "nuser_site",  "nuser_tendon", "nuser_actuator",
+      "nuser_sensor", "ntendon",    "nwrap",       "na"};
   return names[static_cast<size_t>(size)];
 }
 
@@ -451,7 +454,7 @@ void check_model_sizes(const Model& model) {
 // ---- sizing a Model -----------------------------------------------------------------
 
 void size_model(Model& model) {
-  const std::array<std::pair<const char*, int>, 27> counts = {{{"nmesh", model.nmesh},
+  const std::array<std::pair<const char*, int>, 28> counts = {{{"nmesh", model.nmesh},
                                                                {"nmeshvert", model.nmeshvert},
                                                                {"nmeshgraph", model.nmeshgraph},
                                                                {"nmeshface", model.nmeshface},
@@ -473,6 +476,7 @@ void size_model(Model& model) {
                                                                {"nuser_jnt", model.nuser_jnt},
                                                                {"nuser_geom", model.nuser_geom},
                                                                {"nuser_site", model.nuser_site},
+                                                               {"nuser_tendon", model.nuser_tendon},
                                                                {"nuser_actuator", model.nuser_actuator},
                                                                {"nuser_sensor", model.nuser_sensor},
                                                                {"ntendon", model.ntendon},

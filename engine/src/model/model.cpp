@@ -121,9 +121,25 @@ int actuator_scalar_dof(const Model& model, int a) {
   return model.jnt_dofadr[j];
 }
 
+const char* actuator_user_attribute(const Model& model, int a) {
+  return model.actuator_gaintype[a] == GainType::kUser   ? "gaintype"
+         : model.actuator_biastype[a] == BiasType::kUser ? "biastype"
+         : model.actuator_dyntype[a] == DynType::kUser   ? "dyntype"
+                                                         : nullptr;
+}
+
 void require_simple_actuators(const Model& model, const std::string& feature,
                               bool tendons_and_sites) {
   for (int a = 0; a < model.nu; ++a) {
+    if (const char* user = actuator_user_attribute(model, a)) {
+      const std::string name =
+          model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+      throw ModelError(feature + ": actuator " + name + " has " + user +
+                           " \"user\": its force is a callback's, which " + feature +
+                           " cannot read as parameters; " + feature +
+                           " handles stateless actuators with fixed or affine gain and bias only.",
+                       "actuator", a);
+    }
     const bool stateful = model.actuator_dyntype[a] != DynType::kNone;
     const bool muscle = model.actuator_gaintype[a] == GainType::kMuscle ||
                         model.actuator_biastype[a] == BiasType::kMuscle;

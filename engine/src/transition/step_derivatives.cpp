@@ -1087,10 +1087,7 @@ void refuse_uncovered(const Model& model) {
                      "lever's analytic derivatives do not cover them yet.");
   }
   for (int a = 0; a < model.nu; ++a) {
-    const char* user = model.actuator_gaintype[a] == GainType::kUser   ? "gaintype"
-                       : model.actuator_biastype[a] == BiasType::kUser ? "biastype"
-                       : model.actuator_dyntype[a] == DynType::kUser   ? "dyntype"
-                                                                       : nullptr;
+    const char* user = actuator_user_attribute(model, a);
     if (user == nullptr) continue;
     throw ModelError("derivatives: actuator " + actuator_label(model, a) + " has " + user +
                          " \"user\" (a callback); lever's analytic derivatives cannot "

@@ -152,6 +152,7 @@ Labeler row_labeler(const Model& model, const Data& data, Size rows) {
     case Size::kNuserJnt:
     case Size::kNuserGeom:
     case Size::kNuserSite:
+    case Size::kNuserTendon:
     case Size::kNuserActuator:
     case Size::kNuserSensor: break;
   }

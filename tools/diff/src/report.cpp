@@ -12,8 +12,9 @@ constexpr std::size_t kFailuresKept = 20;  // enough to see a pattern, short eno
 }  // namespace
 
 bool decided_by_solver(const std::string& q) {
-  // the acceleration stage's sensors and the forces inside the tree read qacc and efc_force
-  return q == "qacc" || q == "qfrc_constraint" || q == "efc_force" || q == "efc_state" ||
+  // the acceleration stage's sensors and the forces inside the tree read qacc and efc_force;
+  // qacc_warmstart is the solve's qacc, kept
+  return q == "qacc" || q == "qacc_warmstart" || q == "qfrc_constraint" || q == "efc_force" || q == "efc_state" ||
          q == "sensordata" || q == "cacc" || q == "cfrc_int" || q == "cfrc_ext" ||
          q == "qpos" || q == "qvel" || q == "qacc at an RK4 stage" || q.rfind("qfrc_inverse (at the forward", 0) == 0 ||
          q.find(" after one ") != std::string::npos || q.rfind("energy", 0) == 0;

@@ -219,6 +219,7 @@ void set_mujoco_state(const mjModel* m, mjData* d, const test::State& s) {
 
 void Twin::set_state(const test::State& s) {
   test::apply(s, data);
+  data.qacc_warmstart.setZero();  // as MuJoCo's (set_mujoco_state)
   set_mujoco_state(m.get(), d.get(), s);
 }
 
@@ -228,6 +229,7 @@ void Twin::follow_mujoco() {
   for (int i = 0; i < m->nv; ++i) {
     data.qvel[i] = d->qvel[i];
     data.qfrc_applied[i] = d->qfrc_applied[i];
+    data.qacc_warmstart[i] = d->qacc_warmstart[i];  // where a warm-started PGS solve begins
   }
   for (int a = 0; a < m->nu; ++a) data.ctrl[a] = d->ctrl[a];
   for (int i = 0; i < m->na; ++i) data.act[i] = d->act[i];

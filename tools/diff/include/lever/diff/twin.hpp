@@ -97,9 +97,10 @@ class Twin {
   /// minimizer does not depend on the method, and CG stalls short of it.
   bool restart_mujoco_solver = false;
 
-  /// Write the same state into both; MuJoCo's warm start is cleared, as after mj_resetData.
+  /// Write the same state into both; both warm starts are cleared, as after mj_resetData.
   void set_state(const test::State& s);
-  /// Copy MuJoCo's current state (time, qpos, qvel, ctrl, qfrc_applied) into lever.
+  /// Copy MuJoCo's current state (time, qpos, qvel, ctrl, act, qfrc_applied, qacc_warmstart) into
+  /// lever.
   void follow_mujoco();
   /// Reset both to the start of a run: the start keyframe (the model's first unless
   /// start_from_key() chose another; lever's reset_keyframe against mj_resetDataKeyframe), else,
