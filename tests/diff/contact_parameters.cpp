@@ -23,6 +23,7 @@
 
 #include <lever/harness/models.hpp>
 #include <lever/harness/random_state.hpp>
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -91,10 +92,7 @@ TEST_CASE("diff: contact parameters and the rows' R and D are MuJoCo's bit for b
           "[diff][contact][robots]") {
   REQUIRE(mj_version() == 222);
   const std::string folder = robots_dir();
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   // elliptic cones on a floor (A1: 160 of 1696 contacts' mu an ulp apart at 50 states before),
   // pyramidal ones between a hand's links and on its object, frictionless capsules and joint
   // limits on the humanoid's own limbs

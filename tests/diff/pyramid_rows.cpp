@@ -18,6 +18,7 @@
 
 #include <lever/harness/models.hpp>
 #include <lever/harness/random_state.hpp>
+#include "robots.hpp"
 
 namespace lever::test {
 
@@ -37,10 +38,7 @@ TEST_CASE("diff: pyramidal rows' products and forces at one qacc are MuJoCo's bi
           "[diff][contact][robots]") {
   REQUIRE(mj_version() == 222);
   const std::string folder = robots_dir();
-  if (!std::filesystem::exists(folder)) {
-    WARN("no real model files at " << folder << ": skipped");
-    return;
-  }
+  if (!robots_present(folder)) return;
   // pyramids of condim 3 between fingers and on the object (the 2F-85 and the Shadow hand), and
   // the humanoid's frictionless contacts between its limbs and its joint limits
   for (const char* name :
