@@ -46,16 +46,6 @@ void put_skew(Matrix6& M, int row, int col, const double* a, double sign) {
   r2[1] = sign * a[0];
 }
 
-// d (vel x m) / d vel for the motion cross product vel x m = [w x m_w; w x m_v + u x m_w]
-// (vel = [w; u], m = [m_w; m_v]): [-[m_w]x, 0; -[m_v]x, -[m_w]x].
-Matrix6 motion_cross_by_velocity(const Motion& m) {
-  Matrix6 X{};
-  put_skew(X, 0, 0, m.data(), -1.0);
-  put_skew(X, 3, 0, m.data() + 3, -1.0);
-  put_skew(X, 3, 3, m.data(), -1.0);
-  return X;
-}
-
 // d (vel x* f) / d vel for the force cross product vel x* f = [w x n + u x p; w x p]
 // (f = [n; p]): [-[n]x, -[p]x; -[p]x, 0].
 Matrix6 force_cross_by_velocity(const Force& f) {
@@ -88,32 +78,50 @@ Matrix6 inertia_matrix(const RigidInertia& I) {
   return X;
 }
 
-// Row r of A times x, summed as MuJoCo's mju_mulMatMat sums it: from zero, the columns in order,
-// the zero entries of A skipped.
-inline double row_times(const Matrix6& A, int r, const double* x) {
-  double sum = 0.0;
-  for (int k = 0; k < 6; ++k) {
-    const double a = A[6 * r + k];
-    if (a != 0.0) sum += a * x[k];
-  }
-  return sum;
-}
-
+// A x and A B (6 x 6), each row summed over its columns in order, as MuJoCo's mju_mulMatMat sums
+// it. MuJoCo skips A's zero entries; here a zero entry adds a zero, which changes no sum (only,
+// where a sum is zero, that zero's sign).
 inline void times(const Matrix6& A, const double* x, double* out) {
-  for (int r = 0; r < 6; ++r) out[r] = row_times(A, r, x);
+  for (int r = 0; r < 6; ++r) {
+    const double* a = &A[6 * r];
+    out[r] = a[0] * x[0] + a[1] * x[1] + a[2] * x[2] + a[3] * x[3] + a[4] * x[4] + a[5] * x[5];
+  }
 }
 
-// A B (6 x 6 each), as mju_mulMatMat forms it
 Matrix6 times(const Matrix6& A, const Matrix6& B) {
   Matrix6 out{};
   for (int r = 0; r < 6; ++r) {
     for (int k = 0; k < 6; ++k) {
-      const double a = A[6 * r + k];
-      if (a == 0.0) continue;
-      for (int c = 0; c < 6; ++c) out[6 * r + c] += a * B[6 * k + c];
+      for (int c = 0; c < 6; ++c) out[6 * r + c] += A[6 * r + k] * B[6 * k + c];
     }
   }
   return out;
+}
+
+// The two products the columns repeat, written out on their matrices' structural non-zeros, each
+// row summed over its columns in order, as times() sums it.
+
+// d (vel x m) / d vel times x, for the motion cross product vel x m = [w x m_w; w x m_v + u x m_w]
+// (vel = [w; u], m = [m_w; m_v]), whose derivative is [-[m_w]x, 0; -[m_v]x, -[m_w]x]
+inline void motion_cross_times(const Motion& m, const Motion& x, Motion& out) {
+  out[0] = m[2] * x[1] - m[1] * x[2];
+  out[1] = -m[2] * x[0] + m[0] * x[2];
+  out[2] = m[1] * x[0] - m[0] * x[1];
+  out[3] = m[5] * x[1] - m[4] * x[2] + m[2] * x[4] - m[1] * x[5];
+  out[4] = -m[5] * x[0] + m[3] * x[2] - m[2] * x[3] + m[0] * x[5];
+  out[5] = m[4] * x[0] - m[3] * x[1] + m[1] * x[3] - m[0] * x[4];
+}
+
+// inertia_matrix(I) x: mju_mulInertVec's sums
+inline void inertia_times(const RigidInertia& I, const double* x, double* out) {
+  const Eigen::Matrix3d& J = I.I;
+  const Eigen::Vector3d& h = I.h;
+  out[0] = J(0, 0) * x[0] + J(0, 1) * x[1] + J(0, 2) * x[2] - h[2] * x[4] + h[1] * x[5];
+  out[1] = J(1, 0) * x[0] + J(1, 1) * x[1] + J(1, 2) * x[2] + h[2] * x[3] - h[0] * x[5];
+  out[2] = J(2, 0) * x[0] + J(2, 1) * x[1] + J(2, 2) * x[2] - h[1] * x[3] + h[0] * x[4];
+  out[3] = h[2] * x[1] - h[1] * x[2] + I.m * x[3];
+  out[4] = -h[2] * x[0] + h[0] * x[2] + I.m * x[4];
+  out[5] = h[1] * x[0] - h[0] * x[1] + I.m * x[5];
 }
 
 }  // namespace
@@ -128,8 +136,8 @@ void subtract_bias_velocity_derivative(const Model& model, Data& data,
   // the matrices of the state, the same for every column
   for (int b = 1; b < nbody; ++b) {
     body[b].inertia = inertia_matrix(data.cinert[b]);
-    Force momentum;  // I cvel, summed as mju_mulInertVec
-    times(body[b].inertia, data.cvel[b].data(), momentum.data());
+    Force momentum;  // I cvel
+    inertia_times(data.cinert[b], data.cvel[b].data(), momentum.data());
     body[b].coupling = force_cross_by_velocity(momentum);
     const Matrix6 through_momentum =
         times(force_cross_by_force(data.cvel[b]), body[b].inertia);
@@ -170,7 +178,7 @@ void subtract_bias_velocity_derivative(const Model& model, Data& data,
         }
         if (type == JointType::kFree || type == JointType::kBall) {
           for (int t = j; t < j + 3; ++t) {
-            times(motion_cross_by_velocity(data.cdof[t]), B.velocity.data(), dcdof_dot[t].data());
+            motion_cross_times(data.cdof[t], B.velocity, dcdof_dot[t]);
           }
           for (int t = j; t < j + 3; ++t) {
             if (t == c) B.velocity += data.cdof[t];
@@ -178,7 +186,7 @@ void subtract_bias_velocity_derivative(const Model& model, Data& data,
           j += 2;
           continue;
         }
-        times(motion_cross_by_velocity(data.cdof[j]), B.velocity.data(), dcdof_dot[j].data());
+        motion_cross_times(data.cdof[j], B.velocity, dcdof_dot[j]);
         if (j == c) B.velocity += data.cdof[j];
       }
       for (int j = first; j < last; ++j) {
@@ -186,7 +194,7 @@ void subtract_bias_velocity_derivative(const Model& model, Data& data,
         const double qvel = data.qvel[j];
         for (int k = 0; k < 6; ++k) B.acceleration[k] += dcdof_dot[j][k] * qvel;
       }
-      times(B.inertia, B.acceleration.data(), B.force.data());
+      inertia_times(data.cinert[b], B.acceleration.data(), B.force.data());
       Force coupled;
       times(B.coupling, B.velocity.data(), coupled.data());
       B.force += coupled;
