@@ -205,8 +205,7 @@ void refuse_user_actuators(const Model& model) {
   for (int a = 0; a < model.nu; ++a) {
     const char* user = actuator_user_attribute(model, a);
     if (user == nullptr) continue;
-    const std::string name =
-        model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+    const std::string name = actuator_label(model, a);
     throw ModelError("lever check: actuator " + name + " has " + user +
                          " \"user\": its force comes from a callback (MuJoCo's mjcb_act_*) "
                          "that lever check cannot know; its sections read each actuator's force "

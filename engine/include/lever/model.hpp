@@ -783,6 +783,9 @@ struct Model : ModelFields {
 /// data.actuator_moment that depends on the state.
 int actuator_scalar_dof(const Model& model, int a);
 
+/// Actuator a as a message names it: 'its name' in quotes, or its index when it has none.
+std::string actuator_label(const Model& model, int a);
+
 /// The attribute that makes actuator a's force a user's callback (MuJoCo's mjcb_act_gain,
 /// mjcb_act_bias, mjcb_act_dyn): "gaintype", "biastype" or "dyntype" (the first of them whose
 /// type is user), or nullptr when its force is lever's own.

@@ -27,7 +27,7 @@ std::string dof_label(const Model& model, int i) {
   return joint.empty() ? std::string("dof").append(std::to_string(i)) : joint;
 }
 
-std::string actuator_label(const Model& model, int a) {
+std::string actuator_parameter_name(const Model& model, int a) {
   return model.actuator_name[a].empty() ? std::string("actuator").append(std::to_string(a))
                                         : model.actuator_name[a];
 }
@@ -111,7 +111,9 @@ std::vector<std::string> regressor_names(const Model& model) {
   }
   for (int i = 0; i < model.nv; ++i) names.push_back(dof_label(model, i) + ".armature");
   for (int i = 0; i < model.nv; ++i) names.push_back(dof_label(model, i) + ".damping");
-  for (const int a : gain_actuators(model)) names.push_back(actuator_label(model, a) + ".gain");
+  for (const int a : gain_actuators(model)) {
+    names.push_back(actuator_parameter_name(model, a) + ".gain");
+  }
   return names;
 }
 
@@ -152,8 +154,8 @@ void set_model_parameters(Model& model, const Eigen::Ref<const Eigen::VectorXd>&
   for (const int a : gain_actuators(model)) {
     const double gain = pi[column++];
     if (!std::isfinite(gain)) {
-      throw ModelError("actuator '" + actuator_label(model, a) + "': gain " + std::to_string(gain) +
-                       " is not finite.");
+      throw ModelError("actuator '" + actuator_parameter_name(model, a) + "': gain " +
+                       std::to_string(gain) + " is not finite.");
     }
     // a servo's tied bias entry follows its gain (read from the model before the edit)
     const int tied = gain_tied_bias(model, a);

@@ -130,8 +130,7 @@ std::string show(double x) {
 }
 
 [[noreturn]] void refuse(const Model& model, int a, const std::string& why) {
-  const std::string name =
-      model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+  const std::string name = actuator_label(model, a);
   throw ModelError("actuator " + name + ": " + why, "actuator", a);
 }
 

@@ -121,6 +121,10 @@ int actuator_scalar_dof(const Model& model, int a) {
   return model.jnt_dofadr[j];
 }
 
+std::string actuator_label(const Model& model, int a) {
+  return model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+}
+
 const char* actuator_user_attribute(const Model& model, int a) {
   return model.actuator_gaintype[a] == GainType::kUser   ? "gaintype"
          : model.actuator_biastype[a] == BiasType::kUser ? "biastype"
@@ -132,8 +136,7 @@ void require_simple_actuators(const Model& model, const std::string& feature,
                               bool tendons_and_sites) {
   for (int a = 0; a < model.nu; ++a) {
     if (const char* user = actuator_user_attribute(model, a)) {
-      const std::string name =
-          model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+      const std::string name = actuator_label(model, a);
       throw ModelError(feature + ": actuator " + name + " has " + user +
                            " \"user\": its force is a callback's, which " + feature +
                            " cannot read as parameters; " + feature +
@@ -144,8 +147,7 @@ void require_simple_actuators(const Model& model, const std::string& feature,
     const bool muscle = model.actuator_gaintype[a] == GainType::kMuscle ||
                         model.actuator_biastype[a] == BiasType::kMuscle;
     if (stateful || muscle) {
-      const std::string name =
-          model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+      const std::string name = actuator_label(model, a);
       throw ModelError(feature + ": actuator " + name + " is " +
                            (muscle ? "a muscle" : "an actuator with activation dynamics") + "; " +
                            feature + " handles stateless actuators with fixed or affine gain "
@@ -166,8 +168,7 @@ void require_simple_actuators(const Model& model, const std::string& feature,
       case TransmissionType::kBody: what = "a body through its contacts (adhesion)"; break;
       default: break;
     }
-    const std::string name =
-        model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
+    const std::string name = actuator_label(model, a);
     throw ModelError(feature + ": actuator " + name + " drives " + what + "; " + feature +
                          " handles actuators on hinge and slide joints only, not yet that "
                          "transmission.",

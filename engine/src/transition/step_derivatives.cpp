@@ -1072,11 +1072,6 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   data.time = time0;
 }
 
-// An actuator as a message names it: 'its name', or its index when it has none.
-std::string actuator_label(const Model& model, int a) {
-  return model.actuator_name[a].empty() ? std::to_string(a) : "'" + model.actuator_name[a] + "'";
-}
-
 // The fluid forces depend on the pose and the velocity in ways the chain rule above leaves out,
 // and so do the moments of transmissions other than a hinge's, a slide's, a fixed tendon's and a
 // site's. Every built-in gain, bias and activation dynamics is covered (fixed, affine, muscle;
