@@ -596,48 +596,6 @@ void with_dim(int dim, Kernel&& kernel) {
   }
 }
 
-// out[k] = a_k . x for `count` rows a_k (`stride` apart) that share [lo, end) of n, each summed
-// as dot_as_mujoco sums it: four running sums over the groups of four from lo's to the last
-// whole one, then Tail (0 to 3) numbers past it, the bounds found once for the rows
-// (rows_dot_as_mujoco). Tail is a template argument so that the tail's sum unrolls.
-template <int Tail>
-void rows_dot(const double* a, Eigen::Index stride, int count, const double* x, int groups_begin,
-              int groups_end, int tail_begin, double* out) {
-  const double* t = x + tail_begin;
-  for (int k = 0; k < count; ++k, a += stride) {
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-    for (int j = groups_begin; j < groups_end; j += 4) {
-      s0 += a[j] * x[j];
-      s1 += a[j + 1] * x[j + 1];
-      s2 += a[j + 2] * x[j + 2];
-      s3 += a[j + 3] * x[j + 3];
-    }
-    double sum = (s0 + s2) + (s1 + s3);
-    if constexpr (Tail > 0) {
-      const double* at = a + tail_begin;
-      double tail = at[0] * t[0];
-      if constexpr (Tail > 1) tail += at[1] * t[1];
-      if constexpr (Tail > 2) tail += at[2] * t[2];
-      sum += tail;
-    }
-    out[k] = sum;
-  }
-}
-
-// dot_as_mujoco for `count` rows of a (`stride` apart) at once, the bounds found once.
-void rows_dot_as_mujoco(const double* a, Eigen::Index stride, int count, const double* x, int lo,
-                        int end, int n, double* out) {
-  const int whole = n & ~3;
-  const int groups_begin = lo & ~3, groups_end = end < whole ? end : whole;
-  const int tail_begin = lo > whole ? lo : whole;
-  switch (end > tail_begin ? end - tail_begin : 0) {
-    case 0: return rows_dot<0>(a, stride, count, x, groups_begin, groups_end, tail_begin, out);
-    case 1: return rows_dot<1>(a, stride, count, x, groups_begin, groups_end, tail_begin, out);
-    case 2: return rows_dot<2>(a, stride, count, x, groups_begin, groups_end, tail_begin, out);
-    default: return rows_dot<3>(a, stride, count, x, groups_begin, groups_end, tail_begin, out);
-  }
-}
-
 // out[lo..lo + span) += sum_k a_k f_k over `count` rows a_k (`stride` apart) with nonzero forces
 // f_k, each out[j] adding the rows' products in the rows' order, as MuJoCo's J^T f adds them row
 // after row. Count is a template argument so that the loop over the rows unrolls.
