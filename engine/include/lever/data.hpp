@@ -112,10 +112,9 @@ enum class ConstraintState : int {
 inline constexpr std::uint64_t kSensorNoiseSeed = 0x5eed5eed5eed5eedULL;
 
 /// One body's part of the implicit step's d qfrc_bias / d qvel as MuJoCo 2.2.2's mjd_rne_vel
-/// forms it (derivatives/bias_velocity_chain.cpp): two 6 x 6 matrices of the state, row-major,
-/// then one column's derivatives of the body's velocity, acceleration and force.
+/// forms it (derivatives/bias_velocity_chain.cpp): a 6 x 6 matrix of the state, row-major, then
+/// one column's derivatives of the body's velocity, acceleration and force.
 struct BiasVelocityBody {
-  std::array<double, 36> inertia;   ///< d (I v) / d v: cinert as a 6 x 6 matrix
   std::array<double, 36> coupling;  ///< d (v x* (I v)) / d v at cvel
   Motion velocity;                  ///< d cvel / d qvel_c
   Motion acceleration;              ///< d cacc / d qvel_c (the velocity-product part)

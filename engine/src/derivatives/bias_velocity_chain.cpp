@@ -135,12 +135,11 @@ void subtract_bias_velocity_derivative(const Model& model, Data& data,
 
   // the matrices of the state, the same for every column
   for (int b = 1; b < nbody; ++b) {
-    body[b].inertia = inertia_matrix(data.cinert[b]);
     Force momentum;  // I cvel
     inertia_times(data.cinert[b], data.cvel[b].data(), momentum.data());
     body[b].coupling = force_cross_by_velocity(momentum);
     const Matrix6 through_momentum =
-        times(force_cross_by_force(data.cvel[b]), body[b].inertia);
+        times(force_cross_by_force(data.cvel[b]), inertia_matrix(data.cinert[b]));
     for (int e = 0; e < 36; ++e) body[b].coupling[e] += through_momentum[e];
   }
 
