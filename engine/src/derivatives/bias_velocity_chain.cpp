@@ -56,46 +56,53 @@ Matrix6 force_cross_by_velocity(const Force& f) {
   return X;
 }
 
-// d (vel x* f) / d f: [[w]x, [u]x; 0, [w]x].
-Matrix6 force_cross_by_force(const Motion& vel) {
-  Matrix6 X{};
-  put_skew(X, 0, 0, vel.data(), 1.0);
-  put_skew(X, 0, 3, vel.data() + 3, 1.0);
-  put_skew(X, 3, 3, vel.data(), 1.0);
-  return X;
-}
-
-// The spatial inertia about the com frame as a matrix: [I, [h]x; -[h]x, m 1], the coefficients of
-// MuJoCo's mju_mulInertVec (h = m times the centre of mass's offset).
-Matrix6 inertia_matrix(const RigidInertia& I) {
-  Matrix6 X{};
+// d (vel x* f) / d f = [[w]x, [u]x; 0, [w]x] times the inertia matrix [I, [h]x; -[h]x, m 1] of
+// I (mju_mulInertVec's coefficients, h = m times the centre of mass's offset): each entry summed
+// over k in order, as MuJoCo's mju_mulMatMat sums it, on the left factor's non-zeros only (its
+// zero entries would add zeros, which change no sum but a zero's sign).
+Matrix6 force_cross_times_inertia(const Motion& vel, const RigidInertia& I) {
+  double inertia[36] = {};
   for (int r = 0; r < 3; ++r) {
-    for (int c = 0; c < 3; ++c) X[6 * r + c] = I.I(r, c);
+    for (int c = 0; c < 3; ++c) inertia[6 * r + c] = I.I(r, c);
   }
-  put_skew(X, 0, 3, I.h.data(), 1.0);
-  put_skew(X, 3, 0, I.h.data(), -1.0);
-  X[21] = X[28] = X[35] = I.m;
-  return X;
+  const double* h = I.h.data();
+  inertia[4] = -h[2], inertia[5] = h[1];     // [h]x
+  inertia[9] = h[2], inertia[11] = -h[0];
+  inertia[15] = -h[1], inertia[16] = h[0];
+  inertia[19] = h[2], inertia[20] = -h[1];   // -[h]x
+  inertia[24] = -h[2], inertia[26] = h[0];
+  inertia[30] = h[1], inertia[31] = -h[0];
+  inertia[21] = inertia[28] = inertia[35] = I.m;
+
+  // the left factor's rows, on their non-zero columns k in order
+  const double* w = vel.data();
+  const double* u = vel.data() + 3;
+  const double* B0 = inertia;
+  const double* B1 = inertia + 6;
+  const double* B2 = inertia + 12;
+  const double* B3 = inertia + 18;
+  const double* B4 = inertia + 24;
+  const double* B5 = inertia + 30;
+  Matrix6 out;
+  for (int c = 0; c < 6; ++c) {
+    out[c] = -w[2] * B1[c] + w[1] * B2[c] + -u[2] * B4[c] + u[1] * B5[c];
+    out[6 + c] = w[2] * B0[c] + -w[0] * B2[c] + u[2] * B3[c] + -u[0] * B5[c];
+    out[12 + c] = -w[1] * B0[c] + w[0] * B1[c] + -u[1] * B3[c] + u[0] * B4[c];
+    out[18 + c] = -w[2] * B4[c] + w[1] * B5[c];
+    out[24 + c] = w[2] * B3[c] + -w[0] * B5[c];
+    out[30 + c] = -w[1] * B3[c] + w[0] * B4[c];
+  }
+  return out;
 }
 
-// A x and A B (6 x 6), each row summed over its columns in order, as MuJoCo's mju_mulMatMat sums
-// it. MuJoCo skips A's zero entries; here a zero entry adds a zero, which changes no sum (only,
+// A x (6 x 6), each row summed over its columns in order, as MuJoCo's mju_mulMatMat sums it.
+// MuJoCo skips A's zero entries; here a zero entry adds a zero, which changes no sum (only,
 // where a sum is zero, that zero's sign).
 inline void times(const Matrix6& A, const double* x, double* out) {
   for (int r = 0; r < 6; ++r) {
     const double* a = &A[6 * r];
     out[r] = a[0] * x[0] + a[1] * x[1] + a[2] * x[2] + a[3] * x[3] + a[4] * x[4] + a[5] * x[5];
   }
-}
-
-Matrix6 times(const Matrix6& A, const Matrix6& B) {
-  Matrix6 out{};
-  for (int r = 0; r < 6; ++r) {
-    for (int k = 0; k < 6; ++k) {
-      for (int c = 0; c < 6; ++c) out[6 * r + c] += A[6 * r + k] * B[6 * k + c];
-    }
-  }
-  return out;
 }
 
 // The two products the columns repeat, written out on their matrices' structural non-zeros, each
@@ -138,18 +145,17 @@ void subtract_bias_velocity_derivative(const Model& model, Data& data,
     Force momentum;  // I cvel
     inertia_times(data.cinert[b], data.cvel[b].data(), momentum.data());
     body[b].coupling = force_cross_by_velocity(momentum);
-    const Matrix6 through_momentum =
-        times(force_cross_by_force(data.cvel[b]), inertia_matrix(data.cinert[b]));
+    const Matrix6 through_momentum = force_cross_times_inertia(data.cvel[b], data.cinert[b]);
     for (int e = 0; e < 36; ++e) body[b].coupling[e] += through_momentum[e];
   }
 
   for (int c = 0; c < nv; ++c) {
     const int top = model.dof_bodyid[c];
-    for (int b = 0; b < nbody; ++b) {
-      body[b].branch = 0;
+    for (int b = 0; b < nbody; ++b) body[b].branch = 0;
+    for (int b = parent[top]; b > 0; b = parent[b]) {  // the subtree's forces are summed here
+      body[b].branch = 2;
       body[b].force.setZero();
     }
-    for (int b = parent[top]; b > 0; b = parent[b]) body[b].branch = 2;
 
     // forward: the subtree of c's body (its bodies come after it)
     for (int b = top; b < nbody; ++b) {
@@ -205,11 +211,16 @@ void subtract_bias_velocity_derivative(const Model& model, Data& data,
     }
 
     // D(r, c) -= cdof_r . f over the dofs of the bodies on c's branch
-    for (int r = 0; r < nv; ++r) {
-      const BiasVelocityBody& B = body[model.dof_bodyid[r]];
+    double* const column = &D(0, c);
+    for (int b = 1; b < nbody; ++b) {
+      const BiasVelocityBody& B = body[b];
       if (B.branch == 0) continue;
-      double& out = D(r, c);
-      for (int k = 0; k < 6; ++k) out += B.force[k] * -data.cdof[r][k];
+      const int first = model.body_dofadr[b], last = first + model.body_dofnum[b];
+      for (int r = first; r < last; ++r) {
+        double out = column[r];
+        for (int k = 0; k < 6; ++k) out += B.force[k] * -data.cdof[r][k];
+        column[r] = out;
+      }
     }
   }
 }
