@@ -379,11 +379,10 @@ class Collider {
       return;
     }
 
-    // The narrow phase writes each contact's dist, pos and normal; a frame's second row is a
-    // tangent only where the pair sets one (the capsule's axis), so every frame starts zero.
-    // The buffer is Data's: nothing is allocated or constructed per pair.
+    // The narrow phase writes each contact's dist, pos and whole frame: the normal, and zero
+    // rows but where the pair sets a tangent (the capsule's axis). The buffer is Data's: nothing
+    // is allocated or constructed per pair.
     Contact* found = d_.work.pair_contact.data();
-    for (Contact& c : d_.work.pair_contact) c.frame.setZero();
     const ConvexOptions convex{m_.opt.mpr_tolerance, m_.opt.mpr_iterations,
                                m_.opt.enabled(kEnableMulticcd)};
     int n = collide_shapes(shape(g1), shape(g2), margin, found, convex);
