@@ -314,16 +314,19 @@ class Collider {
   }
 
   GeomShape shape(int g) const {
-    GeomShape s{m_.geom_type[g], m_.geom_size[g], d_.geom_xpos[g], d_.geom_xmat[g],
-                m_.geom_rbound[g]};
+    const double* vert = nullptr;
+    int vertnum = 0;
+    const int* graph = nullptr;
     const int mesh = m_.geom_dataid[g];
     if (mesh >= 0 && m_.mesh_vertnum[mesh] > 0) {
-      s.mesh_vert = m_.mesh_vert[static_cast<size_t>(m_.mesh_vertadr[mesh])].data();
-      s.mesh_vertnum = m_.mesh_vertnum[mesh];
-      const int graph = m_.mesh_graphadr[mesh];
-      s.mesh_graph = graph >= 0 ? m_.mesh_graph.data() + graph : nullptr;
+      vert = m_.mesh_vert[static_cast<size_t>(m_.mesh_vertadr[mesh])].data();
+      vertnum = m_.mesh_vertnum[mesh];
+      const int address = m_.mesh_graphadr[mesh];
+      graph = address >= 0 ? m_.mesh_graph.data() + address : nullptr;
     }
-    return s;
+    // every member given: nothing is set twice
+    return GeomShape{m_.geom_type[g], m_.geom_size[g], d_.geom_xpos[g], d_.geom_xmat[g],
+                     m_.geom_rbound[g], vert, vertnum, graph};
   }
 
   /// A mesh geom whose mesh lever did not read (no vertices) has no shape to collide.
@@ -408,7 +411,7 @@ class Collider {
     }
 
     for (int i = 0; i < n; ++i) {
-      Contact c = found[i];
+      Contact& c = found[i];  // completed in the pair's buffer, then copied once
       c.dim = condim;
       c.geom1 = g1;
       c.geom2 = g2;
