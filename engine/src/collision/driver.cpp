@@ -82,17 +82,27 @@ Mat3 quat_rotation(const Quat4& q) {
   return R;
 }
 
-/// A^T B or A B of 3x3 matrices, each element summed over k in order.
-Mat3 product(const Mat3& A, const Mat3& B, bool transpose_A) {
-  Mat3 C;
+/// V^T A V of 3x3 matrices as MuJoCo forms it (V^T A first), each element summed over k in
+/// order; only the upper triangle and the diagonal, which are all the rotation reads.
+Mat3 rotated_upper(const Mat3& A, const Mat3& V) {
+  Mat3 VtA;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       double sum = 0;
-      for (int k = 0; k < 3; ++k) sum += (transpose_A ? A(k, i) : A(i, k)) * B(k, j);
-      C(i, j) = sum;
+      for (int k = 0; k < 3; ++k) sum += V(k, i) * A(k, j);
+      VtA(i, j) = sum;
     }
   }
-  return C;
+  Mat3 D;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i; j < 3; ++j) {
+      double sum = 0;
+      for (int k = 0; k < 3; ++k) sum += VtA(i, k) * V(k, j);
+      D(i, j) = sum;
+    }
+  }
+  D(1, 0) = D(2, 0) = D(2, 1) = 0;  // not read
+  return D;
 }
 
 /// The eigenvectors of a symmetric 3x3 matrix by Jacobi rotations, accumulated as a quaternion
@@ -104,7 +114,7 @@ Mat3 eigenframe(const Mat3& covariance) {
   Vec3 eigval;
   for (int iter = 0; iter < 500; ++iter) {
     const Mat3 V = quat_rotation(quat);
-    const Mat3 D = product(product(V, covariance, true), V, false);
+    const Mat3 D = rotated_upper(covariance, V);
     eigval = Vec3(D(0, 0), D(1, 1), D(2, 2));
 
     // the largest off-diagonal element (row, column) and the axis of the rotation that zeroes it
