@@ -118,12 +118,12 @@ bench: bench-build
 	  $(BENCH_FLAGS)
 	bench/instructions.py --profile $(BENCH_BUILD)/bench/lever_bench_profile \
 	  --iterations $(BENCH_ITERATIONS) --commit $(LEVER_COMMIT) \
-	  --out $(BENCH_BUILD)/instructions.json models/*.xml tests/models/sensors.xml
+	  --out $(BENCH_BUILD)/instructions.json models/*.xml tests/models/sensors.xml bench/scenes/*.xml
 	@$(bench_report)
 bench-instructions: bench-build
 	bench/instructions.py --profile $(BENCH_BUILD)/bench/lever_bench_profile \
 	  --iterations $(BENCH_ITERATIONS) --commit $(LEVER_COMMIT) \
-	  --out $(BENCH_BUILD)/instructions.json models/*.xml tests/models/sensors.xml
+	  --out $(BENCH_BUILD)/instructions.json models/*.xml tests/models/sensors.xml bench/scenes/*.xml
 	@if [ -f $(BENCH_BUILD)/bench.json ] && [ -f $(BENCH_BUILD)/bench-check.md ]; then $(bench_report); \
 	  else echo "bench-instructions: no timing run in $(BENCH_BUILD) (make bench): docs/performance.md left as it is"; fi
 

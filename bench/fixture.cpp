@@ -63,28 +63,32 @@ std::vector<std::string> model_files(const std::string& dir) { return files_wher
 
 std::vector<std::string> scene_files(const std::string& dir) { return files_where(dir, true); }
 
-std::vector<std::string> robot_scene_files(const std::string& dir) {
-  // the scenes name the robots folder as it lies beside a checkout; the copies name the one the
+std::string robot_scene_file(const std::string& path) {
+  // the scenes name the robots folder as it lies beside a checkout; the copy names the one the
   // tests read (lever::test::robots_dir(), which $LEVER_ROBOTS_DIR can move)
   const std::string beside_checkout = "../../../shared/robots";
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string xml = text.str();
+  if (xml.find(beside_checkout) == std::string::npos) return path;
+  for (std::size_t at = xml.find(beside_checkout); at != std::string::npos;
+       at = xml.find(beside_checkout, at)) {
+    xml.replace(at, beside_checkout.size(), test::robots_dir());
+    at += test::robots_dir().size();
+  }
   const std::filesystem::path out_dir =
       std::filesystem::temp_directory_path() / "lever_bench_scenes";
   std::filesystem::create_directories(out_dir);
+  const std::filesystem::path copy = out_dir / std::filesystem::path(path).filename();
+  std::ofstream(copy) << xml;
+  return copy.string();
+}
+
+std::vector<std::string> robot_scene_files(const std::string& dir) {
   std::vector<std::string> files;
   for (const auto& entry : std::filesystem::directory_iterator(dir)) {
-    if (entry.path().extension() != ".xml") continue;
-    std::ifstream in(entry.path());
-    std::stringstream text;
-    text << in.rdbuf();
-    std::string xml = text.str();
-    for (std::size_t at = xml.find(beside_checkout); at != std::string::npos;
-         at = xml.find(beside_checkout, at)) {
-      xml.replace(at, beside_checkout.size(), test::robots_dir());
-      at += test::robots_dir().size();
-    }
-    const std::filesystem::path copy = out_dir / entry.path().filename();
-    std::ofstream(copy) << xml;
-    files.push_back(copy.string());
+    if (entry.path().extension() == ".xml") files.push_back(robot_scene_file(entry.path().string()));
   }
   std::sort(files.begin(), files.end());
   return files;

@@ -62,6 +62,10 @@ std::vector<std::string> scene_files(const std::string& dir);
 /// temporary folder with that folder replaced by lever::test::robots_dir(): the copies' paths.
 std::vector<std::string> robot_scene_files(const std::string& dir);
 
+/// One such scene's copy (as robot_scene_files makes it), or the path itself when the file does
+/// not name ../shared/robots beside the checkout.
+std::string robot_scene_file(const std::string& path);
+
 /// A contact scene timed where the lesson uses it, at rest in contact: its first keyframe (else
 /// qpos0), ctrl 0, then one second of lever's steps, so that its bodies lie on each other.
 /// Throws std::runtime_error if MuJoCo cannot load it or the scene has no contact then.

@@ -2,8 +2,8 @@
 """Instructions per call of every benchmarked operation, counted by callgrind.
 
     bench/instructions.py --profile build-bench/bench/lever_bench_profile \
-        [--iterations N] [--stages arm2,panda7,chain20] [--jobs 2] [--commit ID] \
-        --out build-bench/instructions.json models/*.xml
+        [--iterations N] [--stages arm2,panda7,chain20,mesh_gripper] [--jobs 2] [--commit ID] \
+        --out build-bench/instructions.json models/*.xml bench/scenes/*.xml
 
 Runs `lever_bench_profile MODEL --all N` under `valgrind --tool=callgrind --instr-atstart=no`,
 once per model: every operation's loop is dumped on its own, and an empty loop first measures the
@@ -180,7 +180,7 @@ def main():
     parser.add_argument("--profile", required=True, help="the lever_bench_profile executable")
     parser.add_argument("--out", required=True, help="the JSON file to write")
     parser.add_argument("--iterations", type=int, default=1000)
-    parser.add_argument("--stages", default="arm2,panda7,chain20",
+    parser.add_argument("--stages", default="arm2,panda7,chain20,mesh_gripper",
                         help="models whose forward is broken down by function (comma-separated)")
     parser.add_argument("--jobs", type=int, default=2, help="models counted at once")
     parser.add_argument("--commit", default="unknown", help="lever's commit, for the report")

@@ -335,10 +335,12 @@ int main(int argc, char** argv) {
   }
   std::unique_ptr<Fixture> f;
   try {
-    const lever::Model model = lever::mjcf::load_file(argv[1]);
-    f = lever::bench::is_sensor_model(model) ? lever::bench::make_sensor_fixture(argv[1])
-        : lever::bench::is_scene(model)      ? lever::bench::make_scene_fixture(argv[1])
-                                             : lever::bench::make_fixture(argv[1]);
+    // a scene of bench/scenes reads real model files: its copy that finds them
+    const std::string path = lever::bench::robot_scene_file(argv[1]);
+    const lever::Model model = lever::mjcf::load_file(path);
+    f = lever::bench::is_sensor_model(model) ? lever::bench::make_sensor_fixture(path)
+        : lever::bench::is_scene(model)      ? lever::bench::make_scene_fixture(path)
+                                             : lever::bench::make_fixture(path);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "%s\n", e.what());
     return 2;

@@ -17,6 +17,7 @@
 // Every sum runs in MuJoCo's order, so that libccd receives the same support points bit for bit
 // and returns the same answer.
 #include <cmath>
+#include <cstddef>
 
 #include <lever/collision.hpp>
 
@@ -41,51 +42,82 @@ double distance3(const Vec3& a, const Vec3& b) {
   return std::sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2]);
 }
 
-// ---- the hull graph of a mesh (MuJoCo's mesh_graph) --------------------------------------------
-// numvert, numface, then per hull vertex its first edge's address and its vertex index in the
-// mesh, then each hull vertex's neighbours (hull-local indices) ending with -1.
+// ---- the support function (MuJoCo's mjccd_support) ---------------------------------------------
 
-struct HullGraph {
-  const int* edge_address;
-  const int* vertex_index;
-  const int* neighbours;
+/// A geom as its support function reads it, set up once per search (MPR calls it some twenty
+/// times): the pose as 9 + 3 numbers, the growth, and a mesh's vertices and hull graph.
+///
+/// The hull graph (MuJoCo's mesh_graph): numvert, numface, then per hull vertex its first edge's
+/// address and its vertex index in the mesh, then each hull vertex's neighbours (hull-local
+/// indices) ending with -1.
+struct Support {
+  GeomType type;
+  const double* mat;   // geom_xmat, row by row
+  const double* pos;   // geom_xpos
+  const double* size;  // geom_size
+  double margin;       // both geoms grow by margin / 2
+  const double* vert;  // a mesh's vertices, x y z each
+  int vertnum;
+  const int* edge_address = nullptr;  // null: no hull graph, every vertex is visited
+  const int* vertex_index = nullptr;
+  const int* neighbours = nullptr;
+  int found = -1;  // the mesh vertex last found, as MuJoCo records it (meshindex)
 
-  explicit HullGraph(const int* graph)
-      : edge_address(graph + 2),
-        vertex_index(graph + 2 + graph[0]),
-        neighbours(graph + 2 + 2 * graph[0]) {}
+  Support(const GeomShape& g, double grow)
+      : type(g.type),
+        mat(g.mat.data()),
+        pos(g.pos.data()),
+        size(g.size.data()),
+        margin(grow),
+        vert(g.mesh_vert),
+        vertnum(g.mesh_vertnum) {
+    if (g.mesh_graph) {
+      const int numvert = g.mesh_graph[0];
+      edge_address = g.mesh_graph + 2;
+      vertex_index = edge_address + numvert;
+      neighbours = vertex_index + numvert;
+    }
+  }
+
+  /// Mesh vertex v (an index into vert, 3 numbers each).
+  const double* vertex(std::ptrdiff_t v) const { return vert + 3 * v; }
+  /// Hull vertex h's mesh vertex.
+  const double* hull_vertex(std::ptrdiff_t h) const {
+    return vertex(static_cast<std::ptrdiff_t>(vertex_index[h]));
+  }
 };
 
 /// A mesh vertex's projection on a direction, as MuJoCo sums it.
-double along(const double* vertex, const Vec3& dir) {
+double along(const double* vertex, const double* dir) {
   return dir[0] * vertex[0] + dir[1] * vertex[1] + dir[2] * vertex[2];
 }
 
 /// The mesh vertex farthest along dir (in the mesh's frame): the first of the best when every
-/// vertex is visited; the end of the climb from the hull's first vertex otherwise. `found` is its
-/// index as MuJoCo records it (a mesh vertex without a graph, a hull vertex with one).
-int mesh_support_vertex(const GeomShape& mesh, const Vec3& dir, int& found) {
-  double best = -1e10;
-  if (!mesh.mesh_graph) {
+/// vertex is visited; the end of the climb from the hull's first vertex otherwise, each round
+/// through the neighbours of the vertex it started from, moving to every better one. Records in
+/// s.found its index as MuJoCo does (a mesh vertex without a graph, a hull vertex with one) and
+/// returns the mesh vertex, -1 if none.
+std::ptrdiff_t mesh_support_vertex(Support& s, const double* dir) {
+  if (!s.edge_address) {
+    double best = -1e10;
     int best_vertex = -1;
-    for (int i = 0; i < mesh.mesh_vertnum; ++i) {
-      const double projection = along(mesh.mesh_vert + 3 * i, dir);
+    for (int i = 0; i < s.vertnum; ++i) {
+      const double projection = along(s.vertex(i), dir);
       if (projection > best) {
         best = projection;
         best_vertex = i;
       }
     }
-    found = best_vertex;
+    s.found = best_vertex;
     return best_vertex;
   }
-  const HullGraph hull(mesh.mesh_graph);
-  int current = 0;
-  best = along(mesh.mesh_vert + 3 * hull.vertex_index[0], dir);
+  std::ptrdiff_t current = 0;
+  double best = along(s.hull_vertex(0), dir);
   for (bool moved = true; moved;) {
     moved = false;
-    for (int e = hull.edge_address[current]; hull.neighbours[e] >= 0; ++e) {
-      const int next = hull.neighbours[e];
-      const double projection = along(mesh.mesh_vert + 3 * hull.vertex_index[next], dir);
+    for (const int* e = s.neighbours + s.edge_address[current]; *e >= 0; ++e) {
+      const std::ptrdiff_t next = *e;
+      const double projection = along(s.hull_vertex(next), dir);
       if (projection > best) {
         best = projection;
         current = next;
@@ -93,59 +125,73 @@ int mesh_support_vertex(const GeomShape& mesh, const Vec3& dir, int& found) {
       }
     }
   }
-  found = current;
-  return hull.vertex_index[current];
+  s.found = static_cast<int>(current);
+  return s.vertex_index[current];
 }
 
-/// A geom's support point in the world along world direction `world_dir`, grown by margin / 2
-/// (MuJoCo's mjccd_support). `found` receives a mesh's vertex as mesh_support_vertex records it.
-Vec3 support_point(const GeomShape& g, const Vec3& world_dir, double margin, int& found) {
-  const Vec3 dir = rotate_columns(g.mat, world_dir);
-  const Vec3& size = g.size;
-  Vec3 res;
-  switch (g.type) {
-    case GeomType::kSphere:
-      res = Vec3(dir[0] * size[0], dir[1] * size[0], dir[2] * size[0]);
-      break;
-    case GeomType::kCapsule:
-      res = Vec3(dir[0] * size[0], dir[1] * size[0], dir[2] * size[0]);
-      res[2] += sign_of(dir[2]) * size[1];
-      break;
-    case GeomType::kEllipsoid:
-      // the unit sphere's support point of the direction scaled by the semi-axes, scaled back
-      res = Vec3(dir[0] * size[0], dir[1] * size[1], dir[2] * size[2]);
-      normalize_or_x(res);
-      for (int i = 0; i < 3; ++i) res[i] *= size[i];
-      break;
-    case GeomType::kCylinder: {
-      // the rim point along the direction's horizontal part (the axis if it has none), the disc
-      // its vertical part points to
-      const double horizontal = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1]);
-      if (horizontal > kMinVal) {
-        res[0] = dir[0] / horizontal * size[0];
-        res[1] = dir[1] / horizontal * size[0];
-      } else {
-        res[0] = res[1] = 0;
-      }
-      res[2] = sign_of(dir[2]) * size[1];
-      break;
+/// The geom's support point `out` in the world along world direction `world_dir`, grown by
+/// margin / 2: the direction into the geom's frame, the farthest point there, back to the world.
+/// One function per type (MPR's support callbacks are chosen once per search).
+template <GeomType kType>
+void support_point(Support& s, const double* world_dir, double* out) {
+  const double* R = s.mat;
+  const double* size = s.size;
+  const double* d = world_dir;
+  // R^T d, each column's products summed top to bottom (mju_rotVecMatT)
+  const double dir[3] = {R[0] * d[0] + R[3] * d[1] + R[6] * d[2],
+                         R[1] * d[0] + R[4] * d[1] + R[7] * d[2],
+                         R[2] * d[0] + R[5] * d[1] + R[8] * d[2]};
+  double res[3];
+  if constexpr (kType == GeomType::kSphere) {
+    for (int i = 0; i < 3; ++i) res[i] = dir[i] * size[0];
+  } else if constexpr (kType == GeomType::kCapsule) {
+    for (int i = 0; i < 3; ++i) res[i] = dir[i] * size[0];
+    res[2] += sign_of(dir[2]) * size[1];
+  } else if constexpr (kType == GeomType::kEllipsoid) {
+    // the unit sphere's support point of the direction scaled by the semi-axes, scaled back
+    Vec3 unit(dir[0] * size[0], dir[1] * size[1], dir[2] * size[2]);
+    normalize_or_x(unit);
+    for (int i = 0; i < 3; ++i) res[i] = unit[i] * size[i];
+  } else if constexpr (kType == GeomType::kCylinder) {
+    // the rim point along the direction's horizontal part (the axis if it has none), the disc
+    // its vertical part points to
+    const double horizontal = std::sqrt(dir[0] * dir[0] + dir[1] * dir[1]);
+    if (horizontal > kMinVal) {
+      res[0] = dir[0] / horizontal * size[0];
+      res[1] = dir[1] / horizontal * size[0];
+    } else {
+      res[0] = res[1] = 0;
     }
-    case GeomType::kBox:
-      for (int i = 0; i < 3; ++i) res[i] = sign_of(dir[i]) * size[i];
-      break;
-    case GeomType::kMesh: {
-      const int v = mesh_support_vertex(g, dir, found);
-      res = v < 0 ? Vec3::Zero() : Vec3(g.mesh_vert[3 * v], g.mesh_vert[3 * v + 1],
-                                        g.mesh_vert[3 * v + 2]);
-      break;
-    }
-    default:
-      res.setZero();  // planes and height fields have no support function (never asked)
+    res[2] = sign_of(dir[2]) * size[1];
+  } else if constexpr (kType == GeomType::kBox) {
+    for (int i = 0; i < 3; ++i) res[i] = sign_of(dir[i]) * size[i];
+  } else if constexpr (kType == GeomType::kMesh) {
+    const std::ptrdiff_t v = mesh_support_vertex(s, dir);
+    for (int i = 0; i < 3; ++i) res[i] = v < 0 ? 0.0 : s.vertex(v)[i];
+  } else {
+    res[0] = res[1] = res[2] = 0;  // planes and height fields have no support function
   }
-  for (int i = 0; i < 3; ++i) res[i] += dir[i] * margin / 2;
-  Vec3 world = rotate_rows(g.mat, res);
-  for (int i = 0; i < 3; ++i) world[i] += g.pos[i];
-  return world;
+  for (int i = 0; i < 3; ++i) res[i] += dir[i] * s.margin / 2;
+  // R res + pos, each row's products summed left to right (mju_rotVecMat, mju_addTo3)
+  double world[3];
+  for (int i = 0; i < 3; ++i) {
+    world[i] = R[3 * i] * res[0] + R[3 * i + 1] * res[1] + R[3 * i + 2] * res[2];
+    world[i] += s.pos[i];
+  }
+  for (int i = 0; i < 3; ++i) out[i] = world[i];
+}
+
+/// support_point of the geom's own type.
+void support_point(Support& s, const double* world_dir, double* out) {
+  switch (s.type) {
+    case GeomType::kSphere: return support_point<GeomType::kSphere>(s, world_dir, out);
+    case GeomType::kCapsule: return support_point<GeomType::kCapsule>(s, world_dir, out);
+    case GeomType::kEllipsoid: return support_point<GeomType::kEllipsoid>(s, world_dir, out);
+    case GeomType::kCylinder: return support_point<GeomType::kCylinder>(s, world_dir, out);
+    case GeomType::kBox: return support_point<GeomType::kBox>(s, world_dir, out);
+    case GeomType::kMesh: return support_point<GeomType::kMesh>(s, world_dir, out);
+    default: return support_point<GeomType::kPlane>(s, world_dir, out);
+  }
 }
 
 // ---- the normal where a geom's surface gives it (MuJoCo's mjc_fixNormal) -----------------------
@@ -278,25 +324,29 @@ void fix_normal(const GeomShape& g1, const GeomShape& g2, Contact& c) {
 
 #ifdef LEVER_HAVE_CCD
 
-/// What libccd passes back to the support and centre functions: the geom, the margin and the
-/// mesh vertex last found (MuJoCo's mjtCCD).
-struct CcdObject {
-  const GeomShape* geom;
-  double margin;
-  int mesh_index;
-};
-
+// libccd hands back the objects it was given (the two Supports), as const void*: each search
+// owns its Supports, which record the mesh vertex found
+template <GeomType kType>
 void ccd_support(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* point) {
-  // libccd hands back the object it was given, which it owns as non-const in spirit
-  auto* o = static_cast<CcdObject*>(const_cast<void*>(object));
-  const Vec3 p = support_point(*o->geom, Vec3(dir->v[0], dir->v[1], dir->v[2]), o->margin,
-                               o->mesh_index);
-  for (int i = 0; i < 3; ++i) point->v[i] = p[i];
+  support_point<kType>(*static_cast<Support*>(const_cast<void*>(object)), dir->v, point->v);
+}
+
+/// The support callback of a geom's type.
+ccd_support_fn ccd_support_of(GeomType type) {
+  switch (type) {
+    case GeomType::kSphere: return ccd_support<GeomType::kSphere>;
+    case GeomType::kCapsule: return ccd_support<GeomType::kCapsule>;
+    case GeomType::kEllipsoid: return ccd_support<GeomType::kEllipsoid>;
+    case GeomType::kCylinder: return ccd_support<GeomType::kCylinder>;
+    case GeomType::kBox: return ccd_support<GeomType::kBox>;
+    case GeomType::kMesh: return ccd_support<GeomType::kMesh>;
+    default: return ccd_support<GeomType::kPlane>;
+  }
 }
 
 void ccd_center(const void* object, ccd_vec3_t* center) {
-  const auto* o = static_cast<const CcdObject*>(object);
-  for (int i = 0; i < 3; ++i) center->v[i] = o->geom->pos[i];
+  const double* pos = static_cast<const Support*>(object)->pos;
+  for (int i = 0; i < 3; ++i) center->v[i] = pos[i];
 }
 
 /// One MPR search: a contact if the grown shapes overlap with a defined direction (MuJoCo's
@@ -306,13 +356,13 @@ bool mpr_contact(const GeomShape& g1, const GeomShape& g2, double margin,
   ccd_t ccd;
   CCD_INIT(&ccd);
   ccd.first_dir = ccdFirstDirDefault;
-  ccd.support1 = ccd_support;
-  ccd.support2 = ccd_support;
+  ccd.support1 = ccd_support_of(g1.type);
+  ccd.support2 = ccd_support_of(g2.type);
   ccd.center1 = ccd_center;
   ccd.center2 = ccd_center;
   ccd.max_iterations = static_cast<unsigned long>(options.mpr_iterations);
   ccd.mpr_tolerance = options.mpr_tolerance;
-  CcdObject o1{&g1, margin, -1}, o2{&g2, margin, -1};
+  Support o1(g1, margin), o2(g2, margin);
   ccd_real_t depth;
   ccd_vec3_t dir, pos;
   if (ccdMPRPenetration(&o1, &o2, &ccd, &depth, &dir, &pos) != 0) return false;
@@ -420,8 +470,10 @@ int plane_convex(const GeomShape& plane, const GeomShape& convex, double margin,
                  Contact* contacts) {
   const Vec3 normal = plane.mat.col(2);
   const Vec3 down = normal * -1.0;
-  int lowest_found = -1;
-  const Vec3 lowest = support_point(convex, down, 0, lowest_found);
+  Support lowest_support(convex, 0);
+  Vec3 lowest;
+  support_point(lowest_support, down.data(), lowest.data());
+  const int lowest_found = lowest_support.found;
   const double dist = dot3(normal, lowest - plane.pos);
   if (dist > margin) return 0;
   Contact& first = contacts[0];
@@ -447,17 +499,17 @@ int plane_convex(const GeomShape& plane, const GeomShape& convex, double margin,
     c.frame.setZero();
     c.frame.row(0) = normal.transpose();
   };
-  if (!convex.mesh_graph) {
-    for (int i = 0; i < convex.mesh_vertnum && count < kMostContacts; ++i) {
-      const double* vertex = convex.mesh_vert + 3 * i;
-      if (along(vertex, down_local) > threshold && i != lowest_found) add_vertex(vertex);
+  const Support& mesh = lowest_support;
+  if (!mesh.edge_address) {
+    for (int i = 0; i < mesh.vertnum && count < kMostContacts; ++i) {
+      const double* vertex = mesh.vertex(i);
+      if (along(vertex, down_local.data()) > threshold && i != lowest_found) add_vertex(vertex);
     }
   } else if (lowest_found >= 0) {
-    const HullGraph hull(convex.mesh_graph);
-    for (int e = hull.edge_address[lowest_found];
-         hull.neighbours[e] >= 0 && count < kMostContacts; ++e) {
-      const double* vertex = convex.mesh_vert + 3 * hull.vertex_index[hull.neighbours[e]];
-      if (along(vertex, down_local) > threshold) add_vertex(vertex);
+    for (const int* e = mesh.neighbours + mesh.edge_address[lowest_found];
+         *e >= 0 && count < kMostContacts; ++e) {
+      const double* vertex = mesh.hull_vertex(*e);
+      if (along(vertex, down_local.data()) > threshold) add_vertex(vertex);
     }
   }
   return count;

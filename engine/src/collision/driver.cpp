@@ -82,17 +82,27 @@ Mat3 quat_rotation(const Quat4& q) {
   return R;
 }
 
-/// A^T B or A B of 3x3 matrices, each element summed over k in order.
-Mat3 product(const Mat3& A, const Mat3& B, bool transpose_A) {
-  Mat3 C;
+/// V^T A V of 3x3 matrices as MuJoCo forms it (V^T A first), each element summed over k in
+/// order; only the upper triangle and the diagonal, which are all the rotation reads.
+Mat3 rotated_upper(const Mat3& A, const Mat3& V) {
+  Mat3 VtA;
   for (int i = 0; i < 3; ++i) {
     for (int j = 0; j < 3; ++j) {
       double sum = 0;
-      for (int k = 0; k < 3; ++k) sum += (transpose_A ? A(k, i) : A(i, k)) * B(k, j);
-      C(i, j) = sum;
+      for (int k = 0; k < 3; ++k) sum += V(k, i) * A(k, j);
+      VtA(i, j) = sum;
     }
   }
-  return C;
+  Mat3 D;
+  for (int i = 0; i < 3; ++i) {
+    for (int j = i; j < 3; ++j) {
+      double sum = 0;
+      for (int k = 0; k < 3; ++k) sum += VtA(i, k) * V(k, j);
+      D(i, j) = sum;
+    }
+  }
+  D(1, 0) = D(2, 0) = D(2, 1) = 0;  // not read
+  return D;
 }
 
 /// The eigenvectors of a symmetric 3x3 matrix by Jacobi rotations, accumulated as a quaternion
@@ -104,7 +114,7 @@ Mat3 eigenframe(const Mat3& covariance) {
   Vec3 eigval;
   for (int iter = 0; iter < 500; ++iter) {
     const Mat3 V = quat_rotation(quat);
-    const Mat3 D = product(product(V, covariance, true), V, false);
+    const Mat3 D = rotated_upper(covariance, V);
     eigval = Vec3(D(0, 0), D(1, 1), D(2, 2));
 
     // the largest off-diagonal element (row, column) and the axis of the rotation that zeroes it
@@ -314,16 +324,19 @@ class Collider {
   }
 
   GeomShape shape(int g) const {
-    GeomShape s{m_.geom_type[g], m_.geom_size[g], d_.geom_xpos[g], d_.geom_xmat[g],
-                m_.geom_rbound[g]};
+    const double* vert = nullptr;
+    int vertnum = 0;
+    const int* graph = nullptr;
     const int mesh = m_.geom_dataid[g];
     if (mesh >= 0 && m_.mesh_vertnum[mesh] > 0) {
-      s.mesh_vert = m_.mesh_vert[static_cast<size_t>(m_.mesh_vertadr[mesh])].data();
-      s.mesh_vertnum = m_.mesh_vertnum[mesh];
-      const int graph = m_.mesh_graphadr[mesh];
-      s.mesh_graph = graph >= 0 ? m_.mesh_graph.data() + graph : nullptr;
+      vert = m_.mesh_vert[static_cast<size_t>(m_.mesh_vertadr[mesh])].data();
+      vertnum = m_.mesh_vertnum[mesh];
+      const int address = m_.mesh_graphadr[mesh];
+      graph = address >= 0 ? m_.mesh_graph.data() + address : nullptr;
     }
-    return s;
+    // every member given: nothing is set twice
+    return GeomShape{m_.geom_type[g], m_.geom_size[g], d_.geom_xpos[g], d_.geom_xmat[g],
+                     m_.geom_rbound[g], vert, vertnum, graph};
   }
 
   /// A mesh geom whose mesh lever did not read (no vertices) has no shape to collide.
@@ -379,11 +392,10 @@ class Collider {
       return;
     }
 
-    // The narrow phase writes each contact's dist, pos and normal; a frame's second row is a
-    // tangent only where the pair sets one (the capsule's axis), so every frame starts zero.
-    // The buffer is Data's: nothing is allocated or constructed per pair.
+    // The narrow phase writes each contact's dist, pos and whole frame: the normal, and zero
+    // rows but where the pair sets a tangent (the capsule's axis). The buffer is Data's: nothing
+    // is allocated or constructed per pair.
     Contact* found = d_.work.pair_contact.data();
-    for (Contact& c : d_.work.pair_contact) c.frame.setZero();
     const ConvexOptions convex{m_.opt.mpr_tolerance, m_.opt.mpr_iterations,
                                m_.opt.enabled(kEnableMulticcd)};
     int n = collide_shapes(shape(g1), shape(g2), margin, found, convex);
@@ -409,7 +421,7 @@ class Collider {
     }
 
     for (int i = 0; i < n; ++i) {
-      Contact c = found[i];
+      Contact& c = found[i];  // completed in the pair's buffer, then copied once
       c.dim = condim;
       c.geom1 = g1;
       c.geom2 = g2;
