@@ -25,10 +25,13 @@
 #include <cmath>
 #include <string>
 
+#include <Eigen/Geometry>
+
 #include "basics/basics.hpp"
 #include "basics/dual.hpp"
 #include "collision/collision_room.hpp"
 #include "collision/box_pairs.hpp"
+#include "collision/narrow_phase.hpp"
 #include "collision/primitive_pairs.hpp"
 #include "transition/transition.hpp"
 
@@ -165,65 +168,160 @@ int plane_mesh(const Pose& plane, const Pose& mesh, const Data& data, int first,
 // poses: differentiated here. Which vertices: those on the answer's supporting planes, the triple
 // whose closed form gives the collision stage's contact.
 
-// Vertex k of a box or mesh geom in its own frame.
-Eigen::Vector3d polytope_vertex(const Model& model, int g, int k) {
-  if (model.geom_type[g] == GeomType::kBox) {
-    const Eigen::Vector3d& size = model.geom_size[g];
-    return {(k & 1) ? size[0] : -size[0], (k & 2) ? size[1] : -size[1],
-            (k & 4) ? size[2] : -size[2]};
-  }
+// The geom as the collision stage hands it to the narrow phase (its pose at the state).
+GeomShape shape_at_state(const Model& model, const Data& data, int g) {
+  GeomShape s{model.geom_type[g], model.geom_size[g], data.geom_xpos[g], data.geom_xmat[g],
+              model.geom_rbound[g]};
   const int mesh = model.geom_dataid[g];
-  return model.mesh_vert[static_cast<std::size_t>(model.mesh_vertadr[mesh] + k)];
-}
-
-int polytope_vertex_count(const Model& model, int g) {
-  return model.geom_type[g] == GeomType::kBox ? 8 : model.mesh_vertnum[model.geom_dataid[g]];
-}
-
-// The polytope's vertices whose height along `up` is within `tolerance` of its highest (at most
-// kMostOnPlane; returns how many, or -1 for more).
-constexpr int kMostOnPlane = 8;
-int highest_vertices(const Model& model, const Data& data, int g, const Eigen::Vector3d& up,
-                     double tolerance, std::array<int, kMostOnPlane>& found) {
-  const int count = polytope_vertex_count(model, g);
-  double top = -1e300;
-  for (int k = 0; k < count; ++k) {
-    const Eigen::Vector3d x = data.geom_xmat[g] * polytope_vertex(model, g, k);
-    top = std::max(top, up.dot(x));
+  if (mesh >= 0 && model.mesh_vertnum[mesh] > 0) {
+    s.mesh_vert = model.mesh_vert[static_cast<std::size_t>(model.mesh_vertadr[mesh])].data();
+    s.mesh_vertnum = model.mesh_vertnum[mesh];
+    const int graph = model.mesh_graphadr[mesh];
+    s.mesh_graph = graph >= 0 ? model.mesh_graph.data() + graph : nullptr;
   }
-  int n = 0;
-  for (int k = 0; k < count; ++k) {
-    const Eigen::Vector3d x = data.geom_xmat[g] * polytope_vertex(model, g, k);
-    if (up.dot(x) < top - tolerance) continue;
-    if (n == kMostOnPlane) return -1;
-    found[static_cast<std::size_t>(n++)] = k;
-  }
-  return n;
+  return s;
 }
 
-// The answer of a portal whose support points are a[i] - b[i], on the moving poses.
-Found portal_answer(const V (&a)[3], const V (&b)[3], const V& c1, const V& c2, double margin) {
-  const V v0 = c1 - c2;
-  const V v[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-  V normal = cross(v[1] - v[0], v[2] - v[0]);
+// The answer of a portal whose support points are a[i] - b[i], the centres c1, c2.
+template <class S>
+primitive::Touch<S> portal_answer(const primitive::Vec<S> (&a)[3], const primitive::Vec<S> (&b)[3],
+                                  const primitive::Vec<S>& c1, const primitive::Vec<S>& c2,
+                                  double margin) {
+  using W = primitive::Vec<S>;
+  using primitive::value;
+  const W v0 = c1 - c2;
+  const W v[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+  W normal = cross(v[1] - v[0], v[2] - v[0]);
   normalize(normal);
-  if (dot(normal, v[0]).v < 0) normal = normal * -1.0;
-  const Scalar depth = dot(normal, v[0]);
+  if (value(dot(normal, v[0])) < 0) normal = normal * S(-1.0);
+  const S depth = dot(normal, v[0]);
   // barycentric weights (six times the volumes) of v0, v1, v2, v3, as libccd's findPos sums them;
   // the triangle's orientation flips all four
-  const auto det = [](const V& x, const V& y, const V& z) { return dot(cross(x, y), z); };
-  Scalar w[4] = {det(v[0], v[1], v[2]), det(v[2], v[1], v0), det(v0, v[0], v[2]),
-                 det(v[1], v[0], v0)};
-  const Scalar sum = w[0] + w[1] + w[2] + w[3];
-  V p1 = c1 * w[0], p2 = c2 * w[0];
+  const auto det = [](const W& x, const W& y, const W& z) { return dot(cross(x, y), z); };
+  const S w[4] = {det(v[0], v[1], v[2]), det(v[2], v[1], v0), det(v0, v[0], v[2]),
+                  det(v[1], v[0], v0)};
+  const S sum = w[0] + w[1] + w[2] + w[3];
+  W p1 = c1 * w[0], p2 = c2 * w[0];
   for (int i = 0; i < 3; ++i) {
     p1 = p1 + a[i] * w[i + 1];
     p2 = p2 + b[i] * w[i + 1];
   }
-  const Scalar half = Scalar(0.5) / sum;
-  Found f;
-  set(f, Scalar(margin) - depth, (p1 + p2) * half, normal);
+  const S half = S(0.5) / sum;
+  primitive::Touch<S> f;
+  primitive::touch(f, S(margin) - depth, (p1 + p2) * half, normal);
   return f;
+}
+
+// MPR's last portal: three of the support points its search asked for (a of geom 1, b of geom 2,
+// in the world), found as the triple whose answer is the search's; gap is how far that triple's
+// answer is from the search's (dist, pos and normal, the largest difference).
+struct Portal {
+  Eigen::Vector3d a[3], b[3];
+  double gap = 1e300;
+};
+
+using Point = primitive::Vec<double>;
+Point point(const Eigen::Vector3d& x) { return {{x[0], x[1], x[2]}}; }
+
+constexpr int kMostSupportPoints = 256;
+
+bool last_portal(const GeomShape& s1, const GeomShape& s2, double margin,
+                 const ConvexOptions& options, Portal& portal) {
+  std::array<Eigen::Vector3d, kMostSupportPoints> a_all, b_all;
+  Contact answer;
+  const int asked =
+      mpr_search(s1, s2, margin, options, answer, a_all.data(), b_all.data(), kMostSupportPoints);
+  if (asked < 0 || asked > kMostSupportPoints) return false;
+  // each pair of support points once, and of those the ones on the answer's plane (a portal that
+  // the ray from v0 through the origin meets inside lies on it); all if fewer than three are
+  std::array<std::size_t, kMostSupportPoints> unique{}, on_plane{};
+  int n_unique = 0, n_on_plane = 0;
+  const Eigen::Vector3d normal = answer.frame.row(0).transpose();
+  const double depth = margin - answer.dist;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(asked); ++i) {
+    bool seen = false;
+    for (int k = 0; k < n_unique && !seen; ++k) {
+      const std::size_t j = unique[static_cast<std::size_t>(k)];
+      seen = a_all[j] == a_all[i] && b_all[j] == b_all[i];
+    }
+    if (seen) continue;
+    unique[static_cast<std::size_t>(n_unique++)] = i;
+    const Eigen::Vector3d v = a_all[i] - b_all[i];
+    if (std::abs(normal.dot(v) - depth) <= 1e-9 * (1 + v.norm())) {
+      on_plane[static_cast<std::size_t>(n_on_plane++)] = i;
+    }
+  }
+  const bool plane = n_on_plane >= 3;
+  const std::array<std::size_t, kMostSupportPoints>& pool = plane ? on_plane : unique;
+  const std::size_t n = static_cast<std::size_t>(plane ? n_on_plane : n_unique);
+  const Point c1 = point(s1.pos), c2 = point(s2.pos);
+  portal.gap = 1e300;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      for (std::size_t k = j + 1; k < n; ++k) {
+        const std::size_t I = pool[i], J = pool[j], K = pool[k];
+        const Point a[3] = {point(a_all[I]), point(a_all[J]), point(a_all[K])};
+        const Point b[3] = {point(b_all[I]), point(b_all[J]), point(b_all[K])};
+        const primitive::Touch<double> f = portal_answer(a, b, c1, c2, margin);
+        double gap = std::abs(f.dist - answer.dist);
+        for (int c = 0; c < 3; ++c) {
+          gap = std::max(gap, std::abs(f.pos[c] - answer.pos[c]));
+          gap = std::max(gap, std::abs(f.normal[c] - answer.frame(0, c)));
+        }
+        if (gap < portal.gap) {
+          portal.gap = gap;
+          portal.a[0] = a_all[I], portal.a[1] = a_all[J], portal.a[2] = a_all[K];
+          portal.b[0] = b_all[I], portal.b[1] = b_all[J], portal.b[2] = b_all[K];
+        }
+      }
+    }
+  }
+  return portal.gap < 1e300;
+}
+
+// Whether the held portal's closed form is still MPR's answer with geom 1 turned by kPortalProbe
+// rad about each world axis through its centre, or moved by kPortalProbe along it, either way
+// (another triangle of the same plane whose answer is the same counts as held): where it is not
+// (two faces whose edges line up, say), the portal flips with the direction of the motion and
+// the answer has no derivative.
+constexpr double kPortalProbe = 1e-8;
+
+bool portal_holds(const GeomShape& s1, const GeomShape& s2, double margin,
+                  const ConvexOptions& options, const Portal& portal) {
+  std::array<Eigen::Vector3d, kMostSupportPoints> scratch1, scratch2;
+  Eigen::Vector3d local[3];
+  for (int i = 0; i < 3; ++i) local[i] = s1.mat.transpose() * (portal.a[i] - s1.pos);
+  const Point b[3] = {point(portal.b[0]), point(portal.b[1]), point(portal.b[2])};
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const double step : {-kPortalProbe, kPortalProbe}) {
+      for (const bool turn : {true, false}) {
+        GeomShape moved = s1;
+        if (turn) {
+          moved.mat = Eigen::AngleAxisd(step, Eigen::Vector3d::Unit(axis)).toRotationMatrix() *
+                      s1.mat;
+        } else {
+          moved.pos[axis] += step;
+        }
+        Contact answer;
+        if (mpr_search(moved, s2, margin, options, answer, scratch1.data(), scratch2.data(),
+                       kMostSupportPoints) < 0) {
+          return false;
+        }
+        const Point a[3] = {point(moved.mat * local[0] + moved.pos),
+                            point(moved.mat * local[1] + moved.pos),
+                            point(moved.mat * local[2] + moved.pos)};
+        const primitive::Touch<double> f =
+            portal_answer(a, b, point(moved.pos), point(s2.pos), margin);
+        double gap = std::abs(f.dist - answer.dist);
+        for (int c = 0; c < 3; ++c) {
+          gap = std::max(gap, std::abs(f.pos[c] - answer.pos[c]));
+          gap = std::max(gap, std::abs(f.normal[c] - answer.frame(0, c)));
+        }
+        if (!(gap <= 1e-10 * (1 + answer.pos.cwiseAbs().maxCoeff()))) return false;
+      }
+    }
+  }
+  return true;
 }
 
 int polytope_pair(const Model& model, const Data& data, const Pose& g1, const Pose& g2,
@@ -235,55 +333,26 @@ int polytope_pair(const Model& model, const Data& data, const Pose& g1, const Po
                 " contact (MPR) is active with a margin or multiccd's extra contacts; lever "
                 "differentiates MPR's answer for two polytopes at margin 0, one contact per pair.");
   }
-  // the vertices on each geom's supporting plane along the normal (the portal's lie on them,
-  // within MPR's tolerance)
-  const Eigen::Vector3d n = con.frame.row(0).transpose();
-  const double tolerance = 10 * model.opt.mpr_tolerance + 1e-12;
-  std::array<int, kMostOnPlane> top1{}, top2{};
-  const int n1 = highest_vertices(model, data, con.geom1, n, tolerance, top1);
-  const int n2 = highest_vertices(model, data, con.geom2, -n, tolerance, top2);
-  if (n1 < 0 || n2 < 0 || n1 * n2 > kMostOnPlane) {
+  // the search again, on the same shapes, its support points written down: of them, the portal
+  const GeomShape s1 = shape_at_state(model, data, con.geom1);
+  const GeomShape s2 = shape_at_state(model, data, con.geom2);
+  const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
+  Portal portal;
+  if (!last_portal(s1, s2, margin, options, portal)) return 0;
+  if (!portal_holds(s1, s2, margin, options, portal)) {
     throw Error("derivatives: contact " + std::to_string(first) + " (" +
                 geom_type_name(g1.type) + "-" + geom_type_name(g2.type) +
-                ", MPR) has a face of each geom on it; lever differentiates MPR's answer for a "
-                "vertex on a face or an edge across an edge, where its last portal is held.");
+                ", MPR) ends on a portal that changes when a geom turns or moves by " +
+                "1e-8 (faces whose edges line up, say): its answer has no derivative there.");
   }
-  // the candidate support points (a vertex of each), on the moving poses
-  std::array<V, kMostOnPlane> a{}, b{};
-  int pairs = 0;
-  for (int i = 0; i < n1; ++i) {
-    for (int j = 0; j < n2; ++j) {
-      a[static_cast<std::size_t>(pairs)] =
-          rotate(g1, constant(polytope_vertex(model, con.geom1, top1[static_cast<std::size_t>(i)]))) +
-          g1.pos;
-      b[static_cast<std::size_t>(pairs)] =
-          rotate(g2, constant(polytope_vertex(model, con.geom2, top2[static_cast<std::size_t>(j)]))) +
-          g2.pos;
-      ++pairs;
-    }
+  // each support point is a vertex, rigid in its geom: held, it moves with the geom's pose
+  V a[3], b[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = rotate(g1, constant(s1.mat.transpose() * (portal.a[i] - s1.pos))) + g1.pos;
+    b[i] = rotate(g2, constant(s2.mat.transpose() * (portal.b[i] - s2.pos))) + g2.pos;
   }
-  // the triple whose answer is the stage's contact
-  double best = 1e300;
-  for (int i = 0; i < pairs; ++i) {
-    for (int j = i + 1; j < pairs; ++j) {
-      for (int k = j + 1; k < pairs; ++k) {
-        const auto I = static_cast<std::size_t>(i), J = static_cast<std::size_t>(j),
-                   K = static_cast<std::size_t>(k);
-        const V as[3] = {a[I], a[J], a[K]}, bs[3] = {b[I], b[J], b[K]};
-        const Found f = portal_answer(as, bs, g1.pos, g2.pos, margin);
-        double gap = std::abs(f.dist.v - con.dist);
-        for (int c = 0; c < 3; ++c) {
-          gap = std::max(gap, std::abs(f.pos[c].v - con.pos[c]));
-          gap = std::max(gap, std::abs(f.normal[c].v - con.frame(0, c)));
-        }
-        if (gap < best) {
-          best = gap;
-          out[0] = f;
-        }
-      }
-    }
-  }
-  return best < 1e300 ? 1 : 0;
+  out[0] = portal_answer(a, b, g1.pos, g2.pos, margin);
+  return 1;
 }
 
 int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
