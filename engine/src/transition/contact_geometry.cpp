@@ -13,10 +13,10 @@
 // ellipsoid and mesh; sphere-sphere, sphere-capsule, capsule-capsule, sphere-box, capsule-box and
 // box-box (collision/box_pairs.hpp). Of the pairs MuJoCo collides by MPR, those of two polytopes
 // (box-mesh, mesh-mesh) at margin 0: MPR's answer is a closed form of its last portal's vertices,
-// held. The others (a cylinder or an ellipsoid against anything but a plane, a sphere or capsule
-// against a mesh) are refused by name: their support points move along the round surface with
-// the iteration's directions, so the answer is an iteration's end, not a closed form of the poses
-// (docs/derivatives.md).
+// the portal its search ended on held (a vertex on a face, an edge across an edge, a face on a
+// face). The others (a round geom against a mesh, a cylinder or an ellipsoid against anything but
+// a plane, a margin) are refused by name: their support points move with the iteration's
+// directions, so the answer is the whole iteration's, not its last portal's (docs/derivatives.md).
 #include <lever/collision.hpp>
 #include <lever/error.hpp>
 
@@ -165,8 +165,11 @@ int plane_mesh(const Pose& plane, const Pose& mesh, const Data& data, int first,
 // it (dist = margin - depth: margin 0 here, where support points are vertices), and the point
 // half the sum of a and b weighted by the origin's barycentric coordinates in the tetrahedron
 // (v0, v1, v2, v3). Held (the vertices stay the portal's), all three are closed forms of the two
-// poses: differentiated here. Which vertices: those on the answer's supporting planes, the triple
-// whose closed form gives the collision stage's contact.
+// poses: differentiated here. Which vertices: the search is run again on the same shapes
+// (collision/convex.cpp's mpr_search, which writes down the support points it asks for), and of
+// those the triple whose closed form gives its answer is its last portal. Where two faces meet,
+// the point depends on which triangle of their Minkowski face that is, so it must be the
+// search's own; where the portal flips with the direction of a motion, there is no derivative.
 
 // The geom as the collision stage hands it to the narrow phase (its pose at the state).
 GeomShape shape_at_state(const Model& model, const Data& data, int g) {
@@ -324,12 +327,12 @@ bool portal_holds(const GeomShape& s1, const GeomShape& s2, double margin,
   return true;
 }
 
-int polytope_pair(const Model& model, const Data& data, const Pose& g1, const Pose& g2,
-                  double margin, int first, int count, Found* out) {
+// The last portal of a polytope pair's search at the state, checked to hold (else refused).
+Portal polytope_portal(const Model& model, const Data& data, double margin, int first, int count) {
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
+  const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
   if (margin != 0.0 || count != 1) {
-    throw Error(std::string("derivatives: a ") + geom_type_name(g1.type) + "-" +
-                geom_type_name(g2.type) +
+    throw Error(std::string("derivatives: a ") + geom_type_name(t1) + "-" + geom_type_name(t2) +
                 " contact (MPR) is active with a margin or multiccd's extra contacts; lever "
                 "differentiates MPR's answer for two polytopes at margin 0, one contact per pair.");
   }
@@ -338,18 +341,31 @@ int polytope_pair(const Model& model, const Data& data, const Pose& g1, const Po
   const GeomShape s2 = shape_at_state(model, data, con.geom2);
   const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
   Portal portal;
-  if (!last_portal(s1, s2, margin, options, portal)) return 0;
+  if (!last_portal(s1, s2, margin, options, portal)) {
+    throw Error("derivatives: contact " + std::to_string(first) +
+                " is not reproduced (MPR's search found no portal).");
+  }
   if (!portal_holds(s1, s2, margin, options, portal)) {
-    throw Error("derivatives: contact " + std::to_string(first) + " (" +
-                geom_type_name(g1.type) + "-" + geom_type_name(g2.type) +
+    throw Error("derivatives: contact " + std::to_string(first) + " (" + geom_type_name(t1) +
+                "-" + geom_type_name(t2) +
                 ", MPR) ends on a portal that changes when a geom turns or moves by " +
                 "1e-8 (faces whose edges line up, say): its answer has no derivative there.");
   }
-  // each support point is a vertex, rigid in its geom: held, it moves with the geom's pose
+  // the support points in their geoms' frames: each a vertex, rigid in its geom
+  for (int i = 0; i < 3; ++i) {
+    portal.a[i] = s1.mat.transpose() * (portal.a[i] - s1.pos);
+    portal.b[i] = s2.mat.transpose() * (portal.b[i] - s2.pos);
+  }
+  return portal;
+}
+
+// The portal's answer on the moving poses (its vertices given in their geoms' frames).
+int polytope_pair(const Portal& local, const Pose& g1, const Pose& g2, double margin,
+                  Found* out) {
   V a[3], b[3];
   for (int i = 0; i < 3; ++i) {
-    a[i] = rotate(g1, constant(s1.mat.transpose() * (portal.a[i] - s1.pos))) + g1.pos;
-    b[i] = rotate(g2, constant(s2.mat.transpose() * (portal.b[i] - s2.pos))) + g2.pos;
+    a[i] = rotate(g1, constant(local.a[i])) + g1.pos;
+    b[i] = rotate(g2, constant(local.b[i])) + g2.pos;
   }
   out[0] = portal_answer(a, b, g1.pos, g2.pos, margin);
   return 1;
@@ -445,6 +461,8 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   margin = pair >= 0 ? model.pair_margin[pair]
                      : std::max(model.geom_margin[con.geom1], model.geom_margin[con.geom2]);
   std::array<Found, kMaxPairContacts> found;
+  const bool polytopes = polytope_mpr_pair(model.geom_type[con.geom1], model.geom_type[con.geom2]);
+  const Portal portal = polytopes ? polytope_portal(model, data, margin, first, count) : Portal{};
   for (int m0 = 0; m0 < directions; m0 += kMotions) {  // kMotions motions at a time
     const int motions_now = std::min(kMotions, directions - m0);
     const Pose g1 = moving_pose(model, data, con.geom1, motions + m0, motions_now, false);
@@ -452,8 +470,8 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
     int n = 0;
     if (g1.type == GeomType::kPlane && g2.type == GeomType::kMesh) {
       n = plane_mesh(g1, g2, data, first, count, found.data());
-    } else if (polytope_mpr_pair(g1.type, g2.type)) {
-      n = polytope_pair(model, data, g1, g2, margin, first, count, found.data());
+    } else if (polytopes) {
+      n = polytope_pair(portal, g1, g2, margin, found.data());
     } else {
       n = collide_moving(g1, g2, margin, found.data());
     }
