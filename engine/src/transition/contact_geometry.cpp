@@ -23,6 +23,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -371,6 +372,511 @@ int polytope_pair(const Portal& local, const Pose& g1, const Pose& g2, double ma
   return 1;
 }
 
+// ---- MPR's whole search on the moving poses (a round geom, or a margin) ------------------------
+// Where a support point is not a vertex (a sphere's, capsule's, cylinder's or ellipsoid's, or any
+// geom's grown by margin / 2 along the search's direction), it moves with the direction it was
+// asked for, and each direction is made of the earlier support points: the answer is the whole
+// search's, not a closed form of its last portal. Held are the search's decisions (how many
+// support points it asks for, which portal vertex each replaces, when it stops; a polytope's
+// vertex; a capsule's end, a cylinder's disc), taken on the values as libccd (v2.1, the library
+// MuJoCo runs) takes them; along that path the search is a smooth function of the two poses,
+// run here on dual numbers. The support points it asks for are checked against those the
+// collision stage's search asked for (collision/convex.cpp's mpr_search), so a path that is not
+// the stage's is an error, not a wrong derivative; and MuJoCo's normal correction where a geom's
+// surface gives it (mjc_fixNormal) follows, on the same numbers.
+
+// libccd's tests: a value within DBL_EPSILON of zero, two values within DBL_EPSILON (relative
+// above 1) of each other
+constexpr double kCcdEps = std::numeric_limits<double>::epsilon();
+bool ccd_zero(double x) { return std::abs(x) < kCcdEps; }
+bool ccd_equal(double a, double b) {
+  const double gap = std::abs(a - b);
+  return gap < kCcdEps || gap < kCcdEps * std::max(std::abs(a), std::abs(b));
+}
+double sign_of(double x) { return x < 0 ? -1.0 : (x > 0 ? 1.0 : 0.0); }
+using primitive::value;
+
+struct SupportPair {
+  V v, a, b;  // v = a - b
+};
+
+// The two geoms' support functions (MuJoCo's mjccd_support) on the moving poses, replaying the
+// stage's search: call k must give the stage's k-th support points.
+class SearchReplay {
+ public:
+  SearchReplay(const GeomShape& s1, const GeomShape& s2, const Pose& g1, const Pose& g2,
+               double margin, const Eigen::Vector3d* recorded1,
+               const Eigen::Vector3d* recorded2, int recorded)
+      : s_{&s1, &s2}, g_{&g1, &g2}, margin_(margin), recorded_{recorded1, recorded2},
+        count_(recorded) {}
+
+  SupportPair support(const V& dir) {
+    if (calls_ >= count_) throw not_reproduced();
+    SupportPair p;
+    p.a = geom_support(0, dir);
+    p.b = geom_support(1, dir * -1.0);
+    p.v = p.a - p.b;
+    ++calls_;
+    return p;
+  }
+
+  static Error not_reproduced() {
+    return Error("derivatives: an MPR contact's search is not reproduced on the moving poses.");
+  }
+
+ private:
+  V geom_support(int which, const V& world_dir) const {
+    const GeomShape& s = *s_[which];
+    const Pose& g = *g_[which];
+    const Eigen::Vector3d& recorded = recorded_[which][calls_];
+    const V d = unrotate(g, world_dir);
+    const Eigen::Vector3d& size = s.size;
+    V res;
+    switch (s.type) {
+      case GeomType::kSphere:
+        res = d * size[0];
+        break;
+      case GeomType::kCapsule:
+        res = d * size[0];
+        res[2] = res[2] + sign_of(value(d[2])) * size[1];
+        break;
+      case GeomType::kEllipsoid:
+        res = {{d[0] * size[0], d[1] * size[1], d[2] * size[2]}};
+        normalize(res);
+        res = {{res[0] * size[0], res[1] * size[1], res[2] * size[2]}};
+        break;
+      case GeomType::kCylinder: {
+        const Scalar horizontal = sqrt(d[0] * d[0] + d[1] * d[1]);
+        if (value(horizontal) > kMinVal) {
+          res[0] = d[0] / horizontal * size[0];
+          res[1] = d[1] / horizontal * size[0];
+        } else {
+          res[0] = res[1] = Scalar(0);
+        }
+        res[2] = Scalar(sign_of(value(d[2])) * size[1]);
+        break;
+      }
+      case GeomType::kBox:
+        for (int i = 0; i < 3; ++i) res[i] = Scalar(sign_of(value(d[i])) * size[i]);
+        break;
+      case GeomType::kMesh: {
+        // the stage's vertex: the mesh's nearest to its recorded point, less the growth
+        Eigen::Vector3d grow;
+        for (int i = 0; i < 3; ++i) grow[i] = value(d[i]) * margin_ / 2;
+        const Eigen::Vector3d local = s.mat.transpose() * (recorded - s.pos) - grow;
+        int best = 0;
+        double nearest = 1e300;
+        for (int k = 0; k < s.mesh_vertnum; ++k) {
+          const Eigen::Vector3d x(s.mesh_vert[3 * k], s.mesh_vert[3 * k + 1],
+                                  s.mesh_vert[3 * k + 2]);
+          const double gap = (x - local).squaredNorm();
+          if (gap < nearest) nearest = gap, best = k;
+        }
+        res = constant(Eigen::Vector3d(s.mesh_vert[3 * best], s.mesh_vert[3 * best + 1],
+                                       s.mesh_vert[3 * best + 2]));
+        break;
+      }
+      default:
+        throw not_reproduced();
+    }
+    res = res + d * (margin_ / 2);
+    const V world = rotate(g, res) + g.pos;
+    double gap = 0;
+    for (int i = 0; i < 3; ++i) gap = std::max(gap, std::abs(value(world[i]) - recorded[i]));
+    if (!(gap <= 1e-9 * (1 + recorded.cwiseAbs().maxCoeff()))) throw not_reproduced();
+    return world;
+  }
+
+  const GeomShape* s_[2];
+  const Pose* g_[2];
+  double margin_;
+  const Eigen::Vector3d* recorded_[2];
+  int count_;
+  int calls_ = 0;
+};
+
+V unit(V x) {
+  normalize(x);
+  return x;
+}
+
+// The direction out of the portal's face (v1, v2, v3).
+V portal_direction(const SupportPair (&p)[4]) {
+  return unit(cross(p[2].v - p[1].v, p[3].v - p[1].v));
+}
+
+// Whether the portal's face is within the tolerance of the support point v4 along dir.
+bool reaches_tolerance(const SupportPair (&p)[4], const SupportPair& v4, const V& dir,
+                       double tolerance) {
+  const double d4 = value(dot(v4.v, dir));
+  double least = d4 - value(dot(p[1].v, dir));
+  least = std::fmin(least, d4 - value(dot(p[2].v, dir)));
+  least = std::fmin(least, d4 - value(dot(p[3].v, dir)));
+  return ccd_equal(least, tolerance) || least < tolerance;
+}
+
+bool positive_or_zero(double x) { return ccd_zero(x) || x > 0; }
+
+// v4 takes the place of the portal vertex whose side of the plane (v4, v0) keeps the origin's ray
+// inside.
+void expand(SupportPair (&p)[4], const SupportPair& v4) {
+  const V side = cross(v4.v, p[0].v);
+  if (value(dot(p[1].v, side)) > 0) {
+    p[value(dot(p[2].v, side)) > 0 ? 1 : 3] = v4;
+  } else {
+    p[value(dot(p[3].v, side)) > 0 ? 2 : 1] = v4;
+  }
+}
+
+// The point of segment (x0, b) nearest the origin, and its squared distance.
+Scalar nearest_on_segment(const V& x0, const V& b, V& witness) {
+  const V d = b - x0;
+  const Scalar t = dot(x0, d) * -1.0 / dot(d, d);
+  if (value(t) < 0 || ccd_zero(value(t))) {
+    witness = x0;
+  } else if (value(t) > 1 || ccd_equal(value(t), 1)) {
+    witness = b;
+  } else {
+    witness = d * t + x0;
+  }
+  return dot(witness, witness);
+}
+
+// The point of triangle (x0, b, c) nearest the origin (libccd's ccdVec3PointTriDist2).
+V nearest_on_triangle(const V& x0, const V& b, const V& c) {
+  const V d1 = b - x0, d2 = c - x0;
+  const Scalar v = dot(d1, d1), w = dot(d2, d2), p = dot(x0, d1), q = dot(x0, d2),
+               r = dot(d1, d2);
+  const Scalar det = w * v - r * r;
+  Scalar s(-1.0), t(-1.0);
+  if (!ccd_zero(value(det))) {
+    s = (q * r - w * p) / det;
+    t = (s * r * -1.0 - q) / w;
+  }
+  const double sv = value(s), tv = value(t);
+  if ((ccd_zero(sv) || sv > 0) && (ccd_equal(sv, 1) || sv < 1) && (ccd_zero(tv) || tv > 0) &&
+      (ccd_equal(tv, 1) || tv < 1) && (ccd_equal(tv + sv, 1) || tv + sv < 1)) {
+    return x0 + d1 * s + d2 * t;
+  }
+  V witness, other;
+  double best = value(nearest_on_segment(x0, b, witness));
+  double next = value(nearest_on_segment(x0, c, other));
+  if (next < best) best = next, witness = other;
+  next = value(nearest_on_segment(b, c, other));
+  if (next < best) witness = other;
+  return witness;
+}
+
+// The point: each geom's support points weighted by the origin's barycentric coordinates in the
+// tetrahedron (v0 ... v3), or, where those do not sum to a positive volume, in the face.
+V portal_position(const SupportPair (&p)[4]) {
+  const V dir = portal_direction(p);
+  Scalar b[4] = {dot(cross(p[1].v, p[2].v), p[3].v), dot(cross(p[3].v, p[2].v), p[0].v),
+                 dot(cross(p[0].v, p[1].v), p[3].v), dot(cross(p[2].v, p[1].v), p[0].v)};
+  Scalar sum = b[0] + b[1] + b[2] + b[3];
+  if (ccd_zero(value(sum)) || value(sum) < 0) {
+    b[0] = Scalar(0.0);
+    b[1] = dot(cross(p[2].v, p[3].v), dir);
+    b[2] = dot(cross(p[3].v, p[1].v), dir);
+    b[3] = dot(cross(p[1].v, p[2].v), dir);
+    sum = b[1] + b[2] + b[3];
+  }
+  const Scalar inverse = Scalar(1.0) / sum;
+  V p1 = constant(Eigen::Vector3d::Zero()), p2 = p1;
+  for (int i = 0; i < 4; ++i) {
+    p1 = p1 + p[i].a * b[i];
+    p2 = p2 + p[i].b * b[i];
+  }
+  return (p1 * inverse + p2 * inverse) * 0.5;
+}
+
+// libccd's ccdMPRPenetration replayed: portal discovery, refinement, and the expansion to the
+// tolerance; depth, direction and point of the last portal.
+Found mpr_replay(SearchReplay& search, const Pose& g1, const Pose& g2, double margin,
+                 double tolerance, int max_iterations) {
+  SupportPair p[4];
+  p[0].a = g1.pos;
+  p[0].b = g2.pos;
+  p[0].v = p[0].a - p[0].b;
+  if (ccd_equal(value(p[0].v[0]), 0) && ccd_equal(value(p[0].v[1]), 0) &&
+      ccd_equal(value(p[0].v[2]), 0)) {
+    p[0].v[0] = p[0].v[0] + kCcdEps * 10;  // centres on the origin: moved a little
+  }
+  const auto refused = [] {
+    return Error("derivatives: an MPR contact's search ends in a touch or on its first segment; "
+                 "lever differentiates a search that builds its portal.");
+  };
+  // discovery: v1 towards the origin, v2 across, v3 until the portal's cone holds the origin's ray
+  V dir = unit(p[0].v * -1.0);
+  p[1] = search.support(dir);
+  if (!(value(dot(p[1].v, dir)) > 0) || ccd_zero(value(dot(p[1].v, dir)))) throw refused();
+  dir = cross(p[0].v, p[1].v);
+  if (ccd_zero(value(dot(dir, dir)))) throw refused();
+  dir = unit(dir);
+  p[2] = search.support(dir);
+  if (!positive_or_zero(value(dot(p[2].v, dir))) || ccd_zero(value(dot(p[2].v, dir)))) {
+    throw refused();
+  }
+  dir = unit(cross(p[1].v - p[0].v, p[2].v - p[0].v));
+  if (value(dot(dir, p[0].v)) > 0) {
+    std::swap(p[1], p[2]);
+    dir = dir * -1.0;
+  }
+  for (;;) {
+    p[3] = search.support(dir);
+    const double reach = value(dot(p[3].v, dir));
+    if (ccd_zero(reach) || reach < 0) throw refused();
+    double outside = value(dot(cross(p[1].v, p[3].v), p[0].v));
+    if (outside < 0 && !ccd_zero(outside)) {
+      p[2] = p[3];
+    } else {
+      outside = value(dot(cross(p[3].v, p[2].v), p[0].v));
+      if (!(outside < 0 && !ccd_zero(outside))) break;
+      p[1] = p[3];
+    }
+    dir = unit(cross(p[1].v - p[0].v, p[2].v - p[0].v));
+  }
+  // refinement: until the portal's face is past the origin
+  for (;;) {
+    dir = portal_direction(p);
+    if (positive_or_zero(value(dot(dir, p[1].v)))) break;
+    const SupportPair v4 = search.support(dir);
+    if (!positive_or_zero(value(dot(v4.v, dir))) || reaches_tolerance(p, v4, dir, tolerance)) {
+      throw SearchReplay::not_reproduced();
+    }
+    expand(p, v4);
+  }
+  // penetration: expanded until the face is within the tolerance of the boundary
+  for (long iterations = 0;; ++iterations) {
+    dir = portal_direction(p);
+    const SupportPair v4 = search.support(dir);
+    if (reaches_tolerance(p, v4, dir, tolerance) || iterations > max_iterations) break;
+    expand(p, v4);
+  }
+  V normal = nearest_on_triangle(p[1].v, p[2].v, p[3].v);
+  const Scalar depth = sqrt(dot(normal, normal));
+  if (ccd_zero(value(depth))) throw refused();
+  normal = normal * (Scalar(1.0) / depth);
+  Found f;
+  set(f, Scalar(margin) - depth, portal_position(p), normal);
+  return f;
+}
+
+// ---- the normal where a geom's surface gives it (collision/convex.cpp's fix_normal) -----------
+
+bool ellipsoid_normal_inside(V& nrm, const V& pos, const Eigen::Vector3d& size) {
+  const Eigen::Vector3d inverse_square(1 / (size[0] * size[0]), 1 / (size[1] * size[1]),
+                                       1 / (size[2] * size[2]));
+  const Scalar C = pos[0] * pos[0] * inverse_square[0] + pos[1] * pos[1] * inverse_square[1] +
+                   pos[2] * pos[2] * inverse_square[2] - 1.0;
+  if (value(C) > 0) return false;
+  normalize(nrm);
+  for (int iter = 0; iter < 30; ++iter) {
+    const Scalar A = nrm[0] * nrm[0] * inverse_square[0] + nrm[1] * nrm[1] * inverse_square[1] +
+                     nrm[2] * nrm[2] * inverse_square[2];
+    const Scalar B = pos[0] * nrm[0] * inverse_square[0] + pos[1] * nrm[1] * inverse_square[1] +
+                     pos[2] * nrm[2] * inverse_square[2];
+    const Scalar det = B * B - A * C;
+    if (value(det) < kMinVal || value(A) < kMinVal) return iter > 0;
+    const Scalar x = (B * -1.0 + sqrt(det)) / A;
+    if (value(x) < 0) return iter > 0;
+    const V surface = pos + nrm * x;
+    V normal{{surface[0] * inverse_square[0], surface[1] * inverse_square[1],
+              surface[2] * inverse_square[2]}};
+    normalize(normal);
+    const V change = nrm - normal;
+    const double moved = std::sqrt(value(dot(change, change)));
+    nrm = normal;
+    if (moved < 1e-6) break;
+  }
+  return true;
+}
+
+void ellipsoid_normal_outside(V& nrm, const V& pos, const Eigen::Vector3d& size) {
+  const Eigen::Vector3d S2(size[0] * size[0], size[1] * size[1], size[2] * size[2]);
+  const V PS2{{pos[0] * pos[0] * S2[0], pos[1] * pos[1] * S2[1], pos[2] * pos[2] * S2[2]}};
+  Scalar la(0.0);
+  for (int iter = 0; iter < 30; ++iter) {
+    const V R{{Scalar(1.0) / (la + S2[0]), Scalar(1.0) / (la + S2[1]), Scalar(1.0) / (la + S2[2])}};
+    const Scalar val = PS2[0] * R[0] * R[0] + PS2[1] * R[1] * R[1] + PS2[2] * R[2] * R[2] - 1.0;
+    if (value(val) < 1e-6) break;
+    const Scalar deriv = (PS2[0] * R[0] * R[0] * R[0] + PS2[1] * R[1] * R[1] * R[1] +
+                          PS2[2] * R[2] * R[2] * R[2]) * -2.0;
+    if (value(deriv) > -kMinVal) break;
+    const Scalar delta = val * -1.0 / deriv;
+    if (value(delta) < 1e-6) break;
+    la = la + delta;
+  }
+  nrm = {{pos[0] / (la + S2[0]), pos[1] / (la + S2[1]), pos[2] / (la + S2[2])}};
+  normalize(nrm);
+}
+
+bool surface_normal(GeomType type, const Eigen::Vector3d& size, const V& pos, V& nrm) {
+  switch (type) {
+    case GeomType::kSphere:
+      nrm = pos;
+      return true;
+    case GeomType::kCapsule:
+      if (value(pos[2]) < -size[1]) {
+        nrm[2] = pos[2] + size[1];
+      } else if (value(pos[2]) > size[1]) {
+        nrm[2] = pos[2] - size[1];
+      } else {
+        nrm[2] = Scalar(0.0);
+      }
+      nrm[0] = pos[0];
+      nrm[1] = pos[1];
+      return true;
+    case GeomType::kEllipsoid: {
+      if (size[0] < kMinVal || size[1] < kMinVal || size[2] < kMinVal) return false;
+      const double elliptic = value(pos[0]) * value(pos[0]) / (size[0] * size[0]) +
+                              value(pos[1]) * value(pos[1]) / (size[1] * size[1]) +
+                              value(pos[2]) * value(pos[2]) / (size[2] * size[2]);
+      if (elliptic <= 1) return ellipsoid_normal_inside(nrm, pos, size);
+      ellipsoid_normal_outside(nrm, pos, size);
+      return true;
+    }
+    case GeomType::kCylinder: {
+      const double z = value(pos[2]);
+      if (std::abs(z) > 0.95 * size[1]) return false;
+      const double to_disc = std::abs(size[1] - std::abs(z));
+      const double to_wall = std::abs(
+          size[0] - std::sqrt(value(pos[0]) * value(pos[0]) + value(pos[1]) * value(pos[1])));
+      if (to_disc < 0.25 * to_wall) return false;
+      nrm = {{pos[0], pos[1], Scalar(0.0)}};
+      return true;
+    }
+    default:
+      return false;
+  }
+}
+
+void fix_normal(const Pose& g1, const Pose& g2, Found& f) {
+  const Pose* geoms[2] = {&g1, &g2};
+  V normal[2] = {f.normal, f.normal * -1.0};
+  bool processed[2] = {false, false};
+  for (int i = 0; i < 2; ++i) {
+    const Pose& g = *geoms[i];
+    const V local = unrotate(g, f.pos - g.pos);
+    V nrm = unrotate(g, normal[i]);
+    processed[i] = surface_normal(g.type, g.size, local, nrm);
+    if (processed[i]) {
+      normalize(nrm);
+      normal[i] = rotate(g, nrm);
+    }
+  }
+  if (processed[0] && processed[1]) {
+    f.normal = unit(normal[0] - normal[1]);
+  } else if (processed[0]) {
+    f.normal = normal[0];
+  } else if (processed[1]) {
+    f.normal = normal[1] * -1.0;
+  }
+}
+
+// The search at the state replayed on poses moving as `g1` and `g2` do, MuJoCo's normal
+// correction after it.
+Found replay_search(const Model& model, const GeomShape& s1, const GeomShape& s2, const Pose& g1,
+                    const Pose& g2, double margin) {
+  const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
+  std::array<Eigen::Vector3d, kMostSupportPoints> recorded1, recorded2;
+  Contact answer;
+  const int asked = mpr_search(s1, s2, margin, options, answer, recorded1.data(),
+                               recorded2.data(), kMostSupportPoints);
+  if (asked < 0 || asked > kMostSupportPoints) throw SearchReplay::not_reproduced();
+  SearchReplay search(s1, s2, g1, g2, margin, recorded1.data(), recorded2.data(), asked);
+  Found f = mpr_replay(search, g1, g2, margin, model.opt.mpr_tolerance, model.opt.mpr_iterations);
+  fix_normal(g1, g2, f);
+  return f;
+}
+
+// A geom standing still at a shape's pose.
+Pose still_pose(const GeomShape& s) {
+  Pose p{s.type, s.size, constant(s.pos), {}};
+  for (int c = 0; c < 3; ++c) p.axis[c] = constant(s.mat.col(c));
+  return p;
+}
+
+// Whether the search's path holds about the state: geom 1 turned by kPortalProbe rad about each
+// world axis through its centre, or moved by kPortalProbe along it, either way, the stage's search
+// (with MuJoCo's normal correction) gives what the replay's derivative along that motion
+// predicts, to 1e-10 (the second order is 1e-14 of it). Where the path changes there (a support
+// point's sign flips, a capsule's end, the search's count of steps), the answer jumps, and has
+// no derivative.
+bool search_holds(const Model& model, const GeomShape& s1, const GeomShape& s2, double margin) {
+  Pose turning = still_pose(s1);
+  for (int m = 0; m < 6; ++m) {
+    if (m < 3) {
+      for (int c = 0; c < 3; ++c) {
+        const Eigen::Vector3d turn = Eigen::Vector3d::Unit(m).cross(s1.mat.col(c));
+        for (int k = 0; k < 3; ++k) turning.axis[c][k].d[m] = turn[k];
+      }
+    } else {
+      turning.pos[m - 3].d[m] = 1;
+    }
+  }
+  const Pose still2 = still_pose(s2);
+  const Found predicted = replay_search(model, s1, s2, turning, still2, margin);
+  const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
+  std::array<Eigen::Vector3d, kMostSupportPoints> scratch1, scratch2;
+  for (int m = 0; m < 6; ++m) {
+    for (const double step : {-kPortalProbe, kPortalProbe}) {
+      GeomShape moved = s1;
+      if (m < 3) {
+        moved.mat = Eigen::AngleAxisd(step, Eigen::Vector3d::Unit(m)).toRotationMatrix() * s1.mat;
+      } else {
+        moved.pos[m - 3] += step;
+      }
+      Contact answer;
+      if (mpr_search(moved, s2, margin, options, answer, scratch1.data(), scratch2.data(),
+                     kMostSupportPoints) < 0) {
+        return false;
+      }
+      Found actual;
+      set(actual, Scalar(answer.dist), constant(answer.pos),
+          constant(answer.frame.row(0).transpose()));
+      fix_normal(still_pose(moved), still2, actual);
+      double gap = std::abs(actual.dist.v - (predicted.dist.v + step * predicted.dist.d[m]));
+      for (int c = 0; c < 3; ++c) {
+        gap = std::max(gap, std::abs(actual.pos[c].v -
+                                     (predicted.pos[c].v + step * predicted.pos[c].d[m])));
+        gap = std::max(gap, std::abs(actual.normal[c].v -
+                                     (predicted.normal[c].v + step * predicted.normal[c].d[m])));
+      }
+      if (!(gap <= 1e-10 * (1 + answer.pos.cwiseAbs().maxCoeff()))) return false;
+    }
+  }
+  return true;
+}
+
+// A pair MuJoCo collides by MPR with a round geom or a margin: its search replayed on the moving
+// poses, once checked to hold about the state (else refused).
+void check_mpr_pair(const Model& model, const Data& data, double margin, int first, int count) {
+  const Contact& con = data.contact[static_cast<std::size_t>(first)];
+  const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
+  if (count != 1) {
+    throw Error(std::string("derivatives: a ") + geom_type_name(t1) + "-" + geom_type_name(t2) +
+                " pair (MPR) has multiccd's extra contacts; lever differentiates one contact "
+                "per MPR pair.");
+  }
+  if (!search_holds(model, shape_at_state(model, data, con.geom1),
+                    shape_at_state(model, data, con.geom2), margin)) {
+    throw Error("derivatives: contact " + std::to_string(first) + " (" + geom_type_name(t1) +
+                "-" + geom_type_name(t2) +
+                ", MPR) is where MPR's search changes its path when a geom turns or moves by " +
+                "1e-8 (a support point's side, the count of its steps): its answer jumps there "
+                "and has no derivative.");
+  }
+}
+
+int mpr_pair(const Model& model, const Data& data, const Pose& g1, const Pose& g2, double margin,
+             int first, Found* out) {
+  const Contact& con = data.contact[static_cast<std::size_t>(first)];
+  out[0] = replay_search(model, shape_at_state(model, data, con.geom1),
+                         shape_at_state(model, data, con.geom2), g1, g2, margin);
+  return 1;
+}
+
 int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
   using T = GeomType;
   if (g1.type == T::kPlane) {
@@ -429,7 +935,7 @@ bool contact_geometry_supported(GeomType a, GeomType b) {
   if (a == T::kSphere || a == T::kCapsule) {
     return b == T::kSphere || b == T::kCapsule || b == T::kBox;
   }
-  return (a == T::kBox && b == T::kBox) || polytope_mpr_pair(a, b);
+  return (a == T::kBox && b == T::kBox) || (collides_by_mpr(a, b) && has_convex_pairs());
 }
 
 int pair_first_contact(const Data& data, int i, int& count) {
@@ -461,8 +967,12 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   margin = pair >= 0 ? model.pair_margin[pair]
                      : std::max(model.geom_margin[con.geom1], model.geom_margin[con.geom2]);
   std::array<Found, kMaxPairContacts> found;
-  const bool polytopes = polytope_mpr_pair(model.geom_type[con.geom1], model.geom_type[con.geom2]);
+  // MPR's pairs: two polytopes at margin 0 by their last portal, the others by the whole search
+  const bool by_mpr = collides_by_mpr(model.geom_type[con.geom1], model.geom_type[con.geom2]);
+  const bool polytopes = by_mpr && margin == 0.0 &&
+                         polytope_mpr_pair(model.geom_type[con.geom1], model.geom_type[con.geom2]);
   const Portal portal = polytopes ? polytope_portal(model, data, margin, first, count) : Portal{};
+  if (by_mpr && !polytopes) check_mpr_pair(model, data, margin, first, count);
   for (int m0 = 0; m0 < directions; m0 += kMotions) {  // kMotions motions at a time
     const int motions_now = std::min(kMotions, directions - m0);
     const Pose g1 = moving_pose(model, data, con.geom1, motions + m0, motions_now, false);
@@ -472,6 +982,8 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
       n = plane_mesh(g1, g2, data, first, count, found.data());
     } else if (polytopes) {
       n = polytope_pair(portal, g1, g2, margin, found.data());
+    } else if (by_mpr) {
+      n = mpr_pair(model, data, g1, g2, margin, first, found.data());
     } else {
       n = collide_moving(g1, g2, margin, found.data());
     }
