@@ -404,11 +404,21 @@ struct SupportPair {
 // stage's search: call k must give the stage's k-th support points.
 class SearchReplay {
  public:
-  SearchReplay(const GeomShape& s1, const GeomShape& s2, const Pose& g1, const Pose& g2,
-               double margin, const Eigen::Vector3d* recorded1,
+  SearchReplay(int contact, const GeomShape& s1, const GeomShape& s2, const Pose& g1,
+               const Pose& g2, double margin, const Eigen::Vector3d* recorded1,
                const Eigen::Vector3d* recorded2, int recorded)
-      : s_{&s1, &s2}, g_{&g1, &g2}, margin_(margin), recorded_{recorded1, recorded2},
-        count_(recorded) {}
+      : contact_(contact), s_{&s1, &s2}, g_{&g1, &g2}, margin_(margin),
+        recorded_{recorded1, recorded2}, count_(recorded) {}
+
+  // An error naming the contact and its pair.
+  Error error(const char* why) const {
+    return Error("derivatives: contact " + std::to_string(contact_) + " (" +
+                 geom_type_name(s_[0]->type) + "-" + geom_type_name(s_[1]->type) + ", MPR) " +
+                 why);
+  }
+  Error not_reproduced() const {
+    return error("is not reproduced by MPR's search on the moving poses.");
+  }
 
   SupportPair support(const V& dir) {
     if (calls_ >= count_) throw not_reproduced();
@@ -418,10 +428,6 @@ class SearchReplay {
     p.v = p.a - p.b;
     ++calls_;
     return p;
-  }
-
-  static Error not_reproduced() {
-    return Error("derivatives: an MPR contact's search is not reproduced on the moving poses.");
   }
 
  private:
@@ -487,6 +493,7 @@ class SearchReplay {
     return world;
   }
 
+  int contact_;
   const GeomShape* s_[2];
   const Pose* g_[2];
   double margin_;
@@ -602,9 +609,10 @@ Found mpr_replay(SearchReplay& search, const Pose& g1, const Pose& g2, double ma
       ccd_equal(value(p[0].v[2]), 0)) {
     p[0].v[0] = p[0].v[0] + kCcdEps * 10;  // centres on the origin: moved a little
   }
-  const auto refused = [] {
-    return Error("derivatives: an MPR contact's search ends in a touch or on its first segment; "
-                 "lever differentiates a search that builds its portal.");
+  const auto refused = [&search] {
+    return search.error(
+        "is where MPR's search ends in a touch or on its first segment (the origin on the line "
+        "of the geoms' centres), which any motion leaves: its answer has no derivative there.");
   };
   // discovery: v1 towards the origin, v2 across, v3 until the portal's cone holds the origin's ray
   V dir = unit(p[0].v * -1.0);
@@ -642,7 +650,7 @@ Found mpr_replay(SearchReplay& search, const Pose& g1, const Pose& g2, double ma
     if (positive_or_zero(value(dot(dir, p[1].v)))) break;
     const SupportPair v4 = search.support(dir);
     if (!positive_or_zero(value(dot(v4.v, dir))) || reaches_tolerance(p, v4, dir, tolerance)) {
-      throw SearchReplay::not_reproduced();
+      throw search.not_reproduced();
     }
     expand(p, v4);
   }
@@ -776,15 +784,16 @@ void fix_normal(const Pose& g1, const Pose& g2, Found& f) {
 
 // The search at the state replayed on poses moving as `g1` and `g2` do, MuJoCo's normal
 // correction after it.
-Found replay_search(const Model& model, const GeomShape& s1, const GeomShape& s2, const Pose& g1,
-                    const Pose& g2, double margin) {
+Found replay_search(const Model& model, int contact, const GeomShape& s1, const GeomShape& s2,
+                    const Pose& g1, const Pose& g2, double margin) {
   const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
   std::array<Eigen::Vector3d, kMostSupportPoints> recorded1, recorded2;
   Contact answer;
   const int asked = mpr_search(s1, s2, margin, options, answer, recorded1.data(),
                                recorded2.data(), kMostSupportPoints);
-  if (asked < 0 || asked > kMostSupportPoints) throw SearchReplay::not_reproduced();
-  SearchReplay search(s1, s2, g1, g2, margin, recorded1.data(), recorded2.data(), asked);
+  SearchReplay search(contact, s1, s2, g1, g2, margin, recorded1.data(), recorded2.data(),
+                      std::min(asked, kMostSupportPoints));
+  if (asked < 0 || asked > kMostSupportPoints) throw search.not_reproduced();
   Found f = mpr_replay(search, g1, g2, margin, model.opt.mpr_tolerance, model.opt.mpr_iterations);
   fix_normal(g1, g2, f);
   return f;
@@ -803,7 +812,8 @@ Pose still_pose(const GeomShape& s) {
 // predicts, to 1e-10 (the second order is 1e-14 of it). Where the path changes there (a support
 // point's sign flips, a capsule's end, the search's count of steps), the answer jumps, and has
 // no derivative.
-bool search_holds(const Model& model, const GeomShape& s1, const GeomShape& s2, double margin) {
+bool search_holds(const Model& model, int contact, const GeomShape& s1, const GeomShape& s2,
+                  double margin) {
   Pose turning = still_pose(s1);
   for (int m = 0; m < 6; ++m) {
     if (m < 3) {
@@ -816,7 +826,7 @@ bool search_holds(const Model& model, const GeomShape& s1, const GeomShape& s2, 
     }
   }
   const Pose still2 = still_pose(s2);
-  const Found predicted = replay_search(model, s1, s2, turning, still2, margin);
+  const Found predicted = replay_search(model, contact, s1, s2, turning, still2, margin);
   const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
   std::array<Eigen::Vector3d, kMostSupportPoints> scratch1, scratch2;
   for (int m = 0; m < 6; ++m) {
@@ -859,7 +869,7 @@ void check_mpr_pair(const Model& model, const Data& data, double margin, int fir
                 " pair (MPR) has multiccd's extra contacts; lever differentiates one contact "
                 "per MPR pair.");
   }
-  if (!search_holds(model, shape_at_state(model, data, con.geom1),
+  if (!search_holds(model, first, shape_at_state(model, data, con.geom1),
                     shape_at_state(model, data, con.geom2), margin)) {
     throw Error("derivatives: contact " + std::to_string(first) + " (" + geom_type_name(t1) +
                 "-" + geom_type_name(t2) +
@@ -872,7 +882,7 @@ void check_mpr_pair(const Model& model, const Data& data, double margin, int fir
 int mpr_pair(const Model& model, const Data& data, const Pose& g1, const Pose& g2, double margin,
              int first, Found* out) {
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
-  out[0] = replay_search(model, shape_at_state(model, data, con.geom1),
+  out[0] = replay_search(model, first, shape_at_state(model, data, con.geom1),
                          shape_at_state(model, data, con.geom2), g1, g2, margin);
   return 1;
 }

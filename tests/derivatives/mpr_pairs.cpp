@@ -1,13 +1,20 @@
-// The contact geometry's derivative where MPR puts a face of each geom on the contact (box-mesh
-// and mesh-mesh at margin 0): its answer is a closed form of the last portal's three support
-// points, and the point depends on which triangle of the two faces' Minkowski face the portal is,
-// so the portal MPR ended on is the one held (its search rerun, its support points written down).
-// A under Euler, RK4 and implicit (B too on the mesh gripper) against centred differences of
-// lever's own step (eps 1e-6) and of MuJoCo 2.2.2's mj_step at tolerance 0 (eps 1e-6 and 1e-5;
-// step_checks.hpp), within 1e-6 of the matrix's scale: a slab mesh lying turned on a box's face
-// and on a slab mesh's, and bench/scenes/mesh_gripper.xml's finger meshes holding the box. Where
-// the portal flips with the direction of a motion (the slab with its edges along the box's), the
-// derivative is refused by name, and MuJoCo's own differences show why.
+// The contact geometry's derivative for the pairs MuJoCo collides by MPR (libccd's search on the
+// two support functions), against centred differences of lever's own step (eps 1e-6) and of
+// MuJoCo 2.2.2's mj_step at tolerance 0 (eps 1e-6 and 1e-5; step_checks.hpp), within 1e-6 of the
+// matrix's scale, A under Euler, RK4 and implicit (B too on the mesh gripper).
+//
+// A face on a face (box-mesh and mesh-mesh at margin 0): the answer is a closed form of the last
+// portal's three support points, and the point depends on which triangle of the two faces'
+// Minkowski face the portal is, so the portal the search ended on is held: a slab mesh lying
+// turned on a box's face and on a slab mesh's, and bench/scenes/mesh_gripper.xml's finger meshes
+// holding the box. A round geom or a margin: the support points move with the search's
+// directions, and the whole search is replayed on dual numbers, its decisions held: a sphere, a
+// capsule, a tilted cylinder and an ellipsoid on a box mesh, an ellipsoid and a tilted cylinder on
+// a box, a cylinder on a capsule, an ellipsoid on a sphere, and a rock mesh on a box and on a box
+// mesh with margins. Where the portal or the search's path flips with the direction of a motion
+// (the slab with its edges along the box's; a cylinder on a sphere at a state where a support
+// point changes sides), the derivative is refused by name, and MuJoCo's own differences at eps
+// 1e-7 and 1e-6 show why: they disagree by a thousand times the bound.
 #include <catch2/catch.hpp>
 #include <lever/diff/twin.hpp>
 
@@ -24,7 +31,7 @@
 #include <lever/harness/models.hpp>
 #include "step_checks.hpp"
 
-namespace lever::test::face_on_face {
+namespace lever::test::mpr_pairs {
 
 namespace {
 
@@ -190,5 +197,105 @@ TEST_CASE("derivatives with contacts: a face on a face whose portal flips is ref
   CHECK(ratio_to_bound(fine.A, coarse.A) > 1e3);
 }
 
-}  // namespace lever::test::face_on_face
+namespace {
+
+// A free body (its attributes and geom) over a static geom, written for both engines to compile.
+std::string round_pair_file(const std::string& name, const std::string& below,
+                            const std::string& body) {
+  const std::string file =
+      (std::filesystem::temp_directory_path() / ("lever_mpr_" + name + ".xml")).string();
+  std::ofstream(file)
+      << "<mujoco model=\"" << name << "\"><option timestep=\"0.002\"/><asset>"
+      << "<mesh name=\"table\" vertex=\"-0.2 -0.2 -0.05  0.2 -0.2 -0.05  0.2 0.2 -0.05  "
+         "-0.2 0.2 -0.05  -0.2 -0.2 0.05  0.2 -0.2 0.05  0.2 0.2 0.05  -0.2 0.2 0.05\"/>"
+      << "<mesh name=\"rock\" vertex=\"-0.04 -0.03 -0.02  0.05 -0.035 -0.025  "
+         "0.045 0.04 -0.02  -0.035 0.03 -0.03  -0.03 -0.02 0.03  0.04 -0.03 0.02  "
+         "0.03 0.035 0.025  -0.04 0.02 0.02\"/></asset><worldbody>"
+      << below << "<body " << body << "</body></worldbody></mujoco>";
+  return file;
+}
+
+struct RoundPair {
+  std::string name, below, body;
+};
+
+const std::string kTableMesh = "<geom type=\"mesh\" mesh=\"table\"/>";
+const std::string kBox = "<geom type=\"box\" size=\"0.2 0.2 0.05\"/>";
+const std::string kCylinder = "<freejoint/><geom type=\"cylinder\" size=\"0.03 0.04\" mass=\"1\"/>";
+const std::string kEllipsoid =
+    "<freejoint/><geom type=\"ellipsoid\" size=\"0.04 0.035 0.03\" mass=\"1\"/>";
+
+}  // namespace
+
+TEST_CASE("derivatives with contacts: a round geom or a margin (MPR's search replayed)",
+          "[derivatives][mujoco][contacts]") {
+  // each pressed 2 to 14 mm in, past solimp's width (1 mm): the impedance is flat
+  const RoundPair pairs[] = {
+      {"sphere_on_mesh", kTableMesh,
+       "pos=\"0.01 0.02 0.077\"><freejoint/><geom type=\"sphere\" size=\"0.03\" mass=\"1\"/>"},
+      {"capsule_on_mesh", kTableMesh,
+       "pos=\"0.01 0.02 0.067\" euler=\"0 89 10\"><freejoint/>"
+       "<geom type=\"capsule\" size=\"0.02 0.05\" mass=\"1\"/>"},
+      {"cylinder_on_mesh", kTableMesh, "pos=\"0.01 0.02 0.0842\" euler=\"20 10 0\">" + kCylinder},
+      {"ellipsoid_on_mesh", kTableMesh, "pos=\"0.01 0.02 0.077\" euler=\"10 5 20\">" + kEllipsoid},
+      {"cylinder_on_box", kBox, "pos=\"0.01 0.02 0.0842\" euler=\"20 10 0\">" + kCylinder},
+      {"ellipsoid_on_box", kBox, "pos=\"0.01 0.02 0.077\" euler=\"10 5 20\">" + kEllipsoid},
+      {"cylinder_on_capsule", "<geom type=\"capsule\" size=\"0.05 0.1\" euler=\"0 90 0\"/>",
+       "pos=\"0.01 0.02 0.077\" euler=\"90 3 40\">" + kCylinder},
+      {"ellipsoid_on_sphere", "<geom type=\"sphere\" size=\"0.05\"/>",
+       "pos=\"0.01 0.02 0.0745\" euler=\"10 5 20\">" + kEllipsoid},
+      {"rock_on_box_margin", "<geom type=\"box\" size=\"0.2 0.2 0.05\" margin=\"0.002\"/>",
+       "pos=\"0.01 0.02 0.078\" euler=\"4 -3 10\"><freejoint/>"
+       "<geom type=\"mesh\" mesh=\"rock\" mass=\"1\" margin=\"0.002\"/>"},
+      {"rock_on_mesh_margin", "<geom type=\"mesh\" mesh=\"table\" margin=\"0.002\"/>",
+       "pos=\"0.01 0.02 0.078\" euler=\"4 -3 10\"><freejoint/>"
+       "<geom type=\"mesh\" mesh=\"rock\" mass=\"1\" margin=\"0.002\"/>"},
+  };
+  for (const RoundPair& pair : pairs) {
+    const std::string file = round_pair_file(pair.name, pair.below, pair.body);
+    for (const Integrator integrator : kIntegrators) {
+      diff::Twin twin(file, diff::Path::kEngine);
+      twin.set_integrator(integrator);
+      converge(twin);
+      INFO(pair.name);
+      const State s = moving(twin.model);
+      Data data(twin.model);
+      apply(s, data);
+      forward(twin.model, data);
+      REQUIRE(data.ncon == 1);
+      REQUIRE(collides_by_mpr(twin.model.geom_type[data.contact[0].geom1],
+                              twin.model.geom_type[data.contact[0].geom2]));
+      const double margin = twin.model.geom_margin[data.contact[0].geom1];
+      CHECK(data.contact[0].dist - margin < -0.002);
+      Derivatives deriv(twin.model);
+      apply(s, data);
+      step_derivatives(twin.model, data, deriv);
+      const double worst = check_against_differences(twin, s, deriv, false);
+      UNSCOPED_INFO(pair.name << ", " << integrator_name(integrator) << ": worst " << worst
+                              << " of the bound");
+      CHECK(worst <= 1);
+    }
+  }
+}
+
+TEST_CASE("derivatives with contacts: an MPR search whose path flips is refused",
+          "[derivatives][mujoco][contacts]") {
+  // a cylinder lying across a sphere, at a state where a support point of the search changes
+  // sides with the direction of a motion
+  diff::Twin twin(round_pair_file("cylinder_on_sphere", "<geom type=\"sphere\" size=\"0.05\"/>",
+                                  "pos=\"0.01 0.02 0.077\" euler=\"90 3 40\">" + kCylinder),
+                  diff::Path::kEngine);
+  converge(twin);
+  const State s = moving(twin.model);
+  Derivatives deriv(twin.model);
+  Data data(twin.model);
+  apply(s, data);
+  CHECK_THROWS_WITH(step_derivatives(twin.model, data, deriv),
+                    Catch::Contains("sphere-cylinder, MPR) is where MPR's search changes its path"));
+  const Differences fine = mujoco_differences(twin, s, 1e-7);
+  const Differences coarse = mujoco_differences(twin, s, 1e-6);
+  CHECK(ratio_to_bound(fine.A, coarse.A) > 1e3);
+}
+
+}  // namespace lever::test::mpr_pairs
 
