@@ -14,7 +14,9 @@
 // mesh with margins. Where the portal or the search's path flips with the direction of a motion
 // (the slab with its edges along the box's; a cylinder on a sphere at a state where a support
 // point changes sides), the derivative is refused by name, and MuJoCo's own differences at eps
-// 1e-7 and 1e-6 show why: they disagree by a thousand times the bound.
+// 1e-7 and 1e-6 show why: they disagree by a thousand times the bound. And multiccd's extra
+// contacts, each the search run again with the geoms turned about the first contact's tangents
+// (which move with it): a tilted slab mesh and a tilted cylinder on a box.
 #include <catch2/catch.hpp>
 #include <lever/diff/twin.hpp>
 
@@ -201,11 +203,14 @@ namespace {
 
 // A free body (its attributes and geom) over a static geom, written for both engines to compile.
 std::string round_pair_file(const std::string& name, const std::string& below,
-                            const std::string& body) {
+                            const std::string& body, bool multiccd = false) {
   const std::string file =
       (std::filesystem::temp_directory_path() / ("lever_mpr_" + name + ".xml")).string();
   std::ofstream(file)
-      << "<mujoco model=\"" << name << "\"><option timestep=\"0.002\"/><asset>"
+      << "<mujoco model=\"" << name << "\"><option timestep=\"0.002\">"
+      << (multiccd ? "<flag multiccd=\"enable\"/>" : "") << "</option><asset>"
+      << "<mesh name=\"slab\" vertex=\"-0.03 -0.02 -0.01  0.03 -0.02 -0.01  0.03 0.02 -0.01  "
+         "-0.03 0.02 -0.01  -0.03 -0.02 0.01  0.03 -0.02 0.01  0.03 0.02 0.01  -0.03 0.02 0.01\"/>"
       << "<mesh name=\"table\" vertex=\"-0.2 -0.2 -0.05  0.2 -0.2 -0.05  0.2 0.2 -0.05  "
          "-0.2 0.2 -0.05  -0.2 -0.2 0.05  0.2 -0.2 0.05  0.2 0.2 0.05  -0.2 0.2 0.05\"/>"
       << "<mesh name=\"rock\" vertex=\"-0.04 -0.03 -0.02  0.05 -0.035 -0.025  "
@@ -267,6 +272,41 @@ TEST_CASE("derivatives with contacts: a round geom or a margin (MPR's search rep
                               twin.model.geom_type[data.contact[0].geom2]));
       const double margin = twin.model.geom_margin[data.contact[0].geom1];
       CHECK(data.contact[0].dist - margin < -0.002);
+      Derivatives deriv(twin.model);
+      apply(s, data);
+      step_derivatives(twin.model, data, deriv);
+      const double worst = check_against_differences(twin, s, deriv, false);
+      UNSCOPED_INFO(pair.name << ", " << integrator_name(integrator) << ": worst " << worst
+                              << " of the bound");
+      CHECK(worst <= 1);
+    }
+  }
+}
+
+TEST_CASE("derivatives with contacts: multiccd's extra contacts (the searches turned about the first)",
+          "[derivatives][mujoco][contacts]") {
+  // a slab mesh tilted half a degree on a box's face (two contacts: the first and a turned
+  // search's) and a cylinder tilted on its rim (three)
+  const RoundPair pairs[] = {
+      {"slab_tilted_multiccd", kBox,
+       "pos=\"0.01 0.02 0.057\" euler=\"0.5 0.3 30\"><freejoint/>"
+       "<geom type=\"mesh\" mesh=\"slab\" mass=\"1\"/>"},
+      {"cylinder_multiccd", kBox, "pos=\"0.01 0.02 0.0842\" euler=\"20 10 0\">" + kCylinder},
+  };
+  const int contacts[] = {2, 3};
+  for (int p = 0; p < 2; ++p) {
+    const RoundPair& pair = pairs[p];
+    const std::string file = round_pair_file(pair.name, pair.below, pair.body, true);
+    for (const Integrator integrator : kIntegrators) {
+      diff::Twin twin(file, diff::Path::kEngine);
+      twin.set_integrator(integrator);
+      converge(twin);
+      INFO(pair.name);
+      const State s = moving(twin.model);
+      Data data(twin.model);
+      apply(s, data);
+      forward(twin.model, data);
+      REQUIRE(data.ncon == contacts[p]);
       Derivatives deriv(twin.model);
       apply(s, data);
       step_derivatives(twin.model, data, deriv);

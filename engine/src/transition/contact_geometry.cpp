@@ -329,14 +329,9 @@ bool portal_holds(const GeomShape& s1, const GeomShape& s2, double margin,
 }
 
 // The last portal of a polytope pair's search at the state, checked to hold (else refused).
-Portal polytope_portal(const Model& model, const Data& data, double margin, int first, int count) {
+Portal polytope_portal(const Model& model, const Data& data, double margin, int first) {
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
   const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
-  if (margin != 0.0 || count != 1) {
-    throw Error(std::string("derivatives: a ") + geom_type_name(t1) + "-" + geom_type_name(t2) +
-                " contact (MPR) is active with a margin or multiccd's extra contacts; lever "
-                "differentiates MPR's answer for two polytopes at margin 0, one contact per pair.");
-  }
   // the search again, on the same shapes, its support points written down: of them, the portal
   const GeomShape s1 = shape_at_state(model, data, con.geom1);
   const GeomShape s2 = shape_at_state(model, data, con.geom2);
@@ -393,8 +388,15 @@ bool ccd_equal(double a, double b) {
   const double gap = std::abs(a - b);
   return gap < kCcdEps || gap < kCcdEps * std::max(std::abs(a), std::abs(b));
 }
-double sign_of(double x) { return x < 0 ? -1.0 : (x > 0 ? 1.0 : 0.0); }
 using primitive::value;
+
+// -1, 0 or 1: the side of a half-extent `half` that the coordinate x (-half, 0 or half, and a
+// rounding) is on.
+double held_side(double x, double half) {
+  if (!(half > 0)) return 0;
+  const double r = x / half;
+  return r > 0.5 ? 1.0 : (r < -0.5 ? -1.0 : 0.0);
+}
 
 struct SupportPair {
   V v, a, b;  // v = a - b
@@ -437,14 +439,19 @@ class SearchReplay {
     const Eigen::Vector3d& recorded = recorded_[which][calls_];
     const V d = unrotate(g, world_dir);
     const Eigen::Vector3d& size = s.size;
+    // the recorded point in the geom's frame: where a support point's case is a side (a box's
+    // corner, a capsule's end, a cylinder's disc), the side the stage's search took
+    const Eigen::Vector3d local = s.mat.transpose() * (recorded - s.pos);
     V res;
     switch (s.type) {
       case GeomType::kSphere:
         res = d * size[0];
         break;
       case GeomType::kCapsule:
+        // which end: the stage's (its recorded point's, less the sphere's part)
         res = d * size[0];
-        res[2] = res[2] + sign_of(value(d[2])) * size[1];
+        res[2] = res[2] + held_side(local[2] - value(d[2]) * (size[0] + margin_ / 2), size[1]) *
+                              size[1];
         break;
       case GeomType::kEllipsoid:
         res = {{d[0] * size[0], d[1] * size[1], d[2] * size[2]}};
@@ -459,23 +466,26 @@ class SearchReplay {
         } else {
           res[0] = res[1] = Scalar(0);
         }
-        res[2] = Scalar(sign_of(value(d[2])) * size[1]);
+        res[2] = Scalar(held_side(local[2] - value(d[2]) * margin_ / 2, size[1]) * size[1]);
         break;
       }
       case GeomType::kBox:
-        for (int i = 0; i < 3; ++i) res[i] = Scalar(sign_of(value(d[i])) * size[i]);
+        // the stage's corner (or a face's or an edge's middle, where a direction was level)
+        for (int i = 0; i < 3; ++i) {
+          res[i] = Scalar(held_side(local[i] - value(d[i]) * margin_ / 2, size[i]) * size[i]);
+        }
         break;
       case GeomType::kMesh: {
         // the stage's vertex: the mesh's nearest to its recorded point, less the growth
         Eigen::Vector3d grow;
         for (int i = 0; i < 3; ++i) grow[i] = value(d[i]) * margin_ / 2;
-        const Eigen::Vector3d local = s.mat.transpose() * (recorded - s.pos) - grow;
+        const Eigen::Vector3d vertex = local - grow;
         int best = 0;
         double nearest = 1e300;
         for (int k = 0; k < s.mesh_vertnum; ++k) {
           const Eigen::Vector3d x(s.mesh_vert[3 * k], s.mesh_vert[3 * k + 1],
                                   s.mesh_vert[3 * k + 2]);
-          const double gap = (x - local).squaredNorm();
+          const double gap = (x - vertex).squaredNorm();
           if (gap < nearest) nearest = gap, best = k;
         }
         res = constant(Eigen::Vector3d(s.mesh_vert[3 * best], s.mesh_vert[3 * best + 1],
@@ -861,14 +871,9 @@ bool search_holds(const Model& model, int contact, const GeomShape& s1, const Ge
 
 // A pair MuJoCo collides by MPR with a round geom or a margin: its search replayed on the moving
 // poses, once checked to hold about the state (else refused).
-void check_mpr_pair(const Model& model, const Data& data, double margin, int first, int count) {
+void check_mpr_pair(const Model& model, const Data& data, double margin, int first) {
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
   const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
-  if (count != 1) {
-    throw Error(std::string("derivatives: a ") + geom_type_name(t1) + "-" + geom_type_name(t2) +
-                " pair (MPR) has multiccd's extra contacts; lever differentiates one contact "
-                "per MPR pair.");
-  }
   if (!search_holds(model, first, shape_at_state(model, data, con.geom1),
                     shape_at_state(model, data, con.geom2), margin)) {
     throw Error("derivatives: contact " + std::to_string(first) + " (" + geom_type_name(t1) +
@@ -934,6 +939,116 @@ std::array<V, 3> complete_frame(V normal, V tangent) {
   return {normal, tangent, cross(normal, tangent)};
 }
 
+// ---- multiccd's extra contacts (collision/convex.cpp's convex_pair) ----------------------------
+// Each is the search run again with geom 1 turned by -+1e-3 rad about a tangent of the first
+// contact's frame, through its point, and geom 2 turned back, kept where its point is farther
+// than 1e-3 of the smaller bounding radius from every earlier one, at the first contact's depth.
+// The turn's axis and centre are the first contact's, so they move with it: the turned poses on
+// the dual numbers, the search replayed on them (its decisions held, checked to hold).
+
+constexpr double kMulticcdTurn = 1e-3;
+
+// The rotation by `angle` about the unit `axis` (mju_axisAngle2Quat, then mju_quat2Mat).
+template <class S>
+std::array<primitive::Vec<S>, 3> turn_matrix(const primitive::Vec<S>& axis, double angle) {
+  const double c = std::cos(angle * 0.5), s = std::sin(angle * 0.5);
+  const S q0(c), q1 = axis[0] * s, q2 = axis[1] * s, q3 = axis[2] * s;
+  // rows
+  return {{{{q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, (q1 * q2 - q0 * q3) * 2.0,
+             (q1 * q3 + q0 * q2) * 2.0}},
+           {{(q1 * q2 + q0 * q3) * 2.0, q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3,
+             (q2 * q3 - q0 * q1) * 2.0}},
+           {{(q1 * q3 - q0 * q2) * 2.0, (q2 * q3 + q0 * q1) * 2.0,
+             q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3}}}};
+}
+
+template <class S>
+primitive::Vec<S> apply_rows(const std::array<primitive::Vec<S>, 3>& rows,
+                             const primitive::Vec<S>& x, bool transposed) {
+  if (transposed) return rows[0] * x[0] + rows[1] * x[1] + rows[2] * x[2];
+  return {{dot(rows[0], x), dot(rows[1], x), dot(rows[2], x)}};
+}
+
+// A pose turned by the rotation about `origin` (mju_rotateFrame): axes turned, centre moved so
+// that origin stays.
+Pose turned_pose(const Pose& g, const std::array<V, 3>& rows, bool transposed, const V& origin) {
+  Pose t = g;
+  for (int c = 0; c < 3; ++c) t.axis[c] = apply_rows(rows, g.axis[c], transposed);
+  const V rel = origin - g.pos;
+  t.pos = g.pos - (apply_rows(rows, rel, transposed) - rel);
+  return t;
+}
+
+GeomShape turned_shape(const GeomShape& g, const std::array<Point, 3>& rows, bool transposed,
+                       const Eigen::Vector3d& origin) {
+  GeomShape t = g;
+  for (int c = 0; c < 3; ++c) {
+    const Point axis = apply_rows(rows, point(g.mat.col(c)), transposed);
+    for (int k = 0; k < 3; ++k) t.mat(k, c) = axis[k];
+  }
+  const Eigen::Vector3d rel = origin - g.pos;
+  const Point moved = apply_rows(rows, point(rel), transposed);
+  for (int k = 0; k < 3; ++k) t.pos[k] = g.pos[k] - (moved[k] - rel[k]);
+  return t;
+}
+
+// The pair's contacts after its first, found[0], on the moving poses: count - 1 of them.
+void multiccd_contacts(const Model& model, const Data& data, const Pose& g1, const Pose& g2,
+                       double margin, int first, int count, Found* found) {
+  const Contact& con = data.contact[static_cast<std::size_t>(first)];
+  const GeomShape s1 = shape_at_state(model, data, con.geom1);
+  const GeomShape s2 = shape_at_state(model, data, con.geom2);
+  const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
+  const std::array<V, 3> frame = complete_frame(found[0].normal, found[0].tangent);
+  const double tolerance = kMulticcdTurn * std::min(model.geom_rbound[con.geom1],
+                                                    model.geom_rbound[con.geom2]);
+  std::array<Eigen::Vector3d, kMostSupportPoints> scratch1, scratch2;
+  std::array<Eigen::Vector3d, kMaxPairContacts> kept;
+  kept[0] = con.pos;
+  int n = 1;
+  for (int axis = 1; axis <= 2; ++axis) {
+    for (const double angle : {-kMulticcdTurn, kMulticcdTurn}) {
+      Point axis_value;
+      for (int k = 0; k < 3; ++k) axis_value[k] = con.frame(axis, k);
+      const std::array<Point, 3> rows = turn_matrix(axis_value, angle);
+      const GeomShape t1 = turned_shape(s1, rows, false, con.pos);
+      const GeomShape t2 = turned_shape(s2, rows, true, con.pos);
+      Contact answer;
+      if (mpr_search(t1, t2, margin, options, answer, scratch1.data(), scratch2.data(),
+                     kMostSupportPoints) < 0) {
+        continue;
+      }
+      if (answer.frame.row(0).cwiseAbs().maxCoeff() == 0) continue;  // no direction
+      bool distinct = true;
+      for (int i = 0; i < n; ++i) {
+        distinct = distinct && (kept[static_cast<std::size_t>(i)] - answer.pos).norm() > tolerance;
+      }
+      if (!distinct) continue;
+      if (n == count || n == kMaxPairContacts) {
+        throw Error("derivatives: contact " + std::to_string(first) +
+                    " (multiccd) is not reproduced.");
+      }
+      if (!search_holds(model, first, t1, t2, margin)) {
+        throw Error("derivatives: contact " + std::to_string(first + n) + " (" +
+                    geom_type_name(s1.type) + "-" + geom_type_name(s2.type) +
+                    ", multiccd) is where MPR's search changes its path when a geom turns or " +
+                    "moves by 1e-8: its answer jumps there and has no derivative.");
+      }
+      const std::array<V, 3> turn = turn_matrix(frame[static_cast<std::size_t>(axis)], angle);
+      const Pose p1 = turned_pose(g1, turn, false, found[0].pos);
+      const Pose p2 = turned_pose(g2, turn, true, found[0].pos);
+      Found f = replay_search(model, first, t1, t2, p1, p2, margin);
+      f.dist = found[0].dist;
+      found[n] = f;
+      kept[static_cast<std::size_t>(n)] = answer.pos;
+      ++n;
+    }
+  }
+  if (n != count) {
+    throw Error("derivatives: contact " + std::to_string(first) + " (multiccd) is not reproduced.");
+  }
+}
+
 }  // namespace
 
 bool contact_geometry_supported(GeomType a, GeomType b) {
@@ -981,8 +1096,8 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   const bool by_mpr = collides_by_mpr(model.geom_type[con.geom1], model.geom_type[con.geom2]);
   const bool polytopes = by_mpr && margin == 0.0 &&
                          polytope_mpr_pair(model.geom_type[con.geom1], model.geom_type[con.geom2]);
-  const Portal portal = polytopes ? polytope_portal(model, data, margin, first, count) : Portal{};
-  if (by_mpr && !polytopes) check_mpr_pair(model, data, margin, first, count);
+  const Portal portal = polytopes ? polytope_portal(model, data, margin, first) : Portal{};
+  if (by_mpr && !polytopes) check_mpr_pair(model, data, margin, first);
   for (int m0 = 0; m0 < directions; m0 += kMotions) {  // kMotions motions at a time
     const int motions_now = std::min(kMotions, directions - m0);
     const Pose g1 = moving_pose(model, data, con.geom1, motions + m0, motions_now, false);
@@ -996,6 +1111,10 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
       n = mpr_pair(model, data, g1, g2, margin, first, found.data());
     } else {
       n = collide_moving(g1, g2, margin, found.data());
+    }
+    if (by_mpr && count > 1) {
+      multiccd_contacts(model, data, g1, g2, margin, first, count, found.data());
+      n = count;
     }
     for (int k = 0; k < count; ++k) {
       const int i = first + k;
