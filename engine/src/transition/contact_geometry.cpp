@@ -11,12 +11,13 @@
 //
 // Pairs: every pair MuJoCo collides in closed form: plane against sphere, capsule, box, cylinder,
 // ellipsoid and mesh; sphere-sphere, sphere-capsule, capsule-capsule, sphere-box, capsule-box and
-// box-box (collision/box_pairs.hpp). Of the pairs MuJoCo collides by MPR, those of two polytopes
-// (box-mesh, mesh-mesh) at margin 0: MPR's answer is a closed form of its last portal's vertices,
-// the portal its search ended on held (a vertex on a face, an edge across an edge, a face on a
-// face). The others (a round geom against a mesh, a cylinder or an ellipsoid against anything but
-// a plane, a margin) are refused by name: their support points move with the iteration's
-// directions, so the answer is the whole iteration's, not its last portal's (docs/derivatives.md).
+// box-box (collision/box_pairs.hpp). And every pair MuJoCo collides by MPR (libccd's search, run
+// again here with its support points written down): two polytopes at margin 0 by a closed form
+// of the last portal the search ended on (a vertex on a face, an edge across an edge, a face on a
+// face), the others (a round geom, a margin) by the whole search replayed on the dual numbers,
+// its decisions held; multiccd's extra contacts by the turned searches replayed. Where the portal
+// or the search's path flips with the direction of a motion, the answer jumps and is refused by
+// name (docs/derivatives.md).
 #include <lever/collision.hpp>
 #include <lever/error.hpp>
 
@@ -923,8 +924,7 @@ int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
               geom_type_name(g2.type) +
               " contact is active; lever differentiates the contact geometry of the pairs "
               "MuJoCo collides in closed form (plane against sphere, capsule, box, cylinder, "
-              "ellipsoid and mesh; sphere, capsule and box pairs) and, of those it collides by "
-              "MPR, box-mesh and mesh-mesh, not a round geom's.");
+              "ellipsoid and mesh; sphere, capsule and box pairs) and by MPR (with libccd).");
 }
 
 // The frame the driver completes from the normal and the first tangent's seed (mju_makeFrame).
