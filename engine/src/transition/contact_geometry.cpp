@@ -284,46 +284,64 @@ bool last_portal(const GeomShape& s1, const GeomShape& s2, double margin,
   return portal.gap < 1e300;
 }
 
-// Whether the held portal's closed form is still MPR's answer with geom 1 turned by kPortalProbe
-// rad about each world axis through its centre, or moved by kPortalProbe along it, either way
-// (another triangle of the same plane whose answer is the same counts as held): where it is not
-// (two faces whose edges line up, say), the portal flips with the direction of the motion and
-// the answer has no derivative.
+// The probes of whether a portal or a search's path holds about the state: geom 1 moved by
+// kPortalProbe (rad and m) along each of two fixed motions, either way, each a turn about an axis
+// through its centre and a shift, in directions that line up with no frame a scene is built in
+// (so a flip at the state, which a motion across it shows on one side, is not missed along a
+// motion that keeps two faces parallel or an edge level).
 constexpr double kPortalProbe = 1e-8;
+constexpr int kProbeMotions = 2;
 
+struct ProbeMotion {
+  Eigen::Vector3d turn, shift;  // unit
+};
+
+const std::array<ProbeMotion, kProbeMotions>& probe_motions() {
+  static const std::array<ProbeMotion, kProbeMotions> motions = {
+      ProbeMotion{Eigen::Vector3d(0.58, -0.38, 0.72).normalized(),
+                  Eigen::Vector3d(0.41, 0.77, -0.49).normalized()},
+      ProbeMotion{Eigen::Vector3d(-0.27, 0.81, 0.52).normalized(),
+                  Eigen::Vector3d(0.69, -0.19, 0.70).normalized()}};
+  return motions;
+}
+
+GeomShape probe_moved(const GeomShape& s, int motion, double step) {
+  const ProbeMotion& m = probe_motions()[static_cast<std::size_t>(motion)];
+  GeomShape moved = s;
+  moved.mat = Eigen::AngleAxisd(step, m.turn).toRotationMatrix() * s.mat;
+  moved.pos = s.pos + m.shift * step;
+  return moved;
+}
+
+// Whether the held portal's closed form is still MPR's answer at the probes (another triangle of
+// the same plane whose answer is the same counts as held): where it is not (two faces whose
+// edges line up, say), the portal flips with the direction of the motion and the answer has no
+// derivative.
 bool portal_holds(const GeomShape& s1, const GeomShape& s2, double margin,
                   const ConvexOptions& options, const Portal& portal) {
   std::array<Eigen::Vector3d, kMostSupportPoints> scratch1, scratch2;
   Eigen::Vector3d local[3];
   for (int i = 0; i < 3; ++i) local[i] = s1.mat.transpose() * (portal.a[i] - s1.pos);
   const Point b[3] = {point(portal.b[0]), point(portal.b[1]), point(portal.b[2])};
-  for (int axis = 0; axis < 3; ++axis) {
+  for (int motion = 0; motion < kProbeMotions; ++motion) {
     for (const double step : {-kPortalProbe, kPortalProbe}) {
-      for (const bool turn : {true, false}) {
-        GeomShape moved = s1;
-        if (turn) {
-          moved.mat = Eigen::AngleAxisd(step, Eigen::Vector3d::Unit(axis)).toRotationMatrix() *
-                      s1.mat;
-        } else {
-          moved.pos[axis] += step;
-        }
-        Contact answer;
-        if (mpr_search(moved, s2, margin, options, answer, scratch1.data(), scratch2.data(),
-                       kMostSupportPoints) < 0) {
-          return false;
-        }
-        const Point a[3] = {point(moved.mat * local[0] + moved.pos),
-                            point(moved.mat * local[1] + moved.pos),
-                            point(moved.mat * local[2] + moved.pos)};
-        const primitive::Touch<double> f =
-            portal_answer(a, b, point(moved.pos), point(s2.pos), margin);
-        double gap = std::abs(f.dist - answer.dist);
-        for (int c = 0; c < 3; ++c) {
-          gap = std::max(gap, std::abs(f.pos[c] - answer.pos[c]));
-          gap = std::max(gap, std::abs(f.normal[c] - answer.frame(0, c)));
-        }
-        if (!(gap <= 1e-10 * (1 + answer.pos.cwiseAbs().maxCoeff()))) return false;
+      const GeomShape moved = probe_moved(s1, motion, step);
+      Contact answer;
+      if (mpr_search(moved, s2, margin, options, answer, scratch1.data(), scratch2.data(),
+                     kMostSupportPoints) < 0) {
+        return false;
       }
+      const Point a[3] = {point(moved.mat * local[0] + moved.pos),
+                          point(moved.mat * local[1] + moved.pos),
+                          point(moved.mat * local[2] + moved.pos)};
+      const primitive::Touch<double> f =
+          portal_answer(a, b, point(moved.pos), point(s2.pos), margin);
+      double gap = std::abs(f.dist - answer.dist);
+      for (int c = 0; c < 3; ++c) {
+        gap = std::max(gap, std::abs(f.pos[c] - answer.pos[c]));
+        gap = std::max(gap, std::abs(f.normal[c] - answer.frame(0, c)));
+      }
+      if (!(gap <= 1e-10 * (1 + answer.pos.cwiseAbs().maxCoeff()))) return false;
     }
   }
   return true;
@@ -819,37 +837,29 @@ Pose still_pose(const GeomShape& s) {
   return p;
 }
 
-// Whether the search's path holds about the state: geom 1 turned by kPortalProbe rad about each
-// world axis through its centre, or moved by kPortalProbe along it, either way, the stage's search
-// (with MuJoCo's normal correction) gives what the replay's derivative along that motion
+// Whether the search's path holds about the state: at the probes the stage's search (with
+// MuJoCo's normal correction) gives what the replay's derivative along the probe's motion
 // predicts, to 1e-10 (the second order is 1e-14 of it). Where the path changes there (a support
-// point's sign flips, a capsule's end, the search's count of steps), the answer jumps, and has
-// no derivative.
+// point's side, a capsule's end, the search's count of steps), the answer jumps, and has no
+// derivative.
 bool search_holds(const Model& model, int contact, const GeomShape& s1, const GeomShape& s2,
                   double margin) {
   Pose turning = still_pose(s1);
-  for (int m = 0; m < 6; ++m) {
-    if (m < 3) {
-      for (int c = 0; c < 3; ++c) {
-        const Eigen::Vector3d turn = Eigen::Vector3d::Unit(m).cross(s1.mat.col(c));
-        for (int k = 0; k < 3; ++k) turning.axis[c][k].d[m] = turn[k];
-      }
-    } else {
-      turning.pos[m - 3].d[m] = 1;
+  for (int m = 0; m < kProbeMotions; ++m) {
+    const ProbeMotion& motion = probe_motions()[static_cast<std::size_t>(m)];
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d turn = motion.turn.cross(s1.mat.col(c));
+      for (int k = 0; k < 3; ++k) turning.axis[c][k].d[m] = turn[k];
     }
+    for (int k = 0; k < 3; ++k) turning.pos[k].d[m] = motion.shift[k];
   }
   const Pose still2 = still_pose(s2);
   const Found predicted = replay_search(model, contact, s1, s2, turning, still2, margin);
   const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
   std::array<Eigen::Vector3d, kMostSupportPoints> scratch1, scratch2;
-  for (int m = 0; m < 6; ++m) {
+  for (int m = 0; m < kProbeMotions; ++m) {
     for (const double step : {-kPortalProbe, kPortalProbe}) {
-      GeomShape moved = s1;
-      if (m < 3) {
-        moved.mat = Eigen::AngleAxisd(step, Eigen::Vector3d::Unit(m)).toRotationMatrix() * s1.mat;
-      } else {
-        moved.pos[m - 3] += step;
-      }
+      const GeomShape moved = probe_moved(s1, m, step);
       Contact answer;
       if (mpr_search(moved, s2, margin, options, answer, scratch1.data(), scratch2.data(),
                      kMostSupportPoints) < 0) {
