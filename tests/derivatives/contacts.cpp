@@ -315,10 +315,11 @@ TEST_CASE("derivatives with contacts: d qacc against lever's and MuJoCo's forwar
   }
 }
 
-TEST_CASE("derivatives with contacts: a pair whose geometry is not differentiated is refused",
+TEST_CASE("derivatives with contacts: a contact whose geometry has no derivative is refused",
           "[derivatives][contacts][refusal]") {
-  // a free cylinder standing on a static box: a pushing cylinder-box contact, which MuJoCo
-  // collides by MPR
+  // a free cylinder standing centred on a static box: a pushing cylinder-box contact, which MuJoCo
+  // collides by MPR, whose search ends on its first segment (the origin on the line of the
+  // centres), which any motion leaves
   const Model model = mjcf::load_string(R"(<mujoco><worldbody>
       <geom type="box" size="0.2 0.2 0.05"/>
       <body pos="0 0 0.079"><freejoint/><geom type="cylinder" size="0.03 0.03"/></body>

@@ -16,6 +16,7 @@
 //
 // Every sum runs in MuJoCo's order, so that libccd receives the same support points bit for bit
 // and returns the same answer.
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
@@ -513,6 +514,63 @@ int plane_convex(const GeomShape& plane, const GeomShape& convex, double margin,
     }
   }
   return count;
+}
+
+// ---- MPR's support points, written down (for the derivative of its answer) --------------------
+
+#ifdef LEVER_HAVE_CCD
+namespace {
+
+/// A geom as libccd sees it in mpr_search: its support points also written down in order.
+struct RecordingObject {
+  CcdObject object;
+  Vec3* points;
+  int count;
+  int capacity;
+};
+
+void recording_support(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* point) {
+  auto* r = static_cast<RecordingObject*>(const_cast<void*>(object));
+  ccd_support(&r->object, dir, point);
+  if (r->count < r->capacity) r->points[r->count] = Vec3(point->v[0], point->v[1], point->v[2]);
+  ++r->count;
+}
+
+void recording_center(const void* object, ccd_vec3_t* center) {
+  ccd_center(&static_cast<const RecordingObject*>(object)->object, center);
+}
+
+}  // namespace
+#endif  // LEVER_HAVE_CCD
+
+int mpr_search(const GeomShape& g1, const GeomShape& g2, double margin,
+               const ConvexOptions& options, Contact& answer, Eigen::Vector3d* points1,
+               Eigen::Vector3d* points2, int capacity) {
+#ifdef LEVER_HAVE_CCD
+  ccd_t ccd;
+  CCD_INIT(&ccd);
+  ccd.first_dir = ccdFirstDirDefault;
+  ccd.support1 = recording_support;
+  ccd.support2 = recording_support;
+  ccd.center1 = recording_center;
+  ccd.center2 = recording_center;
+  ccd.max_iterations = static_cast<unsigned long>(options.mpr_iterations);
+  ccd.mpr_tolerance = options.mpr_tolerance;
+  RecordingObject o1{{&g1, margin, -1}, points1, 0, capacity};
+  RecordingObject o2{{&g2, margin, -1}, points2, 0, capacity};
+  ccd_real_t depth;
+  ccd_vec3_t dir, pos;
+  if (ccdMPRPenetration(&o1, &o2, &ccd, &depth, &dir, &pos) != 0) return -1;
+  answer.dist = margin - depth;
+  answer.pos = Vec3(pos.v[0], pos.v[1], pos.v[2]);
+  answer.frame.setZero();
+  answer.frame.row(0) << dir.v[0], dir.v[1], dir.v[2];
+  return std::min(o1.count, o2.count);
+#else
+  (void)g1, (void)g2, (void)margin, (void)options, (void)answer, (void)points1, (void)points2,
+      (void)capacity;
+  return -1;
+#endif
 }
 
 }  // namespace lever::detail

@@ -84,6 +84,15 @@ int plane_convex(const GeomShape& plane, const GeomShape& convex, double margin,
 /// Whether this build has the general convex pairs (libccd; not in the WebAssembly build).
 bool has_convex_pairs();
 
+/// convex_pair's first MPR search (without fix_normal), the support points it asked for written
+/// down in order: geom 1's in points1, geom 2's in points2, in the world (those past `capacity`
+/// counted, not kept). Returns how many it asked for, -1 if it found no contact (or without
+/// libccd); `answer` gets dist, pos and the normal row. For the derivative of MPR's answer, a
+/// closed form of its last portal, three of these.
+int mpr_search(const GeomShape& g1, const GeomShape& g2, double margin,
+               const ConvexOptions& options, Contact& answer, Eigen::Vector3d* points1,
+               Eigen::Vector3d* points2, int capacity);
+
 // The pairs with a box (MuJoCo 2.2.2's engine_collision_box.c: mjc_SphereBox, mjc_CapsuleBox,
 // mjc_BoxBox), written once on a scalar in collision/box_pairs.hpp and run on doubles by
 // collision/box.cpp. Each has collide_shapes()'s contract: g1's type

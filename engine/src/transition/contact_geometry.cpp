@@ -11,24 +11,29 @@
 //
 // Pairs: every pair MuJoCo collides in closed form: plane against sphere, capsule, box, cylinder,
 // ellipsoid and mesh; sphere-sphere, sphere-capsule, capsule-capsule, sphere-box, capsule-box and
-// box-box (collision/box_pairs.hpp). Of the pairs MuJoCo collides by MPR, those of two polytopes
-// (box-mesh, mesh-mesh) at margin 0: MPR's answer is a closed form of its last portal's vertices,
-// held. The others (a cylinder or an ellipsoid against anything but a plane, a sphere or capsule
-// against a mesh) are refused by name: their support points move along the round surface with
-// the iteration's directions, so the answer is an iteration's end, not a closed form of the poses
-// (docs/derivatives.md).
+// box-box (collision/box_pairs.hpp). And every pair MuJoCo collides by MPR (libccd's search, run
+// again here with its support points written down): two polytopes at margin 0 by a closed form
+// of the last portal the search ended on (a vertex on a face, an edge across an edge, a face on a
+// face), the others (a round geom, a margin) by the whole search replayed on the dual numbers,
+// its decisions held; multiccd's extra contacts by the turned searches replayed. Where the portal
+// or the search's path flips with the direction of a motion, the answer jumps and is refused by
+// name (docs/derivatives.md).
 #include <lever/collision.hpp>
 #include <lever/error.hpp>
 
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
+
+#include <Eigen/Geometry>
 
 #include "basics/basics.hpp"
 #include "basics/dual.hpp"
 #include "collision/collision_room.hpp"
 #include "collision/box_pairs.hpp"
+#include "collision/narrow_phase.hpp"
 #include "collision/primitive_pairs.hpp"
 #include "transition/transition.hpp"
 
@@ -162,128 +167,742 @@ int plane_mesh(const Pose& plane, const Pose& mesh, const Data& data, int first,
 // it (dist = margin - depth: margin 0 here, where support points are vertices), and the point
 // half the sum of a and b weighted by the origin's barycentric coordinates in the tetrahedron
 // (v0, v1, v2, v3). Held (the vertices stay the portal's), all three are closed forms of the two
-// poses: differentiated here. Which vertices: those on the answer's supporting planes, the triple
-// whose closed form gives the collision stage's contact.
+// poses: differentiated here. Which vertices: the search is run again on the same shapes
+// (collision/convex.cpp's mpr_search, which writes down the support points it asks for), and of
+// those the triple whose closed form gives its answer is its last portal. Where two faces meet,
+// the point depends on which triangle of their Minkowski face that is, so it must be the
+// search's own; where the portal flips with the direction of a motion, there is no derivative.
 
-// Vertex k of a box or mesh geom in its own frame.
-Eigen::Vector3d polytope_vertex(const Model& model, int g, int k) {
-  if (model.geom_type[g] == GeomType::kBox) {
-    const Eigen::Vector3d& size = model.geom_size[g];
-    return {(k & 1) ? size[0] : -size[0], (k & 2) ? size[1] : -size[1],
-            (k & 4) ? size[2] : -size[2]};
-  }
+// The geom as the collision stage hands it to the narrow phase (its pose at the state).
+GeomShape shape_at_state(const Model& model, const Data& data, int g) {
+  GeomShape s{model.geom_type[g], model.geom_size[g], data.geom_xpos[g], data.geom_xmat[g],
+              model.geom_rbound[g]};
   const int mesh = model.geom_dataid[g];
-  return model.mesh_vert[static_cast<std::size_t>(model.mesh_vertadr[mesh] + k)];
-}
-
-int polytope_vertex_count(const Model& model, int g) {
-  return model.geom_type[g] == GeomType::kBox ? 8 : model.mesh_vertnum[model.geom_dataid[g]];
-}
-
-// The polytope's vertices whose height along `up` is within `tolerance` of its highest (at most
-// kMostOnPlane; returns how many, or -1 for more).
-constexpr int kMostOnPlane = 8;
-int highest_vertices(const Model& model, const Data& data, int g, const Eigen::Vector3d& up,
-                     double tolerance, std::array<int, kMostOnPlane>& found) {
-  const int count = polytope_vertex_count(model, g);
-  double top = -1e300;
-  for (int k = 0; k < count; ++k) {
-    const Eigen::Vector3d x = data.geom_xmat[g] * polytope_vertex(model, g, k);
-    top = std::max(top, up.dot(x));
+  if (mesh >= 0 && model.mesh_vertnum[mesh] > 0) {
+    s.mesh_vert = model.mesh_vert[static_cast<std::size_t>(model.mesh_vertadr[mesh])].data();
+    s.mesh_vertnum = model.mesh_vertnum[mesh];
+    const int graph = model.mesh_graphadr[mesh];
+    s.mesh_graph = graph >= 0 ? model.mesh_graph.data() + graph : nullptr;
   }
-  int n = 0;
-  for (int k = 0; k < count; ++k) {
-    const Eigen::Vector3d x = data.geom_xmat[g] * polytope_vertex(model, g, k);
-    if (up.dot(x) < top - tolerance) continue;
-    if (n == kMostOnPlane) return -1;
-    found[static_cast<std::size_t>(n++)] = k;
-  }
-  return n;
+  return s;
 }
 
-// The answer of a portal whose support points are a[i] - b[i], on the moving poses.
-Found portal_answer(const V (&a)[3], const V (&b)[3], const V& c1, const V& c2, double margin) {
-  const V v0 = c1 - c2;
-  const V v[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
-  V normal = cross(v[1] - v[0], v[2] - v[0]);
+// The answer of a portal whose support points are a[i] - b[i], the centres c1, c2.
+template <class S>
+primitive::Touch<S> portal_answer(const primitive::Vec<S> (&a)[3], const primitive::Vec<S> (&b)[3],
+                                  const primitive::Vec<S>& c1, const primitive::Vec<S>& c2,
+                                  double margin) {
+  using W = primitive::Vec<S>;
+  using primitive::value;
+  const W v0 = c1 - c2;
+  const W v[3] = {a[0] - b[0], a[1] - b[1], a[2] - b[2]};
+  W normal = cross(v[1] - v[0], v[2] - v[0]);
   normalize(normal);
-  if (dot(normal, v[0]).v < 0) normal = normal * -1.0;
-  const Scalar depth = dot(normal, v[0]);
+  if (value(dot(normal, v[0])) < 0) normal = normal * S(-1.0);
+  const S depth = dot(normal, v[0]);
   // barycentric weights (six times the volumes) of v0, v1, v2, v3, as libccd's findPos sums them;
   // the triangle's orientation flips all four
-  const auto det = [](const V& x, const V& y, const V& z) { return dot(cross(x, y), z); };
-  Scalar w[4] = {det(v[0], v[1], v[2]), det(v[2], v[1], v0), det(v0, v[0], v[2]),
-                 det(v[1], v[0], v0)};
-  const Scalar sum = w[0] + w[1] + w[2] + w[3];
-  V p1 = c1 * w[0], p2 = c2 * w[0];
+  const auto det = [](const W& x, const W& y, const W& z) { return dot(cross(x, y), z); };
+  const S w[4] = {det(v[0], v[1], v[2]), det(v[2], v[1], v0), det(v0, v[0], v[2]),
+                  det(v[1], v[0], v0)};
+  const S sum = w[0] + w[1] + w[2] + w[3];
+  W p1 = c1 * w[0], p2 = c2 * w[0];
   for (int i = 0; i < 3; ++i) {
     p1 = p1 + a[i] * w[i + 1];
     p2 = p2 + b[i] * w[i + 1];
   }
-  const Scalar half = Scalar(0.5) / sum;
-  Found f;
-  set(f, Scalar(margin) - depth, (p1 + p2) * half, normal);
+  const S half = S(0.5) / sum;
+  primitive::Touch<S> f;
+  primitive::touch(f, S(margin) - depth, (p1 + p2) * half, normal);
   return f;
 }
 
-int polytope_pair(const Model& model, const Data& data, const Pose& g1, const Pose& g2,
-                  double margin, int first, int count, Found* out) {
-  const Contact& con = data.contact[static_cast<std::size_t>(first)];
-  if (margin != 0.0 || count != 1) {
-    throw Error(std::string("derivatives: a ") + geom_type_name(g1.type) + "-" +
-                geom_type_name(g2.type) +
-                " contact (MPR) is active with a margin or multiccd's extra contacts; lever "
-                "differentiates MPR's answer for two polytopes at margin 0, one contact per pair.");
-  }
-  // the vertices on each geom's supporting plane along the normal (the portal's lie on them,
-  // within MPR's tolerance)
-  const Eigen::Vector3d n = con.frame.row(0).transpose();
-  const double tolerance = 10 * model.opt.mpr_tolerance + 1e-12;
-  std::array<int, kMostOnPlane> top1{}, top2{};
-  const int n1 = highest_vertices(model, data, con.geom1, n, tolerance, top1);
-  const int n2 = highest_vertices(model, data, con.geom2, -n, tolerance, top2);
-  if (n1 < 0 || n2 < 0 || n1 * n2 > kMostOnPlane) {
-    throw Error("derivatives: contact " + std::to_string(first) + " (" +
-                geom_type_name(g1.type) + "-" + geom_type_name(g2.type) +
-                ", MPR) has a face of each geom on it; lever differentiates MPR's answer for a "
-                "vertex on a face or an edge across an edge, where its last portal is held.");
-  }
-  // the candidate support points (a vertex of each), on the moving poses
-  std::array<V, kMostOnPlane> a{}, b{};
-  int pairs = 0;
-  for (int i = 0; i < n1; ++i) {
-    for (int j = 0; j < n2; ++j) {
-      a[static_cast<std::size_t>(pairs)] =
-          rotate(g1, constant(polytope_vertex(model, con.geom1, top1[static_cast<std::size_t>(i)]))) +
-          g1.pos;
-      b[static_cast<std::size_t>(pairs)] =
-          rotate(g2, constant(polytope_vertex(model, con.geom2, top2[static_cast<std::size_t>(j)]))) +
-          g2.pos;
-      ++pairs;
+// MPR's last portal: three of the support points its search asked for (a of geom 1, b of geom 2,
+// in the world), found as the triple whose answer is the search's; gap is how far that triple's
+// answer is from the search's (dist, pos and normal, the largest difference).
+struct Portal {
+  Eigen::Vector3d a[3], b[3];
+  double gap = 1e300;
+};
+
+using Point = primitive::Vec<double>;
+Point point(const Eigen::Vector3d& x) { return {{x[0], x[1], x[2]}}; }
+
+constexpr int kMostSupportPoints = 256;
+
+bool last_portal(const GeomShape& s1, const GeomShape& s2, double margin,
+                 const ConvexOptions& options, Portal& portal) {
+  std::array<Eigen::Vector3d, kMostSupportPoints> a_all, b_all;
+  Contact answer;
+  const int asked =
+      mpr_search(s1, s2, margin, options, answer, a_all.data(), b_all.data(), kMostSupportPoints);
+  if (asked < 0 || asked > kMostSupportPoints) return false;
+  // each pair of support points once, and of those the ones on the answer's plane (a portal that
+  // the ray from v0 through the origin meets inside lies on it); all if fewer than three are
+  std::array<std::size_t, kMostSupportPoints> unique{}, on_plane{};
+  int n_unique = 0, n_on_plane = 0;
+  const Eigen::Vector3d normal = answer.frame.row(0).transpose();
+  const double depth = margin - answer.dist;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(asked); ++i) {
+    bool seen = false;
+    for (int k = 0; k < n_unique && !seen; ++k) {
+      const std::size_t j = unique[static_cast<std::size_t>(k)];
+      seen = a_all[j] == a_all[i] && b_all[j] == b_all[i];
+    }
+    if (seen) continue;
+    unique[static_cast<std::size_t>(n_unique++)] = i;
+    const Eigen::Vector3d v = a_all[i] - b_all[i];
+    if (std::abs(normal.dot(v) - depth) <= 1e-9 * (1 + v.norm())) {
+      on_plane[static_cast<std::size_t>(n_on_plane++)] = i;
     }
   }
-  // the triple whose answer is the stage's contact
-  double best = 1e300;
-  for (int i = 0; i < pairs; ++i) {
-    for (int j = i + 1; j < pairs; ++j) {
-      for (int k = j + 1; k < pairs; ++k) {
-        const auto I = static_cast<std::size_t>(i), J = static_cast<std::size_t>(j),
-                   K = static_cast<std::size_t>(k);
-        const V as[3] = {a[I], a[J], a[K]}, bs[3] = {b[I], b[J], b[K]};
-        const Found f = portal_answer(as, bs, g1.pos, g2.pos, margin);
-        double gap = std::abs(f.dist.v - con.dist);
+  const bool plane = n_on_plane >= 3;
+  const std::array<std::size_t, kMostSupportPoints>& pool = plane ? on_plane : unique;
+  const std::size_t n = static_cast<std::size_t>(plane ? n_on_plane : n_unique);
+  const Point c1 = point(s1.pos), c2 = point(s2.pos);
+  portal.gap = 1e300;
+  for (std::size_t i = 0; i < n; ++i) {
+    for (std::size_t j = i + 1; j < n; ++j) {
+      for (std::size_t k = j + 1; k < n; ++k) {
+        const std::size_t I = pool[i], J = pool[j], K = pool[k];
+        const Point a[3] = {point(a_all[I]), point(a_all[J]), point(a_all[K])};
+        const Point b[3] = {point(b_all[I]), point(b_all[J]), point(b_all[K])};
+        const primitive::Touch<double> f = portal_answer(a, b, c1, c2, margin);
+        double gap = std::abs(f.dist - answer.dist);
         for (int c = 0; c < 3; ++c) {
-          gap = std::max(gap, std::abs(f.pos[c].v - con.pos[c]));
-          gap = std::max(gap, std::abs(f.normal[c].v - con.frame(0, c)));
+          gap = std::max(gap, std::abs(f.pos[c] - answer.pos[c]));
+          gap = std::max(gap, std::abs(f.normal[c] - answer.frame(0, c)));
         }
-        if (gap < best) {
-          best = gap;
-          out[0] = f;
+        if (gap < portal.gap) {
+          portal.gap = gap;
+          portal.a[0] = a_all[I], portal.a[1] = a_all[J], portal.a[2] = a_all[K];
+          portal.b[0] = b_all[I], portal.b[1] = b_all[J], portal.b[2] = b_all[K];
         }
       }
     }
   }
-  return best < 1e300 ? 1 : 0;
+  return portal.gap < 1e300;
+}
+
+// The probes of whether a portal or a search's path holds about the state: geom 1 moved by
+// kPortalProbe (rad and m) along each of two fixed motions, either way, each a turn about an axis
+// through its centre and a shift, in directions that line up with no frame a scene is built in
+// (so a flip at the state, which a motion across it shows on one side, is not missed along a
+// motion that keeps two faces parallel or an edge level).
+constexpr double kPortalProbe = 1e-8;
+constexpr int kProbeMotions = 2;
+
+struct ProbeMotion {
+  Eigen::Vector3d turn, shift;  // unit
+};
+
+const std::array<ProbeMotion, kProbeMotions>& probe_motions() {
+  static const std::array<ProbeMotion, kProbeMotions> motions = {
+      ProbeMotion{Eigen::Vector3d(0.58, -0.38, 0.72).normalized(),
+                  Eigen::Vector3d(0.41, 0.77, -0.49).normalized()},
+      ProbeMotion{Eigen::Vector3d(-0.27, 0.81, 0.52).normalized(),
+                  Eigen::Vector3d(0.69, -0.19, 0.70).normalized()}};
+  return motions;
+}
+
+GeomShape probe_moved(const GeomShape& s, int motion, double step) {
+  const ProbeMotion& m = probe_motions()[static_cast<std::size_t>(motion)];
+  GeomShape moved = s;
+  moved.mat = Eigen::AngleAxisd(step, m.turn).toRotationMatrix() * s.mat;
+  moved.pos = s.pos + m.shift * step;
+  return moved;
+}
+
+// Whether the held portal's closed form is still MPR's answer at the probes (another triangle of
+// the same plane whose answer is the same counts as held): where it is not (two faces whose
+// edges line up, say), the portal flips with the direction of the motion and the answer has no
+// derivative.
+bool portal_holds(const GeomShape& s1, const GeomShape& s2, double margin,
+                  const ConvexOptions& options, const Portal& portal) {
+  std::array<Eigen::Vector3d, kMostSupportPoints> scratch1, scratch2;
+  Eigen::Vector3d local[3];
+  for (int i = 0; i < 3; ++i) local[i] = s1.mat.transpose() * (portal.a[i] - s1.pos);
+  const Point b[3] = {point(portal.b[0]), point(portal.b[1]), point(portal.b[2])};
+  for (int motion = 0; motion < kProbeMotions; ++motion) {
+    for (const double step : {-kPortalProbe, kPortalProbe}) {
+      const GeomShape moved = probe_moved(s1, motion, step);
+      Contact answer;
+      if (mpr_search(moved, s2, margin, options, answer, scratch1.data(), scratch2.data(),
+                     kMostSupportPoints) < 0) {
+        return false;
+      }
+      const Point a[3] = {point(moved.mat * local[0] + moved.pos),
+                          point(moved.mat * local[1] + moved.pos),
+                          point(moved.mat * local[2] + moved.pos)};
+      const primitive::Touch<double> f =
+          portal_answer(a, b, point(moved.pos), point(s2.pos), margin);
+      double gap = std::abs(f.dist - answer.dist);
+      for (int c = 0; c < 3; ++c) {
+        gap = std::max(gap, std::abs(f.pos[c] - answer.pos[c]));
+        gap = std::max(gap, std::abs(f.normal[c] - answer.frame(0, c)));
+      }
+      if (!(gap <= 1e-10 * (1 + answer.pos.cwiseAbs().maxCoeff()))) return false;
+    }
+  }
+  return true;
+}
+
+// The last portal of a polytope pair's search at the state, checked to hold (else refused);
+// false where no triangle of its support points gives its answer (the origin's nearest point of
+// the portal on an edge of it: then the whole search is replayed).
+bool polytope_portal(const Model& model, const Data& data, double margin, int first,
+                     Portal& portal) {
+  const Contact& con = data.contact[static_cast<std::size_t>(first)];
+  const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
+  // the search again, on the same shapes, its support points written down: of them, the portal
+  const GeomShape s1 = shape_at_state(model, data, con.geom1);
+  const GeomShape s2 = shape_at_state(model, data, con.geom2);
+  const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
+  if (!last_portal(s1, s2, margin, options, portal) ||
+      !(portal.gap <= 1e-9 * (1 + con.pos.cwiseAbs().maxCoeff()))) {
+    return false;
+  }
+  if (!portal_holds(s1, s2, margin, options, portal)) {
+    throw Error("derivatives: contact " + std::to_string(first) + " (" + geom_type_name(t1) +
+                "-" + geom_type_name(t2) +
+                ", MPR) ends on a portal that changes when a geom turns or moves by " +
+                "1e-8 (faces whose edges line up, say): its answer has no derivative there.");
+  }
+  // the support points in their geoms' frames: each a vertex, rigid in its geom
+  for (int i = 0; i < 3; ++i) {
+    portal.a[i] = s1.mat.transpose() * (portal.a[i] - s1.pos);
+    portal.b[i] = s2.mat.transpose() * (portal.b[i] - s2.pos);
+  }
+  return true;
+}
+
+// The portal's answer on the moving poses (its vertices given in their geoms' frames).
+int polytope_pair(const Portal& local, const Pose& g1, const Pose& g2, double margin,
+                  Found* out) {
+  V a[3], b[3];
+  for (int i = 0; i < 3; ++i) {
+    a[i] = rotate(g1, constant(local.a[i])) + g1.pos;
+    b[i] = rotate(g2, constant(local.b[i])) + g2.pos;
+  }
+  out[0] = portal_answer(a, b, g1.pos, g2.pos, margin);
+  return 1;
+}
+
+// ---- MPR's whole search on the moving poses (a round geom, or a margin) ------------------------
+// Where a support point is not a vertex (a sphere's, capsule's, cylinder's or ellipsoid's, or any
+// geom's grown by margin / 2 along the search's direction), it moves with the direction it was
+// asked for, and each direction is made of the earlier support points: the answer is the whole
+// search's, not a closed form of its last portal. Held are the search's decisions (how many
+// support points it asks for, which portal vertex each replaces, when it stops; a polytope's
+// vertex; a capsule's end, a cylinder's disc), taken on the values as libccd (v2.1, the library
+// MuJoCo runs) takes them; along that path the search is a smooth function of the two poses,
+// run here on dual numbers. The support points it asks for are checked against those the
+// collision stage's search asked for (collision/convex.cpp's mpr_search), so a path that is not
+// the stage's is an error, not a wrong derivative; and MuJoCo's normal correction where a geom's
+// surface gives it (mjc_fixNormal) follows, on the same numbers.
+
+// libccd's tests: a value within DBL_EPSILON of zero, two values within DBL_EPSILON (relative
+// above 1) of each other
+constexpr double kCcdEps = std::numeric_limits<double>::epsilon();
+bool ccd_zero(double x) { return std::abs(x) < kCcdEps; }
+bool ccd_equal(double a, double b) {
+  const double gap = std::abs(a - b);
+  return gap < kCcdEps || gap < kCcdEps * std::max(std::abs(a), std::abs(b));
+}
+using primitive::value;
+
+// -1, 0 or 1: the side of a half-extent `half` that the coordinate x (-half, 0 or half, and a
+// rounding) is on.
+double held_side(double x, double half) {
+  if (!(half > 0)) return 0;
+  const double r = x / half;
+  return r > 0.5 ? 1.0 : (r < -0.5 ? -1.0 : 0.0);
+}
+
+struct SupportPair {
+  V v, a, b;  // v = a - b
+};
+
+// The two geoms' support functions (MuJoCo's mjccd_support) on the moving poses, replaying the
+// stage's search: call k must give the stage's k-th support points.
+class SearchReplay {
+ public:
+  SearchReplay(int contact, const GeomShape& s1, const GeomShape& s2, const Pose& g1,
+               const Pose& g2, double margin, const Eigen::Vector3d* recorded1,
+               const Eigen::Vector3d* recorded2, int recorded)
+      : contact_(contact), s_{&s1, &s2}, g_{&g1, &g2}, margin_(margin),
+        recorded_{recorded1, recorded2}, count_(recorded) {}
+
+  // An error naming the contact and its pair.
+  Error error(const char* why) const {
+    return Error("derivatives: contact " + std::to_string(contact_) + " (" +
+                 geom_type_name(s_[0]->type) + "-" + geom_type_name(s_[1]->type) + ", MPR) " +
+                 why);
+  }
+  Error not_reproduced() const {
+    return error("is not reproduced by MPR's search on the moving poses.");
+  }
+
+  SupportPair support(const V& dir) {
+    if (calls_ >= count_) throw not_reproduced();
+    SupportPair p;
+    p.a = geom_support(0, dir);
+    p.b = geom_support(1, dir * -1.0);
+    p.v = p.a - p.b;
+    ++calls_;
+    return p;
+  }
+
+ private:
+  V geom_support(int which, const V& world_dir) const {
+    const GeomShape& s = *s_[which];
+    const Pose& g = *g_[which];
+    const Eigen::Vector3d& recorded = recorded_[which][calls_];
+    const V d = unrotate(g, world_dir);
+    const Eigen::Vector3d& size = s.size;
+    // the recorded point in the geom's frame: where a support point's case is a side (a box's
+    // corner, a capsule's end, a cylinder's disc), the side the stage's search took
+    const Eigen::Vector3d local = s.mat.transpose() * (recorded - s.pos);
+    V res;
+    switch (s.type) {
+      case GeomType::kSphere:
+        res = d * size[0];
+        break;
+      case GeomType::kCapsule:
+        // which end: the stage's (its recorded point's, less the sphere's part)
+        res = d * size[0];
+        res[2] = res[2] + held_side(local[2] - value(d[2]) * (size[0] + margin_ / 2), size[1]) *
+                              size[1];
+        break;
+      case GeomType::kEllipsoid:
+        res = {{d[0] * size[0], d[1] * size[1], d[2] * size[2]}};
+        normalize(res);
+        res = {{res[0] * size[0], res[1] * size[1], res[2] * size[2]}};
+        break;
+      case GeomType::kCylinder: {
+        const Scalar horizontal = sqrt(d[0] * d[0] + d[1] * d[1]);
+        if (value(horizontal) > kMinVal) {
+          res[0] = d[0] / horizontal * size[0];
+          res[1] = d[1] / horizontal * size[0];
+        } else {
+          res[0] = res[1] = Scalar(0);
+        }
+        res[2] = Scalar(held_side(local[2] - value(d[2]) * margin_ / 2, size[1]) * size[1]);
+        break;
+      }
+      case GeomType::kBox:
+        // the stage's corner (or a face's or an edge's middle, where a direction was level)
+        for (int i = 0; i < 3; ++i) {
+          res[i] = Scalar(held_side(local[i] - value(d[i]) * margin_ / 2, size[i]) * size[i]);
+        }
+        break;
+      case GeomType::kMesh: {
+        // the stage's vertex: the mesh's nearest to its recorded point, less the growth
+        Eigen::Vector3d grow;
+        for (int i = 0; i < 3; ++i) grow[i] = value(d[i]) * margin_ / 2;
+        const Eigen::Vector3d vertex = local - grow;
+        int best = 0;
+        double nearest = 1e300;
+        for (int k = 0; k < s.mesh_vertnum; ++k) {
+          const Eigen::Vector3d x(s.mesh_vert[3 * k], s.mesh_vert[3 * k + 1],
+                                  s.mesh_vert[3 * k + 2]);
+          const double gap = (x - vertex).squaredNorm();
+          if (gap < nearest) nearest = gap, best = k;
+        }
+        res = constant(Eigen::Vector3d(s.mesh_vert[3 * best], s.mesh_vert[3 * best + 1],
+                                       s.mesh_vert[3 * best + 2]));
+        break;
+      }
+      default:
+        throw not_reproduced();
+    }
+    res = res + d * (margin_ / 2);
+    const V world = rotate(g, res) + g.pos;
+    double gap = 0;
+    for (int i = 0; i < 3; ++i) gap = std::max(gap, std::abs(value(world[i]) - recorded[i]));
+    if (!(gap <= 1e-9 * (1 + recorded.cwiseAbs().maxCoeff()))) throw not_reproduced();
+    return world;
+  }
+
+  int contact_;
+  const GeomShape* s_[2];
+  const Pose* g_[2];
+  double margin_;
+  const Eigen::Vector3d* recorded_[2];
+  int count_;
+  int calls_ = 0;
+};
+
+V unit(V x) {
+  normalize(x);
+  return x;
+}
+
+// The direction out of the portal's face (v1, v2, v3).
+V portal_direction(const SupportPair (&p)[4]) {
+  return unit(cross(p[2].v - p[1].v, p[3].v - p[1].v));
+}
+
+// Whether the portal's face is within the tolerance of the support point v4 along dir.
+bool reaches_tolerance(const SupportPair (&p)[4], const SupportPair& v4, const V& dir,
+                       double tolerance) {
+  const double d4 = value(dot(v4.v, dir));
+  double least = d4 - value(dot(p[1].v, dir));
+  least = std::fmin(least, d4 - value(dot(p[2].v, dir)));
+  least = std::fmin(least, d4 - value(dot(p[3].v, dir)));
+  return ccd_equal(least, tolerance) || least < tolerance;
+}
+
+bool positive_or_zero(double x) { return ccd_zero(x) || x > 0; }
+
+// v4 takes the place of the portal vertex whose side of the plane (v4, v0) keeps the origin's ray
+// inside.
+void expand(SupportPair (&p)[4], const SupportPair& v4) {
+  const V side = cross(v4.v, p[0].v);
+  if (value(dot(p[1].v, side)) > 0) {
+    p[value(dot(p[2].v, side)) > 0 ? 1 : 3] = v4;
+  } else {
+    p[value(dot(p[3].v, side)) > 0 ? 2 : 1] = v4;
+  }
+}
+
+// The point of segment (x0, b) nearest the origin, and its squared distance.
+Scalar nearest_on_segment(const V& x0, const V& b, V& witness) {
+  const V d = b - x0;
+  const Scalar t = dot(x0, d) * -1.0 / dot(d, d);
+  if (value(t) < 0 || ccd_zero(value(t))) {
+    witness = x0;
+  } else if (value(t) > 1 || ccd_equal(value(t), 1)) {
+    witness = b;
+  } else {
+    witness = d * t + x0;
+  }
+  return dot(witness, witness);
+}
+
+// The point of triangle (x0, b, c) nearest the origin (libccd's ccdVec3PointTriDist2).
+V nearest_on_triangle(const V& x0, const V& b, const V& c) {
+  const V d1 = b - x0, d2 = c - x0;
+  const Scalar v = dot(d1, d1), w = dot(d2, d2), p = dot(x0, d1), q = dot(x0, d2),
+               r = dot(d1, d2);
+  const Scalar det = w * v - r * r;
+  Scalar s(-1.0), t(-1.0);
+  if (!ccd_zero(value(det))) {
+    s = (q * r - w * p) / det;
+    t = (s * r * -1.0 - q) / w;
+  }
+  const double sv = value(s), tv = value(t);
+  if ((ccd_zero(sv) || sv > 0) && (ccd_equal(sv, 1) || sv < 1) && (ccd_zero(tv) || tv > 0) &&
+      (ccd_equal(tv, 1) || tv < 1) && (ccd_equal(tv + sv, 1) || tv + sv < 1)) {
+    return x0 + d1 * s + d2 * t;
+  }
+  V witness, other;
+  double best = value(nearest_on_segment(x0, b, witness));
+  double next = value(nearest_on_segment(x0, c, other));
+  if (next < best) best = next, witness = other;
+  next = value(nearest_on_segment(b, c, other));
+  if (next < best) witness = other;
+  return witness;
+}
+
+// The point: each geom's support points weighted by the origin's barycentric coordinates in the
+// tetrahedron (v0 ... v3), or, where those do not sum to a positive volume, in the face.
+V portal_position(const SupportPair (&p)[4]) {
+  const V dir = portal_direction(p);
+  Scalar b[4] = {dot(cross(p[1].v, p[2].v), p[3].v), dot(cross(p[3].v, p[2].v), p[0].v),
+                 dot(cross(p[0].v, p[1].v), p[3].v), dot(cross(p[2].v, p[1].v), p[0].v)};
+  Scalar sum = b[0] + b[1] + b[2] + b[3];
+  if (ccd_zero(value(sum)) || value(sum) < 0) {
+    b[0] = Scalar(0.0);
+    b[1] = dot(cross(p[2].v, p[3].v), dir);
+    b[2] = dot(cross(p[3].v, p[1].v), dir);
+    b[3] = dot(cross(p[1].v, p[2].v), dir);
+    sum = b[1] + b[2] + b[3];
+  }
+  const Scalar inverse = Scalar(1.0) / sum;
+  V p1 = constant(Eigen::Vector3d::Zero()), p2 = p1;
+  for (int i = 0; i < 4; ++i) {
+    p1 = p1 + p[i].a * b[i];
+    p2 = p2 + p[i].b * b[i];
+  }
+  return (p1 * inverse + p2 * inverse) * 0.5;
+}
+
+// libccd's ccdMPRPenetration replayed: portal discovery, refinement, and the expansion to the
+// tolerance; depth, direction and point of the last portal.
+Found mpr_replay(SearchReplay& search, const Pose& g1, const Pose& g2, double margin,
+                 double tolerance, int max_iterations) {
+  SupportPair p[4];
+  p[0].a = g1.pos;
+  p[0].b = g2.pos;
+  p[0].v = p[0].a - p[0].b;
+  if (ccd_equal(value(p[0].v[0]), 0) && ccd_equal(value(p[0].v[1]), 0) &&
+      ccd_equal(value(p[0].v[2]), 0)) {
+    p[0].v[0] = p[0].v[0] + kCcdEps * 10;  // centres on the origin: moved a little
+  }
+  const auto refused = [&search] {
+    return search.error(
+        "is where MPR's search ends in a touch or on its first segment (the origin on the line "
+        "of the geoms' centres), which any motion leaves: its answer has no derivative there.");
+  };
+  // discovery: v1 towards the origin, v2 across, v3 until the portal's cone holds the origin's ray
+  V dir = unit(p[0].v * -1.0);
+  p[1] = search.support(dir);
+  if (!(value(dot(p[1].v, dir)) > 0) || ccd_zero(value(dot(p[1].v, dir)))) throw refused();
+  dir = cross(p[0].v, p[1].v);
+  if (ccd_zero(value(dot(dir, dir)))) throw refused();
+  dir = unit(dir);
+  p[2] = search.support(dir);
+  if (!positive_or_zero(value(dot(p[2].v, dir))) || ccd_zero(value(dot(p[2].v, dir)))) {
+    throw refused();
+  }
+  dir = unit(cross(p[1].v - p[0].v, p[2].v - p[0].v));
+  if (value(dot(dir, p[0].v)) > 0) {
+    std::swap(p[1], p[2]);
+    dir = dir * -1.0;
+  }
+  for (;;) {
+    p[3] = search.support(dir);
+    const double reach = value(dot(p[3].v, dir));
+    if (ccd_zero(reach) || reach < 0) throw refused();
+    double outside = value(dot(cross(p[1].v, p[3].v), p[0].v));
+    if (outside < 0 && !ccd_zero(outside)) {
+      p[2] = p[3];
+    } else {
+      outside = value(dot(cross(p[3].v, p[2].v), p[0].v));
+      if (!(outside < 0 && !ccd_zero(outside))) break;
+      p[1] = p[3];
+    }
+    dir = unit(cross(p[1].v - p[0].v, p[2].v - p[0].v));
+  }
+  // refinement: until the portal's face is past the origin
+  for (;;) {
+    dir = portal_direction(p);
+    if (positive_or_zero(value(dot(dir, p[1].v)))) break;
+    const SupportPair v4 = search.support(dir);
+    if (!positive_or_zero(value(dot(v4.v, dir))) || reaches_tolerance(p, v4, dir, tolerance)) {
+      throw search.not_reproduced();
+    }
+    expand(p, v4);
+  }
+  // penetration: expanded until the face is within the tolerance of the boundary
+  for (long iterations = 0;; ++iterations) {
+    dir = portal_direction(p);
+    const SupportPair v4 = search.support(dir);
+    if (reaches_tolerance(p, v4, dir, tolerance) || iterations > max_iterations) break;
+    expand(p, v4);
+  }
+  V normal = nearest_on_triangle(p[1].v, p[2].v, p[3].v);
+  const Scalar depth = sqrt(dot(normal, normal));
+  if (ccd_zero(value(depth))) throw refused();
+  normal = normal * (Scalar(1.0) / depth);
+  Found f;
+  set(f, Scalar(margin) - depth, portal_position(p), normal);
+  return f;
+}
+
+// ---- the normal where a geom's surface gives it (collision/convex.cpp's fix_normal) -----------
+
+bool ellipsoid_normal_inside(V& nrm, const V& pos, const Eigen::Vector3d& size) {
+  const Eigen::Vector3d inverse_square(1 / (size[0] * size[0]), 1 / (size[1] * size[1]),
+                                       1 / (size[2] * size[2]));
+  const Scalar C = pos[0] * pos[0] * inverse_square[0] + pos[1] * pos[1] * inverse_square[1] +
+                   pos[2] * pos[2] * inverse_square[2] - 1.0;
+  if (value(C) > 0) return false;
+  normalize(nrm);
+  for (int iter = 0; iter < 30; ++iter) {
+    const Scalar A = nrm[0] * nrm[0] * inverse_square[0] + nrm[1] * nrm[1] * inverse_square[1] +
+                     nrm[2] * nrm[2] * inverse_square[2];
+    const Scalar B = pos[0] * nrm[0] * inverse_square[0] + pos[1] * nrm[1] * inverse_square[1] +
+                     pos[2] * nrm[2] * inverse_square[2];
+    const Scalar det = B * B - A * C;
+    if (value(det) < kMinVal || value(A) < kMinVal) return iter > 0;
+    const Scalar x = (B * -1.0 + sqrt(det)) / A;
+    if (value(x) < 0) return iter > 0;
+    const V surface = pos + nrm * x;
+    V normal{{surface[0] * inverse_square[0], surface[1] * inverse_square[1],
+              surface[2] * inverse_square[2]}};
+    normalize(normal);
+    const V change = nrm - normal;
+    const double moved = std::sqrt(value(dot(change, change)));
+    nrm = normal;
+    if (moved < 1e-6) break;
+  }
+  return true;
+}
+
+void ellipsoid_normal_outside(V& nrm, const V& pos, const Eigen::Vector3d& size) {
+  const Eigen::Vector3d S2(size[0] * size[0], size[1] * size[1], size[2] * size[2]);
+  const V PS2{{pos[0] * pos[0] * S2[0], pos[1] * pos[1] * S2[1], pos[2] * pos[2] * S2[2]}};
+  Scalar la(0.0);
+  for (int iter = 0; iter < 30; ++iter) {
+    const V R{{Scalar(1.0) / (la + S2[0]), Scalar(1.0) / (la + S2[1]), Scalar(1.0) / (la + S2[2])}};
+    const Scalar val = PS2[0] * R[0] * R[0] + PS2[1] * R[1] * R[1] + PS2[2] * R[2] * R[2] - 1.0;
+    if (value(val) < 1e-6) break;
+    const Scalar deriv = (PS2[0] * R[0] * R[0] * R[0] + PS2[1] * R[1] * R[1] * R[1] +
+                          PS2[2] * R[2] * R[2] * R[2]) * -2.0;
+    if (value(deriv) > -kMinVal) break;
+    const Scalar delta = val * -1.0 / deriv;
+    if (value(delta) < 1e-6) break;
+    la = la + delta;
+  }
+  nrm = {{pos[0] / (la + S2[0]), pos[1] / (la + S2[1]), pos[2] / (la + S2[2])}};
+  normalize(nrm);
+}
+
+bool surface_normal(GeomType type, const Eigen::Vector3d& size, const V& pos, V& nrm) {
+  switch (type) {
+    case GeomType::kSphere:
+      nrm = pos;
+      return true;
+    case GeomType::kCapsule:
+      if (value(pos[2]) < -size[1]) {
+        nrm[2] = pos[2] + size[1];
+      } else if (value(pos[2]) > size[1]) {
+        nrm[2] = pos[2] - size[1];
+      } else {
+        nrm[2] = Scalar(0.0);
+      }
+      nrm[0] = pos[0];
+      nrm[1] = pos[1];
+      return true;
+    case GeomType::kEllipsoid: {
+      if (size[0] < kMinVal || size[1] < kMinVal || size[2] < kMinVal) return false;
+      const double elliptic = value(pos[0]) * value(pos[0]) / (size[0] * size[0]) +
+                              value(pos[1]) * value(pos[1]) / (size[1] * size[1]) +
+                              value(pos[2]) * value(pos[2]) / (size[2] * size[2]);
+      if (elliptic <= 1) return ellipsoid_normal_inside(nrm, pos, size);
+      ellipsoid_normal_outside(nrm, pos, size);
+      return true;
+    }
+    case GeomType::kCylinder: {
+      const double z = value(pos[2]);
+      if (std::abs(z) > 0.95 * size[1]) return false;
+      const double to_disc = std::abs(size[1] - std::abs(z));
+      const double to_wall = std::abs(
+          size[0] - std::sqrt(value(pos[0]) * value(pos[0]) + value(pos[1]) * value(pos[1])));
+      if (to_disc < 0.25 * to_wall) return false;
+      nrm = {{pos[0], pos[1], Scalar(0.0)}};
+      return true;
+    }
+    default:
+      return false;
+  }
+}
+
+void fix_normal(const Pose& g1, const Pose& g2, Found& f) {
+  const Pose* geoms[2] = {&g1, &g2};
+  V normal[2] = {f.normal, f.normal * -1.0};
+  bool processed[2] = {false, false};
+  for (int i = 0; i < 2; ++i) {
+    const Pose& g = *geoms[i];
+    const V local = unrotate(g, f.pos - g.pos);
+    V nrm = unrotate(g, normal[i]);
+    processed[i] = surface_normal(g.type, g.size, local, nrm);
+    if (processed[i]) {
+      normalize(nrm);
+      normal[i] = rotate(g, nrm);
+    }
+  }
+  if (processed[0] && processed[1]) {
+    f.normal = unit(normal[0] - normal[1]);
+  } else if (processed[0]) {
+    f.normal = normal[0];
+  } else if (processed[1]) {
+    f.normal = normal[1] * -1.0;
+  }
+}
+
+// The search at the state replayed on poses moving as `g1` and `g2` do, MuJoCo's normal
+// correction after it.
+Found replay_search(const Model& model, int contact, const GeomShape& s1, const GeomShape& s2,
+                    const Pose& g1, const Pose& g2, double margin) {
+  const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
+  std::array<Eigen::Vector3d, kMostSupportPoints> recorded1, recorded2;
+  Contact answer;
+  const int asked = mpr_search(s1, s2, margin, options, answer, recorded1.data(),
+                               recorded2.data(), kMostSupportPoints);
+  SearchReplay search(contact, s1, s2, g1, g2, margin, recorded1.data(), recorded2.data(),
+                      std::min(asked, kMostSupportPoints));
+  if (asked < 0 || asked > kMostSupportPoints) throw search.not_reproduced();
+  Found f = mpr_replay(search, g1, g2, margin, model.opt.mpr_tolerance, model.opt.mpr_iterations);
+  fix_normal(g1, g2, f);
+  return f;
+}
+
+// A geom standing still at a shape's pose.
+Pose still_pose(const GeomShape& s) {
+  Pose p{s.type, s.size, constant(s.pos), {}};
+  for (int c = 0; c < 3; ++c) p.axis[c] = constant(s.mat.col(c));
+  return p;
+}
+
+// Whether the search's path holds about the state: at the probes the stage's search (with
+// MuJoCo's normal correction) gives what the replay's derivative along the probe's motion
+// predicts, to 1e-10 (the second order is 1e-14 of it). Where the path changes there (a support
+// point's side, a capsule's end, the search's count of steps), the answer jumps, and has no
+// derivative.
+bool search_holds(const Model& model, int contact, const GeomShape& s1, const GeomShape& s2,
+                  double margin) {
+  Pose turning = still_pose(s1);
+  for (int m = 0; m < kProbeMotions; ++m) {
+    const ProbeMotion& motion = probe_motions()[static_cast<std::size_t>(m)];
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d turn = motion.turn.cross(s1.mat.col(c));
+      for (int k = 0; k < 3; ++k) turning.axis[c][k].d[m] = turn[k];
+    }
+    for (int k = 0; k < 3; ++k) turning.pos[k].d[m] = motion.shift[k];
+  }
+  const Pose still2 = still_pose(s2);
+  const Found predicted = replay_search(model, contact, s1, s2, turning, still2, margin);
+  const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
+  std::array<Eigen::Vector3d, kMostSupportPoints> scratch1, scratch2;
+  for (int m = 0; m < kProbeMotions; ++m) {
+    for (const double step : {-kPortalProbe, kPortalProbe}) {
+      const GeomShape moved = probe_moved(s1, m, step);
+      Contact answer;
+      if (mpr_search(moved, s2, margin, options, answer, scratch1.data(), scratch2.data(),
+                     kMostSupportPoints) < 0) {
+        return false;
+      }
+      Found actual;
+      set(actual, Scalar(answer.dist), constant(answer.pos),
+          constant(answer.frame.row(0).transpose()));
+      fix_normal(still_pose(moved), still2, actual);
+      double gap = std::abs(actual.dist.v - (predicted.dist.v + step * predicted.dist.d[m]));
+      for (int c = 0; c < 3; ++c) {
+        gap = std::max(gap, std::abs(actual.pos[c].v -
+                                     (predicted.pos[c].v + step * predicted.pos[c].d[m])));
+        gap = std::max(gap, std::abs(actual.normal[c].v -
+                                     (predicted.normal[c].v + step * predicted.normal[c].d[m])));
+      }
+      if (!(gap <= 1e-10 * (1 + answer.pos.cwiseAbs().maxCoeff()))) return false;
+    }
+  }
+  return true;
+}
+
+// A pair MuJoCo collides by MPR with a round geom or a margin: its search replayed on the moving
+// poses, once checked to hold about the state (else refused).
+void check_mpr_pair(const Model& model, const Data& data, double margin, int first) {
+  const Contact& con = data.contact[static_cast<std::size_t>(first)];
+  const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
+  if (!search_holds(model, first, shape_at_state(model, data, con.geom1),
+                    shape_at_state(model, data, con.geom2), margin)) {
+    throw Error("derivatives: contact " + std::to_string(first) + " (" + geom_type_name(t1) +
+                "-" + geom_type_name(t2) +
+                ", MPR) is where MPR's search changes its path when a geom turns or moves by " +
+                "1e-8 (a support point's side, the count of its steps): its answer jumps there "
+                "and has no derivative.");
+  }
+}
+
+int mpr_pair(const Model& model, const Data& data, const Pose& g1, const Pose& g2, double margin,
+             int first, Found* out) {
+  const Contact& con = data.contact[static_cast<std::size_t>(first)];
+  out[0] = replay_search(model, first, shape_at_state(model, data, con.geom1),
+                         shape_at_state(model, data, con.geom2), g1, g2, margin);
+  return 1;
 }
 
 int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
@@ -317,8 +936,7 @@ int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
               geom_type_name(g2.type) +
               " contact is active; lever differentiates the contact geometry of the pairs "
               "MuJoCo collides in closed form (plane against sphere, capsule, box, cylinder, "
-              "ellipsoid and mesh; sphere, capsule and box pairs) and, of those it collides by "
-              "MPR, box-mesh and mesh-mesh, not a round geom's.");
+              "ellipsoid and mesh; sphere, capsule and box pairs) and by MPR (with libccd).");
 }
 
 // The frame the driver completes from the normal and the first tangent's seed (mju_makeFrame).
@@ -333,6 +951,117 @@ std::array<V, 3> complete_frame(V normal, V tangent) {
   return {normal, tangent, cross(normal, tangent)};
 }
 
+// ---- multiccd's extra contacts (collision/convex.cpp's convex_pair) ----------------------------
+// Each is the search run again with geom 1 turned by -+1e-3 rad about a tangent of the first
+// contact's frame, through its point, and geom 2 turned back, kept where its point is farther
+// than 1e-3 of the smaller bounding radius from every earlier one, at the first contact's depth.
+// The turn's axis and centre are the first contact's, so they move with it: the turned poses on
+// the dual numbers, the search replayed on them (its decisions held, checked to hold).
+
+constexpr double kMulticcdTurn = 1e-3;
+
+// The rotation by `angle` about the unit `axis` (mju_axisAngle2Quat, then mju_quat2Mat).
+template <class S>
+std::array<primitive::Vec<S>, 3> turn_matrix(const primitive::Vec<S>& axis, double angle) {
+  const double c = std::cos(angle * 0.5), s = std::sin(angle * 0.5);
+  const S q0(c), q1 = axis[0] * s, q2 = axis[1] * s, q3 = axis[2] * s;
+  // rows
+  return {{{{q0 * q0 + q1 * q1 - q2 * q2 - q3 * q3, (q1 * q2 - q0 * q3) * 2.0,
+             (q1 * q3 + q0 * q2) * 2.0}},
+           {{(q1 * q2 + q0 * q3) * 2.0, q0 * q0 - q1 * q1 + q2 * q2 - q3 * q3,
+             (q2 * q3 - q0 * q1) * 2.0}},
+           {{(q1 * q3 - q0 * q2) * 2.0, (q2 * q3 + q0 * q1) * 2.0,
+             q0 * q0 - q1 * q1 - q2 * q2 + q3 * q3}}}};
+}
+
+template <class S>
+primitive::Vec<S> apply_rows(const std::array<primitive::Vec<S>, 3>& rows,
+                             const primitive::Vec<S>& x, bool transposed) {
+  if (transposed) return rows[0] * x[0] + rows[1] * x[1] + rows[2] * x[2];
+  return {{dot(rows[0], x), dot(rows[1], x), dot(rows[2], x)}};
+}
+
+// A pose turned by the rotation about `origin` (mju_rotateFrame): axes turned, centre moved so
+// that origin stays.
+Pose turned_pose(const Pose& g, const std::array<V, 3>& rows, bool transposed, const V& origin) {
+  Pose t = g;
+  for (int c = 0; c < 3; ++c) t.axis[c] = apply_rows(rows, g.axis[c], transposed);
+  const V rel = origin - g.pos;
+  t.pos = g.pos - (apply_rows(rows, rel, transposed) - rel);
+  return t;
+}
+
+GeomShape turned_shape(const GeomShape& g, const std::array<Point, 3>& rows, bool transposed,
+                       const Eigen::Vector3d& origin) {
+  GeomShape t = g;
+  for (int c = 0; c < 3; ++c) {
+    const Point axis = apply_rows(rows, point(g.mat.col(c)), transposed);
+    for (int k = 0; k < 3; ++k) t.mat(k, c) = axis[k];
+  }
+  const Eigen::Vector3d rel = origin - g.pos;
+  const Point moved = apply_rows(rows, point(rel), transposed);
+  for (int k = 0; k < 3; ++k) t.pos[k] = g.pos[k] - (moved[k] - rel[k]);
+  return t;
+}
+
+// The pair's contacts after its first, found[0], on the moving poses; returns how many there are
+// with the first (the pair's count, or a divisor of it where an explicit pair repeats a dynamic
+// one).
+int multiccd_contacts(const Model& model, const Data& data, const Pose& g1, const Pose& g2,
+                      double margin, int first, int count, Found* found) {
+  const Contact& con = data.contact[static_cast<std::size_t>(first)];
+  const GeomShape s1 = shape_at_state(model, data, con.geom1);
+  const GeomShape s2 = shape_at_state(model, data, con.geom2);
+  const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
+  const std::array<V, 3> frame = complete_frame(found[0].normal, found[0].tangent);
+  const double tolerance = kMulticcdTurn * std::min(model.geom_rbound[con.geom1],
+                                                    model.geom_rbound[con.geom2]);
+  std::array<Eigen::Vector3d, kMostSupportPoints> scratch1, scratch2;
+  std::array<Eigen::Vector3d, kMaxPairContacts> kept;
+  kept[0] = con.pos;
+  int n = 1;
+  for (int axis = 1; axis <= 2; ++axis) {
+    for (const double angle : {-kMulticcdTurn, kMulticcdTurn}) {
+      Point axis_value;
+      for (int k = 0; k < 3; ++k) axis_value[k] = con.frame(axis, k);
+      const std::array<Point, 3> rows = turn_matrix(axis_value, angle);
+      const GeomShape t1 = turned_shape(s1, rows, false, con.pos);
+      const GeomShape t2 = turned_shape(s2, rows, true, con.pos);
+      Contact answer;
+      if (mpr_search(t1, t2, margin, options, answer, scratch1.data(), scratch2.data(),
+                     kMostSupportPoints) < 0) {
+        continue;
+      }
+      if (answer.frame.row(0).cwiseAbs().maxCoeff() == 0) continue;  // no direction
+      bool distinct = true;
+      for (int i = 0; i < n; ++i) {
+        distinct = distinct && (kept[static_cast<std::size_t>(i)] - answer.pos).norm() > tolerance;
+      }
+      if (!distinct) continue;
+      if (n == count || n == kMaxPairContacts) {
+        throw Error("derivatives: contact " + std::to_string(first) + " (" +
+                    geom_type_name(s1.type) + "-" + geom_type_name(s2.type) +
+                    ", multiccd) is not reproduced: more contacts than the stage's.");
+      }
+      if (!search_holds(model, first, t1, t2, margin)) {
+        throw Error("derivatives: contact " + std::to_string(first + n) + " (" +
+                    geom_type_name(s1.type) + "-" + geom_type_name(s2.type) +
+                    ", multiccd) is where MPR's search changes its path when a geom turns or " +
+                    "moves by 1e-8: its answer jumps there and has no derivative.");
+      }
+      const std::array<V, 3> turn = turn_matrix(frame[static_cast<std::size_t>(axis)], angle);
+      const Pose p1 = turned_pose(g1, turn, false, found[0].pos);
+      const Pose p2 = turned_pose(g2, turn, true, found[0].pos);
+      Found f = replay_search(model, first, t1, t2, p1, p2, margin);
+      f.dist = found[0].dist;
+      found[n] = f;
+      kept[static_cast<std::size_t>(n)] = answer.pos;
+      ++n;
+    }
+  }
+  return n;
+}
+
 }  // namespace
 
 bool contact_geometry_supported(GeomType a, GeomType b) {
@@ -344,7 +1073,7 @@ bool contact_geometry_supported(GeomType a, GeomType b) {
   if (a == T::kSphere || a == T::kCapsule) {
     return b == T::kSphere || b == T::kCapsule || b == T::kBox;
   }
-  return (a == T::kBox && b == T::kBox) || polytope_mpr_pair(a, b);
+  return (a == T::kBox && b == T::kBox) || (collides_by_mpr(a, b) && has_convex_pairs());
 }
 
 int pair_first_contact(const Data& data, int i, int& count) {
@@ -376,6 +1105,20 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   margin = pair >= 0 ? model.pair_margin[pair]
                      : std::max(model.geom_margin[con.geom1], model.geom_margin[con.geom2]);
   std::array<Found, kMaxPairContacts> found;
+  // MPR's pairs: two polytopes at margin 0 by their last portal, the others by the whole search
+  const bool by_mpr = collides_by_mpr(model.geom_type[con.geom1], model.geom_type[con.geom2]);
+  Portal portal;
+  const bool polytopes =
+      by_mpr && margin == 0.0 &&
+      polytope_mpr_pair(model.geom_type[con.geom1], model.geom_type[con.geom2]) &&
+      polytope_portal(model, data, margin, first, portal);
+  if (by_mpr && !polytopes) check_mpr_pair(model, data, margin, first);
+  // multiccd's extra contacts: not for a sphere or an ellipsoid (as convex_pair)
+  const auto roundish = [&](int g) {
+    return model.geom_type[g] == GeomType::kSphere || model.geom_type[g] == GeomType::kEllipsoid;
+  };
+  const bool multiccd = by_mpr && model.opt.enabled(kEnableMulticcd) && !roundish(con.geom1) &&
+                        !roundish(con.geom2);
   for (int m0 = 0; m0 < directions; m0 += kMotions) {  // kMotions motions at a time
     const int motions_now = std::min(kMotions, directions - m0);
     const Pose g1 = moving_pose(model, data, con.geom1, motions + m0, motions_now, false);
@@ -383,11 +1126,14 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
     int n = 0;
     if (g1.type == GeomType::kPlane && g2.type == GeomType::kMesh) {
       n = plane_mesh(g1, g2, data, first, count, found.data());
-    } else if (polytope_mpr_pair(g1.type, g2.type)) {
-      n = polytope_pair(model, data, g1, g2, margin, first, count, found.data());
+    } else if (polytopes) {
+      n = polytope_pair(portal, g1, g2, margin, found.data());
+    } else if (by_mpr) {
+      n = mpr_pair(model, data, g1, g2, margin, first, found.data());
     } else {
       n = collide_moving(g1, g2, margin, found.data());
     }
+    if (multiccd) n = multiccd_contacts(model, data, g1, g2, margin, first, count, found.data());
     for (int k = 0; k < count; ++k) {
       const int i = first + k;
       const Contact& ck = data.contact[static_cast<std::size_t>(i)];
