@@ -145,15 +145,6 @@ inline double dot_as_mujoco(const double* a, const double* b, int lo, int end, i
   return out;
 }
 
-/// Whether MuJoCo 2.2.2 keeps the constraint Jacobian sparse for a model of nv dofs: what
-/// mj_isSparse decides under <option jacobian="auto"> (lever reads no other layout): from 60
-/// dofs on. It then takes its products with the rows of efc_J (J x) and of efc_AR (the PGS
-/// solver's A f) over each row's stored entries, one after another in column order
-/// (mju_dotSparse), instead of in mju_dot's groups of four. (mju_dotSparse has four running sums
-/// of its own when MuJoCo is built with AVX; Debian's libmujoco 2.2.2 is built without it, and
-/// without, the sum is in order.)
-inline bool mujoco_sparse_rows(int nv) { return nv >= 60; }
-
 /// rows_dot_as_mujoco in MuJoCo's sparse order: out[k] = a_k . x over [lo, end), the products
 /// added one after another from lo. A sparse row also stores zeros (a contact's common
 /// ancestors' dofs), and a zero product adds nothing to a sum: the sum over [lo, end) with a
@@ -168,7 +159,9 @@ inline void rows_dot_in_order(const double* a, Eigen::Index stride, int count, c
 }
 
 /// a . b over [lo, end) of n as MuJoCo sums a product with a row of efc_J or efc_AR: in order
-/// when sparse (mujoco_sparse_rows), else as dot_as_mujoco.
+/// when its Jacobian is sparse (sparse_jacobian, lever/model.hpp), else as dot_as_mujoco. (Its
+/// mju_dotSparse has four running sums of its own when MuJoCo is built with AVX; Debian's
+/// libmujoco 2.2.2 is built without, and adds in order.)
 inline double row_dot_as_mujoco(bool sparse, const double* a, const double* b, int lo, int end,
                                 int n) {
   double out;
@@ -182,7 +175,7 @@ inline double row_dot_as_mujoco(bool sparse, const double* a, const double* b, i
 
 /// out = J x for every row (nefc numbers; x has nv), each row's product summed as MuJoCo sums
 /// efc_J's: mju_mulMatVec's dot_as_mujoco, or in order when its Jacobian is sparse
-/// (mujoco_sparse_rows).
+/// (data.work.sparse_row_sums).
 void rows_times(const Data& data, const double* x, double* out);
 
 /// out = J x - aref for every row (MuJoCo's jar: where the rows' accelerations stand against

@@ -285,7 +285,7 @@ void start_forces(const Model& model, Data& data) {
   // the dual cost, A f row by row (A is symmetric: its column r is its row r), in the
   // workspace constraint_forces_at used for the rows' jar
   double* Af = data.work.newton_x.data();
-  const bool sparse = mujoco_sparse_rows(model.nv);
+  const bool sparse = sparse_jacobian(model.opt, model.nv);
   for (int r = 0; r < n; ++r) Af[r] = row_dot_as_mujoco(sparse, A.col(r).data(), f, 0, n, n);
   const double cost = dot(f, data.efc_b.data(), n) + 0.5 * dot(f, Af, n);
   if (cost > 0) std::fill(f, f + n, 0.0);
@@ -315,7 +315,7 @@ int solve_constraint_pgs(const Model& model, Data& data) {
   set_dual_states(data);
 
   const double scale = cost_scale(model);
-  const bool sparse = mujoco_sparse_rows(nv);  // how MuJoCo sums a row of A times f
+  const bool sparse = sparse_jacobian(model.opt, nv);  // how MuJoCo sums a row of A times f
   int sweeps = 0;
   while (sweeps < model.opt.iterations) {
     double improvement = 0.0;

@@ -474,6 +474,7 @@ void set_contact_soft_rows(const Model& model, Data& data, int i) {
 
 void unchecked::make_constraint(const Model& model, Data& data) {
   const Options& opt = model.opt;
+  data.work.sparse_row_sums = sparse_jacobian(opt, model.nv);
   if (opt.disabled(kDisableConstraint)) {  // no rows at all (and no contacts: see set_const)
     data.ne = data.nf = data.nefc = 0;
     return;
@@ -631,7 +632,7 @@ void add_rows(const double* const* a, const double* f, int count, int lo, int sp
 
 void rows_times(const Data& data, const double* x, double* out) {
   const int nv = static_cast<int>(data.efc_J.cols());
-  const bool sparse = mujoco_sparse_rows(nv);
+  const bool sparse = data.work.sparse_row_sums;
   for (int r = 0; r < data.nefc;) {
     if (dense_row(data.efc_type[r])) {
       out[r] = row_dot_as_mujoco(sparse, data.efc_J.row(r).data(), x, 0, nv, nv);
