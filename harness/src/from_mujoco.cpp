@@ -34,6 +34,7 @@ void copy_contact(const mjModel* m, Model& model) {
   }
   model.opt.cone = m->opt.cone == mjCONE_PYRAMIDAL ? Cone::kPyramidal : Cone::kElliptic;
   model.opt.impratio = m->opt.impratio;
+  model.opt.jacobian = static_cast<JacobianLayout>(m->opt.jacobian);  // mjtJacobian's values
   if (m->opt.solver != mjSOL_PGS && m->opt.solver != mjSOL_CG && m->opt.solver != mjSOL_NEWTON) {
     throw std::runtime_error("from_mujoco: unknown constraint solver");
   }

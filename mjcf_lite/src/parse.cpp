@@ -414,6 +414,10 @@ Options read_option(const Element& root) {
   o.impratio = f.real("impratio");
   o.iterations = f.integer("iterations");
   o.tolerance = f.real("tolerance");
+  const std::string jacobian = f.word("jacobian");
+  o.jacobian = jacobian == "dense"    ? JacobianLayout::kDense
+               : jacobian == "sparse" ? JacobianLayout::kSparse
+                                      : JacobianLayout::kAuto;
   const Fields flag(flags, "option", "flag");
   for (int k = 0; k < kDisableBits; ++k) {
     if (flag.word(kDisableNames[k]) == "disable") o.disableflags |= 1 << k;

@@ -675,8 +675,9 @@ std::vector<ElementRule> build() {
                    real("noslip_tolerance", 1, "1e-6",
                         "noslip solver tolerance (kept; no effect without noslip iterations)"),
                    keyword("jacobian", "auto", "dense sparse auto", "",
-                           "MuJoCo's matrix layout (dense, sparse, or by size): lever's numbers "
-                           "are the same for each, and it keeps its own layout"),
+                           "MuJoCo's layout of the constraint Jacobian (dense, sparse, or "
+                           "sparse from 60 dofs on): lever keeps its own, and sums its products "
+                           "with the rows in the order MuJoCo's layout sums them"),
                    real("mpr_tolerance", 1, "1e-6",
                         "boundary tolerance of the MPR that collides convex pairs (cylinders, "
                         "ellipsoids, meshes); must not be negative"),
@@ -1145,9 +1146,11 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   its attributes (`texcoord`, `material`, `subgrid`, ...) are checked as 2.2.2 checks them and
   refuse nothing. As in 2.2.2, `limited` on a composite's `<joint>` or `<tendon>` is read and
   ignored.
-* `option/jacobian` (`dense`, `sparse`, `auto`) is accepted: it chooses MuJoCo's matrix layout,
-  not the numbers, which are the same in every layout; lever keeps its own layout whatever it
-  says.
+* `option/jacobian` (`dense`, `sparse`, `auto`: sparse from 60 dofs on) chooses MuJoCo's layout
+  of the constraint Jacobian, and with it the order in which MuJoCo sums each product with a row
+  (J qvel, and the PGS solver's products with J M^-1 J^T); lever keeps its own layout whatever it
+  says, and sums those products in the order MuJoCo's layout sums them, so that their last bits
+  are MuJoCo's.
 * Kept, changing no dynamics: `<asset>` (`<mesh>`, `<material>`, `<texture>`), `<light>`,
   `<camera>`, `<visual>`, `<statistic>`, `compiler/meshdir` and `texturedir`, and geom
   `material`, `rgba`, `group`. Their names are in `Model::visual`.

@@ -16,12 +16,12 @@ namespace {
 
 // Bumped when the layout of the state changes, so that an old pickle is refused by name rather
 // than misread.
-constexpr int kStateVersion = 2;
+constexpr int kStateVersion = 3;
 
 // The structs outside the field table are carried member by member below. A member added to one
 // of them changes its size and stops the build here: carry the new member too, then update the
 // size.
-static_assert(sizeof(lever::Options) == 216, "lever::Options changed: pickle its new member");
+static_assert(sizeof(lever::Options) == 224, "lever::Options changed: pickle its new member");
 static_assert(sizeof(lever::CompilerInfo) == 12, "lever::CompilerInfo changed: pickle it");
 static_assert(sizeof(lever::VisualInfo) == 8 * sizeof(std::vector<std::string>) +
                                                2 * sizeof(std::string),
@@ -125,6 +125,7 @@ py::dict model_state(const lever::Model& model) {
   opt["impratio"] = o.impratio;
   opt["iterations"] = o.iterations;
   opt["tolerance"] = o.tolerance;
+  opt["jacobian"] = static_cast<int>(o.jacobian);
   opt["mpr_tolerance"] = o.mpr_tolerance;
   opt["mpr_iterations"] = o.mpr_iterations;
   opt["magnetic"] = bytes_of(o.magnetic.data(), 3 * sizeof(double));
@@ -229,6 +230,7 @@ std::shared_ptr<lever::Model> model_from_state(const py::dict& state) {
   m.opt.impratio = item(opt, "impratio", "a model").cast<double>();
   m.opt.iterations = item(opt, "iterations", "a model").cast<int>();
   m.opt.tolerance = item(opt, "tolerance", "a model").cast<double>();
+  m.opt.jacobian = static_cast<lever::JacobianLayout>(item(opt, "jacobian", "a model").cast<int>());
   m.opt.mpr_tolerance = item(opt, "mpr_tolerance", "a model").cast<double>();
   m.opt.mpr_iterations = item(opt, "mpr_iterations", "a model").cast<int>();
   write_bytes(item(opt, "magnetic", "a model"), m.opt.magnetic.data(), 3 * sizeof(double),

@@ -307,6 +307,7 @@ void compare_options(Differences& d, const Model& o, const mjModel& m) {
   d.integer("opt_iterations", 0, o.opt.iterations, m.opt.iterations);
   d.real("opt_tolerance", 0, o.opt.tolerance, m.opt.tolerance);
   d.integer("opt_solver", 0, static_cast<int>(o.opt.solver), m.opt.solver);
+  d.integer("opt_jacobian", 0, static_cast<int>(o.opt.jacobian), m.opt.jacobian);
   d.integer("opt_noslip_iterations", 0, 0, m.opt.noslip_iterations);
   d.integer("opt_disableflags", 0, o.opt.disableflags, m.opt.disableflags);
   d.integer("opt_enableflags", 0, o.opt.enableflags, m.opt.enableflags);

@@ -155,6 +155,9 @@ struct DataWorkspace {
   // gradient, newton_dir: the search direction, newton_Mdir: M times it) and adds these
   ArenaVector cg_Mgrad;                   ///< (nv) M^-1 gradient
   ArenaVector cg_grad_old, cg_Mgrad_old;  ///< (nv) both at the previous iterate
+  /// make_constraint(): whether the products with the rows are summed as MuJoCo sums them with
+  /// its sparse Jacobian (sparse_jacobian) rather than its dense one
+  bool sparse_row_sums = false;
   // a contact's rows in its own frame (make_constraint): contact i's frame rows
   // (normal, two tangents, then the spin and the two rolls; one row without friction) are rows
   // efc_address.. of contact_frame_J, over the span of dofs contact_span[2 i] (the first) ..,

@@ -282,6 +282,15 @@ enum class Solver : int {
   kNewton = 2,  ///< Newton's method: lever solves the problem exactly (tolerance not read)
 };
 
+/// MuJoCo's layouts of the constraint Jacobian (<option jacobian>); the numeric values are its
+/// mjtJacobian. lever keeps its own layout whatever the option says, and sums each product with a
+/// row in the order MuJoCo's layout sums it (sparse_jacobian), so that its last bits are MuJoCo's.
+enum class JacobianLayout : int {
+  kDense = 0,
+  kSparse = 1,
+  kAuto = 2,  ///< sparse from 60 dofs on (MuJoCo's mj_isSparse), else dense
+};
+
 /// The features <option><flag> switches off (MuJoCo's mjtDisableBit, the same bits): each set
 /// bit of Options::disableflags removes what MuJoCo 2.2.2 removes.
 enum DisableBit : int {
@@ -329,6 +338,8 @@ struct Options {
                           ///< convergence)
   double tolerance = 1e-8;  ///< CG's tolerance, on the cost's decrease and gradient, and PGS's,
                             ///< on a sweep's decrease (MuJoCo's)
+  JacobianLayout jacobian = JacobianLayout::kAuto;  ///< MuJoCo's layout of the rows (its order
+                                                    ///< of sums; see sparse_jacobian)
   // the general convex pairs' Minkowski portal refinement (MuJoCo 2.2.2's defaults)
   double mpr_tolerance = 1e-6;  ///< MPR's boundary tolerance
   int mpr_iterations = 50;      ///< most MPR iterations
@@ -349,6 +360,15 @@ struct Options {
   bool disabled(DisableBit bit) const { return (disableflags & bit) != 0; }
   bool enabled(EnableBit bit) const { return (enableflags & bit) != 0; }
 };
+
+/// Whether MuJoCo 2.2.2 holds this model's constraint Jacobian sparse (mj_isSparse): option
+/// jacobian "sparse", or "auto" with 60 dofs or more. Its products with the rows then add each
+/// row's stored entries one after another (mju_dotSparse, as Debian's libmujoco 2.2.2 is built,
+/// without AVX) instead of in mju_dot's four running sums.
+inline bool sparse_jacobian(const Options& opt, int nv) {
+  return opt.jacobian == JacobianLayout::kSparse ||
+         (opt.jacobian == JacobianLayout::kAuto && nv >= 60);
+}
 
 /// Whether the model's bodies feel MuJoCo 2.2.2's fluid forces (opt.viscosity or opt.density > 0).
 inline bool has_fluid(const Options& opt) { return opt.viscosity > 0 || opt.density > 0; }

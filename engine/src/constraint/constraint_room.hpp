@@ -83,7 +83,7 @@ inline bool friction_loss_row(ConstraintType type) {
 // ---- the constraint rows' products (rows.cpp), shared by the solvers -------------------
 // A contact's rows are nonzero only over its span of dofs (data.work.contact_span): J x and
 // J^T f read efc_J's rows there (a pyramid's edges n +- mu t as efc_J holds them), each summed as
-// MuJoCo's dense products sum efc_J's; a limit row reads its dof. J^T D J works on the contact
+// MuJoCo's products sum efc_J's; a limit row reads its dof. J^T D J works on the contact
 // frame's rows (data.work.contact_frame_J), a pyramid's pairs of edges gathered.
 
 namespace detail {
@@ -145,8 +145,37 @@ inline double dot_as_mujoco(const double* a, const double* b, int lo, int end, i
   return out;
 }
 
-/// out = J x for every row (nefc numbers; x has nv), each row's product summed as MuJoCo's
-/// mju_mulMatVec sums efc_J's (dot_as_mujoco).
+/// rows_dot_as_mujoco in MuJoCo's sparse order: out[k] = a_k . x over [lo, end), the products
+/// added one after another from lo. A sparse row also stores zeros (a contact's common
+/// ancestors' dofs), and a zero product adds nothing to a sum: the sum over [lo, end) with a
+/// zero outside it is MuJoCo's over its stored entries (x finite).
+inline void rows_dot_in_order(const double* a, Eigen::Index stride, int count, const double* x,
+                              int lo, int end, double* out) {
+  for (int k = 0; k < count; ++k, a += stride) {
+    double sum = 0.0;
+    for (int j = lo; j < end; ++j) sum += a[j] * x[j];
+    out[k] = sum;
+  }
+}
+
+/// a . b over [lo, end) of n as MuJoCo sums a product with a row of efc_J or efc_AR: in order
+/// when its Jacobian is sparse (sparse_jacobian, lever/model.hpp), else as dot_as_mujoco. (Its
+/// mju_dotSparse has four running sums of its own when MuJoCo is built with AVX; Debian's
+/// libmujoco 2.2.2 is built without, and adds in order.)
+inline double row_dot_as_mujoco(bool sparse, const double* a, const double* b, int lo, int end,
+                                int n) {
+  double out;
+  if (sparse) {
+    rows_dot_in_order(a, 0, 1, b, lo, end, &out);
+  } else {
+    rows_dot_as_mujoco(a, 0, 1, b, lo, end, n, &out);
+  }
+  return out;
+}
+
+/// out = J x for every row (nefc numbers; x has nv), each row's product summed as MuJoCo sums
+/// efc_J's: mju_mulMatVec's dot_as_mujoco, or in order when its Jacobian is sparse
+/// (data.work.sparse_row_sums).
 void rows_times(const Data& data, const double* x, double* out);
 
 /// out = J x - aref for every row (MuJoCo's jar: where the rows' accelerations stand against
@@ -154,7 +183,8 @@ void rows_times(const Data& data, const double* x, double* out);
 void rows_jar(const Data& data, const double* x, double* out);
 
 /// out += J^T f (f has nefc numbers, out nv): the rows added one after another, each row's
-/// products row_j f_r, as MuJoCo's mju_mulMatTVec adds them.
+/// products row_j f_r, as MuJoCo's mju_mulMatTVec adds them (and, sparse, its products with the
+/// columns of efc_J, each over its rows in order: the same sums).
 void add_rows_transpose(const Data& data, const double* f, double* out);
 
 /// H += J^T diag(weight) J in H's lower triangle (weight: nefc numbers, zero for a row left

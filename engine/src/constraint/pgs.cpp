@@ -285,7 +285,8 @@ void start_forces(const Model& model, Data& data) {
   // the dual cost, A f row by row (A is symmetric: its column r is its row r), in the
   // workspace constraint_forces_at used for the rows' jar
   double* Af = data.work.newton_x.data();
-  for (int r = 0; r < n; ++r) Af[r] = dot(A.col(r).data(), f, n);
+  const bool sparse = sparse_jacobian(model.opt, model.nv);
+  for (int r = 0; r < n; ++r) Af[r] = row_dot_as_mujoco(sparse, A.col(r).data(), f, 0, n, n);
   const double cost = dot(f, data.efc_b.data(), n) + 0.5 * dot(f, Af, n);
   if (cost > 0) std::fill(f, f + n, 0.0);
 }
@@ -295,12 +296,9 @@ void start_forces(const Model& model, Data& data) {
 int solve_constraint_pgs(const Model& model, Data& data) {
   auto& w = data.work;
   const int n = data.nefc;
-  // b = J qacc_smooth - aref, each row's product summed as MuJoCo sums it (dense efc_J)
+  // b = J qacc_smooth - aref, each row's product summed as MuJoCo sums it
   const int nv = model.nv;
-  for (int r = 0; r < n; ++r) {
-    data.efc_b[r] = dot(data.efc_J.row(r).data(), data.qacc_smooth.data(), nv) -
-                    data.efc_aref[r];
-  }
+  rows_jar(data, data.qacc_smooth.data(), data.efc_b.data());
 
   // A, whole (a row of A is then a column, contiguous), and the inverse of its diagonal
   row_space_matrix(model, data);
@@ -317,6 +315,7 @@ int solve_constraint_pgs(const Model& model, Data& data) {
   set_dual_states(data);
 
   const double scale = cost_scale(model);
+  const bool sparse = sparse_jacobian(model.opt, nv);  // how MuJoCo sums a row of A times f
   int sweeps = 0;
   while (sweeps < model.opt.iterations) {
     double improvement = 0.0;
@@ -324,7 +323,7 @@ int solve_constraint_pgs(const Model& model, Data& data) {
       const int size = block_size(data, r);
       double res[6], before[6], Ab[36];
       for (int j = 0; j < size; ++j) {
-        res[j] = b[r + j] + dot(A.col(r + j).data(), f, n);
+        res[j] = b[r + j] + row_dot_as_mujoco(sparse, A.col(r + j).data(), f, 0, n, n);
         before[j] = f[r + j];
       }
       const ConstraintType type = data.efc_type[r];

@@ -474,6 +474,7 @@ void set_contact_soft_rows(const Model& model, Data& data, int i) {
 
 void unchecked::make_constraint(const Model& model, Data& data) {
   const Options& opt = model.opt;
+  data.work.sparse_row_sums = sparse_jacobian(opt, model.nv);
   if (opt.disabled(kDisableConstraint)) {  // no rows at all (and no contacts: see set_const)
     data.ne = data.nf = data.nefc = 0;
     return;
@@ -631,9 +632,10 @@ void add_rows(const double* const* a, const double* f, int count, int lo, int sp
 
 void rows_times(const Data& data, const double* x, double* out) {
   const int nv = static_cast<int>(data.efc_J.cols());
+  const bool sparse = data.work.sparse_row_sums;
   for (int r = 0; r < data.nefc;) {
     if (dense_row(data.efc_type[r])) {
-      out[r] = dot_as_mujoco(data.efc_J.row(r).data(), x, 0, nv, nv);
+      out[r] = row_dot_as_mujoco(sparse, data.efc_J.row(r).data(), x, 0, nv, nv);
       ++r;
       continue;
     }
@@ -649,7 +651,11 @@ void rows_times(const Data& data, const double* x, double* out) {
     // n +- mu t as efc_J holds them (c0 +- mu ck from the frame's products rounds otherwise)
     const int rows =
         data.efc_type[r] == ConstraintType::kContactPyramidal ? 2 * (con.dim - 1) : con.dim;
-    rows_dot_as_mujoco(data.efc_J.row(r).data(), nv, rows, x, lo, lo + span, nv, out + r);
+    if (sparse) {
+      rows_dot_in_order(data.efc_J.row(r).data(), nv, rows, x, lo, lo + span, out + r);
+    } else {
+      rows_dot_as_mujoco(data.efc_J.row(r).data(), nv, rows, x, lo, lo + span, nv, out + r);
+    }
     r += rows;
   }
 }

@@ -577,6 +577,11 @@ void check_options_actuators_keys(const Model& model) {
     throw ModelError("opt.solver " + std::to_string(static_cast<int>(model.opt.solver)) +
                      " is not one lever has (0 PGS, 1 CG, 2 Newton).");
   }
+  if (model.opt.jacobian != JacobianLayout::kDense &&
+      model.opt.jacobian != JacobianLayout::kSparse && model.opt.jacobian != JacobianLayout::kAuto) {
+    throw ModelError("opt.jacobian " + std::to_string(static_cast<int>(model.opt.jacobian)) +
+                     " is not one of MuJoCo's layouts (0 dense, 1 sparse, 2 auto).");
+  }
   if (model.opt.iterations < 0 || !(model.opt.tolerance >= 0)) {
     throw ModelError("the solver's iterations and tolerance must not be negative.");
   }

@@ -302,10 +302,14 @@ void set_const(Model& model) {
   data.qpos = model.qpos0;
   kinematics(model, data);
   crba(model, data);
+  for (int i = 0; i < model.nv; ++i) model.dof_M0[i] = data.M(i, i);
+  // the factor MuJoCo's solves at qpos0 use: the whole M, its simple dofs (marked by its compiler
+  // before mj_setConst) left out of the elimination. Their blocks are diagonal but for rounding
+  // (a principal inertia turned into the world's axes and back), which the solves then ignore.
+  build_simple_bodies(model);  // crba() copies their dofs' diagonal from dof_M0 from now on
   factor_mass(model, data);
   Eigen::VectorXd x(model.nv);
   for (int i = 0; i < model.nv; ++i) {
-    model.dof_M0[i] = data.M(i, i);
     x.setZero();
     x[i] = 1.0;
     solve_mass(model, data, x);
@@ -348,7 +352,6 @@ void set_const(Model& model) {
   build_actuator_constants(model, data);
   complete_equality_data(model, data);  // constraint/equality.cpp: anchors at qpos0
   detail::check_at_qpos0(model, data);  // model_check.cpp: finite parameters can still overflow
-  build_simple_bodies(model);  // after dof_M0, which crba() copies for their dofs from now on
   build_static_bodies(model, data);  // kinematics() copies their frames from now on
 
   // from here on a Data of this model makes room for contact rows, and forward() collides: a
