@@ -523,7 +523,7 @@ namespace {
 
 /// A geom as libccd sees it in mpr_search: its support points also written down in order.
 struct RecordingObject {
-  CcdObject object;
+  Support object;
   Vec3* points;
   int count;
   int capacity;
@@ -531,7 +531,7 @@ struct RecordingObject {
 
 void recording_support(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* point) {
   auto* r = static_cast<RecordingObject*>(const_cast<void*>(object));
-  ccd_support(&r->object, dir, point);
+  support_point(r->object, dir->v, point->v);
   if (r->count < r->capacity) r->points[r->count] = Vec3(point->v[0], point->v[1], point->v[2]);
   ++r->count;
 }
@@ -556,8 +556,8 @@ int mpr_search(const GeomShape& g1, const GeomShape& g2, double margin,
   ccd.center2 = recording_center;
   ccd.max_iterations = static_cast<unsigned long>(options.mpr_iterations);
   ccd.mpr_tolerance = options.mpr_tolerance;
-  RecordingObject o1{{&g1, margin, -1}, points1, 0, capacity};
-  RecordingObject o2{{&g2, margin, -1}, points2, 0, capacity};
+  RecordingObject o1{Support(g1, margin), points1, 0, capacity};
+  RecordingObject o2{Support(g2, margin), points2, 0, capacity};
   ccd_real_t depth;
   ccd_vec3_t dir, pos;
   if (ccdMPRPenetration(&o1, &o2, &ccd, &depth, &dir, &pos) != 0) return -1;
