@@ -16,8 +16,9 @@
 // of the last portal the search ended on (a vertex on a face, an edge across an edge, a face on a
 // face), the others (a round geom, a margin) by the whole search replayed on the dual numbers,
 // its decisions held; multiccd's extra contacts by the turned searches replayed. Where the portal
-// or the search's path flips with the direction of a motion, the answer jumps and is refused by
-// name (docs/derivatives.md).
+// or the search's path flips with the direction of a motion, or a closed form's answer turns
+// faster than its first order (an upright cylinder's disc flat on a plane), the answer jumps and
+// is refused by name (docs/derivatives.md).
 #include <lever/collision.hpp>
 #include <lever/error.hpp>
 
