@@ -16,8 +16,9 @@
 // of the last portal the search ended on (a vertex on a face, an edge across an edge, a face on a
 // face), the others (a round geom, a margin) by the whole search replayed on the dual numbers,
 // its decisions held; multiccd's extra contacts by the turned searches replayed. Where the portal
-// or the search's path flips with the direction of a motion, the answer jumps and is refused by
-// name (docs/derivatives.md).
+// or the search's path flips with the direction of a motion, or a closed form's answer turns
+// faster than its first order (an upright cylinder's disc flat on a plane), the answer jumps and
+// is refused by name (docs/derivatives.md).
 #include <lever/collision.hpp>
 #include <lever/error.hpp>
 
@@ -48,6 +49,7 @@ using V = primitive::Vec<Scalar>;
 using primitive::cross;
 using primitive::dot;
 using primitive::normalize;
+using primitive::value;
 V constant(const Eigen::Vector3d& x) { return primitive::constant_vec<Scalar>(x); }
 
 // The pairs MuJoCo collides by MPR whose geoms are both polytopes: box-mesh and mesh-mesh.
@@ -94,44 +96,65 @@ void set(Found& f, const Scalar& dist, const V& pos, const V& normal) {
 // ---- the pairs the collision room does not write on a scalar: as box.cpp and convex.cpp decide
 // them
 
-int plane_ellipsoid(const Pose& plane, const Pose& ellipsoid, double margin, Found* out) {
-  const V n = plane.axis[2];
-  const V down = unrotate(ellipsoid, n * -1.0);
-  V support{down[0] * ellipsoid.size[0], down[1] * ellipsoid.size[1], down[2] * ellipsoid.size[2]};
+// The pairs below run on any scalar S (double, or dual numbers along some motions), as the
+// collision room's closed forms do: the derivative on Scalar, the probes of whether a case holds
+// on double and on two motions' duals.
+template <class S>
+using ShapeOf = primitive::Shape<S>;
+template <class S>
+using TouchOf = primitive::Touch<S>;
+
+template <class S>
+int plane_ellipsoid(const ShapeOf<S>& plane, const ShapeOf<S>& ellipsoid, double margin,
+                    TouchOf<S>* out) {
+  using W = primitive::Vec<S>;
+  const W n = plane.axis[2];
+  const W up_along_axes = {dot(ellipsoid.axis[0], n), dot(ellipsoid.axis[1], n),
+                           dot(ellipsoid.axis[2], n)};
+  const W down = up_along_axes * S(-1.0);
+  W support{down[0] * ellipsoid.size[0], down[1] * ellipsoid.size[1], down[2] * ellipsoid.size[2]};
   normalize(support);
   support = {support[0] * ellipsoid.size[0], support[1] * ellipsoid.size[1],
              support[2] * ellipsoid.size[2]};
-  const V deepest = rotate(ellipsoid, support) + ellipsoid.pos;
-  const Scalar dist = dot(n, deepest - plane.pos);
-  if (dist.v > margin) return 0;
-  set(out[0], dist, deepest + n * (dist * -0.5), n);
+  const W deepest = primitive::rotate(ellipsoid, support) + ellipsoid.pos;
+  const S dist = dot(n, deepest - plane.pos);
+  if (value(dist) > margin) return 0;
+  primitive::touch(out[0], dist, deepest + n * (dist * S(-0.5)), n);
   return 1;
 }
 
 // The box pairs of collision/box_pairs.hpp on the moving poses.
-box_pairs::Vec3<Scalar> box_vec(const V& x) { return {x[0], x[1], x[2]}; }
+template <class S>
+box_pairs::Vec3<S> box_vec(const primitive::Vec<S>& x) {
+  return {x[0], x[1], x[2]};
+}
 
-int sphere_box(const Pose& sphere, const Pose& box, double margin, Found* out) {
+template <class S>
+int sphere_box(const ShapeOf<S>& sphere, const ShapeOf<S>& box, double margin, TouchOf<S>* out) {
   return box_pairs::sphere_box(box_vec(sphere.pos), sphere.size[0], box_pairs::box_of(box), margin,
                                out);
 }
 
-int capsule_box(const Pose& capsule, const Pose& box, double margin, Found* out) {
+template <class S>
+int capsule_box(const ShapeOf<S>& capsule, const ShapeOf<S>& box, double margin,
+                TouchOf<S>* out) {
   return box_pairs::capsule_box(box_vec(capsule.pos), box_vec(capsule.axis[2]), capsule.size[0],
                                 capsule.size[1], box_pairs::box_of(box), margin, out);
 }
 
 // The driver drops a box-box contact whose position another later one repeats exactly
 // (remove_repeated_positions): the same here, on the values.
-int box_box(const Pose& box1, const Pose& box2, double margin, Found* out) {
+template <class S>
+int box_box(const ShapeOf<S>& box1, const ShapeOf<S>& box2, double margin, TouchOf<S>* out) {
   const int n =
       box_pairs::box_box(box_pairs::box_of(box1), box_pairs::box_of(box2), margin, out);
   int kept = 0;
   for (int i = 0; i < n; ++i) {
     bool repeated = false;
     for (int j = i + 1; j < n && !repeated; ++j) {
-      repeated = out[i].pos[0].v == out[j].pos[0].v && out[i].pos[1].v == out[j].pos[1].v &&
-                 out[i].pos[2].v == out[j].pos[2].v;
+      repeated = value(out[i].pos[0]) == value(out[j].pos[0]) &&
+                 value(out[i].pos[1]) == value(out[j].pos[1]) &&
+                 value(out[i].pos[2]) == value(out[j].pos[2]);
     }
     if (repeated) continue;
     if (kept < i) out[kept] = out[i];
@@ -409,7 +432,6 @@ bool ccd_equal(double a, double b) {
   const double gap = std::abs(a - b);
   return gap < kCcdEps || gap < kCcdEps * std::max(std::abs(a), std::abs(b));
 }
-using primitive::value;
 
 // -1, 0 or 1: the side of a half-extent `half` that the coordinate x (-half, 0 or half, and a
 // rounding) is on.
@@ -905,7 +927,8 @@ int mpr_pair(const Model& model, const Data& data, const Pose& g1, const Pose& g
   return 1;
 }
 
-int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
+template <class S>
+int collide_moving(const ShapeOf<S>& g1, const ShapeOf<S>& g2, double margin, TouchOf<S>* out) {
   using T = GeomType;
   if (g1.type == T::kPlane) {
     switch (g2.type) {
@@ -937,6 +960,87 @@ int collide_moving(const Pose& g1, const Pose& g2, double margin, Found* out) {
               " contact is active; lever differentiates the contact geometry of the pairs "
               "MuJoCo collides in closed form (plane against sphere, capsule, box, cylinder, "
               "ellipsoid and mesh; sphere, capsule and box pairs) and by MPR (with libccd).");
+}
+
+// A shape's pose on the scalar S, standing still.
+template <class S>
+ShapeOf<S> shape_on(const GeomShape& s) {
+  ShapeOf<S> p{s.type, s.size, primitive::constant_vec<S>(s.pos), {}};
+  for (int c = 0; c < 3; ++c) p.axis[c] = primitive::constant_vec<S>(s.mat.col(c));
+  return p;
+}
+
+// Whether a closed-form pair's case holds about the state: at the probes (geom 1 moved by 1e-8
+// along each of the two fixed motions, either way) the pair gives what its derivative along the
+// probe's motion predicts, to 1e-10 (as search_holds). Each branch is a smooth closed form, but
+// one can turn fast where a direction is normalised from a short vector: an upright cylinder's
+// disc flat on a plane (MuJoCo's mjc_PlaneCylinder takes the rim point nearest the plane along
+// the axis's tilt, which a turn of 1e-8 swings round when the tilt is below about 1.6e-4 rad at
+// a radius of 5 cm), so the answer moves by more than its first order within the differences'
+// reach, and at no tilt at all jumps with the motion's direction. A probe whose count of
+// contacts differs (one at the margin's edge) is the active set's business, not judged here. The
+// probes run on doubles, the prediction on the probes' two motions' duals.
+bool closed_form_holds(const GeomShape& s1, const GeomShape& s2, double margin) {
+  // the derivative along each probe's motion (its turn about geom 1's centre, its shift)
+  using Probing = Duals<kProbeMotions>;
+  ShapeOf<Probing> turning = shape_on<Probing>(s1);
+  for (int m = 0; m < kProbeMotions; ++m) {
+    const ProbeMotion& motion = probe_motions()[static_cast<std::size_t>(m)];
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d turn = motion.turn.cross(s1.mat.col(c));
+      for (int k = 0; k < 3; ++k) turning.axis[c][k].d[m] = turn[k];
+    }
+    for (int k = 0; k < 3; ++k) turning.pos[k].d[m] = motion.shift[k];
+  }
+  std::array<TouchOf<Probing>, kMaxPairContacts> predicted;
+  const int n = collide_moving(turning, shape_on<Probing>(s2), margin, predicted.data());
+  double scale = 1;
+  for (int k = 0; k < n; ++k) {
+    for (int c = 0; c < 3; ++c) scale = std::max(scale, 1 + std::abs(predicted[k].pos[c].v));
+  }
+  const ShapeOf<double> still2 = shape_on<double>(s2);
+  std::array<TouchOf<double>, kMaxPairContacts> actual;
+  for (int m = 0; m < kProbeMotions; ++m) {
+    for (const double step : {-kPortalProbe, kPortalProbe}) {
+      const ShapeOf<double> moved = shape_on<double>(probe_moved(s1, m, step));
+      if (collide_moving(moved, still2, margin, actual.data()) != n) continue;
+      // each contact at the probe is one of the predicted ones (in any order: where two are
+      // level, a capsule's ends or a lying cylinder's discs, which comes first is a tie)
+      for (int k = 0; k < n; ++k) {
+        const TouchOf<double>& a = actual[static_cast<std::size_t>(k)];
+        double nearest = 1e300;
+        for (int j = 0; j < n; ++j) {
+          const TouchOf<Probing>& p = predicted[static_cast<std::size_t>(j)];
+          double gap = std::abs(a.dist - (p.dist.v + step * p.dist.d[m]));
+          for (int c = 0; c < 3; ++c) {
+            gap = std::max(gap, std::abs(a.pos[c] - (p.pos[c].v + step * p.pos[c].d[m])));
+            gap = std::max(gap,
+                           std::abs(a.normal[c] - (p.normal[c].v + step * p.normal[c].d[m])));
+          }
+          nearest = std::min(nearest, gap);
+        }
+        if (!(nearest <= 1e-10 * scale)) return false;
+      }
+    }
+  }
+  return true;
+}
+
+void check_closed_form_pair(const Model& model, const Data& data, double margin, int first) {
+  const Contact& con = data.contact[static_cast<std::size_t>(first)];
+  const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
+  if (closed_form_holds(shape_at_state(model, data, con.geom1),
+                        shape_at_state(model, data, con.geom2), margin)) {
+    return;
+  }
+  const bool flat_disc = t1 == GeomType::kPlane && t2 == GeomType::kCylinder;
+  throw Error("derivatives: contact " + std::to_string(first) + " (" + geom_type_name(t1) + "-" +
+              geom_type_name(t2) + ") is where the closed form's answer turns faster than its " +
+              "first order when a geom turns or moves by 1e-8" +
+              (flat_disc ? " (a cylinder's disc flat on the plane: its rim points follow the "
+                           "direction of the axis's tilt)"
+                         : "") +
+              ": its answer jumps within that reach and has no derivative there.");
 }
 
 // The frame the driver completes from the normal and the first tangent's seed (mju_makeFrame).
@@ -1113,6 +1217,9 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
       polytope_mpr_pair(model.geom_type[con.geom1], model.geom_type[con.geom2]) &&
       polytope_portal(model, data, margin, first, portal);
   if (by_mpr && !polytopes) check_mpr_pair(model, data, margin, first);
+  const bool plane_mesh_pair = model.geom_type[con.geom1] == GeomType::kPlane &&
+                               model.geom_type[con.geom2] == GeomType::kMesh;
+  if (!by_mpr && !plane_mesh_pair) check_closed_form_pair(model, data, margin, first);
   // multiccd's extra contacts: not for a sphere or an ellipsoid (as convex_pair)
   const auto roundish = [&](int g) {
     return model.geom_type[g] == GeomType::kSphere || model.geom_type[g] == GeomType::kEllipsoid;
