@@ -325,6 +325,15 @@ namespace {
 using PathSums = Derivatives::Workspace::PathSums;
 using ColumnWrench = Derivatives::Workspace::ColumnWrench;
 
+// A contact's row held active, as the directions' loop reads it: J = C_t, or a pyramid's
+// C_0 + mu C_t; y = D (-B dJ qvel + K' dist' - R' dist' f - dJ qacc) with K' = K d(aref)/d(dist)
+// / K and R' = dR / d dist.
+struct HeldContactRow {
+  int k, t;
+  double mu, D, minus_B, K_per_dist, R_per_dist, f;
+};
+constexpr int kMaxContactRows = 10;  // a pyramid of condim 6
+
 bool is_contact(ConstraintType type) {
   return type == ConstraintType::kContactFrictionless ||
          type == ConstraintType::kContactPyramidal || type == ConstraintType::kContactElliptic;
@@ -528,9 +537,28 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     const double diag = pyramid ? translation + mu0 * mu0 * translation : translation;
     const SoftSlopes soft = soft_slopes(bounded_solimp(con.solimp), con.dist, con.includemargin, diag);
 
+    // each held row's constants, once for every direction: which frame rows it combines (C_t, and
+    // a pyramid's C_0 + mu C_t) and its soft parameters' factors
+    HeldContactRow held[kMaxContactRows];
+    int nheld = 0;
+    for (int k = first_k; k < n && w.rows[k] < first + rows; ++k) {
+      const int r = w.rows[k], q = r - first;
+      HeldContactRow& h = held[nheld++];
+      h.k = k;
+      h.t = pyramid ? q / 2 + 1 : q;
+      h.mu = pyramid ? con.friction[static_cast<std::size_t>(h.t - 1)] * (q % 2 ? -1.0 : 1.0) : 0.0;
+      h.D = data.efc_D[r];
+      h.minus_B = -data.efc_B[r];
+      h.K_per_dist = data.efc_K[r] * soft.aref_per_dist;
+      h.R_per_dist = data.efc_R[r] * soft.R_per_dist;
+      h.f = data.efc_force[r];
+    }
+
     for (int m = 0; m < directions; ++m) {
       const int c = w.pair_dofs[static_cast<std::size_t>(m)];
       const Vec3 wc = angular(data.cdof[c]);
+      // a slide's or a free joint's translation turns nothing: its terms in w_c vanish
+      const bool turns = wc[0] != 0.0 || wc[1] != 0.0 || wc[2] != 0.0;
       const ContactChange& change =
           w.pair_changes[static_cast<std::size_t>(m) * kMaxPairContacts +
                          static_cast<std::size_t>(i - pair_first)];
@@ -545,52 +573,54 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       Vec3 dphi = Vec3::Zero(), dtau = Vec3::Zero();
       for (int k = 0; k < 3 && k < dim; ++k) dphi += F[k] * change.frame.row(k).transpose();
       for (int k = 3; k < dim; ++k) dtau += F[k] * change.frame.row(k - 3).transpose();
-      const Vec3 turn_j = phi.cross(wc), turn_w = tau.cross(wc) - jc.cross(phi);
       column.force += dphi;
       column.torque += p.cross(dphi) + change.pos.cross(phi) + dtau;
-      column.carried_force += turn_j;
-      column.carried_torque += p.cross(turn_j) + turn_w;
 
       // dV, dW for qacc and qvel: the moved point, and the axes c turns
-      const Vec3 Ja = turned.Va + turned.Wa.cross(p), Jv = turned.Vv + turned.Wv.cross(p);
-      const Vec3 dVa = Wa.cross(change.pos) + wc.cross(Ja) - turned.Wa.cross(jc);
-      const Vec3 dVv = Wv.cross(change.pos) + wc.cross(Jv) - turned.Wv.cross(jc);
-      const Vec3 dWa = wc.cross(turned.Wa), dWv = wc.cross(turned.Wv);
+      Vec3 dVa, dVv, dWa = Vec3::Zero(), dWv = Vec3::Zero();
+      if (turns) {
+        const Vec3 turn_j = phi.cross(wc), turn_w = tau.cross(wc) - jc.cross(phi);
+        column.carried_force += turn_j;
+        column.carried_torque += p.cross(turn_j) + turn_w;
+        const Vec3 Ja = turned.Va + turned.Wa.cross(p), Jv = turned.Vv + turned.Wv.cross(p);
+        dVa = Wa.cross(change.pos) + wc.cross(Ja) - turned.Wa.cross(jc);
+        dVv = Wv.cross(change.pos) + wc.cross(Jv) - turned.Wv.cross(jc);
+        dWa = wc.cross(turned.Wa);
+        dWv = wc.cross(turned.Wv);
+      } else {
+        column.carried_torque -= jc.cross(phi);
+        dVa = Wa.cross(change.pos) - turned.Wa.cross(jc);
+        dVv = Wv.cross(change.pos) - turned.Wv.cross(jc);
+      }
       // d (C_k x) for x = qacc, qvel
       double dCa[6], dCv[6];
-      for (int k = 0; k < dim; ++k) {
-        const int axis = k < 3 ? k : k - 3;
-        const Vec3 e = con.frame.row(axis).transpose(), de = change.frame.row(axis).transpose();
-        dCa[k] = k < 3 ? de.dot(Va) + e.dot(dVa) : de.dot(Wa) + e.dot(dWa);
-        dCv[k] = k < 3 ? de.dot(Vv) + e.dot(dVv) : de.dot(Wv) + e.dot(dWv);
+      for (int k = 0; k < 3 && k < dim; ++k) {
+        const Vec3 e = con.frame.row(k).transpose(), de = change.frame.row(k).transpose();
+        dCa[k] = de.dot(Va) + e.dot(dVa);
+        dCv[k] = de.dot(Vv) + e.dot(dVv);
+      }
+      for (int k = 3; k < dim; ++k) {
+        const Vec3 e = con.frame.row(k - 3).transpose(), de = change.frame.row(k - 3).transpose();
+        dCa[k] = de.dot(Wa) + e.dot(dWa);
+        dCv[k] = de.dot(Wv) + e.dot(dWv);
       }
       // each row's y, and J_r^T y_r's column c: J_r is a combination of the frame's rows C_k
       // (a pyramid's C_0 +- mu C_t), so sum_r J_r^T y_r = sum_k C_k^T z_k, a force and a torque
       // at p, summed with dJ^T f's column and spread with it
       double z[6] = {0, 0, 0, 0, 0, 0};
-      for (int k = first_k; k < n && w.rows[k] < first + rows; ++k) {
-        const int r = w.rows[k], q = r - first;
-        double dJa, dJv, mu = 0.0;
-        int t = q;  // the row is C_t (+ C_0 / mu, a pyramid's)
-        if (pyramid) {
-          t = q / 2 + 1;
-          mu = con.friction[static_cast<std::size_t>(t - 1)] * (q % 2 ? -1.0 : 1.0);
-          dJa = dCa[0] + mu * dCa[t];
-          dJv = dCv[0] + mu * dCv[t];
-        } else {
-          dJa = dCa[q];
-          dJv = dCv[q];
-        }
-        const double daref =
-            -data.efc_B[r] * dJv + data.efc_K[r] * soft.aref_per_dist * change.dist;
-        const double dR = data.efc_R[r] * soft.R_per_dist * change.dist;
-        const double y = data.efc_D[r] * (daref - dR * data.efc_force[r] - dJa);
-        Y(k, c) = y;
+      const double dist = change.dist;
+      for (int j = 0; j < nheld; ++j) {
+        const HeldContactRow& h = held[j];
+        const double dJa = pyramid ? dCa[0] + h.mu * dCa[h.t] : dCa[h.t];
+        const double dJv = pyramid ? dCv[0] + h.mu * dCv[h.t] : dCv[h.t];
+        const double daref = h.minus_B * dJv + h.K_per_dist * dist;
+        const double y = h.D * (daref - h.R_per_dist * dist * h.f - dJa);
+        Y(h.k, c) = y;
         if (pyramid) {
           z[0] += y;
-          z[t] += mu * y;
+          z[h.t] += h.mu * y;
         } else {
-          z[t] += y;
+          z[h.t] += y;
         }
       }
       Vec3 row_force = Vec3::Zero(), row_torque = Vec3::Zero();
@@ -619,13 +649,20 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     const RowSpan span = row_span(data, r);
     const double velocity_weight = -data.efc_D[r] * data.efc_B[r];
     const double* y = Y.row(k).data();
-    const bool in_E = is_contact(data.efc_type[r]);  // a contact's J_r^T y_r is in E already
-    for (int i = span.lo; i < span.lo + span.count; ++i) {
+    const int end = span.lo + span.count;
+    if (!is_contact(data.efc_type[r])) {  // a contact's J_r^T y_r is in E already
+      for (int i = span.lo; i < end; ++i) {
+        if (J[i] == 0.0) continue;
+        double* x = X.row(i).data();
+        for (int c = 0; c < nv; ++c) x[c] += J[i] * y[c];
+      }
+    }
+    for (int i = span.lo; i < end; ++i) {
       if (J[i] == 0.0) continue;
-      double* x = X.row(i).data();
-      for (int c = 0; c < nv && !in_E; ++c) x[c] += J[i] * y[c];
+      double* __restrict x = X.row(i).data() + nv;
+      const double* __restrict Jc = J;
       const double a = J[i] * velocity_weight;
-      for (int c = span.lo; c < span.lo + span.count; ++c) x[nv + c] += a * J[c];
+      for (int c = span.lo; c < end; ++c) x[c] += a * Jc[c];
     }
   }
   solve_held_rows(H, w.contact_H_first, X);
