@@ -260,7 +260,8 @@ void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd&
     for (int b = s.lo; b < s.lo + s.count; ++b) {
       if (J[b] == 0.0) continue;
       const double weight = data.efc_D[r] * J[b];
-      for (int a = b; a < s.lo + s.count; ++a) H(a, b) += weight * J[a];
+      double* __restrict column = H.col(b).data();
+      for (int a = b; a < s.lo + s.count; ++a) column[a] += weight * J[a];
     }
   }
   // H's profile: the first column of each row's lower part that is not zero (M's is the row's
@@ -289,8 +290,8 @@ void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
   const Eigen::Index cols = X.cols();
   // one row operation over every column: y_i -= L(i, k) y_k
   const auto subtract = [&](int i, double a, int k) {
-    double* xi = X.row(i).data();
-    const double* xk = X.row(k).data();
+    double* __restrict xi = X.row(i).data();
+    const double* __restrict xk = X.row(k).data();
     for (Eigen::Index c = 0; c < cols; ++c) xi[c] -= a * xk[c];
   };
   for (int i = 0; i < nv; ++i) {  // L y = x

@@ -523,7 +523,7 @@ void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
 
 // y += a x over n numbers: a row operation of the solves below (a plain loop, which the compiler
 // vectorises; Eigen's expression on a dynamic row costs more in setup than in arithmetic here).
-void add_scaled_row(double* y, double a, const double* x, Eigen::Index n) {
+void add_scaled_row(double* __restrict y, double a, const double* __restrict x, Eigen::Index n) {
   for (Eigen::Index c = 0; c < n; ++c) y[c] += a * x[c];
 }
 
