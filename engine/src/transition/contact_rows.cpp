@@ -260,8 +260,7 @@ void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd&
     for (int b = s.lo; b < s.lo + s.count; ++b) {
       if (J[b] == 0.0) continue;
       const double weight = data.efc_D[r] * J[b];
-      double* __restrict column = H.col(b).data();
-      for (int a = b; a < s.lo + s.count; ++a) column[a] += weight * J[a];
+      add_scaled(H.col(b).data() + b, weight, J + b, s.lo + s.count - b);
     }
   }
   // H's profile: the first column of each row's lower part that is not zero (M's is the row's
@@ -289,10 +288,8 @@ void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
   const auto nv = static_cast<int>(L.rows());
   const Eigen::Index cols = X.cols();
   // one row operation over every column: y_i -= L(i, k) y_k
-  const auto subtract = [&](int i, double a, int k) {
-    double* __restrict xi = X.row(i).data();
-    const double* __restrict xk = X.row(k).data();
-    for (Eigen::Index c = 0; c < cols; ++c) xi[c] -= a * xk[c];
+  const auto subtract = [&](int i, double a, int k) {  // -a x_k added is a x_k taken, to the bit
+    add_scaled(X.row(i).data(), -a, X.row(k).data(), static_cast<int>(cols));
   };
   for (int i = 0; i < nv; ++i) {  // L y = x
     for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(i, L(i, k), k);
@@ -660,10 +657,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     }
     for (int i = span.lo; i < end; ++i) {
       if (J[i] == 0.0) continue;
-      double* __restrict x = X.row(i).data() + nv;
-      const double* __restrict Jc = J;
-      const double a = J[i] * velocity_weight;
-      for (int c = span.lo; c < end; ++c) x[c] += a * Jc[c];
+      add_scaled(X.row(i).data() + nv + span.lo, J[i] * velocity_weight, J + span.lo, span.count);
     }
   }
   solve_held_rows(H, w.contact_H_first, X);

@@ -20,6 +20,17 @@ namespace lever::detail {
 
 using lever::ContactChange;
 
+/// y[0..n) += a x[0..n), two entries a step (one packet: the solves' row operations are short, so a
+/// vectorised loop's set-up would cost more than its arithmetic); each entry as a plain loop's.
+inline void add_scaled(double* __restrict y, double a, const double* __restrict x, int n) {
+  int c = 0;
+  for (; c + 2 <= n; c += 2) {
+    y[c] += a * x[c];
+    y[c + 1] += a * x[c + 1];
+  }
+  if (c < n) y[c] += a * x[c];
+}
+
 /// Whether contact_change() covers a pair of geom types (in MuJoCo's order, a before b).
 bool contact_geometry_supported(GeomType a, GeomType b);
 
