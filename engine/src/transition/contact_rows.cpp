@@ -327,7 +327,7 @@ using ColumnWrench = Derivatives::Workspace::ColumnWrench;
 // C_0 + mu C_t; y = D (-B dJ qvel + K' dist' - R' dist' f - dJ qacc) with K' = K d(aref)/d(dist)
 // / K and R' = dR / d dist.
 struct HeldContactRow {
-  int k, t;
+  int t;
   double mu, D, minus_B, K_per_dist, R_per_dist, f;
 };
 constexpr int kMaxContactRows = 10;  // a pyramid of condim 6
@@ -418,7 +418,8 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   const int nv = model.nv, nu = model.nu;
   const int n = held_active_rows(data, w.rows);
   w.active_rows = n;
-  RowMatrix& Y = w.contact_Y;  // (nefc_max x nv) y's qpos columns, a row per active row
+  // (nefc_max x nv) y's qpos columns, a row per active row (a contact's rows' go straight into E)
+  RowMatrix& Y = w.contact_Y;
   Eigen::MatrixXd& E = w.contact_E;  // (nv x nv) dJ^T f, and the contact rows' J^T Y
   Y.topRows(n).setZero();
   E.setZero();
@@ -542,7 +543,6 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     for (int k = first_k; k < n && w.rows[k] < first + rows; ++k) {
       const int r = w.rows[k], q = r - first;
       HeldContactRow& h = held[nheld++];
-      h.k = k;
       h.t = pyramid ? q / 2 + 1 : q;
       h.mu = pyramid ? con.friction[static_cast<std::size_t>(h.t - 1)] * (q % 2 ? -1.0 : 1.0) : 0.0;
       h.D = data.efc_D[r];
@@ -613,7 +613,6 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         const double dJv = pyramid ? dCv[0] + h.mu * dCv[h.t] : dCv[h.t];
         const double daref = h.minus_B * dJv + h.K_per_dist * dist;
         const double y = h.D * (daref - h.R_per_dist * dist * h.f - dJa);
-        Y(h.k, c) = y;
         if (pyramid) {
           z[0] += y;
           z[h.t] += h.mu * y;
