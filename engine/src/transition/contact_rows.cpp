@@ -345,8 +345,10 @@ int begin_pair(const Model& model, const Data& data, const Contact& con, PathSum
                Derivatives::Workspace& w) {
   const int nv = model.nv;
   path = PathSums{};
+  int directions = 0;
   for (int d = 0; d < nv; ++d) {
     if (!w.moves1[d] && !w.moves2[d]) continue;
+    w.pair_dofs[static_cast<std::size_t>(directions++)] = d;
     const Vec3 v = point_velocity(model, data, d, Vec3::Zero());
     w.contact_point_velocity[static_cast<std::size_t>(d)] = v;
     if (w.moves1[d] == w.moves2[d]) continue;
@@ -357,13 +359,10 @@ int begin_pair(const Model& model, const Data& data, const Contact& con, PathSum
     path.Vv += s * data.qvel[d] * v;
     path.Wv += s * data.qvel[d] * wd;
   }
-  int directions = 0;
-  for (int c = 0; c < nv; ++c) {
-    if (!w.moves1[c] && !w.moves2[c]) continue;
-    const auto m = static_cast<std::size_t>(directions++);
-    w.pair_dofs[m] = c;
+  for (int m = 0; m < directions; ++m) {
+    const int c = w.pair_dofs[static_cast<std::size_t>(m)];
     const Vec3 wc = angular(data.cdof[c]);
-    GeomPairMotion& motion = w.pair_motions[m];
+    GeomPairMotion& motion = w.pair_motions[static_cast<std::size_t>(m)];
     motion = GeomPairMotion{};
     if (w.moves1[c]) {
       motion.w1 = wc;
@@ -373,11 +372,12 @@ int begin_pair(const Model& model, const Data& data, const Contact& con, PathSum
       motion.w2 = wc;
       motion.v2 = point_velocity(model, data, c, data.geom_xpos[con.geom2]);
     }
-    PathSums& turned = w.pair_turned[m];
+    PathSums& turned = w.pair_turned[static_cast<std::size_t>(m)];
     turned = PathSums{};
-    w.pair_columns[m] = ColumnWrench{};
+    w.pair_columns[static_cast<std::size_t>(m)] = ColumnWrench{};
     const char* carried = w.carries.data() + static_cast<std::ptrdiff_t>(c) * nv;
-    for (int d = 0; d < nv; ++d) {
+    for (int j = 0; j < directions; ++j) {  // the dofs c turns are among the pair's
+      const int d = w.pair_dofs[static_cast<std::size_t>(j)];
       if (!carried[d] || w.moves1[d] == w.moves2[d]) continue;
       const double s = w.moves2[d] ? 1.0 : -1.0;
       const Vec3& v = w.contact_point_velocity[static_cast<std::size_t>(d)];
@@ -399,7 +399,8 @@ void spread_pair_columns(const Model& model, const Data& data, const Derivatives
     const int c = w.pair_dofs[static_cast<std::size_t>(m)];
     const ColumnWrench& column = w.pair_columns[static_cast<std::size_t>(m)];
     const char* carried = w.carries.data() + static_cast<std::ptrdiff_t>(c) * nv;
-    for (int d = 0; d < nv; ++d) {
+    for (int j = 0; j < directions; ++j) {
+      const int d = w.pair_dofs[static_cast<std::size_t>(j)];
       if (w.moves1[d] == w.moves2[d]) continue;
       const double s = w.moves2[d] ? 1.0 : -1.0;
       const Vec3& v = w.contact_point_velocity[static_cast<std::size_t>(d)];
