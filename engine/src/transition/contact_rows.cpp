@@ -289,7 +289,7 @@ void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
   const Eigen::Index cols = X.cols();
   // one row operation over every column: y_i -= L(i, k) y_k
   const auto subtract = [&](int i, double a, int k) {  // -a x_k added is a x_k taken, to the bit
-    add_scaled(X.row(i).data(), -a, X.row(k).data(), static_cast<int>(cols));
+    add_scaled_row(X.row(i).data(), -a, X.row(k).data(), cols);
   };
   for (int i = 0; i < nv; ++i) {  // L y = x
     for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(i, L(i, k), k);
