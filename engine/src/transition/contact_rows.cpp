@@ -247,21 +247,52 @@ RowSpan row_span(const Data& data, int r) {
   return {0, static_cast<int>(data.efc_J.cols())};
 }
 
+namespace {
+
+// w J^T J over a row's span of N dofs, J = J_span (its first N numbers): for each b with
+// J_b != 0, dst_b += (J_b w) J, dst_b the N numbers at base + b stride (H's column b, or X's row
+// b). A fixed N is unrolled in SSE2 pairs with J held in registers.
+template <int N>
+void add_span_outer_fixed(double* base, Eigen::Index stride, const double* J, double w) {
+  using Span = Eigen::Matrix<double, N, 1>;
+  const Span j = Eigen::Map<const Span>(J);
+  for (int b = 0; b < N; ++b) {
+    if (j[b] == 0.0) continue;
+    Eigen::Map<Span>(base + b * stride) += (j[b] * w) * j;
+  }
+}
+
+void add_span_outer(double* base, Eigen::Index stride, const double* J, int count, double w) {
+  switch (count) {
+    case 1: add_span_outer_fixed<1>(base, stride, J, w); return;
+    case 2: add_span_outer_fixed<2>(base, stride, J, w); return;
+    case 3: add_span_outer_fixed<3>(base, stride, J, w); return;
+    case 4: add_span_outer_fixed<4>(base, stride, J, w); return;
+    case 5: add_span_outer_fixed<5>(base, stride, J, w); return;
+    case 6: add_span_outer_fixed<6>(base, stride, J, w); return;  // a free body on the world
+    case 7: add_span_outer_fixed<7>(base, stride, J, w); return;
+    case 8: add_span_outer_fixed<8>(base, stride, J, w); return;
+    default: break;
+  }
+  for (int b = 0; b < count; ++b) {
+    if (J[b] != 0.0) add_scaled_row(base + b * stride, J[b] * w, J, count);
+  }
+}
+
+}  // namespace
+
 void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H,
                       std::vector<int>& first) {
-  // nv is small, so plain loops over each row's span of dofs (Eigen's dynamic outer products
-  // cost more in setup than in arithmetic here)
+  // nv is small, so each row's span of dofs on its own (Eigen's dynamic outer products cost more
+  // in setup than in arithmetic here); the span's whole columns, of which the factor reads the
+  // lower part
   const auto nv = static_cast<int>(data.M.rows());
   H = data.M;
   for (int k = 0; k < n; ++k) {
     const int r = rows[k];
-    const double* J = data.efc_J.row(r).data();
     const RowSpan s = row_span(data, r);
-    for (int b = s.lo; b < s.lo + s.count; ++b) {
-      if (J[b] == 0.0) continue;
-      const double weight = data.efc_D[r] * J[b];
-      add_scaled(H.col(b).data() + b, weight, J + b, s.lo + s.count - b);
-    }
+    add_span_outer(H.data() + s.lo * (nv + 1), nv, data.efc_J.row(r).data() + s.lo, s.count,
+                   data.efc_D[r]);
   }
   // H's profile: the first column of each row's lower part that is not zero (M's is the row's
   // tree's first dof; the rows join the trees they couple). L L^T keeps it, so the factor and
@@ -655,10 +686,8 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         for (int c = 0; c < nv; ++c) x[c] += J[i] * y[c];
       }
     }
-    for (int i = span.lo; i < end; ++i) {
-      if (J[i] == 0.0) continue;
-      add_scaled(X.row(i).data() + nv + span.lo, J[i] * velocity_weight, J + span.lo, span.count);
-    }
+    add_span_outer(X.row(span.lo).data() + nv + span.lo, X.cols(), J + span.lo, span.count,
+                   velocity_weight);
   }
   solve_held_rows(H, w.contact_H_first, X);
   deriv.dqacc_dq = X.leftCols(nv);

@@ -43,16 +43,6 @@ inline void add_scaled_row(double* __restrict y, double a, const double* __restr
   for (; c < n; ++c) y[c] += a * x[c];
 }
 
-/// The same over a few numbers (a contact's span of dofs): two a step, one pair.
-inline void add_scaled(double* __restrict y, double a, const double* __restrict x, int n) {
-  int c = 0;
-  for (; c + 2 <= n; c += 2) {
-    y[c] += a * x[c];
-    y[c + 1] += a * x[c + 1];
-  }
-  if (c < n) y[c] += a * x[c];
-}
-
 /// Whether contact_change() covers a pair of geom types (in MuJoCo's order, a before b).
 bool contact_geometry_supported(GeomType a, GeomType b);
 
