@@ -324,10 +324,10 @@ void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
   };
   for (int i = 0; i < nv; ++i) {  // L y = x
     for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(i, L(i, k), k);
-    X.row(i) /= L(i, i);
+    scale_row<true>(X.row(i).data(), L(i, i), cols);
   }
   for (int i = nv - 1; i >= 0; --i) {  // L^T x = y: x_i final, it leaves the rows it reaches
-    X.row(i) /= L(i, i);
+    scale_row<true>(X.row(i).data(), L(i, i), cols);
     for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(k, L(i, k), i);
   }
 }

@@ -532,7 +532,9 @@ void ltdl_solve_rows(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>
       detail::add_scaled_row(X.row(i).data(), -LD(i, k), X.row(k).data(), n);
     }
   }
-  for (int k = 0; k < model.nv; ++k) X.row(k) *= diag_inverse[k];  // D^-1
+  for (int k = 0; k < model.nv; ++k) {  // D^-1
+    detail::scale_row<false>(X.row(k).data(), diag_inverse[k], n);
+  }
   for (int k = 0; k < model.nv; ++k) {                             // L^-1, root to leaves
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
       detail::add_scaled_row(X.row(k).data(), -LD(i, k), X.row(i).data(), n);
@@ -552,7 +554,7 @@ void lu_tree_solve_rows(const Model& model, const Eigen::MatrixXd& LU, RowMatrix
     for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) {
       detail::add_scaled_row(X.row(k).data(), -LU(k, j), X.row(j).data(), n);
     }
-    X.row(k) /= LU(k, k);
+    detail::scale_row<true>(X.row(k).data(), LU(k, k), n);
   }
 }
 

@@ -43,6 +43,25 @@ inline void add_scaled_row(double* __restrict y, double a, const double* __restr
   for (; c < n; ++c) y[c] += a * x[c];
 }
 
+/// x /= d, or x *= d, over n numbers: a solve's diagonal, as add_scaled_row() two numbers a pair.
+template <bool kDivide>
+inline void scale_row(double* x, double d, Eigen::Index n) {
+  using Pair = double __attribute__((vector_size(16)));
+  const Pair scale = {d, d};
+  Eigen::Index c = 0;
+  for (; c + 2 <= n; c += 2) {
+    Pair p;
+    __builtin_memcpy(&p, x + c, sizeof(Pair));
+    if constexpr (kDivide) {
+      p /= scale;
+    } else {
+      p *= scale;
+    }
+    __builtin_memcpy(x + c, &p, sizeof(Pair));
+  }
+  if (c < n) x[c] = kDivide ? x[c] / d : x[c] * d;
+}
+
 /// Whether contact_change() covers a pair of geom types (in MuJoCo's order, a before b).
 bool contact_geometry_supported(GeomType a, GeomType b);
 
