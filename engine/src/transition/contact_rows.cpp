@@ -600,11 +600,17 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       // d j_d = w_d x dp (+ w_c x j_d - w_d x j_c where c turns d's axis) and d w_d = w_c x w_d
       // where it does; phi . d j_d + tau . d w_d = j_d . (phi x w_c) + w_d . (tau x w_c - j_c x
       // phi) there. With j_d = v_d + w_d x p each is force . v_d + torque . w_d.
-      Vec3 dphi = Vec3::Zero(), dtau = Vec3::Zero();
-      for (int k = 0; k < 3 && k < dim; ++k) dphi += F[k] * change.frame.row(k).transpose();
-      for (int k = 3; k < dim; ++k) dtau += F[k] * change.frame.row(k - 3).transpose();
-      column.force += dphi;
-      column.torque += p.cross(dphi) + change.pos.cross(phi) + dtau;
+      // (a frame that c does not turn, a plane's normal say, adds no terms in d frame)
+      const bool frame_turns = (change.frame.array() != 0.0).any();
+      if (frame_turns) {
+        Vec3 dphi = Vec3::Zero(), dtau = Vec3::Zero();
+        for (int k = 0; k < 3 && k < dim; ++k) dphi += F[k] * change.frame.row(k).transpose();
+        for (int k = 3; k < dim; ++k) dtau += F[k] * change.frame.row(k - 3).transpose();
+        column.force += dphi;
+        column.torque += p.cross(dphi) + change.pos.cross(phi) + dtau;
+      } else {
+        column.torque += change.pos.cross(phi);
+      }
 
       // dV, dW for qacc and qvel: the moved point, and the axes c turns
       Vec3 dVa, dVv, dWa = Vec3::Zero(), dWv = Vec3::Zero();
@@ -625,14 +631,22 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       // d (C_k x) for x = qacc, qvel
       double dCa[6], dCv[6];
       for (int k = 0; k < 3 && k < dim; ++k) {
-        const Vec3 e = con.frame.row(k).transpose(), de = change.frame.row(k).transpose();
-        dCa[k] = de.dot(Va) + e.dot(dVa);
-        dCv[k] = de.dot(Vv) + e.dot(dVv);
+        const Vec3 e = con.frame.row(k).transpose();
+        dCa[k] = e.dot(dVa);
+        dCv[k] = e.dot(dVv);
+        if (!frame_turns) continue;
+        const Vec3 de = change.frame.row(k).transpose();
+        dCa[k] = de.dot(Va) + dCa[k];
+        dCv[k] = de.dot(Vv) + dCv[k];
       }
       for (int k = 3; k < dim; ++k) {
-        const Vec3 e = con.frame.row(k - 3).transpose(), de = change.frame.row(k - 3).transpose();
-        dCa[k] = de.dot(Wa) + e.dot(dWa);
-        dCv[k] = de.dot(Wv) + e.dot(dWv);
+        const Vec3 e = con.frame.row(k - 3).transpose();
+        dCa[k] = e.dot(dWa);
+        dCv[k] = e.dot(dWv);
+        if (!frame_turns) continue;
+        const Vec3 de = change.frame.row(k - 3).transpose();
+        dCa[k] = de.dot(Wa) + dCa[k];
+        dCv[k] = de.dot(Wv) + dCv[k];
       }
       // each row's y, and J_r^T y_r's column c: J_r is a combination of the frame's rows C_k
       // (a pyramid's C_0 +- mu C_t), so sum_r J_r^T y_r = sum_k C_k^T z_k, a force and a torque
