@@ -355,8 +355,8 @@ using PathSums = Derivatives::Workspace::PathSums;
 using ColumnWrench = Derivatives::Workspace::ColumnWrench;
 
 // A contact's row held active, as the directions' loop reads it: J = C_t, or a pyramid's
-// C_0 + mu C_t; y = D (-B dJ qvel + K' dist' - R' dist' f - dJ qacc) with K' = K d(aref)/d(dist)
-// / K and R' = dR / d dist.
+// C_0 + mu C_t, and y = D (-B dJ qvel + K_per_dist d dist - R_per_dist d dist f - dJ qacc), the
+// two slopes through the distance (aref's position term, R) made once for all directions.
 struct HeldContactRow {
   int t;
   double mu, D, minus_B, K_per_dist, R_per_dist, f;
