@@ -247,21 +247,52 @@ RowSpan row_span(const Data& data, int r) {
   return {0, static_cast<int>(data.efc_J.cols())};
 }
 
+namespace {
+
+// w J^T J over a row's span of N dofs, J = J_span (its first N numbers): for each b with
+// J_b != 0, dst_b += (J_b w) J, dst_b the N numbers at base + b stride (H's column b, or X's row
+// b). A fixed N is unrolled in SSE2 pairs with J held in registers.
+template <int N>
+void add_span_outer_fixed(double* base, Eigen::Index stride, const double* J, double w) {
+  using Span = Eigen::Matrix<double, N, 1>;
+  const Span j = Eigen::Map<const Span>(J);
+  for (int b = 0; b < N; ++b) {
+    if (j[b] == 0.0) continue;
+    Eigen::Map<Span>(base + b * stride) += (j[b] * w) * j;
+  }
+}
+
+void add_span_outer(double* base, Eigen::Index stride, const double* J, int count, double w) {
+  switch (count) {
+    case 1: add_span_outer_fixed<1>(base, stride, J, w); return;
+    case 2: add_span_outer_fixed<2>(base, stride, J, w); return;
+    case 3: add_span_outer_fixed<3>(base, stride, J, w); return;
+    case 4: add_span_outer_fixed<4>(base, stride, J, w); return;
+    case 5: add_span_outer_fixed<5>(base, stride, J, w); return;
+    case 6: add_span_outer_fixed<6>(base, stride, J, w); return;  // a free body on the world
+    case 7: add_span_outer_fixed<7>(base, stride, J, w); return;
+    case 8: add_span_outer_fixed<8>(base, stride, J, w); return;
+    default: break;
+  }
+  for (int b = 0; b < count; ++b) {
+    if (J[b] != 0.0) add_scaled_row(base + b * stride, J[b] * w, J, count);
+  }
+}
+
+}  // namespace
+
 void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H,
                       std::vector<int>& first) {
-  // nv is small, so plain loops over each row's span of dofs (Eigen's dynamic outer products
-  // cost more in setup than in arithmetic here)
+  // nv is small, so each row's span of dofs on its own (Eigen's dynamic outer products cost more
+  // in setup than in arithmetic here); the span's whole columns, of which the factor reads the
+  // lower part
   const auto nv = static_cast<int>(data.M.rows());
   H = data.M;
   for (int k = 0; k < n; ++k) {
     const int r = rows[k];
-    const double* J = data.efc_J.row(r).data();
     const RowSpan s = row_span(data, r);
-    for (int b = s.lo; b < s.lo + s.count; ++b) {
-      if (J[b] == 0.0) continue;
-      const double weight = data.efc_D[r] * J[b];
-      for (int a = b; a < s.lo + s.count; ++a) H(a, b) += weight * J[a];
-    }
+    add_span_outer(H.data() + s.lo * (nv + 1), nv, data.efc_J.row(r).data() + s.lo, s.count,
+                   data.efc_D[r]);
   }
   // H's profile: the first column of each row's lower part that is not zero (M's is the row's
   // tree's first dof; the rows join the trees they couple). L L^T keeps it, so the factor and
@@ -288,17 +319,15 @@ void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
   const auto nv = static_cast<int>(L.rows());
   const Eigen::Index cols = X.cols();
   // one row operation over every column: y_i -= L(i, k) y_k
-  const auto subtract = [&](int i, double a, int k) {
-    double* xi = X.row(i).data();
-    const double* xk = X.row(k).data();
-    for (Eigen::Index c = 0; c < cols; ++c) xi[c] -= a * xk[c];
+  const auto subtract = [&](int i, double a, int k) {  // -a x_k added is a x_k taken, to the bit
+    add_scaled_row(X.row(i).data(), -a, X.row(k).data(), cols);
   };
   for (int i = 0; i < nv; ++i) {  // L y = x
     for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(i, L(i, k), k);
-    X.row(i) /= L(i, i);
+    scale_row<true>(X.row(i).data(), L(i, i), cols);
   }
   for (int i = nv - 1; i >= 0; --i) {  // L^T x = y: x_i final, it leaves the rows it reaches
-    X.row(i) /= L(i, i);
+    scale_row<true>(X.row(i).data(), L(i, i), cols);
     for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(k, L(i, k), i);
   }
 }
@@ -325,6 +354,15 @@ namespace {
 using PathSums = Derivatives::Workspace::PathSums;
 using ColumnWrench = Derivatives::Workspace::ColumnWrench;
 
+// A contact's row held active, as the directions' loop reads it: J = C_t, or a pyramid's
+// C_0 + mu C_t, and y = D (-B dJ qvel + K_per_dist d dist - R_per_dist d dist f - dJ qacc), the
+// two slopes through the distance (aref's position term, R) made once for all directions.
+struct HeldContactRow {
+  int t;
+  double mu, D, minus_B, K_per_dist, R_per_dist, f;
+};
+constexpr int kMaxContactRows = 10;  // a pyramid of condim 6
+
 bool is_contact(ConstraintType type) {
   return type == ConstraintType::kContactFrictionless ||
          type == ConstraintType::kContactPyramidal || type == ConstraintType::kContactElliptic;
@@ -338,8 +376,10 @@ int begin_pair(const Model& model, const Data& data, const Contact& con, PathSum
                Derivatives::Workspace& w) {
   const int nv = model.nv;
   path = PathSums{};
+  int directions = 0;
   for (int d = 0; d < nv; ++d) {
     if (!w.moves1[d] && !w.moves2[d]) continue;
+    w.pair_dofs[static_cast<std::size_t>(directions++)] = d;
     const Vec3 v = point_velocity(model, data, d, Vec3::Zero());
     w.contact_point_velocity[static_cast<std::size_t>(d)] = v;
     if (w.moves1[d] == w.moves2[d]) continue;
@@ -350,13 +390,10 @@ int begin_pair(const Model& model, const Data& data, const Contact& con, PathSum
     path.Vv += s * data.qvel[d] * v;
     path.Wv += s * data.qvel[d] * wd;
   }
-  int directions = 0;
-  for (int c = 0; c < nv; ++c) {
-    if (!w.moves1[c] && !w.moves2[c]) continue;
-    const auto m = static_cast<std::size_t>(directions++);
-    w.pair_dofs[m] = c;
+  for (int m = 0; m < directions; ++m) {
+    const int c = w.pair_dofs[static_cast<std::size_t>(m)];
     const Vec3 wc = angular(data.cdof[c]);
-    GeomPairMotion& motion = w.pair_motions[m];
+    GeomPairMotion& motion = w.pair_motions[static_cast<std::size_t>(m)];
     motion = GeomPairMotion{};
     if (w.moves1[c]) {
       motion.w1 = wc;
@@ -366,11 +403,12 @@ int begin_pair(const Model& model, const Data& data, const Contact& con, PathSum
       motion.w2 = wc;
       motion.v2 = point_velocity(model, data, c, data.geom_xpos[con.geom2]);
     }
-    PathSums& turned = w.pair_turned[m];
+    PathSums& turned = w.pair_turned[static_cast<std::size_t>(m)];
     turned = PathSums{};
-    w.pair_columns[m] = ColumnWrench{};
+    w.pair_columns[static_cast<std::size_t>(m)] = ColumnWrench{};
     const char* carried = w.carries.data() + static_cast<std::ptrdiff_t>(c) * nv;
-    for (int d = 0; d < nv; ++d) {
+    for (int j = 0; j < directions; ++j) {  // the dofs c turns are among the pair's
+      const int d = w.pair_dofs[static_cast<std::size_t>(j)];
       if (!carried[d] || w.moves1[d] == w.moves2[d]) continue;
       const double s = w.moves2[d] ? 1.0 : -1.0;
       const Vec3& v = w.contact_point_velocity[static_cast<std::size_t>(d)];
@@ -392,7 +430,8 @@ void spread_pair_columns(const Model& model, const Data& data, const Derivatives
     const int c = w.pair_dofs[static_cast<std::size_t>(m)];
     const ColumnWrench& column = w.pair_columns[static_cast<std::size_t>(m)];
     const char* carried = w.carries.data() + static_cast<std::ptrdiff_t>(c) * nv;
-    for (int d = 0; d < nv; ++d) {
+    for (int j = 0; j < directions; ++j) {
+      const int d = w.pair_dofs[static_cast<std::size_t>(j)];
       if (w.moves1[d] == w.moves2[d]) continue;
       const double s = w.moves2[d] ? 1.0 : -1.0;
       const Vec3& v = w.contact_point_velocity[static_cast<std::size_t>(d)];
@@ -411,7 +450,8 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   const int nv = model.nv, nu = model.nu;
   const int n = held_active_rows(data, w.rows);
   w.active_rows = n;
-  RowMatrix& Y = w.contact_Y;  // (nefc_max x nv) y's qpos columns, a row per active row
+  // (nefc_max x nv) y's qpos columns, a row per active row (a contact's rows' go straight into E)
+  RowMatrix& Y = w.contact_Y;
   Eigen::MatrixXd& E = w.contact_E;  // (nv x nv) dJ^T f, and the contact rows' J^T Y
   Y.topRows(n).setZero();
   E.setZero();
@@ -528,9 +568,27 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     const double diag = pyramid ? translation + mu0 * mu0 * translation : translation;
     const SoftSlopes soft = soft_slopes(bounded_solimp(con.solimp), con.dist, con.includemargin, diag);
 
+    // each held row's constants, once for every direction: which frame rows it combines (C_t, and
+    // a pyramid's C_0 + mu C_t) and its soft parameters' factors
+    HeldContactRow held[kMaxContactRows];
+    int nheld = 0;
+    for (int k = first_k; k < n && w.rows[k] < first + rows; ++k) {
+      const int r = w.rows[k], q = r - first;
+      HeldContactRow& h = held[nheld++];
+      h.t = pyramid ? q / 2 + 1 : q;
+      h.mu = pyramid ? con.friction[static_cast<std::size_t>(h.t - 1)] * (q % 2 ? -1.0 : 1.0) : 0.0;
+      h.D = data.efc_D[r];
+      h.minus_B = -data.efc_B[r];
+      h.K_per_dist = data.efc_K[r] * soft.aref_per_dist;
+      h.R_per_dist = data.efc_R[r] * soft.R_per_dist;
+      h.f = data.efc_force[r];
+    }
+
     for (int m = 0; m < directions; ++m) {
       const int c = w.pair_dofs[static_cast<std::size_t>(m)];
       const Vec3 wc = angular(data.cdof[c]);
+      // a slide's or a free joint's translation turns nothing: its terms in w_c vanish
+      const bool turns = wc[0] != 0.0 || wc[1] != 0.0 || wc[2] != 0.0;
       const ContactChange& change =
           w.pair_changes[static_cast<std::size_t>(m) * kMaxPairContacts +
                          static_cast<std::size_t>(i - pair_first)];
@@ -542,55 +600,70 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       // d j_d = w_d x dp (+ w_c x j_d - w_d x j_c where c turns d's axis) and d w_d = w_c x w_d
       // where it does; phi . d j_d + tau . d w_d = j_d . (phi x w_c) + w_d . (tau x w_c - j_c x
       // phi) there. With j_d = v_d + w_d x p each is force . v_d + torque . w_d.
-      Vec3 dphi = Vec3::Zero(), dtau = Vec3::Zero();
-      for (int k = 0; k < 3 && k < dim; ++k) dphi += F[k] * change.frame.row(k).transpose();
-      for (int k = 3; k < dim; ++k) dtau += F[k] * change.frame.row(k - 3).transpose();
-      const Vec3 turn_j = phi.cross(wc), turn_w = tau.cross(wc) - jc.cross(phi);
-      column.force += dphi;
-      column.torque += p.cross(dphi) + change.pos.cross(phi) + dtau;
-      column.carried_force += turn_j;
-      column.carried_torque += p.cross(turn_j) + turn_w;
+      // (a frame that c does not turn, a plane's normal say, adds no terms in d frame)
+      const bool frame_turns = (change.frame.array() != 0.0).any();
+      if (frame_turns) {
+        Vec3 dphi = Vec3::Zero(), dtau = Vec3::Zero();
+        for (int k = 0; k < 3 && k < dim; ++k) dphi += F[k] * change.frame.row(k).transpose();
+        for (int k = 3; k < dim; ++k) dtau += F[k] * change.frame.row(k - 3).transpose();
+        column.force += dphi;
+        column.torque += p.cross(dphi) + change.pos.cross(phi) + dtau;
+      } else {
+        column.torque += change.pos.cross(phi);
+      }
 
       // dV, dW for qacc and qvel: the moved point, and the axes c turns
-      const Vec3 Ja = turned.Va + turned.Wa.cross(p), Jv = turned.Vv + turned.Wv.cross(p);
-      const Vec3 dVa = Wa.cross(change.pos) + wc.cross(Ja) - turned.Wa.cross(jc);
-      const Vec3 dVv = Wv.cross(change.pos) + wc.cross(Jv) - turned.Wv.cross(jc);
-      const Vec3 dWa = wc.cross(turned.Wa), dWv = wc.cross(turned.Wv);
+      Vec3 dVa, dVv, dWa = Vec3::Zero(), dWv = Vec3::Zero();
+      if (turns) {
+        const Vec3 turn_j = phi.cross(wc), turn_w = tau.cross(wc) - jc.cross(phi);
+        column.carried_force += turn_j;
+        column.carried_torque += p.cross(turn_j) + turn_w;
+        const Vec3 Ja = turned.Va + turned.Wa.cross(p), Jv = turned.Vv + turned.Wv.cross(p);
+        dVa = Wa.cross(change.pos) + wc.cross(Ja) - turned.Wa.cross(jc);
+        dVv = Wv.cross(change.pos) + wc.cross(Jv) - turned.Wv.cross(jc);
+        dWa = wc.cross(turned.Wa);
+        dWv = wc.cross(turned.Wv);
+      } else {
+        column.carried_torque -= jc.cross(phi);
+        dVa = Wa.cross(change.pos) - turned.Wa.cross(jc);
+        dVv = Wv.cross(change.pos) - turned.Wv.cross(jc);
+      }
       // d (C_k x) for x = qacc, qvel
       double dCa[6], dCv[6];
-      for (int k = 0; k < dim; ++k) {
-        const int axis = k < 3 ? k : k - 3;
-        const Vec3 e = con.frame.row(axis).transpose(), de = change.frame.row(axis).transpose();
-        dCa[k] = k < 3 ? de.dot(Va) + e.dot(dVa) : de.dot(Wa) + e.dot(dWa);
-        dCv[k] = k < 3 ? de.dot(Vv) + e.dot(dVv) : de.dot(Wv) + e.dot(dWv);
+      for (int k = 0; k < 3 && k < dim; ++k) {
+        const Vec3 e = con.frame.row(k).transpose();
+        dCa[k] = e.dot(dVa);
+        dCv[k] = e.dot(dVv);
+        if (!frame_turns) continue;
+        const Vec3 de = change.frame.row(k).transpose();
+        dCa[k] = de.dot(Va) + dCa[k];
+        dCv[k] = de.dot(Vv) + dCv[k];
+      }
+      for (int k = 3; k < dim; ++k) {
+        const Vec3 e = con.frame.row(k - 3).transpose();
+        dCa[k] = e.dot(dWa);
+        dCv[k] = e.dot(dWv);
+        if (!frame_turns) continue;
+        const Vec3 de = change.frame.row(k - 3).transpose();
+        dCa[k] = de.dot(Wa) + dCa[k];
+        dCv[k] = de.dot(Wv) + dCv[k];
       }
       // each row's y, and J_r^T y_r's column c: J_r is a combination of the frame's rows C_k
       // (a pyramid's C_0 +- mu C_t), so sum_r J_r^T y_r = sum_k C_k^T z_k, a force and a torque
       // at p, summed with dJ^T f's column and spread with it
       double z[6] = {0, 0, 0, 0, 0, 0};
-      for (int k = first_k; k < n && w.rows[k] < first + rows; ++k) {
-        const int r = w.rows[k], q = r - first;
-        double dJa, dJv, mu = 0.0;
-        int t = q;  // the row is C_t (+ C_0 / mu, a pyramid's)
-        if (pyramid) {
-          t = q / 2 + 1;
-          mu = con.friction[static_cast<std::size_t>(t - 1)] * (q % 2 ? -1.0 : 1.0);
-          dJa = dCa[0] + mu * dCa[t];
-          dJv = dCv[0] + mu * dCv[t];
-        } else {
-          dJa = dCa[q];
-          dJv = dCv[q];
-        }
-        const double daref =
-            -data.efc_B[r] * dJv + data.efc_K[r] * soft.aref_per_dist * change.dist;
-        const double dR = data.efc_R[r] * soft.R_per_dist * change.dist;
-        const double y = data.efc_D[r] * (daref - dR * data.efc_force[r] - dJa);
-        Y(k, c) = y;
+      const double dist = change.dist;
+      for (int j = 0; j < nheld; ++j) {
+        const HeldContactRow& h = held[j];
+        const double dJa = pyramid ? dCa[0] + h.mu * dCa[h.t] : dCa[h.t];
+        const double dJv = pyramid ? dCv[0] + h.mu * dCv[h.t] : dCv[h.t];
+        const double daref = h.minus_B * dJv + h.K_per_dist * dist;
+        const double y = h.D * (daref - h.R_per_dist * dist * h.f - dJa);
         if (pyramid) {
           z[0] += y;
-          z[t] += mu * y;
+          z[h.t] += h.mu * y;
         } else {
-          z[t] += y;
+          z[h.t] += y;
         }
       }
       Vec3 row_force = Vec3::Zero(), row_torque = Vec3::Zero();
@@ -619,14 +692,16 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     const RowSpan span = row_span(data, r);
     const double velocity_weight = -data.efc_D[r] * data.efc_B[r];
     const double* y = Y.row(k).data();
-    const bool in_E = is_contact(data.efc_type[r]);  // a contact's J_r^T y_r is in E already
-    for (int i = span.lo; i < span.lo + span.count; ++i) {
-      if (J[i] == 0.0) continue;
-      double* x = X.row(i).data();
-      for (int c = 0; c < nv && !in_E; ++c) x[c] += J[i] * y[c];
-      const double a = J[i] * velocity_weight;
-      for (int c = span.lo; c < span.lo + span.count; ++c) x[nv + c] += a * J[c];
+    const int end = span.lo + span.count;
+    if (!is_contact(data.efc_type[r])) {  // a contact's J_r^T y_r is in E already
+      for (int i = span.lo; i < end; ++i) {
+        if (J[i] == 0.0) continue;
+        double* x = X.row(i).data();
+        for (int c = 0; c < nv; ++c) x[c] += J[i] * y[c];
+      }
     }
+    add_span_outer(X.row(span.lo).data() + nv + span.lo, X.cols(), J + span.lo, span.count,
+                   velocity_weight);
   }
   solve_held_rows(H, w.contact_H_first, X);
   deriv.dqacc_dq = X.leftCols(nv);

@@ -521,11 +521,6 @@ void limit_rows(const Model& model, Data& data, Derivatives& deriv) {
 // operation over all of them, instead of one walk of the tree per column. The arithmetic of each
 // column is the single solve's, in the same order.
 
-// y += a x over n numbers: a row operation of the solves below (a plain loop, which the compiler
-// vectorises; Eigen's expression on a dynamic row costs more in setup than in arithmetic here).
-void add_scaled_row(double* y, double a, const double* x, Eigen::Index n) {
-  for (Eigen::Index c = 0; c < n; ++c) y[c] += a * x[c];
-}
 
 // X = (L^T D L)^-1 X with an LTDL factor in crba.cpp's layout (ltdl: D on the diagonal, L(k, i)
 // at LD(i, k) for each ancestor i of k), as solve_mass does one column.
@@ -534,13 +529,15 @@ void ltdl_solve_rows(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>
   const Eigen::Index n = X.cols();
   for (int k = model.nv - 1; k >= 0; --k) {  // L^-T, leaves to root
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
-      add_scaled_row(X.row(i).data(), -LD(i, k), X.row(k).data(), n);
+      detail::add_scaled_row(X.row(i).data(), -LD(i, k), X.row(k).data(), n);
     }
   }
-  for (int k = 0; k < model.nv; ++k) X.row(k) *= diag_inverse[k];  // D^-1
+  for (int k = 0; k < model.nv; ++k) {  // D^-1
+    detail::scale_row<false>(X.row(k).data(), diag_inverse[k], n);
+  }
   for (int k = 0; k < model.nv; ++k) {                             // L^-1, root to leaves
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
-      add_scaled_row(X.row(k).data(), -LD(i, k), X.row(i).data(), n);
+      detail::add_scaled_row(X.row(k).data(), -LD(i, k), X.row(i).data(), n);
     }
   }
 }
@@ -550,14 +547,14 @@ void lu_tree_solve_rows(const Model& model, const Eigen::MatrixXd& LU, RowMatrix
   const Eigen::Index n = X.cols();
   for (int k = model.nv - 1; k >= 0; --k) {  // (U + I)^-1, leaves to root
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
-      add_scaled_row(X.row(i).data(), -LU(i, k), X.row(k).data(), n);
+      detail::add_scaled_row(X.row(i).data(), -LU(i, k), X.row(k).data(), n);
     }
   }
   for (int k = 0; k < model.nv; ++k) {  // L^-1, root to leaves
     for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) {
-      add_scaled_row(X.row(k).data(), -LU(k, j), X.row(j).data(), n);
+      detail::add_scaled_row(X.row(k).data(), -LU(k, j), X.row(j).data(), n);
     }
-    X.row(k) /= LU(k, k);
+    detail::scale_row<true>(X.row(k).data(), LU(k, k), n);
   }
 }
 

@@ -20,6 +20,48 @@ namespace lever::detail {
 
 using lever::ContactChange;
 
+/// y += a x over n numbers (x and y apart): a row operation of the side-by-side solves (tens of
+/// columns), four numbers a step as two of SSE2's pairs (the x86-64 baseline's), each number's
+/// product and sum as a plain loop's, so the same bits; a compiler-vectorised loop's set-up and
+/// remainder, or Eigen's on a dynamic row, cost more than the arithmetic on rows this short.
+inline void add_scaled_row(double* __restrict y, double a, const double* __restrict x,
+                           Eigen::Index n) {
+  using Pair = double __attribute__((vector_size(16)));
+  const Pair scale = {a, a};
+  Eigen::Index c = 0;
+  for (; c + 4 <= n; c += 4) {
+    Pair x0, x1, y0, y1;
+    __builtin_memcpy(&x0, x + c, sizeof(Pair));  // unaligned loads and stores
+    __builtin_memcpy(&x1, x + c + 2, sizeof(Pair));
+    __builtin_memcpy(&y0, y + c, sizeof(Pair));
+    __builtin_memcpy(&y1, y + c + 2, sizeof(Pair));
+    y0 += scale * x0;
+    y1 += scale * x1;
+    __builtin_memcpy(y + c, &y0, sizeof(Pair));
+    __builtin_memcpy(y + c + 2, &y1, sizeof(Pair));
+  }
+  for (; c < n; ++c) y[c] += a * x[c];
+}
+
+/// x /= d, or x *= d, over n numbers: a solve's diagonal, as add_scaled_row() two numbers a pair.
+template <bool kDivide>
+inline void scale_row(double* x, double d, Eigen::Index n) {
+  using Pair = double __attribute__((vector_size(16)));
+  const Pair scale = {d, d};
+  Eigen::Index c = 0;
+  for (; c + 2 <= n; c += 2) {
+    Pair p;
+    __builtin_memcpy(&p, x + c, sizeof(Pair));
+    if constexpr (kDivide) {
+      p /= scale;
+    } else {
+      p *= scale;
+    }
+    __builtin_memcpy(x + c, &p, sizeof(Pair));
+  }
+  if (c < n) x[c] = kDivide ? x[c] / d : x[c] * d;
+}
+
 /// Whether contact_change() covers a pair of geom types (in MuJoCo's order, a before b).
 bool contact_geometry_supported(GeomType a, GeomType b);
 
