@@ -9,7 +9,8 @@
 // spread out), efc_vel, efc_aref, efc_b, and at MuJoCo's own qacc the forces -D (J qacc - aref)
 // and J^T f that mj_inverse finds; the large files' body_invweight0, the bodies' mean inverse
 // inertias at qpos0 that a contact's R is proportional to (MuJoCo's solves there skip the simple
-// dofs); and the small models' PGS sweeps.
+// dofs); the small models' PGS sweeps; and that `lever diff` (tools/diff) compares a sparse
+// model's efc_J too.
 #include <mujoco/mujoco.h>
 #include <catch2/catch.hpp>
 
@@ -187,6 +188,22 @@ TEST_CASE("diff: option jacobian=\"sparse\" on small models: rows, products, for
     CHECK(solved >= 5);
     CHECK(forces_apart == 0);
   }
+}
+
+TEST_CASE("diff: lever diff compares a sparse model's efc_J, MuJoCo's rows spread out",
+          "[diff][contact]") {
+  REQUIRE(mj_version() == 222);
+  // tendons.xml held sparse: its equality, friction-loss and limit rows, each a row of stored
+  // entries in MuJoCo (efc_J_rownnz, efc_J_rowadr, efc_J_colind), compared element by element
+  diff::Twin twin(model_path("tests/models/constraints/tendons.xml"), diff::Path::kLoader);
+  twin.m->opt.jacobian = mjJAC_SPARSE;
+  twin.model.opt.jacobian = JacobianLayout::kSparse;
+  const diff::Report report = diff::random_states(twin, 5, diff::default_seed(twin.file()));
+  const diff::Extreme* J = report.find("efc_J");
+  REQUIRE(J != nullptr);
+  INFO("efc_J: " << J->compared << " values compared, largest difference " << J->max_abs_diff);
+  CHECK(J->compared >= 5 * twin.m->nv);  // every state has rows (the tendons' couplings)
+  CHECK(J->max_abs_diff == 0);
 }
 
 }  // namespace lever::test

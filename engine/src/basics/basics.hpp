@@ -1,6 +1,6 @@
 // The basics every room of the engine uses (its lowest floor): MuJoCo's numerical thresholds,
-// written once, the quaternion operations on raw arrays that the state's quaternions need, and the
-// test for a bad number. Public types (Motion, Force, Quat, RigidInertia) are lever/spatial.hpp's.
+// written once, the quaternion operations on raw arrays that the state's quaternions need, the
+// test for a bad number, and MuJoCo's orders of summation (sums.hpp). Public types (Motion, Force, Quat, RigidInertia) are lever/spatial.hpp's.
 #pragma once
 
 #include <Eigen/Core>
@@ -9,6 +9,8 @@
 
 #include <lever/model.hpp>
 #include <lever/spatial.hpp>
+
+#include "basics/sums.hpp"
 
 namespace lever {
 

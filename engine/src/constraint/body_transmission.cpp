@@ -52,9 +52,8 @@ void unchecked::body_transmission(const Model& model, Data& data) {
       const double scale = -1.0 / counted;
       for (int j = 0; j < nv; ++j) moment[j] = (moment[j] + gap_sum[j]) * scale;
     }
-    double velocity = 0.0;  // MuJoCo's mj_fwdVelocity: moment qvel
-    for (int j = 0; j < nv; ++j) velocity += moment[j] * data.qvel[j];
-    data.actuator_velocity[a] = velocity;
+    // MuJoCo's mj_fwdVelocity: moment qvel, a dense row whatever the layout (mju_dot)
+    data.actuator_velocity[a] = dot_as_mujoco(moment, data.qvel.data(), 0, nv, nv);
   }
 }
 

@@ -193,9 +193,8 @@ void unchecked::transmission(const Model& model, Data& data) {
         length = 0;
         break;
     }
-    double velocity = 0.0;  // MuJoCo's mj_fwdVelocity: moment qvel
-    for (int i = 0; i < nv; ++i) velocity += moment[i] * data.qvel[i];
-    data.actuator_velocity[a] = velocity;
+    // MuJoCo's mj_fwdVelocity: moment qvel, a dense row in 2.2.2 whatever the layout (mju_dot)
+    data.actuator_velocity[a] = dot_as_mujoco(moment, data.qvel.data(), 0, nv, nv);
   }
 }
 

@@ -263,6 +263,25 @@ void unchecked::solve_mass(const Model& model, const Data& data, double* x) {
   ltdl_solve(model, data.qLD, data.qLDiagInv, Eigen::Map<Eigen::VectorXd>(x, model.nv));
 }
 
+void detail::mass_times(const Model& model, const Data& data, const double* x, double* out) {
+  const int nv = model.nv;
+  const ArenaMatrix& M = data.M;
+  for (int i = 0; i < nv; ++i) out[i] = 0.0;
+  // row by row, M's lower triangle as MuJoCo stores it: each coupling M_ij (j an ancestor of i)
+  // read once, for both of the products it enters (the later rows add to the earlier ones)
+  for (int i = 0; i < nv; ++i) {
+    if (model.dof_simplenum[i] > 0) {  // no couplings: M's diagonal entry alone
+      out[i] = M(i, i) * x[i];
+      continue;
+    }
+    out[i] += M(i, i) * x[i];
+    for (int j = model.dof_parentid[i]; j >= 0; j = model.dof_parentid[j]) {
+      out[i] += M(i, j) * x[j];
+      out[j] += M(i, j) * x[i];
+    }
+  }
+}
+
 void solve_mass(const Model& model, const Data& data, Eigen::Ref<Eigen::VectorXd> x) {
   check_entry(model, data, "lever::solve_mass");
   check_argument_size(x.size(), model.nv, "lever::solve_mass", "x");

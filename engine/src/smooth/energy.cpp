@@ -52,10 +52,10 @@ void unchecked::energy_position(const Model& model, Data& data) {
 }
 
 void unchecked::energy_velocity(const Model& model, Data& data) {
-  (void)model;
-  auto& momentum = data.work.vec1;  // preallocated: no heap use here
-  momentum.noalias() = data.M * data.qvel;
-  data.energy[1] = 0.5 * data.qvel.dot(momentum);
+  // M qvel and its product with qvel, each summed in MuJoCo's order (mj_mulM, mju_dot)
+  double* const momentum = data.work.vec1.data();  // preallocated: no heap use here
+  detail::mass_times(model, data, data.qvel.data(), momentum);
+  data.energy[1] = 0.5 * dot_as_mujoco(momentum, data.qvel.data(), 0, model.nv, model.nv);
 }
 
 void compute_energy(const Model& model, Data& data) {

@@ -77,6 +77,11 @@ void muscle_activation_rate_partials(double ctrl, double act, const double* dynp
                                      double& per_ctrl, double& per_act);
 
 namespace detail {
+/// out = M x (nv numbers each; data.M from crba()) summed as MuJoCo's mj_mulM walks its sparse M:
+/// row i's diagonal product first, then its products with i's ancestors, nearest first; each
+/// of those also added to the ancestor's row (crba.cpp). A simple dof's row is its diagonal.
+void mass_times(const Model& model, const Data& data, const double* x, double* out);
+
 // ---- a spatial tendon's wrapping (wrap.cpp): MuJoCo 2.2.2's mju_wrap
 
 /// The path of a tendon from x0 to x1 around a sphere (or an infinite cylinder along its z axis)

@@ -14,7 +14,7 @@
 // tangent points slide is second order).
 //
 // The Jacobian is dense, as MuJoCo's ten_J for models it keeps dense (nv < 60); its velocity is
-// J qvel. Along each tendon acts a spring-damper, f = -stiffness (L - lengthspring) - damping v,
+// J qvel, summed as MuJoCo sums it for the model's layout (sparse_jacobian). Along each tendon acts a spring-damper, f = -stiffness (L - lengthspring) - damping v,
 // carried to the dofs as J^T f.
 #include <lever/dynamics.hpp>
 #include <lever/kinematics.hpp>
@@ -163,12 +163,11 @@ void unchecked::tendon(const Model& model, Data& data) {
 
 void unchecked::tendon_velocity(const Model& model, Data& data) {
   const int nv = model.nv;
-  const double* const qvel = data.qvel.data();
+  // summed as MuJoCo sums ten_J's rows: in order where it holds them sparse, else as mju_dot
+  const bool sparse = sparse_jacobian(model.opt, nv);
   for (int t = 0; t < model.ntendon; ++t) {
     const double* const J = data.ten_J.data() + static_cast<std::ptrdiff_t>(t) * nv;
-    double v = 0.0;
-    for (int j = 0; j < nv; ++j) v += J[j] * qvel[j];
-    data.ten_velocity[t] = v;
+    data.ten_velocity[t] = row_dot_as_mujoco(sparse, J, data.qvel.data(), 0, nv, nv);
   }
 }
 

@@ -206,22 +206,35 @@ bool compare_row_identity(const Twin& t, int k, Report& r) {
   return same_rows;
 }
 
-// The rows' arrays MuJoCo holds in another layout: efc_J (dense here: lever's, row-major) and
-// efc_KBIP (lever's efc_K, efc_B, efc_imp as three arrays).
+// The rows' arrays MuJoCo holds in another layout: efc_J (dense here: lever's, row-major; a
+// sparse model's, MuJoCo's rows of nonzeros made dense) and efc_KBIP (lever's efc_K, efc_B,
+// efc_imp as three arrays).
 void compare_row_layouts(const Twin& t, int k, Report& r) {
   const Model& model = t.model;
   const Data& data = t.data;
   const mjData* d = t.d.get();
   const int n = data.nefc, nv = model.nv;
   const Labeler row = limit_row(model, data);
-  if (!mj_isSparse(t.m.get())) {
-    std::vector<double> jac(static_cast<std::size_t>(n) * nv, 0.0);
-    for (int i = 0; i < n; ++i) {
-      for (int c = 0; c < nv; ++c) jac[i * nv + c] = data.efc_J(i, c);
-    }
-    r.compare("efc_J", k, jac.data(), d->efc_J, n * nv,
-              [&](int i) { return row(i / nv) + ", column " + dof_label(model, i % nv); });
+  std::vector<double> jac(static_cast<std::size_t>(n) * nv, 0.0);
+  for (int i = 0; i < n; ++i) {
+    for (int c = 0; c < nv; ++c) jac[static_cast<std::size_t>(i) * nv + c] = data.efc_J(i, c);
   }
+  std::vector<double> mujoco_jac;
+  const double* mujoco_rows = d->efc_J;
+  if (mj_isSparse(t.m.get())) {
+    // MuJoCo's sparse layout (mj_isSparse: jacobian="sparse", or "auto" with nv >= 60) keeps
+    // each row's stored entries only (efc_J_rownnz, efc_J_rowadr, efc_J_colind): zero elsewhere
+    mujoco_jac.assign(jac.size(), 0.0);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < d->efc_J_rownnz[i]; ++j) {
+        const int at = d->efc_J_rowadr[i] + j;
+        mujoco_jac[static_cast<std::size_t>(i) * nv + d->efc_J_colind[at]] = d->efc_J[at];
+      }
+    }
+    mujoco_rows = mujoco_jac.data();
+  }
+  r.compare("efc_J", k, jac.data(), mujoco_rows, n * nv,
+            [&](int i) { return row(i / nv) + ", column " + dof_label(model, i % nv); });
   std::vector<double> stiffness(n), damping(n), impedance(n);
   for (int i = 0; i < n; ++i) {
     stiffness[i] = d->efc_KBIP[4 * i];
@@ -291,8 +304,8 @@ void compare_contacts(const Twin& t, int k, Report& r) {
 //   M          MuJoCo keeps qM sparse (its own layout, `own` in the table): compared with the
 //              full matrix mj_fullM makes of it;
 //   efc_*      the limit rows are compared only when they are the same rows (count, type and
-//              joint, reported as nefc and efc_id); efc_J and efc_KBIP are laid out otherwise
-//              (compare_row_layouts);
+//              joint, reported as nefc and efc_id); efc_J (sparse in a sparse model) and
+//              efc_KBIP are laid out otherwise (compare_row_layouts);
 //   geom_x*    a mesh geom lever did not read (it gives no mass and cannot collide, or lever
 //              cannot read its file: size zero in lever) keeps the frame its element wrote, where
 //              MuJoCo moves it to the mesh's centre and principal axes: such rows are left out;
