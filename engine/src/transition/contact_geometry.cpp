@@ -1100,13 +1100,14 @@ bool plane_pair_smooth(const GeomShape& plane, const GeomShape& g, double margin
     }
     case GeomType::kCylinder: {
       // which disc faces the plane (the axis's sign), and the rim point towards the plane,
-      // normalised from the tilt's sine (the vector axis (axis . n) - n, moved by at most twice
-      // the normal's turn): an upright cylinder's rim points follow the tilt's direction
+      // normalised from the tilt's sine (the vector axis (axis . n) - n, minus n's part across
+      // the axis, so moved by at most the normal's turn): an upright cylinder's rim points follow
+      // the tilt's direction
       const double axis_along_normal = -std::abs(n.dot(axis));  // the axis towards the plane
       if (!clear_of(axis_along_normal, 0, 2 * kPortalProbe)) return false;
       const double radius = g.size[0], half_length = g.size[1];
       const double tilt = (axis * n.dot(axis) - n).norm();
-      if (!turns_slowly(tilt, 4 * kPortalProbe, radius)) return false;
+      if (!turns_slowly(tilt, 2 * kPortalProbe, radius)) return false;
       // the three heights held against the margin (the rim point's height is -radius tilt)
       const double rim_along_normal = -radius * tilt;
       const double near_disc = center_height + axis_along_normal * half_length;
