@@ -1026,13 +1026,171 @@ bool closed_form_holds(const GeomShape& s1, const GeomShape& s2, double margin) 
   return true;
 }
 
+// ---- which closed-form pairs the probes can fail -----------------------------------------------
+// The probes move geom 1 by kPortalProbe; within that reach a closed form can miss its first order
+// only where a case the stage decided (a threshold, a clamp, a tie) changes, or where a direction
+// is normalised from a vector short against the reach (it turns by (reach / length)^2 at second
+// order). Every other term is a polynomial of the poses whose second order, at the lever arms of a
+// scene, is far below the probes' 1e-10. So a pair whose every decision is clear of its threshold
+// by more than the probes move it, and whose every normalised vector is long, passes its probes
+// for certain and is not probed: plane against sphere, capsule, box (its corners), ellipsoid and
+// cylinder (tilted), sphere-sphere and sphere-capsule (centres apart), sphere-box. Each check
+// below is that pair's decisions, in doubles, against the reach. Capsule-capsule (near-parallel
+// segments, clamps), capsule-box and box-box (which edge or face, which corners clip) have too
+// many decisions to bound cheaply: always probed.
+
+// How far the probes move a point of geom 1 at `lever` from its centre (a turn of kPortalProbe
+// about an axis through the centre and a shift of kPortalProbe), doubled for the roundings of the
+// numbers it is held against.
+double probe_reach(double lever) { return 2 * kPortalProbe * (1 + lever); }
+
+// A threshold the stage decided `x` against holds through the probes.
+bool clear_of(double x, double threshold, double reach) { return std::abs(x - threshold) > reach; }
+
+// The probes' own turn moves a point at lever L off its first order by L d^2 / 2: below 1e-12 for
+// L up to 1e4, far inside the probes' 1e-10.
+constexpr double kLongestLever = 1e4;
+
+// A direction normalised from a vector of `length` that the probes move by at most `moved`, a
+// point `arm` out along it: its second order is at most 2 (moved / length)^2 (moved below a tenth
+// of length), times max(1, arm); held below 1e-11, a tenth of the probes' tolerance.
+bool turns_slowly(double length, double moved, double arm) {
+  const double ratio = moved / length;
+  return length > 0 && ratio < 0.1 && 2 * ratio * ratio * std::max(1.0, arm) <= 1e-11;
+}
+
+// geom 1 a plane: every point of geom 2 moves against it by at most probe_reach(its distance from
+// the plane's centre); the plane's normal turns by kPortalProbe.
+bool plane_pair_smooth(const GeomShape& plane, const GeomShape& g, double margin) {
+  const Eigen::Vector3d n = plane.mat.col(2);
+  const double lever = (g.pos - plane.pos).norm() + g.size.norm();
+  if (!(lever < kLongestLever)) return false;
+  const double reach = probe_reach(lever);
+  const double center_height = n.dot(g.pos - plane.pos);
+  const Eigen::Vector3d axis = g.mat.col(2);
+  switch (g.type) {
+    case GeomType::kSphere: return clear_of(center_height, margin + g.size[0], reach);
+    case GeomType::kCapsule: {
+      // each end a sphere: above or within the margin
+      const double along = n.dot(axis) * g.size[1];
+      return clear_of(center_height + along, margin + g.size[0], reach) &&
+             clear_of(center_height - along, margin + g.size[0], reach);
+    }
+    case GeomType::kBox:
+      // each corner below the centre and within the margin, or not; four of them at most, the
+      // first in order, so a fixed set of corners is a fixed answer
+      for (int i = 0; i < 8; ++i) {
+        const Eigen::Vector3d local((i & 1) ? g.size[0] : -g.size[0],
+                                    (i & 2) ? g.size[1] : -g.size[1],
+                                    (i & 4) ? g.size[2] : -g.size[2]);
+        const double along = n.dot(g.mat * local);
+        if (!clear_of(along, 0, reach) || !clear_of(center_height + along, margin, reach)) {
+          return false;
+        }
+      }
+      return true;
+    case GeomType::kEllipsoid: {
+      // the support point normalised from -R^T n scaled by the sizes: at least the smallest size
+      // long, moved by at most the largest times the normal's turn
+      const Eigen::Vector3d scaled = -(g.mat.transpose() * n).cwiseProduct(g.size);
+      const double largest = g.size.maxCoeff();
+      if (!turns_slowly(scaled.norm(), 2 * kPortalProbe * largest, largest)) return false;
+      const Eigen::Vector3d support = scaled.normalized().cwiseProduct(g.size);
+      return clear_of(center_height + n.dot(g.mat * support), margin, reach);
+    }
+    case GeomType::kCylinder: {
+      // which disc faces the plane (the axis's sign), and the rim point towards the plane,
+      // normalised from the tilt's sine (the vector axis (axis . n) - n, minus n's part across
+      // the axis, so moved by at most the normal's turn): an upright cylinder's rim points follow
+      // the tilt's direction
+      const double axis_along_normal = -std::abs(n.dot(axis));  // the axis towards the plane
+      if (!clear_of(axis_along_normal, 0, 2 * kPortalProbe)) return false;
+      const double radius = g.size[0], half_length = g.size[1];
+      const double tilt = (axis * n.dot(axis) - n).norm();
+      if (!turns_slowly(tilt, 2 * kPortalProbe, radius)) return false;
+      // the three heights held against the margin (the rim point's height is -radius tilt)
+      const double rim_along_normal = -radius * tilt;
+      const double near_disc = center_height + axis_along_normal * half_length;
+      const double far_disc = center_height - axis_along_normal * half_length;
+      return clear_of(near_disc + rim_along_normal, margin, reach) &&
+             clear_of(far_disc + rim_along_normal, margin, reach) &&
+             clear_of(near_disc - 0.5 * rim_along_normal, margin, reach);
+    }
+    default: return false;
+  }
+}
+
+// geom 1 a sphere: the probes move its centre by kPortalProbe (their turn does not move it).
+bool sphere_pair_smooth(const GeomShape& sphere, const GeomShape& g, double margin) {
+  const double reach = probe_reach(0);
+  const double radius = sphere.size[0];
+  // two centres: within the margin or not, and the normal between them normalised
+  const auto spheres_smooth = [&](const Eigen::Vector3d& center2, double radius2) {
+    const double apart = (sphere.pos - center2).norm();
+    return clear_of(apart, margin + radius + radius2, reach) &&
+           turns_slowly(apart, reach, radius + apart);
+  };
+  switch (g.type) {
+    case GeomType::kSphere: return spheres_smooth(g.pos, g.size[0]);
+    case GeomType::kCapsule: {
+      // the segment's point nearest the centre, a clamp of x in [-1, 1] (x moves by at most
+      // reach / half-length); unclamped, the point moves with the centre along the axis
+      const double half_length = g.size[1];
+      if (!(half_length > 0)) return false;
+      const Eigen::Vector3d axis = g.mat.col(2);
+      const double x = axis.dot(sphere.pos - g.pos) / half_length;
+      const double x_reach = reach / half_length;
+      if (!clear_of(x, 1, x_reach) || !clear_of(x, -1, x_reach)) return false;
+      return spheres_smooth(g.pos + axis * (half_length * std::clamp(x, -1.0, 1.0)), g.size[0]);
+    }
+    case GeomType::kBox: {
+      // the centre in the box's frame (it moves by kPortalProbe there too), clamped to the box
+      // axis by axis; the clamps held
+      const Eigen::Vector3d center = g.mat.transpose() * (sphere.pos - g.pos);
+      Eigen::Vector3d toward_box = Eigen::Vector3d::Zero();
+      int clamped = 0;
+      for (int k = 0; k < 3; ++k) {
+        if (!(g.size[k] > 0)) continue;
+        if (!clear_of(std::abs(center[k]), g.size[k], reach)) return false;
+        if (std::abs(center[k]) > g.size[k]) {
+          toward_box[k] = std::copysign(g.size[k], center[k]) - center[k];
+          ++clamped;
+        }
+      }
+      if (clamped == 0) {
+        // inside: the nearest face, held where the next is farther by more than the probes move
+        // the difference; then the contact is linear in the centre
+        double gaps[6];
+        for (int f = 0; f < 6; ++f) {
+          gaps[f] = std::abs(((f % 2) ? 1.0 : -1.0) * g.size[f / 2] - center[f / 2]);
+        }
+        std::sort(gaps, gaps + 6);
+        return clear_of(gaps[1], gaps[0], 2 * reach) && clear_of(-radius, margin, reach);
+      }
+      const double apart = toward_box.norm();
+      // over a face (one axis clamped) the normal is that face's: linear; over an edge or a
+      // corner it is normalised from the centre's offset
+      return clear_of(apart - radius, margin, reach) &&
+             (clamped == 1 || turns_slowly(apart, reach, radius));
+    }
+    default: return false;
+  }
+}
+
+// Whether the closed form's decisions all hold through the probes and its directions are
+// normalised from long vectors: then its probes pass for certain and are not run.
+bool closed_form_smooth(const GeomShape& s1, const GeomShape& s2, double margin) {
+  if (s1.type == GeomType::kPlane) return plane_pair_smooth(s1, s2, margin);
+  if (s1.type == GeomType::kSphere) return sphere_pair_smooth(s1, s2, margin);
+  return false;
+}
+
 void check_closed_form_pair(const Model& model, const Data& data, double margin, int first) {
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
   const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
-  if (closed_form_holds(shape_at_state(model, data, con.geom1),
-                        shape_at_state(model, data, con.geom2), margin)) {
-    return;
-  }
+  const GeomShape s1 = shape_at_state(model, data, con.geom1);
+  const GeomShape s2 = shape_at_state(model, data, con.geom2);
+  if (closed_form_smooth(s1, s2, margin) || closed_form_holds(s1, s2, margin)) return;
   const bool flat_disc = t1 == GeomType::kPlane && t2 == GeomType::kCylinder;
   throw Error("derivatives: contact " + std::to_string(first) + " (" + geom_type_name(t1) + "-" +
               geom_type_name(t2) + ") is where the closed form's answer turns faster than its " +
