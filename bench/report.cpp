@@ -794,6 +794,43 @@ void explain_missed_kernels(std::ostream& out, const Inputs& in) {
         << "products). The Jacobian's own work is counted against a forward that has itself "
         << "become cheaper: the ratio's denominator moves with every gain in forward.\n";
   }
+  if (const auto jac = counts.count("step_jacobian_forward", "gripper", "lever"),
+      fwd = counts.count("forward", "gripper", "lever");
+      jac && fwd && *jac > 5.0 * *fwd) {
+    out << "- gripper step Jacobian with contacts: " << count_text(*jac) << " instructions, "
+        << fmt("%.2f", *jac / *fwd) << " forwards: the state's forward; a second forward at the "
+        << "step's end, which says whether the constraints' active set changed within the step "
+        << "(the Jacobian's warning and flag); the analytic RNEA-derivative passes; each "
+        << "contact's distance, point and frame differentiated on dual numbers (its case held, "
+        << "checked against the collision stage's contact, and probed where its closed form can "
+        << "jump); the held rows' derivatives and their solve; and the chain rule through the "
+        << "integrator. The two forwards alone spend two of the five the goal allows.\n";
+  }
+  if (const auto lever_forward = counts.count("forward", "mesh_gripper", "lever"),
+      mujoco_forward = counts.count("forward", "mesh_gripper", "mujoco");
+      lever_forward && mujoco_forward && *lever_forward > 0.5 * *mujoco_forward) {
+    double mujoco_collision = 0;
+    for (const auto& [name, c] : counts.stages("mesh_gripper", "mujoco")) {
+      if (name == "mj_collision") mujoco_collision = c;
+    }
+    out << "- mesh_gripper `forward` in contact: " << count_text(*lever_forward) << " against "
+        << count_text(*mujoco_forward) << " instructions ("
+        << ratio_text(*lever_forward / *mujoco_forward) << ").";
+    if (mujoco_collision > 0) {
+      const double allowed = 0.5 * *mujoco_forward;
+      out << " `mj_collision` is " << count_text(mujoco_collision) << " of MuJoCo's; there both "
+          << "engines run libccd's MPR on the finger meshes' hulls with the same support points "
+          << "(MuJoCo's hill-climb over each hull, from its start, in its order, so that the "
+          << "same vertex and so the same contact is found), and that share cannot fall far "
+          << "below MuJoCo's. The goal allows lever " << count_text(allowed) << " instructions "
+          << "in all; with collision at MuJoCo's instructions that would leave "
+          << count_text(std::max(0.0, allowed - mujoco_collision)) << " for the rest, "
+          << fmt("%.2f", std::max(0.0, allowed - mujoco_collision) /
+                             (*mujoco_forward - mujoco_collision))
+          << " of MuJoCo's rest (the rows, the solve, the smooth stages).";
+    }
+    out << "\n";
+  }
   for (const std::string& model : {std::string("gripper"), std::string("box_drop")}) {
     const auto lever_forward = counts.count("forward", model, "lever");
     const auto mujoco_forward = counts.count("forward", model, "mujoco");
