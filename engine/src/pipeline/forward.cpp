@@ -60,9 +60,8 @@ void velocity_core(const Model& model, Data& data) {
   unchecked::reference_constraint(model, data);
 }
 
-// The acceleration stage without its sensors: the unconstrained acceleration, then the
-// constraint forces.
-void acceleration_core(const Model& model, Data& data) {
+// The acceleration stage's smooth part: actuator forces, qfrc_smooth and qacc_smooth.
+void smooth_acceleration(const Model& model, Data& data) {
   unchecked::actuation(model, data);
   double* const qfrc_smooth = data.qfrc_smooth.data();
   double* const qacc_smooth = data.qacc_smooth.data();
@@ -75,6 +74,12 @@ void acceleration_core(const Model& model, Data& data) {
     qacc_smooth[i] = qfrc_smooth[i];
   }
   unchecked::solve_mass(model, data, qacc_smooth);
+}
+
+// The acceleration stage without its sensors: the unconstrained acceleration, then the
+// constraint forces.
+void acceleration_core(const Model& model, Data& data) {
+  smooth_acceleration(model, data);
   unchecked::solve_constraint(model, data);
 }
 
@@ -143,6 +148,14 @@ void forward_without_sensors(const Model& model, Data& data) {
 
 void step_forward_without_sensors(const Model& model, Data& data) {
   forward_stages(model, data, step_kinematics_for(model), false);
+}
+
+void forward_before_solve(const Model& model, Data& data) {
+  check_inputs(data);
+  detail::step_kinematics(model, data);
+  after_kinematics(model, data);
+  velocity_core(model, data);
+  smooth_acceleration(model, data);
 }
 
 void compare_forward_inverse(const Model& model, Data& data) {
