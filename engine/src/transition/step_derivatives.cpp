@@ -698,7 +698,7 @@ bool rows_settle_with(Data& data, const int* active) {
   return true;
 }
 
-// Whether the active set at `next` (forward_before_solve() run, the rows not yet solved) is
+// Whether the active set at `next` (forward_until_solve() run, the rows not yet solved) is
 // `set` (record_active_set()'s). Where the active-set solve would solve next's rows and the
 // start's rows each pushed or not, the start's states are tried at next: written into
 // next.efc_state, the record compared (contacts, row count, states, tendon paths), and only if
@@ -708,7 +708,7 @@ bool rows_settle_with(Data& data, const int* active) {
 bool same_active_set_at_end(const Model& model, Data& next, const std::vector<int>& set,
                             std::vector<int>& scratch) {
   if (next.nefc == 0 || !solved_by_active_sets(model, next)) {
-    unchecked::solve_constraint(model, next);
+    detail::forward_solve(model, next);
     return same_active_set(model, next, set, scratch);
   }
   // the start's states: between the record's first -1 (after the contacts' triples of geom
@@ -721,7 +721,7 @@ bool same_active_set_at_end(const Model& model, Data& next, const std::vector<in
     const int state = first[r];
     if (state != static_cast<int>(ConstraintState::kSatisfied) &&
         state != static_cast<int>(ConstraintState::kActive)) {
-      unchecked::solve_constraint(model, next);
+      detail::forward_solve(model, next);
       return same_active_set(model, next, set, scratch);
     }
     next.efc_state[r] = static_cast<ConstraintState>(state);
@@ -749,7 +749,7 @@ void check_step_end(const Model& model, Data& data, Derivatives& deriv,
   next.act = data.act;
   detail::advance_activations(model, next, act_dot.data(), h);
   // the rows' set only: the lean kinematics, no sensors, and the solve as far as the set needs
-  detail::forward_before_solve(model, next);
+  detail::forward_until_solve(model, next);
   if (!same_active_set_at_end(model, next, w.active_set, w.active_set_end)) {
     deriv.active_set_changes = true;
   }
