@@ -238,7 +238,7 @@ void segment_position_columns(const Model& model, const Data& data, std::span<co
 // ball alone in its body.)
 void segment_velocity_columns(const Model& model, const Data& data, const double* qd,
                               std::span<const Motion> v, std::span<const Motion> Sdot,
-                              std::span<const RigidInertia> IC,
+                              std::span<const RigidInertia> IC, std::span<const Force> IC_S,
                               Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
   for (int j = 0; j < model.njnt; ++j) {
     const int r = rotation_block(model, j);
@@ -256,7 +256,7 @@ void segment_velocity_columns(const Model& model, const Data& data, const double
         int up = row;
         while (up > i) up = model.dof_parentid[up];
         if (up != i) continue;  // i is not on row's path to the world
-        dtau_dv(row, i) += (IC[model.dof_bodyid[row]] * data.cdof[row]).dot(E);
+        dtau_dv(row, i) += IC_S[row].dot(E);  // IC S_row, inertia_columns()'s
       }
       // rows above i (i the deeper dof)
       const Force IC_E = IC[b] * E;
@@ -301,7 +301,7 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
   if (dtau_dv != nullptr) velocity_columns(model, data, w.Sdot, IC, w.IC_S, CC, *dtau_dv);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
-    if (dtau_dv != nullptr) segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, *dtau_dv);
+    if (dtau_dv != nullptr) segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, w.IC_S, *dtau_dv);
   }
 }
 
