@@ -704,10 +704,12 @@ bool rows_settle_with(Data& data, const int* active) {
 // next.efc_state, the record compared (contacts, row count, states, tendon paths), and only if
 // that matches, whether the rows settle with the start's pushing set (rows_settle_with()): the
 // same answer as the solve and the record, without the solve's first residual, its other rounds
-// and its forces. Otherwise the solve, then the record.
+// and its forces. Without rows, nothing to solve: the record at once. Otherwise the solve, then
+// the record.
 bool same_active_set_at_end(const Model& model, Data& next, const std::vector<int>& set,
                             std::vector<int>& scratch) {
-  if (next.nefc == 0 || !solved_by_active_sets(model, next)) {
+  if (next.nefc == 0) return same_active_set(model, next, set, scratch);
+  if (!solved_by_active_sets(model, next)) {
     detail::forward_solve(model, next);
     return same_active_set(model, next, set, scratch);
   }
