@@ -82,7 +82,7 @@ std::span<const RigidInertia> subtree_inertias(const Model& model, const Data& d
 }
 
 // IC S_i of each dof i (IC its body's subtree inertia): the column force crba() finds, which every
-// RNEA-derivative pass at this qpos reads (position_columns(), velocity_columns()), so the step's
+// RNEA-derivative pass at this qpos reads (columns(), segment_velocity_columns()), so the step's
 // passes share it.
 void inertia_columns(const Model& model, const Data& data, std::span<const RigidInertia> IC,
                      Derivatives::Workspace& w) {
@@ -149,12 +149,15 @@ void body_couplings(const Model& model, const Data& data, std::span<const Motion
 // above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
 // IC_S: inertia_columns() at this qpos.
 
-// d tau / d q, from Psi_ddot (Sddot) and the subtree net forces F besides.
-void position_columns(const Model& model, const Data& data, std::span<const Motion> Sdot,
-                      std::span<const Motion> Sddot, std::span<const Force> F,
-                      std::span<const RigidInertia> ICs, std::span<const Force> IC_S,
-                      std::span<const VelocityCoupling> CCs, Eigen::MatrixXd& dtau_dq) {
+// d tau / d q, from Psi_ddot (Sddot) and the subtree net forces F besides, and d tau / d qd
+// (dtau_dv; nullptr: d / d q alone), one dof i at a time: both read S_i . CC x, formed once.
+void columns(const Model& model, const Data& data, std::span<const Motion> Sdot,
+             std::span<const Motion> Sddot, std::span<const Force> F,
+             std::span<const RigidInertia> ICs, std::span<const Force> IC_S,
+             std::span<const VelocityCoupling> CCs, Eigen::MatrixXd& dtau_dq,
+             Eigen::MatrixXd* dtau_dv) {
   dtau_dq.setZero();
+  if (dtau_dv != nullptr) dtau_dv->setZero();
   for (int i = 0; i < model.nv; ++i) {
     const int b = model.dof_bodyid[i];
     const Motion& Si = data.cdof[i];
@@ -162,6 +165,7 @@ void position_columns(const Model& model, const Data& data, std::span<const Moti
     const VelocityCoupling& CC = CCs[b];
     const Force& IC_Si = IC_S[i];                           // IC symmetric: S_i . IC x
     const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);  // S_i . CC x (x's angular part)
+    // d / d q
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
       dtau_dq(i, j) = IC_Si.dot(Sddot[j]) + CCt_Si.dot(Sdot[j].head<3>());
     }
@@ -169,27 +173,15 @@ void position_columns(const Model& model, const Data& data, std::span<const Moti
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
       dtau_dq(k, i) = data.cdof[k].dot(Xq);
     }
-  }
-}
-
-// d tau / d qd.
-void velocity_columns(const Model& model, const Data& data, std::span<const Motion> Sdot,
-                      std::span<const RigidInertia> ICs, const std::vector<Force>& IC_S,
-                      std::span<const VelocityCoupling> CCs, Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
-  dtau_dv.setZero();
-  for (int i = 0; i < model.nv; ++i) {
-    const int b = model.dof_bodyid[i];
-    const Motion& Si = data.cdof[i];
-    const RigidInertia& IC = ICs[b];
-    const VelocityCoupling& CC = CCs[b];
-    const Force& IC_Si = IC_S[i];
-    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);
+    if (dtau_dv == nullptr) continue;
+    // d / d qd
+    Eigen::MatrixXd& dv = *dtau_dv;
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+      dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
     }
     const Force Xv = 2 * (IC * Sdot[i]) + CC * Si;
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
-      dtau_dv(k, i) = data.cdof[k].dot(Xv);
+      dv(k, i) = data.cdof[k].dot(Xv);
     }
   }
 }
@@ -215,7 +207,7 @@ void segment_accelerations(const Model& model, const Data& data, const double* q
   }
 }
 
-// d tau_k / d q_i of a segment's dofs, corrected after position_columns(): for k before i in the
+// d tau_k / d q_i of a segment's dofs, corrected after columns(): for k before i in the
 // segment, turning about S_i turns S_k too, and d S_k / d q_i . F = (S_i x S_k) . F cancels the
 // S_i x* F term the hinge formula adds.
 void segment_position_columns(const Model& model, const Data& data, std::span<const Force> F,
@@ -231,14 +223,14 @@ void segment_position_columns(const Model& model, const Data& data, std::span<co
   }
 }
 
-// d tau / d qd_i of a segment's dofs, corrected after velocity_columns(): d a_c / d qd_i =
+// d tau / d qd_i of a segment's dofs, corrected after columns(): d a_c / d qd_i =
 // Sdot_i + v' x S_i + S_i x v_c, v' the velocity after the segment, where a hinge has 2 Sdot_i;
 // the difference E = v' x S_i - Sdot_i enters as IC E wherever 2 IC Sdot_i did. (v' is the
 // body's velocity less the dofs after the segment in the same body: none for a free joint or a
 // ball alone in its body.)
 void segment_velocity_columns(const Model& model, const Data& data, const double* qd,
                               std::span<const Motion> v, std::span<const Motion> Sdot,
-                              std::span<const RigidInertia> IC,
+                              std::span<const RigidInertia> IC, std::span<const Force> IC_S,
                               Eigen::Ref<Eigen::MatrixXd> dtau_dv) {
   for (int j = 0; j < model.njnt; ++j) {
     const int r = rotation_block(model, j);
@@ -256,7 +248,7 @@ void segment_velocity_columns(const Model& model, const Data& data, const double
         int up = row;
         while (up > i) up = model.dof_parentid[up];
         if (up != i) continue;  // i is not on row's path to the world
-        dtau_dv(row, i) += (IC[model.dof_bodyid[row]] * data.cdof[row]).dot(E);
+        dtau_dv(row, i) += IC_S[row].dot(E);  // IC S_row, inertia_columns()'s
       }
       // rows above i (i the deeper dof)
       const Force IC_E = IC[b] * E;
@@ -297,11 +289,12 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
     couplings = &w.CC;
   }
   const std::vector<VelocityCoupling>& CC = *couplings;
-  position_columns(model, data, w.Sdot, w.Sddot, w.F, IC, w.IC_S, CC, dtau_dq);
-  if (dtau_dv != nullptr) velocity_columns(model, data, w.Sdot, IC, w.IC_S, CC, *dtau_dv);
+  columns(model, data, w.Sdot, w.Sddot, w.F, IC, w.IC_S, CC, dtau_dq, dtau_dv);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
-    if (dtau_dv != nullptr) segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, *dtau_dv);
+    if (dtau_dv != nullptr) {
+      segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, w.IC_S, *dtau_dv);
+    }
   }
 }
 

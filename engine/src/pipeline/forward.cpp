@@ -32,9 +32,9 @@ void check_inputs(Data& data) {
   record_if_bad(data, data.qfrc_applied, Warning::kBadQfrcApplied);
 }
 
-// The position stage after the kinematics: contacts, M and its factor, constraint rows,
-// transmission.
-void after_kinematics(const Model& model, Data& data) {
+// The position stage after the kinematics: contacts, M and its factor (unless `factor` is false:
+// for a caller that solves nothing with it), constraint rows, transmission.
+void after_kinematics(const Model& model, Data& data, bool factor = true) {
   // the flags read here too, so that one switched after set_const still holds (MuJoCo reads them
   // in mj_collision)
   if (model.contacts_possible && !model.opt.disabled(kDisableContact) &&
@@ -45,7 +45,7 @@ void after_kinematics(const Model& model, Data& data) {
   }
   if (model.ntendon > 0) unchecked::tendon(model, data);
   unchecked::crba(model, data);
-  unchecked::factor_mass(model, data);
+  if (factor) unchecked::factor_mass(model, data);
   unchecked::make_constraint(model, data);
   unchecked::transmission(model, data);
   // adhesion: after the contacts' rows
@@ -60,9 +60,9 @@ void velocity_core(const Model& model, Data& data) {
   unchecked::reference_constraint(model, data);
 }
 
-// The acceleration stage without its sensors: the unconstrained acceleration, then the
-// constraint forces.
-void acceleration_core(const Model& model, Data& data) {
+// The acceleration stage's smooth part: actuator forces, qfrc_smooth, and qacc_smooth
+// (M^-1 qfrc_smooth) unless `acceleration` is false (then it holds qfrc_smooth).
+void smooth_acceleration(const Model& model, Data& data, bool acceleration = true) {
   unchecked::actuation(model, data);
   double* const qfrc_smooth = data.qfrc_smooth.data();
   double* const qacc_smooth = data.qacc_smooth.data();
@@ -74,7 +74,13 @@ void acceleration_core(const Model& model, Data& data) {
     qfrc_smooth[i] = passive[i] - bias[i] + applied[i] + actuator[i];
     qacc_smooth[i] = qfrc_smooth[i];
   }
-  unchecked::solve_mass(model, data, qacc_smooth);
+  if (acceleration) unchecked::solve_mass(model, data, qacc_smooth);
+}
+
+// The acceleration stage without its sensors: the unconstrained acceleration, then the
+// constraint forces.
+void acceleration_core(const Model& model, Data& data) {
+  smooth_acceleration(model, data);
   unchecked::solve_constraint(model, data);
 }
 
@@ -143,6 +149,19 @@ void forward_without_sensors(const Model& model, Data& data) {
 
 void step_forward_without_sensors(const Model& model, Data& data) {
   forward_stages(model, data, step_kinematics_for(model), false);
+}
+
+void forward_until_solve(const Model& model, Data& data) {
+  detail::step_kinematics(model, data);
+  after_kinematics(model, data, false);
+  velocity_core(model, data);
+  smooth_acceleration(model, data, false);
+}
+
+void forward_solve(const Model& model, Data& data) {
+  unchecked::factor_mass(model, data);
+  unchecked::solve_mass(model, data, data.qacc_smooth.data());
+  unchecked::solve_constraint(model, data);
 }
 
 void compare_forward_inverse(const Model& model, Data& data) {

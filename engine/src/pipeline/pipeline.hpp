@@ -51,6 +51,15 @@ void step_forward(const Model& model, Data& data);
 void forward_without_sensors(const Model& model, Data& data);
 void step_forward_without_sensors(const Model& model, Data& data);
 
+/// forward()'s stages for a caller that reads the rows' active set alone and solves as it needs
+/// (step_derivatives' check at the step's end; nothing else of that Data is read):
+/// forward_until_solve() runs them up to the constraint solve on step_kinematics() whatever
+/// sensors the model has, without sensors, energy or the input check, and leaves out what only
+/// the solve reads (M's factor, qacc_smooth: it holds qfrc_smooth); forward_solve() then adds
+/// those and the solve: forward()'s rows, forces and acceleration to the bit.
+void forward_until_solve(const Model& model, Data& data);
+void forward_solve(const Model& model, Data& data);
+
 /// data.solver_fwdinv after forward(), for <flag fwdinv="enable"> (MuJoCo's mj_compareFwdInv):
 /// inverse dynamics at forward()'s qacc, the constraint force and the applied force it implies
 /// compared with forward()'s; forward()'s efc_force and qfrc_constraint are kept, inverse()'s

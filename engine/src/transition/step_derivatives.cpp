@@ -665,6 +665,73 @@ bool same_active_set(const Model& model, const Data& data, const std::vector<int
   return scratch == set;
 }
 
+// Whether the rows of `data` are solved by the active-set solve (solve_rows' choice in the
+// constraint room): one-sided rows only, more of them than dofs, and an exact solve asked for.
+bool solved_by_active_sets(const Model& model, const Data& data) {
+  const Options& opt = model.opt;
+  return opt.solver != Solver::kPGS && !(opt.solver == Solver::kCG && opt.tolerance > 0) &&
+         opt.cone != Cone::kElliptic && data.ne + data.nf == 0 && data.nefc > model.nv;
+}
+
+// Whether the rows of `data` settle with the set `active` pushing: one round of the active-set
+// solve (solve_active_set's, to the bit) from that set, a = (M + J_S^T D_S J_S)^-1 (qfrc_smooth +
+// J_S^T D_S aref_S), whose pushing rows {r : J_r a - aref_r < 0} are `active` again. The
+// one-sided rows' solution is unique, so a set that settles is the set the solve finds, and one
+// that does not is not.
+bool rows_settle_with(Data& data, const int* active) {
+  auto& w = data.work;
+  const int n = data.nefc;
+  auto& a = w.newton_dir;
+  const double* D = data.efc_D.data();
+  const double* aref = data.efc_aref.data();
+  for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] * aref[r] : 0.0;
+  a = data.qfrc_smooth;
+  add_rows_transpose(data, w.lcp_f.data(), a.data());
+  for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] : 0.0;
+  w.newton_H = data.M;
+  add_rows_hessian(data, w.lcp_f.data(), w.newton_H);
+  solve_with_hessian(data, w.newton_H, a);
+  rows_jar(data, a.data(), w.newton_jar.data());
+  for (int r = 0; r < n; ++r) {
+    if ((w.newton_jar[r] < 0) != (active[r] != 0)) return false;
+  }
+  return true;
+}
+
+// Whether the active set at `next` (forward_until_solve() run, the rows not yet solved) is
+// `set` (record_active_set()'s). Where the active-set solve would solve next's rows and the
+// start's rows each pushed or not, the start's states are tried at next: written into
+// next.efc_state, the record compared (contacts, row count, states, tendon paths), and only if
+// that matches, whether the rows settle with the start's pushing set (rows_settle_with()): the
+// same answer as the solve and the record, without the solve's first residual, its other rounds
+// and its forces. Without rows, nothing to solve: the record at once. Otherwise the solve, then
+// the record.
+bool same_active_set_at_end(const Model& model, Data& next, const std::vector<int>& set,
+                            std::vector<int>& scratch) {
+  if (next.nefc == 0) return same_active_set(model, next, set, scratch);
+  if (!solved_by_active_sets(model, next)) {
+    detail::forward_solve(model, next);
+    return same_active_set(model, next, set, scratch);
+  }
+  // the start's states: between the record's first -1 (after the contacts' triples of geom
+  // ids and flags, none of them -1) and its second
+  const auto first = std::find(set.begin(), set.end(), -1) + 1;
+  const auto end = std::find(first, set.end(), -1);
+  if (end - first != next.nefc) return false;  // a row more or fewer: not the same record
+  int* const active = next.work.lcp_active.data();
+  for (int r = 0; r < next.nefc; ++r) {
+    const int state = first[r];
+    if (state != static_cast<int>(ConstraintState::kSatisfied) &&
+        state != static_cast<int>(ConstraintState::kActive)) {
+      detail::forward_solve(model, next);
+      return same_active_set(model, next, set, scratch);
+    }
+    next.efc_state[r] = static_cast<ConstraintState>(state);
+    active[r] = state == static_cast<int>(ConstraintState::kActive) ? 1 : 0;
+  }
+  return same_active_set(model, next, set, scratch) && rows_settle_with(next, active);
+}
+
 // forward() at the step's end x' = (qpos (+) h velocity, qvel + h acceleration), in
 // deriv.work.next, against the start's set (deriv.work.active_set); a change sets the flag and
 // data's warning.
@@ -683,9 +750,9 @@ void check_step_end(const Model& model, Data& data, Derivatives& deriv,
   next.qfrc_applied = data.qfrc_applied;
   next.act = data.act;
   detail::advance_activations(model, next, act_dot.data(), h);
-  // the rows' set only: the lean kinematics and no sensors (as step()'s RK4 stages)
-  detail::step_forward_without_sensors(model, next);
-  if (!same_active_set(model, next, w.active_set, w.active_set_end)) {
+  // the rows' set only: the lean kinematics, no sensors, and the solve as far as the set needs
+  detail::forward_until_solve(model, next);
+  if (!same_active_set_at_end(model, next, w.active_set, w.active_set_end)) {
     deriv.active_set_changes = true;
   }
   if (deriv.active_set_changes) {
