@@ -23,6 +23,7 @@
 #include <lever/collision.hpp>
 
 #include "collision/narrow_phase.hpp"
+#include "collision/surface_normal.hpp"
 
 #ifdef LEVER_HAVE_CCD
 #include <ccd/ccd.h>
@@ -197,130 +198,18 @@ void support_point(Support& s, const double* world_dir, double* out) {
 
 // ---- the normal where a geom's surface gives it (MuJoCo's mjc_fixNormal) -----------------------
 
-/// Normal of an ellipsoid at the ray from an inner point along nrm to its surface, refined by
-/// re-aiming the ray at the surface normal found (mjc_ellipsoidInside). False if it gave none.
-bool ellipsoid_normal_inside(Vec3& nrm, const Vec3& pos, const Vec3& size) {
-  const Vec3 inverse_square(1 / (size[0] * size[0]), 1 / (size[1] * size[1]),
-                            1 / (size[2] * size[2]));
-  const double C = pos[0] * pos[0] * inverse_square[0] + pos[1] * pos[1] * inverse_square[1] +
-                   pos[2] * pos[2] * inverse_square[2] - 1;
-  if (C > 0) return false;
-  normalize_or_x(nrm);
-  for (int iter = 0; iter < 30; ++iter) {
-    // the ray pos + x nrm (x >= 0) meets the surface where A x^2 + 2 B x + C = 0
-    const double A = nrm[0] * nrm[0] * inverse_square[0] + nrm[1] * nrm[1] * inverse_square[1] +
-                     nrm[2] * nrm[2] * inverse_square[2];
-    const double B = pos[0] * nrm[0] * inverse_square[0] + pos[1] * nrm[1] * inverse_square[1] +
-                     pos[2] * nrm[2] * inverse_square[2];
-    const double det = B * B - A * C;
-    if (det < kMinVal || A < kMinVal) return iter > 0;
-    const double x = (-B + std::sqrt(det)) / A;
-    if (x < 0) return iter > 0;
-    Vec3 surface;
-    for (int i = 0; i < 3; ++i) surface[i] = pos[i] + nrm[i] * x;
-    Vec3 normal(surface[0] * inverse_square[0], surface[1] * inverse_square[1],
-                surface[2] * inverse_square[2]);
-    normalize_or_x(normal);
-    const double change = distance3(nrm, normal);
-    nrm = normal;
-    if (change < 1e-6) break;
-  }
-  return true;
-}
-
-/// Normal of an ellipsoid at the surface point nearest an outer point: Newton on the Lagrange
-/// multiplier of the nearest-point problem (mjc_ellipsoidOutside).
-void ellipsoid_normal_outside(Vec3& nrm, const Vec3& pos, const Vec3& size) {
-  const Vec3 S2(size[0] * size[0], size[1] * size[1], size[2] * size[2]);
-  const Vec3 PS2(pos[0] * pos[0] * S2[0], pos[1] * pos[1] * S2[1], pos[2] * pos[2] * S2[2]);
-  double la = 0;
-  for (int iter = 0; iter < 30; ++iter) {
-    const Vec3 R(1 / (S2[0] + la), 1 / (S2[1] + la), 1 / (S2[2] + la));
-    const double val = PS2[0] * R[0] * R[0] + PS2[1] * R[1] * R[1] + PS2[2] * R[2] * R[2] - 1;
-    if (val < 1e-6) break;
-    const double deriv =
-        -2 * (PS2[0] * R[0] * R[0] * R[0] + PS2[1] * R[1] * R[1] * R[1] + PS2[2] * R[2] * R[2] * R[2]);
-    if (deriv > -kMinVal) break;
-    const double delta = -val / deriv;
-    if (delta < 1e-6) break;
-    la += delta;
-  }
-  nrm = Vec3(pos[0] / (S2[0] + la), pos[1] / (S2[1] + la), pos[2] / (S2[2] + la));
-  normalize_or_x(nrm);
-}
-
-/// The outward normal of geom g at the contact point, in g's frame, if its type gives one there
-/// (a sphere's, capsule's or ellipsoid's surface; a cylinder's round wall, well away from its
-/// discs); nrm starts as the contact's normal in g's frame.
-bool surface_normal(const GeomShape& g, const Vec3& pos, Vec3& nrm) {
-  const Vec3& size = g.size;
-  switch (g.type) {
-    case GeomType::kSphere:
-      nrm = pos;
-      return true;
-    case GeomType::kCapsule:
-      if (pos[2] < -size[1]) {
-        nrm[2] = pos[2] + size[1];
-      } else if (pos[2] > size[1]) {
-        nrm[2] = pos[2] - size[1];
-      } else {
-        nrm[2] = 0;
-      }
-      nrm[0] = pos[0];
-      nrm[1] = pos[1];
-      return true;
-    case GeomType::kEllipsoid: {
-      if (size[0] < kMinVal || size[1] < kMinVal || size[2] < kMinVal) return false;
-      const double elliptic = pos[0] * pos[0] / (size[0] * size[0]) +
-                              pos[1] * pos[1] / (size[1] * size[1]) +
-                              pos[2] * pos[2] / (size[2] * size[2]);
-      if (elliptic <= 1) return ellipsoid_normal_inside(nrm, pos, size);
-      ellipsoid_normal_outside(nrm, pos, size);
-      return true;
-    }
-    case GeomType::kCylinder: {
-      if (std::abs(pos[2]) > 0.95 * size[1]) return false;  // near a disc
-      const double to_disc = std::abs(size[1] - std::abs(pos[2]));
-      const double to_wall = std::abs(size[0] - std::sqrt(pos[0] * pos[0] + pos[1] * pos[1]));
-      if (to_disc < 0.25 * to_wall) return false;  // not four times nearer the wall
-      nrm = Vec3(pos[0], pos[1], 0);
-      return true;
-    }
-    default:
-      return false;
-  }
-}
-
-/// Replace MPR's normal by the geoms' surface normals where they give one: their difference
-/// (made unit) when both do, else the one that does (mjc_fixNormal).
+/// Replace MPR's normal by the geoms' surface normals where they give one (surface_normal.hpp,
+/// on doubles); the frame's first tangent is then MuJoCo's default again.
 void fix_normal(const GeomShape& g1, const GeomShape& g2, Contact& c) {
-  const GeomShape* geoms[2] = {&g1, &g2};
-  Vec3 normal[2] = {c.frame.row(0).transpose(), -c.frame.row(0).transpose()};
-  bool processed[2] = {false, false};
-  for (int i = 0; i < 2; ++i) {
-    const GeomShape& g = *geoms[i];
-    if (g.type != GeomType::kSphere && g.type != GeomType::kCapsule &&
-        g.type != GeomType::kEllipsoid && g.type != GeomType::kCylinder) {
-      continue;
-    }
-    const Vec3 local = rotate_columns(g.mat, c.pos - g.pos);
-    Vec3 nrm = rotate_columns(g.mat, normal[i]);
-    processed[i] = surface_normal(g, local, nrm);
-    if (processed[i]) {
-      normalize_or_x(nrm);
-      normal[i] = rotate_rows(g.mat, nrm);
-    }
-  }
-  if (processed[0] && processed[1]) {
-    Vec3 n = normal[0] - normal[1];
-    normalize_or_x(n);
-    c.frame.row(0) = n.transpose();
-  } else if (processed[0]) {
-    c.frame.row(0) = normal[0].transpose();
-  } else if (processed[1]) {
-    c.frame.row(0) = (normal[1] * -1.0).transpose();
-  }
-  if (processed[0] || processed[1]) c.frame.row(1).setZero();
+  const auto vec = [](const Vec3& x) { return primitive::Vec<double>{{x[0], x[1], x[2]}}; };
+  const auto shape = [&vec](const GeomShape& g) {
+    return primitive::Shape<double>{
+        g.type, g.size, vec(g.pos), {vec(g.mat.col(0)), vec(g.mat.col(1)), vec(g.mat.col(2))}};
+  };
+  primitive::Vec<double> normal = vec(c.frame.row(0).transpose());
+  if (!primitive::fix_normal(shape(g1), shape(g2), vec(c.pos), normal)) return;
+  c.frame.row(0) << normal[0], normal[1], normal[2];
+  c.frame.row(1).setZero();
 }
 
 #ifdef LEVER_HAVE_CCD

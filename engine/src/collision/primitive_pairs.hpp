@@ -96,6 +96,12 @@ Vec<S> rotate(const Shape<S>& g, const Vec<S>& x) {
   return g.axis[0] * x[0] + g.axis[1] * x[1] + g.axis[2] * x[2];
 }
 
+/// R^T x: each column's products summed top to bottom (mju_rotVecMatT).
+template <class S>
+Vec<S> unrotate(const Shape<S>& g, const Vec<S>& x) {
+  return {{dot(g.axis[0], x), dot(g.axis[1], x), dot(g.axis[2], x)}};
+}
+
 /// A contact as a pair finds it; tangent is zero unless the pair seeds the frame's first tangent.
 template <class S>
 struct Touch {

@@ -36,6 +36,7 @@
 #include "collision/box_pairs.hpp"
 #include "collision/narrow_phase.hpp"
 #include "collision/primitive_pairs.hpp"
+#include "collision/surface_normal.hpp"
 #include "transition/transition.hpp"
 
 namespace lever::detail {
@@ -83,9 +84,7 @@ Pose moving_pose(const Model& model, const Data& data, int g, const GeomPairMoti
 
 // R x and R^T x for the pose's rotation
 V rotate(const Pose& p, const V& x) { return primitive::rotate(p, x); }
-V unrotate(const Pose& p, const V& x) {
-  return {{dot(p.axis[0], x), dot(p.axis[1], x), dot(p.axis[2], x)}};
-}
+V unrotate(const Pose& p, const V& x) { return primitive::unrotate(p, x); }
 
 using Found = primitive::Touch<Scalar>;
 
@@ -723,116 +722,9 @@ Found mpr_replay(SearchReplay& search, const Pose& g1, const Pose& g2, double ma
   return f;
 }
 
-// ---- the normal where a geom's surface gives it (collision/convex.cpp's fix_normal) -----------
-
-bool ellipsoid_normal_inside(V& nrm, const V& pos, const Eigen::Vector3d& size) {
-  const Eigen::Vector3d inverse_square(1 / (size[0] * size[0]), 1 / (size[1] * size[1]),
-                                       1 / (size[2] * size[2]));
-  const Scalar C = pos[0] * pos[0] * inverse_square[0] + pos[1] * pos[1] * inverse_square[1] +
-                   pos[2] * pos[2] * inverse_square[2] - 1.0;
-  if (value(C) > 0) return false;
-  normalize(nrm);
-  for (int iter = 0; iter < 30; ++iter) {
-    const Scalar A = nrm[0] * nrm[0] * inverse_square[0] + nrm[1] * nrm[1] * inverse_square[1] +
-                     nrm[2] * nrm[2] * inverse_square[2];
-    const Scalar B = pos[0] * nrm[0] * inverse_square[0] + pos[1] * nrm[1] * inverse_square[1] +
-                     pos[2] * nrm[2] * inverse_square[2];
-    const Scalar det = B * B - A * C;
-    if (value(det) < kMinVal || value(A) < kMinVal) return iter > 0;
-    const Scalar x = (B * -1.0 + sqrt(det)) / A;
-    if (value(x) < 0) return iter > 0;
-    const V surface = pos + nrm * x;
-    V normal{{surface[0] * inverse_square[0], surface[1] * inverse_square[1],
-              surface[2] * inverse_square[2]}};
-    normalize(normal);
-    const V change = nrm - normal;
-    const double moved = std::sqrt(value(dot(change, change)));
-    nrm = normal;
-    if (moved < 1e-6) break;
-  }
-  return true;
-}
-
-void ellipsoid_normal_outside(V& nrm, const V& pos, const Eigen::Vector3d& size) {
-  const Eigen::Vector3d S2(size[0] * size[0], size[1] * size[1], size[2] * size[2]);
-  const V PS2{{pos[0] * pos[0] * S2[0], pos[1] * pos[1] * S2[1], pos[2] * pos[2] * S2[2]}};
-  Scalar la(0.0);
-  for (int iter = 0; iter < 30; ++iter) {
-    const V R{{Scalar(1.0) / (la + S2[0]), Scalar(1.0) / (la + S2[1]), Scalar(1.0) / (la + S2[2])}};
-    const Scalar val = PS2[0] * R[0] * R[0] + PS2[1] * R[1] * R[1] + PS2[2] * R[2] * R[2] - 1.0;
-    if (value(val) < 1e-6) break;
-    const Scalar deriv = (PS2[0] * R[0] * R[0] * R[0] + PS2[1] * R[1] * R[1] * R[1] +
-                          PS2[2] * R[2] * R[2] * R[2]) * -2.0;
-    if (value(deriv) > -kMinVal) break;
-    const Scalar delta = val * -1.0 / deriv;
-    if (value(delta) < 1e-6) break;
-    la = la + delta;
-  }
-  nrm = {{pos[0] / (la + S2[0]), pos[1] / (la + S2[1]), pos[2] / (la + S2[2])}};
-  normalize(nrm);
-}
-
-bool surface_normal(GeomType type, const Eigen::Vector3d& size, const V& pos, V& nrm) {
-  switch (type) {
-    case GeomType::kSphere:
-      nrm = pos;
-      return true;
-    case GeomType::kCapsule:
-      if (value(pos[2]) < -size[1]) {
-        nrm[2] = pos[2] + size[1];
-      } else if (value(pos[2]) > size[1]) {
-        nrm[2] = pos[2] - size[1];
-      } else {
-        nrm[2] = Scalar(0.0);
-      }
-      nrm[0] = pos[0];
-      nrm[1] = pos[1];
-      return true;
-    case GeomType::kEllipsoid: {
-      if (size[0] < kMinVal || size[1] < kMinVal || size[2] < kMinVal) return false;
-      const double elliptic = value(pos[0]) * value(pos[0]) / (size[0] * size[0]) +
-                              value(pos[1]) * value(pos[1]) / (size[1] * size[1]) +
-                              value(pos[2]) * value(pos[2]) / (size[2] * size[2]);
-      if (elliptic <= 1) return ellipsoid_normal_inside(nrm, pos, size);
-      ellipsoid_normal_outside(nrm, pos, size);
-      return true;
-    }
-    case GeomType::kCylinder: {
-      const double z = value(pos[2]);
-      if (std::abs(z) > 0.95 * size[1]) return false;
-      const double to_disc = std::abs(size[1] - std::abs(z));
-      const double to_wall = std::abs(
-          size[0] - std::sqrt(value(pos[0]) * value(pos[0]) + value(pos[1]) * value(pos[1])));
-      if (to_disc < 0.25 * to_wall) return false;
-      nrm = {{pos[0], pos[1], Scalar(0.0)}};
-      return true;
-    }
-    default:
-      return false;
-  }
-}
-
+// MuJoCo's normal correction (collision/surface_normal.hpp) on the search's dual numbers.
 void fix_normal(const Pose& g1, const Pose& g2, Found& f) {
-  const Pose* geoms[2] = {&g1, &g2};
-  V normal[2] = {f.normal, f.normal * -1.0};
-  bool processed[2] = {false, false};
-  for (int i = 0; i < 2; ++i) {
-    const Pose& g = *geoms[i];
-    const V local = unrotate(g, f.pos - g.pos);
-    V nrm = unrotate(g, normal[i]);
-    processed[i] = surface_normal(g.type, g.size, local, nrm);
-    if (processed[i]) {
-      normalize(nrm);
-      normal[i] = rotate(g, nrm);
-    }
-  }
-  if (processed[0] && processed[1]) {
-    f.normal = unit(normal[0] - normal[1]);
-  } else if (processed[0]) {
-    f.normal = normal[0];
-  } else if (processed[1]) {
-    f.normal = normal[1] * -1.0;
-  }
+  primitive::fix_normal(g1, g2, f.pos, f.normal);
 }
 
 // The search at the state replayed on poses moving as `g1` and `g2` do, MuJoCo's normal
