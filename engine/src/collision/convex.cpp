@@ -201,13 +201,9 @@ void support_point(Support& s, const double* world_dir, double* out) {
 /// Replace MPR's normal by the geoms' surface normals where they give one (surface_normal.hpp,
 /// on doubles); the frame's first tangent is then MuJoCo's default again.
 void fix_normal(const GeomShape& g1, const GeomShape& g2, Contact& c) {
-  const auto vec = [](const Vec3& x) { return primitive::Vec<double>{{x[0], x[1], x[2]}}; };
-  const auto shape = [&vec](const GeomShape& g) {
-    return primitive::Shape<double>{
-        g.type, g.size, vec(g.pos), {vec(g.mat.col(0)), vec(g.mat.col(1)), vec(g.mat.col(2))}};
-  };
-  primitive::Vec<double> normal = vec(c.frame.row(0).transpose());
-  if (!primitive::fix_normal(shape(g1), shape(g2), vec(c.pos), normal)) return;
+  primitive::Vec<double> normal = primitive_vec(c.frame.row(0).transpose());
+  const primitive::Vec<double> pos = primitive_vec(c.pos);
+  if (!primitive::fix_normal(primitive_shape(g1), primitive_shape(g2), pos, normal)) return;
   c.frame.row(0) << normal[0], normal[1], normal[2];
   c.frame.row(1).setZero();
 }

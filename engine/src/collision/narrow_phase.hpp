@@ -11,6 +11,7 @@
 #include <lever/collision.hpp>
 
 #include "basics/basics.hpp"
+#include "collision/primitive_pairs.hpp"
 
 namespace lever::detail {
 
@@ -25,6 +26,16 @@ inline double normalize_or_x(Eigen::Vector3d& v) {
     v *= inverse;
   }
   return norm;
+}
+
+/// A geom as the code written on a scalar (primitive_pairs.hpp, surface_normal.hpp) sees it, on
+/// doubles.
+inline primitive::Vec<double> primitive_vec(const Eigen::Vector3d& x) {
+  return {{x[0], x[1], x[2]}};
+}
+inline primitive::Shape<double> primitive_shape(const GeomShape& g) {
+  return {g.type, g.size, primitive_vec(g.pos),
+          {primitive_vec(g.mat.col(0)), primitive_vec(g.mat.col(1)), primitive_vec(g.mat.col(2))}};
 }
 
 /// MuJoCo's mju_dot3, summed left to right.

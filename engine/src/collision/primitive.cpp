@@ -33,18 +33,14 @@ namespace primitive = detail::primitive;
 using primitive::Shape;
 using primitive::Touch;
 
-primitive::Vec<double> vec(const Vec3& x) { return {{x[0], x[1], x[2]}}; }
-
-Shape<double> shape_of(const GeomShape& g) {
-  return {g.type, g.size, vec(g.pos), {vec(g.mat.col(0)), vec(g.mat.col(1)), vec(g.mat.col(2))}};
-}
+using detail::primitive_shape;
 
 /// A closed-form pair of primitive_pairs.hpp with collide_shapes()'s contract: each contact's
 /// dist, pos, normal row and the tangent the pair seeds (zero if none).
 template <int (*pair)(const Shape<double>&, const Shape<double>&, double, Touch<double>*)>
 int closed_form(const GeomShape& g1, const GeomShape& g2, double margin, Contact* contacts) {
   std::array<Touch<double>, 4> found{};  // plane-box's four corners at the most
-  const int count = pair(shape_of(g1), shape_of(g2), margin, found.data());
+  const int count = pair(primitive_shape(g1), primitive_shape(g2), margin, found.data());
   for (int k = 0; k < count; ++k) {
     const Touch<double>& t = found[static_cast<std::size_t>(k)];
     Contact& c = contacts[k];
