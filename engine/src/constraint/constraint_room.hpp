@@ -112,6 +112,12 @@ void add_rows_hessian(Data& data, const double* weight, Eigen::Ref<Eigen::Matrix
 /// symmetric) a weight in its frame's coordinates (an elliptic cone's Hessian block).
 void add_frame_hessian(Data& data, int i, const double* W, Eigen::Ref<Eigen::MatrixXd> H);
 
+/// One round of the active-set solve with the rows `active` (nefc flags) pushing: a = (M + J_S^T
+/// D_S J_S)^-1 (qfrc_smooth + J_S^T D_S aref_S) into work.newton_dir, each row's jar at it into
+/// work.newton_jar. True if the rows that push at a, {r : jar_r < 0}, are `active` again: then a
+/// is the one-sided rows' unique solution.
+bool active_set_round(Data& data, const int* active);
+
 /// x = H^-1 x for H = M + J^T (...) J assembled above (its lower triangle), which becomes its
 /// Cholesky factor: the active sets and the Newton solver both solve with it (data's workspace
 /// holds where its columns end).

@@ -785,6 +785,29 @@ void reference_constraint(const Model& model, Data& data) {
   unchecked::reference_constraint(model, data);
 }
 
+bool active_set_round(Data& data, const int* active) {
+  auto& w = data.work;
+  const int n = data.nefc;
+  auto& a = w.newton_dir;
+  const double* D = data.efc_D.data();
+  const double* aref = data.efc_aref.data();
+  // a = M a_smooth + J_S^T D_S aref_S, where M a_smooth is qfrc_smooth (as MuJoCo's gradient
+  // M a - qfrc_smooth has it), and H = M + J_S^T D_S J_S, each contact's part in its frame
+  for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] * aref[r] : 0.0;
+  a = data.qfrc_smooth;
+  add_rows_transpose(data, w.lcp_f.data(), a.data());
+  for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] : 0.0;
+  w.newton_H = data.M;
+  add_rows_hessian(data, w.lcp_f.data(), w.newton_H);
+  solve_with_hessian(data, w.newton_H, a);
+  // the rows that push at a; the same set: settled
+  rows_jar(data, a.data(), w.newton_jar.data());
+  for (int r = 0; r < n; ++r) {
+    if ((w.newton_jar[r] < 0) != (active[r] != 0)) return false;
+  }
+  return true;
+}
+
 namespace {
 
 // Most rounds of the active-set solve before the pivoting takes over: settling takes one or two
@@ -804,31 +827,15 @@ bool solve_active_set(Data& data) {
   auto& w = data.work;
   const int n = data.nefc;
   auto& active = w.lcp_active;
-  auto& a = w.newton_dir;  // the round's acceleration
   const double* D = data.efc_D.data();
-  const double* aref = data.efc_aref.data();
   for (int r = 0; r < n; ++r) active[r] = data.efc_b[r] < 0;
 
   for (int round = 0; round < kMaxActiveSetRounds; ++round) {
-    // a = M a_smooth + J_S^T D_S aref_S, where M a_smooth is qfrc_smooth (as MuJoCo's gradient
-    // M a - qfrc_smooth has it), and H = M + J_S^T D_S J_S, each contact's part in its frame
-    for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] * aref[r] : 0.0;
-    a = data.qfrc_smooth;
-    add_rows_transpose(data, w.lcp_f.data(), a.data());
-    for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] : 0.0;
-    w.newton_H = data.M;
-    add_rows_hessian(data, w.lcp_f.data(), w.newton_H);
-    solve_with_hessian(data, w.newton_H, a);
-
-    // the rows that push at a; the same set: done
-    rows_jar(data, a.data(), w.newton_jar.data());
-    bool settled = true;
-    for (int r = 0; r < n; ++r) {
-      settled = settled && (w.newton_jar[r] < 0) == (active[r] != 0);
-      active[r] = w.newton_jar[r] < 0;
+    if (!active_set_round(data, active.data())) {  // the rows that push at a, next round
+      for (int r = 0; r < n; ++r) active[r] = w.newton_jar[r] < 0;
+      continue;
     }
-    if (!settled) continue;
-    data.qacc = a;
+    data.qacc = w.newton_dir;
     for (int r = 0; r < n; ++r) {
       data.efc_force[r] = active[r] ? -D[r] * w.newton_jar[r] : 0.0;
       data.efc_state[r] = active[r] ? ConstraintState::kActive : ConstraintState::kSatisfied;

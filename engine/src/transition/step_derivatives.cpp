@@ -673,36 +673,12 @@ bool solved_by_active_sets(const Model& model, const Data& data) {
          opt.cone != Cone::kElliptic && data.ne + data.nf == 0 && data.nefc > model.nv;
 }
 
-// Whether the rows of `data` settle with the set `active` pushing: one round of the active-set
-// solve (solve_active_set's, to the bit) from that set, a = (M + J_S^T D_S J_S)^-1 (qfrc_smooth +
-// J_S^T D_S aref_S), whose pushing rows {r : J_r a - aref_r < 0} are `active` again. The
-// one-sided rows' solution is unique, so a set that settles is the set the solve finds, and one
-// that does not is not.
-bool rows_settle_with(Data& data, const int* active) {
-  auto& w = data.work;
-  const int n = data.nefc;
-  auto& a = w.newton_dir;
-  const double* D = data.efc_D.data();
-  const double* aref = data.efc_aref.data();
-  for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] * aref[r] : 0.0;
-  a = data.qfrc_smooth;
-  add_rows_transpose(data, w.lcp_f.data(), a.data());
-  for (int r = 0; r < n; ++r) w.lcp_f[r] = active[r] ? D[r] : 0.0;
-  w.newton_H = data.M;
-  add_rows_hessian(data, w.lcp_f.data(), w.newton_H);
-  solve_with_hessian(data, w.newton_H, a);
-  rows_jar(data, a.data(), w.newton_jar.data());
-  for (int r = 0; r < n; ++r) {
-    if ((w.newton_jar[r] < 0) != (active[r] != 0)) return false;
-  }
-  return true;
-}
-
 // Whether the active set at `next` (forward_until_solve() run, the rows not yet solved) is
 // `set` (record_active_set()'s). Where the active-set solve would solve next's rows and the
 // start's rows each pushed or not, the start's states are tried at next: written into
 // next.efc_state, the record compared (contacts, row count, states, tendon paths), and only if
-// that matches, whether the rows settle with the start's pushing set (rows_settle_with()): the
+// that matches, whether the rows settle with the start's pushing set (active_set_round(): the
+// one-sided rows' solution is unique, so a set that settles is the set the solve finds): the
 // same answer as the solve and the record, without the solve's first residual, its other rounds
 // and its forces. Without rows, nothing to solve: the record at once. Otherwise the solve, then
 // the record.
@@ -729,7 +705,7 @@ bool same_active_set_at_end(const Model& model, Data& next, const std::vector<in
     next.efc_state[r] = static_cast<ConstraintState>(state);
     active[r] = state == static_cast<int>(ConstraintState::kActive) ? 1 : 0;
   }
-  return same_active_set(model, next, set, scratch) && rows_settle_with(next, active);
+  return same_active_set(model, next, set, scratch) && active_set_round(next, active);
 }
 
 // forward() at the step's end x' = (qpos (+) h velocity, qvel + h acceleration), in
