@@ -1,6 +1,10 @@
 // The collision room: the stage MuJoCo 2.2.2's mj_collision runs (driver.cpp: broad phase, pair
-// filters, parameter mixing), the narrow phase's closed-form pairs (primitive.cpp, box.cpp,
-// narrow_phase.hpp) and the body constants set_const computes for the broad phase.
+// filters, parameter mixing), the narrow phase's closed-form pairs (primitive.cpp, box.cpp, and
+// primitive_pairs.hpp / box_pairs.hpp written once on a scalar type, narrow_phase.hpp), the
+// general convex pairs by libccd's MPR with MuJoCo's support functions and multiccd (convex.cpp;
+// its mpr_search writes down the support points for the derivatives), MuJoCo's normal correction
+// for round geoms (surface_normal.hpp, on a scalar type too) and the body constants set_const
+// computes for the broad phase.
 #pragma once
 
 #include <lever/model.hpp>
