@@ -85,7 +85,9 @@ State moving(const Model& model) {
 }
 
 // Whether contact i's normal is a face normal of both its geoms (an axis of a box, a mesh's face:
-// the mesh's vertices farthest along it, at least three)
+// the mesh's vertices farthest along it, at least three). A geometric test of the scene, not a
+// comparison with MuJoCo: 1e-9 is far above a rotated unit vector's rounding (1e-16) and far below
+// any tilt the scenes are built with (a face is level, or turned by a degree or more).
 bool face_on_face(const Model& model, const Data& data, int i) {
   const Contact& c = data.contact[static_cast<std::size_t>(i)];
   const auto face = [&](int g, const Eigen::Vector3d& up) {

@@ -18,21 +18,10 @@
 
 #include <lever/harness/models.hpp>
 #include <lever/harness/random_state.hpp>
+#include "bits.hpp"
 #include "robots.hpp"
 
 namespace lever::test {
-
-namespace {
-
-// How many of n numbers differ (in their bits, but for the sign of a zero: a limit row's velocity
-// at rest is sign * 0 in lever, a sum of products that starts from +0 in MuJoCo).
-int numbers_apart(const double* a, const double* b, int n) {
-  int apart = 0;
-  for (int i = 0; i < n; ++i) apart += !(a[i] == b[i]);
-  return apart;
-}
-
-}  // namespace
 
 TEST_CASE("diff: pyramidal rows' products and forces at one qacc are MuJoCo's bit for bit",
           "[diff][contact][robots]") {

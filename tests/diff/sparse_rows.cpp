@@ -24,19 +24,12 @@
 
 #include <lever/harness/models.hpp>
 #include <lever/harness/random_state.hpp>
+#include "bits.hpp"
 #include "robots.hpp"
 
 namespace lever::test {
 
 namespace {
-
-// How many of n numbers differ (in their bits, but for the sign of a zero: a limit row's velocity
-// at rest is sign * 0 in lever, a sum of products that starts from +0 in MuJoCo).
-int values_apart(const double* a, const double* b, int n) {
-  int apart = 0;
-  for (int i = 0; i < n; ++i) apart += !(a[i] == b[i]);
-  return apart;
-}
 
 // MuJoCo's efc_J, row by row over nv columns: its sparse rows spread out (zero where it stores
 // nothing), or its dense ones as they are.
@@ -84,17 +77,17 @@ RowsApart compare_rows(diff::Twin& twin, int count) {
     ++apart.states;
     apart.rows += n;
     const std::vector<double> J = mujoco_rows(m, d);
-    apart.J += values_apart(twin.data.efc_J.data(), J.data(), n * nv);
-    apart.vel += values_apart(twin.data.efc_vel.data(), d->efc_vel, n);
-    apart.aref += values_apart(twin.data.efc_aref.data(), d->efc_aref, n);
-    apart.b += values_apart(twin.data.efc_b.data(), d->efc_b, n);
+    apart.J += numbers_apart(twin.data.efc_J.data(), J.data(), n * nv);
+    apart.vel += numbers_apart(twin.data.efc_vel.data(), d->efc_vel, n);
+    apart.aref += numbers_apart(twin.data.efc_aref.data(), d->efc_aref, n);
+    apart.b += numbers_apart(twin.data.efc_b.data(), d->efc_b, n);
     // the forces at MuJoCo's qacc: a function of it alone
     for (int i = 0; i < nv; ++i) twin.data.qacc[i] = d->qacc[i];
     inverse(twin.model, twin.data);
     mj_inverse(m, d);
     for (int r = 0; r < n; ++r) apart.pushing += d->efc_force[r] != 0;
-    apart.force += values_apart(twin.data.efc_force.data(), d->efc_force, n);
-    apart.qfrc += values_apart(twin.data.qfrc_constraint.data(), d->qfrc_constraint, nv);
+    apart.force += numbers_apart(twin.data.efc_force.data(), d->efc_force, n);
+    apart.qfrc += numbers_apart(twin.data.qfrc_constraint.data(), d->qfrc_constraint, nv);
   }
   INFO(twin.file() << ": " << apart.states << " states, " << apart.rows << " rows, "
                    << apart.pushing << " pushing; numbers apart: efc_J " << apart.J
@@ -128,7 +121,7 @@ TEST_CASE("diff: the rows of a model MuJoCo holds sparse, their products and for
     // body_invweight0: computed once, at qpos0, when the file is loaded
     const int weights = 2 * m->nbody;
     const int weight_apart =
-        values_apart(twin.model.body_invweight0.data()->data(), m->body_invweight0, weights);
+        numbers_apart(twin.model.body_invweight0.data()->data(), m->body_invweight0, weights);
     INFO(name << ": body_invweight0 " << weight_apart << " of " << weights << " numbers apart");
     CHECK(weight_apart == 0);
 
@@ -182,7 +175,7 @@ TEST_CASE("diff: option jacobian=\"sparse\" on small models: rows, products, for
       const int n = twin.d->nefc;
       if (n == 0 || n != twin.data.nefc) continue;
       ++solved;
-      forces_apart += values_apart(twin.data.efc_force.data(), twin.d->efc_force, n);
+      forces_apart += numbers_apart(twin.data.efc_force.data(), twin.d->efc_force, n);
     }
     INFO(file << ": PGS on " << solved << " states, " << forces_apart << " forces apart");
     CHECK(solved >= 5);

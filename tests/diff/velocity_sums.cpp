@@ -22,18 +22,12 @@
 
 #include <lever/harness/models.hpp>
 #include <lever/harness/random_state.hpp>
+#include "bits.hpp"
 #include "robots.hpp"
 
 namespace lever::test {
 
 namespace {
-
-// How many of n numbers differ in their bits (but for the sign of a zero).
-int sums_apart(const double* a, const double* b, int n) {
-  int apart = 0;
-  for (int i = 0; i < n; ++i) apart += !(a[i] == b[i]);
-  return apart;
-}
 
 struct VelocitiesApart {
   int states = 0, tendon = 0, actuator = 0;
@@ -53,9 +47,9 @@ VelocitiesApart compare_velocities(diff::Twin& twin, int count) {
     mj_forward(twin.m.get(), twin.d.get());
     ++apart.states;
     apart.tendon +=
-        sums_apart(twin.data.ten_velocity.data(), twin.d->ten_velocity, twin.m->ntendon);
+        numbers_apart(twin.data.ten_velocity.data(), twin.d->ten_velocity, twin.m->ntendon);
     apart.actuator +=
-        sums_apart(twin.data.actuator_velocity.data(), twin.d->actuator_velocity, twin.m->nu);
+        numbers_apart(twin.data.actuator_velocity.data(), twin.d->actuator_velocity, twin.m->nu);
   }
   INFO(twin.file() << ": " << apart.states << " states; apart: ten_velocity " << apart.tendon
                    << ", actuator_velocity " << apart.actuator);
@@ -108,7 +102,7 @@ TEST_CASE("diff: the kinetic energy of a large humanoid is MuJoCo's sum, bit for
     mj_energyVel(twin.m.get(), twin.d.get());
     REQUIRE(twin.d->energy[1] > 0);
     ++states;
-    apart += sums_apart(twin.data.energy.data(), twin.d->energy, 2);
+    apart += numbers_apart(twin.data.energy.data(), twin.d->energy, 2);
   }
   INFO(states << " states, " << apart << " energies apart");
   CHECK(states == 10);
