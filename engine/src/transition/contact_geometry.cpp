@@ -335,16 +335,13 @@ GeomShape probe_moved(const GeomShape& s, int motion, double step) {
   return moved;
 }
 
-// Whether the held portal's closed form is still MPR's answer at the probes (another triangle of
-// the same plane whose answer is the same counts as held): where it is not (two faces whose
-// edges line up, say), the portal flips with the direction of the motion and the answer has no
-// derivative.
-bool portal_holds(const GeomShape& s1, const GeomShape& s2, double margin,
-                  const ConvexOptions& options, const Portal& portal) {
+// Whether MPR's answer at every probe is, to 1e-10 of its point's size, what gap_at(motion, step,
+// moved geom 1, answer) measures it against (a held portal's closed form, a replay's first
+// order); false too where the search at a probe finds no contact.
+template <class Gap>
+bool search_holds_at_probes(const GeomShape& s1, const GeomShape& s2, double margin,
+                            const ConvexOptions& options, Gap&& gap_at) {
   std::array<Eigen::Vector3d, kMostSupportPoints> scratch1, scratch2;
-  Eigen::Vector3d local[3];
-  for (int i = 0; i < 3; ++i) local[i] = s1.mat.transpose() * (portal.a[i] - s1.pos);
-  const Point b[3] = {point(portal.b[0]), point(portal.b[1]), point(portal.b[2])};
   for (int motion = 0; motion < kProbeMotions; ++motion) {
     for (const double step : {-kPortalProbe, kPortalProbe}) {
       const GeomShape moved = probe_moved(s1, motion, step);
@@ -353,20 +350,51 @@ bool portal_holds(const GeomShape& s1, const GeomShape& s2, double margin,
                      kMostSupportPoints) < 0) {
         return false;
       }
-      const Point a[3] = {point(moved.mat * local[0] + moved.pos),
-                          point(moved.mat * local[1] + moved.pos),
-                          point(moved.mat * local[2] + moved.pos)};
-      const primitive::Touch<double> f =
-          portal_answer(a, b, point(moved.pos), point(s2.pos), margin);
-      double gap = std::abs(f.dist - answer.dist);
-      for (int c = 0; c < 3; ++c) {
-        gap = std::max(gap, std::abs(f.pos[c] - answer.pos[c]));
-        gap = std::max(gap, std::abs(f.normal[c] - answer.frame(0, c)));
-      }
+      const double gap = gap_at(motion, step, moved, answer);
       if (!(gap <= 1e-10 * (1 + answer.pos.cwiseAbs().maxCoeff()))) return false;
     }
   }
   return true;
+}
+
+// Geom 1's shape at the state with its derivative along each probe's motion (its turn about the
+// geom's centre, its shift) in the first kProbeMotions lanes.
+template <class S>
+void along_probe_motions(const GeomShape& s1, primitive::Shape<S>& shape) {
+  for (int m = 0; m < kProbeMotions; ++m) {
+    const ProbeMotion& motion = probe_motions()[static_cast<std::size_t>(m)];
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::Vector3d turn = motion.turn.cross(s1.mat.col(c));
+      for (int k = 0; k < 3; ++k) shape.axis[c][k].d[m] = turn[k];
+    }
+    for (int k = 0; k < 3; ++k) shape.pos[k].d[m] = motion.shift[k];
+  }
+}
+
+// Whether the held portal's closed form is still MPR's answer at the probes (another triangle of
+// the same plane whose answer is the same counts as held): where it is not (two faces whose
+// edges line up, say), the portal flips with the direction of the motion and the answer has no
+// derivative.
+bool portal_holds(const GeomShape& s1, const GeomShape& s2, double margin,
+                  const ConvexOptions& options, const Portal& portal) {
+  Eigen::Vector3d local[3];
+  for (int i = 0; i < 3; ++i) local[i] = s1.mat.transpose() * (portal.a[i] - s1.pos);
+  const Point b[3] = {point(portal.b[0]), point(portal.b[1]), point(portal.b[2])};
+  return search_holds_at_probes(
+      s1, s2, margin, options,
+      [&](int, double, const GeomShape& moved, const Contact& answer) {
+        const Point a[3] = {point(moved.mat * local[0] + moved.pos),
+                            point(moved.mat * local[1] + moved.pos),
+                            point(moved.mat * local[2] + moved.pos)};
+        const primitive::Touch<double> f =
+            portal_answer(a, b, point(moved.pos), point(s2.pos), margin);
+        double gap = std::abs(f.dist - answer.dist);
+        for (int c = 0; c < 3; ++c) {
+          gap = std::max(gap, std::abs(f.pos[c] - answer.pos[c]));
+          gap = std::max(gap, std::abs(f.normal[c] - answer.frame(0, c)));
+        }
+        return gap;
+      });
 }
 
 // The last portal of a polytope pair's search at the state, checked to hold (else refused);
@@ -759,41 +787,26 @@ Pose still_pose(const GeomShape& s) {
 bool search_holds(const Model& model, int contact, const GeomShape& s1, const GeomShape& s2,
                   double margin) {
   Pose turning = still_pose(s1);
-  for (int m = 0; m < kProbeMotions; ++m) {
-    const ProbeMotion& motion = probe_motions()[static_cast<std::size_t>(m)];
-    for (int c = 0; c < 3; ++c) {
-      const Eigen::Vector3d turn = motion.turn.cross(s1.mat.col(c));
-      for (int k = 0; k < 3; ++k) turning.axis[c][k].d[m] = turn[k];
-    }
-    for (int k = 0; k < 3; ++k) turning.pos[k].d[m] = motion.shift[k];
-  }
+  along_probe_motions(s1, turning);
   const Pose still2 = still_pose(s2);
   const Found predicted = replay_search(model, contact, s1, s2, turning, still2, margin);
   const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
-  std::array<Eigen::Vector3d, kMostSupportPoints> scratch1, scratch2;
-  for (int m = 0; m < kProbeMotions; ++m) {
-    for (const double step : {-kPortalProbe, kPortalProbe}) {
-      const GeomShape moved = probe_moved(s1, m, step);
-      Contact answer;
-      if (mpr_search(moved, s2, margin, options, answer, scratch1.data(), scratch2.data(),
-                     kMostSupportPoints) < 0) {
-        return false;
-      }
-      Found actual;
-      set(actual, Scalar(answer.dist), constant(answer.pos),
-          constant(answer.frame.row(0).transpose()));
-      fix_normal(still_pose(moved), still2, actual);
-      double gap = std::abs(actual.dist.v - (predicted.dist.v + step * predicted.dist.d[m]));
-      for (int c = 0; c < 3; ++c) {
-        gap = std::max(gap, std::abs(actual.pos[c].v -
-                                     (predicted.pos[c].v + step * predicted.pos[c].d[m])));
-        gap = std::max(gap, std::abs(actual.normal[c].v -
-                                     (predicted.normal[c].v + step * predicted.normal[c].d[m])));
-      }
-      if (!(gap <= 1e-10 * (1 + answer.pos.cwiseAbs().maxCoeff()))) return false;
-    }
-  }
-  return true;
+  return search_holds_at_probes(
+      s1, s2, margin, options,
+      [&](int m, double step, const GeomShape& moved, const Contact& answer) {
+        Found actual;
+        set(actual, Scalar(answer.dist), constant(answer.pos),
+            constant(answer.frame.row(0).transpose()));
+        fix_normal(still_pose(moved), still2, actual);
+        double gap = std::abs(actual.dist.v - (predicted.dist.v + step * predicted.dist.d[m]));
+        for (int c = 0; c < 3; ++c) {
+          gap = std::max(gap, std::abs(actual.pos[c].v -
+                                       (predicted.pos[c].v + step * predicted.pos[c].d[m])));
+          gap = std::max(gap, std::abs(actual.normal[c].v - (predicted.normal[c].v +
+                                                             step * predicted.normal[c].d[m])));
+        }
+        return gap;
+      });
 }
 
 // A pair MuJoCo collides by MPR with a round geom or a margin: its search replayed on the moving
@@ -876,14 +889,7 @@ bool closed_form_holds(const GeomShape& s1, const GeomShape& s2, double margin) 
   // the derivative along each probe's motion (its turn about geom 1's centre, its shift)
   using Probing = Duals<kProbeMotions>;
   ShapeOf<Probing> turning = shape_on<Probing>(s1);
-  for (int m = 0; m < kProbeMotions; ++m) {
-    const ProbeMotion& motion = probe_motions()[static_cast<std::size_t>(m)];
-    for (int c = 0; c < 3; ++c) {
-      const Eigen::Vector3d turn = motion.turn.cross(s1.mat.col(c));
-      for (int k = 0; k < 3; ++k) turning.axis[c][k].d[m] = turn[k];
-    }
-    for (int k = 0; k < 3; ++k) turning.pos[k].d[m] = motion.shift[k];
-  }
+  along_probe_motions(s1, turning);
   std::array<TouchOf<Probing>, kMaxPairContacts> predicted;
   const int n = collide_moving(turning, shape_on<Probing>(s2), margin, predicted.data());
   double scale = 1;
