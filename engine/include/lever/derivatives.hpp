@@ -126,6 +126,7 @@ struct Derivatives {
     /// (nv x nv) dJ^T f, one column per qpos direction, and the contact rows' J^T Y
     Eigen::MatrixXd contact_E;
     Eigen::MatrixXd contact_H;    ///< (nv x nv) M + J^T D J over the active rows, then its factor
+    Eigen::MatrixXd contact_G;    ///< (nv x nv) J^T D J over the active rows
     std::vector<int> contact_H_first;  ///< (nv) the first column of each of its rows not zero
     std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
     std::vector<char> carries;  ///< (nv x nv) [c * nv + i]: moving dof c turns dof i's axis

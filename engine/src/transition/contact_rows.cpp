@@ -281,19 +281,19 @@ void add_span_outer(double* base, Eigen::Index stride, const double* J, int coun
 
 }  // namespace
 
-void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H,
-                      std::vector<int>& first) {
+void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& G,
+                      Eigen::MatrixXd& H, std::vector<int>& first) {
   // nv is small, so each row's span of dofs on its own (Eigen's dynamic outer products cost more
-  // in setup than in arithmetic here); the span's whole columns, of which the factor reads the
-  // lower part
+  // in setup than in arithmetic here); the span's whole block, symmetric
   const auto nv = static_cast<int>(data.M.rows());
-  H = data.M;
+  G.setZero();
   for (int k = 0; k < n; ++k) {
     const int r = rows[k];
     const RowSpan s = row_span(data, r);
-    add_span_outer(H.data() + s.lo * (nv + 1), nv, data.efc_J.row(r).data() + s.lo, s.count,
+    add_span_outer(G.data() + s.lo * (nv + 1), nv, data.efc_J.row(r).data() + s.lo, s.count,
                    data.efc_D[r]);
   }
+  H = data.M + G;
   // H's profile: the first column of each row's lower part that is not zero (M's is the row's
   // tree's first dof; the rows join the trees they couple). L L^T keeps it, so the factor and
   // the solves read nothing to its left.
@@ -681,16 +681,21 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   // substitution one row operation), and no product with G. Y's qvel columns are aref's
   // velocity term, -D B J_r.
   Eigen::MatrixXd& H = w.contact_H;
-  factor_held_rows(data, w.rows.data(), n, H, w.contact_H_first);
+  Eigen::MatrixXd& G = w.contact_G;  // J_S^T D_S J_S
+  factor_held_rows(data, w.rows.data(), n, G, H, w.contact_H_first);
   RowMatrix& X = w.right_hand_sides;
   X.leftCols(nv) = w.rhs_q + E;
   X.middleCols(nv, nv) = w.rhs_v;
   X.rightCols(nu + model.na) = w.rhs_u;  // ctrl, then act
+  // aref's velocity term: J_S^T (-D_S B_S J_S), which is -B G where the held rows share one B
+  // (one solref's: every row of a scene that sets none)
+  bool one_B = true;
+  for (int k = 1; k < n; ++k) one_B = one_B && data.efc_B[w.rows[k]] == data.efc_B[w.rows[0]];
+  if (n > 0 && one_B) X.middleCols(nv, nv) -= data.efc_B[w.rows[0]] * G;
   for (int k = 0; k < n; ++k) {  // J_r's non-zeros lie in its span; y_r's wherever dofs move it
     const int r = w.rows[k];
     const double* J = data.efc_J.row(r).data();
     const RowSpan span = row_span(data, r);
-    const double velocity_weight = -data.efc_D[r] * data.efc_B[r];
     const double* y = Y.row(k).data();
     const int end = span.lo + span.count;
     if (!is_contact(data.efc_type[r])) {  // a contact's J_r^T y_r is in E already
@@ -700,8 +705,9 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         for (int c = 0; c < nv; ++c) x[c] += J[i] * y[c];
       }
     }
+    if (one_B) continue;
     add_span_outer(X.row(span.lo).data() + nv + span.lo, X.cols(), J + span.lo, span.count,
-                   velocity_weight);
+                   -data.efc_D[r] * data.efc_B[r]);
   }
   solve_held_rows(H, w.contact_H_first, X);
   deriv.dqacc_dq = X.leftCols(nv);

@@ -1216,6 +1216,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.contact_Y.setZero(nefc_max, nv);
   work.contact_E.setZero(nv, nv);
   work.contact_H.setZero(nv, nv);
+  work.contact_G.setZero(nv, nv);
   work.contact_H_first.assign(ndof, 0);
   // contacts, rows and the tendons' path points (at most two a wrap row), each wrapped geom's side
   const auto active_set_max =
@@ -1251,7 +1252,7 @@ void applied_force_derivatives(const Model& model, const Data& data, Derivatives
   // the rows held is H^-1 d f (docs/derivatives.md), the same H the contact rows are solved with
   auto& w = deriv.work;
   const int n = detail::held_active_rows(data, w.rows);
-  detail::factor_held_rows(data, w.rows.data(), n, w.contact_H, w.contact_H_first);
+  detail::factor_held_rows(data, w.rows.data(), n, w.contact_G, w.contact_H, w.contact_H_first);
   auto X = w.right_hand_sides.leftCols(model.nv);
   X.setIdentity();
   detail::solve_held_rows(w.contact_H, w.contact_H_first, X);
