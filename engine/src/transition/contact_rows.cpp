@@ -355,11 +355,12 @@ using PathSums = Derivatives::Workspace::PathSums;
 using ColumnWrench = Derivatives::Workspace::ColumnWrench;
 
 // A contact's row held active, as the directions' loop reads it: J = C_t, or a pyramid's
-// C_0 + mu C_t, and y = D (-B dJ qvel + K_per_dist d dist - R_per_dist d dist f - dJ qacc), the
-// two slopes through the distance (aref's position term, R) made once for all directions.
+// C_0 + mu C_t, and y = D (K_per_dist d dist - R_per_dist d dist f - dJ (qacc + B qvel)) (aref's
+// velocity term -B dJ qvel beside -dJ qacc), the two slopes through the distance (aref's position
+// term, R) made once for all directions.
 struct HeldContactRow {
   int t;
-  double mu, D, minus_B, K_per_dist, R_per_dist, f;
+  double mu, D, K_per_dist, R_per_dist, f;
 };
 constexpr int kMaxContactRows = 10;  // a pyramid of condim 6
 
@@ -557,9 +558,12 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     for (int k = 0; k < 3 && k < dim; ++k) phi += F[k] * con.frame.row(k).transpose();
     for (int k = 3; k < dim; ++k) tau += F[k] * con.frame.row(k - 3).transpose();
 
-    // relative point and angular velocities of qacc and qvel at p
-    const Vec3 Va = path.Va + path.Wa.cross(p), Wa = path.Wa;
-    const Vec3 Vv = path.Vv + path.Wv.cross(p), Wv = path.Wv;
+    // -dJ qacc and aref's velocity term -B dJ qvel enter each row's y together, as -dJ x for the
+    // motion x = qacc + B qvel (dJ is linear in it, and a contact's rows share one B: MuJoCo makes
+    // them from one solref), whose relative point and angular velocities at p are these
+    const double B = data.efc_B[first];
+    const Vec3 Wx = path.Wa + B * path.Wv;
+    const Vec3 Vx = (path.Va + B * path.Vv) + Wx.cross(p);
 
     // the soft parameters' slopes through the contact's distance (every row of it shares them)
     const int b_sum1 = model.geom_bodyid[con.geom1], b_sum2 = model.geom_bodyid[con.geom2];
@@ -578,7 +582,6 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       h.t = pyramid ? q / 2 + 1 : q;
       h.mu = pyramid ? con.friction[static_cast<std::size_t>(h.t - 1)] * (q % 2 ? -1.0 : 1.0) : 0.0;
       h.D = data.efc_D[r];
-      h.minus_B = -data.efc_B[r];
       h.K_per_dist = data.efc_K[r] * soft.aref_per_dist;
       h.R_per_dist = data.efc_R[r] * soft.R_per_dist;
       h.f = data.efc_force[r];
@@ -612,41 +615,29 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         column.torque += change.pos.cross(phi);
       }
 
-      // dV, dW for qacc and qvel: the moved point, and the axes c turns
-      Vec3 dVa, dVv, dWa = Vec3::Zero(), dWv = Vec3::Zero();
+      // dV, dW for x: the moved point, and the axes c turns
+      const Vec3 turned_W = turned.Wa + B * turned.Wv;
+      Vec3 dV, dW = Vec3::Zero();
       if (turns) {
         const Vec3 turn_j = phi.cross(wc), turn_w = tau.cross(wc) - jc.cross(phi);
         column.carried_force += turn_j;
         column.carried_torque += p.cross(turn_j) + turn_w;
-        const Vec3 Ja = turned.Va + turned.Wa.cross(p), Jv = turned.Vv + turned.Wv.cross(p);
-        dVa = Wa.cross(change.pos) + wc.cross(Ja) - turned.Wa.cross(jc);
-        dVv = Wv.cross(change.pos) + wc.cross(Jv) - turned.Wv.cross(jc);
-        dWa = wc.cross(turned.Wa);
-        dWv = wc.cross(turned.Wv);
+        const Vec3 turned_V = (turned.Va + B * turned.Vv) + turned_W.cross(p);
+        dV = Wx.cross(change.pos) + wc.cross(turned_V) - turned_W.cross(jc);
+        dW = wc.cross(turned_W);
       } else {
         column.carried_torque -= jc.cross(phi);
-        dVa = Wa.cross(change.pos) - turned.Wa.cross(jc);
-        dVv = Wv.cross(change.pos) - turned.Wv.cross(jc);
+        dV = Wx.cross(change.pos) - turned_W.cross(jc);
       }
-      // d (C_k x) for x = qacc, qvel
-      double dCa[6], dCv[6];
+      // d (C_k x)
+      double dC[6];
       for (int k = 0; k < 3 && k < dim; ++k) {
-        const Vec3 e = con.frame.row(k).transpose();
-        dCa[k] = e.dot(dVa);
-        dCv[k] = e.dot(dVv);
-        if (!frame_turns) continue;
-        const Vec3 de = change.frame.row(k).transpose();
-        dCa[k] = de.dot(Va) + dCa[k];
-        dCv[k] = de.dot(Vv) + dCv[k];
+        dC[k] = con.frame.row(k).dot(dV);
+        if (frame_turns) dC[k] = change.frame.row(k).dot(Vx) + dC[k];
       }
       for (int k = 3; k < dim; ++k) {
-        const Vec3 e = con.frame.row(k - 3).transpose();
-        dCa[k] = e.dot(dWa);
-        dCv[k] = e.dot(dWv);
-        if (!frame_turns) continue;
-        const Vec3 de = change.frame.row(k - 3).transpose();
-        dCa[k] = de.dot(Wa) + dCa[k];
-        dCv[k] = de.dot(Wv) + dCv[k];
+        dC[k] = con.frame.row(k - 3).dot(dW);
+        if (frame_turns) dC[k] = change.frame.row(k - 3).dot(Wx) + dC[k];
       }
       // each row's y, and J_r^T y_r's column c: J_r is a combination of the frame's rows C_k
       // (a pyramid's C_0 +- mu C_t), so sum_r J_r^T y_r = sum_k C_k^T z_k, a force and a torque
@@ -655,10 +646,8 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       const double dist = change.dist;
       for (int j = 0; j < nheld; ++j) {
         const HeldContactRow& h = held[j];
-        const double dJa = pyramid ? dCa[0] + h.mu * dCa[h.t] : dCa[h.t];
-        const double dJv = pyramid ? dCv[0] + h.mu * dCv[h.t] : dCv[h.t];
-        const double daref = h.minus_B * dJv + h.K_per_dist * dist;
-        const double y = h.D * (daref - h.R_per_dist * dist * h.f - dJa);
+        const double dJ = pyramid ? dC[0] + h.mu * dC[h.t] : dC[h.t];
+        const double y = h.D * (h.K_per_dist * dist - h.R_per_dist * dist * h.f - dJ);
         if (pyramid) {
           z[0] += y;
           z[h.t] += h.mu * y;
