@@ -136,10 +136,10 @@ struct Derivatives {
     std::vector<ContactChange> pair_changes;
     std::vector<GeomPairMotion> pair_motions;  ///< (nv) the pair's motion along each such dof
     std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at the world origin
-    /// Sums over the dofs on a geom pair's paths, weighted by qacc and qvel (contact_rows.cpp)
+    /// Sums over the dofs on a geom pair's paths of their velocities at the world origin and
+    /// their axes, weighted by the motion qacc + B qvel (contact_rows.cpp)
     struct PathSums {
-      Eigen::Vector3d Va = Eigen::Vector3d::Zero(), Wa = Eigen::Vector3d::Zero();
-      Eigen::Vector3d Vv = Eigen::Vector3d::Zero(), Wv = Eigen::Vector3d::Zero();
+      Eigen::Vector3d V = Eigen::Vector3d::Zero(), W = Eigen::Vector3d::Zero();
     };
     /// One column of dJ^T f and J^T Y summed over a geom pair's contacts (contact_rows.cpp)
     struct ColumnWrench {

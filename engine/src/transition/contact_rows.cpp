@@ -370,13 +370,14 @@ bool is_contact(ConstraintType type) {
 }
 
 // Sets up a pair whose bodies w.moves1, w.moves2 hold: each dof's velocity at the world origin,
-// the path sums, the dofs that move the pair (w.pair_dofs), its motion along each
-// (w.pair_motions) and the sums over the dofs each turns (w.pair_turned), its columns of dJ^T f
-// zeroed (w.pair_columns); returns the dofs' count.
-int begin_pair(const Model& model, const Data& data, const Contact& con, PathSums& path,
+// the path sums of the motion x = qacc + B qvel (B its rows'), the dofs that move the pair
+// (w.pair_dofs), its motion along each (w.pair_motions) and the sums over the dofs each turns
+// (w.pair_turned), its columns of dJ^T f zeroed (w.pair_columns); returns the dofs' count.
+int begin_pair(const Model& model, const Data& data, const Contact& con, double B, PathSums& path,
                Derivatives::Workspace& w) {
   const int nv = model.nv;
   path = PathSums{};
+  const auto x = [&](int d) { return data.qacc[d] + B * data.qvel[d]; };
   int directions = 0;
   for (int d = 0; d < nv; ++d) {
     if (!w.moves1[d] && !w.moves2[d]) continue;
@@ -384,12 +385,9 @@ int begin_pair(const Model& model, const Data& data, const Contact& con, PathSum
     const Vec3 v = point_velocity(model, data, d, Vec3::Zero());
     w.contact_point_velocity[static_cast<std::size_t>(d)] = v;
     if (w.moves1[d] == w.moves2[d]) continue;
-    const double s = w.moves2[d] ? 1.0 : -1.0;
-    const Vec3 wd = angular(data.cdof[d]);
-    path.Va += s * data.qacc[d] * v;
-    path.Wa += s * data.qacc[d] * wd;
-    path.Vv += s * data.qvel[d] * v;
-    path.Wv += s * data.qvel[d] * wd;
+    const double sx = (w.moves2[d] ? 1.0 : -1.0) * x(d);
+    path.V += sx * v;
+    path.W += sx * angular(data.cdof[d]);
   }
   for (int m = 0; m < directions; ++m) {
     const int c = w.pair_dofs[static_cast<std::size_t>(m)];
@@ -411,13 +409,9 @@ int begin_pair(const Model& model, const Data& data, const Contact& con, PathSum
     for (int j = 0; j < directions; ++j) {  // the dofs c turns are among the pair's
       const int d = w.pair_dofs[static_cast<std::size_t>(j)];
       if (!carried[d] || w.moves1[d] == w.moves2[d]) continue;
-      const double s = w.moves2[d] ? 1.0 : -1.0;
-      const Vec3& v = w.contact_point_velocity[static_cast<std::size_t>(d)];
-      const Vec3 wd = angular(data.cdof[d]);
-      turned.Va += s * data.qacc[d] * v;
-      turned.Wa += s * data.qacc[d] * wd;
-      turned.Vv += s * data.qvel[d] * v;
-      turned.Wv += s * data.qvel[d] * wd;
+      const double sx = (w.moves2[d] ? 1.0 : -1.0) * x(d);
+      turned.V += sx * w.contact_point_velocity[static_cast<std::size_t>(d)];
+      turned.W += sx * angular(data.cdof[d]);
     }
   }
   return directions;
@@ -511,6 +505,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   std::vector<char>& moves2 = w.moves2;
   PathSums path;  // the pair's
   int cached_pair = -1;  // the first contact of the pair whose terms w holds
+  double cached_B = 0;   // the B of its rows, which its path sums weigh qvel by
   int directions = 0;    // the dofs that move that pair
   for (int i = 0; i < data.ncon; ++i) {
     const Contact& con = data.contact[static_cast<std::size_t>(i)];
@@ -531,12 +526,18 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     }
     int pair_count = 0;
     const int pair_first = pair_first_contact(data, i, pair_count);
-    if (pair_first != cached_pair) {  // the pair's first contact with a pushing row
+    // -dJ qacc and aref's velocity term -B dJ qvel enter each row's y together, as -dJ x for the
+    // motion x = qacc + B qvel (dJ is linear in it, and a contact's rows share one B: MuJoCo makes
+    // them from one solref, as it does a pair's contacts)
+    const double B = data.efc_B[first];
+    // the pair's first contact with a pushing row (or one whose B is not the pair's)
+    if (pair_first != cached_pair || B != cached_B) {
       if (cached_pair >= 0) spread_pair_columns(model, data, w, directions, E);
       cached_pair = pair_first;
+      cached_B = B;
       dofs_moving(model, model.geom_bodyid[con.geom1], moves1);
       dofs_moving(model, model.geom_bodyid[con.geom2], moves2);
-      directions = begin_pair(model, data, con, path, w);
+      directions = begin_pair(model, data, con, B, path, w);
       // all of the pair's contacts, along each dof that moves the pair, at once
       pair_contact_changes(model, data, pair_first, pair_count, w.pair_motions.data(), directions,
                            w.pair_changes.data());
@@ -558,12 +559,9 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     for (int k = 0; k < 3 && k < dim; ++k) phi += F[k] * con.frame.row(k).transpose();
     for (int k = 3; k < dim; ++k) tau += F[k] * con.frame.row(k - 3).transpose();
 
-    // -dJ qacc and aref's velocity term -B dJ qvel enter each row's y together, as -dJ x for the
-    // motion x = qacc + B qvel (dJ is linear in it, and a contact's rows share one B: MuJoCo makes
-    // them from one solref), whose relative point and angular velocities at p are these
-    const double B = data.efc_B[first];
-    const Vec3 Wx = path.Wa + B * path.Wv;
-    const Vec3 Vx = (path.Va + B * path.Vv) + Wx.cross(p);
+    // x's relative point and angular velocities at p
+    const Vec3 Wx = path.W;
+    const Vec3 Vx = path.V + Wx.cross(p);
 
     // the soft parameters' slopes through the contact's distance (every row of it shares them)
     const int b_sum1 = model.geom_bodyid[con.geom1], b_sum2 = model.geom_bodyid[con.geom2];
@@ -616,13 +614,13 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       }
 
       // dV, dW for x: the moved point, and the axes c turns
-      const Vec3 turned_W = turned.Wa + B * turned.Wv;
+      const Vec3& turned_W = turned.W;
       Vec3 dV, dW = Vec3::Zero();
       if (turns) {
         const Vec3 turn_j = phi.cross(wc), turn_w = tau.cross(wc) - jc.cross(phi);
         column.carried_force += turn_j;
         column.carried_torque += p.cross(turn_j) + turn_w;
-        const Vec3 turned_V = (turned.Va + B * turned.Vv) + turned_W.cross(p);
+        const Vec3 turned_V = turned.V + turned_W.cross(p);
         dV = Wx.cross(change.pos) + wc.cross(turned_V) - turned_W.cross(jc);
         dW = wc.cross(turned_W);
       } else {
