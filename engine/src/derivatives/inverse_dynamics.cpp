@@ -1,7 +1,8 @@
 // Analytic derivatives of inverse dynamics (Carpentier and Mansard, RSS 2018): d tau / d q and
 // d tau / d qd of RNEA, and d qfrc_bias / d qvel, which the implicit integrator and the step's
-// Jacobians (transition/) read. docs/derivatives.md derives each formula.
-// derives each formula.
+// Jacobians (transition/) read; and the same recursion for the polar form 2 Q(v1, v2) of RNEA's
+// velocity product, which the implicit step's Jacobian reads. docs/derivatives.md derives each
+// formula.
 //
 // Every spatial quantity is in lever's frame (world axes, origin at the tree's centre of mass c,
 // see kinematics.cpp). tau is a sum of dot products S_i . F, which do not depend on the frame, so
@@ -396,6 +397,8 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
   }
 }
 
+// The derivatives of 2 Q(v1, v2) + L(qdd) (polar_forward_pass()'s quantities, then RNEA's
+// backward sums and columns on them), reading w.CC at v1 (derivatives_room.hpp).
 void polar_derivatives_into(const Model& model, const Data& data, const double* v1,
                             const double* v2, const double* qdd, std::span<const RigidInertia> IC,
                             Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
