@@ -84,8 +84,8 @@ std::span<const RigidInertia> subtree_inertias(const Model& model, const Data& d
 }
 
 // IC S_i of each dof i (IC its body's subtree inertia): the column force crba() finds, which every
-// RNEA-derivative pass at this qpos reads (position_columns(), velocity_columns(),
-// segment_velocity_columns()), so the step's passes share it.
+// RNEA-derivative pass at this qpos reads (columns(), segment_velocity_columns()), so the step's
+// passes share it.
 void inertia_columns(const Model& model, const Data& data, std::span<const RigidInertia> IC,
                      Derivatives::Workspace& w) {
   for (int i = 0; i < model.nv; ++i) w.IC_S[i] = IC[model.dof_bodyid[i]] * data.cdof[i];
@@ -151,28 +151,37 @@ void body_couplings(const Model& model, const Data& data, std::span<const Motion
 // above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
 // IC_S: inertia_columns() at this qpos.
 
-// A velocity coupling's term of d tau / d q: the subtree sums CC of C at one velocity, with the
-// Sdot of each dof at a velocity (the same one for RNEA; the other for the polar form below).
+// A velocity coupling's term: the subtree sums CC of C at one velocity, with the Sdot of each dof
+// at a velocity (the same one for RNEA; the other for the polar form below).
 struct CouplingTerm {
   std::span<const VelocityCoupling> CC;
   std::span<const Motion> Sdot;
 };
 
-// d tau / d q from Psi_ddot (Sddot), the subtree net forces F and the coupling terms (one for
-// RNEA, two for the polar form), one dof i at a time.
+// d tau / d q, from Psi_ddot (Sddot), the subtree net forces F and the coupling terms (one for
+// RNEA, two for the polar form), and d tau / d qd (dtau_dv; nullptr: d / d q alone) from the
+// coupling term `velocity` (Sdot and CC at one velocity, one of the terms' CC), one dof i at a
+// time: both read S_i . CC x, formed once per CC.
 template <std::size_t Terms>
-void position_columns(const Model& model, const Data& data, std::span<const Motion> Sddot,
-                      std::span<const Force> F, std::span<const RigidInertia> ICs,
-                      std::span<const Force> IC_S,
-                      const std::array<CouplingTerm, Terms>& couplings,
-                      Eigen::MatrixXd& dtau_dq) {
+void columns(const Model& model, const Data& data, std::span<const Motion> Sddot,
+             std::span<const Force> F, std::span<const RigidInertia> ICs,
+             std::span<const Force> IC_S, const std::array<CouplingTerm, Terms>& couplings,
+             Eigen::MatrixXd& dtau_dq, const CouplingTerm& velocity, Eigen::MatrixXd* dtau_dv) {
+  std::size_t velocity_term = 0;  // the term whose CC the velocity's is
+  while (velocity_term + 1 < Terms &&
+         couplings[velocity_term].CC.data() != velocity.CC.data()) {
+    ++velocity_term;
+  }
   dtau_dq.setZero();
+  if (dtau_dv != nullptr) dtau_dv->setZero();
   for (int i = 0; i < model.nv; ++i) {
     const int b = model.dof_bodyid[i];
     const Motion& Si = data.cdof[i];
+    const RigidInertia& IC = ICs[b];
     const Force& IC_Si = IC_S[i];  // IC symmetric: S_i . IC x
     std::array<Eigen::Vector3d, Terms> CCt_Si;  // S_i . CC x (x's angular part)
     for (std::size_t t = 0; t < Terms; ++t) CCt_Si[t] = couplings[t].CC[b].transpose_times(Si);
+    // d / d q
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
       double sum = IC_Si.dot(Sddot[j]);
       for (std::size_t t = 0; t < Terms; ++t) {
@@ -181,32 +190,22 @@ void position_columns(const Model& model, const Data& data, std::span<const Moti
       }
       dtau_dq(i, j) = sum;
     }
-    Force Xq = ICs[b] * Sddot[i];
+    Force Xq = IC * Sddot[i];
     for (std::size_t t = 0; t < Terms; ++t) Xq += couplings[t].CC[b] * couplings[t].Sdot[i];
     Xq += cross_force(Si, F[b]);
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
       dtau_dq(k, i) = data.cdof[k].dot(Xq);
     }
-  }
-}
-
-// d tau / d qd from Sdot and the subtree sums CC of C at the same velocity, one dof i at a time.
-void velocity_columns(const Model& model, const Data& data, std::span<const Motion> Sdot,
-                      std::span<const RigidInertia> ICs, std::span<const Force> IC_S,
-                      std::span<const VelocityCoupling> CCs, Eigen::MatrixXd& dtau_dv) {
-  dtau_dv.setZero();
-  for (int i = 0; i < model.nv; ++i) {
-    const int b = model.dof_bodyid[i];
-    const Motion& Si = data.cdof[i];
-    const VelocityCoupling& CC = CCs[b];
-    const Force& IC_Si = IC_S[i];
-    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);
+    if (dtau_dv == nullptr) continue;
+    // d / d qd
+    Eigen::MatrixXd& dv = *dtau_dv;
+    const std::span<const Motion> Sdot = velocity.Sdot;
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+      dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si[velocity_term].dot(data.cdof[j].head<3>());
     }
-    const Force Xv = 2 * (ICs[b] * Sdot[i]) + CC * Si;
+    const Force Xv = 2 * (IC * Sdot[i]) + velocity.CC[b] * Si;
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
-      dtau_dv(k, i) = data.cdof[k].dot(Xv);
+      dv(k, i) = data.cdof[k].dot(Xv);
     }
   }
 }
@@ -233,7 +232,7 @@ void segment_accelerations(const Model& model, const Data& data, AddDof&& add,
   }
 }
 
-// d tau_k / d q_i of a segment's dofs, corrected after position_columns(): for k before i in the
+// d tau_k / d q_i of a segment's dofs, corrected after columns(): for k before i in the
 // segment, turning about S_i turns S_k too, and d S_k / d q_i . F = (S_i x S_k) . F cancels the
 // S_i x* F term the hinge formula adds.
 void segment_position_columns(const Model& model, const Data& data, std::span<const Force> F,
@@ -249,7 +248,7 @@ void segment_position_columns(const Model& model, const Data& data, std::span<co
   }
 }
 
-// d tau / d qd_i of a segment's dofs, corrected after velocity_columns(): d a_c / d qd_i =
+// d tau / d qd_i of a segment's dofs, corrected after columns(): d a_c / d qd_i =
 // Sdot_i + v' x S_i + S_i x v_c, v' the velocity after the segment, where a hinge has 2 Sdot_i;
 // the difference E = v' x S_i - Sdot_i enters as IC E wherever 2 IC Sdot_i did. (v' is the
 // body's velocity less the dofs after the segment in the same body: none for a free joint or a
@@ -387,8 +386,8 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
   sum_over_subtrees<Force>(model, w.F);
   body_couplings(model, data, w.v, w.CC);
   sum_over_subtrees<VelocityCoupling>(model, w.CC);
-  position_columns<1>(model, data, w.Sddot, w.F, IC, w.IC_S, {{{w.CC, w.Sdot}}}, dtau_dq);
-  if (dtau_dv != nullptr) velocity_columns(model, data, w.Sdot, IC, w.IC_S, w.CC, *dtau_dv);
+  const CouplingTerm at_qd{w.CC, w.Sdot};
+  columns<1>(model, data, w.Sddot, w.F, IC, w.IC_S, {at_qd}, dtau_dq, at_qd, dtau_dv);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
     if (dtau_dv != nullptr) {
@@ -416,9 +415,8 @@ void polar_derivatives_into(const Model& model, const Data& data, const double* 
   sum_over_subtrees<Force>(model, w.F);
   body_couplings(model, data, w.v2, w.CC2);  // w.CC: C at v1, the caller's
   sum_over_subtrees<VelocityCoupling>(model, w.CC2);
-  position_columns<2>(model, data, w.Sddot, w.F, IC, w.IC_S,
-                      {{{w.CC, w.Sdot2}, {w.CC2, w.Sdot}}}, dtau_dq);
-  velocity_columns(model, data, w.Sdot2, IC, w.IC_S, w.CC2, dtau_dv2);
+  columns<2>(model, data, w.Sddot, w.F, IC, w.IC_S, {{{w.CC, w.Sdot2}, {w.CC2, w.Sdot}}}, dtau_dq,
+             {w.CC2, w.Sdot2}, &dtau_dv2);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
     segment_velocity_columns(model, data, v2, w.v2, w.Sdot2, IC, w.IC_S, dtau_dv2);
