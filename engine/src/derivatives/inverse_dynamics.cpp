@@ -315,6 +315,30 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
   w.a[0].setZero();
   for (int b = 1; b < model.nbody; ++b) {
     const int parent = model.body_parentid[b];
+    if (model.body_dofnum[b] == 1) {
+      // a hinge or a slide alone in its body: one segment, which the parent's velocities turn;
+      // the loop below's arithmetic without its bookkeeping
+      const int i = model.body_dofadr[b];
+      const Motion& S = data.cdof[i];
+      const Motion &v1_parent = w.v[parent], &v2_parent = w.v2[parent];
+      if (parent > 0) {
+        w.Sdot[i] = cross_motion(v1_parent, S);
+        w.Sdot2[i] = cross_motion(v2_parent, S);
+      } else {
+        w.Sdot[i].setZero();
+        w.Sdot2[i].setZero();
+      }
+      const Motion& a_parent = w.a[parent];
+      w.Sddot[i] = cross_motion(a_parent, S) + cross_motion(v1_parent, w.Sdot2[i]) +
+                   cross_motion(v2_parent, w.Sdot[i]);
+      Motion a = a_parent + (w.Sdot[i] * v2[i] + w.Sdot2[i] * v1[i]);
+      if (qdd != nullptr) a += S * qdd[i];
+      w.v[b] = v1_parent + S * v1[i];
+      w.v2[b] = v2_parent + S * v2[i];
+      w.a[b] = a;
+      w.F[b] = polar_net_force(data.cinert[b], w.v[b], w.v2[b], a);
+      continue;
+    }
     Motion vb1 = w.v[parent], vb2 = w.v2[parent];
     Motion seg1 = Motion::Zero(), seg2 = Motion::Zero();  // the current segment's S v summed
     Motion v1_seg, v2_seg;  // the velocities the current segment's Sdot uses
