@@ -787,8 +787,9 @@ void explain_missed_kernels(std::ostream& out, const Inputs& in) {
       fwd = counts.count("forward", "panda7", "lever");
       jac && fwd && *jac > 5.0 * *fwd) {
     out << "- panda7 step Jacobian: " << count_text(*jac) << " instructions, "
-        << fmt("%.2f", *jac / *fwd) << " forwards: one forward, two analytic RNEA-derivative "
-        << "passes (dM at the step's acceleration by polarisation), the implicit step's "
+        << fmt("%.2f", *jac / *fwd) << " forwards: one forward, an analytic RNEA-derivative "
+        << "pass and one of the velocity product's polar form (dM at the step's acceleration "
+        << "and D's change), the implicit step's "
         << "factorisation of M - h D along the tree and one solve of its 2 nv + nu "
         << "right-hand sides, and the chain rule through the integrator (dense nv x nv "
         << "products). The Jacobian's own work is counted against a forward that has itself "

@@ -82,6 +82,8 @@ struct Derivatives {
     // per body: velocity, acceleration, and the subtree (composite) sums of the net force, the
     // inertia and the velocity coupling C (derivatives/inverse_dynamics.cpp)
     std::vector<Motion> v, a;
+    /// (nbody, nv) implicit: v and Sdot at a second velocity (the velocity product's polar form)
+    std::vector<Motion> v2, Sdot2;
     std::vector<Force> F;              ///< net force of the body's whole subtree
     std::vector<RigidInertia> IC;      ///< inertia of the body's whole subtree
     std::vector<VelocityCoupling> CC;  ///< C = v x* I - I v x + (I v) xbar* summed over the subtree
@@ -114,17 +116,17 @@ struct Derivatives {
     Eigen::MatrixXd D;               ///< (nv x nv) implicit: d qfrc_smooth / d qvel
     Eigen::MatrixXd K;               ///< (nv x nv) implicit: M - h D
     Eigen::MatrixXd K_lu;            ///< (nv x nv) implicit: K's factor (U + I) L (implicit.cpp)
-    Eigen::VectorXd qvel_shift;      ///< (nv) implicit: qvel +- s a (polarisation)
-    Eigen::VectorXd qacc_shift;      ///< (nv) implicit: +- c (a - qacc), beside it
-    Eigen::MatrixXd tau_q_minus;     ///< (nv x nv) implicit: d rnea / d qpos at qd - s a
+    Eigen::VectorXd qvel_change;     ///< (nv) implicit: h a, the step's change of qvel
+    Eigen::VectorXd qacc_change;     ///< (nv) implicit: a - qacc
     int active_rows = 0;             ///< the limit rows active at the last forward (limit_rows)
     std::vector<Force> IC_S;         ///< (nv) IC S_i, IC dof i's subtree inertia (derivatives/inverse_dynamics.cpp)
-    std::vector<VelocityCoupling> CC_minus;  ///< (nbody) implicit: CC at qd - s a
+    std::vector<VelocityCoupling> CC2;  ///< (nbody) implicit: CC at a second velocity
     // contacts' rows with their active set held (transition/contact_rows.cpp)
     RowMatrix contact_Y;          ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
     /// (nv x nv) dJ^T f, one column per qpos direction, and the contact rows' J^T Y
     Eigen::MatrixXd contact_E;
     Eigen::MatrixXd contact_H;    ///< (nv x nv) M + J^T D J over the active rows, then its factor
+    Eigen::MatrixXd contact_G;    ///< (nv x nv) J^T D J over the active rows
     std::vector<int> contact_H_first;  ///< (nv) the first column of each of its rows not zero
     std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
     std::vector<char> carries;  ///< (nv x nv) [c * nv + i]: moving dof c turns dof i's axis
@@ -134,10 +136,10 @@ struct Derivatives {
     std::vector<ContactChange> pair_changes;
     std::vector<GeomPairMotion> pair_motions;  ///< (nv) the pair's motion along each such dof
     std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at the world origin
-    /// Sums over the dofs on a geom pair's paths, weighted by qacc and qvel (contact_rows.cpp)
+    /// Sums over the dofs on a geom pair's paths of their velocities at the world origin and
+    /// their axes, weighted by the motion qacc + B qvel (contact_rows.cpp)
     struct PathSums {
-      Eigen::Vector3d Va = Eigen::Vector3d::Zero(), Wa = Eigen::Vector3d::Zero();
-      Eigen::Vector3d Vv = Eigen::Vector3d::Zero(), Wv = Eigen::Vector3d::Zero();
+      Eigen::Vector3d V = Eigen::Vector3d::Zero(), W = Eigen::Vector3d::Zero();
     };
     /// One column of dJ^T f and J^T Y summed over a geom pair's contacts (contact_rows.cpp)
     struct ColumnWrench {

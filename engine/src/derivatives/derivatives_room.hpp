@@ -42,13 +42,22 @@ void inertia_columns(const Model& model, const Data& data, std::span<const Rigid
                      Derivatives::Workspace& w);
 
 /// Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd) into dtau_dq and
-/// dtau_dv (nullptr: d / d q alone), given the subtree inertias IC and w.IC_S; couplings: the
-/// subtree sums of C at qd when the caller has them, nullptr: summed into w.CC.
+/// dtau_dv (nullptr: d / d q alone), given the subtree inertias IC and w.IC_S; leaves the subtree
+/// sums of C at qd in w.CC.
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, std::span<const RigidInertia> IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
-                           Eigen::MatrixXd* dtau_dv,
-                           const std::vector<VelocityCoupling>* couplings = nullptr);
+                           Eigen::MatrixXd* dtau_dv);
+
+/// The derivatives of RNEA's velocity product in its polar form, 2 Q(v1, v2) (rnea = Q(qd, qd) +
+/// L(qdd, gravity)), plus L(qdd) without gravity (qdd nullptr: none): d / d qpos into dtau_dq and
+/// d / d v1 (RNEA's d tau / d qd at v2) into dtau_dv2. Reads w.CC, the subtree sums of C at v1
+/// that rnea_derivatives_into() at v1 left; given IC and w.IC_S as it is. One pass where the
+/// polarisation identity 2 Q(v1, v2) = (Q(v1 + s v2) - Q(v1 - s v2)) / (2 s) takes two.
+void polar_derivatives_into(const Model& model, const Data& data, const double* v1,
+                            const double* v2, const double* qdd, std::span<const RigidInertia> IC,
+                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
+                            Eigen::MatrixXd& dtau_dv2);
 
 }  // namespace detail
 

@@ -1,7 +1,8 @@
 // Analytic derivatives of inverse dynamics (Carpentier and Mansard, RSS 2018): d tau / d q and
 // d tau / d qd of RNEA, and d qfrc_bias / d qvel, which the implicit integrator and the step's
-// Jacobians (transition/) read. docs/derivatives.md derives each formula.
-// derives each formula.
+// Jacobians (transition/) read; and the same recursion for the polar form 2 Q(v1, v2) of RNEA's
+// velocity product, which the implicit step's Jacobian reads. docs/derivatives.md derives each
+// formula.
 //
 // Every spatial quantity is in lever's frame (world axes, origin at the tree's centre of mass c,
 // see kinematics.cpp). tau is a sum of dot products S_i . F, which do not depend on the frame, so
@@ -31,6 +32,7 @@
 #include <lever/derivatives.hpp>
 #include <lever/error.hpp>
 
+#include <array>
 #include <span>
 #include <string>
 
@@ -149,37 +151,59 @@ void body_couplings(const Model& model, const Data& data, std::span<const Motion
 // above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
 // IC_S: inertia_columns() at this qpos.
 
-// d tau / d q, from Psi_ddot (Sddot) and the subtree net forces F besides, and d tau / d qd
-// (dtau_dv; nullptr: d / d q alone), one dof i at a time: both read S_i . CC x, formed once.
-void columns(const Model& model, const Data& data, std::span<const Motion> Sdot,
-             std::span<const Motion> Sddot, std::span<const Force> F,
-             std::span<const RigidInertia> ICs, std::span<const Force> IC_S,
-             std::span<const VelocityCoupling> CCs, Eigen::MatrixXd& dtau_dq,
-             Eigen::MatrixXd* dtau_dv) {
+// A velocity coupling's term: the subtree sums CC of C at one velocity, with the Sdot of each dof
+// at a velocity (the same one for RNEA; the other for the polar form below).
+struct CouplingTerm {
+  std::span<const VelocityCoupling> CC;
+  std::span<const Motion> Sdot;
+};
+
+// d tau / d q, from Psi_ddot (Sddot), the subtree net forces F and the coupling terms (one for
+// RNEA, two for the polar form), and d tau / d qd (dtau_dv; nullptr: d / d q alone) from the
+// coupling term `velocity` (Sdot and CC at one velocity, one of the terms' CC), one dof i at a
+// time: both read S_i . CC x, formed once per CC.
+template <std::size_t Terms>
+void columns(const Model& model, const Data& data, std::span<const Motion> Sddot,
+             std::span<const Force> F, std::span<const RigidInertia> ICs,
+             std::span<const Force> IC_S, const std::array<CouplingTerm, Terms>& couplings,
+             Eigen::MatrixXd& dtau_dq, const CouplingTerm& velocity, Eigen::MatrixXd* dtau_dv) {
+  std::size_t velocity_term = 0;  // the term whose CC the velocity's is
+  while (velocity_term + 1 < Terms &&
+         couplings[velocity_term].CC.data() != velocity.CC.data()) {
+    ++velocity_term;
+  }
   dtau_dq.setZero();
   if (dtau_dv != nullptr) dtau_dv->setZero();
   for (int i = 0; i < model.nv; ++i) {
     const int b = model.dof_bodyid[i];
     const Motion& Si = data.cdof[i];
     const RigidInertia& IC = ICs[b];
-    const VelocityCoupling& CC = CCs[b];
-    const Force& IC_Si = IC_S[i];                           // IC symmetric: S_i . IC x
-    const Eigen::Vector3d CCt_Si = CC.transpose_times(Si);  // S_i . CC x (x's angular part)
+    const Force& IC_Si = IC_S[i];  // IC symmetric: S_i . IC x
+    std::array<Eigen::Vector3d, Terms> CCt_Si;  // S_i . CC x (x's angular part)
+    for (std::size_t t = 0; t < Terms; ++t) CCt_Si[t] = couplings[t].CC[b].transpose_times(Si);
     // d / d q
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dtau_dq(i, j) = IC_Si.dot(Sddot[j]) + CCt_Si.dot(Sdot[j].head<3>());
+      double sum = IC_Si.dot(Sddot[j]);
+      for (std::size_t t = 0; t < Terms; ++t) {
+        const Motion& Sdot_j = couplings[t].Sdot[j];
+        sum += CCt_Si[t].dot(Sdot_j.head<3>());
+      }
+      dtau_dq(i, j) = sum;
     }
-    const Force Xq = IC * Sddot[i] + CC * Sdot[i] + cross_force(Si, F[b]);
+    Force Xq = IC * Sddot[i];
+    for (std::size_t t = 0; t < Terms; ++t) Xq += couplings[t].CC[b] * couplings[t].Sdot[i];
+    Xq += cross_force(Si, F[b]);
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
       dtau_dq(k, i) = data.cdof[k].dot(Xq);
     }
     if (dtau_dv == nullptr) continue;
     // d / d qd
     Eigen::MatrixXd& dv = *dtau_dv;
+    const std::span<const Motion> Sdot = velocity.Sdot;
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si.dot(data.cdof[j].head<3>());
+      dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si[velocity_term].dot(data.cdof[j].head<3>());
     }
-    const Force Xv = 2 * (IC * Sdot[i]) + CC * Si;
+    const Force Xv = 2 * (IC * Sdot[i]) + velocity.CC[b] * Si;
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
       dv(k, i) = data.cdof[k].dot(Xv);
     }
@@ -190,19 +214,20 @@ void columns(const Model& model, const Data& data, std::span<const Motion> Sdot,
 // --------------
 
 // Psi_ddot of a segment's second and third dofs with the acceleration before the segment, not
-// before the dof: forward_pass() gave a_i x S_i + v_seg x Sdot_i, where a_i adds the segment's
-// earlier dofs' Sdot_k qd_k + S_k qdd_k, which turn with dof i (docs/derivatives.md). A free
-// joint's translations need nothing (linear x linear = 0).
-void segment_accelerations(const Model& model, const Data& data, const double* qd,
-                           const double* qdd, Derivatives::Workspace& w) {
+// before the dof: the forward pass gave a_i x S_i + v_seg x Sdot_i, where a_i adds the segment's
+// earlier dofs' accelerations (add(k, sum) adds dof k's: RNEA's Sdot_k qd_k + S_k qdd_k), which
+// turn with dof i (docs/derivatives.md). A free joint's translations need nothing (linear x
+// linear = 0).
+template <class AddDof>
+void segment_accelerations(const Model& model, const Data& data, AddDof&& add,
+                           std::span<Motion> Sddot) {
   for (int j = 0; j < model.njnt; ++j) {
     const int r = rotation_block(model, j);
     if (r < 0) continue;
     Motion added = Motion::Zero();  // what the segment's dofs before i add to the acceleration
     for (int i = r + 1; i < r + 3; ++i) {
-      added += w.Sdot[i - 1] * qd[i - 1];
-      if (qdd != nullptr) added += data.cdof[i - 1] * qdd[i - 1];
-      w.Sddot[i] -= cross_motion(added, data.cdof[i]);
+      add(i - 1, added);
+      Sddot[i] -= cross_motion(added, data.cdof[i]);
     }
   }
 }
@@ -259,37 +284,134 @@ void segment_velocity_columns(const Model& model, const Data& data, const double
   }
 }
 
+// ---- the polar form of the velocity product -----------------------------------------------------
+// rnea = Q(qd, qd) + L(qdd, gravity), Q quadratic in the velocity and L linear. The polar form
+// P(v1, v2) = Q(v1 + v2) - Q(v1) - Q(v2) = 2 Q(v1, v2) follows RNEA's quantities term by term:
+// each product of two velocity-linear factors (v x S, v x* I v, C(v) Sdot(v)) becomes the sum of
+// its two cross products, one factor at each velocity:
+//   Sdot_i^k = v_seg^k x S_i                       (k = 1, 2: each velocity's own, linear)
+//   a_b      = a_parent + sum_i (Sdot_i^1 v2_i + Sdot_i^2 v1_i + S_i qdd_i)
+//   Psi_ddot_i = a_before_i x S_i + v_seg^1 x Sdot_i^2 + v_seg^2 x Sdot_i^1
+//   f_b      = I_b a_b + v_b^1 x* I_b v_b^2 + v_b^2 x* I_b v_b^1
+// and d tau / d q's coupling term C Sdot becomes C(v1) Sdot^2 + C(v2) Sdot^1. Its derivative in
+// v1 is RNEA's d tau / d qd at v2 (d Q(v1) / d v1 = 2 Q(v1, .)).
+
+// I a + v1 x* I v2 + v2 x* I v1: the polar form of net_force()'s v x* I v, with I a beside it.
+Force polar_net_force(const RigidInertia& I, const Motion& v1, const Motion& v2, const Motion& a) {
+  Force f = I * a;
+  f += cross_force(v1, I * v2);
+  f += cross_force(v2, I * v1);
+  return f;
+}
+
+// The forward pass of the polar form, root to leaves, dof by dof as forward_pass() (recursion.hpp)
+// walks a body's segments: each body's velocities w.v (v1) and w.v2, its acceleration w.a and net
+// force w.F, each dof's Sdot at either velocity (w.Sdot, w.Sdot2) and its Psi_ddot (w.Sddot).
+// No gravity: it belongs to Q(v1 + v2) and Q(v1), cancelling in P. qdd == nullptr: zero.
+void polar_forward_pass(const Model& model, const Data& data, const double* v1, const double* v2,
+                        const double* qdd, Derivatives::Workspace& w) {
+  w.v[0].setZero();
+  w.v2[0].setZero();
+  w.a[0].setZero();
+  for (int b = 1; b < model.nbody; ++b) {
+    const int parent = model.body_parentid[b];
+    if (model.body_dofnum[b] == 1) {
+      // a hinge or a slide alone in its body: one segment, which the parent's velocities turn;
+      // the loop below's arithmetic without its bookkeeping
+      const int i = model.body_dofadr[b];
+      const Motion& S = data.cdof[i];
+      const Motion &v1_parent = w.v[parent], &v2_parent = w.v2[parent];
+      if (parent > 0) {
+        w.Sdot[i] = cross_motion(v1_parent, S);
+        w.Sdot2[i] = cross_motion(v2_parent, S);
+      } else {
+        w.Sdot[i].setZero();
+        w.Sdot2[i].setZero();
+      }
+      const Motion& a_parent = w.a[parent];
+      w.Sddot[i] = cross_motion(a_parent, S) + cross_motion(v1_parent, w.Sdot2[i]) +
+                   cross_motion(v2_parent, w.Sdot[i]);
+      Motion a = a_parent + (w.Sdot[i] * v2[i] + w.Sdot2[i] * v1[i]);
+      if (qdd != nullptr) a += S * qdd[i];
+      w.v[b] = v1_parent + S * v1[i];
+      w.v2[b] = v2_parent + S * v2[i];
+      w.a[b] = a;
+      w.F[b] = polar_net_force(data.cinert[b], w.v[b], w.v2[b], a);
+      continue;
+    }
+    Motion vb1 = w.v[parent], vb2 = w.v2[parent];
+    Motion seg1 = Motion::Zero(), seg2 = Motion::Zero();  // the current segment's S v summed
+    Motion v1_seg, v2_seg;  // the velocities the current segment's Sdot uses
+    Motion a = w.a[parent];  // the acceleration before dof i
+    bool moving = false;
+    for (int k = 0; k < model.body_dofnum[b]; ++k) {
+      const int i = model.body_dofadr[b] + k;
+      const Motion& S = data.cdof[i];
+      if (detail::starts_segment(model, i)) {
+        if (k > 0) {
+          vb1 += seg1;
+          vb2 += seg2;
+          seg1.setZero();
+          seg2.setZero();
+        }
+        v1_seg = vb1;
+        v2_seg = vb2;
+        moving = parent > 0 || k > 0;  // the world does not move: nothing before it turns S
+      }
+      if (moving) {
+        w.Sdot[i] = cross_motion(v1_seg, S);
+        w.Sdot2[i] = cross_motion(v2_seg, S);
+      } else {
+        w.Sdot[i].setZero();
+        w.Sdot2[i].setZero();
+      }
+      w.Sddot[i] = cross_motion(a, S) + cross_motion(v1_seg, w.Sdot2[i]) +
+                   cross_motion(v2_seg, w.Sdot[i]);
+      a += w.Sdot[i] * v2[i] + w.Sdot2[i] * v1[i];
+      if (qdd != nullptr) a += S * qdd[i];
+      seg1 += S * v1[i];
+      seg2 += S * v2[i];
+    }
+    w.v[b] = vb1 + seg1;
+    w.v2[b] = vb2 + seg2;
+    w.a[b] = a;
+    w.F[b] = polar_net_force(data.cinert[b], w.v[b], w.v2[b], a);
+  }
+}
+
 }  // namespace
 
 namespace detail {
 
 // Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
 // and dtau_dv (nullptr: d / d q alone), given the subtree inertias IC at data.qpos
-// (data.work.crb after forward()) and w.IC_S (inertia_columns()) from them. couplings: the
-// subtree sums of C at the velocity qd when the caller has them, nullptr: summed into w.CC.
-// Armature adds armature * qdd, which depends on neither. Without gravity and with qdd = 0 they
-// are the derivatives of the velocity product terms alone (implicit_derivatives).
+// (data.work.crb after forward()) and w.IC_S (inertia_columns()) from them; the subtree sums of
+// C at qd are left in w.CC. Armature adds armature * qdd, which depends on neither.
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, std::span<const RigidInertia> IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
-                           Eigen::MatrixXd* dtau_dv,
-                           const std::vector<VelocityCoupling>* couplings) {
+                           Eigen::MatrixXd* dtau_dv) {
   // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof, each body's net force
   // (RNEA's forward pass)
   forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot,
                [&](int b, const Motion& vb, const Motion& ab) {
                  w.F[b] = net_force(data.cinert[b], vb, ab);  // I a + v x* I v
                });
-  if (model.nq != model.nv) segment_accelerations(model, data, qd, qdd, w);
+  if (model.nq != model.nv) {
+    segment_accelerations(
+        model, data,
+        [&](int k, Motion& added) {
+          added += w.Sdot[k] * qd[k];
+          if (qdd != nullptr) added += data.cdof[k] * qdd[k];
+        },
+        std::span<Motion>(w.Sddot));
+  }
   // leaves to root: the composites of f and C over each subtree (RNEA's backward pass)
   sum_over_subtrees<Force>(model, w.F);
-  if (couplings == nullptr) {
-    body_couplings(model, data, w.v, w.CC);
-    sum_over_subtrees<VelocityCoupling>(model, w.CC);
-    couplings = &w.CC;
-  }
-  const std::vector<VelocityCoupling>& CC = *couplings;
-  columns(model, data, w.Sdot, w.Sddot, w.F, IC, w.IC_S, CC, dtau_dq, dtau_dv);
+  body_couplings(model, data, w.v, w.CC);
+  sum_over_subtrees<VelocityCoupling>(model, w.CC);
+  const CouplingTerm at_qd{w.CC, w.Sdot};
+  columns<1>(model, data, w.Sddot, w.F, IC, w.IC_S, {at_qd}, dtau_dq, at_qd, dtau_dv);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
     if (dtau_dv != nullptr) {
@@ -298,9 +420,32 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
   }
 }
 
-// The springs and dampers of ball and free joints, after smooth_rhs()'s loop gave each joint's
-// first dof -k and -b: a free joint's position springs are -k per coordinate, every dof damps
-// with -b, and a turn's spring -k log(ref^-1 q) moves by -k Jr(log)^-1 dq when q turns to
+// The derivatives of 2 Q(v1, v2) + L(qdd) (polar_forward_pass()'s quantities, then RNEA's
+// backward sums and columns on them), reading w.CC at v1 (derivatives_room.hpp).
+void polar_derivatives_into(const Model& model, const Data& data, const double* v1,
+                            const double* v2, const double* qdd, std::span<const RigidInertia> IC,
+                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
+                            Eigen::MatrixXd& dtau_dv2) {
+  polar_forward_pass(model, data, v1, v2, qdd, w);
+  if (model.nq != model.nv) {
+    segment_accelerations(
+        model, data,
+        [&](int k, Motion& added) {
+          added += w.Sdot[k] * v2[k] + w.Sdot2[k] * v1[k];
+          if (qdd != nullptr) added += data.cdof[k] * qdd[k];
+        },
+        std::span<Motion>(w.Sddot));
+  }
+  sum_over_subtrees<Force>(model, w.F);
+  body_couplings(model, data, w.v2, w.CC2);  // w.CC: C at v1, the caller's
+  sum_over_subtrees<VelocityCoupling>(model, w.CC2);
+  columns<2>(model, data, w.Sddot, w.F, IC, w.IC_S, {{{w.CC, w.Sdot2}, {w.CC2, w.Sdot}}}, dtau_dq,
+             {w.CC2, w.Sdot2}, &dtau_dv2);
+  if (model.nq != model.nv) {
+    segment_position_columns(model, data, w.F, dtau_dq);
+    segment_velocity_columns(model, data, v2, w.v2, w.Sdot2, IC, w.IC_S, dtau_dv2);
+  }
+}
 
 }  // namespace detail
 

@@ -1100,15 +1100,39 @@ void check_closed_form_pair(const Model& model, const Data& data, double margin,
 }
 
 // The frame the driver completes from the normal and the first tangent's seed (mju_makeFrame).
-std::array<V, 3> complete_frame(V normal, V tangent) {
+template <class S>
+std::array<primitive::Vec<S>, 3> complete_frame(primitive::Vec<S> normal,
+                                                primitive::Vec<S> tangent) {
   normalize(normal);
-  if (std::sqrt(dot(tangent, tangent).v) < 0.5) {
-    const bool near_y = !(normal[1].v < 0.5 && normal[1].v > -0.5);
-    tangent = constant(near_y ? Eigen::Vector3d(0, 0, 1) : Eigen::Vector3d(0, 1, 0));
+  if (std::sqrt(value(dot(tangent, tangent))) < 0.5) {
+    const bool near_y = !(value(normal[1]) < 0.5 && value(normal[1]) > -0.5);
+    tangent = primitive::constant_vec<S>(near_y ? Eigen::Vector3d(0, 0, 1)
+                                                : Eigen::Vector3d(0, 1, 0));
   }
   tangent = tangent - normal * dot(normal, tangent);
   normalize(tangent);
   return {normal, tangent, cross(normal, tangent)};
+}
+
+// complete_frame() of a contact's normal and tangent seed on the dual numbers; where neither moves
+// along any motion (a plane's normal, the plane held still), the frame does not either: its
+// values alone, on doubles.
+std::array<V, 3> contact_frame(const V& normal, const V& tangent) {
+  bool moves = false;
+  for (int a = 0; a < 3; ++a) {
+    for (int m = 0; m < kMotions; ++m) {
+      moves = moves || normal[a].d[m] != 0.0 || tangent[a].d[m] != 0.0;
+    }
+  }
+  if (moves) return complete_frame(normal, tangent);
+  const std::array<primitive::Vec<double>, 3> still =
+      complete_frame(primitive::Vec<double>{{normal[0].v, normal[1].v, normal[2].v}},
+                     primitive::Vec<double>{{tangent[0].v, tangent[1].v, tangent[2].v}});
+  std::array<V, 3> frame;
+  for (int r = 0; r < 3; ++r) {
+    for (int a = 0; a < 3; ++a) frame[r][a] = Scalar(still[r][a]);
+  }
+  return frame;
 }
 
 // ---- multiccd's extra contacts (collision/convex.cpp's convex_pair) ----------------------------
@@ -1302,7 +1326,7 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
       const Contact& ck = data.contact[static_cast<std::size_t>(i)];
       if (n == 0) throw Error("derivatives: contact " + std::to_string(i) + " is not reproduced.");
       const Found& f = found[static_cast<std::size_t>(k % n)];
-      const std::array<V, 3> frame = complete_frame(f.normal, f.tangent);
+      const std::array<V, 3> frame = contact_frame(f.normal, f.tangent);
 
       // the values are the collision stage's (the same along every motion): else this is not
       // the contact it found

@@ -281,19 +281,19 @@ void add_span_outer(double* base, Eigen::Index stride, const double* J, int coun
 
 }  // namespace
 
-void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H,
-                      std::vector<int>& first) {
+void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& G,
+                      Eigen::MatrixXd& H, std::vector<int>& first) {
   // nv is small, so each row's span of dofs on its own (Eigen's dynamic outer products cost more
-  // in setup than in arithmetic here); the span's whole columns, of which the factor reads the
-  // lower part
+  // in setup than in arithmetic here); the span's whole block, symmetric
   const auto nv = static_cast<int>(data.M.rows());
-  H = data.M;
+  G.setZero();
   for (int k = 0; k < n; ++k) {
     const int r = rows[k];
     const RowSpan s = row_span(data, r);
-    add_span_outer(H.data() + s.lo * (nv + 1), nv, data.efc_J.row(r).data() + s.lo, s.count,
+    add_span_outer(G.data() + s.lo * (nv + 1), nv, data.efc_J.row(r).data() + s.lo, s.count,
                    data.efc_D[r]);
   }
+  H = data.M + G;
   // H's profile: the first column of each row's lower part that is not zero (M's is the row's
   // tree's first dof; the rows join the trees they couple). L L^T keeps it, so the factor and
   // the solves read nothing to its left.
@@ -355,11 +355,12 @@ using PathSums = Derivatives::Workspace::PathSums;
 using ColumnWrench = Derivatives::Workspace::ColumnWrench;
 
 // A contact's row held active, as the directions' loop reads it: J = C_t, or a pyramid's
-// C_0 + mu C_t, and y = D (-B dJ qvel + K_per_dist d dist - R_per_dist d dist f - dJ qacc), the
-// two slopes through the distance (aref's position term, R) made once for all directions.
+// C_0 + mu C_t, and y = D (K_per_dist d dist - R_per_dist d dist f - dJ (qacc + B qvel)) (aref's
+// velocity term -B dJ qvel beside -dJ qacc), the two slopes through the distance (aref's position
+// term, R) made once for all directions.
 struct HeldContactRow {
   int t;
-  double mu, D, minus_B, K_per_dist, R_per_dist, f;
+  double mu, D, K_per_dist, R_per_dist, f;
 };
 constexpr int kMaxContactRows = 10;  // a pyramid of condim 6
 
@@ -369,13 +370,14 @@ bool is_contact(ConstraintType type) {
 }
 
 // Sets up a pair whose bodies w.moves1, w.moves2 hold: each dof's velocity at the world origin,
-// the path sums, the dofs that move the pair (w.pair_dofs), its motion along each
-// (w.pair_motions) and the sums over the dofs each turns (w.pair_turned), its columns of dJ^T f
-// zeroed (w.pair_columns); returns the dofs' count.
-int begin_pair(const Model& model, const Data& data, const Contact& con, PathSums& path,
+// the path sums of the motion x = qacc + B qvel (B its rows'), the dofs that move the pair
+// (w.pair_dofs), its motion along each (w.pair_motions) and the sums over the dofs each turns
+// (w.pair_turned), its columns of dJ^T f zeroed (w.pair_columns); returns the dofs' count.
+int begin_pair(const Model& model, const Data& data, const Contact& con, double B, PathSums& path,
                Derivatives::Workspace& w) {
   const int nv = model.nv;
   path = PathSums{};
+  const auto x = [&](int d) { return data.qacc[d] + B * data.qvel[d]; };
   int directions = 0;
   for (int d = 0; d < nv; ++d) {
     if (!w.moves1[d] && !w.moves2[d]) continue;
@@ -383,12 +385,9 @@ int begin_pair(const Model& model, const Data& data, const Contact& con, PathSum
     const Vec3 v = point_velocity(model, data, d, Vec3::Zero());
     w.contact_point_velocity[static_cast<std::size_t>(d)] = v;
     if (w.moves1[d] == w.moves2[d]) continue;
-    const double s = w.moves2[d] ? 1.0 : -1.0;
-    const Vec3 wd = angular(data.cdof[d]);
-    path.Va += s * data.qacc[d] * v;
-    path.Wa += s * data.qacc[d] * wd;
-    path.Vv += s * data.qvel[d] * v;
-    path.Wv += s * data.qvel[d] * wd;
+    const double sx = (w.moves2[d] ? 1.0 : -1.0) * x(d);
+    path.V += sx * v;
+    path.W += sx * angular(data.cdof[d]);
   }
   for (int m = 0; m < directions; ++m) {
     const int c = w.pair_dofs[static_cast<std::size_t>(m)];
@@ -410,13 +409,9 @@ int begin_pair(const Model& model, const Data& data, const Contact& con, PathSum
     for (int j = 0; j < directions; ++j) {  // the dofs c turns are among the pair's
       const int d = w.pair_dofs[static_cast<std::size_t>(j)];
       if (!carried[d] || w.moves1[d] == w.moves2[d]) continue;
-      const double s = w.moves2[d] ? 1.0 : -1.0;
-      const Vec3& v = w.contact_point_velocity[static_cast<std::size_t>(d)];
-      const Vec3 wd = angular(data.cdof[d]);
-      turned.Va += s * data.qacc[d] * v;
-      turned.Wa += s * data.qacc[d] * wd;
-      turned.Vv += s * data.qvel[d] * v;
-      turned.Wv += s * data.qvel[d] * wd;
+      const double sx = (w.moves2[d] ? 1.0 : -1.0) * x(d);
+      turned.V += sx * w.contact_point_velocity[static_cast<std::size_t>(d)];
+      turned.W += sx * angular(data.cdof[d]);
     }
   }
   return directions;
@@ -510,6 +505,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   std::vector<char>& moves2 = w.moves2;
   PathSums path;  // the pair's
   int cached_pair = -1;  // the first contact of the pair whose terms w holds
+  double cached_B = 0;   // the B of its rows, which its path sums weigh qvel by
   int directions = 0;    // the dofs that move that pair
   for (int i = 0; i < data.ncon; ++i) {
     const Contact& con = data.contact[static_cast<std::size_t>(i)];
@@ -530,12 +526,18 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     }
     int pair_count = 0;
     const int pair_first = pair_first_contact(data, i, pair_count);
-    if (pair_first != cached_pair) {  // the pair's first contact with a pushing row
+    // -dJ qacc and aref's velocity term -B dJ qvel enter each row's y together, as -dJ x for the
+    // motion x = qacc + B qvel (dJ is linear in it, and a contact's rows share one B: MuJoCo makes
+    // them from one solref, as it does a pair's contacts)
+    const double B = data.efc_B[first];
+    // the pair's first contact with a pushing row (or one whose B is not the pair's)
+    if (pair_first != cached_pair || B != cached_B) {
       if (cached_pair >= 0) spread_pair_columns(model, data, w, directions, E);
       cached_pair = pair_first;
+      cached_B = B;
       dofs_moving(model, model.geom_bodyid[con.geom1], moves1);
       dofs_moving(model, model.geom_bodyid[con.geom2], moves2);
-      directions = begin_pair(model, data, con, path, w);
+      directions = begin_pair(model, data, con, B, path, w);
       // all of the pair's contacts, along each dof that moves the pair, at once
       pair_contact_changes(model, data, pair_first, pair_count, w.pair_motions.data(), directions,
                            w.pair_changes.data());
@@ -557,9 +559,9 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     for (int k = 0; k < 3 && k < dim; ++k) phi += F[k] * con.frame.row(k).transpose();
     for (int k = 3; k < dim; ++k) tau += F[k] * con.frame.row(k - 3).transpose();
 
-    // relative point and angular velocities of qacc and qvel at p
-    const Vec3 Va = path.Va + path.Wa.cross(p), Wa = path.Wa;
-    const Vec3 Vv = path.Vv + path.Wv.cross(p), Wv = path.Wv;
+    // x's relative point and angular velocities at p
+    const Vec3 Wx = path.W;
+    const Vec3 Vx = path.V + Wx.cross(p);
 
     // the soft parameters' slopes through the contact's distance (every row of it shares them)
     const int b_sum1 = model.geom_bodyid[con.geom1], b_sum2 = model.geom_bodyid[con.geom2];
@@ -578,7 +580,6 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       h.t = pyramid ? q / 2 + 1 : q;
       h.mu = pyramid ? con.friction[static_cast<std::size_t>(h.t - 1)] * (q % 2 ? -1.0 : 1.0) : 0.0;
       h.D = data.efc_D[r];
-      h.minus_B = -data.efc_B[r];
       h.K_per_dist = data.efc_K[r] * soft.aref_per_dist;
       h.R_per_dist = data.efc_R[r] * soft.R_per_dist;
       h.f = data.efc_force[r];
@@ -612,41 +613,29 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         column.torque += change.pos.cross(phi);
       }
 
-      // dV, dW for qacc and qvel: the moved point, and the axes c turns
-      Vec3 dVa, dVv, dWa = Vec3::Zero(), dWv = Vec3::Zero();
+      // dV, dW for x: the moved point, and the axes c turns
+      const Vec3& turned_W = turned.W;
+      Vec3 dV, dW = Vec3::Zero();
       if (turns) {
         const Vec3 turn_j = phi.cross(wc), turn_w = tau.cross(wc) - jc.cross(phi);
         column.carried_force += turn_j;
         column.carried_torque += p.cross(turn_j) + turn_w;
-        const Vec3 Ja = turned.Va + turned.Wa.cross(p), Jv = turned.Vv + turned.Wv.cross(p);
-        dVa = Wa.cross(change.pos) + wc.cross(Ja) - turned.Wa.cross(jc);
-        dVv = Wv.cross(change.pos) + wc.cross(Jv) - turned.Wv.cross(jc);
-        dWa = wc.cross(turned.Wa);
-        dWv = wc.cross(turned.Wv);
+        const Vec3 turned_V = turned.V + turned_W.cross(p);
+        dV = Wx.cross(change.pos) + wc.cross(turned_V) - turned_W.cross(jc);
+        dW = wc.cross(turned_W);
       } else {
         column.carried_torque -= jc.cross(phi);
-        dVa = Wa.cross(change.pos) - turned.Wa.cross(jc);
-        dVv = Wv.cross(change.pos) - turned.Wv.cross(jc);
+        dV = Wx.cross(change.pos) - turned_W.cross(jc);
       }
-      // d (C_k x) for x = qacc, qvel
-      double dCa[6], dCv[6];
+      // d (C_k x)
+      double dC[6];
       for (int k = 0; k < 3 && k < dim; ++k) {
-        const Vec3 e = con.frame.row(k).transpose();
-        dCa[k] = e.dot(dVa);
-        dCv[k] = e.dot(dVv);
-        if (!frame_turns) continue;
-        const Vec3 de = change.frame.row(k).transpose();
-        dCa[k] = de.dot(Va) + dCa[k];
-        dCv[k] = de.dot(Vv) + dCv[k];
+        dC[k] = con.frame.row(k).dot(dV);
+        if (frame_turns) dC[k] = change.frame.row(k).dot(Vx) + dC[k];
       }
       for (int k = 3; k < dim; ++k) {
-        const Vec3 e = con.frame.row(k - 3).transpose();
-        dCa[k] = e.dot(dWa);
-        dCv[k] = e.dot(dWv);
-        if (!frame_turns) continue;
-        const Vec3 de = change.frame.row(k - 3).transpose();
-        dCa[k] = de.dot(Wa) + dCa[k];
-        dCv[k] = de.dot(Wv) + dCv[k];
+        dC[k] = con.frame.row(k - 3).dot(dW);
+        if (frame_turns) dC[k] = change.frame.row(k - 3).dot(Wx) + dC[k];
       }
       // each row's y, and J_r^T y_r's column c: J_r is a combination of the frame's rows C_k
       // (a pyramid's C_0 +- mu C_t), so sum_r J_r^T y_r = sum_k C_k^T z_k, a force and a torque
@@ -655,10 +644,8 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       const double dist = change.dist;
       for (int j = 0; j < nheld; ++j) {
         const HeldContactRow& h = held[j];
-        const double dJa = pyramid ? dCa[0] + h.mu * dCa[h.t] : dCa[h.t];
-        const double dJv = pyramid ? dCv[0] + h.mu * dCv[h.t] : dCv[h.t];
-        const double daref = h.minus_B * dJv + h.K_per_dist * dist;
-        const double y = h.D * (daref - h.R_per_dist * dist * h.f - dJa);
+        const double dJ = pyramid ? dC[0] + h.mu * dC[h.t] : dC[h.t];
+        const double y = h.D * (h.K_per_dist * dist - h.R_per_dist * dist * h.f - dJ);
         if (pyramid) {
           z[0] += y;
           z[h.t] += h.mu * y;
@@ -681,16 +668,21 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   // substitution one row operation), and no product with G. Y's qvel columns are aref's
   // velocity term, -D B J_r.
   Eigen::MatrixXd& H = w.contact_H;
-  factor_held_rows(data, w.rows.data(), n, H, w.contact_H_first);
+  Eigen::MatrixXd& G = w.contact_G;  // J_S^T D_S J_S
+  factor_held_rows(data, w.rows.data(), n, G, H, w.contact_H_first);
   RowMatrix& X = w.right_hand_sides;
   X.leftCols(nv) = w.rhs_q + E;
   X.middleCols(nv, nv) = w.rhs_v;
   X.rightCols(nu + model.na) = w.rhs_u;  // ctrl, then act
+  // aref's velocity term: J_S^T (-D_S B_S J_S), which is -B G where the held rows share one B
+  // (one solref's: every row of a scene that sets none)
+  bool one_B = true;
+  for (int k = 1; k < n; ++k) one_B = one_B && data.efc_B[w.rows[k]] == data.efc_B[w.rows[0]];
+  if (n > 0 && one_B) X.middleCols(nv, nv) -= data.efc_B[w.rows[0]] * G;
   for (int k = 0; k < n; ++k) {  // J_r's non-zeros lie in its span; y_r's wherever dofs move it
     const int r = w.rows[k];
     const double* J = data.efc_J.row(r).data();
     const RowSpan span = row_span(data, r);
-    const double velocity_weight = -data.efc_D[r] * data.efc_B[r];
     const double* y = Y.row(k).data();
     const int end = span.lo + span.count;
     if (!is_contact(data.efc_type[r])) {  // a contact's J_r^T y_r is in E already
@@ -700,8 +692,9 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
         for (int c = 0; c < nv; ++c) x[c] += J[i] * y[c];
       }
     }
+    if (one_B) continue;
     add_span_outer(X.row(span.lo).data() + nv + span.lo, X.cols(), J + span.lo, span.count,
-                   velocity_weight);
+                   -data.efc_D[r] * data.efc_B[r]);
   }
   solve_held_rows(H, w.contact_H_first, X);
   deriv.dqacc_dq = X.leftCols(nv);

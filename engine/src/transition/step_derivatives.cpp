@@ -35,6 +35,7 @@ namespace {
 using detail::check_derivative_sizes;
 using detail::inertia_columns;
 using detail::kMinVal;  // the floor of a limit row's R
+using detail::polar_derivatives_into;
 using detail::rnea_derivatives_into;
 using detail::rotation_block;
 
@@ -852,11 +853,9 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
 // with c(q, qd) = qfrc_bias, which is gravity plus a quadratic form Q(q)(qd, qd). So
 //   d D_act a / d ctrl_k = gear^2 p2 a_dof on the actuator's dof (MuJoCo's FD misses it, see the
 //   docs), damping is constant, and (d c / d qvel) a = 2 Q(qd, a), whose derivatives are
-//   d/d qvel = d c / d qvel at velocity a, and d/d q = d/d q [2 Q(q)(qd, a)].
-// Both come from the polarisation identity 2 Q(qd, a) = (Q(qd + s a) - Q(qd - s a)) / (2 s),
-// exact for every s != 0: the gravity-free RNEA derivatives at qd + s a and qd - s a, with s
-// chosen so that s a is as large as qd (no cancellation). No finite difference is taken. The
-// same two calls also carry M's derivative at a - qacc (below).
+//   d/d qvel = d c / d qvel at velocity a, and d/d q = d/d q [2 Q(q)(qd, a)]:
+// the derivatives of the velocity product's polar form (polar_derivatives_into()), which also
+// carries M's derivative at a - qacc (below). No finite difference is taken.
 void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   auto& w = deriv.work;
   const int nv = model.nv;
@@ -875,40 +874,20 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
   solve_lu_tree(model, w.K_lu, w.qacc_step.data(), data.work.dof_chain.data());
 
-  // df - dM a + h dD a's bias part, from forward_derivatives' dtau (at qacc) and one pair of
-  // gravity-free RNEA derivatives R(velocity, acceleration) = dQ(velocity) + dL(acceleration),
-  // where rnea = Q(qd, qd) + L(qdd, gravity) (L linear; dL has no qvel part):
-  //   - d rnea at a  = - dtau - dL(a - qacc)
-  //   - h d[2 Q(qd, a)]  (D's bias part), by polarisation 2 Q(qd, a) = (Q(qd+sa) - Q(qd-sa)) / (2s)
-  // With delta = a - qacc and c = s / h, R(qd + s a, c delta) - R(qd - s a, -c delta) is
-  // 2 s d[2 Q(qd, a)] + 2 c dL(delta), so dividing it by 2 c gives both terms at once.
-  // R's qvel columns are linear in the velocity (dQ / d qd = 2 Q(qd, .)), so those of
-  // R(qd - s a) are 2 dtau_dv - those of R(qd + s a): the second call computes its qpos columns
-  // alone. So is C (velocity_coupling()): the second call's is 2 C(qd) - C(qd + s a). (w.rhs_*
-  // still hold smooth_rhs() at dtau: forward_derivatives_unchecked solved them into dqacc_* and
-  // left them as they were)
+  // df - dM a + h dD a's bias part, from forward_derivatives' dtau (at qacc) and the polar
+  // form's derivatives P(qd, h a) + L(a - qacc) (rnea = Q(qd, qd) + L(qdd, gravity), L linear):
+  //   - d rnea at a = - dtau - dL(a - qacc)
+  //   - h d[2 Q(qd, a)] = - d[2 Q(qd, h a)]   (D's bias part)
+  // in qpos, and in qvel - d c / d qvel at velocity h a. (w.rhs_* still hold smooth_rhs() at
+  // dtau: forward_derivatives_unchecked solved them into dqacc_* and left them as they were; w.CC
+  // holds C at qd, which the polar form reads)
   if (w.active_rows > 0) add_constraint_change(model, deriv);
-  const double size_a = w.qacc_step.cwiseAbs().maxCoeff();
-  const double size_v = data.qvel.cwiseAbs().maxCoeff();
-  // s a as large as qd, so that nothing cancels beyond rounding (any s != 0 is exact)
-  const double s = size_a > 0 ? (size_v > 0 ? size_v : 1.0) / size_a : 1.0;
-  const double c = s / h;
-  w.qacc_shift = c * (w.qacc_step - data.qacc);
-  w.qvel_shift = data.qvel + s * w.qacc_step;
-  w.CC_minus = w.CC;  // C(qd), summed over subtrees by forward_derivatives_unchecked
-  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, data.work.crb,
-                        w, w.tau_q, &w.tau_v);
-  for (int b = 1; b < model.nbody; ++b) {  // C(qd - s a) = 2 C(qd) - C(qd + s a)
-    VelocityCoupling& C = w.CC_minus[b];
-    C.S = 2 * C.S - w.CC[b].S;
-    C.momentum = 2 * C.momentum - w.CC[b].momentum;
-  }
-  w.qacc_shift = -w.qacc_shift;
-  w.qvel_shift = data.qvel - s * w.qacc_step;
-  rnea_derivatives_into(model, data, w.qvel_shift.data(), w.qacc_shift.data(), false, data.work.crb,
-                        w, w.tau_q_minus, nullptr, &w.CC_minus);
-  w.rhs_q -= (w.tau_q - w.tau_q_minus) / (2 * c);
-  w.rhs_v -= (w.tau_v - deriv.dtau_dv) / c;  // (R_v(qd + s a) - (2 dtau_dv - R_v(qd + s a))) / 2c
+  w.qvel_change = h * w.qacc_step;
+  w.qacc_change = w.qacc_step - data.qacc;
+  polar_derivatives_into(model, data, data.qvel.data(), w.qvel_change.data(),
+                         w.qacc_change.data(), data.work.crb, w, w.tau_q, w.tau_v);
+  w.rhs_q -= w.tau_q;
+  w.rhs_v -= w.tau_v;
   // + h dD a, D's actuator part: m^T k m per actuator (kept where M is non-zero, as the step's D
   // keeps it), k = b2 + gain_velocity input, with gain_velocity an affine gain's p2 or a muscle's
   // d gain / d velocity (a function of the length and velocity), input the raw ctrl or the act
@@ -1192,7 +1171,9 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.F.assign(nbody, Force::Zero());
   work.IC.assign(nbody, RigidInertia());
   work.CC.assign(nbody, VelocityCoupling());
-  work.CC_minus.assign(nbody, VelocityCoupling());
+  work.CC2.assign(nbody, VelocityCoupling());
+  work.v2.assign(nbody, Motion::Zero());
+  work.Sdot2.assign(ndof, Motion::Zero());
   work.Sdot.assign(ndof, Motion::Zero());
   work.IC_S.assign(ndof, Force::Zero());
   work.Sddot.assign(ndof, Motion::Zero());
@@ -1230,12 +1211,12 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.D.setZero(nv, nv);
   work.K.setZero(nv, nv);
   work.K_lu.setZero(nv, nv);
-  work.qvel_shift.setZero(nv);
-  work.tau_q_minus.setZero(nv, nv);
-  work.qacc_shift.setZero(nv);
+  work.qvel_change.setZero(nv);
+  work.qacc_change.setZero(nv);
   work.contact_Y.setZero(nefc_max, nv);
   work.contact_E.setZero(nv, nv);
   work.contact_H.setZero(nv, nv);
+  work.contact_G.setZero(nv, nv);
   work.contact_H_first.assign(ndof, 0);
   // contacts, rows and the tendons' path points (at most two a wrap row), each wrapped geom's side
   const auto active_set_max =
@@ -1271,7 +1252,7 @@ void applied_force_derivatives(const Model& model, const Data& data, Derivatives
   // the rows held is H^-1 d f (docs/derivatives.md), the same H the contact rows are solved with
   auto& w = deriv.work;
   const int n = detail::held_active_rows(data, w.rows);
-  detail::factor_held_rows(data, w.rows.data(), n, w.contact_H, w.contact_H_first);
+  detail::factor_held_rows(data, w.rows.data(), n, w.contact_G, w.contact_H, w.contact_H_first);
   auto X = w.right_hand_sides.leftCols(model.nv);
   X.setIdentity();
   detail::solve_held_rows(w.contact_H, w.contact_H_first, X);

@@ -112,11 +112,12 @@ struct RowSpan {
 };
 RowSpan row_span(const Data& data, int r);
 
-/// H = M + J_S^T D_S J_S over the rows rows[0..n) (D = 1 / R), factored in place as L L^T (L in
-/// its lower triangle): the matrix of forward dynamics linearised with those rows' active set held.
-/// first[i] (nv): the first column of row i of H, and of L, that is not zero (its profile).
-void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& H,
-                      std::vector<int>& first);
+/// H = M + G, G = J_S^T D_S J_S over the rows rows[0..n) (D = 1 / R, G kept for the caller),
+/// factored in place as L L^T (L in its lower triangle): the matrix of forward dynamics linearised
+/// with those rows' active set held. first[i] (nv): the first column of row i of H, and of L, that
+/// is not zero (its profile).
+void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& G,
+                      Eigen::MatrixXd& H, std::vector<int>& first);
 
 /// X = H^-1 X, every column, with factor_held_rows()' factor L and profile.
 void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
