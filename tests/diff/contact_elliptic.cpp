@@ -29,6 +29,7 @@
 #include <lever/harness/tolerance.hpp>
 
 #include "diff_checks.hpp"
+#include "sampling.hpp"
 
 namespace lever::test {
 
@@ -136,7 +137,7 @@ TEST_CASE("diff: elliptic cones, lockstep runs equal MuJoCo step by step", "[dif
       diff::Twin twin(model_path(file), diff::Path::kEngine);
       twin.set_cone(Cone::kElliptic, 1.0);
       const diff::Report report =
-          diff::lockstep(twin, integrator, 2.0, diff::Control::kSmooth, nullptr);
+          diff::lockstep(twin, integrator, run_seconds(2.0), diff::Control::kSmooth, nullptr);
       const double worst = check_report(report, name);
       WARN(name << ": the solver's outputs within " << worst << " x 1e-12 of MuJoCo's");
     }

@@ -14,12 +14,13 @@
 #include <lever/harness/models.hpp>
 #include <lever/harness/random_state.hpp>
 #include "diff_checks.hpp"
+#include "sampling.hpp"
 
 namespace lever::test {
 
 namespace {
 
-constexpr int kConstraintStates = 100;
+constexpr int kConstraintStates = samples(100);
 constexpr double kConstraintRunSeconds = 0.4;
 
 std::string constraint_model(const char* name) {

@@ -63,7 +63,8 @@ TEST_CASE("diff: a Menagerie-style arm agrees with MuJoCo on random states and f
     check_within_bound(diff::random_states(twin, samples(200), seed));
     for (const Integrator integrator : kEveryIntegrator) {
       INFO("lockstep from home, " << integrator_name(integrator));
-      check_within_bound(diff::lockstep(twin, integrator, 10.0, diff::Control::kSmooth));
+      check_within_bound(
+          diff::lockstep(twin, integrator, run_seconds(10.0), diff::Control::kSmooth));
     }
   }
 }
