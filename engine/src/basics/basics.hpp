@@ -20,6 +20,11 @@ namespace detail {
 /// vector has no direction and a quaternion is reset.
 inline constexpr double kMinVal = 1e-15;
 
+/// MuJoCo's mjMINIMP and mjMAXIMP: the range a constraint's impedance (solimp's d0, dwidth and
+/// mid point) is clamped to.
+inline constexpr double kMinImp = 0.0001;
+inline constexpr double kMaxImp = 0.9999;
+
 /// MuJoCo's mjPI.
 inline constexpr double kPi = 3.14159265358979323846;
 

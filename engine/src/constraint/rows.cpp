@@ -43,9 +43,9 @@ namespace lever {
 
 namespace {
 
-constexpr double kMinVal = 1e-15;   // MuJoCo's mjMINVAL
-constexpr double kMinImp = 0.0001;  // mjMINIMP
-constexpr double kMaxImp = 0.9999;  // mjMAXIMP
+using detail::kMaxImp;
+using detail::kMinImp;
+using detail::kMinVal;
 
 }  // namespace
 

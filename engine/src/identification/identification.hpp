@@ -6,3 +6,11 @@
 
 #include <lever/parameters.hpp>
 #include <lever/regressor.hpp>
+
+namespace lever::detail {
+
+/// The inertial parameters of one body (m, mx, my, mz, Ixx, Iyy, Izz, Ixy, Ixz, Iyz): the
+/// regressor's columns and the parameter vector's entries per body.
+inline constexpr int kPerBody = 10;
+
+}  // namespace lever::detail

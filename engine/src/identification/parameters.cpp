@@ -13,7 +13,7 @@ namespace lever {
 
 namespace {
 
-constexpr int kPerBody = 10;
+using detail::kPerBody;
 const char* const kParameterNames[kPerBody] = {"m",   "mx",  "my",  "mz",  "Ixx",
                                                "Iyy", "Izz", "Ixy", "Ixz", "Iyz"};
 

@@ -19,7 +19,7 @@ namespace lever {
 
 namespace {
 
-constexpr int kPerBody = 10;
+using detail::kPerBody;
 
 // The spatial inertia of unit parameter k (not a physical body: the basis of a linear map).
 RigidInertia unit_inertia(int k) {

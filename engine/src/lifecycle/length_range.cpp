@@ -37,13 +37,14 @@
 #include <cstdio>
 #include <string>
 
+#include "basics/basics.hpp"
 #include "lifecycle/lifecycle.hpp"
 
 namespace lever {
 
 namespace {
 
-constexpr double kMinVal = 1e-15;  // MuJoCo's mjMINVAL
+using detail::kMinVal;
 
 bool is_muscle(const Model& model, int a) {
   return model.actuator_gaintype[a] == GainType::kMuscle ||
