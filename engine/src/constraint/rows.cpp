@@ -399,12 +399,20 @@ SoftParameters soft_parameters(const std::array<double, 2>& solref,
 // Row r's soft parameters (MuJoCo's mj_makeImpedance) from its impedance, K, B and regularizer R:
 // D = 1 / R, and the diagApprox that R was made from, R imp / (1 - imp).
 void set_soft_row(Data& data, int r, const SoftParameters& soft, double K, double R) {
-  data.efc_imp[r] = soft.imp;
-  data.efc_K[r] = K;
-  data.efc_B[r] = soft.B;
-  data.efc_R[r] = R;
-  data.efc_D[r] = 1 / R;
-  data.efc_diagApprox[r] = R * soft.imp / (1 - soft.imp);
+  set_soft_rows(data, r, 1, soft, K, R);
+}
+
+void set_soft_rows(Data& data, int first, int count, const SoftParameters& soft, double K,
+                   double R) {
+  const double D = 1 / R, diag = R * soft.imp / (1 - soft.imp);
+  for (int r = first; r < first + count; ++r) {
+    data.efc_imp[r] = soft.imp;
+    data.efc_K[r] = K;
+    data.efc_B[r] = soft.B;
+    data.efc_R[r] = R;
+    data.efc_D[r] = D;
+    data.efc_diagApprox[r] = diag;
+  }
 }
 
 // The regularizer R = (1 - imp) / imp * diagApprox of a row with approximate inverse inertia
@@ -428,6 +436,43 @@ void set_limit_soft_rows(const Model& model, Data& data, int first, int end) {
   }
 }
 
+// The soft parameters of the contact made last, for the next one: the contacts of one geom pair
+// come one after another with the same solref and solimp (their sanitized values, K and B
+// follow), and often at the same distance (a box flat on a plane: its four corners), where the
+// impedance is the same too.
+struct ContactSoftCache {
+  bool valid = false;
+  std::array<double, 2> solref;  // as the contact has them, before sanitize
+  std::array<double, 5> solimp;
+  double dist = 0, includemargin = 0;
+  std::array<double, 2> sanitized_solref;
+  std::array<double, 5> sanitized_solimp;
+  SoftParameters soft;
+};
+
+// Contact i's soft parameters (its solref and solimp sanitized, then the impedance at its
+// distance, K and B), from the cache where the previous contact had the same inputs.
+SoftParameters contact_soft_parameters(const Model& model, const Contact& con,
+                                       ContactSoftCache& cache) {
+  const bool same_parameters =
+      cache.valid && cache.solref == con.solref && cache.solimp == con.solimp;
+  if (!same_parameters) {
+    cache.solref = con.solref;
+    cache.solimp = con.solimp;
+    cache.sanitized_solref = con.solref;
+    cache.sanitized_solimp = con.solimp;
+    sanitize(model, cache.sanitized_solref, cache.sanitized_solimp);
+    cache.valid = true;
+  } else if (cache.dist == con.dist && cache.includemargin == con.includemargin) {
+    return cache.soft;
+  }
+  cache.dist = con.dist;
+  cache.includemargin = con.includemargin;
+  cache.soft = soft_parameters(cache.sanitized_solref, cache.sanitized_solimp, con.dist,
+                               con.includemargin);
+  return cache.soft;
+}
+
 // Contact i's rows' soft parameters, computed once for the contact: its rows share its distance,
 // so its impedance, K and B, and their R follow from the first row's. The first row's
 // diagApprox is the two bodies' translational weights (a pyramid's first edge n + mu_0 t_0 adds
@@ -436,13 +481,10 @@ void set_limit_soft_rows(const Model& model, Data& data, int first, int end) {
 // elliptic cone's other friction rows get the R that keeps R_j friction_j^2 equal across
 // directions; a pyramid's edges share one R, 2 mu^2 R_0, matching the elliptic cone's friction
 // impedance. An elliptic cone's friction rows have no position to restore (K = 0).
-void set_contact_soft_rows(const Model& model, Data& data, int i) {
+void set_contact_soft_rows(const Model& model, Data& data, int i, ContactSoftCache& cache) {
   Contact& con = data.contact[i];
   const int first = con.efc_address;
-  std::array<double, 2> solref = con.solref;
-  std::array<double, 5> solimp = con.solimp;
-  sanitize(model, solref, solimp);
-  const SoftParameters soft = soft_parameters(solref, solimp, con.dist, con.includemargin);
+  const SoftParameters soft = contact_soft_parameters(model, con, cache);
   const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
   const double translation = model.body_invweight0[b1][0] + model.body_invweight0[b2][0];
   const ConstraintType type = data.efc_type[first];
@@ -458,8 +500,7 @@ void set_contact_soft_rows(const Model& model, Data& data, int i) {
   con.mu = mu0 * std::sqrt(R1 / R0);
   if (pyramid) {
     const double shared = 2 * con.mu * con.mu * R0;
-    for (int r = first; r < first + 2 * (con.dim - 1); ++r)
-      set_soft_row(data, r, soft, soft.K, shared);
+    set_soft_rows(data, first, 2 * (con.dim - 1), soft, soft.K, shared);
     return;
   }
   set_soft_row(data, first, soft, soft.K, R0);
@@ -491,13 +532,14 @@ void unchecked::make_constraint(const Model& model, Data& data) {
     n = add_tendon_limit_rows(model, data, limits);
   }
   PairDofs pair;
+  ContactSoftCache soft_cache;
   const int ncon = opt.disabled(kDisableContact) ? 0 : data.ncon;
   for (int i = 0; i < ncon; ++i) {
     Contact& con = data.contact[i];
     con.efc_address = -1;
     if (con.exclude) continue;
     n = add_contact_rows(model, data, i, n, pair);
-    set_contact_soft_rows(model, data, i);
+    set_contact_soft_rows(model, data, i, soft_cache);
   }
   data.nefc = n;
   for (int r = data.ne + data.nf; r < n; ++r) data.efc_frictionloss[r] = 0.0;
