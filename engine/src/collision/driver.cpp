@@ -327,16 +327,20 @@ class Collider {
     const double* vert = nullptr;
     int vertnum = 0;
     const int* graph = nullptr;
+    const HullNeighbour* hull = nullptr;
     const int mesh = m_.geom_dataid[g];
     if (mesh >= 0 && m_.mesh_vertnum[mesh] > 0) {
       vert = m_.mesh_vert[static_cast<size_t>(m_.mesh_vertadr[mesh])].data();
       vertnum = m_.mesh_vertnum[mesh];
       const int address = m_.mesh_graphadr[mesh];
-      graph = address >= 0 ? m_.mesh_graph.data() + address : nullptr;
+      if (address >= 0) {
+        graph = m_.mesh_graph.data() + address;
+        hull = m_.mesh_hull_neighbours.data() + address;
+      }
     }
     // every member given: nothing is set twice
     return GeomShape{m_.geom_type[g], m_.geom_size[g], d_.geom_xpos[g], d_.geom_xmat[g],
-                     m_.geom_rbound[g], vert, vertnum, graph};
+                     m_.geom_rbound[g], vert, vertnum, graph, hull};
   }
 
   /// A mesh geom whose mesh lever did not read (no vertices) has no shape to collide.
@@ -565,6 +569,28 @@ void build_collision_constants(Model& model) {
                           (model.body_weldid[b] == 0 && body_has_plane_or_hfield(model, b));
     model.body_collision[b] =
         static_cast<std::uint8_t>(Model::kBodyCollides | (with_all ? Model::kBodyPairsWithAll : 0));
+  }
+  // each hull neighbour's point beside its number, at its place in mesh_graph (the graphs are
+  // well formed: set_const's validate checked them)
+  for (int mesh = 0; mesh < model.nmesh; ++mesh) {
+    const int address = model.mesh_graphadr[mesh];
+    if (address < 0 || model.mesh_vertnum[mesh] == 0) continue;
+    const int* graph = model.mesh_graph.data() + address;
+    const int numvert = graph[0];
+    const int* edge_address = graph + 2;
+    const int* vertex_index = edge_address + numvert;
+    const int* neighbours = vertex_index + numvert;
+    const Eigen::Vector3d* vert = model.mesh_vert.data() + model.mesh_vertadr[mesh];
+    HullNeighbour* table = model.mesh_hull_neighbours.data() + (neighbours - model.mesh_graph.data());
+    for (int h = 0; h < numvert; ++h) {
+      for (int e = edge_address[h];; ++e) {
+        const int next = neighbours[e];
+        HullNeighbour& entry = table[e];
+        entry.vertex = next;
+        for (int i = 0; i < 3; ++i) entry.point[i] = next >= 0 ? vert[vertex_index[next]][i] : 0.0;
+        if (next < 0) break;
+      }
+    }
   }
 }
 
