@@ -740,6 +740,10 @@ struct ModelFields {
   static constexpr uint8_t kBodyCollides = 1;      ///< a geom with contype or conaffinity
   static constexpr uint8_t kBodyPairsWithAll = 2;  ///< the world with geoms, or a static body
                                                    ///< holding a plane: paired with every body
+  /// (ngeom) each geom's box in its own frame, centre then half sizes (MuJoCo 3's geom_aabb):
+  /// the mesh's vertices' bounds, the primitives' from their sizes, zero for a plane. The
+  /// collision stage tests two geoms' boxes before it runs MPR on them.
+  ArenaArray<std::array<double, 6>> geom_aabb;
   /// (nmeshgraph) the hull graphs' neighbour lists with their points: at each neighbour's place
   /// in mesh_graph (and each list's end, vertex -1), that hull vertex and its point from
   /// mesh_vert, so that the support function's climb reads a neighbour's point in one step; the
