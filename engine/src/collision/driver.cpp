@@ -353,25 +353,36 @@ class Collider {
   bool boxes_apart(int g1, int g2, double margin) const {
     constexpr double kBoxesApart = 2e-4;
     if (!(margin >= 0)) return false;
-    const Mat3& R1 = d_.geom_xmat[g1];
-    const Mat3& R2 = d_.geom_xmat[g2];
-    const std::array<double, 6>& box1 = m_.geom_aabb[g1];
-    const std::array<double, 6>& box2 = m_.geom_aabb[g2];
-    const Vec3 c1 = d_.geom_xpos[g1] + R1 * Vec3(box1[0], box1[1], box1[2]);
-    const Vec3 c2 = d_.geom_xpos[g2] + R2 * Vec3(box2[0], box2[1], box2[2]);
-    const Vec3 between = c2 - c1;
+    const double* R1 = d_.geom_xmat[g1].data();  // row by row: column i is the geom's axis i
+    const double* R2 = d_.geom_xmat[g2].data();
+    const double* box1 = m_.geom_aabb[g1].data();
+    const double* box2 = m_.geom_aabb[g2].data();
+    const double* p1 = d_.geom_xpos[g1].data();
+    const double* p2 = d_.geom_xpos[g2].data();
+    double between[3];  // from box 1's centre to box 2's, in the world
+    for (int r = 0; r < 3; ++r) {
+      const double* row1 = R1 + 3 * r;
+      const double* row2 = R2 + 3 * r;
+      const double c1 = p1[r] + row1[0] * box1[0] + row1[1] * box1[1] + row1[2] * box1[2];
+      const double c2 = p2[r] + row2[0] * box2[0] + row2[1] * box2[1] + row2[2] * box2[2];
+      between[r] = c2 - c1;
+    }
     const double reach = margin + kBoxesApart;  // besides the boxes' own half widths
-    Mat3 C;  // C(i, j): axis i of geom 1 against axis j of geom 2, in absolute value
+    double C[3][3];  // |axis i of geom 1 . axis j of geom 2|
     for (int i = 0; i < 3; ++i) {
-      for (int j = 0; j < 3; ++j) C(i, j) = std::abs(dot3(R1.col(i), R2.col(j)));
+      for (int j = 0; j < 3; ++j) {
+        C[i][j] = std::abs(R1[i] * R2[j] + R1[3 + i] * R2[3 + j] + R1[6 + i] * R2[6 + j]);
+      }
     }
     for (int i = 0; i < 3; ++i) {
-      const double half = box1[3 + i] + box2[3] * C(i, 0) + box2[4] * C(i, 1) + box2[5] * C(i, 2);
-      if (std::abs(dot3(R1.col(i), between)) > half + reach) return true;
+      const double along = R1[i] * between[0] + R1[3 + i] * between[1] + R1[6 + i] * between[2];
+      const double half = box1[3 + i] + box2[3] * C[i][0] + box2[4] * C[i][1] + box2[5] * C[i][2];
+      if (std::abs(along) > half + reach) return true;
     }
     for (int j = 0; j < 3; ++j) {
-      const double half = box2[3 + j] + box1[3] * C(0, j) + box1[4] * C(1, j) + box1[5] * C(2, j);
-      if (std::abs(dot3(R2.col(j), between)) > half + reach) return true;
+      const double along = R2[j] * between[0] + R2[3 + j] * between[1] + R2[6 + j] * between[2];
+      const double half = box2[3 + j] + box1[3] * C[0][j] + box1[4] * C[1][j] + box1[5] * C[2][j];
+      if (std::abs(along) > half + reach) return true;
     }
     return false;
   }
@@ -655,7 +666,8 @@ void build_collision_constants(Model& model) {
     const int* vertex_index = edge_address + numvert;
     const int* neighbours = vertex_index + numvert;
     const Eigen::Vector3d* vert = model.mesh_vert.data() + model.mesh_vertadr[mesh];
-    HullNeighbour* table = model.mesh_hull_neighbours.data() + (neighbours - model.mesh_graph.data());
+    HullNeighbour* table =
+        model.mesh_hull_neighbours.data() + (neighbours - model.mesh_graph.data());
     for (int h = 0; h < numvert; ++h) {
       for (int e = edge_address[h];; ++e) {
         const int next = neighbours[e];

@@ -278,6 +278,8 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first, PairDo
 
   const Eigen::Vector3d offset1 = con.pos - data.subtree_com[model.body_rootid[b1]];
   const Eigen::Vector3d offset2 = con.pos - data.subtree_com[model.body_rootid[b2]];
+  const Mat3 frame = con.frame;                    // read once for every dof
+  const int translations = std::min(con.dim, 3);  // the normal, then the two tangents
   for (int pass = 0; pass < 2; ++pass) {
     const bool body2 = pass == 0;
     const int* chain = body2 ? chain2 : chain1;
@@ -292,15 +294,25 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first, PairDo
         p = Eigen::Vector3d::Zero() - p;
         r = Eigen::Vector3d::Zero() - r;
       }
-      for (int row = 0; row < 3 && row < con.dim; ++row) {
-        C[row * nv + dof] =
-            con.frame(row, 0) * p[0] + con.frame(row, 1) * p[1] + con.frame(row, 2) * p[2];
-      }
-      for (int row = 0; row < rotations; ++row) {
-        C[(3 + row) * nv + dof] =
-            con.frame(row, 0) * r[0] + con.frame(row, 1) * r[1] + con.frame(row, 2) * r[2];
-      }
+      const auto along_row = [&](int row, const Eigen::Vector3d& v) {
+        return frame(row, 0) * v[0] + frame(row, 1) * v[1] + frame(row, 2) * v[2];
+      };
+      C[dof] = along_row(0, p);
+      if (translations > 1) C[nv + dof] = along_row(1, p);
+      if (translations > 2) C[2 * nv + dof] = along_row(2, p);
+      for (int row = 0; row < rotations; ++row) C[(3 + row) * nv + dof] = along_row(row, r);
     }
+  }
+}
+
+// A pair of a pyramid's edges over `span` dofs: plus = normal + mu tangent, minus = normal - mu
+// tangent (efc_J's rows and the frame's rows, which do not overlap: the loop runs on pairs of
+// numbers).
+void pyramid_edges(const double* __restrict normal, const double* __restrict tangent, double mu,
+                   int span, double* __restrict plus, double* __restrict minus) {
+  for (int j = 0; j < span; ++j) {
+    plus[j] = normal[j] + mu * tangent[j];
+    minus[j] = normal[j] - mu * tangent[j];
   }
 }
 
@@ -341,11 +353,7 @@ int add_contact_rows(const Model& model, Data& data, int i, int n, PairDofs& pai
   }
   // one pair of the pyramid's edges per friction direction: n + mu t, n - mu t
   for (int k = 1; k < dim; ++k, J += 2 * nv) {
-    const double mu = con.friction[k - 1];
-    for (int j = 0; j < span; ++j) {
-      J[j] = C[j] + mu * C[k * nv + j];
-      J[nv + j] = C[j] - mu * C[k * nv + j];
-    }
+    pyramid_edges(C, C + k * nv, con.friction[k - 1], span, J, J + nv);
   }
   return n + rows;
 }
@@ -552,6 +560,12 @@ void make_constraint(const Model& model, Data& data) {
 
 namespace {
 
+// to[i] -= from[i] * scale for i < count (two columns of one matrix: they do not overlap).
+void subtract_scaled(const double* __restrict from, double scale, int count,
+                     double* __restrict to) {
+  for (int i = 0; i < count; ++i) to[i] -= from[i] * scale;
+}
+
 // x = H^-1 x for a symmetric positive definite H given by its lower triangle, which is replaced
 // by its Cholesky factor L (H = L L^T). nv x nv with nv a few dozen at most: plain loops, column
 // by column (right-looking: each finished column updates the ones after it), each column's loops
@@ -571,8 +585,7 @@ void cholesky_solve(Eigen::Ref<Eigen::MatrixXd> H, Eigen::Ref<Eigen::VectorXd> x
     for (int i = j + 1; i < e; ++i) Lj[i] /= Ljj;
     for (int k = j + 1; k < e; ++k) {
       if (Lj[k] == 0.0) continue;
-      double* Hk = H.data() + static_cast<std::ptrdiff_t>(k) * nv;
-      for (int i = k; i < e; ++i) Hk[i] -= Lj[i] * Lj[k];
+      subtract_scaled(Lj + k, Lj[k], e - k, H.data() + static_cast<std::ptrdiff_t>(k) * nv + k);
     }
   }
   // L y = x, column by column: y_j, once final, leaves the rows below
@@ -604,6 +617,17 @@ void add_rank_one(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, double weigh
 // (rows `stride` apart): one pass over the block for all of the frame's rows, the whole block
 // though only its lower triangle is read (a loop of one length vectorizes; one of falling lengths
 // does not). Dim is a template argument so that the sum over the rows unrolls.
+// column[a] += sum_k wc_k c_k[a] for a < count (H's column and the frame's rows do not overlap).
+template <int Dim>
+void add_weighted_rows(const double* __restrict c, Eigen::Index stride, const double* wc,
+                       int count, double* __restrict column) {
+  for (int a = 0; a < count; ++a) {
+    double sum = wc[0] * c[a];
+    for (int k = 1; k < Dim; ++k) sum += wc[k] * c[k * stride + a];
+    column[a] += sum;
+  }
+}
+
 template <int Dim>
 void add_frame_weights(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, const double* c,
                        Eigen::Index stride, const double* W) {
@@ -617,11 +641,7 @@ void add_frame_weights(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, const d
       any = any || wc[k] != 0.0;
     }
     if (!any) continue;
-    for (int a = 0; a < count; ++a) {
-      double sum = wc[0] * c[a];
-      for (int k = 1; k < Dim; ++k) sum += wc[k] * c[k * stride + a];
-      column[a] += sum;
-    }
+    add_weighted_rows<Dim>(c, stride, wc, count, column);
   }
 }
 
