@@ -617,11 +617,21 @@ void add_rank_one(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, double weigh
 // (rows `stride` apart): one pass over the block for all of the frame's rows, the whole block
 // though only its lower triangle is read (a loop of one length vectorizes; one of falling lengths
 // does not). Dim is a template argument so that the sum over the rows unrolls.
-// column[a] += sum_k wc_k c_k[a] for a < count (H's column and the frame's rows do not overlap).
+// Two neighbouring numbers of a column, worked on together (the same sums, one per number).
+using Pair = Eigen::Array2d;
+
+// column[a] += sum_k wc_k c_k[a] for a < count (H's column and the frame's rows do not overlap),
+// two numbers at a time.
 template <int Dim>
 void add_weighted_rows(const double* __restrict c, Eigen::Index stride, const double* wc,
                        int count, double* __restrict column) {
-  for (int a = 0; a < count; ++a) {
+  int a = 0;
+  for (; a + 2 <= count; a += 2) {
+    Pair sum = Pair::Map(c + a) * wc[0];
+    for (int k = 1; k < Dim; ++k) sum += Pair::Map(c + k * stride + a) * wc[k];
+    Pair::Map(column + a) += sum;
+  }
+  for (; a < count; ++a) {
     double sum = wc[0] * c[a];
     for (int k = 1; k < Dim; ++k) sum += wc[k] * c[k * stride + a];
     column[a] += sum;
@@ -668,7 +678,13 @@ void add_rows_at(const double* const* a, const double* f, int lo, int span,
   const double* row[Count];
   double force[Count];
   for (int k = 0; k < Count; ++k) row[k] = a[k], force[k] = f[k];
-  for (int j = lo; j < lo + span; ++j) {
+  int j = lo;
+  for (; j + 2 <= lo + span; j += 2) {  // two dofs at a time
+    Pair o = Pair::Map(out + j);
+    for (int k = 0; k < Count; ++k) o += Pair::Map(row[k] + j) * force[k];
+    Pair::Map(out + j) = o;
+  }
+  for (; j < lo + span; ++j) {
     double o = out[j];
     for (int k = 0; k < Count; ++k) o += row[k][j] * force[k];
     out[j] = o;
