@@ -613,10 +613,6 @@ void add_rank_one(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, double weigh
   }
 }
 
-// H += sum_k W_k c_k c_k^T over the span of `count` dofs from `lo`, c_k a contact's frame row k
-// (rows `stride` apart): one pass over the block for all of the frame's rows, the whole block
-// though only its lower triangle is read (a loop of one length vectorizes; one of falling lengths
-// does not). Dim is a template argument so that the sum over the rows unrolls.
 // Two neighbouring numbers of a column, worked on together (the same sums, one per number).
 using Pair = Eigen::Array2d;
 
@@ -638,6 +634,10 @@ void add_weighted_rows(const double* __restrict c, Eigen::Index stride, const do
   }
 }
 
+// H += sum_k W_k c_k c_k^T over the span of `count` dofs from `lo`, c_k a contact's frame row k
+// (rows `stride` apart): one pass over the block's lower triangle (what the solve reads; the
+// columns' numbers two at a time) for all of the frame's rows. Dim is a template argument so that
+// the sum over the rows unrolls.
 template <int Dim>
 void add_frame_weights(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, const double* c,
                        Eigen::Index stride, const double* W) {
@@ -651,7 +651,8 @@ void add_frame_weights(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, const d
       any = any || wc[k] != 0.0;
     }
     if (!any) continue;
-    add_weighted_rows<Dim>(c, stride, wc, count, column);
+    // the column from the diagonal down: the lower triangle, which is all the solve reads
+    add_weighted_rows<Dim>(c + b, stride, wc, count - b, column + b);
   }
 }
 
