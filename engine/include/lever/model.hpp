@@ -238,8 +238,6 @@ enum class GeomType : int {
   kMesh = 7
 };
 
-/// Equality constraint types; the numeric values are MuJoCo's mjtEq (MuJoCo 2.2.2 refuses its
-/// distance constraint). kTendon couples two tendons' lengths as kJoint couples two joints.
 /// A neighbour in a mesh's hull graph with its point (Model::mesh_hull_neighbours): the hull
 /// vertex's number, -1 at the end of a list, and its vertex in the mesh's frame.
 struct HullNeighbour {
@@ -247,6 +245,8 @@ struct HullNeighbour {
   int vertex;
 };
 
+/// Equality constraint types; the numeric values are MuJoCo's mjtEq (MuJoCo 2.2.2 refuses its
+/// distance constraint). kTendon couples two tendons' lengths as kJoint couples two joints.
 enum class EqualityType : int { kConnect = 0, kWeld = 1, kJoint = 2, kTendon = 3 };
 
 /// What a tendon's path is made of (MuJoCo's mjtWrap). A fixed tendon's path is joints only (its
@@ -746,8 +746,9 @@ struct ModelFields {
   ArenaArray<std::array<double, 6>> geom_aabb;
   /// (nmeshgraph) the hull graphs' neighbour lists with their points: at each neighbour's place
   /// in mesh_graph (and each list's end, vertex -1), that hull vertex and its point from
-  /// mesh_vert, so that the support function's climb reads a neighbour's point in one step; the
-  /// graphs' other places unused
+  /// mesh_vert, so that the support function's climb reads a neighbour's point in one step; at
+  /// the place of hull vertex h's list address (graph + 2 + h), vertex is the length of h's list
+  /// (so that the climb counts its way through it); the graphs' other places unused
   ArenaArray<HullNeighbour> mesh_hull_neighbours;
 
   /// set_const: whether collision() can find contacts: the model has contact parameters (the

@@ -66,6 +66,7 @@ struct Support {
   // Model::mesh_hull_neighbours at the neighbour lists' place: each neighbour's number and point
   // together (null: read through vertex_index)
   const HullNeighbour* neighbour_points = nullptr;
+  const HullNeighbour* list_lengths = nullptr;  // hull vertex h's list length: [h].vertex
   int found = -1;  // the mesh vertex last found, as MuJoCo records it (meshindex)
 
   Support(const GeomShape& g, double grow)
@@ -81,7 +82,10 @@ struct Support {
       edge_address = g.mesh_graph + 2;
       vertex_index = edge_address + numvert;
       neighbours = vertex_index + numvert;
-      if (g.mesh_hull) neighbour_points = g.mesh_hull + (neighbours - g.mesh_graph);
+      if (g.mesh_hull) {
+        neighbour_points = g.mesh_hull + (neighbours - g.mesh_graph);
+        list_lengths = g.mesh_hull + 2;
+      }
     }
   }
 
@@ -109,23 +113,25 @@ std::ptrdiff_t climb(const Support& s, const double* dir) {
   double best = along(s.hull_vertex(0), dir);
   for (bool moved = true; moved;) {
     moved = false;
-    for (std::ptrdiff_t e = s.edge_address[current];; ++e) {
-      std::ptrdiff_t next;
-      double projection;
-      if constexpr (kTable) {
-        const HullNeighbour& neighbour = s.neighbour_points[e];
-        next = neighbour.vertex;
-        if (next < 0) break;
-        projection = along(neighbour.point, dir);
-      } else {
-        next = s.neighbours[e];
-        if (next < 0) break;
-        projection = along(s.hull_vertex(next), dir);
+    if constexpr (kTable) {  // counted to the list's end; a neighbour's number read if better
+      const HullNeighbour* neighbour = s.neighbour_points + s.edge_address[current];
+      const HullNeighbour* const end = neighbour + s.list_lengths[current].vertex;
+      for (; neighbour != end; ++neighbour) {
+        const double projection = along(neighbour->point, dir);
+        if (projection > best) {
+          best = projection;
+          current = neighbour->vertex;
+          moved = true;
+        }
       }
-      if (projection > best) {
-        best = projection;
-        current = next;
-        moved = true;
+    } else {
+      for (const int* e = s.neighbours + s.edge_address[current]; *e >= 0; ++e) {
+        const double projection = along(s.hull_vertex(*e), dir);
+        if (projection > best) {
+          best = projection;
+          current = *e;
+          moved = true;
+        }
       }
     }
   }

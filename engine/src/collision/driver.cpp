@@ -668,13 +668,17 @@ void build_collision_constants(Model& model) {
     const Eigen::Vector3d* vert = model.mesh_vert.data() + model.mesh_vertadr[mesh];
     HullNeighbour* table =
         model.mesh_hull_neighbours.data() + (neighbours - model.mesh_graph.data());
+    HullNeighbour* lengths = model.mesh_hull_neighbours.data() + address + 2;
     for (int h = 0; h < numvert; ++h) {
       for (int e = edge_address[h];; ++e) {
         const int next = neighbours[e];
         HullNeighbour& entry = table[e];
         entry.vertex = next;
         for (int i = 0; i < 3; ++i) entry.point[i] = next >= 0 ? vert[vertex_index[next]][i] : 0.0;
-        if (next < 0) break;
+        if (next < 0) {
+          lengths[h] = HullNeighbour{{0.0, 0.0, 0.0}, e - edge_address[h]};
+          break;
+        }
       }
     }
   }
