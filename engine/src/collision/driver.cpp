@@ -10,7 +10,9 @@
 //   <pair>        explicit pairs merged in by signature; a geom pair they name is not tested again
 //   <exclude>     body pairs skipped (dynamic pairs only)
 //   geom pair     contype/conaffinity, same weld body, parent filter (dynamic pairs only, unless
-//                 <flag filterparent="disable">); the bounding-sphere and plane tests; then the
+//                 <flag filterparent="disable">); the bounding-sphere and plane tests; for a
+//                 pair MuJoCo searches by MPR, the geoms' boxes (geom_aabb) apart by more than
+//                 2e-4 along an axis of either (no search; MPR would find nothing); then the
 //                 narrow phase
 //   parameters    margin and gap max, condim and friction by priority else max, solref/solimp
 //                 mixed by solmix (with <flag override="enable"> margin, solref and solimp are
