@@ -32,6 +32,9 @@ struct GeomShape {
   const double* mesh_vert = nullptr;
   int mesh_vertnum = 0;
   const int* mesh_graph = nullptr;
+  /// Model::mesh_hull_neighbours from the graph's address (null: the climb reads the neighbours'
+  /// points through the graph's vertex list, with the same result)
+  const HullNeighbour* mesh_hull = nullptr;
 };
 
 /// The general convex pairs' settings (<option mpr_tolerance, mpr_iterations>, <flag multiccd>).

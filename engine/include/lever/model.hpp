@@ -238,6 +238,13 @@ enum class GeomType : int {
   kMesh = 7
 };
 
+/// A neighbour in a mesh's hull graph with its point (Model::mesh_hull_neighbours): the hull
+/// vertex's number, -1 at the end of a list, and its vertex in the mesh's frame.
+struct HullNeighbour {
+  double point[3];
+  int vertex;
+};
+
 /// Equality constraint types; the numeric values are MuJoCo's mjtEq (MuJoCo 2.2.2 refuses its
 /// distance constraint). kTendon couples two tendons' lengths as kJoint couples two joints.
 enum class EqualityType : int { kConnect = 0, kWeld = 1, kJoint = 2, kTendon = 3 };
@@ -733,6 +740,16 @@ struct ModelFields {
   static constexpr uint8_t kBodyCollides = 1;      ///< a geom with contype or conaffinity
   static constexpr uint8_t kBodyPairsWithAll = 2;  ///< the world with geoms, or a static body
                                                    ///< holding a plane: paired with every body
+  /// (ngeom) each geom's box in its own frame, centre then half sizes (MuJoCo 3's geom_aabb):
+  /// the mesh's vertices' bounds, the primitives' from their sizes, zero for a plane. The
+  /// collision stage tests two geoms' boxes before it runs MPR on them.
+  ArenaArray<std::array<double, 6>> geom_aabb;
+  /// (nmeshgraph) the hull graphs' neighbour lists with their points: at each neighbour's place
+  /// in mesh_graph (and each list's end, vertex -1), that hull vertex and its point from
+  /// mesh_vert, so that the support function's climb reads a neighbour's point in one step; at
+  /// the place of hull vertex h's list address (graph + 2 + h), vertex is the length of h's list
+  /// (so that the climb counts its way through it); the graphs' other places unused
+  ArenaArray<HullNeighbour> mesh_hull_neighbours;
 
   /// set_const: whether collision() can find contacts: the model has contact parameters (the
   /// geom_* contact arrays; a model built by hand without them has no contacts) and a <pair>, or

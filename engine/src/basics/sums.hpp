@@ -11,30 +11,54 @@ namespace lever {
 
 namespace detail {
 
-// out[k] = a_k . x for `count` rows a_k (`stride` apart) that share [lo, end) of n, each summed
-// as dot_as_mujoco says: four running sums over the groups of four from lo's to the last whole
-// one, then Tail (0 to 3) numbers past it. Tail is a template argument so that the tail unrolls.
-template <int Tail>
-void rows_dot(const double* a, Eigen::Index stride, int count, const double* x, int groups_begin,
-              int groups_end, int tail_begin, double* out) {
-  const double* t = x + tail_begin;
-  for (int k = 0; k < count; ++k, a += stride) {
-    double s0 = 0.0, s1 = 0.0, s2 = 0.0, s3 = 0.0;
-    for (int j = groups_begin; j < groups_end; j += 4) {
-      s0 += a[j] * x[j];
-      s1 += a[j + 1] * x[j + 1];
-      s2 += a[j + 2] * x[j + 2];
-      s3 += a[j + 3] * x[j + 3];
+// out[k] = a_k . x for Count rows a_k (`stride` apart) that share [lo, end) of n, each summed as
+// dot_as_mujoco says: four running sums over the groups of four from lo's to the last whole one,
+// then Tail (0 to 3) numbers past it. The rows go through the groups together (x read once for
+// all of them), each row's running sums held as two pairs, (s0, s1) and (s2, s3), joined as
+// (s0 + s2) + (s1 + s3): MuJoCo's sums, in its order. Count and Tail are template arguments so
+// that the loops unroll.
+template <int Tail, int Count>
+void rows_dot_together(const double* a, Eigen::Index stride, const double* x, int groups_begin,
+                       int groups_end, int tail_begin, double* out) {
+  using Pair = Eigen::Array2d;
+  Pair low[Count], high[Count];
+  for (int k = 0; k < Count; ++k) low[k] = high[k] = Pair::Zero();
+  for (int j = groups_begin; j < groups_end; j += 4) {
+    const Pair x_low = Pair::Map(x + j), x_high = Pair::Map(x + j + 2);
+    for (int k = 0; k < Count; ++k) {
+      const double* ak = a + k * stride + j;
+      low[k] += Pair::Map(ak) * x_low;
+      high[k] += Pair::Map(ak + 2) * x_high;
     }
-    double sum = (s0 + s2) + (s1 + s3);
+  }
+  const double* t = x + tail_begin;
+  for (int k = 0; k < Count; ++k) {
+    const Pair joined = low[k] + high[k];  // (s0 + s2, s1 + s3)
+    double sum = joined[0] + joined[1];
     if constexpr (Tail > 0) {
-      const double* at = a + tail_begin;
+      const double* at = a + k * stride + tail_begin;
       double tail = at[0] * t[0];
       if constexpr (Tail > 1) tail += at[1] * t[1];
       if constexpr (Tail > 2) tail += at[2] * t[2];
       sum += tail;
     }
     out[k] = sum;
+  }
+}
+
+// rows_dot_together for any number of rows, four at a time (groups [begin, end), the tail from
+// `tail`).
+template <int Tail>
+void rows_dot(const double* a, Eigen::Index stride, int count, const double* x, int begin, int end,
+              int tail, double* out) {
+  for (; count >= 4; count -= 4, a += 4 * stride, out += 4) {
+    rows_dot_together<Tail, 4>(a, stride, x, begin, end, tail, out);
+  }
+  switch (count) {
+    case 1: return rows_dot_together<Tail, 1>(a, stride, x, begin, end, tail, out);
+    case 2: return rows_dot_together<Tail, 2>(a, stride, x, begin, end, tail, out);
+    case 3: return rows_dot_together<Tail, 3>(a, stride, x, begin, end, tail, out);
+    default: return;
   }
 }
 

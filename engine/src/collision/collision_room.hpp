@@ -1,18 +1,19 @@
 // The collision room: the stage MuJoCo 2.2.2's mj_collision runs (driver.cpp: broad phase, pair
-// filters, parameter mixing), the narrow phase's closed-form pairs (primitive.cpp, box.cpp, and
-// primitive_pairs.hpp / box_pairs.hpp written once on a scalar type, narrow_phase.hpp), the
-// general convex pairs by libccd's MPR with MuJoCo's support functions and multiccd (convex.cpp;
-// its mpr_search writes down the support points for the derivatives), MuJoCo's normal correction
-// for round geoms (surface_normal.hpp, on a scalar type too) and the body constants set_const
-// computes for the broad phase.
+// filters, the mid-phase box test, parameter mixing), the narrow phase's closed-form pairs
+// (primitive.cpp, box.cpp, and primitive_pairs.hpp / box_pairs.hpp written once on a scalar type,
+// narrow_phase.hpp), the general convex pairs by libccd's MPR with MuJoCo's support functions and
+// multiccd (convex.cpp; its mpr_search writes down the support points for the derivatives),
+// MuJoCo's normal correction for round geoms (surface_normal.hpp, on a scalar type too) and the
+// constants set_const computes for the stage.
 #pragma once
 
 #include <lever/model.hpp>
 
 namespace lever::detail {
 
-/// The collision stage's body constants, Model::body_weldid and body_collision
-/// (driver.cpp; set_const computes them once, the broad phase reads them every call).
+/// The collision stage's constants (driver.cpp; set_const computes them once): the broad
+/// phase's Model::body_weldid and body_collision, the mid-phase's geom_aabb and the support
+/// function's mesh_hull_neighbours.
 void build_collision_constants(Model& model);
 
 /// A geom type's name in MJCF (<geom type="...">), for messages.

@@ -63,6 +63,10 @@ struct Support {
   const int* edge_address = nullptr;  // null: no hull graph, every vertex is visited
   const int* vertex_index = nullptr;
   const int* neighbours = nullptr;
+  // Model::mesh_hull_neighbours at the neighbour lists' place: each neighbour's number and point
+  // together (null: read through vertex_index)
+  const HullNeighbour* neighbour_points = nullptr;
+  const HullNeighbour* list_lengths = nullptr;  // hull vertex h's list length: [h].vertex
   int found = -1;  // the mesh vertex last found, as MuJoCo records it (meshindex)
 
   Support(const GeomShape& g, double grow)
@@ -78,6 +82,10 @@ struct Support {
       edge_address = g.mesh_graph + 2;
       vertex_index = edge_address + numvert;
       neighbours = vertex_index + numvert;
+      if (g.mesh_hull) {
+        neighbour_points = g.mesh_hull + (neighbours - g.mesh_graph);
+        list_lengths = g.mesh_hull + 2;
+      }
     }
   }
 
@@ -94,9 +102,44 @@ double along(const double* vertex, const double* dir) {
   return dir[0] * vertex[0] + dir[1] * vertex[1] + dir[2] * vertex[2];
 }
 
+/// The end of the climb over the hull's graph from its first vertex, each round through the
+/// neighbours of the vertex it started from, moving to every better one (MuJoCo's order, so that
+/// among equal projections the same vertex is found). kTable: each neighbour's point read beside
+/// its number (Model::mesh_hull_neighbours), else through the hull's vertex list: the same
+/// numbers in the same order.
+template <bool kTable>
+std::ptrdiff_t climb(const Support& s, const double* dir) {
+  std::ptrdiff_t current = 0;
+  double best = along(s.hull_vertex(0), dir);
+  for (bool moved = true; moved;) {
+    moved = false;
+    if constexpr (kTable) {  // counted to the list's end; a neighbour's number read if better
+      const HullNeighbour* neighbour = s.neighbour_points + s.edge_address[current];
+      const HullNeighbour* const end = neighbour + s.list_lengths[current].vertex;
+      for (; neighbour != end; ++neighbour) {
+        const double projection = along(neighbour->point, dir);
+        if (projection > best) {
+          best = projection;
+          current = neighbour->vertex;
+          moved = true;
+        }
+      }
+    } else {
+      for (const int* e = s.neighbours + s.edge_address[current]; *e >= 0; ++e) {
+        const double projection = along(s.hull_vertex(*e), dir);
+        if (projection > best) {
+          best = projection;
+          current = *e;
+          moved = true;
+        }
+      }
+    }
+  }
+  return current;
+}
+
 /// The mesh vertex farthest along dir (in the mesh's frame): the first of the best when every
-/// vertex is visited; the end of the climb from the hull's first vertex otherwise, each round
-/// through the neighbours of the vertex it started from, moving to every better one. Records in
+/// vertex is visited; the end of the climb from the hull's first vertex otherwise. Records in
 /// s.found its index as MuJoCo does (a mesh vertex without a graph, a hull vertex with one) and
 /// returns the mesh vertex, -1 if none.
 std::ptrdiff_t mesh_support_vertex(Support& s, const double* dir) {
@@ -113,20 +156,7 @@ std::ptrdiff_t mesh_support_vertex(Support& s, const double* dir) {
     s.found = best_vertex;
     return best_vertex;
   }
-  std::ptrdiff_t current = 0;
-  double best = along(s.hull_vertex(0), dir);
-  for (bool moved = true; moved;) {
-    moved = false;
-    for (const int* e = s.neighbours + s.edge_address[current]; *e >= 0; ++e) {
-      const std::ptrdiff_t next = *e;
-      const double projection = along(s.hull_vertex(next), dir);
-      if (projection > best) {
-        best = projection;
-        current = next;
-        moved = true;
-      }
-    }
-  }
+  const std::ptrdiff_t current = s.neighbour_points ? climb<true>(s, dir) : climb<false>(s, dir);
   s.found = static_cast<int>(current);
   return s.vertex_index[current];
 }

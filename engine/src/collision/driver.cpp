@@ -10,7 +10,9 @@
 //   <pair>        explicit pairs merged in by signature; a geom pair they name is not tested again
 //   <exclude>     body pairs skipped (dynamic pairs only)
 //   geom pair     contype/conaffinity, same weld body, parent filter (dynamic pairs only, unless
-//                 <flag filterparent="disable">); the bounding-sphere and plane tests; then the
+//                 <flag filterparent="disable">); the bounding-sphere and plane tests; for a
+//                 pair MuJoCo searches by MPR, the geoms' boxes (geom_aabb) apart by more than
+//                 2e-4 along an axis of either (no search; MPR would find nothing); then the
 //                 narrow phase
 //   parameters    margin and gap max, condim and friction by priority else max, solref/solimp
 //                 mixed by solmix (with <flag override="enable"> margin, solref and solimp are
@@ -327,16 +329,64 @@ class Collider {
     const double* vert = nullptr;
     int vertnum = 0;
     const int* graph = nullptr;
+    const HullNeighbour* hull = nullptr;
     const int mesh = m_.geom_dataid[g];
     if (mesh >= 0 && m_.mesh_vertnum[mesh] > 0) {
       vert = m_.mesh_vert[static_cast<size_t>(m_.mesh_vertadr[mesh])].data();
       vertnum = m_.mesh_vertnum[mesh];
       const int address = m_.mesh_graphadr[mesh];
-      graph = address >= 0 ? m_.mesh_graph.data() + address : nullptr;
+      if (address >= 0) {
+        graph = m_.mesh_graph.data() + address;
+        hull = m_.mesh_hull_neighbours.data() + address;
+      }
     }
     // every member given: nothing is set twice
     return GeomShape{m_.geom_type[g], m_.geom_size[g], d_.geom_xpos[g], d_.geom_xmat[g],
-                     m_.geom_rbound[g], vert, vertnum, graph};
+                     m_.geom_rbound[g], vert, vertnum, graph, hull};
+  }
+
+  /// The mid-phase before MPR: whether the two geoms' boxes (geom_aabb, in their frames), each
+  /// grown by margin / 2 as the support functions grow the geoms, are apart by more than
+  /// kBoxesApart along one of the six box axes. MPR on such a pair finds no contact (libccd
+  /// reports one only where the origin is within rounding of the grown shapes' Minkowski
+  /// difference, or within |v0 x v1| < 1.5e-8 of its first segment, i.e. within 1.5e-8 / |v0|
+  /// with |v0| >= the gap: 1.2e-4 at most), so it is not run. MuJoCo 2.2.2 runs it and finds
+  /// nothing; a margin below zero, which shrinks the geoms unevenly, is never skipped.
+  bool boxes_apart(int g1, int g2, double margin) const {
+    constexpr double kBoxesApart = 2e-4;
+    if (!(margin >= 0)) return false;
+    const double* R1 = d_.geom_xmat[g1].data();  // row by row: column i is the geom's axis i
+    const double* R2 = d_.geom_xmat[g2].data();
+    const double* box1 = m_.geom_aabb[g1].data();
+    const double* box2 = m_.geom_aabb[g2].data();
+    const double* p1 = d_.geom_xpos[g1].data();
+    const double* p2 = d_.geom_xpos[g2].data();
+    double between[3];  // from box 1's centre to box 2's, in the world
+    for (int r = 0; r < 3; ++r) {
+      const double* row1 = R1 + 3 * r;
+      const double* row2 = R2 + 3 * r;
+      const double c1 = p1[r] + row1[0] * box1[0] + row1[1] * box1[1] + row1[2] * box1[2];
+      const double c2 = p2[r] + row2[0] * box2[0] + row2[1] * box2[1] + row2[2] * box2[2];
+      between[r] = c2 - c1;
+    }
+    const double reach = margin + kBoxesApart;  // besides the boxes' own half widths
+    double C[3][3];  // |axis i of geom 1 . axis j of geom 2|
+    for (int i = 0; i < 3; ++i) {
+      for (int j = 0; j < 3; ++j) {
+        C[i][j] = std::abs(R1[i] * R2[j] + R1[3 + i] * R2[3 + j] + R1[6 + i] * R2[6 + j]);
+      }
+    }
+    for (int i = 0; i < 3; ++i) {
+      const double along = R1[i] * between[0] + R1[3 + i] * between[1] + R1[6 + i] * between[2];
+      const double half = box1[3 + i] + box2[3] * C[i][0] + box2[4] * C[i][1] + box2[5] * C[i][2];
+      if (std::abs(along) > half + reach) return true;
+    }
+    for (int j = 0; j < 3; ++j) {
+      const double along = R2[j] * between[0] + R2[3 + j] * between[1] + R2[6 + j] * between[2];
+      const double half = box2[3 + j] + box1[3] * C[0][j] + box1[4] * C[1][j] + box1[5] * C[2][j];
+      if (std::abs(along) > half + reach) return true;
+    }
+    return false;
   }
 
   /// A mesh geom whose mesh lever did not read (no vertices) has no shape to collide.
@@ -391,6 +441,8 @@ class Collider {
       last_unsupported_geom_ = g1;
       return;
     }
+
+    if (collides_by_mpr(type1, type2) && boxes_apart(g1, g2, margin)) return;
 
     // The narrow phase writes each contact's dist, pos and whole frame: the normal, and zero
     // rows but where the pair sets a tangent (the capsule's axis). The buffer is Data's: nothing
@@ -565,6 +617,72 @@ void build_collision_constants(Model& model) {
                           (model.body_weldid[b] == 0 && body_has_plane_or_hfield(model, b));
     model.body_collision[b] =
         static_cast<std::uint8_t>(Model::kBodyCollides | (with_all ? Model::kBodyPairsWithAll : 0));
+  }
+  // each geom's box in its frame: what every support point of the geom lies in (the support
+  // functions' points: a mesh's vertices, a box's corners, the primitives' surfaces)
+  for (int g = 0; g < model.ngeom; ++g) {
+    std::array<double, 6>& box = model.geom_aabb[g];
+    box.fill(0.0);
+    const Eigen::Vector3d& size = model.geom_size[g];
+    switch (model.geom_type[g]) {
+      case GeomType::kSphere: box[3] = box[4] = box[5] = size[0]; break;
+      case GeomType::kCapsule:
+        box[3] = box[4] = size[0];
+        box[5] = size[0] + size[1];
+        break;
+      case GeomType::kCylinder:
+        box[3] = box[4] = size[0];
+        box[5] = size[1];
+        break;
+      case GeomType::kEllipsoid:
+      case GeomType::kBox:
+        for (int i = 0; i < 3; ++i) box[3 + i] = size[i];
+        break;
+      case GeomType::kMesh: {
+        const int mesh = model.geom_dataid[g];
+        if (mesh < 0 || model.mesh_vertnum[mesh] == 0) break;
+        const Eigen::Vector3d* vert = model.mesh_vert.data() + model.mesh_vertadr[mesh];
+        Eigen::Vector3d lo = vert[0], hi = vert[0];
+        for (int v = 1; v < model.mesh_vertnum[mesh]; ++v) {
+          lo = lo.cwiseMin(vert[v]);
+          hi = hi.cwiseMax(vert[v]);
+        }
+        for (int i = 0; i < 3; ++i) {
+          box[i] = 0.5 * (lo[i] + hi[i]);
+          // the half size reaching both bounds from the rounded centre
+          box[3 + i] = std::max(hi[i] - box[i], box[i] - lo[i]);
+        }
+        break;
+      }
+      default: break;  // planes and height fields: no support function
+    }
+  }
+  // each hull neighbour's point beside its number, at its place in mesh_graph (the graphs are
+  // well formed: set_const's validate checked them)
+  for (int mesh = 0; mesh < model.nmesh; ++mesh) {
+    const int address = model.mesh_graphadr[mesh];
+    if (address < 0 || model.mesh_vertnum[mesh] == 0) continue;
+    const int* graph = model.mesh_graph.data() + address;
+    const int numvert = graph[0];
+    const int* edge_address = graph + 2;
+    const int* vertex_index = edge_address + numvert;
+    const int* neighbours = vertex_index + numvert;
+    const Eigen::Vector3d* vert = model.mesh_vert.data() + model.mesh_vertadr[mesh];
+    HullNeighbour* table =
+        model.mesh_hull_neighbours.data() + (neighbours - model.mesh_graph.data());
+    HullNeighbour* lengths = model.mesh_hull_neighbours.data() + address + 2;
+    for (int h = 0; h < numvert; ++h) {
+      for (int e = edge_address[h];; ++e) {
+        const int next = neighbours[e];
+        HullNeighbour& entry = table[e];
+        entry.vertex = next;
+        for (int i = 0; i < 3; ++i) entry.point[i] = next >= 0 ? vert[vertex_index[next]][i] : 0.0;
+        if (next < 0) {
+          lengths[h] = HullNeighbour{{0.0, 0.0, 0.0}, e - edge_address[h]};
+          break;
+        }
+      }
+    }
   }
 }
 

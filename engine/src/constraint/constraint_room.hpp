@@ -48,6 +48,10 @@ double regularizer(const SoftParameters& soft, double diag);
 
 /// Row r's efc_imp, efc_K (K: 0 for friction), efc_B, efc_R, efc_D and efc_diagApprox (rows.cpp).
 void set_soft_row(Data& data, int r, const SoftParameters& soft, double K, double R);
+/// set_soft_row for `count` rows from `first` that share their parameters (D and diagApprox
+/// computed once).
+void set_soft_rows(Data& data, int first, int count, const SoftParameters& soft, double K,
+                   double R);
 
 /// The active equality constraints' rows from row n, with their soft parameters (equality.cpp).
 /// Returns the rows made so far.

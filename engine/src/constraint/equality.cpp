@@ -159,7 +159,7 @@ void set_equality_soft_rows(const Model& model, Data& data, int e, int n, int ro
         model.body_invweight0[model.eq_obj1id[e]][0] + model.body_invweight0[model.eq_obj2id[e]][0];
   }
   const double R = regularizer(soft, diag);
-  for (int r = n; r < n + rows; ++r) set_soft_row(data, r, soft, soft.K, R);
+  set_soft_rows(data, n, rows, soft, soft.K, R);
 }
 
 }  // namespace

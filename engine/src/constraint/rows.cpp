@@ -278,6 +278,8 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first, PairDo
 
   const Eigen::Vector3d offset1 = con.pos - data.subtree_com[model.body_rootid[b1]];
   const Eigen::Vector3d offset2 = con.pos - data.subtree_com[model.body_rootid[b2]];
+  const Mat3 frame = con.frame;                    // read once for every dof
+  const int translations = std::min(con.dim, 3);  // the normal, then the two tangents
   for (int pass = 0; pass < 2; ++pass) {
     const bool body2 = pass == 0;
     const int* chain = body2 ? chain2 : chain1;
@@ -292,15 +294,25 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first, PairDo
         p = Eigen::Vector3d::Zero() - p;
         r = Eigen::Vector3d::Zero() - r;
       }
-      for (int row = 0; row < 3 && row < con.dim; ++row) {
-        C[row * nv + dof] =
-            con.frame(row, 0) * p[0] + con.frame(row, 1) * p[1] + con.frame(row, 2) * p[2];
-      }
-      for (int row = 0; row < rotations; ++row) {
-        C[(3 + row) * nv + dof] =
-            con.frame(row, 0) * r[0] + con.frame(row, 1) * r[1] + con.frame(row, 2) * r[2];
-      }
+      const auto along_row = [&](int row, const Eigen::Vector3d& v) {
+        return frame(row, 0) * v[0] + frame(row, 1) * v[1] + frame(row, 2) * v[2];
+      };
+      C[dof] = along_row(0, p);
+      if (translations > 1) C[nv + dof] = along_row(1, p);
+      if (translations > 2) C[2 * nv + dof] = along_row(2, p);
+      for (int row = 0; row < rotations; ++row) C[(3 + row) * nv + dof] = along_row(row, r);
     }
+  }
+}
+
+// A pair of a pyramid's edges over `span` dofs: plus = normal + mu tangent, minus = normal - mu
+// tangent (efc_J's rows and the frame's rows, which do not overlap: the loop runs on pairs of
+// numbers).
+void pyramid_edges(const double* __restrict normal, const double* __restrict tangent, double mu,
+                   int span, double* __restrict plus, double* __restrict minus) {
+  for (int j = 0; j < span; ++j) {
+    plus[j] = normal[j] + mu * tangent[j];
+    minus[j] = normal[j] - mu * tangent[j];
   }
 }
 
@@ -341,11 +353,7 @@ int add_contact_rows(const Model& model, Data& data, int i, int n, PairDofs& pai
   }
   // one pair of the pyramid's edges per friction direction: n + mu t, n - mu t
   for (int k = 1; k < dim; ++k, J += 2 * nv) {
-    const double mu = con.friction[k - 1];
-    for (int j = 0; j < span; ++j) {
-      J[j] = C[j] + mu * C[k * nv + j];
-      J[nv + j] = C[j] - mu * C[k * nv + j];
-    }
+    pyramid_edges(C, C + k * nv, con.friction[k - 1], span, J, J + nv);
   }
   return n + rows;
 }
@@ -399,12 +407,20 @@ SoftParameters soft_parameters(const std::array<double, 2>& solref,
 // Row r's soft parameters (MuJoCo's mj_makeImpedance) from its impedance, K, B and regularizer R:
 // D = 1 / R, and the diagApprox that R was made from, R imp / (1 - imp).
 void set_soft_row(Data& data, int r, const SoftParameters& soft, double K, double R) {
-  data.efc_imp[r] = soft.imp;
-  data.efc_K[r] = K;
-  data.efc_B[r] = soft.B;
-  data.efc_R[r] = R;
-  data.efc_D[r] = 1 / R;
-  data.efc_diagApprox[r] = R * soft.imp / (1 - soft.imp);
+  set_soft_rows(data, r, 1, soft, K, R);
+}
+
+void set_soft_rows(Data& data, int first, int count, const SoftParameters& soft, double K,
+                   double R) {
+  const double D = 1 / R, diag = R * soft.imp / (1 - soft.imp);
+  for (int r = first; r < first + count; ++r) {
+    data.efc_imp[r] = soft.imp;
+    data.efc_K[r] = K;
+    data.efc_B[r] = soft.B;
+    data.efc_R[r] = R;
+    data.efc_D[r] = D;
+    data.efc_diagApprox[r] = diag;
+  }
 }
 
 // The regularizer R = (1 - imp) / imp * diagApprox of a row with approximate inverse inertia
@@ -428,6 +444,43 @@ void set_limit_soft_rows(const Model& model, Data& data, int first, int end) {
   }
 }
 
+// The soft parameters of the contact made last, for the next one: the contacts of one geom pair
+// come one after another with the same solref and solimp (their sanitized values, K and B
+// follow), and often at the same distance (a box flat on a plane: its four corners), where the
+// impedance is the same too.
+struct ContactSoftCache {
+  bool valid = false;
+  std::array<double, 2> solref;  // as the contact has them, before sanitize
+  std::array<double, 5> solimp;
+  double dist = 0, includemargin = 0;
+  std::array<double, 2> sanitized_solref;
+  std::array<double, 5> sanitized_solimp;
+  SoftParameters soft;
+};
+
+// Contact i's soft parameters (its solref and solimp sanitized, then the impedance at its
+// distance, K and B), from the cache where the previous contact had the same inputs.
+SoftParameters contact_soft_parameters(const Model& model, const Contact& con,
+                                       ContactSoftCache& cache) {
+  const bool same_parameters =
+      cache.valid && cache.solref == con.solref && cache.solimp == con.solimp;
+  if (!same_parameters) {
+    cache.solref = con.solref;
+    cache.solimp = con.solimp;
+    cache.sanitized_solref = con.solref;
+    cache.sanitized_solimp = con.solimp;
+    sanitize(model, cache.sanitized_solref, cache.sanitized_solimp);
+    cache.valid = true;
+  } else if (cache.dist == con.dist && cache.includemargin == con.includemargin) {
+    return cache.soft;
+  }
+  cache.dist = con.dist;
+  cache.includemargin = con.includemargin;
+  cache.soft = soft_parameters(cache.sanitized_solref, cache.sanitized_solimp, con.dist,
+                               con.includemargin);
+  return cache.soft;
+}
+
 // Contact i's rows' soft parameters, computed once for the contact: its rows share its distance,
 // so its impedance, K and B, and their R follow from the first row's. The first row's
 // diagApprox is the two bodies' translational weights (a pyramid's first edge n + mu_0 t_0 adds
@@ -436,13 +489,10 @@ void set_limit_soft_rows(const Model& model, Data& data, int first, int end) {
 // elliptic cone's other friction rows get the R that keeps R_j friction_j^2 equal across
 // directions; a pyramid's edges share one R, 2 mu^2 R_0, matching the elliptic cone's friction
 // impedance. An elliptic cone's friction rows have no position to restore (K = 0).
-void set_contact_soft_rows(const Model& model, Data& data, int i) {
+void set_contact_soft_rows(const Model& model, Data& data, int i, ContactSoftCache& cache) {
   Contact& con = data.contact[i];
   const int first = con.efc_address;
-  std::array<double, 2> solref = con.solref;
-  std::array<double, 5> solimp = con.solimp;
-  sanitize(model, solref, solimp);
-  const SoftParameters soft = soft_parameters(solref, solimp, con.dist, con.includemargin);
+  const SoftParameters soft = contact_soft_parameters(model, con, cache);
   const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
   const double translation = model.body_invweight0[b1][0] + model.body_invweight0[b2][0];
   const ConstraintType type = data.efc_type[first];
@@ -458,8 +508,7 @@ void set_contact_soft_rows(const Model& model, Data& data, int i) {
   con.mu = mu0 * std::sqrt(R1 / R0);
   if (pyramid) {
     const double shared = 2 * con.mu * con.mu * R0;
-    for (int r = first; r < first + 2 * (con.dim - 1); ++r)
-      set_soft_row(data, r, soft, soft.K, shared);
+    set_soft_rows(data, first, 2 * (con.dim - 1), soft, soft.K, shared);
     return;
   }
   set_soft_row(data, first, soft, soft.K, R0);
@@ -491,13 +540,14 @@ void unchecked::make_constraint(const Model& model, Data& data) {
     n = add_tendon_limit_rows(model, data, limits);
   }
   PairDofs pair;
+  ContactSoftCache soft_cache;
   const int ncon = opt.disabled(kDisableContact) ? 0 : data.ncon;
   for (int i = 0; i < ncon; ++i) {
     Contact& con = data.contact[i];
     con.efc_address = -1;
     if (con.exclude) continue;
     n = add_contact_rows(model, data, i, n, pair);
-    set_contact_soft_rows(model, data, i);
+    set_contact_soft_rows(model, data, i, soft_cache);
   }
   data.nefc = n;
   for (int r = data.ne + data.nf; r < n; ++r) data.efc_frictionloss[r] = 0.0;
@@ -509,6 +559,12 @@ void make_constraint(const Model& model, Data& data) {
 }
 
 namespace {
+
+// to[i] -= from[i] * scale for i < count (two columns of one matrix: they do not overlap).
+void subtract_scaled(const double* __restrict from, double scale, int count,
+                     double* __restrict to) {
+  for (int i = 0; i < count; ++i) to[i] -= from[i] * scale;
+}
 
 // x = H^-1 x for a symmetric positive definite H given by its lower triangle, which is replaced
 // by its Cholesky factor L (H = L L^T). nv x nv with nv a few dozen at most: plain loops, column
@@ -529,8 +585,7 @@ void cholesky_solve(Eigen::Ref<Eigen::MatrixXd> H, Eigen::Ref<Eigen::VectorXd> x
     for (int i = j + 1; i < e; ++i) Lj[i] /= Ljj;
     for (int k = j + 1; k < e; ++k) {
       if (Lj[k] == 0.0) continue;
-      double* Hk = H.data() + static_cast<std::ptrdiff_t>(k) * nv;
-      for (int i = k; i < e; ++i) Hk[i] -= Lj[i] * Lj[k];
+      subtract_scaled(Lj + k, Lj[k], e - k, H.data() + static_cast<std::ptrdiff_t>(k) * nv + k);
     }
   }
   // L y = x, column by column: y_j, once final, leaves the rows below
@@ -558,10 +613,31 @@ void add_rank_one(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, double weigh
   }
 }
 
+// Two neighbouring numbers of a column, worked on together (the same sums, one per number).
+using Pair = Eigen::Array2d;
+
+// column[a] += sum_k wc_k c_k[a] for a < count (H's column and the frame's rows do not overlap),
+// two numbers at a time.
+template <int Dim>
+void add_weighted_rows(const double* __restrict c, Eigen::Index stride, const double* wc,
+                       int count, double* __restrict column) {
+  int a = 0;
+  for (; a + 2 <= count; a += 2) {
+    Pair sum = Pair::Map(c + a) * wc[0];
+    for (int k = 1; k < Dim; ++k) sum += Pair::Map(c + k * stride + a) * wc[k];
+    Pair::Map(column + a) += sum;
+  }
+  for (; a < count; ++a) {
+    double sum = wc[0] * c[a];
+    for (int k = 1; k < Dim; ++k) sum += wc[k] * c[k * stride + a];
+    column[a] += sum;
+  }
+}
+
 // H += sum_k W_k c_k c_k^T over the span of `count` dofs from `lo`, c_k a contact's frame row k
-// (rows `stride` apart): one pass over the block for all of the frame's rows, the whole block
-// though only its lower triangle is read (a loop of one length vectorizes; one of falling lengths
-// does not). Dim is a template argument so that the sum over the rows unrolls.
+// (rows `stride` apart): one pass over the block's lower triangle (what the solve reads; the
+// columns' numbers two at a time) for all of the frame's rows. Dim is a template argument so that
+// the sum over the rows unrolls.
 template <int Dim>
 void add_frame_weights(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, const double* c,
                        Eigen::Index stride, const double* W) {
@@ -575,11 +651,8 @@ void add_frame_weights(Eigen::Ref<Eigen::MatrixXd> H, int lo, int count, const d
       any = any || wc[k] != 0.0;
     }
     if (!any) continue;
-    for (int a = 0; a < count; ++a) {
-      double sum = wc[0] * c[a];
-      for (int k = 1; k < Dim; ++k) sum += wc[k] * c[k * stride + a];
-      column[a] += sum;
-    }
+    // the column from the diagonal down: the lower triangle, which is all the solve reads
+    add_weighted_rows<Dim>(c + b, stride, wc, count - b, column + b);
   }
 }
 
@@ -606,7 +679,13 @@ void add_rows_at(const double* const* a, const double* f, int lo, int span,
   const double* row[Count];
   double force[Count];
   for (int k = 0; k < Count; ++k) row[k] = a[k], force[k] = f[k];
-  for (int j = lo; j < lo + span; ++j) {
+  int j = lo;
+  for (; j + 2 <= lo + span; j += 2) {  // two dofs at a time
+    Pair o = Pair::Map(out + j);
+    for (int k = 0; k < Count; ++k) o += Pair::Map(row[k] + j) * force[k];
+    Pair::Map(out + j) = o;
+  }
+  for (; j < lo + span; ++j) {
     double o = out[j];
     for (int k = 0; k < Count; ++k) o += row[k][j] * force[k];
     out[j] = o;

@@ -38,6 +38,8 @@ void lay_out_own_model_arrays(Model& m, ModelArrayPlacer& place) {
   place(m.actuator_kind, nu);
   place(m.body_weldid, nbody);
   place(m.body_collision, nbody);
+  place(m.geom_aabb, ngeom);
+  place(m.mesh_hull_neighbours, static_cast<std::size_t>(m.nmeshgraph));
 }
 
 void lay_out_model(Model& model, ModelArrayPlacer& place) {

@@ -19,8 +19,10 @@ namespace lever {
 
 namespace {
 
-// Record a warning if any element of x is bad (NaN or beyond 1e10).
-void record_if_bad(Data& data, const Eigen::Ref<const Eigen::VectorXd>& x, Warning kind) {
+// Record a warning if any element of x (one of Data's vectors, read in place) is bad (NaN or
+// beyond 1e10).
+template <class Vector>
+void record_if_bad(Data& data, const Vector& x, Warning kind) {
   const int bad = first_bad(x.data(), static_cast<int>(x.size()));
   if (bad >= 0) record_warning(data, kind, bad);
 }

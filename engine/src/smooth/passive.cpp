@@ -2,6 +2,8 @@
 // (tendon.cpp), and the fluid's drag (fluid.cpp), in MuJoCo 2.2.2's mj_passive's order.
 #include <lever/dynamics.hpp>
 
+#include <cmath>
+
 #include "basics/basics.hpp"
 #include "model/model_room.hpp"
 #include "smooth/smooth.hpp"
@@ -11,10 +13,17 @@ namespace lever {
 namespace {
 
 // A ball's spring: a torque -k r about the body's axes, r the rotation vector that turns the
-// spring's reference quaternion into the joint's (MuJoCo's mju_subQuat).
+// spring's reference quaternion into the joint's (MuJoCo's mju_subQuat), subtracted from zero as
+// MuJoCo subtracts it. Without stiffness, at a finite quaternion (r is finite then), the torque is
+// 0 - 0 r = +0 and r is not computed; at a bad one it is, so that its NaN reaches the force as in
+// MuJoCo.
 void ball_spring(double k, const double* quat, const double* reference, double* torque) {
+  if (k == 0 && std::isfinite(quat[0] + quat[1] + quat[2] + quat[3])) {
+    for (int c = 0; c < 3; ++c) torque[c] = 0.0;
+    return;
+  }
   const Eigen::Vector3d r = detail::quat_difference(quat, reference);
-  for (int c = 0; c < 3; ++c) torque[c] = -k * r[c];
+  for (int c = 0; c < 3; ++c) torque[c] = 0.0 - k * r[c];
 }
 
 }  // namespace
@@ -36,11 +45,11 @@ void unchecked::passive(const Model& model, Data& data) {
     const int d = dofadr[j];
     switch (kind[j]) {
       case JointKind::kFree:  // a spring on the position, then one on the orientation
-        for (int c = 0; c < 3; ++c) qfrc[d + c] = -k * (qpos[q + c] - spring[q + c]);
+        for (int c = 0; c < 3; ++c) qfrc[d + c] = 0.0 - k * (qpos[q + c] - spring[q + c]);
         ball_spring(k, qpos + q + 3, spring + q + 3, qfrc + d + 3);
         break;
       case JointKind::kBall: ball_spring(k, qpos + q, spring + q, qfrc + d); break;
-      default: qfrc[d] = -k * (qpos[q] - spring[q]);
+      default: qfrc[d] = 0.0 - k * (qpos[q] - spring[q]);
     }
   }
   const double* const damping = model.dof_damping.data();
