@@ -591,8 +591,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       // a slide's or a free joint's translation turns nothing: its terms in w_c vanish
       const bool turns = wc[0] != 0.0 || wc[1] != 0.0 || wc[2] != 0.0;
       const ContactChange& change =
-          w.pair_changes[static_cast<std::size_t>(m) * kMaxPairContacts +
-                         static_cast<std::size_t>(i - pair_first)];
+          w.pair_changes[static_cast<std::size_t>(m * pair_count + (i - pair_first))];
       const Vec3 jc = w.contact_point_velocity[static_cast<std::size_t>(c)] + wc.cross(p);
       const PathSums& turned = w.pair_turned[static_cast<std::size_t>(m)];
       ColumnWrench& column = w.pair_columns[static_cast<std::size_t>(m)];
