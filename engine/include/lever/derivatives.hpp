@@ -95,7 +95,6 @@ struct Derivatives {
     /// step_derivatives() (implicit, or Euler with damping): d a / d (qpos, qvel, ctrl, act) of
     /// the step's acceleration a
     RowMatrix right_hand_sides;
-    Eigen::MatrixXd tau_q, tau_v;    ///< (nv x nv) rnea derivatives at a second qacc
     Eigen::MatrixXd MinvJ;           ///< (nv x 2 njnt) M^-1 J^T of the active limit rows
     Eigen::MatrixXd AR;              ///< (2 njnt)^2 Cholesky factor of (J M^-1 J^T + R)_SS
     Eigen::VectorXd col;             ///< (max(nv, nefc_max)) scratch
@@ -113,8 +112,8 @@ struct Derivatives {
     Eigen::VectorXd act0;            ///< (na) RK4: the activations the step started from
     Eigen::VectorXd act_dot_sum;     ///< (na) RK4: sum_i b_i act_dot_i
     Eigen::VectorXd moment_times_a;  ///< (nv) implicit: an actuator's m m^T a, where M is non-zero
-    Eigen::MatrixXd D;               ///< (nv x nv) implicit: d qfrc_smooth / d qvel
-    Eigen::MatrixXd K;               ///< (nv x nv) implicit: M - h D
+    /// (nv x nv) implicit: M - h D, D = d qfrc_smooth / d qvel (made in this buffer first)
+    Eigen::MatrixXd K;
     Eigen::MatrixXd K_lu;            ///< (nv x nv) implicit: K's factor (U + I) L (implicit.cpp)
     Eigen::VectorXd qvel_change;     ///< (nv) implicit: h a, the step's change of qvel
     Eigen::VectorXd qacc_change;     ///< (nv) implicit: a - qacc
@@ -123,16 +122,19 @@ struct Derivatives {
     std::vector<VelocityCoupling> CC2;  ///< (nbody) implicit: CC at a second velocity
     // contacts' rows with their active set held (transition/contact_rows.cpp)
     RowMatrix contact_Y;          ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
-    /// (nv x nv) dJ^T f, one column per qpos direction, and the contact rows' J^T Y
+    /// (nv x nv) dJ^T f, one column per qpos direction, and the contact rows' J^T Y; after the
+    /// held rows' solve, the step's rnea (or polar form) derivative in qpos (step_derivatives.cpp)
     Eigen::MatrixXd contact_E;
     Eigen::MatrixXd contact_H;    ///< (nv x nv) M + J^T D J over the active rows, then its factor
-    Eigen::MatrixXd contact_G;    ///< (nv x nv) J^T D J over the active rows
+    /// (nv x nv) J^T D J over the active rows; after the held rows' solve, the step's rnea (or
+    /// polar form) derivative in qvel (one buffer for both: they are never live together)
+    Eigen::MatrixXd contact_G;
     std::vector<int> contact_H_first;  ///< (nv) the first column of each of its rows not zero
     std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
     std::vector<char> carries;  ///< (nv x nv) [c * nv + i]: moving dof c turns dof i's axis
-    /// (nv x kMaxPairContacts) [m * kMaxPairContacts + k]: the change of one geom pair's contact k
-    /// along the m-th dof that moves the pair, the narrow phase run once per dof for all of the
-    /// pair's contacts
+    /// (nv x kMaxPairContacts) [m * count + k]: the change of one geom pair's contact k (of its
+    /// count) along the m-th dof that moves the pair, the narrow phase run once per dof for all of
+    /// the pair's contacts
     std::vector<ContactChange> pair_changes;
     std::vector<GeomPairMotion> pair_motions;  ///< (nv) the pair's motion along each such dof
     std::vector<Eigen::Vector3d> contact_point_velocity;  ///< (nv) each dof's at the world origin

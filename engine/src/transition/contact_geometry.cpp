@@ -1345,7 +1345,7 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
         }
       }
       for (int m = 0; m < motions_now; ++m) {
-        ContactChange& change = changes[(m0 + m) * kMaxPairContacts + k];
+        ContactChange& change = changes[(m0 + m) * count + k];
         change.dist = f.dist.d[m];
         for (int a = 0; a < 3; ++a) {
           change.pos[a] = f.pos[a].d[m];

@@ -448,7 +448,9 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   // (nefc_max x nv) y's qpos columns, a row per active row (a contact's rows' go straight into E)
   RowMatrix& Y = w.contact_Y;
   Eigen::MatrixXd& E = w.contact_E;  // (nv x nv) dJ^T f, and the contact rows' J^T Y
-  Y.topRows(n).setZero();
+  for (int k = 0; k < n; ++k) {  // a contact row's y is never read: only the others' zeroed
+    if (!is_contact(data.efc_type[w.rows[k]])) Y.row(k).setZero();
+  }
   E.setZero();
 
   // the rows of joints and fixed tendons (limits, friction loss, joint and tendon couplings)
@@ -589,10 +591,9 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
       const int c = w.pair_dofs[static_cast<std::size_t>(m)];
       const Vec3 wc = angular(data.cdof[c]);
       // a slide's or a free joint's translation turns nothing: its terms in w_c vanish
-      const bool turns = wc[0] != 0.0 || wc[1] != 0.0 || wc[2] != 0.0;
+      const bool turns = (wc[0] != 0.0) | (wc[1] != 0.0) | (wc[2] != 0.0);  // one branch
       const ContactChange& change =
-          w.pair_changes[static_cast<std::size_t>(m) * kMaxPairContacts +
-                         static_cast<std::size_t>(i - pair_first)];
+          w.pair_changes[static_cast<std::size_t>(m * pair_count + (i - pair_first))];
       const Vec3 jc = w.contact_point_velocity[static_cast<std::size_t>(c)] + wc.cross(p);
       const PathSums& turned = w.pair_turned[static_cast<std::size_t>(m)];
       ColumnWrench& column = w.pair_columns[static_cast<std::size_t>(m)];

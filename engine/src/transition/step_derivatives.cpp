@@ -834,9 +834,11 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   factor_mass_damped(model, data, h);
   w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
   solve_mass_damped(model, data, w.qacc_step);
+  // rnea's derivatives at qacc_step, in the held rows' buffers (free once forward's are solved)
+  Eigen::MatrixXd &tau_q = w.contact_E, &tau_v = w.contact_G;
   rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, data.work.crb, w,
-                        w.tau_q, &w.tau_v);
-  smooth_rhs(model, data, w.tau_q, w.tau_v, w);
+                        tau_q, &tau_v);
+  smooth_rhs(model, data, tau_q, tau_v, w);
   if (w.active_rows > 0) add_constraint_change(model, deriv);
   const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
     ltdl_solve_rows(model, data.work.LD2, data.work.LD2DiagInv, Y);
@@ -865,10 +867,10 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   // the step's K, its LU factor and its acceleration a, as implicit_step computes them; D is
   // smooth_velocity_derivative()'s, its bias part d c / d qvel read from the RNEA derivative just
   // taken (the same velocity columns: the M qacc and gravity terms are free of qvel) rather than
-  // recomputed
-  w.D = -deriv.dtau_dv;
-  add_actuator_damping_velocity_terms(model, data, w.D);
-  w.K = data.M - h * w.D;
+  // recomputed. D is made in K's buffer, then K = M - h D in place (element by element)
+  w.K = -deriv.dtau_dv;
+  add_actuator_damping_velocity_terms(model, data, w.K);
+  w.K = data.M - h * w.K;
   w.K_lu = w.K;
   factor_lu_tree(model, w.K_lu);
   w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
@@ -884,10 +886,12 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   if (w.active_rows > 0) add_constraint_change(model, deriv);
   w.qvel_change = h * w.qacc_step;
   w.qacc_change = w.qacc_step - data.qacc;
+  // (in the held rows' buffers, free once forward's derivatives are solved)
+  Eigen::MatrixXd &tau_q = w.contact_E, &tau_v = w.contact_G;
   polar_derivatives_into(model, data, data.qvel.data(), w.qvel_change.data(),
-                         w.qacc_change.data(), data.work.crb, w, w.tau_q, w.tau_v);
-  w.rhs_q -= w.tau_q;
-  w.rhs_v -= w.tau_v;
+                         w.qacc_change.data(), data.work.crb, w, tau_q, tau_v);
+  w.rhs_q -= tau_q;
+  w.rhs_v -= tau_v;
   // + h dD a, D's actuator part: m^T k m per actuator (kept where M is non-zero, as the step's D
   // keeps it), k = b2 + gain_velocity input, with gain_velocity an affine gain's p2 or a muscle's
   // d gain / d velocity (a function of the length and velocity), input the raw ctrl or the act
@@ -1181,8 +1185,6 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.rhs_v.setZero(nv, nv);
   work.rhs_u.setZero(nv, nu + na);
   work.right_hand_sides.setZero(nv, 2 * nv + nu + na);
-  work.tau_q.setZero(nv, nv);
-  work.tau_v.setZero(nv, nv);
   const int limit_rows_max = 2 * model.njnt;  // limit_rows() sees limit rows alone
   work.MinvJ.setZero(nv, limit_rows_max);
   work.AR.setZero(limit_rows_max, limit_rows_max);
@@ -1208,7 +1210,6 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.tendon_change.setZero(nv, nv);
   work.segment_motion.assign(2 * ndof, Eigen::Vector3d::Zero());
   work.tangent_motion.assign(2 * ndof, Eigen::Vector3d::Zero());
-  work.D.setZero(nv, nv);
   work.K.setZero(nv, nv);
   work.K_lu.setZero(nv, nv);
   work.qvel_change.setZero(nv);

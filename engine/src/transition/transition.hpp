@@ -78,8 +78,8 @@ void contact_change(const Model& model, const Data& data, int i, const Eigen::Ve
 int pair_first_contact(const Data& data, int i, int& count);
 
 /// contact_change() for each of the `count` contacts of the pair whose first is `first`
-/// (pair_first_contact()) along each of the `directions` motions: changes[m * kMaxPairContacts + k]
-/// for contact first + k along motions[m]. The narrow phase runs once per six motions, and its
+/// (pair_first_contact()) along each of the `directions` motions: changes[m * count + k] for
+/// contact first + k along motions[m] (packed: one motion's contacts share cache lines). The narrow phase runs once per six motions, and its
 /// values are checked against data.contact once.
 void pair_contact_changes(const Model& model, const Data& data, int first, int count,
                           const GeomPairMotion* motions, int directions, ContactChange* changes);
