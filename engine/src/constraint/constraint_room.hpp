@@ -28,6 +28,9 @@ void limit_parameters(const Model& model, int jnt, std::array<double, 2>& solref
 /// nullptr, also d imp / d pos.
 double impedance(const std::array<double, 5>& solimp, double pos, double margin, double* slope);
 
+/// solimp within the bounds MuJoCo's getsolparam clamps it to (rows.cpp).
+void bound_solimp(std::array<double, 5>& solimp);
+
 /// solref and solimp sanitized as MuJoCo's getsolparam (rows.cpp): the standard and direct
 /// forms not mixed, a time constant of at least two steps, solimp within its bounds.
 void sanitize(const Model& model, std::array<double, 2>& solref, std::array<double, 5>& solimp);

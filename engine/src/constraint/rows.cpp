@@ -49,6 +49,14 @@ using detail::kMinVal;
 
 }  // namespace
 
+void bound_solimp(std::array<double, 5>& solimp) {
+  solimp[0] = std::min(kMaxImp, std::max(kMinImp, solimp[0]));
+  solimp[1] = std::min(kMaxImp, std::max(kMinImp, solimp[1]));
+  solimp[2] = std::max(0.0, solimp[2]);
+  solimp[3] = std::min(kMaxImp, std::max(kMinImp, solimp[3]));
+  solimp[4] = std::max(1.0, solimp[4]);
+}
+
 // solref and solimp sanitized as MuJoCo's getsolparam: the standard (positive) and direct
 // (negative) forms cannot be mixed; a time constant no shorter than two steps (refsafe); solimp
 // within its bounds.
@@ -57,11 +65,7 @@ void sanitize(const Model& model, std::array<double, 2>& solref, std::array<doub
   if (solref[0] > 0 && !model.opt.disabled(kDisableRefsafe)) {
     solref[0] = std::max(solref[0], 2 * model.opt.timestep);
   }
-  solimp[0] = std::min(kMaxImp, std::max(kMinImp, solimp[0]));
-  solimp[1] = std::min(kMaxImp, std::max(kMinImp, solimp[1]));
-  solimp[2] = std::max(0.0, solimp[2]);
-  solimp[3] = std::min(kMaxImp, std::max(kMinImp, solimp[3]));
-  solimp[4] = std::max(1.0, solimp[4]);
+  bound_solimp(solimp);
 }
 
 // solref and solimp of a joint's limit, sanitized as MuJoCo's getsolparam does.

@@ -47,12 +47,7 @@ using Vec3 = Eigen::Vector3d;
 
 // solimp clamped to the bounds MuJoCo's getsolparam gives it (the impedance's slope reads it)
 std::array<double, 5> bounded_solimp(std::array<double, 5> solimp) {
-  constexpr double kMinImp = 0.0001, kMaxImp = 0.9999;
-  solimp[0] = std::min(kMaxImp, std::max(kMinImp, solimp[0]));
-  solimp[1] = std::min(kMaxImp, std::max(kMinImp, solimp[1]));
-  solimp[2] = std::max(0.0, solimp[2]);
-  solimp[3] = std::min(kMaxImp, std::max(kMinImp, solimp[3]));
-  solimp[4] = std::max(1.0, solimp[4]);
+  bound_solimp(solimp);
   return solimp;
 }
 
