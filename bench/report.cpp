@@ -728,8 +728,8 @@ void explain_missed_by_time_alone(std::ostream& out, const std::vector<Target>& 
       continue;
     out << "- " << t.text << ": met by instructions (" << ratio_text(t.instructions.value())
         << "), missed by time (" << ratio_text(t.time.value()) << "): ";
-    const bool short_call = t.time.numerator_unit == "ns" && *t.time.numerator < kShortCallNs;
-    if (short_call || t.time.numerator_unit != "ns") {
+    const bool long_call = t.time.numerator_unit == "ns" && *t.time.numerator >= kShortCallNs;
+    if (!long_call) {
       out << "the median of a call this short (tens to hundreds of nanoseconds) moves by more "
           << "than that from run to run on this machine (see the ± columns below); the "
           << "instruction count is exact.\n";

@@ -7,6 +7,8 @@
 // constants set_const computes for the stage.
 #pragma once
 
+#include <lever/collision.hpp>
+#include <lever/data.hpp>
 #include <lever/model.hpp>
 
 namespace lever::detail {
@@ -15,6 +17,11 @@ namespace lever::detail {
 /// phase's Model::body_weldid and body_collision, the mid-phase's geom_aabb and the support
 /// function's mesh_hull_neighbours.
 void build_collision_constants(Model& model);
+
+/// Geom g as the narrow phase takes it: its type, size and bounding radius, its pose in data, a
+/// mesh's vertices, hull graph and Model::mesh_hull_neighbours (driver.cpp; the collision stage
+/// and the derivatives of its contacts read the same shape).
+GeomShape geom_shape(const Model& model, const Data& data, int g);
 
 /// A geom type's name in MJCF (<geom type="...">), for messages.
 inline const char* geom_type_name(GeomType t) {

@@ -325,25 +325,7 @@ class Collider {
     return dot3(d_.geom_xpos[g] - d_.geom_xpos[p], d_.geom_xmat[p].col(2));
   }
 
-  GeomShape shape(int g) const {
-    const double* vert = nullptr;
-    int vertnum = 0;
-    const int* graph = nullptr;
-    const HullNeighbour* hull = nullptr;
-    const int mesh = m_.geom_dataid[g];
-    if (mesh >= 0 && m_.mesh_vertnum[mesh] > 0) {
-      vert = m_.mesh_vert[static_cast<size_t>(m_.mesh_vertadr[mesh])].data();
-      vertnum = m_.mesh_vertnum[mesh];
-      const int address = m_.mesh_graphadr[mesh];
-      if (address >= 0) {
-        graph = m_.mesh_graph.data() + address;
-        hull = m_.mesh_hull_neighbours.data() + address;
-      }
-    }
-    // every member given: nothing is set twice
-    return GeomShape{m_.geom_type[g], m_.geom_size[g], d_.geom_xpos[g], d_.geom_xmat[g],
-                     m_.geom_rbound[g], vert, vertnum, graph, hull};
-  }
+  GeomShape shape(int g) const { return detail::geom_shape(m_, d_, g); }
 
   /// The mid-phase before MPR: whether the two geoms' boxes (geom_aabb, in their frames), each
   /// grown by margin / 2 as the support functions grow the geoms, are apart by more than
@@ -602,6 +584,26 @@ void check_contact_model(const Model& model) {
 }  // namespace
 
 namespace detail {
+
+GeomShape geom_shape(const Model& model, const Data& data, int g) {
+  const double* vert = nullptr;
+  int vertnum = 0;
+  const int* graph = nullptr;
+  const HullNeighbour* hull = nullptr;
+  const int mesh = model.geom_dataid[g];
+  if (mesh >= 0 && model.mesh_vertnum[mesh] > 0) {
+    vert = model.mesh_vert[static_cast<size_t>(model.mesh_vertadr[mesh])].data();
+    vertnum = model.mesh_vertnum[mesh];
+    const int address = model.mesh_graphadr[mesh];
+    if (address >= 0) {
+      graph = model.mesh_graph.data() + address;
+      hull = model.mesh_hull_neighbours.data() + address;
+    }
+  }
+  // every member given: nothing is set twice
+  return GeomShape{model.geom_type[g], model.geom_size[g], data.geom_xpos[g], data.geom_xmat[g],
+                   model.geom_rbound[g], vert, vertnum, graph, hull};
+}
 
 void build_collision_constants(Model& model) {
   // a body without joints moves with its parent (bodies come after their parents)

@@ -195,20 +195,6 @@ int plane_mesh(const Pose& plane, const Pose& mesh, const Data& data, int first,
 // the point depends on which triangle of their Minkowski face that is, so it must be the
 // search's own; where the portal flips with the direction of a motion, there is no derivative.
 
-// The geom as the collision stage hands it to the narrow phase (its pose at the state).
-GeomShape shape_at_state(const Model& model, const Data& data, int g) {
-  GeomShape s{model.geom_type[g], model.geom_size[g], data.geom_xpos[g], data.geom_xmat[g],
-              model.geom_rbound[g]};
-  const int mesh = model.geom_dataid[g];
-  if (mesh >= 0 && model.mesh_vertnum[mesh] > 0) {
-    s.mesh_vert = model.mesh_vert[static_cast<std::size_t>(model.mesh_vertadr[mesh])].data();
-    s.mesh_vertnum = model.mesh_vertnum[mesh];
-    const int graph = model.mesh_graphadr[mesh];
-    s.mesh_graph = graph >= 0 ? model.mesh_graph.data() + graph : nullptr;
-  }
-  return s;
-}
-
 // The answer of a portal whose support points are a[i] - b[i], the centres c1, c2.
 template <class S>
 primitive::Touch<S> portal_answer(const primitive::Vec<S> (&a)[3], const primitive::Vec<S> (&b)[3],
@@ -405,8 +391,8 @@ bool polytope_portal(const Model& model, const Data& data, double margin, int fi
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
   const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
   // the search again, on the same shapes, its support points written down: of them, the portal
-  const GeomShape s1 = shape_at_state(model, data, con.geom1);
-  const GeomShape s2 = shape_at_state(model, data, con.geom2);
+  const GeomShape s1 = geom_shape(model, data, con.geom1);
+  const GeomShape s2 = geom_shape(model, data, con.geom2);
   const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
   if (!last_portal(s1, s2, margin, options, portal) ||
       !(portal.gap <= 1e-9 * (1 + con.pos.cwiseAbs().maxCoeff()))) {
@@ -814,8 +800,8 @@ bool search_holds(const Model& model, int contact, const GeomShape& s1, const Ge
 void check_mpr_pair(const Model& model, const Data& data, double margin, int first) {
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
   const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
-  if (!search_holds(model, first, shape_at_state(model, data, con.geom1),
-                    shape_at_state(model, data, con.geom2), margin)) {
+  if (!search_holds(model, first, geom_shape(model, data, con.geom1),
+                    geom_shape(model, data, con.geom2), margin)) {
     throw Error("derivatives: contact " + std::to_string(first) + " (" + geom_type_name(t1) +
                 "-" + geom_type_name(t2) +
                 ", MPR) is where MPR's search changes its path when a geom turns or moves by " +
@@ -827,8 +813,8 @@ void check_mpr_pair(const Model& model, const Data& data, double margin, int fir
 int mpr_pair(const Model& model, const Data& data, const Pose& g1, const Pose& g2, double margin,
              int first, Found* out) {
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
-  out[0] = replay_search(model, first, shape_at_state(model, data, con.geom1),
-                         shape_at_state(model, data, con.geom2), g1, g2, margin);
+  out[0] = replay_search(model, first, geom_shape(model, data, con.geom1),
+                         geom_shape(model, data, con.geom2), g1, g2, margin);
   return 1;
 }
 
@@ -1086,8 +1072,8 @@ bool closed_form_smooth(const GeomShape& s1, const GeomShape& s2, double margin)
 void check_closed_form_pair(const Model& model, const Data& data, double margin, int first) {
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
   const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
-  const GeomShape s1 = shape_at_state(model, data, con.geom1);
-  const GeomShape s2 = shape_at_state(model, data, con.geom2);
+  const GeomShape s1 = geom_shape(model, data, con.geom1);
+  const GeomShape s2 = geom_shape(model, data, con.geom2);
   if (closed_form_smooth(s1, s2, margin) || closed_form_holds(s1, s2, margin)) return;
   const bool flat_disc = t1 == GeomType::kPlane && t2 == GeomType::kCylinder;
   throw Error("derivatives: contact " + std::to_string(first) + " (" + geom_type_name(t1) + "-" +
@@ -1194,8 +1180,8 @@ GeomShape turned_shape(const GeomShape& g, const std::array<Point, 3>& rows, boo
 int multiccd_contacts(const Model& model, const Data& data, const Pose& g1, const Pose& g2,
                       double margin, int first, int count, Found* found) {
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
-  const GeomShape s1 = shape_at_state(model, data, con.geom1);
-  const GeomShape s2 = shape_at_state(model, data, con.geom2);
+  const GeomShape s1 = geom_shape(model, data, con.geom1);
+  const GeomShape s2 = geom_shape(model, data, con.geom2);
   const ConvexOptions options{model.opt.mpr_tolerance, model.opt.mpr_iterations, false};
   const std::array<V, 3> frame = complete_frame(found[0].normal, found[0].tangent);
   const double tolerance = kMulticcdTurn * std::min(model.geom_rbound[con.geom1],
