@@ -667,14 +667,33 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   Eigen::MatrixXd& G = w.contact_G;  // J_S^T D_S J_S
   factor_held_rows(data, w.rows.data(), n, G, H, w.contact_H_first);
   RowMatrix& X = w.right_hand_sides;
-  X.leftCols(nv) = w.rhs_q + E;
-  X.middleCols(nv, nv) = w.rhs_v;
-  X.rightCols(nu + model.na) = w.rhs_u;  // ctrl, then act
   // aref's velocity term: J_S^T (-D_S B_S J_S), which is -B G where the held rows share one B
   // (one solref's: every row of a scene that sets none)
   bool one_B = true;
   for (int k = 1; k < n; ++k) one_B = one_B && data.efc_B[w.rows[k]] == data.efc_B[w.rows[0]];
-  if (n > 0 && one_B) X.middleCols(nv, nv) -= data.efc_B[w.rows[0]] * G;
+  // [rhs_q + E, rhs_v (- B G), rhs_u] into X's rows in one pass down the inputs' columns
+  const bool minus_BG = n > 0 && one_B;
+  const double B = minus_BG ? data.efc_B[w.rows[0]] : 0.0;
+  const Eigen::Index stride = X.cols();
+  for (int c = 0; c < nv; ++c) {
+    const double* q = w.rhs_q.col(c).data();
+    const double* e = E.col(c).data();
+    const double* v = w.rhs_v.col(c).data();
+    const double* g = G.col(c).data();
+    double* x = X.data() + c;
+    if (minus_BG) {
+      for (int i = 0; i < nv; ++i, x += stride) {
+        x[0] = q[i] + e[i];
+        x[nv] = v[i] - B * g[i];
+      }
+    } else {
+      for (int i = 0; i < nv; ++i, x += stride) {
+        x[0] = q[i] + e[i];
+        x[nv] = v[i];
+      }
+    }
+  }
+  X.rightCols(nu + model.na) = w.rhs_u;  // ctrl, then act
   for (int k = 0; k < n; ++k) {  // J_r's non-zeros lie in its span; y_r's wherever dofs move it
     const int r = w.rows[k];
     const double* J = data.efc_J.row(r).data();

@@ -76,27 +76,34 @@ Eigen::Matrix3d inverse_right_jacobian(const Eigen::Vector3d& phi) {
   return Eigen::Matrix3d::Identity() + 0.5 * K + c * K * K;
 }
 
-// The position update qpos' = qpos (+) h velocity in tangent space, applied to the rows of a
-// Jacobian: rows = [d qpos' / d y] for an input y, given rows = X + [with_identity] d qpos / d y
+// The position update qpos' = qpos (+) h velocity in tangent space, applied to the rows of two
+// Jacobians: rows = [d qpos' / d y] for an input y, given rows = X + [identity] d qpos / d y
 // computed as if every coordinate added (hinge and slide: d qpos' = d qpos + h d velocity, X the
-// second term). A rotation block instead has d qpos' = exp(-h [w]) d qpos + Jr(h w) h d w: its
-// three rows become Jr X, plus exp(-h [w]) in its own columns where the identity was. Hinges,
-// slides and a free joint's translation keep their rows.
+// second term), with the identity in `state_rows` (d / d x) and not in `control_rows` (d / d ctrl).
+// A rotation block instead has d qpos' = exp(-h [w]) d qpos + Jr(h w) h d w: its three rows
+// become Jr X, plus exp(-h [w]) in its own columns where the identity was (Jr and the rotation
+// made once for both). Hinges, slides and a free joint's translation keep their rows.
 void through_position_update(const Model& model, const double* velocity, double h,
-                             Eigen::Ref<Eigen::MatrixXd> rows, bool with_identity) {
+                             Eigen::Ref<Eigen::MatrixXd> state_rows,
+                             Eigen::Ref<Eigen::MatrixXd> control_rows) {
   if (model.nq == model.nv) return;
+  // rows = Jr rows, column by column: no temporary
+  const auto turn = [](const Eigen::Matrix3d& Jr, auto&& block_rows) {
+    for (Eigen::Index c = 0; c < block_rows.cols(); ++c) {
+      const Eigen::Vector3d x = block_rows.col(c);
+      block_rows.col(c) = Jr * x;
+    }
+  };
   for (int j = 0; j < model.njnt; ++j) {
     const int r = rotation_block(model, j);
     if (r < 0) continue;
     const Eigen::Vector3d phi = h * Eigen::Vector3d(velocity[r], velocity[r + 1], velocity[r + 2]);
-    auto block_rows = rows.middleRows<3>(r);
-    if (with_identity) block_rows.middleCols<3>(r) -= Eigen::Matrix3d::Identity();
     const Eigen::Matrix3d Jr = right_jacobian(phi);
-    for (Eigen::Index c = 0; c < block_rows.cols(); ++c) {  // column by column: no temporary
-      const Eigen::Vector3d x = block_rows.col(c);
-      block_rows.col(c) = Jr * x;
-    }
-    if (with_identity) block_rows.middleCols<3>(r) += rotation_of(phi).transpose();
+    auto state_block = state_rows.middleRows<3>(r);
+    state_block.middleCols<3>(r) -= Eigen::Matrix3d::Identity();
+    turn(Jr, state_block);
+    state_block.middleCols<3>(r) += rotation_of(phi).transpose();
+    turn(Jr, control_rows.middleRows<3>(r));
   }
 }
 
@@ -800,8 +807,7 @@ void euler_turns(const Model& model, const Data& data,
   const double h = model.opt.timestep;
   auto& qvel_next = deriv.work.qvel_next;
   qvel_next = data.qvel + h * qacc_step;
-  through_position_update(model, qvel_next.data(), h, deriv.A.topRows(nv), true);
-  through_position_update(model, qvel_next.data(), h, deriv.B.topRows(nv), false);
+  through_position_update(model, qvel_next.data(), h, deriv.A.topRows(nv), deriv.B.topRows(nv));
 }
 
 // The right-hand sides += d qfrc_constraint (forward's linearised solve), for a step that
@@ -1074,15 +1080,14 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       w.Jx.diagonal().array() += 1.0;
       w.Ju = (h * kA[i]) * w.Ku;
       // the next stage's qpos turns by h a_{i+1} qvel_i (data.qvel is still stage i's)
-      through_position_update(model, data.qvel.data(), h * kA[i], w.Jx.topRows(nv), true);
-      through_position_update(model, data.qvel.data(), h * kA[i], w.Ju.topRows(nv), false);
+      through_position_update(model, data.qvel.data(), h * kA[i], w.Jx.topRows(nv),
+                              w.Ju.topRows(nv));
     }
   }
   deriv.A *= h;
   deriv.A.diagonal().array() += 1.0;
   deriv.B *= h;
-  through_position_update(model, w.qvel_next.data(), h, deriv.A.topRows(nv), true);
-  through_position_update(model, w.qvel_next.data(), h, deriv.B.topRows(nv), false);
+  through_position_update(model, w.qvel_next.data(), h, deriv.A.topRows(nv), deriv.B.topRows(nv));
   for (int k = 0; k < na; ++k) {  // a clamped activation follows nothing
     if (!activation_clamped(model, k, w.act0[k], w.act_dot_sum[k])) continue;
     deriv.A.row(2 * nv + k).setZero();
