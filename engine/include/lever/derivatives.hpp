@@ -166,7 +166,6 @@ struct Derivatives {
     // the active set's check (step_derivatives)
     /// the contacts' geom pairs, the rows' states and the spatial tendons' wraps at the start
     std::vector<int> active_set;
-    std::vector<int> active_set_end;  ///< the same at the step's end, or at an RK4 stage
     Eigen::VectorXd qacc_sum;     ///< (nv) RK4: sum_i b_i qacc_i
     std::optional<Data> next;     ///< forward() at the step's end
   } work;

@@ -640,37 +640,55 @@ int wrap_side(const Model& model, const Data& data, int g, const Eigen::Vector3d
 // The active set after forward(): the contacts' geom pairs, each row's state, and each spatial
 // tendon's path (its points' objects: which geoms it wraps, and which way round each). A wrap
 // switching on or off, or to the other pair of tangent points, changes the tendon's Jacobian's
-// formula as a contact made or lost changes the rows.
-void record_active_set(const Model& model, const Data& data, std::vector<int>& set) {
-  set.clear();
+// formula as a contact made or lost changes the rows. Its numbers in order to emit(number), which
+// returns false to stop the walk; returns whether the walk finished.
+template <class Emit>
+bool walk_active_set(const Model& model, const Data& data, Emit&& emit) {
   for (int i = 0; i < data.ncon; ++i) {
     const Contact& con = data.contact[static_cast<std::size_t>(i)];
-    set.push_back(con.geom1);
-    set.push_back(con.geom2);
-    set.push_back(con.efc_address >= 0 ? 1 : 0);
+    if (!emit(con.geom1) || !emit(con.geom2) || !emit(con.efc_address >= 0 ? 1 : 0)) return false;
   }
-  set.push_back(-1);
-  for (int r = 0; r < data.nefc; ++r) set.push_back(static_cast<int>(data.efc_state[r]));
-  set.push_back(-1);
+  if (!emit(-1)) return false;
+  for (int r = 0; r < data.nefc; ++r) {
+    if (!emit(static_cast<int>(data.efc_state[r]))) return false;
+  }
+  if (!emit(-1)) return false;
   for (int t = 0; t < model.ntendon; ++t) {
     const int first = data.ten_wrapadr[t], end = first + data.ten_wrapnum[t];
     for (int k = first; k < end; ++k) {
       const int object = path_object(data, k);
-      set.push_back(object);
+      if (!emit(object)) return false;
       // a wrapped geom's first tangent point, between its sites: site, t0, t1, site
       const bool first_tangent =
           object >= 0 && k > first && k + 2 < end && path_object(data, k - 1) != object;
       if (!first_tangent) continue;
-      set.push_back(wrap_side(model, data, object, path_point(data, k - 1), path_point(data, k),
-                              path_point(data, k + 1), path_point(data, k + 2)));
+      if (!emit(wrap_side(model, data, object, path_point(data, k - 1), path_point(data, k),
+                          path_point(data, k + 1), path_point(data, k + 2)))) {
+        return false;
+      }
     }
   }
+  return true;
 }
 
-bool same_active_set(const Model& model, const Data& data, const std::vector<int>& set,
-                     std::vector<int>& scratch) {
-  record_active_set(model, data, scratch);
-  return scratch == set;
+void record_active_set(const Model& model, const Data& data, std::vector<int>& set) {
+  set.clear();
+  walk_active_set(model, data, [&](int number) {
+    set.push_back(number);
+    return true;
+  });
+}
+
+// Whether data's active set is `set` (record_active_set()'s), compared number by number as the
+// walk makes them (stopping at the first that differs).
+bool same_active_set(const Model& model, const Data& data, const std::vector<int>& set) {
+  std::size_t k = 0;
+  const bool walked = walk_active_set(model, data, [&](int number) {
+    if (k == set.size() || set[k] != number) return false;
+    ++k;
+    return true;
+  });
+  return walked && k == set.size();
 }
 
 // Whether the rows of `data` are solved by the active-set solve (solve_rows' choice in the
@@ -690,12 +708,11 @@ bool solved_by_active_sets(const Model& model, const Data& data) {
 // same answer as the solve and the record, without the solve's first residual, its other rounds
 // and its forces. Without rows, nothing to solve: the record at once. Otherwise the solve, then
 // the record.
-bool same_active_set_at_end(const Model& model, Data& next, const std::vector<int>& set,
-                            std::vector<int>& scratch) {
-  if (next.nefc == 0) return same_active_set(model, next, set, scratch);
+bool same_active_set_at_end(const Model& model, Data& next, const std::vector<int>& set) {
+  if (next.nefc == 0) return same_active_set(model, next, set);
   if (!solved_by_active_sets(model, next)) {
     detail::forward_solve(model, next);
-    return same_active_set(model, next, set, scratch);
+    return same_active_set(model, next, set);
   }
   // the start's states: between the record's first -1 (after the contacts' triples of geom
   // ids and flags, none of them -1) and its second
@@ -708,12 +725,12 @@ bool same_active_set_at_end(const Model& model, Data& next, const std::vector<in
     if (state != static_cast<int>(ConstraintState::kSatisfied) &&
         state != static_cast<int>(ConstraintState::kActive)) {
       detail::forward_solve(model, next);
-      return same_active_set(model, next, set, scratch);
+      return same_active_set(model, next, set);
     }
     next.efc_state[r] = static_cast<ConstraintState>(state);
     active[r] = state == static_cast<int>(ConstraintState::kActive) ? 1 : 0;
   }
-  return same_active_set(model, next, set, scratch) && active_set_round(next, active);
+  return same_active_set(model, next, set) && active_set_round(next, active);
 }
 
 // forward() at the step's end x' = (qpos (+) h velocity, qvel + h acceleration), in
@@ -736,7 +753,7 @@ void check_step_end(const Model& model, Data& data, Derivatives& deriv,
   detail::advance_activations(model, next, act_dot.data(), h);
   // the rows' set only: the lean kinematics, no sensors, and the solve as far as the set needs
   detail::forward_until_solve(model, next);
-  if (!same_active_set_at_end(model, next, w.active_set, w.active_set_end)) {
+  if (!same_active_set_at_end(model, next, w.active_set)) {
     deriv.active_set_changes = true;
   }
   if (deriv.active_set_changes) {
@@ -1049,7 +1066,7 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     forward_derivatives_unchecked(model, data, deriv);
     if (i == 0) {
       record_active_set(model, data, w.active_set);
-    } else if (!same_active_set(model, data, w.active_set, w.active_set_end)) {
+    } else if (!same_active_set(model, data, w.active_set)) {
       deriv.active_set_changes = true;
     }
     w.qvel_next += kB[i] * data.qvel;
@@ -1228,7 +1245,6 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   const auto active_set_max =
       static_cast<std::size_t>(3 * std::max(0, model.nconmax) + nefc_max + 4 * model.nwrap + 2);
   work.active_set.reserve(active_set_max);
-  work.active_set_end.reserve(active_set_max);
   work.qacc_sum.setZero(nv);
   work.next.emplace(model);
   work.contact_point_velocity.assign(ndof, Eigen::Vector3d::Zero());
