@@ -906,15 +906,22 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   // in qpos, and in qvel - d c / d qvel at velocity h a. (w.rhs_* still hold smooth_rhs() at
   // dtau: forward_derivatives_unchecked solved them into dqacc_* and left them as they were; w.CC
   // holds C at qd, which the polar form reads)
-  if (w.active_rows > 0) add_constraint_change(model, deriv);
   w.qvel_change = h * w.qacc_step;
   w.qacc_change = w.qacc_step - data.qacc;
   // (in the held rows' buffers, free once forward's derivatives are solved)
   Eigen::MatrixXd &tau_q = w.contact_E, &tau_v = w.contact_G;
   polar_derivatives_into(model, data, data.qvel.data(), w.qvel_change.data(),
                          w.qacc_change.data(), data.work.crb, w, tau_q, tau_v);
-  w.rhs_q -= tau_q;
-  w.rhs_v -= tau_v;
+  // + d qfrc_constraint (forward's linearised solve), then - the polar form's, in one pass
+  if (w.active_rows > 0) {
+    w.rhs_q = (w.rhs_q + deriv.dconstraint_dq) - tau_q;
+    w.rhs_v = (w.rhs_v + deriv.dconstraint_dv) - tau_v;
+    w.rhs_u.leftCols(model.nu) += deriv.dconstraint_du;
+    w.rhs_u.rightCols(model.na) += deriv.dconstraint_dact;
+  } else {
+    w.rhs_q -= tau_q;
+    w.rhs_v -= tau_v;
+  }
   // + h dD a, D's actuator part: m^T k m per actuator (kept where M is non-zero, as the step's D
   // keeps it), k = b2 + gain_velocity input, with gain_velocity an affine gain's p2 or a muscle's
   // d gain / d velocity (a function of the length and velocity), input the raw ctrl or the act
