@@ -1259,6 +1259,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.moves1.assign(ndof, 0);
   work.moves2.assign(ndof, 0);
   detail::carry_table(model, work.carries);
+  detail::branch_table(model, work.branch_first, work.branch_dofs);
   work.pair_changes.assign(ndof * static_cast<std::size_t>(kMaxPairContacts), ContactChange{});
   work.pair_motions.assign(ndof, GeomPairMotion{});
   work.pair_dofs.assign(ndof, 0);
