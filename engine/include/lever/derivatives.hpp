@@ -112,9 +112,9 @@ struct Derivatives {
     Eigen::VectorXd act0;            ///< (na) RK4: the activations the step started from
     Eigen::VectorXd act_dot_sum;     ///< (na) RK4: sum_i b_i act_dot_i
     Eigen::VectorXd moment_times_a;  ///< (nv) implicit: an actuator's m m^T a, where M is non-zero
-    /// (nv x nv) implicit: K = M - h D (D = d qfrc_smooth / d qvel, made in this buffer first),
-    /// then K's factor (U + I) L (implicit.cpp)
-    Eigen::MatrixXd K_lu;
+    /// (nv x nv) implicit: M - h D, D = d qfrc_smooth / d qvel (made in this buffer first)
+    Eigen::MatrixXd K;
+    Eigen::MatrixXd K_lu;            ///< (nv x nv) implicit: K's factor (U + I) L (implicit.cpp)
     Eigen::VectorXd qvel_change;     ///< (nv) implicit: h a, the step's change of qvel
     Eigen::VectorXd qacc_change;     ///< (nv) implicit: a - qacc
     int active_rows = 0;             ///< the limit rows active at the last forward (limit_rows)

@@ -890,11 +890,11 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   // the step's K, its LU factor and its acceleration a, as implicit_step computes them; D is
   // smooth_velocity_derivative()'s, its bias part d c / d qvel read from the RNEA derivative just
   // taken (the same velocity columns: the M qacc and gravity terms are free of qvel) rather than
-  // recomputed. D is made in the factor's buffer, then K = M - h D in place (element by element),
-  // then factored in place
-  w.K_lu = -deriv.dtau_dv;
-  add_actuator_damping_velocity_terms(model, data, w.K_lu);
-  w.K_lu = data.M - h * w.K_lu;
+  // recomputed. D is made in K's buffer, then K = M - h D in place (element by element)
+  w.K = -deriv.dtau_dv;
+  add_actuator_damping_velocity_terms(model, data, w.K);
+  w.K = data.M - h * w.K;
+  w.K_lu = w.K;
   factor_lu_tree(model, w.K_lu);
   w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
   solve_lu_tree(model, w.K_lu, w.qacc_step.data(), data.work.dof_chain.data());
@@ -1239,6 +1239,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.tendon_change.setZero(nv, nv);
   work.segment_motion.assign(2 * ndof, Eigen::Vector3d::Zero());
   work.tangent_motion.assign(2 * ndof, Eigen::Vector3d::Zero());
+  work.K.setZero(nv, nv);
   work.K_lu.setZero(nv, nv);
   work.qvel_change.setZero(nv);
   work.qacc_change.setZero(nv);
