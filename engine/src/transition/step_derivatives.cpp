@@ -893,8 +893,12 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   // recomputed. D is made in K's buffer, then K = M - h D in place (element by element)
   w.K = -deriv.dtau_dv;
   add_actuator_damping_velocity_terms(model, data, w.K);
-  w.K = data.M - h * w.K;
-  w.K_lu = w.K;
+  {  // K = M - h D, and its copy the factor is made in, in one pass
+    const double* const M = data.M.data();
+    double* const K = w.K.data();
+    double* const K_lu = w.K_lu.data();
+    for (int e = 0; e < nv * nv; ++e) K_lu[e] = K[e] = M[e] - h * K[e];
+  }
   factor_lu_tree(model, w.K_lu);
   w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
   solve_lu_tree(model, w.K_lu, w.qacc_step.data(), data.work.dof_chain.data());
