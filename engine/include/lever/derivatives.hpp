@@ -132,6 +132,9 @@ struct Derivatives {
     std::vector<int> contact_H_first;  ///< (nv) the first column of each of its rows not zero
     std::vector<char> moves1, moves2;  ///< (nv) the dofs that move a contact's two bodies
     std::vector<char> carries;  ///< (nv x nv) [c * nv + i]: moving dof c turns dof i's axis
+    /// (nv + 1, and M's possible non-zeros) the dofs on one branch with dof i, ascending, are
+    /// branch_dofs[branch_first[i] .. branch_first[i + 1]) (transition/contact_rows.cpp)
+    std::vector<int> branch_first, branch_dofs;
     /// (nv x kMaxPairContacts) [m * count + k]: the change of one geom pair's contact k (of its
     /// count) along the m-th dof that moves the pair, the narrow phase run once per dof for all of
     /// the pair's contacts
@@ -166,7 +169,6 @@ struct Derivatives {
     // the active set's check (step_derivatives)
     /// the contacts' geom pairs, the rows' states and the spatial tendons' wraps at the start
     std::vector<int> active_set;
-    std::vector<int> active_set_end;  ///< the same at the step's end, or at an RK4 stage
     Eigen::VectorXd qacc_sum;     ///< (nv) RK4: sum_i b_i qacc_i
     std::optional<Data> next;     ///< forward() at the step's end
   } work;

@@ -214,6 +214,26 @@ void carry_table(const Model& model, std::vector<char>& table) {
   }
 }
 
+void branch_table(const Model& model, std::vector<int>& first, std::vector<int>& dofs) {
+  const int nv = model.nv;
+  // whether dof a is dof b or one of its ancestors
+  const auto above = [&](int a, int b) {
+    for (int k = b; k >= 0; k = model.dof_parentid[k]) {
+      if (k == a) return true;
+    }
+    return false;
+  };
+  first.assign(static_cast<std::size_t>(nv) + 1, 0);
+  dofs.clear();
+  for (int i = 0; i < nv; ++i) {
+    first[static_cast<std::size_t>(i)] = static_cast<int>(dofs.size());
+    for (int j = 0; j < nv; ++j) {
+      if (above(j, i) || above(i, j)) dofs.push_back(j);
+    }
+  }
+  first[static_cast<std::size_t>(nv)] = static_cast<int>(dofs.size());
+}
+
 int held_active_rows(const Data& data, std::vector<int>& rows) {
   int n = 0;
   for (int r = 0; r < data.nefc; ++r) {
@@ -667,14 +687,33 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   Eigen::MatrixXd& G = w.contact_G;  // J_S^T D_S J_S
   factor_held_rows(data, w.rows.data(), n, G, H, w.contact_H_first);
   RowMatrix& X = w.right_hand_sides;
-  X.leftCols(nv) = w.rhs_q + E;
-  X.middleCols(nv, nv) = w.rhs_v;
-  X.rightCols(nu + model.na) = w.rhs_u;  // ctrl, then act
   // aref's velocity term: J_S^T (-D_S B_S J_S), which is -B G where the held rows share one B
   // (one solref's: every row of a scene that sets none)
   bool one_B = true;
   for (int k = 1; k < n; ++k) one_B = one_B && data.efc_B[w.rows[k]] == data.efc_B[w.rows[0]];
-  if (n > 0 && one_B) X.middleCols(nv, nv) -= data.efc_B[w.rows[0]] * G;
+  // [rhs_q + E, rhs_v (- B G), rhs_u] into X's rows in one pass down the inputs' columns
+  const bool minus_BG = n > 0 && one_B;
+  const double B = minus_BG ? data.efc_B[w.rows[0]] : 0.0;
+  const Eigen::Index stride = X.cols();
+  for (int c = 0; c < nv; ++c) {
+    const double* q = w.rhs_q.col(c).data();
+    const double* e = E.col(c).data();
+    const double* v = w.rhs_v.col(c).data();
+    const double* g = G.col(c).data();
+    double* x = X.data() + c;
+    if (minus_BG) {
+      for (int i = 0; i < nv; ++i, x += stride) {
+        x[0] = q[i] + e[i];
+        x[nv] = v[i] - B * g[i];
+      }
+    } else {
+      for (int i = 0; i < nv; ++i, x += stride) {
+        x[0] = q[i] + e[i];
+        x[nv] = v[i];
+      }
+    }
+  }
+  X.rightCols(nu + model.na) = w.rhs_u;  // ctrl, then act
   for (int k = 0; k < n; ++k) {  // J_r's non-zeros lie in its span; y_r's wherever dofs move it
     const int r = w.rows[k];
     const double* J = data.efc_J.row(r).data();
@@ -698,20 +737,38 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   deriv.dqacc_du = X.middleCols(2 * nv, nu);
   deriv.dqacc_dact = X.rightCols(model.na);
   // M d qacc = rhs + d qfrc_constraint, M's zeros (dofs on different branches) skipped
-  deriv.dconstraint_dq = -w.rhs_q;
-  deriv.dconstraint_dv = -w.rhs_v;
-  deriv.dconstraint_du = -w.rhs_u.leftCols(nu);
-  deriv.dconstraint_dact = -w.rhs_u.rightCols(model.na);
+  // (crba writes M's entries off the branches as zeros, so row i's columns are read along its
+  // branch alone; each entry of d qfrc_constraint starts as -rhs, then adds M(i, j) x_j in turn)
+  const int na = model.na;
   for (int i = 0; i < nv; ++i) {
-    for (int j = 0; j < nv; ++j) {
+    bool started = false;
+    for (int b = w.branch_first[i]; b < w.branch_first[i + 1]; ++b) {
+      const int j = w.branch_dofs[static_cast<std::size_t>(b)];
       const double a = data.M(i, j);
       if (a == 0.0) continue;
       const double* x = X.row(j).data();
+      if (!started) {
+        for (int c = 0; c < nv; ++c) deriv.dconstraint_dq(i, c) = -w.rhs_q(i, c) + a * x[c];
+        for (int c = 0; c < nv; ++c) deriv.dconstraint_dv(i, c) = -w.rhs_v(i, c) + a * x[nv + c];
+        for (int c = 0; c < nu; ++c) {
+          deriv.dconstraint_du(i, c) = -w.rhs_u(i, c) + a * x[2 * nv + c];
+        }
+        for (int c = 0; c < na; ++c) {
+          deriv.dconstraint_dact(i, c) = -w.rhs_u(i, nu + c) + a * x[2 * nv + nu + c];
+        }
+        started = true;
+        continue;
+      }
       for (int c = 0; c < nv; ++c) deriv.dconstraint_dq(i, c) += a * x[c];
       for (int c = 0; c < nv; ++c) deriv.dconstraint_dv(i, c) += a * x[nv + c];
       for (int c = 0; c < nu; ++c) deriv.dconstraint_du(i, c) += a * x[2 * nv + c];
-      for (int c = 0; c < model.na; ++c) deriv.dconstraint_dact(i, c) += a * x[2 * nv + nu + c];
+      for (int c = 0; c < na; ++c) deriv.dconstraint_dact(i, c) += a * x[2 * nv + nu + c];
     }
+    if (started) continue;  // else a row of M all zero: -rhs alone
+    for (int c = 0; c < nv; ++c) deriv.dconstraint_dq(i, c) = -w.rhs_q(i, c);
+    for (int c = 0; c < nv; ++c) deriv.dconstraint_dv(i, c) = -w.rhs_v(i, c);
+    for (int c = 0; c < nu; ++c) deriv.dconstraint_du(i, c) = -w.rhs_u(i, c);
+    for (int c = 0; c < na; ++c) deriv.dconstraint_dact(i, c) = -w.rhs_u(i, nu + c);
   }
 }
 

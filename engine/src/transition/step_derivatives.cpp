@@ -76,27 +76,34 @@ Eigen::Matrix3d inverse_right_jacobian(const Eigen::Vector3d& phi) {
   return Eigen::Matrix3d::Identity() + 0.5 * K + c * K * K;
 }
 
-// The position update qpos' = qpos (+) h velocity in tangent space, applied to the rows of a
-// Jacobian: rows = [d qpos' / d y] for an input y, given rows = X + [with_identity] d qpos / d y
+// The position update qpos' = qpos (+) h velocity in tangent space, applied to the rows of two
+// Jacobians: rows = [d qpos' / d y] for an input y, given rows = X + [identity] d qpos / d y
 // computed as if every coordinate added (hinge and slide: d qpos' = d qpos + h d velocity, X the
-// second term). A rotation block instead has d qpos' = exp(-h [w]) d qpos + Jr(h w) h d w: its
-// three rows become Jr X, plus exp(-h [w]) in its own columns where the identity was. Hinges,
-// slides and a free joint's translation keep their rows.
+// second term), with the identity in `state_rows` (d / d x) and not in `control_rows` (d / d ctrl).
+// A rotation block instead has d qpos' = exp(-h [w]) d qpos + Jr(h w) h d w: its three rows
+// become Jr X, plus exp(-h [w]) in its own columns where the identity was (Jr and the rotation
+// made once for both). Hinges, slides and a free joint's translation keep their rows.
 void through_position_update(const Model& model, const double* velocity, double h,
-                             Eigen::Ref<Eigen::MatrixXd> rows, bool with_identity) {
+                             Eigen::Ref<Eigen::MatrixXd> state_rows,
+                             Eigen::Ref<Eigen::MatrixXd> control_rows) {
   if (model.nq == model.nv) return;
+  // rows = Jr rows, column by column: no temporary
+  const auto turn = [](const Eigen::Matrix3d& Jr, auto&& block_rows) {
+    for (Eigen::Index c = 0; c < block_rows.cols(); ++c) {
+      const Eigen::Vector3d x = block_rows.col(c);
+      block_rows.col(c) = Jr * x;
+    }
+  };
   for (int j = 0; j < model.njnt; ++j) {
     const int r = rotation_block(model, j);
     if (r < 0) continue;
     const Eigen::Vector3d phi = h * Eigen::Vector3d(velocity[r], velocity[r + 1], velocity[r + 2]);
-    auto block_rows = rows.middleRows<3>(r);
-    if (with_identity) block_rows.middleCols<3>(r) -= Eigen::Matrix3d::Identity();
     const Eigen::Matrix3d Jr = right_jacobian(phi);
-    for (Eigen::Index c = 0; c < block_rows.cols(); ++c) {  // column by column: no temporary
-      const Eigen::Vector3d x = block_rows.col(c);
-      block_rows.col(c) = Jr * x;
-    }
-    if (with_identity) block_rows.middleCols<3>(r) += rotation_of(phi).transpose();
+    auto state_block = state_rows.middleRows<3>(r);
+    state_block.middleCols<3>(r) -= Eigen::Matrix3d::Identity();
+    turn(Jr, state_block);
+    state_block.middleCols<3>(r) += rotation_of(phi).transpose();
+    turn(Jr, control_rows.middleRows<3>(r));
   }
 }
 
@@ -633,37 +640,55 @@ int wrap_side(const Model& model, const Data& data, int g, const Eigen::Vector3d
 // The active set after forward(): the contacts' geom pairs, each row's state, and each spatial
 // tendon's path (its points' objects: which geoms it wraps, and which way round each). A wrap
 // switching on or off, or to the other pair of tangent points, changes the tendon's Jacobian's
-// formula as a contact made or lost changes the rows.
-void record_active_set(const Model& model, const Data& data, std::vector<int>& set) {
-  set.clear();
+// formula as a contact made or lost changes the rows. Its numbers in order to emit(number), which
+// returns false to stop the walk; returns whether the walk finished.
+template <class Emit>
+bool walk_active_set(const Model& model, const Data& data, Emit&& emit) {
   for (int i = 0; i < data.ncon; ++i) {
     const Contact& con = data.contact[static_cast<std::size_t>(i)];
-    set.push_back(con.geom1);
-    set.push_back(con.geom2);
-    set.push_back(con.efc_address >= 0 ? 1 : 0);
+    if (!emit(con.geom1) || !emit(con.geom2) || !emit(con.efc_address >= 0 ? 1 : 0)) return false;
   }
-  set.push_back(-1);
-  for (int r = 0; r < data.nefc; ++r) set.push_back(static_cast<int>(data.efc_state[r]));
-  set.push_back(-1);
+  if (!emit(-1)) return false;
+  for (int r = 0; r < data.nefc; ++r) {
+    if (!emit(static_cast<int>(data.efc_state[r]))) return false;
+  }
+  if (!emit(-1)) return false;
   for (int t = 0; t < model.ntendon; ++t) {
     const int first = data.ten_wrapadr[t], end = first + data.ten_wrapnum[t];
     for (int k = first; k < end; ++k) {
       const int object = path_object(data, k);
-      set.push_back(object);
+      if (!emit(object)) return false;
       // a wrapped geom's first tangent point, between its sites: site, t0, t1, site
       const bool first_tangent =
           object >= 0 && k > first && k + 2 < end && path_object(data, k - 1) != object;
       if (!first_tangent) continue;
-      set.push_back(wrap_side(model, data, object, path_point(data, k - 1), path_point(data, k),
-                              path_point(data, k + 1), path_point(data, k + 2)));
+      if (!emit(wrap_side(model, data, object, path_point(data, k - 1), path_point(data, k),
+                          path_point(data, k + 1), path_point(data, k + 2)))) {
+        return false;
+      }
     }
   }
+  return true;
 }
 
-bool same_active_set(const Model& model, const Data& data, const std::vector<int>& set,
-                     std::vector<int>& scratch) {
-  record_active_set(model, data, scratch);
-  return scratch == set;
+void record_active_set(const Model& model, const Data& data, std::vector<int>& set) {
+  set.clear();
+  walk_active_set(model, data, [&](int number) {
+    set.push_back(number);
+    return true;
+  });
+}
+
+// Whether data's active set is `set` (record_active_set()'s), compared number by number as the
+// walk makes them (stopping at the first that differs).
+bool same_active_set(const Model& model, const Data& data, const std::vector<int>& set) {
+  std::size_t k = 0;
+  const bool walked = walk_active_set(model, data, [&](int number) {
+    if (k == set.size() || set[k] != number) return false;
+    ++k;
+    return true;
+  });
+  return walked && k == set.size();
 }
 
 // Whether the rows of `data` are solved by the active-set solve (solve_rows' choice in the
@@ -683,12 +708,11 @@ bool solved_by_active_sets(const Model& model, const Data& data) {
 // same answer as the solve and the record, without the solve's first residual, its other rounds
 // and its forces. Without rows, nothing to solve: the record at once. Otherwise the solve, then
 // the record.
-bool same_active_set_at_end(const Model& model, Data& next, const std::vector<int>& set,
-                            std::vector<int>& scratch) {
-  if (next.nefc == 0) return same_active_set(model, next, set, scratch);
+bool same_active_set_at_end(const Model& model, Data& next, const std::vector<int>& set) {
+  if (next.nefc == 0) return same_active_set(model, next, set);
   if (!solved_by_active_sets(model, next)) {
     detail::forward_solve(model, next);
-    return same_active_set(model, next, set, scratch);
+    return same_active_set(model, next, set);
   }
   // the start's states: between the record's first -1 (after the contacts' triples of geom
   // ids and flags, none of them -1) and its second
@@ -701,12 +725,12 @@ bool same_active_set_at_end(const Model& model, Data& next, const std::vector<in
     if (state != static_cast<int>(ConstraintState::kSatisfied) &&
         state != static_cast<int>(ConstraintState::kActive)) {
       detail::forward_solve(model, next);
-      return same_active_set(model, next, set, scratch);
+      return same_active_set(model, next, set);
     }
     next.efc_state[r] = static_cast<ConstraintState>(state);
     active[r] = state == static_cast<int>(ConstraintState::kActive) ? 1 : 0;
   }
-  return same_active_set(model, next, set, scratch) && active_set_round(next, active);
+  return same_active_set(model, next, set) && active_set_round(next, active);
 }
 
 // forward() at the step's end x' = (qpos (+) h velocity, qvel + h acceleration), in
@@ -729,7 +753,7 @@ void check_step_end(const Model& model, Data& data, Derivatives& deriv,
   detail::advance_activations(model, next, act_dot.data(), h);
   // the rows' set only: the lean kinematics, no sensors, and the solve as far as the set needs
   detail::forward_until_solve(model, next);
-  if (!same_active_set_at_end(model, next, w.active_set, w.active_set_end)) {
+  if (!same_active_set_at_end(model, next, w.active_set)) {
     deriv.active_set_changes = true;
   }
   if (deriv.active_set_changes) {
@@ -800,8 +824,7 @@ void euler_turns(const Model& model, const Data& data,
   const double h = model.opt.timestep;
   auto& qvel_next = deriv.work.qvel_next;
   qvel_next = data.qvel + h * qacc_step;
-  through_position_update(model, qvel_next.data(), h, deriv.A.topRows(nv), true);
-  through_position_update(model, qvel_next.data(), h, deriv.B.topRows(nv), false);
+  through_position_update(model, qvel_next.data(), h, deriv.A.topRows(nv), deriv.B.topRows(nv));
 }
 
 // The right-hand sides += d qfrc_constraint (forward's linearised solve), for a step that
@@ -870,8 +893,12 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   // recomputed. D is made in K's buffer, then K = M - h D in place (element by element)
   w.K = -deriv.dtau_dv;
   add_actuator_damping_velocity_terms(model, data, w.K);
-  w.K = data.M - h * w.K;
-  w.K_lu = w.K;
+  {  // K = M - h D, and its copy the factor is made in, in one pass
+    const double* const M = data.M.data();
+    double* const K = w.K.data();
+    double* const K_lu = w.K_lu.data();
+    for (int e = 0; e < nv * nv; ++e) K_lu[e] = K[e] = M[e] - h * K[e];
+  }
   factor_lu_tree(model, w.K_lu);
   w.qacc_step = data.qfrc_smooth + data.qfrc_constraint;
   solve_lu_tree(model, w.K_lu, w.qacc_step.data(), data.work.dof_chain.data());
@@ -883,15 +910,22 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   // in qpos, and in qvel - d c / d qvel at velocity h a. (w.rhs_* still hold smooth_rhs() at
   // dtau: forward_derivatives_unchecked solved them into dqacc_* and left them as they were; w.CC
   // holds C at qd, which the polar form reads)
-  if (w.active_rows > 0) add_constraint_change(model, deriv);
   w.qvel_change = h * w.qacc_step;
   w.qacc_change = w.qacc_step - data.qacc;
   // (in the held rows' buffers, free once forward's derivatives are solved)
   Eigen::MatrixXd &tau_q = w.contact_E, &tau_v = w.contact_G;
   polar_derivatives_into(model, data, data.qvel.data(), w.qvel_change.data(),
                          w.qacc_change.data(), data.work.crb, w, tau_q, tau_v);
-  w.rhs_q -= tau_q;
-  w.rhs_v -= tau_v;
+  // + d qfrc_constraint (forward's linearised solve), then - the polar form's, in one pass
+  if (w.active_rows > 0) {
+    w.rhs_q = (w.rhs_q + deriv.dconstraint_dq) - tau_q;
+    w.rhs_v = (w.rhs_v + deriv.dconstraint_dv) - tau_v;
+    w.rhs_u.leftCols(model.nu) += deriv.dconstraint_du;
+    w.rhs_u.rightCols(model.na) += deriv.dconstraint_dact;
+  } else {
+    w.rhs_q -= tau_q;
+    w.rhs_v -= tau_v;
+  }
   // + h dD a, D's actuator part: m^T k m per actuator (kept where M is non-zero, as the step's D
   // keeps it), k = b2 + gain_velocity input, with gain_velocity an affine gain's p2 or a muscle's
   // d gain / d velocity (a function of the length and velocity), input the raw ctrl or the act
@@ -1043,7 +1077,7 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     forward_derivatives_unchecked(model, data, deriv);
     if (i == 0) {
       record_active_set(model, data, w.active_set);
-    } else if (!same_active_set(model, data, w.active_set, w.active_set_end)) {
+    } else if (!same_active_set(model, data, w.active_set)) {
       deriv.active_set_changes = true;
     }
     w.qvel_next += kB[i] * data.qvel;
@@ -1074,15 +1108,14 @@ void rk4_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       w.Jx.diagonal().array() += 1.0;
       w.Ju = (h * kA[i]) * w.Ku;
       // the next stage's qpos turns by h a_{i+1} qvel_i (data.qvel is still stage i's)
-      through_position_update(model, data.qvel.data(), h * kA[i], w.Jx.topRows(nv), true);
-      through_position_update(model, data.qvel.data(), h * kA[i], w.Ju.topRows(nv), false);
+      through_position_update(model, data.qvel.data(), h * kA[i], w.Jx.topRows(nv),
+                              w.Ju.topRows(nv));
     }
   }
   deriv.A *= h;
   deriv.A.diagonal().array() += 1.0;
   deriv.B *= h;
-  through_position_update(model, w.qvel_next.data(), h, deriv.A.topRows(nv), true);
-  through_position_update(model, w.qvel_next.data(), h, deriv.B.topRows(nv), false);
+  through_position_update(model, w.qvel_next.data(), h, deriv.A.topRows(nv), deriv.B.topRows(nv));
   for (int k = 0; k < na; ++k) {  // a clamped activation follows nothing
     if (!activation_clamped(model, k, w.act0[k], w.act_dot_sum[k])) continue;
     deriv.A.row(2 * nv + k).setZero();
@@ -1223,7 +1256,6 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   const auto active_set_max =
       static_cast<std::size_t>(3 * std::max(0, model.nconmax) + nefc_max + 4 * model.nwrap + 2);
   work.active_set.reserve(active_set_max);
-  work.active_set_end.reserve(active_set_max);
   work.qacc_sum.setZero(nv);
   work.next.emplace(model);
   work.contact_point_velocity.assign(ndof, Eigen::Vector3d::Zero());
@@ -1232,6 +1264,7 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.moves1.assign(ndof, 0);
   work.moves2.assign(ndof, 0);
   detail::carry_table(model, work.carries);
+  detail::branch_table(model, work.branch_first, work.branch_dofs);
   work.pair_changes.assign(ndof * static_cast<std::size_t>(kMaxPairContacts), ContactChange{});
   work.pair_motions.assign(ndof, GeomPairMotion{});
   work.pair_dofs.assign(ndof, 0);

@@ -100,6 +100,10 @@ Eigen::Vector3d point_velocity(const Model& model, const Data& data, int c,
 /// both in one ball's or free joint's rotation): the contact rows' Jacobian derivative reads it.
 void carry_table(const Model& model, std::vector<char>& table);
 
+/// The dofs on one branch with each dof (its ancestors, itself, its descendants), where M can be
+/// non-zero: row i's, ascending, are dofs[first[i] .. first[i + 1]) (first has nv + 1 numbers).
+void branch_table(const Model& model, std::vector<int>& first, std::vector<int>& dofs);
+
 /// The rows whose force is linear in the state with the active set held (kActive: limits,
 /// pyramids, frictionless, elliptic cones in their quadratic zone) into rows; returns how many.
 /// Throws lever::Error for an elliptic cone on its surface (its middle zone).
