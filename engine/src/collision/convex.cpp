@@ -303,6 +303,11 @@ GeomShape turned(const GeomShape& g, const Mat3& rot, const Vec3& origin) {
 
 bool has_convex_pairs() { return true; }
 
+void convex_support(const GeomShape& g, double margin, const double* dir, double* point) {
+  Support s(g, margin);
+  support_point(s, dir, point);
+}
+
 int convex_pair(const GeomShape& g1, const GeomShape& g2, double margin,
                 const ConvexOptions& options, Contact* contacts) {
   if (!mpr_contact(g1, g2, margin, options, contacts[0])) return 0;
