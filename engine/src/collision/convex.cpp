@@ -211,17 +211,24 @@ void support_point(Support& s, const double* world_dir, double* out) {
   for (int i = 0; i < 3; ++i) out[i] = world[i];
 }
 
+using SupportFunction = void (*)(Support&, const double*, double*);
+
+/// support_point of a geom type.
+SupportFunction support_function(GeomType type) {
+  switch (type) {
+    case GeomType::kSphere: return support_point<GeomType::kSphere>;
+    case GeomType::kCapsule: return support_point<GeomType::kCapsule>;
+    case GeomType::kEllipsoid: return support_point<GeomType::kEllipsoid>;
+    case GeomType::kCylinder: return support_point<GeomType::kCylinder>;
+    case GeomType::kBox: return support_point<GeomType::kBox>;
+    case GeomType::kMesh: return support_point<GeomType::kMesh>;
+    default: return support_point<GeomType::kPlane>;
+  }
+}
+
 /// support_point of the geom's own type.
 void support_point(Support& s, const double* world_dir, double* out) {
-  switch (s.type) {
-    case GeomType::kSphere: return support_point<GeomType::kSphere>(s, world_dir, out);
-    case GeomType::kCapsule: return support_point<GeomType::kCapsule>(s, world_dir, out);
-    case GeomType::kEllipsoid: return support_point<GeomType::kEllipsoid>(s, world_dir, out);
-    case GeomType::kCylinder: return support_point<GeomType::kCylinder>(s, world_dir, out);
-    case GeomType::kBox: return support_point<GeomType::kBox>(s, world_dir, out);
-    case GeomType::kMesh: return support_point<GeomType::kMesh>(s, world_dir, out);
-    default: return support_point<GeomType::kPlane>(s, world_dir, out);
-  }
+  support_function(s.type)(s, world_dir, out);
 }
 
 // ---- the normal where a geom's surface gives it (MuJoCo's mjc_fixNormal) -----------------------
@@ -236,10 +243,11 @@ void fix_normal(const GeomShape& g1, const GeomShape& g2, Contact& c) {
   c.frame.row(1).setZero();
 }
 
-/// A geom's support function as the search calls it.
+/// A geom's support function as the search calls it: its type's, chosen once per search.
 struct SupportOf {
   Support& s;
-  void operator()(const double* dir, double* point) const { support_point(s, dir, point); }
+  SupportFunction function = support_function(s.type);
+  void operator()(const double* dir, double* point) const { function(s, dir, point); }
 };
 
 /// One MPR search: a contact if the grown shapes overlap with a defined direction (MuJoCo's
@@ -403,8 +411,9 @@ struct RecordingSupport {
   Vec3* points;
   int capacity;
   int count = 0;
+  SupportFunction function = support_function(s.type);
   void operator()(const double* dir, double* point) {
-    support_point(s, dir, point);
+    function(s, dir, point);
     if (count < capacity) points[count] = Vec3(point[0], point[1], point[2]);
     ++count;
   }

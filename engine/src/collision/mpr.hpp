@@ -40,6 +40,14 @@ inline bool near_equal(double x, double y) {
   return gap < kEps * (ay > ax ? ay : ax);
 }
 
+/// C's fmin as libccd calls it (glibc's): the smaller; of two equal values (-0 and +0) the
+/// second; a NaN loses. Written out, not called: fmin is a library call where this is two tests.
+inline double smaller(double x, double y) {
+  if (x < y) return x;
+  if (y <= x) return y;
+  return std::fmin(x, y);  // a NaN
+}
+
 /// At zero (within kEps) or above.
 inline bool not_negative(double x) { return near_zero(x) || x > 0; }
 /// At zero (within kEps) or below: a support point that does not pass the origin.
@@ -222,7 +230,7 @@ class Search {
   bool within_tolerance(const Point& v4, const double* dir) const {
     const double d1 = dot(p_[1].v, dir), d2 = dot(p_[2].v, dir), d3 = dot(p_[3].v, dir);
     const double d4 = dot(v4.v, dir);
-    const double gain = std::fmin(std::fmin(d4 - d1, d4 - d2), d4 - d3);
+    const double gain = smaller(smaller(d4 - d1, d4 - d2), d4 - d3);
     return near_equal(gain, tolerance_) || gain < tolerance_;
   }
 
@@ -255,7 +263,7 @@ class Search {
     } else {
       normalize(answer.dir);
     }
-    position(answer.pos);
+    position(dir, answer.pos);
   }
 
   /// The origin on v1: touching, no depth, no direction, the point between v1's two points.
@@ -341,10 +349,9 @@ class Search {
 
   /// The point between the shapes: the origin's barycentric coordinates (six times the volumes)
   /// in the tetrahedron v0 v1 v2 v3, or, where they do not sum to a positive volume, in the face
-  /// v1 v2 v3 (projected along its normal), applied to each shape's own points; their midpoint.
-  void position(double* pos) const {
-    double dir[3];
-    face_normal(dir);
+  /// v1 v2 v3 (projected along its normal `dir`, the portal's last face_normal), applied to each
+  /// shape's own points; their midpoint.
+  void position(const double* dir, double* pos) const {
     double n[3], weight[4];
     cross(n, p_[1].v, p_[2].v);
     weight[0] = dot(n, p_[3].v);
