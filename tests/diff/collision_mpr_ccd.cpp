@@ -11,7 +11,8 @@
 // random rotations from deep overlap to apart; grazing, the second geom moved along a random
 // direction to where libccd's answer turns from overlap to none (bisection) and placed at it and
 // either side of it; the centres coinciding (the nudge of v0); identity rotations with the centres
-// apart along an axis (the origin on the segment v0 v1); and a short iteration limit.
+// apart along an axis (the origin on the segment v0 v1); tolerance 0 (the stop decided by
+// roundings); and a short iteration limit.
 #include <mujoco/mujoco.h>
 #include <catch2/catch.hpp>
 
@@ -334,6 +335,15 @@ TEST_CASE("MPR: lever's search and libccd's ccdMPRPenetration, bit for bit on ev
           b.pos = offset;
           INFO("along axis " << axis);
           compare(a, b, margin, options, tally);
+        }
+        // tolerance 0: the expansion runs until a support point gains nothing but roundings,
+        // where the order of each sum decides when it stops
+        for (int k = 0; k < samples(8); ++k) {
+          const GeomShape a = geoms.posed(i, rng, Vec3::Zero(), rotation(random_quaternion(rng)));
+          const GeomShape b = geoms.posed(j, rng, random_unit(rng) * draw(rng, 0, a.rbound),
+                                          rotation(random_quaternion(rng)));
+          INFO("tolerance 0, case " << k);
+          compare(a, b, margin, ConvexOptions{0.0, 100, false}, tally);
         }
         // few iterations and a fine tolerance: the expansion cut by the limit
         for (int k = 0; k < samples(4); ++k) {
