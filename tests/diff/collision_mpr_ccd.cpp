@@ -135,11 +135,14 @@ Outcome run_lever(const GeomShape& s1, const GeomShape& s2, double margin,
                   const ConvexOptions& options) {
   Geom g1{s1, margin, {}}, g2{s2, margin, {}};
   LeverSupport a{g1}, b{g2};
-  detail::mpr::Search search(a, b, options.mpr_tolerance,
-                             static_cast<unsigned long>(options.mpr_iterations));
-  detail::mpr::Answer answer{};
+  detail::mpr::Supports<LeverSupport, LeverSupport> both{a, b};
+  detail::mpr::Search<double, decltype(both)> search(
+      both, options.mpr_tolerance, static_cast<unsigned long>(options.mpr_iterations));
+  detail::mpr::Answer<double> answer{};
   Outcome o;
-  o.found = search.penetration(s1.pos.data(), s2.pos.data(), answer);
+  o.found = detail::mpr::overlapping(search.penetration({{s1.pos[0], s1.pos[1], s1.pos[2]}},
+                                                        {{s2.pos[0], s2.pos[1], s2.pos[2]}},
+                                                        answer));
   if (o.found) {
     o.depth = answer.depth;
     for (int i = 0; i < 3; ++i) o.dir[i] = answer.dir[i], o.pos[i] = answer.pos[i];

@@ -243,6 +243,9 @@ void fix_normal(const GeomShape& g1, const GeomShape& g2, Contact& c) {
   c.frame.row(1).setZero();
 }
 
+/// A geom's centre, MPR's interior point (MuJoCo's mjccd_center).
+mpr::Vec<double> centre(const GeomShape& g) { return {{g.pos[0], g.pos[1], g.pos[2]}}; }
+
 /// A geom's support function as the search calls it: its type's, chosen once per search.
 struct SupportOf {
   Support& s;
@@ -256,10 +259,11 @@ bool mpr_contact(const GeomShape& g1, const GeomShape& g2, double margin,
                  const ConvexOptions& options, Contact& c) {
   Support o1(g1, margin), o2(g2, margin);
   SupportOf a{o1}, b{o2};
-  mpr::Search search(a, b, options.mpr_tolerance,
-                     static_cast<unsigned long>(options.mpr_iterations));
-  mpr::Answer found;
-  if (!search.penetration(o1.pos, o2.pos, found)) return false;
+  mpr::Supports<SupportOf, SupportOf> both{a, b};
+  mpr::Search<double, decltype(both)> search(both, options.mpr_tolerance,
+                                             static_cast<unsigned long>(options.mpr_iterations));
+  mpr::Answer<double> found;
+  if (!mpr::overlapping(search.penetration(centre(g1), centre(g2), found))) return false;
   if (mpr::near_origin(found.dir)) return false;  // overlap, but no direction
   c.dist = margin - found.depth;
   c.pos = Vec3(found.pos[0], found.pos[1], found.pos[2]);
@@ -308,8 +312,6 @@ GeomShape turned(const GeomShape& g, const Mat3& rot, const Vec3& origin) {
 }
 
 }  // namespace
-
-bool has_convex_pairs() { return true; }
 
 void convex_support(const GeomShape& g, double margin, const double* dir, double* point) {
   Support s(g, margin);
@@ -426,10 +428,11 @@ int mpr_search(const GeomShape& g1, const GeomShape& g2, double margin,
                Eigen::Vector3d* points2, int capacity) {
   Support o1(g1, margin), o2(g2, margin);
   RecordingSupport a{o1, points1, capacity}, b{o2, points2, capacity};
-  mpr::Search search(a, b, options.mpr_tolerance,
-                     static_cast<unsigned long>(options.mpr_iterations));
-  mpr::Answer found;
-  if (!search.penetration(o1.pos, o2.pos, found)) return -1;
+  mpr::Supports<RecordingSupport, RecordingSupport> both{a, b};
+  mpr::Search<double, decltype(both)> search(both, options.mpr_tolerance,
+                                             static_cast<unsigned long>(options.mpr_iterations));
+  mpr::Answer<double> found;
+  if (!mpr::overlapping(search.penetration(centre(g1), centre(g2), found))) return -1;
   answer.dist = margin - found.depth;
   answer.pos = Vec3(found.pos[0], found.pos[1], found.pos[2]);
   answer.frame.setZero();

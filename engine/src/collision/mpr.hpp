@@ -20,12 +20,24 @@
 // Every operation is libccd's, in libccd's order, with its thresholds (values within DBL_EPSILON
 // of zero or of each other count as equal), so that the same support points are asked for and
 // the answer is the same bit for bit (tests/diff/collision_mpr_ccd.cpp compares the two).
+//
+// Written on a scalar S: double for the collision stage (collision/convex.cpp), dual numbers for
+// the derivatives, which replay the stage's search on moving poses
+// (transition/contact_geometry.cpp): every decision is taken on the values, so both take the
+// same path.
 #pragma once
 
 #include <cfloat>
 #include <cmath>
 
+#include "collision/primitive_pairs.hpp"
+
 namespace lever::detail::mpr {
+
+using primitive::cross;
+using primitive::dot;
+using primitive::value;
+using primitive::Vec;
 
 /// libccd's threshold (CCD_EPS in double precision).
 inline constexpr double kEps = DBL_EPSILON;
@@ -53,153 +65,148 @@ inline bool not_negative(double x) { return near_zero(x) || x > 0; }
 /// At zero (within kEps) or below: a support point that does not pass the origin.
 inline bool behind(double x) { return near_zero(x) || x < 0; }
 
-// three-vectors as plain arrays, each sum in libccd's order
-inline double dot(const double* a, const double* b) {
-  double sum = a[0] * b[0];
-  sum += a[1] * b[1];
-  sum += a[2] * b[2];
-  return sum;
-}
-inline void cross(double* out, const double* a, const double* b) {
-  out[0] = a[1] * b[2] - a[2] * b[1];
-  out[1] = a[2] * b[0] - a[0] * b[2];
-  out[2] = a[0] * b[1] - a[1] * b[0];
-}
-inline void subtract(double* out, const double* a, const double* b) {
-  for (int i = 0; i < 3; ++i) out[i] = a[i] - b[i];
-}
-inline void copy(double* out, const double* a) {
-  for (int i = 0; i < 3; ++i) out[i] = a[i];
-}
-/// Scaled by the reciprocal of the length (no test: libccd normalizes only non-zero vectors).
-inline void normalize(double* d) {
-  const double inverse = 1.0 / std::sqrt(dot(d, d));
-  for (int i = 0; i < 3; ++i) d[i] *= inverse;
-}
 /// Every component within kEps of zero.
-inline bool near_origin(const double* v) {
-  return near_equal(v[0], 0) && near_equal(v[1], 0) && near_equal(v[2], 0);
+template <class S>
+bool near_origin(const Vec<S>& v) {
+  return near_equal(value(v[0]), 0) && near_equal(value(v[1]), 0) &&
+         near_equal(value(v[2]), 0);
+}
+
+/// Scaled by the reciprocal of the length (no test: libccd normalizes only non-zero vectors;
+/// primitive::normalize tests for a short one).
+template <class S>
+void make_unit(Vec<S>& d) {
+  using std::sqrt;
+  const S inverse = S(1) / sqrt(dot(d, d));
+  d = d * inverse;
 }
 
 /// A point of the Minkowski difference: v = a - b, a of shape A along the direction asked, b of
 /// shape B against it.
+template <class S>
 struct Point {
-  double v[3];
-  double a[3];
-  double b[3];
+  Vec<S> v, a, b;
+};
+
+/// The two shapes' support functions, each `(const double* dir, double* point)` in the world, as
+/// the search asks them (on doubles): A's point along dir, B's along -dir.
+template <class SupportA, class SupportB>
+struct Supports {
+  SupportA& a;
+  SupportB& b;
+  void operator()(const Vec<double>& dir, Point<double>& p) const {
+    Vec<double> d = dir;
+    a(d.c.data(), p.a.c.data());
+    for (int i = 0; i < 3; ++i) d[i] *= -1.0;
+    b(d.c.data(), p.b.c.data());
+    p.v = p.a - p.b;
+  }
 };
 
 /// What the search found where the shapes overlap: the depth, the direction from A into B along
 /// which it is measured (zero where the shapes only touch), and the point between them.
+template <class S>
 struct Answer {
-  double depth;
-  double dir[3];
-  double pos[3];
+  S depth;
+  Vec<S> dir, pos;
 };
 
-/// The two shapes' support functions, each `(const double* dir, double* point)` in the world.
-template <class SupportA, class SupportB>
+/// How the search ended: apart (the difference ends before the origin, found in discovery or
+/// in refinement), or overlapping: the origin on v1 (a touch), on the segment v0 v1, or inside
+/// the refined portal.
+enum class Outcome { kApart, kApartRefined, kOnV1, kOnSegment, kPortal };
+
+inline bool overlapping(Outcome o) { return o != Outcome::kApart && o != Outcome::kApartRefined; }
+
+/// `supports(dir, point)` fills a Point along dir.
+template <class S, class SupportsT>
 class Search {
  public:
-  Search(SupportA& a, SupportB& b, double tolerance, unsigned long max_iterations)
-      : a_(a), b_(b), tolerance_(tolerance), max_iterations_(max_iterations) {}
+  Search(SupportsT& supports, double tolerance, unsigned long max_iterations)
+      : supports_(supports), tolerance_(tolerance), max_iterations_(max_iterations) {}
 
-  /// Whether the shapes overlap (then `answer` is set), centres a and b their interior points.
-  bool penetration(const double* centre_a, const double* centre_b, Answer& answer) {
-    switch (discover(centre_a, centre_b)) {
-      case Discovery::kApart: return false;
-      case Discovery::kOnV1: touch(answer); return true;
-      case Discovery::kOnSegment: on_segment(answer); return true;
-      case Discovery::kPortal: break;
+  /// The search from the centres a and b (interior points); `answer` is set where overlapping().
+  Outcome penetration(const Vec<S>& centre_a, const Vec<S>& centre_b, Answer<S>& answer) {
+    const Outcome found = discover(centre_a, centre_b);
+    switch (found) {
+      case Outcome::kOnV1: touch(answer); return found;
+      case Outcome::kOnSegment: on_segment(answer); return found;
+      case Outcome::kPortal: break;
+      default: return found;
     }
-    if (!refine()) return false;
+    if (!refine()) return Outcome::kApartRefined;
     penetrate(answer);
-    return true;
+    return found;
   }
 
  private:
-  enum class Discovery { kApart, kOnV1, kOnSegment, kPortal };
-
-  /// The support point along dir: A's along dir, B's along -dir.
-  void support(const double* dir, Point& p) {
-    double d[3];
-    copy(d, dir);
-    a_(d, p.a);
-    for (int i = 0; i < 3; ++i) d[i] *= -1.0;
-    b_(d, p.b);
-    subtract(p.v, p.a, p.b);
-  }
+  using V = Vec<S>;
 
   /// Whether a support point found along dir reaches past the origin (is not behind it).
-  static bool reaches(const Point& p, const double* dir) { return not_negative(dot(p.v, dir)); }
+  static bool reaches(const Point<S>& p, const V& dir) {
+    return not_negative(value(dot(p.v, dir)));
+  }
 
   /// The normal of the portal's face v1 v2 v3, away from v0.
-  void face_normal(double* dir) const {
-    double e2[3], e3[3];
-    subtract(e2, p_[2].v, p_[1].v);
-    subtract(e3, p_[3].v, p_[1].v);
-    cross(dir, e2, e3);
-    normalize(dir);
+  V face_normal() const {
+    V dir = cross(p_[2].v - p_[1].v, p_[3].v - p_[1].v);
+    make_unit(dir);
+    return dir;
   }
 
   /// The normal of the triangle v0 v1 v2 (the direction v3 is sought in).
-  void wedge_normal(double* dir) const {
-    double e1[3], e2[3];
-    subtract(e1, p_[1].v, p_[0].v);
-    subtract(e2, p_[2].v, p_[0].v);
-    cross(dir, e1, e2);
-    normalize(dir);
+  V wedge_normal() const {
+    V dir = cross(p_[1].v - p_[0].v, p_[2].v - p_[0].v);
+    make_unit(dir);
+    return dir;
   }
 
   /// Whether the origin lies outside the plane through v0, x and y (on the side opposite to
   /// the cross product x × y), clearly, not within kEps.
-  bool outside(const double* x, const double* y) const {
-    double n[3];
-    cross(n, x, y);
-    const double side = dot(n, p_[0].v);
+  bool outside(const V& x, const V& y) const {
+    const double side = value(dot(cross(x, y), p_[0].v));
     return side < 0 && !near_zero(side);
   }
 
-  Discovery discover(const double* centre_a, const double* centre_b) {
-    Point& v0 = p_[0];
-    copy(v0.a, centre_a);
-    copy(v0.b, centre_b);
-    subtract(v0.v, v0.a, v0.b);
-    // the centres coincide: the shapes overlap, but the search needs a direction; moved a little
+  Outcome discover(const V& centre_a, const V& centre_b) {
+    Point<S>& v0 = p_[0];
+    v0.a = centre_a;
+    v0.b = centre_b;
+    v0.v = v0.a - v0.b;
+    // the centres coincide: the shapes overlap, but the search needs a direction; moved a
+    // little (libccd adds the vector (kEps * 10, 0, 0): a zero's sign made +)
     if (near_origin(v0.v)) {
-      v0.v[0] += kEps * 10.0;
-      v0.v[1] += 0.0;  // as libccd adds the vector (kEps * 10, 0, 0): a zero's sign made +
-      v0.v[2] += 0.0;
+      v0.v[0] = v0.v[0] + kEps * 10.0;
+      v0.v[1] = v0.v[1] + 0.0;
+      v0.v[2] = v0.v[2] + 0.0;
     }
 
     // v1: the support towards the origin
-    double dir[3];
-    copy(dir, v0.v);
-    for (int i = 0; i < 3; ++i) dir[i] *= -1.0;
-    normalize(dir);
-    support(dir, p_[1]);
-    if (behind(dot(p_[1].v, dir))) return Discovery::kApart;
+    V dir = v0.v * -1.0;
+    make_unit(dir);
+    supports_(dir, p_[1]);
+    if (behind(value(dot(p_[1].v, dir)))) return Outcome::kApart;
 
     // v2: across the line v0 v1, unless the origin is on it
-    cross(dir, v0.v, p_[1].v);
-    if (near_zero(dot(dir, dir))) {
-      return near_origin(p_[1].v) ? Discovery::kOnV1 : Discovery::kOnSegment;
+    dir = cross(v0.v, p_[1].v);
+    if (near_zero(value(dot(dir, dir)))) {
+      return near_origin(p_[1].v) ? Outcome::kOnV1 : Outcome::kOnSegment;
     }
-    normalize(dir);
-    support(dir, p_[2]);
-    if (behind(dot(p_[2].v, dir))) return Discovery::kApart;
+    make_unit(dir);
+    supports_(dir, p_[2]);
+    if (behind(value(dot(p_[2].v, dir)))) return Outcome::kApart;
 
     // v3 along the normal of v0 v1 v2 on the origin's side (v1 and v2 swapped to face outwards)
-    wedge_normal(dir);
-    if (dot(dir, v0.v) > 0) {
-      const Point swapped = p_[1];
+    dir = wedge_normal();
+    if (value(dot(dir, v0.v)) > 0) {
+      const Point<S> swapped = p_[1];
       p_[1] = p_[2];
       p_[2] = swapped;
-      for (int i = 0; i < 3; ++i) dir[i] *= -1.0;
+      dir = dir * -1.0;
     }
     for (;;) {
-      support(dir, p_[3]);
-      if (behind(dot(p_[3].v, dir))) return Discovery::kApart;
+      supports_(dir, p_[3]);
+      if (behind(value(dot(p_[3].v, dir)))) return Outcome::kApart;
       // the origin outside the side v0 v1 v3: v3 replaces v2; outside v0 v3 v2: v3 replaces v1;
       // else the cone through v1 v2 v3 holds it
       if (outside(p_[1].v, p_[3].v)) {
@@ -207,102 +214,91 @@ class Search {
       } else if (outside(p_[3].v, p_[2].v)) {
         p_[1] = p_[3];
       } else {
-        return Discovery::kPortal;
+        return Outcome::kPortal;
       }
-      wedge_normal(dir);
+      dir = wedge_normal();
     }
   }
 
   /// The side of the portal's new tetrahedra (v0, v4 and a corner) the origin is on decides
   /// which corner v4 replaces, so that the portal keeps holding the origin's ray.
-  void expand(const Point& v4) {
-    double split[3];
-    cross(split, v4.v, p_[0].v);
-    if (dot(p_[1].v, split) > 0) {
-      p_[dot(p_[2].v, split) > 0 ? 1 : 3] = v4;
+  void expand(const Point<S>& v4) {
+    const V split = cross(v4.v, p_[0].v);
+    if (value(dot(p_[1].v, split)) > 0) {
+      p_[value(dot(p_[2].v, split)) > 0 ? 1 : 3] = v4;
     } else {
-      p_[dot(p_[3].v, split) > 0 ? 2 : 1] = v4;
+      p_[value(dot(p_[3].v, split)) > 0 ? 2 : 1] = v4;
     }
   }
 
   /// Whether v4 (found along dir) moves the portal's face by no more than the tolerance: the
   /// smallest of its reach past each corner.
-  bool within_tolerance(const Point& v4, const double* dir) const {
-    const double d1 = dot(p_[1].v, dir), d2 = dot(p_[2].v, dir), d3 = dot(p_[3].v, dir);
-    const double d4 = dot(v4.v, dir);
+  bool within_tolerance(const Point<S>& v4, const V& dir) const {
+    const double d1 = value(dot(p_[1].v, dir)), d2 = value(dot(p_[2].v, dir));
+    const double d3 = value(dot(p_[3].v, dir)), d4 = value(dot(v4.v, dir));
     const double gain = smaller(smaller(d4 - d1, d4 - d2), d4 - d3);
     return near_equal(gain, tolerance_) || gain < tolerance_;
   }
 
   /// Until the origin is behind the portal's face (overlap: true) or the difference ends first.
   bool refine() {
-    double dir[3];
-    Point v4;
+    Point<S> v4;
     for (;;) {
-      face_normal(dir);
-      if (not_negative(dot(dir, p_[1].v))) return true;
-      support(dir, v4);
+      const V dir = face_normal();
+      if (not_negative(value(dot(dir, p_[1].v)))) return true;
+      supports_(dir, v4);
       if (!reaches(v4, dir) || within_tolerance(v4, dir)) return false;
       expand(v4);
     }
   }
 
-  void penetrate(Answer& answer) {
-    double dir[3];
-    Point v4;
+  void penetrate(Answer<S>& answer) {
+    V dir;
+    Point<S> v4;
     for (unsigned long iterations = 0;; ++iterations) {
-      face_normal(dir);
-      support(dir, v4);
+      dir = face_normal();
+      supports_(dir, v4);
       if (within_tolerance(v4, dir) || iterations > max_iterations_) break;
       expand(v4);
     }
     // the origin's nearest point on the face: its distance the depth, its direction the normal
-    answer.depth = std::sqrt(nearest_on_triangle(p_[1].v, p_[2].v, p_[3].v, answer.dir));
-    if (near_zero(answer.depth)) {
-      for (double& x : answer.dir) x = 0;  // touching: no direction
+    using std::sqrt;
+    answer.depth = sqrt(nearest_on_triangle(p_[1].v, p_[2].v, p_[3].v, answer.dir));
+    if (near_zero(value(answer.depth))) {
+      answer.dir = {{S(0), S(0), S(0)}};  // touching: no direction
     } else {
-      normalize(answer.dir);
+      make_unit(answer.dir);
     }
-    position(dir, answer.pos);
+    answer.pos = position(dir);
   }
 
   /// The origin on v1: touching, no depth, no direction, the point between v1's two points.
-  void touch(Answer& answer) const {
-    answer.depth = 0;
-    for (double& x : answer.dir) x = 0;
-    midpoint(p_[1], answer.pos);
+  void touch(Answer<S>& answer) const {
+    answer.depth = S(0);
+    answer.dir = {{S(0), S(0), S(0)}};
+    answer.pos = (p_[1].a + p_[1].b) * 0.5;
   }
 
   /// The origin on segment v0 v1: v1 gives the depth and direction.
-  void on_segment(Answer& answer) const {
-    midpoint(p_[1], answer.pos);
-    copy(answer.dir, p_[1].v);
-    answer.depth = std::sqrt(dot(answer.dir, answer.dir));
-    normalize(answer.dir);
-  }
-
-  static void midpoint(const Point& p, double* pos) {
-    for (int i = 0; i < 3; ++i) {
-      pos[i] = p.a[i] + p.b[i];
-      pos[i] *= 0.5;
-    }
+  void on_segment(Answer<S>& answer) const {
+    using std::sqrt;
+    answer.pos = (p_[1].a + p_[1].b) * 0.5;
+    answer.dir = p_[1].v;
+    answer.depth = sqrt(dot(answer.dir, answer.dir));
+    make_unit(answer.dir);
   }
 
   /// The point of segment x0 b nearest the origin (`witness`), and its squared distance.
-  static double nearest_on_segment(const double* x0, const double* b, double* witness) {
-    double d[3];
-    subtract(d, b, x0);
-    double t = -1.0 * dot(x0, d);  // x0 - origin, as x0
-    t /= dot(d, d);
-    if (t < 0 || near_zero(t)) {
-      copy(witness, x0);
-    } else if (t > 1 || near_equal(t, 1)) {
-      copy(witness, b);
+  static S nearest_on_segment(const V& x0, const V& b, V& witness) {
+    const V d = b - x0;
+    S t = dot(x0, d) * -1.0;  // x0 - origin, as x0
+    t = t / dot(d, d);
+    if (value(t) < 0 || near_zero(value(t))) {
+      witness = x0;
+    } else if (value(t) > 1 || near_equal(value(t), 1)) {
+      witness = b;
     } else {
-      for (int i = 0; i < 3; ++i) {
-        witness[i] = d[i] * t;
-        witness[i] += x0[i];
-      }
+      witness = d * t + x0;
     }
     return dot(witness, witness);
   }
@@ -310,39 +306,33 @@ class Search {
   /// The point of triangle x0 b c nearest the origin (`witness`), and its squared distance: the
   /// plane's nearest point where it lies in the triangle (within kEps), else the nearest of the
   /// three edges'.
-  static double nearest_on_triangle(const double* x0, const double* b, const double* c,
-                                    double* witness) {
-    double d1[3], d2[3];
-    subtract(d1, b, x0);
-    subtract(d2, c, x0);
-    const double v = dot(d1, d1), w = dot(d2, d2);
-    const double p = dot(x0, d1), q = dot(x0, d2), r = dot(d1, d2);
-    const double det = w * v - r * r;
-    double s = -1, t = -1;  // a triangle without area: its edges
-    if (!near_zero(det)) {
+  static S nearest_on_triangle(const V& x0, const V& b, const V& c, V& witness) {
+    const V d1 = b - x0, d2 = c - x0;
+    const S v = dot(d1, d1), w = dot(d2, d2);
+    const S p = dot(x0, d1), q = dot(x0, d2), r = dot(d1, d2);
+    const S det = w * v - r * r;
+    S s(-1.0), t(-1.0);  // a triangle without area: its edges
+    if (!near_zero(value(det))) {
       s = (q * r - w * p) / det;
-      t = (-s * r - q) / w;
+      t = (s * r * -1.0 - q) / w;
     }
-    if (not_negative(s) && (near_equal(s, 1) || s < 1) && not_negative(t) &&
-        (near_equal(t, 1) || t < 1) && (near_equal(t + s, 1) || t + s < 1)) {
-      for (int i = 0; i < 3; ++i) {
-        witness[i] = x0[i];
-        witness[i] += d1[i] * s;
-        witness[i] += d2[i] * t;
-      }
+    const double sv = value(s), tv = value(t);
+    if (not_negative(sv) && (near_equal(sv, 1) || sv < 1) && not_negative(tv) &&
+        (near_equal(tv, 1) || tv < 1) && (near_equal(tv + sv, 1) || tv + sv < 1)) {
+      witness = x0 + d1 * s + d2 * t;
       return dot(witness, witness);
     }
-    double best = nearest_on_segment(x0, b, witness);
-    double other[3];
-    double next = nearest_on_segment(x0, c, other);
-    if (next < best) {
+    S best = nearest_on_segment(x0, b, witness);
+    V other;
+    S next = nearest_on_segment(x0, c, other);
+    if (value(next) < value(best)) {
       best = next;
-      copy(witness, other);
+      witness = other;
     }
     next = nearest_on_segment(b, c, other);
-    if (next < best) {
+    if (value(next) < value(best)) {
       best = next;
-      copy(witness, other);
+      witness = other;
     }
     return best;
   }
@@ -351,47 +341,30 @@ class Search {
   /// in the tetrahedron v0 v1 v2 v3, or, where they do not sum to a positive volume, in the face
   /// v1 v2 v3 (projected along its normal `dir`, the portal's last face_normal), applied to each
   /// shape's own points; their midpoint.
-  void position(const double* dir, double* pos) const {
-    double n[3], weight[4];
-    cross(n, p_[1].v, p_[2].v);
-    weight[0] = dot(n, p_[3].v);
-    cross(n, p_[3].v, p_[2].v);
-    weight[1] = dot(n, p_[0].v);
-    cross(n, p_[0].v, p_[1].v);
-    weight[2] = dot(n, p_[3].v);
-    cross(n, p_[2].v, p_[1].v);
-    weight[3] = dot(n, p_[0].v);
-    double sum = weight[0] + weight[1] + weight[2] + weight[3];
-    if (near_zero(sum) || sum < 0) {
-      weight[0] = 0;
-      cross(n, p_[2].v, p_[3].v);
-      weight[1] = dot(n, dir);
-      cross(n, p_[3].v, p_[1].v);
-      weight[2] = dot(n, dir);
-      cross(n, p_[1].v, p_[2].v);
-      weight[3] = dot(n, dir);
+  V position(const V& dir) const {
+    S weight[4] = {dot(cross(p_[1].v, p_[2].v), p_[3].v), dot(cross(p_[3].v, p_[2].v), p_[0].v),
+                   dot(cross(p_[0].v, p_[1].v), p_[3].v), dot(cross(p_[2].v, p_[1].v), p_[0].v)};
+    S sum = weight[0] + weight[1] + weight[2] + weight[3];
+    if (near_zero(value(sum)) || value(sum) < 0) {
+      weight[0] = S(0);
+      weight[1] = dot(cross(p_[2].v, p_[3].v), dir);
+      weight[2] = dot(cross(p_[3].v, p_[1].v), dir);
+      weight[3] = dot(cross(p_[1].v, p_[2].v), dir);
       sum = weight[1] + weight[2] + weight[3];
     }
-    const double inverse = 1.0 / sum;
-    double on_a[3] = {0, 0, 0}, on_b[3] = {0, 0, 0};
+    const S inverse = S(1) / sum;
+    V on_a = {{S(0), S(0), S(0)}}, on_b = on_a;
     for (int k = 0; k < 4; ++k) {
-      for (int i = 0; i < 3; ++i) {
-        on_a[i] += p_[k].a[i] * weight[k];
-        on_b[i] += p_[k].b[i] * weight[k];
-      }
+      on_a = on_a + p_[k].a * weight[k];
+      on_b = on_b + p_[k].b * weight[k];
     }
-    for (int i = 0; i < 3; ++i) {
-      pos[i] = on_a[i] * inverse;
-      pos[i] += on_b[i] * inverse;
-      pos[i] *= 0.5;
-    }
+    return (on_a * inverse + on_b * inverse) * 0.5;
   }
 
-  SupportA& a_;
-  SupportB& b_;
+  SupportsT& supports_;
   double tolerance_;
   unsigned long max_iterations_;
-  Point p_[4];  // the portal: v0 the interior point, v1 v2 v3 the face
+  Point<S> p_[4];  // the portal: v0 the interior point, v1 v2 v3 the face
 };
 
 }  // namespace lever::detail::mpr

@@ -92,9 +92,6 @@ int convex_pair(const GeomShape& g1, const GeomShape& g2, double margin,
                 const ConvexOptions& options, Contact* contacts);
 int plane_convex(const GeomShape& plane, const GeomShape& convex, double margin,
                  Contact* contacts);
-/// Whether this build has the general convex pairs: true, every build runs MPR (collision/mpr.hpp).
-bool has_convex_pairs();
-
 /// The support point MPR asks a geom for (MuJoCo's mjccd_support): its point farthest along the
 /// world direction `dir`, grown by margin / 2, in the world.
 void convex_support(const GeomShape& g, double margin, const double* dir, double* point);
