@@ -831,7 +831,8 @@ void explain_missed_kernels(std::ostream& out, const Inputs& in) {
     if (mujoco_collision > 0) {
       const double allowed = 0.5 * *mujoco_forward;
       out << " `mj_collision` is " << count_text(mujoco_collision) << " of MuJoCo's; there both "
-          << "engines run libccd's MPR on the finger meshes' hulls with the same support points "
+          << "engines run libccd's MPR (lever its own writing of it) on the finger meshes' hulls "
+          << "with the same support points "
           << "(MuJoCo's hill-climb over each hull, from its start, in its order, so that the "
           << "same vertex and so the same contact is found), and that share cannot fall far "
           << "below MuJoCo's. The goal allows lever " << count_text(allowed) << " instructions "

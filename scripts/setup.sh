@@ -7,7 +7,7 @@ packages=(
   build-essential cmake
   libeigen3-dev        # engine (header-only linear algebra)
   libtinyxml2-dev      # mjcf_lite
-  libccd-dev           # engine: MPR for the general convex pairs (the libccd MuJoCo 2.2.2 runs, in double)
+  libccd-dev           # tests: libccd's MPR beside lever's (the libccd MuJoCo 2.2.2 runs, in double)
   libqhull-dev         # mjcf_lite: a mesh's convex hull for collision (libqhull_r, as MuJoCo 2.2.2)
   nlohmann-json3-dev   # io: the JSON writer's formatting (header-only; the WebAssembly build too)
   libcli11-dev         # tools/lever: the command line (subcommands, --help, errors; header-only)

@@ -1107,14 +1107,7 @@ class Compiler {
     constexpr size_t kListed = 10;
     std::vector<std::pair<int, int>> unsupported;
     size_t count = 0;
-    // a pair MuJoCo collides by MPR where this build has none (WebAssembly): refused, not skipped
-    std::optional<std::pair<int, int>> without_mpr;
     const auto note = [&](int a, int b) {
-      const GeomType ta = geoms_[static_cast<size_t>(a)].spec->type;
-      const GeomType tb = geoms_[static_cast<size_t>(b)].spec->type;
-      if (!without_mpr && !has_collision_function(ta, tb) && collides_by_mpr(ta, tb)) {
-        without_mpr = {std::min(a, b), std::max(a, b)};
-      }
       if (++count <= kListed) unsupported.push_back({std::min(a, b), std::max(a, b)});
     };
     for (int a = 0; a < static_cast<int>(geoms_.size()); ++a) {
@@ -1136,19 +1129,6 @@ class Compiler {
       const std::string& name = geoms_[static_cast<size_t>(g)].spec->at.name;
       return name.empty() ? "#" + std::to_string(g) : "'" + name + "'";
     };
-    if (without_mpr) {
-      const auto [a, b] = *without_mpr;
-      const GeomSpec& ga = *geoms_[static_cast<size_t>(a)].spec;
-      const GeomSpec& gb = *geoms_[static_cast<size_t>(b)].spec;
-      const std::string ta = type_name(ga.type), tb = type_name(gb.type);
-      fail(ga.at, "type",
-           "geoms " + label(a) + " and " + label(b) + " (" + ta + ", " + tb + "; lines " +
-               line_text(ga.at) + " and " + line_text(gb.at) + ") can collide, and MuJoCo 2.2.2 " +
-               "collides a " + ta + "-" + tb + " pair by MPR (libccd), which this build of " +
-               "lever (WebAssembly) does not have: give one of them a shape this build collides " +
-               "(plane, sphere, capsule, box; ellipsoids and meshes against a plane), or keep " +
-               "the two from colliding (contype/conaffinity, or <exclude> their bodies)");
-    }
     for (size_t k = 0; k < unsupported.size(); ++k) {
       const auto [a, b] = unsupported[k];
       const GeomSpec& ga = *geoms_[static_cast<size_t>(a)].spec;

@@ -1180,9 +1180,8 @@ MJCF at all (with a suggestion for typos). Nothing is silently ignored.
   pair that can collide (compatible `contype`/`conaffinity`, bodies neither welded together nor
   parent and child nor excluded, or named by a `<pair>`) but that lever cannot compute (a mesh
   whose file lever did not read) is named in a warning at load (`Model::warnings`, printed by
-  the command line) with what to use instead. The WebAssembly build (the lab page) has no MPR
-  (libccd): there a model in which a pair MuJoCo collides by MPR (a cylinder, an ellipsoid or a
-  mesh against a solid; not against a plane) can collide is refused at load, naming the two geoms.
+  the command line) with what to use instead. The WebAssembly build (the lab page) collides the
+  same pairs (MPR is lever's own); it has no qhull, so there a mesh that can collide is refused.
 
 Value rules: numbers are decimal (`1`, `-.5`, `1e-3`); a list must have the stated count
 ("1-3" marks a partial vector whose missing numbers keep the class's values); keywords are

@@ -569,7 +569,7 @@ TEST_CASE("transmissions, muscles and activations allocate nothing", "[alloc]") 
 }
 
 TEST_CASE("collision allocates nothing", "[alloc]") {
-  // the scenes' cylinders and ellipsoids, and the Menagerie's Panda's meshes, run libccd's MPR
+  // the scenes' cylinders and ellipsoids, and the Menagerie's Panda's meshes, run MPR
   // (with multiccd too)
   const std::string scenes = lever::test::source_dir() + "/tests/diff/contact_scenes/";
   const std::string panda =

@@ -5,8 +5,8 @@
 // (lever_body_poses, lever_body_kinematics, lever_jac_site_from_q) its frames, subtree_com, cdof
 // and Jacobians; mj_resetDataKeyframe its --key state;
 // data.ncon, data.contact and data.efc_J of the gripper, run in wasm until it holds the box, agree
-// with the constraint rows `lever forward` computes for the same state; a model with a pair MuJoCo
-// collides by MPR (libccd, not in this build) is refused at load by the pair's name.
+// with the constraint rows `lever forward` computes for the same state; so do those of a pair
+// MuJoCo collides by MPR (a cylinder on a box).
 //   node api_node_test.js LEVER WASM_DIR REPO_ROOT
 'use strict';
 const fs = require('fs');
@@ -449,21 +449,26 @@ function gripperContacts(mj, root) {
   compareData(mj, model, data, heavyNative, 'arm2 at 1.6 kg, after the heap grew');
   for (const m of kept) m.delete();
 
-  // 4. a pair MuJoCo 2.2.2 collides by MPR (a cylinder on a box table): this build has no libccd,
-  //    so the load is refused, naming the two geoms and the pair (the native build collides it)
+  // 4. a pair MuJoCo 2.2.2 collides by MPR (a cylinder tilted into a box table): the search is
+  //    lever's own in every build, so the contacts equal the native build's
   const cylinderOnBox = '<mujoco><worldbody><geom name="table" type="box" size="0.2 0.2 0.02"/>' +
     '<body pos="0 0 0.1"><freejoint/><geom name="can" type="cylinder" size="0.03 0.05"/></body>' +
     '</worldbody></mujoco>';
-  let withoutMpr = null;
-  try {
-    mj.MjModel.from_xml_string(cylinderOnBox, 'cylinder_on_box.xml').delete();
-  } catch (e) {
-    withoutMpr = e;
-  }
-  if (!(withoutMpr instanceof mj.LoadError) || !/'table' and 'can'/.test(withoutMpr.message) ||
-      !/box-cylinder pair by MPR/.test(withoutMpr.message)) {
-    fail('a cylinder on a box in the WebAssembly build: ' + withoutMpr);
-  }
+  const can = mj.MjModel.from_xml_string(cylinderOnBox, 'cylinder_on_box.xml');
+  const canData = new mj.MjData(can);
+  const tilted = [0.01, -0.02, 0.068, Math.cos(0.15), Math.sin(0.15), 0, 0];
+  canData.qpos.set(tilted);
+  canData.qvel.fill(0);
+  mj.mj_forward(can, canData);
+  const canFile = path.join(require('os').tmpdir(), `cylinder-on-box-${process.pid}.xml`);
+  fs.writeFileSync(canFile, cylinderOnBox);
+  const canNative = nativeForward(canFile, tilted.map(String), [], []);
+  fs.unlinkSync(canFile);
+  if (canData.ncon < 1) fail(`a cylinder tilted into a box: ${canData.ncon} contacts in wasm`);
+  compareData(mj, can, canData, canNative, 'cylinder on a box');
+  compareContacts(mj, can, canData, canNative, 'cylinder on a box');
+  canData.delete();
+  can.delete();
 
   console.log(`${compared} numbers compared on ${files.length} models; heap ${before} -> ` +
     `${mj.Module.HEAPU8.buffer.byteLength} bytes after ${kept.length} extra models`);

@@ -3,10 +3,12 @@
 // The narrow phase is one function per pair of geom types, as MuJoCo 2.2.2's table: closed-form
 // for the pairs MuJoCo solves in closed form (engine_collision_primitive.c, engine_collision_box.c,
 // reproduced in their decisions: which contacts a pair yields and in what order), and for the
-// general convex pairs (cylinders, ellipsoids, meshes) the Minkowski portal refinement of libccd,
-// the library MuJoCo runs, on MuJoCo's support functions (engine_collision_convex.c). The driver (collision()) picks the candidate pairs
-// as mj_collision does (contype/conaffinity, same and parent body filters, <pair>, <exclude>,
-// bounding spheres), calls the narrow phase and mixes the two geoms' contact parameters.
+// general convex pairs (cylinders, ellipsoids, meshes) the Minkowski portal refinement MuJoCo
+// runs (libccd's, written in lever's collision room with libccd's operations in its order) on
+// MuJoCo's support functions (engine_collision_convex.c). The driver (collision()) picks the
+// candidate pairs as mj_collision does (contype/conaffinity, same and parent body filters, <pair>,
+// <exclude>, bounding spheres), calls the narrow phase and mixes the two geoms' contact
+// parameters.
 #pragma once
 
 #include <lever/data.hpp>
@@ -49,9 +51,7 @@ bool has_collision_function(GeomType a, GeomType b);
 
 /// Whether MuJoCo 2.2.2 collides this pair of geom types (either order) by MPR on the two support
 /// functions (mjc_Convex): any pair of solids with an ellipsoid, a cylinder or a mesh, but
-/// plane-ellipsoid and plane-mesh. lever runs them with libccd, which its WebAssembly build does
-/// not have: there has_collision_function() is false for them, and the loader refuses a model
-/// whose geoms of such a pair can collide.
+/// plane-ellipsoid and plane-mesh. lever runs the same search, in every build.
 bool collides_by_mpr(GeomType a, GeomType b);
 
 /// The narrow phase: contacts between two geoms nearer than `margin`. Writes dist, pos and the

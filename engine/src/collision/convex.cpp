@@ -5,30 +5,28 @@
 //                geom's frame, then rotated and moved to the world; a mesh's vertex found by
 //                climbing its convex hull's graph (or by visiting every vertex if it has none);
 //                both geoms grown by half the margin, so that shapes within the margin overlap
-//   convex_pair  libccd's Minkowski portal refinement (ccdMPRPenetration) on the two support
-//                functions, the library MuJoCo runs, with the model's mpr_tolerance and
-//                mpr_iterations: depth, direction and point of the grown shapes' overlap; dist =
-//                margin - depth, and the normal corrected where a geom's surface gives it exactly
-//                (fix_normal); with multiccd, four more searches with both geoms turned by
-//                +-1e-3 rad about the contact's tangents, keeping the contacts that are distinct
+//   convex_pair  the Minkowski portal refinement MuJoCo runs (libccd's ccdMPRPenetration, written
+//                in collision/mpr.hpp) on the two support functions, with the model's
+//                mpr_tolerance and mpr_iterations: depth, direction and point of the grown shapes'
+//                overlap; dist = margin - depth, and the normal corrected where a geom's surface
+//                gives it exactly (fix_normal); with multiccd, four more searches with both
+//                geoms turned by +-1e-3 rad about the contact's tangents, keeping the contacts
+//                that are distinct
 //   plane_convex the support point against -normal (an ellipsoid's exact lowest point); for a mesh
 //                up to two more vertices below the margin, among the lowest one's hull neighbours
 //
-// Every sum runs in MuJoCo's order, so that libccd receives the same support points bit for bit
-// and returns the same answer.
+// Every sum runs in MuJoCo's order, so that the search receives the same support points bit for
+// bit as libccd does in MuJoCo and returns the same answer.
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
 
 #include <lever/collision.hpp>
 
+#include "collision/mpr.hpp"
 #include "collision/narrow_phase.hpp"
 #include "collision/surface_normal.hpp"
 
-#ifdef LEVER_HAVE_CCD
-#include <ccd/ccd.h>
-#include <ccd/vec3.h>
-#endif
 
 namespace lever::detail {
 
@@ -213,17 +211,24 @@ void support_point(Support& s, const double* world_dir, double* out) {
   for (int i = 0; i < 3; ++i) out[i] = world[i];
 }
 
+using SupportFunction = void (*)(Support&, const double*, double*);
+
+/// support_point of a geom type.
+SupportFunction support_function(GeomType type) {
+  switch (type) {
+    case GeomType::kSphere: return support_point<GeomType::kSphere>;
+    case GeomType::kCapsule: return support_point<GeomType::kCapsule>;
+    case GeomType::kEllipsoid: return support_point<GeomType::kEllipsoid>;
+    case GeomType::kCylinder: return support_point<GeomType::kCylinder>;
+    case GeomType::kBox: return support_point<GeomType::kBox>;
+    case GeomType::kMesh: return support_point<GeomType::kMesh>;
+    default: return support_point<GeomType::kPlane>;
+  }
+}
+
 /// support_point of the geom's own type.
 void support_point(Support& s, const double* world_dir, double* out) {
-  switch (s.type) {
-    case GeomType::kSphere: return support_point<GeomType::kSphere>(s, world_dir, out);
-    case GeomType::kCapsule: return support_point<GeomType::kCapsule>(s, world_dir, out);
-    case GeomType::kEllipsoid: return support_point<GeomType::kEllipsoid>(s, world_dir, out);
-    case GeomType::kCylinder: return support_point<GeomType::kCylinder>(s, world_dir, out);
-    case GeomType::kBox: return support_point<GeomType::kBox>(s, world_dir, out);
-    case GeomType::kMesh: return support_point<GeomType::kMesh>(s, world_dir, out);
-    default: return support_point<GeomType::kPlane>(s, world_dir, out);
-  }
+  support_function(s.type)(s, world_dir, out);
 }
 
 // ---- the normal where a geom's surface gives it (MuJoCo's mjc_fixNormal) -----------------------
@@ -238,60 +243,35 @@ void fix_normal(const GeomShape& g1, const GeomShape& g2, Contact& c) {
   c.frame.row(1).setZero();
 }
 
-#ifdef LEVER_HAVE_CCD
+/// A geom's centre, MPR's interior point (MuJoCo's mjccd_center).
+mpr::Vec<double> centre(const GeomShape& g) { return {{g.pos[0], g.pos[1], g.pos[2]}}; }
 
-// libccd hands back the objects it was given (the two Supports), as const void*: each search
-// owns its Supports, which record the mesh vertex found
-template <GeomType kType>
-void ccd_support(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* point) {
-  support_point<kType>(*static_cast<Support*>(const_cast<void*>(object)), dir->v, point->v);
-}
-
-/// The support callback of a geom's type.
-ccd_support_fn ccd_support_of(GeomType type) {
-  switch (type) {
-    case GeomType::kSphere: return ccd_support<GeomType::kSphere>;
-    case GeomType::kCapsule: return ccd_support<GeomType::kCapsule>;
-    case GeomType::kEllipsoid: return ccd_support<GeomType::kEllipsoid>;
-    case GeomType::kCylinder: return ccd_support<GeomType::kCylinder>;
-    case GeomType::kBox: return ccd_support<GeomType::kBox>;
-    case GeomType::kMesh: return ccd_support<GeomType::kMesh>;
-    default: return ccd_support<GeomType::kPlane>;
-  }
-}
-
-void ccd_center(const void* object, ccd_vec3_t* center) {
-  const double* pos = static_cast<const Support*>(object)->pos;
-  for (int i = 0; i < 3; ++i) center->v[i] = pos[i];
-}
+/// A geom's support function as the search calls it: its type's, chosen once per search.
+struct SupportOf {
+  Support& s;
+  SupportFunction function = support_function(s.type);
+  void operator()(const double* dir, double* point) const { function(s, dir, point); }
+};
 
 /// One MPR search: a contact if the grown shapes overlap with a defined direction (MuJoCo's
 /// mjc_MPRIteration).
 bool mpr_contact(const GeomShape& g1, const GeomShape& g2, double margin,
                  const ConvexOptions& options, Contact& c) {
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.first_dir = ccdFirstDirDefault;
-  ccd.support1 = ccd_support_of(g1.type);
-  ccd.support2 = ccd_support_of(g2.type);
-  ccd.center1 = ccd_center;
-  ccd.center2 = ccd_center;
-  ccd.max_iterations = static_cast<unsigned long>(options.mpr_iterations);
-  ccd.mpr_tolerance = options.mpr_tolerance;
   Support o1(g1, margin), o2(g2, margin);
-  ccd_real_t depth;
-  ccd_vec3_t dir, pos;
-  if (ccdMPRPenetration(&o1, &o2, &ccd, &depth, &dir, &pos) != 0) return false;
-  if (ccdVec3Eq(&dir, ccd_vec3_origin)) return false;  // overlap, but no direction
-  c.dist = margin - depth;
-  c.pos = Vec3(pos.v[0], pos.v[1], pos.v[2]);
+  SupportOf a{o1}, b{o2};
+  mpr::Supports<SupportOf, SupportOf> both{a, b};
+  mpr::Search<double, decltype(both)> search(both, options.mpr_tolerance,
+                                             static_cast<unsigned long>(options.mpr_iterations));
+  mpr::Answer<double> found;
+  if (!mpr::overlapping(search.penetration(centre(g1), centre(g2), found))) return false;
+  if (mpr::near_origin(found.dir)) return false;  // overlap, but no direction
+  c.dist = margin - found.depth;
+  c.pos = Vec3(found.pos[0], found.pos[1], found.pos[2]);
   c.frame.setZero();
-  c.frame.row(0) << dir.v[0], dir.v[1], dir.v[2];
+  c.frame.row(0) << found.dir[0], found.dir[1], found.dir[2];
   fix_normal(g1, g2, c);
   return true;
 }
-
-#endif  // LEVER_HAVE_CCD
 
 // ---- multiccd: the geoms turned about the first contact (MuJoCo's mjc_Convex) ------------------
 
@@ -333,17 +313,13 @@ GeomShape turned(const GeomShape& g, const Mat3& rot, const Vec3& origin) {
 
 }  // namespace
 
-bool has_convex_pairs() {
-#ifdef LEVER_HAVE_CCD
-  return true;
-#else
-  return false;
-#endif
+void convex_support(const GeomShape& g, double margin, const double* dir, double* point) {
+  Support s(g, margin);
+  support_point(s, dir, point);
 }
 
 int convex_pair(const GeomShape& g1, const GeomShape& g2, double margin,
                 const ConvexOptions& options, Contact* contacts) {
-#ifdef LEVER_HAVE_CCD
   if (!mpr_contact(g1, g2, margin, options, contacts[0])) return 0;
   int count = 1;
   const auto roundish = [](GeomType t) {
@@ -376,10 +352,6 @@ int convex_pair(const GeomShape& g1, const GeomShape& g2, double margin,
     }
   }
   return count;
-#else
-  (void)g1, (void)g2, (void)margin, (void)options, (void)contacts;
-  return 0;
-#endif
 }
 
 int plane_convex(const GeomShape& plane, const GeomShape& convex, double margin,
@@ -433,60 +405,39 @@ int plane_convex(const GeomShape& plane, const GeomShape& convex, double margin,
 
 // ---- MPR's support points, written down (for the derivative of its answer) --------------------
 
-#ifdef LEVER_HAVE_CCD
 namespace {
 
-/// A geom as libccd sees it in mpr_search: its support points also written down in order.
-struct RecordingObject {
-  Support object;
-  ccd_support_fn support;  // the geom type's
+/// A geom's support function as mpr_search calls it: its points also written down in order.
+struct RecordingSupport {
+  Support& s;
   Vec3* points;
-  int count;
   int capacity;
+  int count = 0;
+  SupportFunction function = support_function(s.type);
+  void operator()(const double* dir, double* point) {
+    function(s, dir, point);
+    if (count < capacity) points[count] = Vec3(point[0], point[1], point[2]);
+    ++count;
+  }
 };
 
-void recording_support(const void* object, const ccd_vec3_t* dir, ccd_vec3_t* point) {
-  auto* r = static_cast<RecordingObject*>(const_cast<void*>(object));
-  r->support(&r->object, dir, point);
-  if (r->count < r->capacity) r->points[r->count] = Vec3(point->v[0], point->v[1], point->v[2]);
-  ++r->count;
-}
-
-void recording_center(const void* object, ccd_vec3_t* center) {
-  ccd_center(&static_cast<const RecordingObject*>(object)->object, center);
-}
-
 }  // namespace
-#endif  // LEVER_HAVE_CCD
 
 int mpr_search(const GeomShape& g1, const GeomShape& g2, double margin,
                const ConvexOptions& options, Contact& answer, Eigen::Vector3d* points1,
                Eigen::Vector3d* points2, int capacity) {
-#ifdef LEVER_HAVE_CCD
-  ccd_t ccd;
-  CCD_INIT(&ccd);
-  ccd.first_dir = ccdFirstDirDefault;
-  ccd.support1 = recording_support;
-  ccd.support2 = recording_support;
-  ccd.center1 = recording_center;
-  ccd.center2 = recording_center;
-  ccd.max_iterations = static_cast<unsigned long>(options.mpr_iterations);
-  ccd.mpr_tolerance = options.mpr_tolerance;
-  RecordingObject o1{Support(g1, margin), ccd_support_of(g1.type), points1, 0, capacity};
-  RecordingObject o2{Support(g2, margin), ccd_support_of(g2.type), points2, 0, capacity};
-  ccd_real_t depth;
-  ccd_vec3_t dir, pos;
-  if (ccdMPRPenetration(&o1, &o2, &ccd, &depth, &dir, &pos) != 0) return -1;
-  answer.dist = margin - depth;
-  answer.pos = Vec3(pos.v[0], pos.v[1], pos.v[2]);
+  Support o1(g1, margin), o2(g2, margin);
+  RecordingSupport a{o1, points1, capacity}, b{o2, points2, capacity};
+  mpr::Supports<RecordingSupport, RecordingSupport> both{a, b};
+  mpr::Search<double, decltype(both)> search(both, options.mpr_tolerance,
+                                             static_cast<unsigned long>(options.mpr_iterations));
+  mpr::Answer<double> found;
+  if (!mpr::overlapping(search.penetration(centre(g1), centre(g2), found))) return -1;
+  answer.dist = margin - found.depth;
+  answer.pos = Vec3(found.pos[0], found.pos[1], found.pos[2]);
   answer.frame.setZero();
-  answer.frame.row(0) << dir.v[0], dir.v[1], dir.v[2];
-  return std::min(o1.count, o2.count);
-#else
-  (void)g1, (void)g2, (void)margin, (void)options, (void)answer, (void)points1, (void)points2,
-      (void)capacity;
-  return -1;
-#endif
+  answer.frame.row(0) << found.dir[0], found.dir[1], found.dir[2];
+  return std::min(a.count, b.count);
 }
 
 }  // namespace lever::detail

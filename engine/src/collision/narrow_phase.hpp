@@ -92,14 +92,15 @@ int convex_pair(const GeomShape& g1, const GeomShape& g2, double margin,
                 const ConvexOptions& options, Contact* contacts);
 int plane_convex(const GeomShape& plane, const GeomShape& convex, double margin,
                  Contact* contacts);
-/// Whether this build has the general convex pairs (libccd; not in the WebAssembly build).
-bool has_convex_pairs();
+/// The support point MPR asks a geom for (MuJoCo's mjccd_support): its point farthest along the
+/// world direction `dir`, grown by margin / 2, in the world.
+void convex_support(const GeomShape& g, double margin, const double* dir, double* point);
 
 /// convex_pair's first MPR search (without fix_normal), the support points it asked for written
 /// down in order: geom 1's in points1, geom 2's in points2, in the world (those past `capacity`
-/// counted, not kept). Returns how many it asked for, -1 if it found no contact (or without
-/// libccd); `answer` gets dist, pos and the normal row. For the derivative of MPR's answer, a
-/// closed form of its last portal, three of these.
+/// counted, not kept). Returns how many it asked for, -1 if it found no contact; `answer` gets
+/// dist, pos and the normal row. For the derivative of MPR's answer, a closed form of its last
+/// portal, three of these.
 int mpr_search(const GeomShape& g1, const GeomShape& g2, double margin,
                const ConvexOptions& options, Contact& answer, Eigen::Vector3d* points1,
                Eigen::Vector3d* points2, int capacity);

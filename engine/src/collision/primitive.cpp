@@ -110,11 +110,7 @@ bool is_convex_pair(GeomType a, GeomType b) {
 
 bool has_collision_function(GeomType a, GeomType b) {
   if (static_cast<int>(a) > static_cast<int>(b)) std::swap(a, b);
-  if (pair_function(a, b)) {
-    // plane-mesh runs the support function only; this build has it whenever it has meshes
-    return true;
-  }
-  return is_convex_pair(a, b) && detail::has_convex_pairs();
+  return pair_function(a, b) != nullptr || is_convex_pair(a, b);
 }
 
 bool collides_by_mpr(GeomType a, GeomType b) {
@@ -129,7 +125,7 @@ int collide_shapes(const GeomShape& g1, const GeomShape& g2, double margin, Cont
                      " must come after a " + detail::geom_type_name(g2.type) +
                      " (pass the geoms in MuJoCo's type order)");
   }
-  if (is_convex_pair(g1.type, g2.type) && detail::has_convex_pairs()) {
+  if (is_convex_pair(g1.type, g2.type)) {
     return detail::convex_pair(g1, g2, margin, convex, contacts);
   }
   const PairFunction f = pair_function(g1.type, g2.type);

@@ -25,7 +25,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <limits>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -34,6 +33,7 @@
 #include "basics/dual.hpp"
 #include "collision/collision_room.hpp"
 #include "collision/box_pairs.hpp"
+#include "collision/mpr.hpp"
 #include "collision/narrow_phase.hpp"
 #include "collision/primitive_pairs.hpp"
 #include "collision/surface_normal.hpp"
@@ -428,23 +428,14 @@ int polytope_pair(const Portal& local, const Pose& g1, const Pose& g2, double ma
 // Where a support point is not a vertex (a sphere's, capsule's, cylinder's or ellipsoid's, or any
 // geom's grown by margin / 2 along the search's direction), it moves with the direction it was
 // asked for, and each direction is made of the earlier support points: the answer is the whole
-// search's, not a closed form of its last portal. Held are the search's decisions (how many
-// support points it asks for, which portal vertex each replaces, when it stops; a polytope's
-// vertex; a capsule's end, a cylinder's disc), taken on the values as libccd (v2.1, the library
-// MuJoCo runs) takes them; along that path the search is a smooth function of the two poses,
-// run here on dual numbers. The support points it asks for are checked against those the
-// collision stage's search asked for (collision/convex.cpp's mpr_search), so a path that is not
-// the stage's is an error, not a wrong derivative; and MuJoCo's normal correction where a geom's
-// surface gives it (mjc_fixNormal) follows, on the same numbers.
-
-// libccd's tests: a value within DBL_EPSILON of zero, two values within DBL_EPSILON (relative
-// above 1) of each other
-constexpr double kCcdEps = std::numeric_limits<double>::epsilon();
-bool ccd_zero(double x) { return std::abs(x) < kCcdEps; }
-bool ccd_equal(double a, double b) {
-  const double gap = std::abs(a - b);
-  return gap < kCcdEps || gap < kCcdEps * std::max(std::abs(a), std::abs(b));
-}
+// search's, not a closed form of its last portal. Held are the search's decisions (how many support
+// points it asks for, which portal vertex each replaces, when it stops; a polytope's vertex; a
+// capsule's end, a cylinder's disc), taken on the values as libccd (v2.1, the library MuJoCo runs)
+// takes them; along that path the search is a smooth function of the two poses, run here on dual
+// numbers: the stage's own search (collision/mpr.hpp) on them. The support points it asks for are
+// checked against those the collision stage's search asked for (collision/convex.cpp's mpr_search),
+// so a path that is not the stage's is an error, not a wrong derivative; and MuJoCo's normal
+// correction where a geom's surface gives it (mjc_fixNormal) follows, on the same numbers.
 
 // -1, 0 or 1: the side of a half-extent `half` that the coordinate x (-half, 0 or half, and a
 // rounding) is on.
@@ -454,9 +445,7 @@ double held_side(double x, double half) {
   return r > 0.5 ? 1.0 : (r < -0.5 ? -1.0 : 0.0);
 }
 
-struct SupportPair {
-  V v, a, b;  // v = a - b
-};
+using SupportPair = mpr::Point<Scalar>;  // v = a - b
 
 // The two geoms' support functions (MuJoCo's mjccd_support) on the moving poses, replaying the
 // stage's search: call k must give the stage's k-th support points.
@@ -478,14 +467,13 @@ class SearchReplay {
     return error("is not reproduced by MPR's search on the moving poses.");
   }
 
-  SupportPair support(const V& dir) {
+  // MPR's support point along dir (collision/mpr.hpp's search asks for it so)
+  void operator()(const V& dir, SupportPair& p) {
     if (calls_ >= count_) throw not_reproduced();
-    SupportPair p;
     p.a = geom_support(0, dir);
     p.b = geom_support(1, dir * -1.0);
     p.v = p.a - p.b;
     ++calls_;
-    return p;
   }
 
  private:
@@ -568,171 +556,26 @@ class SearchReplay {
   int calls_ = 0;
 };
 
-V unit(V x) {
-  normalize(x);
-  return x;
-}
-
-// The direction out of the portal's face (v1, v2, v3).
-V portal_direction(const SupportPair (&p)[4]) {
-  return unit(cross(p[2].v - p[1].v, p[3].v - p[1].v));
-}
-
-// Whether the portal's face is within the tolerance of the support point v4 along dir.
-bool reaches_tolerance(const SupportPair (&p)[4], const SupportPair& v4, const V& dir,
-                       double tolerance) {
-  const double d4 = value(dot(v4.v, dir));
-  double least = d4 - value(dot(p[1].v, dir));
-  least = std::fmin(least, d4 - value(dot(p[2].v, dir)));
-  least = std::fmin(least, d4 - value(dot(p[3].v, dir)));
-  return ccd_equal(least, tolerance) || least < tolerance;
-}
-
-bool positive_or_zero(double x) { return ccd_zero(x) || x > 0; }
-
-// v4 takes the place of the portal vertex whose side of the plane (v4, v0) keeps the origin's ray
-// inside.
-void expand(SupportPair (&p)[4], const SupportPair& v4) {
-  const V side = cross(v4.v, p[0].v);
-  if (value(dot(p[1].v, side)) > 0) {
-    p[value(dot(p[2].v, side)) > 0 ? 1 : 3] = v4;
-  } else {
-    p[value(dot(p[3].v, side)) > 0 ? 2 : 1] = v4;
-  }
-}
-
-// The point of segment (x0, b) nearest the origin, and its squared distance.
-Scalar nearest_on_segment(const V& x0, const V& b, V& witness) {
-  const V d = b - x0;
-  const Scalar t = dot(x0, d) * -1.0 / dot(d, d);
-  if (value(t) < 0 || ccd_zero(value(t))) {
-    witness = x0;
-  } else if (value(t) > 1 || ccd_equal(value(t), 1)) {
-    witness = b;
-  } else {
-    witness = d * t + x0;
-  }
-  return dot(witness, witness);
-}
-
-// The point of triangle (x0, b, c) nearest the origin (libccd's ccdVec3PointTriDist2).
-V nearest_on_triangle(const V& x0, const V& b, const V& c) {
-  const V d1 = b - x0, d2 = c - x0;
-  const Scalar v = dot(d1, d1), w = dot(d2, d2), p = dot(x0, d1), q = dot(x0, d2),
-               r = dot(d1, d2);
-  const Scalar det = w * v - r * r;
-  Scalar s(-1.0), t(-1.0);
-  if (!ccd_zero(value(det))) {
-    s = (q * r - w * p) / det;
-    t = (s * r * -1.0 - q) / w;
-  }
-  const double sv = value(s), tv = value(t);
-  if ((ccd_zero(sv) || sv > 0) && (ccd_equal(sv, 1) || sv < 1) && (ccd_zero(tv) || tv > 0) &&
-      (ccd_equal(tv, 1) || tv < 1) && (ccd_equal(tv + sv, 1) || tv + sv < 1)) {
-    return x0 + d1 * s + d2 * t;
-  }
-  V witness, other;
-  double best = value(nearest_on_segment(x0, b, witness));
-  double next = value(nearest_on_segment(x0, c, other));
-  if (next < best) best = next, witness = other;
-  next = value(nearest_on_segment(b, c, other));
-  if (next < best) witness = other;
-  return witness;
-}
-
-// The point: each geom's support points weighted by the origin's barycentric coordinates in the
-// tetrahedron (v0 ... v3), or, where those do not sum to a positive volume, in the face.
-V portal_position(const SupportPair (&p)[4]) {
-  const V dir = portal_direction(p);
-  Scalar b[4] = {dot(cross(p[1].v, p[2].v), p[3].v), dot(cross(p[3].v, p[2].v), p[0].v),
-                 dot(cross(p[0].v, p[1].v), p[3].v), dot(cross(p[2].v, p[1].v), p[0].v)};
-  Scalar sum = b[0] + b[1] + b[2] + b[3];
-  if (ccd_zero(value(sum)) || value(sum) < 0) {
-    b[0] = Scalar(0.0);
-    b[1] = dot(cross(p[2].v, p[3].v), dir);
-    b[2] = dot(cross(p[3].v, p[1].v), dir);
-    b[3] = dot(cross(p[1].v, p[2].v), dir);
-    sum = b[1] + b[2] + b[3];
-  }
-  const Scalar inverse = Scalar(1.0) / sum;
-  V p1 = constant(Eigen::Vector3d::Zero()), p2 = p1;
-  for (int i = 0; i < 4; ++i) {
-    p1 = p1 + p[i].a * b[i];
-    p2 = p2 + p[i].b * b[i];
-  }
-  return (p1 * inverse + p2 * inverse) * 0.5;
-}
-
-// libccd's ccdMPRPenetration replayed: portal discovery, refinement, and the expansion to the
-// tolerance; depth, direction and point of the last portal.
+// libccd's ccdMPRPenetration on the moving poses: collision/mpr.hpp's search on the dual numbers,
+// each decision taken on the values; depth, direction and point of the last portal.
 Found mpr_replay(SearchReplay& search, const Pose& g1, const Pose& g2, double margin,
                  double tolerance, int max_iterations) {
-  SupportPair p[4];
-  p[0].a = g1.pos;
-  p[0].b = g2.pos;
-  p[0].v = p[0].a - p[0].b;
-  if (ccd_equal(value(p[0].v[0]), 0) && ccd_equal(value(p[0].v[1]), 0) &&
-      ccd_equal(value(p[0].v[2]), 0)) {
-    p[0].v[0] = p[0].v[0] + kCcdEps * 10;  // centres on the origin: moved a little
-  }
   const auto refused = [&search] {
     return search.error(
         "is where MPR's search ends in a touch or on its first segment (the origin on the line "
         "of the geoms' centres), which any motion leaves: its answer has no derivative there.");
   };
-  // discovery: v1 towards the origin, v2 across, v3 until the portal's cone holds the origin's ray
-  V dir = unit(p[0].v * -1.0);
-  p[1] = search.support(dir);
-  if (!(value(dot(p[1].v, dir)) > 0) || ccd_zero(value(dot(p[1].v, dir)))) throw refused();
-  dir = cross(p[0].v, p[1].v);
-  if (ccd_zero(value(dot(dir, dir)))) throw refused();
-  dir = unit(dir);
-  p[2] = search.support(dir);
-  if (!positive_or_zero(value(dot(p[2].v, dir))) || ccd_zero(value(dot(p[2].v, dir)))) {
-    throw refused();
+  mpr::Search<Scalar, SearchReplay> replay(search, tolerance,
+                                           static_cast<unsigned long>(max_iterations));
+  mpr::Answer<Scalar> answer;
+  switch (replay.penetration(g1.pos, g2.pos, answer)) {
+    case mpr::Outcome::kPortal: break;
+    case mpr::Outcome::kApartRefined: throw search.not_reproduced();
+    default: throw refused();  // apart in discovery, a touch, the origin on the first segment
   }
-  dir = unit(cross(p[1].v - p[0].v, p[2].v - p[0].v));
-  if (value(dot(dir, p[0].v)) > 0) {
-    std::swap(p[1], p[2]);
-    dir = dir * -1.0;
-  }
-  for (;;) {
-    p[3] = search.support(dir);
-    const double reach = value(dot(p[3].v, dir));
-    if (ccd_zero(reach) || reach < 0) throw refused();
-    double outside = value(dot(cross(p[1].v, p[3].v), p[0].v));
-    if (outside < 0 && !ccd_zero(outside)) {
-      p[2] = p[3];
-    } else {
-      outside = value(dot(cross(p[3].v, p[2].v), p[0].v));
-      if (!(outside < 0 && !ccd_zero(outside))) break;
-      p[1] = p[3];
-    }
-    dir = unit(cross(p[1].v - p[0].v, p[2].v - p[0].v));
-  }
-  // refinement: until the portal's face is past the origin
-  for (;;) {
-    dir = portal_direction(p);
-    if (positive_or_zero(value(dot(dir, p[1].v)))) break;
-    const SupportPair v4 = search.support(dir);
-    if (!positive_or_zero(value(dot(v4.v, dir))) || reaches_tolerance(p, v4, dir, tolerance)) {
-      throw search.not_reproduced();
-    }
-    expand(p, v4);
-  }
-  // penetration: expanded until the face is within the tolerance of the boundary
-  for (long iterations = 0;; ++iterations) {
-    dir = portal_direction(p);
-    const SupportPair v4 = search.support(dir);
-    if (reaches_tolerance(p, v4, dir, tolerance) || iterations > max_iterations) break;
-    expand(p, v4);
-  }
-  V normal = nearest_on_triangle(p[1].v, p[2].v, p[3].v);
-  const Scalar depth = sqrt(dot(normal, normal));
-  if (ccd_zero(value(depth))) throw refused();
-  normal = normal * (Scalar(1.0) / depth);
+  if (mpr::near_zero(value(answer.depth))) throw refused();
   Found f;
-  set(f, Scalar(margin) - depth, portal_position(p), normal);
+  set(f, Scalar(margin) - answer.depth, answer.pos, answer.dir);
   return f;
 }
 
@@ -1243,7 +1086,7 @@ bool contact_geometry_supported(GeomType a, GeomType b) {
   if (a == T::kSphere || a == T::kCapsule) {
     return b == T::kSphere || b == T::kCapsule || b == T::kBox;
   }
-  return (a == T::kBox && b == T::kBox) || (collides_by_mpr(a, b) && has_convex_pairs());
+  return (a == T::kBox && b == T::kBox) || collides_by_mpr(a, b);
 }
 
 int pair_first_contact(const Data& data, int i, int& count) {
