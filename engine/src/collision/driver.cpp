@@ -352,13 +352,11 @@ class Collider {
       between[r] = c2 - c1;
     }
     const double reach = margin + kBoxesApart;  // besides the boxes' own half widths
-    double C[3][3];  // |axis i of geom 1 . axis j of geom 2|
+    double C[3][3];  // |axis i of geom 1 . axis j of geom 2|, row i made before box 1's axis i
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) {
         C[i][j] = std::abs(R1[i] * R2[j] + R1[3 + i] * R2[3 + j] + R1[6 + i] * R2[6 + j]);
       }
-    }
-    for (int i = 0; i < 3; ++i) {
       const double along = R1[i] * between[0] + R1[3 + i] * between[1] + R1[6 + i] * between[2];
       const double half = box1[3 + i] + box2[3] * C[i][0] + box2[4] * C[i][1] + box2[5] * C[i][2];
       if (std::abs(along) > half + reach) return true;
@@ -428,8 +426,10 @@ class Collider {
 
     // The narrow phase writes each contact's dist, pos and whole frame: the normal, and zero
     // rows but where the pair sets a tangent (the capsule's axis). The buffer is Data's: nothing
-    // is allocated or constructed per pair.
-    Contact* found = d_.work.pair_contact.data();
+    // is allocated or constructed per pair. Where the stage's own list has room for a pair's
+    // most, the contacts are found in place there (not copied); else in the pair's buffer.
+    const bool in_place = count_ + kMaxPairContacts <= m_.nconmax;
+    Contact* found = in_place ? &d_.work.contact[count_] : d_.work.pair_contact.data();
     const ConvexOptions convex{m_.opt.mpr_tolerance, m_.opt.mpr_iterations,
                                m_.opt.enabled(kEnableMulticcd)};
     int n = collide_shapes(shape(g1), shape(g2), margin, found, convex);
@@ -455,7 +455,7 @@ class Collider {
     }
 
     for (int i = 0; i < n; ++i) {
-      Contact& c = found[i];  // completed in the pair's buffer, then copied once
+      Contact& c = found[i];  // completed where it was found
       c.dim = condim;
       c.geom1 = g1;
       c.geom2 = g2;
@@ -476,7 +476,8 @@ class Collider {
                          "); MuJoCo would drop the rest with a warning, lever refuses: raise "
                          "<size nconmax> (data.contact is left as it was)");
       }
-      d_.work.contact[count_++] = c;
+      if (!in_place) d_.work.contact[count_] = c;
+      ++count_;
     }
   }
 
