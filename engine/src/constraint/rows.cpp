@@ -265,7 +265,6 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first, PairDo
   const Contact& con = data.contact[i];
   auto& w = data.work;
   const int nv = model.nv;
-  const int rotations = con.dim > 3 ? con.dim - 3 : 0;  // spin, then the two rolls
   const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
   find_pair_dofs(model, data, b1, b2, pair);
   const int* chain1 = w.dof_chain.data();
@@ -282,30 +281,41 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first, PairDo
 
   const Eigen::Vector3d offset1 = con.pos - data.subtree_com[model.body_rootid[b1]];
   const Eigen::Vector3d offset2 = con.pos - data.subtree_com[model.body_rootid[b2]];
-  const Mat3 frame = con.frame;                    // read once for every dof
-  const int translations = std::min(con.dim, 3);  // the normal, then the two tangents
-  for (int pass = 0; pass < 2; ++pass) {
-    const bool body2 = pass == 0;
-    const int* chain = body2 ? chain2 : chain1;
-    const int n = body2 ? n2 : n1;
-    for (int k = 0; k < n; ++k) {
-      const int dof = chain[k];
-      // the point's velocity per unit rate of the dof (as jac_point); body 1's counts negative
-      const Motion& S = data.cdof[dof];
-      Eigen::Vector3d p = S.tail<3>() + cross(S.head<3>(), body2 ? offset2 : offset1);
-      Eigen::Vector3d r = S.head<3>();
-      if (!body2) {  // 0 - x rather than -x: MuJoCo's jac2 - jac1 with jac2 zero keeps zeros +0
-        p = Eigen::Vector3d::Zero() - p;
-        r = Eigen::Vector3d::Zero() - r;
+  const Mat3 frame = con.frame;  // read once for every dof
+  // the rows by the contact's dim: a constant for the common dims 3 and 1
+  const auto dofs = [&](auto fixed_dim) {
+    const int dim = fixed_dim > 0 ? static_cast<int>(fixed_dim) : con.dim;
+    const int translations = dim < 3 ? dim : 3;  // the normal, then the two tangents
+    const int rotations = dim > 3 ? dim - 3 : 0;  // spin, then the two rolls
+    for (int pass = 0; pass < 2; ++pass) {
+      const bool body2 = pass == 0;
+      const int* chain = body2 ? chain2 : chain1;
+      const int n = body2 ? n2 : n1;
+      const Eigen::Vector3d& offset = body2 ? offset2 : offset1;
+      for (int k = 0; k < n; ++k) {
+        const int dof = chain[k];
+        // the point's velocity per unit rate of the dof (as jac_point); body 1's counts negative
+        const Motion& S = data.cdof[dof];
+        Eigen::Vector3d p = S.tail<3>() + cross(S.head<3>(), offset);
+        Eigen::Vector3d r = S.head<3>();
+        if (!body2) {  // 0 - x rather than -x: MuJoCo's jac2 - jac1 with jac2 zero keeps zeros +0
+          p = Eigen::Vector3d::Zero() - p;
+          r = Eigen::Vector3d::Zero() - r;
+        }
+        const auto along_row = [&](int row, const Eigen::Vector3d& v) {
+          return frame(row, 0) * v[0] + frame(row, 1) * v[1] + frame(row, 2) * v[2];
+        };
+        for (int row = 0; row < translations; ++row) C[row * nv + dof] = along_row(row, p);
+        for (int row = 0; row < rotations; ++row) C[(3 + row) * nv + dof] = along_row(row, r);
       }
-      const auto along_row = [&](int row, const Eigen::Vector3d& v) {
-        return frame(row, 0) * v[0] + frame(row, 1) * v[1] + frame(row, 2) * v[2];
-      };
-      C[dof] = along_row(0, p);
-      if (translations > 1) C[nv + dof] = along_row(1, p);
-      if (translations > 2) C[2 * nv + dof] = along_row(2, p);
-      for (int row = 0; row < rotations; ++row) C[(3 + row) * nv + dof] = along_row(row, r);
     }
+  };
+  if (con.dim == 3) {
+    dofs(std::integral_constant<int, 3>{});
+  } else if (con.dim == 1) {
+    dofs(std::integral_constant<int, 1>{});
+  } else {
+    dofs(std::integral_constant<int, 0>{});
   }
 }
 
