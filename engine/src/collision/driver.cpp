@@ -244,8 +244,7 @@ class Collider {
     for (int g1 = m_.body_geomadr[b1]; g1 < m_.body_geomadr[b1] + m_.body_geomnum[b1]; ++g1) {
       for (int g2 = m_.body_geomadr[b2]; g2 < m_.body_geomadr[b2] + m_.body_geomnum[b2]; ++g2) {
         if (--checks_left_ < 0) return Verdict::kUndecided;
-        const Vec3 dif = d_.geom_xpos[g1] - d_.geom_xpos[g2];
-        const double dist = std::sqrt(dot3(dif, dif));
+        const double dist = center_distance(g1, g2);
         // each body's box along an axis holds [c - reach, c + reach] of each of its geoms (c its
         // centre's coordinate): two such intervals overlap along every unit axis when the
         // centres are closer than the reaches' sum, by more than the bounds' rounding
@@ -255,7 +254,12 @@ class Collider {
             1e-9 * (1 + std::abs(reach) + d_.geom_xpos[g1].cwiseAbs().sum() +
                     d_.geom_xpos[g2].cwiseAbs().sum());
         if (dist <= reach - rounding) return Verdict::kOverlap;
-        if (!effect && !nothing_to_collide(g1, g2)) effect = true;
+        if (effect) continue;
+        // bounds_apart's first test, as collide_geoms makes it (r1 + r2 and the distance do not
+        // depend on the geoms' order), then the pair's other tests
+        const double r1 = m_.geom_rbound[g1], r2 = m_.geom_rbound[g2];
+        if (r1 > 0 && r2 > 0 && dist > r1 + r2 + dynamic_margin(g1, g2)) continue;
+        effect = !nothing_to_collide(g1, g2);
       }
     }
     return effect ? Verdict::kUndecided : Verdict::kNoEffect;
@@ -454,14 +458,17 @@ class Collider {
     return flat(m_.geom_type[g1]) && flat(m_.geom_type[g2]);
   }
 
+  /// The distance between two geoms' centres (the same number whichever comes first).
+  double center_distance(int g1, int g2) const {
+    const Vec3 dif = d_.geom_xpos[g1] - d_.geom_xpos[g2];
+    return std::sqrt(dot3(dif, dif));
+  }
+
   /// The bounding spheres apart, or a plane (g1 or g2, in type order) below the other geom's
   /// bounding sphere, by more than margin.
   bool bounds_apart(int g1, int g2, double margin) const {
     const double r1 = m_.geom_rbound[g1], r2 = m_.geom_rbound[g2];
-    if (r1 > 0 && r2 > 0) {
-      const Vec3 dif = d_.geom_xpos[g1] - d_.geom_xpos[g2];
-      if (std::sqrt(dot3(dif, dif)) > r1 + r2 + margin) return true;
-    }
+    if (r1 > 0 && r2 > 0 && center_distance(g1, g2) > r1 + r2 + margin) return true;
     if (m_.geom_type[g1] == GeomType::kPlane && r2 > 0 && above_plane(g1, g2) > margin + r2) {
       return true;
     }
