@@ -503,19 +503,53 @@ SoftParameters contact_soft_parameters(const Model& model, const Contact& con,
 // elliptic cone's other friction rows get the R that keeps R_j friction_j^2 equal across
 // directions; a pyramid's edges share one R, 2 mu^2 R_0, matching the elliptic cone's friction
 // impedance. An elliptic cone's friction rows have no position to restore (K = 0).
-void set_contact_soft_rows(const Model& model, Data& data, int i, ContactSoftCache& cache) {
+// The rows of the contact made last whose every row has the same soft parameters (frictionless
+// or pyramidal: one R for all): the next contact with the same impedance, K and B, bodies'
+// weights, friction and rows gets the same R, D and diagApprox (the contacts of a box flat on
+// a plane), copied from that contact's rows instead of made again through their chain of
+// divisions.
+struct ContactRowsCache {
+  bool valid = false;
+  SoftParameters soft{};
+  double translation = 0, mu0 = 0;
+  ConstraintType type = ConstraintType::kContactFrictionless;
+  int rows = 0;
+  int first = 0;  // the rows to copy
+  double mu = 0;
+};
+
+void set_contact_soft_rows(const Model& model, Data& data, int i, ContactSoftCache& cache,
+                           ContactRowsCache& made) {
   Contact& con = data.contact[i];
   const int first = con.efc_address;
   const SoftParameters soft = contact_soft_parameters(model, con, cache);
   const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
   const double translation = model.body_invweight0[b1][0] + model.body_invweight0[b2][0];
   const ConstraintType type = data.efc_type[first];
+  const double mu0 = con.friction[0];
+  const int rows = type == ConstraintType::kContactPyramidal ? 2 * (con.dim - 1) : 1;
+  if (type != ConstraintType::kContactElliptic) {
+    if (made.valid && made.type == type && made.rows == rows && made.soft.imp == soft.imp &&
+        made.soft.K == soft.K && made.soft.B == soft.B && made.translation == translation &&
+        made.mu0 == mu0) {
+      for (int r = first; r < first + rows; ++r) {
+        data.efc_imp[r] = data.efc_imp[made.first];
+        data.efc_K[r] = data.efc_K[made.first];
+        data.efc_B[r] = data.efc_B[made.first];
+        data.efc_R[r] = data.efc_R[made.first];
+        data.efc_D[r] = data.efc_D[made.first];
+        data.efc_diagApprox[r] = data.efc_diagApprox[made.first];
+      }
+      if (type == ConstraintType::kContactPyramidal) con.mu = made.mu;
+      return;
+    }
+    made = {true, soft, translation, mu0, type, rows, first, 0.0};
+  }
   if (type == ConstraintType::kContactFrictionless) {
     set_soft_row(data, first, soft, soft.K, regularizer(soft, translation));
     return;
   }
   const bool pyramid = type == ConstraintType::kContactPyramidal;
-  const double mu0 = con.friction[0];
   const double R0 =
       regularizer(soft, pyramid ? translation + mu0 * mu0 * translation : translation);
   const double R1 = R0 / std::max(kMinVal, model.opt.impratio);
@@ -523,6 +557,7 @@ void set_contact_soft_rows(const Model& model, Data& data, int i, ContactSoftCac
   if (pyramid) {
     const double shared = 2 * con.mu * con.mu * R0;
     set_soft_rows(data, first, 2 * (con.dim - 1), soft, soft.K, shared);
+    made.mu = con.mu;
     return;
   }
   set_soft_row(data, first, soft, soft.K, R0);
@@ -555,13 +590,14 @@ void unchecked::make_constraint(const Model& model, Data& data) {
   }
   PairDofs pair;
   ContactSoftCache soft_cache;
+  ContactRowsCache rows_cache;
   const int ncon = opt.disabled(kDisableContact) ? 0 : data.ncon;
   for (int i = 0; i < ncon; ++i) {
     Contact& con = data.contact[i];
     con.efc_address = -1;
     if (con.exclude) continue;
     n = add_contact_rows(model, data, i, n, pair);
-    set_contact_soft_rows(model, data, i, soft_cache);
+    set_contact_soft_rows(model, data, i, soft_cache, rows_cache);
   }
   data.nefc = n;
   for (int r = data.ne + data.nf; r < n; ++r) data.efc_frictionloss[r] = 0.0;
