@@ -23,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
 
 #include <lever/collision.hpp>
@@ -558,6 +559,10 @@ class Collider {
       solimp = m_.opt.o_solimp;
     }
 
+    // A contact's frame is made from the narrow phase's first two rows alone: a contact whose two
+    // rows are the one before's, bit for bit (a plane's contacts share its normal), gets its
+    // frame as made.
+    std::array<double, 6> frame_rows;
     for (int i = 0; i < n; ++i) {
       Contact& c = found[i];  // completed where it was found
       c.dim = condim;
@@ -568,8 +573,13 @@ class Collider {
       c.solref = solref;
       c.solimp = solimp;
       c.exclude = c.dist < c.includemargin ? 0 : 1;
-      if (!detail::complete_frame(c.frame)) {
-        throw StateError("lever::collision: a contact normal is undefined (not a unit vector)");
+      if (i > 0 && std::memcmp(c.frame.data(), frame_rows.data(), sizeof frame_rows) == 0) {
+        c.frame = found[i - 1].frame;
+      } else {
+        std::memcpy(frame_rows.data(), c.frame.data(), sizeof frame_rows);
+        if (!detail::complete_frame(c.frame)) {
+          throw StateError("lever::collision: a contact normal is undefined (not a unit vector)");
+        }
       }
       c.efc_address = -1;
       c.mu = 0;  // make_constraint sets it for a contact with friction rows
