@@ -247,14 +247,14 @@ class Collider {
         if (--checks_left_ < 0) return Verdict::kUndecided;
         const double dist = center_distance(g1, g2);
         // each body's box along an axis holds [c - reach, c + reach] of each of its geoms (c its
-        // centre's coordinate): two such intervals overlap along every unit axis when the
-        // centres are closer than the reaches' sum, by more than the bounds' rounding
-        const double reach = m_.geom_rbound[g1] + m_.geom_margin[g1] + m_.geom_rbound[g2] +
-                             m_.geom_margin[g2];
-        const double rounding =
-            1e-9 * (1 + std::abs(reach) + d_.geom_xpos[g1].cwiseAbs().sum() +
-                    d_.geom_xpos[g2].cwiseAbs().sum());
-        if (dist <= reach - rounding) return Verdict::kOverlap;
+        // centre's coordinate, reach >= 0): two such intervals overlap along every unit axis
+        // when the centres are closer than the reaches' sum, by more than the bounds' rounding
+        const double reach1 = m_.geom_rbound[g1] + m_.geom_margin[g1];
+        const double reach2 = m_.geom_rbound[g2] + m_.geom_margin[g2];
+        const double reach = reach1 + reach2;
+        const double rounding = 1e-9 * (1 + reach + d_.geom_xpos[g1].cwiseAbs().sum() +
+                                        d_.geom_xpos[g2].cwiseAbs().sum());
+        if (reach1 >= 0 && reach2 >= 0 && dist <= reach - rounding) return Verdict::kOverlap;
         if (effect) continue;
         // bounds_apart's first test, as collide_geoms makes it (r1 + r2 and the distance do not
         // depend on the geoms' order), then the pair's other tests

@@ -285,7 +285,7 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first, PairDo
   // the rows by the contact's dim: a constant for the common dims 3 and 1
   const auto dofs = [&](auto fixed_dim) {
     const int dim = fixed_dim > 0 ? static_cast<int>(fixed_dim) : con.dim;
-    const int translations = dim < 3 ? dim : 3;  // the normal, then the two tangents
+    const int translations = dim < 3 ? dim : 3;   // the normal, then the two tangents
     const int rotations = dim > 3 ? dim - 3 : 0;  // spin, then the two rolls
     for (int pass = 0; pass < 2; ++pass) {
       const bool body2 = pass == 0;
