@@ -6,7 +6,8 @@
 //                 plus the pairs whose bounding boxes overlap along the eigenvectors of the geoms'
 //                 position covariance (MuJoCo's sweep and prune, here tested pair by pair: the set
 //                 is the same, and listing it in signature order is what the sort did). A body
-//                 pair listed twice is tested twice, as in MuJoCo.
+//                 pair listed twice is tested twice, as in MuJoCo. The eigenframe is computed
+//                 only for a pair whose verdict it decides (sweep_lists).
 //   <pair>        explicit pairs merged in by signature; a geom pair they name is not tested again
 //   <exclude>     body pairs skipped (dynamic pairs only)
 //   geom pair     contype/conaffinity, same weld body, parent filter (dynamic pairs only, unless
@@ -22,6 +23,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <string>
 
 #include <lever/collision.hpp>
@@ -166,7 +168,7 @@ class Collider {
   Collider(const Model& model, Data& data) : m_(model), d_(data) {}
 
   void run() {
-    const bool sweep = compute_bounding_boxes();
+    const bool sweep = has_moving_geoms();
     const int nbody = m_.nbody;
     const std::uint8_t* role = m_.body_collision.data();
     int pair_address = 0, exclude_address = 0;
@@ -174,7 +176,7 @@ class Collider {
       const int b1_with_every_body = role[b1] & Model::kBodyPairsWithAll ? 1 : 0;
       for (int b2 = b1 + 1; b2 < nbody; ++b2) {
         const int listed = b1_with_every_body + (role[b2] & Model::kBodyPairsWithAll ? 1 : 0) +
-                           (sweep && boxes_overlap(b1, b2) ? 1 : 0);
+                           (sweep && sweep_lists(b1, b2) ? 1 : 0);
         for (int k = 0; k < listed; ++k) {
           body_pair(b1, b2, pair_address, exclude_address);
         }
@@ -194,14 +196,79 @@ class Collider {
   int count_ = 0;
   int unsupported_ = 0;
   int last_unsupported_geom_ = -1;
+  bool boxes_ready_ = false;  // the bodies' bounds along the eigenframe (work.body_aabb)
+  int checks_left_ = kChecksWithoutFrame;
+
+  /// Geom pairs the broad phase looks at before it computes the eigenframe: a few dozen (the
+  /// frame's Jacobi sweeps cost about as much as that many checks).
+  static constexpr int kChecksWithoutFrame = 32;
 
   // ---- bodies ----------------------------------------------------------------------------------
 
   int weld(int body) const { return m_.body_weldid[body]; }
 
+  /// Whether a geom is outside the world body (else the sweep lists no pair).
+  bool has_moving_geoms() const {
+    for (int g = 0; g < m_.ngeom; ++g) {
+      if (m_.geom_bodyid[g] != 0) return true;
+    }
+    return false;
+  }
+
+  /// The sweep's verdict for bodies b1 < b2 (boxes_overlap). The eigenframe is computed only
+  /// when a pair needs it: a pair whose verdict changes nothing (excluded, or every geom pair
+  /// filtered or beyond its bounding spheres: collide_geoms would return before any effect), or
+  /// that overlaps along every axis whatever the frame (two geoms' bounding spheres overlapping
+  /// by more than rounding), is decided without it.
+  bool sweep_lists(int b1, int b2) {
+    if (!boxes_ready_) {
+      switch (verdict_without_frame(b1, b2)) {
+        case Verdict::kOverlap: return true;
+        case Verdict::kNoEffect: return false;
+        case Verdict::kUndecided: break;
+      }
+      compute_bounding_boxes();
+      boxes_ready_ = true;
+    }
+    return boxes_overlap(b1, b2);
+  }
+
+  enum class Verdict { kOverlap, kNoEffect, kUndecided };
+
+  Verdict verdict_without_frame(int b1, int b2) {
+    if (!boxes_may_overlap(b1, b2)) return Verdict::kNoEffect;  // the same false either way
+    if (std::binary_search(m_.exclude_signature.begin(), m_.exclude_signature.end(),
+                           ((b1 + 1) << 16) + (b2 + 1))) {
+      return Verdict::kNoEffect;
+    }
+    bool effect = false;
+    for (int g1 = m_.body_geomadr[b1]; g1 < m_.body_geomadr[b1] + m_.body_geomnum[b1]; ++g1) {
+      for (int g2 = m_.body_geomadr[b2]; g2 < m_.body_geomadr[b2] + m_.body_geomnum[b2]; ++g2) {
+        if (--checks_left_ < 0) return Verdict::kUndecided;
+        const double dist = center_distance(g1, g2);
+        // each body's box along an axis holds [c - reach, c + reach] of each of its geoms (c its
+        // centre's coordinate, reach >= 0): two such intervals overlap along every unit axis
+        // when the centres are closer than the reaches' sum, by more than the bounds' rounding
+        const double reach1 = m_.geom_rbound[g1] + m_.geom_margin[g1];
+        const double reach2 = m_.geom_rbound[g2] + m_.geom_margin[g2];
+        const double reach = reach1 + reach2;
+        const double rounding = 1e-9 * (1 + reach + d_.geom_xpos[g1].cwiseAbs().sum() +
+                                        d_.geom_xpos[g2].cwiseAbs().sum());
+        if (reach1 >= 0 && reach2 >= 0 && dist <= reach - rounding) return Verdict::kOverlap;
+        if (effect) continue;
+        // bounds_apart's first test, as collide_geoms makes it (r1 + r2 and the distance do not
+        // depend on the geoms' order), then the pair's other tests
+        const double r1 = m_.geom_rbound[g1], r2 = m_.geom_rbound[g2];
+        if (r1 > 0 && r2 > 0 && dist > r1 + r2 + dynamic_margin(g1, g2)) continue;
+        effect = !nothing_to_collide(g1, g2);
+      }
+    }
+    return effect ? Verdict::kUndecided : Verdict::kNoEffect;
+  }
+
   /// Bounds of each body's geoms (spheres of geom_rbound + geom_margin) along the eigenframe of
-  /// the non-world geoms' positions; false when no geom is outside the world body.
-  bool compute_bounding_boxes() {
+  /// the non-world geoms' positions (at least one: has_moving_geoms).
+  void compute_bounding_boxes() {
     Vec3 center = Vec3::Zero();
     int n = 0;
     for (int g = 0; g < m_.ngeom; ++g) {
@@ -209,7 +276,6 @@ class Collider {
       for (int i = 0; i < 3; ++i) center[i] += d_.geom_xpos[g][i];
       ++n;
     }
-    if (n == 0) return false;
     for (int i = 0; i < 3; ++i) center[i] /= n;
 
     Mat3 covariance = Mat3::Zero();
@@ -240,7 +306,6 @@ class Collider {
         }
       }
     }
-    return true;
   }
 
   /// The sweep's verdict for two non-world bodies: overlap along the first axis in single
@@ -248,17 +313,23 @@ class Collider {
   /// overlapping, where MuJoCo's order of equal keys decides), along the other two in double;
   /// two bodies of one geom each must also pass contype/conaffinity.
   bool boxes_overlap(int b1, int b2) const {
-    const std::uint8_t* role = m_.body_collision.data();
-    if (b1 == 0 || !(role[b1] & Model::kBodyCollides) || !(role[b2] & Model::kBodyCollides)) {
-      return false;
-    }
+    if (!boxes_may_overlap(b1, b2)) return false;
     const double* a = d_.work.body_aabb.data() + 6 * b1;
     const double* b = d_.work.body_aabb.data() + 6 * b2;
     if (static_cast<float>(b[0]) > static_cast<float>(a[1]) ||
         static_cast<float>(a[0]) > static_cast<float>(b[1])) {
       return false;
     }
-    if (a[2] > b[3] || a[3] < b[2] || a[4] > b[5] || a[5] < b[4]) return false;
+    return !(a[2] > b[3] || a[3] < b[2] || a[4] > b[5] || a[5] < b[4]);
+  }
+
+  /// boxes_overlap's tests that need no box: non-world bodies that collide, and two bodies of
+  /// one geom each pass contype/conaffinity.
+  bool boxes_may_overlap(int b1, int b2) const {
+    const std::uint8_t* role = m_.body_collision.data();
+    if (b1 == 0 || !(role[b1] & Model::kBodyCollides) || !(role[b2] & Model::kBodyCollides)) {
+      return false;
+    }
     if (m_.body_geomnum[b1] == 1 && m_.body_geomnum[b2] == 1) {
       const int g1 = m_.body_geomadr[b1], g2 = m_.body_geomadr[b2];
       if (!(m_.geom_contype[g1] & m_.geom_conaffinity[g2]) &&
@@ -352,13 +423,11 @@ class Collider {
       between[r] = c2 - c1;
     }
     const double reach = margin + kBoxesApart;  // besides the boxes' own half widths
-    double C[3][3];  // |axis i of geom 1 . axis j of geom 2|
+    double C[3][3];  // |axis i of geom 1 . axis j of geom 2|, row i made before box 1's axis i
     for (int i = 0; i < 3; ++i) {
       for (int j = 0; j < 3; ++j) {
         C[i][j] = std::abs(R1[i] * R2[j] + R1[3 + i] * R2[3 + j] + R1[6 + i] * R2[6 + j]);
       }
-    }
-    for (int i = 0; i < 3; ++i) {
       const double along = R1[i] * between[0] + R1[3 + i] * between[1] + R1[6 + i] * between[2];
       const double half = box1[3 + i] + box2[3] * C[i][0] + box2[4] * C[i][1] + box2[5] * C[i][2];
       if (std::abs(along) > half + reach) return true;
@@ -377,26 +446,66 @@ class Collider {
            (m_.geom_dataid[g] < 0 || m_.mesh_vertnum[m_.geom_dataid[g]] == 0);
   }
 
+  /// The geoms in the order of MuJoCo's table of pair functions (the lower type first).
+  void in_type_order(int& g1, int& g2) const {
+    if (static_cast<int>(m_.geom_type[g1]) > static_cast<int>(m_.geom_type[g2])) {
+      std::swap(g1, g2);
+    }
+  }
+
+  /// Planes and height fields among themselves: MuJoCo has no function for either.
+  bool both_flat(int g1, int g2) const {
+    const auto flat = [](GeomType t) { return t == GeomType::kPlane || t == GeomType::kHfield; };
+    return flat(m_.geom_type[g1]) && flat(m_.geom_type[g2]);
+  }
+
+  /// The distance between two geoms' centres (the same number whichever comes first).
+  double center_distance(int g1, int g2) const {
+    const Vec3 dif = d_.geom_xpos[g1] - d_.geom_xpos[g2];
+    return std::sqrt(dot3(dif, dif));
+  }
+
+  /// The bounding spheres apart, or a plane (g1 or g2, in type order) below the other geom's
+  /// bounding sphere, by more than margin.
+  bool bounds_apart(int g1, int g2, double margin) const {
+    const double r1 = m_.geom_rbound[g1], r2 = m_.geom_rbound[g2];
+    if (r1 > 0 && r2 > 0 && center_distance(g1, g2) > r1 + r2 + margin) return true;
+    if (m_.geom_type[g1] == GeomType::kPlane && r2 > 0 && above_plane(g1, g2) > margin + r2) {
+      return true;
+    }
+    return m_.geom_type[g2] == GeomType::kPlane && r1 > 0 && above_plane(g2, g1) > margin + r1;
+  }
+
+  /// A dynamic pair's margin (the geoms' larger, or opt.o_margin with override).
+  double dynamic_margin(int g1, int g2) const {
+    return m_.opt.enabled(kEnableOverride) ? m_.opt.o_margin
+                                           : std::max(m_.geom_margin[g1], m_.geom_margin[g2]);
+  }
+
+  /// Whether collide_geoms(g1, g2, -1) returns before it has any effect, for the pair's
+  /// types, filters or bounds.
+  bool nothing_to_collide(int g1, int g2) const {
+    in_type_order(g1, g2);
+    return both_flat(g1, g2) || filtered_out(g1, g2) ||
+           bounds_apart(g1, g2, dynamic_margin(g1, g2));
+  }
+
   /// One geom pair: (g1, g2) of a dynamic pair, or explicit pair `ipair` (g1, g2 unused).
   void collide_geoms(int g1, int g2, int ipair) {
     if (ipair >= 0) {
       g1 = m_.pair_geom1[ipair];
       g2 = m_.pair_geom2[ipair];
     }
-    if (static_cast<int>(m_.geom_type[g1]) > static_cast<int>(m_.geom_type[g2])) {
-      std::swap(g1, g2);
-    }
+    in_type_order(g1, g2);
     const GeomType type1 = m_.geom_type[g1], type2 = m_.geom_type[g2];
-    // pairs MuJoCo has no function for either: planes and height fields among themselves
-    const auto flat = [](GeomType t) { return t == GeomType::kPlane || t == GeomType::kHfield; };
-    if (flat(type1) && flat(type2)) return;
+    if (both_flat(g1, g2)) return;
     if (ipair < 0 && filtered_out(g1, g2)) return;
 
     // margin, gap, condim
     double margin, gap;
     int condim;
     if (ipair < 0) {
-      margin = std::max(m_.geom_margin[g1], m_.geom_margin[g2]);
+      margin = dynamic_margin(g1, g2);
       gap = std::max(m_.geom_gap[g1], m_.geom_gap[g2]);
       condim = m_.geom_priority[g1] != m_.geom_priority[g2]
                    ? m_.geom_condim[higher_priority(g1, g2)]
@@ -410,13 +519,7 @@ class Collider {
     if (override_contacts) margin = m_.opt.o_margin;
 
     // bounding spheres, and a plane against the other geom's bounding sphere
-    const double r1 = m_.geom_rbound[g1], r2 = m_.geom_rbound[g2];
-    if (r1 > 0 && r2 > 0) {
-      const Vec3 dif = d_.geom_xpos[g1] - d_.geom_xpos[g2];
-      if (std::sqrt(dot3(dif, dif)) > r1 + r2 + margin) return;
-    }
-    if (type1 == GeomType::kPlane && r2 > 0 && above_plane(g1, g2) > margin + r2) return;
-    if (type2 == GeomType::kPlane && r1 > 0 && above_plane(g2, g1) > margin + r1) return;
+    if (bounds_apart(g1, g2, margin)) return;
 
     if (!has_collision_function(type1, type2) || unread_mesh(g1) || unread_mesh(g2)) {
       ++unsupported_;  // recorded in data.warning once the whole stage has succeeded
@@ -428,8 +531,10 @@ class Collider {
 
     // The narrow phase writes each contact's dist, pos and whole frame: the normal, and zero
     // rows but where the pair sets a tangent (the capsule's axis). The buffer is Data's: nothing
-    // is allocated or constructed per pair.
-    Contact* found = d_.work.pair_contact.data();
+    // is allocated or constructed per pair. Where the stage's own list has room for a pair's
+    // most, the contacts are found in place there (not copied); else in the pair's buffer.
+    const bool in_place = count_ + kMaxPairContacts <= m_.nconmax;
+    Contact* found = in_place ? &d_.work.contact[count_] : d_.work.pair_contact.data();
     const ConvexOptions convex{m_.opt.mpr_tolerance, m_.opt.mpr_iterations,
                                m_.opt.enabled(kEnableMulticcd)};
     int n = collide_shapes(shape(g1), shape(g2), margin, found, convex);
@@ -454,8 +559,12 @@ class Collider {
       solimp = m_.opt.o_solimp;
     }
 
+    // A contact's frame is made from the narrow phase's first two rows alone: a contact whose two
+    // rows are the one before's, bit for bit (a plane's contacts share its normal), gets its
+    // frame as made.
+    std::array<double, 6> frame_rows;
     for (int i = 0; i < n; ++i) {
-      Contact& c = found[i];  // completed in the pair's buffer, then copied once
+      Contact& c = found[i];  // completed where it was found
       c.dim = condim;
       c.geom1 = g1;
       c.geom2 = g2;
@@ -464,8 +573,13 @@ class Collider {
       c.solref = solref;
       c.solimp = solimp;
       c.exclude = c.dist < c.includemargin ? 0 : 1;
-      if (!detail::complete_frame(c.frame)) {
-        throw StateError("lever::collision: a contact normal is undefined (not a unit vector)");
+      if (i > 0 && std::memcmp(c.frame.data(), frame_rows.data(), sizeof frame_rows) == 0) {
+        c.frame = found[i - 1].frame;
+      } else {
+        std::memcpy(frame_rows.data(), c.frame.data(), sizeof frame_rows);
+        if (!detail::complete_frame(c.frame)) {
+          throw StateError("lever::collision: a contact normal is undefined (not a unit vector)");
+        }
       }
       c.efc_address = -1;
       c.mu = 0;  // make_constraint sets it for a contact with friction rows
@@ -476,7 +590,8 @@ class Collider {
                          "); MuJoCo would drop the rest with a warning, lever refuses: raise "
                          "<size nconmax> (data.contact is left as it was)");
       }
-      d_.work.contact[count_++] = c;
+      if (!in_place) d_.work.contact[count_] = c;
+      ++count_;
     }
   }
 

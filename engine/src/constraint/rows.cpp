@@ -265,7 +265,6 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first, PairDo
   const Contact& con = data.contact[i];
   auto& w = data.work;
   const int nv = model.nv;
-  const int rotations = con.dim > 3 ? con.dim - 3 : 0;  // spin, then the two rolls
   const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
   find_pair_dofs(model, data, b1, b2, pair);
   const int* chain1 = w.dof_chain.data();
@@ -282,30 +281,41 @@ void contact_frame_rows(const Model& model, Data& data, int i, int first, PairDo
 
   const Eigen::Vector3d offset1 = con.pos - data.subtree_com[model.body_rootid[b1]];
   const Eigen::Vector3d offset2 = con.pos - data.subtree_com[model.body_rootid[b2]];
-  const Mat3 frame = con.frame;                    // read once for every dof
-  const int translations = std::min(con.dim, 3);  // the normal, then the two tangents
-  for (int pass = 0; pass < 2; ++pass) {
-    const bool body2 = pass == 0;
-    const int* chain = body2 ? chain2 : chain1;
-    const int n = body2 ? n2 : n1;
-    for (int k = 0; k < n; ++k) {
-      const int dof = chain[k];
-      // the point's velocity per unit rate of the dof (as jac_point); body 1's counts negative
-      const Motion& S = data.cdof[dof];
-      Eigen::Vector3d p = S.tail<3>() + cross(S.head<3>(), body2 ? offset2 : offset1);
-      Eigen::Vector3d r = S.head<3>();
-      if (!body2) {  // 0 - x rather than -x: MuJoCo's jac2 - jac1 with jac2 zero keeps zeros +0
-        p = Eigen::Vector3d::Zero() - p;
-        r = Eigen::Vector3d::Zero() - r;
+  const Mat3 frame = con.frame;  // read once for every dof
+  // the rows by the contact's dim: a constant for the common dims 3 and 1
+  const auto dofs = [&](auto fixed_dim) {
+    const int dim = fixed_dim > 0 ? static_cast<int>(fixed_dim) : con.dim;
+    const int translations = dim < 3 ? dim : 3;   // the normal, then the two tangents
+    const int rotations = dim > 3 ? dim - 3 : 0;  // spin, then the two rolls
+    for (int pass = 0; pass < 2; ++pass) {
+      const bool body2 = pass == 0;
+      const int* chain = body2 ? chain2 : chain1;
+      const int n = body2 ? n2 : n1;
+      const Eigen::Vector3d& offset = body2 ? offset2 : offset1;
+      for (int k = 0; k < n; ++k) {
+        const int dof = chain[k];
+        // the point's velocity per unit rate of the dof (as jac_point); body 1's counts negative
+        const Motion& S = data.cdof[dof];
+        Eigen::Vector3d p = S.tail<3>() + cross(S.head<3>(), offset);
+        Eigen::Vector3d r = S.head<3>();
+        if (!body2) {  // 0 - x rather than -x: MuJoCo's jac2 - jac1 with jac2 zero keeps zeros +0
+          p = Eigen::Vector3d::Zero() - p;
+          r = Eigen::Vector3d::Zero() - r;
+        }
+        const auto along_row = [&](int row, const Eigen::Vector3d& v) {
+          return frame(row, 0) * v[0] + frame(row, 1) * v[1] + frame(row, 2) * v[2];
+        };
+        for (int row = 0; row < translations; ++row) C[row * nv + dof] = along_row(row, p);
+        for (int row = 0; row < rotations; ++row) C[(3 + row) * nv + dof] = along_row(row, r);
       }
-      const auto along_row = [&](int row, const Eigen::Vector3d& v) {
-        return frame(row, 0) * v[0] + frame(row, 1) * v[1] + frame(row, 2) * v[2];
-      };
-      C[dof] = along_row(0, p);
-      if (translations > 1) C[nv + dof] = along_row(1, p);
-      if (translations > 2) C[2 * nv + dof] = along_row(2, p);
-      for (int row = 0; row < rotations; ++row) C[(3 + row) * nv + dof] = along_row(row, r);
     }
+  };
+  if (con.dim == 3) {
+    dofs(std::integral_constant<int, 3>{});
+  } else if (con.dim == 1) {
+    dofs(std::integral_constant<int, 1>{});
+  } else {
+    dofs(std::integral_constant<int, 0>{});
   }
 }
 
@@ -493,19 +503,53 @@ SoftParameters contact_soft_parameters(const Model& model, const Contact& con,
 // elliptic cone's other friction rows get the R that keeps R_j friction_j^2 equal across
 // directions; a pyramid's edges share one R, 2 mu^2 R_0, matching the elliptic cone's friction
 // impedance. An elliptic cone's friction rows have no position to restore (K = 0).
-void set_contact_soft_rows(const Model& model, Data& data, int i, ContactSoftCache& cache) {
+// The rows of the contact made last whose every row has the same soft parameters (frictionless
+// or pyramidal: one R for all): the next contact with the same impedance, K and B, bodies'
+// weights, friction and rows gets the same R, D and diagApprox (the contacts of a box flat on
+// a plane), copied from that contact's rows instead of made again through their chain of
+// divisions.
+struct ContactRowsCache {
+  bool valid = false;
+  SoftParameters soft{};
+  double translation = 0, mu0 = 0;
+  ConstraintType type = ConstraintType::kContactFrictionless;
+  int rows = 0;
+  int first = 0;  // the rows to copy
+  double mu = 0;
+};
+
+void set_contact_soft_rows(const Model& model, Data& data, int i, ContactSoftCache& cache,
+                           ContactRowsCache& made) {
   Contact& con = data.contact[i];
   const int first = con.efc_address;
   const SoftParameters soft = contact_soft_parameters(model, con, cache);
   const int b1 = model.geom_bodyid[con.geom1], b2 = model.geom_bodyid[con.geom2];
   const double translation = model.body_invweight0[b1][0] + model.body_invweight0[b2][0];
   const ConstraintType type = data.efc_type[first];
+  const double mu0 = con.friction[0];
+  const int rows = type == ConstraintType::kContactPyramidal ? 2 * (con.dim - 1) : 1;
+  if (type != ConstraintType::kContactElliptic) {
+    if (made.valid && made.type == type && made.rows == rows && made.soft.imp == soft.imp &&
+        made.soft.K == soft.K && made.soft.B == soft.B && made.translation == translation &&
+        made.mu0 == mu0) {
+      for (int r = first; r < first + rows; ++r) {
+        data.efc_imp[r] = data.efc_imp[made.first];
+        data.efc_K[r] = data.efc_K[made.first];
+        data.efc_B[r] = data.efc_B[made.first];
+        data.efc_R[r] = data.efc_R[made.first];
+        data.efc_D[r] = data.efc_D[made.first];
+        data.efc_diagApprox[r] = data.efc_diagApprox[made.first];
+      }
+      if (type == ConstraintType::kContactPyramidal) con.mu = made.mu;
+      return;
+    }
+    made = {true, soft, translation, mu0, type, rows, first, 0.0};
+  }
   if (type == ConstraintType::kContactFrictionless) {
     set_soft_row(data, first, soft, soft.K, regularizer(soft, translation));
     return;
   }
   const bool pyramid = type == ConstraintType::kContactPyramidal;
-  const double mu0 = con.friction[0];
   const double R0 =
       regularizer(soft, pyramid ? translation + mu0 * mu0 * translation : translation);
   const double R1 = R0 / std::max(kMinVal, model.opt.impratio);
@@ -513,6 +557,7 @@ void set_contact_soft_rows(const Model& model, Data& data, int i, ContactSoftCac
   if (pyramid) {
     const double shared = 2 * con.mu * con.mu * R0;
     set_soft_rows(data, first, 2 * (con.dim - 1), soft, soft.K, shared);
+    made.mu = con.mu;
     return;
   }
   set_soft_row(data, first, soft, soft.K, R0);
@@ -545,13 +590,14 @@ void unchecked::make_constraint(const Model& model, Data& data) {
   }
   PairDofs pair;
   ContactSoftCache soft_cache;
+  ContactRowsCache rows_cache;
   const int ncon = opt.disabled(kDisableContact) ? 0 : data.ncon;
   for (int i = 0; i < ncon; ++i) {
     Contact& con = data.contact[i];
     con.efc_address = -1;
     if (con.exclude) continue;
     n = add_contact_rows(model, data, i, n, pair);
-    set_contact_soft_rows(model, data, i, soft_cache);
+    set_contact_soft_rows(model, data, i, soft_cache, rows_cache);
   }
   data.nefc = n;
   for (int r = data.ne + data.nf; r < n; ++r) data.efc_frictionloss[r] = 0.0;
