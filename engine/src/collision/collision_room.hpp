@@ -1,8 +1,8 @@
 // The collision room: the stage MuJoCo 2.2.2's mj_collision runs (driver.cpp: broad phase, pair
 // filters, the mid-phase box test, parameter mixing), the narrow phase's closed-form pairs
 // (primitive.cpp, box.cpp, and primitive_pairs.hpp / box_pairs.hpp written once on a scalar type,
-// narrow_phase.hpp), the general convex pairs by libccd's MPR with MuJoCo's support functions and
-// multiccd (convex.cpp; its mpr_search writes down the support points for the derivatives),
+// narrow_phase.hpp), the general convex pairs by MPR (libccd's search, the one MuJoCo links,
+// written on a scalar type in mpr.hpp) with MuJoCo's support functions and multiccd (convex.cpp; its mpr_search writes down the support points for the derivatives),
 // MuJoCo's normal correction for round geoms (surface_normal.hpp, on a scalar type too) and the
 // constants set_const computes for the stage.
 #pragma once

@@ -400,8 +400,8 @@ class Collider {
 
   /// The mid-phase before MPR: whether the two geoms' boxes (geom_aabb, in their frames), each
   /// grown by margin / 2 as the support functions grow the geoms, are apart by more than
-  /// kBoxesApart along one of the six box axes. MPR on such a pair finds no contact (libccd
-  /// reports one only where the origin is within rounding of the grown shapes' Minkowski
+  /// kBoxesApart along one of the six box axes. MPR on such a pair finds no contact (the
+  /// search, libccd's in MuJoCo and mpr.hpp's here, reports one only where the origin is within rounding of the grown shapes' Minkowski
   /// difference, or within |v0 x v1| < 1.5e-8 of its first segment, i.e. within 1.5e-8 / |v0|
   /// with |v0| >= the gap: 1.2e-4 at most), so it is not run. MuJoCo 2.2.2 runs it and finds
   /// nothing; a margin below zero, which shrinks the geoms unevenly, is never skipped.
