@@ -145,7 +145,7 @@ void spatial_tendon_change(const Model& model, const Data& data, int t,
 /// out += scale P(x y^T + y x^T) a, P keeping the pairs of dofs on one branch (where M is
 /// non-zero, as the implicit step's D keeps its outer products).
 void add_pair_product(const Model& model, const double* x, const double* y, const double* a,
-                      double scale, Eigen::Ref<Eigen::VectorXd> out);
+                      double scale, Eigen::Ref<Eigen::VectorXd, 0, Eigen::InnerStride<>> out);
 
 /// d qacc and d qfrc_constraint with the active set held, every active row (limits and contacts),
 /// from the right-hand sides d f_smooth - d ID in deriv.work.rhs_q, rhs_v, rhs_u (before M^-1;
