@@ -123,6 +123,13 @@ RowSpan row_span(const Data& data, int r);
 void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& G,
                       Eigen::MatrixXd& H, std::vector<int>& first);
 
+/// G = J_S^T D_S J_S over the rows rows[0..n) (factor_held_rows()' G alone).
+void held_rows_weight(const Data& data, const int* rows, int n, Eigen::MatrixXd& G);
+
+/// X = H^-1 X, every column, with the forward solve's factor of H where
+/// settled_active_set_factor() says it holds one (the constraint room's data.work.newton_H).
+void solve_settled_factor(const Data& data, Eigen::Ref<RowMatrix> X);
+
 /// X = H^-1 X, every column, with factor_held_rows()' factor L and profile.
 void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
                      Eigen::Ref<RowMatrix> X);
