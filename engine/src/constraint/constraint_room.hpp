@@ -125,6 +125,12 @@ void add_frame_hessian(Data& data, int i, const double* W, Eigen::Ref<Eigen::Mat
 /// is the one-sided rows' unique solution.
 bool active_set_round(Data& data, const int* active);
 
+/// Whether data.work.newton_H holds, after forward(), the Cholesky factor L of M + J_S^T D_S J_S
+/// for the rows S its solve left active (L in the lower triangle, column j's nonzeros ending
+/// before data.work.hessian_envelope[j]): the active-set solve's last round settled on S (not
+/// the pivoting after rounds that did not).
+bool settled_active_set_factor(const Model& model, const Data& data);
+
 /// x = H^-1 x for H = M + J^T (...) J assembled above (its lower triangle), which becomes its
 /// Cholesky factor: the active sets and the Newton solver both solve with it (data's workspace
 /// holds where its columns end).

@@ -937,6 +937,29 @@ bool active_set_round(Data& data, const int* active) {
   return true;
 }
 
+bool settled_active_set_factor(const Model& model, const Data& data) {
+  // solve_rows' choice of the active-set solve: one-sided rows only, more of them than dofs
+  const Options& opt = model.opt;
+  if (opt.solver == Solver::kPGS || (opt.solver == Solver::kCG && opt.tolerance > 0) ||
+      opt.cone == Cone::kElliptic || data.ne + data.nf > 0 || data.nefc <= model.nv) {
+    return false;
+  }
+  // its last round settled: qacc is that round's a, each row's weight is what active_set_round
+  // gave it (D pushing, 0 not) and each force what solve_active_set made of its jar; the
+  // pivoting, which takes over when the rounds do not settle, leaves its own forces in lcp_f
+  const auto& w = data.work;
+  for (int i = 0; i < model.nv; ++i) {
+    if (data.qacc[i] != w.newton_dir[i]) return false;
+  }
+  for (int r = 0; r < data.nefc; ++r) {
+    const bool pushing = data.efc_state[r] == ConstraintState::kActive;
+    const double D = data.efc_D[r];
+    if (w.lcp_f[r] != (pushing ? D : 0.0)) return false;
+    if (data.efc_force[r] != (pushing ? -D * w.newton_jar[r] : 0.0)) return false;
+  }
+  return true;
+}
+
 namespace {
 
 // Most rounds of the active-set solve before the pivoting takes over: settling takes one or two

@@ -296,8 +296,7 @@ void add_span_outer(double* base, Eigen::Index stride, const double* J, int coun
 
 }  // namespace
 
-void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& G,
-                      Eigen::MatrixXd& H, std::vector<int>& first) {
+void held_rows_weight(const Data& data, const int* rows, int n, Eigen::MatrixXd& G) {
   // nv is small, so each row's span of dofs on its own (Eigen's dynamic outer products cost more
   // in setup than in arithmetic here); the span's whole block, symmetric
   const auto nv = static_cast<int>(data.M.rows());
@@ -308,6 +307,12 @@ void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd&
     add_span_outer(G.data() + s.lo * (nv + 1), nv, data.efc_J.row(r).data() + s.lo, s.count,
                    data.efc_D[r]);
   }
+}
+
+void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& G,
+                      Eigen::MatrixXd& H, std::vector<int>& first) {
+  const auto nv = static_cast<int>(data.M.rows());
+  held_rows_weight(data, rows, n, G);
   H = data.M + G;
   // H's profile: the first column of each row's lower part that is not zero (M's is the row's
   // tree's first dof; the rows join the trees they couple). L L^T keeps it, so the factor and
@@ -344,6 +349,26 @@ void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
   for (int i = nv - 1; i >= 0; --i) {  // L^T x = y: x_i final, it leaves the rows it reaches
     scale_row<true>(X.row(i).data(), L(i, i), cols);
     for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(k, L(i, k), i);
+  }
+}
+
+void solve_settled_factor(const Data& data, Eigen::Ref<RowMatrix> X) {
+  const Eigen::MatrixXd::ConstMapType L(data.work.newton_H.data(), data.work.newton_H.rows(),
+                                        data.work.newton_H.cols());
+  const int* const end = data.work.hessian_envelope.data();  // one past column j's last nonzero
+  const auto nv = static_cast<int>(L.rows());
+  const Eigen::Index cols = X.cols();
+  for (int j = 0; j < nv; ++j) {  // L y = x: y_j, once final, leaves the rows below
+    scale_row<true>(X.row(j).data(), L(j, j), cols);
+    for (int i = j + 1; i < end[j]; ++i) {
+      if (L(i, j) != 0.0) add_scaled_row(X.row(i).data(), -L(i, j), X.row(j).data(), cols);
+    }
+  }
+  for (int i = nv - 1; i >= 0; --i) {  // L^T x = y
+    for (int k = i + 1; k < end[i]; ++k) {
+      if (L(k, i) != 0.0) add_scaled_row(X.row(i).data(), -L(k, i), X.row(k).data(), cols);
+    }
+    scale_row<true>(X.row(i).data(), L(i, i), cols);
   }
 }
 
@@ -683,9 +708,16 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   // M^-1): one solve with H for the qpos, qvel and ctrl columns side by side (row-major, each
   // substitution one row operation), and no product with G. Y's qvel columns are aref's
   // velocity term, -D B J_r.
+  // H's factor: the forward solve's where its active-set rounds settled on these rows (the same
+  // matrix, its pyramids' edges summed in pairs), else made here
   Eigen::MatrixXd& H = w.contact_H;
   Eigen::MatrixXd& G = w.contact_G;  // J_S^T D_S J_S
-  factor_held_rows(data, w.rows.data(), n, G, H, w.contact_H_first);
+  const bool solver_factor = settled_active_set_factor(model, data);
+  if (solver_factor) {
+    held_rows_weight(data, w.rows.data(), n, G);
+  } else {
+    factor_held_rows(data, w.rows.data(), n, G, H, w.contact_H_first);
+  }
   RowMatrix& X = w.right_hand_sides;
   // aref's velocity term: J_S^T (-D_S B_S J_S), which is -B G where the held rows share one B
   // (one solref's: every row of a scene that sets none)
@@ -731,7 +763,11 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
     add_span_outer(X.row(span.lo).data() + nv + span.lo, X.cols(), J + span.lo, span.count,
                    -data.efc_D[r] * data.efc_B[r]);
   }
-  solve_held_rows(H, w.contact_H_first, X);
+  if (solver_factor) {
+    solve_settled_factor(data, X);
+  } else {
+    solve_held_rows(H, w.contact_H_first, X);
+  }
   deriv.dqacc_dq = X.leftCols(nv);
   deriv.dqacc_dv = X.middleCols(nv, nv);
   deriv.dqacc_du = X.middleCols(2 * nv, nu);

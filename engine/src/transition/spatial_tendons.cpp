@@ -193,7 +193,7 @@ void spatial_tendon_change(const Model& model, const Data& data, int t,
 }
 
 void add_pair_product(const Model& model, const double* x, const double* y, const double* a,
-                      double scale, Eigen::Ref<Eigen::VectorXd> out) {
+                      double scale, Eigen::Ref<Eigen::VectorXd, 0, Eigen::InnerStride<>> out) {
   for (int i = 0; i < model.nv; ++i) {
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
       const double s_ij = x[i] * y[j] + y[i] * x[j];  // (x y^T + y x^T)(i, j), symmetric

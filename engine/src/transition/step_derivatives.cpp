@@ -916,16 +916,45 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   Eigen::MatrixXd &tau_q = w.contact_E, &tau_v = w.contact_G;
   polar_derivatives_into(model, data, data.qvel.data(), w.qvel_change.data(),
                          w.qacc_change.data(), data.work.crb, w, tau_q, tau_v);
-  // + d qfrc_constraint (forward's linearised solve), then - the polar form's, in one pass
-  if (w.active_rows > 0) {
-    w.rhs_q = (w.rhs_q + deriv.dconstraint_dq) - tau_q;
-    w.rhs_v = (w.rhs_v + deriv.dconstraint_dv) - tau_v;
-    w.rhs_u.leftCols(model.nu) += deriv.dconstraint_du;
-    w.rhs_u.rightCols(model.na) += deriv.dconstraint_dact;
-  } else {
-    w.rhs_q -= tau_q;
-    w.rhs_v -= tau_v;
+  // rhs + d qfrc_constraint (forward's linearised solve) - the polar form's, written in one pass
+  // straight into the solve's row-major right-hand sides [q v u] (w.rhs_* keep smooth_rhs()'s),
+  // where the terms below add to them
+  RowMatrix& X = w.right_hand_sides;
+  const bool rows = w.active_rows > 0;
+  const Eigen::Index stride = X.cols();
+  for (int c = 0; c < nv; ++c) {
+    const double* q = w.rhs_q.col(c).data();
+    const double* v = w.rhs_v.col(c).data();
+    const double* dq = deriv.dconstraint_dq.col(c).data();
+    const double* dv = deriv.dconstraint_dv.col(c).data();
+    const double* tq = tau_q.col(c).data();
+    const double* tv = tau_v.col(c).data();
+    double* x = X.data() + c;
+    if (rows) {
+      for (int i = 0; i < nv; ++i, x += stride) {
+        x[0] = (q[i] + dq[i]) - tq[i];
+        x[nv] = (v[i] + dv[i]) - tv[i];
+      }
+    } else {
+      for (int i = 0; i < nv; ++i, x += stride) {
+        x[0] = q[i] - tq[i];
+        x[nv] = v[i] - tv[i];
+      }
+    }
   }
+  const int nu = model.nu, na = model.na;
+  for (int i = 0; i < nv; ++i) {
+    double* x = X.row(i).data() + 2 * nv;
+    for (int c = 0; c < nu; ++c) {
+      x[c] = rows ? w.rhs_u(i, c) + deriv.dconstraint_du(i, c) : w.rhs_u(i, c);
+    }
+    for (int c = 0; c < na; ++c) {
+      x[nu + c] = rows ? w.rhs_u(i, nu + c) + deriv.dconstraint_dact(i, c) : w.rhs_u(i, nu + c);
+    }
+  }
+  auto X_q = X.leftCols(nv);
+  auto X_v = X.middleCols(nv, nv);
+  auto X_u = X.rightCols(nu + na);
   // + h dD a, D's actuator part: m^T k m per actuator (kept where M is non-zero, as the step's D
   // keeps it), k = b2 + gain_velocity input, with gain_velocity an affine gain's p2 or a muscle's
   // d gain / d velocity (a function of the length and velocity), input the raw ctrl or the act
@@ -976,7 +1005,7 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       }
     }
     // d k / d input
-    if (gain_velocity != 0.0) w.rhs_u.col(input_column) += (h * gain_velocity) * r;
+    if (gain_velocity != 0.0) X_u.col(input_column) += (h * gain_velocity) * r;
     // a muscle's k moves with the length (gradient m: L = gear q or gear ten_length; a site's
     // its own) and the velocity (gradient m in qvel; in qpos, a turning moment's G^T qvel)
     if (per_length != 0.0 || per_velocity != 0.0) {
@@ -985,8 +1014,8 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
         if (site) dk_dq += per_velocity * w.moment_change.col(col).dot(data.qvel);
         if (spatial) dk_dq += per_velocity * gear * w.tendon_change.col(col).dot(data.qvel);
         const double dk_dv = per_velocity * m[col];
-        if (dk_dq != 0.0) w.rhs_q.col(col) += (h * dk_dq) * r;
-        if (dk_dv != 0.0) w.rhs_v.col(col) += (h * dk_dv) * r;
+        if (dk_dq != 0.0) X_q.col(col) += (h * dk_dq) * r;
+        if (dk_dv != 0.0) X_v.col(col) += (h * dk_dv) * r;
       }
     }
     // a site's moment turning: m k m^T changes by G_c k m^T + m k G_c^T along q_c (G = d m / d q)
@@ -996,7 +1025,7 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       for (int i = 0; i < nv; ++i) m_a += m[i] * w.qacc_step[i];
       for (int col = 0; col < nv; ++col) {
         const double G_a = G.col(col).dot(w.qacc_step);
-        for (int i = 0; i < nv; ++i) w.rhs_q(i, col) += h * k * (G(i, col) * m_a + m[i] * G_a);
+        for (int i = 0; i < nv; ++i) X_q(i, col) += h * k * (G(i, col) * m_a + m[i] * G_a);
       }
     }
     // a spatial tendon's moment turning: P(m k m^T) changes by k P(G_c m^T + m G_c^T),
@@ -1004,7 +1033,7 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
     if (spatial && k != 0.0) {
       for (int col = 0; col < nv; ++col) {
         detail::add_pair_product(model, w.tendon_change.col(col).data(), m, w.qacc_step.data(),
-                                 h * k * gear, w.rhs_q.col(col));
+                                 h * k * gear, X_q.col(col));
       }
     }
   }
@@ -1016,14 +1045,13 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
       detail::spatial_tendon_change(model, data, t, w);
       for (int col = 0; col < nv; ++col) {
         detail::add_pair_product(model, w.tendon_change.col(col).data(), data.ten_J.row(t).data(),
-                                 w.qacc_step.data(), -h * b, w.rhs_q.col(col));
+                                 w.qacc_step.data(), -h * b, X_q.col(col));
       }
     }
   }
 
   // da = K^-1 (...) in place, then Euler's update
-  const RowMatrix& X = solve_side_by_side(
-      w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) { lu_tree_solve_rows(model, w.K_lu, Y); });
+  lu_tree_solve_rows(model, w.K_lu, X);
   assemble_euler(model, data, X.leftCols(nv), X.middleCols(nv, nv), X.middleCols(2 * nv, model.nu),
                  X.rightCols(model.na), deriv);
   if (model.nq != model.nv) euler_turns(model, data, w.qacc_step, deriv);

@@ -123,6 +123,13 @@ RowSpan row_span(const Data& data, int r);
 void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& G,
                       Eigen::MatrixXd& H, std::vector<int>& first);
 
+/// G = J_S^T D_S J_S over the rows rows[0..n) (factor_held_rows()' G alone).
+void held_rows_weight(const Data& data, const int* rows, int n, Eigen::MatrixXd& G);
+
+/// X = H^-1 X, every column, with the forward solve's factor of H where
+/// settled_active_set_factor() says it holds one (the constraint room's data.work.newton_H).
+void solve_settled_factor(const Data& data, Eigen::Ref<RowMatrix> X);
+
 /// X = H^-1 X, every column, with factor_held_rows()' factor L and profile.
 void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
                      Eigen::Ref<RowMatrix> X);
@@ -145,7 +152,7 @@ void spatial_tendon_change(const Model& model, const Data& data, int t,
 /// out += scale P(x y^T + y x^T) a, P keeping the pairs of dofs on one branch (where M is
 /// non-zero, as the implicit step's D keeps its outer products).
 void add_pair_product(const Model& model, const double* x, const double* y, const double* a,
-                      double scale, Eigen::Ref<Eigen::VectorXd> out);
+                      double scale, Eigen::Ref<Eigen::VectorXd, 0, Eigen::InnerStride<>> out);
 
 /// d qacc and d qfrc_constraint with the active set held, every active row (limits and contacts),
 /// from the right-hand sides d f_smooth - d ID in deriv.work.rhs_q, rhs_v, rhs_u (before M^-1;
