@@ -305,8 +305,12 @@ Force polar_net_force(const RigidInertia& I, const Motion& v1, const Motion& v2,
 }
 
 // The forward pass of the polar form, root to leaves, dof by dof as forward_pass() (recursion.hpp)
-// walks a body's segments: each body's velocities w.v (v1) and w.v2, its acceleration w.a and net
-// force w.F, each dof's Sdot at either velocity (w.Sdot, w.Sdot2) and its Psi_ddot (w.Sddot).
+// walks a body's segments: each body's velocity w.v2, its acceleration w.a and net force w.F, each
+// dof's Sdot at v2 (w.Sdot2) and its Psi_ddot (w.Sddot). The velocities at v1 and their Sdot are
+// RNEA's (w.v, w.Sdot, left by rnea_derivatives_into() at v1): the same sums, bit for bit (a
+// segment's sum here starts from +0, which changes only a -0, and no body's velocity is -0: the
+// world's is +0, and a sum is -0 only where both of its terms are). A later segment's velocity
+// at v1 is summed here, as RNEA keeps none.
 // No gravity: it belongs to Q(v1 + v2) and Q(v1), cancelling in P. qdd == nullptr: zero.
 void polar_forward_pass(const Model& model, const Data& data, const double* v1, const double* v2,
                         const double* qdd, Derivatives::Workspace& w) {
@@ -322,10 +326,8 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
       const Motion& S = data.cdof[i];
       const Motion &v1_parent = w.v[parent], &v2_parent = w.v2[parent];
       if (parent > 0) {
-        w.Sdot[i] = cross_motion(v1_parent, S);
         w.Sdot2[i] = cross_motion(v2_parent, S);
       } else {
-        w.Sdot[i].setZero();
         w.Sdot2[i].setZero();
       }
       const Motion& a_parent = w.a[parent];
@@ -333,7 +335,6 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
                    cross_motion(v2_parent, w.Sdot[i]);
       Motion a = a_parent + (w.Sdot[i] * v2[i] + w.Sdot2[i] * v1[i]);
       if (qdd != nullptr) a += S * qdd[i];
-      w.v[b] = v1_parent + S * v1[i];
       w.v2[b] = v2_parent + S * v2[i];
       w.a[b] = a;
       w.F[b] = polar_net_force(data.cinert[b], w.v[b], w.v2[b], a);
@@ -359,10 +360,8 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
         moving = parent > 0 || k > 0;  // the world does not move: nothing before it turns S
       }
       if (moving) {
-        w.Sdot[i] = cross_motion(v1_seg, S);
         w.Sdot2[i] = cross_motion(v2_seg, S);
       } else {
-        w.Sdot[i].setZero();
         w.Sdot2[i].setZero();
       }
       w.Sddot[i] = cross_motion(a, S) + cross_motion(v1_seg, w.Sdot2[i]) +
@@ -372,7 +371,6 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
       seg1 += S * v1[i];
       seg2 += S * v2[i];
     }
-    w.v[b] = vb1 + seg1;
     w.v2[b] = vb2 + seg2;
     w.a[b] = a;
     w.F[b] = polar_net_force(data.cinert[b], w.v[b], w.v2[b], a);

@@ -748,6 +748,7 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   X.rightCols(nu + model.na) = w.rhs_u;  // ctrl, then act
   for (int k = 0; k < n; ++k) {  // J_r's non-zeros lie in its span; y_r's wherever dofs move it
     const int r = w.rows[k];
+    if (one_B && is_contact(data.efc_type[r])) continue;  // nothing more to add
     const double* J = data.efc_J.row(r).data();
     const RowSpan span = row_span(data, r);
     const double* y = Y.row(k).data();

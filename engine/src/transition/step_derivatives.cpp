@@ -782,16 +782,19 @@ void assemble_euler(const Model& model, const Data& data, const Matrix& Dq, cons
   const int nv = model.nv, nu = model.nu, na = model.na;
   const double h = model.opt.timestep;
   Eigen::MatrixXd& A = deriv.A;
-  for (int c = 0; c < nv; ++c) {  // column by column, A = [[pos_q, pos_v], [vel_q, vel_v]]
-    for (int r = 0; r < nv; ++r) {
-      const double identity = r == c ? 1.0 : 0.0;
-      const double vel_q = h * Dq(r, c);
-      const double vel_v = h * Dv(r, c) + identity;
-      A(nv + r, c) = vel_q;
-      A(nv + r, nv + c) = vel_v;
-      A(r, c) = h * vel_q + identity;
-      A(r, nv + c) = h * vel_v;
-    }
+  // column by column, A = [[pos_q, pos_v], [vel_q, vel_v]]; the identity's zeros added too (a
+  // -0 becomes +0, as the sum with the identity's entry makes it), its ones after the column
+  const auto block = [&](int r, int c, double identity) {
+    const double vel_q = h * Dq(r, c);
+    const double vel_v = h * Dv(r, c) + identity;
+    A(nv + r, c) = vel_q;
+    A(nv + r, nv + c) = vel_v;
+    A(r, c) = h * vel_q + identity;
+    A(r, nv + c) = h * vel_v;
+  };
+  for (int c = 0; c < nv; ++c) {
+    for (int r = 0; r < nv; ++r) block(r, c, 0.0);
+    block(c, c, 1.0);
   }
   for (int c = 0; c < nu; ++c) {
     for (int r = 0; r < nv; ++r) {
