@@ -109,16 +109,19 @@ template <bool kTable>
 std::ptrdiff_t climb(const Support& s, const double* dir) {
   std::ptrdiff_t current = 0;
   double best = along(s.hull_vertex(0), dir);
+  [[maybe_unused]] int length = kTable ? s.list_lengths[0].vertex : 0;  // current's list's
   for (bool moved = true; moved;) {
     moved = false;
-    if constexpr (kTable) {  // counted to the list's end; a neighbour's number read if better
+    if constexpr (kTable) {
+      // counted to the list's end; a neighbour's number and list length read if better
       const HullNeighbour* neighbour = s.neighbour_points + s.edge_address[current];
-      const HullNeighbour* const end = neighbour + s.list_lengths[current].vertex;
+      const HullNeighbour* const end = neighbour + length;
       for (; neighbour != end; ++neighbour) {
         const double projection = along(neighbour->point, dir);
         if (projection > best) {
           best = projection;
           current = neighbour->vertex;
+          length = neighbour->length;
           moved = true;
         }
       }
