@@ -239,10 +239,12 @@ enum class GeomType : int {
 };
 
 /// A neighbour in a mesh's hull graph with its point (Model::mesh_hull_neighbours): the hull
-/// vertex's number, -1 at the end of a list, and its vertex in the mesh's frame.
+/// vertex's number, -1 at the end of a list, its vertex in the mesh's frame, and the length of
+/// its own neighbour list (where the climb goes next, read with the point that sent it there).
 struct HullNeighbour {
   double point[3];
   int vertex;
+  int length;
 };
 
 /// Equality constraint types; the numeric values are MuJoCo's mjtEq (MuJoCo 2.2.2 refuses its
@@ -745,8 +747,8 @@ struct ModelFields {
   /// collision stage tests two geoms' boxes before it runs MPR on them.
   ArenaArray<std::array<double, 6>> geom_aabb;
   /// (nmeshgraph) the hull graphs' neighbour lists with their points: at each neighbour's place
-  /// in mesh_graph (and each list's end, vertex -1), that hull vertex and its point from
-  /// mesh_vert, so that the support function's climb reads a neighbour's point in one step; at
+  /// in mesh_graph (and each list's end, vertex -1), that hull vertex, its point from mesh_vert
+  /// and its list's length, so that the support function's climb reads a neighbour in one step; at
   /// the place of hull vertex h's list address (graph + 2 + h), vertex is the length of h's list
   /// (so that the climb counts its way through it); the graphs' other places unused
   ArenaArray<HullNeighbour> mesh_hull_neighbours;

@@ -102,23 +102,29 @@ double along(const double* vertex, const double* dir) {
 
 /// The end of the climb over the hull's graph from its first vertex, each round through the
 /// neighbours of the vertex it started from, moving to every better one (MuJoCo's order, so that
-/// among equal projections the same vertex is found). kTable: each neighbour's point read beside
-/// its number (Model::mesh_hull_neighbours), else through the hull's vertex list: the same
-/// numbers in the same order.
+/// among equal projections the same vertex is found), and its point (`point`). kTable: each
+/// neighbour's point read beside its number (Model::mesh_hull_neighbours, the point there
+/// copied from mesh_vert), else through the hull's vertex list: the same numbers in the same
+/// order.
 template <bool kTable>
-std::ptrdiff_t climb(const Support& s, const double* dir) {
+std::ptrdiff_t climb(const Support& s, const double* dir, const double*& point) {
   std::ptrdiff_t current = 0;
-  double best = along(s.hull_vertex(0), dir);
+  point = s.hull_vertex(0);
+  double best = along(point, dir);
+  [[maybe_unused]] int length = kTable ? s.list_lengths[0].vertex : 0;  // current's list's
   for (bool moved = true; moved;) {
     moved = false;
-    if constexpr (kTable) {  // counted to the list's end; a neighbour's number read if better
+    if constexpr (kTable) {
+      // counted to the list's end; a neighbour's number and list length read if better
       const HullNeighbour* neighbour = s.neighbour_points + s.edge_address[current];
-      const HullNeighbour* const end = neighbour + s.list_lengths[current].vertex;
+      const HullNeighbour* const end = neighbour + length;
       for (; neighbour != end; ++neighbour) {
         const double projection = along(neighbour->point, dir);
         if (projection > best) {
           best = projection;
           current = neighbour->vertex;
+          length = neighbour->length;
+          point = neighbour->point;
           moved = true;
         }
       }
@@ -128,6 +134,7 @@ std::ptrdiff_t climb(const Support& s, const double* dir) {
         if (projection > best) {
           best = projection;
           current = *e;
+          point = s.hull_vertex(*e);
           moved = true;
         }
       }
@@ -139,8 +146,8 @@ std::ptrdiff_t climb(const Support& s, const double* dir) {
 /// The mesh vertex farthest along dir (in the mesh's frame): the first of the best when every
 /// vertex is visited; the end of the climb from the hull's first vertex otherwise. Records in
 /// s.found its index as MuJoCo does (a mesh vertex without a graph, a hull vertex with one) and
-/// returns the mesh vertex, -1 if none.
-std::ptrdiff_t mesh_support_vertex(Support& s, const double* dir) {
+/// returns its point, null if none.
+const double* mesh_support_point(Support& s, const double* dir) {
   if (!s.edge_address) {
     double best = -1e10;
     int best_vertex = -1;
@@ -152,11 +159,13 @@ std::ptrdiff_t mesh_support_vertex(Support& s, const double* dir) {
       }
     }
     s.found = best_vertex;
-    return best_vertex;
+    return best_vertex < 0 ? nullptr : s.vertex(best_vertex);
   }
-  const std::ptrdiff_t current = s.neighbour_points ? climb<true>(s, dir) : climb<false>(s, dir);
+  const double* point = nullptr;
+  const std::ptrdiff_t current =
+      s.neighbour_points ? climb<true>(s, dir, point) : climb<false>(s, dir, point);
   s.found = static_cast<int>(current);
-  return s.vertex_index[current];
+  return point;
 }
 
 /// The geom's support point `out` in the world along world direction `world_dir`, grown by
@@ -196,8 +205,8 @@ void support_point(Support& s, const double* world_dir, double* out) {
   } else if constexpr (kType == GeomType::kBox) {
     for (int i = 0; i < 3; ++i) res[i] = sign_of(dir[i]) * size[i];
   } else if constexpr (kType == GeomType::kMesh) {
-    const std::ptrdiff_t v = mesh_support_vertex(s, dir);
-    for (int i = 0; i < 3; ++i) res[i] = v < 0 ? 0.0 : s.vertex(v)[i];
+    const double* point = mesh_support_point(s, dir);
+    for (int i = 0; i < 3; ++i) res[i] = point ? point[i] : 0.0;
   } else {
     res[0] = res[1] = res[2] = 0;  // planes and height fields have no support function
   }

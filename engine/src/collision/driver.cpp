@@ -793,11 +793,18 @@ void build_collision_constants(Model& model) {
         const int next = neighbours[e];
         HullNeighbour& entry = table[e];
         entry.vertex = next;
+        entry.length = 0;
         for (int i = 0; i < 3; ++i) entry.point[i] = next >= 0 ? vert[vertex_index[next]][i] : 0.0;
         if (next < 0) {
-          lengths[h] = HullNeighbour{{0.0, 0.0, 0.0}, e - edge_address[h]};
+          lengths[h] = HullNeighbour{{0.0, 0.0, 0.0}, e - edge_address[h], 0};
           break;
         }
+      }
+    }
+    // each neighbour's own list length, beside its number
+    for (int h = 0; h < numvert; ++h) {
+      for (int e = edge_address[h]; neighbours[e] >= 0; ++e) {
+        table[e].length = lengths[neighbours[e]].vertex;
       }
     }
   }
