@@ -125,6 +125,11 @@ void add_frame_hessian(Data& data, int i, const double* W, Eigen::Ref<Eigen::Mat
 /// is the one-sided rows' unique solution.
 bool active_set_round(Data& data, const int* active);
 
+/// Whether solve_constraint() solves data's rows by active sets (solve_rows' choice): one-sided
+/// rows only, more of them than dofs, and an exact solve asked for (not PGS, nor CG stopped at
+/// a tolerance). Where the rounds do not settle, the pivoting finishes instead.
+bool solved_by_active_sets(const Model& model, const Data& data);
+
 /// Whether data.work.newton_H holds, after forward(), the Cholesky factor L of M + J_S^T D_S J_S
 /// for the rows S its solve left active (L in the lower triangle, column j's nonzeros ending
 /// before data.work.hessian_envelope[j]): the active-set solve's last round settled on S (not

@@ -937,13 +937,14 @@ bool active_set_round(Data& data, const int* active) {
   return true;
 }
 
-bool settled_active_set_factor(const Model& model, const Data& data) {
-  // solve_rows' choice of the active-set solve: one-sided rows only, more of them than dofs
+bool solved_by_active_sets(const Model& model, const Data& data) {
   const Options& opt = model.opt;
-  if (opt.solver == Solver::kPGS || (opt.solver == Solver::kCG && opt.tolerance > 0) ||
-      opt.cone == Cone::kElliptic || data.ne + data.nf > 0 || data.nefc <= model.nv) {
-    return false;
-  }
+  return opt.solver != Solver::kPGS && !(opt.solver == Solver::kCG && opt.tolerance > 0) &&
+         opt.cone != Cone::kElliptic && data.ne + data.nf == 0 && data.nefc > model.nv;
+}
+
+bool settled_active_set_factor(const Model& model, const Data& data) {
+  if (!solved_by_active_sets(model, data)) return false;
   // its last round settled: qacc is that round's a, each row's weight is what active_set_round
   // gave it (D pushing, 0 not) and each force what solve_active_set made of its jar; the
   // pivoting, which takes over when the rounds do not settle, leaves its own forces in lcp_f
@@ -1176,7 +1177,7 @@ void solve_rows(const Model& model, Data& data) {
   // in the smaller space: rows (pivoting on A, nefc x nefc) when there are no more rows than
   // dofs (a limit or two on an arm), dofs (active sets on H, nv x nv) otherwise (a box resting
   // on four corners has 16 pyramid rows and 6 dofs)
-  if (data.nefc > model.nv && solve_active_set(data)) return;
+  if (solved_by_active_sets(model, data) && solve_active_set(data)) return;
   solve_by_pivoting(model, data);
 }
 

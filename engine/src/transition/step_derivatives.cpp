@@ -691,14 +691,6 @@ bool same_active_set(const Model& model, const Data& data, const std::vector<int
   return walked && k == set.size();
 }
 
-// Whether the rows of `data` are solved by the active-set solve (solve_rows' choice in the
-// constraint room): one-sided rows only, more of them than dofs, and an exact solve asked for.
-bool solved_by_active_sets(const Model& model, const Data& data) {
-  const Options& opt = model.opt;
-  return opt.solver != Solver::kPGS && !(opt.solver == Solver::kCG && opt.tolerance > 0) &&
-         opt.cone != Cone::kElliptic && data.ne + data.nf == 0 && data.nefc > model.nv;
-}
-
 // Whether the active set at `next` (forward_until_solve() run, the rows not yet solved) is
 // `set` (record_active_set()'s). Where the active-set solve would solve next's rows and the
 // start's rows each pushed or not, the start's states are tried at next: written into
