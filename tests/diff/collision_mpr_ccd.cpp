@@ -280,6 +280,8 @@ TEST_CASE("MPR: lever's search and libccd's ccdMPRPenetration, bit for bit on ev
   Geoms geoms;
   std::mt19937_64 rng(20260);
   Tally tally;
+  // MuJoCo's default mpr_tolerance and mpr_iterations (the search's options, not a bound: every
+  // comparison below is bit for bit)
   const ConvexOptions options{1e-6, 50, false};
   const Mat3 identity = Mat3::Identity();
   for (int i = 0; i < geoms.count(); ++i) {
@@ -309,6 +311,7 @@ TEST_CASE("MPR: lever's search and libccd's ccdMPRPenetration, bit for bit on ev
             b.pos = a.pos + along * mid;
             (run_ccd(a, b, margin, options).found ? inside : outside) = mid;
           }
+          // the two sides of the boundary, and 1e-9 m within and beyond it (placements)
           for (const double at : {inside, outside, 0.5 * (inside + outside), inside - 1e-9,
                                   outside + 1e-9}) {
             b.pos = a.pos + along * at;
