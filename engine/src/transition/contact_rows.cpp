@@ -713,30 +713,35 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   Eigen::MatrixXd& H = w.contact_H;
   Eigen::MatrixXd& G = w.contact_G;  // J_S^T D_S J_S
   const bool solver_factor = settled_active_set_factor(model, data);
-  if (solver_factor) {
-    held_rows_weight(data, w.rows.data(), n, G);
-  } else {
-    factor_held_rows(data, w.rows.data(), n, G, H, w.contact_H_first);
-  }
   RowMatrix& X = w.right_hand_sides;
   // aref's velocity term: J_S^T (-D_S B_S J_S), which is -B G where the held rows share one B
-  // (one solref's: every row of a scene that sets none)
+  // (one solref's: every row of a scene that sets none). With the solver's factor, G is not
+  // formed: H^-1 (-B G) = -B H^-1 (H - M) = H^-1 (B M) - B I, so the qvel columns' right-hand
+  // side takes + B M and the solve's answer - B on its diagonal.
   bool one_B = true;
   for (int k = 1; k < n; ++k) one_B = one_B && data.efc_B[w.rows[k]] == data.efc_B[w.rows[0]];
-  // [rhs_q + E, rhs_v (- B G), rhs_u] into X's rows in one pass down the inputs' columns
-  const bool minus_BG = n > 0 && one_B;
-  const double B = minus_BG ? data.efc_B[w.rows[0]] : 0.0;
+  const bool velocity_term = n > 0 && one_B;
+  const double B = velocity_term ? data.efc_B[w.rows[0]] : 0.0;
+  const double* weight = data.M.data();  // the qvel columns' B-weighted matrix: + B M, or - B G
+  double sign = 1.0;
+  if (!solver_factor) {
+    factor_held_rows(data, w.rows.data(), n, G, H, w.contact_H_first);
+    weight = G.data();
+    sign = -1.0;
+  }
+  const double Bs = sign * B;
+  // [rhs_q + E, rhs_v +- B (M or G), rhs_u] into X's rows in one pass down the inputs' columns
   const Eigen::Index stride = X.cols();
   for (int c = 0; c < nv; ++c) {
     const double* q = w.rhs_q.col(c).data();
     const double* e = E.col(c).data();
     const double* v = w.rhs_v.col(c).data();
-    const double* g = G.col(c).data();
+    const double* g = weight + static_cast<std::ptrdiff_t>(c) * nv;  // both nv x nv, by columns
     double* x = X.data() + c;
-    if (minus_BG) {
+    if (velocity_term) {
       for (int i = 0; i < nv; ++i, x += stride) {
         x[0] = q[i] + e[i];
-        x[nv] = v[i] - B * g[i];
+        x[nv] = v[i] + Bs * g[i];
       }
     } else {
       for (int i = 0; i < nv; ++i, x += stride) {
@@ -766,6 +771,9 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   }
   if (solver_factor) {
     solve_settled_factor(data, X);
+    if (velocity_term) {
+      for (int i = 0; i < nv; ++i) X(i, nv + i) -= B;
+    }
   } else {
     solve_held_rows(H, w.contact_H_first, X);
   }
