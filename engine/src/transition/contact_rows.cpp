@@ -335,31 +335,35 @@ void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd&
 }
 
 void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
-                     Eigen::Ref<RowMatrix> X) {
+                     Eigen::Ref<RowMatrix> X, double* diagonal_inverse) {
   const auto nv = static_cast<int>(L.rows());
   const Eigen::Index cols = X.cols();
   // one row operation over every column: y_i -= L(i, k) y_k
   const auto subtract = [&](int i, double a, int k) {  // -a x_k added is a x_k taken, to the bit
     add_scaled_row(X.row(i).data(), -a, X.row(k).data(), cols);
   };
+  // each row scaled by 1 / L(i, i), once per row: tens of columns a row, where a division costs
+  // several multiplications' time
+  for (int i = 0; i < nv; ++i) diagonal_inverse[i] = 1.0 / L(i, i);
   for (int i = 0; i < nv; ++i) {  // L y = x
     for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(i, L(i, k), k);
-    scale_row<true>(X.row(i).data(), L(i, i), cols);
+    scale_row(X.row(i).data(), diagonal_inverse[i], cols);
   }
   for (int i = nv - 1; i >= 0; --i) {  // L^T x = y: x_i final, it leaves the rows it reaches
-    scale_row<true>(X.row(i).data(), L(i, i), cols);
+    scale_row(X.row(i).data(), diagonal_inverse[i], cols);
     for (int k = first[static_cast<std::size_t>(i)]; k < i; ++k) subtract(k, L(i, k), i);
   }
 }
 
-void solve_settled_factor(const Data& data, Eigen::Ref<RowMatrix> X) {
+void solve_settled_factor(const Data& data, Eigen::Ref<RowMatrix> X, double* diagonal_inverse) {
   const Eigen::MatrixXd::ConstMapType L(data.work.newton_H.data(), data.work.newton_H.rows(),
                                         data.work.newton_H.cols());
   const int* const end = data.work.hessian_envelope.data();  // one past column j's last nonzero
   const auto nv = static_cast<int>(L.rows());
   const Eigen::Index cols = X.cols();
+  for (int j = 0; j < nv; ++j) diagonal_inverse[j] = 1.0 / L(j, j);  // as solve_held_rows()
   for (int j = 0; j < nv; ++j) {  // L y = x: y_j, once final, leaves the rows below
-    scale_row<true>(X.row(j).data(), L(j, j), cols);
+    scale_row(X.row(j).data(), diagonal_inverse[j], cols);
     for (int i = j + 1; i < end[j]; ++i) {
       if (L(i, j) != 0.0) add_scaled_row(X.row(i).data(), -L(i, j), X.row(j).data(), cols);
     }
@@ -368,7 +372,7 @@ void solve_settled_factor(const Data& data, Eigen::Ref<RowMatrix> X) {
     for (int k = i + 1; k < end[i]; ++k) {
       if (L(k, i) != 0.0) add_scaled_row(X.row(i).data(), -L(k, i), X.row(k).data(), cols);
     }
-    scale_row<true>(X.row(i).data(), L(i, i), cols);
+    scale_row(X.row(i).data(), diagonal_inverse[i], cols);
   }
 }
 
@@ -770,12 +774,12 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
                    -data.efc_D[r] * data.efc_B[r]);
   }
   if (solver_factor) {
-    solve_settled_factor(data, X);
+    solve_settled_factor(data, X, w.col.data());
     if (velocity_term) {
       for (int i = 0; i < nv; ++i) X(i, nv + i) -= B;
     }
   } else {
-    solve_held_rows(H, w.contact_H_first, X);
+    solve_held_rows(H, w.contact_H_first, X, w.col.data());
   }
   deriv.dqacc_dq = X.leftCols(nv);
   deriv.dqacc_dv = X.middleCols(nv, nv);

@@ -541,7 +541,7 @@ void ltdl_solve_rows(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>
     }
   }
   for (int k = 0; k < model.nv; ++k) {  // D^-1
-    detail::scale_row<false>(X.row(k).data(), diag_inverse[k], n);
+    detail::scale_row(X.row(k).data(), diag_inverse[k], n);
   }
   for (int k = 0; k < model.nv; ++k) {                             // L^-1, root to leaves
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
@@ -550,9 +550,13 @@ void ltdl_solve_rows(const Model& model, const Eigen::Ref<const Eigen::MatrixXd>
   }
 }
 
-// X = K^-1 X with factor_lu_tree()'s factor K = (U + I) L, as solve_lu_tree does one column.
-void lu_tree_solve_rows(const Model& model, const Eigen::MatrixXd& LU, RowMatrix& X) {
+// X = K^-1 X with factor_lu_tree()'s factor K = (U + I) L, as solve_lu_tree does one column but
+// for L's diagonal, each row scaled by its reciprocal (diagonal_inverse: nv numbers of scratch):
+// tens of columns a row, where a division costs several multiplications' time.
+void lu_tree_solve_rows(const Model& model, const Eigen::MatrixXd& LU, RowMatrix& X,
+                        double* diagonal_inverse) {
   const Eigen::Index n = X.cols();
+  for (int k = 0; k < model.nv; ++k) diagonal_inverse[k] = 1.0 / LU(k, k);
   for (int k = model.nv - 1; k >= 0; --k) {  // (U + I)^-1, leaves to root
     for (int i = model.dof_parentid[k]; i >= 0; i = model.dof_parentid[i]) {
       detail::add_scaled_row(X.row(i).data(), -LU(i, k), X.row(k).data(), n);
@@ -562,7 +566,7 @@ void lu_tree_solve_rows(const Model& model, const Eigen::MatrixXd& LU, RowMatrix
     for (int j = model.dof_parentid[k]; j >= 0; j = model.dof_parentid[j]) {
       detail::add_scaled_row(X.row(k).data(), -LU(k, j), X.row(j).data(), n);
     }
-    detail::scale_row<true>(X.row(k).data(), LU(k, k), n);
+    detail::scale_row(X.row(k).data(), diagonal_inverse[k], n);
   }
 }
 
@@ -1046,7 +1050,7 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   }
 
   // da = K^-1 (...) in place, then Euler's update
-  lu_tree_solve_rows(model, w.K_lu, X);
+  lu_tree_solve_rows(model, w.K_lu, X, w.col.data());
   assemble_euler(model, data, X.leftCols(nv), X.middleCols(nv, nv), X.middleCols(2 * nv, model.nu),
                  X.rightCols(model.na), deriv);
   if (model.nq != model.nv) euler_turns(model, data, w.qacc_step, deriv);
@@ -1312,7 +1316,7 @@ void applied_force_derivatives(const Model& model, const Data& data, Derivatives
   detail::factor_held_rows(data, w.rows.data(), n, w.contact_G, w.contact_H, w.contact_H_first);
   auto X = w.right_hand_sides.leftCols(model.nv);
   X.setIdentity();
-  detail::solve_held_rows(w.contact_H, w.contact_H_first, X);
+  detail::solve_held_rows(w.contact_H, w.contact_H_first, X, w.col.data());
   deriv.dqacc_dapplied = X;
 }
 

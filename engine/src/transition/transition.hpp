@@ -43,8 +43,8 @@ inline void add_scaled_row(double* __restrict y, double a, const double* __restr
   for (; c < n; ++c) y[c] += a * x[c];
 }
 
-/// x /= d, or x *= d, over n numbers: a solve's diagonal, as add_scaled_row() two numbers a pair.
-template <bool kDivide>
+/// x *= d over n numbers: a solve's diagonal (d its reciprocal), as add_scaled_row() two numbers a
+/// pair.
 inline void scale_row(double* x, double d, Eigen::Index n) {
   using Pair = double __attribute__((vector_size(16)));
   const Pair scale = {d, d};
@@ -52,14 +52,10 @@ inline void scale_row(double* x, double d, Eigen::Index n) {
   for (; c + 2 <= n; c += 2) {
     Pair p;
     __builtin_memcpy(&p, x + c, sizeof(Pair));
-    if constexpr (kDivide) {
-      p /= scale;
-    } else {
-      p *= scale;
-    }
+    p *= scale;
     __builtin_memcpy(x + c, &p, sizeof(Pair));
   }
-  if (c < n) x[c] = kDivide ? x[c] / d : x[c] * d;
+  if (c < n) x[c] *= d;
 }
 
 /// Whether contact_change() covers a pair of geom types (in MuJoCo's order, a before b).
@@ -127,12 +123,14 @@ void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd&
 void held_rows_weight(const Data& data, const int* rows, int n, Eigen::MatrixXd& G);
 
 /// X = H^-1 X, every column, with the forward solve's factor of H where
-/// settled_active_set_factor() says it holds one (the constraint room's data.work.newton_H).
-void solve_settled_factor(const Data& data, Eigen::Ref<RowMatrix> X);
+/// settled_active_set_factor() says it holds one (the constraint room's data.work.newton_H);
+/// diagonal_inverse: nv numbers of scratch (the factor's 1 / L(j, j)).
+void solve_settled_factor(const Data& data, Eigen::Ref<RowMatrix> X, double* diagonal_inverse);
 
-/// X = H^-1 X, every column, with factor_held_rows()' factor L and profile.
+/// X = H^-1 X, every column, with factor_held_rows()' factor L and profile; diagonal_inverse: nv
+/// numbers of scratch (the factor's 1 / L(i, i)).
 void solve_held_rows(const Eigen::MatrixXd& L, const std::vector<int>& first,
-                     Eigen::Ref<RowMatrix> X);
+                     Eigen::Ref<RowMatrix> X, double* diagonal_inverse);
 
 /// A connect's (3) or weld's (6) rows, equality constraint e's, at rows w.rows[first_k ...]:
 /// their terms of Y (qpos columns: D (d aref - dR f - dJ qacc)) and of E (dJ^T f), as the
