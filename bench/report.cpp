@@ -719,7 +719,7 @@ void explain_missed_forward(std::ostream& out, const Instructions& counts) {
 }
 
 // a time ratio missed where the instruction ratio is met: for a short call, the run's noise; for
-// a long one (microseconds, whose median is steady), time that instructions do not count
+// a long one (microseconds), the time per instruction beside its peer's, and what a count misses
 void explain_missed_by_time_alone(std::ostream& out, const std::vector<Target>& targets) {
   constexpr double kShortCallNs = 1000.0;
   for (const Target& t : targets) {
@@ -734,11 +734,15 @@ void explain_missed_by_time_alone(std::ostream& out, const std::vector<Target>& 
           << "than that from run to run on this machine (see the ± columns below); the "
           << "instruction count is exact.\n";
     } else {
-      out << "the call takes " << fmt("%.1f", *t.time.numerator / 1000.0)
-          << " µs, long enough for its median to hold from run to run, and spends more of its "
-          << "time than its peer per instruction: in memory and branches, which an instruction "
-          << "count does not see (callgrind's cache and branch simulation, "
-          << "`valgrind --tool=callgrind --cache-sim=yes --branch-sim=yes`, shows where).\n";
+      // time per thousand instructions, the call's and its peer's
+      const double call_rate = *t.time.numerator / *t.instructions.numerator * 1000.0;
+      const double peer_rate = *t.time.denominator / *t.instructions.denominator * 1000.0;
+      out << "the call takes " << fmt("%.1f", *t.time.numerator / 1000.0) << " µs, "
+          << fmt("%.0f", call_rate) << " ns per thousand instructions against its peer's "
+          << fmt("%.0f", peer_rate) << ": an instruction count weighs a division, a cache miss "
+          << "or a mispredicted branch as one instruction, and the median moves from run to run "
+          << "too (the ± columns below). callgrind's cache and branch simulation "
+          << "(`valgrind --tool=callgrind --cache-sim=yes --branch-sim=yes`) shows where.\n";
     }
   }
 }
