@@ -43,7 +43,8 @@ void inertia_columns(const Model& model, const Data& data, std::span<const Rigid
 
 /// Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd) into dtau_dq and
 /// dtau_dv (nullptr: d / d q alone), given the subtree inertias IC and w.IC_S; leaves the subtree
-/// sums of C at qd in w.CC.
+/// sums of C at qd in w.CC, their S_i . CC in w.CCt_S and each body's momentum at qd in
+/// w.momentum.
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, std::span<const RigidInertia> IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
@@ -51,9 +52,10 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
 
 /// The derivatives of RNEA's velocity product in its polar form, 2 Q(v1, v2) (rnea = Q(qd, qd) +
 /// L(qdd, gravity)), plus L(qdd) without gravity (qdd nullptr: none): d / d qpos into dtau_dq and
-/// d / d v1 (RNEA's d tau / d qd at v2) into dtau_dv2. Reads w.CC, the subtree sums of C at v1,
-/// and w.v and w.Sdot, the bodies' velocities at v1 and their dofs' Sdot, that
-/// rnea_derivatives_into() at v1 (and this qpos) left; given IC and w.IC_S as it is. One pass
+/// d / d v1 (RNEA's d tau / d qd at v2) into dtau_dv2. Reads w.CC and w.CCt_S, the subtree sums
+/// of C at v1 and their S_i . CC, and w.v, w.momentum and w.Sdot, the bodies' velocities and
+/// momenta at v1 and their dofs' Sdot, that rnea_derivatives_into() at v1 (and this qpos) left;
+/// given IC and w.IC_S as it is. One pass
 /// where the polarisation identity 2 Q(v1, v2) = (Q(v1 + s v2) - Q(v1 - s v2)) / (2 s) takes two.
 void polar_derivatives_into(const Model& model, const Data& data, const double* v1,
                             const double* v2, const double* qdd, std::span<const RigidInertia> IC,

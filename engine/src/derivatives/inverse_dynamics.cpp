@@ -108,7 +108,11 @@ using detail::rotation_block;
 // and [p] = m[u] - [h][w] + [w][h] (as [a x b] = [a][b] - [b][a]) cancels the right column, so
 //   C = [[S - [n], 0], [-2[p], 0]],   S = [w]J - J[w] - [u][h] - [h][u].
 // S is symmetric: with P = [w]J, J[w] = -P^T; and [a][b] = b a^T - (a.b) 1.
-VelocityCoupling velocity_coupling(const RigidInertia& I, const Motion& v, const Force& momentum) {
+// (Inlined into both of its callers, RNEA's and the polar form's body passes: a call returns C
+// through memory.)
+[[gnu::always_inline]] inline VelocityCoupling velocity_coupling(const RigidInertia& I,
+                                                                 const Motion& v,
+                                                                 const Force& momentum) {
   const Eigen::Vector3d w = v.head<3>(), u = v.tail<3>();
   const Eigen::Matrix3d& J = I.I;
   const Eigen::Vector3d& h = I.h;
@@ -136,14 +140,26 @@ VelocityCoupling velocity_coupling(const RigidInertia& I, const Motion& v, const
   return C;
 }
 
-// The body pass, after the forward pass gave each body's v: its velocity coupling C into CC (their
-// subtree sums come next). The net force is the forward pass's (net_force, recursion.hpp); the
-// subtree inertias IC do not depend on the velocity: crba()'s composites (subtree_inertias()).
+// The body pass, after the forward pass gave each body's v: its momentum I v into `momentum` (the
+// polar form's net force reads it again) and its velocity coupling C into CC (their subtree sums
+// come next). The net force is the forward pass's (net_force, recursion.hpp); the subtree
+// inertias IC do not depend on the velocity: crba()'s composites (subtree_inertias()).
 void body_couplings(const Model& model, const Data& data, std::span<const Motion> v,
-                    std::span<VelocityCoupling> CC) {
+                    std::span<Force> momentum, std::span<VelocityCoupling> CC) {
   for (int b = 1; b < model.nbody; ++b) {
     const RigidInertia& I = data.cinert[b];
-    CC[b] = velocity_coupling(I, v[b], I * v[b]);
+    momentum[b] = I * v[b];
+    CC[b] = velocity_coupling(I, v[b], momentum[b]);
+  }
+}
+
+// S_i . CC x of each dof i (CC its body's subtree sum), x's angular part (C's linear columns are
+// zero), which every pair of the columns reads: formed once per dof, and RNEA's once for both
+// passes of the implicit step (the polar form's coupling at v1 is RNEA's).
+void transposed_couplings(const Model& model, const Data& data,
+                          std::span<const VelocityCoupling> CC, std::span<Eigen::Vector3d> CCt_S) {
+  for (int i = 0; i < model.nv; ++i) {
+    CCt_S[i] = CC[model.dof_bodyid[i]].transpose_times(data.cdof[i]);
   }
 }
 
@@ -151,10 +167,12 @@ void body_couplings(const Model& model, const Data& data, std::span<const Motion
 // above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
 // IC_S: inertia_columns() at this qpos.
 
-// A velocity coupling's term: the subtree sums CC of C at one velocity, with the Sdot of each dof
-// at a velocity (the same one for RNEA; the other for the polar form below).
+// A velocity coupling's term: the subtree sums CC of C at one velocity and their S_i . CC
+// (transposed_couplings()), with the Sdot of each dof at a velocity (the same one for RNEA; the
+// other for the polar form below).
 struct CouplingTerm {
   std::span<const VelocityCoupling> CC;
+  std::span<const Eigen::Vector3d> CCt_S;
   std::span<const Motion> Sdot;
 };
 
@@ -167,11 +185,6 @@ void columns(const Model& model, const Data& data, std::span<const Motion> Sddot
              std::span<const Force> F, std::span<const RigidInertia> ICs,
              std::span<const Force> IC_S, const std::array<CouplingTerm, Terms>& couplings,
              Eigen::MatrixXd& dtau_dq, const CouplingTerm& velocity, Eigen::MatrixXd* dtau_dv) {
-  std::size_t velocity_term = 0;  // the term whose CC the velocity's is
-  while (velocity_term + 1 < Terms &&
-         couplings[velocity_term].CC.data() != velocity.CC.data()) {
-    ++velocity_term;
-  }
   dtau_dq.setZero();
   if (dtau_dv != nullptr) dtau_dv->setZero();
   for (int i = 0; i < model.nv; ++i) {
@@ -180,7 +193,8 @@ void columns(const Model& model, const Data& data, std::span<const Motion> Sddot
     const RigidInertia& IC = ICs[b];
     const Force& IC_Si = IC_S[i];  // IC symmetric: S_i . IC x
     std::array<Eigen::Vector3d, Terms> CCt_Si;  // S_i . CC x (x's angular part)
-    for (std::size_t t = 0; t < Terms; ++t) CCt_Si[t] = couplings[t].CC[b].transpose_times(Si);
+    for (std::size_t t = 0; t < Terms; ++t) CCt_Si[t] = couplings[t].CCt_S[i];
+    const Eigen::Vector3d CCt_Si_velocity = velocity.CCt_S[i];  // held: dv's stores may alias it
     // d / d q
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
       double sum = IC_Si.dot(Sddot[j]);
@@ -201,7 +215,7 @@ void columns(const Model& model, const Data& data, std::span<const Motion> Sddot
     Eigen::MatrixXd& dv = *dtau_dv;
     const std::span<const Motion> Sdot = velocity.Sdot;
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si[velocity_term].dot(data.cdof[j].head<3>());
+      dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si_velocity.dot(data.cdof[j].head<3>());
     }
     const Force Xv = 2 * (IC * Sdot[i]) + velocity.CC[b] * Si;
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
@@ -296,17 +310,23 @@ void segment_velocity_columns(const Model& model, const Data& data, const double
 // and d tau / d q's coupling term C Sdot becomes C(v1) Sdot^2 + C(v2) Sdot^1. Its derivative in
 // v1 is RNEA's d tau / d qd at v2 (d Q(v1) / d v1 = 2 Q(v1, .)).
 
-// I a + v1 x* I v2 + v2 x* I v1: the polar form of net_force()'s v x* I v, with I a beside it.
-Force polar_net_force(const RigidInertia& I, const Motion& v1, const Motion& v2, const Motion& a) {
+// Body b's net force I a + v1 x* I v2 + v2 x* I v1 (the polar form of net_force()'s v x* I v,
+// with I a beside it) into w.F and its velocity coupling at v2 into w.CC2, once the forward pass
+// has its velocities and a: I v2 formed once for both, I v1 RNEA's (w.momentum, body_couplings()).
+void polar_body(const Data& data, int b, const Motion& a, Derivatives::Workspace& w) {
+  const RigidInertia& I = data.cinert[b];
+  const Force momentum2 = I * w.v2[b];
   Force f = I * a;
-  f += cross_force(v1, I * v2);
-  f += cross_force(v2, I * v1);
-  return f;
+  f += cross_force(w.v[b], momentum2);
+  f += cross_force(w.v2[b], w.momentum[b]);
+  w.F[b] = f;
+  w.CC2[b] = velocity_coupling(I, w.v2[b], momentum2);
 }
 
 // The forward pass of the polar form, root to leaves, dof by dof as forward_pass() (recursion.hpp)
-// walks a body's segments: each body's velocity w.v2, its acceleration w.a and net force w.F, each
-// dof's Sdot at v2 (w.Sdot2) and its Psi_ddot (w.Sddot). The velocities at v1 and their Sdot are
+// walks a body's segments: each body's velocity w.v2, its acceleration w.a, net force w.F and
+// velocity coupling at v2 w.CC2 (polar_body()), each dof's Sdot at v2 (w.Sdot2) and its Psi_ddot
+// (w.Sddot). The velocities at v1 and their Sdot are
 // RNEA's (w.v, w.Sdot, left by rnea_derivatives_into() at v1): the same sums, bit for bit (a
 // segment's sum here starts from +0, which changes only a -0, and no body's velocity is -0: the
 // world's is +0, and a sum is -0 only where both of its terms are). A later segment's velocity
@@ -337,7 +357,7 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
       if (qdd != nullptr) a += S * qdd[i];
       w.v2[b] = v2_parent + S * v2[i];
       w.a[b] = a;
-      w.F[b] = polar_net_force(data.cinert[b], w.v[b], w.v2[b], a);
+      polar_body(data, b, a, w);
       continue;
     }
     Motion vb1 = w.v[parent], vb2 = w.v2[parent];
@@ -373,7 +393,7 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
     }
     w.v2[b] = vb2 + seg2;
     w.a[b] = a;
-    w.F[b] = polar_net_force(data.cinert[b], w.v[b], w.v2[b], a);
+    polar_body(data, b, a, w);
   }
 }
 
@@ -406,9 +426,10 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
   }
   // leaves to root: the composites of f and C over each subtree (RNEA's backward pass)
   sum_over_subtrees<Force>(model, w.F);
-  body_couplings(model, data, w.v, w.CC);
+  body_couplings(model, data, w.v, w.momentum, w.CC);
   sum_over_subtrees<VelocityCoupling>(model, w.CC);
-  const CouplingTerm at_qd{w.CC, w.Sdot};
+  transposed_couplings(model, data, w.CC, w.CCt_S);
+  const CouplingTerm at_qd{w.CC, w.CCt_S, w.Sdot};
   columns<1>(model, data, w.Sddot, w.F, IC, w.IC_S, {at_qd}, dtau_dq, at_qd, dtau_dv);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
@@ -435,10 +456,11 @@ void polar_derivatives_into(const Model& model, const Data& data, const double* 
         std::span<Motion>(w.Sddot));
   }
   sum_over_subtrees<Force>(model, w.F);
-  body_couplings(model, data, w.v2, w.CC2);  // w.CC: C at v1, the caller's
-  sum_over_subtrees<VelocityCoupling>(model, w.CC2);
-  columns<2>(model, data, w.Sddot, w.F, IC, w.IC_S, {{{w.CC, w.Sdot2}, {w.CC2, w.Sdot}}}, dtau_dq,
-             {w.CC2, w.Sdot2}, &dtau_dv2);
+  sum_over_subtrees<VelocityCoupling>(model, w.CC2);  // w.CC: C at v1, the caller's
+  transposed_couplings(model, data, w.CC2, w.CCt_S2);
+  const CouplingTerm at_v1{w.CC, w.CCt_S, w.Sdot2}, at_v2{w.CC2, w.CCt_S2, w.Sdot};
+  columns<2>(model, data, w.Sddot, w.F, IC, w.IC_S, {at_v1, at_v2}, dtau_dq,
+             {w.CC2, w.CCt_S2, w.Sdot2}, &dtau_dv2);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
     segment_velocity_columns(model, data, v2, w.v2, w.Sdot2, IC, w.IC_S, dtau_dv2);
