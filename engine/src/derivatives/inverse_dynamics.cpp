@@ -62,6 +62,10 @@ void check_derivative_sizes(const Model& model, const Data& data, const Derivati
   }
 }
 
+Velocities bias_stage_velocities(const Data& data) {
+  return {{data.cvel.data(), data.cvel.size()}, {data.cdof_dot.data(), data.cdof_dot.size()}};
+}
+
 // A tangent coordinate of a ball (or of a free joint's rotation) turns the body about its own axes:
 // qpos' = qpos exp(dq).
 // The first dof of each rotation block: a ball's three dofs, a free joint's last three; -1 when
@@ -160,6 +164,77 @@ void transposed_couplings(const Model& model, const Data& data,
                           std::span<const VelocityCoupling> CC, std::span<Eigen::Vector3d> CCt_S) {
   for (int i = 0; i < model.nv; ++i) {
     CCt_S[i] = CC[model.dof_bodyid[i]].transpose_times(data.cdof[i]);
+  }
+}
+
+// RNEA's forward pass (forward_pass(), recursion.hpp) where each body's velocity v and each dof's
+// Sdot at qd are given: each body's acceleration w.a and net force w.F, and each dof's Psi_ddot
+// w.Sddot, with forward_pass()'s sums term by term. A body of several segments (a free joint's
+// translations, then its rotations) forms the velocity before each later segment again, which v
+// does not hold.
+void acceleration_pass(const Model& model, const Data& data, std::span<const Motion> v,
+                       std::span<const Motion> Sdot, const double* qd, const double* qdd,
+                       bool gravity, Derivatives::Workspace& w) {
+  w.a[0].setZero();
+  // the world accelerates upward: weights
+  if (gravity && !model.opt.disabled(kDisableGravity)) w.a[0].tail<3>() = -model.opt.gravity;
+  for (int b = 1; b < model.nbody; ++b) {
+    const int parent = model.body_parentid[b];
+    const Motion& a_parent = w.a[parent];
+    if (model.body_dofnum[b] == 1) {  // a hinge or a slide alone in its body
+      const int i = model.body_dofadr[b];
+      const Motion &S = data.cdof[i], &S_dot = Sdot[i];
+      w.Sddot[i] = cross_motion(a_parent, S) + cross_motion(v[parent], S_dot);
+      Motion a;
+      if (parent > 0 && qdd != nullptr) {
+        a = a_parent + S_dot * qd[i] + S * qdd[i];
+      } else if (parent > 0) {
+        a = a_parent + S_dot * qd[i];
+      } else if (qdd != nullptr) {
+        a = a_parent + S * qdd[i];
+      } else {
+        a = a_parent;
+      }
+      w.a[b] = a;
+      w.F[b] = net_force(data.cinert[b], v[b], a);  // I a + v x* I v
+      continue;
+    }
+    Motion vb = v[parent];
+    Motion v_segment;  // the velocity the current segment's Sdot used
+    Motion segment_velocity = Motion::Zero();  // the current segment's S qd summed
+    Motion turning = Motion::Zero();           // the body's Sdot qd summed
+    Motion driven = Motion::Zero();            // the body's S qdd summed
+    Motion a_before = a_parent;                // the acceleration before dof i
+    bool moving = false;
+    for (int k = 0; k < model.body_dofnum[b]; ++k) {
+      const int i = model.body_dofadr[b] + k;
+      const Motion &S = data.cdof[i], &S_dot = Sdot[i];
+      const bool starts = detail::starts_segment(model, i);
+      if (starts) {
+        if (k > 0) vb += segment_velocity;
+        v_segment = vb;
+        moving = parent > 0 || k > 0;  // the world does not move: nothing before it turns S
+      }
+      w.Sddot[i] = cross_motion(a_before, S) + cross_motion(v_segment, S_dot);
+      if (moving) a_before += S_dot * qd[i];
+      if (qdd != nullptr) a_before += S * qdd[i];
+      if (starts) {
+        segment_velocity = S * qd[i];
+      } else {
+        segment_velocity += S * qd[i];
+      }
+      if (k == 0) {
+        turning = S_dot * qd[i];
+        if (qdd != nullptr) driven = S * qdd[i];
+      } else {
+        turning += S_dot * qd[i];
+        if (qdd != nullptr) driven += S * qdd[i];
+      }
+    }
+    Motion a = a_parent + turning;
+    if (qdd != nullptr) a += driven;
+    w.a[b] = a;
+    w.F[b] = net_force(data.cinert[b], v[b], a);
   }
 }
 
@@ -313,11 +388,12 @@ void segment_velocity_columns(const Model& model, const Data& data, const double
 // Body b's net force I a + v1 x* I v2 + v2 x* I v1 (the polar form of net_force()'s v x* I v,
 // with I a beside it) into w.F and its velocity coupling at v2 into w.CC2, once the forward pass
 // has its velocities and a: I v2 formed once for both, I v1 RNEA's (w.momentum, body_couplings()).
-void polar_body(const Data& data, int b, const Motion& a, Derivatives::Workspace& w) {
+void polar_body(const Data& data, int b, const Motion& v1, const Motion& a,
+                Derivatives::Workspace& w) {
   const RigidInertia& I = data.cinert[b];
   const Force momentum2 = I * w.v2[b];
   Force f = I * a;
-  f += cross_force(w.v[b], momentum2);
+  f += cross_force(v1, momentum2);
   f += cross_force(w.v2[b], w.momentum[b]);
   w.F[b] = f;
   w.CC2[b] = velocity_coupling(I, w.v2[b], momentum2);
@@ -326,15 +402,16 @@ void polar_body(const Data& data, int b, const Motion& a, Derivatives::Workspace
 // The forward pass of the polar form, root to leaves, dof by dof as forward_pass() (recursion.hpp)
 // walks a body's segments: each body's velocity w.v2, its acceleration w.a, net force w.F and
 // velocity coupling at v2 w.CC2 (polar_body()), each dof's Sdot at v2 (w.Sdot2) and its Psi_ddot
-// (w.Sddot). The velocities at v1 and their Sdot are
-// RNEA's (w.v, w.Sdot, left by rnea_derivatives_into() at v1): the same sums, bit for bit (a
-// segment's sum here starts from +0, which changes only a -0, and no body's velocity is -0: the
-// world's is +0, and a sum is -0 only where both of its terms are). A later segment's velocity
-// at v1 is summed here, as RNEA keeps none.
+// (w.Sddot). The velocities at v1 and their Sdot are RNEA's (at_v1: forward_pass()'s sums, which
+// rnea_derivatives_into() at v1 read): the same sums, bit for bit (a segment's sum here starts
+// from +0, which changes only a -0, and no body's velocity is -0: the world's is +0, and a sum is
+// -0 only where both of its terms are). A later segment's velocity at v1 is summed here, as
+// at_v1 holds none.
 // No gravity: it belongs to Q(v1 + v2) and Q(v1), cancelling in P. qdd == nullptr: zero.
-void polar_forward_pass(const Model& model, const Data& data, const double* v1, const double* v2,
-                        const double* qdd, Derivatives::Workspace& w) {
-  w.v[0].setZero();
+void polar_forward_pass(const Model& model, const Data& data, const detail::Velocities& at_v1,
+                        const double* v1, const double* v2, const double* qdd,
+                        Derivatives::Workspace& w) {
+  const std::span<const Motion> V1 = at_v1.v, Sdot1 = at_v1.Sdot;
   w.v2[0].setZero();
   w.a[0].setZero();
   for (int b = 1; b < model.nbody; ++b) {
@@ -344,7 +421,7 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
       // the loop below's arithmetic without its bookkeeping
       const int i = model.body_dofadr[b];
       const Motion& S = data.cdof[i];
-      const Motion &v1_parent = w.v[parent], &v2_parent = w.v2[parent];
+      const Motion &v1_parent = V1[parent], &v2_parent = w.v2[parent];
       if (parent > 0) {
         w.Sdot2[i] = cross_motion(v2_parent, S);
       } else {
@@ -352,15 +429,15 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
       }
       const Motion& a_parent = w.a[parent];
       w.Sddot[i] = cross_motion(a_parent, S) + cross_motion(v1_parent, w.Sdot2[i]) +
-                   cross_motion(v2_parent, w.Sdot[i]);
-      Motion a = a_parent + (w.Sdot[i] * v2[i] + w.Sdot2[i] * v1[i]);
+                   cross_motion(v2_parent, Sdot1[i]);
+      Motion a = a_parent + (Sdot1[i] * v2[i] + w.Sdot2[i] * v1[i]);
       if (qdd != nullptr) a += S * qdd[i];
       w.v2[b] = v2_parent + S * v2[i];
       w.a[b] = a;
-      polar_body(data, b, a, w);
+      polar_body(data, b, V1[b], a, w);
       continue;
     }
-    Motion vb1 = w.v[parent], vb2 = w.v2[parent];
+    Motion vb1 = V1[parent], vb2 = w.v2[parent];
     Motion seg1 = Motion::Zero(), seg2 = Motion::Zero();  // the current segment's S v summed
     Motion v1_seg, v2_seg;  // the velocities the current segment's Sdot uses
     Motion a = w.a[parent];  // the acceleration before dof i
@@ -385,15 +462,15 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
         w.Sdot2[i].setZero();
       }
       w.Sddot[i] = cross_motion(a, S) + cross_motion(v1_seg, w.Sdot2[i]) +
-                   cross_motion(v2_seg, w.Sdot[i]);
-      a += w.Sdot[i] * v2[i] + w.Sdot2[i] * v1[i];
+                   cross_motion(v2_seg, Sdot1[i]);
+      a += Sdot1[i] * v2[i] + w.Sdot2[i] * v1[i];
       if (qdd != nullptr) a += S * qdd[i];
       seg1 += S * v1[i];
       seg2 += S * v2[i];
     }
     w.v2[b] = vb2 + seg2;
     w.a[b] = a;
-    polar_body(data, b, a, w);
+    polar_body(data, b, V1[b], a, w);
   }
 }
 
@@ -408,49 +485,57 @@ namespace detail {
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, std::span<const RigidInertia> IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
-                           Eigen::MatrixXd* dtau_dv) {
+                           Eigen::MatrixXd* dtau_dv, const Velocities* at_qd) {
   // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof, each body's net force
-  // (RNEA's forward pass)
-  forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot,
-               [&](int b, const Motion& vb, const Motion& ab) {
-                 w.F[b] = net_force(data.cinert[b], vb, ab);  // I a + v x* I v
-               });
+  // (RNEA's forward pass); v and Sdot read where they are given
+  std::span<const Motion> v = w.v, Sdot = w.Sdot;
+  if (at_qd != nullptr) {
+    v = at_qd->v;
+    Sdot = at_qd->Sdot;
+    acceleration_pass(model, data, v, Sdot, qd, qdd, gravity, w);
+  } else {
+    forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot,
+                 [&](int b, const Motion& vb, const Motion& ab) {
+                   w.F[b] = net_force(data.cinert[b], vb, ab);  // I a + v x* I v
+                 });
+  }
   if (model.nq != model.nv) {
     segment_accelerations(
         model, data,
         [&](int k, Motion& added) {
-          added += w.Sdot[k] * qd[k];
+          added += Sdot[k] * qd[k];
           if (qdd != nullptr) added += data.cdof[k] * qdd[k];
         },
         std::span<Motion>(w.Sddot));
   }
   // leaves to root: the composites of f and C over each subtree (RNEA's backward pass)
   sum_over_subtrees<Force>(model, w.F);
-  body_couplings(model, data, w.v, w.momentum, w.CC);
+  body_couplings(model, data, v, w.momentum, w.CC);
   sum_over_subtrees<VelocityCoupling>(model, w.CC);
   transposed_couplings(model, data, w.CC, w.CCt_S);
-  const CouplingTerm at_qd{w.CC, w.CCt_S, w.Sdot};
-  columns<1>(model, data, w.Sddot, w.F, IC, w.IC_S, {at_qd}, dtau_dq, at_qd, dtau_dv);
+  const CouplingTerm coupling{w.CC, w.CCt_S, Sdot};
+  columns<1>(model, data, w.Sddot, w.F, IC, w.IC_S, {coupling}, dtau_dq, coupling, dtau_dv);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
     if (dtau_dv != nullptr) {
-      segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, w.IC_S, *dtau_dv);
+      segment_velocity_columns(model, data, qd, v, Sdot, IC, w.IC_S, *dtau_dv);
     }
   }
 }
 
 // The derivatives of 2 Q(v1, v2) + L(qdd) (polar_forward_pass()'s quantities, then RNEA's
 // backward sums and columns on them), reading w.CC at v1 (derivatives_room.hpp).
-void polar_derivatives_into(const Model& model, const Data& data, const double* v1,
-                            const double* v2, const double* qdd, std::span<const RigidInertia> IC,
-                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
-                            Eigen::MatrixXd& dtau_dv2) {
-  polar_forward_pass(model, data, v1, v2, qdd, w);
+void polar_derivatives_into(const Model& model, const Data& data, const Velocities& at_v1,
+                            const double* v1, const double* v2, const double* qdd,
+                            std::span<const RigidInertia> IC, Derivatives::Workspace& w,
+                            Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv2) {
+  const std::span<const Motion> Sdot1 = at_v1.Sdot;
+  polar_forward_pass(model, data, at_v1, v1, v2, qdd, w);
   if (model.nq != model.nv) {
     segment_accelerations(
         model, data,
         [&](int k, Motion& added) {
-          added += w.Sdot[k] * v2[k] + w.Sdot2[k] * v1[k];
+          added += Sdot1[k] * v2[k] + w.Sdot2[k] * v1[k];
           if (qdd != nullptr) added += data.cdof[k] * qdd[k];
         },
         std::span<Motion>(w.Sddot));
@@ -458,8 +543,8 @@ void polar_derivatives_into(const Model& model, const Data& data, const double* 
   sum_over_subtrees<Force>(model, w.F);
   sum_over_subtrees<VelocityCoupling>(model, w.CC2);  // w.CC: C at v1, the caller's
   transposed_couplings(model, data, w.CC2, w.CCt_S2);
-  const CouplingTerm at_v1{w.CC, w.CCt_S, w.Sdot2}, at_v2{w.CC2, w.CCt_S2, w.Sdot};
-  columns<2>(model, data, w.Sddot, w.F, IC, w.IC_S, {at_v1, at_v2}, dtau_dq,
+  const CouplingTerm at_v1_term{w.CC, w.CCt_S, w.Sdot2}, at_v2_term{w.CC2, w.CCt_S2, Sdot1};
+  columns<2>(model, data, w.Sddot, w.F, IC, w.IC_S, {at_v1_term, at_v2_term}, dtau_dq,
              {w.CC2, w.CCt_S2, w.Sdot2}, &dtau_dv2);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
