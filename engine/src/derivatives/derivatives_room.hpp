@@ -39,8 +39,15 @@ Velocities bias_stage_velocities(const Data& data);
 void check_derivative_sizes(const Model& model, const Data& data, const Derivatives& deriv);
 
 /// The first dof of a joint's rotation block (a ball's three dofs, a free joint's last three), or
-/// -1 when the joint has none.
-int rotation_block(const Model& model, int j);
+/// -1 when the joint has none. A tangent coordinate of the block turns the body about its own
+/// axes: qpos' = qpos exp(dq). (Inline: the passes ask it of every joint.)
+inline int rotation_block(const Model& model, int j) {
+  switch (model.jnt_kind[j]) {
+    case JointKind::kBall: return model.jnt_dofadr[j];
+    case JointKind::kFree: return model.jnt_dofadr[j] + 3;
+    default: return -1;
+  }
+}
 
 /// The inertia of each body's subtree into w.IC (for a caller that ran kinematics() alone); returns
 /// w.IC.
@@ -52,14 +59,14 @@ void inertia_columns(const Model& model, const Data& data, std::span<const Rigid
                      Derivatives::Workspace& w);
 
 /// Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd) into dtau_dq and
-/// dtau_dv (nullptr: d / d q alone), given the subtree inertias IC and w.IC_S, and the velocities
+/// dtau_dv, given the subtree inertias IC and w.IC_S, and the velocities
 /// at qd (bias_stage_velocities() where qd is data.qvel after forward(); nullptr: formed here,
 /// into w.v and w.Sdot); leaves the subtree sums of C at qd in w.CC, their S_i . CC in w.CCt_S
 /// and each body's momentum at qd in w.momentum.
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, std::span<const RigidInertia> IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
-                           Eigen::MatrixXd* dtau_dv, const Velocities* at_qd = nullptr);
+                           Eigen::MatrixXd& dtau_dv, const Velocities* at_qd = nullptr);
 
 /// The derivatives of RNEA's velocity product in its polar form, 2 Q(v1, v2) (rnea = Q(qd, qd) +
 /// L(qdd, gravity)), plus L(qdd) without gravity (qdd nullptr: none): d / d qpos into dtau_dq and

@@ -66,18 +66,6 @@ Velocities bias_stage_velocities(const Data& data) {
   return {{data.cvel.data(), data.cvel.size()}, {data.cdof_dot.data(), data.cdof_dot.size()}};
 }
 
-// A tangent coordinate of a ball (or of a free joint's rotation) turns the body about its own axes:
-// qpos' = qpos exp(dq).
-// The first dof of each rotation block: a ball's three dofs, a free joint's last three; -1 when
-// the joint has none.
-int rotation_block(const Model& model, int j) {
-  switch (model.jnt_kind[j]) {
-    case JointKind::kBall: return model.jnt_dofadr[j];
-    case JointKind::kFree: return model.jnt_dofadr[j] + 3;
-    default: return -1;
-  }
-}
-
 // The inertia of each body's subtree, summed into w.IC by crba()'s composite_inertias(), for
 // rnea_derivatives(), whose caller may have run kinematics() alone; after forward(),
 // data.work.crb holds the same numbers and is read instead.
@@ -252,16 +240,16 @@ struct CouplingTerm {
 };
 
 // d tau / d q, from Psi_ddot (Sddot), the subtree net forces F and the coupling terms (one for
-// RNEA, two for the polar form), and d tau / d qd (dtau_dv; nullptr: d / d q alone) from the
-// coupling term `velocity` (Sdot and CC at one velocity, one of the terms' CC), one dof i at a
-// time: both read S_i . CC x, formed once per CC.
+// RNEA, two for the polar form), and d tau / d qd from the coupling term `velocity` (Sdot and CC
+// at one velocity, one of the terms' CC), one dof i at a time: both read S_i . CC x.
 template <std::size_t Terms>
 void columns(const Model& model, const Data& data, std::span<const Motion> Sddot,
              std::span<const Force> F, std::span<const RigidInertia> ICs,
              std::span<const Force> IC_S, const std::array<CouplingTerm, Terms>& couplings,
-             Eigen::MatrixXd& dtau_dq, const CouplingTerm& velocity, Eigen::MatrixXd* dtau_dv) {
+             Eigen::MatrixXd& dtau_dq, const CouplingTerm& velocity, Eigen::MatrixXd& dtau_dv) {
   dtau_dq.setZero();
-  if (dtau_dv != nullptr) dtau_dv->setZero();
+  dtau_dv.setZero();
+  const std::span<const Motion> Sdot = velocity.Sdot;
   for (int i = 0; i < model.nv; ++i) {
     const int b = model.dof_bodyid[i];
     const Motion& Si = data.cdof[i];
@@ -269,7 +257,7 @@ void columns(const Model& model, const Data& data, std::span<const Motion> Sddot
     const Force& IC_Si = IC_S[i];  // IC symmetric: S_i . IC x
     std::array<Eigen::Vector3d, Terms> CCt_Si;  // S_i . CC x (x's angular part)
     for (std::size_t t = 0; t < Terms; ++t) CCt_Si[t] = couplings[t].CCt_S[i];
-    const Eigen::Vector3d CCt_Si_velocity = velocity.CCt_S[i];  // held: dv's stores may alias it
+    const Eigen::Vector3d CCt_Si_velocity = velocity.CCt_S[i];  // held: the stores may alias it
     // d / d q
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
       double sum = IC_Si.dot(Sddot[j]);
@@ -285,16 +273,13 @@ void columns(const Model& model, const Data& data, std::span<const Motion> Sddot
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
       dtau_dq(k, i) = data.cdof[k].dot(Xq);
     }
-    if (dtau_dv == nullptr) continue;
     // d / d qd
-    Eigen::MatrixXd& dv = *dtau_dv;
-    const std::span<const Motion> Sdot = velocity.Sdot;
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si_velocity.dot(data.cdof[j].head<3>());
+      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si_velocity.dot(data.cdof[j].head<3>());
     }
     const Force Xv = 2 * (IC * Sdot[i]) + velocity.CC[b] * Si;
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
-      dv(k, i) = data.cdof[k].dot(Xv);
+      dtau_dv(k, i) = data.cdof[k].dot(Xv);
     }
   }
 }
@@ -479,13 +464,13 @@ void polar_forward_pass(const Model& model, const Data& data, const detail::Velo
 namespace detail {
 
 // Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
-// and dtau_dv (nullptr: d / d q alone), given the subtree inertias IC at data.qpos
+// and dtau_dv, given the subtree inertias IC at data.qpos
 // (data.work.crb after forward()) and w.IC_S (inertia_columns()) from them; the subtree sums of
 // C at qd are left in w.CC. Armature adds armature * qdd, which depends on neither.
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, std::span<const RigidInertia> IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
-                           Eigen::MatrixXd* dtau_dv, const Velocities* at_qd) {
+                           Eigen::MatrixXd& dtau_dv, const Velocities* at_qd) {
   // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof, each body's net force
   // (RNEA's forward pass); v and Sdot read where they are given
   std::span<const Motion> v = w.v, Sdot = w.Sdot;
@@ -517,9 +502,7 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
   columns<1>(model, data, w.Sddot, w.F, IC, w.IC_S, {coupling}, dtau_dq, coupling, dtau_dv);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
-    if (dtau_dv != nullptr) {
-      segment_velocity_columns(model, data, qd, v, Sdot, IC, w.IC_S, *dtau_dv);
-    }
+    segment_velocity_columns(model, data, qd, v, Sdot, IC, w.IC_S, dtau_dv);
   }
 }
 
@@ -545,7 +528,7 @@ void polar_derivatives_into(const Model& model, const Data& data, const Velociti
   transposed_couplings(model, data, w.CC2, w.CCt_S2);
   const CouplingTerm at_v1_term{w.CC, w.CCt_S, w.Sdot2}, at_v2_term{w.CC2, w.CCt_S2, Sdot1};
   columns<2>(model, data, w.Sddot, w.F, IC, w.IC_S, {at_v1_term, at_v2_term}, dtau_dq,
-             {w.CC2, w.CCt_S2, w.Sdot2}, &dtau_dv2);
+             {w.CC2, w.CCt_S2, w.Sdot2}, dtau_dv2);
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
     segment_velocity_columns(model, data, v2, w.v2, w.Sdot2, IC, w.IC_S, dtau_dv2);
@@ -564,7 +547,7 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
   const std::span<const RigidInertia> IC = detail::subtree_inertias(model, data, deriv.work);
   detail::inertia_columns(model, data, IC, deriv.work);
   detail::rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, IC, deriv.work,
-                                deriv.dtau_dq, &deriv.dtau_dv);
+                                deriv.dtau_dq, deriv.dtau_dv);
 }
 
 }  // namespace lever

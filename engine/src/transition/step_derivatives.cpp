@@ -588,7 +588,7 @@ void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& 
   inertia_columns(model, data, data.work.crb, w);
   const detail::Velocities at_qvel = detail::bias_stage_velocities(data);  // forward()'s
   rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, data.work.crb, w,
-                        deriv.dtau_dq, &deriv.dtau_dv, &at_qvel);
+                        deriv.dtau_dq, deriv.dtau_dv, &at_qvel);
   smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
   if (detail::rows_beyond_joint_limits(data)) {  // every row in dof space, solved with H, not M
     detail::constraint_rows_held(model, data, deriv);
@@ -857,7 +857,7 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   Eigen::MatrixXd &tau_q = w.contact_E, &tau_v = w.contact_G;
   const detail::Velocities at_qvel = detail::bias_stage_velocities(data);  // forward()'s
   rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, data.work.crb, w,
-                        tau_q, &tau_v, &at_qvel);
+                        tau_q, tau_v, &at_qvel);
   smooth_rhs(model, data, tau_q, tau_v, w);
   if (w.active_rows > 0) add_constraint_change(model, deriv);
   const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
