@@ -124,8 +124,8 @@ struct Derivatives {
     /// form's net force reads it again (derivatives/inverse_dynamics.cpp)
     std::vector<Force> momentum;
     /// (nv) the angular part of CC^T S_i (CC of dof i's body) at RNEA's velocity, which the
-    /// polar form's columns read again, and CC2's (derivatives/inverse_dynamics.cpp)
-    std::vector<Eigen::Vector3d> CCt_S, CCt_S2;
+    /// polar form's columns read again (derivatives/inverse_dynamics.cpp)
+    std::vector<Eigen::Vector3d> CCt_S;
     // contacts' rows with their active set held (transition/contact_rows.cpp)
     RowMatrix contact_Y;          ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
     /// (nv x nv) dJ^T f, one column per qpos direction, and the contact rows' J^T Y; after the

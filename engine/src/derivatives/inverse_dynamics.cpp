@@ -145,19 +145,9 @@ void body_couplings(const Model& model, const Data& data, std::span<const Motion
   }
 }
 
-// S_i . CC x of each dof i (CC its body's subtree sum), x's angular part (C's linear columns are
-// zero), which every pair of the columns reads: formed once per dof, and RNEA's once for both
-// passes of the implicit step (the polar form's coupling at v1 is RNEA's).
-void transposed_couplings(const Model& model, const Data& data,
-                          std::span<const VelocityCoupling> CC, std::span<Eigen::Vector3d> CCt_S) {
-  for (int i = 0; i < model.nv; ++i) {
-    CCt_S[i] = CC[model.dof_bodyid[i]].transpose_times(data.cdof[i]);
-  }
-}
-
 // RNEA's forward pass (forward_pass(), recursion.hpp) where each body's velocity v and each dof's
-// Sdot at qd are given: each body's acceleration w.a and net force w.F, and each dof's Psi_ddot
-// w.Sddot, with forward_pass()'s sums term by term. A body of several segments (a free joint's
+// Sdot at qd are given: each body's acceleration w.a and each dof's Psi_ddot w.Sddot, with
+// forward_pass()'s sums term by term. A body of several segments (a free joint's
 // translations, then its rotations) forms the velocity before each later segment again, which v
 // does not hold.
 void acceleration_pass(const Model& model, const Data& data, std::span<const Motion> v,
@@ -169,11 +159,11 @@ void acceleration_pass(const Model& model, const Data& data, std::span<const Mot
   for (int b = 1; b < model.nbody; ++b) {
     const int parent = model.body_parentid[b];
     const Motion& a_parent = w.a[parent];
+    Motion a;
     if (model.body_dofnum[b] == 1) {  // a hinge or a slide alone in its body
       const int i = model.body_dofadr[b];
       const Motion &S = data.cdof[i], &S_dot = Sdot[i];
       w.Sddot[i] = cross_motion(a_parent, S) + cross_motion(v[parent], S_dot);
-      Motion a;
       if (parent > 0 && qdd != nullptr) {
         a = a_parent + S_dot * qd[i] + S * qdd[i];
       } else if (parent > 0) {
@@ -183,70 +173,83 @@ void acceleration_pass(const Model& model, const Data& data, std::span<const Mot
       } else {
         a = a_parent;
       }
-      w.a[b] = a;
-      w.F[b] = net_force(data.cinert[b], v[b], a);  // I a + v x* I v
-      continue;
+    } else {
+      Motion vb = v[parent];
+      Motion v_segment;  // the velocity the current segment's Sdot used
+      Motion segment_velocity = Motion::Zero();  // the current segment's S qd summed
+      Motion turning = Motion::Zero();           // the body's Sdot qd summed
+      Motion driven = Motion::Zero();            // the body's S qdd summed
+      Motion a_before = a_parent;                // the acceleration before dof i
+      bool moving = false;
+      for (int k = 0; k < model.body_dofnum[b]; ++k) {
+        const int i = model.body_dofadr[b] + k;
+        const Motion &S = data.cdof[i], &S_dot = Sdot[i];
+        const bool starts = detail::starts_segment(model, i);
+        if (starts) {
+          if (k > 0) vb += segment_velocity;
+          v_segment = vb;
+          moving = parent > 0 || k > 0;  // the world does not move: nothing before it turns S
+        }
+        w.Sddot[i] = cross_motion(a_before, S) + cross_motion(v_segment, S_dot);
+        if (moving) a_before += S_dot * qd[i];
+        if (qdd != nullptr) a_before += S * qdd[i];
+        if (starts) {
+          segment_velocity = S * qd[i];
+        } else {
+          segment_velocity += S * qd[i];
+        }
+        if (k == 0) {
+          turning = S_dot * qd[i];
+          if (qdd != nullptr) driven = S * qdd[i];
+        } else {
+          turning += S_dot * qd[i];
+          if (qdd != nullptr) driven += S * qdd[i];
+        }
+      }
+      a = a_parent + turning;
+      if (qdd != nullptr) a += driven;
     }
-    Motion vb = v[parent];
-    Motion v_segment;  // the velocity the current segment's Sdot used
-    Motion segment_velocity = Motion::Zero();  // the current segment's S qd summed
-    Motion turning = Motion::Zero();           // the body's Sdot qd summed
-    Motion driven = Motion::Zero();            // the body's S qdd summed
-    Motion a_before = a_parent;                // the acceleration before dof i
-    bool moving = false;
-    for (int k = 0; k < model.body_dofnum[b]; ++k) {
-      const int i = model.body_dofadr[b] + k;
-      const Motion &S = data.cdof[i], &S_dot = Sdot[i];
-      const bool starts = detail::starts_segment(model, i);
-      if (starts) {
-        if (k > 0) vb += segment_velocity;
-        v_segment = vb;
-        moving = parent > 0 || k > 0;  // the world does not move: nothing before it turns S
-      }
-      w.Sddot[i] = cross_motion(a_before, S) + cross_motion(v_segment, S_dot);
-      if (moving) a_before += S_dot * qd[i];
-      if (qdd != nullptr) a_before += S * qdd[i];
-      if (starts) {
-        segment_velocity = S * qd[i];
-      } else {
-        segment_velocity += S * qd[i];
-      }
-      if (k == 0) {
-        turning = S_dot * qd[i];
-        if (qdd != nullptr) driven = S * qdd[i];
-      } else {
-        turning += S_dot * qd[i];
-        if (qdd != nullptr) driven += S * qdd[i];
-      }
-    }
-    Motion a = a_parent + turning;
-    if (qdd != nullptr) a += driven;
     w.a[b] = a;
-    w.F[b] = net_force(data.cinert[b], v[b], a);
   }
+}
+
+// Each body's net force I a + v x* I v (net_force(), recursion.hpp) into w.F, after the forward
+// pass (one call of it in this file, which the compiler inlines).
+void net_forces(const Model& model, const Data& data, std::span<const Motion> v,
+                Derivatives::Workspace& w) {
+  for (int b = 1; b < model.nbody; ++b) w.F[b] = net_force(data.cinert[b], v[b], w.a[b]);
 }
 
 // The columns, from the subtree sums IC and CC, for each dof i: the pairs (i, j) with j = i or
 // above it (d = i), then the pairs (k, i) with k strictly above i (d = i again, now the deeper).
 // IC_S: inertia_columns() at this qpos.
 
-// A velocity coupling's term: the subtree sums CC of C at one velocity and their S_i . CC
-// (transposed_couplings()), with the Sdot of each dof at a velocity (the same one for RNEA; the
-// other for the polar form below).
+// A velocity coupling's term: the subtree sums CC of C at one velocity, with the Sdot of each dof
+// at a velocity (the same one for RNEA; the other for the polar form below), and S_i . CC x of
+// each dof i (x's angular part: C's linear columns are zero), which every pair of dof i reads:
+// CCt_S where one pass formed them for another (the polar form's CC at v1 is RNEA's), or empty:
+// formed in columns().
 struct CouplingTerm {
   std::span<const VelocityCoupling> CC;
-  std::span<const Eigen::Vector3d> CCt_S;
   std::span<const Motion> Sdot;
+  std::span<const Eigen::Vector3d> CCt_S = {};
 };
 
 // d tau / d q, from Psi_ddot (Sddot), the subtree net forces F and the coupling terms (one for
 // RNEA, two for the polar form), and d tau / d qd from the coupling term `velocity` (Sdot and CC
-// at one velocity, one of the terms' CC), one dof i at a time: both read S_i . CC x.
+// at one velocity, one of the terms' CC), one dof i at a time: both read S_i . CC x. The first
+// term's S_i . CC x is kept in keep_CCt_S unless it is empty.
 template <std::size_t Terms>
 void columns(const Model& model, const Data& data, std::span<const Motion> Sddot,
              std::span<const Force> F, std::span<const RigidInertia> ICs,
              std::span<const Force> IC_S, const std::array<CouplingTerm, Terms>& couplings,
-             Eigen::MatrixXd& dtau_dq, const CouplingTerm& velocity, Eigen::MatrixXd& dtau_dv) {
+             Eigen::MatrixXd& dtau_dq, const CouplingTerm& velocity, Eigen::MatrixXd& dtau_dv,
+             std::span<Eigen::Vector3d> keep_CCt_S) {
+  std::size_t velocity_term = 0;  // the term whose CC the velocity's is
+  while (velocity_term + 1 < Terms &&
+         couplings[velocity_term].CC.data() != velocity.CC.data()) {
+    ++velocity_term;
+  }
   dtau_dq.setZero();
   dtau_dv.setZero();
   const std::span<const Motion> Sdot = velocity.Sdot;
@@ -256,8 +259,11 @@ void columns(const Model& model, const Data& data, std::span<const Motion> Sddot
     const RigidInertia& IC = ICs[b];
     const Force& IC_Si = IC_S[i];  // IC symmetric: S_i . IC x
     std::array<Eigen::Vector3d, Terms> CCt_Si;  // S_i . CC x (x's angular part)
-    for (std::size_t t = 0; t < Terms; ++t) CCt_Si[t] = couplings[t].CCt_S[i];
-    const Eigen::Vector3d CCt_Si_velocity = velocity.CCt_S[i];  // held: the stores may alias it
+    for (std::size_t t = 0; t < Terms; ++t) {
+      const CouplingTerm& term = couplings[t];
+      CCt_Si[t] = term.CCt_S.empty() ? term.CC[b].transpose_times(Si) : term.CCt_S[i];
+    }
+    if (!keep_CCt_S.empty()) keep_CCt_S[i] = CCt_Si[0];
     // d / d q
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
       double sum = IC_Si.dot(Sddot[j]);
@@ -275,7 +281,7 @@ void columns(const Model& model, const Data& data, std::span<const Motion> Sddot
     }
     // d / d qd
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si_velocity.dot(data.cdof[j].head<3>());
+      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si[velocity_term].dot(data.cdof[j].head<3>());
     }
     const Force Xv = 2 * (IC * Sdot[i]) + velocity.CC[b] * Si;
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
@@ -479,11 +485,9 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
     Sdot = at_qd->Sdot;
     acceleration_pass(model, data, v, Sdot, qd, qdd, gravity, w);
   } else {
-    forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot,
-                 [&](int b, const Motion& vb, const Motion& ab) {
-                   w.F[b] = net_force(data.cinert[b], vb, ab);  // I a + v x* I v
-                 });
+    forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot);
   }
+  net_forces(model, data, v, w);
   if (model.nq != model.nv) {
     segment_accelerations(
         model, data,
@@ -497,9 +501,9 @@ void rnea_derivatives_into(const Model& model, const Data& data, const double* q
   sum_over_subtrees<Force>(model, w.F);
   body_couplings(model, data, v, w.momentum, w.CC);
   sum_over_subtrees<VelocityCoupling>(model, w.CC);
-  transposed_couplings(model, data, w.CC, w.CCt_S);
-  const CouplingTerm coupling{w.CC, w.CCt_S, Sdot};
-  columns<1>(model, data, w.Sddot, w.F, IC, w.IC_S, {coupling}, dtau_dq, coupling, dtau_dv);
+  const CouplingTerm coupling{w.CC, Sdot};
+  columns<1>(model, data, w.Sddot, w.F, IC, w.IC_S, {coupling}, dtau_dq, coupling, dtau_dv,
+             w.CCt_S);  // kept for the polar form
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
     segment_velocity_columns(model, data, qd, v, Sdot, IC, w.IC_S, dtau_dv);
@@ -525,10 +529,9 @@ void polar_derivatives_into(const Model& model, const Data& data, const Velociti
   }
   sum_over_subtrees<Force>(model, w.F);
   sum_over_subtrees<VelocityCoupling>(model, w.CC2);  // w.CC: C at v1, the caller's
-  transposed_couplings(model, data, w.CC2, w.CCt_S2);
-  const CouplingTerm at_v1_term{w.CC, w.CCt_S, w.Sdot2}, at_v2_term{w.CC2, w.CCt_S2, Sdot1};
+  const CouplingTerm at_v1_term{w.CC, w.Sdot2, w.CCt_S}, at_v2_term{w.CC2, Sdot1};
   columns<2>(model, data, w.Sddot, w.F, IC, w.IC_S, {at_v1_term, at_v2_term}, dtau_dq,
-             {w.CC2, w.CCt_S2, w.Sdot2}, dtau_dv2);
+             {w.CC2, w.Sdot2}, dtau_dv2, {});
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
     segment_velocity_columns(model, data, v2, w.v2, w.Sdot2, IC, w.IC_S, dtau_dv2);

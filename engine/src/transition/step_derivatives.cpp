@@ -1237,7 +1237,6 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.CC2.assign(nbody, VelocityCoupling());
   work.momentum.assign(nbody, Force::Zero());
   work.CCt_S.assign(ndof, Eigen::Vector3d::Zero());
-  work.CCt_S2.assign(ndof, Eigen::Vector3d::Zero());
   work.v2.assign(nbody, Motion::Zero());
   work.Sdot2.assign(ndof, Motion::Zero());
   work.Sdot.assign(ndof, Motion::Zero());
