@@ -140,8 +140,9 @@ void body_couplings(const Model& model, const Data& data, std::span<const Motion
                     std::span<Force> momentum, std::span<VelocityCoupling> CC) {
   for (int b = 1; b < model.nbody; ++b) {
     const RigidInertia& I = data.cinert[b];
-    momentum[b] = I * v[b];
-    CC[b] = velocity_coupling(I, v[b], momentum[b]);
+    const Force p = I * v[b];
+    CC[b] = velocity_coupling(I, v[b], p);
+    momentum[b] = p;  // after C: a store before it would have it read I again
   }
 }
 
