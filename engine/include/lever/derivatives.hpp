@@ -80,7 +80,8 @@ struct Derivatives {
   // ---- workspace (contents meaningless between calls) ---------------------------------------
   struct Workspace {
     // per body: velocity, acceleration, and the subtree (composite) sums of the net force, the
-    // inertia and the velocity coupling C (derivatives/inverse_dynamics.cpp)
+    // inertia and the velocity coupling C (derivatives/inverse_dynamics.cpp); v and Sdot (below)
+    // are rnea_derivatives()'s own, the step's derivatives read forward()'s cvel and cdof_dot
     std::vector<Motion> v, a;
     /// (nbody, nv) implicit: v and Sdot at a second velocity (the velocity product's polar form)
     std::vector<Motion> v2, Sdot2;
