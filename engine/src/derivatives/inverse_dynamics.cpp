@@ -265,7 +265,7 @@ void columns(const Model& model, const Data& data, std::span<const Motion> Sddot
       CCt_Si[t] = term.CCt_S.empty() ? term.CC[b].transpose_times(Si) : term.CCt_S[i];
     }
     if (!keep_CCt_S.empty()) keep_CCt_S[i] = CCt_Si[0];
-    // d / d q
+    // the pairs (i, j), j = i or above it: d / d q, then d / d qd
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
       double sum = IC_Si.dot(Sddot[j]);
       for (std::size_t t = 0; t < Terms; ++t) {
@@ -274,15 +274,17 @@ void columns(const Model& model, const Data& data, std::span<const Motion> Sddot
       }
       dtau_dq(i, j) = sum;
     }
+    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
+      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si[velocity_term].dot(data.cdof[j].head<3>());
+    }
+    // the pairs (k, i), k strictly above i, read S_k . X: none where i hangs from the world (a
+    // root's first dof), whose X is not formed
+    if (model.dof_parentid[i] < 0) continue;
     Force Xq = IC * Sddot[i];
     for (std::size_t t = 0; t < Terms; ++t) Xq += couplings[t].CC[b] * couplings[t].Sdot[i];
     Xq += cross_force(Si, F[b]);
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
       dtau_dq(k, i) = data.cdof[k].dot(Xq);
-    }
-    // d / d qd
-    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si[velocity_term].dot(data.cdof[j].head<3>());
     }
     const Force Xv = 2 * (IC * Sdot[i]) + velocity.CC[b] * Si;
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
