@@ -324,7 +324,7 @@ void segment_position_columns(const Model& model, const Data& data, std::span<co
     const int r = rotation_block(model, j);
     if (r < 0) continue;
     const int b = model.jnt_bodyid[j];
-    for (int i = r; i < r + 3; ++i) {
+    for (int i = r + 1; i < r + 3; ++i) {  // the block's first dof has no k before it
       const Force S_cross_F = cross_force(data.cdof[i], F[b]);
       for (int k = r; k < i; ++k) dtau_dq(k, i) -= data.cdof[k].dot(S_cross_F);
     }
