@@ -59,10 +59,10 @@ void inertia_columns(const Model& model, const Data& data, std::span<const Rigid
                      Derivatives::Workspace& w);
 
 /// Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd) into dtau_dq and
-/// dtau_dv, given the subtree inertias IC and w.IC_S, and the velocities
-/// at qd (bias_stage_velocities() where qd is data.qvel after forward(); nullptr: formed here,
-/// into w.v and w.Sdot); leaves the subtree sums of C at qd in w.CC, their S_i . CC in w.CCt_S
-/// and each body's momentum at qd in w.momentum.
+/// dtau_dv, given the subtree inertias IC and w.IC_S, and the velocities at qd
+/// (bias_stage_velocities() where qd is data.qvel after forward(); nullptr: formed here, into w.v
+/// and w.Sdot); leaves the subtree sums of C at qd in w.CC, their S_i . CC in w.CCt_S and each
+/// body's momentum at qd in w.momentum.
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, std::span<const RigidInertia> IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,

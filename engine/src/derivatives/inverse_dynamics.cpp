@@ -473,9 +473,10 @@ void polar_forward_pass(const Model& model, const Data& data, const detail::Velo
 namespace detail {
 
 // Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
-// and dtau_dv, given the subtree inertias IC at data.qpos
-// (data.work.crb after forward()) and w.IC_S (inertia_columns()) from them; the subtree sums of
-// C at qd are left in w.CC. Armature adds armature * qdd, which depends on neither.
+// and dtau_dv, given the subtree inertias IC at data.qpos (data.work.crb after forward()) and
+// w.IC_S (inertia_columns()) from them, and the velocities at qd where forward() left them; the
+// subtree sums of C at qd are left in w.CC (with w.CCt_S and w.momentum, which the polar form
+// reads). Armature adds armature * qdd, which depends on neither.
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, std::span<const RigidInertia> IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
