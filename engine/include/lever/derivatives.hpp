@@ -80,7 +80,8 @@ struct Derivatives {
   // ---- workspace (contents meaningless between calls) ---------------------------------------
   struct Workspace {
     // per body: velocity, acceleration, and the subtree (composite) sums of the net force, the
-    // inertia and the velocity coupling C (derivatives/inverse_dynamics.cpp)
+    // inertia and the velocity coupling C (derivatives/inverse_dynamics.cpp); v and Sdot (below)
+    // are rnea_derivatives()'s own, the step's derivatives read forward()'s cvel and cdof_dot
     std::vector<Motion> v, a;
     /// (nbody, nv) implicit: v and Sdot at a second velocity (the velocity product's polar form)
     std::vector<Motion> v2, Sdot2;
@@ -120,6 +121,12 @@ struct Derivatives {
     int active_rows = 0;             ///< the limit rows active at the last forward (limit_rows)
     std::vector<Force> IC_S;         ///< (nv) IC S_i, IC dof i's subtree inertia (derivatives/inverse_dynamics.cpp)
     std::vector<VelocityCoupling> CC2;  ///< (nbody) implicit: CC at a second velocity
+    /// (nbody) I v of each body alone at RNEA's velocity, before CC's subtree sums: the polar
+    /// form's net force reads it again (derivatives/inverse_dynamics.cpp)
+    std::vector<Force> momentum;
+    /// (nv) the angular part of CC^T S_i (CC of dof i's body) at RNEA's velocity, which the
+    /// polar form's columns read again (derivatives/inverse_dynamics.cpp)
+    std::vector<Eigen::Vector3d> CCt_S;
     // contacts' rows with their active set held (transition/contact_rows.cpp)
     RowMatrix contact_Y;          ///< (nefc_max x nv) per active row: D (d aref - dR f - dJ qacc)
     /// (nv x nv) dJ^T f, one column per qpos direction, and the contact rows' J^T Y; after the

@@ -62,16 +62,8 @@ void check_derivative_sizes(const Model& model, const Data& data, const Derivati
   }
 }
 
-// A tangent coordinate of a ball (or of a free joint's rotation) turns the body about its own axes:
-// qpos' = qpos exp(dq).
-// The first dof of each rotation block: a ball's three dofs, a free joint's last three; -1 when
-// the joint has none.
-int rotation_block(const Model& model, int j) {
-  switch (model.jnt_kind[j]) {
-    case JointKind::kBall: return model.jnt_dofadr[j];
-    case JointKind::kFree: return model.jnt_dofadr[j] + 3;
-    default: return -1;
-  }
+Velocities bias_stage_velocities(const Data& data) {
+  return {{data.cvel.data(), data.cvel.size()}, {data.cdof_dot.data(), data.cdof_dot.size()}};
 }
 
 // The inertia of each body's subtree, summed into w.IC by crba()'s composite_inertias(), for
@@ -108,7 +100,11 @@ using detail::rotation_block;
 // and [p] = m[u] - [h][w] + [w][h] (as [a x b] = [a][b] - [b][a]) cancels the right column, so
 //   C = [[S - [n], 0], [-2[p], 0]],   S = [w]J - J[w] - [u][h] - [h][u].
 // S is symmetric: with P = [w]J, J[w] = -P^T; and [a][b] = b a^T - (a.b) 1.
-VelocityCoupling velocity_coupling(const RigidInertia& I, const Motion& v, const Force& momentum) {
+// (Inlined into both of its callers, RNEA's and the polar form's body passes: a call returns C
+// through memory.)
+[[gnu::always_inline]] inline VelocityCoupling velocity_coupling(const RigidInertia& I,
+                                                                 const Motion& v,
+                                                                 const Force& momentum) {
   const Eigen::Vector3d w = v.head<3>(), u = v.tail<3>();
   const Eigen::Matrix3d& J = I.I;
   const Eigen::Vector3d& h = I.h;
@@ -136,15 +132,93 @@ VelocityCoupling velocity_coupling(const RigidInertia& I, const Motion& v, const
   return C;
 }
 
-// The body pass, after the forward pass gave each body's v: its velocity coupling C into CC (their
-// subtree sums come next). The net force is the forward pass's (net_force, recursion.hpp); the
-// subtree inertias IC do not depend on the velocity: crba()'s composites (subtree_inertias()).
+// The body pass, after the forward pass gave each body's v: its momentum I v into `momentum` (the
+// polar form's net force reads it again) and its velocity coupling C into CC (their subtree sums
+// come next). The net force is the forward pass's (net_force, recursion.hpp); the subtree
+// inertias IC do not depend on the velocity: crba()'s composites (subtree_inertias()).
 void body_couplings(const Model& model, const Data& data, std::span<const Motion> v,
-                    std::span<VelocityCoupling> CC) {
+                    std::span<Force> momentum, std::span<VelocityCoupling> CC) {
   for (int b = 1; b < model.nbody; ++b) {
     const RigidInertia& I = data.cinert[b];
-    CC[b] = velocity_coupling(I, v[b], I * v[b]);
+    const Force p = I * v[b];
+    CC[b] = velocity_coupling(I, v[b], p);
+    momentum[b] = p;  // after C: a store before it would have it read I again
   }
+}
+
+// RNEA's forward pass (forward_pass(), recursion.hpp) where each body's velocity v and each dof's
+// Sdot at qd are given: each body's acceleration w.a and each dof's Psi_ddot w.Sddot, with
+// forward_pass()'s sums term by term. A body of several segments (a free joint's
+// translations, then its rotations) forms the velocity before each later segment again, which v
+// does not hold.
+void acceleration_pass(const Model& model, const Data& data, std::span<const Motion> v,
+                       std::span<const Motion> Sdot, const double* qd, const double* qdd,
+                       bool gravity, Derivatives::Workspace& w) {
+  w.a[0].setZero();
+  // the world accelerates upward: weights
+  if (gravity && !model.opt.disabled(kDisableGravity)) w.a[0].tail<3>() = -model.opt.gravity;
+  for (int b = 1; b < model.nbody; ++b) {
+    const int parent = model.body_parentid[b];
+    const Motion& a_parent = w.a[parent];
+    Motion a;
+    if (model.body_dofnum[b] == 1) {  // a hinge or a slide alone in its body
+      const int i = model.body_dofadr[b];
+      const Motion &S = data.cdof[i], &S_dot = Sdot[i];
+      w.Sddot[i] = cross_motion(a_parent, S) + cross_motion(v[parent], S_dot);
+      if (parent > 0 && qdd != nullptr) {
+        a = a_parent + S_dot * qd[i] + S * qdd[i];
+      } else if (parent > 0) {
+        a = a_parent + S_dot * qd[i];
+      } else if (qdd != nullptr) {
+        a = a_parent + S * qdd[i];
+      } else {
+        a = a_parent;
+      }
+    } else {
+      Motion vb = v[parent];
+      Motion v_segment;  // the velocity the current segment's Sdot used
+      Motion segment_velocity = Motion::Zero();  // the current segment's S qd summed
+      Motion turning = Motion::Zero();           // the body's Sdot qd summed
+      Motion driven = Motion::Zero();            // the body's S qdd summed
+      Motion a_before = a_parent;                // the acceleration before dof i
+      bool moving = false;
+      for (int k = 0; k < model.body_dofnum[b]; ++k) {
+        const int i = model.body_dofadr[b] + k;
+        const Motion &S = data.cdof[i], &S_dot = Sdot[i];
+        const bool starts = detail::starts_segment(model, i);
+        if (starts) {
+          if (k > 0) vb += segment_velocity;
+          v_segment = vb;
+          moving = parent > 0 || k > 0;  // the world does not move: nothing before it turns S
+        }
+        w.Sddot[i] = cross_motion(a_before, S) + cross_motion(v_segment, S_dot);
+        if (moving) a_before += S_dot * qd[i];
+        if (qdd != nullptr) a_before += S * qdd[i];
+        if (starts) {
+          segment_velocity = S * qd[i];
+        } else {
+          segment_velocity += S * qd[i];
+        }
+        if (k == 0) {
+          turning = S_dot * qd[i];
+          if (qdd != nullptr) driven = S * qdd[i];
+        } else {
+          turning += S_dot * qd[i];
+          if (qdd != nullptr) driven += S * qdd[i];
+        }
+      }
+      a = a_parent + turning;
+      if (qdd != nullptr) a += driven;
+    }
+    w.a[b] = a;
+  }
+}
+
+// Each body's net force I a + v x* I v (net_force(), recursion.hpp) into w.F, after the forward
+// pass (one call of it in this file, which the compiler inlines).
+void net_forces(const Model& model, const Data& data, std::span<const Motion> v,
+                Derivatives::Workspace& w) {
+  for (int b = 1; b < model.nbody; ++b) w.F[b] = net_force(data.cinert[b], v[b], w.a[b]);
 }
 
 // The columns, from the subtree sums IC and CC, for each dof i: the pairs (i, j) with j = i or
@@ -152,36 +226,46 @@ void body_couplings(const Model& model, const Data& data, std::span<const Motion
 // IC_S: inertia_columns() at this qpos.
 
 // A velocity coupling's term: the subtree sums CC of C at one velocity, with the Sdot of each dof
-// at a velocity (the same one for RNEA; the other for the polar form below).
+// at a velocity (the same one for RNEA; the other for the polar form below), and S_i . CC x of
+// each dof i (x's angular part: C's linear columns are zero), which every pair of dof i reads:
+// CCt_S where one pass formed them for another (the polar form's CC at v1 is RNEA's), or empty:
+// formed in columns().
 struct CouplingTerm {
   std::span<const VelocityCoupling> CC;
   std::span<const Motion> Sdot;
+  std::span<const Eigen::Vector3d> CCt_S = {};
 };
 
 // d tau / d q, from Psi_ddot (Sddot), the subtree net forces F and the coupling terms (one for
-// RNEA, two for the polar form), and d tau / d qd (dtau_dv; nullptr: d / d q alone) from the
-// coupling term `velocity` (Sdot and CC at one velocity, one of the terms' CC), one dof i at a
-// time: both read S_i . CC x, formed once per CC.
+// RNEA, two for the polar form), and d tau / d qd from the coupling term `velocity` (Sdot and CC
+// at one velocity, one of the terms' CC), one dof i at a time: both read S_i . CC x. The first
+// term's S_i . CC x is kept in keep_CCt_S unless it is empty.
 template <std::size_t Terms>
 void columns(const Model& model, const Data& data, std::span<const Motion> Sddot,
              std::span<const Force> F, std::span<const RigidInertia> ICs,
              std::span<const Force> IC_S, const std::array<CouplingTerm, Terms>& couplings,
-             Eigen::MatrixXd& dtau_dq, const CouplingTerm& velocity, Eigen::MatrixXd* dtau_dv) {
+             Eigen::MatrixXd& dtau_dq, const CouplingTerm& velocity, Eigen::MatrixXd& dtau_dv,
+             std::span<Eigen::Vector3d> keep_CCt_S) {
   std::size_t velocity_term = 0;  // the term whose CC the velocity's is
   while (velocity_term + 1 < Terms &&
          couplings[velocity_term].CC.data() != velocity.CC.data()) {
     ++velocity_term;
   }
   dtau_dq.setZero();
-  if (dtau_dv != nullptr) dtau_dv->setZero();
+  dtau_dv.setZero();
+  const std::span<const Motion> Sdot = velocity.Sdot;
   for (int i = 0; i < model.nv; ++i) {
     const int b = model.dof_bodyid[i];
     const Motion& Si = data.cdof[i];
     const RigidInertia& IC = ICs[b];
     const Force& IC_Si = IC_S[i];  // IC symmetric: S_i . IC x
     std::array<Eigen::Vector3d, Terms> CCt_Si;  // S_i . CC x (x's angular part)
-    for (std::size_t t = 0; t < Terms; ++t) CCt_Si[t] = couplings[t].CC[b].transpose_times(Si);
-    // d / d q
+    for (std::size_t t = 0; t < Terms; ++t) {
+      const CouplingTerm& term = couplings[t];
+      CCt_Si[t] = term.CCt_S.empty() ? term.CC[b].transpose_times(Si) : term.CCt_S[i];
+    }
+    if (!keep_CCt_S.empty()) keep_CCt_S[i] = CCt_Si[0];
+    // the pairs (i, j), j = i or above it: d / d q, then d / d qd
     for (int j = i; j >= 0; j = model.dof_parentid[j]) {
       double sum = IC_Si.dot(Sddot[j]);
       for (std::size_t t = 0; t < Terms; ++t) {
@@ -190,22 +274,21 @@ void columns(const Model& model, const Data& data, std::span<const Motion> Sddot
       }
       dtau_dq(i, j) = sum;
     }
+    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
+      dtau_dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si[velocity_term].dot(data.cdof[j].head<3>());
+    }
+    // the pairs (k, i), k strictly above i, read S_k . X: none where i hangs from the world (a
+    // root's first dof), whose X is not formed
+    if (model.dof_parentid[i] < 0) continue;
     Force Xq = IC * Sddot[i];
     for (std::size_t t = 0; t < Terms; ++t) Xq += couplings[t].CC[b] * couplings[t].Sdot[i];
     Xq += cross_force(Si, F[b]);
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
       dtau_dq(k, i) = data.cdof[k].dot(Xq);
     }
-    if (dtau_dv == nullptr) continue;
-    // d / d qd
-    Eigen::MatrixXd& dv = *dtau_dv;
-    const std::span<const Motion> Sdot = velocity.Sdot;
-    for (int j = i; j >= 0; j = model.dof_parentid[j]) {
-      dv(i, j) = 2 * IC_Si.dot(Sdot[j]) + CCt_Si[velocity_term].dot(data.cdof[j].head<3>());
-    }
     const Force Xv = 2 * (IC * Sdot[i]) + velocity.CC[b] * Si;
     for (int k = model.dof_parentid[i]; k >= 0; k = model.dof_parentid[k]) {
-      dv(k, i) = data.cdof[k].dot(Xv);
+      dtau_dv(k, i) = data.cdof[k].dot(Xv);
     }
   }
 }
@@ -241,7 +324,7 @@ void segment_position_columns(const Model& model, const Data& data, std::span<co
     const int r = rotation_block(model, j);
     if (r < 0) continue;
     const int b = model.jnt_bodyid[j];
-    for (int i = r; i < r + 3; ++i) {
+    for (int i = r + 1; i < r + 3; ++i) {  // the block's first dof has no k before it
       const Force S_cross_F = cross_force(data.cdof[i], F[b]);
       for (int k = r; k < i; ++k) dtau_dq(k, i) -= data.cdof[k].dot(S_cross_F);
     }
@@ -296,25 +379,33 @@ void segment_velocity_columns(const Model& model, const Data& data, const double
 // and d tau / d q's coupling term C Sdot becomes C(v1) Sdot^2 + C(v2) Sdot^1. Its derivative in
 // v1 is RNEA's d tau / d qd at v2 (d Q(v1) / d v1 = 2 Q(v1, .)).
 
-// I a + v1 x* I v2 + v2 x* I v1: the polar form of net_force()'s v x* I v, with I a beside it.
-Force polar_net_force(const RigidInertia& I, const Motion& v1, const Motion& v2, const Motion& a) {
+// Body b's net force I a + v1 x* I v2 + v2 x* I v1 (the polar form of net_force()'s v x* I v,
+// with I a beside it) into w.F and its velocity coupling at v2 into w.CC2, once the forward pass
+// has its velocities and a: I v2 formed once for both, I v1 RNEA's (w.momentum, body_couplings()).
+void polar_body(const Data& data, int b, const Motion& v1, const Motion& a,
+                Derivatives::Workspace& w) {
+  const RigidInertia& I = data.cinert[b];
+  const Force momentum2 = I * w.v2[b];
   Force f = I * a;
-  f += cross_force(v1, I * v2);
-  f += cross_force(v2, I * v1);
-  return f;
+  f += cross_force(v1, momentum2);
+  f += cross_force(w.v2[b], w.momentum[b]);
+  w.F[b] = f;
+  w.CC2[b] = velocity_coupling(I, w.v2[b], momentum2);
 }
 
 // The forward pass of the polar form, root to leaves, dof by dof as forward_pass() (recursion.hpp)
-// walks a body's segments: each body's velocity w.v2, its acceleration w.a and net force w.F, each
-// dof's Sdot at v2 (w.Sdot2) and its Psi_ddot (w.Sddot). The velocities at v1 and their Sdot are
-// RNEA's (w.v, w.Sdot, left by rnea_derivatives_into() at v1): the same sums, bit for bit (a
-// segment's sum here starts from +0, which changes only a -0, and no body's velocity is -0: the
-// world's is +0, and a sum is -0 only where both of its terms are). A later segment's velocity
-// at v1 is summed here, as RNEA keeps none.
+// walks a body's segments: each body's velocity w.v2, its acceleration w.a, net force w.F and
+// velocity coupling at v2 w.CC2 (polar_body()), each dof's Sdot at v2 (w.Sdot2) and its Psi_ddot
+// (w.Sddot). The velocities at v1 and their Sdot are RNEA's (at_v1: forward_pass()'s sums, which
+// rnea_derivatives_into() at v1 read): the same sums, bit for bit (a segment's sum here starts
+// from +0, which changes only a -0, and no body's velocity is -0: the world's is +0, and a sum is
+// -0 only where both of its terms are). A later segment's velocity at v1 is summed here, as
+// at_v1 holds none.
 // No gravity: it belongs to Q(v1 + v2) and Q(v1), cancelling in P. qdd == nullptr: zero.
-void polar_forward_pass(const Model& model, const Data& data, const double* v1, const double* v2,
-                        const double* qdd, Derivatives::Workspace& w) {
-  w.v[0].setZero();
+void polar_forward_pass(const Model& model, const Data& data, const detail::Velocities& at_v1,
+                        const double* v1, const double* v2, const double* qdd,
+                        Derivatives::Workspace& w) {
+  const std::span<const Motion> V1 = at_v1.v, Sdot1 = at_v1.Sdot;
   w.v2[0].setZero();
   w.a[0].setZero();
   for (int b = 1; b < model.nbody; ++b) {
@@ -324,7 +415,7 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
       // the loop below's arithmetic without its bookkeeping
       const int i = model.body_dofadr[b];
       const Motion& S = data.cdof[i];
-      const Motion &v1_parent = w.v[parent], &v2_parent = w.v2[parent];
+      const Motion &v1_parent = V1[parent], &v2_parent = w.v2[parent];
       if (parent > 0) {
         w.Sdot2[i] = cross_motion(v2_parent, S);
       } else {
@@ -332,15 +423,15 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
       }
       const Motion& a_parent = w.a[parent];
       w.Sddot[i] = cross_motion(a_parent, S) + cross_motion(v1_parent, w.Sdot2[i]) +
-                   cross_motion(v2_parent, w.Sdot[i]);
-      Motion a = a_parent + (w.Sdot[i] * v2[i] + w.Sdot2[i] * v1[i]);
+                   cross_motion(v2_parent, Sdot1[i]);
+      Motion a = a_parent + (Sdot1[i] * v2[i] + w.Sdot2[i] * v1[i]);
       if (qdd != nullptr) a += S * qdd[i];
       w.v2[b] = v2_parent + S * v2[i];
       w.a[b] = a;
-      w.F[b] = polar_net_force(data.cinert[b], w.v[b], w.v2[b], a);
+      polar_body(data, b, V1[b], a, w);
       continue;
     }
-    Motion vb1 = w.v[parent], vb2 = w.v2[parent];
+    Motion vb1 = V1[parent], vb2 = w.v2[parent];
     Motion seg1 = Motion::Zero(), seg2 = Motion::Zero();  // the current segment's S v summed
     Motion v1_seg, v2_seg;  // the velocities the current segment's Sdot uses
     Motion a = w.a[parent];  // the acceleration before dof i
@@ -365,15 +456,15 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
         w.Sdot2[i].setZero();
       }
       w.Sddot[i] = cross_motion(a, S) + cross_motion(v1_seg, w.Sdot2[i]) +
-                   cross_motion(v2_seg, w.Sdot[i]);
-      a += w.Sdot[i] * v2[i] + w.Sdot2[i] * v1[i];
+                   cross_motion(v2_seg, Sdot1[i]);
+      a += Sdot1[i] * v2[i] + w.Sdot2[i] * v1[i];
       if (qdd != nullptr) a += S * qdd[i];
       seg1 += S * v1[i];
       seg2 += S * v2[i];
     }
     w.v2[b] = vb2 + seg2;
     w.a[b] = a;
-    w.F[b] = polar_net_force(data.cinert[b], w.v[b], w.v2[b], a);
+    polar_body(data, b, V1[b], a, w);
   }
 }
 
@@ -382,63 +473,69 @@ void polar_forward_pass(const Model& model, const Data& data, const double* v1, 
 namespace detail {
 
 // Carpentier and Mansard's first-order RNEA derivatives at (data.qpos, qd, qdd), into dtau_dq
-// and dtau_dv (nullptr: d / d q alone), given the subtree inertias IC at data.qpos
-// (data.work.crb after forward()) and w.IC_S (inertia_columns()) from them; the subtree sums of
-// C at qd are left in w.CC. Armature adds armature * qdd, which depends on neither.
+// and dtau_dv, given the subtree inertias IC at data.qpos (data.work.crb after forward()) and
+// w.IC_S (inertia_columns()) from them, and the velocities at qd where forward() left them; the
+// subtree sums of C at qd are left in w.CC (with w.CCt_S and w.momentum, which the polar form
+// reads). Armature adds armature * qdd, which depends on neither.
 void rnea_derivatives_into(const Model& model, const Data& data, const double* qd,
                            const double* qdd, bool gravity, std::span<const RigidInertia> IC,
                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
-                           Eigen::MatrixXd* dtau_dv) {
+                           Eigen::MatrixXd& dtau_dv, const Velocities* at_qd) {
   // root to leaves: v and a of every body, Sdot and Psi_ddot of every dof, each body's net force
-  // (RNEA's forward pass)
-  forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot,
-               [&](int b, const Motion& vb, const Motion& ab) {
-                 w.F[b] = net_force(data.cinert[b], vb, ab);  // I a + v x* I v
-               });
+  // (RNEA's forward pass); v and Sdot read where they are given
+  std::span<const Motion> v = w.v, Sdot = w.Sdot;
+  if (at_qd != nullptr) {
+    v = at_qd->v;
+    Sdot = at_qd->Sdot;
+    acceleration_pass(model, data, v, Sdot, qd, qdd, gravity, w);
+  } else {
+    forward_pass(model, data, qd, qdd, gravity, w.v, w.a, &w.Sdot, &w.Sddot);
+  }
+  net_forces(model, data, v, w);
   if (model.nq != model.nv) {
     segment_accelerations(
         model, data,
         [&](int k, Motion& added) {
-          added += w.Sdot[k] * qd[k];
+          added += Sdot[k] * qd[k];
           if (qdd != nullptr) added += data.cdof[k] * qdd[k];
         },
         std::span<Motion>(w.Sddot));
   }
   // leaves to root: the composites of f and C over each subtree (RNEA's backward pass)
   sum_over_subtrees<Force>(model, w.F);
-  body_couplings(model, data, w.v, w.CC);
+  body_couplings(model, data, v, w.momentum, w.CC);
   sum_over_subtrees<VelocityCoupling>(model, w.CC);
-  const CouplingTerm at_qd{w.CC, w.Sdot};
-  columns<1>(model, data, w.Sddot, w.F, IC, w.IC_S, {at_qd}, dtau_dq, at_qd, dtau_dv);
+  const CouplingTerm coupling{w.CC, Sdot};
+  columns<1>(model, data, w.Sddot, w.F, IC, w.IC_S, {coupling}, dtau_dq, coupling, dtau_dv,
+             w.CCt_S);  // kept for the polar form
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
-    if (dtau_dv != nullptr) {
-      segment_velocity_columns(model, data, qd, w.v, w.Sdot, IC, w.IC_S, *dtau_dv);
-    }
+    segment_velocity_columns(model, data, qd, v, Sdot, IC, w.IC_S, dtau_dv);
   }
 }
 
 // The derivatives of 2 Q(v1, v2) + L(qdd) (polar_forward_pass()'s quantities, then RNEA's
 // backward sums and columns on them), reading w.CC at v1 (derivatives_room.hpp).
-void polar_derivatives_into(const Model& model, const Data& data, const double* v1,
-                            const double* v2, const double* qdd, std::span<const RigidInertia> IC,
-                            Derivatives::Workspace& w, Eigen::MatrixXd& dtau_dq,
-                            Eigen::MatrixXd& dtau_dv2) {
-  polar_forward_pass(model, data, v1, v2, qdd, w);
+void polar_derivatives_into(const Model& model, const Data& data, const Velocities& at_v1,
+                            const double* v1, const double* v2, const double* qdd,
+                            std::span<const RigidInertia> IC, Derivatives::Workspace& w,
+                            Eigen::MatrixXd& dtau_dq, Eigen::MatrixXd& dtau_dv2) {
+  const std::span<const Motion> Sdot1 = at_v1.Sdot;
+  polar_forward_pass(model, data, at_v1, v1, v2, qdd, w);
   if (model.nq != model.nv) {
     segment_accelerations(
         model, data,
         [&](int k, Motion& added) {
-          added += w.Sdot[k] * v2[k] + w.Sdot2[k] * v1[k];
+          added += Sdot1[k] * v2[k] + w.Sdot2[k] * v1[k];
           if (qdd != nullptr) added += data.cdof[k] * qdd[k];
         },
         std::span<Motion>(w.Sddot));
   }
   sum_over_subtrees<Force>(model, w.F);
-  body_couplings(model, data, w.v2, w.CC2);  // w.CC: C at v1, the caller's
-  sum_over_subtrees<VelocityCoupling>(model, w.CC2);
-  columns<2>(model, data, w.Sddot, w.F, IC, w.IC_S, {{{w.CC, w.Sdot2}, {w.CC2, w.Sdot}}}, dtau_dq,
-             {w.CC2, w.Sdot2}, &dtau_dv2);
+  sum_over_subtrees<VelocityCoupling>(model, w.CC2);  // w.CC: C at v1, the caller's
+  const CouplingTerm at_v1_term{w.CC, w.Sdot2, w.CCt_S}, at_v2_term{w.CC2, Sdot1};
+  columns<2>(model, data, w.Sddot, w.F, IC, w.IC_S, {at_v1_term, at_v2_term}, dtau_dq,
+             {w.CC2, w.Sdot2}, dtau_dv2, {});
   if (model.nq != model.nv) {
     segment_position_columns(model, data, w.F, dtau_dq);
     segment_velocity_columns(model, data, v2, w.v2, w.Sdot2, IC, w.IC_S, dtau_dv2);
@@ -457,7 +554,7 @@ void rnea_derivatives(const Model& model, Data& data, const Eigen::Ref<const Eig
   const std::span<const RigidInertia> IC = detail::subtree_inertias(model, data, deriv.work);
   detail::inertia_columns(model, data, IC, deriv.work);
   detail::rnea_derivatives_into(model, data, data.qvel.data(), qacc.data(), true, IC, deriv.work,
-                                deriv.dtau_dq, &deriv.dtau_dv);
+                                deriv.dtau_dq, deriv.dtau_dv);
 }
 
 }  // namespace lever

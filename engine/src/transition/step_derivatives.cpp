@@ -590,8 +590,9 @@ void forward_derivatives_unchecked(const Model& model, Data& data, Derivatives& 
   forward(model, data);
   auto& w = deriv.work;
   inertia_columns(model, data, data.work.crb, w);
+  const detail::Velocities at_qvel = detail::bias_stage_velocities(data);  // forward()'s
   rnea_derivatives_into(model, data, data.qvel.data(), data.qacc.data(), true, data.work.crb, w,
-                        deriv.dtau_dq, &deriv.dtau_dv);
+                        deriv.dtau_dq, deriv.dtau_dv, &at_qvel);
   smooth_rhs(model, data, deriv.dtau_dq, deriv.dtau_dv, w);
   if (detail::rows_beyond_joint_limits(data)) {  // every row in dof space, solved with H, not M
     detail::constraint_rows_held(model, data, deriv);
@@ -858,8 +859,9 @@ void euler_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   solve_mass_damped(model, data, w.qacc_step);
   // rnea's derivatives at qacc_step, in the held rows' buffers (free once forward's are solved)
   Eigen::MatrixXd &tau_q = w.contact_E, &tau_v = w.contact_G;
+  const detail::Velocities at_qvel = detail::bias_stage_velocities(data);  // forward()'s
   rnea_derivatives_into(model, data, data.qvel.data(), w.qacc_step.data(), true, data.work.crb, w,
-                        tau_q, &tau_v);
+                        tau_q, tau_v, &at_qvel);
   smooth_rhs(model, data, tau_q, tau_v, w);
   if (w.active_rows > 0) add_constraint_change(model, deriv);
   const RowMatrix& X = solve_side_by_side(w, w.rhs_q, w.rhs_v, w.rhs_u, [&](RowMatrix& Y) {
@@ -913,8 +915,9 @@ void implicit_derivatives(const Model& model, Data& data, Derivatives& deriv) {
   w.qacc_change = w.qacc_step - data.qacc;
   // (in the held rows' buffers, free once forward's derivatives are solved)
   Eigen::MatrixXd &tau_q = w.contact_E, &tau_v = w.contact_G;
-  polar_derivatives_into(model, data, data.qvel.data(), w.qvel_change.data(),
-                         w.qacc_change.data(), data.work.crb, w, tau_q, tau_v);
+  polar_derivatives_into(model, data, detail::bias_stage_velocities(data), data.qvel.data(),
+                         w.qvel_change.data(), w.qacc_change.data(), data.work.crb, w, tau_q,
+                         tau_v);
   // rhs + d qfrc_constraint (forward's linearised solve) - the polar form's, written in one pass
   // straight into the solve's row-major right-hand sides [q v u] (w.rhs_* keep smooth_rhs()'s),
   // where the terms below add to them
@@ -1236,6 +1239,8 @@ Derivatives::Derivatives(const Model& model) : nv(model.nv), nu(model.nu), na(mo
   work.IC.assign(nbody, RigidInertia());
   work.CC.assign(nbody, VelocityCoupling());
   work.CC2.assign(nbody, VelocityCoupling());
+  work.momentum.assign(nbody, Force::Zero());
+  work.CCt_S.assign(ndof, Eigen::Vector3d::Zero());
   work.v2.assign(nbody, Motion::Zero());
   work.Sdot2.assign(ndof, Motion::Zero());
   work.Sdot.assign(ndof, Motion::Zero());
