@@ -52,6 +52,7 @@ using primitive::dot;
 using primitive::normalize;
 using primitive::value;
 V constant(const Eigen::Vector3d& x) { return primitive::constant_vec<Scalar>(x); }
+primitive::Vec<double> values(const V& x) { return {{x[0].v, x[1].v, x[2].v}}; }
 
 // The pairs MuJoCo collides by MPR whose geoms are both polytopes: box-mesh and mesh-mesh.
 bool polytope_mpr_pair(GeomType a, GeomType b) {
@@ -65,7 +66,9 @@ using Pose = primitive::Shape<Scalar>;
 
 Pose moving_pose(const Model& model, const Data& data, int g, const GeomPairMotion* motions,
                  int count, bool second) {
-  Pose p{model.geom_type[g], model.geom_size[g], {}, {}};
+  Pose p;  // each number set once below
+  p.type = model.geom_type[g];
+  p.size = model.geom_size[g];
   for (int k = 0; k < 3; ++k) p.pos[k] = Scalar(data.geom_xpos[g][k]);
   for (int c = 0; c < 3; ++c) {
     for (int k = 0; k < 3; ++k) p.axis[c][k] = Scalar(data.geom_xmat[g](k, c));
@@ -943,25 +946,16 @@ std::array<primitive::Vec<S>, 3> complete_frame(primitive::Vec<S> normal,
   return {normal, tangent, cross(normal, tangent)};
 }
 
-// complete_frame() of a contact's normal and tangent seed on the dual numbers; where neither moves
-// along any motion (a plane's normal, the plane held still), the frame does not either: its
-// values alone, on doubles.
-std::array<V, 3> contact_frame(const V& normal, const V& tangent) {
-  bool moves = false;
+// Whether a vector moves along any of the motions (a derivative part not zero, or NaN): the
+// derivative parts' magnitudes summed, motion by motion, are all zero only where each part is.
+bool moves(const V& x) {
+  std::array<double, kMotions> size{};
   for (int a = 0; a < 3; ++a) {
-    for (int m = 0; m < kMotions; ++m) {
-      moves = moves || normal[a].d[m] != 0.0 || tangent[a].d[m] != 0.0;
-    }
+    for (int m = 0; m < kMotions; ++m) size[m] += std::abs(x[a].d[m]);
   }
-  if (moves) return complete_frame(normal, tangent);
-  const std::array<primitive::Vec<double>, 3> still =
-      complete_frame(primitive::Vec<double>{{normal[0].v, normal[1].v, normal[2].v}},
-                     primitive::Vec<double>{{tangent[0].v, tangent[1].v, tangent[2].v}});
-  std::array<V, 3> frame;
-  for (int r = 0; r < 3; ++r) {
-    for (int a = 0; a < 3; ++a) frame[r][a] = Scalar(still[r][a]);
-  }
-  return frame;
+  double total = 0;
+  for (int m = 0; m < kMotions; ++m) total += size[m];
+  return !(total == 0.0);
 }
 
 // ---- multiccd's extra contacts (collision/convex.cpp's convex_pair) ----------------------------
@@ -1155,7 +1149,18 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
       const Contact& ck = data.contact[static_cast<std::size_t>(i)];
       if (n == 0) throw Error("derivatives: contact " + std::to_string(i) + " is not reproduced.");
       const Found& f = found[static_cast<std::size_t>(k % n)];
-      const std::array<V, 3> frame = contact_frame(f.normal, f.tangent);
+      // complete_frame() of the normal and the tangent seed on the dual numbers; where neither
+      // moves along any motion (a plane's normal, the plane held still), the frame does not
+      // either: its values alone, on doubles, its derivatives zero
+      const bool frame_moves = moves(f.normal) || moves(f.tangent);
+      std::array<V, 3> frame;
+      std::array<primitive::Vec<double>, 3> frame_value;
+      if (frame_moves) {
+        frame = complete_frame(f.normal, f.tangent);
+        for (int r = 0; r < 3; ++r) frame_value[r] = values(frame[r]);
+      } else {
+        frame_value = complete_frame(values(f.normal), values(f.tangent));
+      }
 
       // the values are the collision stage's (the same along every motion): else this is not
       // the contact it found
@@ -1164,7 +1169,7 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
         for (int a = 0; a < 3; ++a) {
           gap = std::max(gap, std::abs(f.pos[a].v - ck.pos[a]));
           for (int r = 0; r < 3; ++r) {
-            gap = std::max(gap, std::abs(frame[r][a].v - ck.frame(r, a)));
+            gap = std::max(gap, std::abs(frame_value[r][a] - ck.frame(r, a)));
           }
         }
         if (!(gap <= 1e-9 * (1 + ck.pos.cwiseAbs().maxCoeff()))) {
@@ -1176,9 +1181,13 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
       for (int m = 0; m < motions_now; ++m) {
         ContactChange& change = changes[(m0 + m) * count + k];
         change.dist = f.dist.d[m];
-        for (int a = 0; a < 3; ++a) {
-          change.pos[a] = f.pos[a].d[m];
-          for (int r = 0; r < 3; ++r) change.frame(r, a) = frame[r][a].d[m];
+        for (int a = 0; a < 3; ++a) change.pos[a] = f.pos[a].d[m];
+        if (!frame_moves) {
+          change.frame.setZero();
+        } else {
+          for (int a = 0; a < 3; ++a) {
+            for (int r = 0; r < 3; ++r) change.frame(r, a) = frame[r][a].d[m];
+          }
         }
       }
     }
