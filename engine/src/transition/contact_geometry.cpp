@@ -250,7 +250,7 @@ bool last_portal(const GeomShape& s1, const GeomShape& s2, double margin,
   if (asked < 0 || asked > kMostSupportPoints) return false;
   // each pair of support points once, and of those the ones on the answer's plane (a portal that
   // the ray from v0 through the origin meets inside lies on it); all if fewer than three are
-  std::array<std::size_t, kMostSupportPoints> unique{}, on_plane{};
+  std::array<std::size_t, kMostSupportPoints> unique, on_plane;  // their first n_ are set
   int n_unique = 0, n_on_plane = 0;
   const Eigen::Vector3d normal = answer.frame.row(0).transpose();
   const double depth = margin - answer.dist;
@@ -305,21 +305,28 @@ constexpr int kProbeMotions = 2;
 
 struct ProbeMotion {
   Eigen::Vector3d turn, shift;  // unit
+  // the turns by -kPortalProbe and kPortalProbe about `turn`, the only steps the probes take:
+  // made once
+  Eigen::Matrix3d back, forth;
+
+  ProbeMotion(const Eigen::Vector3d& turn_axis, const Eigen::Vector3d& shift_direction)
+      : turn(turn_axis.normalized()), shift(shift_direction.normalized()),
+        back(Eigen::AngleAxisd(-kPortalProbe, turn).toRotationMatrix()),
+        forth(Eigen::AngleAxisd(kPortalProbe, turn).toRotationMatrix()) {}
 };
 
 const std::array<ProbeMotion, kProbeMotions>& probe_motions() {
   static const std::array<ProbeMotion, kProbeMotions> motions = {
-      ProbeMotion{Eigen::Vector3d(0.58, -0.38, 0.72).normalized(),
-                  Eigen::Vector3d(0.41, 0.77, -0.49).normalized()},
-      ProbeMotion{Eigen::Vector3d(-0.27, 0.81, 0.52).normalized(),
-                  Eigen::Vector3d(0.69, -0.19, 0.70).normalized()}};
+      ProbeMotion{Eigen::Vector3d(0.58, -0.38, 0.72), Eigen::Vector3d(0.41, 0.77, -0.49)},
+      ProbeMotion{Eigen::Vector3d(-0.27, 0.81, 0.52), Eigen::Vector3d(0.69, -0.19, 0.70)}};
   return motions;
 }
 
+// geom 1 moved along a probe's motion by step, -kPortalProbe or kPortalProbe
 GeomShape probe_moved(const GeomShape& s, int motion, double step) {
   const ProbeMotion& m = probe_motions()[static_cast<std::size_t>(motion)];
   GeomShape moved = s;
-  moved.mat = Eigen::AngleAxisd(step, m.turn).toRotationMatrix() * s.mat;
+  moved.mat = (step < 0 ? m.back : m.forth) * s.mat;
   moved.pos = s.pos + m.shift * step;
   return moved;
 }
@@ -946,12 +953,15 @@ std::array<primitive::Vec<S>, 3> complete_frame(primitive::Vec<S> normal,
   return {normal, tangent, cross(normal, tangent)};
 }
 
-// Whether a vector moves along any of the motions (a derivative part not zero, or NaN): the
-// derivative parts' magnitudes summed, motion by motion, are all zero only where each part is.
-bool moves(const V& x) {
+// Whether a contact's normal or tangent seed moves along any of the motions (a derivative part
+// not zero, or NaN): the parts' magnitudes summed, motion by motion, are all zero only where each
+// part is.
+bool frame_moves(const Found& f) {
   std::array<double, kMotions> size{};
   for (int a = 0; a < 3; ++a) {
-    for (int m = 0; m < kMotions; ++m) size[m] += std::abs(x[a].d[m]);
+    for (int m = 0; m < kMotions; ++m) {
+      size[m] += std::abs(f.normal[a].d[m]) + std::abs(f.tangent[a].d[m]);
+    }
   }
   double total = 0;
   for (int m = 0; m < kMotions; ++m) total += size[m];
@@ -1152,10 +1162,10 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
       // complete_frame() of the normal and the tangent seed on the dual numbers; where neither
       // moves along any motion (a plane's normal, the plane held still), the frame does not
       // either: its values alone, on doubles, its derivatives zero
-      const bool frame_moves = moves(f.normal) || moves(f.tangent);
+      const bool moving_frame = frame_moves(f);
       std::array<V, 3> frame;
       std::array<primitive::Vec<double>, 3> frame_value;
-      if (frame_moves) {
+      if (moving_frame) {
         frame = complete_frame(f.normal, f.tangent);
         for (int r = 0; r < 3; ++r) frame_value[r] = values(frame[r]);
       } else {
@@ -1182,7 +1192,7 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
         ContactChange& change = changes[(m0 + m) * count + k];
         change.dist = f.dist.d[m];
         for (int a = 0; a < 3; ++a) change.pos[a] = f.pos[a].d[m];
-        if (!frame_moves) {
+        if (!moving_frame) {
           change.frame.setZero();
         } else {
           for (int a = 0; a < 3; ++a) {
