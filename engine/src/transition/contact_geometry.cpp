@@ -27,7 +27,6 @@
 #include <cmath>
 #include <cstring>
 #include <string>
-#include <type_traits>
 
 #include <Eigen/Geometry>
 
@@ -79,16 +78,25 @@ bool polytope_mpr_pair(GeomType a, GeomType b) {
 using Pose = ShapeOf<Scalar>;
 
 // (Inlined: called twice a batch, its pose built in place.)
-template <class S>
-[[gnu::always_inline]] inline ShapeOf<S> moving_pose(const Model& model, const Data& data,
-                                                     int g, const GeomPairMotion* motions,
-                                                     int count, bool second) {
+template <int K>
+[[gnu::always_inline]] inline ShapeOf<Duals<K>> moving_pose(const Model& model, const Data& data,
+                                                            int g, const GeomPairMotion* motions,
+                                                            int count, bool second) {
+  using S = Duals<K>;
   ShapeOf<S> p;  // each number set once below
   p.type = model.geom_type[g];
   p.size = model.geom_size[g];
-  for (int k = 0; k < 3; ++k) p.pos[k] = S(data.geom_xpos[g][k]);
+  // the values, and zero derivatives where motions past `count` leave them unset
+  const auto start = [count](S& x, double value) {
+    if (count < K) {
+      x = S(value);
+    } else {
+      x.v = value;
+    }
+  };
+  for (int k = 0; k < 3; ++k) start(p.pos[k], data.geom_xpos[g][k]);
   for (int c = 0; c < 3; ++c) {
-    for (int k = 0; k < 3; ++k) p.axis[c][k] = S(data.geom_xmat[g](k, c));
+    for (int k = 0; k < 3; ++k) start(p.axis[c][k], data.geom_xmat[g](k, c));
   }
   // a motion that turns the geom as the last one turned did, bit for bit (the world standing
   // still, one translation after another), turns its columns the same: not made again
@@ -981,9 +989,9 @@ template <class S>
 
 // Whether a contact's normal or tangent seed moves along any of the motions (a derivative part
 // not zero, or NaN): the parts' magnitudes summed, motion by motion, are all zero only where each
-// part is.
+// part is. (Out of line: there the sums go two motions at a time.)
 template <int K>
-bool frame_moves(const TouchOf<Duals<K>>& f) {
+[[gnu::noinline]] bool frame_moves(const TouchOf<Duals<K>>& f) {
   std::array<double, K> size{};
   for (int a = 0; a < 3; ++a) {
     for (int m = 0; m < K; ++m) size[m] += std::abs(f.normal[a].d[m]) + std::abs(f.tangent[a].d[m]);
@@ -1113,32 +1121,34 @@ struct PairCase {
   const Portal* portal;
 };
 
-// The pair's contacts on poses moving along motions m0 .. m0 + now - 1 (now at most S's count),
+// The pair's contacts on poses moving along motions m0 .. m0 + now - 1 (now at most K),
 // and their changes along each; on the first motions, their values checked against the collision
-// stage's. The replayed searches (not a polytope pair's portal, multiccd) run on Scalar alone.
-template <class S>
+// stage's. The replayed searches (not a polytope pair's portal, multiccd) run on Scalar alone
+// (K = kMotions).
+template <int K>
 void changes_along(const Model& model, const Data& data, const PairCase& pair_case, int first,
                    int count, const GeomPairMotion* motions, int m0, int now,
                    ContactChange* changes) {
+  using S = Duals<K>;
   using W = primitive::Vec<S>;
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
   const double margin = pair_case.margin;
   std::array<TouchOf<S>, kMaxPairContacts> found;
-  const ShapeOf<S> g1 = moving_pose<S>(model, data, con.geom1, motions + m0, now, false);
-  const ShapeOf<S> g2 = moving_pose<S>(model, data, con.geom2, motions + m0, now, true);
+  const ShapeOf<S> g1 = moving_pose<K>(model, data, con.geom1, motions + m0, now, false);
+  const ShapeOf<S> g2 = moving_pose<K>(model, data, con.geom2, motions + m0, now, true);
   int n = 0;
   if (g1.type == GeomType::kPlane && g2.type == GeomType::kMesh) {
     n = plane_mesh(g1, g2, data, first, count, found.data());
   } else if (pair_case.polytopes) {
     n = polytope_pair(*pair_case.portal, g1, g2, margin, found.data());
   } else if (pair_case.by_mpr) {
-    if constexpr (std::is_same_v<S, Scalar>) {
+    if constexpr (K == kMotions) {
       n = mpr_pair(model, data, g1, g2, margin, first, found.data());
     }
   } else {
     n = collide_moving(g1, g2, margin, found.data());
   }
-  if constexpr (std::is_same_v<S, Scalar>) {
+  if constexpr (K == kMotions) {
     if (pair_case.multiccd) {
       n = multiccd_contacts(model, data, g1, g2, margin, first, count, found.data());
     }
@@ -1256,11 +1266,11 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
     const int motions_now = std::min(kMotions, directions - m0);
     // a pair's last few motions, where it is not a replayed search: on fewer lanes
     if (motions_now <= kFewMotions && !(by_mpr && !polytopes) && !multiccd) {
-      changes_along<Duals<kFewMotions>>(model, data, pair_case, first, count, motions, m0,
+      changes_along<kFewMotions>(model, data, pair_case, first, count, motions, m0,
                                         motions_now, changes);
     } else {
-      changes_along<Scalar>(model, data, pair_case, first, count, motions, m0, motions_now,
-                            changes);
+      changes_along<kMotions>(model, data, pair_case, first, count, motions, m0, motions_now,
+                              changes);
     }
   }
 }
