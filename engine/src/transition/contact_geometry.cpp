@@ -1266,8 +1266,8 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
     const int motions_now = std::min(kMotions, directions - m0);
     // a pair's last few motions, where it is not a replayed search: on fewer lanes
     if (motions_now <= kFewMotions && !(by_mpr && !polytopes) && !multiccd) {
-      changes_along<kFewMotions>(model, data, pair_case, first, count, motions, m0,
-                                        motions_now, changes);
+      changes_along<kFewMotions>(model, data, pair_case, first, count, motions, m0, motions_now,
+                                 changes);
     } else {
       changes_along<kMotions>(model, data, pair_case, first, count, motions, m0, motions_now,
                               changes);
