@@ -44,11 +44,14 @@ namespace lever::detail {
 
 namespace {
 
-// the narrow phase runs along kMotions motions at once: the values once, a derivative per motion;
-// a pair's last few motions (up to kFewMotions, where the pair is not a replayed search) on
-// Duals<kFewMotions>, each motion's derivative the same numbers (no operation mixes motions)
+// the narrow phase runs along kMotions motions at once: the values once, a derivative per motion.
+// Where a pair is not a replayed search, up to kMostMotions at once, and a pair's last few motions
+// (up to kFewMotions) on Duals<kFewMotions>: each motion's derivative the same numbers (no
+// operation mixes motions; whether a contact's frame moves is decided per group of kMotions, see
+// frame_moving_groups).
 constexpr int kMotions = 6;
 constexpr int kFewMotions = 2;
+constexpr int kMostMotions = 8;
 using Scalar = Duals<kMotions>;
 using V = primitive::Vec<Scalar>;
 using primitive::cross;
@@ -987,18 +990,32 @@ template <class S>
   return {normal, tangent, cross(normal, tangent)};
 }
 
-// Whether a contact's normal or tangent seed moves along any of the motions (a derivative part
-// not zero, or NaN): the parts' magnitudes summed, motion by motion, are all zero only where each
-// part is. (Out of line: there the sums go two motions at a time.)
+// Along which groups of a batch's motions a contact's normal or tangent seed moves: bit q for
+// motions q kMotions .. (q + 1) kMotions - 1 (a batch starts at a multiple of kMotions), set where
+// a derivative part is not zero (or NaN). Along a group where neither moves, the frame does not
+// either: its derivatives there are written as zero (the dual arithmetic could give -0); the
+// group is kMotions wide whatever the batch, so that each motion's numbers are the same in any.
+// (Out of line: there the sums go two motions at a time.)
 template <int K>
-[[gnu::noinline]] bool frame_moves(const TouchOf<Duals<K>>& f) {
+[[gnu::noinline]] unsigned frame_moving_groups(const TouchOf<Duals<K>>& f) {
   std::array<double, K> size{};
   for (int a = 0; a < 3; ++a) {
     for (int m = 0; m < K; ++m) size[m] += std::abs(f.normal[a].d[m]) + std::abs(f.tangent[a].d[m]);
   }
-  double total = 0;
-  for (int m = 0; m < K; ++m) total += size[m];
-  return !(total == 0.0);
+  const auto moves = [&size](int begin, int end) {
+    double total = 0;
+    for (int m = begin; m < end; ++m) total += size[m];
+    return !(total == 0.0);
+  };
+  if constexpr (K <= kMotions) {
+    return moves(0, K) ? 1u : 0u;
+  } else {
+    unsigned moving = 0;
+    for (int q = 0; q * kMotions < K; ++q) {
+      if (moves(q * kMotions, std::min(K, (q + 1) * kMotions))) moving |= 1u << q;
+    }
+    return moving;
+  }
 }
 
 // ---- multiccd's extra contacts (collision/convex.cpp's convex_pair) ----------------------------
@@ -1159,12 +1176,12 @@ void changes_along(const Model& model, const Data& data, const PairCase& pair_ca
     if (n == 0) throw Error("derivatives: contact " + std::to_string(i) + " is not reproduced.");
     const TouchOf<S>& f = found[static_cast<std::size_t>(k % n)];
     // complete_frame() of the normal and the tangent seed on the dual numbers; where neither
-    // moves along any motion (a plane's normal, the plane held still), the frame does not
-    // either: its values alone, on doubles, its derivatives zero
-    const bool moving_frame = frame_moves(f);
+    // moves along any motion of a group (a plane's normal, the plane held still), the frame does
+    // not either: its derivatives there zero, and along every motion, its values alone on doubles
+    const unsigned moving_groups = frame_moving_groups(f);
     std::array<W, 3> frame;
     std::array<primitive::Vec<double>, 3> frame_value;
-    if (moving_frame) {
+    if (moving_groups != 0) {
       frame = complete_frame(f.normal, f.tangent);
       for (int r = 0; r < 3; ++r) frame_value[r] = values(frame[r]);
     } else {
@@ -1191,7 +1208,8 @@ void changes_along(const Model& model, const Data& data, const PairCase& pair_ca
       ContactChange& change = changes[(m0 + m) * count + k];
       change.dist = f.dist.d[m];
       for (int a = 0; a < 3; ++a) change.pos[a] = f.pos[a].d[m];
-      if (!moving_frame) {
+      const int group = K <= kMotions ? 0 : m / kMotions;  // (a batch starts a group)
+      if (!((moving_groups >> group) & 1u)) {
         change.frame.setZero();
       } else {
         for (int a = 0; a < 3; ++a) {
@@ -1262,10 +1280,17 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   const bool multiccd = by_mpr && model.opt.enabled(kEnableMulticcd) && !roundish(con.geom1) &&
                         !roundish(con.geom2);
   const PairCase pair_case{margin, by_mpr, polytopes, multiccd, &portal};
+  const bool replayed = (by_mpr && !polytopes) || multiccd;
+  if (!replayed && directions > kMotions && directions <= kMostMotions) {
+    // one batch for all (a free body's and a finger's motions, say)
+    changes_along<kMostMotions>(model, data, pair_case, first, count, motions, 0, directions,
+                                changes);
+    return;
+  }
   for (int m0 = 0; m0 < directions; m0 += kMotions) {  // kMotions motions at a time
     const int motions_now = std::min(kMotions, directions - m0);
     // a pair's last few motions, where it is not a replayed search: on fewer lanes
-    if (motions_now <= kFewMotions && !(by_mpr && !polytopes) && !multiccd) {
+    if (motions_now <= kFewMotions && !replayed) {
       changes_along<kFewMotions>(model, data, pair_case, first, count, motions, m0, motions_now,
                                  changes);
     } else {
