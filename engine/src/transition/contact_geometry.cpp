@@ -25,6 +25,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <cstring>
 #include <string>
 
 #include <Eigen/Geometry>
@@ -43,8 +44,14 @@ namespace lever::detail {
 
 namespace {
 
-// the narrow phase runs along kMotions motions at once: the values once, a derivative per motion
+// the narrow phase runs along kMotions motions at once: the values once, a derivative per motion.
+// Where a pair is not a replayed search, up to kMostMotions at once, and a pair's last few motions
+// (up to kFewMotions) on Duals<kFewMotions>: each motion's derivative the same numbers (no
+// operation mixes motions; whether a contact's frame moves is decided per group of kMotions, see
+// frame_moving_groups).
 constexpr int kMotions = 6;
+constexpr int kFewMotions = 2;
+constexpr int kMostMotions = 8;
 using Scalar = Duals<kMotions>;
 using V = primitive::Vec<Scalar>;
 using primitive::cross;
@@ -52,6 +59,16 @@ using primitive::dot;
 using primitive::normalize;
 using primitive::value;
 V constant(const Eigen::Vector3d& x) { return primitive::constant_vec<Scalar>(x); }
+template <class S>
+primitive::Vec<double> values(const primitive::Vec<S>& x) {
+  return {{value(x[0]), value(x[1]), value(x[2])}};
+}
+
+// Geoms and contacts on any scalar S (double, or dual numbers along some motions).
+template <class S>
+using ShapeOf = primitive::Shape<S>;
+template <class S>
+using TouchOf = primitive::Touch<S>;
 
 // The pairs MuJoCo collides by MPR whose geoms are both polytopes: box-mesh and mesh-mesh.
 bool polytope_mpr_pair(GeomType a, GeomType b) {
@@ -61,22 +78,43 @@ bool polytope_mpr_pair(GeomType a, GeomType b) {
 
 // A geom's pose moving rigidly along each of the motions (geom 1's or 2's part of each):
 // pos' = w x (pos - centre) + v at the centre, mat' = [w] mat; motions past `count` stand still.
-using Pose = primitive::Shape<Scalar>;
+using Pose = ShapeOf<Scalar>;
 
-Pose moving_pose(const Model& model, const Data& data, int g, const GeomPairMotion* motions,
-                 int count, bool second) {
-  Pose p{model.geom_type[g], model.geom_size[g], {}, {}};
-  for (int k = 0; k < 3; ++k) p.pos[k] = Scalar(data.geom_xpos[g][k]);
+// (Inlined: called twice a batch, its pose built in place.)
+template <int K>
+[[gnu::always_inline]] inline ShapeOf<Duals<K>> moving_pose(const Model& model, const Data& data,
+                                                            int g, const GeomPairMotion* motions,
+                                                            int count, bool second) {
+  using S = Duals<K>;
+  ShapeOf<S> p;  // each number set once below
+  p.type = model.geom_type[g];
+  p.size = model.geom_size[g];
+  // the values, and zero derivatives where motions past `count` leave them unset
+  const auto start = [count](S& x, double value) {
+    if (count < K) {
+      x = S(value);
+    } else {
+      x.v = value;
+    }
+  };
+  for (int k = 0; k < 3; ++k) start(p.pos[k], data.geom_xpos[g][k]);
   for (int c = 0; c < 3; ++c) {
-    for (int k = 0; k < 3; ++k) p.axis[c][k] = Scalar(data.geom_xmat[g](k, c));
+    for (int k = 0; k < 3; ++k) start(p.axis[c][k], data.geom_xmat[g](k, c));
   }
+  // a motion that turns the geom as the last one turned did, bit for bit (the world standing
+  // still, one translation after another), turns its columns the same: not made again
+  std::array<Eigen::Vector3d, 3> turn;
+  const Eigen::Vector3d* turned_by = nullptr;
   for (int m = 0; m < count; ++m) {
     const Eigen::Vector3d& w = second ? motions[m].w2 : motions[m].w1;
     const Eigen::Vector3d& v = second ? motions[m].v2 : motions[m].v1;
     for (int k = 0; k < 3; ++k) p.pos[k].d[m] = v[k];
+    if (!turned_by || std::memcmp(turned_by->data(), w.data(), sizeof(double) * 3) != 0) {
+      for (int c = 0; c < 3; ++c) turn[c] = w.cross(data.geom_xmat[g].col(c));
+      turned_by = &w;
+    }
     for (int c = 0; c < 3; ++c) {
-      const Eigen::Vector3d turn = w.cross(data.geom_xmat[g].col(c));
-      for (int k = 0; k < 3; ++k) p.axis[c][k].d[m] = turn[k];
+      for (int k = 0; k < 3; ++k) p.axis[c][k].d[m] = turn[c][k];
     }
   }
   return p;
@@ -86,7 +124,7 @@ Pose moving_pose(const Model& model, const Data& data, int g, const GeomPairMoti
 V rotate(const Pose& p, const V& x) { return primitive::rotate(p, x); }
 V unrotate(const Pose& p, const V& x) { return primitive::unrotate(p, x); }
 
-using Found = primitive::Touch<Scalar>;
+using Found = TouchOf<Scalar>;
 
 void set(Found& f, const Scalar& dist, const V& pos, const V& normal) {
   primitive::touch(f, dist, pos, normal);
@@ -95,13 +133,9 @@ void set(Found& f, const Scalar& dist, const V& pos, const V& normal) {
 // ---- the pairs the collision room does not write on a scalar: as box.cpp and convex.cpp decide
 // them
 
-// The pairs below run on any scalar S (double, or dual numbers along some motions), as the
-// collision room's closed forms do: the derivative on Scalar, the probes of whether a case holds
-// on double and on two motions' duals.
-template <class S>
-using ShapeOf = primitive::Shape<S>;
-template <class S>
-using TouchOf = primitive::Touch<S>;
+// The pairs below run on any scalar S, as the collision room's closed forms do: the derivative on
+// Scalar (or Duals<kFewMotions>), the probes of whether a case holds on double and on two
+// motions' duals.
 
 template <class S>
 int plane_ellipsoid(const ShapeOf<S>& plane, const ShapeOf<S>& ellipsoid, double margin,
@@ -166,17 +200,19 @@ int box_box(const ShapeOf<S>& box1, const ShapeOf<S>& box2, double margin, Touch
 // against the plane, the lowest and up to two more below the margin. The vertex, rigid in the
 // mesh, is where the contact's point and half its distance along the normal put it; held, it moves
 // with the mesh's pose. (Which vertices: the case the stage found.)
-int plane_mesh(const Pose& plane, const Pose& mesh, const Data& data, int first, int count,
-               Found* out) {
-  const V n = plane.axis[2];
+template <class S>
+int plane_mesh(const ShapeOf<S>& plane, const ShapeOf<S>& mesh, const Data& data, int first,
+               int count, TouchOf<S>* out) {
+  using W = primitive::Vec<S>;
+  const W n = plane.axis[2];
   const int g = data.contact[static_cast<std::size_t>(first)].geom2;
   for (int k = 0; k < count; ++k) {
     const Contact& c = data.contact[static_cast<std::size_t>(first + k)];
     const Eigen::Vector3d vertex = c.pos + c.frame.row(0).transpose() * (0.5 * c.dist);
     const Eigen::Vector3d local = data.geom_xmat[g].transpose() * (vertex - data.geom_xpos[g]);
-    const V point = rotate(mesh, constant(local)) + mesh.pos;
-    const Scalar dist = dot(n, point - plane.pos);
-    set(out[k], dist, point + n * (dist * -0.5), n);
+    const W point = primitive::rotate(mesh, primitive::constant_vec<S>(local)) + mesh.pos;
+    const S dist = dot(n, point - plane.pos);
+    primitive::touch(out[k], dist, point + n * (dist * -0.5), n);
   }
   return count;
 }
@@ -247,7 +283,7 @@ bool last_portal(const GeomShape& s1, const GeomShape& s2, double margin,
   if (asked < 0 || asked > kMostSupportPoints) return false;
   // each pair of support points once, and of those the ones on the answer's plane (a portal that
   // the ray from v0 through the origin meets inside lies on it); all if fewer than three are
-  std::array<std::size_t, kMostSupportPoints> unique{}, on_plane{};
+  std::array<std::size_t, kMostSupportPoints> unique, on_plane;  // their first n_ are set
   int n_unique = 0, n_on_plane = 0;
   const Eigen::Vector3d normal = answer.frame.row(0).transpose();
   const double depth = margin - answer.dist;
@@ -302,21 +338,28 @@ constexpr int kProbeMotions = 2;
 
 struct ProbeMotion {
   Eigen::Vector3d turn, shift;  // unit
+  // the turns by -kPortalProbe and kPortalProbe about `turn`, the only steps the probes take:
+  // made once
+  Eigen::Matrix3d back, forth;
+
+  ProbeMotion(const Eigen::Vector3d& turn_axis, const Eigen::Vector3d& shift_direction)
+      : turn(turn_axis.normalized()), shift(shift_direction.normalized()),
+        back(Eigen::AngleAxisd(-kPortalProbe, turn).toRotationMatrix()),
+        forth(Eigen::AngleAxisd(kPortalProbe, turn).toRotationMatrix()) {}
 };
 
 const std::array<ProbeMotion, kProbeMotions>& probe_motions() {
   static const std::array<ProbeMotion, kProbeMotions> motions = {
-      ProbeMotion{Eigen::Vector3d(0.58, -0.38, 0.72).normalized(),
-                  Eigen::Vector3d(0.41, 0.77, -0.49).normalized()},
-      ProbeMotion{Eigen::Vector3d(-0.27, 0.81, 0.52).normalized(),
-                  Eigen::Vector3d(0.69, -0.19, 0.70).normalized()}};
+      ProbeMotion{Eigen::Vector3d(0.58, -0.38, 0.72), Eigen::Vector3d(0.41, 0.77, -0.49)},
+      ProbeMotion{Eigen::Vector3d(-0.27, 0.81, 0.52), Eigen::Vector3d(0.69, -0.19, 0.70)}};
   return motions;
 }
 
+// geom 1 moved along a probe's motion by step, -kPortalProbe or kPortalProbe
 GeomShape probe_moved(const GeomShape& s, int motion, double step) {
   const ProbeMotion& m = probe_motions()[static_cast<std::size_t>(motion)];
   GeomShape moved = s;
-  moved.mat = Eigen::AngleAxisd(step, m.turn).toRotationMatrix() * s.mat;
+  moved.mat = (step < 0 ? m.back : m.forth) * s.mat;
   moved.pos = s.pos + m.shift * step;
   return moved;
 }
@@ -413,12 +456,13 @@ bool polytope_portal(const Model& model, const Data& data, double margin, int fi
 }
 
 // The portal's answer on the moving poses (its vertices given in their geoms' frames).
-int polytope_pair(const Portal& local, const Pose& g1, const Pose& g2, double margin,
-                  Found* out) {
-  V a[3], b[3];
+template <class S>
+int polytope_pair(const Portal& local, const ShapeOf<S>& g1, const ShapeOf<S>& g2, double margin,
+                  TouchOf<S>* out) {
+  primitive::Vec<S> a[3], b[3];
   for (int i = 0; i < 3; ++i) {
-    a[i] = rotate(g1, constant(local.a[i])) + g1.pos;
-    b[i] = rotate(g2, constant(local.b[i])) + g2.pos;
+    a[i] = primitive::rotate(g1, primitive::constant_vec<S>(local.a[i])) + g1.pos;
+    b[i] = primitive::rotate(g2, primitive::constant_vec<S>(local.b[i])) + g2.pos;
   }
   out[0] = portal_answer(a, b, g1.pos, g2.pos, margin);
   return 1;
@@ -912,7 +956,9 @@ bool closed_form_smooth(const GeomShape& s1, const GeomShape& s2, double margin)
   return false;
 }
 
-void check_closed_form_pair(const Model& model, const Data& data, double margin, int first) {
+// (Out of line: once a pair, its shapes kept out of the caller's frame.)
+[[gnu::noinline]] void check_closed_form_pair(const Model& model, const Data& data, double margin,
+                                              int first) {
   const Contact& con = data.contact[static_cast<std::size_t>(first)];
   const GeomType t1 = model.geom_type[con.geom1], t2 = model.geom_type[con.geom2];
   const GeomShape s1 = geom_shape(model, data, con.geom1);
@@ -929,9 +975,10 @@ void check_closed_form_pair(const Model& model, const Data& data, double margin,
 }
 
 // The frame the driver completes from the normal and the first tangent's seed (mju_makeFrame).
+// (Inlined: a contact's frame, in the loop over them.)
 template <class S>
-std::array<primitive::Vec<S>, 3> complete_frame(primitive::Vec<S> normal,
-                                                primitive::Vec<S> tangent) {
+[[gnu::always_inline]] inline std::array<primitive::Vec<S>, 3> complete_frame(
+    primitive::Vec<S> normal, primitive::Vec<S> tangent) {
   normalize(normal);
   if (std::sqrt(value(dot(tangent, tangent))) < 0.5) {
     const bool near_y = !(value(normal[1]) < 0.5 && value(normal[1]) > -0.5);
@@ -943,25 +990,32 @@ std::array<primitive::Vec<S>, 3> complete_frame(primitive::Vec<S> normal,
   return {normal, tangent, cross(normal, tangent)};
 }
 
-// complete_frame() of a contact's normal and tangent seed on the dual numbers; where neither moves
-// along any motion (a plane's normal, the plane held still), the frame does not either: its
-// values alone, on doubles.
-std::array<V, 3> contact_frame(const V& normal, const V& tangent) {
-  bool moves = false;
+// Along which groups of a batch's motions a contact's normal or tangent seed moves: bit q for
+// motions q kMotions .. (q + 1) kMotions - 1 (a batch starts at a multiple of kMotions), set where
+// a derivative part is not zero (or NaN). Along a group where neither moves, the frame does not
+// either: its derivatives there are written as zero (the dual arithmetic could give -0); the
+// group is kMotions wide whatever the batch, so that each motion's numbers are the same in any.
+// (Out of line: there the sums go two motions at a time.)
+template <int K>
+[[gnu::noinline]] unsigned frame_moving_groups(const TouchOf<Duals<K>>& f) {
+  std::array<double, K> size{};
   for (int a = 0; a < 3; ++a) {
-    for (int m = 0; m < kMotions; ++m) {
-      moves = moves || normal[a].d[m] != 0.0 || tangent[a].d[m] != 0.0;
+    for (int m = 0; m < K; ++m) size[m] += std::abs(f.normal[a].d[m]) + std::abs(f.tangent[a].d[m]);
+  }
+  const auto moves = [&size](int begin, int end) {
+    double total = 0;
+    for (int m = begin; m < end; ++m) total += size[m];
+    return !(total == 0.0);
+  };
+  if constexpr (K <= kMotions) {
+    return moves(0, K) ? 1u : 0u;
+  } else {
+    unsigned moving = 0;
+    for (int q = 0; q * kMotions < K; ++q) {
+      if (moves(q * kMotions, std::min(K, (q + 1) * kMotions))) moving |= 1u << q;
     }
+    return moving;
   }
-  if (moves) return complete_frame(normal, tangent);
-  const std::array<primitive::Vec<double>, 3> still =
-      complete_frame(primitive::Vec<double>{{normal[0].v, normal[1].v, normal[2].v}},
-                     primitive::Vec<double>{{tangent[0].v, tangent[1].v, tangent[2].v}});
-  std::array<V, 3> frame;
-  for (int r = 0; r < 3; ++r) {
-    for (int a = 0; a < 3; ++a) frame[r][a] = Scalar(still[r][a]);
-  }
-  return frame;
 }
 
 // ---- multiccd's extra contacts (collision/convex.cpp's convex_pair) ----------------------------
@@ -1075,6 +1129,97 @@ int multiccd_contacts(const Model& model, const Data& data, const Pose& g1, cons
   return n;
 }
 
+// What pair_contact_changes() decided once for a pair: how it is collided.
+struct PairCase {
+  double margin;
+  bool by_mpr;     // by MPR's search
+  bool polytopes;  // by MPR's last portal, held (else the search replayed)
+  bool multiccd;   // with multiccd's extra contacts
+  const Portal* portal;
+};
+
+// The pair's contacts on poses moving along motions m0 .. m0 + now - 1 (now at most K),
+// and their changes along each; on the first motions, their values checked against the collision
+// stage's. The replayed searches (not a polytope pair's portal, multiccd) run on Scalar alone
+// (K = kMotions).
+template <int K>
+void changes_along(const Model& model, const Data& data, const PairCase& pair_case, int first,
+                   int count, const GeomPairMotion* motions, int m0, int now,
+                   ContactChange* changes) {
+  using S = Duals<K>;
+  using W = primitive::Vec<S>;
+  const Contact& con = data.contact[static_cast<std::size_t>(first)];
+  const double margin = pair_case.margin;
+  std::array<TouchOf<S>, kMaxPairContacts> found;
+  const ShapeOf<S> g1 = moving_pose<K>(model, data, con.geom1, motions + m0, now, false);
+  const ShapeOf<S> g2 = moving_pose<K>(model, data, con.geom2, motions + m0, now, true);
+  int n = 0;
+  if (g1.type == GeomType::kPlane && g2.type == GeomType::kMesh) {
+    n = plane_mesh(g1, g2, data, first, count, found.data());
+  } else if (pair_case.polytopes) {
+    n = polytope_pair(*pair_case.portal, g1, g2, margin, found.data());
+  } else if (pair_case.by_mpr) {
+    if constexpr (K == kMotions) {
+      n = mpr_pair(model, data, g1, g2, margin, first, found.data());
+    }
+  } else {
+    n = collide_moving(g1, g2, margin, found.data());
+  }
+  if constexpr (K == kMotions) {
+    if (pair_case.multiccd) {
+      n = multiccd_contacts(model, data, g1, g2, margin, first, count, found.data());
+    }
+  }
+  for (int k = 0; k < count; ++k) {
+    const int i = first + k;
+    const Contact& ck = data.contact[static_cast<std::size_t>(i)];
+    if (n == 0) throw Error("derivatives: contact " + std::to_string(i) + " is not reproduced.");
+    const TouchOf<S>& f = found[static_cast<std::size_t>(k % n)];
+    // complete_frame() of the normal and the tangent seed on the dual numbers; where neither
+    // moves along any motion of a group (a plane's normal, the plane held still), the frame does
+    // not either: its derivatives there zero, and along every motion, its values alone on doubles
+    const unsigned moving_groups = frame_moving_groups(f);
+    std::array<W, 3> frame;
+    std::array<primitive::Vec<double>, 3> frame_value;
+    if (moving_groups != 0) {
+      frame = complete_frame(f.normal, f.tangent);
+      for (int r = 0; r < 3; ++r) frame_value[r] = values(frame[r]);
+    } else {
+      frame_value = complete_frame(values(f.normal), values(f.tangent));
+    }
+
+    // the values are the collision stage's (the same along every motion): else this is not
+    // the contact it found
+    if (m0 == 0) {
+      double gap = std::abs(f.dist.v - ck.dist);
+      for (int a = 0; a < 3; ++a) {
+        gap = std::max(gap, std::abs(f.pos[a].v - ck.pos[a]));
+        for (int r = 0; r < 3; ++r) {
+          gap = std::max(gap, std::abs(frame_value[r][a] - ck.frame(r, a)));
+        }
+      }
+      if (!(gap <= 1e-9 * (1 + ck.pos.cwiseAbs().maxCoeff()))) {
+        throw Error("derivatives: contact " + std::to_string(i) +
+                    " is not reproduced by the contact geometry's derivative (off by " +
+                    std::to_string(gap) + ").");
+      }
+    }
+    for (int m = 0; m < now; ++m) {
+      ContactChange& change = changes[(m0 + m) * count + k];
+      change.dist = f.dist.d[m];
+      for (int a = 0; a < 3; ++a) change.pos[a] = f.pos[a].d[m];
+      const int group = K <= kMotions ? 0 : m / kMotions;  // (a batch starts a group)
+      if (!((moving_groups >> group) & 1u)) {
+        change.frame.setZero();
+      } else {
+        for (int a = 0; a < 3; ++a) {
+          for (int r = 0; r < 3; ++r) change.frame(r, a) = frame[r][a].d[m];
+        }
+      }
+    }
+  }
+}
+
 }  // namespace
 
 bool contact_geometry_supported(GeomType a, GeomType b) {
@@ -1117,7 +1262,6 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   }
   margin = pair >= 0 ? model.pair_margin[pair]
                      : std::max(model.geom_margin[con.geom1], model.geom_margin[con.geom2]);
-  std::array<Found, kMaxPairContacts> found;
   // MPR's pairs: two polytopes at margin 0 by their last portal, the others by the whole search
   const bool by_mpr = collides_by_mpr(model.geom_type[con.geom1], model.geom_type[con.geom2]);
   Portal portal;
@@ -1135,52 +1279,23 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   };
   const bool multiccd = by_mpr && model.opt.enabled(kEnableMulticcd) && !roundish(con.geom1) &&
                         !roundish(con.geom2);
+  const PairCase pair_case{margin, by_mpr, polytopes, multiccd, &portal};
+  const bool replayed = (by_mpr && !polytopes) || multiccd;
+  if (!replayed && directions > kMotions && directions <= kMostMotions) {
+    // one batch for all (a free body's and a finger's motions, say)
+    changes_along<kMostMotions>(model, data, pair_case, first, count, motions, 0, directions,
+                                changes);
+    return;
+  }
   for (int m0 = 0; m0 < directions; m0 += kMotions) {  // kMotions motions at a time
     const int motions_now = std::min(kMotions, directions - m0);
-    const Pose g1 = moving_pose(model, data, con.geom1, motions + m0, motions_now, false);
-    const Pose g2 = moving_pose(model, data, con.geom2, motions + m0, motions_now, true);
-    int n = 0;
-    if (g1.type == GeomType::kPlane && g2.type == GeomType::kMesh) {
-      n = plane_mesh(g1, g2, data, first, count, found.data());
-    } else if (polytopes) {
-      n = polytope_pair(portal, g1, g2, margin, found.data());
-    } else if (by_mpr) {
-      n = mpr_pair(model, data, g1, g2, margin, first, found.data());
+    // a pair's last few motions, where it is not a replayed search: on fewer lanes
+    if (motions_now <= kFewMotions && !replayed) {
+      changes_along<kFewMotions>(model, data, pair_case, first, count, motions, m0, motions_now,
+                                 changes);
     } else {
-      n = collide_moving(g1, g2, margin, found.data());
-    }
-    if (multiccd) n = multiccd_contacts(model, data, g1, g2, margin, first, count, found.data());
-    for (int k = 0; k < count; ++k) {
-      const int i = first + k;
-      const Contact& ck = data.contact[static_cast<std::size_t>(i)];
-      if (n == 0) throw Error("derivatives: contact " + std::to_string(i) + " is not reproduced.");
-      const Found& f = found[static_cast<std::size_t>(k % n)];
-      const std::array<V, 3> frame = contact_frame(f.normal, f.tangent);
-
-      // the values are the collision stage's (the same along every motion): else this is not
-      // the contact it found
-      if (m0 == 0) {
-        double gap = std::abs(f.dist.v - ck.dist);
-        for (int a = 0; a < 3; ++a) {
-          gap = std::max(gap, std::abs(f.pos[a].v - ck.pos[a]));
-          for (int r = 0; r < 3; ++r) {
-            gap = std::max(gap, std::abs(frame[r][a].v - ck.frame(r, a)));
-          }
-        }
-        if (!(gap <= 1e-9 * (1 + ck.pos.cwiseAbs().maxCoeff()))) {
-          throw Error("derivatives: contact " + std::to_string(i) +
-                      " is not reproduced by the contact geometry's derivative (off by " +
-                      std::to_string(gap) + ").");
-        }
-      }
-      for (int m = 0; m < motions_now; ++m) {
-        ContactChange& change = changes[(m0 + m) * count + k];
-        change.dist = f.dist.d[m];
-        for (int a = 0; a < 3; ++a) {
-          change.pos[a] = f.pos[a].d[m];
-          for (int r = 0; r < 3; ++r) change.frame(r, a) = frame[r][a].d[m];
-        }
-      }
+      changes_along<kMotions>(model, data, pair_case, first, count, motions, m0, motions_now,
+                              changes);
     }
   }
 }
