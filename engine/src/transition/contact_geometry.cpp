@@ -10,7 +10,8 @@
 // reproduce is an error, not a wrong derivative.
 //
 // Pairs: every pair MuJoCo collides in closed form: plane against sphere, capsule, box, cylinder,
-// ellipsoid and mesh; sphere-sphere, sphere-capsule, capsule-capsule, sphere-box, capsule-box and
+// ellipsoid and mesh (a box on a plane that stands still by its corners' motions, not the dual
+// numbers: still_plane_box_changes()); sphere-sphere, sphere-capsule, capsule-capsule, sphere-box, capsule-box and
 // box-box (collision/box_pairs.hpp). And every pair MuJoCo collides by MPR (libccd's search, run
 // again here with its support points written down): two polytopes at margin 0 by a closed form
 // of the last portal the search ended on (a vertex on a face, an edge across an edge, a face on a
@@ -1220,6 +1221,42 @@ void changes_along(const Model& model, const Data& data, const PairCase& pair_ca
   }
 }
 
+// A box against a plane that stands still along every motion (the floor, say): each of
+// plane_box()'s contacts lies at a corner of the box, r from its centre (dist = n . (corner -
+// plane), pos = corner - n dist / 2, frame the plane's), so along a motion (w2, v2 the box's, v1
+// the plane's translation) the corner moves by u = v2 + w2 x r, the distance by n . (u - v1), the
+// position by u - n (d dist) / 2, and the frame not at all: the derivatives the dual numbers give,
+// in closed form (without building the box's eight corners on them).
+bool still_plane_box(const Model& model, const Contact& con, const GeomPairMotion* motions,
+                     int directions) {
+  if (model.geom_type[con.geom1] != GeomType::kPlane ||
+      model.geom_type[con.geom2] != GeomType::kBox) {
+    return false;
+  }
+  for (int m = 0; m < directions; ++m) {
+    if (!(motions[m].w1.array() == 0.0).all()) return false;
+  }
+  return true;
+}
+
+void still_plane_box_changes(const Data& data, int first, int count,
+                             const GeomPairMotion* motions, int directions,
+                             ContactChange* changes) {
+  for (int k = 0; k < count; ++k) {
+    const Contact& ck = data.contact[static_cast<std::size_t>(first + k)];
+    const Eigen::Vector3d n = ck.frame.row(0).transpose();
+    const Eigen::Vector3d r = ck.pos + n * (ck.dist / 2) - data.geom_xpos[ck.geom2];
+    for (int m = 0; m < directions; ++m) {
+      const GeomPairMotion& motion = motions[m];
+      const Eigen::Vector3d u = motion.v2 + motion.w2.cross(r);
+      ContactChange& change = changes[m * count + k];
+      change.dist = n.dot(u - motion.v1);
+      change.pos = u - n * (change.dist / 2);
+      change.frame.setZero();
+    }
+  }
+}
+
 }  // namespace
 
 bool contact_geometry_supported(GeomType a, GeomType b) {
@@ -1279,6 +1316,10 @@ void pair_contact_changes(const Model& model, const Data& data, int first, int c
   };
   const bool multiccd = by_mpr && model.opt.enabled(kEnableMulticcd) && !roundish(con.geom1) &&
                         !roundish(con.geom2);
+  if (still_plane_box(model, con, motions, directions)) {
+    still_plane_box_changes(data, first, count, motions, directions, changes);
+    return;
+  }
   const PairCase pair_case{margin, by_mpr, polytopes, multiccd, &portal};
   const bool replayed = (by_mpr && !polytopes) || multiccd;
   if (!replayed && directions > kMotions && directions <= kMostMotions) {
