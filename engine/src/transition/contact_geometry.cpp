@@ -11,15 +11,15 @@
 //
 // Pairs: every pair MuJoCo collides in closed form: plane against sphere, capsule, box, cylinder,
 // ellipsoid and mesh (a box on a plane that stands still by its corners' motions, not the dual
-// numbers: still_plane_box_changes()); sphere-sphere, sphere-capsule, capsule-capsule, sphere-box, capsule-box and
-// box-box (collision/box_pairs.hpp). And every pair MuJoCo collides by MPR (libccd's search, run
-// again here with its support points written down): two polytopes at margin 0 by a closed form
-// of the last portal the search ended on (a vertex on a face, an edge across an edge, a face on a
-// face), the others (a round geom, a margin) by the whole search replayed on the dual numbers,
-// its decisions held; multiccd's extra contacts by the turned searches replayed. Where the portal
-// or the search's path flips with the direction of a motion, or a closed form's answer turns
-// faster than its first order (an upright cylinder's disc flat on a plane), the answer jumps and
-// is refused by name (docs/derivatives.md).
+// numbers: still_plane_box_changes()); sphere-sphere, sphere-capsule, capsule-capsule,
+// sphere-box, capsule-box and box-box (collision/box_pairs.hpp). And every pair MuJoCo collides
+// by MPR (libccd's search, run again here with its support points written down): two polytopes
+// at margin 0 by a closed form of the last portal the search ended on (a vertex on a face, an
+// edge across an edge, a face on a face), the others (a round geom, a margin) by the whole search
+// replayed on the dual numbers, its decisions held; multiccd's extra contacts by the turned
+// searches replayed. Where the portal or the search's path flips with the direction of a motion,
+// or a closed form's answer turns faster than its first order (an upright cylinder's disc flat on
+// a plane), the answer jumps and is refused by name (docs/derivatives.md).
 #include <lever/collision.hpp>
 #include <lever/error.hpp>
 
@@ -1001,7 +1001,9 @@ template <int K>
 [[gnu::noinline]] unsigned frame_moving_groups(const TouchOf<Duals<K>>& f) {
   std::array<double, K> size{};
   for (int a = 0; a < 3; ++a) {
-    for (int m = 0; m < K; ++m) size[m] += std::abs(f.normal[a].d[m]) + std::abs(f.tangent[a].d[m]);
+    for (int m = 0; m < K; ++m) {
+      size[m] += std::abs(f.normal[a].d[m]) + std::abs(f.tangent[a].d[m]);
+    }
   }
   const auto moves = [&size](int begin, int end) {
     double total = 0;
