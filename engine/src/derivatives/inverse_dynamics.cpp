@@ -177,38 +177,25 @@ void acceleration_pass(const Model& model, const Data& data, std::span<const Mot
     } else {
       Motion vb = v[parent];
       Motion v_segment;  // the velocity the current segment's Sdot used
-      Motion segment_velocity = Motion::Zero();  // the current segment's S qd summed
-      Motion turning = Motion::Zero();           // the body's Sdot qd summed
-      Motion driven = Motion::Zero();            // the body's S qdd summed
-      Motion a_before = a_parent;                // the acceleration before dof i
+      BodyDofSums sums;
+      Motion a_before = a_parent;  // the acceleration before dof i
       bool moving = false;
       for (int k = 0; k < model.body_dofnum[b]; ++k) {
         const int i = model.body_dofadr[b] + k;
         const Motion &S = data.cdof[i], &S_dot = Sdot[i];
         const bool starts = detail::starts_segment(model, i);
         if (starts) {
-          if (k > 0) vb += segment_velocity;
+          if (k > 0) vb += sums.segment_velocity;
           v_segment = vb;
           moving = parent > 0 || k > 0;  // the world does not move: nothing before it turns S
         }
         w.Sddot[i] = cross_motion(a_before, S) + cross_motion(v_segment, S_dot);
         if (moving) a_before += S_dot * qd[i];
         if (qdd != nullptr) a_before += S * qdd[i];
-        if (starts) {
-          segment_velocity = S * qd[i];
-        } else {
-          segment_velocity += S * qd[i];
-        }
-        if (k == 0) {
-          turning = S_dot * qd[i];
-          if (qdd != nullptr) driven = S * qdd[i];
-        } else {
-          turning += S_dot * qd[i];
-          if (qdd != nullptr) driven += S * qdd[i];
-        }
+        sums.add(starts, k, S, S_dot, qd, qdd, i);
       }
-      a = a_parent + turning;
-      if (qdd != nullptr) a += driven;
+      a = a_parent + sums.turning;
+      if (qdd != nullptr) a += sums.driven;
     }
     w.a[b] = a;
   }

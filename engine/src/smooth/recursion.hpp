@@ -49,6 +49,32 @@ inline Force net_force(const RigidInertia& I, const Motion& v, const Motion& a) 
   return f;
 }
 
+/// A body of several dofs in RNEA's forward pass, summed in MuJoCo's order (mj_comVel, mj_rne):
+/// a segment's S qd before it joins the body's velocity, and the body's Sdot qd terms, then its
+/// S qdd terms (qdd == nullptr: none), before they join the parent's acceleration. add() takes
+/// the body's k-th dof i, which starts a segment or not.
+struct BodyDofSums {
+  Motion segment_velocity = Motion::Zero();  // the current segment's S qd summed
+  Motion turning = Motion::Zero();           // the body's Sdot qd summed
+  Motion driven = Motion::Zero();            // the body's S qdd summed
+
+  void add(bool starts_segment, int k, const Motion& S, const Motion& S_dot, const double* qd,
+           const double* qdd, int i) {
+    if (starts_segment) {
+      segment_velocity = S * qd[i];
+    } else {
+      segment_velocity += S * qd[i];
+    }
+    if (k == 0) {
+      turning = S_dot * qd[i];
+      if (qdd != nullptr) driven = S * qdd[i];
+    } else {
+      turning += S_dot * qd[i];
+      if (qdd != nullptr) driven += S * qdd[i];
+    }
+  }
+};
+
 /// RNEA's forward pass: every body's velocity v and acceleration a from its parent's, root to
 /// leaves, dof by dof:
 ///   v = v_parent + S_i qd_i,   a = a_parent + Sdot_i qd_i + S_i qdd_i,   Sdot_i = v_seg x S_i
@@ -105,9 +131,7 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
     // acceleration
     Motion vb = v[parent];
     Motion v_segment;   // the velocity the current segment's Sdot uses
-    Motion segment_velocity = Motion::Zero();  // the current segment's S qd summed
-    Motion turning = Motion::Zero();           // the body's Sdot qd summed
-    Motion driven = Motion::Zero();            // the body's S qdd summed
+    BodyDofSums sums;
     Motion a_before;  // the acceleration before dof i, dof by dof, for Sddot alone
     if (Sddot != nullptr) a_before = a[parent];
     bool moving = false;
@@ -115,7 +139,7 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
       const int i = model.body_dofadr[b] + k;
       const Motion& S = data.cdof[i];
       if (detail::starts_segment(model, i)) {
-        if (k > 0) vb += segment_velocity;
+        if (k > 0) vb += sums.segment_velocity;
         v_segment = vb;
         moving = parent > 0 || k > 0;  // the world does not move: nothing before it turns S
       }
@@ -132,22 +156,11 @@ inline void forward_pass(const Model& model, const Data& data, const double* qd,
         if (moving) a_before += S_dot * qd[i];
         if (qdd != nullptr) a_before += S * qdd[i];
       }
-      if (detail::starts_segment(model, i)) {
-        segment_velocity = S * qd[i];
-      } else {
-        segment_velocity += S * qd[i];
-      }
-      if (k == 0) {
-        turning = S_dot * qd[i];
-        if (qdd != nullptr) driven = S * qdd[i];
-      } else {
-        turning += S_dot * qd[i];
-        if (qdd != nullptr) driven += S * qdd[i];
-      }
+      sums.add(detail::starts_segment(model, i), k, S, S_dot, qd, qdd, i);
     }
-    if (model.body_dofnum[b] > 0) vb += segment_velocity;
-    Motion ab = a[parent] + turning;
-    if (qdd != nullptr) ab += driven;
+    if (model.body_dofnum[b] > 0) vb += sums.segment_velocity;
+    Motion ab = a[parent] + sums.turning;
+    if (qdd != nullptr) ab += sums.driven;
     v[b] = vb;
     a[b] = ab;
     done(b, v[b], a[b]);
