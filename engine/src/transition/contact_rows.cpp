@@ -294,8 +294,7 @@ void add_span_outer(double* base, Eigen::Index stride, const double* J, int coun
   }
 }
 
-}  // namespace
-
+// G = J_S^T D_S J_S over the rows rows[0..n): factor_held_rows()' G.
 void held_rows_weight(const Data& data, const int* rows, int n, Eigen::MatrixXd& G) {
   // nv is small, so each row's span of dofs on its own (Eigen's dynamic outer products cost more
   // in setup than in arithmetic here); the span's whole block, symmetric
@@ -308,6 +307,8 @@ void held_rows_weight(const Data& data, const int* rows, int n, Eigen::MatrixXd&
                    data.efc_D[r]);
   }
 }
+
+}  // namespace
 
 void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& G,
                       Eigen::MatrixXd& H, std::vector<int>& first) {
@@ -726,14 +727,10 @@ void constraint_rows_held(const Model& model, Data& data, Derivatives& deriv) {
   for (int k = 1; k < n; ++k) one_B = one_B && data.efc_B[w.rows[k]] == data.efc_B[w.rows[0]];
   const bool velocity_term = n > 0 && one_B;
   const double B = velocity_term ? data.efc_B[w.rows[0]] : 0.0;
-  const double* weight = data.M.data();  // the qvel columns' B-weighted matrix: + B M, or - B G
-  double sign = 1.0;
-  if (!solver_factor) {
-    factor_held_rows(data, w.rows.data(), n, G, H, w.contact_H_first);
-    weight = G.data();
-    sign = -1.0;
-  }
-  const double Bs = sign * B;
+  if (!solver_factor) factor_held_rows(data, w.rows.data(), n, G, H, w.contact_H_first);
+  // the qvel columns' B-weighted matrix: + B M with the solver's factor, else - B G
+  const double* weight = solver_factor ? data.M.data() : G.data();
+  const double Bs = solver_factor ? B : -B;
   // [rhs_q + E, rhs_v +- B (M or G), rhs_u] into X's rows in one pass down the inputs' columns
   const Eigen::Index stride = X.cols();
   for (int c = 0; c < nv; ++c) {

@@ -119,9 +119,6 @@ RowSpan row_span(const Data& data, int r);
 void factor_held_rows(const Data& data, const int* rows, int n, Eigen::MatrixXd& G,
                       Eigen::MatrixXd& H, std::vector<int>& first);
 
-/// G = J_S^T D_S J_S over the rows rows[0..n) (factor_held_rows()' G alone).
-void held_rows_weight(const Data& data, const int* rows, int n, Eigen::MatrixXd& G);
-
 /// X = H^-1 X, every column, with the forward solve's factor of H where
 /// settled_active_set_factor() says it holds one (the constraint room's data.work.newton_H);
 /// diagonal_inverse: nv numbers of scratch (the factor's 1 / L(j, j)).
